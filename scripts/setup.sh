@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Installs everything swarf needs on a fresh Debian machine of this kind, skipping what is there.
+# Called by scripts/serve.sh and scripts/test.sh; safe to run again.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+# The CLI must equal the crate pinned in Cargo.toml / Cargo.lock.
+WASM_BINDGEN_VERSION=$(sed -n 's/^wasm-bindgen = "=\([0-9.]*\)"/\1/p' Cargo.toml 2>/dev/null || true)
+: "${WASM_BINDGEN_VERSION:=0.2.130}"
+
+say() { printf '\033[1m[setup]\033[0m %s\n' "$*"; }
+
+if ! rustup target list --installed | grep -q '^wasm32-unknown-unknown$'; then
+  say "adding the wasm32 target"
+  rustup target add wasm32-unknown-unknown
+fi
+
+if ! command -v wasm-bindgen >/dev/null || [ "$(wasm-bindgen --version | awk '{print $2}')" != "$WASM_BINDGEN_VERSION" ]; then
+  say "installing wasm-bindgen-cli $WASM_BINDGEN_VERSION (several minutes, once)"
+  # --locked fails on this registry (see shared/TOOLCHAIN.md); the version pin is what matters.
+  cargo install wasm-bindgen-cli --version "$WASM_BINDGEN_VERSION" --force
+fi
+
+apt_missing=()
+command -v chromium >/dev/null || apt_missing+=(chromium)
+command -v chromedriver >/dev/null || apt_missing+=(chromium-driver)
+if [ "${SWARF_SKIP_LINUXCNC:-0}" != 1 ] && ! command -v rs274 >/dev/null; then apt_missing+=(linuxcnc-uspace); fi
+if [ ${#apt_missing[@]} -gt 0 ]; then
+  say "installing Debian packages: ${apt_missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -q
+  apt-get install -y -q --no-install-recommends "${apt_missing[@]}"
+fi
+
+# binaryen from npm (Debian's wasm-opt breaks the module) and playwright-core (no browser download).
+if [ ! -x node_modules/.bin/wasm-opt ] || [ ! -d node_modules/playwright-core ]; then
+  say "installing npm packages"
+  if [ -f package-lock.json ]; then npm ci --no-audit --no-fund; else npm install --no-audit --no-fund; fi
+fi
+say "ready"

@@ -1,0 +1,218 @@
+//! The `swarf` command line: the same `Job → Program → G-code` path as the page.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Instant;
+
+use clap::{Parser, Subcommand, ValueEnum};
+use swarf::cutter::{Cutter, Shape};
+use swarf::geom::Tolerances;
+use swarf::job::{self, Job};
+use swarf::mesh::import::read_mesh_auto;
+use swarf::mesh::placement::{PartSetup, Placement, UpAxis, Units};
+use swarf::mesh::sample::demo_part;
+use swarf::progress::Progress;
+use swarf::zmap::{cc::cc_zmap, cl_exact::cl_exact, cl_inverse::cl_inverse_offset, io, Grid};
+
+#[derive(Parser)]
+#[command(name = "swarf", version, about = "CAM: parts in, gouge-free tool paths and G-code out")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run a job file on a part and write G-code.
+    Run {
+        /// Job (JSON), as saved by the page or printed by `swarf job`.
+        job: PathBuf,
+        /// The part: STL, glTF/GLB or OBJ.
+        part: PathBuf,
+        /// Where to write the G-code (default: the part's name with .ngc).
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        /// Print no progress.
+        #[arg(short, long)]
+        quiet: bool,
+    },
+    /// Make the built-in sample part, its job and its G-code in a folder.
+    Demo {
+        /// Folder to write demo.stl, demo.json and demo.ngc into.
+        #[arg(short, long, default_value = ".")]
+        output: PathBuf,
+    },
+    /// Print the default job as JSON, to edit and pass to `swarf run`.
+    Job,
+    /// Write the CL z-map of a cutter over a part, for comparing heights point by point.
+    Zmap {
+        part: PathBuf,
+        #[arg(long, value_enum, default_value_t = ShapeArg::Ball)]
+        shape: ShapeArg,
+        /// Cutter diameter (mm).
+        #[arg(long, default_value_t = 6.0)]
+        diameter: f64,
+        /// Corner radius of a bull nose (mm).
+        #[arg(long, default_value_t = 1.0)]
+        corner: f64,
+        /// Grid spacing (mm).
+        #[arg(long, default_value_t = 0.5)]
+        grid: f64,
+        #[arg(long, value_enum, default_value_t = BuilderArg::Exact)]
+        builder: BuilderArg,
+        /// The part's units.
+        #[arg(long, value_enum, default_value_t = UnitsArg::Mm)]
+        units: UnitsArg,
+        /// The part's up axis is Y.
+        #[arg(long)]
+        y_up: bool,
+        /// Centre the part and put its top at z = 0 (default: keep the file's coordinates).
+        #[arg(long)]
+        center_top: bool,
+        /// Height of nodes the cutter cannot reach the part from (default: the part's bottom).
+        #[arg(long)]
+        floor: Option<f64>,
+        #[arg(long, value_enum, default_value_t = FormatArg::Csv)]
+        format: FormatArg,
+        #[arg(short, long)]
+        output: PathBuf,
+    },
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum ShapeArg {
+    Flat,
+    Ball,
+    BullNose,
+}
+#[derive(Clone, Copy, ValueEnum)]
+enum BuilderArg {
+    Exact,
+    Inverse,
+}
+#[derive(Clone, Copy, ValueEnum)]
+enum UnitsArg {
+    Mm,
+    Inch,
+}
+#[derive(Clone, Copy, ValueEnum)]
+enum FormatArg {
+    Csv,
+    Raw,
+}
+
+fn main() -> ExitCode {
+    match run(Cli::parse()) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => {
+            eprintln!("swarf: {message}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn read(path: &Path) -> Result<Vec<u8>, String> {
+    std::fs::read(path).map_err(|e| format!("cannot read {}: {e}", path.display()))
+}
+
+fn write(path: &Path, bytes: &[u8]) -> Result<(), String> {
+    std::fs::write(path, bytes).map_err(|e| format!("cannot write {}: {e}", path.display()))
+}
+
+fn run(cli: Cli) -> Result<(), String> {
+    match cli.command {
+        Command::Run { job, part, output, quiet } => {
+            let job = Job::from_json(&String::from_utf8_lossy(&read(&job)?)).map_err(|e| e.to_string())?;
+            let name = part.file_name().map(|n| n.to_string_lossy().into_owned());
+            let mesh = read_mesh_auto(&read(&part)?, name.as_deref(), &job.tolerances).map_err(|e| format!("{}: {e}", part.display()))?;
+            let output = output.unwrap_or_else(|| part.with_extension("ngc"));
+            run_job(&job, mesh, &output, quiet)
+        }
+        Command::Demo { output } => {
+            std::fs::create_dir_all(&output).map_err(|e| format!("cannot create {}: {e}", output.display()))?;
+            let part = demo_part();
+            let job = Job { name: "swarf demo".into(), ..Job::default() };
+            write(&output.join("demo.stl"), &part.to_binary_stl())?;
+            write(&output.join("demo.json"), serde_json::to_string_pretty(&job).unwrap().as_bytes())?;
+            run_job(&job, part, &output.join("demo.ngc"), false)
+        }
+        Command::Job => {
+            println!("{}", serde_json::to_string_pretty(&Job::default()).unwrap());
+            Ok(())
+        }
+        Command::Zmap { part, shape, diameter, corner, grid, builder, units, y_up, center_top, floor, format, output } => {
+            let tolerances = Tolerances::default();
+            let name = part.file_name().map(|n| n.to_string_lossy().into_owned());
+            let mut mesh = read_mesh_auto(&read(&part)?, name.as_deref(), &tolerances).map_err(|e| format!("{}: {e}", part.display()))?;
+            let setup = PartSetup {
+                units: match units {
+                    UnitsArg::Mm => Units::Mm,
+                    UnitsArg::Inch => Units::Inch,
+                },
+                up_axis: if y_up { UpAxis::Y } else { UpAxis::Z },
+                placement: if center_top { Placement::CenterTop } else { Placement::Keep },
+            };
+            setup.apply(&mut mesh);
+            let cutter = Cutter {
+                shape: match shape {
+                    ShapeArg::Flat => Shape::Flat,
+                    ShapeArg::Ball => Shape::Ball,
+                    ShapeArg::BullNose => Shape::BullNose,
+                },
+                diameter,
+                corner_radius: corner,
+                ..Cutter::default()
+            };
+            cutter.validate().map_err(|e| e.to_string())?;
+            let b = mesh.bounds();
+            let g = Grid::covering(b.min.truncate(), b.max.truncate(), grid);
+            let floor = floor.unwrap_or(b.min.z);
+            let started = Instant::now();
+            let field = match builder {
+                BuilderArg::Exact => cl_exact(&mesh, &cutter.profile(), g, floor, &tolerances, &mut Progress::none()),
+                BuilderArg::Inverse => cl_inverse_offset(&cc_zmap(&mesh, g, floor, &tolerances), &cutter.profile(), &mut Progress::none()),
+            }
+            .map_err(|e| e.to_string())?;
+            eprintln!("{} × {} nodes in {:.3} s", g.nx, g.ny, started.elapsed().as_secs_f64());
+            match format {
+                FormatArg::Csv => write(&output, io::to_csv(&field).as_bytes()),
+                FormatArg::Raw => write(&output, &io::to_raw(&field)),
+            }
+        }
+    }
+}
+
+fn run_job(job: &Job, mesh: swarf::Mesh, output: &Path, quiet: bool) -> Result<(), String> {
+    let started = Instant::now();
+    let mut last = -1i32;
+    let mut sink = |fraction: f64, stage: &str| {
+        let percent = (fraction * 100.0) as i32;
+        if !quiet && percent != last {
+            last = percent;
+            eprint!("\r{percent:3}% {stage:<40}");
+            let _ = std::io::stderr().flush();
+        }
+        true
+    };
+    let out = job::run(job, mesh, &mut Progress::new(&mut sink)).map_err(|e| e.to_string())?;
+    if !quiet {
+        eprintln!();
+    }
+    for w in &out.warnings {
+        eprintln!("warning: {w}");
+    }
+    write(output, out.gcode.as_bytes())?;
+    let s = out.stats;
+    eprintln!(
+        "{}: {} moves, {:.0} mm cutting, {:.0} mm rapid, about {}:{:02} min on the machine ({:.2} s to compute)",
+        output.display(),
+        s.moves,
+        s.feed_length,
+        s.rapid_length,
+        (s.seconds / 60.0) as u64,
+        (s.seconds % 60.0) as u64,
+        started.elapsed().as_secs_f64()
+    );
+    Ok(())
+}

@@ -1,0 +1,19 @@
+//! One error type for the whole pipeline. Each module has its own enum; `Error` gathers them so
+//! the CLI and the page can show a message a user understands.
+
+use thiserror::Error;
+
+pub use crate::mesh::import::ImportError;
+
+/// Anything that can go wrong between a dropped file and G-code.
+#[derive(Debug, Error)]
+pub enum Error {
+    #[error(transparent)]
+    Import(#[from] ImportError),
+    #[error("invalid job: {0}")]
+    Job(String),
+    #[error("cancelled")]
+    Cancelled,
+}
+
+pub type Result<T, E = Error> = std::result::Result<T, E>;

@@ -1,0 +1,33 @@
+//! Every tolerance swarf uses, in one place. Algorithms take a `Tolerances` (or one of its
+//! fields) as a parameter; none keeps a stray epsilon of its own.
+
+use serde::{Deserialize, Serialize};
+
+/// Distances in millimetres.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, rename_all = "camelCase")]
+pub struct Tolerances {
+    /// Triangles with an area below `degenerate_area` (mm²) are dropped at import and counted.
+    /// Default value: 1e-12.
+    pub degenerate_area: f64,
+    /// Largest distance a reduced tool path may lie above the points it replaces (chordal
+    /// tolerance of point reduction, mm). It never lies below them. Default value: 0.002.
+    pub chordal: f64,
+    /// Heights closer than this are treated as equal when deciding whether a linking move
+    /// may stay down (mm). Default value: 1e-6.
+    pub height: f64,
+    /// Horizontal components of a unit normal below this make a facet horizontal; normals
+    /// with a vertical component below it make a facet vertical. Default value: 1e-12.
+    pub normal: f64,
+}
+
+impl Tolerances {
+    pub const DEFAULT: Tolerances =
+        Tolerances { degenerate_area: 1e-12, chordal: 0.002, height: 1e-6, normal: 1e-12 };
+}
+
+impl Default for Tolerances {
+    fn default() -> Self {
+        Tolerances::DEFAULT
+    }
+}

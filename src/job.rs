@@ -1,0 +1,295 @@
+//! A job: stock, tools, operations and post settings, as one serde type. The same JSON drives
+//! the page, the CLI and the tests; [`run`] turns a job and a part into tool paths and G-code,
+//! reporting progress and stopping when cancelled.
+
+use serde::{Deserialize, Serialize};
+
+use crate::cutter::Cutter;
+use crate::error::{Error, Result};
+use crate::geom::{Aabb, DVec3, Tolerances};
+use crate::mesh::{placement::PartSetup, Mesh};
+use crate::post::{write_gcode, PostSettings};
+use crate::progress::Progress;
+use crate::strategy::finish_raster::{raster_runs, Pattern, RasterPasses};
+use crate::strategy::region::Region;
+use crate::toolpath::link::{link_runs, Feeds, Floor, LinkSettings};
+use crate::toolpath::{PathStats, Toolpath};
+use crate::zmap::{cc::cc_zmap, cl_exact::cl_exact, cl_inverse::cl_inverse_offset, ClBuilder, Grid, HeightField, MAX_NODES};
+
+/// The stock: a box around the placed part.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, rename_all = "camelCase")]
+pub struct Stock {
+    /// Extra stock around the part in X and Y (mm, each side). Default value: 5.
+    pub margin_xy: f64,
+    /// Extra stock above the part's top (mm). Default value: 1.
+    pub margin_top: f64,
+    /// Extra stock below the part's bottom (mm). Default value: 0.
+    pub margin_bottom: f64,
+    /// Height above the stock top for rapid moves (mm). Default value: 5.
+    pub clearance: f64,
+}
+
+impl Default for Stock {
+    fn default() -> Self {
+        Stock { margin_xy: 5.0, margin_top: 1.0, margin_bottom: 0.0, clearance: 5.0 }
+    }
+}
+
+impl Stock {
+    pub fn around(&self, part: &Aabb) -> Aabb {
+        let grow = DVec3::new(self.margin_xy, self.margin_xy, 0.0);
+        Aabb {
+            min: part.min - grow - DVec3::new(0.0, 0.0, self.margin_bottom),
+            max: part.max + grow + DVec3::new(0.0, 0.0, self.margin_top),
+        }
+    }
+}
+
+/// A tool in the library: a cutter with its cutting data.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, rename_all = "camelCase")]
+pub struct Tool {
+    /// Tool number (T word, pocket). Default value: 1.
+    pub number: u32,
+    /// Free text for the library and the program's comments. Default value: empty.
+    pub name: String,
+    #[serde(flatten)]
+    pub cutter: Cutter,
+    /// Spindle speed (rpm). Default value: 12000.
+    pub spindle_rpm: f64,
+    /// Cutting feed (mm/min). Default value: 1000.
+    pub feed_rate: f64,
+    /// Feed for vertical entries (mm/min). Default value: 300.
+    pub plunge_rate: f64,
+}
+
+impl Default for Tool {
+    fn default() -> Self {
+        Tool { number: 1, name: String::new(), cutter: Cutter::default(), spindle_rpm: 12000.0, feed_rate: 1000.0, plunge_rate: 300.0 }
+    }
+}
+
+impl Tool {
+    pub fn describe(&self) -> String {
+        if self.name.is_empty() {
+            self.cutter.describe()
+        } else {
+            format!("{}: {}", self.name, self.cutter.describe())
+        }
+    }
+}
+
+/// Where the tool's centre may go.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub enum Boundary {
+    /// The stock's rectangle.
+    Stock,
+    /// The part's outline seen from above, grown by the operation's margin.
+    #[default]
+    Silhouette,
+}
+
+/// Raster finishing over the CL z-map (seed 001).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, rename_all = "camelCase")]
+pub struct FinishRaster {
+    /// Shown in the program's comments. Default value: "raster finish".
+    pub name: String,
+    /// Number of the tool to use. Default value: 1.
+    pub tool: u32,
+    /// Direction of the passes (degrees from +X). Default value: 0.
+    pub angle: f64,
+    /// Distance between passes (mm). Default value: 0.5.
+    pub stepover: f64,
+    /// Default value: zigzag.
+    pub pattern: Pattern,
+    /// Default value: silhouette.
+    pub boundary: Boundary,
+    /// Growth of the silhouette boundary (mm). Default value: the tool's radius.
+    pub margin: Option<f64>,
+    /// Material left on the part (mm). Default value: 0.
+    pub allowance: f64,
+    /// Spacing of the CL z-map (mm). Default value: 0.25.
+    pub grid: f64,
+    /// Default value: exact.
+    pub builder: ClBuilder,
+    /// Lowest tip height where the part is not under the tool (mm). Default value: stock bottom.
+    pub floor: Option<f64>,
+    /// Longest link that may stay down (mm). Default value: twice the stepover.
+    pub stay_down_max: Option<f64>,
+}
+
+impl Default for FinishRaster {
+    fn default() -> Self {
+        FinishRaster {
+            name: "raster finish".into(),
+            tool: 1,
+            angle: 0.0,
+            stepover: 0.5,
+            pattern: Pattern::Zigzag,
+            boundary: Boundary::Silhouette,
+            margin: None,
+            allowance: 0.0,
+            grid: 0.25,
+            builder: ClBuilder::Exact,
+            floor: None,
+            stay_down_max: None,
+        }
+    }
+}
+
+/// One operation of a job.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "camelCase")]
+pub enum Operation {
+    FinishRaster(FinishRaster),
+}
+
+/// Everything needed to turn a part into G-code.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, rename_all = "camelCase")]
+pub struct Job {
+    /// Program title. Default value: "swarf job".
+    pub name: String,
+    pub part: PartSetup,
+    pub stock: Stock,
+    pub tools: Vec<Tool>,
+    pub operations: Vec<Operation>,
+    pub post: PostSettings,
+    pub tolerances: Tolerances,
+}
+
+impl Default for Job {
+    fn default() -> Self {
+        Job {
+            name: "swarf job".into(),
+            part: PartSetup::default(),
+            stock: Stock::default(),
+            tools: vec![Tool::default()],
+            operations: vec![Operation::FinishRaster(FinishRaster::default())],
+            post: PostSettings::default(),
+            tolerances: Tolerances::default(),
+        }
+    }
+}
+
+/// What a job produced.
+#[derive(Clone, Debug)]
+pub struct JobOutput {
+    /// The part as placed (mm, Z up).
+    pub part: Mesh,
+    pub stock: Aabb,
+    pub clearance_z: f64,
+    pub paths: Vec<Toolpath>,
+    pub gcode: String,
+    pub stats: PathStats,
+    /// Things the user should know that did not stop the job.
+    pub warnings: Vec<String>,
+}
+
+impl Job {
+    pub fn from_json(text: &str) -> Result<Job> {
+        serde_json::from_str(text).map_err(|e| Error::Job(e.to_string()))
+    }
+
+    pub fn tool(&self, number: u32) -> Result<&Tool> {
+        self.tools.iter().find(|t| t.number == number).ok_or_else(|| Error::Job(format!("no tool number {number} in the tool library")))
+    }
+
+    /// Checks the job before any work.
+    pub fn validate(&self) -> Result<()> {
+        let positive = |what: &str, v: f64| {
+            if v > 0.0 && v.is_finite() {
+                Ok(())
+            } else {
+                Err(Error::Job(format!("{what} must be a positive number (got {v})")))
+            }
+        };
+        for tool in &self.tools {
+            tool.cutter.validate().map_err(|e| Error::Job(format!("tool {}: {e}", tool.number)))?;
+            positive("the spindle speed", tool.spindle_rpm)?;
+            positive("the feed rate", tool.feed_rate)?;
+            positive("the plunge rate", tool.plunge_rate)?;
+        }
+        positive("the rapid rate", self.post.rapid_rate)?;
+        for op in &self.operations {
+            match op {
+                Operation::FinishRaster(f) => {
+                    self.tool(f.tool)?;
+                    positive("the stepover", f.stepover)?;
+                    positive("the grid spacing", f.grid)?;
+                    if !(f.allowance.is_finite() && f.angle.is_finite()) {
+                        return Err(Error::Job("the allowance and angle must be numbers".into()));
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Places the part, runs every operation and writes the G-code.
+pub fn run(job: &Job, mut part: Mesh, progress: &mut Progress) -> Result<JobOutput> {
+    job.validate()?;
+    let mut warnings = Vec::new();
+    if part.dropped_degenerate > 0 {
+        warnings.push(format!("{} degenerate triangles (zero area) were ignored", part.dropped_degenerate));
+    }
+    job.part.apply(&mut part);
+    let bounds = part.bounds();
+    let stock = job.stock.around(&bounds);
+    let clearance_z = stock.max.z + job.stock.clearance;
+    let mut paths = Vec::new();
+    let count = job.operations.len().max(1) as f64;
+    for (k, op) in job.operations.iter().enumerate() {
+        let (start, span) = (k as f64 / count, 1.0 / count);
+        match op {
+            Operation::FinishRaster(f) => {
+                paths.push(finish_raster(job, f, &part, &stock, clearance_z, progress, start, span)?);
+            }
+        }
+    }
+    progress.stage("writing G-code", 1.0, 0.0);
+    let gcode = write_gcode(&job.name, &paths, &job.tools, clearance_z, &job.post);
+    let stats = paths.iter().fold(PathStats::default(), |s, p| s.add(p.stats(job.post.rapid_rate)));
+    Ok(JobOutput { part, stock, clearance_z, paths, gcode, stats, warnings })
+}
+
+#[allow(clippy::too_many_arguments)]
+fn finish_raster(job: &Job, op: &FinishRaster, part: &Mesh, stock: &Aabb, clearance_z: f64, progress: &mut Progress, start: f64, span: f64) -> Result<Toolpath> {
+    let tool = job.tool(op.tool)?;
+    let profile = tool.cutter.profile();
+    let grid = Grid::covering(stock.min.truncate(), stock.max.truncate(), op.grid);
+    if grid.nodes() > MAX_NODES {
+        return Err(Error::Job(format!(
+            "a {} mm grid over this stock needs {} million nodes; choose a coarser grid",
+            op.grid,
+            grid.nodes() / 1_000_000
+        )));
+    }
+    let floor = op.floor.unwrap_or(stock.min.z);
+    let tol = &job.tolerances;
+    let cc = cc_zmap(part, grid, floor, tol);
+    if !progress.stage(&format!("{}: CL z-map", op.name), start, span * 0.9) {
+        return Err(Error::Cancelled);
+    }
+    let cl: HeightField = match op.builder {
+        ClBuilder::Exact => cl_exact(part, &profile, grid, floor, tol, progress)?,
+        ClBuilder::InverseOffset => cl_inverse_offset(&cc, &profile, progress)?,
+    };
+    if !progress.stage(&format!("{}: passes", op.name), start + span * 0.9, span * 0.1) {
+        return Err(Error::Cancelled);
+    }
+    let region = match op.boundary {
+        Boundary::Stock => Region::Rect { min: stock.min.truncate(), max: stock.max.truncate() },
+        Boundary::Silhouette => Region::silhouette(&cc, floor, op.margin.unwrap_or(profile.radius)),
+    };
+    let passes = RasterPasses { angle_deg: op.angle, stepover: op.stepover, pattern: op.pattern, allowance: op.allowance, tolerance: tol.chordal };
+    let runs = raster_runs(&cl, &region, &passes);
+    let settings = LinkSettings { clearance_z, stay_down_max: op.stay_down_max.unwrap_or(2.0 * op.stepover), ..LinkSettings::default() };
+    let floor_surface = Floor { cl: &cl, allowance: op.allowance, region: &region };
+    let (path_start, moves) = link_runs(&runs, &floor_surface, &settings, Feeds { cut: tool.feed_rate, plunge: tool.plunge_rate }, tol);
+    Ok(Toolpath { name: op.name.clone(), tool: tool.number, spindle_rpm: tool.spindle_rpm, start: path_start, moves })
+}

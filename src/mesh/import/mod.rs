@@ -1,0 +1,102 @@
+//! Reading parts from bytes: binary and ASCII STL, glTF 2.0 (`.gltf` with embedded data URIs,
+//! and `.glb`), Wavefront OBJ. Nothing is ever fetched: a glTF that points at an external URI
+//! is refused.
+
+mod gltf;
+mod obj;
+mod stl;
+
+use serde::{Deserialize, Serialize};
+use thiserror::Error;
+
+use super::Mesh;
+use crate::geom::Tolerances;
+
+/// What can be wrong with a part file. Messages are written for the person who dropped it.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum ImportError {
+    #[error("the file is empty")]
+    Empty,
+    #[error("the file is not a part swarf can read (expected STL, glTF/GLB or OBJ)")]
+    UnknownFormat,
+    #[error("the binary STL is truncated: it announces {announced} triangles ({expected} bytes) but has {actual} bytes")]
+    StlSizeMismatch { announced: u32, expected: u64, actual: u64 },
+    #[error("the STL file is broken: {0}")]
+    Stl(String),
+    #[error("the glTF file is broken: {0}")]
+    Gltf(String),
+    #[error("the glTF file refers to an external file '{0}'; swarf never fetches anything: embed the data (data URI) or use a .glb")]
+    ExternalUri(String),
+    #[error("the OBJ file is broken: {0}")]
+    Obj(String),
+    #[error("triangle {triangle} has a coordinate that is not a finite number ({value})")]
+    NonFinite { triangle: usize, value: String },
+    #[error("the file has no triangles")]
+    NoTriangles,
+    #[error("all {count} triangles of the file are degenerate (zero area)")]
+    AllDegenerate { count: usize },
+}
+
+/// File formats swarf reads parts from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub enum MeshFormat {
+    Stl,
+    Gltf,
+    Glb,
+    Obj,
+}
+
+impl MeshFormat {
+    /// Guesses the format from the file name's extension, then from the content.
+    pub fn detect(name: Option<&str>, bytes: &[u8]) -> Option<MeshFormat> {
+        let ext = name.and_then(|n| n.rsplit_once('.')).map(|(_, e)| e.to_ascii_lowercase());
+        match ext.as_deref() {
+            Some("stl") => return Some(MeshFormat::Stl),
+            Some("gltf") => return Some(MeshFormat::Gltf),
+            Some("glb") => return Some(MeshFormat::Glb),
+            Some("obj") => return Some(MeshFormat::Obj),
+            _ => {}
+        }
+        if bytes.starts_with(b"glTF") {
+            return Some(MeshFormat::Glb);
+        }
+        let head = String::from_utf8_lossy(&bytes[..bytes.len().min(512)]);
+        let trimmed = head.trim_start();
+        if trimmed.starts_with('{') {
+            Some(MeshFormat::Gltf)
+        } else if trimmed.starts_with("solid") || bytes.len() >= 84 {
+            if trimmed.starts_with("v ") || trimmed.starts_with('#') && head.contains("\nv ") {
+                Some(MeshFormat::Obj)
+            } else {
+                Some(MeshFormat::Stl)
+            }
+        } else if head.lines().any(|l| l.starts_with("v ") || l.starts_with("f ")) {
+            Some(MeshFormat::Obj)
+        } else {
+            None
+        }
+    }
+}
+
+/// Reads a mesh in the file's own units and axes (see [`super::placement`] for those).
+pub fn read_mesh(bytes: &[u8], format: MeshFormat, tolerances: &Tolerances) -> Result<Mesh, ImportError> {
+    if bytes.is_empty() {
+        return Err(ImportError::Empty);
+    }
+    let triangles = match format {
+        MeshFormat::Stl => stl::read(bytes)?,
+        MeshFormat::Gltf | MeshFormat::Glb => gltf::read(bytes)?,
+        MeshFormat::Obj => obj::read(bytes)?,
+    };
+    Mesh::from_triangles(triangles, tolerances)
+}
+
+/// Reads a mesh, detecting its format from `name` and the bytes.
+pub fn read_mesh_auto(bytes: &[u8], name: Option<&str>, tolerances: &Tolerances) -> Result<Mesh, ImportError> {
+    if bytes.is_empty() {
+        return Err(ImportError::Empty);
+    }
+    let format = MeshFormat::detect(name, bytes).ok_or(ImportError::UnknownFormat)?;
+    read_mesh(bytes, format, tolerances)
+}

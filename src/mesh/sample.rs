@@ -1,0 +1,70 @@
+//! Parts swarf makes itself: the built-in sample of the page and `swarf demo`, the synthetic die
+//! of seed 001's benchmark, and analytic shapes for tests. Each is a closed solid whose top is a
+//! height field `z = f(x, y)` over a rectangle, with walls and a flat bottom.
+
+use super::Mesh;
+use crate::geom::{DVec2, DVec3, Tolerances};
+
+/// A closed solid over `[min, max]` whose top is `top(x, y)`, sampled on `nx × ny` quads, with
+/// its bottom at `bottom`.
+pub fn height_field_solid(min: DVec2, max: DVec2, nx: usize, ny: usize, bottom: f64, top: impl Fn(f64, f64) -> f64) -> Mesh {
+    let (nx, ny) = (nx.max(1), ny.max(1));
+    let at = |i: usize, j: usize| {
+        let x = min.x + (max.x - min.x) * i as f64 / nx as f64;
+        let y = min.y + (max.y - min.y) * j as f64 / ny as f64;
+        DVec3::new(x, y, top(x, y))
+    };
+    let mut tris = Vec::with_capacity(2 * nx * ny + 4 * (nx + ny) + 2);
+    for j in 0..ny {
+        for i in 0..nx {
+            let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+            tris.push([a, b, c]);
+            tris.push([a, c, d]);
+        }
+    }
+    let floor = |p: DVec3| DVec3::new(p.x, p.y, bottom);
+    let mut wall = |p: DVec3, q: DVec3| {
+        tris.push([p, floor(p), floor(q)]);
+        tris.push([p, floor(q), q]);
+    };
+    for i in 0..nx {
+        wall(at(i + 1, 0), at(i, 0));
+        wall(at(i, ny), at(i + 1, ny));
+    }
+    for j in 0..ny {
+        wall(at(0, j), at(0, j + 1));
+        wall(at(nx, j + 1), at(nx, j));
+    }
+    let corners = [min.extend(bottom), DVec3::new(max.x, min.y, bottom), max.extend(bottom), DVec3::new(min.x, max.y, bottom)];
+    tris.push([corners[0], corners[2], corners[1]]);
+    tris.push([corners[0], corners[3], corners[2]]);
+    Mesh::from_triangles(tris, &Tolerances::DEFAULT).expect("a generated solid has triangles")
+}
+
+/// The built-in sample part: a 90 × 60 mm mould insert with a dome, a hollow and a ridge, 25 mm
+/// tall, top at about z = 0. Small enough to generate a path in a second in the page.
+pub fn demo_part() -> Mesh {
+    height_field_solid(DVec2::new(-45.0, -30.0), DVec2::new(45.0, 30.0), 90, 60, -25.0, |x, y| {
+        let dome = 9.0 * (-((x - 14.0).powi(2) + (y - 4.0).powi(2)) / 180.0).exp();
+        let hollow = -6.0 * (-((x + 20.0).powi(2) + (y + 6.0).powi(2)) / 90.0).exp();
+        let ridge = 3.0 * (-(x + 0.6 * y + 4.0).powi(2) / 12.0).exp();
+        let swell = 1.5 * (x / 11.0).sin() * (y / 9.0).cos();
+        dome + hollow + ridge + swell - 10.0
+    })
+}
+
+/// A synthetic stand-in for seed 001's car fuel-tank die (1190 × 890 mm): a smooth freeform
+/// cavity with draft-like walls, bumps and a ridge, `2 * nx * ny` top triangles.
+pub fn fuel_tank_die(nx: usize, ny: usize) -> Mesh {
+    let (w, h) = (1190.0, 890.0);
+    height_field_solid(DVec2::ZERO, DVec2::new(w, h), nx, ny, -250.0, move |x, y| {
+        let (u, v) = (x / w - 0.5, y / h - 0.5);
+        let r = ((u / 0.38).powi(2) + (v / 0.33).powi(2)).sqrt();
+        let cavity = -120.0 / (1.0 + (-(r - 1.0) * -14.0).exp());
+        let boss = 45.0 * (-((u - 0.12).powi(2) + (v + 0.05).powi(2)) / 0.006).exp();
+        let inside = 1.0 / (1.0 + ((r - 1.0) * 14.0).exp());
+        let channel = -25.0 * (-((u + 0.2 * v + 0.15).powi(2)) / 0.002).exp() * inside;
+        let waves = 6.0 * (9.0 * u).sin() * (7.0 * v).cos();
+        cavity + boss + channel + waves
+    })
+}

@@ -1,0 +1,46 @@
+//! Progress reporting and cancellation for long work. A job reports fractions in [0, 1]; the
+//! sink (the CLI's bar, the page's worker) returns `false` to cancel, and the work then stops at
+//! its next report with [`crate::Error::Cancelled`].
+
+/// A progress sink scaled to a sub-range of the whole job.
+pub struct Progress<'a> {
+    sink: Option<&'a mut dyn FnMut(f64, &str) -> bool>,
+    start: f64,
+    span: f64,
+    stage: String,
+    cancelled: bool,
+}
+
+impl<'a> Progress<'a> {
+    /// Reports to `sink`, which returns `false` to cancel.
+    pub fn new(sink: &'a mut dyn FnMut(f64, &str) -> bool) -> Progress<'a> {
+        Progress { sink: Some(sink), start: 0.0, span: 1.0, stage: String::new(), cancelled: false }
+    }
+
+    /// Reports nowhere and never cancels.
+    pub fn none() -> Progress<'static> {
+        Progress { sink: None, start: 0.0, span: 1.0, stage: String::new(), cancelled: false }
+    }
+
+    /// Enters the stage `name`, which covers `[start, start + span]` of the whole.
+    pub fn stage(&mut self, name: &str, start: f64, span: f64) -> bool {
+        self.stage = name.to_owned();
+        self.start = start;
+        self.span = span;
+        self.report(0.0)
+    }
+
+    /// Reports `fraction` of the current stage; `false` means the user cancelled.
+    pub fn report(&mut self, fraction: f64) -> bool {
+        if self.cancelled {
+            return false;
+        }
+        if let Some(sink) = self.sink.as_mut() {
+            let whole = self.start + self.span * fraction.clamp(0.0, 1.0);
+            if !sink(whole, &self.stage) {
+                self.cancelled = true;
+            }
+        }
+        !self.cancelled
+    }
+}

@@ -1,0 +1,5 @@
+//! Strategies turn a part (through its CL z-map) into tool paths. Each one keeps the tool tip on
+//! or above the CL surface plus its allowance, so none can gouge (DESIGN.md, idea 1).
+
+pub mod finish_raster;
+pub mod region;

@@ -1,0 +1,153 @@
+//! Tool paths as data: rapid, linear feed and arc moves, each path with its tool. Linking and
+//! point reduction are passes over this data ([`link`], [`reduce`]), not parts of a strategy.
+
+pub mod link;
+pub mod reduce;
+
+use serde::{Deserialize, Serialize};
+
+use crate::geom::{DVec2, DVec3};
+
+/// One motion of the machine. Coordinates are absolute, in mm.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "camelCase")]
+pub enum Move {
+    /// Positioning at the machine's rapid rate (G0).
+    Rapid { to: DVec3 },
+    /// Straight cut at `feed` mm/min (G1).
+    Line { to: DVec3, feed: f64 },
+    /// Arc in the XY plane about `center`, to `to` (the z of `to` may differ: a helix), at
+    /// `feed` mm/min (G2 clockwise, G3 counter-clockwise).
+    Arc { to: DVec3, center: DVec2, clockwise: bool, feed: f64 },
+}
+
+impl Move {
+    pub fn to(&self) -> DVec3 {
+        match *self {
+            Move::Rapid { to } | Move::Line { to, .. } | Move::Arc { to, .. } => to,
+        }
+    }
+
+    pub fn is_rapid(&self) -> bool {
+        matches!(self, Move::Rapid { .. })
+    }
+
+    /// Length of the move from `from`.
+    pub fn length(&self, from: DVec3) -> f64 {
+        match *self {
+            Move::Rapid { to } | Move::Line { to, .. } => from.distance(to),
+            Move::Arc { to, center, clockwise, .. } => {
+                let planar = (from.truncate() - center).length() * arc_sweep(from, to, center, clockwise).abs();
+                (planar * planar + (to.z - from.z).powi(2)).sqrt()
+            }
+        }
+    }
+}
+
+/// Signed angle swept by an arc from `from` to `to` about `center` (negative when clockwise);
+/// equal start and end points make a full circle, as in G-code.
+pub fn arc_sweep(from: DVec3, to: DVec3, center: DVec2, clockwise: bool) -> f64 {
+    let (a, b) = (from.truncate() - center, to.truncate() - center);
+    let mut sweep = a.angle_to(b); // (-pi, pi], counter-clockwise positive
+    if clockwise && sweep > 0.0 || !clockwise && sweep < 0.0 {
+        sweep -= sweep.signum() * std::f64::consts::TAU;
+    }
+    if sweep == 0.0 {
+        sweep = if clockwise { -std::f64::consts::TAU } else { std::f64::consts::TAU };
+    }
+    sweep
+}
+
+/// The moves of one operation with one tool, starting at the clearance height.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub struct Toolpath {
+    /// Name of the operation that made it.
+    pub name: String,
+    /// Tool number (index into the job's tool library by number).
+    pub tool: u32,
+    /// Spindle speed (rpm).
+    pub spindle_rpm: f64,
+    /// Where the path starts: above its first point at the clearance height.
+    pub start: DVec3,
+    pub moves: Vec<Move>,
+}
+
+/// Lengths and an estimated time of a path.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub struct PathStats {
+    pub moves: usize,
+    pub feed_length: f64,
+    pub rapid_length: f64,
+    /// Estimated cycle time (seconds) at the programmed feeds and the given rapid rate.
+    pub seconds: f64,
+}
+
+impl PathStats {
+    pub fn add(self, other: PathStats) -> PathStats {
+        PathStats {
+            moves: self.moves + other.moves,
+            feed_length: self.feed_length + other.feed_length,
+            rapid_length: self.rapid_length + other.rapid_length,
+            seconds: self.seconds + other.seconds,
+        }
+    }
+}
+
+impl Toolpath {
+    /// Lengths, and time at the feeds and `rapid_rate` (mm/min).
+    pub fn stats(&self, rapid_rate: f64) -> PathStats {
+        let mut stats = PathStats { moves: self.moves.len(), ..PathStats::default() };
+        let mut at = self.start;
+        for m in &self.moves {
+            let length = m.length(at);
+            match *m {
+                Move::Rapid { .. } => {
+                    stats.rapid_length += length;
+                    stats.seconds += length / rapid_rate * 60.0;
+                }
+                Move::Line { feed, .. } | Move::Arc { feed, .. } => {
+                    stats.feed_length += length;
+                    stats.seconds += length / feed * 60.0;
+                }
+            }
+            at = m.to();
+        }
+        stats
+    }
+
+    /// The path as line segments for drawing: each segment's two end points, and whether it is
+    /// a rapid. Arcs are split into chords of at most `arc_step` radians.
+    pub fn segments(&self, arc_step: f64) -> Vec<(DVec3, DVec3, bool)> {
+        let mut out = Vec::with_capacity(self.moves.len());
+        let mut at = self.start;
+        for m in &self.moves {
+            match *m {
+                Move::Rapid { to } => out.push((at, to, true)),
+                Move::Line { to, .. } => out.push((at, to, false)),
+                Move::Arc { to, center, clockwise, .. } => {
+                    let a = at.truncate() - center;
+                    let radius = a.length();
+                    let sweep = arc_sweep(at, to, center, clockwise);
+                    let steps = ((sweep.abs() / arc_step).ceil() as usize).max(1);
+                    let start_angle = a.y.atan2(a.x);
+                    let mut prev = at;
+                    for k in 1..=steps {
+                        let f = k as f64 / steps as f64;
+                        let th = start_angle + sweep * f;
+                        let p = if k == steps {
+                            to
+                        } else {
+                            (center + DVec2::new(th.cos(), th.sin()) * radius).extend(at.z + (to.z - at.z) * f)
+                        };
+                        out.push((prev, p, false));
+                        prev = p;
+                    }
+                }
+            }
+            at = m.to();
+        }
+        out
+    }
+}
