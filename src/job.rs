@@ -14,6 +14,7 @@ use crate::strategy::finish_raster::{raster_runs, Pattern, RasterPasses};
 use crate::strategy::region::Region;
 use crate::toolpath::link::{link_runs, Feeds, Floor, LinkSettings};
 use crate::toolpath::{PathStats, Toolpath};
+use crate::zmap::surface::ClSurface;
 use crate::zmap::{cc::cc_zmap, cl_exact::cl_exact, cl_inverse::cl_inverse_offset, ClBuilder, Grid, HeightField, MAX_NODES};
 
 /// The stock: a box around the placed part.
@@ -287,6 +288,7 @@ fn finish_raster(job: &Job, op: &FinishRaster, part: &Mesh, stock: &Aabb, cleara
         Boundary::Silhouette => Region::silhouette(&cc, floor, op.margin.unwrap_or(profile.radius)),
     };
     let passes = RasterPasses { angle_deg: op.angle, stepover: op.stepover, pattern: op.pattern, allowance: op.allowance, tolerance: tol.chordal };
+    let cl = ClSurface::new(cl, tol.interpolation);
     let runs = raster_runs(&cl, &region, &passes);
     let settings = LinkSettings { clearance_z, stay_down_max: op.stay_down_max.unwrap_or(2.0 * op.stepover), ..LinkSettings::default() };
     let floor_surface = Floor { cl: &cl, allowance: op.allowance, region: &region };

@@ -16,14 +16,24 @@ pub struct Tolerances {
     /// Heights closer than this are treated as equal when deciding whether a linking move
     /// may stay down (mm). Default value: 1e-6.
     pub height: f64,
+    /// Largest sag below the true CL surface trusted to linear interpolation between z-map
+    /// nodes, estimated from the nodes' second differences; cells that curve down faster are
+    /// held at their highest corner (mm). Where the CL surface has a convex kink between two
+    /// nodes (the rim of a flat end's plateau) the sag can reach four times this.
+    /// Default value: 0.005.
+    pub interpolation: f64,
     /// Horizontal components of a unit normal below this make a facet horizontal; normals
     /// with a vertical component below it make a facet vertical. Default value: 1e-12.
     pub normal: f64,
 }
 
+/// A point closer to a z-map grid line than this fraction of the spacing is taken to lie on
+/// it (so both cells beside the line count); it absorbs rounding in computed crossings.
+pub const GRID_SNAP: f64 = 1e-9;
+
 impl Tolerances {
     pub const DEFAULT: Tolerances =
-        Tolerances { degenerate_area: 1e-12, chordal: 0.002, height: 1e-6, normal: 1e-12 };
+        Tolerances { degenerate_area: 1e-12, chordal: 0.002, height: 1e-6, interpolation: 0.005, normal: 1e-12 };
 }
 
 impl Default for Tolerances {

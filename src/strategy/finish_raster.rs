@@ -4,8 +4,8 @@
 //! Steps, in order:
 //! 1. lay parallel passes at `angle` and `stepover` across the region's bounds;
 //! 2. cut each pass at the z-map's breakpoints (grid lines and cell diagonals), so that the
-//!    polyline through them *is* the CL surface along the pass, and split it where it leaves
-//!    the region;
+//!    polyline through them follows the [`ClSurface`] along the pass and never passes below
+//!    it, and split it where it leaves the region;
 //! 3. lift every point by the allowance and reduce within the chordal tolerance, never below;
 //! 4. order the runs (zigzag or one way); linking is left to [`crate::toolpath::link`].
 
@@ -14,7 +14,7 @@ use serde::{Deserialize, Serialize};
 use super::region::Region;
 use crate::geom::{DVec2, DVec3};
 use crate::toolpath::reduce::reduce;
-use crate::zmap::HeightField;
+use crate::zmap::surface::ClSurface;
 
 /// How consecutive passes run.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -42,7 +42,7 @@ pub struct RasterPasses {
 }
 
 /// The cutting runs, in machining order, each a polyline of tip positions.
-pub fn raster_runs(cl: &HeightField, region: &Region, passes: &RasterPasses) -> Vec<Vec<DVec3>> {
+pub fn raster_runs(cl: &ClSurface, region: &Region, passes: &RasterPasses) -> Vec<Vec<DVec3>> {
     let angle = passes.angle_deg.to_radians();
     let along = DVec2::new(angle.cos(), angle.sin());
     let across = along.perp();
@@ -97,13 +97,13 @@ fn clip_to_rect(a: DVec2, b: DVec2, min: DVec2, max: DVec2) -> Option<(DVec2, DV
 
 /// One pass from `a` to `b`: the CL polyline, split where it leaves the region, each run
 /// lifted by the allowance and reduced.
-fn cut_pass(cl: &HeightField, region: &Region, a: DVec2, b: DVec2, passes: &RasterPasses) -> Vec<Vec<DVec3>> {
+fn cut_pass(cl: &ClSurface, region: &Region, a: DVec2, b: DVec2, passes: &RasterPasses) -> Vec<Vec<DVec3>> {
     let mut runs = Vec::new();
     let mut run: Vec<DVec3> = Vec::new();
     for t in cl.breakpoints(a, b) {
         let p = a.lerp(b, t);
         if region.contains(p) {
-            run.push(p.extend(cl.sample(p) + passes.allowance));
+            run.push(p.extend(cl.height(p) + passes.allowance));
         } else if !run.is_empty() {
             runs.push(reduce(&std::mem::take(&mut run), passes.tolerance));
         }

@@ -8,7 +8,7 @@ use serde::{Deserialize, Serialize};
 use super::Move;
 use crate::geom::{DVec3, Tolerances};
 use crate::strategy::region::Region;
-use crate::zmap::HeightField;
+use crate::zmap::surface::ClSurface;
 
 /// How runs are joined.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -31,7 +31,7 @@ impl Default for LinkSettings {
 
 /// The surface a path must stay on or above: a CL z-map lifted by the allowance, within a region.
 pub struct Floor<'a> {
-    pub cl: &'a HeightField,
+    pub cl: &'a ClSurface,
     pub allowance: f64,
     pub region: &'a Region,
 }
@@ -42,7 +42,7 @@ impl Floor<'_> {
     pub fn clears(&self, a: DVec3, b: DVec3, tolerance: f64) -> bool {
         self.cl.breakpoints(a.truncate(), b.truncate()).into_iter().all(|t| {
             let p = a.lerp(b, t);
-            self.region.contains(p.truncate()) && p.z + tolerance >= self.cl.sample(p.truncate()) + self.allowance
+            self.region.contains(p.truncate()) && p.z + tolerance >= self.cl.height(p.truncate()) + self.allowance
         })
     }
 }

@@ -6,13 +6,14 @@
 //!    vertex of the mesh (§3.3, the offset-facet model with its edge and vertex "singularities"
 //!    handled by the same drop).
 //!
-//! Both CL builders return the lowest safe tip height at every node; nodes the part does not
+//! [`surface::ClSurface`] says what lies between the nodes. Both CL builders return the lowest safe tip height at every node; nodes the part does not
 //! reach hold the floor given when the grid was laid out.
 
 pub mod cc;
 pub mod cl_exact;
 pub mod cl_inverse;
 pub mod io;
+pub mod surface;
 
 use serde::{Deserialize, Serialize};
 

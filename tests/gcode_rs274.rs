@@ -1,0 +1,186 @@
+//! Every program the post writes is run through LinuxCNC's own interpreter (`rs274` from
+//! Debian's linuxcnc-uspace), and the canonical moves it prints are checked against the tool
+//! path move by move.
+
+mod common;
+
+use std::path::PathBuf;
+use std::process::Command;
+
+use swarf::cutter::Cutter;
+use swarf::geom::{DVec2, DVec3};
+use swarf::job::{self, FinishRaster, Job, Operation, Tool};
+use swarf::mesh::placement::Units;
+use swarf::mesh::sample::demo_part;
+use swarf::post::{write_gcode, Dialect, PostSettings};
+use swarf::progress::Progress;
+use swarf::toolpath::{Move, Toolpath};
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Kind {
+    Rapid,
+    Feed,
+    Arc { center: DVec2, ccw: bool },
+}
+
+/// Runs rs274 on the program; returns its canonical motions (kind, end point in program units).
+fn interpret(gcode: &str, tools: &[Tool]) -> Vec<(Kind, DVec3)> {
+    let dir = std::env::temp_dir().join(format!("swarf-rs274-{}-{}", std::process::id(), rand_suffix()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let program: PathBuf = dir.join("program.ngc");
+    std::fs::write(&program, gcode).unwrap();
+    let table = dir.join("tool.tbl");
+    let lines: String = tools.iter().map(|t| format!("T{0} P{0} Z0.000 D{1:.3} ;{2}\n", t.number, t.cutter.diameter, t.describe())).collect();
+    std::fs::write(&table, lines).unwrap();
+    let output = match Command::new("rs274").arg("-g").arg("-t").arg(&table).arg(&program).output() {
+        Ok(o) => o,
+        Err(e) => panic!("rs274 (LinuxCNC's interpreter) could not be run: {e}; scripts/setup.sh installs it (apt-get install linuxcnc-uspace)"),
+    };
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success() && !stderr.contains("rror"), "rs274 refused the program:\n{stderr}\n{}", tail(&stdout));
+    let _ = std::fs::remove_dir_all(&dir);
+    stdout.lines().filter_map(parse_canon).collect()
+}
+
+fn rand_suffix() -> u64 {
+    use std::sync::atomic::{AtomicU64, Ordering};
+    static N: AtomicU64 = AtomicU64::new(0);
+    N.fetch_add(1, Ordering::Relaxed)
+}
+
+fn tail(s: &str) -> String {
+    s.lines().rev().take(8).collect::<Vec<_>>().join("\n")
+}
+
+fn numbers(args: &str) -> Vec<f64> {
+    args.split(|c| c == ',' || c == ' ').filter_map(|w| w.trim().parse().ok()).collect()
+}
+
+fn parse_canon(line: &str) -> Option<(Kind, DVec3)> {
+    let call = line.split_once("N..... ").map(|(_, c)| c)?;
+    let (name, rest) = call.split_once('(')?;
+    let args = numbers(rest.trim_end_matches(')'));
+    match name {
+        "STRAIGHT_TRAVERSE" => Some((Kind::Rapid, DVec3::new(args[0], args[1], args[2]))),
+        "STRAIGHT_FEED" => Some((Kind::Feed, DVec3::new(args[0], args[1], args[2]))),
+        // ARC_FEED(end1, end2, centre1, centre2, rotation, end3, a, b, c, ...)
+        "ARC_FEED" => Some((Kind::Arc { center: DVec2::new(args[2], args[3]), ccw: args[4] > 0.0 }, DVec3::new(args[0], args[1], args[5]))),
+        _ => None,
+    }
+}
+
+/// The motions the program should make, in program units, without motions that go nowhere.
+fn expected(paths: &[Toolpath], clearance: f64, scale: f64) -> Vec<(Kind, DVec3)> {
+    let mut out = Vec::new();
+    for path in paths {
+        out.push((Kind::Rapid, path.start.truncate().extend(clearance)));
+        out.push((Kind::Rapid, path.start));
+        for m in &path.moves {
+            out.push(match *m {
+                Move::Rapid { to } => (Kind::Rapid, to),
+                Move::Line { to, .. } => (Kind::Feed, to),
+                Move::Arc { to, center, clockwise, .. } => (Kind::Arc { center: center * scale, ccw: !clockwise }, to),
+            });
+        }
+    }
+    let mut result: Vec<(Kind, DVec3)> = Vec::new();
+    for (k, p) in out {
+        let p = p * scale;
+        if matches!(k, Kind::Arc { .. }) || result.last().map_or(true, |(_, q)| q.distance(p) > 1e-9) {
+            result.push((k, p));
+        }
+    }
+    result
+}
+
+/// Compares the interpreter's motions with the path's, within the program's rounding.
+fn compare(actual: &[(Kind, DVec3)], expected: &[(Kind, DVec3)], resolution: f64) {
+    // The program starts with a retract to the clearance height from wherever the machine is.
+    let actual: Vec<_> = actual.iter().skip_while(|(k, p)| *k == Kind::Rapid && p.x == 0.0 && p.y == 0.0).copied().collect();
+    let mut a = actual.iter().peekable();
+    let mut checked = 0;
+    for (kind, point) in expected {
+        // Moves whose rounded coordinates equal the previous ones are not written.
+        let Some((k, p)) = a.peek().copied() else { panic!("the program ends early, expected {kind:?} to {point}") };
+        if p.distance(*point) > resolution * 2.0 {
+            continue;
+        }
+        a.next();
+        match (k, kind) {
+            (Kind::Arc { center: c1, ccw: w1 }, Kind::Arc { center: c2, ccw: w2 }) => {
+                assert!(c1.distance(*c2) <= resolution * 2.0 && w1 == w2, "arc centre {c1} vs {c2}");
+            }
+            _ => assert_eq!(std::mem::discriminant(k), std::mem::discriminant(kind), "at {point}"),
+        }
+        checked += 1;
+    }
+    assert!(checked as f64 >= expected.len() as f64 * 0.95, "only {checked} of {} moves matched", expected.len());
+    // What is left after the path: the final retract.
+    let rest: Vec<_> = a.collect();
+    assert!(rest.len() <= 1 && rest.iter().all(|(k, _)| *k == Kind::Rapid), "unexpected motions after the path: {rest:?}");
+}
+
+fn demo_job(dialect: Dialect, units: Units) -> Job {
+    Job {
+        name: format!("demo {dialect:?} {units:?}"),
+        tools: vec![Tool { number: 3, cutter: Cutter::ball(6.0), ..Tool::default() }],
+        operations: vec![Operation::FinishRaster(FinishRaster { tool: 3, stepover: 2.0, grid: 0.5, angle: 30.0, ..FinishRaster::default() })],
+        post: PostSettings { dialect, units, ..PostSettings::default() },
+        ..Job::default()
+    }
+}
+
+#[test]
+fn demo_programs_run_in_linuxcnc_for_every_dialect_and_unit() {
+    for dialect in [Dialect::LinuxCnc, Dialect::Grbl, Dialect::Mach3] {
+        for units in [Units::Mm, Units::Inch] {
+            let job = demo_job(dialect, units);
+            let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
+            let scale = 1.0 / units.mm();
+            let resolution = if units == Units::Mm { 0.0005 } else { 0.00005 };
+            let actual = interpret(&out.gcode, &job.tools);
+            compare(&actual, &expected(&out.paths, out.clearance_z, scale), resolution);
+        }
+    }
+}
+
+#[test]
+fn dialect_headers_and_footers() {
+    let out = |d| job::run(&demo_job(d, Units::Mm), demo_part(), &mut Progress::none()).unwrap().gcode;
+    let grbl = out(Dialect::Grbl);
+    assert!(!grbl.contains("M6") && !grbl.contains("G43") && grbl.contains("G21") && grbl.contains("M3") && grbl.trim_end().ends_with("M30"));
+    let linuxcnc = out(Dialect::LinuxCnc);
+    assert!(linuxcnc.contains("T3 M6") && linuxcnc.contains("G43 H3") && linuxcnc.trim_end().ends_with("M2"));
+    let fanuc = out(Dialect::Fanuc);
+    assert!(fanuc.starts_with("%\nO0001") && fanuc.trim_end().ends_with('%'));
+    let inch = job::run(&demo_job(Dialect::LinuxCnc, Units::Inch), demo_part(), &mut Progress::none()).unwrap().gcode;
+    assert!(inch.contains("G20") && !inch.contains("G21"));
+}
+
+#[test]
+fn arcs_and_helices_go_out_as_g2_g3_with_relative_centres() {
+    let tools = vec![Tool { number: 1, cutter: Cutter::flat(6.0), ..Tool::default() }];
+    let moves = vec![
+        Move::Line { to: DVec3::new(10.0, 0.0, -1.0), feed: 300.0 },
+        Move::Arc { to: DVec3::new(0.0, 10.0, -1.0), center: DVec2::ZERO, clockwise: false, feed: 800.0 },
+        Move::Arc { to: DVec3::new(10.0, 0.0, -1.0), center: DVec2::ZERO, clockwise: true, feed: 800.0 },
+        // A full helical turn down by 1 mm.
+        Move::Arc { to: DVec3::new(10.0, 0.0, -2.0), center: DVec2::ZERO, clockwise: false, feed: 800.0 },
+        Move::Arc { to: DVec3::new(14.0, 4.0, -2.0), center: DVec2::new(14.0, 0.0), clockwise: true, feed: 800.0 },
+        Move::Rapid { to: DVec3::new(14.0, 4.0, 5.0) },
+    ];
+    let path = Toolpath { name: "arcs".into(), tool: 1, spindle_rpm: 10000.0, start: DVec3::new(10.0, 0.0, 5.0), moves };
+    for units in [Units::Mm, Units::Inch] {
+        let settings = PostSettings { units, ..PostSettings::default() };
+        let gcode = write_gcode("arcs", std::slice::from_ref(&path), &tools, 5.0, &settings);
+        assert!(gcode.contains("G3 X0 Y10 I-10 J0") || units == Units::Inch, "{gcode}");
+        let resolution = if units == Units::Mm { 0.0005 } else { 0.00005 };
+        compare(&interpret(&gcode, &tools), &expected(std::slice::from_ref(&path), 5.0, 1.0 / units.mm()), resolution);
+        // The full circle is one G3 with the same start and end.
+        assert!(gcode.lines().any(|l| l.starts_with("G3") && l.contains(if units == Units::Mm { "Z-2" } else { "Z-0.0787" })));
+    }
+    let stats = path.stats(3000.0);
+    let expected_feed = 6.0 + 2.0 * std::f64::consts::FRAC_PI_2 * 10.0 + (std::f64::consts::TAU * 10.0f64).hypot(1.0) + std::f64::consts::FRAC_PI_2 * 4.0;
+    assert!((stats.feed_length - expected_feed).abs() < 1e-9, "{} vs {expected_feed}", stats.feed_length);
+}

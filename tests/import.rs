@@ -1,0 +1,210 @@
+//! Importers: good files of every format, and bad files that must give clear errors.
+
+mod common;
+
+use base64::Engine;
+use swarf::geom::{DVec3, Tolerances};
+use swarf::mesh::import::{read_mesh, read_mesh_auto, ImportError, MeshFormat};
+use swarf::mesh::placement::{PartSetup, Placement, UpAxis, Units};
+use swarf::mesh::sample::demo_part;
+
+const TOL: Tolerances = Tolerances::DEFAULT;
+
+fn ascii_stl(tris: &[[[f32; 3]; 3]]) -> String {
+    let mut s = String::from("solid test\n");
+    for t in tris {
+        s.push_str("facet normal 0 0 1\nouter loop\n");
+        for v in t {
+            s.push_str(&format!("vertex {} {} {}\n", v[0], v[1], v[2]));
+        }
+        s.push_str("endloop\nendfacet\n");
+    }
+    s.push_str("endsolid test\n");
+    s
+}
+
+#[test]
+fn binary_stl_round_trip_welds_vertices() {
+    let part = demo_part();
+    let bytes = part.to_binary_stl();
+    let back = read_mesh_auto(&bytes, Some("demo.stl"), &TOL).unwrap();
+    assert_eq!(back.faces.len(), part.faces.len());
+    assert_eq!(back.vertices.len(), part.vertices.len(), "shared vertices are welded");
+    let (a, b) = (part.bounds(), back.bounds());
+    assert!((a.min - b.min).abs().max_element() < 1e-4 && (a.max - b.max).abs().max_element() < 1e-4);
+}
+
+#[test]
+fn ascii_stl_is_read() {
+    let text = ascii_stl(&[[[0., 0., 0.], [1., 0., 0.], [0., 1., 0.]], [[1., 0., 0.], [1., 1., 0.], [0., 1., 0.]]]);
+    let mesh = read_mesh_auto(text.as_bytes(), Some("a.stl"), &TOL).unwrap();
+    assert_eq!((mesh.faces.len(), mesh.vertices.len()), (2, 4));
+}
+
+#[test]
+fn truncated_binary_stl_says_so() {
+    let bytes = demo_part().to_binary_stl();
+    let cut = &bytes[..bytes.len() - 17];
+    match read_mesh_auto(cut, Some("part.stl"), &TOL) {
+        Err(ImportError::StlSizeMismatch { announced, actual, .. }) => {
+            assert_eq!(announced as usize, demo_part().faces.len());
+            assert_eq!(actual as usize, cut.len());
+        }
+        other => panic!("expected a size mismatch, got {other:?}"),
+    }
+    let message = read_mesh_auto(cut, Some("part.stl"), &TOL).unwrap_err().to_string();
+    assert!(message.contains("truncated"), "{message}");
+    // Shorter than a header.
+    assert!(matches!(read_mesh_auto(&bytes[..40], Some("p.stl"), &TOL), Err(ImportError::StlSizeMismatch { .. })));
+}
+
+#[test]
+fn triangle_count_that_does_not_match_the_size_is_refused() {
+    let mut bytes = demo_part().to_binary_stl();
+    bytes[80..84].copy_from_slice(&7u32.to_le_bytes());
+    assert!(matches!(read_mesh_auto(&bytes, Some("p.stl"), &TOL), Err(ImportError::StlSizeMismatch { announced: 7, .. })));
+}
+
+#[test]
+fn empty_files_and_unknown_formats() {
+    assert_eq!(read_mesh_auto(b"", Some("p.stl"), &TOL).unwrap_err(), ImportError::Empty);
+    assert_eq!(read_mesh_auto(b"hello", None, &TOL).unwrap_err(), ImportError::UnknownFormat);
+    // An STL with a zero triangle count.
+    let mut bytes = vec![0u8; 84];
+    bytes[..5].copy_from_slice(b"model");
+    assert_eq!(read_mesh_auto(&bytes, Some("p.stl"), &TOL).unwrap_err(), ImportError::NoTriangles);
+}
+
+#[test]
+fn nan_and_infinite_coordinates_are_refused() {
+    for bad in ["nan", "inf", "-inf"] {
+        let text = ascii_stl(&[[[0., 0., 0.], [1., 0., 0.], [0., 1., 0.]]]).replacen("vertex 1 0 0", &format!("vertex 1 {bad} 0"), 1);
+        let err = read_mesh_auto(text.as_bytes(), Some("p.stl"), &TOL).unwrap_err();
+        assert!(matches!(err, ImportError::NonFinite { triangle: 0, .. }), "{bad}: {err:?}");
+    }
+    let mut bytes = demo_part().to_binary_stl();
+    bytes[84 + 50 * 3 + 16..84 + 50 * 3 + 20].copy_from_slice(&f32::NAN.to_le_bytes());
+    assert!(matches!(read_mesh_auto(&bytes, Some("p.stl"), &TOL), Err(ImportError::NonFinite { triangle: 3, .. })));
+}
+
+#[test]
+fn degenerate_triangles_are_dropped_and_counted() {
+    let text = ascii_stl(&[
+        [[0., 0., 0.], [1., 0., 0.], [0., 1., 0.]],
+        [[0., 0., 0.], [1., 1., 1.], [2., 2., 2.]], // collinear
+        [[5., 5., 5.], [5., 5., 5.], [5., 5., 5.]], // a point
+    ]);
+    let mesh = read_mesh_auto(text.as_bytes(), Some("p.stl"), &TOL).unwrap();
+    assert_eq!((mesh.faces.len(), mesh.dropped_degenerate), (1, 2));
+    let all_bad = ascii_stl(&[[[0., 0., 0.], [1., 1., 1.], [2., 2., 2.]]]);
+    assert_eq!(read_mesh_auto(all_bad.as_bytes(), Some("p.stl"), &TOL).unwrap_err(), ImportError::AllDegenerate { count: 1 });
+}
+
+/// A glTF with one triangle in an embedded buffer, its node translated by (10, 20, 30).
+fn gltf_json(uri: &str) -> String {
+    format!(
+        r#"{{"asset":{{"version":"2.0"}},"scene":0,"scenes":[{{"nodes":[0]}}],
+        "nodes":[{{"mesh":0,"translation":[10,20,30]}}],
+        "meshes":[{{"primitives":[{{"attributes":{{"POSITION":0}}}}]}}],
+        "accessors":[{{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}}],
+        "bufferViews":[{{"buffer":0,"byteLength":36}}],
+        "buffers":[{{"byteLength":36,"uri":"{uri}"}}]}}"#
+    )
+}
+
+fn triangle_bytes() -> Vec<u8> {
+    [0f32, 0., 0., 1., 0., 0., 0., 1., 0.].iter().flat_map(|f| f.to_le_bytes()).collect()
+}
+
+#[test]
+fn gltf_with_a_data_uri_applies_node_transforms() {
+    let uri = format!("data:application/octet-stream;base64,{}", base64::engine::general_purpose::STANDARD.encode(triangle_bytes()));
+    let mesh = read_mesh_auto(gltf_json(&uri).as_bytes(), Some("t.gltf"), &TOL).unwrap();
+    assert_eq!(mesh.faces.len(), 1);
+    assert_eq!(mesh.bounds().min, DVec3::new(10.0, 20.0, 30.0));
+    assert_eq!(mesh.bounds().max, DVec3::new(11.0, 21.0, 30.0));
+}
+
+#[test]
+fn gltf_pointing_at_an_external_uri_is_refused_and_nothing_is_fetched() {
+    for uri in ["https://example.com/evil.bin", "triangle.bin", "file:///etc/passwd"] {
+        let err = read_mesh_auto(gltf_json(uri).as_bytes(), Some("t.gltf"), &TOL).unwrap_err();
+        assert_eq!(err, ImportError::ExternalUri(uri.into()));
+        assert!(err.to_string().contains("never fetches"));
+    }
+}
+
+#[test]
+fn glb_is_read_and_lying_accessors_are_refused() {
+    let json = gltf_json("").replace(r#","uri":"""#, "");
+    let glb = |json: &str, bin: &[u8]| {
+        let pad = |mut v: Vec<u8>, fill: u8| {
+            while v.len() % 4 != 0 {
+                v.push(fill);
+            }
+            v
+        };
+        let (j, b) = (pad(json.as_bytes().to_vec(), b' '), pad(bin.to_vec(), 0));
+        let mut out = b"glTF".to_vec();
+        out.extend(2u32.to_le_bytes());
+        out.extend(((12 + 8 + j.len() + 8 + b.len()) as u32).to_le_bytes());
+        out.extend((j.len() as u32).to_le_bytes());
+        out.extend(b"JSON");
+        out.extend(j);
+        out.extend((b.len() as u32).to_le_bytes());
+        out.extend(b"BIN\0");
+        out.extend(b);
+        out
+    };
+    let mesh = read_mesh_auto(&glb(&json, &triangle_bytes()), Some("t.glb"), &TOL).unwrap();
+    assert_eq!(mesh.faces.len(), 1);
+    // An accessor claiming more vertices than its view holds.
+    let lying = json.replace(r#""count":3"#, r#""count":300"#);
+    let err = read_mesh_auto(&glb(&lying, &triangle_bytes()), Some("t.glb"), &TOL).unwrap_err();
+    assert!(matches!(err, ImportError::Gltf(_)), "{err:?}");
+    // A truncated GLB.
+    let whole = glb(&json, &triangle_bytes());
+    assert!(read_mesh_auto(&whole[..whole.len() - 20], Some("t.glb"), &TOL).is_err());
+}
+
+#[test]
+fn obj_is_triangulated() {
+    let text = "# a quad\nv 0 0 0\nv 2 0 0\nv 2 1 0\nv 0 1 0\nf 1 2 3 4\n";
+    let mesh = read_mesh_auto(text.as_bytes(), Some("q.obj"), &TOL).unwrap();
+    assert_eq!(mesh.faces.len(), 2);
+    let bad = "v 0 0 0\nf 1 2 3\n";
+    assert!(matches!(read_mesh_auto(bad.as_bytes(), Some("q.obj"), &TOL), Err(ImportError::Obj(_))));
+    assert!(matches!(MeshFormat::detect(None, text.as_bytes()), Some(MeshFormat::Obj)));
+}
+
+#[test]
+fn inches_and_y_up_are_converted_and_the_part_is_placed() {
+    let text = ascii_stl(&[[[0., 0., 0.], [1., 0., 0.], [0., 2., 1.]]]);
+    let mut mesh = read_mesh(text.as_bytes(), MeshFormat::Stl, &TOL).unwrap();
+    PartSetup { units: Units::Inch, up_axis: UpAxis::Y, placement: Placement::Keep }.apply(&mut mesh);
+    let b = mesh.bounds();
+    // File Y (0..2 in) becomes Z (0..50.8 mm); file Z (0..1 in) becomes -Y.
+    assert!((b.max.z - 50.8).abs() < 1e-9 && (b.min.y + 25.4).abs() < 1e-9 && (b.max.x - 25.4).abs() < 1e-9);
+    PartSetup { placement: Placement::CenterTop, ..PartSetup::default() }.apply(&mut mesh);
+    let b = mesh.bounds();
+    assert!(b.max.z.abs() < 1e-12 && b.center().truncate().length() < 1e-12);
+}
+
+#[test]
+fn shared_real_parts_load() {
+    let cases: &[(&str, usize)] = &[
+        ("meshes/ocl_mount_rush.stl", 15_592),
+        ("meshes/kiri_pocket-test.stl", 28),
+        ("meshes/tm_featuretype.stl", 3_476),
+        ("meshes/tm_Duck.glb", 4_212),
+        ("meshes/Box.gltf", 12),
+        ("meshes/pycam_textbox.stl", 1_444),
+        ("meshes/ocl_wheel_in_box.stl", 6_102),
+    ];
+    for (rel, triangles) in cases {
+        let Some(path) = common::shared_data(rel) else { return };
+        let bytes = std::fs::read(&path).unwrap();
+        let mesh = read_mesh_auto(&bytes, path.file_name().and_then(|n| n.to_str()), &TOL).unwrap_or_else(|e| panic!("{rel}: {e}"));
+        assert_eq!(mesh.faces.len() + mesh.dropped_degenerate, *triangles, "{rel}");
+    }
+}

@@ -1,0 +1,214 @@
+//! The CL z-map builders against exact answers (seed 001): analytic tip heights for flat, ball
+//! and bull-nose cutters over planes, steps, ridges, points and spheres.
+
+mod common;
+
+use common::*;
+use swarf::cutter::{Cutter, Profile};
+use swarf::geom::{DVec2, DVec3, Tolerances};
+use swarf::mesh::Mesh;
+use swarf::progress::Progress;
+use swarf::zmap::{cc::cc_zmap, cl_exact::cl_exact, cl_exact::cl_exact_at, cl_inverse::cl_inverse_offset, Grid, HeightField};
+
+const EXACT: f64 = 1e-6;
+const FLOOR: f64 = -1000.0;
+
+fn exact(mesh: &Mesh, cutter: &Cutter, min: DVec2, max: DVec2, spacing: f64) -> HeightField {
+    cl_exact(mesh, &cutter.profile(), Grid::covering(min, max, spacing), FLOOR, &Tolerances::DEFAULT, &mut Progress::none()).unwrap()
+}
+
+/// Checks every node within `[min, max]` against `expected`; returns the largest error.
+fn check(field: &HeightField, min: DVec2, max: DVec2, tol: f64, expected: impl Fn(DVec2) -> f64) -> f64 {
+    let grid = field.grid();
+    let mut worst: f64 = 0.0;
+    let mut checked = 0;
+    for j in 0..field.ny {
+        for i in 0..field.nx {
+            let p = grid.node(i, j);
+            if p.cmplt(min).any() || p.cmpgt(max).any() {
+                continue;
+            }
+            let err = (field.at(i, j) - expected(p)).abs();
+            assert!(err <= tol, "at {p}: got {} expected {} (error {err})", field.at(i, j), expected(p));
+            worst = worst.max(err);
+            checked += 1;
+        }
+    }
+    assert!(checked > 50, "only {checked} nodes checked");
+    worst
+}
+
+fn cutters() -> Vec<Cutter> {
+    vec![Cutter::flat(6.0), Cutter::ball(6.0), Cutter::bull_nose(6.0, 1.0), Cutter::bull_nose(10.0, 2.5)]
+}
+
+#[test]
+fn every_cutter_over_a_tilted_plane() {
+    let (gx, gy) = (0.3, -0.45);
+    let mesh = plane(40.0, 2.0, gx, gy);
+    let n = DVec3::new(-gx, -gy, 1.0).normalize();
+    let hn = n.truncate().length();
+    for cutter in cutters() {
+        let (r, a) = (cutter.radius(), cutter.corner());
+        let field = exact(&mesh, &cutter, DVec2::splat(-30.0), DVec2::splat(30.0), 0.7);
+        check(&field, DVec2::splat(-30.0), DVec2::splat(30.0), EXACT, |c| 2.0 + gx * c.x + gy * c.y + ((r - a) * hn + a) / n.z - a);
+    }
+}
+
+#[test]
+fn every_cutter_over_a_horizontal_plane_sits_on_it() {
+    let mesh = plane(20.0, -3.0, 0.0, 0.0);
+    for cutter in cutters() {
+        let field = exact(&mesh, &cutter, DVec2::splat(-15.0), DVec2::splat(15.0), 0.5);
+        check(&field, DVec2::splat(-15.0), DVec2::splat(15.0), EXACT, |_| -3.0);
+    }
+}
+
+#[test]
+fn flat_end_next_to_a_vertical_step() {
+    let mesh = step(30.0, 5.0);
+    let cutter = Cutter::flat(8.0);
+    let field = exact(&mesh, &cutter, DVec2::splat(-20.0), DVec2::splat(20.0), 0.3);
+    check(&field, DVec2::splat(-20.0), DVec2::splat(20.0), EXACT, |c| if c.x + 4.0 >= 0.0 { 5.0 } else { 0.0 });
+}
+
+#[test]
+fn ball_and_bull_nose_next_to_a_vertical_step() {
+    let mesh = step(30.0, 5.0);
+    for cutter in [Cutter::ball(8.0), Cutter::bull_nose(8.0, 1.5)] {
+        let p = cutter.profile();
+        let field = exact(&mesh, &cutter, DVec2::splat(-20.0), DVec2::splat(20.0), 0.3);
+        // Beside the wall the cutter hangs on the wall's top edge at horizontal distance -x.
+        check(&field, DVec2::splat(-20.0), DVec2::splat(20.0), EXACT, |c| {
+            if c.x >= 0.0 {
+                5.0
+            } else if -c.x <= p.radius {
+                (5.0 - p.height(-c.x)).max(0.0)
+            } else {
+                0.0
+            }
+        });
+    }
+}
+
+#[test]
+fn ball_along_a_sharp_ridge() {
+    let (h, s) = (10.0, 0.8);
+    let mesh = roof(40.0, h, s);
+    for cutter in [Cutter::ball(10.0), Cutter::ball(3.0)] {
+        let r = cutter.radius();
+        let n = DVec3::new(s, 0.0, 1.0).normalize(); // normal of the x < 0 side
+        let field = exact(&mesh, &cutter, DVec2::splat(-25.0), DVec2::splat(25.0), 0.45);
+        check(&field, DVec2::splat(-25.0), DVec2::splat(25.0), EXACT, |c| {
+            let d = c.x.abs();
+            // On a facet the ball touches at distance r·sin from the centre; past the ridge it
+            // rides the edge.
+            let facet = h - s * d + r / n.z - r;
+            let edge = h + (r * r - d * d).max(0.0).sqrt() - r;
+            if d >= r * n.x { facet } else { edge }
+        });
+    }
+}
+
+#[test]
+fn bull_nose_and_flat_on_a_lone_vertex() {
+    // A tiny tilted triangle far below a single raised vertex: the vertex decides nearby.
+    let v = DVec3::new(0.0, 0.0, 4.0);
+    let mesh = mesh(vec![[v, DVec3::new(30.0, -0.5, -50.0), DVec3::new(30.0, 0.5, -50.0)]]);
+    for cutter in cutters() {
+        let p = cutter.profile();
+        let field = exact(&mesh, &cutter, DVec2::splat(-2.9), DVec2::new(-0.01, 2.9), 0.1);
+        check(&field, DVec2::splat(-2.9), DVec2::new(-0.01, 2.9), EXACT, |c| {
+            let r = c.length();
+            if r <= p.radius { 4.0 - p.height(r) } else { FLOOR }
+        });
+    }
+}
+
+#[test]
+fn every_cutter_over_a_sphere_within_the_tessellation_sag() {
+    let (rs, rim, spacing) = (30.0, 24.0, 0.4);
+    let mesh = cap(rs, rim, spacing);
+    // The mesh's vertices lie on the sphere and its facets inside it, no deeper than the sag
+    // of the longest edge (a cell's diagonal, stretched by the slope at the rim).
+    let chord = spacing * 2f64.sqrt() * rs / (rs * rs - rim * rim).sqrt();
+    let depth = sag(rs, chord);
+    for cutter in [Cutter::ball(10.0), Cutter::bull_nose(10.0, 2.0), Cutter::flat(6.0)] {
+        let (r, a) = (cutter.radius(), cutter.corner());
+        let field = exact(&mesh, &cutter, DVec2::splat(-12.0), DVec2::splat(12.0), 0.5);
+        check(&field, DVec2::splat(-12.0), DVec2::splat(12.0), depth + EXACT, |c| over_sphere(rs, r, a, c));
+        // And never above the true sphere's answer: the mesh is inside the sphere.
+        let grid = field.grid();
+        for j in 0..field.ny {
+            for i in 0..field.nx {
+                let c = grid.node(i, j);
+                assert!(field.at(i, j) <= over_sphere(rs, r, a, c) + EXACT);
+            }
+        }
+    }
+}
+
+#[test]
+fn exact_grid_matches_the_pointwise_drop() {
+    let part = swarf::mesh::sample::demo_part();
+    let cutter = Cutter::bull_nose(6.0, 1.0);
+    let (min, max) = (DVec2::new(-20.0, -10.0), DVec2::new(10.0, 10.0));
+    let field = exact(&part, &cutter, min, max, 1.3);
+    check(&field, min, max, EXACT, |c| cl_exact_at(&part, &cutter.profile(), c, &Tolerances::DEFAULT).unwrap());
+}
+
+/// Seed 001 §3.3: "for an upper hemisphere of radius 100 mm and a 10 mm ball offset, the
+/// offset-facet method's largest error is under about 1/10 of the z-map inverse offset's at a
+/// 1 mm grid".
+#[test]
+fn paper_claim_offset_facets_beat_inverse_offset_tenfold() {
+    let (rs, rim) = (100.0, 80.0);
+    let mesh = cap(rs, rim, 0.5);
+    let cutter = Cutter::ball(10.0);
+    let (min, max) = (DVec2::splat(-50.0), DVec2::splat(50.0)); // contacts well inside the rim
+    let grid = Grid::covering(DVec2::splat(-rim), DVec2::splat(rim), 1.0);
+    let tol = Tolerances::DEFAULT;
+    let exact_field = cl_exact(&mesh, &cutter.profile(), grid, FLOOR, &tol, &mut Progress::none()).unwrap();
+    let cc = cc_zmap(&mesh, grid, FLOOR, &tol);
+    let inverse_field = cl_inverse_offset(&cc, &cutter.profile(), &mut Progress::none()).unwrap();
+    let truth = |c: DVec2| over_sphere(rs, 5.0, 5.0, c);
+    let exact_error = check(&exact_field, min, max, 1.0, truth);
+    let inverse_error = check(&inverse_field, min, max, 1.0, truth);
+    eprintln!("hemisphere R100, ball 10, grid 1: exact {exact_error:.6} mm, inverse offset {inverse_error:.6} mm");
+    assert!(exact_error * 10.0 < inverse_error, "exact {exact_error} vs inverse {inverse_error}");
+}
+
+#[test]
+fn inverse_offset_never_above_exact_and_converges_with_the_grid() {
+    // The inverse offset sees the part only at the nodes, so it can only be lower.
+    let mesh = cap(30.0, 24.0, 0.4);
+    let cutter = Cutter::ball(6.0);
+    let tol = Tolerances::DEFAULT;
+    let mut previous = f64::INFINITY;
+    for spacing in [1.0, 0.5, 0.25] {
+        let grid = Grid::covering(DVec2::splat(-10.0), DVec2::splat(10.0), spacing);
+        let e = cl_exact(&mesh, &cutter.profile(), grid, FLOOR, &tol, &mut Progress::none()).unwrap();
+        let i = cl_inverse_offset(&cc_zmap(&mesh, grid, FLOOR, &tol), &cutter.profile(), &mut Progress::none()).unwrap();
+        let worst = e.z.iter().zip(&i.z).map(|(e, i)| {
+            assert!(i <= &(e + EXACT), "inverse {i} above exact {e}");
+            e - i
+        });
+        let worst = worst.fold(0.0, f64::max);
+        eprintln!("grid {spacing}: inverse offset up to {worst:.5} mm below exact");
+        assert!(worst < previous);
+        previous = worst;
+    }
+}
+
+#[test]
+fn cancel_stops_the_exact_builder() {
+    let part = swarf::mesh::sample::demo_part();
+    let mut calls = 0;
+    let mut sink = |_: f64, _: &str| {
+        calls += 1;
+        calls < 2
+    };
+    let grid = Grid::covering(DVec2::splat(-50.0), DVec2::splat(50.0), 0.5);
+    let result = cl_exact(&part, &Profile::new(3.0, 3.0), grid, FLOOR, &Tolerances::DEFAULT, &mut Progress::new(&mut sink));
+    assert!(matches!(result, Err(swarf::Error::Cancelled)));
+}
