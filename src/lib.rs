@@ -28,7 +28,7 @@ pub mod toolpath;
 pub mod zmap;
 
 #[cfg(target_arch = "wasm32")]
-mod wasm;
+pub mod wasm;
 
 pub use error::{Error, Result};
 pub use job::{run, Job, JobOutput};

@@ -1,4 +1,4 @@
-//! The `swarf` command line: the same `Job → Program → G-code` path as the page.
+//! The commands, their arguments and what they print.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -102,7 +102,7 @@ enum FormatArg {
     Raw,
 }
 
-fn main() -> ExitCode {
+pub fn main() -> ExitCode {
     match run(Cli::parse()) {
         Ok(()) => ExitCode::SUCCESS,
         Err(message) => {

@@ -1,0 +1,171 @@
+//! The only file with `#[wasm_bindgen]`: a thin boundary between the page's worker and the same
+//! `Job → Program → G-code` path the CLI runs. Jobs cross as plain JS objects (serde), parts as
+//! bytes, and large results go back as typed-array views into wasm memory (the worker copies
+//! them once, to transfer them to the page).
+
+use wasm_bindgen::prelude::*;
+
+use crate::geom::{Aabb, Tolerances};
+use crate::job::{self, Job};
+use crate::mesh::import::read_mesh_auto;
+use crate::mesh::placement::PartSetup;
+use crate::mesh::{sample, Mesh};
+use crate::progress::Progress;
+
+#[wasm_bindgen(start)]
+pub fn start() {
+    console_error_panic_hook::set_once();
+}
+
+fn js_error(e: impl std::fmt::Display) -> JsError {
+    JsError::new(&e.to_string())
+}
+
+/// Plain JS objects (not `Map`s) for structs, as the page expects.
+fn to_js<T: serde::Serialize>(value: &T) -> Result<JsValue, JsError> {
+    value.serialize(&serde_wasm_bindgen::Serializer::json_compatible()).map_err(js_error)
+}
+
+/// The default job, as the JSON object the page edits.
+#[wasm_bindgen(js_name = defaultJob)]
+pub fn default_job() -> Result<JsValue, JsError> {
+    to_js(&Job::default())
+}
+
+/// The built-in sample part, as binary STL.
+#[wasm_bindgen(js_name = samplePart)]
+pub fn sample_part() -> Vec<u8> {
+    sample::demo_part().to_binary_stl()
+}
+
+/// A part read and placed, ready to draw.
+#[wasm_bindgen]
+pub struct PartView {
+    positions: Vec<f32>,
+    normals: Vec<f32>,
+    bounds: Aabb,
+    triangles: usize,
+    dropped: usize,
+}
+
+#[wasm_bindgen]
+impl PartView {
+    /// Triangle corners, xyz per vertex, three vertices per triangle (a view: copy before the
+    /// next call into wasm).
+    pub fn positions(&self) -> js_sys::Float32Array {
+        // SAFETY: the view is read before wasm memory can grow again (the caller copies it).
+        unsafe { js_sys::Float32Array::view(&self.positions) }
+    }
+    /// Facet normals, one per vertex.
+    pub fn normals(&self) -> js_sys::Float32Array {
+        // SAFETY: as above.
+        unsafe { js_sys::Float32Array::view(&self.normals) }
+    }
+    /// [minX, minY, minZ, maxX, maxY, maxZ] in mm.
+    pub fn bounds(&self) -> Vec<f64> {
+        let b = self.bounds;
+        vec![b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z]
+    }
+    pub fn triangles(&self) -> usize {
+        self.triangles
+    }
+    /// Degenerate triangles dropped at import.
+    pub fn dropped(&self) -> usize {
+        self.dropped
+    }
+}
+
+fn part_view(mesh: &Mesh) -> PartView {
+    let mut positions = Vec::with_capacity(mesh.faces.len() * 9);
+    let mut normals = Vec::with_capacity(mesh.faces.len() * 9);
+    for t in mesh.triangles() {
+        let n = t.normal().unwrap_or(glam::DVec3::Z);
+        for v in t.vertices() {
+            positions.extend([v.x as f32, v.y as f32, v.z as f32]);
+            normals.extend([n.x as f32, n.y as f32, n.z as f32]);
+        }
+    }
+    PartView { positions, normals, bounds: mesh.bounds(), triangles: mesh.faces.len(), dropped: mesh.dropped_degenerate }
+}
+
+fn read_part(bytes: &[u8], name: &str, tolerances: &Tolerances) -> Result<Mesh, JsError> {
+    read_mesh_auto(bytes, Some(name), tolerances).map_err(|e| js_error(format!("{name}: {e}")))
+}
+
+/// Reads a part and places it as `setup` (a `PartSetup` object) says.
+#[wasm_bindgen(js_name = loadPart)]
+pub fn load_part(bytes: &[u8], name: &str, setup: JsValue) -> Result<PartView, JsError> {
+    let setup: PartSetup = serde_wasm_bindgen::from_value(setup).map_err(js_error)?;
+    let mut mesh = read_part(bytes, name, &Tolerances::default())?;
+    setup.apply(&mut mesh);
+    Ok(part_view(&mesh))
+}
+
+/// What a job produced.
+#[wasm_bindgen]
+pub struct JobResult {
+    gcode: String,
+    feeds: Vec<f32>,
+    rapids: Vec<f32>,
+    summary: JsValue,
+    part: PartView,
+}
+
+#[wasm_bindgen]
+impl JobResult {
+    pub fn gcode(&self) -> String {
+        self.gcode.clone()
+    }
+    /// Cutting moves as line segments: xyz of both ends per segment (a view).
+    pub fn feeds(&self) -> js_sys::Float32Array {
+        // SAFETY: as for PartView.
+        unsafe { js_sys::Float32Array::view(&self.feeds) }
+    }
+    /// Rapid moves as line segments (a view).
+    pub fn rapids(&self) -> js_sys::Float32Array {
+        // SAFETY: as for PartView.
+        unsafe { js_sys::Float32Array::view(&self.rapids) }
+    }
+    /// `{ moves, feedLength, rapidLength, seconds, warnings, stock, clearanceZ }`.
+    pub fn summary(&self) -> JsValue {
+        self.summary.clone()
+    }
+    /// The part as the job placed it.
+    #[wasm_bindgen(js_name = takePart)]
+    pub fn take_part(&mut self) -> PartView {
+        std::mem::replace(&mut self.part, PartView { positions: vec![], normals: vec![], bounds: Aabb::EMPTY, triangles: 0, dropped: 0 })
+    }
+}
+
+#[derive(serde::Serialize)]
+#[serde(rename_all = "camelCase")]
+struct Summary {
+    #[serde(flatten)]
+    stats: crate::toolpath::PathStats,
+    warnings: Vec<String>,
+    stock: [f64; 6],
+    clearance_z: f64,
+}
+
+/// Runs `job` (a `Job` object) on the part in `bytes`. `progress(fraction, stage)` is called as
+/// the work goes on; returning `false` cancels.
+#[wasm_bindgen(js_name = runJob)]
+pub fn run_job(job: JsValue, bytes: &[u8], name: &str, progress: &js_sys::Function) -> Result<JobResult, JsError> {
+    let job: Job = serde_wasm_bindgen::from_value(job).map_err(|e| js_error(format!("invalid job: {e}")))?;
+    let mesh = read_part(bytes, name, &job.tolerances)?;
+    let mut sink = |fraction: f64, stage: &str| {
+        progress.call2(&JsValue::NULL, &JsValue::from_f64(fraction), &JsValue::from_str(stage)).map(|v| v.as_bool() != Some(false)).unwrap_or(true)
+    };
+    let out = job::run(&job, mesh, &mut Progress::new(&mut sink)).map_err(js_error)?;
+    let (mut feeds, mut rapids) = (Vec::new(), Vec::new());
+    for path in &out.paths {
+        for (a, b, rapid) in path.segments(0.1) {
+            let target = if rapid { &mut rapids } else { &mut feeds };
+            target.extend([a.x as f32, a.y as f32, a.z as f32, b.x as f32, b.y as f32, b.z as f32]);
+        }
+    }
+    let s = out.stock;
+    let summary = Summary { stats: out.stats, warnings: out.warnings.clone(), stock: [s.min.x, s.min.y, s.min.z, s.max.x, s.max.y, s.max.z], clearance_z: out.clearance_z };
+    let summary = to_js(&summary)?;
+    Ok(JobResult { gcode: out.gcode, feeds, rapids, summary, part: part_view(&out.part) })
+}

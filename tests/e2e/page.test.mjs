@@ -1,0 +1,144 @@
+// End-to-end: the real page in headless Chromium (Debian's, driven by playwright-core), served
+// from www/ on 127.0.0.1. Loads the sample, generates, checks the canvas shows the path,
+// downloads the G-code and runs LinuxCNC's rs274 on it; then a bad file, and a cancel.
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import http from 'node:http';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { execFileSync } from 'node:child_process';
+import { fileURLToPath } from 'node:url';
+import { chromium } from 'playwright-core';
+
+const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../../www');
+const types = { '.html': 'text/html', '.js': 'text/javascript', '.mjs': 'text/javascript', '.css': 'text/css', '.wasm': 'application/wasm' };
+const shots = path.resolve(root, '../target/e2e');
+fs.mkdirSync(shots, { recursive: true });
+
+let server, browser, base;
+const offsite = [];
+
+before(async () => {
+  server = http.createServer((req, res) => {
+    const url = new URL(req.url, 'http://x');
+    const file = path.join(root, url.pathname === '/' ? 'index.html' : decodeURIComponent(url.pathname));
+    if (!file.startsWith(root) || !fs.existsSync(file) || fs.statSync(file).isDirectory()) { res.writeHead(404); res.end(); return; }
+    res.writeHead(200, { 'content-type': types[path.extname(file)] || 'application/octet-stream' });
+    fs.createReadStream(file).pipe(res);
+  });
+  await new Promise((resolve) => server.listen(0, '127.0.0.1', resolve));
+  base = `http://127.0.0.1:${server.address().port}/`;
+  browser = await chromium.launch({
+    executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
+    headless: true,
+    args: ['--no-sandbox', '--disable-background-networking', '--disable-component-update', '--no-first-run', '--disable-sync', '--disable-dev-shm-usage'],
+  });
+});
+
+after(async () => {
+  await browser?.close();
+  server?.close();
+});
+
+async function openPage() {
+  const context = await browser.newContext({ acceptDownloads: true, viewport: { width: 1280, height: 800 } });
+  const page = await context.newPage();
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(String(e)));
+  page.on('request', (r) => { if (!r.url().startsWith(base) && !r.url().startsWith('blob:') && !r.url().startsWith('data:')) offsite.push(r.url()); });
+  await page.goto(base);
+  await page.waitForSelector('body[data-ready="true"]', { timeout: 30000 });
+  await page.waitForFunction(() => !document.getElementById('generate').disabled);
+  return { page, context, errors };
+}
+
+// Pixels of the path's colour (cutting moves are drawn in rgb(27, 116, 209)).
+async function pathPixels(page) {
+  return page.evaluate(() => {
+    const c = document.getElementById('view');
+    const gl = c.getContext('webgl2');
+    const px = new Uint8Array(c.width * c.height * 4);
+    gl.readPixels(0, 0, c.width, c.height, gl.RGBA, gl.UNSIGNED_BYTE, px);
+    let n = 0;
+    for (let i = 0; i < px.length; i += 4) if (px[i + 2] > 150 && px[i] < 90 && px[i + 1] > 80 && px[i + 1] < 160) n++;
+    return n;
+  });
+}
+
+test('sample part → generate → path on the canvas → G-code that rs274 accepts', async () => {
+  const { page, context, errors } = await openPage();
+  const before = await pathPixels(page);
+  await page.fill('input[name=stepover]', '1.5');
+  await page.fill('input[name=grid]', '0.5');
+  await page.click('#generate');
+  await page.waitForFunction(() => !document.getElementById('download').disabled, null, { timeout: 60000 });
+  const after = await pathPixels(page);
+  await page.screenshot({ path: path.join(shots, 'generated.png') });
+  assert.ok(before < 50, `path-coloured pixels before generating: ${before}`);
+  assert.ok(after > 5000, `path-coloured pixels after generating: ${after}`);
+  assert.match(await page.textContent('#stats'), /estimated cycle time \d+:\d\d min/);
+
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-'));
+  const program = path.join(dir, download.suggestedFilename());
+  await download.saveAs(program);
+  const gcode = fs.readFileSync(program, 'utf8');
+  assert.match(gcode, /^G21$/m);
+  fs.writeFileSync(path.join(dir, 'tool.tbl'), 'T1 P1 Z0.000 D6.000 ;6 mm ball\n');
+  const canon = execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), program], { encoding: 'utf8', maxBuffer: 1 << 28 });
+  const feeds = canon.split('\n').filter((l) => l.includes('STRAIGHT_FEED(')).length;
+  // Count the file's feed moves, following the modal motion word (G0 or G1) line by line.
+  let mode = null, gcodeFeeds = 0;
+  for (const line of gcode.split('\n')) {
+    const g = line.match(/^G([0-3])\b/);
+    if (g) mode = g[1];
+    else if (!/^[XYZ]/.test(line)) continue;
+    if (mode === '1' && /[XYZ]-?\d/.test(line)) gcodeFeeds++;
+  }
+  assert.ok(feeds > 1000, `rs274 saw ${feeds} feed moves`);
+  assert.ok(Math.abs(feeds - gcodeFeeds) <= 2, `rs274 saw ${feeds} feeds, the file has ${gcodeFeeds}`);
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
+test('a truncated STL shows a clear error and keeps the part and the settings', async () => {
+  const { page, context, errors } = await openPage();
+  await page.fill('input[name=stepover]', '0.7');
+  await page.selectOption('select[name=shape]', 'bullNose');
+  const bytes = await page.evaluate(() => Array.from(window.swarf.sample.slice(0, 1000)));
+  await page.setInputFiles('#file', { name: 'broken.stl', mimeType: 'model/stl', buffer: Buffer.from(bytes) });
+  await page.waitForFunction(() => document.getElementById('message').textContent.length > 0);
+  assert.match(await page.textContent('#message'), /truncated/);
+  assert.equal(await page.inputValue('input[name=stepover]'), '0.7');
+  assert.equal(await page.inputValue('select[name=shape]'), 'bullNose');
+  assert.equal(await page.textContent('#part-name'), 'sample part');
+  assert.equal(await page.isEnabled('#generate'), true);
+  // A glTF pointing elsewhere is refused without a request.
+  const gltf = JSON.stringify({ asset: { version: '2.0' }, buffers: [{ byteLength: 36, uri: 'https://example.com/x.bin' }] });
+  await page.setInputFiles('#file', { name: 'remote.gltf', mimeType: 'model/gltf+json', buffer: Buffer.from(gltf) });
+  await page.waitForFunction(() => /never fetches/.test(document.getElementById('message').textContent));
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
+test('cancel stops a long job, keeps the settings, and the next run works', async () => {
+  const { page, context } = await openPage();
+  await page.fill('input[name=grid]', '0.05');
+  await page.fill('input[name=stepover]', '0.3');
+  await page.click('#generate');
+  await page.waitForFunction(() => document.getElementById('progress').value > 0, null, { timeout: 30000 });
+  await page.click('#cancel');
+  await page.waitForFunction(() => /Cancelled/.test(document.getElementById('message').textContent));
+  assert.equal(await page.inputValue('input[name=grid]'), '0.05');
+  assert.equal(await page.isEnabled('#generate'), true);
+  await page.fill('input[name=grid]', '0.5');
+  await page.fill('input[name=stepover]', '3');
+  await page.click('#generate');
+  await page.waitForFunction(() => !document.getElementById('download').disabled, null, { timeout: 60000 });
+  await context.close();
+});
+
+test('the page asked for nothing outside its own server', () => {
+  assert.deepEqual(offsite, []);
+});

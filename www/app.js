@@ -1,0 +1,197 @@
+// The page: settings, the worker that runs swarf's wasm, the view, and the download.
+import { Viewer } from './viewer.js';
+
+const $ = (id) => document.getElementById(id);
+const form = $('settings');
+const STORE = 'swarf.settings';
+
+let viewer = null;
+try { viewer = new Viewer($('view')); } catch (e) { showError(`3D view unavailable: ${e.message}`); }
+
+// ---- worker ------------------------------------------------------------------------------
+let worker, nextId = 1;
+const pending = new Map();
+function startWorker() {
+  worker = new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
+  worker.onmessage = (event) => {
+    const m = event.data, entry = pending.get(m.id);
+    if (!entry) return;
+    if (m.type === 'progress') { entry.onProgress?.(m.fraction, m.stage); return; }
+    pending.delete(m.id);
+    m.ok ? entry.resolve(m) : entry.reject(new Error(m.error));
+  };
+  worker.onerror = (e) => {
+    for (const entry of pending.values()) entry.reject(new Error(e.message || 'the worker failed'));
+    pending.clear();
+  };
+}
+function call(message, transfer = [], onProgress) {
+  const id = nextId++;
+  return new Promise((resolve, reject) => {
+    pending.set(id, { resolve, reject, onProgress });
+    worker.postMessage({ id, ...message }, transfer);
+  });
+}
+
+// ---- state -------------------------------------------------------------------------------
+const state = { bytes: null, name: 'sample.stl', sample: null, baseJob: null, gcode: null, running: false };
+window.swarf = state; // for the end-to-end test and the curious
+
+function showError(text) { const m = $('message'); m.className = ''; m.textContent = text; }
+function showInfo(text) { const m = $('message'); m.className = 'info'; m.textContent = text; }
+
+function saveSettings() {
+  const values = Object.fromEntries(new FormData(form).entries());
+  try { localStorage.setItem(STORE, JSON.stringify(values)); } catch { /* private mode */ }
+}
+function restoreSettings() {
+  let values = {};
+  try { values = JSON.parse(localStorage.getItem(STORE) || '{}'); } catch { /* ignore */ }
+  for (const [k, v] of Object.entries(values)) if (form.elements[k]) form.elements[k].value = v;
+  updateCorner();
+}
+function updateCorner() { form.elements.cornerRadius.disabled = form.elements.shape.value !== 'bullNose'; }
+
+function num(name) {
+  const v = Number(form.elements[name].value);
+  if (!Number.isFinite(v)) throw new Error(`${form.elements[name].closest('label').firstChild.textContent.trim()} is not a number`);
+  return v;
+}
+
+function partSetup() {
+  const f = form.elements;
+  return { units: f.partUnits.value, upAxis: f.upAxis.value, placement: f.placement.value };
+}
+
+function buildJob() {
+  const f = form.elements;
+  const job = structuredClone(state.baseJob);
+  job.name = state.name.replace(/\.[^.]*$/, '');
+  job.part = partSetup();
+  job.stock.marginXy = num('marginXy');
+  job.tools = [{
+    number: 1, name: '', shape: f.shape.value, diameter: num('diameter'), cornerRadius: num('cornerRadius'),
+    fluteLength: Math.max(20, num('diameter') * 3), spindleRpm: num('spindleRpm'), feedRate: num('feedRate'), plungeRate: num('plungeRate'),
+  }];
+  job.operations = [{
+    kind: 'finishRaster', name: 'raster finish', tool: 1, angle: num('angle'), stepover: num('stepover'), pattern: f.pattern.value,
+    boundary: f.boundary.value, allowance: num('allowance'), grid: num('grid'), builder: f.builder.value,
+  }];
+  job.post.dialect = f.dialect.value;
+  job.post.units = f.gcodeUnits.value;
+  return job;
+}
+
+// ---- part --------------------------------------------------------------------------------
+// Reads and shows a part; only when that works does it become the current part, so a bad file
+// loses nothing (the previous part and every setting stay).
+async function showPart(bytes = state.bytes, name = state.name, label = $('part-name').textContent) {
+  if (!bytes) return;
+  try {
+    const { part } = await call({ type: 'load', bytes, name, setup: partSetup() });
+    Object.assign(state, { bytes, name, gcode: null });
+    $('part-name').textContent = label;
+    viewer?.clearPaths();
+    viewer?.setPart(part);
+    $('download').disabled = true;
+    $('generate').disabled = state.running;
+    const b = part.bounds, size = [0, 1, 2].map((k) => (b[k + 3] - b[k]).toFixed(1));
+    $('stats').textContent = `${part.triangles.toLocaleString()} triangles${part.dropped ? ` (${part.dropped} degenerate ignored)` : ''}\nsize ${size.join(' × ')} mm\nfrom (${b.slice(0, 3).map((v) => v.toFixed(1)).join(', ')}) to (${b.slice(3).map((v) => v.toFixed(1)).join(', ')})`;
+    showInfo('');
+  } catch (e) {
+    showError(e.message);
+  }
+}
+
+async function takeFile(file) {
+  showPart(new Uint8Array(await file.arrayBuffer()), file.name, file.name);
+}
+
+// ---- generate, cancel, download ----------------------------------------------------------
+function setRunning(running) {
+  state.running = running;
+  $('generate').disabled = running || !state.bytes;
+  $('cancel').disabled = !running;
+  form.querySelectorAll('input, select').forEach((el) => { el.disabled = running; });
+  if (!running) updateCorner();
+}
+
+async function generate() {
+  let job;
+  try { job = buildJob(); } catch (e) { showError(e.message); return; }
+  saveSettings();
+  setRunning(true);
+  showInfo('');
+  $('progress').value = 0;
+  const started = performance.now();
+  try {
+    const r = await call({ type: 'run', job, bytes: state.bytes, name: state.name }, [], (fraction, stage) => {
+      $('progress').value = fraction;
+      $('stage').textContent = stage;
+    });
+    state.gcode = r.gcode;
+    viewer?.setPart(r.part, false);
+    viewer?.setPaths(r.feeds, r.rapids, r.summary.stock);
+    const s = r.summary;
+    const minutes = Math.floor(s.seconds / 60), seconds = Math.round(s.seconds % 60);
+    $('stats').textContent = `${s.moves.toLocaleString()} moves · ${(s.feedLength / 1000).toFixed(2)} m cutting · ${(s.rapidLength / 1000).toFixed(2)} m rapid\nestimated cycle time ${minutes}:${String(seconds).padStart(2, '0')} min\ncomputed in ${((performance.now() - started) / 1000).toFixed(2)} s`;
+    showInfo(s.warnings.join('\n'));
+    $('progress').value = 1;
+    $('stage').textContent = 'done';
+    $('download').disabled = false;
+  } catch (e) {
+    if (e.message !== 'cancelled by the user') showError(e.message);
+    $('stage').textContent = '';
+  } finally {
+    setRunning(false);
+  }
+}
+
+function cancel() {
+  // The wasm runs synchronously in the worker, so cancelling ends the worker; a fresh one takes
+  // its place and every setting stays.
+  worker.terminate();
+  for (const entry of pending.values()) entry.reject(new Error('cancelled by the user'));
+  pending.clear();
+  startWorker();
+  call({ type: 'hello' }).catch((e) => showError(e.message));
+  $('progress').value = 0;
+  showInfo('Cancelled. Your settings are kept.');
+}
+
+function download() {
+  if (!state.gcode) return;
+  const ext = form.elements.dialect.value === 'grbl' ? 'nc' : 'ngc';
+  const a = document.createElement('a');
+  a.href = URL.createObjectURL(new Blob([state.gcode], { type: 'text/plain' }));
+  a.download = `${state.name.replace(/\.[^.]*$/, '')}.${ext}`;
+  document.body.appendChild(a);
+  a.click();
+  setTimeout(() => { URL.revokeObjectURL(a.href); a.remove(); }, 1000);
+}
+
+// ---- wiring ------------------------------------------------------------------------------
+$('generate').addEventListener('click', generate);
+$('cancel').addEventListener('click', cancel);
+$('download').addEventListener('click', download);
+$('file').addEventListener('change', (e) => { if (e.target.files[0]) takeFile(e.target.files[0]); });
+$('use-sample').addEventListener('click', () => showPart(state.sample, 'sample.stl', 'sample part'));
+form.addEventListener('change', (e) => {
+  saveSettings();
+  updateCorner();
+  if (['partUnits', 'upAxis', 'placement'].includes(e.target.name)) showPart();
+});
+const drop = $('drop');
+for (const t of ['dragenter', 'dragover']) document.addEventListener(t, (e) => { e.preventDefault(); drop.classList.add('over'); });
+for (const t of ['dragleave', 'drop']) document.addEventListener(t, (e) => { e.preventDefault(); drop.classList.remove('over'); });
+document.addEventListener('drop', (e) => { const f = e.dataTransfer?.files?.[0]; if (f) takeFile(f); });
+
+restoreSettings();
+startWorker();
+call({ type: 'hello' }).then(({ job, sample }) => {
+  state.baseJob = job;
+  state.sample = sample;
+  return showPart(sample, 'sample.stl', 'sample part');
+}).then(() => {
+  document.body.dataset.ready = 'true';
+}).catch((e) => showError(`swarf could not start: ${e.message}`));

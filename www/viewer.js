@@ -1,0 +1,197 @@
+// WebGL2 view of the part (shaded) and the tool path (lines): orbit, pan, zoom. Z is up.
+
+const MESH_VS = `#version 300 es
+in vec3 position; in vec3 normal;
+uniform mat4 mvp; out vec3 vNormal;
+void main() { vNormal = normal; gl_Position = mvp * vec4(position, 1.0); }`;
+const MESH_FS = `#version 300 es
+precision highp float;
+in vec3 vNormal; uniform vec3 color; uniform vec3 light; out vec4 outColor;
+void main() {
+  float d = abs(dot(normalize(vNormal), light));
+  outColor = vec4(color * (0.35 + 0.65 * d), 1.0);
+}`;
+const LINE_VS = `#version 300 es
+in vec3 position; uniform mat4 mvp;
+void main() { gl_Position = mvp * vec4(position, 1.0); }`;
+const LINE_FS = `#version 300 es
+precision highp float;
+uniform vec4 color; out vec4 outColor;
+void main() { outColor = color; }`;
+
+function compile(gl, vs, fs) {
+  const program = gl.createProgram();
+  for (const [type, source] of [[gl.VERTEX_SHADER, vs], [gl.FRAGMENT_SHADER, fs]]) {
+    const shader = gl.createShader(type);
+    gl.shaderSource(shader, source);
+    gl.compileShader(shader);
+    if (!gl.getShaderParameter(shader, gl.COMPILE_STATUS)) throw new Error(gl.getShaderInfoLog(shader));
+    gl.attachShader(program, shader);
+  }
+  gl.linkProgram(program);
+  if (!gl.getProgramParameter(program, gl.LINK_STATUS)) throw new Error(gl.getProgramInfoLog(program));
+  return program;
+}
+
+// Column-major 4×4 matrices.
+function multiply(a, b) {
+  const out = new Float32Array(16);
+  for (let c = 0; c < 4; c++) for (let r = 0; r < 4; r++) {
+    let s = 0;
+    for (let k = 0; k < 4; k++) s += a[k * 4 + r] * b[c * 4 + k];
+    out[c * 4 + r] = s;
+  }
+  return out;
+}
+function perspective(fovy, aspect, near, far) {
+  const f = 1 / Math.tan(fovy / 2), nf = 1 / (near - far);
+  return new Float32Array([f / aspect, 0, 0, 0, 0, f, 0, 0, 0, 0, (far + near) * nf, -1, 0, 0, 2 * far * near * nf, 0]);
+}
+function lookAt(eye, target, up) {
+  const sub = (a, b) => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+  const norm = (v) => { const l = Math.hypot(...v) || 1; return v.map((x) => x / l); };
+  const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+  const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+  const z = norm(sub(eye, target)), x = norm(cross(up, z)), y = cross(z, x);
+  return new Float32Array([x[0], y[0], z[0], 0, x[1], y[1], z[1], 0, x[2], y[2], z[2], 0, -dot(x, eye), -dot(y, eye), -dot(z, eye), 1]);
+}
+
+export class Viewer {
+  constructor(canvas) {
+    this.canvas = canvas;
+    const gl = canvas.getContext('webgl2', { antialias: true, preserveDrawingBuffer: true });
+    if (!gl) throw new Error('this browser has no WebGL2');
+    this.gl = gl;
+    this.meshProgram = compile(gl, MESH_VS, MESH_FS);
+    this.lineProgram = compile(gl, LINE_VS, LINE_FS);
+    this.part = null;
+    this.lines = {};
+    this.camera = { yaw: -0.9, pitch: 0.75, distance: 200, target: [0, 0, 0] };
+    this.bindInput();
+    new ResizeObserver(() => this.draw()).observe(canvas);
+  }
+
+  buffer(data) {
+    const gl = this.gl, b = gl.createBuffer();
+    gl.bindBuffer(gl.ARRAY_BUFFER, b);
+    gl.bufferData(gl.ARRAY_BUFFER, data, gl.STATIC_DRAW);
+    return b;
+  }
+
+  setPart(part, frame = true) {
+    this.part = { position: this.buffer(part.positions), normal: this.buffer(part.normals), count: part.positions.length / 3 };
+    if (frame) this.frame(part.bounds);
+    this.draw();
+  }
+
+  setPaths(feeds, rapids, stock) {
+    this.lines.feeds = { buffer: this.buffer(feeds), count: feeds.length / 3, color: [0.106, 0.455, 0.82, 1] };
+    this.lines.rapids = { buffer: this.buffer(rapids), count: rapids.length / 3, color: [0.85, 0.28, 0.06, 0.9] };
+    if (stock) this.lines.stock = { buffer: this.buffer(boxLines(stock)), count: 24, color: [0.35, 0.4, 0.45, 0.6] };
+    this.draw();
+  }
+
+  clearPaths() {
+    this.lines = {};
+    this.draw();
+  }
+
+  frame(b) {
+    const size = Math.max(b[3] - b[0], b[4] - b[1], b[5] - b[2], 1);
+    this.camera.target = [(b[0] + b[3]) / 2, (b[1] + b[4]) / 2, (b[2] + b[5]) / 2];
+    this.camera.distance = size * 1.9;
+  }
+
+  matrix() {
+    const { yaw, pitch, distance, target } = this.camera;
+    const eye = [
+      target[0] + distance * Math.cos(pitch) * Math.cos(yaw),
+      target[1] + distance * Math.cos(pitch) * Math.sin(yaw),
+      target[2] + distance * Math.sin(pitch),
+    ];
+    const aspect = this.canvas.width / Math.max(this.canvas.height, 1);
+    return multiply(perspective(0.7, aspect, distance / 100, distance * 20), lookAt(eye, target, [0, 0, 1]));
+  }
+
+  draw() {
+    const gl = this.gl, canvas = this.canvas;
+    const dpr = window.devicePixelRatio || 1;
+    const w = Math.max(1, Math.round(canvas.clientWidth * dpr)), h = Math.max(1, Math.round(canvas.clientHeight * dpr));
+    if (canvas.width !== w || canvas.height !== h) { canvas.width = w; canvas.height = h; }
+    gl.viewport(0, 0, w, h);
+    gl.clearColor(0.93, 0.945, 0.955, 1);
+    gl.clear(gl.COLOR_BUFFER_BIT | gl.DEPTH_BUFFER_BIT);
+    gl.enable(gl.DEPTH_TEST);
+    const mvp = this.matrix();
+    if (this.part) {
+      gl.useProgram(this.meshProgram);
+      gl.uniformMatrix4fv(gl.getUniformLocation(this.meshProgram, 'mvp'), false, mvp);
+      gl.uniform3f(gl.getUniformLocation(this.meshProgram, 'color'), 0.72, 0.74, 0.76);
+      const l = [0.4, -0.5, 0.77], n = Math.hypot(...l);
+      gl.uniform3f(gl.getUniformLocation(this.meshProgram, 'light'), l[0] / n, l[1] / n, l[2] / n);
+      this.attribute(this.meshProgram, 'position', this.part.position);
+      this.attribute(this.meshProgram, 'normal', this.part.normal);
+      gl.enable(gl.POLYGON_OFFSET_FILL);
+      gl.polygonOffset(1, 1);
+      gl.drawArrays(gl.TRIANGLES, 0, this.part.count);
+      gl.disable(gl.POLYGON_OFFSET_FILL);
+    }
+    gl.useProgram(this.lineProgram);
+    gl.uniformMatrix4fv(gl.getUniformLocation(this.lineProgram, 'mvp'), false, mvp);
+    gl.disableVertexAttribArray(1);
+    for (const line of Object.values(this.lines)) {
+      if (!line.count) continue;
+      gl.uniform4fv(gl.getUniformLocation(this.lineProgram, 'color'), line.color);
+      this.attribute(this.lineProgram, 'position', line.buffer);
+      gl.drawArrays(gl.LINES, 0, line.count);
+    }
+  }
+
+  attribute(program, name, buffer) {
+    const gl = this.gl, loc = gl.getAttribLocation(program, name);
+    if (loc < 0) return;
+    gl.bindBuffer(gl.ARRAY_BUFFER, buffer);
+    gl.enableVertexAttribArray(loc);
+    gl.vertexAttribPointer(loc, 3, gl.FLOAT, false, 0, 0);
+  }
+
+  bindInput() {
+    const c = this.canvas;
+    let drag = null;
+    c.addEventListener('contextmenu', (e) => e.preventDefault());
+    c.addEventListener('pointerdown', (e) => { drag = { x: e.clientX, y: e.clientY, pan: e.shiftKey || e.button === 2 }; c.setPointerCapture(e.pointerId); });
+    c.addEventListener('pointerup', () => { drag = null; });
+    c.addEventListener('pointermove', (e) => {
+      if (!drag) return;
+      const dx = e.clientX - drag.x, dy = e.clientY - drag.y;
+      drag.x = e.clientX; drag.y = e.clientY;
+      const cam = this.camera;
+      if (drag.pan) {
+        const s = cam.distance / c.clientHeight;
+        const right = [-Math.sin(cam.yaw), Math.cos(cam.yaw), 0];
+        const up = [-Math.sin(cam.pitch) * Math.cos(cam.yaw), -Math.sin(cam.pitch) * Math.sin(cam.yaw), Math.cos(cam.pitch)];
+        for (let i = 0; i < 3; i++) cam.target[i] += (-dx * right[i] + dy * up[i]) * s;
+      } else {
+        cam.yaw -= dx * 0.01;
+        cam.pitch = Math.max(-1.55, Math.min(1.55, cam.pitch + dy * 0.01));
+      }
+      this.draw();
+    });
+    c.addEventListener('wheel', (e) => {
+      e.preventDefault();
+      this.camera.distance *= Math.exp(e.deltaY * 0.001);
+      this.draw();
+    }, { passive: false });
+  }
+}
+
+function boxLines(b) {
+  const [x0, y0, z0, x1, y1, z1] = b;
+  const p = [[x0, y0], [x1, y0], [x1, y1], [x0, y1]];
+  const out = [];
+  for (let i = 0; i < 4; i++) {
+    const [a, c] = [p[i], p[(i + 1) % 4]];
+    out.push(a[0], a[1], z0, c[0], c[1], z0, a[0], a[1], z1, c[0], c[1], z1, a[0], a[1], z0, a[0], a[1], z1);
+  }
+  return new Float32Array(out);
+}

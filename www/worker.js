@@ -1,0 +1,48 @@
+// Runs the wasm pipeline off the page's thread. Cancel = the page terminates this worker.
+import init, { defaultJob, samplePart, loadPart, runJob } from './pkg/swarf.js';
+
+const ready = init();
+
+function partMessage(view) {
+  const part = {
+    positions: view.positions().slice(),
+    normals: view.normals().slice(),
+    bounds: Array.from(view.bounds()),
+    triangles: view.triangles(),
+    dropped: view.dropped(),
+  };
+  view.free();
+  return { part, transfer: [part.positions.buffer, part.normals.buffer] };
+}
+
+self.onmessage = async (event) => {
+  const { id, type } = event.data;
+  try {
+    await ready;
+    if (type === 'hello') {
+      self.postMessage({ id, ok: true, job: defaultJob(), sample: samplePart() });
+    } else if (type === 'load') {
+      const { part, transfer } = partMessage(loadPart(event.data.bytes, event.data.name, event.data.setup));
+      self.postMessage({ id, ok: true, part }, transfer);
+    } else if (type === 'run') {
+      let last = 0;
+      const result = runJob(event.data.job, event.data.bytes, event.data.name, (fraction, stage) => {
+        const now = performance.now();
+        if (now - last > 50 || fraction >= 1) {
+          last = now;
+          self.postMessage({ id, type: 'progress', fraction, stage });
+        }
+        return true;
+      });
+      const feeds = result.feeds().slice();
+      const rapids = result.rapids().slice();
+      const gcode = result.gcode();
+      const summary = result.summary();
+      const { part, transfer } = partMessage(result.takePart());
+      result.free();
+      self.postMessage({ id, ok: true, gcode, feeds, rapids, summary, part }, [feeds.buffer, rapids.buffer, ...transfer]);
+    }
+  } catch (error) {
+    self.postMessage({ id, ok: false, error: String(error && error.message ? error.message : error) });
+  }
+};
