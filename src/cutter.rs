@@ -117,9 +117,10 @@ pub struct Profile {
     flat: f64,
 }
 
-/// Iterations of the golden-section search for a bull nose's edge contact: the bracket shrinks
-/// by 0.618 per step, so 80 steps take a 100 mm chord below 1e-14 mm.
-const GOLDEN_STEPS: usize = 80;
+/// The golden-section search for a bull nose's edge contact stops when its bracket is shorter
+/// than this (mm). The search maximises a concave function, so the height it finds is off by
+/// about the square of the bracket times the curvature (1 / corner radius): far below 1e-9 mm.
+const GOLDEN_BRACKET: f64 = 1e-10;
 
 impl Profile {
     pub fn new(radius: f64, corner: f64) -> Profile {
@@ -134,6 +135,20 @@ impl Profile {
         } else {
             let d = r - self.flat;
             self.corner - (self.corner * self.corner - d * d).max(0.0).sqrt()
+        }
+    }
+
+    /// The squared horizontal distance from the axis beyond which the lower surface stands at
+    /// least `rise` above the tip (infinite where it never does within the radius).
+    #[inline]
+    pub fn reach_squared(&self, rise: f64) -> f64 {
+        if rise <= 0.0 {
+            0.0
+        } else if rise > self.corner {
+            f64::INFINITY
+        } else {
+            let r = self.flat + (rise * (2.0 * self.corner - rise)).sqrt();
+            r * r
         }
     }
 
@@ -159,6 +174,14 @@ impl Profile {
     /// Drop onto the segment `p`–`q`.
     #[inline]
     pub fn drop_edge(&self, c: DVec2, p: DVec3, q: DVec3) -> Option<f64> {
+        self.drop_edge_above(c, p, q, f64::NEG_INFINITY)
+    }
+
+    /// Drop onto the segment `p`–`q`, or `None` when it cannot rise above `current` (the height
+    /// already known over `c`): the edge's higher end minus the cutter's height at the edge's
+    /// perpendicular distance bounds the drop from above, and is cheap.
+    #[inline]
+    pub fn drop_edge_above(&self, c: DVec2, p: DVec3, q: DVec3, current: f64) -> Option<f64> {
         let d = (q - p).truncate();
         let len2 = d.length_squared();
         if len2 <= 0.0 {
@@ -168,7 +191,10 @@ impl Profile {
         let foot = p.truncate() + d * t_c;
         let dist2 = (c - foot).length_squared();
         let r2 = self.radius * self.radius;
-        if dist2 > r2 {
+        // Bound: the drop is at most the higher end minus the cutter's height at the edge's
+        // perpendicular distance; it cannot beat `current` when that distance reaches past
+        // where the cutter has risen by the difference.
+        if dist2 > r2 || dist2 >= self.reach_squared(p.z.max(q.z) - current) {
             return None;
         }
         let len = len2.sqrt();
@@ -199,17 +225,17 @@ impl Profile {
         }
         // Bull nose: f(t) = z(t) - height(r(t)) is concave on [lo, hi] (height is convex and
         // non-decreasing in r, r is convex in t), so a golden-section search finds its maximum.
-        let dist = dist2;
         let f = |t: f64| {
             let s = (t - t_c) * len;
-            z_at(t) - self.height((dist + s * s).sqrt().min(self.radius))
+            z_at(t) - self.height((dist2 + s * s).sqrt().min(self.radius))
         };
+        let stop = GOLDEN_BRACKET / len; // in parameter units
         let (mut a, mut b) = (lo, hi);
         const INV_PHI: f64 = 0.618_033_988_749_894_8;
         let mut x1 = b - INV_PHI * (b - a);
         let mut x2 = a + INV_PHI * (b - a);
         let (mut f1, mut f2) = (f(x1), f(x2));
-        for _ in 0..GOLDEN_STEPS {
+        while b - a > stop {
             if f1 < f2 {
                 a = x1;
                 x1 = x2;
@@ -222,9 +248,6 @@ impl Profile {
                 f2 = f1;
                 x1 = b - INV_PHI * (b - a);
                 f1 = f(x1);
-            }
-            if b - a <= 0.0 {
-                break;
             }
         }
         Some(f1.max(f2).max(f(lo)).max(f(hi)))

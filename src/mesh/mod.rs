@@ -83,6 +83,26 @@ impl Mesh {
         edges
     }
 
+    /// Each undirected edge once, with the faces that share it (edges of one face, or of three
+    /// and more, list them all).
+    pub fn edges_with_faces(&self) -> Vec<([u32; 2], Vec<u32>)> {
+        let mut half: Vec<([u32; 2], u32)> = self
+            .faces
+            .iter()
+            .enumerate()
+            .flat_map(|(f, v)| [[v[0], v[1]], [v[1], v[2]], [v[2], v[0]]].map(|[a, b]| (if a < b { [a, b] } else { [b, a] }, f as u32)))
+            .collect();
+        half.sort_unstable();
+        let mut out: Vec<([u32; 2], Vec<u32>)> = Vec::with_capacity(half.len() / 2 + 1);
+        for (edge, face) in half {
+            match out.last_mut() {
+                Some((e, faces)) if *e == edge => faces.push(face),
+                _ => out.push((edge, vec![face])),
+            }
+        }
+        out
+    }
+
     /// Applies `f` to every vertex.
     pub fn transform(&mut self, f: impl Fn(DVec3) -> DVec3) {
         for v in &mut self.vertices {

@@ -7,8 +7,12 @@
 //! Steps, in order:
 //! 1. facets: the nodes whose contact point falls in the facet are the facet's projection
 //!    shifted against its uphill direction by `R - a + a |n_xy|`;
-//! 2. edges: each edge shared by two facets once, over the nodes within R of it;
-//! 3. vertices: each vertex once, over the nodes within R of it.
+//! 2. vertices: each vertex once, over the nodes within R of it;
+//! 3. edges: each edge shared by two facets once, over the nodes within R of it, skipped at a
+//!    node where a cheap upper bound shows it cannot rise above what steps 1 and 2 found.
+//!    Concave edges (valleys) are skipped whole: a cutter resting on a valley's edge already
+//!    cuts into one of its two upward facets, whose own drops stand higher, so a valley edge is
+//!    never the highest contact (only ridges are the paper's "gaps").
 
 use super::{Grid, HeightField};
 use crate::cutter::{FacetPlane, Profile};
@@ -24,7 +28,7 @@ const REPORT_EVERY: usize = 4096;
 /// hold `floor`.
 pub fn cl_exact(mesh: &Mesh, profile: &Profile, grid: Grid, floor: f64, tolerances: &Tolerances, progress: &mut Progress) -> Result<HeightField> {
     let mut field = grid.filled(floor);
-    let edges = mesh.edges();
+    let edges: Vec<[u32; 2]> = mesh.edges_with_faces().into_iter().filter(|(e, f)| !is_valley(mesh, *e, f, tolerances)).map(|(e, _)| e).collect();
     let total = (mesh.faces.len() + edges.len() + mesh.vertices.len()) as f64;
     let mut done = 0usize;
     let tick = |done: usize, progress: &mut Progress| -> Result<()> {
@@ -49,20 +53,6 @@ pub fn cl_exact(mesh: &Mesh, profile: &Profile, grid: Grid, floor: f64, toleranc
     }
 
     let v = &mesh.vertices;
-    for [a, b] in edges {
-        tick(done, progress)?;
-        done += 1;
-        let (p, q) = (v[a as usize], v[b as usize]);
-        let r = DVec2::splat(profile.radius);
-        let lo = p.truncate().min(q.truncate()) - r;
-        let hi = p.truncate().max(q.truncate()) + r;
-        for_nodes_in_box(&grid, lo, hi, |i, j, c| {
-            if let Some(z) = profile.drop_edge(c, p, q) {
-                raise(&mut field, i, j, z);
-            }
-        });
-    }
-
     for &p in v {
         tick(done, progress)?;
         done += 1;
@@ -72,6 +62,21 @@ pub fn cl_exact(mesh: &Mesh, profile: &Profile, grid: Grid, floor: f64, toleranc
             }
         });
     }
+    for [a, b] in edges {
+        tick(done, progress)?;
+        done += 1;
+        let (p, q) = (v[a as usize], v[b as usize]);
+        let r = DVec2::splat(profile.radius);
+        let lo = p.truncate().min(q.truncate()) - r;
+        let hi = p.truncate().max(q.truncate()) + r;
+        for_nodes_in_box(&grid, lo, hi, |i, j, c| {
+            let cell = &mut field.z[j * grid.nx + i];
+            if let Some(z) = profile.drop_edge_above(c, p, q, *cell) {
+                *cell = cell.max(z);
+            }
+        });
+    }
+
     Ok(field)
 }
 
@@ -96,6 +101,25 @@ pub fn cl_exact_at(mesh: &Mesh, profile: &Profile, c: DVec2, tolerances: &Tolera
         raise(profile.drop_vertex(c, p));
     }
     best
+}
+
+/// Whether the edge joins exactly two upward-facing facets each of whose far corner lies on or
+/// above the other's plane.
+fn is_valley(mesh: &Mesh, edge: [u32; 2], faces: &[u32], tolerances: &Tolerances) -> bool {
+    let [f1, f2] = faces else { return false };
+    let v = &mesh.vertices;
+    let far = |f: u32| mesh.faces[f as usize].into_iter().find(|k| !edge.contains(k)).map(|k| v[k as usize]);
+    let up_normal = |f: u32| {
+        let t = mesh.triangle(f as usize);
+        let n = t.cross().try_normalize()?;
+        let n = if n.z < 0.0 { -n } else { n };
+        (n.z > tolerances.normal).then_some(n)
+    };
+    let a = v[edge[0] as usize];
+    match (far(*f1), far(*f2), up_normal(*f1), up_normal(*f2)) {
+        (Some(c1), Some(c2), Some(n1), Some(n2)) => (c2 - a).dot(n1) >= 0.0 && (c1 - a).dot(n2) >= 0.0,
+        _ => false,
+    }
 }
 
 #[inline]
