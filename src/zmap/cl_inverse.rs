@@ -48,7 +48,10 @@ pub fn cl_inverse_offset(cc: &HeightField, profile: &Profile, progress: &mut Pro
                     (0, (-dx) as usize, nx.saturating_sub((-dx) as usize))
                 };
                 for (o, s) in out_row[o_lo..o_lo + len].iter_mut().zip(&source[s_lo..s_lo + len]) {
-                    *o = o.max(s - h);
+                    // A compare-and-select (not f64::max, whose NaN rule has no vector form in
+                    // wasm) so that it vectorises to f64x2.pmax / maxpd.
+                    let v = s - h;
+                    *o = if *o < v { v } else { *o };
                 }
             }
         }

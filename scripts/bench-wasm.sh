@@ -1,0 +1,6 @@
+#!/usr/bin/env bash
+# Runs the wasm benchmarks in headless Chromium and prints their figures (see BENCHMARKS.md).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh >/dev/null
+cargo test --release --target wasm32-unknown-unknown --test bench_wasm -- --nocapture 2>&1 | grep -E '^\||die |test result'

@@ -1,0 +1,26 @@
+//! Benchmarks in the browser: the same code as the native benches, compiled to wasm and run in
+//! headless Chromium. Not part of the test suite: `bash scripts/bench-wasm.sh` runs it and
+//! prints the figures (the tests assert only that the figures were produced).
+#![cfg(target_arch = "wasm32")]
+
+use wasm_bindgen_test::*;
+
+wasm_bindgen_test_configure!(run_in_browser);
+
+fn now() -> f64 {
+    js_sys::Date::now() / 1000.0
+}
+
+#[wasm_bindgen_test]
+fn die_zmaps_in_wasm() {
+    let case = swarf::zmap::bench::die_case();
+    web_sys_log(&case.describe());
+    for f in case.run_with(&now) {
+        web_sys_log(&f.row("wasm (Chromium)"));
+        assert!(f.exact_seconds > 0.0);
+    }
+}
+
+fn web_sys_log(s: &str) {
+    wasm_bindgen_test::console_log!("{}", s);
+}
