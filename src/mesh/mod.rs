@@ -13,6 +13,16 @@ use std::collections::HashMap;
 use crate::geom::{Aabb, DVec3, Tolerances, Triangle};
 use import::ImportError;
 
+/// An edge (vertex indices, smaller first) and the faces that share it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct EdgeFaces {
+    pub edge: [u32; 2],
+    /// The first two faces; the second is `u32::MAX` on a boundary edge.
+    pub faces: [u32; 2],
+    /// How many faces share the edge.
+    pub count: u8,
+}
+
 /// An indexed triangle mesh.
 #[derive(Clone, Debug, Default)]
 pub struct Mesh {
@@ -83,21 +93,28 @@ impl Mesh {
         edges
     }
 
-    /// Each undirected edge once, with the faces that share it (edges of one face, or of three
-    /// and more, list them all).
-    pub fn edges_with_faces(&self) -> Vec<([u32; 2], Vec<u32>)> {
-        let mut half: Vec<([u32; 2], u32)> = self
+    /// Each undirected edge once, with the faces that share it: the first two, and how many
+    /// there are (one on a boundary, three and more where the mesh is not a manifold).
+    pub fn edges_with_faces(&self) -> Vec<EdgeFaces> {
+        // (edge as one u64 key, face), sorted: the faces of an edge end up side by side.
+        let mut half: Vec<(u64, u32)> = self
             .faces
             .iter()
             .enumerate()
-            .flat_map(|(f, v)| [[v[0], v[1]], [v[1], v[2]], [v[2], v[0]]].map(|[a, b]| (if a < b { [a, b] } else { [b, a] }, f as u32)))
+            .flat_map(|(f, v)| [[v[0], v[1]], [v[1], v[2]], [v[2], v[0]]].map(|[a, b]| (((a.min(b) as u64) << 32) | a.max(b) as u64, f as u32)))
             .collect();
         half.sort_unstable();
-        let mut out: Vec<([u32; 2], Vec<u32>)> = Vec::with_capacity(half.len() / 2 + 1);
-        for (edge, face) in half {
+        let mut out: Vec<EdgeFaces> = Vec::with_capacity(half.len() / 2 + 1);
+        for (key, face) in half {
+            let edge = [(key >> 32) as u32, key as u32];
             match out.last_mut() {
-                Some((e, faces)) if *e == edge => faces.push(face),
-                _ => out.push((edge, vec![face])),
+                Some(e) if e.edge == edge => {
+                    if e.count < 2 {
+                        e.faces[e.count as usize] = face;
+                    }
+                    e.count = e.count.saturating_add(1);
+                }
+                _ => out.push(EdgeFaces { edge, faces: [face, u32::MAX], count: 1 }),
             }
         }
         out

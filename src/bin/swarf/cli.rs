@@ -131,10 +131,13 @@ fn run(cli: Cli) -> Result<(), String> {
         }
         Command::Demo { output } => {
             std::fs::create_dir_all(&output).map_err(|e| format!("cannot create {}: {e}", output.display()))?;
-            let part = demo_part();
             let job = Job { name: "swarf demo".into(), ..Job::default() };
-            write(&output.join("demo.stl"), &part.to_binary_stl())?;
+            let stl = demo_part().to_binary_stl();
+            write(&output.join("demo.stl"), &stl)?;
             write(&output.join("demo.json"), serde_json::to_string_pretty(&job).unwrap().as_bytes())?;
+            // The program is made from the STL as written (f32), so that `swarf run demo.json
+            // demo.stl` gives the same program.
+            let part = read_mesh_auto(&stl, Some("demo.stl"), &job.tolerances).map_err(|e| e.to_string())?;
             run_job(&job, part, &output.join("demo.ngc"), false)
         }
         Command::Job => {

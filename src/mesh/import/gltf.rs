@@ -10,6 +10,9 @@ use super::ImportError;
 use crate::geom::DVec3;
 
 pub(super) fn read(bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, ImportError> {
+    if bytes.starts_with(b"glTF") {
+        check_glb(bytes)?;
+    }
     let gltf = gltf::Gltf::from_slice(bytes).map_err(|e| ImportError::Gltf(e.to_string()))?;
     let buffers = load_buffers(&gltf)?;
     let scene = gltf.default_scene().or_else(|| gltf.scenes().next());
@@ -28,6 +31,35 @@ pub(super) fn read(bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, ImportError> {
         }
     }
     Ok(triangles)
+}
+
+/// Checks a GLB container's header and chunk lengths against the bytes (the `gltf` crate trusts
+/// them, and a lying length makes it fail badly).
+fn check_glb(bytes: &[u8]) -> Result<(), ImportError> {
+    let word = |at: usize| bytes.get(at..at + 4).map(|w| u32::from_le_bytes(w.try_into().unwrap()) as usize);
+    let broken = |what: &str| Err(ImportError::Gltf(format!("the GLB is broken: {what}")));
+    let (Some(version), Some(total)) = (word(4), word(8)) else { return broken("its header is cut short") };
+    if version != 2 {
+        return broken(&format!("version {version}, expected 2"));
+    }
+    if total != bytes.len() {
+        return broken(&format!("its header says {total} bytes, the file has {}", bytes.len()));
+    }
+    let mut at = 12;
+    let mut chunks = 0;
+    while at < total {
+        let Some(length) = word(at) else { return broken("a chunk header is cut short") };
+        let end = at.checked_add(8).and_then(|a| a.checked_add(length));
+        if end.map_or(true, |end| end > total) {
+            return broken("a chunk runs past the end of the file");
+        }
+        at = end.unwrap();
+        chunks += 1;
+    }
+    if chunks == 0 {
+        return broken("it has no JSON chunk");
+    }
+    Ok(())
 }
 
 fn load_buffers(gltf: &gltf::Gltf) -> Result<Vec<Vec<u8>>, ImportError> {

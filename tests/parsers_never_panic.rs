@@ -1,0 +1,69 @@
+//! The importers on hostile bytes: random data, truncations and byte flips of valid files, and
+//! every input the fuzzers (`fuzz/`, `cargo fuzz run stl|gltf|obj`) ever shrank to a failure,
+//! kept in `tests/fuzz_regressions/`. Each gives a mesh or an error, never a panic.
+
+use proptest::prelude::*;
+use swarf::geom::Tolerances;
+use swarf::mesh::import::{read_mesh, read_mesh_auto, MeshFormat};
+use swarf::mesh::sample::demo_part;
+
+const FORMATS: [MeshFormat; 4] = [MeshFormat::Stl, MeshFormat::Gltf, MeshFormat::Glb, MeshFormat::Obj];
+
+fn check(bytes: &[u8]) {
+    for format in FORMATS {
+        if let Ok(mesh) = read_mesh(bytes, format, &Tolerances::DEFAULT) {
+            assert!(mesh.vertices.iter().all(|v| v.is_finite()));
+            assert!(mesh.faces.iter().flatten().all(|&i| (i as usize) < mesh.vertices.len()));
+        }
+    }
+    let _ = read_mesh_auto(bytes, None, &Tolerances::DEFAULT);
+}
+
+fn valid_files() -> Vec<Vec<u8>> {
+    let stl = demo_part().to_binary_stl();
+    let ascii = b"solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid x\n".to_vec();
+    let obj = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 1\nf 1 2 3\nf 2 4 3\n".to_vec();
+    let gltf = br#"{"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}],"bufferViews":[{"buffer":0,"byteLength":36}],"buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}]}"#.to_vec();
+    vec![stl[..84 + 50 * 40].to_vec(), ascii, obj, gltf]
+}
+
+#[test]
+fn kept_fuzz_failures_do_not_panic() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fuzz_regressions");
+    let mut count = 0;
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "bin") {
+            check(&std::fs::read(&path).unwrap());
+            count += 1;
+        }
+    }
+    assert!(count > 0, "the regression corpus is empty");
+}
+
+#[test]
+fn every_truncation_of_valid_files_is_handled() {
+    for file in valid_files() {
+        for len in 0..file.len() {
+            check(&file[..len]);
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 400, .. ProptestConfig::default() })]
+    #[test]
+    fn random_bytes(bytes in proptest::collection::vec(any::<u8>(), 0..600)) {
+        check(&bytes);
+    }
+
+    #[test]
+    fn flipped_bytes_of_valid_files(which in 0usize..4, flips in proptest::collection::vec((any::<prop::sample::Index>(), any::<u8>()), 1..8)) {
+        let mut file = valid_files().swap_remove(which);
+        for (at, value) in flips {
+            let i = at.index(file.len());
+            file[i] = value;
+        }
+        check(&file);
+    }
+}
