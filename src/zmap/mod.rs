@@ -13,6 +13,7 @@ pub mod cc;
 pub mod bench;
 pub mod cl_exact;
 pub mod cl_inverse;
+mod cone;
 pub mod io;
 pub mod surface;
 

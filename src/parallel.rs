@@ -1,0 +1,28 @@
+//! Data parallelism without a dependency: natively, work is split into one chunk per core with
+//! scoped threads; in wasm (one thread) it runs in place.
+
+/// How many threads work shares: the cores natively, one in wasm.
+pub fn threads() -> usize {
+    if cfg!(target_arch = "wasm32") {
+        1
+    } else {
+        std::thread::available_parallelism().map_or(1, |n| n.get()).clamp(1, 8)
+    }
+}
+
+/// `(0..count).map(f)`, in order, on every core.
+pub fn map<U: Send>(count: usize, f: impl Fn(usize) -> U + Sync) -> Vec<U> {
+    let threads = threads().min(count.max(1));
+    if threads <= 1 || count < 1024 {
+        return (0..count).map(f).collect();
+    }
+    let chunk = count.div_ceil(threads);
+    let f = &f;
+    let parts: Vec<Vec<U>> = std::thread::scope(|scope| {
+        let handles: Vec<_> = (0..threads)
+            .map(|t| scope.spawn(move || (t * chunk..((t + 1) * chunk).min(count)).map(f).collect::<Vec<U>>()))
+            .collect();
+        handles.into_iter().map(|h| h.join().expect("a worker thread panicked")).collect()
+    });
+    parts.into_iter().flatten().collect()
+}

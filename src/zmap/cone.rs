@@ -1,0 +1,236 @@
+//! Normal cones of edges and vertices (seed 001 §2.2's gaps and twists, made into a speed-up).
+//!
+//! A cutter touching a feature at a single point has a contact direction d (from the contact
+//! into the cutter). If d points into one of the feature's adjacent facets, the cutter cuts into
+//! that facet, and the facet's own drops stand higher than this one: the feature is not the
+//! highest contact there. So a feature needs only the nodes whose contact direction lies in its
+//! normal cone, mapped to tip offsets. A concave edge's cone is empty (it never decides), a
+//! convex edge's is the arc between its facets' normals, and a saddle vertex's is empty.
+
+use crate::cutter::Profile;
+use crate::geom::{DVec2, DVec3, Tolerances};
+use crate::mesh::{EdgeFaces, Mesh};
+
+/// Widening of an edge's region (relative to the cutter radius) against rounding.
+pub(super) const REGION_MARGIN: f64 = 1e-9;
+
+/// What an edge is, for the drop.
+pub(super) enum EdgeKind {
+    /// Concave: never the highest contact.
+    Valley,
+    /// Convex between two upward facets with these normals.
+    Ridge(DVec3, DVec3),
+    /// Boundary, non-manifold, or next to a vertical facet.
+    Other,
+}
+
+/// The box of tip offsets `c - e` over the contact directions `d` of an edge's normal cone
+/// (the great-circle arc from `n1` to `n2`): a cutter touching the edge at `e` with direction
+/// `d` stands at `e_xy + a d_xy + (R - a) d_xy / |d_xy|` (any point within `R - a` of `e` when
+/// `d` is vertical). Outside the cone it would cut into one of the two facets.
+pub(super) fn cone_offsets(profile: &Profile, n1: DVec3, n2: DVec3) -> (DVec2, DVec2) {
+    cone_hull_offsets(profile, &[n1, n2])
+}
+
+/// The same box over the spherical hull of several normals (the normal cone of a convex vertex).
+/// On the sphere's upper half, d_xy is extreme on the hull's boundary, whose arcs are among the
+/// arcs between pairs of normals; the horizontal direction d_xy / |d_xy| stays within the
+/// smallest angular interval holding the normals' directions, unless that spans half a turn or
+/// more, or a normal is vertical (then the flat bottom can rest on the feature: a whole disk).
+pub(super) fn cone_hull_offsets(profile: &Profile, normals: &[DVec3]) -> (DVec2, DVec2) {
+    let (a, flat) = (profile.corner, profile.radius - profile.corner);
+    let (mut d_lo, mut d_hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+    for (k, &n1) in normals.iter().enumerate() {
+        for &n2 in &normals[k..] {
+            let (lo, hi) = arc_box(n1, n2);
+            d_lo = d_lo.min(lo);
+            d_hi = d_hi.max(hi);
+        }
+    }
+    let (u_lo, u_hi) = if flat > 0.0 { direction_box(normals) } else { (DVec2::ZERO, DVec2::ZERO) };
+    // a and R - a are not negative, so the box of the sum is the sum of the scaled boxes.
+    (d_lo * a + u_lo * flat, d_hi * a + u_hi * flat)
+}
+
+/// Box of d_xy along the great-circle arc from `n1` to `n2` (shorter than half a turn): its
+/// ends, and, for each axis direction, the point of the arc's circle nearest to it (where that
+/// coordinate is extreme) if it lies between the ends.
+fn arc_box(n1: DVec3, n2: DVec3) -> (DVec2, DVec2) {
+    let (mut lo, mut hi) = (n1.truncate().min(n2.truncate()), n1.truncate().max(n2.truncate()));
+    let Some(m) = n1.cross(n2).try_normalize() else { return (lo, hi) };
+    for axis in [DVec3::X, DVec3::NEG_X, DVec3::Y, DVec3::NEG_Y] {
+        let Some(d) = (axis - m * axis.dot(m)).try_normalize() else { continue };
+        if n1.cross(d).dot(m) > 0.0 && d.cross(n2).dot(m) > 0.0 {
+            lo = lo.min(d.truncate());
+            hi = hi.max(d.truncate());
+        }
+    }
+    (lo, hi)
+}
+
+/// Box of the unit horizontal directions of the normals' spherical hull: the shortest arc of the
+/// unit circle holding all their directions, or the whole disk when that is half a turn or more
+/// or a normal is vertical.
+fn direction_box(normals: &[DVec3]) -> (DVec2, DVec2) {
+    let whole = (DVec2::splat(-1.0), DVec2::splat(1.0));
+    let mut dirs = Vec::with_capacity(normals.len());
+    for n in normals {
+        match n.truncate().try_normalize() {
+            Some(u) => dirs.push(u),
+            None => return whole,
+        }
+    }
+    // Grow the arc [from, to] (counter-clockwise) one direction at a time.
+    let (mut from, mut to) = (dirs[0], dirs[0]);
+    for &u in &dirs[1..] {
+        let inside = from.perp_dot(u) >= 0.0 && u.perp_dot(to) >= 0.0 && from.perp_dot(to) >= 0.0;
+        if inside {
+            continue;
+        }
+        if to.perp_dot(u) >= 0.0 && from.perp_dot(u) >= 0.0 {
+            to = u;
+        } else if u.perp_dot(from) >= 0.0 && u.perp_dot(to) >= 0.0 {
+            from = u;
+        } else {
+            return whole;
+        }
+    }
+    // Check the result: every direction inside, and the arc shorter than half a turn.
+    if from.perp_dot(to) < 0.0 || (from.perp_dot(to) == 0.0 && from.dot(to) < 0.0) {
+        return whole;
+    }
+    if !dirs.iter().all(|u| from.perp_dot(*u) >= -REGION_MARGIN && u.perp_dot(to) >= -REGION_MARGIN) {
+        return whole;
+    }
+    let (mut lo, mut hi) = (from.min(to), from.max(to));
+    for axis in [DVec2::X, DVec2::NEG_X, DVec2::Y, DVec2::NEG_Y] {
+        if from.perp_dot(axis) > 0.0 && axis.perp_dot(to) > 0.0 {
+            lo = lo.min(axis);
+            hi = hi.max(axis);
+        }
+    }
+    (lo, hi)
+}
+
+/// Relative slack when testing a candidate direction against a vertex's constraints (keeps
+/// directions that rounding puts a hair outside: the region can only grow).
+const CONE_SLACK: f64 = 1e-9;
+
+/// For a cutter with a smooth lower surface (ball, bull nose), the corners of each vertex's
+/// normal cone `{d : d·(w - v) <= 0 for every neighbour w, d_z >= 0}`: a cutter touching only
+/// the vertex has one contact direction d, and it must lie there or the cutter would cut into a
+/// facet. The corners are where two constraint planes meet and all constraints hold. An empty
+/// list (a saddle, a pit) means the vertex is never the highest contact; `None` means the fan is
+/// too degenerate to tell (visit the whole disk).
+pub(super) fn vertex_cones(mesh: &Mesh, kinds: &[(EdgeFaces, EdgeKind)]) -> Vec<Option<Vec<DVec3>>> {
+    let v = &mesh.vertices;
+    // Unit directions to the neighbours, grouped by vertex (counting sort by vertex).
+    let mut start = vec![0usize; v.len() + 1];
+    for (e, _) in kinds {
+        start[e.edge[0] as usize + 1] += 1;
+        start[e.edge[1] as usize + 1] += 1;
+    }
+    for k in 0..v.len() {
+        start[k + 1] += start[k];
+    }
+    let mut fill = start.clone();
+    let mut directions = vec![DVec3::ZERO; start[v.len()]];
+    for (e, _) in kinds {
+        let [a, b] = e.edge;
+        let d = (v[b as usize] - v[a as usize]).normalize_or_zero();
+        directions[fill[a as usize]] = d;
+        fill[a as usize] += 1;
+        directions[fill[b as usize]] = -d;
+        fill[b as usize] += 1;
+    }
+    crate::parallel::map(v.len(), |k| {
+            let mut constraints = directions[start[k]..start[k + 1]].to_vec();
+            if constraints.len() < 3 {
+                return None;
+            }
+            constraints.push(DVec3::NEG_Z); // d_z >= 0
+            let holds = |d: DVec3| constraints.iter().all(|c| d.dot(*c) <= CONE_SLACK);
+            let mut corners = Vec::new();
+            for (i, ci) in constraints.iter().enumerate() {
+                for cj in &constraints[i + 1..] {
+                    let Some(d) = ci.cross(*cj).try_normalize() else { continue };
+                    for d in [d, -d] {
+                        if holds(d) {
+                            corners.push(d);
+                        }
+                    }
+                }
+            }
+            Some(corners)
+        })
+}
+
+/// For each vertex, the normals of its facets when it is locally convex (so that its normal
+/// cone is their spherical hull): interior to a manifold fan, every edge a ridge, and the fan's
+/// facets winding the same way in projection (no fold). `None`: visit the whole disk.
+pub(super) fn vertex_reaches(mesh: &Mesh, kinds: &[(EdgeFaces, EdgeKind)], up: &[Option<DVec3>]) -> Vec<Option<Vec<DVec3>>> {
+    let n = mesh.vertices.len();
+    let mut convex = vec![true; n];
+    let mut ridges = vec![0u32; n];
+    for (e, kind) in kinds {
+        let ridge = matches!(kind, EdgeKind::Ridge(..));
+        for &v in &e.edge {
+            convex[v as usize] &= ridge;
+            ridges[v as usize] += ridge as u32;
+        }
+    }
+    let mut fans: Vec<Vec<u32>> = vec![Vec::new(); n];
+    let mut winding = vec![0i8; n];
+    for (f, face) in mesh.faces.iter().enumerate() {
+        let t = mesh.triangle(f);
+        let sign = crate::geom::orient2d(t.a.truncate(), t.b.truncate(), t.c.truncate()).signum() as i8;
+        for &v in face {
+            let v = v as usize;
+            fans[v].push(f as u32);
+            if up[f].is_none() || sign == 0 || (winding[v] != 0 && winding[v] != sign) {
+                convex[v] = false;
+            }
+            winding[v] = sign;
+        }
+    }
+    (0..n)
+        .map(|v| {
+            // In a closed fan there are as many edges as facets.
+            (convex[v] && ridges[v] as usize == fans[v].len() && fans[v].len() >= 3)
+                .then(|| fans[v].iter().map(|&f| up[f as usize].unwrap()).collect())
+        })
+        .collect()
+}
+
+/// The unit normal of a facet turned upward, or `None` for a vertical or degenerate facet.
+pub(super) fn up_normal(mesh: &Mesh, face: usize, tolerances: &Tolerances) -> Option<DVec3> {
+    let n = mesh.triangle(face).cross().try_normalize()?;
+    let n = if n.z < 0.0 { -n } else { n };
+    (n.z > tolerances.normal).then_some(n)
+}
+
+/// Classifies an edge by its two facets (normals turned upward): a valley when each facet's far
+/// corner lies on or above the other's plane, a ridge when each lies below.
+pub(super) fn edge_kind(mesh: &Mesh, e: &EdgeFaces, up: &[Option<DVec3>]) -> EdgeKind {
+    if e.count != 2 {
+        return EdgeKind::Other;
+    }
+    let v = &mesh.vertices;
+    let far = |f: u32| mesh.faces[f as usize].into_iter().find(|k| !e.edge.contains(k)).map(|k| v[k as usize]);
+    let [f1, f2] = e.faces;
+    let a = v[e.edge[0] as usize];
+    match (far(f1), far(f2), up[f1 as usize], up[f2 as usize]) {
+        (Some(c1), Some(c2), Some(n1), Some(n2)) => {
+            let (above1, above2) = ((c2 - a).dot(n1), (c1 - a).dot(n2));
+            if above1 >= 0.0 && above2 >= 0.0 {
+                EdgeKind::Valley
+            } else if above1 < 0.0 && above2 < 0.0 {
+                EdgeKind::Ridge(n1, n2)
+            } else {
+                EdgeKind::Other // rounding disagrees: take no chances
+            }
+        }
+        _ => EdgeKind::Other,
+    }
+}
+
