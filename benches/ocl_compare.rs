@@ -48,6 +48,9 @@ fn main() {
         assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
         let ocl: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
         let ocl_seconds = ocl["seconds"].as_f64().unwrap();
+        if shape == "ball" {
+            println!("(OpenCAMLib BatchDropCutter on {} threads; swarf on {} threads)\n", ocl["threads"], swarf::parallel::threads());
+        }
         let ocl_z: Vec<f64> = ocl["z"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
         let mut best = f64::INFINITY;
         let mut field = None;
