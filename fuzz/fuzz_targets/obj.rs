@@ -1,15 +1,6 @@
-//! Any bytes read as Obj: an error or a mesh, never a panic; a mesh has only finite,
-//! non-degenerate triangles and faces that index its vertices.
+//! Any bytes read as Obj (see invariants.rs).
 #![no_main]
 
-use libfuzzer_sys::fuzz_target;
-use swarf::geom::Tolerances;
-use swarf::mesh::import::{read_mesh, MeshFormat};
+mod invariants;
 
-fuzz_target!(|data: &[u8]| {
-    if let Ok(mesh) = read_mesh(data, MeshFormat::Obj, &Tolerances::DEFAULT) {
-        assert!(mesh.vertices.iter().all(|v| v.is_finite()));
-        assert!(mesh.faces.iter().flatten().all(|&i| (i as usize) < mesh.vertices.len()));
-        assert!(!mesh.faces.is_empty());
-    }
-});
+libfuzzer_sys::fuzz_target!(|data: &[u8]| invariants::check(data, swarf::mesh::import::MeshFormat::Obj));
