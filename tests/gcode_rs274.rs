@@ -32,8 +32,10 @@ fn interpret(gcode: &str, tools: &[Tool]) -> Vec<(Kind, DVec3)> {
     let table = dir.join("tool.tbl");
     let lines: String = tools.iter().map(|t| format!("T{0} P{0} Z0.000 D{1:.3} ;{2}\n", t.number, t.cutter.diameter, t.describe())).collect();
     std::fs::write(&table, lines).unwrap();
-    // rs274 keeps its parameter file in the working directory: one directory per run.
-    let output = match Command::new("rs274").current_dir(&dir).arg("-g").arg("-t").arg(&table).arg(&program).output() {
+    // rs274 keeps its parameter file in the working directory and its tool table in a file
+    // mapped from $HOME (~/.tool.mmap): each run gets its own, so parallel tests cannot mix
+    // their tool tables.
+    let output = match Command::new("rs274").current_dir(&dir).env("HOME", &dir).arg("-g").arg("-t").arg(&table).arg(&program).output() {
         Ok(o) => o,
         Err(e) => panic!("rs274 (LinuxCNC's interpreter) could not be run: {e}; scripts/setup.sh installs it (apt-get install linuxcnc-uspace)"),
     };

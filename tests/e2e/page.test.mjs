@@ -86,7 +86,7 @@ test('sample part → generate → path on the canvas → G-code that rs274 acce
   const gcode = fs.readFileSync(program, 'utf8');
   assert.match(gcode, /^G21$/m);
   fs.writeFileSync(path.join(dir, 'tool.tbl'), 'T1 P1 Z0.000 D6.000 ;6 mm ball\n');
-  const canon = execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), program], { cwd: dir, encoding: 'utf8', maxBuffer: 1 << 28 });
+  const canon = execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), program], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });
   const feeds = canon.split('\n').filter((l) => l.includes('STRAIGHT_FEED(')).length;
   // Count the file's feed moves, following the modal motion word (G0 or G1) line by line.
   let mode = null, gcodeFeeds = 0;
