@@ -87,6 +87,26 @@ fn silhouette_boundary_keeps_the_centre_near_the_part() {
     }
 }
 
+/// The silhouette grown by a margin is exactly the set of nodes within the margin of a covered
+/// node: the same set as an inverse offset of the 0/1 coverage map with a flat cutter.
+#[test]
+fn silhouette_growth_is_the_disk_dilation() {
+    use swarf::cutter::Profile;
+    use swarf::zmap::{cc::cc_zmap, cl_inverse::cl_inverse_offset};
+    let part = demo_part();
+    let b = part.bounds();
+    let grid = Grid::covering(b.min.truncate() - 8.0, b.max.truncate() + 8.0, 0.7);
+    let cc = cc_zmap(&part, grid, b.min.z - 1.0, &Tolerances::DEFAULT);
+    for margin in [0.0, 0.69, 0.7, 3.0, 5.3] {
+        let Region::Mask(mask) = Region::silhouette(&cc, b.min.z - 1.0, margin) else { unreachable!() };
+        let mut covered = cc.clone();
+        covered.z.iter_mut().for_each(|z| *z = if *z > b.min.z - 1.0 { 1.0 } else { 0.0 });
+        let reference = cl_inverse_offset(&covered, &Profile::new(margin, 0.0), &mut Progress::none()).unwrap();
+        assert_eq!(mask.z, reference.z, "margin {margin}");
+        assert!(mask.z.iter().sum::<f64>() > 100.0);
+    }
+}
+
 /// The whole job, checked against the exact drop at every cutting point, for each cutter.
 #[test]
 fn job_paths_match_the_exact_cl_height_at_every_point() {
