@@ -71,6 +71,33 @@ fn runs_cover_the_region_at_the_stepover() {
 }
 
 #[test]
+fn one_way_passes_all_run_the_same_way_and_return_above_the_part() {
+    let cutter = Cutter::ball(6.0);
+    let job = Job {
+        tools: vec![Tool { cutter: cutter.clone(), ..Tool::default() }],
+        operations: vec![Operation::FinishRaster(FinishRaster { pattern: Pattern::OneWay, stepover: 3.0, grid: 0.5, angle: 90.0, ..FinishRaster::default() })],
+        ..Job::default()
+    };
+    let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
+    let moves = &out.paths[0].moves;
+    // Between two rapids, the cutting moves of a pass advance in +Y only (angle 90°).
+    let mut at = out.paths[0].start;
+    let (mut passes, mut retracts) = (0, 0);
+    for m in moves {
+        match m {
+            Move::Line { to, .. } if to.truncate() != at.truncate() => {
+                assert!(to.y >= at.y - 1e-9, "a one-way pass went backwards: {at} -> {to}");
+                passes += 1;
+            }
+            Move::Rapid { to } if to.z == out.clearance_z && at.z < out.clearance_z => retracts += 1,
+            _ => {}
+        }
+        at = m.to();
+    }
+    assert!(passes > 500 && retracts >= 30, "{passes} cutting moves, {retracts} retracts");
+}
+
+#[test]
 fn silhouette_boundary_keeps_the_centre_near_the_part() {
     let job = Job {
         tools: vec![Tool { cutter: Cutter::ball(6.0), ..Tool::default() }],
