@@ -22,7 +22,7 @@
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use super::cone::{cone_hull_offsets, cone_offsets, edge_kind, up_normal, vertex_cones, vertex_reaches, EdgeKind, REGION_MARGIN};
+use super::cone::{cone_offsets, edge_kind, up_normal, vertex_cones, vertex_reaches, EdgeKind, VertexReach, REGION_MARGIN};
 use super::{Grid, HeightField};
 use crate::cutter::{FacetPlane, Profile};
 use crate::error::{Error, Result};
@@ -56,18 +56,15 @@ impl Features {
             .collect();
         let up: Vec<Option<DVec3>> = (0..mesh.faces.len()).map(|f| up_normal(mesh, f, tolerances)).collect();
         let kinds: Vec<(EdgeFaces, EdgeKind)> = mesh.edges_with_faces().into_iter().map(|e| (e, edge_kind(mesh, &e, &up))).collect();
-        let reach = if profile.corner > 0.0 { vertex_cones(mesh, &kinds) } else { vertex_reaches(mesh, &kinds, &up) };
+        let reach = if profile.corner > 0.0 { vertex_cones(mesh, &kinds, profile) } else { vertex_reaches(mesh, &kinds, &up, profile) };
         let v = &mesh.vertices;
         let vertices = v
             .iter()
             .zip(&reach)
-            .filter_map(|(&p, normals)| match normals {
-                None => Some((p, None)),
-                Some(n) if n.is_empty() => None, // its cone is empty: never the contact
-                Some(n) => {
-                    let (lo, hi) = cone_hull_offsets(profile, n);
-                    Some((p, Some((p.truncate() + lo - margin, p.truncate() + hi + margin))))
-                }
+            .filter_map(|(&p, reach)| match *reach {
+                VertexReach::Disk => Some((p, None)),
+                VertexReach::Never => None,
+                VertexReach::Offsets(lo, hi) => Some((p, Some((p.truncate() + lo - margin, p.truncate() + hi + margin)))),
             })
             .collect();
         let edges = kinds

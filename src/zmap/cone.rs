@@ -32,21 +32,31 @@ pub(super) fn cone_offsets(profile: &Profile, n1: DVec3, n2: DVec3) -> (DVec2, D
     cone_hull_offsets(profile, &[n1, n2])
 }
 
-/// The same box over the spherical hull of several normals (the normal cone of a convex vertex).
-/// On the sphere's upper half, d_xy is extreme on the hull's boundary, whose arcs are among the
-/// arcs between pairs of normals; the horizontal direction d_xy / |d_xy| stays within the
-/// smallest angular interval holding the normals' directions, unless that spans half a turn or
-/// more, or a normal is vertical (then the flat bottom can rest on the feature: a whole disk).
+/// The same box over the spherical hull of several normals (the normal cone of a vertex). Its
+/// d_xy is extreme on the hull's boundary, made of arcs between the normals; an arc strays
+/// from its chord by at most its sagitta 1 - cos(Θ/2), and projecting onto the plane shortens
+/// nothing, so the normals' box grown by the widest pair's sagitta holds it. The horizontal
+/// direction d_xy / |d_xy| stays within the shortest arc of the circle holding the normals'
+/// directions, unless that spans half a turn or more or a normal is vertical (then the flat
+/// bottom can rest on the feature: a whole disk).
 pub(super) fn cone_hull_offsets(profile: &Profile, normals: &[DVec3]) -> (DVec2, DVec2) {
     let (a, flat) = (profile.corner, profile.radius - profile.corner);
-    let (mut d_lo, mut d_hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
-    for (k, &n1) in normals.iter().enumerate() {
-        for &n2 in &normals[k..] {
-            let (lo, hi) = arc_box(n1, n2);
-            d_lo = d_lo.min(lo);
-            d_hi = d_hi.max(hi);
+    let (d_lo, d_hi) = match normals {
+        [n1, n2] => arc_box(*n1, *n2),
+        _ => {
+            let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+            let mut widest = 1.0f64; // smallest cosine between two normals
+            for (k, n) in normals.iter().enumerate() {
+                lo = lo.min(n.truncate());
+                hi = hi.max(n.truncate());
+                for m in &normals[k + 1..] {
+                    widest = widest.min(n.dot(*m));
+                }
+            }
+            let sagitta = 1.0 - ((1.0 + widest.clamp(-1.0, 1.0)) / 2.0).sqrt() + REGION_MARGIN;
+            (lo - sagitta, hi + sagitta)
         }
-    }
+    };
     let (u_lo, u_hi) = if flat > 0.0 { direction_box(normals) } else { (DVec2::ZERO, DVec2::ZERO) };
     // a and R - a are not negative, so the box of the sum is the sum of the scaled boxes.
     (d_lo * a + u_lo * flat, d_hi * a + u_hi * flat)
@@ -73,16 +83,14 @@ fn arc_box(n1: DVec3, n2: DVec3) -> (DVec2, DVec2) {
 /// or a normal is vertical.
 fn direction_box(normals: &[DVec3]) -> (DVec2, DVec2) {
     let whole = (DVec2::splat(-1.0), DVec2::splat(1.0));
-    let mut dirs = Vec::with_capacity(normals.len());
-    for n in normals {
-        match n.truncate().try_normalize() {
-            Some(u) => dirs.push(u),
-            None => return whole,
-        }
+    if normals.iter().any(|n| n.truncate().try_normalize().is_none()) {
+        return whole;
     }
+    let dirs = normals.iter().map(|n| n.truncate().normalize());
     // Grow the arc [from, to] (counter-clockwise) one direction at a time.
-    let (mut from, mut to) = (dirs[0], dirs[0]);
-    for &u in &dirs[1..] {
+    let first = normals[0].truncate().normalize();
+    let (mut from, mut to) = (first, first);
+    for u in dirs.clone().skip(1) {
         let inside = from.perp_dot(u) >= 0.0 && u.perp_dot(to) >= 0.0 && from.perp_dot(to) >= 0.0;
         if inside {
             continue;
@@ -99,7 +107,7 @@ fn direction_box(normals: &[DVec3]) -> (DVec2, DVec2) {
     if from.perp_dot(to) < 0.0 || (from.perp_dot(to) == 0.0 && from.dot(to) < 0.0) {
         return whole;
     }
-    if !dirs.iter().all(|u| from.perp_dot(*u) >= -REGION_MARGIN && u.perp_dot(to) >= -REGION_MARGIN) {
+    if !dirs.clone().all(|u| from.perp_dot(u) >= -REGION_MARGIN && u.perp_dot(to) >= -REGION_MARGIN) {
         return whole;
     }
     let (mut lo, mut hi) = (from.min(to), from.max(to));
@@ -116,13 +124,26 @@ fn direction_box(normals: &[DVec3]) -> (DVec2, DVec2) {
 /// directions that rounding puts a hair outside: the region can only grow).
 const CONE_SLACK: f64 = 1e-9;
 
-/// For a cutter with a smooth lower surface (ball, bull nose), the corners of each vertex's
-/// normal cone `{d : d·(w - v) <= 0 for every neighbour w, d_z >= 0}`: a cutter touching only
-/// the vertex has one contact direction d, and it must lie there or the cutter would cut into a
-/// facet. The corners are where two constraint planes meet and all constraints hold. An empty
-/// list (a saddle, a pit) means the vertex is never the highest contact; `None` means the fan is
-/// too degenerate to tell (visit the whole disk).
-pub(super) fn vertex_cones(mesh: &Mesh, kinds: &[(EdgeFaces, EdgeKind)]) -> Vec<Option<Vec<DVec3>>> {
+/// Which nodes a vertex can decide.
+#[derive(Clone, Copy, Debug)]
+pub(super) enum VertexReach {
+    /// All within the cutter radius.
+    Disk,
+    /// None: its normal cone is empty.
+    Never,
+    /// Those in this box of tip offsets from the vertex.
+    Offsets(DVec2, DVec2),
+}
+
+/// Most corners kept for one vertex's cone; a fan with more visits the whole disk.
+const MAX_CORNERS: usize = 48;
+
+/// For a cutter with a smooth lower surface (ball, bull nose), each vertex's normal cone
+/// `{d : d·(w - v) <= 0 for every neighbour w, d_z >= 0}`: a cutter touching only the vertex
+/// has one contact direction d, and it must lie there or the cutter would cut into a facet. The
+/// cone's corners are where two constraint planes meet and all constraints hold; none (a
+/// saddle, a pit) means the vertex is never the highest contact.
+pub(super) fn vertex_cones(mesh: &Mesh, kinds: &[(EdgeFaces, EdgeKind)], profile: &Profile) -> Vec<VertexReach> {
     let v = &mesh.vertices;
     // Unit directions to the neighbours, grouped by vertex (counting sort by vertex).
     let mut start = vec![0usize; v.len() + 1];
@@ -144,31 +165,40 @@ pub(super) fn vertex_cones(mesh: &Mesh, kinds: &[(EdgeFaces, EdgeKind)]) -> Vec<
         fill[b as usize] += 1;
     }
     crate::parallel::map(v.len(), |k| {
-            let mut constraints = directions[start[k]..start[k + 1]].to_vec();
-            if constraints.len() < 3 {
-                return None;
-            }
-            constraints.push(DVec3::NEG_Z); // d_z >= 0
-            let holds = |d: DVec3| constraints.iter().all(|c| d.dot(*c) <= CONE_SLACK);
-            let mut corners = Vec::new();
-            for (i, ci) in constraints.iter().enumerate() {
-                for cj in &constraints[i + 1..] {
-                    let Some(d) = ci.cross(*cj).try_normalize() else { continue };
-                    for d in [d, -d] {
-                        if holds(d) {
-                            corners.push(d);
+        let neighbours = &directions[start[k]..start[k + 1]];
+        if neighbours.len() < 3 {
+            return VertexReach::Disk;
+        }
+        let constraints = || neighbours.iter().copied().chain(std::iter::once(DVec3::NEG_Z)); // d_z >= 0
+        let holds = |d: DVec3| constraints().all(|c| d.dot(c) <= CONE_SLACK);
+        let mut corners = [DVec3::ZERO; MAX_CORNERS];
+        let mut count = 0;
+        for (i, ci) in constraints().enumerate() {
+            for cj in constraints().skip(i + 1) {
+                let Some(d) = ci.cross(cj).try_normalize() else { continue };
+                for d in [d, -d] {
+                    if holds(d) {
+                        if count == MAX_CORNERS {
+                            return VertexReach::Disk;
                         }
+                        corners[count] = d;
+                        count += 1;
                     }
                 }
             }
-            Some(corners)
-        })
+        }
+        if count == 0 {
+            return VertexReach::Never;
+        }
+        let (lo, hi) = cone_hull_offsets(profile, &corners[..count]);
+        VertexReach::Offsets(lo, hi)
+    })
 }
 
 /// For each vertex, the normals of its facets when it is locally convex (so that its normal
 /// cone is their spherical hull): interior to a manifold fan, every edge a ridge, and the fan's
-/// facets winding the same way in projection (no fold). `None`: visit the whole disk.
-pub(super) fn vertex_reaches(mesh: &Mesh, kinds: &[(EdgeFaces, EdgeKind)], up: &[Option<DVec3>]) -> Vec<Option<Vec<DVec3>>> {
+/// facets winding the same way in projection (no fold); otherwise the whole disk.
+pub(super) fn vertex_reaches(mesh: &Mesh, kinds: &[(EdgeFaces, EdgeKind)], up: &[Option<DVec3>], profile: &Profile) -> Vec<VertexReach> {
     let n = mesh.vertices.len();
     let mut convex = vec![true; n];
     let mut ridges = vec![0u32; n];
@@ -196,8 +226,13 @@ pub(super) fn vertex_reaches(mesh: &Mesh, kinds: &[(EdgeFaces, EdgeKind)], up: &
     (0..n)
         .map(|v| {
             // In a closed fan there are as many edges as facets.
-            (convex[v] && ridges[v] as usize == fans[v].len() && fans[v].len() >= 3)
-                .then(|| fans[v].iter().map(|&f| up[f as usize].unwrap()).collect())
+            if convex[v] && ridges[v] as usize == fans[v].len() && fans[v].len() >= 3 {
+                let normals: Vec<DVec3> = fans[v].iter().map(|&f| up[f as usize].unwrap()).collect();
+                let (lo, hi) = cone_hull_offsets(profile, &normals);
+                VertexReach::Offsets(lo, hi)
+            } else {
+                VertexReach::Disk
+            }
         })
         .collect()
 }
