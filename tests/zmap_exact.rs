@@ -223,3 +223,58 @@ fn cancel_stops_the_exact_builder() {
     let result = cl_exact(&part, &Profile::new(3.0, 3.0), grid, FLOOR, &Tolerances::DEFAULT, &mut Progress::new(&mut sink));
     assert!(matches!(result, Err(swarf::Error::Cancelled)));
 }
+
+mod random_parts {
+    use super::*;
+    use proptest::prelude::*;
+    use swarf::geom::DVec3;
+
+    /// A rough closed height field: random heights, each quad split along a random diagonal.
+    fn rough_part(heights: &[f64], diagonals: &[bool], n: usize, cell: f64) -> Mesh {
+        let at = |i: usize, j: usize| DVec3::new(i as f64 * cell, j as f64 * cell, heights[j * (n + 1) + i]);
+        let mut tris = Vec::new();
+        for j in 0..n {
+            for i in 0..n {
+                let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+                if diagonals[j * n + i] {
+                    tris.push([a, b, c]);
+                    tris.push([a, c, d]);
+                } else {
+                    tris.push([a, b, d]);
+                    tris.push([b, c, d]);
+                }
+            }
+        }
+        Mesh::from_triangles(tris, &Tolerances::DEFAULT).unwrap()
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 40, .. ProptestConfig::default() })]
+        #[test]
+        fn grid_builder_equals_the_brute_force_drop(
+            heights in proptest::collection::vec(-3.0f64..3.0, 7 * 7),
+            diagonals in proptest::collection::vec(any::<bool>(), 6 * 6),
+            shape in 0usize..3,
+            diameter in 0.8f64..9.0,
+            corner_fraction in 0.05f64..0.95,
+            spacing in 0.23f64..0.9,
+        ) {
+            let part = rough_part(&heights, &diagonals, 6, 1.5);
+            let cutter = match shape {
+                0 => Cutter::flat(diameter),
+                1 => Cutter::ball(diameter),
+                _ => Cutter::bull_nose(diameter, diameter / 2.0 * corner_fraction),
+            };
+            let (min, max) = (DVec2::splat(-2.0), DVec2::splat(11.0));
+            let field = exact(&part, &cutter, min, max, spacing);
+            let grid = field.grid();
+            for j in 0..field.ny {
+                for i in 0..field.nx {
+                    let c = grid.node(i, j);
+                    let brute = cl_exact_at(&part, &cutter.profile(), c, &Tolerances::DEFAULT).unwrap_or(FLOOR).max(FLOOR);
+                    prop_assert!((field.at(i, j) - brute).abs() <= EXACT, "{} at {c}: grid {} brute force {brute}", cutter.describe(), field.at(i, j));
+                }
+            }
+        }
+    }
+}

@@ -136,7 +136,7 @@ pub(super) enum VertexReach {
 }
 
 /// Most corners kept for one vertex's cone; a fan with more visits the whole disk.
-const MAX_CORNERS: usize = 48;
+const MAX_CORNERS: usize = 16;
 
 /// For a cutter with a smooth lower surface (ball, bull nose), each vertex's normal cone
 /// `{d : d·(w - v) <= 0 for every neighbour w, d_z >= 0}`: a cutter touching only the vertex
@@ -170,14 +170,29 @@ pub(super) fn vertex_cones(mesh: &Mesh, kinds: &[(EdgeFaces, EdgeKind)], profile
             return VertexReach::Disk;
         }
         let constraints = || neighbours.iter().copied().chain(std::iter::once(DVec3::NEG_Z)); // d_z >= 0
-        let holds = |d: DVec3| constraints().all(|c| d.dot(c) <= CONE_SLACK);
         let mut corners = [DVec3::ZERO; MAX_CORNERS];
         let mut count = 0;
         for (i, ci) in constraints().enumerate() {
             for cj in constraints().skip(i + 1) {
-                let Some(d) = ci.cross(cj).try_normalize() else { continue };
-                for d in [d, -d] {
-                    if holds(d) {
+                // Both signs of the unnormalised cross product at once: scaling keeps the
+                // constraints' signs, and the slack scales with the length.
+                let d = ci.cross(cj);
+                let length = d.length();
+                if length == 0.0 {
+                    continue;
+                }
+                let slack = CONE_SLACK * length;
+                let (mut plus, mut minus) = (true, true);
+                for c in constraints() {
+                    let t = d.dot(c);
+                    plus &= t <= slack;
+                    minus &= -t <= slack;
+                    if !plus && !minus {
+                        break;
+                    }
+                }
+                for (ok, d) in [(plus, d / length), (minus, -d / length)] {
+                    if ok {
                         if count == MAX_CORNERS {
                             return VertexReach::Disk;
                         }
