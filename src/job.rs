@@ -254,7 +254,7 @@ pub fn run(job: &Job, mut part: Mesh, progress: &mut Progress) -> Result<JobOutp
     }
     progress.stage("writing G-code", 1.0, 0.0);
     let gcode = write_gcode(&job.name, &paths, &job.tools, clearance_z, &job.post);
-    let stats = paths.iter().fold(PathStats::default(), |s, p| s.add(p.stats(job.post.rapid_rate)));
+    let stats = paths.iter().fold(PathStats::default(), |s, p| s + p.stats(job.post.rapid_rate));
     Ok(JobOutput { part, stock, clearance_z, paths, gcode, stats, warnings })
 }
 

@@ -104,7 +104,45 @@ async function showPart(bytes = state.bytes, name = state.name, label = $('part-
 }
 
 async function takeFile(file) {
+  if (/\.json$/i.test(file.name)) return loadJob(file);
   showPart(new Uint8Array(await file.arrayBuffer()), file.name, file.name);
+}
+
+// ---- jobs as JSON ------------------------------------------------------------------------
+// The same JSON drives the page, `swarf run job.json part.stl` and the tests.
+function saveJob() {
+  let job;
+  try { job = buildJob(); } catch (e) { showError(e.message); return; }
+  const a = document.createElement('a');
+  a.href = URL.createObjectURL(new Blob([JSON.stringify(job, null, 2)], { type: 'application/json' }));
+  a.download = `${job.name || 'job'}.json`;
+  document.body.appendChild(a);
+  a.click();
+  setTimeout(() => { URL.revokeObjectURL(a.href); a.remove(); }, 1000);
+}
+
+async function loadJob(file) {
+  try {
+    const job = JSON.parse(await file.text());
+    const op = (job.operations || []).find((o) => o.kind === 'finishRaster');
+    const tool = (job.tools || []).find((t) => !op || t.number === op.tool) || (job.tools || [])[0];
+    if (!op || !tool) throw new Error('the job has no raster finishing operation with its tool');
+    const f = form.elements;
+    const set = (name, value) => { if (value !== undefined && value !== null && f[name]) f[name].value = value; };
+    set('partUnits', job.part?.units); set('upAxis', job.part?.upAxis); set('placement', job.part?.placement);
+    set('marginXy', job.stock?.marginXy);
+    set('shape', tool.shape); set('diameter', tool.diameter); set('cornerRadius', tool.cornerRadius);
+    set('spindleRpm', tool.spindleRpm); set('feedRate', tool.feedRate); set('plungeRate', tool.plungeRate);
+    for (const k of ['stepover', 'angle', 'pattern', 'boundary', 'allowance', 'grid', 'builder']) set(k, op[k]);
+    set('dialect', job.post?.dialect); set('gcodeUnits', job.post?.units);
+    state.baseJob = { ...state.baseJob, ...job };
+    saveSettings();
+    updateCorner();
+    await showPart();
+    showInfo(`Loaded the job from ${file.name}.`);
+  } catch (e) {
+    showError(`${file.name}: ${e.message}`);
+  }
 }
 
 // ---- generate, cancel, download ----------------------------------------------------------
@@ -174,6 +212,8 @@ function download() {
 $('generate').addEventListener('click', generate);
 $('cancel').addEventListener('click', cancel);
 $('download').addEventListener('click', download);
+$('save-job').addEventListener('click', saveJob);
+$('load-job').addEventListener('change', (e) => { if (e.target.files[0]) loadJob(e.target.files[0]); e.target.value = ''; });
 $('file').addEventListener('change', (e) => { if (e.target.files[0]) takeFile(e.target.files[0]); });
 $('use-sample').addEventListener('click', () => showPart(state.sample, 'sample.stl', 'sample part'));
 form.addEventListener('change', (e) => {

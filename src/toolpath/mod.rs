@@ -84,8 +84,10 @@ pub struct PathStats {
     pub seconds: f64,
 }
 
-impl PathStats {
-    pub fn add(self, other: PathStats) -> PathStats {
+impl std::ops::Add for PathStats {
+    type Output = PathStats;
+
+    fn add(self, other: PathStats) -> PathStats {
         PathStats {
             moves: self.moves + other.moves,
             feed_length: self.feed_length + other.feed_length,

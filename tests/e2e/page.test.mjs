@@ -139,6 +139,43 @@ test('cancel stops a long job, keeps the settings, and the next run works', asyn
   await context.close();
 });
 
+test('a saved job loads back and runs on the command line as in the page', async () => {
+  const { page, context, errors } = await openPage();
+  await page.fill('input[name=stepover]', '2.5');
+  await page.fill('input[name=angle]', '30');
+  await page.selectOption('select[name=dialect]', 'grbl');
+  const [saved] = await Promise.all([page.waitForEvent('download'), page.click('#save-job')]);
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-job-'));
+  const jobFile = path.join(dir, 'job.json');
+  await saved.saveAs(jobFile);
+  const job = JSON.parse(fs.readFileSync(jobFile, 'utf8'));
+  assert.equal(job.operations[0].stepover, 2.5);
+  assert.equal(job.post.dialect, 'grbl');
+  // Change the form, then load the job back: the form follows the file.
+  await page.fill('input[name=stepover]', '9');
+  await page.setInputFiles('#load-job', jobFile);
+  await page.waitForFunction(() => /Loaded the job/.test(document.getElementById('message').textContent));
+  assert.equal(await page.inputValue('input[name=stepover]'), '2.5');
+  assert.equal(await page.inputValue('select[name=dialect]'), 'grbl');
+  // The page's G-code equals the CLI's for the same job and part.
+  await page.click('#generate');
+  await page.waitForFunction(() => !document.getElementById('download').disabled, null, { timeout: 60000 });
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
+  const fromPage = path.join(dir, 'page.nc');
+  await download.saveAs(fromPage);
+  const stl = path.join(dir, 'sample.stl');
+  fs.writeFileSync(stl, Buffer.from(await page.evaluate(() => Array.from(window.swarf.sample))));
+  const cli = path.resolve(root, '../target/debug/swarf');
+  if (fs.existsSync(cli)) {
+    execFileSync(cli, ['run', jobFile, stl, '-o', path.join(dir, 'cli.nc'), '-q']);
+    assert.equal(fs.readFileSync(path.join(dir, 'cli.nc'), 'utf8'), fs.readFileSync(fromPage, 'utf8'));
+  } else {
+    assert.fail(`the swarf command line is not built at ${cli}`);
+  }
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
 test('the page asked for nothing outside its own server', () => {
   assert.deepEqual(offsite, []);
 });
