@@ -10,7 +10,8 @@
 //! 2. vertices: each vertex once, over the nodes within R of it — or only those its normal
 //!    cone's offsets reach (the argument of step 3): for a ball or bull nose, whose lower
 //!    surface is smooth, the cone of directions that clear every neighbour (empty at a saddle);
-//!    for a flat end, at locally convex vertices, the hull of the facets' normals;
+//!    for a flat end, the hull of the facets' normals at locally convex vertices, and only the
+//!    rim at vertices with a higher neighbour;
 //! 3. edges: each edge shared by two facets once, over the nodes within R of it, skipped at a
 //!    node where a cheap upper bound shows it cannot rise above what steps 1 and 2 found.
 //!    A cutter touching an edge at an interior point with contact direction d (from the contact
@@ -37,8 +38,8 @@ const REPORT_EVERY: usize = 4096;
 /// The mesh's features, each with the box of nodes it can decide.
 struct Features {
     facets: Vec<(FacetPlane, DVec2, DVec2)>,
-    /// A vertex, and its box (`None`: the whole disk of radius R).
-    vertices: Vec<(DVec3, Option<(DVec2, DVec2)>)>,
+    /// A vertex, and the nodes it can decide.
+    vertices: Vec<(DVec3, VertexReach)>,
     edges: Vec<(DVec3, DVec3, DVec2, DVec2)>,
 }
 
@@ -62,9 +63,9 @@ impl Features {
             .iter()
             .zip(&reach)
             .filter_map(|(&p, reach)| match *reach {
-                VertexReach::Disk => Some((p, None)),
                 VertexReach::Never => None,
-                VertexReach::Offsets(lo, hi) => Some((p, Some((p.truncate() + lo - margin, p.truncate() + hi + margin)))),
+                VertexReach::Offsets(lo, hi) => Some((p, VertexReach::Offsets(p.truncate() + lo - margin, p.truncate() + hi + margin))),
+                other => Some((p, other)),
             })
             .collect();
         let edges = kinds
@@ -151,8 +152,13 @@ fn fill(features: &Features, profile: &Profile, grid: &Grid, j0: usize, band: &m
             }
         };
         match reach {
-            None => for_nodes_in_disk(grid, p.truncate(), profile.radius, j0, j1, &mut visit),
-            Some((lo, hi)) => for_nodes_in_box(grid, lo, hi, j0, j1, &mut visit),
+            VertexReach::Disk => for_nodes_in_disk(grid, p.truncate(), profile.radius, 0.0, j0, j1, &mut visit),
+            VertexReach::Rim => {
+                let inner = profile.radius - REGION_MARGIN * (1.0 + profile.radius);
+                for_nodes_in_disk(grid, p.truncate(), profile.radius, inner, j0, j1, &mut visit)
+            }
+            VertexReach::Offsets(lo, hi) => for_nodes_in_box(grid, lo, hi, j0, j1, &mut visit),
+            VertexReach::Never => {}
         }
     }
     for &(p, q, lo, hi) in &features.edges {
@@ -202,15 +208,26 @@ fn for_nodes_in_box(grid: &Grid, lo: DVec2, hi: DVec2, rows_from: usize, rows_to
 }
 
 #[inline]
-/// Calls `f` for the nodes within `radius` of `center` whose row lies in `rows_from..rows_to`.
-fn for_nodes_in_disk(grid: &Grid, center: DVec2, radius: f64, rows_from: usize, rows_to: usize, f: &mut impl FnMut(usize, usize, DVec2)) {
+/// Calls `f` for the nodes at a distance from `center` between `inner` (roughly: the nodes
+/// just inside it may come too) and `radius`, whose row lies in `rows_from..rows_to`.
+fn for_nodes_in_disk(grid: &Grid, center: DVec2, radius: f64, inner: f64, rows_from: usize, rows_to: usize, f: &mut impl FnMut(usize, usize, DVec2)) {
     let Some((j0, j1)) = grid.rows(center.y - radius, center.y + radius) else { return };
     for j in j0.max(rows_from)..=j1.min(rows_to.saturating_sub(1)) {
         let dy = grid.node(0, j).y - center.y;
         let half = (radius * radius - dy * dy).max(0.0).sqrt();
-        let Some((i0, i1)) = grid.columns(center.x - half, center.x + half) else { continue };
-        for i in i0..=i1 {
-            f(i, j, grid.node(i, j));
+        let hole = if inner > 0.0 && dy.abs() < inner { (inner * inner - dy * dy).sqrt() } else { -1.0 };
+        let mut run = |lo: f64, hi: f64| {
+            if let Some((i0, i1)) = grid.columns(lo, hi) {
+                for i in i0..=i1 {
+                    f(i, j, grid.node(i, j));
+                }
+            }
+        };
+        if hole > 0.0 {
+            run(center.x - half, center.x - hole);
+            run(center.x + hole, center.x + half);
+        } else {
+            run(center.x - half, center.x + half);
         }
     }
 }

@@ -129,6 +129,8 @@ const CONE_SLACK: f64 = 1e-9;
 pub(super) enum VertexReach {
     /// All within the cutter radius.
     Disk,
+    /// Only those at the cutter radius (a flat end's rim resting on it).
+    Rim,
     /// None: its normal cone is empty.
     Never,
     /// Those in this box of tip offsets from the vertex.
@@ -210,19 +212,27 @@ pub(super) fn vertex_cones(mesh: &Mesh, kinds: &[(EdgeFaces, EdgeKind)], profile
     })
 }
 
-/// For each vertex, the normals of its facets when it is locally convex (so that its normal
-/// cone is their spherical hull): interior to a manifold fan, every edge a ridge, and the fan's
-/// facets winding the same way in projection (no fold); otherwise the whole disk.
+/// For a flat end, whose tip height over a node is the highest point of the part under its
+/// disk: a locally convex vertex (interior to a manifold fan, every edge a ridge, the fan's
+/// facets winding the same way in projection) reaches the offsets of its normal cone, the
+/// spherical hull of its facets' normals; a vertex with a neighbour above it has higher points
+/// arbitrarily close, so it can be the highest point under the disk only on the rim; the others
+/// (weak local maxima) reach the whole disk.
 pub(super) fn vertex_reaches(mesh: &Mesh, kinds: &[(EdgeFaces, EdgeKind)], up: &[Option<DVec3>], profile: &Profile) -> Vec<VertexReach> {
     let n = mesh.vertices.len();
     let mut convex = vec![true; n];
     let mut ridges = vec![0u32; n];
+    let mut below = vec![false; n]; // a neighbour stands higher
+    let z = |v: u32| mesh.vertices[v as usize].z;
     for (e, kind) in kinds {
         let ridge = matches!(kind, EdgeKind::Ridge(..));
-        for &v in &e.edge {
+        let [a, b] = e.edge;
+        for v in [a, b] {
             convex[v as usize] &= ridge;
             ridges[v as usize] += ridge as u32;
         }
+        below[a as usize] |= z(b) > z(a);
+        below[b as usize] |= z(a) > z(b);
     }
     let mut fans: Vec<Vec<u32>> = vec![Vec::new(); n];
     let mut winding = vec![0i8; n];
@@ -245,6 +255,8 @@ pub(super) fn vertex_reaches(mesh: &Mesh, kinds: &[(EdgeFaces, EdgeKind)], up: &
                 let normals: Vec<DVec3> = fans[v].iter().map(|&f| up[f as usize].unwrap()).collect();
                 let (lo, hi) = cone_hull_offsets(profile, &normals);
                 VertexReach::Offsets(lo, hi)
+            } else if below[v] {
+                VertexReach::Rim
             } else {
                 VertexReach::Disk
             }
