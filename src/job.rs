@@ -272,20 +272,22 @@ fn finish_raster(job: &Job, op: &FinishRaster, part: &Mesh, stock: &Aabb, cleara
     }
     let floor = op.floor.unwrap_or(stock.min.z);
     let tol = &job.tolerances;
-    let cc = cc_zmap(part, grid, floor, tol);
+    // The part's own heights, needed by the inverse offset and by the silhouette boundary.
+    let cc = (op.builder == ClBuilder::InverseOffset || op.boundary == Boundary::Silhouette).then(|| cc_zmap(part, grid, floor, tol));
+    let cc = || cc.as_ref().expect("built above for the uses that need it");
     if !progress.stage(&format!("{}: CL z-map", op.name), start, span * 0.9) {
         return Err(Error::Cancelled);
     }
     let cl: HeightField = match op.builder {
         ClBuilder::Exact => cl_exact(part, &profile, grid, floor, tol, progress)?,
-        ClBuilder::InverseOffset => cl_inverse_offset(&cc, &profile, progress)?,
+        ClBuilder::InverseOffset => cl_inverse_offset(cc(), &profile, progress)?,
     };
     if !progress.stage(&format!("{}: passes", op.name), start + span * 0.9, span * 0.1) {
         return Err(Error::Cancelled);
     }
     let region = match op.boundary {
         Boundary::Stock => Region::Rect { min: stock.min.truncate(), max: stock.max.truncate() },
-        Boundary::Silhouette => Region::silhouette(&cc, floor, op.margin.unwrap_or(profile.radius)),
+        Boundary::Silhouette => Region::silhouette(cc(), floor, op.margin.unwrap_or(profile.radius)),
     };
     let passes = RasterPasses { angle_deg: op.angle, stepover: op.stepover, pattern: op.pattern, allowance: op.allowance, tolerance: tol.chordal };
     let cl = ClSurface::new(cl, tol.interpolation);

@@ -213,3 +213,27 @@ proptest! {
         }
     }
 }
+
+/// The inverse-offset builder (seed 001 §3.1) through the whole job, with the stock boundary:
+/// it sees the part only at the nodes, so its path may sit below the exact one, but only by its
+/// known error at this grid.
+#[test]
+fn inverse_offset_job_runs_and_stays_near_the_exact_surface() {
+    use swarf::zmap::ClBuilder;
+    let cutter = Cutter::ball(6.0);
+    let job = Job {
+        tools: vec![Tool { cutter: cutter.clone(), ..Tool::default() }],
+        operations: vec![Operation::FinishRaster(FinishRaster { builder: ClBuilder::InverseOffset, boundary: Boundary::Stock, stepover: 2.0, grid: 0.3, ..FinishRaster::default() })],
+        ..Job::default()
+    };
+    let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
+    let mut checked = 0;
+    for m in &out.paths[0].moves {
+        if let Move::Line { to, .. } = m {
+            let exact = cl_exact_at(&out.part, &cutter.profile(), to.truncate(), &Tolerances::DEFAULT).unwrap_or(out.stock.min.z).max(out.stock.min.z);
+            assert!(to.z >= exact - 0.05, "{to} is {} below the exact CL", exact - to.z);
+            checked += 1;
+        }
+    }
+    assert!(checked > 1000);
+}
