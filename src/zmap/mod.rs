@@ -49,7 +49,10 @@ pub enum ClBuilder {
     #[default]
     Exact,
     /// Seed 001 §3.1: inverse offset of the CC z-map; faster, but it only sees the part at the
-    /// grid's nodes, so it can sit below the exact surface by up to the paper's δ.
+    /// grid's nodes, so it sits below the exact surface: on smooth surfaces by the paper's δ
+    /// (second order in the spacing s), and where a ball rolls over a wall's top edge that lies
+    /// between nodes by up to sqrt(2 R s) — it can cut into such edges. For roughing and
+    /// previews; finish with the exact builder.
     InverseOffset,
 }
 
