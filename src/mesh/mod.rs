@@ -96,25 +96,42 @@ impl Mesh {
     /// Each undirected edge once, with the faces that share it: the first two, and how many
     /// there are (one on a boundary, three and more where the mesh is not a manifold).
     pub fn edges_with_faces(&self) -> Vec<EdgeFaces> {
-        // (edge as one u64 key, face), sorted: the faces of an edge end up side by side.
-        let mut half: Vec<(u64, u32)> = self
-            .faces
-            .iter()
-            .enumerate()
-            .flat_map(|(f, v)| [[v[0], v[1]], [v[1], v[2]], [v[2], v[0]]].map(|[a, b]| (((a.min(b) as u64) << 32) | a.max(b) as u64, f as u32)))
-            .collect();
-        half.sort_unstable();
+        // Half-edges bucketed by their lower vertex (a counting sort), then each small bucket
+        // sorted by the upper vertex: the faces of an edge end up side by side.
+        let n = self.vertices.len();
+        let mut start = vec![0usize; n + 1];
+        for f in &self.faces {
+            for [a, b] in [[f[0], f[1]], [f[1], f[2]], [f[2], f[0]]] {
+                start[a.min(b) as usize + 1] += 1;
+            }
+        }
+        for k in 0..n {
+            start[k + 1] += start[k];
+        }
+        let mut fill = start.clone();
+        let mut half = vec![(0u32, 0u32); start[n]]; // (upper vertex, face) in lower-vertex buckets
+        for (face, f) in self.faces.iter().enumerate() {
+            for [a, b] in [[f[0], f[1]], [f[1], f[2]], [f[2], f[0]]] {
+                let low = a.min(b) as usize;
+                half[fill[low]] = (a.max(b), face as u32);
+                fill[low] += 1;
+            }
+        }
         let mut out: Vec<EdgeFaces> = Vec::with_capacity(half.len() / 2 + 1);
-        for (key, face) in half {
-            let edge = [(key >> 32) as u32, key as u32];
-            match out.last_mut() {
-                Some(e) if e.edge == edge => {
-                    if e.count < 2 {
-                        e.faces[e.count as usize] = face;
+        for low in 0..n {
+            let bucket = &mut half[start[low]..start[low + 1]];
+            bucket.sort_unstable();
+            for &(high, face) in bucket.iter() {
+                let edge = [low as u32, high];
+                match out.last_mut() {
+                    Some(e) if e.edge == edge => {
+                        if e.count < 2 {
+                            e.faces[e.count as usize] = face;
+                        }
+                        e.count = e.count.saturating_add(1);
                     }
-                    e.count = e.count.saturating_add(1);
+                    _ => out.push(EdgeFaces { edge, faces: [face, u32::MAX], count: 1 }),
                 }
-                _ => out.push(EdgeFaces { edge, faces: [face, u32::MAX], count: 1 }),
             }
         }
         out
