@@ -80,19 +80,6 @@ impl Mesh {
         Aabb::from_points(&self.vertices)
     }
 
-    /// Each undirected edge once, as vertex index pairs (smaller index first).
-    pub fn edges(&self) -> Vec<[u32; 2]> {
-        let mut edges: Vec<[u32; 2]> = self
-            .faces
-            .iter()
-            .flat_map(|f| [[f[0], f[1]], [f[1], f[2]], [f[2], f[0]]])
-            .map(|[a, b]| if a < b { [a, b] } else { [b, a] })
-            .collect();
-        edges.sort_unstable();
-        edges.dedup();
-        edges
-    }
-
     /// Each undirected edge once, with the faces that share it: the first two, and how many
     /// there are (one on a boundary, three and more where the mesh is not a manifold).
     pub fn edges_with_faces(&self) -> Vec<EdgeFaces> {

@@ -7,7 +7,7 @@
 //! normal cone, mapped to tip offsets. A concave edge's cone is empty (it never decides), a
 //! convex edge's is the arc between its facets' normals, and a saddle vertex's is empty.
 
-use crate::cutter::Profile;
+use crate::cutter::{FacetPlane, Profile};
 use crate::geom::{DVec2, DVec3, Tolerances};
 use crate::mesh::{EdgeFaces, Mesh};
 
@@ -266,9 +266,8 @@ pub(super) fn vertex_reaches(mesh: &Mesh, kinds: &[(EdgeFaces, EdgeKind)], up: &
 
 /// The unit normal of a facet turned upward, or `None` for a vertical or degenerate facet.
 pub(super) fn up_normal(mesh: &Mesh, face: usize, tolerances: &Tolerances) -> Option<DVec3> {
-    let n = mesh.triangle(face).cross().try_normalize()?;
-    let n = if n.z < 0.0 { -n } else { n };
-    (n.z > tolerances.normal).then_some(n)
+    let t = mesh.triangle(face);
+    FacetPlane::new(t.a, t.b, t.c, tolerances.normal).map(|facet| facet.normal)
 }
 
 /// Classifies an edge by its two facets (normals turned upward): a valley when each facet's far

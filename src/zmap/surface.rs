@@ -55,11 +55,6 @@ impl ClSurface {
         ClSurface { field, held }
     }
 
-    /// Number of held cells (for reports).
-    pub fn held_cells(&self) -> usize {
-        self.held.iter().filter(|h| !h.is_nan()).count()
-    }
-
     /// The surface's height at `p`: on a border between cells, the highest of them.
     #[inline]
     pub fn height(&self, p: DVec2) -> f64 {
