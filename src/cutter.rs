@@ -127,6 +127,12 @@ impl Profile {
         Profile { radius, corner, flat: radius - corner }
     }
 
+    /// R - a: the radius of the flat bottom.
+    #[inline]
+    pub fn flat_radius(&self) -> f64 {
+        self.flat
+    }
+
     /// Height of the cutter's lower surface above the tip at horizontal distance `r <= R`.
     #[inline]
     pub fn height(&self, r: f64) -> f64 {

@@ -10,6 +10,8 @@ pub use crate::mesh::import::ImportError;
 pub enum Error {
     #[error(transparent)]
     Import(#[from] ImportError),
+    #[error(transparent)]
+    Program(#[from] crate::post::read::ReadError),
     #[error("invalid job: {0}")]
     Job(String),
     #[error("cancelled")]

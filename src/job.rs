@@ -10,6 +10,8 @@ use crate::geom::{Aabb, DVec3, Tolerances};
 use crate::mesh::{placement::PartSetup, Mesh};
 use crate::post::{write_gcode, PostSettings};
 use crate::progress::Progress;
+use crate::sim::program::{program_moves, ProgramMove};
+use crate::sim::verify::{verify, Verification, VerifySettings};
 use crate::strategy::finish_raster::{raster_runs, Pattern, RasterPasses};
 use crate::strategy::region::Region;
 use crate::toolpath::link::{link_runs, Feeds, Floor, LinkSettings};
@@ -148,6 +150,36 @@ pub enum Operation {
     FinishRaster(FinishRaster),
 }
 
+/// Simulating the program after it is made (seed 002), to verify it and to show the cut.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, rename_all = "camelCase")]
+pub struct Simulation {
+    /// Simulate and verify every program. Default value: true.
+    pub verify: bool,
+    /// Cell size of the simulated stock (mm). Default value: the size that gives the stock
+    /// about a million cells, and no smaller than 0.05 mm.
+    pub cell: Option<f64>,
+}
+
+impl Default for Simulation {
+    fn default() -> Self {
+        Simulation { verify: true, cell: None }
+    }
+}
+
+/// Cells the simulated stock gets when the job does not say.
+pub const SIMULATION_CELLS: f64 = 1.0e6;
+
+impl Simulation {
+    /// The cell size for a stock.
+    pub fn cell_for(&self, stock: &Aabb) -> f64 {
+        self.cell.unwrap_or_else(|| {
+            let size = stock.size();
+            ((size.x * size.y / SIMULATION_CELLS).sqrt()).max(0.05)
+        })
+    }
+}
+
 /// Everything needed to turn a part into G-code.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, rename_all = "camelCase")]
@@ -159,6 +191,7 @@ pub struct Job {
     pub tools: Vec<Tool>,
     pub operations: Vec<Operation>,
     pub post: PostSettings,
+    pub simulation: Simulation,
     pub tolerances: Tolerances,
 }
 
@@ -171,6 +204,7 @@ impl Default for Job {
             tools: vec![Tool::default()],
             operations: vec![Operation::FinishRaster(FinishRaster::default())],
             post: PostSettings::default(),
+            simulation: Simulation::default(),
             tolerances: Tolerances::default(),
         }
     }
@@ -186,6 +220,10 @@ pub struct JobOutput {
     pub paths: Vec<Toolpath>,
     pub gcode: String,
     pub stats: PathStats,
+    /// Every move of the program, timed, in order.
+    pub moves: Vec<ProgramMove>,
+    /// The simulation of the program and what it found, when the job asked for it.
+    pub verification: Option<Verification>,
     /// Things the user should know that did not stop the job.
     pub warnings: Vec<String>,
 }
@@ -197,6 +235,22 @@ impl Job {
 
     pub fn tool(&self, number: u32) -> Result<&Tool> {
         self.tools.iter().find(|t| t.number == number).ok_or_else(|| Error::Job(format!("no tool number {number} in the tool library")))
+    }
+
+    /// Places the part as the job says and returns the stock box around it.
+    pub fn place(&self, part: &mut Mesh) -> Aabb {
+        self.part.apply(part);
+        self.stock.around(&part.bounds())
+    }
+
+    /// The least material any operation leaves on the part (mm); infinite without operations.
+    pub fn allowance(&self) -> f64 {
+        self.operations
+            .iter()
+            .map(|op| match op {
+                Operation::FinishRaster(f) => f.allowance,
+            })
+            .fold(f64::INFINITY, f64::min)
     }
 
     /// Checks the job before any work.
@@ -238,24 +292,45 @@ pub fn run(job: &Job, mut part: Mesh, progress: &mut Progress) -> Result<JobOutp
     if part.dropped_degenerate > 0 {
         warnings.push(format!("{} degenerate triangles (zero area) were ignored", part.dropped_degenerate));
     }
-    job.part.apply(&mut part);
-    let bounds = part.bounds();
-    let stock = job.stock.around(&bounds);
+    let stock = job.place(&mut part);
     let clearance_z = stock.max.z + job.stock.clearance;
     let mut paths = Vec::new();
     let count = job.operations.len().max(1) as f64;
+    let share = if job.simulation.verify { 0.85 } else { 1.0 };
     for (k, op) in job.operations.iter().enumerate() {
-        let (start, span) = (k as f64 / count, 1.0 / count);
+        let (start, span) = (share * k as f64 / count, share / count);
         match op {
             Operation::FinishRaster(f) => {
                 paths.push(finish_raster(job, f, &part, &stock, clearance_z, progress, start, span)?);
             }
         }
     }
-    progress.stage("writing G-code", 1.0, 0.0);
     let gcode = write_gcode(&job.name, &paths, &job.tools, clearance_z, &job.post);
     let stats = paths.iter().fold(PathStats::default(), |s, p| s + p.stats(job.post.rapid_rate));
-    Ok(JobOutput { part, stock, clearance_z, paths, gcode, stats, warnings })
+    let moves = program_moves(&paths, &job.tools, job.post.rapid_rate)?;
+    let verification = if job.simulation.verify {
+        if !progress.stage("simulating the program", share, 1.0 - share) {
+            return Err(Error::Cancelled);
+        }
+        let allowance = job.allowance();
+        let settings = VerifySettings { cell: job.simulation.cell_for(&stock), allowance: if allowance.is_finite() { allowance } else { 0.0 } };
+        let v = verify(&part, &stock, &moves, &settings, &job.tolerances, progress)?;
+        let r = &v.report;
+        if r.gouge_count > 0 {
+            warnings.push(format!("the simulation found {} gouged cells, {:.3} mm deep at most", r.gouge_count, r.gouge_max));
+        }
+        if r.rapid_collision_count > 0 {
+            warnings.push(format!("{} rapid moves pass through stock", r.rapid_collision_count));
+        }
+        if r.body_collision_count > 0 {
+            warnings.push(format!("{} moves bury the tool deeper than its flute length", r.body_collision_count));
+        }
+        Some(v)
+    } else {
+        None
+    };
+    progress.stage("done", 1.0, 0.0);
+    Ok(JobOutput { part, stock, clearance_z, paths, gcode, stats, moves, verification, warnings })
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -292,7 +367,7 @@ fn finish_raster(job: &Job, op: &FinishRaster, part: &Mesh, stock: &Aabb, cleara
     let passes = RasterPasses { angle_deg: op.angle, stepover: op.stepover, pattern: op.pattern, allowance: op.allowance, tolerance: tol.chordal };
     let cl = ClSurface::new(cl, tol.interpolation);
     let runs = raster_runs(&cl, &region, &passes);
-    let settings = LinkSettings { clearance_z, stay_down_max: op.stay_down_max.unwrap_or(2.0 * op.stepover), ..LinkSettings::default() };
+    let settings = LinkSettings { clearance_z, stay_down_max: op.stay_down_max.unwrap_or(2.0 * op.stepover), stock_top: Some(stock.max.z), ..LinkSettings::default() };
     let floor_surface = Floor { cl: &cl, allowance: op.allowance, region: &region };
     let (path_start, moves) = link_runs(&runs, &floor_surface, &settings, Feeds { cut: tool.feed_rate, plunge: tool.plunge_rate }, tol);
     Ok(Toolpath { name: op.name.clone(), tool: tool.number, spindle_rpm: tool.spindle_rpm, start: path_start, moves })

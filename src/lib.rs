@@ -24,6 +24,7 @@ pub mod mesh;
 pub mod parallel;
 pub mod post;
 pub mod progress;
+pub mod sim;
 pub mod strategy;
 pub mod toolpath;
 pub mod zmap;

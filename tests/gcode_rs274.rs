@@ -187,3 +187,44 @@ fn arcs_and_helices_go_out_as_g2_g3_with_relative_centres() {
     let expected_feed = 6.0 + 2.0 * std::f64::consts::FRAC_PI_2 * 10.0 + (std::f64::consts::TAU * 10.0f64).hypot(1.0) + std::f64::consts::FRAC_PI_2 * 4.0;
     assert!((stats.feed_length - expected_feed).abs() < 1e-9, "{} vs {expected_feed}", stats.feed_length);
 }
+
+/// swarf's own G-code reader (for `swarf verify`) must read a program as LinuxCNC does.
+#[test]
+fn the_reader_reads_programs_as_linuxcnc_does() {
+    let mut programs = Vec::new();
+    for dialect in [Dialect::LinuxCnc, Dialect::Grbl, Dialect::Mach3] {
+        for units in [Units::Mm, Units::Inch] {
+            let job = demo_job(dialect, units);
+            let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
+            programs.push((out.gcode, job.tools, units));
+        }
+    }
+    let tools = vec![Tool { number: 1, cutter: Cutter::flat(6.0), ..Tool::default() }];
+    let text = "G21 G90 G17\nT1 M6\nG0 Z5\nG0 X10 Y0\nG1 Z-1 F300\nG3 X0 Y10 R10 F800\nG2 X-10 Y0 R-10\nG91 G1 X5 Y-2\nG90 G90.1 G3 X5 Y-2 Z-2 I0 J0\nG0 Z5\nM2\n";
+    programs.push((text.to_string(), tools, Units::Mm));
+    for (gcode, tools, units) in programs {
+        let scale = 1.0 / units.mm();
+        let resolution = if units == Units::Mm { 0.0005 } else { 0.00005 };
+        let linuxcnc = interpret(&gcode, &tools);
+        let read = swarf::post::read::read_gcode(&gcode, tools[0].number).unwrap();
+        let mine: Vec<(Kind, DVec3)> = read
+            .iter()
+            .flat_map(|p| p.moves.iter())
+            .map(|m| match *m {
+                Move::Rapid { to } => (Kind::Rapid, to * scale),
+                Move::Line { to, .. } => (Kind::Feed, to * scale),
+                Move::Arc { to, center, clockwise, .. } => (Kind::Arc { center: center * scale, ccw: !clockwise }, to * scale),
+            })
+            .collect();
+        assert!(!mine.is_empty() && linuxcnc.len() >= mine.len() && linuxcnc.len() - mine.len() <= 4, "{} moves read, {} by LinuxCNC", mine.len(), linuxcnc.len());
+        // LinuxCNC starts at a known origin; the reader starts once X, Y and Z are all known.
+        let tail = &linuxcnc[linuxcnc.len() - mine.len()..];
+        for ((k1, p1), (k2, p2)) in tail.iter().zip(&mine) {
+            assert!(p1.distance(*p2) <= resolution, "{p1} vs {p2}");
+            match (k1, k2) {
+                (Kind::Arc { center: c1, ccw: w1 }, Kind::Arc { center: c2, ccw: w2 }) => assert!(c1.distance(*c2) <= resolution * 2.0 && w1 == w2),
+                _ => assert_eq!(k1, k2),
+            }
+        }
+    }
+}

@@ -25,6 +25,11 @@ pub struct Tolerances {
     /// Horizontal components of a unit normal below this make a facet horizontal; normals
     /// with a vertical component below it make a facet vertical. Default value: 1e-12.
     pub normal: f64,
+    /// Verification reports material below the part's surface plus allowance as a gouge only
+    /// when it is deeper than this (mm); the same margin applies to the tool body's clearance.
+    /// Raster finishing keeps within a few times `interpolation` of the exact CL surface.
+    /// Default value: 0.02.
+    pub gouge: f64,
 }
 
 /// A point closer to a z-map grid line than this fraction of the spacing is taken to lie on
@@ -33,7 +38,7 @@ pub const GRID_SNAP: f64 = 1e-9;
 
 impl Tolerances {
     pub const DEFAULT: Tolerances =
-        Tolerances { degenerate_area: 1e-12, chordal: 0.002, height: 1e-6, interpolation: 0.005, normal: 1e-12 };
+        Tolerances { degenerate_area: 1e-12, chordal: 0.002, height: 1e-6, interpolation: 0.005, normal: 1e-12, gouge: 0.02 };
 }
 
 impl Default for Tolerances {

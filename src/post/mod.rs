@@ -2,6 +2,8 @@
 //! accepts (GRBL has no tool changer and no tool-length offsets; Fanuc wants `%` and a program
 //! number). Millimetres inside; inches only here.
 
+pub mod read;
+
 use std::fmt::Write as _;
 
 use serde::{Deserialize, Serialize};

@@ -1,7 +1,8 @@
 //! Linking cutting runs into one path: between two runs the tool stays down and feeds straight
 //! across when that straight move stays on or above the CL surface (plus allowance) and inside
 //! the region and is short; otherwise it retracts to the clearance height, moves over at rapid,
-//! drops at rapid to a small gap above the next start and feeds down the rest.
+//! drops at rapid to a small gap above the next start, or above the stock's top when the start
+//! lies lower (a rapid never enters uncut stock), and feeds down the rest.
 
 use serde::{Deserialize, Serialize};
 
@@ -21,11 +22,14 @@ pub struct LinkSettings {
     pub rapid_gap: f64,
     /// Longest link that may stay down (mm). Default value: 4.
     pub stay_down_max: f64,
+    /// Top of the stock (mm, absolute): rapid descents stop `rapid_gap` above it. Default value:
+    /// none (descend to `rapid_gap` above the start).
+    pub stock_top: Option<f64>,
 }
 
 impl Default for LinkSettings {
     fn default() -> Self {
-        LinkSettings { clearance_z: 5.0, rapid_gap: 1.0, stay_down_max: 4.0 }
+        LinkSettings { clearance_z: 5.0, rapid_gap: 1.0, stay_down_max: 4.0, stock_top: None }
     }
 }
 
@@ -75,7 +79,7 @@ pub fn link_runs(runs: &[Vec<DVec3>], floor: &Floor, settings: &LinkSettings, fe
             if at.truncate() != entry.truncate() || !down && at.z != clearance {
                 moves.push(Move::Rapid { to: entry.truncate().extend(clearance) });
             }
-            let gap = (entry.z + settings.rapid_gap).min(clearance);
+            let gap = (entry.z.max(settings.stock_top.unwrap_or(f64::NEG_INFINITY)) + settings.rapid_gap).min(clearance);
             if gap < clearance {
                 moves.push(Move::Rapid { to: entry.truncate().extend(gap) });
             }

@@ -13,6 +13,7 @@ use swarf::mesh::import::read_mesh_auto;
 use swarf::mesh::placement::{PartSetup, Placement, UpAxis, Units};
 use swarf::mesh::sample::demo_part;
 use swarf::progress::Progress;
+use swarf::sim::verify::verify_gcode;
 use swarf::zmap::{cc::cc_zmap, cl_exact::cl_exact, cl_inverse::cl_inverse_offset, io, Grid};
 
 #[derive(Parser)]
@@ -45,6 +46,23 @@ enum Command {
     },
     /// Print the default job as JSON, to edit and pass to `swarf run`.
     Job,
+    /// Simulate a G-code program on a job's stock and check it against the part: gouges, rapid
+    /// moves through stock, the tool's body in material, material left. Exits with 1 when it
+    /// finds a problem.
+    Verify {
+        /// Job (JSON): the part's placement, the stock, the tools and the allowance.
+        job: PathBuf,
+        /// The part: STL, glTF/GLB or OBJ.
+        part: PathBuf,
+        /// The program (G-code).
+        program: PathBuf,
+        /// Cell size of the simulated stock (mm); default: the job's.
+        #[arg(long)]
+        cell: Option<f64>,
+        /// Print the report as JSON.
+        #[arg(long)]
+        json: bool,
+    },
     /// Write the CL z-map of a cutter over a part, for comparing heights point by point.
     Zmap {
         part: PathBuf,
@@ -144,6 +162,25 @@ fn run(cli: Cli) -> Result<(), String> {
             println!("{}", serde_json::to_string_pretty(&Job::default()).unwrap());
             Ok(())
         }
+        Command::Verify { job, part, program, cell, json } => {
+            let job = Job::from_json(&String::from_utf8_lossy(&read(&job)?)).map_err(|e| e.to_string())?;
+            let name = part.file_name().map(|n| n.to_string_lossy().into_owned());
+            let mesh = read_mesh_auto(&read(&part)?, name.as_deref(), &job.tolerances).map_err(|e| format!("{}: {e}", part.display()))?;
+            let text = String::from_utf8_lossy(&read(&program)?).into_owned();
+            let started = Instant::now();
+            let v = verify_gcode(&job, mesh, &text, cell, &mut Progress::none()).map_err(|e| format!("{}: {e}", program.display()))?;
+            if json {
+                println!("{}", serde_json::to_string_pretty(&v.report).unwrap());
+            } else {
+                print!("{}", v.report.describe());
+                println!("({:.2} s)", started.elapsed().as_secs_f64());
+            }
+            if v.report.is_clean() {
+                Ok(())
+            } else {
+                Err(format!("{}: the program has problems (see above)", program.display()))
+            }
+        }
         Command::Zmap { part, shape, diameter, corner, grid, builder, units, y_up, center_top, floor, format, output } => {
             let tolerances = Tolerances::default();
             let name = part.file_name().map(|n| n.to_string_lossy().into_owned());
@@ -204,6 +241,13 @@ fn run_job(job: &Job, mesh: swarf::Mesh, output: &Path, quiet: bool) -> Result<(
     }
     for w in &out.warnings {
         eprintln!("warning: {w}");
+    }
+    if let Some(v) = &out.verification {
+        let r = &v.report;
+        eprintln!(
+            "simulated on {} cells: {} gouges, {} rapids through stock, {} body collisions; material left {:.3} mm at most",
+            r.cells, r.gouge_count, r.rapid_collision_count, r.body_collision_count, r.residual_max
+        );
     }
     write(output, out.gcode.as_bytes())?;
     let s = out.stats;

@@ -1,0 +1,264 @@
+//! The z-map (dexel) stock of seed 002, and its enhanced form (§3.2, after Lee and Ko).
+//!
+//! The stock's XY rectangle is cut into square cells; each cell holds the height of the material
+//! over its centre (the conventional z-map). A move lowers a cell to the sweep's envelope at
+//! that centre, and the volume removed is the drop times the cell's area (clipped to the stock).
+//! Its error comes from the cells the footprint's rim crosses: a cell counts as wholly cut or
+//! wholly uncut by its centre (Fig. 2 of the paper).
+//!
+//! The enhanced z-map supersamples exactly those cells: when the rim of a sweep passes through a
+//! cell it is split into `k × k` sub-cells, each with its own height at its own centre, and stays
+//! split. The rest of the stock keeps one height per cell, so memory grows only along the cut's
+//! walls. A cell split after earlier moves cut it starts with its centre's height in every
+//! sub-cell (the earlier cuts' detail inside it is not known any more), so the enhanced z-map
+//! slightly underestimates what those earlier moves removed there.
+
+use super::sweep::Sweep;
+use super::StockModel;
+use crate::geom::{Aabb, DVec2};
+use crate::zmap::{Grid, HeightField};
+
+const UNSPLIT: u32 = u32::MAX;
+/// Side of the blocks whose highest cell is kept, so a move skips whole blocks its cutter cannot
+/// reach down to (mm). Blocks help when cells are small against the cutter; on cells coarser
+/// than this the stock has none.
+const BLOCK_SIDE: f64 = 0.5;
+
+/// A z-map stock, optionally supersampled where sweeps' rims cross it.
+#[derive(Clone, Debug)]
+pub struct DexelStock {
+    origin: DVec2,
+    cell: f64,
+    nx: usize,
+    ny: usize,
+    bottom: f64,
+    /// Height over each cell's centre; for a split cell, the highest of its sub-cells.
+    z: Vec<f64>,
+    /// Cell widths clipped to the stock.
+    widths: Vec<f64>,
+    heights: Vec<f64>,
+    /// Sub-cells per side (1: the conventional z-map).
+    k: usize,
+    /// Per cell, the index of its `k * k` sub-cell heights in `subs`, or `UNSPLIT`.
+    split: Vec<u32>,
+    subs: Vec<f64>,
+    /// The highest cell of each block of `BLOCK × BLOCK` cells, row-major.
+    block_top: Vec<f64>,
+    /// Cells per block side (1: no blocks), and blocks per row.
+    block: usize,
+    bx: usize,
+}
+
+impl DexelStock {
+    /// A box stock on cells of side `cell`, from the box's minimum corner; `k` sub-cells per side
+    /// where rims cross (1 for the conventional z-map).
+    pub fn new(stock: &Aabb, cell: f64, k: usize) -> DexelStock {
+        let size = stock.size().truncate();
+        let nx = ((size.x / cell).ceil() as usize).max(1);
+        let ny = ((size.y / cell).ceil() as usize).max(1);
+        let block = ((BLOCK_SIDE / cell).round() as usize).clamp(1, 16);
+        let clipped = |n: usize, extent: f64| (0..n).map(|i| (extent - i as f64 * cell).min(cell)).collect::<Vec<_>>();
+        DexelStock {
+            origin: stock.min.truncate(),
+            cell,
+            nx,
+            ny,
+            bottom: stock.min.z,
+            z: vec![stock.max.z; nx * ny],
+            widths: clipped(nx, size.x),
+            heights: clipped(ny, size.y),
+            k: k.max(1),
+            split: if k > 1 { vec![UNSPLIT; nx * ny] } else { Vec::new() },
+            subs: Vec::new(),
+            block_top: vec![stock.max.z; nx.div_ceil(block) * ny.div_ceil(block)],
+            block,
+            bx: nx.div_ceil(block),
+        }
+    }
+
+    #[inline]
+    fn is_split(&self, c: usize) -> Option<usize> {
+        match self.split.get(c) {
+            Some(&s) if s != UNSPLIT => Some(s as usize),
+            _ => None,
+        }
+    }
+
+    /// Where the cells' centres stand.
+    pub fn grid(&self) -> Grid {
+        Grid { origin: self.origin + DVec2::splat(self.cell * 0.5), spacing: self.cell, nx: self.nx, ny: self.ny }
+    }
+
+    pub fn cells(&self) -> usize {
+        self.nx * self.ny
+    }
+
+    /// Cells split into sub-cells so far.
+    pub fn split_cells(&self) -> usize {
+        self.subs.len() / (self.k * self.k)
+    }
+
+    /// The material's height over each cell's centre (a split cell: the mean of its sub-cells).
+    pub fn heights(&self) -> HeightField {
+        let k2 = self.k * self.k;
+        let z = (0..self.cells())
+            .map(|c| match self.is_split(c) {
+                None => self.z[c],
+                Some(s) => self.subs[s * k2..(s + 1) * k2].iter().sum::<f64>() / k2 as f64,
+            })
+            .collect();
+        let g = self.grid();
+        HeightField { origin: g.origin, spacing: g.spacing, nx: g.nx, ny: g.ny, z }
+    }
+
+    /// The height over cell (i, j)'s centre, as the conventional z-map samples it.
+    pub fn top(&self, i: usize, j: usize) -> f64 {
+        self.z[j * self.nx + i]
+    }
+
+    /// The worst place where material stands more than `rise` above the tip within `radius` of
+    /// the sweep's path (the tool's body above its flutes would meet it): the point and by how
+    /// much, or `None`.
+    pub fn above_body(&self, sweep: &Sweep, radius: f64, rise: f64) -> Option<(DVec2, f64)> {
+        let grow = DVec2::splat(radius - sweep.profile.radius);
+        let ((i0, i1), (j0, j1)) = self.cell_range(sweep.min - grow, sweep.max + grow)?;
+        let mut worst: Option<(DVec2, f64)> = None;
+        for j in j0..=j1 {
+            for i in i0..=i1 {
+                let top = self.z[j * self.nx + i];
+                if top <= sweep.lowest_tip + rise {
+                    continue;
+                }
+                let centre = self.origin + (DVec2::new(i as f64, j as f64) + 0.5) * self.cell;
+                let (dist, z) = sweep.nearest(centre);
+                let excess = top - (z + rise);
+                if dist <= radius && excess > 0.0 && worst.is_none_or(|w| excess > w.1) {
+                    worst = Some((centre, excess));
+                }
+            }
+        }
+        worst
+    }
+
+    /// The cells whose centres the rectangle `[lo, hi]` may touch, or `None`.
+    fn cell_range(&self, lo: DVec2, hi: DVec2) -> Option<((usize, usize), (usize, usize))> {
+        let a = ((lo - self.origin) / self.cell).floor();
+        let b = ((hi - self.origin) / self.cell).floor();
+        if b.x < 0.0 || b.y < 0.0 || a.x >= self.nx as f64 || a.y >= self.ny as f64 {
+            return None;
+        }
+        let clamp = |v: f64, n: usize| v.clamp(0.0, n as f64 - 1.0) as usize;
+        Some(((clamp(a.x, self.nx), clamp(b.x, self.nx)), (clamp(a.y, self.ny), clamp(b.y, self.ny))))
+    }
+}
+
+impl DexelStock {
+    /// Cuts cell (i, j); returns the volume removed.
+    #[inline]
+    fn cut_cell(&mut self, sweep: &Sweep, i: usize, j: usize, reach: f64) -> f64 {
+        let c = j * self.nx + i;
+        let top = self.z[c];
+        if top <= sweep.lowest_tip || top <= self.bottom {
+            return 0.0; // the cutter never reaches down to this cell's material
+        }
+        let centre = self.origin + (DVec2::new(i as f64, j as f64) + 0.5) * self.cell;
+        let area = self.widths[i] * self.heights[j];
+        let (k, k2) = (self.k, self.k * self.k);
+        let base = match self.is_split(c) {
+            Some(s) => s * k2,
+            None => {
+                if k == 1 || !sweep.rim_near(centre, reach) {
+                    let e = sweep.lowest(centre);
+                    if e < top {
+                        let new = e.max(self.bottom);
+                        self.z[c] = new;
+                        return (top - new) * area;
+                    }
+                    return 0.0;
+                }
+                let s = self.subs.len() / k2;
+                self.split[c] = s as u32;
+                self.subs.extend(std::iter::repeat_n(top, k2));
+                s * k2
+            }
+        };
+        let sub = self.cell / k as f64;
+        let corner = centre - DVec2::splat(self.cell * 0.5);
+        let (mut removed, mut highest) = (0.0, self.bottom);
+        for b in 0..k {
+            for a in 0..k {
+                let h = &mut self.subs[base + b * k + a];
+                if *h > sweep.lowest_tip {
+                    let e = sweep.lowest(corner + DVec2::new((a as f64 + 0.5) * sub, (b as f64 + 0.5) * sub));
+                    if e < *h {
+                        let new = e.max(self.bottom);
+                        removed += (*h - new) * area / k2 as f64;
+                        *h = new;
+                    }
+                }
+                highest = highest.max(*h);
+            }
+        }
+        self.z[c] = highest;
+        removed
+    }
+}
+
+impl StockModel for DexelStock {
+    fn apply(&mut self, sweep: &Sweep) -> f64 {
+        let Some(((i0, i1), (j0, j1))) = self.cell_range(sweep.min, sweep.max) else { return 0.0 };
+        let reach = self.cell * std::f64::consts::FRAC_1_SQRT_2;
+        let mut removed = 0.0;
+        let size = self.block;
+        if size == 1 {
+            for j in j0..=j1 {
+                for i in i0..=i1 {
+                    removed += self.cut_cell(sweep, i, j, reach);
+                }
+            }
+            return removed;
+        }
+        for bj in j0 / size..=j1 / size {
+            for bi in i0 / size..=i1 / size {
+                let block = bj * self.bx + bi;
+                let (ci, cj) = (bi * size, bj * size);
+                let (ce, cje) = ((ci + size).min(self.nx), (cj + size).min(self.ny));
+                let lo = self.origin + DVec2::new(ci as f64, cj as f64) * self.cell;
+                let hi = self.origin + DVec2::new(ce as f64, cje as f64) * self.cell;
+                if self.block_top[block] <= sweep.bounds_over(lo, hi).0 {
+                    continue;
+                }
+                let before = removed;
+                for j in cj.max(j0)..cje.min(j1 + 1) {
+                    for i in ci.max(i0)..ce.min(i1 + 1) {
+                        removed += self.cut_cell(sweep, i, j, reach);
+                    }
+                }
+                if removed > before {
+                    let mut highest = self.bottom;
+                    for j in cj..cje {
+                        highest = self.z[j * self.nx + ci..j * self.nx + ce].iter().fold(highest, |m, &z| m.max(z));
+                    }
+                    self.block_top[block] = highest;
+                }
+            }
+        }
+        removed
+    }
+
+    fn volume(&self) -> f64 {
+        let k2 = self.k * self.k;
+        let mut total = 0.0;
+        for j in 0..self.ny {
+            for i in 0..self.nx {
+                let c = j * self.nx + i;
+                let mean_height = match self.is_split(c) {
+                    None => self.z[c] - self.bottom,
+                    Some(s) => self.subs[s * k2..(s + 1) * k2].iter().map(|h| h - self.bottom).sum::<f64>() / k2 as f64,
+                };
+                total += mean_height * self.widths[i] * self.heights[j];
+            }
+        }
+        total
+    }
+}

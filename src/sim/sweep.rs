@@ -1,0 +1,422 @@
+//! The space a cutter sweeps in one move, seen from below. For 3-axis milling the material a
+//! move removes is everything above the *lower envelope* of the swept cutter: at each point
+//! (x, y) the lowest height the cutter's lower surface reaches during the move. Every stock
+//! model of seed 002 asks only this question (at a cell's centre, at a supersample, or as
+//! bounds over an octant's footprint), so the geometry lives here once.
+//!
+//! The envelope is exact: for a flat end and a ball in closed form (a flat end reaches lowest at
+//! an end of the interval of the move during which it covers the point; a ball sweeps a capsule,
+//! whose lower surface is one of the end spheres or the cylinder between them); for a bull nose
+//! by a golden-section search, since `z(t) + height(|q - c(t)|)` is convex in the move's
+//! parameter. Planar arcs are exact too; helical arcs are split into chords first.
+
+use crate::cutter::Profile;
+use crate::geom::{DVec2, DVec3};
+use crate::toolpath::{arc_sweep, Move};
+
+/// The path of the cutter's tip during one sweep.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Path {
+    /// A straight move from `a` to `b`.
+    Line { a: DVec3, b: DVec3 },
+    /// A planar arc at height `z` about `center`, from angle `start` through the signed `sweep`
+    /// (radians, counter-clockwise positive).
+    Arc { center: DVec2, radius: f64, start: f64, sweep: f64, z: f64 },
+}
+
+/// A cutter moving along a path.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sweep {
+    pub profile: Profile,
+    pub path: Path,
+    /// The footprint's bounding rectangle in XY.
+    pub min: DVec2,
+    pub max: DVec2,
+    /// The lowest tip height of the move: no point of the envelope lies below it.
+    pub lowest_tip: f64,
+    /// A line's constants, worked out once for the many points asked about.
+    line: LineConstants,
+}
+
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct LineConstants {
+    /// The move in XY, and 1 / its squared length (0 for a vertical move).
+    d: DVec2,
+    inv_len2: f64,
+    /// Unit direction in 3D, its length, and 1 / (1 - uz²) (0 when vertical).
+    u: DVec3,
+    length: f64,
+    inv_along: f64,
+}
+
+/// Iterations of the bull nose's golden-section search: the bracket shrinks to 0.618^48 ≈ 1e-10
+/// of the move, and the height error is second order in that.
+const GOLDEN_STEPS: usize = 48;
+
+impl Sweep {
+    pub fn line(profile: Profile, a: DVec3, b: DVec3) -> Sweep {
+        let r = DVec2::splat(profile.radius);
+        let d = (b - a).truncate();
+        let len2 = d.length_squared();
+        let length = a.distance(b);
+        let u = if length > 0.0 { (b - a) / length } else { DVec3::Z };
+        let along = 1.0 - u.z * u.z;
+        let line = LineConstants { d, inv_len2: if len2 > 0.0 { 1.0 / len2 } else { 0.0 }, u, length, inv_along: if along > 1e-12 { 1.0 / along } else { 0.0 } };
+        Sweep { profile, path: Path::Line { a, b }, min: a.truncate().min(b.truncate()) - r, max: a.truncate().max(b.truncate()) + r, lowest_tip: a.z.min(b.z), line }
+    }
+
+    /// A planar arc from `from` (its z is the arc's) about `center`, sweeping `sweep` radians.
+    pub fn arc(profile: Profile, from: DVec3, center: DVec2, sweep: f64) -> Sweep {
+        let v = from.truncate() - center;
+        let radius = v.length();
+        let start = v.y.atan2(v.x);
+        let (mut min, mut max) = (from.truncate(), from.truncate());
+        let end = center + DVec2::from_angle(start + sweep) * radius;
+        min = min.min(end);
+        max = max.max(end);
+        // The circle's extreme points in X and Y that the arc passes.
+        for k in 0..4 {
+            let angle = k as f64 * std::f64::consts::FRAC_PI_2;
+            if angle_within(start, sweep, angle) {
+                let p = center + DVec2::from_angle(angle) * radius;
+                min = min.min(p);
+                max = max.max(p);
+            }
+        }
+        let r = DVec2::splat(profile.radius);
+        Sweep { profile, path: Path::Arc { center, radius, start, sweep, z: from.z }, min: min - r, max: max + r, lowest_tip: from.z, line: LineConstants::default() }
+    }
+
+    /// The sweeps of one programmed move from `from`: a line, a planar arc, or a helix split into
+    /// chords that stay within `chordal` of it.
+    pub fn of_move(profile: Profile, from: DVec3, mv: &Move, chordal: f64) -> Vec<Sweep> {
+        match *mv {
+            Move::Rapid { to } | Move::Line { to, .. } => vec![Sweep::line(profile, from, to)],
+            Move::Arc { to, center, clockwise, .. } => {
+                let sweep = arc_sweep(from, to, center, clockwise);
+                let radius = (from.truncate() - center).length();
+                if to.z == from.z {
+                    return vec![Sweep::arc(profile, from, center, sweep)];
+                }
+                // Chord sag radius * (1 - cos(step / 2)) <= chordal.
+                let step = if radius > chordal { 2.0 * (1.0 - chordal / radius).acos() } else { sweep.abs() };
+                let count = ((sweep.abs() / step.max(1e-3)).ceil() as usize).clamp(1, 100_000);
+                let v = from.truncate() - center;
+                let start = v.y.atan2(v.x);
+                let mut out = Vec::with_capacity(count);
+                let mut at = from;
+                for k in 1..=count {
+                    let f = k as f64 / count as f64;
+                    let p = if k == count { to } else { (center + DVec2::from_angle(start + sweep * f) * radius).extend(from.z + (to.z - from.z) * f) };
+                    out.push(Sweep::line(profile, at, p));
+                    at = p;
+                }
+                out
+            }
+        }
+    }
+
+    /// The lowest height the cutter's lower surface reaches over `q` during the sweep, or
+    /// infinity where the cutter never passes over `q`.
+    #[inline]
+    pub fn lowest(&self, q: DVec2) -> f64 {
+        let p = &self.profile;
+        let r2 = p.radius * p.radius;
+        match self.path {
+            Path::Line { a, b } => {
+                let k = &self.line;
+                let d = k.d;
+                let w = q - a.truncate();
+                let dz = b.z - a.z;
+                if dz == 0.0 {
+                    let t = (w.dot(d) * k.inv_len2).clamp(0.0, 1.0);
+                    let dist2 = (w - d * t).length_squared();
+                    return if dist2 > r2 {
+                        f64::INFINITY
+                    } else if p.flat_radius() == 0.0 {
+                        a.z + p.radius - (r2 - dist2).sqrt()
+                    } else {
+                        a.z + p.height(dist2.sqrt())
+                    };
+                }
+                if p.flat_radius() == 0.0 {
+                    return self.ball_line(a, b, q);
+                }
+                // The interval of t during which the cutter's axis is within R of q.
+                let (t0, t1) = if k.inv_len2 > 0.0 {
+                    let s = w.dot(d);
+                    let disc = s * s - (w.length_squared() - r2) / k.inv_len2;
+                    if disc < 0.0 {
+                        return f64::INFINITY;
+                    }
+                    let root = disc.sqrt();
+                    (((s - root) * k.inv_len2).max(0.0), ((s + root) * k.inv_len2).min(1.0))
+                } else if w.length_squared() <= r2 {
+                    (0.0, 1.0)
+                } else {
+                    return f64::INFINITY;
+                };
+                if t0 > t1 {
+                    return f64::INFINITY;
+                }
+                if p.corner == 0.0 {
+                    // Flat end: the bottom is level, so the lowest point is at an end.
+                    a.z + dz * if dz > 0.0 { t0 } else { t1 }
+                } else {
+                    let f = |t: f64| a.z + dz * t + p.height((w - d * t).length().min(p.radius));
+                    golden_min(f, t0, t1)
+                }
+            }
+            Path::Arc { center, radius, start, sweep, z } => {
+                let dist = arc_distance(q, center, radius, start, sweep);
+                if dist <= p.radius {
+                    z + p.height(dist)
+                } else {
+                    f64::INFINITY
+                }
+            }
+        }
+    }
+
+    /// Lower surface of the capsule a ball sweeps when its tip goes from `a` to `b` (not level).
+    /// The capsule is convex, so a vertical line enters it once: through the cylinder about the
+    /// centres' segment when that crossing lies between the ends, otherwise through an end
+    /// sphere; a line that misses the infinite cylinder misses the capsule.
+    #[inline]
+    fn ball_line(&self, a: DVec3, b: DVec3, q: DVec2) -> f64 {
+        let r = self.profile.radius;
+        let r2 = r * r;
+        let k = &self.line;
+        let sphere = |c: DVec3| {
+            let d2 = (q - c.truncate()).length_squared();
+            if d2 <= r2 {
+                c.z + r - (r2 - d2).sqrt()
+            } else {
+                f64::INFINITY
+            }
+        };
+        if k.inv_along == 0.0 {
+            return sphere(if a.z < b.z { a } else { b }); // vertical: the lower end
+        }
+        // Points (q, centre_z + h) on the cylinder: h^2 (1 - uz^2) - 2 h uz s0 + |w|^2 - s0^2 - r^2 = 0.
+        let w = q - a.truncate();
+        let s0 = w.x * k.u.x + w.y * k.u.y;
+        let half_b = -k.u.z * s0;
+        let c = w.length_squared() - s0 * s0 - r2;
+        let disc = half_b * half_b - c / k.inv_along;
+        if disc < 0.0 {
+            return f64::INFINITY;
+        }
+        let h = (-half_b - disc.sqrt()) * k.inv_along;
+        let s = s0 + h * k.u.z;
+        if s < 0.0 {
+            sphere(a)
+        } else if s > k.length {
+            sphere(b)
+        } else {
+            a.z + r + h
+        }
+    }
+
+    /// Horizontal distance from `q` to the tip's path, and the tip's height at the nearest point.
+    pub fn nearest(&self, q: DVec2) -> (f64, f64) {
+        match self.path {
+            Path::Line { a, b } => {
+                let d = (b - a).truncate();
+                let len2 = d.length_squared();
+                let t = if len2 > 0.0 { ((q - a.truncate()).dot(d) / len2).clamp(0.0, 1.0) } else { 0.0 };
+                let p = a.lerp(b, t);
+                // A vertical move is nearest along its whole length: its lowest point counts.
+                let z = if len2 > 0.0 { p.z } else { a.z.min(b.z) };
+                ((q - p.truncate()).length(), z)
+            }
+            Path::Arc { center, radius, start, sweep, z } => (arc_distance(q, center, radius, start, sweep), z),
+        }
+    }
+
+    /// Bounds of the envelope over the rectangle `[lo, hi]`: no point of it lies below the first
+    /// value, and every point of it lies at or below the second (infinite when the cutter may
+    /// miss part of the rectangle).
+    pub fn bounds_over(&self, lo: DVec2, hi: DVec2) -> (f64, f64) {
+        if lo.x > self.max.x || hi.x < self.min.x || lo.y > self.max.y || hi.y < self.min.y {
+            return (f64::INFINITY, f64::INFINITY);
+        }
+        let p = &self.profile;
+        let centre = (lo + hi) * 0.5;
+        let half_diagonal = (hi - lo).length() * 0.5;
+        let (dist, z) = self.nearest(centre);
+        let near = dist - half_diagonal;
+        let lower = if near > p.radius { f64::INFINITY } else { self.lowest_tip + p.height(near.max(0.0)) };
+        let far = dist + half_diagonal;
+        let upper = if far <= p.radius { z + p.height(far) } else { f64::INFINITY };
+        (lower, upper)
+    }
+
+    /// Whether the rim of the footprint (where the envelope ends) may pass within `reach` of `q`.
+    #[inline]
+    pub fn rim_near(&self, q: DVec2, reach: f64) -> bool {
+        (self.nearest(q).0 - self.profile.radius).abs() <= reach
+    }
+}
+
+/// Minimum of a convex function on `[lo, hi]`.
+fn golden_min(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> f64 {
+    const INV_PHI: f64 = 0.618_033_988_749_894_9;
+    let mut x1 = hi - (hi - lo) * INV_PHI;
+    let mut x2 = lo + (hi - lo) * INV_PHI;
+    let (mut f1, mut f2) = (f(x1), f(x2));
+    for _ in 0..GOLDEN_STEPS {
+        if f1 <= f2 {
+            hi = x2;
+            x2 = x1;
+            f2 = f1;
+            x1 = hi - (hi - lo) * INV_PHI;
+            f1 = f(x1);
+        } else {
+            lo = x1;
+            x1 = x2;
+            f1 = f2;
+            x2 = lo + (hi - lo) * INV_PHI;
+            f2 = f(x2);
+        }
+    }
+    f1.min(f2).min(f(lo)).min(f(hi))
+}
+
+/// Whether the direction `angle` lies on the arc starting at `start` and sweeping `sweep`.
+fn angle_within(start: f64, sweep: f64, angle: f64) -> bool {
+    let tau = std::f64::consts::TAU;
+    let delta = (angle - start).rem_euclid(tau);
+    if sweep >= 0.0 {
+        delta <= sweep
+    } else {
+        delta == 0.0 || tau - delta <= -sweep
+    }
+}
+
+/// Horizontal distance from `q` to an arc.
+fn arc_distance(q: DVec2, center: DVec2, radius: f64, start: f64, sweep: f64) -> f64 {
+    let v = q - center;
+    let len = v.length();
+    if len == 0.0 || angle_within(start, sweep, v.y.atan2(v.x)) {
+        return (len - radius).abs();
+    }
+    let a = center + DVec2::from_angle(start) * radius;
+    let b = center + DVec2::from_angle(start + sweep) * radius;
+    q.distance(a).min(q.distance(b))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The envelope by brute force: the lowest cutter height over `q` at many points of the move.
+    fn brute(sweep: &Sweep, samples: usize) -> impl Fn(DVec2) -> f64 + '_ {
+        move |q| {
+            let p = &sweep.profile;
+            let mut lowest = f64::INFINITY;
+            for k in 0..=samples {
+                let t = k as f64 / samples as f64;
+                let (c, z) = match sweep.path {
+                    Path::Line { a, b } => (a.lerp(b, t).truncate(), a.z + (b.z - a.z) * t),
+                    Path::Arc { center, radius, start, sweep, z } => (center + DVec2::from_angle(start + sweep * t) * radius, z),
+                };
+                let d = (q - c).length();
+                if d <= p.radius {
+                    lowest = lowest.min(z + p.height(d));
+                }
+            }
+            lowest
+        }
+    }
+
+    #[test]
+    fn envelope_equals_brute_force_for_every_shape_and_slope() {
+        let profiles = [Profile::new(3.0, 0.0), Profile::new(3.0, 3.0), Profile::new(3.0, 1.0)];
+        let paths = [
+            (DVec3::new(0.0, 0.0, 0.0), DVec3::new(10.0, 2.0, 0.0)),
+            (DVec3::new(0.0, 0.0, 0.0), DVec3::new(10.0, 2.0, -3.0)),
+            (DVec3::new(0.0, 0.0, -1.0), DVec3::new(-4.0, 6.0, 2.5)),
+            (DVec3::new(1.0, 1.0, 5.0), DVec3::new(1.0, 1.0, -2.0)),
+        ];
+        for profile in profiles {
+            for (a, b) in paths {
+                let sweep = Sweep::line(profile, a, b);
+                let exact = brute(&sweep, 20_000);
+                for i in 0..40 {
+                    for j in 0..40 {
+                        let q = DVec2::new(-8.0 + i as f64 * 0.53, -6.0 + j as f64 * 0.41);
+                        let (fast, slow) = (sweep.lowest(q), exact(q));
+                        if slow.is_finite() {
+                            // The brute force samples the move, so it can only be higher.
+                            assert!(fast <= slow + 1e-9 && fast >= slow - 2e-3, "{profile:?} {a} {b} at {q}: {fast} vs {slow}");
+                        } else {
+                            assert!(fast >= sweep.lowest_tip, "{q}: {fast}");
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn arc_envelope_equals_brute_force() {
+        for profile in [Profile::new(2.0, 0.0), Profile::new(2.0, 2.0), Profile::new(2.0, 0.5)] {
+            for sweep_angle in [1.0, -2.5, 4.0, -std::f64::consts::TAU] {
+                let sweep = Sweep::arc(profile, DVec3::new(5.0, 1.0, -1.0), DVec2::new(1.0, 1.0), sweep_angle);
+                let exact = brute(&sweep, 20_000);
+                for i in 0..40 {
+                    for j in 0..40 {
+                        let q = DVec2::new(-6.0 + i as f64 * 0.37, -6.0 + j as f64 * 0.37);
+                        let (fast, slow) = (sweep.lowest(q), exact(q));
+                        assert!(fast <= slow + 1e-9, "{q}: {fast} vs {slow}");
+                        if slow.is_finite() {
+                            assert!(fast >= slow - 1e-3, "{q}: {fast} vs {slow}");
+                        }
+                        let inside = q.x >= sweep.min.x && q.x <= sweep.max.x && q.y >= sweep.min.y && q.y <= sweep.max.y;
+                        assert!(inside || !fast.is_finite(), "{q} outside the footprint box");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn bounds_hold_over_rectangles() {
+        let profile = Profile::new(2.0, 2.0);
+        let sweep = Sweep::line(profile, DVec3::new(0.0, 0.0, -1.0), DVec3::new(8.0, 3.0, -2.0));
+        for i in 0..30 {
+            for j in 0..30 {
+                let lo = DVec2::new(-3.0 + i as f64 * 0.45, -3.0 + j as f64 * 0.3);
+                let hi = lo + DVec2::new(0.5, 0.5);
+                let (lower, upper) = sweep.bounds_over(lo, hi);
+                for s in 0..=4 {
+                    for t in 0..=4 {
+                        let q = lo + (hi - lo) * DVec2::new(s as f64 / 4.0, t as f64 / 4.0);
+                        let e = sweep.lowest(q);
+                        assert!(e >= lower - 1e-12 && e <= upper + 1e-12, "{lo}: {e} not in [{lower}, {upper}]");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn helix_is_split_into_chords_within_tolerance() {
+        let from = DVec3::new(5.0, 0.0, 0.0);
+        let mv = Move::Arc { to: DVec3::new(5.0, 0.0, -2.0), center: DVec2::ZERO, clockwise: false, feed: 100.0 };
+        let sweeps = Sweep::of_move(Profile::new(1.0, 0.0), from, &mv, 0.001);
+        assert!(sweeps.len() > 20);
+        let last = match sweeps.last().unwrap().path {
+            Path::Line { b, .. } => b,
+            _ => unreachable!(),
+        };
+        assert_eq!(last, DVec3::new(5.0, 0.0, -2.0));
+        for s in &sweeps {
+            if let Path::Line { a, b } = s.path {
+                let mid = (a + b).truncate() * 0.5;
+                assert!(5.0 - mid.length() <= 0.001 + 1e-12);
+            }
+        }
+    }
+}

@@ -1,0 +1,215 @@
+//! Verification of a program by simulating it on a z-map stock (seed 002's conventional model,
+//! whose cell centres are sampled exactly, so a gouge it reports is a real one at that point).
+//!
+//! * **Gouge**: after the program, no cell's material lies below the part's own surface (its CC
+//!   z-map at the cell centre, not the CL surface) plus the allowance the operations promised,
+//!   by more than [`Tolerances::gouge`].
+//! * **Rapid collision**: a rapid move that removes material.
+//! * **Body collision**: a feed move with material standing higher above the tip than the
+//!   cutter's flute length within the shank's radius: the unfluted body would rub it.
+//! * **Residual**: material left above part + allowance, as a map, its largest and mean value.
+
+use serde::Serialize;
+
+use super::dexel::DexelStock;
+use super::program::ProgramMove;
+use super::StockModel;
+use crate::error::{Error, Result};
+use crate::geom::{Aabb, DVec3, Tolerances};
+use crate::mesh::Mesh;
+use crate::progress::Progress;
+use crate::zmap::{cc::cc_zmap, Grid, HeightField, MAX_NODES};
+
+/// Rapid moves removing less than this (mm³) only grazed the stock's surface.
+const GRAZE: f64 = 1e-6;
+/// Problems of each kind kept with their place (the rest are counted).
+const KEPT: usize = 50;
+
+/// How to verify.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VerifySettings {
+    /// Cell size of the simulated stock (mm).
+    pub cell: f64,
+    /// Material the program promised to leave on the part (mm).
+    pub allowance: f64,
+}
+
+/// A place where something went wrong.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct Finding {
+    /// Index of the move (in program order), when a move is to blame.
+    pub move_index: Option<usize>,
+    pub at: DVec3,
+    /// Gouge depth, collision depth (mm), or the volume a rapid cut (mm³).
+    pub amount: f64,
+}
+
+/// What verification found.
+#[derive(Clone, Debug, Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct Report {
+    pub cells: usize,
+    pub moves: usize,
+    /// Volume removed by the whole program (mm³).
+    pub removed: f64,
+    pub gouge_count: usize,
+    /// Deepest gouge (mm), 0 when none.
+    pub gouge_max: f64,
+    pub gouges: Vec<Finding>,
+    pub rapid_collision_count: usize,
+    pub rapid_collisions: Vec<Finding>,
+    pub body_collision_count: usize,
+    pub body_collisions: Vec<Finding>,
+    /// Largest and mean material above part + allowance where the part is (mm).
+    pub residual_max: f64,
+    pub residual_mean: f64,
+    /// Largest material removal rate of a feed move (mm³/min).
+    pub mrr_max: f64,
+}
+
+impl Report {
+    pub fn is_clean(&self) -> bool {
+        self.gouge_count == 0 && self.rapid_collision_count == 0 && self.body_collision_count == 0
+    }
+
+    /// A few lines for a person.
+    pub fn describe(&self) -> String {
+        let mut s = format!(
+            "simulated {} moves on {} cells; removed {:.1} mm³, peak MRR {:.0} mm³/min\n",
+            self.moves, self.cells, self.removed, self.mrr_max
+        );
+        let first = |list: &[Finding]| list.first().map(|f| format!(", first at ({:.3}, {:.3}, {:.3}){}", f.at.x, f.at.y, f.at.z, f.move_index.map(|m| format!(" in move {}", m + 1)).unwrap_or_default())).unwrap_or_default();
+        s += &format!("gouges: {} (deepest {:.4} mm){}\n", self.gouge_count, self.gouge_max, first(&self.gouges));
+        s += &format!("rapid moves through stock: {}{}\n", self.rapid_collision_count, first(&self.rapid_collisions));
+        s += &format!("tool body (above the flutes) in material: {}{}\n", self.body_collision_count, first(&self.body_collisions));
+        s += &format!("material left on the part: max {:.3} mm, mean {:.3} mm\n", self.residual_max, self.residual_mean);
+        s
+    }
+}
+
+/// Everything verification produced: the report, the per-move volumes and the maps.
+#[derive(Clone, Debug)]
+pub struct Verification {
+    pub report: Report,
+    /// Volume removed by each move (mm³).
+    pub volumes: Vec<f64>,
+    pub stock: DexelStock,
+    /// The part's surface at the stock's cell centres (NaN where the part is not).
+    pub part: HeightField,
+}
+
+impl Verification {
+    /// Material above part + allowance per cell: negative where gouged, NaN off the part.
+    pub fn residual(&self) -> HeightField {
+        let mut field = self.stock.heights();
+        for (z, part) in field.z.iter_mut().zip(&self.part.z) {
+            *z -= part;
+        }
+        field
+    }
+}
+
+/// Verifies a G-code program (swarf's or another's) against a job's part, stock and tools:
+/// the part is placed as the job says, the program read with [`crate::post::read::read_gcode`]
+/// (the job's first tool until the program picks one), and `cell` overrides the job's cell size.
+pub fn verify_gcode(job: &crate::job::Job, mut part: Mesh, gcode: &str, cell: Option<f64>, progress: &mut Progress) -> Result<Verification> {
+    job.validate()?;
+    let stock = job.place(&mut part);
+    let first_tool = job.tools.first().map_or(1, |t| t.number);
+    let paths = crate::post::read::read_gcode(gcode, first_tool)?;
+    let moves = super::program::program_moves(&paths, &job.tools, job.post.rapid_rate)?;
+    let allowance = job.allowance();
+    let settings = VerifySettings { cell: cell.unwrap_or_else(|| job.simulation.cell_for(&stock)), allowance: if allowance.is_finite() { allowance } else { 0.0 } };
+    verify(&part, &stock, &moves, &settings, &job.tolerances, progress)
+}
+
+/// The stock grid for a cell size, refused when it would not fit in memory.
+pub fn stock_for(stock: &Aabb, cell: f64) -> Result<DexelStock> {
+    if !(cell > 0.0 && cell.is_finite()) {
+        return Err(Error::Job(format!("the simulation cell must be a positive number of millimetres (got {cell})")));
+    }
+    let size = stock.size();
+    let cells = (size.x / cell).ceil() * (size.y / cell).ceil();
+    if cells > MAX_NODES as f64 {
+        return Err(Error::Job(format!("{cell} mm cells over this stock make {:.0} million cells; choose larger cells", cells / 1e6)));
+    }
+    Ok(DexelStock::new(stock, cell, 1))
+}
+
+/// Simulates `moves` on the box `stock` and checks them against `part`.
+pub fn verify(part: &Mesh, stock: &Aabb, moves: &[ProgramMove], settings: &VerifySettings, tolerances: &Tolerances, progress: &mut Progress) -> Result<Verification> {
+    let mut sim = stock_for(stock, settings.cell)?;
+    let grid: Grid = sim.grid();
+    let mut volumes = Vec::with_capacity(moves.len());
+    let (mut rapid, mut body) = ((0, Vec::new()), (0, Vec::new()));
+    let note = |list: &mut (usize, Vec<Finding>), f: Finding| {
+        list.0 += 1;
+        if list.1.len() < KEPT {
+            list.1.push(f);
+        }
+    };
+    let mut mrr_max: f64 = 0.0;
+    for (k, m) in moves.iter().enumerate() {
+        if k % 4096 == 0 && !progress.report(0.9 * k as f64 / moves.len().max(1) as f64) {
+            return Err(Error::Cancelled);
+        }
+        let mut removed = 0.0;
+        for sweep in m.sweeps(tolerances.chordal) {
+            if !m.mv.is_rapid() {
+                let radius = m.cutter.shank_diameter.unwrap_or(m.cutter.diameter) * 0.5;
+                if let Some((at, depth)) = sim.above_body(&sweep, radius, m.cutter.flute_length + tolerances.gouge) {
+                    note(&mut body, Finding { move_index: Some(k), at: at.extend(sweep.nearest(at).1 + m.cutter.flute_length), amount: depth });
+                }
+            }
+            removed += sim.apply(&sweep);
+        }
+        if m.mv.is_rapid() && removed > GRAZE {
+            note(&mut rapid, Finding { move_index: Some(k), at: m.mv.to(), amount: removed });
+        } else if !m.mv.is_rapid() {
+            mrr_max = mrr_max.max(m.mrr(removed));
+        }
+        volumes.push(removed);
+    }
+    progress.report(0.9);
+    let mut surface = cc_zmap(part, grid, f64::NEG_INFINITY, tolerances);
+    let mut gouges = Vec::new();
+    let (mut residual_max, mut residual_sum, mut covered) = (0.0f64, 0.0, 0usize);
+    for j in 0..grid.ny {
+        for i in 0..grid.nx {
+            let c = j * grid.nx + i;
+            if surface.z[c] == f64::NEG_INFINITY {
+                surface.z[c] = f64::NAN;
+                continue;
+            }
+            surface.z[c] += settings.allowance;
+            let left = sim.top(i, j) - surface.z[c];
+            if left < -tolerances.gouge {
+                gouges.push(Finding { move_index: None, at: grid.node(i, j).extend(sim.top(i, j)), amount: -left });
+            }
+            residual_max = residual_max.max(left);
+            residual_sum += left.max(0.0);
+            covered += 1;
+        }
+    }
+    // The deepest gouges first.
+    gouges.sort_by(|a, b| b.amount.total_cmp(&a.amount));
+    let gouge_count = gouges.len();
+    gouges.truncate(KEPT);
+    let report = Report {
+        cells: sim.cells(),
+        moves: moves.len(),
+        removed: volumes.iter().sum(),
+        gouge_count,
+        gouge_max: gouges.first().map_or(0.0, |g| g.amount),
+        gouges,
+        rapid_collision_count: rapid.0,
+        rapid_collisions: rapid.1,
+        body_collision_count: body.0,
+        body_collisions: body.1,
+        residual_max,
+        residual_mean: if covered > 0 { residual_sum / covered as f64 } else { 0.0 },
+        mrr_max,
+    };
+    Ok(Verification { report, volumes, stock: sim, part: surface })
+}
