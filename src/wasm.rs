@@ -11,6 +11,9 @@ use crate::mesh::import::read_mesh_auto;
 use crate::mesh::placement::PartSetup;
 use crate::mesh::{sample, Mesh};
 use crate::progress::Progress;
+use crate::sim::playback::Playback;
+use crate::sim::verify::Verification;
+use crate::sim::DexelStock;
 
 #[wasm_bindgen(start)]
 pub fn start() {
@@ -109,6 +112,19 @@ pub struct JobResult {
     rapids: Vec<f32>,
     summary: JsValue,
     part: PartView,
+    simulation: Option<SimulationView>,
+}
+
+/// The simulated program, for the page's scrubber: the stock after any move, the part's surface
+/// on the same cells, the moves' times and material removal rates, and what verification found.
+struct SimulationView {
+    playback: Playback,
+    grid: Vec<f64>,
+    part: Vec<f32>,
+    times: Vec<f64>,
+    mrr: Vec<f32>,
+    findings: Vec<f32>,
+    report: JsValue,
 }
 
 #[wasm_bindgen]
@@ -129,6 +145,51 @@ impl JobResult {
     /// `{ moves, feedLength, rapidLength, seconds, warnings, stock, clearanceZ }`.
     pub fn summary(&self) -> JsValue {
         self.summary.clone()
+    }
+    /// Whether the program was simulated.
+    #[wasm_bindgen(js_name = hasSimulation)]
+    pub fn has_simulation(&self) -> bool {
+        self.simulation.is_some()
+    }
+    /// `[originX, originY, spacing, nx, ny, stockBottom, stockTop, gougeTolerance]`: where the
+    /// simulated stock's cell centres stand.
+    #[wasm_bindgen(js_name = simGrid)]
+    pub fn sim_grid(&self) -> Vec<f64> {
+        self.simulation.as_ref().map(|s| s.grid.clone()).unwrap_or_default()
+    }
+    /// The part's surface plus allowance at each cell centre (NaN off the part; a view).
+    #[wasm_bindgen(js_name = simPart)]
+    pub fn sim_part(&self) -> js_sys::Float32Array {
+        // SAFETY: as for PartView.
+        self.simulation.as_ref().map(|s| unsafe { js_sys::Float32Array::view(&s.part) }).unwrap_or_default()
+    }
+    /// When each move starts (s), and at the end the program's length (a view).
+    pub fn times(&self) -> js_sys::Float64Array {
+        // SAFETY: as for PartView.
+        self.simulation.as_ref().map(|s| unsafe { js_sys::Float64Array::view(&s.times) }).unwrap_or_default()
+    }
+    /// Material removal rate of each move (mm³/min; a view).
+    pub fn mrr(&self) -> js_sys::Float32Array {
+        // SAFETY: as for PartView.
+        self.simulation.as_ref().map(|s| unsafe { js_sys::Float32Array::view(&s.mrr) }).unwrap_or_default()
+    }
+    /// Places of gouges and collisions: x, y, z, kind (0 gouge, 1 rapid, 2 tool body) per place.
+    pub fn findings(&self) -> js_sys::Float32Array {
+        // SAFETY: as for PartView.
+        self.simulation.as_ref().map(|s| unsafe { js_sys::Float32Array::view(&s.findings) }).unwrap_or_default()
+    }
+    /// The verification report (`Report` as a JS object, with `text` for people).
+    pub fn report(&self) -> JsValue {
+        self.simulation.as_ref().map(|s| s.report.clone()).unwrap_or(JsValue::NULL)
+    }
+    /// The stock's height over every cell after the first `count` moves (a view: copy it before
+    /// the next call).
+    pub fn seek(&mut self, count: usize) -> js_sys::Float32Array {
+        match self.simulation.as_mut() {
+            // SAFETY: as for PartView.
+            Some(s) => unsafe { js_sys::Float32Array::view(s.playback.seek(count)) },
+            None => js_sys::Float32Array::default(),
+        }
     }
     /// The part as the job placed it.
     #[wasm_bindgen(js_name = takePart)]
@@ -156,7 +217,8 @@ pub fn run_job(job: JsValue, bytes: &[u8], name: &str, progress: &js_sys::Functi
     let mut sink = |fraction: f64, stage: &str| {
         progress.call2(&JsValue::NULL, &JsValue::from_f64(fraction), &JsValue::from_str(stage)).map(|v| v.as_bool() != Some(false)).unwrap_or(true)
     };
-    let out = job::run(&job, mesh, &mut Progress::new(&mut sink)).map_err(js_error)?;
+    let mut out = job::run(&job, mesh, &mut Progress::new(&mut sink)).map_err(js_error)?;
+    let simulation = out.verification.take().map(|v| simulation_view(&job, &out, v)).transpose()?;
     let (mut feeds, mut rapids) = (Vec::new(), Vec::new());
     for path in &out.paths {
         for (a, b, rapid) in path.segments(0.1) {
@@ -167,5 +229,32 @@ pub fn run_job(job: JsValue, bytes: &[u8], name: &str, progress: &js_sys::Functi
     let s = out.stock;
     let summary = Summary { stats: out.stats, warnings: out.warnings.clone(), stock: [s.min.x, s.min.y, s.min.z, s.max.x, s.max.y, s.max.z], clearance_z: out.clearance_z };
     let summary = to_js(&summary)?;
-    Ok(JobResult { gcode: out.gcode, feeds, rapids, summary, part: part_view(&out.part) })
+    Ok(JobResult { gcode: out.gcode, feeds, rapids, summary, part: part_view(&out.part), simulation })
+}
+
+#[derive(serde::Serialize)]
+struct ReportView<'a> {
+    #[serde(flatten)]
+    report: &'a crate::sim::verify::Report,
+    text: String,
+}
+
+fn simulation_view(job: &Job, out: &job::JobOutput, v: Verification) -> Result<SimulationView, JsError> {
+    let g = v.stock.grid();
+    let grid = vec![g.origin.x, g.origin.y, g.spacing, g.nx as f64, g.ny as f64, out.stock.min.z, out.stock.max.z, job.tolerances.gouge];
+    let part = v.part.z.iter().map(|&z| z as f32).collect();
+    let mut times: Vec<f64> = out.moves.iter().map(|m| m.start).collect();
+    times.push(out.moves.last().map_or(0.0, |m| m.start + m.seconds));
+    let mrr = out.moves.iter().zip(&v.volumes).map(|(m, &vol)| if m.mv.is_rapid() { 0.0 } else { m.mrr(vol) as f32 }).collect();
+    let r = &v.report;
+    let mut findings = Vec::new();
+    for (kind, list) in [(0.0, &r.gouges), (1.0, &r.rapid_collisions), (2.0, &r.body_collisions)] {
+        for f in list {
+            findings.extend([f.at.x as f32, f.at.y as f32, f.at.z as f32, kind]);
+        }
+    }
+    let report = to_js(&ReportView { report: r, text: r.describe() })?;
+    let fresh = DexelStock::new(&out.stock, g.spacing, 1);
+    let playback = Playback::at_end(fresh, v.stock, out.moves.clone(), job.tolerances.chordal);
+    Ok(SimulationView { playback, grid, part, times, mrr, findings, report })
 }

@@ -24,3 +24,22 @@ fn die_zmaps_in_wasm() {
 fn web_sys_log(s: &str) {
     wasm_bindgen_test::console_log!("{}", s);
 }
+
+#[wasm_bindgen_test]
+fn paper_table_2_in_wasm() {
+    for row in swarf::sim::paper::table(&now, 20) {
+        web_sys_log(&row.line("wasm"));
+        assert!(row.volume > 0.0);
+    }
+}
+
+#[wasm_bindgen_test]
+fn program_simulation_in_wasm() {
+    let sample = swarf::sim::bench::sample_case();
+    web_sys_log(&sample.run(sample.cell_for(1e6), None, &now).row("wasm (Chromium)"));
+    let die = swarf::sim::bench::die_case();
+    web_sys_log(&die.run(die.cell_for(1e6), None, &now).row("wasm (Chromium)"));
+    let f = die.run(die.cell_for(1e6), Some(100_000), &now);
+    web_sys_log(&f.row("wasm (Chromium)"));
+    assert!(f.simulate_seconds > 0.0);
+}

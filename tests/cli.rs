@@ -80,3 +80,29 @@ fn bad_input_gives_a_message_and_a_failure_code() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("cannot read"));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn verify_reads_a_program_and_reports_its_faults() {
+    let dir = temp("verify");
+    assert!(swarf(&["demo", "-o", dir.to_str().unwrap()]).status.success());
+    let (job, part, program) = (dir.join("demo.json"), dir.join("demo.stl"), dir.join("demo.ngc"));
+    let arg = |p: &std::path::Path| p.to_str().unwrap().to_owned();
+    let ok = swarf(&["verify", &arg(&job), &arg(&part), &arg(&program), "--cell", "0.3"]);
+    let text = String::from_utf8_lossy(&ok.stdout);
+    assert!(ok.status.success(), "{text}\n{}", String::from_utf8_lossy(&ok.stderr));
+    assert!(text.contains("gouges: 0") && text.contains("rapid moves through stock: 0"), "{text}");
+    // Someone else's program: a rapid straight through the stock, in inches, then a cut 2 mm
+    // into the part's top.
+    let foreign = dir.join("foreign.nc");
+    std::fs::write(&foreign, "G20 G90 G17\nG0 Z1\nG0 X-2 Y-0.5\nG0 Z-0.3\nG0 X2\nG21 G0 Z20\nG0 X0 Y0\nG1 Z-2 F200\nG0 Z20\nM30\n").unwrap();
+    let bad = swarf(&["verify", &arg(&job), &arg(&part), &arg(&foreign), "--cell", "0.3", "--json"]);
+    assert!(!bad.status.success());
+    let report: serde_json::Value = serde_json::from_slice(&bad.stdout).unwrap();
+    assert!(report["rapidCollisionCount"].as_u64().unwrap() >= 1, "{report}");
+    assert!(report["gougeCount"].as_u64().unwrap() > 0, "{report}");
+    // A program the reader cannot simulate is refused with its line.
+    std::fs::write(&foreign, "G0 X0 Y0 Z5\nG81 X1 Y1 Z-1 R1\n").unwrap();
+    let refused = swarf(&["verify", &arg(&job), &arg(&part), &arg(&foreign)]);
+    assert!(!refused.status.success());
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("line 2"));
+}

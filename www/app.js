@@ -92,6 +92,7 @@ async function showPart(bytes = state.bytes, name = state.name, label = $('part-
     Object.assign(state, { bytes, name, gcode: null });
     $('part-name').textContent = label;
     viewer?.clearPaths();
+    showSimulation(null);
     viewer?.setPart(part);
     $('download').disabled = true;
     $('generate').disabled = state.running;
@@ -145,6 +146,113 @@ async function loadJob(file) {
   }
 }
 
+// ---- simulation: scrub, play, MRR plot ---------------------------------------------------
+// The worker keeps the last result; the page asks for the stock after a number of moves and
+// draws it. Program time runs at the programmed feeds, so playback follows the feed rate.
+const sim = { data: null, time: 0, playing: false, busy: false, wanted: null, last: 0 };
+
+function clock(seconds) {
+  const s = Math.max(0, Math.round(seconds));
+  const h = Math.floor(s / 3600), m = Math.floor((s % 3600) / 60), r = s % 60;
+  return `${h ? `${h}:${String(m).padStart(2, '0')}` : m}:${String(r).padStart(2, '0')}`;
+}
+
+function movesBy(t) {
+  const times = sim.data.times, n = times.length - 1;
+  if (t >= times[n]) return n;
+  let lo = 0, hi = n;
+  while (lo < hi) { const mid = (lo + hi) >> 1; if (times[mid] < t) lo = mid + 1; else hi = mid; }
+  return lo;
+}
+
+async function seek(count) {
+  if (sim.busy) { sim.wanted = count; return; }
+  sim.busy = true;
+  try {
+    const r = await call({ type: 'seek', count });
+    viewer?.updateStock(r.tops);
+    document.body.dataset.simMoves = String(r.count);
+  } catch (e) {
+    if (e.message !== 'cancelled by the user') showError(e.message);
+  } finally {
+    sim.busy = false;
+  }
+  if (sim.wanted !== null) { const next = sim.wanted; sim.wanted = null; seek(next); }
+}
+
+function setTime(t) {
+  if (!sim.data) return;
+  const total = sim.data.times[sim.data.times.length - 1];
+  sim.time = Math.max(0, Math.min(total, t));
+  $('scrub').value = sim.time;
+  $('sim-time').textContent = `${clock(sim.time)} / ${clock(total)}`;
+  drawMrr();
+  seek(movesBy(sim.time));
+}
+
+function play() {
+  if (!sim.data) return;
+  const total = sim.data.times[sim.data.times.length - 1];
+  if (!sim.playing && sim.time >= total) sim.time = 0;
+  sim.playing = !sim.playing;
+  $('play').textContent = sim.playing ? '❚❚' : '▶';
+  sim.last = performance.now();
+  const step = (now) => {
+    if (!sim.playing) return;
+    const dt = (now - sim.last) / 1000;
+    sim.last = now;
+    setTime(sim.time + dt * Number($('speed').value));
+    if (sim.time >= total) { sim.playing = false; $('play').textContent = '▶'; return; }
+    requestAnimationFrame(step);
+  };
+  requestAnimationFrame(step);
+}
+
+function drawMrr() {
+  const c = $('mrr');
+  if (!sim.data) return;
+  const dpr = window.devicePixelRatio || 1, w = Math.max(1, Math.round(c.clientWidth * dpr)), h = Math.round(70 * dpr);
+  if (c.width !== w || c.height !== h) { c.width = w; c.height = h; sim.buckets = null; }
+  const { times, mrr } = sim.data, total = times[times.length - 1] || 1;
+  if (!sim.buckets) {
+    const b = new Float32Array(w);
+    for (let k = 0; k < mrr.length; k++) {
+      const x = Math.min(w - 1, Math.floor((times[k] / total) * w));
+      if (mrr[k] > b[x]) b[x] = mrr[k];
+    }
+    sim.buckets = b;
+    sim.peak = b.reduce((m, v) => Math.max(m, v), 0) || 1;
+  }
+  const g = c.getContext('2d');
+  g.clearRect(0, 0, w, h);
+  g.fillStyle = '#6b8fb8';
+  for (let x = 0; x < w; x++) { const v = (sim.buckets[x] / sim.peak) * (h - 14 * dpr); g.fillRect(x, h - v, 1, v); }
+  g.fillStyle = '#394550';
+  g.font = `${11 * dpr}px system-ui`;
+  g.fillText(`MRR, peak ${Math.round(sim.peak).toLocaleString()} mm³/min`, 4 * dpr, 11 * dpr);
+  const x = (sim.time / total) * w;
+  g.fillStyle = '#d9480f';
+  g.fillRect(x - dpr, 0, 2 * dpr, h);
+}
+
+function showSimulation(data) {
+  sim.data = data;
+  sim.buckets = null;
+  sim.playing = false;
+  $('play').textContent = '▶';
+  $('sim').hidden = !data;
+  if (!data) return;
+  const total = data.times[data.times.length - 1];
+  $('scrub').max = total;
+  const r = data.report;
+  $('sim-report').textContent = r.text.trim();
+  $('sim-report').className = r.gougeCount + r.rapidCollisionCount + r.bodyCollisionCount > 0 ? 'problem' : '';
+  viewer?.setStock(data.grid, data.part, data.start);
+  viewer?.setMarks(data.findings);
+  // Show the finished cut first; the scrubber goes back from there.
+  setTime(total);
+}
+
 // ---- generate, cancel, download ----------------------------------------------------------
 function setRunning(running) {
   state.running = running;
@@ -170,6 +278,7 @@ async function generate() {
     state.gcode = r.gcode;
     viewer?.setPart(r.part, false);
     viewer?.setPaths(r.feeds, r.rapids, r.summary.stock);
+    showSimulation(r.sim);
     const s = r.summary;
     const minutes = Math.floor(s.seconds / 60), seconds = Math.round(s.seconds % 60);
     $('stats').textContent = `${s.moves.toLocaleString()} moves · ${(s.feedLength / 1000).toFixed(2)} m cutting · ${(s.rapidLength / 1000).toFixed(2)} m rapid\nestimated cycle time ${minutes}:${String(seconds).padStart(2, '0')} min\ncomputed in ${((performance.now() - started) / 1000).toFixed(2)} s`;
@@ -193,6 +302,10 @@ function cancel() {
   pending.clear();
   startWorker();
   call({ type: 'hello' }).catch((e) => showError(e.message));
+  // The new worker has no result to scrub; the last drawing stays until the next run.
+  sim.busy = false;
+  sim.wanted = null;
+  showSimulation(null);
   $('progress').value = 0;
   showInfo('Cancelled. Your settings are kept.');
 }
@@ -210,6 +323,11 @@ function download() {
 
 // ---- wiring ------------------------------------------------------------------------------
 $('generate').addEventListener('click', generate);
+$('play').addEventListener('click', play);
+$('scrub').addEventListener('input', (e) => setTime(Number(e.target.value)));
+$('show-stock').addEventListener('change', (e) => { if (viewer) { viewer.show.stock = e.target.checked; viewer.draw(); } });
+$('show-paths').addEventListener('change', (e) => { if (viewer) { viewer.show.paths = e.target.checked; viewer.draw(); } });
+new ResizeObserver(() => { sim.buckets = null; drawMrr(); }).observe($('mrr'));
 $('cancel').addEventListener('click', cancel);
 $('download').addEventListener('click', download);
 $('save-job').addEventListener('click', saveJob);

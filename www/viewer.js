@@ -19,6 +19,33 @@ precision highp float;
 uniform vec4 color; out vec4 outColor;
 void main() { outColor = color; }`;
 
+// The simulated stock: a height field on the simulation's cells, shaded by its own slope and
+// coloured by the material left above the part (+ allowance): red where it lies below (a gouge),
+// blue where material is left, tan elsewhere; off the part, plain stock colour.
+const STOCK_VS = `#version 300 es
+in vec2 xy; in float z; in float partZ;
+uniform mat4 mvp; out vec3 world; out float left; out float onPart;
+void main() {
+  world = vec3(xy, z);
+  onPart = partZ > -1.0e8 ? 1.0 : 0.0;
+  left = z - partZ;
+  gl_Position = mvp * vec4(world, 1.0);
+}`;
+const STOCK_FS = `#version 300 es
+precision highp float;
+in vec3 world; in float left; in float onPart;
+uniform vec3 light; uniform float tol; out vec4 outColor;
+void main() {
+  vec3 n = normalize(cross(dFdx(world), dFdy(world)));
+  float d = abs(dot(n, light));
+  vec3 base = vec3(0.80, 0.72, 0.58);
+  if (onPart > 0.5) {
+    if (left < -tol) base = vec3(0.86, 0.10, 0.10);
+    else base = mix(base, vec3(0.20, 0.42, 0.85), clamp((left - 0.02) / 1.0, 0.0, 1.0));
+  }
+  outColor = vec4(base * (0.35 + 0.65 * d), 1.0);
+}`;
+
 function compile(gl, vs, fs) {
   const program = gl.createProgram();
   for (const [type, source] of [[gl.VERTEX_SHADER, vs], [gl.FRAGMENT_SHADER, fs]]) {
@@ -64,6 +91,9 @@ export class Viewer {
     this.gl = gl;
     this.meshProgram = compile(gl, MESH_VS, MESH_FS);
     this.lineProgram = compile(gl, LINE_VS, LINE_FS);
+    this.stockProgram = compile(gl, STOCK_VS, STOCK_FS);
+    this.stock = null;
+    this.show = { part: true, paths: true, stock: true };
     this.part = null;
     this.lines = {};
     this.camera = { yaw: -0.9, pitch: 0.75, distance: 200, target: [0, 0, 0] };
@@ -93,6 +123,55 @@ export class Viewer {
 
   clearPaths() {
     this.lines = {};
+    this.stock = null;
+    this.draw();
+  }
+
+  // The simulated stock: grid = [originX, originY, spacing, nx, ny, bottom, top, tolerance], part
+  // heights per cell (NaN off the part), and the stock's heights per cell.
+  setStock(grid, part, tops) {
+    const gl = this.gl;
+    const [ox, oy, sp, nx, ny, , , tol] = grid;
+    const xy = new Float32Array(nx * ny * 2);
+    for (let j = 0; j < ny; j++) for (let i = 0; i < nx; i++) { const k = (j * nx + i) * 2; xy[k] = ox + i * sp; xy[k + 1] = oy + j * sp; }
+    const partZ = Float32Array.from(part, (z) => (Number.isNaN(z) ? -1e9 : z));
+    const index = new Uint32Array((nx - 1) * (ny - 1) * 6);
+    let n = 0;
+    for (let j = 0; j + 1 < ny; j++) for (let i = 0; i + 1 < nx; i++) {
+      const a = j * nx + i, b = a + 1, c = a + nx + 1, d = a + nx;
+      index.set([a, b, c, a, c, d], n); n += 6;
+    }
+    const elements = gl.createBuffer();
+    gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, elements);
+    gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, index, gl.STATIC_DRAW);
+    const z = gl.createBuffer();
+    gl.bindBuffer(gl.ARRAY_BUFFER, z);
+    gl.bufferData(gl.ARRAY_BUFFER, tops, gl.DYNAMIC_DRAW);
+    this.stock = { xy: this.buffer(xy), z, partZ: this.buffer(partZ), elements, count: index.length, tol };
+    this.draw();
+  }
+
+  updateStock(tops) {
+    if (!this.stock) return;
+    const gl = this.gl;
+    gl.bindBuffer(gl.ARRAY_BUFFER, this.stock.z);
+    gl.bufferSubData(gl.ARRAY_BUFFER, 0, tops);
+    this.draw();
+  }
+
+  // Places verification found (x, y, z, kind per place) as crosses; the tool at `tool` (or none).
+  setMarks(findings, tool, toolLength = 30) {
+    const colors = [[0.86, 0.1, 0.1, 1], [0.75, 0.1, 0.75, 1], [0.95, 0.55, 0.05, 1]];
+    for (let kind = 0; kind < 3; kind++) {
+      const out = [];
+      for (let k = 0; k < findings.length; k += 4) {
+        if (findings[k + 3] !== kind) continue;
+        const [x, y, z] = [findings[k], findings[k + 1], findings[k + 2]], s = 1.5;
+        out.push(x - s, y, z, x + s, y, z, x, y - s, z, x, y + s, z, x, y, z - s, x, y, z + s);
+      }
+      this.lines[`marks${kind}`] = { buffer: this.buffer(new Float32Array(out)), count: out.length / 3, color: colors[kind], mark: true };
+    }
+    if (tool) this.lines.tool = { buffer: this.buffer(new Float32Array([tool[0], tool[1], tool[2], tool[0], tool[1], tool[2] + toolLength])), count: 2, color: [0.1, 0.1, 0.1, 1], mark: true };
     this.draw();
   }
 
@@ -123,12 +202,29 @@ export class Viewer {
     gl.clear(gl.COLOR_BUFFER_BIT | gl.DEPTH_BUFFER_BIT);
     gl.enable(gl.DEPTH_TEST);
     const mvp = this.matrix();
-    if (this.part) {
+    const l = [0.4, -0.5, 0.77], ln = Math.hypot(...l);
+    const stockShown = this.stock && this.show.stock;
+    if (stockShown) {
+      const p = this.stockProgram, s = this.stock;
+      gl.useProgram(p);
+      gl.uniformMatrix4fv(gl.getUniformLocation(p, 'mvp'), false, mvp);
+      gl.uniform3f(gl.getUniformLocation(p, 'light'), l[0] / ln, l[1] / ln, l[2] / ln);
+      gl.uniform1f(gl.getUniformLocation(p, 'tol'), s.tol);
+      this.attribute(p, 'xy', s.xy, 2);
+      this.attribute(p, 'z', s.z, 1);
+      this.attribute(p, 'partZ', s.partZ, 1);
+      gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, s.elements);
+      gl.enable(gl.POLYGON_OFFSET_FILL);
+      gl.polygonOffset(1, 1);
+      gl.drawElements(gl.TRIANGLES, s.count, gl.UNSIGNED_INT, 0);
+      gl.disable(gl.POLYGON_OFFSET_FILL);
+      for (const loc of [0, 1, 2]) gl.disableVertexAttribArray(loc);
+    }
+    if (this.part && this.show.part && !stockShown) {
       gl.useProgram(this.meshProgram);
       gl.uniformMatrix4fv(gl.getUniformLocation(this.meshProgram, 'mvp'), false, mvp);
       gl.uniform3f(gl.getUniformLocation(this.meshProgram, 'color'), 0.72, 0.74, 0.76);
-      const l = [0.4, -0.5, 0.77], n = Math.hypot(...l);
-      gl.uniform3f(gl.getUniformLocation(this.meshProgram, 'light'), l[0] / n, l[1] / n, l[2] / n);
+      gl.uniform3f(gl.getUniformLocation(this.meshProgram, 'light'), l[0] / ln, l[1] / ln, l[2] / ln);
       this.attribute(this.meshProgram, 'position', this.part.position);
       this.attribute(this.meshProgram, 'normal', this.part.normal);
       gl.enable(gl.POLYGON_OFFSET_FILL);
@@ -140,19 +236,19 @@ export class Viewer {
     gl.uniformMatrix4fv(gl.getUniformLocation(this.lineProgram, 'mvp'), false, mvp);
     gl.disableVertexAttribArray(1);
     for (const line of Object.values(this.lines)) {
-      if (!line.count) continue;
+      if (!line.count || (!line.mark && !this.show.paths)) continue;
       gl.uniform4fv(gl.getUniformLocation(this.lineProgram, 'color'), line.color);
       this.attribute(this.lineProgram, 'position', line.buffer);
       gl.drawArrays(gl.LINES, 0, line.count);
     }
   }
 
-  attribute(program, name, buffer) {
+  attribute(program, name, buffer, size = 3) {
     const gl = this.gl, loc = gl.getAttribLocation(program, name);
     if (loc < 0) return;
     gl.bindBuffer(gl.ARRAY_BUFFER, buffer);
     gl.enableVertexAttribArray(loc);
-    gl.vertexAttribPointer(loc, 3, gl.FLOAT, false, 0, 0);
+    gl.vertexAttribPointer(loc, size, gl.FLOAT, false, 0, 0);
   }
 
   bindInput() {

@@ -2,6 +2,8 @@
 import init, { defaultJob, samplePart, loadPart, runJob } from './pkg/swarf.js';
 
 const ready = init();
+// The last job's result stays here so the page can scrub through its simulation.
+let current = null;
 
 function partMessage(view) {
   const part = {
@@ -39,8 +41,26 @@ self.onmessage = async (event) => {
       const gcode = result.gcode();
       const summary = result.summary();
       const { part, transfer } = partMessage(result.takePart());
-      result.free();
-      self.postMessage({ id, ok: true, gcode, feeds, rapids, summary, part }, [feeds.buffer, rapids.buffer, ...transfer]);
+      let sim = null;
+      if (result.hasSimulation()) {
+        sim = {
+          grid: Array.from(result.simGrid()),
+          part: result.simPart().slice(),
+          times: result.times().slice(),
+          mrr: result.mrr().slice(),
+          findings: result.findings().slice(),
+          report: result.report(),
+          start: result.seek(result.times().length - 1).slice(),
+        };
+        transfer.push(sim.part.buffer, sim.times.buffer, sim.mrr.buffer, sim.findings.buffer, sim.start.buffer);
+      }
+      current?.free();
+      current = result;
+      self.postMessage({ id, ok: true, gcode, feeds, rapids, summary, part, sim }, [feeds.buffer, rapids.buffer, ...transfer]);
+    } else if (type === 'seek') {
+      if (!current) throw new Error('nothing to simulate yet');
+      const tops = current.seek(event.data.count).slice();
+      self.postMessage({ id, ok: true, tops, count: event.data.count }, [tops.buffer]);
     }
   } catch (error) {
     self.postMessage({ id, ok: false, error: String(error && error.message ? error.message : error) });

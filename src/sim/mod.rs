@@ -14,6 +14,7 @@ pub mod bench;
 pub mod dexel;
 pub mod octree;
 pub mod paper;
+pub mod playback;
 pub mod program;
 pub mod sweep;
 pub mod verify;

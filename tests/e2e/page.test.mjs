@@ -179,3 +179,65 @@ test('a saved job loads back and runs on the command line as in the page', async
 test('the page asked for nothing outside its own server', () => {
   assert.deepEqual(offsite, []);
 });
+
+// Counts canvas pixels by colour class: the stock's tan, gouge red, rest-material blue.
+async function stockPixels(page) {
+  return page.evaluate(() => {
+    const c = document.getElementById('view');
+    const gl = c.getContext('webgl2');
+    const px = new Uint8Array(c.width * c.height * 4);
+    gl.readPixels(0, 0, c.width, c.height, gl.RGBA, gl.UNSIGNED_BYTE, px);
+    const n = { tan: 0, red: 0, blue: 0 };
+    for (let i = 0; i < px.length; i += 4) {
+      const [r, g, b] = [px[i], px[i + 1], px[i + 2]];
+      if (r > 90 && r > b + 25 && g > b + 5 && g < r) n.tan++;
+      if (r > 120 && g < 50 && b < 50) n.red++;
+      if (b > r + 60 && b > 120) n.blue++;
+    }
+    return n;
+  });
+}
+
+test('the simulated stock: drawn after generating, scrubbed back to the raw block and forward, MRR plotted, report clean', async () => {
+  const { page, context, errors } = await openPage();
+  await page.fill('input[name=stepover]', '1.5');
+  await page.fill('input[name=grid]', '0.5');
+  await page.click('#generate');
+  await page.waitForFunction(() => !document.getElementById('download').disabled, null, { timeout: 90000 });
+  await page.waitForSelector('#sim:not([hidden])');
+  const report = await page.textContent('#sim-report');
+  assert.match(report, /gouges: 0/);
+  assert.match(report, /rapid moves through stock: 0/);
+  const moves = Number(await page.evaluate(() => document.body.dataset.simMoves));
+  assert.ok(moves > 1000, `moves simulated at the end: ${moves}`);
+  const end = await stockPixels(page);
+  await page.screenshot({ path: path.join(shots, 'simulated.png') });
+  // Back to the start: the raw block, nothing cut, no rest-material colour yet on a flat top.
+  await page.evaluate(() => { const s = document.getElementById('scrub'); s.value = '0'; s.dispatchEvent(new Event('input')); });
+  await page.waitForFunction(() => document.body.dataset.simMoves === '0', null, { timeout: 30000 });
+  const start = await stockPixels(page);
+  await page.screenshot({ path: path.join(shots, 'simulated-start.png') });
+  // Half way, by playing: the scrubber moves on its own.
+  await page.evaluate(() => { const s = document.getElementById('scrub'); s.value = String(Number(s.max) / 2); s.dispatchEvent(new Event('input')); });
+  await page.waitForFunction((n) => Number(document.body.dataset.simMoves) > n / 4 && Number(document.body.dataset.simMoves) < n, moves, { timeout: 30000 });
+  await page.selectOption('#speed', '1000');
+  await page.click('#play');
+  const t0 = Number(await page.inputValue('#scrub'));
+  await page.waitForTimeout(700);
+  const t1 = Number(await page.inputValue('#scrub'));
+  assert.ok(t1 > t0, `playing advances the program time: ${t0} → ${t1}`);
+  // The MRR plot has bars.
+  const bars = await page.evaluate(() => {
+    const c = document.getElementById('mrr'), g = c.getContext('2d');
+    const px = g.getImageData(0, 0, c.width, c.height).data;
+    let n = 0;
+    for (let i = 0; i < px.length; i += 4) if (px[i + 3] > 0) n++;
+    return n;
+  });
+  assert.ok(bars > 500, `MRR plot pixels: ${bars}`);
+  assert.ok(end.tan > 20000, `stock pixels at the end: ${JSON.stringify(end)}`);
+  assert.ok(start.blue > end.blue * 2 && start.blue > 5000, `the raw block shows material left over the part: start ${JSON.stringify(start)}, end ${JSON.stringify(end)}`);
+  assert.equal(end.red, 0, 'no gouge colour');
+  assert.deepEqual(errors, []);
+  await context.close();
+});
