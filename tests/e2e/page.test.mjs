@@ -53,18 +53,26 @@ async function openPage() {
   return { page, context, errors };
 }
 
-// Pixels of the path's colour (cutting moves are drawn in rgb(27, 116, 209)).
-async function pathPixels(page) {
+// Counts canvas pixels by colour: the path's blue (cutting moves are drawn in rgb(27, 116, 209)),
+// and the simulated stock's tan, gouge red and rest-material blue.
+async function pixelCounts(page) {
   return page.evaluate(() => {
     const c = document.getElementById('view');
     const gl = c.getContext('webgl2');
     const px = new Uint8Array(c.width * c.height * 4);
     gl.readPixels(0, 0, c.width, c.height, gl.RGBA, gl.UNSIGNED_BYTE, px);
-    let n = 0;
-    for (let i = 0; i < px.length; i += 4) if (px[i + 2] > 150 && px[i] < 90 && px[i + 1] > 80 && px[i + 1] < 160) n++;
+    const n = { path: 0, tan: 0, red: 0, blue: 0 };
+    for (let i = 0; i < px.length; i += 4) {
+      const [r, g, b] = [px[i], px[i + 1], px[i + 2]];
+      if (b > 150 && r < 90 && g > 80 && g < 160) n.path++;
+      if (r > 90 && r > b + 25 && g > b + 5 && g < r) n.tan++;
+      if (r > 120 && g < 50 && b < 50) n.red++;
+      if (b > r + 60 && b > 120) n.blue++;
+    }
     return n;
   });
 }
+const pathPixels = async (page) => (await pixelCounts(page)).path;
 
 test('sample part → generate → path on the canvas → G-code that rs274 accepts', async () => {
   const { page, context, errors } = await openPage();
@@ -180,23 +188,7 @@ test('the page asked for nothing outside its own server', () => {
   assert.deepEqual(offsite, []);
 });
 
-// Counts canvas pixels by colour class: the stock's tan, gouge red, rest-material blue.
-async function stockPixels(page) {
-  return page.evaluate(() => {
-    const c = document.getElementById('view');
-    const gl = c.getContext('webgl2');
-    const px = new Uint8Array(c.width * c.height * 4);
-    gl.readPixels(0, 0, c.width, c.height, gl.RGBA, gl.UNSIGNED_BYTE, px);
-    const n = { tan: 0, red: 0, blue: 0 };
-    for (let i = 0; i < px.length; i += 4) {
-      const [r, g, b] = [px[i], px[i + 1], px[i + 2]];
-      if (r > 90 && r > b + 25 && g > b + 5 && g < r) n.tan++;
-      if (r > 120 && g < 50 && b < 50) n.red++;
-      if (b > r + 60 && b > 120) n.blue++;
-    }
-    return n;
-  });
-}
+const stockPixels = pixelCounts;
 
 test('the simulated stock: drawn after generating, scrubbed back to the raw block and forward, MRR plotted, report clean', async () => {
   const { page, context, errors } = await openPage();
