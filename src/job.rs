@@ -312,9 +312,7 @@ pub fn run(job: &Job, mut part: Mesh, progress: &mut Progress) -> Result<JobOutp
         if !progress.stage("simulating the program", share, 1.0 - share) {
             return Err(Error::Cancelled);
         }
-        let allowance = job.allowance();
-        let settings = VerifySettings { cell: job.simulation.cell_for(&stock), allowance: if allowance.is_finite() { allowance } else { 0.0 } };
-        let v = verify(&part, &stock, &moves, &settings, &job.tolerances, progress)?;
+        let v = verify(&part, &stock, &moves, &VerifySettings::for_job(job, &stock, None), &job.tolerances, progress)?;
         let r = &v.report;
         if r.gouge_count > 0 {
             warnings.push(format!("the simulation found {} gouged cells, {:.3} mm deep at most", r.gouge_count, r.gouge_max));

@@ -143,9 +143,7 @@ impl Row {
 impl Case {
     /// Simulates this case with `model` at `cell` and returns the volume removed.
     pub fn simulate(&self, model: Model, cell: f64) -> f64 {
-        let mut stock = model.stock(&Case::stock(), cell);
-        let profile = self.profile();
-        self.moves().iter().map(|&(a, b)| stock.apply(&Sweep::line(profile, a, b))).sum()
+        self.per_move(model, cell).iter().sum()
     }
 
     /// The removed volume per move (mm³): the MRR per unit length of the paper's Fig. 7 and 8.

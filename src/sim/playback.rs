@@ -3,7 +3,7 @@
 //! checkpoint, which the first pass forward leaves every `1 / CHECKPOINTS` of the program.
 
 use super::program::ProgramMove;
-use super::{DexelStock, StockModel};
+use super::DexelStock;
 
 /// Stock copies kept along the program.
 const CHECKPOINTS: usize = 8;
@@ -57,9 +57,7 @@ impl Playback {
             self.at = k * self.every;
         }
         while self.at < count {
-            for sweep in self.moves[self.at].sweeps(self.chordal) {
-                self.stock.apply(&sweep);
-            }
+            self.moves[self.at].cut(&mut self.stock, self.chordal);
             self.at += 1;
             if self.at % self.every == 0 && self.checkpoints[self.at / self.every].is_none() {
                 self.checkpoints[self.at / self.every] = Some(self.stock.clone());
@@ -96,9 +94,7 @@ mod tests {
         assert_eq!(p.seek(n), &end[..]);
         let mut straight = fresh;
         for m in &out.moves[..n / 3] {
-            for s in m.sweeps(0.002) {
-                straight.apply(&s);
-            }
+            m.cut(&mut straight, 0.002);
         }
         let g = straight.grid();
         for j in 0..g.ny {

@@ -52,6 +52,11 @@ impl ProgramMove {
         Sweep::of_move(self.cutter.profile(), self.from, &self.mv, chordal)
     }
 
+    /// Cuts `stock` with this move; returns the volume removed (mm³).
+    pub fn cut(&self, stock: &mut dyn StockModel, chordal: f64) -> f64 {
+        self.sweeps(chordal).iter().map(|s| stock.apply(s)).sum()
+    }
+
     /// Material removal rate (mm³/min) of a move that removed `volume`.
     pub fn mrr(&self, volume: f64) -> f64 {
         if self.seconds > 0.0 {
@@ -69,7 +74,7 @@ pub fn simulate(stock: &mut dyn StockModel, moves: &[ProgramMove], chordal: f64,
         if k % 4096 == 0 && !progress.report(k as f64 / moves.len() as f64) {
             return Err(Error::Cancelled);
         }
-        volumes.push(m.sweeps(chordal).iter().map(|s| stock.apply(s)).sum());
+        volumes.push(m.cut(stock, chordal));
     }
     Ok(volumes)
 }

@@ -16,6 +16,7 @@ use super::program::ProgramMove;
 use super::StockModel;
 use crate::error::{Error, Result};
 use crate::geom::{Aabb, DVec3, Tolerances};
+use crate::job::Job;
 use crate::mesh::Mesh;
 use crate::progress::Progress;
 use crate::zmap::{cc::cc_zmap, Grid, HeightField, MAX_NODES};
@@ -32,6 +33,15 @@ pub struct VerifySettings {
     pub cell: f64,
     /// Material the program promised to leave on the part (mm).
     pub allowance: f64,
+}
+
+impl VerifySettings {
+    /// A job's settings for its `stock`: its simulation cell (unless `cell` overrides it) and
+    /// the least allowance of its operations (0 without operations).
+    pub fn for_job(job: &Job, stock: &Aabb, cell: Option<f64>) -> VerifySettings {
+        let allowance = job.allowance();
+        VerifySettings { cell: cell.unwrap_or_else(|| job.simulation.cell_for(stock)), allowance: if allowance.is_finite() { allowance } else { 0.0 } }
+    }
 }
 
 /// A place where something went wrong.
@@ -113,15 +123,13 @@ impl Verification {
 /// Verifies a G-code program (swarf's or another's) against a job's part, stock and tools:
 /// the part is placed as the job says, the program read with [`crate::post::read::read_gcode`]
 /// (the job's first tool until the program picks one), and `cell` overrides the job's cell size.
-pub fn verify_gcode(job: &crate::job::Job, mut part: Mesh, gcode: &str, cell: Option<f64>, progress: &mut Progress) -> Result<Verification> {
+pub fn verify_gcode(job: &Job, mut part: Mesh, gcode: &str, cell: Option<f64>, progress: &mut Progress) -> Result<Verification> {
     job.validate()?;
     let stock = job.place(&mut part);
     let first_tool = job.tools.first().map_or(1, |t| t.number);
     let paths = crate::post::read::read_gcode(gcode, first_tool)?;
     let moves = super::program::program_moves(&paths, &job.tools, job.post.rapid_rate)?;
-    let allowance = job.allowance();
-    let settings = VerifySettings { cell: cell.unwrap_or_else(|| job.simulation.cell_for(&stock)), allowance: if allowance.is_finite() { allowance } else { 0.0 } };
-    verify(&part, &stock, &moves, &settings, &job.tolerances, progress)
+    verify(&part, &stock, &moves, &VerifySettings::for_job(job, &stock, cell), &job.tolerances, progress)
 }
 
 /// The stock grid for a cell size, refused when it would not fit in memory.
@@ -164,10 +172,10 @@ pub fn verify(part: &Mesh, stock: &Aabb, moves: &[ProgramMove], settings: &Verif
             }
             removed += sim.apply(&sweep);
         }
-        if m.mv.is_rapid() && removed > GRAZE {
-            note(&mut rapid, Finding { move_index: Some(k), at: m.mv.to(), amount: removed });
-        } else if !m.mv.is_rapid() {
+        if !m.mv.is_rapid() {
             mrr_max = mrr_max.max(m.mrr(removed));
+        } else if removed > GRAZE {
+            note(&mut rapid, Finding { move_index: Some(k), at: m.mv.to(), amount: removed });
         }
         volumes.push(removed);
     }
