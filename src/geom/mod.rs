@@ -1,6 +1,8 @@
 //! Small shared geometry on glam's f64 vectors: bounding boxes, triangles, and the one place
 //! where swarf's tolerances live.
 
+pub mod index;
+pub mod segment;
 pub mod tolerance;
 
 pub use glam::{DVec2, DVec3};

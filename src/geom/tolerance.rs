@@ -30,6 +30,18 @@ pub struct Tolerances {
     /// Raster finishing keeps within a few times `interpolation` of the exact CL surface.
     /// Default value: 0.02.
     pub gouge: f64,
+    /// End points of drawn entities closer than this are joined into one chain (mm).
+    /// Default value: 0.01.
+    pub chain: f64,
+    /// Curves (splines, ellipses, Béziers) are replaced by arcs that stay within this distance
+    /// of them (mm). Default value: 0.002.
+    pub arc_fit: f64,
+    /// Entities of a loop shorter than this are merged into their neighbours before and after
+    /// offsetting, as seed 003 does for spline-heavy parts (mm). Default value: 1e-4.
+    pub micro_entity: f64,
+    /// Points of the offsetter closer than this are one point, and an offset piece lying closer
+    /// to the input than the distance less this is trimmed (mm). Default value: 1e-7.
+    pub offset: f64,
 }
 
 /// A point closer to a z-map grid line than this fraction of the spacing is taken to lie on
@@ -38,7 +50,7 @@ pub const GRID_SNAP: f64 = 1e-9;
 
 impl Tolerances {
     pub const DEFAULT: Tolerances =
-        Tolerances { degenerate_area: 1e-12, chordal: 0.002, height: 1e-6, interpolation: 0.005, normal: 1e-12, gouge: 0.02 };
+        Tolerances { degenerate_area: 1e-12, chordal: 0.002, height: 1e-6, interpolation: 0.005, normal: 1e-12, gouge: 0.02, chain: 0.01, arc_fit: 0.002, micro_entity: 1e-4, offset: 1e-7 };
 }
 
 impl Default for Tolerances {

@@ -1,0 +1,116 @@
+//! A static packed R-tree over rectangles (sort-tile-recursive packing, 16 children a node):
+//! built once, queried many times. The offsetter finds candidate pairs of crossing segments
+//! and segments near a point with it.
+
+use super::segment::Rect;
+use super::DVec2;
+
+const FANOUT: usize = 16;
+
+/// Rectangles by index, packed level by level; the leaves hold the items' own indices.
+pub struct RectIndex {
+    /// Per level, from the leaves up: node rectangles and, for the leaves, item indices.
+    levels: Vec<Vec<Rect>>,
+    items: Vec<u32>,
+}
+
+impl RectIndex {
+    pub fn new(rects: &[Rect]) -> RectIndex {
+        let n = rects.len();
+        let mut items: Vec<u32> = (0..n as u32).collect();
+        // Sort-tile-recursive: slices by x centre, each slice by y centre.
+        let slice_count = ((n as f64 / FANOUT as f64).sqrt().ceil() as usize).max(1);
+        let slice_len = n.div_ceil(slice_count).max(1);
+        items.sort_unstable_by(|&i, &j| rects[i as usize].center().x.total_cmp(&rects[j as usize].center().x));
+        for chunk in items.chunks_mut(slice_len) {
+            chunk.sort_unstable_by(|&i, &j| rects[i as usize].center().y.total_cmp(&rects[j as usize].center().y));
+        }
+        let mut levels = vec![items.iter().map(|&i| rects[i as usize]).collect::<Vec<_>>()];
+        while levels.last().unwrap().len() > FANOUT {
+            let below = levels.last().unwrap();
+            let up = below.chunks(FANOUT).map(|c| c.iter().fold(Rect::EMPTY, |a, r| a.union(*r))).collect();
+            levels.push(up);
+        }
+        RectIndex { levels, items }
+    }
+
+    /// Calls `visit` with the index of every rectangle that overlaps `query`.
+    pub fn query(&self, query: &Rect, mut visit: impl FnMut(usize)) {
+        self.walk(|r| r.overlaps(query), |i| {
+            visit(i);
+            false
+        });
+    }
+
+    /// Depth-first over the nodes that `enter` accepts, calling `visit` on accepted items until
+    /// it returns true. The stack lives on the stack: the tree is at most `MAX_DEPTH` deep.
+    fn walk(&self, enter: impl Fn(&Rect) -> bool, mut visit: impl FnMut(usize) -> bool) -> bool {
+        let mut stack = [(0u8, 0u32); MAX_DEPTH * FANOUT];
+        let mut len = 0;
+        let top = self.levels.len() - 1;
+        for i in 0..self.levels[top].len() {
+            stack[len] = (top as u8, i as u32);
+            len += 1;
+        }
+        while len > 0 {
+            len -= 1;
+            let (level, i) = (stack[len].0 as usize, stack[len].1 as usize);
+            if !enter(&self.levels[level][i]) {
+                continue;
+            }
+            if level == 0 {
+                if visit(self.items[i] as usize) {
+                    return true;
+                }
+            } else {
+                let below = self.levels[level - 1].len();
+                for c in i * FANOUT..((i + 1) * FANOUT).min(below) {
+                    stack[len] = ((level - 1) as u8, c as u32);
+                    len += 1;
+                }
+            }
+        }
+        false
+    }
+}
+
+/// Levels a tree of up to 16^12 items needs.
+const MAX_DEPTH: usize = 12;
+
+impl RectIndex {
+    /// Calls `visit` with the index of every rectangle closer than `radius` to `q`, nearest
+    /// subtrees first, until `visit` returns true (then returns true).
+    pub fn any_within(&self, q: DVec2, radius: f64, visit: impl FnMut(usize) -> bool) -> bool {
+        let r2 = radius * radius;
+        self.walk(|r| distance_squared(r, q) < r2, visit)
+    }
+}
+
+/// Squared distance from `q` to the rectangle (0 inside).
+fn distance_squared(r: &Rect, q: DVec2) -> f64 {
+    let dx = (r.min.x - q.x).max(q.x - r.max.x).max(0.0);
+    let dy = (r.min.y - q.y).max(q.y - r.max.y).max(0.0);
+    dx * dx + dy * dy
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn finds_exactly_the_overlapping_rectangles() {
+        let rects: Vec<Rect> = (0..1000)
+            .map(|k| {
+                let p = DVec2::new((k * 37 % 101) as f64, (k * 53 % 97) as f64);
+                Rect { min: p, max: p + DVec2::new((k % 7) as f64, (k % 5) as f64) }
+            })
+            .collect();
+        let index = RectIndex::new(&rects);
+        let q = Rect { min: DVec2::new(20.0, 30.0), max: DVec2::new(40.0, 45.0) };
+        let mut found = Vec::new();
+        index.query(&q, |i| found.push(i));
+        found.sort();
+        let expected: Vec<usize> = (0..rects.len()).filter(|&i| rects[i].overlaps(&q)).collect();
+        assert_eq!(found, expected);
+    }
+}

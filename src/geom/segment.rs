@@ -1,0 +1,506 @@
+//! Plane segments: a line or a circular arc from `a` to `b`, the arc given by its bulge
+//! (tan of a quarter of its signed sweep, counter-clockwise positive), as in DXF polylines.
+//! Everything the offsetter (seed 003) asks of a segment lives here: points along it, lengths,
+//! bounds, the closest point to a point, and intersections with another segment.
+
+use std::f64::consts::TAU;
+
+use super::DVec2;
+
+/// Bulges smaller than this make a segment a line (an arc with a sagitta of 1e-12 of its chord).
+pub const LINE_BULGE: f64 = 1e-12;
+
+/// A line (`bulge` 0) or an arc of less than a full turn from `a` to `b`.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Segment {
+    pub a: DVec2,
+    pub b: DVec2,
+    pub bulge: f64,
+}
+
+/// A rectangle in the plane.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Rect {
+    pub min: DVec2,
+    pub max: DVec2,
+}
+
+impl Rect {
+    pub const EMPTY: Rect = Rect { min: DVec2::splat(f64::INFINITY), max: DVec2::splat(f64::NEG_INFINITY) };
+
+    pub fn grow(self, p: DVec2) -> Rect {
+        Rect { min: self.min.min(p), max: self.max.max(p) }
+    }
+    pub fn union(self, o: Rect) -> Rect {
+        Rect { min: self.min.min(o.min), max: self.max.max(o.max) }
+    }
+    pub fn expand(self, by: f64) -> Rect {
+        Rect { min: self.min - DVec2::splat(by), max: self.max + DVec2::splat(by) }
+    }
+    pub fn overlaps(&self, o: &Rect) -> bool {
+        self.min.x <= o.max.x && o.min.x <= self.max.x && self.min.y <= o.max.y && o.min.y <= self.max.y
+    }
+    pub fn center(&self) -> DVec2 {
+        (self.min + self.max) * 0.5
+    }
+    pub fn size(&self) -> DVec2 {
+        self.max - self.min
+    }
+    pub fn is_empty(&self) -> bool {
+        !(self.min.x <= self.max.x && self.min.y <= self.max.y)
+    }
+}
+
+/// The circle of an arc segment.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ArcGeom {
+    pub center: DVec2,
+    pub radius: f64,
+    /// `a` less the centre.
+    pub start: DVec2,
+    /// `b` less the centre.
+    pub end: DVec2,
+    /// Signed sweep (counter-clockwise positive), in (-2π, 2π).
+    pub sweep: f64,
+}
+
+impl ArcGeom {
+    /// Whether the direction `v` from the centre lies within the sweep (by cross products).
+    pub fn sweeps_over(&self, v: DVec2) -> bool {
+        let (s, e) = if self.sweep > 0.0 { (self.start, self.end) } else { (self.end, self.start) };
+        let (after_start, before_end) = (s.perp_dot(v) >= 0.0, v.perp_dot(e) >= 0.0);
+        if self.sweep.abs() <= std::f64::consts::PI {
+            after_start && before_end
+        } else {
+            after_start || before_end
+        }
+    }
+}
+
+/// Where two segments meet: parameters on each (0 at `a`, 1 at `b`) and the point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Crossing {
+    pub t: f64,
+    pub u: f64,
+    pub p: DVec2,
+}
+
+impl Segment {
+    pub fn line(a: DVec2, b: DVec2) -> Segment {
+        Segment { a, b, bulge: 0.0 }
+    }
+
+    /// The arc from `a` to `b` about `center`, counter-clockwise or not. Equal ends are refused
+    /// (a full circle is two segments).
+    pub fn arc(a: DVec2, b: DVec2, center: DVec2, ccw: bool) -> Segment {
+        let mut sweep = (a - center).angle_to(b - center);
+        if ccw && sweep < 0.0 {
+            sweep += TAU;
+        } else if !ccw && sweep > 0.0 {
+            sweep -= TAU;
+        }
+        Segment { a, b, bulge: (sweep / 4.0).tan() }
+    }
+
+    /// The arc about `center` of `radius` from `start` through a signed `sweep` (radians).
+    pub fn arc_from(center: DVec2, radius: f64, start: f64, sweep: f64) -> Segment {
+        let p = |th: f64| center + DVec2::new(th.cos(), th.sin()) * radius;
+        Segment { a: p(start), b: p(start + sweep), bulge: (sweep / 4.0).tan() }
+    }
+
+    pub fn is_line(&self) -> bool {
+        self.bulge.abs() < LINE_BULGE
+    }
+
+    pub fn chord(&self) -> f64 {
+        self.a.distance(self.b)
+    }
+
+    /// Centre, radius, start angle and sweep of an arc (`None` for a line or a null chord).
+    pub fn arc_geom(&self) -> Option<ArcGeom> {
+        if self.is_line() {
+            return None;
+        }
+        let d = self.b - self.a;
+        let chord = d.length();
+        if chord == 0.0 {
+            return None;
+        }
+        let b = self.bulge;
+        let sweep = 4.0 * b.atan();
+        let left = DVec2::new(-d.y, d.x) / chord;
+        let center = (self.a + self.b) * 0.5 + left * (chord * 0.5 * (1.0 - b * b) / (2.0 * b));
+        let radius = chord * (1.0 + b * b) / (4.0 * b.abs());
+        Some(ArcGeom { center, radius, start: self.a - center, end: self.b - center, sweep })
+    }
+
+    pub fn length(&self) -> f64 {
+        match self.arc_geom() {
+            Some(g) => g.radius * g.sweep.abs(),
+            None => self.chord(),
+        }
+    }
+
+    /// The point at parameter `t` (0 at `a`, 1 at `b`; arcs by angle).
+    pub fn point_at(&self, t: f64) -> DVec2 {
+        if t <= 0.0 {
+            return self.a;
+        }
+        if t >= 1.0 {
+            return self.b;
+        }
+        match self.arc_geom() {
+            Some(g) => g.center + DVec2::from_angle(g.sweep * t).rotate(g.start),
+            None => self.a.lerp(self.b, t),
+        }
+    }
+
+    pub fn midpoint(&self) -> DVec2 {
+        self.point_at(0.5)
+    }
+
+    /// Unit direction of travel at parameter `t`.
+    pub fn tangent_at(&self, t: f64) -> DVec2 {
+        match self.arc_geom() {
+            Some(g) => DVec2::from_angle(g.sweep * t).rotate(g.start).perp() / g.radius * g.sweep.signum(),
+            None => (self.b - self.a).normalize_or_zero(),
+        }
+    }
+
+    pub fn reversed(&self) -> Segment {
+        Segment { a: self.b, b: self.a, bulge: -self.bulge }
+    }
+
+    /// The piece between parameters `t0 < t1`.
+    pub fn sub(&self, t0: f64, t1: f64) -> Segment {
+        let bulge = match self.arc_geom() {
+            Some(g) => (g.sweep * (t1 - t0) / 4.0).tan(),
+            None => 0.0,
+        };
+        Segment { a: self.point_at(t0), b: self.point_at(t1), bulge }
+    }
+
+    /// Bounding rectangle (arcs include the extreme points their sweep passes).
+    pub fn bounds(&self) -> Rect {
+        let r = Rect::EMPTY.grow(self.a).grow(self.b);
+        match self.arc_geom() {
+            None => r,
+            Some(g) => {
+                let mut r = r;
+                for dir in [DVec2::X, DVec2::Y, DVec2::NEG_X, DVec2::NEG_Y] {
+                    if g.sweeps_over(dir) {
+                        r = r.grow(g.center + dir * g.radius);
+                    }
+                }
+                r
+            }
+        }
+    }
+
+    /// Parameter of the direction `dir` from an arc's centre, when the sweep passes it.
+    fn angle_param(&self, g: &ArcGeom, dir: DVec2) -> Option<f64> {
+        if !g.sweeps_over(dir) {
+            return None;
+        }
+        let mut delta = g.start.perp_dot(dir).atan2(g.start.dot(dir));
+        if g.sweep > 0.0 && delta < 0.0 {
+            delta += TAU;
+        } else if g.sweep < 0.0 && delta > 0.0 {
+            delta -= TAU;
+        }
+        let t = delta / g.sweep;
+        (0.0..=1.0).contains(&t).then_some(t)
+    }
+
+    /// Parameter of a point on (or near) the segment's circle or line, with `slack` (mm) allowed
+    /// past either end; `None` when it lies beyond.
+    fn param_of(&self, p: DVec2, slack: f64) -> Option<f64> {
+        match self.arc_geom() {
+            None => {
+                let d = self.b - self.a;
+                let len2 = d.length_squared();
+                if len2 == 0.0 {
+                    return (p.distance(self.a) <= slack).then_some(0.0);
+                }
+                let t = (p - self.a).dot(d) / len2;
+                let s = slack / len2.sqrt();
+                (t >= -s && t <= 1.0 + s).then(|| t.clamp(0.0, 1.0))
+            }
+            Some(g) => {
+                let span = g.sweep.abs();
+                let v = p - g.center;
+                let mut delta = g.start.perp_dot(v).atan2(g.start.dot(v)) * g.sweep.signum();
+                if delta < 0.0 {
+                    delta += TAU;
+                }
+                // delta in [0, 2π) measured along the sweep's direction.
+                let s = slack / g.radius;
+                if delta <= span + s {
+                    Some((delta / span).min(1.0))
+                } else if delta >= TAU - s {
+                    Some(0.0)
+                } else {
+                    None
+                }
+            }
+        }
+    }
+
+    /// The closest point of the segment to `q`, and its parameter.
+    pub fn closest(&self, q: DVec2) -> (DVec2, f64) {
+        match self.arc_geom() {
+            None => {
+                let d = self.b - self.a;
+                let len2 = d.length_squared();
+                let t = if len2 > 0.0 { ((q - self.a).dot(d) / len2).clamp(0.0, 1.0) } else { 0.0 };
+                (self.a.lerp(self.b, t), t)
+            }
+            Some(g) => {
+                let v = q - g.center;
+                if v.length_squared() > 0.0 {
+                    if let Some(t) = self.angle_param(&g, v) {
+                        return (g.center + v.normalize() * g.radius, t);
+                    }
+                }
+                if q.distance_squared(self.a) <= q.distance_squared(self.b) {
+                    (self.a, 0.0)
+                } else {
+                    (self.b, 1.0)
+                }
+            }
+        }
+    }
+
+    pub fn distance_to(&self, q: DVec2) -> f64 {
+        self.closest(q).0.distance(q)
+    }
+
+    /// How many times the ray from `q` towards +x crosses the segment, counting an end on the
+    /// ray's line only when the segment rises above it there (half-open, so loops count each
+    /// crossing once). Arcs are taken in pieces that rise or fall only.
+    pub fn ray_crossings(&self, q: DVec2) -> u32 {
+        let straddles = |a: DVec2, b: DVec2| (a.y > q.y) != (b.y > q.y);
+        match self.arc_geom() {
+            None => {
+                let (a, b) = (self.a, self.b);
+                (straddles(a, b) && q.x < a.x + (q.y - a.y) / (b.y - a.y) * (b.x - a.x)) as u32
+            }
+            Some(g) => {
+                let mut cuts = [0.0, 1.0, 1.0, 1.0];
+                let mut n = 1;
+                for dir in [DVec2::Y, DVec2::NEG_Y] {
+                    if let Some(t) = self.angle_param(&g, dir) {
+                        if t > 0.0 && t < 1.0 {
+                            cuts[n] = t;
+                            n += 1;
+                        }
+                    }
+                }
+                cuts[..n].sort_by(f64::total_cmp);
+                cuts[n] = 1.0;
+                let mut count = 0;
+                for k in 0..n {
+                    let (t0, t1) = (cuts[k], cuts[k + 1]);
+                    let (a, b) = (self.point_at(t0), self.point_at(t1));
+                    if straddles(a, b) {
+                        let side = (self.point_at((t0 + t1) * 0.5).x - g.center.x).signum();
+                        let dy = q.y - g.center.y;
+                        let x = g.center.x + side * (g.radius * g.radius - dy * dy).max(0.0).sqrt();
+                        count += (q.x < x) as u32;
+                    }
+                }
+                count
+            }
+        }
+    }
+
+    /// Every point where the two segments meet, within `eps` (mm). Overlapping collinear lines
+    /// and arcs on one circle give the ends of their overlap.
+    pub fn crossings(&self, other: &Segment, eps: f64) -> Crossings {
+        let mut out = Crossings::default();
+        match (self.arc_geom(), other.arc_geom()) {
+            (None, None) => line_line(self, other, eps, &mut out),
+            (None, Some(g)) => line_arc(self, other, &g, eps, false, &mut out),
+            (Some(g), None) => line_arc(other, self, &g, eps, true, &mut out),
+            (Some(g1), Some(g2)) => arc_arc(self, &g1, other, &g2, eps, &mut out),
+        }
+        out
+    }
+}
+
+/// Up to four crossings, without allocating.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Crossings {
+    items: [Option<Crossing>; 4],
+    len: usize,
+}
+
+impl Crossings {
+    fn push(&mut self, c: Crossing) {
+        if self.items[..self.len].iter().flatten().any(|o| o.p.distance_squared(c.p) == 0.0 && (o.t - c.t).abs() < 1e-15) {
+            return;
+        }
+        if self.len < 4 {
+            self.items[self.len] = Some(c);
+            self.len += 1;
+        }
+    }
+    pub fn len(&self) -> usize {
+        self.len
+    }
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+    pub fn iter(&self) -> impl Iterator<Item = Crossing> + '_ {
+        self.items[..self.len].iter().flatten().copied()
+    }
+}
+
+/// Adds `p` when it lies on both segments within `eps`.
+fn try_point(s1: &Segment, s2: &Segment, p: DVec2, eps: f64, out: &mut Crossings) {
+    if let (Some(t), Some(u)) = (s1.param_of(p, eps), s2.param_of(p, eps)) {
+        out.push(Crossing { t, u, p });
+    }
+}
+
+fn line_line(s1: &Segment, s2: &Segment, eps: f64, out: &mut Crossings) {
+    let d1 = s1.b - s1.a;
+    let d2 = s2.b - s2.a;
+    let (l1, l2) = (d1.length(), d2.length());
+    if l1 == 0.0 || l2 == 0.0 {
+        for p in [s1.a, s2.a] {
+            if s1.distance_to(p) <= eps && s2.distance_to(p) <= eps {
+                try_point(s1, s2, p, eps, out);
+            }
+        }
+        return;
+    }
+    let denom = d1.perp_dot(d2);
+    let w = s2.a - s1.a;
+    // Parallel when the sine of the angle between them is below eps over the longer length.
+    if denom.abs() > eps / l1.max(l2) * l1 * l2 {
+        let t = w.perp_dot(d2) / denom;
+        let u = w.perp_dot(d1) / denom;
+        let (st, su) = (eps / l1, eps / l2);
+        if t >= -st && t <= 1.0 + st && u >= -su && u <= 1.0 + su {
+            let p = s1.a + d1 * t.clamp(0.0, 1.0);
+            out.push(Crossing { t: t.clamp(0.0, 1.0), u: u.clamp(0.0, 1.0), p });
+        }
+        return;
+    }
+    // Parallel: collinear when s2 lies on s1's line; then the ends of the overlap.
+    if (w.perp_dot(d1) / l1).abs() > eps {
+        return;
+    }
+    for p in [s1.a, s1.b, s2.a, s2.b] {
+        if s1.distance_to(p) <= eps && s2.distance_to(p) <= eps {
+            try_point(s1, s2, p, eps, out);
+        }
+    }
+}
+
+fn line_arc(line: &Segment, arc: &Segment, g: &ArcGeom, eps: f64, swap: bool, out: &mut Crossings) {
+    let d = line.b - line.a;
+    let len = d.length();
+    let mut points: [Option<DVec2>; 2] = [None, None];
+    if len == 0.0 {
+        if (line.a.distance(g.center) - g.radius).abs() <= eps {
+            points[0] = Some(line.a);
+        }
+    } else {
+        let dir = d / len;
+        let foot_s = (g.center - line.a).dot(dir);
+        let foot = line.a + dir * foot_s;
+        let h = foot.distance(g.center);
+        if h <= g.radius + eps {
+            let half = (g.radius * g.radius - h * h).max(0.0).sqrt();
+            if half <= eps * 0.5 {
+                // Tangent: the one point of the circle nearest the line.
+                let n = (foot - g.center).normalize_or_zero();
+                points[0] = Some(if n == DVec2::ZERO { foot } else { g.center + n * g.radius });
+            } else {
+                points = [Some(foot - dir * half), Some(foot + dir * half)];
+            }
+        }
+    }
+    for p in points.into_iter().flatten() {
+        if let (Some(t), Some(u)) = (line.param_of(p, eps), arc.param_of(p, eps)) {
+            let c = if swap { Crossing { t: u, u: t, p } } else { Crossing { t, u, p } };
+            out.push(c);
+        }
+    }
+}
+
+fn arc_arc(s1: &Segment, g1: &ArcGeom, s2: &Segment, g2: &ArcGeom, eps: f64, out: &mut Crossings) {
+    let v = g2.center - g1.center;
+    let dist = v.length();
+    if dist <= eps && (g1.radius - g2.radius).abs() <= eps {
+        // One circle: the ends of the overlap.
+        for p in [s1.a, s1.b, s2.a, s2.b] {
+            try_point(s1, s2, p, eps, out);
+        }
+        return;
+    }
+    if dist == 0.0 || dist > g1.radius + g2.radius + eps || dist < (g1.radius - g2.radius).abs() - eps {
+        return;
+    }
+    let dir = v / dist;
+    let x = (dist * dist + g1.radius * g1.radius - g2.radius * g2.radius) / (2.0 * dist);
+    let h2 = g1.radius * g1.radius - x * x;
+    let base = g1.center + dir * x;
+    // Tangent circles: half the chord within eps.
+    if h2 <= (eps * 0.5).powi(2) {
+        try_point(s1, s2, base, eps, out);
+        return;
+    }
+    let h = h2.sqrt();
+    let n = DVec2::new(-dir.y, dir.x);
+    try_point(s1, s2, base + n * h, eps, out);
+    try_point(s1, s2, base - n * h, eps, out);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    #[test]
+    fn arc_geometry_from_bulge() {
+        // A counter-clockwise half circle of radius 1 from (1,0) to (-1,0) about the origin.
+        let s = Segment { a: DVec2::new(1.0, 0.0), b: DVec2::new(-1.0, 0.0), bulge: 1.0 };
+        let g = s.arc_geom().unwrap();
+        assert!(g.center.length() < 1e-12 && (g.radius - 1.0).abs() < 1e-12);
+        assert!((s.length() - PI).abs() < 1e-12);
+        assert!(s.midpoint().distance(DVec2::new(0.0, 1.0)) < 1e-12);
+        let b = s.bounds();
+        assert!((b.max.y - 1.0).abs() < 1e-12 && b.min.y.abs() < 1e-12);
+        let made = Segment::arc(s.a, s.b, DVec2::ZERO, true);
+        assert!((made.bulge - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn crossings_of_each_kind() {
+        let l1 = Segment::line(DVec2::new(-2.0, 0.0), DVec2::new(2.0, 0.0));
+        let l2 = Segment::line(DVec2::new(0.0, -1.0), DVec2::new(0.0, 1.0));
+        let c = l1.crossings(&l2, 1e-9);
+        assert_eq!(c.len(), 1);
+        assert!((c.iter().next().unwrap().t - 0.5).abs() < 1e-12);
+        let circle_top = Segment { a: DVec2::new(1.0, 0.0), b: DVec2::new(-1.0, 0.0), bulge: 1.0 };
+        let l3 = Segment::line(DVec2::new(-2.0, 0.5), DVec2::new(2.0, 0.5));
+        assert_eq!(l3.crossings(&circle_top, 1e-9).len(), 2);
+        assert_eq!(circle_top.crossings(&l3, 1e-9).len(), 2);
+        let other = Segment { a: DVec2::new(2.0, 0.0), b: DVec2::new(0.0, 0.0), bulge: 1.0 };
+        let c = circle_top.crossings(&other, 1e-9);
+        assert_eq!(c.len(), 1, "{c:?}"); // at (0.5, 0.866); the other circle crossing is off both arcs
+        let collinear = Segment::line(DVec2::new(1.0, 0.0), DVec2::new(3.0, 0.0));
+        assert_eq!(l1.crossings(&collinear, 1e-9).len(), 2);
+    }
+
+    #[test]
+    fn closest_point_on_an_arc() {
+        let s = Segment { a: DVec2::new(1.0, 0.0), b: DVec2::new(-1.0, 0.0), bulge: 1.0 };
+        assert!((s.distance_to(DVec2::new(0.0, 3.0)) - 2.0).abs() < 1e-12);
+        assert!((s.distance_to(DVec2::new(0.0, -3.0)) - 10f64.sqrt()).abs() < 1e-12);
+        assert!((s.distance_to(DVec2::ZERO) - 1.0).abs() < 1e-12);
+    }
+}

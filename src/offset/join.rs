@@ -1,0 +1,118 @@
+//! Step 2 of seed 003 (§2-2, Figs. 4–7): neighbouring raw entities are joined into one loop.
+
+use std::f64::consts::PI;
+
+use super::raw::RawEntity;
+use crate::geom::segment::Segment;
+use crate::profile::Loop;
+
+/// How the raw entity `i` meets entity `i + 1`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Join {
+    /// Their ends already meet (tangent entities, or a collapsed arc between them).
+    Meet,
+    /// They cross at parameter `t` on the first and `u` on the second: both are cut there and
+    /// what lies past the crossing is trimmed at once (Fig. 7).
+    Cross { t: f64, u: f64 },
+    /// They do not meet: an arc of the distance's radius about the original corner joins them.
+    Arc,
+}
+
+/// The raw offset of `l` joined into one closed chain of segments: at every corner the
+/// neighbours are cut at their crossing when the corner turns away from the offset side and
+/// they cross, and joined by an arc about the corner otherwise (a corner turning away whose
+/// entities are too short to cross gets an arc that runs backwards: a twisted part that
+/// [`super::trim`] removes).
+pub fn join_neighbours(l: &Loop, raw: &[RawEntity], distance: f64, eps: f64) -> Vec<Segment> {
+    let n = raw.len();
+    if n == 0 {
+        return Vec::new();
+    }
+    let mut joins: Vec<Join> = (0..n).map(|i| classify(l, raw, i, distance, eps)).collect();
+    // Range kept of each entity; an entity that both its crossings would consume entirely
+    // gets arcs at both ends instead (the global trim then sorts it out).
+    let range = |joins: &[Join], i: usize| {
+        let t1 = match joins[i] {
+            Join::Cross { t, .. } => t,
+            _ => 1.0,
+        };
+        let t0 = match joins[(i + n - 1) % n] {
+            Join::Cross { u, .. } => u,
+            _ => 0.0,
+        };
+        (t0, t1)
+    };
+    loop {
+        let mut changed = false;
+        for i in 0..n {
+            let (t0, t1) = range(&joins, i);
+            if !raw[i].collapsed && t1 - t0 <= 0.0 {
+                joins[i] = Join::Arc;
+                joins[(i + n - 1) % n] = Join::Arc;
+                changed = true;
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    let mut out: Vec<Segment> = Vec::with_capacity(2 * n);
+    for i in 0..n {
+        let (t0, t1) = range(&joins, i);
+        if !raw[i].collapsed {
+            let s = if t0 > 0.0 || t1 < 1.0 { raw[i].seg.sub(t0, t1) } else { raw[i].seg };
+            if s.length() > 0.0 {
+                out.push(s);
+            }
+        }
+        if joins[i] == Join::Arc {
+            let next = &raw[(i + 1) % n];
+            let corner = l.vertices[(i + 1) % n].p;
+            let (from, to) = (raw[i].seg.b, next.seg.a);
+            let sweep = corner_sweep(from - corner, to - corner, distance);
+            let arc = Segment { a: from, b: to, bulge: (sweep / 4.0).tan() };
+            if arc.length() > 0.0 {
+                out.push(arc);
+            }
+        }
+    }
+    // Each segment starts exactly where the one before it ends.
+    for k in 0..out.len() {
+        let prev_end = out[(k + out.len() - 1) % out.len()].b;
+        out[k].a = prev_end;
+    }
+    out.retain(|s| s.a != s.b);
+    out
+}
+
+fn classify(l: &Loop, raw: &[RawEntity], i: usize, distance: f64, eps: f64) -> Join {
+    let n = raw.len();
+    let (a, b) = (&raw[i], &raw[(i + 1) % n]);
+    if a.seg.b.distance(b.seg.a) <= eps {
+        return Join::Meet;
+    }
+    let corner = l.vertices[(i + 1) % n].p;
+    let sweep = corner_sweep(a.seg.b - corner, b.seg.a - corner, distance);
+    let turns_away = sweep * distance < 0.0;
+    if !turns_away || a.collapsed || b.collapsed || n < 2 {
+        return Join::Arc;
+    }
+    let crossings = a.seg.crossings(&b.seg, eps);
+    let last = crossings.iter().max_by(|p, q| p.t.total_cmp(&q.t));
+    let first = crossings.iter().min_by(|p, q| p.u.total_cmp(&q.u));
+    match (last, first) {
+        (Some(x), Some(y)) if x == y => Join::Cross { t: x.t, u: x.u },
+        _ => Join::Arc,
+    }
+}
+
+/// Sweep of the join arc about the corner from `from` to `to` (both at the distance from it):
+/// the corner's turning angle; a full reversal goes round the corner's outside.
+fn corner_sweep(from: glam::DVec2, to: glam::DVec2, distance: f64) -> f64 {
+    let sweep = from.angle_to(to);
+    if PI - sweep.abs() < 1e-12 {
+        PI * distance.signum()
+    } else {
+        sweep
+    }
+}

@@ -1,0 +1,1 @@
+//! Arcs through curves.

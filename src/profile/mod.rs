@@ -1,0 +1,341 @@
+//! 2D profiles: closed loops of lines and arcs (vertex and bulge, as in DXF polylines), shapes
+//! made of outer loops and holes, and drawings read from DXF and SVG ([`import`]) and chained
+//! into loops ([`chain`]).
+
+pub mod arcfit;
+pub mod chain;
+pub mod import;
+
+use serde::{Deserialize, Serialize};
+
+use crate::geom::segment::{Rect, Segment};
+use crate::geom::DVec2;
+
+/// A loop corner and the bulge of the segment that leaves it (0: a line).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Vertex {
+    pub p: DVec2,
+    pub bulge: f64,
+}
+
+/// A closed loop: the last vertex's segment runs back to the first.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Loop {
+    pub vertices: Vec<Vertex>,
+}
+
+impl Loop {
+    /// The loop through chained segments (each starts where the one before ends).
+    pub fn from_segments(segments: &[Segment]) -> Loop {
+        Loop { vertices: segments.iter().map(|s| Vertex { p: s.a, bulge: s.bulge }).collect() }
+    }
+
+    /// A circle as two half arcs, counter-clockwise from its rightmost point.
+    pub fn circle(center: DVec2, radius: f64) -> Loop {
+        let r = DVec2::new(radius, 0.0);
+        Loop { vertices: vec![Vertex { p: center + r, bulge: 1.0 }, Vertex { p: center - r, bulge: 1.0 }] }
+    }
+
+    /// A rectangle, counter-clockwise.
+    pub fn rect(min: DVec2, max: DVec2) -> Loop {
+        let v = |x, y| Vertex { p: DVec2::new(x, y), bulge: 0.0 };
+        Loop { vertices: vec![v(min.x, min.y), v(max.x, min.y), v(max.x, max.y), v(min.x, max.y)] }
+    }
+
+    /// A polygon of lines through `points`.
+    pub fn polygon(points: &[DVec2]) -> Loop {
+        Loop { vertices: points.iter().map(|&p| Vertex { p, bulge: 0.0 }).collect() }
+    }
+
+    pub fn len(&self) -> usize {
+        self.vertices.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.vertices.is_empty()
+    }
+
+    pub fn segment(&self, i: usize) -> Segment {
+        let n = self.vertices.len();
+        let (v, w) = (self.vertices[i], self.vertices[(i + 1) % n]);
+        Segment { a: v.p, b: w.p, bulge: v.bulge }
+    }
+
+    pub fn segments(&self) -> impl Iterator<Item = Segment> + '_ {
+        (0..self.vertices.len()).map(|i| self.segment(i))
+    }
+
+    /// Signed area: positive when counter-clockwise. Chords by the shoelace formula, plus each
+    /// arc's circular segment, R²(θ − sin θ)/2 with the sweep's sign.
+    pub fn area(&self) -> f64 {
+        self.segments()
+            .map(|s| {
+                let chord = s.a.perp_dot(s.b) * 0.5;
+                match s.arc_geom() {
+                    Some(g) => chord + g.radius * g.radius * 0.5 * (g.sweep - g.sweep.sin()),
+                    None => chord,
+                }
+            })
+            .sum()
+    }
+
+    pub fn is_ccw(&self) -> bool {
+        self.area() > 0.0
+    }
+
+    pub fn length(&self) -> f64 {
+        self.segments().map(|s| s.length()).sum()
+    }
+
+    pub fn bounds(&self) -> Rect {
+        self.segments().fold(Rect::EMPTY, |r, s| r.union(s.bounds()))
+    }
+
+    /// The same loop run the other way.
+    pub fn reversed(&self) -> Loop {
+        let n = self.vertices.len();
+        let vertices = (0..n)
+            .map(|k| {
+                let i = n - 1 - k;
+                // Segment i (from i to i+1) becomes the segment from i+1 to i.
+                Vertex { p: self.vertices[(i + 1) % n].p, bulge: -self.vertices[i].bulge }
+            })
+            .collect();
+        Loop { vertices }
+    }
+
+    /// Whether `q` lies inside (crossings of a ray, arcs in monotone pieces).
+    pub fn contains(&self, q: DVec2) -> bool {
+        self.segments().map(|s| s.ray_crossings(q)).sum::<u32>() % 2 == 1
+    }
+
+    /// Distance from `q` to the loop.
+    pub fn distance_to(&self, q: DVec2) -> f64 {
+        self.segments().map(|s| s.distance_to(q)).fold(f64::INFINITY, f64::min)
+    }
+
+    pub fn translated(&self, by: DVec2) -> Loop {
+        Loop { vertices: self.vertices.iter().map(|v| Vertex { p: v.p + by, bulge: v.bulge }).collect() }
+    }
+
+    /// Rotated by `angle` (radians) about the origin.
+    pub fn rotated(&self, angle: f64) -> Loop {
+        let r = DVec2::from_angle(angle);
+        Loop { vertices: self.vertices.iter().map(|v| Vertex { p: r.rotate(v.p), bulge: v.bulge }).collect() }
+    }
+
+    /// The same loop starting at vertex `k`.
+    pub fn rotate_start(&self, k: usize) -> Loop {
+        let mut vertices = self.vertices.clone();
+        vertices.rotate_left(k % self.vertices.len().max(1));
+        Loop { vertices }
+    }
+
+    /// A point strictly inside the loop near its first segment (for nesting tests).
+    pub fn probe_point(&self) -> DVec2 {
+        let s = self.segment(0);
+        s.midpoint()
+    }
+}
+
+/// A region: outer loops counter-clockwise, holes clockwise, each hole inside an outer loop.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Shape {
+    pub loops: Vec<Loop>,
+}
+
+impl Shape {
+    /// The region bounded by `loops` (any orientation, any order): a loop nested inside an odd
+    /// number of others is a hole. Loops are turned to run counter-clockwise when outer and
+    /// clockwise when holes.
+    pub fn new(loops: Vec<Loop>) -> Shape {
+        let bounds: Vec<Rect> = loops.iter().map(|l| l.bounds()).collect();
+        let depth: Vec<usize> = (0..loops.len())
+            .map(|i| {
+                let p = loops[i].probe_point();
+                (0..loops.len())
+                    .filter(|&j| j != i && bounds[j].overlaps(&bounds[i]) && encloses(&loops[j], &loops[i], p))
+                    .count()
+            })
+            .collect();
+        let loops = loops
+            .into_iter()
+            .zip(depth)
+            .map(|(l, d)| if l.is_ccw() == (d % 2 == 0) { l } else { l.reversed() })
+            .collect();
+        Shape { loops }
+    }
+
+    /// A shape whose loops already run the right way.
+    pub fn from_oriented(loops: Vec<Loop>) -> Shape {
+        Shape { loops }
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.loops.is_empty()
+    }
+
+    pub fn area(&self) -> f64 {
+        self.loops.iter().map(|l| l.area()).sum()
+    }
+
+    pub fn length(&self) -> f64 {
+        self.loops.iter().map(|l| l.length()).sum()
+    }
+
+    pub fn bounds(&self) -> Rect {
+        self.loops.iter().fold(Rect::EMPTY, |r, l| r.union(l.bounds()))
+    }
+
+    /// Even-odd containment.
+    pub fn contains(&self, q: DVec2) -> bool {
+        self.loops.iter().filter(|l| l.contains(q)).count() % 2 == 1
+    }
+
+    pub fn distance_to(&self, q: DVec2) -> f64 {
+        self.loops.iter().map(|l| l.distance_to(q)).fold(f64::INFINITY, f64::min)
+    }
+
+    pub fn segments(&self) -> impl Iterator<Item = Segment> + '_ {
+        self.loops.iter().flat_map(|l| l.segments())
+    }
+
+    /// The outer loops, each with the holes directly inside it (its islands).
+    pub fn regions(&self) -> Vec<Shape> {
+        let outers: Vec<usize> = (0..self.loops.len()).filter(|&i| self.loops[i].is_ccw()).collect();
+        let mut regions: Vec<Vec<Loop>> = outers.iter().map(|&i| vec![self.loops[i].clone()]).collect();
+        for hole in self.loops.iter().filter(|l| !l.is_ccw()) {
+            // The smallest outer loop around the hole.
+            let p = hole.probe_point();
+            let owner = outers
+                .iter()
+                .enumerate()
+                .filter(|(_, &i)| encloses(&self.loops[i], hole, p))
+                .min_by(|a, b| self.loops[*a.1].area().total_cmp(&self.loops[*b.1].area()));
+            if let Some((k, _)) = owner {
+                regions[k].push(hole.clone());
+            }
+        }
+        regions.into_iter().map(Shape::from_oriented).collect()
+    }
+}
+
+/// Whether `outer` encloses `inner` (tested at `probe`, a point of `inner`; a point on the
+/// outer loop itself falls back to the inner loop's other vertices).
+fn encloses(outer: &Loop, inner: &Loop, probe: DVec2) -> bool {
+    let mut points = std::iter::once(probe).chain(inner.vertices.iter().map(|v| v.p));
+    let scale = outer.bounds().size().max_element().max(1.0);
+    points.find(|&p| outer.distance_to(p) > 1e-9 * scale).is_some_and(|p| outer.contains(p))
+}
+
+/// Where a chain of segments failed to close.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub struct OpenChain {
+    pub layer: String,
+    pub start: DVec2,
+    pub end: DVec2,
+    pub segments: usize,
+}
+
+/// A closed loop with the layer it was drawn on.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub struct DrawnLoop {
+    pub layer: String,
+    #[serde(flatten)]
+    pub path: Loop,
+}
+
+/// A 2D drawing read from a file, in millimetres.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub struct Drawing {
+    pub loops: Vec<DrawnLoop>,
+    pub open: Vec<OpenChain>,
+    /// Every layer that holds geometry, in the file's order.
+    pub layers: Vec<String>,
+    /// Entities that were ignored (text, dimensions, points ...), by kind, with counts.
+    pub ignored: Vec<(String, usize)>,
+}
+
+/// A drawing that cannot be machined as it is.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum ProfileError {
+    #[error("{} open chain{}: {}", .0.len(), if .0.len() == 1 { "" } else { "s" }, describe_open(.0))]
+    OpenChains(Vec<OpenChain>),
+    #[error("the drawing has no closed loops{0}")]
+    Empty(String),
+}
+
+fn describe_open(open: &[OpenChain]) -> String {
+    let mut parts: Vec<String> = open
+        .iter()
+        .take(5)
+        .map(|o| {
+            format!("layer {} from ({:.3}, {:.3}) to ({:.3}, {:.3})", o.layer, o.start.x, o.start.y, o.end.x, o.end.y)
+        })
+        .collect();
+    if open.len() > 5 {
+        parts.push(format!("and {} more", open.len() - 5));
+    }
+    parts.join("; ")
+}
+
+impl Drawing {
+    /// The loops on `layers` (all layers when empty) as one shape; an open chain on those
+    /// layers is an error that says where it is.
+    pub fn shape(&self, layers: &[String]) -> Result<Shape, ProfileError> {
+        let on = |layer: &String| layers.is_empty() || layers.contains(layer);
+        let open: Vec<OpenChain> = self.open.iter().filter(|o| on(&o.layer)).cloned().collect();
+        if !open.is_empty() {
+            return Err(ProfileError::OpenChains(open));
+        }
+        let loops: Vec<Loop> = self.loops.iter().filter(|l| on(&l.layer)).map(|l| l.path.clone()).collect();
+        if loops.is_empty() {
+            let which = if layers.is_empty() { String::new() } else { format!(" on layers {}", layers.join(", ")) };
+            return Err(ProfileError::Empty(which));
+        }
+        Ok(Shape::new(loops))
+    }
+
+    pub fn bounds(&self) -> Rect {
+        let loops = self.loops.iter().fold(Rect::EMPTY, |r, l| r.union(l.path.bounds()));
+        self.open.iter().fold(loops, |r, o| r.grow(o.start).grow(o.end))
+    }
+
+    /// Moves and scales the drawing (mm per drawing unit).
+    pub fn transform(&mut self, scale: f64, offset: DVec2) {
+        let f = |p: DVec2| p * scale + offset;
+        for l in &mut self.loops {
+            for v in &mut l.path.vertices {
+                v.p = f(v.p);
+            }
+        }
+        for o in &mut self.open {
+            o.start = f(o.start);
+            o.end = f(o.end);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn area_containment_and_nesting() {
+        let c = Loop::circle(DVec2::ZERO, 2.0);
+        assert!((c.area() - std::f64::consts::PI * 4.0).abs() < 1e-9);
+        assert!(c.contains(DVec2::new(1.9, 0.1)) && !c.contains(DVec2::new(1.5, 1.5)));
+        let r = Loop::rect(DVec2::splat(-5.0), DVec2::splat(5.0));
+        assert!((r.reversed().area() + 100.0).abs() < 1e-9);
+        let shape = Shape::new(vec![c.clone(), r.reversed()]);
+        assert!(shape.loops[1].is_ccw() && !shape.loops[0].is_ccw());
+        assert!((shape.area() - (100.0 - std::f64::consts::PI * 4.0)).abs() < 1e-9);
+        assert!(!shape.contains(DVec2::ZERO) && shape.contains(DVec2::new(4.0, 4.0)));
+        let regions = shape.regions();
+        assert_eq!(regions.len(), 1);
+        assert_eq!(regions[0].loops.len(), 2);
+    }
+}
