@@ -257,6 +257,8 @@ pub struct Drawing {
     pub layers: Vec<String>,
     /// Entities that were ignored (text, dimensions, points ...), by kind, with counts.
     pub ignored: Vec<(String, usize)>,
+    /// The file's units, as read (the drawing itself is in mm).
+    pub units: String,
 }
 
 /// A drawing that cannot be machined as it is.

@@ -1,0 +1,289 @@
+//! ASCII DXF: LINE, ARC, CIRCLE, LWPOLYLINE and POLYLINE (with bulges), ELLIPSE and SPLINE
+//! (as arcs within tolerance) from the ENTITIES section, with their layers; `$INSUNITS`
+//! scales to millimetres. Text, dimensions, points, hatches and block references are counted
+//! and ignored. Entities drawn with a mirrored extrusion (210/220/230 = 0, 0, −1) are mirrored.
+//! The group-code reader is a few lines; the entity geometry is swarf's own.
+
+use std::f64::consts::TAU;
+
+use super::{DrawingError, Pieces};
+use crate::geom::segment::Segment;
+use crate::geom::{DVec2, Tolerances};
+use crate::profile::arcfit::fit_arcs;
+
+/// One entity: its type, the line it starts on, and its group codes and values.
+struct Entity<'a> {
+    kind: &'a str,
+    line: usize,
+    groups: Vec<(i32, &'a str)>,
+}
+
+impl Entity<'_> {
+    fn text(&self, code: i32) -> Option<&str> {
+        self.groups.iter().find(|g| g.0 == code).map(|g| g.1)
+    }
+    fn num(&self, code: i32) -> Result<Option<f64>, DrawingError> {
+        match self.text(code) {
+            None => Ok(None),
+            Some(t) => parse(t, self.line).map(Some),
+        }
+    }
+    fn need(&self, code: i32) -> Result<f64, DrawingError> {
+        self.num(code)?.ok_or_else(|| DrawingError::Dxf { line: self.line, message: format!("{} without group {code}", self.kind) })
+    }
+    fn or(&self, code: i32, default: f64) -> Result<f64, DrawingError> {
+        Ok(self.num(code)?.unwrap_or(default))
+    }
+    fn all(&self, code: i32) -> Result<Vec<f64>, DrawingError> {
+        self.groups.iter().filter(|g| g.0 == code).map(|g| parse(g.1, self.line)).collect()
+    }
+    fn layer(&self) -> &str {
+        self.text(8).unwrap_or("0")
+    }
+    /// Whether the entity's extrusion points down (its OCS is mirrored in x).
+    fn mirrored(&self) -> Result<bool, DrawingError> {
+        Ok(self.or(230, 1.0)? < 0.0)
+    }
+}
+
+fn parse(t: &str, line: usize) -> Result<f64, DrawingError> {
+    let v: f64 = t.trim().parse().map_err(|_| DrawingError::Dxf { line, message: format!("'{}' is not a number", t.trim()) })?;
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(DrawingError::NonFinite(format!("line {line}: {v}")))
+    }
+}
+
+/// Millimetres per drawing unit for a `$INSUNITS` value, and its name.
+fn units(code: i64) -> (f64, &'static str) {
+    match code {
+        1 => (25.4, "inch"),
+        2 => (304.8, "feet"),
+        4 => (1.0, "mm"),
+        5 => (10.0, "cm"),
+        6 => (1000.0, "m"),
+        8 => (25.4e-6, "microinch"),
+        9 => (25.4e-3, "mil"),
+        10 => (914.4, "yard"),
+        13 => (1e-3, "micron"),
+        14 => (100.0, "dm"),
+        _ => (1.0, "unitless (read as mm)"),
+    }
+}
+
+pub(crate) fn read_dxf(bytes: &[u8], tol: &Tolerances) -> Result<Pieces, DrawingError> {
+    if bytes.starts_with(b"AutoCAD Binary DXF") {
+        return Err(DrawingError::BinaryDxf);
+    }
+    let text = String::from_utf8_lossy(bytes);
+    let lines: Vec<&str> = text.lines().collect();
+    if lines.len() < 2 {
+        return Err(DrawingError::Dxf { line: 1, message: "too short to be a DXF file".into() });
+    }
+    let mut pairs: Vec<(i32, &str, usize)> = Vec::with_capacity(lines.len() / 2);
+    for k in 0..lines.len() / 2 {
+        let line = 2 * k + 1;
+        let code: i32 = lines[2 * k]
+            .trim()
+            .parse()
+            .map_err(|_| DrawingError::Dxf { line, message: format!("expected a group code, found '{}'", lines[2 * k].trim()) })?;
+        pairs.push((code, lines[2 * k + 1].trim(), line + 1));
+    }
+    // Sections: the header's $INSUNITS and the entities.
+    let mut scale = (1.0, "unitless (read as mm)");
+    let mut entities: Vec<Entity> = Vec::new();
+    let mut section = "";
+    let mut i = 0;
+    while i < pairs.len() {
+        let (code, value, line) = pairs[i];
+        if code == 0 && value == "SECTION" {
+            section = pairs.get(i + 1).map(|p| p.1).unwrap_or("");
+            i += 2;
+            continue;
+        }
+        if code == 0 && value == "ENDSEC" {
+            section = "";
+            i += 1;
+            continue;
+        }
+        if section == "HEADER" && code == 9 && value == "$INSUNITS" {
+            if let Some(p) = pairs.get(i + 1) {
+                scale = units(p.1.parse().unwrap_or(0));
+            }
+        }
+        if section == "ENTITIES" && code == 0 {
+            let mut groups = Vec::new();
+            let mut j = i + 1;
+            while j < pairs.len() && pairs[j].0 != 0 {
+                groups.push((pairs[j].0, pairs[j].1));
+                j += 1;
+            }
+            entities.push(Entity { kind: value, line, groups });
+            i = j;
+            continue;
+        }
+        i += 1;
+    }
+    let mut pieces = Pieces { units: scale.1.to_string(), ..Pieces::default() };
+    let s = scale.0;
+    let mut k = 0;
+    while k < entities.len() {
+        let e = &entities[k];
+        let mut out: Vec<Segment> = Vec::new();
+        match e.kind {
+            "LINE" => {
+                let a = DVec2::new(e.need(10)?, e.need(20)?);
+                let b = DVec2::new(e.need(11)?, e.need(21)?);
+                out.push(Segment::line(a, b));
+            }
+            "ARC" | "CIRCLE" => {
+                let c = DVec2::new(e.need(10)?, e.need(20)?);
+                let r = e.need(40)?;
+                let (start, sweep) = if e.kind == "CIRCLE" {
+                    (0.0, TAU)
+                } else {
+                    let (a0, a1) = (e.need(50)?.to_radians(), e.need(51)?.to_radians());
+                    let mut sweep = (a1 - a0).rem_euclid(TAU);
+                    if sweep == 0.0 {
+                        sweep = TAU;
+                    }
+                    (a0, sweep)
+                };
+                if r > 0.0 {
+                    // Halves, so no segment's bulge runs away near a full turn.
+                    let n = if sweep > TAU / 2.0 { 2 } else { 1 };
+                    for h in 0..n {
+                        out.push(Segment::arc_from(c, r, start + sweep * h as f64 / n as f64, sweep / n as f64));
+                    }
+                }
+            }
+            "LWPOLYLINE" => {
+                let closed = (e.or(70, 0.0)? as i64) & 1 == 1;
+                let mut vertices: Vec<(DVec2, f64)> = Vec::new();
+                for (code, value) in &e.groups {
+                    match code {
+                        10 => vertices.push((DVec2::new(parse(value, e.line)?, 0.0), 0.0)),
+                        20 => {
+                            if let Some(v) = vertices.last_mut() {
+                                v.0.y = parse(value, e.line)?;
+                            }
+                        }
+                        42 => {
+                            if let Some(v) = vertices.last_mut() {
+                                v.1 = parse(value, e.line)?;
+                            }
+                        }
+                        _ => {}
+                    }
+                }
+                polyline(&vertices, closed, &mut out);
+            }
+            "POLYLINE" => {
+                let flags = e.or(70, 0.0)? as i64;
+                let mut vertices = Vec::new();
+                let mut j = k + 1;
+                while j < entities.len() && entities[j].kind == "VERTEX" {
+                    let v = &entities[j];
+                    vertices.push((DVec2::new(v.or(10, 0.0)?, v.or(20, 0.0)?), v.or(42, 0.0)?));
+                    j += 1;
+                }
+                if j < entities.len() && entities[j].kind == "SEQEND" {
+                    j += 1;
+                }
+                if flags & (16 | 64) != 0 {
+                    pieces.ignore("POLYLINE meshes");
+                } else {
+                    polyline(&vertices, flags & 1 == 1, &mut out);
+                }
+                let mirrored = e.mirrored()?;
+                emit(&mut pieces, out, e.layer(), s, mirrored);
+                k = j;
+                continue;
+            }
+            "ELLIPSE" => {
+                let c = DVec2::new(e.need(10)?, e.need(20)?);
+                let major = DVec2::new(e.need(11)?, e.need(21)?);
+                let ratio = e.need(40)?;
+                let (t0, mut t1) = (e.or(41, 0.0)?, e.or(42, TAU)?);
+                if t1 <= t0 {
+                    t1 += TAU;
+                }
+                let minor = major.perp() * ratio;
+                let f = |t: f64| c + major * t.cos() + minor * t.sin();
+                let pieces_n = ((t1 - t0) / (TAU / 8.0)).ceil().max(1.0) as usize;
+                fit_arcs(&f, t0, t1, pieces_n, tol.arc_fit / s, &mut out);
+            }
+            "SPLINE" => spline(e, tol.arc_fit / s, &mut out)?,
+            "VERTEX" | "SEQEND" => {}
+            other => pieces.ignore(other),
+        }
+        let mirrored = e.mirrored()?;
+        emit(&mut pieces, out, e.layer(), s, mirrored);
+        k += 1;
+    }
+    Ok(pieces)
+}
+
+/// Scales (and mirrors) segments into millimetres.
+fn emit(pieces: &mut Pieces, out: Vec<Segment>, layer: &str, scale: f64, mirrored: bool) {
+    for seg in out {
+        let f = |p: DVec2| if mirrored { DVec2::new(-p.x, p.y) * scale } else { p * scale };
+        let bulge = if mirrored { -seg.bulge } else { seg.bulge };
+        pieces.push(Segment { a: f(seg.a), b: f(seg.b), bulge }, layer);
+    }
+}
+
+fn polyline(vertices: &[(DVec2, f64)], closed: bool, out: &mut Vec<Segment>) {
+    let n = vertices.len();
+    let count = if closed { n } else { n.saturating_sub(1) };
+    for i in 0..count {
+        let (a, bulge) = vertices[i];
+        let b = vertices[(i + 1) % n].0;
+        out.push(Segment { a, b, bulge });
+    }
+}
+
+/// A B-spline (rational when it has weights) evaluated by de Boor's algorithm and fitted
+/// with arcs; a spline with only fit points is taken through them as lines.
+fn spline(e: &Entity, tol: f64, out: &mut Vec<Segment>) -> Result<(), DrawingError> {
+    let degree = e.or(71, 3.0)? as usize;
+    let knots = e.all(40)?;
+    let xs = e.all(10)?;
+    let ys = e.all(20)?;
+    let weights = e.all(41)?;
+    let n = xs.len().min(ys.len());
+    if n == 0 {
+        let (fx, fy) = (e.all(11)?, e.all(21)?);
+        let fit: Vec<(DVec2, f64)> = fx.iter().zip(&fy).map(|(&x, &y)| (DVec2::new(x, y), 0.0)).collect();
+        polyline(&fit, false, out);
+        return Ok(());
+    }
+    if degree == 0 || knots.len() != n + degree + 1 {
+        return Err(DrawingError::Dxf { line: e.line, message: format!("SPLINE with {n} control points, degree {degree} and {} knots", knots.len()) });
+    }
+    let w: Vec<f64> = if weights.len() == n { weights } else { vec![1.0; n] };
+    let ctrl: Vec<DVec2> = (0..n).map(|i| DVec2::new(xs[i], ys[i])).collect();
+    let (t0, t1) = (knots[degree], knots[n]);
+    let eval = |t: f64| -> DVec2 {
+        // The knot span holding t.
+        let mut span = degree;
+        while span < n - 1 && knots[span + 1] <= t {
+            span += 1;
+        }
+        let mut d: Vec<(DVec2, f64)> = (0..=degree).map(|j| (ctrl[span - degree + j] * w[span - degree + j], w[span - degree + j])).collect();
+        for r in 1..=degree {
+            for j in (r..=degree).rev() {
+                let i = span - degree + j;
+                let denom = knots[i + degree + 1 - r] - knots[i];
+                let alpha = if denom == 0.0 { 0.0 } else { (t - knots[i]) / denom };
+                d[j] = (d[j - 1].0 * (1.0 - alpha) + d[j].0 * alpha, d[j - 1].1 * (1.0 - alpha) + d[j].1 * alpha);
+            }
+        }
+        d[degree].0 / d[degree].1
+    };
+    if t1 > t0 {
+        fit_arcs(&eval, t0, t1, (n - degree).max(1) * 2, tol, out);
+    }
+    Ok(())
+}

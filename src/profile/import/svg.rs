@@ -1,0 +1,231 @@
+//! SVG: paths (lines, quadratic and cubic Béziers, elliptical arcs), rect (with rounded
+//! corners), circle, ellipse, polygon, polyline and line, under nested transforms. Curves
+//! become arcs within tolerance after the transforms (so skewed circles stay right). User
+//! units become millimetres through the root's width/height and viewBox, else at 96 px per
+//! inch; y is flipped so the drawing reads as on screen. Parsing is roxmltree's and
+//! svgtypes'; what is made of the geometry is swarf's own.
+
+use std::str::FromStr;
+
+use glam::DAffine2;
+use roxmltree::Node;
+use svgtypes::{Length, LengthUnit, PointsParser, SimplePathSegment, SimplifyingPathParser, Transform};
+
+use super::{DrawingError, Pieces};
+use crate::geom::segment::Segment;
+use crate::geom::{DVec2, Tolerances};
+use crate::profile::arcfit::fit_arcs;
+
+const MM_PER_PX: f64 = 25.4 / 96.0;
+
+fn mm_per(unit: LengthUnit) -> Option<f64> {
+    match unit {
+        LengthUnit::None | LengthUnit::Px => Some(MM_PER_PX),
+        LengthUnit::Mm => Some(1.0),
+        LengthUnit::Cm => Some(10.0),
+        LengthUnit::In => Some(25.4),
+        LengthUnit::Pt => Some(25.4 / 72.0),
+        LengthUnit::Pc => Some(25.4 / 6.0),
+        _ => None,
+    }
+}
+
+fn length_mm(text: Option<&str>) -> Option<f64> {
+    let l = Length::from_str(text?).ok()?;
+    Some(l.number * mm_per(l.unit)?)
+}
+
+fn number(node: &Node, name: &str) -> f64 {
+    node.attribute(name).and_then(|t| Length::from_str(t).ok()).map(|l| l.number).filter(|v| v.is_finite()).unwrap_or(0.0)
+}
+
+struct Reader<'t> {
+    tol: &'t Tolerances,
+    pieces: Pieces,
+}
+
+pub(crate) fn read_svg(bytes: &[u8], tol: &Tolerances) -> Result<Pieces, DrawingError> {
+    let text = std::str::from_utf8(bytes).map_err(|_| DrawingError::Svg("not UTF-8 text".into()))?;
+    let doc = roxmltree::Document::parse(text).map_err(|e| DrawingError::Svg(e.to_string()))?;
+    let root = doc.root_element();
+    if root.tag_name().name() != "svg" {
+        return Err(DrawingError::Svg(format!("the root element is <{}>, not <svg>", root.tag_name().name())));
+    }
+    // User units to mm: width over the viewBox's width when both are given.
+    let view_box: Option<Vec<f64>> = root
+        .attribute("viewBox")
+        .map(|v| v.split(|c: char| c == ',' || c.is_whitespace()).filter(|s| !s.is_empty()).filter_map(|s| s.parse().ok()).collect());
+    let mut to_mm = DAffine2::from_scale(DVec2::new(MM_PER_PX, -MM_PER_PX));
+    let mut units = "px (96 per inch)".to_string();
+    if let Some(vb) = view_box.filter(|v| v.len() == 4 && v[2] > 0.0 && v[3] > 0.0) {
+        let w = length_mm(root.attribute("width")).unwrap_or(vb[2] * MM_PER_PX);
+        let h = length_mm(root.attribute("height")).unwrap_or(vb[3] * MM_PER_PX);
+        to_mm = DAffine2::from_scale(DVec2::new(w / vb[2], -h / vb[3])) * DAffine2::from_translation(DVec2::new(-vb[0], -vb[1]));
+        units = format!("viewBox scaled to {w:.3} × {h:.3} mm");
+    }
+    let mut reader = Reader { tol, pieces: Pieces { units, ..Pieces::default() } };
+    reader.walk(root, to_mm, "0");
+    Ok(reader.pieces)
+}
+
+fn hidden(node: &Node) -> bool {
+    node.attribute("display") == Some("none")
+        || node.attribute("style").is_some_and(|s| s.replace(' ', "").contains("display:none"))
+}
+
+impl Reader<'_> {
+    fn walk(&mut self, node: Node, parent: DAffine2, layer: &str) {
+        for child in node.children().filter(|c| c.is_element()) {
+            if hidden(&child) {
+                continue;
+            }
+            let mut m = parent;
+            if let Some(t) = child.attribute("transform") {
+                match Transform::from_str(t) {
+                    Ok(t) => m = parent * DAffine2::from_cols_array(&[t.a, t.b, t.c, t.d, t.e, t.f]),
+                    Err(_) => {
+                        self.pieces.ignore("elements with unreadable transforms");
+                        continue;
+                    }
+                }
+            }
+            let name = child.tag_name().name();
+            match name {
+                "g" | "a" | "switch" => {
+                    let label = child
+                        .attributes()
+                        .find(|a| a.name() == "label")
+                        .map(|a| a.value())
+                        .or_else(|| (child.attribute("groupmode") == Some("layer")).then(|| child.attribute("id")).flatten());
+                    let label = label.map(str::to_string).unwrap_or_else(|| layer.to_string());
+                    self.walk(child, m, &label);
+                }
+                "svg" => self.walk(child, m, layer),
+                "path" => self.path(child.attribute("d").unwrap_or(""), m, layer),
+                "rect" => self.rect(&child, m, layer),
+                "circle" | "ellipse" => {
+                    let (cx, cy) = (number(&child, "cx"), number(&child, "cy"));
+                    let (rx, ry) = if name == "circle" {
+                        (number(&child, "r"), number(&child, "r"))
+                    } else {
+                        (number(&child, "rx"), number(&child, "ry"))
+                    };
+                    if rx > 0.0 && ry > 0.0 {
+                        self.ellipse_arc(m, DVec2::new(cx, cy), DVec2::new(rx, ry), 0.0, std::f64::consts::TAU, layer);
+                    }
+                }
+                "polygon" | "polyline" => {
+                    let points: Vec<DVec2> = PointsParser::from(child.attribute("points").unwrap_or("")).map(|(x, y)| DVec2::new(x, y)).collect();
+                    self.lines(&points, name == "polygon", m, layer);
+                }
+                "line" => {
+                    let a = DVec2::new(number(&child, "x1"), number(&child, "y1"));
+                    let b = DVec2::new(number(&child, "x2"), number(&child, "y2"));
+                    self.lines(&[a, b], false, m, layer);
+                }
+                "defs" | "clipPath" | "mask" | "symbol" | "marker" | "pattern" | "title" | "desc" | "metadata" | "namedview" | "style" => {}
+                "text" | "image" | "use" => self.pieces.ignore(name),
+                _ => {}
+            }
+        }
+    }
+
+    fn lines(&mut self, points: &[DVec2], closed: bool, m: DAffine2, layer: &str) {
+        let n = points.len();
+        let count = if closed { n } else { n.saturating_sub(1) };
+        for i in 0..count {
+            let (a, b) = (m.transform_point2(points[i]), m.transform_point2(points[(i + 1) % n]));
+            if a != b {
+                self.pieces.push(Segment::line(a, b), layer);
+            }
+        }
+    }
+
+    fn curve(&mut self, f: &dyn Fn(f64) -> DVec2, t0: f64, t1: f64, pieces: usize, layer: &str) {
+        let mut out = Vec::new();
+        fit_arcs(f, t0, t1, pieces, self.tol.arc_fit, &mut out);
+        for s in out {
+            self.pieces.push(s, layer);
+        }
+    }
+
+    fn ellipse_arc(&mut self, m: DAffine2, c: DVec2, r: DVec2, t0: f64, t1: f64, layer: &str) {
+        let f = |t: f64| m.transform_point2(c + DVec2::new(r.x * t.cos(), r.y * t.sin()));
+        let n = ((t1 - t0).abs() / (std::f64::consts::TAU / 8.0)).ceil().max(1.0) as usize;
+        self.curve(&f, t0, t1, n, layer);
+    }
+
+    fn rect(&mut self, node: &Node, m: DAffine2, layer: &str) {
+        let (x, y, w, h) = (number(node, "x"), number(node, "y"), number(node, "width"), number(node, "height"));
+        if !(w > 0.0 && h > 0.0) {
+            return;
+        }
+        let (mut rx, mut ry) = (number(node, "rx"), number(node, "ry"));
+        if node.attribute("rx").is_none() {
+            rx = ry;
+        }
+        if node.attribute("ry").is_none() {
+            ry = rx;
+        }
+        let (rx, ry) = (rx.clamp(0.0, w / 2.0), ry.clamp(0.0, h / 2.0));
+        if rx == 0.0 || ry == 0.0 {
+            let p = |px, py| DVec2::new(px, py);
+            self.lines(&[p(x, y), p(x + w, y), p(x + w, y + h), p(x, y + h)], true, m, layer);
+            return;
+        }
+        use std::f64::consts::FRAC_PI_2 as Q;
+        let corners = [(x + w - rx, y + ry, -Q), (x + w - rx, y + h - ry, 0.0), (x + rx, y + h - ry, Q), (x + rx, y + ry, 2.0 * Q)];
+        for (k, &(cx, cy, start)) in corners.iter().enumerate() {
+            self.ellipse_arc(m, DVec2::new(cx, cy), DVec2::new(rx, ry), start, start + Q, layer);
+            let (nx, ny, _) = corners[(k + 1) % 4];
+            let end = DVec2::new(cx, cy) + DVec2::new(rx * (start + Q).cos(), ry * (start + Q).sin());
+            let next = DVec2::new(nx, ny) + DVec2::new(rx * (start + Q).cos(), ry * (start + Q).sin());
+            self.lines(&[end, next], false, m, layer);
+        }
+    }
+
+    fn path(&mut self, d: &str, m: DAffine2, layer: &str) {
+        let (mut start, mut at) = (DVec2::ZERO, DVec2::ZERO);
+        for seg in SimplifyingPathParser::from(d) {
+            let Ok(seg) = seg else {
+                self.pieces.ignore("path data after an error");
+                break;
+            };
+            match seg {
+                SimplePathSegment::MoveTo { x, y } => {
+                    start = DVec2::new(x, y);
+                    at = start;
+                }
+                SimplePathSegment::LineTo { x, y } => {
+                    let to = DVec2::new(x, y);
+                    self.lines(&[at, to], false, m, layer);
+                    at = to;
+                }
+                SimplePathSegment::CurveTo { x1, y1, x2, y2, x, y } => {
+                    let (p0, p1, p2, p3) = (at, DVec2::new(x1, y1), DVec2::new(x2, y2), DVec2::new(x, y));
+                    let f = |t: f64| {
+                        let u = 1.0 - t;
+                        m.transform_point2(p0 * (u * u * u) + p1 * (3.0 * u * u * t) + p2 * (3.0 * u * t * t) + p3 * (t * t * t))
+                    };
+                    self.curve(&f, 0.0, 1.0, 2, layer);
+                    at = p3;
+                }
+                SimplePathSegment::Quadratic { x1, y1, x, y } => {
+                    let (p0, p1, p2) = (at, DVec2::new(x1, y1), DVec2::new(x, y));
+                    let f = |t: f64| {
+                        let u = 1.0 - t;
+                        m.transform_point2(p0 * (u * u) + p1 * (2.0 * u * t) + p2 * (t * t))
+                    };
+                    self.curve(&f, 0.0, 1.0, 2, layer);
+                    at = p2;
+                }
+                SimplePathSegment::ClosePath => {
+                    if at != start {
+                        self.lines(&[at, start], false, m, layer);
+                    }
+                    at = start;
+                }
+            }
+        }
+    }
+}
