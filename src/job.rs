@@ -7,7 +7,11 @@ use serde::{Deserialize, Serialize};
 use crate::cutter::Cutter;
 use crate::error::{Error, Result};
 use crate::geom::{Aabb, DVec3, Tolerances};
+use crate::geom::DVec2;
 use crate::mesh::{placement::PartSetup, Mesh};
+use crate::profile::Drawing;
+use crate::strategy::pocket2d::Pocket2d;
+use crate::strategy::profile2d::Profile2d;
 use crate::post::{write_gcode, PostSettings};
 use crate::progress::Progress;
 use crate::sim::program::{program_moves, ProgramMove};
@@ -147,7 +151,128 @@ impl Default for FinishRaster {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "camelCase")]
 pub enum Operation {
+    /// On a part (mesh).
     FinishRaster(FinishRaster),
+    /// On a drawing (DXF, SVG).
+    Profile2d(Profile2d),
+    /// On a drawing (DXF, SVG).
+    Pocket2d(Pocket2d),
+}
+
+impl Operation {
+    pub fn tool(&self) -> u32 {
+        match self {
+            Operation::FinishRaster(o) => o.tool,
+            Operation::Profile2d(o) => o.tool,
+            Operation::Pocket2d(o) => o.tool,
+        }
+    }
+
+    pub fn name(&self) -> &str {
+        match self {
+            Operation::FinishRaster(o) => &o.name,
+            Operation::Profile2d(o) => &o.name,
+            Operation::Pocket2d(o) => &o.name,
+        }
+    }
+
+    /// Material the operation leaves on the part (mm).
+    pub fn allowance(&self) -> f64 {
+        match self {
+            Operation::FinishRaster(o) => o.allowance,
+            Operation::Profile2d(o) => o.leave_stock,
+            Operation::Pocket2d(o) => o.leave_stock,
+        }
+    }
+
+    /// Whether it works on drawings rather than parts.
+    pub fn is_2d(&self) -> bool {
+        !matches!(self, Operation::FinishRaster(_))
+    }
+}
+
+/// The units a drawing's numbers are in.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub enum DrawingUnits {
+    /// As the file says ($INSUNITS, the SVG's width and viewBox; px at 96 per inch).
+    #[default]
+    File,
+    Mm,
+    Inch,
+}
+
+/// Where a drawing is put.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub enum DrawingOrigin {
+    /// As drawn.
+    Keep,
+    /// Its lower left corner at X0 Y0.
+    #[default]
+    LowerLeft,
+    /// Its centre at X0 Y0.
+    Center,
+}
+
+/// How a drawing becomes a sheet on the machine: the stock's top is Z0.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, rename_all = "camelCase")]
+pub struct DrawingSetup {
+    /// Default value: file.
+    pub units: DrawingUnits,
+    /// Default value: lower left.
+    pub origin: DrawingOrigin,
+    /// Thickness of the sheet (mm). Default value: 6.
+    pub thickness: f64,
+}
+
+impl Default for DrawingSetup {
+    fn default() -> Self {
+        DrawingSetup { units: DrawingUnits::File, origin: DrawingOrigin::LowerLeft, thickness: 6.0 }
+    }
+}
+
+impl DrawingSetup {
+    /// Scales the drawing to the chosen units and moves it to the chosen origin.
+    pub fn apply(&self, d: &mut Drawing) {
+        let wanted = match self.units {
+            DrawingUnits::File => d.scale,
+            DrawingUnits::Mm => 1.0,
+            DrawingUnits::Inch => 25.4,
+        };
+        let k = if d.scale > 0.0 { wanted / d.scale } else { 1.0 };
+        d.transform(k, DVec2::ZERO);
+        d.scale = wanted;
+        let b = d.bounds();
+        let shift = match self.origin {
+            DrawingOrigin::Keep => DVec2::ZERO,
+            DrawingOrigin::LowerLeft => -b.min,
+            DrawingOrigin::Center => -b.center(),
+        };
+        if !b.is_empty() {
+            d.transform(1.0, shift);
+        }
+    }
+}
+
+/// What a job works on: a part, or a drawing for 2.5D operations.
+#[derive(Clone, Debug)]
+pub enum Workpiece {
+    Mesh(Mesh),
+    Drawing(Drawing),
+}
+
+impl From<Mesh> for Workpiece {
+    fn from(m: Mesh) -> Self {
+        Workpiece::Mesh(m)
+    }
+}
+
+impl From<Drawing> for Workpiece {
+    fn from(d: Drawing) -> Self {
+        Workpiece::Drawing(d)
+    }
 }
 
 /// Simulating the program after it is made (seed 002), to verify it and to show the cut.
@@ -187,6 +312,8 @@ pub struct Job {
     /// Program title. Default value: "swarf job".
     pub name: String,
     pub part: PartSetup,
+    /// How a DXF or SVG drawing is placed (ignored for parts).
+    pub drawing: DrawingSetup,
     pub stock: Stock,
     pub tools: Vec<Tool>,
     pub operations: Vec<Operation>,
@@ -200,6 +327,7 @@ impl Default for Job {
         Job {
             name: "swarf job".into(),
             part: PartSetup::default(),
+            drawing: DrawingSetup::default(),
             stock: Stock::default(),
             tools: vec![Tool::default()],
             operations: vec![Operation::FinishRaster(FinishRaster::default())],
@@ -213,8 +341,10 @@ impl Default for Job {
 /// What a job produced.
 #[derive(Clone, Debug)]
 pub struct JobOutput {
-    /// The part as placed (mm, Z up).
+    /// The part as placed (mm, Z up); empty for a drawing.
     pub part: Mesh,
+    /// The drawing as placed, for 2.5D jobs.
+    pub drawing: Option<Drawing>,
     pub stock: Aabb,
     pub clearance_z: f64,
     pub paths: Vec<Toolpath>,
@@ -229,6 +359,14 @@ pub struct JobOutput {
 }
 
 impl Job {
+    /// The default job for a drawing: a φ3 flat end mill cutting the drawing's parts out of
+    /// a 6 mm sheet (holes inside, outlines outside), four tabs a part.
+    pub fn default_for_drawing() -> Job {
+        let tool = Tool { number: 1, name: "3 mm flat end mill".into(), cutter: Cutter::flat(3.0), feed_rate: 800.0, plunge_rate: 200.0, ..Tool::default() };
+        let profile = Profile2d { tabs: crate::strategy::profile2d::Tabs { count: 4, ..Default::default() }, ..Profile2d::default() };
+        Job { name: "swarf sheet job".into(), tools: vec![tool], operations: vec![Operation::Profile2d(profile)], ..Job::default() }
+    }
+
     pub fn from_json(text: &str) -> Result<Job> {
         serde_json::from_str(text).map_err(|e| Error::Job(e.to_string()))
     }
@@ -245,12 +383,7 @@ impl Job {
 
     /// The least material any operation leaves on the part (mm); infinite without operations.
     pub fn allowance(&self) -> f64 {
-        self.operations
-            .iter()
-            .map(|op| match op {
-                Operation::FinishRaster(f) => f.allowance,
-            })
-            .fold(f64::INFINITY, f64::min)
+        self.operations.iter().map(Operation::allowance).fold(f64::INFINITY, f64::min)
     }
 
     /// Checks the job before any work.
@@ -270,7 +403,27 @@ impl Job {
         }
         positive("the rapid rate", self.post.rapid_rate)?;
         for op in &self.operations {
+            self.tool(op.tool())?;
             match op {
+                Operation::Profile2d(p) => {
+                    positive("the profile's step-down", p.stepdown)?;
+                    positive("the ramp angle", p.ramp_angle)?;
+                    if let Some(d) = p.depth {
+                        positive("the profile's depth", d)?;
+                    }
+                    if !(p.leave_stock.is_finite() && p.leave_stock >= 0.0) {
+                        return Err(Error::Job("the leave-stock must be zero or more".into()));
+                    }
+                }
+                Operation::Pocket2d(p) => {
+                    positive("the pocket's depth", p.depth)?;
+                    positive("the pocket's step-down", p.stepdown)?;
+                    positive("the step-over", p.stepover)?;
+                    positive("the ramp angle", p.ramp_angle)?;
+                    if !(p.leave_stock.is_finite() && p.leave_stock >= 0.0) {
+                        return Err(Error::Job("the leave-stock must be zero or more".into()));
+                    }
+                }
                 Operation::FinishRaster(f) => {
                     self.tool(f.tool)?;
                     positive("the stepover", f.stepover)?;
@@ -285,9 +438,16 @@ impl Job {
     }
 }
 
-/// Places the part, runs every operation and writes the G-code.
-pub fn run(job: &Job, mut part: Mesh, progress: &mut Progress) -> Result<JobOutput> {
+/// Places the part (or drawing), runs every operation and writes the G-code.
+pub fn run(job: &Job, workpiece: impl Into<Workpiece>, progress: &mut Progress) -> Result<JobOutput> {
     job.validate()?;
+    let mut part = match workpiece.into() {
+        Workpiece::Mesh(m) => m,
+        Workpiece::Drawing(d) => return crate::job2d::run_drawing(job, d, progress),
+    };
+    if let Some(op) = job.operations.iter().find(|op| op.is_2d()) {
+        return Err(Error::Job(format!("'{}' works on DXF or SVG drawings, not on a 3D part", op.name())));
+    }
     let mut warnings = Vec::new();
     if part.dropped_degenerate > 0 {
         warnings.push(format!("{} degenerate triangles (zero area) were ignored", part.dropped_degenerate));
@@ -303,8 +463,34 @@ pub fn run(job: &Job, mut part: Mesh, progress: &mut Progress) -> Result<JobOutp
             Operation::FinishRaster(f) => {
                 paths.push(finish_raster(job, f, &part, &stock, clearance_z, progress, start, span)?);
             }
+            Operation::Profile2d(_) | Operation::Pocket2d(_) => return Err(Error::Job("2.5D operations need a drawing".into())),
         }
     }
+    let finish = Finish { job, stock, clearance_z, share };
+    finish.run(paths, part, None, warnings, progress, |part, moves, settings, progress| verify(part, &stock, moves, settings, &job.tolerances, progress))
+}
+
+/// The common end of every job: G-code, statistics, the program's moves, and verification by
+/// simulation (seed 002).
+pub(crate) struct Finish<'a> {
+    pub job: &'a Job,
+    pub stock: Aabb,
+    pub clearance_z: f64,
+    /// Share of the progress bar the operations took.
+    pub share: f64,
+}
+
+impl Finish<'_> {
+    pub fn run(
+        self,
+        paths: Vec<Toolpath>,
+        part: Mesh,
+        drawing: Option<Drawing>,
+        mut warnings: Vec<String>,
+        progress: &mut Progress,
+        verify: impl FnOnce(&Mesh, &[ProgramMove], &VerifySettings, &mut Progress) -> Result<Verification>,
+    ) -> Result<JobOutput> {
+    let (job, stock, clearance_z, share) = (self.job, self.stock, self.clearance_z, self.share);
     let gcode = write_gcode(&job.name, &paths, &job.tools, clearance_z, &job.post);
     let stats = paths.iter().fold(PathStats::default(), |s, p| s + p.stats(job.post.rapid_rate));
     let moves = program_moves(&paths, &job.tools, job.post.rapid_rate)?;
@@ -312,7 +498,7 @@ pub fn run(job: &Job, mut part: Mesh, progress: &mut Progress) -> Result<JobOutp
         if !progress.stage("simulating the program", share, 1.0 - share) {
             return Err(Error::Cancelled);
         }
-        let v = verify(&part, &stock, &moves, &VerifySettings::for_job(job, &stock, None), &job.tolerances, progress)?;
+        let v = verify(&part, &moves, &VerifySettings::for_job(job, &stock, None), progress)?;
         let r = &v.report;
         if r.gouge_count > 0 {
             warnings.push(format!("the simulation found {} gouged cells, {:.3} mm deep at most", r.gouge_count, r.gouge_max));
@@ -328,7 +514,8 @@ pub fn run(job: &Job, mut part: Mesh, progress: &mut Progress) -> Result<JobOutp
         None
     };
     progress.stage("done", 1.0, 0.0);
-    Ok(JobOutput { part, stock, clearance_z, paths, gcode, stats, moves, verification, warnings })
+    Ok(JobOutput { part, drawing, stock, clearance_z, paths, gcode, stats, moves, verification, warnings })
+    }
 }
 
 #[allow(clippy::too_many_arguments)]

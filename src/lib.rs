@@ -20,6 +20,7 @@ pub mod cutter;
 pub mod error;
 pub mod geom;
 pub mod job;
+pub mod job2d;
 pub mod mesh;
 pub mod offset;
 pub mod parallel;

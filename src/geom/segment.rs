@@ -314,6 +314,44 @@ impl Segment {
         }
     }
 
+    /// The x of every point where the segment crosses the horizontal line at `y`, by the same
+    /// half-open rule as [`Segment::ray_crossings`], so a loop's crossings pair up into spans.
+    pub fn crossings_at_y(&self, y: f64) -> Vec<f64> {
+        let straddles = |a: DVec2, b: DVec2| (a.y > y) != (b.y > y);
+        match self.arc_geom() {
+            None => {
+                let (a, b) = (self.a, self.b);
+                if straddles(a, b) {
+                    vec![a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x)]
+                } else {
+                    Vec::new()
+                }
+            }
+            Some(g) => {
+                let mut cuts = vec![0.0];
+                for dir in [DVec2::Y, DVec2::NEG_Y] {
+                    if let Some(t) = self.angle_param(&g, dir) {
+                        if t > 0.0 && t < 1.0 {
+                            cuts.push(t);
+                        }
+                    }
+                }
+                cuts.sort_by(f64::total_cmp);
+                cuts.push(1.0);
+                let mut xs = Vec::new();
+                for w in cuts.windows(2) {
+                    let (a, b) = (self.point_at(w[0]), self.point_at(w[1]));
+                    if straddles(a, b) {
+                        let side = (self.point_at((w[0] + w[1]) * 0.5).x - g.center.x).signum();
+                        let dy = y - g.center.y;
+                        xs.push(g.center.x + side * (g.radius * g.radius - dy * dy).max(0.0).sqrt());
+                    }
+                }
+                xs
+            }
+        }
+    }
+
     /// Every point where the two segments meet, within `eps` (mm). Overlapping collinear lines
     /// and arcs on one circle give the ends of their overlap.
     pub fn crossings(&self, other: &Segment, eps: f64) -> Crossings {

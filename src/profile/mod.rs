@@ -5,6 +5,7 @@
 pub mod arcfit;
 pub mod chain;
 pub mod import;
+pub mod sample;
 
 use serde::{Deserialize, Serialize};
 
@@ -200,6 +201,13 @@ impl Shape {
         self.loops.iter().flat_map(|l| l.segments())
     }
 
+    /// The spans of the horizontal line at `y` that lie inside the shape, left to right.
+    pub fn spans_at(&self, y: f64) -> Vec<(f64, f64)> {
+        let mut xs: Vec<f64> = self.segments().flat_map(|s| s.crossings_at_y(y)).collect();
+        xs.sort_by(f64::total_cmp);
+        xs.chunks_exact(2).map(|p| (p[0], p[1])).collect()
+    }
+
     /// The outer loops, each with the holes directly inside it (its islands).
     pub fn regions(&self) -> Vec<Shape> {
         let outers: Vec<usize> = (0..self.loops.len()).filter(|&i| self.loops[i].is_ccw()).collect();
@@ -259,6 +267,8 @@ pub struct Drawing {
     pub ignored: Vec<(String, usize)>,
     /// The file's units, as read (the drawing itself is in mm).
     pub units: String,
+    /// Millimetres per file unit applied on reading.
+    pub scale: f64,
 }
 
 /// A drawing that cannot be machined as it is.

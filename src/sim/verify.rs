@@ -147,6 +147,19 @@ pub fn stock_for(stock: &Aabb, cell: f64) -> Result<DexelStock> {
 
 /// Simulates `moves` on the box `stock` and checks them against `part`.
 pub fn verify(part: &Mesh, stock: &Aabb, moves: &[ProgramMove], settings: &VerifySettings, tolerances: &Tolerances, progress: &mut Progress) -> Result<Verification> {
+    verify_against(|grid| cc_zmap(part, grid, f64::NEG_INFINITY, tolerances), stock, moves, settings, tolerances, progress)
+}
+
+/// Simulates `moves` on the box `stock` and checks them against the part's heights on the
+/// simulation's grid, as `surface` gives them (−∞ where there is no part).
+pub fn verify_against(
+    surface: impl FnOnce(Grid) -> HeightField,
+    stock: &Aabb,
+    moves: &[ProgramMove],
+    settings: &VerifySettings,
+    tolerances: &Tolerances,
+    progress: &mut Progress,
+) -> Result<Verification> {
     let mut sim = stock_for(stock, settings.cell)?;
     let grid: Grid = sim.grid();
     let mut volumes = Vec::with_capacity(moves.len());
@@ -180,7 +193,7 @@ pub fn verify(part: &Mesh, stock: &Aabb, moves: &[ProgramMove], settings: &Verif
         volumes.push(removed);
     }
     progress.report(0.9);
-    let mut surface = cc_zmap(part, grid, f64::NEG_INFINITY, tolerances);
+    let mut surface = surface(grid);
     let mut gouges = Vec::new();
     let (mut residual_max, mut residual_sum, mut covered) = (0.0f64, 0.0, 0usize);
     for j in 0..grid.ny {

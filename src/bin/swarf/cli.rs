@@ -9,7 +9,9 @@ use clap::{Parser, Subcommand, ValueEnum};
 use swarf::cutter::{Cutter, Shape};
 use swarf::geom::Tolerances;
 use swarf::job::{self, Job};
+use swarf::job::Workpiece;
 use swarf::mesh::import::read_mesh_auto;
+use swarf::profile::import::{is_drawing, read_drawing};
 use swarf::mesh::placement::{PartSetup, Placement, UpAxis, Units};
 use swarf::mesh::sample::demo_part;
 use swarf::progress::Progress;
@@ -29,7 +31,7 @@ enum Command {
     Run {
         /// Job (JSON), as saved by the page or printed by `swarf job`.
         job: PathBuf,
-        /// The part: STL, glTF/GLB or OBJ.
+        /// The part (STL, glTF/GLB, OBJ) or drawing (DXF, SVG).
         part: PathBuf,
         /// Where to write the G-code (default: the part's name with .ngc).
         #[arg(short, long)]
@@ -45,7 +47,16 @@ enum Command {
         output: PathBuf,
     },
     /// Print the default job as JSON, to edit and pass to `swarf run`.
-    Job,
+    Job {
+        /// The default job for a drawing (DXF, SVG): a profile around its loops.
+        #[arg(long)]
+        drawing: bool,
+    },
+    /// List what a drawing (DXF, SVG) holds: layers, loops (index, layer, outside or hole,
+    /// size) and open chains, to choose what operations cut.
+    Drawing {
+        file: PathBuf,
+    },
     /// Simulate a G-code program on a job's stock and check it against the part: gouges, rapid
     /// moves through stock, the tool's body in material, material left. Exits with 1 when it
     /// finds a problem.
@@ -143,9 +154,14 @@ fn run(cli: Cli) -> Result<(), String> {
         Command::Run { job, part, output, quiet } => {
             let job = Job::from_json(&String::from_utf8_lossy(&read(&job)?)).map_err(|e| e.to_string())?;
             let name = part.file_name().map(|n| n.to_string_lossy().into_owned());
-            let mesh = read_mesh_auto(&read(&part)?, name.as_deref(), &job.tolerances).map_err(|e| format!("{}: {e}", part.display()))?;
+            let bytes = read(&part)?;
+            let workpiece: Workpiece = if is_drawing(name.as_deref(), &bytes) {
+                read_drawing(&bytes, name.as_deref(), &job.tolerances).map_err(|e| format!("{}: {e}", part.display()))?.into()
+            } else {
+                read_mesh_auto(&bytes, name.as_deref(), &job.tolerances).map_err(|e| format!("{}: {e}", part.display()))?.into()
+            };
             let output = output.unwrap_or_else(|| part.with_extension("ngc"));
-            run_job(&job, mesh, &output, quiet)
+            run_job(&job, workpiece, &output, quiet)
         }
         Command::Demo { output } => {
             std::fs::create_dir_all(&output).map_err(|e| format!("cannot create {}: {e}", output.display()))?;
@@ -158,8 +174,36 @@ fn run(cli: Cli) -> Result<(), String> {
             let part = read_mesh_auto(&stl, Some("demo.stl"), &job.tolerances).map_err(|e| e.to_string())?;
             run_job(&job, part, &output.join("demo.ngc"), false)
         }
-        Command::Job => {
-            println!("{}", serde_json::to_string_pretty(&Job::default()).unwrap());
+        Command::Job { drawing } => {
+            let job = if drawing { Job::default_for_drawing() } else { Job::default() };
+            println!("{}", serde_json::to_string_pretty(&job).map_err(|e| e.to_string())?);
+            Ok(())
+        }
+        Command::Drawing { file } => {
+            let name = file.file_name().map(|n| n.to_string_lossy().into_owned());
+            let d = read_drawing(&read(&file)?, name.as_deref(), &swarf::geom::Tolerances::default()).map_err(|e| format!("{}: {e}", file.display()))?;
+            println!("units: {}", d.units);
+            println!("layers: {}", d.layers.join(", "));
+            for (k, n) in &d.ignored {
+                println!("ignored: {n} {k}");
+            }
+            let nesting = swarf::profile::Shape::new(d.loops.iter().map(|l| l.path.clone()).collect());
+            for (i, (l, o)) in d.loops.iter().zip(&nesting.loops).enumerate() {
+                let b = l.path.bounds();
+                println!(
+                    "loop {i}: layer {}, {}, {} entities, ({:.3}, {:.3})–({:.3}, {:.3}) mm",
+                    l.layer,
+                    if o.is_ccw() { "outside" } else { "hole" },
+                    l.path.len(),
+                    b.min.x,
+                    b.min.y,
+                    b.max.x,
+                    b.max.y
+                );
+            }
+            for o in &d.open {
+                println!("open chain: layer {}, {} entities, from ({:.3}, {:.3}) to ({:.3}, {:.3}) mm", o.layer, o.segments, o.start.x, o.start.y, o.end.x, o.end.y);
+            }
             Ok(())
         }
         Command::Verify { job, part, program, cell, json } => {
@@ -223,7 +267,7 @@ fn run(cli: Cli) -> Result<(), String> {
     }
 }
 
-fn run_job(job: &Job, mesh: swarf::Mesh, output: &Path, quiet: bool) -> Result<(), String> {
+fn run_job(job: &Job, workpiece: impl Into<Workpiece>, output: &Path, quiet: bool) -> Result<(), String> {
     let started = Instant::now();
     let mut last = -1i32;
     let mut sink = |fraction: f64, stage: &str| {
@@ -235,7 +279,7 @@ fn run_job(job: &Job, mesh: swarf::Mesh, output: &Path, quiet: bool) -> Result<(
         }
         true
     };
-    let out = job::run(job, mesh, &mut Progress::new(&mut sink)).map_err(|e| e.to_string())?;
+    let out = job::run(job, workpiece, &mut Progress::new(&mut sink)).map_err(|e| e.to_string())?;
     if !quiet {
         eprintln!();
     }

@@ -125,7 +125,7 @@ pub(crate) fn read_dxf(bytes: &[u8], tol: &Tolerances) -> Result<Pieces, Drawing
         }
         i += 1;
     }
-    let mut pieces = Pieces { units: scale.1.to_string(), ..Pieces::default() };
+    let mut pieces = Pieces { units: scale.1.to_string(), scale: scale.0, ..Pieces::default() };
     let s = scale.0;
     let mut k = 0;
     while k < entities.len() {

@@ -67,6 +67,7 @@ pub(crate) struct Pieces {
     pub layers: Vec<String>,
     pub ignored: Vec<(String, usize)>,
     pub units: String,
+    pub scale: f64,
 }
 
 impl Pieces {
@@ -113,5 +114,5 @@ pub fn read_drawing(bytes: &[u8], name: Option<&str>, tol: &Tolerances) -> Resul
         pieces.ignored.push(("pieces shorter than the chaining tolerance".into(), before - pieces.segments.len()));
     }
     let (loops, open) = chain(pieces.segments, tol.chain);
-    Ok(Drawing { loops, open, layers: pieces.layers, ignored: pieces.ignored, units: pieces.units })
+    Ok(Drawing { loops, open, layers: pieces.layers, ignored: pieces.ignored, units: pieces.units, scale: pieces.scale })
 }

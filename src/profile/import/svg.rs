@@ -57,13 +57,15 @@ pub(crate) fn read_svg(bytes: &[u8], tol: &Tolerances) -> Result<Pieces, Drawing
         .map(|v| v.split(|c: char| c == ',' || c.is_whitespace()).filter(|s| !s.is_empty()).filter_map(|s| s.parse().ok()).collect());
     let mut to_mm = DAffine2::from_scale(DVec2::new(MM_PER_PX, -MM_PER_PX));
     let mut units = "px (96 per inch)".to_string();
+    let mut scale = MM_PER_PX;
     if let Some(vb) = view_box.filter(|v| v.len() == 4 && v[2] > 0.0 && v[3] > 0.0) {
         let w = length_mm(root.attribute("width")).unwrap_or(vb[2] * MM_PER_PX);
         let h = length_mm(root.attribute("height")).unwrap_or(vb[3] * MM_PER_PX);
         to_mm = DAffine2::from_scale(DVec2::new(w / vb[2], -h / vb[3])) * DAffine2::from_translation(DVec2::new(-vb[0], -vb[1]));
         units = format!("viewBox scaled to {w:.3} × {h:.3} mm");
+        scale = w / vb[2];
     }
-    let mut reader = Reader { tol, pieces: Pieces { units, ..Pieces::default() } };
+    let mut reader = Reader { tol, pieces: Pieces { units, scale, ..Pieces::default() } };
     reader.walk(root, to_mm, "0");
     Ok(reader.pieces)
 }

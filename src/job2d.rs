@@ -1,0 +1,167 @@
+//! A job on a drawing: the sheet (stock top at Z0, its thickness below), the 2.5D operations
+//! (profile, pocket), and the part the drawing means for verification: full height inside the
+//! kept region, cut to each operation's depth where it cuts.
+
+use crate::error::{Error, Result};
+use crate::geom::{Aabb, DVec2, DVec3};
+use crate::job::{Finish, Job, JobOutput, Operation};
+use crate::mesh::Mesh;
+use crate::offset::offset;
+use crate::profile::{Drawing, Loop, Shape};
+use crate::progress::Progress;
+use crate::sim::verify::verify_against;
+use crate::strategy::path2d::Cursor;
+use crate::strategy::pocket2d::{self, pocket_moves};
+use crate::strategy::profile2d::{self, profile_moves, Profile2d, Side};
+use crate::toolpath::{Move, Toolpath};
+use crate::zmap::{Grid, HeightField};
+
+/// Rapids stop this far above the sheet (mm).
+const RAPID_GAP: f64 = 1.0;
+/// Depth below the sheet a through cut goes (mm).
+const BREAKTHROUGH: f64 = 0.2;
+
+/// The loops an operation works on: those on its layers (all when none), by drawing index
+/// when it names some, oriented by their nesting among all loops on those layers.
+fn selected(drawing: &Drawing, layers: &[String], indices: &[usize]) -> Result<(Shape, Vec<Loop>)> {
+    let shape = drawing.shape(layers).map_err(|e| Error::Job(e.to_string()))?;
+    let on: Vec<usize> = (0..drawing.loops.len()).filter(|&i| layers.is_empty() || layers.contains(&drawing.loops[i].layer)).collect();
+    let picked: Vec<Loop> =
+        on.iter().enumerate().filter(|(_, i)| indices.is_empty() || indices.contains(i)).map(|(k, _)| shape.loops[k].clone()).collect();
+    if picked.is_empty() {
+        return Err(Error::Job(format!("none of the loops {indices:?} is on the chosen layers")));
+    }
+    Ok((shape, picked))
+}
+
+/// The region a pocket clears: each picked loop as an outer boundary with the loops inside it
+/// (islands, and pockets in islands again).
+fn pocket_region(shape: &Shape, picked: &[Loop], all: bool) -> Shape {
+    if all {
+        return shape.clone();
+    }
+    let mut loops = Vec::new();
+    for p in picked {
+        let outer = if p.is_ccw() { p.clone() } else { p.reversed() };
+        loops.push(outer.clone());
+        for l in &shape.loops {
+            if l != p && outer.contains(l.probe_point()) {
+                loops.push(l.clone());
+            }
+        }
+    }
+    Shape::new(loops)
+}
+
+/// Runs a job's 2.5D operations on a drawing.
+pub fn run_drawing(job: &Job, mut drawing: Drawing, progress: &mut Progress) -> Result<JobOutput> {
+    if let Some(op) = job.operations.iter().find(|op| !op.is_2d()) {
+        return Err(Error::Job(format!("'{}' works on 3D parts, not on drawings", op.name())));
+    }
+    job.drawing.apply(&mut drawing);
+    let thickness = job.drawing.thickness;
+    if !(thickness > 0.0 && thickness.is_finite()) {
+        return Err(Error::Job(format!("the sheet thickness must be a positive number (got {thickness})")));
+    }
+    let b = drawing.bounds();
+    if b.is_empty() {
+        return Err(Error::Job("the drawing is empty".into()));
+    }
+    let m = job.stock.margin_xy;
+    let stock = Aabb { min: (b.min - DVec2::splat(m)).extend(-thickness), max: (b.max + DVec2::splat(m)).extend(0.0) };
+    let clearance_z = job.stock.clearance;
+    let mut paths = Vec::new();
+    let mut warnings = Vec::new();
+    // Where each operation cuts and how deep, for the verification's part.
+    let mut cuts: Vec<(Shape, bool, f64)> = Vec::new();
+    let count = job.operations.len().max(1) as f64;
+    let share = if job.simulation.verify { 0.85 } else { 1.0 };
+    for (k, op) in job.operations.iter().enumerate() {
+        if !progress.stage(op.name(), share * k as f64 / count, share / count) {
+            return Err(Error::Cancelled);
+        }
+        let tool = job.tool(op.tool())?;
+        let r = tool.cutter.radius();
+        let mut cursor = Cursor { at: DVec3::new(0.0, 0.0, clearance_z), clearance: clearance_z, safe: RAPID_GAP, plunge: tool.plunge_rate };
+        let moves = match op {
+            Operation::Profile2d(p) => {
+                let (_, picked) = selected(&drawing, &p.layers, &p.loops)?;
+                let depth = p.depth.unwrap_or(thickness + BREAKTHROUGH);
+                cuts.extend(profile_cuts(&picked, p, depth));
+                let setup = profile2d::Setup { tool_radius: r, top: 0.0, depth, feed: tool.feed_rate, cursor: &mut cursor, tol: &job.tolerances };
+                let (moves, notes) = profile_moves(&picked, p, setup).map_err(|e| Error::Job(format!("{}: {e}", p.name)))?;
+                warnings.extend(notes.into_iter().map(|w| format!("{}: {w}", p.name)));
+                moves
+            }
+            Operation::Pocket2d(p) => {
+                let (shape, picked) = selected(&drawing, &p.layers, &p.loops)?;
+                let region = pocket_region(&shape, &picked, p.loops.is_empty());
+                cuts.push((region.clone(), true, p.depth));
+                let setup = pocket2d::Setup { tool_radius: r, top: 0.0, feed: tool.feed_rate, cursor: &mut cursor, tol: &job.tolerances };
+                pocket_moves(&region, p, setup).map_err(|e| Error::Job(format!("{}: {e}", p.name)))?
+            }
+            Operation::FinishRaster(_) => unreachable_3d()?,
+        };
+        paths.push(toolpath(op, tool, moves, clearance_z));
+    }
+    let finish = Finish { job, stock, clearance_z, share };
+    let gouge = job.tolerances.gouge;
+    let tol = job.tolerances;
+    let surface = move |grid: Grid| drawing_surface(&cuts, grid, gouge, &tol);
+    let placed = drawing.clone();
+    finish.run(paths, Mesh::default(), Some(placed), warnings, progress, |_, moves, settings, progress| {
+        verify_against(surface, &stock, moves, settings, &job.tolerances, progress)
+    })
+}
+
+fn unreachable_3d() -> Result<Vec<Move>> {
+    Err(Error::Job("3D operations need a part".into()))
+}
+
+fn toolpath(op: &Operation, tool: &crate::job::Tool, mut moves: Vec<Move>, clearance_z: f64) -> Toolpath {
+    let start = moves.iter().find(|m| m.is_rapid()).map(|m| m.to().truncate()).unwrap_or(DVec2::ZERO).extend(clearance_z);
+    if moves.first().is_some_and(|m| m.to() == start) {
+        moves.remove(0);
+    }
+    if let Some(last) = moves.last().map(|m| m.to()) {
+        if last.z < clearance_z {
+            moves.push(Move::Rapid { to: last.truncate().extend(clearance_z) });
+        }
+    }
+    Toolpath { name: op.name().to_string(), tool: tool.number, spindle_rpm: tool.spindle_rpm, start, moves }
+}
+
+/// Where a profile cuts: outside the kept region (the picked loops as one shape) for
+/// outside and automatic sides, inside each loop for inside profiles.
+fn profile_cuts(picked: &[Loop], p: &Profile2d, depth: f64) -> Vec<(Shape, bool, f64)> {
+    match p.side {
+        Side::Auto => vec![(Shape::new(picked.to_vec()), false, depth)],
+        Side::Outside => vec![(Shape::new(picked.iter().map(|l| if l.is_ccw() { l.clone() } else { l.reversed() }).collect()), false, depth)],
+        Side::Inside => picked.iter().map(|l| (Shape::from_oriented(vec![if l.is_ccw() { l.clone() } else { l.reversed() }]), true, depth)).collect(),
+    }
+}
+
+/// The part's heights on the simulation grid: the sheet's top, lowered to each cut's depth
+/// where it cuts (inside its region, or outside it). Regions are widened by the gouge
+/// tolerance where they cut, so cells on a wall are not judged by a hair.
+fn drawing_surface(cuts: &[(Shape, bool, f64)], grid: Grid, gouge: f64, tol: &crate::geom::Tolerances) -> HeightField {
+    let mut field = grid.filled(0.0);
+    for (region, inside, depth) in cuts {
+        let region = offset(region, if *inside { gouge } else { -gouge }, tol);
+        for j in 0..grid.ny {
+            let y = grid.node(0, j).y;
+            let spans = region.spans_at(y);
+            for i in 0..grid.nx {
+                let x = grid.node(i, 0).x;
+                let within = spans.iter().any(|&(a, b)| x > a && x < b);
+                // A profile cutting outside a loop cuts everything but the loop's inside.
+                let cut = if *inside { within } else { !within };
+                if cut {
+                    let c = j * grid.nx + i;
+                    field.z[c] = field.z[c].min(-depth);
+                }
+            }
+        }
+    }
+    field
+}

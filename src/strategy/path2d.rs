@@ -1,0 +1,231 @@
+//! What the 2.5D strategies share: heights that vary along a closed chain of lines and arcs
+//! (ramps, tabs), moves that follow such a chain, helices and ramps for entering material, and
+//! the retract-and-reposition link. DESIGN.md idea 6: entries and links are passes over data,
+//! not parts of one strategy.
+
+use crate::geom::segment::Segment;
+use crate::geom::{DVec2, DVec3};
+use crate::profile::Loop;
+use crate::toolpath::Move;
+
+/// A height that varies linearly along arc length between breakpoints `(s, z)`, constant
+/// beyond the first and last.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Heights(pub Vec<(f64, f64)>);
+
+impl Heights {
+    pub fn constant(z: f64) -> Heights {
+        Heights(vec![(0.0, z)])
+    }
+
+    /// Descends from `from` at `s0` to `to` at slope `tan(angle)`, then stays at `to`.
+    pub fn ramp(s0: f64, from: f64, to: f64, angle: f64) -> Heights {
+        let run = (from - to).max(0.0) / angle.tan();
+        Heights(vec![(s0, from), (s0 + run, to)])
+    }
+
+    pub fn at(&self, s: f64) -> f64 {
+        let p = &self.0;
+        if s <= p[0].0 {
+            return p[0].1;
+        }
+        for w in p.windows(2) {
+            if s <= w[1].0 {
+                let span = w[1].0 - w[0].0;
+                return if span <= 0.0 { w[1].1 } else { w[0].1 + (w[1].1 - w[0].1) * (s - w[0].0) / span };
+            }
+        }
+        p[p.len() - 1].1
+    }
+
+    /// The higher of two height functions, with breakpoints where they cross.
+    pub fn max(&self, other: &Heights) -> Heights {
+        let mut s: Vec<f64> = self.0.iter().chain(&other.0).map(|p| p.0).collect();
+        s.sort_by(f64::total_cmp);
+        s.dedup();
+        let mut out = Vec::with_capacity(s.len() * 2);
+        for (k, &x) in s.iter().enumerate() {
+            if k > 0 {
+                // A crossing strictly between two breakpoints.
+                let (x0, d0, d1) = (s[k - 1], self.at(s[k - 1]) - other.at(s[k - 1]), self.at(x) - other.at(x));
+                if d0 * d1 < 0.0 {
+                    let xc = x0 + (x - x0) * d0 / (d0 - d1);
+                    out.push((xc, self.at(xc)));
+                }
+            }
+            out.push((x, self.at(x).max(other.at(x))));
+        }
+        Heights(out)
+    }
+
+    pub fn breakpoints(&self) -> impl Iterator<Item = f64> + '_ {
+        self.0.iter().map(|p| p.0)
+    }
+}
+
+/// Cumulative arc lengths at the starts of a chain's segments, and its total.
+pub fn arc_lengths(segs: &[Segment]) -> (Vec<f64>, f64) {
+    let mut at = Vec::with_capacity(segs.len());
+    let mut s = 0.0;
+    for seg in segs {
+        at.push(s);
+        s += seg.length();
+    }
+    (at, s)
+}
+
+/// The point of a closed chain at arc length `s` (wrapping).
+pub fn point_at(segs: &[Segment], starts: &[f64], total: f64, s: f64) -> DVec2 {
+    let s = s.rem_euclid(total);
+    let i = starts.partition_point(|&x| x <= s).saturating_sub(1);
+    let len = segs[i].length();
+    segs[i].point_at(if len > 0.0 { (s - starts[i]) / len } else { 0.0 })
+}
+
+/// Moves that follow the closed chain `segs` from arc length `s0` to `s1` (`s1` may pass the
+/// end: the chain repeats), at the heights `z` gives along the way (arcs with changing height
+/// are helices).
+pub fn follow(segs: &[Segment], s0: f64, s1: f64, z: &Heights, feed: f64, out: &mut Vec<Move>) {
+    let (starts, total) = arc_lengths(segs);
+    if total <= 0.0 || s1 <= s0 {
+        return;
+    }
+    // Every place where a segment ends or the height bends.
+    let mut cuts: Vec<f64> = z.breakpoints().filter(|&s| s > s0 && s < s1).collect();
+    let first_lap = (s0 / total).floor() as i64;
+    let last_lap = (s1 / total).ceil() as i64;
+    for lap in first_lap..=last_lap {
+        for &st in &starts {
+            let s = lap as f64 * total + st;
+            if s > s0 && s < s1 {
+                cuts.push(s);
+            }
+        }
+    }
+    cuts.push(s1);
+    cuts.sort_by(f64::total_cmp);
+    cuts.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
+    let mut from = s0;
+    for &to in &cuts {
+        if to - from <= 1e-12 {
+            continue;
+        }
+        let mid = (from + to) * 0.5;
+        let local = mid.rem_euclid(total);
+        let i = starts.partition_point(|&x| x <= local).saturating_sub(1);
+        let seg = segs[i];
+        let lap_start = mid - local + starts[i];
+        let len = seg.length();
+        let (ta, tb) = (((from - lap_start) / len).clamp(0.0, 1.0), ((to - lap_start) / len).clamp(0.0, 1.0));
+        let piece = seg.sub(ta, tb);
+        let end = piece.b.extend(z.at(to));
+        match piece.arc_geom() {
+            Some(g) => out.push(Move::Arc { to: end, center: g.center, clockwise: g.sweep < 0.0, feed }),
+            None => out.push(Move::Line { to: end, feed }),
+        }
+        from = to;
+    }
+}
+
+/// A loop's segments starting at the point of it nearest to `q` (the segment there is split).
+pub fn start_nearest(l: &Loop, q: DVec2) -> Vec<Segment> {
+    let segs: Vec<Segment> = l.segments().collect();
+    let (mut best, mut best_d, mut best_t) = (0, f64::INFINITY, 0.0);
+    for (i, s) in segs.iter().enumerate() {
+        let (p, t) = s.closest(q);
+        let d = p.distance(q);
+        if d < best_d {
+            (best, best_d, best_t) = (i, d, t);
+        }
+    }
+    let n = segs.len();
+    let s = segs[best];
+    let mut out = Vec::with_capacity(n + 1);
+    if best_t > 1e-9 && best_t < 1.0 - 1e-9 {
+        out.push(s.sub(best_t, 1.0));
+        out.extend((1..n).map(|k| segs[(best + k) % n]));
+        out.push(s.sub(0.0, best_t));
+    } else {
+        let first = if best_t >= 1.0 - 1e-9 { best + 1 } else { best };
+        out.extend((0..n).map(|k| segs[(first + k) % n]));
+    }
+    out
+}
+
+/// A helix about `center` of `radius`, starting at angle 0, from height `from` down to `to`,
+/// descending no steeper than `angle`, ending with one level circle at `to`.
+pub fn helix(center: DVec2, radius: f64, from: f64, to: f64, angle: f64, clockwise: bool, feed: f64, out: &mut Vec<Move>) {
+    let start = center + DVec2::new(radius, 0.0);
+    let turn_drop = std::f64::consts::TAU * radius * angle.tan();
+    let halves = (((from - to) / turn_drop) * 2.0).ceil().max(1.0) as usize;
+    for h in 1..=halves {
+        let z = from + (to - from) * h as f64 / halves as f64;
+        let p = if h % 2 == 1 { center - DVec2::new(radius, 0.0) } else { start };
+        out.push(Move::Arc { to: p.extend(z), center, clockwise, feed });
+    }
+    let at = if halves % 2 == 1 { center - DVec2::new(radius, 0.0) } else { start };
+    let other = 2.0 * center - at;
+    out.push(Move::Arc { to: other.extend(to), center, clockwise, feed });
+    out.push(Move::Arc { to: at.extend(to), center, clockwise, feed });
+}
+
+/// Where the tool is and how it moves between cuts.
+pub struct Cursor {
+    pub at: DVec3,
+    pub clearance: f64,
+    /// Height above which rapids are safe near the next cut: the stock top plus a gap.
+    pub safe: f64,
+    pub plunge: f64,
+}
+
+impl Cursor {
+    /// Up to the clearance, over to above `to`, rapid down to the safe height (or `to.z` plus
+    /// the gap when lower), then feed down to `to`.
+    pub fn reposition(&mut self, to: DVec3, out: &mut Vec<Move>) {
+        if self.at.z < self.clearance {
+            out.push(Move::Rapid { to: self.at.truncate().extend(self.clearance) });
+        }
+        out.push(Move::Rapid { to: to.truncate().extend(self.clearance) });
+        let safe = self.safe.min(self.clearance);
+        if safe > to.z {
+            out.push(Move::Rapid { to: to.truncate().extend(safe) });
+        }
+        out.push(Move::Line { to, feed: self.plunge });
+        self.at = to;
+    }
+
+    /// Tracks the end of moves appended since.
+    pub fn moved(&mut self, out: &[Move]) {
+        if let Some(m) = out.last() {
+            self.at = m.to();
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn heights_max_crosses_between_breakpoints() {
+        let ramp = Heights::ramp(0.0, 0.0, -2.0, (1.0f64).atan()); // slope 1: 0 at 0, -2 at 2
+        let tab = Heights(vec![(0.0, -3.0), (1.0, -3.0), (1.5, -1.0), (3.0, -1.0)]);
+        let m = ramp.max(&tab);
+        for k in 0..=30 {
+            let s = k as f64 * 0.1;
+            assert!((m.at(s) - ramp.at(s).max(tab.at(s))).abs() < 1e-12, "{s}");
+        }
+    }
+
+    #[test]
+    fn follow_walks_a_square_twice_with_a_ramp() {
+        let l = Loop::rect(DVec2::ZERO, DVec2::splat(10.0));
+        let segs: Vec<Segment> = l.segments().collect();
+        let mut out = Vec::new();
+        let z = Heights::ramp(0.0, 0.0, -1.0, (0.1f64).atan()); // reaches -1 after 10 mm
+        follow(&segs, 0.0, 50.0, &z, 100.0, &mut out);
+        assert_eq!(out.len(), 5);
+        assert!((out[0].to().z + 1.0).abs() < 1e-12);
+        assert!(out[4].to().distance(DVec3::new(10.0, 0.0, -1.0)) < 1e-12);
+    }
+}

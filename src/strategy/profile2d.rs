@@ -1,0 +1,274 @@
+//! 2.5D profiling along drawn loops: the tool-centre path is the loop offset by the tool
+//! radius plus leave-stock (seed 003), outside or inside, climb or conventional. Each loop is
+//! entered by a lead-in arc from the waste side, cut in laps that ramp down along the contour
+//! (no deeper than the step-down a lap, no steeper than the ramp angle) to the final depth,
+//! where one full lap finishes the wall and a lead-out arc leaves it. Holding tabs lift the
+//! last laps over short stretches so cut-through parts stay attached to the sheet.
+
+use serde::{Deserialize, Serialize};
+
+use super::path2d::{arc_lengths, follow, point_at, start_nearest, Cursor, Heights};
+use crate::geom::segment::Segment;
+use crate::geom::{DVec2, Tolerances};
+use crate::offset::offset;
+use crate::profile::{Loop, Shape};
+use crate::toolpath::Move;
+
+/// Which side of a loop the tool runs on.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub enum Side {
+    /// Outside outer loops, inside holes: the part as drawn is kept.
+    #[default]
+    Auto,
+    Outside,
+    Inside,
+}
+
+/// Cutting direction for a spindle turning clockwise (M3).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub enum Direction {
+    /// Down milling: the part on the tool's right.
+    #[default]
+    Climb,
+    Conventional,
+}
+
+/// Holding tabs for parts cut through the sheet.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, rename_all = "camelCase")]
+pub struct Tabs {
+    /// Tabs per outside loop (0: none, unless `spacing` is set). Default value: 0.
+    pub count: u32,
+    /// Distance between tabs along the path (mm); used when `count` is 0. Default value: none.
+    pub spacing: Option<f64>,
+    /// Length of material left along the part's edge (mm). Default value: 4.
+    pub width: f64,
+    /// Height of the tab above the final depth (mm). Default value: 1.5.
+    pub height: f64,
+}
+
+impl Default for Tabs {
+    fn default() -> Self {
+        Tabs { count: 0, spacing: None, width: 4.0, height: 1.5 }
+    }
+}
+
+/// Profile operation on a drawing.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, rename_all = "camelCase")]
+pub struct Profile2d {
+    /// Default value: "profile".
+    pub name: String,
+    /// Default value: 1.
+    pub tool: u32,
+    /// Default value: auto.
+    pub side: Side,
+    /// Default value: climb.
+    pub direction: Direction,
+    /// Depth below the stock top (mm). Default value: the stock's thickness plus 0.2 (through).
+    pub depth: Option<f64>,
+    /// Largest depth cut in one lap (mm). Default value: 2.
+    pub stepdown: f64,
+    /// Material left on the walls (mm). Default value: 0.
+    pub leave_stock: f64,
+    /// Radius of the lead-in and lead-out arcs (mm; 0 for none). Default value: the tool radius.
+    pub lead_radius: Option<f64>,
+    /// Steepest descent along the contour (degrees). Default value: 3.
+    pub ramp_angle: f64,
+    pub tabs: Tabs,
+    /// Layers to cut (empty: all). Default value: empty.
+    pub layers: Vec<String>,
+    /// Indices of the drawing's loops to cut (empty: all on the layers). Default value: empty.
+    pub loops: Vec<usize>,
+}
+
+impl Default for Profile2d {
+    fn default() -> Self {
+        Profile2d {
+            name: "profile".into(),
+            tool: 1,
+            side: Side::Auto,
+            direction: Direction::Climb,
+            depth: None,
+            stepdown: 2.0,
+            leave_stock: 0.0,
+            lead_radius: None,
+            ramp_angle: 3.0,
+            tabs: Tabs::default(),
+            layers: Vec::new(),
+            loops: Vec::new(),
+        }
+    }
+}
+
+/// What the profile needs besides its settings.
+pub struct Setup<'a> {
+    pub tool_radius: f64,
+    pub top: f64,
+    pub depth: f64,
+    pub feed: f64,
+    pub cursor: &'a mut Cursor,
+    pub tol: &'a Tolerances,
+}
+
+/// The moves of a profile around `loops` (oriented: outer counter-clockwise, holes clockwise),
+/// and warnings. Holes are cut first, so a part stays attached until its outline is cut. A
+/// hole the tool does not fit in is left (with a warning saying where); when nothing at all
+/// can be cut, that is an error.
+pub fn profile_moves(loops: &[Loop], op: &Profile2d, mut s: Setup) -> Result<(Vec<Move>, Vec<String>), String> {
+    let mut warnings = Vec::new();
+    let r = s.tool_radius;
+    let d = r + op.leave_stock;
+    let z_final = s.top - s.depth;
+    let angle = op.ramp_angle.clamp(0.1, 90.0).to_radians();
+    let mut order: Vec<&Loop> = loops.iter().filter(|l| !l.is_ccw()).collect();
+    order.extend(loops.iter().filter(|l| l.is_ccw()));
+    let mut out = Vec::new();
+    for part_loop in order {
+        let outside = match op.side {
+            Side::Auto => part_loop.is_ccw(),
+            Side::Outside => true,
+            Side::Inside => false,
+        };
+        let region = Shape::from_oriented(vec![if part_loop.is_ccw() { part_loop.clone() } else { part_loop.reversed() }]);
+        let paths = offset(&region, if outside { d } else { -d }, s.tol);
+        if paths.is_empty() {
+            let b = region.bounds();
+            warnings.push(format!(
+                "the φ{:.3} tool (plus {:.3} leave-stock) does not fit inside the loop at ({:.3}, {:.3})–({:.3}, {:.3}); it is not cut",
+                2.0 * r,
+                op.leave_stock,
+                b.min.x,
+                b.min.y,
+                b.max.x,
+                b.max.y
+            ));
+            continue;
+        }
+        for path in &paths.loops {
+            // The part lies left of an outside offset's loops and right of an inside one's;
+            // climb milling keeps it on the right.
+            let part_left = outside;
+            let climb = op.direction == Direction::Climb;
+            let travel = if part_left == climb { path.reversed() } else { path.clone() };
+            let waste_left = climb;
+            let longest = travel.segments().max_by(|a, b| a.length().total_cmp(&b.length())).unwrap();
+            let segs = start_nearest(&travel, longest.midpoint());
+            let tabbed = outside && (op.tabs.count > 0 || op.tabs.spacing.is_some_and(|x| x > 0.0));
+            let lead = op.lead_radius.unwrap_or(r).max(0.0);
+            cut_loop(&segs, &region, outside, waste_left, lead, d, tabbed.then_some(&op.tabs), op.stepdown, angle, z_final, &mut s, &mut out);
+            s.cursor.moved(&out);
+        }
+    }
+    if out.is_empty() {
+        return Err(warnings.join("; "));
+    }
+    Ok((out, warnings))
+}
+
+#[allow(clippy::too_many_arguments)]
+fn cut_loop(
+    segs: &[Segment],
+    region: &Shape,
+    outside: bool,
+    waste_left: bool,
+    lead: f64,
+    d: f64,
+    tabs: Option<&Tabs>,
+    stepdown: f64,
+    angle: f64,
+    z_final: f64,
+    s: &mut Setup,
+    out: &mut Vec<Move>,
+) {
+    let (starts, total) = arc_lengths(segs);
+    let start = segs[0].a;
+    // Laps: each ramps down at most `stepdown` (and no steeper than the angle), then one full
+    // lap at the final depth.
+    let mut z = vec![(0.0, s.top)];
+    let (mut at, mut current) = (0.0, s.top);
+    while current > z_final + 1e-9 {
+        let target = (current - stepdown.max(1e-3)).max(z_final);
+        let run = (current - target) / angle.tan();
+        if run <= total {
+            z.push((at + run, target));
+            current = target;
+        } else {
+            current -= total * angle.tan();
+            z.push((at + total, current));
+        }
+        at += total;
+    }
+    let reached = z.last().unwrap().0;
+    let end = reached + total;
+    let mut heights = Heights(z);
+    if let Some(tabs) = tabs {
+        heights = heights.max(&tab_heights(tabs, total, end, z_final, s.tool_radius));
+    }
+    // Lead arcs from and to the waste side, if they keep clear of the part.
+    let t_in = segs[0].tangent_at(0.0);
+    let end_point = point_at(segs, &starts, total, end);
+    let i_end = starts.partition_point(|&x| x <= end.rem_euclid(total)).saturating_sub(1);
+    let seg_end = segs[i_end];
+    let t_end = seg_end.tangent_at(seg_end.closest(end_point).1);
+    let z_end = heights.at(end);
+    let lead_in = fitting_lead(start, t_in, waste_left, lead, region, outside, d, true);
+    match lead_in {
+        Some((l_start, arc)) => {
+            s.cursor.reposition(l_start.extend(s.top), out);
+            out.push(Move::Arc { to: start.extend(s.top), center: arc.0, clockwise: arc.1, feed: s.feed });
+        }
+        None => s.cursor.reposition(start.extend(s.top), out),
+    }
+    follow(segs, 0.0, end, &heights, s.feed, out);
+    if let Some((l_end, arc)) = fitting_lead(end_point, t_end, waste_left, lead, region, outside, d, false) {
+        out.push(Move::Arc { to: l_end.extend(z_end), center: arc.0, clockwise: arc.1, feed: s.feed });
+    }
+}
+
+/// Tab heights over arc lengths [0, end): trapezoids with 45° sides over each tab, the tool's
+/// width wider than the tab.
+fn tab_heights(tabs: &Tabs, total: f64, end: f64, z_final: f64, r: f64) -> Heights {
+    let count = if tabs.count > 0 { tabs.count as usize } else { (total / tabs.spacing.unwrap_or(total)).floor().max(1.0) as usize };
+    let top = z_final + tabs.height.max(0.0);
+    let low = z_final - 1.0;
+    let half = tabs.width * 0.5 + r;
+    let rise = top - low;
+    let mut pts = vec![(0.0, low)];
+    let laps = (end / total).ceil() as usize;
+    for lap in 0..laps {
+        for i in 0..count {
+            let c = lap as f64 * total + (i as f64 + 0.5) * total / count as f64;
+            pts.extend([(c - half - rise, low), (c - half, top), (c + half, top), (c + half + rise, low)]);
+        }
+    }
+    Heights(pts)
+}
+
+/// A quarter-circle lead of radius `rho` tangent to the path at `p` (direction `t`), on the
+/// waste side: returns the lead's far end and its (centre, clockwise). Halved until every
+/// point of it keeps the distance `d` from the part, and dropped below a tenth of a mm.
+#[allow(clippy::too_many_arguments)]
+fn fitting_lead(p: DVec2, t: DVec2, waste_left: bool, rho: f64, region: &Shape, outside: bool, d: f64, into: bool) -> Option<(DVec2, (DVec2, bool))> {
+    let n = if waste_left { t.perp() } else { -t.perp() };
+    let mut rho = rho;
+    while rho >= 0.1 {
+        let c = p + n * rho;
+        let far = if into { c - t * rho } else { c + t * rho };
+        let sweep = (p - c).angle_to(far - c); // a quarter turn either way
+        let arc_fits = (0..=16).all(|k| {
+            let q = c + DVec2::from_angle(sweep * k as f64 / 16.0).rotate(p - c);
+            region.distance_to(q) >= d - 1e-6 && region.contains(q) != outside
+        });
+        if arc_fits {
+            // The arc turns towards the waste side going into the path: counter-clockwise when
+            // the waste is on the left.
+            return Some((far, (c, !waste_left)));
+        }
+        rho *= 0.5;
+    }
+    None
+}
+

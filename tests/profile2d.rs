@@ -1,0 +1,193 @@
+//! 2.5D jobs on drawings, end to end: import, offset, profile and pocket paths, G-code, and the
+//! simulation's verification against the part the drawing means. Tool centres never come
+//! closer to the drawn walls than the tool radius; pockets remove their closed-form volume.
+
+mod common;
+
+use std::f64::consts::PI;
+
+use swarf::cutter::Cutter;
+use swarf::geom::{DVec2, Tolerances};
+use swarf::job::{self, Job, Operation, Tool};
+use swarf::profile::import::read_drawing;
+use swarf::profile::sample::plate_dxf;
+use swarf::profile::{Drawing, Shape};
+use swarf::offset::trim::Original;
+use swarf::progress::Progress;
+use swarf::toolpath::{arc_sweep, Move};
+use swarf::strategy::pocket2d::{Entry, Pocket2d, PocketPattern};
+use swarf::strategy::profile2d::{Profile2d, Tabs};
+
+fn plate() -> Drawing {
+    read_drawing(plate_dxf().as_bytes(), Some("plate.dxf"), &Tolerances::default()).unwrap()
+}
+
+fn job_with(ops: Vec<Operation>, diameter: f64) -> Job {
+    let tool = Tool { number: 1, cutter: Cutter::flat(diameter), feed_rate: 800.0, plunge_rate: 200.0, ..Tool::default() };
+    Job { tools: vec![tool], operations: ops, ..Job::default_for_drawing() }
+}
+
+/// The smallest distance from the points of cutting moves below the sheet top to the shape
+/// (eight points a move, on the true arcs).
+fn closest_approach(out: &job::JobOutput, shape: &Shape) -> f64 {
+    let original = Original::new(shape);
+    let mut worst = f64::INFINITY;
+    for p in &out.paths {
+        let mut at = p.start;
+        for m in &p.moves {
+            let to = m.to();
+            if !m.is_rapid() && at.z.max(to.z) < -1e-9 {
+                for k in 0..=8 {
+                    let f = k as f64 / 8.0;
+                    let q = match *m {
+                        Move::Arc { center, clockwise, .. } => {
+                            let sweep = arc_sweep(at, to, center, clockwise);
+                            center + DVec2::from_angle(sweep * f).rotate(at.truncate() - center)
+                        }
+                        _ => at.truncate().lerp(to.truncate(), f),
+                    };
+                    worst = worst.min(original.distance(q, 100.0));
+                }
+            }
+            at = to;
+        }
+    }
+    worst
+}
+
+#[test]
+fn the_sample_plate_reads_as_drawn() {
+    let d = plate();
+    assert_eq!(d.loops.len(), 6);
+    assert!(d.open.is_empty());
+    assert_eq!(d.layers, vec!["CUT".to_string(), "POCKET".to_string()]);
+    let cut = d.shape(&["CUT".into()]).unwrap();
+    let expected = 120.0 * 80.0 - (4.0 - PI) * 36.0 - PI * 64.0 - 256.0 - (30.0 * 8.0 + PI * 16.0);
+    assert!((cut.area() - expected).abs() < 1e-6, "{} vs {expected}", cut.area());
+    assert_eq!(cut.loops.iter().filter(|l| l.is_ccw()).count(), 1);
+}
+
+#[test]
+fn profile_cuts_the_plate_out_with_tabs_and_never_closer_than_the_radius() {
+    let profile = Profile2d { layers: vec!["CUT".into()], tabs: Tabs { count: 4, ..Tabs::default() }, ..Profile2d::default() };
+    let job = job_with(vec![Operation::Profile2d(profile)], 3.0);
+    let out = job::run(&job, plate(), &mut Progress::none()).unwrap();
+    let placed = out.drawing.as_ref().unwrap();
+    let shape = placed.shape(&["CUT".into()]).unwrap();
+    let approach = closest_approach(&out, &shape);
+    assert!(approach >= 1.5 - 1e-6, "a cutting move came {approach} from the drawing");
+    let report = &out.verification.as_ref().unwrap().report;
+    assert!(report.is_clean(), "{}", report.describe());
+    assert!(out.gcode.contains("G2") || out.gcode.contains("G3"));
+    // The tabs: the final depth is −6.2, and the outline's path rises to the tab top −4.7.
+    let zs: Vec<f64> = out.paths[0].moves.iter().map(|m| m.to().z).collect();
+    assert!(zs.iter().any(|&z| (z + 6.2).abs() < 1e-9));
+    assert!(zs.iter().any(|&z| (z + 4.7).abs() < 1e-9));
+    // Holes first: the outline (the longest loop) is cut last.
+    assert!(out.warnings.is_empty(), "{:?}", out.warnings);
+}
+
+#[test]
+fn pockets_remove_their_closed_form_volume_for_both_patterns() {
+    for pattern in [PocketPattern::Offset, PocketPattern::Zigzag] {
+        for entry in [Entry::Helix, Entry::Ramp] {
+            let pocket = Pocket2d { layers: vec!["POCKET".into()], depth: 3.0, stepdown: 1.5, pattern, entry, ..Pocket2d::default() };
+            let mut job = job_with(vec![Operation::Pocket2d(pocket)], 6.0);
+            job.simulation.cell = Some(0.1);
+            let out = job::run(&job, plate(), &mut Progress::none()).unwrap();
+            let placed = out.drawing.as_ref().unwrap();
+            let region = placed.shape(&["POCKET".into()]).unwrap();
+            assert!(closest_approach(&out, &region) >= 3.0 - 1e-6);
+            let v = out.verification.as_ref().unwrap();
+            assert!(v.report.is_clean(), "{pattern:?} {entry:?}: {}", v.report.describe());
+            // 40 × 24 less the island (r 4) less the four corners a φ6 tool cannot reach.
+            let area = 40.0 * 24.0 - PI * 16.0 - 4.0 * 9.0 * (1.0 - PI / 4.0);
+            let removed: f64 = v.volumes.iter().sum();
+            let expected = area * 3.0;
+            assert!((removed - expected).abs() < 0.01 * expected, "{pattern:?} {entry:?}: removed {removed:.1} mm³, expected {expected:.1}");
+        }
+    }
+}
+
+#[test]
+fn a_tool_larger_than_the_pocket_is_a_clear_error() {
+    let pocket = Pocket2d { layers: vec!["POCKET".into()], ..Pocket2d::default() };
+    let job = job_with(vec![Operation::Pocket2d(pocket)], 30.0);
+    let e = job::run(&job, plate(), &mut Progress::none()).unwrap_err().to_string();
+    assert!(e.contains("does not fit in the pocket"), "{e}");
+}
+
+#[test]
+fn open_chains_are_reported_where_they_are() {
+    let dxf = "0\nSECTION\n2\nENTITIES\n0\nLINE\n8\nA\n10\n0\n20\n0\n11\n10\n21\n0\n0\nLINE\n8\nA\n10\n10\n20\n0\n11\n10\n21\n10\n0\nENDSEC\n0\nEOF\n";
+    let d = read_drawing(dxf.as_bytes(), Some("open.dxf"), &Tolerances::default()).unwrap();
+    assert_eq!(d.open.len(), 1);
+    let job = job_with(vec![Operation::Profile2d(Profile2d::default())], 3.0);
+    let e = job::run(&job, d, &mut Progress::none()).unwrap_err().to_string();
+    assert!(e.contains("open chain") && e.contains("layer A") && e.contains("(0.000, 0.000)") && e.contains("(10.000, 10.000)"), "{e}");
+}
+
+#[test]
+fn dxf_units_bulges_ellipses_and_splines() {
+    // Inches: a 1 × 1 square with one bulged side (a half circle out), and an ellipse.
+    let dxf = "0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n1\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n\
+0\nLWPOLYLINE\n8\n0\n90\n4\n70\n1\n10\n0\n20\n0\n10\n1\n20\n0\n42\n1\n10\n1\n20\n1\n10\n0\n20\n1\n\
+0\nELLIPSE\n8\nE\n10\n5\n20\n5\n30\n0\n11\n2\n21\n0\n31\n0\n40\n0.5\n41\n0\n42\n6.283185307179586\n0\nENDSEC\n0\nEOF\n";
+    let d = read_drawing(dxf.as_bytes(), Some("inch.dxf"), &Tolerances::default()).unwrap();
+    assert_eq!(d.units, "inch");
+    let square = d.shape(&["0".into()]).unwrap();
+    let expected = (1.0 + PI / 8.0) * 25.4 * 25.4;
+    assert!((square.area() - expected).abs() < 1e-6, "{}", square.area());
+    let ellipse = d.shape(&["E".into()]).unwrap();
+    let expected = PI * 2.0 * 1.0 * 25.4 * 25.4;
+    assert!((ellipse.area() - expected).abs() < 0.01 * expected / 100.0 + 0.2, "{}", ellipse.area());
+    // A clamped cubic B-spline with collinear control points is the straight line.
+    let spline = "0\nSECTION\n2\nENTITIES\n0\nSPLINE\n8\n0\n70\n8\n71\n3\n72\n8\n73\n4\n40\n0\n40\n0\n40\n0\n40\n0\n40\n1\n40\n1\n40\n1\n40\n1\n\
+10\n0\n20\n0\n10\n1\n20\n1\n10\n2\n20\n2\n10\n3\n20\n3\n0\nENDSEC\n0\nEOF\n";
+    let d = read_drawing(spline.as_bytes(), Some("s.dxf"), &Tolerances::default()).unwrap();
+    assert_eq!(d.open.len(), 1);
+    assert!(d.open[0].end.distance(DVec2::new(3.0, 3.0)) < 1e-9);
+}
+
+#[test]
+fn svg_shapes_transforms_and_arcs() {
+    let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" width="100mm" height="100mm" viewBox="0 0 100 100">
+      <g transform="translate(10 10)">
+        <rect x="0" y="0" width="40" height="20" rx="5"/>
+        <circle cx="70" cy="10" r="5" transform="scale(1)"/>
+      </g>
+      <path d="M 10 60 h 30 a 10 10 0 0 1 0 20 h -30 z"/>
+      <polygon points="60,60 90,60 75,90"/>
+    </svg>"#;
+    let d = read_drawing(svg.as_bytes(), Some("t.svg"), &Tolerances::default()).unwrap();
+    assert!(d.open.is_empty(), "{:?}", d.open);
+    assert_eq!(d.loops.len(), 4);
+    let areas: Vec<f64> = d.loops.iter().map(|l| l.path.area().abs()).collect();
+    let near = |a: f64| areas.iter().any(|&x| (x - a).abs() < 0.2);
+    assert!(near(40.0 * 20.0 - (4.0 - PI) * 25.0), "{areas:?}");
+    assert!(near(PI * 25.0), "{areas:?}");
+    assert!(near(30.0 * 20.0 + PI * 50.0), "{areas:?}"); // SVG arcs reach us as cubics
+    assert!(near(0.5 * 30.0 * 30.0), "{areas:?}");
+}
+
+#[test]
+fn real_profiles_read_and_cut_cleanly() {
+    let Some(dir) = common::shared_data("profiles") else {
+        eprintln!("../shared/data/profiles is absent; skipped");
+        return;
+    };
+    for (file, loops) in [("tm_LM2.dxf", 40), ("tm_1002_tray_bottom.dxf", 24), ("pycam_polygons.svg", 3), ("tm_tray-easy1.svg", 383)] {
+        let bytes = std::fs::read(dir.join(file)).unwrap();
+        let d = read_drawing(&bytes, Some(file), &Tolerances::default()).unwrap();
+        assert_eq!(d.loops.len(), loops, "{file}");
+        assert!(d.open.is_empty(), "{file}: {:?}", d.open);
+    }
+    let bytes = std::fs::read(dir.join("tm_LM2.dxf")).unwrap();
+    let d = read_drawing(&bytes, Some("tm_LM2.dxf"), &Tolerances::default()).unwrap();
+    let job = job_with(vec![Operation::Profile2d(Profile2d::default())], 3.0);
+    let out = job::run(&job, d, &mut Progress::none()).unwrap();
+    let report = &out.verification.as_ref().unwrap().report;
+    assert!(report.gouge_count == 0 && report.rapid_collision_count == 0, "{}", report.describe());
+    let placed = out.drawing.as_ref().unwrap();
+    assert!(closest_approach(&out, &placed.shape(&[]).unwrap()) >= 1.5 - 1e-6);
+}
