@@ -6,7 +6,8 @@
 use wasm_bindgen::prelude::*;
 
 use crate::geom::{Aabb, Tolerances};
-use crate::job::{self, Job};
+use crate::job::{self, Job, Workpiece};
+use crate::profile::Drawing;
 use crate::mesh::import::read_mesh_auto;
 use crate::mesh::placement::PartSetup;
 use crate::mesh::{sample, Mesh};
@@ -39,6 +40,91 @@ pub fn default_job() -> Result<JsValue, JsError> {
 #[wasm_bindgen(js_name = samplePart)]
 pub fn sample_part() -> Vec<u8> {
     sample::demo_part().to_binary_stl()
+}
+
+/// The built-in sample drawing (a plate with holes and a pocket), as DXF text.
+#[wasm_bindgen(js_name = sampleDrawing)]
+pub fn sample_drawing() -> Vec<u8> {
+    crate::profile::sample::plate_dxf().into_bytes()
+}
+
+/// Whether a file is a drawing (DXF, SVG) rather than a part.
+#[wasm_bindgen(js_name = isDrawing)]
+pub fn is_drawing(bytes: &[u8], name: &str) -> bool {
+    crate::profile::import::is_drawing(Some(name), bytes)
+}
+
+/// A drawing for the page's view: outer loops, holes and open chains as line segments at Z0
+/// (xyz pairs), and a list of its loops and layers.
+#[derive(serde::Serialize)]
+#[serde(rename_all = "camelCase")]
+struct DrawingView {
+    outer: Vec<f32>,
+    holes: Vec<f32>,
+    open: Vec<f32>,
+    bounds: [f64; 6],
+    loops: Vec<LoopInfo>,
+    layers: Vec<String>,
+    units: String,
+    ignored: Vec<(String, usize)>,
+    open_chains: Vec<crate::profile::OpenChain>,
+}
+
+#[derive(serde::Serialize)]
+#[serde(rename_all = "camelCase")]
+struct LoopInfo {
+    index: usize,
+    layer: String,
+    hole: bool,
+    entities: usize,
+    min: [f64; 2],
+    max: [f64; 2],
+}
+
+fn drawing_view(d: &Drawing) -> DrawingView {
+    let nesting = crate::profile::Shape::new(d.loops.iter().map(|l| l.path.clone()).collect());
+    let (mut outer, mut holes, mut loops) = (Vec::new(), Vec::new(), Vec::new());
+    for (index, (l, o)) in d.loops.iter().zip(&nesting.loops).enumerate() {
+        let target = if o.is_ccw() { &mut outer } else { &mut holes };
+        for seg in l.path.segments() {
+            let n = seg.arc_geom().map_or(1, |g| ((g.sweep.abs() / 0.05).ceil() as usize).max(1));
+            for k in 0..n {
+                let (a, b) = (seg.point_at(k as f64 / n as f64), seg.point_at((k + 1) as f64 / n as f64));
+                target.extend([a.x as f32, a.y as f32, 0.0, b.x as f32, b.y as f32, 0.0]);
+            }
+        }
+        let b = l.path.bounds();
+        loops.push(LoopInfo { index, layer: l.layer.clone(), hole: !o.is_ccw(), entities: l.path.len(), min: [b.min.x, b.min.y], max: [b.max.x, b.max.y] });
+    }
+    let mut open = Vec::new();
+    for o in &d.open {
+        open.extend([o.start.x as f32, o.start.y as f32, 0.0, o.end.x as f32, o.end.y as f32, 0.0]);
+    }
+    let b = d.bounds();
+    DrawingView {
+        outer,
+        holes,
+        open,
+        bounds: [b.min.x, b.min.y, 0.0, b.max.x, b.max.y, 0.0],
+        loops,
+        layers: d.layers.clone(),
+        units: d.units.clone(),
+        ignored: d.ignored.clone(),
+        open_chains: d.open.clone(),
+    }
+}
+
+fn read_drawing_js(bytes: &[u8], name: &str, tolerances: &Tolerances) -> Result<Drawing, JsError> {
+    crate::profile::import::read_drawing(bytes, Some(name), tolerances).map_err(|e| js_error(format!("{name}: {e}")))
+}
+
+/// Reads a drawing and places it as `setup` (a `DrawingSetup` object) says.
+#[wasm_bindgen(js_name = loadDrawing)]
+pub fn load_drawing(bytes: &[u8], name: &str, setup: JsValue) -> Result<JsValue, JsError> {
+    let setup: crate::job::DrawingSetup = serde_wasm_bindgen::from_value(setup).map_err(js_error)?;
+    let mut d = read_drawing_js(bytes, name, &Tolerances::default())?;
+    setup.apply(&mut d);
+    to_js(&drawing_view(&d))
 }
 
 /// A part read and placed, ready to draw.
@@ -112,6 +198,7 @@ pub struct JobResult {
     rapids: Vec<f32>,
     summary: JsValue,
     part: PartView,
+    drawing: JsValue,
     simulation: Option<SimulationView>,
 }
 
@@ -191,6 +278,10 @@ impl JobResult {
             None => js_sys::Float32Array::default(),
         }
     }
+    /// The drawing as the job placed it (as `loadDrawing` gives it), or null for a part.
+    pub fn drawing(&self) -> JsValue {
+        self.drawing.clone()
+    }
     /// The part as the job placed it.
     #[wasm_bindgen(js_name = takePart)]
     pub fn take_part(&mut self) -> PartView {
@@ -213,11 +304,15 @@ struct Summary {
 #[wasm_bindgen(js_name = runJob)]
 pub fn run_job(job: JsValue, bytes: &[u8], name: &str, progress: &js_sys::Function) -> Result<JobResult, JsError> {
     let job: Job = serde_wasm_bindgen::from_value(job).map_err(|e| js_error(format!("invalid job: {e}")))?;
-    let mesh = read_part(bytes, name, &job.tolerances)?;
+    let workpiece: Workpiece = if crate::profile::import::is_drawing(Some(name), bytes) {
+        read_drawing_js(bytes, name, &job.tolerances)?.into()
+    } else {
+        read_part(bytes, name, &job.tolerances)?.into()
+    };
     let mut sink = |fraction: f64, stage: &str| {
         progress.call2(&JsValue::NULL, &JsValue::from_f64(fraction), &JsValue::from_str(stage)).map(|v| v.as_bool() != Some(false)).unwrap_or(true)
     };
-    let mut out = job::run(&job, mesh, &mut Progress::new(&mut sink)).map_err(js_error)?;
+    let mut out = job::run(&job, workpiece, &mut Progress::new(&mut sink)).map_err(js_error)?;
     let simulation = out.verification.take().map(|v| simulation_view(&job, &out, v)).transpose()?;
     let (mut feeds, mut rapids) = (Vec::new(), Vec::new());
     for path in &out.paths {
@@ -229,7 +324,11 @@ pub fn run_job(job: JsValue, bytes: &[u8], name: &str, progress: &js_sys::Functi
     let s = out.stock;
     let summary = Summary { stats: out.stats, warnings: out.warnings.clone(), stock: [s.min.x, s.min.y, s.min.z, s.max.x, s.max.y, s.max.z], clearance_z: out.clearance_z };
     let summary = to_js(&summary)?;
-    Ok(JobResult { gcode: out.gcode, feeds, rapids, summary, part: part_view(&out.part), simulation })
+    let drawing = match &out.drawing {
+        Some(d) => to_js(&drawing_view(d))?,
+        None => JsValue::NULL,
+    };
+    Ok(JobResult { gcode: out.gcode, feeds, rapids, summary, part: part_view(&out.part), drawing, simulation })
 }
 
 #[derive(serde::Serialize)]

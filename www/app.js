@@ -34,7 +34,7 @@ function call(message, transfer = [], onProgress) {
 }
 
 // ---- state -------------------------------------------------------------------------------
-const state = { bytes: null, name: 'sample.stl', sample: null, baseJob: null, gcode: null, running: false };
+const state = { bytes: null, name: 'sample.stl', sample: null, sampleDrawing: null, baseJob: null, gcode: null, running: false, kind: 'part', drawing: null };
 window.swarf = state; // for the end-to-end test and the curious
 
 function showError(text) { const m = $('message'); m.className = ''; m.textContent = text; }
@@ -63,9 +63,46 @@ function partSetup() {
   return { units: f.partUnits.value, upAxis: f.upAxis.value, placement: f.placement.value };
 }
 
+function drawingSetup() {
+  const f = form.elements;
+  return { units: f.drawingUnits.value, origin: f.drawingOrigin.value, thickness: num('thickness') };
+}
+
+// The 2.5D operation the form describes, as the job's JSON has it.
+function operation2d() {
+  const f = form.elements;
+  const layers = f.layers.value.split(',').map((l) => l.trim()).filter(Boolean);
+  const depth = f.depth2d.value === '' ? null : num('depth2d');
+  const common = { tool: 1, layers, stepdown: num('stepdown'), leaveStock: num('leaveStock'), direction: f.direction.value };
+  if (f.op2d.value === 'pocket2d') {
+    return { kind: 'pocket2d', name: 'pocket', ...common, depth: depth ?? 3, stepover: num('stepoverFraction'), pattern: f.pocketPattern.value, entry: f.entry.value };
+  }
+  return { kind: 'profile2d', name: 'profile', ...common, depth, side: f.side.value, tabs: { count: Math.max(0, Math.round(num('tabs'))) } };
+}
+
+function setKind(kind) {
+  state.kind = kind;
+  $('fs-drawing').hidden = kind !== 'drawing';
+  $('fs-raster').hidden = kind === 'drawing';
+  document.body.dataset.kind = kind;
+}
+
 function buildJob() {
   const f = form.elements;
   const job = structuredClone(state.baseJob);
+  if (state.kind === 'drawing') {
+    job.name = state.name.replace(/\.[^.]*$/, '');
+    job.drawing = drawingSetup();
+    job.stock.marginXy = num('marginXy');
+    job.tools = [{
+      number: 1, name: '', shape: f.shape.value, diameter: num('diameter'), cornerRadius: num('cornerRadius'),
+      fluteLength: Math.max(20, num('diameter') * 3), spindleRpm: num('spindleRpm'), feedRate: num('feedRate'), plungeRate: num('plungeRate'),
+    }];
+    job.operations = [operation2d()];
+    job.post.dialect = f.dialect.value;
+    job.post.units = f.gcodeUnits.value;
+    return job;
+  }
   job.name = state.name.replace(/\.[^.]*$/, '');
   job.part = partSetup();
   job.stock.marginXy = num('marginXy');
@@ -88,11 +125,20 @@ function buildJob() {
 async function showPart(bytes = state.bytes, name = state.name, label = $('part-name').textContent) {
   if (!bytes) return;
   try {
-    const { part } = await call({ type: 'load', bytes, name, setup: partSetup() });
+    let setup;
+    try { setup = drawingSetup(); } catch { setup = { units: 'file', origin: 'lowerLeft', thickness: 6 }; }
+    const { part, drawing } = await call({ type: 'load', bytes, name, setup: partSetup(), drawingSetup: setup });
     Object.assign(state, { bytes, name, gcode: null });
     $('part-name').textContent = label;
     viewer?.clearPaths();
     showSimulation(null);
+    $('download').disabled = true;
+    $('generate').disabled = state.running;
+    if (drawing) {
+      showDrawing(drawing);
+      return;
+    }
+    setKind('part');
     viewer?.setPart(part);
     $('download').disabled = true;
     $('generate').disabled = state.running;
@@ -101,6 +147,26 @@ async function showPart(bytes = state.bytes, name = state.name, label = $('part-
     showInfo('');
   } catch (e) {
     showError(e.message);
+  }
+}
+
+// A drawing's loops in the view and a list of them (which are outlines, which are holes), with
+// its layers; open chains are reported where they are.
+function showDrawing(d) {
+  setKind('drawing');
+  state.drawing = d;
+  viewer?.setDrawing(d);
+  const outer = d.loops.filter((l) => !l.hole).length, holes = d.loops.length - outer;
+  const b = d.bounds;
+  $('stats').textContent = `${d.loops.length} closed loops: ${outer} outlines (green), ${holes} holes (orange)\nlayers: ${d.layers.join(', ')}\nunits: ${d.units}\nsize ${(b[3] - b[0]).toFixed(1)} × ${(b[4] - b[1]).toFixed(1)} mm`
+    + (d.ignored.length ? `\nignored: ${d.ignored.map(([k, n]) => `${n} ${k}`).join(', ')}` : '');
+  const list = d.loops.slice(0, 200).map((l) => `${l.index}: ${l.layer}, ${l.hole ? 'hole' : 'outline'}, ${l.entities} entities, (${l.min.map((v) => v.toFixed(1)).join(', ')})–(${l.max.map((v) => v.toFixed(1)).join(', ')})`);
+  $('loops').textContent = list.join('\n') + (d.loops.length > 200 ? `\n… and ${d.loops.length - 200} more` : '');
+  if (d.openChains.length) {
+    const o = d.openChains.slice(0, 5).map((c) => `layer ${c.layer} from (${c.start.map((v) => v.toFixed(2)).join(', ')}) to (${c.end.map((v) => v.toFixed(2)).join(', ')})`);
+    showError(`${d.openChains.length} open chain(s), drawn in red, cannot be cut until closed: ${o.join('; ')}${d.openChains.length > 5 ? ' …' : ''}. Choose layers without them.`);
+  } else {
+    showInfo('');
   }
 }
 
@@ -125,11 +191,18 @@ function saveJob() {
 async function loadJob(file) {
   try {
     const job = JSON.parse(await file.text());
-    const op = (job.operations || []).find((o) => o.kind === 'finishRaster');
+    const op = (job.operations || []).find((o) => ['finishRaster', 'profile2d', 'pocket2d'].includes(o.kind));
     const tool = (job.tools || []).find((t) => !op || t.number === op.tool) || (job.tools || [])[0];
-    if (!op || !tool) throw new Error('the job has no raster finishing operation with its tool');
+    if (!op || !tool) throw new Error('the job has no raster, profile or pocket operation with its tool');
     const f = form.elements;
     const set = (name, value) => { if (value !== undefined && value !== null && f[name]) f[name].value = value; };
+    if (op.kind !== 'finishRaster') {
+      set('op2d', op.kind); set('layers', (op.layers || []).join(', ')); set('depth2d', op.depth ?? '');
+      set('stepdown', op.stepdown); set('leaveStock', op.leaveStock); set('direction', op.direction);
+      set('side', op.side); set('tabs', op.tabs?.count); set('pocketPattern', op.pattern); set('entry', op.entry);
+      if (op.kind === 'pocket2d') set('stepoverFraction', op.stepover);
+      set('drawingUnits', job.drawing?.units); set('drawingOrigin', job.drawing?.origin); set('thickness', job.drawing?.thickness);
+    }
     set('partUnits', job.part?.units); set('upAxis', job.part?.upAxis); set('placement', job.part?.placement);
     set('marginXy', job.stock?.marginXy);
     set('shape', tool.shape); set('diameter', tool.diameter); set('cornerRadius', tool.cornerRadius);
@@ -276,7 +349,8 @@ async function generate() {
       $('stage').textContent = stage;
     });
     state.gcode = r.gcode;
-    viewer?.setPart(r.part, false);
+    if (r.drawing) viewer?.setDrawing(r.drawing, false);
+    else viewer?.setPart(r.part, false);
     viewer?.setPaths(r.feeds, r.rapids, r.summary.stock);
     showSimulation(r.sim);
     const s = r.summary;
@@ -334,10 +408,11 @@ $('save-job').addEventListener('click', saveJob);
 $('load-job').addEventListener('change', (e) => { if (e.target.files[0]) loadJob(e.target.files[0]); e.target.value = ''; });
 $('file').addEventListener('change', (e) => { if (e.target.files[0]) takeFile(e.target.files[0]); });
 $('use-sample').addEventListener('click', () => showPart(state.sample, 'sample.stl', 'sample part'));
+$('use-sample-drawing').addEventListener('click', () => showPart(state.sampleDrawing, 'sample.dxf', 'sample drawing'));
 form.addEventListener('change', (e) => {
   saveSettings();
   updateCorner();
-  if (['partUnits', 'upAxis', 'placement'].includes(e.target.name)) showPart();
+  if (['partUnits', 'upAxis', 'placement', 'drawingUnits', 'drawingOrigin'].includes(e.target.name)) showPart();
 });
 const drop = $('drop');
 for (const t of ['dragenter', 'dragover']) document.addEventListener(t, (e) => { e.preventDefault(); drop.classList.add('over'); });
@@ -346,9 +421,10 @@ document.addEventListener('drop', (e) => { const f = e.dataTransfer?.files?.[0];
 
 restoreSettings();
 startWorker();
-call({ type: 'hello' }).then(({ job, sample }) => {
+call({ type: 'hello' }).then(({ job, sample, sampleDrawing }) => {
   state.baseJob = job;
   state.sample = sample;
+  state.sampleDrawing = sampleDrawing;
   return showPart(sample, 'sample.stl', 'sample part');
 }).then(() => {
   document.body.dataset.ready = 'true';

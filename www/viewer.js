@@ -121,6 +121,19 @@ export class Viewer {
     this.draw();
   }
 
+  // A drawing (as loadDrawing gives it): outer loops green, holes orange, open chains red, as
+  // lines at Z0. It takes the part's place.
+  setDrawing(d, frame = true) {
+    this.part = null;
+    const colors = { outer: [0.12, 0.55, 0.24, 1], holes: [0.85, 0.45, 0.05, 1], open: [0.86, 0.1, 0.1, 1] };
+    for (const key of Object.keys(colors)) {
+      const data = new Float32Array(d[key]);
+      this.lines[`drawing_${key}`] = { buffer: this.buffer(data), count: data.length / 3, color: colors[key], mark: true };
+    }
+    if (frame) this.frame(d.bounds);
+    this.draw();
+  }
+
   clearPaths() {
     this.lines = {};
     this.stock = null;

@@ -1,5 +1,5 @@
 // Runs the wasm pipeline off the page's thread. Cancel = the page terminates this worker.
-import init, { defaultJob, samplePart, loadPart, runJob } from './pkg/swarf.js';
+import init, { defaultJob, samplePart, sampleDrawing, loadPart, loadDrawing, isDrawing, runJob } from './pkg/swarf.js';
 
 const ready = init();
 // The last job's result stays here so the page can scrub through its simulation.
@@ -22,10 +22,14 @@ self.onmessage = async (event) => {
   try {
     await ready;
     if (type === 'hello') {
-      self.postMessage({ id, ok: true, job: defaultJob(), sample: samplePart() });
+      self.postMessage({ id, ok: true, job: defaultJob(), sample: samplePart(), sampleDrawing: sampleDrawing() });
     } else if (type === 'load') {
-      const { part, transfer } = partMessage(loadPart(event.data.bytes, event.data.name, event.data.setup));
-      self.postMessage({ id, ok: true, part }, transfer);
+      if (isDrawing(event.data.bytes, event.data.name)) {
+        self.postMessage({ id, ok: true, drawing: loadDrawing(event.data.bytes, event.data.name, event.data.drawingSetup) });
+      } else {
+        const { part, transfer } = partMessage(loadPart(event.data.bytes, event.data.name, event.data.setup));
+        self.postMessage({ id, ok: true, part }, transfer);
+      }
     } else if (type === 'run') {
       let last = 0;
       const result = runJob(event.data.job, event.data.bytes, event.data.name, (fraction, stage) => {
@@ -40,6 +44,7 @@ self.onmessage = async (event) => {
       const rapids = result.rapids().slice();
       const gcode = result.gcode();
       const summary = result.summary();
+      const drawing = result.drawing();
       const { part, transfer } = partMessage(result.takePart());
       let sim = null;
       if (result.hasSimulation()) {
@@ -56,7 +61,7 @@ self.onmessage = async (event) => {
       }
       current?.free();
       current = result;
-      self.postMessage({ id, ok: true, gcode, feeds, rapids, summary, part, sim }, [feeds.buffer, rapids.buffer, ...transfer]);
+      self.postMessage({ id, ok: true, gcode, feeds, rapids, summary, part, drawing, sim }, [feeds.buffer, rapids.buffer, ...transfer]);
     } else if (type === 'seek') {
       if (!current) throw new Error('nothing to simulate yet');
       const tops = current.seek(event.data.count).slice();

@@ -72,6 +72,23 @@ async function pixelCounts(page) {
     return n;
   });
 }
+
+// Pixels of the drawing's outline green (rgb(31, 140, 61)) and hole orange (rgb(217, 115, 13)).
+async function drawingPixels(page) {
+  return page.evaluate(() => {
+    const c = document.getElementById('view');
+    const gl = c.getContext('webgl2');
+    const px = new Uint8Array(c.width * c.height * 4);
+    gl.readPixels(0, 0, c.width, c.height, gl.RGBA, gl.UNSIGNED_BYTE, px);
+    const n = { green: 0, orange: 0 };
+    for (let i = 0; i < px.length; i += 4) {
+      const [r, g, b] = [px[i], px[i + 1], px[i + 2]];
+      if (g > 110 && r < 70 && b < 90) n.green++;
+      if (r > 180 && g > 80 && g < 150 && b < 50) n.orange++;
+    }
+    return n;
+  });
+}
 const pathPixels = async (page) => (await pixelCounts(page)).path;
 
 test('sample part → generate → path on the canvas → G-code that rs274 accepts', async () => {
@@ -230,6 +247,44 @@ test('the simulated stock: drawn after generating, scrubbed back to the raw bloc
   assert.ok(end.tan > 20000, `stock pixels at the end: ${JSON.stringify(end)}`);
   assert.ok(start.blue > end.blue * 2 && start.blue > 5000, `the raw block shows material left over the part: start ${JSON.stringify(start)}, end ${JSON.stringify(end)}`);
   assert.equal(end.red, 0, 'no gouge colour');
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
+test('the sample drawing: loops shown as outlines and holes, profile and pocket paths, G-code with arcs that rs274 accepts', async () => {
+  const { page, context, errors } = await openPage();
+  await page.click('#use-sample-drawing');
+  await page.waitForFunction(() => document.body.dataset.kind === 'drawing');
+  const shown = await drawingPixels(page);
+  assert.ok(shown.green > 200 && shown.orange > 200, `outline and hole pixels: ${JSON.stringify(shown)}`);
+  assert.match(await page.textContent('#stats'), /6 closed loops: 2 outlines \(green\), 4 holes \(orange\)/);
+  assert.match(await page.textContent('#stats'), /layers: CUT, POCKET/);
+  await page.selectOption('select[name=shape]', 'flat');
+  await page.fill('input[name=diameter]', '3');
+  for (const [op, layer] of [['pocket2d', 'POCKET'], ['profile2d', 'CUT']]) {
+    await page.selectOption('select[name=op2d]', op);
+    await page.fill('input[name=layers]', layer);
+    await page.click('#generate');
+    await page.waitForFunction(() => !document.getElementById('download').disabled, null, { timeout: 60000 });
+    assert.ok((await pathPixels(page)) > 1000, `${op}: path pixels`);
+    assert.doesNotMatch(await page.textContent('#sim-report'), /gouge[^\n]*[1-9]/);
+    const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
+    const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-'));
+    const program = path.join(dir, download.suggestedFilename());
+    await download.saveAs(program);
+    const gcode = fs.readFileSync(program, 'utf8');
+    assert.match(gcode, /^G[23] X-?[\d.]+ Y-?[\d.]+/m, `${op}: arcs go out as G2/G3 with X and Y`);
+    fs.writeFileSync(path.join(dir, 'tool.tbl'), 'T1 P1 Z0.000 D3.000 ;3 mm flat\n');
+    const canon = execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), program], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });
+    assert.ok(canon.split('\n').filter((l) => l.includes('ARC_FEED(')).length > 10, `${op}: rs274 saw arcs`);
+  }
+  await page.screenshot({ path: path.join(shots, 'drawing.png') });
+  // A drawing with an open chain: the page says where, and keeps the current drawing's settings.
+  const open = '0\nSECTION\n2\nENTITIES\n0\nLINE\n8\nOPEN\n10\n0\n20\n0\n11\n10\n21\n0\n0\nENDSEC\n0\nEOF\n';
+  await page.setInputFiles('#file', { name: 'open.dxf', mimeType: 'application/dxf', buffer: Buffer.from(open) });
+  await page.waitForFunction(() => /open chain/.test(document.getElementById('message').textContent));
+  assert.match(await page.textContent('#message'), /layer OPEN from \(0\.00, 0\.00\) to \(10\.00, 0\.00\)/);
+  assert.equal(await page.inputValue('input[name=layers]'), 'CUT');
   assert.deepEqual(errors, []);
   await context.close();
 });
