@@ -190,6 +190,24 @@ fn arcs_and_helices_go_out_as_g2_g3_with_relative_centres() {
     assert!((stats.feed_length - expected_feed).abs() < 1e-9, "{} vs {expected_feed}", stats.feed_length);
 }
 
+/// An arc shorter than the program's resolution would read as a full circle when its ends
+/// round to one point: it goes out as a line.
+#[test]
+fn arcs_shorter_than_the_resolution_go_out_as_lines() {
+    let tools = vec![Tool { number: 1, cutter: Cutter::flat(3.0), ..Tool::default() }];
+    let moves = vec![
+        Move::Line { to: DVec3::new(10.0, 0.0, -1.0), feed: 300.0 },
+        Move::Arc { to: DVec3::new(10.0, 0.0002, -1.0), center: DVec2::new(9.96, 0.0), clockwise: false, feed: 800.0 },
+        Move::Line { to: DVec3::new(10.0, 5.0, -1.0), feed: 300.0 },
+    ];
+    let path = Toolpath { name: "tiny".into(), tool: 1, spindle_rpm: 10000.0, start: DVec3::new(10.0, 0.0, 5.0), moves };
+    let gcode = write_gcode("tiny", std::slice::from_ref(&path), &tools, 5.0, &PostSettings::default());
+    assert!(!gcode.lines().any(|l| l.starts_with("G2 ") || l.starts_with("G3 ")), "{gcode}");
+    assert!(!gcode.lines().any(|l| l.starts_with('F')), "a feed without a move: {gcode}");
+    let canon = interpret(&gcode, &tools);
+    assert!(canon.iter().all(|(k, _)| !matches!(k, Kind::Arc { .. })));
+}
+
 /// swarf's own G-code reader (for `swarf verify`) must read a program as LinuxCNC does.
 #[test]
 fn the_reader_reads_programs_as_linuxcnc_does() {

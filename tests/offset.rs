@@ -7,7 +7,7 @@ use std::f64::consts::PI;
 
 use proptest::prelude::*;
 use swarf::geom::{DVec2, Tolerances};
-use swarf::offset::check::{problems, random_shape, star, Rng};
+use swarf::offset::check::{problems, random_shape, shape_from_bytes, star, Rng};
 use swarf::offset::offset;
 use swarf::profile::{Loop, Shape, Vertex};
 
@@ -161,16 +161,20 @@ fn random_corpus_is_valid() {
     }
 }
 
-/// Every shape the fuzz target (`cargo fuzz run offset`) shrank to a failure, kept.
+/// Every input the fuzz target (`cargo fuzz run offset`) shrank to a failure, kept in
+/// `tests/fuzz_regressions/offset-*.bin` and decoded as the target decodes it.
 #[test]
 fn kept_fuzz_failures() {
-    for (shape, d) in fuzz_cases() {
-        assert_valid(&shape, d);
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fuzz_regressions");
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_name().unwrap().to_string_lossy().into_owned();
+        if name.starts_with("offset-") {
+            if let Some((shape, d)) = shape_from_bytes(&std::fs::read(&path).unwrap()) {
+                assert_valid(&shape, d);
+            }
+        }
     }
-}
-
-fn fuzz_cases() -> Vec<(Shape, f64)> {
-    Vec::new()
 }
 
 fn shape_strategy() -> impl Strategy<Value = Shape> {

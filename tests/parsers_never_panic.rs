@@ -67,3 +67,42 @@ proptest! {
         check(&file);
     }
 }
+
+/// The drawing readers (DXF, SVG) on hostile bytes: every truncation and random byte flips of
+/// valid drawings give a drawing with finite coordinates or an error, never a panic. The
+/// `drawing` fuzz target (`cargo fuzz run drawing`) does the same at length.
+fn check_drawing(bytes: &[u8]) {
+    use swarf::profile::import::read_drawing;
+    for name in ["x.dxf", "x.svg"] {
+        if let Ok(d) = read_drawing(bytes, Some(name), &Tolerances::DEFAULT) {
+            assert!(d.loops.iter().flat_map(|l| &l.path.vertices).all(|v| v.p.is_finite() && v.bulge.is_finite()));
+        }
+    }
+}
+
+fn valid_drawings() -> Vec<Vec<u8>> {
+    let svg = br#"<svg xmlns="http://www.w3.org/2000/svg" width="50mm" height="50mm" viewBox="0 0 50 50"><g transform="rotate(10)"><rect x="1" y="1" width="20" height="10" rx="2"/><path d="M30 30 c 5 0 5 5 0 5 q -3 -2 0 -5 a 4 4 0 1 1 -2 2 z"/><ellipse cx="10" cy="30" rx="4" ry="2"/></g></svg>"#;
+    vec![swarf::profile::sample::plate_dxf().into_bytes(), svg.to_vec()]
+}
+
+#[test]
+fn every_truncation_of_valid_drawings_is_handled() {
+    for file in valid_drawings() {
+        for len in (0..file.len()).step_by(3) {
+            check_drawing(&file[..len]);
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 300, .. ProptestConfig::default() })]
+    #[test]
+    fn flipped_bytes_of_valid_drawings(which in 0usize..2, flips in proptest::collection::vec((any::<prop::sample::Index>(), any::<u8>()), 1..8)) {
+        let mut file = valid_drawings().swap_remove(which);
+        for (at, value) in flips {
+            let i = at.index(file.len());
+            file[i] = value;
+        }
+        check_drawing(&file);
+    }
+}

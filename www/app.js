@@ -63,6 +63,14 @@ function partSetup() {
   return { units: f.partUnits.value, upAxis: f.upAxis.value, placement: f.placement.value };
 }
 
+function toolFromForm() {
+  const f = form.elements;
+  return {
+    number: 1, name: '', shape: f.shape.value, diameter: num('diameter'), cornerRadius: num('cornerRadius'),
+    fluteLength: Math.max(20, num('diameter') * 3), spindleRpm: num('spindleRpm'), feedRate: num('feedRate'), plungeRate: num('plungeRate'),
+  };
+}
+
 function drawingSetup() {
   const f = form.elements;
   return { units: f.drawingUnits.value, origin: f.drawingOrigin.value, thickness: num('thickness') };
@@ -94,10 +102,7 @@ function buildJob() {
     job.name = state.name.replace(/\.[^.]*$/, '');
     job.drawing = drawingSetup();
     job.stock.marginXy = num('marginXy');
-    job.tools = [{
-      number: 1, name: '', shape: f.shape.value, diameter: num('diameter'), cornerRadius: num('cornerRadius'),
-      fluteLength: Math.max(20, num('diameter') * 3), spindleRpm: num('spindleRpm'), feedRate: num('feedRate'), plungeRate: num('plungeRate'),
-    }];
+    job.tools = [toolFromForm()];
     job.operations = [operation2d()];
     job.post.dialect = f.dialect.value;
     job.post.units = f.gcodeUnits.value;
@@ -106,10 +111,7 @@ function buildJob() {
   job.name = state.name.replace(/\.[^.]*$/, '');
   job.part = partSetup();
   job.stock.marginXy = num('marginXy');
-  job.tools = [{
-    number: 1, name: '', shape: f.shape.value, diameter: num('diameter'), cornerRadius: num('cornerRadius'),
-    fluteLength: Math.max(20, num('diameter') * 3), spindleRpm: num('spindleRpm'), feedRate: num('feedRate'), plungeRate: num('plungeRate'),
-  }];
+  job.tools = [toolFromForm()];
   job.operations = [{
     kind: 'finishRaster', name: 'raster finish', tool: 1, angle: num('angle'), stepover: num('stepover'), pattern: f.pattern.value,
     boundary: f.boundary.value, allowance: num('allowance'), grid: num('grid'), builder: f.builder.value,

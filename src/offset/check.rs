@@ -159,3 +159,26 @@ pub fn random_shape(rng: &mut Rng) -> Option<Shape> {
     let shape = Shape::new(loops);
     self_crossings(&shape, 1e-9).is_empty().then_some(shape)
 }
+
+/// A shape and an offset distance decoded from arbitrary bytes (the fuzz target's input): a
+/// star of 3 to 42 lines and arcs, up to two round islands, and a distance in ±10 mm. `None`
+/// when the bytes are too few or the shape is not simple.
+pub fn shape_from_bytes(data: &[u8]) -> Option<(Shape, f64)> {
+    let (&first, rest) = data.split_first()?;
+    let n = 3 + first as usize % 40;
+    if rest.len() < 2 * n + 1 {
+        return None;
+    }
+    let unit = |b: u8| b as f64 / 255.0;
+    let radii: Vec<f64> = (0..n).map(|k| 2.0 + 18.0 * unit(rest[2 * k])).collect();
+    let bulges: Vec<f64> = (0..n).map(|k| if rest[2 * k + 1] < 128 { 0.0 } else { (unit(rest[2 * k + 1]) - 0.75) * 3.2 }).collect();
+    let d = (unit(rest[2 * n]) - 0.5) * 20.0;
+    let mut loops = vec![star(DVec2::ZERO, &radii, &bulges, 0.0)];
+    for hole in rest[2 * n + 1..].chunks_exact(3).take(2) {
+        let c = DVec2::new(unit(hole[0]) - 0.5, unit(hole[1]) - 0.5) * 8.0;
+        loops.push(Loop::circle(c, 0.2 + 1.8 * unit(hole[2])));
+    }
+    let shape = Shape::new(loops);
+    let simple = self_crossings(&shape, 1e-9).is_empty() && shape.loops.iter().skip(1).all(|l| !l.is_ccw());
+    (simple && d.abs() > 1e-3).then_some((shape, d))
+}

@@ -17,8 +17,10 @@
 //! from crossing to crossing, through the loop's start, whichever vertex that is.
 //!
 //! All loops of a shape are offset together, so islands and the outer boundary that meet
-//! merge, and a region that narrows splits. Micro-entities below `Tolerances::micro_entity`
-//! are merged into their neighbours before and after ([`merge_micro_entities`]).
+//! merge, and a region that narrows splits. Micro-entities of the input below
+//! `Tolerances::micro_entity` are merged into their neighbours ([`merge_micro_entities`]), as
+//! the paper does for spline-heavy parts; the result keeps its short entities (only null ones
+//! go), and the post writes arcs too short for the controller's resolution as lines.
 
 pub mod check;
 pub mod join;
@@ -50,7 +52,9 @@ pub fn offset(shape: &Shape, distance: f64, tol: &Tolerances) -> Shape {
     let loops = trim::stitch(kept, tol.offset);
     let loops: Vec<Loop> = loops
         .into_iter()
-        .map(|l| merge_micro_entities(&l, tol.micro_entity))
+        // Only null entities go from the result: merging a short one moves its neighbour's end
+        // by up to its length, and the result must stay at the distance.
+        .map(|l| merge_micro_entities(&l, tol.offset * 10.0))
         .filter(|l| l.len() >= 2 && l.area().abs() > tol.micro_entity * tol.micro_entity)
         .collect();
     Shape::from_oriented(trim::discard_wrong_way(loops, &original, distance))

@@ -180,8 +180,16 @@ impl Writer {
             Move::Arc { clockwise: true, feed, .. } => ("G2", Some(feed)),
             Move::Arc { clockwise: false, feed, .. } => ("G3", Some(feed)),
         };
-        let is_arc = matches!(m, Move::Arc { .. });
+        // An arc whose ends round to one point would read as a full circle: write it as a line.
+        let rounds_shut = |p: Option<f64>, q: f64| p.is_some_and(|p| self.length(p) == self.length(q));
+        let short_arc = matches!(m, Move::Arc { .. })
+            && rounds_shut(self.position[0], to.x)
+            && rounds_shut(self.position[1], to.y)
+            && !(self.position[0] == Some(to.x) && self.position[1] == Some(to.y));
+        let (code, feed) = if short_arc { ("G1", feed) } else { (code, feed) };
+        let is_arc = matches!(m, Move::Arc { .. }) && !short_arc;
         let mut words = String::new();
+        let mut moved = false;
         if self.mode != Some(code) || is_arc {
             words.push_str(code);
         }
@@ -190,9 +198,13 @@ impl Writer {
             let changed = self.position[axis].map_or(true, |old| self.length(old) != text);
             if changed || (is_arc && axis < 2) {
                 words.push_str(&format!(" {name}{text}"));
+                moved = true;
             }
         }
-        if let Move::Arc { center, .. } = *m {
+        if !moved {
+            return; // no motion at the program's resolution
+        }
+        if let (Move::Arc { center, .. }, true) = (*m, is_arc) {
             let from = DVec3::new(self.position[0].unwrap_or(to.x), self.position[1].unwrap_or(to.y), 0.0);
             let _ = write!(words, " I{} J{}", self.length(center.x - from.x), self.length(center.y - from.y));
         }

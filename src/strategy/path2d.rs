@@ -169,6 +169,19 @@ pub fn helix(center: DVec2, radius: f64, from: f64, to: f64, angle: f64, clockwi
     out.push(Move::Arc { to: at.extend(to), center, clockwise, feed });
 }
 
+/// "the φD tool (plus L leave-stock) does not fit in <what> at (x, y)–(x, y)".
+pub fn does_not_fit(tool_radius: f64, leave_stock: f64, what: &str, b: &crate::geom::segment::Rect) -> String {
+    format!(
+        "the φ{:.3} tool (plus {:.3} leave-stock) does not fit in {what} at ({:.3}, {:.3})–({:.3}, {:.3})",
+        2.0 * tool_radius,
+        leave_stock,
+        b.min.x,
+        b.min.y,
+        b.max.x,
+        b.max.y
+    )
+}
+
 /// Where the tool is and how it moves between cuts.
 pub struct Cursor {
     pub at: DVec3,

@@ -8,7 +8,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::path2d::{arc_lengths, follow, helix, start_nearest, Cursor, Heights};
+use super::path2d::{arc_lengths, does_not_fit, follow, helix, start_nearest, Cursor, Heights};
 use super::profile2d::Direction;
 use crate::geom::segment::Segment;
 use crate::geom::{DVec2, Tolerances};
@@ -149,16 +149,7 @@ pub fn pocket_moves(region: &Shape, op: &Pocket2d, mut s: Setup) -> Result<Vec<M
     let step = (op.stepover.clamp(0.01, 1.0) * 2.0 * r).max(1e-3);
     let levels = rings(region, first, step, s.tol);
     if levels.is_empty() {
-        let b = region.bounds();
-        return Err(format!(
-            "the φ{:.3} tool (plus {:.3} leave-stock) does not fit in the pocket at ({:.3}, {:.3})–({:.3}, {:.3})",
-            2.0 * r,
-            op.leave_stock,
-            b.min.x,
-            b.min.y,
-            b.max.x,
-            b.max.y
-        ));
+        return Err(does_not_fit(r, op.leave_stock, "the pocket", &region.bounds()));
     }
     let climb = op.direction == Direction::Climb;
     let orient = |l: &Loop| if climb { l.clone() } else { l.reversed() };

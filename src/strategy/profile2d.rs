@@ -7,7 +7,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::path2d::{arc_lengths, follow, point_at, start_nearest, Cursor, Heights};
+use super::path2d::{arc_lengths, does_not_fit, follow, point_at, start_nearest, Cursor, Heights};
 use crate::geom::segment::Segment;
 use crate::geom::{DVec2, Tolerances};
 use crate::offset::offset;
@@ -135,16 +135,7 @@ pub fn profile_moves(loops: &[Loop], op: &Profile2d, mut s: Setup) -> Result<(Ve
         let region = Shape::from_oriented(vec![if part_loop.is_ccw() { part_loop.clone() } else { part_loop.reversed() }]);
         let paths = offset(&region, if outside { d } else { -d }, s.tol);
         if paths.is_empty() {
-            let b = region.bounds();
-            warnings.push(format!(
-                "the φ{:.3} tool (plus {:.3} leave-stock) does not fit inside the loop at ({:.3}, {:.3})–({:.3}, {:.3}); it is not cut",
-                2.0 * r,
-                op.leave_stock,
-                b.min.x,
-                b.min.y,
-                b.max.x,
-                b.max.y
-            ));
+            warnings.push(format!("{}; it is not cut", does_not_fit(r, op.leave_stock, "the loop", &region.bounds())));
             continue;
         }
         for path in &paths.loops {

@@ -54,41 +54,27 @@ async function openPage() {
 }
 
 // Counts canvas pixels by colour: the path's blue (cutting moves are drawn in rgb(27, 116, 209)),
-// and the simulated stock's tan, gouge red and rest-material blue.
+// the simulated stock's tan, gouge red and rest-material blue, and the drawing's outline green (rgb(31, 140, 61)) and hole orange (rgb(217, 115, 13)).
 async function pixelCounts(page) {
   return page.evaluate(() => {
     const c = document.getElementById('view');
     const gl = c.getContext('webgl2');
     const px = new Uint8Array(c.width * c.height * 4);
     gl.readPixels(0, 0, c.width, c.height, gl.RGBA, gl.UNSIGNED_BYTE, px);
-    const n = { path: 0, tan: 0, red: 0, blue: 0 };
+    const n = { path: 0, tan: 0, red: 0, blue: 0, green: 0, orange: 0 };
     for (let i = 0; i < px.length; i += 4) {
       const [r, g, b] = [px[i], px[i + 1], px[i + 2]];
       if (b > 150 && r < 90 && g > 80 && g < 160) n.path++;
       if (r > 90 && r > b + 25 && g > b + 5 && g < r) n.tan++;
       if (r > 120 && g < 50 && b < 50) n.red++;
       if (b > r + 60 && b > 120) n.blue++;
-    }
-    return n;
-  });
-}
-
-// Pixels of the drawing's outline green (rgb(31, 140, 61)) and hole orange (rgb(217, 115, 13)).
-async function drawingPixels(page) {
-  return page.evaluate(() => {
-    const c = document.getElementById('view');
-    const gl = c.getContext('webgl2');
-    const px = new Uint8Array(c.width * c.height * 4);
-    gl.readPixels(0, 0, c.width, c.height, gl.RGBA, gl.UNSIGNED_BYTE, px);
-    const n = { green: 0, orange: 0 };
-    for (let i = 0; i < px.length; i += 4) {
-      const [r, g, b] = [px[i], px[i + 1], px[i + 2]];
       if (g > 110 && r < 70 && b < 90) n.green++;
       if (r > 180 && g > 80 && g < 150 && b < 50) n.orange++;
     }
     return n;
   });
 }
+
 const pathPixels = async (page) => (await pixelCounts(page)).path;
 
 test('sample part → generate → path on the canvas → G-code that rs274 accepts', async () => {
@@ -255,7 +241,7 @@ test('the sample drawing: loops shown as outlines and holes, profile and pocket 
   const { page, context, errors } = await openPage();
   await page.click('#use-sample-drawing');
   await page.waitForFunction(() => document.body.dataset.kind === 'drawing');
-  const shown = await drawingPixels(page);
+  const shown = await pixelCounts(page);
   assert.ok(shown.green > 200 && shown.orange > 200, `outline and hole pixels: ${JSON.stringify(shown)}`);
   assert.match(await page.textContent('#stats'), /6 closed loops: 2 outlines \(green\), 4 holes \(orange\)/);
   assert.match(await page.textContent('#stats'), /layers: CUT, POCKET/);
