@@ -155,8 +155,11 @@ impl Segment {
         }
     }
 
+    /// The middle of the segment: for an arc, the chord's middle moved by the sagitta (bulge
+    /// times half the chord) to the side the arc bulges to; no trigonometry.
     pub fn midpoint(&self) -> DVec2 {
-        self.point_at(0.5)
+        let d = self.b - self.a;
+        (self.a + self.b) * 0.5 + DVec2::new(d.y, -d.x) * (self.bulge * 0.5)
     }
 
     /// Unit direction of travel at parameter `t`.
@@ -286,6 +289,10 @@ impl Segment {
                 (straddles(a, b) && q.x < a.x + (q.y - a.y) / (b.y - a.y) * (b.x - a.x)) as u32
             }
             Some(g) => {
+                // The circle lies off the ray: no crossing (and no trigonometry).
+                if (q.y - g.center.y).abs() > g.radius || q.x > g.center.x + g.radius {
+                    return 0;
+                }
                 let mut cuts = [0.0, 1.0, 1.0, 1.0];
                 let mut n = 1;
                 for dir in [DVec2::Y, DVec2::NEG_Y] {

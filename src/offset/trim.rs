@@ -150,6 +150,7 @@ fn extract(l: &[Segment], from: f64, to: f64, p0: DVec2, p1: DVec2, eps: f64) ->
 
 /// The input shape, indexed for distance and crossing queries.
 pub struct Original<'a> {
+    #[allow(dead_code)]
     shape: &'a Shape,
     segs: Vec<Segment>,
     index: RectIndex,
@@ -190,6 +191,14 @@ impl<'a> Original<'a> {
         })
     }
 
+    /// Whether `q` lies inside the input (rays crossing the entities the index finds on the
+    /// ray's way).
+    pub fn contains(&self, q: DVec2) -> bool {
+        let mut count = 0;
+        self.index.query(&Rect { min: q, max: DVec2::new(f64::INFINITY, q.y) }, |i| count += self.segs[i].ray_crossings(q));
+        count % 2 == 1
+    }
+
     /// Whether `s` crosses or touches the input.
     fn crosses(&self, s: &Segment, eps: f64) -> bool {
         let mut crosses = false;
@@ -200,7 +209,7 @@ impl<'a> Original<'a> {
     /// Whether `q` lies in the offset region: within the distance of the input or inside it
     /// when growing; inside it and farther than the distance when shrinking.
     pub fn in_offset_region(&self, q: DVec2, distance: f64) -> bool {
-        let inside = self.shape.contains(q);
+        let inside = self.contains(q);
         let d = self.distance(q, distance.abs() * 2.0 + 1.0);
         if distance > 0.0 {
             inside || d < distance
