@@ -176,11 +176,13 @@ impl Segment {
 
     /// The piece between parameters `t0 < t1`.
     pub fn sub(&self, t0: f64, t1: f64) -> Segment {
-        let bulge = match self.arc_geom() {
-            Some(g) => (g.sweep * (t1 - t0) / 4.0).tan(),
-            None => 0.0,
-        };
-        Segment { a: self.point_at(t0), b: self.point_at(t1), bulge }
+        match self.arc_geom() {
+            Some(g) => {
+                let at = |t: f64| if t <= 0.0 { self.a } else if t >= 1.0 { self.b } else { g.center + DVec2::from_angle(g.sweep * t).rotate(g.start) };
+                Segment { a: at(t0), b: at(t1), bulge: (g.sweep * (t1 - t0) / 4.0).tan() }
+            }
+            None => Segment { a: self.point_at(t0), b: self.point_at(t1), bulge: 0.0 },
+        }
     }
 
     /// Bounding rectangle (arcs include the extreme points their sweep passes).
@@ -218,7 +220,12 @@ impl Segment {
     /// Parameter of a point on (or near) the segment's circle or line, with `slack` (mm) allowed
     /// past either end; `None` when it lies beyond.
     fn param_of(&self, p: DVec2, slack: f64) -> Option<f64> {
-        match self.arc_geom() {
+        self.param_with(self.arc_geom().as_ref(), p, slack)
+    }
+
+    /// [`Segment::param_of`] with the arc's geometry already at hand.
+    fn param_with(&self, geom: Option<&ArcGeom>, p: DVec2, slack: f64) -> Option<f64> {
+        match geom {
             None => {
                 let d = self.b - self.a;
                 let len2 = d.length_squared();
@@ -403,7 +410,11 @@ impl Crossings {
 
 /// Adds `p` when it lies on both segments within `eps`.
 fn try_point(s1: &Segment, s2: &Segment, p: DVec2, eps: f64, out: &mut Crossings) {
-    if let (Some(t), Some(u)) = (s1.param_of(p, eps), s2.param_of(p, eps)) {
+    try_point_with(s1, s1.arc_geom().as_ref(), s2, s2.arc_geom().as_ref(), p, eps, out);
+}
+
+fn try_point_with(s1: &Segment, g1: Option<&ArcGeom>, s2: &Segment, g2: Option<&ArcGeom>, p: DVec2, eps: f64, out: &mut Crossings) {
+    if let (Some(t), Some(u)) = (s1.param_with(g1, p, eps), s2.param_with(g2, p, eps)) {
         out.push(Crossing { t, u, p });
     }
 }
@@ -469,7 +480,7 @@ fn line_arc(line: &Segment, arc: &Segment, g: &ArcGeom, eps: f64, swap: bool, ou
         }
     }
     for p in points.into_iter().flatten() {
-        if let (Some(t), Some(u)) = (line.param_of(p, eps), arc.param_of(p, eps)) {
+        if let (Some(t), Some(u)) = (line.param_with(None, p, eps), arc.param_with(Some(g), p, eps)) {
             let c = if swap { Crossing { t: u, u: t, p } } else { Crossing { t, u, p } };
             out.push(c);
         }
@@ -482,7 +493,7 @@ fn arc_arc(s1: &Segment, g1: &ArcGeom, s2: &Segment, g2: &ArcGeom, eps: f64, out
     if dist <= eps && (g1.radius - g2.radius).abs() <= eps {
         // One circle: the ends of the overlap.
         for p in [s1.a, s1.b, s2.a, s2.b] {
-            try_point(s1, s2, p, eps, out);
+            try_point_with(s1, Some(g1), s2, Some(g2), p, eps, out);
         }
         return;
     }
@@ -495,13 +506,13 @@ fn arc_arc(s1: &Segment, g1: &ArcGeom, s2: &Segment, g2: &ArcGeom, eps: f64, out
     let base = g1.center + dir * x;
     // Tangent circles: half the chord within eps.
     if h2 <= (eps * 0.5).powi(2) {
-        try_point(s1, s2, base, eps, out);
+        try_point_with(s1, Some(g1), s2, Some(g2), base, eps, out);
         return;
     }
     let h = h2.sqrt();
     let n = DVec2::new(-dir.y, dir.x);
-    try_point(s1, s2, base + n * h, eps, out);
-    try_point(s1, s2, base - n * h, eps, out);
+    try_point_with(s1, Some(g1), s2, Some(g2), base + n * h, eps, out);
+    try_point_with(s1, Some(g1), s2, Some(g2), base - n * h, eps, out);
 }
 
 #[cfg(test)]
