@@ -9,7 +9,7 @@ use crate::mesh::Mesh;
 use crate::offset::offset;
 use crate::profile::{Drawing, Loop, Shape};
 use crate::progress::Progress;
-use crate::sim::verify::verify_against;
+use crate::sim::verify::{verify_against, VerifySettings};
 use crate::strategy::path2d::Cursor;
 use crate::strategy::pocket2d::{self, pocket_moves};
 use crate::strategy::profile2d::{self, profile_moves, Profile2d, Side};
@@ -73,7 +73,7 @@ pub fn run_drawing(job: &Job, mut drawing: Drawing, progress: &mut Progress) -> 
     let mut paths = Vec::new();
     let mut warnings = Vec::new();
     // Where each operation cuts and how deep, for the verification's part.
-    let mut cuts: Vec<(Shape, bool, f64)> = Vec::new();
+    let mut cuts: Vec<Cut> = Vec::new();
     let count = job.operations.len().max(1) as f64;
     let share = if job.simulation.verify { 0.85 } else { 1.0 };
     for (k, op) in job.operations.iter().enumerate() {
@@ -96,7 +96,7 @@ pub fn run_drawing(job: &Job, mut drawing: Drawing, progress: &mut Progress) -> 
             Operation::Pocket2d(p) => {
                 let (shape, picked) = selected(&drawing, &p.layers, &p.loops)?;
                 let region = pocket_region(&shape, &picked, p.loops.is_empty());
-                cuts.push((region.clone(), true, p.depth));
+                cuts.push(Cut { region: region.clone(), inside: true, depth: p.depth, leave: p.leave_stock });
                 let setup = pocket2d::Setup { tool_radius: r, top: 0.0, feed: tool.feed_rate, cursor: &mut cursor, tol: &job.tolerances };
                 pocket_moves(&region, p, setup).map_err(|e| Error::Job(format!("{}: {e}", p.name)))?
             }
@@ -110,7 +110,10 @@ pub fn run_drawing(job: &Job, mut drawing: Drawing, progress: &mut Progress) -> 
     let surface = move |grid: Grid| drawing_surface(&cuts, grid, gouge, &tol);
     let placed = drawing.clone();
     finish.run(paths, Mesh::default(), Some(placed), warnings, progress, |_, moves, settings, progress| {
-        verify_against(surface, &stock, moves, settings, &job.tolerances, progress)
+        // Leave-stock is on the walls: the cut regions above already keep it, so no height
+        // allowance is added.
+        let settings = VerifySettings { allowance: 0.0, ..*settings };
+        verify_against(surface, &stock, moves, &settings, &job.tolerances, progress)
     })
 }
 
@@ -131,23 +134,36 @@ fn toolpath(op: &Operation, tool: &crate::job::Tool, mut moves: Vec<Move>, clear
     Toolpath { name: op.name().to_string(), tool: tool.number, spindle_rpm: tool.spindle_rpm, start, moves }
 }
 
+/// Where an operation may cut, to what depth, leaving how much on the walls.
+struct Cut {
+    region: Shape,
+    /// Cuts inside the region (else everywhere outside it).
+    inside: bool,
+    depth: f64,
+    leave: f64,
+}
+
 /// Where a profile cuts: outside the kept region (the picked loops as one shape) for
 /// outside and automatic sides, inside each loop for inside profiles.
-fn profile_cuts(picked: &[Loop], p: &Profile2d, depth: f64) -> Vec<(Shape, bool, f64)> {
+fn profile_cuts(picked: &[Loop], p: &Profile2d, depth: f64) -> Vec<Cut> {
+    let ccw = |l: &Loop| if l.is_ccw() { l.clone() } else { l.reversed() };
+    let leave = p.leave_stock;
     match p.side {
-        Side::Auto => vec![(Shape::new(picked.to_vec()), false, depth)],
-        Side::Outside => vec![(Shape::new(picked.iter().map(|l| if l.is_ccw() { l.clone() } else { l.reversed() }).collect()), false, depth)],
-        Side::Inside => picked.iter().map(|l| (Shape::from_oriented(vec![if l.is_ccw() { l.clone() } else { l.reversed() }]), true, depth)).collect(),
+        Side::Auto => vec![Cut { region: Shape::new(picked.to_vec()), inside: false, depth, leave }],
+        Side::Outside => vec![Cut { region: Shape::new(picked.iter().map(ccw).collect()), inside: false, depth, leave }],
+        Side::Inside => picked.iter().map(|l| Cut { region: Shape::from_oriented(vec![ccw(l)]), inside: true, depth, leave }).collect(),
     }
 }
 
 /// The part's heights on the simulation grid: the sheet's top, lowered to each cut's depth
-/// where it cuts (inside its region, or outside it). Regions are widened by the gouge
-/// tolerance where they cut, so cells on a wall are not judged by a hair.
-fn drawing_surface(cuts: &[(Shape, bool, f64)], grid: Grid, gouge: f64, tol: &crate::geom::Tolerances) -> HeightField {
+/// where it cuts (inside its region, or outside it). Regions are narrowed by the leave-stock
+/// and widened by the gouge tolerance where they cut, so cells on a wall are not judged by a
+/// hair.
+fn drawing_surface(cuts: &[Cut], grid: Grid, gouge: f64, tol: &crate::geom::Tolerances) -> HeightField {
     let mut field = grid.filled(0.0);
-    for (region, inside, depth) in cuts {
-        let region = offset(region, if *inside { gouge } else { -gouge }, tol);
+    for Cut { region, inside, depth, leave } in cuts {
+        let widen = gouge - leave;
+        let region = offset(region, if *inside { widen } else { -widen }, tol);
         for j in 0..grid.ny {
             let y = grid.node(0, j).y;
             let spans = region.spans_at(y);

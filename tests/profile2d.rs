@@ -16,7 +16,7 @@ use swarf::offset::trim::Original;
 use swarf::progress::Progress;
 use swarf::toolpath::{arc_sweep, Move};
 use swarf::strategy::pocket2d::{Entry, Pocket2d, PocketPattern};
-use swarf::strategy::profile2d::{Profile2d, Tabs};
+use swarf::strategy::profile2d::{Direction, Profile2d, Tabs};
 
 fn plate() -> Drawing {
     read_drawing(plate_dxf().as_bytes(), Some("plate.dxf"), &Tolerances::default()).unwrap()
@@ -190,4 +190,51 @@ fn real_profiles_read_and_cut_cleanly() {
     assert!(report.gouge_count == 0 && report.rapid_collision_count == 0, "{}", report.describe());
     let placed = out.drawing.as_ref().unwrap();
     assert!(closest_approach(&out, &placed.shape(&[]).unwrap()) >= 1.5 - 1e-6);
+}
+
+/// Material removed by moves that go straight down: a plunge into solid material. The
+/// simulation's per-move volumes tell (1e-3 mm³ allows a graze).
+fn plunged_volume(out: &job::JobOutput) -> f64 {
+    let v = out.verification.as_ref().unwrap();
+    out.moves
+        .iter()
+        .zip(&v.volumes)
+        .filter(|(m, _)| matches!(m.mv, Move::Line { to, .. } if to.z < m.from.z && to.truncate().distance(m.from.truncate()) < 1e-9))
+        .map(|(_, &vol)| vol)
+        .sum()
+}
+
+#[test]
+fn no_operation_plunges_into_solid_material() {
+    for op in [
+        Operation::Pocket2d(Pocket2d { layers: vec!["POCKET".into()], entry: Entry::Helix, ..Pocket2d::default() }),
+        Operation::Pocket2d(Pocket2d { layers: vec!["POCKET".into()], entry: Entry::Ramp, ..Pocket2d::default() }),
+        Operation::Pocket2d(Pocket2d { layers: vec!["POCKET".into()], pattern: PocketPattern::Zigzag, ..Pocket2d::default() }),
+        Operation::Profile2d(Profile2d { layers: vec!["CUT".into()], tabs: Tabs { count: 3, ..Tabs::default() }, ..Profile2d::default() }),
+    ] {
+        let mut job = job_with(vec![op.clone()], 6.0);
+        job.simulation.cell = Some(0.2);
+        let out = job::run(&job, plate(), &mut Progress::none()).unwrap();
+        let plunged = plunged_volume(&out);
+        assert!(plunged < 1e-3, "{}: {plunged} mm³ removed by straight plunges", op.name());
+    }
+}
+
+#[test]
+fn climb_and_conventional_run_opposite_ways_and_leave_stock_is_left() {
+    // Outside a loop, climb milling with a clockwise spindle runs clockwise.
+    let signed_area = |out: &job::JobOutput| -> f64 {
+        let pts: Vec<DVec2> = out.paths[0].moves.iter().filter(|m| m.to().z < -1.0).map(|m| m.to().truncate()).collect();
+        pts.windows(2).map(|w| w[0].perp_dot(w[1])).sum::<f64>() * 0.5
+    };
+    let outline = |direction| Profile2d { layers: vec!["CUT".into()], loops: vec![0], direction, lead_radius: Some(0.0), ..Profile2d::default() };
+    let climb = job::run(&job_with(vec![Operation::Profile2d(outline(Direction::Climb))], 3.0), plate(), &mut Progress::none()).unwrap();
+    let conventional = job::run(&job_with(vec![Operation::Profile2d(outline(Direction::Conventional))], 3.0), plate(), &mut Progress::none()).unwrap();
+    assert!(signed_area(&climb) < 0.0 && signed_area(&conventional) > 0.0);
+    let leave = Profile2d { layers: vec!["CUT".into()], leave_stock: 0.5, ..Profile2d::default() };
+    let out = job::run(&job_with(vec![Operation::Profile2d(leave)], 3.0), plate(), &mut Progress::none()).unwrap();
+    let shape = out.drawing.as_ref().unwrap().shape(&["CUT".into()]).unwrap();
+    assert!(closest_approach(&out, &shape) >= 2.0 - 1e-6);
+    let report = &out.verification.as_ref().unwrap().report;
+    assert!(report.is_clean(), "{}", report.describe());
 }

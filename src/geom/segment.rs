@@ -219,11 +219,7 @@ impl Segment {
 
     /// Parameter of a point on (or near) the segment's circle or line, with `slack` (mm) allowed
     /// past either end; `None` when it lies beyond.
-    fn param_of(&self, p: DVec2, slack: f64) -> Option<f64> {
-        self.param_with(self.arc_geom().as_ref(), p, slack)
-    }
-
-    /// [`Segment::param_of`] with the arc's geometry already at hand.
+    /// The arc's geometry comes in `geom` (computed once by the caller).
     fn param_with(&self, geom: Option<&ArcGeom>, p: DVec2, slack: f64) -> Option<f64> {
         match geom {
             None => {
