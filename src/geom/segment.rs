@@ -254,7 +254,12 @@ impl Segment {
 
     /// The closest point of the segment to `q`, and its parameter.
     pub fn closest(&self, q: DVec2) -> (DVec2, f64) {
-        match self.arc_geom() {
+        self.closest_with(self.arc_geom().as_ref(), q)
+    }
+
+    /// [`Segment::closest`] with the arc's geometry at hand (from [`Segment::arc_geom`]).
+    pub fn closest_with(&self, geom: Option<&ArcGeom>, q: DVec2) -> (DVec2, f64) {
+        match geom {
             None => {
                 let d = self.b - self.a;
                 let len2 = d.length_squared();
@@ -264,7 +269,7 @@ impl Segment {
             Some(g) => {
                 let v = q - g.center;
                 if v.length_squared() > 0.0 {
-                    if let Some(t) = self.angle_param(&g, v) {
+                    if let Some(t) = self.angle_param(g, v) {
                         return (g.center + v.normalize() * g.radius, t);
                     }
                 }
@@ -279,6 +284,11 @@ impl Segment {
 
     pub fn distance_to(&self, q: DVec2) -> f64 {
         self.closest(q).0.distance(q)
+    }
+
+    /// [`Segment::distance_to`] with the arc's geometry at hand.
+    pub fn distance_with(&self, geom: Option<&ArcGeom>, q: DVec2) -> f64 {
+        self.closest_with(geom, q).0.distance(q)
     }
 
     /// How many times the ray from `q` towards +x crosses the segment, counting an end on the
@@ -365,12 +375,18 @@ impl Segment {
     /// Every point where the two segments meet, within `eps` (mm). Overlapping collinear lines
     /// and arcs on one circle give the ends of their overlap.
     pub fn crossings(&self, other: &Segment, eps: f64) -> Crossings {
+        self.crossings_with(self.arc_geom().as_ref(), other, other.arc_geom().as_ref(), eps)
+    }
+
+    /// [`Segment::crossings`] with both arcs' geometry at hand (from [`Segment::arc_geom`]),
+    /// for callers that test one segment against many.
+    pub fn crossings_with(&self, g1: Option<&ArcGeom>, other: &Segment, g2: Option<&ArcGeom>, eps: f64) -> Crossings {
         let mut out = Crossings::default();
-        match (self.arc_geom(), other.arc_geom()) {
+        match (g1, g2) {
             (None, None) => line_line(self, other, eps, &mut out),
-            (None, Some(g)) => line_arc(self, other, &g, eps, false, &mut out),
-            (Some(g), None) => line_arc(other, self, &g, eps, true, &mut out),
-            (Some(g1), Some(g2)) => arc_arc(self, &g1, other, &g2, eps, &mut out),
+            (None, Some(g)) => line_arc(self, other, g, eps, false, &mut out),
+            (Some(g), None) => line_arc(other, self, g, eps, true, &mut out),
+            (Some(g1), Some(g2)) => arc_arc(self, g1, other, g2, eps, &mut out),
         }
         out
     }

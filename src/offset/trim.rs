@@ -4,7 +4,7 @@
 //! the rest are joined back into loops.
 
 use crate::geom::index::RectIndex;
-use crate::geom::segment::{Rect, Segment};
+use crate::geom::segment::{ArcGeom, Rect, Segment};
 use crate::geom::DVec2;
 use crate::profile::{Loop, Shape};
 
@@ -44,7 +44,8 @@ pub fn split_at_crossings(loops: &[Vec<Segment>], eps: f64) -> Vec<Slice> {
     }
     let rects: Vec<Rect> = segs.iter().map(|s| s.bounds().expand(eps)).collect();
     let index = RectIndex::new(&rects);
-    let lens: Vec<f64> = segs.iter().map(|s| s.length()).collect();
+    let geoms: Vec<Option<ArcGeom>> = segs.iter().map(|s| s.arc_geom()).collect();
+    let lens: Vec<f64> = segs.iter().zip(&geoms).map(|(s, g)| g.map_or(s.chord(), |g| g.radius * g.sweep.abs())).collect();
     // Cuts per loop as (position along the loop = segment index + parameter, point).
     let mut cuts: Vec<Vec<(f64, DVec2)>> = vec![Vec::new(); loops.len()];
     let snap = SNAP * eps;
@@ -70,7 +71,7 @@ pub fn split_at_crossings(loops: &[Vec<Segment>], eps: f64) -> Vec<Slice> {
             let (kh, j) = owner[h];
             let next = kh == k && j == (i + 1) % m;
             let prev = kh == k && i == (j + 1) % m;
-            for c in segs[g].crossings(&segs[h], eps).iter() {
+            for c in segs[g].crossings_with(geoms[g].as_ref(), &segs[h], geoms[h].as_ref(), eps).iter() {
                 let g_end = (1.0 - c.t) * lens[g] <= snap;
                 let g_start = c.t * lens[g] <= snap;
                 let h_end = (1.0 - c.u) * lens[h] <= snap;
@@ -153,6 +154,7 @@ pub struct Original<'a> {
     #[allow(dead_code)]
     shape: &'a Shape,
     segs: Vec<Segment>,
+    geoms: Vec<Option<ArcGeom>>,
     index: RectIndex,
 }
 
@@ -161,14 +163,15 @@ impl<'a> Original<'a> {
         let segs: Vec<Segment> = shape.segments().collect();
         let rects: Vec<Rect> = segs.iter().map(|s| s.bounds()).collect();
         let index = RectIndex::new(&rects);
-        Original { shape, segs, index }
+        let geoms = segs.iter().map(|s| s.arc_geom()).collect();
+        Original { shape, segs, geoms, index }
     }
 
     /// Distance from `q` to the input's boundary, or `cap` when it is at least that far.
     pub fn distance(&self, q: DVec2, cap: f64) -> f64 {
         let mut best = cap;
         self.index.any_within(q, cap, |i| {
-            best = best.min(self.segs[i].distance_to(q));
+            best = best.min(self.segs[i].distance_with(self.geoms[i].as_ref(), q));
             false
         });
         best
@@ -179,11 +182,11 @@ impl<'a> Original<'a> {
     /// the same entity.
     fn closer_than(&self, s: &Segment, limit: f64, hint: &mut usize) -> bool {
         let mid = s.midpoint();
-        if self.segs.get(*hint).is_some_and(|o| o.distance_to(mid) < limit) {
+        if self.segs.get(*hint).is_some_and(|o| o.distance_with(self.geoms[*hint].as_ref(), mid) < limit) {
             return true;
         }
         self.index.any_within(mid, limit, |i| {
-            let close = self.segs[i].distance_to(mid) < limit;
+            let close = self.segs[i].distance_with(self.geoms[i].as_ref(), mid) < limit;
             if close {
                 *hint = i;
             }
@@ -202,7 +205,10 @@ impl<'a> Original<'a> {
     /// Whether `s` crosses or touches the input.
     fn crosses(&self, s: &Segment, eps: f64) -> bool {
         let mut crosses = false;
-        self.index.query(&s.bounds().expand(eps), |i| crosses = crosses || !self.segs[i].crossings(s, eps).is_empty());
+        let g = s.arc_geom();
+        self.index.query(&s.bounds().expand(eps), |i| {
+            crosses = crosses || !self.segs[i].crossings_with(self.geoms[i].as_ref(), s, g.as_ref(), eps).is_empty();
+        });
         crosses
     }
 
