@@ -176,12 +176,22 @@ impl Operation {
         }
     }
 
-    /// Material the operation leaves on the part (mm).
+    /// Material the operation leaves above the part's surface (mm). A 2.5D operation's
+    /// leave-stock is on the walls, not on the surface: it has none (the part a drawing means
+    /// for verification keeps the walls' leave-stock in its regions, `job2d.rs`).
     pub fn allowance(&self) -> f64 {
         match self {
             Operation::FinishRaster(o) => o.allowance,
-            Operation::Profile2d(o) => o.leave_stock,
-            Operation::Pocket2d(o) => o.leave_stock,
+            Operation::Profile2d(_) | Operation::Pocket2d(_) => 0.0,
+        }
+    }
+
+    /// Material left on the walls by a 2.5D operation (mm).
+    fn leave_stock(&self) -> Option<f64> {
+        match self {
+            Operation::FinishRaster(_) => None,
+            Operation::Profile2d(o) => Some(o.leave_stock),
+            Operation::Pocket2d(o) => Some(o.leave_stock),
         }
     }
 
@@ -404,6 +414,9 @@ impl Job {
         positive("the rapid rate", self.post.rapid_rate)?;
         for op in &self.operations {
             self.tool(op.tool())?;
+            if op.leave_stock().is_some_and(|l| !(l.is_finite() && l >= 0.0)) {
+                return Err(Error::Job("the leave-stock must be zero or more".into()));
+            }
             match op {
                 Operation::Profile2d(p) => {
                     positive("the profile's step-down", p.stepdown)?;
@@ -411,21 +424,14 @@ impl Job {
                     if let Some(d) = p.depth {
                         positive("the profile's depth", d)?;
                     }
-                    if !(p.leave_stock.is_finite() && p.leave_stock >= 0.0) {
-                        return Err(Error::Job("the leave-stock must be zero or more".into()));
-                    }
                 }
                 Operation::Pocket2d(p) => {
                     positive("the pocket's depth", p.depth)?;
                     positive("the pocket's step-down", p.stepdown)?;
                     positive("the step-over", p.stepover)?;
                     positive("the ramp angle", p.ramp_angle)?;
-                    if !(p.leave_stock.is_finite() && p.leave_stock >= 0.0) {
-                        return Err(Error::Job("the leave-stock must be zero or more".into()));
-                    }
                 }
                 Operation::FinishRaster(f) => {
-                    self.tool(f.tool)?;
                     positive("the stepover", f.stepover)?;
                     positive("the grid spacing", f.grid)?;
                     if !(f.allowance.is_finite() && f.angle.is_finite()) {
@@ -490,31 +496,31 @@ impl Finish<'_> {
         progress: &mut Progress,
         verify: impl FnOnce(&Mesh, &[ProgramMove], &VerifySettings, &mut Progress) -> Result<Verification>,
     ) -> Result<JobOutput> {
-    let (job, stock, clearance_z, share) = (self.job, self.stock, self.clearance_z, self.share);
-    let gcode = write_gcode(&job.name, &paths, &job.tools, clearance_z, &job.post);
-    let stats = paths.iter().fold(PathStats::default(), |s, p| s + p.stats(job.post.rapid_rate));
-    let moves = program_moves(&paths, &job.tools, job.post.rapid_rate)?;
-    let verification = if job.simulation.verify {
-        if !progress.stage("simulating the program", share, 1.0 - share) {
-            return Err(Error::Cancelled);
-        }
-        let v = verify(&part, &moves, &VerifySettings::for_job(job, &stock, None), progress)?;
-        let r = &v.report;
-        if r.gouge_count > 0 {
-            warnings.push(format!("the simulation found {} gouged cells, {:.3} mm deep at most", r.gouge_count, r.gouge_max));
-        }
-        if r.rapid_collision_count > 0 {
-            warnings.push(format!("{} rapid moves pass through stock", r.rapid_collision_count));
-        }
-        if r.body_collision_count > 0 {
-            warnings.push(format!("{} moves bury the tool deeper than its flute length", r.body_collision_count));
-        }
-        Some(v)
-    } else {
-        None
-    };
-    progress.stage("done", 1.0, 0.0);
-    Ok(JobOutput { part, drawing, stock, clearance_z, paths, gcode, stats, moves, verification, warnings })
+        let (job, stock, clearance_z, share) = (self.job, self.stock, self.clearance_z, self.share);
+        let gcode = write_gcode(&job.name, &paths, &job.tools, clearance_z, &job.post);
+        let stats = paths.iter().fold(PathStats::default(), |s, p| s + p.stats(job.post.rapid_rate));
+        let moves = program_moves(&paths, &job.tools, job.post.rapid_rate)?;
+        let verification = if job.simulation.verify {
+            if !progress.stage("simulating the program", share, 1.0 - share) {
+                return Err(Error::Cancelled);
+            }
+            let v = verify(&part, &moves, &VerifySettings::for_job(job, &stock, None), progress)?;
+            let r = &v.report;
+            if r.gouge_count > 0 {
+                warnings.push(format!("the simulation found {} gouged cells, {:.3} mm deep at most", r.gouge_count, r.gouge_max));
+            }
+            if r.rapid_collision_count > 0 {
+                warnings.push(format!("{} rapid moves pass through stock", r.rapid_collision_count));
+            }
+            if r.body_collision_count > 0 {
+                warnings.push(format!("{} moves bury the tool deeper than its flute length", r.body_collision_count));
+            }
+            Some(v)
+        } else {
+            None
+        };
+        progress.stage("done", 1.0, 0.0);
+        Ok(JobOutput { part, drawing, stock, clearance_z, paths, gcode, stats, moves, verification, warnings })
     }
 }
 

@@ -9,7 +9,7 @@ use crate::mesh::Mesh;
 use crate::offset::offset;
 use crate::profile::{Drawing, Loop, Shape};
 use crate::progress::Progress;
-use crate::sim::verify::{verify_against, VerifySettings};
+use crate::sim::verify::verify_against;
 use crate::strategy::path2d::Cursor;
 use crate::strategy::pocket2d::{self, pocket_moves};
 use crate::strategy::profile2d::{self, profile_moves, Profile2d, Side};
@@ -42,7 +42,7 @@ fn pocket_region(shape: &Shape, picked: &[Loop], all: bool) -> Shape {
     }
     let mut loops = Vec::new();
     for p in picked {
-        let outer = if p.is_ccw() { p.clone() } else { p.reversed() };
+        let outer = p.counter_clockwise();
         loops.push(outer.clone());
         for l in &shape.loops {
             if l != p && outer.contains(l.probe_point()) {
@@ -100,7 +100,7 @@ pub fn run_drawing(job: &Job, mut drawing: Drawing, progress: &mut Progress) -> 
                 let setup = pocket2d::Setup { tool_radius: r, top: 0.0, feed: tool.feed_rate, cursor: &mut cursor, tol: &job.tolerances };
                 pocket_moves(&region, p, setup).map_err(|e| Error::Job(format!("{}: {e}", p.name)))?
             }
-            Operation::FinishRaster(_) => unreachable_3d()?,
+            Operation::FinishRaster(_) => return Err(Error::Job("3D operations need a part".into())),
         };
         paths.push(toolpath(op, tool, moves, clearance_z));
     }
@@ -108,17 +108,9 @@ pub fn run_drawing(job: &Job, mut drawing: Drawing, progress: &mut Progress) -> 
     let gouge = job.tolerances.gouge;
     let tol = job.tolerances;
     let surface = move |grid: Grid| drawing_surface(&cuts, grid, gouge, &tol);
-    let placed = drawing.clone();
-    finish.run(paths, Mesh::default(), Some(placed), warnings, progress, |_, moves, settings, progress| {
-        // Leave-stock is on the walls: the cut regions above already keep it, so no height
-        // allowance is added.
-        let settings = VerifySettings { allowance: 0.0, ..*settings };
-        verify_against(surface, &stock, moves, &settings, &job.tolerances, progress)
+    finish.run(paths, Mesh::default(), Some(drawing), warnings, progress, |_, moves, settings, progress| {
+        verify_against(surface, &stock, moves, settings, &job.tolerances, progress)
     })
-}
-
-fn unreachable_3d() -> Result<Vec<Move>> {
-    Err(Error::Job("3D operations need a part".into()))
 }
 
 fn toolpath(op: &Operation, tool: &crate::job::Tool, mut moves: Vec<Move>, clearance_z: f64) -> Toolpath {
@@ -146,12 +138,11 @@ struct Cut {
 /// Where a profile cuts: outside the kept region (the picked loops as one shape) for
 /// outside and automatic sides, inside each loop for inside profiles.
 fn profile_cuts(picked: &[Loop], p: &Profile2d, depth: f64) -> Vec<Cut> {
-    let ccw = |l: &Loop| if l.is_ccw() { l.clone() } else { l.reversed() };
     let leave = p.leave_stock;
     match p.side {
         Side::Auto => vec![Cut { region: Shape::new(picked.to_vec()), inside: false, depth, leave }],
-        Side::Outside => vec![Cut { region: Shape::new(picked.iter().map(ccw).collect()), inside: false, depth, leave }],
-        Side::Inside => picked.iter().map(|l| Cut { region: Shape::from_oriented(vec![ccw(l)]), inside: true, depth, leave }).collect(),
+        Side::Outside => vec![Cut { region: Shape::new(picked.iter().map(Loop::counter_clockwise).collect()), inside: false, depth, leave }],
+        Side::Inside => picked.iter().map(|l| Cut { region: Shape::from_oriented(vec![l.counter_clockwise()]), inside: true, depth, leave }).collect(),
     }
 }
 

@@ -35,7 +35,7 @@ use crate::profile::{Loop, Shape, Vertex};
 /// outer loops counter-clockwise, holes clockwise. Empty when the shape vanishes.
 pub fn offset(shape: &Shape, distance: f64, tol: &Tolerances) -> Shape {
     let input: Vec<Loop> =
-        shape.loops.iter().map(|l| merge_micro_entities(l, tol.micro_entity)).filter(|l| l.len() >= 2 || is_circle_like(l)).collect();
+        shape.loops.iter().map(|l| merge_micro_entities(l, tol.micro_entity)).filter(|l| l.len() >= 2).collect();
     if distance == 0.0 || !distance.is_finite() {
         return Shape::from_oriented(input);
     }
@@ -58,10 +58,6 @@ pub fn offset(shape: &Shape, distance: f64, tol: &Tolerances) -> Shape {
         .filter(|l| l.len() >= 2 && l.area().abs() > tol.micro_entity * tol.micro_entity)
         .collect();
     Shape::from_oriented(trim::discard_wrong_way(loops, &original, distance))
-}
-
-fn is_circle_like(l: &Loop) -> bool {
-    l.len() == 1 && l.vertices[0].bulge != 0.0
 }
 
 /// The loop without entities shorter than `min_length`: each one's end is merged into its

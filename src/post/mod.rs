@@ -186,7 +186,7 @@ impl Writer {
             && rounds_shut(self.position[0], to.x)
             && rounds_shut(self.position[1], to.y)
             && !(self.position[0] == Some(to.x) && self.position[1] == Some(to.y));
-        let (code, feed) = if short_arc { ("G1", feed) } else { (code, feed) };
+        let code = if short_arc { "G1" } else { code };
         let is_arc = matches!(m, Move::Arc { .. }) && !short_arc;
         let mut words = String::new();
         let mut moved = false;
@@ -214,11 +214,7 @@ impl Writer {
                 self.feed = Some(feed);
             }
         }
-        let words = words.trim_start();
-        if words.is_empty() || words == code {
-            return; // no motion
-        }
-        self.line(words);
+        self.line(words.trim_start());
         self.mode = Some(code);
         self.position = [Some(to.x), Some(to.y), Some(to.z)];
     }

@@ -92,6 +92,15 @@ impl Loop {
         self.segments().fold(Rect::EMPTY, |r, s| r.union(s.bounds()))
     }
 
+    /// The loop running counter-clockwise (itself or reversed).
+    pub fn counter_clockwise(&self) -> Loop {
+        if self.is_ccw() {
+            self.clone()
+        } else {
+            self.reversed()
+        }
+    }
+
     /// The same loop run the other way.
     pub fn reversed(&self) -> Loop {
         let n = self.vertices.len();

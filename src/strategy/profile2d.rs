@@ -132,7 +132,7 @@ pub fn profile_moves(loops: &[Loop], op: &Profile2d, mut s: Setup) -> Result<(Ve
             Side::Outside => true,
             Side::Inside => false,
         };
-        let region = Shape::from_oriented(vec![if part_loop.is_ccw() { part_loop.clone() } else { part_loop.reversed() }]);
+        let region = Shape::from_oriented(vec![part_loop.counter_clockwise()]);
         let paths = offset(&region, if outside { d } else { -d }, s.tol);
         if paths.is_empty() {
             warnings.push(format!("{}; it is not cut", does_not_fit(r, op.leave_stock, "the loop", &region.bounds())));
