@@ -43,18 +43,23 @@ impl RectIndex {
     }
 
     /// Depth-first over the nodes that `enter` accepts, calling `visit` on accepted items until
-    /// it returns true. The stack lives on the stack: the tree is at most `MAX_DEPTH` deep.
+    /// it returns true. The tree is implicit (children of node `i` are `16i..16i+16` one level
+    /// down), so the walk keeps only a cursor per level: nothing to allocate or clear.
     fn walk(&self, enter: impl Fn(&Rect) -> bool, mut visit: impl FnMut(usize) -> bool) -> bool {
-        let mut stack = [(0u8, 0u32); MAX_DEPTH * FANOUT];
-        let mut len = 0;
         let top = self.levels.len() - 1;
-        for i in 0..self.levels[top].len() {
-            stack[len] = (top as u8, i as u32);
-            len += 1;
-        }
-        while len > 0 {
-            len -= 1;
-            let (level, i) = (stack[len].0 as usize, stack[len].1 as usize);
+        let (mut at, mut end) = ([0usize; MAX_DEPTH], [0usize; MAX_DEPTH]);
+        end[top] = self.levels[top].len();
+        let mut level = top;
+        loop {
+            if at[level] == end[level] {
+                if level == top {
+                    return false;
+                }
+                level += 1;
+                continue;
+            }
+            let i = at[level];
+            at[level] += 1;
             if !enter(&self.levels[level][i]) {
                 continue;
             }
@@ -63,14 +68,11 @@ impl RectIndex {
                     return true;
                 }
             } else {
-                let below = self.levels[level - 1].len();
-                for c in i * FANOUT..((i + 1) * FANOUT).min(below) {
-                    stack[len] = ((level - 1) as u8, c as u32);
-                    len += 1;
-                }
+                level -= 1;
+                at[level] = i * FANOUT;
+                end[level] = ((i + 1) * FANOUT).min(self.levels[level].len());
             }
         }
-        false
     }
 }
 
@@ -78,8 +80,8 @@ impl RectIndex {
 const MAX_DEPTH: usize = 12;
 
 impl RectIndex {
-    /// Calls `visit` with the index of every rectangle closer than `radius` to `q`, nearest
-    /// subtrees first, until `visit` returns true (then returns true).
+    /// Calls `visit` with the index of every rectangle closer than `radius` to `q` until
+    /// `visit` returns true (then returns true).
     pub fn any_within(&self, q: DVec2, radius: f64, visit: impl FnMut(usize) -> bool) -> bool {
         let r2 = radius * radius;
         self.walk(|r| distance_squared(r, q) < r2, visit)

@@ -77,7 +77,8 @@ impl ArcGeom {
     }
 }
 
-/// Where two segments meet: parameters on each (0 at `a`, 1 at `b`) and the point.
+/// Where two segments meet: the point, and its position along each as a key from
+/// [`Segment::position_with`] (0 at `a`, 1 at `b`, growing along the segment).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Crossing {
     pub t: f64,
@@ -217,10 +218,13 @@ impl Segment {
         (0.0..=1.0).contains(&t).then_some(t)
     }
 
-    /// Parameter of a point on (or near) the segment's circle or line, with `slack` (mm) allowed
-    /// past either end; `None` when it lies beyond.
+    /// Where a point on (or near) the segment's line or circle lies along it: a key that grows
+    /// from 0 at `a` to 1 at `b`, with `slack` (mm) allowed past either end (clamped to it);
+    /// `None` when the point lies beyond. For a line the key is the parameter; for an arc it is
+    /// a pseudo-angle (monotone in the angle, found without trigonometry), so keys order points
+    /// along a segment but are not proportional to arc length.
     /// The arc's geometry comes in `geom` (computed once by the caller).
-    fn param_with(&self, geom: Option<&ArcGeom>, p: DVec2, slack: f64) -> Option<f64> {
+    pub fn position_with(&self, geom: Option<&ArcGeom>, p: DVec2, slack: f64) -> Option<f64> {
         match geom {
             None => {
                 let d = self.b - self.a;
@@ -233,22 +237,41 @@ impl Segment {
                 (t >= -s && t <= 1.0 + s).then(|| t.clamp(0.0, 1.0))
             }
             Some(g) => {
-                let span = g.sweep.abs();
-                let v = p - g.center;
-                let mut delta = g.start.perp_dot(v).atan2(g.start.dot(v)) * g.sweep.signum();
-                if delta < 0.0 {
-                    delta += TAU;
-                }
-                // delta in [0, 2π) measured along the sweep's direction.
-                let s = slack / g.radius;
-                if delta <= span + s {
-                    Some((delta / span).min(1.0))
-                } else if delta >= TAU - s {
+                let key = |w: DVec2| pseudo_angle(g.start.dot(w), g.start.perp_dot(w) * g.sweep.signum());
+                let (k, span) = (key(p - g.center), key(g.end));
+                if k <= span {
+                    Some(k / span)
+                } else if p.distance_squared(self.b) <= slack * slack {
+                    Some(1.0)
+                } else if p.distance_squared(self.a) <= slack * slack {
                     Some(0.0)
                 } else {
                     None
                 }
             }
+        }
+    }
+
+    /// The part of the segment from `p` to `q`, two points on it in that order (cuts found by
+    /// [`Segment::crossings_with`]); an arc keeps its circle and gets the bulge of the part,
+    /// without trigonometry.
+    pub fn between(&self, geom: Option<&ArcGeom>, p: DVec2, q: DVec2) -> Segment {
+        match geom {
+            None => Segment::line(p, q),
+            Some(g) => {
+                let (u, m) = arc_part(g, p, q);
+                // tan(θ/4) from the half angle θ/2 between the start and the part's middle.
+                let bulge = u.perp_dot(m).abs() / (1.0 + u.dot(m)) * g.sweep.signum();
+                Segment { a: p, b: q, bulge }
+            }
+        }
+    }
+
+    /// The middle of the part from `p` to `q` (as in [`Segment::between`]).
+    pub fn midpoint_between(&self, geom: Option<&ArcGeom>, p: DVec2, q: DVec2) -> DVec2 {
+        match geom {
+            None => (p + q) * 0.5,
+            Some(g) => g.center + arc_part(g, p, q).1 * g.radius,
         }
     }
 
@@ -286,88 +309,78 @@ impl Segment {
         self.closest(q).0.distance(q)
     }
 
-    /// [`Segment::distance_to`] with the arc's geometry at hand.
+    /// [`Segment::distance_to`] with the arc's geometry at hand; no trigonometry.
     pub fn distance_with(&self, geom: Option<&ArcGeom>, q: DVec2) -> f64 {
-        self.closest_with(geom, q).0.distance(q)
+        match geom {
+            Some(g) => {
+                let v = q - g.center;
+                if v != DVec2::ZERO && g.sweeps_over(v) {
+                    (v.length() - g.radius).abs()
+                } else {
+                    q.distance(self.a).min(q.distance(self.b))
+                }
+            }
+            None => self.closest_with(None, q).0.distance(q),
+        }
     }
 
     /// How many times the ray from `q` towards +x crosses the segment, counting an end on the
     /// ray's line only when the segment rises above it there (half-open, so loops count each
-    /// crossing once). Arcs are taken in pieces that rise or fall only.
+    /// crossing once).
     pub fn ray_crossings(&self, q: DVec2) -> u32 {
-        let straddles = |a: DVec2, b: DVec2| (a.y > q.y) != (b.y > q.y);
-        match self.arc_geom() {
-            None => {
-                let (a, b) = (self.a, self.b);
-                (straddles(a, b) && q.x < a.x + (q.y - a.y) / (b.y - a.y) * (b.x - a.x)) as u32
-            }
-            Some(g) => {
-                // The circle lies off the ray: no crossing (and no trigonometry).
-                if (q.y - g.center.y).abs() > g.radius || q.x > g.center.x + g.radius {
-                    return 0;
-                }
-                let mut cuts = [0.0, 1.0, 1.0, 1.0];
-                let mut n = 1;
-                for dir in [DVec2::Y, DVec2::NEG_Y] {
-                    if let Some(t) = self.angle_param(&g, dir) {
-                        if t > 0.0 && t < 1.0 {
-                            cuts[n] = t;
-                            n += 1;
-                        }
-                    }
-                }
-                cuts[..n].sort_by(f64::total_cmp);
-                cuts[n] = 1.0;
-                let mut count = 0;
-                for k in 0..n {
-                    let (t0, t1) = (cuts[k], cuts[k + 1]);
-                    let (a, b) = (self.point_at(t0), self.point_at(t1));
-                    if straddles(a, b) {
-                        let side = (self.point_at((t0 + t1) * 0.5).x - g.center.x).signum();
-                        let dy = q.y - g.center.y;
-                        let x = g.center.x + side * (g.radius * g.radius - dy * dy).max(0.0).sqrt();
-                        count += (q.x < x) as u32;
-                    }
-                }
-                count
-            }
-        }
+        self.ray_crossings_with(self.arc_geom().as_ref(), q)
+    }
+
+    /// [`Segment::ray_crossings`] with the arc's geometry at hand.
+    pub fn ray_crossings_with(&self, geom: Option<&ArcGeom>, q: DVec2) -> u32 {
+        let mut count = 0;
+        self.for_each_crossing_at_y(geom, q.y, |x| count += (q.x < x) as u32);
+        count
     }
 
     /// The x of every point where the segment crosses the horizontal line at `y`, by the same
     /// half-open rule as [`Segment::ray_crossings`], so a loop's crossings pair up into spans.
     pub fn crossings_at_y(&self, y: f64) -> Vec<f64> {
+        let mut xs = Vec::new();
+        self.for_each_crossing_at_y(self.arc_geom().as_ref(), y, |x| xs.push(x));
+        xs
+    }
+
+    /// Calls `visit` with the x of every crossing of the line at `y` (half-open at the ends).
+    /// Arcs are taken in pieces that only rise or only fall, split at their highest and lowest
+    /// points; no trigonometry.
+    fn for_each_crossing_at_y(&self, geom: Option<&ArcGeom>, y: f64, mut visit: impl FnMut(f64)) {
         let straddles = |a: DVec2, b: DVec2| (a.y > y) != (b.y > y);
-        match self.arc_geom() {
-            None => {
-                let (a, b) = (self.a, self.b);
-                if straddles(a, b) {
-                    vec![a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x)]
-                } else {
-                    Vec::new()
+        let Some(&g) = geom else {
+            let (a, b) = (self.a, self.b);
+            if straddles(a, b) {
+                visit(a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x));
+            }
+            return;
+        };
+        let dy = y - g.center.y;
+        if dy.abs() > g.radius {
+            return;
+        }
+        let mut cuts = [(0.0, self.a); 4];
+        let mut n = 1;
+        for dir in [DVec2::Y, DVec2::NEG_Y] {
+            if g.sweeps_over(dir) {
+                let p = g.center + dir * g.radius;
+                if let Some(k) = self.position_with(Some(&g), p, 0.0).filter(|&k| k > 0.0 && k < 1.0) {
+                    cuts[n] = (k, p);
+                    n += 1;
                 }
             }
-            Some(g) => {
-                let mut cuts = vec![0.0];
-                for dir in [DVec2::Y, DVec2::NEG_Y] {
-                    if let Some(t) = self.angle_param(&g, dir) {
-                        if t > 0.0 && t < 1.0 {
-                            cuts.push(t);
-                        }
-                    }
-                }
-                cuts.sort_by(f64::total_cmp);
-                cuts.push(1.0);
-                let mut xs = Vec::new();
-                for w in cuts.windows(2) {
-                    let (a, b) = (self.point_at(w[0]), self.point_at(w[1]));
-                    if straddles(a, b) {
-                        let side = (self.point_at((w[0] + w[1]) * 0.5).x - g.center.x).signum();
-                        let dy = y - g.center.y;
-                        xs.push(g.center.x + side * (g.radius * g.radius - dy * dy).max(0.0).sqrt());
-                    }
-                }
-                xs
+        }
+        cuts[..n].sort_by(|a, b| a.0.total_cmp(&b.0));
+        cuts[n] = (1.0, self.b);
+        let half = (g.radius * g.radius - dy * dy).max(0.0).sqrt();
+        for k in 0..n {
+            let (a, b) = (cuts[k].1, cuts[k + 1].1);
+            if straddles(a, b) {
+                let side = (self.midpoint_between(Some(&g), a, b).x - g.center.x).signum();
+                visit(g.center.x + side * half);
             }
         }
     }
@@ -390,6 +403,42 @@ impl Segment {
         }
         out
     }
+}
+
+/// A pseudo-angle of the direction `(x, y)`: from 0 at +x counter-clockwise to 4, monotone in the
+/// angle (1 at +y, 2 at −x, 3 at −y). NaN for the zero vector.
+fn pseudo_angle(x: f64, y: f64) -> f64 {
+    if y >= 0.0 {
+        if x >= 0.0 {
+            y / (x + y)
+        } else {
+            1.0 - x / (y - x)
+        }
+    } else if x <= 0.0 {
+        2.0 - y / (-x - y)
+    } else {
+        3.0 + x / (x - y)
+    }
+}
+
+/// For the part of an arc from `p` to `q` (in the sweep's direction): the unit direction of `p`
+/// from the centre and that of the part's middle. The middle bisects the two directions; it is
+/// taken from their sum when the part is short and from their difference turned a quarter
+/// against the sweep otherwise, whichever is well conditioned.
+fn arc_part(g: &ArcGeom, p: DVec2, q: DVec2) -> (DVec2, DVec2) {
+    let u = (p - g.center).normalize_or_zero();
+    let v = (q - g.center).normalize_or_zero();
+    let ccw = g.sweep > 0.0;
+    let turn = u.perp_dot(v) * g.sweep.signum(); // sin of the part's sweep
+    let m = if u.dot(v) > 0.0 && turn > 0.0 {
+        (u + v).normalize_or_zero() // under a quarter turn
+    } else if u.dot(v) > 0.0 && turn < 0.0 {
+        -(u + v).normalize_or_zero() // over three quarters
+    } else {
+        let d = v - u;
+        (if ccw { DVec2::new(d.y, -d.x) } else { DVec2::new(-d.y, d.x) }).normalize_or_zero()
+    };
+    (u, m)
 }
 
 /// Up to four crossings, without allocating.
@@ -426,7 +475,7 @@ fn try_point(s1: &Segment, s2: &Segment, p: DVec2, eps: f64, out: &mut Crossings
 }
 
 fn try_point_with(s1: &Segment, g1: Option<&ArcGeom>, s2: &Segment, g2: Option<&ArcGeom>, p: DVec2, eps: f64, out: &mut Crossings) {
-    if let (Some(t), Some(u)) = (s1.param_with(g1, p, eps), s2.param_with(g2, p, eps)) {
+    if let (Some(t), Some(u)) = (s1.position_with(g1, p, eps), s2.position_with(g2, p, eps)) {
         out.push(Crossing { t, u, p });
     }
 }
@@ -434,6 +483,15 @@ fn try_point_with(s1: &Segment, g1: Option<&ArcGeom>, s2: &Segment, g2: Option<&
 fn line_line(s1: &Segment, s2: &Segment, eps: f64, out: &mut Crossings) {
     let d1 = s1.b - s1.a;
     let d2 = s2.b - s2.a;
+    // Quick rejection: the ends of either lie on one side of the other's line, farther than
+    // eps (signed distances times the length, compared squared: no square root).
+    let apart = |d: DVec2, o: DVec2, p: DVec2, q: DVec2| {
+        let (cp, cq) = (d.perp_dot(p - o), d.perp_dot(q - o));
+        cp * cq > 0.0 && cp.abs().min(cq.abs()).powi(2) > eps * eps * d.length_squared()
+    };
+    if apart(d1, s1.a, s2.a, s2.b) || apart(d2, s2.a, s1.a, s1.b) {
+        return;
+    }
     let (l1, l2) = (d1.length(), d2.length());
     if l1 == 0.0 || l2 == 0.0 {
         for p in [s1.a, s2.a] {
@@ -492,7 +550,7 @@ fn line_arc(line: &Segment, arc: &Segment, g: &ArcGeom, eps: f64, swap: bool, ou
         }
     }
     for p in points.into_iter().flatten() {
-        if let (Some(t), Some(u)) = (line.param_with(None, p, eps), arc.param_with(Some(g), p, eps)) {
+        if let (Some(t), Some(u)) = (line.position_with(None, p, eps), arc.position_with(Some(g), p, eps)) {
             let c = if swap { Crossing { t: u, u: t, p } } else { Crossing { t, u, p } };
             out.push(c);
         }

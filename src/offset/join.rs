@@ -4,6 +4,7 @@ use std::f64::consts::PI;
 
 use super::raw::RawEntity;
 use crate::geom::segment::Segment;
+use crate::geom::DVec2;
 use crate::profile::Loop;
 
 /// How the raw entity `i` meets entity `i + 1`.
@@ -11,9 +12,10 @@ use crate::profile::Loop;
 enum Join {
     /// Their ends already meet (tangent entities, or a collapsed arc between them).
     Meet,
-    /// They cross at parameter `t` on the first and `u` on the second: both are cut there and
-    /// what lies past the crossing is trimmed at once (Fig. 7).
-    Cross { t: f64, u: f64 },
+    /// They cross at `p`, at position `t` along the first and `u` along the second (keys of
+    /// `Segment::position_with`): both are cut there and what lies past the crossing is
+    /// trimmed at once (Fig. 7).
+    Cross { t: f64, u: f64, p: DVec2 },
     /// They do not meet: an arc of the distance's radius about the original corner joins them.
     Arc,
 }
@@ -32,20 +34,20 @@ pub fn join_neighbours(l: &Loop, raw: &[RawEntity], distance: f64, eps: f64) -> 
     // Range kept of each entity; an entity that both its crossings would consume entirely
     // gets arcs at both ends instead (the global trim then sorts it out).
     let range = |joins: &[Join], i: usize| {
-        let t1 = match joins[i] {
-            Join::Cross { t, .. } => t,
-            _ => 1.0,
+        let (t1, p1) = match joins[i] {
+            Join::Cross { t, p, .. } => (t, Some(p)),
+            _ => (1.0, None),
         };
-        let t0 = match joins[(i + n - 1) % n] {
-            Join::Cross { u, .. } => u,
-            _ => 0.0,
+        let (t0, p0) = match joins[(i + n - 1) % n] {
+            Join::Cross { u, p, .. } => (u, Some(p)),
+            _ => (0.0, None),
         };
-        (t0, t1)
+        (t0, t1, p0, p1)
     };
     loop {
         let mut changed = false;
         for i in 0..n {
-            let (t0, t1) = range(&joins, i);
+            let (t0, t1, ..) = range(&joins, i);
             if !raw[i].collapsed && t1 - t0 <= 0.0 {
                 joins[i] = Join::Arc;
                 joins[(i + n - 1) % n] = Join::Arc;
@@ -58,9 +60,14 @@ pub fn join_neighbours(l: &Loop, raw: &[RawEntity], distance: f64, eps: f64) -> 
     }
     let mut out: Vec<Segment> = Vec::with_capacity(2 * n);
     for i in 0..n {
-        let (t0, t1) = range(&joins, i);
+        let (_, _, p0, p1) = range(&joins, i);
         if !raw[i].collapsed {
-            let s = if t0 > 0.0 || t1 < 1.0 { raw[i].seg.sub(t0, t1) } else { raw[i].seg };
+            let seg = raw[i].seg;
+            let s = if p0.is_some() || p1.is_some() {
+                seg.between(seg.arc_geom().as_ref(), p0.unwrap_or(seg.a), p1.unwrap_or(seg.b))
+            } else {
+                seg
+            };
             if s.length() > 0.0 {
                 out.push(s);
             }
@@ -101,7 +108,7 @@ fn classify(l: &Loop, raw: &[RawEntity], i: usize, distance: f64, eps: f64) -> J
     let last = crossings.iter().max_by(|p, q| p.t.total_cmp(&q.t));
     let first = crossings.iter().min_by(|p, q| p.u.total_cmp(&q.u));
     match (last, first) {
-        (Some(x), Some(y)) if x == y => Join::Cross { t: x.t, u: x.u },
+        (Some(x), Some(y)) if x == y => Join::Cross { t: x.t, u: x.u, p: x.p },
         _ => Join::Arc,
     }
 }

@@ -46,9 +46,9 @@ pub fn offset(shape: &Shape, distance: f64, tol: &Tolerances) -> Shape {
         .map(|l| join::join_neighbours(l, &raw::raw_offset(l, distance), distance, tol.offset))
         .filter(|l| !l.is_empty())
         .collect();
-    let slices = trim::split_at_crossings(&joined, tol.offset);
+    let cut = trim::split_at_crossings(&joined, tol.offset);
     let original = trim::Original::new(&input);
-    let kept = trim::discard_close(slices, &original, distance, tol.offset);
+    let kept = trim::discard_close(&cut, &original, distance, tol.offset);
     let loops = trim::stitch(kept, tol.offset);
     let loops: Vec<Loop> = loops
         .into_iter()

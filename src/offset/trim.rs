@@ -8,7 +8,7 @@ use crate::geom::segment::{ArcGeom, Rect, Segment};
 use crate::geom::DVec2;
 use crate::profile::{Loop, Shape};
 
-/// A piece of a joined loop between two cuts (or a whole loop that nothing crosses).
+/// A piece of a joined loop between two cuts (or a whole loop that nothing crosses), kept.
 #[derive(Clone, Debug)]
 pub struct Slice {
     pub segs: Vec<Segment>,
@@ -30,123 +30,213 @@ impl Slice {
 /// Cuts closer than this many `eps` to a segment's end are moved onto the vertex.
 const SNAP: f64 = 10.0;
 
-/// Finds every crossing between the joined loops' segments (also between different loops, so
-/// islands and boundaries that meet are cut too) and cuts the loops into slices there.
-/// Touching at a vertex counts: a point where three or more entities meet is a cut.
-pub fn split_at_crossings(loops: &[Vec<Segment>], eps: f64) -> Vec<Slice> {
-    let mut owner: Vec<(usize, usize)> = Vec::new();
+/// A cut of a joined loop: on segment `g` (numbered over all loops) at `key` (a position along
+/// the segment from `Segment::position_with`, 0 at its start), made by crossing number `x`.
+/// It lies at the crossing, or at the segment's start when `key` is 0 (snapped to the vertex).
+#[derive(Clone, Copy, Debug)]
+struct Cut {
+    g: u32,
+    x: u32,
+    key: f64,
+}
+
+/// The joined loops and where they are cut: every crossing between their segments (also
+/// between different loops, so islands and boundaries that meet are cut too). The slices
+/// between cuts are visited without being built ([`CutLoops::for_each_slice`]), since most of
+/// them are twisted parts that go.
+pub struct CutLoops {
+    /// All loops' segments, loop after loop; loop `k` is `segs[first[k]..first[k + 1]]`.
+    segs: Vec<Segment>,
+    first: Vec<usize>,
+    geoms: Vec<Option<ArcGeom>>,
+    /// Sorted along the loops, loop after loop.
+    cuts: Vec<Cut>,
+    /// Per loop, its cuts: `cuts[cut_first[k]..cut_first[k + 1]]`.
+    cut_first: Vec<usize>,
+    /// The crossings, by number: each makes a cut on both segments that meet there.
+    pub crossings: Vec<DVec2>,
+    eps: f64,
+}
+
+/// Finds every crossing between the joined loops' segments and cuts the loops there. Touching
+/// at a vertex counts: a point where three or more entities meet is a cut.
+pub fn split_at_crossings(loops: &[Vec<Segment>], eps: f64) -> CutLoops {
+    let mut first = vec![0];
     let mut segs: Vec<Segment> = Vec::new();
+    let mut owner: Vec<u32> = Vec::new();
     for (k, l) in loops.iter().enumerate() {
-        for (i, s) in l.iter().enumerate() {
-            owner.push((k, i));
-            segs.push(*s);
-        }
+        segs.extend_from_slice(l);
+        owner.extend(std::iter::repeat_n(k as u32, l.len()));
+        first.push(segs.len());
     }
+    let geoms: Vec<Option<ArcGeom>> = segs.iter().map(Segment::arc_geom).collect();
     let rects: Vec<Rect> = segs.iter().map(|s| s.bounds().expand(eps)).collect();
     let index = RectIndex::new(&rects);
-    let geoms: Vec<Option<ArcGeom>> = segs.iter().map(|s| s.arc_geom()).collect();
-    let lens: Vec<f64> = segs.iter().zip(&geoms).map(|(s, g)| g.map_or(s.chord(), |g| g.radius * g.sweep.abs())).collect();
-    // Cuts per loop as (position along the loop = segment index + parameter, point).
-    let mut cuts: Vec<Vec<(f64, DVec2)>> = vec![Vec::new(); loops.len()];
     let snap = SNAP * eps;
-    let mut add_cut = |g: usize, t: f64, p: DVec2| {
-        let (k, i) = owner[g];
-        let m = loops[k].len();
-        let pos = if t * lens[g] <= snap {
-            i as f64
-        } else if (1.0 - t) * lens[g] <= snap {
-            ((i + 1) % m) as f64
-        } else {
-            i as f64 + t
-        };
-        cuts[k].push((pos, p));
-    };
+    // Next and previous segment along the same loop.
+    let next = |g: usize| if g + 1 == first[owner[g] as usize + 1] { first[owner[g] as usize] } else { g + 1 };
+    let mut cuts: Vec<Cut> = Vec::with_capacity(segs.len() * 2);
+    let mut crossings: Vec<DVec2> = Vec::new();
     for g in 0..segs.len() {
-        let (k, i) = owner[g];
-        let m = loops[k].len();
+        let sg = &segs[g];
+        let (after, before) = (next(g), if g == first[owner[g] as usize] { first[owner[g] as usize + 1] - 1 } else { g - 1 });
         index.query(&rects[g], |h| {
             if h <= g {
                 return;
             }
-            let (kh, j) = owner[h];
-            let next = kh == k && j == (i + 1) % m;
-            let prev = kh == k && i == (j + 1) % m;
-            for c in segs[g].crossings_with(geoms[g].as_ref(), &segs[h], geoms[h].as_ref(), eps).iter() {
-                let g_end = (1.0 - c.t) * lens[g] <= snap;
-                let g_start = c.t * lens[g] <= snap;
-                let h_end = (1.0 - c.u) * lens[h] <= snap;
-                let h_start = c.u * lens[h] <= snap;
-                if (next && g_end && h_start) || (prev && g_start && h_end) {
+            let sh = &segs[h];
+            for c in sg.crossings_with(geoms[g].as_ref(), sh, geoms[h].as_ref(), eps).iter() {
+                let near = |p: DVec2| c.p.distance_squared(p) <= snap * snap;
+                if (h == after && near(sg.b) && near(sh.a)) || (h == before && near(sg.a) && near(sh.b)) {
                     continue; // the vertex the two share
                 }
-                add_cut(g, c.t, c.p);
-                add_cut(h, c.u, c.p);
+                let x = crossings.len() as u32;
+                crossings.push(c.p);
+                for (s, key) in [(g, c.t), (h, c.u)] {
+                    // A cut within `snap` of an end moves onto the vertex (the next one's start).
+                    let seg = &segs[s];
+                    cuts.push(if c.p.distance_squared(seg.a) <= snap * snap {
+                        Cut { g: s as u32, x, key: 0.0 }
+                    } else if c.p.distance_squared(seg.b) <= snap * snap {
+                        Cut { g: next(s) as u32, x, key: 0.0 }
+                    } else {
+                        Cut { g: s as u32, x, key: key.max(f64::MIN_POSITIVE) }
+                    });
+                }
             }
         });
     }
-    let mut slices = Vec::new();
-    for (k, l) in loops.iter().enumerate() {
-        let m = l.len();
-        let mut c = std::mem::take(&mut cuts[k]);
-        if c.is_empty() {
-            slices.push(Slice { segs: l.clone(), source: k, closed: true });
-            continue;
-        }
-        c.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
-        c.dedup_by(|b, a| b.0 - a.0 <= snap / lens_at(l, a.0).max(snap) && b.1.distance(a.1) <= snap);
-        // A cut at a vertex takes the vertex's own point.
-        for cut in &mut c {
-            if cut.0.fract() == 0.0 {
-                cut.1 = l[cut.0 as usize % m].a;
-            }
-        }
-        for j in 0..c.len() {
-            let (from, p0) = c[j];
-            let (mut to, p1) = c[(j + 1) % c.len()];
-            if to <= from {
-                to += m as f64;
-            }
-            if let Some(segs) = extract(l, from, to, p0, p1, eps) {
-                slices.push(Slice { segs, source: k, closed: false });
-            }
-        }
-    }
-    slices
+    sort_along(&mut cuts, segs.len());
+    // Cuts on one segment closer than `snap` are one.
+    let at = |c: &Cut| if c.key == 0.0 { segs[c.g as usize].a } else { crossings[c.x as usize] };
+    cuts.dedup_by(|b, a| b.g == a.g && at(b).distance_squared(at(a)) <= snap * snap);
+    let cut_first = first.iter().map(|&g| if g == segs.len() { cuts.len() } else { cuts.partition_point(|c| (c.g as usize) < g) }).collect();
+    CutLoops { segs, first, geoms, cuts, cut_first, crossings, eps }
 }
 
-fn lens_at(l: &[Segment], pos: f64) -> f64 {
-    l[pos as usize % l.len()].length()
+/// Sorts cuts along the loops' `m` segments, in place: by segment (counted, then each moved
+/// into its segment's range: an American flag sort), then by key within a segment.
+fn sort_along(cuts: &mut [Cut], m: usize) {
+    let mut starts = vec![0usize; m + 1];
+    for c in cuts.iter() {
+        starts[c.g as usize + 1] += 1;
+    }
+    for i in 0..m {
+        starts[i + 1] += starts[i];
+    }
+    let mut next = starts.clone();
+    for b in 0..m {
+        while next[b] < starts[b + 1] {
+            let to = cuts[next[b]].g as usize;
+            if to == b {
+                next[b] += 1;
+            } else {
+                cuts.swap(next[b], next[to]);
+                next[to] += 1;
+            }
+        }
+    }
+    for b in 0..m {
+        let bucket = &mut cuts[starts[b]..starts[b + 1]];
+        if bucket.len() > 1 {
+            bucket.sort_unstable_by(|a, b| a.key.total_cmp(&b.key));
+        }
+    }
 }
 
-/// The part of loop `l` between two positions, starting exactly at `p0` and ending at `p1`.
-fn extract(l: &[Segment], from: f64, to: f64, p0: DVec2, p1: DVec2, eps: f64) -> Option<Vec<Segment>> {
-    let m = l.len();
-    let mut out = Vec::new();
-    let mut p = from;
-    while p < to {
-        let i = p.floor();
-        let e = (i + 1.0).min(to);
-        let s = l[i as usize % m];
-        let (t0, t1) = (p - i, e - i);
-        let piece = if t0 <= 0.0 && t1 >= 1.0 { s } else { s.sub(t0, t1) };
-        if piece.length() > eps {
-            out.push(piece);
+/// The part of one segment that a slice runs along, from `from` to `to`.
+#[derive(Clone, Copy, Debug)]
+pub struct Piece<'a> {
+    seg: &'a Segment,
+    geom: Option<&'a ArcGeom>,
+    from: DVec2,
+    to: DVec2,
+}
+
+impl Piece<'_> {
+    pub fn midpoint(&self) -> DVec2 {
+        if self.from == self.seg.a && self.to == self.seg.b {
+            self.seg.midpoint()
+        } else {
+            self.seg.midpoint_between(self.geom, self.from, self.to)
         }
-        p = e;
     }
-    if out.is_empty() {
-        return None;
+
+    pub fn segment(&self) -> Segment {
+        if self.from == self.seg.a && self.to == self.seg.b {
+            *self.seg
+        } else {
+            self.seg.between(self.geom, self.from, self.to)
+        }
     }
-    out[0].a = p0;
-    for k in 1..out.len() {
-        out[k].a = out[k - 1].b;
+}
+
+/// A slice seen in passing: its pieces (those longer than `eps`), where it came from, the
+/// crossings it runs between (by number; none for a whole loop), and whether it is a whole
+/// loop.
+pub struct SliceView<'p, 'a> {
+    pub pieces: &'p [Piece<'a>],
+    pub source: usize,
+    pub ends: Option<(usize, usize)>,
+    pub closed: bool,
+}
+
+impl SliceView<'_, '_> {
+    /// The slice built: its pieces as segments, each starting where the one before ends.
+    pub fn build(&self) -> Slice {
+        let mut segs: Vec<Segment> = self.pieces.iter().map(Piece::segment).collect();
+        for k in 1..segs.len() {
+            segs[k].a = segs[k - 1].b;
+        }
+        let last = segs.len() - 1;
+        segs[last].b = self.pieces[last].to;
+        Slice { segs, source: self.source, closed: self.closed }
     }
-    let last = out.len() - 1;
-    out[last].b = p1;
-    if out[last].a == out[last].b {
-        out.pop();
+}
+
+impl CutLoops {
+    /// Calls `visit` with every slice: each loop from cut to cut, through its start, and the
+    /// loops nothing cuts whole. Slices whose pieces are all shorter than `eps` are skipped.
+    pub fn for_each_slice<'s>(&'s self, mut visit: impl FnMut(&SliceView<'_, 's>)) {
+        let mut pieces: Vec<Piece<'s>> = Vec::new();
+        for k in 0..self.first.len() - 1 {
+            let (g0, m) = (self.first[k], self.first[k + 1] - self.first[k]);
+            let piece = |i: usize, from: DVec2, to: DVec2| Piece { seg: &self.segs[g0 + i], geom: self.geoms[g0 + i].as_ref(), from, to };
+            let c = &self.cuts[self.cut_first[k]..self.cut_first[k + 1]];
+            if c.is_empty() {
+                pieces.clear();
+                pieces.extend((0..m).map(|i| piece(i, self.segs[g0 + i].a, self.segs[g0 + i].b)));
+                visit(&SliceView { pieces: &pieces, source: k, ends: None, closed: true });
+                continue;
+            }
+            let at = |c: &Cut| if c.key == 0.0 { self.segs[c.g as usize].a } else { self.crossings[c.x as usize] };
+            for j in 0..c.len() {
+                let (from, to) = (c[j], c[(j + 1) % c.len()]);
+                let (p0, p1) = (at(&from), at(&to));
+                let (i0, mut i1) = (from.g as usize - g0, to.g as usize - g0);
+                if (to.g, to.key) <= (from.g, from.key) {
+                    i1 += m; // through the loop's start
+                }
+                pieces.clear();
+                for i in i0..=i1 {
+                    let s = &self.segs[g0 + i % m];
+                    let a = if i == i0 { p0 } else { s.a };
+                    let b = if i == i1 { p1 } else { s.b };
+                    if a.distance_squared(b) > self.eps * self.eps {
+                        pieces.push(piece(i % m, a, b));
+                    }
+                }
+                if pieces.is_empty() {
+                    continue;
+                }
+                // The slice runs exactly from cut to cut, whatever short pieces were left out.
+                pieces[0].from = p0;
+                let last = pieces.len() - 1;
+                pieces[last].to = p1;
+                visit(&SliceView { pieces: &pieces, source: k, ends: Some((from.x as usize, to.x as usize)), closed: false });
+            }
+        }
     }
-    (!out.is_empty()).then_some(out)
 }
 
 /// The input shape, indexed for distance and crossing queries.
@@ -177,15 +267,13 @@ impl<'a> Original<'a> {
         best
     }
 
-    /// Whether the midpoint of `s` lies closer than `limit` to the input. `hint` is tried
-    /// first and set to the entity found closer: neighbouring slices are usually too close to
-    /// the same entity.
-    fn closer_than(&self, s: &Segment, limit: f64, hint: &mut usize) -> bool {
-        let mid = s.midpoint();
+    /// Whether `mid` lies closer than `limit` to the input. `hint` is tried first and set to
+    /// the entity found closer: neighbouring slices are usually too close to the same entity.
+    fn closer_than(&self, mid: DVec2, limit: f64, hint: &mut usize) -> bool {
         if self.segs.get(*hint).is_some_and(|o| o.distance_with(self.geoms[*hint].as_ref(), mid) < limit) {
             return true;
         }
-        self.index.any_within(mid, limit, |i| {
+                self.index.any_within(mid, limit, |i| {
             let close = self.segs[i].distance_with(self.geoms[i].as_ref(), mid) < limit;
             if close {
                 *hint = i;
@@ -198,7 +286,7 @@ impl<'a> Original<'a> {
     /// ray's way).
     pub fn contains(&self, q: DVec2) -> bool {
         let mut count = 0;
-        self.index.query(&Rect { min: q, max: DVec2::new(f64::INFINITY, q.y) }, |i| count += self.segs[i].ray_crossings(q));
+        self.index.query(&Rect { min: q, max: DVec2::new(f64::INFINITY, q.y) }, |i| count += self.segs[i].ray_crossings_with(self.geoms[i].as_ref(), q));
         count % 2 == 1
     }
 
@@ -229,23 +317,40 @@ impl<'a> Original<'a> {
 /// distance, and at least `eps` times this).
 const CLOSE_SLACK: f64 = 10.0;
 
-/// Drops the twisted parts: the slices with a point closer to the input than the distance.
-/// A slice that does not cross the input is either wholly at the distance or wholly too
-/// close, since to change it would have to cross the raw offset of the input's nearest part
-/// (and would have been cut there); so the midpoints of its first, middle and last segments
-/// decide, and a slice that crosses the input goes.
-pub fn discard_close(slices: Vec<Slice>, original: &Original, distance: f64, eps: f64) -> Vec<Slice> {
+/// Drops the twisted parts: the slices with a point closer to the input than the distance;
+/// builds the rest. A slice that does not cross the input is either wholly at the distance or
+/// wholly too close, since to change it would have to cross the raw offset of the input's
+/// nearest part (and would have been cut there). So its ends decide first (each crossing is
+/// tested once, for all the slices that end there), then the midpoints of its first, middle
+/// and last pieces; a slice that crosses the input goes.
+pub fn discard_close(cut: &CutLoops, original: &Original, distance: f64, eps: f64) -> Vec<Slice> {
     let limit = distance.abs() - CLOSE_SLACK * eps * distance.abs().max(1.0);
     let mut hint = usize::MAX;
-    slices
-        .into_iter()
-        .filter(|s| {
-            let n = s.segs.len();
-            let probes = [0, n / 2, n - 1];
-            !probes.iter().any(|&k| original.closer_than(&s.segs[k], limit, &mut hint))
-                && !s.segs.iter().any(|seg| original.crosses(seg, eps))
-        })
-        .collect()
+    // Per crossing: 0 not tested yet, 1 at the distance, 2 too close.
+    let mut state = vec![0u8; cut.crossings.len()];
+    let mut kept = Vec::new();
+    cut.for_each_slice(|s| {
+        if let Some((a, b)) = s.ends {
+            for x in [a, b] {
+                if state[x] == 0 {
+                    state[x] = if original.closer_than(cut.crossings[x], limit, &mut hint) { 2 } else { 1 };
+                }
+                if state[x] == 2 {
+                    return;
+                }
+            }
+        }
+        let n = s.pieces.len();
+        let probes = if n < 3 { &[0, n - 1][..n] } else { &[0, n / 2, n - 1][..] };
+        if probes.iter().any(|&k| original.closer_than(s.pieces[k].midpoint(), limit, &mut hint)) {
+            return;
+        }
+        let slice = s.build();
+        if !slice.segs.iter().any(|seg| original.crosses(seg, eps)) {
+            kept.push(slice);
+        }
+    });
+    kept
 }
 
 /// Joins the kept slices end to start into loops. Ends match within a few `eps`; a slice
