@@ -87,7 +87,7 @@ fn drawing_view(d: &Drawing) -> DrawingView {
     for (index, (l, o)) in d.loops.iter().zip(&nesting.loops).enumerate() {
         let target = if o.is_ccw() { &mut outer } else { &mut holes };
         for seg in l.path.segments() {
-            let n = seg.arc_geom().map_or(1, |g| ((g.sweep.abs() / 0.05).ceil() as usize).max(1));
+            let n = seg.arc_geom().map_or(1, |g| ((g.sweep().abs() / 0.05).ceil() as usize).max(1));
             for k in 0..n {
                 let (a, b) = (seg.point_at(k as f64 / n as f64), seg.point_at((k + 1) as f64 / n as f64));
                 target.extend([a.x as f32, a.y as f32, 0.0, b.x as f32, b.y as f32, 0.0]);

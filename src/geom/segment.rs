@@ -60,16 +60,21 @@ pub struct ArcGeom {
     pub start: DVec2,
     /// `b` less the centre.
     pub end: DVec2,
-    /// Signed sweep (counter-clockwise positive), in (-2π, 2π).
-    pub sweep: f64,
+    /// The segment's bulge: tan of a quarter of the signed sweep (counter-clockwise positive).
+    pub bulge: f64,
 }
 
 impl ArcGeom {
+    /// Signed sweep (counter-clockwise positive), in (-2π, 2π).
+    pub fn sweep(&self) -> f64 {
+        4.0 * self.bulge.atan()
+    }
+
     /// Whether the direction `v` from the centre lies within the sweep (by cross products).
     pub fn sweeps_over(&self, v: DVec2) -> bool {
-        let (s, e) = if self.sweep > 0.0 { (self.start, self.end) } else { (self.end, self.start) };
+        let (s, e) = if self.bulge > 0.0 { (self.start, self.end) } else { (self.end, self.start) };
         let (after_start, before_end) = (s.perp_dot(v) >= 0.0, v.perp_dot(e) >= 0.0);
-        if self.sweep.abs() <= std::f64::consts::PI {
+        if self.bulge.abs() <= 1.0 {
             after_start && before_end
         } else {
             after_start || before_end
@@ -91,16 +96,11 @@ impl Segment {
         Segment { a, b, bulge: 0.0 }
     }
 
-    /// The arc from `a` to `b` about `center`, counter-clockwise or not. Equal ends are refused
-    /// (a full circle is two segments).
+    /// The arc from `a` to `b` about `center`, counter-clockwise or not (no trigonometry).
+    /// Equal ends make a null arc (a full circle is two segments).
     pub fn arc(a: DVec2, b: DVec2, center: DVec2, ccw: bool) -> Segment {
-        let mut sweep = (a - center).angle_to(b - center);
-        if ccw && sweep < 0.0 {
-            sweep += TAU;
-        } else if !ccw && sweep > 0.0 {
-            sweep -= TAU;
-        }
-        Segment { a, b, bulge: (sweep / 4.0).tan() }
+        let (u, m) = bisect(center, a, b, ccw);
+        Segment { a, b, bulge: quarter_tan(u, m, ccw) }
     }
 
     /// The arc about `center` of `radius` from `start` through a signed `sweep` (radians).
@@ -128,16 +128,15 @@ impl Segment {
             return None;
         }
         let b = self.bulge;
-        let sweep = 4.0 * b.atan();
         let left = DVec2::new(-d.y, d.x) / chord;
         let center = (self.a + self.b) * 0.5 + left * (chord * 0.5 * (1.0 - b * b) / (2.0 * b));
         let radius = chord * (1.0 + b * b) / (4.0 * b.abs());
-        Some(ArcGeom { center, radius, start: self.a - center, end: self.b - center, sweep })
+        Some(ArcGeom { center, radius, start: self.a - center, end: self.b - center, bulge: b })
     }
 
     pub fn length(&self) -> f64 {
         match self.arc_geom() {
-            Some(g) => g.radius * g.sweep.abs(),
+            Some(g) => g.radius * g.sweep().abs(),
             None => self.chord(),
         }
     }
@@ -151,7 +150,7 @@ impl Segment {
             return self.b;
         }
         match self.arc_geom() {
-            Some(g) => g.center + DVec2::from_angle(g.sweep * t).rotate(g.start),
+            Some(g) => g.center + DVec2::from_angle(g.sweep() * t).rotate(g.start),
             None => self.a.lerp(self.b, t),
         }
     }
@@ -166,7 +165,7 @@ impl Segment {
     /// Unit direction of travel at parameter `t`.
     pub fn tangent_at(&self, t: f64) -> DVec2 {
         match self.arc_geom() {
-            Some(g) => DVec2::from_angle(g.sweep * t).rotate(g.start).perp() / g.radius * g.sweep.signum(),
+            Some(g) => DVec2::from_angle(g.sweep() * t).rotate(g.start).perp() / g.radius * g.bulge.signum(),
             None => (self.b - self.a).normalize_or_zero(),
         }
     }
@@ -179,8 +178,8 @@ impl Segment {
     pub fn sub(&self, t0: f64, t1: f64) -> Segment {
         match self.arc_geom() {
             Some(g) => {
-                let at = |t: f64| if t <= 0.0 { self.a } else if t >= 1.0 { self.b } else { g.center + DVec2::from_angle(g.sweep * t).rotate(g.start) };
-                Segment { a: at(t0), b: at(t1), bulge: (g.sweep * (t1 - t0) / 4.0).tan() }
+                let at = |t: f64| if t <= 0.0 { self.a } else if t >= 1.0 { self.b } else { g.center + DVec2::from_angle(g.sweep() * t).rotate(g.start) };
+                Segment { a: at(t0), b: at(t1), bulge: (g.sweep() * (t1 - t0) / 4.0).tan() }
             }
             None => Segment { a: self.point_at(t0), b: self.point_at(t1), bulge: 0.0 },
         }
@@ -209,12 +208,12 @@ impl Segment {
             return None;
         }
         let mut delta = g.start.perp_dot(dir).atan2(g.start.dot(dir));
-        if g.sweep > 0.0 && delta < 0.0 {
+        if g.bulge > 0.0 && delta < 0.0 {
             delta += TAU;
-        } else if g.sweep < 0.0 && delta > 0.0 {
+        } else if g.bulge < 0.0 && delta > 0.0 {
             delta -= TAU;
         }
-        let t = delta / g.sweep;
+        let t = delta / g.sweep();
         (0.0..=1.0).contains(&t).then_some(t)
     }
 
@@ -237,7 +236,7 @@ impl Segment {
                 (t >= -s && t <= 1.0 + s).then(|| t.clamp(0.0, 1.0))
             }
             Some(g) => {
-                let key = |w: DVec2| pseudo_angle(g.start.dot(w), g.start.perp_dot(w) * g.sweep.signum());
+                let key = |w: DVec2| pseudo_angle(g.start.dot(w), g.start.perp_dot(w) * g.bulge.signum());
                 let (k, span) = (key(p - g.center), key(g.end));
                 if k <= span {
                     Some(k / span)
@@ -260,9 +259,7 @@ impl Segment {
             None => Segment::line(p, q),
             Some(g) => {
                 let (u, m) = arc_part(g, p, q);
-                // tan(θ/4) from the half angle θ/2 between the start and the part's middle.
-                let bulge = u.perp_dot(m).abs() / (1.0 + u.dot(m)) * g.sweep.signum();
-                Segment { a: p, b: q, bulge }
+                Segment { a: p, b: q, bulge: quarter_tan(u, m, g.bulge > 0.0) }
             }
         }
     }
@@ -426,10 +423,14 @@ fn pseudo_angle(x: f64, y: f64) -> f64 {
 /// taken from their sum when the part is short and from their difference turned a quarter
 /// against the sweep otherwise, whichever is well conditioned.
 fn arc_part(g: &ArcGeom, p: DVec2, q: DVec2) -> (DVec2, DVec2) {
-    let u = (p - g.center).normalize_or_zero();
-    let v = (q - g.center).normalize_or_zero();
-    let ccw = g.sweep > 0.0;
-    let turn = u.perp_dot(v) * g.sweep.signum(); // sin of the part's sweep
+    bisect(g.center, p, q, g.bulge > 0.0)
+}
+
+/// [`arc_part`] for the arc about `center` from `p` to `q`, counter-clockwise or not.
+fn bisect(center: DVec2, p: DVec2, q: DVec2, ccw: bool) -> (DVec2, DVec2) {
+    let u = (p - center).normalize_or_zero();
+    let v = (q - center).normalize_or_zero();
+    let turn = u.perp_dot(v) * if ccw { 1.0 } else { -1.0 }; // sin of the part's sweep
     let m = if u.dot(v) > 0.0 && turn > 0.0 {
         (u + v).normalize_or_zero() // under a quarter turn
     } else if u.dot(v) > 0.0 && turn < 0.0 {
@@ -439,6 +440,17 @@ fn arc_part(g: &ArcGeom, p: DVec2, q: DVec2) -> (DVec2, DVec2) {
         (if ccw { DVec2::new(d.y, -d.x) } else { DVec2::new(-d.y, d.x) }).normalize_or_zero()
     };
     (u, m)
+}
+
+/// The bulge of an arc whose start direction from the centre is `u` and whose middle is `m`:
+/// tan(θ/4) from the half sweep θ/2 between them, signed by the direction.
+fn quarter_tan(u: DVec2, m: DVec2, ccw: bool) -> f64 {
+    let t = u.perp_dot(m).abs() / (1.0 + u.dot(m));
+    if ccw {
+        t
+    } else {
+        -t
+    }
 }
 
 /// Up to four crossings, without allocating.

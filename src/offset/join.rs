@@ -1,7 +1,5 @@
 //! Step 2 of seed 003 (§2-2, Figs. 4–7): neighbouring raw entities are joined into one loop.
 
-use std::f64::consts::PI;
-
 use super::raw::RawEntity;
 use crate::geom::segment::Segment;
 use crate::geom::DVec2;
@@ -76,8 +74,7 @@ pub fn join_neighbours(l: &Loop, raw: &[RawEntity], distance: f64, eps: f64) -> 
             let next = &raw[(i + 1) % n];
             let corner = l.vertices[(i + 1) % n].p;
             let (from, to) = (raw[i].seg.b, next.seg.a);
-            let sweep = corner_sweep(from - corner, to - corner, distance);
-            let arc = Segment { a: from, b: to, bulge: (sweep / 4.0).tan() };
+            let arc = Segment::arc(from, to, corner, corner_turn(from - corner, to - corner, distance) > 0.0);
             if arc.length() > 0.0 {
                 out.push(arc);
             }
@@ -99,8 +96,7 @@ fn classify(l: &Loop, raw: &[RawEntity], i: usize, distance: f64, eps: f64) -> J
         return Join::Meet;
     }
     let corner = l.vertices[(i + 1) % n].p;
-    let sweep = corner_sweep(a.seg.b - corner, b.seg.a - corner, distance);
-    let turns_away = sweep * distance < 0.0;
+    let turns_away = corner_turn(a.seg.b - corner, b.seg.a - corner, distance) * distance < 0.0;
     if !turns_away || a.collapsed || b.collapsed || n < 2 {
         return Join::Arc;
     }
@@ -113,13 +109,14 @@ fn classify(l: &Loop, raw: &[RawEntity], i: usize, distance: f64, eps: f64) -> J
     }
 }
 
-/// Sweep of the join arc about the corner from `from` to `to` (both at the distance from it):
-/// the corner's turning angle; a full reversal goes round the corner's outside.
-fn corner_sweep(from: glam::DVec2, to: glam::DVec2, distance: f64) -> f64 {
-    let sweep = from.angle_to(to);
-    if PI - sweep.abs() < 1e-12 {
-        PI * distance.signum()
+/// Which way the join arc about the corner turns from `from` to `to` (both at the distance
+/// from it): the sign of the corner's turning angle, positive counter-clockwise; a full
+/// reversal goes round the corner's outside.
+fn corner_turn(from: DVec2, to: DVec2, distance: f64) -> f64 {
+    let (sin, cos) = (from.perp_dot(to), from.dot(to));
+    if cos < 0.0 && sin.abs() < 1e-12 * from.length() * to.length() {
+        distance.signum()
     } else {
-        sweep
+        sin
     }
 }

@@ -32,7 +32,7 @@ pub fn raw_entity(s: &Segment, d: f64) -> RawEntity {
             RawEntity { seg: Segment { a: s.a + n, b: s.b + n, bulge: 0.0 }, collapsed: false }
         }
         Some(g) => {
-            let r = if g.sweep > 0.0 { g.radius + d } else { g.radius - d };
+            let r = if g.bulge > 0.0 { g.radius + d } else { g.radius - d };
             if r.abs() <= COLLAPSE * d.abs().max(g.radius) {
                 return RawEntity { seg: Segment { a: g.center, b: g.center, bulge: 0.0 }, collapsed: true };
             }

@@ -63,7 +63,7 @@ mod tests {
         for s in &out {
             let g = s.arc_geom().unwrap();
             assert!((g.radius - 2.0).abs() < 1e-9 && g.center.distance(DVec2::new(3.0, -1.0)) < 1e-9);
-            assert!(g.sweep > 0.0);
+            assert!(g.bulge > 0.0);
         }
         let ellipse = |t: f64| DVec2::new(10.0 * t.cos(), 4.0 * t.sin());
         let mut out = Vec::new();

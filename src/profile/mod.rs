@@ -73,7 +73,7 @@ impl Loop {
             .map(|s| {
                 let chord = s.a.perp_dot(s.b) * 0.5;
                 match s.arc_geom() {
-                    Some(g) => chord + g.radius * g.radius * 0.5 * (g.sweep - g.sweep.sin()),
+                    Some(g) => chord + g.radius * g.radius * 0.5 * (g.sweep() - g.sweep().sin()),
                     None => chord,
                 }
             })

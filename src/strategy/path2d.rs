@@ -120,7 +120,7 @@ pub fn follow(segs: &[Segment], s0: f64, s1: f64, z: &Heights, feed: f64, out: &
         let piece = seg.sub(ta, tb);
         let end = piece.b.extend(z.at(to));
         match piece.arc_geom() {
-            Some(g) => out.push(Move::Arc { to: end, center: g.center, clockwise: g.sweep < 0.0, feed }),
+            Some(g) => out.push(Move::Arc { to: end, center: g.center, clockwise: g.bulge < 0.0, feed }),
             None => out.push(Move::Line { to: end, feed }),
         }
         from = to;
