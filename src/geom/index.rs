@@ -7,6 +7,10 @@ use super::DVec2;
 
 const FANOUT: usize = 16;
 
+/// Up to this many rectangles are kept as one flat level (every query tests them all, which
+/// beats sorting them into a tree).
+const FLAT: usize = 128;
+
 /// Rectangles by index, packed level by level; the leaves hold the items' own indices.
 pub struct RectIndex {
     /// Per level, from the leaves up: node rectangles and, for the leaves, item indices.
@@ -15,9 +19,14 @@ pub struct RectIndex {
 }
 
 impl RectIndex {
+    #[inline(never)]
     pub fn new(rects: &[Rect]) -> RectIndex {
         let n = rects.len();
         let mut items: Vec<u32> = (0..n as u32).collect();
+        if n <= FLAT {
+            // Few enough to test them all: one level, in input order.
+            return RectIndex { levels: vec![rects.to_vec()], items };
+        }
         // Sort-tile-recursive: slices by x centre, each slice by y centre.
         let slice_count = ((n as f64 / FANOUT as f64).sqrt().ceil() as usize).max(1);
         let slice_len = n.div_ceil(slice_count).max(1);
@@ -36,16 +45,31 @@ impl RectIndex {
 
     /// Calls `visit` with the index of every rectangle that overlaps `query`.
     pub fn query(&self, query: &Rect, mut visit: impl FnMut(usize)) {
-        self.walk(|r| r.overlaps(query), |i| {
+        self.walk(|_, _, r| r.overlaps(query), |i| {
             visit(i);
             false
         });
     }
 
+    /// Calls `visit` once with every pair of overlapping rectangles (their indices, in no
+    /// particular order). Each rectangle is looked up only among those after it in the packed
+    /// order, so whole subtrees before it are skipped.
+    #[inline(never)]
+    pub fn pairs(&self, mut visit: impl FnMut(usize, usize)) {
+        for (pos, r) in self.levels[0].iter().enumerate() {
+            let i = self.items[pos] as usize;
+            // Node `k` of level `l` holds the items at packed positions k·16^l .. (k+1)·16^l.
+            self.walk(|level, k, node| (k + 1) * FANOUT.pow(level as u32) > pos + 1 && node.overlaps(r), |j| {
+                visit(i, j);
+                false
+            });
+        }
+    }
+
     /// Depth-first over the nodes that `enter` accepts, calling `visit` on accepted items until
     /// it returns true. The tree is implicit (children of node `i` are `16i..16i+16` one level
     /// down), so the walk keeps only a cursor per level: nothing to allocate or clear.
-    fn walk(&self, enter: impl Fn(&Rect) -> bool, mut visit: impl FnMut(usize) -> bool) -> bool {
+    fn walk(&self, enter: impl Fn(usize, usize, &Rect) -> bool, mut visit: impl FnMut(usize) -> bool) -> bool {
         let top = self.levels.len() - 1;
         let (mut at, mut end) = ([0usize; MAX_DEPTH], [0usize; MAX_DEPTH]);
         end[top] = self.levels[top].len();
@@ -60,7 +84,7 @@ impl RectIndex {
             }
             let i = at[level];
             at[level] += 1;
-            if !enter(&self.levels[level][i]) {
+            if !enter(level, i, &self.levels[level][i]) {
                 continue;
             }
             if level == 0 {
@@ -84,7 +108,7 @@ impl RectIndex {
     /// `visit` returns true (then returns true).
     pub fn any_within(&self, q: DVec2, radius: f64, visit: impl FnMut(usize) -> bool) -> bool {
         let r2 = radius * radius;
-        self.walk(|r| distance_squared(r, q) < r2, visit)
+        self.walk(|_, _, r| distance_squared(r, q) < r2, visit)
     }
 }
 

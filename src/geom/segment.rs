@@ -38,7 +38,7 @@ impl Rect {
         Rect { min: self.min - DVec2::splat(by), max: self.max + DVec2::splat(by) }
     }
     pub fn overlaps(&self, o: &Rect) -> bool {
-        self.min.x <= o.max.x && o.min.x <= self.max.x && self.min.y <= o.max.y && o.min.y <= self.max.y
+        (self.min.x <= o.max.x) & (o.min.x <= self.max.x) & (self.min.y <= o.max.y) & (o.min.y <= self.max.y)
     }
     pub fn center(&self) -> DVec2 {
         (self.min + self.max) * 0.5
@@ -62,6 +62,8 @@ pub struct ArcGeom {
     pub end: DVec2,
     /// The segment's bulge: tan of a quarter of the signed sweep (counter-clockwise positive).
     pub bulge: f64,
+    /// The end's pseudo-angle from the start along the sweep (see [`Segment::position_with`]).
+    span: f64,
 }
 
 impl ArcGeom {
@@ -131,7 +133,9 @@ impl Segment {
         let left = DVec2::new(-d.y, d.x) / chord;
         let center = (self.a + self.b) * 0.5 + left * (chord * 0.5 * (1.0 - b * b) / (2.0 * b));
         let radius = chord * (1.0 + b * b) / (4.0 * b.abs());
-        Some(ArcGeom { center, radius, start: self.a - center, end: self.b - center, bulge: b })
+        let (start, end) = (self.a - center, self.b - center);
+        let span = pseudo_angle(start.dot(end), start.perp_dot(end) * b.signum());
+        Some(ArcGeom { center, radius, start, end, bulge: b, span })
     }
 
     pub fn length(&self) -> f64 {
@@ -187,8 +191,13 @@ impl Segment {
 
     /// Bounding rectangle (arcs include the extreme points their sweep passes).
     pub fn bounds(&self) -> Rect {
+        self.bounds_with(self.arc_geom().as_ref())
+    }
+
+    /// [`Segment::bounds`] with the arc's geometry at hand.
+    pub fn bounds_with(&self, geom: Option<&ArcGeom>) -> Rect {
         let r = Rect::EMPTY.grow(self.a).grow(self.b);
-        match self.arc_geom() {
+        match geom {
             None => r,
             Some(g) => {
                 let mut r = r;
@@ -236,10 +245,10 @@ impl Segment {
                 (t >= -s && t <= 1.0 + s).then(|| t.clamp(0.0, 1.0))
             }
             Some(g) => {
-                let key = |w: DVec2| pseudo_angle(g.start.dot(w), g.start.perp_dot(w) * g.bulge.signum());
-                let (k, span) = (key(p - g.center), key(g.end));
-                if k <= span {
-                    Some(k / span)
+                let v = p - g.center;
+                let k = pseudo_angle(g.start.dot(v), g.start.perp_dot(v) * g.bulge.signum());
+                if k <= g.span {
+                    Some(k / g.span)
                 } else if p.distance_squared(self.b) <= slack * slack {
                     Some(1.0)
                 } else if p.distance_squared(self.a) <= slack * slack {
@@ -539,32 +548,42 @@ fn line_line(s1: &Segment, s2: &Segment, eps: f64, out: &mut Crossings) {
 
 fn line_arc(line: &Segment, arc: &Segment, g: &ArcGeom, eps: f64, swap: bool, out: &mut Crossings) {
     let d = line.b - line.a;
-    let len = d.length();
-    let mut points: [Option<DVec2>; 2] = [None, None];
-    if len == 0.0 {
+    let len2 = d.length_squared();
+    let mut add = |t: f64, p: DVec2| {
+        if let Some(u) = arc.position_with(Some(g), p, eps) {
+            out.push(if swap { Crossing { t: u, u: t, p } } else { Crossing { t, u, p } });
+        }
+    };
+    if len2 == 0.0 {
         if (line.a.distance(g.center) - g.radius).abs() <= eps {
-            points[0] = Some(line.a);
+            add(0.0, line.a);
         }
-    } else {
-        let dir = d / len;
-        let foot_s = (g.center - line.a).dot(dir);
-        let foot = line.a + dir * foot_s;
-        let h = foot.distance(g.center);
-        if h <= g.radius + eps {
-            let half = (g.radius * g.radius - h * h).max(0.0).sqrt();
-            if half <= eps * 0.5 {
-                // Tangent: the one point of the circle nearest the line.
-                let n = (foot - g.center).normalize_or_zero();
-                points[0] = Some(if n == DVec2::ZERO { foot } else { g.center + n * g.radius });
-            } else {
-                points = [Some(foot - dir * half), Some(foot + dir * half)];
-            }
-        }
+        return;
     }
-    for p in points.into_iter().flatten() {
-        if let (Some(t), Some(u)) = (line.position_with(None, p, eps), arc.position_with(Some(g), p, eps)) {
-            let c = if swap { Crossing { t: u, u: t, p } } else { Crossing { t, u, p } };
-            out.push(c);
+    // The foot of the centre on the line, at parameter `s`, and its distance from the centre.
+    let s = (g.center - line.a).dot(d) / len2;
+    let foot = line.a + d * s;
+    let h2 = foot.distance_squared(g.center);
+    let reach = g.radius + eps;
+    if h2 > reach * reach {
+        return;
+    }
+    let len = len2.sqrt();
+    let slack = eps / len;
+    let on_line = |t: f64| t >= -slack && t <= 1.0 + slack;
+    let half2 = g.radius * g.radius - h2;
+    if half2 <= (eps * 0.5).powi(2) {
+        // Tangent: the one point of the circle nearest the line.
+        if on_line(s) {
+            let n = (foot - g.center).normalize_or_zero();
+            add(s.clamp(0.0, 1.0), if n == DVec2::ZERO { foot } else { g.center + n * g.radius });
+        }
+        return;
+    }
+    let ht = half2.sqrt() / len;
+    for t in [s - ht, s + ht] {
+        if on_line(t) {
+            add(t.clamp(0.0, 1.0), line.a + d * t);
         }
     }
 }

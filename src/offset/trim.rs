@@ -60,6 +60,7 @@ pub struct CutLoops {
 
 /// Finds every crossing between the joined loops' segments and cuts the loops there. Touching
 /// at a vertex counts: a point where three or more entities meet is a cut.
+#[inline(never)]
 pub fn split_at_crossings(loops: &[Vec<Segment>], eps: f64) -> CutLoops {
     let mut first = vec![0];
     let mut segs: Vec<Segment> = Vec::new();
@@ -70,42 +71,36 @@ pub fn split_at_crossings(loops: &[Vec<Segment>], eps: f64) -> CutLoops {
         first.push(segs.len());
     }
     let geoms: Vec<Option<ArcGeom>> = segs.iter().map(Segment::arc_geom).collect();
-    let rects: Vec<Rect> = segs.iter().map(|s| s.bounds().expand(eps)).collect();
+    let rects: Vec<Rect> = segs.iter().zip(&geoms).map(|(s, g)| s.bounds_with(g.as_ref()).expand(eps)).collect();
     let index = RectIndex::new(&rects);
     let snap = SNAP * eps;
     // Next and previous segment along the same loop.
     let next = |g: usize| if g + 1 == first[owner[g] as usize + 1] { first[owner[g] as usize] } else { g + 1 };
     let mut cuts: Vec<Cut> = Vec::with_capacity(segs.len() * 2);
     let mut crossings: Vec<DVec2> = Vec::new();
-    for g in 0..segs.len() {
-        let sg = &segs[g];
-        let (after, before) = (next(g), if g == first[owner[g] as usize] { first[owner[g] as usize + 1] - 1 } else { g - 1 });
-        index.query(&rects[g], |h| {
-            if h <= g {
-                return;
+    let before = |g: usize| if g == first[owner[g] as usize] { first[owner[g] as usize + 1] - 1 } else { g - 1 };
+    index.pairs(|g, h| {
+        let (sg, sh) = (&segs[g], &segs[h]);
+        for c in sg.crossings_with(geoms[g].as_ref(), sh, geoms[h].as_ref(), eps).iter() {
+            let near = |p: DVec2| c.p.distance_squared(p) <= snap * snap;
+            if (h == next(g) && near(sg.b) && near(sh.a)) || (h == before(g) && near(sg.a) && near(sh.b)) {
+                continue; // the vertex the two share
             }
-            let sh = &segs[h];
-            for c in sg.crossings_with(geoms[g].as_ref(), sh, geoms[h].as_ref(), eps).iter() {
-                let near = |p: DVec2| c.p.distance_squared(p) <= snap * snap;
-                if (h == after && near(sg.b) && near(sh.a)) || (h == before && near(sg.a) && near(sh.b)) {
-                    continue; // the vertex the two share
-                }
-                let x = crossings.len() as u32;
-                crossings.push(c.p);
-                for (s, key) in [(g, c.t), (h, c.u)] {
-                    // A cut within `snap` of an end moves onto the vertex (the next one's start).
-                    let seg = &segs[s];
-                    cuts.push(if c.p.distance_squared(seg.a) <= snap * snap {
-                        Cut { g: s as u32, x, key: 0.0 }
-                    } else if c.p.distance_squared(seg.b) <= snap * snap {
-                        Cut { g: next(s) as u32, x, key: 0.0 }
-                    } else {
-                        Cut { g: s as u32, x, key: key.max(f64::MIN_POSITIVE) }
-                    });
-                }
+            let x = crossings.len() as u32;
+            crossings.push(c.p);
+            for (s, key) in [(g, c.t), (h, c.u)] {
+                // A cut within `snap` of an end moves onto the vertex (the next one's start).
+                let seg = &segs[s];
+                cuts.push(if c.p.distance_squared(seg.a) <= snap * snap {
+                    Cut { g: s as u32, x, key: 0.0 }
+                } else if c.p.distance_squared(seg.b) <= snap * snap {
+                    Cut { g: next(s) as u32, x, key: 0.0 }
+                } else {
+                    Cut { g: s as u32, x, key: key.max(f64::MIN_POSITIVE) }
+                });
             }
-        });
-    }
+        }
+    });
     sort_along(&mut cuts, segs.len());
     // Cuts on one segment closer than `snap` are one.
     let at = |c: &Cut| if c.key == 0.0 { segs[c.g as usize].a } else { crossings[c.x as usize] };
@@ -345,10 +340,7 @@ pub fn discard_close(cut: &CutLoops, original: &Original, distance: f64, eps: f6
         if probes.iter().any(|&k| original.closer_than(s.pieces[k].midpoint(), limit, &mut hint)) {
             return;
         }
-        let slice = s.build();
-        if !slice.segs.iter().any(|seg| original.crosses(seg, eps)) {
-            kept.push(slice);
-        }
+        kept.push(s.build());
     });
     kept
 }
