@@ -1,6 +1,9 @@
-//! A static packed R-tree over rectangles (sort-tile-recursive packing, 16 children a node):
-//! built once, queried many times. The offsetter finds candidate pairs of crossing segments
-//! and segments near a point with it.
+//! A static packed R-tree over rectangles (16 children a node): built once, queried many times.
+//! The offsetter finds candidate pairs of crossing segments and segments near a point with it.
+//!
+//! The rectangles are packed in the order given, without sorting: the offsetter's segments come
+//! loop by loop, each the neighbour of the one before, so sixteen in a row make a compact node
+//! (as a space-filling-curve order would, and for free).
 
 use super::segment::Rect;
 use super::DVec2;
@@ -11,36 +14,24 @@ const FANOUT: usize = 16;
 /// beats sorting them into a tree).
 const FLAT: usize = 128;
 
-/// Rectangles by index, packed level by level; the leaves hold the items' own indices.
+/// Rectangles by index, packed level by level.
 pub struct RectIndex {
-    /// Per level, from the leaves up: node rectangles and, for the leaves, item indices.
+    /// Per level, from the leaves up: node rectangles; the leaves are the rectangles themselves,
+    /// by index.
     levels: Vec<Vec<Rect>>,
-    items: Vec<u32>,
 }
 
 impl RectIndex {
-    #[inline(never)]
     pub fn new(rects: &[Rect]) -> RectIndex {
-        let n = rects.len();
-        let mut items: Vec<u32> = (0..n as u32).collect();
-        if n <= FLAT {
-            // Few enough to test them all: one level, in input order.
-            return RectIndex { levels: vec![rects.to_vec()], items };
+        let mut levels = vec![rects.to_vec()];
+        if rects.len() > FLAT {
+            while levels.last().unwrap().len() > FANOUT {
+                let below = levels.last().unwrap();
+                let up = below.chunks(FANOUT).map(|c| c.iter().fold(Rect::EMPTY, |a, r| a.union(*r))).collect();
+                levels.push(up);
+            }
         }
-        // Sort-tile-recursive: slices by x centre, each slice by y centre.
-        let slice_count = ((n as f64 / FANOUT as f64).sqrt().ceil() as usize).max(1);
-        let slice_len = n.div_ceil(slice_count).max(1);
-        items.sort_unstable_by(|&i, &j| rects[i as usize].center().x.total_cmp(&rects[j as usize].center().x));
-        for chunk in items.chunks_mut(slice_len) {
-            chunk.sort_unstable_by(|&i, &j| rects[i as usize].center().y.total_cmp(&rects[j as usize].center().y));
-        }
-        let mut levels = vec![items.iter().map(|&i| rects[i as usize]).collect::<Vec<_>>()];
-        while levels.last().unwrap().len() > FANOUT {
-            let below = levels.last().unwrap();
-            let up = below.chunks(FANOUT).map(|c| c.iter().fold(Rect::EMPTY, |a, r| a.union(*r))).collect();
-            levels.push(up);
-        }
-        RectIndex { levels, items }
+        RectIndex { levels }
     }
 
     /// Calls `visit` with the index of every rectangle that overlaps `query`.
@@ -51,15 +42,13 @@ impl RectIndex {
         });
     }
 
-    /// Calls `visit` once with every pair of overlapping rectangles (their indices, in no
-    /// particular order). Each rectangle is looked up only among those after it in the packed
-    /// order, so whole subtrees before it are skipped.
-    #[inline(never)]
+    /// Calls `visit` once with every pair of overlapping rectangles `(i, j)`, `i < j`. Each
+    /// rectangle is looked up only among those after it, so whole subtrees before it are
+    /// skipped.
     pub fn pairs(&self, mut visit: impl FnMut(usize, usize)) {
-        for (pos, r) in self.levels[0].iter().enumerate() {
-            let i = self.items[pos] as usize;
-            // Node `k` of level `l` holds the items at packed positions k·16^l .. (k+1)·16^l.
-            self.walk(|level, k, node| (k + 1) * FANOUT.pow(level as u32) > pos + 1 && node.overlaps(r), |j| {
+        for (i, r) in self.levels[0].iter().enumerate() {
+            // Node `k` of level `l` holds the items k·16^l .. (k+1)·16^l.
+            self.walk(|level, k, node| (k + 1) * FANOUT.pow(level as u32) > i + 1 && node.overlaps(r), |j| {
                 visit(i, j);
                 false
             });
@@ -88,7 +77,7 @@ impl RectIndex {
                 continue;
             }
             if level == 0 {
-                if visit(self.items[i] as usize) {
+                if visit(i) {
                     return true;
                 }
             } else {

@@ -60,7 +60,6 @@ pub struct CutLoops {
 
 /// Finds every crossing between the joined loops' segments and cuts the loops there. Touching
 /// at a vertex counts: a point where three or more entities meet is a cut.
-#[inline(never)]
 pub fn split_at_crossings(loops: &[Vec<Segment>], eps: f64) -> CutLoops {
     let mut first = vec![0];
     let mut segs: Vec<Segment> = Vec::new();
@@ -285,16 +284,6 @@ impl<'a> Original<'a> {
         count % 2 == 1
     }
 
-    /// Whether `s` crosses or touches the input.
-    fn crosses(&self, s: &Segment, eps: f64) -> bool {
-        let mut crosses = false;
-        let g = s.arc_geom();
-        self.index.query(&s.bounds().expand(eps), |i| {
-            crosses = crosses || !self.segs[i].crossings_with(self.geoms[i].as_ref(), s, g.as_ref(), eps).is_empty();
-        });
-        crosses
-    }
-
     /// Whether `q` lies in the offset region: within the distance of the input or inside it
     /// when growing; inside it and farther than the distance when shrinking.
     pub fn in_offset_region(&self, q: DVec2, distance: f64) -> bool {
@@ -313,11 +302,13 @@ impl<'a> Original<'a> {
 const CLOSE_SLACK: f64 = 10.0;
 
 /// Drops the twisted parts: the slices with a point closer to the input than the distance;
-/// builds the rest. A slice that does not cross the input is either wholly at the distance or
-/// wholly too close, since to change it would have to cross the raw offset of the input's
-/// nearest part (and would have been cut there). So its ends decide first (each crossing is
-/// tested once, for all the slices that end there), then the midpoints of its first, middle
-/// and last pieces; a slice that crosses the input goes.
+/// builds the rest. A slice is either wholly at the distance or wholly too close: every point
+/// of a raw offset lies within the distance of the entity it came from, and to pass from "at
+/// the distance" to "closer" a slice would have to cross the raw offset (or join arc) of the
+/// input part it comes closer to, where it would have been cut. (That holds for a slice that
+/// crosses the input too: it is at distance zero there, so wholly too close.) So its ends decide
+/// first (each crossing is tested once, for all the slices that end there), then the midpoints
+/// of its first, middle and last pieces, against round-off at the ends.
 pub fn discard_close(cut: &CutLoops, original: &Original, distance: f64, eps: f64) -> Vec<Slice> {
     let limit = distance.abs() - CLOSE_SLACK * eps * distance.abs().max(1.0);
     let mut hint = usize::MAX;
