@@ -12,7 +12,7 @@ const FANOUT: usize = 16;
 
 /// Up to this many rectangles are kept as one flat level (every query tests them all, which
 /// beats sorting them into a tree).
-const FLAT: usize = 128;
+const FLAT: usize = 64;
 
 /// Rectangles by index, packed level by level.
 pub struct RectIndex {
@@ -36,7 +36,7 @@ impl RectIndex {
 
     /// Calls `visit` with the index of every rectangle that overlaps `query`.
     pub fn query(&self, query: &Rect, mut visit: impl FnMut(usize)) {
-        self.walk(|_, _, r| r.overlaps(query), |i| {
+        self.walk(0, |r| r.overlaps(query), |i| {
             visit(i);
             false
         });
@@ -47,20 +47,28 @@ impl RectIndex {
     /// skipped.
     pub fn pairs(&self, mut visit: impl FnMut(usize, usize)) {
         for (i, r) in self.levels[0].iter().enumerate() {
-            // Node `k` of level `l` holds the items k·16^l .. (k+1)·16^l.
-            self.walk(|level, k, node| (k + 1) * FANOUT.pow(level as u32) > i + 1 && node.overlaps(r), |j| {
+            self.walk(i + 1, |node| node.overlaps(r), |j| {
                 visit(i, j);
                 false
             });
         }
     }
 
-    /// Depth-first over the nodes that `enter` accepts, calling `visit` on accepted items until
-    /// it returns true. The tree is implicit (children of node `i` are `16i..16i+16` one level
-    /// down), so the walk keeps only a cursor per level: nothing to allocate or clear.
-    fn walk(&self, enter: impl Fn(usize, usize, &Rect) -> bool, mut visit: impl FnMut(usize) -> bool) -> bool {
+    /// Depth-first over the nodes that `enter` accepts, calling `visit` on accepted items from
+    /// item `from` on until it returns true. The tree is implicit (children of node `i` are
+    /// `16i..16i+16` one level down, so node `k` of level `l` holds items `k·16^l..(k+1)·16^l`),
+    /// and the walk keeps only a cursor per level: nothing to allocate or clear.
+    fn walk(&self, from: usize, enter: impl Fn(&Rect) -> bool, mut visit: impl FnMut(usize) -> bool) -> bool {
         let top = self.levels.len() - 1;
+        // The first node of each level that holds an item from `from` on.
+        let mut first = [0usize; MAX_DEPTH];
+        let mut f = from;
+        for l in first.iter_mut().take(top + 1) {
+            *l = f;
+            f /= FANOUT;
+        }
         let (mut at, mut end) = ([0usize; MAX_DEPTH], [0usize; MAX_DEPTH]);
+        at[top] = first[top];
         end[top] = self.levels[top].len();
         let mut level = top;
         loop {
@@ -73,7 +81,7 @@ impl RectIndex {
             }
             let i = at[level];
             at[level] += 1;
-            if !enter(level, i, &self.levels[level][i]) {
+            if !enter(&self.levels[level][i]) {
                 continue;
             }
             if level == 0 {
@@ -82,7 +90,7 @@ impl RectIndex {
                 }
             } else {
                 level -= 1;
-                at[level] = i * FANOUT;
+                at[level] = (i * FANOUT).max(first[level]);
                 end[level] = ((i + 1) * FANOUT).min(self.levels[level].len());
             }
         }
@@ -97,7 +105,7 @@ impl RectIndex {
     /// `visit` returns true (then returns true).
     pub fn any_within(&self, q: DVec2, radius: f64, visit: impl FnMut(usize) -> bool) -> bool {
         let r2 = radius * radius;
-        self.walk(|_, _, r| distance_squared(r, q) < r2, visit)
+        self.walk(0, |r| distance_squared(r, q) < r2, visit)
     }
 }
 

@@ -86,7 +86,7 @@ impl ArcGeom {
 
 /// Where two segments meet: the point, and its position along each as a key from
 /// [`Segment::position_with`] (0 at `a`, 1 at `b`, growing along the segment).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Crossing {
     pub t: f64,
     pub u: f64,
@@ -465,17 +465,17 @@ fn quarter_tan(u: DVec2, m: DVec2, ccw: bool) -> f64 {
 /// Up to four crossings, without allocating.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Crossings {
-    items: [Option<Crossing>; 4],
+    items: [Crossing; 4],
     len: usize,
 }
 
 impl Crossings {
     fn push(&mut self, c: Crossing) {
-        if self.items[..self.len].iter().flatten().any(|o| o.p.distance_squared(c.p) == 0.0 && (o.t - c.t).abs() < 1e-15) {
+        if self.items[..self.len].iter().any(|o| o.p.distance_squared(c.p) == 0.0 && (o.t - c.t).abs() < 1e-15) {
             return;
         }
         if self.len < 4 {
-            self.items[self.len] = Some(c);
+            self.items[self.len] = c;
             self.len += 1;
         }
     }
@@ -486,7 +486,7 @@ impl Crossings {
         self.len == 0
     }
     pub fn iter(&self) -> impl Iterator<Item = Crossing> + '_ {
-        self.items[..self.len].iter().flatten().copied()
+        self.items[..self.len].iter().copied()
     }
 }
 

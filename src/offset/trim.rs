@@ -80,6 +80,12 @@ pub fn split_at_crossings(loops: &[Vec<Segment>], eps: f64) -> CutLoops {
     let before = |g: usize| if g == first[owner[g] as usize] { first[owner[g] as usize + 1] - 1 } else { g - 1 };
     index.pairs(|g, h| {
         let (sg, sh) = (&segs[g], &segs[h]);
+        let long = first[owner[g] as usize + 1] - first[owner[g] as usize] > 2;
+        if long && h == next(g) && meet_only_at_vertex(sg, geoms[g].as_ref(), sh, geoms[h].as_ref(), eps)
+            || long && g == next(h) && meet_only_at_vertex(sh, geoms[h].as_ref(), sg, geoms[g].as_ref(), eps)
+        {
+            return;
+        }
         for c in sg.crossings_with(geoms[g].as_ref(), sh, geoms[h].as_ref(), eps).iter() {
             let near = |p: DVec2| c.p.distance_squared(p) <= snap * snap;
             if (h == next(g) && near(sg.b) && near(sh.a)) || (h == before(g) && near(sg.a) && near(sh.b)) {
@@ -106,6 +112,36 @@ pub fn split_at_crossings(loops: &[Vec<Segment>], eps: f64) -> CutLoops {
     cuts.dedup_by(|b, a| b.g == a.g && at(b).distance_squared(at(a)) <= snap * snap);
     let cut_first = first.iter().map(|&g| if g == segs.len() { cuts.len() } else { cuts.partition_point(|c| (c.g as usize) < g) }).collect();
     CutLoops { segs, first, geoms, cuts, cut_first, crossings, eps }
+}
+
+/// Whether `s1` and the segment `s2` that follows it (from `s1.b`) can have no point in common
+/// but that vertex, by a test cheaper than finding their crossings: lines that do not turn back
+/// by more than a right angle, a line and an arc tangent there (a line touches a circle once),
+/// and arcs of one circle (within `eps`) running the same way, each under a half turn.
+fn meet_only_at_vertex(s1: &Segment, g1: Option<&ArcGeom>, s2: &Segment, g2: Option<&ArcGeom>, eps: f64) -> bool {
+    /// Directions closer than this (sine of the angle) count as tangent: the second point where
+    /// the line meets the circle is then within 2e-12 of the radius of the vertex.
+    const TANGENT: f64 = 1e-12;
+    let out_of = |s: &Segment, g: Option<&ArcGeom>| match g {
+        None => (s.b - s.a).normalize_or_zero(),
+        Some(g) => g.end.perp().normalize_or_zero() * g.bulge.signum(),
+    };
+    let into = |s: &Segment, g: Option<&ArcGeom>| match g {
+        None => (s.b - s.a).normalize_or_zero(),
+        Some(g) => g.start.perp().normalize_or_zero() * g.bulge.signum(),
+    };
+    let (t1, t2) = (out_of(s1, g1), into(s2, g2));
+    match (g1, g2) {
+        (None, None) => t1.dot(t2) > 0.0,
+        (Some(_), None) | (None, Some(_)) => t1.dot(t2) > 0.0 && t1.perp_dot(t2).abs() < TANGENT,
+        (Some(a), Some(b)) => {
+            a.bulge.signum() == b.bulge.signum()
+                && a.bulge.abs() < 1.0
+                && b.bulge.abs() < 1.0
+                && a.center.distance(b.center) <= eps
+                && (a.radius - b.radius).abs() <= eps
+        }
+    }
 }
 
 /// Sorts cuts along the loops' `m` segments, in place: by segment (counted, then each moved
