@@ -297,14 +297,14 @@ impl<'a> Original<'a> {
         best
     }
 
-    /// Whether `mid` lies closer than `limit` to the input. `hint` is tried first and set to
+    /// Whether `q` lies closer than `limit` to the input. `hint` is tried first and set to
     /// the entity found closer: neighbouring slices are usually too close to the same entity.
-    fn closer_than(&self, mid: DVec2, limit: f64, hint: &mut usize) -> bool {
-        if self.segs.get(*hint).is_some_and(|o| o.distance_with(self.geoms[*hint].as_ref(), mid) < limit) {
+    fn closer_than(&self, q: DVec2, limit: f64, hint: &mut usize) -> bool {
+        if self.segs.get(*hint).is_some_and(|o| o.distance_with(self.geoms[*hint].as_ref(), q) < limit) {
             return true;
         }
-                self.index.any_within(mid, limit, |i| {
-            let close = self.segs[i].distance_with(self.geoms[i].as_ref(), mid) < limit;
+        self.index.any_within(q, limit, |i| {
+            let close = self.segs[i].distance_with(self.geoms[i].as_ref(), q) < limit;
             if close {
                 *hint = i;
             }
@@ -323,12 +323,11 @@ impl<'a> Original<'a> {
     /// Whether `q` lies in the offset region: within the distance of the input or inside it
     /// when growing; inside it and farther than the distance when shrinking.
     pub fn in_offset_region(&self, q: DVec2, distance: f64) -> bool {
-        let inside = self.contains(q);
-        let d = self.distance(q, distance.abs() * 2.0 + 1.0);
+        let (inside, mut hint) = (self.contains(q), usize::MAX);
         if distance > 0.0 {
-            inside || d < distance
+            inside || self.closer_than(q, distance, &mut hint)
         } else {
-            inside && d > -distance
+            inside && !self.closer_than(q, -distance, &mut hint)
         }
     }
 }
@@ -344,7 +343,8 @@ const CLOSE_SLACK: f64 = 10.0;
 /// input part it comes closer to, where it would have been cut. (That holds for a slice that
 /// crosses the input too: it is at distance zero there, so wholly too close.) So its ends decide
 /// first (each crossing is tested once, for all the slices that end there), then the midpoints
-/// of its first, middle and last pieces, against round-off at the ends.
+/// of its first, middle and last pieces, against round-off at the ends (of a whole loop, which
+/// has no ends, one midpoint).
 pub fn discard_close(cut: &CutLoops, original: &Original, distance: f64, eps: f64) -> Vec<Slice> {
     let limit = distance.abs() - CLOSE_SLACK * eps * distance.abs().max(1.0);
     let mut hint = usize::MAX;
@@ -363,7 +363,7 @@ pub fn discard_close(cut: &CutLoops, original: &Original, distance: f64, eps: f6
             }
         }
         let n = s.pieces.len();
-        let probes = if n < 3 { &[0, n - 1][..n] } else { &[0, n / 2, n - 1][..] };
+        let probes = if s.closed || n < 2 { &[n / 2][..] } else if n == 2 { &[0, 1][..] } else { &[0, n / 2, n - 1][..] };
         if probes.iter().any(|&k| original.closer_than(s.pieces[k].midpoint(), limit, &mut hint)) {
             return;
         }
