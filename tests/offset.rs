@@ -183,7 +183,7 @@ fn shape_strategy() -> impl Strategy<Value = Shape> {
         let radii: Vec<f64> = (0..n).map(|_| rng.range(4.0, 20.0)).collect();
         let bulges: Vec<f64> = (0..n).map(|_| if rng.next_f64() < 0.5 { rng.range(-0.5, 0.5) } else { 0.0 }).collect();
         let shape = Shape::new(vec![star(DVec2::ZERO, &radii, &bulges, 0.0)]);
-        swarf::offset::check::self_crossings(&shape, 1e-9).is_empty().then_some(shape)
+        swarf::offset::check::self_crossings(&shape, 1e-9, 1e-8).is_empty().then_some(shape)
     })
 }
 
