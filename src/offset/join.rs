@@ -66,7 +66,7 @@ pub fn join_neighbours(l: &Loop, raw: &[RawEntity], distance: f64, eps: f64) -> 
             } else {
                 seg
             };
-            if s.length() > 0.0 {
+            if s.a != s.b {
                 out.push(s);
             }
         }
@@ -75,7 +75,7 @@ pub fn join_neighbours(l: &Loop, raw: &[RawEntity], distance: f64, eps: f64) -> 
             let corner = l.vertices[(i + 1) % n].p;
             let (from, to) = (raw[i].seg.b, next.seg.a);
             let arc = Segment::arc(from, to, corner, corner_turn(from - corner, to - corner, distance) > 0.0);
-            if arc.length() > 0.0 {
+            if arc.a != arc.b {
                 out.push(arc);
             }
         }

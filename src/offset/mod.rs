@@ -70,7 +70,7 @@ pub fn merge_micro_entities(l: &Loop, min_length: f64) -> Loop {
     let mut out: Vec<Vertex> = Vec::with_capacity(n);
     for (i, v) in l.vertices.iter().enumerate() {
         match out.last_mut() {
-            Some(last) if l.segment((i + n - 1) % n).length() < min_length && last.p.distance(v.p) < min_length => {
+            Some(last) if last.p.distance(v.p) < min_length && l.segment((i + n - 1) % n).length() < min_length => {
                 last.bulge = v.bulge;
             }
             _ => out.push(*v),

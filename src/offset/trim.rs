@@ -281,9 +281,9 @@ pub struct Original<'a> {
 impl<'a> Original<'a> {
     pub fn new(shape: &'a Shape) -> Original<'a> {
         let segs: Vec<Segment> = shape.segments().collect();
-        let rects: Vec<Rect> = segs.iter().map(|s| s.bounds()).collect();
+        let geoms: Vec<Option<ArcGeom>> = segs.iter().map(|s| s.arc_geom()).collect();
+        let rects: Vec<Rect> = segs.iter().zip(&geoms).map(|(s, g)| s.bounds_with(g.as_ref())).collect();
         let index = RectIndex::new(&rects);
-        let geoms = segs.iter().map(|s| s.arc_geom()).collect();
         Original { shape, segs, geoms, index }
     }
 
