@@ -75,14 +75,16 @@ pub fn split_at_crossings(loops: &[Vec<Segment>], eps: f64) -> CutLoops {
     let snap = SNAP * eps;
     // Next and previous segment along the same loop.
     let next = |g: usize| if g + 1 == first[owner[g] as usize + 1] { first[owner[g] as usize] } else { g + 1 };
+    let before = |g: usize| if g == first[owner[g] as usize] { first[owner[g] as usize + 1] - 1 } else { g - 1 };
     let mut cuts: Vec<Cut> = Vec::with_capacity(segs.len() * 2);
     let mut crossings: Vec<DVec2> = Vec::new();
-    let before = |g: usize| if g == first[owner[g] as usize] { first[owner[g] as usize + 1] - 1 } else { g - 1 };
     index.pairs(|g, h| {
         let (sg, sh) = (&segs[g], &segs[h]);
-        let long = first[owner[g] as usize + 1] - first[owner[g] as usize] > 2;
-        if long && h == next(g) && meet_only_at_vertex(sg, geoms[g].as_ref(), sh, geoms[h].as_ref(), eps)
-            || long && g == next(h) && meet_only_at_vertex(sh, geoms[h].as_ref(), sg, geoms[g].as_ref(), eps)
+        // In a loop of three or more, neighbours meet once at their vertex (which is no cut).
+        let loop_of_three = first[owner[g] as usize + 1] - first[owner[g] as usize] > 2;
+        if loop_of_three
+            && (h == next(g) && meet_only_at_vertex(sg, geoms[g].as_ref(), sh, geoms[h].as_ref(), eps)
+                || g == next(h) && meet_only_at_vertex(sh, geoms[h].as_ref(), sg, geoms[g].as_ref(), eps))
         {
             return;
         }
@@ -120,17 +122,17 @@ pub fn split_at_crossings(loops: &[Vec<Segment>], eps: f64) -> CutLoops {
 /// and arcs of one circle (within `eps`) running the same way, each under a half turn.
 fn meet_only_at_vertex(s1: &Segment, g1: Option<&ArcGeom>, s2: &Segment, g2: Option<&ArcGeom>, eps: f64) -> bool {
     /// Directions closer than this (sine of the angle) count as tangent: the second point where
-    /// the line meets the circle is then within 2e-12 of the radius of the vertex.
+    /// the line meets the circle then lies within 2e-12 radii of the vertex.
     const TANGENT: f64 = 1e-12;
-    let out_of = |s: &Segment, g: Option<&ArcGeom>| match g {
-        None => (s.b - s.a).normalize_or_zero(),
-        Some(g) => g.end.perp().normalize_or_zero() * g.bulge.signum(),
+    // Unit directions of travel at the vertex: at the end of `s1`, at the start of `s2`.
+    let direction = |s: &Segment, g: Option<&ArcGeom>, at_end: bool| {
+        match g {
+            None => s.b - s.a,
+            Some(g) => (if at_end { g.end } else { g.start }).perp() * g.bulge.signum(),
+        }
+        .normalize_or_zero()
     };
-    let into = |s: &Segment, g: Option<&ArcGeom>| match g {
-        None => (s.b - s.a).normalize_or_zero(),
-        Some(g) => g.start.perp().normalize_or_zero() * g.bulge.signum(),
-    };
-    let (t1, t2) = (out_of(s1, g1), into(s2, g2));
+    let (t1, t2) = (direction(s1, g1, true), direction(s2, g2, false));
     match (g1, g2) {
         (None, None) => t1.dot(t2) > 0.0,
         (Some(_), None) | (None, Some(_)) => t1.dot(t2) > 0.0 && t1.perp_dot(t2).abs() < TANGENT,
