@@ -344,9 +344,8 @@ const CLOSE_SLACK: f64 = 10.0;
 /// the distance" to "closer" a slice would have to cross the raw offset (or join arc) of the
 /// input part it comes closer to, where it would have been cut. (That holds for a slice that
 /// crosses the input too: it is at distance zero there, so wholly too close.) So its ends decide
-/// first (each crossing is tested once, for all the slices that end there), then the midpoints
-/// of its first, middle and last pieces, against round-off at the ends (of a whole loop, which
-/// has no ends, one midpoint).
+/// first (each crossing is tested once, for all the slices that end there), then the midpoint
+/// of its middle piece.
 pub fn discard_close(cut: &CutLoops, original: &Original, distance: f64, eps: f64) -> Vec<Slice> {
     let limit = distance.abs() - CLOSE_SLACK * eps * distance.abs().max(1.0);
     let mut hint = usize::MAX;
@@ -364,9 +363,7 @@ pub fn discard_close(cut: &CutLoops, original: &Original, distance: f64, eps: f6
                 }
             }
         }
-        let n = s.pieces.len();
-        let probes = if s.closed || n < 2 { &[n / 2][..] } else if n == 2 { &[0, 1][..] } else { &[0, n / 2, n - 1][..] };
-        if probes.iter().any(|&k| original.closer_than(s.pieces[k].midpoint(), limit, &mut hint)) {
+        if original.closer_than(s.pieces[s.pieces.len() / 2].midpoint(), limit, &mut hint) {
             return;
         }
         kept.push(s.build());
