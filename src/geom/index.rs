@@ -136,4 +136,21 @@ mod tests {
         let expected: Vec<usize> = (0..rects.len()).filter(|&i| rects[i].overlaps(&q)).collect();
         assert_eq!(found, expected);
     }
+
+    #[test]
+    fn finds_every_overlapping_pair_once() {
+        for n in [10, 64, 65, 300, 1000] {
+            let rects: Vec<Rect> = (0..n)
+                .map(|k| {
+                    let p = DVec2::new((k * 37 % 101) as f64, (k * 53 % 97) as f64);
+                    Rect { min: p, max: p + DVec2::new((k % 7) as f64, (k % 5) as f64) }
+                })
+                .collect();
+            let mut found = Vec::new();
+            RectIndex::new(&rects).pairs(|i, j| found.push((i, j)));
+            found.sort();
+            let expected: Vec<(usize, usize)> = (0..n).flat_map(|i| (i + 1..n).map(move |j| (i, j))).filter(|&(i, j)| rects[i].overlaps(&rects[j])).collect();
+            assert_eq!(found, expected, "{n} rectangles");
+        }
+    }
 }

@@ -38,6 +38,7 @@ impl Rect {
         Rect { min: self.min - DVec2::splat(by), max: self.max + DVec2::splat(by) }
     }
     pub fn overlaps(&self, o: &Rect) -> bool {
+        // `&`, not `&&`: four compares without branches are faster than guessing at them.
         (self.min.x <= o.max.x) & (o.min.x <= self.max.x) & (self.min.y <= o.max.y) & (o.min.y <= self.max.y)
     }
     pub fn center(&self) -> DVec2 {
@@ -620,6 +621,36 @@ fn arc_arc(s1: &Segment, g1: &ArcGeom, s2: &Segment, g2: &ArcGeom, eps: f64, out
 mod tests {
     use super::*;
     use std::f64::consts::PI;
+
+    /// Parts of arcs cut by points (no trigonometry) against the same parts cut by angle.
+    #[test]
+    fn parts_by_points_match_parts_by_angle() {
+        for &bulge in &[0.01, 0.3, 1.0, 2.5, 40.0, -0.01, -0.7, -1.0, -9.0] {
+            let s = Segment { a: DVec2::new(3.0, -1.0), b: DVec2::new(-2.0, 4.0), bulge };
+            let g = s.arc_geom().unwrap();
+            let mut last = -1.0;
+            for k in 0..=20 {
+                let t = k as f64 / 20.0;
+                let key = s.position_with(Some(&g), s.point_at(t), 0.0).unwrap();
+                assert!(key > last || (k == 0 && key == 0.0), "bulge {bulge}: key {key} after {last} at t {t}");
+                last = key;
+            }
+            assert!((last - 1.0).abs() < 1e-12);
+            for (t0, t1) in [(0.0, 0.5), (0.1, 0.2), (0.3, 0.9999), (0.0, 1.0), (0.45, 0.55)] {
+                let (p, q) = (s.point_at(t0), s.point_at(t1));
+                let by_angle = s.sub(t0, t1);
+                let by_points = s.between(Some(&g), p, q);
+                assert!((by_points.bulge - by_angle.bulge).abs() < 1e-9 * by_angle.bulge.abs().max(1.0), "bulge {bulge} {t0}..{t1}: {} vs {}", by_points.bulge, by_angle.bulge);
+                assert!(s.midpoint_between(Some(&g), p, q).distance(s.point_at((t0 + t1) * 0.5)) < 1e-12);
+            }
+            let made = Segment::arc(s.a, s.b, g.center, bulge > 0.0);
+            assert!((made.bulge - bulge).abs() < 1e-9 * bulge.abs().max(1.0), "{} vs {bulge}", made.bulge);
+            // Past the ends: within the slack counts as the end, farther does not.
+            let beyond = s.b + (s.b - g.center).perp().normalize() * 1e-3 * bulge.signum();
+            assert_eq!(s.position_with(Some(&g), beyond, 1e-2), Some(1.0));
+            assert_eq!(s.position_with(Some(&g), beyond, 1e-4), None);
+        }
+    }
 
     #[test]
     fn arc_geometry_from_bulge() {
