@@ -11,6 +11,24 @@ use super::trim::Original;
 /// Points where two segments of the shape cross or touch (within `eps`), other than the vertex
 /// two neighbours share (their meeting points within `near` of it).
 pub fn self_crossings(shape: &Shape, eps: f64, near: f64) -> Vec<DVec2> {
+    meeting_points(shape, eps, near, false)
+}
+
+/// [`self_crossings`] less the points where two entities only touch: they meet at one point (or
+/// at two within `near` of each other) and are tangent there. An offset whose region is pinched
+/// to a point (two offset circles exactly tangent: the distance is exactly half the gap) must
+/// touch itself there, since both sides of the pinch pass through it.
+pub fn crossings_not_touching(shape: &Shape, eps: f64, near: f64) -> Vec<DVec2> {
+    meeting_points(shape, eps, near, true)
+}
+
+fn meeting_points(shape: &Shape, eps: f64, near: f64, allow_touching: bool) -> Vec<DVec2> {
+    /// Directions closer than this (sine of the angle) are tangent.
+    const TANGENT: f64 = 1e-6;
+    let direction = |s: &Segment, p: DVec2| match s.arc_geom() {
+        None => (s.b - s.a).normalize_or_zero(),
+        Some(g) => (p - g.center).perp().normalize_or_zero(),
+    };
     let mut segs: Vec<(usize, usize, usize, Segment)> = Vec::new();
     for (k, l) in shape.loops.iter().enumerate() {
         for (i, s) in l.segments().enumerate() {
@@ -27,12 +45,22 @@ pub fn self_crossings(shape: &Shape, eps: f64, near: f64) -> Vec<DVec2> {
                 return;
             }
             let (kh, j, _, o) = segs[h];
-            for c in s.crossings(&o, eps).iter() {
-                let shared_next = kh == k && j == (i + 1) % m && c.p.distance(s.b) <= near;
-                let shared_prev = kh == k && i == (j + 1) % m && c.p.distance(s.a) <= near;
-                if !(shared_next || shared_prev) {
-                    found.push(c.p);
-                }
+            let points: Vec<DVec2> = s
+                .crossings(&o, eps)
+                .iter()
+                .map(|c| c.p)
+                .filter(|p| {
+                    let shared_next = kh == k && j == (i + 1) % m && p.distance(s.b) <= near;
+                    let shared_prev = kh == k && i == (j + 1) % m && p.distance(s.a) <= near;
+                    !(shared_next || shared_prev)
+                })
+                .collect();
+            let touching = allow_touching
+                && !points.is_empty()
+                && points.iter().all(|p| p.distance(points[0]) <= near)
+                && direction(&s, points[0]).perp_dot(direction(&o, points[0])).abs() < TANGENT;
+            if !touching {
+                found.extend(points);
             }
         });
     }
@@ -56,8 +84,9 @@ pub fn problems(input: &Shape, distance: f64, result: &Shape, tol: f64, samples:
         return out;
     }
     // Neighbours may meet again within `tol` of their vertex: nearly tangent entities whose two
-    // crossings lie closer than the offsetter's cut snapping are cut once.
-    let crossings = self_crossings(result, tol * 1e-3, tol);
+    // crossings lie closer than the offsetter's cut snapping are cut once. Tangent touches are
+    // where the region is pinched to a point.
+    let crossings = crossings_not_touching(result, tol * 1e-3, tol);
     if let Some(p) = crossings.first() {
         out.push(format!("{} self-crossings, first at ({:.6}, {:.6})", crossings.len(), p.x, p.y));
     }
