@@ -167,6 +167,15 @@ impl Segment {
         (self.a + self.b) * 0.5 + DVec2::new(d.y, -d.x) * (self.bulge * 0.5)
     }
 
+    /// Unit direction of travel at `p`, a point of the segment (no trigonometry).
+    pub fn direction_at(&self, geom: Option<&ArcGeom>, p: DVec2) -> DVec2 {
+        match geom {
+            None => self.b - self.a,
+            Some(g) => (p - g.center).perp() * g.bulge.signum(),
+        }
+        .normalize_or_zero()
+    }
+
     /// Unit direction of travel at parameter `t`.
     pub fn tangent_at(&self, t: f64) -> DVec2 {
         match self.arc_geom() {

@@ -25,10 +25,6 @@ pub fn crossings_not_touching(shape: &Shape, eps: f64, near: f64) -> Vec<DVec2> 
 fn meeting_points(shape: &Shape, eps: f64, near: f64, allow_touching: bool) -> Vec<DVec2> {
     /// Directions closer than this (sine of the angle) are tangent.
     const TANGENT: f64 = 1e-6;
-    let direction = |s: &Segment, p: DVec2| match s.arc_geom() {
-        None => (s.b - s.a).normalize_or_zero(),
-        Some(g) => (p - g.center).perp().normalize_or_zero(),
-    };
     let mut segs: Vec<(usize, usize, usize, Segment)> = Vec::new();
     for (k, l) in shape.loops.iter().enumerate() {
         for (i, s) in l.segments().enumerate() {
@@ -58,7 +54,7 @@ fn meeting_points(shape: &Shape, eps: f64, near: f64, allow_touching: bool) -> V
             let touching = allow_touching
                 && !points.is_empty()
                 && points.iter().all(|p| p.distance(points[0]) <= near)
-                && direction(&s, points[0]).perp_dot(direction(&o, points[0])).abs() < TANGENT;
+                && s.direction_at(s.arc_geom().as_ref(), points[0]).perp_dot(o.direction_at(o.arc_geom().as_ref(), points[0])).abs() < TANGENT;
             if !touching {
                 found.extend(points);
             }

@@ -54,7 +54,7 @@ pub struct CutLoops {
     /// Per loop, its cuts: `cuts[cut_first[k]..cut_first[k + 1]]`.
     cut_first: Vec<usize>,
     /// The crossings, by number: each makes a cut on both segments that meet there.
-    pub crossings: Vec<DVec2>,
+    crossings: Vec<DVec2>,
     eps: f64,
 }
 
@@ -124,15 +124,7 @@ fn meet_only_at_vertex(s1: &Segment, g1: Option<&ArcGeom>, s2: &Segment, g2: Opt
     /// Directions closer than this (sine of the angle) count as tangent: the second point where
     /// the line meets the circle then lies within 2e-12 radii of the vertex.
     const TANGENT: f64 = 1e-12;
-    // Unit directions of travel at the vertex: at the end of `s1`, at the start of `s2`.
-    let direction = |s: &Segment, g: Option<&ArcGeom>, at_end: bool| {
-        match g {
-            None => s.b - s.a,
-            Some(g) => (if at_end { g.end } else { g.start }).perp() * g.bulge.signum(),
-        }
-        .normalize_or_zero()
-    };
-    let (t1, t2) = (direction(s1, g1, true), direction(s2, g2, false));
+    let (t1, t2) = (s1.direction_at(g1, s1.b), s2.direction_at(g2, s2.a));
     match (g1, g2) {
         (None, None) => t1.dot(t2) > 0.0,
         (Some(_), None) | (None, Some(_)) => t1.dot(t2) > 0.0 && t1.perp_dot(t2).abs() < TANGENT,
@@ -186,8 +178,13 @@ pub struct Piece<'a> {
 }
 
 impl Piece<'_> {
+    /// Whether the piece is its whole segment.
+    fn whole(&self) -> bool {
+        self.from == self.seg.a && self.to == self.seg.b
+    }
+
     pub fn midpoint(&self) -> DVec2 {
-        if self.from == self.seg.a && self.to == self.seg.b {
+        if self.whole() {
             self.seg.midpoint()
         } else {
             self.seg.midpoint_between(self.geom, self.from, self.to)
@@ -195,7 +192,7 @@ impl Piece<'_> {
     }
 
     pub fn segment(&self) -> Segment {
-        if self.from == self.seg.a && self.to == self.seg.b {
+        if self.whole() {
             *self.seg
         } else {
             self.seg.between(self.geom, self.from, self.to)
@@ -271,22 +268,20 @@ impl CutLoops {
     }
 }
 
-/// The input shape, indexed for distance and crossing queries.
-pub struct Original<'a> {
-    #[allow(dead_code)]
-    shape: &'a Shape,
+/// The input shape, indexed for distance and containment queries.
+pub struct Original {
     segs: Vec<Segment>,
     geoms: Vec<Option<ArcGeom>>,
     index: RectIndex,
 }
 
-impl<'a> Original<'a> {
-    pub fn new(shape: &'a Shape) -> Original<'a> {
+impl Original {
+    pub fn new(shape: &Shape) -> Original {
         let segs: Vec<Segment> = shape.segments().collect();
         let geoms: Vec<Option<ArcGeom>> = segs.iter().map(|s| s.arc_geom()).collect();
         let rects: Vec<Rect> = segs.iter().zip(&geoms).map(|(s, g)| s.bounds_with(g.as_ref())).collect();
         let index = RectIndex::new(&rects);
-        Original { shape, segs, geoms, index }
+        Original { segs, geoms, index }
     }
 
     /// Distance from `q` to the input's boundary, or `cap` when it is at least that far.
