@@ -16,6 +16,12 @@ pub enum Error {
     Job(String),
     #[error("cancelled")]
     Cancelled,
+    /// The job would make a program that cuts nothing.
+    #[error("nothing to cut: {0}")]
+    Nothing(String),
+    /// Verification found a gouge, a rapid through stock or the tool's body in material.
+    #[error("the program is not safe to run: {0}")]
+    Unsafe(String),
 }
 
 pub type Result<T, E = Error> = std::result::Result<T, E>;

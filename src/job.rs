@@ -20,8 +20,9 @@ use crate::strategy::finish_raster::{raster_runs, Pattern, RasterPasses};
 use crate::strategy::region::Region;
 use crate::toolpath::link::{link_runs, Feeds, Floor, LinkSettings};
 use crate::toolpath::{PathStats, Toolpath};
+use crate::zmap::drop::PointDrop;
 use crate::zmap::surface::ClSurface;
-use crate::zmap::{cc::cc_zmap, cl_exact::cl_exact, cl_inverse::cl_inverse_offset, ClBuilder, Grid, HeightField, MAX_NODES};
+use crate::zmap::{cc::cc_zmap, cl_exact::cl_exact, cl_inverse::cl_inverse_offset, ClBuilder, Grid, HeightField};
 
 /// The stock: a box around the placed part.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -366,6 +367,30 @@ pub struct JobOutput {
     pub verification: Option<Verification>,
     /// Things the user should know that did not stop the job.
     pub warnings: Vec<String>,
+    /// What makes the program unsafe to run (a gouge, a rapid through stock, the tool's body in
+    /// material: [`crate::sim::verify::Report::problem`]), when verification found it. Such a
+    /// program is not a finished one: [`JobOutput::checked`] turns it into an error, the CLI
+    /// writes it only when asked to, and the page keeps its download behind a confirmation.
+    pub problem: Option<String>,
+}
+
+impl JobOutput {
+    /// The output, or [`Error::Unsafe`] when verification found a problem.
+    pub fn checked(self) -> Result<JobOutput> {
+        match self.problem {
+            Some(problem) => Err(Error::Unsafe(problem)),
+            None => Ok(self),
+        }
+    }
+
+    /// The G-code with a warning comment at its head naming the problem, if there is one (for
+    /// a program written anyway).
+    pub fn gcode_marked(&self) -> String {
+        match &self.problem {
+            Some(problem) => format!("(WARNING: NOT SAFE TO RUN: {})\n{}", crate::post::comment(problem), self.gcode),
+            None => self.gcode.clone(),
+        }
+    }
 }
 
 impl Job {
@@ -492,7 +517,7 @@ impl Finish<'_> {
         paths: Vec<Toolpath>,
         part: Mesh,
         drawing: Option<Drawing>,
-        mut warnings: Vec<String>,
+        warnings: Vec<String>,
         progress: &mut Progress,
         verify: impl FnOnce(&Mesh, &[ProgramMove], &VerifySettings, &mut Progress) -> Result<Verification>,
     ) -> Result<JobOutput> {
@@ -504,23 +529,17 @@ impl Finish<'_> {
             if !progress.stage("simulating the program", share, 1.0 - share) {
                 return Err(Error::Cancelled);
             }
-            let v = verify(&part, &moves, &VerifySettings::for_job(job, &stock, None), progress)?;
-            let r = &v.report;
-            if r.gouge_count > 0 {
-                warnings.push(format!("the simulation found {} gouged cells, {:.3} mm deep at most", r.gouge_count, r.gouge_max));
-            }
-            if r.rapid_collision_count > 0 {
-                warnings.push(format!("{} rapid moves pass through stock", r.rapid_collision_count));
-            }
-            if r.body_collision_count > 0 {
-                warnings.push(format!("{} moves bury the tool deeper than its flute length", r.body_collision_count));
-            }
-            Some(v)
+            Some(verify(&part, &moves, &VerifySettings::for_job(job, &stock, None), progress)?)
         } else {
             None
         };
+        let problem = verification.as_ref().and_then(|v| v.report.problem());
+        if moves.iter().all(|m| matches!(m.mv, crate::toolpath::Move::Rapid { .. })) {
+            let why = if warnings.is_empty() { String::new() } else { format!(" ({})", warnings.join("; ")) };
+            return Err(Error::Nothing(format!("the program has no cutting moves{why}")));
+        }
         progress.stage("done", 1.0, 0.0);
-        Ok(JobOutput { part, drawing, stock, clearance_z, paths, gcode, stats, moves, verification, warnings })
+        Ok(JobOutput { part, drawing, stock, clearance_z, paths, gcode, stats, moves, verification, warnings, problem })
     }
 }
 
@@ -528,14 +547,7 @@ impl Finish<'_> {
 fn finish_raster(job: &Job, op: &FinishRaster, part: &Mesh, stock: &Aabb, clearance_z: f64, progress: &mut Progress, start: f64, span: f64) -> Result<Toolpath> {
     let tool = job.tool(op.tool)?;
     let profile = tool.cutter.profile();
-    let grid = Grid::covering(stock.min.truncate(), stock.max.truncate(), op.grid);
-    if grid.nodes() > MAX_NODES {
-        return Err(Error::Job(format!(
-            "a {} mm grid over this stock needs {} million nodes; choose a coarser grid",
-            op.grid,
-            grid.nodes() / 1_000_000
-        )));
-    }
+    let grid = Grid::checked(stock.min.truncate(), stock.max.truncate(), op.grid).map_err(|e| Error::Job(format!("{}: {e}", op.name)))?;
     let floor = op.floor.unwrap_or(stock.min.z);
     let tol = &job.tolerances;
     // The part's own heights, needed by the inverse offset and by the silhouette boundary.
@@ -555,8 +567,10 @@ fn finish_raster(job: &Job, op: &FinishRaster, part: &Mesh, stock: &Aabb, cleara
         Boundary::Stock => Region::Rect { min: stock.min.truncate(), max: stock.max.truncate() },
         Boundary::Silhouette => Region::silhouette(cc(), floor, op.margin.unwrap_or(profile.radius)),
     };
-    let passes = RasterPasses { angle_deg: op.angle, stepover: op.stepover, pattern: op.pattern, allowance: op.allowance, tolerance: tol.chordal };
-    let cl = ClSurface::new(cl, tol.interpolation);
+    let margin = op.margin.unwrap_or(profile.radius);
+    let skip_floor = (op.boundary == Boundary::Silhouette && margin <= profile.radius).then_some(floor);
+    let passes = RasterPasses { angle_deg: op.angle, stepover: op.stepover, pattern: op.pattern, allowance: op.allowance, tolerance: tol.chordal, skip_floor };
+    let cl = ClSurface::new(cl, PointDrop::new(part, &profile, tol), floor, op.builder == ClBuilder::Exact, tol.interpolation);
     let runs = raster_runs(&cl, &region, &passes);
     let settings = LinkSettings { clearance_z, stay_down_max: op.stay_down_max.unwrap_or(2.0 * op.stepover), stock_top: Some(stock.max.z), ..LinkSettings::default() };
     let floor_surface = Floor { cl: &cl, allowance: op.allowance, region: &region };

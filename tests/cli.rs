@@ -106,3 +106,71 @@ fn verify_reads_a_program_and_reports_its_faults() {
     assert!(!refused.status.success());
     assert!(String::from_utf8_lossy(&refused.stderr).contains("line 2"));
 }
+
+/// Issue 10: a program whose simulation finds a problem is not a finished program. Here the
+/// tool's flutes are 2 mm long and the demo's stock is a raw block: the body rubs.
+#[test]
+fn a_program_with_problems_is_written_only_when_asked() {
+    let dir = temp("unsafe");
+    assert!(swarf(&["demo", "-o", dir.to_str().unwrap()]).status.success());
+    let text = std::fs::read_to_string(dir.join("demo.json")).unwrap();
+    let mut job: serde_json::Value = serde_json::from_str(&text).unwrap();
+    job["tools"][0]["fluteLength"] = serde_json::json!(2.0);
+    let short = dir.join("short.json");
+    std::fs::write(&short, job.to_string()).unwrap();
+    let (part, program) = (dir.join("demo.stl"), dir.join("short.ngc"));
+    let arg = |p: &std::path::Path| p.to_str().unwrap().to_owned();
+    let refused = swarf(&["run", &arg(&short), &arg(&part), "-o", &arg(&program), "-q"]);
+    let message = String::from_utf8_lossy(&refused.stderr);
+    assert!(!refused.status.success(), "{message}");
+    assert!(message.contains("bury the tool") && message.contains("past the flutes") && message.contains("no program written"), "{message}");
+    assert!(!program.exists(), "a program with problems was written");
+    let forced = swarf(&["run", &arg(&short), &arg(&part), "-o", &arg(&program), "-q", "--write-anyway"]);
+    assert!(forced.status.success(), "{}", String::from_utf8_lossy(&forced.stderr));
+    let gcode = std::fs::read_to_string(&program).unwrap();
+    assert!(gcode.starts_with("(WARNING: NOT SAFE TO RUN: the simulation found problems:"), "{}", &gcode[..200]);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `swarf zmap` counts the grid before it allocates, and takes negative floors as numbers.
+#[test]
+fn zmap_refuses_huge_grids_and_takes_a_negative_floor() {
+    let dir = temp("zmap-limits");
+    let v = swarf::geom::DVec3::new;
+    let huge = swarf::mesh::Mesh::from_triangles([[v(0.0, 0.0, 0.0), v(1e12, 0.0, 0.0), v(0.0, 1e12, 1.0)]], &Tolerances::DEFAULT).unwrap();
+    let (huge_path, demo) = (dir.join("huge.stl"), dir.join("demo.stl"));
+    std::fs::write(&huge_path, huge.to_binary_stl()).unwrap();
+    std::fs::write(&demo, swarf::mesh::sample::demo_part().to_binary_stl()).unwrap();
+    let csv = dir.join("out.csv");
+    let arg = |p: &std::path::Path| p.to_str().unwrap().to_owned();
+    for (part, grid) in [(&huge_path, "0.5"), (&demo, "0.005")] {
+        let out = swarf(&["zmap", &arg(part), "--grid", grid, "-o", &arg(&csv)]);
+        let message = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success() && message.contains("choose a coarser grid") && !message.contains("panicked"), "{message}");
+    }
+    let out = swarf(&["zmap", &arg(&demo), "--grid", "2", "--floor", "-75", "-o", &arg(&csv)]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let lowest = text.lines().filter_map(|l| l.rsplit(',').next()?.parse::<f64>().ok()).fold(f64::INFINITY, f64::min);
+    assert!(lowest >= -75.0 && lowest.is_finite(), "lowest node {lowest}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// An OBJ cut short inside a line says so, and nothing is written.
+#[test]
+fn a_truncated_obj_says_it_ended_early() {
+    let dir = temp("obj");
+    let mut text = String::new();
+    for (x, y, z) in [(0, 0, 0), (10, 0, 0), (10, 10, 0), (0, 10, 0), (0, 0, 5), (10, 0, 5), (10, 10, 5), (0, 10, 5)] {
+        text += &format!("v {x} {y} {z}\n");
+    }
+    text += "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1";
+    let (obj, job, program) = (dir.join("cut.obj"), dir.join("job.json"), dir.join("cut.ngc"));
+    std::fs::write(&obj, &text).unwrap();
+    std::fs::write(&job, serde_json::to_string(&swarf::job::Job::default()).unwrap()).unwrap();
+    let out = swarf(&["run", job.to_str().unwrap(), obj.to_str().unwrap(), "-o", program.to_str().unwrap(), "-q"]);
+    let message = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success() && message.contains("ends early") && message.contains("cut short"), "{message}");
+    assert!(!program.exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}

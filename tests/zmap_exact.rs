@@ -278,3 +278,54 @@ mod random_parts {
         }
     }
 }
+
+/// Issue 10's smallest case: a roof of four facets with a horizontal ridge along y = 0 at z = 1.
+/// The two facets' normals have exactly opposite horizontal parts; a flat end or bull nose
+/// standing over the ridge rests on it.
+#[test]
+fn flat_and_bull_nose_rest_on_a_horizontal_ridge() {
+    let v = DVec3::new;
+    let (l, h) = (20.0, 1.0);
+    let roof = mesh(vec![
+        [v(-l, -l, 0.0), v(l, -l, 0.0), v(l, 0.0, h)],
+        [v(-l, -l, 0.0), v(l, 0.0, h), v(-l, 0.0, h)],
+        [v(-l, 0.0, h), v(l, 0.0, h), v(l, l, 0.0)],
+        [v(-l, 0.0, h), v(l, l, 0.0), v(-l, l, 0.0)],
+    ]);
+    for cutter in [Cutter::flat(6.0), Cutter::bull_nose(6.0, 1.0), Cutter::bull_nose(10.0, 2.5), Cutter::ball(6.0)] {
+        let field = exact(&roof, &cutter, DVec2::splat(-15.0), DVec2::splat(15.0), 0.5);
+        let node = field.grid().columns(10.0, 10.0).zip(field.grid().rows(0.0, 0.0)).map(|((i, _), (j, _))| field.at(i, j)).unwrap();
+        let expected = cl_exact_at(&roof, &cutter.profile(), DVec2::new(10.0, 0.0), &Tolerances::DEFAULT).unwrap();
+        assert!((node - expected).abs() < EXACT, "{}: {node} at (10, 0), expected {expected}", cutter.describe());
+        if cutter.corner() == 0.0 {
+            assert!((node - h).abs() < EXACT, "a flat end stands on the ridge: {node}");
+        }
+        check(&field, DVec2::splat(-15.0), DVec2::splat(15.0), EXACT, |c| cl_exact_at(&roof, &cutter.profile(), c, &Tolerances::DEFAULT).unwrap());
+    }
+}
+
+/// Issue 10: the exact builder against the brute-force drop at every node, and ball <= bull nose
+/// <= flat end at every node (for one diameter the ball's lower surface lies above the bull
+/// nose's, which lies above the flat end's), on nearly flat faceted terrains with ridges and
+/// valleys along, across and diagonal to the grid, for several corner radii.
+#[test]
+fn nearly_flat_ridges_and_valleys_every_node_exact_and_ordered() {
+    let tol = Tolerances::DEFAULT;
+    for (seed, lattice, shift) in [(1, 1.0, 0.0), (2, 1.5, 0.25), (3, 2.0, 0.1), (4, 1.0, 0.5)] {
+        let part = faceted_terrain(seed, lattice, shift);
+        let b = part.bounds();
+        let (min, max) = (b.min.truncate() - 2.0, b.max.truncate() + 2.0);
+        for d in [6.0, 10.0] {
+            let family = [Cutter::ball(d), Cutter::bull_nose(d, d / 4.0), Cutter::bull_nose(d, d / 6.0), Cutter::bull_nose(d, 0.2), Cutter::flat(d)];
+            let fields: Vec<HeightField> = family.iter().map(|c| exact(&part, c, min, max, 0.5)).collect();
+            for (cutter, field) in family.iter().zip(&fields) {
+                check(field, min, max, EXACT, |c| cl_exact_at(&part, &cutter.profile(), c, &tol).unwrap_or(FLOOR).max(FLOOR));
+            }
+            for pair in fields.windows(2) {
+                for (k, (lower, upper)) in pair[0].z.iter().zip(&pair[1].z).enumerate() {
+                    assert!(lower <= &(upper + EXACT), "seed {seed}, φ{d}: node {k}: {lower} above {upper} for a blunter cutter");
+                }
+            }
+        }
+    }
+}

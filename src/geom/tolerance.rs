@@ -16,18 +16,16 @@ pub struct Tolerances {
     /// Heights closer than this are treated as equal when deciding whether a linking move
     /// may stay down (mm). Default value: 1e-6.
     pub height: f64,
-    /// Largest sag below the true CL surface trusted to linear interpolation between z-map
-    /// nodes, estimated from the nodes' second differences; cells that curve down faster are
-    /// held at their highest corner (mm). Where the CL surface has a convex kink between two
-    /// nodes (the rim of a flat end's plateau) the sag can reach four times this.
-    /// Default value: 0.005.
+    /// Largest distance of the exact CL surface from the straight line between two points of a
+    /// path where the height was computed exactly, as tested at the midpoint by subdivision
+    /// (mm). Where one feature decides both ends the rise between is at most twice this
+    /// (`zmap/surface.rs` gives the argument). Default value: 0.0005.
     pub interpolation: f64,
     /// Horizontal components of a unit normal below this make a facet horizontal; normals
     /// with a vertical component below it make a facet vertical. Default value: 1e-12.
     pub normal: f64,
     /// Verification reports material below the part's surface plus allowance as a gouge only
     /// when it is deeper than this (mm); the same margin applies to the tool body's clearance.
-    /// Raster finishing keeps within a few times `interpolation` of the exact CL surface.
     /// Default value: 0.02.
     pub gouge: f64,
     /// End points of drawn entities closer than this are joined into one chain (mm).
@@ -50,7 +48,7 @@ pub const GRID_SNAP: f64 = 1e-9;
 
 impl Tolerances {
     pub const DEFAULT: Tolerances =
-        Tolerances { degenerate_area: 1e-12, chordal: 0.002, height: 1e-6, interpolation: 0.005, normal: 1e-12, gouge: 0.02, chain: 0.01, arc_fit: 0.002, micro_entity: 1e-4, offset: 1e-7 };
+        Tolerances { degenerate_area: 1e-12, chordal: 0.002, height: 1e-6, interpolation: 0.0005, normal: 1e-12, gouge: 0.02, chain: 0.01, arc_fit: 0.002, micro_entity: 1e-4, offset: 1e-7 };
 }
 
 impl Default for Tolerances {

@@ -119,7 +119,7 @@ pub fn write_gcode(title: &str, paths: &[Toolpath], tools: &[Tool], clearance_z:
 }
 
 /// Comments may not hold parentheses (they would end the comment early).
-fn comment(text: &str) -> String {
+pub(crate) fn comment(text: &str) -> String {
     text.chars().map(|c| if c == '(' || c == ')' { '-' } else { c }).filter(|c| !c.is_control()).collect()
 }
 

@@ -83,6 +83,28 @@ impl Report {
         self.gouge_count == 0 && self.rapid_collision_count == 0 && self.body_collision_count == 0
     }
 
+    /// What makes the program unsafe to run, in one message that says where and how deep, or
+    /// `None` when verification found nothing: a gouge, a rapid move through stock, or the tool's
+    /// body in material is a problem, never a note.
+    pub fn problem(&self) -> Option<String> {
+        let place = |f: &Finding| format!("at X{:.3} Y{:.3} Z{:.3}{}", f.at.x, f.at.y, f.at.z, f.move_index.map(|m| format!(" (move {})", m + 1)).unwrap_or_default());
+        let deepest = |list: &[Finding]| list.iter().copied().max_by(|a, b| a.amount.total_cmp(&b.amount));
+        let mut parts = Vec::new();
+        if self.gouge_count > 0 {
+            let at = deepest(&self.gouges).map(|f| format!(", deepest {}", place(&f))).unwrap_or_default();
+            parts.push(format!("it gouges the part in {} cells, {:.3} mm deep at most{at}", self.gouge_count, self.gouge_max));
+        }
+        if self.rapid_collision_count > 0 {
+            let at = self.rapid_collisions.first().map(|f| format!(", the first {}", place(f))).unwrap_or_default();
+            parts.push(format!("{} rapid moves pass through stock{at}", self.rapid_collision_count));
+        }
+        if self.body_collision_count > 0 {
+            let at = deepest(&self.body_collisions).map(|f| format!(", {:.3} mm past the flutes at most, {}", f.amount, place(&f))).unwrap_or_default();
+            parts.push(format!("{} moves bury the tool deeper than its flute length{at}", self.body_collision_count));
+        }
+        (!parts.is_empty()).then(|| format!("the simulation found problems: {}", parts.join("; ")))
+    }
+
     /// A few lines for a person.
     pub fn describe(&self) -> String {
         let mut s = format!(

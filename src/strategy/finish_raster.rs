@@ -3,9 +3,9 @@
 //!
 //! Steps, in order:
 //! 1. lay parallel passes at `angle` and `stepover` across the region's bounds;
-//! 2. cut each pass at the z-map's breakpoints (grid lines and cell diagonals), so that the
-//!    polyline through them follows the [`ClSurface`] along the pass and never passes below
-//!    it, and split it where it leaves the region;
+//! 2. follow the exact CL surface along each pass ([`ClSurface::along`]: samples at the grid's
+//!    lines and diagonals, subdivided until the surface between two samples stays within the
+//!    tolerance of the chord), and split it where it leaves the region;
 //! 3. lift every point by the allowance and reduce within the chordal tolerance, never below;
 //! 4. order the runs (zigzag or one way); linking is left to [`crate::toolpath::link`].
 
@@ -14,7 +14,7 @@ use serde::{Deserialize, Serialize};
 use super::region::Region;
 use crate::geom::{DVec2, DVec3};
 use crate::toolpath::reduce::reduce;
-use crate::zmap::surface::ClSurface;
+use crate::zmap::surface::{point_at, ClSurface};
 
 /// How consecutive passes run.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -39,6 +39,11 @@ pub struct RasterPasses {
     pub allowance: f64,
     /// Chordal tolerance of point reduction (mm).
     pub tolerance: f64,
+    /// Leave out the points where the cutter stands at this height, reaching no part: with the
+    /// silhouette grown by no more than the cutter radius, those lie outside the grown
+    /// silhouette (which the grid's mask only approximates), and a finishing pass must not
+    /// drop to the floor beside the part.
+    pub skip_floor: Option<f64>,
 }
 
 /// The cutting runs, in machining order, each a polyline of tip positions.
@@ -100,10 +105,10 @@ fn clip_to_rect(a: DVec2, b: DVec2, min: DVec2, max: DVec2) -> Option<(DVec2, DV
 fn cut_pass(cl: &ClSurface, region: &Region, a: DVec2, b: DVec2, passes: &RasterPasses) -> Vec<Vec<DVec3>> {
     let mut runs = Vec::new();
     let mut run: Vec<DVec3> = Vec::new();
-    for t in cl.breakpoints(a, b) {
-        let p = a.lerp(b, t);
-        if region.contains(p) {
-            run.push(p.extend(cl.height(p) + passes.allowance));
+    for (t, z) in cl.along(a, b) {
+        let p = point_at(a, b, t);
+        if region.contains(p) && passes.skip_floor != Some(z) {
+            run.push(p.extend(z + passes.allowance));
         } else if !run.is_empty() {
             runs.push(reduce(&std::mem::take(&mut run), passes.tolerance));
         }

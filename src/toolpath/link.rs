@@ -9,7 +9,7 @@ use serde::{Deserialize, Serialize};
 use super::Move;
 use crate::geom::{DVec3, Tolerances};
 use crate::strategy::region::Region;
-use crate::zmap::surface::ClSurface;
+use crate::zmap::surface::{point_at, ClSurface};
 
 /// How runs are joined.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -42,11 +42,13 @@ pub struct Floor<'a> {
 
 impl Floor<'_> {
     /// Whether the straight move from `a` to `b` stays inside the region and on or above the
-    /// floor (within `tolerance`), checked at every breakpoint of the z-map along it.
+    /// floor (within `tolerance`), checked at every point of the surface along it
+    /// ([`ClSurface::along`]): a line at or above those points is at or above the polyline
+    /// through them.
     pub fn clears(&self, a: DVec3, b: DVec3, tolerance: f64) -> bool {
-        self.cl.breakpoints(a.truncate(), b.truncate()).into_iter().all(|t| {
-            let p = a.lerp(b, t);
-            self.region.contains(p.truncate()) && p.z + tolerance >= self.cl.height(p.truncate()) + self.allowance
+        self.cl.along(a.truncate(), b.truncate()).into_iter().all(|(t, z)| {
+            let p = point_at(a, b, t);
+            self.region.contains(p.truncate()) && p.z + tolerance >= z + self.allowance
         })
     }
 }

@@ -79,42 +79,40 @@ fn arc_box(n1: DVec3, n2: DVec3) -> (DVec2, DVec2) {
 }
 
 /// Box of the unit horizontal directions of the normals' spherical hull: the shortest arc of the
-/// unit circle holding all their directions, or the whole disk when that is half a turn or more
-/// or a normal is vertical.
+/// unit circle holding all their directions, or the whole disk when that arc is half a turn or
+/// more, or a normal is vertical. Two normals whose horizontal parts point exactly opposite ways
+/// (a horizontal ridge between facets of equal slope) span half a turn: the great-circle arc
+/// between them passes through the vertical, so the flat bottom can rest on the edge from any
+/// side.
 fn direction_box(normals: &[DVec3]) -> (DVec2, DVec2) {
     let whole = (DVec2::splat(-1.0), DVec2::splat(1.0));
-    if normals.iter().any(|n| n.truncate().try_normalize().is_none()) {
-        return whole;
+    let mut angles = Vec::with_capacity(normals.len());
+    for n in normals {
+        let Some(u) = n.truncate().try_normalize() else { return whole };
+        angles.push(u.y.atan2(u.x));
     }
-    let dirs = normals.iter().map(|n| n.truncate().normalize());
-    // Grow the arc [from, to] (counter-clockwise) one direction at a time.
-    let first = normals[0].truncate().normalize();
-    let (mut from, mut to) = (first, first);
-    for u in dirs.clone().skip(1) {
-        let inside = from.perp_dot(u) >= 0.0 && u.perp_dot(to) >= 0.0 && from.perp_dot(to) >= 0.0;
-        if inside {
-            continue;
-        }
-        if to.perp_dot(u) >= 0.0 && from.perp_dot(u) >= 0.0 {
-            to = u;
-        } else if u.perp_dot(from) >= 0.0 && u.perp_dot(to) >= 0.0 {
-            from = u;
-        } else {
-            return whole;
+    angles.sort_by(f64::total_cmp);
+    // The arc holding every direction is the circle less its largest gap between neighbours.
+    let tau = std::f64::consts::TAU;
+    let (mut gap, mut from) = (angles[0] + tau - angles[angles.len() - 1], angles[0]);
+    for w in angles.windows(2) {
+        if w[1] - w[0] > gap {
+            (gap, from) = (w[1] - w[0], w[1]);
         }
     }
-    // Check the result: every direction inside, and the arc shorter than half a turn.
-    if from.perp_dot(to) < 0.0 || (from.perp_dot(to) == 0.0 && from.dot(to) < 0.0) {
+    let span = tau - gap;
+    if span >= std::f64::consts::PI - REGION_MARGIN {
         return whole;
     }
-    if !dirs.clone().all(|u| from.perp_dot(u) >= -REGION_MARGIN && u.perp_dot(to) >= -REGION_MARGIN) {
-        return whole;
-    }
-    let (mut lo, mut hi) = (from.min(to), from.max(to));
-    for axis in [DVec2::X, DVec2::NEG_X, DVec2::Y, DVec2::NEG_Y] {
-        if from.perp_dot(axis) > 0.0 && axis.perp_dot(to) > 0.0 {
-            lo = lo.min(axis);
-            hi = hi.max(axis);
+    let (from, to) = (from - REGION_MARGIN, from + span + REGION_MARGIN);
+    let at = |a: f64| DVec2::new(a.cos(), a.sin());
+    let (mut lo, mut hi) = (at(from).min(at(to)), at(from).max(at(to)));
+    // An axis direction inside the arc is where a coordinate is extreme.
+    for k in -4..=4 {
+        let axis = k as f64 * std::f64::consts::FRAC_PI_2;
+        if axis > from && axis < to {
+            lo = lo.min(at(axis));
+            hi = hi.max(at(axis));
         }
     }
     (lo, hi)

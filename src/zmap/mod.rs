@@ -6,7 +6,8 @@
 //!    vertex of the mesh (§3.3, the offset-facet model with its edge and vertex "singularities"
 //!    handled by the same drop).
 //!
-//! [`surface::ClSurface`] says what lies between the nodes. Both CL builders return the lowest safe tip height at every node; nodes the part does not
+//! [`drop::PointDrop`] gives the same exact drop at any point, and [`surface::ClSurface`] the
+//! surface along a path, between the nodes too. Both CL builders return the lowest safe tip height at every node; nodes the part does not
 //! reach hold the floor given when the grid was laid out.
 
 pub mod cc;
@@ -14,6 +15,7 @@ pub mod bench;
 pub mod cl_exact;
 pub mod cl_inverse;
 mod cone;
+pub mod drop;
 pub mod io;
 pub mod surface;
 
@@ -51,8 +53,8 @@ pub enum ClBuilder {
     /// Seed 001 §3.1: inverse offset of the CC z-map; faster, but it only sees the part at the
     /// grid's nodes, so it sits below the exact surface: on smooth surfaces by the paper's δ
     /// (second order in the spacing s), and where a ball rolls over a wall's top edge that lies
-    /// between nodes by up to sqrt(2 R s) — it can cut into such edges. For roughing and
-    /// previews; finish with the exact builder.
+    /// between nodes by up to sqrt(2 R s). For previews and comparison: a path never takes its
+    /// heights from it (`surface.rs` drops the cutter exactly wherever the path is).
     InverseOffset,
 }
 
@@ -61,6 +63,31 @@ pub enum ClBuilder {
 pub const MAX_NODES: usize = 200_000_000;
 
 impl Grid {
+    /// The grid covering `[min, max]` at `spacing`, or a message a user understands when the
+    /// spacing is not a positive number or the grid would exceed [`MAX_NODES`] (counted before
+    /// anything is allocated, so a part with a 10¹² mm triangle asks for a coarser grid instead
+    /// of overflowing).
+    pub fn checked(min: DVec2, max: DVec2, spacing: f64) -> Result<Grid, String> {
+        if !(spacing > 0.0 && spacing.is_finite()) {
+            return Err(format!("the grid spacing must be a positive number (got {spacing})"));
+        }
+        if !(min.is_finite() && max.is_finite()) {
+            return Err("the part's extent is not finite".into());
+        }
+        let count = |lo: f64, hi: f64| ((hi - lo) / spacing).ceil().max(0.0) + 1.0;
+        let nodes = count(min.x, max.x) * count(min.y, max.y);
+        if nodes > MAX_NODES as f64 {
+            return Err(format!(
+                "a {spacing} mm grid over {:.1} × {:.1} mm needs {:.0} million nodes (at most {} million); choose a coarser grid",
+                max.x - min.x,
+                max.y - min.y,
+                nodes / 1e6,
+                MAX_NODES / 1_000_000
+            ));
+        }
+        Ok(Grid::covering(min, max, spacing))
+    }
+
     /// The grid covering `[min, max]` with nodes at `spacing`, the last row and column on or
     /// beyond `max`.
     pub fn covering(min: DVec2, max: DVec2, spacing: f64) -> Grid {

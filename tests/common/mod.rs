@@ -84,3 +84,135 @@ pub fn shared_data(rel: &str) -> Option<std::path::PathBuf> {
         None
     }
 }
+
+/// Judges tool paths against the brute-force exact drop ([`cl_exact_at`] over every facet, edge
+/// and vertex within the cutter's reach of a move), at dense points along every feed move.
+pub struct Judge<'a> {
+    pub part: &'a Mesh,
+    pub profile: swarf::cutter::Profile,
+    /// Where no part is under the cutter.
+    pub floor: f64,
+}
+
+/// The deepest a path goes below the exact surface, and where.
+#[derive(Clone, Copy, Debug)]
+pub struct Deepest {
+    pub depth: f64,
+    pub at: DVec3,
+    pub points: usize,
+}
+
+impl Judge<'_> {
+    /// The triangles within reach of the box `[lo, hi]`, as a mesh (or `None`).
+    fn near(&self, lo: DVec2, hi: DVec2) -> Option<Mesh> {
+        let r = self.profile.radius + 1e-6;
+        let tris: Vec<[DVec3; 3]> = self
+            .part
+            .triangles()
+            .filter(|t| {
+                let b = t.bounds();
+                b.min.x <= hi.x + r && b.max.x >= lo.x - r && b.min.y <= hi.y + r && b.max.y >= lo.y - r
+            })
+            .map(|t| [t.a, t.b, t.c])
+            .collect();
+        (!tris.is_empty()).then(|| Mesh::from_triangles(tris, &Tolerances::DEFAULT).unwrap())
+    }
+
+    /// The exact tip height over `c` (the floor where nothing is in reach).
+    pub fn exact(&self, c: DVec2) -> f64 {
+        self.near(c, c).and_then(|m| swarf::zmap::cl_exact::cl_exact_at(&m, &self.profile, c, &Tolerances::DEFAULT)).unwrap_or(self.floor).max(self.floor)
+    }
+
+    /// The deepest point of the feed moves below the exact surface plus `allowance`, sampled at
+    /// `per_mm` points a millimetre (and both ends of every move).
+    pub fn deepest(&self, start: DVec3, moves: &[swarf::toolpath::Move], allowance: f64, per_mm: f64) -> Deepest {
+        let mut worst = Deepest { depth: f64::NEG_INFINITY, at: start, points: 0 };
+        let mut at = start;
+        for m in moves {
+            let to = m.to();
+            if let swarf::toolpath::Move::Line { .. } = m {
+                let (lo, hi) = (at.truncate().min(to.truncate()), at.truncate().max(to.truncate()));
+                let near = self.near(lo, hi);
+                let n = ((at.truncate().distance(to.truncate()) * per_mm).ceil() as usize).max(1);
+                for k in 0..=n {
+                    let p = at.lerp(to, k as f64 / n as f64);
+                    let exact = near.as_ref().and_then(|m| swarf::zmap::cl_exact::cl_exact_at(m, &self.profile, p.truncate(), &Tolerances::DEFAULT)).unwrap_or(self.floor).max(self.floor);
+                    let depth = exact + allowance - p.z;
+                    worst.points += 1;
+                    if depth > worst.depth {
+                        worst.depth = depth;
+                        worst.at = p;
+                    }
+                }
+            }
+            at = to;
+        }
+        worst
+    }
+}
+
+/// A terrain of flat facets within about 7° of horizontal, its heights on a lattice quantised so
+/// that many edges are exactly horizontal and many neighbouring facets are mirror images: ridges
+/// and valleys along the grid, across it and diagonal. `shift` moves the lattice against the
+/// z-map grid (0: ridges through the nodes).
+pub fn faceted_terrain(seed: u64, lattice: f64, shift: f64) -> Mesh {
+    let mut state = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+    let mut next = move || {
+        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (state >> 33) as f64 / (1u64 << 31) as f64
+    };
+    let n = 12;
+    // Quantised heights: steps of lattice × 0.06 keep every slope under about 7°.
+    let heights: Vec<f64> = (0..(n + 1) * (n + 1)).map(|_| (next() * 3.0).floor() * lattice * 0.06).collect();
+    let min = DVec2::splat(-(n as f64) * lattice / 2.0 + shift);
+    let top = |x: f64, y: f64| {
+        let i = ((x - min.x) / lattice).round() as usize;
+        let j = ((y - min.y) / lattice).round() as usize;
+        heights[j.min(n) * (n + 1) + i.min(n)]
+    };
+    swarf::mesh::sample::height_field_solid(min, min + DVec2::splat(n as f64 * lattice), n, n, -3.0, top)
+}
+
+/// A small random number generator for generated parts (a linear congruential one: the same
+/// seed makes the same part on every machine).
+pub struct Lcg(pub u64);
+
+impl Lcg {
+    /// Uniform in [0, 1).
+    pub fn next(&mut self) -> f64 {
+        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// A relief of sharp peaks and knees: heights drawn at random on a lattice whose spacing does
+/// not divide the z-map's, so its ridges, knees and peaks fall between the nodes.
+pub fn spiky_terrain(seed: u64, half: f64, lattice: f64, amplitude: f64) -> Mesh {
+    let mut rng = Lcg(seed);
+    let n = (2.0 * half / lattice).round() as usize;
+    let heights: Vec<f64> = (0..(n + 1) * (n + 1)).map(|_| amplitude * rng.next().powi(3)).collect();
+    let min = DVec2::splat(-half);
+    let step = 2.0 * half / n as f64;
+    let top = |x: f64, y: f64| {
+        let i = ((x - min.x) / step).round() as usize;
+        let j = ((y - min.y) / step).round() as usize;
+        heights[j.min(n) * (n + 1) + i.min(n)]
+    };
+    swarf::mesh::sample::height_field_solid(min, DVec2::splat(half), n, n, -4.0, top)
+}
+
+/// A mesa: a flat top at `h` over |x| < `w` with 60° flanks, its knees (the flanks' top and foot
+/// edges) at x = ±w, ±(w + h / tan 60°): place them between nodes by the choice of `w`.
+pub fn mesa(w: f64, h: f64, half: f64) -> Mesh {
+    let run = h / 3f64.sqrt();
+    let xs = [-half, -w - run, -w, w, w + run, half];
+    let zs = [0.0, 0.0, h, h, 0.0, 0.0];
+    let mut tris = Vec::new();
+    for k in 0..xs.len() - 1 {
+        let (a, b) = (DVec3::new(xs[k], -half, zs[k]), DVec3::new(xs[k + 1], -half, zs[k + 1]));
+        let (c, d) = (DVec3::new(xs[k + 1], half, zs[k + 1]), DVec3::new(xs[k], half, zs[k]));
+        tris.push([a, b, c]);
+        tris.push([a, c, d]);
+    }
+    mesh(tris)
+}

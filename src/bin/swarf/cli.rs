@@ -39,6 +39,11 @@ enum Command {
         /// Print no progress.
         #[arg(short, long)]
         quiet: bool,
+        /// Write the program even when its simulation finds a gouge, a rapid move through stock
+        /// or the tool's body in material (it then starts with a warning comment). Without it
+        /// such a program is not written and the command fails.
+        #[arg(long)]
+        write_anyway: bool,
     },
     /// Make the built-in sample part, its job and its G-code in a folder.
     Demo {
@@ -100,7 +105,7 @@ enum Command {
         #[arg(long)]
         center_top: bool,
         /// Height of nodes the cutter cannot reach the part from (default: the part's bottom).
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         floor: Option<f64>,
         #[arg(long, value_enum, default_value_t = FormatArg::Csv)]
         format: FormatArg,
@@ -151,7 +156,7 @@ fn write(path: &Path, bytes: &[u8]) -> Result<(), String> {
 
 fn run(cli: Cli) -> Result<(), String> {
     match cli.command {
-        Command::Run { job, part, output, quiet } => {
+        Command::Run { job, part, output, quiet, write_anyway } => {
             let job = Job::from_json(&String::from_utf8_lossy(&read(&job)?)).map_err(|e| e.to_string())?;
             let name = part.file_name().map(|n| n.to_string_lossy().into_owned());
             let bytes = read(&part)?;
@@ -161,7 +166,7 @@ fn run(cli: Cli) -> Result<(), String> {
                 read_mesh_auto(&bytes, name.as_deref(), &job.tolerances).map_err(|e| format!("{}: {e}", part.display()))?.into()
             };
             let output = output.unwrap_or_else(|| part.with_extension("ngc"));
-            run_job(&job, workpiece, &output, quiet)
+            run_job(&job, workpiece, &output, quiet, write_anyway)
         }
         Command::Demo { output } => {
             std::fs::create_dir_all(&output).map_err(|e| format!("cannot create {}: {e}", output.display()))?;
@@ -172,7 +177,7 @@ fn run(cli: Cli) -> Result<(), String> {
             // The program is made from the STL as written (f32), so that `swarf run demo.json
             // demo.stl` gives the same program.
             let part = read_mesh_auto(&stl, Some("demo.stl"), &job.tolerances).map_err(|e| e.to_string())?;
-            run_job(&job, part, &output.join("demo.ngc"), false)
+            run_job(&job, part, &output.join("demo.ngc"), false, false)
         }
         Command::Job { drawing } => {
             let job = if drawing { Job::default_for_drawing() } else { Job::default() };
@@ -250,7 +255,7 @@ fn run(cli: Cli) -> Result<(), String> {
             };
             cutter.validate().map_err(|e| e.to_string())?;
             let b = mesh.bounds();
-            let g = Grid::covering(b.min.truncate(), b.max.truncate(), grid);
+            let g = Grid::checked(b.min.truncate(), b.max.truncate(), grid)?;
             let floor = floor.unwrap_or(b.min.z);
             let started = Instant::now();
             let field = match builder {
@@ -267,7 +272,7 @@ fn run(cli: Cli) -> Result<(), String> {
     }
 }
 
-fn run_job(job: &Job, workpiece: impl Into<Workpiece>, output: &Path, quiet: bool) -> Result<(), String> {
+fn run_job(job: &Job, workpiece: impl Into<Workpiece>, output: &Path, quiet: bool, write_anyway: bool) -> Result<(), String> {
     let started = Instant::now();
     let mut last = -1i32;
     let mut sink = |fraction: f64, stage: &str| {
@@ -293,7 +298,13 @@ fn run_job(job: &Job, workpiece: impl Into<Workpiece>, output: &Path, quiet: boo
             r.cells, r.gouge_count, r.rapid_collision_count, r.body_collision_count, r.residual_max
         );
     }
-    write(output, out.gcode.as_bytes())?;
+    if let Some(problem) = &out.problem {
+        if !write_anyway {
+            return Err(format!("{problem}\nno program written (pass --write-anyway to write it with a warning at its head)"));
+        }
+        eprintln!("warning: {problem}\nwritten anyway, with a warning at its head");
+    }
+    write(output, out.gcode_marked().as_bytes())?;
     let s = out.stats;
     eprintln!(
         "{}: {} moves, {:.0} mm cutting, {:.0} mm rapid, about {}:{:02} min on the machine ({:.2} s to compute)",

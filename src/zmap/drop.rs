@@ -1,0 +1,202 @@
+//! The exact drop of a cutter over any point, one point at a time: seed 001 §3.3's drop onto
+//! every facet, edge and vertex that can reach the point, through a bucket index of the mesh.
+//!
+//! The grid builder ([`super::cl_exact`]) rasterises features over nodes; a path between nodes
+//! needs heights at arbitrary points ([`super::surface`]). Each bucket of a regular XY grid lists
+//! the triangles whose footprint, grown by the cutter radius, overlaps it, highest first: a
+//! triangle cannot lift the cutter above its own highest point, so a query stops at the first
+//! triangle that stands no higher than what it has found.
+
+use crate::cutter::{FacetPlane, Profile};
+use crate::geom::{DVec2, DVec3, Tolerances};
+use crate::mesh::Mesh;
+
+/// Largest number of buckets, so that a huge part with a small cutter keeps its index small;
+/// buckets then grow beyond the cutter radius.
+const MAX_BUCKETS: usize = 1 << 20;
+
+/// A triangle prepared for drops.
+#[derive(Clone, Copy, Debug)]
+struct Prepared {
+    corners: [DVec3; 3],
+    /// `None` for vertical facets (their edges and vertices decide).
+    facet: Option<FacetPlane>,
+    top: f64,
+    lo: DVec2,
+    hi: DVec2,
+}
+
+/// A mesh indexed for exact drops of one cutter.
+#[derive(Clone, Debug)]
+pub struct PointDrop {
+    profile: Profile,
+    triangles: Vec<Prepared>,
+    origin: DVec2,
+    size: f64,
+    nx: usize,
+    ny: usize,
+    /// Bucket k's triangles are `entries[start[k]..start[k + 1]]`, highest first.
+    start: Vec<u32>,
+    entries: Vec<u32>,
+    /// The mesh's peaks: vertices with no higher neighbour and a lower one.
+    peaks: Vec<DVec3>,
+    /// Bucket k's peaks within the cutter radius of it are `peak_entries[peak_start[k]..]`.
+    peak_start: Vec<u32>,
+    peak_entries: Vec<u32>,
+}
+
+impl PointDrop {
+    pub fn new(mesh: &Mesh, profile: &Profile, tolerances: &Tolerances) -> PointDrop {
+        let r = profile.radius;
+        let triangles: Vec<Prepared> = mesh
+            .triangles()
+            .map(|t| {
+                let b = t.bounds();
+                Prepared { corners: [t.a, t.b, t.c], facet: FacetPlane::new(t.a, t.b, t.c, tolerances.normal), top: b.max.z, lo: b.min.truncate() - r, hi: b.max.truncate() + r }
+            })
+            .collect();
+        let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+        for t in &triangles {
+            lo = lo.min(t.lo);
+            hi = hi.max(t.hi);
+        }
+        if triangles.is_empty() {
+            (lo, hi) = (DVec2::ZERO, DVec2::ONE);
+        }
+        let extent = (hi - lo).max(DVec2::splat(1e-9));
+        let size = r.max((extent.x * extent.y / MAX_BUCKETS as f64).sqrt()).max(1e-6);
+        let nx = ((extent.x / size).ceil() as usize).max(1);
+        let ny = ((extent.y / size).ceil() as usize).max(1);
+        let cell = |v: f64, o: f64, n: usize| (((v - o) / size).floor().max(0.0) as usize).min(n - 1);
+        let span = |t: &Prepared| (cell(t.lo.x, lo.x, nx), cell(t.hi.x, lo.x, nx), cell(t.lo.y, lo.y, ny), cell(t.hi.y, lo.y, ny));
+        // Highest first within every bucket: insert in that order.
+        let mut order: Vec<Prepared> = triangles.clone();
+        order.sort_by(|a, b| b.top.total_cmp(&a.top));
+        let triangles = order;
+        let (start, entries) = bucket_lists(&triangles, nx, ny, span);
+        let peaks = peaks(mesh);
+        let (peak_start, peak_entries) = bucket_lists(&peaks, nx, ny, |v| (cell(v.x - r, lo.x, nx), cell(v.x + r, lo.x, nx), cell(v.y - r, lo.y, ny), cell(v.y + r, lo.y, ny)));
+        PointDrop { profile: *profile, triangles, origin: lo, size, nx, ny, start, entries, peaks, peak_start, peak_entries }
+    }
+
+    /// Calls `f` with every peak within the cutter radius of the segment `a`–`b` (some farther
+    /// ones too, and some more than once): walks the buckets the segment crosses.
+    pub fn peaks_near(&self, a: DVec2, b: DVec2, mut f: impl FnMut(DVec3)) {
+        let (ua, ub) = ((a - self.origin) / self.size, (b - self.origin) / self.size);
+        let (n, m) = (self.nx as f64, self.ny as f64);
+        // Enough steps that consecutive points are less than a bucket apart in each axis, so
+        // no bucket the segment crosses is skipped (a step crosses at most one line an axis).
+        let steps = ((ub - ua).abs().max_element().ceil() as usize).max(1);
+        let mut last = usize::MAX;
+        let mut visit = |u: DVec2| {
+            if !(u.x >= 0.0 && u.y >= 0.0 && u.x <= n && u.y <= m) {
+                return;
+            }
+            let k = (u.y as usize).min(self.ny - 1) * self.nx + (u.x as usize).min(self.nx - 1);
+            if k != last {
+                last = k;
+                for &p in &self.peak_entries[self.peak_start[k] as usize..self.peak_start[k + 1] as usize] {
+                    f(self.peaks[p as usize]);
+                }
+            }
+        };
+        for s in 0..=steps {
+            let u = ua + (ub - ua) * (s as f64 / steps as f64);
+            visit(u);
+            // The corner bucket a diagonal step may clip.
+            if s < steps {
+                let v = ua + (ub - ua) * ((s + 1) as f64 / steps as f64);
+                visit(DVec2::new(v.x, u.y));
+                visit(DVec2::new(u.x, v.y));
+            }
+        }
+    }
+
+    pub fn profile(&self) -> &Profile {
+        &self.profile
+    }
+
+    /// The lowest tip height over `c` at which the cutter touches no triangle, or `floor` when
+    /// that is lower (or nothing is within reach).
+    pub fn at(&self, c: DVec2, floor: f64) -> f64 {
+        let u = (c - self.origin) / self.size;
+        // Boundaries count: a vertex exactly the radius away still touches a ball's equator.
+        if !(u.x >= 0.0 && u.y >= 0.0 && u.x <= self.nx as f64 && u.y <= self.ny as f64) {
+            return floor;
+        }
+        let b = (u.y as usize).min(self.ny - 1) * self.nx + (u.x as usize).min(self.nx - 1);
+        let p = &self.profile;
+        let mut best = floor;
+        for &k in &self.entries[self.start[b] as usize..self.start[b + 1] as usize] {
+            let t = &self.triangles[k as usize];
+            if t.top <= best {
+                break;
+            }
+            if c.x < t.lo.x || c.y < t.lo.y || c.x > t.hi.x || c.y > t.hi.y {
+                continue;
+            }
+            if let Some(z) = t.facet.as_ref().and_then(|f| p.drop_facet(c, f)) {
+                best = best.max(z);
+            }
+            let [a, b, d] = t.corners;
+            for v in [a, b, d] {
+                if let Some(z) = p.drop_vertex(c, v) {
+                    best = best.max(z);
+                }
+            }
+            for (e0, e1) in [(a, b), (b, d), (d, a)] {
+                if let Some(z) = p.drop_edge_above(c, e0, e1, best) {
+                    best = best.max(z);
+                }
+            }
+        }
+        best
+    }
+}
+
+/// Bucket lists of `items` (in their order) as offsets and entries: item k goes into the buckets
+/// `i0..=i1` × `j0..=j1` that `span` gives it.
+fn bucket_lists<T>(items: &[T], nx: usize, ny: usize, span: impl Fn(&T) -> (usize, usize, usize, usize)) -> (Vec<u32>, Vec<u32>) {
+    let mut start = vec![0u32; nx * ny + 1];
+    for item in items {
+        let (i0, i1, j0, j1) = span(item);
+        for j in j0..=j1 {
+            for i in i0..=i1 {
+                start[j * nx + i + 1] += 1;
+            }
+        }
+    }
+    for k in 0..nx * ny {
+        start[k + 1] += start[k];
+    }
+    let mut fill = start.clone();
+    let mut entries = vec![0u32; start[nx * ny] as usize];
+    for (k, item) in items.iter().enumerate() {
+        let (i0, i1, j0, j1) = span(item);
+        for j in j0..=j1 {
+            for i in i0..=i1 {
+                let b = j * nx + i;
+                entries[fill[b] as usize] = k as u32;
+                fill[b] += 1;
+            }
+        }
+    }
+    (start, entries)
+}
+
+/// Vertices with no higher neighbour and at least one lower: the tops of spikes, cones and
+/// mesas' corners. A cutter passing one of them feels its highest there, so paths probe them.
+fn peaks(mesh: &Mesh) -> Vec<DVec3> {
+    let v = &mesh.vertices;
+    let (mut higher, mut lower) = (vec![false; v.len()], vec![false; v.len()]);
+    for face in &mesh.faces {
+        for (a, b) in [(face[0], face[1]), (face[1], face[2]), (face[2], face[0])] {
+            let (za, zb) = (v[a as usize].z, v[b as usize].z);
+            higher[a as usize] |= zb > za;
+            higher[b as usize] |= za > zb;
+            lower[a as usize] |= zb < za;
+            lower[b as usize] |= za < zb;
+        }
+    }
+    (0..v.len()).filter(|&k| !higher[k] && lower[k]).map(|k| v[k]).collect()
+}
