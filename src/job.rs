@@ -570,7 +570,12 @@ fn finish_raster(job: &Job, op: &FinishRaster, part: &Mesh, stock: &Aabb, cleara
     let margin = op.margin.unwrap_or(profile.radius);
     let skip_floor = (op.boundary == Boundary::Silhouette && margin <= profile.radius).then_some(floor);
     let passes = RasterPasses { angle_deg: op.angle, stepover: op.stepover, pattern: op.pattern, allowance: op.allowance, tolerance: tol.chordal, skip_floor };
-    let cl = ClSurface::new(cl, PointDrop::new(part, &profile, tol), floor, op.builder == ClBuilder::Exact, tol.interpolation);
+    // Heights for the path come from the cutter grown by the program's resolution
+    // (`PointDrop::grown`): no lower than the highest tip height within that distance, so that
+    // rounding X and Y as the G-code is written cannot put a point below the surface, and Z is
+    // written rounded up. The z-map's nodes belong to the cutter itself and are not used.
+    let rho = job.post.resolution();
+    let cl = ClSurface::new(cl, PointDrop::grown(part, &profile, rho, tol), floor, op.builder == ClBuilder::Exact && rho == 0.0, tol.interpolation);
     let runs = raster_runs(&cl, &region, &passes);
     let settings = LinkSettings { clearance_z, stay_down_max: op.stay_down_max.unwrap_or(2.0 * op.stepover), stock_top: Some(stock.max.z), ..LinkSettings::default() };
     let floor_surface = Floor { cl: &cl, allowance: op.allowance, region: &region };

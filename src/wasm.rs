@@ -229,7 +229,7 @@ impl JobResult {
         // SAFETY: as for PartView.
         unsafe { js_sys::Float32Array::view(&self.rapids) }
     }
-    /// `{ moves, feedLength, rapidLength, seconds, warnings, stock, clearanceZ }`.
+    /// `{ moves, feedLength, rapidLength, seconds, warnings, problem, stock, clearanceZ }`.
     pub fn summary(&self) -> JsValue {
         self.summary.clone()
     }
@@ -295,6 +295,8 @@ struct Summary {
     #[serde(flatten)]
     stats: crate::toolpath::PathStats,
     warnings: Vec<String>,
+    /// What makes the program unsafe to run, if verification found anything.
+    problem: Option<String>,
     stock: [f64; 6],
     clearance_z: f64,
 }
@@ -322,13 +324,13 @@ pub fn run_job(job: JsValue, bytes: &[u8], name: &str, progress: &js_sys::Functi
         }
     }
     let s = out.stock;
-    let summary = Summary { stats: out.stats, warnings: out.warnings.clone(), stock: [s.min.x, s.min.y, s.min.z, s.max.x, s.max.y, s.max.z], clearance_z: out.clearance_z };
+    let summary = Summary { stats: out.stats, warnings: out.warnings.clone(), problem: out.problem.clone(), stock: [s.min.x, s.min.y, s.min.z, s.max.x, s.max.y, s.max.z], clearance_z: out.clearance_z };
     let summary = to_js(&summary)?;
     let drawing = match &out.drawing {
         Some(d) => to_js(&drawing_view(d))?,
         None => JsValue::NULL,
     };
-    Ok(JobResult { gcode: out.gcode, feeds, rapids, summary, part: part_view(&out.part), drawing, simulation })
+    Ok(JobResult { gcode: out.gcode_marked(), feeds, rapids, summary, part: part_view(&out.part), drawing, simulation })
 }
 
 #[derive(serde::Serialize)]

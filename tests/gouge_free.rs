@@ -129,3 +129,59 @@ fn point_drop_matches_the_brute_force_drop() {
 }
 
 
+
+/// Issue 10: rounding X and Y to the program's resolution moves a point sideways, and on a
+/// steep surface (1 in 29 here: 88° flanks) that alone would sink it below the surface. Every
+/// written feed point, read back from the G-code in inches and in millimetres, stays at or
+/// above the exact surface less the chordal tolerance.
+#[test]
+fn written_points_stay_above_the_surface_in_every_unit() {
+    use swarf::mesh::placement::Units;
+    let part = steep_mesa();
+    let cutter = Cutter::ball(6.0);
+    for units in [Units::Inch, Units::Mm] {
+        let mut job = Job {
+            part: PartSetup { placement: Placement::Keep, ..PartSetup::default() },
+            stock: Stock { margin_xy: 0.0, margin_top: 1.0, ..Stock::default() },
+            tools: vec![Tool { cutter: cutter.clone(), ..Tool::default() }],
+            operations: vec![Operation::FinishRaster(FinishRaster { grid: 0.25, stepover: 0.7, angle: 7.0, ..FinishRaster::default() })],
+            simulation: Simulation { verify: false, ..Simulation::default() },
+            ..Job::default()
+        };
+        job.post.units = units;
+        let out = job::run(&job, part.clone(), &mut Progress::none()).unwrap();
+        let read = swarf::post::read::read_gcode(&out.gcode, 1).unwrap();
+        let judge = Judge { part: &out.part, profile: cutter.profile(), floor: out.stock.min.z };
+        let mut worst = (f64::NEG_INFINITY, DVec3::ZERO);
+        let mut points = 0;
+        for path in &read {
+            for m in &path.moves {
+                if let swarf::toolpath::Move::Line { to, .. } = *m {
+                    let depth = judge.exact(to.truncate()) - to.z;
+                    points += 1;
+                    if depth > worst.0 {
+                        worst = (depth, to);
+                    }
+                }
+            }
+        }
+        eprintln!("{units:?}: {points} written feed points, deepest {:.5} mm below at {}", worst.0, worst.1);
+        assert!(points > 1000);
+        assert!(worst.0 <= CHORDAL, "{units:?}: a written point {:.4} mm below the surface at {}", worst.0, worst.1);
+    }
+}
+
+/// A mesa whose flanks rise 29 in 1 (about 88°).
+fn steep_mesa() -> Mesh {
+    let v = DVec3::new;
+    let (w, h, half, run) = (5.13, 8.0, 14.0, 8.0 / 29.0);
+    let xs = [-half, -w - run, -w, w, w + run, half];
+    let zs = [0.0, 0.0, h, h, 0.0, 0.0];
+    let mut tris = Vec::new();
+    for k in 0..xs.len() - 1 {
+        let (a, b, c, d) = (v(xs[k], -half, zs[k]), v(xs[k + 1], -half, zs[k + 1]), v(xs[k + 1], half, zs[k + 1]), v(xs[k], half, zs[k]));
+        tris.push([a, b, c]);
+        tris.push([a, c, d]);
+    }
+    mesh(tris)
+}

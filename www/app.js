@@ -337,10 +337,24 @@ function setRunning(running) {
   if (!running) updateCorner();
 }
 
+// A failed or cancelled Generate leaves nothing of the result it replaced: no path, no
+// simulation, no statistics, no download.
+function clearResult() {
+  state.gcode = null;
+  state.problem = null;
+  viewer?.clearPaths();
+  showSimulation(null);
+  $('stats').textContent = '';
+  $('download').disabled = true;
+  $('progress').value = 0;
+}
+
 async function generate() {
   let job;
   try { job = buildJob(); } catch (e) { showError(e.message); return; }
   saveSettings();
+  clearResult();
+  document.body.dataset.generated = 'running';
   setRunning(true);
   showInfo('');
   $('progress').value = 0;
@@ -358,13 +372,20 @@ async function generate() {
     const s = r.summary;
     const minutes = Math.floor(s.seconds / 60), seconds = Math.round(s.seconds % 60);
     $('stats').textContent = `${s.moves.toLocaleString()} moves · ${(s.feedLength / 1000).toFixed(2)} m cutting · ${(s.rapidLength / 1000).toFixed(2)} m rapid\nestimated cycle time ${minutes}:${String(seconds).padStart(2, '0')} min\ncomputed in ${((performance.now() - started) / 1000).toFixed(2)} s`;
-    showInfo(s.warnings.join('\n'));
+    // A problem is shown as one, in red, with its places marked in the view; the program can
+    // still be downloaded, behind a confirmation that names it.
+    state.problem = s.problem ?? null;
+    if (state.problem) showError([`Not safe to run: ${state.problem}`, ...s.warnings].join('\n'));
+    else showInfo(s.warnings.join('\n'));
     $('progress').value = 1;
-    $('stage').textContent = 'done';
+    $('stage').textContent = state.problem ? 'done, with problems' : 'done';
     $('download').disabled = false;
+    document.body.dataset.generated = state.problem ? 'problem' : 'ok';
   } catch (e) {
+    clearResult();
     if (e.message !== 'cancelled by the user') showError(e.message);
     $('stage').textContent = '';
+    document.body.dataset.generated = 'failed';
   } finally {
     setRunning(false);
   }
@@ -381,13 +402,14 @@ function cancel() {
   // The new worker has no result to scrub; the last drawing stays until the next run.
   sim.busy = false;
   sim.wanted = null;
-  showSimulation(null);
-  $('progress').value = 0;
+  clearResult();
   showInfo('Cancelled. Your settings are kept.');
+  document.body.dataset.generated = 'cancelled';
 }
 
 function download() {
   if (!state.gcode) return;
+  if (state.problem && !window.confirm(`This program is not safe to run: ${state.problem}.\n\nDownload it anyway? It starts with a warning comment.`)) return;
   const ext = form.elements.dialect.value === 'grbl' ? 'nc' : 'ngc';
   const a = document.createElement('a');
   a.href = URL.createObjectURL(new Blob([state.gcode], { type: 'text/plain' }));

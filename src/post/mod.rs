@@ -59,6 +59,19 @@ pub struct PostSettings {
     pub program_number: u32,
 }
 
+impl PostSettings {
+    /// How far rounding to the program's decimals can move a point sideways (mm): half a unit
+    /// of the last digit in X and in Y. Strategies that follow a surface take their heights as
+    /// the highest within this distance, so that the written points stay above it.
+    pub fn resolution(&self) -> f64 {
+        let decimals = self.decimals.unwrap_or(match self.units {
+            Units::Mm => 3,
+            Units::Inch => 4,
+        });
+        0.5 * 10f64.powi(-(decimals as i32)) * self.units.mm() * std::f64::consts::SQRT_2
+    }
+}
+
 impl Default for PostSettings {
     fn default() -> Self {
         PostSettings { dialect: Dialect::LinuxCnc, units: Units::Mm, decimals: None, rapid_rate: 3000.0, program_number: 1 }
@@ -128,6 +141,8 @@ struct Writer {
     scale: f64,
     decimals: usize,
     position: [Option<f64>; 3],
+    /// The words last written for X, Y and Z.
+    written: [Option<String>; 3],
     feed: Option<f64>,
     mode: Option<&'static str>,
 }
@@ -139,7 +154,7 @@ impl Writer {
             Units::Mm => 3,
             Units::Inch => 4,
         });
-        Writer { out: String::new(), scale, decimals, position: [None; 3], feed: None, mode: None }
+        Writer { out: String::new(), scale, decimals, position: [None; 3], written: [None, None, None], feed: None, mode: None }
     }
 
     /// A line that is not a motion: the next motion states its G word again.
@@ -165,11 +180,21 @@ impl Writer {
         self.number(mm * self.scale, self.decimals)
     }
 
+    /// The length rounded up to the program's resolution, never down.
+    fn length_up(&self, mm: f64) -> String {
+        let unit = 10f64.powi(-(self.decimals as i32));
+        let v = mm * self.scale;
+        let up = (v / unit).ceil() * unit;
+        // Rounding in the division may land a hair short: one more step.
+        self.number(if up < v { up + unit } else { up }, self.decimals)
+    }
+
     fn rapid_z(&mut self, z: f64) {
         let text = format!("G0 Z{}", self.length(z));
         self.line(&text);
         self.mode = Some("G0");
         self.position[2] = Some(z);
+        self.written[2] = Some(self.length(z));
     }
 
     fn motion(&mut self, m: &Move) {
@@ -194,11 +219,14 @@ impl Writer {
             words.push_str(code);
         }
         for (axis, (name, value)) in [("X", to.x), ("Y", to.y), ("Z", to.z)].into_iter().enumerate() {
-            let text = self.length(value);
-            let changed = self.position[axis].map_or(true, |old| self.length(old) != text);
+            // A feed's Z is rounded up: the path was made for the resolution (see
+            // `PostSettings::resolution`), and rounding Z down would lower it.
+            let text = if axis == 2 && feed.is_some() && !is_arc { self.length_up(value) } else { self.length(value) };
+            let changed = self.written[axis].as_deref() != Some(text.as_str());
             if changed || (is_arc && axis < 2) {
                 words.push_str(&format!(" {name}{text}"));
                 moved = true;
+                self.written[axis] = Some(text);
             }
         }
         if !moved {

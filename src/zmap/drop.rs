@@ -30,6 +30,8 @@ struct Prepared {
 #[derive(Clone, Debug)]
 pub struct PointDrop {
     profile: Profile,
+    /// Added to every drop (see [`PointDrop::grown`]).
+    lift: f64,
     triangles: Vec<Prepared>,
     origin: DVec2,
     size: f64,
@@ -76,7 +78,26 @@ impl PointDrop {
         let (start, entries) = bucket_lists(&triangles, nx, ny, span);
         let peaks = peaks(mesh);
         let (peak_start, peak_entries) = bucket_lists(&peaks, nx, ny, |v| (cell(v.x - r, lo.x, nx), cell(v.x + r, lo.x, nx), cell(v.y - r, lo.y, ny), cell(v.y + r, lo.y, ny)));
-        PointDrop { profile: *profile, triangles, origin: lo, size, nx, ny, start, entries, peaks, peak_start, peak_entries }
+        PointDrop { profile: *profile, lift: 0.0, triangles, origin: lo, size, nx, ny, start, entries, peaks, peak_start, peak_entries }
+    }
+
+    /// Drops no lower than those of `profile` grown by a horizontal disk of radius `rho` (its
+    /// Minkowski sum with the disk): the highest tip height within `rho` of the point, so that a
+    /// point moved by up to `rho` (rounded to a program's resolution) stays above the surface. A
+    /// flat end or bull nose grown so is the same shape with a wider flat; a ball grown so would
+    /// be a bull nose (whose edge drop searches numerically), so it is bounded instead by the
+    /// ball of radius R + rho about the same centre, which holds it, dropped and raised by rho.
+    pub fn grown(mesh: &Mesh, profile: &Profile, rho: f64, tolerances: &Tolerances) -> PointDrop {
+        if rho <= 0.0 {
+            return PointDrop::new(mesh, profile, tolerances);
+        }
+        let ball = profile.flat_radius() <= 0.0;
+        let r = profile.radius + rho;
+        let mut drop = PointDrop::new(mesh, &Profile::new(r, if ball { r } else { profile.corner }), tolerances);
+        if ball {
+            drop.lift = rho;
+        }
+        drop
     }
 
     /// Calls `f` with every peak within the cutter radius of the segment `a`–`b` (some farther
@@ -119,6 +140,10 @@ impl PointDrop {
     /// The lowest tip height over `c` at which the cutter touches no triangle, or `floor` when
     /// that is lower (or nothing is within reach).
     pub fn at(&self, c: DVec2, floor: f64) -> f64 {
+        (self.reach(c, floor - self.lift) + self.lift).max(floor)
+    }
+
+    fn reach(&self, c: DVec2, floor: f64) -> f64 {
         let u = (c - self.origin) / self.size;
         // Boundaries count: a vertex exactly the radius away still touches a ball's equator.
         if !(u.x >= 0.0 && u.y >= 0.0 && u.x <= self.nx as f64 && u.y <= self.ny as f64) {

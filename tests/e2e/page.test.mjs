@@ -41,14 +41,38 @@ after(async () => {
   server?.close();
 });
 
+// Waits are bounded by what the page itself signals, not by short fixed timeouts: a Generate is
+// awaited until the page says it ended (body[data-generated]), failing only if its progress bar
+// and stage stand still for two minutes; other waits get five minutes, so that a machine busy
+// with other builds passes too.
+const PATIENCE = 300000;
+
+async function waitForGenerated(page) {
+  let last = null, since = Date.now();
+  for (;;) {
+    const now = await page.evaluate(() => ({ state: document.body.dataset.generated, progress: document.getElementById('progress').value, stage: document.getElementById('stage').textContent }));
+    if (now.state && now.state !== 'running') return now.state;
+    const key = `${now.progress} ${now.stage}`;
+    if (key !== last) { last = key; since = Date.now(); }
+    else if (Date.now() - since > 120000) throw new Error(`Generate stalled at ${key}`);
+    await page.waitForTimeout(250);
+  }
+}
+
+async function generated(page) {
+  const state = await waitForGenerated(page);
+  assert.equal(state, 'ok', await page.textContent('#message'));
+}
+
 async function openPage() {
   const context = await browser.newContext({ acceptDownloads: true, viewport: { width: 1280, height: 800 } });
+  context.setDefaultTimeout(PATIENCE);
   const page = await context.newPage();
   const errors = [];
   page.on('pageerror', (e) => errors.push(String(e)));
   page.on('request', (r) => { if (!r.url().startsWith(base) && !r.url().startsWith('blob:') && !r.url().startsWith('data:')) offsite.push(r.url()); });
   await page.goto(base);
-  await page.waitForSelector('body[data-ready="true"]', { timeout: 30000 });
+  await page.waitForSelector('body[data-ready="true"]');
   await page.waitForFunction(() => !document.getElementById('generate').disabled);
   return { page, context, errors };
 }
@@ -83,7 +107,7 @@ test('sample part → generate → path on the canvas → G-code that rs274 acce
   await page.fill('input[name=stepover]', '1.5');
   await page.fill('input[name=grid]', '0.5');
   await page.click('#generate');
-  await page.waitForFunction(() => !document.getElementById('download').disabled, null, { timeout: 60000 });
+  await generated(page);
   const after = await pathPixels(page);
   await page.screenshot({ path: path.join(shots, 'generated.png') });
   assert.ok(before < 50, `path-coloured pixels before generating: ${before}`);
@@ -138,7 +162,7 @@ test('cancel stops a long job, keeps the settings, and the next run works', asyn
   await page.fill('input[name=grid]', '0.05');
   await page.fill('input[name=stepover]', '0.3');
   await page.click('#generate');
-  await page.waitForFunction(() => document.getElementById('progress').value > 0, null, { timeout: 30000 });
+  await page.waitForFunction(() => document.getElementById('progress').value > 0);
   await page.click('#cancel');
   await page.waitForFunction(() => /Cancelled/.test(document.getElementById('message').textContent));
   assert.equal(await page.inputValue('input[name=grid]'), '0.05');
@@ -146,7 +170,7 @@ test('cancel stops a long job, keeps the settings, and the next run works', asyn
   await page.fill('input[name=grid]', '0.5');
   await page.fill('input[name=stepover]', '3');
   await page.click('#generate');
-  await page.waitForFunction(() => !document.getElementById('download').disabled, null, { timeout: 60000 });
+  await generated(page);
   await context.close();
 });
 
@@ -170,7 +194,7 @@ test('a saved job loads back and runs on the command line as in the page', async
   assert.equal(await page.inputValue('select[name=dialect]'), 'grbl');
   // The page's G-code equals the CLI's for the same job and part.
   await page.click('#generate');
-  await page.waitForFunction(() => !document.getElementById('download').disabled, null, { timeout: 60000 });
+  await generated(page);
   const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
   const fromPage = path.join(dir, 'page.nc');
   await download.saveAs(fromPage);
@@ -198,7 +222,7 @@ test('the simulated stock: drawn after generating, scrubbed back to the raw bloc
   await page.fill('input[name=stepover]', '1.5');
   await page.fill('input[name=grid]', '0.5');
   await page.click('#generate');
-  await page.waitForFunction(() => !document.getElementById('download').disabled, null, { timeout: 90000 });
+  await generated(page);
   await page.waitForSelector('#sim:not([hidden])');
   const report = await page.textContent('#sim-report');
   assert.match(report, /gouges: 0/);
@@ -209,16 +233,16 @@ test('the simulated stock: drawn after generating, scrubbed back to the raw bloc
   await page.screenshot({ path: path.join(shots, 'simulated.png') });
   // Back to the start: the raw block, nothing cut, no rest-material colour yet on a flat top.
   await page.evaluate(() => { const s = document.getElementById('scrub'); s.value = '0'; s.dispatchEvent(new Event('input')); });
-  await page.waitForFunction(() => document.body.dataset.simMoves === '0', null, { timeout: 30000 });
+  await page.waitForFunction(() => document.body.dataset.simMoves === '0');
   const start = await stockPixels(page);
   await page.screenshot({ path: path.join(shots, 'simulated-start.png') });
   // Half way, by playing: the scrubber moves on its own.
   await page.evaluate(() => { const s = document.getElementById('scrub'); s.value = String(Number(s.max) / 2); s.dispatchEvent(new Event('input')); });
-  await page.waitForFunction((n) => Number(document.body.dataset.simMoves) > n / 4 && Number(document.body.dataset.simMoves) < n, moves, { timeout: 30000 });
+  await page.waitForFunction((n) => Number(document.body.dataset.simMoves) > n / 4 && Number(document.body.dataset.simMoves) < n, moves);
   await page.selectOption('#speed', '1000');
   await page.click('#play');
   const t0 = Number(await page.inputValue('#scrub'));
-  await page.waitForTimeout(700);
+  await page.waitForFunction((t) => Number(document.getElementById('scrub').value) > t, t0);
   const t1 = Number(await page.inputValue('#scrub'));
   assert.ok(t1 > t0, `playing advances the program time: ${t0} → ${t1}`);
   // The MRR plot has bars.
@@ -251,7 +275,7 @@ test('the sample drawing: loops shown as outlines and holes, profile and pocket 
     await page.selectOption('select[name=op2d]', op);
     await page.fill('input[name=layers]', layer);
     await page.click('#generate');
-    await page.waitForFunction(() => !document.getElementById('download').disabled, null, { timeout: 60000 });
+    await generated(page);
     assert.ok((await pathPixels(page)) > 1000, `${op}: path pixels`);
     assert.doesNotMatch(await page.textContent('#sim-report'), /gouge[^\n]*[1-9]/);
     const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
@@ -271,6 +295,44 @@ test('the sample drawing: loops shown as outlines and holes, profile and pocket 
   await page.waitForFunction(() => /open chain/.test(document.getElementById('message').textContent));
   assert.match(await page.textContent('#message'), /layer OPEN from \(0\.00, 0\.00\) to \(10\.00, 0\.00\)/);
   assert.equal(await page.inputValue('input[name=layers]'), 'CUT');
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
+test('a program with problems shows them in red and downloads only when confirmed; a failed Generate clears the last result', async () => {
+  const { page, context, errors } = await openPage();
+  // The stock as the boundary: the ball follows the floor along the stock's edges, 26 mm deep
+  // in the raw block with 20 mm of flutes.
+  await page.selectOption('select[name=boundary]', 'stock');
+  await page.fill('input[name=stepover]', '3');
+  await page.fill('input[name=grid]', '0.5');
+  await page.click('#generate');
+  assert.equal(await waitForGenerated(page), 'problem');
+  const message = await page.textContent('#message');
+  assert.match(message, /Not safe to run: the simulation found problems: .*bury the tool/);
+  assert.notEqual(await page.getAttribute('#message', 'class'), 'info');
+  assert.ok((await pathPixels(page)) > 1000, 'the path is still shown');
+  const marks = await pixelCounts(page);
+  assert.ok(marks.orange + marks.red > 0, `the places are marked: ${JSON.stringify(marks)}`);
+  // Download: refused once, then confirmed; the program carries the warning at its head.
+  const asked = [];
+  page.once('dialog', (d) => { asked.push(d.message()); d.dismiss(); });
+  await page.click('#download');
+  await page.waitForFunction(() => document.body.dataset.generated === 'problem');
+  assert.equal(asked.length, 1);
+  assert.match(asked[0], /not safe to run/);
+  page.once('dialog', (d) => d.accept());
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
+  const text = fs.readFileSync(await download.path(), 'utf8');
+  assert.match(text.split('\n')[0], /^\(WARNING: NOT SAFE TO RUN: /);
+  // A Generate that fails leaves nothing of the result it replaced.
+  await page.fill('input[name=grid]', '0.0001');
+  await page.click('#generate');
+  assert.equal(await waitForGenerated(page), 'failed');
+  assert.match(await page.textContent('#message'), /coarser grid/);
+  assert.equal(await page.isDisabled('#download'), true);
+  assert.equal(await page.textContent('#stats'), '');
+  assert.equal(await pathPixels(page), 0);
   assert.deepEqual(errors, []);
   await context.close();
 });
