@@ -22,7 +22,7 @@ use crate::toolpath::link::{link_runs, Feeds, Floor, LinkSettings};
 use crate::toolpath::{PathStats, Toolpath};
 use crate::zmap::drop::PointDrop;
 use crate::zmap::surface::ClSurface;
-use crate::zmap::{cc::cc_zmap, cl_exact::cl_exact, cl_inverse::cl_inverse_offset, ClBuilder, Grid, HeightField};
+use crate::zmap::{cc::cc_zmap, cl_inverse::cl_inverse_offset, ClBuilder, Grid, HeightField};
 
 /// The stock: a box around the placed part.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -525,6 +525,10 @@ impl Finish<'_> {
         let gcode = write_gcode(&job.name, &paths, &job.tools, clearance_z, &job.post);
         let stats = paths.iter().fold(PathStats::default(), |s, p| s + p.stats(job.post.rapid_rate));
         let moves = program_moves(&paths, &job.tools, job.post.rapid_rate)?;
+        if moves.iter().all(|m| matches!(m.mv, crate::toolpath::Move::Rapid { .. })) {
+            let why = if warnings.is_empty() { String::new() } else { format!(" ({})", warnings.join("; ")) };
+            return Err(Error::Nothing(format!("the program has no cutting moves{why}")));
+        }
         let verification = if job.simulation.verify {
             if !progress.stage("simulating the program", share, 1.0 - share) {
                 return Err(Error::Cancelled);
@@ -534,10 +538,6 @@ impl Finish<'_> {
             None
         };
         let problem = verification.as_ref().and_then(|v| v.report.problem());
-        if moves.iter().all(|m| matches!(m.mv, crate::toolpath::Move::Rapid { .. })) {
-            let why = if warnings.is_empty() { String::new() } else { format!(" ({})", warnings.join("; ")) };
-            return Err(Error::Nothing(format!("the program has no cutting moves{why}")));
-        }
         progress.stage("done", 1.0, 0.0);
         Ok(JobOutput { part, drawing, stock, clearance_z, paths, gcode, stats, moves, verification, warnings, problem })
     }
@@ -556,26 +556,27 @@ fn finish_raster(job: &Job, op: &FinishRaster, part: &Mesh, stock: &Aabb, cleara
     if !progress.stage(&format!("{}: CL z-map", op.name), start, span * 0.9) {
         return Err(Error::Cancelled);
     }
+    // Heights for the path come from the cutter grown by the program's resolution
+    // (`PointDrop::grown`): no lower than the highest tip height within that distance, so that
+    // rounding X and Y as the G-code is written cannot put a point below the surface, and Z is
+    // written rounded up. The exact z-map is that grown cutter's, so its nodes stand in for the
+    // drop where a pass crosses them.
+    let drop = PointDrop::grown(part, &profile, job.post.resolution(), tol);
     let cl: HeightField = match op.builder {
-        ClBuilder::Exact => cl_exact(part, &profile, grid, floor, tol, progress)?,
+        ClBuilder::Exact => drop.field(part, grid, floor, tol, progress)?,
         ClBuilder::InverseOffset => cl_inverse_offset(cc(), &profile, progress)?,
     };
     if !progress.stage(&format!("{}: passes", op.name), start + span * 0.9, span * 0.1) {
         return Err(Error::Cancelled);
     }
+    let margin = op.margin.unwrap_or(profile.radius);
     let region = match op.boundary {
         Boundary::Stock => Region::Rect { min: stock.min.truncate(), max: stock.max.truncate() },
-        Boundary::Silhouette => Region::silhouette(cc(), floor, op.margin.unwrap_or(profile.radius)),
+        Boundary::Silhouette => Region::silhouette(cc(), floor, margin),
     };
-    let margin = op.margin.unwrap_or(profile.radius);
     let skip_floor = (op.boundary == Boundary::Silhouette && margin <= profile.radius).then_some(floor);
     let passes = RasterPasses { angle_deg: op.angle, stepover: op.stepover, pattern: op.pattern, allowance: op.allowance, tolerance: tol.chordal, skip_floor };
-    // Heights for the path come from the cutter grown by the program's resolution
-    // (`PointDrop::grown`): no lower than the highest tip height within that distance, so that
-    // rounding X and Y as the G-code is written cannot put a point below the surface, and Z is
-    // written rounded up. The z-map's nodes belong to the cutter itself and are not used.
-    let rho = job.post.resolution();
-    let cl = ClSurface::new(cl, PointDrop::grown(part, &profile, rho, tol), floor, op.builder == ClBuilder::Exact && rho == 0.0, tol.interpolation);
+    let cl = ClSurface::new(cl, drop, floor, op.builder == ClBuilder::Exact, tol.interpolation);
     let runs = raster_runs(&cl, &region, &passes);
     let settings = LinkSettings { clearance_z, stay_down_max: op.stay_down_max.unwrap_or(2.0 * op.stepover), stock_top: Some(stock.max.z), ..LinkSettings::default() };
     let floor_surface = Floor { cl: &cl, allowance: op.allowance, region: &region };

@@ -7,9 +7,13 @@
 //! triangle cannot lift the cutter above its own highest point, so a query stops at the first
 //! triangle that stands no higher than what it has found.
 
+use super::cl_exact::cl_exact;
+use super::{Grid, HeightField};
 use crate::cutter::{FacetPlane, Profile};
+use crate::error::Result;
 use crate::geom::{DVec2, DVec3, Tolerances};
 use crate::mesh::Mesh;
+use crate::progress::Progress;
 
 /// Largest number of buckets, so that a huge part with a small cutter keeps its index small;
 /// buckets then grow beyond the cutter radius.
@@ -50,7 +54,7 @@ pub struct PointDrop {
 impl PointDrop {
     pub fn new(mesh: &Mesh, profile: &Profile, tolerances: &Tolerances) -> PointDrop {
         let r = profile.radius;
-        let triangles: Vec<Prepared> = mesh
+        let mut triangles: Vec<Prepared> = mesh
             .triangles()
             .map(|t| {
                 let b = t.bounds();
@@ -72,9 +76,7 @@ impl PointDrop {
         let cell = |v: f64, o: f64, n: usize| (((v - o) / size).floor().max(0.0) as usize).min(n - 1);
         let span = |t: &Prepared| (cell(t.lo.x, lo.x, nx), cell(t.hi.x, lo.x, nx), cell(t.lo.y, lo.y, ny), cell(t.hi.y, lo.y, ny));
         // Highest first within every bucket: insert in that order.
-        let mut order: Vec<Prepared> = triangles.clone();
-        order.sort_by(|a, b| b.top.total_cmp(&a.top));
-        let triangles = order;
+        triangles.sort_by(|a, b| b.top.total_cmp(&a.top));
         let (start, entries) = bucket_lists(&triangles, nx, ny, span);
         let peaks = peaks(mesh);
         let (peak_start, peak_entries) = bucket_lists(&peaks, nx, ny, |v| (cell(v.x - r, lo.x, nx), cell(v.x + r, lo.x, nx), cell(v.y - r, lo.y, ny), cell(v.y + r, lo.y, ny)));
@@ -140,7 +142,27 @@ impl PointDrop {
     /// The lowest tip height over `c` at which the cutter touches no triangle, or `floor` when
     /// that is lower (or nothing is within reach).
     pub fn at(&self, c: DVec2, floor: f64) -> f64 {
-        (self.reach(c, floor - self.lift) + self.lift).max(floor)
+        self.lifted(self.reach(c, floor - self.lift), floor)
+    }
+
+    /// The z-map of these drops over `grid`: the exact builder (seed 001 §3.3) with the same
+    /// profile, lifted the same way, so that its nodes equal [`PointDrop::at`] there.
+    pub fn field(&self, mesh: &Mesh, grid: Grid, floor: f64, tolerances: &Tolerances, progress: &mut Progress) -> Result<HeightField> {
+        let mut field = cl_exact(mesh, &self.profile, grid, floor - self.lift, tolerances, progress)?;
+        for z in &mut field.z {
+            *z = self.lifted(*z, floor);
+        }
+        Ok(field)
+    }
+
+    /// A drop of the profile (at least `floor - lift`) as this drop's height: the floor where
+    /// nothing was reached, else lifted.
+    fn lifted(&self, inner: f64, floor: f64) -> f64 {
+        if inner <= floor - self.lift {
+            floor
+        } else {
+            (inner + self.lift).max(floor)
+        }
     }
 
     fn reach(&self, c: DVec2, floor: f64) -> f64 {
