@@ -387,7 +387,14 @@ impl JobOutput {
     /// a program written anyway).
     pub fn gcode_marked(&self) -> String {
         match &self.problem {
-            Some(problem) => format!("(WARNING: NOT SAFE TO RUN: {})\n{}", crate::post::comment(problem), self.gcode),
+            Some(problem) => {
+                // A program that starts with a tape mark (Fanuc) keeps it first.
+                let warning = format!("(WARNING: NOT SAFE TO RUN: {})\n", crate::post::comment(problem));
+                match self.gcode.strip_prefix("%\n") {
+                    Some(rest) => format!("%\n{warning}{rest}"),
+                    None => format!("{warning}{}", self.gcode),
+                }
+            }
             None => self.gcode.clone(),
         }
     }

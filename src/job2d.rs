@@ -13,6 +13,7 @@ use crate::sim::verify::verify_against;
 use crate::strategy::path2d::Cursor;
 use crate::strategy::pocket2d::{self, pocket_moves};
 use crate::strategy::profile2d::{self, profile_moves, Profile2d, Side};
+use crate::strategy::walls::Walls;
 use crate::toolpath::{Move, Toolpath};
 use crate::zmap::{Grid, HeightField};
 
@@ -21,17 +22,17 @@ const RAPID_GAP: f64 = 1.0;
 /// Depth below the sheet a through cut goes (mm).
 const BREAKTHROUGH: f64 = 0.2;
 
-/// The loops an operation works on: those on its layers (all when none), by drawing index
-/// when it names some, oriented by their nesting among all loops on those layers.
-fn selected(drawing: &Drawing, layers: &[String], indices: &[usize]) -> Result<(Shape, Vec<Loop>)> {
+/// The loops an operation works on: every loop on its layers (all when none) by nesting, with
+/// their drawing indices (the walls), and the positions among them of those it cuts (named by
+/// drawing index when it names some, else all).
+fn selected(drawing: &Drawing, layers: &[String], indices: &[usize]) -> Result<(Walls, Vec<usize>)> {
     let shape = drawing.shape(layers).map_err(|e| Error::Job(e.to_string()))?;
     let on: Vec<usize> = (0..drawing.loops.len()).filter(|&i| layers.is_empty() || layers.contains(&drawing.loops[i].layer)).collect();
-    let picked: Vec<Loop> =
-        on.iter().enumerate().filter(|(_, i)| indices.is_empty() || indices.contains(i)).map(|(k, _)| shape.loops[k].clone()).collect();
+    let picked: Vec<usize> = (0..on.len()).filter(|&k| indices.is_empty() || indices.contains(&on[k])).collect();
     if picked.is_empty() {
         return Err(Error::Job(format!("none of the loops {indices:?} is on the chosen layers")));
     }
-    Ok((shape, picked))
+    Ok((Walls::new(shape, on), picked))
 }
 
 /// The region a pocket clears: each picked loop as an outer boundary with the loops inside it
@@ -85,17 +86,18 @@ pub fn run_drawing(job: &Job, mut drawing: Drawing, progress: &mut Progress) -> 
         let mut cursor = Cursor { at: DVec3::new(0.0, 0.0, clearance_z), clearance: clearance_z, safe: RAPID_GAP, plunge: tool.plunge_rate };
         let moves = match op {
             Operation::Profile2d(p) => {
-                let (_, picked) = selected(&drawing, &p.layers, &p.loops)?;
+                let (walls, picked) = selected(&drawing, &p.layers, &p.loops)?;
                 let depth = p.depth.unwrap_or(thickness + BREAKTHROUGH);
-                cuts.extend(profile_cuts(&picked, p, depth));
+                cuts.extend(profile_cuts(&walls, &picked, p, depth));
                 let setup = profile2d::Setup { tool_radius: r, top: 0.0, depth, feed: tool.feed_rate, cursor: &mut cursor, tol: &job.tolerances };
-                let (moves, notes) = profile_moves(&picked, p, setup).map_err(|e| Error::Job(format!("{}: {e}", p.name)))?;
+                let (moves, notes) = profile_moves(&walls, &picked, p, setup).map_err(|e| Error::Job(format!("{}: {e}", p.name)))?;
                 warnings.extend(notes.into_iter().map(|w| format!("{}: {w}", p.name)));
                 moves
             }
             Operation::Pocket2d(p) => {
-                let (shape, picked) = selected(&drawing, &p.layers, &p.loops)?;
-                let region = pocket_region(&shape, &picked, p.loops.is_empty());
+                let (walls, picked) = selected(&drawing, &p.layers, &p.loops)?;
+                let picked: Vec<Loop> = picked.iter().map(|&k| walls.shape.loops[k].clone()).collect();
+                let region = pocket_region(&walls.shape, &picked, p.loops.is_empty());
                 cuts.push(Cut { region: region.clone(), inside: true, depth: p.depth, leave: p.leave_stock });
                 let setup = pocket2d::Setup { tool_radius: r, top: 0.0, feed: tool.feed_rate, cursor: &mut cursor, tol: &job.tolerances };
                 pocket_moves(&region, p, setup).map_err(|e| Error::Job(format!("{}: {e}", p.name)))?
@@ -135,15 +137,23 @@ struct Cut {
     leave: f64,
 }
 
-/// Where a profile cuts: outside the kept region (the picked loops as one shape) for
-/// outside and automatic sides, inside each loop for inside profiles.
-fn profile_cuts(picked: &[Loop], p: &Profile2d, depth: f64) -> Vec<Cut> {
+/// Where a profile cuts: outside the material of every loop on its layers (the walls), and
+/// for a loop cut on the side its nesting does not give, outside or inside that loop alone.
+fn profile_cuts(walls: &Walls, picked: &[usize], p: &Profile2d, depth: f64) -> Vec<Cut> {
     let leave = p.leave_stock;
-    match p.side {
-        Side::Auto => vec![Cut { region: Shape::new(picked.to_vec()), inside: false, depth, leave }],
-        Side::Outside => vec![Cut { region: Shape::new(picked.iter().map(Loop::counter_clockwise).collect()), inside: false, depth, leave }],
-        Side::Inside => picked.iter().map(|l| Cut { region: Shape::from_oriented(vec![l.counter_clockwise()]), inside: true, depth, leave }).collect(),
+    let mut cuts = vec![Cut { region: walls.shape.clone(), inside: false, depth, leave }];
+    for &k in picked {
+        let l = &walls.shape.loops[k];
+        let outside = match p.side {
+            Side::Auto => continue,
+            Side::Outside => true,
+            Side::Inside => false,
+        };
+        if outside != l.is_ccw() {
+            cuts.push(Cut { region: Shape::from_oriented(vec![l.counter_clockwise()]), inside: !outside, depth, leave });
+        }
     }
+    cuts
 }
 
 /// The part's heights on the simulation grid: the sheet's top, lowered to each cut's depth

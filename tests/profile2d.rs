@@ -9,14 +9,15 @@ use std::f64::consts::PI;
 use swarf::cutter::Cutter;
 use swarf::geom::{DVec2, Tolerances};
 use swarf::job::{self, Job, Operation, Tool};
+use swarf::offset::trim::Original;
+use swarf::post::Dialect;
 use swarf::profile::import::read_drawing;
 use swarf::profile::sample::plate_dxf;
-use swarf::profile::{Drawing, Shape};
-use swarf::offset::trim::Original;
+use swarf::profile::{Drawing, DrawnLoop, Loop, Shape};
 use swarf::progress::Progress;
-use swarf::toolpath::{arc_sweep, Move};
 use swarf::strategy::pocket2d::{Entry, Pocket2d, PocketPattern};
 use swarf::strategy::profile2d::{Direction, Profile2d, Tabs};
+use swarf::toolpath::{arc_sweep, Move};
 
 fn plate() -> Drawing {
     read_drawing(plate_dxf().as_bytes(), Some("plate.dxf"), &Tolerances::default()).unwrap()
@@ -27,32 +28,45 @@ fn job_with(ops: Vec<Operation>, diameter: f64) -> Job {
     Job { tools: vec![tool], operations: ops, ..Job::default_for_drawing() }
 }
 
-/// The smallest distance from the points of cutting moves below the sheet top to the shape
-/// (eight points a move, on the true arcs).
-fn closest_approach(out: &job::JobOutput, shape: &Shape) -> f64 {
+/// The smallest distance from the points of cutting moves below the sheet top to the shape,
+/// and where (up to 5 mm): every move sampled on its true line or arc at least every 0.01 mm.
+fn approach_at(out: &job::JobOutput, shape: &Shape) -> (f64, DVec2) {
     let original = Original::new(shape);
-    let mut worst = f64::INFINITY;
+    let mut worst = (f64::INFINITY, DVec2::ZERO);
     for p in &out.paths {
         let mut at = p.start;
         for m in &p.moves {
             let to = m.to();
             if !m.is_rapid() && at.z.max(to.z) < -1e-9 {
-                for k in 0..=8 {
-                    let f = k as f64 / 8.0;
+                let (a, b) = (at.truncate(), to.truncate());
+                let (sweep, len) = match *m {
+                    Move::Arc { center, clockwise, .. } => {
+                        let sweep = arc_sweep(at, to, center, clockwise);
+                        (sweep, sweep.abs() * center.distance(a))
+                    }
+                    _ => (0.0, a.distance(b)),
+                };
+                let n = ((len / 0.01).ceil() as usize).max(8);
+                for k in 0..=n {
+                    let f = k as f64 / n as f64;
                     let q = match *m {
-                        Move::Arc { center, clockwise, .. } => {
-                            let sweep = arc_sweep(at, to, center, clockwise);
-                            center + DVec2::from_angle(sweep * f).rotate(at.truncate() - center)
-                        }
-                        _ => at.truncate().lerp(to.truncate(), f),
+                        Move::Arc { center, .. } => center + DVec2::from_angle(sweep * f).rotate(a - center),
+                        _ => a.lerp(b, f),
                     };
-                    worst = worst.min(original.distance(q, 100.0));
+                    let d = original.distance(q, 5.0);
+                    if d < worst.0 {
+                        worst = (d, q);
+                    }
                 }
             }
             at = to;
         }
     }
     worst
+}
+
+fn closest_approach(out: &job::JobOutput, shape: &Shape) -> f64 {
+    approach_at(out, shape).0
 }
 
 #[test]
@@ -237,4 +251,181 @@ fn climb_and_conventional_run_opposite_ways_and_leave_stock_is_left() {
     assert!(closest_approach(&out, &shape) >= 2.0 - 1e-6);
     let report = &out.verification.as_ref().unwrap().report;
     assert!(report.is_clean(), "{}", report.describe());
+}
+
+/// A drawing of `loops` on layer 0, in millimetres.
+fn drawing_of(loops: Vec<Loop>) -> Drawing {
+    let loops = loops.into_iter().map(|path| DrawnLoop { layer: "0".into(), path }).collect();
+    Drawing { loops, layers: vec!["0".into()], units: "mm".into(), scale: 1.0, ..Drawing::default() }
+}
+
+/// A sheet part at `x`: a 30 × 20 outline with a round hole and a square one.
+fn part_at(x: f64) -> Vec<Loop> {
+    vec![
+        Loop::rect(DVec2::new(x, 0.0), DVec2::new(x + 30.0, 20.0)),
+        Loop::circle(DVec2::new(x + 8.0, 10.0), 4.0),
+        Loop::rect(DVec2::new(x + 16.0, 6.0), DVec2::new(x + 24.0, 14.0)),
+    ]
+}
+
+/// Runs a profile of every loop and checks what every drawing job must hold: no tool-centre
+/// point of a cut closer to any drawn loop than the radius plus leave-stock (densely along
+/// lines and arcs), and a clean simulation against the part the whole drawing means.
+fn profile_every_loop(d: Drawing, diameter: f64, profile: Profile2d) -> job::JobOutput {
+    let leave = profile.leave_stock;
+    let mut job = job_with(vec![Operation::Profile2d(profile)], diameter);
+    job.simulation.cell = Some(0.1);
+    let out = job::run(&job, d, &mut Progress::none()).unwrap();
+    let all = out.drawing.as_ref().unwrap().shape(&[]).unwrap();
+    let (gap, at) = approach_at(&out, &all);
+    assert!(gap >= diameter / 2.0 + leave - 1e-6, "a cut came {gap:.6} mm from the drawing at {at}");
+    let report = &out.verification.as_ref().unwrap().report;
+    assert!(report.is_clean(), "{}", report.describe());
+    out
+}
+
+#[test]
+fn parts_nested_closer_than_the_tool_are_never_cut_into() {
+    // Two parts 4.04 mm apart: a φ6 tool cannot pass between them, a φ3 can.
+    let pair = || drawing_of([part_at(0.0), part_at(34.04)].concat());
+    let out = profile_every_loop(pair(), 6.0, Profile2d::default());
+    let merged: Vec<&String> = out.warnings.iter().filter(|w| w.contains("apart")).collect();
+    assert_eq!(merged.len(), 1, "{:?}", out.warnings);
+    assert!(merged[0].contains("loops 0 and 3 are 4.040 mm apart near (32.020,"), "{}", merged[0]);
+    // One path around both outlines, holes inside each: five laps at the final depth.
+    let out = profile_every_loop(pair(), 3.0, Profile2d::default());
+    assert!(out.warnings.is_empty(), "{:?}", out.warnings);
+    // Lead arcs twice as wide as the gap still keep off the neighbour.
+    let leads = Profile2d { lead_radius: Some(5.0), ..Profile2d::default() };
+    let out = profile_every_loop(pair(), 3.0, leads);
+    assert!(out.gcode.contains("G2") || out.gcode.contains("G3"));
+    // A row of five parts 2 mm apart, with leave-stock, climb and conventional.
+    let row = || drawing_of((0..5).flat_map(|k| part_at(k as f64 * 32.0)).collect());
+    for direction in [Direction::Climb, Direction::Conventional] {
+        let out = profile_every_loop(row(), 6.0, Profile2d { leave_stock: 0.3, direction, ..Profile2d::default() });
+        assert_eq!(out.warnings.iter().filter(|w| w.contains("2.000 mm apart")).count(), 4, "{:?}", out.warnings);
+    }
+    // Only the first part picked: its path still keeps off its neighbour.
+    let out = profile_every_loop(pair(), 6.0, Profile2d { loops: vec![0, 1, 2], ..Profile2d::default() });
+    assert!(out.warnings.iter().any(|w| w.contains("loops 0 and 3")), "{:?}", out.warnings);
+}
+
+#[test]
+fn holes_near_outlines_and_parts_nested_in_cut_outs() {
+    // A hole 1 mm from the outline; a cut-out holding a small part 2 mm from its wall.
+    let loops = vec![
+        Loop::rect(DVec2::ZERO, DVec2::new(80.0, 50.0)),
+        Loop::rect(DVec2::new(1.0, 10.0), DVec2::new(15.0, 40.0)),
+        Loop::rect(DVec2::new(30.0, 10.0), DVec2::new(70.0, 40.0)),
+        Loop::circle(DVec2::new(50.0, 25.0), 13.0),
+    ];
+    for (diameter, merges) in [(1.0, false), (3.0, true), (6.0, true)] {
+        let out = profile_every_loop(drawing_of(loops.clone()), diameter, Profile2d { lead_radius: Some(4.0), ..Profile2d::default() });
+        let named = out.warnings.iter().any(|w| w.contains("loops 2 and 3 are 2.000 mm apart"));
+        assert_eq!(named, merges, "φ{diameter}: {:?}", out.warnings);
+    }
+}
+
+/// A DXF of LINE, ARC, CIRCLE and ELLIPSE entities (`$INSUNITS` = `units`).
+fn dxf(units: u32, entities: &[String]) -> Drawing {
+    let text = format!("0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n{units}\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n{}0\nENDSEC\n0\nEOF\n", entities.concat());
+    read_drawing(text.as_bytes(), Some("t.dxf"), &Tolerances::default()).unwrap()
+}
+
+fn line(a: DVec2, b: DVec2) -> String {
+    format!("0\nLINE\n8\n0\n10\n{}\n20\n{}\n11\n{}\n21\n{}\n", a.x, a.y, b.x, b.y)
+}
+
+fn arc(c: DVec2, r: f64, from: f64, to: f64) -> String {
+    format!("0\nARC\n8\n0\n10\n{}\n20\n{}\n40\n{r}\n50\n{from}\n51\n{to}\n", c.x, c.y)
+}
+
+#[test]
+fn large_inch_arcs_keep_the_radius_in_both_units() {
+    // A 40° sector of radius 9.5 in with a 0.3 in hole, drawn in inches.
+    let (r, sweep) = (9.5, 40f64.to_radians());
+    let tip = DVec2::new(r * sweep.cos(), r * sweep.sin());
+    let circle = "0\nCIRCLE\n8\n0\n10\n5\n20\n1.5\n40\n0.3\n".to_string();
+    let d = dxf(1, &[line(DVec2::ZERO, DVec2::new(r, 0.0)), arc(DVec2::ZERO, r, 0.0, 40.0), line(tip, DVec2::ZERO), circle]);
+    // The same drawing built here from its closed form, in mm.
+    let k = 25.4;
+    let exact = Shape::new(vec![
+        Loop {
+            vertices: vec![
+                swarf::profile::Vertex { p: DVec2::ZERO, bulge: 0.0 },
+                swarf::profile::Vertex { p: DVec2::new(r * k, 0.0), bulge: (sweep / 4.0).tan() },
+                swarf::profile::Vertex { p: tip * k, bulge: 0.0 },
+            ],
+        },
+        Loop::circle(DVec2::new(5.0, 1.5) * k, 0.3 * k),
+    ]);
+    for units in [swarf::mesh::placement::Units::Mm, swarf::mesh::placement::Units::Inch] {
+        let mut job = job_with(vec![Operation::Profile2d(Profile2d::default())], 6.0);
+        job.drawing.origin = swarf::job::DrawingOrigin::Keep;
+        job.post.units = units;
+        job.simulation.cell = Some(0.25);
+        let out = job::run(&job, d.clone(), &mut Progress::none()).unwrap();
+        let (gap, at) = approach_at(&out, &exact);
+        assert!(gap >= 3.0 - 1e-6, "{units:?}: {gap} at {at}");
+        assert!(out.verification.as_ref().unwrap().report.is_clean());
+    }
+}
+
+#[test]
+fn ellipses_keep_the_radius_within_the_arc_fit() {
+    // An elliptical plate (semi-axes 40 and 16) with an elliptical hole, and a half ellipse
+    // closed by a line; in mm.
+    let ellipse = |c: DVec2, major: DVec2, ratio: f64, from: f64, to: f64| {
+        format!("0\nELLIPSE\n8\n0\n10\n{}\n20\n{}\n11\n{}\n21\n{}\n40\n{ratio}\n41\n{from}\n42\n{to}\n", c.x, c.y, major.x, major.y)
+    };
+    let (c1, c2) = (DVec2::new(100.0, 100.0), DVec2::new(200.0, 100.0));
+    let d = dxf(
+        4,
+        &[
+            ellipse(c1, DVec2::new(40.0, 0.0), 0.4, 0.0, 2.0 * PI),
+            ellipse(c1, DVec2::new(6.0, 8.0), 0.5, 0.0, 2.0 * PI),
+            ellipse(c2, DVec2::new(0.0, 40.0), 0.3, 0.0, PI),
+            line(c2 + DVec2::new(0.0, 40.0), c2 - DVec2::new(0.0, 40.0)),
+        ],
+    );
+    // The curves as 20,000-sided polygons: closer to them than 2e-6 mm.
+    let polygon = |c: DVec2, major: DVec2, ratio: f64, from: f64, to: f64, closed: bool| {
+        let n = 20_000;
+        let mut pts: Vec<DVec2> = (0..=n)
+            .map(|i| {
+                let t = from + (to - from) * i as f64 / n as f64;
+                c + major * t.cos() + major.perp() * ratio * t.sin()
+            })
+            .collect();
+        if closed {
+            pts.pop();
+        }
+        Loop::polygon(&pts)
+    };
+    let exact = Shape::new(vec![
+        polygon(c1, DVec2::new(40.0, 0.0), 0.4, 0.0, 2.0 * PI, true),
+        polygon(c1, DVec2::new(6.0, 8.0), 0.5, 0.0, 2.0 * PI, true),
+        polygon(c2, DVec2::new(0.0, 40.0), 0.3, 0.0, PI, false),
+    ]);
+    let mut job = job_with(vec![Operation::Profile2d(Profile2d::default())], 6.0);
+    job.drawing.origin = swarf::job::DrawingOrigin::Keep;
+    job.simulation.cell = Some(0.25);
+    let out = job::run(&job, d, &mut Progress::none()).unwrap();
+    let (gap, at) = approach_at(&out, &exact);
+    let fit = Tolerances::default().arc_fit;
+    assert!(gap >= 3.0 - fit - 2e-6, "{gap} at {at}");
+    assert!(out.verification.as_ref().unwrap().report.is_clean());
+}
+
+#[test]
+fn a_fanuc_program_with_a_problem_keeps_its_tape_mark_first() {
+    // Rapids below the sheet's top: the simulation finds them going through stock.
+    let mut job = job_with(vec![Operation::Profile2d(Profile2d::default())], 3.0);
+    job.stock.clearance = -1.0;
+    job.post.dialect = Dialect::Fanuc;
+    let out = job::run(&job, drawing_of(part_at(0.0)), &mut Progress::none()).unwrap();
+    assert!(out.problem.is_some(), "{:?}", out.problem);
+    let marked = out.gcode_marked();
+    assert!(marked.starts_with("%\n(WARNING: NOT SAFE TO RUN"), "{}", &marked[..80]);
+    assert!(marked.trim_end().ends_with('%'));
 }

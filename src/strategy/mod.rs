@@ -6,3 +6,4 @@ pub mod path2d;
 pub mod pocket2d;
 pub mod profile2d;
 pub mod region;
+pub mod walls;

@@ -8,11 +8,15 @@
 use serde::{Deserialize, Serialize};
 
 use super::path2d::{arc_lengths, does_not_fit, follow, point_at, start_nearest, Cursor, Heights};
+use super::walls::Walls;
 use crate::geom::segment::Segment;
 use crate::geom::{DVec2, Tolerances};
 use crate::offset::offset;
 use crate::profile::{Loop, Shape};
 use crate::toolpath::Move;
+
+/// Spacing of the points a lead arc is checked at (mm).
+const LEAD_SAMPLE: f64 = 0.005;
 
 /// Which side of a loop the tool runs on.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -113,45 +117,115 @@ pub struct Setup<'a> {
     pub tol: &'a Tolerances,
 }
 
-/// The moves of a profile around `loops` (oriented: outer counter-clockwise, holes clockwise),
-/// and warnings. Holes are cut first, so a part stays attached until its outline is cut. A
-/// hole the tool does not fit in is left (with a warning saying where); when nothing at all
-/// can be cut, that is an error.
-pub fn profile_moves(loops: &[Loop], op: &Profile2d, mut s: Setup) -> Result<(Vec<Move>, Vec<String>), String> {
+/// One closed tool-centre path to cut: where the part lies, whether it runs around the
+/// outside of material (tabs go there), and which points a lead arc may pass through.
+struct Lap<'a> {
+    path: Loop,
+    part_left: bool,
+    outside: bool,
+    clear: Box<dyn Fn(DVec2) -> bool + 'a>,
+}
+
+/// The moves of a profile around the loops `picked` (positions in `walls.shape`), and
+/// warnings. Every loop on the operation's layers is a wall: the paths are the drawing's
+/// material grown by the tool radius plus leave-stock as one shape ([`Walls::paths`]), so no
+/// path comes closer than that to any part, and where two parts stand closer than the tool's
+/// width one path runs around both and the gap is left, with a warning naming both loops and
+/// where. A side forced against the nesting (the outside of a hole, the inside of a part) is
+/// cut around that loop alone, as asked. Holes are cut first, so a part stays attached until
+/// its outline is cut. A hole the tool does not fit in is left (with a warning saying where);
+/// when nothing at all can be cut, that is an error.
+pub fn profile_moves(walls: &Walls, picked: &[usize], op: &Profile2d, mut s: Setup) -> Result<(Vec<Move>, Vec<String>), String> {
     let mut warnings = Vec::new();
     let r = s.tool_radius;
     let d = r + op.leave_stock;
     let z_final = s.top - s.depth;
     let angle = op.ramp_angle.clamp(0.1, 90.0).to_radians();
-    let mut order: Vec<&Loop> = loops.iter().filter(|l| !l.is_ccw()).collect();
-    order.extend(loops.iter().filter(|l| l.is_ccw()));
-    let mut out = Vec::new();
-    for part_loop in order {
+    let n = walls.shape.loops.len();
+    let mut grouped = vec![false; n];
+    let mut alone = Vec::new();
+    for &k in picked {
+        let nested_outside = walls.shape.loops[k].is_ccw();
         let outside = match op.side {
-            Side::Auto => part_loop.is_ccw(),
+            Side::Auto => nested_outside,
             Side::Outside => true,
             Side::Inside => false,
         };
-        let region = Shape::from_oriented(vec![part_loop.counter_clockwise()]);
+        if outside == nested_outside {
+            grouped[k] = true;
+        } else {
+            alone.push((k, outside));
+        }
+    }
+    let mut laps: Vec<Lap> = Vec::new();
+    if grouped.iter().any(|&g| g) {
+        let mut served = vec![false; n];
+        let mut named = std::collections::HashSet::new();
+        for wp in walls.paths(d, s.tol) {
+            if !wp.along.iter().any(|&k| grouped[k]) {
+                continue;
+            }
+            for &k in &wp.along {
+                served[k] = true;
+            }
+            for (i, &a) in wp.along.iter().enumerate() {
+                for &b in &wp.along[i + 1..] {
+                    // A merged group's outer path and the paths of the waste it encloses run
+                    // along the same loops: each pair is named once.
+                    if !named.insert((a, b)) {
+                        continue;
+                    }
+                    // A path can run along loops that meet only through a third one.
+                    let (gap, at) = walls.closest_approach(a, b);
+                    if gap >= 2.0 * d {
+                        continue;
+                    }
+                    warnings.push(format!(
+                        "loops {} and {} are {gap:.3} mm apart near ({:.3}, {:.3}), less than the φ{:.3} tool needs ({:.3} mm); one path runs around both and the gap between them is left uncut",
+                        walls.index[a],
+                        walls.index[b],
+                        at.x,
+                        at.y,
+                        2.0 * r,
+                        2.0 * d
+                    ));
+                }
+            }
+            let outside = wp.path.is_ccw();
+            laps.push(Lap { path: wp.path, part_left: true, outside, clear: Box::new(move |q| walls.clear(q, d)) });
+        }
+        for k in (0..n).filter(|&k| grouped[k] && !served[k]) {
+            warnings.push(format!("{}; it is not cut", does_not_fit(r, op.leave_stock, &format!("loop {}", walls.index[k]), &walls.shape.loops[k].bounds())));
+        }
+    }
+    for (k, outside) in alone {
+        let region = Shape::from_oriented(vec![walls.shape.loops[k].counter_clockwise()]);
         let paths = offset(&region, if outside { d } else { -d }, s.tol);
         if paths.is_empty() {
-            warnings.push(format!("{}; it is not cut", does_not_fit(r, op.leave_stock, "the loop", &region.bounds())));
-            continue;
+            warnings.push(format!("{}; it is not cut", does_not_fit(r, op.leave_stock, &format!("loop {}", walls.index[k]), &region.bounds())));
         }
-        for path in &paths.loops {
-            // The part lies left of an outside offset's loops and right of an inside one's;
-            // climb milling keeps it on the right.
-            let part_left = outside;
-            let climb = op.direction == Direction::Climb;
-            let travel = if part_left == climb { path.reversed() } else { path.clone() };
-            let waste_left = climb;
-            let longest = travel.segments().max_by(|a, b| a.length().total_cmp(&b.length())).unwrap();
-            let segs = start_nearest(&travel, longest.midpoint());
-            let tabbed = outside && (op.tabs.count > 0 || op.tabs.spacing.is_some_and(|x| x > 0.0));
-            let lead = op.lead_radius.unwrap_or(r).max(0.0);
-            cut_loop(&segs, &region, outside, waste_left, lead, d, tabbed.then_some(&op.tabs), op.stepdown, angle, z_final, &mut s, &mut out);
-            s.cursor.moved(&out);
+        let region = std::rc::Rc::new(region);
+        for path in paths.loops {
+            let region = region.clone();
+            let clear = move |q: DVec2| region.distance_to(q) >= d - 1e-6 && region.contains(q) != outside;
+            // An outward offset has the part on its left, an inward one on its right.
+            laps.push(Lap { path, part_left: outside, outside, clear: Box::new(clear) });
         }
+    }
+    // Holes first.
+    laps.sort_by_key(|l| l.outside);
+    let mut out = Vec::new();
+    for lap in &laps {
+        // Climb milling keeps the part on the tool's right.
+        let climb = op.direction == Direction::Climb;
+        let travel = if lap.part_left == climb { lap.path.reversed() } else { lap.path.clone() };
+        let waste_left = climb;
+        let longest = travel.segments().max_by(|a, b| a.length().total_cmp(&b.length())).unwrap();
+        let segs = start_nearest(&travel, longest.midpoint());
+        let tabbed = lap.outside && (op.tabs.count > 0 || op.tabs.spacing.is_some_and(|x| x > 0.0));
+        let lead = op.lead_radius.unwrap_or(r).max(0.0);
+        cut_loop(&segs, &*lap.clear, waste_left, lead, tabbed.then_some(&op.tabs), op.stepdown, angle, z_final, &mut s, &mut out);
+        s.cursor.moved(&out);
     }
     if out.is_empty() {
         return Err(warnings.join("; "));
@@ -162,11 +236,9 @@ pub fn profile_moves(loops: &[Loop], op: &Profile2d, mut s: Setup) -> Result<(Ve
 #[allow(clippy::too_many_arguments)]
 fn cut_loop(
     segs: &[Segment],
-    region: &Shape,
-    outside: bool,
+    clear: &dyn Fn(DVec2) -> bool,
     waste_left: bool,
     lead: f64,
-    d: f64,
     tabs: Option<&Tabs>,
     stepdown: f64,
     angle: f64,
@@ -205,7 +277,7 @@ fn cut_loop(
     let seg_end = segs[i_end];
     let t_end = seg_end.tangent_at(seg_end.closest(end_point).1);
     let z_end = heights.at(end);
-    let lead_in = fitting_lead(start, t_in, waste_left, lead, region, outside, d, true);
+    let lead_in = fitting_lead(start, t_in, waste_left, lead, clear, true);
     match lead_in {
         Some((l_start, arc)) => {
             s.cursor.reposition(l_start.extend(s.top), out);
@@ -214,7 +286,7 @@ fn cut_loop(
         None => s.cursor.reposition(start.extend(s.top), out),
     }
     follow(segs, 0.0, end, &heights, s.feed, out);
-    if let Some((l_end, arc)) = fitting_lead(end_point, t_end, waste_left, lead, region, outside, d, false) {
+    if let Some((l_end, arc)) = fitting_lead(end_point, t_end, waste_left, lead, clear, false) {
         out.push(Move::Arc { to: l_end.extend(z_end), center: arc.0, clockwise: arc.1, feed: s.feed });
     }
 }
@@ -240,19 +312,18 @@ fn tab_heights(tabs: &Tabs, total: f64, end: f64, z_final: f64, r: f64) -> Heigh
 
 /// A quarter-circle lead of radius `rho` tangent to the path at `p` (direction `t`), on the
 /// waste side: returns the lead's far end and its (centre, clockwise). Halved until every
-/// point of it keeps the distance `d` from the part, and dropped below a tenth of a mm.
-#[allow(clippy::too_many_arguments)]
-fn fitting_lead(p: DVec2, t: DVec2, waste_left: bool, rho: f64, region: &Shape, outside: bool, d: f64, into: bool) -> Option<(DVec2, (DVec2, bool))> {
+/// point of it is `clear`, and dropped below a tenth of a mm. Points 5 µm apart along the arc
+/// stand for all of it: a corner of material between two of them can come closer than the
+/// samples by at most (0.005 mm)² / (8 × its distance), a few millionths of a millimetre.
+fn fitting_lead(p: DVec2, t: DVec2, waste_left: bool, rho: f64, clear: &dyn Fn(DVec2) -> bool, into: bool) -> Option<(DVec2, (DVec2, bool))> {
     let n = if waste_left { t.perp() } else { -t.perp() };
     let mut rho = rho;
     while rho >= 0.1 {
         let c = p + n * rho;
         let far = if into { c - t * rho } else { c + t * rho };
         let sweep = (p - c).angle_to(far - c); // a quarter turn either way
-        let arc_fits = (0..=16).all(|k| {
-            let q = c + DVec2::from_angle(sweep * k as f64 / 16.0).rotate(p - c);
-            region.distance_to(q) >= d - 1e-6 && region.contains(q) != outside
-        });
+        let samples = (rho * std::f64::consts::FRAC_PI_2 / LEAD_SAMPLE).ceil().clamp(16.0, 4096.0) as usize;
+        let arc_fits = (1..=samples).all(|k| clear(c + DVec2::from_angle(sweep * k as f64 / samples as f64).rotate(p - c)));
         if arc_fits {
             // The arc turns towards the waste side going into the path: counter-clockwise when
             // the waste is on the left.
@@ -262,4 +333,3 @@ fn fitting_lead(p: DVec2, t: DVec2, waste_left: bool, rho: f64, region: &Shape, 
     }
     None
 }
-

@@ -1,0 +1,158 @@
+//! A drawing as walls: every loop on an operation's layers bounds material that every cut of
+//! that operation keeps its distance from, not only the loop being cut. Parts nested closer
+//! than the tool on one sheet, an island part in a neighbour's cut-out, a lead arc swinging
+//! towards the next part: all are judged against the drawing as one shape.
+//!
+//! The tool-centre paths of a profile are the boundary of that shape grown by the tool radius
+//! plus leave-stock, offset as one shape by the seed 003 offsetter (its trimming step removes
+//! whatever comes closer to *any* loop than the distance, §2-3). Where two parts stand closer
+//! than the tool's width their grown regions merge, so one path runs around both and the gap
+//! between them is left uncut; [`Walls::paths`] says which drawn loops each path runs along,
+//! so that merge can be named.
+
+use crate::geom::index::RectIndex;
+use crate::geom::segment::{Rect, Segment};
+use crate::geom::{DVec2, Tolerances};
+use crate::offset::offset;
+use crate::profile::{Loop, Shape};
+
+/// The material of a drawing: its loops by nesting (outer loops counter-clockwise around
+/// material, holes clockwise), each with its index in the drawing, and an index of their
+/// segments for distance queries.
+pub struct Walls {
+    pub shape: Shape,
+    /// The drawing's index of each loop of `shape`.
+    pub index: Vec<usize>,
+    segments: Vec<(Segment, usize)>,
+    tree: RectIndex,
+    bounds: Vec<Rect>,
+}
+
+/// A tool-centre path around the material and the loops (positions in [`Walls::shape`]) it
+/// runs along.
+pub struct WallPath {
+    pub path: Loop,
+    pub along: Vec<usize>,
+}
+
+impl Walls {
+    pub fn new(shape: Shape, index: Vec<usize>) -> Walls {
+        let segments: Vec<(Segment, usize)> = shape.loops.iter().enumerate().flat_map(|(k, l)| l.segments().map(move |s| (s, k))).collect();
+        let rects: Vec<Rect> = segments.iter().map(|(s, _)| s.bounds()).collect();
+        let bounds = shape.loops.iter().map(Loop::bounds).collect();
+        Walls { shape, index, tree: RectIndex::new(&rects), segments, bounds }
+    }
+
+    /// The loop nearest `q` among those within `reach`, and its distance.
+    pub fn nearest(&self, q: DVec2, reach: f64) -> Option<(usize, f64)> {
+        let mut best: Option<(usize, f64)> = None;
+        self.tree.any_within(q, reach, |i| {
+            let (s, k) = &self.segments[i];
+            let d = s.distance_to(q);
+            if d <= reach && best.is_none_or(|b| d < b.1) {
+                best = Some((*k, d));
+            }
+            false
+        });
+        best
+    }
+
+    /// Whether a point lies in material (even-odd over the loops around it).
+    pub fn in_material(&self, q: DVec2) -> bool {
+        let around = (0..self.shape.loops.len()).filter(|&k| {
+            let b = &self.bounds[k];
+            q.x >= b.min.x && q.x <= b.max.x && q.y >= b.min.y && q.y <= b.max.y && self.shape.loops[k].contains(q)
+        });
+        around.count() % 2 == 1
+    }
+
+    /// Whether a tool centre at `q` keeps at least `distance` (less a micrometre's thousandth)
+    /// out of material.
+    pub fn clear(&self, q: DVec2, distance: f64) -> bool {
+        let reach = distance - 1e-6;
+        !self.in_material(q) && !self.tree.any_within(q, reach, |i| self.segments[i].0.distance_to(q) < reach)
+    }
+
+    /// The boundary of the material grown by `distance`, each loop with the drawn loops it runs
+    /// along (every piece of an offset is at the distance from the entity it came from, so a
+    /// piece's midpoint names its loop).
+    pub fn paths(&self, distance: f64, tol: &Tolerances) -> Vec<WallPath> {
+        let grown = offset(&self.shape, distance, tol);
+        let reach = distance.abs() * (1.0 + 1e-6) + 1e-6;
+        grown
+            .loops
+            .into_iter()
+            .map(|path| {
+                let mut along: Vec<usize> = path.segments().filter_map(|s| self.nearest(s.midpoint(), reach).map(|n| n.0)).collect();
+                along.sort_unstable();
+                along.dedup();
+                WallPath { path, along }
+            })
+            .collect()
+    }
+
+    /// Where loops `a` and `b` come closest: the gap and a point midway across it (sampled
+    /// along `a` at a fiftieth of the gap, at most 20,000 points).
+    pub fn closest_approach(&self, a: usize, b: usize) -> (f64, DVec2) {
+        let (la, lb) = (&self.shape.loops[a], &self.shape.loops[b]);
+        let coarse = (la.length() / 20_000.0).max(1e-3);
+        let mut best = (f64::INFINITY, DVec2::ZERO);
+        closest_on(la.segments(), lb, coarse, &mut best);
+        // Finer on the segments of `a` near the best point found.
+        let (gap, at) = best;
+        closest_on(la.segments().filter(|s| s.distance_to(at) <= gap + 2.0 * coarse), lb, (gap / 50.0).max(1e-4), &mut best);
+        best
+    }
+}
+
+/// The closest approach of points `step` apart along `segs` to the loop `to`, if closer than
+/// `best`.
+fn closest_on(segs: impl Iterator<Item = Segment>, to: &Loop, step: f64, best: &mut (f64, DVec2)) {
+    for s in segs {
+        let n = (s.length() / step).ceil().clamp(1.0, 20_000.0) as usize;
+        for i in 0..=n {
+            let p = s.point_at(i as f64 / n as f64);
+            for t in to.segments() {
+                let q = t.closest(p).0;
+                let d = p.distance(q);
+                if d < best.0 {
+                    *best = (d, (p + q) * 0.5);
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn two_squares(gap: f64) -> Walls {
+        let a = Loop::rect(DVec2::ZERO, DVec2::splat(20.0));
+        let b = Loop::rect(DVec2::new(20.0 + gap, 0.0), DVec2::new(40.0 + gap, 20.0));
+        Walls::new(Shape::new(vec![a, b]), vec![0, 1])
+    }
+
+    #[test]
+    fn parts_closer_than_the_tool_share_one_path() {
+        let w = two_squares(4.04);
+        let apart = w.paths(1.5, &Tolerances::default());
+        assert_eq!(apart.len(), 2);
+        assert!(apart.iter().all(|p| p.along.len() == 1));
+        let merged = w.paths(3.0, &Tolerances::default());
+        assert_eq!(merged.len(), 1);
+        assert_eq!(merged[0].along, vec![0, 1]);
+        let (gap, at) = w.closest_approach(0, 1);
+        assert!((gap - 4.04).abs() < 1e-9 && (at.x - 22.02).abs() < 1e-9, "{gap} at {at}");
+    }
+
+    #[test]
+    fn clear_means_out_of_material_by_the_distance() {
+        let w = two_squares(10.0);
+        assert!(!w.clear(DVec2::new(10.0, 10.0), 1.0));
+        assert!(w.clear(DVec2::new(25.0, 10.0), 4.9));
+        assert!(!w.clear(DVec2::new(25.0, 10.0), 5.1));
+        assert!(w.clear(DVec2::new(-3.0, -4.0), 4.9));
+        assert!(!w.in_material(DVec2::new(25.0, 10.0)) && w.in_material(DVec2::new(35.0, 10.0)));
+    }
+}
