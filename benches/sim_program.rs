@@ -9,9 +9,11 @@ use swarf::sim::bench::{die_case, sample_case};
 fn main() {
     let origin = std::time::Instant::now();
     let clock = || origin.elapsed().as_secs_f64();
-    let sample = sample_case();
+    let sample = sample_case(&clock);
+    println!("{}", sample.job_row("native"));
     println!("{}", sample.run(sample.cell_for(1e6), None, &clock).row("native"));
-    let die = die_case();
+    let die = die_case(&clock);
+    println!("{}", die.job_row("native"));
     println!("{}", die.run(die.cell_for(1e6), None, &clock).row("native"));
     println!("{}", die.run(die.cell_for(1e6), Some(100_000), &clock).row("native"));
     if std::env::args().any(|a| a == "--die-fine") {

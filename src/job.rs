@@ -560,7 +560,7 @@ fn finish_raster(job: &Job, op: &FinishRaster, part: &Mesh, stock: &Aabb, cleara
     // The part's own heights, needed by the inverse offset and by the silhouette boundary.
     let cc = (op.builder == ClBuilder::InverseOffset || op.boundary == Boundary::Silhouette).then(|| cc_zmap(part, grid, floor, tol));
     let cc = || cc.as_ref().expect("built above for the uses that need it");
-    if !progress.stage(&format!("{}: CL z-map", op.name), start, span * 0.9) {
+    if !progress.stage(&format!("{}: CL z-map", op.name), start, span * 0.2) {
         return Err(Error::Cancelled);
     }
     // Heights for the path come from the cutter grown by the program's resolution
@@ -573,7 +573,7 @@ fn finish_raster(job: &Job, op: &FinishRaster, part: &Mesh, stock: &Aabb, cleara
         ClBuilder::Exact => drop.field(part, grid, floor, tol, progress)?,
         ClBuilder::InverseOffset => cl_inverse_offset(cc(), &profile, progress)?,
     };
-    if !progress.stage(&format!("{}: passes", op.name), start + span * 0.9, span * 0.1) {
+    if !progress.stage(&format!("{}: passes", op.name), start + span * 0.2, span * 0.8) {
         return Err(Error::Cancelled);
     }
     let margin = op.margin.unwrap_or(profile.radius);
@@ -584,7 +584,7 @@ fn finish_raster(job: &Job, op: &FinishRaster, part: &Mesh, stock: &Aabb, cleara
     let skip_floor = (op.boundary == Boundary::Silhouette && margin <= profile.radius).then_some(floor);
     let passes = RasterPasses { angle_deg: op.angle, stepover: op.stepover, pattern: op.pattern, allowance: op.allowance, tolerance: tol.chordal, skip_floor };
     let cl = ClSurface::new(cl, drop, floor, op.builder == ClBuilder::Exact, tol.interpolation);
-    let runs = raster_runs(&cl, &region, &passes);
+    let runs = raster_runs(&cl, &region, &passes, progress).ok_or(Error::Cancelled)?;
     let settings = LinkSettings { clearance_z, stay_down_max: op.stay_down_max.unwrap_or(2.0 * op.stepover), stock_top: Some(stock.max.z), ..LinkSettings::default() };
     let floor_surface = Floor { cl: &cl, allowance: op.allowance, region: &region };
     let (path_start, moves) = link_runs(&runs, &floor_surface, &settings, Feeds { cut: tool.feed_rate, plunge: tool.plunge_rate }, tol);

@@ -12,8 +12,17 @@ pub fn threads() -> usize {
 
 /// `(0..count).map(f)`, in order, on every core.
 pub fn map<U: Send>(count: usize, f: impl Fn(usize) -> U + Sync) -> Vec<U> {
+    map_from(count, 1024, f)
+}
+
+/// [`map`] for items that each take long (a raster pass): split from two items on.
+pub fn map_heavy<U: Send>(count: usize, f: impl Fn(usize) -> U + Sync) -> Vec<U> {
+    map_from(count, 2, f)
+}
+
+fn map_from<U: Send>(count: usize, least: usize, f: impl Fn(usize) -> U + Sync) -> Vec<U> {
     let threads = threads().min(count.max(1));
-    if threads <= 1 || count < 1024 {
+    if threads <= 1 || count < least {
         return (0..count).map(f).collect();
     }
     let chunk = count.div_ceil(threads);

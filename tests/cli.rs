@@ -174,3 +174,24 @@ fn a_truncated_obj_says_it_ended_early() {
     assert!(!program.exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn output_into_a_closed_pipe_ends_quietly() {
+    // 3,000 loops list as 3,000 lines, more than a pipe holds; the reader stops after one.
+    let dir = temp("pipe");
+    let circles: String = (0..3000).map(|k| format!(r#"<circle cx="{}" cy="{}" r="1"/>"#, (k % 60) * 3, (k / 60) * 3)).collect();
+    let svg = dir.join("many.svg");
+    std::fs::write(&svg, format!(r#"<svg xmlns="http://www.w3.org/2000/svg" width="200mm" height="200mm" viewBox="0 0 200 200">{circles}</svg>"#)).unwrap();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_swarf"))
+        .args(["drawing", svg.to_str().unwrap()])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = [0u8; 16];
+    std::io::Read::read_exact(child.stdout.as_mut().unwrap(), &mut first).unwrap();
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+}

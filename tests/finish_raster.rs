@@ -55,7 +55,7 @@ fn runs_never_dip_below_the_cl_surface_and_stay_within_tolerance() {
     let cl = demo_cl(0.5, &cutter);
     let region = Region::Rect { min: cl.field.origin, max: cl.field.max_extent() };
     for (angle, allowance) in [(0.0, 0.0), (90.0, 0.3), (33.0, 0.0), (-71.5, 0.5)] {
-        let runs = raster_runs(&cl, &region, &passes(angle, 1.5, allowance));
+        let runs = raster_runs(&cl, &region, &passes(angle, 1.5, allowance), &mut Progress::none()).unwrap();
         assert!(runs.len() > 20);
         for run in &runs {
             let gouge = worst_gouge(&cl, run, allowance);
@@ -71,7 +71,7 @@ fn runs_cover_the_region_at_the_stepover() {
     let cutter = Cutter::ball(6.0);
     let cl = demo_cl(0.5, &cutter);
     let (min, max) = (cl.field.origin, cl.field.max_extent());
-    let runs = raster_runs(&cl, &Region::Rect { min, max }, &passes(0.0, 2.0, 0.0));
+    let runs = raster_runs(&cl, &Region::Rect { min, max }, &passes(0.0, 2.0, 0.0), &mut Progress::none()).unwrap();
     let mut ys: Vec<f64> = runs.iter().map(|r| r[0].y).collect();
     ys.dedup();
     assert_eq!(ys.first().copied(), Some(min.y));
@@ -206,7 +206,7 @@ proptest! {
     fn any_angle_and_stepover_stays_above(angle in -180.0f64..180.0, stepover in 0.7f64..6.0, allowance in 0.0f64..1.0) {
         let cl = demo_cl(0.8, &Cutter::bull_nose(6.0, 1.0));
         let region = Region::Rect { min: cl.field.origin + DVec2::splat(3.0), max: cl.field.max_extent() - DVec2::splat(3.0) };
-        for run in raster_runs(&cl, &region, &passes(angle, stepover, allowance)) {
+        for run in raster_runs(&cl, &region, &passes(angle, stepover, allowance), &mut Progress::none()).unwrap() {
             prop_assert!(worst_gouge(&cl, &run, allowance) <= CHORDAL);
             prop_assert!(run.iter().all(|p| region.contains(p.truncate())));
         }

@@ -101,7 +101,7 @@ fn rough_part(seed: u64) -> Mesh {
 proptest! {
     #![proptest_config(ProptestConfig { cases: 12, .. ProptestConfig::default() })]
     #[test]
-    fn random_rough_parts_are_finished_gouge_free(seed in 1u64..1_000_000, angle in -90.0f64..90.0, stepover in 0.6f64..2.0, shape in 0usize..5, grid in prop::sample::select(vec![0.25, 0.5, 1.0])) {
+    fn random_rough_parts_are_finished_gouge_free(seed in 1u64..1_000_000, angle in -90.0f64..90.0, stepover in 0.6f64..2.0, shape in 0usize..5, grid in prop::sample::select(vec![0.25, 0.5, 1.0, 2.0])) {
         let part = rough_part(seed);
         let cutter = cutters()[shape].clone();
         let out = finish(&part, &cutter, grid, stepover, angle);

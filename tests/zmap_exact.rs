@@ -8,6 +8,7 @@ use swarf::cutter::{Cutter, Profile};
 use swarf::geom::{DVec2, DVec3, Tolerances};
 use swarf::mesh::Mesh;
 use swarf::progress::Progress;
+use swarf::zmap::drop::PointDrop;
 use swarf::zmap::{cc::cc_zmap, cl_exact::cl_exact, cl_exact::cl_exact_at, cl_inverse::cl_inverse_offset, Grid, HeightField};
 
 const EXACT: f64 = 1e-6;
@@ -328,4 +329,48 @@ fn nearly_flat_ridges_and_valleys_every_node_exact_and_ordered() {
             }
         }
     }
+}
+
+/// Issue 10: on every shared mesh, every node of the exact z-map against the brute-force drop,
+/// and ball <= bull nose <= flat end at every node, for φ6 and φ10 with several corner radii
+/// (grids of about 2,500 nodes over each part).
+#[test]
+fn every_shared_mesh_every_node_exact_and_ordered() {
+    let Some(dir) = shared_data("meshes") else { return };
+    let tol = Tolerances::DEFAULT;
+    let mut files: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().path()).collect();
+    files.sort();
+    let mut meshes = 0;
+    for path in files {
+        let name = path.file_name().unwrap().to_string_lossy().to_string();
+        let Ok(part) = swarf::mesh::import::read_mesh_auto(&std::fs::read(&path).unwrap(), Some(&name), &tol) else { continue };
+        meshes += 1;
+        let started = std::time::Instant::now();
+        let b = part.bounds();
+        let (min, max) = (b.min.truncate() - 2.0, b.max.truncate() + 2.0);
+        let size = max - min;
+        let spacing = (size.x * size.y / 2500.0).sqrt();
+        for d in [6.0, 10.0] {
+            let family = [Cutter::ball(d), Cutter::bull_nose(d, d / 4.0), Cutter::bull_nose(d, d / 6.0), Cutter::flat(d)];
+            let fields: Vec<HeightField> = family.iter().map(|c| exact(&part, c, min, max, spacing)).collect();
+            for (cutter, field) in family.iter().zip(&fields) {
+                // The brute force over every triangle; on the larger meshes over the triangles
+                // within the cutter's reach (PointDrop, equal to the brute force in
+                // tests/gouge_free.rs), which is the same drop without the far ones.
+                if part.faces.len() <= 2000 {
+                    check(field, min, max, EXACT, |c| cl_exact_at(&part, &cutter.profile(), c, &tol).unwrap_or(FLOOR).max(FLOOR));
+                } else {
+                    let drop = PointDrop::new(&part, &cutter.profile(), &tol);
+                    check(field, min, max, EXACT, |c| drop.at(c, FLOOR));
+                }
+            }
+            for pair in fields.windows(2) {
+                for (k, (lower, upper)) in pair[0].z.iter().zip(&pair[1].z).enumerate() {
+                    assert!(lower <= &(upper + EXACT), "{name}, φ{d}: node {k}: {lower} above {upper} for a blunter cutter");
+                }
+            }
+        }
+        eprintln!("{name}: {} triangles, {:.1} s", part.faces.len(), started.elapsed().as_secs_f64());
+    }
+    assert!(meshes >= 5, "only {meshes} shared meshes read");
 }

@@ -17,6 +17,8 @@ pub struct ProgramCase {
     pub part: Mesh,
     pub stock: Aabb,
     pub moves: Vec<ProgramMove>,
+    /// Making the program: CL z-map, passes, links and G-code, without simulation (s).
+    pub job_seconds: f64,
 }
 
 /// One timing.
@@ -43,29 +45,36 @@ impl ProgramFigures {
     }
 }
 
-fn case(name: &'static str, job: Job, part: Mesh) -> ProgramCase {
+fn case(name: &'static str, job: Job, part: Mesh, clock: &dyn Fn() -> f64) -> ProgramCase {
     let job = Job { simulation: Simulation { verify: false, cell: None }, ..job };
+    let start = clock();
     let out = job::run(&job, part, &mut Progress::none()).expect("the benchmark job runs");
-    ProgramCase { name, part: out.part, stock: out.stock, moves: out.moves }
+    let job_seconds = clock() - start;
+    ProgramCase { name, part: out.part, stock: out.stock, moves: out.moves, job_seconds }
 }
 
 /// The page's sample part with the default job (φ6 ball, stepover 0.5 mm).
-pub fn sample_case() -> ProgramCase {
-    case("sample part, φ6 ball, stepover 0.5", Job::default(), sample::demo_part())
+pub fn sample_case(clock: &dyn Fn() -> f64) -> ProgramCase {
+    case("sample part, φ6 ball, stepover 0.5", Job::default(), sample::demo_part(), clock)
 }
 
 /// Seed 001's die (about 500,000 triangles) finished with a φ10 ball, stepover 2 mm, on a 0.8 mm
 /// CL z-map: the foundation issue's benchmark job.
-pub fn die_case() -> ProgramCase {
+pub fn die_case(clock: &dyn Fn() -> f64) -> ProgramCase {
     let job = Job {
         tools: vec![Tool { cutter: Cutter::ball(10.0), ..Tool::default() }],
         operations: vec![Operation::FinishRaster(FinishRaster { grid: 0.8, stepover: 2.0, ..FinishRaster::default() })],
         ..Job::default()
     };
-    case("die, φ10 ball, stepover 2", job, sample::fuel_tank_die(580, 430))
+    case("die, φ10 ball, stepover 2", job, sample::fuel_tank_die(580, 430), clock)
 }
 
 impl ProgramCase {
+    /// What making the program took.
+    pub fn job_row(&self, platform: &str) -> String {
+        format!("{platform:<16} {:<34} job (CL z-map, passes, links, G-code): {:.3} s, {} moves", self.name, self.job_seconds, self.moves.len())
+    }
+
     /// Simulates and verifies the first `moves` moves (all when `None`) on cells of `cell` mm.
     pub fn run(&self, cell: f64, moves: Option<usize>, clock: &dyn Fn() -> f64) -> ProgramFigures {
         let moves = &self.moves[..moves.unwrap_or(self.moves.len()).min(self.moves.len())];

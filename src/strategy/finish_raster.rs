@@ -3,9 +3,10 @@
 //!
 //! Steps, in order:
 //! 1. lay parallel passes at `angle` and `stepover` across the region's bounds;
-//! 2. follow the exact CL surface along each pass ([`ClSurface::along`]: samples at the grid's
-//!    lines and diagonals, subdivided until the surface between two samples stays within the
-//!    tolerance of the chord), and split it where it leaves the region;
+//! 2. follow the exact CL surface along each pass ([`ClSurface::along`]: even pieces no longer
+//!    than the grid spacing (half for cutters other than balls), probed at midpoints and quarters and subdivided until the surface
+//!    between two samples stays within the tolerance of the chord), and split it where it
+//!    leaves the region; passes are independent, so they run on every core;
 //! 3. lift every point by the allowance and reduce within the chordal tolerance, never below;
 //! 4. order the runs (zigzag or one way); linking is left to [`crate::toolpath::link`].
 
@@ -13,6 +14,7 @@ use serde::{Deserialize, Serialize};
 
 use super::region::Region;
 use crate::geom::{DVec2, DVec3};
+use crate::progress::Progress;
 use crate::toolpath::reduce::reduce;
 use crate::zmap::surface::{point_at, ClSurface};
 
@@ -46,8 +48,9 @@ pub struct RasterPasses {
     pub skip_floor: Option<f64>,
 }
 
-/// The cutting runs, in machining order, each a polyline of tip positions.
-pub fn raster_runs(cl: &ClSurface, region: &Region, passes: &RasterPasses) -> Vec<Vec<DVec3>> {
+/// The cutting runs, in machining order, each a polyline of tip positions; `None` when the
+/// user cancelled (checked, with a progress report, between batches of passes).
+pub fn raster_runs(cl: &ClSurface, region: &Region, passes: &RasterPasses, progress: &mut Progress) -> Option<Vec<Vec<DVec3>>> {
     let angle = passes.angle_deg.to_radians();
     let along = DVec2::new(angle.cos(), angle.sin());
     let across = along.perp();
@@ -58,12 +61,22 @@ pub fn raster_runs(cl: &ClSurface, region: &Region, passes: &RasterPasses) -> Ve
     let count = (((v1 - v0) / passes.stepover).ceil().max(0.0) as usize) + 1;
     let step = if count > 1 { (v1 - v0) / (count - 1) as f64 } else { 0.0 };
 
+    // The passes are independent: each core takes a share of a batch (in wasm, one after
+    // another).
+    let batch = 4 * crate::parallel::threads();
+    let mut cut = Vec::with_capacity(count);
+    for first in (0..count).step_by(batch) {
+        if !progress.report(first as f64 / count.max(1) as f64) {
+            return None;
+        }
+        let n = batch.min(count - first);
+        cut.extend(crate::parallel::map_heavy(n, |i| {
+            let base = across * (v0 + step * (first + i) as f64);
+            clip_to_rect(base + along * s0, base + along * s1, min, max).map(|(a, b)| cut_pass(cl, region, a, b, passes)).unwrap_or_default()
+        }));
+    }
     let mut runs = Vec::new();
-    for k in 0..count {
-        let v = v0 + step * k as f64;
-        let base = across * v;
-        let Some((a, b)) = clip_to_rect(base + along * s0, base + along * s1, min, max) else { continue };
-        let mut pass_runs = cut_pass(cl, region, a, b, passes);
+    for (k, mut pass_runs) in cut.into_iter().enumerate() {
         if passes.pattern == Pattern::Zigzag && k % 2 == 1 {
             pass_runs.reverse();
             for run in &mut pass_runs {
@@ -72,7 +85,7 @@ pub fn raster_runs(cl: &ClSurface, region: &Region, passes: &RasterPasses) -> Ve
         }
         runs.extend(pass_runs);
     }
-    runs
+    Some(runs)
 }
 
 fn extent(points: &[DVec2], dir: DVec2) -> (f64, f64) {
