@@ -14,6 +14,9 @@ pub enum Error {
     Program(#[from] crate::post::read::ReadError),
     #[error("invalid job: {0}")]
     Job(String),
+    /// A job file that does not read: the message names the field by its path.
+    #[error("invalid job file: {0}")]
+    Input(String),
     #[error("cancelled")]
     Cancelled,
     /// The job would make a program that cuts nothing.

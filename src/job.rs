@@ -161,6 +161,19 @@ pub enum Operation {
 }
 
 impl Operation {
+    /// Where an operation's JSON does not fit its kind's type: `field: what is wrong`.
+    fn field_error(value: &serde_json::Value) -> Option<String> {
+        fn at<T: serde::de::DeserializeOwned>(value: &serde_json::Value) -> Option<String> {
+            serde_path_to_error::deserialize::<_, T>(value).err().map(|e| format!("{}: {}", e.path(), e.inner()))
+        }
+        match value.get("kind")?.as_str()? {
+            "finishRaster" => at::<FinishRaster>(value),
+            "profile2d" => at::<Profile2d>(value),
+            "pocket2d" => at::<Pocket2d>(value),
+            _ => None,
+        }
+    }
+
     pub fn tool(&self) -> u32 {
         match self {
             Operation::FinishRaster(o) => o.tool,
@@ -316,10 +329,16 @@ impl Simulation {
     }
 }
 
+/// The job file format this swarf writes and reads (files from a newer one are refused).
+pub const JOB_VERSION: u32 = 1;
+
 /// Everything needed to turn a part into G-code.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, rename_all = "camelCase")]
 pub struct Job {
+    /// Version of the job file's format ([`JOB_VERSION`] when written by this swarf); a file
+    /// without one is read as version 1. Default value: the current version.
+    pub version: u32,
     /// Program title. Default value: "swarf job".
     pub name: String,
     pub part: PartSetup,
@@ -333,9 +352,38 @@ pub struct Job {
     pub tolerances: Tolerances,
 }
 
+/// The fields of `input` that reading it did not use: those absent from the job it made,
+/// written back (`canonical`), with a known field of the same object that differs only in case
+/// or by underscores, as a hint.
+fn unknown_fields(input: &serde_json::Value, canonical: &serde_json::Value, path: &str, out: &mut Vec<String>) {
+    use serde_json::Value;
+    match (input, canonical) {
+        (Value::Object(given), Value::Object(known)) => {
+            let squash = |k: &str| k.to_lowercase().replace(['_', '-'], "");
+            for (k, v) in given {
+                let here = if path.is_empty() { k.clone() } else { format!("{path}.{k}") };
+                match known.get(k) {
+                    Some(w) => unknown_fields(v, w, &here, out),
+                    None => match known.keys().find(|n| squash(n) == squash(k)) {
+                        Some(n) => out.push(format!("{here} (did you mean {n}?)")),
+                        None => out.push(here),
+                    },
+                }
+            }
+        }
+        (Value::Array(given), Value::Array(known)) => {
+            for (i, (v, w)) in given.iter().zip(known).enumerate() {
+                unknown_fields(v, w, &format!("{path}[{i}]"), out);
+            }
+        }
+        _ => {}
+    }
+}
+
 impl Default for Job {
     fn default() -> Self {
         Job {
+            version: JOB_VERSION,
             name: "swarf job".into(),
             part: PartSetup::default(),
             drawing: DrawingSetup::default(),
@@ -409,8 +457,38 @@ impl Job {
         Job { name: "swarf sheet job".into(), tools: vec![tool], operations: vec![Operation::Profile2d(profile)], ..Job::default() }
     }
 
+    /// Reads a job file. A value that does not fit is named by its path
+    /// (`operations[1].stepover: invalid type ...`), and so is every field this version does
+    /// not know (`operations[0].stepOver`, with the known field it may mean): a misspelt
+    /// setting must not fall back to its default unseen. A file without a `version` is read as
+    /// version 1; one from a newer swarf is refused.
     pub fn from_json(text: &str) -> Result<Job> {
-        serde_json::from_str(text).map_err(|e| Error::Job(e.to_string()))
+        let value: serde_json::Value = serde_json::from_str(text).map_err(|e| Error::Input(format!("the job file is not JSON: {e}")))?;
+        let job: Job = serde_path_to_error::deserialize(&value).map_err(|e| {
+            let path = e.path().to_string();
+            // An operation is read whole (its `kind` picks the type), so the path stops at it:
+            // read it again as its kind's type to name the field.
+            let op = value.get("operations").and_then(|ops| path.strip_prefix("operations[")?.strip_suffix(']')?.parse::<usize>().ok().and_then(|i| ops.get(i)));
+            match op.and_then(Operation::field_error) {
+                Some(inner) => Error::Input(format!("{path}.{inner}")),
+                None if path == "." => Error::Input(e.into_inner().to_string()),
+                None => Error::Input(format!("{path}: {}", e.into_inner())),
+            }
+        })?;
+        let version = value.get("version").map_or(Some(1), serde_json::Value::as_u64);
+        if version.is_none_or(|v| v > JOB_VERSION as u64) {
+            return Err(Error::Input(format!(
+                "the job file has version {}; this swarf reads versions up to {JOB_VERSION} (a newer swarf wrote it)",
+                value["version"]
+            )));
+        }
+        let canonical = serde_json::to_value(&job).map_err(|e| Error::Input(e.to_string()))?;
+        let mut unknown = Vec::new();
+        unknown_fields(&value, &canonical, "", &mut unknown);
+        if !unknown.is_empty() {
+            return Err(Error::Input(format!("unknown field{}: {}", if unknown.len() == 1 { "" } else { "s" }, unknown.join("; "))));
+        }
+        Ok(job)
     }
 
     pub fn tool(&self, number: u32) -> Result<&Tool> {

@@ -36,6 +36,13 @@ pub fn default_job() -> Result<JsValue, JsError> {
     to_js(&Job::default())
 }
 
+/// Reads a job file's text as `swarf run` does (every unknown or misspelt field named by its
+/// path, newer versions refused) and returns the job as the JSON object the page edits.
+#[wasm_bindgen(js_name = readJob)]
+pub fn read_job(text: &str) -> Result<JsValue, JsError> {
+    to_js(&Job::from_json(text).map_err(js_error)?)
+}
+
 /// The built-in sample part, as binary STL.
 #[wasm_bindgen(js_name = samplePart)]
 pub fn sample_part() -> Vec<u8> {

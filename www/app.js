@@ -192,7 +192,9 @@ function saveJob() {
 
 async function loadJob(file) {
   try {
-    const job = JSON.parse(await file.text());
+    // The core reads it as `swarf run` would: a misspelt or unknown field is named, not
+    // dropped.
+    const { job } = await call({ type: 'readJob', text: await file.text() });
     const op = (job.operations || []).find((o) => ['finishRaster', 'profile2d', 'pocket2d'].includes(o.kind));
     const tool = (job.tools || []).find((t) => !op || t.number === op.tool) || (job.tools || [])[0];
     if (!op || !tool) throw new Error('the job has no raster, profile or pocket operation with its tool');

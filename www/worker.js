@@ -1,5 +1,5 @@
 // Runs the wasm pipeline off the page's thread. Cancel = the page terminates this worker.
-import init, { defaultJob, samplePart, sampleDrawing, loadPart, loadDrawing, isDrawing, runJob } from './pkg/swarf.js';
+import init, { defaultJob, readJob, samplePart, sampleDrawing, loadPart, loadDrawing, isDrawing, runJob } from './pkg/swarf.js';
 
 const ready = init();
 // The last job's result stays here so the page can scrub through its simulation.
@@ -23,6 +23,8 @@ self.onmessage = async (event) => {
     await ready;
     if (type === 'hello') {
       self.postMessage({ id, ok: true, job: defaultJob(), sample: samplePart(), sampleDrawing: sampleDrawing() });
+    } else if (type === 'readJob') {
+      self.postMessage({ id, ok: true, job: readJob(event.data.text) });
     } else if (type === 'load') {
       if (isDrawing(event.data.bytes, event.data.name)) {
         self.postMessage({ id, ok: true, drawing: loadDrawing(event.data.bytes, event.data.name, event.data.drawingSetup) });

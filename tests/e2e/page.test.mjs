@@ -192,6 +192,16 @@ test('a saved job loads back and runs on the command line as in the page', async
   await page.waitForFunction(() => /Loaded the job/.test(document.getElementById('message').textContent));
   assert.equal(await page.inputValue('input[name=stepover]'), '2.5');
   assert.equal(await page.inputValue('select[name=dialect]'), 'grbl');
+  // A misspelt field is named, and the form keeps what it had.
+  const typo = path.join(dir, 'typo.json');
+  const bad = JSON.parse(fs.readFileSync(jobFile, 'utf8'));
+  bad.operations[0].stepOver = bad.operations[0].stepover;
+  delete bad.operations[0].stepover;
+  fs.writeFileSync(typo, JSON.stringify(bad));
+  await page.setInputFiles('#load-job', typo);
+  await page.waitForFunction(() => /stepOver/.test(document.getElementById('message').textContent));
+  assert.match(await page.textContent('#message'), /typo\.json: invalid job file: unknown field: operations\[0\]\.stepOver \(did you mean stepover\?\)/);
+  assert.equal(await page.inputValue('input[name=stepover]'), '2.5');
   // The page's G-code equals the CLI's for the same job and part.
   await page.click('#generate');
   await generated(page);

@@ -1,0 +1,78 @@
+//! Job files as a user writes them: every field that does not fit or is not known is named by
+//! its path, files without a version still load, and a file from a newer swarf is refused.
+
+use swarf::job::{self, Job, JOB_VERSION};
+use swarf::mesh::sample::demo_part;
+use swarf::progress::Progress;
+
+fn error_of(text: &str) -> String {
+    Job::from_json(text).map(|_| ()).unwrap_err().to_string()
+}
+
+fn default_json() -> serde_json::Value {
+    serde_json::to_value(Job::default()).unwrap()
+}
+
+#[test]
+fn every_job_the_core_writes_reads_back() {
+    for job in [Job::default(), Job::default_for_drawing()] {
+        let text = serde_json::to_string_pretty(&job).unwrap();
+        assert_eq!(Job::from_json(&text).unwrap(), job);
+        assert!(text.contains(&format!("\"version\": {JOB_VERSION}")));
+    }
+    // A file without a version (older swarf) and one with only a few fields.
+    let mut old = default_json();
+    old.as_object_mut().unwrap().remove("version");
+    assert_eq!(Job::from_json(&old.to_string()).unwrap(), Job::default());
+    let short = r#"{"tools":[{"number":2,"shape":"flat","diameter":4}],"operations":[{"kind":"finishRaster","tool":2,"stepover":0.8}]}"#;
+    let job = Job::from_json(short).unwrap();
+    assert_eq!(job.tools[0].cutter.radius(), 2.0);
+}
+
+#[test]
+fn a_misspelt_field_is_named_with_what_it_may_mean() {
+    let mut v = default_json();
+    let op = v["operations"][0].as_object_mut().unwrap();
+    let stepover = op.remove("stepover").unwrap();
+    op.insert("stepOver".into(), stepover);
+    v["tools"][0].as_object_mut().unwrap().insert("feedrate".into(), 900.into());
+    v.as_object_mut().unwrap().insert("colour".into(), "red".into());
+    let e = error_of(&v.to_string());
+    assert!(e.contains("operations[0].stepOver (did you mean stepover?)"), "{e}");
+    assert!(e.contains("tools[0].feedrate (did you mean feedRate?)"), "{e}");
+    assert!(e.contains("colour"), "{e}");
+}
+
+#[test]
+fn unknown_kinds_wrong_types_and_newer_versions_say_where() {
+    let mut v = default_json();
+    v["operations"].as_array_mut().unwrap().push(serde_json::json!({"kind": "roughZigzag", "tool": 1}));
+    let e = error_of(&v.to_string());
+    assert!(e.contains("operations[1]") && e.contains("roughZigzag"), "{e}");
+
+    let mut v = default_json();
+    v["operations"][0]["stepover"] = "fine".into();
+    let e = error_of(&v.to_string());
+    assert!(e.contains("operations[0].stepover") && e.contains("invalid type"), "{e}");
+
+    let mut v = default_json();
+    v["post"]["dialect"] = "heidenhain".into();
+    let e = error_of(&v.to_string());
+    assert!(e.contains("post.dialect") && e.contains("heidenhain"), "{e}");
+
+    let mut v = default_json();
+    v["version"] = 99.into();
+    let e = error_of(&v.to_string());
+    assert!(e.contains("version 99") && e.contains(&format!("up to {JOB_VERSION}")), "{e}");
+
+    assert!(error_of("{\"name\": ").contains("not JSON"));
+}
+
+#[test]
+fn a_missing_tool_number_is_named() {
+    let mut v = default_json();
+    v["operations"][0]["tool"] = 7.into();
+    let job = Job::from_json(&v.to_string()).unwrap();
+    let e = job::run(&job, demo_part(), &mut Progress::none()).unwrap_err().to_string();
+    assert!(e.contains("no tool number 7"), "{e}");
+}
