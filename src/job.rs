@@ -522,6 +522,8 @@ impl Job {
             positive("the plunge rate", tool.plunge_rate)?;
         }
         positive("the rapid rate", self.post.rapid_rate)?;
+        // Rapids run at the clearance height: at or below the stock's top they would cut.
+        positive("stock.clearance (the height of rapid moves above the stock's top)", self.stock.clearance)?;
         for op in &self.operations {
             self.tool(op.tool())?;
             if op.leave_stock().is_some_and(|l| !(l.is_finite() && l >= 0.0)) {

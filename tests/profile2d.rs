@@ -419,13 +419,17 @@ fn ellipses_keep_the_radius_within_the_arc_fit() {
 
 #[test]
 fn a_fanuc_program_with_a_problem_keeps_its_tape_mark_first() {
-    // Rapids below the sheet's top: the simulation finds them going through stock.
+    // Flutes 2 mm long on a cut 6.2 mm deep: the simulation finds the tool's body in material.
     let mut job = job_with(vec![Operation::Profile2d(Profile2d::default())], 3.0);
-    job.stock.clearance = -1.0;
+    job.tools[0].cutter.flute_length = 2.0;
     job.post.dialect = Dialect::Fanuc;
     let out = job::run(&job, drawing_of(part_at(0.0)), &mut Progress::none()).unwrap();
     assert!(out.problem.is_some(), "{:?}", out.problem);
     let marked = out.gcode_marked();
     assert!(marked.starts_with("%\n(WARNING: NOT SAFE TO RUN"), "{}", &marked[..80]);
     assert!(marked.trim_end().ends_with('%'));
+    // Rapids at or below the stock's top are refused before anything is made.
+    job.stock.clearance = -1.0;
+    let e = job::run(&job, drawing_of(part_at(0.0)), &mut Progress::none()).unwrap_err().to_string();
+    assert!(e.contains("stock.clearance") && e.contains("-1"), "{e}");
 }
