@@ -332,12 +332,18 @@ impl Simulation {
 /// The job file format this swarf writes and reads (files from a newer one are refused).
 pub const JOB_VERSION: u32 = 1;
 
+/// The version of a job file that has none: written before versions were.
+fn first_version() -> u32 {
+    1
+}
+
 /// Everything needed to turn a part into G-code.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, rename_all = "camelCase")]
 pub struct Job {
     /// Version of the job file's format ([`JOB_VERSION`] when written by this swarf); a file
     /// without one is read as version 1. Default value: the current version.
+    #[serde(default = "first_version")]
     pub version: u32,
     /// Program title. Default value: "swarf job".
     pub name: String,
@@ -475,11 +481,10 @@ impl Job {
                 None => Error::Input(format!("{path}: {}", e.into_inner())),
             }
         })?;
-        let version = value.get("version").map_or(Some(1), serde_json::Value::as_u64);
-        if version.is_none_or(|v| v > JOB_VERSION as u64) {
+        if job.version > JOB_VERSION {
             return Err(Error::Input(format!(
                 "the job file has version {}; this swarf reads versions up to {JOB_VERSION} (a newer swarf wrote it)",
-                value["version"]
+                job.version
             )));
         }
         let canonical = serde_json::to_value(&job).map_err(|e| Error::Input(e.to_string()))?;

@@ -12,7 +12,7 @@ use crate::progress::Progress;
 use crate::sim::verify::verify_against;
 use crate::strategy::path2d::Cursor;
 use crate::strategy::pocket2d::{self, pocket_moves};
-use crate::strategy::profile2d::{self, profile_moves, Profile2d, Side};
+use crate::strategy::profile2d::{self, profile_moves, Profile2d};
 use crate::strategy::walls::Walls;
 use crate::toolpath::{Move, Toolpath};
 use crate::zmap::{Grid, HeightField};
@@ -144,11 +144,7 @@ fn profile_cuts(walls: &Walls, picked: &[usize], p: &Profile2d, depth: f64) -> V
     let mut cuts = vec![Cut { region: walls.shape.clone(), inside: false, depth, leave }];
     for &k in picked {
         let l = &walls.shape.loops[k];
-        let outside = match p.side {
-            Side::Auto => continue,
-            Side::Outside => true,
-            Side::Inside => false,
-        };
+        let outside = p.side.cuts_outside(l.is_ccw());
         if outside != l.is_ccw() {
             cuts.push(Cut { region: Shape::from_oriented(vec![l.counter_clockwise()]), inside: !outside, depth, leave });
         }

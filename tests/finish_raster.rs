@@ -34,7 +34,7 @@ fn worst_gouge(cl: &ClSurface, points: &[DVec3], allowance: f64) -> f64 {
     for w in points.windows(2) {
         let n = ((w[0].truncate().distance(w[1].truncate()) * 25.0).ceil() as usize).max(1);
         let dense = (0..=n).map(|k| k as f64 / n as f64);
-        for t in dense.chain(cl.breakpoints(w[0].truncate(), w[1].truncate())) {
+        for t in dense.chain(cl.field.breakpoints(w[0].truncate(), w[1].truncate())) {
             let p = w[0].lerp(w[1], t);
             worst = worst.max(cl.height(p.truncate()) + allowance - p.z);
         }

@@ -286,9 +286,18 @@ impl Original {
 
     /// Distance from `q` to the input's boundary, or `cap` when it is at least that far.
     pub fn distance(&self, q: DVec2, cap: f64) -> f64 {
-        let mut best = cap;
+        self.nearest(q, cap).map_or(cap, |(_, d)| d)
+    }
+
+    /// The entity nearest `q` (its position in the shape's segments, loop after loop) and its
+    /// distance, among those closer than `cap`.
+    pub fn nearest(&self, q: DVec2, cap: f64) -> Option<(usize, f64)> {
+        let mut best: Option<(usize, f64)> = None;
         self.index.any_within(q, cap, |i| {
-            best = best.min(self.segs[i].distance_with(self.geoms[i].as_ref(), q));
+            let d = self.segs[i].distance_with(self.geoms[i].as_ref(), q);
+            if d < best.map_or(cap, |b| b.1) {
+                best = Some((i, d));
+            }
             false
         });
         best

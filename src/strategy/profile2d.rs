@@ -12,6 +12,7 @@ use super::walls::Walls;
 use crate::geom::segment::Segment;
 use crate::geom::{DVec2, Tolerances};
 use crate::offset::offset;
+use crate::offset::trim::Original;
 use crate::profile::{Loop, Shape};
 use crate::toolpath::Move;
 
@@ -27,6 +28,18 @@ pub enum Side {
     Auto,
     Outside,
     Inside,
+}
+
+impl Side {
+    /// Whether a loop is cut on its outside, given whether its nesting makes it an outline
+    /// (counter-clockwise) rather than a hole.
+    pub fn cuts_outside(self, outline: bool) -> bool {
+        match self {
+            Side::Auto => outline,
+            Side::Outside => true,
+            Side::Inside => false,
+        }
+    }
 }
 
 /// Cutting direction for a spindle turning clockwise (M3).
@@ -118,12 +131,20 @@ pub struct Setup<'a> {
 }
 
 /// One closed tool-centre path to cut: where the part lies, whether it runs around the
-/// outside of material (tabs go there), and which points a lead arc may pass through.
+/// outside of material (tabs go there), and what a lead arc must keep clear of.
 struct Lap<'a> {
     path: Loop,
     part_left: bool,
     outside: bool,
-    clear: Box<dyn Fn(DVec2) -> bool + 'a>,
+    clear: Clear<'a>,
+}
+
+/// What a lead arc must keep clear of: every point of it at least `distance` from the walls
+/// (`keeps_off`), and on the waste side of them (`waste`, asked at one point: an arc that keeps
+/// off every wall crosses none).
+struct Clear<'a> {
+    keeps_off: Box<dyn Fn(DVec2) -> bool + 'a>,
+    waste: Box<dyn Fn(DVec2) -> bool + 'a>,
 }
 
 /// The moves of a profile around the loops `picked` (positions in `walls.shape`), and
@@ -145,13 +166,9 @@ pub fn profile_moves(walls: &Walls, picked: &[usize], op: &Profile2d, mut s: Set
     let mut grouped = vec![false; n];
     let mut alone = Vec::new();
     for &k in picked {
-        let nested_outside = walls.shape.loops[k].is_ccw();
-        let outside = match op.side {
-            Side::Auto => nested_outside,
-            Side::Outside => true,
-            Side::Inside => false,
-        };
-        if outside == nested_outside {
+        let outline = walls.shape.loops[k].is_ccw();
+        let outside = op.side.cuts_outside(outline);
+        if outside == outline {
             grouped[k] = true;
         } else {
             alone.push((k, outside));
@@ -192,7 +209,8 @@ pub fn profile_moves(walls: &Walls, picked: &[usize], op: &Profile2d, mut s: Set
                 }
             }
             let outside = wp.path.is_ccw();
-            laps.push(Lap { path: wp.path, part_left: true, outside, clear: Box::new(move |q| walls.clear(q, d)) });
+            let clear = Clear { keeps_off: Box::new(move |q| walls.keeps_off(q, d)), waste: Box::new(|q| !walls.in_material(q)) };
+            laps.push(Lap { path: wp.path, part_left: true, outside, clear });
         }
         for k in (0..n).filter(|&k| grouped[k] && !served[k]) {
             warnings.push(format!("{}; it is not cut", does_not_fit(r, op.leave_stock, &format!("loop {}", walls.index[k]), &walls.shape.loops[k].bounds())));
@@ -204,12 +222,13 @@ pub fn profile_moves(walls: &Walls, picked: &[usize], op: &Profile2d, mut s: Set
         if paths.is_empty() {
             warnings.push(format!("{}; it is not cut", does_not_fit(r, op.leave_stock, &format!("loop {}", walls.index[k]), &region.bounds())));
         }
-        let region = std::rc::Rc::new(region);
+        let wall = std::rc::Rc::new(Original::new(&region));
         for path in paths.loops {
-            let region = region.clone();
-            let clear = move |q: DVec2| region.distance_to(q) >= d - 1e-6 && region.contains(q) != outside;
+            let (wall, region) = (wall.clone(), region.clone());
+            let keeps_off = move |q: DVec2| wall.distance(q, d - 1e-6) >= d - 1e-6;
+            let clear = Clear { keeps_off: Box::new(keeps_off), waste: Box::new(move |q| region.contains(q) != outside) };
             // An outward offset has the part on its left, an inward one on its right.
-            laps.push(Lap { path, part_left: outside, outside, clear: Box::new(clear) });
+            laps.push(Lap { path, part_left: outside, outside, clear });
         }
     }
     // Holes first.
@@ -224,7 +243,7 @@ pub fn profile_moves(walls: &Walls, picked: &[usize], op: &Profile2d, mut s: Set
         let segs = start_nearest(&travel, longest.midpoint());
         let tabbed = lap.outside && (op.tabs.count > 0 || op.tabs.spacing.is_some_and(|x| x > 0.0));
         let lead = op.lead_radius.unwrap_or(r).max(0.0);
-        cut_loop(&segs, &*lap.clear, waste_left, lead, tabbed.then_some(&op.tabs), op.stepdown, angle, z_final, &mut s, &mut out);
+        cut_loop(&segs, &lap.clear, waste_left, lead, tabbed.then_some(&op.tabs), op.stepdown, angle, z_final, &mut s, &mut out);
         s.cursor.moved(&out);
     }
     if out.is_empty() {
@@ -236,7 +255,7 @@ pub fn profile_moves(walls: &Walls, picked: &[usize], op: &Profile2d, mut s: Set
 #[allow(clippy::too_many_arguments)]
 fn cut_loop(
     segs: &[Segment],
-    clear: &dyn Fn(DVec2) -> bool,
+    clear: &Clear,
     waste_left: bool,
     lead: f64,
     tabs: Option<&Tabs>,
@@ -313,9 +332,10 @@ fn tab_heights(tabs: &Tabs, total: f64, end: f64, z_final: f64, r: f64) -> Heigh
 /// A quarter-circle lead of radius `rho` tangent to the path at `p` (direction `t`), on the
 /// waste side: returns the lead's far end and its (centre, clockwise). Halved until every
 /// point of it is `clear`, and dropped below a tenth of a mm. Points 5 µm apart along the arc
-/// stand for all of it: a corner of material between two of them can come closer than the
-/// samples by at most (0.005 mm)² / (8 × its distance), a few millionths of a millimetre.
-fn fitting_lead(p: DVec2, t: DVec2, waste_left: bool, rho: f64, clear: &dyn Fn(DVec2) -> bool, into: bool) -> Option<(DVec2, (DVec2, bool))> {
+/// (at most 4,096 of them, so 5 µm up to a radius of 13 mm) stand for all of it: a corner of
+/// material between two of them can come closer than the samples by at most (spacing)² / (8 ×
+/// its distance), a few millionths of a millimetre.
+fn fitting_lead(p: DVec2, t: DVec2, waste_left: bool, rho: f64, clear: &Clear, into: bool) -> Option<(DVec2, (DVec2, bool))> {
     let n = if waste_left { t.perp() } else { -t.perp() };
     let mut rho = rho;
     while rho >= 0.1 {
@@ -323,7 +343,8 @@ fn fitting_lead(p: DVec2, t: DVec2, waste_left: bool, rho: f64, clear: &dyn Fn(D
         let far = if into { c - t * rho } else { c + t * rho };
         let sweep = (p - c).angle_to(far - c); // a quarter turn either way
         let samples = (rho * std::f64::consts::FRAC_PI_2 / LEAD_SAMPLE).ceil().clamp(16.0, 4096.0) as usize;
-        let arc_fits = (1..=samples).all(|k| clear(c + DVec2::from_angle(sweep * k as f64 / samples as f64).rotate(p - c)));
+        let at = |k: usize| c + DVec2::from_angle(sweep * k as f64 / samples as f64).rotate(p - c);
+        let arc_fits = (clear.waste)(at(samples)) && (1..=samples).all(|k| (clear.keeps_off)(at(k)));
         if arc_fits {
             // The arc turns towards the waste side going into the path: counter-clockwise when
             // the waste is on the left.

@@ -10,21 +10,22 @@
 //! between them is left uncut; [`Walls::paths`] says which drawn loops each path runs along,
 //! so that merge can be named.
 
-use crate::geom::index::RectIndex;
 use crate::geom::segment::{Rect, Segment};
 use crate::geom::{DVec2, Tolerances};
 use crate::offset::offset;
+use crate::offset::trim::Original;
 use crate::profile::{Loop, Shape};
 
 /// The material of a drawing: its loops by nesting (outer loops counter-clockwise around
-/// material, holes clockwise), each with its index in the drawing, and an index of their
-/// segments for distance queries.
+/// material, holes clockwise), each with its index in the drawing, indexed for distance
+/// queries (the offsetter's [`Original`]).
 pub struct Walls {
     pub shape: Shape,
     /// The drawing's index of each loop of `shape`.
     pub index: Vec<usize>,
-    segments: Vec<(Segment, usize)>,
-    tree: RectIndex,
+    original: Original,
+    /// The loop (position in `shape`) of each of the shape's segments, in order.
+    owner: Vec<usize>,
     bounds: Vec<Rect>,
 }
 
@@ -37,24 +38,14 @@ pub struct WallPath {
 
 impl Walls {
     pub fn new(shape: Shape, index: Vec<usize>) -> Walls {
-        let segments: Vec<(Segment, usize)> = shape.loops.iter().enumerate().flat_map(|(k, l)| l.segments().map(move |s| (s, k))).collect();
-        let rects: Vec<Rect> = segments.iter().map(|(s, _)| s.bounds()).collect();
+        let owner = shape.loops.iter().enumerate().flat_map(|(k, l)| std::iter::repeat_n(k, l.len())).collect();
         let bounds = shape.loops.iter().map(Loop::bounds).collect();
-        Walls { shape, index, tree: RectIndex::new(&rects), segments, bounds }
+        Walls { original: Original::new(&shape), shape, index, owner, bounds }
     }
 
-    /// The loop nearest `q` among those within `reach`, and its distance.
+    /// The loop nearest `q` among those closer than `reach`, and its distance.
     pub fn nearest(&self, q: DVec2, reach: f64) -> Option<(usize, f64)> {
-        let mut best: Option<(usize, f64)> = None;
-        self.tree.any_within(q, reach, |i| {
-            let (s, k) = &self.segments[i];
-            let d = s.distance_to(q);
-            if d <= reach && best.is_none_or(|b| d < b.1) {
-                best = Some((*k, d));
-            }
-            false
-        });
-        best
+        self.original.nearest(q, reach).map(|(i, d)| (self.owner[i], d))
     }
 
     /// Whether a point lies in material (even-odd over the loops around it).
@@ -66,11 +57,11 @@ impl Walls {
         around.count() % 2 == 1
     }
 
-    /// Whether a tool centre at `q` keeps at least `distance` (less a micrometre's thousandth)
-    /// out of material.
-    pub fn clear(&self, q: DVec2, distance: f64) -> bool {
+    /// Whether `q` keeps at least `distance` (less a thousandth of a micrometre) from every
+    /// loop.
+    pub fn keeps_off(&self, q: DVec2, distance: f64) -> bool {
         let reach = distance - 1e-6;
-        !self.in_material(q) && !self.tree.any_within(q, reach, |i| self.segments[i].0.distance_to(q) < reach)
+        self.original.distance(q, reach) >= reach
     }
 
     /// The boundary of the material grown by `distance`, each loop with the drawn loops it runs
@@ -149,10 +140,11 @@ mod tests {
     #[test]
     fn clear_means_out_of_material_by_the_distance() {
         let w = two_squares(10.0);
-        assert!(!w.clear(DVec2::new(10.0, 10.0), 1.0));
-        assert!(w.clear(DVec2::new(25.0, 10.0), 4.9));
-        assert!(!w.clear(DVec2::new(25.0, 10.0), 5.1));
-        assert!(w.clear(DVec2::new(-3.0, -4.0), 4.9));
+        let clear = |q: DVec2, d: f64| !w.in_material(q) && w.keeps_off(q, d);
+        assert!(!clear(DVec2::new(10.0, 10.0), 1.0));
+        assert!(clear(DVec2::new(25.0, 10.0), 4.9));
+        assert!(!clear(DVec2::new(25.0, 10.0), 5.1));
+        assert!(clear(DVec2::new(-3.0, -4.0), 4.9));
         assert!(!w.in_material(DVec2::new(25.0, 10.0)) && w.in_material(DVec2::new(35.0, 10.0)));
     }
 }

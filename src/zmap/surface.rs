@@ -7,11 +7,10 @@
 //!
 //! 1. a straight move from `a` to `b` is cut evenly into pieces no longer than the probe spacing
 //!    (for a ball the grid spacing and at most half its radius, for other cutters half that),
-//!    and sampled where it passes
-//!    closest to each peak of the mesh within the cutter's reach (a vertex with no higher
-//!    neighbour: the top of a spike or a mesa's corner, whose bump under a grazing cutter can be
-//!    narrower than any probe spacing); a node's height comes from the z-map when the builder
-//!    was exact, any other point gets the exact drop;
+//!    and sampled where it passes closest to each peak of the mesh within the cutter's reach (a
+//!    vertex with no higher neighbour: the top of a spike or a mesa's corner, whose bump under a
+//!    grazing cutter can be narrower than any probe spacing); a node's height comes from the
+//!    z-map when the builder was exact, any other point gets the exact drop;
 //! 2. every piece is probed at its midpoint and quarters, so the exact drop is sampled at least
 //!    every quarter of the probe spacing, and split at its midpoint, and the halves again, while
 //!    the exact height at the midpoint or at a quarter is off the chord by more than the
@@ -158,11 +157,6 @@ impl ClSurface {
         let z = self.refine(at, len, (tm, zm), z1, out);
         out.push((tm, z));
         self.refine(at, len, end, z3, out)
-    }
-
-    /// See [`HeightField::breakpoints`].
-    pub fn breakpoints(&self, a: DVec2, b: DVec2) -> Vec<f64> {
-        self.field.breakpoints(a, b)
     }
 }
 
