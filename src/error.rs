@@ -1,5 +1,8 @@
-//! One error type for the whole pipeline. Each module has its own enum; `Error` gathers them so
-//! the CLI and the page can show a message a user understands.
+//! One error type for the whole pipeline, in three kinds (as lyon sorts its errors): bad input
+//! (a file that does not read, a job setting that does not fit, named by its path), an operation
+//! that cannot be done (named, with why), and a fault of swarf's own. Cancelling, a program that
+//! would cut nothing and one the simulation found unsafe are told apart so that the CLI and the
+//! page can say each plainly.
 
 use thiserror::Error;
 
@@ -12,11 +15,17 @@ pub enum Error {
     Import(#[from] ImportError),
     #[error(transparent)]
     Program(#[from] crate::post::read::ReadError),
-    #[error("invalid job: {0}")]
-    Job(String),
-    /// A job file that does not read: the message names the field by its path.
+    /// A job file or setting that does not fit: the message names the field by its path
+    /// (`operations[1].stepover must be a positive number`).
     #[error("invalid job file: {0}")]
     Input(String),
+    /// An operation that cannot be done on this part or drawing: a tool that does not fit, an
+    /// empty region, a 3D operation on a drawing.
+    #[error("{operation}: {why}")]
+    Operation { operation: String, why: String },
+    /// A fault of swarf's own, never the user's.
+    #[error("internal error (please report it): {0}")]
+    Internal(String),
     #[error("cancelled")]
     Cancelled,
     /// The job would make a program that cuts nothing.
@@ -25,6 +34,62 @@ pub enum Error {
     /// Verification found a gouge, a rapid through stock or the tool's body in material.
     #[error("the program is not safe to run: {0}")]
     Unsafe(String),
+}
+
+/// Which of the three kinds an error is (cancelling is the user's choice, not a fault).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ErrorKind {
+    /// The input is wrong: fix the file or the setting the message names.
+    Input,
+    /// The input is fine but the operation cannot be done as set up.
+    Operation,
+    /// swarf's own fault.
+    Internal,
+    Cancelled,
+}
+
+impl Error {
+    /// An operation that cannot be done.
+    pub fn operation(operation: &str, why: impl Into<String>) -> Error {
+        Error::Operation { operation: operation.to_string(), why: why.into() }
+    }
+
+    pub fn kind(&self) -> ErrorKind {
+        match self {
+            Error::Import(_) | Error::Program(_) | Error::Input(_) => ErrorKind::Input,
+            Error::Operation { .. } | Error::Nothing(_) | Error::Unsafe(_) => ErrorKind::Operation,
+            Error::Internal(_) => ErrorKind::Internal,
+            Error::Cancelled => ErrorKind::Cancelled,
+        }
+    }
+}
+
+/// Something the user should know that did not stop the job, with the operation it belongs to
+/// (none for the job as a whole: the part, the stock).
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct Warning {
+    pub operation: Option<String>,
+    pub message: String,
+}
+
+impl Warning {
+    pub fn job(message: impl Into<String>) -> Warning {
+        Warning { operation: None, message: message.into() }
+    }
+
+    pub fn of(operation: &str, message: impl Into<String>) -> Warning {
+        Warning { operation: Some(operation.to_string()), message: message.into() }
+    }
+}
+
+impl std::fmt::Display for Warning {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match &self.operation {
+            Some(op) => write!(f, "{op}: {}", self.message),
+            None => f.write_str(&self.message),
+        }
+    }
 }
 
 pub type Result<T, E = Error> = std::result::Result<T, E>;

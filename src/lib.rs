@@ -20,7 +20,6 @@ pub mod cutter;
 pub mod error;
 pub mod geom;
 pub mod job;
-pub mod job2d;
 pub mod mesh;
 pub mod offset;
 pub mod parallel;
@@ -29,6 +28,7 @@ pub mod profile;
 pub mod progress;
 pub mod sim;
 pub mod strategy;
+pub mod tool;
 pub mod toolpath;
 pub mod zmap;
 

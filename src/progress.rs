@@ -8,26 +8,41 @@ pub struct Progress<'a> {
     start: f64,
     span: f64,
     stage: String,
+    /// The part of the whole that stages are fractions of, and the name they are prefixed
+    /// with (an operation's own progress within a job).
+    frame: (f64, f64),
+    prefix: Option<String>,
     cancelled: bool,
 }
 
 impl<'a> Progress<'a> {
     /// Reports to `sink`, which returns `false` to cancel.
     pub fn new(sink: &'a mut dyn FnMut(f64, &str) -> bool) -> Progress<'a> {
-        Progress { sink: Some(sink), start: 0.0, span: 1.0, stage: String::new(), cancelled: false }
+        Progress { sink: Some(sink), start: 0.0, span: 1.0, stage: String::new(), frame: (0.0, 1.0), prefix: None, cancelled: false }
     }
 
     /// Reports nowhere and never cancels.
     pub fn none() -> Progress<'static> {
-        Progress { sink: None, start: 0.0, span: 1.0, stage: String::new(), cancelled: false }
+        Progress { sink: None, start: 0.0, span: 1.0, stage: String::new(), frame: (0.0, 1.0), prefix: None, cancelled: false }
     }
 
-    /// Enters the stage `name`, which covers `[start, start + span]` of the whole.
+    /// Enters the stage `name`, which covers `[start, start + span]` of the frame (the whole,
+    /// unless [`Progress::frame`] set one).
     pub fn stage(&mut self, name: &str, start: f64, span: f64) -> bool {
-        self.stage = name.to_owned();
-        self.start = start;
-        self.span = span;
+        self.stage = match &self.prefix {
+            Some(p) => format!("{p}: {name}"),
+            None => name.to_owned(),
+        };
+        self.start = self.frame.0 + self.frame.1 * start;
+        self.span = self.frame.1 * span;
         self.report(0.0)
+    }
+
+    /// Makes `[start, start + span]` of the whole the frame later stages are fractions of, their
+    /// names prefixed by `prefix` (one operation of a job); `frame(0, 1, None)` ends it.
+    pub fn frame(&mut self, start: f64, span: f64, prefix: Option<&str>) {
+        self.frame = (start, span);
+        self.prefix = prefix.map(str::to_owned);
     }
 
     /// Reports `fraction` of the current stage; `false` means the user cancelled.

@@ -36,6 +36,22 @@ pub fn default_job() -> Result<JsValue, JsError> {
     to_js(&Job::default())
 }
 
+#[derive(serde::Serialize)]
+#[serde(rename_all = "camelCase")]
+struct Defaults {
+    job: Job,
+    drawing_job: Job,
+    tool: crate::tool::Tool,
+    operations: Vec<job::Operation>,
+}
+
+/// Every default the page's forms start from: `{ job, drawingJob, tool, operations }` (one
+/// operation of each kind).
+#[wasm_bindgen]
+pub fn defaults() -> Result<JsValue, JsError> {
+    to_js(&Defaults { job: Job::default(), drawing_job: Job::default_for_drawing(), tool: crate::tool::Tool::default(), operations: job::Operation::defaults() })
+}
+
 /// Reads a job file's text as `swarf run` does (every unknown or misspelt field named by its
 /// path, newer versions refused) and returns the job as the JSON object the page edits.
 #[wasm_bindgen(js_name = readJob)]
@@ -202,6 +218,7 @@ pub fn load_part(bytes: &[u8], name: &str, setup: JsValue) -> Result<PartView, J
 pub struct JobResult {
     gcode: String,
     feeds: Vec<f32>,
+    feed_ops: Vec<f32>,
     rapids: Vec<f32>,
     summary: JsValue,
     part: PartView,
@@ -230,6 +247,12 @@ impl JobResult {
     pub fn feeds(&self) -> js_sys::Float32Array {
         // SAFETY: as for PartView.
         unsafe { js_sys::Float32Array::view(&self.feeds) }
+    }
+    /// The operation (its index in the job) of each cutting segment of `feeds` (a view).
+    #[wasm_bindgen(js_name = feedOperations)]
+    pub fn feed_operations(&self) -> js_sys::Float32Array {
+        // SAFETY: as for PartView.
+        unsafe { js_sys::Float32Array::view(&self.feed_ops) }
     }
     /// Rapid moves as line segments (a view).
     pub fn rapids(&self) -> js_sys::Float32Array {
@@ -301,7 +324,13 @@ impl JobResult {
 struct Summary {
     #[serde(flatten)]
     stats: crate::toolpath::PathStats,
-    warnings: Vec<String>,
+    warnings: Vec<crate::error::Warning>,
+    /// Per operation: name, tools, time, lengths, volume removed, peak MRR, what it left.
+    operations: Vec<job::OperationReport>,
+    /// The index of each operation's first move in the program (for the scrubber's marks).
+    operation_starts: Vec<usize>,
+    /// Lookups of the CL z-map cache that found a z-map made for an earlier operation.
+    cache_hits: usize,
     /// What makes the program unsafe to run, if verification found anything.
     problem: Option<String>,
     stock: [f64; 6],
@@ -323,21 +352,39 @@ pub fn run_job(job: JsValue, bytes: &[u8], name: &str, progress: &js_sys::Functi
     };
     let mut out = job::run(&job, workpiece, &mut Progress::new(&mut sink)).map_err(js_error)?;
     let simulation = out.verification.take().map(|v| simulation_view(&job, &out, v)).transpose()?;
-    let (mut feeds, mut rapids) = (Vec::new(), Vec::new());
-    for path in &out.paths {
+    let (mut feeds, mut rapids, mut feed_ops) = (Vec::new(), Vec::new(), Vec::new());
+    for (path, &op) in out.paths.iter().zip(&out.path_operations) {
         for (a, b, rapid) in path.segments(0.1) {
             let target = if rapid { &mut rapids } else { &mut feeds };
             target.extend([a.x as f32, a.y as f32, a.z as f32, b.x as f32, b.y as f32, b.z as f32]);
+            if !rapid {
+                feed_ops.push(op as f32);
+            }
         }
     }
+    let mut operation_starts = Vec::new();
+    let mut at = 0;
+    for r in &out.operations {
+        operation_starts.push(at);
+        at += r.moves;
+    }
     let s = out.stock;
-    let summary = Summary { stats: out.stats, warnings: out.warnings.clone(), problem: out.problem.clone(), stock: [s.min.x, s.min.y, s.min.z, s.max.x, s.max.y, s.max.z], clearance_z: out.clearance_z };
+    let summary = Summary {
+        stats: out.stats,
+        warnings: out.warnings.clone(),
+        operations: out.operations.clone(),
+        operation_starts,
+        cache_hits: out.cache.hits,
+        problem: out.problem.clone(),
+        stock: [s.min.x, s.min.y, s.min.z, s.max.x, s.max.y, s.max.z],
+        clearance_z: out.clearance_z,
+    };
     let summary = to_js(&summary)?;
     let drawing = match &out.drawing {
         Some(d) => to_js(&drawing_view(d))?,
         None => JsValue::NULL,
     };
-    Ok(JobResult { gcode: out.gcode_marked(), feeds, rapids, summary, part: part_view(&out.part), drawing, simulation })
+    Ok(JobResult { gcode: out.gcode_marked(), feeds, feed_ops, rapids, summary, part: part_view(&out.part), drawing, simulation })
 }
 
 #[derive(serde::Serialize)]

@@ -35,10 +35,10 @@ fn paper_table_2_in_wasm() {
 
 #[wasm_bindgen_test]
 fn program_simulation_in_wasm() {
-    let sample = swarf::sim::bench::sample_case(&now);
+    let sample = swarf::job::bench::sample_case(&now);
     web_sys_log(&sample.job_row("wasm (Chromium)"));
     web_sys_log(&sample.run(sample.cell_for(1e6), None, &now).row("wasm (Chromium)"));
-    let die = swarf::sim::bench::die_case(&now);
+    let die = swarf::job::bench::die_case(&now);
     web_sys_log(&die.job_row("wasm (Chromium)"));
     web_sys_log(&die.run(die.cell_for(1e6), None, &now).row("wasm (Chromium)"));
     let f = die.run(die.cell_for(1e6), Some(100_000), &now);

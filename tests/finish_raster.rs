@@ -10,7 +10,7 @@ use swarf::job::{self, Boundary, FinishRaster, Job, Operation, Tool};
 use swarf::mesh::sample::demo_part;
 use swarf::progress::Progress;
 use swarf::strategy::finish_raster::{raster_runs, Pattern, RasterPasses};
-use swarf::strategy::region::Region;
+use swarf::zmap::region::Region;
 use swarf::toolpath::Move;
 use swarf::zmap::{cl_exact::cl_exact, drop::PointDrop, surface::ClSurface, Grid};
 
@@ -91,19 +91,35 @@ fn one_way_passes_all_run_the_same_way_and_return_above_the_part() {
     };
     let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
     let moves = &out.paths[0].moves;
-    // Between two rapids, the cutting moves of a pass advance in +Y only (angle 90°).
-    let mut at = out.paths[0].start;
+    // Between two rapids, the cutting moves of a pass advance in +Y only (angle 90°), once the
+    // entry (a helix or a ramp, ending where the rapid descent came down, the last time the
+    // path is there) is done.
     let (mut passes, mut retracts) = (0, 0);
-    for m in moves {
-        match m {
-            Move::Line { to, .. } if to.truncate() != at.truncate() => {
-                assert!(to.y >= at.y - 1e-9, "a one-way pass went backwards: {at} -> {to}");
+    let mut at = out.paths[0].start;
+    let mut k = 0;
+    while k < moves.len() {
+        if let Move::Rapid { to } = moves[k] {
+            if to.z == out.clearance_z && at.z < out.clearance_z {
+                retracts += 1;
+            }
+            at = to;
+            k += 1;
+            continue;
+        }
+        let end = (k..moves.len()).find(|&e| moves[e].is_rapid()).unwrap_or(moves.len());
+        let p0 = at.truncate();
+        let entered = (k..end).rev().find(|&e| moves[e].to().truncate() == p0).map_or(k, |e| e + 1);
+        let mut from = if entered > k { moves[entered - 1].to() } else { at };
+        for m in &moves[entered..end] {
+            let to = m.to();
+            if to.truncate() != from.truncate() {
+                assert!(to.y >= from.y - 1e-9, "a one-way pass went backwards: {from} -> {to}");
                 passes += 1;
             }
-            Move::Rapid { to } if to.z == out.clearance_z && at.z < out.clearance_z => retracts += 1,
-            _ => {}
+            from = to;
         }
-        at = m.to();
+        at = moves[end - 1].to();
+        k = end;
     }
     assert!(passes > 500 && retracts >= 30, "{passes} cutting moves, {retracts} retracts");
 }

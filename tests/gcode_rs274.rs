@@ -108,6 +108,9 @@ fn compare(actual: &[(Kind, DVec3)], expected: &[(Kind, DVec3)], resolution: f64
         let Some((k, p)) = a.peek().copied() else { panic!("the program ends early, expected {kind:?} to {point}") };
         // X and Y are rounded to the nearest (half a unit, `resolution`), a feed's Z up (a unit).
         if p.distance(*point) > resolution * 3.0 {
+            if std::env::var("SWARF_DEBUG_COMPARE").is_ok() {
+                eprintln!("skipped expected {kind:?} {point} (next actual {k:?} {p})");
+            }
             continue;
         }
         a.next();
@@ -147,6 +150,48 @@ fn demo_programs_run_in_linuxcnc_for_every_dialect_and_unit() {
             let resolution = if units == Units::Mm { 0.0005 } else { 0.00005 };
             let actual = interpret(&out.gcode, &job.tools);
             compare(&actual, &expected(&out.paths, out.clearance_z, scale), resolution);
+        }
+    }
+}
+
+/// The tool-change calls rs274 makes (`CHANGE_TOOL`, `PROGRAM_STOP` for a GRBL pause), in order.
+fn tool_calls(gcode: &str, tools: &[Tool]) -> Vec<String> {
+    let dir = std::env::temp_dir().join(format!("swarf-rs274-tc-{}-{}", std::process::id(), rand_suffix()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("p.ngc"), gcode).unwrap();
+    let lines: String = tools.iter().map(|t| format!("T{0} P{0} Z0.000 D{1:.3} ;{2}\n", t.number, t.cutter.diameter, t.describe())).collect();
+    std::fs::write(dir.join("tool.tbl"), lines).unwrap();
+    let output = Command::new("rs274").current_dir(&dir).env("HOME", &dir).arg("-g").arg("-t").arg(dir.join("tool.tbl")).arg(dir.join("p.ngc")).output().unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    String::from_utf8_lossy(&output.stdout)
+        .lines()
+        .filter_map(|l| l.split_once("N..... ").map(|(_, c)| c.to_string()))
+        .filter(|c| c.starts_with("CHANGE_TOOL(") || c.starts_with("PROGRAM_STOP") || c.starts_with("USE_TOOL_LENGTH_OFFSET"))
+        .collect()
+}
+
+#[test]
+fn two_tool_programs_change_tools_as_each_dialect_does() {
+    let tools = vec![Tool { number: 1, cutter: Cutter::ball(6.0), ..Tool::default() }, Tool { number: 2, cutter: Cutter::ball(3.0), ..Tool::default() }];
+    let ops = vec![
+        Operation::FinishRaster(FinishRaster { name: "coarse".into(), tool: 1, stepover: 2.0, allowance: 0.3, grid: 0.5, ..FinishRaster::default() }),
+        Operation::FinishRaster(FinishRaster { name: "fine".into(), tool: 2, stepover: 1.5, grid: 0.5, angle: 90.0, ..FinishRaster::default() }),
+    ];
+    for dialect in [Dialect::LinuxCnc, Dialect::Mach3, Dialect::Grbl] {
+        let job = Job { tools: tools.clone(), operations: ops.clone(), post: PostSettings { dialect, ..PostSettings::default() }, ..Job::default() };
+        let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
+        let actual = interpret(&out.gcode, &job.tools);
+        compare(&actual, &expected(&out.paths, out.clearance_z, 1.0), 0.0005);
+        let calls = tool_calls(&out.gcode, &job.tools);
+        if dialect == Dialect::Grbl {
+            // No tool changer: a spindle stop and a pause naming the tool to load.
+            assert!(!out.gcode.contains("M6") && !out.gcode.contains("G43"));
+            assert!(out.gcode.contains("M5\nG0 Z") && out.gcode.contains("M0 (change to tool 2"), "{}", &out.gcode[..400]);
+            assert_eq!(calls.iter().filter(|c| c.starts_with("PROGRAM_STOP")).count(), 1, "{calls:?}");
+        } else {
+            let changes: Vec<&String> = calls.iter().filter(|c| c.starts_with("CHANGE_TOOL")).collect();
+            assert_eq!(changes.len(), 2, "{calls:?}");
+            assert!(calls.iter().filter(|c| c.starts_with("USE_TOOL_LENGTH_OFFSET")).count() >= 2, "{calls:?}");
         }
     }
 }

@@ -289,9 +289,9 @@ fn parts_nested_closer_than_the_tool_are_never_cut_into() {
     // Two parts 4.04 mm apart: a φ6 tool cannot pass between them, a φ3 can.
     let pair = || drawing_of([part_at(0.0), part_at(34.04)].concat());
     let out = profile_every_loop(pair(), 6.0, Profile2d::default());
-    let merged: Vec<&String> = out.warnings.iter().filter(|w| w.contains("apart")).collect();
+    let merged: Vec<&swarf::error::Warning> = out.warnings.iter().filter(|w| w.message.contains("apart")).collect();
     assert_eq!(merged.len(), 1, "{:?}", out.warnings);
-    assert!(merged[0].contains("loops 0 and 3 are 4.040 mm apart near (32.020,"), "{}", merged[0]);
+    assert!(merged[0].message.contains("loops 0 and 3 are 4.040 mm apart near (32.020,"), "{}", merged[0]);
     // One path around both outlines, holes inside each: five laps at the final depth.
     let out = profile_every_loop(pair(), 3.0, Profile2d::default());
     assert!(out.warnings.is_empty(), "{:?}", out.warnings);
@@ -303,11 +303,11 @@ fn parts_nested_closer_than_the_tool_are_never_cut_into() {
     let row = || drawing_of((0..5).flat_map(|k| part_at(k as f64 * 32.0)).collect());
     for direction in [Direction::Climb, Direction::Conventional] {
         let out = profile_every_loop(row(), 6.0, Profile2d { leave_stock: 0.3, direction, ..Profile2d::default() });
-        assert_eq!(out.warnings.iter().filter(|w| w.contains("2.000 mm apart")).count(), 4, "{:?}", out.warnings);
+        assert_eq!(out.warnings.iter().filter(|w| w.message.contains("2.000 mm apart")).count(), 4, "{:?}", out.warnings);
     }
     // Only the first part picked: its path still keeps off its neighbour.
     let out = profile_every_loop(pair(), 6.0, Profile2d { loops: vec![0, 1, 2], ..Profile2d::default() });
-    assert!(out.warnings.iter().any(|w| w.contains("loops 0 and 3")), "{:?}", out.warnings);
+    assert!(out.warnings.iter().any(|w| w.message.contains("loops 0 and 3")), "{:?}", out.warnings);
 }
 
 #[test]
@@ -321,7 +321,7 @@ fn holes_near_outlines_and_parts_nested_in_cut_outs() {
     ];
     for (diameter, merges) in [(1.0, false), (3.0, true), (6.0, true)] {
         let out = profile_every_loop(drawing_of(loops.clone()), diameter, Profile2d { lead_radius: Some(4.0), ..Profile2d::default() });
-        let named = out.warnings.iter().any(|w| w.contains("loops 2 and 3 are 2.000 mm apart"));
+        let named = out.warnings.iter().any(|w| w.message.contains("loops 2 and 3 are 2.000 mm apart"));
         assert_eq!(named, merges, "φ{diameter}: {:?}", out.warnings);
     }
 }

@@ -222,7 +222,7 @@ fn what_the_page_runs_is_clean_and_the_program_simulates_the_same_from_its_gcode
     let job = Job { simulation: swarf::job::Simulation { verify: true, cell: Some(0.3) }, ..Job::default() };
     let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
     let from_paths = out.verification.unwrap().report;
-    let from_gcode = swarf::sim::verify::verify_gcode(&job, demo_part(), &out.gcode, Some(0.3), &mut Progress::none()).unwrap().report;
+    let from_gcode = swarf::job::verify_gcode(&job, demo_part(), &out.gcode, Some(0.3), &mut Progress::none()).unwrap().report;
     assert!(from_paths.is_clean() && from_gcode.is_clean(), "{}\n{}", from_paths.describe(), from_gcode.describe());
     // Coordinates are rounded to 1 µm in the G-code.
     assert!((from_paths.removed - from_gcode.removed).abs() < 1e-4 * from_paths.removed, "{} vs {}", from_paths.removed, from_gcode.removed);

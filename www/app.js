@@ -1,9 +1,8 @@
 // The page: settings, the worker that runs swarf's wasm, the view, and the download.
-import { Viewer } from './viewer.js';
+import { Viewer, OP_COLORS } from './viewer.js';
 
 const $ = (id) => document.getElementById(id);
 const form = $('settings');
-const STORE = 'swarf.settings';
 
 let viewer = null;
 try { viewer = new Viewer($('view')); } catch (e) { showError(`3D view unavailable: ${e.message}`); }
@@ -34,91 +33,282 @@ function call(message, transfer = [], onProgress) {
 }
 
 // ---- state -------------------------------------------------------------------------------
-const state = { bytes: null, name: 'sample.stl', sample: null, sampleDrawing: null, baseJob: null, gcode: null, running: false, kind: 'part', drawing: null };
+// The page edits jobs as the core's JSON has them: one for parts and one for drawings, each
+// with its list of operations, and one tool library (the browser keeps them across reloads).
+// Every form is filled from these objects, which start from the core's defaults, so no default
+// is written twice.
+const TOOLS = 'swarf.tools', JOBS = 'swarf.jobs';
+const state = {
+  bytes: null, name: 'sample.stl', sample: null, sampleDrawing: null, defaults: null, gcode: null, running: false, kind: 'part', drawing: null,
+  tools: [], jobs: { part: null, drawing: null }, selected: { tool: 0, part: 0, drawing: 0 },
+};
 window.swarf = state; // for the end-to-end test and the curious
 
 function showError(text) { const m = $('message'); m.className = ''; m.textContent = text; }
 function showInfo(text) { const m = $('message'); m.className = 'info'; m.textContent = text; }
 
-function saveSettings() {
-  const values = Object.fromEntries(new FormData(form).entries());
-  try { localStorage.setItem(STORE, JSON.stringify(values)); } catch { /* private mode */ }
-}
-function restoreSettings() {
-  let values = {};
-  try { values = JSON.parse(localStorage.getItem(STORE) || '{}'); } catch { /* ignore */ }
-  for (const [k, v] of Object.entries(values)) if (form.elements[k]) form.elements[k].value = v;
-  updateCorner();
-}
-function updateCorner() { form.elements.cornerRadius.disabled = form.elements.shape.value !== 'bullNose'; }
+const job = () => state.jobs[state.kind];
+const selectedOp = () => job().operations[state.selected[state.kind]] ?? null;
+const selectedTool = () => state.tools[state.selected.tool] ?? null;
+const is2d = (op) => op.kind === 'profile2d' || op.kind === 'pocket2d';
 
-function num(name) {
-  const v = Number(form.elements[name].value);
-  if (!Number.isFinite(v)) throw new Error(`${form.elements[name].closest('label').firstChild.textContent.trim()} is not a number`);
-  return v;
+function store() {
+  try {
+    localStorage.setItem(TOOLS, JSON.stringify(state.tools));
+    localStorage.setItem(JOBS, JSON.stringify(state.jobs));
+  } catch { /* private mode: nothing kept */ }
 }
 
-function partSetup() {
-  const f = form.elements;
-  return { units: f.partUnits.value, upAxis: f.upAxis.value, placement: f.placement.value };
-}
-
-function toolFromForm() {
-  const f = form.elements;
-  return {
-    number: 1, name: '', shape: f.shape.value, diameter: num('diameter'), cornerRadius: num('cornerRadius'),
-    fluteLength: Math.max(20, num('diameter') * 3), spindleRpm: num('spindleRpm'), feedRate: num('feedRate'), plungeRate: num('plungeRate'),
-  };
-}
-
-function drawingSetup() {
-  const f = form.elements;
-  return { units: f.drawingUnits.value, origin: f.drawingOrigin.value, thickness: num('thickness') };
-}
-
-// The 2.5D operation the form describes, as the job's JSON has it.
-function operation2d() {
-  const f = form.elements;
-  const layers = f.layers.value.split(',').map((l) => l.trim()).filter(Boolean);
-  const depth = f.depth2d.value === '' ? null : num('depth2d');
-  const common = { tool: 1, layers, stepdown: num('stepdown'), leaveStock: num('leaveStock'), direction: f.direction.value };
-  if (f.op2d.value === 'pocket2d') {
-    return { kind: 'pocket2d', name: 'pocket', ...common, depth: depth ?? 3, stepover: num('stepoverFraction'), pattern: f.pocketPattern.value, entry: f.entry.value };
+function restore() {
+  const d = state.defaults;
+  const read = (key) => { try { return JSON.parse(localStorage.getItem(key) || 'null'); } catch { return null; } };
+  const tools = read(TOOLS), jobs = read(JOBS);
+  const storedTools = Array.isArray(tools) && tools.length > 0;
+  state.tools = storedTools ? tools : structuredClone(d.job.tools);
+  const fresh = { part: structuredClone(d.job), drawing: structuredClone(d.drawingJob) };
+  for (const kind of ['part', 'drawing']) {
+    const j = jobs?.[kind];
+    state.jobs[kind] = j && Array.isArray(j.operations) ? { ...fresh[kind], ...j } : fresh[kind];
+    delete state.jobs[kind].tools;
   }
-  return { kind: 'profile2d', name: 'profile', ...common, depth, side: f.side.value, tabs: { count: Math.max(0, Math.round(num('tabs'))) } };
+  // The drawing job's tool (a flat end mill) joins the library, under a free number when its
+  // own is taken by another tool, and the drawing's operations follow it.
+  // (A kept library is the user's: nothing joins it.)
+  for (const t of storedTools ? [] : d.drawingJob.tools) {
+    const tool = structuredClone(t);
+    if (state.tools.some((u) => u.number === tool.number)) tool.number = Math.max(...state.tools.map((u) => u.number)) + 1;
+    state.tools.push(tool);
+    if (!jobs?.drawing) for (const op of state.jobs.drawing.operations) if (op.tool === t.number) op.tool = tool.number;
+  }
+  // A library from before (or emptied) leaves no operation pointing nowhere.
+  for (const j of Object.values(state.jobs)) for (const op of j.operations) if (!state.tools.some((t) => t.number === op.tool)) op.tool = state.tools[0]?.number ?? 1;
 }
+
+// Objects and their fields by dotted keys ("stock.marginXy", "tabs.count").
+function getKey(obj, key) { return key.split('.').reduce((o, k) => (o == null ? undefined : o[k]), obj); }
+function setKey(obj, key, value) {
+  const ks = key.split('.');
+  let o = obj;
+  for (const k of ks.slice(0, -1)) { if (o[k] == null || typeof o[k] !== 'object') o[k] = {}; o = o[k]; }
+  o[ks[ks.length - 1]] = value;
+}
+
+function labelOf(el) { return el.closest('label')?.firstChild?.textContent.trim() || el.name; }
+
+// The value of a form field as its object holds it.
+function valueOf(el) {
+  const type = el.dataset.type;
+  if (el.type === 'checkbox') return el.checked;
+  if (type === 'list') return el.value.split(',').map((v) => v.trim()).filter(Boolean);
+  if (el.type === 'number' || type === 'int') {
+    if (el.value === '' && type === 'optional') return null;
+    const v = Number(el.value);
+    if (el.value === '' || !Number.isFinite(v)) throw new Error(`${labelOf(el)} is not a number`);
+    return type === 'int' ? Math.round(v) : v;
+  }
+  return el.value;
+}
+
+function show(el, value) {
+  if (el.type === 'checkbox') el.checked = !!value;
+  else if (el.dataset.type === 'list') el.value = (value || []).join(', ');
+  else el.value = value ?? '';
+}
+
+function fillFields(container, obj) {
+  for (const el of container.querySelectorAll('[data-key]')) show(el, getKey(obj, el.dataset.key));
+}
+
+// ---- the forms ---------------------------------------------------------------------------
+function fillJob() {
+  const j = job();
+  fillFields($('fs-part'), j);
+  fillFields($('fs-drawing'), j);
+  fillFields($('fs-post'), j);
+  fillFields($('fs-stock'), j);
+  $('fs-stock').querySelector('[name=zeroHeight]').value = j.stock.zero?.height ?? '';
+  $('fs-stock').querySelector('[name=zeroCorner]').value = j.stock.zero?.corner ?? 'center';
+  for (const el of document.querySelectorAll('.part-only')) el.hidden = state.kind !== 'part';
+}
+
+function fillTools() {
+  const list = $('tool-list');
+  list.replaceChildren(...state.tools.map((t, i) => new Option(`T${t.number} · ${t.diameter} mm ${{ ball: 'ball', flat: 'flat', bullNose: `bull nose r${t.cornerRadius}` }[t.shape] || t.shape}${t.name ? ` · ${t.name}` : ''}`, String(i))));
+  state.selected.tool = Math.min(state.selected.tool, state.tools.length - 1);
+  list.value = String(state.selected.tool);
+  const t = selectedTool();
+  $('tool-editor').hidden = !t;
+  if (t) fillFields($('tool-editor'), t);
+  form.elements.cornerRadius.disabled = state.running || t?.shape !== 'bullNose';
+  const opTool = form.elements.opTool;
+  opTool.replaceChildren(...state.tools.map((u) => new Option(`T${u.number} · ${u.diameter} mm ${u.shape}${u.name ? ` · ${u.name}` : ''}`, String(u.number))));
+  const op = selectedOp();
+  if (op) opTool.value = String(op.tool);
+}
+
+function fillOps() {
+  const j = job(), list = $('op-list');
+  state.selected[state.kind] = Math.max(0, Math.min(state.selected[state.kind], j.operations.length - 1));
+  list.replaceChildren(...j.operations.map((op, i) => {
+    const li = document.createElement('li');
+    li.className = i === state.selected[state.kind] ? 'selected' : '';
+    li.dataset.index = String(i);
+    const color = OP_COLORS[i % OP_COLORS.length].slice(0, 3).map((c) => Math.round(c * 255));
+    li.innerHTML = `<input type="checkbox" class="op-enabled" title="run this operation" aria-label="enabled"><span class="swatch" style="background: rgb(${color.join(',')})"></span><span class="op-name"></span><span class="op-buttons"><button type="button" class="op-up" title="earlier">▲</button><button type="button" class="op-down" title="later">▼</button><button type="button" class="op-remove" title="remove">✕</button></span>`;
+    li.querySelector('.op-enabled').checked = op.enabled !== false;
+    li.querySelector('.op-name').textContent = `${op.name} · T${op.tool}`;
+    return li;
+  }));
+  const op = selectedOp();
+  $('op-editor').hidden = !op;
+  if (!op) return;
+  for (const el of $('op-editor').querySelectorAll('[data-kinds]')) el.hidden = !el.dataset.kinds.split(' ').includes(op.kind);
+  for (const box of [$('fs-raster'), $('fs-2d')]) if (!box.hidden) fillFields(box, op);
+  form.elements.opName.value = op.name;
+  form.elements.opTool.value = String(op.tool);
+}
+
+function fillAll() {
+  fillJob();
+  fillTools();
+  fillOps();
+}
+
+// A field changed: the object it belongs to follows (a field that does not read is named and
+// the object keeps its value).
+function onField(el) {
+  if (!el.dataset.key) return;
+  let value;
+  try { value = valueOf(el); } catch (e) { showError(e.message); return; }
+  if (el.closest('#tool-editor')) {
+    const t = selectedTool();
+    if (!t) return;
+    if (el.dataset.key === 'number') {
+      if (state.tools.some((u) => u !== t && u.number === value)) { showError(`T${value} is in the library already`); return; }
+      // Operations using the tool follow its new number.
+      for (const j of Object.values(state.jobs)) for (const op of j.operations) if (op.tool === t.number) op.tool = value;
+    }
+    setKey(t, el.dataset.key, value);
+    fillTools();
+    fillOps();
+  } else if (el.closest('#op-editor')) {
+    const op = selectedOp();
+    if (!op) return;
+    setKey(op, el.dataset.key, value);
+    if (el.dataset.key === 'name' || el.dataset.key === 'tool') fillOps();
+  } else if (el.name === 'zeroHeight' || el.name === 'zeroCorner') {
+    const height = form.elements.zeroHeight.value;
+    job().stock.zero = height ? { height, corner: form.elements.zeroCorner.value } : null;
+  } else {
+    setKey(job(), el.dataset.key, value);
+  }
+  store();
+  showInfo('');
+}
+
+// ---- the tool library --------------------------------------------------------------------
+function addTool(copy) {
+  const base = copy && selectedTool() ? selectedTool() : state.defaults.tool;
+  const t = structuredClone(base);
+  t.number = Math.max(0, ...state.tools.map((u) => u.number)) + 1;
+  if (!copy) t.name = '';
+  state.tools.push(t);
+  state.selected.tool = state.tools.length - 1;
+  store();
+  fillTools();
+}
+
+function deleteTool() {
+  const t = selectedTool();
+  if (!t) return;
+  const users = Object.values(state.jobs).flatMap((j) => j.operations).filter((op) => op.tool === t.number);
+  if (users.length) { showError(`T${t.number} is used by ${users.map((o) => `'${o.name}'`).join(', ')}: give them another tool first`); return; }
+  state.tools.splice(state.selected.tool, 1);
+  store();
+  fillTools();
+}
+
+function exportTools() {
+  downloadText('swarf-tools.json', JSON.stringify({ tools: state.tools }, null, 2), 'application/json');
+}
+
+// Tools are read by the core, as a job's are: a misspelt field is named. Imported tools replace
+// those of the same number and join the rest.
+async function importTools(file) {
+  try {
+    const parsed = JSON.parse(await file.text());
+    const tools = Array.isArray(parsed) ? parsed : parsed.tools;
+    if (!Array.isArray(tools)) throw new Error('expected a list of tools, or { "tools": [...] }');
+    const { job: read } = await call({ type: 'readJob', text: JSON.stringify({ tools }) });
+    for (const t of read.tools) {
+      const k = state.tools.findIndex((u) => u.number === t.number);
+      if (k >= 0) state.tools[k] = t; else state.tools.push(t);
+    }
+    store();
+    fillTools();
+    fillOps();
+    showInfo(`Imported ${read.tools.length} tool(s) from ${file.name}.`);
+  } catch (e) {
+    showError(`${file.name}: ${e.message}`);
+  }
+}
+
+// ---- the operation list ------------------------------------------------------------------
+function addOperation(kind) {
+  const op = structuredClone(state.defaults.operations.find((o) => o.kind === kind));
+  const j = job();
+  op.tool = selectedTool()?.number ?? state.tools[0]?.number ?? 1;
+  const same = j.operations.filter((o) => o.kind === kind).length;
+  if (same) op.name = `${op.name} ${same + 1}`;
+  j.operations.push(op);
+  state.selected[state.kind] = j.operations.length - 1;
+  store();
+  fillOps();
+}
+
+function onOpList(e) {
+  const li = e.target.closest('li');
+  if (!li) return;
+  const ops = job().operations, i = Number(li.dataset.index);
+  if (e.target.classList.contains('op-enabled')) { ops[i].enabled = e.target.checked; store(); return; }
+  if (e.target.classList.contains('op-up') && i > 0) { [ops[i - 1], ops[i]] = [ops[i], ops[i - 1]]; state.selected[state.kind] = i - 1; }
+  else if (e.target.classList.contains('op-down') && i < ops.length - 1) { [ops[i + 1], ops[i]] = [ops[i], ops[i + 1]]; state.selected[state.kind] = i + 1; }
+  else if (e.target.classList.contains('op-remove')) { ops.splice(i, 1); state.selected[state.kind] = Math.max(0, i - 1); }
+  else state.selected[state.kind] = i;
+  store();
+  fillOps();
+}
+
+function partSetup() { return job().part ?? state.jobs.part.part; }
+
+function drawingSetup() { return state.jobs.drawing.drawing; }
 
 function setKind(kind) {
   state.kind = kind;
   $('fs-drawing').hidden = kind !== 'drawing';
-  $('fs-raster').hidden = kind === 'drawing';
+  $('fs-part').hidden = kind === 'drawing';
   document.body.dataset.kind = kind;
+  fillAll();
 }
 
+// The job to run or save: this kind's job with the library's tools its operations use.
 function buildJob() {
-  const f = form.elements;
-  const job = structuredClone(state.baseJob);
-  if (state.kind === 'drawing') {
-    job.name = state.name.replace(/\.[^.]*$/, '');
-    job.drawing = drawingSetup();
-    job.stock.marginXy = num('marginXy');
-    job.tools = [toolFromForm()];
-    job.operations = [operation2d()];
-    job.post.dialect = f.dialect.value;
-    job.post.units = f.gcodeUnits.value;
-    return job;
-  }
-  job.name = state.name.replace(/\.[^.]*$/, '');
-  job.part = partSetup();
-  job.stock.marginXy = num('marginXy');
-  job.tools = [toolFromForm()];
-  job.operations = [{
-    kind: 'finishRaster', name: 'raster finish', tool: 1, angle: num('angle'), stepover: num('stepover'), pattern: f.pattern.value,
-    boundary: f.boundary.value, allowance: num('allowance'), grid: num('grid'), builder: f.builder.value,
-  }];
-  job.post.dialect = f.dialect.value;
-  job.post.units = f.gcodeUnits.value;
-  return job;
+  const j = structuredClone(job());
+  j.name = state.name.replace(/\.[^.]*$/, '');
+  const used = new Set(j.operations.map((op) => op.tool));
+  j.tools = state.tools.filter((t) => used.has(t.number));
+  const wrong = j.operations.filter((op) => (state.kind === 'drawing') !== is2d(op));
+  if (wrong.length && wrong.length === j.operations.length) throw new Error(state.kind === 'drawing' ? 'add a pocket or profile operation for a drawing' : 'add a raster operation for a part');
+  return j;
+}
+
+function downloadText(name, text, type) {
+  const a = document.createElement('a');
+  a.href = URL.createObjectURL(new Blob([text], { type }));
+  a.download = name;
+  document.body.appendChild(a);
+  a.click();
+  setTimeout(() => { URL.revokeObjectURL(a.href); a.remove(); }, 1000);
 }
 
 // ---- part --------------------------------------------------------------------------------
@@ -127,9 +317,7 @@ function buildJob() {
 async function showPart(bytes = state.bytes, name = state.name, label = $('part-name').textContent) {
   if (!bytes) return;
   try {
-    let setup;
-    try { setup = drawingSetup(); } catch { setup = { units: 'file', origin: 'lowerLeft', thickness: 6 }; }
-    const { part, drawing } = await call({ type: 'load', bytes, name, setup: partSetup(), drawingSetup: setup });
+    const { part, drawing } = await call({ type: 'load', bytes, name, setup: state.jobs.part.part, drawingSetup: drawingSetup() });
     Object.assign(state, { bytes, name, gcode: null });
     $('part-name').textContent = label;
     viewer?.clearPaths();
@@ -180,44 +368,38 @@ async function takeFile(file) {
 // ---- jobs as JSON ------------------------------------------------------------------------
 // The same JSON drives the page, `swarf run job.json part.stl` and the tests.
 function saveJob() {
-  let job;
-  try { job = buildJob(); } catch (e) { showError(e.message); return; }
-  const a = document.createElement('a');
-  a.href = URL.createObjectURL(new Blob([JSON.stringify(job, null, 2)], { type: 'application/json' }));
-  a.download = `${job.name || 'job'}.json`;
-  document.body.appendChild(a);
-  a.click();
-  setTimeout(() => { URL.revokeObjectURL(a.href); a.remove(); }, 1000);
+  let j;
+  try { j = buildJob(); } catch (e) { showError(e.message); return; }
+  downloadText(`${j.name || 'job'}.json`, JSON.stringify(j, null, 2), 'application/json');
 }
 
+// A job file comes back whole: every operation, in order, and its tools (which join the
+// library, replacing those of the same number). The core reads it as `swarf run` would: a
+// misspelt or unknown field is named, and then nothing changes.
 async function loadJob(file) {
   try {
-    // The core reads it as `swarf run` would: a misspelt or unknown field is named, not
-    // dropped.
-    const { job } = await call({ type: 'readJob', text: await file.text() });
-    const op = (job.operations || []).find((o) => ['finishRaster', 'profile2d', 'pocket2d'].includes(o.kind));
-    const tool = (job.tools || []).find((t) => !op || t.number === op.tool) || (job.tools || [])[0];
-    if (!op || !tool) throw new Error('the job has no raster, profile or pocket operation with its tool');
-    const f = form.elements;
-    const set = (name, value) => { if (value !== undefined && value !== null && f[name]) f[name].value = value; };
-    if (op.kind !== 'finishRaster') {
-      set('op2d', op.kind); set('layers', (op.layers || []).join(', ')); set('depth2d', op.depth ?? '');
-      set('stepdown', op.stepdown); set('leaveStock', op.leaveStock); set('direction', op.direction);
-      set('side', op.side); set('tabs', op.tabs?.count); set('pocketPattern', op.pattern); set('entry', op.entry);
-      if (op.kind === 'pocket2d') set('stepoverFraction', op.stepover);
-      set('drawingUnits', job.drawing?.units); set('drawingOrigin', job.drawing?.origin); set('thickness', job.drawing?.thickness);
+    const { job: read } = await call({ type: 'readJob', text: await file.text() });
+    if (!read.operations.length) throw new Error('the job has no operations');
+    for (const op of read.operations) {
+      if (!read.tools.some((t) => t.number === op.tool)) throw new Error(`operation '${op.name}' uses tool ${op.tool}, which the job file does not have`);
     }
-    set('partUnits', job.part?.units); set('upAxis', job.part?.upAxis); set('placement', job.part?.placement);
-    set('marginXy', job.stock?.marginXy);
-    set('shape', tool.shape); set('diameter', tool.diameter); set('cornerRadius', tool.cornerRadius);
-    set('spindleRpm', tool.spindleRpm); set('feedRate', tool.feedRate); set('plungeRate', tool.plungeRate);
-    for (const k of ['stepover', 'angle', 'pattern', 'boundary', 'allowance', 'grid', 'builder']) set(k, op[k]);
-    set('dialect', job.post?.dialect); set('gcodeUnits', job.post?.units);
-    state.baseJob = { ...state.baseJob, ...job };
-    saveSettings();
-    updateCorner();
-    await showPart();
-    showInfo(`Loaded the job from ${file.name}.`);
+    const kind = read.operations.every(is2d) ? 'drawing' : 'part';
+    for (const t of read.tools) {
+      const k = state.tools.findIndex((u) => u.number === t.number);
+      if (k >= 0) state.tools[k] = t; else state.tools.push(t);
+    }
+    delete read.tools;
+    state.jobs[kind] = read;
+    state.selected[kind] = 0;
+    store();
+    if (kind !== state.kind) {
+      const sample = kind === 'drawing' ? [state.sampleDrawing, 'sample.dxf', 'sample drawing'] : [state.sample, 'sample.stl', 'sample part'];
+      await showPart(...sample);
+    } else {
+      fillAll();
+      await showPart();
+    }
+    showInfo(`Loaded the job from ${file.name}: ${read.operations.length} operation(s).`);
   } catch (e) {
     showError(`${file.name}: ${e.message}`);
   }
@@ -307,13 +489,22 @@ function drawMrr() {
   g.fillStyle = '#394550';
   g.font = `${11 * dpr}px system-ui`;
   g.fillText(`MRR, peak ${Math.round(sim.peak).toLocaleString()} mm³/min`, 4 * dpr, 11 * dpr);
+  // The operations: a line in each one's colour where it starts, and its name.
+  for (const m of sim.marks) {
+    const mx = Math.round((m.t / total) * w), c = OP_COLORS[m.index % OP_COLORS.length].slice(0, 3).map((v) => Math.round(v * 255));
+    g.fillStyle = `rgb(${c.join(',')})`;
+    g.fillRect(mx, 0, dpr, h);
+    if (sim.marks.length > 1) g.fillText(m.name, mx + 3 * dpr, h - 3 * dpr);
+  }
   const x = (sim.time / total) * w;
   g.fillStyle = '#d9480f';
   g.fillRect(x - dpr, 0, 2 * dpr, h);
 }
 
-function showSimulation(data) {
+function showSimulation(data, summary = null) {
   sim.data = data;
+  // Where each operation starts in program time, for the marks on the MRR plot.
+  sim.marks = data && summary ? summary.operationStarts.map((m, k) => ({ t: data.times[m], name: summary.operations[k].name, index: summary.operations[k].index })) : [];
   sim.buckets = null;
   sim.playing = false;
   $('play').textContent = '▶';
@@ -335,8 +526,8 @@ function setRunning(running) {
   state.running = running;
   $('generate').disabled = running || !state.bytes;
   $('cancel').disabled = !running;
-  form.querySelectorAll('input, select').forEach((el) => { el.disabled = running; });
-  if (!running) updateCorner();
+  form.querySelectorAll('input, select, button').forEach((el) => { el.disabled = running; });
+  if (!running) fillTools();
 }
 
 // A failed or cancelled Generate leaves nothing of the result it replaced: no path, no
@@ -354,7 +545,7 @@ function clearResult() {
 async function generate() {
   let job;
   try { job = buildJob(); } catch (e) { showError(e.message); return; }
-  saveSettings();
+  store();
   clearResult();
   document.body.dataset.generated = 'running';
   setRunning(true);
@@ -369,16 +560,18 @@ async function generate() {
     state.gcode = r.gcode;
     if (r.drawing) viewer?.setDrawing(r.drawing, false);
     else viewer?.setPart(r.part, false);
-    viewer?.setPaths(r.feeds, r.rapids, r.summary.stock);
-    showSimulation(r.sim);
+    viewer?.setPaths(r.feeds, r.rapids, r.summary.stock, r.feedOps);
     const s = r.summary;
+    showSimulation(r.sim, s);
     const minutes = Math.floor(s.seconds / 60), seconds = Math.round(s.seconds % 60);
-    $('stats').textContent = `${s.moves.toLocaleString()} moves · ${(s.feedLength / 1000).toFixed(2)} m cutting · ${(s.rapidLength / 1000).toFixed(2)} m rapid\nestimated cycle time ${minutes}:${String(seconds).padStart(2, '0')} min\ncomputed in ${((performance.now() - started) / 1000).toFixed(2)} s`;
+    const perOp = s.operations.length > 1 ? `\n${s.operations.map((o) => `${o.name} (T${o.tools.join(', T')}): ${clock(o.seconds)} min${o.removed != null ? `, ${Math.round(o.removed).toLocaleString()} mm³, peak ${Math.round(o.mrrMax).toLocaleString()} mm³/min` : ''}${o.leftMax != null ? `, leaves ≤ ${o.leftMax.toFixed(2)} mm` : ''}`).join('\n')}` : '';
+    $('stats').textContent = `${s.moves.toLocaleString()} moves · ${(s.feedLength / 1000).toFixed(2)} m cutting · ${(s.rapidLength / 1000).toFixed(2)} m rapid\nestimated cycle time ${minutes}:${String(seconds).padStart(2, '0')} min${perOp}\ncomputed in ${((performance.now() - started) / 1000).toFixed(2)} s`;
     // A problem is shown as one, in red, with its places marked in the view; the program can
     // still be downloaded, behind a confirmation that names it.
     state.problem = s.problem ?? null;
-    if (state.problem) showError([`Not safe to run: ${state.problem}`, ...s.warnings].join('\n'));
-    else showInfo(s.warnings.join('\n'));
+    const warnings = s.warnings.map((w) => (w.operation ? `${w.operation}: ${w.message}` : w.message));
+    if (state.problem) showError([`Not safe to run: ${state.problem}`, ...warnings].join('\n'));
+    else showInfo(warnings.join('\n'));
     $('progress').value = 1;
     $('stage').textContent = state.problem ? 'done, with problems' : 'done';
     $('download').disabled = false;
@@ -412,7 +605,7 @@ function cancel() {
 function download() {
   if (!state.gcode) return;
   if (state.problem && !window.confirm(`This program is not safe to run: ${state.problem}.\n\nDownload it anyway? It starts with a warning comment.`)) return;
-  const ext = form.elements.dialect.value === 'grbl' ? 'nc' : 'ngc';
+  const ext = job().post.dialect === 'grbl' ? 'nc' : 'ngc';
   const a = document.createElement('a');
   a.href = URL.createObjectURL(new Blob([state.gcode], { type: 'text/plain' }));
   a.download = `${state.name.replace(/\.[^.]*$/, '')}.${ext}`;
@@ -435,20 +628,30 @@ $('load-job').addEventListener('change', (e) => { if (e.target.files[0]) loadJob
 $('file').addEventListener('change', (e) => { if (e.target.files[0]) takeFile(e.target.files[0]); });
 $('use-sample').addEventListener('click', () => showPart(state.sample, 'sample.stl', 'sample part'));
 $('use-sample-drawing').addEventListener('click', () => showPart(state.sampleDrawing, 'sample.dxf', 'sample drawing'));
+form.addEventListener('input', (e) => { if (e.target.type !== 'checkbox' && e.target.tagName !== 'SELECT') onField(e.target); });
 form.addEventListener('change', (e) => {
-  saveSettings();
-  updateCorner();
-  if (['partUnits', 'upAxis', 'placement', 'drawingUnits', 'drawingOrigin'].includes(e.target.name)) showPart();
+  if (e.target.closest('#op-list')) return;
+  onField(e.target);
+  if (['partUnits', 'upAxis', 'placement', 'drawingUnits', 'drawingOrigin', 'thickness'].includes(e.target.name)) showPart();
 });
+$('tool-list').addEventListener('change', (e) => { state.selected.tool = Number(e.target.value); fillTools(); });
+$('tool-add').addEventListener('click', () => addTool(false));
+$('tool-copy').addEventListener('click', () => addTool(true));
+$('tool-delete').addEventListener('click', deleteTool);
+$('tool-export').addEventListener('click', exportTools);
+$('tool-import').addEventListener('change', (e) => { if (e.target.files[0]) importTools(e.target.files[0]); e.target.value = ''; });
+$('op-list').addEventListener('click', onOpList);
+$('op-add').addEventListener('click', () => addOperation($('op-kind').value));
 const drop = $('drop');
 for (const t of ['dragenter', 'dragover']) document.addEventListener(t, (e) => { e.preventDefault(); drop.classList.add('over'); });
 for (const t of ['dragleave', 'drop']) document.addEventListener(t, (e) => { e.preventDefault(); drop.classList.remove('over'); });
 document.addEventListener('drop', (e) => { const f = e.dataTransfer?.files?.[0]; if (f) takeFile(f); });
 
-restoreSettings();
 startWorker();
-call({ type: 'hello' }).then(({ job, sample, sampleDrawing }) => {
-  state.baseJob = job;
+call({ type: 'hello' }).then(({ defaults, sample, sampleDrawing }) => {
+  state.defaults = defaults;
+  restore();
+  fillAll();
   state.sample = sample;
   state.sampleDrawing = sampleDrawing;
   return showPart(sample, 'sample.stl', 'sample part');

@@ -83,6 +83,9 @@ function lookAt(eye, target, up) {
   return new Float32Array([x[0], y[0], z[0], 0, x[1], y[1], z[1], 0, x[2], y[2], z[2], 0, -dot(x, eye), -dot(y, eye), -dot(z, eye), 1]);
 }
 
+// Colours of the operations' cutting moves, in order (the first is the classic path blue).
+export const OP_COLORS = [[0.106, 0.455, 0.82, 1], [0.62, 0.2, 0.75, 1], [0.0, 0.6, 0.55, 1], [0.75, 0.6, 0.0, 1], [0.5, 0.3, 0.15, 1]];
+
 export class Viewer {
   constructor(canvas) {
     this.canvas = canvas;
@@ -114,8 +117,21 @@ export class Viewer {
     this.draw();
   }
 
-  setPaths(feeds, rapids, stock) {
-    this.lines.feeds = { buffer: this.buffer(feeds), count: feeds.length / 3, color: [0.106, 0.455, 0.82, 1] };
+  // Cutting moves in their operation's colour (`ops`: the operation of each segment, as
+  // `OP_COLORS` indexes them), rapids in orange.
+  setPaths(feeds, rapids, stock, ops = null) {
+    for (const key of Object.keys(this.lines)) if (key.startsWith('feeds')) delete this.lines[key];
+    const groups = new Map();
+    for (let k = 0; k < feeds.length / 6; k++) {
+      const op = ops ? ops[k] : 0;
+      if (!groups.has(op)) groups.set(op, []);
+      groups.get(op).push(k);
+    }
+    for (const [op, segs] of groups) {
+      const data = new Float32Array(segs.length * 6);
+      segs.forEach((k, i) => data.set(feeds.subarray(k * 6, k * 6 + 6), i * 6));
+      this.lines[`feeds${op}`] = { buffer: this.buffer(data), count: data.length / 3, color: OP_COLORS[op % OP_COLORS.length] };
+    }
     this.lines.rapids = { buffer: this.buffer(rapids), count: rapids.length / 3, color: [0.85, 0.28, 0.06, 0.9] };
     if (stock) this.lines.stock = { buffer: this.buffer(boxLines(stock)), count: 24, color: [0.35, 0.4, 0.45, 0.6] };
     this.draw();

@@ -1,5 +1,5 @@
 // Runs the wasm pipeline off the page's thread. Cancel = the page terminates this worker.
-import init, { defaultJob, readJob, samplePart, sampleDrawing, loadPart, loadDrawing, isDrawing, runJob } from './pkg/swarf.js';
+import init, { defaults, readJob, samplePart, sampleDrawing, loadPart, loadDrawing, isDrawing, runJob } from './pkg/swarf.js';
 
 const ready = init();
 // The last job's result stays here so the page can scrub through its simulation.
@@ -22,7 +22,7 @@ self.onmessage = async (event) => {
   try {
     await ready;
     if (type === 'hello') {
-      self.postMessage({ id, ok: true, job: defaultJob(), sample: samplePart(), sampleDrawing: sampleDrawing() });
+      self.postMessage({ id, ok: true, defaults: defaults(), sample: samplePart(), sampleDrawing: sampleDrawing() });
     } else if (type === 'readJob') {
       self.postMessage({ id, ok: true, job: readJob(event.data.text) });
     } else if (type === 'load') {
@@ -43,6 +43,7 @@ self.onmessage = async (event) => {
         return true;
       });
       const feeds = result.feeds().slice();
+      const feedOps = result.feedOperations().slice();
       const rapids = result.rapids().slice();
       const gcode = result.gcode();
       const summary = result.summary();
@@ -63,7 +64,7 @@ self.onmessage = async (event) => {
       }
       current?.free();
       current = result;
-      self.postMessage({ id, ok: true, gcode, feeds, rapids, summary, part, drawing, sim }, [feeds.buffer, rapids.buffer, ...transfer]);
+      self.postMessage({ id, ok: true, gcode, feeds, feedOps, rapids, summary, part, drawing, sim }, [feeds.buffer, feedOps.buffer, rapids.buffer, ...transfer]);
     } else if (type === 'seek') {
       if (!current) throw new Error('nothing to simulate yet');
       const tops = current.seek(event.data.count).slice();

@@ -9,7 +9,7 @@ use std::fmt::Write as _;
 use serde::{Deserialize, Serialize};
 
 use crate::geom::DVec3;
-use crate::job::Tool;
+use crate::tool::Tool;
 use crate::mesh::placement::Units;
 use crate::toolpath::{Move, Toolpath};
 

@@ -140,6 +140,42 @@ impl DexelStock {
         worst
     }
 
+    /// The highest tip height at which a cutter of `profile` standing at `c` touches the
+    /// material, `-inf` where no material is within reach. `whole_cells`: each cell's material
+    /// is taken as a column over its whole square, so the answer is never lower than the
+    /// material's (for rapids); otherwise as the z-map samples it, at the cells' centres (an
+    /// estimate, for deciding what is left to cut). Blocks no higher than the best answer so
+    /// far are skipped.
+    pub fn touch(&self, c: DVec2, profile: &crate::cutter::Profile, whole_cells: bool) -> f64 {
+        let r = profile.radius;
+        let Some(((i0, i1), (j0, j1))) = self.cell_range(c - DVec2::splat(r + self.cell), c + DVec2::splat(r + self.cell)) else { return f64::NEG_INFINITY };
+        let mut best = f64::NEG_INFINITY;
+        let size = self.block;
+        for bj in j0 / size..=j1 / size {
+            for bi in i0 / size..=i1 / size {
+                if size > 1 && self.block_top[bj * self.bx + bi] <= best.max(self.bottom) {
+                    continue;
+                }
+                let (ce, cje) = (((bi + 1) * size).min(self.nx).min(i1 + 1), ((bj + 1) * size).min(self.ny).min(j1 + 1));
+                for j in (bj * size).max(j0)..cje {
+                    for i in (bi * size).max(i0)..ce {
+                        let top = self.z[j * self.nx + i];
+                        if top <= self.bottom || top <= best {
+                            continue;
+                        }
+                        let lo = self.origin + DVec2::new(i as f64, j as f64) * self.cell;
+                        let nearest = if whole_cells { c.clamp(lo, lo + DVec2::splat(self.cell)) } else { lo + DVec2::splat(self.cell * 0.5) };
+                        let d = nearest.distance(c);
+                        if d <= r {
+                            best = best.max(top - profile.height(d));
+                        }
+                    }
+                }
+            }
+        }
+        best
+    }
+
     /// The cells whose centres the rectangle `[lo, hi]` may touch, or `None`.
     fn cell_range(&self, lo: DVec2, hi: DVec2) -> Option<((usize, usize), (usize, usize))> {
         let a = ((lo - self.origin) / self.cell).floor();

@@ -10,7 +10,6 @@
 //! All of them ask one question of a move, answered exactly in [`sweep`]: how low does the
 //! cutter reach over this point?
 
-pub mod bench;
 pub mod dexel;
 pub mod octree;
 pub mod paper;

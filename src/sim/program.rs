@@ -7,7 +7,7 @@ use super::StockModel;
 use crate::cutter::Cutter;
 use crate::error::{Error, Result};
 use crate::geom::DVec3;
-use crate::job::Tool;
+use crate::tool::Tool;
 use crate::progress::Progress;
 use crate::toolpath::{Move, Toolpath};
 
@@ -30,7 +30,7 @@ pub fn program_moves(paths: &[Toolpath], tools: &[Tool], rapid_rate: f64) -> Res
     let mut out = Vec::new();
     let mut clock = 0.0;
     for (k, path) in paths.iter().enumerate() {
-        let tool = tools.iter().find(|t| t.number == path.tool).ok_or_else(|| Error::Job(format!("no tool number {} in the tool library", path.tool)))?;
+        let tool = tools.iter().find(|t| t.number == path.tool).ok_or_else(|| Error::Input(format!("the program uses tool number {}, which is not in the tool library", path.tool)))?;
         let mut at = path.start;
         for mv in &path.moves {
             let rate = match *mv {

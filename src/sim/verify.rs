@@ -16,7 +16,6 @@ use super::program::ProgramMove;
 use super::StockModel;
 use crate::error::{Error, Result};
 use crate::geom::{Aabb, DVec3, Tolerances};
-use crate::job::Job;
 use crate::mesh::Mesh;
 use crate::progress::Progress;
 use crate::zmap::{cc::cc_zmap, Grid, HeightField, MAX_NODES};
@@ -33,15 +32,6 @@ pub struct VerifySettings {
     pub cell: f64,
     /// Material the program promised to leave on the part (mm).
     pub allowance: f64,
-}
-
-impl VerifySettings {
-    /// A job's settings for its `stock`: its simulation cell (unless `cell` overrides it) and
-    /// the least allowance of its operations (0 without operations).
-    pub fn for_job(job: &Job, stock: &Aabb, cell: Option<f64>) -> VerifySettings {
-        let allowance = job.allowance();
-        VerifySettings { cell: cell.unwrap_or_else(|| job.simulation.cell_for(stock)), allowance: if allowance.is_finite() { allowance } else { 0.0 } }
-    }
 }
 
 /// A place where something went wrong.
@@ -142,27 +132,15 @@ impl Verification {
     }
 }
 
-/// Verifies a G-code program (swarf's or another's) against a job's part, stock and tools:
-/// the part is placed as the job says, the program read with [`crate::post::read::read_gcode`]
-/// (the job's first tool until the program picks one), and `cell` overrides the job's cell size.
-pub fn verify_gcode(job: &Job, mut part: Mesh, gcode: &str, cell: Option<f64>, progress: &mut Progress) -> Result<Verification> {
-    job.validate()?;
-    let stock = job.place(&mut part);
-    let first_tool = job.tools.first().map_or(1, |t| t.number);
-    let paths = crate::post::read::read_gcode(gcode, first_tool)?;
-    let moves = super::program::program_moves(&paths, &job.tools, job.post.rapid_rate)?;
-    verify(&part, &stock, &moves, &VerifySettings::for_job(job, &stock, cell), &job.tolerances, progress)
-}
-
 /// The stock grid for a cell size, refused when it would not fit in memory.
 pub fn stock_for(stock: &Aabb, cell: f64) -> Result<DexelStock> {
     if !(cell > 0.0 && cell.is_finite()) {
-        return Err(Error::Job(format!("the simulation cell must be a positive number of millimetres (got {cell})")));
+        return Err(Error::Input(format!("simulation.cell: the simulation cell must be a positive number of millimetres (got {cell})")));
     }
     let size = stock.size();
     let cells = (size.x / cell).ceil() * (size.y / cell).ceil();
     if cells > MAX_NODES as f64 {
-        return Err(Error::Job(format!("{cell} mm cells over this stock make {:.0} million cells; choose larger cells", cells / 1e6)));
+        return Err(Error::Input(format!("simulation.cell: {cell} mm cells over this stock make {:.0} million cells; choose larger cells", cells / 1e6)));
     }
     Ok(DexelStock::new(stock, cell, 1))
 }
@@ -182,77 +160,118 @@ pub fn verify_against(
     tolerances: &Tolerances,
     progress: &mut Progress,
 ) -> Result<Verification> {
-    let mut sim = stock_for(stock, settings.cell)?;
-    let grid: Grid = sim.grid();
-    let mut volumes = Vec::with_capacity(moves.len());
-    let (mut rapid, mut body) = ((0, Vec::new()), (0, Vec::new()));
-    let note = |list: &mut (usize, Vec<Finding>), f: Finding| {
-        list.0 += 1;
-        if list.1.len() < KEPT {
-            list.1.push(f);
-        }
-    };
-    let mut mrr_max: f64 = 0.0;
-    for (k, m) in moves.iter().enumerate() {
-        if k % 4096 == 0 && !progress.report(0.9 * k as f64 / moves.len().max(1) as f64) {
-            return Err(Error::Cancelled);
-        }
-        let mut removed = 0.0;
-        for sweep in m.sweeps(tolerances.chordal) {
-            if !m.mv.is_rapid() {
-                let radius = m.cutter.shank_diameter.unwrap_or(m.cutter.diameter) * 0.5;
-                if let Some((at, depth)) = sim.above_body(&sweep, radius, m.cutter.flute_length + tolerances.gouge) {
-                    note(&mut body, Finding { move_index: Some(k), at: at.extend(sweep.nearest(at).1 + m.cutter.flute_length), amount: depth });
-                }
-            }
-            removed += sim.apply(&sweep);
-        }
-        if !m.mv.is_rapid() {
-            mrr_max = mrr_max.max(m.mrr(removed));
-        } else if removed > GRAZE {
-            note(&mut rapid, Finding { move_index: Some(k), at: m.mv.to(), amount: removed });
-        }
-        volumes.push(removed);
-    }
+    let mut sim = Simulator::new(stock, settings.cell)?;
+    sim.run(moves, tolerances, progress, 0.9)?;
     progress.report(0.9);
-    let mut surface = surface(grid);
-    let mut gouges = Vec::new();
-    let (mut residual_max, mut residual_sum, mut covered) = (0.0f64, 0.0, 0usize);
-    for j in 0..grid.ny {
-        for i in 0..grid.nx {
-            let c = j * grid.nx + i;
-            if surface.z[c] == f64::NEG_INFINITY {
-                surface.z[c] = f64::NAN;
-                continue;
-            }
-            surface.z[c] += settings.allowance;
-            let left = sim.top(i, j) - surface.z[c];
-            if left < -tolerances.gouge {
-                gouges.push(Finding { move_index: None, at: grid.node(i, j).extend(sim.top(i, j)), amount: -left });
-            }
-            residual_max = residual_max.max(left);
-            residual_sum += left.max(0.0);
-            covered += 1;
-        }
+    Ok(sim.finish(surface, settings.allowance, tolerances))
+}
+
+/// A program simulated piece by piece on a z-map stock: a job applies each operation's moves as
+/// it is made, so the next operation sees the stock the earlier ones left (the in-process
+/// stock), and the findings of the whole program are gathered on the way.
+#[derive(Clone, Debug)]
+pub struct Simulator {
+    stock: DexelStock,
+    volumes: Vec<f64>,
+    rapid: (usize, Vec<Finding>),
+    body: (usize, Vec<Finding>),
+    mrr_max: f64,
+}
+
+impl Simulator {
+    /// The untouched box `stock` on cells of side `cell`.
+    pub fn new(stock: &Aabb, cell: f64) -> Result<Simulator> {
+        Ok(Simulator { stock: stock_for(stock, cell)?, volumes: Vec::new(), rapid: (0, Vec::new()), body: (0, Vec::new()), mrr_max: 0.0 })
     }
-    // The deepest gouges first.
-    gouges.sort_by(|a, b| b.amount.total_cmp(&a.amount));
-    let gouge_count = gouges.len();
-    gouges.truncate(KEPT);
-    let report = Report {
-        cells: sim.cells(),
-        moves: moves.len(),
-        removed: volumes.iter().sum(),
-        gouge_count,
-        gouge_max: gouges.first().map_or(0.0, |g| g.amount),
-        gouges,
-        rapid_collision_count: rapid.0,
-        rapid_collisions: rapid.1,
-        body_collision_count: body.0,
-        body_collisions: body.1,
-        residual_max,
-        residual_mean: if covered > 0 { residual_sum / covered as f64 } else { 0.0 },
-        mrr_max,
-    };
-    Ok(Verification { report, volumes, stock: sim, part: surface })
+
+    /// The stock as the moves so far left it.
+    pub fn stock(&self) -> &DexelStock {
+        &self.stock
+    }
+
+    /// Volume removed by each move so far (mm³).
+    pub fn volumes(&self) -> &[f64] {
+        &self.volumes
+    }
+
+    /// Applies the next `moves` of the program (move indices continue from the earlier ones),
+    /// reporting up to `share` of the progress stage.
+    pub fn run(&mut self, moves: &[ProgramMove], tolerances: &Tolerances, progress: &mut Progress, share: f64) -> Result<()> {
+        let note = |list: &mut (usize, Vec<Finding>), f: Finding| {
+            list.0 += 1;
+            if list.1.len() < KEPT {
+                list.1.push(f);
+            }
+        };
+        for (n, m) in moves.iter().enumerate() {
+            let k = self.volumes.len();
+            if n % 4096 == 0 && !progress.report(share * n as f64 / moves.len().max(1) as f64) {
+                return Err(Error::Cancelled);
+            }
+            let mut removed = 0.0;
+            for sweep in m.sweeps(tolerances.chordal) {
+                if !m.mv.is_rapid() {
+                    let radius = m.cutter.shank_diameter.unwrap_or(m.cutter.diameter) * 0.5;
+                    if let Some((at, depth)) = self.stock.above_body(&sweep, radius, m.cutter.flute_length + tolerances.gouge) {
+                        note(&mut self.body, Finding { move_index: Some(k), at: at.extend(sweep.nearest(at).1 + m.cutter.flute_length), amount: depth });
+                    }
+                }
+                removed += self.stock.apply(&sweep);
+            }
+            if !m.mv.is_rapid() {
+                self.mrr_max = self.mrr_max.max(m.mrr(removed));
+            } else if removed > GRAZE {
+                note(&mut self.rapid, Finding { move_index: Some(k), at: m.mv.to(), amount: removed });
+            }
+            self.volumes.push(removed);
+        }
+        Ok(())
+    }
+
+    /// Judges the stock against the part's heights (`surface` on the simulation's grid, −∞ where
+    /// there is no part) plus `allowance`, and ends the simulation.
+    pub fn finish(self, surface: impl FnOnce(Grid) -> HeightField, allowance: f64, tolerances: &Tolerances) -> Verification {
+        let Simulator { stock: sim, volumes, rapid, body, mrr_max } = self;
+        let grid = sim.grid();
+        let mut surface = surface(grid);
+        let mut gouges = Vec::new();
+        let (mut residual_max, mut residual_sum, mut covered) = (0.0f64, 0.0, 0usize);
+        for j in 0..grid.ny {
+            for i in 0..grid.nx {
+                let c = j * grid.nx + i;
+                if surface.z[c] == f64::NEG_INFINITY {
+                    surface.z[c] = f64::NAN;
+                    continue;
+                }
+                surface.z[c] += allowance;
+                let left = sim.top(i, j) - surface.z[c];
+                if left < -tolerances.gouge {
+                    gouges.push(Finding { move_index: None, at: grid.node(i, j).extend(sim.top(i, j)), amount: -left });
+                }
+                residual_max = residual_max.max(left);
+                residual_sum += left.max(0.0);
+                covered += 1;
+            }
+        }
+        // The deepest gouges first.
+        gouges.sort_by(|a, b| b.amount.total_cmp(&a.amount));
+        let gouge_count = gouges.len();
+        gouges.truncate(KEPT);
+        let report = Report {
+            cells: sim.cells(),
+            moves: volumes.len(),
+            removed: volumes.iter().sum(),
+            gouge_count,
+            gouge_max: gouges.first().map_or(0.0, |g| g.amount),
+            gouges,
+            rapid_collision_count: rapid.0,
+            rapid_collisions: rapid.1,
+            body_collision_count: body.0,
+            body_collisions: body.1,
+            residual_max,
+            residual_mean: if covered > 0 { residual_sum / covered as f64 } else { 0.0 },
+            mrr_max,
+        };
+        Verification { report, volumes, stock: sim, part: surface }
+    }
 }

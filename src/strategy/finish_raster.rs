@@ -12,11 +12,87 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::region::Region;
+use super::{Context, FieldError, Operate, Works};
+use crate::error::{Error, Result, Warning};
 use crate::geom::{DVec2, DVec3};
 use crate::progress::Progress;
+use crate::toolpath::entry::Entry;
+use crate::toolpath::link::{Feeds, Floor, LinkSettings, Linker, Surface};
 use crate::toolpath::reduce::reduce;
+use crate::toolpath::Toolpath;
+use crate::zmap::region::Region;
 use crate::zmap::surface::{point_at, ClSurface};
+use crate::zmap::{ClBuilder, Grid};
+
+/// Where the tool's centre may go.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub enum Boundary {
+    /// The stock's rectangle.
+    Stock,
+    /// The part's outline seen from above, grown by the operation's margin.
+    #[default]
+    Silhouette,
+}
+
+/// Raster finishing over the CL z-map (seed 001).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, rename_all = "camelCase")]
+pub struct FinishRaster {
+    /// Shown in the program's comments. Default value: "raster finish".
+    pub name: String,
+    /// Whether the job runs it (a disabled operation stays in the job). Default value: true.
+    pub enabled: bool,
+    /// Number of the tool to use. Default value: 1.
+    pub tool: u32,
+    /// Direction of the passes (degrees from +X). Default value: 0.
+    pub angle: f64,
+    /// Distance between passes (mm). Default value: 0.5.
+    pub stepover: f64,
+    /// Default value: zigzag.
+    pub pattern: Pattern,
+    /// Default value: silhouette.
+    pub boundary: Boundary,
+    /// Growth of the silhouette boundary (mm). Default value: the tool's radius.
+    pub margin: Option<f64>,
+    /// Material left on the part (mm). Default value: 0.
+    pub allowance: f64,
+    /// Spacing of the CL z-map (mm). Default value: 0.25.
+    pub grid: f64,
+    /// Default value: exact.
+    pub builder: ClBuilder,
+    /// Lowest tip height where the part is not under the tool (mm). Default value: stock bottom.
+    pub floor: Option<f64>,
+    /// Longest link that may stay down (mm). Default value: twice the stepover.
+    pub stay_down_max: Option<f64>,
+    /// How the cutter enters material (helix, else ramp along the pass).
+    pub entry: Entry,
+    /// Cut only where the stock the earlier operations left stands above what this one
+    /// leaves (by more than the job's gouge tolerance). Default value: false.
+    pub rest_only: bool,
+}
+
+impl Default for FinishRaster {
+    fn default() -> Self {
+        FinishRaster {
+            name: "raster finish".into(),
+            enabled: true,
+            tool: 1,
+            angle: 0.0,
+            stepover: 0.5,
+            pattern: Pattern::Zigzag,
+            boundary: Boundary::Silhouette,
+            margin: None,
+            allowance: 0.0,
+            grid: 0.25,
+            builder: ClBuilder::Exact,
+            floor: None,
+            stay_down_max: None,
+            entry: Entry::default(),
+            rest_only: false,
+        }
+    }
+}
 
 /// How consecutive passes run.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -130,4 +206,122 @@ fn cut_pass(cl: &ClSurface, region: &Region, a: DVec2, b: DVec2, passes: &Raster
         runs.push(reduce(&run, passes.tolerance));
     }
     runs
+}
+
+impl Operate for FinishRaster {
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    fn tool(&self) -> u32 {
+        self.tool
+    }
+
+    fn enabled(&self) -> bool {
+        self.enabled
+    }
+
+    fn works(&self) -> Works {
+        Works::OnPart
+    }
+
+    fn allowance(&self) -> f64 {
+        self.allowance
+    }
+
+    fn validate(&self) -> Result<(), FieldError> {
+        super::positive("stepover", self.stepover)?;
+        super::positive("grid", self.grid)?;
+        super::not_negative("allowance", self.allowance)?;
+        super::finite("angle", self.angle)?;
+        super::positive("entry.rampAngle", self.entry.ramp_angle)?;
+        super::not_negative("entry.helixMin", self.entry.helix_min)?;
+        super::not_negative("entry.helixMax", self.entry.helix_max)?;
+        if let Some(m) = self.margin {
+            super::finite("margin", m)?;
+        }
+        if let Some(f) = self.floor {
+            super::finite("floor", f)?;
+        }
+        if let Some(d) = self.stay_down_max {
+            super::not_negative("stayDownMax", d)?;
+        }
+        Ok(())
+    }
+
+    fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Vec<Toolpath>> {
+        let tool = ctx.tool(&self.name, self.tool)?.clone();
+        let profile = tool.cutter.profile();
+        let stock = ctx.stock;
+        let grid = Grid::checked(stock.min.truncate(), stock.max.truncate(), self.grid).map_err(|e| Error::operation(&self.name, e))?;
+        let floor = self.floor.unwrap_or(stock.min.z);
+        if !progress.stage("CL z-map", 0.0, 0.2) {
+            return Err(Error::Cancelled);
+        }
+        let cl = ctx.cl_surface(&profile, grid, floor, self.builder, progress)?;
+        if !progress.stage("passes", 0.2, 0.8) {
+            return Err(Error::Cancelled);
+        }
+        let margin = self.margin.unwrap_or(profile.radius);
+        let region = match self.boundary {
+            Boundary::Stock => Region::Rect { min: stock.min.truncate(), max: stock.max.truncate() },
+            Boundary::Silhouette => Region::silhouette(&ctx.cc_zmap(grid, floor), floor, margin),
+        };
+        let skip_floor = (self.boundary == Boundary::Silhouette && margin <= profile.radius).then_some(floor);
+        let tol = ctx.tolerances;
+        let passes = RasterPasses { angle_deg: self.angle, stepover: self.stepover, pattern: self.pattern, allowance: self.allowance, tolerance: tol.chordal, skip_floor };
+        let mut runs = raster_runs(&cl, &region, &passes, progress).ok_or(Error::Cancelled)?;
+        let sim = &ctx.sim;
+        let material = |p: DVec2| sim.stock().touch(p, &profile, true);
+        let estimate = |p: DVec2| sim.stock().touch(p, &profile, false);
+        if self.rest_only {
+            runs = rest_only(runs, &estimate, profile.radius / 4.0, tol.gouge);
+            if runs.is_empty() {
+                ctx.warnings.push(Warning::of(&self.name, "the earlier operations left nothing for it to cut (rest only)"));
+                return Ok(Vec::new());
+            }
+        }
+        let settings = LinkSettings { clearance_z: ctx.heights.clearance, rapid_gap: ctx.heights.gap, stay_down_max: self.stay_down_max.unwrap_or(2.0 * self.stepover) };
+        let floor_surface = Floor { cl: &cl, allowance: self.allowance, region: &region };
+        let surface = Surface { cl: &cl, allowance: self.allowance };
+        let linker = Linker { settings, keep: &floor_surface, entry_keep: &surface, material: &material, estimate: &estimate, threshold: tol.gouge, entry: self.entry, radius: profile.radius, feeds: Feeds { cut: tool.feed_rate, plunge: tool.plunge_rate } };
+        let (start, moves, entries) = linker.link(&runs, &tol);
+        if entries.plunge > 0 && profile.flat_radius() > 0.0 {
+            ctx.warnings.push(Warning::of(&self.name, format!("{} entries found no room for a helix or a ramp and feed straight down into material", entries.plunge)));
+        }
+        Ok(vec![Toolpath { name: self.name.clone(), tool: tool.number, spindle_rpm: tool.spindle_rpm, start, moves }])
+    }
+}
+
+/// The parts of `runs` where the cutter would remove material from the in-process stock:
+/// `material` (the highest tip height touching it) stands more than `threshold` above the run
+/// at some point of a segment (sampled every `spacing` at most). Consecutive such segments stay
+/// one run; the rest is left out.
+pub fn rest_only(runs: Vec<Vec<DVec3>>, material: &dyn Fn(DVec2) -> f64, spacing: f64, threshold: f64) -> Vec<Vec<DVec3>> {
+    let mut out = Vec::new();
+    for run in runs {
+        let cuts = |p: DVec3| material(p.truncate()) > p.z + threshold;
+        let mut current: Vec<DVec3> = Vec::new();
+        if run.len() == 1 && cuts(run[0]) {
+            out.push(run);
+            continue;
+        }
+        for w in run.windows(2) {
+            let (a, b) = (w[0], w[1]);
+            let n = ((a.truncate().distance(b.truncate()) / spacing).ceil() as usize).max(1);
+            let needed = (0..=n).any(|k| cuts(point_at(a, b, k as f64 / n as f64)));
+            if needed {
+                if current.is_empty() {
+                    current.push(a);
+                }
+                current.push(b);
+            } else if !current.is_empty() {
+                out.push(std::mem::take(&mut current));
+            }
+        }
+        if !current.is_empty() {
+            out.push(current);
+        }
+    }
+    out
 }

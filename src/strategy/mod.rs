@@ -1,9 +1,87 @@
-//! Strategies turn a part (through its CL z-map) into tool paths. Each one keeps the tool tip on
-//! or above the CL surface plus its allowance, so none can gouge (DESIGN.md, idea 1).
+//! Strategies turn a part (through its CL z-map) or a drawing (through the offsetter) into tool
+//! paths. Each one keeps the tool tip on or above the CL surface plus its allowance, so none
+//! can gouge (DESIGN.md, idea 1).
+//!
+//! Every operation kind follows one contract, [`Operate`]: its options type lives beside its
+//! strategy, checks itself ([`Operate::validate`]) and plans in the job's shared [`Context`],
+//! returning tool paths, each with its tool (an operation may use more than one). The job
+//! matches its `Operation` enum in one place (`job/operation.rs`).
 
+pub mod context;
 pub mod finish_raster;
 pub mod path2d;
 pub mod pocket2d;
 pub mod profile2d;
-pub mod region;
+pub mod sheet;
 pub mod walls;
+
+pub use context::Context;
+
+use crate::error::Result;
+use crate::progress::Progress;
+use crate::toolpath::Toolpath;
+
+/// A setting of an operation that does not fit: the field (as the job file names it) and why.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FieldError {
+    pub field: &'static str,
+    pub message: String,
+}
+
+/// `Ok` when `value` is a positive finite number, else the error naming `field`.
+pub fn positive(field: &'static str, value: f64) -> Result<(), FieldError> {
+    if value > 0.0 && value.is_finite() {
+        Ok(())
+    } else {
+        Err(FieldError { field, message: format!("must be a positive number (got {value})") })
+    }
+}
+
+/// `Ok` when `value` is zero or a positive finite number.
+pub fn not_negative(field: &'static str, value: f64) -> Result<(), FieldError> {
+    if value >= 0.0 && value.is_finite() {
+        Ok(())
+    } else {
+        Err(FieldError { field, message: format!("must be zero or more (got {value})") })
+    }
+}
+
+/// `Ok` when `value` is a finite number.
+pub fn finite(field: &'static str, value: f64) -> Result<(), FieldError> {
+    if value.is_finite() {
+        Ok(())
+    } else {
+        Err(FieldError { field, message: format!("must be a number (got {value})") })
+    }
+}
+
+/// What a part or drawing needs to be for an operation.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Works {
+    /// A part (mesh): 3D operations on its CL z-map.
+    OnPart,
+    /// A drawing (DXF, SVG) as a sheet: 2.5D operations.
+    OnDrawing,
+}
+
+/// One kind of operation.
+pub trait Operate {
+    /// Shown in progress, warnings and the program's comments.
+    fn name(&self) -> &str;
+    /// The number of the tool it asks for (an operation that picks its own tools names the
+    /// first it may use).
+    fn tool(&self) -> u32;
+    /// Whether the job runs it (a disabled operation stays in the job file).
+    fn enabled(&self) -> bool;
+    fn works(&self) -> Works;
+    /// Material it leaves on the part's surface (mm); 2.5D operations leave theirs on the walls
+    /// (their verification keeps it in the regions they cut) and have none.
+    fn allowance(&self) -> f64 {
+        0.0
+    }
+    /// Checks its settings before any work.
+    fn validate(&self) -> Result<(), FieldError>;
+    /// Its tool paths, each with its tool, planned in the job's context. `progress` is this
+    /// operation's own: stages run from 0 to 1.
+    fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Vec<Toolpath>>;
+}

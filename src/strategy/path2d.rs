@@ -152,23 +152,6 @@ pub fn start_nearest(l: &Loop, q: DVec2) -> Vec<Segment> {
     out
 }
 
-/// A helix about `center` of `radius`, starting at angle 0, from height `from` down to `to`,
-/// descending no steeper than `angle`, ending with one level circle at `to`.
-pub fn helix(center: DVec2, radius: f64, from: f64, to: f64, angle: f64, clockwise: bool, feed: f64, out: &mut Vec<Move>) {
-    let start = center + DVec2::new(radius, 0.0);
-    let turn_drop = std::f64::consts::TAU * radius * angle.tan();
-    let halves = (((from - to) / turn_drop) * 2.0).ceil().max(1.0) as usize;
-    for h in 1..=halves {
-        let z = from + (to - from) * h as f64 / halves as f64;
-        let p = if h % 2 == 1 { center - DVec2::new(radius, 0.0) } else { start };
-        out.push(Move::Arc { to: p.extend(z), center, clockwise, feed });
-    }
-    let at = if halves % 2 == 1 { center - DVec2::new(radius, 0.0) } else { start };
-    let other = 2.0 * center - at;
-    out.push(Move::Arc { to: other.extend(to), center, clockwise, feed });
-    out.push(Move::Arc { to: at.extend(to), center, clockwise, feed });
-}
-
 /// "the φD tool (plus L leave-stock) does not fit in <what> at (x, y)–(x, y)".
 pub fn does_not_fit(tool_radius: f64, leave_stock: f64, what: &str, b: &crate::geom::segment::Rect) -> String {
     format!(

@@ -8,7 +8,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::path2d::{arc_lengths, does_not_fit, follow, helix, start_nearest, Cursor, Heights};
+use super::path2d::{arc_lengths, does_not_fit, follow, start_nearest, Cursor, Heights};
+use crate::toolpath::entry::helix;
 use super::profile2d::Direction;
 use crate::geom::segment::Segment;
 use crate::geom::{DVec2, Tolerances};
@@ -44,6 +45,8 @@ pub enum Entry {
 pub struct Pocket2d {
     /// Default value: "pocket".
     pub name: String,
+    /// Whether the job runs it (a disabled operation stays in the job). Default value: true.
+    pub enabled: bool,
     /// Default value: 1.
     pub tool: u32,
     /// Depth below the stock top (mm). Default value: 3.
@@ -77,6 +80,7 @@ impl Default for Pocket2d {
     fn default() -> Self {
         Pocket2d {
             name: "pocket".into(),
+            enabled: true,
             tool: 1,
             depth: 3.0,
             stepdown: 1.0,
@@ -294,5 +298,50 @@ impl Ctx<'_, '_> {
         if !at_a {
             self.out.push(Move::Line { to: a.extend(self.z), feed: self.s.feed });
         }
+    }
+}
+
+impl super::Operate for Pocket2d {
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    fn tool(&self) -> u32 {
+        self.tool
+    }
+
+    fn enabled(&self) -> bool {
+        self.enabled
+    }
+
+    fn works(&self) -> super::Works {
+        super::Works::OnDrawing
+    }
+
+    fn validate(&self) -> Result<(), super::FieldError> {
+        super::positive("depth", self.depth)?;
+        super::positive("stepdown", self.stepdown)?;
+        super::positive("stepover", self.stepover)?;
+        super::positive("rampAngle", self.ramp_angle)?;
+        super::not_negative("leaveStock", self.leave_stock)?;
+        super::finite("angle", self.angle)?;
+        if let Some(r) = self.helix_radius {
+            super::positive("helixRadius", r)?;
+        }
+        Ok(())
+    }
+
+    fn plan(&self, ctx: &mut super::Context, _progress: &mut crate::progress::Progress) -> crate::error::Result<Vec<crate::toolpath::Toolpath>> {
+        use super::sheet;
+        let tool = ctx.tool(&self.name, self.tool)?.clone();
+        let (drawing, _) = sheet::sheet(ctx, &self.name)?;
+        let (walls, picked) = sheet::selected(drawing, &self.name, &self.layers, &self.loops)?;
+        let picked: Vec<Loop> = picked.iter().map(|&k| walls.shape.loops[k].clone()).collect();
+        let region = sheet::pocket_region(&walls.shape, &picked, self.loops.is_empty());
+        let mut cursor = sheet::cursor(ctx, &tool);
+        let setup = Setup { tool_radius: tool.cutter.radius(), top: ctx.stock.max.z, feed: tool.feed_rate, cursor: &mut cursor, tol: &ctx.tolerances };
+        let moves = pocket_moves(&region, self, setup).map_err(|e| crate::error::Error::operation(&self.name, e))?;
+        ctx.cuts.push(super::context::SheetCut { region, inside: true, depth: self.depth, leave: self.leave_stock });
+        Ok(vec![sheet::toolpath(&self.name, &tool, moves, ctx.heights.clearance)])
     }
 }

@@ -78,6 +78,8 @@ impl Default for Tabs {
 pub struct Profile2d {
     /// Default value: "profile".
     pub name: String,
+    /// Whether the job runs it (a disabled operation stays in the job). Default value: true.
+    pub enabled: bool,
     /// Default value: 1.
     pub tool: u32,
     /// Default value: auto.
@@ -105,6 +107,7 @@ impl Default for Profile2d {
     fn default() -> Self {
         Profile2d {
             name: "profile".into(),
+            enabled: true,
             tool: 1,
             side: Side::Auto,
             direction: Direction::Climb,
@@ -353,4 +356,52 @@ fn fitting_lead(p: DVec2, t: DVec2, waste_left: bool, rho: f64, clear: &Clear, i
         rho *= 0.5;
     }
     None
+}
+
+impl super::Operate for Profile2d {
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    fn tool(&self) -> u32 {
+        self.tool
+    }
+
+    fn enabled(&self) -> bool {
+        self.enabled
+    }
+
+    fn works(&self) -> super::Works {
+        super::Works::OnDrawing
+    }
+
+    fn validate(&self) -> Result<(), super::FieldError> {
+        super::positive("stepdown", self.stepdown)?;
+        super::positive("rampAngle", self.ramp_angle)?;
+        super::not_negative("leaveStock", self.leave_stock)?;
+        if let Some(d) = self.depth {
+            super::positive("depth", d)?;
+        }
+        if let Some(r) = self.lead_radius {
+            super::not_negative("leadRadius", r)?;
+        }
+        Ok(())
+    }
+
+    fn plan(&self, ctx: &mut super::Context, _progress: &mut crate::progress::Progress) -> crate::error::Result<Vec<crate::toolpath::Toolpath>> {
+        use super::sheet;
+        let tool = ctx.tool(&self.name, self.tool)?.clone();
+        let (drawing, thickness) = sheet::sheet(ctx, &self.name)?;
+        let (walls, picked) = sheet::selected(drawing, &self.name, &self.layers, &self.loops)?;
+        let depth = self.depth.unwrap_or(thickness + sheet::BREAKTHROUGH);
+        let cuts = sheet::profile_cuts(&walls, &picked, self.side, depth, self.leave_stock);
+        let mut cursor = sheet::cursor(ctx, &tool);
+        let setup = Setup { tool_radius: tool.cutter.radius(), top: ctx.stock.max.z, depth, feed: tool.feed_rate, cursor: &mut cursor, tol: &ctx.tolerances };
+        let (moves, notes) = profile_moves(&walls, &picked, self, setup).map_err(|e| crate::error::Error::operation(&self.name, e))?;
+        ctx.cuts.extend(cuts);
+        for n in notes {
+            ctx.warn(&self.name, n);
+        }
+        Ok(vec![sheet::toolpath(&self.name, &tool, moves, ctx.heights.clearance)])
+    }
 }

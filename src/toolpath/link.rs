@@ -1,14 +1,17 @@
-//! Linking cutting runs into one path: between two runs the tool stays down and feeds straight
-//! across when that straight move stays on or above the CL surface (plus allowance) and inside
-//! the region and is short; otherwise it retracts to the clearance height, moves over at rapid,
-//! drops at rapid to a small gap above the next start, or above the stock's top when the start
-//! lies lower (a rapid never enters uncut stock), and feeds down the rest.
+//! Linking cutting runs into one path (DESIGN.md idea 6), one pass over the runs with a
+//! pluggable test of what a link must stay clear of ([`Keepout`]: the CL surface within a
+//! region, ...). Between two runs the tool stays down and feeds straight across when that move
+//! is short and the test accepts it; otherwise it retracts to the clearance height, moves over
+//! at rapid, drops at rapid to a small gap above the material that is really there (the
+//! in-process stock under the cutter at that spot, never into it), and enters the material
+//! ([`super::entry`]): a helix or a ramp, never a straight plunge into material.
 
 use serde::{Deserialize, Serialize};
 
+use super::entry::{enter_3d, Entry, Keepout, Kind};
 use super::Move;
-use crate::geom::{DVec3, Tolerances};
-use crate::strategy::region::Region;
+use crate::geom::{DVec2, DVec3, Tolerances};
+use crate::zmap::region::Region;
 use crate::zmap::surface::{point_at, ClSurface};
 
 /// How runs are joined.
@@ -17,19 +20,16 @@ use crate::zmap::surface::{point_at, ClSurface};
 pub struct LinkSettings {
     /// Height of rapid moves between runs (mm, absolute). Set by the job from the stock top.
     pub clearance_z: f64,
-    /// Height above a run's start at which a rapid descent stops and the feed begins (mm).
+    /// Height above the material at which a rapid descent stops and the feed begins (mm).
     /// Default value: 1.
     pub rapid_gap: f64,
     /// Longest link that may stay down (mm). Default value: 4.
     pub stay_down_max: f64,
-    /// Top of the stock (mm, absolute): rapid descents stop `rapid_gap` above it. Default value:
-    /// none (descend to `rapid_gap` above the start).
-    pub stock_top: Option<f64>,
 }
 
 impl Default for LinkSettings {
     fn default() -> Self {
-        LinkSettings { clearance_z: 5.0, rapid_gap: 1.0, stay_down_max: 4.0, stock_top: None }
+        LinkSettings { clearance_z: 5.0, rapid_gap: 1.0, stay_down_max: 4.0 }
     }
 }
 
@@ -40,12 +40,25 @@ pub struct Floor<'a> {
     pub region: &'a Region,
 }
 
-impl Floor<'_> {
+/// The CL surface lifted by the allowance, anywhere (an entry may leave the region the passes
+/// keep to, as long as it stays above the surface).
+pub struct Surface<'a> {
+    pub cl: &'a ClSurface,
+    pub allowance: f64,
+}
+
+impl Keepout for Surface<'_> {
+    fn clears(&self, a: DVec3, b: DVec3, tolerance: f64) -> bool {
+        self.cl.along(a.truncate(), b.truncate()).into_iter().all(|(t, z)| point_at(a, b, t).z + tolerance >= z + self.allowance)
+    }
+}
+
+impl Keepout for Floor<'_> {
     /// Whether the straight move from `a` to `b` stays inside the region and on or above the
     /// floor (within `tolerance`), checked at every point of the surface along it
     /// ([`ClSurface::along`]): a line at or above those points is at or above the polyline
     /// through them.
-    pub fn clears(&self, a: DVec3, b: DVec3, tolerance: f64) -> bool {
+    fn clears(&self, a: DVec3, b: DVec3, tolerance: f64) -> bool {
         self.cl.along(a.truncate(), b.truncate()).into_iter().all(|(t, z)| {
             let p = point_at(a, b, t);
             self.region.contains(p.truncate()) && p.z + tolerance >= z + self.allowance
@@ -60,39 +73,81 @@ pub struct Feeds {
     pub plunge: f64,
 }
 
-/// Joins `runs` into moves; returns where the path starts (above its first point, at the
-/// clearance height) and the moves, ending at the clearance height.
-pub fn link_runs(runs: &[Vec<DVec3>], floor: &Floor, settings: &LinkSettings, feeds: Feeds, tolerances: &Tolerances) -> (DVec3, Vec<Move>) {
-    let clearance = settings.clearance_z;
-    let first = runs.iter().find_map(|r| r.first()).copied().unwrap_or(DVec3::new(0.0, 0.0, clearance));
-    let start = first.truncate().extend(clearance);
-    let mut moves = Vec::new();
-    let mut at = start;
-    let mut down = false;
-    for run in runs.iter().filter(|r| !r.is_empty()) {
-        let entry = run[0];
-        let stay = down && at.distance(entry) <= settings.stay_down_max && floor.clears(at, entry, tolerances.height);
-        if stay {
-            moves.push(Move::Line { to: entry, feed: feeds.cut });
-        } else {
-            if down {
-                moves.push(Move::Rapid { to: at.truncate().extend(clearance) });
+/// What the linker needs besides the runs.
+pub struct Linker<'a> {
+    pub settings: LinkSettings,
+    /// What a stay-down link must stay clear of.
+    pub keep: &'a dyn Keepout,
+    /// What an entry must stay clear of.
+    pub entry_keep: &'a dyn Keepout,
+    /// The highest tip height at which the cutter touches material at a point (the in-process
+    /// stock; `-inf` where there is none).
+    pub material: &'a dyn Fn(DVec2) -> f64,
+    /// The same, estimated as the stock model samples the material (not bounded from above):
+    /// a start where it stands no more than `threshold` above the path is entered in the air.
+    pub estimate: &'a dyn Fn(DVec2) -> f64,
+    pub threshold: f64,
+    pub entry: Entry,
+    /// The cutter's radius (for the helix's size).
+    pub radius: f64,
+    pub feeds: Feeds,
+}
+
+/// Entries of each kind a linked path made.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Entries {
+    pub air: usize,
+    pub helix: usize,
+    pub ramp: usize,
+    pub plunge: usize,
+}
+
+impl Linker<'_> {
+    /// Joins `runs` into moves; returns where the path starts (above its first point, at the
+    /// clearance height), the moves, ending at the clearance height, and how it entered.
+    pub fn link(&self, runs: &[Vec<DVec3>], tolerances: &Tolerances) -> (DVec3, Vec<Move>, Entries) {
+        let settings = &self.settings;
+        let clearance = settings.clearance_z;
+        let first = runs.iter().find_map(|r| r.first()).copied().unwrap_or(DVec3::new(0.0, 0.0, clearance));
+        let start = first.truncate().extend(clearance);
+        let mut moves = Vec::new();
+        let mut entries = Entries::default();
+        let mut at = start;
+        let mut down = false;
+        for run in runs.iter().filter(|r| !r.is_empty()) {
+            let p0 = run[0];
+            let stay = down && at.distance(p0) <= settings.stay_down_max && self.keep.clears(at, p0, tolerances.height);
+            if stay {
+                moves.push(Move::Line { to: p0, feed: self.feeds.cut });
+            } else {
+                if down {
+                    moves.push(Move::Rapid { to: at.truncate().extend(clearance) });
+                }
+                if at.truncate() != p0.truncate() || !down && at.z != clearance {
+                    moves.push(Move::Rapid { to: p0.truncate().extend(clearance) });
+                }
+                let material = (self.material)(p0.truncate());
+                let top = (p0.z.max(material) + settings.rapid_gap).min(clearance);
+                if top < clearance {
+                    moves.push(Move::Rapid { to: p0.truncate().extend(top) });
+                }
+                let inside = (self.estimate)(p0.truncate()) > p0.z + self.threshold;
+                let (entry, kind) = enter_3d(top, if inside { material } else { f64::NEG_INFINITY }, run, self.radius, &self.entry, self.entry_keep, (self.feeds.plunge, self.feeds.cut), tolerances.height);
+                match kind {
+                    Kind::Air => entries.air += 1,
+                    Kind::Helix => entries.helix += 1,
+                    Kind::Ramp => entries.ramp += 1,
+                    Kind::Plunge => entries.plunge += 1,
+                }
+                moves.extend(entry);
             }
-            if at.truncate() != entry.truncate() || !down && at.z != clearance {
-                moves.push(Move::Rapid { to: entry.truncate().extend(clearance) });
-            }
-            let gap = (entry.z.max(settings.stock_top.unwrap_or(f64::NEG_INFINITY)) + settings.rapid_gap).min(clearance);
-            if gap < clearance {
-                moves.push(Move::Rapid { to: entry.truncate().extend(gap) });
-            }
-            moves.push(Move::Line { to: entry, feed: feeds.plunge });
+            moves.extend(run[1..].iter().map(|&p| Move::Line { to: p, feed: self.feeds.cut }));
+            at = *run.last().unwrap();
+            down = true;
         }
-        moves.extend(run[1..].iter().map(|&p| Move::Line { to: p, feed: feeds.cut }));
-        at = *run.last().unwrap();
-        down = true;
+        if down {
+            moves.push(Move::Rapid { to: at.truncate().extend(clearance) });
+        }
+        (start, moves, entries)
     }
-    if down {
-        moves.push(Move::Rapid { to: at.truncate().extend(clearance) });
-    }
-    (start, moves)
 }

@@ -56,7 +56,7 @@ pub const MIN_PIECE: f64 = 1e-7;
 #[derive(Clone, Debug)]
 pub struct ClSurface {
     pub field: HeightField,
-    drop: PointDrop,
+    drop: std::sync::Arc<PointDrop>,
     floor: f64,
     /// Whether the field's nodes hold the exact drop (and may stand in for it).
     nodes_exact: bool,
@@ -70,7 +70,8 @@ impl ClSurface {
     /// The surface of `drop`'s cutter; `field` is its z-map (`nodes_exact` when built by the
     /// exact builder), `floor` the height where no part is under the cutter, `tolerance` the
     /// subdivision tolerance (mm).
-    pub fn new(field: HeightField, drop: PointDrop, floor: f64, nodes_exact: bool, tolerance: f64) -> ClSurface {
+    pub fn new(field: HeightField, drop: impl Into<std::sync::Arc<PointDrop>>, floor: f64, nodes_exact: bool, tolerance: f64) -> ClSurface {
+        let drop = drop.into();
         // A ball's drops onto single features are caps of its radius; a bull nose's torus and
         // a flat end's rim make narrower ones (a rim brushing an edge), which get half the
         // spacing (on mount_rush, φ6 r1 at grid 0.5: 0.0019 mm below the surface with the

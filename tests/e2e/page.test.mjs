@@ -77,7 +77,8 @@ async function openPage() {
   return { page, context, errors };
 }
 
-// Counts canvas pixels by colour: the path's blue (cutting moves are drawn in rgb(27, 116, 209)),
+// Counts canvas pixels by colour: the path's blue (the first operation's cutting moves are drawn
+// in rgb(27, 116, 209)), the second operation's purple (rgb(158, 51, 191)),
 // the simulated stock's tan, gouge red and rest-material blue, and the drawing's outline green (rgb(31, 140, 61)) and hole orange (rgb(217, 115, 13)).
 async function pixelCounts(page) {
   return page.evaluate(() => {
@@ -85,10 +86,11 @@ async function pixelCounts(page) {
     const gl = c.getContext('webgl2');
     const px = new Uint8Array(c.width * c.height * 4);
     gl.readPixels(0, 0, c.width, c.height, gl.RGBA, gl.UNSIGNED_BYTE, px);
-    const n = { path: 0, tan: 0, red: 0, blue: 0, green: 0, orange: 0 };
+    const n = { path: 0, purple: 0, tan: 0, red: 0, blue: 0, green: 0, orange: 0 };
     for (let i = 0; i < px.length; i += 4) {
       const [r, g, b] = [px[i], px[i + 1], px[i + 2]];
       if (b > 150 && r < 90 && g > 80 && g < 160) n.path++;
+      if (r > 120 && b > 150 && g < 90) n.purple++;
       if (r > 90 && r > b + 25 && g > b + 5 && g < r) n.tan++;
       if (r > 120 && g < 50 && b < 50) n.red++;
       if (b > r + 60 && b > 120) n.blue++;
@@ -279,32 +281,36 @@ test('the sample drawing: loops shown as outlines and holes, profile and pocket 
   assert.ok(shown.green > 200 && shown.orange > 200, `outline and hole pixels: ${JSON.stringify(shown)}`);
   assert.match(await page.textContent('#stats'), /6 closed loops: 2 outlines \(green\), 4 holes \(orange\)/);
   assert.match(await page.textContent('#stats'), /layers: CUT, POCKET/);
-  await page.selectOption('select[name=shape]', 'flat');
-  await page.fill('input[name=diameter]', '3');
-  for (const [op, layer] of [['pocket2d', 'POCKET'], ['profile2d', 'CUT']]) {
-    await page.selectOption('select[name=op2d]', op);
-    await page.fill('input[name=layers]', layer);
-    await page.click('#generate');
-    await generated(page);
-    assert.ok((await pathPixels(page)) > 1000, `${op}: path pixels`);
-    assert.doesNotMatch(await page.textContent('#sim-report'), /gouge[^\n]*[1-9]/);
-    const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
-    const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-'));
-    const program = path.join(dir, download.suggestedFilename());
-    await download.saveAs(program);
-    const gcode = fs.readFileSync(program, 'utf8');
-    assert.match(gcode, /^G[23] X-?[\d.]+ Y-?[\d.]+/m, `${op}: arcs go out as G2/G3 with X and Y`);
-    fs.writeFileSync(path.join(dir, 'tool.tbl'), 'T1 P1 Z0.000 D3.000 ;3 mm flat\n');
-    const canon = execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), program], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });
-    assert.ok(canon.split('\n').filter((l) => l.includes('ARC_FEED(')).length > 10, `${op}: rs274 saw arcs`);
-  }
+  // The sheet job starts with a profile on the 3 mm flat end mill; a pocket is added and moved
+  // first, each on its layer, and one program makes both.
+  await page.fill('input[name=layers]', 'CUT');
+  await page.selectOption('#op-kind', 'pocket2d');
+  await page.click('#op-add');
+  await page.fill('input[name=layers]', 'POCKET');
+  await page.click('#op-list li:nth-child(2) .op-up');
+  assert.match(await page.textContent('#op-list li:nth-child(1)'), /pocket/);
+  await page.click('#generate');
+  await generated(page);
+  assert.ok((await pathPixels(page)) > 1000, 'pocket path pixels (first operation, blue)');
+  assert.doesNotMatch(await page.textContent('#sim-report'), /gouge[^\n]*[1-9]/);
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-'));
+  const program = path.join(dir, download.suggestedFilename());
+  await download.saveAs(program);
+  const gcode = fs.readFileSync(program, 'utf8');
+  assert.match(gcode, /^G[23] X-?[\d.]+ Y-?[\d.]+/m, 'arcs go out as G2/G3 with X and Y');
+  assert.match(gcode, /\(pocket\)[\s\S]*\(profile\)/, 'the pocket, then the profile');
+  const tools = await page.evaluate(() => window.swarf.tools);
+  fs.writeFileSync(path.join(dir, 'tool.tbl'), tools.map((t) => `T${t.number} P${t.number} Z0.000 D${t.diameter.toFixed(3)} ;${t.shape}\n`).join(''));
+  const canon = execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), program], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });
+  assert.ok(canon.split('\n').filter((l) => l.includes('ARC_FEED(')).length > 10, 'rs274 saw arcs');
   await page.screenshot({ path: path.join(shots, 'drawing.png') });
   // A drawing with an open chain: the page says where, and keeps the current drawing's settings.
   const open = '0\nSECTION\n2\nENTITIES\n0\nLINE\n8\nOPEN\n10\n0\n20\n0\n11\n10\n21\n0\n0\nENDSEC\n0\nEOF\n';
   await page.setInputFiles('#file', { name: 'open.dxf', mimeType: 'application/dxf', buffer: Buffer.from(open) });
   await page.waitForFunction(() => /open chain/.test(document.getElementById('message').textContent));
   assert.match(await page.textContent('#message'), /layer OPEN from \(0\.00, 0\.00\) to \(10\.00, 0\.00\)/);
-  assert.equal(await page.inputValue('input[name=layers]'), 'CUT');
+  assert.equal(await page.inputValue('input[name=layers]'), 'POCKET');
   assert.deepEqual(errors, []);
   await context.close();
 });
@@ -343,6 +349,53 @@ test('a program with problems shows them in red and downloads only when confirme
   assert.equal(await page.isDisabled('#download'), true);
   assert.equal(await page.textContent('#stats'), '');
   assert.equal(await pathPixels(page), 0);
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
+test('a tool library and a second operation: both paths in their colours, one program with a tool change that rs274 runs, the library kept across reloads', async () => {
+  const { page, context, errors } = await openPage();
+  await page.fill('input[name=stepover]', '2');
+  await page.fill('input[name=grid]', '0.5');
+  await page.fill('input[name=allowance]', '0.3');
+  // A second tool: a φ3 ball, T2.
+  const before = await page.locator('#tool-list option').count();
+  await page.click('#tool-add');
+  await page.fill('input[name=toolName]', 'fine ball');
+  await page.selectOption('select[name=shape]', 'ball');
+  await page.fill('input[name=diameter]', '3');
+  assert.equal(await page.locator('#tool-list option').count(), before + 1);
+  const number = Number(await page.inputValue('input[name=toolNumber]'));
+  // A second raster, across the first, with the new tool.
+  await page.selectOption('#op-kind', 'finishRaster');
+  await page.click('#op-add');
+  await page.selectOption('select[name=opTool]', String(number));
+  await page.fill('input[name=angle]', '90');
+  await page.fill('input[name=stepover]', '1.5');
+  await page.fill('input[name=grid]', '0.5');
+  await page.fill('input[name=allowance]', '0');
+  await page.click('#generate');
+  await generated(page);
+  const px = await pixelCounts(page);
+  await page.screenshot({ path: path.join(shots, 'two-operations.png') });
+  assert.ok(px.path > 2000 && px.purple > 2000, `both operations' colours on the canvas: ${JSON.stringify(px)}`);
+  assert.match(await page.textContent('#stats'), /raster finish 2 \(T\d+\)/);
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-tools-'));
+  const program = path.join(dir, download.suggestedFilename());
+  await download.saveAs(program);
+  const gcode = fs.readFileSync(program, 'utf8');
+  assert.match(gcode, new RegExp(`^T${number} M6$`, 'm'));
+  const tools = await page.evaluate(() => window.swarf.tools);
+  fs.writeFileSync(path.join(dir, 'tool.tbl'), tools.map((t) => `T${t.number} P${t.number} Z0.000 D${t.diameter.toFixed(3)} ;${t.shape}\n`).join(''));
+  const canon = execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), program], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });
+  assert.equal(canon.split('\n').filter((l) => l.includes('CHANGE_TOOL(')).length, 2, 'rs274 changed tools twice');
+  // The library and the operations are still there after a reload.
+  await page.reload();
+  await page.waitForSelector('body[data-ready="true"]');
+  assert.equal(await page.locator('#tool-list option').count(), before + 1);
+  assert.match(await page.textContent('#tool-list'), /fine ball/);
+  assert.equal(await page.locator('#op-list li').count(), 2);
   assert.deepEqual(errors, []);
   await context.close();
 });

@@ -15,7 +15,7 @@ use swarf::profile::import::{is_drawing, read_drawing};
 use swarf::mesh::placement::{PartSetup, Placement, UpAxis, Units};
 use swarf::mesh::sample::demo_part;
 use swarf::progress::Progress;
-use swarf::sim::verify::verify_gcode;
+use swarf::job::verify_gcode;
 use swarf::zmap::{cc::cc_zmap, cl_exact::cl_exact, cl_inverse::cl_inverse_offset, io, Grid};
 
 #[derive(Parser)]
@@ -290,6 +290,11 @@ fn run_job(job: &Job, workpiece: impl Into<Workpiece>, output: &Path, quiet: boo
     }
     for w in &out.warnings {
         eprintln!("warning: {w}");
+    }
+    if out.operations.len() > 1 {
+        for r in &out.operations {
+            eprintln!("  {}", r.describe());
+        }
     }
     if let Some(v) = &out.verification {
         let r = &v.report;

@@ -2,9 +2,9 @@
 //! seed 001's die (the foundation issue's benchmark part). Shared by `cargo bench --bench
 //! sim_program` and the wasm benchmark, so both time the same work.
 
-use super::program::{simulate, ProgramMove};
-use super::verify::{verify, VerifySettings};
-use super::DexelStock;
+use crate::sim::program::{simulate, ProgramMove};
+use crate::sim::verify::{verify, VerifySettings};
+use crate::sim::DexelStock;
 use crate::cutter::Cutter;
 use crate::geom::{Aabb, Tolerances};
 use crate::job::{self, FinishRaster, Job, Operation, Simulation, Tool};

@@ -1,0 +1,121 @@
+//! A job on a drawing: the drawing scaled and placed as a sheet (its top at Z0, its thickness
+//! below), and the part the drawing means for verification: full height inside the kept
+//! region, cut to each operation's depth where it cuts.
+
+use serde::{Deserialize, Serialize};
+
+use super::Job;
+use crate::error::{Error, Result};
+use crate::geom::{Aabb, DVec2};
+use crate::offset::offset;
+use crate::profile::Drawing;
+use crate::strategy::context::SheetCut;
+use crate::zmap::{Grid, HeightField};
+
+/// The units a drawing's numbers are in.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub enum DrawingUnits {
+    /// As the file says ($INSUNITS, the SVG's width and viewBox; px at 96 per inch).
+    #[default]
+    File,
+    Mm,
+    Inch,
+}
+
+/// Where a drawing is put.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub enum DrawingOrigin {
+    /// As drawn.
+    Keep,
+    /// Its lower left corner at X0 Y0.
+    #[default]
+    LowerLeft,
+    /// Its centre at X0 Y0.
+    Center,
+}
+
+/// How a drawing becomes a sheet on the machine: the stock's top is Z0.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, rename_all = "camelCase")]
+pub struct DrawingSetup {
+    /// Default value: file.
+    pub units: DrawingUnits,
+    /// Default value: lower left.
+    pub origin: DrawingOrigin,
+    /// Thickness of the sheet (mm). Default value: 6.
+    pub thickness: f64,
+}
+
+impl Default for DrawingSetup {
+    fn default() -> Self {
+        DrawingSetup { units: DrawingUnits::File, origin: DrawingOrigin::LowerLeft, thickness: 6.0 }
+    }
+}
+
+impl DrawingSetup {
+    /// Scales the drawing to the chosen units and moves it to the chosen origin.
+    pub fn apply(&self, d: &mut Drawing) {
+        let wanted = match self.units {
+            DrawingUnits::File => d.scale,
+            DrawingUnits::Mm => 1.0,
+            DrawingUnits::Inch => 25.4,
+        };
+        let k = if d.scale > 0.0 { wanted / d.scale } else { 1.0 };
+        d.transform(k, DVec2::ZERO);
+        d.scale = wanted;
+        let b = d.bounds();
+        let shift = match self.origin {
+            DrawingOrigin::Keep => DVec2::ZERO,
+            DrawingOrigin::LowerLeft => -b.min,
+            DrawingOrigin::Center => -b.center(),
+        };
+        if !b.is_empty() {
+            d.transform(1.0, shift);
+        }
+    }
+}
+
+/// Scales and places `drawing` as the job says; returns the sheet's stock (its top at Z0) and
+/// thickness.
+pub fn place(job: &Job, drawing: &mut Drawing) -> Result<(Aabb, f64)> {
+    job.drawing.apply(drawing);
+    let thickness = job.drawing.thickness;
+    if !(thickness > 0.0 && thickness.is_finite()) {
+        return Err(Error::Input(format!("drawing.thickness: the sheet thickness must be a positive number (got {thickness})")));
+    }
+    let b = drawing.bounds();
+    if b.is_empty() {
+        return Err(Error::Nothing("the drawing is empty".into()));
+    }
+    let m = job.stock.margin_xy;
+    Ok((Aabb { min: (b.min - DVec2::splat(m)).extend(-thickness), max: (b.max + DVec2::splat(m)).extend(0.0) }, thickness))
+}
+
+/// The part's heights on the simulation grid: the sheet's top, lowered to each cut's depth
+/// where it cuts (inside its region, or outside it). Regions are narrowed by the leave-stock
+/// and widened by the gouge tolerance where they cut, so cells on a wall are not judged by a
+/// hair.
+pub fn surface(cuts: &[SheetCut], grid: Grid, gouge: f64, tol: &crate::geom::Tolerances) -> HeightField {
+    let mut field = grid.filled(0.0);
+    for SheetCut { region, inside, depth, leave } in cuts {
+        let widen = gouge - leave;
+        let region = offset(region, if *inside { widen } else { -widen }, tol);
+        for j in 0..grid.ny {
+            let y = grid.node(0, j).y;
+            let spans = region.spans_at(y);
+            for i in 0..grid.nx {
+                let x = grid.node(i, 0).x;
+                let within = spans.iter().any(|&(a, b)| x > a && x < b);
+                // A profile cutting outside a loop cuts everything but the loop's inside.
+                let cut = if *inside { within } else { !within };
+                if cut {
+                    let c = j * grid.nx + i;
+                    field.z[c] = field.z[c].min(-depth);
+                }
+            }
+        }
+    }
+    field
+}

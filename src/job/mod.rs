@@ -1,0 +1,601 @@
+//! A job: stock, tools, operations and post settings, as one serde type. The same JSON drives
+//! the page, the CLI and the tests; [`run`] turns a job and a part or drawing into tool paths
+//! and G-code, reporting progress and stopping when cancelled.
+//!
+//! A job is a machining sequence: its operations plan one after the other in one shared
+//! [`Context`] (the placed part or drawing, the stock, the safe heights, the tool library, the
+//! caches), and after each one its moves are applied to the in-process stock, so the next one
+//! enters and links over the material that is really there (DESIGN.md ideas 5 and 6).
+
+pub mod bench;
+pub mod drawing;
+pub mod operation;
+pub mod report;
+
+use serde::{Deserialize, Serialize};
+
+pub use self::drawing::{DrawingOrigin, DrawingSetup, DrawingUnits};
+pub use self::operation::Operation;
+pub use self::report::OperationReport;
+pub use crate::strategy::finish_raster::{Boundary, FinishRaster};
+pub use crate::tool::Tool;
+
+use crate::cutter::Cutter;
+use crate::error::{Error, Result, Warning};
+use crate::strategy::profile2d::Profile2d;
+use crate::geom::{Aabb, DVec3, Tolerances};
+use crate::mesh::{placement::PartSetup, Mesh};
+use crate::post::{write_gcode, PostSettings};
+use crate::profile::Drawing;
+use crate::progress::Progress;
+use crate::sim::program::{program_moves, ProgramMove};
+use crate::sim::verify::{Simulator, Verification, VerifySettings};
+use crate::strategy::context::{Caches, CacheCounts, Context, SafeHeights, Sheet};
+use crate::strategy::Works;
+use crate::toolpath::{PathStats, Toolpath};
+use crate::zmap::cc::cc_zmap;
+
+/// Which height of the setup is Z0 in the program.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub enum ZeroHeight {
+    #[default]
+    PartTop,
+    StockTop,
+    StockBottom,
+}
+
+/// Which point of the stock seen from above is X0 Y0.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub enum ZeroCorner {
+    #[default]
+    Center,
+    /// The front left corner (least X, least Y).
+    FrontLeft,
+    FrontRight,
+    BackLeft,
+    BackRight,
+}
+
+/// The work zero: where the program's origin is on the setup.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(default, rename_all = "camelCase")]
+pub struct WorkZero {
+    /// Default value: partTop.
+    pub height: ZeroHeight,
+    /// Default value: center.
+    pub corner: ZeroCorner,
+}
+
+impl WorkZero {
+    /// The point of `stock` (around a part whose top is `part_top`) that becomes the origin.
+    pub fn point(&self, stock: &Aabb, part_top: f64) -> DVec3 {
+        let z = match self.height {
+            ZeroHeight::PartTop => part_top,
+            ZeroHeight::StockTop => stock.max.z,
+            ZeroHeight::StockBottom => stock.min.z,
+        };
+        let (lo, hi, c) = (stock.min, stock.max, stock.center());
+        let (x, y) = match self.corner {
+            ZeroCorner::Center => (c.x, c.y),
+            ZeroCorner::FrontLeft => (lo.x, lo.y),
+            ZeroCorner::FrontRight => (hi.x, lo.y),
+            ZeroCorner::BackLeft => (lo.x, hi.y),
+            ZeroCorner::BackRight => (hi.x, hi.y),
+        };
+        DVec3::new(x, y, z)
+    }
+}
+
+/// The stock, as a machinist sets it: margins around the placed part on every side, or an
+/// explicit box; the heights of moves between cuts; and the work zero.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, rename_all = "camelCase")]
+pub struct Stock {
+    /// Extra stock around the part in X and Y (mm, each side). Default value: 5.
+    pub margin_xy: f64,
+    /// Extra stock above the part's top (mm). Default value: 1.
+    pub margin_top: f64,
+    /// Extra stock below the part's bottom (mm). Default value: 0.
+    pub margin_bottom: f64,
+    /// Margins on each side in X and Y, `[left (-X), right (+X), front (-Y), back (+Y)]` (mm),
+    /// instead of `marginXy`. Default value: none.
+    pub margin_sides: Option<[f64; 4]>,
+    /// The stock as an explicit box (mm, where the part is placed), instead of margins.
+    /// Default value: none.
+    pub size_box: Option<Aabb>,
+    /// Height above the stock top for rapid moves (mm). Default value: 5.
+    pub clearance: f64,
+    /// Gap above the material under the tool where a rapid descent stops and the feed begins
+    /// (mm): the short retract. Default value: 1.
+    pub retract: f64,
+    /// Moves part and stock so that this point is the program's origin (for parts; a sheet's
+    /// top is always Z0). Default value: none (as the part's placement puts it).
+    pub zero: Option<WorkZero>,
+}
+
+impl Default for Stock {
+    fn default() -> Self {
+        Stock { margin_xy: 5.0, margin_top: 1.0, margin_bottom: 0.0, margin_sides: None, size_box: None, clearance: 5.0, retract: 1.0, zero: None }
+    }
+}
+
+impl Stock {
+    /// The stock box around a part with bounds `part`.
+    pub fn around(&self, part: &Aabb) -> Aabb {
+        if let Some(b) = self.size_box {
+            return b;
+        }
+        let [l, r, f, k] = self.margin_sides.unwrap_or([self.margin_xy; 4]);
+        Aabb { min: part.min - DVec3::new(l, f, self.margin_bottom), max: part.max + DVec3::new(r, k, self.margin_top) }
+    }
+
+    /// Checks the settings; errors name the field.
+    fn validate(&self) -> Result<()> {
+        let bad = |field: &str, why: String| Err(Error::Input(format!("stock.{field} {why}")));
+        // Rapids run at the clearance height: at or below the stock's top they would cut.
+        if !(self.clearance > 0.0 && self.clearance.is_finite()) {
+            return bad("clearance", format!("(the height of rapid moves above the stock's top) must be a positive number (got {})", self.clearance));
+        }
+        if !(self.retract > 0.0 && self.retract.is_finite()) {
+            return bad("retract", format!("must be a positive number (got {})", self.retract));
+        }
+        for (field, v) in [("marginXy", self.margin_xy), ("marginTop", self.margin_top), ("marginBottom", self.margin_bottom)] {
+            if !(v >= 0.0 && v.is_finite()) {
+                return bad(field, format!("must be zero or more (got {v})"));
+            }
+        }
+        if let Some(sides) = self.margin_sides {
+            if sides.iter().any(|v| !(*v >= 0.0 && v.is_finite())) {
+                return bad("marginSides", format!("must be zero or more (got {sides:?})"));
+            }
+        }
+        if let Some(b) = self.size_box {
+            let size = b.size();
+            if !(size.x > 0.0 && size.y > 0.0 && size.z > 0.0 && size.is_finite()) {
+                return bad("sizeBox", "must have a positive size on every axis".into());
+            }
+        }
+        Ok(())
+    }
+}
+
+/// What a job works on: a part, or a drawing for 2.5D operations.
+#[derive(Clone, Debug)]
+pub enum Workpiece {
+    Mesh(Mesh),
+    Drawing(Drawing),
+}
+
+impl From<Mesh> for Workpiece {
+    fn from(m: Mesh) -> Self {
+        Workpiece::Mesh(m)
+    }
+}
+
+impl From<Drawing> for Workpiece {
+    fn from(d: Drawing) -> Self {
+        Workpiece::Drawing(d)
+    }
+}
+
+/// Simulating the program after it is made (seed 002), to verify it and to show the cut.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, rename_all = "camelCase")]
+pub struct Simulation {
+    /// Simulate and verify every program. Default value: true.
+    pub verify: bool,
+    /// Cell size of the simulated stock (mm). Default value: the size that gives the stock
+    /// about a million cells, and no smaller than 0.05 mm.
+    pub cell: Option<f64>,
+}
+
+impl Default for Simulation {
+    fn default() -> Self {
+        Simulation { verify: true, cell: None }
+    }
+}
+
+/// Cells the simulated stock gets when the job does not say.
+pub const SIMULATION_CELLS: f64 = 1.0e6;
+
+impl Simulation {
+    /// The cell size for a stock.
+    pub fn cell_for(&self, stock: &Aabb) -> f64 {
+        self.cell.unwrap_or_else(|| {
+            let size = stock.size();
+            ((size.x * size.y / SIMULATION_CELLS).sqrt()).max(0.05)
+        })
+    }
+}
+
+/// The job file format this swarf writes and reads (files from a newer one are refused).
+pub const JOB_VERSION: u32 = 1;
+
+/// The version of a job file that has none: written before versions were.
+fn first_version() -> u32 {
+    1
+}
+
+/// Everything needed to turn a part into G-code.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, rename_all = "camelCase")]
+pub struct Job {
+    /// Version of the job file's format ([`JOB_VERSION`] when written by this swarf); a file
+    /// without one is read as version 1. Default value: the current version.
+    #[serde(default = "first_version")]
+    pub version: u32,
+    /// Program title. Default value: "swarf job".
+    pub name: String,
+    pub part: PartSetup,
+    /// How a DXF or SVG drawing is placed (ignored for parts).
+    pub drawing: DrawingSetup,
+    pub stock: Stock,
+    pub tools: Vec<Tool>,
+    pub operations: Vec<Operation>,
+    pub post: PostSettings,
+    pub simulation: Simulation,
+    pub tolerances: Tolerances,
+}
+
+/// The fields of `input` that reading it did not use: those absent from the job it made,
+/// written back (`canonical`), with a known field of the same object that differs only in case
+/// or by underscores, as a hint.
+fn unknown_fields(input: &serde_json::Value, canonical: &serde_json::Value, path: &str, out: &mut Vec<String>) {
+    use serde_json::Value;
+    match (input, canonical) {
+        (Value::Object(given), Value::Object(known)) => {
+            let squash = |k: &str| k.to_lowercase().replace(['_', '-'], "");
+            for (k, v) in given {
+                let here = if path.is_empty() { k.clone() } else { format!("{path}.{k}") };
+                match known.get(k) {
+                    Some(w) => unknown_fields(v, w, &here, out),
+                    None => match known.keys().find(|n| squash(n) == squash(k)) {
+                        Some(n) => out.push(format!("{here} (did you mean {n}?)")),
+                        None => out.push(here),
+                    },
+                }
+            }
+        }
+        (Value::Array(given), Value::Array(known)) => {
+            for (i, (v, w)) in given.iter().zip(known).enumerate() {
+                unknown_fields(v, w, &format!("{path}[{i}]"), out);
+            }
+        }
+        _ => {}
+    }
+}
+
+impl Default for Job {
+    fn default() -> Self {
+        Job {
+            version: JOB_VERSION,
+            name: "swarf job".into(),
+            part: PartSetup::default(),
+            drawing: DrawingSetup::default(),
+            stock: Stock::default(),
+            tools: vec![Tool::default()],
+            operations: vec![Operation::FinishRaster(FinishRaster::default())],
+            post: PostSettings::default(),
+            simulation: Simulation::default(),
+            tolerances: Tolerances::default(),
+        }
+    }
+}
+
+/// What a job produced.
+#[derive(Clone, Debug)]
+pub struct JobOutput {
+    /// The part as placed (mm, Z up); empty for a drawing.
+    pub part: Mesh,
+    /// The drawing as placed, for 2.5D jobs.
+    pub drawing: Option<Drawing>,
+    pub stock: Aabb,
+    pub clearance_z: f64,
+    pub paths: Vec<Toolpath>,
+    /// Per tool path, the index of the operation that made it.
+    pub path_operations: Vec<usize>,
+    pub gcode: String,
+    pub stats: PathStats,
+    /// Every move of the program, timed, in order.
+    pub moves: Vec<ProgramMove>,
+    /// What each operation did: time, length, volume removed, peak MRR, what it left.
+    pub operations: Vec<OperationReport>,
+    /// The simulation of the program and what it found, when the job asked for it.
+    pub verification: Option<Verification>,
+    /// Things the user should know that did not stop the job, with their operation.
+    pub warnings: Vec<Warning>,
+    /// What makes the program unsafe to run (a gouge, a rapid through stock, the tool's body in
+    /// material: [`crate::sim::verify::Report::problem`]), when verification found it. Such a
+    /// program is not a finished one: [`JobOutput::checked`] turns it into an error, the CLI
+    /// writes it only when asked to, and the page keeps its download behind a confirmation.
+    pub problem: Option<String>,
+    /// Lookups of the CL surface cache: a second operation on the same cutter and grid hits.
+    pub cache: CacheCounts,
+}
+
+impl JobOutput {
+    /// The output, or [`Error::Unsafe`] when verification found a problem.
+    pub fn checked(self) -> Result<JobOutput> {
+        match self.problem {
+            Some(problem) => Err(Error::Unsafe(problem)),
+            None => Ok(self),
+        }
+    }
+
+    /// The G-code with a warning comment at its head naming the problem, if there is one (for
+    /// a program written anyway).
+    pub fn gcode_marked(&self) -> String {
+        match &self.problem {
+            Some(problem) => {
+                // A program that starts with a tape mark (Fanuc) keeps it first.
+                let warning = format!("(WARNING: NOT SAFE TO RUN: {})\n", crate::post::comment(problem));
+                match self.gcode.strip_prefix("%\n") {
+                    Some(rest) => format!("%\n{warning}{rest}"),
+                    None => format!("{warning}{}", self.gcode),
+                }
+            }
+            None => self.gcode.clone(),
+        }
+    }
+}
+
+impl Job {
+    /// The default job for a drawing: a φ3 flat end mill cutting the drawing's parts out of
+    /// a 6 mm sheet (holes inside, outlines outside), four tabs a part.
+    pub fn default_for_drawing() -> Job {
+        let tool = Tool { number: 1, name: "3 mm flat end mill".into(), cutter: Cutter::flat(3.0), feed_rate: 800.0, plunge_rate: 200.0, ..Tool::default() };
+        let profile = Profile2d { tabs: crate::strategy::profile2d::Tabs { count: 4, ..Default::default() }, ..Profile2d::default() };
+        Job { name: "swarf sheet job".into(), tools: vec![tool], operations: vec![Operation::Profile2d(profile)], ..Job::default() }
+    }
+
+    /// Reads a job file. A value that does not fit is named by its path
+    /// (`operations[1].stepover: invalid type ...`), and so is every field this version does
+    /// not know (`operations[0].stepOver`, with the known field it may mean): a misspelt
+    /// setting must not fall back to its default unseen. A file without a `version` is read as
+    /// version 1; one from a newer swarf is refused.
+    pub fn from_json(text: &str) -> Result<Job> {
+        let value: serde_json::Value = serde_json::from_str(text).map_err(|e| Error::Input(format!("the job file is not JSON: {e}")))?;
+        let job: Job = serde_path_to_error::deserialize(&value).map_err(|e| {
+            let path = e.path().to_string();
+            // An operation is read whole (its `kind` picks the type), so the path stops at it:
+            // read it again as its kind's type to name the field.
+            let op = value.get("operations").and_then(|ops| path.strip_prefix("operations[")?.strip_suffix(']')?.parse::<usize>().ok().and_then(|i| ops.get(i)));
+            match op.and_then(Operation::field_error) {
+                Some(inner) => Error::Input(format!("{path}.{inner}")),
+                None if path == "." => Error::Input(e.into_inner().to_string()),
+                None => Error::Input(format!("{path}: {}", e.into_inner())),
+            }
+        })?;
+        if job.version > JOB_VERSION {
+            return Err(Error::Input(format!(
+                "the job file has version {}; this swarf reads versions up to {JOB_VERSION} (a newer swarf wrote it)",
+                job.version
+            )));
+        }
+        let canonical = serde_json::to_value(&job).map_err(|e| Error::Input(e.to_string()))?;
+        let mut unknown = Vec::new();
+        unknown_fields(&value, &canonical, "", &mut unknown);
+        if !unknown.is_empty() {
+            return Err(Error::Input(format!("unknown field{}: {}", if unknown.len() == 1 { "" } else { "s" }, unknown.join("; "))));
+        }
+        Ok(job)
+    }
+
+    /// The tool `number` of the library.
+    pub fn tool(&self, number: u32) -> Result<&Tool> {
+        self.tools.iter().find(|t| t.number == number).ok_or_else(|| Error::Input(format!("no tool number {number} in the tool library")))
+    }
+
+    /// Places the part as the job says and returns the stock box around it (both moved to the
+    /// work zero when the stock names one).
+    pub fn place(&self, part: &mut Mesh) -> Aabb {
+        self.part.apply(part);
+        let bounds = part.bounds();
+        let stock = self.stock.around(&bounds);
+        match self.stock.zero {
+            Some(zero) => {
+                let shift = -zero.point(&stock, bounds.max.z);
+                part.transform(|v| v + shift);
+                Aabb { min: stock.min + shift, max: stock.max + shift }
+            }
+            None => stock,
+        }
+    }
+
+    /// The least material any operation leaves on the part (mm); infinite without operations.
+    pub fn allowance(&self) -> f64 {
+        self.operations.iter().filter(|o| o.op().enabled()).map(Operation::allowance).fold(f64::INFINITY, f64::min)
+    }
+
+    /// How the job's program is verified on `stock`: its simulation cell (unless `cell`
+    /// overrides it) and the least allowance of its operations (0 without operations).
+    pub fn verify_settings(&self, stock: &Aabb, cell: Option<f64>) -> VerifySettings {
+        let allowance = self.allowance();
+        VerifySettings { cell: cell.unwrap_or_else(|| self.simulation.cell_for(stock)), allowance: if allowance.is_finite() { allowance } else { 0.0 } }
+    }
+
+    /// Checks the job before any work. Every error names its field by its path in the job
+    /// file (`tools[1].feedRate`, `operations[0].stepover`).
+    pub fn validate(&self) -> Result<()> {
+        let positive = |field: String, v: f64| if v > 0.0 && v.is_finite() { Ok(()) } else { Err(Error::Input(format!("{field} must be a positive number (got {v})"))) };
+        for (i, tool) in self.tools.iter().enumerate() {
+            tool.cutter.validate().map_err(|e| Error::Input(format!("tools[{i}] (tool {}): {e}", tool.number)))?;
+            positive(format!("tools[{i}].spindleRpm"), tool.spindle_rpm)?;
+            positive(format!("tools[{i}].feedRate"), tool.feed_rate)?;
+            positive(format!("tools[{i}].plungeRate"), tool.plunge_rate)?;
+            if tool.stick_out.is_some_and(|s| !(s >= tool.cutter.flute_length && s.is_finite())) {
+                return Err(Error::Input(format!("tools[{i}].stickOut must be at least the flute length ({} mm)", tool.cutter.flute_length)));
+            }
+            if let Some(j) = self.tools[..i].iter().position(|t| t.number == tool.number) {
+                return Err(Error::Input(format!("tools[{i}].number: tools[{j}] has the number {} too", tool.number)));
+            }
+        }
+        positive("post.rapidRate".into(), self.post.rapid_rate)?;
+        self.stock.validate()?;
+        for (i, op) in self.operations.iter().enumerate() {
+            let o = op.op();
+            if !self.tools.iter().any(|t| t.number == o.tool()) {
+                let have: Vec<String> = self.tools.iter().map(|t| t.number.to_string()).collect();
+                return Err(Error::Input(format!("operations[{i}].tool: no tool number {} in the tool library (it has {})", o.tool(), if have.is_empty() { "none".into() } else { have.join(", ") })));
+            }
+            o.validate().map_err(|e| Error::Input(format!("operations[{i}].{} {} ('{}')", e.field, e.message, o.name())))?;
+        }
+        Ok(())
+    }
+
+    /// The context the operations plan in, with the part placed and the in-process stock
+    /// fresh.
+    fn context(&self, workpiece: Workpiece) -> Result<Context> {
+        let resolution = self.post.resolution();
+        let (part, sheet, stock) = match workpiece {
+            Workpiece::Mesh(mut part) => {
+                let stock = self.place(&mut part);
+                (part, None, stock)
+            }
+            Workpiece::Drawing(mut d) => {
+                let (stock, thickness) = drawing::place(self, &mut d)?;
+                (Mesh::default(), Some(Sheet { drawing: d, thickness }), stock)
+            }
+        };
+        let cell = self.simulation.cell_for(&stock);
+        Ok(Context {
+            part,
+            sheet,
+            stock,
+            heights: SafeHeights { clearance: stock.max.z + self.stock.clearance, gap: self.stock.retract },
+            tools: self.tools.clone(),
+            tolerances: self.tolerances,
+            resolution,
+            caches: Caches::default(),
+            sim: Simulator::new(&stock, cell)?,
+            warnings: Vec::new(),
+            cuts: Vec::new(),
+        })
+    }
+}
+
+/// Verifies a G-code program (swarf's or another's) against a job's part, stock and tools:
+/// the part is placed as the job says, the program read with [`crate::post::read::read_gcode`]
+/// (the job's first tool until the program picks one), and `cell` overrides the job's cell size.
+pub fn verify_gcode(job: &Job, mut part: Mesh, gcode: &str, cell: Option<f64>, progress: &mut Progress) -> Result<Verification> {
+    job.validate()?;
+    let stock = job.place(&mut part);
+    let first_tool = job.tools.first().map_or(1, |t| t.number);
+    let paths = crate::post::read::read_gcode(gcode, first_tool)?;
+    let moves = program_moves(&paths, &job.tools, job.post.rapid_rate)?;
+    crate::sim::verify::verify(&part, &stock, &moves, &job.verify_settings(&stock, cell), &job.tolerances, progress)
+}
+
+/// Places the part (or drawing), plans every operation in turn in one context, applying each
+/// one's moves to the in-process stock before the next, and writes the G-code; the simulation
+/// that carried the stock verifies the whole program.
+pub fn run(job: &Job, workpiece: impl Into<Workpiece>, progress: &mut Progress) -> Result<JobOutput> {
+    job.validate()?;
+    let workpiece = workpiece.into();
+    let on = match workpiece {
+        Workpiece::Mesh(_) => Works::OnPart,
+        Workpiece::Drawing(_) => Works::OnDrawing,
+    };
+    for op in job.operations.iter().filter(|o| o.op().enabled()) {
+        let o = op.op();
+        if o.works() != on {
+            let why = match on {
+                Works::OnPart => "works on DXF or SVG drawings, not on a 3D part",
+                Works::OnDrawing => "works on 3D parts, not on drawings",
+            };
+            return Err(Error::operation(o.name(), why));
+        }
+    }
+    let mut warnings = Vec::new();
+    if let Workpiece::Mesh(m) = &workpiece {
+        if m.dropped_degenerate > 0 {
+            warnings.push(Warning::job(format!("{} degenerate triangles (zero area) were ignored", m.dropped_degenerate)));
+        }
+    }
+    let mut ctx = job.context(workpiece)?;
+    let verify = job.simulation.verify;
+    let enabled: Vec<usize> = (0..job.operations.len()).filter(|&k| job.operations[k].op().enabled()).collect();
+    if enabled.is_empty() {
+        return Err(Error::Nothing("every operation of the job is disabled".into()));
+    }
+    let count = enabled.len() as f64;
+    // Share of the bar each operation's planning and simulation take.
+    let (plan_share, sim_share) = if verify { (0.85, 0.15) } else { (0.95, 0.05) };
+    let mut paths: Vec<Toolpath> = Vec::new();
+    let mut path_operations = Vec::new();
+    let mut move_ranges = Vec::new();
+    let mut all_moves: Vec<ProgramMove> = Vec::new();
+    let mut snapshots = Vec::new();
+    for (n, &k) in enabled.iter().enumerate() {
+        let o = job.operations[k].op();
+        let start = n as f64 / count;
+        progress.frame(start, plan_share / count, Some(o.name()));
+        let planned = o.plan(&mut ctx, progress)?;
+        let first_path = paths.len();
+        path_operations.extend(std::iter::repeat_n(k, planned.len()));
+        paths.extend(planned);
+        // The in-process stock: this operation's moves cut it before the next one plans (and
+        // the last one's too when the program is verified).
+        let moves = timed_moves(&paths, first_path, all_moves.last(), &job.tools, job.post.rapid_rate)?;
+        let range = all_moves.len()..all_moves.len() + moves.len();
+        if verify || n + 1 < enabled.len() {
+            progress.frame(start + plan_share / count, sim_share / count, Some(o.name()));
+            if !progress.stage("in-process stock", 0.0, 1.0) {
+                return Err(Error::Cancelled);
+            }
+            ctx.sim.run(&moves, &job.tolerances, progress, 1.0)?;
+            snapshots.push(Some(ctx.sim.stock().heights()));
+        } else {
+            snapshots.push(None);
+        }
+        move_ranges.push(range);
+        all_moves.extend(moves);
+    }
+    progress.frame(0.0, 1.0, None);
+    warnings.append(&mut ctx.warnings);
+    let gcode = write_gcode(&job.name, &paths, &job.tools, ctx.heights.clearance, &job.post);
+    let stats = paths.iter().fold(PathStats::default(), |s, p| s + p.stats(job.post.rapid_rate));
+    if all_moves.iter().all(|m| matches!(m.mv, crate::toolpath::Move::Rapid { .. })) {
+        let why = if warnings.is_empty() { String::new() } else { format!(" ({})", warnings.iter().map(Warning::to_string).collect::<Vec<_>>().join("; ")) };
+        return Err(Error::Nothing(format!("the program has no cutting moves{why}")));
+    }
+    let stock = ctx.stock;
+    let clearance_z = ctx.heights.clearance;
+    let cache = ctx.caches.counts;
+    let volumes = ctx.sim.volumes().to_vec();
+    let verification = if verify {
+        let settings = job.verify_settings(&stock, None);
+        let tol = job.tolerances;
+        let sim = std::mem::replace(&mut ctx.sim, Simulator::new(&stock, settings.cell)?);
+        Some(match &ctx.sheet {
+            None => {
+                let part = &ctx.part;
+                sim.finish(|grid| cc_zmap(part, grid, f64::NEG_INFINITY, &tol), settings.allowance, &tol)
+            }
+            Some(_) => {
+                let cuts = &ctx.cuts;
+                sim.finish(|grid| drawing::surface(cuts, grid, tol.gouge, &tol), settings.allowance, &tol)
+            }
+        })
+    } else {
+        None
+    };
+    let operations = report::per_operation(job, &enabled, &all_moves, &move_ranges, &volumes, &snapshots, verification.as_ref());
+    let problem = verification.as_ref().and_then(|v| v.report.problem());
+    progress.stage("done", 1.0, 0.0);
+    let drawing = ctx.sheet.map(|s| s.drawing);
+    Ok(JobOutput { part: ctx.part, drawing, stock, clearance_z, paths, path_operations, gcode, stats, moves: all_moves, operations, verification, warnings, problem, cache })
+}
+
+/// The moves of `paths[first..]`, timed on from the program's last move so far.
+fn timed_moves(paths: &[Toolpath], first: usize, last: Option<&ProgramMove>, tools: &[Tool], rapid_rate: f64) -> Result<Vec<ProgramMove>> {
+    let clock = last.map_or(0.0, |m| m.start + m.seconds);
+    let mut moves = program_moves(&paths[first..], tools, rapid_rate)?;
+    for m in &mut moves {
+        m.path += first;
+        m.start += clock;
+    }
+    Ok(moves)
+}

@@ -1,0 +1,110 @@
+//! What each operation of a job did: its time and length at the programmed feeds, the volume it
+//! removed from the in-process stock and its peak material removal rate, and what it left
+//! above the part (plus the job's allowance).
+
+use serde::Serialize;
+
+use super::Job;
+use crate::sim::program::ProgramMove;
+use crate::sim::verify::Verification;
+use crate::zmap::HeightField;
+
+/// One operation's figures.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct OperationReport {
+    /// Its index in the job's operations.
+    pub index: usize,
+    pub name: String,
+    /// The tools it used, in order.
+    pub tools: Vec<u32>,
+    pub moves: usize,
+    /// Time at the programmed feeds and the rapid rate (s).
+    pub seconds: f64,
+    pub feed_length: f64,
+    pub rapid_length: f64,
+    /// Volume removed (mm³), when its moves were simulated.
+    pub removed: Option<f64>,
+    /// Largest material removal rate of its feed moves (mm³/min), when simulated.
+    pub mrr_max: Option<f64>,
+    /// Material left above the part plus the allowance after it, largest and mean over the
+    /// part (mm), when the program was verified.
+    pub left_max: Option<f64>,
+    pub left_mean: Option<f64>,
+}
+
+impl OperationReport {
+    /// One line for a person.
+    pub fn describe(&self) -> String {
+        let mut s = format!("{}: {:.0} s, {:.0} mm fed, {:.0} mm rapid", self.name, self.seconds, self.feed_length, self.rapid_length);
+        if let (Some(v), Some(m)) = (self.removed, self.mrr_max) {
+            s += &format!(", removed {v:.0} mm³, peak MRR {m:.0} mm³/min");
+        }
+        if let (Some(a), Some(b)) = (self.left_max, self.left_mean) {
+            s += &format!(", left up to {a:.3} mm (mean {b:.3} mm)");
+        }
+        s
+    }
+}
+
+/// The reports of a job's `enabled` operations: `ranges[k]` are the k-th one's moves, `volumes` what the
+/// simulation removed per move (as many as it ran), `snapshots[k]` the stock's heights after
+/// operation k when it was simulated.
+pub fn per_operation(
+    job: &Job,
+    enabled: &[usize],
+    moves: &[ProgramMove],
+    ranges: &[std::ops::Range<usize>],
+    volumes: &[f64],
+    snapshots: &[Option<HeightField>],
+    verification: Option<&Verification>,
+) -> Vec<OperationReport> {
+    enabled
+        .iter()
+        .map(|&i| (i, &job.operations[i]))
+        .zip(ranges)
+        .zip(snapshots)
+        .map(|(((index, op), range), snapshot)| {
+            let mine = &moves[range.clone()];
+            let mut tools: Vec<u32> = Vec::new();
+            let (mut seconds, mut feed_length, mut rapid_length) = (0.0, 0.0, 0.0);
+            for m in mine {
+                if tools.last() != Some(&m.tool) {
+                    tools.push(m.tool);
+                }
+                seconds += m.seconds;
+                let len = m.mv.length(m.from);
+                if m.mv.is_rapid() {
+                    rapid_length += len;
+                } else {
+                    feed_length += len;
+                }
+            }
+            let simulated = range.end <= volumes.len() && snapshot.is_some();
+            let (removed, mrr_max) = if simulated {
+                let v = &volumes[range.clone()];
+                let peak = mine.iter().zip(v).filter(|(m, _)| !m.mv.is_rapid()).map(|(m, &v)| m.mrr(v)).fold(0.0, f64::max);
+                (Some(v.iter().sum()), Some(peak))
+            } else {
+                (None, None)
+            };
+            let (left_max, left_mean) = match (snapshot, verification) {
+                (Some(h), Some(v)) => {
+                    let (mut max, mut sum, mut n) = (0.0f64, 0.0, 0usize);
+                    for (top, part) in h.z.iter().zip(&v.part.z) {
+                        if part.is_nan() {
+                            continue;
+                        }
+                        let left = top - part;
+                        max = max.max(left);
+                        sum += left.max(0.0);
+                        n += 1;
+                    }
+                    (Some(max), Some(if n > 0 { sum / n as f64 } else { 0.0 }))
+                }
+                _ => (None, None),
+            };
+            OperationReport { index, name: op.name().to_string(), tools, moves: mine.len(), seconds, feed_length, rapid_length, removed, mrr_max, left_max, left_mean }
+        })
+        .collect()
+}

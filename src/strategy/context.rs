@@ -1,0 +1,155 @@
+//! The context every operation of a job plans in (DESIGN.md ideas 5 and 6): the placed part or
+//! drawing, the stock, the safe heights, the tool library and the tolerances, built once per
+//! job; caches, so that a second operation on the same part and cutter gets its z-map for
+//! nothing; and the in-process stock, the material the earlier operations left, which later
+//! operations enter and link over.
+
+use std::sync::Arc;
+
+use crate::cutter::Profile;
+use crate::error::{Error, Result, Warning};
+use crate::geom::{Aabb, DVec2, Tolerances};
+use crate::mesh::Mesh;
+use crate::profile::Drawing;
+use crate::progress::Progress;
+use crate::sim::verify::Simulator;
+use crate::tool::Tool;
+use crate::zmap::cc::cc_zmap;
+use crate::zmap::cl_inverse::cl_inverse_offset;
+use crate::zmap::drop::PointDrop;
+use crate::zmap::surface::ClSurface;
+use crate::zmap::{ClBuilder, Grid, HeightField};
+
+/// Heights of moves between cuts (mm, absolute).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SafeHeights {
+    /// Rapids across the part run here: above the stock's top by the job's clearance.
+    pub clearance: f64,
+    /// A rapid descent stops this far above the material under the tool (the short retract
+    /// used between nearby cuts); the rest is fed.
+    pub gap: f64,
+}
+
+/// A drawing as a sheet on the machine: its top at Z0, `thickness` below.
+#[derive(Clone, Debug)]
+pub struct Sheet {
+    pub drawing: Drawing,
+    pub thickness: f64,
+}
+
+/// Where a 2.5D operation may cut, to what depth, leaving how much on the walls: the part a
+/// drawing means, for verifying the program.
+#[derive(Clone, Debug)]
+pub struct SheetCut {
+    pub region: crate::profile::Shape,
+    /// Cuts inside the region (else everywhere outside it).
+    pub inside: bool,
+    pub depth: f64,
+    pub leave: f64,
+}
+
+/// Lookups of the caches, for reports and benchmarks.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct CacheCounts {
+    pub hits: usize,
+    pub misses: usize,
+}
+
+/// What operations of one job share: the part's CC z-map per grid, the exact builder's
+/// preparation of the mesh per cutter (its drop index), and the CL surface per cutter, grid
+/// and builder.
+#[derive(Default)]
+pub struct Caches {
+    cc: Vec<((Grid, u64), Arc<HeightField>)>,
+    drops: Vec<((Profile, u64), Arc<PointDrop>)>,
+    cl: Vec<((Profile, u64, Grid, u64, ClBuilder), Arc<ClSurface>)>,
+    pub counts: CacheCounts,
+}
+
+/// The job's context, as each operation sees it.
+pub struct Context {
+    /// The part as placed (mm, Z up); empty for a drawing.
+    pub part: Mesh,
+    pub sheet: Option<Sheet>,
+    /// The raw stock's box.
+    pub stock: Aabb,
+    pub heights: SafeHeights,
+    pub tools: Vec<Tool>,
+    pub tolerances: Tolerances,
+    /// How far the program's rounding may move a point sideways (mm), see
+    /// [`crate::post::PostSettings::resolution`].
+    pub resolution: f64,
+    pub caches: Caches,
+    /// The in-process stock: the raw box cut by every operation planned so far.
+    pub sim: Simulator,
+    pub warnings: Vec<Warning>,
+    /// Where the 2.5D operations cut (for verifying a drawing's program).
+    pub cuts: Vec<SheetCut>,
+}
+
+impl Context {
+    /// The tool `number` of the library, for the operation `op`.
+    pub fn tool(&self, op: &str, number: u32) -> Result<&Tool> {
+        self.tools.iter().find(|t| t.number == number).ok_or_else(|| Error::operation(op, format!("no tool number {number} in the tool library")))
+    }
+
+    pub fn warn(&mut self, op: &str, message: impl Into<String>) {
+        self.warnings.push(Warning::of(op, message));
+    }
+
+    /// The highest tip height at which a cutter of `profile` at `p` touches the in-process
+    /// stock (`-inf` where it touches none), never lower than the material (for rapids).
+    pub fn material(&self, p: DVec2, profile: &Profile) -> f64 {
+        self.sim.stock().touch(p, profile, true)
+    }
+
+    /// The part's heights on `grid` (`floor` where it is not): its CC z-map, made once.
+    pub fn cc_zmap(&mut self, grid: Grid, floor: f64) -> Arc<HeightField> {
+        let key = (grid, floor.to_bits());
+        if let Some((_, f)) = self.caches.cc.iter().find(|(k, _)| *k == key) {
+            return f.clone();
+        }
+        let f = Arc::new(cc_zmap(&self.part, grid, floor, &self.tolerances));
+        self.caches.cc.push((key, f.clone()));
+        f
+    }
+
+    /// The part indexed for exact drops of `profile` grown by the program's resolution
+    /// ([`PointDrop::grown`]), made once per cutter.
+    pub fn drop(&mut self, profile: &Profile) -> Arc<PointDrop> {
+        let key = (*profile, self.resolution.to_bits());
+        if let Some((_, d)) = self.caches.drops.iter().find(|(k, _)| *k == key) {
+            return d.clone();
+        }
+        let d = Arc::new(PointDrop::grown(&self.part, profile, self.resolution, &self.tolerances));
+        self.caches.drops.push((key, d.clone()));
+        d
+    }
+
+    /// The CL surface of `profile` over the part on `grid`, `floor` where no part is under the
+    /// cutter, made by `builder`; made once per (cutter, grid, floor, builder). Heights come
+    /// from the cutter grown by the program's resolution: no lower than the highest tip height
+    /// within that distance, so that rounding X and Y as the G-code is written cannot put a
+    /// point below the surface (Z is written rounded up).
+    pub fn cl_surface(&mut self, profile: &Profile, grid: Grid, floor: f64, builder: ClBuilder, progress: &mut Progress) -> Result<Arc<ClSurface>> {
+        let key = (*profile, self.resolution.to_bits(), grid, floor.to_bits(), builder);
+        if let Some((_, s)) = self.caches.cl.iter().find(|(k, _)| *k == key) {
+            self.caches.counts.hits += 1;
+            return Ok(s.clone());
+        }
+        self.caches.counts.misses += 1;
+        let drop = self.drop(profile);
+        let field = match builder {
+            // The exact z-map is the grown cutter's, so its nodes stand in for the drop where
+            // a pass crosses them.
+            ClBuilder::Exact => drop.field(&self.part, grid, floor, &self.tolerances, progress)?,
+            ClBuilder::InverseOffset => {
+                let cc = self.cc_zmap(grid, floor);
+                cl_inverse_offset(&cc, profile, progress)?
+            }
+        };
+        let s = Arc::new(ClSurface::new(field, drop, floor, builder == ClBuilder::Exact, self.tolerances.interpolation));
+        self.caches.cl.push((key, s.clone()));
+        Ok(s)
+    }
+}

@@ -1,0 +1,44 @@
+//! Tools of the library: a cutter (its shape, [`crate::cutter`]) with its cutting data. The
+//! strategies, the simulation and the post-processor read tools; none of them needs the job.
+
+use serde::{Deserialize, Serialize};
+
+use crate::cutter::Cutter;
+
+/// A tool in the library: a cutter with its cutting data.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, rename_all = "camelCase")]
+pub struct Tool {
+    /// Tool number (T word, pocket). Default value: 1.
+    pub number: u32,
+    /// Free text for the library and the program's comments. Default value: empty.
+    pub name: String,
+    #[serde(flatten)]
+    pub cutter: Cutter,
+    /// Spindle speed (rpm). Default value: 12000.
+    pub spindle_rpm: f64,
+    /// Cutting feed (mm/min). Default value: 1000.
+    pub feed_rate: f64,
+    /// Feed for vertical entries (mm/min). Default value: 300.
+    pub plunge_rate: f64,
+    /// How far the tool stands out of its holder (mm), for the library and the setup sheet
+    /// (the simulation checks the shank above the flutes; holders are not modelled yet).
+    /// Default value: none.
+    pub stick_out: Option<f64>,
+}
+
+impl Default for Tool {
+    fn default() -> Self {
+        Tool { number: 1, name: String::new(), cutter: Cutter::default(), spindle_rpm: 12000.0, feed_rate: 1000.0, plunge_rate: 300.0, stick_out: None }
+    }
+}
+
+impl Tool {
+    pub fn describe(&self) -> String {
+        if self.name.is_empty() {
+            self.cutter.describe()
+        } else {
+            format!("{}: {}", self.name, self.cutter.describe())
+        }
+    }
+}
