@@ -45,3 +45,12 @@ fn program_simulation_in_wasm() {
     web_sys_log(&f.row("wasm (Chromium)"));
     assert!(f.simulate_seconds > 0.0);
 }
+
+#[wasm_bindgen_test]
+fn sequences_in_wasm() {
+    let rows = swarf::job::bench::sequence_rows("wasm (Chromium)", &now);
+    for row in &rows {
+        web_sys_log(row);
+    }
+    assert_eq!(rows.len(), 3);
+}

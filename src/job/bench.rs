@@ -99,3 +99,99 @@ impl ProgramCase {
         (s.x * s.y / cells).sqrt()
     }
 }
+
+/// Stage times of a job: each progress stage's name with the seconds until the next stage began
+/// (the last one until the job ended), in order.
+pub fn stage_seconds(job: &Job, part: Mesh, clock: &dyn Fn() -> f64) -> (Vec<(String, f64)>, job::JobOutput) {
+    let mut marks: Vec<(String, f64)> = Vec::new();
+    let mut sink = |_: f64, stage: &str| {
+        if marks.last().is_none_or(|(s, _)| s != stage) {
+            marks.push((stage.to_string(), clock()));
+        }
+        true
+    };
+    let out = job::run(job, part, &mut Progress::new(&mut sink)).expect("the benchmark job runs");
+    let end = clock();
+    let times = (0..marks.len()).map(|k| (marks[k].0.clone(), marks.get(k + 1).map_or(end, |m| m.1) - marks[k].1)).collect();
+    (times, out)
+}
+
+fn seconds_of(stages: &[(String, f64)], name: &str) -> f64 {
+    stages.iter().filter(|(s, _)| s == name).map(|(_, t)| t).sum()
+}
+
+/// Figures of a two-operation sequence.
+#[derive(Clone, Debug)]
+pub struct SequenceFigures {
+    pub name: String,
+    /// The whole job (s).
+    pub total: f64,
+    /// Each operation's CL z-map stage (s): the second gets the first's from the cache when
+    /// they share cutter and grid.
+    pub zmaps: [f64; 2],
+    /// The in-process stock after the first operation (s): with verification on, this is
+    /// simulation the verification would have run anyway.
+    pub in_process: f64,
+    /// The verification of the whole program at the end: the last operation's simulation and
+    /// the judging (s).
+    pub verify: f64,
+    pub cache_hits: usize,
+}
+
+impl SequenceFigures {
+    pub fn row(&self, platform: &str) -> String {
+        format!(
+            "{platform:<16} {:<52} total {:.3} s; CL z-map op 1 {:.3} s, op 2 {:.4} s ({} cache hit); in-process stock after op 1 {:.3} s; last simulation and verification {:.3} s",
+            self.name, self.total, self.zmaps[0], self.zmaps[1], self.cache_hits, self.in_process, self.verify
+        )
+    }
+}
+
+/// Runs a two-operation job and takes its stages apart.
+pub fn sequence(name: &str, job: &Job, part: Mesh, clock: &dyn Fn() -> f64) -> SequenceFigures {
+    let start = clock();
+    let (stages, out) = stage_seconds(job, part, clock);
+    let total = clock() - start;
+    let op = |k: usize| job.operations[k].name().to_string();
+    SequenceFigures {
+        name: name.to_string(),
+        total,
+        zmaps: [seconds_of(&stages, &format!("{}: CL z-map", op(0))), seconds_of(&stages, &format!("{}: CL z-map", op(1)))],
+        in_process: seconds_of(&stages, &format!("{}: in-process stock", op(0))),
+        verify: seconds_of(&stages, &format!("{}: in-process stock", op(1))),
+        cache_hits: out.cache.hits,
+    }
+}
+
+/// Two raster finishes with one cutter and grid, across and along: the second operation's
+/// CL z-map comes from the cache.
+pub fn two_rasters(tool: Tool, grid: f64, stepover: f64) -> Job {
+    let raster = |name: &str, angle: f64| Operation::FinishRaster(FinishRaster { name: name.into(), grid, stepover, angle, ..FinishRaster::default() });
+    Job { tools: vec![tool], operations: vec![raster("across", 0.0), raster("along", 90.0)], ..Job::default() }
+}
+
+/// The sample part's two-tool sequence: a φ6 ball leaving 0.3 mm at stepover 1.5, then a φ3
+/// ball at stepover 0.5, grid 0.25.
+pub fn sample_two_tools(verify: bool) -> Job {
+    let ball = |number: u32, d: f64| Tool { number, cutter: Cutter::ball(d), ..Tool::default() };
+    let raster = |name: &str, tool: u32, stepover: f64, allowance: f64| Operation::FinishRaster(FinishRaster { name: name.into(), tool, stepover, allowance, ..FinishRaster::default() });
+    Job {
+        tools: vec![ball(1, 6.0), ball(2, 3.0)],
+        operations: vec![raster("coarse", 1, 1.5, 0.3), raster("fine", 2, 0.5, 0.0)],
+        simulation: Simulation { verify, cell: None },
+        ..Job::default()
+    }
+}
+
+/// The sequence figures: the die with two rasters sharing a φ10 ball and a 0.8 mm grid, and
+/// the sample part's two-tool job with and without verification.
+pub fn sequence_rows(platform: &str, clock: &dyn Fn() -> f64) -> Vec<String> {
+    let die = two_rasters(Tool { cutter: Cutter::ball(10.0), ..Tool::default() }, 0.8, 2.0);
+    let die = Job { simulation: Simulation { verify: false, cell: None }, ..die };
+    let mut rows = vec![sequence("die, φ10 ball, two rasters (0°, 90°), grid 0.8", &die, sample::fuel_tank_die(580, 430), clock).row(platform)];
+    for verify in [true, false] {
+        let name = format!("sample part, φ6 then φ3 ball, verify {}", if verify { "on" } else { "off" });
+        rows.push(sequence(&name, &sample_two_tools(verify), sample::demo_part(), clock).row(platform));
+    }
+    rows
+}

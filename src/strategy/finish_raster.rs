@@ -17,7 +17,7 @@ use crate::error::{Error, Result, Warning};
 use crate::geom::{DVec2, DVec3};
 use crate::progress::Progress;
 use crate::toolpath::entry::Entry;
-use crate::toolpath::link::{Feeds, Floor, LinkSettings, Linker, Surface};
+use crate::toolpath::link::{Feeds, Floor, LinkSettings, Linker};
 use crate::toolpath::reduce::reduce;
 use crate::toolpath::Toolpath;
 use crate::zmap::region::Region;
@@ -283,8 +283,7 @@ impl Operate for FinishRaster {
         }
         let settings = LinkSettings { clearance_z: ctx.heights.clearance, rapid_gap: ctx.heights.gap, stay_down_max: self.stay_down_max.unwrap_or(2.0 * self.stepover) };
         let floor_surface = Floor { cl: &cl, allowance: self.allowance, region: &region };
-        let surface = Surface { cl: &cl, allowance: self.allowance };
-        let linker = Linker { settings, keep: &floor_surface, entry_keep: &surface, material: &material, estimate: &estimate, threshold: tol.gouge, entry: self.entry, radius: profile.radius, feeds: Feeds { cut: tool.feed_rate, plunge: tool.plunge_rate } };
+        let linker = Linker { settings, keep: &floor_surface, material: &material, estimate: &estimate, threshold: tol.gouge, entry: self.entry, radius: profile.radius, feeds: Feeds { cut: tool.feed_rate, plunge: tool.plunge_rate } };
         let (start, moves, entries) = linker.link(&runs, &tol);
         if entries.plunge > 0 && profile.flat_radius() > 0.0 {
             ctx.warnings.push(Warning::of(&self.name, format!("{} entries found no room for a helix or a ramp and feed straight down into material", entries.plunge)));

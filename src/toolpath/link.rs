@@ -40,19 +40,6 @@ pub struct Floor<'a> {
     pub region: &'a Region,
 }
 
-/// The CL surface lifted by the allowance, anywhere (an entry may leave the region the passes
-/// keep to, as long as it stays above the surface).
-pub struct Surface<'a> {
-    pub cl: &'a ClSurface,
-    pub allowance: f64,
-}
-
-impl Keepout for Surface<'_> {
-    fn clears(&self, a: DVec3, b: DVec3, tolerance: f64) -> bool {
-        self.cl.along(a.truncate(), b.truncate()).into_iter().all(|(t, z)| point_at(a, b, t).z + tolerance >= z + self.allowance)
-    }
-}
-
 impl Keepout for Floor<'_> {
     /// Whether the straight move from `a` to `b` stays inside the region and on or above the
     /// floor (within `tolerance`), checked at every point of the surface along it
@@ -76,10 +63,8 @@ pub struct Feeds {
 /// What the linker needs besides the runs.
 pub struct Linker<'a> {
     pub settings: LinkSettings,
-    /// What a stay-down link must stay clear of.
+    /// What a stay-down link and an entry must stay clear of.
     pub keep: &'a dyn Keepout,
-    /// What an entry must stay clear of.
-    pub entry_keep: &'a dyn Keepout,
     /// The highest tip height at which the cutter touches material at a point (the in-process
     /// stock; `-inf` where there is none).
     pub material: &'a dyn Fn(DVec2) -> f64,
@@ -132,7 +117,7 @@ impl Linker<'_> {
                     moves.push(Move::Rapid { to: p0.truncate().extend(top) });
                 }
                 let inside = (self.estimate)(p0.truncate()) > p0.z + self.threshold;
-                let (entry, kind) = enter_3d(top, if inside { material } else { f64::NEG_INFINITY }, run, self.radius, &self.entry, self.entry_keep, (self.feeds.plunge, self.feeds.cut), tolerances.height);
+                let (entry, kind) = enter_3d(top, if inside { material } else { f64::NEG_INFINITY }, run, self.radius, &self.entry, self.keep, (self.feeds.plunge, self.feeds.cut), tolerances.height);
                 match kind {
                     Kind::Air => entries.air += 1,
                     Kind::Helix => entries.helix += 1,

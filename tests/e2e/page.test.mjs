@@ -396,6 +396,20 @@ test('a tool library and a second operation: both paths in their colours, one pr
   assert.equal(await page.locator('#tool-list option').count(), before + 1);
   assert.match(await page.textContent('#tool-list'), /fine ball/);
   assert.equal(await page.locator('#op-list li').count(), 2);
+  // A saved job holds both operations and both tools, and loads back whole.
+  const [saved] = await Promise.all([page.waitForEvent('download'), page.click('#save-job')]);
+  const jobFile = path.join(dir, 'two.json');
+  await saved.saveAs(jobFile);
+  const job = JSON.parse(fs.readFileSync(jobFile, 'utf8'));
+  assert.equal(job.operations.length, 2);
+  assert.deepEqual(job.tools.map((t) => t.number).sort(), [...new Set(job.operations.map((o) => o.tool))].sort());
+  assert.equal(job.tools.length, 2);
+  await page.click('#op-list li:nth-child(2) .op-remove');
+  assert.equal(await page.locator('#op-list li').count(), 1);
+  await page.setInputFiles('#load-job', jobFile);
+  await page.waitForFunction(() => /Loaded the job/.test(document.getElementById('message').textContent));
+  assert.equal(await page.locator('#op-list li').count(), 2);
+  assert.match(await page.textContent('#op-list li:nth-child(2)'), new RegExp(`T${number}`));
   assert.deepEqual(errors, []);
   await context.close();
 });
