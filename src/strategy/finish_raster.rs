@@ -12,7 +12,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{Context, FieldError, Operate, Works};
+use super::{Context, FieldError, Operate};
 use crate::error::{Error, Result, Warning};
 use crate::geom::{DVec2, DVec3};
 use crate::progress::Progress;
@@ -209,21 +209,7 @@ fn cut_pass(cl: &ClSurface, region: &Region, a: DVec2, b: DVec2, passes: &Raster
 }
 
 impl Operate for FinishRaster {
-    fn name(&self) -> &str {
-        &self.name
-    }
-
-    fn tool(&self) -> u32 {
-        self.tool
-    }
-
-    fn enabled(&self) -> bool {
-        self.enabled
-    }
-
-    fn works(&self) -> Works {
-        Works::OnPart
-    }
+    super::named_operation!(OnPart);
 
     fn allowance(&self) -> f64 {
         self.allowance

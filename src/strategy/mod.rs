@@ -64,6 +64,29 @@ pub enum Works {
     OnDrawing,
 }
 
+/// The [`Operate`] methods every operation's options answer from their `name`, `tool` and
+/// `enabled` fields, and what it works on (`OnPart` or `OnDrawing`).
+macro_rules! named_operation {
+    ($works:ident) => {
+        fn name(&self) -> &str {
+            &self.name
+        }
+
+        fn tool(&self) -> u32 {
+            self.tool
+        }
+
+        fn enabled(&self) -> bool {
+            self.enabled
+        }
+
+        fn works(&self) -> $crate::strategy::Works {
+            $crate::strategy::Works::$works
+        }
+    };
+}
+pub(crate) use named_operation;
+
 /// One kind of operation.
 pub trait Operate {
     /// Shown in progress, warnings and the program's comments.

@@ -302,21 +302,7 @@ impl Ctx<'_, '_> {
 }
 
 impl super::Operate for Pocket2d {
-    fn name(&self) -> &str {
-        &self.name
-    }
-
-    fn tool(&self) -> u32 {
-        self.tool
-    }
-
-    fn enabled(&self) -> bool {
-        self.enabled
-    }
-
-    fn works(&self) -> super::Works {
-        super::Works::OnDrawing
-    }
+    super::named_operation!(OnDrawing);
 
     fn validate(&self) -> Result<(), super::FieldError> {
         super::positive("depth", self.depth)?;

@@ -359,21 +359,7 @@ fn fitting_lead(p: DVec2, t: DVec2, waste_left: bool, rho: f64, clear: &Clear, i
 }
 
 impl super::Operate for Profile2d {
-    fn name(&self) -> &str {
-        &self.name
-    }
-
-    fn tool(&self) -> u32 {
-        self.tool
-    }
-
-    fn enabled(&self) -> bool {
-        self.enabled
-    }
-
-    fn works(&self) -> super::Works {
-        super::Works::OnDrawing
-    }
+    super::named_operation!(OnDrawing);
 
     fn validate(&self) -> Result<(), super::FieldError> {
         super::positive("stepdown", self.stepdown)?;
