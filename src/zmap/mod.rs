@@ -17,6 +17,7 @@ pub mod cl_inverse;
 mod cone;
 pub mod drop;
 pub mod io;
+pub mod contour;
 pub mod region;
 pub mod surface;
 

@@ -81,6 +81,11 @@ impl ClSurface {
         ClSurface { field, drop, floor, nodes_exact, tolerance, probe }
     }
 
+    /// The cutter's profile (as grown for the program's resolution, when it was).
+    pub fn profile(&self) -> &crate::cutter::Profile {
+        self.drop.profile()
+    }
+
     /// The exact height at `p`: the lowest tip height at which the cutter does not cut the part.
     pub fn height(&self, p: DVec2) -> f64 {
         if self.nodes_exact {

@@ -1,0 +1,399 @@
+//! The region a cutter's centre may occupy at a level (DESIGN.md idea 3): where the CL surface
+//! stands at or below the level, as closed loops of lines that the seed 003 offsetter takes.
+//!
+//! Steps:
+//! 1. once per CL surface ([`LevelMap::new`]): the highest exact height along every grid edge
+//!    ([`ClSurface::along`], which probes every peak in reach);
+//! 2. at a level, marching squares on the nodes' exact heights; a node is left out where an
+//!    edge from it to another node inside rises above the level between them (a ridge between
+//!    nodes, seed 001's blind spot), and where a `keep` mask says so (outside the stock, no
+//!    material near); the grid's border is outside. The crossing on an edge from an inside
+//!    node is where the exact surface along the edge first rises above the level (found on the
+//!    edge's exact profile, then checked at the point itself);
+//! 3. every piece between two crossings is checked along its length and, where the surface
+//!    rises above the level (a peak inside the cell), bent in towards the cell's inside node;
+//! 4. loops are simplified within the chordal tolerance where the chord itself clears.
+//!
+//! So a boundary point may lie inside the safe region, never past it, by more than
+//! [`Tolerances::height`]; inside, a peak standing in the middle of a cell may rise above the
+//! level by the cutter's rise at half a grid spacing from its axis (0 for a flat end's flat,
+//! 0.003 mm for a φ6 ball on a 0.25 mm grid).
+
+use crate::geom::{DVec2, Tolerances};
+use crate::parallel;
+use crate::profile::{Loop, Shape};
+use crate::zmap::surface::ClSurface;
+
+/// Depth of the bending of one piece towards its inside node.
+const BEND_DEPTH: usize = 6;
+/// Halvings when pulling a point towards an inside node.
+const PULL_STEPS: usize = 40;
+
+/// A CL surface's grid with the highest exact height along each of its edges.
+pub struct LevelMap {
+    /// Per node, the highest along the edge to its right and the edge up (`-inf` past the grid).
+    right: Vec<f64>,
+    up: Vec<f64>,
+}
+
+impl LevelMap {
+    pub fn new(cl: &ClSurface, tol: &Tolerances) -> LevelMap {
+        let f = &cl.field;
+        let (nx, ny) = (f.nx, f.ny);
+        let node = |i: usize, j: usize| f.origin + DVec2::new(i as f64, j as f64) * f.spacing;
+        let top = |a: DVec2, b: DVec2| cl.along(a, b).into_iter().fold(f64::NEG_INFINITY, |m, (_, z)| m.max(z)) + 2.0 * tol.interpolation;
+        let rows: Vec<(Vec<f64>, Vec<f64>)> = parallel::map_heavy(ny, |j| {
+            let right = (0..nx).map(|i| if i + 1 < nx { top(node(i, j), node(i + 1, j)) } else { f64::NEG_INFINITY }).collect();
+            let up = (0..nx).map(|i| if j + 1 < ny { top(node(i, j), node(i, j + 1)) } else { f64::NEG_INFINITY }).collect();
+            (right, up)
+        });
+        let (mut right, mut up) = (Vec::with_capacity(nx * ny), Vec::with_capacity(nx * ny));
+        for (r, u) in rows {
+            right.extend(r);
+            up.extend(u);
+        }
+        LevelMap { right, up }
+    }
+
+    /// The region at `level`: where the cutter's centre stands at or below it, among the nodes
+    /// `keep` accepts.
+    pub fn region(&self, cl: &ClSurface, level: f64, keep: &dyn Fn(usize, usize) -> bool, tol: &Tolerances) -> Shape {
+        let f = &cl.field;
+        let (nx, ny) = (f.nx, f.ny);
+        let low: Vec<bool> = (0..nx * ny).map(|c| f.z[c] <= level && keep(c % nx, c / nx)).collect();
+        // A ridge between two low nodes leaves both out.
+        let mut inside = low.clone();
+        for j in 0..ny {
+            for i in 0..nx {
+                let c = j * nx + i;
+                if i + 1 < nx && low[c] && low[c + 1] && self.right[c] > level + tol.height {
+                    inside[c] = false;
+                    inside[c + 1] = false;
+                }
+                if j + 1 < ny && low[c] && low[c + nx] && self.up[c] > level + tol.height {
+                    inside[c] = false;
+                    inside[c + nx] = false;
+                }
+            }
+        }
+        level_region(cl, &inside, level, tol)
+    }
+}
+
+fn level_region(cl: &ClSurface, nodes_inside: &[bool], level: f64, tol: &Tolerances) -> Shape {
+    let f = &cl.field;
+    let (nx, ny) = (f.nx, f.ny);
+    let inside = |i: isize, j: isize| i >= 0 && j >= 0 && (i as usize) < nx && (j as usize) < ny && nodes_inside[j as usize * nx + i as usize];
+    let node = |i: isize, j: isize| f.origin + DVec2::new(i as f64, j as f64) * f.spacing;
+    let safe = |p: DVec2| cl.height(p) <= level + tol.height;
+    let margin = back_off(cl, tol);
+    // The crossing on the edge from inside node a to outside node b: where the exact profile
+    // along the edge first rises above the level, checked at the point (and pulled back towards
+    // a until safe).
+    let crossing = |a: (isize, isize), b: (isize, isize)| -> DVec2 {
+        let (pa, pb) = (node(a.0, a.1), node(b.0, b.1));
+        let profile = cl.along(pa, pb);
+        let mut t = 1.0;
+        for w in profile.windows(2) {
+            let ((t0, z0), (t1, z1)) = (w[0], w[1]);
+            if z1 > level {
+                t = if z1 > z0 { t0 + (t1 - t0) * ((level - z0) / (z1 - z0)).clamp(0.0, 1.0) } else { t0 };
+                break;
+            }
+        }
+        // Back off: at a cliff (a flat end's rim standing on an edge or a vertex) the safe side
+        // ends sharply, and a piece between two points on it, a chord of the rim's circle
+        // (radius at least the flat's), must not dip into it.
+        t = (t - margin / f.spacing).max(0.0);
+        if !safe(pa + (pb - pa) * t) {
+            let (mut lo, mut hi) = (0.0, t);
+            for _ in 0..PULL_STEPS {
+                let mid = 0.5 * (lo + hi);
+                if safe(pa + (pb - pa) * mid) {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            t = lo;
+        }
+        pa + (pb - pa) * t
+    };
+    let value = |i: isize, j: isize| if inside(i, j) { f.at(i as usize, j as usize) - level } else { f.spacing };
+    // Marching squares over the cells, padded by one so the border closes the loops. Each
+    // directed piece has the inside on its left; pieces are keyed by the grid edges they join.
+    // Edge key: (i, j, dir) with dir 0 the edge from node (i, j) to (i+1, j), 1 to (i, j+1).
+    type Key = (isize, isize, u8);
+    let mut pieces: std::collections::HashMap<Key, (Key, (isize, isize), Vec<(isize, isize)>)> = std::collections::HashMap::new();
+    let mut points: std::collections::HashMap<Key, DVec2> = std::collections::HashMap::new();
+    let mut point = |k: Key| -> DVec2 {
+        *points.entry(k).or_insert_with(|| {
+            let (a, b) = if k.2 == 0 { ((k.0, k.1), (k.0 + 1, k.1)) } else { ((k.0, k.1), (k.0, k.1 + 1)) };
+            if inside(a.0, a.1) { crossing(a, b) } else { crossing(b, a) }
+        })
+    };
+    for j in -1..ny as isize {
+        for i in -1..nx as isize {
+            // Corners counter-clockwise: 0 (i, j), 1 (i+1, j), 2 (i+1, j+1), 3 (i, j+1).
+            let c = [inside(i, j), inside(i + 1, j), inside(i + 1, j + 1), inside(i, j + 1)];
+            let case = c.iter().enumerate().fold(0u8, |m, (k, &b)| m | ((b as u8) << k));
+            if case == 0 || case == 15 {
+                continue;
+            }
+            // Edges: 0 bottom (i,j)-(i+1,j), 1 right (i+1,j)-(i+1,j+1), 2 top (i,j+1)-(i+1,j+1), 3 left (i,j)-(i,j+1).
+            let edge = |e: u8| -> Key {
+                match e {
+                    0 => (i, j, 0),
+                    1 => (i + 1, j, 1),
+                    2 => (i, j + 1, 0),
+                    _ => (i, j, 1),
+                }
+            };
+            let centre_inside = || (value(i, j) + value(i + 1, j) + value(i + 1, j + 1) + value(i, j + 1)) <= 0.0;
+            // Pieces (from edge, to edge) with the inside on the left, walking counter-clockwise
+            // around inside corners.
+            let list: &[(u8, u8)] = match case {
+                1 => &[(3, 0)],
+                2 => &[(0, 1)],
+                3 => &[(3, 1)],
+                4 => &[(1, 2)],
+                5 => {
+                    if centre_inside() {
+                        &[(3, 2), (1, 0)]
+                    } else {
+                        &[(3, 0), (1, 2)]
+                    }
+                }
+                6 => &[(0, 2)],
+                7 => &[(3, 2)],
+                8 => &[(2, 3)],
+                9 => &[(2, 0)],
+                10 => {
+                    if centre_inside() {
+                        &[(0, 3), (2, 1)]
+                    } else {
+                        &[(0, 1), (2, 3)]
+                    }
+                }
+                11 => &[(2, 1)],
+                12 => &[(1, 3)],
+                13 => &[(1, 0)],
+                14 => &[(0, 3)],
+                _ => &[],
+            };
+            // The inside corner nearest a piece: to bend it towards.
+            // The inside corner to bend a piece towards: the one farthest from the outside
+            // corners (the diagonal one when three are inside), on the piece's side in a saddle.
+            let corners = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
+            let corner = |e: u8| -> (isize, isize) {
+                let ends = match e {
+                    0 => [corners[0], corners[1]],
+                    1 => [corners[1], corners[2]],
+                    2 => [corners[3], corners[2]],
+                    _ => [corners[0], corners[3]],
+                };
+                let own = if inside(ends[0].0, ends[0].1) { ends[0] } else { ends[1] };
+                if case == 5 || case == 10 {
+                    return own;
+                }
+                let outside: Vec<(isize, isize)> = corners.iter().copied().filter(|c| !inside(c.0, c.1)).collect();
+                let far = |c: (isize, isize)| outside.iter().map(|o| (o.0 - c.0).abs() + (o.1 - c.1).abs()).min().unwrap_or(0);
+                corners.iter().copied().filter(|c| inside(c.0, c.1)).max_by_key(|&c| far(c)).unwrap_or(own)
+            };
+            // The inside ends of two edges joined through inside corners only, along the cell's
+            // sides (each safe from end to end): the way round a piece that will not clear.
+            let end_of = |e: u8| -> usize {
+                let ends = [[0usize, 1], [1, 2], [3, 2], [0, 3]][e as usize];
+                if inside(corners[ends[0]].0, corners[ends[0]].1) { ends[0] } else { ends[1] }
+            };
+            let stairs = |from: u8, to: u8| -> Vec<(isize, isize)> {
+                let (s0, s1) = (end_of(from), end_of(to));
+                for dir in [1usize, 3] {
+                    let mut path = vec![corners[s0]];
+                    let mut k = s0;
+                    while k != s1 {
+                        k = (k + dir) % 4;
+                        if !inside(corners[k].0, corners[k].1) {
+                            break;
+                        }
+                        path.push(corners[k]);
+                    }
+                    if k == s1 && inside(corners[k].0, corners[k].1) {
+                        return path;
+                    }
+                }
+                vec![corners[s0]]
+            };
+            for &(from, to) in list {
+                let (ka, kb) = (edge(from), edge(to));
+                point(ka);
+                point(kb);
+                pieces.insert(ka, (kb, corner(from), stairs(from, to)));
+            }
+        }
+    }
+    // Chain the pieces into loops.
+    let mut loops = Vec::new();
+    let keys: Vec<Key> = {
+        let mut k: Vec<Key> = pieces.keys().copied().collect();
+        k.sort();
+        k
+    };
+    let mut used = std::collections::HashSet::new();
+    for start in keys {
+        if used.contains(&start) {
+            continue;
+        }
+        let mut ring: Vec<Piece> = Vec::new();
+        let mut k = start;
+        while used.insert(k) {
+            let Some((next, corner, stairs)) = pieces.get(&k) else { break };
+            ring.push(Piece { from: points[&k], corner: *corner, stairs: stairs.clone() });
+            k = *next;
+        }
+        if ring.len() >= 3 {
+            loops.push(ring);
+        }
+    }
+    let shape_loops: Vec<Loop> = loops
+        .into_iter()
+        .filter_map(|ring| {
+            let pts = bend(cl, level, &ring, &node, tol);
+            let pts = simplify(cl, level, &pts, tol);
+            (pts.len() >= 3).then(|| Loop::polygon(&pts))
+        })
+        .filter(|l| l.area().abs() > 1e-12)
+        .collect();
+    Shape::new(shape_loops)
+}
+
+/// How far boundary points stay in from the level's edge: the chordal tolerance, plus twice the
+/// sag of a chord a cell's diagonal long on the tightest rim a cliff can have (a circle of the
+/// flat's radius about a vertex or a vertical edge; a ball's surface has no cliff, its radius
+/// stands in).
+pub fn back_off(cl: &ClSurface, tol: &Tolerances) -> f64 {
+    let p = cl.profile();
+    let rim = if p.flat_radius() > 0.0 { p.flat_radius() } else { p.radius };
+    let diagonal = cl.field.spacing * std::f64::consts::SQRT_2;
+    tol.chordal + 2.0 * diagonal * diagonal / (8.0 * rim.max(1e-3))
+}
+
+/// The ring's points with every piece between two of them checked along its length and, where
+/// the surface rises above the level, bent in towards the piece's inside node.
+/// A piece of a marching-squares loop: where it starts (on a grid edge), the inside corner to
+/// bend it towards, and the inside nodes that lead from its start's edge to its end's.
+struct Piece {
+    from: DVec2,
+    corner: (isize, isize),
+    stairs: Vec<(isize, isize)>,
+}
+
+/// The ring's points with every piece between two of them checked along its length and, where
+/// the surface rises above the level, bent in towards the piece's inside corner; a piece that
+/// will not bend clear goes round by the inside nodes, along the cell's sides.
+fn bend(cl: &ClSurface, level: f64, ring: &[Piece], node: &dyn Fn(isize, isize) -> DVec2, tol: &Tolerances) -> Vec<DVec2> {
+    // The highest point of the surface along a piece above the level, if any (samples must
+    // clear it by twice the interpolation tolerance: between two, `along` lets the surface
+    // rise that much above their chord).
+    let worst = |a: DVec2, b: DVec2| -> Option<f64> {
+        cl.along(a, b).into_iter().filter(|&(_, z)| z > level - 2.0 * tol.interpolation).max_by(|p, q| p.1.total_cmp(&q.1)).map(|(t, _)| t)
+    };
+    let clears = |a: DVec2, b: DVec2| worst(a, b).is_none();
+    let safe = |p: DVec2| cl.height(p) <= level + tol.height;
+    #[allow(clippy::too_many_arguments)]
+    fn towards(a: DVec2, b: DVec2, c: DVec2, depth: usize, worst: &dyn Fn(DVec2, DVec2) -> Option<f64>, clears: &dyn Fn(DVec2, DVec2) -> bool, safe: &dyn Fn(DVec2) -> bool, out: &mut Vec<DVec2>) -> bool {
+        let Some(t) = worst(a, b) else {
+            out.push(b);
+            return true;
+        };
+        if depth == 0 {
+            // Through the inside node itself, when that clears.
+            if clears(a, c) && clears(c, b) {
+                out.push(c);
+                out.push(b);
+                return true;
+            }
+            return false;
+        }
+        // The highest point along it, pulled towards the inside node c until safe, and a
+        // quarter further, so the pieces from there clear a cliff's rim.
+        let m = a + (b - a) * t.clamp(0.05, 0.95);
+        let (mut lo, mut hi) = (0.0, 1.0);
+        if safe(m) {
+            hi = 0.0;
+        } else {
+            for _ in 0..PULL_STEPS {
+                let u = 0.5 * (lo + hi);
+                if safe(m + (c - m) * u) {
+                    hi = u;
+                } else {
+                    lo = u;
+                }
+            }
+        }
+        let q = m + (c - m) * (hi + 0.25 * (1.0 - hi));
+        towards(a, q, c, depth - 1, worst, clears, safe, out) && towards(q, b, c, depth - 1, worst, clears, safe, out)
+    }
+    let n = ring.len();
+    let mut out = Vec::with_capacity(n);
+    for k in 0..n {
+        let (a, b) = (ring[k].from, ring[(k + 1) % n].from);
+        let c = node(ring[k].corner.0, ring[k].corner.1);
+        let mark = out.len();
+        if !towards(a, b, c, BEND_DEPTH, &worst, &clears, &safe, &mut out) {
+            // Round by the inside nodes: from the start along its edge to the edge's inside
+            // end, along the cell's sides, and out along the end's edge.
+            out.truncate(mark);
+            out.extend(ring[k].stairs.iter().map(|&(i, j)| node(i, j)));
+            out.push(b);
+        }
+    }
+    out
+}
+
+/// Drops points whose neighbours' chord stays within the chordal tolerance of them and clears
+/// the level along its length (Douglas–Peucker on the closed ring, greedy).
+fn simplify(cl: &ClSurface, level: f64, pts: &[DVec2], tol: &Tolerances) -> Vec<DVec2> {
+    let clears = |a: DVec2, b: DVec2| cl.along(a, b).into_iter().all(|(_, z)| z <= level - 2.0 * tol.interpolation);
+    let mut out: Vec<DVec2> = Vec::with_capacity(pts.len());
+    let n = pts.len();
+    if n < 4 {
+        return pts.to_vec();
+    }
+    let mut anchor = 0;
+    out.push(pts[0]);
+    let mut k = 1;
+    while k < n {
+        // Extend the chord from the anchor as far as every skipped point stays near it.
+        let mut best = k;
+        let mut m = k + 1;
+        while m <= n {
+            let end = pts[m % n];
+            let a = pts[anchor];
+            let near = (anchor + 1..m).all(|q| distance_to_segment(pts[q], a, end) <= tol.chordal);
+            if !near {
+                break;
+            }
+            if clears(a, end) {
+                best = m;
+            }
+            m += 1;
+            if m - anchor > 64 {
+                break;
+            }
+        }
+        if best >= n {
+            break;
+        }
+        out.push(pts[best]);
+        anchor = best;
+        k = best + 1;
+    }
+    out
+}
+
+fn distance_to_segment(p: DVec2, a: DVec2, b: DVec2) -> f64 {
+    let d = b - a;
+    let t = if d.length_squared() > 0.0 { ((p - a).dot(d) / d.length_squared()).clamp(0.0, 1.0) } else { 0.0 };
+    p.distance(a + d * t)
+}

@@ -1,0 +1,178 @@
+//! The region a cutter's centre may occupy at a level (`zmap/contour.rs`), against regions known
+//! in closed form, and on spiky parts: no boundary point and no point inside stands above the
+//! level on the exact surface.
+
+mod common;
+
+use common::{mesh, spiky_terrain, Lcg};
+use swarf::cutter::Cutter;
+use swarf::geom::{DVec2, DVec3, Tolerances};
+use swarf::mesh::Mesh;
+use swarf::profile::Shape;
+use swarf::progress::Progress;
+use swarf::zmap::contour::LevelMap;
+use swarf::zmap::{cl_exact::cl_exact, drop::PointDrop, surface::ClSurface, Grid};
+
+fn surface(part: &Mesh, grid: Grid, floor: f64, cutter: &Cutter) -> ClSurface {
+    let tol = Tolerances::DEFAULT;
+    let field = cl_exact(part, &cutter.profile(), grid, floor, &tol, &mut Progress::none()).unwrap();
+    ClSurface::new(field, PointDrop::new(part, &cutter.profile(), &tol), floor, true, tol.interpolation)
+}
+
+/// An axis-aligned box's faces (no bottom) between `lo` and `hi`.
+fn boxed(lo: DVec3, hi: DVec3) -> Vec<[DVec3; 3]> {
+    let v = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
+    let (a, b, c, d) = (v(lo.x, lo.y, hi.z), v(hi.x, lo.y, hi.z), v(hi.x, hi.y, hi.z), v(lo.x, hi.y, hi.z));
+    let (e, f, g, h) = (v(lo.x, lo.y, lo.z), v(hi.x, lo.y, lo.z), v(hi.x, hi.y, lo.z), v(lo.x, hi.y, lo.z));
+    vec![[a, b, c], [a, c, d], [e, f, b], [e, b, a], [f, g, c], [f, c, b], [g, h, d], [g, d, c], [h, e, a], [h, a, d]]
+}
+
+/// A flat square plate at z = 0.
+fn plate(half: f64) -> Vec<[DVec3; 3]> {
+    let v = |x: f64, y: f64| DVec3::new(x, y, 0.0);
+    vec![[v(-half, -half), v(half, -half), v(half, half)], [v(-half, -half), v(half, half), v(-half, half)]]
+}
+
+/// Every point of the shape's boundary (every 0.02 mm) stands at or below the level.
+fn boundary_clears(cl: &ClSurface, shape: &Shape, level: f64) -> f64 {
+    let mut worst = f64::NEG_INFINITY;
+    let mut at = None;
+    for s in shape.segments() {
+        let n = (s.length() / 0.02).ceil().max(1.0) as usize;
+        for k in 0..=n {
+            let over = cl.height(s.point_at(k as f64 / n as f64)) - level;
+            if over > worst {
+                worst = over;
+                at = Some((s.a, s.b, k as f64 / n as f64));
+            }
+        }
+    }
+    if worst > 1e-6 {
+        eprintln!("worst {worst} on {at:?}");
+    }
+    worst
+}
+
+/// Distance from a point to the rectangle [-a, a]².
+fn to_square(p: DVec2, a: f64) -> f64 {
+    let d = DVec2::new((p.x.abs() - a).max(0.0), (p.y.abs() - a).max(0.0));
+    d.length()
+}
+
+#[test]
+fn a_flat_end_keeps_its_radius_from_a_box() {
+    let mut tris = plate(30.0);
+    tris.extend(boxed(DVec3::new(-10.0, -10.0, 0.0), DVec3::new(10.0, 10.0, 8.0)));
+    let part = mesh(tris);
+    let tol = Tolerances::DEFAULT;
+    let grid = Grid::covering(DVec2::splat(-25.0), DVec2::splat(25.0), 0.25);
+    let cl = surface(&part, grid, -1.0, &Cutter::flat(6.0));
+    let map = LevelMap::new(&cl, &tol);
+    let region = map.region(&cl, 4.0, &|_, _| true, &tol);
+    // The grid's border and the box grown by the radius: two loops, one a hole.
+    assert_eq!(region.loops.len(), 2, "{:?}", region.loops.iter().map(|l| l.len()).collect::<Vec<_>>());
+    let hole = region.loops.iter().find(|l| !l.is_ccw()).expect("a hole around the box");
+    for v in &hole.vertices {
+        let d = to_square(v.p, 10.0);
+        assert!(d >= 3.0 - 1e-9 && d <= 3.0 + 0.25 * 1.5, "{} at {}", d, v.p);
+    }
+    // Its area: the box grown by the radius (a rounded square), within a grid cell along the rim.
+    let grown = 20.0 * 20.0 + 4.0 * 20.0 * 3.0 + std::f64::consts::PI * 9.0;
+    let rim = 4.0 * 20.0 + 2.0 * std::f64::consts::PI * 3.0;
+    assert!((hole.area().abs() - grown) >= 0.0 && (hole.area().abs() - grown) <= rim * 0.25, "{} vs {grown}", hole.area().abs());
+    assert!(boundary_clears(&cl, &region, 4.0) <= 1e-6);
+}
+
+#[test]
+fn a_ball_around_a_hemisphere_stays_outside_the_closed_form_circle() {
+    let (rs, r, level) = (10.0, 3.0, 4.0);
+    let part = common::cap(rs, 9.9, 0.2);
+    let tol = Tolerances::DEFAULT;
+    let grid = Grid::covering(DVec2::splat(-16.0), DVec2::splat(16.0), 0.25);
+    let cl = surface(&part, grid, -1.0, &Cutter::ball(2.0 * r));
+    let map = LevelMap::new(&cl, &tol);
+    let region = map.region(&cl, level, &|_, _| true, &tol);
+    let hole = region.loops.iter().find(|l| !l.is_ccw()).expect("a hole around the hemisphere");
+    // The ball's centre on the sphere grown by r stands at level + r: at distance rho.
+    let rho = ((rs + r).powi(2) - (level + r).powi(2)).sqrt();
+    for v in &hole.vertices {
+        let d = v.p.length();
+        // The faceted cap lies inside the sphere: the hole may be smaller by the facets' sag,
+        // and larger by up to a grid cell's diagonal.
+        assert!(d >= rho - 0.05 && d <= rho + 0.36, "{d} vs {rho}");
+    }
+    assert!(boundary_clears(&cl, &region, level) <= 1e-6);
+}
+
+#[test]
+fn a_pocket_with_an_island_gives_a_ring() {
+    // A block 10 high with a 30 mm pocket down to 0 and a 6 mm pillar back up to 10 in it.
+    let v = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
+    let mut tris = Vec::new();
+    // The top around the pocket, as four strips.
+    for (lo, hi) in [((-25.0, -25.0), (25.0, -15.0)), ((-25.0, 15.0), (25.0, 25.0)), ((-25.0, -15.0), (-15.0, 15.0)), ((15.0, -15.0), (25.0, 15.0))] {
+        let (a, b, c, d) = (v(lo.0, lo.1, 10.0), v(hi.0, lo.1, 10.0), v(hi.0, hi.1, 10.0), v(lo.0, hi.1, 10.0));
+        tris.push([a, b, c]);
+        tris.push([a, c, d]);
+    }
+    // The pocket's walls (facing in) and floor.
+    let (p, q) = (-15.0, 15.0);
+    for (a, b) in [((p, p), (q, p)), ((q, p), (q, q)), ((q, q), (p, q)), ((p, q), (p, p))] {
+        tris.push([v(a.0, a.1, 0.0), v(a.0, a.1, 10.0), v(b.0, b.1, 10.0)]);
+        tris.push([v(a.0, a.1, 0.0), v(b.0, b.1, 10.0), v(b.0, b.1, 0.0)]);
+    }
+    tris.push([v(p, p, 0.0), v(q, p, 0.0), v(q, q, 0.0)]);
+    tris.push([v(p, p, 0.0), v(q, q, 0.0), v(p, q, 0.0)]);
+    tris.extend(boxed(DVec3::new(-3.0, -3.0, 0.0), DVec3::new(3.0, 3.0, 10.0)));
+    let part = mesh(tris);
+    let tol = Tolerances::DEFAULT;
+    let grid = Grid::covering(DVec2::splat(-22.0), DVec2::splat(22.0), 0.25);
+    let cl = surface(&part, grid, -1.0, &Cutter::flat(6.0));
+    let map = LevelMap::new(&cl, &tol);
+    let region = map.region(&cl, 5.0, &|_, _| true, &tol);
+    assert_eq!(region.loops.len(), 2);
+    let outer = region.loops.iter().find(|l| l.is_ccw()).unwrap();
+    let hole = region.loops.iter().find(|l| !l.is_ccw()).unwrap();
+    for v in &outer.vertices {
+        assert!(v.p.x.abs().max(v.p.y.abs()) <= 12.0 + 1e-9 && v.p.x.abs().max(v.p.y.abs()) >= 12.0 - 0.36, "{}", v.p);
+    }
+    for v in &hole.vertices {
+        let d = to_square(v.p, 3.0);
+        assert!(d >= 3.0 - 1e-9 && d <= 3.0 + 0.36, "{d}");
+    }
+    let area = region.area();
+    let expected = 24.0 * 24.0 - (36.0 + 4.0 * 6.0 * 3.0 + std::f64::consts::PI * 9.0);
+    assert!(area <= expected + 1e-6 && area >= expected - (4.0 * 24.0 + 50.0) * 0.25, "{area} vs {expected}");
+    assert!(boundary_clears(&cl, &region, 5.0) <= 1e-6);
+}
+
+#[test]
+fn on_spiky_parts_nothing_of_the_region_stands_above_the_level() {
+    let tol = Tolerances::DEFAULT;
+    for (seed, cutter) in [(1, Cutter::flat(4.0)), (2, Cutter::ball(4.0)), (3, Cutter::bull_nose(4.0, 0.5)), (4, Cutter::ball(2.0))] {
+        let part = spiky_terrain(seed, 8.0, 1.37, 3.0);
+        let grid = Grid::covering(DVec2::splat(-10.0), DVec2::splat(10.0), 0.5);
+        let cl = surface(&part, grid, -1.0, &cutter);
+        let map = LevelMap::new(&cl, &tol);
+        let mut rng = Lcg(seed);
+        for level in [0.5, 1.2, 2.0, 2.6] {
+            let region = map.region(&cl, level, &|_, _| true, &tol);
+            let worst = boundary_clears(&cl, &region, level);
+            assert!(worst <= 1e-6, "{} seed {seed} level {level}: boundary {worst} above", cutter.describe());
+            // Points inside: at most the cutter's rise half a cell from its axis above.
+            let rise = cutter.profile().height(0.25 * std::f64::consts::SQRT_2) + 1e-6;
+            let b = region.bounds();
+            let mut inside = 0;
+            for _ in 0..4000 {
+                let p = DVec2::new(b.min.x + rng.next() * (b.max.x - b.min.x), b.min.y + rng.next() * (b.max.y - b.min.y));
+                if region.contains(p) {
+                    inside += 1;
+                    let over = cl.height(p) - level;
+                    assert!(over <= rise, "{} seed {seed} level {level}: {over} above at {p}", cutter.describe());
+                }
+            }
+            assert!(inside > 0 || region.is_empty());
+        }
+    }
+}
+
