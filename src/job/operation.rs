@@ -7,6 +7,7 @@ use serde::{Deserialize, Serialize};
 use crate::strategy::finish_raster::FinishRaster;
 use crate::strategy::pocket2d::Pocket2d;
 use crate::strategy::profile2d::Profile2d;
+use crate::strategy::rough_zlevel::RoughZlevel;
 use crate::strategy::Operate;
 
 macro_rules! operations {
@@ -50,6 +51,8 @@ macro_rules! operations {
 }
 
 operations! {
+    /// Z-level roughing on a part's CL z-map (DESIGN.md ideas 1 and 3).
+    RoughZlevel(RoughZlevel) = "roughZlevel",
     /// Raster finishing on a part's CL z-map (seed 001).
     FinishRaster(FinishRaster) = "finishRaster",
     /// Profile around a drawing's loops (seed 003).

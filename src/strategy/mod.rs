@@ -12,6 +12,7 @@ pub mod finish_raster;
 pub mod path2d;
 pub mod pocket2d;
 pub mod profile2d;
+pub mod rough_zlevel;
 pub mod sheet;
 pub mod walls;
 

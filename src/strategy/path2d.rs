@@ -165,6 +165,10 @@ pub fn does_not_fit(tool_radius: f64, leave_stock: f64, what: &str, b: &crate::g
     )
 }
 
+/// A height at which the straight traverse from one point to another is safe, if there is one
+/// lower than the clearance height.
+pub type Traverse = Box<dyn Fn(DVec2, DVec2) -> Option<f64>>;
+
 /// Where the tool is and how it moves between cuts.
 pub struct Cursor {
     pub at: DVec3,
@@ -172,17 +176,22 @@ pub struct Cursor {
     /// Height above which rapids are safe near the next cut: the stock top plus a gap.
     pub safe: f64,
     pub plunge: f64,
+    /// A lower traverse than the clearance height where the strategy knows one (the short
+    /// retract); `None`: always the clearance height.
+    pub traverse: Option<Traverse>,
 }
 
 impl Cursor {
     /// Up to the clearance, over to above `to`, rapid down to the safe height (or `to.z` plus
     /// the gap when lower), then feed down to `to`.
     pub fn reposition(&mut self, to: DVec3, out: &mut Vec<Move>) {
-        if self.at.z < self.clearance {
-            out.push(Move::Rapid { to: self.at.truncate().extend(self.clearance) });
+        let low = self.traverse.as_ref().and_then(|f| f(self.at.truncate(), to.truncate()));
+        let travel = low.map_or(self.clearance, |h| h.max(self.safe.min(self.clearance)).min(self.clearance));
+        if self.at.z < travel {
+            out.push(Move::Rapid { to: self.at.truncate().extend(travel) });
         }
-        out.push(Move::Rapid { to: to.truncate().extend(self.clearance) });
-        let safe = self.safe.min(self.clearance);
+        out.push(Move::Rapid { to: to.truncate().extend(travel) });
+        let safe = self.safe.min(travel);
         if safe > to.z {
             out.push(Move::Rapid { to: to.truncate().extend(safe) });
         }

@@ -155,33 +155,64 @@ pub fn pocket_moves(region: &Shape, op: &Pocket2d, mut s: Setup) -> Result<Vec<M
     if levels.is_empty() {
         return Err(does_not_fit(r, op.leave_stock, "the pocket", &region.bounds()));
     }
-    let climb = op.direction == Direction::Climb;
-    let orient = |l: &Loop| if climb { l.clone() } else { l.reversed() };
-    let boundary = &levels[0];
-    let angle = op.ramp_angle.clamp(0.1, 90.0).to_radians();
-    let helix_r = op.helix_radius.unwrap_or(0.8 * r);
+    let clearing = Clearing {
+        step,
+        climb: op.direction == Direction::Climb,
+        pattern: op.pattern,
+        angle: op.angle.to_radians(),
+        entry: op.entry,
+        ramp_angle: op.ramp_angle.clamp(0.1, 90.0).to_radians(),
+        helix_r: op.helix_radius.unwrap_or(0.8 * r),
+    };
     let passes = (op.depth / op.stepdown.max(1e-3)).ceil().max(1.0) as usize;
     let mut out = Vec::new();
-    let forest = forest(&levels);
-    let mut c = Ctx { s: &mut s, boundary, angle, helix_r, entry: op.entry, out: &mut out, z_prev: 0.0, z: 0.0 };
     for k in 1..=passes {
-        c.z_prev = c.s.top - op.depth * (k - 1) as f64 / passes as f64;
-        c.z = c.s.top - op.depth * k as f64 / passes as f64;
-        match op.pattern {
-            PocketPattern::Offset => {
-                for node in &forest {
-                    c.cut_tree(node, &orient);
-                }
+        let z_prev = s.top - op.depth * (k - 1) as f64 / passes as f64;
+        let z = s.top - op.depth * k as f64 / passes as f64;
+        out.extend(clear_rings(&levels, &clearing, z_prev, z, &mut s));
+    }
+    Ok(out)
+}
+
+/// How a region is cleared at one depth.
+#[derive(Clone, Copy, Debug)]
+pub struct Clearing {
+    /// Distance between rings or passes (mm).
+    pub step: f64,
+    pub climb: bool,
+    pub pattern: PocketPattern,
+    /// Direction of zigzag passes (radians from +X).
+    pub angle: f64,
+    pub entry: Entry,
+    /// Steepest descent of helices and ramps (radians).
+    pub ramp_angle: f64,
+    pub helix_r: f64,
+}
+
+/// Clears from `z_prev` (where the material starts) down to `z` the region whose tool-centre
+/// rings are `levels` (the region itself first, then one step further in each), inner rings
+/// first, each region entered by a helix or a ramp, ending with the outermost ring.
+pub fn clear_rings(levels: &[Shape], clearing: &Clearing, z_prev: f64, z: f64, s: &mut Setup) -> Vec<Move> {
+    let Some(boundary) = levels.first() else { return Vec::new() };
+    let climb = clearing.climb;
+    let orient = |l: &Loop| if climb { l.clone() } else { l.reversed() };
+    let mut out = Vec::new();
+    let forest = forest(levels);
+    let mut c = Ctx { s, boundary, angle: clearing.ramp_angle, helix_r: clearing.helix_r, entry: clearing.entry, out: &mut out, z_prev, z };
+    match clearing.pattern {
+        PocketPattern::Offset => {
+            for node in &forest {
+                c.cut_tree(node, &orient);
             }
-            PocketPattern::Zigzag => {
-                c.zigzag(boundary, step, op.angle.to_radians());
-                for l in &boundary.loops {
-                    c.cut_loop(&orient(l), false);
-                }
+        }
+        PocketPattern::Zigzag => {
+            c.zigzag(boundary, clearing.step, clearing.angle);
+            for l in &boundary.loops {
+                c.cut_loop(&orient(l), false);
             }
         }
     }
-    Ok(out)
+    out
 }
 
 struct Ctx<'a, 'b> {

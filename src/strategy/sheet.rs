@@ -55,7 +55,7 @@ pub fn pocket_region(shape: &Shape, picked: &[Loop], all: bool) -> Shape {
 /// gap above the sheet's top.
 pub fn cursor(ctx: &Context, tool: &Tool) -> Cursor {
     let clearance = ctx.heights.clearance;
-    Cursor { at: DVec3::new(0.0, 0.0, clearance), clearance, safe: ctx.stock.max.z + ctx.heights.gap, plunge: tool.plunge_rate }
+    Cursor { at: DVec3::new(0.0, 0.0, clearance), clearance, safe: ctx.stock.max.z + ctx.heights.gap, plunge: tool.plunge_rate, traverse: None }
 }
 
 /// An operation's moves as a tool path: it starts above its first rapid's end at the

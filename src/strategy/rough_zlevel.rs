@@ -1,0 +1,248 @@
+//! Z-level roughing on the CL z-map (DESIGN.md ideas 1 and 3): at each level, the region the
+//! cutter's centre may occupy there ([`crate::zmap::contour`]) is cleared by rings, repeated
+//! seed 003 offsets inwards at the step-over, inner rings first (each region entered by the
+//! shared helix, else a ramp), and the region's own boundary last, so the wall left is the
+//! allowance and not a ring's scallop.
+//!
+//! * **Allowances.** The radial one (`leaveStock`, on walls) grows the cutter by it before its
+//!   CL z-map is made, so walls keep it at every height; the axial one (`allowance`, on floors)
+//!   raises the surface: at level z the centre goes where `CL + allowance <= z`.
+//! * **Levels** run from the stock's top down by the step-down to the stock's bottom (plus the
+//!   allowance), and every flat area of the part is a level of its own (at its height plus the
+//!   allowance), so no shallow feature is skipped for lying between two levels.
+//! * **Never in air.** At each level only where the in-process stock still has material within
+//!   the cutter's reach: after another roughing, this is rest machining.
+
+use serde::{Deserialize, Serialize};
+
+use super::pocket2d::{clear_rings, rings, Clearing, Entry as PocketEntry, PocketPattern, Setup};
+use super::profile2d::Direction;
+use super::{sheet, Context, FieldError, Operate};
+use crate::cutter::Profile;
+use crate::error::{Error, Result};
+use crate::geom::DVec2;
+use crate::progress::Progress;
+use crate::sim::DexelStock;
+use crate::toolpath::Toolpath;
+use crate::zmap::contour::LevelMap;
+use crate::zmap::region::Region;
+use crate::zmap::{ClBuilder, Grid, HeightField};
+
+/// Z-level roughing.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, rename_all = "camelCase")]
+pub struct RoughZlevel {
+    /// Default value: "z-level rough".
+    pub name: String,
+    /// Whether the job runs it (a disabled operation stays in the job). Default value: true.
+    pub enabled: bool,
+    /// Default value: 1.
+    pub tool: u32,
+    /// Largest depth between levels (mm). Default value: 2.
+    pub stepdown: f64,
+    /// Distance between rings as a fraction of the tool diameter. Default value: 0.4.
+    pub stepover: f64,
+    /// Material left on floors (axial, mm). Default value: 0.5.
+    pub allowance: f64,
+    /// Material left on walls (radial, mm). Default value: 0.5.
+    pub leave_stock: f64,
+    /// Default value: climb.
+    pub direction: Direction,
+    /// Spacing of the CL z-map (mm). Default value: 0.25.
+    pub grid: f64,
+    /// Steepest descent of helices and ramps (degrees). Default value: 3.
+    pub ramp_angle: f64,
+    /// Helix radius (mm). Default value: 0.4 × the tool diameter.
+    pub helix_radius: Option<f64>,
+    /// Cut every flat area of the part at its own height too. Default value: true.
+    pub flats: bool,
+}
+
+impl Default for RoughZlevel {
+    fn default() -> Self {
+        RoughZlevel {
+            name: "z-level rough".into(),
+            enabled: true,
+            tool: 1,
+            stepdown: 2.0,
+            stepover: 0.4,
+            allowance: 0.5,
+            leave_stock: 0.5,
+            direction: Direction::Climb,
+            grid: 0.25,
+            ramp_angle: 3.0,
+            helix_radius: None,
+            flats: true,
+        }
+    }
+}
+
+/// Nodes of equal height covering at least this many times the cutter's area make a flat (a level): more than the plateau a flat end leaves over a peak (its own disk).
+const FLAT_AREA: f64 = 2.0;
+/// Heights within this are one flat (mm).
+const FLAT_SAME: f64 = 1e-4;
+/// Levels closer than this are one (mm).
+const LEVEL_SAME: f64 = 0.01;
+
+impl Operate for RoughZlevel {
+    super::named_operation!(OnPart);
+
+    fn allowance(&self) -> f64 {
+        self.allowance.min(self.leave_stock)
+    }
+
+    fn validate(&self) -> Result<(), FieldError> {
+        super::positive("stepdown", self.stepdown)?;
+        super::positive("stepover", self.stepover)?;
+        if self.stepover > 1.0 {
+            return Err(FieldError { field: "stepover", message: format!("is a fraction of the tool's diameter, at most 1 (got {})", self.stepover) });
+        }
+        super::not_negative("allowance", self.allowance)?;
+        super::not_negative("leaveStock", self.leave_stock)?;
+        super::positive("grid", self.grid)?;
+        super::positive("rampAngle", self.ramp_angle)?;
+        if let Some(r) = self.helix_radius {
+            super::positive("helixRadius", r)?;
+        }
+        Ok(())
+    }
+
+    fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Vec<Toolpath>> {
+        let tool = ctx.tool(&self.name, self.tool)?.clone();
+        let profile = tool.cutter.profile();
+        let r = profile.radius;
+        // The cutter grown by the radial allowance: the Minkowski sum with a disk (a ball's
+        // becomes a bull nose of its own corner).
+        let grown = Profile::new(r + self.leave_stock, if profile.flat_radius() <= 0.0 { r } else { profile.corner });
+        let stock = ctx.stock;
+        let reach = r + self.leave_stock + 2.0 * self.grid;
+        let grid = Grid::checked(stock.min.truncate() - DVec2::splat(reach), stock.max.truncate() + DVec2::splat(reach), self.grid).map_err(|e| Error::operation(&self.name, e))?;
+        let floor = stock.min.z;
+        if !progress.stage("CL z-map", 0.0, 0.3) {
+            return Err(Error::Cancelled);
+        }
+        let cl = ctx.cl_surface(&grown, grid, floor, ClBuilder::Exact, progress)?;
+        if !progress.stage("levels", 0.3, 0.2) {
+            return Err(Error::Cancelled);
+        }
+        let tol = ctx.tolerances;
+        let map = LevelMap::new(&cl, &tol);
+        let levels = self.levels(&cl.field, stock.max.z, floor, r);
+        if std::env::var("SWARF_DEBUG_LEVELS").is_ok() {
+            eprintln!("levels {levels:?}");
+        }
+        if !progress.stage("rings", 0.5, 0.5) {
+            return Err(Error::Cancelled);
+        }
+        let step = (self.stepover * 2.0 * r).max(1e-3);
+        let clearing = Clearing {
+            step,
+            climb: self.direction == Direction::Climb,
+            pattern: PocketPattern::Offset,
+            angle: 0.0,
+            entry: PocketEntry::Helix,
+            ramp_angle: self.ramp_angle.clamp(0.1, 89.0).to_radians(),
+            helix_r: self.helix_radius.unwrap_or(0.4 * 2.0 * r).min(0.95 * r),
+        };
+        let clearance = ctx.heights.clearance;
+        let mut cursor = sheet::cursor(ctx, &tool);
+        let mut moves = Vec::new();
+        let mut z_prev = stock.max.z;
+        let mut cut_levels = 0;
+        for (k, &z) in levels.iter().enumerate() {
+            if !progress.report(k as f64 / levels.len() as f64) {
+                return Err(Error::Cancelled);
+            }
+            // Centres whose cutter reaches at least half a step into material (the outermost ring then
+            // cuts that much of the stock's edge, the next a full step).
+            let near = material_near(ctx.sim.stock(), grid, z, (r - 0.5 * step).max(0.0));
+            let region = map.region(&cl, z - self.allowance, &|i, j| near[j * grid.nx + i], &tol);
+            if region.is_empty() {
+                continue;
+            }
+            // The region is the set of centres: its rings start on it.
+            let rings = rings(&region, 0.0, step, &tol);
+            if rings.is_empty() {
+                continue;
+            }
+            // Material above this level was cleared by the level before within this region
+            // (which lies inside that level's): rapids stop the gap above it.
+            cursor.safe = (z_prev + ctx.heights.gap).min(clearance);
+            // The short retract: a traverse just above the level before, where the straight
+            // move there stays over what that level cleared (its CL below it).
+            let (surface, ceiling, gap) = (cl.clone(), z_prev - self.allowance - tol.height, ctx.heights.gap);
+            let lift = z_prev + gap;
+            cursor.traverse = Some(Box::new(move |a: DVec2, b: DVec2| surface.along(a, b).iter().all(|&(_, h)| h <= ceiling - 2.0 * tol.interpolation).then_some(lift)));
+            let mut setup = Setup { tool_radius: r, top: z_prev, feed: tool.feed_rate, cursor: &mut cursor, tol: &tol };
+            moves.extend(clear_rings(&rings, &clearing, z_prev, z, &mut setup));
+            z_prev = z;
+            cut_levels += 1;
+        }
+        if cut_levels == 0 {
+            ctx.warn(&self.name, "no level has material left to cut");
+            return Ok(Vec::new());
+        }
+        Ok(vec![sheet::toolpath(&self.name, &tool, moves, clearance)])
+    }
+}
+
+impl RoughZlevel {
+    /// The levels, from the top down: every step-down from `top` to `floor` plus the
+    /// allowance, and the flats of the surface (plus the allowance) between.
+    fn levels(&self, cl: &HeightField, top: f64, floor: f64, radius: f64) -> Vec<f64> {
+        let bottom = floor + self.allowance;
+        let mut levels = Vec::new();
+        let mut z = top - self.stepdown;
+        while z > bottom + LEVEL_SAME {
+            levels.push(z);
+            z -= self.stepdown;
+        }
+        levels.push(bottom);
+        if self.flats {
+            let mut heights: Vec<f64> = cl.z.iter().copied().filter(|&h| h > floor + FLAT_SAME && h < top).collect();
+            heights.sort_by(f64::total_cmp);
+            let cell = cl.spacing * cl.spacing;
+            let least = FLAT_AREA * std::f64::consts::PI * radius * radius / cell;
+            let mut k = 0;
+            while k < heights.len() {
+                let mut e = k;
+                while e < heights.len() && heights[e] - heights[k] <= FLAT_SAME {
+                    e += 1;
+                }
+                if (e - k) as f64 >= least {
+                    let level = heights[e - 1] + self.allowance;
+                    if level < top - LEVEL_SAME && level > bottom {
+                        levels.push(level);
+                    }
+                }
+                k = e;
+            }
+        }
+        levels.sort_by(|a, b| b.total_cmp(a));
+        levels.dedup_by(|a, b| (*a - *b).abs() < LEVEL_SAME);
+        levels
+    }
+}
+
+/// Per node of `grid`, whether a cutter there at level `z` is within `reach` of material that
+/// stands above `z` in the stock.
+pub fn material_near(stock: &DexelStock, grid: Grid, z: f64, reach: f64) -> Vec<bool> {
+    let sg = stock.grid();
+    let half = sg.spacing * 0.5;
+    let mut above = grid.filled(0.0);
+    for j in 0..grid.ny {
+        for i in 0..grid.nx {
+            let p = grid.node(i, j);
+            let u = ((p - sg.origin) / sg.spacing).round();
+            let inside = p.x >= sg.origin.x - half && p.y >= sg.origin.y - half && u.x >= 0.0 && u.y >= 0.0 && (u.x as usize) < sg.nx && (u.y as usize) < sg.ny;
+            if inside && stock.top(u.x as usize, u.y as usize) > z + 1e-6 {
+                above.z[j * grid.nx + i] = 1.0;
+            }
+        }
+    }
+    match Region::silhouette(&above, 0.5, reach) {
+        Region::Mask(m) => m.z.iter().map(|&v| v >= 0.5).collect(),
+        Region::Rect { .. } => vec![true; grid.nodes()],
+    }
+}
+
