@@ -336,3 +336,22 @@ fn sheet_programs_with_helices_ramps_and_tabs_run_in_linuxcnc() {
         compare(&actual, &expected(&out.paths, out.clearance_z, scale), resolution);
     }
 }
+
+#[test]
+fn roughing_then_finishing_programs_run_in_linuxcnc_with_arcs() {
+    use swarf::strategy::rough_zlevel::RoughZlevel;
+    let tools = vec![Tool { number: 1, cutter: Cutter { flute_length: 40.0, ..Cutter::flat(6.0) }, ..Tool::default() }, Tool { number: 2, cutter: Cutter::ball(6.0), ..Tool::default() }];
+    let ops = vec![
+        Operation::RoughZlevel(RoughZlevel { tool: 1, ..RoughZlevel::default() }),
+        Operation::FinishRaster(FinishRaster { tool: 2, stepover: 1.5, grid: 0.5, ..FinishRaster::default() }),
+    ];
+    for dialect in [Dialect::LinuxCnc, Dialect::Grbl] {
+        let job = Job { tools: tools.clone(), operations: ops.clone(), post: PostSettings { dialect, ..PostSettings::default() }, ..Job::default() };
+        let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
+        let actual = interpret(&out.gcode, &job.tools);
+        let arcs = actual.iter().filter(|(k, _)| matches!(k, Kind::Arc { .. })).count();
+        assert!(arcs > 100, "{dialect:?}: {arcs} arcs");
+        let last = out.paths.last().unwrap().moves.last().unwrap().to();
+        assert!(actual.iter().rev().any(|(_, p)| p.truncate().distance(last.truncate()) < 0.001));
+    }
+}

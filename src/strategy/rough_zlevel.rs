@@ -127,7 +127,11 @@ impl Operate for RoughZlevel {
         }
         let tol = ctx.tolerances;
         let map = LevelMap::new(&cl, &tol);
-        let levels = self.levels(&cl.field, stock.max.z, floor, r);
+        // Floors are cut a hair above their height plus the allowance: the region at a level
+        // counts a surface as clear when the exact profile stands below it by the interpolation
+        // margin (`zmap/contour.rs`).
+        let clear = 2.0 * tol.interpolation + tol.height;
+        let levels = self.levels(&cl.field, stock.max.z, floor, r, clear);
         if std::env::var("SWARF_DEBUG_LEVELS").is_ok() {
             eprintln!("levels {levels:?}");
         }
@@ -189,8 +193,8 @@ impl Operate for RoughZlevel {
 impl RoughZlevel {
     /// The levels, from the top down: every step-down from `top` to `floor` plus the
     /// allowance, and the flats of the surface (plus the allowance) between.
-    fn levels(&self, cl: &HeightField, top: f64, floor: f64, radius: f64) -> Vec<f64> {
-        let bottom = floor + self.allowance;
+    fn levels(&self, cl: &HeightField, top: f64, floor: f64, radius: f64, clear: f64) -> Vec<f64> {
+        let bottom = floor + self.allowance + clear;
         let mut levels = Vec::new();
         let mut z = top - self.stepdown;
         while z > bottom + LEVEL_SAME {
@@ -210,7 +214,7 @@ impl RoughZlevel {
                     e += 1;
                 }
                 if (e - k) as f64 >= least {
-                    let level = heights[e - 1] + self.allowance;
+                    let level = heights[e - 1] + self.allowance + clear;
                     if level < top - LEVEL_SAME && level > bottom {
                         levels.push(level);
                     }
