@@ -350,6 +350,27 @@ impl Job {
         Job { name: "swarf sheet job".into(), tools: vec![tool], operations: vec![Operation::Profile2d(profile)], ..Job::default() }
     }
 
+    /// The mould job the demo and the page's sample part run: z-level roughing with a φ6 flat
+    /// end (leaving 0.5 mm), then a φ6 ball finishing the shallow areas by raster and the steep
+    /// ones by waterline.
+    pub fn demo() -> Job {
+        use crate::strategy::finish_waterline::FinishWaterline;
+        use crate::strategy::rough_zlevel::RoughZlevel;
+        let flat = Tool { number: 1, name: "6 mm flat end mill".into(), cutter: Cutter { flute_length: 30.0, ..Cutter::flat(6.0) }, feed_rate: 1200.0, plunge_rate: 300.0, ..Tool::default() };
+        let ball = Tool { number: 2, name: "6 mm ball end mill".into(), cutter: Cutter { flute_length: 30.0, ..Cutter::ball(6.0) }, ..Tool::default() };
+        let steep = 40.0;
+        Job {
+            name: "swarf demo".into(),
+            tools: vec![flat, ball],
+            operations: vec![
+                Operation::RoughZlevel(RoughZlevel { name: "rough".into(), tool: 1, ..RoughZlevel::default() }),
+                Operation::FinishRaster(FinishRaster { name: "finish shallow".into(), tool: 2, stepover: 0.5, slope_max: Some(steep), ..FinishRaster::default() }),
+                Operation::FinishWaterline(FinishWaterline { name: "finish steep".into(), tool: 2, scallop: Some(0.01), slope_min: steep, ..FinishWaterline::default() }),
+            ],
+            ..Job::default()
+        }
+    }
+
     /// Reads a job file. A value that does not fit is named by its path
     /// (`operations[1].stepover: invalid type ...`), and so is every field this version does
     /// not know (`operations[0].stepOver`, with the known field it may mean): a misspelt

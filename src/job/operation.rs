@@ -5,6 +5,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::strategy::finish_raster::FinishRaster;
+use crate::strategy::finish_waterline::FinishWaterline;
 use crate::strategy::pocket2d::Pocket2d;
 use crate::strategy::profile2d::Profile2d;
 use crate::strategy::rough_zlevel::RoughZlevel;
@@ -55,6 +56,8 @@ operations! {
     RoughZlevel(RoughZlevel) = "roughZlevel",
     /// Raster finishing on a part's CL z-map (seed 001).
     FinishRaster(FinishRaster) = "finishRaster",
+    /// Waterline finishing on a part's steep areas.
+    FinishWaterline(FinishWaterline) = "finishWaterline",
     /// Profile around a drawing's loops (seed 003).
     Profile2d(Profile2d) = "profile2d",
     /// Pocket inside a drawing's loops (seed 003).

@@ -70,6 +70,9 @@ pub struct FinishRaster {
     /// Cut only where the stock the earlier operations left stands above what this one
     /// leaves (by more than the job's gouge tolerance). Default value: false.
     pub rest_only: bool,
+    /// Only where the surface is no steeper than this (degrees from horizontal; waterline
+    /// finishing takes the steeper areas). Default value: none (everywhere).
+    pub slope_max: Option<f64>,
 }
 
 impl Default for FinishRaster {
@@ -90,6 +93,7 @@ impl Default for FinishRaster {
             stay_down_max: None,
             entry: Entry::default(),
             rest_only: false,
+            slope_max: None,
         }
     }
 }
@@ -232,6 +236,9 @@ impl Operate for FinishRaster {
         if let Some(d) = self.stay_down_max {
             super::not_negative("stayDownMax", d)?;
         }
+        if let Some(s) = self.slope_max {
+            super::finite("slopeMax", s)?;
+        }
         Ok(())
     }
 
@@ -257,6 +264,10 @@ impl Operate for FinishRaster {
         let tol = ctx.tolerances;
         let passes = RasterPasses { angle_deg: self.angle, stepover: self.stepover, pattern: self.pattern, allowance: self.allowance, tolerance: tol.chordal, skip_floor };
         let mut runs = raster_runs(&cl, &region, &passes, progress).ok_or(Error::Cancelled)?;
+        if let Some(limit) = self.slope_max {
+            let steep = limit.to_radians().tan();
+            runs = rest_only(runs, &|p: DVec2| if super::finish_waterline::gradient(&cl.field, p) <= steep { f64::INFINITY } else { f64::NEG_INFINITY }, profile.radius / 4.0, 0.0);
+        }
         let sim = &ctx.sim;
         let material = |p: DVec2| sim.stock().touch(p, &profile, true);
         let estimate = |p: DVec2| sim.stock().touch(p, &profile, false);

@@ -9,6 +9,7 @@
 
 pub mod context;
 pub mod finish_raster;
+pub mod finish_waterline;
 pub mod path2d;
 pub mod pocket2d;
 pub mod profile2d;

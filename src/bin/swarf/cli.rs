@@ -170,7 +170,7 @@ fn run(cli: Cli) -> Result<(), String> {
         }
         Command::Demo { output } => {
             std::fs::create_dir_all(&output).map_err(|e| format!("cannot create {}: {e}", output.display()))?;
-            let job = Job { name: "swarf demo".into(), ..Job::default() };
+            let job = Job::demo();
             let stl = demo_part().to_binary_stl();
             write(&output.join("demo.stl"), &stl)?;
             write(&output.join("demo.json"), serde_json::to_string_pretty(&job).unwrap().as_bytes())?;

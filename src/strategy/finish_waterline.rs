@@ -1,0 +1,201 @@
+//! Waterline finishing (z-level finishing) on the CL z-map: at each level the cutter follows the
+//! boundary of the region its centre may occupy there ([`crate::zmap::contour`]), where it
+//! touches the part at that height. Limited to steep areas (where the CL surface is steeper
+//! than `slopeMin`); raster finishing's `slopeMax` takes the rest, so the two together finish a
+//! part "steep and shallow". Levels are spaced by the step-down, or by the scallop height: on a
+//! slope θ a ball of radius r leaves a scallop h between paths s = sqrt(8 r h) apart along the
+//! surface, so the next level lies s · sin θ lower, θ the shallowest slope on the level's
+//! contours. The contours are linked and entered by the shared linker ([`crate::toolpath::link`]).
+
+use serde::{Deserialize, Serialize};
+
+use super::profile2d::Direction;
+use super::{Context, FieldError, Operate};
+use crate::error::{Error, Result};
+use crate::geom::{DVec2, DVec3};
+use crate::progress::Progress;
+use crate::toolpath::entry::Entry;
+use crate::toolpath::link::{Feeds, Floor, LinkSettings, Linker};
+use crate::toolpath::Toolpath;
+use crate::zmap::contour::LevelMap;
+use crate::zmap::region::Region;
+use crate::zmap::{ClBuilder, Grid, HeightField};
+
+/// Waterline finishing.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, rename_all = "camelCase")]
+pub struct FinishWaterline {
+    /// Default value: "waterline finish".
+    pub name: String,
+    /// Whether the job runs it (a disabled operation stays in the job). Default value: true.
+    pub enabled: bool,
+    /// Default value: 1.
+    pub tool: u32,
+    /// Height between levels (mm); used when `scallop` is not set. Default value: 0.5.
+    pub stepdown: f64,
+    /// Largest scallop height between levels (mm): levels closer where the surface is
+    /// shallower. Default value: none (the step-down).
+    pub scallop: Option<f64>,
+    /// Material left on the part (mm). Default value: 0.
+    pub allowance: f64,
+    /// Only where the surface is steeper than this (degrees from horizontal). Default value: 30.
+    pub slope_min: f64,
+    /// Default value: climb.
+    pub direction: Direction,
+    /// Spacing of the CL z-map (mm). Default value: 0.25.
+    pub grid: f64,
+    pub entry: Entry,
+}
+
+impl Default for FinishWaterline {
+    fn default() -> Self {
+        FinishWaterline {
+            name: "waterline finish".into(),
+            enabled: true,
+            tool: 1,
+            stepdown: 0.5,
+            scallop: None,
+            allowance: 0.0,
+            slope_min: 30.0,
+            direction: Direction::Climb,
+            grid: 0.25,
+            entry: Entry::default(),
+        }
+    }
+}
+
+/// Contour pieces shorter than this are left out (mm).
+const SHORTEST: f64 = 0.5;
+/// Smallest step between levels (mm), however shallow the slope.
+const LEAST_STEP: f64 = 0.02;
+
+impl Operate for FinishWaterline {
+    super::named_operation!(OnPart);
+
+    fn allowance(&self) -> f64 {
+        self.allowance
+    }
+
+    fn validate(&self) -> Result<(), FieldError> {
+        super::positive("stepdown", self.stepdown)?;
+        if let Some(h) = self.scallop {
+            super::positive("scallop", h)?;
+        }
+        super::not_negative("allowance", self.allowance)?;
+        super::finite("slopeMin", self.slope_min)?;
+        super::positive("grid", self.grid)?;
+        super::positive("entry.rampAngle", self.entry.ramp_angle)?;
+        Ok(())
+    }
+
+    fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Vec<Toolpath>> {
+        let tool = ctx.tool(&self.name, self.tool)?.clone();
+        let profile = tool.cutter.profile();
+        let stock = ctx.stock;
+        let grid = Grid::checked(stock.min.truncate(), stock.max.truncate(), self.grid).map_err(|e| Error::operation(&self.name, e))?;
+        let floor = stock.min.z;
+        if !progress.stage("CL z-map", 0.0, 0.3) {
+            return Err(Error::Cancelled);
+        }
+        let cl = ctx.cl_surface(&profile, grid, floor, ClBuilder::Exact, progress)?;
+        if !progress.stage("levels", 0.3, 0.7) {
+            return Err(Error::Cancelled);
+        }
+        let tol = ctx.tolerances;
+        let map = LevelMap::new(&cl, &tol);
+        let steep = self.slope_min.to_radians().tan();
+        let slope = |p: DVec2| gradient(&cl.field, p);
+        let top = cl.field.max();
+        let mut runs: Vec<Vec<DVec3>> = Vec::new();
+        let mut z = top - 0.5 * self.stepdown.min(top - floor);
+        let bottom = floor + self.allowance;
+        let mut k = 0;
+        while z > bottom {
+            if !progress.report((top - z) / (top - bottom).max(1e-9)) {
+                return Err(Error::Cancelled);
+            }
+            let region = map.region(&cl, z - self.allowance, &|_, _| true, &tol);
+            let mut shallowest = f64::INFINITY;
+            for l in &region.loops {
+                // The region's loops keep it on their left, the part on their right: climb with
+                // a clockwise spindle.
+                let l = if self.direction == Direction::Climb { l.clone() } else { l.reversed() };
+                let pts: Vec<DVec2> = l.vertices.iter().map(|v| v.p).chain(l.vertices.first().map(|v| v.p)).collect();
+                for piece in split_steep(&pts, &slope, steep) {
+                    let length: f64 = piece.windows(2).map(|w| w[0].distance(w[1])).sum();
+                    if length < SHORTEST {
+                        continue;
+                    }
+                    // Kept pieces are steep at their segments' middles.
+                    shallowest = piece.windows(2).map(|w| slope((w[0] + w[1]) * 0.5)).fold(shallowest, f64::min).max(steep);
+                    runs.push(piece.into_iter().map(|p| p.extend(z)).collect());
+                }
+            }
+            k += 1;
+            let step = match self.scallop {
+                Some(h) if shallowest.is_finite() => {
+                    let s = (8.0 * profile.radius * h).sqrt();
+                    let sin = (shallowest.atan()).sin();
+                    (s * sin).clamp(LEAST_STEP, self.stepdown.max(LEAST_STEP))
+                }
+                _ => self.stepdown,
+            };
+            z -= step;
+            if k > 100_000 {
+                break;
+            }
+        }
+        if runs.is_empty() {
+            ctx.warn(&self.name, format!("no area of the part is steeper than {}°", self.slope_min));
+            return Ok(Vec::new());
+        }
+        let region = Region::Rect { min: grid.origin, max: grid.node(grid.nx - 1, grid.ny - 1) };
+        let floor_surface = Floor { cl: &cl, allowance: self.allowance, region: &region };
+        let settings = LinkSettings { clearance_z: ctx.heights.clearance, rapid_gap: ctx.heights.gap, stay_down_max: 2.0 * profile.radius };
+        let sim = &ctx.sim;
+        let material = |p: DVec2| sim.stock().touch(p, &profile, true);
+        let estimate = |p: DVec2| sim.stock().touch(p, &profile, false);
+        let linker = Linker { settings, keep: &floor_surface, material: &material, estimate: &estimate, threshold: tol.gouge, entry: self.entry, radius: profile.radius, feeds: Feeds { cut: tool.feed_rate, plunge: tool.plunge_rate } };
+        let (start, moves, _) = linker.link(&runs, &tol);
+        Ok(vec![Toolpath { name: self.name.clone(), tool: tool.number, spindle_rpm: tool.spindle_rpm, start, moves }])
+    }
+}
+
+/// The slope of the CL surface at `p` (rise over run), from the nodes around it.
+pub fn gradient(f: &HeightField, p: DVec2) -> f64 {
+    let u = (p - f.origin) / f.spacing;
+    let (i, j) = (u.x.floor().clamp(0.0, (f.nx - 1) as f64) as usize, u.y.floor().clamp(0.0, (f.ny - 1) as f64) as usize);
+    let (i1, j1) = ((i + 1).min(f.nx - 1), (j + 1).min(f.ny - 1));
+    let dx = ((f.at(i1, j) - f.at(i, j)).abs()).max((f.at(i1, j1) - f.at(i, j1)).abs());
+    let dy = ((f.at(i, j1) - f.at(i, j)).abs()).max((f.at(i1, j1) - f.at(i1, j)).abs());
+    (dx * dx + dy * dy).sqrt() / f.spacing
+}
+
+/// The stretches of the closed polyline `pts` (its last point its first) where the slope is at
+/// least `steep`, as open polylines (one closed one when it is steep all round).
+fn split_steep(pts: &[DVec2], slope: &dyn Fn(DVec2) -> f64, steep: f64) -> Vec<Vec<DVec2>> {
+    let keep: Vec<bool> = pts.windows(2).map(|w| slope((w[0] + w[1]) * 0.5) >= steep).collect();
+    if keep.iter().all(|&k| k) {
+        return vec![pts.to_vec()];
+    }
+    // Start at a segment that is left out, so stretches do not wrap.
+    let n = keep.len();
+    let Some(first_out) = keep.iter().position(|&k| !k) else { return Vec::new() };
+    let mut out = Vec::new();
+    let mut current: Vec<DVec2> = Vec::new();
+    for s in 0..n {
+        let k = (first_out + s) % n;
+        if keep[k] {
+            if current.is_empty() {
+                current.push(pts[k]);
+            }
+            current.push(pts[k + 1]);
+        } else if !current.is_empty() {
+            out.push(std::mem::take(&mut current));
+        }
+    }
+    if !current.is_empty() {
+        out.push(current);
+    }
+    out
+}
