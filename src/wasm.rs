@@ -45,11 +45,12 @@ struct Defaults {
     operations: Vec<job::Operation>,
 }
 
-/// Every default the page's forms start from: `{ job, drawingJob, tool, operations }` (one
-/// operation of each kind).
+/// Every default the page's forms start from: `{ job, drawingJob, tool, operations }`: the
+/// mould job for parts ([`Job::demo`]), the sheet job for drawings, and one operation of each
+/// kind.
 #[wasm_bindgen]
 pub fn defaults() -> Result<JsValue, JsError> {
-    to_js(&Defaults { job: Job::default(), drawing_job: Job::default_for_drawing(), tool: crate::tool::Tool::default(), operations: job::Operation::defaults() })
+    to_js(&Defaults { job: Job::demo(), drawing_job: Job::default_for_drawing(), tool: crate::tool::Tool::default(), operations: job::Operation::defaults() })
 }
 
 /// Reads a job file's text as `swarf run` does (every unknown or misspelt field named by its

@@ -163,7 +163,7 @@ function fillOps() {
   $('op-editor').hidden = !op;
   if (!op) return;
   for (const el of $('op-editor').querySelectorAll('[data-kinds]')) el.hidden = !el.dataset.kinds.split(' ').includes(op.kind);
-  for (const box of [$('fs-raster'), $('fs-2d')]) if (!box.hidden) fillFields(box, op);
+  for (const box of [$('fs-raster'), $('fs-2d'), $('fs-rough'), $('fs-waterline')]) if (!box.hidden) fillFields(box, op);
   form.elements.opName.value = op.name;
   form.elements.opTool.value = String(op.tool);
 }

@@ -77,6 +77,18 @@ async function openPage() {
   return { page, context, errors };
 }
 
+// The sample part's job is the mould job (rough, raster shallow, waterline steep); tests that
+// look at one raster finish keep only that operation, selected, on the whole part.
+async function onlyRaster(page) {
+  await page.click('#op-list li:nth-child(3) .op-remove');
+  await page.click('#op-list li:nth-child(1) .op-remove');
+  assert.equal(await page.locator('#op-list li').count(), 1);
+  assert.match(await page.textContent('#op-list li'), /finish shallow/);
+  await page.fill('input[name=slopeMax]', '');
+}
+
+const toolTable = (tools) => tools.map((t) => `T${t.number} P${t.number} Z0.000 D${t.diameter.toFixed(3)} ;${t.shape}\n`).join('');
+
 // Counts canvas pixels by colour: the path's blue (the first operation's cutting moves are drawn
 // in rgb(27, 116, 209)), the second operation's purple (rgb(158, 51, 191)),
 // the simulated stock's tan, gouge red and rest-material blue, and the drawing's outline green (rgb(31, 140, 61)) and hole orange (rgb(217, 115, 13)).
@@ -86,11 +98,12 @@ async function pixelCounts(page) {
     const gl = c.getContext('webgl2');
     const px = new Uint8Array(c.width * c.height * 4);
     gl.readPixels(0, 0, c.width, c.height, gl.RGBA, gl.UNSIGNED_BYTE, px);
-    const n = { path: 0, purple: 0, tan: 0, red: 0, blue: 0, green: 0, orange: 0 };
+    const n = { path: 0, purple: 0, teal: 0, tan: 0, red: 0, blue: 0, green: 0, orange: 0 };
     for (let i = 0; i < px.length; i += 4) {
       const [r, g, b] = [px[i], px[i + 1], px[i + 2]];
       if (b > 150 && r < 90 && g > 80 && g < 160) n.path++;
       if (r > 120 && b > 150 && g < 90) n.purple++;
+      if (r < 60 && g > 110 && b > 100 && Math.abs(g - b) < 50) n.teal++;
       if (r > 90 && r > b + 25 && g > b + 5 && g < r) n.tan++;
       if (r > 120 && g < 50 && b < 50) n.red++;
       if (b > r + 60 && b > 120) n.blue++;
@@ -106,6 +119,7 @@ const pathPixels = async (page) => (await pixelCounts(page)).path;
 test('sample part → generate → path on the canvas → G-code that rs274 accepts', async () => {
   const { page, context, errors } = await openPage();
   const before = await pathPixels(page);
+  await onlyRaster(page);
   await page.fill('input[name=stepover]', '1.5');
   await page.fill('input[name=grid]', '0.5');
   await page.click('#generate');
@@ -122,7 +136,7 @@ test('sample part → generate → path on the canvas → G-code that rs274 acce
   await download.saveAs(program);
   const gcode = fs.readFileSync(program, 'utf8');
   assert.match(gcode, /^G21$/m);
-  fs.writeFileSync(path.join(dir, 'tool.tbl'), 'T1 P1 Z0.000 D6.000 ;6 mm ball\n');
+  fs.writeFileSync(path.join(dir, 'tool.tbl'), toolTable(await page.evaluate(() => window.swarf.tools)));
   const canon = execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), program], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });
   const feeds = canon.split('\n').filter((l) => l.includes('STRAIGHT_FEED(')).length;
   // Count the file's feed moves, following the modal motion word (G0 or G1) line by line.
@@ -141,6 +155,7 @@ test('sample part → generate → path on the canvas → G-code that rs274 acce
 
 test('a truncated STL shows a clear error and keeps the part and the settings', async () => {
   const { page, context, errors } = await openPage();
+  await onlyRaster(page);
   await page.fill('input[name=stepover]', '0.7');
   await page.selectOption('select[name=shape]', 'bullNose');
   const bytes = await page.evaluate(() => Array.from(window.swarf.sample.slice(0, 1000)));
@@ -161,6 +176,7 @@ test('a truncated STL shows a clear error and keeps the part and the settings', 
 
 test('cancel stops a long job, keeps the settings, and the next run works', async () => {
   const { page, context } = await openPage();
+  await onlyRaster(page);
   await page.fill('input[name=grid]', '0.05');
   await page.fill('input[name=stepover]', '0.3');
   await page.click('#generate');
@@ -178,6 +194,7 @@ test('cancel stops a long job, keeps the settings, and the next run works', asyn
 
 test('a saved job loads back and runs on the command line as in the page', async () => {
   const { page, context, errors } = await openPage();
+  await onlyRaster(page);
   await page.fill('input[name=stepover]', '2.5');
   await page.fill('input[name=angle]', '30');
   await page.selectOption('select[name=dialect]', 'grbl');
@@ -231,6 +248,7 @@ const stockPixels = pixelCounts;
 
 test('the simulated stock: drawn after generating, scrubbed back to the raw block and forward, MRR plotted, report clean', async () => {
   const { page, context, errors } = await openPage();
+  await onlyRaster(page);
   await page.fill('input[name=stepover]', '1.5');
   await page.fill('input[name=grid]', '0.5');
   await page.click('#generate');
@@ -317,6 +335,9 @@ test('the sample drawing: loops shown as outlines and holes, profile and pocket 
 
 test('a program with problems shows them in red and downloads only when confirmed; a failed Generate clears the last result', async () => {
   const { page, context, errors } = await openPage();
+  await onlyRaster(page);
+  await page.selectOption('#tool-list', '1');
+  await page.fill('input[name=fluteLength]', '20');
   // The stock as the boundary: the ball follows the floor along the stock's edges, 26 mm deep
   // in the raw block with 20 mm of flutes.
   await page.selectOption('select[name=boundary]', 'stock');
@@ -355,6 +376,7 @@ test('a program with problems shows them in red and downloads only when confirme
 
 test('a tool library and a second operation: both paths in their colours, one program with a tool change that rs274 runs, the library kept across reloads', async () => {
   const { page, context, errors } = await openPage();
+  await onlyRaster(page);
   await page.fill('input[name=stepover]', '2');
   await page.fill('input[name=grid]', '0.5');
   await page.fill('input[name=allowance]', '0.3');
@@ -410,6 +432,24 @@ test('a tool library and a second operation: both paths in their colours, one pr
   await page.waitForFunction(() => /Loaded the job/.test(document.getElementById('message').textContent));
   assert.equal(await page.locator('#op-list li').count(), 2);
   assert.match(await page.textContent('#op-list li:nth-child(2)'), new RegExp(`T${number}`));
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
+test('the sample part\'s mould job: roughing, then shallow and steep finishing, each in its colour, clean, in one program', async () => {
+  const { page, context, errors } = await openPage();
+  assert.equal(await page.locator('#op-list li').count(), 3);
+  await page.click('#generate');
+  await generated(page);
+  const px = await pixelCounts(page);
+  await page.screenshot({ path: path.join(shots, 'mould-job.png') });
+  assert.ok(px.path > 2000 && px.purple > 2000 && px.teal > 500, `the three operations' colours: ${JSON.stringify(px)}`);
+  const stats = await page.textContent('#stats');
+  assert.match(stats, /rough \(T1\)[\s\S]*finish shallow \(T2\)[\s\S]*finish steep \(T2\)/);
+  const report = await page.textContent('#sim-report');
+  assert.match(report, /gouges: 0/);
+  assert.match(report, /rapid moves through stock: 0/);
+  assert.match(report, /tool body \(above the flutes\) in material: 0/);
   assert.deepEqual(errors, []);
   await context.close();
 });
