@@ -108,14 +108,14 @@ fn verify_reads_a_program_and_reports_its_faults() {
 }
 
 /// Issue 10: a program whose simulation finds a problem is not a finished program. Here the
-/// tool's flutes are 2 mm long and the demo's stock is a raw block: the body rubs.
+/// roughing tool's flutes are 1 mm long and it steps down 2 mm: the body rubs.
 #[test]
 fn a_program_with_problems_is_written_only_when_asked() {
     let dir = temp("unsafe");
     assert!(swarf(&["demo", "-o", dir.to_str().unwrap()]).status.success());
     let text = std::fs::read_to_string(dir.join("demo.json")).unwrap();
     let mut job: serde_json::Value = serde_json::from_str(&text).unwrap();
-    job["tools"][0]["fluteLength"] = serde_json::json!(2.0);
+    job["tools"][0]["fluteLength"] = serde_json::json!(1.0);
     let short = dir.join("short.json");
     std::fs::write(&short, job.to_string()).unwrap();
     let (part, program) = (dir.join("demo.stl"), dir.join("short.ngc"));

@@ -265,8 +265,7 @@ impl Operate for FinishRaster {
         let passes = RasterPasses { angle_deg: self.angle, stepover: self.stepover, pattern: self.pattern, allowance: self.allowance, tolerance: tol.chordal, skip_floor };
         let mut runs = raster_runs(&cl, &region, &passes, progress).ok_or(Error::Cancelled)?;
         if let Some(limit) = self.slope_max {
-            let steep = limit.to_radians().tan();
-            runs = rest_only(runs, &|p: DVec2| if super::finish_waterline::gradient(&cl.field, p) <= steep { f64::INFINITY } else { f64::NEG_INFINITY }, profile.radius / 4.0, 0.0);
+            runs = shallow_only(runs, &cl.field, limit.to_radians().tan());
         }
         let sim = &ctx.sim;
         let material = |p: DVec2| sim.stock().touch(p, &profile, true);
@@ -282,7 +281,7 @@ impl Operate for FinishRaster {
         let floor_surface = Floor { cl: &cl, allowance: self.allowance, region: &region };
         let linker = Linker { settings, keep: &floor_surface, material: &material, estimate: &estimate, threshold: tol.gouge, entry: self.entry, radius: profile.radius, feeds: Feeds { cut: tool.feed_rate, plunge: tool.plunge_rate } };
         let (start, moves, entries) = linker.link(&runs, &tol);
-        if entries.plunge > 0 && profile.flat_radius() > 0.0 {
+        if entries.plunge > 0 {
             ctx.warnings.push(Warning::of(&self.name, format!("{} entries found no room for a helix or a ramp and feed straight down into material", entries.plunge)));
         }
         Ok(vec![Toolpath { name: self.name.clone(), tool: tool.number, spindle_rpm: tool.spindle_rpm, start, moves }])
@@ -307,6 +306,33 @@ pub fn rest_only(runs: Vec<Vec<DVec3>>, material: &dyn Fn(DVec2) -> f64, spacing
             let n = ((a.truncate().distance(b.truncate()) / spacing).ceil() as usize).max(1);
             let needed = (0..=n).any(|k| cuts(point_at(a, b, k as f64 / n as f64)));
             if needed {
+                if current.is_empty() {
+                    current.push(a);
+                }
+                current.push(b);
+            } else if !current.is_empty() {
+                out.push(std::mem::take(&mut current));
+            }
+        }
+        if !current.is_empty() {
+            out.push(current);
+        }
+    }
+    out
+}
+
+/// The parts of `runs` on shallow ground: segments whose own slope and the CL surface's slope
+/// at their middle are both no steeper than `steep` (rise over run); a vertical step is steep.
+pub fn shallow_only(runs: Vec<Vec<DVec3>>, field: &crate::zmap::HeightField, steep: f64) -> Vec<Vec<DVec3>> {
+    let mut out = Vec::new();
+    for run in runs {
+        let mut current: Vec<DVec3> = Vec::new();
+        for w in run.windows(2) {
+            let (a, b) = (w[0], w[1]);
+            let flat = a.truncate().distance(b.truncate());
+            let own = if flat > 0.0 { (b.z - a.z).abs() / flat } else if (b.z - a.z).abs() > 0.0 { f64::INFINITY } else { 0.0 };
+            let shallow = own <= steep && super::finish_waterline::gradient(field, (a.truncate() + b.truncate()) * 0.5) <= steep;
+            if shallow {
                 if current.is_empty() {
                     current.push(a);
                 }

@@ -123,7 +123,7 @@ impl Operate for FinishWaterline {
                 let pts: Vec<DVec2> = l.vertices.iter().map(|v| v.p).chain(l.vertices.first().map(|v| v.p)).collect();
                 for piece in split_steep(&pts, &slope, steep) {
                     let length: f64 = piece.windows(2).map(|w| w[0].distance(w[1])).sum();
-                    if length < SHORTEST {
+                    if length < SHORTEST.max(crate::toolpath::entry::shortest_ramp(profile.radius)) {
                         continue;
                     }
                     // Kept pieces are steep at their segments' middles.
@@ -156,7 +156,10 @@ impl Operate for FinishWaterline {
         let material = |p: DVec2| sim.stock().touch(p, &profile, true);
         let estimate = |p: DVec2| sim.stock().touch(p, &profile, false);
         let linker = Linker { settings, keep: &floor_surface, material: &material, estimate: &estimate, threshold: tol.gouge, entry: self.entry, radius: profile.radius, feeds: Feeds { cut: tool.feed_rate, plunge: tool.plunge_rate } };
-        let (start, moves, _) = linker.link(&runs, &tol);
+        let (start, moves, entries) = linker.link(&runs, &tol);
+        if entries.plunge > 0 {
+            ctx.warnings.push(crate::error::Warning::of(&self.name, format!("{} entries found no room for a helix or a ramp and feed straight down into material", entries.plunge)));
+        }
         Ok(vec![Toolpath { name: self.name.clone(), tool: tool.number, spindle_rpm: tool.spindle_rpm, start, moves }])
     }
 }

@@ -44,9 +44,17 @@ const HELIX_SIZES: usize = 5;
 /// Directions of the helix's centre from the start point tried for each size.
 const HELIX_DIRECTIONS: usize = 8;
 /// Legs of a ramp along a path, forth and back, before it gives up (too deep for the path).
-const MAX_RAMP_LEGS: usize = 40;
+const MAX_RAMP_LEGS: usize = 200;
+/// The shortest path a ramp runs along (mm).
+const MIN_RAMP_RUN: f64 = 0.5;
 /// Chords per turn of a 3D helix.
 const CHORDS_PER_TURN: usize = 24;
+
+/// The shortest path a cutter of `radius` ramps along (mm): strategies that make short runs
+/// leave out runs shorter than this where they would have to enter material.
+pub fn shortest_ramp(radius: f64) -> f64 {
+    (0.25 * radius).max(MIN_RAMP_RUN)
+}
 
 /// How an entry went in.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -121,8 +129,8 @@ fn helix_3d(top: f64, p0: DVec3, radius: f64, entry: &Entry, tan: f64, keep: &dy
 /// p0. `None` when the run is too short to ramp on.
 fn ramp_along(top: f64, run: &[DVec3], radius: f64, tan: f64, feed: f64) -> Option<Vec<Move>> {
     let length: f64 = run.windows(2).map(|w| w[0].truncate().distance(w[1].truncate())).sum();
-    // Shorter than the cutter's radius, a ramp would go back and forth on the spot.
-    if length < radius.max(1e-3) || tan <= 0.0 {
+    // Shorter than this, a ramp would go back and forth on the spot.
+    if length < shortest_ramp(radius) || tan <= 0.0 {
         return None;
     }
     let mut moves = Vec::new();

@@ -87,6 +87,17 @@ pub struct Entries {
     pub plunge: usize,
 }
 
+impl Entries {
+    fn count(&mut self, kind: Kind) {
+        match kind {
+            Kind::Air => self.air += 1,
+            Kind::Helix => self.helix += 1,
+            Kind::Ramp => self.ramp += 1,
+            Kind::Plunge => self.plunge += 1,
+        }
+    }
+}
+
 impl Linker<'_> {
     /// Joins `runs` into moves; returns where the path starts (above its first point, at the
     /// clearance height), the moves, ending at the clearance height, and how it entered.
@@ -102,7 +113,19 @@ impl Linker<'_> {
         for run in runs.iter().filter(|r| !r.is_empty()) {
             let p0 = run[0];
             let stay = down && at.distance(p0) <= settings.stay_down_max && self.keep.clears(at, p0, tolerances.height);
-            if stay {
+            // Staying down to a start lower than here, in material: across at this height,
+            // then in by the entry (a link between levels ramps down, never drops straight).
+            let across = at.truncate().extend(at.z.max(p0.z));
+            let descends = stay && p0.z < at.z - tolerances.height && (self.estimate)(p0.truncate()) > p0.z + self.threshold;
+            if descends && self.keep.clears(at, p0.truncate().extend(across.z), tolerances.height) {
+                if p0.truncate() != at.truncate() {
+                    moves.push(Move::Line { to: p0.truncate().extend(across.z), feed: self.feeds.cut });
+                }
+                let material = (self.material)(p0.truncate()).max(p0.z + self.threshold);
+                let (entry, kind) = enter_3d(across.z, material, run, self.radius, &self.entry, self.keep, (self.feeds.plunge, self.feeds.cut), tolerances.height);
+                entries.count(kind);
+                moves.extend(entry);
+            } else if stay {
                 moves.push(Move::Line { to: p0, feed: self.feeds.cut });
             } else {
                 if down {
@@ -118,12 +141,7 @@ impl Linker<'_> {
                 }
                 let inside = (self.estimate)(p0.truncate()) > p0.z + self.threshold;
                 let (entry, kind) = enter_3d(top, if inside { material } else { f64::NEG_INFINITY }, run, self.radius, &self.entry, self.keep, (self.feeds.plunge, self.feeds.cut), tolerances.height);
-                match kind {
-                    Kind::Air => entries.air += 1,
-                    Kind::Helix => entries.helix += 1,
-                    Kind::Ramp => entries.ramp += 1,
-                    Kind::Plunge => entries.plunge += 1,
-                }
+                entries.count(kind);
                 moves.extend(entry);
             }
             moves.extend(run[1..].iter().map(|&p| Move::Line { to: p, feed: self.feeds.cut }));

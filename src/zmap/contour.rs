@@ -4,9 +4,10 @@
 //! Steps:
 //! 1. once per CL surface ([`LevelMap::new`]): the highest exact height along every grid edge
 //!    ([`ClSurface::along`], which probes every peak in reach);
-//! 2. at a level, marching squares on the nodes' exact heights; a node is left out where an
-//!    edge from it to another node inside rises above the level between them (a ridge between
-//!    nodes, seed 001's blind spot), and where a `keep` mask says so (outside the stock, no
+//! 2. at a level, marching squares on the nodes' exact heights; of two nodes inside whose edge
+//!    rises above the level between them (a ridge between nodes, seed 001's blind spot, or a
+//!    convex surface bulging between them) the higher is left out, and so is a node a `keep`
+//!    mask refuses (outside the stock, no
 //!    material near); the grid's border is outside. The crossing on an edge from an inside
 //!    node is where the exact surface along the edge first rises above the level (found on the
 //!    edge's exact profile, then checked at the point itself);
@@ -14,8 +15,9 @@
 //!    rises above the level (a peak inside the cell), bent in towards the cell's inside node;
 //! 4. loops are simplified within the chordal tolerance where the chord itself clears.
 //!
-//! So a boundary point may lie inside the safe region, never past it, by more than
-//! [`Tolerances::height`]; inside, a peak standing in the middle of a cell may rise above the
+//! So a boundary may lie inside the safe region, never past it by more than twice
+//! [`Tolerances::interpolation`] (the exact surface's rise between two samples of
+//! [`ClSurface::along`] that both clear the level, 0.001 mm); inside, a peak standing in the middle of a cell may rise above the
 //! level by the cutter's rise at half a grid spacing from its axis (0 for a flat end's flat,
 //! 0.003 mm for a φ6 ball on a 0.25 mm grid).
 
@@ -61,18 +63,19 @@ impl LevelMap {
         let f = &cl.field;
         let (nx, ny) = (f.nx, f.ny);
         let low: Vec<bool> = (0..nx * ny).map(|c| f.z[c] <= level && keep(c % nx, c / nx)).collect();
-        // A ridge between two low nodes leaves both out.
+        // A ridge between two low nodes (or a convex surface bulging above the level between
+        // them) leaves the higher of the two out: the edge from the other then gets its
+        // crossing from the exact profile along it, where the surface first rises above the
+        // level.
         let mut inside = low.clone();
         for j in 0..ny {
             for i in 0..nx {
                 let c = j * nx + i;
-                if i + 1 < nx && low[c] && low[c + 1] && self.right[c] > level + tol.height {
-                    inside[c] = false;
-                    inside[c + 1] = false;
-                }
-                if j + 1 < ny && low[c] && low[c + nx] && self.up[c] > level + tol.height {
-                    inside[c] = false;
-                    inside[c + nx] = false;
+                for (other, top) in [(c + 1, if i + 1 < nx { self.right[c] } else { f64::NEG_INFINITY }), (c + nx, if j + 1 < ny { self.up[c] } else { f64::NEG_INFINITY })] {
+                    if top > level + tol.height && other < nx * ny && low[c] && low[other] {
+                        let higher = if f.z[other] >= f.z[c] { other } else { c };
+                        inside[higher] = false;
+                    }
                 }
             }
         }
@@ -292,11 +295,11 @@ struct Piece {
 /// the surface rises above the level, bent in towards the piece's inside corner; a piece that
 /// will not bend clear goes round by the inside nodes, along the cell's sides.
 fn bend(cl: &ClSurface, level: f64, ring: &[Piece], node: &dyn Fn(isize, isize) -> DVec2, tol: &Tolerances) -> Vec<DVec2> {
-    // The highest point of the surface along a piece above the level, if any (samples must
-    // clear it by twice the interpolation tolerance: between two, `along` lets the surface
-    // rise that much above their chord).
+    // The highest point of the surface along a piece above the level, if any (between two
+    // samples `along` lets the surface rise up to twice the interpolation tolerance above
+    // their chord: that is how far past the level a boundary may go).
     let worst = |a: DVec2, b: DVec2| -> Option<f64> {
-        cl.along(a, b).into_iter().filter(|&(_, z)| z > level - 2.0 * tol.interpolation).max_by(|p, q| p.1.total_cmp(&q.1)).map(|(t, _)| t)
+        cl.along(a, b).into_iter().filter(|&(_, z)| z > level + tol.height).max_by(|p, q| p.1.total_cmp(&q.1)).map(|(t, _)| t)
     };
     let clears = |a: DVec2, b: DVec2| worst(a, b).is_none();
     let safe = |p: DVec2| cl.height(p) <= level + tol.height;
@@ -343,6 +346,9 @@ fn bend(cl: &ClSurface, level: f64, ring: &[Piece], node: &dyn Fn(isize, isize) 
         if !towards(a, b, c, BEND_DEPTH, &worst, &clears, &safe, &mut out) {
             // Round by the inside nodes: from the start along its edge to the edge's inside
             // end, along the cell's sides, and out along the end's edge.
+            if std::env::var("SWARF_DEBUG_BEND").is_ok() {
+                eprintln!("bend: round by the nodes from {a} to {b}");
+            }
             out.truncate(mark);
             out.extend(ring[k].stairs.iter().map(|&(i, j)| node(i, j)));
             out.push(b);
@@ -354,7 +360,7 @@ fn bend(cl: &ClSurface, level: f64, ring: &[Piece], node: &dyn Fn(isize, isize) 
 /// Drops points whose neighbours' chord stays within the chordal tolerance of them and clears
 /// the level along its length (Douglas–Peucker on the closed ring, greedy).
 fn simplify(cl: &ClSurface, level: f64, pts: &[DVec2], tol: &Tolerances) -> Vec<DVec2> {
-    let clears = |a: DVec2, b: DVec2| cl.along(a, b).into_iter().all(|(_, z)| z <= level - 2.0 * tol.interpolation);
+    let clears = |a: DVec2, b: DVec2| cl.along(a, b).into_iter().all(|(_, z)| z <= level + tol.height);
     let mut out: Vec<DVec2> = Vec::with_capacity(pts.len());
     let n = pts.len();
     if n < 4 {

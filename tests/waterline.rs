@@ -1,0 +1,69 @@
+//! Waterline finishing: contours of a ball around a hemisphere at the closed-form radius, and the
+//! mould job (rough, raster the shallow, waterline the steep) clean and finished.
+
+mod common;
+
+use swarf::cutter::Cutter;
+use swarf::job::{self, Job, Operation, Simulation, Tool};
+use swarf::mesh::placement::{PartSetup, Placement};
+use swarf::mesh::sample::demo_part;
+use swarf::progress::Progress;
+use swarf::strategy::finish_waterline::FinishWaterline;
+use swarf::toolpath::Move;
+
+#[test]
+fn waterlines_round_a_hemisphere_lie_on_the_closed_form_circles() {
+    let (rs, r) = (10.0, 3.0);
+    let part = common::cap(rs, 9.9, 0.2);
+    let job = Job {
+        part: PartSetup { placement: Placement::Keep, ..PartSetup::default() },
+        stock: swarf::job::Stock { margin_xy: 5.0, margin_top: 0.5, ..Default::default() },
+        tools: vec![Tool { cutter: Cutter::ball(2.0 * r), ..Tool::default() }],
+        operations: vec![Operation::FinishWaterline(FinishWaterline { stepdown: 1.0, slope_min: 25.0, ..FinishWaterline::default() })],
+        simulation: Simulation { verify: true, cell: Some(0.2) },
+        ..Job::default()
+    };
+    let out = job::run(&job, part, &mut Progress::none()).unwrap();
+    let v = out.verification.as_ref().unwrap();
+    assert!(v.report.is_clean(), "{}", v.report.describe());
+    // Level moves (feeds at one height, away from entries) stand on the circle where the ball
+    // touches the sphere at that height: the faceted cap lies inside the sphere, so a little in.
+    let mut at = out.paths[0].start;
+    let mut checked = 0;
+    for m in &out.paths[0].moves {
+        let to = m.to();
+        if matches!(m, Move::Line { .. }) && (to.z - at.z).abs() < 1e-9 && to.z > 0.5 {
+            let rho = ((rs + r).powi(2) - (to.z + r).powi(2)).sqrt();
+            let d = to.truncate().length();
+            // (the contour keeps back from the level's edge by `contour::back_off`, 0.0125 mm here)
+            assert!(d <= rho + 0.015 && d >= rho - 0.25, "at z {}: {d} from the axis, the sphere's circle {rho}, from {at}", to.z);
+            checked += 1;
+        }
+        at = to;
+    }
+    assert!(checked > 200, "{checked}");
+}
+
+#[test]
+fn the_mould_job_roughs_and_finishes_the_sample_part_clean() {
+    let job = Job { simulation: Simulation { verify: true, cell: Some(0.25) }, ..Job::demo() };
+    let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
+    let v = out.verification.as_ref().unwrap();
+    assert!(v.report.is_clean(), "{}", v.report.describe());
+    assert_eq!(out.operations.len(), 3);
+    // The finish leaves (nearly) nothing: the roughing's stair-step is gone from shallow and
+    // steep areas alike.
+    assert!(v.report.residual_max < 0.15, "{}", v.report.describe());
+    let rough = &out.operations[0];
+    assert!(rough.left_max.unwrap() > 1.0, "{rough:?}");
+    // No straight plunge into material anywhere.
+    for (m, &vol) in out.moves.iter().zip(&v.volumes) {
+        if let Move::Line { to, .. } = m.mv {
+            if to.truncate().distance(m.from.truncate()) < 1e-9 && to.z < m.from.z - 1e-9 {
+                // A start counts as in the air when the stock there stands no more than the gouge
+                // tolerance (0.02 mm) above the cutter: up to that skin over its footprint.
+                assert!(vol < 0.02 * std::f64::consts::PI * 9.0 + 1e-6, "a straight plunge from {} to {to} in {} removed {vol} mm³", m.from, out.paths[m.path].name);
+            }
+        }
+    }
+}
