@@ -54,3 +54,13 @@ fn sequences_in_wasm() {
     }
     assert_eq!(rows.len(), 3);
 }
+
+#[wasm_bindgen_test]
+fn roughing_in_wasm() {
+    // Issue 12's benchmark part (read at build time from ../shared/data; this file is built
+    // only by scripts/bench-wasm.sh).
+    let stl = include_bytes!("../../shared/data/meshes/ocl_mount_rush.stl");
+    let row = swarf::job::bench::rough_row("ocl_mount_rush", stl, "wasm (Chromium)", &now);
+    web_sys_log(&row);
+    assert!(row.contains("total"));
+}

@@ -195,3 +195,36 @@ pub fn sequence_rows(platform: &str, clock: &dyn Fn() -> f64) -> Vec<String> {
     }
     rows
 }
+
+/// Issue 12's roughing settings: a φ6 flat end, step-down 2, step-over 0.4, no allowance, the
+/// stock the part's box, feed 1000, plunge 250, rapids 5000 mm/min; the part kept where it is.
+pub fn peer_rough_job() -> Job {
+    use crate::strategy::rough_zlevel::RoughZlevel;
+    let tool = Tool { cutter: Cutter { flute_length: 50.0, ..Cutter::flat(6.0) }, feed_rate: 1000.0, plunge_rate: 250.0, ..Tool::default() };
+    Job {
+        part: crate::mesh::placement::PartSetup { placement: crate::mesh::placement::Placement::Keep, ..Default::default() },
+        stock: job::Stock { margin_xy: 0.0, margin_top: 0.0, margin_bottom: 0.0, ..Default::default() },
+        post: crate::post::PostSettings { rapid_rate: 5000.0, ..Default::default() },
+        tools: vec![tool],
+        operations: vec![Operation::RoughZlevel(RoughZlevel { stepdown: 2.0, stepover: 0.4, allowance: 0.0, leave_stock: 0.0, ..RoughZlevel::default() })],
+        simulation: Simulation { verify: false, cell: None },
+        ..Job::default()
+    }
+}
+
+/// Roughing a part (STL bytes) with [`peer_rough_job`]: its stages' times, without simulation.
+pub fn rough_row(name: &str, stl: &[u8], platform: &str, clock: &dyn Fn() -> f64) -> String {
+    let part = crate::mesh::import::read_mesh_auto(stl, Some("part.stl"), &Tolerances::default()).expect("the part reads");
+    let start = clock();
+    let (stages, out) = stage_seconds(&peer_rough_job(), part, clock);
+    let total = clock() - start;
+    let of = |s: &str| seconds_of(&stages, &format!("z-level rough: {s}"));
+    format!(
+        "{platform:<16} rough {name:<20} total {total:.3} s: CL z-map {:.3} s, edge heights {:.3} s, levels and rings {:.3} s; {} moves, {:.0} s on the machine",
+        of("CL z-map"),
+        of("levels"),
+        of("rings"),
+        out.moves.len(),
+        out.stats.seconds
+    )
+}
