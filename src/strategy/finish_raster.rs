@@ -293,50 +293,34 @@ impl Operate for FinishRaster {
 /// at some point of a segment (sampled every `spacing` at most). Consecutive such segments stay
 /// one run; the rest is left out.
 pub fn rest_only(runs: Vec<Vec<DVec3>>, material: &dyn Fn(DVec2) -> f64, spacing: f64, threshold: f64) -> Vec<Vec<DVec3>> {
-    let mut out = Vec::new();
-    for run in runs {
-        let cuts = |p: DVec3| material(p.truncate()) > p.z + threshold;
-        let mut current: Vec<DVec3> = Vec::new();
-        if run.len() == 1 && cuts(run[0]) {
-            out.push(run);
-            continue;
-        }
-        for w in run.windows(2) {
-            let (a, b) = (w[0], w[1]);
-            let n = ((a.truncate().distance(b.truncate()) / spacing).ceil() as usize).max(1);
-            let needed = (0..=n).any(|k| cuts(point_at(a, b, k as f64 / n as f64)));
-            if needed {
-                if current.is_empty() {
-                    current.push(a);
-                }
-                current.push(b);
-            } else if !current.is_empty() {
-                out.push(std::mem::take(&mut current));
-            }
-        }
-        if !current.is_empty() {
-            out.push(current);
-        }
-    }
-    out
+    let cuts = |p: DVec3| material(p.truncate()) > p.z + threshold;
+    keep_segments(runs, |a, b| {
+        let n = ((a.truncate().distance(b.truncate()) / spacing).ceil() as usize).max(1);
+        (0..=n).any(|k| cuts(point_at(a, b, k as f64 / n as f64)))
+    })
 }
 
 /// The parts of `runs` on shallow ground: segments whose own slope and the CL surface's slope
 /// at their middle are both no steeper than `steep` (rise over run); a vertical step is steep.
 pub fn shallow_only(runs: Vec<Vec<DVec3>>, field: &crate::zmap::HeightField, steep: f64) -> Vec<Vec<DVec3>> {
+    keep_segments(runs, |a, b| {
+        let flat = a.truncate().distance(b.truncate());
+        let own = if flat > 0.0 { (b.z - a.z).abs() / flat } else if (b.z - a.z).abs() > 0.0 { f64::INFINITY } else { 0.0 };
+        own <= steep && super::finish_waterline::gradient(field, (a.truncate() + b.truncate()) * 0.5) <= steep
+    })
+}
+
+/// The segments of `runs` that `keep` accepts, consecutive ones joined into runs.
+fn keep_segments(runs: Vec<Vec<DVec3>>, keep: impl Fn(DVec3, DVec3) -> bool) -> Vec<Vec<DVec3>> {
     let mut out = Vec::new();
     for run in runs {
         let mut current: Vec<DVec3> = Vec::new();
         for w in run.windows(2) {
-            let (a, b) = (w[0], w[1]);
-            let flat = a.truncate().distance(b.truncate());
-            let own = if flat > 0.0 { (b.z - a.z).abs() / flat } else if (b.z - a.z).abs() > 0.0 { f64::INFINITY } else { 0.0 };
-            let shallow = own <= steep && super::finish_waterline::gradient(field, (a.truncate() + b.truncate()) * 0.5) <= steep;
-            if shallow {
+            if keep(w[0], w[1]) {
                 if current.is_empty() {
-                    current.push(a);
+                    current.push(w[0]);
                 }
-                current.push(b);
+                current.push(w[1]);
             } else if !current.is_empty() {
                 out.push(std::mem::take(&mut current));
             }
