@@ -12,7 +12,8 @@ use super::path2d::{arc_lengths, does_not_fit, follow, start_nearest, Cursor, He
 use crate::toolpath::entry::helix;
 use super::profile2d::Direction;
 use crate::geom::segment::Segment;
-use crate::geom::{DVec2, Tolerances};
+use crate::geom::{DVec2, DVec3, Tolerances};
+use crate::toolpath::entry::Keepout;
 use crate::offset::offset;
 use crate::profile::{Loop, Shape};
 use crate::toolpath::Move;
@@ -215,6 +216,18 @@ pub fn clear_rings(levels: &[Shape], clearing: &Clearing, z_prev: f64, z: f64, s
     out
 }
 
+/// The keep-out test of a pocket's links (the linker's [`Keepout`]): a straight move at depth
+/// must stay inside the region the tool's centre may occupy.
+pub struct Inside<'a>(pub &'a Shape);
+
+impl Keepout for Inside<'_> {
+    fn clears(&self, a: DVec3, b: DVec3, _tolerance: f64) -> bool {
+        let (a, b) = (a.truncate(), b.truncate());
+        let link = Segment::line(a, b);
+        self.0.contains((a + b) * 0.5) && self.0.segments().all(|s| s.crossings(&link, 1e-9).is_empty())
+    }
+}
+
 struct Ctx<'a, 'b> {
     s: &'a mut Setup<'b>,
     boundary: &'a Shape,
@@ -229,8 +242,7 @@ struct Ctx<'a, 'b> {
 impl Ctx<'_, '_> {
     /// Whether a straight move at depth from `a` to `b` stays inside the pocket.
     fn inside(&self, a: DVec2, b: DVec2) -> bool {
-        let link = Segment::line(a, b);
-        self.boundary.contains((a + b) * 0.5) && self.boundary.segments().all(|s| s.crossings(&link, 1e-9).is_empty())
+        Inside(self.boundary).clears(a.extend(self.z), b.extend(self.z), 0.0)
     }
 
     fn at_depth(&self) -> bool {
