@@ -170,7 +170,7 @@ pub fn pocket_moves(region: &Shape, op: &Pocket2d, mut s: Setup) -> Result<Vec<M
     for k in 1..=passes {
         let z_prev = s.top - op.depth * (k - 1) as f64 / passes as f64;
         let z = s.top - op.depth * k as f64 / passes as f64;
-        out.extend(clear_rings(&levels, &clearing, z_prev, z, &mut s));
+        out.extend(clear_rings(&levels, &clearing, z_prev, z, &mut s, None));
     }
     Ok(out)
 }
@@ -190,10 +190,19 @@ pub struct Clearing {
     pub helix_r: f64,
 }
 
+/// For a point of a region's outer boundary, a point beside it where the tool at the depth
+/// being cut touches no material (the air beside the stock), if there is one: such regions are
+/// entered there and cleared from there inwards instead of from a helix.
+pub type Air<'a> = &'a dyn Fn(DVec2) -> Option<DVec2>;
+
 /// Clears from `z_prev` (where the material starts) down to `z` the region whose tool-centre
 /// rings are `levels` (the region itself first, then one step further in each), inner rings
 /// first, each region entered by a helix or a ramp, ending with the outermost ring.
-pub fn clear_rings(levels: &[Shape], clearing: &Clearing, z_prev: f64, z: f64, s: &mut Setup) -> Vec<Move> {
+///
+/// A region whose boundary reaches the `air` is cleared from the outside in: the loops that
+/// run along its outer boundary, outermost first (the first entered in the air), then those
+/// round its islands, farthest from them first; each takes off at most a step.
+pub fn clear_rings(levels: &[Shape], clearing: &Clearing, z_prev: f64, z: f64, s: &mut Setup, air: Option<Air>) -> Vec<Move> {
     let Some(boundary) = levels.first() else { return Vec::new() };
     let climb = clearing.climb;
     let orient = |l: &Loop| if climb { l.clone() } else { l.reversed() };
@@ -203,7 +212,10 @@ pub fn clear_rings(levels: &[Shape], clearing: &Clearing, z_prev: f64, z: f64, s
     match clearing.pattern {
         PocketPattern::Offset => {
             for node in &forest {
-                c.cut_tree(node, &orient);
+                match air.and_then(|air| node.shape.loops.iter().filter(|l| l.is_ccw()).flat_map(|l| l.vertices.iter().map(|v| v.p)).find_map(|p| air(p).map(|q| (p, q)))) {
+                    Some((start, outside)) => c.cut_outside_in(node, start, outside, &orient),
+                    None => c.cut_tree(node, &orient),
+                }
             }
         }
         PocketPattern::Zigzag => {
@@ -262,6 +274,40 @@ impl Ctx<'_, '_> {
                 continue;
             }
             self.cut_loop(&orient(l), fresh);
+        }
+    }
+
+    /// A region open to the air, from the outside in: down in the air at `outside`, across to
+    /// `start` on its outer boundary, its outer loops ring by ring inwards, then the loops round
+    /// its islands from the innermost ring out to the walls.
+    fn cut_outside_in(&mut self, node: &Node, start: DVec2, outside: DVec2, orient: &dyn Fn(&Loop) -> Loop) {
+        fn gather<'n>(node: &'n Node, depth: usize, out: &mut Vec<(usize, &'n Loop)>) {
+            out.extend(node.shape.loops.iter().map(|l| (depth, l)));
+            for child in &node.children {
+                gather(child, depth + 1, out);
+            }
+        }
+        let mut loops = Vec::new();
+        gather(node, 0, &mut loops);
+        let mut outer: Vec<(usize, &Loop)> = loops.iter().copied().filter(|(_, l)| l.is_ccw()).collect();
+        let mut holes: Vec<(usize, &Loop)> = loops.iter().copied().filter(|(_, l)| !l.is_ccw()).collect();
+        outer.sort_by_key(|(d, _)| *d);
+        holes.sort_by_key(|(d, _)| std::cmp::Reverse(*d));
+        let mut first = true;
+        for (_, l) in outer.into_iter().chain(holes) {
+            let l = orient(l);
+            if first {
+                // Down in the air beside the stock, in to the loop, then round.
+                let segs = start_nearest(&l, start);
+                let (_, total) = arc_lengths(&segs);
+                self.s.cursor.reposition(outside.extend(self.z), self.out);
+                self.out.push(Move::Line { to: segs[0].a.extend(self.z), feed: self.s.feed });
+                follow(&segs, 0.0, total, &Heights::constant(self.z), self.s.feed, self.out);
+                self.s.cursor.moved(self.out);
+                first = false;
+            } else {
+                self.cut_loop(&l, false);
+            }
         }
     }
 

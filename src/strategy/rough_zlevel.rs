@@ -15,7 +15,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::pocket2d::{clear_rings, rings, Clearing, Entry as PocketEntry, PocketPattern, Setup};
+use super::pocket2d::{clear_rings, rings, Clearing, Entry as PocketEntry, Inside, PocketPattern, Setup};
+use crate::toolpath::entry::Keepout;
 use super::profile2d::Direction;
 use super::{sheet, Context, FieldError, Operate};
 use crate::cutter::Profile;
@@ -152,6 +153,8 @@ impl Operate for RoughZlevel {
         let mut cursor = sheet::cursor(ctx, &tool);
         let mut moves = Vec::new();
         let mut z_prev = stock.max.z;
+        // The region the level before cleared (none above the first level).
+        let mut cleared: Option<crate::profile::Shape> = None;
         let mut cut_levels = 0;
         for (k, &z) in levels.iter().enumerate() {
             if !progress.report(k as f64 / levels.len() as f64) {
@@ -173,13 +176,28 @@ impl Operate for RoughZlevel {
             // (which lies inside that level's): rapids stop the gap above it.
             cursor.safe = (z_prev + ctx.heights.gap).min(clearance);
             // The short retract: a traverse just above the level before, where the straight
-            // move there stays over what that level cleared (its CL below it).
+            // move there stays inside what that level cleared (its region), and over the part.
             let (surface, ceiling, gap) = (cl.clone(), z_prev - self.allowance - tol.height, ctx.heights.gap);
             let lift = z_prev + gap;
-            cursor.traverse = Some(Box::new(move |a: DVec2, b: DVec2| surface.along(a, b).iter().all(|&(_, h)| h <= ceiling - 2.0 * tol.interpolation).then_some(lift)));
+            let before = cleared.take();
+            cursor.traverse = Some(Box::new(move |a: DVec2, b: DVec2| {
+                let inside = before.as_ref().is_none_or(|c| Inside(c).clears(a.extend(lift), b.extend(lift), 0.0));
+                (inside && surface.along(a, b).iter().all(|&(_, h)| h <= ceiling - 2.0 * tol.interpolation)).then_some(lift)
+            }));
             let mut setup = Setup { tool_radius: r, top: z_prev, feed: tool.feed_rate, cursor: &mut cursor, tol: &tol };
-            moves.extend(clear_rings(&rings, &clearing, z_prev, z, &mut setup));
+            // In the air: a step out from the boundary, away from the stock's middle, where the
+            // cutter at this level touches nothing the earlier operations left (beside the
+            // stock, or where another operation cleared it).
+            let stock_now = ctx.sim.stock();
+            let middle = stock.center().truncate();
+            let flat = Profile::new(r, 0.0);
+            let air = |p: DVec2| {
+                let q = p + (p - middle).normalize_or_zero() * step;
+                (stock_now.touch(q, &flat, true) <= z + tol.height && cl.height(q) <= z - self.allowance).then_some(q)
+            };
+            moves.extend(clear_rings(&rings, &clearing, z_prev, z, &mut setup, Some(&air)));
             z_prev = z;
+            cleared = Some(region);
             cut_levels += 1;
         }
         if cut_levels == 0 {
