@@ -100,6 +100,13 @@ function valueOf(el) {
   const type = el.dataset.type;
   if (el.type === 'checkbox') return el.checked;
   if (type === 'list') return el.value.split(',').map((v) => v.trim()).filter(Boolean);
+  if (type === 'numbers' || type === 'box') {
+    // A list of numbers (empty: none), and a box as its min and max corners.
+    if (el.value.trim() === '') return null;
+    const v = el.value.split(',').map((w) => Number(w.trim()));
+    if (v.length !== Number(el.dataset.count) || v.some((x) => !Number.isFinite(x))) throw new Error(`${labelOf(el)}: give ${el.dataset.count} numbers, separated by commas`);
+    return type === 'box' ? { min: v.slice(0, 3), max: v.slice(3) } : v;
+  }
   if (el.type === 'number' || type === 'int') {
     if (el.value === '' && type === 'optional') return null;
     const v = Number(el.value);
@@ -111,7 +118,8 @@ function valueOf(el) {
 
 function show(el, value) {
   if (el.type === 'checkbox') el.checked = !!value;
-  else if (el.dataset.type === 'list') el.value = (value || []).join(', ');
+  else if (el.dataset.type === 'list' || el.dataset.type === 'numbers') el.value = (value || []).join(', ');
+  else if (el.dataset.type === 'box') el.value = value ? [...value.min, ...value.max].join(', ') : '';
   else el.value = value ?? '';
 }
 

@@ -197,6 +197,7 @@ test('a saved job loads back and runs on the command line as in the page', async
   await onlyRaster(page);
   await page.fill('input[name=stepover]', '2.5');
   await page.fill('input[name=angle]', '30');
+  await page.fill('input[name=marginSides]', '2, 3, 4, 5');
   await page.selectOption('select[name=dialect]', 'grbl');
   const [saved] = await Promise.all([page.waitForEvent('download'), page.click('#save-job')]);
   const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-job-'));
@@ -204,6 +205,7 @@ test('a saved job loads back and runs on the command line as in the page', async
   await saved.saveAs(jobFile);
   const job = JSON.parse(fs.readFileSync(jobFile, 'utf8'));
   assert.equal(job.operations[0].stepover, 2.5);
+  assert.deepEqual(job.stock.marginSides, [2, 3, 4, 5]);
   assert.equal(job.post.dialect, 'grbl');
   // Change the form, then load the job back: the form follows the file.
   await page.fill('input[name=stepover]', '9');
