@@ -123,9 +123,6 @@ fn compare(actual: &[(Kind, DVec3)], expected: &[(Kind, DVec3)], resolution: f64
         let Some((k, p)) = a.peek().copied() else { panic!("the program ends early, expected {kind:?} to {point}") };
         // X and Y are rounded to the nearest (half a unit, `resolution`), a feed's Z up (a unit).
         if p.distance(*point) > resolution * 3.0 {
-            if std::env::var("SWARF_DEBUG_COMPARE").is_ok() {
-                eprintln!("skipped expected {kind:?} {point} (next actual {k:?} {p})");
-            }
             continue;
         }
         a.next();

@@ -404,11 +404,6 @@ impl Job {
         Ok(job)
     }
 
-    /// The tool `number` of the library.
-    pub fn tool(&self, number: u32) -> Result<&Tool> {
-        self.tools.iter().find(|t| t.number == number).ok_or_else(|| Error::Input(format!("no tool number {number} in the tool library")))
-    }
-
     /// Places the part as the job says and returns the stock box around it (both moved to the
     /// work zero when the stock names one).
     pub fn place(&self, part: &mut Mesh) -> Aabb {
@@ -567,10 +562,9 @@ pub fn run(job: &Job, workpiece: impl Into<Workpiece>, progress: &mut Progress) 
                 return Err(Error::Cancelled);
             }
             ctx.sim.run(&moves, &job.tolerances, progress, 1.0)?;
-            snapshots.push(Some(ctx.sim.stock().heights()));
-        } else {
-            snapshots.push(None);
         }
+        // What the operation left is judged against the part only when the program is verified.
+        snapshots.push(verify.then(|| ctx.sim.stock().heights()));
         move_ranges.push(range);
         all_moves.extend(moves);
     }
@@ -582,32 +576,30 @@ pub fn run(job: &Job, workpiece: impl Into<Workpiece>, progress: &mut Progress) 
         let why = if warnings.is_empty() { String::new() } else { format!(" ({})", warnings.iter().map(Warning::to_string).collect::<Vec<_>>().join("; ")) };
         return Err(Error::Nothing(format!("the program has no cutting moves{why}")));
     }
-    let stock = ctx.stock;
-    let clearance_z = ctx.heights.clearance;
-    let cache = ctx.caches.counts;
-    let volumes = ctx.sim.volumes().to_vec();
-    let verification = if verify {
+    let Context { part, sheet, stock, heights, caches, sim, cuts, .. } = ctx;
+    // The simulation that carried the in-process stock judges the whole program.
+    let (verification, sim) = if verify {
         let settings = job.verify_settings(&stock, None);
         let tol = job.tolerances;
-        let sim = std::mem::replace(&mut ctx.sim, Simulator::new(&stock, settings.cell)?);
-        Some(match &ctx.sheet {
-            None => {
-                let part = &ctx.part;
-                sim.finish(|grid| cc_zmap(part, grid, f64::NEG_INFINITY, &tol), settings.allowance, &tol)
-            }
-            Some(_) => {
-                let cuts = &ctx.cuts;
-                sim.finish(|grid| drawing::surface(cuts, grid, tol.gouge, &tol), settings.allowance, &tol)
-            }
-        })
+        let v = match &sheet {
+            None => sim.finish(|grid| cc_zmap(&part, grid, f64::NEG_INFINITY, &tol), settings.allowance, &tol),
+            Some(_) => sim.finish(|grid| drawing::surface(&cuts, grid, tol.gouge, &tol), settings.allowance, &tol),
+        };
+        (Some(v), None)
     } else {
-        None
+        (None, Some(sim))
     };
-    let operations = report::per_operation(job, &enabled, &all_moves, &move_ranges, &volumes, &snapshots, verification.as_ref());
+    let volumes = match (&verification, &sim) {
+        (Some(v), _) => &v.volumes[..],
+        (None, Some(sim)) => sim.volumes(),
+        (None, None) => &[],
+    };
+    let operations = report::per_operation(job, &enabled, &all_moves, &move_ranges, volumes, &snapshots, verification.as_ref());
     let problem = verification.as_ref().and_then(|v| v.report.problem());
     progress.stage("done", 1.0, 0.0);
-    let drawing = ctx.sheet.map(|s| s.drawing);
-    Ok(JobOutput { part: ctx.part, drawing, stock, clearance_z, paths, path_operations, gcode, stats, moves: all_moves, operations, verification, warnings, problem, cache })
+    let drawing = sheet.map(|s| s.drawing);
+    let (clearance_z, cache) = (heights.clearance, caches.counts);
+    Ok(JobOutput { part, drawing, stock, clearance_z, paths, path_operations, gcode, stats, moves: all_moves, operations, verification, warnings, problem, cache })
 }
 
 /// The moves of `paths[first..]`, timed on from the program's last move so far.

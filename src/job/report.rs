@@ -49,7 +49,7 @@ impl OperationReport {
 
 /// The reports of a job's `enabled` operations: `ranges[k]` are the k-th one's moves, `volumes` what the
 /// simulation removed per move (as many as it ran), `snapshots[k]` the stock's heights after
-/// operation k when it was simulated.
+/// operation k when the program is verified.
 pub fn per_operation(
     job: &Job,
     enabled: &[usize],
@@ -80,7 +80,7 @@ pub fn per_operation(
                     feed_length += len;
                 }
             }
-            let simulated = range.end <= volumes.len() && snapshot.is_some();
+            let simulated = range.end <= volumes.len();
             let (removed, mrr_max) = if simulated {
                 let v = &volumes[range.clone()];
                 let peak = mine.iter().zip(v).filter(|(m, _)| !m.mv.is_rapid()).map(|(m, &v)| m.mrr(v)).fold(0.0, f64::max);

@@ -8,12 +8,15 @@ use std::sync::Arc;
 
 use crate::cutter::Profile;
 use crate::error::{Error, Result, Warning};
-use crate::geom::{Aabb, DVec2, Tolerances};
+use crate::geom::{Aabb, DVec2, DVec3, Tolerances};
 use crate::mesh::Mesh;
 use crate::profile::Drawing;
 use crate::progress::Progress;
 use crate::sim::verify::Simulator;
 use crate::tool::Tool;
+use crate::toolpath::entry::{Entry, Keepout};
+use crate::toolpath::link::{Feeds, LinkSettings, Linker};
+use crate::toolpath::Toolpath;
 use crate::zmap::cc::cc_zmap;
 use crate::zmap::cl_inverse::cl_inverse_offset;
 use crate::zmap::drop::PointDrop;
@@ -98,9 +101,29 @@ impl Context {
     }
 
     /// The highest tip height at which a cutter of `profile` at `p` touches the in-process
-    /// stock (`-inf` where it touches none), never lower than the material (for rapids).
-    pub fn material(&self, p: DVec2, profile: &Profile) -> f64 {
-        self.sim.stock().touch(p, profile, true)
+    /// stock (`-inf` where it touches none), as the stock's z-map samples it at its cells'
+    /// centres: an estimate, for deciding what is left to cut.
+    pub fn material_estimate(&self, p: DVec2, profile: &Profile) -> f64 {
+        self.sim.stock().touch(p, profile, false)
+    }
+
+    /// Joins `runs` of the operation `op` into one tool path with the shared linker
+    /// ([`Linker`]): stay-down links and entries kept clear by `keep`, rapid descents stopping
+    /// the retract gap above the in-process stock, entries by `entry`. Entries that found no
+    /// room for a helix or a ramp are warned of.
+    pub fn link(&mut self, op: &str, tool: &Tool, runs: &[Vec<DVec3>], keep: &dyn Keepout, entry: Entry, stay_down_max: f64) -> Toolpath {
+        let profile = tool.cutter.profile();
+        let stock = self.sim.stock();
+        let material = |p: DVec2| stock.touch(p, &profile, true);
+        let estimate = |p: DVec2| stock.touch(p, &profile, false);
+        let settings = LinkSettings { clearance_z: self.heights.clearance, rapid_gap: self.heights.gap, stay_down_max };
+        let feeds = Feeds { cut: tool.feed_rate, plunge: tool.plunge_rate };
+        let linker = Linker { settings, keep, material: &material, estimate: &estimate, threshold: self.tolerances.gouge, entry, radius: profile.radius, feeds };
+        let (start, moves, entries) = linker.link(runs, &self.tolerances);
+        if entries.plunge > 0 {
+            self.warn(op, format!("{} entries found no room for a helix or a ramp and feed straight down into material", entries.plunge));
+        }
+        Toolpath { name: op.to_string(), tool: tool.number, spindle_rpm: tool.spindle_rpm, start, moves }
     }
 
     /// The part's heights on `grid` (`floor` where it is not): its CC z-map, made once.

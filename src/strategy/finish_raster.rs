@@ -13,11 +13,11 @@
 use serde::{Deserialize, Serialize};
 
 use super::{Context, FieldError, Operate};
-use crate::error::{Error, Result, Warning};
+use crate::error::{Error, Result};
 use crate::geom::{DVec2, DVec3};
 use crate::progress::Progress;
 use crate::toolpath::entry::Entry;
-use crate::toolpath::link::{Feeds, Floor, LinkSettings, Linker};
+use crate::toolpath::link::Floor;
 use crate::toolpath::reduce::reduce;
 use crate::toolpath::Toolpath;
 use crate::zmap::region::Region;
@@ -267,24 +267,15 @@ impl Operate for FinishRaster {
         if let Some(limit) = self.slope_max {
             runs = shallow_only(runs, &cl.field, limit.to_radians().tan());
         }
-        let sim = &ctx.sim;
-        let material = |p: DVec2| sim.stock().touch(p, &profile, true);
-        let estimate = |p: DVec2| sim.stock().touch(p, &profile, false);
         if self.rest_only {
-            runs = rest_only(runs, &estimate, profile.radius / 4.0, tol.gouge);
+            runs = rest_only(runs, &|p: DVec2| ctx.material_estimate(p, &profile), profile.radius / 4.0, tol.gouge);
             if runs.is_empty() {
-                ctx.warnings.push(Warning::of(&self.name, "the earlier operations left nothing for it to cut (rest only)"));
+                ctx.warn(&self.name, "the earlier operations left nothing for it to cut (rest only)");
                 return Ok(Vec::new());
             }
         }
-        let settings = LinkSettings { clearance_z: ctx.heights.clearance, rapid_gap: ctx.heights.gap, stay_down_max: self.stay_down_max.unwrap_or(2.0 * self.stepover) };
         let floor_surface = Floor { cl: &cl, allowance: self.allowance, region: &region };
-        let linker = Linker { settings, keep: &floor_surface, material: &material, estimate: &estimate, threshold: tol.gouge, entry: self.entry, radius: profile.radius, feeds: Feeds { cut: tool.feed_rate, plunge: tool.plunge_rate } };
-        let (start, moves, entries) = linker.link(&runs, &tol);
-        if entries.plunge > 0 {
-            ctx.warnings.push(Warning::of(&self.name, format!("{} entries found no room for a helix or a ramp and feed straight down into material", entries.plunge)));
-        }
-        Ok(vec![Toolpath { name: self.name.clone(), tool: tool.number, spindle_rpm: tool.spindle_rpm, start, moves }])
+        Ok(vec![ctx.link(&self.name, &tool, &runs, &floor_surface, self.entry, self.stay_down_max.unwrap_or(2.0 * self.stepover))])
     }
 }
 

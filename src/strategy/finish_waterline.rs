@@ -15,7 +15,7 @@ use crate::error::{Error, Result};
 use crate::geom::{DVec2, DVec3};
 use crate::progress::Progress;
 use crate::toolpath::entry::Entry;
-use crate::toolpath::link::{Feeds, Floor, LinkSettings, Linker};
+use crate::toolpath::link::Floor;
 use crate::toolpath::Toolpath;
 use crate::zmap::contour::LevelMap;
 use crate::zmap::region::Region;
@@ -151,16 +151,7 @@ impl Operate for FinishWaterline {
         }
         let region = Region::Rect { min: grid.origin, max: grid.node(grid.nx - 1, grid.ny - 1) };
         let floor_surface = Floor { cl: &cl, allowance: self.allowance, region: &region };
-        let settings = LinkSettings { clearance_z: ctx.heights.clearance, rapid_gap: ctx.heights.gap, stay_down_max: 2.0 * profile.radius };
-        let sim = &ctx.sim;
-        let material = |p: DVec2| sim.stock().touch(p, &profile, true);
-        let estimate = |p: DVec2| sim.stock().touch(p, &profile, false);
-        let linker = Linker { settings, keep: &floor_surface, material: &material, estimate: &estimate, threshold: tol.gouge, entry: self.entry, radius: profile.radius, feeds: Feeds { cut: tool.feed_rate, plunge: tool.plunge_rate } };
-        let (start, moves, entries) = linker.link(&runs, &tol);
-        if entries.plunge > 0 {
-            ctx.warnings.push(crate::error::Warning::of(&self.name, format!("{} entries found no room for a helix or a ramp and feed straight down into material", entries.plunge)));
-        }
-        Ok(vec![Toolpath { name: self.name.clone(), tool: tool.number, spindle_rpm: tool.spindle_rpm, start, moves }])
+        Ok(vec![ctx.link(&self.name, &tool, &runs, &floor_surface, self.entry, 2.0 * profile.radius)])
     }
 }
 

@@ -133,9 +133,6 @@ impl Operate for RoughZlevel {
         // margin (`zmap/contour.rs`).
         let clear = 2.0 * tol.interpolation + tol.height;
         let levels = self.levels(&cl.field, stock.max.z, floor, r, clear);
-        if std::env::var("SWARF_DEBUG_LEVELS").is_ok() {
-            eprintln!("levels {levels:?}");
-        }
         if !progress.stage("rings", 0.5, 0.5) {
             return Err(Error::Cancelled);
         }

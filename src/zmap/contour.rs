@@ -184,18 +184,16 @@ fn level_region(cl: &ClSurface, nodes_inside: &[bool], level: f64, tol: &Toleran
                 14 => &[(0, 3)],
                 _ => &[],
             };
-            // The inside corner nearest a piece: to bend it towards.
+            let corners = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
+            // The corner (its index) at the inside end of an edge.
+            let end_of = |e: u8| -> usize {
+                let ends = [[0usize, 1], [1, 2], [3, 2], [0, 3]][e as usize];
+                if inside(corners[ends[0]].0, corners[ends[0]].1) { ends[0] } else { ends[1] }
+            };
             // The inside corner to bend a piece towards: the one farthest from the outside
             // corners (the diagonal one when three are inside), on the piece's side in a saddle.
-            let corners = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
             let corner = |e: u8| -> (isize, isize) {
-                let ends = match e {
-                    0 => [corners[0], corners[1]],
-                    1 => [corners[1], corners[2]],
-                    2 => [corners[3], corners[2]],
-                    _ => [corners[0], corners[3]],
-                };
-                let own = if inside(ends[0].0, ends[0].1) { ends[0] } else { ends[1] };
+                let own = corners[end_of(e)];
                 if case == 5 || case == 10 {
                     return own;
                 }
@@ -205,10 +203,6 @@ fn level_region(cl: &ClSurface, nodes_inside: &[bool], level: f64, tol: &Toleran
             };
             // The inside ends of two edges joined through inside corners only, along the cell's
             // sides (each safe from end to end): the way round a piece that will not clear.
-            let end_of = |e: u8| -> usize {
-                let ends = [[0usize, 1], [1, 2], [3, 2], [0, 3]][e as usize];
-                if inside(corners[ends[0]].0, corners[ends[0]].1) { ends[0] } else { ends[1] }
-            };
             let stairs = |from: u8, to: u8| -> Vec<(isize, isize)> {
                 let (s0, s1) = (end_of(from), end_of(to));
                 for dir in [1usize, 3] {
@@ -346,9 +340,6 @@ fn bend(cl: &ClSurface, level: f64, ring: &[Piece], node: &dyn Fn(isize, isize) 
         if !towards(a, b, c, BEND_DEPTH, &worst, &clears, &safe, &mut out) {
             // Round by the inside nodes: from the start along its edge to the edge's inside
             // end, along the cell's sides, and out along the end's edge.
-            if std::env::var("SWARF_DEBUG_BEND").is_ok() {
-                eprintln!("bend: round by the nodes from {a} to {b}");
-            }
             out.truncate(mark);
             out.extend(ring[k].stairs.iter().map(|&(i, j)| node(i, j)));
             out.push(b);
