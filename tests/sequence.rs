@@ -213,3 +213,49 @@ fn the_work_zero_moves_part_and_stock() {
     assert!((b.min.x - 5.0).abs() < 1e-9 && (b.min.y - 5.0).abs() < 1e-9 && b.min.z.abs() < 1e-9, "{b:?}");
     let _ = DVec2::ZERO;
 }
+
+#[test]
+fn a_second_pocket_deeper_in_the_same_loops_starts_where_the_first_stopped() {
+    use swarf::profile::import::read_drawing;
+    use swarf::profile::sample::plate_dxf;
+    let drawing = read_drawing(plate_dxf().as_bytes(), Some("plate.dxf"), &Default::default()).unwrap();
+    let mut job = Job::default_for_drawing();
+    job.tools = vec![Tool { number: 1, cutter: Cutter::flat(6.0), ..Tool::default() }];
+    let pocket = |name: &str, depth: f64| Operation::Pocket2d(Pocket2d { name: name.into(), tool: 1, depth, stepdown: 1.0, layers: vec!["POCKET".into()], ..Pocket2d::default() });
+    // The pocket's outline (not its island) cut inside, deeper, with no lead arc (one would
+    // reach the island).
+    let outline = drawing.loops.iter().position(|l| l.layer == "POCKET" && l.path.bounds().size().x > 30.0).unwrap();
+    let wall = Profile2d { name: "wall".into(), tool: 1, side: swarf::strategy::profile2d::Side::Inside, depth: Some(5.0), loops: vec![outline], lead_radius: Some(0.0), layers: vec!["POCKET".into()], ..Profile2d::default() };
+    job.operations = vec![pocket("first", 2.0), pocket("deeper", 4.0), pocket("again", 4.0), Operation::Profile2d(wall)];
+    let out = job::run(&job, drawing, &mut Progress::none()).unwrap();
+    let v = out.verification.as_ref().unwrap();
+    assert!(v.report.is_clean(), "{}", v.report.describe());
+    // The third pocket finds nothing left and says so.
+    assert_eq!(out.path_operations, vec![0, 1, 3]);
+    assert!(out.warnings.iter().any(|w| w.operation.as_deref() == Some("again") && w.message.contains("no material left")), "{:?}", out.warnings);
+    // The second enters a gap above the first one's floor, never from the sheet's top, and
+    // never feeds through the 2 mm the first one cleared.
+    // So does the profile along the pocket's walls, below the second one's floor.
+    let gap = job.stock.retract;
+    for (path, floor) in [(&out.paths[1], -2.0), (&out.paths[2], -4.0)] {
+        let mut at = path.start;
+        let mut descents = 0;
+        for m in &path.moves {
+            let to = m.to();
+            match m {
+                Move::Rapid { .. } if to.z < at.z && to.truncate() == at.truncate() => {
+                    assert!(to.z <= floor + gap + 1e-9, "{}: a rapid descent stops at {to}, above the floor before plus the gap", path.name);
+                    descents += 1;
+                }
+                Move::Rapid { .. } => {}
+                _ => assert!(to.z <= floor + 1e-9 || to.truncate() == at.truncate(), "{}: a feed at {to} above the floor before", path.name),
+            }
+            at = to;
+        }
+        assert!(descents > 0);
+    }
+    // Each takes off about the same: 2 mm over the same region.
+    let (a, b) = (out.operations[0].removed.unwrap(), out.operations[1].removed.unwrap());
+    assert!((a - b).abs() < 0.05 * a, "{a} {b}");
+    assert!(out.operations[1].seconds < out.operations[0].seconds * 1.2, "{:?}", out.operations);
+}

@@ -3,9 +3,12 @@
 //! the retract-and-reposition link. DESIGN.md idea 6: entries and links are passes over data,
 //! not parts of one strategy.
 
+use crate::cutter::Profile;
 use crate::geom::segment::Segment;
 use crate::geom::{DVec2, DVec3};
 use crate::profile::Loop;
+use crate::sim::dexel::DexelStock;
+use crate::toolpath::link::retract;
 use crate::toolpath::Move;
 
 /// A height that varies linearly along arc length between breakpoints `(s, z)`, constant
@@ -169,34 +172,92 @@ pub fn does_not_fit(tool_radius: f64, leave_stock: f64, what: &str, b: &crate::g
 /// lower than the clearance height.
 pub type Traverse = Box<dyn Fn(DVec2, DVec2) -> Option<f64>>;
 
+/// The in-process stock as a 2.5D strategy's cutter meets it: the material the earlier
+/// operations of the job left.
+#[derive(Clone, Copy)]
+pub struct InStock<'m> {
+    pub stock: &'m DexelStock,
+    pub profile: Profile,
+    /// How much smaller than the cutter the estimate's footprint is (mm): the walls an
+    /// earlier cut left at exactly this cutter's reach do not count as material in its way.
+    pub shy: f64,
+}
+
+impl InStock<'_> {
+    /// The highest tip height at which the cutter at `p` touches material as the stock model
+    /// samples it (`-inf` where there is none): as the program's verification sees the
+    /// material, for rapids. Not the bound the 3D linker takes (each cell as a column over its
+    /// whole square): beside a wall an earlier cut left at exactly this cutter's reach, that
+    /// bound stands at the wall's top.
+    pub fn reach(&self, p: DVec2) -> f64 {
+        self.stock.touch(p, &self.profile, false)
+    }
+
+    /// The same as the stock model samples it, at its cells' centres, with the footprint
+    /// `shy` smaller: for deciding where material is left to cut.
+    pub fn estimate(&self, p: DVec2) -> f64 {
+        let r = (self.profile.radius - self.shy).max(0.0);
+        self.stock.touch(p, &Profile::new(r, self.profile.corner.min(r)), false)
+    }
+
+    /// The highest [`InStock::estimate`] over points along `segments`, at most `spacing` apart.
+    pub fn highest_along(&self, segments: impl IntoIterator<Item = Segment>, spacing: f64) -> f64 {
+        let mut top = f64::NEG_INFINITY;
+        for seg in segments {
+            let n = (seg.length() / spacing.max(1e-3)).ceil().max(1.0) as usize;
+            for k in 0..=n {
+                top = top.max(self.estimate(seg.point_at(k as f64 / n as f64)));
+            }
+        }
+        top
+    }
+}
+
 /// Where the tool is and how it moves between cuts.
-pub struct Cursor {
+pub struct Cursor<'m> {
     pub at: DVec3,
     pub clearance: f64,
     /// Height above which rapids are safe near the next cut: the stock top plus a gap.
     pub safe: f64,
+    /// How far above the material a rapid descent stops (mm).
+    pub gap: f64,
     pub plunge: f64,
     /// A lower traverse than the clearance height where the strategy knows one (the short
     /// retract); `None`: always the clearance height.
     pub traverse: Option<Traverse>,
+    /// The in-process stock, when the job keeps one: rapid descents stop the gap above the
+    /// material under the cutter at that spot (never lower than `safe` allows otherwise).
+    pub stock: Option<InStock<'m>>,
 }
 
-impl Cursor {
-    /// Up to the clearance, over to above `to`, rapid down to the safe height (or `to.z` plus
-    /// the gap when lower), then feed down to `to`.
+impl Cursor<'_> {
+    /// Up to the clearance (or the strategy's lower traverse), over to above `to`, rapid down
+    /// to the safe height (or the gap above the in-process stock there, when lower), then feed
+    /// down to `to`: the linker's retract ([`retract`]).
     pub fn reposition(&mut self, to: DVec3, out: &mut Vec<Move>) {
         let low = self.traverse.as_ref().and_then(|f| f(self.at.truncate(), to.truncate()));
         let travel = low.map_or(self.clearance, |h| h.max(self.safe.min(self.clearance)).min(self.clearance));
-        if self.at.z < travel {
-            out.push(Move::Rapid { to: self.at.truncate().extend(travel) });
+        let mut stop = self.safe.min(travel);
+        if let Some(stock) = &self.stock {
+            stop = stop.min(stock.reach(to.truncate()).max(to.z) + self.gap);
         }
-        out.push(Move::Rapid { to: to.truncate().extend(travel) });
-        let safe = self.safe.min(travel);
-        if safe > to.z {
-            out.push(Move::Rapid { to: to.truncate().extend(safe) });
+        retract(self.at, to.truncate(), travel, stop.max(to.z), out);
+        if stop > to.z {
+            out.push(Move::Line { to, feed: self.plunge });
         }
-        out.push(Move::Line { to, feed: self.plunge });
         self.at = to;
+    }
+
+    /// Where material starts for a cut from `from` down to `to` whose tool runs along `segments`:
+    /// the highest estimate of the in-process stock at points along them (the stock's cell or
+    /// half the cutter's radius apart, whichever is larger), no higher than `from`; `None` when
+    /// it stands no higher than `to` plus `threshold` (the cut would be in the air). `from`
+    /// itself without a stock.
+    pub fn material_top(&self, segments: impl IntoIterator<Item = Segment>, from: f64, to: f64, threshold: f64) -> Option<f64> {
+        let Some(stock) = &self.stock else { return Some(from) };
+        let spacing = stock.stock.grid().spacing.max(0.5 * stock.profile.radius);
+        let top = stock.highest_along(segments, spacing);
+        (top > to + threshold).then(|| top.clamp(to, from))
     }
 
     /// Tracks the end of moves appended since.

@@ -100,11 +100,11 @@ impl Default for Pocket2d {
 }
 
 /// What the pocket needs besides its settings.
-pub struct Setup<'a> {
+pub struct Setup<'a, 'm> {
     pub tool_radius: f64,
     pub top: f64,
     pub feed: f64,
-    pub cursor: &'a mut Cursor,
+    pub cursor: &'a mut Cursor<'m>,
     pub tol: &'a Tolerances,
 }
 
@@ -204,6 +204,9 @@ pub type Air<'a> = &'a dyn Fn(DVec2) -> Option<DVec2>;
 /// round its islands, farthest from them first; each takes off at most a step.
 pub fn clear_rings(levels: &[Shape], clearing: &Clearing, z_prev: f64, z: f64, s: &mut Setup, air: Option<Air>) -> Vec<Move> {
     let Some(boundary) = levels.first() else { return Vec::new() };
+    // Cut only where the in-process stock has material, from where it starts.
+    let Some(z_prev) = s.cursor.material_top(levels.iter().flat_map(|l| l.segments()), z_prev, z, s.tol.gouge) else { return Vec::new() };
+    s.cursor.safe = s.cursor.safe.min(z_prev + s.cursor.gap);
     let climb = clearing.climb;
     let orient = |l: &Loop| if climb { l.clone() } else { l.reversed() };
     let mut out = Vec::new();
@@ -240,8 +243,8 @@ impl Keepout for Inside<'_> {
     }
 }
 
-struct Ctx<'a, 'b> {
-    s: &'a mut Setup<'b>,
+struct Ctx<'a, 'b, 'm> {
+    s: &'a mut Setup<'b, 'm>,
     boundary: &'a Shape,
     angle: f64,
     helix_r: f64,
@@ -251,7 +254,7 @@ struct Ctx<'a, 'b> {
     z: f64,
 }
 
-impl Ctx<'_, '_> {
+impl Ctx<'_, '_, '_> {
     /// Whether a straight move at depth from `a` to `b` stays inside the pocket.
     fn inside(&self, a: DVec2, b: DVec2) -> bool {
         Inside(self.boundary).clears(a.extend(self.z), b.extend(self.z), 0.0)
@@ -417,6 +420,10 @@ impl super::Operate for Pocket2d {
         let setup = Setup { tool_radius: tool.cutter.radius(), top: ctx.stock.max.z, feed: tool.feed_rate, cursor: &mut cursor, tol: &ctx.tolerances };
         let moves = pocket_moves(&region, self, setup).map_err(|e| crate::error::Error::operation(&self.name, e))?;
         ctx.cuts.push(super::context::SheetCut { region, inside: true, depth: self.depth, leave: self.leave_stock });
+        if moves.is_empty() {
+            ctx.warn(&self.name, "the pocket has no material left to its depth (earlier operations cut it away)");
+            return Ok(Vec::new());
+        }
         Ok(vec![sheet::toolpath(&self.name, &tool, moves, ctx.heights.clearance)])
     }
 }

@@ -124,12 +124,12 @@ impl Default for Profile2d {
 }
 
 /// What the profile needs besides its settings.
-pub struct Setup<'a> {
+pub struct Setup<'a, 'm> {
     pub tool_radius: f64,
     pub top: f64,
     pub depth: f64,
     pub feed: f64,
-    pub cursor: &'a mut Cursor,
+    pub cursor: &'a mut Cursor<'m>,
     pub tol: &'a Tolerances,
 }
 
@@ -237,6 +237,7 @@ pub fn profile_moves(walls: &Walls, picked: &[usize], op: &Profile2d, mut s: Set
     // Holes first.
     laps.sort_by_key(|l| l.outside);
     let mut out = Vec::new();
+    let mut in_air = 0;
     for lap in &laps {
         // Climb milling keeps the part on the tool's right.
         let climb = op.direction == Direction::Climb;
@@ -246,11 +247,16 @@ pub fn profile_moves(walls: &Walls, picked: &[usize], op: &Profile2d, mut s: Set
         let segs = start_nearest(&travel, longest.midpoint());
         let tabbed = lap.outside && (op.tabs.count > 0 || op.tabs.spacing.is_some_and(|x| x > 0.0));
         let lead = op.lead_radius.unwrap_or(r).max(0.0);
-        cut_loop(&segs, &lap.clear, waste_left, lead, tabbed.then_some(&op.tabs), op.stepdown, angle, z_final, &mut s, &mut out);
+        if !cut_loop(&segs, &lap.clear, waste_left, lead, tabbed.then_some(&op.tabs), op.stepdown, angle, z_final, &mut s, &mut out) {
+            in_air += 1;
+        }
         s.cursor.moved(&out);
     }
-    if out.is_empty() {
+    if out.is_empty() && in_air == 0 {
         return Err(warnings.join("; "));
+    }
+    if in_air > 0 {
+        warnings.push(format!("{in_air} of {} paths have no material left along them (earlier operations cut it away) and are not cut", laps.len()));
     }
     Ok((out, warnings))
 }
@@ -267,13 +273,20 @@ fn cut_loop(
     z_final: f64,
     s: &mut Setup,
     out: &mut Vec<Move>,
-) {
+) -> bool {
     let (starts, total) = arc_lengths(segs);
     let start = segs[0].a;
+    let t_in = segs[0].tangent_at(0.0);
+    let lead_in = fitting_lead(start, t_in, waste_left, lead, clear, true);
+    // The laps start where the in-process stock along the loop (and its lead) starts: not in
+    // the air above what earlier operations cut away.
+    let lead_arc = lead_in.map(|(l_start, (center, clockwise))| Segment::arc(l_start, start, center, !clockwise));
+    let Some(top) = s.cursor.material_top(segs.iter().copied().chain(lead_arc), s.top, z_final, s.tol.gouge) else { return false };
+    s.cursor.safe = top + s.cursor.gap;
     // Laps: each ramps down at most `stepdown` (and no steeper than the angle), then one full
     // lap at the final depth.
-    let mut z = vec![(0.0, s.top)];
-    let (mut at, mut current) = (0.0, s.top);
+    let mut z = vec![(0.0, top)];
+    let (mut at, mut current) = (0.0, top);
     while current > z_final + 1e-9 {
         let target = (current - stepdown.max(1e-3)).max(z_final);
         let run = (current - target) / angle.tan();
@@ -293,24 +306,23 @@ fn cut_loop(
         heights = heights.max(&tab_heights(tabs, total, end, z_final, s.tool_radius));
     }
     // Lead arcs from and to the waste side, if they keep clear of the part.
-    let t_in = segs[0].tangent_at(0.0);
     let end_point = point_at(segs, &starts, total, end);
     let i_end = starts.partition_point(|&x| x <= end.rem_euclid(total)).saturating_sub(1);
     let seg_end = segs[i_end];
     let t_end = seg_end.tangent_at(seg_end.closest(end_point).1);
     let z_end = heights.at(end);
-    let lead_in = fitting_lead(start, t_in, waste_left, lead, clear, true);
     match lead_in {
         Some((l_start, arc)) => {
-            s.cursor.reposition(l_start.extend(s.top), out);
-            out.push(Move::Arc { to: start.extend(s.top), center: arc.0, clockwise: arc.1, feed: s.feed });
+            s.cursor.reposition(l_start.extend(top), out);
+            out.push(Move::Arc { to: start.extend(top), center: arc.0, clockwise: arc.1, feed: s.feed });
         }
-        None => s.cursor.reposition(start.extend(s.top), out),
+        None => s.cursor.reposition(start.extend(top), out),
     }
     follow(segs, 0.0, end, &heights, s.feed, out);
     if let Some((l_end, arc)) = fitting_lead(end_point, t_end, waste_left, lead, clear, false) {
         out.push(Move::Arc { to: l_end.extend(z_end), center: arc.0, clockwise: arc.1, feed: s.feed });
     }
+    true
 }
 
 /// Tab heights over arc lengths [0, end): trapezoids with 45° sides over each tab, the tool's
@@ -387,6 +399,9 @@ impl super::Operate for Profile2d {
         ctx.cuts.extend(cuts);
         for n in notes {
             ctx.warn(&self.name, n);
+        }
+        if moves.is_empty() {
+            return Ok(Vec::new());
         }
         Ok(vec![sheet::toolpath(&self.name, &tool, moves, ctx.heights.clearance)])
     }

@@ -3,7 +3,7 @@
 //! between cuts, and the tool path around an operation's moves.
 
 use super::context::{Context, SheetCut};
-use super::path2d::Cursor;
+use super::path2d::{Cursor, InStock};
 use super::walls::Walls;
 use crate::error::{Error, Result};
 use crate::geom::{DVec2, DVec3};
@@ -52,10 +52,19 @@ pub fn pocket_region(shape: &Shape, picked: &[Loop], all: bool) -> Shape {
 }
 
 /// The cursor of a 2.5D operation with `tool`, at the clearance height: rapids stop the job's
-/// gap above the sheet's top.
-pub fn cursor(ctx: &Context, tool: &Tool) -> Cursor {
+/// gap above the in-process stock under the cutter (never above the stock's top plus the gap).
+pub fn cursor<'m>(ctx: &'m Context, tool: &Tool) -> Cursor<'m> {
     let clearance = ctx.heights.clearance;
-    Cursor { at: DVec3::new(0.0, 0.0, clearance), clearance, safe: ctx.stock.max.z + ctx.heights.gap, plunge: tool.plunge_rate, traverse: None }
+    let stock = InStock { stock: ctx.sim.stock(), profile: tool.cutter.profile(), shy: ctx.tolerances.gouge };
+    Cursor {
+        at: DVec3::new(0.0, 0.0, clearance),
+        clearance,
+        safe: ctx.stock.max.z + ctx.heights.gap,
+        gap: ctx.heights.gap,
+        plunge: tool.plunge_rate,
+        traverse: None,
+        stock: Some(stock),
+    }
 }
 
 /// An operation's moves as a tool path: it starts above its first rapid's end at the

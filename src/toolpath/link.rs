@@ -128,17 +128,9 @@ impl Linker<'_> {
             } else if stay {
                 moves.push(Move::Line { to: p0, feed: self.feeds.cut });
             } else {
-                if down {
-                    moves.push(Move::Rapid { to: at.truncate().extend(clearance) });
-                }
-                if at.truncate() != p0.truncate() || !down && at.z != clearance {
-                    moves.push(Move::Rapid { to: p0.truncate().extend(clearance) });
-                }
                 let material = (self.material)(p0.truncate());
                 let top = (p0.z.max(material) + settings.rapid_gap).min(clearance);
-                if top < clearance {
-                    moves.push(Move::Rapid { to: p0.truncate().extend(top) });
-                }
+                retract(at, p0.truncate(), clearance, top, &mut moves);
                 let inside = (self.estimate)(p0.truncate()) > p0.z + self.threshold;
                 let (entry, kind) = enter_3d(top, if inside { material } else { f64::NEG_INFINITY }, run, self.radius, &self.entry, self.keep, (self.feeds.plunge, self.feeds.cut), tolerances.height);
                 entries.count(kind);
@@ -152,5 +144,21 @@ impl Linker<'_> {
             moves.push(Move::Rapid { to: at.truncate().extend(clearance) });
         }
         (start, moves, entries)
+    }
+}
+
+/// The retract between two cuts, as every strategy makes it (the 3D linker, the 2.5D cursor):
+/// from `at` straight up to the `travel` height (when below it), across at rapid to above
+/// `to`, and down at rapid to `stop` (when below the travel height). What follows (a feed
+/// down, an entry) is the caller's.
+pub fn retract(at: DVec3, to: DVec2, travel: f64, stop: f64, out: &mut Vec<Move>) {
+    if at.z < travel {
+        out.push(Move::Rapid { to: at.truncate().extend(travel) });
+    }
+    if at.truncate() != to || at.z > travel {
+        out.push(Move::Rapid { to: to.extend(travel) });
+    }
+    if stop < travel {
+        out.push(Move::Rapid { to: to.extend(stop) });
     }
 }
