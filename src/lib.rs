@@ -30,6 +30,7 @@ pub mod sim;
 pub mod strategy;
 pub mod tool;
 pub mod toolpath;
+pub mod zigzag;
 pub mod zmap;
 
 #[cfg(target_arch = "wasm32")]

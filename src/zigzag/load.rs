@@ -1,0 +1,341 @@
+//! Seed 004 §3: the tool's load along a path, counted on a pixel map of the level (§3.2), and
+//! the path changed where the load would pass the reference (§3.3).
+//!
+//! * **§3.2.** The material at the level is a map of pixels. The tool, moved along the path in
+//!   steps of the sampling distance Δs, removes the pixels its disc sweeps; their count per step
+//!   is the material removal rate at a constant feed. The reference is the count a straight pass
+//!   at the step-over s removes: `(Δs / pixel) × (s / pixel)`.
+//! * **§3.3.** Where the next step would remove more than the reference (by the tolerance), the
+//!   tool changes direction: it turns away from the material (to the left when climbing, so the
+//!   material stays on its right) by the least angle that brings the step's count under the
+//!   limit, and goes on from there towards the path; the extra segments peel the overload off
+//!   in slices no thicker than the step-over. Turning is limited to a quarter turn either way,
+//!   so a slot (material all round the front of the tool) is left as it is: no direction
+//!   eases it, and the strategy lowers the feed there instead.
+//!
+//! The extra segments come out as short lines; [`crate::toolpath::arcfit`] turns them into arcs.
+
+use crate::geom::segment::Rect;
+use crate::geom::DVec2;
+use crate::profile::Shape;
+
+/// Directions tried on each side of the way to the path, as steps of this angle (radians),
+/// up to a quarter turn: turning further back only shuttles in cleared material.
+const TURN: f64 = std::f64::consts::PI / 36.0;
+const TURNS: usize = 18;
+/// A run whose corrected path grows past this many times its own number of steps (plus a
+/// margin) goes on as it was: a guard, reported as overloaded steps.
+const BUDGET: usize = 12;
+
+/// The material at one level, as pixels, and where the tool's centre may go.
+pub struct PixelMap {
+    origin: DVec2,
+    px: f64,
+    nx: usize,
+    ny: usize,
+    material: Vec<bool>,
+    allowed: Vec<bool>,
+    radius: f64,
+}
+
+impl PixelMap {
+    /// Pixels of size `px` over `bounds` grown by the tool's `radius`; material where
+    /// `material` says so; the tool's centre allowed inside `region`.
+    pub fn new(bounds: Rect, px: f64, radius: f64, material: impl Fn(DVec2) -> bool, region: &Shape) -> PixelMap {
+        let b = bounds.expand(radius + 2.0 * px);
+        let nx = ((b.max.x - b.min.x) / px).ceil() as usize + 1;
+        let ny = ((b.max.y - b.min.y) / px).ceil() as usize + 1;
+        let origin = b.min;
+        let mut m = vec![false; nx * ny];
+        let mut allowed = vec![false; nx * ny];
+        for j in 0..ny {
+            let y = origin.y + j as f64 * px;
+            for i in 0..nx {
+                m[j * nx + i] = material(DVec2::new(origin.x + i as f64 * px, y));
+            }
+            for (x0, x1) in region.spans_at(y) {
+                let (i0, i1) = (((x0 - origin.x) / px).ceil().max(0.0) as usize, ((x1 - origin.x) / px).floor().max(0.0) as usize);
+                for i in i0..=i1.min(nx - 1) {
+                    allowed[j * nx + i] = true;
+                }
+            }
+        }
+        PixelMap { origin, px, nx, ny, material: m, allowed, radius }
+    }
+
+    pub fn pixel(&self) -> f64 {
+        self.px
+    }
+
+    /// Whether the tool's centre may stand at `q` (the pixel nearest it is in the region).
+    pub fn allowed(&self, q: DVec2) -> bool {
+        let u = ((q - self.origin) / self.px).round();
+        u.x >= 0.0 && u.y >= 0.0 && (u.x as usize) < self.nx && (u.y as usize) < self.ny && self.allowed[u.y as usize * self.nx + u.x as usize]
+    }
+
+    /// The material pixels the tool's disc sweeps moving from `a` to `b`; removed when `cut`.
+    fn sweep(&mut self, a: DVec2, b: DVec2, cut: bool) -> usize {
+        let r = self.radius;
+        let lo = ((a.min(b) - DVec2::splat(r) - self.origin) / self.px).floor().max(DVec2::ZERO);
+        let hi = ((a.max(b) + DVec2::splat(r) - self.origin) / self.px).ceil();
+        let (i0, j0) = (lo.x as usize, lo.y as usize);
+        let (i1, j1) = ((hi.x as usize).min(self.nx - 1), (hi.y as usize).min(self.ny - 1));
+        let ab = b - a;
+        let len2 = ab.length_squared();
+        let r2 = r * r;
+        let mut count = 0;
+        for j in j0..=j1 {
+            let row = j * self.nx;
+            let y = self.origin.y + j as f64 * self.px;
+            for i in i0..=i1 {
+                if !self.material[row + i] {
+                    continue;
+                }
+                let p = DVec2::new(self.origin.x + i as f64 * self.px, y);
+                let t = if len2 > 0.0 { ((p - a).dot(ab) / len2).clamp(0.0, 1.0) } else { 0.0 };
+                if (a + ab * t).distance_squared(p) <= r2 {
+                    count += 1;
+                    if cut {
+                        self.material[row + i] = false;
+                    }
+                }
+            }
+        }
+        count
+    }
+
+    /// The material pixels moving from `a` to `b` would remove.
+    pub fn count(&mut self, a: DVec2, b: DVec2) -> usize {
+        self.sweep(a, b, false)
+    }
+
+    /// Removes what the move from `a` to `b` sweeps; returns the count.
+    pub fn cut(&mut self, a: DVec2, b: DVec2) -> usize {
+        self.sweep(a, b, true)
+    }
+
+    /// Material pixels left.
+    pub fn left(&self) -> usize {
+        self.material.iter().filter(|&&m| m).count()
+    }
+}
+
+/// The load settings of one level.
+#[derive(Clone, Copy, Debug)]
+pub struct Load {
+    /// The sampling distance Δs (mm).
+    pub ds: f64,
+    /// The step-over s (mm): a straight pass's radial depth.
+    pub step: f64,
+    /// How far over the reference a step may go (0.1: 10 %).
+    pub tolerance: f64,
+    /// Climbing: the material on the tool's right, so it turns left to ease off.
+    pub climb: bool,
+}
+
+impl Load {
+    /// §3.2: the pixels a step of Δs at the step-over removes.
+    pub fn reference(&self, px: f64) -> f64 {
+        (self.ds / px) * (self.step / px)
+    }
+}
+
+/// The load along a path: pixels removed per step, each step's length (the last of a run
+/// may be short), for the statistics.
+#[derive(Clone, Debug, Default)]
+pub struct Profile {
+    pub counts: Vec<(f64, f64)>,
+}
+
+impl Profile {
+    /// The load relative to the reference over consecutive windows of the path at least Δs
+    /// long (steps taken whole; a short last window is left out).
+    pub fn ratios(&self, reference: f64, ds: f64) -> Vec<f64> {
+        let mut out = Vec::new();
+        let (mut n, mut len) = (0.0, 0.0);
+        for &(c, l) in &self.counts {
+            n += c;
+            len += l;
+            if len >= ds - 1e-9 {
+                out.push(n * ds / len / reference);
+                (n, len) = (0.0, 0.0);
+            }
+        }
+        out
+    }
+}
+
+/// `run` cut as it is, in steps of `ds`: returns the path as cut (the run's points with the
+/// steps between) and the count of each step.
+pub fn plain(map: &mut PixelMap, run: &[DVec2], load: &Load, profile: &mut Profile) -> Vec<DVec2> {
+    let pts = densify(run, load.ds);
+    if let Some(&p) = pts.first() {
+        map.cut(p, p);
+    }
+    for w in pts.windows(2) {
+        let n = map.cut(w[0], w[1]);
+        profile.counts.push((n as f64, w[0].distance(w[1])));
+    }
+    pts
+}
+
+/// §3.3: `run` cut with its load held at the reference plus the tolerance: the path as cut
+/// (the run's own points where they keep the load, extra segments where they would not), and
+/// the count of each step. The run is entered at its first point (the entry clears the tool's
+/// disc there). A slot (the first pass into a closed region) has no side to ease off to: it
+/// stays as it is, overloaded, and the strategy lowers its feed.
+pub fn corrected(map: &mut PixelMap, run: &[DVec2], load: &Load, profile: &mut Profile) -> Vec<DVec2> {
+    let pts = densify(run, load.ds);
+    let Some(&start) = pts.first() else { return Vec::new() };
+    let px = map.pixel();
+    // Aim at half the tolerance: the rest is room for the pixels' noise.
+    let limit = load.reference(px) * (1.0 + 0.5 * load.tolerance);
+    map.cut(start, start);
+    let mut out = vec![start];
+    let mut pos = start;
+    let mut step_to = |map: &mut PixelMap, pos: &mut DVec2, q: DVec2, out: &mut Vec<DVec2>| {
+        let n = map.cut(*pos, q);
+        profile.counts.push((n as f64, pos.distance(q)));
+        *pos = q;
+        out.push(q);
+    };
+    let side = if load.climb { 1.0 } else { -1.0 };
+    let mut budget = BUDGET * pts.len() + 2000;
+    let mut k = 1;
+    while k < pts.len() {
+        let target = pts[k];
+        let to = target - pos;
+        let dist = to.length();
+        if dist < 1e-9 {
+            k += 1;
+            continue;
+        }
+        let step = dist.min(load.ds);
+        let cap = limit * step / load.ds;
+        let dir = to / dist;
+        let mut chosen = None;
+        // The least loaded direction, where none keeps under the limit.
+        let mut least: Option<(usize, DVec2, bool)> = None;
+        let mut straight = usize::MAX;
+        if budget > 0 {
+            budget -= 1;
+            'search: for s in [side, -side] {
+                for a in 0..=TURNS {
+                    if a == 0 && s != side {
+                        continue;
+                    }
+                    let q = pos + DVec2::from_angle(s * TURN * a as f64).rotate(dir) * step;
+                    if a > 0 && !map.allowed(q) {
+                        continue;
+                    }
+                    let n = map.count(pos, q);
+                    if n as f64 <= cap {
+                        chosen = Some((q, a == 0));
+                        break 'search;
+                    }
+                    if a == 0 {
+                        straight = n;
+                    }
+                    if least.is_none_or(|l| n < l.0) {
+                        least = Some((n, q, a == 0));
+                    }
+                }
+            }
+            // Off the path only for a clear gain: a slot stays straight.
+            chosen = chosen.or(least.filter(|l| 2 * l.0 <= straight).map(|l| (l.1, l.2)));
+        }
+        match chosen {
+            Some((q, straight)) => {
+                step_to(map, &mut pos, q, &mut out);
+                if straight && step >= dist - 1e-12 {
+                    k += 1;
+                }
+            }
+            // Nowhere to ease off to (or the guard ran out): on along the path as it is.
+            None => {
+                let q = if step >= dist - 1e-12 { target } else { pos + dir * step };
+                step_to(map, &mut pos, q, &mut out);
+                if step >= dist - 1e-12 {
+                    k += 1;
+                }
+            }
+        }
+        // Back on the path: skip the points the detour passed.
+        while k < pts.len() && pos.distance(pts[k]) < 0.5 * load.ds && k + 1 < pts.len() {
+            k += 1;
+        }
+    }
+    out
+}
+
+/// The points of `run` with extra points so that no step is longer than `ds`.
+pub fn densify(run: &[DVec2], ds: f64) -> Vec<DVec2> {
+    let mut out: Vec<DVec2> = Vec::with_capacity(run.len());
+    for (i, &p) in run.iter().enumerate() {
+        if i > 0 {
+            let a = run[i - 1];
+            let n = (a.distance(p) / ds).ceil() as usize;
+            for k in 1..n {
+                out.push(a.lerp(p, k as f64 / n as f64));
+            }
+        }
+        if out.last() != Some(&p) {
+            out.push(p);
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::profile::Loop;
+
+    fn square_map(px: f64, r: f64) -> (PixelMap, Shape) {
+        // A 40 mm square pocket, the centre's region inset by r.
+        let region = Shape::new(vec![Loop::rect(DVec2::splat(r), DVec2::splat(40.0 - r))]);
+        let bounds = Rect { min: DVec2::ZERO, max: DVec2::splat(40.0) };
+        let map = PixelMap::new(bounds, px, r, |p| p.x >= 0.0 && p.y >= 0.0 && p.x <= 40.0 && p.y <= 40.0, &region);
+        (map, region)
+    }
+
+    #[test]
+    fn a_straight_pass_beside_a_cut_removes_the_reference() {
+        let (mut map, _) = square_map(0.05, 5.0);
+        let load = Load { ds: 1.0, step: 3.0, tolerance: 0.1, climb: true };
+        let mut first = Profile::default();
+        plain(&mut map, &[DVec2::new(5.0, 5.0), DVec2::new(35.0, 5.0)], &load, &mut first);
+        // The first pass slots: the full diameter.
+        let slot = first.ratios(load.reference(0.05), load.ds);
+        assert!(slot[10..20].iter().all(|&r| (r - 10.0 / 3.0).abs() < 0.1), "{slot:?}");
+        let mut second = Profile::default();
+        plain(&mut map, &[DVec2::new(35.0, 8.0), DVec2::new(5.0, 8.0)], &load, &mut second);
+        let beside = second.ratios(load.reference(0.05), load.ds);
+        assert!(beside[10..20].iter().all(|&r| (r - 1.0).abs() < 0.05), "{beside:?}");
+    }
+
+    #[test]
+    fn going_up_a_side_between_passes_eases_in_instead_of_slotting() {
+        // A pass along y = 5, then up the right side by the step-over and back along y = 8.
+        let load = Load { ds: 0.5, step: 3.0, tolerance: 0.1, climb: false };
+        let run = [DVec2::new(5.0, 5.0), DVec2::new(35.0, 5.0), DVec2::new(35.0, 8.0), DVec2::new(5.0, 8.0)];
+        let reference = load.reference(0.1);
+        let (mut a, _) = square_map(0.1, 5.0);
+        let mut before = Profile::default();
+        plain(&mut a, &run, &load, &mut before);
+        let (mut b, _) = square_map(0.1, 5.0);
+        let mut after = Profile::default();
+        let path = corrected(&mut b, &run, &load, &mut after);
+        // Past the first pass (a slot in both), the plain path overloads going up the side,
+        // the corrected one not.
+        // The first 30 mm (60 windows) are the slot.
+        let past = |p: &Profile| p.ratios(reference, load.ds).into_iter().skip(60).fold(0.0, f64::max);
+        let (worst_plain, worst) = (past(&before), past(&after));
+        assert!(worst_plain > 1.5, "{worst_plain}");
+        assert!(worst <= 1.1 + 1e-9, "{worst}");
+        // It ends where the run ends and leaves about what the plain path leaves (the corner
+        // it eased round: the boundary pass takes that).
+        assert!(path.last().unwrap().distance(run[3]) < 1e-9);
+        assert!((b.left() as f64) < a.left() as f64 * 1.002, "{} {}", b.left(), a.left());
+    }
+}
