@@ -64,3 +64,12 @@ fn roughing_in_wasm() {
     web_sys_log(&row);
     assert!(row.contains("total"));
 }
+
+#[wasm_bindgen_test]
+fn zigzag_in_wasm() {
+    let rows = swarf::job::bench::zigzag_rows("wasm (Chromium)", &now);
+    for row in &rows {
+        web_sys_log(row);
+    }
+    assert_eq!(rows.len(), 3);
+}

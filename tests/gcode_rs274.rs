@@ -352,3 +352,18 @@ fn roughing_then_finishing_programs_run_in_linuxcnc_with_arcs() {
         assert!(actual.iter().rev().any(|(_, p)| p.truncate().distance(last.truncate()) < 0.001));
     }
 }
+
+#[test]
+fn zigzag_roughing_with_its_arcs_and_feeds_runs_in_linuxcnc_move_for_move() {
+    use swarf::strategy::rough_zigzag::RoughZigzag;
+    let tools = vec![Tool { number: 1, cutter: Cutter { flute_length: 40.0, ..Cutter::flat(6.0) }, ..Tool::default() }];
+    let job = Job { tools, operations: vec![Operation::RoughZigzag(RoughZigzag { tool: 1, stepdown: 4.0, angle: 30.0, ..RoughZigzag::default() })], ..Job::default() };
+    let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
+    assert!(out.verification.as_ref().unwrap().report.is_clean());
+    let actual = interpret(&out.gcode, &job.tools);
+    assert!(actual.iter().filter(|(k, _)| matches!(k, Kind::Arc { .. })).count() > 10);
+    compare(&actual, &expected_at(&out.paths, out.clearance_z, 1.0, Some(0.001)), 0.0005);
+    // The lowered feeds are written.
+    let feeds: std::collections::BTreeSet<String> = out.gcode.split_whitespace().filter(|w| w.starts_with('F')).map(str::to_string).collect();
+    assert!(feeds.len() > 3, "{feeds:?}");
+}

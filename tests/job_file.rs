@@ -46,9 +46,9 @@ fn a_misspelt_field_is_named_with_what_it_may_mean() {
 #[test]
 fn unknown_kinds_wrong_types_and_newer_versions_say_where() {
     let mut v = default_json();
-    v["operations"].as_array_mut().unwrap().push(serde_json::json!({"kind": "roughZigzag", "tool": 1}));
+    v["operations"].as_array_mut().unwrap().push(serde_json::json!({"kind": "roughTrochoidal", "tool": 1}));
     let e = error_of(&v.to_string());
-    assert!(e.contains("operations[1]") && e.contains("roughZigzag"), "{e}");
+    assert!(e.contains("operations[1]") && e.contains("roughTrochoidal"), "{e}");
 
     let mut v = default_json();
     v["operations"][0]["stepover"] = "fine".into();

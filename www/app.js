@@ -497,6 +497,33 @@ function drawMrr() {
   g.fillStyle = '#394550';
   g.font = `${11 * dpr}px system-ui`;
   g.fillText(`MRR, peak ${Math.round(sim.peak).toLocaleString()} mm³/min`, 4 * dpr, 11 * dpr);
+  // Operations that hold a load (seed 004): the reference rate at a full step-down, dashed,
+  // and the plain path's rate before the correction (its windows spread over the operation's
+  // time), faint: the paper's Fig. 14.
+  sim.marks.forEach((m, k) => {
+    if (!m.load) return;
+    const end = k + 1 < sim.marks.length ? sim.marks[k + 1].t : total;
+    const [x0, x1] = [(m.t / total) * w, (end / total) * w];
+    const y = (v) => h - (v / sim.peak) * (h - 14 * dpr);
+    const plain = m.load.plain;
+    if (plain.length) {
+      g.strokeStyle = 'rgba(57, 69, 80, 0.35)';
+      g.lineWidth = dpr;
+      g.beginPath();
+      plain.forEach((r, i) => { const x = x0 + ((x1 - x0) * i) / plain.length, v = y(Math.min(r * m.load.rate, sim.peak)); if (i) g.lineTo(x, v); else g.moveTo(x, v); });
+      g.stroke();
+    }
+    g.strokeStyle = '#2b8a3e';
+    g.lineWidth = dpr;
+    g.setLineDash([4 * dpr, 3 * dpr]);
+    g.beginPath();
+    g.moveTo(x0, y(m.load.rate));
+    g.lineTo(x1, y(m.load.rate));
+    g.stroke();
+    g.setLineDash([]);
+    g.fillStyle = '#2b8a3e';
+    g.fillText(`reference ${Math.round(m.load.rate).toLocaleString()}`, x0 + 3 * dpr, Math.max(11 * dpr, y(m.load.rate) - 3 * dpr));
+  });
   // The operations: a line in each one's colour where it starts, and its name.
   for (const m of sim.marks) {
     const mx = Math.round((m.t / total) * w), c = OP_COLORS[m.index % OP_COLORS.length].slice(0, 3).map((v) => Math.round(v * 255));
@@ -512,7 +539,7 @@ function drawMrr() {
 function showSimulation(data, summary = null) {
   sim.data = data;
   // Where each operation starts in program time, for the marks on the MRR plot.
-  sim.marks = data && summary ? summary.operationStarts.map((m, k) => ({ t: data.times[m], name: summary.operations[k].name, index: summary.operations[k].index })) : [];
+  sim.marks = data && summary ? summary.operationStarts.map((m, k) => ({ t: data.times[m], name: summary.operations[k].name, index: summary.operations[k].index, load: summary.operations[k].load })) : [];
   sim.buckets = null;
   sim.playing = false;
   $('play').textContent = '▶';

@@ -228,3 +228,67 @@ pub fn rough_row(name: &str, stl: &[u8], platform: &str, clock: &dyn Fn() -> f64
         out.stats.seconds
     )
 }
+
+/// Seed 004's case: the paper-like pocket ([`sample::paper_pocket`], 120 × 85 mm, two
+/// islands), a φ10 flat end at feed 1000, radial depth 3 mm, axial 0.5 mm, one level, zigzag
+/// roughing with the load held by `load`; the stock the plate.
+pub fn paper_zigzag_job(load: crate::strategy::rough_zigzag::LoadControl) -> Job {
+    use crate::strategy::rough_zigzag::RoughZigzag;
+    let tool = Tool { cutter: Cutter::flat(10.0), feed_rate: 1000.0, plunge_rate: 250.0, ..Tool::default() };
+    let op = RoughZigzag { stepdown: 0.5, stepover: 0.3, allowance: 0.0, leave_stock: 0.0, load, grid: 0.5, ..RoughZigzag::default() };
+    Job {
+        part: crate::mesh::placement::PartSetup { placement: crate::mesh::placement::Placement::Keep, ..Default::default() },
+        stock: job::Stock { margin_xy: 0.0, margin_top: 0.0, margin_bottom: 0.0, ..Default::default() },
+        post: crate::post::PostSettings { rapid_rate: 5000.0, ..Default::default() },
+        tools: vec![tool],
+        operations: vec![Operation::RoughZigzag(op)],
+        simulation: Simulation { verify: false, cell: None },
+        ..Job::default()
+    }
+}
+
+/// Seed 004's figures on its case, for the plain path, the feed lowered where it overloads,
+/// and the path corrected: path length, the load's peak and spread over the reference (per
+/// Δs, on the pixel map), the cycle time as programmed and at the feed each allows (the plain
+/// path at the one constant feed its peak load allows, 1.1 × the reference), and compute time.
+pub fn zigzag_rows(platform: &str, clock: &dyn Fn() -> f64) -> Vec<String> {
+    use crate::strategy::rough_zigzag::{LoadControl, LoadReport};
+    let part = sample::paper_pocket(0.5, 0.5);
+    let mut rows = Vec::new();
+    for load in [LoadControl::None, LoadControl::Feed, LoadControl::Path] {
+        let job = paper_zigzag_job(load);
+        let start = clock();
+        let out = crate::job::run(&job, part.clone(), &mut Progress::none()).expect("the paper's pocket roughs");
+        let compute = clock() - start;
+        let r = &out.operations[0];
+        let l = r.load.as_ref().expect("a load report");
+        let (plain, plain_spread) = LoadReport::peak_and_spread(&l.plain);
+        let (cut, cut_spread) = LoadReport::peak_and_spread(&l.cut);
+        let rapid = r.rapid_length / job.post.rapid_rate * 60.0;
+        let allowed = match load {
+            LoadControl::None => (r.seconds - rapid) * cut / 1.1 + rapid,
+            _ => r.seconds,
+        };
+        rows.push(format!(
+            "| {platform} | {load:?} | {:.0} | {plain:.2} ({plain_spread:.2}) | {cut:.2} ({cut_spread:.2}) | {:.0} | {:.0} | {:.0} | {compute:.2} |",
+            r.feed_length, l.slowed, r.seconds, allowed
+        ));
+    }
+    rows
+}
+
+/// The removal rate of any program (G-code text, swarf's or a peer's) on a part placed as in
+/// [`peer_rough_job`] (the stock the part's box), over windows of `ds` mm of level cutting
+/// (entries left out), by the project's simulation at `cell`: the highest window and the mean
+/// (mm³/min), and the number of windows.
+pub fn program_load(part: Mesh, gcode: &str, cell: f64, ds: f64) -> crate::error::Result<(f64, f64, usize)> {
+    let mut job = peer_rough_job();
+    let mut part = part;
+    let stock = job.place(&mut part);
+    job.tools[0].cutter.flute_length = 1e3;
+    let paths = crate::post::read::read_gcode(gcode, 1)?;
+    let moves = crate::sim::program::program_moves(&paths, &job.tools, job.post.rapid_rate)?;
+    let rates = crate::sim::windows::windowed_rates(&moves, &stock, cell, ds)?;
+    let mean = rates.iter().sum::<f64>() / rates.len().max(1) as f64;
+    Ok((rates.iter().copied().fold(0.0, f64::max), mean, rates.len()))
+}

@@ -488,6 +488,7 @@ impl Job {
             sim: Simulator::new(&stock, cell)?,
             warnings: Vec::new(),
             cuts: Vec::new(),
+            load: None,
         })
     }
 }
@@ -544,11 +545,13 @@ pub fn run(job: &Job, workpiece: impl Into<Workpiece>, progress: &mut Progress) 
     let mut move_ranges = Vec::new();
     let mut all_moves: Vec<ProgramMove> = Vec::new();
     let mut snapshots = Vec::new();
+    let mut loads = Vec::new();
     for (n, &k) in enabled.iter().enumerate() {
         let o = job.operations[k].op();
         let start = n as f64 / count;
         progress.frame(start, plan_share / count, Some(o.name()));
         let planned = o.plan(&mut ctx, progress)?;
+        loads.push(ctx.load.take());
         let first_path = paths.len();
         path_operations.extend(std::iter::repeat_n(k, planned.len()));
         paths.extend(planned);
@@ -594,7 +597,10 @@ pub fn run(job: &Job, workpiece: impl Into<Workpiece>, progress: &mut Progress) 
         (None, Some(sim)) => sim.volumes(),
         (None, None) => &[],
     };
-    let operations = report::per_operation(job, &enabled, &all_moves, &move_ranges, volumes, &snapshots, verification.as_ref());
+    let mut operations = report::per_operation(job, &enabled, &all_moves, &move_ranges, volumes, &snapshots, verification.as_ref());
+    for (o, load) in operations.iter_mut().zip(loads) {
+        o.load = load;
+    }
     let problem = verification.as_ref().and_then(|v| v.report.problem());
     progress.stage("done", 1.0, 0.0);
     let drawing = sheet.map(|s| s.drawing);

@@ -8,6 +8,7 @@ use crate::strategy::finish_raster::FinishRaster;
 use crate::strategy::finish_waterline::FinishWaterline;
 use crate::strategy::pocket2d::Pocket2d;
 use crate::strategy::profile2d::Profile2d;
+use crate::strategy::rough_zigzag::RoughZigzag;
 use crate::strategy::rough_zlevel::RoughZlevel;
 use crate::strategy::Operate;
 
@@ -54,6 +55,8 @@ macro_rules! operations {
 operations! {
     /// Z-level roughing on a part's CL z-map (DESIGN.md ideas 1 and 3).
     RoughZlevel(RoughZlevel) = "roughZlevel",
+    /// Zigzag roughing by the intersection-points graph, with the load held constant (seed 004).
+    RoughZigzag(RoughZigzag) = "roughZigzag",
     /// Raster finishing on a part's CL z-map (seed 001).
     FinishRaster(FinishRaster) = "finishRaster",
     /// Waterline finishing on a part's steep areas.

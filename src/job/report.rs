@@ -7,6 +7,7 @@ use serde::Serialize;
 use super::Job;
 use crate::sim::program::ProgramMove;
 use crate::sim::verify::Verification;
+use crate::strategy::rough_zigzag::LoadReport;
 use crate::zmap::HeightField;
 
 /// One operation's figures.
@@ -31,6 +32,9 @@ pub struct OperationReport {
     /// part (mm), when the program was verified.
     pub left_max: Option<f64>,
     pub left_mean: Option<f64>,
+    /// The load along its path against the reference, before and after seed 004's correction,
+    /// where the operation measured it.
+    pub load: Option<LoadReport>,
 }
 
 impl OperationReport {
@@ -42,6 +46,13 @@ impl OperationReport {
         }
         if let (Some(a), Some(b)) = (self.left_max, self.left_mean) {
             s += &format!(", left up to {a:.3} mm (mean {b:.3} mm)");
+        }
+        if let Some(l) = &self.load {
+            let ((p, ps), (e, es), (c, cs)) = (LoadReport::peak_and_spread(&l.plain), LoadReport::peak_and_spread(&l.load), LoadReport::peak_and_spread(&l.cut));
+            s += &format!(
+                "; per {:.2} mm over the reference ({:.0} mm³/min per mm of depth): the plain path's load peaks at {p:.2} (spread {ps:.2}), the path's at {e:.2} (spread {es:.2}), its removal rate at its feeds at {c:.2} (spread {cs:.2}), {:.0} mm at a lowered feed",
+                l.sampling, l.reference, l.slowed
+            );
         }
         s
     }
@@ -104,7 +115,7 @@ pub fn per_operation(
                 }
                 _ => (None, None),
             };
-            OperationReport { index, name: op.name().to_string(), tools, moves: mine.len(), seconds, feed_length, rapid_length, removed, mrr_max, left_max, left_mean }
+            OperationReport { index, name: op.name().to_string(), tools, moves: mine.len(), seconds, feed_length, rapid_length, removed, mrr_max, left_max, left_mean, load: None }
         })
         .collect()
 }

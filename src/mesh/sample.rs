@@ -68,3 +68,23 @@ pub fn fuel_tank_die(nx: usize, ny: usize) -> Mesh {
         cavity + boss + channel + waves
     })
 }
+
+/// A pocket like seed 004's test piece (its Fig. 13, 120 × 85 mm), our own outline: a 120 ×
+/// 85 mm pocket `depth` deep in a plate 10 mm wider on every side, with two islands standing
+/// to the plate's top: a round one (radius 10 at (35, 45)) and a rectangular one (20 × 15 at
+/// (80, 30)). Sampled every `spacing` mm: its walls slope across one sample.
+pub fn paper_pocket(depth: f64, spacing: f64) -> Mesh {
+    let (min, max) = (DVec2::new(-10.0, -10.0), DVec2::new(130.0, 95.0));
+    let nx = ((max.x - min.x) / spacing).round() as usize;
+    let ny = ((max.y - min.y) / spacing).round() as usize;
+    height_field_solid(min, max, nx, ny, -depth - 10.0, move |x, y| {
+        let in_pocket = (0.0..=120.0).contains(&x) && (0.0..=85.0).contains(&y);
+        let round = DVec2::new(x - 35.0, y - 45.0).length() <= 10.0;
+        let square = (80.0..=100.0).contains(&x) && (30.0..=45.0).contains(&y);
+        if in_pocket && !round && !square {
+            -depth
+        } else {
+            0.0
+        }
+    })
+}

@@ -17,6 +17,7 @@ pub mod playback;
 pub mod program;
 pub mod sweep;
 pub mod verify;
+pub mod windows;
 
 pub use dexel::DexelStock;
 pub use octree::OctreeStock;

@@ -88,6 +88,9 @@ pub struct Context {
     pub warnings: Vec<Warning>,
     /// Where the 2.5D operations cut (for verifying a drawing's program).
     pub cuts: Vec<SheetCut>,
+    /// The load along the path of the operation just planned, where it measured one (seed
+    /// 004): the job moves it into that operation's report.
+    pub load: Option<crate::strategy::rough_zigzag::LoadReport>,
 }
 
 impl Context {
@@ -112,14 +115,23 @@ impl Context {
     /// the retract gap above the in-process stock, entries by `entry`. Entries that found no
     /// room for a helix or a ramp are warned of.
     pub fn link(&mut self, op: &str, tool: &Tool, runs: &[Vec<DVec3>], keep: &dyn Keepout, entry: Entry, stay_down_max: f64) -> Toolpath {
+        self.link_fed(op, tool, runs, (None, None), f64::INFINITY, keep, entry, stay_down_max)
+    }
+
+    /// [`Context::link`] with, where given, a feed for each move along the runs and whether
+    /// each run starts in material (`known`, see [`Linker::link_fed`]), and the in-process
+    /// stock taken no higher than `ceiling` (what the operation itself has cut down to before
+    /// these runs).
+    #[allow(clippy::too_many_arguments)]
+    pub fn link_fed(&mut self, op: &str, tool: &Tool, runs: &[Vec<DVec3>], known: (Option<&[Vec<f64>]>, Option<&[bool]>), ceiling: f64, keep: &dyn Keepout, entry: Entry, stay_down_max: f64) -> Toolpath {
         let profile = tool.cutter.profile();
         let stock = self.sim.stock();
-        let material = |p: DVec2| stock.touch(p, &profile, true);
-        let estimate = |p: DVec2| stock.touch(p, &profile, false);
+        let material = |p: DVec2| stock.touch(p, &profile, true).min(ceiling);
+        let estimate = |p: DVec2| stock.touch(p, &profile, false).min(ceiling);
         let settings = LinkSettings { clearance_z: self.heights.clearance, rapid_gap: self.heights.gap, stay_down_max };
-        let feeds = Feeds { cut: tool.feed_rate, plunge: tool.plunge_rate };
-        let linker = Linker { settings, keep, material: &material, estimate: &estimate, threshold: self.tolerances.gouge, entry, radius: profile.radius, feeds };
-        let (start, moves, entries) = linker.link(runs, &self.tolerances);
+        let rates = Feeds { cut: tool.feed_rate, plunge: tool.plunge_rate };
+        let linker = Linker { settings, keep, material: &material, estimate: &estimate, threshold: self.tolerances.gouge, entry, radius: profile.radius, feeds: rates };
+        let (start, moves, entries) = linker.link_fed(runs, known.0, known.1, &self.tolerances);
         if entries.plunge > 0 {
             self.warn(op, format!("{} entries found no room for a helix or a ramp and feed straight down into material", entries.plunge));
         }

@@ -13,6 +13,7 @@ pub mod finish_waterline;
 pub mod path2d;
 pub mod pocket2d;
 pub mod profile2d;
+pub mod rough_zigzag;
 pub mod rough_zlevel;
 pub mod sheet;
 pub mod walls;

@@ -2,7 +2,8 @@
 //! region offset inwards by the tool radius plus leave-stock, then by one step-over more each
 //! (seed 003 repeated; DESIGN.md idea 3), cut inside-out: a region's inner rings before it,
 //! staying down between rings where the straight link stays inside the pocket. Zigzag:
-//! parallel passes across the first ring's region, then that ring as a finishing contour.
+//! parallel passes across the first ring's region by seed 004's intersection-points graph
+//! (the passes joined along the region's boundary), then that ring as a finishing contour.
 //! Material is entered by a helix where one fits, else by ramping along the path, never by a
 //! straight plunge.
 
@@ -17,6 +18,7 @@ use crate::toolpath::entry::Keepout;
 use crate::offset::offset;
 use crate::profile::{Loop, Shape};
 use crate::toolpath::Move;
+use crate::zigzag::graph::{Graph, Pattern};
 
 /// How the pocket is cleared.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -222,7 +224,7 @@ pub fn clear_rings(levels: &[Shape], clearing: &Clearing, z_prev: f64, z: f64, s
             }
         }
         PocketPattern::Zigzag => {
-            c.zigzag(boundary, clearing.step, clearing.angle);
+            c.zigzag(boundary, clearing.step, clearing.angle, climb);
             for l in &boundary.loops {
                 c.cut_loop(&orient(l), false);
             }
@@ -232,16 +234,22 @@ pub fn clear_rings(levels: &[Shape], clearing: &Clearing, z_prev: f64, z: f64, s
 }
 
 /// The keep-out test of a pocket's links (the linker's [`Keepout`]): a straight move at depth
-/// must stay inside the region the tool's centre may occupy.
+/// must stay inside the region the tool's centre may occupy (its boundary included: a move
+/// may start or end on it).
 pub struct Inside<'a>(pub &'a Shape);
 
 impl Keepout for Inside<'_> {
     fn clears(&self, a: DVec3, b: DVec3, _tolerance: f64) -> bool {
         let (a, b) = (a.truncate(), b.truncate());
         let link = Segment::line(a, b);
-        self.0.contains((a + b) * 0.5) && self.0.segments().all(|s| s.crossings(&link, 1e-9).is_empty())
+        let at_end = |p: DVec2| p.distance(a) <= END_SLACK || p.distance(b) <= END_SLACK;
+        self.0.contains((a + b) * 0.5) && self.0.segments().all(|s| s.crossings(&link, 1e-9).iter().all(|c| at_end(c.p)))
     }
 }
+
+/// A link's crossing of the boundary this close to its ends is where it starts or ends on
+/// the boundary (mm).
+const END_SLACK: f64 = 1e-7;
 
 struct Ctx<'a, 'b, 'm> {
     s: &'a mut Setup<'b, 'm>,
@@ -347,32 +355,22 @@ impl Ctx<'_, '_, '_> {
         true
     }
 
-    /// Parallel passes across `region` at `angle`, `step` apart, back and forth.
-    fn zigzag(&mut self, region: &Shape, step: f64, angle: f64) {
-        let back = DVec2::from_angle(angle);
-        let turned = Shape::from_oriented(region.loops.iter().map(|l| l.rotated(-angle)).collect());
-        let b = turned.bounds();
-        let lines = ((b.max.y - b.min.y) / step).floor() as usize;
-        let mut forward = true;
-        for j in 0..=lines {
-            let y = b.min.y + (b.max.y - b.min.y) * 0.5 + (j as f64 - lines as f64 * 0.5) * step;
-            let mut spans: Vec<(f64, f64)> = turned.spans_at(y).into_iter().filter(|p| p.1 - p.0 > 1e-6).collect();
-            if !forward {
-                spans.reverse();
+    /// Parallel passes across `region` at `angle`, at most `step` apart, back and forth: the
+    /// walk of seed 004's intersection-points graph ([`Graph`]), each run of it entered by a
+    /// ramp along its first pass (or reached staying down where the link stays inside), and
+    /// followed along the region's boundary between passes.
+    fn zigzag(&mut self, region: &Shape, step: f64, angle: f64, climb: bool) {
+        let graph = Graph::new(region, angle, step);
+        for run in graph.walk(Pattern::Zigzag, climb, self.s.tol.chordal) {
+            let (pa, pb) = (run[0], run[1]);
+            if self.at_depth() && self.inside(self.s.cursor.at.truncate(), pa) {
+                self.out.push(Move::Line { to: pa.extend(self.z), feed: self.s.feed });
+            } else {
+                self.s.cursor.reposition(pa.extend(self.z_prev), self.out);
+                self.ramp_on_line(pa, pb);
             }
-            for (x0, x1) in spans {
-                let (a, bb) = if forward { (x0, x1) } else { (x1, x0) };
-                let (pa, pb) = (back.rotate(DVec2::new(a, y)), back.rotate(DVec2::new(bb, y)));
-                if self.at_depth() && self.inside(self.s.cursor.at.truncate(), pa) {
-                    self.out.push(Move::Line { to: pa.extend(self.z), feed: self.s.feed });
-                } else {
-                    self.s.cursor.reposition(pa.extend(self.z_prev), self.out);
-                    self.ramp_on_line(pa, pb);
-                }
-                self.out.push(Move::Line { to: pb.extend(self.z), feed: self.s.feed });
-                self.s.cursor.moved(self.out);
-            }
-            forward = !forward;
+            self.out.extend(run[1..].iter().map(|p| Move::Line { to: p.extend(self.z), feed: self.s.feed }));
+            self.s.cursor.moved(self.out);
         }
     }
 

@@ -27,7 +27,11 @@ use crate::sim::DexelStock;
 use crate::toolpath::Toolpath;
 use crate::zmap::contour::LevelMap;
 use crate::zmap::region::Region;
+use crate::zmap::surface::ClSurface;
 use crate::zmap::{ClBuilder, Grid, HeightField};
+use crate::profile::Shape;
+use crate::tool::Tool;
+use std::sync::Arc;
 
 /// Z-level roughing.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -109,6 +113,79 @@ impl Operate for RoughZlevel {
     }
 
     fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Vec<Toolpath>> {
+        let Some(Levels { tool, cl, levels }) = self.levels_to_cut(ctx, progress)? else { return Ok(Vec::new()) };
+        let r = tool.cutter.radius();
+        let tol = ctx.tolerances;
+        let step = self.step(r);
+        let clearing = Clearing {
+            step,
+            climb: self.direction == Direction::Climb,
+            pattern: PocketPattern::Offset,
+            angle: 0.0,
+            entry: PocketEntry::Helix,
+            ramp_angle: self.ramp_angle.clamp(0.1, 89.0).to_radians(),
+            helix_r: self.helix_radius.unwrap_or(0.4 * 2.0 * r).min(0.95 * r),
+        };
+        let clearance = ctx.heights.clearance;
+        let mut cursor = sheet::cursor(ctx, &tool);
+        let mut moves = Vec::new();
+        // The region the level before cleared (none above the first level).
+        let mut cleared: Option<Shape> = None;
+        let count = levels.len();
+        for (k, Level { z, z_prev, region }) in levels.into_iter().enumerate() {
+            if !progress.report(k as f64 / count as f64) {
+                return Err(Error::Cancelled);
+            }
+            // The region is the set of centres: its rings start on it.
+            let rings = rings(&region, 0.0, step, &tol);
+            // Material above this level was cleared by the level before within this region
+            // (which lies inside that level's): rapids stop the gap above it.
+            cursor.safe = (z_prev + ctx.heights.gap).min(clearance);
+            // The short retract: a traverse just above the level before, where the straight
+            // move there stays inside what that level cleared (its region), and over the part.
+            let (surface, ceiling, gap) = (cl.clone(), z_prev - self.allowance - tol.height, ctx.heights.gap);
+            let lift = z_prev + gap;
+            let before = cleared.take();
+            cursor.traverse = Some(Box::new(move |a: DVec2, b: DVec2| {
+                let inside = before.as_ref().is_none_or(|c| Inside(c).clears(a.extend(lift), b.extend(lift), 0.0));
+                (inside && surface.along(a, b).iter().all(|&(_, h)| h <= ceiling - 2.0 * tol.interpolation)).then_some(lift)
+            }));
+            let mut setup = Setup { tool_radius: r, top: z_prev, feed: tool.feed_rate, cursor: &mut cursor, tol: &tol };
+            let air = self.air(ctx, &cl, r, z);
+            moves.extend(clear_rings(&rings, &clearing, z_prev, z, &mut setup, Some(&air)));
+            cleared = Some(region);
+        }
+        Ok(vec![sheet::toolpath(&self.name, &tool, moves, clearance)])
+    }
+}
+
+/// What a level-by-level roughing cuts: its tool, the CL surface of the tool grown by the
+/// radial allowance, and the levels with material left, from the top down.
+pub struct Levels {
+    pub tool: Tool,
+    pub cl: Arc<ClSurface>,
+    pub levels: Vec<Level>,
+}
+
+/// One level to cut: its height, the height of the level cut before it (or the stock's top),
+/// and the region the tool's centre may occupy there, within reach of material.
+pub struct Level {
+    pub z: f64,
+    pub z_prev: f64,
+    pub region: Shape,
+}
+
+impl RoughZlevel {
+    /// The step-over (mm) for a tool of radius `r`.
+    pub fn step(&self, r: f64) -> f64 {
+        (self.stepover * 2.0 * r).max(1e-3)
+    }
+
+    /// The levels this roughing cuts (the z-level strategy's and every strategy that clears
+    /// the same levels another way): the CL z-map, the levels by step-down and flats, and at
+    /// each the region with material left within reach. `None`, with a warning, where no
+    /// level has material left.
+    pub fn levels_to_cut(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Option<Levels>> {
         let tool = ctx.tool(&self.name, self.tool)?.clone();
         let profile = tool.cutter.profile();
         let r = profile.radius;
@@ -132,31 +209,10 @@ impl Operate for RoughZlevel {
         // counts a surface as clear when the exact profile stands below it by the interpolation
         // margin (`zmap/contour.rs`).
         let clear = 2.0 * tol.interpolation + tol.height;
-        let levels = self.levels(&cl.field, stock.max.z, floor, r, clear);
-        if !progress.stage("rings", 0.5, 0.5) {
-            return Err(Error::Cancelled);
-        }
-        let step = (self.stepover * 2.0 * r).max(1e-3);
-        let clearing = Clearing {
-            step,
-            climb: self.direction == Direction::Climb,
-            pattern: PocketPattern::Offset,
-            angle: 0.0,
-            entry: PocketEntry::Helix,
-            ramp_angle: self.ramp_angle.clamp(0.1, 89.0).to_radians(),
-            helix_r: self.helix_radius.unwrap_or(0.4 * 2.0 * r).min(0.95 * r),
-        };
-        let clearance = ctx.heights.clearance;
-        let mut cursor = sheet::cursor(ctx, &tool);
-        let mut moves = Vec::new();
+        let step = self.step(r);
+        let mut levels = Vec::new();
         let mut z_prev = stock.max.z;
-        // The region the level before cleared (none above the first level).
-        let mut cleared: Option<crate::profile::Shape> = None;
-        let mut cut_levels = 0;
-        for (k, &z) in levels.iter().enumerate() {
-            if !progress.report(k as f64 / levels.len() as f64) {
-                return Err(Error::Cancelled);
-            }
+        for z in self.levels(&cl.field, stock.max.z, floor, r, clear) {
             // Centres whose cutter reaches at least half a step into material (the outermost ring then
             // cuts that much of the stock's edge, the next a full step).
             let near = material_near(ctx.sim.stock(), grid, z, (r - 0.5 * step).max(0.0));
@@ -164,48 +220,32 @@ impl Operate for RoughZlevel {
             if region.is_empty() {
                 continue;
             }
-            // The region is the set of centres: its rings start on it.
-            let rings = rings(&region, 0.0, step, &tol);
-            if rings.is_empty() {
-                continue;
-            }
-            // Material above this level was cleared by the level before within this region
-            // (which lies inside that level's): rapids stop the gap above it.
-            cursor.safe = (z_prev + ctx.heights.gap).min(clearance);
-            // The short retract: a traverse just above the level before, where the straight
-            // move there stays inside what that level cleared (its region), and over the part.
-            let (surface, ceiling, gap) = (cl.clone(), z_prev - self.allowance - tol.height, ctx.heights.gap);
-            let lift = z_prev + gap;
-            let before = cleared.take();
-            cursor.traverse = Some(Box::new(move |a: DVec2, b: DVec2| {
-                let inside = before.as_ref().is_none_or(|c| Inside(c).clears(a.extend(lift), b.extend(lift), 0.0));
-                (inside && surface.along(a, b).iter().all(|&(_, h)| h <= ceiling - 2.0 * tol.interpolation)).then_some(lift)
-            }));
-            let mut setup = Setup { tool_radius: r, top: z_prev, feed: tool.feed_rate, cursor: &mut cursor, tol: &tol };
-            // In the air: a step out from the boundary, away from the stock's middle, where the
-            // cutter at this level touches nothing the earlier operations left (beside the
-            // stock, or where another operation cleared it).
-            let stock_now = ctx.sim.stock();
-            let middle = stock.center().truncate();
-            let flat = Profile::new(r, 0.0);
-            let air = |p: DVec2| {
-                let q = p + (p - middle).normalize_or_zero() * step;
-                (stock_now.touch(q, &flat, true) <= z + tol.height && cl.height(q) <= z - self.allowance).then_some(q)
-            };
-            moves.extend(clear_rings(&rings, &clearing, z_prev, z, &mut setup, Some(&air)));
+            levels.push(Level { z, z_prev, region });
             z_prev = z;
-            cleared = Some(region);
-            cut_levels += 1;
         }
-        if cut_levels == 0 {
+        if !progress.stage("rings", 0.5, 0.5) {
+            return Err(Error::Cancelled);
+        }
+        if levels.is_empty() {
             ctx.warn(&self.name, "no level has material left to cut");
-            return Ok(Vec::new());
+            return Ok(None);
         }
-        Ok(vec![sheet::toolpath(&self.name, &tool, moves, clearance)])
+        Ok(Some(Levels { tool, cl, levels }))
     }
-}
 
-impl RoughZlevel {
+    /// In the air beside a region at level `z`: a step out from a boundary point, away from the
+    /// stock's middle, where the cutter touches nothing the earlier operations left (beside the
+    /// stock, or where another operation cleared it).
+    pub fn air<'a>(&'a self, ctx: &'a Context, cl: &'a ClSurface, r: f64, z: f64) -> impl Fn(DVec2) -> Option<DVec2> + 'a {
+        let stock_now = ctx.sim.stock();
+        let middle = ctx.stock.center().truncate();
+        let flat = Profile::new(r, 0.0);
+        let (step, height) = (self.step(r), ctx.tolerances.height);
+        move |p: DVec2| {
+            let q = p + (p - middle).normalize_or_zero() * step;
+            (stock_now.touch(q, &flat, true) <= z + height && cl.height(q) <= z - self.allowance).then_some(q)
+        }
+    }
     /// The levels, from the top down: every step-down from `top` to `floor` plus the
     /// allowance, and the flats of the surface (plus the allowance) between.
     fn levels(&self, cl: &HeightField, top: f64, floor: f64, radius: f64, clear: f64) -> Vec<f64> {

@@ -102,6 +102,14 @@ impl Linker<'_> {
     /// Joins `runs` into moves; returns where the path starts (above its first point, at the
     /// clearance height), the moves, ending at the clearance height, and how it entered.
     pub fn link(&self, runs: &[Vec<DVec3>], tolerances: &Tolerances) -> (DVec3, Vec<Move>, Entries) {
+        self.link_fed(runs, None, None, tolerances)
+    }
+
+    /// [`Linker::link`] with a feed for each move along a run (`feeds[i][k]`: the move to
+    /// `runs[i][k + 1]`) where given, the cutting feed elsewhere; and, where given, whether each
+    /// run starts in material (`inside[i]`: the strategy may know better than the stock model,
+    /// having cut the level itself), else as `estimate` says.
+    pub fn link_fed(&self, runs: &[Vec<DVec3>], feeds: Option<&[Vec<f64>]>, inside: Option<&[bool]>, tolerances: &Tolerances) -> (DVec3, Vec<Move>, Entries) {
         let settings = &self.settings;
         let clearance = settings.clearance_z;
         let first = runs.iter().find_map(|r| r.first()).copied().unwrap_or(DVec3::new(0.0, 0.0, clearance));
@@ -110,7 +118,7 @@ impl Linker<'_> {
         let mut entries = Entries::default();
         let mut at = start;
         let mut down = false;
-        for run in runs.iter().filter(|r| !r.is_empty()) {
+        for (i, run) in runs.iter().enumerate().filter(|(_, r)| !r.is_empty()) {
             let p0 = run[0];
             let stay = down && at.distance(p0) <= settings.stay_down_max && self.keep.clears(at, p0, tolerances.height);
             // Staying down to a start lower than here, in material: across at this height,
@@ -131,12 +139,13 @@ impl Linker<'_> {
                 let material = (self.material)(p0.truncate());
                 let top = (p0.z.max(material) + settings.rapid_gap).min(clearance);
                 retract(at, p0.truncate(), clearance, top, &mut moves);
-                let inside = (self.estimate)(p0.truncate()) > p0.z + self.threshold;
+                let inside = inside.and_then(|f| f.get(i).copied()).unwrap_or_else(|| (self.estimate)(p0.truncate()) > p0.z + self.threshold);
                 let (entry, kind) = enter_3d(top, if inside { material } else { f64::NEG_INFINITY }, run, self.radius, &self.entry, self.keep, (self.feeds.plunge, self.feeds.cut), tolerances.height);
                 entries.count(kind);
                 moves.extend(entry);
             }
-            moves.extend(run[1..].iter().map(|&p| Move::Line { to: p, feed: self.feeds.cut }));
+            let fed = feeds.and_then(|f| f.get(i));
+            moves.extend(run[1..].iter().enumerate().map(|(k, &p)| Move::Line { to: p, feed: fed.and_then(|f| f.get(k)).copied().unwrap_or(self.feeds.cut) }));
             at = *run.last().unwrap();
             down = true;
         }

@@ -1,6 +1,7 @@
 //! Tool paths as data: rapid, linear feed and arc moves, each path with its tool. Linking and
 //! point reduction are passes over this data ([`link`], [`reduce`]), not parts of a strategy.
 
+pub mod arcfit;
 pub mod entry;
 pub mod link;
 pub mod reduce;

@@ -14,6 +14,28 @@ use crate::geom::segment::Segment;
 use crate::geom::DVec2;
 use crate::profile::{Loop, Shape};
 
+/// Points for moving along `piece`, a piece of a region's boundary (the region on its left),
+/// from its start, short of its end, each line between them within `chord` of it and never
+/// outside the region: along an arc that bends the region's way (the region inside its
+/// circle) the points lie on the arc; along one that bends away (a hole's side) they stand
+/// out so that each line between them touches the arc from the region's side.
+pub fn along_boundary(piece: &Segment, chord: f64, out: &mut Vec<DVec2>) {
+    out.push(piece.a);
+    let Some(g) = piece.arc_geom() else { return };
+    let sweep = g.sweep();
+    // Sub-arcs of angle d: a chord's sagitta and a tangent polygon's overshoot are both
+    // about r d² / 8.
+    let n = ((sweep.abs() / (8.0 * chord / g.radius).sqrt().max(1e-6)).ceil() as usize).max(1);
+    let d = sweep / n as f64;
+    let a0 = (piece.a - g.center).to_angle();
+    if sweep > 0.0 {
+        out.extend((1..n).map(|k| g.center + DVec2::from_angle(a0 + d * k as f64) * g.radius));
+    } else {
+        let rho = g.radius / (0.5 * d).cos();
+        out.extend((0..n).map(|k| g.center + DVec2::from_angle(a0 + d * (k as f64 + 0.5)) * rho));
+    }
+}
+
 /// One crossing of a scan line with the region's boundary.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Node {
@@ -147,13 +169,7 @@ impl Graph {
             let len = seg.length().max(1e-12);
             let (t0, t1) = ((s - (s - local + starts[i])) / len, (end - (s - local + starts[i])) / len);
             let piece = seg.sub(t0.clamp(0.0, 1.0), t1.clamp(0.0, 1.0));
-            let n = match piece.arc_geom() {
-                Some(g) => ((piece.length() / (8.0 * g.radius * chord).sqrt().max(1e-6)).ceil() as usize).max(1),
-                None => 1,
-            };
-            for k in 0..n {
-                pts.push(piece.point_at(k as f64 / n as f64));
-            }
+            along_boundary(&piece, chord, &mut pts);
             if end <= s + 1e-12 {
                 break;
             }
@@ -253,6 +269,30 @@ mod tests {
 
     fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Loop {
         Loop::rect(DVec2::new(x0, y0), DVec2::new(x1, y1))
+    }
+
+    #[test]
+    fn moves_along_a_boundary_arc_never_leave_the_region_and_stay_within_the_chord() {
+        let c = DVec2::new(3.0, -2.0);
+        for ccw in [true, false] {
+            // The region on the left: inside the circle going counter-clockwise, outside it
+            // going clockwise (a hole).
+            let arc = Segment::arc(c + DVec2::new(7.0, 0.0), c + DVec2::new(0.0, 7.0), c, ccw);
+            let mut pts = Vec::new();
+            along_boundary(&arc, 0.002, &mut pts);
+            pts.push(arc.b);
+            assert!(pts.len() > 10);
+            for w in pts.windows(2) {
+                for k in 0..=20 {
+                    let d = w[0].lerp(w[1], k as f64 / 20.0).distance(c);
+                    if ccw {
+                        assert!(d <= 7.0 + 1e-12 && d >= 7.0 - 0.0021, "{d}");
+                    } else {
+                        assert!(d >= 7.0 - 1e-12 && d <= 7.0 + 0.0021, "{d}");
+                    }
+                }
+            }
+        }
     }
 
     #[test]

@@ -23,17 +23,23 @@ use crate::profile::Shape;
 /// up to a quarter turn: turning further back only shuttles in cleared material.
 const TURN: f64 = std::f64::consts::PI / 36.0;
 const TURNS: usize = 18;
+/// Steps per Δs: the load is held (and the feed set) over each quarter of Δs, so that any
+/// stretch of Δs along the path, wherever it starts, keeps to it.
+pub const SUBSTEPS: usize = 4;
 /// A run whose corrected path grows past this many times its own number of steps (plus a
 /// margin) goes on as it was: a guard, reported as overloaded steps.
 const BUDGET: usize = 12;
 
-/// The material at one level, as pixels, and where the tool's centre may go.
+/// The material at one level, as pixels (a bit each, by rows), and where the tool's centre
+/// may go.
 pub struct PixelMap {
     origin: DVec2,
     px: f64,
     nx: usize,
     ny: usize,
-    material: Vec<bool>,
+    /// Words of 64 pixels per row.
+    words: usize,
+    material: Vec<u64>,
     allowed: Vec<bool>,
     radius: f64,
 }
@@ -45,13 +51,16 @@ impl PixelMap {
         let b = bounds.expand(radius + 2.0 * px);
         let nx = ((b.max.x - b.min.x) / px).ceil() as usize + 1;
         let ny = ((b.max.y - b.min.y) / px).ceil() as usize + 1;
+        let words = nx.div_ceil(64);
         let origin = b.min;
-        let mut m = vec![false; nx * ny];
+        let mut m = vec![0u64; words * ny];
         let mut allowed = vec![false; nx * ny];
         for j in 0..ny {
             let y = origin.y + j as f64 * px;
             for i in 0..nx {
-                m[j * nx + i] = material(DVec2::new(origin.x + i as f64 * px, y));
+                if material(DVec2::new(origin.x + i as f64 * px, y)) {
+                    m[j * words + i / 64] |= 1 << (i % 64);
+                }
             }
             for (x0, x1) in region.spans_at(y) {
                 let (i0, i1) = (((x0 - origin.x) / px).ceil().max(0.0) as usize, ((x1 - origin.x) / px).floor().max(0.0) as usize);
@@ -60,7 +69,7 @@ impl PixelMap {
                 }
             }
         }
-        PixelMap { origin, px, nx, ny, material: m, allowed, radius }
+        PixelMap { origin, px, nx, ny, words, material: m, allowed, radius }
     }
 
     pub fn pixel(&self) -> f64 {
@@ -73,31 +82,36 @@ impl PixelMap {
         u.x >= 0.0 && u.y >= 0.0 && (u.x as usize) < self.nx && (u.y as usize) < self.ny && self.allowed[u.y as usize * self.nx + u.x as usize]
     }
 
-    /// The material pixels the tool's disc sweeps moving from `a` to `b`; removed when `cut`.
+    /// The material pixels (by their centres) the tool's disc sweeps moving from `a` to `b`;
+    /// removed when `cut`. Row by row: the swept shape is convex, so each row meets it in one
+    /// run of pixels, counted and cleared a word at a time.
     fn sweep(&mut self, a: DVec2, b: DVec2, cut: bool) -> usize {
         let r = self.radius;
-        let lo = ((a.min(b) - DVec2::splat(r) - self.origin) / self.px).floor().max(DVec2::ZERO);
-        let hi = ((a.max(b) + DVec2::splat(r) - self.origin) / self.px).ceil();
-        let (i0, j0) = (lo.x as usize, lo.y as usize);
-        let (i1, j1) = ((hi.x as usize).min(self.nx - 1), (hi.y as usize).min(self.ny - 1));
-        let ab = b - a;
-        let len2 = ab.length_squared();
-        let r2 = r * r;
+        let j0 = ((a.y.min(b.y) - r - self.origin.y) / self.px).ceil().max(0.0) as usize;
+        let j1 = (((a.y.max(b.y) + r - self.origin.y) / self.px).floor().max(-1.0) as isize).min(self.ny as isize - 1);
         let mut count = 0;
-        for j in j0..=j1 {
-            let row = j * self.nx;
+        for j in j0 as isize..=j1 {
+            let j = j as usize;
             let y = self.origin.y + j as f64 * self.px;
-            for i in i0..=i1 {
-                if !self.material[row + i] {
-                    continue;
-                }
-                let p = DVec2::new(self.origin.x + i as f64 * self.px, y);
-                let t = if len2 > 0.0 { ((p - a).dot(ab) / len2).clamp(0.0, 1.0) } else { 0.0 };
-                if (a + ab * t).distance_squared(p) <= r2 {
-                    count += 1;
-                    if cut {
-                        self.material[row + i] = false;
-                    }
+            let Some((lo, hi)) = row_span(a, b, r, y) else { continue };
+            let i0 = ((lo - self.origin.x) / self.px).ceil().max(0.0) as usize;
+            let i1 = ((hi - self.origin.x) / self.px).floor();
+            if i1 < 0.0 {
+                continue;
+            }
+            let i1 = (i1 as usize).min(self.nx - 1);
+            if i0 > i1 {
+                continue;
+            }
+            let row = j * self.words;
+            for w in i0 / 64..=i1 / 64 {
+                let first = if w == i0 / 64 { i0 % 64 } else { 0 };
+                let last = if w == i1 / 64 { i1 % 64 } else { 63 };
+                let mask = (u64::MAX >> (63 - last)) & (u64::MAX << first);
+                let bits = self.material[row + w] & mask;
+                count += bits.count_ones() as usize;
+                if cut {
+                    self.material[row + w] &= !mask;
                 }
             }
         }
@@ -116,8 +130,48 @@ impl PixelMap {
 
     /// Material pixels left.
     pub fn left(&self) -> usize {
-        self.material.iter().filter(|&&m| m).count()
+        self.material.iter().map(|w| w.count_ones() as usize).sum()
     }
+}
+
+/// Where the row at `y` meets the disc of radius `r` swept from `a` to `b` (a convex shape,
+/// so one interval): the union of its meetings with the two end discs and the band between.
+fn row_span(a: DVec2, b: DVec2, r: f64, y: f64) -> Option<(f64, f64)> {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for c in [a, b] {
+        let dy = y - c.y;
+        if dy.abs() <= r {
+            let w = (r * r - dy * dy).sqrt();
+            lo = lo.min(c.x - w);
+            hi = hi.max(c.x + w);
+        }
+    }
+    let d = b - a;
+    let len = d.length();
+    if len > 1e-12 {
+        let (u, n) = (d / len, d.perp() / len);
+        // Within r of the line, and between the ends: each a band in x along the row.
+        let (mut x0, mut x1) = (f64::NEG_INFINITY, f64::INFINITY);
+        let mut band = |coef: f64, offset: f64, min: f64, max: f64| {
+            // min <= coef * x + offset <= max
+            if coef.abs() < 1e-15 {
+                if offset < min || offset > max {
+                    x0 = f64::INFINITY;
+                }
+            } else {
+                let (p, q) = ((min - offset) / coef, (max - offset) / coef);
+                x0 = x0.max(p.min(q));
+                x1 = x1.min(p.max(q));
+            }
+        };
+        band(n.x, n.y * y - n.dot(a), -r, r);
+        band(u.x, u.y * y - u.dot(a), 0.0, len);
+        if x0 <= x1 {
+            lo = lo.min(x0);
+            hi = hi.max(x1);
+        }
+    }
+    (lo <= hi).then_some((lo, hi))
 }
 
 /// The load settings of one level.
@@ -151,14 +205,23 @@ impl Profile {
     /// The load relative to the reference over consecutive windows of the path at least Δs
     /// long (steps taken whole; a short last window is left out).
     pub fn ratios(&self, reference: f64, ds: f64) -> Vec<f64> {
+        self.rates(None, reference, ds)
+    }
+
+    /// The removal rate over the reference rate (the reference load at the full feed) over
+    /// windows at least Δs long, each step taken at `feeds[k]` as a share of the full feed
+    /// (1 where not given): the load a lowered feed leaves.
+    pub fn rates(&self, feeds: Option<&[f64]>, reference: f64, ds: f64) -> Vec<f64> {
         let mut out = Vec::new();
-        let (mut n, mut len) = (0.0, 0.0);
-        for &(c, l) in &self.counts {
+        let (mut n, mut len, mut time) = (0.0, 0.0, 0.0);
+        for (k, &(c, l)) in self.counts.iter().enumerate() {
+            let f = feeds.and_then(|f| f.get(k)).copied().unwrap_or(1.0);
             n += c;
             len += l;
+            time += l / f;
             if len >= ds - 1e-9 {
-                out.push(n * ds / len / reference);
-                (n, len) = (0.0, 0.0);
+                out.push(n * ds / time / reference);
+                (n, len, time) = (0.0, 0.0, 0.0);
             }
         }
         out
@@ -168,7 +231,7 @@ impl Profile {
 /// `run` cut as it is, in steps of `ds`: returns the path as cut (the run's points with the
 /// steps between) and the count of each step.
 pub fn plain(map: &mut PixelMap, run: &[DVec2], load: &Load, profile: &mut Profile) -> Vec<DVec2> {
-    let pts = densify(run, load.ds);
+    let pts = densify(run, load.ds / SUBSTEPS as f64);
     if let Some(&p) = pts.first() {
         map.cut(p, p);
     }
@@ -185,7 +248,7 @@ pub fn plain(map: &mut PixelMap, run: &[DVec2], load: &Load, profile: &mut Profi
 /// disc there). A slot (the first pass into a closed region) has no side to ease off to: it
 /// stays as it is, overloaded, and the strategy lowers its feed.
 pub fn corrected(map: &mut PixelMap, run: &[DVec2], load: &Load, profile: &mut Profile) -> Vec<DVec2> {
-    let pts = densify(run, load.ds);
+    let pts = densify(run, load.ds / SUBSTEPS as f64);
     let Some(&start) = pts.first() else { return Vec::new() };
     let px = map.pixel();
     // Aim at half the tolerance: the rest is room for the pixels' noise.
@@ -210,7 +273,7 @@ pub fn corrected(map: &mut PixelMap, run: &[DVec2], load: &Load, profile: &mut P
             k += 1;
             continue;
         }
-        let step = dist.min(load.ds);
+        let step = dist.min(load.ds / SUBSTEPS as f64);
         let cap = limit * step / load.ds;
         let dir = to / dist;
         let mut chosen = None;
@@ -261,7 +324,7 @@ pub fn corrected(map: &mut PixelMap, run: &[DVec2], load: &Load, profile: &mut P
             }
         }
         // Back on the path: skip the points the detour passed.
-        while k < pts.len() && pos.distance(pts[k]) < 0.5 * load.ds && k + 1 < pts.len() {
+        while k < pts.len() && pos.distance(pts[k]) < 0.5 * load.ds / SUBSTEPS as f64 && k + 1 < pts.len() {
             k += 1;
         }
     }
@@ -297,6 +360,32 @@ mod tests {
         let bounds = Rect { min: DVec2::ZERO, max: DVec2::splat(40.0) };
         let map = PixelMap::new(bounds, px, r, |p| p.x >= 0.0 && p.y >= 0.0 && p.x <= 40.0 && p.y <= 40.0, &region);
         (map, region)
+    }
+
+    #[test]
+    fn the_swept_pixels_are_those_whose_centres_lie_within_the_radius_of_the_move() {
+        let (map, _) = square_map(0.1, 3.0);
+        let mut seed = 7u64;
+        let mut rnd = || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for _ in 0..200 {
+            let a = DVec2::new(40.0 * rnd(), 40.0 * rnd());
+            let b = a + DVec2::new(12.0 * rnd() - 6.0, 12.0 * rnd() - 6.0) * if rnd() < 0.5 { 0.05 } else { 1.0 };
+            let mut m = PixelMap { material: map.material.clone(), allowed: map.allowed.clone(), ..map };
+            let brute = (0..m.ny)
+                .flat_map(|j| (0..m.nx).map(move |i| (i, j)))
+                .filter(|&(i, j)| {
+                    let p = m.origin + DVec2::new(i as f64, j as f64) * m.px;
+                    let ab = b - a;
+                    let t = ((p - a).dot(ab) / ab.length_squared().max(1e-300)).clamp(0.0, 1.0);
+                    m.material[j * m.words + i / 64] >> (i % 64) & 1 == 1 && (a + ab * t).distance(p) <= 3.0
+                })
+                .count();
+            assert_eq!(m.cut(a, b), brute, "{a} {b}");
+            assert_eq!(m.count(a, b), 0);
+        }
     }
 
     #[test]

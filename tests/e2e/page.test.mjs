@@ -455,3 +455,42 @@ test('the sample part\'s mould job: roughing, then shallow and steep finishing, 
   assert.deepEqual(errors, []);
   await context.close();
 });
+
+test('zigzag roughing with the load held: added in the page, the reference line on the MRR plot, a clean program that rs274 runs', async () => {
+  const { page, context, errors } = await openPage();
+  for (const k of [3, 2, 1]) await page.click(`#op-list li:nth-child(${k}) .op-remove`);
+  await page.selectOption('#op-kind', 'roughZigzag');
+  await page.click('#op-add');
+  assert.equal(await page.locator('#op-list li').count(), 1);
+  // The form starts from the core's defaults for this kind.
+  assert.equal(await page.inputValue('select[name=zzLoad]'), 'path');
+  assert.equal(await page.inputValue('input[name=zzTolerance]'), '0.1');
+  await page.fill('input[name=roughStepdown]', '5');
+  await page.fill('input[name=zzAngle]', '30');
+  await page.click('#generate');
+  await generated(page);
+  assert.ok(await pathPixels(page) > 2000, 'the path on the canvas');
+  const report = await page.textContent('#sim-report');
+  assert.match(report, /gouges: 0/);
+  assert.match(report, /rapid moves through stock: 0/);
+  // The dashed reference line (green) on the MRR plot.
+  const green = await page.evaluate(() => {
+    const c = document.getElementById('mrr');
+    const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+    let n = 0;
+    for (let i = 0; i < d.length; i += 4) if (d[i + 1] > 110 && d[i] < 80 && d[i + 2] < 90 && d[i + 3] > 200) n++;
+    return n;
+  });
+  assert.ok(green > 20, `the reference line on the MRR plot: ${green} pixels`);
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-zigzag-'));
+  const program = path.join(dir, download.suggestedFilename());
+  await download.saveAs(program);
+  const gcode = fs.readFileSync(program, 'utf8');
+  assert.match(gcode, /^G[23] /m, 'arcs');
+  const tools = await page.evaluate(() => window.swarf.tools);
+  fs.writeFileSync(path.join(dir, 'tool.tbl'), toolTable(tools));
+  execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), program], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });
+  assert.deepEqual(errors, []);
+  await context.close();
+});

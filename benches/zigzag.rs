@@ -1,0 +1,39 @@
+//! Seed 004's case: zigzag roughing of the paper-like pocket, the plain path against the
+//! feed-lowered and the corrected one (path length, load over the reference, cycle times,
+//! compute time). It also writes the pocket as `target/paper_pocket.stl`, for the peers.
+//!
+//! Run: `cargo bench --bench zigzag` (native). The wasm figures: `bash scripts/bench-wasm.sh`.
+//! The load of any programs on a part (the peers' side by side):
+//! `cargo bench --bench zigzag -- load PART.stl PROGRAM.ngc...`.
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).filter(|a| a != "--bench").collect();
+    if args.first().map(String::as_str) == Some("load") {
+        let stl = std::fs::read(&args[1]).expect("the part");
+        let part = swarf::mesh::import::read_mesh_auto(&stl, Some("part.stl"), &Default::default()).expect("the part reads");
+        for program in &args[2..] {
+            let gcode = std::fs::read_to_string(program).expect("the program");
+            let (peak, mean, n) = swarf::job::bench::program_load(part.clone(), &gcode, 0.1, 1.2).expect("the program simulates");
+            println!("{program}: removal rate per 1.2 mm of level cutting: peak {peak:.0} mm³/min, mean {mean:.0} mm³/min over {n} windows");
+        }
+        return;
+    }
+    let origin = std::time::Instant::now();
+    let clock = || origin.elapsed().as_secs_f64();
+    if args.first().map(String::as_str) == Some("stages") {
+        // `-- stages JOB.json PART.stl`: where a job's time goes.
+        let job = swarf::job::Job::from_json(&std::fs::read_to_string(&args[1]).expect("the job")).expect("a job");
+        let part = swarf::mesh::import::read_mesh_auto(&std::fs::read(&args[2]).expect("the part"), Some("part.stl"), &Default::default()).expect("the part reads");
+        let (stages, _) = swarf::job::bench::stage_seconds(&job, part, &clock);
+        for (stage, s) in stages {
+            println!("{s:8.3} s  {stage}");
+        }
+        return;
+    }
+    let stl = swarf::mesh::sample::paper_pocket(0.5, 0.5).to_binary_stl();
+    let _ = std::fs::write(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target/paper_pocket.stl"), stl);
+    println!("| platform | load held by | feed length (mm) | plain path's load: peak (spread) | as cut, at its feeds: peak (spread) | mm at a lowered feed | cycle time as programmed (s) | at the feed each allows (s) | compute (s) |");
+    for row in swarf::job::bench::zigzag_rows("native", &clock) {
+        println!("{row}");
+    }
+}

@@ -1,0 +1,354 @@
+//! Zigzag roughing by the intersection-points graph, with the tool's load held at the
+//! step-over's (seed 004; [`crate::zigzag`]). The levels, their regions (allowances, flats,
+//! material left by earlier operations), entries and linking are the z-level strategy's
+//! ([`RoughZlevel::levels_to_cut`], [`Context::link_fed`]); at each level this strategy clears
+//! the region with direction-parallel passes instead of rings:
+//!
+//! 1. the graph of the region and scan lines at the angle and step-over (§2.1), walked with a
+//!    stack (§2.2) into runs the tool cuts staying down;
+//! 2. the region's boundary last, so the wall left is the allowance;
+//! 3. on a pixel map of the level (the in-process stock above it), each run cut in steps of
+//!    Δs: where a step would remove more than the reference `(Δs / pixel) × (s / pixel)` by the
+//!    tolerance, the tool eases off by extra path (§3.3, `load: path`), or the feed drops to
+//!    hold the rate (`load: feed`, the usual feed-rate scheduling, for comparison); what no
+//!    extra path can ease (a slot into a closed region) gets the lower feed in either case;
+//! 4. runs joined staying down where the link stays in the region and within the load, else
+//!    linked by the shared linker (retract, rapid down to just above the material, helix or
+//!    ramp); the lines fitted with arcs.
+
+use serde::{Deserialize, Serialize};
+
+use super::pocket2d::Inside;
+use super::path2d::start_nearest;
+use super::profile2d::Direction;
+use super::rough_zlevel::{Level, Levels, RoughZlevel};
+use super::{Context, FieldError, Operate};
+use crate::error::{Error, Result};
+use crate::geom::segment::Rect;
+use crate::geom::{DVec2, DVec3};
+use crate::profile::Shape;
+use crate::progress::Progress;
+use crate::sim::DexelStock;
+use crate::toolpath::entry::Entry;
+use crate::toolpath::{arcfit, Move, Toolpath};
+use crate::zigzag::graph::{along_boundary, Graph, Pattern};
+use crate::zigzag::load::{self, Load, PixelMap, Profile};
+
+/// How spans are cut.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub enum Passes {
+    /// Back and forth (the paper's path): half the passes climb, half not.
+    #[default]
+    Zigzag,
+    /// Every pass in the cutting direction, back along the pass just cut before the next.
+    OneWay,
+}
+
+/// How the load is held at the reference.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub enum LoadControl {
+    /// Extra path where the plain path would overload the tool (seed 004 §3.3); the feed drops
+    /// only where no extra path helps.
+    #[default]
+    Path,
+    /// The plain path, with the feed lowered wherever it would overload the tool.
+    Feed,
+    /// The plain path at the tool's feed.
+    None,
+}
+
+/// Zigzag roughing (seed 004).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, rename_all = "camelCase")]
+pub struct RoughZigzag {
+    /// Default value: "zigzag rough".
+    pub name: String,
+    /// Whether the job runs it (a disabled operation stays in the job). Default value: true.
+    pub enabled: bool,
+    /// Default value: 1.
+    pub tool: u32,
+    /// Largest depth between levels (mm). Default value: 2.
+    pub stepdown: f64,
+    /// Distance between passes as a fraction of the tool diameter. Default value: 0.4.
+    pub stepover: f64,
+    /// Material left on floors (axial, mm). Default value: 0.5.
+    pub allowance: f64,
+    /// Material left on walls (radial, mm). Default value: 0.5.
+    pub leave_stock: f64,
+    /// Default value: climb.
+    pub direction: Direction,
+    /// Direction of the passes (degrees from +X). Default value: 0.
+    pub angle: f64,
+    /// Default value: zigzag.
+    pub passes: Passes,
+    /// Default value: path.
+    pub load: LoadControl,
+    /// How far over the reference a stretch of Δs may load the tool (0.1: 10 %). Default value: 0.1.
+    pub load_tolerance: f64,
+    /// The sampling distance Δs (mm). Default value: half the step-over.
+    pub sampling: Option<f64>,
+    /// The pixel of the load's map (mm). Default value: the tool diameter / 100.
+    pub pixel: Option<f64>,
+    /// Spacing of the CL z-map (mm). Default value: 0.25.
+    pub grid: f64,
+    /// Steepest descent of helices and ramps (degrees). Default value: 3.
+    pub ramp_angle: f64,
+    /// Cut every flat area of the part at its own height too. Default value: true.
+    pub flats: bool,
+}
+
+impl Default for RoughZigzag {
+    fn default() -> Self {
+        RoughZigzag {
+            name: "zigzag rough".into(),
+            enabled: true,
+            tool: 1,
+            stepdown: 2.0,
+            stepover: 0.4,
+            allowance: 0.5,
+            leave_stock: 0.5,
+            direction: Direction::Climb,
+            angle: 0.0,
+            passes: Passes::Zigzag,
+            load: LoadControl::Path,
+            load_tolerance: 0.1,
+            sampling: None,
+            pixel: None,
+            grid: 0.25,
+            ramp_angle: 3.0,
+            flats: true,
+        }
+    }
+}
+
+/// The load along one operation's path, before and after its correction, relative to the
+/// reference (seed 004 Fig. 14): for reports and the page's plot.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct LoadReport {
+    /// The reference rate at the tool's feed (mm³/min per mm of depth: step-over × feed).
+    pub reference: f64,
+    /// The same at a full step-down (mm³/min): the reference line of the page's MRR plot.
+    pub rate: f64,
+    /// Δs (mm).
+    pub sampling: f64,
+    /// Per window of Δs along the cutting moves, the plain path's load over the reference.
+    pub plain: Vec<f64>,
+    /// The same for the path as cut (the tool's engagement).
+    pub load: Vec<f64>,
+    /// The path as cut, at its feeds: the removal rate over the reference rate.
+    pub cut: Vec<f64>,
+    /// The length of path (mm) that runs at a lowered feed because no extra path eases it.
+    pub slowed: f64,
+}
+
+impl LoadReport {
+    /// The highest load, and the spread (standard deviation), of a series.
+    pub fn peak_and_spread(series: &[f64]) -> (f64, f64) {
+        let n = series.len().max(1) as f64;
+        let mean = series.iter().sum::<f64>() / n;
+        let var = series.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / n;
+        (series.iter().copied().fold(0.0, f64::max), var.sqrt())
+    }
+}
+
+impl RoughZigzag {
+    /// The level settings it shares with z-level roughing.
+    fn as_levels(&self) -> RoughZlevel {
+        RoughZlevel {
+            name: self.name.clone(),
+            enabled: self.enabled,
+            tool: self.tool,
+            stepdown: self.stepdown,
+            stepover: self.stepover,
+            allowance: self.allowance,
+            leave_stock: self.leave_stock,
+            direction: self.direction,
+            grid: self.grid,
+            ramp_angle: self.ramp_angle,
+            helix_radius: None,
+            flats: self.flats,
+        }
+    }
+}
+
+impl Operate for RoughZigzag {
+    super::named_operation!(OnPart);
+
+    fn allowance(&self) -> f64 {
+        self.allowance.min(self.leave_stock)
+    }
+
+    fn validate(&self) -> Result<(), FieldError> {
+        self.as_levels().validate()?;
+        super::finite("angle", self.angle)?;
+        super::not_negative("loadTolerance", self.load_tolerance)?;
+        if let Some(s) = self.sampling {
+            super::positive("sampling", s)?;
+        }
+        if let Some(p) = self.pixel {
+            super::positive("pixel", p)?;
+        }
+        Ok(())
+    }
+
+    fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Vec<Toolpath>> {
+        let levels = self.as_levels();
+        let Some(Levels { tool, levels: cut, .. }) = levels.levels_to_cut(ctx, progress)? else { return Ok(Vec::new()) };
+        let r = tool.cutter.radius();
+        let step = levels.step(r);
+        let ds = self.sampling.unwrap_or(0.5 * step).max(1e-3);
+        let px = self.pixel.unwrap_or(r / 50.0).max(1e-3);
+        let load = Load { ds, step, tolerance: self.load_tolerance, climb: self.direction == Direction::Climb };
+        let reference = load.reference(px);
+        let limit = reference * (1.0 + self.load_tolerance);
+        let pattern = match self.passes {
+            Passes::Zigzag => Pattern::Zigzag,
+            Passes::OneWay => Pattern::OneWay,
+        };
+        let entry = Entry { ramp_angle: self.ramp_angle, ..Entry::default() };
+        let tol = ctx.tolerances;
+        let mut report = LoadReport { reference: step * tool.feed_rate, rate: step * tool.feed_rate * self.stepdown, sampling: ds, ..LoadReport::default() };
+        let mut path: Option<Toolpath> = None;
+        let shortest = crate::toolpath::entry::shortest_ramp(r);
+        let mut left_out = 0;
+        let count = cut.len();
+        for (k, Level { z, z_prev, region }) in cut.into_iter().enumerate() {
+            if !progress.report(k as f64 / count as f64) {
+                return Err(Error::Cancelled);
+            }
+            // §2: the passes, then the boundary.
+            let graph = Graph::new(&region, self.angle.to_radians(), step);
+            let mut runs = graph.walk(pattern, load.climb, tol.chordal);
+            let end = runs.last().and_then(|r| r.last()).copied().unwrap_or(DVec2::ZERO);
+            runs.extend(boundary_runs(&region, load.climb, tol.chordal, end));
+            // §3: the load on the material at this level.
+            let stock = ctx.sim.stock();
+            let material = |p: DVec2| above(stock, p, z);
+            let bounds = region.bounds();
+            let mut plain_map = if self.load == LoadControl::Path { PixelMap::new(bounds, px, r, &material, &region) } else { PixelMap::new(Rect { min: bounds.min, max: bounds.min }, px, 0.0, |_| false, &Shape::default()) };
+            let mut map = PixelMap::new(bounds, px, r, &material, &region);
+            let inside = Inside(&region);
+            let (mut pts3, mut feeds): (Vec<Vec<DVec3>>, Vec<Vec<f64>>) = (Vec::new(), Vec::new());
+            // Whether each run starts in material, as the map of this level knows.
+            let mut starts = Vec::new();
+            let mut plain = Profile::default();
+            let mut done = Profile::default();
+            let mut shares = Vec::new();
+            for run in &runs {
+                // The plain path's load, for the report (the path itself unless corrected).
+                if self.load == LoadControl::Path {
+                    load::plain(&mut plain_map, run, &load, &mut plain);
+                }
+                // Joined to the run before when the straight link stays in the region and
+                // within the load.
+                let mut steps = Profile::default();
+                let mut pts = Vec::new();
+                let from = pts3.last().and_then(|r: &Vec<DVec3>| r.last()).map(|p| p.truncate());
+                // The link in steps of Δs, each within the load.
+                let link = from.map(|a| load::densify(&[a, run[0]], ds / load::SUBSTEPS as f64)).unwrap_or_default();
+                let joined = from.is_some_and(|a| {
+                    use crate::toolpath::entry::Keepout;
+                    inside.clears(a.extend(z), run[0].extend(z), 0.0) && link.windows(2).all(|w| map.count(w[0], w[1]) as f64 <= limit * w[0].distance(w[1]).max(0.25 * ds) / ds)
+                });
+                let in_material = map.count(run[0], run[0]) > 0;
+                if !joined && too_short(run, shortest) && in_material {
+                    // Too short to ramp into the material at its start, in a place too narrow
+                    // for a helix: left, with a warning.
+                    left_out += 1;
+                    continue;
+                }
+                if joined {
+                    for w in link.windows(2) {
+                        let n = map.cut(w[0], w[1]);
+                        steps.counts.push((n as f64, w[0].distance(w[1])));
+                    }
+                    pts.extend(&link[..link.len() - 1]);
+                }
+                pts.extend(match self.load {
+                    LoadControl::Path => load::corrected(&mut map, run, &load, &mut steps),
+                    LoadControl::Feed | LoadControl::None => load::plain(&mut map, run, &load, &mut steps),
+                });
+                let mut fed = Vec::with_capacity(steps.counts.len());
+                for &(n, len) in &steps.counts {
+                    let rate = n * ds / len.max(1e-9);
+                    let slow = self.load != LoadControl::None && rate > limit;
+                    if slow {
+                        report.slowed += len;
+                    }
+                    // In twentieths, so that steps at one feed join into one move.
+                    let share = if slow { ((limit / rate) * 20.0).floor().max(1.0) / 20.0 } else { 1.0 };
+                    shares.push(share);
+                    fed.push(tool.feed_rate * share);
+                }
+                done.counts.extend(steps.counts);
+                let run3: Vec<DVec3> = pts.iter().map(|p| p.extend(z)).collect();
+                if joined {
+                    pts3.last_mut().unwrap().extend(run3.into_iter().skip(1));
+                    feeds.last_mut().unwrap().extend(fed);
+                } else {
+                    pts3.push(run3);
+                    feeds.push(fed);
+                    starts.push(in_material);
+                }
+            }
+            report.load.extend(done.ratios(reference, ds));
+            if self.load == LoadControl::Path {
+                report.plain.extend(plain.ratios(reference, ds));
+            } else {
+                // Cut as it is: the plain path's load is the path's own, links included.
+                report.plain.extend(done.ratios(reference, ds));
+            }
+            report.cut.extend(done.rates(Some(&shares), reference, ds));
+            let linked = ctx.link_fed(&self.name, &tool, &pts3, (Some(&feeds), Some(&starts)), z_prev, &inside, entry, 0.0);
+            let moves = arcfit::fit(&linked.moves, linked.start, tol.chordal, &|p| region.contains(p));
+            match &mut path {
+                None => path = Some(Toolpath { moves, ..linked }),
+                Some(p) => {
+                    p.moves.push(Move::Rapid { to: linked.start });
+                    p.moves.extend(moves);
+                }
+            }
+        }
+        if left_out > 0 {
+            ctx.warn(&self.name, format!("{left_out} runs shorter than {shortest:.2} mm start in material where no helix fits and are left uncut"));
+        }
+        ctx.load = Some(report);
+        Ok(path.into_iter().collect())
+    }
+}
+
+/// Whether a run is shorter than `least` (mm).
+fn too_short(run: &[DVec2], least: f64) -> bool {
+    run.windows(2).map(|w| w[0].distance(w[1])).sum::<f64>() < least
+}
+
+/// Whether the in-process stock stands above `z` at `p` (the cell under it).
+fn above(stock: &DexelStock, p: DVec2, z: f64) -> bool {
+    let g = stock.grid();
+    let u = ((p - g.origin) / g.spacing).round();
+    u.x >= 0.0 && u.y >= 0.0 && (u.x as usize) < g.nx && (u.y as usize) < g.ny && stock.top(u.x as usize, u.y as usize) > z + 1e-6
+}
+
+/// The region's loops as closed runs (points within `chord` of them), climbing: outer loops
+/// counter-clockwise, holes clockwise, as the region holds them; each starts at its point
+/// nearest `near`.
+fn boundary_runs(region: &Shape, climb: bool, chord: f64, near: DVec2) -> Vec<Vec<DVec2>> {
+    region
+        .loops
+        .iter()
+        .map(|l| {
+            let l = if climb { l.clone() } else { l.reversed() };
+            let mut pts = Vec::new();
+            for seg in start_nearest(&l, near) {
+                along_boundary(&seg, chord, &mut pts);
+            }
+            if let Some(&p) = pts.first() {
+                pts.push(p);
+            }
+            pts
+        })
+        .collect()
+}

@@ -1,0 +1,107 @@
+//! Seed 004's zigzag roughing on parts: the paper's pocket and the sample part, every program
+//! simulated (no gouge, no rapid through stock, no straight plunge into material), the load
+//! after correction held at the reference outside slots, and rs274-clean arcs.
+
+use swarf::cutter::Cutter;
+use swarf::sim::windows::windowed_rates;
+use swarf::toolpath::Move;
+use swarf::job::{self, Job, JobOutput, Operation, Simulation, Tool};
+use swarf::mesh::placement::{PartSetup, Placement};
+use swarf::mesh::sample::{demo_part, paper_pocket};
+use swarf::progress::Progress;
+use swarf::strategy::rough_zigzag::{LoadControl, LoadReport, Passes, RoughZigzag};
+
+fn flat(number: u32, d: f64) -> Tool {
+    Tool { number, name: format!("{d} mm flat"), cutter: Cutter::flat(d), feed_rate: 1000.0, plunge_rate: 250.0, ..Tool::default() }
+}
+
+/// The paper's case: φ10 flat, radial depth 3 mm, axial 0.5 mm, one level.
+fn paper_job(load: LoadControl) -> Job {
+    let op = RoughZigzag { tool: 1, stepdown: 0.5, stepover: 0.3, allowance: 0.0, leave_stock: 0.0, load, grid: 0.5, pixel: Some(0.05), ..RoughZigzag::default() };
+    let mut job = Job {
+        tools: vec![flat(1, 10.0)],
+        operations: vec![Operation::RoughZigzag(op)],
+        simulation: Simulation { verify: true, cell: Some(0.25) },
+        part: PartSetup { placement: Placement::Keep, ..PartSetup::default() },
+        ..Job::default()
+    };
+    // The stock is the plate: only the pocket is cut.
+    (job.stock.margin_xy, job.stock.margin_top, job.stock.margin_bottom) = (0.0, 0.0, 0.0);
+    job
+}
+
+/// Clean by the project's simulation, and no straight plunge into material (a start counts
+/// as in the air when the stock there stands no more than the gouge tolerance above it).
+fn clean(out: &JobOutput, radius: f64) {
+    let v = out.verification.as_ref().expect("verified");
+    assert!(v.report.is_clean(), "{}", v.report.describe());
+    for (k, (m, &vol)) in out.moves.iter().zip(&v.volumes).enumerate() {
+        if let Move::Line { to, .. } = m.mv {
+            if to.truncate().distance(m.from.truncate()) < 1e-9 && to.z < m.from.z - 1e-9 {
+                if vol >= 0.02 * std::f64::consts::PI * radius * radius + 1e-6 {
+                    for q in &out.moves[k.saturating_sub(4)..(k + 4).min(out.moves.len())] {
+                        eprintln!("{} -> {:?}", q.from, q.mv);
+                    }
+                    eprintln!("{:?}", out.warnings);
+                }
+                assert!(vol < 0.02 * std::f64::consts::PI * radius * radius + 1e-6, "a straight plunge to {to} removed {vol} mm³");
+            }
+        }
+    }
+}
+
+/// The removal rate over windows of Δs of the cutting moves at one height (entries left out)
+/// by the project's own simulation at `cell`, over the reference rate.
+fn simulated_rates(out: &JobOutput, cell: f64, ds: f64, reference: f64) -> Vec<f64> {
+    windowed_rates(&out.moves, &out.stock, cell, ds).unwrap().into_iter().map(|r| r / reference).collect()
+}
+
+#[test]
+fn the_papers_pocket_is_cleared_with_the_load_held() {
+    let mut seconds = Vec::new();
+    for load in [LoadControl::None, LoadControl::Feed, LoadControl::Path] {
+        let job = paper_job(load);
+        let out = job::run(&job, paper_pocket(0.5, 0.5), &mut Progress::none()).unwrap();
+        clean(&out, 5.0);
+        assert!(out.gcode.contains("G2") || out.gcode.contains("G3") || load != LoadControl::Path);
+        let report = out.operations[0].load.clone().unwrap();
+        let (plain, _) = LoadReport::peak_and_spread(&report.plain);
+        let (cut, _) = LoadReport::peak_and_spread(&report.cut);
+        assert!(plain > 3.0, "the plain path slots (10 / 3 the reference): {plain}");
+        // The project's simulation, over windows of 3 Δs (its cells are 0.1 mm).
+        let rates = simulated_rates(&out, 0.05, report.sampling, 3.0 * 0.5 * 1000.0);
+        let worst = rates.iter().copied().fold(0.0, f64::max);
+        eprintln!("{load:?}: {} ; simulated peak {worst:.2} over {} windows", out.operations[0].describe(), rates.len());
+        std::fs::write(format!("/tmp/zz/{load:?}.ngc"), &out.gcode).unwrap();
+        match load {
+            LoadControl::None => assert!(cut > 3.0 && worst > 3.0, "{cut} {worst}"),
+            _ => {
+                assert!(cut <= 1.1 + 1e-9, "{cut}");
+                assert!(worst <= 1.1, "simulated: {worst}");
+            }
+        }
+        std::fs::write(format!("/tmp/zz/{load:?}.ngc"), &out.gcode).unwrap();
+        seconds.push(out.operations[0].seconds);
+    }
+    // At the feed its peak allows (1.1 × the reference), the plain path takes longer than
+    // either way of holding the load.
+    let plain_at_its_feed = seconds[0] * 3.0 / 1.1;
+    assert!(seconds[1] < 0.9 * plain_at_its_feed && seconds[2] < 0.9 * plain_at_its_feed, "{seconds:?}");
+}
+
+#[test]
+fn the_sample_part_is_roughed_clean_to_the_stair_step_both_ways() {
+    let (stepdown, allowance, leave) = (2.0, 0.5, 0.5);
+    for passes in [Passes::Zigzag, Passes::OneWay] {
+        let op = RoughZigzag { tool: 1, stepdown, allowance, leave_stock: leave, passes, angle: 30.0, ..RoughZigzag::default() };
+        let job = Job { tools: vec![flat(1, 6.0)], operations: vec![Operation::RoughZigzag(op)], simulation: Simulation { verify: true, cell: Some(0.25) }, ..Job::default() };
+        let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
+        clean(&out, 3.0);
+        assert!(out.warnings.iter().all(|w| !w.message.contains("straight down")), "{:?}", out.warnings);
+        let r = &out.operations[0];
+        assert!(r.left_max.unwrap() <= stepdown + allowance + leave * 3.0, "{passes:?}: {r:?}");
+        let load = r.load.as_ref().unwrap();
+        assert!(LoadReport::peak_and_spread(&load.cut).0 <= 1.1 + 1e-9, "{passes:?}");
+        eprintln!("{passes:?}: {}", r.describe());
+    }
+}
