@@ -313,7 +313,8 @@ impl Operate for RoughZigzag {
             }
         }
         if left_out > 0 {
-            ctx.warn(&self.name, format!("{left_out} runs shorter than {shortest:.2} mm start in material where no helix fits and are left uncut"));
+            let runs = if left_out == 1 { "run" } else { "runs" };
+            ctx.warn(&self.name, format!("{left_out} {runs} shorter than {shortest:.2} mm start in material where no helix fits: left uncut"));
         }
         ctx.load = Some(report);
         Ok(path.into_iter().collect())

@@ -60,26 +60,58 @@ pub fn fit(moves: &[Move], from: DVec3, tol: f64, ok: &dyn Fn(DVec2) -> bool) ->
 }
 
 /// The farthest point from `i` that one line or one arc reaches within `tol`, and the arc's
-/// centre and turn (clockwise) when an arc reaches farther than a line.
+/// centre and turn (clockwise) when an arc reaches farther than a line. The reach grows by
+/// doubling, then is bisected (a piece that fits is assumed to fit when shortened); an arc is
+/// checked against `ok` only once chosen, and shortened until it passes.
 fn longest_piece(pts: &[DVec2], i: usize, tol: f64, ok: &dyn Fn(DVec2) -> bool) -> (usize, Option<(DVec2, bool)>) {
     let last = (pts.len() - 1).min(i + MOST);
-    let mut line = i + 1;
-    while line < last && fits_line(&pts[i..=line + 1], tol) {
-        line += 1;
-    }
-    let mut arc = None;
-    let mut j = i + 2;
-    while j <= last {
-        match fits_arc(&pts[i..=j], tol, ok) {
-            Some(a) => arc = Some((j, a)),
-            None => break,
+    let line = farthest(i + 1, last, &|j| fits_line(&pts[i..=j], tol));
+    let arc_end = if i + 2 <= last && fits_arc(&pts[i..=i + 2], tol).is_some() { farthest(i + 2, last, &|j| fits_arc(&pts[i..=j], tol).is_some()) } else { i };
+    let mut j = arc_end;
+    while j > line.max(i + 1) {
+        if let Some(a) = fits_arc(&pts[i..=j], tol).filter(|&(c, cw)| arc_clear(&pts[i..=j], c, cw, ok)) {
+            return (j, Some(a));
         }
-        j += 1;
+        j -= 1.max((j - line) / 2);
     }
-    match arc {
-        Some((j, a)) if j > line => (j, Some(a)),
-        _ => (line, None),
+    (line, None)
+}
+
+/// The largest `j` in `[from, last]` for which `fits(j)` holds, given that it holds at `from`
+/// and keeps holding below any `j` where it holds.
+fn farthest(from: usize, last: usize, fits: &dyn Fn(usize) -> bool) -> usize {
+    let (mut good, mut step) = (from, 1);
+    let mut bad = last + 1;
+    while good + step <= last {
+        if fits(good + step) {
+            good += step;
+            step *= 2;
+        } else {
+            bad = good + step;
+            break;
+        }
     }
+    if bad == last + 1 && good < last {
+        if fits(last) {
+            return last;
+        }
+        bad = last;
+    }
+    while bad - good > 1 {
+        let mid = (good + bad) / 2;
+        if fits(mid) {
+            good = mid;
+        } else {
+            bad = mid;
+        }
+    }
+    good
+}
+
+/// Whether the middle of the arc between each two points is accepted by `ok`.
+fn arc_clear(p: &[DVec2], c: DVec2, _clockwise: bool, ok: &dyn Fn(DVec2) -> bool) -> bool {
+    let r = c.distance(p[0]);
+    p.windows(2).all(|w| ok(c + ((w[0] - c) + (w[1] - c)).normalize_or_zero() * r))
 }
 
 /// Whether the points lie within `tol` of the line from the first to the last, in order along it.
@@ -102,8 +134,8 @@ fn fits_line(p: &[DVec2], tol: f64) -> bool {
 
 /// The centre and turn of the arc through the first, middle and last point, when every point
 /// lies within `tol` of it, in order, turning less than a full circle, and the arc between
-/// each two points stays within `tol` of their chord and is accepted by `ok` at its middle.
-fn fits_arc(p: &[DVec2], tol: f64, ok: &dyn Fn(DVec2) -> bool) -> Option<(DVec2, bool)> {
+/// each two points stays within `tol` of their chord.
+fn fits_arc(p: &[DVec2], tol: f64) -> Option<(DVec2, bool)> {
     let (a, m, b) = (p[0], p[p.len() / 2], p[p.len() - 1]);
     let d = 2.0 * ((m - a).perp_dot(b - a));
     if d.abs() < 1e-12 {
@@ -127,9 +159,7 @@ fn fits_arc(p: &[DVec2], tol: f64, ok: &dyn Fn(DVec2) -> bool) -> Option<(DVec2,
         }
         swept += turn;
         let half = w[0].distance(w[1]) * 0.5;
-        let sagitta = r - (r * r - half * half).max(0.0).sqrt();
-        let mid = c + (u + v).normalize_or_zero() * r;
-        if sagitta > tol || !ok(mid) {
+        if r - (r * r - half * half).max(0.0).sqrt() > tol {
             return None;
         }
     }

@@ -470,6 +470,7 @@ test('zigzag roughing with the load held: added in the page, the reference line 
   await page.click('#generate');
   await generated(page);
   assert.ok(await pathPixels(page) > 2000, 'the path on the canvas');
+  await page.screenshot({ path: path.join(shots, 'zigzag.png') });
   const report = await page.textContent('#sim-report');
   assert.match(report, /gouges: 0/);
   assert.match(report, /rapid moves through stock: 0/);
