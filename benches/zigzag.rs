@@ -3,17 +3,18 @@
 //! compute time). It also writes the pocket as `target/paper_pocket.stl`, for the peers.
 //!
 //! Run: `cargo bench --bench zigzag` (native). The wasm figures: `bash scripts/bench-wasm.sh`.
-//! The load of any programs on a part (the peers' side by side):
-//! `cargo bench --bench zigzag -- load PART.stl PROGRAM.ngc...`.
+//! The load of any programs with a flat end of diameter D on a part (the peers' side by side):
+//! `cargo bench --bench zigzag -- load D PART.stl PROGRAM.ngc...`.
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).filter(|a| a != "--bench").collect();
     if args.first().map(String::as_str) == Some("load") {
-        let stl = std::fs::read(&args[1]).expect("the part");
+        let diameter: f64 = args[1].parse().expect("the tool's diameter");
+        let stl = std::fs::read(&args[2]).expect("the part");
         let part = swarf::mesh::import::read_mesh_auto(&stl, Some("part.stl"), &Default::default()).expect("the part reads");
-        for program in &args[2..] {
+        for program in &args[3..] {
             let gcode = std::fs::read_to_string(program).expect("the program");
-            let (peak, mean, n) = swarf::job::bench::program_load(part.clone(), &gcode, 0.1, 1.2).expect("the program simulates");
+            let (peak, mean, n) = swarf::job::bench::program_load(part.clone(), &gcode, diameter, 0.1, 1.2).expect("the program simulates");
             println!("{program}: removal rate per 1.2 mm of level cutting: peak {peak:.0} mm³/min, mean {mean:.0} mm³/min over {n} windows");
         }
         return;
@@ -35,5 +36,13 @@ fn main() {
     println!("| platform | load held by | feed length (mm) | plain path's load: peak (spread) | as cut, at its feeds: peak (spread) | mm at a lowered feed | cycle time as programmed (s) | at the feed each allows (s) | compute (s) |");
     for row in swarf::job::bench::zigzag_rows("native", &clock) {
         println!("{row}");
+    }
+    // Beside FreeCAD's Adaptive (scripts/bench-zigzag-peers.sh), where ../shared/data is beside
+    // the project.
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/meshes");
+    if let Ok(stl) = std::fs::read(dir.join("kiri_pocket-test.stl")) {
+        for row in swarf::job::bench::zigzag_peer_rows("kiri_pocket-test", &stl, "native", &clock) {
+            println!("{row}");
+        }
     }
 }

@@ -43,7 +43,7 @@ import json, sys
 s = json.load(sys.stdin)
 print('$p', 'feed', s['length_mm']['feed'], 'mm; est', s['time_est_min']['total'], 'min; left', s['sim']['material_left_mm3'], 'mm3; gouges', s['sim']['gouge_cells'])"
   done
-  cargo bench -q --bench zigzag -- load "$stl" "$OUT/$name"-swarf-*.ngc $( [ -s "$OUT/$name-freecad-adaptive.ngc" ] && echo "$OUT/$name-freecad-adaptive.ngc" )
+  cargo bench -q --bench zigzag -- load "$d" "$stl" "$OUT/$name"-swarf-*.ngc $( [ -s "$OUT/$name-freecad-adaptive.ngc" ] && echo "$OUT/$name-freecad-adaptive.ngc" )
 }
 run pocket-test ../shared/data/meshes/kiri_pocket-test.stl 6 2 0.4
 run paper-pocket target/paper_pocket.stl 10 0.5 0.3

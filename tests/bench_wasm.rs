@@ -73,3 +73,12 @@ fn zigzag_in_wasm() {
     }
     assert_eq!(rows.len(), 3);
 }
+
+#[wasm_bindgen_test]
+fn zigzag_pocket_test_in_wasm() {
+    // Beside FreeCAD's Adaptive (scripts/bench-zigzag-peers.sh), the shared pocket test.
+    let stl = include_bytes!("../../shared/data/meshes/kiri_pocket-test.stl");
+    for row in swarf::job::bench::zigzag_peer_rows("kiri_pocket-test", stl, "wasm (Chromium)", &now) {
+        web_sys_log(&row);
+    }
+}

@@ -277,18 +277,41 @@ pub fn zigzag_rows(platform: &str, clock: &dyn Fn() -> f64) -> Vec<String> {
     rows
 }
 
-/// The removal rate of any program (G-code text, swarf's or a peer's) on a part placed as in
-/// [`peer_rough_job`] (the stock the part's box), over windows of `ds` mm of level cutting
-/// (entries left out), by the project's simulation at `cell`: the highest window and the mean
-/// (mm³/min), and the number of windows.
-pub fn program_load(part: Mesh, gcode: &str, cell: f64, ds: f64) -> crate::error::Result<(f64, f64, usize)> {
+/// The removal rate of any program (G-code text, swarf's or a peer's) with a flat end of
+/// `diameter` on a part placed as in [`peer_rough_job`] (the stock the part's box), over
+/// windows of `ds` mm of level cutting (entries left out), by the project's simulation at
+/// `cell`: the highest window and the mean (mm³/min), and the number of windows.
+pub fn program_load(part: Mesh, gcode: &str, diameter: f64, cell: f64, ds: f64) -> crate::error::Result<(f64, f64, usize)> {
     let mut job = peer_rough_job();
     let mut part = part;
     let stock = job.place(&mut part);
-    job.tools[0].cutter.flute_length = 1e3;
+    job.tools[0].cutter = Cutter { flute_length: 1e3, ..Cutter::flat(diameter) };
     let paths = crate::post::read::read_gcode(gcode, 1)?;
     let moves = crate::sim::program::program_moves(&paths, &job.tools, job.post.rapid_rate)?;
     let rates = crate::sim::windows::windowed_rates(&moves, &stock, cell, ds)?;
     let mean = rates.iter().sum::<f64>() / rates.len().max(1) as f64;
     Ok((rates.iter().copied().fold(0.0, f64::max), mean, rates.len()))
+}
+
+/// Issue 12's settings (φ6 flat, step-down 2, step-over 0.4, no allowance, the stock the
+/// part's box) with zigzag roughing on a 0.5 mm grid, the load held by `load`.
+pub fn peer_zigzag_job(load: crate::strategy::rough_zigzag::LoadControl) -> Job {
+    use crate::strategy::rough_zigzag::RoughZigzag;
+    let op = RoughZigzag { stepdown: 2.0, stepover: 0.4, allowance: 0.0, leave_stock: 0.0, grid: 0.5, load, ..RoughZigzag::default() };
+    Job { operations: vec![Operation::RoughZigzag(op)], ..peer_rough_job() }
+}
+
+/// Zigzag roughing of a part (STL bytes) with [`peer_zigzag_job`], each way of holding the
+/// load: compute time (without simulation) and the cycle time as programmed.
+pub fn zigzag_peer_rows(name: &str, stl: &[u8], platform: &str, clock: &dyn Fn() -> f64) -> Vec<String> {
+    use crate::strategy::rough_zigzag::LoadControl;
+    let part = crate::mesh::import::read_mesh_auto(stl, Some("part.stl"), &Tolerances::default()).expect("the part reads");
+    [LoadControl::Path, LoadControl::Feed, LoadControl::None]
+        .into_iter()
+        .map(|load| {
+            let start = clock();
+            let out = crate::job::run(&peer_zigzag_job(load), part.clone(), &mut Progress::none()).expect("the part roughs");
+            format!("| {platform} | {name} | {load:?} | compute {:.3} s | {:.0} s on the machine |", clock() - start, out.stats.seconds)
+        })
+        .collect()
 }
