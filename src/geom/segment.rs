@@ -626,6 +626,60 @@ fn arc_arc(s1: &Segment, g1: &ArcGeom, s2: &Segment, g2: &ArcGeom, eps: f64, out
     try_point_with(s1, Some(g1), s2, Some(g2), base - n * h, eps, out);
 }
 
+/// Cumulative arc lengths at the starts of a chain's segments, and its total.
+pub fn arc_lengths(segs: &[Segment]) -> (Vec<f64>, f64) {
+    let mut at = Vec::with_capacity(segs.len());
+    let mut s = 0.0;
+    for seg in segs {
+        at.push(s);
+        s += seg.length();
+    }
+    (at, s)
+}
+
+/// The pieces of the closed chain `segs` from arc length `s0` to `s1` (`s1` may pass the end:
+/// the chain repeats), cut where a segment ends and at the arc lengths `cut`, each with the
+/// arc lengths it runs from and to.
+pub fn pieces(segs: &[Segment], s0: f64, s1: f64, cut: impl Iterator<Item = f64>) -> Vec<(f64, f64, Segment)> {
+    let (starts, total) = arc_lengths(segs);
+    if total <= 0.0 || s1 <= s0 {
+        return Vec::new();
+    }
+    // Every place where a segment ends or a cut is asked for.
+    let mut cuts: Vec<f64> = cut.filter(|&s| s > s0 && s < s1).collect();
+    let first_lap = (s0 / total).floor() as i64;
+    let last_lap = (s1 / total).ceil() as i64;
+    for lap in first_lap..=last_lap {
+        for &st in &starts {
+            let s = lap as f64 * total + st;
+            if s > s0 && s < s1 {
+                cuts.push(s);
+            }
+        }
+    }
+    cuts.push(s1);
+    cuts.sort_by(f64::total_cmp);
+    cuts.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
+    let mut out = Vec::with_capacity(cuts.len());
+    let mut from = s0;
+    for &to in &cuts {
+        if to - from <= 1e-12 {
+            continue;
+        }
+        let mid = (from + to) * 0.5;
+        let local = mid.rem_euclid(total);
+        let i = starts.partition_point(|&x| x <= local).saturating_sub(1);
+        let seg = segs[i];
+        let lap_start = mid - local + starts[i];
+        let len = seg.length();
+        let (ta, tb) = (((from - lap_start) / len).clamp(0.0, 1.0), ((to - lap_start) / len).clamp(0.0, 1.0));
+        out.push((from, to, seg.sub(ta, tb)));
+        from = to;
+    }
+    out
+}
+
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -236,15 +236,7 @@ pub fn paper_zigzag_job(load: crate::strategy::rough_zigzag::LoadControl) -> Job
     use crate::strategy::rough_zigzag::RoughZigzag;
     let tool = Tool { cutter: Cutter::flat(10.0), feed_rate: 1000.0, plunge_rate: 250.0, ..Tool::default() };
     let op = RoughZigzag { stepdown: 0.5, stepover: 0.3, allowance: 0.0, leave_stock: 0.0, load, grid: 0.5, ..RoughZigzag::default() };
-    Job {
-        part: crate::mesh::placement::PartSetup { placement: crate::mesh::placement::Placement::Keep, ..Default::default() },
-        stock: job::Stock { margin_xy: 0.0, margin_top: 0.0, margin_bottom: 0.0, ..Default::default() },
-        post: crate::post::PostSettings { rapid_rate: 5000.0, ..Default::default() },
-        tools: vec![tool],
-        operations: vec![Operation::RoughZigzag(op)],
-        simulation: Simulation { verify: false, cell: None },
-        ..Job::default()
-    }
+    Job { tools: vec![tool], operations: vec![Operation::RoughZigzag(op)], ..peer_rough_job() }
 }
 
 /// Seed 004's figures on its case, for the plain path, the feed lowered where it overloads,

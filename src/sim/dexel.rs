@@ -116,6 +116,13 @@ impl DexelStock {
         self.z[j * self.nx + i]
     }
 
+    /// [`DexelStock::top`] of the cell whose centre is nearest `p`; `None` off the stock.
+    pub fn top_near(&self, p: DVec2) -> Option<f64> {
+        let g = self.grid();
+        let u = ((p - g.origin) / g.spacing).round();
+        (u.x >= 0.0 && u.y >= 0.0 && (u.x as usize) < self.nx && (u.y as usize) < self.ny).then(|| self.top(u.x as usize, u.y as usize))
+    }
+
     /// The worst place where material stands more than `rise` above the tip within `radius` of
     /// the sweep's path (the tool's body above its flutes would meet it): the point and by how
     /// much, or `None`.

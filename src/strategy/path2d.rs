@@ -5,6 +5,7 @@
 
 use crate::cutter::Profile;
 use crate::geom::segment::Segment;
+pub use crate::geom::segment::{arc_lengths, pieces};
 use crate::geom::{DVec2, DVec3};
 use crate::profile::Loop;
 use crate::sim::dexel::DexelStock;
@@ -66,17 +67,6 @@ impl Heights {
     }
 }
 
-/// Cumulative arc lengths at the starts of a chain's segments, and its total.
-pub fn arc_lengths(segs: &[Segment]) -> (Vec<f64>, f64) {
-    let mut at = Vec::with_capacity(segs.len());
-    let mut s = 0.0;
-    for seg in segs {
-        at.push(s);
-        s += seg.length();
-    }
-    (at, s)
-}
-
 /// The point of a closed chain at arc length `s` (wrapping).
 pub fn point_at(segs: &[Segment], starts: &[f64], total: f64, s: f64) -> DVec2 {
     let s = s.rem_euclid(total);
@@ -89,44 +79,12 @@ pub fn point_at(segs: &[Segment], starts: &[f64], total: f64, s: f64) -> DVec2 {
 /// end: the chain repeats), at the heights `z` gives along the way (arcs with changing height
 /// are helices).
 pub fn follow(segs: &[Segment], s0: f64, s1: f64, z: &Heights, feed: f64, out: &mut Vec<Move>) {
-    let (starts, total) = arc_lengths(segs);
-    if total <= 0.0 || s1 <= s0 {
-        return;
-    }
-    // Every place where a segment ends or the height bends.
-    let mut cuts: Vec<f64> = z.breakpoints().filter(|&s| s > s0 && s < s1).collect();
-    let first_lap = (s0 / total).floor() as i64;
-    let last_lap = (s1 / total).ceil() as i64;
-    for lap in first_lap..=last_lap {
-        for &st in &starts {
-            let s = lap as f64 * total + st;
-            if s > s0 && s < s1 {
-                cuts.push(s);
-            }
-        }
-    }
-    cuts.push(s1);
-    cuts.sort_by(f64::total_cmp);
-    cuts.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
-    let mut from = s0;
-    for &to in &cuts {
-        if to - from <= 1e-12 {
-            continue;
-        }
-        let mid = (from + to) * 0.5;
-        let local = mid.rem_euclid(total);
-        let i = starts.partition_point(|&x| x <= local).saturating_sub(1);
-        let seg = segs[i];
-        let lap_start = mid - local + starts[i];
-        let len = seg.length();
-        let (ta, tb) = (((from - lap_start) / len).clamp(0.0, 1.0), ((to - lap_start) / len).clamp(0.0, 1.0));
-        let piece = seg.sub(ta, tb);
+    for (_, to, piece) in pieces(segs, s0, s1, z.breakpoints()) {
         let end = piece.b.extend(z.at(to));
         match piece.arc_geom() {
             Some(g) => out.push(Move::Arc { to: end, center: g.center, clockwise: g.bulge < 0.0, feed }),
             None => out.push(Move::Line { to: end, feed }),
         }
-        from = to;
     }
 }
 
@@ -176,14 +134,21 @@ pub type Traverse = Box<dyn Fn(DVec2, DVec2) -> Option<f64>>;
 /// operations of the job left.
 #[derive(Clone, Copy)]
 pub struct InStock<'m> {
-    pub stock: &'m DexelStock,
-    pub profile: Profile,
-    /// How much smaller than the cutter the estimate's footprint is (mm): the walls an
-    /// earlier cut left at exactly this cutter's reach do not count as material in its way.
-    pub shy: f64,
+    stock: &'m DexelStock,
+    profile: Profile,
+    /// The cutter `shy` smaller, for the estimate.
+    smaller: Profile,
 }
 
-impl InStock<'_> {
+impl<'m> InStock<'m> {
+    /// The stock as `profile` meets it; the estimate's footprint `shy` smaller (mm), so that
+    /// the walls an earlier cut left at exactly this cutter's reach do not count as material
+    /// in its way.
+    pub fn new(stock: &'m DexelStock, profile: Profile, shy: f64) -> InStock<'m> {
+        let r = (profile.radius - shy).max(0.0);
+        InStock { stock, profile, smaller: Profile::new(r, profile.corner.min(r)) }
+    }
+
     /// The highest tip height at which the cutter at `p` touches material as the stock model
     /// samples it (`-inf` where there is none): as the program's verification sees the
     /// material, for rapids. Not the bound the 3D linker takes (each cell as a column over its
@@ -196,8 +161,7 @@ impl InStock<'_> {
     /// The same as the stock model samples it, at its cells' centres, with the footprint
     /// `shy` smaller: for deciding where material is left to cut.
     pub fn estimate(&self, p: DVec2) -> f64 {
-        let r = (self.profile.radius - self.shy).max(0.0);
-        self.stock.touch(p, &Profile::new(r, self.profile.corner.min(r)), false)
+        self.stock.touch(p, &self.smaller, false)
     }
 
     /// The highest [`InStock::estimate`] over points along `segments`, at most `spacing` apart.
@@ -225,9 +189,9 @@ pub struct Cursor<'m> {
     /// A lower traverse than the clearance height where the strategy knows one (the short
     /// retract); `None`: always the clearance height.
     pub traverse: Option<Traverse>,
-    /// The in-process stock, when the job keeps one: rapid descents stop the gap above the
-    /// material under the cutter at that spot (never lower than `safe` allows otherwise).
-    pub stock: Option<InStock<'m>>,
+    /// The in-process stock: rapid descents stop the gap above the material under the cutter
+    /// at that spot (no lower than `safe` allows otherwise).
+    pub stock: InStock<'m>,
 }
 
 impl Cursor<'_> {
@@ -237,10 +201,7 @@ impl Cursor<'_> {
     pub fn reposition(&mut self, to: DVec3, out: &mut Vec<Move>) {
         let low = self.traverse.as_ref().and_then(|f| f(self.at.truncate(), to.truncate()));
         let travel = low.map_or(self.clearance, |h| h.max(self.safe.min(self.clearance)).min(self.clearance));
-        let mut stop = self.safe.min(travel);
-        if let Some(stock) = &self.stock {
-            stop = stop.min(stock.reach(to.truncate()).max(to.z) + self.gap);
-        }
+        let stop = self.safe.min(travel).min(self.stock.reach(to.truncate()).max(to.z) + self.gap);
         retract(self.at, to.truncate(), travel, stop.max(to.z), out);
         if stop > to.z {
             out.push(Move::Line { to, feed: self.plunge });
@@ -251,12 +212,10 @@ impl Cursor<'_> {
     /// Where material starts for a cut from `from` down to `to` whose tool runs along `segments`:
     /// the highest estimate of the in-process stock at points along them (the stock's cell or
     /// half the cutter's radius apart, whichever is larger), no higher than `from`; `None` when
-    /// it stands no higher than `to` plus `threshold` (the cut would be in the air). `from`
-    /// itself without a stock.
+    /// it stands no higher than `to` plus `threshold` (the cut would be in the air).
     pub fn material_top(&self, segments: impl IntoIterator<Item = Segment>, from: f64, to: f64, threshold: f64) -> Option<f64> {
-        let Some(stock) = &self.stock else { return Some(from) };
-        let spacing = stock.stock.grid().spacing.max(0.5 * stock.profile.radius);
-        let top = stock.highest_along(segments, spacing);
+        let spacing = self.stock.stock.grid().spacing.max(0.5 * self.stock.profile.radius);
+        let top = self.stock.highest_along(segments, spacing);
         (top > to + threshold).then(|| top.clamp(to, from))
     }
 

@@ -24,7 +24,6 @@ use super::profile2d::Direction;
 use super::rough_zlevel::{Level, Levels, RoughZlevel};
 use super::{Context, FieldError, Operate};
 use crate::error::{Error, Result};
-use crate::geom::segment::Rect;
 use crate::geom::{DVec2, DVec3};
 use crate::profile::Shape;
 use crate::progress::Progress;
@@ -228,7 +227,8 @@ impl Operate for RoughZigzag {
             let stock = ctx.sim.stock();
             let material = |p: DVec2| above(stock, p, z);
             let bounds = region.bounds();
-            let mut plain_map = if self.load == LoadControl::Path { PixelMap::new(bounds, px, r, &material, &region) } else { PixelMap::new(Rect { min: bounds.min, max: bounds.min }, px, 0.0, |_| false, &Shape::default()) };
+            // The plain path's own map, for the report, only where the path is not the plain one.
+            let mut plain_map = (self.load == LoadControl::Path).then(|| PixelMap::new(bounds, px, r, &material, &region));
             let mut map = PixelMap::new(bounds, px, r, &material, &region);
             let inside = Inside(&region);
             let (mut pts3, mut feeds): (Vec<Vec<DVec3>>, Vec<Vec<f64>>) = (Vec::new(), Vec::new());
@@ -239,8 +239,8 @@ impl Operate for RoughZigzag {
             let mut shares = Vec::new();
             for run in &runs {
                 // The plain path's load, for the report (the path itself unless corrected).
-                if self.load == LoadControl::Path {
-                    load::plain(&mut plain_map, run, &load, &mut plain);
+                if let Some(m) = &mut plain_map {
+                    load::plain(m, run, &load, &mut plain);
                 }
                 // Joined to the run before when the straight link stays in the region and
                 // within the load.
@@ -295,7 +295,7 @@ impl Operate for RoughZigzag {
                 }
             }
             report.load.extend(done.ratios(reference, ds));
-            if self.load == LoadControl::Path {
+            if plain_map.is_some() {
                 report.plain.extend(plain.ratios(reference, ds));
             } else {
                 // Cut as it is: the plain path's load is the path's own, links included.
@@ -328,9 +328,7 @@ fn too_short(run: &[DVec2], least: f64) -> bool {
 
 /// Whether the in-process stock stands above `z` at `p` (the cell under it).
 fn above(stock: &DexelStock, p: DVec2, z: f64) -> bool {
-    let g = stock.grid();
-    let u = ((p - g.origin) / g.spacing).round();
-    u.x >= 0.0 && u.y >= 0.0 && (u.x as usize) < g.nx && (u.y as usize) < g.ny && stock.top(u.x as usize, u.y as usize) > z + 1e-6
+    stock.top_near(p).is_some_and(|top| top > z + 1e-6)
 }
 
 /// The region's loops as closed runs (points within `chord` of them), climbing: outer loops

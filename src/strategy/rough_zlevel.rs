@@ -286,15 +286,10 @@ impl RoughZlevel {
 /// Per node of `grid`, whether a cutter there at level `z` is within `reach` of material that
 /// stands above `z` in the stock.
 pub fn material_near(stock: &DexelStock, grid: Grid, z: f64, reach: f64) -> Vec<bool> {
-    let sg = stock.grid();
-    let half = sg.spacing * 0.5;
     let mut above = grid.filled(0.0);
     for j in 0..grid.ny {
         for i in 0..grid.nx {
-            let p = grid.node(i, j);
-            let u = ((p - sg.origin) / sg.spacing).round();
-            let inside = p.x >= sg.origin.x - half && p.y >= sg.origin.y - half && u.x >= 0.0 && u.y >= 0.0 && (u.x as usize) < sg.nx && (u.y as usize) < sg.ny;
-            if inside && stock.top(u.x as usize, u.y as usize) > z + 1e-6 {
+            if stock.top_near(grid.node(i, j)).is_some_and(|top| top > z + 1e-6) {
                 above.z[j * grid.nx + i] = 1.0;
             }
         }

@@ -55,7 +55,7 @@ pub fn pocket_region(shape: &Shape, picked: &[Loop], all: bool) -> Shape {
 /// gap above the in-process stock under the cutter (never above the stock's top plus the gap).
 pub fn cursor<'m>(ctx: &'m Context, tool: &Tool) -> Cursor<'m> {
     let clearance = ctx.heights.clearance;
-    let stock = InStock { stock: ctx.sim.stock(), profile: tool.cutter.profile(), shy: ctx.tolerances.gouge };
+    let stock = InStock::new(ctx.sim.stock(), tool.cutter.profile(), ctx.tolerances.gouge);
     Cursor {
         at: DVec3::new(0.0, 0.0, clearance),
         clearance,
@@ -63,7 +63,7 @@ pub fn cursor<'m>(ctx: &'m Context, tool: &Tool) -> Cursor<'m> {
         gap: ctx.heights.gap,
         plunge: tool.plunge_rate,
         traverse: None,
-        stock: Some(stock),
+        stock,
     }
 }
 

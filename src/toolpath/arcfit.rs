@@ -69,7 +69,7 @@ fn longest_piece(pts: &[DVec2], i: usize, tol: f64, ok: &dyn Fn(DVec2) -> bool) 
     let arc_end = if i + 2 <= last && fits_arc(&pts[i..=i + 2], tol).is_some() { farthest(i + 2, last, &|j| fits_arc(&pts[i..=j], tol).is_some()) } else { i };
     let mut j = arc_end;
     while j > line.max(i + 1) {
-        if let Some(a) = fits_arc(&pts[i..=j], tol).filter(|&(c, cw)| arc_clear(&pts[i..=j], c, cw, ok)) {
+        if let Some(a) = fits_arc(&pts[i..=j], tol).filter(|&(c, _)| arc_clear(&pts[i..=j], c, ok)) {
             return (j, Some(a));
         }
         j -= 1.max((j - line) / 2);
@@ -109,7 +109,7 @@ fn farthest(from: usize, last: usize, fits: &dyn Fn(usize) -> bool) -> usize {
 }
 
 /// Whether the middle of the arc between each two points is accepted by `ok`.
-fn arc_clear(p: &[DVec2], c: DVec2, _clockwise: bool, ok: &dyn Fn(DVec2) -> bool) -> bool {
+fn arc_clear(p: &[DVec2], c: DVec2, ok: &dyn Fn(DVec2) -> bool) -> bool {
     let r = c.distance(p[0]);
     p.windows(2).all(|w| ok(c + ((w[0] - c) + (w[1] - c)).normalize_or_zero() * r))
 }

@@ -10,7 +10,7 @@
 //! line and cuts back, pushing every unvisited neighbour it passes on a stack; when it is stuck
 //! it pops the stack, so the tool leaves the material only where the region forces it.
 
-use crate::geom::segment::Segment;
+use crate::geom::segment::{arc_lengths, pieces, Segment};
 use crate::geom::DVec2;
 use crate::profile::{Loop, Shape};
 
@@ -95,7 +95,7 @@ impl Graph {
             .iter()
             .map(|l| {
                 let segs: Vec<Segment> = l.segments().collect();
-                let (starts, total) = crate::strategy::path2d::arc_lengths(&segs);
+                let (starts, total) = arc_lengths(&segs);
                 (segs, starts, total)
             })
             .collect();
@@ -155,25 +155,13 @@ impl Graph {
     /// frame within `chord` of the boundary, from `a` to `b`.
     fn boundary(&self, a: usize, b: usize, chord: f64) -> Vec<DVec2> {
         let (na, nb) = (&self.nodes[a], &self.nodes[b]);
-        let (segs, starts, total) = &self.loops[na.on];
+        let (segs, _, total) = &self.loops[na.on];
         // Forward along the loop when b is a's forward neighbour.
         let forward = (na.up == Some(b) && na.up_forward) || (na.down == Some(b) && !nb.up_forward);
         let (s0, s1) = if forward { (na.s, if nb.s < na.s { nb.s + total } else { nb.s }) } else { (nb.s, if na.s < nb.s { na.s + total } else { na.s }) };
         let mut pts = Vec::new();
-        let mut s = s0;
-        while s < s1 {
-            let local = s.rem_euclid(*total);
-            let i = starts.partition_point(|&x| x <= local).saturating_sub(1);
-            let seg = segs[i];
-            let end = (s - local + starts[i] + seg.length()).min(s1);
-            let len = seg.length().max(1e-12);
-            let (t0, t1) = ((s - (s - local + starts[i])) / len, (end - (s - local + starts[i])) / len);
-            let piece = seg.sub(t0.clamp(0.0, 1.0), t1.clamp(0.0, 1.0));
+        for (_, _, piece) in pieces(segs, s0, s1, std::iter::empty()) {
             along_boundary(&piece, chord, &mut pts);
-            if end <= s + 1e-12 {
-                break;
-            }
-            s = end;
         }
         // The samples run from the point at s0, short of the one at s1.
         if pts.is_empty() {
