@@ -72,7 +72,6 @@ fn the_papers_pocket_is_cleared_with_the_load_held() {
         let rates = simulated_rates(&out, 0.05, report.sampling, 3.0 * 0.5 * 1000.0);
         let worst = rates.iter().copied().fold(0.0, f64::max);
         eprintln!("{load:?}: {} ; simulated peak {worst:.2} over {} windows", out.operations[0].describe(), rates.len());
-        std::fs::write(format!("/tmp/zz/{load:?}.ngc"), &out.gcode).unwrap();
         match load {
             LoadControl::None => assert!(cut > 3.0 && worst > 3.0, "{cut} {worst}"),
             _ => {
@@ -80,7 +79,6 @@ fn the_papers_pocket_is_cleared_with_the_load_held() {
                 assert!(worst <= 1.1, "simulated: {worst}");
             }
         }
-        std::fs::write(format!("/tmp/zz/{load:?}.ngc"), &out.gcode).unwrap();
         seconds.push(out.operations[0].seconds);
     }
     // At the feed its peak allows (1.1 × the reference), the plain path takes longer than

@@ -76,8 +76,16 @@ impl ClSurface {
         // a flat end's rim make narrower ones (a rim brushing an edge), which get half the
         // spacing (on mount_rush, φ6 r1 at grid 0.5: 0.0019 mm below the surface with the
         // ball's spacing, 0.0004 mm with this one).
+        //
+        // A round cutter's cap of radius ρ (the ball's radius, a bull nose's corner) can also
+        // peak between two quarter samples s apart: at most s²/(8ρ) above them. The spacing keeps
+        // that under the tolerance, so the quarters see every cap higher than twice the
+        // tolerance (a raster on the sample part with a φ6 r1 bull nose at grid 0.8 hid a
+        // 0.002 mm cap between quarters 0.1 mm apart).
         let p = drop.profile();
+        let cap = |rho: f64| if rho > 0.0 { (128.0 * rho * tolerance).sqrt() } else { f64::INFINITY };
         let probe = if p.flat_radius() <= 0.0 { field.spacing.min(p.radius / 2.0) } else { (field.spacing / 2.0).min(p.radius / 4.0) };
+        let probe = probe.min(cap(p.corner));
         ClSurface { field, drop, floor, nodes_exact, tolerance, probe }
     }
 
