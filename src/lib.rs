@@ -21,6 +21,7 @@ pub mod error;
 pub mod geom;
 pub mod job;
 pub mod mesh;
+pub mod octree;
 pub mod offset;
 pub mod parallel;
 pub mod post;

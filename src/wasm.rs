@@ -220,6 +220,8 @@ pub struct JobResult {
     gcode: String,
     feeds: Vec<f32>,
     feed_ops: Vec<f32>,
+    feed_tools: Vec<f32>,
+    octants: Vec<f32>,
     rapids: Vec<f32>,
     summary: JsValue,
     part: PartView,
@@ -254,6 +256,18 @@ impl JobResult {
     pub fn feed_operations(&self) -> js_sys::Float32Array {
         // SAFETY: as for PartView.
         unsafe { js_sys::Float32Array::view(&self.feed_ops) }
+    }
+    /// The tool number of each cutting segment of `feeds` (a view).
+    #[wasm_bindgen(js_name = feedTools)]
+    pub fn feed_tools(&self) -> js_sys::Float32Array {
+        // SAFETY: as for PartView.
+        unsafe { js_sys::Float32Array::view(&self.feed_tools) }
+    }
+    /// The octants of each stage of octree roughing (seed 000): per box `stage, tool, full
+    /// (1: cut by that tool, 0: Partial), minX, minY, minZ, maxX, maxY, maxZ` (a view).
+    pub fn octants(&self) -> js_sys::Float32Array {
+        // SAFETY: as for PartView.
+        unsafe { js_sys::Float32Array::view(&self.octants) }
     }
     /// Rapid moves as line segments (a view).
     pub fn rapids(&self) -> js_sys::Float32Array {
@@ -353,13 +367,14 @@ pub fn run_job(job: JsValue, bytes: &[u8], name: &str, progress: &js_sys::Functi
     };
     let mut out = job::run(&job, workpiece, &mut Progress::new(&mut sink)).map_err(js_error)?;
     let simulation = out.verification.take().map(|v| simulation_view(&job, &out, v)).transpose()?;
-    let (mut feeds, mut rapids, mut feed_ops) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut feeds, mut rapids, mut feed_ops, mut feed_tools) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     for (path, &op) in out.paths.iter().zip(&out.path_operations) {
         for (a, b, rapid) in path.segments(0.1) {
             let target = if rapid { &mut rapids } else { &mut feeds };
             target.extend([a.x as f32, a.y as f32, a.z as f32, b.x as f32, b.y as f32, b.z as f32]);
             if !rapid {
                 feed_ops.push(op as f32);
+                feed_tools.push(path.tool as f32);
             }
         }
     }
@@ -385,7 +400,14 @@ pub fn run_job(job: JsValue, bytes: &[u8], name: &str, progress: &js_sys::Functi
         Some(d) => to_js(&drawing_view(d))?,
         None => JsValue::NULL,
     };
-    Ok(JobResult { gcode: out.gcode_marked(), feeds, feed_ops, rapids, summary, part: part_view(&out.part), drawing, simulation })
+    let octants = out
+        .octants
+        .iter()
+        .flat_map(|s| s.boxes.iter().map(move |b| (s, b)))
+        .flat_map(|(s, b)| [s.stage as f64, s.tool as f64, if b.full { 1.0 } else { 0.0 }, b.min[0], b.min[1], b.min[2], b.max[0], b.max[1], b.max[2]])
+        .map(|v| v as f32)
+        .collect();
+    Ok(JobResult { gcode: out.gcode_marked(), feeds, feed_ops, feed_tools, octants, rapids, summary, part: part_view(&out.part), drawing, simulation })
 }
 
 #[derive(serde::Serialize)]

@@ -82,3 +82,13 @@ fn zigzag_pocket_test_in_wasm() {
         web_sys_log(&row);
     }
 }
+
+#[wasm_bindgen_test]
+fn octree_roughing_in_wasm() {
+    // Seed 000's comparison on the generated mould (octree, z-level with the φ3 alone, φ20 then φ3).
+    let rows = swarf::job::bench::octree_rows("mould", &swarf::mesh::sample::octree_mould(1.0), "wasm (Chromium)", &now);
+    for row in &rows {
+        web_sys_log(row);
+    }
+    assert_eq!(rows.len(), 3);
+}

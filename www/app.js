@@ -1,5 +1,5 @@
 // The page: settings, the worker that runs swarf's wasm, the view, and the download.
-import { Viewer, OP_COLORS } from './viewer.js';
+import { Viewer, OP_COLORS, toolColor } from './viewer.js';
 
 const $ = (id) => document.getElementById(id);
 const form = $('settings');
@@ -81,7 +81,12 @@ function restore() {
     if (!jobs?.drawing) for (const op of state.jobs.drawing.operations) if (op.tool === t.number) op.tool = tool.number;
   }
   // A library from before (or emptied) leaves no operation pointing nowhere.
-  for (const j of Object.values(state.jobs)) for (const op of j.operations) if (!state.tools.some((t) => t.number === op.tool)) op.tool = state.tools[0]?.number ?? 1;
+  for (const j of Object.values(state.jobs)) {
+    for (const op of j.operations) {
+      if (op.kind === 'roughOctree') op.tools = (op.tools ?? []).filter((n) => state.tools.some((t) => t.number === n));
+      else if (!state.tools.some((t) => t.number === op.tool)) op.tool = state.tools[0]?.number ?? 1;
+    }
+  }
 }
 
 // Objects and their fields by dotted keys ("stock.marginXy", "tabs.count").
@@ -100,6 +105,11 @@ function valueOf(el) {
   const type = el.dataset.type;
   if (el.type === 'checkbox') return el.checked;
   if (type === 'list') return el.value.split(',').map((v) => v.trim()).filter(Boolean);
+  if (type === 'ints') {
+    const v = el.value.split(',').map((w) => w.trim()).filter(Boolean).map(Number);
+    if (v.some((x) => !Number.isInteger(x) || x < 0)) throw new Error(`${labelOf(el)}: give tool numbers, separated by commas`);
+    return v;
+  }
   if (type === 'numbers' || type === 'box') {
     // A list of numbers (empty: none), and a box as its min and max corners.
     if (el.value.trim() === '') return null;
@@ -118,7 +128,7 @@ function valueOf(el) {
 
 function show(el, value) {
   if (el.type === 'checkbox') el.checked = !!value;
-  else if (el.dataset.type === 'list' || el.dataset.type === 'numbers') el.value = (value || []).join(', ');
+  else if (el.dataset.type === 'list' || el.dataset.type === 'numbers' || el.dataset.type === 'ints') el.value = (value || []).join(', ');
   else if (el.dataset.type === 'box') el.value = value ? [...value.min, ...value.max].join(', ') : '';
   else el.value = value ?? '';
 }
@@ -164,16 +174,17 @@ function fillOps() {
     const color = OP_COLORS[i % OP_COLORS.length].slice(0, 3).map((c) => Math.round(c * 255));
     li.innerHTML = `<input type="checkbox" class="op-enabled" title="run this operation" aria-label="enabled"><span class="swatch" style="background: rgb(${color.join(',')})"></span><span class="op-name"></span><span class="op-buttons"><button type="button" class="op-up" title="earlier">▲</button><button type="button" class="op-down" title="later">▼</button><button type="button" class="op-remove" title="remove">✕</button></span>`;
     li.querySelector('.op-enabled').checked = op.enabled !== false;
-    li.querySelector('.op-name').textContent = `${op.name} · T${op.tool}`;
+    li.querySelector('.op-name').textContent = `${op.name} · ${toolsOf(op).map((t) => `T${t}`).join(' ') || 'no tool'}`;
     return li;
   }));
   const op = selectedOp();
   $('op-editor').hidden = !op;
   if (!op) return;
   for (const el of $('op-editor').querySelectorAll('[data-kinds]')) el.hidden = !el.dataset.kinds.split(' ').includes(op.kind);
-  for (const box of [$('fs-raster'), $('fs-2d'), $('fs-rough'), $('fs-waterline')]) if (!box.hidden) fillFields(box, op);
+  for (const box of [$('fs-raster'), $('fs-2d'), $('fs-rough'), $('fs-waterline'), $('fs-octree')]) if (!box.hidden) fillFields(box, op);
   form.elements.opName.value = op.name;
-  form.elements.opTool.value = String(op.tool);
+  $('op-tool-label').hidden = op.kind === 'roughOctree';
+  if (op.kind !== 'roughOctree') form.elements.opTool.value = String(op.tool);
 }
 
 function fillAll() {
@@ -194,7 +205,12 @@ function onField(el) {
     if (el.dataset.key === 'number') {
       if (state.tools.some((u) => u !== t && u.number === value)) { showError(`T${value} is in the library already`); return; }
       // Operations using the tool follow its new number.
-      for (const j of Object.values(state.jobs)) for (const op of j.operations) if (op.tool === t.number) op.tool = value;
+      for (const j of Object.values(state.jobs)) {
+        for (const op of j.operations) {
+          if (op.tool === t.number) op.tool = value;
+          if (op.tools) op.tools = op.tools.map((n) => (n === t.number ? value : n));
+        }
+      }
     }
     setKey(t, el.dataset.key, value);
     fillTools();
@@ -229,7 +245,7 @@ function addTool(copy) {
 function deleteTool() {
   const t = selectedTool();
   if (!t) return;
-  const users = Object.values(state.jobs).flatMap((j) => j.operations).filter((op) => op.tool === t.number);
+  const users = Object.values(state.jobs).flatMap((j) => j.operations).filter((op) => (op.kind === 'roughOctree' ? op.tools ?? [] : [op.tool]).includes(t.number));
   if (users.length) { showError(`T${t.number} is used by ${users.map((o) => `'${o.name}'`).join(', ')}: give them another tool first`); return; }
   state.tools.splice(state.selected.tool, 1);
   store();
@@ -265,7 +281,8 @@ async function importTools(file) {
 function addOperation(kind) {
   const op = structuredClone(state.defaults.operations.find((o) => o.kind === kind));
   const j = job();
-  op.tool = selectedTool()?.number ?? state.tools[0]?.number ?? 1;
+  // Octree roughing chooses its own tools (from the whole library unless told otherwise).
+  if (kind !== 'roughOctree') op.tool = selectedTool()?.number ?? state.tools[0]?.number ?? 1;
   const same = j.operations.filter((o) => o.kind === kind).length;
   if (same) op.name = `${op.name} ${same + 1}`;
   j.operations.push(op);
@@ -299,11 +316,18 @@ function setKind(kind) {
   fillAll();
 }
 
+// The tools an operation uses: its own, or for octree roughing those it may choose from (its
+// list, else every flat and bull-nose end in the library).
+function toolsOf(op) {
+  if (op.kind !== 'roughOctree') return [op.tool];
+  return op.tools?.length ? op.tools : state.tools.filter((t) => t.shape === 'flat' || t.shape === 'bullNose').map((t) => t.number);
+}
+
 // The job to run or save: this kind's job with the library's tools its operations use.
 function buildJob() {
   const j = structuredClone(job());
   j.name = state.name.replace(/\.[^.]*$/, '');
-  const used = new Set(j.operations.map((op) => op.tool));
+  const used = new Set(j.operations.flatMap(toolsOf));
   j.tools = state.tools.filter((t) => used.has(t.number));
   const wrong = j.operations.filter((op) => (state.kind === 'drawing') !== is2d(op));
   if (wrong.length && wrong.length === j.operations.length) throw new Error(state.kind === 'drawing' ? 'add a pocket or profile operation for a drawing' : 'add a raster operation for a part');
@@ -389,7 +413,8 @@ async function loadJob(file) {
     const { job: read } = await call({ type: 'readJob', text: await file.text() });
     if (!read.operations.length) throw new Error('the job has no operations');
     for (const op of read.operations) {
-      if (!read.tools.some((t) => t.number === op.tool)) throw new Error(`operation '${op.name}' uses tool ${op.tool}, which the job file does not have`);
+      const missing = (op.kind === 'roughOctree' ? op.tools : [op.tool]).find((n) => !read.tools.some((t) => t.number === n));
+      if (missing != null) throw new Error(`operation '${op.name}' uses tool ${missing}, which the job file does not have`);
     }
     const kind = read.operations.every(is2d) ? 'drawing' : 'part';
     for (const t of read.tools) {
@@ -595,11 +620,14 @@ async function generate() {
     state.gcode = r.gcode;
     if (r.drawing) viewer?.setDrawing(r.drawing, false);
     else viewer?.setPart(r.part, false);
-    viewer?.setPaths(r.feeds, r.rapids, r.summary.stock, r.feedOps);
+    const byTool = new Set(job.operations.map((op, i) => (op.kind === 'roughOctree' ? i : -1)).filter((i) => i >= 0));
+    viewer?.setPaths(r.feeds, r.rapids, r.summary.stock, r.feedOps, r.feedTools, byTool);
+    if (r.octants.length) viewer?.setOctants(r.octants);
     const s = r.summary;
     showSimulation(r.sim, s);
     const minutes = Math.floor(s.seconds / 60), seconds = Math.round(s.seconds % 60);
-    const perOp = s.operations.length > 1 ? `\n${s.operations.map((o) => `${o.name} (T${o.tools.join(', T')}): ${clock(o.seconds)} min${o.removed != null ? `, ${Math.round(o.removed).toLocaleString()} mm³, peak ${Math.round(o.mrrMax).toLocaleString()} mm³/min` : ''}${o.leftMax != null ? `, leaves ≤ ${o.leftMax.toFixed(2)} mm` : ''}`).join('\n')}` : '';
+    const stages = (o) => (o.stages ?? []).map((st) => `\n  T${st.tool} φ${st.diameter} (${st.role === 'profile' ? 'profile' : st.role === 'first' ? 'first tool' : 'octants'}): ${st.why}; ${Math.round(st.area).toLocaleString()} mm² cleared, ${Math.round(st.removed).toLocaleString()} mm³ removed, ${clock(st.seconds)} min`).join('');
+    const perOp = s.operations.length > 1 || s.operations.some((o) => o.stages) ? `\n${s.operations.map((o) => `${o.name} (T${o.tools.join(', T')}): ${clock(o.seconds)} min${o.removed != null ? `, ${Math.round(o.removed).toLocaleString()} mm³, peak ${Math.round(o.mrrMax).toLocaleString()} mm³/min` : ''}${o.leftMax != null ? `, leaves ≤ ${o.leftMax.toFixed(2)} mm` : ''}${stages(o)}`).join('\n')}` : '';
     $('stats').textContent = `${s.moves.toLocaleString()} moves · ${(s.feedLength / 1000).toFixed(2)} m cutting · ${(s.rapidLength / 1000).toFixed(2)} m rapid\nestimated cycle time ${minutes}:${String(seconds).padStart(2, '0')} min${perOp}\ncomputed in ${((performance.now() - started) / 1000).toFixed(2)} s`;
     // A problem is shown as one, in red, with its places marked in the view; the program can
     // still be downloaded, behind a confirmation that names it.
@@ -655,6 +683,7 @@ $('play').addEventListener('click', play);
 $('scrub').addEventListener('input', (e) => setTime(Number(e.target.value)));
 $('show-stock').addEventListener('change', (e) => { if (viewer) { viewer.show.stock = e.target.checked; viewer.draw(); } });
 $('show-paths').addEventListener('change', (e) => { if (viewer) { viewer.show.paths = e.target.checked; viewer.draw(); } });
+$('show-octants').addEventListener('change', (e) => { if (viewer) { viewer.show.octants = e.target.checked; viewer.draw(); } });
 new ResizeObserver(() => { sim.buckets = null; drawMrr(); }).observe($('mrr'));
 $('cancel').addEventListener('click', cancel);
 $('download').addEventListener('click', download);

@@ -86,6 +86,10 @@ function lookAt(eye, target, up) {
 // Colours of the operations' cutting moves, in order (the first is the classic path blue).
 export const OP_COLORS = [[0.106, 0.455, 0.82, 1], [0.62, 0.2, 0.75, 1], [0.0, 0.6, 0.55, 1], [0.75, 0.6, 0.0, 1], [0.5, 0.3, 0.15, 1]];
 
+// Colours of the tools an octree roughing chose, by tool number (its paths and its octants).
+export const TOOL_COLORS = [[0.85, 0.2, 0.15, 1], [0.1, 0.6, 0.2, 1], [0.95, 0.55, 0.0, 1], [0.45, 0.25, 0.8, 1], [0.0, 0.55, 0.75, 1], [0.8, 0.15, 0.55, 1]];
+export const toolColor = (number) => TOOL_COLORS[(Math.max(1, number) - 1) % TOOL_COLORS.length];
+
 export class Viewer {
   constructor(canvas) {
     this.canvas = canvas;
@@ -96,7 +100,7 @@ export class Viewer {
     this.lineProgram = compile(gl, LINE_VS, LINE_FS);
     this.stockProgram = compile(gl, STOCK_VS, STOCK_FS);
     this.stock = null;
-    this.show = { part: true, paths: true, stock: true };
+    this.show = { part: true, paths: true, stock: true, octants: true };
     this.part = null;
     this.lines = {};
     this.camera = { yaw: -0.9, pitch: 0.75, distance: 200, target: [0, 0, 0] };
@@ -118,22 +122,42 @@ export class Viewer {
   }
 
   // Cutting moves in their operation's colour (`ops`: the operation of each segment, as
-  // `OP_COLORS` indexes them), rapids in orange.
-  setPaths(feeds, rapids, stock, ops = null) {
-    for (const key of Object.keys(this.lines)) if (key.startsWith('feeds')) delete this.lines[key];
+  // `OP_COLORS` indexes them), or in their tool's for the operations in `byTool` (octree
+  // roughing; `tools`: the tool of each segment), rapids in orange.
+  setPaths(feeds, rapids, stock, ops = null, tools = null, byTool = new Set()) {
+    for (const key of Object.keys(this.lines)) if (key.startsWith('feeds') || key.startsWith('octants')) delete this.lines[key];
     const groups = new Map();
     for (let k = 0; k < feeds.length / 6; k++) {
       const op = ops ? ops[k] : 0;
-      if (!groups.has(op)) groups.set(op, []);
-      groups.get(op).push(k);
+      const key = tools && byTool.has(op) ? `t${tools[k]}` : `${op}`;
+      if (!groups.has(key)) groups.set(key, []);
+      groups.get(key).push(k);
     }
-    for (const [op, segs] of groups) {
+    for (const [key, segs] of groups) {
       const data = new Float32Array(segs.length * 6);
       segs.forEach((k, i) => data.set(feeds.subarray(k * 6, k * 6 + 6), i * 6));
-      this.lines[`feeds${op}`] = { buffer: this.buffer(data), count: data.length / 3, color: OP_COLORS[op % OP_COLORS.length] };
+      const color = key.startsWith('t') ? toolColor(Number(key.slice(1))) : OP_COLORS[Number(key) % OP_COLORS.length];
+      this.lines[`feeds${key}`] = { buffer: this.buffer(data), count: data.length / 3, color };
     }
     this.lines.rapids = { buffer: this.buffer(rapids), count: rapids.length / 3, color: [0.85, 0.28, 0.06, 0.9] };
     if (stock) this.lines.stock = { buffer: this.buffer(boxLines(stock)), count: 24, color: [0.35, 0.4, 0.45, 0.6] };
+    this.draw();
+  }
+
+  // The octants of octree roughing's stages (as `JobResult.octants` gives them, 9 numbers a
+  // box) as wire boxes: those a tool cut in its colour, the Partial ones grey.
+  setOctants(octants) {
+    for (const key of Object.keys(this.lines)) if (key.startsWith('octants')) delete this.lines[key];
+    const groups = new Map();
+    for (let k = 0; k + 9 <= octants.length; k += 9) {
+      const key = octants[k + 2] > 0.5 ? `t${octants[k + 1]}` : 'partial';
+      if (!groups.has(key)) groups.set(key, []);
+      groups.get(key).push(...boxLines(Array.from(octants.subarray(k + 3, k + 9))));
+    }
+    for (const [key, data] of groups) {
+      const color = key === 'partial' ? [0.62, 0.64, 0.66, 1] : toolColor(Number(key.slice(1)));
+      this.lines[`octants_${key}`] = { buffer: this.buffer(new Float32Array(data)), count: data.length / 3, color, octants: true };
+    }
     this.draw();
   }
 
@@ -265,7 +289,7 @@ export class Viewer {
     gl.uniformMatrix4fv(gl.getUniformLocation(this.lineProgram, 'mvp'), false, mvp);
     gl.disableVertexAttribArray(1);
     for (const line of Object.values(this.lines)) {
-      if (!line.count || (!line.mark && !this.show.paths)) continue;
+      if (!line.count || (!line.mark && !line.octants && !this.show.paths) || (line.octants && !this.show.octants)) continue;
       gl.uniform4fv(gl.getUniformLocation(this.lineProgram, 'color'), line.color);
       this.attribute(this.lineProgram, 'position', line.buffer);
       gl.drawArrays(gl.LINES, 0, line.count);

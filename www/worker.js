@@ -44,6 +44,8 @@ self.onmessage = async (event) => {
       });
       const feeds = result.feeds().slice();
       const feedOps = result.feedOperations().slice();
+      const feedTools = result.feedTools().slice();
+      const octants = result.octants().slice();
       const rapids = result.rapids().slice();
       const gcode = result.gcode();
       const summary = result.summary();
@@ -64,7 +66,7 @@ self.onmessage = async (event) => {
       }
       current?.free();
       current = result;
-      self.postMessage({ id, ok: true, gcode, feeds, feedOps, rapids, summary, part, drawing, sim }, [feeds.buffer, feedOps.buffer, rapids.buffer, ...transfer]);
+      self.postMessage({ id, ok: true, gcode, feeds, feedOps, feedTools, octants, rapids, summary, part, drawing, sim }, [feeds.buffer, feedOps.buffer, feedTools.buffer, octants.buffer, rapids.buffer, ...transfer]);
     } else if (type === 'seek') {
       if (!current) throw new Error('nothing to simulate yet');
       const tops = current.seek(event.data.count).slice();

@@ -307,3 +307,96 @@ pub fn zigzag_peer_rows(name: &str, stl: &[u8], platform: &str, clock: &dyn Fn()
         })
         .collect()
 }
+
+/// Seed 000's comparison: a library of φ20, φ12, φ6 and φ3 flat ends (flutes three diameters
+/// long, feed 1000, plunge 250, rapids 5000 mm/min), axial depth `delta` × D and rings
+/// `stepover` × D apart for every tool, allowances 0.5; the stock the part's box with 1 mm on
+/// top. Returns the jobs: octree multi-tool roughing, z-level roughing with the φ3 alone, and
+/// z-level roughing with the φ20 then with the φ3 (which sees what the φ20 left).
+pub fn octree_jobs(delta: f64, stepover: f64, grid: f64, cell: f64) -> [(&'static str, Job); 3] {
+    use crate::strategy::rough_octree::RoughOctree;
+    use crate::strategy::rough_zlevel::RoughZlevel;
+    let flat = |number: u32, d: f64| Tool { number, cutter: Cutter { flute_length: 3.0 * d, ..Cutter::flat(d) }, feed_rate: 1000.0, plunge_rate: 250.0, ..Tool::default() };
+    let tools = vec![flat(1, 20.0), flat(2, 12.0), flat(3, 6.0), flat(4, 3.0)];
+    let zlevel = |tool: u32, d: f64| Operation::RoughZlevel(RoughZlevel { name: format!("z-level φ{d}"), tool, stepdown: delta * d, stepover, grid, ..RoughZlevel::default() });
+    let base = Job {
+        part: crate::mesh::placement::PartSetup { placement: crate::mesh::placement::Placement::Keep, ..Default::default() },
+        stock: job::Stock { margin_xy: 0.0, margin_top: 1.0, margin_bottom: 0.0, ..Default::default() },
+        post: crate::post::PostSettings { rapid_rate: 5000.0, ..Default::default() },
+        tools,
+        simulation: Simulation { verify: true, cell: Some(cell) },
+        ..Job::default()
+    };
+    [
+        ("octree (φ20 φ12 φ6 φ3)", Job { operations: vec![Operation::RoughOctree(RoughOctree { delta, stepover, grid, ..RoughOctree::default() })], ..base.clone() }),
+        ("z-level φ3 alone", Job { operations: vec![zlevel(4, 3.0)], ..base.clone() }),
+        ("z-level φ20, then φ3", Job { operations: vec![zlevel(1, 20.0), zlevel(4, 3.0)], ..base }),
+    ]
+}
+
+/// One row per job of [`octree_jobs`] on `part`: machine time, material left above the part
+/// plus allowance (mm³), what verification found, compute time; each job's time over the
+/// octree job's.
+pub fn octree_rows(name: &str, part: &Mesh, platform: &str, clock: &dyn Fn() -> f64) -> Vec<String> {
+    let mut rows = Vec::new();
+    let mut reference = None;
+    for (label, job) in octree_jobs(0.25, 0.5, 0.5, 0.25) {
+        let start = clock();
+        let out = match job::run(&job, part.clone(), &mut Progress::none()) {
+            Ok(out) => out,
+            Err(e) => {
+                rows.push(format!("{platform:<16} octree {name:<18} {label:<24} failed: {e}"));
+                continue;
+            }
+        };
+        let compute = clock() - start;
+        let v = out.verification.as_ref().expect("verified");
+        let left = left_off_walls(v, 0.5);
+        let seconds = out.stats.seconds;
+        let ratio = seconds / *reference.get_or_insert(seconds);
+        let tools: Vec<String> = out.operations.iter().flat_map(|o| o.tools.iter().map(|t| format!("T{t}"))).collect();
+        rows.push(format!(
+            "{platform:<16} octree {name:<18} {label:<24} {:>6.1} min ({ratio:.2} of the octree's), left {:>7.0} mm³ ({:.0} off the walls' leave-stock), {} gouges, {} rapids in stock, {} body hits, tools {}, computed in {compute:.1} s",
+            seconds / 60.0,
+            left.0,
+            left.1,
+            v.report.gouge_count,
+            v.report.rapid_collision_count,
+            v.report.body_collision_count,
+            tools.join(" ")
+        ));
+    }
+    rows
+}
+
+/// The material a program left above the part plus its allowance (mm³): all of it, and off the
+/// band of `leave` (and a cell) beside steep walls, where every program keeps the wall's
+/// leave-stock and the cells' centres judge it by the floor below.
+pub fn left_off_walls(v: &crate::sim::verify::Verification, leave: f64) -> (f64, f64) {
+    let r = v.residual();
+    let g = v.stock.grid();
+    let cell = g.spacing;
+    let reach = ((leave + cell) / cell).ceil() as isize;
+    let (mut all, mut off) = (0.0, 0.0);
+    for j in 0..g.ny as isize {
+        for i in 0..g.nx as isize {
+            let c = (j as usize) * g.nx + i as usize;
+            let here = v.part.z[c];
+            if here.is_nan() {
+                continue;
+            }
+            let left = r.z[c].max(0.0) * cell * cell;
+            all += left;
+            let wall = (-reach..=reach).any(|dj| {
+                (-reach..=reach).any(|di| {
+                    let (a, b) = (i + di, j + dj);
+                    a >= 0 && b >= 0 && (a as usize) < g.nx && (b as usize) < g.ny && v.part.z[b as usize * g.nx + a as usize] > here + 1.0
+                })
+            });
+            if !wall {
+                off += left;
+            }
+        }
+    }
+    (all, off)
+}

@@ -31,6 +31,7 @@ use crate::progress::Progress;
 use crate::sim::program::{program_moves, ProgramMove};
 use crate::sim::verify::{Simulator, Verification, VerifySettings};
 use crate::strategy::context::{Caches, CacheCounts, Context, SafeHeights, Sheet};
+use crate::strategy::rough_octree::StageOctants;
 use crate::strategy::Works;
 use crate::toolpath::{PathStats, Toolpath};
 use crate::zmap::cc::cc_zmap;
@@ -313,6 +314,8 @@ pub struct JobOutput {
     pub problem: Option<String>,
     /// Lookups of the CL surface cache: a second operation on the same cutter and grid hits.
     pub cache: CacheCounts,
+    /// The octants of each stage of octree roughing (seed 000), for the view.
+    pub octants: Vec<StageOctants>,
 }
 
 impl JobOutput {
@@ -452,9 +455,12 @@ impl Job {
         self.stock.validate()?;
         for (i, op) in self.operations.iter().enumerate() {
             let o = op.op();
-            if !self.tools.iter().any(|t| t.number == o.tool()) {
-                let have: Vec<String> = self.tools.iter().map(|t| t.number.to_string()).collect();
-                return Err(Error::Input(format!("operations[{i}].tool: no tool number {} in the tool library (it has {})", o.tool(), if have.is_empty() { "none".into() } else { have.join(", ") })));
+            for number in o.tools() {
+                if !self.tools.iter().any(|t| t.number == number) {
+                    let have: Vec<String> = self.tools.iter().map(|t| t.number.to_string()).collect();
+                    let field = if o.tools().len() == 1 && o.tools()[0] == o.tool() { "tool" } else { "tools" };
+                    return Err(Error::Input(format!("operations[{i}].{field}: no tool number {number} in the tool library (it has {})", if have.is_empty() { "none".into() } else { have.join(", ") })));
+                }
             }
             o.validate().map_err(|e| Error::Input(format!("operations[{i}].{} {} ('{}')", e.field, e.message, o.name())))?;
         }
@@ -489,6 +495,9 @@ impl Job {
             warnings: Vec::new(),
             cuts: Vec::new(),
             load: None,
+            stages: None,
+            octants: Vec::new(),
+            rapid_rate: self.post.rapid_rate,
         })
     }
 }
@@ -551,7 +560,7 @@ pub fn run(job: &Job, workpiece: impl Into<Workpiece>, progress: &mut Progress) 
         let start = n as f64 / count;
         progress.frame(start, plan_share / count, Some(o.name()));
         let planned = o.plan(&mut ctx, progress)?;
-        loads.push(ctx.load.take());
+        loads.push((ctx.load.take(), ctx.stages.take()));
         let first_path = paths.len();
         path_operations.extend(std::iter::repeat_n(k, planned.len()));
         paths.extend(planned);
@@ -579,7 +588,7 @@ pub fn run(job: &Job, workpiece: impl Into<Workpiece>, progress: &mut Progress) 
         let why = if warnings.is_empty() { String::new() } else { format!(" ({})", warnings.iter().map(Warning::to_string).collect::<Vec<_>>().join("; ")) };
         return Err(Error::Nothing(format!("the program has no cutting moves{why}")));
     }
-    let Context { part, sheet, stock, heights, caches, sim, cuts, .. } = ctx;
+    let Context { part, sheet, stock, heights, caches, sim, cuts, octants, .. } = ctx;
     // The simulation that carried the in-process stock judges the whole program.
     let (verification, sim) = if verify {
         let settings = job.verify_settings(&stock, None);
@@ -598,14 +607,15 @@ pub fn run(job: &Job, workpiece: impl Into<Workpiece>, progress: &mut Progress) 
         (None, None) => &[],
     };
     let mut operations = report::per_operation(job, &enabled, &all_moves, &move_ranges, volumes, &snapshots, verification.as_ref());
-    for (o, load) in operations.iter_mut().zip(loads) {
+    for (o, (load, stages)) in operations.iter_mut().zip(loads) {
         o.load = load;
+        o.stages = stages;
     }
     let problem = verification.as_ref().and_then(|v| v.report.problem());
     progress.stage("done", 1.0, 0.0);
     let drawing = sheet.map(|s| s.drawing);
     let (clearance_z, cache) = (heights.clearance, caches.counts);
-    Ok(JobOutput { part, drawing, stock, clearance_z, paths, path_operations, gcode, stats, moves: all_moves, operations, verification, warnings, problem, cache })
+    Ok(JobOutput { part, drawing, stock, clearance_z, paths, path_operations, gcode, stats, moves: all_moves, operations, verification, warnings, problem, cache, octants })
 }
 
 /// The moves of `paths[first..]`, timed on from the program's last move so far.

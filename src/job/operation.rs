@@ -8,6 +8,7 @@ use crate::strategy::finish_raster::FinishRaster;
 use crate::strategy::finish_waterline::FinishWaterline;
 use crate::strategy::pocket2d::Pocket2d;
 use crate::strategy::profile2d::Profile2d;
+use crate::strategy::rough_octree::RoughOctree;
 use crate::strategy::rough_zigzag::RoughZigzag;
 use crate::strategy::rough_zlevel::RoughZlevel;
 use crate::strategy::Operate;
@@ -57,6 +58,8 @@ operations! {
     RoughZlevel(RoughZlevel) = "roughZlevel",
     /// Zigzag roughing by the intersection-points graph, with the load held constant (seed 004).
     RoughZigzag(RoughZigzag) = "roughZigzag",
+    /// Octree multi-tool roughing: the tools chosen from the library, biggest first (seed 000).
+    RoughOctree(RoughOctree) = "roughOctree",
     /// Raster finishing on a part's CL z-map (seed 001).
     FinishRaster(FinishRaster) = "finishRaster",
     /// Waterline finishing on a part's steep areas.

@@ -7,6 +7,7 @@ use serde::Serialize;
 use super::Job;
 use crate::sim::program::ProgramMove;
 use crate::sim::verify::Verification;
+use crate::strategy::rough_octree::StageReport;
 use crate::strategy::rough_zigzag::LoadReport;
 use crate::zmap::HeightField;
 
@@ -35,6 +36,8 @@ pub struct OperationReport {
     /// The load along its path against the reference, before and after seed 004's correction,
     /// where the operation measured it.
     pub load: Option<LoadReport>,
+    /// The stages of an operation that chose its tools (seed 000): each tool, why, and what it did.
+    pub stages: Option<Vec<StageReport>>,
 }
 
 impl OperationReport {
@@ -53,6 +56,9 @@ impl OperationReport {
                 "; per {:.2} mm over the reference ({:.0} mm³/min per mm of depth): the plain path's load peaks at {p:.2} (spread {ps:.2}), the path's at {e:.2} (spread {es:.2}), its removal rate at its feeds at {c:.2} (spread {cs:.2}), {:.0} mm at a lowered feed",
                 l.sampling, l.reference, l.slowed
             );
+        }
+        for stage in self.stages.iter().flatten() {
+            s += &format!("\n  {}", stage.describe());
         }
         s
     }
@@ -115,7 +121,7 @@ pub fn per_operation(
                 }
                 _ => (None, None),
             };
-            OperationReport { index, name: op.name().to_string(), tools, moves: mine.len(), seconds, feed_length, rapid_length, removed, mrr_max, left_max, left_mean, load: None }
+            OperationReport { index, name: op.name().to_string(), tools, moves: mine.len(), seconds, feed_length, rapid_length, removed, mrr_max, left_max, left_mean, load: None, stages: None }
         })
         .collect()
 }

@@ -88,3 +88,33 @@ pub fn paper_pocket(depth: f64, spacing: f64) -> Mesh {
         }
     })
 }
+
+/// A mould like seed 000's examples, our own: a 150 × 124 mm block, top at z = 0, with a wide
+/// cavity 24 deep (x −65…5, y −45…45: room for a φ20), beside it a field of channels 14 wide
+/// between ribs 3 thick, 16 deep (x 5…65: a φ12 and the wall allowances fit), a pocket 8 wide
+/// and 12 deep along the top edge (a φ6) and a slot 5 wide and 8 deep along the bottom edge (a
+/// φ3). Sampled every `spacing` mm: its walls slope across one sample.
+pub fn octree_mould(spacing: f64) -> Mesh {
+    let (min, max) = (DVec2::new(-75.0, -62.0), DVec2::new(75.0, 62.0));
+    let nx = ((max.x - min.x) / spacing).round() as usize;
+    let ny = ((max.y - min.y) / spacing).round() as usize;
+    height_field_solid(min, max, nx, ny, -35.0, move |x, y| {
+        let within = |v: f64, lo: f64, hi: f64| (lo..=hi).contains(&v);
+        if within(y, -45.0, 45.0) && within(x, -65.0, 5.0) {
+            -24.0
+        } else if within(y, -45.0, 45.0) && within(x, 5.0, 65.0) {
+            let rib = [19.0, 36.0, 53.0].iter().any(|&r| within(x, r, r + 3.0));
+            if rib {
+                -4.0
+            } else {
+                -16.0
+            }
+        } else if within(y, 48.0, 56.0) && within(x, -60.0, -20.0) {
+            -12.0
+        } else if within(y, -56.0, -51.0) && within(x, -60.0, 20.0) {
+            -8.0
+        } else {
+            0.0
+        }
+    })
+}

@@ -91,6 +91,13 @@ pub struct Context {
     /// The load along the path of the operation just planned, where it measured one (seed
     /// 004): the job moves it into that operation's report.
     pub load: Option<crate::strategy::rough_zigzag::LoadReport>,
+    /// The stages of the operation just planned, where it chose its tools (seed 000): the job
+    /// moves them into that operation's report.
+    pub stages: Option<Vec<crate::strategy::rough_octree::StageReport>>,
+    /// The octants of every stage of octree roughing so far, for the view.
+    pub octants: Vec<crate::strategy::rough_octree::StageOctants>,
+    /// The machine's rapid rate (mm/min), for timing what an operation plans.
+    pub rapid_rate: f64,
 }
 
 impl Context {

@@ -13,6 +13,7 @@ pub mod finish_waterline;
 pub mod path2d;
 pub mod pocket2d;
 pub mod profile2d;
+pub mod rough_octree;
 pub mod rough_zigzag;
 pub mod rough_zlevel;
 pub mod sheet;
@@ -97,6 +98,11 @@ pub trait Operate {
     /// The number of the tool it asks for (an operation that picks its own tools names the
     /// first it may use).
     fn tool(&self) -> u32;
+    /// Every tool it names (an operation that chooses its own tools names those it may choose
+    /// from, or none for the whole library); the job checks each is in the library.
+    fn tools(&self) -> Vec<u32> {
+        vec![self.tool()]
+    }
     /// Whether the job runs it (a disabled operation stays in the job file).
     fn enabled(&self) -> bool;
     fn works(&self) -> Works;

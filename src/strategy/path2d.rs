@@ -189,6 +189,9 @@ pub struct Cursor<'m> {
     /// A lower traverse than the clearance height where the strategy knows one (the short
     /// retract); `None`: always the clearance height.
     pub traverse: Option<Traverse>,
+    /// Where `safe` holds, when only somewhere (the region the level before cleared); past it
+    /// a rapid descent stops the gap above the in-process stock. `None`: everywhere.
+    pub safe_at: Option<Box<dyn Fn(DVec2) -> bool>>,
     /// The in-process stock: rapid descents stop the gap above the material under the cutter
     /// at that spot (no lower than `safe` allows otherwise).
     pub stock: InStock<'m>,
@@ -201,7 +204,8 @@ impl Cursor<'_> {
     pub fn reposition(&mut self, to: DVec3, out: &mut Vec<Move>) {
         let low = self.traverse.as_ref().and_then(|f| f(self.at.truncate(), to.truncate()));
         let travel = low.map_or(self.clearance, |h| h.max(self.safe.min(self.clearance)).min(self.clearance));
-        let stop = self.safe.min(travel).min(self.stock.reach(to.truncate()).max(to.z) + self.gap);
+        let safe = if self.safe_at.as_ref().is_none_or(|f| f(to.truncate())) { self.safe } else { self.clearance };
+        let stop = safe.min(travel).min(self.stock.reach(to.truncate()).max(to.z) + self.gap);
         retract(self.at, to.truncate(), travel, stop.max(to.z), out);
         if stop > to.z {
             out.push(Move::Line { to, feed: self.plunge });

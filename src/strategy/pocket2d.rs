@@ -116,16 +116,30 @@ struct Node {
     children: Vec<Node>,
 }
 
-/// The rings of `region`, as a forest of nested regions (outermost first).
-pub fn rings(region: &Shape, first: f64, step: f64, tol: &Tolerances) -> Vec<Shape> {
+/// The rings of `region` for a tool of radius `reach`, from the offset `first` inwards every
+/// `step` (outermost first; [`forest`] nests them). A step no wider than the tool's radius
+/// leaves nothing between rings: a point deeper in than the last ring there reaches is deeper
+/// than the next ring, which then exists. A wider step (a step-over above half the diameter)
+/// can leave a strip where the region narrows between the last rings; a part of the region
+/// that the next ring misses altogether (its core, 0.9 × `reach` in from the ring before)
+/// gets a ring of its own, but a part the next ring only partly covers can keep a strip.
+pub fn rings(region: &Shape, first: f64, step: f64, reach: f64, tol: &Tolerances) -> Vec<Shape> {
     let mut levels = Vec::new();
     let mut d = first;
-    loop {
-        let ring = offset(region, -d, tol);
-        if ring.is_empty() || levels.len() > 10_000 {
-            break;
+    let mut ring = offset(region, -d, tol);
+    while !ring.is_empty() && levels.len() <= 10_000 {
+        let mut next = offset(region, -(d + step), tol);
+        if step > reach {
+            let core = offset(region, -(d + 0.9 * reach), tol);
+            let inner = next.regions();
+            for part in core.regions() {
+                if !inner.iter().any(|n| part.contains(n.loops[0].probe_point())) {
+                    next.loops.extend(part.loops);
+                }
+            }
         }
         levels.push(ring);
+        ring = next;
         d += step;
     }
     levels
@@ -154,7 +168,7 @@ pub fn pocket_moves(region: &Shape, op: &Pocket2d, mut s: Setup) -> Result<Vec<M
     let r = s.tool_radius;
     let first = r + op.leave_stock;
     let step = (op.stepover.clamp(0.01, 1.0) * 2.0 * r).max(1e-3);
-    let levels = rings(region, first, step, s.tol);
+    let levels = rings(region, first, step, s.tool_radius, s.tol);
     if levels.is_empty() {
         return Err(does_not_fit(r, op.leave_stock, "the pocket", &region.bounds()));
     }
@@ -332,9 +346,14 @@ impl Ctx<'_, '_, '_> {
             self.out.push(Move::Line { to: start.extend(self.z), feed: self.s.feed });
             follow(&segs, 0.0, total, &Heights::constant(self.z), self.s.feed, self.out);
         } else {
-            self.s.cursor.reposition(start.extend(self.z_prev), self.out);
-            let ramp = Heights::ramp(0.0, self.z_prev, self.z, self.angle);
-            let run = (self.z_prev - self.z) / self.angle.tan();
+            // Where material stands above the level before at the start (rest roughing beside
+            // what an earlier tool left, which that level did not reach), the ramp starts on it.
+            let cleared = self.s.cursor.safe_at.as_ref().is_none_or(|f| f(start));
+            let top = if cleared { self.z_prev } else { self.s.cursor.stock.estimate(start) };
+            let from = if top > self.z_prev + self.s.tol.gouge { top } else { self.z_prev };
+            self.s.cursor.reposition(start.extend(from), self.out);
+            let ramp = Heights::ramp(0.0, from, self.z, self.angle);
+            let run = (from - self.z) / self.angle.tan();
             follow(&segs, 0.0, run + total, &ramp, self.s.feed, self.out);
         }
         self.s.cursor.moved(self.out);

@@ -113,49 +113,8 @@ impl Operate for RoughZlevel {
     }
 
     fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Vec<Toolpath>> {
-        let Some(Levels { tool, cl, levels }) = self.levels_to_cut(ctx, progress)? else { return Ok(Vec::new()) };
-        let r = tool.cutter.radius();
-        let tol = ctx.tolerances;
-        let step = self.step(r);
-        let clearing = Clearing {
-            step,
-            climb: self.direction == Direction::Climb,
-            pattern: PocketPattern::Offset,
-            angle: 0.0,
-            entry: PocketEntry::Helix,
-            ramp_angle: self.ramp_angle.clamp(0.1, 89.0).to_radians(),
-            helix_r: self.helix_radius.unwrap_or(0.4 * 2.0 * r).min(0.95 * r),
-        };
-        let clearance = ctx.heights.clearance;
-        let mut cursor = sheet::cursor(ctx, &tool);
-        let mut moves = Vec::new();
-        // The region the level before cleared (none above the first level).
-        let mut cleared: Option<Shape> = None;
-        let count = levels.len();
-        for (k, Level { z, z_prev, region }) in levels.into_iter().enumerate() {
-            if !progress.report(k as f64 / count as f64) {
-                return Err(Error::Cancelled);
-            }
-            // The region is the set of centres: its rings start on it.
-            let rings = rings(&region, 0.0, step, &tol);
-            // Material above this level was cleared by the level before within this region
-            // (which lies inside that level's): rapids stop the gap above it.
-            cursor.safe = (z_prev + ctx.heights.gap).min(clearance);
-            // The short retract: a traverse just above the level before, where the straight
-            // move there stays inside what that level cleared (its region), and over the part.
-            let (surface, ceiling, gap) = (cl.clone(), z_prev - self.allowance - tol.height, ctx.heights.gap);
-            let lift = z_prev + gap;
-            let before = cleared.take();
-            cursor.traverse = Some(Box::new(move |a: DVec2, b: DVec2| {
-                let inside = before.as_ref().is_none_or(|c| Inside(c).clears(a.extend(lift), b.extend(lift), 0.0));
-                (inside && surface.along(a, b).iter().all(|&(_, h)| h <= ceiling - 2.0 * tol.interpolation)).then_some(lift)
-            }));
-            let mut setup = Setup { tool_radius: r, top: z_prev, feed: tool.feed_rate, cursor: &mut cursor, tol: &tol };
-            let air = self.air(ctx, &cl, r, z);
-            moves.extend(clear_rings(&rings, &clearing, z_prev, z, &mut setup, Some(&air)));
-            cleared = Some(region);
-        }
-        Ok(vec![sheet::toolpath(&self.name, &tool, moves, clearance)])
+        let Some(levels) = self.levels_to_cut(ctx, progress)? else { return Ok(Vec::new()) };
+        Ok(vec![self.clear(ctx, levels, progress)?])
     }
 }
 
@@ -181,42 +140,133 @@ impl RoughZlevel {
         (self.stepover * 2.0 * r).max(1e-3)
     }
 
+    /// Clears `levels` (from [`RoughZlevel::levels_to_cut`] or [`RoughZlevel::levels_within`])
+    /// level by level: rings inside-out from the helix or ramp (or in from the air beside the
+    /// region), the region's boundary last; one tool path.
+    pub fn clear(&self, ctx: &mut Context, levels: Levels, progress: &mut Progress) -> Result<Toolpath> {
+        let Levels { tool, cl, levels } = levels;
+        let r = tool.cutter.radius();
+        let tol = ctx.tolerances;
+        let step = self.step(r);
+        let clearing = Clearing {
+            step,
+            climb: self.direction == Direction::Climb,
+            pattern: PocketPattern::Offset,
+            angle: 0.0,
+            entry: PocketEntry::Helix,
+            ramp_angle: self.ramp_angle.clamp(0.1, 89.0).to_radians(),
+            helix_r: self.helix_radius.unwrap_or(0.4 * 2.0 * r).min(0.95 * r),
+        };
+        let clearance = ctx.heights.clearance;
+        let mut cursor = sheet::cursor(ctx, &tool);
+        let mut moves = Vec::new();
+        // The region the level before cleared (none above the first level).
+        let mut cleared: Option<Shape> = None;
+        let count = levels.len();
+        for (k, Level { z, z_prev, region }) in levels.into_iter().enumerate() {
+            if !progress.report(k as f64 / count as f64) {
+                return Err(Error::Cancelled);
+            }
+            // The region is the set of centres: its rings start on it.
+            let rings = rings(&region, 0.0, step, r, &tol);
+            // Material above this level was cleared by the level before within this region
+            // (which lies inside that level's): rapids stop the gap above it.
+            cursor.safe = (z_prev + ctx.heights.gap).min(clearance);
+            // The short retract: a traverse just above the level before, where the straight
+            // move there stays inside what that level cleared (its region), and over the part.
+            let (surface, ceiling, gap) = (cl.clone(), z_prev - self.allowance - tol.height, ctx.heights.gap);
+            let lift = z_prev + gap;
+            let before = cleared.take();
+            // Rapids come down to the gap above the level before only over what it cleared:
+            // elsewhere (rest roughing beside what an earlier tool left) above the stock.
+            let within = before.clone();
+            cursor.safe_at = Some(Box::new(move |p: DVec2| within.as_ref().is_none_or(|c| c.contains(p))));
+            cursor.traverse = Some(Box::new(move |a: DVec2, b: DVec2| {
+                let inside = before.as_ref().is_none_or(|c| Inside(c).clears(a.extend(lift), b.extend(lift), 0.0));
+                (inside && surface.along(a, b).iter().all(|&(_, h)| h <= ceiling - 2.0 * tol.interpolation)).then_some(lift)
+            }));
+            let mut setup = Setup { tool_radius: r, top: z_prev, feed: tool.feed_rate, cursor: &mut cursor, tol: &tol };
+            let air = self.air(ctx, &cl, r, z);
+            moves.extend(clear_rings(&rings, &clearing, z_prev, z, &mut setup, Some(&air)));
+            cleared = Some(region);
+        }
+        Ok(sheet::toolpath(&self.name, &tool, moves, clearance))
+    }
+
     /// The levels this roughing cuts (the z-level strategy's and every strategy that clears
     /// the same levels another way): the CL z-map, the levels by step-down and flats, and at
     /// each the region with material left within reach. `None`, with a warning, where no
     /// level has material left.
     pub fn levels_to_cut(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Option<Levels>> {
+        // Centres whose cutter reaches at least half a step into material (the outermost ring
+        // then cuts that much of the stock's edge, the next a full step).
+        let r = ctx.tool(&self.name, self.tool)?.cutter.radius();
+        let levels = self.levels_within(ctx, progress, (r - 0.5 * self.step(r)).max(0.0), &mut |_, _| None)?;
+        if levels.is_none() {
+            ctx.warn(&self.name, "no level has material left to cut");
+        }
+        Ok(levels)
+    }
+
+    /// The tool and its CL surface: the cutter grown by the radial allowance (the Minkowski sum
+    /// with a disk: a ball's becomes a bull nose of its own corner), over the stock and the
+    /// cutter's reach beyond it, down to the stock's bottom. Made once per job for the same
+    /// tool, allowance and grid (the context's cache).
+    pub fn surface(&self, ctx: &mut Context, progress: &mut Progress) -> Result<(Tool, Arc<ClSurface>)> {
         let tool = ctx.tool(&self.name, self.tool)?.clone();
         let profile = tool.cutter.profile();
         let r = profile.radius;
-        // The cutter grown by the radial allowance: the Minkowski sum with a disk (a ball's
-        // becomes a bull nose of its own corner).
         let grown = Profile::new(r + self.leave_stock, if profile.flat_radius() <= 0.0 { r } else { profile.corner });
         let stock = ctx.stock;
         let reach = r + self.leave_stock + 2.0 * self.grid;
         let grid = Grid::checked(stock.min.truncate() - DVec2::splat(reach), stock.max.truncate() + DVec2::splat(reach), self.grid).map_err(|e| Error::operation(&self.name, e))?;
-        let floor = stock.min.z;
+        let cl = ctx.cl_surface(&grown, grid, stock.min.z, ClBuilder::Exact, progress)?;
+        Ok((tool, cl))
+    }
+
+    /// The heights of the levels on `cl` for a tool of radius `r`, from the top down (see
+    /// [`RoughZlevel`]).
+    pub fn heights(&self, ctx: &Context, cl: &ClSurface, r: f64) -> Vec<f64> {
+        let tol = ctx.tolerances;
+        // Floors are cut a hair above their height plus the allowance: the region at a level
+        // counts a surface as clear when the exact profile stands below it by the interpolation
+        // margin (`zmap/contour.rs`).
+        let clear = 2.0 * tol.interpolation + tol.height;
+        self.levels(&cl.field, ctx.stock.max.z, ctx.stock.min.z, r, clear)
+    }
+
+    /// [`RoughZlevel::levels_to_cut`] with centres kept within `reach` of material above each
+    /// level, each level's region limited further to the nodes of the CL z-map's grid that
+    /// `within(z, grid)` accepts, where it gives a mask (seed 000's octants a tool cuts);
+    /// `None`, without a warning, where no level has material left.
+    pub fn levels_within(&self, ctx: &mut Context, progress: &mut Progress, reach: f64, within: &mut dyn FnMut(f64, Grid) -> Option<Vec<bool>>) -> Result<Option<Levels>> {
         if !progress.stage("CL z-map", 0.0, 0.3) {
             return Err(Error::Cancelled);
         }
-        let cl = ctx.cl_surface(&grown, grid, floor, ClBuilder::Exact, progress)?;
+        let (tool, cl) = self.surface(ctx, progress)?;
+        let r = tool.cutter.radius();
+        let grid = cl.field.grid();
+        let stock = ctx.stock;
         if !progress.stage("levels", 0.3, 0.2) {
             return Err(Error::Cancelled);
         }
         let tol = ctx.tolerances;
         let map = LevelMap::new(&cl, &tol);
-        // Floors are cut a hair above their height plus the allowance: the region at a level
-        // counts a surface as clear when the exact profile stands below it by the interpolation
-        // margin (`zmap/contour.rs`).
-        let clear = 2.0 * tol.interpolation + tol.height;
-        let step = self.step(r);
         let mut levels = Vec::new();
         let mut z_prev = stock.max.z;
-        for z in self.levels(&cl.field, stock.max.z, floor, r, clear) {
-            // Centres whose cutter reaches at least half a step into material (the outermost ring then
-            // cuts that much of the stock's edge, the next a full step).
-            let near = material_near(ctx.sim.stock(), grid, z, (r - 0.5 * step).max(0.0));
-            let region = map.region(&cl, z - self.allowance, &|i, j| near[j * grid.nx + i], &tol);
+        for z in self.heights(ctx, &cl, r) {
+            // At full reach (rest roughing: every centre whose cutter touches what is left),
+            // only material the cutter can reach from a centre it may take counts, not the
+            // part's walls and their leave-stock beside the region.
+            let removable = (reach >= r).then(|| {
+                let safe: Vec<bool> = cl.field.z.iter().map(|&h| h + self.allowance <= z).collect();
+                let d = crate::octree::distance_to(&safe, grid.nx, grid.ny, grid.spacing);
+                d.into_iter().map(|d| d <= r - 0.5 * grid.spacing).collect::<Vec<bool>>()
+            });
+            let near = material_near(ctx.sim.stock(), grid, z, reach, removable.as_deref());
+            let limit = within(z, grid);
+            let keep = |i: usize, j: usize| near[j * grid.nx + i] && limit.as_ref().is_none_or(|m| m[j * grid.nx + i]);
+            let region = map.region(&cl, z - self.allowance, &keep, &tol);
             if region.is_empty() {
                 continue;
             }
@@ -227,7 +277,6 @@ impl RoughZlevel {
             return Err(Error::Cancelled);
         }
         if levels.is_empty() {
-            ctx.warn(&self.name, "no level has material left to cut");
             return Ok(None);
         }
         Ok(Some(Levels { tool, cl, levels }))
@@ -284,12 +333,18 @@ impl RoughZlevel {
 }
 
 /// Per node of `grid`, whether a cutter there at level `z` is within `reach` of material that
-/// stands above `z` in the stock.
-pub fn material_near(stock: &DexelStock, grid: Grid, z: f64, reach: f64) -> Vec<bool> {
+/// stands above `z` in the stock (at the nodes `counts` accepts, where given).
+///
+/// Where `counts` is given, a node's material is the highest of the stock's cells around it
+/// (within half a diagonal of the grid), so no cell between nodes goes unseen; else the cell
+/// nearest it.
+pub fn material_near(stock: &DexelStock, grid: Grid, z: f64, reach: f64, counts: Option<&[bool]>) -> Vec<bool> {
     let mut above = grid.filled(0.0);
+    let around = crate::cutter::Profile::new(grid.spacing * std::f64::consts::FRAC_1_SQRT_2, 0.0);
+    let top = |p| if counts.is_some() { Some(stock.touch(p, &around, false)) } else { stock.top_near(p) };
     for j in 0..grid.ny {
         for i in 0..grid.nx {
-            if stock.top_near(grid.node(i, j)).is_some_and(|top| top > z + 1e-6) {
+            if counts.is_none_or(|c| c[j * grid.nx + i]) && top(grid.node(i, j)).is_some_and(|top| top > z + 1e-6) {
                 above.z[j * grid.nx + i] = 1.0;
             }
         }

@@ -63,6 +63,7 @@ pub fn cursor<'m>(ctx: &'m Context, tool: &Tool) -> Cursor<'m> {
         gap: ctx.heights.gap,
         plunge: tool.plunge_rate,
         traverse: None,
+        safe_at: None,
         stock,
     }
 }

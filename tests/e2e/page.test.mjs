@@ -495,3 +495,80 @@ test('zigzag roughing with the load held: added in the page, the reference line 
   assert.deepEqual(errors, []);
   await context.close();
 });
+
+test('octree roughing: the tools chosen from the library, each stage\'s path and octants in its tool\'s colour, the reasons in the report, one program that rs274 runs', async () => {
+  const { page, context, errors } = await openPage();
+  for (const k of [3, 2, 1]) await page.click(`#op-list li:nth-child(${k}) .op-remove`);
+  // Two more flat ends beside the sample's φ6: a φ16 and a φ3.
+  const numbers = [];
+  for (const d of ['16', '3']) {
+    await page.click('#tool-add');
+    await page.selectOption('select[name=shape]', 'flat');
+    await page.fill('input[name=diameter]', d);
+    await page.fill('input[name=fluteLength]', String(3 * Number(d)));
+    numbers.push(Number(await page.inputValue('input[name=toolNumber]')));
+  }
+  await page.selectOption('#op-kind', 'roughOctree');
+  await page.click('#op-add');
+  // It picks its own tools: no tool field, an empty list (the whole library), the core's defaults.
+  assert.ok(await page.locator('#op-tool-label').isHidden());
+  assert.equal(await page.inputValue('input[name=octTools]'), '');
+  assert.equal(await page.inputValue('input[name=octStepover]'), '0.5');
+  await page.fill('input[name=octGrid]', '0.5');
+  await page.click('#generate');
+  await generated(page);
+  const stats = await page.textContent('#stats');
+  assert.match(stats, new RegExp(`T${numbers[0]} φ16 \\(first tool\\): the largest tool`), stats);
+  assert.match(stats, /\(profile\)/, stats);
+  const report = await page.textContent('#sim-report');
+  assert.match(report, /gouges: 0/);
+  assert.match(report, /rapid moves through stock: 0/);
+  assert.match(report, /tool body \(above the flutes\) in material: 0/);
+  // Each chosen tool's path and octants in its colour, with the stock hidden (the library's
+  // other φ3, from the sample drawing's job, may be the one chosen: tools of one diameter are one).
+  const stages = [...stats.matchAll(/T(\d+) φ[\d.]+ \((first tool|octants|profile)\)/g)].map((m) => Number(m[1]));
+  assert.equal(stages[0], numbers[0], stats);
+  const last = stages[stages.length - 1];
+  await page.uncheck('#show-stock');
+  const tools = await page.evaluate(() => window.swarf.tools);
+  const colours = await page.evaluate(async (list) => {
+    const { toolColor } = await import('./viewer.js');
+    const c = document.getElementById('view');
+    const gl = c.getContext('webgl2');
+    const px = new Uint8Array(c.width * c.height * 4);
+    gl.readPixels(0, 0, c.width, c.height, gl.RGBA, gl.UNSIGNED_BYTE, px);
+    const out = {};
+    for (const n of list) {
+      const [r, g, b] = toolColor(n).map((v) => Math.round(v * 255));
+      let k = 0;
+      for (let i = 0; i < px.length; i += 4) if (Math.abs(px[i] - r) < 25 && Math.abs(px[i + 1] - g) < 25 && Math.abs(px[i + 2] - b) < 25) k++;
+      out[n] = k;
+    }
+    return out;
+  }, [numbers[0], last]);
+  await page.screenshot({ path: path.join(shots, 'octree.png') });
+  assert.ok(colours[numbers[0]] > 1000 && colours[last] > 200, `the first and the last tool's colours on the canvas: ${JSON.stringify(colours)}`);
+  // Without the octants, fewer pixels of the first tool's colour.
+  await page.uncheck('#show-octants');
+  const without = await page.evaluate(async (n) => {
+    const { toolColor } = await import('./viewer.js');
+    const c = document.getElementById('view');
+    const gl = c.getContext('webgl2');
+    const px = new Uint8Array(c.width * c.height * 4);
+    gl.readPixels(0, 0, c.width, c.height, gl.RGBA, gl.UNSIGNED_BYTE, px);
+    const [r, g, b] = toolColor(n).map((v) => Math.round(v * 255));
+    let k = 0;
+    for (let i = 0; i < px.length; i += 4) if (Math.abs(px[i] - r) < 25 && Math.abs(px[i + 1] - g) < 25 && Math.abs(px[i + 2] - b) < 25) k++;
+    return k;
+  }, numbers[0]);
+  assert.ok(without < colours[numbers[0]], `octants drawn: ${without} pixels without them, ${colours[numbers[0]]} with`);
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-octree-'));
+  const program = path.join(dir, download.suggestedFilename());
+  await download.saveAs(program);
+  fs.writeFileSync(path.join(dir, 'tool.tbl'), toolTable(tools));
+  const canon = execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), program], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });
+  assert.ok(canon.split('\n').filter((l) => l.includes('CHANGE_TOOL(')).length >= 2, 'rs274 changed tools');
+  assert.deepEqual(errors, []);
+  await context.close();
+});

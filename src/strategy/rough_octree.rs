@@ -1,0 +1,530 @@
+//! Octree multi-tool roughing (seed 000, DESIGN.md idea 4): the machine chooses the roughing
+//! tools from the library, biggest first, by subdividing the volume to remove
+//! ([`crate::octree`]) and matching tools to the octants.
+//!
+//! 1. **The first tool** (§3.2 (1)–(4)): the tools sorted by diameter, the largest whose octree
+//!    (squares of side `d = 0.85 D` from the smallest root `d · 2^n` over the stock, layers of
+//!    the axial depth `h = δ D`) has Full octants it can enter.
+//! 2. **A stage** (§3.3): at each layer from the top, the octants the tool cuts (the Full ones
+//!    it can enter, under octants cut above) limit the region its centre may occupy there
+//!    (the exact region of [`crate::zmap::contour`]: the squares are where the tool may go,
+//!    the region's boundary where it may go exactly), which is cleared by rings inside-out,
+//!    entered by the shared helix or ramp or from the air beside it, at the step-over (the
+//!    paper's `0.85 D`, the widest step that leaves no island where boundaries meet at 90°,
+//!    Fig. 13), with the z-level strategy's machinery ([`RoughZlevel::clear`]). Its moves then
+//!    cut the in-process stock, so the next stage classifies against the stock as simulated
+//!    (the paper's open problem of Fig. 21: a round tool leaves the square octants' corners,
+//!    and the next tool meets them as material, not as a surprise).
+//! 3. **Later tools** (§3.2, last paragraph): one more subdivision halves the squares; the tool
+//!    matched to them is the largest smaller one with `0.5 <= γ = d / D <= 0.95` whose newly
+//!    Full octants it can enter; where none matches, the squares are halved again.
+//! 4. **The stop test** (§3.4): subdividing stops when the current tool reaches, at every level,
+//!    all the material that the smallest tool could remove (the paper offsets the part's slices
+//!    by the tool's radius and looks for self-intersection: a tool that fits every slice leaves
+//!    nothing a smaller one could reach); where the subdivision runs out of tools first, the
+//!    largest tool that passes the test is taken.
+//! 5. **Profiling** (§3.4): that tool clears what is left at its own levels (every step-down and
+//!    every flat, z-level rest roughing), so the material left is the allowance plus the
+//!    stair-step between its levels.
+//!
+//! One program with a tool change per stage; the report says which tools were chosen and why
+//! (octant side, γ, the entry test), and per stage the area cleared, the volume removed and the
+//! machine time; the page draws each stage's octants.
+
+use serde::{Deserialize, Serialize};
+
+use super::profile2d::Direction;
+use super::rough_zlevel::RoughZlevel;
+use super::{Context, FieldError, Operate, Works};
+use crate::cutter::Shape;
+use crate::error::{Error, Result};
+use crate::octree::{distance_to, OctantBox, Octree, Squares, Volume, GAMMA_FIRST, GAMMA_RANGE};
+use crate::progress::Progress;
+use crate::sim::program::program_moves;
+use crate::tool::Tool;
+use crate::toolpath::Toolpath;
+
+/// Octree multi-tool roughing.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, rename_all = "camelCase")]
+pub struct RoughOctree {
+    /// Default value: "octree rough".
+    pub name: String,
+    /// Whether the job runs it. Default value: true.
+    pub enabled: bool,
+    /// The tools it may choose from, by number. Default value: empty, meaning every flat and
+    /// bull-nose end in the job's library.
+    pub tools: Vec<u32>,
+    /// Axial depth of cut as a fraction of each tool's diameter (seed 000's δ = h / D), never
+    /// more than the tool's flute length. Default value: 0.25.
+    pub delta: f64,
+    /// Distance between rings after the first as a fraction of the tool's diameter, at most
+    /// 0.85 (seed 000 §3.3: wider steps leave islands where boundaries meet at 90°). The paper's
+    /// regions are unions of square octants; here they follow the part, and rings more than
+    /// the tool's radius apart can leave strips where a region narrows
+    /// ([`super::pocket2d::rings`]), so the default is the widest that never does. Default
+    /// value: 0.5.
+    pub stepover: f64,
+    /// Material left on floors (axial, mm). Default value: 0.5.
+    pub allowance: f64,
+    /// Material left on walls (radial, mm). Default value: 0.5.
+    pub leave_stock: f64,
+    /// Default value: climb.
+    pub direction: Direction,
+    /// Spacing of the CL z-maps (mm). Default value: 0.25.
+    pub grid: f64,
+    /// Steepest descent of helices and ramps (degrees). Default value: 3.
+    pub ramp_angle: f64,
+}
+
+impl Default for RoughOctree {
+    fn default() -> Self {
+        RoughOctree {
+            name: "octree rough".into(),
+            enabled: true,
+            tools: Vec::new(),
+            delta: 0.25,
+            stepover: 0.5,
+            allowance: 0.5,
+            leave_stock: 0.5,
+            direction: Direction::Climb,
+            grid: 0.25,
+            ramp_angle: 3.0,
+        }
+    }
+}
+
+/// Why a stage's tool was chosen.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "camelCase")]
+pub enum StageRole {
+    /// The largest tool whose octants it can enter (§3.2).
+    First,
+    /// Matched to the newly Full octants of one more subdivision (§3.2).
+    Octants,
+    /// Clears what is left at its own levels (§3.4).
+    Profile,
+}
+
+/// One stage of octree roughing: its tool, why, and what it did.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct StageReport {
+    pub tool: u32,
+    pub diameter: f64,
+    pub role: StageRole,
+    /// Side of the octants matched to the tool (mm); none for profiling.
+    pub side: Option<f64>,
+    /// d / D.
+    pub gamma: Option<f64>,
+    /// Axial depth of cut (mm).
+    pub depth: f64,
+    /// Why this tool, for a person.
+    pub why: String,
+    /// Area of the XY plane where the stage removed material (mm²).
+    pub area: f64,
+    /// Volume it removed (mm³).
+    pub removed: f64,
+    /// Machine time at its feeds and the rapid rate (s).
+    pub seconds: f64,
+}
+
+impl StageReport {
+    pub fn describe(&self) -> String {
+        format!(
+            "T{} φ{:.1} ({}): {}; {:.0} mm² cleared, {:.0} mm³ removed, {:.0} s",
+            self.tool,
+            self.diameter,
+            match self.role {
+                StageRole::First => "first tool",
+                StageRole::Octants => "octants",
+                StageRole::Profile => "profile",
+            },
+            self.why,
+            self.area,
+            self.removed,
+            self.seconds
+        )
+    }
+}
+
+/// The octants of one stage, for the view.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct StageOctants {
+    pub stage: usize,
+    pub tool: u32,
+    pub boxes: Vec<OctantBox>,
+}
+
+/// Boxes kept per stage for the view.
+const VIEW_BOXES: usize = 20_000;
+/// Levels sampled by the stop test at most.
+const REACH_LEVELS: usize = 24;
+
+impl Operate for RoughOctree {
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// The first tool listed (0 when it may choose from the whole library).
+    fn tool(&self) -> u32 {
+        self.tools.first().copied().unwrap_or(0)
+    }
+
+    fn tools(&self) -> Vec<u32> {
+        self.tools.clone()
+    }
+
+    fn enabled(&self) -> bool {
+        self.enabled
+    }
+
+    fn works(&self) -> Works {
+        Works::OnPart
+    }
+
+    fn allowance(&self) -> f64 {
+        self.allowance.min(self.leave_stock)
+    }
+
+    fn validate(&self) -> Result<(), FieldError> {
+        super::positive("delta", self.delta)?;
+        super::positive("stepover", self.stepover)?;
+        if self.stepover > 0.85 {
+            return Err(FieldError { field: "stepover", message: format!("is at most 0.85 of the diameter: wider steps leave islands between rings (seed 000 §3.3; got {})", self.stepover) });
+        }
+        super::not_negative("allowance", self.allowance)?;
+        super::not_negative("leaveStock", self.leave_stock)?;
+        super::positive("grid", self.grid)?;
+        super::positive("rampAngle", self.ramp_angle)?;
+        Ok(())
+    }
+
+    fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Vec<Toolpath>> {
+        let candidates = self.candidates(ctx)?;
+        // The stages cut a copy of the in-process stock as they go; the job then cuts the real
+        // one with the whole operation, as it does for every operation.
+        let before = ctx.sim.clone();
+        let result = self.stages(ctx, &candidates, progress);
+        ctx.sim = before;
+        let (paths, stages, octants) = result?;
+        ctx.stages = Some(stages);
+        ctx.octants.extend(octants);
+        Ok(paths)
+    }
+}
+
+type Planned = (Vec<Toolpath>, Vec<StageReport>, Vec<StageOctants>);
+
+impl RoughOctree {
+    /// The tools it may choose from, largest first.
+    fn candidates(&self, ctx: &Context) -> Result<Vec<Tool>> {
+        let mut tools: Vec<Tool> = if self.tools.is_empty() {
+            ctx.tools.iter().filter(|t| matches!(t.cutter.shape, Shape::Flat | Shape::BullNose)).cloned().collect()
+        } else {
+            self.tools.iter().map(|&n| ctx.tool(&self.name, n).cloned()).collect::<Result<_>>()?
+        };
+        if tools.is_empty() {
+            return Err(Error::operation(&self.name, "the tool library has no flat or bull-nose end to rough with"));
+        }
+        tools.sort_by(|a, b| b.cutter.diameter.total_cmp(&a.cutter.diameter));
+        tools.dedup_by(|a, b| a.cutter.diameter == b.cutter.diameter);
+        Ok(tools)
+    }
+
+    /// The z-level settings a stage of `tool` cuts with: its axial depth, this operation's
+    /// allowances and step-over; `flats` for profiling.
+    fn zlevel(&self, tool: &Tool, flats: bool) -> RoughZlevel {
+        RoughZlevel {
+            name: self.name.clone(),
+            enabled: true,
+            tool: tool.number,
+            stepdown: self.depth(tool),
+            stepover: self.stepover,
+            allowance: self.allowance,
+            leave_stock: self.leave_stock,
+            direction: self.direction,
+            grid: self.grid,
+            ramp_angle: self.ramp_angle,
+            helix_radius: None,
+            flats,
+        }
+    }
+
+    /// The axial depth of cut for `tool` (mm).
+    pub fn depth(&self, tool: &Tool) -> f64 {
+        (self.delta * tool.cutter.diameter).min(tool.cutter.flute_length)
+    }
+
+    /// The octree of `tool` over `squares`, classified against the in-process stock.
+    fn octree(&self, ctx: &mut Context, tool: &Tool, squares: Squares, progress: &mut Progress) -> Result<Octree> {
+        let zl = self.zlevel(tool, true);
+        let (_, cl) = zl.surface(ctx, progress)?;
+        let heights = zl.heights(ctx, &cl, tool.cutter.radius());
+        let tops = std::iter::once(ctx.stock.max.z).chain(heights.iter().copied());
+        let layers: Vec<(f64, f64)> = heights.iter().copied().zip(tops).collect();
+        let stock = ctx.sim.stock().heights();
+        let part = ctx.cc_zmap(stock.grid(), f64::NEG_INFINITY);
+        let volume = Volume { stock: &stock, part: &part, allowance: self.allowance, tolerance: ctx.tolerances.gouge };
+        Ok(Octree::classify(squares, &layers, &cl.field, tool.cutter.radius(), &volume))
+    }
+
+    /// Cuts the octants `tree` marks with `tool` (one stage), then cuts the in-process stock
+    /// with it; `None` where no level holds them.
+    fn cut(&self, ctx: &mut Context, tool: &Tool, tree: &Octree, progress: &mut Progress) -> Result<Option<(Toolpath, Cut)>> {
+        let zl = self.zlevel(tool, true);
+        let (stock, tol) = (ctx.sim.stock().heights(), ctx.tolerances.gouge);
+        let r = tool.cutter.radius();
+        let mut centres: Option<Vec<Vec<bool>>> = None;
+        let mut within = |z: f64, grid: crate::zmap::Grid| {
+            let all = centres.get_or_insert_with(|| tree.centres(grid, r, &stock, tol));
+            Some(tree.layer_at(z, 1e-9).map_or_else(|| vec![false; grid.nodes()], |k| all[k].clone()))
+        };
+        let Some(levels) = zl.levels_within(ctx, progress, r, &mut within)? else { return Ok(None) };
+        let path = zl.clear(ctx, levels, progress)?;
+        let cut = advance(ctx, &path, progress)?;
+        Ok(Some((path, cut)))
+    }
+
+    /// Every stage, in order: the paths, their reports and their octants.
+    fn stages(&self, ctx: &mut Context, candidates: &[Tool], progress: &mut Progress) -> Result<Planned> {
+        let (lo, hi) = (ctx.stock.min.truncate(), ctx.stock.max.truncate());
+        let mut paths = Vec::new();
+        let mut reports = Vec::new();
+        let mut views = Vec::new();
+        let count = candidates.len() as f64 + 1.0;
+        let stage_progress = |progress: &mut Progress, k: f64, name: &str| progress.stage(name, (k / count).min(0.95), 1.0 / count);
+
+        // §3.2: the first tool.
+        let mut first = None;
+        let mut empty = true;
+        for (k, tool) in candidates.iter().enumerate() {
+            if !stage_progress(progress, k as f64 * 0.2, &format!("octree φ{}", tool.cutter.diameter)) {
+                return Err(Error::Cancelled);
+            }
+            let squares = Squares::root(lo, hi, GAMMA_FIRST * tool.cutter.diameter);
+            let tree = self.octree(ctx, tool, squares, progress)?;
+            empty &= tree.layers.iter().all(|l| l.state.iter().all(|&s| s == crate::octree::State::Empty));
+            if tree.cuts() {
+                first = Some((k, tree));
+                break;
+            }
+        }
+        let Some((mut current, tree)) = first else {
+            if empty {
+                ctx.warn(&self.name, "no material is left to rough");
+                return Ok((paths, reports, views));
+            }
+            return Err(self.nothing_enters(ctx, candidates, progress));
+        };
+        let tool = &candidates[current];
+        let mut squares = tree.squares;
+        views.push(StageOctants { stage: 0, tool: tool.number, boxes: tree.boxes(VIEW_BOXES) });
+        let why = format!(
+            "the largest tool whose octants it can enter: {:.2} mm octants (γ = {GAMMA_FIRST}, root {:.1} mm = {:.2} × 2^{}), {:.0} mm² of them over {} levels entered from the air or by a helix inside 2 × 2 of them",
+            squares.side,
+            squares.side * (1u64 << squares.depth) as f64,
+            squares.side,
+            squares.depth,
+            tree.cut_area(),
+            tree.layers.iter().filter(|l| l.cut.iter().any(|&c| c)).count(),
+        );
+        if let Some((path, cut)) = self.cut(ctx, tool, &tree, progress)? {
+            paths.push(path);
+            reports.push(self.report(tool, StageRole::First, Some((squares.side, GAMMA_FIRST)), why, cut));
+        }
+
+        // §3.2 and §3.4: later tools, until one reaches everything the smallest would.
+        let mut profiler = None;
+        while profiler.is_none() {
+            let tool = &candidates[current];
+            if !stage_progress(progress, current as f64 + 0.5, &format!("stop test φ{}", tool.cutter.diameter)) {
+                return Err(Error::Cancelled);
+            }
+            if self.reaches_all(ctx, tool, &candidates[current + 1..], progress)? {
+                profiler = Some((current, format!("reaches at every level all the material a smaller tool of the library would (§3.4), so it profiles what is left at its {:.2} mm levels", self.depth(tool))));
+                break;
+            }
+            squares = squares.halved();
+            let smallest = candidates.last().expect("at least one candidate").cutter.diameter;
+            if squares.side / smallest < GAMMA_RANGE.0 {
+                // No tool matches smaller octants: the largest tool that reaches what the
+                // smallest would profiles.
+                let mut k = current + 1;
+                while k + 1 < candidates.len() && !self.reaches_all(ctx, &candidates[k], &candidates[k + 1..], progress)? {
+                    k += 1;
+                }
+                let k = k.min(candidates.len() - 1);
+                profiler = Some((k, format!("no smaller tool matches the octants any more; the largest tool that reaches all the material the smallest would, at its {:.2} mm levels", self.depth(&candidates[k]))));
+                break;
+            }
+            for k in current + 1..candidates.len() {
+                let t = &candidates[k];
+                let gamma = squares.side / t.cutter.diameter;
+                if !(GAMMA_RANGE.0..=GAMMA_RANGE.1).contains(&gamma) {
+                    continue;
+                }
+                if k + 1 == candidates.len() {
+                    // The smallest tool passes the stop test by itself: it profiles at once
+                    // (its octants would be cut again by the profiling).
+                    profiler = Some((k, format!("matched to the octants of {:.2} mm (γ = {gamma:.2}) and the smallest tool: it passes the stop test (§3.4) and profiles everything left at its {:.2} mm levels", squares.side, self.depth(t))));
+                    break;
+                }
+                if !stage_progress(progress, k as f64, &format!("octree φ{}", t.cutter.diameter)) {
+                    return Err(Error::Cancelled);
+                }
+                let tree = self.octree(ctx, t, squares, progress)?;
+                if !tree.cuts() {
+                    continue;
+                }
+                let why = format!(
+                    "matched to the newly Full octants of {:.2} mm (subdivision {}, γ = {gamma:.2} within 0.5 to 0.95): {:.0} mm² of them the tool can enter",
+                    squares.side,
+                    squares.depth,
+                    tree.cut_area()
+                );
+                views.push(StageOctants { stage: reports.len(), tool: t.number, boxes: tree.boxes(VIEW_BOXES) });
+                if let Some((path, cut)) = self.cut(ctx, t, &tree, progress)? {
+                    paths.push(path);
+                    reports.push(self.report(t, StageRole::Octants, Some((squares.side, gamma)), why, cut));
+                }
+                current = k;
+                break;
+            }
+        }
+
+        // §3.4: profiling.
+        let (k, why) = profiler.expect("the loop ends with a profiling tool");
+        let tool = &candidates[k];
+        if !stage_progress(progress, count - 1.0, &format!("profile φ{}", tool.cutter.diameter)) {
+            return Err(Error::Cancelled);
+        }
+        let zl = self.zlevel(tool, true);
+        // Every centre whose cutter touches what is left: rest material reachable only by the
+        // cutter's side (a round tool's corner left by a bigger one) is cut from its top down
+        // like the rest, never met by the side of a deeper pass.
+        if let Some(levels) = zl.levels_within(ctx, progress, tool.cutter.radius(), &mut |_, _| None)? {
+            let path = zl.clear(ctx, levels, progress)?;
+            let cut = advance(ctx, &path, progress)?;
+            paths.push(path);
+            reports.push(self.report(tool, StageRole::Profile, None, why, cut));
+        }
+        Ok((paths, reports, views))
+    }
+
+    fn report(&self, tool: &Tool, role: StageRole, octants: Option<(f64, f64)>, why: String, cut: Cut) -> StageReport {
+        StageReport {
+            tool: tool.number,
+            diameter: tool.cutter.diameter,
+            role,
+            side: octants.map(|o| o.0),
+            gamma: octants.map(|o| o.1),
+            depth: self.depth(tool),
+            why,
+            area: cut.area,
+            removed: cut.removed,
+            seconds: cut.seconds,
+        }
+    }
+
+    /// The stop test (§3.4): whether `tool` reaches, at the smallest tool's levels, all the
+    /// material left that the smallest of `smaller` would (less than a quarter of that tool's
+    /// footprint at any level, for the grids' rounding).
+    fn reaches_all(&self, ctx: &mut Context, tool: &Tool, smaller: &[Tool], progress: &mut Progress) -> Result<bool> {
+        let Some(small) = smaller.last() else { return Ok(true) };
+        let (zl_big, zl_small) = (self.zlevel(tool, false), self.zlevel(small, false));
+        let (_, cl_big) = zl_big.surface(ctx, progress)?;
+        let (_, cl_small) = zl_small.surface(ctx, progress)?;
+        let mut levels = zl_small.heights(ctx, &cl_small, small.cutter.radius());
+        if levels.len() > REACH_LEVELS {
+            let n = levels.len();
+            levels = (0..REACH_LEVELS).map(|k| levels[k * (n - 1) / (REACH_LEVELS - 1)]).collect();
+        }
+        let stock = ctx.sim.stock().heights();
+        let part = ctx.cc_zmap(stock.grid(), f64::NEG_INFINITY);
+        let (a, tol) = (self.allowance, ctx.tolerances.gouge);
+        let cell = stock.spacing * stock.spacing;
+        let limit = 0.25 * std::f64::consts::PI * small.cutter.radius().powi(2);
+        // Per node of a CL z-map, the distance to the nearest centre the tool may take at `z`,
+        // and a stock cell's distance read at its nearest node.
+        // Per node of a CL z-map, the distance to the nearest centre the tool may take at `z`;
+        // a stock cell's is read at its nearest node.
+        let reach = |cl: &crate::zmap::surface::ClSurface, z: f64| {
+            let f = &cl.field;
+            let safe: Vec<bool> = f.z.iter().map(|&h| h + a <= z).collect();
+            distance_to(&safe, f.nx, f.ny, f.spacing)
+        };
+        let at = |cl: &crate::zmap::surface::ClSurface, d: &[f64], p: crate::geom::DVec2| {
+            let f = &cl.field;
+            let u = ((p - f.origin) / f.spacing).round();
+            if u.x < 0.0 || u.y < 0.0 || u.x as usize >= f.nx || u.y as usize >= f.ny {
+                return f64::INFINITY;
+            }
+            d[u.y as usize * f.nx + u.x as usize]
+        };
+        let sg = stock.grid();
+        for z in levels {
+            let material: Vec<usize> = (0..sg.nodes()).filter(|&c| stock.z[c] - z.max(part.z[c] + a) > tol).collect();
+            if material.is_empty() {
+                continue;
+            }
+            let (big, little) = (reach(&cl_big, z), reach(&cl_small, z));
+            let (rb, rs) = (tool.cutter.radius() + cl_big.field.spacing, small.cutter.radius());
+            let missed = material.iter().filter(|&&c| {
+                let p = sg.node(c % sg.nx, c / sg.nx);
+                at(&cl_small, &little, p) <= rs && at(&cl_big, &big, p) > rb
+            });
+            if missed.count() as f64 * cell > limit {
+                return Ok(false);
+            }
+        }
+        Ok(true)
+    }
+
+    /// The error when no tool of the library can enter the volume anywhere: names the largest
+    /// flat end, halving from the smallest in the library, that would.
+    fn nothing_enters(&self, ctx: &mut Context, candidates: &[Tool], progress: &mut Progress) -> Error {
+        let smallest = candidates.last().expect("at least one candidate");
+        let (lo, hi) = (ctx.stock.min.truncate(), ctx.stock.max.truncate());
+        let mut d = smallest.cutter.diameter / 2.0;
+        let number = ctx.tools.iter().map(|t| t.number).max().unwrap_or(0) + 1;
+        let mut would = None;
+        while d >= 0.5 && would.is_none() {
+            let mut t = smallest.clone();
+            t.number = number;
+            t.cutter = crate::cutter::Cutter { shape: Shape::Flat, diameter: d, ..smallest.cutter.clone() };
+            ctx.tools.push(t.clone());
+            let tree = self.octree(ctx, &t, Squares::root(lo, hi, GAMMA_FIRST * d), progress);
+            ctx.tools.pop();
+            if tree.is_ok_and(|tree| tree.cuts()) {
+                would = Some(d);
+            }
+            d /= 2.0;
+        }
+        let why = match would {
+            Some(d) => format!("no tool of the library can enter the volume to remove anywhere (the smallest, φ{}, finds no octants of {:.2} mm it can clear and reach); a φ{d} flat end would", smallest.cutter.diameter, GAMMA_FIRST * smallest.cutter.diameter),
+            None => format!("no tool of the library can enter the volume to remove anywhere (the smallest is φ{}); not even a φ0.5 flat end would", smallest.cutter.diameter),
+        };
+        Error::operation(&self.name, why)
+    }
+}
+
+/// What one stage's moves did to the in-process stock.
+struct Cut {
+    area: f64,
+    removed: f64,
+    seconds: f64,
+}
+
+/// Cuts the in-process stock with `path` and says what it did.
+fn advance(ctx: &mut Context, path: &Toolpath, progress: &mut Progress) -> Result<Cut> {
+    let before = ctx.sim.stock().heights();
+    let moves = program_moves(std::slice::from_ref(path), &ctx.tools, ctx.rapid_rate)?;
+    let first = ctx.sim.volumes().len();
+    ctx.sim.run(&moves, &ctx.tolerances, progress, 1.0)?;
+    let removed = ctx.sim.volumes()[first..].iter().sum();
+    let after = ctx.sim.stock().heights();
+    let lowered = before.z.iter().zip(&after.z).filter(|(b, a)| *b - *a > ctx.tolerances.gouge).count();
+    Ok(Cut { area: lowered as f64 * before.spacing * before.spacing, removed, seconds: moves.iter().map(|m| m.seconds).sum() })
+}

@@ -1,0 +1,239 @@
+//! Octree multi-tool roughing (seed 000): on parts whose answer is known, the tools chosen follow
+//! the paper's rules (the largest first, later ones matched to halved octants with 0.5 <= γ <=
+//! 0.95, the stop test before the profiling), every program is simulated clean (no gouge, no
+//! rapid through stock, no tool body in material, no straight plunge into material), and after
+//! the last tool the material left where that tool reaches is the allowance.
+
+use swarf::cutter::Cutter;
+use swarf::error::Error;
+use swarf::geom::DVec2;
+use swarf::job::{self, Job, JobOutput, Operation, Simulation, Tool};
+use swarf::mesh::placement::{PartSetup, Placement};
+use swarf::mesh::sample::{height_field_solid, octree_mould};
+use swarf::mesh::Mesh;
+use swarf::progress::Progress;
+use swarf::strategy::rough_octree::{RoughOctree, StageRole};
+use swarf::toolpath::Move;
+
+fn flat(number: u32, d: f64) -> Tool {
+    Tool { number, cutter: Cutter { flute_length: 3.0 * d, ..Cutter::flat(d) }, feed_rate: 1000.0, plunge_rate: 250.0, ..Tool::default() }
+}
+
+/// A block over `[-w, w] × [-h, h]`, top at z = 0, bottom at −30, sampled every 0.5 mm, with
+/// the floors `floor(x, y)` (None: the top).
+fn block(w: f64, h: f64, floor: impl Fn(f64, f64) -> Option<f64>) -> Mesh {
+    let n = |e: f64| (2.0 * e / 0.5).round() as usize;
+    height_field_solid(DVec2::new(-w, -h), DVec2::new(w, h), n(w), n(h), -30.0, move |x, y| floor(x, y).unwrap_or(0.0))
+}
+
+fn within(v: f64, lo: f64, hi: f64) -> bool {
+    (lo..=hi).contains(&v)
+}
+
+const ALLOWANCE: f64 = 0.5;
+const LEAVE: f64 = 0.5;
+
+fn octree_job(tools: Vec<Tool>, op: RoughOctree) -> Job {
+    Job {
+        part: PartSetup { placement: Placement::Keep, ..PartSetup::default() },
+        stock: swarf::job::Stock { margin_xy: 0.0, margin_top: 1.0, ..Default::default() },
+        tools,
+        operations: vec![Operation::RoughOctree(RoughOctree { allowance: ALLOWANCE, leave_stock: LEAVE, grid: 0.5, ..op })],
+        simulation: Simulation { verify: true, cell: Some(0.25) },
+        ..Job::default()
+    }
+}
+
+/// Every simulated move: a clean report, and no vertical feed into material.
+fn clean(out: &JobOutput) {
+    let v = out.verification.as_ref().expect("verified");
+    assert!(v.report.is_clean(), "{}", v.report.describe());
+    for (m, &vol) in out.moves.iter().zip(&v.volumes) {
+        if let Move::Line { to, .. } = m.mv {
+            if to.truncate().distance(m.from.truncate()) < 1e-9 && to.z < m.from.z - 1e-9 {
+                let r = m.cutter.diameter / 2.0;
+                assert!(vol < 0.02 * std::f64::consts::PI * r * r + 1e-6, "a straight plunge to {to} removed {vol} mm³");
+            }
+        }
+    }
+}
+
+/// The stages as (tool, role).
+fn stages(out: &JobOutput) -> Vec<(u32, StageRole)> {
+    out.operations[0].stages.as_ref().expect("stages reported").iter().map(|s| (s.tool, s.role)).collect()
+}
+
+/// The most material left above the floor allowance at cells whose every point within `reach`
+/// lies on a floor (`floor(x, y)` the same all round): where the last tool's centre goes.
+fn left_on_floors(out: &JobOutput, reach: f64, floor: impl Fn(f64, f64) -> Option<f64>) -> (f64, usize) {
+    let v = out.verification.as_ref().unwrap();
+    let g = v.stock.grid();
+    let (mut worst, mut n) = (0.0f64, 0);
+    for j in 0..g.ny {
+        for i in 0..g.nx {
+            let p = g.node(i, j);
+            let Some(f) = floor(p.x, p.y) else { continue };
+            let all_round = (0..16).all(|k| {
+                let a = k as f64 * std::f64::consts::PI / 8.0;
+                floor(p.x + reach * a.cos(), p.y + reach * a.sin()) == Some(f)
+            });
+            if all_round {
+                worst = worst.max(v.stock.top(i, j) - f - ALLOWANCE);
+                n += 1;
+            }
+        }
+    }
+    (worst, n)
+}
+
+fn slot_pocket(x: f64, y: f64) -> Option<f64> {
+    if within(x, -30.0, 10.0) && within(y, -20.0, 20.0) || within(x, 10.0, 30.0) && within(y, -2.5, 2.5) {
+        Some(-10.0)
+    } else {
+        None
+    }
+}
+
+#[test]
+fn a_box_pocket_with_a_narrow_slot_takes_the_big_tool_for_the_box_and_the_small_one_for_the_slot() {
+    let job = octree_job(vec![flat(1, 12.0), flat(2, 3.0)], RoughOctree::default());
+    let out = job::run(&job, block(40.0, 30.0, slot_pocket), &mut Progress::none()).unwrap();
+    clean(&out);
+    // φ12 first (octants of 10.2 mm); halved twice to 2.55 mm, γ = 0.85 for φ3, the smallest,
+    // which profiles: the slot, 5 wide, takes a φ3 with its 0.5 mm leave-stock each side.
+    assert_eq!(stages(&out), vec![(1, StageRole::First), (2, StageRole::Profile)]);
+    let s = out.operations[0].stages.as_ref().unwrap();
+    assert!((s[0].side.unwrap() - 10.2).abs() < 1e-9 && s[0].gamma == Some(0.85), "{s:?}");
+    assert!(s[0].removed > 4.0 * s[1].removed, "the big tool clears the box: {s:?}");
+    // The slot is cut to its floor's allowance along its middle, and so is the box's floor.
+    let (worst, n) = left_on_floors(&out, 1.5 + LEAVE + 0.3, slot_pocket);
+    assert!(n > 5000 && worst <= 0.0011, "{worst} mm above the allowance on {n} floor cells");
+    let slot = out.verification.as_ref().unwrap();
+    let g = slot.stock.grid();
+    let middle = (0..g.nx).filter(|&i| within(g.node(i, 0).x, 14.0, 26.0)).map(|i| {
+        let j = ((0.0 - g.origin.y) / g.spacing).round() as usize;
+        slot.stock.top(i, j)
+    });
+    assert!(middle.clone().count() > 40 && middle.clone().all(|z| z <= -10.0 + ALLOWANCE + 0.0011), "{:?}", middle.collect::<Vec<_>>());
+    // Two tools in one program, the report says why each.
+    assert_eq!(out.operations[0].tools, vec![1, 2]);
+    assert!(s[0].why.contains("largest") && s[1].why.contains("smallest"), "{s:?}");
+    assert!(out.gcode.matches("M6").count() == 2, "a tool change per stage");
+    assert!(!out.octants.is_empty() && out.octants[0].boxes.iter().any(|b| b.full));
+}
+
+fn stepped(x: f64, y: f64) -> Option<f64> {
+    if within(x, -5.0, 5.0) && within(y, -4.0, 4.0) {
+        Some(-18.0)
+    } else if within(x, -15.0, 15.0) && within(y, -10.0, 10.0) {
+        Some(-12.0)
+    } else if within(x, -30.0, 30.0) && within(y, -20.0, 20.0) {
+        Some(-6.0)
+    } else {
+        None
+    }
+}
+
+#[test]
+fn a_stepped_cavity_takes_a_tool_per_step_matched_to_halved_octants() {
+    let job = octree_job(vec![flat(1, 16.0), flat(2, 8.0), flat(3, 4.0)], RoughOctree::default());
+    let out = job::run(&job, block(40.0, 30.0, stepped), &mut Progress::none()).unwrap();
+    clean(&out);
+    // φ16 first (13.6 mm octants); 6.8 mm octants match φ8 (γ = 0.85), which clears the middle
+    // step (30 × 20); the innermost (10 × 8) takes φ4 (γ = 0.85 at 3.4 mm), the smallest, which
+    // profiles.
+    let s = stages(&out);
+    assert_eq!(s.first(), Some(&(1, StageRole::First)), "{s:?}");
+    assert_eq!(s.last(), Some(&(3, StageRole::Profile)), "{s:?}");
+    assert!(s.contains(&(2, StageRole::Octants)), "{s:?}");
+    let r = out.operations[0].stages.as_ref().unwrap();
+    for st in r.iter().filter(|st| st.role == StageRole::Octants) {
+        let g = st.gamma.unwrap();
+        assert!((0.5..=0.95).contains(&g), "{st:?}");
+    }
+    // The innermost floor leaves the φ4's centres 15 mm², less than the flats the z-level
+    // levels take (twice the cutter's area): it is cut at the level above, within the
+    // stair-step (the φ4's axial depth, 1 mm); the other floors are flats.
+    let (worst, n) = left_on_floors(&out, 2.0 + LEAVE + 0.3, stepped);
+    assert!(n > 3000 && worst <= 1.0 + 0.0011, "{worst} mm above the allowance on {n} floor cells");
+    let (worst, n) = left_on_floors(&out, 2.0 + LEAVE + 0.3, |x, y| stepped(x, y).filter(|&f| f > -15.0));
+    assert!(n > 3000 && worst <= 0.02, "{worst} mm above the allowance on {n} cells of the outer floors");
+}
+
+fn boss_in_pocket(x: f64, y: f64) -> Option<f64> {
+    if within(x, -8.0, 8.0) && within(y, -8.0, 8.0) {
+        None
+    } else if within(x, -30.0, 30.0) && within(y, -30.0, 30.0) {
+        Some(-10.0)
+    } else {
+        None
+    }
+}
+
+#[test]
+fn a_boss_in_a_pocket_is_roughed_round_with_the_big_tool_and_its_corners_by_the_small_one() {
+    let job = octree_job(vec![flat(1, 10.0), flat(2, 4.0)], RoughOctree::default());
+    let out = job::run(&job, block(40.0, 40.0, boss_in_pocket), &mut Progress::none()).unwrap();
+    clean(&out);
+    assert_eq!(stages(&out), vec![(1, StageRole::First), (2, StageRole::Profile)]);
+    let r = out.operations[0].stages.as_ref().unwrap();
+    assert!(r[0].removed > 20.0 * r[1].removed, "the small tool only takes the corners: {r:?}");
+    let (worst, n) = left_on_floors(&out, 2.0 + LEAVE + 0.3, boss_in_pocket);
+    assert!(n > 10_000 && worst <= 0.0011, "{worst} mm above the allowance on {n} floor cells");
+    // The φ10 never came nearer the boss than its radius and the leave-stock.
+    let v = out.verification.as_ref().unwrap();
+    let g = v.stock.grid();
+    for j in 0..g.ny {
+        for i in 0..g.nx {
+            let p = g.node(i, j);
+            if p.x.abs() < 8.0 + LEAVE - 0.3 && p.y.abs() < 8.0 + LEAVE - 0.3 {
+                assert!(v.stock.top(i, j) > -1e-6, "the boss was cut at {p}");
+            }
+        }
+    }
+}
+
+#[test]
+fn the_mould_is_roughed_biggest_tool_first_and_clean() {
+    let job = octree_job(vec![flat(1, 20.0), flat(2, 12.0), flat(3, 6.0), flat(4, 3.0)], RoughOctree::default());
+    let out = job::run(&job, octree_mould(1.0), &mut Progress::none()).unwrap();
+    clean(&out);
+    let s = stages(&out);
+    assert_eq!(s.first(), Some(&(1, StageRole::First)), "{s:?}");
+    assert_eq!(s.last(), Some(&(4, StageRole::Profile)), "{s:?}");
+    let r = out.operations[0].stages.as_ref().unwrap();
+    // Each stage's report adds up to the operation's.
+    let removed: f64 = r.iter().map(|s| s.removed).sum();
+    assert!((removed - out.operations[0].removed.unwrap()).abs() < 1e-6 * removed, "{removed} against {:?}", out.operations[0].removed);
+    let seconds: f64 = r.iter().map(|s| s.seconds).sum();
+    assert!(seconds <= out.operations[0].seconds + 1e-6 && seconds > 0.95 * out.operations[0].seconds, "{seconds} against {}", out.operations[0].seconds);
+    // The big tool does most of the work.
+    assert!(r[0].removed > 0.6 * removed, "{r:?}");
+}
+
+#[test]
+fn a_library_too_big_for_the_part_is_refused_naming_a_tool_that_would_do() {
+    let pocket = |x: f64, y: f64| (within(x, -5.0, 5.0) && within(y, -5.0, 5.0)).then_some(-6.0);
+    // The stock's top is the part's: only the pocket is to be cut.
+    let mut job = octree_job(vec![flat(1, 20.0), flat(2, 16.0)], RoughOctree::default());
+    job.stock.margin_top = 0.0;
+    let e = job::run(&job, block(20.0, 20.0, pocket), &mut Progress::none()).unwrap_err();
+    match &e {
+        Error::Operation { operation, why } => {
+            assert_eq!(operation, "octree rough");
+            assert!(why.contains("no tool of the library can enter") && why.contains("flat end would"), "{why}");
+        }
+        other => panic!("{other}"),
+    }
+}
+
+#[test]
+fn its_settings_are_checked_with_their_paths() {
+    let e = Job::from_json(r#"{"tools": [{"number": 1, "shape": "flat"}], "operations": [{"kind": "roughOctree", "tools": [1, 7]}]}"#).and_then(|j| j.validate().map(|_| j)).unwrap_err();
+    assert!(e.to_string().contains("operations[0].tools: no tool number 7"), "{e}");
+    let e = Job::from_json(r#"{"tools": [{"number": 1, "shape": "flat"}], "operations": [{"kind": "roughOctree", "stepover": 0.9}]}"#).and_then(|j| j.validate().map(|_| j)).unwrap_err();
+    assert!(e.to_string().contains("operations[0].stepover is at most 0.85"), "{e}");
+    let e = Job::from_json(r#"{"tools": [{"number": 1, "shape": "ball"}], "operations": [{"kind": "roughOctree"}]}"#).unwrap();
+    let err = job::run(&e, block(20.0, 20.0, |_, _| Some(-3.0)), &mut Progress::none()).unwrap_err();
+    assert!(err.to_string().contains("no flat or bull-nose end"), "{err}");
+}
