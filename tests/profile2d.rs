@@ -185,6 +185,26 @@ fn svg_shapes_transforms_and_arcs() {
 }
 
 #[test]
+fn an_svg_with_a_doctype_line_is_read_and_nothing_it_names_is_fetched() {
+    // As matplotlib writes it: a DOCTYPE naming a DTD on the web, and an external entity
+    // that must be dropped, never fetched.
+    let svg = r#"<?xml version="1.0" encoding="utf-8" standalone="no"?>
+<!DOCTYPE svg PUBLIC "-//W3C//DTD SVG 1.1//EN" "http://www.w3.org/Graphics/SVG/1.1/DTD/svg11.dtd" [
+  <!ENTITY far SYSTEM "http://example.invalid/far.xml">
+]>
+<svg xmlns="http://www.w3.org/2000/svg" width="50mm" height="50mm" viewBox="0 0 50 50">
+  <rect x="5" y="5" width="40" height="30"/>
+</svg>"#;
+    let d = read_drawing(svg.as_bytes(), Some("plot.svg"), &Tolerances::default()).unwrap();
+    assert_eq!(d.loops.len(), 1);
+    assert!((d.loops[0].path.area().abs() - 1200.0).abs() < 1e-6);
+    // An entity bomb is still refused with a message, not a hang.
+    let bomb = format!(r#"<?xml version="1.0"?><!DOCTYPE svg [<!ENTITY a "aaaaaaaaaa">{}]><svg xmlns="http://www.w3.org/2000/svg">&j;</svg>"#, (b'b'..=b'j').map(|c| format!("<!ENTITY {} \"{}\">", c as char, format!("&{};", (c - 1) as char).repeat(10))).collect::<String>());
+    let e = read_drawing(bomb.as_bytes(), Some("bomb.svg"), &Tolerances::default()).unwrap_err();
+    assert!(e.to_string().contains("SVG"), "{e}");
+}
+
+#[test]
 fn real_profiles_read_and_cut_cleanly() {
     let Some(dir) = common::shared_data("profiles") else {
         eprintln!("../shared/data/profiles is absent; skipped");
@@ -282,6 +302,19 @@ fn profile_every_loop(d: Drawing, diameter: f64, profile: Profile2d) -> job::Job
     let report = &out.verification.as_ref().unwrap().report;
     assert!(report.is_clean(), "{}", report.describe());
     out
+}
+
+#[test]
+fn holes_smaller_than_the_tool_are_named_in_one_warning() {
+    // A plate with 14 holes of φ4 (a φ6 tool fits none) and one of φ10.
+    let mut loops = vec![Loop::rect(DVec2::ZERO, DVec2::new(160.0, 30.0))];
+    loops.extend((0..14).map(|k| Loop::circle(DVec2::new(8.0 + 10.0 * k as f64, 8.0), 2.0)));
+    loops.push(Loop::circle(DVec2::new(80.0, 21.0), 5.0));
+    let out = profile_every_loop(drawing_of(loops), 6.0, Profile2d::default());
+    let small: Vec<&swarf::error::Warning> = out.warnings.iter().filter(|w| w.message.contains("not cut")).collect();
+    assert_eq!(small.len(), 1, "{:?}", out.warnings);
+    assert!(small[0].message.starts_with("14 loops are smaller than the φ6.000 tool"), "{}", small[0]);
+    assert!(small[0].message.contains("loops 1, 2, 3") && small[0].message.contains("and 2 more"), "{}", small[0]);
 }
 
 #[test]

@@ -4,6 +4,9 @@
 //! rapid through stock, no tool body in material, no straight plunge into material), and after
 //! the last tool the material left where that tool reaches is the allowance.
 
+mod common;
+
+use common::clean;
 use swarf::cutter::Cutter;
 use swarf::error::Error;
 use swarf::geom::DVec2;
@@ -13,7 +16,6 @@ use swarf::mesh::sample::{height_field_solid, octree_mould};
 use swarf::mesh::Mesh;
 use swarf::progress::Progress;
 use swarf::strategy::rough_octree::{RoughOctree, StageRole};
-use swarf::toolpath::Move;
 
 fn flat(number: u32, d: f64) -> Tool {
     Tool { number, cutter: Cutter { flute_length: 3.0 * d, ..Cutter::flat(d) }, feed_rate: 1000.0, plunge_rate: 250.0, ..Tool::default() }
@@ -44,19 +46,6 @@ fn octree_job(tools: Vec<Tool>, op: RoughOctree) -> Job {
     }
 }
 
-/// Every simulated move: a clean report, and no vertical feed into material.
-fn clean(out: &JobOutput) {
-    let v = out.verification.as_ref().expect("verified");
-    assert!(v.report.is_clean(), "{}", v.report.describe());
-    for (m, &vol) in out.moves.iter().zip(&v.volumes) {
-        if let Move::Line { to, .. } = m.mv {
-            if to.truncate().distance(m.from.truncate()) < 1e-9 && to.z < m.from.z - 1e-9 {
-                let r = m.cutter.diameter / 2.0;
-                assert!(vol < 0.02 * std::f64::consts::PI * r * r + 1e-6, "a straight plunge to {to} removed {vol} mm³");
-            }
-        }
-    }
-}
 
 /// The stages as (tool, role).
 fn stages(out: &JobOutput) -> Vec<(u32, StageRole)> {

@@ -2,9 +2,11 @@
 //! simulated (no gouge, no rapid through stock, no straight plunge into material), the load
 //! after correction held at the reference outside slots, and rs274-clean arcs.
 
+mod common;
+
+use common::clean;
 use swarf::cutter::Cutter;
 use swarf::sim::windows::windowed_rates;
-use swarf::toolpath::Move;
 use swarf::job::{self, Job, JobOutput, Operation, Simulation, Tool};
 use swarf::mesh::placement::{PartSetup, Placement};
 use swarf::mesh::sample::{demo_part, paper_pocket};
@@ -30,25 +32,6 @@ fn paper_job(load: LoadControl) -> Job {
     job
 }
 
-/// Clean by the project's simulation, and no straight plunge into material (a start counts
-/// as in the air when the stock there stands no more than the gouge tolerance above it).
-fn clean(out: &JobOutput, radius: f64) {
-    let v = out.verification.as_ref().expect("verified");
-    assert!(v.report.is_clean(), "{}", v.report.describe());
-    for (k, (m, &vol)) in out.moves.iter().zip(&v.volumes).enumerate() {
-        if let Move::Line { to, .. } = m.mv {
-            if to.truncate().distance(m.from.truncate()) < 1e-9 && to.z < m.from.z - 1e-9 {
-                if vol >= 0.02 * std::f64::consts::PI * radius * radius + 1e-6 {
-                    for q in &out.moves[k.saturating_sub(4)..(k + 4).min(out.moves.len())] {
-                        eprintln!("{} -> {:?}", q.from, q.mv);
-                    }
-                    eprintln!("{:?}", out.warnings);
-                }
-                assert!(vol < 0.02 * std::f64::consts::PI * radius * radius + 1e-6, "a straight plunge to {to} removed {vol} mm³");
-            }
-        }
-    }
-}
 
 /// The removal rate over windows of Δs of the cutting moves at one height (entries left out)
 /// by the project's own simulation at `cell`, over the reference rate.
@@ -62,7 +45,7 @@ fn the_papers_pocket_is_cleared_with_the_load_held() {
     for load in [LoadControl::None, LoadControl::Feed, LoadControl::Path] {
         let job = paper_job(load);
         let out = job::run(&job, paper_pocket(0.5, 0.5), &mut Progress::none()).unwrap();
-        clean(&out, 5.0);
+        clean(&out);
         assert!(out.gcode.contains("G2") || out.gcode.contains("G3") || load != LoadControl::Path);
         let report = out.operations[0].load.clone().unwrap();
         let (plain, _) = LoadReport::peak_and_spread(&report.plain);
@@ -94,7 +77,7 @@ fn the_sample_part_is_roughed_clean_to_the_stair_step_both_ways() {
         let op = RoughZigzag { tool: 1, stepdown, allowance, leave_stock: leave, passes, angle: 30.0, ..RoughZigzag::default() };
         let job = Job { tools: vec![flat(1, 6.0)], operations: vec![Operation::RoughZigzag(op)], simulation: Simulation { verify: true, cell: Some(0.25) }, ..Job::default() };
         let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
-        clean(&out, 3.0);
+        clean(&out);
         assert!(out.warnings.iter().all(|w| !w.message.contains("straight down")), "{:?}", out.warnings);
         let r = &out.operations[0];
         assert!(r.left_max.unwrap() <= stepdown + allowance + leave * 3.0, "{passes:?}: {r:?}");

@@ -4,10 +4,12 @@
 
 mod common;
 
+use common::clean;
+
 use common::mesh;
 use swarf::cutter::Cutter;
 use swarf::geom::{DVec2, DVec3};
-use swarf::job::{self, FinishRaster, Job, JobOutput, Operation, Simulation, Tool};
+use swarf::job::{self, FinishRaster, Job, Operation, Simulation, Tool};
 use swarf::mesh::placement::{PartSetup, Placement};
 use swarf::mesh::sample::demo_part;
 use swarf::progress::Progress;
@@ -33,20 +35,6 @@ fn box_on_plate() -> swarf::mesh::Mesh {
     mesh(tris)
 }
 
-/// Checks every simulated move: clean report, and no vertical feed into material.
-fn clean(out: &JobOutput) {
-    let v = out.verification.as_ref().expect("verified");
-    assert!(v.report.is_clean(), "{}", v.report.describe());
-    for (m, &vol) in out.moves.iter().zip(&v.volumes) {
-        if let Move::Line { to, .. } = m.mv {
-            if to.truncate().distance(m.from.truncate()) < 1e-9 && to.z < m.from.z - 1e-9 {
-                // A start counts as in the air when the stock there stands no more than the gouge
-                // tolerance (0.02 mm) above the cutter: up to that skin over its footprint.
-                assert!(vol < 0.02 * std::f64::consts::PI * 9.0 + 1e-6, "a straight plunge to {to} removed {vol} mm³");
-            }
-        }
-    }
-}
 
 #[test]
 fn a_box_on_a_plate_is_roughed_to_the_allowances() {

@@ -22,6 +22,30 @@ pub fn chain(pieces: Vec<(Segment, String)>, tol: f64) -> (Vec<DrawnLoop>, Vec<O
     (loops, open)
 }
 
+/// `pieces` with every duplicate dropped: a segment whose ends lie within `tol` of another's on
+/// the same layer (either way round) and whose bulge matches it (its middle within `tol`).
+pub fn without_duplicates(pieces: Vec<(Segment, String)>, tol: f64) -> Vec<(Segment, String)> {
+    // Each piece with its ends in order (lower x first), so a reversed copy sorts beside it.
+    let canonical = |s: &Segment| if (s.a.x, s.a.y) <= (s.b.x, s.b.y) { *s } else { s.reversed() };
+    let mut order: Vec<usize> = (0..pieces.len()).collect();
+    let keys: Vec<Segment> = pieces.iter().map(|(s, _)| canonical(s)).collect();
+    order.sort_by(|&i, &j| keys[i].a.x.total_cmp(&keys[j].a.x));
+    let mut dropped = vec![false; pieces.len()];
+    for (n, &i) in order.iter().enumerate() {
+        if dropped[i] {
+            continue;
+        }
+        let (si, li) = (&keys[i], &pieces[i].1);
+        for &j in order[n + 1..].iter().take_while(|&&j| keys[j].a.x <= si.a.x + tol) {
+            let sj = &keys[j];
+            if !dropped[j] && pieces[j].1 == *li && sj.a.distance(si.a) <= tol && sj.b.distance(si.b) <= tol && sj.point_at(0.5).distance(si.point_at(0.5)) <= tol {
+                dropped[j] = true;
+            }
+        }
+    }
+    pieces.into_iter().zip(dropped).filter(|(_, d)| !d).map(|(p, _)| p).collect()
+}
+
 fn chain_layer(segs: &[Segment], tol: f64, layer: &str, loops: &mut Vec<DrawnLoop>, open: &mut Vec<OpenChain>) {
     // End points sorted by x, to find the ends within `tol` of a point.
     let mut ends: Vec<(f64, usize, bool)> = Vec::with_capacity(segs.len() * 2);
@@ -86,6 +110,27 @@ fn chain_layer(segs: &[Segment], tol: f64, layer: &str, loops: &mut Vec<DrawnLoo
 mod tests {
     use super::*;
     use glam::DVec2;
+
+    #[test]
+    fn a_square_with_a_line_drawn_twice_still_closes() {
+        let p = |x, y| DVec2::new(x, y);
+        let l = |a, b| (Segment::line(a, b), "0".to_string());
+        let mut pieces = vec![l(p(0.0, 0.0), p(10.0, 0.0)), l(p(10.0, 0.0), p(10.0, 10.0)), l(p(10.0, 10.0), p(0.0, 10.0)), l(p(0.0, 10.0), p(0.0, 0.0))];
+        // The bottom drawn again, reversed and 0.004 off; an arc over the top twice; a line on
+        // another layer where the left side is (kept: layers are apart).
+        pieces.push(l(p(10.0, 0.004), p(0.0, 0.0)));
+        pieces.push((Segment { a: p(0.0, 20.0), b: p(10.0, 20.0), bulge: 0.5 }, "0".into()));
+        pieces.push((Segment { a: p(10.0, 20.0), b: p(0.0, 20.0), bulge: -0.5 }, "0".into()));
+        pieces.push((Segment::line(p(0.0, 10.0), p(0.0, 0.0)), "other".into()));
+        let kept = without_duplicates(pieces, 0.01);
+        assert_eq!(kept.len(), 6);
+        let (loops, open) = chain(kept, 0.01);
+        assert_eq!(loops.len(), 1, "{open:?}");
+        assert_eq!(open.len(), 2, "the arc and the other layer's line stay open");
+        // An arc bulging the other way is another entity.
+        let two = vec![(Segment { a: p(0.0, 0.0), b: p(10.0, 0.0), bulge: 0.5 }, "0".to_string()), (Segment { a: p(0.0, 0.0), b: p(10.0, 0.0), bulge: -0.5 }, "0".to_string())];
+        assert_eq!(without_duplicates(two, 0.01).len(), 2);
+    }
 
     #[test]
     fn shuffled_and_reversed_pieces_close_and_gaps_are_reported() {

@@ -125,7 +125,10 @@ impl DexelStock {
 
     /// The worst place where material stands more than `rise` above the tip within `radius` of
     /// the sweep's path (the tool's body above its flutes would meet it): the point and by how
-    /// much, or `None`.
+    /// much, or `None`. A cell counts when its centre lies at least half a cell inside that
+    /// footprint: a cell's column stands for its centre, and a path that passes a hair closer
+    /// to a wall's leave-stock at one level than at the one above would otherwise read as the
+    /// body burying itself in the whole column beside its flutes.
     pub fn above_body(&self, sweep: &Sweep, radius: f64, rise: f64) -> Option<(DVec2, f64)> {
         let grow = DVec2::splat(radius - sweep.profile.radius);
         let ((i0, i1), (j0, j1)) = self.cell_range(sweep.min - grow, sweep.max + grow)?;
@@ -139,7 +142,7 @@ impl DexelStock {
                 let centre = self.origin + (DVec2::new(i as f64, j as f64) + 0.5) * self.cell;
                 let (dist, z) = sweep.nearest(centre);
                 let excess = top - (z + rise);
-                if dist <= radius && excess > 0.0 && worst.is_none_or(|w| excess > w.1) {
+                if dist <= radius - 0.5 * self.cell && excess > 0.0 && worst.is_none_or(|w| excess > w.1) {
                     worst = Some((centre, excess));
                 }
             }

@@ -75,6 +75,9 @@ pub fn point_at(segs: &[Segment], starts: &[f64], total: f64, s: f64) -> DVec2 {
     segs[i].point_at(if len > 0.0 { (s - starts[i]) / len } else { 0.0 })
 }
 
+/// Arcs with ends closer than this (mm) go as lines.
+const ARC_CHORD_MIN: f64 = 1e-6;
+
 /// Moves that follow the closed chain `segs` from arc length `s0` to `s1` (`s1` may pass the
 /// end: the chain repeats), at the heights `z` gives along the way (arcs with changing height
 /// are helices).
@@ -82,8 +85,12 @@ pub fn follow(segs: &[Segment], s0: f64, s1: f64, z: &Heights, feed: f64, out: &
     for (_, to, piece) in pieces(segs, s0, s1, z.breakpoints()) {
         let end = piece.b.extend(z.at(to));
         match piece.arc_geom() {
-            Some(g) => out.push(Move::Arc { to: end, center: g.center, clockwise: g.bulge < 0.0, feed }),
-            None => out.push(Move::Line { to: end, feed }),
+            // A sliver of an arc (a loop split a hair from a joint) goes as a line: an arc move
+            // whose ends nearly meet reads as a full circle the other way round when rounding
+            // turns its direction (seen on ocl_wheel_in_box: a φ3's ring swept a whole circle
+            // into the hub in the simulation, 13 mm deep).
+            Some(g) if piece.a.distance(piece.b) > ARC_CHORD_MIN => out.push(Move::Arc { to: end, center: g.center, clockwise: g.bulge < 0.0, feed }),
+            _ => out.push(Move::Line { to: end, feed }),
         }
     }
 }
@@ -244,6 +251,21 @@ mod tests {
             let s = k as f64 * 0.1;
             assert!((m.at(s) - ramp.at(s).max(tab.at(s))).abs() < 1e-12, "{s}");
         }
+    }
+
+    #[test]
+    fn a_sliver_of_an_arc_goes_as_a_line_never_as_a_full_circle() {
+        let arc = Segment::arc(DVec2::new(0.0, 20.0), DVec2::new(3.0, 17.0), DVec2::new(0.0, 17.0), false);
+        // A loop split 4e-8 mm from a joint: the sliver's ends nearly meet.
+        let segs = [arc.sub(0.0, 1.0 - 1e-8), arc.sub(1.0 - 1e-8, 1.0)];
+        let mut out = Vec::new();
+        let total = segs[0].length() + segs[1].length();
+        follow(&segs, 0.0, total, &Heights::constant(0.0), 100.0, &mut out);
+        assert_eq!(out.len(), 2);
+        assert!(matches!(out[0], Move::Arc { .. }) && matches!(out[1], Move::Line { .. }), "{out:?}");
+        let mut at = segs[0].a.extend(0.0);
+        let length: f64 = out.iter().map(|m| { let l = m.length(at); at = m.to(); l }).sum();
+        assert!((length - total).abs() < 1e-9, "{length} against {total}");
     }
 
     #[test]

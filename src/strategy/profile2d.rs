@@ -161,6 +161,8 @@ struct Clear<'a> {
 /// when nothing at all can be cut, that is an error.
 pub fn profile_moves(walls: &Walls, picked: &[usize], op: &Profile2d, mut s: Setup) -> Result<(Vec<Move>, Vec<String>), String> {
     let mut warnings = Vec::new();
+    // Loops the tool does not fit in: their index and extent, said once for all of them.
+    let mut too_small: Vec<(usize, crate::geom::segment::Rect)> = Vec::new();
     let r = s.tool_radius;
     let d = r + op.leave_stock;
     let z_final = s.top - s.depth;
@@ -216,14 +218,14 @@ pub fn profile_moves(walls: &Walls, picked: &[usize], op: &Profile2d, mut s: Set
             laps.push(Lap { path: wp.path, part_left: true, outside, clear });
         }
         for k in (0..n).filter(|&k| grouped[k] && !served[k]) {
-            warnings.push(format!("{}; it is not cut", does_not_fit(r, op.leave_stock, &format!("loop {}", walls.index[k]), &walls.shape.loops[k].bounds())));
+            too_small.push((walls.index[k], walls.shape.loops[k].bounds()));
         }
     }
     for (k, outside) in alone {
         let region = Shape::from_oriented(vec![walls.shape.loops[k].counter_clockwise()]);
         let paths = offset(&region, if outside { d } else { -d }, s.tol);
         if paths.is_empty() {
-            warnings.push(format!("{}; it is not cut", does_not_fit(r, op.leave_stock, &format!("loop {}", walls.index[k]), &region.bounds())));
+            too_small.push((walls.index[k], region.bounds()));
         }
         let wall = std::rc::Rc::new(Original::new(&region));
         for path in paths.loops {
@@ -257,6 +259,23 @@ pub fn profile_moves(walls: &Walls, picked: &[usize], op: &Profile2d, mut s: Set
     }
     if in_air > 0 {
         warnings.push(format!("{in_air} of {} paths have no material left along them (earlier operations cut it away) and are not cut", laps.len()));
+    }
+    too_small.sort_by_key(|t| t.0);
+    match too_small.as_slice() {
+        [] => {}
+        [(k, b)] => warnings.push(format!("{}; it is not cut", does_not_fit(r, op.leave_stock, &format!("loop {k}"), b))),
+        [(k, b), ..] => {
+            let list: Vec<String> = too_small.iter().take(12).map(|(k, _)| k.to_string()).collect();
+            let more = if too_small.len() > 12 { format!(" and {} more", too_small.len() - 12) } else { String::new() };
+            warnings.push(format!(
+                "{} loops are smaller than the φ{:.3} tool (plus {:.3} leave-stock) and are not cut: loops {}{more} ({})",
+                too_small.len(),
+                2.0 * r,
+                op.leave_stock,
+                list.join(", "),
+                does_not_fit(r, op.leave_stock, &format!("loop {k}"), b).replace("the φ", "the first: the φ")
+            ));
+        }
     }
     Ok((out, warnings))
 }

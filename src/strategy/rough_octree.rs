@@ -429,8 +429,8 @@ impl RoughOctree {
     }
 
     /// The stop test (§3.4): whether `tool` reaches, at the smallest tool's levels, all the
-    /// material left that the smallest of `smaller` would (less than a quarter of that tool's
-    /// footprint at any level, for the grids' rounding).
+    /// material left that the smallest of `smaller` would (no more than four stock cells at
+    /// any level, for the grids' rounding).
     fn reaches_all(&self, ctx: &mut Context, tool: &Tool, smaller: &[Tool], progress: &mut Progress) -> Result<bool> {
         let Some(small) = smaller.last() else { return Ok(true) };
         let (zl_big, zl_small) = (self.zlevel(tool, false), self.zlevel(small, false));
@@ -445,7 +445,8 @@ impl RoughOctree {
         let part = ctx.cc_zmap(stock.grid(), f64::NEG_INFINITY);
         let (a, tol) = (self.allowance, ctx.tolerances.gouge);
         let cell = stock.spacing * stock.spacing;
-        let limit = 0.25 * std::f64::consts::PI * small.cutter.radius().powi(2);
+        // More than a few cells: grid rounding aside, material the smaller tool would remove.
+        let limit = 4.0 * cell;
         // Per node of a CL z-map, the distance to the nearest centre the tool may take at `z`,
         // and a stock cell's distance read at its nearest node.
         // Per node of a CL z-map, the distance to the nearest centre the tool may take at `z`;

@@ -114,6 +114,26 @@ async function pixelCounts(page) {
   });
 }
 
+// Counts canvas pixels in each of the given tools' colours (as the viewer's `toolColor` gives
+// them: octree roughing draws a chosen tool's path and octants in it).
+async function toolPixels(page, numbers) {
+  return page.evaluate(async (list) => {
+    const { toolColor } = await import('./viewer.js');
+    const c = document.getElementById('view');
+    const gl = c.getContext('webgl2');
+    const px = new Uint8Array(c.width * c.height * 4);
+    gl.readPixels(0, 0, c.width, c.height, gl.RGBA, gl.UNSIGNED_BYTE, px);
+    const out = {};
+    for (const n of list) {
+      const [r, g, b] = toolColor(n).map((v) => Math.round(v * 255));
+      let k = 0;
+      for (let i = 0; i < px.length; i += 4) if (Math.abs(px[i] - r) < 25 && Math.abs(px[i + 1] - g) < 25 && Math.abs(px[i + 2] - b) < 25) k++;
+      out[n] = k;
+    }
+    return out;
+  }, numbers);
+}
+
 const pathPixels = async (page) => (await pixelCounts(page)).path;
 
 test('sample part → generate → path on the canvas → G-code that rs274 accepts', async () => {
@@ -531,36 +551,12 @@ test('octree roughing: the tools chosen from the library, each stage\'s path and
   const last = stages[stages.length - 1];
   await page.uncheck('#show-stock');
   const tools = await page.evaluate(() => window.swarf.tools);
-  const colours = await page.evaluate(async (list) => {
-    const { toolColor } = await import('./viewer.js');
-    const c = document.getElementById('view');
-    const gl = c.getContext('webgl2');
-    const px = new Uint8Array(c.width * c.height * 4);
-    gl.readPixels(0, 0, c.width, c.height, gl.RGBA, gl.UNSIGNED_BYTE, px);
-    const out = {};
-    for (const n of list) {
-      const [r, g, b] = toolColor(n).map((v) => Math.round(v * 255));
-      let k = 0;
-      for (let i = 0; i < px.length; i += 4) if (Math.abs(px[i] - r) < 25 && Math.abs(px[i + 1] - g) < 25 && Math.abs(px[i + 2] - b) < 25) k++;
-      out[n] = k;
-    }
-    return out;
-  }, [numbers[0], last]);
+  const colours = await toolPixels(page, [numbers[0], last]);
   await page.screenshot({ path: path.join(shots, 'octree.png') });
   assert.ok(colours[numbers[0]] > 1000 && colours[last] > 200, `the first and the last tool's colours on the canvas: ${JSON.stringify(colours)}`);
   // Without the octants, fewer pixels of the first tool's colour.
   await page.uncheck('#show-octants');
-  const without = await page.evaluate(async (n) => {
-    const { toolColor } = await import('./viewer.js');
-    const c = document.getElementById('view');
-    const gl = c.getContext('webgl2');
-    const px = new Uint8Array(c.width * c.height * 4);
-    gl.readPixels(0, 0, c.width, c.height, gl.RGBA, gl.UNSIGNED_BYTE, px);
-    const [r, g, b] = toolColor(n).map((v) => Math.round(v * 255));
-    let k = 0;
-    for (let i = 0; i < px.length; i += 4) if (Math.abs(px[i] - r) < 25 && Math.abs(px[i + 1] - g) < 25 && Math.abs(px[i + 2] - b) < 25) k++;
-    return k;
-  }, numbers[0]);
+  const without = (await toolPixels(page, [numbers[0]]))[numbers[0]];
   assert.ok(without < colours[numbers[0]], `octants drawn: ${without} pixels without them, ${colours[numbers[0]]} with`);
   const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
   const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-octree-'));

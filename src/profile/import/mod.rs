@@ -113,6 +113,13 @@ pub fn read_drawing(bytes: &[u8], name: Option<&str>, tol: &Tolerances) -> Resul
     if pieces.segments.len() < before {
         pieces.ignored.push(("pieces shorter than the chaining tolerance".into(), before - pieces.segments.len()));
     }
+    // The same entity drawn twice (a LINE copied onto itself, an SVG path repeated) would
+    // leave a stray piece at every joint: one of each is kept, and how many went is said.
+    let before = pieces.segments.len();
+    pieces.segments = super::chain::without_duplicates(pieces.segments, tol.chain);
+    if pieces.segments.len() < before {
+        pieces.ignored.push(("duplicated entities (drawn twice on the same layer)".into(), before - pieces.segments.len()));
+    }
     let (loops, open) = chain(pieces.segments, tol.chain);
     Ok(Drawing { loops, open, layers: pieces.layers, ignored: pieces.ignored, units: pieces.units, scale: pieces.scale })
 }

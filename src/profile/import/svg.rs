@@ -46,7 +46,11 @@ struct Reader<'t> {
 
 pub(crate) fn read_svg(bytes: &[u8], tol: &Tolerances) -> Result<Pieces, DrawingError> {
     let text = std::str::from_utf8(bytes).map_err(|_| DrawingError::Svg("not UTF-8 text".into()))?;
-    let doc = roxmltree::Document::parse(text).map_err(|e| DrawingError::Svg(e.to_string()))?;
+    // A DOCTYPE line (matplotlib writes one) is read; nothing it names is fetched (no entity
+    // resolver: an external entity is dropped), and the parser keeps its guard against
+    // entity expansion bombs.
+    let options = roxmltree::ParsingOptions { allow_dtd: true, nodes_limit: 20_000_000, ..roxmltree::ParsingOptions::default() };
+    let doc = roxmltree::Document::parse_with_options(text, options).map_err(|e| DrawingError::Svg(e.to_string()))?;
     let root = doc.root_element();
     if root.tag_name().name() != "svg" {
         return Err(DrawingError::Svg(format!("the root element is <{}>, not <svg>", root.tag_name().name())));
