@@ -252,22 +252,17 @@ impl RoughZlevel {
         }
         let tol = ctx.tolerances;
         let map = LevelMap::new(&cl, &tol);
-        // The part's heights on the same grid, for rest roughing's walls (below).
-        let part = if reach >= r { ctx.cc_zmap(grid, f64::NEG_INFINITY) } else { std::sync::Arc::new(grid.filled(f64::NEG_INFINITY)) };
         let mut levels = Vec::new();
         let mut z_prev = stock.max.z;
         for z in self.heights(ctx, &cl, r) {
             // At full reach (rest roughing: every centre whose cutter touches what is left),
             // only material the cutter can reach from a centre it may take counts (within its
-            // radius of one, a node's spacing either way), and not the walls' leave-stock
-            // (within `leaveStock` of the part standing above the level), which every tool
-            // leaves.
+            // radius of one, less half a node's spacing), not the part's walls and their
+            // leave-stock beside the region, which every level would otherwise follow.
             let removable = (reach >= r).then(|| {
                 let safe: Vec<bool> = cl.field.z.iter().map(|&h| h + self.allowance <= z).collect();
                 let d = crate::octree::distance_to(&safe, grid.nx, grid.ny, grid.spacing);
-                let wall: Vec<bool> = part.z.iter().map(|&h| h + self.allowance > z).collect();
-                let w = crate::octree::distance_to(&wall, grid.nx, grid.ny, grid.spacing);
-                d.into_iter().zip(w).map(|(d, w)| d <= r + 0.5 * grid.spacing && w > self.leave_stock + 0.5 * grid.spacing).collect::<Vec<bool>>()
+                d.into_iter().map(|d| d <= r - 0.5 * grid.spacing).collect::<Vec<bool>>()
             });
             let near = material_near(ctx.sim.stock(), grid, z, reach, removable.as_deref());
             let limit = within(z, grid);

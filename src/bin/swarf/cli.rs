@@ -291,7 +291,7 @@ fn run_job(job: &Job, workpiece: impl Into<Workpiece>, output: &Path, quiet: boo
     for w in &out.warnings {
         eprintln!("warning: {w}");
     }
-    if out.operations.len() > 1 {
+    if out.operations.len() > 1 || out.operations.iter().any(|o| o.stages.is_some()) {
         for r in &out.operations {
             eprintln!("  {}", r.describe());
         }
