@@ -350,6 +350,8 @@ struct Summary {
     problem: Option<String>,
     stock: [f64; 6],
     clearance_z: f64,
+    /// The extension the post's controllers expect of the program's file.
+    extension: &'static str,
 }
 
 /// Runs `job` (a `Job` object) on the part in `bytes`. `progress(fraction, stage)` is called as
@@ -394,6 +396,7 @@ pub fn run_job(job: JsValue, bytes: &[u8], name: &str, progress: &js_sys::Functi
         problem: out.problem.clone(),
         stock: [s.min.x, s.min.y, s.min.z, s.max.x, s.max.y, s.max.z],
         clearance_z: out.clearance_z,
+        extension: job.post.dialect.extension(),
     };
     let summary = to_js(&summary)?;
     let drawing = match &out.drawing {

@@ -402,3 +402,9 @@ fn octree_roughing_with_its_chosen_tools_runs_in_linuxcnc_move_for_move() {
     let changes = tool_calls(&out.gcode, &job.tools).into_iter().filter(|c| c.starts_with("CHANGE_TOOL")).count();
     assert_eq!(changes, 2, "a tool change per chosen tool");
 }
+
+#[test]
+fn each_dialect_names_the_extension_its_controllers_expect() {
+    let ext: Vec<&str> = [Dialect::LinuxCnc, Dialect::Grbl, Dialect::Mach3, Dialect::Fanuc].iter().map(|d| d.extension()).collect();
+    assert_eq!(ext, vec!["ngc", "nc", "tap", "nc"]);
+}

@@ -142,6 +142,29 @@ fn open_chains_are_reported_where_they_are() {
 }
 
 #[test]
+fn closed_loops_beside_open_chains_are_cut_and_the_chains_named() {
+    // A 20 mm square and an open L on layer A, and an open chain alone on layer B.
+    let dxf = "0\nSECTION\n2\nENTITIES\n\
+0\nLINE\n8\nA\n10\n0\n20\n0\n11\n20\n21\n0\n0\nLINE\n8\nA\n10\n20\n20\n0\n11\n20\n21\n20\n\
+0\nLINE\n8\nA\n10\n20\n20\n20\n11\n0\n21\n20\n0\nLINE\n8\nA\n10\n0\n20\n20\n11\n0\n21\n0\n\
+0\nLINE\n8\nA\n10\n40\n20\n0\n11\n50\n21\n0\n0\nLINE\n8\nA\n10\n50\n20\n0\n11\n50\n21\n10\n\
+0\nLINE\n8\nB\n10\n0\n20\n40\n11\n10\n21\n40\n0\nENDSEC\n0\nEOF\n";
+    let d = read_drawing(dxf.as_bytes(), Some("mixed.dxf"), &Tolerances::default()).unwrap();
+    assert_eq!((d.loops.len(), d.open.len()), (1, 2));
+    let profile = Profile2d { layers: vec!["A".into()], ..Profile2d::default() };
+    let out = profile_every_loop(d.clone(), 3.0, profile);
+    assert!(out.moves.iter().any(|m| !m.mv.is_rapid()), "the square is cut");
+    let note: Vec<&swarf::error::Warning> = out.warnings.iter().filter(|w| w.message.contains("open chain")).collect();
+    assert_eq!(note.len(), 1, "{:?}", out.warnings);
+    let m = &note[0].message;
+    assert!(m.starts_with("1 open chain is left uncut") && (m.contains("layer A from (40.000, 0.000)") || m.contains("layer A from (50.000, 10.000)")), "{m}");
+    // Layer B has nothing closed: refused, saying where its chain is.
+    let job = job_with(vec![Operation::Profile2d(Profile2d { layers: vec!["B".into()], ..Profile2d::default() })], 3.0);
+    let e = job::run(&job, d, &mut Progress::none()).unwrap_err().to_string();
+    assert!(e.contains("open chain") && e.contains("layer B"), "{e}");
+}
+
+#[test]
 fn dxf_units_bulges_ellipses_and_splines() {
     // Inches: a 1 × 1 square with one bulged side (a half circle out), and an ellipse.
     let dxf = "0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n1\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n\

@@ -618,6 +618,7 @@ async function generate() {
       $('stage').textContent = stage;
     });
     state.gcode = r.gcode;
+    state.extension = r.summary.extension;
     if (r.drawing) viewer?.setDrawing(r.drawing, false);
     else viewer?.setPart(r.part, false);
     const byTool = new Set(job.operations.map((op, i) => (op.kind === 'roughOctree' ? i : -1)).filter((i) => i >= 0));
@@ -668,7 +669,7 @@ function cancel() {
 function download() {
   if (!state.gcode) return;
   if (state.problem && !window.confirm(`This program is not safe to run: ${state.problem}.\n\nDownload it anyway? It starts with a warning comment.`)) return;
-  const ext = job().post.dialect === 'grbl' ? 'nc' : 'ngc';
+  const ext = state.extension ?? 'nc';
   const a = document.createElement('a');
   a.href = URL.createObjectURL(new Blob([state.gcode], { type: 'text/plain' }));
   a.download = `${state.name.replace(/\.[^.]*$/, '')}.${ext}`;

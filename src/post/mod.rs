@@ -25,6 +25,16 @@ pub enum Dialect {
 }
 
 impl Dialect {
+    /// The file extension its controllers expect: `ngc` for LinuxCNC, `tap` for Mach3/Mach4,
+    /// `nc` for GRBL and Fanuc.
+    pub fn extension(self) -> &'static str {
+        match self {
+            Dialect::LinuxCnc => "ngc",
+            Dialect::Mach3 => "tap",
+            Dialect::Grbl | Dialect::Fanuc => "nc",
+        }
+    }
+
     fn has_tool_changer(self) -> bool {
         self != Dialect::Grbl
     }

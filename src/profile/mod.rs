@@ -304,20 +304,28 @@ fn describe_open(open: &[OpenChain]) -> String {
 }
 
 impl Drawing {
-    /// The loops on `layers` (all layers when empty) as one shape; an open chain on those
-    /// layers is an error that says where it is.
+    /// The loops on `layers` (all layers when empty) as one shape. Open chains beside them are
+    /// left out ([`Drawing::open_note`] says where); on layers with open chains and no loop,
+    /// the error says where they are.
     pub fn shape(&self, layers: &[String]) -> Result<Shape, ProfileError> {
         let on = |layer: &String| layers.is_empty() || layers.contains(layer);
+        let loops: Vec<Loop> = self.loops.iter().filter(|l| on(&l.layer)).map(|l| l.path.clone()).collect();
         let open: Vec<OpenChain> = self.open.iter().filter(|o| on(&o.layer)).cloned().collect();
-        if !open.is_empty() {
+        if loops.is_empty() && !open.is_empty() {
             return Err(ProfileError::OpenChains(open));
         }
-        let loops: Vec<Loop> = self.loops.iter().filter(|l| on(&l.layer)).map(|l| l.path.clone()).collect();
         if loops.is_empty() {
             let which = if layers.is_empty() { String::new() } else { format!(" on layers {}", layers.join(", ")) };
             return Err(ProfileError::Empty(which));
         }
         Ok(Shape::new(loops))
+    }
+
+    /// The warning for the open chains on `layers` that an operation cutting their closed loops
+    /// leaves uncut, if there are any.
+    pub fn open_note(&self, layers: &[String]) -> Option<String> {
+        let open: Vec<OpenChain> = self.open.iter().filter(|o| layers.is_empty() || layers.contains(&o.layer)).cloned().collect();
+        (!open.is_empty()).then(|| format!("{} open chain{} left uncut (only closed loops are cut): {}", open.len(), if open.len() == 1 { " is" } else { "s are" }, describe_open(&open)))
     }
 
     pub fn bounds(&self) -> Rect {

@@ -431,12 +431,16 @@ impl super::Operate for Pocket2d {
         let tool = ctx.tool(&self.name, self.tool)?.clone();
         let (drawing, _) = sheet::sheet(ctx, &self.name)?;
         let (walls, picked) = sheet::selected(drawing, &self.name, &self.layers, &self.loops)?;
+        let open = drawing.open_note(&self.layers);
         let picked: Vec<Loop> = picked.iter().map(|&k| walls.shape.loops[k].clone()).collect();
         let region = sheet::pocket_region(&walls.shape, &picked, self.loops.is_empty());
         let mut cursor = sheet::cursor(ctx, &tool);
         let setup = Setup { tool_radius: tool.cutter.radius(), top: ctx.stock.max.z, feed: tool.feed_rate, cursor: &mut cursor, tol: &ctx.tolerances };
         let moves = pocket_moves(&region, self, setup).map_err(|e| crate::error::Error::operation(&self.name, e))?;
         ctx.cuts.push(super::context::SheetCut { region, inside: true, depth: self.depth, leave: self.leave_stock });
+        if let Some(note) = open {
+            ctx.warn(&self.name, note);
+        }
         if moves.is_empty() {
             ctx.warn(&self.name, "the pocket has no material left to its depth (earlier operations cut it away)");
             return Ok(Vec::new());

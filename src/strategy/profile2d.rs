@@ -410,12 +410,16 @@ impl super::Operate for Profile2d {
         let tool = ctx.tool(&self.name, self.tool)?.clone();
         let (drawing, thickness) = sheet::sheet(ctx, &self.name)?;
         let (walls, picked) = sheet::selected(drawing, &self.name, &self.layers, &self.loops)?;
+        let open = drawing.open_note(&self.layers);
         let depth = self.depth.unwrap_or(thickness + sheet::BREAKTHROUGH);
         let cuts = sheet::profile_cuts(&walls, &picked, self.side, depth, self.leave_stock);
         let mut cursor = sheet::cursor(ctx, &tool);
         let setup = Setup { tool_radius: tool.cutter.radius(), top: ctx.stock.max.z, depth, feed: tool.feed_rate, cursor: &mut cursor, tol: &ctx.tolerances };
         let (moves, notes) = profile_moves(&walls, &picked, self, setup).map_err(|e| crate::error::Error::operation(&self.name, e))?;
         ctx.cuts.extend(cuts);
+        if let Some(note) = open {
+            ctx.warn(&self.name, note);
+        }
         for n in notes {
             ctx.warn(&self.name, n);
         }

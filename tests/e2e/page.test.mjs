@@ -152,6 +152,8 @@ test('sample part → generate → path on the canvas → G-code that rs274 acce
 
   const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
   const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-'));
+  // Named as LinuxCNC expects (the default controller).
+  assert.match(download.suggestedFilename(), /\.ngc$/);
   const program = path.join(dir, download.suggestedFilename());
   await download.saveAs(program);
   const gcode = fs.readFileSync(program, 'utf8');
@@ -247,6 +249,8 @@ test('a saved job loads back and runs on the command line as in the page', async
   await page.click('#generate');
   await generated(page);
   const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
+  // A GRBL program is named .nc.
+  assert.match(download.suggestedFilename(), /\.nc$/);
   const fromPage = path.join(dir, 'page.nc');
   await download.saveAs(fromPage);
   const stl = path.join(dir, 'sample.stl');
