@@ -620,7 +620,8 @@ async function generate() {
     state.gcode = r.gcode;
     state.extension = r.summary.extension;
     if (r.drawing) viewer?.setDrawing(r.drawing, false);
-    else viewer?.setPart(r.part, false);
+    // The part framed again (the job may have placed it elsewhere).
+    else viewer?.setPart(r.part, true);
     const byTool = new Set(job.operations.map((op, i) => (op.kind === 'roughOctree' ? i : -1)).filter((i) => i >= 0));
     viewer?.setPaths(r.feeds, r.rapids, r.summary.stock, r.feedOps, r.feedTools, byTool);
     if (r.octants.length) viewer?.setOctants(r.octants);

@@ -86,6 +86,9 @@ function lookAt(eye, target, up) {
 // Colours of the operations' cutting moves, in order (the first is the classic path blue).
 export const OP_COLORS = [[0.106, 0.455, 0.82, 1], [0.62, 0.2, 0.75, 1], [0.0, 0.6, 0.55, 1], [0.75, 0.6, 0.0, 1], [0.5, 0.3, 0.15, 1]];
 
+// The view's vertical angle (radians).
+const FOV_Y = 0.7;
+
 // Colours of the tools an octree roughing chose, by tool number (its paths and its octants).
 export const TOOL_COLORS = [[0.85, 0.2, 0.15, 1], [0.1, 0.6, 0.2, 1], [0.95, 0.55, 0.0, 1], [0.45, 0.25, 0.8, 1], [0.0, 0.55, 0.75, 1], [0.8, 0.15, 0.55, 1]];
 export const toolColor = (number) => TOOL_COLORS[(Math.max(1, number) - 1) % TOOL_COLORS.length];
@@ -228,10 +231,15 @@ export class Viewer {
     this.draw();
   }
 
+  // Looks at the box `b` ([minX, minY, minZ, maxX, maxY, maxZ]) from as far as its bounding
+  // sphere needs to fit the view's narrower angle, whatever its proportions (a tall part, a
+  // cube) and the canvas's.
   frame(b) {
-    const size = Math.max(b[3] - b[0], b[4] - b[1], b[5] - b[2], 1);
+    const radius = Math.max(0.5 * Math.hypot(b[3] - b[0], b[4] - b[1], b[5] - b[2]), 0.5);
     this.camera.target = [(b[0] + b[3]) / 2, (b[1] + b[4]) / 2, (b[2] + b[5]) / 2];
-    this.camera.distance = size * 1.9;
+    const aspect = (this.canvas.clientWidth || 1) / Math.max(this.canvas.clientHeight || 1, 1);
+    const half = Math.min(FOV_Y, 2 * Math.atan(Math.tan(FOV_Y / 2) * aspect)) / 2;
+    this.camera.distance = (1.08 * radius) / Math.sin(half);
   }
 
   matrix() {
@@ -242,7 +250,7 @@ export class Viewer {
       target[2] + distance * Math.sin(pitch),
     ];
     const aspect = this.canvas.width / Math.max(this.canvas.height, 1);
-    return multiply(perspective(0.7, aspect, distance / 100, distance * 20), lookAt(eye, target, [0, 0, 1]));
+    return multiply(perspective(FOV_Y, aspect, distance / 100, distance * 20), lookAt(eye, target, [0, 0, 1]));
   }
 
   draw() {

@@ -572,3 +572,58 @@ test('octree roughing: the tools chosen from the library, each stage\'s path and
   assert.deepEqual(errors, []);
   await context.close();
 });
+
+// A box as a binary STL (12 triangles), `size` = [x, y, z] from the origin.
+function boxStl([x, y, z]) {
+  const v = (i) => [(i & 1) * x, ((i >> 1) & 1) * y, ((i >> 2) & 1) * z];
+  const faces = [[0, 2, 3], [0, 3, 1], [4, 5, 7], [4, 7, 6], [0, 1, 5], [0, 5, 4], [2, 6, 7], [2, 7, 3], [0, 4, 6], [0, 6, 2], [1, 3, 7], [1, 7, 5]];
+  const buf = Buffer.alloc(84 + faces.length * 50);
+  buf.writeUInt32LE(faces.length, 80);
+  faces.forEach((f, k) => {
+    const o = 84 + k * 50 + 12;
+    f.forEach((i, j) => v(i).forEach((c, a) => buf.writeFloatLE(c, o + j * 12 + a * 4)));
+  });
+  return buf;
+}
+
+test('the view frames a tall part and a cube whole, on load and after Generate', async () => {
+  const { page, context, errors } = await openPage();
+  // The box of pixels that are not the background.
+  const drawn = () => page.evaluate(() => {
+    const c = document.getElementById('view');
+    const gl = c.getContext('webgl2');
+    const px = new Uint8Array(c.width * c.height * 4);
+    gl.readPixels(0, 0, c.width, c.height, gl.RGBA, gl.UNSIGNED_BYTE, px);
+    let [x0, y0, x1, y1] = [c.width, c.height, -1, -1];
+    for (let y = 0; y < c.height; y++) for (let x = 0; x < c.width; x++) {
+      const i = (y * c.width + x) * 4;
+      if (Math.abs(px[i] - 237) + Math.abs(px[i + 1] - 241) + Math.abs(px[i + 2] - 244) > 30) { x0 = Math.min(x0, x); x1 = Math.max(x1, x); y0 = Math.min(y0, y); y1 = Math.max(y1, y); }
+    }
+    return { x0, y0, x1, y1, w: c.width, h: c.height };
+  });
+  for (const [name, size] of [['tall.stl', [20, 20, 150]], ['cube.stl', [400, 400, 400]]]) {
+    await page.setInputFiles('#file', { name, mimeType: 'model/stl', buffer: boxStl(size) });
+    await page.waitForFunction((n) => document.getElementById('part-name').textContent.includes(n), name);
+    const b = await drawn();
+    assert.ok(b.x1 > b.x0 && b.y1 > b.y0, `${name} is drawn: ${JSON.stringify(b)}`);
+    assert.ok(b.x0 > 2 && b.y0 > 2 && b.x1 < b.w - 3 && b.y1 < b.h - 3, `${name} lies wholly inside the view: ${JSON.stringify(b)}`);
+    // Neither lost in the middle: it fills a fair share of the view's narrower side.
+    assert.ok(Math.max((b.x1 - b.x0) / b.w, (b.y1 - b.y0) / b.h) > 0.3, `${name} fills the view: ${JSON.stringify(b)}`);
+  }
+  // After Generate (a raster on the tall part's top), framed again and whole, with its paths.
+  await page.setInputFiles('#file', { name: 'tall2.stl', mimeType: 'model/stl', buffer: boxStl([20, 20, 150]) });
+  await page.waitForFunction(() => document.getElementById('part-name').textContent.includes('tall2.stl'));
+  await onlyRaster(page);
+  await page.fill('input[name=stepover]', '2');
+  await page.fill('input[name=grid]', '0.5');
+  await page.mouse.move(700, 300);
+  await page.mouse.wheel(0, -2000); // zoomed right in before Generate
+  await page.click('#generate');
+  await waitForGenerated(page);
+  await page.uncheck('#show-stock');
+  const b = await drawn();
+  await page.screenshot({ path: path.join(shots, 'tall.png') });
+  assert.ok(b.x0 > 2 && b.y0 > 2 && b.x1 < b.w - 3 && b.y1 < b.h - 3, `after Generate, the part and its paths lie wholly inside the view: ${JSON.stringify(b)}`);
+  assert.deepEqual(errors, []);
+  await context.close();
+});
