@@ -25,11 +25,24 @@ pub struct Tool {
     /// (the simulation checks the shank above the flutes; holders are not modelled yet).
     /// Default value: none.
     pub stick_out: Option<f64>,
+    /// Coolant while this tool cuts: off, flood (M8) or mist (M7), as the post writes them.
+    /// Default value: off.
+    pub coolant: Coolant,
+}
+
+/// Coolant for a tool.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub enum Coolant {
+    #[default]
+    Off,
+    Flood,
+    Mist,
 }
 
 impl Default for Tool {
     fn default() -> Self {
-        Tool { number: 1, name: String::new(), cutter: Cutter::default(), spindle_rpm: 12000.0, feed_rate: 1000.0, plunge_rate: 300.0, stick_out: None }
+        Tool { number: 1, name: String::new(), cutter: Cutter::default(), spindle_rpm: 12000.0, feed_rate: 1000.0, plunge_rate: 300.0, stick_out: None, coolant: Coolant::Off }
     }
 }
 

@@ -61,6 +61,20 @@ pub fn read_job(text: &str) -> Result<JsValue, JsError> {
 }
 
 /// The built-in sample part, as binary STL.
+/// The built-in posts: `[{dialect, post}]`, the post as its JSON data.
+#[wasm_bindgen(js_name = builtinPosts)]
+pub fn builtin_posts() -> Result<JsValue, JsError> {
+    let list: Vec<serde_json::Value> = crate::post::Dialect::ALL.iter().map(|d| serde_json::json!({ "dialect": d, "post": d.post() })).collect();
+    to_js(&list)
+}
+
+/// Reads a post (JSON) as a user saved it; the error names the field.
+#[wasm_bindgen(js_name = readPost)]
+pub fn read_post(text: &str) -> Result<JsValue, JsError> {
+    let post = crate::post::Post::from_json(text).map_err(|e| js_error(format!("post: {e}")))?;
+    to_js(&post)
+}
+
 #[wasm_bindgen(js_name = samplePart)]
 pub fn sample_part() -> Vec<u8> {
     sample::demo_part().to_binary_stl()
@@ -227,6 +241,18 @@ pub struct JobResult {
     part: PartView,
     drawing: JsValue,
     simulation: Option<SimulationView>,
+    /// What the post writes, to write it again for another post.
+    program: Program,
+}
+
+/// The paths of a job and what writing them needs.
+struct Program {
+    title: String,
+    paths: Vec<crate::toolpath::Toolpath>,
+    tools: Vec<crate::tool::Tool>,
+    clearance: f64,
+    post: crate::post::PostSettings,
+    problem: Option<String>,
 }
 
 /// The simulated program, for the page's scrubber: the stock after any move, the part's surface
@@ -245,6 +271,20 @@ struct SimulationView {
 impl JobResult {
     pub fn gcode(&self) -> String {
         self.gcode.clone()
+    }
+
+    /// The same paths written by another post (`post`: the job's `post` object), without
+    /// planning again: `{gcode, extension, cycle}`. A post that rounds coarser than the one the
+    /// paths were made for is refused (the paths keep their clearance only at that resolution).
+    pub fn repost(&self, post: JsValue) -> Result<JsValue, JsError> {
+        let settings: crate::post::PostSettings = serde_wasm_bindgen::from_value(post).map_err(|e| js_error(format!("invalid post: {e}")))?;
+        let p = &self.program;
+        if settings.resolution() > p.post.resolution() * (1.0 + 1e-9) {
+            return Err(js_error("this post rounds coarser than the one the paths were made for: generate again"));
+        }
+        let (gcode, cycle) = crate::post::write_program(&p.title, &p.paths, &p.tools, p.clearance, &settings).map_err(js_error)?;
+        let gcode = job::marked(&gcode, p.problem.as_deref());
+        to_js(&serde_json::json!({ "gcode": gcode, "extension": settings.extension(), "cycle": cycle }))
     }
     /// Cutting moves as line segments: xyz of both ends per segment (a view).
     pub fn feeds(&self) -> js_sys::Float32Array {
@@ -351,7 +391,9 @@ struct Summary {
     stock: [f64; 6],
     clearance_z: f64,
     /// The extension the post's controllers expect of the program's file.
-    extension: &'static str,
+    extension: String,
+    /// The program's cycle time as its head states it (tool changes included).
+    cycle: crate::post::CycleTime,
 }
 
 /// Runs `job` (a `Job` object) on the part in `bytes`. `progress(fraction, stage)` is called as
@@ -396,7 +438,8 @@ pub fn run_job(job: JsValue, bytes: &[u8], name: &str, progress: &js_sys::Functi
         problem: out.problem.clone(),
         stock: [s.min.x, s.min.y, s.min.z, s.max.x, s.max.y, s.max.z],
         clearance_z: out.clearance_z,
-        extension: job.post.dialect.extension(),
+        extension: job.post.extension(),
+        cycle: out.cycle.clone(),
     };
     let summary = to_js(&summary)?;
     let drawing = match &out.drawing {
@@ -410,7 +453,9 @@ pub fn run_job(job: JsValue, bytes: &[u8], name: &str, progress: &js_sys::Functi
         .flat_map(|(s, b)| [s.stage as f64, s.tool as f64, if b.full { 1.0 } else { 0.0 }, b.min[0], b.min[1], b.min[2], b.max[0], b.max[1], b.max[2]])
         .map(|v| v as f32)
         .collect();
-    Ok(JobResult { gcode: out.gcode_marked(), feeds, feed_ops, feed_tools, octants, rapids, summary, part: part_view(&out.part), drawing, simulation })
+    let gcode = out.gcode_marked();
+    let program = Program { title: job.name.clone(), paths: std::mem::take(&mut out.paths), tools: job.tools.clone(), clearance: out.clearance_z, post: job.post.clone(), problem: out.problem.clone() };
+    Ok(JobResult { gcode, feeds, feed_ops, feed_tools, octants, rapids, summary, part: part_view(&out.part), drawing, simulation, program })
 }
 
 #[derive(serde::Serialize)]

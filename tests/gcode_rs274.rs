@@ -60,8 +60,17 @@ fn numbers(args: &str) -> Vec<f64> {
     args.split(|c| c == ',' || c == ' ').filter_map(|w| w.trim().parse().ok()).collect()
 }
 
+/// The call of a line of rs274's output (`   7 N..... STRAIGHT_FEED(…)`; the N field holds
+/// the program's line number where it has them).
+fn canon_call(line: &str) -> Option<&str> {
+    let line = line.trim_start();
+    let (_, rest) = line.split_once(' ')?;
+    let (n, call) = rest.trim_start().split_once(' ')?;
+    n.starts_with('N').then_some(call.trim_start())
+}
+
 fn parse_canon(line: &str) -> Option<(Kind, DVec3)> {
-    let call = line.split_once("N..... ").map(|(_, c)| c)?;
+    let call = canon_call(line)?;
     let (name, rest) = call.split_once('(')?;
     let args = numbers(rest.trim_end_matches(')'));
     match name {
@@ -188,7 +197,7 @@ fn tool_calls(gcode: &str, tools: &[Tool]) -> Vec<String> {
     let _ = std::fs::remove_dir_all(&dir);
     String::from_utf8_lossy(&output.stdout)
         .lines()
-        .filter_map(|l| l.split_once("N..... ").map(|(_, c)| c.to_string()))
+        .filter_map(|l| canon_call(l).map(str::to_owned))
         .filter(|c| c.starts_with("CHANGE_TOOL(") || c.starts_with("PROGRAM_STOP") || c.starts_with("USE_TOOL_LENGTH_OFFSET"))
         .collect()
 }
@@ -212,7 +221,7 @@ fn two_tool_programs_change_tools_as_each_dialect_does() {
         if dialect == Dialect::Grbl {
             // No tool changer: a spindle stop and a pause naming the tool to load.
             assert!(!out.gcode.contains("M6") && !out.gcode.contains("G43"));
-            assert!(out.gcode.contains("M5\nG0 Z") && out.gcode.contains("M0 (change to tool 2"), "{}", &out.gcode[..400]);
+            assert!(out.gcode.contains("M5\nG0 Z") && out.gcode.contains("(change to tool 2: ") && out.gcode.contains(")\nM0\n"), "{}", &out.gcode[..400]);
             assert_eq!(calls.iter().filter(|c| c.starts_with("PROGRAM_STOP")).count(), 1, "{calls:?}");
         } else {
             let changes: Vec<&String> = calls.iter().filter(|c| c.starts_with("CHANGE_TOOL")).collect();
@@ -250,7 +259,7 @@ fn arcs_and_helices_go_out_as_g2_g3_with_relative_centres() {
     let path = Toolpath { name: "arcs".into(), tool: 1, spindle_rpm: 10000.0, start: DVec3::new(10.0, 0.0, 5.0), moves };
     for units in [Units::Mm, Units::Inch] {
         let settings = PostSettings { units, ..PostSettings::default() };
-        let gcode = write_gcode("arcs", std::slice::from_ref(&path), &tools, 5.0, &settings);
+        let gcode = write_gcode("arcs", std::slice::from_ref(&path), &tools, 5.0, &settings).unwrap();
         assert!(gcode.contains("G3 X0 Y10 I-10 J0") || units == Units::Inch, "{gcode}");
         let resolution = if units == Units::Mm { 0.0005 } else { 0.00005 };
         compare(&interpret(&gcode, &tools), &expected(std::slice::from_ref(&path), 5.0, 1.0 / units.mm()), resolution);
@@ -273,7 +282,7 @@ fn arcs_shorter_than_the_resolution_go_out_as_lines() {
         Move::Line { to: DVec3::new(10.0, 5.0, -1.0), feed: 300.0 },
     ];
     let path = Toolpath { name: "tiny".into(), tool: 1, spindle_rpm: 10000.0, start: DVec3::new(10.0, 0.0, 5.0), moves };
-    let gcode = write_gcode("tiny", std::slice::from_ref(&path), &tools, 5.0, &PostSettings::default());
+    let gcode = write_gcode("tiny", std::slice::from_ref(&path), &tools, 5.0, &PostSettings::default()).unwrap();
     assert!(!gcode.lines().any(|l| l.starts_with("G2 ") || l.starts_with("G3 ")), "{gcode}");
     assert!(!gcode.lines().any(|l| l.starts_with('F')), "a feed without a move: {gcode}");
     let canon = interpret(&gcode, &tools);
@@ -405,6 +414,186 @@ fn octree_roughing_with_its_chosen_tools_runs_in_linuxcnc_move_for_move() {
 
 #[test]
 fn each_dialect_names_the_extension_its_controllers_expect() {
-    let ext: Vec<&str> = [Dialect::LinuxCnc, Dialect::Grbl, Dialect::Mach3, Dialect::Fanuc].iter().map(|d| d.extension()).collect();
-    assert_eq!(ext, vec!["ngc", "nc", "tap", "nc"]);
+    let ext: Vec<String> = Dialect::ALL.iter().map(|d| d.extension()).collect();
+    assert_eq!(ext, vec!["ngc", "nc", "nc", "tap", "nc", "nc"]);
+}
+
+
+/// A move of a program in mm, from where the one before it ended.
+#[derive(Clone, Copy, Debug)]
+struct Span {
+    from: DVec3,
+    to: DVec3,
+    /// An arc's centre and whether it turns counter-clockwise.
+    arc: Option<(DVec2, bool)>,
+}
+
+impl Span {
+    fn sweep(&self) -> f64 {
+        let (c, ccw) = self.arc.unwrap();
+        swarf::toolpath::arc_sweep(self.from, self.to, c, !ccw)
+    }
+
+    fn at(&self, t: f64) -> DVec3 {
+        match self.arc {
+            None => self.from.lerp(self.to, t),
+            Some((c, _)) => {
+                let r = (self.from.truncate() - c).length();
+                let a = (self.from.truncate() - c).to_angle() + self.sweep() * t;
+                (c + DVec2::from_angle(a) * r).extend(self.from.z + (self.to.z - self.from.z) * t)
+            }
+        }
+    }
+
+    fn distance(&self, p: DVec3) -> f64 {
+        let mut ts = vec![0.0, 1.0];
+        match self.arc {
+            None => {
+                let d = self.to - self.from;
+                if d.length_squared() > 0.0 {
+                    ts.push(((p - self.from).dot(d) / d.length_squared()).clamp(0.0, 1.0));
+                }
+            }
+            Some((c, _)) => {
+                let sweep = self.sweep();
+                let phi = (((p.truncate() - c).to_angle() - (self.from.truncate() - c).to_angle()) * sweep.signum()).rem_euclid(std::f64::consts::TAU);
+                if phi <= sweep.abs() {
+                    ts.push(phi / sweep.abs());
+                }
+            }
+        }
+        ts.into_iter().map(|t| self.at(t).distance(p)).fold(f64::INFINITY, f64::min)
+    }
+}
+
+/// The interpreter's motions as spans in mm, from the first that reaches `first`.
+fn canon_spans(actual: &[(Kind, DVec3)], mm: f64, first: DVec3) -> Vec<Span> {
+    let start = actual.iter().position(|(_, p)| (*p * mm).distance(first) < 1e-3).unwrap_or_else(|| panic!("the program never reaches the path's start {first}: {:?}", &actual[..4.min(actual.len())]));
+    actual[start..]
+        .windows(2)
+        .map(|w| Span { from: w[0].1 * mm, to: w[1].1 * mm, arc: match w[1].0 { Kind::Arc { center, ccw } => Some((center * mm, ccw)), _ => None } })
+        .collect()
+}
+
+/// The paths as the program should move: to each start above it, the moves, a retract at each
+/// change of tool and at the end.
+fn path_spans(paths: &[Toolpath], clearance: f64) -> Vec<Span> {
+    let mut out = Vec::new();
+    let mut at: Option<DVec3> = None;
+    let mut tool = None;
+    let mut push = |out: &mut Vec<Span>, at: &mut Option<DVec3>, to: DVec3, arc| {
+        if let Some(from) = *at {
+            out.push(Span { from, to, arc });
+        }
+        *at = Some(to);
+    };
+    for path in paths {
+        if let (Some(p), true) = (at, tool != Some(path.tool)) {
+            push(&mut out, &mut at, p.truncate().extend(clearance), None);
+        }
+        tool = Some(path.tool);
+        push(&mut out, &mut at, path.start.truncate().extend(clearance), None);
+        push(&mut out, &mut at, path.start, None);
+        for m in &path.moves {
+            let arc = match *m {
+                Move::Arc { center, clockwise, .. } => Some((center, !clockwise)),
+                _ => None,
+            };
+            push(&mut out, &mut at, m.to(), arc);
+        }
+    }
+    let last = at.unwrap();
+    push(&mut out, &mut at, last.truncate().extend(clearance), None);
+    out
+}
+
+/// Every span of `a`, at five points along it, lies within `tol` of a span of `b`, taken in
+/// order (a point may match from a few spans back, for moves split differently).
+fn follows(a: &[Span], b: &[Span], tol: f64) -> Result<(), String> {
+    let mut cursor = 0usize;
+    for (i, s) in a.iter().enumerate() {
+        for t in [0.0, 0.25, 0.5, 0.75, 1.0] {
+            let p = s.at(t);
+            let from = cursor.saturating_sub(4);
+            let Some(k) = (from..b.len()).find(|&k| b[k].distance(p) <= tol) else {
+                let near = b[from..].iter().map(|q| q.distance(p)).fold(f64::INFINITY, f64::min);
+                return Err(format!("move {i} ({s:?}) at {t}: {p} is {near:.6} mm from the other path"));
+            };
+            cursor = k;
+        }
+    }
+    Ok(())
+}
+
+#[test]
+fn every_built_in_post_reproduces_the_paths_in_linuxcnc_and_grbl_reads_its_own() {
+    use swarf::post::grbl::{check, Flavour};
+    use swarf::post::{write_program, Post};
+    use swarf::strategy::rough_zlevel::RoughZlevel;
+    use swarf::tool::Coolant;
+    let tools = vec![
+        Tool { number: 1, cutter: Cutter { flute_length: 40.0, ..Cutter::flat(6.0) }, coolant: Coolant::Flood, ..Tool::default() },
+        Tool { number: 2, cutter: Cutter::ball(6.0), coolant: Coolant::Mist, ..Tool::default() },
+    ];
+    let ops = vec![
+        Operation::RoughZlevel(RoughZlevel { tool: 1, ..RoughZlevel::default() }),
+        Operation::FinishRaster(FinishRaster { tool: 2, stepover: 2.0, grid: 0.5, ..FinishRaster::default() }),
+    ];
+    let job = Job { tools: tools.clone(), operations: ops, simulation: swarf::job::Simulation { verify: false, cell: None }, ..Job::default() };
+    let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
+    assert!(out.paths.iter().flat_map(|p| &p.moves).any(|m| matches!(m, Move::Arc { to, .. } if to.z < 0.0)), "helices expected");
+    let expected = path_spans(&out.paths, out.clearance_z);
+    for dialect in Dialect::ALL {
+        let post = dialect.post();
+        // Four decimals: the rounding (0.05 µm) is well under the micrometre checked.
+        let settings = PostSettings { dialect, decimals: Some(4), ..PostSettings::default() };
+        let (gcode, time) = write_program("every post", &out.paths, &tools, out.clearance_z, &settings).unwrap();
+        // LinuxCNC reads every built-in dialect but Fanuc's program number (an O word is a
+        // subroutine label to it).
+        let readable: String = gcode.lines().filter(|l| !l.starts_with('O')).map(|l| format!("{l}\n")).collect();
+        let actual = interpret(&readable, &tools);
+        let canon = canon_spans(&actual, 1.0, expected[0].from);
+        follows(&expected, &canon, 0.001).unwrap_or_else(|e| panic!("{dialect:?}: the path is not in the program: {e}"));
+        follows(&canon, &expected, 0.001).unwrap_or_else(|e| panic!("{dialect:?}: the program leaves the path: {e}"));
+        let arcs = gcode.lines().filter(|l| l.contains("G2 ") || l.contains("G3 ")).count();
+        let calls = tool_calls(&readable, &tools);
+        match dialect {
+            Dialect::Grbl => {
+                check(&gcode, Flavour::Grbl11).unwrap_or_else(|e| panic!("GRBL 1.1 refuses: {e}"));
+                assert!(!gcode.contains("M6") && gcode.contains("M0\n") && calls.iter().any(|c| c.starts_with("PROGRAM_STOP")));
+            }
+            Dialect::GrblHal => {
+                check(&gcode, Flavour::GrblHal).unwrap_or_else(|e| panic!("grblHAL refuses: {e}"));
+                assert!(check(&gcode, Flavour::Grbl11).is_err(), "a tool change GRBL 1.1 would refuse");
+            }
+            Dialect::Fanuc => {
+                assert!(gcode.starts_with("%\nO0001 (every post)\nN10 ") && gcode.trim_end().ends_with('%'));
+                assert!(gcode.contains(" R") && !gcode.contains(" I"), "arcs by R");
+                assert!(gcode.contains("G4 P2000"), "the spindle's dwell in milliseconds");
+            }
+            Dialect::Generic => {
+                assert!(gcode.lines().all(|l| !l.starts_with("G2") || !l.contains('Z') || !l.contains("G3")));
+                assert!(gcode.contains("G1 X") && gcode.lines().filter(|l| l.starts_with("G1")).all(|l| l.contains(" X") && l.contains(" Y") && l.contains(" Z") && l.contains(" F")), "every word on every line");
+            }
+            _ => {}
+        }
+        if post.tool_change.is_empty() {
+            assert_eq!(calls.iter().filter(|c| c.starts_with("CHANGE_TOOL")).count(), 0);
+        } else {
+            assert_eq!(calls.iter().filter(|c| c.starts_with("CHANGE_TOOL")).count(), 2, "{dialect:?}: {calls:?}");
+        }
+        assert!(arcs > 20, "{dialect:?}: {arcs} arcs");
+        // Coolant per tool: flood for the flat end, mist for the ball, off before the change and at the end.
+        let flood = gcode.find("\nM8").or_else(|| gcode.find(" M8")).expect("flood");
+        let mist = gcode.find("\nM7").or_else(|| gcode.find(" M7")).expect("mist");
+        assert!(flood < mist && gcode[flood..mist].contains("M9") && gcode[mist..].contains("M9"), "{dialect:?}");
+        assert!(gcode.contains("G54") || post.work_offset.is_none());
+        // The head states the cycle time: motion plus one tool change.
+        let motion: f64 = out.paths.iter().map(|p| p.stats(settings.rapid_rate).seconds).sum();
+        assert_eq!(time.tool_changes, 1);
+        assert!(time.seconds >= motion + 15.0 && time.seconds < motion + 15.0 + 60.0 + post.spindle_dwell * 2.0, "{dialect:?}: {} s against {motion} s of moves", time.seconds);
+        assert!(gcode.contains(&format!("cycle time {}", swarf::post::clock(time.seconds))), "{dialect:?}");
+        // Every built-in post is data that reads back as itself.
+        assert_eq!(Post::from_json(&serde_json::to_string(&post).unwrap()).unwrap(), post);
+    }
 }

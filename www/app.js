@@ -143,6 +143,9 @@ function fillJob() {
   fillFields($('fs-part'), j);
   fillFields($('fs-drawing'), j);
   fillFields($('fs-post'), j);
+  const custom = j.post.custom;
+  $('post-custom').hidden = !custom;
+  $('post-custom').textContent = custom ? `Using your post "${custom.name}" (choose a controller to go back to a built-in one).` : '';
   fillFields($('fs-stock'), j);
   $('fs-stock').querySelector('[name=zeroHeight]').value = j.stock.zero?.height ?? '';
   $('fs-stock').querySelector('[name=zeroCorner]').value = j.stock.zero?.corner ?? 'center';
@@ -225,9 +228,12 @@ function onField(el) {
     job().stock.zero = height ? { height, corner: form.elements.zeroCorner.value } : null;
   } else {
     setKey(job(), el.dataset.key, value);
+    // Choosing a controller goes back to its built-in post.
+    if (el.dataset.key === 'post.dialect' && job().post.custom) { job().post.custom = null; fillJob(); }
   }
   store();
   showInfo('');
+  if (el.dataset.key.startsWith('post.')) repost();
 }
 
 // ---- the tool library --------------------------------------------------------------------
@@ -395,6 +401,48 @@ function showDrawing(d) {
 async function takeFile(file) {
   if (/\.json$/i.test(file.name)) return loadJob(file);
   showPart(new Uint8Array(await file.arrayBuffer()), file.name, file.name);
+}
+
+// ---- posts as data ----------------------------------------------------------------------
+// The post in use (the user's own, else the built-in one of the chosen controller) saved as
+// JSON to edit; a loaded one is read by the core, which names a field it does not know.
+function currentPost() {
+  const p = job().post;
+  return p.custom ?? state.posts.find((b) => b.dialect === p.dialect)?.post;
+}
+
+function savePost() {
+  const post = currentPost();
+  if (post) downloadText(`${post.name.replace(/[^\w.-]+/g, '_')}.post.json`, JSON.stringify(post, null, 2), 'application/json');
+}
+
+async function loadPost(file) {
+  try {
+    const { post } = await call({ type: 'readPost', text: await file.text() });
+    job().post.custom = post;
+    store();
+    fillJob();
+    showInfo(`Loaded the post "${post.name}" from ${file.name}; programs now end in .${post.extension}.`);
+    await repost();
+  } catch (e) {
+    showError(`${file.name}: ${e.message}`);
+  }
+}
+
+// The program of the last Generate written again for the post now chosen (no planning again);
+// `data-posted` counts the programs so written.
+async function repost() {
+  if (!state.gcode || state.running) return;
+  try {
+    const r = await call({ type: 'repost', post: job().post });
+    state.gcode = r.gcode;
+    state.extension = r.extension;
+    showInfo(`The program is written again for ${currentPost()?.name}: cycle time ${clock(r.cycle.seconds)}.`);
+  } catch (e) {
+    clearResult();
+    showError(e.message);
+  }
+  document.body.dataset.posted = String(Number(document.body.dataset.posted ?? 0) + 1);
 }
 
 // ---- jobs as JSON ------------------------------------------------------------------------
@@ -627,10 +675,10 @@ async function generate() {
     if (r.octants.length) viewer?.setOctants(r.octants);
     const s = r.summary;
     showSimulation(r.sim, s);
-    const minutes = Math.floor(s.seconds / 60), seconds = Math.round(s.seconds % 60);
+    const changes = s.cycle.toolChanges ? ` with ${s.cycle.toolChanges} tool change${s.cycle.toolChanges > 1 ? 's' : ''} at ${job.post.toolChangeSeconds} s` : '';
     const stages = (o) => (o.stages ?? []).map((st) => `\n  T${st.tool} φ${st.diameter} (${st.role === 'profile' ? 'profile' : st.role === 'first' ? 'first tool' : 'octants'}): ${st.why}; ${Math.round(st.area).toLocaleString()} mm² cleared, ${Math.round(st.removed).toLocaleString()} mm³ removed, ${clock(st.seconds)} min`).join('');
     const perOp = s.operations.length > 1 || s.operations.some((o) => o.stages) ? `\n${s.operations.map((o) => `${o.name} (T${o.tools.join(', T')}): ${clock(o.seconds)} min${o.removed != null ? `, ${Math.round(o.removed).toLocaleString()} mm³, peak ${Math.round(o.mrrMax).toLocaleString()} mm³/min` : ''}${o.leftMax != null ? `, leaves ≤ ${o.leftMax.toFixed(2)} mm` : ''}${stages(o)}`).join('\n')}` : '';
-    $('stats').textContent = `${s.moves.toLocaleString()} moves · ${(s.feedLength / 1000).toFixed(2)} m cutting · ${(s.rapidLength / 1000).toFixed(2)} m rapid\nestimated cycle time ${minutes}:${String(seconds).padStart(2, '0')} min${perOp}\ncomputed in ${((performance.now() - started) / 1000).toFixed(2)} s`;
+    $('stats').textContent = `${s.moves.toLocaleString()} moves · ${(s.feedLength / 1000).toFixed(2)} m cutting · ${(s.rapidLength / 1000).toFixed(2)} m rapid\nestimated cycle time ${clock(s.cycle.seconds)}${changes} (${clock(s.seconds)} of moves)${perOp}\ncomputed in ${((performance.now() - started) / 1000).toFixed(2)} s`;
     // A problem is shown as one, in red, with its places marked in the view; the program can
     // still be downloaded, behind a confirmation that names it.
     state.problem = s.problem ?? null;
@@ -690,6 +738,8 @@ new ResizeObserver(() => { sim.buckets = null; drawMrr(); }).observe($('mrr'));
 $('cancel').addEventListener('click', cancel);
 $('download').addEventListener('click', download);
 $('save-job').addEventListener('click', saveJob);
+$('save-post').addEventListener('click', savePost);
+$('load-post').addEventListener('change', (e) => { if (e.target.files[0]) loadPost(e.target.files[0]); e.target.value = ''; });
 $('load-job').addEventListener('change', (e) => { if (e.target.files[0]) loadJob(e.target.files[0]); e.target.value = ''; });
 $('file').addEventListener('change', (e) => { if (e.target.files[0]) takeFile(e.target.files[0]); });
 $('use-sample').addEventListener('click', () => showPart(state.sample, 'sample.stl', 'sample part'));
@@ -714,8 +764,9 @@ for (const t of ['dragleave', 'drop']) document.addEventListener(t, (e) => { e.p
 document.addEventListener('drop', (e) => { const f = e.dataTransfer?.files?.[0]; if (f) takeFile(f); });
 
 startWorker();
-call({ type: 'hello' }).then(({ defaults, sample, sampleDrawing }) => {
+call({ type: 'hello' }).then(({ defaults, posts, sample, sampleDrawing }) => {
   state.defaults = defaults;
+  state.posts = posts;
   restore();
   fillAll();
   state.sample = sample;

@@ -1,5 +1,5 @@
 // Runs the wasm pipeline off the page's thread. Cancel = the page terminates this worker.
-import init, { defaults, readJob, samplePart, sampleDrawing, loadPart, loadDrawing, isDrawing, runJob } from './pkg/swarf.js';
+import init, { defaults, builtinPosts, readPost, readJob, samplePart, sampleDrawing, loadPart, loadDrawing, isDrawing, runJob } from './pkg/swarf.js';
 
 const ready = init();
 // The last job's result stays here so the page can scrub through its simulation.
@@ -22,7 +22,9 @@ self.onmessage = async (event) => {
   try {
     await ready;
     if (type === 'hello') {
-      self.postMessage({ id, ok: true, defaults: defaults(), sample: samplePart(), sampleDrawing: sampleDrawing() });
+      self.postMessage({ id, ok: true, defaults: defaults(), posts: builtinPosts(), sample: samplePart(), sampleDrawing: sampleDrawing() });
+    } else if (type === 'readPost') {
+      self.postMessage({ id, ok: true, post: readPost(event.data.text) });
     } else if (type === 'readJob') {
       self.postMessage({ id, ok: true, job: readJob(event.data.text) });
     } else if (type === 'load') {
@@ -67,6 +69,9 @@ self.onmessage = async (event) => {
       current?.free();
       current = result;
       self.postMessage({ id, ok: true, gcode, feeds, feedOps, feedTools, octants, rapids, summary, part, drawing, sim }, [feeds.buffer, feedOps.buffer, feedTools.buffer, octants.buffer, rapids.buffer, ...transfer]);
+    } else if (type === 'repost') {
+      if (!current) throw new Error('generate a program first');
+      self.postMessage({ id, ok: true, ...current.repost(event.data.post) });
     } else if (type === 'seek') {
       if (!current) throw new Error('nothing to simulate yet');
       const tops = current.seek(event.data.count).slice();

@@ -25,7 +25,7 @@ use crate::error::{Error, Result, Warning};
 use crate::strategy::profile2d::Profile2d;
 use crate::geom::{Aabb, DVec3, Tolerances};
 use crate::mesh::{placement::PartSetup, Mesh};
-use crate::post::{write_gcode, PostSettings};
+use crate::post::{write_program, CycleTime, PostSettings};
 use crate::profile::Drawing;
 use crate::progress::Progress;
 use crate::sim::program::{program_moves, ProgramMove};
@@ -298,6 +298,8 @@ pub struct JobOutput {
     /// Per tool path, the index of the operation that made it.
     pub path_operations: Vec<usize>,
     pub gcode: String,
+    /// The program's cycle time as the post wrote it: per tool path, tool changes, in all.
+    pub cycle: CycleTime,
     pub stats: PathStats,
     /// Every move of the program, timed, in order.
     pub moves: Vec<ProgramMove>,
@@ -330,17 +332,22 @@ impl JobOutput {
     /// The G-code with a warning comment at its head naming the problem, if there is one (for
     /// a program written anyway).
     pub fn gcode_marked(&self) -> String {
-        match &self.problem {
-            Some(problem) => {
-                // A program that starts with a tape mark (Fanuc) keeps it first.
-                let warning = format!("(WARNING: NOT SAFE TO RUN: {})\n", crate::post::comment(problem));
-                match self.gcode.strip_prefix("%\n") {
-                    Some(rest) => format!("%\n{warning}{rest}"),
-                    None => format!("{warning}{}", self.gcode),
-                }
+        marked(&self.gcode, self.problem.as_deref())
+    }
+}
+
+/// `gcode` with a warning comment at its head naming `problem`, if there is one.
+pub fn marked(gcode: &str, problem: Option<&str>) -> String {
+    match problem {
+        Some(problem) => {
+            // A program that starts with a tape mark (Fanuc) keeps it first.
+            let warning = format!("(WARNING: NOT SAFE TO RUN: {})\n", crate::post::comment(problem));
+            match gcode.strip_prefix("%\n") {
+                Some(rest) => format!("%\n{warning}{rest}"),
+                None => format!("{warning}{gcode}"),
             }
-            None => self.gcode.clone(),
         }
+        None => gcode.to_owned(),
     }
 }
 
@@ -451,7 +458,7 @@ impl Job {
                 return Err(Error::Input(format!("tools[{i}].number: tools[{j}] has the number {} too", tool.number)));
             }
         }
-        positive("post.rapidRate".into(), self.post.rapid_rate)?;
+        self.post.validate(&self.tools).map_err(Error::Input)?;
         self.stock.validate()?;
         for (i, op) in self.operations.iter().enumerate() {
             let o = op.op();
@@ -582,7 +589,7 @@ pub fn run(job: &Job, workpiece: impl Into<Workpiece>, progress: &mut Progress) 
     }
     progress.frame(0.0, 1.0, None);
     warnings.append(&mut ctx.warnings);
-    let gcode = write_gcode(&job.name, &paths, &job.tools, ctx.heights.clearance, &job.post);
+    let (gcode, cycle) = write_program(&job.name, &paths, &job.tools, ctx.heights.clearance, &job.post)?;
     let stats = paths.iter().fold(PathStats::default(), |s, p| s + p.stats(job.post.rapid_rate));
     if all_moves.iter().all(|m| matches!(m.mv, crate::toolpath::Move::Rapid { .. })) {
         let why = if warnings.is_empty() { String::new() } else { format!(" ({})", warnings.iter().map(Warning::to_string).collect::<Vec<_>>().join("; ")) };
@@ -615,7 +622,7 @@ pub fn run(job: &Job, workpiece: impl Into<Workpiece>, progress: &mut Progress) 
     progress.stage("done", 1.0, 0.0);
     let drawing = sheet.map(|s| s.drawing);
     let (clearance_z, cache) = (heights.clearance, caches.counts);
-    Ok(JobOutput { part, drawing, stock, clearance_z, paths, path_operations, gcode, stats, moves: all_moves, operations, verification, warnings, problem, cache, octants })
+    Ok(JobOutput { part, drawing, stock, clearance_z, paths, path_operations, gcode, cycle, stats, moves: all_moves, operations, verification, warnings, problem, cache, octants })
 }
 
 /// The moves of `paths[first..]`, timed on from the program's last move so far.

@@ -1,144 +1,331 @@
-//! G-code writers. One writer walks the program; a [`Dialect`] says what each controller
-//! accepts (GRBL has no tool changer and no tool-length offsets; Fanuc wants `%` and a program
-//! number). Millimetres inside; inches only here.
+//! G-code writing. One writer walks the program; a [`Post`] (data, [`definition`]) says what
+//! the controller accepts: its header and footer, tool changes, spindle, coolant and dwell
+//! words, comments, line numbers, decimals, arcs by I/J or R or none, helices, modal words and
+//! line length. The built-in posts ([`Dialect`]) are such data. The writer times the program as
+//! it writes it and puts the cycle time in its head. Millimetres inside; inches only here.
 
+pub mod definition;
+pub mod grbl;
 pub mod read;
 
 use std::fmt::Write as _;
 
 use serde::{Deserialize, Serialize};
 
-use crate::geom::DVec3;
-use crate::tool::Tool;
+pub use self::definition::{ArcFormat, CommentStyle, Post};
+use self::definition::ARC_CHORD_ERROR;
+use crate::error::Error;
+use crate::geom::{DVec2, DVec3};
 use crate::mesh::placement::Units;
-use crate::toolpath::{Move, Toolpath};
+use crate::tool::{Coolant, Tool};
+use crate::toolpath::{arc_sweep, Move, Toolpath};
 
-/// The controller family a program is written for.
+/// The built-in posts, by the controller family they are written for.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase")]
 pub enum Dialect {
     #[default]
     LinuxCnc,
+    /// GRBL 1.1: no tool changer (the program pauses with `M0` naming the tool), only the words
+    /// GRBL accepts, lines of at most 80 characters.
     Grbl,
+    /// grblHAL: GRBL's words with `T… M6` tool changes.
+    GrblHal,
+    /// Mach3 and Mach4: `.tap`, arcs split at the quadrants, incremental I and J set explicitly.
     Mach3,
+    /// Fanuc: `%`, a program number, line numbers, arcs by R.
     Fanuc,
+    /// Plain RS-274: arcs split at the quadrants, helices as chords, every word on every line.
+    Generic,
 }
 
 impl Dialect {
-    /// The file extension its controllers expect: `ngc` for LinuxCNC, `tap` for Mach3/Mach4,
-    /// `nc` for GRBL and Fanuc.
-    pub fn extension(self) -> &'static str {
-        match self {
-            Dialect::LinuxCnc => "ngc",
-            Dialect::Mach3 => "tap",
-            Dialect::Grbl | Dialect::Fanuc => "nc",
-        }
+    /// Every built-in post.
+    pub const ALL: [Dialect; 6] = [Dialect::LinuxCnc, Dialect::Grbl, Dialect::GrblHal, Dialect::Mach3, Dialect::Fanuc, Dialect::Generic];
+
+    /// The built-in post's data (`src/post/builtin/*.json`).
+    pub fn post(self) -> Post {
+        let json = match self {
+            Dialect::LinuxCnc => include_str!("builtin/linuxcnc.json"),
+            Dialect::Grbl => include_str!("builtin/grbl.json"),
+            Dialect::GrblHal => include_str!("builtin/grblhal.json"),
+            Dialect::Mach3 => include_str!("builtin/mach3.json"),
+            Dialect::Fanuc => include_str!("builtin/fanuc.json"),
+            Dialect::Generic => include_str!("builtin/generic.json"),
+        };
+        // The built-in files are read by a test of their own.
+        Post::from_json(json).unwrap_or_else(|e| panic!("built-in post {self:?}: {e}"))
     }
 
-    fn has_tool_changer(self) -> bool {
-        self != Dialect::Grbl
-    }
-    fn program_end(self) -> &'static str {
-        match self {
-            Dialect::LinuxCnc => "M2",
-            _ => "M30",
-        }
-    }
-    fn modal_setup(self) -> &'static str {
-        match self {
-            Dialect::Grbl => "G90 G94 G17",
-            Dialect::LinuxCnc | Dialect::Mach3 => "G90 G94 G17 G40 G49 G80",
-            Dialect::Fanuc => "G90 G94 G17 G40 G49 G80",
-        }
+    /// The file extension its controllers expect: `ngc` for LinuxCNC, `tap` for Mach3/Mach4,
+    /// `nc` for the others.
+    pub fn extension(self) -> String {
+        self.post().extension
     }
 }
 
 /// How G-code is written.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, rename_all = "camelCase")]
 pub struct PostSettings {
-    /// Controller family. Default value: linuxCnc.
+    /// The built-in post. Default value: linuxCnc.
     pub dialect: Dialect,
+    /// A post of the user's own (the fields of [`Post`]), used instead of the built-in one.
+    /// Default value: none.
+    pub custom: Option<Post>,
     /// Units of the program. Default value: mm.
     pub units: Units,
-    /// Digits after the decimal point. Default value: 3 for mm, 4 for inches.
+    /// Digits after the decimal point, instead of the post's. Default value: the post's (3
+    /// for mm, 4 for inches in the built-in posts).
     pub decimals: Option<usize>,
     /// Rapid rate of the machine (mm/min), for the cycle-time estimate. Default value: 3000.
     pub rapid_rate: f64,
-    /// Fanuc program number (O word). Default value: 1.
+    /// Time a tool change takes (seconds), for the cycle-time estimate. Default value: 15.
+    pub tool_change_seconds: f64,
+    /// Program number (O word) for posts that write one. Default value: 1.
     pub program_number: u32,
 }
 
 impl PostSettings {
+    /// The post in use: the user's own, else the built-in one.
+    pub fn post(&self) -> Post {
+        self.custom.clone().unwrap_or_else(|| self.dialect.post())
+    }
+
+    /// The file extension of the program.
+    pub fn extension(&self) -> String {
+        self.post().extension
+    }
+
+    fn decimals_for(&self, post: &Post) -> usize {
+        self.decimals.unwrap_or(match self.units {
+            Units::Mm => post.decimals_mm,
+            Units::Inch => post.decimals_inch,
+        })
+    }
+
     /// How far rounding to the program's decimals can move a point sideways (mm): half a unit
     /// of the last digit in X and in Y. Strategies that follow a surface take their heights as
     /// the highest within this distance, so that the written points stay above it.
     pub fn resolution(&self) -> f64 {
-        let decimals = self.decimals.unwrap_or(match self.units {
-            Units::Mm => 3,
-            Units::Inch => 4,
-        });
+        let decimals = self.decimals_for(&self.post());
         0.5 * 10f64.powi(-(decimals as i32)) * self.units.mm() * std::f64::consts::SQRT_2
+    }
+
+    /// Checks the settings and the post; errors name the field.
+    pub fn validate(&self, tools: &[Tool]) -> Result<(), String> {
+        if let Some(custom) = &self.custom {
+            custom.validate().map_err(|e| format!("post.custom.{e}"))?;
+        }
+        if let Some(d) = self.decimals {
+            if !(1..=6).contains(&d) {
+                return Err(format!("post.decimals must be 1 to 6 (got {d})"));
+            }
+        }
+        if !(self.rapid_rate > 0.0 && self.rapid_rate.is_finite()) {
+            return Err(format!("post.rapidRate must be a positive number (got {})", self.rapid_rate));
+        }
+        if !(self.tool_change_seconds >= 0.0 && self.tool_change_seconds.is_finite()) {
+            return Err(format!("post.toolChangeSeconds must be zero or more (got {})", self.tool_change_seconds));
+        }
+        let post = self.post();
+        for t in tools {
+            let (word, field) = match t.coolant {
+                Coolant::Off => continue,
+                Coolant::Flood => (&post.coolant_flood, "coolantFlood"),
+                Coolant::Mist => (&post.coolant_mist, "coolantMist"),
+            };
+            if word.is_none() || post.coolant_off.is_none() {
+                let missing = if word.is_none() { field } else { "coolantOff" };
+                return Err(format!("tool {} asks for {:?} coolant, but the post {} has no {missing} word", t.number, t.coolant, post.name));
+            }
+        }
+        Ok(())
     }
 }
 
 impl Default for PostSettings {
     fn default() -> Self {
-        PostSettings { dialect: Dialect::LinuxCnc, units: Units::Mm, decimals: None, rapid_rate: 3000.0, program_number: 1 }
+        PostSettings { dialect: Dialect::LinuxCnc, custom: None, units: Units::Mm, decimals: None, rapid_rate: 3000.0, tool_change_seconds: 15.0, program_number: 1 }
+    }
+}
+
+/// What a program takes on the machine: the cutting and rapid moves at their feeds and the
+/// rapid rate, and the tool changes.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub struct CycleTime {
+    /// Seconds of motion of each tool path, in the program's order.
+    pub paths: Vec<f64>,
+    pub tool_changes: usize,
+    /// The whole program (seconds): motion, tool changes and dwells.
+    pub seconds: f64,
+}
+
+/// `seconds` as h:mm:ss or m:ss.
+pub fn clock(seconds: f64) -> String {
+    let s = seconds.max(0.0).round() as u64;
+    if s >= 3600 {
+        format!("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60)
+    } else {
+        format!("{}:{:02}", s / 60, s % 60)
     }
 }
 
 /// Writes the program. `clearance_z` is the safe height (mm) the program starts and ends at.
-pub fn write_gcode(title: &str, paths: &[Toolpath], tools: &[Tool], clearance_z: f64, settings: &PostSettings) -> String {
-    let mut w = Writer::new(settings);
-    let dialect = settings.dialect;
-    if dialect == Dialect::Fanuc {
-        w.line("%");
-        w.line(&format!("O{:04} ({})", settings.program_number, comment(title)));
-    } else {
-        w.line(&format!("({})", comment(title)));
-    }
-    w.line(&format!("(generated by swarf {})", env!("CARGO_PKG_VERSION")));
-    for path in paths {
-        if let Some(tool) = tools.iter().find(|t| t.number == path.tool) {
-            w.line(&format!("(T{} {})", tool.number, comment(&tool.describe())));
-        }
-    }
+pub fn write_gcode(title: &str, paths: &[Toolpath], tools: &[Tool], clearance_z: f64, settings: &PostSettings) -> Result<String, Error> {
+    Ok(write_program(title, paths, tools, clearance_z, settings)?.0)
+}
+
+/// Writes the program and times it.
+pub fn write_program(title: &str, paths: &[Toolpath], tools: &[Tool], clearance_z: f64, settings: &PostSettings) -> Result<(String, CycleTime), Error> {
+    settings.validate(tools).map_err(Error::Input)?;
+    let post = settings.post();
+    let mut w = Writer::new(settings, &post);
     w.line(match settings.units {
         Units::Mm => "G21",
         Units::Inch => "G20",
     });
-    w.line(dialect.modal_setup());
-    let mut current_tool = None;
+    for l in &post.setup {
+        w.line(l);
+    }
+    if let Some(offset) = &post.work_offset {
+        w.line(offset);
+    }
+    let mut current: Option<&Tool> = None;
+    let mut started = false;
+    let mut time = CycleTime::default();
     for path in paths {
-        w.line(&format!("({})", comment(&path.name)));
-        if current_tool != Some(path.tool) {
-            if current_tool.is_some() {
-                w.line("M5");
+        let tool = tools.iter().find(|t| t.number == path.tool);
+        w.comment(&path.name);
+        if !started || current.map(|t| t.number) != Some(path.tool) {
+            if started {
+                w.coolant_off(current);
+                w.line(&post.spindle_off);
             }
             w.rapid_z(clearance_z);
-            if dialect.has_tool_changer() {
-                w.line(&format!("T{} M6", path.tool));
-                w.line(&format!("G43 H{}", path.tool));
-            } else if current_tool.is_some() {
-                w.line(&format!("M0 (change to tool {} and resume)", path.tool));
+            let describe = tool.map(Tool::describe).unwrap_or_default();
+            if !post.tool_change.is_empty() {
+                for l in &post.tool_change {
+                    w.line(&definition::fill(l, &[("tool", path.tool.to_string())]));
+                }
+            } else if started {
+                w.comment(&format!("change to tool {}: {describe}, then resume", path.tool));
+                w.line(&post.pause);
             }
-            current_tool = Some(path.tool);
-            w.line(&format!("S{} M3", w.number(path.spindle_rpm, 0)));
+            if started {
+                time.tool_changes += 1;
+            }
+            started = true;
+            current = tool;
+            let rpm = w.number(path.spindle_rpm, 0);
+            w.line(&definition::fill(&post.spindle_on, &[("rpm", rpm)]));
+            if post.spindle_dwell > 0.0 {
+                if let Some(dwell) = &post.dwell {
+                    let values = [("seconds", w.number(post.spindle_dwell, 3)), ("millis", w.number(post.spindle_dwell * 1000.0, 0))];
+                    w.line(&definition::fill(dwell, &values));
+                    w.seconds += post.spindle_dwell;
+                }
+            }
+            w.coolant_on(tool);
         }
+        let before = w.seconds;
         w.motion(&Move::Rapid { to: path.start.truncate().extend(clearance_z) });
         w.motion(&Move::Rapid { to: path.start });
         for m in &path.moves {
             w.motion(m);
         }
+        time.paths.push(w.seconds - before);
     }
-    w.line("M5");
+    w.coolant_off(current);
+    w.line(&post.spindle_off);
     w.rapid_z(clearance_z);
-    w.line(dialect.program_end());
-    if dialect == Dialect::Fanuc {
-        w.line("%");
+    for l in &post.footer {
+        w.line(l);
     }
-    w.out
+    time.seconds = w.seconds + time.tool_changes as f64 * settings.tool_change_seconds;
+
+    // The head, now that the program is timed.
+    let mut head = Writer::new(settings, &post);
+    let values = [("title", comment(title)), ("program", format!("{:04}", settings.program_number)), ("version", env!("CARGO_PKG_VERSION").to_owned())];
+    for l in &post.header {
+        head.line(&definition::fill(l, &values));
+    }
+    head.comment(title);
+    head.comment(&format!("generated by swarf {} for {}", env!("CARGO_PKG_VERSION"), post.name));
+    let changes = match time.tool_changes {
+        0 => String::new(),
+        1 => format!(", 1 tool change at {} s", settings.tool_change_seconds),
+        n => format!(", {n} tool changes at {} s each", settings.tool_change_seconds),
+    };
+    head.comment(&format!("cycle time {}{changes}, rapids at {} mm/min", clock(time.seconds), settings.rapid_rate));
+    let mut listed = Vec::new();
+    for path in paths {
+        if !listed.contains(&path.tool) {
+            listed.push(path.tool);
+            if let Some(tool) = tools.iter().find(|t| t.number == path.tool) {
+                head.comment(&format!("T{} {}", tool.number, tool.describe()));
+            }
+        }
+    }
+    for (path, seconds) in paths.iter().zip(&time.paths) {
+        head.comment(&format!("{} with T{}: {}", path.name, path.tool, clock(*seconds)));
+    }
+    let mut lines = head.lines;
+    lines.extend(w.lines);
+    Ok((finish(lines, &post)?, time))
+}
+
+/// Numbers the lines and holds them to the post's length.
+fn finish(lines: Vec<String>, post: &Post) -> Result<String, Error> {
+    let mut out = String::new();
+    let mut n = post.line_numbers.map(|l| l.start);
+    for line in lines {
+        let mut line = match n.as_mut() {
+            // The tape marks and the program number stand unnumbered.
+            Some(k) if line != "%" && !line.starts_with('O') => {
+                let numbered = format!("N{k} {line}");
+                if let Some(l) = post.line_numbers {
+                    *k = if *k > l.max - l.step { l.start } else { *k + l.step };
+                }
+                numbered
+            }
+            _ => line,
+        };
+        if let Some(max) = post.max_line_length {
+            if line.chars().count() > max {
+                line = fit(&line, max).ok_or_else(|| Error::Input(format!("the line {line:?} is longer than the post's maxLineLength ({max})")))?;
+            }
+        }
+        out.push_str(&line);
+        out.push('\n');
+    }
+    Ok(out)
+}
+
+/// A line shortened to `max` characters: its comment cut, then its spaces dropped.
+fn fit(line: &str, max: usize) -> Option<String> {
+    let (code, note) = match line.find(['(', ';']) {
+        Some(k) => (&line[..k], &line[k..]),
+        None => (line, ""),
+    };
+    let code = if code.trim_end().chars().count() > max { code.replace(' ', "") } else { code.to_owned() };
+    let room = max.checked_sub(code.chars().count())?;
+    if note.is_empty() {
+        return Some(code);
+    }
+    let note = if note.starts_with('(') {
+        // Keep the parenthesis that closes it.
+        if room < 2 {
+            String::new()
+        } else {
+            let inner: String = note[1..note.len() - 1].chars().take(room - 2).collect();
+            format!("({inner})")
+        }
+    } else {
+        note.chars().take(room).collect()
+    };
+    Some(format!("{code}{note}").trim_end().to_owned())
 }
 
 /// Comments may not hold parentheses (they would end the comment early).
@@ -146,32 +333,62 @@ pub(crate) fn comment(text: &str) -> String {
     text.chars().map(|c| if c == '(' || c == ')' { '-' } else { c }).filter(|c| !c.is_control()).collect()
 }
 
-struct Writer {
-    out: String,
+struct Writer<'a> {
+    post: &'a Post,
+    lines: Vec<String>,
     scale: f64,
     decimals: usize,
+    rapid_rate: f64,
     position: [Option<f64>; 3],
     /// The words last written for X, Y and Z.
     written: [Option<String>; 3],
     feed: Option<f64>,
     mode: Option<&'static str>,
+    coolant: bool,
+    /// Motion and dwell time so far.
+    seconds: f64,
 }
 
-impl Writer {
-    fn new(settings: &PostSettings) -> Writer {
+impl<'a> Writer<'a> {
+    fn new(settings: &PostSettings, post: &'a Post) -> Writer<'a> {
         let scale = 1.0 / settings.units.mm();
-        let decimals = settings.decimals.unwrap_or(match settings.units {
-            Units::Mm => 3,
-            Units::Inch => 4,
-        });
-        Writer { out: String::new(), scale, decimals, position: [None; 3], written: [None, None, None], feed: None, mode: None }
+        let decimals = settings.decimals_for(post);
+        Writer { post, lines: Vec::new(), scale, decimals, rapid_rate: settings.rapid_rate, position: [None; 3], written: [None, None, None], feed: None, mode: None, coolant: false, seconds: 0.0 }
     }
 
     /// A line that is not a motion: the next motion states its G word again.
     fn line(&mut self, text: &str) {
-        self.out.push_str(text);
-        self.out.push('\n');
+        if !text.trim().is_empty() {
+            self.lines.push(text.to_owned());
+        }
         self.mode = None;
+    }
+
+    fn comment(&mut self, text: &str) {
+        if let Some(c) = self.post.comment(text) {
+            self.lines.push(c);
+        }
+    }
+
+    fn coolant_on(&mut self, tool: Option<&Tool>) {
+        let word = match tool.map(|t| t.coolant) {
+            Some(Coolant::Flood) => self.post.coolant_flood.clone(),
+            Some(Coolant::Mist) => self.post.coolant_mist.clone(),
+            _ => None,
+        };
+        if let Some(word) = word {
+            self.line(&word);
+            self.coolant = true;
+        }
+    }
+
+    fn coolant_off(&mut self, _tool: Option<&Tool>) {
+        if self.coolant {
+            if let Some(word) = self.post.coolant_off.clone() {
+                self.line(&word);
+            }
+            self.coolant = false;
+        }
     }
 
     /// A number with at most `decimals` digits, without trailing zeros or a negative zero.
@@ -200,6 +417,9 @@ impl Writer {
     }
 
     fn rapid_z(&mut self, z: f64) {
+        if let Some(from) = self.position[2] {
+            self.seconds += (z - from).abs() / self.rapid_rate * 60.0;
+        }
         let text = format!("G0 Z{}", self.length(z));
         self.line(&text);
         self.mode = Some("G0");
@@ -207,8 +427,60 @@ impl Writer {
         self.written[2] = Some(self.length(z));
     }
 
+    fn at(&self) -> Option<DVec3> {
+        match self.position {
+            [Some(x), Some(y), Some(z)] => Some(DVec3::new(x, y, z)),
+            _ => None,
+        }
+    }
+
+    /// Writes a move as the post wants it: arcs as they are, split at the quadrants, or as
+    /// chords.
     fn motion(&mut self, m: &Move) {
+        let Move::Arc { to, center, clockwise, feed } = *m else { return self.emit(m) };
+        let Some(from) = self.at() else { return self.emit(m) };
+        let radius = (from.truncate() - center).length();
+        let sweep = arc_sweep(from, to, center, clockwise);
+        let a0 = (from.truncate() - center).to_angle();
+        let point = |angle: f64| {
+            let t = (angle - a0) / sweep;
+            (center + DVec2::from_angle(angle) * radius).extend(from.z + (to.z - from.z) * t)
+        };
+        let helix = to.z != from.z;
+        if self.post.arcs == ArcFormat::Off || (helix && !self.post.helix) {
+            let step = if radius > ARC_CHORD_ERROR { 2.0 * (1.0 - ARC_CHORD_ERROR / radius).acos() } else { std::f64::consts::PI };
+            let n = ((sweep.abs() / step).ceil() as usize).max(1);
+            for k in 1..n {
+                self.emit(&Move::Line { to: point(a0 + sweep * k as f64 / n as f64), feed });
+            }
+            return self.emit(&Move::Line { to, feed });
+        }
+        if self.post.arc_quadrants || self.post.arcs == ArcFormat::R {
+            let quarter = std::f64::consts::FRAC_PI_2;
+            let end = a0 + sweep;
+            // The quadrant boundaries strictly inside the sweep (a hair's margin at the ends).
+            let mut k = if sweep > 0.0 { (a0 / quarter).floor() + 1.0 } else { (a0 / quarter).ceil() - 1.0 };
+            let margin = 1e-7;
+            while (sweep > 0.0 && k * quarter < end - margin) || (sweep < 0.0 && k * quarter > end + margin) {
+                let angle = k * quarter;
+                if (angle - a0).abs() > margin {
+                    self.emit(&Move::Arc { to: point(angle), center, clockwise, feed });
+                }
+                k += sweep.signum();
+            }
+        }
+        self.emit(m)
+    }
+
+    fn emit(&mut self, m: &Move) {
         let to = m.to();
+        if let Some(from) = self.at() {
+            let length = m.length(from);
+            self.seconds += match *m {
+                Move::Rapid { .. } => length / self.rapid_rate,
+                Move::Line { feed, .. } | Move::Arc { feed, .. } => length / feed,
+            } * 60.0;
+        }
         let (code, feed) = match *m {
             Move::Rapid { .. } => ("G0", None),
             Move::Line { feed, .. } => ("G1", Some(feed)),
@@ -223,9 +495,10 @@ impl Writer {
             && !(self.position[0] == Some(to.x) && self.position[1] == Some(to.y));
         let code = if short_arc { "G1" } else { code };
         let is_arc = matches!(m, Move::Arc { .. }) && !short_arc;
+        let modal = self.post.modal;
         let mut words = String::new();
         let mut moved = false;
-        if self.mode != Some(code) || is_arc {
+        if self.mode != Some(code) || is_arc || !modal {
             words.push_str(code);
         }
         for (axis, (name, value)) in [("X", to.x), ("Y", to.y), ("Z", to.z)].into_iter().enumerate() {
@@ -233,22 +506,26 @@ impl Writer {
             // `PostSettings::resolution`), and rounding Z down would lower it.
             let text = if axis == 2 && feed.is_some() && !is_arc { self.length_up(value) } else { self.length(value) };
             let changed = self.written[axis].as_deref() != Some(text.as_str());
-            if changed || (is_arc && axis < 2) {
+            moved |= changed;
+            if changed || (is_arc && axis < 2) || !modal {
                 words.push_str(&format!(" {name}{text}"));
-                moved = true;
                 self.written[axis] = Some(text);
             }
         }
-        if !moved {
+        if !moved && !(is_arc && self.position[0] == Some(to.x) && self.position[1] == Some(to.y)) {
             return; // no motion at the program's resolution
         }
         if let (Move::Arc { center, .. }, true) = (*m, is_arc) {
             let from = DVec3::new(self.position[0].unwrap_or(to.x), self.position[1].unwrap_or(to.y), 0.0);
-            let _ = write!(words, " I{} J{}", self.length(center.x - from.x), self.length(center.y - from.y));
+            if self.post.arcs == ArcFormat::R {
+                let _ = write!(words, " R{}", self.length((from.truncate() - center).length()));
+            } else {
+                let _ = write!(words, " I{} J{}", self.length(center.x - from.x), self.length(center.y - from.y));
+            }
         }
         if let Some(feed) = feed {
-            if self.feed != Some(feed) {
-                let _ = write!(words, " F{}", self.number(feed * self.scale, 1));
+            if self.feed != Some(feed) || !modal {
+                let _ = write!(words, " F{}", self.number(feed * self.scale, self.post.feed_decimals));
                 self.feed = Some(feed);
             }
         }

@@ -173,7 +173,7 @@ fn center_from_radius(from: DVec3, to: DVec3, r: f64, clockwise: bool) -> Result
 }
 
 /// The words of a line, comments removed.
-fn words(line: &str) -> Result<Vec<(char, f64)>, String> {
+pub(crate) fn words(line: &str) -> Result<Vec<(char, f64)>, String> {
     let mut out = Vec::new();
     let mut chars = line.trim().chars().peekable();
     if chars.peek() == Some(&'%') {

@@ -1,0 +1,308 @@
+//! A post-processor as data: what one controller accepts, as a JSON object the writer
+//! ([`super::write_gcode`]) follows. The built-in posts are such files (`src/post/builtin/`),
+//! and users load their own the same way; a post with an unknown field or an impossible
+//! setting is refused with the field's name.
+//!
+//! Templates are G-code lines with placeholders in braces: `{tool}`, `{rpm}`, `{seconds}`,
+//! `{millis}`, `{title}`, `{program}`, `{version}`, each allowed where it has a value.
+
+use serde::{Deserialize, Serialize};
+
+/// How comments are written.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub enum CommentStyle {
+    /// `(text)`.
+    #[default]
+    Parens,
+    /// `; text`.
+    Semicolon,
+    /// No comments at all.
+    None,
+}
+
+/// How arcs are written.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub enum ArcFormat {
+    /// G2/G3 with the centre as I and J, relative to the start (the program sets G91.1 where
+    /// the control could be in absolute mode).
+    #[default]
+    Ij,
+    /// G2/G3 with the radius R; arcs are split at the quadrants so that none needs a negative R
+    /// or is a full circle.
+    R,
+    /// No arcs: chords within [`ARC_CHORD_ERROR`].
+    Off,
+}
+
+/// The largest distance (mm) between an arc and the chords written instead of it, for a post
+/// without arcs (or without helices).
+pub const ARC_CHORD_ERROR: f64 = 0.0008;
+
+/// Line numbers (N words).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, rename_all = "camelCase")]
+pub struct LineNumbers {
+    pub start: u32,
+    pub step: u32,
+    /// The largest number the control reads; numbering starts again at `start` after it.
+    #[serde(default = "largest_line_number")]
+    pub max: u32,
+}
+
+fn largest_line_number() -> u32 {
+    99999
+}
+
+/// A post-processor. A field left out takes the generic post's value.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields, rename_all = "camelCase")]
+pub struct Post {
+    /// Shown in the page and written in the program's head.
+    pub name: String,
+    /// The file extension its controllers expect (`ngc`, `tap`, `nc`).
+    pub extension: String,
+    /// Lines before everything else (`%`, a program number `O{program} ({title})`).
+    pub header: Vec<String>,
+    /// Modal setup lines, written after the units word (G20/G21).
+    pub setup: Vec<String>,
+    /// The work offset to select (`G54` … `G59`), or none.
+    pub work_offset: Option<String>,
+    /// Lines that change the tool (`T{tool} M6`, `G43 H{tool}`). Empty: the control has no tool
+    /// changer, and the program stops the spindle, names the tool in a comment and pauses.
+    pub tool_change: Vec<String>,
+    /// The pause for a manual tool change (`M0`).
+    pub pause: String,
+    /// Starts the spindle clockwise (`S{rpm} M3`).
+    pub spindle_on: String,
+    pub spindle_off: String,
+    /// Coolant words (`M8`, `M7`, `M9`); a tool asking for one the post lacks is refused.
+    pub coolant_flood: Option<String>,
+    pub coolant_mist: Option<String>,
+    pub coolant_off: Option<String>,
+    /// A dwell (`G4 P{seconds}`; Fanuc `G4 P{millis}`).
+    pub dwell: Option<String>,
+    /// Seconds to wait after starting the spindle (0: none). Needs `dwell`.
+    pub spindle_dwell: f64,
+    pub comments: CommentStyle,
+    pub line_numbers: Option<LineNumbers>,
+    /// Digits after the point for lengths in millimetres and in inches, and for feeds.
+    pub decimals_mm: usize,
+    pub decimals_inch: usize,
+    pub feed_decimals: usize,
+    pub arcs: ArcFormat,
+    /// Split arcs where they cross a quadrant (0°, 90°, 180°, 270°), for controls that want
+    /// arcs of at most 90°.
+    pub arc_quadrants: bool,
+    /// Arcs may move Z (helices); without, a helix is written as chords.
+    pub helix: bool,
+    /// Leave out a motion word or coordinate that has not changed.
+    pub modal: bool,
+    /// The longest line the control reads (characters), or none. Comments are shortened to
+    /// fit; a motion that cannot fit is an error.
+    pub max_line_length: Option<usize>,
+    /// Lines after the program's last retract and spindle stop (`M2`, `M30`, `%`).
+    pub footer: Vec<String>,
+}
+
+impl Default for Post {
+    fn default() -> Self {
+        Post {
+            name: "custom".into(),
+            extension: "nc".into(),
+            header: Vec::new(),
+            setup: vec!["G90 G94 G17".into()],
+            work_offset: None,
+            tool_change: vec!["T{tool} M6".into()],
+            pause: "M0".into(),
+            spindle_on: "S{rpm} M3".into(),
+            spindle_off: "M5".into(),
+            coolant_flood: Some("M8".into()),
+            coolant_mist: Some("M7".into()),
+            coolant_off: Some("M9".into()),
+            dwell: Some("G4 P{seconds}".into()),
+            spindle_dwell: 0.0,
+            comments: CommentStyle::Parens,
+            line_numbers: None,
+            decimals_mm: 3,
+            decimals_inch: 4,
+            feed_decimals: 1,
+            arcs: ArcFormat::Ij,
+            arc_quadrants: false,
+            helix: true,
+            modal: true,
+            max_line_length: None,
+            footer: vec!["M30".into()],
+        }
+    }
+}
+
+/// The placeholders each template may use.
+const PROGRAM_WORDS: &[&str] = &["title", "program", "version"];
+const TOOL_WORDS: &[&str] = &["tool"];
+const SPINDLE_WORDS: &[&str] = &["rpm"];
+const DWELL_WORDS: &[&str] = &["seconds", "millis"];
+
+/// The shortest line limit a post may set: a helix with every word at full width.
+pub const MIN_LINE_LENGTH: usize = 48;
+
+impl Post {
+    /// Reads a post from JSON; errors name the field.
+    pub fn from_json(text: &str) -> Result<Post, String> {
+        let de = &mut serde_json::Deserializer::from_str(text);
+        let post: Post = serde_path_to_error::deserialize(de).map_err(|e| {
+            let path = e.path().to_string();
+            if path == "." { e.inner().to_string() } else { format!("{path}: {}", e.inner()) }
+        })?;
+        post.validate()?;
+        Ok(post)
+    }
+
+    /// Checks what serde cannot: placeholders, limits, words that need other words. Errors
+    /// name the field.
+    pub fn validate(&self) -> Result<(), String> {
+        if self.extension.is_empty() || self.extension.len() > 8 || !self.extension.chars().all(|c| c.is_ascii_alphanumeric()) {
+            return Err(format!("extension must be 1 to 8 letters or digits (got {:?})", self.extension));
+        }
+        let lists: [(&str, &[String], &[&str]); 5] = [
+            ("header", &self.header, PROGRAM_WORDS),
+            ("setup", &self.setup, &[]),
+            ("toolChange", &self.tool_change, TOOL_WORDS),
+            ("footer", &self.footer, &[]),
+            ("spindleOn", std::slice::from_ref(&self.spindle_on), SPINDLE_WORDS),
+        ];
+        for (field, lines, allowed) in lists {
+            for (k, line) in lines.iter().enumerate() {
+                check_template(line, allowed).map_err(|e| format!("{field}[{k}]: {e}"))?;
+            }
+        }
+        for (field, line, allowed) in [
+            ("workOffset", &self.work_offset, &[][..]),
+            ("coolantFlood", &self.coolant_flood, &[]),
+            ("coolantMist", &self.coolant_mist, &[]),
+            ("coolantOff", &self.coolant_off, &[]),
+            ("dwell", &self.dwell, DWELL_WORDS),
+        ] {
+            if let Some(line) = line {
+                check_template(line, allowed).map_err(|e| format!("{field}: {e}"))?;
+            }
+        }
+        for (field, line) in [("spindleOff", &self.spindle_off), ("pause", &self.pause)] {
+            check_template(line, &[]).map_err(|e| format!("{field}: {e}"))?;
+        }
+        if let Some(w) = &self.work_offset {
+            let ok = w.strip_prefix('G').and_then(|n| n.parse::<f64>().ok()).is_some_and(|n| (54.0..=59.9).contains(&n));
+            if !ok {
+                return Err(format!("workOffset must be one of G54 to G59 (got {w:?})"));
+            }
+        }
+        if self.tool_change.is_empty() && self.pause.trim().is_empty() {
+            return Err("pause must be set when toolChange is empty (a manual tool change stops the program)".into());
+        }
+        if self.spindle_on.trim().is_empty() || self.spindle_off.trim().is_empty() {
+            return Err("spindleOn and spindleOff must be set".into());
+        }
+        if !(self.spindle_dwell >= 0.0 && self.spindle_dwell <= 600.0) {
+            return Err(format!("spindleDwell must be 0 to 600 seconds (got {})", self.spindle_dwell));
+        }
+        if self.spindle_dwell > 0.0 && self.dwell.is_none() {
+            return Err("spindleDwell needs a dwell word (dwell)".into());
+        }
+        if !(1..=6).contains(&self.decimals_mm) {
+            return Err(format!("decimalsMm must be 1 to 6 (got {})", self.decimals_mm));
+        }
+        if !(2..=6).contains(&self.decimals_inch) {
+            return Err(format!("decimalsInch must be 2 to 6 (got {})", self.decimals_inch));
+        }
+        if self.feed_decimals > 3 {
+            return Err(format!("feedDecimals must be 0 to 3 (got {})", self.feed_decimals));
+        }
+        if let Some(n) = self.line_numbers {
+            if n.step == 0 {
+                return Err("lineNumbers.step must be at least 1".into());
+            }
+            if n.start > n.max || n.max - n.start < n.step {
+                return Err(format!("lineNumbers.max ({}) must leave room for more than one number from start ({}) by step ({})", n.max, n.start, n.step));
+            }
+        }
+        if let Some(max) = self.max_line_length {
+            if max < MIN_LINE_LENGTH {
+                return Err(format!("maxLineLength must be at least {MIN_LINE_LENGTH} characters, the width of a helical move (got {max})"));
+            }
+        }
+        Ok(())
+    }
+
+    /// The comment line for `text`, in the post's style (none for a post without comments).
+    pub fn comment(&self, text: &str) -> Option<String> {
+        let text = super::comment(text);
+        match self.comments {
+            CommentStyle::Parens => Some(format!("({text})")),
+            CommentStyle::Semicolon => Some(format!("; {text}")),
+            CommentStyle::None => None,
+        }
+    }
+}
+
+/// A template's placeholders are among `allowed`, its braces closed, and it is one line.
+fn check_template(line: &str, allowed: &[&str]) -> Result<(), String> {
+    if line.contains(['\n', '\r']) {
+        return Err("a template is one line".into());
+    }
+    let mut rest = line;
+    while let Some(open) = rest.find('{') {
+        let Some(close) = rest[open..].find('}') else { return Err(format!("unclosed brace in {line:?}")) };
+        let name = &rest[open + 1..open + close];
+        if !allowed.contains(&name) {
+            let known = if allowed.is_empty() { "none here".to_owned() } else { allowed.iter().map(|a| format!("{{{a}}}")).collect::<Vec<_>>().join(", ") };
+            return Err(format!("unknown placeholder {{{name}}} in {line:?} (known: {known})"));
+        }
+        rest = &rest[open + close + 1..];
+    }
+    if rest.contains('}') {
+        return Err(format!("unopened brace in {line:?}"));
+    }
+    Ok(())
+}
+
+/// Fills a template's placeholders.
+pub(crate) fn fill(template: &str, values: &[(&str, String)]) -> String {
+    let mut out = template.to_owned();
+    for (name, value) in values {
+        out = out.replace(&format!("{{{name}}}"), value);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bad_posts_are_refused_naming_the_field() {
+        for (json, needle) in [
+            (r#"{"speed": 3}"#, "unknown field `speed`"),
+            (r#"{"toolChange": ["T{tol} M6"]}"#, "toolChange[0]: unknown placeholder {tol}"),
+            (r#"{"spindleOn": "S{rpm M3"}"#, "unclosed brace"),
+            (r#"{"maxLineLength": 20}"#, "maxLineLength must be at least"),
+            (r#"{"decimalsMm": 0}"#, "decimalsMm"),
+            (r#"{"toolChange": [], "pause": ""}"#, "pause must be set"),
+            (r#"{"spindleDwell": 2, "dwell": null}"#, "needs a dwell"),
+            (r#"{"workOffset": "G92"}"#, "G54 to G59"),
+            (r#"{"arcs": "spline"}"#, "arcs"),
+            (r#"{"lineNumbers": {"start": 1}}"#, "step"),
+            (r#"{"extension": "n c"}"#, "extension"),
+        ] {
+            let e = Post::from_json(json).unwrap_err();
+            assert!(e.contains(needle), "{json}: {e}");
+        }
+        assert!(Post::from_json("{}").is_ok());
+    }
+
+    #[test]
+    fn templates_fill() {
+        assert_eq!(fill("T{tool} M6", &[("tool", "3".into())]), "T3 M6");
+        assert_eq!(fill("G4 P{millis}", &[("seconds", "2".into()), ("millis", "2000".into())]), "G4 P2000");
+    }
+}
