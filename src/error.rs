@@ -19,6 +19,9 @@ pub enum Error {
     /// (`operations[1].stepover must be a positive number`).
     #[error("invalid job file: {0}")]
     Input(String),
+    /// A project file that does not fit (its job's errors are named under `job.`).
+    #[error("invalid project file: {0}")]
+    Project(String),
     /// An operation that cannot be done on this part or drawing: a tool that does not fit, an
     /// empty region, a 3D operation on a drawing.
     #[error("{operation}: {why}")]
@@ -56,7 +59,7 @@ impl Error {
 
     pub fn kind(&self) -> ErrorKind {
         match self {
-            Error::Import(_) | Error::Program(_) | Error::Input(_) => ErrorKind::Input,
+            Error::Import(_) | Error::Program(_) | Error::Input(_) | Error::Project(_) => ErrorKind::Input,
             Error::Operation { .. } | Error::Nothing(_) | Error::Unsafe(_) => ErrorKind::Operation,
             Error::Internal(_) => ErrorKind::Internal,
             Error::Cancelled => ErrorKind::Cancelled,

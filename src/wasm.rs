@@ -75,6 +75,30 @@ pub fn read_post(text: &str) -> Result<JsValue, JsError> {
     to_js(&post)
 }
 
+/// A project file (`.swarf.json`) of `job` with the part or drawing in `bytes` embedded.
+#[wasm_bindgen(js_name = writeProject)]
+pub fn write_project(job: JsValue, name: &str, bytes: &[u8]) -> Result<String, JsError> {
+    let job: Job = serde_wasm_bindgen::from_value(job).map_err(|e| js_error(format!("invalid job: {e}")))?;
+    Ok(crate::job::project::Project::embedded(job, name, bytes).to_json())
+}
+
+/// Reads a project file: `{job, name, bytes}` (`bytes` null when the project only names its
+/// part). Errors name the field.
+#[wasm_bindgen(js_name = readProject)]
+pub fn read_project(text: &str) -> Result<JsValue, JsError> {
+    let project = crate::job::project::Project::from_json(text).map_err(js_error)?;
+    let bytes = match project.workpiece.data {
+        Some(_) => JsValue::from(js_sys::Uint8Array::from(&project.workpiece_bytes(|_| unreachable!("embedded")).map_err(js_error)?[..])),
+        None => JsValue::NULL,
+    };
+    let out = js_sys::Object::new();
+    let set = |k: &str, v: &JsValue| js_sys::Reflect::set(&out, &JsValue::from_str(k), v).map(|_| ()).map_err(|_| js_error("cannot build the project object"));
+    set("job", &to_js(&project.job)?)?;
+    set("name", &JsValue::from_str(&project.workpiece.name))?;
+    set("bytes", &bytes)?;
+    Ok(out.into())
+}
+
 #[wasm_bindgen(js_name = samplePart)]
 pub fn sample_part() -> Vec<u8> {
     sample::demo_part().to_binary_stl()

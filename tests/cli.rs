@@ -195,3 +195,46 @@ fn output_into_a_closed_pipe_ends_quietly() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(!stderr.contains("panicked"), "{stderr}");
 }
+
+#[test]
+fn a_project_file_holds_the_job_and_the_part_and_runs_as_they_do() {
+    let dir = temp("project");
+    let stl = dir.join("part.stl");
+    std::fs::write(&stl, swarf::mesh::sample::demo_part().to_binary_stl()).unwrap();
+    let mut job = swarf::job::Job::default();
+    if let swarf::job::Operation::FinishRaster(r) = &mut job.operations[0] {
+        r.stepover = 3.0;
+    }
+    job.post.dialect = swarf::post::Dialect::Mach3;
+    let job_file = dir.join("job.json");
+    std::fs::write(&job_file, serde_json::to_string(&job).unwrap()).unwrap();
+    let s = |p: &std::path::Path| p.to_str().unwrap().to_owned();
+    // The job and the part, run as they are: the program takes the post's extension.
+    let out = swarf(&["run", &s(&job_file), &s(&stl), "-q"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let direct = std::fs::read_to_string(dir.join("part.tap")).unwrap();
+    // Embedded: the project alone makes the same program, named after the project.
+    let project = dir.join("mould.swarf.json");
+    let out = swarf(&["project", &s(&job_file), &s(&stl), "-o", &s(&project)]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = swarf(&["run", &s(&project), "-q"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert_eq!(std::fs::read_to_string(dir.join("mould.tap")).unwrap(), direct);
+    // Referenced: the part is found beside the project, wherever the command runs from.
+    let named = dir.join("named.swarf.json");
+    let out = swarf(&["project", &s(&job_file), &s(&stl), "-o", &s(&named), "--reference"]);
+    assert!(out.status.success());
+    assert!(std::fs::metadata(&named).unwrap().len() < 20_000, "the part is not embedded");
+    let out = Command::new(env!("CARGO_BIN_EXE_swarf")).current_dir(std::env::temp_dir()).args(["run", &s(&named), "-o", &s(&dir.join("named.tap")), "-q"]).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert_eq!(std::fs::read_to_string(dir.join("named.tap")).unwrap(), direct);
+    // A misspelt field is named with its place; a job file alone asks for its part.
+    let mut v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&project).unwrap()).unwrap();
+    v["job"]["stock"]["marginXY"] = 3.into();
+    std::fs::write(&project, v.to_string()).unwrap();
+    let out = swarf(&["run", &s(&project), "-q"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success() && err.contains("invalid project file: job.unknown field: stock.marginXY (did you mean marginXy?)"), "{err}");
+    let out = swarf(&["run", &s(&job_file), "-q"]);
+    assert!(!out.status.success() && String::from_utf8_lossy(&out.stderr).contains("a job file needs a part"));
+}

@@ -481,7 +481,7 @@ fn path_spans(paths: &[Toolpath], clearance: f64) -> Vec<Span> {
     let mut out = Vec::new();
     let mut at: Option<DVec3> = None;
     let mut tool = None;
-    let mut push = |out: &mut Vec<Span>, at: &mut Option<DVec3>, to: DVec3, arc| {
+    let push = |out: &mut Vec<Span>, at: &mut Option<DVec3>, to: DVec3, arc| {
         if let Some(from) = *at {
             out.push(Span { from, to, arc });
         }
@@ -596,4 +596,32 @@ fn every_built_in_post_reproduces_the_paths_in_linuxcnc_and_grbl_reads_its_own()
         // Every built-in post is data that reads back as itself.
         assert_eq!(Post::from_json(&serde_json::to_string(&post).unwrap()).unwrap(), post);
     }
+}
+
+#[test]
+fn swarf_verify_reads_every_built_in_post_back_and_grbl_programs_must_be_grbl_s() {
+    use swarf::post::write_gcode;
+    let tools = vec![Tool { number: 1, cutter: Cutter::ball(6.0), ..Tool::default() }];
+    let job = Job { tools: tools.clone(), operations: vec![Operation::FinishRaster(FinishRaster { stepover: 3.0, grid: 0.5, ..FinishRaster::default() })], ..Job::default() };
+    let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
+    let reference = out.verification.as_ref().unwrap().report.clone();
+    for dialect in Dialect::ALL {
+        let mut job = job.clone();
+        job.post.dialect = dialect;
+        let gcode = write_gcode(&job.name, &out.paths, &tools, out.clearance_z, &job.post).unwrap();
+        let v = job::verify_gcode(&job, demo_part(), &gcode, None, &mut Progress::none()).unwrap_or_else(|e| panic!("{dialect:?}: {e}"));
+        assert!(v.report.is_clean(), "{dialect:?}: {}", v.report.describe());
+        // The same cut as the job's own simulation, within a cell's rounding.
+        let (a, b) = (v.report.removed, reference.removed);
+        assert!((a - b).abs() <= 0.002 * b, "{dialect:?}: {a} mm³ removed against {b}");
+    }
+    // A LinuxCNC program is no GRBL program: its tool change is named.
+    let mut grbl = job.clone();
+    grbl.post.dialect = Dialect::Grbl;
+    let linuxcnc = write_gcode(&job.name, &out.paths, &tools, out.clearance_z, &job.post).unwrap();
+    let e = match job::verify_gcode(&grbl, demo_part(), &linuxcnc, None, &mut Progress::none()) {
+        Ok(_) => panic!("a LinuxCNC program passed as a GRBL one"),
+        Err(e) => e.to_string(),
+    };
+    assert!(e.contains("M6 is not a command GRBL 1.1"), "{e}");
 }

@@ -458,29 +458,63 @@ function saveJob() {
 // misspelt or unknown field is named, and then nothing changes.
 async function loadJob(file) {
   try {
-    const { job: read } = await call({ type: 'readJob', text: await file.text() });
-    if (!read.operations.length) throw new Error('the job has no operations');
-    for (const op of read.operations) {
-      const missing = (op.kind === 'roughOctree' ? op.tools : [op.tool]).find((n) => !read.tools.some((t) => t.number === n));
-      if (missing != null) throw new Error(`operation '${op.name}' uses tool ${missing}, which the job file does not have`);
-    }
-    const kind = read.operations.every(is2d) ? 'drawing' : 'part';
-    for (const t of read.tools) {
-      const k = state.tools.findIndex((u) => u.number === t.number);
-      if (k >= 0) state.tools[k] = t; else state.tools.push(t);
-    }
-    delete read.tools;
-    state.jobs[kind] = read;
-    state.selected[kind] = 0;
-    store();
-    if (kind !== state.kind) {
-      const sample = kind === 'drawing' ? [state.sampleDrawing, 'sample.dxf', 'sample drawing'] : [state.sample, 'sample.stl', 'sample part'];
-      await showPart(...sample);
-    } else {
-      fillAll();
-      await showPart();
-    }
+    const text = await file.text();
+    if (/"format"\s*:\s*"swarf project"/.test(text)) return await openProject(file, text);
+    const { job: read } = await call({ type: 'readJob', text });
+    await applyJob(read);
     showInfo(`Loaded the job from ${file.name}: ${read.operations.length} operation(s).`);
+  } catch (e) {
+    showError(`${file.name}: ${e.message}`);
+  }
+}
+
+// A job read by the core takes the place of the page's: its tools join the library (replacing
+// those of the same number); `part` ({bytes, name}) is shown instead of the sample.
+async function applyJob(read, part = null) {
+  if (!read.operations.length) throw new Error('the job has no operations');
+  for (const op of read.operations) {
+    const missing = (op.kind === 'roughOctree' ? op.tools : [op.tool]).find((n) => !read.tools.some((t) => t.number === n));
+    if (missing != null) throw new Error(`operation '${op.name}' uses tool ${missing}, which the job file does not have`);
+  }
+  const kind = read.operations.every(is2d) ? 'drawing' : 'part';
+  for (const t of read.tools) {
+    const k = state.tools.findIndex((u) => u.number === t.number);
+    if (k >= 0) state.tools[k] = t; else state.tools.push(t);
+  }
+  delete read.tools;
+  state.jobs[kind] = read;
+  state.selected[kind] = 0;
+  store();
+  if (part) {
+    setKind(kind);
+    fillAll();
+    await showPart(part.bytes, part.name, part.name);
+  } else if (kind !== state.kind) {
+    const sample = kind === 'drawing' ? [state.sampleDrawing, 'sample.dxf', 'sample drawing'] : [state.sample, 'sample.stl', 'sample part'];
+    await showPart(...sample);
+  } else {
+    fillAll();
+    await showPart();
+  }
+}
+
+// ---- projects ----------------------------------------------------------------------------
+// A project file holds the job and the part or drawing (embedded), for the page and for
+// `swarf run project.swarf.json`.
+async function saveProject() {
+  let j;
+  try { j = buildJob(); } catch (e) { showError(e.message); return; }
+  const { text } = await call({ type: 'writeProject', job: j, name: state.name, bytes: state.bytes });
+  downloadText(`${state.name.replace(/\.[^.]*$/, '')}.swarf.json`, text, 'application/json');
+}
+
+async function openProject(file, text) {
+  try {
+    const { project } = await call({ type: 'readProject', text: text ?? await file.text() });
+    await applyJob(project.job, project.bytes ? { bytes: project.bytes, name: project.name } : null);
+    showInfo(project.bytes
+      ? `Opened the project ${file.name}: ${project.name}, ${project.job.operations.length} operation(s).`
+      : `Opened the project ${file.name}; it names its part ${project.name} without holding it: open that file.`);
   } catch (e) {
     showError(`${file.name}: ${e.message}`);
   }
@@ -738,6 +772,8 @@ new ResizeObserver(() => { sim.buckets = null; drawMrr(); }).observe($('mrr'));
 $('cancel').addEventListener('click', cancel);
 $('download').addEventListener('click', download);
 $('save-job').addEventListener('click', saveJob);
+$('save-project').addEventListener('click', saveProject);
+$('open-project').addEventListener('change', (e) => { if (e.target.files[0]) openProject(e.target.files[0]); e.target.value = ''; });
 $('save-post').addEventListener('click', savePost);
 $('load-post').addEventListener('change', (e) => { if (e.target.files[0]) loadPost(e.target.files[0]); e.target.value = ''; });
 $('load-job').addEventListener('change', (e) => { if (e.target.files[0]) loadJob(e.target.files[0]); e.target.value = ''; });

@@ -1,5 +1,5 @@
 // Runs the wasm pipeline off the page's thread. Cancel = the page terminates this worker.
-import init, { defaults, builtinPosts, readPost, readJob, samplePart, sampleDrawing, loadPart, loadDrawing, isDrawing, runJob } from './pkg/swarf.js';
+import init, { defaults, builtinPosts, readPost, readJob, writeProject, readProject, samplePart, sampleDrawing, loadPart, loadDrawing, isDrawing, runJob } from './pkg/swarf.js';
 
 const ready = init();
 // The last job's result stays here so the page can scrub through its simulation.
@@ -25,6 +25,10 @@ self.onmessage = async (event) => {
       self.postMessage({ id, ok: true, defaults: defaults(), posts: builtinPosts(), sample: samplePart(), sampleDrawing: sampleDrawing() });
     } else if (type === 'readPost') {
       self.postMessage({ id, ok: true, post: readPost(event.data.text) });
+    } else if (type === 'writeProject') {
+      self.postMessage({ id, ok: true, text: writeProject(event.data.job, event.data.name, event.data.bytes) });
+    } else if (type === 'readProject') {
+      self.postMessage({ id, ok: true, project: readProject(event.data.text) });
     } else if (type === 'readJob') {
       self.postMessage({ id, ok: true, job: readJob(event.data.text) });
     } else if (type === 'load') {

@@ -10,6 +10,7 @@
 pub mod bench;
 pub mod drawing;
 pub mod operation;
+pub mod project;
 pub mod report;
 
 use serde::{Deserialize, Serialize};
@@ -388,7 +389,12 @@ impl Job {
     /// version 1; one from a newer swarf is refused.
     pub fn from_json(text: &str) -> Result<Job> {
         let value: serde_json::Value = serde_json::from_str(text).map_err(|e| Error::Input(format!("the job file is not JSON: {e}")))?;
-        let job: Job = serde_path_to_error::deserialize(&value).map_err(|e| {
+        Job::from_value(&value)
+    }
+
+    /// As [`Job::from_json`], from JSON already read.
+    pub fn from_value(value: &serde_json::Value) -> Result<Job> {
+        let job: Job = serde_path_to_error::deserialize(value).map_err(|e| {
             let path = e.path().to_string();
             // An operation is read whole (its `kind` picks the type), so the path stops at it:
             // read it again as its kind's type to name the field.
@@ -407,7 +413,7 @@ impl Job {
         }
         let canonical = serde_json::to_value(&job).map_err(|e| Error::Input(e.to_string()))?;
         let mut unknown = Vec::new();
-        unknown_fields(&value, &canonical, "", &mut unknown);
+        unknown_fields(value, &canonical, "", &mut unknown);
         if !unknown.is_empty() {
             return Err(Error::Input(format!("unknown field{}: {}", if unknown.len() == 1 { "" } else { "s" }, unknown.join("; "))));
         }
@@ -511,10 +517,23 @@ impl Job {
 
 /// Verifies a G-code program (swarf's or another's) against a job's part, stock and tools:
 /// the part is placed as the job says, the program read with [`crate::post::read::read_gcode`]
+/// (after GRBL's word-set check, [`crate::post::grbl::check`], when the job's post is GRBL's)
 /// (the job's first tool until the program picks one), and `cell` overrides the job's cell size.
 pub fn verify_gcode(job: &Job, mut part: Mesh, gcode: &str, cell: Option<f64>, progress: &mut Progress) -> Result<Verification> {
     job.validate()?;
     let stock = job.place(&mut part);
+    // A program for GRBL must first be one GRBL reads.
+    if job.post.custom.is_none() {
+        use crate::post::{grbl, Dialect};
+        let flavour = match job.post.dialect {
+            Dialect::Grbl => Some(grbl::Flavour::Grbl11),
+            Dialect::GrblHal => Some(grbl::Flavour::GrblHal),
+            _ => None,
+        };
+        if let Some(flavour) = flavour {
+            grbl::check(gcode, flavour)?;
+        }
+    }
     let first_tool = job.tools.first().map_or(1, |t| t.number);
     let paths = crate::post::read::read_gcode(gcode, first_tool)?;
     let moves = program_moves(&paths, &job.tools, job.post.rapid_rate)?;

@@ -699,3 +699,50 @@ test('every built-in post writes the program again without planning again, rs274
   assert.deepEqual(errors, []);
   await context.close();
 });
+
+test('a project saved from the page holds the job and the part: the command line runs it to the page\'s program, and opening it brings back part and settings', async () => {
+  const { page, context, errors } = await openPage();
+  // A part of the user's own (a box), a raster operation with settings of its own.
+  await page.setInputFiles('#file', { name: 'block.stl', mimeType: 'model/stl', buffer: boxStl([40, 30, 12]) });
+  await page.waitForFunction(() => /block\.stl/.test(document.getElementById('part-name').textContent));
+  await onlyRaster(page);
+  await page.fill('input[name=stepover]', '3');
+  await page.selectOption('select[name=dialect]', 'fanuc');
+  await page.click('#generate');
+  await generated(page);
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-project-'));
+  const [program] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
+  const fromPage = path.join(dir, 'page.nc');
+  await program.saveAs(fromPage);
+  const [saved] = await Promise.all([page.waitForEvent('download'), page.click('#save-project')]);
+  assert.equal(saved.suggestedFilename(), 'block.swarf.json');
+  const projectFile = path.join(dir, saved.suggestedFilename());
+  await saved.saveAs(projectFile);
+  const project = JSON.parse(fs.readFileSync(projectFile, 'utf8'));
+  assert.equal(project.format, 'swarf project');
+  assert.equal(project.workpiece.name, 'block.stl');
+  assert.equal(project.job.operations[0].stepover, 3);
+  const cli = path.resolve(root, '../target/debug/swarf');
+  assert.ok(fs.existsSync(cli), `the swarf command line is not built at ${cli}`);
+  execFileSync(cli, ['run', projectFile, '-q']);
+  assert.equal(fs.readFileSync(path.join(dir, 'block.nc'), 'utf8'), fs.readFileSync(fromPage, 'utf8'));
+  // Elsewhere in the page: the sample, other settings. Opening the project brings all back.
+  await page.click('#use-sample');
+  await page.waitForFunction(() => /sample part/.test(document.getElementById('part-name').textContent));
+  await page.fill('input[name=stepover]', '7');
+  await page.selectOption('select[name=dialect]', 'linuxCnc');
+  await page.setInputFiles('#open-project', projectFile);
+  await page.waitForFunction(() => /Opened the project/.test(document.getElementById('message').textContent));
+  assert.match(await page.textContent('#part-name'), /block\.stl/);
+  assert.equal(await page.inputValue('input[name=stepover]'), '3');
+  assert.equal(await page.inputValue('select[name=dialect]'), 'fanuc');
+  assert.match(await page.textContent('#stats'), /size 40\.0 × 30\.0 × 12\.0 mm/);
+  // A project with a field it does not know is named, and the page keeps what it has.
+  const bad = path.join(dir, 'bad.swarf.json');
+  fs.writeFileSync(bad, JSON.stringify({ ...project, notes: 'x' }));
+  await page.setInputFiles('#open-project', bad);
+  await page.waitForFunction(() => /unknown field: notes/.test(document.getElementById('message').textContent));
+  assert.equal(await page.inputValue('input[name=stepover]'), '3');
+  assert.deepEqual(errors, []);
+  await context.close();
+});

@@ -8,6 +8,7 @@ use std::time::Instant;
 use clap::{Parser, Subcommand, ValueEnum};
 use swarf::cutter::{Cutter, Shape};
 use swarf::geom::Tolerances;
+use swarf::job::project::Project;
 use swarf::job::{self, Job};
 use swarf::job::Workpiece;
 use swarf::mesh::import::read_mesh_auto;
@@ -27,13 +28,15 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Run a job file on a part and write G-code.
+    /// Run a job file on a part, or a project file (`.swarf.json`, the part inside or beside
+    /// it), and write G-code.
     Run {
-        /// Job (JSON), as saved by the page or printed by `swarf job`.
+        /// Job (JSON), as saved by the page or printed by `swarf job`; or a project.
         job: PathBuf,
-        /// The part (STL, glTF/GLB, OBJ) or drawing (DXF, SVG).
-        part: PathBuf,
-        /// Where to write the G-code (default: the part's name with .ngc).
+        /// The part (STL, glTF/GLB, OBJ) or drawing (DXF, SVG); for a project, instead of its own.
+        part: Option<PathBuf>,
+        /// Where to write the G-code (default: the part's or project's name with the extension
+        /// the post names: .ngc, .nc, .tap).
         #[arg(short, long)]
         output: Option<PathBuf>,
         /// Print no progress.
@@ -44,6 +47,20 @@ enum Command {
         /// such a program is not written and the command fails.
         #[arg(long)]
         write_anyway: bool,
+    },
+    /// Make a project file (`.swarf.json`) of a job and its part or drawing, to open in the
+    /// page or run with `swarf run`.
+    Project {
+        /// Job (JSON).
+        job: PathBuf,
+        /// The part or drawing.
+        part: PathBuf,
+        /// Where to write the project (default: the part's name with .swarf.json).
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        /// Name the part instead of embedding it (it must then stay beside the project).
+        #[arg(long)]
+        reference: bool,
     },
     /// Make the built-in sample part, its job and its G-code in a folder.
     Demo {
@@ -156,17 +173,41 @@ fn write(path: &Path, bytes: &[u8]) -> Result<(), String> {
 
 fn run(cli: Cli) -> Result<(), String> {
     match cli.command {
-        Command::Run { job, part, output, quiet, write_anyway } => {
-            let job = Job::from_json(&String::from_utf8_lossy(&read(&job)?)).map_err(|e| e.to_string())?;
-            let name = part.file_name().map(|n| n.to_string_lossy().into_owned());
-            let bytes = read(&part)?;
-            let workpiece: Workpiece = if is_drawing(name.as_deref(), &bytes) {
-                read_drawing(&bytes, name.as_deref(), &job.tolerances).map_err(|e| format!("{}: {e}", part.display()))?.into()
+        Command::Run { job: file, part, output, quiet, write_anyway } => {
+            let text = String::from_utf8_lossy(&read(&file)?).into_owned();
+            let (job, name, bytes, stem) = if Project::is_project(&text) {
+                let project = Project::from_json(&text).map_err(|e| format!("{}: {e}", file.display()))?;
+                let (name, bytes) = match &part {
+                    Some(part) => (part.file_name().map(|n| n.to_string_lossy().into_owned()), read(part)?),
+                    None => {
+                        let dir = file.parent().map(Path::to_path_buf).unwrap_or_default();
+                        (Some(project.workpiece.name.clone()), project.workpiece_bytes(|n| std::fs::read(dir.join(n))).map_err(|e| format!("{}: {e}", file.display()))?)
+                    }
+                };
+                let stem = file.to_string_lossy().trim_end_matches(".json").trim_end_matches(".swarf").to_owned();
+                (project.job, name, bytes, PathBuf::from(stem))
             } else {
-                read_mesh_auto(&bytes, name.as_deref(), &job.tolerances).map_err(|e| format!("{}: {e}", part.display()))?.into()
+                let job = Job::from_json(&text).map_err(|e| e.to_string())?;
+                let Some(part) = part else { return Err(format!("{}: a job file needs a part: swarf run job.json part.stl", file.display())) };
+                (job, part.file_name().map(|n| n.to_string_lossy().into_owned()), read(&part)?, part.with_extension(""))
             };
-            let output = output.unwrap_or_else(|| part.with_extension("ngc"));
+            let shown = name.clone().unwrap_or_default();
+            let workpiece: Workpiece = if is_drawing(name.as_deref(), &bytes) {
+                read_drawing(&bytes, name.as_deref(), &job.tolerances).map_err(|e| format!("{shown}: {e}"))?.into()
+            } else {
+                read_mesh_auto(&bytes, name.as_deref(), &job.tolerances).map_err(|e| format!("{shown}: {e}"))?.into()
+            };
+            let output = output.unwrap_or_else(|| stem.with_extension(job.post.extension()));
             run_job(&job, workpiece, &output, quiet, write_anyway)
+        }
+        Command::Project { job, part, output, reference } => {
+            let job = Job::from_json(&String::from_utf8_lossy(&read(&job)?)).map_err(|e| e.to_string())?;
+            let name = part.file_name().map(|n| n.to_string_lossy().into_owned()).ok_or_else(|| format!("{}: not a file", part.display()))?;
+            let project = if reference { Project::referencing(job, &name) } else { Project::embedded(job, &name, &read(&part)?) };
+            let output = output.unwrap_or_else(|| part.with_extension("swarf.json"));
+            write(&output, project.to_json().as_bytes())?;
+            println!("wrote {}", output.display());
+            Ok(())
         }
         Command::Demo { output } => {
             std::fs::create_dir_all(&output).map_err(|e| format!("cannot create {}: {e}", output.display()))?;
