@@ -5,7 +5,7 @@ mod common;
 use base64::Engine;
 use swarf::geom::{DVec3, Tolerances};
 use swarf::mesh::import::{read_mesh, read_mesh_auto, ImportError, MeshFormat};
-use swarf::mesh::placement::{PartSetup, Placement, UpAxis, Units};
+use swarf::mesh::placement::{PartSetup, Placement, UpAxis};
 use swarf::mesh::sample::demo_part;
 
 const TOL: Tolerances = Tolerances::DEFAULT;
@@ -181,7 +181,7 @@ fn obj_is_triangulated() {
 fn inches_and_y_up_are_converted_and_the_part_is_placed() {
     let text = ascii_stl(&[[[0., 0., 0.], [1., 0., 0.], [0., 2., 1.]]]);
     let mut mesh = read_mesh(text.as_bytes(), MeshFormat::Stl, &TOL).unwrap();
-    PartSetup { units: Units::Inch, up_axis: UpAxis::Y, placement: Placement::Keep }.apply(&mut mesh);
+    PartSetup { units: swarf::mesh::placement::PartUnits::Inch, up_axis: UpAxis::Y, placement: Placement::Keep, scale: 1.0 }.apply(&mut mesh);
     let b = mesh.bounds();
     // File Y (0..2 in) becomes Z (0..50.8 mm); file Z (0..1 in) becomes -Y.
     assert!((b.max.z - 50.8).abs() < 1e-9 && (b.min.y + 25.4).abs() < 1e-9 && (b.max.x - 25.4).abs() < 1e-9);
@@ -207,4 +207,51 @@ fn shared_real_parts_load() {
         let mesh = read_mesh_auto(&bytes, path.file_name().and_then(|n| n.to_str()), &TOL).unwrap_or_else(|e| panic!("{rel}: {e}"));
         assert_eq!(mesh.faces.len() + mesh.dropped_degenerate, *triangles, "{rel}");
     }
+}
+
+#[test]
+fn gltf_is_read_in_metres_unless_the_user_says_otherwise_and_any_part_takes_a_scale() {
+    use swarf::mesh::placement::{PartSetup, PartUnits, Placement};
+    let uri = format!("data:application/octet-stream;base64,{}", base64::engine::general_purpose::STANDARD.encode(triangle_bytes()));
+    let gltf = read_mesh_auto(gltf_json(&uri).as_bytes(), Some("t.gltf"), &TOL).unwrap();
+    assert!(gltf.in_metres);
+    let size = |setup: PartSetup, mut mesh: swarf::mesh::Mesh| {
+        setup.apply(&mut mesh);
+        assert!(!mesh.in_metres, "applied once");
+        mesh.bounds().size().x
+    };
+    let keep = PartSetup { placement: Placement::Keep, ..PartSetup::default() };
+    // A 1 m triangle by the specification: 1000 mm.
+    assert_eq!(size(keep, gltf.clone()), 1000.0);
+    assert_eq!(size(PartSetup { units: PartUnits::Mm, ..keep }, gltf.clone()), 1.0);
+    assert_eq!(size(PartSetup { units: PartUnits::Mm, scale: 2.5, ..keep }, gltf.clone()), 2.5);
+    // An STL says nothing: millimetres, or metres and a factor when the user says so.
+    let stl = read_mesh_auto(ascii_stl(&[[[0., 0., 0.], [1., 0., 0.], [0., 1., 0.]]]).as_bytes(), Some("t.stl"), &TOL).unwrap();
+    assert!(!stl.in_metres);
+    assert_eq!(size(keep, stl.clone()), 1.0);
+    assert_eq!(size(PartSetup { units: PartUnits::Metre, scale: 0.5, ..keep }, stl.clone()), 500.0);
+    assert_eq!(size(PartSetup { units: PartUnits::Inch, ..keep }, stl), 25.4);
+    // Job files name the units as users write them.
+    let setup: PartSetup = serde_json::from_str(r#"{"units": "m", "scale": 2}"#).unwrap();
+    assert_eq!((setup.units, setup.scale), (PartUnits::Metre, 2.0));
+}
+
+#[test]
+fn a_part_smaller_than_the_tool_is_named_in_a_warning_and_a_bad_scale_is_refused() {
+    use swarf::job::{self, Job};
+    use swarf::mesh::placement::PartUnits;
+    use swarf::progress::Progress;
+    // The sample part read as if its file were in metres and then scaled down a million
+    // times: 0.1 mm across, under the φ6 tool.
+    let mut job = Job::default();
+    job.part.units = PartUnits::Metre;
+    job.part.scale = 1e-6;
+    let warned = match job::run(&job, swarf::mesh::sample::demo_part(), &mut Progress::none()) {
+        Ok(out) => out.warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>().join("\n"),
+        Err(e) => e.to_string(),
+    };
+    assert!(warned.contains("smaller than the φ6 tool T1: is its unit right?"), "{warned}");
+    job.part.scale = 0.0;
+    let e = job::run(&job, swarf::mesh::sample::demo_part(), &mut Progress::none()).unwrap_err().to_string();
+    assert!(e.contains("part.scale must be a positive number"), "{e}");
 }

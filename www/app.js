@@ -784,7 +784,7 @@ form.addEventListener('input', (e) => { if (e.target.type !== 'checkbox' && e.ta
 form.addEventListener('change', (e) => {
   if (e.target.closest('#op-list')) return;
   onField(e.target);
-  if (['partUnits', 'upAxis', 'placement', 'drawingUnits', 'drawingOrigin', 'thickness'].includes(e.target.name)) showPart();
+  if (['partUnits', 'partScale', 'upAxis', 'placement', 'drawingUnits', 'drawingOrigin', 'thickness'].includes(e.target.name)) showPart();
 });
 $('tool-list').addEventListener('change', (e) => { state.selected.tool = Number(e.target.value); fillTools(); });
 $('tool-add').addEventListener('click', () => addTool(false));

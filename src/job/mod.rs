@@ -465,6 +465,7 @@ impl Job {
             }
         }
         self.post.validate(&self.tools).map_err(Error::Input)?;
+        positive("part.scale".into(), self.part.scale)?;
         self.stock.validate()?;
         for (i, op) in self.operations.iter().enumerate() {
             let o = op.op();
@@ -567,6 +568,11 @@ pub fn run(job: &Job, workpiece: impl Into<Workpiece>, progress: &mut Progress) 
         }
     }
     let mut ctx = job.context(workpiece)?;
+    if ctx.sheet.is_none() {
+        if let Some(w) = tool_larger_than_part(job, &ctx.part) {
+            warnings.push(w);
+        }
+    }
     let verify = job.simulation.verify;
     let enabled: Vec<usize> = (0..job.operations.len()).filter(|&k| job.operations[k].op().enabled()).collect();
     if enabled.is_empty() {
@@ -642,6 +648,21 @@ pub fn run(job: &Job, workpiece: impl Into<Workpiece>, progress: &mut Progress) 
     let drawing = sheet.map(|s| s.drawing);
     let (clearance_z, cache) = (heights.clearance, caches.counts);
     Ok(JobOutput { part, drawing, stock, clearance_z, paths, path_operations, gcode, cycle, stats, moves: all_moves, operations, verification, warnings, problem, cache, octants })
+}
+
+/// A warning when the smallest tool the job uses is wider than the placed part is in X or Y:
+/// most often a part read in the wrong unit (a glTF in metres read as millimetres is a thousand
+/// times too small).
+fn tool_larger_than_part(job: &Job, part: &Mesh) -> Option<Warning> {
+    let used: Vec<u32> = job.operations.iter().filter(|o| o.op().enabled()).flat_map(|o| o.op().tools()).collect();
+    let smallest = job.tools.iter().filter(|t| used.is_empty() || used.contains(&t.number)).min_by(|a, b| a.cutter.diameter.total_cmp(&b.cutter.diameter))?;
+    let size = part.bounds().size();
+    (smallest.cutter.diameter > size.x.min(size.y)).then(|| {
+        Warning::job(format!(
+            "the part is {:.2} × {:.2} × {:.2} mm, smaller than the φ{} tool T{}: is its unit right? (part.units: {:?}, part.scale: {})",
+            size.x, size.y, size.z, smallest.cutter.diameter, smallest.number, job.part.units, job.part.scale
+        ))
+    })
 }
 
 /// The moves of `paths[first..]`, timed on from the program's last move so far.

@@ -30,6 +30,9 @@ pub struct Mesh {
     pub faces: Vec<[u32; 3]>,
     /// Triangles dropped at import because their area was below the tolerance.
     pub dropped_degenerate: usize,
+    /// The file's format states its unit as metres (glTF, by its specification); others say
+    /// nothing and are taken as millimetres unless the user says otherwise.
+    pub in_metres: bool,
 }
 
 impl Mesh {

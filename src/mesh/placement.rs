@@ -47,22 +47,58 @@ pub enum Placement {
     Keep,
 }
 
-/// How to read a part's coordinates.
+/// The unit of a part file's coordinates.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub enum PartUnits {
+    /// As the format says: metres for glTF (its specification), millimetres for STL and OBJ
+    /// (which say nothing; millimetres is what CAD exports them in).
+    #[default]
+    Auto,
+    Mm,
+    Inch,
+    #[serde(rename = "m")]
+    Metre,
+}
+
+impl PartUnits {
+    /// Millimetres per unit of `mesh`'s file.
+    pub fn mm(self, mesh: &Mesh) -> f64 {
+        match self {
+            PartUnits::Auto if mesh.in_metres => 1000.0,
+            PartUnits::Auto | PartUnits::Mm => 1.0,
+            PartUnits::Inch => 25.4,
+            PartUnits::Metre => 1000.0,
+        }
+    }
+}
+
+/// How to read a part's coordinates.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, rename_all = "camelCase")]
 pub struct PartSetup {
-    /// Unit of the file's coordinates. Default value: mm.
-    pub units: Units,
+    /// Unit of the file's coordinates. Default value: auto (metres for glTF, else mm).
+    pub units: PartUnits,
+    /// A free factor on top of the unit (a model made at half size: 2). Default value: 1.
+    pub scale: f64,
     /// The file's up axis. Default value: Z.
     pub up_axis: UpAxis,
     /// Where the part goes. Default value: centerTop.
     pub placement: Placement,
 }
 
+impl Default for PartSetup {
+    fn default() -> Self {
+        PartSetup { units: PartUnits::Auto, scale: 1.0, up_axis: UpAxis::Z, placement: Placement::CenterTop }
+    }
+}
+
 impl PartSetup {
     /// Converts the mesh to millimetres with Z up and places it.
     pub fn apply(&self, mesh: &mut Mesh) {
-        let scale = self.units.mm();
+        let scale = self.units.mm(mesh) * self.scale;
+        // Applied once: the mesh is in millimetres from here on.
+        mesh.in_metres = false;
         let up = self.up_axis;
         mesh.transform(|v| {
             let v = v * scale;

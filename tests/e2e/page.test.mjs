@@ -746,3 +746,41 @@ test('a project saved from the page holds the job and the part: the command line
   assert.deepEqual(errors, []);
   await context.close();
 });
+
+// A box as a glTF file (its coordinates in the file's unit), one triangle list in a data URI.
+function boxGltf([x, y, z]) {
+  const stl = boxStl([x, y, z]);
+  const floats = [];
+  for (let f = 0; f < 12; f++) for (let k = 0; k < 9; k++) floats.push(stl.readFloatLE(84 + f * 50 + 12 + k * 4));
+  const bin = Buffer.from(new Float32Array(floats).buffer);
+  return Buffer.from(JSON.stringify({
+    asset: { version: '2.0' }, scene: 0, scenes: [{ nodes: [0] }], nodes: [{ mesh: 0 }],
+    meshes: [{ primitives: [{ attributes: { POSITION: 0 } }] }],
+    accessors: [{ bufferView: 0, componentType: 5126, count: 36, type: 'VEC3', min: [0, 0, 0], max: [x, y, z] }],
+    bufferViews: [{ buffer: 0, byteLength: bin.length }],
+    buffers: [{ byteLength: bin.length, uri: `data:application/octet-stream;base64,${bin.toString('base64')}` }],
+  }));
+}
+
+test('a glTF part is read in metres, the user can say mm or scale it, and a part smaller than the tool is named', async () => {
+  const { page, context, errors } = await openPage();
+  await page.selectOption('select[name=partUnits]', 'auto');
+  await page.fill('input[name=partScale]', '1');
+  await page.setInputFiles('#file', { name: 'box.gltf', mimeType: 'model/gltf+json', buffer: boxGltf([0.04, 0.03, 0.01]) });
+  await page.waitForFunction(() => /size 40\.0 × 30\.0 × 10\.0 mm/.test(document.getElementById('stats').textContent));
+  // Read as millimetres it is a speck; a scale brings it back.
+  await page.selectOption('select[name=partUnits]', 'mm');
+  await page.waitForFunction(() => /size 0\.0 × 0\.0 × 0\.0 mm/.test(document.getElementById('stats').textContent));
+  await page.fill('input[name=partScale]', '500');
+  await page.press('input[name=partScale]', 'Tab');
+  await page.waitForFunction(() => /size 20\.0 × 15\.0 × 5\.0 mm/.test(document.getElementById('stats').textContent));
+  // At a thousandth of its size the tool is larger than the part: the page says so.
+  await page.fill('input[name=partScale]', '0.1');
+  await page.press('input[name=partScale]', 'Tab');
+  await onlyRaster(page);
+  await page.click('#generate');
+  await waitForGenerated(page);
+  assert.match(await page.textContent('#message'), /smaller than the φ\d+ tool T\d+: is its unit right\?/);
+  assert.deepEqual(errors, []);
+  await context.close();
+});

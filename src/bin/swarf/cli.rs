@@ -13,7 +13,7 @@ use swarf::job::{self, Job};
 use swarf::job::Workpiece;
 use swarf::mesh::import::read_mesh_auto;
 use swarf::profile::import::{is_drawing, read_drawing};
-use swarf::mesh::placement::{PartSetup, Placement, UpAxis, Units};
+use swarf::mesh::placement::{PartSetup, PartUnits, Placement, UpAxis};
 use swarf::mesh::sample::demo_part;
 use swarf::progress::Progress;
 use swarf::job::verify_gcode;
@@ -113,7 +113,7 @@ enum Command {
         #[arg(long, value_enum, default_value_t = BuilderArg::Exact)]
         builder: BuilderArg,
         /// The part's units.
-        #[arg(long, value_enum, default_value_t = UnitsArg::Mm)]
+        #[arg(long, value_enum, default_value_t = UnitsArg::Auto)]
         units: UnitsArg,
         /// The part's up axis is Y.
         #[arg(long)]
@@ -144,8 +144,11 @@ enum BuilderArg {
 }
 #[derive(Clone, Copy, ValueEnum)]
 enum UnitsArg {
+    /// As the format says: metres for glTF, mm for STL and OBJ.
+    Auto,
     Mm,
     Inch,
+    M,
 }
 #[derive(Clone, Copy, ValueEnum)]
 enum FormatArg {
@@ -277,9 +280,12 @@ fn run(cli: Cli) -> Result<(), String> {
             let mut mesh = read_mesh_auto(&read(&part)?, name.as_deref(), &tolerances).map_err(|e| format!("{}: {e}", part.display()))?;
             let setup = PartSetup {
                 units: match units {
-                    UnitsArg::Mm => Units::Mm,
-                    UnitsArg::Inch => Units::Inch,
+                    UnitsArg::Auto => PartUnits::Auto,
+                    UnitsArg::Mm => PartUnits::Mm,
+                    UnitsArg::Inch => PartUnits::Inch,
+                    UnitsArg::M => PartUnits::Metre,
                 },
+                scale: 1.0,
                 up_axis: if y_up { UpAxis::Y } else { UpAxis::Z },
                 placement: if center_top { Placement::CenterTop } else { Placement::Keep },
             };

@@ -89,7 +89,9 @@ pub fn read_mesh(bytes: &[u8], format: MeshFormat, tolerances: &Tolerances) -> R
         MeshFormat::Gltf | MeshFormat::Glb => gltf::read(bytes)?,
         MeshFormat::Obj => obj::read(bytes)?,
     };
-    Mesh::from_triangles(triangles, tolerances)
+    let mut mesh = Mesh::from_triangles(triangles, tolerances)?;
+    mesh.in_metres = matches!(format, MeshFormat::Gltf | MeshFormat::Glb);
+    Ok(mesh)
 }
 
 /// Reads a mesh, detecting its format from `name` and the bytes.
