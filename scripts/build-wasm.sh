@@ -7,3 +7,4 @@ cargo build --release --lib --target wasm32-unknown-unknown
 wasm-bindgen --target web --no-typescript --out-dir www/pkg target/wasm32-unknown-unknown/release/swarf.wasm
 node_modules/.bin/wasm-opt -O3 --enable-bulk-memory --enable-nontrapping-float-to-int --enable-sign-ext --enable-mutable-globals --enable-reference-types --enable-multivalue --enable-simd www/pkg/swarf_bg.wasm -o www/pkg/swarf_bg.wasm
 ls -l www/pkg/swarf_bg.wasm
+node scripts/single-file.mjs

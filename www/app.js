@@ -1,5 +1,6 @@
 // The page: settings, the worker that runs swarf's wasm, the view, and the download.
 import { Viewer, OP_COLORS, toolColor } from './viewer.js';
+import { createEngine } from './swarf.js';
 
 const $ = (id) => document.getElementById(id);
 const form = $('settings');
@@ -7,30 +8,9 @@ const form = $('settings');
 let viewer = null;
 try { viewer = new Viewer($('view')); } catch (e) { showError(`3D view unavailable: ${e.message}`); }
 
-// ---- worker ------------------------------------------------------------------------------
-let worker, nextId = 1;
-const pending = new Map();
-function startWorker() {
-  worker = new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
-  worker.onmessage = (event) => {
-    const m = event.data, entry = pending.get(m.id);
-    if (!entry) return;
-    if (m.type === 'progress') { entry.onProgress?.(m.fraction, m.stage); return; }
-    pending.delete(m.id);
-    m.ok ? entry.resolve(m) : entry.reject(new Error(m.error));
-  };
-  worker.onerror = (e) => {
-    for (const entry of pending.values()) entry.reject(new Error(e.message || 'the worker failed'));
-    pending.clear();
-  };
-}
-function call(message, transfer = [], onProgress) {
-  const id = nextId++;
-  return new Promise((resolve, reject) => {
-    pending.set(id, { resolve, reject, onProgress });
-    worker.postMessage({ id, ...message }, transfer);
-  });
-}
+// ---- the engine (swarf.js: the wasm in a worker of its own) -------------------------------
+let engine = null;
+const call = (message, transfer, onProgress) => engine.call(message, transfer, onProgress);
 
 // ---- state -------------------------------------------------------------------------------
 // The page edits jobs as the core's JSON has them: one for parts and one for drawings, each
@@ -709,10 +689,10 @@ async function generate() {
     if (r.octants.length) viewer?.setOctants(r.octants);
     const s = r.summary;
     showSimulation(r.sim, s);
-    const changes = s.cycle.toolChanges ? ` with ${s.cycle.toolChanges} tool change${s.cycle.toolChanges > 1 ? 's' : ''} at ${job.post.toolChangeSeconds} s` : '';
+    const changes = s.cycle.toolChanges ? ` (${clock(s.seconds)} of moves, ${s.cycle.toolChanges} tool change${s.cycle.toolChanges > 1 ? 's' : ''} at ${job.post.toolChangeSeconds} s)` : '';
     const stages = (o) => (o.stages ?? []).map((st) => `\n  T${st.tool} φ${st.diameter} (${st.role === 'profile' ? 'profile' : st.role === 'first' ? 'first tool' : 'octants'}): ${st.why}; ${Math.round(st.area).toLocaleString()} mm² cleared, ${Math.round(st.removed).toLocaleString()} mm³ removed, ${clock(st.seconds)} min`).join('');
     const perOp = s.operations.length > 1 || s.operations.some((o) => o.stages) ? `\n${s.operations.map((o) => `${o.name} (T${o.tools.join(', T')}): ${clock(o.seconds)} min${o.removed != null ? `, ${Math.round(o.removed).toLocaleString()} mm³, peak ${Math.round(o.mrrMax).toLocaleString()} mm³/min` : ''}${o.leftMax != null ? `, leaves ≤ ${o.leftMax.toFixed(2)} mm` : ''}${stages(o)}`).join('\n')}` : '';
-    $('stats').textContent = `${s.moves.toLocaleString()} moves · ${(s.feedLength / 1000).toFixed(2)} m cutting · ${(s.rapidLength / 1000).toFixed(2)} m rapid\nestimated cycle time ${clock(s.cycle.seconds)}${changes} (${clock(s.seconds)} of moves)${perOp}\ncomputed in ${((performance.now() - started) / 1000).toFixed(2)} s`;
+    $('stats').textContent = `${s.moves.toLocaleString()} moves · ${(s.feedLength / 1000).toFixed(2)} m cutting · ${(s.rapidLength / 1000).toFixed(2)} m rapid\nestimated cycle time ${clock(s.cycle.seconds)} min${changes}${perOp}\ncomputed in ${((performance.now() - started) / 1000).toFixed(2)} s`;
     // A problem is shown as one, in red, with its places marked in the view; the program can
     // still be downloaded, behind a confirmation that names it.
     state.problem = s.problem ?? null;
@@ -736,11 +716,7 @@ async function generate() {
 function cancel() {
   // The wasm runs synchronously in the worker, so cancelling ends the worker; a fresh one takes
   // its place and every setting stays.
-  worker.terminate();
-  for (const entry of pending.values()) entry.reject(new Error('cancelled by the user'));
-  pending.clear();
-  startWorker();
-  call({ type: 'hello' }).catch((e) => showError(e.message));
+  engine.cancel().catch((e) => showError(e.message));
   // The new worker has no result to scrub; the last drawing stays until the next run.
   sim.busy = false;
   sim.wanted = null;
@@ -799,8 +775,9 @@ for (const t of ['dragenter', 'dragover']) document.addEventListener(t, (e) => {
 for (const t of ['dragleave', 'drop']) document.addEventListener(t, (e) => { e.preventDefault(); drop.classList.remove('over'); });
 document.addEventListener('drop', (e) => { const f = e.dataTransfer?.files?.[0]; if (f) takeFile(f); });
 
-startWorker();
-call({ type: 'hello' }).then(({ defaults, posts, sample, sampleDrawing }) => {
+createEngine(window.SWARF_ENGINE_OPTIONS ?? {}).then((e) => {
+  engine = e;
+  const { defaults, posts, sample, sampleDrawing } = engine;
   state.defaults = defaults;
   state.posts = posts;
   restore();

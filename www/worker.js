@@ -1,7 +1,10 @@
-// Runs the wasm pipeline off the page's thread. Cancel = the page terminates this worker.
+// Runs the wasm pipeline off the page's thread, for swarf.js's engine. Cancel = the engine
+// terminates this worker.
 import init, { defaults, builtinPosts, readPost, readJob, writeProject, readProject, samplePart, sampleDrawing, loadPart, loadDrawing, isDrawing, runJob } from './pkg/swarf.js';
 
-const ready = init();
+// The wasm is loaded on the first message: from the bytes or URL it names (a single-file page
+// passes the bytes), else from pkg/ beside the glue.
+let ready = null;
 // The last job's result stays here so the page can scrub through its simulation.
 let current = null;
 
@@ -20,6 +23,7 @@ function partMessage(view) {
 self.onmessage = async (event) => {
   const { id, type } = event.data;
   try {
+    ready ??= init(event.data.wasm ? { module_or_path: event.data.wasm } : undefined);
     await ready;
     if (type === 'hello') {
       self.postMessage({ id, ok: true, defaults: defaults(), posts: builtinPosts(), sample: samplePart(), sampleDrawing: sampleDrawing() });

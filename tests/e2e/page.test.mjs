@@ -8,7 +8,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { execFileSync } from 'node:child_process';
-import { fileURLToPath } from 'node:url';
+import { fileURLToPath, pathToFileURL } from 'node:url';
 import { chromium } from 'playwright-core';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../../www');
@@ -781,6 +781,64 @@ test('a glTF part is read in metres, the user can say mm or scale it, and a part
   await page.click('#generate');
   await waitForGenerated(page);
   assert.match(await page.textContent('#message'), /smaller than the φ\d+ tool T\d+: is its unit right\?/);
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
+test('the single-file page works opened straight from disk: it loads, generates and downloads a program rs274 runs, asking for nothing', async () => {
+  const file = path.join(root, 'dist/swarf.html');
+  assert.ok(fs.existsSync(file), 'scripts/build-wasm.sh builds www/dist/swarf.html');
+  const context = await browser.newContext({ acceptDownloads: true, viewport: { width: 1280, height: 800 } });
+  context.setDefaultTimeout(PATIENCE);
+  const page = await context.newPage();
+  const errors = [], asked = [];
+  page.on('pageerror', (e) => errors.push(String(e)));
+  page.on('request', (r) => { if (!/^(blob|data):/.test(r.url()) && r.url() !== pathToFileURL(file).href) asked.push(r.url()); });
+  await page.goto(pathToFileURL(file).href);
+  await page.waitForSelector('body[data-ready="true"]');
+  await onlyRaster(page);
+  await page.click('#generate');
+  await generated(page);
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-single-'));
+  const program = path.join(dir, download.suggestedFilename());
+  await download.saveAs(program);
+  const tools = await page.evaluate(() => window.swarf.tools);
+  fs.writeFileSync(path.join(dir, 'tool.tbl'), toolTable(tools));
+  const canon = execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), program], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });
+  assert.ok(canon.split('\n').filter((l) => l.includes('STRAIGHT_FEED(')).length > 1000);
+  assert.deepEqual(asked, []);
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
+test('embed.html, a second consumer of swarf.js: a run with progress, a run cancelled through its AbortSignal, and a run after it', async () => {
+  const context = await browser.newContext();
+  context.setDefaultTimeout(PATIENCE);
+  const page = await context.newPage();
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(String(e)));
+  await page.goto(`${base}embed.html`);
+  await page.waitForSelector('body[data-ready="true"]');
+  await page.click('#run');
+  await page.waitForSelector('body[data-done]');
+  assert.equal(await page.getAttribute('body', 'data-done'), 'ok', await page.textContent('#result'));
+  assert.match(await page.textContent("#gcode"), /^\(swarf demo\)[\s\S]*\nG1 /);
+  assert.match(await page.textContent('#result'), /cycle time \d+ s/);
+  // The mould job, cancelled once it reports progress: the promise rejects as an AbortError and
+  // the engine runs the next job.
+  const outcome = await page.evaluate(async () => {
+    const engine = window.engine, controller = new AbortController();
+    let reports = 0;
+    const run = engine.run(engine.defaultJob(), engine.sample, 'sample.stl', { signal: controller.signal, onProgress: () => { reports += 1; if (reports === 2) controller.abort(); } });
+    const first = await run.then(() => 'finished', (e) => e.name);
+    const job = engine.defaultJob();
+    job.operations = job.operations.filter((op) => op.kind === 'finishRaster').slice(0, 1);
+    const again = await engine.run(job, engine.sample, 'sample.stl');
+    return { first, reports, gcode: again.gcode.length, feeds: again.feeds.length };
+  });
+  assert.equal(outcome.first, 'AbortError', JSON.stringify(outcome));
+  assert.ok(outcome.gcode > 1000 && outcome.feeds > 1000, JSON.stringify(outcome));
   assert.deepEqual(errors, []);
   await context.close();
 });

@@ -1,0 +1,66 @@
+// Builds www/dist/swarf.html: the page as one file (styles, scripts, the worker and the wasm
+// inlined) that works opened straight from disk (file://), for shops without a server. Run
+// after scripts/build-wasm.sh (which calls it). Each module keeps its own scope: it becomes a
+// function returning what it exports, and an import becomes a lookup of those.
+import fs from 'node:fs';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+const www = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../www');
+const read = (f) => fs.readFileSync(path.join(www, f), 'utf8');
+
+// A module as an expression giving its exports (`export const|let|class|function|async function`).
+function scoped(file) {
+  let src = read(file);
+  const names = [...src.matchAll(/^export (?:const|let|class|function|async function) ([\w$]+)/gm)].map((m) => m[1]);
+  src = src.replace(/^export (const|let|class|function|async function) /gm, '$1 ');
+  if (/^export /m.test(src)) throw new Error(`${file}: an export this build does not know`);
+  return { src, names };
+}
+
+// Imports of sibling modules become lookups of their scopes.
+function linked(src, modules) {
+  return src.replace(/^import (\{[^}]*\}) from '\.\/([\w-]+)\.js';$/gm, (_, names, file) => {
+    if (!modules.includes(file)) throw new Error(`an import of ${file}.js this build does not inline`);
+    return `const ${names.replace(/ as /g, ': ')} = __${file.replace(/-/g, '_')};`;
+  });
+}
+
+// The worker: wasm-bindgen's glue as a classic script, then the worker with its import bound.
+let glue = read('pkg/swarf.js');
+glue = glue.replace(/^export (function|class|async function) /gm, '$1 ').replace(/^export \{[^}]*\};?\s*$/m, '').replace(/import\.meta\.url/g, 'self.location.href');
+if (/^export /m.test(glue)) throw new Error('pkg/swarf.js: an export this build does not know');
+let worker = read('worker.js');
+const imported = /^import init, \{([^}]*)\} from '\.\/pkg\/swarf\.js';$/m;
+if (!imported.test(worker)) throw new Error('worker.js: its import of the glue changed');
+worker = worker.replace(imported, 'const init = __wbg_init;');
+const workerSource = `${glue}\n${worker}`;
+
+// The page's modules, in order of use.
+const modules = ['viewer', 'swarf'];
+let script = '';
+for (const m of modules) {
+  const { src, names } = scoped(`${m}.js`);
+  script += `const __${m} = (() => {\n${linked(src, modules)}\nreturn { ${names.join(', ')} };\n})();\n`;
+}
+const wasm = fs.readFileSync(path.join(www, 'pkg/swarf_bg.wasm')).toString('base64');
+script += `
+const WORKER_SOURCE = ${JSON.stringify(workerSource)};
+const WASM_BASE64 = '${wasm}';
+window.SWARF_ENGINE_OPTIONS = {
+  worker: () => new Worker(URL.createObjectURL(new Blob([WORKER_SOURCE], { type: 'text/javascript' }))),
+  wasm: Uint8Array.from(atob(WASM_BASE64), (c) => c.charCodeAt(0)),
+};
+`;
+script += linked(read('app.js'), modules);
+
+let html = read('index.html');
+const css = '<link rel="stylesheet" href="style.css">';
+const app = '<script type="module" src="app.js"></script>';
+if (!html.includes(css) || !html.includes(app)) throw new Error('index.html: its stylesheet or script tag changed');
+// A script's text may not hold "</script"; the page's code never needs it escaped otherwise.
+const safe = (s) => s.replace(/<\/script/gi, '<\\/script');
+html = html.replace(css, () => `<style>\n${read('style.css')}\n</style>`).replace(app, () => `<script type="module">\n${safe(script)}\n</script>`);
+fs.mkdirSync(path.join(www, 'dist'), { recursive: true });
+fs.writeFileSync(path.join(www, 'dist/swarf.html'), html);
+console.log(`www/dist/swarf.html: ${(html.length / 1e6).toFixed(1)} MB`);
