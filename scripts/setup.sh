@@ -32,8 +32,9 @@ if [ ${#apt_missing[@]} -gt 0 ]; then
   apt-get install -y -q --no-install-recommends "${apt_missing[@]}"
 fi
 
-# binaryen from npm (Debian's wasm-opt breaks the module) and playwright-core (no browser download).
-if [ ! -x node_modules/.bin/wasm-opt ] || [ ! -d node_modules/playwright-core ]; then
+# binaryen from npm (Debian's wasm-opt breaks the module), playwright-core (no browser download)
+# and TypeScript (to check the module's types).
+if [ ! -x node_modules/.bin/wasm-opt ] || [ ! -d node_modules/playwright-core ] || [ ! -x node_modules/.bin/tsc ]; then
   say "installing npm packages"
   if [ -f package-lock.json ]; then npm ci --no-audit --no-fund; else npm install --no-audit --no-fund; fi
 fi

@@ -13,7 +13,7 @@ use serde::{Deserialize, Serialize};
 use crate::geom::{orient2d, DVec2, DVec3};
 
 /// The shape of a cutter's end.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
 pub enum Shape {
     Flat,
@@ -22,7 +22,7 @@ pub enum Shape {
 }
 
 /// A milling cutter's geometry, in millimetres.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(default, rename_all = "camelCase")]
 pub struct Cutter {
     /// End shape. Default value: ball.

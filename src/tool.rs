@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 use crate::cutter::Cutter;
 
 /// A tool in the library: a cutter with its cutting data.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(default, rename_all = "camelCase")]
 pub struct Tool {
     /// Tool number (T word, pocket). Default value: 1.
@@ -31,7 +31,7 @@ pub struct Tool {
 }
 
 /// Coolant for a tool.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
 pub enum Coolant {
     #[default]

@@ -255,3 +255,13 @@ fn a_part_smaller_than_the_tool_is_named_in_a_warning_and_a_bad_scale_is_refused
     let e = job::run(&job, swarf::mesh::sample::demo_part(), &mut Progress::none()).unwrap_err().to_string();
     assert!(e.contains("part.scale must be a positive number"), "{e}");
 }
+
+#[test]
+fn the_khronos_duck_is_read_in_metres() {
+    let Some(path) = common::shared_data("meshes/tm_Duck.glb") else { return };
+    let mut mesh = read_mesh_auto(&std::fs::read(&path).unwrap(), Some("tm_Duck.glb"), &TOL).unwrap();
+    PartSetup::default().apply(&mut mesh);
+    let size = mesh.bounds().size();
+    // The Duck is 1.7 units long in its file: 1.7 m by glTF's specification.
+    assert!(size.x > 1000.0 && size.x < 2500.0, "{size}");
+}

@@ -9,9 +9,11 @@ pub use glam::{DVec2, DVec3};
 pub use tolerance::Tolerances;
 
 /// An axis-aligned box in millimetres.
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize, ts_rs::TS)]
 pub struct Aabb {
+    #[ts(type = "[number, number, number]")]
     pub min: DVec3,
+    #[ts(type = "[number, number, number]")]
     pub max: DVec3,
 }
 

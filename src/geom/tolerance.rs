@@ -4,7 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 /// Distances in millimetres.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(default, rename_all = "camelCase")]
 pub struct Tolerances {
     /// Triangles with an area below `degenerate_area` (mm²) are dropped at import and counted.

@@ -13,7 +13,7 @@ use crate::strategy::context::SheetCut;
 use crate::zmap::{Grid, HeightField};
 
 /// The units a drawing's numbers are in.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
 pub enum DrawingUnits {
     /// As the file says ($INSUNITS, the SVG's width and viewBox; px at 96 per inch).
@@ -24,7 +24,7 @@ pub enum DrawingUnits {
 }
 
 /// Where a drawing is put.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
 pub enum DrawingOrigin {
     /// As drawn.
@@ -37,7 +37,7 @@ pub enum DrawingOrigin {
 }
 
 /// How a drawing becomes a sheet on the machine: the stock's top is Z0.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(default, rename_all = "camelCase")]
 pub struct DrawingSetup {
     /// Default value: file.

@@ -38,7 +38,7 @@ use crate::toolpath::{PathStats, Toolpath};
 use crate::zmap::cc::cc_zmap;
 
 /// Which height of the setup is Z0 in the program.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
 pub enum ZeroHeight {
     #[default]
@@ -48,7 +48,7 @@ pub enum ZeroHeight {
 }
 
 /// Which point of the stock seen from above is X0 Y0.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
 pub enum ZeroCorner {
     #[default]
@@ -61,7 +61,7 @@ pub enum ZeroCorner {
 }
 
 /// The work zero: where the program's origin is on the setup.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(default, rename_all = "camelCase")]
 pub struct WorkZero {
     /// Default value: partTop.
@@ -92,7 +92,7 @@ impl WorkZero {
 
 /// The stock, as a machinist sets it: margins around the placed part on every side, or an
 /// explicit box; the heights of moves between cuts; and the work zero.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(default, rename_all = "camelCase")]
 pub struct Stock {
     /// Extra stock around the part in X and Y (mm, each side). Default value: 5.
@@ -183,7 +183,7 @@ impl From<Drawing> for Workpiece {
 }
 
 /// Simulating the program after it is made (seed 002), to verify it and to show the cut.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(default, rename_all = "camelCase")]
 pub struct Simulation {
     /// Simulate and verify every program. Default value: true.
@@ -221,7 +221,7 @@ fn first_version() -> u32 {
 }
 
 /// Everything needed to turn a part into G-code.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(default, rename_all = "camelCase")]
 pub struct Job {
     /// Version of the job file's format ([`JOB_VERSION`] when written by this swarf); a file

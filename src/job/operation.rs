@@ -16,7 +16,7 @@ use crate::strategy::Operate;
 macro_rules! operations {
     ($($(#[$doc:meta])* $variant:ident($options:ty) = $kind:literal,)*) => {
         /// One operation of a job.
-        #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+        #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
         #[serde(tag = "kind", rename_all = "camelCase")]
         pub enum Operation {
             $($(#[$doc])* $variant($options),)*

@@ -16,7 +16,7 @@ pub const PROJECT_FORMAT: &str = "swarf project";
 pub const PROJECT_VERSION: u32 = 1;
 
 /// The part or drawing of a project.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(deny_unknown_fields, rename_all = "camelCase")]
 pub struct ProjectFile {
     /// The file's name, with its extension (it tells the format).
@@ -27,7 +27,7 @@ pub struct ProjectFile {
 }
 
 /// A project: a job and its part or drawing.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
 pub struct Project {
     pub format: String,

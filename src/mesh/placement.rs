@@ -8,7 +8,7 @@ use super::Mesh;
 use crate::geom::DVec3;
 
 /// Length unit of a file or of G-code.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
 pub enum Units {
     #[default]
@@ -27,7 +27,7 @@ impl Units {
 }
 
 /// Which axis of the file points up.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
 pub enum UpAxis {
     #[default]
@@ -36,7 +36,7 @@ pub enum UpAxis {
 }
 
 /// Where the part goes.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
 pub enum Placement {
     /// Part top at z = 0, part centred on the XY origin (and so in the stock).
@@ -48,7 +48,7 @@ pub enum Placement {
 }
 
 /// The unit of a part file's coordinates.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
 pub enum PartUnits {
     /// As the format says: metres for glTF (its specification), millimetres for STL and OBJ
@@ -74,7 +74,7 @@ impl PartUnits {
 }
 
 /// How to read a part's coordinates.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(default, rename_all = "camelCase")]
 pub struct PartSetup {
     /// Unit of the file's coordinates. Default value: auto (metres for glTF, else mm).

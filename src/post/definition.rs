@@ -9,7 +9,7 @@
 use serde::{Deserialize, Serialize};
 
 /// How comments are written.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
 pub enum CommentStyle {
     /// `(text)`.
@@ -22,7 +22,7 @@ pub enum CommentStyle {
 }
 
 /// How arcs are written.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
 pub enum ArcFormat {
     /// G2/G3 with the centre as I and J, relative to the start (the program sets G91.1 where
@@ -41,7 +41,7 @@ pub enum ArcFormat {
 pub const ARC_CHORD_ERROR: f64 = 0.0008;
 
 /// Line numbers (N words).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(deny_unknown_fields, rename_all = "camelCase")]
 pub struct LineNumbers {
     pub start: u32,
@@ -56,7 +56,7 @@ fn largest_line_number() -> u32 {
 }
 
 /// A post-processor. A field left out takes the generic post's value.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(default, deny_unknown_fields, rename_all = "camelCase")]
 pub struct Post {
     /// Shown in the page and written in the program's head.

@@ -21,7 +21,7 @@ use crate::tool::{Coolant, Tool};
 use crate::toolpath::{arc_sweep, Move, Toolpath};
 
 /// The built-in posts, by the controller family they are written for.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
 pub enum Dialect {
     #[default]
@@ -65,7 +65,7 @@ impl Dialect {
 }
 
 /// How G-code is written.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(default, rename_all = "camelCase")]
 pub struct PostSettings {
     /// The built-in post. Default value: linuxCnc.
@@ -152,7 +152,7 @@ impl Default for PostSettings {
 
 /// What a program takes on the machine: the cutting and rapid moves at their feeds and the
 /// rapid rate, and the tool changes.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
 pub struct CycleTime {
     /// Seconds of motion of each tool path, in the program's order.

@@ -25,7 +25,7 @@ use crate::zmap::surface::{point_at, ClSurface};
 use crate::zmap::{ClBuilder, Grid};
 
 /// Where the tool's centre may go.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
 pub enum Boundary {
     /// The stock's rectangle.
@@ -36,7 +36,7 @@ pub enum Boundary {
 }
 
 /// Raster finishing over the CL z-map (seed 001).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(default, rename_all = "camelCase")]
 pub struct FinishRaster {
     /// Shown in the program's comments. Default value: "raster finish".
@@ -99,7 +99,7 @@ impl Default for FinishRaster {
 }
 
 /// How consecutive passes run.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
 pub enum Pattern {
     /// Every other pass reversed: no return moves.

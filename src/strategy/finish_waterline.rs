@@ -22,7 +22,7 @@ use crate::zmap::region::Region;
 use crate::zmap::{ClBuilder, Grid, HeightField};
 
 /// Waterline finishing.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(default, rename_all = "camelCase")]
 pub struct FinishWaterline {
     /// Default value: "waterline finish".

@@ -21,7 +21,7 @@ use crate::toolpath::Move;
 use crate::zigzag::graph::{Graph, Pattern};
 
 /// How the pocket is cleared.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
 pub enum PocketPattern {
     /// Rings parallel to the walls.
@@ -32,7 +32,7 @@ pub enum PocketPattern {
 }
 
 /// How the tool enters material.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
 pub enum Entry {
     /// A helix where it fits, else a ramp.
@@ -43,7 +43,7 @@ pub enum Entry {
 }
 
 /// Pocket operation on a drawing.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(default, rename_all = "camelCase")]
 pub struct Pocket2d {
     /// Default value: "pocket".

@@ -20,7 +20,7 @@ use crate::toolpath::Move;
 const LEAD_SAMPLE: f64 = 0.005;
 
 /// Which side of a loop the tool runs on.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
 pub enum Side {
     /// Outside outer loops, inside holes: the part as drawn is kept.
@@ -43,7 +43,7 @@ impl Side {
 }
 
 /// Cutting direction for a spindle turning clockwise (M3).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
 pub enum Direction {
     /// Down milling: the part on the tool's right.
@@ -53,7 +53,7 @@ pub enum Direction {
 }
 
 /// Holding tabs for parts cut through the sheet.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(default, rename_all = "camelCase")]
 pub struct Tabs {
     /// Tabs per outside loop (0: none, unless `spacing` is set). Default value: 0.
@@ -73,7 +73,7 @@ impl Default for Tabs {
 }
 
 /// Profile operation on a drawing.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(default, rename_all = "camelCase")]
 pub struct Profile2d {
     /// Default value: "profile".

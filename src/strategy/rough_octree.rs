@@ -45,7 +45,7 @@ use crate::tool::Tool;
 use crate::toolpath::Toolpath;
 
 /// Octree multi-tool roughing.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(default, rename_all = "camelCase")]
 pub struct RoughOctree {
     /// Default value: "octree rough".

@@ -34,7 +34,7 @@ use crate::zigzag::graph::{along_boundary, Graph, Pattern};
 use crate::zigzag::load::{self, Load, PixelMap, Profile};
 
 /// How spans are cut.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
 pub enum Passes {
     /// Back and forth (the paper's path): half the passes climb, half not.
@@ -45,7 +45,7 @@ pub enum Passes {
 }
 
 /// How the load is held at the reference.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
 pub enum LoadControl {
     /// Extra path where the plain path would overload the tool (seed 004 §3.3); the feed drops
@@ -59,7 +59,7 @@ pub enum LoadControl {
 }
 
 /// Zigzag roughing (seed 004).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(default, rename_all = "camelCase")]
 pub struct RoughZigzag {
     /// Default value: "zigzag rough".

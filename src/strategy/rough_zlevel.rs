@@ -34,7 +34,7 @@ use crate::tool::Tool;
 use std::sync::Arc;
 
 /// Z-level roughing.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(default, rename_all = "camelCase")]
 pub struct RoughZlevel {
     /// Default value: "z-level rough".

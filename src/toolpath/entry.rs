@@ -16,7 +16,7 @@ use super::Move;
 use crate::geom::{DVec2, DVec3};
 
 /// How a cutter enters material.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(default, rename_all = "camelCase")]
 pub struct Entry {
     /// Steepest descent of a helix or ramp (degrees from horizontal). Default value: 3.

@@ -15,7 +15,7 @@ use crate::zmap::region::Region;
 use crate::zmap::surface::{point_at, ClSurface};
 
 /// How runs are joined.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(default, rename_all = "camelCase")]
 pub struct LinkSettings {
     /// Height of rapid moves between runs (mm, absolute). Set by the job from the stock top.

@@ -46,7 +46,7 @@ pub struct Grid {
 }
 
 /// Which CL z-map builder an operation uses.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
 pub enum ClBuilder {
     /// Seed 001 §3.3: exact drop onto facets, edges and vertices.

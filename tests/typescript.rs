@@ -1,0 +1,50 @@
+//! The TypeScript definitions of the job and the other data the page and portals exchange with
+//! swarf (`www/types/swarf-types.d.ts`) are generated from the Rust serde types by ts-rs, never
+//! written by hand: this test makes them and fails when the file in the tree differs. Run it
+//! with `UPDATE_TYPES=1` to write the file anew.
+
+use std::path::Path;
+
+use swarf::job::project::Project;
+use swarf::post::{CycleTime, Post};
+use ts_rs::{Config, TS};
+
+const HEAD: &str = "// Generated from swarf's Rust types by ts-rs (tests/typescript.rs): do not edit.\n// UPDATE_TYPES=1 cargo test --test typescript writes it anew.\n\n";
+
+fn generate() -> String {
+    let dir = std::env::temp_dir().join(format!("swarf-ts-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let cfg = Config::new().with_large_int("number").with_out_dir(&dir);
+    Project::export_all(&cfg).unwrap();
+    Post::export_all(&cfg).unwrap();
+    CycleTime::export_all(&cfg).unwrap();
+    let mut files: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().path()).collect();
+    files.sort();
+    let mut out = HEAD.to_owned();
+    for f in files {
+        // One file: the imports between the generated files are not needed.
+        let text = std::fs::read_to_string(&f).unwrap();
+        for line in text.lines().filter(|l| !l.starts_with("import type") && !l.starts_with("// This file was generated")) {
+            out.push_str(line);
+            out.push('\n');
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    out.replace("\n\n\n", "\n\n")
+}
+
+#[test]
+fn the_typescript_definitions_match_the_rust_types() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("www/types/swarf-types.d.ts");
+    let made = generate();
+    for name in ["export type Job = ", "export type Operation = ", "export type Post = ", "export type Tool = ", "export type Project = "] {
+        assert!(made.contains(name), "{name} missing");
+    }
+    // Fields as the JSON has them: camelCase, the operation's kind as its tag.
+    assert!(made.contains("spindleRpm: number") && made.contains("\"kind\": \"roughOctree\""), "{made}");
+    if std::env::var_os("UPDATE_TYPES").is_some() {
+        std::fs::write(&path, &made).unwrap();
+    }
+    let kept = std::fs::read_to_string(&path).unwrap_or_default();
+    assert!(kept == made, "www/types/swarf-types.d.ts is out of date: run UPDATE_TYPES=1 cargo test --test typescript");
+}

@@ -1,0 +1,957 @@
+// Generated from swarf's Rust types by ts-rs (tests/typescript.rs): do not edit.
+// UPDATE_TYPES=1 cargo test --test typescript writes it anew.
+
+/**
+ * An axis-aligned box in millimetres.
+ */
+export type Aabb = { min: [number, number, number], max: [number, number, number], };
+
+/**
+ * How arcs are written.
+ */
+export type ArcFormat = "ij" | "r" | "off";
+
+/**
+ * Where the tool's centre may go.
+ */
+export type Boundary = "stock" | "silhouette";
+
+/**
+ * Which CL z-map builder an operation uses.
+ */
+export type ClBuilder = "exact" | "inverseOffset";
+
+/**
+ * How comments are written.
+ */
+export type CommentStyle = "parens" | "semicolon" | "none";
+
+/**
+ * Coolant for a tool.
+ */
+export type Coolant = "off" | "flood" | "mist";
+
+/**
+ * What a program takes on the machine: the cutting and rapid moves at their feeds and the
+ * rapid rate, and the tool changes.
+ */
+export type CycleTime = { 
+/**
+ * Seconds of motion of each tool path, in the program's order.
+ */
+paths: Array<number>, toolChanges: number, 
+/**
+ * The whole program (seconds): motion, tool changes and dwells.
+ */
+seconds: number, };
+
+/**
+ * The built-in posts, by the controller family they are written for.
+ */
+export type Dialect = "linuxCnc" | "grbl" | "grblHal" | "mach3" | "fanuc" | "generic";
+
+/**
+ * Cutting direction for a spindle turning clockwise (M3).
+ */
+export type Direction = "climb" | "conventional";
+
+/**
+ * Where a drawing is put.
+ */
+export type DrawingOrigin = "keep" | "lowerLeft" | "center";
+
+/**
+ * How a drawing becomes a sheet on the machine: the stock's top is Z0.
+ */
+export type DrawingSetup = { 
+/**
+ * Default value: file.
+ */
+units: DrawingUnits, 
+/**
+ * Default value: lower left.
+ */
+origin: DrawingOrigin, 
+/**
+ * Thickness of the sheet (mm). Default value: 6.
+ */
+thickness: number, };
+
+/**
+ * The units a drawing's numbers are in.
+ */
+export type DrawingUnits = "file" | "mm" | "inch";
+
+/**
+ * How a cutter enters material.
+ */
+export type Entry = { 
+/**
+ * Steepest descent of a helix or ramp (degrees from horizontal). Default value: 3.
+ */
+rampAngle: number, 
+/**
+ * Smallest helix diameter, as a share of the tool's diameter. Default value: 0.3.
+ */
+helixMin: number, 
+/**
+ * Largest helix diameter, as a share of the tool's diameter. Default value: 0.9.
+ */
+helixMax: number, };
+
+/**
+ * Raster finishing over the CL z-map (seed 001).
+ */
+export type FinishRaster = { 
+/**
+ * Shown in the program's comments. Default value: "raster finish".
+ */
+name: string, 
+/**
+ * Whether the job runs it (a disabled operation stays in the job). Default value: true.
+ */
+enabled: boolean, 
+/**
+ * Number of the tool to use. Default value: 1.
+ */
+tool: number, 
+/**
+ * Direction of the passes (degrees from +X). Default value: 0.
+ */
+angle: number, 
+/**
+ * Distance between passes (mm). Default value: 0.5.
+ */
+stepover: number, 
+/**
+ * Default value: zigzag.
+ */
+pattern: Pattern, 
+/**
+ * Default value: silhouette.
+ */
+boundary: Boundary, 
+/**
+ * Growth of the silhouette boundary (mm). Default value: the tool's radius.
+ */
+margin: number | null, 
+/**
+ * Material left on the part (mm). Default value: 0.
+ */
+allowance: number, 
+/**
+ * Spacing of the CL z-map (mm). Default value: 0.25.
+ */
+grid: number, 
+/**
+ * Default value: exact.
+ */
+builder: ClBuilder, 
+/**
+ * Lowest tip height where the part is not under the tool (mm). Default value: stock bottom.
+ */
+floor: number | null, 
+/**
+ * Longest link that may stay down (mm). Default value: twice the stepover.
+ */
+stayDownMax: number | null, 
+/**
+ * How the cutter enters material (helix, else ramp along the pass).
+ */
+entry: Entry, 
+/**
+ * Cut only where the stock the earlier operations left stands above what this one
+ * leaves (by more than the job's gouge tolerance). Default value: false.
+ */
+restOnly: boolean, 
+/**
+ * Only where the surface is no steeper than this (degrees from horizontal; waterline
+ * finishing takes the steeper areas). Default value: none (everywhere).
+ */
+slopeMax: number | null, };
+
+/**
+ * Waterline finishing.
+ */
+export type FinishWaterline = { 
+/**
+ * Default value: "waterline finish".
+ */
+name: string, 
+/**
+ * Whether the job runs it (a disabled operation stays in the job). Default value: true.
+ */
+enabled: boolean, 
+/**
+ * Default value: 1.
+ */
+tool: number, 
+/**
+ * Height between levels (mm); used when `scallop` is not set. Default value: 0.5.
+ */
+stepdown: number, 
+/**
+ * Largest scallop height between levels (mm): levels closer where the surface is
+ * shallower. Default value: none (the step-down).
+ */
+scallop: number | null, 
+/**
+ * Material left on the part (mm). Default value: 0.
+ */
+allowance: number, 
+/**
+ * Only where the surface is steeper than this (degrees from horizontal). Default value: 30.
+ */
+slopeMin: number, 
+/**
+ * Default value: climb.
+ */
+direction: Direction, 
+/**
+ * Spacing of the CL z-map (mm). Default value: 0.25.
+ */
+grid: number, entry: Entry, };
+
+/**
+ * Everything needed to turn a part into G-code.
+ */
+export type Job = { 
+/**
+ * Version of the job file's format ([`JOB_VERSION`] when written by this swarf); a file
+ * without one is read as version 1. Default value: the current version.
+ */
+version: number, 
+/**
+ * Program title. Default value: "swarf job".
+ */
+name: string, part: PartSetup, 
+/**
+ * How a DXF or SVG drawing is placed (ignored for parts).
+ */
+drawing: DrawingSetup, stock: Stock, tools: Array<Tool>, operations: Array<Operation>, post: PostSettings, simulation: Simulation, tolerances: Tolerances, };
+
+/**
+ * Line numbers (N words).
+ */
+export type LineNumbers = { start: number, step: number, 
+/**
+ * The largest number the control reads; numbering starts again at `start` after it.
+ */
+max: number, };
+
+/**
+ * How the load is held at the reference.
+ */
+export type LoadControl = "path" | "feed" | "none";
+
+/**
+ * One operation of a job.
+ */
+export type Operation = { "kind": "roughZlevel" } & RoughZlevel | { "kind": "roughZigzag" } & RoughZigzag | { "kind": "roughOctree" } & RoughOctree | { "kind": "finishRaster" } & FinishRaster | { "kind": "finishWaterline" } & FinishWaterline | { "kind": "profile2d" } & Profile2d | { "kind": "pocket2d" } & Pocket2d;
+
+/**
+ * How to read a part's coordinates.
+ */
+export type PartSetup = { 
+/**
+ * Unit of the file's coordinates. Default value: auto (metres for glTF, else mm).
+ */
+units: PartUnits, 
+/**
+ * A free factor on top of the unit (a model made at half size: 2). Default value: 1.
+ */
+scale: number, 
+/**
+ * The file's up axis. Default value: Z.
+ */
+upAxis: UpAxis, 
+/**
+ * Where the part goes. Default value: centerTop.
+ */
+placement: Placement, };
+
+/**
+ * The unit of a part file's coordinates.
+ */
+export type PartUnits = "auto" | "mm" | "inch" | "m";
+
+/**
+ * How spans are cut.
+ */
+export type Passes = "zigzag" | "oneWay";
+
+/**
+ * How consecutive passes run.
+ */
+export type Pattern = "zigzag" | "oneWay";
+
+/**
+ * Where the part goes.
+ */
+export type Placement = "centerTop" | "keep";
+
+/**
+ * Pocket operation on a drawing.
+ */
+export type Pocket2d = { 
+/**
+ * Default value: "pocket".
+ */
+name: string, 
+/**
+ * Whether the job runs it (a disabled operation stays in the job). Default value: true.
+ */
+enabled: boolean, 
+/**
+ * Default value: 1.
+ */
+tool: number, 
+/**
+ * Depth below the stock top (mm). Default value: 3.
+ */
+depth: number, 
+/**
+ * Largest depth cut in one pass (mm). Default value: 1.
+ */
+stepdown: number, 
+/**
+ * Distance between rings or passes as a fraction of the tool diameter. Default value: 0.4.
+ */
+stepover: number, 
+/**
+ * Material left on walls and islands (mm). Default value: 0.
+ */
+leaveStock: number, 
+/**
+ * Default value: offset.
+ */
+pattern: PocketPattern, 
+/**
+ * Direction of zigzag passes (degrees from +X). Default value: 0.
+ */
+angle: number, 
+/**
+ * Default value: helix.
+ */
+entry: Entry, 
+/**
+ * Helix radius (mm). Default value: 0.4 × the tool diameter.
+ */
+helixRadius: number | null, 
+/**
+ * Steepest descent of helices and ramps (degrees). Default value: 3.
+ */
+rampAngle: number, 
+/**
+ * Default value: climb.
+ */
+direction: Direction, 
+/**
+ * Layers to pocket (empty: all). Default value: empty.
+ */
+layers: Array<string>, 
+/**
+ * Indices of the drawing's loops bounding the pocket, with the holes inside them as
+ * islands (empty: all). Default value: empty.
+ */
+loops: Array<number>, };
+
+/**
+ * How the pocket is cleared.
+ */
+export type PocketPattern = "offset" | "zigzag";
+
+/**
+ * A post-processor. A field left out takes the generic post's value.
+ */
+export type Post = { 
+/**
+ * Shown in the page and written in the program's head.
+ */
+name: string, 
+/**
+ * The file extension its controllers expect (`ngc`, `tap`, `nc`).
+ */
+extension: string, 
+/**
+ * Lines before everything else (`%`, a program number `O{program} ({title})`).
+ */
+header: Array<string>, 
+/**
+ * Modal setup lines, written after the units word (G20/G21).
+ */
+setup: Array<string>, 
+/**
+ * The work offset to select (`G54` … `G59`), or none.
+ */
+workOffset: string | null, 
+/**
+ * Lines that change the tool (`T{tool} M6`, `G43 H{tool}`). Empty: the control has no tool
+ * changer, and the program stops the spindle, names the tool in a comment and pauses.
+ */
+toolChange: Array<string>, 
+/**
+ * The pause for a manual tool change (`M0`).
+ */
+pause: string, 
+/**
+ * Starts the spindle clockwise (`S{rpm} M3`).
+ */
+spindleOn: string, spindleOff: string, 
+/**
+ * Coolant words (`M8`, `M7`, `M9`); a tool asking for one the post lacks is refused.
+ */
+coolantFlood: string | null, coolantMist: string | null, coolantOff: string | null, 
+/**
+ * A dwell (`G4 P{seconds}`; Fanuc `G4 P{millis}`).
+ */
+dwell: string | null, 
+/**
+ * Seconds to wait after starting the spindle (0: none). Needs `dwell`.
+ */
+spindleDwell: number, comments: CommentStyle, lineNumbers: LineNumbers | null, 
+/**
+ * Digits after the point for lengths in millimetres and in inches, and for feeds.
+ */
+decimalsMm: number, decimalsInch: number, feedDecimals: number, arcs: ArcFormat, 
+/**
+ * Split arcs where they cross a quadrant (0°, 90°, 180°, 270°), for controls that want
+ * arcs of at most 90°.
+ */
+arcQuadrants: boolean, 
+/**
+ * Arcs may move Z (helices); without, a helix is written as chords.
+ */
+helix: boolean, 
+/**
+ * Leave out a motion word or coordinate that has not changed.
+ */
+modal: boolean, 
+/**
+ * The longest line the control reads (characters), or none. Comments are shortened to
+ * fit; a motion that cannot fit is an error.
+ */
+maxLineLength: number | null, 
+/**
+ * Lines after the program's last retract and spindle stop (`M2`, `M30`, `%`).
+ */
+footer: Array<string>, };
+
+/**
+ * How G-code is written.
+ */
+export type PostSettings = { 
+/**
+ * The built-in post. Default value: linuxCnc.
+ */
+dialect: Dialect, 
+/**
+ * A post of the user's own (the fields of [`Post`]), used instead of the built-in one.
+ * Default value: none.
+ */
+custom: Post | null, 
+/**
+ * Units of the program. Default value: mm.
+ */
+units: Units, 
+/**
+ * Digits after the decimal point, instead of the post's. Default value: the post's (3
+ * for mm, 4 for inches in the built-in posts).
+ */
+decimals: number | null, 
+/**
+ * Rapid rate of the machine (mm/min), for the cycle-time estimate. Default value: 3000.
+ */
+rapidRate: number, 
+/**
+ * Time a tool change takes (seconds), for the cycle-time estimate. Default value: 15.
+ */
+toolChangeSeconds: number, 
+/**
+ * Program number (O word) for posts that write one. Default value: 1.
+ */
+programNumber: number, };
+
+/**
+ * Profile operation on a drawing.
+ */
+export type Profile2d = { 
+/**
+ * Default value: "profile".
+ */
+name: string, 
+/**
+ * Whether the job runs it (a disabled operation stays in the job). Default value: true.
+ */
+enabled: boolean, 
+/**
+ * Default value: 1.
+ */
+tool: number, 
+/**
+ * Default value: auto.
+ */
+side: Side, 
+/**
+ * Default value: climb.
+ */
+direction: Direction, 
+/**
+ * Depth below the stock top (mm). Default value: the stock's thickness plus 0.2 (through).
+ */
+depth: number | null, 
+/**
+ * Largest depth cut in one lap (mm). Default value: 2.
+ */
+stepdown: number, 
+/**
+ * Material left on the walls (mm). Default value: 0.
+ */
+leaveStock: number, 
+/**
+ * Radius of the lead-in and lead-out arcs (mm; 0 for none). Default value: the tool radius.
+ */
+leadRadius: number | null, 
+/**
+ * Steepest descent along the contour (degrees). Default value: 3.
+ */
+rampAngle: number, tabs: Tabs, 
+/**
+ * Layers to cut (empty: all). Default value: empty.
+ */
+layers: Array<string>, 
+/**
+ * Indices of the drawing's loops to cut (empty: all on the layers). Default value: empty.
+ */
+loops: Array<number>, };
+
+/**
+ * A project: a job and its part or drawing.
+ */
+export type Project = { format: string, version: number, job: Job, workpiece: ProjectFile, };
+
+/**
+ * The part or drawing of a project.
+ */
+export type ProjectFile = { 
+/**
+ * The file's name, with its extension (it tells the format).
+ */
+name: string, 
+/**
+ * The file's bytes in base64; none: the file lies beside the project under `name`.
+ */
+data?: string | null, };
+
+/**
+ * Octree multi-tool roughing.
+ */
+export type RoughOctree = { 
+/**
+ * Default value: "octree rough".
+ */
+name: string, 
+/**
+ * Whether the job runs it. Default value: true.
+ */
+enabled: boolean, 
+/**
+ * The tools it may choose from, by number. Default value: empty, meaning every flat and
+ * bull-nose end in the job's library.
+ */
+tools: Array<number>, 
+/**
+ * Axial depth of cut as a fraction of each tool's diameter (seed 000's δ = h / D), never
+ * more than the tool's flute length. Default value: 0.25.
+ */
+delta: number, 
+/**
+ * Distance between rings after the first as a fraction of the tool's diameter, at most
+ * 0.85 (seed 000 §3.3: wider steps leave islands where boundaries meet at 90°). The paper's
+ * regions are unions of square octants; here they follow the part, and rings more than
+ * the tool's radius apart can leave strips where a region narrows
+ * ([`super::pocket2d::rings`]), so the default is the widest that never does. Default
+ * value: 0.5.
+ */
+stepover: number, 
+/**
+ * Material left on floors (axial, mm). Default value: 0.5.
+ */
+allowance: number, 
+/**
+ * Material left on walls (radial, mm). Default value: 0.5.
+ */
+leaveStock: number, 
+/**
+ * Default value: climb.
+ */
+direction: Direction, 
+/**
+ * Spacing of the CL z-maps (mm). Default value: 0.25.
+ */
+grid: number, 
+/**
+ * Steepest descent of helices and ramps (degrees). Default value: 3.
+ */
+rampAngle: number, };
+
+/**
+ * Zigzag roughing (seed 004).
+ */
+export type RoughZigzag = { 
+/**
+ * Default value: "zigzag rough".
+ */
+name: string, 
+/**
+ * Whether the job runs it (a disabled operation stays in the job). Default value: true.
+ */
+enabled: boolean, 
+/**
+ * Default value: 1.
+ */
+tool: number, 
+/**
+ * Largest depth between levels (mm). Default value: 2.
+ */
+stepdown: number, 
+/**
+ * Distance between passes as a fraction of the tool diameter. Default value: 0.4.
+ */
+stepover: number, 
+/**
+ * Material left on floors (axial, mm). Default value: 0.5.
+ */
+allowance: number, 
+/**
+ * Material left on walls (radial, mm). Default value: 0.5.
+ */
+leaveStock: number, 
+/**
+ * Default value: climb.
+ */
+direction: Direction, 
+/**
+ * Direction of the passes (degrees from +X). Default value: 0.
+ */
+angle: number, 
+/**
+ * Default value: zigzag.
+ */
+passes: Passes, 
+/**
+ * Default value: path.
+ */
+load: LoadControl, 
+/**
+ * How far over the reference a stretch of Δs may load the tool (0.1: 10 %). Default value: 0.1.
+ */
+loadTolerance: number, 
+/**
+ * The sampling distance Δs (mm). Default value: half the step-over.
+ */
+sampling: number | null, 
+/**
+ * The pixel of the load's map (mm). Default value: the tool diameter / 100.
+ */
+pixel: number | null, 
+/**
+ * Spacing of the CL z-map (mm). Default value: 0.25.
+ */
+grid: number, 
+/**
+ * Steepest descent of helices and ramps (degrees). Default value: 3.
+ */
+rampAngle: number, 
+/**
+ * Cut every flat area of the part at its own height too. Default value: true.
+ */
+flats: boolean, };
+
+/**
+ * Z-level roughing.
+ */
+export type RoughZlevel = { 
+/**
+ * Default value: "z-level rough".
+ */
+name: string, 
+/**
+ * Whether the job runs it (a disabled operation stays in the job). Default value: true.
+ */
+enabled: boolean, 
+/**
+ * Default value: 1.
+ */
+tool: number, 
+/**
+ * Largest depth between levels (mm). Default value: 2.
+ */
+stepdown: number, 
+/**
+ * Distance between rings as a fraction of the tool diameter. Default value: 0.4.
+ */
+stepover: number, 
+/**
+ * Material left on floors (axial, mm). Default value: 0.5.
+ */
+allowance: number, 
+/**
+ * Material left on walls (radial, mm). Default value: 0.5.
+ */
+leaveStock: number, 
+/**
+ * Default value: climb.
+ */
+direction: Direction, 
+/**
+ * Spacing of the CL z-map (mm). Default value: 0.25.
+ */
+grid: number, 
+/**
+ * Steepest descent of helices and ramps (degrees). Default value: 3.
+ */
+rampAngle: number, 
+/**
+ * Helix radius (mm). Default value: 0.4 × the tool diameter.
+ */
+helixRadius: number | null, 
+/**
+ * Cut every flat area of the part at its own height too. Default value: true.
+ */
+flats: boolean, };
+
+/**
+ * The shape of a cutter's end.
+ */
+export type Shape = "flat" | "ball" | "bullNose";
+
+/**
+ * Which side of a loop the tool runs on.
+ */
+export type Side = "auto" | "outside" | "inside";
+
+/**
+ * Simulating the program after it is made (seed 002), to verify it and to show the cut.
+ */
+export type Simulation = { 
+/**
+ * Simulate and verify every program. Default value: true.
+ */
+verify: boolean, 
+/**
+ * Cell size of the simulated stock (mm). Default value: the size that gives the stock
+ * about a million cells, and no smaller than 0.05 mm.
+ */
+cell: number | null, };
+
+/**
+ * The stock, as a machinist sets it: margins around the placed part on every side, or an
+ * explicit box; the heights of moves between cuts; and the work zero.
+ */
+export type Stock = { 
+/**
+ * Extra stock around the part in X and Y (mm, each side). Default value: 5.
+ */
+marginXy: number, 
+/**
+ * Extra stock above the part's top (mm). Default value: 1.
+ */
+marginTop: number, 
+/**
+ * Extra stock below the part's bottom (mm). Default value: 0.
+ */
+marginBottom: number, 
+/**
+ * Margins on each side in X and Y, `[left (-X), right (+X), front (-Y), back (+Y)]` (mm),
+ * instead of `marginXy`. Default value: none.
+ */
+marginSides: [number, number, number, number] | null, 
+/**
+ * The stock as an explicit box (mm, where the part is placed), instead of margins.
+ * Default value: none.
+ */
+sizeBox: Aabb | null, 
+/**
+ * Height above the stock top for rapid moves (mm). Default value: 5.
+ */
+clearance: number, 
+/**
+ * Gap above the material under the tool where a rapid descent stops and the feed begins
+ * (mm): the short retract. Default value: 1.
+ */
+retract: number, 
+/**
+ * Moves part and stock so that this point is the program's origin (for parts; a sheet's
+ * top is always Z0). Default value: none (as the part's placement puts it).
+ */
+zero: WorkZero | null, };
+
+/**
+ * Holding tabs for parts cut through the sheet.
+ */
+export type Tabs = { 
+/**
+ * Tabs per outside loop (0: none, unless `spacing` is set). Default value: 0.
+ */
+count: number, 
+/**
+ * Distance between tabs along the path (mm); used when `count` is 0. Default value: none.
+ */
+spacing: number | null, 
+/**
+ * Length of material left along the part's edge (mm). Default value: 4.
+ */
+width: number, 
+/**
+ * Height of the tab above the final depth (mm). Default value: 1.5.
+ */
+height: number, };
+
+/**
+ * Distances in millimetres.
+ */
+export type Tolerances = { 
+/**
+ * Triangles with an area below `degenerate_area` (mm²) are dropped at import and counted.
+ * Default value: 1e-12.
+ */
+degenerateArea: number, 
+/**
+ * Largest distance a reduced tool path may lie above the points it replaces (chordal
+ * tolerance of point reduction, mm). It never lies below them. Default value: 0.002.
+ */
+chordal: number, 
+/**
+ * Heights closer than this are treated as equal when deciding whether a linking move
+ * may stay down (mm). Default value: 1e-6.
+ */
+height: number, 
+/**
+ * Largest distance of the exact CL surface from the straight line between two points of a
+ * path where the height was computed exactly, as tested at the midpoint by subdivision
+ * (mm). Where one feature decides both ends the rise between is at most twice this
+ * (`zmap/surface.rs` gives the argument). Default value: 0.0005.
+ */
+interpolation: number, 
+/**
+ * Horizontal components of a unit normal below this make a facet horizontal; normals
+ * with a vertical component below it make a facet vertical. Default value: 1e-12.
+ */
+normal: number, 
+/**
+ * Verification reports material below the part's surface plus allowance as a gouge only
+ * when it is deeper than this (mm); the same margin applies to the tool body's clearance.
+ * Default value: 0.02.
+ */
+gouge: number, 
+/**
+ * End points of drawn entities closer than this are joined into one chain (mm).
+ * Default value: 0.01.
+ */
+chain: number, 
+/**
+ * Curves (splines, ellipses, Béziers) are replaced by arcs that stay within this distance
+ * of them (mm). Default value: 0.002.
+ */
+arcFit: number, 
+/**
+ * Entities of a loop shorter than this are merged into their neighbours before and after
+ * offsetting, as seed 003 does for spline-heavy parts (mm). Default value: 1e-4.
+ */
+microEntity: number, 
+/**
+ * Points of the offsetter closer than this are one point, and an offset piece lying closer
+ * to the input than the distance less this is trimmed (mm). Default value: 1e-7.
+ */
+offset: number, };
+
+/**
+ * A tool in the library: a cutter with its cutting data.
+ */
+export type Tool = { 
+/**
+ * Tool number (T word, pocket). Default value: 1.
+ */
+number: number, 
+/**
+ * Free text for the library and the program's comments. Default value: empty.
+ */
+name: string, 
+/**
+ * Spindle speed (rpm). Default value: 12000.
+ */
+spindleRpm: number, 
+/**
+ * Cutting feed (mm/min). Default value: 1000.
+ */
+feedRate: number, 
+/**
+ * Feed for vertical entries (mm/min). Default value: 300.
+ */
+plungeRate: number, 
+/**
+ * How far the tool stands out of its holder (mm), for the library and the setup sheet
+ * (the simulation checks the shank above the flutes; holders are not modelled yet).
+ * Default value: none.
+ */
+stickOut: number | null, 
+/**
+ * Coolant while this tool cuts: off, flood (M8) or mist (M7), as the post writes them.
+ * Default value: off.
+ */
+coolant: Coolant, 
+/**
+ * End shape. Default value: ball.
+ */
+shape: Shape, 
+/**
+ * Cutting diameter (mm). Default value: 6.
+ */
+diameter: number, 
+/**
+ * Corner radius of a bull nose (mm), between 0 and half the diameter; ignored for flat and
+ * ball cutters. Default value: 1.
+ */
+cornerRadius: number, 
+/**
+ * Shank diameter (mm), kept for collision checks. Default value: the cutting diameter.
+ */
+shankDiameter: number | null, 
+/**
+ * Length of the fluted part (mm), kept for collision checks. Default value: 20.
+ */
+fluteLength: number, };
+
+/**
+ * Length unit of a file or of G-code.
+ */
+export type Units = "mm" | "inch";
+
+/**
+ * Which axis of the file points up.
+ */
+export type UpAxis = "z" | "y";
+
+/**
+ * The work zero: where the program's origin is on the setup.
+ */
+export type WorkZero = { 
+/**
+ * Default value: partTop.
+ */
+height: ZeroHeight, 
+/**
+ * Default value: center.
+ */
+corner: ZeroCorner, };
+
+/**
+ * Which point of the stock seen from above is X0 Y0.
+ */
+export type ZeroCorner = "center" | "frontLeft" | "frontRight" | "backLeft" | "backRight";
+
+/**
+ * Which height of the setup is Z0 in the program.
+ */
+export type ZeroHeight = "partTop" | "stockTop" | "stockBottom";
