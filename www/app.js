@@ -30,7 +30,7 @@ function showInfo(text) { const m = $('message'); m.className = 'info'; m.textCo
 const job = () => state.jobs[state.kind];
 const selectedOp = () => job().operations[state.selected[state.kind]] ?? null;
 const selectedTool = () => state.tools[state.selected.tool] ?? null;
-const is2d = (op) => op.kind === 'profile2d' || op.kind === 'pocket2d';
+const is2d = (op) => op.kind === 'profile2d' || op.kind === 'pocket2d' || op.kind === 'engrave';
 
 function store() {
   try {

@@ -9,7 +9,7 @@ use crate::error::{Error, Result};
 use crate::geom::{Aabb, DVec2};
 use crate::offset::offset;
 use crate::profile::Drawing;
-use crate::strategy::context::SheetCut;
+use crate::strategy::context::{Groove, SheetCut};
 use crate::zmap::{Grid, HeightField};
 
 /// The units a drawing's numbers are in.
@@ -97,8 +97,25 @@ pub fn place(job: &Job, drawing: &mut Drawing) -> Result<(Aabb, f64)> {
 /// where it cuts (inside its region, or outside it). Regions are narrowed by the leave-stock
 /// and widened by the gouge tolerance where they cut, so cells on a wall are not judged by a
 /// hair.
-pub fn surface(cuts: &[SheetCut], grid: Grid, gouge: f64, tol: &crate::geom::Tolerances) -> HeightField {
+pub fn surface(cuts: &[SheetCut], grooves: &[Groove], grid: Grid, gouge: f64, tol: &crate::geom::Tolerances) -> HeightField {
     let mut field = grid.filled(0.0);
+    // An engraving's groove: every node within its radius (and the gouge tolerance) of the line.
+    for g in grooves {
+        let reach = g.radius + gouge;
+        for seg in &g.path {
+            let b = seg.bounds().expand(reach);
+            let (Some((i0, i1)), Some((j0, j1))) = (grid.columns(b.min.x, b.max.x), grid.rows(b.min.y, b.max.y)) else { continue };
+            for j in j0..=j1 {
+                for i in i0..=i1 {
+                    let q = grid.node(i, j);
+                    if seg.distance_to(q) < reach {
+                        let c = j * grid.nx + i;
+                        field.z[c] = field.z[c].min(-g.depth);
+                    }
+                }
+            }
+        }
+    }
     for SheetCut { region, inside, depth, leave } in cuts {
         let widen = gouge - leave;
         let region = offset(region, if *inside { widen } else { -widen }, tol);

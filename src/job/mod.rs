@@ -508,6 +508,7 @@ impl Job {
             sim: Simulator::new(&stock, cell)?,
             warnings: Vec::new(),
             cuts: Vec::new(),
+            grooves: Vec::new(),
             load: None,
             stages: None,
             octants: Vec::new(),
@@ -620,14 +621,14 @@ pub fn run(job: &Job, workpiece: impl Into<Workpiece>, progress: &mut Progress) 
         let why = if warnings.is_empty() { String::new() } else { format!(" ({})", warnings.iter().map(Warning::to_string).collect::<Vec<_>>().join("; ")) };
         return Err(Error::Nothing(format!("the program has no cutting moves{why}")));
     }
-    let Context { part, sheet, stock, heights, caches, sim, cuts, octants, .. } = ctx;
+    let Context { part, sheet, stock, heights, caches, sim, cuts, grooves, octants, .. } = ctx;
     // The simulation that carried the in-process stock judges the whole program.
     let (verification, sim) = if verify {
         let settings = job.verify_settings(&stock, None);
         let tol = job.tolerances;
         let v = match &sheet {
             None => sim.finish(|grid| cc_zmap(&part, grid, f64::NEG_INFINITY, &tol), settings.allowance, &tol),
-            Some(_) => sim.finish(|grid| drawing::surface(&cuts, grid, tol.gouge, &tol), settings.allowance, &tol),
+            Some(_) => sim.finish(|grid| drawing::surface(&cuts, &grooves, grid, tol.gouge, &tol), settings.allowance, &tol),
         };
         (Some(v), None)
     } else {

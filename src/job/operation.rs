@@ -4,6 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::strategy::engrave::Engrave;
 use crate::strategy::finish_raster::FinishRaster;
 use crate::strategy::finish_waterline::FinishWaterline;
 use crate::strategy::pocket2d::Pocket2d;
@@ -68,6 +69,9 @@ operations! {
     Profile2d(Profile2d) = "profile2d",
     /// Pocket inside a drawing's loops (seed 003).
     Pocket2d(Pocket2d) = "pocket2d",
+    /// Engraving along a drawing's lines: open chains and chosen loops, the tool's centre on
+    /// the line.
+    Engrave(Engrave) = "engrave",
 }
 
 impl Operation {

@@ -101,7 +101,7 @@ fn chain_layer(segs: &[Segment], tol: f64, layer: &str, loops: &mut Vec<DrawnLoo
             chain[n - 1].b = chain[0].a;
             loops.push(DrawnLoop { layer: layer.to_string(), path: Loop::from_segments(&chain) });
         } else {
-            open.push(OpenChain { layer: layer.to_string(), start: chain[0].a, end: chain[chain.len() - 1].b, segments: chain.len() });
+            open.push(OpenChain { layer: layer.to_string(), start: chain[0].a, end: chain[chain.len() - 1].b, segments: chain.len(), path: chain.clone() });
         }
     }
 }

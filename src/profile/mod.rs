@@ -253,6 +253,9 @@ pub struct OpenChain {
     pub start: DVec2,
     pub end: DVec2,
     pub segments: usize,
+    /// The chain itself, from `start` to `end` (for engraving).
+    #[serde(skip)]
+    pub path: Vec<crate::geom::segment::Segment>,
 }
 
 /// A closed loop with the layer it was drawn on.

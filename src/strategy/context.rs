@@ -51,6 +51,14 @@ pub struct SheetCut {
     pub leave: f64,
 }
 
+/// Where an engraving cuts: within `radius` of its line, to `depth`.
+#[derive(Clone, Debug)]
+pub struct Groove {
+    pub path: Vec<crate::geom::segment::Segment>,
+    pub radius: f64,
+    pub depth: f64,
+}
+
 /// Lookups of the caches, for reports and benchmarks.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct CacheCounts {
@@ -88,6 +96,8 @@ pub struct Context {
     pub warnings: Vec<Warning>,
     /// Where the 2.5D operations cut (for verifying a drawing's program).
     pub cuts: Vec<SheetCut>,
+    /// The grooves engraving operations cut, for verifying the program.
+    pub grooves: Vec<Groove>,
     /// The load along the path of the operation just planned, where it measured one (seed
     /// 004): the job moves it into that operation's report.
     pub load: Option<crate::strategy::rough_zigzag::LoadReport>,

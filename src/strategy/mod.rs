@@ -8,6 +8,7 @@
 //! matches its `Operation` enum in one place (`job/operation.rs`).
 
 pub mod context;
+pub mod engrave;
 pub mod finish_raster;
 pub mod finish_waterline;
 pub mod path2d;

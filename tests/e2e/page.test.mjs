@@ -842,3 +842,37 @@ test('embed.html, a second consumer of swarf.js: a run with progress, a run canc
   assert.deepEqual(errors, []);
   await context.close();
 });
+
+test('engraving: open chains on a layer of their own cut along their lines beside a profile, in one clean program that rs274 runs', async () => {
+  const { page, context, errors } = await openPage();
+  const line = (layer, [x0, y0], [x1, y1]) => `0\nLINE\n8\n${layer}\n10\n${x0}\n20\n${y0}\n11\n${x1}\n21\n${y1}\n`;
+  let dxf = '0\nSECTION\n2\nENTITIES\n';
+  for (const [a, b] of [[[0, 0], [60, 0]], [[60, 0], [60, 40]], [[60, 40], [0, 40]], [[0, 40], [0, 0]]]) dxf += line('CUT', a, b);
+  for (const [a, b] of [[[10, 30], [25, 30]], [[25, 30], [10, 10]], [[10, 10], [25, 10]]]) dxf += line('TEXT', a, b);
+  dxf += '0\nENDSEC\n0\nEOF\n';
+  await page.setInputFiles('#file', { name: 'sign.dxf', mimeType: 'application/dxf', buffer: Buffer.from(dxf) });
+  await page.waitForFunction(() => document.body.dataset.kind === 'drawing');
+  await page.fill('input[name=layers]', 'CUT');
+  await page.selectOption('#op-kind', 'engrave');
+  await page.click('#op-add');
+  await page.fill('input[name=layers]', 'TEXT');
+  await page.fill('input[name=pocketDepth]', '0.8');
+  assert.equal(await page.isChecked('input[name=chains]'), true);
+  await page.click('#generate');
+  await generated(page);
+  assert.doesNotMatch(await page.textContent('#sim-report'), /gouge[^\n]*[1-9]/);
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-engrave-'));
+  const program = path.join(dir, download.suggestedFilename());
+  await download.saveAs(program);
+  const gcode = fs.readFileSync(program, 'utf8');
+  assert.match(gcode, /\(engrave\)/);
+  const engraving = gcode.slice(gcode.indexOf('(engrave)'));
+  assert.match(engraving, /Z-0\.8\n/, 'the line at the full depth');
+  assert.doesNotMatch(engraving, /Z-0\.(?:8\d|9)|Z-[1-9]/, 'no deeper than asked');
+  const tools = await page.evaluate(() => window.swarf.tools);
+  fs.writeFileSync(path.join(dir, 'tool.tbl'), toolTable(tools));
+  execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), program], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });
+  assert.deepEqual(errors, []);
+  await context.close();
+});

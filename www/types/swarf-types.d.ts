@@ -83,6 +83,51 @@ thickness: number, };
 export type DrawingUnits = "file" | "mm" | "inch";
 
 /**
+ * Engraving on a drawing.
+ */
+export type Engrave = { 
+/**
+ * Default value: "engrave".
+ */
+name: string, 
+/**
+ * Whether the job runs it. Default value: true.
+ */
+enabled: boolean, 
+/**
+ * Default value: 1.
+ */
+tool: number, 
+/**
+ * Depth below the sheet's top (mm). Default value: 0.5.
+ */
+depth: number, 
+/**
+ * Largest depth cut in one pass (mm). Default value: 0.5.
+ */
+stepdown: number, 
+/**
+ * Steepest descent along the line (degrees). Default value: 10.
+ */
+rampAngle: number, 
+/**
+ * Layers to engrave (empty: all). Default value: empty.
+ */
+layers: Array<string>, 
+/**
+ * Engrave the open chains on those layers. Default value: true.
+ */
+chains: boolean, 
+/**
+ * Closed loops to engrave, by their index (as `swarf drawing` numbers them). Default value: none.
+ */
+loops: Array<number>, 
+/**
+ * Engrave every closed loop on those layers too. Default value: false.
+ */
+allLoops: boolean, };
+
+/**
  * How a cutter enters material.
  */
 export type Entry = { 
@@ -247,7 +292,7 @@ export type LoadControl = "path" | "feed" | "none";
 /**
  * One operation of a job.
  */
-export type Operation = { "kind": "roughZlevel" } & RoughZlevel | { "kind": "roughZigzag" } & RoughZigzag | { "kind": "roughOctree" } & RoughOctree | { "kind": "finishRaster" } & FinishRaster | { "kind": "finishWaterline" } & FinishWaterline | { "kind": "profile2d" } & Profile2d | { "kind": "pocket2d" } & Pocket2d;
+export type Operation = { "kind": "roughZlevel" } & RoughZlevel | { "kind": "roughZigzag" } & RoughZigzag | { "kind": "roughOctree" } & RoughOctree | { "kind": "finishRaster" } & FinishRaster | { "kind": "finishWaterline" } & FinishWaterline | { "kind": "profile2d" } & Profile2d | { "kind": "pocket2d" } & Pocket2d | { "kind": "engrave" } & Engrave;
 
 /**
  * How to read a part's coordinates.

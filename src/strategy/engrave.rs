@@ -1,0 +1,167 @@
+//! Engraving along drawn lines: the tool's centre on the line itself (no offset), for text,
+//! scribe lines and open chains a profile cannot cut. Each line is cut in passes no deeper than
+//! the step-down; every pass descends along the line at the ramp angle, never straight down
+//! into material. An open chain is cut back and forth (each pass runs the other way, so the
+//! tool never travels back in the air), a closed loop in laps like a profile's; a last pass at
+//! the full depth follows the whole line. Lines are taken nearest first.
+
+use serde::{Deserialize, Serialize};
+
+use super::context::Groove;
+use super::path2d::{arc_lengths, follow, Heights};
+use super::sheet;
+use crate::error::{Error, Result};
+use crate::geom::segment::Segment;
+use crate::toolpath::{Move, Toolpath};
+
+/// Engraving on a drawing.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(default, rename_all = "camelCase")]
+pub struct Engrave {
+    /// Default value: "engrave".
+    pub name: String,
+    /// Whether the job runs it. Default value: true.
+    pub enabled: bool,
+    /// Default value: 1.
+    pub tool: u32,
+    /// Depth below the sheet's top (mm). Default value: 0.5.
+    pub depth: f64,
+    /// Largest depth cut in one pass (mm). Default value: 0.5.
+    pub stepdown: f64,
+    /// Steepest descent along the line (degrees). Default value: 10.
+    pub ramp_angle: f64,
+    /// Layers to engrave (empty: all). Default value: empty.
+    pub layers: Vec<String>,
+    /// Engrave the open chains on those layers. Default value: true.
+    pub chains: bool,
+    /// Closed loops to engrave, by their index (as `swarf drawing` numbers them). Default value: none.
+    pub loops: Vec<usize>,
+    /// Engrave every closed loop on those layers too. Default value: false.
+    pub all_loops: bool,
+}
+
+impl Default for Engrave {
+    fn default() -> Self {
+        Engrave { name: "engrave".into(), enabled: true, tool: 1, depth: 0.5, stepdown: 0.5, ramp_angle: 10.0, layers: Vec::new(), chains: true, loops: Vec::new(), all_loops: false }
+    }
+}
+
+/// A line to engrave.
+struct Line {
+    path: Vec<Segment>,
+    closed: bool,
+}
+
+fn reversed(path: &[Segment]) -> Vec<Segment> {
+    path.iter().rev().map(Segment::reversed).collect()
+}
+
+impl super::Operate for Engrave {
+    super::named_operation!(OnDrawing);
+
+    fn validate(&self) -> std::result::Result<(), super::FieldError> {
+        super::positive("depth", self.depth)?;
+        super::positive("stepdown", self.stepdown)?;
+        super::positive("rampAngle", self.ramp_angle)?;
+        if self.ramp_angle > 90.0 {
+            return Err(super::FieldError { field: "rampAngle", message: format!("must be at most 90 degrees (got {})", self.ramp_angle) });
+        }
+        Ok(())
+    }
+
+    fn plan(&self, ctx: &mut super::Context, _progress: &mut crate::progress::Progress) -> Result<Vec<Toolpath>> {
+        let tool = ctx.tool(&self.name, self.tool)?.clone();
+        let (drawing, thickness) = sheet::sheet(ctx, &self.name)?;
+        if self.depth > thickness + sheet::BREAKTHROUGH {
+            return Err(Error::operation(&self.name, format!("the depth {} mm is deeper than the {thickness} mm sheet", self.depth)));
+        }
+        let on = |layer: &String| self.layers.is_empty() || self.layers.contains(layer);
+        let mut lines: Vec<Line> = Vec::new();
+        if self.chains {
+            lines.extend(drawing.open.iter().filter(|c| on(&c.layer) && !c.path.is_empty()).map(|c| Line { path: c.path.clone(), closed: false }));
+        }
+        for (i, l) in drawing.loops.iter().enumerate() {
+            if on(&l.layer) && (self.all_loops || self.loops.contains(&i)) {
+                lines.push(Line { path: l.path.segments().collect(), closed: true });
+            }
+        }
+        if let Some(&k) = self.loops.iter().find(|&&k| k >= drawing.loops.len()) {
+            return Err(Error::operation(&self.name, format!("the drawing has no loop {k} (it has {})", drawing.loops.len())));
+        }
+        if lines.is_empty() {
+            let why = if self.chains { "no open chains on its layers; name loops to engrave, or set allLoops" } else { "nothing chosen: set chains, loops or allLoops" };
+            return Err(Error::operation(&self.name, why));
+        }
+        let top = ctx.stock.max.z;
+        let z_final = top - self.depth;
+        let angle = self.ramp_angle.to_radians();
+        let mut cursor = sheet::cursor(ctx, &tool);
+        let mut out: Vec<Move> = Vec::new();
+        let mut grooves = Vec::new();
+        let mut in_air = 0;
+        // Nearest line first, from its nearer end.
+        let mut left: Vec<Line> = lines;
+        while !left.is_empty() {
+            let here = cursor.at.truncate();
+            let (k, flip) = left
+                .iter()
+                .enumerate()
+                .flat_map(|(k, l)| {
+                    let start = l.path[0].a.distance(here);
+                    let end = if l.closed { f64::INFINITY } else { l.path[l.path.len() - 1].b.distance(here) };
+                    [(k, false, start), (k, true, end)]
+                })
+                .min_by(|a, b| a.2.total_cmp(&b.2))
+                .map(|(k, f, _)| (k, f))
+                .expect("lines left");
+            let line = left.swap_remove(k);
+            let path = if flip { reversed(&line.path) } else { line.path };
+            let (_, total) = arc_lengths(&path);
+            if total <= 1e-6 {
+                continue;
+            }
+            grooves.push(Groove { path: path.clone(), radius: tool.cutter.radius(), depth: self.depth });
+            let Some(start_z) = cursor.material_top(path.iter().copied(), top, z_final, ctx.tolerances.gouge) else {
+                in_air += 1;
+                continue;
+            };
+            cursor.safe = start_z + cursor.gap;
+            cursor.reposition(path[0].a.extend(start_z), &mut out);
+            cut_line(&path, line.closed, start_z, z_final, self.stepdown, angle, tool.feed_rate, &mut out);
+            cursor.moved(&out);
+        }
+        ctx.grooves.extend(grooves);
+        if in_air > 0 {
+            ctx.warn(&self.name, format!("{in_air} lines have no material left along them and are not engraved"));
+        }
+        if out.is_empty() {
+            return Ok(Vec::new());
+        }
+        Ok(vec![sheet::toolpath(&self.name, &tool, out, ctx.heights.clearance)])
+    }
+}
+
+/// The passes along one line from `top` to `z_final`: each descends along the line at the ramp
+/// angle by at most `stepdown`; an open line is cut back and forth, a closed one in laps; the
+/// last pass follows the whole line at the final depth.
+#[allow(clippy::too_many_arguments)]
+fn cut_line(path: &[Segment], closed: bool, top: f64, z_final: f64, stepdown: f64, angle: f64, feed: f64, out: &mut Vec<Move>) {
+    let (_, total) = arc_lengths(path);
+    let back = reversed(path);
+    let mut current = top;
+    let mut forward = true;
+    loop {
+        let finishing = current <= z_final + 1e-9;
+        let target = (current - stepdown).max(z_final);
+        let heights = if finishing { Heights::constant(z_final) } else { Heights::ramp(0.0, current, target, angle) };
+        let segs = if forward || closed { path } else { &back[..] };
+        follow(segs, 0.0, total, &heights, feed, out);
+        if finishing {
+            break;
+        }
+        current = heights.at(total);
+        if !closed {
+            forward = !forward;
+        }
+    }
+}
