@@ -122,6 +122,9 @@ pub struct Profile {
 /// times the curvature (1 / corner radius): far below 1e-9 mm.
 const EDGE_CONTACT_STEP: f64 = 1e-7;
 
+/// The contact search also stops when the slope of the height along the line is this small.
+const CONTACT_SLOPE: f64 = 1e-7;
+
 impl Profile {
     pub fn new(radius: f64, corner: f64) -> Profile {
         Profile { radius, corner, flat: radius - corner }
@@ -236,13 +239,19 @@ impl Profile {
         if z_at(lo).max(z_at(hi)) - self.height(dist2.sqrt()) <= current {
             return None;
         }
-        // Bull nose: in the vertical plane of the edge, with s the distance along it from the
-        // foot, F(s) = m s - height(sqrt(dist² + s²)) is concave (height is convex and
-        // non-decreasing in r, r is convex in s), so its maximum on [lo, hi] is where F' = 0,
-        // or an end. F' and F'' are closed forms: a safeguarded Newton iteration finds the
-        // root in a few steps (bisection keeps it inside the bracket where F' changes sign).
-        let m = dz / len;
-        let (s_lo, s_hi) = ((lo - t_c) * len, (hi - t_c) * len);
+        let s = self.contact_along(dz / len, dist2, (lo - t_c) * len, (hi - t_c) * len);
+        Some(p.z + dz * (t_c + s / len) - self.height((dist2 + s * s).sqrt().min(self.radius)))
+    }
+
+    /// Where a bull nose meets a line of slope `m` at horizontal distance `sqrt(dist2)` from its
+    /// axis: the `s` in `[lo, hi]` (along the line, from the foot of the axis) that maximises
+    /// `F(s) = m s - height(sqrt(dist2 + s²))`. F is concave (height is convex and
+    /// non-decreasing in r, r is convex in s), so the maximum is where F' = 0, or an end. F' and
+    /// F'' are closed forms: a safeguarded Newton iteration finds the root in a few steps
+    /// (bisection keeps it inside the bracket where F' changes sign). The edge drop asks it of a
+    /// mesh edge under the cutter; the simulation's sweep asks it of the cutter's own path
+    /// (the lowest point of a sloped move over a point is the same problem upside down).
+    pub fn contact_along(&self, m: f64, dist2: f64, lo: f64, hi: f64) -> f64 {
         let slopes = |s: f64| {
             let r = (dist2 + s * s).sqrt();
             let u = r - self.flat;
@@ -258,20 +267,18 @@ impl Profile {
             let (h1, h2) = (u / w, self.corner * self.corner / (w2 * w));
             (m - h1 * s / r, -(h2 * s * s / (r * r) + h1 * dist2 / (r * r * r)))
         };
-        let value = |s: f64| p.z + dz * (t_c + s / len) - self.height((dist2 + s * s).sqrt().min(self.radius));
-        if slopes(s_lo).0 <= 0.0 {
-            return Some(value(s_lo)); // falling all along: the near end is highest
+        if slopes(lo).0 <= 0.0 {
+            return lo; // falling all along: the near end is highest
         }
-        if slopes(s_hi).0 >= 0.0 {
-            return Some(value(s_hi)); // rising all along: the far end is highest
+        if slopes(hi).0 >= 0.0 {
+            return hi; // rising all along: the far end is highest
         }
-        let (mut a, mut b) = (s_lo, s_hi);
-        // Start where the edge leaves the flat bottom towards its uphill side, a little into
-        // the corner (a level edge touches there or at the foot).
+        let (mut a, mut b) = (lo, hi);
+        // Start where the line leaves the flat bottom towards its uphill side, a little into
+        // the corner (a level line touches there or at the foot).
         let rim = (self.flat * self.flat - dist2).max(0.0).sqrt();
         let into = 0.5 * self.corner * m.abs().min(1.0);
         let mut s = ((rim + into) * m.signum()).clamp(a, b);
-
         for _ in 0..100 {
             let (g, g2) = slopes(s);
             if g > 0.0 {
@@ -279,16 +286,16 @@ impl Profile {
             } else {
                 b = s;
             }
-            let newton = s - g / g2;
-            let next = if g2 < 0.0 && newton > a && newton < b { newton } else { 0.5 * (a + b) };
-            let done = (next - s).abs() <= EDGE_CONTACT_STEP || b - a <= EDGE_CONTACT_STEP;
-            s = next;
-            if done {
+            // Done when the slope vanishes (the height is then off by about g² / |F''|) or the
+            // bracket is closed; a short Newton step alone is no proof, since near the rim the
+            // curvature is huge and the steps short while the root is still far.
+            if g.abs() <= CONTACT_SLOPE || b - a <= EDGE_CONTACT_STEP {
                 break;
             }
+            let newton = s - g / g2;
+            s = if g2 < 0.0 && newton > a && newton < b { newton } else { 0.5 * (a + b) };
         }
-        // F is concave and F'(s) = 0 here: its maximum.
-        Some(value(s))
+        s
     }
 }
 

@@ -7,8 +7,8 @@
 //! The envelope is exact: for a flat end and a ball in closed form (a flat end reaches lowest at
 //! an end of the interval of the move during which it covers the point; a ball sweeps a capsule,
 //! whose lower surface is one of the end spheres or the cylinder between them); for a bull nose
-//! by a golden-section search, since `z(t) + height(|q - c(t)|)` is convex in the move's
-//! parameter. Planar arcs are exact too; helical arcs are split into chords first.
+//! by the contact search the CL z-map's edge drop uses ([`Profile::contact_along`]), since
+//! `z(t) + height(|q - c(t)|)` is convex in the move's parameter. Planar arcs are exact too; helical arcs are split into chords first.
 
 use crate::cutter::Profile;
 use crate::geom::{DVec2, DVec3};
@@ -49,9 +49,6 @@ struct LineConstants {
     inv_along: f64,
 }
 
-/// Iterations of the bull nose's golden-section search: the bracket shrinks to 0.618^48 ≈ 1e-10
-/// of the move, and the height error is second order in that.
-const GOLDEN_STEPS: usize = 48;
 
 impl Sweep {
     pub fn line(profile: Profile, a: DVec3, b: DVec3) -> Sweep {
@@ -162,9 +159,20 @@ impl Sweep {
                 if p.corner == 0.0 {
                     // Flat end: the bottom is level, so the lowest point is at an end.
                     a.z + dz * if dz > 0.0 { t0 } else { t1 }
+                } else if k.inv_len2 > 0.0 {
+                    // With τ = s_w - L t the signed distance along the move from the axis to
+                    // q, the height is a.z + m s_w - (m τ - height(sqrt(perp² + τ²))): its lowest
+                    // point is the cutter's contact with a line of slope m, as for an edge drop.
+                    let len = (1.0 / k.inv_len2).sqrt();
+                    let s_w = w.dot(d) / len;
+                    let perp2 = (w.length_squared() - s_w * s_w).max(0.0);
+                    let m = dz / len;
+                    let tau = p.contact_along(m, perp2, s_w - len * t1, s_w - len * t0);
+                    let t = (s_w - tau) / len;
+                    a.z + dz * t + p.height((perp2 + tau * tau).sqrt().min(p.radius))
                 } else {
-                    let f = |t: f64| a.z + dz * t + p.height((w - d * t).length().min(p.radius));
-                    golden_min(f, t0, t1)
+                    // A vertical move: the lower end, at q's distance from the axis.
+                    a.z.min(b.z) + p.height(w.length().min(p.radius))
                 }
             }
             Path::Arc { center, radius, start, sweep, z } => {
@@ -260,28 +268,6 @@ impl Sweep {
 }
 
 /// Minimum of a convex function on `[lo, hi]`.
-fn golden_min(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> f64 {
-    const INV_PHI: f64 = 0.618_033_988_749_894_9;
-    let mut x1 = hi - (hi - lo) * INV_PHI;
-    let mut x2 = lo + (hi - lo) * INV_PHI;
-    let (mut f1, mut f2) = (f(x1), f(x2));
-    for _ in 0..GOLDEN_STEPS {
-        if f1 <= f2 {
-            hi = x2;
-            x2 = x1;
-            f2 = f1;
-            x1 = hi - (hi - lo) * INV_PHI;
-            f1 = f(x1);
-        } else {
-            lo = x1;
-            x1 = x2;
-            f1 = f2;
-            x2 = lo + (hi - lo) * INV_PHI;
-            f2 = f(x2);
-        }
-    }
-    f1.min(f2).min(f(lo)).min(f(hi))
-}
 
 /// Whether the direction `angle` lies on the arc starting at `start` and sweeping `sweep`.
 fn angle_within(start: f64, sweep: f64, angle: f64) -> bool {
@@ -418,5 +404,33 @@ mod tests {
                 assert!(5.0 - mid.length() <= 0.001 + 1e-12);
             }
         }
+    }
+
+    /// The bull nose's sloped sweeps against a dense scan of the move, at random points of
+    /// random moves' footprints.
+    #[test]
+    fn bull_nose_sweeps_match_a_dense_scan() {
+        let p = Profile::new(3.0, 1.0);
+        let mut seed = 7u64;
+        let mut rnd = || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut checked = 0;
+        for _ in 0..150 {
+            let a = DVec3::new(rnd() * 10.0 - 5.0, rnd() * 10.0 - 5.0, rnd() * 4.0 - 2.0);
+            let b = DVec3::new(rnd() * 10.0 - 5.0, rnd() * 10.0 - 5.0, rnd() * 4.0 - 2.0);
+            let sweep = Sweep::line(p, a, b);
+            let exact = brute(&sweep, 20_000);
+            for _ in 0..20 {
+                let q = DVec2::new(sweep.min.x + rnd() * (sweep.max.x - sweep.min.x), sweep.min.y + rnd() * (sweep.max.y - sweep.min.y));
+                let (fast, slow) = (sweep.lowest(q), exact(q));
+                if slow.is_finite() {
+                    assert!(fast <= slow + 1e-9 && fast >= slow - 2e-3, "{a} {b} at {q}: {fast} vs {slow}");
+                    checked += 1;
+                }
+            }
+        }
+        assert!(checked > 1000, "{checked}");
     }
 }
