@@ -43,18 +43,27 @@ impl Dialect {
     /// Every built-in post.
     pub const ALL: [Dialect; 6] = [Dialect::LinuxCnc, Dialect::Grbl, Dialect::GrblHal, Dialect::Mach3, Dialect::Fanuc, Dialect::Generic];
 
-    /// The built-in post's data (`src/post/builtin/*.json`).
+    /// The built-in post's data (`src/post/builtin/*.json`), read once.
     pub fn post(self) -> Post {
-        let json = match self {
-            Dialect::LinuxCnc => include_str!("builtin/linuxcnc.json"),
-            Dialect::Grbl => include_str!("builtin/grbl.json"),
-            Dialect::GrblHal => include_str!("builtin/grblhal.json"),
-            Dialect::Mach3 => include_str!("builtin/mach3.json"),
-            Dialect::Fanuc => include_str!("builtin/fanuc.json"),
-            Dialect::Generic => include_str!("builtin/generic.json"),
-        };
-        // The built-in files are read by a test of their own.
-        Post::from_json(json).unwrap_or_else(|e| panic!("built-in post {self:?}: {e}"))
+        static POSTS: std::sync::OnceLock<Vec<Post>> = std::sync::OnceLock::new();
+        let posts = POSTS.get_or_init(|| {
+            Dialect::ALL
+                .iter()
+                .map(|d| {
+                    let json = match d {
+                        Dialect::LinuxCnc => include_str!("builtin/linuxcnc.json"),
+                        Dialect::Grbl => include_str!("builtin/grbl.json"),
+                        Dialect::GrblHal => include_str!("builtin/grblhal.json"),
+                        Dialect::Mach3 => include_str!("builtin/mach3.json"),
+                        Dialect::Fanuc => include_str!("builtin/fanuc.json"),
+                        Dialect::Generic => include_str!("builtin/generic.json"),
+                    };
+                    // The built-in files are read by a test of their own.
+                    Post::from_json(json).unwrap_or_else(|e| panic!("built-in post {d:?}: {e}"))
+                })
+                .collect()
+        });
+        posts[Dialect::ALL.iter().position(|&d| d == self).expect("every dialect is in ALL")].clone()
     }
 
     /// The file extension its controllers expect: `ngc` for LinuxCNC, `tap` for Mach3/Mach4,
@@ -200,7 +209,7 @@ pub fn write_program(title: &str, paths: &[Toolpath], tools: &[Tool], clearance_
         w.comment(&path.name);
         if !started || current.map(|t| t.number) != Some(path.tool) {
             if started {
-                w.coolant_off(current);
+                w.coolant_off();
                 w.line(&post.spindle_off);
             }
             w.rapid_z(clearance_z);
@@ -237,7 +246,7 @@ pub fn write_program(title: &str, paths: &[Toolpath], tools: &[Tool], clearance_
         }
         time.paths.push(w.seconds - before);
     }
-    w.coolant_off(current);
+    w.coolant_off();
     w.line(&post.spindle_off);
     w.rapid_z(clearance_z);
     for l in &post.footer {
@@ -382,7 +391,7 @@ impl<'a> Writer<'a> {
         }
     }
 
-    fn coolant_off(&mut self, _tool: Option<&Tool>) {
+    fn coolant_off(&mut self) {
         if self.coolant {
             if let Some(word) = self.post.coolant_off.clone() {
                 self.line(&word);

@@ -345,7 +345,7 @@ test('the sample drawing: loops shown as outlines and holes, profile and pocket 
   assert.match(gcode, /^G[23] X-?[\d.]+ Y-?[\d.]+/m, 'arcs go out as G2/G3 with X and Y');
   assert.match(gcode, /\(pocket\)[\s\S]*\(profile\)/, 'the pocket, then the profile');
   const tools = await page.evaluate(() => window.swarf.tools);
-  fs.writeFileSync(path.join(dir, 'tool.tbl'), tools.map((t) => `T${t.number} P${t.number} Z0.000 D${t.diameter.toFixed(3)} ;${t.shape}\n`).join(''));
+  fs.writeFileSync(path.join(dir, 'tool.tbl'), toolTable(tools));
   const canon = execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), program], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });
   assert.ok(canon.split('\n').filter((l) => l.includes('ARC_FEED(')).length > 10, 'rs274 saw arcs');
   await page.screenshot({ path: path.join(shots, 'drawing.png') });
@@ -435,7 +435,7 @@ test('a tool library and a second operation: both paths in their colours, one pr
   const gcode = fs.readFileSync(program, 'utf8');
   assert.match(gcode, new RegExp(`^T${number} M6$`, 'm'));
   const tools = await page.evaluate(() => window.swarf.tools);
-  fs.writeFileSync(path.join(dir, 'tool.tbl'), tools.map((t) => `T${t.number} P${t.number} Z0.000 D${t.diameter.toFixed(3)} ;${t.shape}\n`).join(''));
+  fs.writeFileSync(path.join(dir, 'tool.tbl'), toolTable(tools));
   const canon = execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), program], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });
   assert.equal(canon.split('\n').filter((l) => l.includes('CHANGE_TOOL(')).length, 2, 'rs274 changed tools twice');
   // The library and the operations are still there after a reload.
@@ -636,7 +636,7 @@ test('every built-in post writes the program again without planning again, rs274
   await generated(page);
   const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-posts-'));
   const tools = await page.evaluate(() => window.swarf.tools);
-  fs.writeFileSync(path.join(dir, 'tool.tbl'), tools.map((t) => `T${t.number} P${t.number} Z0.000 D${t.diameter.toFixed(3)} ;${t.shape}\n`).join(''));
+  fs.writeFileSync(path.join(dir, 'tool.tbl'), toolTable(tools));
   const posted = () => page.evaluate(() => Number(document.body.dataset.posted ?? 0));
   const choose = async (dialect) => {
     const before = await posted();
