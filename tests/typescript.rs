@@ -3,11 +3,13 @@
 //! written by hand: this test makes them and fails when the file in the tree differs. Run it
 //! with `UPDATE_TYPES=1` to write the file anew.
 
+use std::any::TypeId;
+use std::collections::BTreeMap;
 use std::path::Path;
 
 use swarf::job::project::Project;
 use swarf::post::{CycleTime, Post};
-use ts_rs::{Config, TS};
+use ts_rs::{Config, TypeVisitor, TS};
 
 const HEAD: &str = "// Generated from swarf's Rust types by ts-rs (tests/typescript.rs): do not edit.\n// UPDATE_TYPES=1 cargo test --test typescript writes it anew.\n\n";
 
@@ -31,6 +33,37 @@ fn generate() -> String {
     }
     let _ = std::fs::remove_dir_all(&dir);
     out.replace("\n\n\n", "\n\n")
+}
+
+/// Every Rust type behind the exported ones, by the name it takes in TypeScript.
+#[derive(Default)]
+struct Names(BTreeMap<String, Vec<(TypeId, &'static str)>>);
+
+impl TypeVisitor for Names {
+    fn visit<T: TS + 'static + ?Sized>(&mut self) {
+        if T::output_path().is_none() {
+            return;
+        }
+        let rust = (TypeId::of::<T>(), std::any::type_name::<T>());
+        let seen = self.0.entry(T::ident(&Config::new())).or_default();
+        if !seen.contains(&rust) {
+            seen.push(rust);
+            T::visit_dependencies(self);
+        }
+    }
+}
+
+#[test]
+fn no_two_rust_types_share_a_typescript_name() {
+    // Two types of one name are written to one file, and which is kept depends on the order
+    // ts-rs happens to visit them in: the generated file would change from run to run.
+    let mut names = Names::default();
+    names.visit::<Project>();
+    names.visit::<Post>();
+    names.visit::<CycleTime>();
+    assert!(names.0.len() > 20, "{:?}", names.0.keys());
+    let twice: Vec<_> = names.0.values().filter(|v| v.len() > 1).collect();
+    assert!(twice.is_empty(), "types sharing a TypeScript name (give one #[ts(rename)]): {twice:?}");
 }
 
 #[test]

@@ -34,6 +34,7 @@ pub enum PocketPattern {
 /// How the tool enters material.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
+#[ts(rename = "PocketEntry")]
 pub enum Entry {
     /// A helix where it fits, else a ramp.
     #[default]

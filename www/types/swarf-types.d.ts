@@ -378,7 +378,7 @@ angle: number,
 /**
  * Default value: helix.
  */
-entry: Entry, 
+entry: PocketEntry, 
 /**
  * Helix radius (mm). Default value: 0.4 × the tool diameter.
  */
@@ -400,6 +400,11 @@ layers: Array<string>,
  * islands (empty: all). Default value: empty.
  */
 loops: Array<number>, };
+
+/**
+ * How the tool enters material.
+ */
+export type PocketEntry = "helix" | "ramp";
 
 /**
  * How the pocket is cleared.
