@@ -128,6 +128,37 @@ fn point_drop_matches_the_brute_force_drop() {
     let _ = DVec3::ZERO;
 }
 
+/// The point drop rules out valley edges and a ridge edge's tip positions outside its normal
+/// cone (the exact z-map's argument): on a smooth tessellated part, where nearly every edge is
+/// such a ridge or valley, it still finds the brute force's height everywhere, also with the
+/// cutter grown by a program's resolution.
+#[test]
+fn point_drop_matches_the_brute_force_drop_on_a_smooth_part() {
+    let tol = swarf::geom::Tolerances::DEFAULT;
+    let part = swarf::mesh::sample::demo_part();
+    let b = part.bounds();
+    let mut rng = Lcg(7);
+    for cutter in cutters() {
+        let judge = Judge { part: &part, profile: cutter.profile(), floor: -100.0 };
+        let drop = swarf::zmap::drop::PointDrop::new(&part, &cutter.profile(), &tol);
+        for _ in 0..300 {
+            let c = DVec2::new(b.min.x + rng.next() * (b.max.x - b.min.x), b.min.y + rng.next() * (b.max.y - b.min.y));
+            let (a, e) = (drop.at(c, -100.0), judge.exact(c));
+            assert!((a - e).abs() < 1e-9, "{} at {c}: {a} against {e}", cutter.describe());
+        }
+        // Grown by 0.01 mm: a flat end or bull nose with a wider flat, a ball held by a larger
+        // ball raised by 0.01 (never lower than the grown cutter's drop).
+        let grown = swarf::zmap::drop::PointDrop::grown(&part, &cutter.profile(), 0.01, &tol);
+        let p = cutter.profile();
+        let wider = Judge { part: &part, profile: swarf::cutter::Profile::new(p.radius + 0.01, p.corner), floor: -100.0 };
+        for _ in 0..100 {
+            let c = DVec2::new(b.min.x + rng.next() * (b.max.x - b.min.x), b.min.y + rng.next() * (b.max.y - b.min.y));
+            let (a, e) = (grown.at(c, -100.0), wider.exact(c));
+            assert!(a >= e - 1e-9, "{} grown at {c}: {a} below {e}", cutter.describe());
+        }
+    }
+}
+
 
 
 /// Issue 10: rounding X and Y to the program's resolution moves a point sideways, and on a

@@ -400,3 +400,33 @@ pub fn left_off_walls(v: &crate::sim::verify::Verification, leave: f64) -> (f64,
     }
     (all, off)
 }
+
+/// Issue 15's cutter shapes: a ball, a bull nose and a flat end of 6 mm, finishing the sample
+/// part's mould job.
+pub fn cutter_shapes() -> [(&'static str, Cutter); 3] {
+    [("ball φ6", Cutter::ball(6.0)), ("bull nose φ6 r1", Cutter::bull_nose(6.0, 1.0)), ("flat φ6", Cutter::flat(6.0))]
+}
+
+/// The sample part's mould job (z-level rough with a φ6 flat end, raster shallow, waterline
+/// steep, verified) with [`cutter_shapes`]`()[shape]` finishing: its compute time, best of `runs`.
+pub fn cutter_shape_seconds(shape: usize, runs: usize, clock: &dyn Fn() -> f64) -> f64 {
+    let mut job = Job::demo();
+    job.tools[1].cutter = Cutter { flute_length: 30.0, ..cutter_shapes()[shape].1 };
+    (0..runs.max(1))
+        .map(|_| {
+            let start = clock();
+            job::run(&job, crate::mesh::sample::demo_part(), &mut Progress::none()).expect("the mould job runs");
+            clock() - start
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Rows of [`cutter_shape_seconds`] for every shape: each one's time, as a ratio to the ball's
+/// and to the fastest shape's, and last the largest ratio between two shapes.
+pub fn cutter_shape_rows(platform: &str, seconds: &[f64; 3]) -> Vec<String> {
+    let (ball, fastest) = (seconds[0], seconds.iter().copied().fold(f64::INFINITY, f64::min));
+    let slowest = seconds.iter().copied().fold(0.0, f64::max);
+    let mut rows: Vec<String> = cutter_shapes().iter().zip(seconds).map(|((name, _), t)| format!("{platform:<16} {name:<16} {t:>7.2} s  {:>5.2} × ball  {:>5.2} × fastest", t / ball, t / fastest)).collect();
+    rows.push(format!("{platform:<16} largest ratio between two shapes: {:.2}", slowest / fastest));
+    rows
+}

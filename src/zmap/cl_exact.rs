@@ -23,12 +23,12 @@
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use super::cone::{cone_offsets, edge_kind, up_normal, vertex_cones, vertex_reaches, EdgeKind, VertexReach, REGION_MARGIN};
+use super::cone::{edge_kinds, edge_regions, vertex_cones, vertex_reaches, VertexReach, REGION_MARGIN};
 use super::{Grid, HeightField};
 use crate::cutter::{FacetPlane, Profile};
 use crate::error::{Error, Result};
 use crate::geom::{DVec2, DVec3, Tolerances};
-use crate::mesh::{EdgeFaces, Mesh};
+use crate::mesh::Mesh;
 use crate::parallel;
 use crate::progress::Progress;
 
@@ -55,8 +55,7 @@ impl Features {
                 Some((facet, b.min.truncate() - shift, b.max.truncate() - shift))
             })
             .collect();
-        let up: Vec<Option<DVec3>> = (0..mesh.faces.len()).map(|f| up_normal(mesh, f, tolerances)).collect();
-        let kinds: Vec<(EdgeFaces, EdgeKind)> = mesh.edges_with_faces().into_iter().map(|e| (e, edge_kind(mesh, &e, &up))).collect();
+        let (up, kinds) = edge_kinds(mesh, tolerances);
         let reach = if profile.corner > 0.0 { vertex_cones(mesh, &kinds, profile) } else { vertex_reaches(mesh, &kinds, &up, profile) };
         let v = &mesh.vertices;
         let vertices = v
@@ -68,20 +67,7 @@ impl Features {
                 other => Some((p, other)),
             })
             .collect();
-        let edges = kinds
-            .iter()
-            .filter_map(|(e, kind)| {
-                let (offset_lo, offset_hi) = match *kind {
-                    EdgeKind::Valley => return None,
-                    EdgeKind::Ridge(n1, n2) => cone_offsets(profile, n1, n2),
-                    EdgeKind::Other => (DVec2::splat(-profile.radius), DVec2::splat(profile.radius)),
-                };
-                let (p, q) = (v[e.edge[0] as usize], v[e.edge[1] as usize]);
-                let lo = p.truncate().min(q.truncate()) + offset_lo - margin;
-                let hi = p.truncate().max(q.truncate()) + offset_hi + margin;
-                Some((p, q, lo, hi))
-            })
-            .collect();
+        let edges = edge_regions(mesh, &kinds, profile).into_iter().map(|e| (e.p, e.q, e.lo, e.hi)).collect();
         Features { facets, vertices, edges }
     }
 

@@ -262,6 +262,46 @@ pub(super) fn vertex_reaches(mesh: &Mesh, kinds: &[(EdgeFaces, EdgeKind)], up: &
         .collect()
 }
 
+/// An edge that may be the highest contact somewhere: its ends, the box of tip positions over
+/// which it can decide (its normal cone's offsets, grown by [`REGION_MARGIN`]), and the first
+/// face it belongs to.
+pub(super) struct EdgeRegion {
+    pub p: DVec3,
+    pub q: DVec3,
+    pub lo: DVec2,
+    pub hi: DVec2,
+    pub face: u32,
+}
+
+/// Every edge of `mesh` but its valleys (which never decide), once each, with the region of
+/// tip positions its normal cone lets it decide for `profile`; `kinds` as [`edge_kind`] gives
+/// them.
+pub(super) fn edge_regions(mesh: &Mesh, kinds: &[(EdgeFaces, EdgeKind)], profile: &Profile) -> Vec<EdgeRegion> {
+    let margin = DVec2::splat(REGION_MARGIN * (1.0 + profile.radius));
+    let v = &mesh.vertices;
+    kinds
+        .iter()
+        .filter_map(|(e, kind)| {
+            let (offset_lo, offset_hi) = match *kind {
+                EdgeKind::Valley => return None,
+                EdgeKind::Ridge(n1, n2) => cone_offsets(profile, n1, n2),
+                EdgeKind::Other => (DVec2::splat(-profile.radius), DVec2::splat(profile.radius)),
+            };
+            let (p, q) = (v[e.edge[0] as usize], v[e.edge[1] as usize]);
+            let lo = p.truncate().min(q.truncate()) + offset_lo - margin;
+            let hi = p.truncate().max(q.truncate()) + offset_hi + margin;
+            Some(EdgeRegion { p, q, lo, hi, face: e.faces[0] })
+        })
+        .collect()
+}
+
+/// The edges of `mesh` with their kinds, from the facets' upward normals.
+pub(super) fn edge_kinds(mesh: &Mesh, tolerances: &Tolerances) -> (Vec<Option<DVec3>>, Vec<(EdgeFaces, EdgeKind)>) {
+    let up: Vec<Option<DVec3>> = (0..mesh.faces.len()).map(|f| up_normal(mesh, f, tolerances)).collect();
+    let kinds = mesh.edges_with_faces().into_iter().map(|e| (e, edge_kind(mesh, &e, &up))).collect();
+    (up, kinds)
+}
+
 /// The unit normal of a facet turned upward, or `None` for a vertical or degenerate facet.
 pub(super) fn up_normal(mesh: &Mesh, face: usize, tolerances: &Tolerances) -> Option<DVec3> {
     let t = mesh.triangle(face);

@@ -12,6 +12,7 @@
 //! takes drops along a raster pass from 350,000 to 650,000 a second.
 
 use super::cl_exact::cl_exact;
+use super::cone::{edge_kinds, edge_regions};
 use super::{Grid, HeightField};
 use crate::cutter::{FacetPlane, Profile};
 use crate::error::Result;
@@ -40,6 +41,19 @@ struct Prepared {
     top: f64,
     lo: DVec2,
     hi: DVec2,
+    /// This triangle's edges in [`PointDrop::edges`]: those that may decide a drop (no
+    /// valleys) and that no other triangle lists first.
+    edges: (u32, u32),
+}
+
+/// An edge that may decide a drop, and the box of tip positions over which it can (its normal
+/// cone's, see [`super::cone`]).
+#[derive(Clone, Copy, Debug)]
+struct EdgeRegion {
+    p: DVec3,
+    q: DVec3,
+    lo: DVec2,
+    hi: DVec2,
 }
 
 /// A mesh indexed for exact drops of one cutter.
@@ -49,6 +63,7 @@ pub struct PointDrop {
     /// Added to every drop (see [`PointDrop::grown`]).
     lift: f64,
     triangles: Vec<Prepared>,
+    edges: Vec<EdgeRegion>,
     origin: DVec2,
     size: f64,
     nx: usize,
@@ -66,11 +81,26 @@ pub struct PointDrop {
 impl PointDrop {
     pub fn new(mesh: &Mesh, profile: &Profile, tolerances: &Tolerances) -> PointDrop {
         let r = profile.radius;
+        // Each edge is dropped onto from one of its triangles: that triangle's bound holds the
+        // edge's too, so when the triangle is ruled out, so is the edge.
+        let (_, kinds) = edge_kinds(mesh, tolerances);
+        let mut regions = edge_regions(mesh, &kinds, profile);
+        regions.sort_by_key(|e| e.face);
+        let mut first = vec![0u32; mesh.faces.len() + 1];
+        for e in &regions {
+            first[e.face as usize + 1] += 1;
+        }
+        for f in 0..mesh.faces.len() {
+            first[f + 1] += first[f];
+        }
+        let edges = regions.into_iter().map(|e| EdgeRegion { p: e.p, q: e.q, lo: e.lo, hi: e.hi }).collect();
         let mut triangles: Vec<Prepared> = mesh
             .triangles()
-            .map(|t| {
+            .enumerate()
+            .map(|(f, t)| {
                 let b = t.bounds();
-                Prepared { corners: [t.a, t.b, t.c], facet: FacetPlane::new(t.a, t.b, t.c, tolerances.normal), top: b.max.z, lo: b.min.truncate() - r, hi: b.max.truncate() + r }
+                let facet = FacetPlane::new(t.a, t.b, t.c, tolerances.normal);
+                Prepared { corners: [t.a, t.b, t.c], facet, top: b.max.z, lo: b.min.truncate() - r, hi: b.max.truncate() + r, edges: (first[f], first[f + 1]) }
             })
             .collect();
         let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
@@ -92,7 +122,7 @@ impl PointDrop {
         let (start, entries) = bucket_lists(&triangles, nx, ny, span);
         let peaks = peaks(mesh);
         let (peak_start, peak_entries) = bucket_lists(&peaks, nx, ny, |v| (cell(v.x - r, lo.x, nx), cell(v.x + r, lo.x, nx), cell(v.y - r, lo.y, ny), cell(v.y + r, lo.y, ny)));
-        PointDrop { profile: *profile, lift: 0.0, triangles, origin: lo, size, nx, ny, start, entries, peaks, peak_start, peak_entries }
+        PointDrop { profile: *profile, lift: 0.0, triangles, edges, origin: lo, size, nx, ny, start, entries, peaks, peak_start, peak_entries }
     }
 
     /// Drops no lower than those of `profile` grown by a horizontal disk of radius `rho` (its
@@ -234,15 +264,16 @@ impl PointDrop {
                 if let Some(z) = t.facet.as_ref().and_then(|f| p.drop_facet(c, f)) {
                     best = best.max(z);
                 }
-                let [a, b, d] = t.corners;
-                for v in [a, b, d] {
+                for v in t.corners {
                     if let Some(z) = p.drop_vertex(c, v) {
                         best = best.max(z);
                     }
                 }
-                for (e0, e1) in [(a, b), (b, d), (d, a)] {
-                    if let Some(z) = p.drop_edge_above(c, e0, e1, best) {
-                        best = best.max(z);
+                for e in &self.edges[t.edges.0 as usize..t.edges.1 as usize] {
+                    if c.cmpge(e.lo).all() && c.cmple(e.hi).all() {
+                        if let Some(z) = p.drop_edge_above(c, e.p, e.q, best) {
+                            best = best.max(z);
+                        }
                     }
                 }
             }
