@@ -141,6 +141,8 @@ struct LoopInfo {
     entities: usize,
     min: [f64; 2],
     max: [f64; 2],
+    /// Its line segments: vertices `lines[0]..lines[1]` (in pairs) of `holes` or `outer`.
+    lines: [usize; 2],
 }
 
 fn drawing_view(d: &Drawing) -> DrawingView {
@@ -148,6 +150,7 @@ fn drawing_view(d: &Drawing) -> DrawingView {
     let (mut outer, mut holes, mut loops) = (Vec::new(), Vec::new(), Vec::new());
     for (index, (l, o)) in d.loops.iter().zip(&nesting.loops).enumerate() {
         let target = if o.is_ccw() { &mut outer } else { &mut holes };
+        let first = target.len() / 3;
         for seg in l.path.segments() {
             let n = seg.arc_geom().map_or(1, |g| ((g.sweep().abs() / 0.05).ceil() as usize).max(1));
             for k in 0..n {
@@ -156,7 +159,7 @@ fn drawing_view(d: &Drawing) -> DrawingView {
             }
         }
         let b = l.path.bounds();
-        loops.push(LoopInfo { index, layer: l.layer.clone(), hole: !o.is_ccw(), entities: l.path.len(), min: [b.min.x, b.min.y], max: [b.max.x, b.max.y] });
+        loops.push(LoopInfo { index, layer: l.layer.clone(), hole: !o.is_ccw(), entities: l.path.len(), min: [b.min.x, b.min.y], max: [b.max.x, b.max.y], lines: [first, target.len() / 3] });
     }
     let mut open = Vec::new();
     for o in &d.open {

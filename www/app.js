@@ -168,7 +168,59 @@ function fillOps() {
   form.elements.opName.value = op.name;
   $('op-tool-label').hidden = op.kind === 'roughOctree';
   if (op.kind !== 'roughOctree') form.elements.opTool.value = String(op.tool);
+  showPicked();
 }
+
+// The drawing's loop `l` as line segments (xyz pairs at Z0) from the view's data.
+function loopLines(d, l) {
+  const data = l.hole ? d.holes : d.outer;
+  return data.slice(3 * l.lines[0], 3 * l.lines[1]);
+}
+
+// The loops the selected 2D operation picked, highlighted in the view.
+function showPicked() {
+  if (!viewer || state.kind !== 'drawing' || !state.drawing) return;
+  const op = selectedOp(), d = state.drawing;
+  const picked = op && is2d(op) ? (op.loops ?? []) : [];
+  viewer.setPicked(picked.filter((k) => d.loops[k]).flatMap((k) => loopLines(d, d.loops[k])));
+}
+
+// The loop drawn nearest the canvas point (x, y) (CSS pixels), within `reach` pixels of it, or
+// null.
+function loopAt(x, y, reach = 8) {
+  const d = state.drawing;
+  let best = null, nearest = reach;
+  for (const l of d.loops) {
+    const data = loopLines(d, l);
+    for (let k = 0; k + 6 <= data.length; k += 6) {
+      const a = viewer.project([data[k], data[k + 1], 0]), b = viewer.project([data[k + 3], data[k + 4], 0]);
+      if (!a || !b) continue;
+      const [ex, ey] = [b[0] - a[0], b[1] - a[1]], len2 = ex * ex + ey * ey;
+      const t = len2 > 0 ? Math.max(0, Math.min(1, ((x - a[0]) * ex + (y - a[1]) * ey) / len2)) : 0;
+      const dist = Math.hypot(a[0] + t * ex - x, a[1] + t * ey - y);
+      if (dist < nearest) { nearest = dist; best = l.index; }
+    }
+  }
+  return best;
+}
+
+// Clicking a loop of the drawing adds it to the selected 2D operation's loops, or takes it
+// out again: a drawing whose loops all lie on one layer can still be cut in parts.
+function pickLoop(x, y) {
+  if (state.kind !== 'drawing' || !state.drawing || state.running) return;
+  const op = selectedOp();
+  if (!op || !is2d(op)) return;
+  const index = loopAt(x, y);
+  if (index === null) return;
+  const loops = op.loops ?? [];
+  op.loops = loops.includes(index) ? loops.filter((k) => k !== index) : [...loops, index].sort((a, b) => a - b);
+  store();
+  fillOps();
+  const l = state.drawing.loops[index];
+  showInfo(`${op.name}: loop ${index} (${l.layer}, ${l.hole ? 'hole' : 'outline'}) ${op.loops.includes(index) ? 'picked' : 'no longer picked'}; loops ${op.loops.length ? op.loops.join(', ') : 'all on the layers'}`);
+}
+if (viewer) viewer.onPick = pickLoop;
+window.swarfView = viewer; // for the end-to-end test
 
 function fillAll() {
   fillJob();
@@ -203,6 +255,7 @@ function onField(el) {
     if (!op) return;
     setKey(op, el.dataset.key, value);
     if (el.dataset.key === 'name' || el.dataset.key === 'tool') fillOps();
+    if (el.dataset.key === 'loops') showPicked();
   } else if (el.name === 'zeroHeight' || el.name === 'zeroCorner') {
     const height = form.elements.zeroHeight.value;
     job().stock.zero = height ? { height, corner: form.elements.zeroCorner.value } : null;
@@ -364,6 +417,7 @@ function showDrawing(d) {
   setKind('drawing');
   state.drawing = d;
   viewer?.setDrawing(d);
+  showPicked();
   const outer = d.loops.filter((l) => !l.hole).length, holes = d.loops.length - outer;
   const b = d.bounds;
   $('stats').textContent = `${d.loops.length} closed loops: ${outer} outlines (green), ${holes} holes (orange)\nlayers: ${d.layers.join(', ')}\nunits: ${d.units}\nsize ${(b[3] - b[0]).toFixed(1)} × ${(b[4] - b[1]).toFixed(1)} mm`
@@ -521,10 +575,12 @@ function movesBy(t) {
 
 async function seek(count) {
   if (sim.busy) { sim.wanted = count; return; }
+  if (count === sim.shown) return;
   sim.busy = true;
   try {
     const r = await call({ type: 'seek', count });
     viewer?.updateStock(r.tops);
+    sim.shown = r.count;
     document.body.dataset.simMoves = String(r.count);
   } catch (e) {
     if (e.message !== 'cancelled by the user') showError(e.message);
@@ -638,6 +694,10 @@ function showSimulation(data, summary = null) {
   $('sim-report').textContent = r.text.trim();
   $('sim-report').className = r.gougeCount + r.rapidCollisionCount + r.bodyCollisionCount > 0 ? 'problem' : '';
   viewer?.setStock(data.grid, data.part, data.start);
+  state.lastSimGrid = data.grid;
+  // The stock as the run sent it: after the last move.
+  sim.shown = data.times.length - 1;
+  document.body.dataset.simMoves = String(sim.shown);
   viewer?.setMarks(data.findings);
   // Show the finished cut first; the scrubber goes back from there.
   setTime(total);
@@ -681,14 +741,18 @@ async function generate() {
     });
     state.gcode = r.gcode;
     state.extension = r.summary.extension;
-    if (r.drawing) viewer?.setDrawing(r.drawing, false);
-    // The part framed again (the job may have placed it elsewhere).
-    else viewer?.setPart(r.part, true);
-    const byTool = new Set(job.operations.map((op, i) => (op.kind === 'roughOctree' ? i : -1)).filter((i) => i >= 0));
-    viewer?.setPaths(r.feeds, r.rapids, r.summary.stock, r.feedOps, r.feedTools, byTool);
-    if (r.octants.length) viewer?.setOctants(r.octants);
     const s = r.summary;
-    showSimulation(r.sim, s);
+    const show = () => {
+      if (r.drawing) viewer?.setDrawing(r.drawing, false);
+      // The part framed again (the job may have placed it elsewhere).
+      else viewer?.setPart(r.part, true);
+      const byTool = new Set(job.operations.map((op, i) => (op.kind === 'roughOctree' ? i : -1)).filter((i) => i >= 0));
+      viewer?.setPaths(r.feeds, r.rapids, s.stock, r.feedOps, r.feedTools, byTool);
+      showPicked();
+      if (r.octants.length) viewer?.setOctants(r.octants);
+      showSimulation(r.sim, s);
+    };
+    if (viewer) viewer.batch(show); else show();
     const changes = s.cycle.toolChanges ? ` (${clock(s.seconds)} of moves, ${s.cycle.toolChanges} tool change${s.cycle.toolChanges > 1 ? 's' : ''} at ${job.post.toolChangeSeconds} s)` : '';
     const stages = (o) => (o.stages ?? []).map((st) => `\n  T${st.tool} φ${st.diameter} (${st.role === 'profile' ? 'profile' : st.role === 'first' ? 'first tool' : 'octants'}): ${st.why}; ${Math.round(st.area).toLocaleString()} mm² cleared, ${Math.round(st.removed).toLocaleString()} mm³ removed, ${clock(st.seconds)} min`).join('');
     const perOp = s.operations.length > 1 || s.operations.some((o) => o.stages) ? `\n${s.operations.map((o) => `${o.name} (T${o.tools.join(', T')}): ${clock(o.seconds)} min${o.removed != null ? `, ${Math.round(o.removed).toLocaleString()} mm³, peak ${Math.round(o.mrrMax).toLocaleString()} mm³/min` : ''}${o.leftMax != null ? `, leaves ≤ ${o.leftMax.toFixed(2)} mm` : ''}${stages(o)}`).join('\n')}` : '';

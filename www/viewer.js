@@ -86,6 +86,11 @@ function lookAt(eye, target, up) {
 // Colours of the operations' cutting moves, in order (the first is the classic path blue).
 export const OP_COLORS = [[0.106, 0.455, 0.82, 1], [0.62, 0.2, 0.75, 1], [0.0, 0.6, 0.55, 1], [0.75, 0.6, 0.0, 1], [0.5, 0.3, 0.15, 1]];
 
+// Loops picked for an operation (a bright blue, apart from the outlines' green and the holes'
+// orange).
+export const PICKED_COLOR = [0.0, 0.75, 1.0, 1];
+const PICKED_LIFT = 0.05; // mm
+
 // The view's vertical angle (radians).
 const FOV_Y = 0.7;
 
@@ -177,6 +182,26 @@ export class Viewer {
     this.draw();
   }
 
+  // The loops picked for an operation, drawn over the drawing in a colour of their own (line
+  // segments at Z0 as xyz pairs; empty: none).
+  setPicked(data) {
+    // A hair above Z0, so that they win the depth test against the loops' own lines.
+    const lifted = Float32Array.from(data, (v, k) => (k % 3 === 2 ? v + PICKED_LIFT : v));
+    this.lines.drawing_picked = { buffer: this.buffer(lifted), count: lifted.length / 3, color: PICKED_COLOR, mark: true };
+    this.draw();
+  }
+
+  // Where the point `p` (mm) appears on the canvas, in CSS pixels from its top left corner
+  // (null behind the eye).
+  project(p) {
+    const m = this.matrix();
+    const x = m[0] * p[0] + m[4] * p[1] + m[8] * p[2] + m[12];
+    const y = m[1] * p[0] + m[5] * p[1] + m[9] * p[2] + m[13];
+    const w = m[3] * p[0] + m[7] * p[1] + m[11] * p[2] + m[15];
+    if (!(w > 0)) return null;
+    return [((x / w + 1) / 2) * this.canvas.clientWidth, ((1 - y / w) / 2) * this.canvas.clientHeight];
+  }
+
   clearPaths() {
     this.lines = {};
     this.stock = null;
@@ -253,7 +278,22 @@ export class Viewer {
     return multiply(perspective(FOV_Y, aspect, distance / 100, distance * 20), lookAt(eye, target, [0, 0, 1]));
   }
 
+  // Runs `fn` (which may set the part, paths, stock and marks) and draws once after it: each
+  // draw renders the whole scene, and an upload that follows a draw waits until the GPU has
+  // rendered it, which on a large part without a GPU (software rendering) holds the page's
+  // thread for seconds.
+  batch(fn) {
+    this.held = (this.held ?? 0) + 1;
+    try {
+      fn();
+    } finally {
+      this.held -= 1;
+      if (!this.held) this.draw();
+    }
+  }
+
   draw() {
+    if (this.held) return;
     const gl = this.gl, canvas = this.canvas;
     const dpr = window.devicePixelRatio || 1;
     const w = Math.max(1, Math.round(canvas.clientWidth * dpr)), h = Math.max(1, Math.round(canvas.clientHeight * dpr));
@@ -316,11 +356,20 @@ export class Viewer {
     const c = this.canvas;
     let drag = null;
     c.addEventListener('contextmenu', (e) => e.preventDefault());
-    c.addEventListener('pointerdown', (e) => { drag = { x: e.clientX, y: e.clientY, pan: e.shiftKey || e.button === 2 }; c.setPointerCapture(e.pointerId); });
-    c.addEventListener('pointerup', () => { drag = null; });
+    c.addEventListener('pointerdown', (e) => { drag = { x: e.clientX, y: e.clientY, moved: 0, pan: e.shiftKey || e.button === 2 }; c.setPointerCapture(e.pointerId); });
+    // A press and release that barely moved is a click: `onPick(x, y)` gets where (CSS pixels
+    // from the canvas's top left corner).
+    c.addEventListener('pointerup', (e) => {
+      if (drag && drag.moved < 4 && e.button === 0 && this.onPick) {
+        const r = c.getBoundingClientRect();
+        this.onPick(e.clientX - r.left, e.clientY - r.top);
+      }
+      drag = null;
+    });
     c.addEventListener('pointermove', (e) => {
       if (!drag) return;
       const dx = e.clientX - drag.x, dy = e.clientY - drag.y;
+      drag.moved += Math.abs(dx) + Math.abs(dy);
       drag.x = e.clientX; drag.y = e.clientY;
       const cam = this.camera;
       if (drag.pan) {

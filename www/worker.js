@@ -8,6 +8,33 @@ let ready = null;
 // The last job's result stays here so the page can scrub through its simulation.
 let current = null;
 
+// The simulated stock goes to the view on at most this many cells: a finer simulation is shown
+// by the highest of each block of its cells (so no material is hidden), which keeps drawing,
+// scrubbing and the messages behind them quick on a die-sized job.
+const VIEW_CELLS = 512 * 512;
+let block = null; // { factor, nx, ny, vx, vy } of the current result
+
+function blockOf(grid) {
+  const [, , , nx, ny] = grid;
+  const factor = Math.max(1, Math.ceil(Math.sqrt((nx * ny) / VIEW_CELLS)));
+  return { factor, nx, ny, vx: Math.ceil(nx / factor), vy: Math.ceil(ny / factor) };
+}
+
+// The highest value of each block of cells (NaN only where the whole block is).
+function coarse(values) {
+  const { factor, nx, ny, vx, vy } = block;
+  if (factor === 1) return values;
+  const out = new Float32Array(vx * vy).fill(NaN);
+  for (let j = 0; j < ny; j++) {
+    const row = ((j / factor) | 0) * vx;
+    for (let i = 0; i < nx; i++) {
+      const v = values[j * nx + i], k = row + ((i / factor) | 0);
+      if (!(out[k] >= v)) out[k] = Number.isNaN(v) ? out[k] : v;
+    }
+  }
+  return out;
+}
+
 function partMessage(view) {
   const part = {
     positions: view.positions().slice(),
@@ -63,14 +90,16 @@ self.onmessage = async (event) => {
       const { part, transfer } = partMessage(result.takePart());
       let sim = null;
       if (result.hasSimulation()) {
+        const grid = Array.from(result.simGrid());
+        block = blockOf(grid);
         sim = {
-          grid: Array.from(result.simGrid()),
-          part: result.simPart().slice(),
+          grid: [grid[0], grid[1], grid[2] * block.factor, block.vx, block.vy, ...grid.slice(5)],
+          part: coarse(result.simPart()).slice(),
           times: result.times().slice(),
           mrr: result.mrr().slice(),
           findings: result.findings().slice(),
           report: result.report(),
-          start: result.seek(result.times().length - 1).slice(),
+          start: coarse(result.seek(result.times().length - 1)).slice(),
         };
         transfer.push(sim.part.buffer, sim.times.buffer, sim.mrr.buffer, sim.findings.buffer, sim.start.buffer);
       }
@@ -82,7 +111,7 @@ self.onmessage = async (event) => {
       self.postMessage({ id, ok: true, ...current.repost(event.data.post) });
     } else if (type === 'seek') {
       if (!current) throw new Error('nothing to simulate yet');
-      const tops = current.seek(event.data.count).slice();
+      const tops = coarse(current.seek(event.data.count)).slice();
       self.postMessage({ id, ok: true, tops, count: event.data.count }, [tops.buffer]);
     }
   } catch (error) {

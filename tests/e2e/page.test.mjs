@@ -359,6 +359,143 @@ test('the sample drawing: loops shown as outlines and holes, profile and pocket 
   await context.close();
 });
 
+test('loops picked by clicking them in the view: highlighted, kept in the operation, cut alone, and clicked off again', async () => {
+  const { page, context, errors } = await openPage();
+  await page.click('#use-sample-drawing');
+  await page.waitForFunction(() => document.body.dataset.kind === 'drawing');
+  assert.match(await page.textContent('#op-list li.selected'), /profile/);
+  // Where the view draws the middle of the first hole's first segment, and of an outline's
+  // (asked again after Generate, which makes room for the scrubber under the view).
+  const locate = () => page.evaluate(() => {
+    const d = window.swarf.drawing, view = window.swarfView;
+    const at = (l) => {
+      const data = l.hole ? d.holes : d.outer, k = 3 * l.lines[0];
+      return { index: l.index, min: l.min, max: l.max, xy: view.project([(data[k] + data[k + 3]) / 2, (data[k + 1] + data[k + 4]) / 2, 0]) };
+    };
+    return { hole: at(d.loops.find((l) => l.hole)), outline: at(d.loops.find((l) => !l.hole)) };
+  });
+  let where = await locate();
+  const click = async (p) => {
+    const box = await page.locator('#view').boundingBox();
+    await page.mouse.click(box.x + p.xy[0], box.y + p.xy[1]);
+  };
+  const cyan = () => page.evaluate(() => {
+    const c = document.getElementById('view'), gl = c.getContext('webgl2');
+    const px = new Uint8Array(c.width * c.height * 4);
+    gl.readPixels(0, 0, c.width, c.height, gl.RGBA, gl.UNSIGNED_BYTE, px);
+    let n = 0;
+    for (let i = 0; i < px.length; i += 4) if (px[i] < 60 && px[i + 1] > 150 && px[i + 2] > 220) n++;
+    return n;
+  });
+  assert.equal(await cyan(), 0, 'nothing picked yet');
+  await click(where.hole);
+  await page.waitForFunction((k) => document.querySelector('input[name=loops]').value === String(k), where.hole.index);
+  assert.match(await page.textContent('#message'), new RegExp(`loop ${where.hole.index} \\([^)]*hole\\) picked`));
+  assert.deepEqual(await page.evaluate(() => window.swarf.jobs.drawing.operations[0].loops), [where.hole.index]);
+  assert.ok((await cyan()) > 50, 'the picked loop is drawn in its own colour');
+  // The profile cuts that hole alone: every cutting move stays inside the hole's box.
+  await page.click('#generate');
+  await generated(page);
+  const points = [...(await page.evaluate(() => window.swarf.gcode)).matchAll(/^G[123] X(-?[\d.]+) Y(-?[\d.]+)/gm)].map((m) => [Number(m[1]), Number(m[2])]);
+  assert.ok(points.length > 3, 'cutting moves');
+  for (const [x, y] of points) assert.ok(x >= where.hole.min[0] - 1e-3 && x <= where.hole.max[0] + 1e-3 && y >= where.hole.min[1] - 1e-3 && y <= where.hole.max[1] + 1e-3, `(${x}, ${y}) outside the picked hole`);
+  assert.ok((await cyan()) > 50, 'still highlighted after Generate');
+  // A second loop joins, then the first is clicked off.
+  where = await locate();
+  await click(where.outline);
+  await page.waitForFunction(() => window.swarf.jobs.drawing.operations[0].loops.length === 2);
+  await click(where.hole);
+  await page.waitForFunction((k) => document.querySelector('input[name=loops]').value === String(k), where.outline.index);
+  // A drag across the view turns it and picks nothing.
+  const box = await page.locator('#view').boundingBox();
+  await page.mouse.move(box.x + 200, box.y + 200);
+  await page.mouse.down();
+  await page.mouse.move(box.x + 260, box.y + 230, { steps: 5 });
+  await page.mouse.up();
+  assert.deepEqual(await page.evaluate(() => window.swarf.jobs.drawing.operations[0].loops), [where.outline.index]);
+  await page.fill('input[name=loops]', '');
+  await page.dispatchEvent('input[name=loops]', 'change');
+  assert.equal(await cyan(), 0, 'emptied by hand: nothing highlighted');
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
+// Seed 001's die as the page's user would bring it: a binary STL of the synthetic die
+// (mesh::sample::fuel_tank_die, the same surface), `nx` × `ny` cells of its 1190 × 890 mm.
+function dieStl(nx, ny) {
+  const [w, h, bottom] = [1190, 890, -250];
+  const top = (x, y) => {
+    const [u, v] = [x / w - 0.5, y / h - 0.5];
+    const r = Math.hypot(u / 0.38, v / 0.33);
+    const cavity = -120 / (1 + Math.exp(-(r - 1) * -14));
+    const boss = 45 * Math.exp(-((u - 0.12) ** 2 + (v + 0.05) ** 2) / 0.006);
+    const inside = 1 / (1 + Math.exp((r - 1) * 14));
+    const channel = -25 * Math.exp(-((u + 0.2 * v + 0.15) ** 2) / 0.002) * inside;
+    return cavity + boss + channel + 6 * Math.sin(9 * u) * Math.cos(7 * v);
+  };
+  const at = (i, j) => { const [x, y] = [(w * i) / nx, (h * j) / ny]; return [x, y, top(x, y)]; };
+  const tris = [];
+  for (let j = 0; j < ny; j++) for (let i = 0; i < nx; i++) {
+    const [a, b, c, d] = [at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)];
+    tris.push([a, b, c], [a, c, d]);
+  }
+  const floor = (p) => [p[0], p[1], bottom];
+  const wall = (p, q) => tris.push([p, floor(p), floor(q)], [p, floor(q), q]);
+  for (let i = 0; i < nx; i++) { wall(at(i + 1, 0), at(i, 0)); wall(at(i, ny), at(i + 1, ny)); }
+  for (let j = 0; j < ny; j++) { wall(at(0, j), at(0, j + 1)); wall(at(nx, j + 1), at(nx, j)); }
+  const c = [[0, 0, bottom], [w, 0, bottom], [w, h, bottom], [0, h, bottom]];
+  tris.push([c[0], c[2], c[1]], [c[0], c[3], c[2]]);
+  const buf = Buffer.alloc(84 + 50 * tris.length);
+  buf.writeUInt32LE(tris.length, 80);
+  tris.forEach((t, k) => t.forEach((p, v) => p.forEach((x, a) => buf.writeFloatLE(x, 84 + 50 * k + 12 + 12 * v + 4 * a))));
+  return buf;
+}
+
+// Issue 15 asks that no task on the page's thread pass 100 ms during a die-sized Generate. The
+// computing runs in the engine's worker; what the page's thread does is take the result, upload
+// it and draw it. This test runs that Generate (500,000 triangles), checks the view is drawn
+// from a stock of at most 512 × 512 cells whatever the simulation's size, and prints the long
+// tasks it saw. On this machine (no GPU: WebGL rendered in software) drawing a million path
+// segments holds the thread for about a second, so the 100 ms bound is reported, not asserted
+// (BENCHMARKS.md, "The page").
+test('a die-sized part in the page: generated, drawn from a coarse view of the stock, and the page\'s long tasks measured', async () => {
+  const { page, context, errors } = await openPage();
+  // Long tasks on the page's own thread, as the browser reports them.
+  await page.evaluate(() => {
+    window.longTasks = [];
+    new PerformanceObserver((list) => { for (const e of list.getEntries()) window.longTasks.push({ start: e.startTime, duration: e.duration }); }).observe({ type: 'longtask' });
+  });
+  await page.setInputFiles('#file', { name: 'die.stl', mimeType: 'model/stl', buffer: dieStl(580, 430) });
+  await page.waitForFunction(() => /die\.stl/.test(document.body.textContent) && !document.getElementById('generate').disabled);
+  await onlyRaster(page);
+  await page.fill('input[name=grid]', '0.8');
+  await page.fill('input[name=stepover]', '2');
+  const started = await page.evaluate(() => performance.now());
+  await page.click('#generate');
+  // The φ6 ball's flutes are shorter than the die's cavity is deep: the page says so (in red),
+  // and draws everything all the same.
+  assert.match(await waitForGenerated(page), /^(ok|problem)$/);
+  await page.evaluate(() => new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve))));
+  const ended = await page.evaluate(() => performance.now());
+  const tasks = await page.evaluate(([a, b]) => window.longTasks.filter((t) => t.start >= a && t.start <= b), [started, ended]);
+  const worst = Math.max(0, ...tasks.map((t) => t.duration));
+  const moves = (await page.textContent('#stats')).match(/^([\d,]+) moves/)[1];
+  console.log(`die-sized Generate: ${moves} moves, ${((ended - started) / 1000).toFixed(1)} s; ${tasks.length} long tasks on the page's thread: ${tasks.map((t) => `${t.duration.toFixed(0)} ms`).join(', ')} (target: none over 100 ms)`);
+  assert.ok((await pathPixels(page)) > 1000, 'the path is drawn');
+  const grid = await page.evaluate(() => window.swarf.lastSimGrid);
+  assert.ok(grid[3] * grid[4] <= 512 * 512 && grid[3] * grid[4] > 100000, `view stock ${grid[3]} × ${grid[4]} cells`);
+  // The stock is drawn: with the paths out of the way, its colours go where it is hidden.
+  const seen = async (show) => {
+    await page.evaluate((on) => { const v = window.swarfView; v.show.stock = on; v.show.paths = false; v.draw(); }, show);
+    const n = await pixelCounts(page);
+    return n.tan + n.blue + n.red;
+  };
+  const [hidden, shown] = [await seen(false), await seen(true)];
+  assert.ok(shown > hidden + 1000, `stock pixels ${shown} shown against ${hidden} hidden`);
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
 test('a program with problems shows them in red and downloads only when confirmed; a failed Generate clears the last result', async () => {
   const { page, context, errors } = await openPage();
   await onlyRaster(page);
