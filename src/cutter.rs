@@ -241,8 +241,34 @@ impl Profile {
         if z_at(lo).max(z_at(hi)) - self.height(dist2.sqrt()) <= current {
             return None;
         }
-        let s = self.contact_along(dz / len, dist2, (lo - t_c) * len, (hi - t_c) * len);
+        let (m, s_lo, s_hi) = (dz / len, (lo - t_c) * len, (hi - t_c) * len);
+        if z_at(t_c) + self.cone_bound(m, dist2, s_lo, s_hi) <= current {
+            return None;
+        }
+        let s = self.contact_along(m, dist2, s_lo, s_hi);
         Some(p.z + dz * (t_c + s / len) - self.height((dist2 + s * s).sqrt().min(self.radius)))
+    }
+
+    /// An upper bound of `F(s) = m s - height(sqrt(dist2 + s²))` over `[lo, hi]` in closed form
+    /// (see [`Profile::contact_along`]): the corner's height is convex, so it stands above its
+    /// tangent at 45°, `r - (R - a) - a (√2 - 1)`, and above zero; with that cone for the corner
+    /// F is bounded by a concave function whose top is a square root away. It lets the edge drop
+    /// skip the search where even this bound cannot rise above the height already found.
+    fn cone_bound(&self, m: f64, dist2: f64, lo: f64, hi: f64) -> f64 {
+        let r1 = self.flat + self.corner * (std::f64::consts::SQRT_2 - 1.0);
+        let g = |s: f64| m * s - ((dist2 + s * s).sqrt() - r1).max(0.0);
+        let top = if m.abs() >= 1.0 {
+            m.signum() * f64::INFINITY // rising faster than the cone: towards the chord's end
+        } else {
+            // The cone's stationary point, else the kink where it meets the flat.
+            let s_cone = m * (dist2 / (1.0 - m * m)).sqrt();
+            if dist2 + s_cone * s_cone >= r1 * r1 {
+                s_cone
+            } else {
+                m.signum() * (r1 * r1 - dist2).max(0.0).sqrt()
+            }
+        };
+        g(top.clamp(lo, hi))
     }
 
     /// Where a bull nose meets a line of slope `m` at horizontal distance `sqrt(dist2)` from its
@@ -410,6 +436,8 @@ mod edge_tests {
                 }
                 let best = f(lo).max(f(hi)).max(f(0.5 * (a + b)));
                 let s = p.contact_along(m, d * d, lo, hi);
+                let bound = p.cone_bound(m, d * d, lo, hi);
+                assert!(bound >= best - 1e-9 * (1.0 + m.abs()), "R{radius} a{corner} d {d} m {m} [{lo}, {hi}]: bound {bound} below {best}");
                 assert!((lo..=hi).contains(&s), "R{radius} a{corner} d {d} m {m}: {s} outside [{lo}, {hi}]");
                 assert!(f(s) >= best - 1e-8 * (1.0 + m.abs()), "R{radius} a{corner} d {d} m {m} [{lo}, {hi}]: F({s}) = {} below {best}", f(s));
             }
