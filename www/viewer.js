@@ -134,16 +134,25 @@ export class Viewer {
   // roughing; `tools`: the tool of each segment), rapids in orange.
   setPaths(feeds, rapids, stock, ops = null, tools = null, byTool = new Set()) {
     for (const key of Object.keys(this.lines)) if (key.startsWith('feeds') || key.startsWith('octants')) delete this.lines[key];
+    // An operation's segments (a stage's, for octree roughing) follow each other in the
+    // program: take them as runs, and copy only a colour that comes back after another.
     const groups = new Map();
-    for (let k = 0; k < feeds.length / 6; k++) {
-      const op = ops ? ops[k] : 0;
-      const key = tools && byTool.has(op) ? `t${tools[k]}` : `${op}`;
+    const n = feeds.length / 6;
+    for (let start = 0; start < n;) {
+      const op = ops ? ops[start] : 0, tool = tools ? tools[start] : 0, split = tools && byTool.has(op);
+      let end = start + 1;
+      while (end < n && (ops ? ops[end] : 0) === op && (!split || tools[end] === tool)) end++;
+      const key = split ? `t${tool}` : `${op}`;
       if (!groups.has(key)) groups.set(key, []);
-      groups.get(key).push(k);
+      groups.get(key).push(feeds.subarray(start * 6, end * 6));
+      start = end;
     }
-    for (const [key, segs] of groups) {
-      const data = new Float32Array(segs.length * 6);
-      segs.forEach((k, i) => data.set(feeds.subarray(k * 6, k * 6 + 6), i * 6));
+    for (const [key, runs] of groups) {
+      let data = runs[0];
+      if (runs.length > 1) {
+        data = new Float32Array(runs.reduce((sum, r) => sum + r.length, 0));
+        runs.reduce((at, r) => { data.set(r, at); return at + r.length; }, 0);
+      }
       const color = key.startsWith('t') ? toolColor(Number(key.slice(1))) : OP_COLORS[Number(key) % OP_COLORS.length];
       this.lines[`feeds${key}`] = { buffer: this.buffer(data), count: data.length / 3, color };
     }
