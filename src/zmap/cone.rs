@@ -265,6 +265,7 @@ pub(super) fn vertex_reaches(mesh: &Mesh, kinds: &[(EdgeFaces, EdgeKind)], up: &
 /// An edge that may be the highest contact somewhere: its ends, the box of tip positions over
 /// which it can decide (its normal cone's offsets, grown by [`REGION_MARGIN`]), and the first
 /// face it belongs to.
+#[derive(Clone, Copy, Debug)]
 pub(super) struct EdgeRegion {
     pub p: DVec3,
     pub q: DVec3,

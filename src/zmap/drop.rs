@@ -12,7 +12,7 @@
 //! takes drops along a raster pass from 350,000 to 650,000 a second.
 
 use super::cl_exact::cl_exact;
-use super::cone::{edge_kinds, edge_regions};
+use super::cone::{edge_kinds, edge_regions, EdgeRegion};
 use super::{Grid, HeightField};
 use crate::cutter::{FacetPlane, Profile};
 use crate::error::Result;
@@ -46,15 +46,6 @@ struct Prepared {
     edges: (u32, u32),
 }
 
-/// An edge that may decide a drop, and the box of tip positions over which it can (its normal
-/// cone's, see [`super::cone`]).
-#[derive(Clone, Copy, Debug)]
-struct EdgeRegion {
-    p: DVec3,
-    q: DVec3,
-    lo: DVec2,
-    hi: DVec2,
-}
 
 /// A mesh indexed for exact drops of one cutter.
 #[derive(Clone, Debug)]
@@ -84,16 +75,15 @@ impl PointDrop {
         // Each edge is dropped onto from one of its triangles: that triangle's bound holds the
         // edge's too, so when the triangle is ruled out, so is the edge.
         let (_, kinds) = edge_kinds(mesh, tolerances);
-        let mut regions = edge_regions(mesh, &kinds, profile);
-        regions.sort_by_key(|e| e.face);
+        let mut edges = edge_regions(mesh, &kinds, profile);
+        edges.sort_by_key(|e| e.face);
         let mut first = vec![0u32; mesh.faces.len() + 1];
-        for e in &regions {
+        for e in &edges {
             first[e.face as usize + 1] += 1;
         }
         for f in 0..mesh.faces.len() {
             first[f + 1] += first[f];
         }
-        let edges = regions.into_iter().map(|e| EdgeRegion { p: e.p, q: e.q, lo: e.lo, hi: e.hi }).collect();
         let mut triangles: Vec<Prepared> = mesh
             .triangles()
             .enumerate()
