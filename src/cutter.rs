@@ -126,7 +126,6 @@ const CONTACT_STEP: f64 = 1e-13;
 /// the chord's ends (see [`Profile::contact_along`]).
 const RIM: f64 = 1e-4;
 
-
 impl Profile {
     pub fn new(radius: f64, corner: f64) -> Profile {
         Profile { radius, corner, flat: radius - corner }
@@ -315,30 +314,31 @@ impl Profile {
         let (a, f) = (self.corner, self.flat);
         let u_of = |s: f64| ((dist2 + s * s).sqrt() - f).clamp(0.0, a);
         let (mut u_lo, mut u_hi) = (u_of(lo_m.max(0.0)), u_of(hi_m));
+        // P and its derivative.
         let p = |u: f64| {
             let r = f + u;
             let (r2, u2) = (r * r, u * u);
             let value = (r2 - dist2) * u2 - m2 * (a * a - u2) * r2;
-            let slope = 2.0 * r * u2 + 2.0 * u * (r2 - dist2) - m2 * (2.0 * r * (a * a - u2) - 2.0 * u * r2);
-            (value, slope)
+            let rate = 2.0 * r * u2 + 2.0 * u * (r2 - dist2) - m2 * (2.0 * r * (a * a - u2) - 2.0 * u * r2);
+            (value, rate)
         };
         // Start where a gentle line meets the corner: for small u the quartic is about
         // (f² - dist2) u² = m² a² f².
         let gentle = (m2 / (f * f - dist2).max(1e-12 * f * f)).sqrt() * a * f;
         let mut u = if gentle > u_lo && gentle < u_hi { gentle } else { 0.5 * (u_lo + u_hi) };
         for _ in 0..100 {
-            let (value, slope) = p(u);
+            let (value, rate) = p(u);
             if value < 0.0 {
                 u_lo = u;
             } else {
                 u_hi = u;
             }
-            let newton = u - value / slope;
-            if slope > 0.0 && (newton - u).abs() <= CONTACT_STEP {
+            let newton = u - value / rate;
+            if rate > 0.0 && (newton - u).abs() <= CONTACT_STEP {
                 u = newton.clamp(u_lo, u_hi);
                 break;
             }
-            u = if slope > 0.0 && newton > u_lo && newton < u_hi { newton } else { 0.5 * (u_lo + u_hi) };
+            u = if rate > 0.0 && newton > u_lo && newton < u_hi { newton } else { 0.5 * (u_lo + u_hi) };
             if u_hi - u_lo <= CONTACT_STEP {
                 break;
             }

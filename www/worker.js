@@ -20,16 +20,17 @@ function blockOf(grid) {
   return { factor, nx, ny, vx: Math.ceil(nx / factor), vy: Math.ceil(ny / factor) };
 }
 
-// The highest value of each block of cells (NaN only where the whole block is).
+// The highest value of each block of cells (NaN only where the whole block is), as a copy the
+// message can own.
 function coarse(values) {
   const { factor, nx, ny, vx, vy } = block;
-  if (factor === 1) return values;
+  if (factor === 1) return values.slice();
   const out = new Float32Array(vx * vy).fill(NaN);
   for (let j = 0; j < ny; j++) {
     const row = ((j / factor) | 0) * vx;
     for (let i = 0; i < nx; i++) {
       const v = values[j * nx + i], k = row + ((i / factor) | 0);
-      if (!(out[k] >= v)) out[k] = Number.isNaN(v) ? out[k] : v;
+      if (!Number.isNaN(v) && !(out[k] >= v)) out[k] = v;
     }
   }
   return out;
@@ -94,12 +95,12 @@ self.onmessage = async (event) => {
         block = blockOf(grid);
         sim = {
           grid: [grid[0], grid[1], grid[2] * block.factor, block.vx, block.vy, ...grid.slice(5)],
-          part: coarse(result.simPart()).slice(),
+          part: coarse(result.simPart()),
           times: result.times().slice(),
           mrr: result.mrr().slice(),
           findings: result.findings().slice(),
           report: result.report(),
-          start: coarse(result.seek(result.times().length - 1)).slice(),
+          start: coarse(result.seek(result.times().length - 1)),
         };
         transfer.push(sim.part.buffer, sim.times.buffer, sim.mrr.buffer, sim.findings.buffer, sim.start.buffer);
       }
@@ -111,7 +112,7 @@ self.onmessage = async (event) => {
       self.postMessage({ id, ok: true, ...current.repost(event.data.post) });
     } else if (type === 'seek') {
       if (!current) throw new Error('nothing to simulate yet');
-      const tops = coarse(current.seek(event.data.count)).slice();
+      const tops = coarse(current.seek(event.data.count));
       self.postMessage({ id, ok: true, tops, count: event.data.count }, [tops.buffer]);
     }
   } catch (error) {

@@ -49,7 +49,6 @@ struct LineConstants {
     inv_along: f64,
 }
 
-
 impl Sweep {
     pub fn line(profile: Profile, a: DVec3, b: DVec3) -> Sweep {
         let r = DVec2::splat(profile.radius);
@@ -266,8 +265,6 @@ impl Sweep {
         (self.nearest(q).0 - self.profile.radius).abs() <= reach
     }
 }
-
-/// Minimum of a convex function on `[lo, hi]`.
 
 /// Whether the direction `angle` lies on the arc starting at `start` and sweeping `sweep`.
 fn angle_within(start: f64, sweep: f64, angle: f64) -> bool {

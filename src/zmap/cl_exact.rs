@@ -23,7 +23,7 @@
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use super::cone::{edge_kinds, edge_regions, vertex_cones, vertex_reaches, VertexReach, REGION_MARGIN};
+use super::cone::{edge_kinds, edge_regions, vertex_cones, vertex_reaches, EdgeRegion, VertexReach, REGION_MARGIN};
 use super::{Grid, HeightField};
 use crate::cutter::{FacetPlane, Profile};
 use crate::error::{Error, Result};
@@ -40,7 +40,7 @@ struct Features {
     facets: Vec<(FacetPlane, DVec2, DVec2)>,
     /// A vertex, and the nodes it can decide.
     vertices: Vec<(DVec3, VertexReach)>,
-    edges: Vec<(DVec3, DVec3, DVec2, DVec2)>,
+    edges: Vec<EdgeRegion>,
 }
 
 impl Features {
@@ -67,7 +67,7 @@ impl Features {
                 other => Some((p, other)),
             })
             .collect();
-        let edges = edge_regions(mesh, &kinds, profile).into_iter().map(|e| (e.p, e.q, e.lo, e.hi)).collect();
+        let edges = edge_regions(mesh, &kinds, profile);
         Features { facets, vertices, edges }
     }
 
@@ -147,11 +147,11 @@ fn fill(features: &Features, profile: &Profile, grid: &Grid, j0: usize, band: &m
             VertexReach::Never => {}
         }
     }
-    for &(p, q, lo, hi) in &features.edges {
+    for e in &features.edges {
         tick(&mut done)?;
-        for_nodes_in_box(grid, lo, hi, j0, j1, &mut |i, j, c| {
+        for_nodes_in_box(grid, e.lo, e.hi, j0, j1, &mut |i, j, c| {
             let cell = &mut band[at(i, j)];
-            if let Some(z) = profile.drop_edge_above(c, p, q, *cell) {
+            if let Some(z) = profile.drop_edge_above(c, e.p, e.q, *cell) {
                 *cell = cell.max(z);
             }
         });

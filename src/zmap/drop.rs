@@ -46,7 +46,6 @@ struct Prepared {
     edges: (u32, u32),
 }
 
-
 /// A mesh indexed for exact drops of one cutter.
 #[derive(Clone, Debug)]
 pub struct PointDrop {
