@@ -10,6 +10,7 @@
 pub mod bench;
 pub mod drawing;
 pub mod operation;
+pub mod pool;
 pub mod project;
 pub mod report;
 
@@ -513,6 +514,8 @@ impl Job {
             stages: None,
             octants: Vec::new(),
             rapid_rate: self.post.rapid_rate,
+            operation: 0,
+            given_passes: Default::default(),
         })
     }
 }
@@ -546,6 +549,12 @@ pub fn verify_gcode(job: &Job, mut part: Mesh, gcode: &str, cell: Option<f64>, p
 /// one's moves to the in-process stock before the next, and writes the G-code; the simulation
 /// that carried the stock verifies the whole program.
 pub fn run(job: &Job, workpiece: impl Into<Workpiece>, progress: &mut Progress) -> Result<JobOutput> {
+    prepare(job, workpiece)?.run(progress)
+}
+
+/// Checks the job against the workpiece, places it and makes the context every operation
+/// plans in.
+pub fn prepare(job: &Job, workpiece: impl Into<Workpiece>) -> Result<Prepared> {
     job.validate()?;
     let workpiece = workpiece.into();
     let on = match workpiece {
@@ -568,87 +577,108 @@ pub fn run(job: &Job, workpiece: impl Into<Workpiece>, progress: &mut Progress) 
             warnings.push(Warning::job(format!("{} degenerate triangles (zero area) were ignored", m.dropped_degenerate)));
         }
     }
-    let mut ctx = job.context(workpiece)?;
+    let ctx = job.context(workpiece)?;
     if ctx.sheet.is_none() {
         if let Some(w) = tool_larger_than_part(job, &ctx.part) {
             warnings.push(w);
         }
     }
-    let verify = job.simulation.verify;
-    let enabled: Vec<usize> = (0..job.operations.len()).filter(|&k| job.operations[k].op().enabled()).collect();
-    if enabled.is_empty() {
+    if !job.operations.iter().any(|o| o.op().enabled()) {
         return Err(Error::Nothing("every operation of the job is disabled".into()));
     }
-    let count = enabled.len() as f64;
-    // Share of the bar each operation's planning and simulation take.
-    let (plan_share, sim_share) = if verify { (0.85, 0.15) } else { (0.95, 0.05) };
-    let mut paths: Vec<Toolpath> = Vec::new();
-    let mut path_operations = Vec::new();
-    let mut move_ranges = Vec::new();
-    let mut all_moves: Vec<ProgramMove> = Vec::new();
-    let mut snapshots = Vec::new();
-    let mut loads = Vec::new();
-    for (n, &k) in enabled.iter().enumerate() {
-        let o = job.operations[k].op();
-        let start = n as f64 / count;
-        progress.frame(start, plan_share / count, Some(o.name()));
-        let planned = o.plan(&mut ctx, progress)?;
-        loads.push((ctx.load.take(), ctx.stages.take()));
-        let first_path = paths.len();
-        path_operations.extend(std::iter::repeat_n(k, planned.len()));
-        paths.extend(planned);
-        // The in-process stock: this operation's moves cut it before the next one plans (and
-        // the last one's too when the program is verified).
-        let moves = timed_moves(&paths, first_path, all_moves.last(), &job.tools, job.post.rapid_rate)?;
-        let range = all_moves.len()..all_moves.len() + moves.len();
-        if verify || n + 1 < enabled.len() {
-            progress.frame(start + plan_share / count, sim_share / count, Some(o.name()));
-            if !progress.stage("in-process stock", 0.0, 1.0) {
-                return Err(Error::Cancelled);
+    Ok(Prepared { job: job.clone(), ctx, warnings, given: Default::default() })
+}
+
+/// A job with its part placed and its context made, ready to plan ([`Prepared::run`]); a pool
+/// of workers can first make its CL surfaces and raster passes in pieces ([`pool`]).
+pub struct Prepared {
+    job: Job,
+    ctx: Context,
+    warnings: Vec<Warning>,
+    /// Raster passes a pool made, by operation.
+    given: pool::GivenPasses,
+}
+
+impl Prepared {
+    /// [`run`] from here.
+    pub fn run(mut self, progress: &mut Progress) -> Result<JobOutput> {
+        self.give_passes();
+        let Prepared { job, mut ctx, mut warnings, .. } = self;
+        let job = &job;
+        let verify = job.simulation.verify;
+        let enabled: Vec<usize> = (0..job.operations.len()).filter(|&k| job.operations[k].op().enabled()).collect();
+        let count = enabled.len() as f64;
+        // Share of the bar each operation's planning and simulation take.
+        let (plan_share, sim_share) = if verify { (0.85, 0.15) } else { (0.95, 0.05) };
+        let mut paths: Vec<Toolpath> = Vec::new();
+        let mut path_operations = Vec::new();
+        let mut move_ranges = Vec::new();
+        let mut all_moves: Vec<ProgramMove> = Vec::new();
+        let mut snapshots = Vec::new();
+        let mut loads = Vec::new();
+        for (n, &k) in enabled.iter().enumerate() {
+            let o = job.operations[k].op();
+            let start = n as f64 / count;
+            progress.frame(start, plan_share / count, Some(o.name()));
+            ctx.operation = k;
+            let planned = o.plan(&mut ctx, progress)?;
+            loads.push((ctx.load.take(), ctx.stages.take()));
+            let first_path = paths.len();
+            path_operations.extend(std::iter::repeat_n(k, planned.len()));
+            paths.extend(planned);
+            // The in-process stock: this operation's moves cut it before the next one plans (and
+            // the last one's too when the program is verified).
+            let moves = timed_moves(&paths, first_path, all_moves.last(), &job.tools, job.post.rapid_rate)?;
+            let range = all_moves.len()..all_moves.len() + moves.len();
+            if verify || n + 1 < enabled.len() {
+                progress.frame(start + plan_share / count, sim_share / count, Some(o.name()));
+                if !progress.stage("in-process stock", 0.0, 1.0) {
+                    return Err(Error::Cancelled);
+                }
+                ctx.sim.run(&moves, &job.tolerances, progress, 1.0)?;
             }
-            ctx.sim.run(&moves, &job.tolerances, progress, 1.0)?;
+            // What the operation left is judged against the part only when the program is verified.
+            snapshots.push(verify.then(|| ctx.sim.stock().heights()));
+            move_ranges.push(range);
+            all_moves.extend(moves);
         }
-        // What the operation left is judged against the part only when the program is verified.
-        snapshots.push(verify.then(|| ctx.sim.stock().heights()));
-        move_ranges.push(range);
-        all_moves.extend(moves);
-    }
-    progress.frame(0.0, 1.0, None);
-    warnings.append(&mut ctx.warnings);
-    let (gcode, cycle) = write_program(&job.name, &paths, &job.tools, ctx.heights.clearance, &job.post)?;
-    let stats = paths.iter().fold(PathStats::default(), |s, p| s + p.stats(job.post.rapid_rate));
-    if all_moves.iter().all(|m| matches!(m.mv, crate::toolpath::Move::Rapid { .. })) {
-        let why = if warnings.is_empty() { String::new() } else { format!(" ({})", warnings.iter().map(Warning::to_string).collect::<Vec<_>>().join("; ")) };
-        return Err(Error::Nothing(format!("the program has no cutting moves{why}")));
-    }
-    let Context { part, sheet, stock, heights, caches, sim, cuts, grooves, octants, .. } = ctx;
-    // The simulation that carried the in-process stock judges the whole program.
-    let (verification, sim) = if verify {
-        let settings = job.verify_settings(&stock, None);
-        let tol = job.tolerances;
-        let v = match &sheet {
-            None => sim.finish(|grid| cc_zmap(&part, grid, f64::NEG_INFINITY, &tol), settings.allowance, &tol),
-            Some(_) => sim.finish(|grid| drawing::surface(&cuts, &grooves, grid, tol.gouge, &tol), settings.allowance, &tol),
+        progress.frame(0.0, 1.0, None);
+        warnings.append(&mut ctx.warnings);
+        let (gcode, cycle) = write_program(&job.name, &paths, &job.tools, ctx.heights.clearance, &job.post)?;
+        let stats = paths.iter().fold(PathStats::default(), |s, p| s + p.stats(job.post.rapid_rate));
+        if all_moves.iter().all(|m| matches!(m.mv, crate::toolpath::Move::Rapid { .. })) {
+            let why = if warnings.is_empty() { String::new() } else { format!(" ({})", warnings.iter().map(Warning::to_string).collect::<Vec<_>>().join("; ")) };
+            return Err(Error::Nothing(format!("the program has no cutting moves{why}")));
+        }
+        let Context { part, sheet, stock, heights, caches, sim, cuts, grooves, octants, .. } = ctx;
+        // The simulation that carried the in-process stock judges the whole program.
+        let (verification, sim) = if verify {
+            let settings = job.verify_settings(&stock, None);
+            let tol = job.tolerances;
+            let v = match &sheet {
+                None => sim.finish(|grid| cc_zmap(&part, grid, f64::NEG_INFINITY, &tol), settings.allowance, &tol),
+                Some(_) => sim.finish(|grid| drawing::surface(&cuts, &grooves, grid, tol.gouge, &tol), settings.allowance, &tol),
+            };
+            (Some(v), None)
+        } else {
+            (None, Some(sim))
         };
-        (Some(v), None)
-    } else {
-        (None, Some(sim))
-    };
-    let volumes = match (&verification, &sim) {
-        (Some(v), _) => &v.volumes[..],
-        (None, Some(sim)) => sim.volumes(),
-        (None, None) => &[],
-    };
-    let mut operations = report::per_operation(job, &enabled, &all_moves, &move_ranges, volumes, &snapshots, verification.as_ref());
-    for (o, (load, stages)) in operations.iter_mut().zip(loads) {
-        o.load = load;
-        o.stages = stages;
+        let volumes = match (&verification, &sim) {
+            (Some(v), _) => &v.volumes[..],
+            (None, Some(sim)) => sim.volumes(),
+            (None, None) => &[],
+        };
+        let mut operations = report::per_operation(job, &enabled, &all_moves, &move_ranges, volumes, &snapshots, verification.as_ref());
+        for (o, (load, stages)) in operations.iter_mut().zip(loads) {
+            o.load = load;
+            o.stages = stages;
+        }
+        let problem = verification.as_ref().and_then(|v| v.report.problem());
+        progress.stage("done", 1.0, 0.0);
+        let drawing = sheet.map(|s| s.drawing);
+        let (clearance_z, cache) = (heights.clearance, caches.counts);
+        Ok(JobOutput { part, drawing, stock, clearance_z, paths, path_operations, gcode, cycle, stats, moves: all_moves, operations, verification, warnings, problem, cache, octants })
     }
-    let problem = verification.as_ref().and_then(|v| v.report.problem());
-    progress.stage("done", 1.0, 0.0);
-    let drawing = sheet.map(|s| s.drawing);
-    let (clearance_z, cache) = (heights.clearance, caches.counts);
-    Ok(JobOutput { part, drawing, stock, clearance_z, paths, path_operations, gcode, cycle, stats, moves: all_moves, operations, verification, warnings, problem, cache, octants })
 }
 
 /// A warning when the smallest tool the job uses is wider than the placed part is in X or Y:

@@ -18,6 +18,7 @@ use crate::toolpath::entry::{Entry, Keepout};
 use crate::toolpath::link::{Feeds, LinkSettings, Linker};
 use crate::toolpath::Toolpath;
 use crate::zmap::cc::cc_zmap;
+use crate::zmap::cl_exact::ExactBuilder;
 use crate::zmap::cl_inverse::cl_inverse_offset;
 use crate::zmap::drop::PointDrop;
 use crate::zmap::surface::ClSurface;
@@ -73,9 +74,24 @@ pub struct CacheCounts {
 pub struct Caches {
     cc: Vec<((Grid, u64), Arc<HeightField>)>,
     drops: Vec<((Profile, u64), Arc<PointDrop>)>,
-    cl: Vec<((Profile, u64, Grid, u64, ClBuilder), Arc<ClSurface>)>,
+    cl: Vec<(SurfaceKey, Arc<ClSurface>)>,
+    builders: Vec<((Profile, u64), Arc<ExactBuilder>)>,
     pub counts: CacheCounts,
 }
+
+/// A CL surface an operation asks the context for: its cutter, grid, floor (the height where
+/// no part is under the cutter) and builder. Operations name theirs before planning
+/// ([`crate::strategy::Operate::surfaces`]), so that a pool of workers can make them first.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfaceRequest {
+    pub profile: Profile,
+    pub grid: Grid,
+    pub floor: f64,
+    pub builder: ClBuilder,
+}
+
+/// A request with the program's resolution, as the cache keys it.
+type SurfaceKey = (Profile, u64, Grid, u64, ClBuilder);
 
 /// The job's context, as each operation sees it.
 pub struct Context {
@@ -108,6 +124,11 @@ pub struct Context {
     pub octants: Vec<crate::strategy::rough_octree::StageOctants>,
     /// The machine's rapid rate (mm/min), for timing what an operation plans.
     pub rapid_rate: f64,
+    /// The index in the job of the operation being planned.
+    pub operation: usize,
+    /// Raster passes a pool of workers made before planning ([`crate::job::pool`]), by the
+    /// index of their operation: each pass's runs, in pass order.
+    pub given_passes: std::collections::HashMap<usize, Vec<Vec<Vec<DVec3>>>>,
 }
 
 impl Context {
@@ -178,30 +199,66 @@ impl Context {
         d
     }
 
-    /// The CL surface of `profile` over the part on `grid`, `floor` where no part is under the
-    /// cutter, made by `builder`; made once per (cutter, grid, floor, builder). Heights come
+    /// The CL surface `request` names: its cutter over the part on its grid, its floor where
+    /// no part is under the cutter, made by its builder; made once per request. Heights come
     /// from the cutter grown by the program's resolution: no lower than the highest tip height
     /// within that distance, so that rounding X and Y as the G-code is written cannot put a
     /// point below the surface (Z is written rounded up).
-    pub fn cl_surface(&mut self, profile: &Profile, grid: Grid, floor: f64, builder: ClBuilder, progress: &mut Progress) -> Result<Arc<ClSurface>> {
-        let key = (*profile, self.resolution.to_bits(), grid, floor.to_bits(), builder);
-        if let Some((_, s)) = self.caches.cl.iter().find(|(k, _)| *k == key) {
+    pub fn cl_surface(&mut self, request: SurfaceRequest, progress: &mut Progress) -> Result<Arc<ClSurface>> {
+        if let Some(s) = self.cached_surface(&request) {
             self.caches.counts.hits += 1;
-            return Ok(s.clone());
+            return Ok(s);
         }
         self.caches.counts.misses += 1;
-        let drop = self.drop(profile);
+        let SurfaceRequest { profile, grid, floor, builder } = request;
+        let drop = self.drop(&profile);
         let field = match builder {
             // The exact z-map is the grown cutter's, so its nodes stand in for the drop where
             // a pass crosses them.
             ClBuilder::Exact => drop.field(&self.part, grid, floor, &self.tolerances, progress)?,
             ClBuilder::InverseOffset => {
                 let cc = self.cc_zmap(grid, floor);
-                cl_inverse_offset(&cc, profile, progress)?
+                cl_inverse_offset(&cc, &profile, progress)?
             }
         };
-        let s = Arc::new(ClSurface::new(field, drop, floor, builder == ClBuilder::Exact, self.tolerances.interpolation));
+        Ok(self.keep_surface(request, field))
+    }
+
+    fn cached_surface(&self, request: &SurfaceRequest) -> Option<Arc<ClSurface>> {
+        let key = self.surface_key(request);
+        self.caches.cl.iter().find(|(k, _)| *k == key).map(|(_, s)| s.clone())
+    }
+
+    fn surface_key(&self, r: &SurfaceRequest) -> SurfaceKey {
+        (r.profile, self.resolution.to_bits(), r.grid, r.floor.to_bits(), r.builder)
+    }
+
+    /// Keeps `field`, the heights `request` names (made here or by a worker of a pool, band by
+    /// band), as that request's CL surface.
+    pub fn keep_surface(&mut self, request: SurfaceRequest, field: HeightField) -> Arc<ClSurface> {
+        let drop = self.drop(&request.profile);
+        let s = Arc::new(ClSurface::new(field, drop, request.floor, request.builder == ClBuilder::Exact, self.tolerances.interpolation));
+        let key = self.surface_key(&request);
+        self.caches.cl.retain(|(k, _)| *k != key);
         self.caches.cl.push((key, s.clone()));
-        Ok(s)
+        s
+    }
+
+    /// Rows `rows` of the exact CL surface `request` names (its builder must be the exact
+    /// one): a band of it, as a worker of a pool makes it; the mesh's features are prepared once
+    /// per cutter.
+    pub fn surface_rows(&mut self, request: SurfaceRequest, rows: std::ops::Range<usize>, progress: &mut Progress) -> Result<Vec<f64>> {
+        debug_assert!(request.builder == ClBuilder::Exact);
+        let drop = self.drop(&request.profile);
+        let key = (request.profile, self.resolution.to_bits());
+        let builder = match self.caches.builders.iter().find(|(k, _)| *k == key) {
+            Some((_, b)) => b.clone(),
+            None => {
+                let b = Arc::new(drop.builder(&self.part, &self.tolerances));
+                self.caches.builders.push((key, b.clone()));
+                b
+            }
+        };
+        drop.rows(&builder, request.grid, request.floor, rows, progress)
     }
 }

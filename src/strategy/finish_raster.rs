@@ -12,6 +12,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::context::SurfaceRequest;
 use super::{Context, FieldError, Operate};
 use crate::error::{Error, Result};
 use crate::geom::{DVec2, DVec3};
@@ -131,33 +132,63 @@ pub struct RasterPasses {
 /// The cutting runs, in machining order, each a polyline of tip positions; `None` when the
 /// user cancelled (checked, with a progress report, between batches of passes).
 pub fn raster_runs(cl: &ClSurface, region: &Region, passes: &RasterPasses, progress: &mut Progress) -> Option<Vec<Vec<DVec3>>> {
-    let angle = passes.angle_deg.to_radians();
-    let along = DVec2::new(angle.cos(), angle.sin());
-    let across = along.perp();
-    let (min, max) = region.bounds();
-    let corners = [min, DVec2::new(max.x, min.y), max, DVec2::new(min.x, max.y)];
-    let (v0, v1) = extent(&corners, across);
-    let (s0, s1) = extent(&corners, along);
-    let count = (((v1 - v0) / passes.stepover).ceil().max(0.0) as usize) + 1;
-    let step = if count > 1 { (v1 - v0) / (count - 1) as f64 } else { 0.0 };
-
+    let layout = PassLayout::new(region, passes);
     // The passes are independent: each core takes a share of a batch (in wasm, one after
-    // another).
+    // another; the page's pool splits them over its workers with [`PassLayout::pass`]).
     let batch = 4 * crate::parallel::threads();
-    let mut cut = Vec::with_capacity(count);
-    for first in (0..count).step_by(batch) {
-        if !progress.report(first as f64 / count.max(1) as f64) {
+    let mut cut = Vec::with_capacity(layout.count);
+    for first in (0..layout.count).step_by(batch) {
+        if !progress.report(first as f64 / layout.count.max(1) as f64) {
             return None;
         }
-        let n = batch.min(count - first);
-        cut.extend(crate::parallel::map_heavy(n, |i| {
-            let base = across * (v0 + step * (first + i) as f64);
-            clip_to_rect(base + along * s0, base + along * s1, min, max).map(|(a, b)| cut_pass(cl, region, a, b, passes)).unwrap_or_default()
-        }));
+        let n = batch.min(layout.count - first);
+        cut.extend(crate::parallel::map_heavy(n, |i| layout.pass(cl, first + i)));
     }
+    Some(join_passes(cut, passes.pattern))
+}
+
+/// The raster passes over a region: how many, and each one's runs.
+pub struct PassLayout<'a> {
+    region: &'a Region,
+    passes: &'a RasterPasses,
+    /// How many passes (some may cut nothing).
+    pub count: usize,
+    along: DVec2,
+    across: DVec2,
+    v0: f64,
+    step: f64,
+    s0: f64,
+    s1: f64,
+}
+
+impl<'a> PassLayout<'a> {
+    pub fn new(region: &'a Region, passes: &'a RasterPasses) -> PassLayout<'a> {
+        let angle = passes.angle_deg.to_radians();
+        let along = DVec2::new(angle.cos(), angle.sin());
+        let across = along.perp();
+        let (min, max) = region.bounds();
+        let corners = [min, DVec2::new(max.x, min.y), max, DVec2::new(min.x, max.y)];
+        let (v0, v1) = extent(&corners, across);
+        let (s0, s1) = extent(&corners, along);
+        let count = (((v1 - v0) / passes.stepover).ceil().max(0.0) as usize) + 1;
+        let step = if count > 1 { (v1 - v0) / (count - 1) as f64 } else { 0.0 };
+        PassLayout { region, passes, count, along, across, v0, step, s0, s1 }
+    }
+
+    /// The runs of pass `k` (all in the pass's own direction), on `cl`.
+    pub fn pass(&self, cl: &ClSurface, k: usize) -> Vec<Vec<DVec3>> {
+        let (min, max) = self.region.bounds();
+        let base = self.across * (self.v0 + self.step * k as f64);
+        clip_to_rect(base + self.along * self.s0, base + self.along * self.s1, min, max).map(|(a, b)| cut_pass(cl, self.region, a, b, self.passes)).unwrap_or_default()
+    }
+}
+
+/// The runs of every pass, in machining order: with the zigzag pattern every other pass turned
+/// round.
+pub fn join_passes(cut: Vec<Vec<Vec<DVec3>>>, pattern: Pattern) -> Vec<Vec<DVec3>> {
     let mut runs = Vec::new();
     for (k, mut pass_runs) in cut.into_iter().enumerate() {
-        if passes.pattern == Pattern::Zigzag && k % 2 == 1 {
+        if pattern == Pattern::Zigzag && k % 2 == 1 {
             pass_runs.reverse();
             for run in &mut pass_runs {
                 run.reverse();
@@ -165,7 +196,7 @@ pub fn raster_runs(cl: &ClSurface, region: &Region, passes: &RasterPasses, progr
         }
         runs.extend(pass_runs);
     }
-    Some(runs)
+    runs
 }
 
 fn extent(points: &[DVec2], dir: DVec2) -> (f64, f64) {
@@ -242,28 +273,27 @@ impl Operate for FinishRaster {
         Ok(())
     }
 
+    fn surfaces(&self, ctx: &Context) -> Result<Vec<SurfaceRequest>> {
+        Ok(vec![self.request(ctx)?])
+    }
+
     fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Vec<Toolpath>> {
         let tool = ctx.tool(&self.name, self.tool)?.clone();
         let profile = tool.cutter.profile();
-        let stock = ctx.stock;
-        let grid = Grid::checked(stock.min.truncate(), stock.max.truncate(), self.grid).map_err(|e| Error::operation(&self.name, e))?;
-        let floor = self.floor.unwrap_or(stock.min.z);
         if !progress.stage("CL z-map", 0.0, 0.2) {
             return Err(Error::Cancelled);
         }
-        let cl = ctx.cl_surface(&profile, grid, floor, self.builder, progress)?;
+        let request = self.request(ctx)?;
+        let cl = ctx.cl_surface(request, progress)?;
         if !progress.stage("passes", 0.2, 0.8) {
             return Err(Error::Cancelled);
         }
-        let margin = self.margin.unwrap_or(profile.radius);
-        let region = match self.boundary {
-            Boundary::Stock => Region::Rect { min: stock.min.truncate(), max: stock.max.truncate() },
-            Boundary::Silhouette => Region::silhouette(&ctx.cc_zmap(grid, floor), floor, margin),
-        };
-        let skip_floor = (self.boundary == Boundary::Silhouette && margin <= profile.radius).then_some(floor);
+        let (region, passes) = self.layout(ctx)?;
         let tol = ctx.tolerances;
-        let passes = RasterPasses { angle_deg: self.angle, stepover: self.stepover, pattern: self.pattern, allowance: self.allowance, tolerance: tol.chordal, skip_floor };
-        let mut runs = raster_runs(&cl, &region, &passes, progress).ok_or(Error::Cancelled)?;
+        let mut runs = match ctx.given_passes.remove(&ctx.operation) {
+            Some(given) => join_passes(given, passes.pattern),
+            None => raster_runs(&cl, &region, &passes, progress).ok_or(Error::Cancelled)?,
+        };
         if let Some(limit) = self.slope_max {
             runs = shallow_only(runs, &cl.field, limit.to_radians().tan());
         }
@@ -276,6 +306,31 @@ impl Operate for FinishRaster {
         }
         let floor_surface = Floor { cl: &cl, allowance: self.allowance, region: &region };
         Ok(vec![ctx.link(&self.name, &tool, &runs, &floor_surface, self.entry, self.stay_down_max.unwrap_or(2.0 * self.stepover))])
+    }
+}
+
+impl FinishRaster {
+    /// The CL surface it cuts on.
+    pub fn request(&self, ctx: &Context) -> Result<SurfaceRequest> {
+        let tool = ctx.tool(&self.name, self.tool)?;
+        let stock = ctx.stock;
+        let grid = Grid::checked(stock.min.truncate(), stock.max.truncate(), self.grid).map_err(|e| Error::operation(&self.name, e))?;
+        Ok(SurfaceRequest { profile: tool.cutter.profile(), grid, floor: self.floor.unwrap_or(stock.min.z), builder: self.builder })
+    }
+
+    /// Where its passes run and how: the region (the stock, or the part's silhouette grown by
+    /// the margin) and the passes' settings.
+    pub fn layout(&self, ctx: &mut Context) -> Result<(Region, RasterPasses)> {
+        let SurfaceRequest { profile, grid, floor, .. } = self.request(ctx)?;
+        let stock = ctx.stock;
+        let margin = self.margin.unwrap_or(profile.radius);
+        let region = match self.boundary {
+            Boundary::Stock => Region::Rect { min: stock.min.truncate(), max: stock.max.truncate() },
+            Boundary::Silhouette => Region::silhouette(&ctx.cc_zmap(grid, floor), floor, margin),
+        };
+        let skip_floor = (self.boundary == Boundary::Silhouette && margin <= profile.radius).then_some(floor);
+        let passes = RasterPasses { angle_deg: self.angle, stepover: self.stepover, pattern: self.pattern, allowance: self.allowance, tolerance: ctx.tolerances.chordal, skip_floor };
+        Ok((region, passes))
     }
 }
 

@@ -10,6 +10,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::profile2d::Direction;
+use super::context::SurfaceRequest;
 use super::{Context, FieldError, Operate};
 use crate::error::{Error, Result};
 use crate::geom::{DVec2, DVec3};
@@ -88,16 +89,22 @@ impl Operate for FinishWaterline {
         Ok(())
     }
 
+    fn surfaces(&self, ctx: &Context) -> Result<Vec<SurfaceRequest>> {
+        let profile = ctx.tool(&self.name, self.tool)?.cutter.profile();
+        let stock = ctx.stock;
+        let grid = Grid::checked(stock.min.truncate(), stock.max.truncate(), self.grid).map_err(|e| Error::operation(&self.name, e))?;
+        Ok(vec![SurfaceRequest { profile, grid, floor: stock.min.z, builder: ClBuilder::Exact }])
+    }
+
     fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Vec<Toolpath>> {
         let tool = ctx.tool(&self.name, self.tool)?.clone();
         let profile = tool.cutter.profile();
-        let stock = ctx.stock;
-        let grid = Grid::checked(stock.min.truncate(), stock.max.truncate(), self.grid).map_err(|e| Error::operation(&self.name, e))?;
-        let floor = stock.min.z;
         if !progress.stage("CL z-map", 0.0, 0.3) {
             return Err(Error::Cancelled);
         }
-        let cl = ctx.cl_surface(&profile, grid, floor, ClBuilder::Exact, progress)?;
+        let request = self.surfaces(ctx)?[0];
+        let (grid, floor) = (request.grid, request.floor);
+        let cl = ctx.cl_surface(request, progress)?;
         if !progress.stage("levels", 0.3, 0.7) {
             return Err(Error::Cancelled);
         }

@@ -114,6 +114,12 @@ pub trait Operate {
     }
     /// Checks its settings before any work.
     fn validate(&self) -> Result<(), FieldError>;
+    /// The CL surfaces it will ask the context for, named before it plans, so that a pool of
+    /// workers can make them first, band by band (none by default: it makes what it needs as
+    /// it plans).
+    fn surfaces(&self, _ctx: &Context) -> Result<Vec<context::SurfaceRequest>> {
+        Ok(Vec::new())
+    }
     /// Its tool paths, each with its tool, planned in the job's context. `progress` is this
     /// operation's own: stages run from 0 to 1.
     fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Vec<Toolpath>>;

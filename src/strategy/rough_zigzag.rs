@@ -22,6 +22,7 @@ use super::pocket2d::Inside;
 use super::path2d::start_nearest;
 use super::profile2d::Direction;
 use super::rough_zlevel::{Level, Levels, RoughZlevel};
+use super::context::SurfaceRequest;
 use super::{Context, FieldError, Operate};
 use crate::error::{Error, Result};
 use crate::geom::{DVec2, DVec3};
@@ -191,6 +192,10 @@ impl Operate for RoughZigzag {
             super::positive("pixel", p)?;
         }
         Ok(())
+    }
+
+    fn surfaces(&self, ctx: &Context) -> Result<Vec<SurfaceRequest>> {
+        Ok(vec![self.as_levels().request(ctx)?])
     }
 
     fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Vec<Toolpath>> {

@@ -18,6 +18,7 @@ use serde::{Deserialize, Serialize};
 use super::pocket2d::{clear_rings, rings, Clearing, Entry as PocketEntry, Inside, PocketPattern, Setup};
 use crate::toolpath::entry::Keepout;
 use super::profile2d::Direction;
+use super::context::SurfaceRequest;
 use super::{sheet, Context, FieldError, Operate};
 use crate::cutter::Profile;
 use crate::error::{Error, Result};
@@ -110,6 +111,10 @@ impl Operate for RoughZlevel {
             super::positive("helixRadius", r)?;
         }
         Ok(())
+    }
+
+    fn surfaces(&self, ctx: &Context) -> Result<Vec<SurfaceRequest>> {
+        Ok(vec![self.request(ctx)?])
     }
 
     fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Vec<Toolpath>> {
@@ -214,14 +219,19 @@ impl RoughZlevel {
     /// tool, allowance and grid (the context's cache).
     pub fn surface(&self, ctx: &mut Context, progress: &mut Progress) -> Result<(Tool, Arc<ClSurface>)> {
         let tool = ctx.tool(&self.name, self.tool)?.clone();
-        let profile = tool.cutter.profile();
+        let cl = ctx.cl_surface(self.request(ctx)?, progress)?;
+        Ok((tool, cl))
+    }
+
+    /// The CL surface of [`RoughZlevel::surface`].
+    pub fn request(&self, ctx: &Context) -> Result<SurfaceRequest> {
+        let profile = ctx.tool(&self.name, self.tool)?.cutter.profile();
         let r = profile.radius;
         let grown = Profile::new(r + self.leave_stock, if profile.flat_radius() <= 0.0 { r } else { profile.corner });
         let stock = ctx.stock;
         let reach = r + self.leave_stock + 2.0 * self.grid;
         let grid = Grid::checked(stock.min.truncate() - DVec2::splat(reach), stock.max.truncate() + DVec2::splat(reach), self.grid).map_err(|e| Error::operation(&self.name, e))?;
-        let cl = ctx.cl_surface(&grown, grid, stock.min.z, ClBuilder::Exact, progress)?;
-        Ok((tool, cl))
+        Ok(SurfaceRequest { profile: grown, grid, floor: stock.min.z, builder: ClBuilder::Exact })
     }
 
     /// The heights of the levels on `cl` for a tool of radius `r`, from the top down (see

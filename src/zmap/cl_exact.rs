@@ -79,21 +79,49 @@ impl Features {
 /// Builds the CL z-map of `profile` over `mesh`; nodes the cutter cannot reach the part from
 /// hold `floor`. Natively the rows are split into one band per core.
 pub fn cl_exact(mesh: &Mesh, profile: &Profile, grid: Grid, floor: f64, tolerances: &Tolerances, progress: &mut Progress) -> Result<HeightField> {
-    let features = Features::new(mesh, profile, tolerances);
-    let mut field = grid.filled(floor);
-    let bands = parallel::threads();
-    let rows = grid.ny.div_ceil(bands).max(1);
-    let cancelled = AtomicBool::new(false);
-    let mut chunks = field.z.chunks_mut(rows * grid.nx).enumerate();
-    let (_, first) = chunks.next().expect("a grid has a row");
-    let result = std::thread::scope(|scope| {
-        for (k, chunk) in chunks {
-            let (features, cancelled) = (&features, &cancelled);
-            scope.spawn(move || fill(features, profile, &grid, k * rows, chunk, cancelled, None));
-        }
-        fill(&features, profile, &grid, 0, first, &cancelled, Some(progress))
-    });
-    result.map(|()| field)
+    ExactBuilder::new(mesh, profile, tolerances).field(grid, floor, progress)
+}
+
+/// The exact builder with the mesh's features prepared for one cutter: it fills the whole grid
+/// ([`ExactBuilder::field`], a band of rows per core) or any band of its rows
+/// ([`ExactBuilder::rows`], what a worker of the page's pool computes; every node's height is
+/// the same whichever band holds it).
+pub struct ExactBuilder {
+    features: Features,
+    profile: Profile,
+}
+
+impl ExactBuilder {
+    pub fn new(mesh: &Mesh, profile: &Profile, tolerances: &Tolerances) -> ExactBuilder {
+        ExactBuilder { features: Features::new(mesh, profile, tolerances), profile: *profile }
+    }
+
+    /// The whole CL z-map on `grid`, `floor` where no feature reaches.
+    pub fn field(&self, grid: Grid, floor: f64, progress: &mut Progress) -> Result<HeightField> {
+        let mut field = grid.filled(floor);
+        let bands = parallel::threads();
+        let rows = grid.ny.div_ceil(bands).max(1);
+        let cancelled = AtomicBool::new(false);
+        let mut chunks = field.z.chunks_mut(rows * grid.nx).enumerate();
+        let (_, first) = chunks.next().expect("a grid has a row");
+        let result = std::thread::scope(|scope| {
+            for (k, chunk) in chunks {
+                let cancelled = &cancelled;
+                scope.spawn(move || fill(&self.features, &self.profile, &grid, k * rows, chunk, cancelled, None));
+            }
+            fill(&self.features, &self.profile, &grid, 0, first, &cancelled, Some(progress))
+        });
+        result.map(|()| field)
+    }
+
+    /// The heights of rows `rows` of the CL z-map on `grid` (row after row, `floor` where no
+    /// feature reaches).
+    pub fn rows(&self, grid: Grid, floor: f64, rows: std::ops::Range<usize>, progress: &mut Progress) -> Result<Vec<f64>> {
+        let rows = rows.start.min(grid.ny)..rows.end.min(grid.ny);
+        let mut band = vec![floor; rows.len() * grid.nx];
+        fill(&self.features, &self.profile, &grid, rows.start, &mut band, &AtomicBool::new(false), Some(progress))?;
+        Ok(band)
+    }
 }
 
 /// Drops every feature onto the nodes of rows `j0..` held in `band`; stops when `cancelled`.

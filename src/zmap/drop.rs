@@ -11,7 +11,7 @@
 //! the first triangle no higher than that height. On the die (500,000 triangles, φ10 ball) this
 //! takes drops along a raster pass from 350,000 to 650,000 a second.
 
-use super::cl_exact::cl_exact;
+use super::cl_exact::ExactBuilder;
 use super::cone::{edge_kinds, edge_regions, EdgeRegion};
 use super::{Grid, HeightField};
 use crate::cutter::{FacetPlane, Profile};
@@ -179,11 +179,27 @@ impl PointDrop {
     /// The z-map of these drops over `grid`: the exact builder (seed 001 §3.3) with the same
     /// profile, lifted the same way, so that its nodes equal [`PointDrop::at`] there.
     pub fn field(&self, mesh: &Mesh, grid: Grid, floor: f64, tolerances: &Tolerances, progress: &mut Progress) -> Result<HeightField> {
-        let mut field = cl_exact(mesh, &self.profile, grid, floor - self.lift, tolerances, progress)?;
-        for z in &mut field.z {
+        let mut field = self.builder(mesh, tolerances).field(grid, floor - self.lift, progress)?;
+        self.lift_all(&mut field.z, floor);
+        Ok(field)
+    }
+
+    /// The exact builder for this drop's profile (made once per worker of a pool).
+    pub fn builder(&self, mesh: &Mesh, tolerances: &Tolerances) -> ExactBuilder {
+        ExactBuilder::new(mesh, &self.profile, tolerances)
+    }
+
+    /// Rows `rows` of [`PointDrop::field`], by `builder` (this drop's [`PointDrop::builder`]).
+    pub fn rows(&self, builder: &ExactBuilder, grid: Grid, floor: f64, rows: std::ops::Range<usize>, progress: &mut Progress) -> Result<Vec<f64>> {
+        let mut z = builder.rows(grid, floor - self.lift, rows, progress)?;
+        self.lift_all(&mut z, floor);
+        Ok(z)
+    }
+
+    fn lift_all(&self, z: &mut [f64], floor: f64) {
+        for z in z {
             *z = self.lifted(*z, floor);
         }
-        Ok(field)
     }
 
     /// A drop of the profile (at least `floor - lift`) as this drop's height: the floor where

@@ -1,0 +1,130 @@
+//! A job's heavy, independent work in pieces, for a pool of workers (issue 15, "every core in
+//! the browser"). Wasm in a page has one thread, and sharing memory between workers needs a
+//! cross-origin-isolated page, which a static host or `file://` cannot promise; so every worker
+//! of the page's pool prepares its own copy of the job and part ([`super::prepare`]) and is
+//! asked for pieces: bands of rows of the exact CL surfaces the operations name
+//! ([`Prepared::surface_rows`]), then, on the surfaces joined from them, ranges of raster passes
+//! ([`Prepared::raster_passes`]). The worker that plans keeps what the others made
+//! ([`Prepared::keep_surface`], [`Prepared::keep_passes`]) and plans as it would have alone:
+//! the program is the same byte for byte. Natively the same bands and passes run on threads
+//! ([`crate::zmap::cl_exact::ExactBuilder::field`], [`crate::strategy::finish_raster::raster_runs`]).
+
+use std::collections::HashMap;
+use std::ops::Range;
+
+use super::operation::Operation;
+use super::Prepared;
+use crate::error::{Error, Result};
+use crate::geom::DVec3;
+use crate::progress::Progress;
+use crate::strategy::context::SurfaceRequest;
+use crate::strategy::finish_raster::PassLayout;
+use crate::zmap::ClBuilder;
+
+/// A raster operation whose passes a pool can share out.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct RasterWork {
+    /// The operation's index in the job.
+    pub operation: usize,
+    /// Its surface's index in [`Prepared::surfaces`] (none for one the inverse offset makes:
+    /// each worker makes that whole, quickly).
+    pub surface: Option<usize>,
+    /// How many passes it has.
+    pub passes: usize,
+}
+
+/// The passes of one raster operation a pool made, by pass.
+pub(super) type GivenPasses = HashMap<usize, Vec<Option<Vec<Vec<DVec3>>>>>;
+
+impl Prepared {
+    /// The exact CL surfaces the enabled operations will ask for, each once, in the order they
+    /// ask.
+    pub fn surfaces(&self) -> Result<Vec<SurfaceRequest>> {
+        let mut out: Vec<SurfaceRequest> = Vec::new();
+        for op in self.job.operations.iter().map(Operation::op).filter(|o| o.enabled()) {
+            for r in op.surfaces(&self.ctx)? {
+                if r.builder == ClBuilder::Exact && !out.contains(&r) {
+                    out.push(r);
+                }
+            }
+        }
+        Ok(out)
+    }
+
+    /// Rows `rows` of the exact surface `request`, row after row.
+    pub fn surface_rows(&mut self, request: SurfaceRequest, rows: Range<usize>, progress: &mut Progress) -> Result<Vec<f64>> {
+        if request.builder != ClBuilder::Exact {
+            return Err(Error::Input("only exact CL surfaces are made in bands".into()));
+        }
+        self.ctx.surface_rows(request, rows, progress)
+    }
+
+    /// Keeps `z`, the heights of `request` on its whole grid (its bands joined, row after row),
+    /// as that surface.
+    pub fn keep_surface(&mut self, request: SurfaceRequest, z: Vec<f64>) -> Result<()> {
+        let grid = request.grid;
+        if z.len() != grid.nx * grid.ny {
+            return Err(Error::Input(format!("a CL surface of {} × {} nodes was given {} heights", grid.nx, grid.ny, z.len())));
+        }
+        let mut field = grid.filled(request.floor);
+        field.z = z;
+        self.ctx.keep_surface(request, field);
+        Ok(())
+    }
+
+    /// The enabled raster operations, with their surfaces (indices in `surfaces`, the list
+    /// [`Prepared::surfaces`] gave) and how many passes each has.
+    pub fn rasters(&mut self, surfaces: &[SurfaceRequest]) -> Result<Vec<RasterWork>> {
+        let mut out = Vec::new();
+        for (k, op) in self.job.operations.clone().iter().enumerate() {
+            let Operation::FinishRaster(r) = op else { continue };
+            if !r.enabled {
+                continue;
+            }
+            let request = r.request(&self.ctx)?;
+            let surface = surfaces.iter().position(|s| *s == request);
+            let (region, passes) = r.layout(&mut self.ctx)?;
+            out.push(RasterWork { operation: k, surface, passes: PassLayout::new(&region, &passes).count });
+        }
+        Ok(out)
+    }
+
+    /// The runs of passes `passes` of the raster operation `operation`, each pass's in its own
+    /// direction, on its surface (kept, or made here).
+    pub fn raster_passes(&mut self, operation: usize, passes: Range<usize>) -> Result<Vec<Vec<Vec<DVec3>>>> {
+        let Some(Operation::FinishRaster(r)) = self.job.operations.get(operation).cloned() else {
+            return Err(Error::Input(format!("operation {operation} is not a raster finishing")));
+        };
+        let cl = self.ctx.cl_surface(r.request(&self.ctx)?, &mut Progress::none())?;
+        let (region, settings) = r.layout(&mut self.ctx)?;
+        let layout = PassLayout::new(&region, &settings);
+        let passes = passes.start.min(layout.count)..passes.end.min(layout.count);
+        Ok(crate::parallel::map_heavy(passes.len(), |i| layout.pass(&cl, passes.start + i)))
+    }
+
+    /// Keeps passes of the raster operation `operation` made elsewhere, `first` the index of
+    /// the first; once every pass is kept, the operation plans with them.
+    pub fn keep_passes(&mut self, operation: usize, first: usize, passes: Vec<Vec<Vec<DVec3>>>) -> Result<()> {
+        let surfaces = self.surfaces()?;
+        let Some(work) = self.rasters(&surfaces)?.into_iter().find(|w| w.operation == operation) else {
+            return Err(Error::Input(format!("operation {operation} is not a raster finishing")));
+        };
+        if first + passes.len() > work.passes {
+            return Err(Error::Input(format!("passes {first}..{} given of an operation with {}", first + passes.len(), work.passes)));
+        }
+        let slots = self.given.entry(operation).or_insert_with(|| vec![None; work.passes]);
+        for (k, p) in passes.into_iter().enumerate() {
+            slots[first + k] = Some(p);
+        }
+        Ok(())
+    }
+
+    /// Hands the context the raster operations whose every pass was given.
+    pub(super) fn give_passes(&mut self) {
+        for (op, slots) in self.given.drain() {
+            if let Some(passes) = slots.into_iter().collect::<Option<Vec<_>>>() {
+                self.ctx.given_passes.insert(op, passes);
+            }
+        }
+    }
+}

@@ -1,0 +1,89 @@
+//! A job made in pieces, as the page's pool of workers makes it (issue 15): bands of the exact
+//! CL surfaces and ranges of raster passes made by one prepared copy of the job and kept by
+//! another give the same program, byte for byte, as the job run whole.
+
+use swarf::job::{self, Job};
+use swarf::mesh::sample::demo_part;
+use swarf::progress::Progress;
+
+/// The demo job (roughing, raster and waterline finishing), lighter.
+fn job() -> Job {
+    let mut job = Job::demo();
+    job.simulation.verify = false;
+    job
+}
+
+fn gcode_whole(job: &Job) -> String {
+    job::run(job, demo_part(), &mut Progress::none()).unwrap().gcode
+}
+
+#[test]
+fn a_job_made_by_a_pool_writes_the_same_program_as_one_made_whole() {
+    let job = job();
+    let whole = gcode_whole(&job);
+
+    let mut helper = job::prepare(&job, demo_part()).unwrap();
+    let mut planner = job::prepare(&job, demo_part()).unwrap();
+    let surfaces = planner.surfaces().unwrap();
+    // The roughing's grown flat end and the finishing ball (raster and waterline share it).
+    assert_eq!(surfaces.len(), 2, "{surfaces:?}");
+    assert_eq!(helper.surfaces().unwrap(), surfaces);
+    for s in &surfaces {
+        // Uneven bands, one of them empty, made by the helper.
+        let ny = s.grid.ny;
+        let cuts = [0, 7, 7, ny / 2, ny];
+        let z: Vec<f64> = cuts.windows(2).flat_map(|w| helper.surface_rows(*s, w[0]..w[1], &mut Progress::none()).unwrap()).collect();
+        planner.keep_surface(*s, z).unwrap();
+    }
+    let rasters = planner.rasters(&surfaces).unwrap();
+    assert_eq!(rasters.len(), 1);
+    let work = rasters[0];
+    assert_eq!(work.surface, Some(1));
+    assert!(work.passes > 100, "{work:?}");
+    for first in (0..work.passes).step_by(37) {
+        let passes = helper.raster_passes(work.operation, first..first + 37).unwrap();
+        planner.keep_passes(work.operation, first, passes).unwrap();
+    }
+    assert_eq!(planner.run(&mut Progress::none()).unwrap().gcode, whole);
+}
+
+#[test]
+fn wrong_pieces_are_refused_and_missing_passes_are_made_by_the_planner() {
+    let job = job();
+    let mut planner = job::prepare(&job, demo_part()).unwrap();
+    let surfaces = planner.surfaces().unwrap();
+    let s = surfaces[0];
+    let err = planner.keep_surface(s, vec![0.0; 3]).unwrap_err().to_string();
+    assert!(err.contains("was given 3 heights"), "{err}");
+    let work = planner.rasters(&surfaces).unwrap()[0];
+    let err = planner.keep_passes(work.operation, work.passes, vec![Vec::new()]).unwrap_err().to_string();
+    assert!(err.contains("given of an operation with"), "{err}");
+    assert!(planner.keep_passes(0, 0, Vec::new()).is_err(), "operation 0 roughs");
+    // Only some passes given: the operation makes them all itself.
+    let some = planner.raster_passes(work.operation, 0..10).unwrap();
+    assert_eq!(some.len(), 10);
+    planner.keep_passes(work.operation, 0, some).unwrap();
+    assert_eq!(planner.run(&mut Progress::none()).unwrap().gcode, gcode_whole(&job));
+}
+
+#[test]
+fn the_planner_cuts_on_the_surfaces_and_passes_it_was_given() {
+    let mut job = job();
+    job.operations.retain(|o| matches!(o, swarf::job::operation::Operation::FinishRaster(_)));
+    let whole = gcode_whole(&job);
+    let prepared = || job::prepare(&job, demo_part()).unwrap();
+    // A kept surface is what the operation cuts on: the context's cache finds it.
+    let mut planner = prepared();
+    let s = planner.surfaces().unwrap()[0];
+    let z = planner.surface_rows(s, 0..s.grid.ny, &mut Progress::none()).unwrap();
+    planner.keep_surface(s, z).unwrap();
+    let out = planner.run(&mut Progress::none()).unwrap();
+    assert_eq!((out.cache.hits, out.cache.misses), (1, 0));
+    assert_eq!(out.gcode, whole);
+    // Passes that cut nothing: no raster moves.
+    let mut planner = prepared();
+    let work = planner.rasters(&planner.surfaces().unwrap()).unwrap()[0];
+    planner.keep_passes(work.operation, 0, vec![Vec::new(); work.passes]).unwrap();
+    let err = planner.run(&mut Progress::none()).unwrap_err().to_string();
+    assert!(err.contains("no cutting moves"), "{err}");
+}
