@@ -427,17 +427,134 @@ struct Summary {
 /// the work goes on; returning `false` cancels.
 #[wasm_bindgen(js_name = runJob)]
 pub fn run_job(job: JsValue, bytes: &[u8], name: &str, progress: &js_sys::Function) -> Result<JobResult, JsError> {
+    prepare_job(job, bytes, name)?.run(progress)
+}
+
+/// A job prepared for planning (the part read and placed), whose heavy work a pool of workers
+/// can share first ([`crate::job::pool`]): each worker prepares its own and makes bands of the
+/// CL surfaces and ranges of raster passes; the one that plans keeps them and runs.
+#[wasm_bindgen]
+pub struct JobPlan {
+    job: Job,
+    prepared: Option<job::Prepared>,
+    surfaces: Vec<crate::strategy::context::SurfaceRequest>,
+}
+
+#[derive(serde::Serialize)]
+struct SurfaceNeed {
+    nx: usize,
+    ny: usize,
+}
+
+#[derive(serde::Serialize)]
+struct PlanNeeds {
+    surfaces: Vec<SurfaceNeed>,
+    rasters: Vec<crate::job::pool::RasterWork>,
+}
+
+/// Prepares `job` on the part or drawing in `bytes` (see [`JobPlan`]).
+#[wasm_bindgen(js_name = prepareJob)]
+pub fn prepare_job(job: JsValue, bytes: &[u8], name: &str) -> Result<JobPlan, JsError> {
     let job: Job = serde_wasm_bindgen::from_value(job).map_err(|e| js_error(format!("invalid job: {e}")))?;
     let workpiece: Workpiece = if crate::profile::import::is_drawing(Some(name), bytes) {
         read_drawing_js(bytes, name, &job.tolerances)?.into()
     } else {
         read_part(bytes, name, &job.tolerances)?.into()
     };
-    let mut sink = |fraction: f64, stage: &str| {
-        progress.call2(&JsValue::NULL, &JsValue::from_f64(fraction), &JsValue::from_str(stage)).map(|v| v.as_bool() != Some(false)).unwrap_or(true)
-    };
-    let mut out = job::run(&job, workpiece, &mut Progress::new(&mut sink)).map_err(js_error)?;
-    let simulation = out.verification.take().map(|v| simulation_view(&job, &out, v)).transpose()?;
+    let prepared = job::prepare(&job, workpiece).map_err(js_error)?;
+    let surfaces = prepared.surfaces().map_err(js_error)?;
+    Ok(JobPlan { job, prepared: Some(prepared), surfaces })
+}
+
+#[wasm_bindgen]
+impl JobPlan {
+    fn prepared(&mut self) -> Result<&mut job::Prepared, JsError> {
+        self.prepared.as_mut().ok_or_else(|| js_error("this plan has run"))
+    }
+
+    fn surface(&self, k: usize) -> Result<crate::strategy::context::SurfaceRequest, JsError> {
+        self.surfaces.get(k).copied().ok_or_else(|| js_error(format!("no surface {k}")))
+    }
+
+    /// What can be shared: `{ surfaces: [{ nx, ny }], rasters: [{ operation, surface, passes }] }`
+    /// (a raster's `surface` indexes `surfaces`, or is null when each worker makes it whole).
+    pub fn needs(&mut self) -> Result<JsValue, JsError> {
+        let surfaces = self.surfaces.clone();
+        let rasters = self.prepared()?.rasters(&surfaces).map_err(js_error)?;
+        to_js(&PlanNeeds { surfaces: surfaces.iter().map(|s| SurfaceNeed { nx: s.grid.nx, ny: s.grid.ny }).collect(), rasters })
+    }
+
+    /// Rows `j0..j1` of surface `k`, row after row.
+    #[wasm_bindgen(js_name = surfaceRows)]
+    pub fn surface_rows(&mut self, k: usize, j0: usize, j1: usize) -> Result<Vec<f64>, JsError> {
+        let s = self.surface(k)?;
+        self.prepared()?.surface_rows(s, j0..j1, &mut Progress::none()).map_err(js_error)
+    }
+
+    /// Keeps the whole of surface `k` (`nx × ny` heights, row after row).
+    #[wasm_bindgen(js_name = keepSurface)]
+    pub fn keep_surface(&mut self, k: usize, z: Vec<f64>) -> Result<(), JsError> {
+        let s = self.surface(k)?;
+        self.prepared()?.keep_surface(s, z).map_err(js_error)
+    }
+
+    /// Passes `i0..i1` of the raster operation `operation`, flat: per pass its number of runs,
+    /// per run its number of points, then the points' x, y, z.
+    #[wasm_bindgen(js_name = rasterPasses)]
+    pub fn raster_passes(&mut self, operation: usize, i0: usize, i1: usize) -> Result<Vec<f64>, JsError> {
+        let passes = self.prepared()?.raster_passes(operation, i0..i1).map_err(js_error)?;
+        let mut out = Vec::new();
+        for runs in &passes {
+            out.push(runs.len() as f64);
+            for run in runs {
+                out.push(run.len() as f64);
+                out.extend(run.iter().flat_map(|p| [p.x, p.y, p.z]));
+            }
+        }
+        Ok(out)
+    }
+
+    /// Keeps passes `first..` of the raster operation `operation`, as [`JobPlan::raster_passes`]
+    /// wrote them (`count` passes).
+    #[wasm_bindgen(js_name = keepPasses)]
+    pub fn keep_passes(&mut self, operation: usize, first: usize, count: usize, flat: &[f64]) -> Result<(), JsError> {
+        let mut at = 0;
+        let mut next = || -> Result<f64, JsError> {
+            let v = *flat.get(at).ok_or_else(|| js_error("the passes end early"))?;
+            at += 1;
+            Ok(v)
+        };
+        let mut passes = Vec::with_capacity(count);
+        for _ in 0..count {
+            let runs = next()? as usize;
+            let mut pass = Vec::with_capacity(runs);
+            for _ in 0..runs {
+                let points = next()? as usize;
+                let mut run = Vec::with_capacity(points);
+                for _ in 0..points {
+                    run.push(crate::geom::DVec3::new(next()?, next()?, next()?));
+                }
+                pass.push(run);
+            }
+            passes.push(pass);
+        }
+        self.prepared()?.keep_passes(operation, first, passes).map_err(js_error)
+    }
+
+    /// Plans the job with what was kept and writes its program (see [`run_job`]).
+    pub fn run(&mut self, progress: &js_sys::Function) -> Result<JobResult, JsError> {
+        let prepared = self.prepared.take().ok_or_else(|| js_error("this plan has run"))?;
+        let mut sink = |fraction: f64, stage: &str| {
+            progress.call2(&JsValue::NULL, &JsValue::from_f64(fraction), &JsValue::from_str(stage)).map(|v| v.as_bool() != Some(false)).unwrap_or(true)
+        };
+        let out = prepared.run(&mut Progress::new(&mut sink)).map_err(js_error)?;
+        job_result(&self.job, out)
+    }
+}
+
+/// What the worker hands the page of a job's output.
+fn job_result(job: &Job, mut out: job::JobOutput) -> Result<JobResult, JsError> {
+    let simulation = out.verification.take().map(|v| simulation_view(job, &out, v)).transpose()?;
     let (mut feeds, mut rapids, mut feed_ops, mut feed_tools) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     for (path, &op) in out.paths.iter().zip(&out.path_operations) {
         for (a, b, rapid) in path.segments(0.1) {

@@ -8,8 +8,10 @@ export type { Job, Post, PostSettings, CycleTime, Project };
 export interface EngineOptions {
   /** The worker script (default: worker.js beside swarf.js). */
   workerUrl?: string | URL;
-  /** Makes the worker instead (a bundle or single-file page). */
+  /** Makes a worker instead (a bundle or single-file page); called once per worker of the pool. */
   worker?: () => Worker;
+  /** How many workers share a run (default: one per core, at most 8; 1: no pool). */
+  workers?: number;
   /** The wasm module's bytes or URL (default: pkg/swarf_bg.wasm beside the worker). */
   wasm?: BufferSource | string | URL | null;
 }
@@ -66,6 +68,8 @@ export declare class CancelledError extends Error {
 }
 
 export declare class Engine {
+  /** How many workers share a run. */
+  readonly workers: number;
   defaults: { job: Job; drawingJob: Job; tool: Job['tools'][number]; operations: Job['operations'] };
   posts: { dialect: PostSettings['dialect']; post: Post }[];
   /** The sample part (binary STL) and drawing (DXF). */

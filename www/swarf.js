@@ -17,10 +17,78 @@ export class CancelledError extends Error {
   }
 }
 
-export class Engine {
-  #worker = null;
+/** One worker and the calls waiting on its answers. */
+class Channel {
+  #worker;
   #pending = new Map();
   #nextId = 1;
+
+  constructor(worker) {
+    this.#worker = worker;
+    worker.onmessage = (event) => {
+      const m = event.data, entry = this.#pending.get(m.id);
+      if (!entry) return;
+      if (m.type === 'progress') { entry.onProgress?.(m.fraction, m.stage); return; }
+      this.#pending.delete(m.id);
+      if (m.ok) entry.resolve(m); else entry.reject(new Error(m.error));
+    };
+    worker.onerror = (e) => this.#fail(new Error(e.message || 'the worker failed'));
+  }
+
+  call(message, transfer = [], onProgress) {
+    const id = this.#nextId++;
+    return new Promise((resolve, reject) => {
+      this.#pending.set(id, { resolve, reject, onProgress });
+      this.#worker.postMessage({ id, ...message }, transfer);
+    });
+  }
+
+  /** Ends the worker; every call waiting on it rejects with `error`. */
+  end(error) {
+    this.#worker.terminate();
+    this.#fail(error);
+  }
+
+  #fail(error) {
+    for (const entry of this.#pending.values()) entry.reject(error);
+    this.#pending.clear();
+  }
+}
+
+/** How many workers a run shares: `wanted`, else one per core (at most 8). */
+function poolSize(wanted) {
+  const cores = globalThis.navigator?.hardwareConcurrency ?? 1;
+  return Math.max(1, Math.min(8, Math.floor(wanted ?? cores)));
+}
+
+/**
+ * Runs `tasks` (messages) on `channels`, each channel taking the next task as it finishes one;
+ * `done(task, answer)` takes each answer, `report(fraction)` the share done.
+ */
+async function share(channels, tasks, done, report) {
+  let next = 0, finished = 0;
+  await Promise.all(channels.map(async (channel) => {
+    while (next < tasks.length) {
+      const task = tasks[next++];
+      done(task, await channel.call(task));
+      report(++finished / tasks.length);
+    }
+  }));
+}
+
+/** Ranges `[from, to)` splitting `0..count` into about `pieces` even ones. */
+function ranges(count, pieces) {
+  const size = Math.max(1, Math.ceil(count / pieces));
+  const out = [];
+  for (let from = 0; from < count; from += size) out.push([from, Math.min(count, from + size)]);
+  return out;
+}
+
+export class Engine {
+  /** The worker that plans and keeps the last result (scrubbing, reposting). */
+  #main = null;
+  /** The rest of the pool: they make CL surfaces in bands and raster passes in ranges. */
+  #helpers = [];
   #options;
 
   /** Use `createEngine()`. */
@@ -35,32 +103,25 @@ export class Engine {
     this.sampleDrawing = null;
   }
 
+  /** How many workers share a run. */
+  get workers() {
+    return 1 + this.#helpers.length;
+  }
+
   async start() {
     const o = this.#options;
-    this.#worker = o.worker ? o.worker() : new Worker(o.workerUrl ?? new URL('./worker.js', import.meta.url), { type: 'module' });
-    this.#worker.onmessage = (event) => {
-      const m = event.data, entry = this.#pending.get(m.id);
-      if (!entry) return;
-      if (m.type === 'progress') { entry.onProgress?.(m.fraction, m.stage); return; }
-      this.#pending.delete(m.id);
-      if (m.ok) entry.resolve(m); else entry.reject(new Error(m.error));
-    };
-    this.#worker.onerror = (e) => {
-      for (const entry of this.#pending.values()) entry.reject(new Error(e.message || 'the worker failed'));
-      this.#pending.clear();
-    };
-    const hello = await this.call({ type: 'hello', wasm: o.wasm ?? null });
+    const make = () => o.worker ? o.worker() : new Worker(o.workerUrl ?? new URL('./worker.js', import.meta.url), { type: 'module' });
+    this.#main = new Channel(make());
+    this.#helpers = Array.from({ length: poolSize(o.workers) - 1 }, () => new Channel(make()));
+    const wasm = o.wasm ?? null;
+    const [hello] = await Promise.all([this.#main.call({ type: 'hello', wasm }), ...this.#helpers.map((h) => h.call({ type: 'hello', helper: true, wasm }))]);
     Object.assign(this, { defaults: hello.defaults, posts: hello.posts, sample: hello.sample, sampleDrawing: hello.sampleDrawing });
     return this;
   }
 
-  /** A message to the worker; resolves with its answer. The page's own requests go here. */
+  /** A message to the worker that plans; resolves with its answer. The page's own requests go here. */
   call(message, transfer = [], onProgress) {
-    const id = this.#nextId++;
-    return new Promise((resolve, reject) => {
-      this.#pending.set(id, { resolve, reject, onProgress });
-      this.#worker.postMessage({ id, ...message }, transfer);
-    });
+    return this.#main.call(message, transfer, onProgress);
   }
 
   /** A fresh copy of the default job for a part (`'part'`) or a drawing (`'drawing'`). */
@@ -85,19 +146,45 @@ export class Engine {
 
   /**
    * Runs a job on a part or drawing. `onProgress(fraction, stage)` reports as it goes;
-   * aborting `signal` ends the work (the worker is replaced, the engine stays usable) and
+   * aborting `signal` ends the work (the workers are replaced, the engine stays usable) and
    * rejects with a `CancelledError`. Resolves with `{ gcode, summary, feeds, rapids, feedOps,
-   * feedTools, octants, part, drawing, sim }`.
+   * feedTools, octants, part, drawing, sim }`. With more than one worker, the pool first makes
+   * the CL surfaces (in bands of rows) and the raster passes (in ranges) on every worker; the
+   * program is the same as one worker's.
    */
   async run(job, bytes, name, { onProgress, signal } = {}) {
     if (signal?.aborted) throw new CancelledError();
     const onAbort = () => this.cancel();
     signal?.addEventListener('abort', onAbort, { once: true });
     try {
-      return await this.call({ type: 'run', job, bytes, name }, [], onProgress);
+      if (!this.#helpers.length) return await this.call({ type: 'run', job, bytes, name }, [], onProgress);
+      return await this.#runShared(job, bytes, name, onProgress);
     } finally {
       signal?.removeEventListener('abort', onAbort);
     }
+  }
+
+  async #runShared(job, bytes, name, onProgress) {
+    const all = [this.#main, ...this.#helpers];
+    const n = all.length;
+    const [{ needs }] = await Promise.all(all.map((c) => c.call({ type: 'prepare', job, bytes, name })));
+    const { surfaces, rasters } = needs;
+    // Bands of rows of every exact CL surface, joined here.
+    const joined = surfaces.map((s) => new Float64Array(s.nx * s.ny));
+    const bands = surfaces.flatMap((s, surface) => ranges(s.ny, 4 * n).map(([j0, j1]) => ({ type: 'rows', surface, j0, j1 })));
+    const stage = (from, to, what) => (f) => onProgress?.(from + (to - from) * f, `${what} (${n} workers)`);
+    await share(all, bands, (t, r) => joined[t.surface].set(r.z, t.j0 * surfaces[t.surface].nx), stage(0, 0.25, 'CL z-maps'));
+    // The planner keeps every surface; the others those the raster passes stand on.
+    const under = new Set(rasters.map((r) => r.surface));
+    await Promise.all(all.flatMap((c, w) => joined.map((z, surface) => (w === 0 || under.has(surface) ? c.call({ type: 'keepSurface', surface, z }) : null)).filter(Boolean)));
+    // Ranges of raster passes, kept by the planner.
+    const passes = rasters.flatMap((r) => ranges(r.passes, 4 * n).map(([i0, i1]) => ({ type: 'passes', operation: r.operation, i0, i1 })));
+    const kept = [];
+    await share(all, passes, (t, r) => kept.push(this.#main.call({ type: 'keepPasses', operation: t.operation, first: t.i0, count: t.i1 - t.i0, flat: r.flat }, [r.flat.buffer])), stage(0.25, 0.5, 'raster passes'));
+    await Promise.all(kept);
+    await Promise.all(this.#helpers.map((h) => h.call({ type: 'forget' })));
+    const from = bands.length || passes.length ? 0.5 : 0;
+    return this.#main.call({ type: 'runPlan' }, [], (f, s) => onProgress?.(from + (1 - from) * f, s));
   }
 
   /** The last run's program written again for another post, without planning again. */
@@ -109,25 +196,25 @@ export class Engine {
   /** The last run's simulated stock after `count` moves (a Float32Array of heights). */
   async seek(count) { return (await this.call({ type: 'seek', count })).tops; }
 
-  /** Ends whatever runs: its promise rejects with a `CancelledError`; a fresh worker takes over. */
+  /** Ends whatever runs: its promise rejects with a `CancelledError`; fresh workers take over. */
   async cancel() {
-    this.#worker.terminate();
-    for (const entry of this.#pending.values()) entry.reject(new CancelledError());
-    this.#pending.clear();
+    for (const c of [this.#main, ...this.#helpers]) c.end(new CancelledError());
     await this.start();
   }
 
-  /** Ends the worker for good. */
+  /** Ends the workers for good. */
   close() {
-    this.#worker?.terminate();
-    this.#worker = null;
+    for (const c of [this.#main, ...this.#helpers]) c?.end(new Error('the engine was closed'));
+    this.#main = null;
+    this.#helpers = [];
   }
 }
 
 /**
  * Starts an engine. Options: `workerUrl` (default: worker.js beside this module), or `worker`
- * (a function making the Worker, for bundles), and `wasm` (the module's bytes or URL; default:
- * pkg/swarf_bg.wasm beside the worker).
+ * (a function making a Worker, for bundles; called once per worker of the pool), `wasm` (the
+ * module's bytes or URL; default: pkg/swarf_bg.wasm beside the worker), and `workers` (how
+ * many workers share a run; default: one per core, `navigator.hardwareConcurrency`, at most 8).
  */
 export async function createEngine(options = {}) {
   return new Engine(options).start();

@@ -1,12 +1,14 @@
 // Runs the wasm pipeline off the page's thread, for swarf.js's engine. Cancel = the engine
 // terminates this worker.
-import init, { defaults, builtinPosts, readPost, readJob, writeProject, readProject, samplePart, sampleDrawing, loadPart, loadDrawing, isDrawing, runJob } from './pkg/swarf.js';
+import init, { defaults, builtinPosts, readPost, readJob, writeProject, readProject, samplePart, sampleDrawing, loadPart, loadDrawing, isDrawing, runJob, prepareJob } from './pkg/swarf.js';
 
 // The wasm is loaded on the first message: from the bytes or URL it names (a single-file page
 // passes the bytes), else from pkg/ beside the glue.
 let ready = null;
 // The last job's result stays here so the page can scrub through its simulation.
 let current = null;
+// The job being shared out by the engine's pool (a JobPlan): every worker prepares its own.
+let plan = null;
 
 // The simulated stock goes to the view on at most this many cells: a finer simulation is shown
 // by the highest of each block of its cells (so no material is hidden), which keeps drawing,
@@ -48,12 +50,63 @@ function partMessage(view) {
   return { part, transfer: [part.positions.buffer, part.normals.buffer] };
 }
 
+function planned() {
+  if (!plan) throw new Error('no job is prepared in this worker');
+  return plan;
+}
+
+// Reports a run's progress to the engine, at most every 50 ms.
+function progressTo(id) {
+  let last = 0;
+  return (fraction, stage) => {
+    const now = performance.now();
+    if (now - last > 50 || fraction >= 1) {
+      last = now;
+      self.postMessage({ id, type: 'progress', fraction, stage });
+    }
+    return true;
+  };
+}
+
+// Sends a run's result (a JobResult) to the engine and keeps it for scrubbing and reposting.
+function send(id, result) {
+  const feeds = result.feeds().slice();
+  const feedOps = result.feedOperations().slice();
+  const feedTools = result.feedTools().slice();
+  const octants = result.octants().slice();
+  const rapids = result.rapids().slice();
+  const gcode = result.gcode();
+  const summary = result.summary();
+  const drawing = result.drawing();
+  const { part, transfer } = partMessage(result.takePart());
+  let sim = null;
+  if (result.hasSimulation()) {
+    const grid = Array.from(result.simGrid());
+    block = blockOf(grid);
+    sim = {
+      grid: [grid[0], grid[1], grid[2] * block.factor, block.vx, block.vy, ...grid.slice(5)],
+      part: coarse(result.simPart()),
+      times: result.times().slice(),
+      mrr: result.mrr().slice(),
+      findings: result.findings().slice(),
+      report: result.report(),
+      start: coarse(result.seek(result.times().length - 1)),
+    };
+    transfer.push(sim.part.buffer, sim.times.buffer, sim.mrr.buffer, sim.findings.buffer, sim.start.buffer);
+  }
+  current?.free();
+  current = result;
+  self.postMessage({ id, ok: true, gcode, feeds, feedOps, feedTools, octants, rapids, summary, part, drawing, sim }, [feeds.buffer, feedOps.buffer, feedTools.buffer, octants.buffer, rapids.buffer, ...transfer]);
+}
+
 self.onmessage = async (event) => {
   const { id, type } = event.data;
   try {
     ready ??= init(event.data.wasm ? { module_or_path: event.data.wasm } : undefined);
     await ready;
-    if (type === 'hello') {
+    if (type === 'hello' && event.data.helper) {
+      self.postMessage({ id, ok: true });
+    } else if (type === 'hello') {
       self.postMessage({ id, ok: true, defaults: defaults(), posts: builtinPosts(), sample: samplePart(), sampleDrawing: sampleDrawing() });
     } else if (type === 'readPost') {
       self.postMessage({ id, ok: true, post: readPost(event.data.text) });
@@ -71,42 +124,36 @@ self.onmessage = async (event) => {
         self.postMessage({ id, ok: true, part }, transfer);
       }
     } else if (type === 'run') {
-      let last = 0;
-      const result = runJob(event.data.job, event.data.bytes, event.data.name, (fraction, stage) => {
-        const now = performance.now();
-        if (now - last > 50 || fraction >= 1) {
-          last = now;
-          self.postMessage({ id, type: 'progress', fraction, stage });
-        }
-        return true;
-      });
-      const feeds = result.feeds().slice();
-      const feedOps = result.feedOperations().slice();
-      const feedTools = result.feedTools().slice();
-      const octants = result.octants().slice();
-      const rapids = result.rapids().slice();
-      const gcode = result.gcode();
-      const summary = result.summary();
-      const drawing = result.drawing();
-      const { part, transfer } = partMessage(result.takePart());
-      let sim = null;
-      if (result.hasSimulation()) {
-        const grid = Array.from(result.simGrid());
-        block = blockOf(grid);
-        sim = {
-          grid: [grid[0], grid[1], grid[2] * block.factor, block.vx, block.vy, ...grid.slice(5)],
-          part: coarse(result.simPart()),
-          times: result.times().slice(),
-          mrr: result.mrr().slice(),
-          findings: result.findings().slice(),
-          report: result.report(),
-          start: coarse(result.seek(result.times().length - 1)),
-        };
-        transfer.push(sim.part.buffer, sim.times.buffer, sim.mrr.buffer, sim.findings.buffer, sim.start.buffer);
+      send(id, runJob(event.data.job, event.data.bytes, event.data.name, progressTo(id)));
+    } else if (type === 'prepare') {
+      plan?.free();
+      plan = null;
+      plan = prepareJob(event.data.job, event.data.bytes, event.data.name);
+      self.postMessage({ id, ok: true, needs: plan.needs() });
+    } else if (type === 'rows') {
+      const z = planned().surfaceRows(event.data.surface, event.data.j0, event.data.j1);
+      self.postMessage({ id, ok: true, z }, [z.buffer]);
+    } else if (type === 'keepSurface') {
+      planned().keepSurface(event.data.surface, event.data.z);
+      self.postMessage({ id, ok: true });
+    } else if (type === 'passes') {
+      const flat = planned().rasterPasses(event.data.operation, event.data.i0, event.data.i1);
+      self.postMessage({ id, ok: true, flat }, [flat.buffer]);
+    } else if (type === 'keepPasses') {
+      planned().keepPasses(event.data.operation, event.data.first, event.data.count, event.data.flat);
+      self.postMessage({ id, ok: true });
+    } else if (type === 'runPlan') {
+      const p = planned();
+      plan = null;
+      try {
+        send(id, p.run(progressTo(id)));
+      } finally {
+        p.free();
       }
-      current?.free();
-      current = result;
-      self.postMessage({ id, ok: true, gcode, feeds, feedOps, feedTools, octants, rapids, summary, part, drawing, sim }, [feeds.buffer, feedOps.buffer, feedTools.buffer, octants.buffer, rapids.buffer, ...transfer]);
+    } else if (type === 'forget') {
+      plan?.free();
+      plan = null;
+      self.postMessage({ id, ok: true });
     } else if (type === 'repost') {
       if (!current) throw new Error('generate a program first');
       self.postMessage({ id, ok: true, ...current.repost(event.data.post) });

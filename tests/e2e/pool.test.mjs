@@ -1,0 +1,96 @@
+// Issue 15's "every core in the browser": swarf.js's engine shares a run among a pool of
+// workers (CL surfaces in bands of rows, raster passes in ranges) and writes the same program
+// as one worker; a pooled run cancels like any other, and bad input fails the same way.
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import http from 'node:http';
+import fs from 'node:fs';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { chromium } from 'playwright-core';
+import { dieStl } from '../../scripts/die-stl.mjs';
+
+const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../../www');
+const types = { '.html': 'text/html', '.js': 'text/javascript', '.css': 'text/css', '.wasm': 'application/wasm' };
+// A smaller die than the page's die-sized test: 120,000 triangles.
+const die = dieStl(300, 200);
+let server, browser, page;
+
+before(async () => {
+  server = http.createServer((req, res) => {
+    const url = decodeURIComponent(new URL(req.url, 'http://x').pathname);
+    if (url === '/die.stl') { res.writeHead(200); res.end(die); return; }
+    const file = path.join(root, url);
+    if (!file.startsWith(root) || !fs.existsSync(file) || fs.statSync(file).isDirectory()) { res.writeHead(404); res.end(); return; }
+    res.writeHead(200, { 'content-type': types[path.extname(file)] || 'application/octet-stream' });
+    fs.createReadStream(file).pipe(res);
+  });
+  await new Promise((resolve) => server.listen(0, '127.0.0.1', resolve));
+  browser = await chromium.launch({ executablePath: process.env.CHROMIUM || '/usr/bin/chromium', headless: true, args: ['--no-sandbox', '--disable-dev-shm-usage'] });
+  const context = await browser.newContext();
+  context.setDefaultTimeout(600000);
+  page = await context.newPage();
+  await page.goto(`http://127.0.0.1:${server.address().port}/embed.html`);
+  // Two engines: one worker, and a pool of three whatever the cores (so the test shares work on
+  // any machine).
+  await page.evaluate(async () => {
+    const { createEngine } = await import('./swarf.js');
+    const [one, pool] = await Promise.all([createEngine({ workers: 1 }), createEngine({ workers: 3 })]);
+    const die = new Uint8Array(await (await fetch('/die.stl')).arrayBuffer());
+    const job = one.defaultJob();
+    const raster = structuredClone(one.defaults.operations.find((o) => o.kind === 'finishRaster'));
+    job.tools = [{ ...job.tools[1], number: 1, shape: 'ball', diameter: 10, cornerRadius: 0, fluteLength: 200 }];
+    job.operations = [{ ...raster, tool: 1, grid: 1.5, stepover: 4, builder: 'exact' }];
+    job.simulation.verify = false;
+    window.t = { one, pool, die, dieJob: job };
+  });
+});
+
+after(async () => {
+  await browser?.close();
+  server?.close();
+});
+
+test('a pool of workers writes the same program as one worker, on the sample job and a die', async () => {
+  const r = await page.evaluate(async () => {
+    const { one, pool, die, dieJob } = window.t;
+    const stages = new Set();
+    const onProgress = (f, stage) => stages.add(stage.replace(/^.*: /, ''));
+    const out = { workers: [one.workers, pool.workers] };
+    for (const [name, job, bytes, file] of [['sample', one.defaultJob(), one.sample, 'sample.stl'], ['die', dieJob, die, 'die.stl']]) {
+      const [a, b] = [await one.run(job, bytes, file), await pool.run(job, bytes, file, { onProgress })];
+      out[name] = { same: a.gcode === b.gcode, lines: a.gcode.split('\n').length, moves: [a.summary.moves, b.summary.moves], cutting: b.feeds.length / 6 };
+    }
+    out.stages = [...stages];
+    return out;
+  });
+  assert.deepEqual(r.workers, [1, 3]);
+  for (const name of ['sample', 'die']) {
+    assert.ok(r[name].same, `${name}: the pooled program differs`);
+    assert.ok(r[name].lines > 1000 && r[name].cutting > 1000, JSON.stringify(r[name]));
+    assert.equal(r[name].moves[0], r[name].moves[1]);
+  }
+  // The pool did share the work: it reported its phases.
+  assert.ok(r.stages.includes('CL z-maps (3 workers)') && r.stages.includes('raster passes (3 workers)'), r.stages.join(', '));
+});
+
+test('a pooled run cancels, the engine goes on, and bad input fails as with one worker', async () => {
+  const r = await page.evaluate(async () => {
+    const { one, pool, die, dieJob } = window.t;
+    const controller = new AbortController();
+    let seen = null;
+    // Cancelled once the pool is sharing the raster passes.
+    const onProgress = (f, stage) => { if (/raster passes/.test(stage) && !seen) { seen = stage; controller.abort(); } };
+    const error = await pool.run(dieJob, die, 'die.stl', { onProgress, signal: controller.signal }).then(() => null, (e) => e.name);
+    const again = await pool.run(dieJob, die, 'die.stl');
+    const alone = await one.run(dieJob, die, 'die.stl');
+    const bad = async (engine) => engine.run(dieJob, die.slice(0, 1000), 'die.stl').then(() => 'ran', (e) => e.message);
+    return { seen, error, workers: pool.workers, same: again.gcode === alone.gcode, bad: [await bad(one), await bad(pool)] };
+  });
+  assert.ok(r.seen, 'the run reached the passes');
+  assert.equal(r.error, 'AbortError');
+  assert.equal(r.workers, 3);
+  assert.ok(r.same, 'after a cancel, the pool writes the same program as one worker');
+  assert.match(r.bad[0], /STL|truncated|triangles/i);
+  assert.equal(r.bad[1], r.bad[0]);
+});
