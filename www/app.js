@@ -704,6 +704,18 @@ function showSimulation(data, summary = null) {
 }
 
 // ---- generate, cancel, download ----------------------------------------------------------
+// Runs `steps` one task each (the view held, then drawn once).
+async function inSteps(steps) {
+  if (!viewer) { steps.forEach((step) => step()); return; }
+  await viewer.batch(async () => {
+    for (const step of steps) {
+      step();
+      await new Promise((resolve) => setTimeout(resolve, 0));
+    }
+  });
+}
+
+
 function setRunning(running) {
   state.running = running;
   $('generate').disabled = running || !state.bytes;
@@ -742,17 +754,19 @@ async function generate() {
     state.gcode = r.gcode;
     state.extension = r.summary.extension;
     const s = r.summary;
-    const show = () => {
-      if (r.drawing) viewer?.setDrawing(r.drawing, false);
+    // The result reaches the view in steps, each a task of its own, so that none holds the
+    // page's thread long on a die-sized result; the view draws once, after the last.
+    const byTool = new Set(job.operations.map((op, i) => (op.kind === 'roughOctree' ? i : -1)).filter((i) => i >= 0));
+    await inSteps([
       // The part framed again (the job may have placed it elsewhere).
-      else viewer?.setPart(r.part, true);
-      const byTool = new Set(job.operations.map((op, i) => (op.kind === 'roughOctree' ? i : -1)).filter((i) => i >= 0));
-      viewer?.setPaths(r.feeds, r.rapids, s.stock, r.feedOps, r.feedTools, byTool);
-      showPicked();
-      if (r.octants.length) viewer?.setOctants(r.octants);
-      showSimulation(r.sim, s);
-    };
-    if (viewer) viewer.batch(show); else show();
+      () => (r.drawing ? viewer?.setDrawing(r.drawing, false) : viewer?.setPart(r.part, true)),
+      () => {
+        viewer?.setPaths(r.feeds, r.rapids, s.stock, r.feedOps, r.feedTools, byTool);
+        showPicked();
+        if (r.octants.length) viewer?.setOctants(r.octants);
+      },
+      () => showSimulation(r.sim, s),
+    ]);
     const changes = s.cycle.toolChanges ? ` (${clock(s.seconds)} of moves, ${s.cycle.toolChanges} tool change${s.cycle.toolChanges > 1 ? 's' : ''} at ${job.post.toolChangeSeconds} s)` : '';
     const stages = (o) => (o.stages ?? []).map((st) => `\n  T${st.tool} φ${st.diameter} (${st.role === 'profile' ? 'profile' : st.role === 'first' ? 'first tool' : 'octants'}): ${st.why}; ${Math.round(st.area).toLocaleString()} mm² cleared, ${Math.round(st.removed).toLocaleString()} mm³ removed, ${clock(st.seconds)} min`).join('');
     const perOp = s.operations.length > 1 || s.operations.some((o) => o.stages) ? `\n${s.operations.map((o) => `${o.name} (T${o.tools.join(', T')}): ${clock(o.seconds)} min${o.removed != null ? `, ${Math.round(o.removed).toLocaleString()} mm³, peak ${Math.round(o.mrrMax).toLocaleString()} mm³/min` : ''}${o.leftMax != null ? `, leaves ≤ ${o.leftMax.toFixed(2)} mm` : ''}${stages(o)}`).join('\n')}` : '';

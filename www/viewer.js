@@ -124,6 +124,7 @@ export class Viewer {
   }
 
   setPart(part, frame = true) {
+    this.dropPart();
     this.part = { position: this.buffer(part.positions), normal: this.buffer(part.normals), count: part.positions.length / 3 };
     if (frame) this.frame(part.bounds);
     this.draw();
@@ -133,7 +134,7 @@ export class Viewer {
   // `OP_COLORS` indexes them), or in their tool's for the operations in `byTool` (octree
   // roughing; `tools`: the tool of each segment), rapids in orange.
   setPaths(feeds, rapids, stock, ops = null, tools = null, byTool = new Set()) {
-    for (const key of Object.keys(this.lines)) if (key.startsWith('feeds') || key.startsWith('octants')) delete this.lines[key];
+    this.dropLines((key) => key.startsWith('feeds') || key.startsWith('octants') || key === 'rapids' || key === 'stock');
     // An operation's segments (a stage's, for octree roughing) follow each other in the
     // program: take them as runs, and copy only a colour that comes back after another.
     const groups = new Map();
@@ -154,17 +155,17 @@ export class Viewer {
         runs.reduce((at, r) => { data.set(r, at); return at + r.length; }, 0);
       }
       const color = key.startsWith('t') ? toolColor(Number(key.slice(1))) : OP_COLORS[Number(key) % OP_COLORS.length];
-      this.lines[`feeds${key}`] = { buffer: this.buffer(data), count: data.length / 3, color };
+      this.setLine(`feeds${key}`, { buffer: this.buffer(data), count: data.length / 3, color });
     }
-    this.lines.rapids = { buffer: this.buffer(rapids), count: rapids.length / 3, color: [0.85, 0.28, 0.06, 0.9] };
-    if (stock) this.lines.stock = { buffer: this.buffer(boxLines(stock)), count: 24, color: [0.35, 0.4, 0.45, 0.6] };
+    this.setLine('rapids', { buffer: this.buffer(rapids), count: rapids.length / 3, color: [0.85, 0.28, 0.06, 0.9] });
+    if (stock) this.setLine('stock', { buffer: this.buffer(boxLines(stock)), count: 24, color: [0.35, 0.4, 0.45, 0.6] });
     this.draw();
   }
 
   // The octants of octree roughing's stages (as `JobResult.octants` gives them, 9 numbers a
   // box) as wire boxes: those a tool cut in its colour, the Partial ones grey.
   setOctants(octants) {
-    for (const key of Object.keys(this.lines)) if (key.startsWith('octants')) delete this.lines[key];
+    this.dropLines((key) => key.startsWith('octants'));
     const groups = new Map();
     for (let k = 0; k + 9 <= octants.length; k += 9) {
       const key = octants[k + 2] > 0.5 ? `t${octants[k + 1]}` : 'partial';
@@ -173,7 +174,7 @@ export class Viewer {
     }
     for (const [key, data] of groups) {
       const color = key === 'partial' ? [0.62, 0.64, 0.66, 1] : toolColor(Number(key.slice(1)));
-      this.lines[`octants_${key}`] = { buffer: this.buffer(new Float32Array(data)), count: data.length / 3, color, octants: true };
+      this.setLine(`octants_${key}`, { buffer: this.buffer(new Float32Array(data)), count: data.length / 3, color, octants: true });
     }
     this.draw();
   }
@@ -181,11 +182,11 @@ export class Viewer {
   // A drawing (as loadDrawing gives it): outer loops green, holes orange, open chains red, as
   // lines at Z0. It takes the part's place.
   setDrawing(d, frame = true) {
-    this.part = null;
+    this.dropPart();
     const colors = { outer: [0.12, 0.55, 0.24, 1], holes: [0.85, 0.45, 0.05, 1], open: [0.86, 0.1, 0.1, 1] };
     for (const key of Object.keys(colors)) {
       const data = new Float32Array(d[key]);
-      this.lines[`drawing_${key}`] = { buffer: this.buffer(data), count: data.length / 3, color: colors[key], mark: true };
+      this.setLine(`drawing_${key}`, { buffer: this.buffer(data), count: data.length / 3, color: colors[key], mark: true });
     }
     if (frame) this.frame(d.bounds);
     this.draw();
@@ -196,7 +197,7 @@ export class Viewer {
   setPicked(data) {
     // A hair above Z0, so that they win the depth test against the loops' own lines.
     const lifted = Float32Array.from(data, (v, k) => (k % 3 === 2 ? v + PICKED_LIFT : v));
-    this.lines.drawing_picked = { buffer: this.buffer(lifted), count: lifted.length / 3, color: PICKED_COLOR, mark: true };
+    this.setLine('drawing_picked', { buffer: this.buffer(lifted), count: lifted.length / 3, color: PICKED_COLOR, mark: true });
     this.draw();
   }
 
@@ -212,9 +213,34 @@ export class Viewer {
   }
 
   clearPaths() {
-    this.lines = {};
-    this.stock = null;
+    this.dropLines(() => true);
+    this.dropStock();
     this.draw();
+  }
+
+  // Sets the line set `key` (its old buffer deleted).
+  setLine(key, line) {
+    this.dropLines((k) => k === key);
+    this.lines[key] = line;
+  }
+
+  // Deletes the line sets whose key `which` accepts, with their buffers.
+  dropLines(which) {
+    for (const [key, line] of Object.entries(this.lines)) {
+      if (!which(key)) continue;
+      if (line.buffer) this.gl.deleteBuffer(line.buffer);
+      delete this.lines[key];
+    }
+  }
+
+  dropPart() {
+    if (this.part) { this.gl.deleteBuffer(this.part.position); this.gl.deleteBuffer(this.part.normal); }
+    this.part = null;
+  }
+
+  dropStock() {
+    if (this.stock) { this.gl.deleteBuffer(this.stock.z); this.gl.deleteBuffer(this.stock.partZ); }
+    this.stock = null;
   }
 
   // The simulated stock: grid = [originX, originY, spacing, nx, ny, bottom, top, tolerance], part
@@ -222,22 +248,31 @@ export class Viewer {
   setStock(grid, part, tops) {
     const gl = this.gl;
     const [ox, oy, sp, nx, ny, , , tol] = grid;
-    const xy = new Float32Array(nx * ny * 2);
-    for (let j = 0; j < ny; j++) for (let i = 0; i < nx; i++) { const k = (j * nx + i) * 2; xy[k] = ox + i * sp; xy[k + 1] = oy + j * sp; }
-    const partZ = Float32Array.from(part, (z) => (Number.isNaN(z) ? -1e9 : z));
-    const index = new Uint32Array((nx - 1) * (ny - 1) * 6);
-    let n = 0;
-    for (let j = 0; j + 1 < ny; j++) for (let i = 0; i + 1 < nx; i++) {
-      const a = j * nx + i, b = a + 1, c = a + nx + 1, d = a + nx;
-      index.set([a, b, c, a, c, d], n); n += 6;
+    // The cells' places and triangles depend on the grid alone: kept for the next stock on it.
+    const key = `${ox} ${oy} ${sp} ${nx} ${ny}`;
+    if (this.stockGrid?.key !== key) {
+      if (this.stockGrid) { gl.deleteBuffer(this.stockGrid.xy); gl.deleteBuffer(this.stockGrid.elements); }
+      const xy = new Float32Array(nx * ny * 2);
+      for (let j = 0, k = 0; j < ny; j++) for (let i = 0; i < nx; i++, k += 2) { xy[k] = ox + i * sp; xy[k + 1] = oy + j * sp; }
+      const index = new Uint32Array((nx - 1) * (ny - 1) * 6);
+      for (let j = 0, n = 0; j + 1 < ny; j++) for (let i = 0; i + 1 < nx; i++, n += 6) {
+        const a = j * nx + i;
+        index[n] = a; index[n + 1] = a + 1; index[n + 2] = a + nx + 1;
+        index[n + 3] = a; index[n + 4] = a + nx + 1; index[n + 5] = a + nx;
+      }
+      const elements = gl.createBuffer();
+      gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, elements);
+      gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, index, gl.STATIC_DRAW);
+      this.stockGrid = { key, xy: this.buffer(xy), elements, count: index.length };
     }
-    const elements = gl.createBuffer();
-    gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, elements);
-    gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, index, gl.STATIC_DRAW);
+    const partZ = new Float32Array(part.length);
+    for (let k = 0; k < part.length; k++) partZ[k] = Number.isNaN(part[k]) ? -1e9 : part[k];
+    this.dropStock();
     const z = gl.createBuffer();
     gl.bindBuffer(gl.ARRAY_BUFFER, z);
     gl.bufferData(gl.ARRAY_BUFFER, tops, gl.DYNAMIC_DRAW);
-    this.stock = { xy: this.buffer(xy), z, partZ: this.buffer(partZ), elements, count: index.length, tol };
+    const g = this.stockGrid;
+    this.stock = { xy: g.xy, z, partZ: this.buffer(partZ), elements: g.elements, count: g.count, tol };
     this.draw();
   }
 
@@ -259,9 +294,9 @@ export class Viewer {
         const [x, y, z] = [findings[k], findings[k + 1], findings[k + 2]], s = 1.5;
         out.push(x - s, y, z, x + s, y, z, x, y - s, z, x, y + s, z, x, y, z - s, x, y, z + s);
       }
-      this.lines[`marks${kind}`] = { buffer: this.buffer(new Float32Array(out)), count: out.length / 3, color: colors[kind], mark: true };
+      this.setLine(`marks${kind}`, { buffer: this.buffer(new Float32Array(out)), count: out.length / 3, color: colors[kind], mark: true });
     }
-    if (tool) this.lines.tool = { buffer: this.buffer(new Float32Array([tool[0], tool[1], tool[2], tool[0], tool[1], tool[2] + toolLength])), count: 2, color: [0.1, 0.1, 0.1, 1], mark: true };
+    if (tool) this.setLine('tool', { buffer: this.buffer(new Float32Array([tool[0], tool[1], tool[2], tool[0], tool[1], tool[2] + toolLength])), count: 2, color: [0.1, 0.1, 0.1, 1], mark: true });
     this.draw();
   }
 
@@ -293,12 +328,15 @@ export class Viewer {
   // thread for seconds.
   batch(fn) {
     this.held = (this.held ?? 0) + 1;
+    let result;
     try {
-      fn();
+      result = fn();
     } finally {
-      this.held -= 1;
-      if (!this.held) this.draw();
+      // An async `fn` holds the view until it settles.
+      const release = () => { this.held -= 1; if (!this.held) this.draw(); };
+      if (result instanceof Promise) result = result.finally(release); else release();
     }
+    return result;
   }
 
   draw() {
