@@ -447,9 +447,11 @@ struct SurfaceNeed {
 }
 
 #[derive(serde::Serialize)]
+#[serde(rename_all = "camelCase")]
 struct PlanNeeds {
     surfaces: Vec<SurfaceNeed>,
     rasters: Vec<crate::job::pool::RasterWork>,
+    level_maps: Vec<usize>,
 }
 
 /// Prepares `job` on the part or drawing in `bytes` (see [`JobPlan`]).
@@ -476,12 +478,31 @@ impl JobPlan {
         self.surfaces.get(k).copied().ok_or_else(|| js_error(format!("no surface {k}")))
     }
 
-    /// What can be shared: `{ surfaces: [{ nx, ny }], rasters: [{ operation, surface, passes }] }`
-    /// (a raster's `surface` indexes `surfaces`, or is null when each worker makes it whole).
+    /// What can be shared: `{ surfaces: [{ nx, ny }], rasters: [{ operation, surface, passes }],
+    /// levelMaps: [surface] }` (a raster's `surface` indexes `surfaces`, or is null when each
+    /// worker makes it whole; `levelMaps` lists the surfaces whose level maps are wanted).
     pub fn needs(&mut self) -> Result<JsValue, JsError> {
         let surfaces = self.surfaces.clone();
         let rasters = self.prepared()?.rasters(&surfaces).map_err(js_error)?;
-        to_js(&PlanNeeds { surfaces: surfaces.iter().map(|s| SurfaceNeed { nx: s.grid.nx, ny: s.grid.ny }).collect(), rasters })
+        let level_maps = self.prepared()?.level_maps(&surfaces).map_err(js_error)?;
+        to_js(&PlanNeeds { surfaces: surfaces.iter().map(|s| SurfaceNeed { nx: s.grid.nx, ny: s.grid.ny }).collect(), rasters, level_maps })
+    }
+
+    /// Rows `j0..j1` of the level map of surface `k`: the heights along the edges to the
+    /// right, then those along the edges up.
+    #[wasm_bindgen(js_name = levelRows)]
+    pub fn level_rows(&mut self, k: usize, j0: usize, j1: usize) -> Result<Vec<f64>, JsError> {
+        let s = self.surface(k)?;
+        let (mut right, up) = self.prepared()?.level_rows(s, j0..j1).map_err(js_error)?;
+        right.extend(up);
+        Ok(right)
+    }
+
+    /// Keeps the level map of surface `k`: `right` and `up` for every node, row after row.
+    #[wasm_bindgen(js_name = keepLevelMap)]
+    pub fn keep_level_map(&mut self, k: usize, right: Vec<f64>, up: Vec<f64>) -> Result<(), JsError> {
+        let s = self.surface(k)?;
+        self.prepared()?.keep_level_map(s, right, up).map_err(js_error)
     }
 
     /// Rows `j0..j1` of surface `k`, row after row.

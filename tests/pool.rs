@@ -44,6 +44,19 @@ fn a_job_made_by_a_pool_writes_the_same_program_as_one_made_whole() {
         let passes = helper.raster_passes(work.operation, first..first + 37).unwrap();
         planner.keep_passes(work.operation, first, passes).unwrap();
     }
+    // The level maps of the roughing's surface and the waterline's (the finishing ball's).
+    let maps = planner.level_maps(&surfaces).unwrap();
+    assert_eq!(maps, vec![0, 1]);
+    for &k in &maps {
+        let s = surfaces[k];
+        let (mut right, mut up) = (Vec::new(), Vec::new());
+        for w in [0, 5, s.grid.ny / 3, s.grid.ny].windows(2) {
+            let (r, u) = helper.level_rows(s, w[0]..w[1]).unwrap();
+            right.extend(r);
+            up.extend(u);
+        }
+        planner.keep_level_map(s, right, up).unwrap();
+    }
     assert_eq!(planner.run(&mut Progress::none()).unwrap().gcode, whole);
 }
 
@@ -59,6 +72,8 @@ fn wrong_pieces_are_refused_and_missing_passes_are_made_by_the_planner() {
     let err = planner.keep_passes(work.operation, work.passes, vec![Vec::new()]).unwrap_err().to_string();
     assert!(err.contains("given of an operation with"), "{err}");
     assert!(planner.keep_passes(0, 0, Vec::new()).is_err(), "operation 0 roughs");
+    let err = planner.keep_level_map(s, vec![0.0; 2], vec![0.0; 2]).unwrap_err().to_string();
+    assert!(err.contains("wrong number of heights"), "{err}");
     // Only some passes given: the operation makes them all itself.
     let some = planner.raster_passes(work.operation, 0..10).unwrap();
     assert_eq!(some.len(), 10);
@@ -86,4 +101,19 @@ fn the_planner_cuts_on_the_surfaces_and_passes_it_was_given() {
     planner.keep_passes(work.operation, 0, vec![Vec::new(); work.passes]).unwrap();
     let err = planner.run(&mut Progress::none()).unwrap_err().to_string();
     assert!(err.contains("no cutting moves"), "{err}");
+}
+
+#[test]
+fn the_planner_contours_on_the_level_maps_it_was_given() {
+    let mut job = job();
+    job.operations.retain(|o| matches!(o, swarf::job::operation::Operation::FinishWaterline(_)));
+    let mut planner = job::prepare(&job, demo_part()).unwrap();
+    let surfaces = planner.surfaces().unwrap();
+    let s = surfaces[planner.level_maps(&surfaces).unwrap()[0]];
+    // Every edge rises above every level: of every two nodes inside, the higher is left out,
+    // so the contours are not those of the part's own map.
+    let n = s.grid.nx * s.grid.ny;
+    planner.keep_level_map(s, vec![f64::INFINITY; n], vec![f64::INFINITY; n]).unwrap();
+    let out = planner.run(&mut Progress::none()).map(|o| o.gcode).unwrap_or_default();
+    assert_ne!(out, gcode_whole(&job));
 }

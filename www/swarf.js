@@ -87,7 +87,7 @@ function ranges(count, pieces) {
 export class Engine {
   /** The worker that plans and keeps the last result (scrubbing, reposting). */
   #main = null;
-  /** The rest of the pool: they make CL surfaces in bands and raster passes in ranges. */
+  /** The rest of the pool: they make CL surfaces and level maps in bands, raster passes in ranges. */
   #helpers = [];
   #options;
 
@@ -149,8 +149,8 @@ export class Engine {
    * aborting `signal` ends the work (the workers are replaced, the engine stays usable) and
    * rejects with a `CancelledError`. Resolves with `{ gcode, summary, feeds, rapids, feedOps,
    * feedTools, octants, part, drawing, sim }`. With more than one worker, the pool first makes
-   * the CL surfaces (in bands of rows) and the raster passes (in ranges) on every worker; the
-   * program is the same as one worker's.
+   * the CL surfaces and the level maps of z-level work (in bands of rows) and the raster passes
+   * (in ranges) on every worker; the program is the same as one worker's.
    */
   async run(job, bytes, name, { onProgress, signal } = {}) {
     if (signal?.aborted) throw new CancelledError();
@@ -168,22 +168,37 @@ export class Engine {
     const all = [this.#main, ...this.#helpers];
     const n = all.length;
     const [{ needs }] = await Promise.all(all.map((c) => c.call({ type: 'prepare', job, bytes, name })));
-    const { surfaces, rasters } = needs;
+    const { surfaces, rasters, levelMaps } = needs;
     // Bands of rows of every exact CL surface, joined here.
     const joined = surfaces.map((s) => new Float64Array(s.nx * s.ny));
     const bands = surfaces.flatMap((s, surface) => ranges(s.ny, 4 * n).map(([j0, j1]) => ({ type: 'rows', surface, j0, j1 })));
     const stage = (from, to, what) => (f) => onProgress?.(from + (to - from) * f, `${what} (${n} workers)`);
-    await share(all, bands, (t, r) => joined[t.surface].set(r.z, t.j0 * surfaces[t.surface].nx), stage(0, 0.25, 'CL z-maps'));
-    // The planner keeps every surface; the others those the raster passes stand on.
-    const under = new Set(rasters.map((r) => r.surface));
+    await share(all, bands, (t, r) => joined[t.surface].set(r.z, t.j0 * surfaces[t.surface].nx), stage(0, 0.2, 'CL z-maps'));
+    // The planner keeps every surface; the others those the passes and level maps stand on.
+    const under = new Set([...rasters.map((r) => r.surface), ...levelMaps]);
     await Promise.all(all.flatMap((c, w) => joined.map((z, surface) => (w === 0 || under.has(surface) ? c.call({ type: 'keepSurface', surface, z }) : null)).filter(Boolean)));
-    // Ranges of raster passes, kept by the planner.
-    const passes = rasters.flatMap((r) => ranges(r.passes, 4 * n).map(([i0, i1]) => ({ type: 'passes', operation: r.operation, i0, i1 })));
+    // Ranges of raster passes, kept by the planner as they come; bands of the level maps
+    // (each row's heights along the edges to the right, then up), joined here.
+    const maps = new Map(levelMaps.map((k) => [k, { right: new Float64Array(surfaces[k].nx * surfaces[k].ny), up: new Float64Array(surfaces[k].nx * surfaces[k].ny) }]));
+    const tasks = [
+      ...rasters.flatMap((r) => ranges(r.passes, 4 * n).map(([i0, i1]) => ({ type: 'passes', operation: r.operation, i0, i1 }))),
+      ...levelMaps.flatMap((surface) => ranges(surfaces[surface].ny, 4 * n).map(([j0, j1]) => ({ type: 'levelRows', surface, j0, j1 }))),
+    ];
     const kept = [];
-    await share(all, passes, (t, r) => kept.push(this.#main.call({ type: 'keepPasses', operation: t.operation, first: t.i0, count: t.i1 - t.i0, flat: r.flat }, [r.flat.buffer])), stage(0.25, 0.5, 'raster passes'));
+    const done = (t, r) => {
+      if (t.type === 'passes') {
+        kept.push(this.#main.call({ type: 'keepPasses', operation: t.operation, first: t.i0, count: t.i1 - t.i0, flat: r.flat }, [r.flat.buffer]));
+      } else {
+        const nx = surfaces[t.surface].nx, half = (t.j1 - t.j0) * nx, m = maps.get(t.surface);
+        m.right.set(r.z.subarray(0, half), t.j0 * nx);
+        m.up.set(r.z.subarray(half), t.j0 * nx);
+      }
+    };
+    await share(all, tasks, done, stage(0.2, 0.5, 'passes and level maps'));
+    for (const [surface, { right, up }] of maps) kept.push(this.#main.call({ type: 'keepLevelMap', surface, right, up }, [right.buffer, up.buffer]));
     await Promise.all(kept);
     await Promise.all(this.#helpers.map((h) => h.call({ type: 'forget' })));
-    const from = bands.length || passes.length ? 0.5 : 0;
+    const from = bands.length || tasks.length ? 0.5 : 0;
     return this.#main.call({ type: 'runPlan' }, [], (f, s) => onProgress?.(from + (1 - from) * f, s));
   }
 

@@ -136,6 +136,12 @@ self.onmessage = async (event) => {
     } else if (type === 'keepSurface') {
       planned().keepSurface(event.data.surface, event.data.z);
       self.postMessage({ id, ok: true });
+    } else if (type === 'levelRows') {
+      const z = planned().levelRows(event.data.surface, event.data.j0, event.data.j1);
+      self.postMessage({ id, ok: true, z }, [z.buffer]);
+    } else if (type === 'keepLevelMap') {
+      planned().keepLevelMap(event.data.surface, event.data.right, event.data.up);
+      self.postMessage({ id, ok: true });
     } else if (type === 'passes') {
       const flat = planned().rasterPasses(event.data.operation, event.data.i0, event.data.i1);
       self.postMessage({ id, ok: true, flat }, [flat.buffer]);

@@ -4,8 +4,9 @@
 //! of the page's pool prepares its own copy of the job and part ([`super::prepare`]) and is
 //! asked for pieces: bands of rows of the exact CL surfaces the operations name
 //! ([`Prepared::surface_rows`]), then, on the surfaces joined from them, ranges of raster passes
-//! ([`Prepared::raster_passes`]). The worker that plans keeps what the others made
-//! ([`Prepared::keep_surface`], [`Prepared::keep_passes`]) and plans as it would have alone:
+//! ([`Prepared::raster_passes`]) and bands of the level maps z-level work contours
+//! ([`Prepared::level_rows`]). The worker that plans keeps what the others made
+//! ([`Prepared::keep_surface`], [`Prepared::keep_passes`], [`Prepared::keep_level_map`]) and plans as it would have alone:
 //! the program is the same byte for byte. Natively the same bands and passes run on threads
 //! ([`crate::zmap::cl_exact::ExactBuilder::field`], [`crate::strategy::finish_raster::raster_runs`]).
 
@@ -19,6 +20,7 @@ use crate::geom::DVec3;
 use crate::progress::Progress;
 use crate::strategy::context::SurfaceRequest;
 use crate::strategy::finish_raster::PassLayout;
+use crate::zmap::contour::LevelMap;
 use crate::zmap::ClBuilder;
 
 /// A raster operation whose passes a pool can share out.
@@ -49,6 +51,37 @@ impl Prepared {
             }
         }
         Ok(out)
+    }
+
+    /// Which of `surfaces` (the list [`Prepared::surfaces`] gave) the enabled operations want
+    /// level maps of (z-level roughing, waterline finishing), as indices.
+    pub fn level_maps(&self, surfaces: &[SurfaceRequest]) -> Result<Vec<usize>> {
+        let mut out = Vec::new();
+        for op in self.job.operations.iter().map(Operation::op).filter(|o| o.enabled()) {
+            for r in op.level_maps(&self.ctx)? {
+                if let Some(k) = surfaces.iter().position(|s| *s == r) {
+                    if !out.contains(&k) {
+                        out.push(k);
+                    }
+                }
+            }
+        }
+        Ok(out)
+    }
+
+    /// Rows `rows` of the level map of surface `request` (kept, or made here): the heights
+    /// along the edges to the right, then those along the edges up.
+    pub fn level_rows(&mut self, request: SurfaceRequest, rows: Range<usize>) -> Result<(Vec<f64>, Vec<f64>)> {
+        let cl = self.ctx.cl_surface(request, &mut Progress::none())?;
+        Ok(LevelMap::rows(&cl, &self.ctx.tolerances, rows))
+    }
+
+    /// Keeps the level map of surface `request` from its rows' heights (its bands joined).
+    pub fn keep_level_map(&mut self, request: SurfaceRequest, right: Vec<f64>, up: Vec<f64>) -> Result<()> {
+        let cl = self.ctx.cl_surface(request, &mut Progress::none())?;
+        let map = LevelMap::from_rows(&cl, right, up).ok_or_else(|| Error::Input(format!("a level map of {} × {} nodes was given the wrong number of heights", request.grid.nx, request.grid.ny)))?;
+        self.ctx.keep_level_map(request, map);
+        Ok(())
     }
 
     /// Rows `rows` of the exact surface `request`, row after row.

@@ -19,6 +19,7 @@ use crate::toolpath::link::{Feeds, LinkSettings, Linker};
 use crate::toolpath::Toolpath;
 use crate::zmap::cc::cc_zmap;
 use crate::zmap::cl_exact::ExactBuilder;
+use crate::zmap::contour::LevelMap;
 use crate::zmap::cl_inverse::cl_inverse_offset;
 use crate::zmap::drop::PointDrop;
 use crate::zmap::surface::ClSurface;
@@ -76,6 +77,7 @@ pub struct Caches {
     drops: Vec<((Profile, u64), Arc<PointDrop>)>,
     cl: Vec<(SurfaceKey, Arc<ClSurface>)>,
     builders: Vec<((Profile, u64), Arc<ExactBuilder>)>,
+    levels: Vec<(SurfaceKey, Arc<LevelMap>)>,
     pub counts: CacheCounts,
 }
 
@@ -242,6 +244,25 @@ impl Context {
         self.caches.cl.retain(|(k, _)| *k != key);
         self.caches.cl.push((key, s.clone()));
         s
+    }
+
+    /// The level map ([`LevelMap`]) of the CL surface `request` names, made once per request.
+    pub fn level_map(&mut self, request: SurfaceRequest, progress: &mut Progress) -> Result<Arc<LevelMap>> {
+        let key = self.surface_key(&request);
+        if let Some((_, m)) = self.caches.levels.iter().find(|(k, _)| *k == key) {
+            return Ok(m.clone());
+        }
+        let cl = self.cl_surface(request, progress)?;
+        let map = Arc::new(LevelMap::new(&cl, &self.tolerances));
+        self.caches.levels.push((key, map.clone()));
+        Ok(map)
+    }
+
+    /// Keeps `map` (made by a pool, band by band) as the level map of `request`'s surface.
+    pub fn keep_level_map(&mut self, request: SurfaceRequest, map: LevelMap) {
+        let key = self.surface_key(&request);
+        self.caches.levels.retain(|(k, _)| *k != key);
+        self.caches.levels.push((key, Arc::new(map)));
     }
 
     /// Rows `rows` of the exact CL surface `request` names (its builder must be the exact

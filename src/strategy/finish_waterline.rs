@@ -18,7 +18,6 @@ use crate::progress::Progress;
 use crate::toolpath::entry::Entry;
 use crate::toolpath::link::Floor;
 use crate::toolpath::Toolpath;
-use crate::zmap::contour::LevelMap;
 use crate::zmap::region::Region;
 use crate::zmap::{ClBuilder, Grid, HeightField};
 
@@ -89,6 +88,10 @@ impl Operate for FinishWaterline {
         Ok(())
     }
 
+    fn level_maps(&self, ctx: &Context) -> Result<Vec<SurfaceRequest>> {
+        self.surfaces(ctx)
+    }
+
     fn surfaces(&self, ctx: &Context) -> Result<Vec<SurfaceRequest>> {
         let profile = ctx.tool(&self.name, self.tool)?.cutter.profile();
         let stock = ctx.stock;
@@ -109,7 +112,7 @@ impl Operate for FinishWaterline {
             return Err(Error::Cancelled);
         }
         let tol = ctx.tolerances;
-        let map = LevelMap::new(&cl, &tol);
+        let map = ctx.level_map(request, progress)?;
         let steep = self.slope_min.to_radians().tan();
         let slope = |p: DVec2| gradient(&cl.field, p);
         let top = cl.field.max();

@@ -120,6 +120,11 @@ pub trait Operate {
     fn surfaces(&self, _ctx: &Context) -> Result<Vec<context::SurfaceRequest>> {
         Ok(Vec::new())
     }
+    /// The CL surfaces whose level maps ([`crate::zmap::contour::LevelMap`]) it will ask for
+    /// (z-level work), named before it plans like [`Operate::surfaces`].
+    fn level_maps(&self, _ctx: &Context) -> Result<Vec<context::SurfaceRequest>> {
+        Ok(Vec::new())
+    }
     /// Its tool paths, each with its tool, planned in the job's context. `progress` is this
     /// operation's own: stages run from 0 to 1.
     fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Vec<Toolpath>>;

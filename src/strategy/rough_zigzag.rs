@@ -198,6 +198,10 @@ impl Operate for RoughZigzag {
         Ok(vec![self.as_levels().request(ctx)?])
     }
 
+    fn level_maps(&self, ctx: &Context) -> Result<Vec<SurfaceRequest>> {
+        self.surfaces(ctx)
+    }
+
     fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Vec<Toolpath>> {
         let levels = self.as_levels();
         let Some(Levels { tool, levels: cut, .. }) = levels.levels_to_cut(ctx, progress)? else { return Ok(Vec::new()) };

@@ -26,7 +26,6 @@ use crate::geom::DVec2;
 use crate::progress::Progress;
 use crate::sim::DexelStock;
 use crate::toolpath::Toolpath;
-use crate::zmap::contour::LevelMap;
 use crate::zmap::region::Region;
 use crate::zmap::surface::ClSurface;
 use crate::zmap::{ClBuilder, Grid, HeightField};
@@ -115,6 +114,10 @@ impl Operate for RoughZlevel {
 
     fn surfaces(&self, ctx: &Context) -> Result<Vec<SurfaceRequest>> {
         Ok(vec![self.request(ctx)?])
+    }
+
+    fn level_maps(&self, ctx: &Context) -> Result<Vec<SurfaceRequest>> {
+        self.surfaces(ctx)
     }
 
     fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Vec<Toolpath>> {
@@ -261,7 +264,7 @@ impl RoughZlevel {
             return Err(Error::Cancelled);
         }
         let tol = ctx.tolerances;
-        let map = LevelMap::new(&cl, &tol);
+        let map = ctx.level_map(self.request(ctx)?, progress)?;
         let mut levels = Vec::new();
         let mut z_prev = stock.max.z;
         for z in self.heights(ctx, &cl, r) {

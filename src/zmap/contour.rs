@@ -40,21 +40,36 @@ pub struct LevelMap {
 
 impl LevelMap {
     pub fn new(cl: &ClSurface, tol: &Tolerances) -> LevelMap {
-        let f = &cl.field;
-        let (nx, ny) = (f.nx, f.ny);
-        let node = |i: usize, j: usize| f.origin + DVec2::new(i as f64, j as f64) * f.spacing;
-        let top = |a: DVec2, b: DVec2| cl.along(a, b).into_iter().fold(f64::NEG_INFINITY, |m, (_, z)| m.max(z)) + 2.0 * tol.interpolation;
-        let rows: Vec<(Vec<f64>, Vec<f64>)> = parallel::map_heavy(ny, |j| {
-            let right = (0..nx).map(|i| if i + 1 < nx { top(node(i, j), node(i + 1, j)) } else { f64::NEG_INFINITY }).collect();
-            let up = (0..nx).map(|i| if j + 1 < ny { top(node(i, j), node(i, j + 1)) } else { f64::NEG_INFINITY }).collect();
-            (right, up)
-        });
-        let (mut right, mut up) = (Vec::with_capacity(nx * ny), Vec::with_capacity(nx * ny));
+        let rows = parallel::map_heavy(cl.field.ny, |j| LevelMap::rows(cl, tol, j..j + 1));
+        let (mut right, mut up) = (Vec::new(), Vec::new());
         for (r, u) in rows {
             right.extend(r);
             up.extend(u);
         }
         LevelMap { right, up }
+    }
+
+    /// Rows `rows` of the map (each row's highest heights along the edges to the right, then
+    /// those along the edges up): a band, as a worker of a pool makes it.
+    pub fn rows(cl: &ClSurface, tol: &Tolerances, rows: std::ops::Range<usize>) -> (Vec<f64>, Vec<f64>) {
+        let f = &cl.field;
+        let (nx, ny) = (f.nx, f.ny);
+        let node = |i: usize, j: usize| f.origin + DVec2::new(i as f64, j as f64) * f.spacing;
+        let top = |a: DVec2, b: DVec2| cl.along(a, b).into_iter().fold(f64::NEG_INFINITY, |m, (_, z)| m.max(z)) + 2.0 * tol.interpolation;
+        let rows = rows.start.min(ny)..rows.end.min(ny);
+        let (mut right, mut up) = (Vec::with_capacity(rows.len() * nx), Vec::with_capacity(rows.len() * nx));
+        for j in rows {
+            right.extend((0..nx).map(|i| if i + 1 < nx { top(node(i, j), node(i + 1, j)) } else { f64::NEG_INFINITY }));
+            up.extend((0..nx).map(|i| if j + 1 < ny { top(node(i, j), node(i, j + 1)) } else { f64::NEG_INFINITY }));
+        }
+        (right, up)
+    }
+
+    /// The map of `cl` from its rows' heights along the edges to the right and up (its bands
+    /// joined); `None` when their number is not the grid's.
+    pub fn from_rows(cl: &ClSurface, right: Vec<f64>, up: Vec<f64>) -> Option<LevelMap> {
+        let n = cl.field.nx * cl.field.ny;
+        (right.len() == n && up.len() == n).then_some(LevelMap { right, up })
     }
 
     /// The region at `level`: where the cutter's centre stands at or below it, among the nodes

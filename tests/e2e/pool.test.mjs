@@ -1,5 +1,5 @@
 // Issue 15's "every core in the browser": swarf.js's engine shares a run among a pool of
-// workers (CL surfaces in bands of rows, raster passes in ranges) and writes the same program
+// workers (CL surfaces and level maps in bands of rows, raster passes in ranges) and writes the same program
 // as one worker; a pooled run cancels like any other, and bad input fails the same way.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
@@ -71,7 +71,7 @@ test('a pool of workers writes the same program as one worker, on the sample job
     assert.equal(r[name].moves[0], r[name].moves[1]);
   }
   // The pool did share the work: it reported its phases.
-  assert.ok(r.stages.includes('CL z-maps (3 workers)') && r.stages.includes('raster passes (3 workers)'), r.stages.join(', '));
+  assert.ok(r.stages.includes('CL z-maps (3 workers)') && r.stages.includes('passes and level maps (3 workers)'), r.stages.join(', '));
 });
 
 test('a pooled run cancels, the engine goes on, and bad input fails as with one worker', async () => {
@@ -80,7 +80,7 @@ test('a pooled run cancels, the engine goes on, and bad input fails as with one 
     const controller = new AbortController();
     let seen = null;
     // Cancelled once the pool is sharing the raster passes.
-    const onProgress = (f, stage) => { if (/raster passes/.test(stage) && !seen) { seen = stage; controller.abort(); } };
+    const onProgress = (f, stage) => { if (/passes and level maps/.test(stage) && !seen) { seen = stage; controller.abort(); } };
     const error = await pool.run(dieJob, die, 'die.stl', { onProgress, signal: controller.signal }).then(() => null, (e) => e.name);
     const again = await pool.run(dieJob, die, 'die.stl');
     const alone = await one.run(dieJob, die, 'die.stl');
