@@ -6,33 +6,23 @@
 // step-over 2), made once with the exact CL z-map and verified.
 //
 //   bash scripts/build-wasm.sh && cargo build --release && node scripts/bench-page-pool.mjs
-import http from 'node:http';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { execFileSync } from 'node:child_process';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
+import { serveWww } from './serve-www.mjs';
 import { dieStl } from './die-stl.mjs';
 
 const repo = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
-const root = path.join(repo, 'www');
 const die = dieStl(580, 430);
-const types = { '.html': 'text/html', '.js': 'text/javascript', '.wasm': 'application/wasm' };
-const server = http.createServer((req, res) => {
-  const url = decodeURIComponent(new URL(req.url, 'http://x').pathname);
-  if (url === '/die.stl') { res.writeHead(200); res.end(die); return; }
-  const file = path.join(root, url);
-  if (!file.startsWith(root) || !fs.existsSync(file) || fs.statSync(file).isDirectory()) { res.writeHead(404); res.end(); return; }
-  res.writeHead(200, { 'content-type': types[path.extname(file)] || 'application/octet-stream' });
-  fs.createReadStream(file).pipe(res);
-});
-await new Promise((resolve) => server.listen(0, '127.0.0.1', resolve));
+const { server, base } = await serveWww({ '/die.stl': die });
 const browser = await chromium.launch({ executablePath: process.env.CHROMIUM || '/usr/bin/chromium', headless: true, args: ['--no-sandbox', '--disable-dev-shm-usage'] });
 const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-pool-'));
 try {
   const page = await (await browser.newContext()).newPage();
-  await page.goto(`http://127.0.0.1:${server.address().port}/embed.html`);
+  await page.goto(`${base}embed.html`);
   const out = await page.evaluate(async () => {
     const { createEngine } = await import('./swarf.js');
     const cores = navigator.hardwareConcurrency;

@@ -1,36 +1,25 @@
 // Issue 15's "every core in the browser": swarf.js's engine shares a run among a pool of
-// workers (CL surfaces and level maps in bands of rows, raster passes in ranges) and writes the same program
-// as one worker; a pooled run cancels like any other, and bad input fails the same way.
+// workers (CL surfaces and level maps in bands of rows, raster passes in ranges) and writes
+// the same program as one worker; a pooled run cancels like any other, and bad input fails the
+// same way.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import http from 'node:http';
-import fs from 'node:fs';
-import path from 'node:path';
-import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { dieStl } from '../../scripts/die-stl.mjs';
+import { serveWww } from '../../scripts/serve-www.mjs';
 
-const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../../www');
-const types = { '.html': 'text/html', '.js': 'text/javascript', '.css': 'text/css', '.wasm': 'application/wasm' };
 // A smaller die than the page's die-sized test: 120,000 triangles.
 const die = dieStl(300, 200);
 let server, browser, page;
 
 before(async () => {
-  server = http.createServer((req, res) => {
-    const url = decodeURIComponent(new URL(req.url, 'http://x').pathname);
-    if (url === '/die.stl') { res.writeHead(200); res.end(die); return; }
-    const file = path.join(root, url);
-    if (!file.startsWith(root) || !fs.existsSync(file) || fs.statSync(file).isDirectory()) { res.writeHead(404); res.end(); return; }
-    res.writeHead(200, { 'content-type': types[path.extname(file)] || 'application/octet-stream' });
-    fs.createReadStream(file).pipe(res);
-  });
-  await new Promise((resolve) => server.listen(0, '127.0.0.1', resolve));
+  let base;
+  ({ server, base } = await serveWww({ '/die.stl': die }));
   browser = await chromium.launch({ executablePath: process.env.CHROMIUM || '/usr/bin/chromium', headless: true, args: ['--no-sandbox', '--disable-dev-shm-usage'] });
   const context = await browser.newContext();
   context.setDefaultTimeout(600000);
   page = await context.newPage();
-  await page.goto(`http://127.0.0.1:${server.address().port}/embed.html`);
+  await page.goto(`${base}embed.html`);
   // Two engines: one worker, and a pool of three whatever the cores (so the test shares work on
   // any machine).
   await page.evaluate(async () => {
