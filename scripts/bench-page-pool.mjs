@@ -5,7 +5,9 @@
 // verified), and seed 001's die as a 500,000-triangle STL with a φ10 ball raster (grid 0.8,
 // step-over 2), made once with the exact CL z-map and verified.
 //
-//   bash scripts/build-wasm.sh && cargo build --release && node scripts/bench-page-pool.mjs
+//   bash scripts/build-wasm.sh && cargo build --release && node scripts/bench-page-pool.mjs [JOB.json PART]
+//
+// With a job file (as `swarf run` takes it) and a part, that job on that part is timed too.
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
@@ -17,16 +19,19 @@ import { dieStl } from './die-stl.mjs';
 
 const repo = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 const die = dieStl(580, 430);
-const { server, base } = await serveWww({ '/die.stl': die });
+const [jobFile, partFile] = process.argv.slice(2);
+const given = jobFile ? { text: fs.readFileSync(jobFile, 'utf8'), bytes: fs.readFileSync(partFile), name: path.basename(partFile) } : null;
+const { server, base } = await serveWww({ '/die.stl': die, ...(given ? { '/part': given.bytes } : {}) });
 const browser = await chromium.launch({ executablePath: process.env.CHROMIUM || '/usr/bin/chromium', headless: true, args: ['--no-sandbox', '--disable-dev-shm-usage'] });
 const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-pool-'));
 try {
   const page = await (await browser.newContext()).newPage();
   await page.goto(`${base}embed.html`);
-  const out = await page.evaluate(async () => {
+  const out = await page.evaluate(async (given) => {
     const { createEngine } = await import('./swarf.js');
     const cores = navigator.hardwareConcurrency;
     const die = new Uint8Array(await (await fetch('/die.stl')).arrayBuffer());
+    const part = given && new Uint8Array(await (await fetch('/part')).arrayBuffer());
     const jobs = {};
     const results = { cores, rows: [] };
     for (const workers of [1, cores]) {
@@ -37,7 +42,12 @@ try {
       dieJob.tools = [{ ...dieJob.tools[1], number: 1, shape: 'ball', diameter: 10, cornerRadius: 0, fluteLength: 200 }];
       dieJob.operations = [{ ...raster, tool: 1, grid: 0.8, stepover: 2, builder: 'exact' }];
       Object.assign(jobs, { sample, die: dieJob });
-      for (const [name, job, bytes, file] of [['sample', sample, engine.sample, 'sample.stl'], ['die', dieJob, die, 'die.stl']]) {
+      const runs = [['sample', sample, engine.sample, 'sample.stl'], ['die', dieJob, die, 'die.stl']];
+      if (given) {
+        jobs.part = await engine.readJob(given.text);
+        runs.push(['part', jobs.part, part, given.name]);
+      }
+      for (const [name, job, bytes, file] of runs) {
         let best = Infinity, gcode = null, stages = null;
         for (let run = 0; run < 2; run++) {
           const start = performance.now();
@@ -55,24 +65,27 @@ try {
     results.jobs = jobs;
     results.sample = Array.from(jobs.sample && (await createEngine({ workers: 1 })).sample);
     return results;
-  });
+  }, given && { text: given.text, name: given.name });
   // The native command line on the same job files and parts.
   fs.writeFileSync(path.join(dir, 'die.stl'), die);
+  const files = { sample: 'sample.stl', die: 'die.stl', part: `part${path.extname(partFile ?? '')}` };
+  if (given) fs.writeFileSync(path.join(dir, files.part), given.bytes);
   fs.writeFileSync(path.join(dir, 'sample.stl'), Buffer.from(out.sample));
   const swarf = path.join(repo, 'target/release/swarf');
   const native = {};
-  for (const name of ['sample', 'die']) {
+  const names = given ? ['sample', 'die', 'part'] : ['sample', 'die'];
+  for (const name of names) {
     fs.writeFileSync(path.join(dir, `${name}.json`), JSON.stringify(out.jobs[name]));
     let best = Infinity;
     for (let run = 0; run < 2; run++) {
       const start = performance.now();
-      execFileSync(swarf, ['run', '-q', '--write-anyway', path.join(dir, `${name}.json`), path.join(dir, `${name}.stl`), '-o', path.join(dir, `${name}.nc`)], { stdio: 'pipe' });
+      execFileSync(swarf, ['run', '-q', '--write-anyway', path.join(dir, `${name}.json`), path.join(dir, files[name]), '-o', path.join(dir, `${name}.nc`)], { stdio: 'pipe' });
       best = Math.min(best, (performance.now() - start) / 1000);
     }
     native[name] = { seconds: best, gcode: fs.readFileSync(path.join(dir, `${name}.nc`), 'utf8') };
   }
   console.log(`cores: ${out.cores} (native threads: ${Math.min(8, os.availableParallelism())})`);
-  for (const name of ['sample', 'die']) {
+  for (const name of names) {
     const rows = out.rows.filter((r) => r.name === name);
     const [one, pool] = [rows[0], rows[rows.length - 1]];
     const same = rows.every((r) => r.gcode === one.gcode) ? 'same program' : 'PROGRAMS DIFFER';
