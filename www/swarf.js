@@ -66,12 +66,20 @@ function poolSize(wanted) {
  * `done(task, answer)` takes each answer, `report(fraction)` the share done.
  */
 async function share(channels, tasks, done, report) {
-  let next = 0, finished = 0;
+  let next = 0, finished = 0, failed = false;
   await Promise.all(channels.map(async (channel) => {
-    while (next < tasks.length) {
-      const task = tasks[next++];
-      done(task, await channel.call(task));
-      report(++finished / tasks.length);
+    try {
+      while (!failed && next < tasks.length) {
+        const task = tasks[next++];
+        const answer = await channel.call(task);
+        // Once a task failed, no answer of this run is used.
+        if (failed) return;
+        done(task, answer);
+        report(++finished / tasks.length);
+      }
+    } catch (error) {
+      failed = true;
+      throw error;
     }
   }));
 }
@@ -90,6 +98,8 @@ export class Engine {
   /** The rest of the pool: they make CL surfaces and level maps in bands, raster passes in ranges. */
   #helpers = [];
   #options;
+  /** The last run asked for: the next waits for it. */
+  #last = Promise.resolve();
 
   /** Use `createEngine()`. */
   constructor(options = {}) {
@@ -150,9 +160,17 @@ export class Engine {
    * rejects with a `CancelledError`. Resolves with `{ gcode, summary, feeds, rapids, feedOps,
    * feedTools, octants, part, drawing, sim }`. With more than one worker, the pool first makes
    * the CL surfaces and the level maps of z-level work (in bands of rows) and the raster passes
-   * (in ranges) on every worker; the program is the same as one worker's.
+   * (in ranges) on every worker; the program is the same as one worker's. Runs asked for while
+   * one runs wait for it.
    */
-  async run(job, bytes, name, { onProgress, signal } = {}) {
+  run(job, bytes, name, options = {}) {
+    // One run at a time: a pool's workers hold one prepared job each.
+    const turn = this.#last.catch(() => {}).then(() => this.#run(job, bytes, name, options));
+    this.#last = turn;
+    return turn;
+  }
+
+  async #run(job, bytes, name, { onProgress, signal } = {}) {
     if (signal?.aborted) throw new CancelledError();
     const onAbort = () => this.cancel();
     signal?.addEventListener('abort', onAbort, { once: true });

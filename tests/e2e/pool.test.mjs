@@ -83,3 +83,16 @@ test('a pooled run cancels, the engine goes on, and bad input fails as with one 
   assert.match(r.bad[0], /STL|truncated|triangles/i);
   assert.equal(r.bad[1], r.bad[0]);
 });
+
+test('runs asked for at once on a pool come out as each would alone', async () => {
+  const r = await page.evaluate(async () => {
+    const { one, pool, die, dieJob } = window.t;
+    const other = structuredClone(dieJob);
+    other.operations[0].angle = 90;
+    // Both started before either ends: the second waits for the first.
+    const [a, b] = await Promise.all([pool.run(dieJob, die, 'die.stl'), pool.run(other, die, 'die.stl')]);
+    const [a1, b1] = [await one.run(dieJob, die, 'die.stl'), await one.run(other, die, 'die.stl')];
+    return { a: a.gcode === a1.gcode, b: b.gcode === b1.gcode, differ: a1.gcode !== b1.gcode };
+  });
+  assert.deepEqual(r, { a: true, b: true, differ: true });
+});
