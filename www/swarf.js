@@ -185,7 +185,7 @@ export class Engine {
   async #runShared(job, bytes, name, onProgress) {
     const all = [this.#main, ...this.#helpers];
     const n = all.length;
-    const [{ needs }] = await Promise.all(all.map((c) => c.call({ type: 'prepare', job, bytes, name })));
+    const [{ needs }] = await Promise.all(all.map((c, w) => c.call({ type: 'prepare', job, bytes, name, helper: w > 0 })));
     const { surfaces, rasters, levelMaps } = needs;
     // Bands of rows of every exact CL surface, joined here.
     const joined = surfaces.map((s) => new Float64Array(s.nx * s.ny));

@@ -129,7 +129,8 @@ self.onmessage = async (event) => {
       plan?.free();
       plan = null;
       plan = prepareJob(event.data.job, event.data.bytes, event.data.name);
-      self.postMessage({ id, ok: true, needs: plan.needs() });
+      // Only the planning worker's list of what can be shared is used.
+      self.postMessage({ id, ok: true, needs: event.data.helper ? null : plan.needs() });
     } else if (type === 'rows') {
       const z = planned().surfaceRows(event.data.surface, event.data.j0, event.data.j1);
       self.postMessage({ id, ok: true, z }, [z.buffer]);
