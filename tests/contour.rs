@@ -176,3 +176,43 @@ fn on_spiky_parts_nothing_of_the_region_stands_above_the_level() {
     }
 }
 
+
+#[test]
+fn a_pocket_corner_between_nodes_is_reached() {
+    // A 30.2 mm square pocket 10 deep: a φ6 flat end's centre may go within ±12.1, a square
+    // whose corners fall between the 0.25 mm grid's nodes (which would chamfer them).
+    let v = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
+    let mut tris = Vec::new();
+    let (p, q) = (-15.1, 15.1);
+    for (lo, hi) in [((-25.0, -25.0), (25.0, p)), ((-25.0, q), (25.0, 25.0)), ((-25.0, p), (p, q)), ((q, p), (25.0, q))] {
+        let (a, b, c, d) = (v(lo.0, lo.1, 10.0), v(hi.0, lo.1, 10.0), v(hi.0, hi.1, 10.0), v(lo.0, hi.1, 10.0));
+        tris.push([a, b, c]);
+        tris.push([a, c, d]);
+    }
+    for (a, b) in [((p, p), (q, p)), ((q, p), (q, q)), ((q, q), (p, q)), ((p, q), (p, p))] {
+        tris.push([v(a.0, a.1, 0.0), v(a.0, a.1, 10.0), v(b.0, b.1, 10.0)]);
+        tris.push([v(a.0, a.1, 0.0), v(b.0, b.1, 10.0), v(b.0, b.1, 0.0)]);
+    }
+    tris.push([v(p, p, 0.0), v(q, p, 0.0), v(q, q, 0.0)]);
+    tris.push([v(p, p, 0.0), v(q, q, 0.0), v(p, q, 0.0)]);
+    let part = mesh(tris);
+    let tol = Tolerances::DEFAULT;
+    let grid = Grid::covering(DVec2::splat(-22.0), DVec2::splat(22.0), 0.25);
+    let cl = surface(&part, grid, -1.0, &Cutter::flat(6.0));
+    let region = LevelMap::new(&cl, &tol).region(&cl, 5.0, &|_, _| true, &tol);
+    assert_eq!(region.loops.len(), 1);
+    // The sides stand the back-off in from ±12.1; the corners where those sides meet.
+    let corner = 12.1 - swarf::zmap::contour::back_off(&cl, &tol);
+    for (sx, sy) in [(1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)] {
+        let c = DVec2::new(sx * corner, sy * corner);
+        let nearest = region.loops[0].vertices.iter().map(|v| v.p.distance(c)).fold(f64::INFINITY, f64::min);
+        assert!(nearest <= 0.002, "corner {c}: nearest boundary point {nearest:.4} mm away");
+    }
+    for v in &region.loops[0].vertices {
+        assert!(v.p.x.abs().max(v.p.y.abs()) <= 12.1 + 1e-6, "{}", v.p);
+    }
+    assert!(boundary_clears(&cl, &region, 5.0) <= 0.001 + 1e-6);
+    let area = region.area().abs();
+    let side = 2.0 * corner;
+    assert!(area >= side * side - 0.01 && area <= 24.2 * 24.2, "{area} against {}", side * side);
+}

@@ -231,6 +231,9 @@ impl Operate for RoughZigzag {
             let graph = Graph::new(&region, self.angle.to_radians(), step);
             let mut runs = graph.walk(pattern, load.climb, tol.chordal);
             let end = runs.last().and_then(|r| r.last()).copied().unwrap_or(DVec2::ZERO);
+            // The last contour finishes the wall: its load is held by the feed, never by moving
+            // it off the boundary (a corrected path rounds the region's corners off).
+            let contours_from = runs.len();
             runs.extend(boundary_runs(&region, load.climb, tol.chordal, end));
             // §3: the load on the material at this level.
             let stock = ctx.sim.stock();
@@ -246,7 +249,7 @@ impl Operate for RoughZigzag {
             let mut plain = Profile::default();
             let mut done = Profile::default();
             let mut shares = Vec::new();
-            for run in &runs {
+            for (n, run) in runs.iter().enumerate() {
                 // The plain path's load, for the report (the path itself unless corrected).
                 if let Some(m) = &mut plain_map {
                     load::plain(m, run, &load, &mut plain);
@@ -277,8 +280,8 @@ impl Operate for RoughZigzag {
                     pts.extend(&link[..link.len() - 1]);
                 }
                 pts.extend(match self.load {
-                    LoadControl::Path => load::corrected(&mut map, run, &load, &mut steps),
-                    LoadControl::Feed | LoadControl::None => load::plain(&mut map, run, &load, &mut steps),
+                    LoadControl::Path if n < contours_from => load::corrected(&mut map, run, &load, &mut steps),
+                    _ => load::plain(&mut map, run, &load, &mut steps),
                 });
                 let mut fed = Vec::with_capacity(steps.counts.len());
                 for &(n, len) in &steps.counts {

@@ -13,7 +13,9 @@
 //!    edge's exact profile, then checked at the point itself);
 //! 3. every piece between two crossings is checked along its length and, where the surface
 //!    rises above the level (a peak inside the cell), bent in towards the cell's inside node;
-//! 4. loops are simplified within the chordal tolerance where the chord itself clears.
+//! 4. loops are simplified within the chordal tolerance where the chord itself clears, and the
+//!    corners the cells' diagonals chamfered are put back where the two edges to the corner
+//!    clear the level (a pocket's corner is cleared as far as the tool reaches).
 //!
 //! So a boundary may lie inside the safe region, never past it by more than twice
 //! [`Tolerances::interpolation`] (the exact surface's rise between two samples of
@@ -271,7 +273,7 @@ fn level_region(cl: &ClSurface, nodes_inside: &[bool], level: f64, tol: &Toleran
         .into_iter()
         .filter_map(|ring| {
             let pts = bend(cl, level, &ring, &node, tol);
-            let pts = simplify(cl, level, &pts, tol);
+            let pts = sharpen(cl, level, &simplify(cl, level, &pts, tol), tol);
             (pts.len() >= 3).then(|| Loop::polygon(&pts))
         })
         .filter(|l| l.area().abs() > 1e-12)
@@ -402,6 +404,59 @@ fn simplify(cl: &ClSurface, level: f64, pts: &[DVec2], tol: &Tolerances) -> Vec<
         k = best + 1;
     }
     out
+}
+
+/// Puts back the corners marching squares cut off. Where a short edge (at most two cells'
+/// diagonal) joins two edges that turn by 60° or more round it, their lines meet just beyond
+/// it: a convex corner of the region, such as the one a pocket's inside corner
+/// makes of where the tool's centre may go, which the cells' diagonal chamfered (leaving
+/// material in the pocket's corner). The meeting point replaces the short edge when the two
+/// new edges clear the level along their length, so the boundary still never passes the safe
+/// region.
+fn sharpen(cl: &ClSurface, level: f64, pts: &[DVec2], tol: &Tolerances) -> Vec<DVec2> {
+    let n = pts.len();
+    if n < 4 {
+        return pts.to_vec();
+    }
+    let clears = |a: DVec2, b: DVec2| cl.along(a, b).into_iter().all(|(_, z)| z <= level + tol.height);
+    let short = 2.0 * std::f64::consts::SQRT_2 * cl.field.spacing;
+    let mut out = Vec::with_capacity(n + 4);
+    for i in 0..n {
+        let (a, b, c, d) = (pts[(i + n - 1) % n], pts[i], pts[(i + 1) % n], pts[(i + 2) % n]);
+        out.push(b);
+        let (u, e, w) = (b - a, c - b, d - c);
+        // A corner: the edges either side turn by 60° or more (a curve's small turns are left).
+        let half = 0.5 * cl.field.spacing;
+        if e.length() > short || u.length() < half || w.length() < half || u.normalize().dot(w.normalize()) > 0.5 {
+            continue;
+        }
+        // b + u s = c + w t: forward from b along a→b, back from c along c→d.
+        let cross = u.perp_dot(w);
+        if cross.abs() <= 1e-12 * u.length() * w.length() {
+            continue;
+        }
+        let (s, t) = (e.perp_dot(w) / cross, e.perp_dot(u) / cross);
+        let x = b + u * s;
+        // A convex corner: between the chamfer and the meeting point lies what the ring left
+        // out (at a reflex one, what it holds).
+        let between = (b + c) * 0.25 + x * 0.5;
+        if s > 0.0 && t < 0.0 && x.distance(b) <= short && x.distance(c) <= short && !ring_holds(pts, between) && clears(b, x) && clears(x, c) {
+            out.push(x);
+        }
+    }
+    out
+}
+
+/// Whether the closed ring `pts` holds `p` (crossing number).
+fn ring_holds(pts: &[DVec2], p: DVec2) -> bool {
+    let mut inside = false;
+    for (k, &a) in pts.iter().enumerate() {
+        let b = pts[(k + 1) % pts.len()];
+        if (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x) {
+            inside = !inside;
+        }
+    }
+    inside
 }
 
 fn distance_to_segment(p: DVec2, a: DVec2, b: DVec2) -> f64 {
