@@ -19,8 +19,9 @@ use crate::error::{Error, Result};
 use crate::geom::DVec3;
 use crate::progress::Progress;
 use crate::strategy::context::SurfaceRequest;
-use crate::strategy::finish_raster::PassLayout;
+use crate::strategy::finish_raster::{FinishRaster, PassLayout, RasterPasses};
 use crate::zmap::contour::LevelMap;
+use crate::zmap::region::Region;
 use crate::zmap::ClBuilder;
 
 /// A raster operation whose passes a pool can share out.
@@ -109,27 +110,30 @@ impl Prepared {
     /// [`Prepared::surfaces`] gave) and how many passes each has.
     pub fn rasters(&mut self, surfaces: &[SurfaceRequest]) -> Result<Vec<RasterWork>> {
         let mut out = Vec::new();
-        for (k, op) in self.job.operations.clone().iter().enumerate() {
-            let Operation::FinishRaster(r) = op else { continue };
-            if !r.enabled {
-                continue;
+        for k in 0..self.job.operations.len() {
+            if matches!(&self.job.operations[k], Operation::FinishRaster(r) if r.enabled) {
+                let (r, region, passes) = self.raster_layout(k)?;
+                let request = r.request(&self.ctx)?;
+                out.push(RasterWork { operation: k, surface: surfaces.iter().position(|s| *s == request), passes: PassLayout::new(&region, &passes).count });
             }
-            let request = r.request(&self.ctx)?;
-            let surface = surfaces.iter().position(|s| *s == request);
-            let (region, passes) = r.layout(&mut self.ctx)?;
-            out.push(RasterWork { operation: k, surface, passes: PassLayout::new(&region, &passes).count });
         }
         Ok(out)
+    }
+
+    /// The enabled raster operation `operation`, where its passes run and how.
+    fn raster_layout(&mut self, operation: usize) -> Result<(FinishRaster, Region, RasterPasses)> {
+        let Some(Operation::FinishRaster(r)) = self.job.operations.get(operation).filter(|o| o.op().enabled()).cloned() else {
+            return Err(Error::Input(format!("operation {operation} is not a raster finishing")));
+        };
+        let (region, passes) = r.layout(&mut self.ctx)?;
+        Ok((r, region, passes))
     }
 
     /// The runs of passes `passes` of the raster operation `operation`, each pass's in its own
     /// direction, on its surface (kept, or made here).
     pub fn raster_passes(&mut self, operation: usize, passes: Range<usize>) -> Result<Vec<Vec<Vec<DVec3>>>> {
-        let Some(Operation::FinishRaster(r)) = self.job.operations.get(operation).cloned() else {
-            return Err(Error::Input(format!("operation {operation} is not a raster finishing")));
-        };
+        let (r, region, settings) = self.raster_layout(operation)?;
         let cl = self.ctx.cl_surface(r.request(&self.ctx)?, &mut Progress::none())?;
-        let (region, settings) = r.layout(&mut self.ctx)?;
         let layout = PassLayout::new(&region, &settings);
         let passes = passes.start.min(layout.count)..passes.end.min(layout.count);
         Ok(crate::parallel::map_heavy(passes.len(), |i| layout.pass(&cl, passes.start + i)))
@@ -138,14 +142,15 @@ impl Prepared {
     /// Keeps passes of the raster operation `operation` made elsewhere, `first` the index of
     /// the first; once every pass is kept, the operation plans with them.
     pub fn keep_passes(&mut self, operation: usize, first: usize, passes: Vec<Vec<Vec<DVec3>>>) -> Result<()> {
-        let surfaces = self.surfaces()?;
-        let Some(work) = self.rasters(&surfaces)?.into_iter().find(|w| w.operation == operation) else {
-            return Err(Error::Input(format!("operation {operation} is not a raster finishing")));
-        };
-        if first + passes.len() > work.passes {
-            return Err(Error::Input(format!("passes {first}..{} given of an operation with {}", first + passes.len(), work.passes)));
+        // The operation's pass count is looked up with its first passes.
+        if !self.given.contains_key(&operation) {
+            let (_, region, settings) = self.raster_layout(operation)?;
+            self.given.insert(operation, vec![None; PassLayout::new(&region, &settings).count]);
         }
-        let slots = self.given.entry(operation).or_insert_with(|| vec![None; work.passes]);
+        let slots = self.given.get_mut(&operation).expect("inserted above");
+        if first + passes.len() > slots.len() {
+            return Err(Error::Input(format!("passes {first}..{} given of an operation with {}", first + passes.len(), slots.len())));
+        }
         for (k, p) in passes.into_iter().enumerate() {
             slots[first + k] = Some(p);
         }

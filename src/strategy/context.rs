@@ -246,16 +246,16 @@ impl Context {
         s
     }
 
-    /// The level map ([`LevelMap`]) of the CL surface `request` names, made once per request.
-    pub fn level_map(&mut self, request: SurfaceRequest, progress: &mut Progress) -> Result<Arc<LevelMap>> {
+    /// The level map ([`LevelMap`]) of `cl`, the CL surface `request` names, made once per
+    /// request.
+    pub fn level_map(&mut self, request: SurfaceRequest, cl: &ClSurface) -> Arc<LevelMap> {
         let key = self.surface_key(&request);
         if let Some((_, m)) = self.caches.levels.iter().find(|(k, _)| *k == key) {
-            return Ok(m.clone());
+            return m.clone();
         }
-        let cl = self.cl_surface(request, progress)?;
-        let map = Arc::new(LevelMap::new(&cl, &self.tolerances));
+        let map = Arc::new(LevelMap::new(cl, &self.tolerances));
         self.caches.levels.push((key, map.clone()));
-        Ok(map)
+        map
     }
 
     /// Keeps `map` (made by a pool, band by band) as the level map of `request`'s surface.

@@ -112,7 +112,7 @@ impl Operate for FinishWaterline {
             return Err(Error::Cancelled);
         }
         let tol = ctx.tolerances;
-        let map = ctx.level_map(request, progress)?;
+        let map = ctx.level_map(request, &cl);
         let steep = self.slope_min.to_radians().tan();
         let slope = |p: DVec2| gradient(&cl.field, p);
         let top = cl.field.max();

@@ -264,7 +264,7 @@ impl RoughZlevel {
             return Err(Error::Cancelled);
         }
         let tol = ctx.tolerances;
-        let map = ctx.level_map(self.request(ctx)?, progress)?;
+        let map = ctx.level_map(self.request(ctx)?, &cl);
         let mut levels = Vec::new();
         let mut z_prev = stock.max.z;
         for z in self.heights(ctx, &cl, r) {

@@ -368,7 +368,7 @@ fn bend(cl: &ClSurface, level: f64, ring: &[Piece], node: &dyn Fn(isize, isize) 
 /// Drops points whose neighbours' chord stays within the chordal tolerance of them and clears
 /// the level along its length (Douglas–Peucker on the closed ring, greedy).
 fn simplify(cl: &ClSurface, level: f64, pts: &[DVec2], tol: &Tolerances) -> Vec<DVec2> {
-    let clears = |a: DVec2, b: DVec2| cl.along(a, b).into_iter().all(|(_, z)| z <= level + tol.height);
+    let clears = |a: DVec2, b: DVec2| clears_level(cl, level, a, b, tol);
     let mut out: Vec<DVec2> = Vec::with_capacity(pts.len());
     let n = pts.len();
     if n < 4 {
@@ -418,7 +418,7 @@ fn sharpen(cl: &ClSurface, level: f64, pts: &[DVec2], tol: &Tolerances) -> Vec<D
     if n < 4 {
         return pts.to_vec();
     }
-    let clears = |a: DVec2, b: DVec2| cl.along(a, b).into_iter().all(|(_, z)| z <= level + tol.height);
+    let clears = |a: DVec2, b: DVec2| clears_level(cl, level, a, b, tol);
     let short = 2.0 * std::f64::consts::SQRT_2 * cl.field.spacing;
     let mut out = Vec::with_capacity(n + 4);
     for i in 0..n {
@@ -445,6 +445,11 @@ fn sharpen(cl: &ClSurface, level: f64, pts: &[DVec2], tol: &Tolerances) -> Vec<D
         }
     }
     out
+}
+
+/// Whether the exact surface stays at or below `level` all along the segment from `a` to `b`.
+fn clears_level(cl: &ClSurface, level: f64, a: DVec2, b: DVec2, tol: &Tolerances) -> bool {
+    cl.along(a, b).into_iter().all(|(_, z)| z <= level + tol.height)
 }
 
 /// Whether the closed ring `pts` holds `p` (crossing number).
