@@ -86,3 +86,26 @@ fn the_sample_part_is_roughed_clean_to_the_stair_step_both_ways() {
         eprintln!("{passes:?}: {}", r.describe());
     }
 }
+
+/// A real terrain (OpenCAMLib's Mount Rushmore, from `../shared/data`): its levels' regions
+/// run along cliffs, where a step of the corrected path a few microns past the region's edge
+/// is a gouge millimetres deep. Every program clean by the job's simulation.
+#[test]
+fn a_terrain_with_cliffs_is_roughed_without_a_gouge_with_the_load_held() {
+    let Some(dir) = common::shared_data("meshes") else { return };
+    let bytes = std::fs::read(dir.join("ocl_mount_rush.stl")).unwrap();
+    let part = swarf::mesh::import::read_mesh_auto(&bytes, Some("ocl_mount_rush.stl"), &swarf::geom::tolerance::Tolerances::default()).unwrap();
+    let op = RoughZigzag { tool: 1, stepdown: 2.0, stepover: 0.4, allowance: 0.0, leave_stock: 0.0, load: LoadControl::Path, ..RoughZigzag::default() };
+    let mut job = Job {
+        tools: vec![flat(1, 6.0)],
+        operations: vec![Operation::RoughZigzag(op)],
+        part: PartSetup { placement: Placement::Keep, ..PartSetup::default() },
+        ..Job::default()
+    };
+    (job.stock.margin_xy, job.stock.margin_top, job.stock.margin_bottom) = (0.0, 0.0, 0.0);
+    let out = job::run(&job, part, &mut Progress::none()).unwrap();
+    clean(&out);
+    // The load was held by extra path (the test tests the correction).
+    let load = out.operations[0].load.as_ref().unwrap();
+    assert!(LoadReport::peak_and_spread(&load.load).1 < LoadReport::peak_and_spread(&load.plain).1);
+}

@@ -15,7 +15,7 @@
 //!
 //! The extra segments come out as short lines; [`crate::toolpath::arcfit`] turns them into arcs.
 
-use crate::geom::segment::Rect;
+use crate::geom::segment::{ArcGeom, Rect, Segment};
 use crate::geom::DVec2;
 use crate::profile::Shape;
 
@@ -40,11 +40,21 @@ pub struct PixelMap {
     /// Words of 64 pixels per row.
     words: usize,
     material: Vec<u64>,
-    /// Pixels whose centre lies in the region, and those whose eight neighbours' do too.
-    allowed: Vec<bool>,
+    /// Pixels whose centre lies in the region, and those whose centre and eight neighbours'
+    /// all do: the tool's centre may stand only by the first (a point whose nearest pixel
+    /// centre is out is refused, though it may be in: a margin of half a pixel), surely by
+    /// the second, and by the region's own boundary between.
+    centre_in: Vec<bool>,
     inner: Vec<bool>,
-    region: Shape,
+    /// The region's boundary, and per row of pixels the pieces of it that reach the band of
+    /// heights the row's pixels stand for: a point's place in the region counted on those.
+    boundary: Vec<(Segment, Option<ArcGeom>)>,
+    rows: Vec<Vec<u32>>,
     radius: f64,
+    /// Words a detour cleared, with what they held (while `logging`): taken back, they
+    /// restore the material as it was where the detour left the path.
+    undo: Vec<(usize, u64)>,
+    logging: bool,
 }
 
 impl PixelMap {
@@ -74,19 +84,25 @@ impl PixelMap {
         }
         // Eroded by one pixel.
         let k = 1;
-        let mut rows = vec![false; nx * ny];
-        for j in 0..ny {
-            for i in 0..nx {
-                rows[j * nx + i] = (i.saturating_sub(k)..=(i + k).min(nx - 1)).all(|q| allowed[j * nx + q]) && i >= k && i + k < nx;
-            }
-        }
+        let at = |i: isize, j: isize| i >= 0 && j >= 0 && (i as usize) < nx && (j as usize) < ny && allowed[j as usize * nx + i as usize];
         let mut inner = vec![false; nx * ny];
-        for j in k..ny.saturating_sub(k) {
-            for i in 0..nx {
-                inner[j * nx + i] = (j - k..=j + k).all(|q| rows[q * nx + i]);
+        for j in 0..ny as isize {
+            for i in 0..nx as isize {
+                let around = || (-k..=k).flat_map(move |dj| (-k..=k).map(move |di| (i + di, j + dj)));
+                inner[j as usize * nx + i as usize] = around().all(|(i, j)| at(i, j));
             }
         }
-        PixelMap { origin, px, nx, ny, words, material: m, allowed, inner, radius, region: region.clone() }
+        let boundary: Vec<(Segment, Option<ArcGeom>)> = region.segments().map(|s| (s, s.arc_geom())).collect();
+        let mut rows = vec![Vec::new(); ny];
+        for (n, (s, g)) in boundary.iter().enumerate() {
+            let b = s.bounds_with(g.as_ref());
+            let j0 = ((b.min.y - origin.y) / px - 0.5).floor().max(0.0) as usize;
+            let j1 = (((b.max.y - origin.y) / px + 0.5).ceil().max(0.0) as usize).min(ny - 1);
+            for row in &mut rows[j0..=j1] {
+                row.push(n as u32);
+            }
+        }
+        PixelMap { origin, px, nx, ny, words, material: m, centre_in: allowed, inner, radius, boundary, rows, undo: Vec::new(), logging: false }
     }
 
     pub fn pixel(&self) -> f64 {
@@ -94,15 +110,28 @@ impl PixelMap {
     }
 
     /// Whether the tool's centre may stand at `q` off the path: in the region, by the pixels
-    /// where the pixel nearest it and its eight neighbours are in it, else by the region's
-    /// own boundary.
+    /// where the pixel nearest it and its eight neighbours are in it, else by the region's own
+    /// boundary where that pixel's centre is in it.
     pub fn allowed(&self, q: DVec2) -> bool {
         let u = ((q - self.origin) / self.px).round();
         if !(u.x >= 0.0 && u.y >= 0.0 && (u.x as usize) < self.nx && (u.y as usize) < self.ny) {
             return false;
         }
         let at = u.y as usize * self.nx + u.x as usize;
-        self.inner[at] || (self.allowed[at] && self.region.contains(q))
+        self.inner[at] || (self.centre_in[at] && self.contains(q))
+    }
+
+    /// Whether the region holds `q` (within the map): [`Shape::contains`], counting the
+    /// crossings of the ray from `q` with the pieces of boundary near its row only.
+    fn contains(&self, q: DVec2) -> bool {
+        let j = ((q.y - self.origin.y) / self.px).round();
+        if !(j >= 0.0 && (j as usize) < self.ny) {
+            return false;
+        }
+        self.rows[j as usize].iter().map(|&n| {
+            let (s, g) = &self.boundary[n as usize];
+            s.ray_crossings_with(g.as_ref(), q)
+        }).sum::<u32>() % 2 == 1
     }
 
     /// The material pixels (by their centres) the tool's disc sweeps moving from `a` to `b`;
@@ -133,7 +162,10 @@ impl PixelMap {
                 let mask = (u64::MAX >> (63 - last)) & (u64::MAX << first);
                 let bits = self.material[row + w] & mask;
                 count += bits.count_ones() as usize;
-                if cut {
+                if cut && bits != 0 {
+                    if self.logging {
+                        self.undo.push((row + w, self.material[row + w]));
+                    }
                     self.material[row + w] &= !mask;
                 }
             }
@@ -157,6 +189,26 @@ impl PixelMap {
     /// Removes what the move from `a` to `b` sweeps; returns the count.
     pub fn cut(&mut self, a: DVec2, b: DVec2) -> usize {
         self.sweep(a, b, true, usize::MAX)
+    }
+
+    /// From now on, what is cut can be taken back (a detour begins).
+    fn mark(&mut self) {
+        self.undo.clear();
+        self.logging = true;
+    }
+
+    /// What was cut since the mark stays cut (the detour is kept).
+    fn keep(&mut self) {
+        self.undo.clear();
+        self.logging = false;
+    }
+
+    /// What was cut since the mark is put back (the detour is taken back).
+    fn take_back(&mut self) {
+        while let Some((w, bits)) = self.undo.pop() {
+            self.material[w] = bits;
+        }
+        self.logging = false;
     }
 
     /// Material pixels left.
@@ -278,43 +330,111 @@ pub fn plain(map: &mut PixelMap, run: &[DVec2], load: &Load, profile: &mut Profi
 /// the count of each step. The run is entered at its first point (the entry clears the tool's
 /// disc there). A slot (the first pass into a closed region) has no side to ease off to: it
 /// stays as it is, overloaded, and the strategy lowers its feed.
+///
+/// Every step off the run stays where the region lets the tool's centre stand (its end and
+/// its middle). A detour that finds no such way back to the run is taken back, and the run
+/// goes on as it is from where the detour left it; should the guard on the steps run out, the
+/// whole run is cut as it is. So the correction never takes the tool where the run would not.
 pub fn corrected(map: &mut PixelMap, run: &[DVec2], load: &Load, profile: &mut Profile) -> Vec<DVec2> {
+    let before = map.material.clone();
+    let counted = profile.counts.len();
+    let out = correct(map, run, load, profile);
+    map.keep();
+    out.unwrap_or_else(|| {
+        map.material = before;
+        profile.counts.truncate(counted);
+        plain(map, run, load, profile)
+    })
+}
+
+/// Where a detour left the path: the path as cut and the counts up to there, and the point
+/// of the path it was heading for.
+struct Departure {
+    out: usize,
+    counts: usize,
+    k: usize,
+}
+
+/// [`corrected`]'s path, or `None` when the guard on its steps runs out.
+fn correct(map: &mut PixelMap, run: &[DVec2], load: &Load, profile: &mut Profile) -> Option<Vec<DVec2>> {
     let pts = densify(run, load.ds / SUBSTEPS as f64);
-    let Some(&start) = pts.first() else { return Vec::new() };
+    let Some(&start) = pts.first() else { return Some(Vec::new()) };
     let px = map.pixel();
     // Aim at half the tolerance: the rest is room for the pixels' noise.
     let limit = load.reference(px) * (1.0 + 0.5 * load.tolerance);
     map.cut(start, start);
     let mut out = vec![start];
     let mut pos = start;
-    let mut step_to = |map: &mut PixelMap, pos: &mut DVec2, q: DVec2, out: &mut Vec<DVec2>| {
+    let step_to = |map: &mut PixelMap, pos: &mut DVec2, q: DVec2, out: &mut Vec<DVec2>, profile: &mut Profile| {
         let n = map.cut(*pos, q);
         profile.counts.push((n as f64, pos.distance(q)));
         *pos = q;
         out.push(q);
     };
+    // A step that leaves the run: its end and its middle where the centre may stand.
+    let keeps = |map: &PixelMap, a: DVec2, b: DVec2| map.allowed(b) && map.allowed(0.5 * (a + b));
     let side = if load.climb { 1.0 } else { -1.0 };
+    let full = load.ds / SUBSTEPS as f64;
     let mut budget = BUDGET * pts.len() + 2000;
+    // A guard on the steps: past it the correction gives up (the run is cut as it is).
+    let mut steps_left = (BUDGET + 4 * SUBSTEPS) * pts.len() + 4000;
     let mut k = 1;
     // Whether the tool stands on the path (at a point of it, or on the way to the next).
     let mut on_path = true;
+    // Where the detour under way left the path.
+    let mut departure: Option<Departure> = None;
+    // The path goes on as it is (no detour) up to this point of it: a detour was taken back.
+    let mut as_is = 0;
     // The side and size of the last turn off the way to the path.
     let mut turned = (side, 0usize);
+    // The point of the path it heads for while off it: kept until reached or barred, so
+    // that it does not shuttle between two.
+    let mut aim = 0;
     while k < pts.len() {
-        // Off the path, heading for a point of it a Δs on, so that the way back is a long
-        // slant rather than a sawtooth along it.
-        let ahead = if on_path { k } else { (k + SUBSTEPS).min(pts.len() - 1) };
+        steps_left = steps_left.checked_sub(1)?;
+        // Off the path, heading for a point of it up to a Δs on, so that the way back is a
+        // long slant rather than a sawtooth along it: the farthest the region lets it reach.
+        let ahead = if on_path {
+            k
+        } else {
+            let toward = |a: usize| {
+                let to = pts[a] - pos;
+                let d = to.length();
+                // The path's own points are where the tool may stand.
+                d < 1e-9 || if d <= full { map.allowed(0.5 * (pos + pts[a])) } else { keeps(map, pos, pos + to / d * full) }
+            };
+            if aim < k || !toward(aim) {
+                match (k..=(k + SUBSTEPS).min(pts.len() - 1)).rev().find(|&a| toward(a)) {
+                    Some(a) => aim = a,
+                    None => {
+                        // No way back from here: the detour is taken back, and the path goes
+                        // on as it is past where it was heading.
+                        let d = departure.take()?;
+                        map.take_back();
+                        out.truncate(d.out);
+                        profile.counts.truncate(d.counts);
+                        pos = out[out.len() - 1];
+                        as_is = (k + SUBSTEPS).min(pts.len());
+                        k = d.k;
+                        on_path = true;
+                        turned = (side, 0);
+                        continue;
+                    }
+                }
+            }
+            aim
+        };
         let target = pts[ahead];
         let to = target - pos;
         let dist = to.length();
         if dist < 1e-9 {
-            k += 1;
+            k = ahead + 1;
+            on_path = true;
             continue;
         }
-        let full = load.ds / SUBSTEPS as f64;
         // Off the path and close to a point of it that is not the last: on to the next.
-        if !on_path && dist < 0.5 * full && k + 1 < pts.len() {
-            k += 1;
+        if !on_path && dist < 0.5 * full && ahead + 1 < pts.len() {
+            k = ahead + 1;
             continue;
         }
         let step = dist.min(full);
@@ -324,67 +444,61 @@ pub fn corrected(map: &mut PixelMap, run: &[DVec2], load: &Load, profile: &mut P
         // The least loaded direction, where none keeps under the limit.
         let mut least: Option<(usize, DVec2, bool)> = None;
         let mut straight = usize::MAX;
-        if budget > 0 {
+        // A short step (the run's last, or the last of the way back to it) goes straight:
+        // turning it only spirals in on its point.
+        if budget > 0 && k >= as_is && step >= 0.5 * full {
             budget -= 1;
             // The turn tried first follows the last one, eased back by two steps, so that the
             // extra path bends smoothly (arcs fit it) instead of zigzagging.
             let first = if turned.0 == side { turned.1.saturating_sub(2) } else { 0 };
             let order = (first..=TURNS).chain((0..first).rev());
             'search: for (s, a) in order.map(|a| (side, a)).chain((1..=TURNS).map(|a| (-side, a))) {
-                {
-                    let q = pos + DVec2::from_angle(s * TURN * a as f64).rotate(dir) * step;
-                    // Straight on towards the path (its points are in the region), or off it
-                    // only to where the region allows.
-                    if a > 0 && !map.allowed(q) {
-                        continue;
-                    }
-                    // Counted in full going straight; off the path only as far as it takes
-                    // to tell whether it keeps the limit or halves the straight count.
-                    let n = if a == 0 { map.count(pos, q) } else { map.count_past(pos, q, (cap as usize).max(straight / 2)) };
-                    if n as f64 <= cap {
-                        chosen = Some((q, a == 0));
-                        turned = (s, a);
-                        break 'search;
-                    }
-                    if a == 0 {
-                        straight = n;
-                    }
-                    if least.is_none_or(|l| n < l.0) {
-                        least = Some((n, q, a == 0));
-                    }
+                let q = pos + DVec2::from_angle(s * TURN * a as f64).rotate(dir) * step;
+                // Straight on towards the path (its points are in the region, and the way
+                // there was checked above), or off it only to where the region allows.
+                if a > 0 && !keeps(map, pos, q) {
+                    continue;
+                }
+                // Counted in full going straight; off the path only as far as it takes
+                // to tell whether it keeps the limit or halves the straight count.
+                let n = if a == 0 { map.count(pos, q) } else { map.count_past(pos, q, (cap as usize).max(straight / 2)) };
+                if n as f64 <= cap {
+                    chosen = Some((q, a == 0));
+                    turned = (s, a);
+                    break 'search;
+                }
+                if a == 0 {
+                    straight = n;
+                }
+                if least.is_none_or(|l| n < l.0) {
+                    least = Some((n, q, a == 0));
                 }
             }
             // Off the path only for a clear gain: a slot stays straight.
             chosen = chosen.or(least.filter(|l| 2 * l.0 <= straight).map(|l| (l.1, l.2)));
         }
-        match chosen {
-            Some((q, straight)) => {
-                step_to(map, &mut pos, q, &mut out);
-                if straight && step >= dist - 1e-12 {
-                    k = ahead + 1;
-                    on_path = true;
-                } else if !straight {
-                    on_path = false;
-                }
-            }
-            // Nothing allowed eases it, and the way on leaves the region: back to the path's
-            // point before (from there the path itself goes on).
-            // Nowhere to ease off to (or the guard ran out): on along the path as it is.
-            None => {
-                let q = if step >= dist - 1e-12 { target } else { pos + dir * step };
-                step_to(map, &mut pos, q, &mut out);
-                if step >= dist - 1e-12 {
-                    k = ahead + 1;
-                    on_path = true;
-                }
-            }
+        // Nowhere to ease off to (or the guard ran out): on towards the path as it is.
+        let (q, straight) = chosen.unwrap_or_else(|| (if step >= dist - 1e-12 { target } else { pos + dir * step }, true));
+        if !straight && on_path {
+            departure = Some(Departure { out: out.len(), counts: profile.counts.len(), k });
+            map.mark();
+        }
+        step_to(map, &mut pos, q, &mut out, profile);
+        if straight && step >= dist - 1e-12 {
+            k = ahead + 1;
+            on_path = true;
+        } else if !straight {
+            on_path = false;
         }
         // Back on the path: skip the points the detour passed.
-        while !on_path && k < pts.len() && pos.distance(pts[k]) < 0.5 * load.ds / SUBSTEPS as f64 && k + 1 < pts.len() {
+        while !on_path && k < pts.len() && pos.distance(pts[k]) < 0.5 * full && k + 1 < pts.len() {
             k += 1;
         }
+        if on_path && departure.take().is_some() {
+            map.keep();
+        }
     }
-    out
+    Some(out)
 }
 
 /// The points of `run` with extra points so that no step is longer than `ds`.
@@ -429,7 +543,7 @@ mod tests {
         for _ in 0..200 {
             let a = DVec2::new(40.0 * rnd(), 40.0 * rnd());
             let b = a + DVec2::new(12.0 * rnd() - 6.0, 12.0 * rnd() - 6.0) * if rnd() < 0.5 { 0.05 } else { 1.0 };
-            let mut m = PixelMap { material: map.material.clone(), allowed: map.allowed.clone(), inner: map.inner.clone(), region: map.region.clone(), ..map };
+            let mut m = PixelMap { material: map.material.clone(), centre_in: map.centre_in.clone(), inner: map.inner.clone(), boundary: map.boundary.clone(), rows: map.rows.clone(), undo: Vec::new(), ..map };
             let brute = (0..m.ny)
                 .flat_map(|j| (0..m.nx).map(move |i| (i, j)))
                 .filter(|&(i, j)| {
@@ -484,5 +598,55 @@ mod tests {
         // it eased round: the boundary pass takes that).
         assert!(path.last().unwrap().distance(run[3]) < 1e-9);
         assert!((b.left() as f64) < a.left() as f64 * 1.002, "{} {}", b.left(), a.left());
+    }
+
+    /// A 40 mm pocket whose centre's region has a star-shaped island in it (its sides meeting
+    /// at inside corners the region's boundary turns sharply round) and a round one.
+    fn star_map(px: f64, r: f64) -> (PixelMap, Shape) {
+        let star: Vec<DVec2> = (0..14)
+            .map(|k| {
+                let a = k as f64 * std::f64::consts::PI / 7.0;
+                DVec2::new(14.0, 14.0) + DVec2::from_angle(a) * if k % 2 == 0 { 7.0 } else { 3.0 }
+            })
+            .collect();
+        let region = Shape::new(vec![Loop::rect(DVec2::splat(r), DVec2::splat(40.0 - r)), Loop::polygon(&star), Loop::circle(DVec2::new(28.0, 27.0), 5.0)]);
+        let bounds = Rect { min: DVec2::ZERO, max: DVec2::splat(40.0) };
+        (PixelMap::new(bounds, px, r, |p| p.x >= 0.0 && p.y >= 0.0 && p.x <= 40.0 && p.y <= 40.0, &region), region)
+    }
+
+    #[test]
+    fn the_map_tells_the_region_as_the_region_does() {
+        let (map, region) = star_map(0.05, 3.0);
+        for j in 0..400 {
+            for i in 0..400 {
+                let q = DVec2::new(i as f64 * 0.1 + 0.013, j as f64 * 0.1 + 0.007);
+                assert_eq!(map.contains(q), region.contains(q), "{q}");
+            }
+        }
+    }
+
+    #[test]
+    fn the_corrected_path_never_leaves_the_region() {
+        use crate::zigzag::graph::{Graph, Pattern};
+        for (climb, angle) in [(true, 0.0), (false, 0.0), (true, 30.0), (false, 75.0)] {
+            let (mut map, region) = star_map(0.05, 3.0);
+            let load = Load { ds: 1.2, step: 2.4, tolerance: 0.1, climb };
+            let runs = Graph::new(&region, f64::to_radians(angle), load.step).walk(Pattern::Zigzag, climb, 0.002);
+            let mut off = 0;
+            for run in &runs {
+                let path = corrected(&mut map, run, &load, &mut Profile::default());
+                let on_run = |p: DVec2| run.windows(2).any(|w| crate::geom::segment::Segment::line(w[0], w[1]).distance_to(p) < 1e-9);
+                for w in path.windows(2) {
+                    for p in [w[1], 0.5 * (w[0] + w[1])] {
+                        if !on_run(p) {
+                            off += 1;
+                            assert!(region.contains(p) || region.distance_to(p) < 1e-9, "climb {climb}, angle {angle}: {p} is {} mm out of the region", region.distance_to(p));
+                        }
+                    }
+                }
+            }
+            // The correction did leave the run (the test tests something).
+            assert!(off > 100, "{off}");
+        }
     }
 }

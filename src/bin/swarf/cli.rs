@@ -338,7 +338,7 @@ fn run_job(job: &Job, workpiece: impl Into<Workpiece>, output: &Path, quiet: boo
     for w in &out.warnings {
         eprintln!("warning: {w}");
     }
-    if out.operations.len() > 1 || out.operations.iter().any(|o| o.stages.is_some()) {
+    if out.operations.len() > 1 || out.operations.iter().any(|o| o.stages.is_some() || o.load.is_some()) {
         for r in &out.operations {
             eprintln!("  {}", r.describe());
         }
