@@ -216,3 +216,46 @@ fn a_pocket_corner_between_nodes_is_reached() {
     let side = 2.0 * corner;
     assert!(area >= side * side - 0.01 && area <= 24.2 * 24.2, "{area} against {}", side * side);
 }
+
+/// Cliffs: a flat end's and a bull nose's centre stands at the level up to the foot of a
+/// wall's top edge and corners, and jumps there (round a corner, along a circle of the tool's
+/// radius). A node of the grid just short of such a cliff made the boundary run along its foot
+/// from the node itself (no room to back off), and a chord from it clipped the circle: a sliver
+/// 0.03 mm long on pycam's textbox, found by gcheck. Boxes whose corner's circle passes a few
+/// microns from a node, in many directions; every 0.002 mm along the boundary judged. (These
+/// boxes came out clean before the fix too: the textbox's case needs its own facets; gcheck on
+/// the real parts is the record, in BENCHMARKS.md.)
+#[test]
+fn the_boundary_keeps_off_cliffs_round_corners() {
+    let tol = Tolerances::DEFAULT;
+    let mut fails = Vec::new();
+    for cutter in [Cutter::flat(6.0), Cutter::bull_nose(6.0, 1.0)] {
+        for k in 0..16 {
+            for gap in [0.001, 0.004, 0.009] {
+                // The box's corner at the tool's radius plus `gap` from the node (0, 0), the box
+                // stretching away from the node.
+                let dir = DVec2::from_angle(0.1 + k as f64 * std::f64::consts::TAU / 16.0);
+                let corner = dir * (3.0 + gap);
+                let lo = DVec2::new(if dir.x > 0.0 { corner.x } else { corner.x - 6.0 }, if dir.y > 0.0 { corner.y } else { corner.y - 6.0 });
+                let mut tris = plate(14.0);
+                tris.extend(boxed(lo.extend(0.0), (lo + DVec2::splat(6.0)).extend(8.0)));
+                let part = mesh(tris);
+                let grid = Grid::covering(DVec2::splat(-12.0), DVec2::splat(12.0), 0.25);
+                let cl = surface(&part, grid, -1.0, &cutter);
+                let level = 3.0;
+                let region = LevelMap::new(&cl, &tol).region(&cl, level, &|_, _| true, &tol);
+                let mut worst = f64::NEG_INFINITY;
+                for s in region.segments() {
+                    let n = (s.length() / 0.002).ceil().max(1.0) as usize;
+                    for q in 0..=n {
+                        worst = worst.max(cl.height(s.point_at(q as f64 / n as f64)) - level);
+                    }
+                }
+                if worst > 0.001 + 1e-6 {
+                    fails.push((cutter.corner_radius, k, gap, worst));
+                }
+            }
+        }
+    }
+    assert!(fails.is_empty(), "the boundary stands above the level (corner radius, direction, gap, height): {fails:?}");
+}

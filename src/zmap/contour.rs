@@ -96,6 +96,31 @@ impl LevelMap {
                 }
             }
         }
+        // A node inside stands at least the back-off from the level's edge along the grid's
+        // four directions: one just short of a cliff would make the boundary pass along the
+        // cliff's foot, where a chord between two of its points can clip the cliff. Only a
+        // cutter with a flat bottom makes cliffs (a ball's surface is smooth, and its level
+        // curves, a waterline's path, stay where the crossings put them).
+        let margin = back_off(cl, tol);
+        if cl.profile().flat_radius() <= 0.0 {
+            return level_region(cl, &inside, level, tol);
+        }
+        let node = |i: usize, j: usize| f.origin + DVec2::new(i as f64, j as f64) * f.spacing;
+        let edge_of = |c: usize| {
+            let (i, j) = (c % nx, c / nx);
+            (i > 0 && !inside[c - 1]) || (i + 1 < nx && !inside[c + 1]) || (j > 0 && !inside[c - nx]) || (j + 1 < ny && !inside[c + nx])
+                || (i + 1 < nx && self.right[c] > level + tol.height) || (j + 1 < ny && self.up[c] > level + tol.height)
+                || (i > 0 && self.right[c - 1] > level + tol.height) || (j > 0 && self.up[c - nx] > level + tol.height)
+        };
+        let near_edge: Vec<usize> = (0..nx * ny).filter(|&c| inside[c] && edge_of(c)).collect();
+        for c in near_edge {
+            let (i, j) = (c % nx, c / nx);
+            let p = node(i, j);
+            let steps = [(i + 1 < nx, DVec2::X), (i > 0, DVec2::NEG_X), (j + 1 < ny, DVec2::Y), (j > 0, DVec2::NEG_Y)];
+            if steps.iter().any(|&(within, d)| within && cl.height(p + d * margin) > level + tol.height) {
+                inside[c] = false;
+            }
+        }
         level_region(cl, &inside, level, tol)
     }
 }
