@@ -489,3 +489,35 @@ fn a_fanuc_program_with_a_problem_keeps_its_tape_mark_first() {
     let e = job::run(&job, drawing_of(part_at(0.0)), &mut Progress::none()).unwrap_err().to_string();
     assert!(e.contains("stock.clearance") && e.contains("-1"), "{e}");
 }
+
+/// Seed 004 §3 on a drawing: the zigzag pocket's passes hold the tool's load at the
+/// step-over's, by extra path or by the feed, as the project's own simulation counts it (over
+/// windows of three Δs, entries left out); the plain passes slot at the full diameter.
+#[test]
+fn a_zigzag_pocket_holds_its_load() {
+    use swarf::strategy::rough_zigzag::LoadControl;
+    let (stepover, stepdown, feed) = (0.4, 1.5, 800.0);
+    let reference = 6.0 * stepover * stepdown * feed;
+    let mut seconds = Vec::new();
+    for load in [LoadControl::None, LoadControl::Feed, LoadControl::Path] {
+        let pocket = Pocket2d { layers: vec!["POCKET".into()], depth: 1.5, stepdown, stepover, pattern: PocketPattern::Zigzag, load, ..Pocket2d::default() };
+        let mut job = job_with(vec![Operation::Pocket2d(pocket)], 6.0);
+        job.simulation.cell = Some(0.1);
+        let out = job::run(&job, plate(), &mut Progress::none()).unwrap();
+        let v = out.verification.as_ref().unwrap();
+        assert!(v.report.is_clean(), "{load:?}: {}", v.report.describe());
+        let rates = swarf::sim::windows::windowed_rates(&out.moves, &out.stock, 0.05, 3.0 * 0.5 * 6.0 * stepover).unwrap();
+        let worst = rates.iter().copied().fold(0.0, f64::max) / reference;
+        eprintln!("{load:?}: {} ; simulated peak {worst:.2} over {} windows", out.operations[0].describe(), rates.len());
+        match load {
+            LoadControl::None => assert!(worst > 2.0, "the plain passes slot: {worst}"),
+            _ => assert!(worst <= 1.15, "{load:?}: {worst}"),
+        }
+        if load == LoadControl::Path {
+            assert!(out.gcode.contains("G2") || out.gcode.contains("G3"));
+        }
+        seconds.push(out.operations[0].seconds);
+    }
+    // Held, the pocket takes longer at the tool's feed than the plain one (which overloads).
+    assert!(seconds[1] > seconds[0] && seconds[2] > seconds[0], "{seconds:?}");
+}

@@ -156,6 +156,11 @@ impl<'m> InStock<'m> {
         InStock { stock, profile, smaller: Profile::new(r, profile.corner.min(r)) }
     }
 
+    /// Whether there is material at height `z` over `p` (the stock's top above it).
+    pub fn material_at(&self, p: DVec2, z: f64) -> bool {
+        crate::zigzag::load::material_at(self.stock, p, z)
+    }
+
     /// The highest tip height at which the cutter at `p` touches material as the stock model
     /// samples it (`-inf` where there is none): as the program's verification sees the
     /// material, for rapids. Not the bound the 3D linker takes (each cell as a column over its

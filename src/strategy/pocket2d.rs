@@ -18,7 +18,10 @@ use crate::toolpath::entry::Keepout;
 use crate::offset::offset;
 use crate::profile::{Loop, Shape};
 use crate::toolpath::Move;
+use crate::strategy::rough_zigzag::LoadControl;
+use crate::toolpath::arcfit;
 use crate::zigzag::graph::{Graph, Pattern};
+use crate::zigzag::load::{self, Load, PixelMap, Profile};
 
 /// How the pocket is cleared.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
@@ -65,6 +68,11 @@ pub struct Pocket2d {
     pub pattern: PocketPattern,
     /// Direction of zigzag passes (degrees from +X). Default value: 0.
     pub angle: f64,
+    /// How the zigzag pattern holds the tool's load at the step-over's (seed 004 §3). Default
+    /// value: path.
+    pub load: LoadControl,
+    /// How far over the reference load a zigzag step may go (0.1: 10 %). Default value: 0.1.
+    pub load_tolerance: f64,
     /// Default value: helix.
     pub entry: Entry,
     /// Helix radius (mm). Default value: 0.4 × the tool diameter.
@@ -92,6 +100,8 @@ impl Default for Pocket2d {
             leave_stock: 0.0,
             pattern: PocketPattern::Offset,
             angle: 0.0,
+            load: LoadControl::Path,
+            load_tolerance: 0.1,
             entry: Entry::Helix,
             helix_radius: None,
             ramp_angle: 3.0,
@@ -178,6 +188,8 @@ pub fn pocket_moves(region: &Shape, op: &Pocket2d, mut s: Setup) -> Result<Vec<M
         climb: op.direction == Direction::Climb,
         pattern: op.pattern,
         angle: op.angle.to_radians(),
+        load: op.load,
+        load_tolerance: op.load_tolerance,
         entry: op.entry,
         ramp_angle: op.ramp_angle.clamp(0.1, 90.0).to_radians(),
         helix_r: op.helix_radius.unwrap_or(0.8 * r),
@@ -192,6 +204,14 @@ pub fn pocket_moves(region: &Shape, op: &Pocket2d, mut s: Setup) -> Result<Vec<M
     Ok(out)
 }
 
+/// The map of the material at a depth that the zigzag passes cut, and the load they hold:
+/// what the boundary ring after them is held by.
+struct Held {
+    map: PixelMap,
+    limit: f64,
+    ds: f64,
+}
+
 /// How a region is cleared at one depth.
 #[derive(Clone, Copy, Debug)]
 pub struct Clearing {
@@ -201,6 +221,9 @@ pub struct Clearing {
     pub pattern: PocketPattern,
     /// Direction of zigzag passes (radians from +X).
     pub angle: f64,
+    /// How zigzag passes hold the load, and by how much over the reference.
+    pub load: LoadControl,
+    pub load_tolerance: f64,
     pub entry: Entry,
     /// Steepest descent of helices and ramps (radians).
     pub ramp_angle: f64,
@@ -239,9 +262,13 @@ pub fn clear_rings(levels: &[Shape], clearing: &Clearing, z_prev: f64, z: f64, s
             }
         }
         PocketPattern::Zigzag => {
-            c.zigzag(boundary, clearing.step, clearing.angle, climb);
+            let mut held = c.zigzag(boundary, clearing);
             for l in &boundary.loops {
+                let (from, before) = (c.out.len(), c.s.cursor.at);
                 c.cut_loop(&orient(l), false);
+                if let Some(h) = &mut held {
+                    c.hold_by_feed(from, before, h);
+                }
             }
         }
     }
@@ -375,22 +402,113 @@ impl Ctx<'_, '_, '_> {
         true
     }
 
-    /// Parallel passes across `region` at `angle`, at most `step` apart, back and forth: the
-    /// walk of seed 004's intersection-points graph ([`Graph`]), each run of it entered by a
-    /// ramp along its first pass (or reached staying down where the link stays inside), and
-    /// followed along the region's boundary between passes.
-    fn zigzag(&mut self, region: &Shape, step: f64, angle: f64, climb: bool) {
-        let graph = Graph::new(region, angle, step);
+    /// Parallel passes across `region` at the clearing's angle, at most its step apart, back
+    /// and forth: the walk of seed 004's intersection-points graph ([`Graph`]), each run of it
+    /// entered by a ramp along its first pass (or reached staying down where the link stays
+    /// inside), and followed along the region's boundary between passes. Its load held as the
+    /// clearing asks (§3, [`crate::zigzag::load`]), on a map of the material at this depth:
+    /// extra path where a step would take more than the step-over's load, or a lower feed.
+    fn zigzag(&mut self, region: &Shape, clearing: &Clearing) -> Option<Held> {
+        let (step, climb) = (clearing.step, clearing.climb);
+        let graph = Graph::new(region, clearing.angle, step);
+        let r = self.s.tool_radius;
+        let load = Load { ds: 0.5 * step, step, tolerance: clearing.load_tolerance, climb };
+        let px = (r / 50.0).max(1e-3);
+        let limit = load.reference(px) * (1.0 + clearing.load_tolerance);
+        let z = self.z;
+        let mut map = (clearing.load != LoadControl::None).then(|| {
+            let stock = &self.s.cursor.stock;
+            PixelMap::new(region.bounds(), px, r, |p| stock.material_at(p, z), region)
+        });
         for run in graph.walk(Pattern::Zigzag, climb, self.s.tol.chordal) {
             let (pa, pb) = (run[0], run[1]);
             if self.at_depth() && self.inside(self.s.cursor.at.truncate(), pa) {
-                self.out.push(Move::Line { to: pa.extend(self.z), feed: self.s.feed });
+                if let Some(map) = &mut map {
+                    map.cut(self.s.cursor.at.truncate(), pa);
+                }
+                self.out.push(Move::Line { to: pa.extend(z), feed: self.s.feed });
             } else {
                 self.s.cursor.reposition(pa.extend(self.z_prev), self.out);
                 self.ramp_on_line(pa, pb);
             }
-            self.out.extend(run[1..].iter().map(|p| Move::Line { to: p.extend(self.z), feed: self.s.feed }));
+            match &mut map {
+                None => self.out.extend(run[1..].iter().map(|p| Move::Line { to: p.extend(z), feed: self.s.feed })),
+                Some(map) => {
+                    let mut steps = Profile::default();
+                    let pts = match clearing.load {
+                        LoadControl::Path => load::corrected(map, &run, &load, &mut steps),
+                        _ => load::plain(map, &run, &load, &mut steps),
+                    };
+                    let moves: Vec<Move> = pts[1..]
+                        .iter()
+                        .zip(&steps.counts)
+                        .map(|(p, &(n, len))| Move::Line { to: p.extend(z), feed: self.s.feed * load::feed_share(n, len, limit, load.ds).unwrap_or(1.0) })
+                        .collect();
+                    self.out.extend(arcfit::fit(&moves, pa.extend(z), self.s.tol.chordal, &|p| region.contains(p)));
+                }
+            }
             self.s.cursor.moved(self.out);
+        }
+        map.map(|map| Held { map, limit, ds: load.ds })
+    }
+
+    /// The moves from `from` on (the tool standing at `before`) with their feed lowered where
+    /// the cut along the depth would take more than the held load: each move at the depth in
+    /// pieces a quarter of Δs long, pieces at one feed joined again (arcs stay arcs on their
+    /// circle). The boundary ring after the passes finishes the wall: held by the feed, as
+    /// zigzag roughing holds its last contour.
+    fn hold_by_feed(&mut self, from: usize, before: DVec3, held: &mut Held) {
+        let moves: Vec<Move> = self.out.drain(from..).collect();
+        let piece = held.ds / load::SUBSTEPS as f64;
+        let mut at = before;
+        for m in moves {
+            let to = m.to();
+            let level = (at.z - self.z).abs() < 1e-9 && (to.z - self.z).abs() < 1e-9;
+            let (feed, arc) = match m {
+                Move::Line { feed, .. } if level => (feed, None),
+                Move::Arc { feed, center, clockwise, .. } if level => (feed, Some((center, clockwise))),
+                _ => {
+                    if !m.is_rapid() && at.z.min(to.z) <= self.z + 1e-9 {
+                        held.map.cut(at.truncate(), to.truncate());
+                    }
+                    self.out.push(m);
+                    at = to;
+                    continue;
+                }
+            };
+            let point = |t: f64| match arc {
+                None => at.lerp(to, t),
+                Some((c, cw)) => (c + DVec2::from_angle(crate::toolpath::arc_sweep(at, to, c, cw) * t).rotate(at.truncate() - c)).extend(self.z),
+            };
+            let length = match arc {
+                None => at.distance(to),
+                Some((c, cw)) => crate::toolpath::arc_sweep(at, to, c, cw).abs() * c.distance(at.truncate()),
+            };
+            let n = (length / piece).ceil().max(1.0) as usize;
+            let mut prev = at;
+            let mut group: Option<(DVec3, f64)> = None;
+            let emit = |out: &mut Vec<Move>, end: DVec3, f: f64| match arc {
+                None => out.push(Move::Line { to: end, feed: f }),
+                Some((center, clockwise)) => out.push(Move::Arc { to: end, center, clockwise, feed: f }),
+            };
+            for k in 1..=n {
+                let q = if k == n { to } else { point(k as f64 / n as f64) };
+                let count = held.map.cut(prev.truncate(), q.truncate()) as f64;
+                let f = feed * load::feed_share(count, prev.distance(q), held.limit, held.ds).unwrap_or(1.0);
+                match group {
+                    Some((_, g)) if g == f => group = Some((q, f)),
+                    Some((end, g)) => {
+                        emit(self.out, end, g);
+                        group = Some((q, f));
+                    }
+                    None => group = Some((q, f)),
+                }
+                prev = q;
+            }
+            if let Some((end, g)) = group {
+                emit(self.out, end, g);
+            }
+            at = to;
         }
     }
 
@@ -421,6 +539,7 @@ impl super::Operate for Pocket2d {
         super::positive("rampAngle", self.ramp_angle)?;
         super::not_negative("leaveStock", self.leave_stock)?;
         super::finite("angle", self.angle)?;
+        super::not_negative("loadTolerance", self.load_tolerance)?;
         if let Some(r) = self.helix_radius {
             super::positive("helixRadius", r)?;
         }

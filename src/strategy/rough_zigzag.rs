@@ -28,7 +28,6 @@ use crate::error::{Error, Result};
 use crate::geom::{DVec2, DVec3};
 use crate::profile::Shape;
 use crate::progress::Progress;
-use crate::sim::DexelStock;
 use crate::toolpath::entry::Entry;
 use crate::toolpath::{arcfit, Move, Toolpath};
 use crate::zigzag::graph::{along_boundary, Graph, Pattern};
@@ -237,7 +236,7 @@ impl Operate for RoughZigzag {
             runs.extend(boundary_runs(&region, load.climb, tol.chordal, end));
             // §3: the load on the material at this level.
             let stock = ctx.sim.stock();
-            let material = |p: DVec2| above(stock, p, z);
+            let material = |p: DVec2| load::material_at(stock, p, z);
             let bounds = region.bounds();
             // The plain path's own map, for the report, only where the path is not the plain one.
             let mut plain_map = (self.load == LoadControl::Path).then(|| PixelMap::new(bounds, px, r, &material, &region));
@@ -285,13 +284,11 @@ impl Operate for RoughZigzag {
                 });
                 let mut fed = Vec::with_capacity(steps.counts.len());
                 for &(n, len) in &steps.counts {
-                    let rate = n * ds / len.max(1e-9);
-                    let slow = self.load != LoadControl::None && rate > limit;
-                    if slow {
+                    let slow = if self.load == LoadControl::None { None } else { load::feed_share(n, len, limit, ds) };
+                    if slow.is_some() {
                         report.slowed += len;
                     }
-                    // In twentieths, so that steps at one feed join into one move.
-                    let share = if slow { ((limit / rate) * 20.0).floor().max(1.0) / 20.0 } else { 1.0 };
+                    let share = slow.unwrap_or(1.0);
                     shares.push(share);
                     fed.push(tool.feed_rate * share);
                 }
@@ -339,9 +336,6 @@ fn too_short(run: &[DVec2], least: f64) -> bool {
 }
 
 /// Whether the in-process stock stands above `z` at `p` (the cell under it).
-fn above(stock: &DexelStock, p: DVec2, z: f64) -> bool {
-    stock.top_near(p).is_some_and(|top| top > z + 1e-6)
-}
 
 /// The region's loops as closed runs (points within `chord` of them), climbing: outer loops
 /// counter-clockwise, holes clockwise, as the region holds them; each starts at its point

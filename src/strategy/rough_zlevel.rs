@@ -161,6 +161,8 @@ impl RoughZlevel {
             climb: self.direction == Direction::Climb,
             pattern: PocketPattern::Offset,
             angle: 0.0,
+            load: super::rough_zigzag::LoadControl::None,
+            load_tolerance: 0.0,
             entry: PocketEntry::Helix,
             ramp_angle: self.ramp_angle.clamp(0.1, 89.0).to_radians(),
             helix_r: self.helix_radius.unwrap_or(0.4 * 2.0 * r).min(0.95 * r),

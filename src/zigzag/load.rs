@@ -257,6 +257,19 @@ fn row_span(a: DVec2, b: DVec2, r: f64, y: f64) -> Option<(f64, f64)> {
     (lo <= hi).then_some((lo, hi))
 }
 
+/// Whether `stock` has material at height `z` over `p`: the material of a level's map.
+pub fn material_at(stock: &crate::sim::DexelStock, p: DVec2, z: f64) -> bool {
+    stock.top_near(p).is_some_and(|top| top > z + 1e-6)
+}
+
+/// The share of the full feed a step that removes `n` pixels over `len` mm may run at so that
+/// its rate keeps within `limit` pixels per Δs `ds`: `None` where the full feed keeps it; else
+/// in twentieths (so that steps at one feed join into one move), one twentieth at least.
+pub fn feed_share(n: f64, len: f64, limit: f64, ds: f64) -> Option<f64> {
+    let rate = n * ds / len.max(1e-9);
+    (rate > limit).then(|| ((limit / rate) * 20.0).floor().max(1.0) / 20.0)
+}
+
 /// The load settings of one level.
 #[derive(Clone, Copy, Debug)]
 pub struct Load {

@@ -376,6 +376,15 @@ pattern: PocketPattern,
  */
 angle: number, 
 /**
+ * How the zigzag pattern holds the tool's load at the step-over's (seed 004 §3). Default
+ * value: path.
+ */
+load: LoadControl, 
+/**
+ * How far over the reference load a zigzag step may go (0.1: 10 %). Default value: 0.1.
+ */
+loadTolerance: number, 
+/**
  * Default value: helix.
  */
 entry: PocketEntry, 
