@@ -262,12 +262,15 @@ pub fn clear_rings(levels: &[Shape], clearing: &Clearing, z_prev: f64, z: f64, s
             }
         }
         PocketPattern::Zigzag => {
-            let mut held = c.zigzag(boundary, clearing);
-            for l in &boundary.loops {
-                let (from, before) = (c.out.len(), c.s.cursor.at);
-                c.cut_loop(&orient(l), false);
-                if let Some(h) = &mut held {
-                    c.hold_by_feed(from, before, h);
+            // Each pocket (an outline and its islands) on its own: its passes, then its ring.
+            for part in boundary.regions() {
+                let mut held = c.zigzag(&part, clearing);
+                for l in &part.loops {
+                    let (from, before) = (c.out.len(), c.s.cursor.at);
+                    c.cut_loop(&orient(l), false);
+                    if let Some(h) = &mut held {
+                        c.hold_by_feed(from, before, h);
+                    }
                 }
             }
         }
@@ -413,7 +416,7 @@ impl Ctx<'_, '_, '_> {
         let graph = Graph::new(region, clearing.angle, step);
         let r = self.s.tool_radius;
         let load = Load { ds: 0.5 * step, step, tolerance: clearing.load_tolerance, climb };
-        let px = (r / 50.0).max(1e-3);
+        let px = load::pixel_for(region.bounds(), r, (r / 50.0).max(1e-3));
         let limit = load.reference(px) * (1.0 + clearing.load_tolerance);
         let z = self.z;
         let mut map = (clearing.load != LoadControl::None).then(|| {

@@ -209,8 +209,6 @@ impl Operate for RoughZigzag {
         let ds = self.sampling.unwrap_or(0.5 * step).max(1e-3);
         let px = self.pixel.unwrap_or(r / 50.0).max(1e-3);
         let load = Load { ds, step, tolerance: self.load_tolerance, climb: self.direction == Direction::Climb };
-        let reference = load.reference(px);
-        let limit = reference * (1.0 + self.load_tolerance);
         let pattern = match self.passes {
             Passes::Zigzag => Pattern::Zigzag,
             Passes::OneWay => Pattern::OneWay,
@@ -238,6 +236,9 @@ impl Operate for RoughZigzag {
             let stock = ctx.sim.stock();
             let material = |p: DVec2| load::material_at(stock, p, z);
             let bounds = region.bounds();
+            let px = load::pixel_for(bounds, r, px);
+            let reference = load.reference(px);
+            let limit = reference * (1.0 + self.load_tolerance);
             // The plain path's own map, for the report, only where the path is not the plain one.
             let mut plain_map = (self.load == LoadControl::Path).then(|| PixelMap::new(bounds, px, r, &material, &region));
             let mut map = PixelMap::new(bounds, px, r, &material, &region);

@@ -257,6 +257,17 @@ fn row_span(a: DVec2, b: DVec2, r: f64, y: f64) -> Option<(f64, f64)> {
     (lo <= hi).then_some((lo, hi))
 }
 
+/// The most pixels a level's map holds (a bit and two flags each): past it the pixels grow.
+const MOST_PIXELS: f64 = 16e6;
+
+/// The pixel of a map over `bounds` grown by `radius`: `wanted`, or larger where the map
+/// would hold more than [`MOST_PIXELS`] (a large sheet or part).
+pub fn pixel_for(bounds: Rect, radius: f64, wanted: f64) -> f64 {
+    let b = bounds.expand(radius);
+    let area = ((b.max.x - b.min.x) * (b.max.y - b.min.y)).max(0.0);
+    wanted.max((area / MOST_PIXELS).sqrt())
+}
+
 /// Whether `stock` has material at height `z` over `p`: the material of a level's map.
 pub fn material_at(stock: &crate::sim::DexelStock, p: DVec2, z: f64) -> bool {
     stock.top_near(p).is_some_and(|top| top > z + 1e-6)
