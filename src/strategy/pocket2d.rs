@@ -425,9 +425,13 @@ impl Ctx<'_, '_, '_> {
         });
         for run in graph.walk(Pattern::Zigzag, climb, self.s.tol.chordal) {
             let (pa, pb) = (run[0], run[1]);
-            if self.at_depth() && self.inside(self.s.cursor.at.truncate(), pa) {
+            let at = self.s.cursor.at.truncate();
+            // Staying down only where the straight link stays inside and, when the load is
+            // held, keeps it.
+            let link = load::densify(&[at, pa], load.ds / load::SUBSTEPS as f64);
+            if self.at_depth() && self.inside(at, pa) && map.as_mut().is_none_or(|m| load::link_keeps(m, &link, limit, load.ds)) {
                 if let Some(map) = &mut map {
-                    map.cut(self.s.cursor.at.truncate(), pa);
+                    map.cut(at, pa);
                 }
                 self.out.push(Move::Line { to: pa.extend(z), feed: self.s.feed });
             } else {

@@ -263,7 +263,7 @@ impl Operate for RoughZigzag {
                 let link = from.map(|a| load::densify(&[a, run[0]], ds / load::SUBSTEPS as f64)).unwrap_or_default();
                 let joined = from.is_some_and(|a| {
                     use crate::toolpath::entry::Keepout;
-                    inside.clears(a.extend(z), run[0].extend(z), 0.0) && link.windows(2).all(|w| map.count(w[0], w[1]) as f64 <= limit * w[0].distance(w[1]).max(0.25 * ds) / ds)
+                    inside.clears(a.extend(z), run[0].extend(z), 0.0) && load::link_keeps(&mut map, &link, limit, ds)
                 });
                 let in_material = map.count(run[0], run[0]) > 0;
                 if !joined && too_short(run, shortest) && in_material {

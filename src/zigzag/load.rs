@@ -281,6 +281,13 @@ pub fn feed_share(n: f64, len: f64, limit: f64, ds: f64) -> Option<f64> {
     (rate > limit).then(|| ((limit / rate) * 20.0).floor().max(1.0) / 20.0)
 }
 
+/// Whether each step of `link` (a straight link at the level, in steps of a quarter Δs) keeps
+/// within `limit` pixels per Δs `ds` on the map as it stands: a link that would not is no
+/// way to stay down between two runs.
+pub fn link_keeps(map: &mut PixelMap, link: &[DVec2], limit: f64, ds: f64) -> bool {
+    link.windows(2).all(|w| map.count(w[0], w[1]) as f64 <= limit * w[0].distance(w[1]).max(0.25 * ds) / ds)
+}
+
 /// The load settings of one level.
 #[derive(Clone, Copy, Debug)]
 pub struct Load {
