@@ -428,8 +428,8 @@ impl Ctx<'_, '_, '_> {
             let at = self.s.cursor.at.truncate();
             // Staying down only where the straight link stays inside and, when the load is
             // held, keeps it.
-            let link = load::densify(&[at, pa], load.ds / load::SUBSTEPS as f64);
-            if self.at_depth() && self.inside(at, pa) && map.as_mut().is_none_or(|m| load::link_keeps(m, &link, limit, load.ds)) {
+            let keeps = |m: &mut PixelMap| load::link_keeps(m, &load::densify(&[at, pa], load.ds / load::SUBSTEPS as f64), limit, load.ds);
+            if self.at_depth() && self.inside(at, pa) && map.as_mut().is_none_or(keeps) {
                 if let Some(map) = &mut map {
                     map.cut(at, pa);
                 }
@@ -471,9 +471,10 @@ impl Ctx<'_, '_, '_> {
         for m in moves {
             let to = m.to();
             let level = (at.z - self.z).abs() < 1e-9 && (to.z - self.z).abs() < 1e-9;
+            // An arc: its centre, turn and signed sweep.
             let (feed, arc) = match m {
                 Move::Line { feed, .. } if level => (feed, None),
-                Move::Arc { feed, center, clockwise, .. } if level => (feed, Some((center, clockwise))),
+                Move::Arc { feed, center, clockwise, .. } if level => (feed, Some((center, clockwise, crate::toolpath::arc_sweep(at, to, center, clockwise)))),
                 _ => {
                     if !m.is_rapid() && at.z.min(to.z) <= self.z + 1e-9 {
                         held.map.cut(at.truncate(), to.truncate());
@@ -485,18 +486,18 @@ impl Ctx<'_, '_, '_> {
             };
             let point = |t: f64| match arc {
                 None => at.lerp(to, t),
-                Some((c, cw)) => (c + DVec2::from_angle(crate::toolpath::arc_sweep(at, to, c, cw) * t).rotate(at.truncate() - c)).extend(self.z),
+                Some((c, _, sweep)) => (c + DVec2::from_angle(sweep * t).rotate(at.truncate() - c)).extend(self.z),
             };
             let length = match arc {
                 None => at.distance(to),
-                Some((c, cw)) => crate::toolpath::arc_sweep(at, to, c, cw).abs() * c.distance(at.truncate()),
+                Some((c, _, sweep)) => sweep.abs() * c.distance(at.truncate()),
             };
             let n = (length / piece).ceil().max(1.0) as usize;
             let mut prev = at;
             let mut group: Option<(DVec3, f64)> = None;
             let emit = |out: &mut Vec<Move>, end: DVec3, f: f64| match arc {
                 None => out.push(Move::Line { to: end, feed: f }),
-                Some((center, clockwise)) => out.push(Move::Arc { to: end, center, clockwise, feed: f }),
+                Some((center, clockwise, _)) => out.push(Move::Arc { to: end, center, clockwise, feed: f }),
             };
             for k in 1..=n {
                 let q = if k == n { to } else { point(k as f64 / n as f64) };

@@ -249,7 +249,7 @@ impl Operate for RoughZigzag {
             let mut plain = Profile::default();
             let mut done = Profile::default();
             let mut shares = Vec::new();
-            for (n, run) in runs.iter().enumerate() {
+            for (i, run) in runs.iter().enumerate() {
                 // The plain path's load, for the report (the path itself unless corrected).
                 if let Some(m) = &mut plain_map {
                     load::plain(m, run, &load, &mut plain);
@@ -280,7 +280,7 @@ impl Operate for RoughZigzag {
                     pts.extend(&link[..link.len() - 1]);
                 }
                 pts.extend(match self.load {
-                    LoadControl::Path if n < contours_from => load::corrected(&mut map, run, &load, &mut steps),
+                    LoadControl::Path if i < contours_from => load::corrected(&mut map, run, &load, &mut steps),
                     _ => load::plain(&mut map, run, &load, &mut steps),
                 });
                 let mut fed = Vec::with_capacity(steps.counts.len());
@@ -335,8 +335,6 @@ impl Operate for RoughZigzag {
 fn too_short(run: &[DVec2], least: f64) -> bool {
     run.windows(2).map(|w| w[0].distance(w[1])).sum::<f64>() < least
 }
-
-/// Whether the in-process stock stands above `z` at `p` (the cell under it).
 
 /// The region's loops as closed runs (points within `chord` of them), climbing: outer loops
 /// counter-clockwise, holes clockwise, as the region holds them; each starts at its point

@@ -82,27 +82,31 @@ impl PixelMap {
                 }
             }
         }
-        // Eroded by one pixel.
+        // Eroded by one pixel: along the rows, then along the columns.
         let k = 1;
-        let at = |i: isize, j: isize| i >= 0 && j >= 0 && (i as usize) < nx && (j as usize) < ny && allowed[j as usize * nx + i as usize];
+        let mut rows = vec![false; nx * ny];
+        for j in 0..ny {
+            for i in 0..nx {
+                rows[j * nx + i] = (i.saturating_sub(k)..=(i + k).min(nx - 1)).all(|q| allowed[j * nx + q]) && i >= k && i + k < nx;
+            }
+        }
         let mut inner = vec![false; nx * ny];
-        for j in 0..ny as isize {
-            for i in 0..nx as isize {
-                let around = || (-k..=k).flat_map(move |dj| (-k..=k).map(move |di| (i + di, j + dj)));
-                inner[j as usize * nx + i as usize] = around().all(|(i, j)| at(i, j));
+        for j in k..ny.saturating_sub(k) {
+            for i in 0..nx {
+                inner[j * nx + i] = (j - k..=j + k).all(|q| rows[q * nx + i]);
             }
         }
         let boundary: Vec<(Segment, Option<ArcGeom>)> = region.segments().map(|s| (s, s.arc_geom())).collect();
-        let mut rows = vec![Vec::new(); ny];
+        let mut near_row = vec![Vec::new(); ny];
         for (n, (s, g)) in boundary.iter().enumerate() {
             let b = s.bounds_with(g.as_ref());
             let j0 = ((b.min.y - origin.y) / px - 0.5).floor().max(0.0) as usize;
             let j1 = (((b.max.y - origin.y) / px + 0.5).ceil().max(0.0) as usize).min(ny - 1);
-            for row in &mut rows[j0..=j1] {
+            for row in &mut near_row[j0..=j1] {
                 row.push(n as u32);
             }
         }
-        PixelMap { origin, px, nx, ny, words, material: m, centre_in: allowed, inner, radius, boundary, rows, undo: Vec::new(), logging: false }
+        PixelMap { origin, px, nx, ny, words, material: m, centre_in: allowed, inner, radius, boundary, rows: near_row, undo: Vec::new(), logging: false }
     }
 
     pub fn pixel(&self) -> f64 {

@@ -101,10 +101,10 @@ impl LevelMap {
         // cliff's foot, where a chord between two of its points can clip the cliff. Only a
         // cutter with a flat bottom makes cliffs (a ball's surface is smooth, and its level
         // curves, a waterline's path, stay where the crossings put them).
-        let margin = back_off(cl, tol);
         if cl.profile().flat_radius() <= 0.0 {
             return level_region(cl, &inside, level, tol);
         }
+        let margin = back_off(cl, tol);
         let node = |i: usize, j: usize| f.origin + DVec2::new(i as f64, j as f64) * f.spacing;
         let edge_of = |c: usize| {
             let (i, j) = (c % nx, c / nx);
@@ -444,6 +444,7 @@ fn sharpen(cl: &ClSurface, level: f64, pts: &[DVec2], tol: &Tolerances) -> Vec<D
         return pts.to_vec();
     }
     let clears = |a: DVec2, b: DVec2| clears_level(cl, level, a, b, tol);
+    let ring = Loop::polygon(pts);
     let short = 2.0 * std::f64::consts::SQRT_2 * cl.field.spacing;
     let mut out = Vec::with_capacity(n + 4);
     for i in 0..n {
@@ -465,7 +466,7 @@ fn sharpen(cl: &ClSurface, level: f64, pts: &[DVec2], tol: &Tolerances) -> Vec<D
         // A convex corner: between the chamfer and the meeting point lies what the ring left
         // out (at a reflex one, what it holds).
         let between = (b + c) * 0.25 + x * 0.5;
-        if s > 0.0 && t < 0.0 && x.distance(b) <= short && x.distance(c) <= short && !ring_holds(pts, between) && clears(b, x) && clears(x, c) {
+        if s > 0.0 && t < 0.0 && x.distance(b) <= short && x.distance(c) <= short && !ring.contains(between) && clears(b, x) && clears(x, c) {
             out.push(x);
         }
     }
@@ -475,18 +476,6 @@ fn sharpen(cl: &ClSurface, level: f64, pts: &[DVec2], tol: &Tolerances) -> Vec<D
 /// Whether the exact surface stays at or below `level` all along the segment from `a` to `b`.
 fn clears_level(cl: &ClSurface, level: f64, a: DVec2, b: DVec2, tol: &Tolerances) -> bool {
     cl.along(a, b).into_iter().all(|(_, z)| z <= level + tol.height)
-}
-
-/// Whether the closed ring `pts` holds `p` (crossing number).
-fn ring_holds(pts: &[DVec2], p: DVec2) -> bool {
-    let mut inside = false;
-    for (k, &a) in pts.iter().enumerate() {
-        let b = pts[(k + 1) % pts.len()];
-        if (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x) {
-            inside = !inside;
-        }
-    }
-    inside
 }
 
 fn distance_to_segment(p: DVec2, a: DVec2, b: DVec2) -> f64 {
