@@ -67,7 +67,7 @@ fn a_flat_end_keeps_its_radius_from_a_box() {
     let tol = Tolerances::DEFAULT;
     let grid = Grid::covering(DVec2::splat(-25.0), DVec2::splat(25.0), 0.25);
     let cl = surface(&part, grid, -1.0, &Cutter::flat(6.0));
-    let map = LevelMap::new(&cl, &tol);
+    let map = LevelMap::of_part(&cl, &part, &tol);
     let region = map.region(&cl, 4.0, &|_, _| true, &tol);
     // The grid's border and the box grown by the radius: two loops, one a hole.
     assert_eq!(region.loops.len(), 2, "{:?}", region.loops.iter().map(|l| l.len()).collect::<Vec<_>>());
@@ -90,7 +90,7 @@ fn a_ball_around_a_hemisphere_stays_outside_the_closed_form_circle() {
     let tol = Tolerances::DEFAULT;
     let grid = Grid::covering(DVec2::splat(-16.0), DVec2::splat(16.0), 0.25);
     let cl = surface(&part, grid, -1.0, &Cutter::ball(2.0 * r));
-    let map = LevelMap::new(&cl, &tol);
+    let map = LevelMap::of_part(&cl, &part, &tol);
     let region = map.region(&cl, level, &|_, _| true, &tol);
     let hole = region.loops.iter().find(|l| !l.is_ccw()).expect("a hole around the hemisphere");
     // The ball's centre on the sphere grown by r stands at level + r: at distance rho.
@@ -128,7 +128,7 @@ fn a_pocket_with_an_island_gives_a_ring() {
     let tol = Tolerances::DEFAULT;
     let grid = Grid::covering(DVec2::splat(-22.0), DVec2::splat(22.0), 0.25);
     let cl = surface(&part, grid, -1.0, &Cutter::flat(6.0));
-    let map = LevelMap::new(&cl, &tol);
+    let map = LevelMap::of_part(&cl, &part, &tol);
     let region = map.region(&cl, 5.0, &|_, _| true, &tol);
     assert_eq!(region.loops.len(), 2);
     let outer = region.loops.iter().find(|l| l.is_ccw()).unwrap();
@@ -153,7 +153,7 @@ fn on_spiky_parts_nothing_of_the_region_stands_above_the_level() {
         let part = spiky_terrain(seed, 8.0, 1.37, 3.0);
         let grid = Grid::covering(DVec2::splat(-10.0), DVec2::splat(10.0), 0.5);
         let cl = surface(&part, grid, -1.0, &cutter);
-        let map = LevelMap::new(&cl, &tol);
+        let map = LevelMap::of_part(&cl, &part, &tol);
         let mut rng = Lcg(seed);
         for level in [0.5, 1.2, 2.0, 2.6] {
             let region = map.region(&cl, level, &|_, _| true, &tol);
@@ -199,7 +199,7 @@ fn a_pocket_corner_between_nodes_is_reached() {
     let tol = Tolerances::DEFAULT;
     let grid = Grid::covering(DVec2::splat(-22.0), DVec2::splat(22.0), 0.25);
     let cl = surface(&part, grid, -1.0, &Cutter::flat(6.0));
-    let region = LevelMap::new(&cl, &tol).region(&cl, 5.0, &|_, _| true, &tol);
+    let region = LevelMap::of_part(&cl, &part, &tol).region(&cl, 5.0, &|_, _| true, &tol);
     assert_eq!(region.loops.len(), 1);
     // The sides stand the back-off in from ±12.1; the corners where those sides meet.
     let corner = 12.1 - swarf::zmap::contour::back_off(&cl, &tol);
@@ -243,7 +243,7 @@ fn the_boundary_keeps_off_cliffs_round_corners() {
                 let grid = Grid::covering(DVec2::splat(-12.0), DVec2::splat(12.0), 0.25);
                 let cl = surface(&part, grid, -1.0, &cutter);
                 let level = 3.0;
-                let region = LevelMap::new(&cl, &tol).region(&cl, level, &|_, _| true, &tol);
+                let region = LevelMap::of_part(&cl, &part, &tol).region(&cl, level, &|_, _| true, &tol);
                 let mut worst = f64::NEG_INFINITY;
                 for s in region.segments() {
                     let n = (s.length() / 0.002).ceil().max(1.0) as usize;
@@ -258,4 +258,41 @@ fn the_boundary_keeps_off_cliffs_round_corners() {
         }
     }
     assert!(fails.is_empty(), "the boundary stands above the level (corner radius, direction, gap, height): {fails:?}");
+}
+
+/// The level map bounds the surface along every grid edge from above (the widened cutter at the
+/// edge's lower end), so an edge it does not look at exactly cannot hide a ridge: on spiky
+/// terrain, for every cutter shape, plain and grown by a program's resolution (a grown ball is
+/// a larger ball lifted), every edge's bound is at least the highest of its exact profile, and
+/// most bounds are within a tenth of a millimetre of it (the bound is of use).
+#[test]
+fn the_level_maps_bounds_hold_every_edges_exact_profile() {
+    let part = spiky_terrain(7, 8.0, 1.3, 5.0);
+    let tol = Tolerances::DEFAULT;
+    let grid = Grid::covering(DVec2::splat(-10.0), DVec2::splat(10.0), 0.25);
+    for cutter in [Cutter::flat(6.0), Cutter::ball(6.0), Cutter::bull_nose(6.0, 1.0)] {
+        for rho in [0.0, 0.01] {
+            let drop = PointDrop::grown(&part, &cutter.profile(), rho, &tol);
+            let field = drop.field(&part, grid, -5.0, &tol, &mut Progress::none()).unwrap();
+            let cl = ClSurface::new(field, drop, -5.0, true, tol.interpolation);
+            let map = LevelMap::of_part(&cl, &part, &tol);
+            let (right, up) = map.bounds();
+            let f = &cl.field;
+            let node = |c: usize| f.origin + DVec2::new((c % f.nx) as f64, (c / f.nx) as f64) * f.spacing;
+            let (mut edges, mut close) = (0, 0);
+            for c in 0..f.nx * f.ny {
+                for (other, bound) in [(c + 1, right[c]), (c + f.nx, up[c])] {
+                    if (other == c + 1 && c % f.nx + 1 == f.nx) || other >= f.nx * f.ny {
+                        assert_eq!(bound, f64::NEG_INFINITY);
+                        continue;
+                    }
+                    let top = cl.along(node(c), node(other)).into_iter().fold(f64::NEG_INFINITY, |m, (_, z)| m.max(z)) + 2.0 * tol.interpolation;
+                    assert!(bound >= top, "{cutter:?} ρ {rho}: the bound {bound} under the exact {top} from {} to {}", node(c), node(other));
+                    edges += 1;
+                    close += (bound - top <= 0.1) as usize;
+                }
+            }
+            assert!(close * 10 >= edges * 7, "{cutter:?} ρ {rho}: only {close} of {edges} bounds within 0.1 mm");
+        }
+    }
 }

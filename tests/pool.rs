@@ -110,10 +110,20 @@ fn the_planner_contours_on_the_level_maps_it_was_given() {
     let mut planner = job::prepare(&job, demo_part()).unwrap();
     let surfaces = planner.surfaces().unwrap();
     let s = surfaces[planner.level_maps(&surfaces).unwrap()[0]];
-    // Every edge rises above every level: of every two nodes inside, the higher is left out,
-    // so the contours are not those of the part's own map.
+    // The map from bands, as a pool makes it: the same program.
+    let (mut right, mut up) = (Vec::new(), Vec::new());
+    for j in (0..s.grid.ny).step_by(7) {
+        let (r, u) = planner.level_rows(s, j..j + 7).unwrap();
+        right.extend(r);
+        up.extend(u);
+    }
+    planner.keep_level_map(s, right, up).unwrap();
+    assert_eq!(planner.run(&mut Progress::none()).unwrap().gcode, gcode_whole(&job));
+    // Bounds that no edge rises to: no ridge between nodes is looked for, so the contours are
+    // not those of the part's own map.
+    let mut planner = job::prepare(&job, demo_part()).unwrap();
     let n = s.grid.nx * s.grid.ny;
-    planner.keep_level_map(s, vec![f64::INFINITY; n], vec![f64::INFINITY; n]).unwrap();
+    planner.keep_level_map(s, vec![f64::NEG_INFINITY; n], vec![f64::NEG_INFINITY; n]).unwrap();
     let out = planner.run(&mut Progress::none()).map(|o| o.gcode).unwrap_or_default();
     assert_ne!(out, gcode_whole(&job));
 }

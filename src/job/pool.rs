@@ -70,11 +70,12 @@ impl Prepared {
         Ok(out)
     }
 
-    /// Rows `rows` of the level map of surface `request` (kept, or made here): the heights
+    /// Rows `rows` of the level map of surface `request` (kept, or made here): the bounds
     /// along the edges to the right, then those along the edges up.
     pub fn level_rows(&mut self, request: SurfaceRequest, rows: Range<usize>) -> Result<(Vec<f64>, Vec<f64>)> {
         let cl = self.ctx.cl_surface(request, &mut Progress::none())?;
-        Ok(LevelMap::rows(&cl, &self.ctx.tolerances, rows))
+        let wide = self.ctx.widened_rows(request, rows.start..rows.end.saturating_add(1))?;
+        LevelMap::rows(&cl, &wide, &self.ctx.tolerances, rows).ok_or_else(|| Error::Input("the widened cutter's heights do not cover the band".into()))
     }
 
     /// Keeps the level map of surface `request` from its rows' heights (its bands joined).

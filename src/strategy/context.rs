@@ -77,6 +77,8 @@ pub struct Caches {
     drops: Vec<((Profile, u64), Arc<PointDrop>)>,
     cl: Vec<(SurfaceKey, Arc<ClSurface>)>,
     builders: Vec<((Profile, u64), Arc<ExactBuilder>)>,
+    /// The builders of widened cutters ([`PointDrop::widened`]), by the cutter they widen.
+    widened: Vec<((Profile, u64, u64), Arc<ExactBuilder>)>,
     levels: Vec<(SurfaceKey, Arc<LevelMap>)>,
     pub counts: CacheCounts,
 }
@@ -253,9 +255,32 @@ impl Context {
         if let Some((_, m)) = self.caches.levels.iter().find(|(k, _)| *k == key) {
             return m.clone();
         }
-        let map = Arc::new(LevelMap::new(cl, &self.tolerances));
+        let grid = request.grid;
+        let wide = self.widened_rows(request, 0..grid.ny).unwrap_or_else(|_| vec![f64::INFINITY; grid.nx * grid.ny]);
+        let map = Arc::new(LevelMap::new(cl, &wide, &self.tolerances).expect("the widened heights cover the grid"));
         self.caches.levels.push((key, map.clone()));
         map
+    }
+
+    /// The heights of the cutter of `request` widened by its grid's spacing
+    /// ([`PointDrop::widened`]) at the nodes of rows `rows` (natively on every core when the
+    /// rows are the whole grid): what [`LevelMap`] bounds its edges by.
+    pub fn widened_rows(&mut self, request: SurfaceRequest, rows: std::ops::Range<usize>) -> Result<Vec<f64>> {
+        let drop = self.drop(&request.profile);
+        let key = (request.profile, self.resolution.to_bits(), request.grid.spacing.to_bits());
+        let builder = match self.caches.widened.iter().find(|(k, _)| *k == key) {
+            Some((_, b)) => b.clone(),
+            None => {
+                let b = Arc::new(drop.widened(&self.part, request.grid.spacing, &self.tolerances));
+                self.caches.widened.push((key, b.clone()));
+                b
+            }
+        };
+        let grid = request.grid;
+        if rows.start == 0 && rows.end >= grid.ny {
+            return Ok(drop.field_by(&builder, grid, request.floor, &mut Progress::none())?.z);
+        }
+        drop.rows(&builder, grid, request.floor, rows, &mut Progress::none())
     }
 
     /// Keeps `map` (made by a pool, band by band) as the level map of `request`'s surface.

@@ -176,13 +176,17 @@ impl<'m> InStock<'m> {
         self.stock.touch(p, &self.smaller, false)
     }
 
-    /// The highest [`InStock::estimate`] over points along `segments`, at most `spacing` apart.
-    pub fn highest_along(&self, segments: impl IntoIterator<Item = Segment>, spacing: f64) -> f64 {
+    /// The highest [`InStock::estimate`] over points along `segments`, at most `spacing` apart,
+    /// or the first at or above `enough` (where a higher one would not matter).
+    pub fn highest_along(&self, segments: impl IntoIterator<Item = Segment>, spacing: f64, enough: f64) -> f64 {
         let mut top = f64::NEG_INFINITY;
         for seg in segments {
             let n = (seg.length() / spacing.max(1e-3)).ceil().max(1.0) as usize;
             for k in 0..=n {
                 top = top.max(self.estimate(seg.point_at(k as f64 / n as f64)));
+                if top >= enough {
+                    return top;
+                }
             }
         }
         top
@@ -231,7 +235,7 @@ impl Cursor<'_> {
     /// it stands no higher than `to` plus `threshold` (the cut would be in the air).
     pub fn material_top(&self, segments: impl IntoIterator<Item = Segment>, from: f64, to: f64, threshold: f64) -> Option<f64> {
         let spacing = self.stock.stock.grid().spacing.max(0.5 * self.stock.profile.radius);
-        let top = self.stock.highest_along(segments, spacing);
+        let top = self.stock.highest_along(segments, spacing, from);
         (top > to + threshold).then(|| top.clamp(to, from))
     }
 

@@ -2,7 +2,9 @@
 //! stands at or below the level, as closed loops of lines that the seed 003 offsetter takes.
 //!
 //! Steps:
-//! 1. once per CL surface ([`LevelMap::new`]): the highest exact height along every grid edge
+//! 1. once per CL surface ([`LevelMap::new`]): a bound from above of the highest height along
+//!    every grid edge (the cutter widened by the grid's spacing, at the edge's lower end), and
+//!    at a level, along the edges that bound leaves in doubt, the highest exact height
 //!    ([`ClSurface::along`], which probes every peak in reach);
 //! 2. at a level, marching squares on the nodes' exact heights; of two nodes inside whose edge
 //!    rises above the level between them (a ridge between nodes, seed 001's blind spot, or a
@@ -23,7 +25,12 @@
 //! level by the cutter's rise at half a grid spacing from its axis (0 for a flat end's flat,
 //! 0.003 mm for a φ6 ball on a 0.25 mm grid).
 
+use std::collections::HashMap;
+use std::sync::Mutex;
+
 use crate::geom::{DVec2, Tolerances};
+use crate::mesh::Mesh;
+use crate::progress::Progress;
 use crate::parallel;
 use crate::profile::{Loop, Shape};
 use crate::zmap::surface::ClSurface;
@@ -33,45 +40,95 @@ const BEND_DEPTH: usize = 6;
 /// Halvings when pulling a point towards an inside node.
 const PULL_STEPS: usize = 40;
 
-/// A CL surface's grid with the highest exact height along each of its edges.
+/// A CL surface's grid with, along each of its edges, a bound from above of the surface's
+/// highest there, and the exact highest where a level needs it.
+///
+/// The bound is the widened cutter's height ([`crate::zmap::drop::PointDrop::widened`], grown
+/// by the grid's spacing) at the lower of the edge's two ends: every point of the edge is
+/// within a spacing of either end. It takes one more z-map; the exact profile along an edge
+/// ([`ClSurface::along`], a dozen drops) is taken only for an edge whose ends both stand at or
+/// below a level its bound rises above, which on most parts is a few edges in a hundred.
 pub struct LevelMap {
-    /// Per node, the highest along the edge to its right and the edge up (`-inf` past the grid).
+    /// Per node, the bound along the edge to its right and the edge up (`-inf` past the grid).
     right: Vec<f64>,
     up: Vec<f64>,
+    /// The exact highest (with the interpolation allowance) along edges a level asked about,
+    /// by node × 2 + direction (0 right, 1 up).
+    exact: Mutex<HashMap<usize, f64>>,
 }
 
+/// Added to a bound: the widened cutter's drops are computed apart from the exact ones, and
+/// may round differently (mm).
+const BOUND_SLACK: f64 = 1e-9;
+
 impl LevelMap {
-    pub fn new(cl: &ClSurface, tol: &Tolerances) -> LevelMap {
-        let rows = parallel::map_heavy(cl.field.ny, |j| LevelMap::rows(cl, tol, j..j + 1));
-        let (mut right, mut up) = (Vec::new(), Vec::new());
-        for (r, u) in rows {
-            right.extend(r);
-            up.extend(u);
-        }
-        LevelMap { right, up }
+    /// The map of `cl` from `wide`, the widened cutter's heights at every node of its grid.
+    pub fn new(cl: &ClSurface, wide: &[f64], tol: &Tolerances) -> Option<LevelMap> {
+        let (right, up) = LevelMap::rows(cl, wide, tol, 0..cl.field.ny)?;
+        LevelMap::from_rows(cl, right, up)
     }
 
-    /// Rows `rows` of the map (each row's highest heights along the edges to the right, then
-    /// those along the edges up): a band, as a worker of a pool makes it.
-    pub fn rows(cl: &ClSurface, tol: &Tolerances, rows: std::ops::Range<usize>) -> (Vec<f64>, Vec<f64>) {
+    /// The map of `cl` over `mesh`, the part its drops are of (the widened cutter's z-map made
+    /// here).
+    pub fn of_part(cl: &ClSurface, mesh: &Mesh, tol: &Tolerances) -> LevelMap {
+        let f = &cl.field;
+        let builder = cl.drop().widened(mesh, f.spacing, tol);
+        let wide = cl.drop().field_by(&builder, f.grid(), cl.floor(), &mut Progress::none()).map(|w| w.z).unwrap_or_else(|_| vec![f64::INFINITY; f.nx * f.ny]);
+        LevelMap::new(cl, &wide, tol).expect("the widened heights cover the grid")
+    }
+
+    /// Rows `rows` of the map (each row's bounds along the edges to the right, then those
+    /// along the edges up), from `wide`, the widened cutter's heights at the nodes of rows
+    /// `rows.start..rows.end + 1` (those of the grid): a band, as a worker of a pool makes it.
+    /// `None` when `wide` holds another number of heights.
+    pub fn rows(cl: &ClSurface, wide: &[f64], tol: &Tolerances, rows: std::ops::Range<usize>) -> Option<(Vec<f64>, Vec<f64>)> {
         let f = &cl.field;
         let (nx, ny) = (f.nx, f.ny);
-        let node = |i: usize, j: usize| f.origin + DVec2::new(i as f64, j as f64) * f.spacing;
-        let top = |a: DVec2, b: DVec2| cl.along(a, b).into_iter().fold(f64::NEG_INFINITY, |m, (_, z)| m.max(z)) + 2.0 * tol.interpolation;
         let rows = rows.start.min(ny)..rows.end.min(ny);
+        let held = rows.start..(rows.end + 1).min(ny);
+        if wide.len() != held.len() * nx {
+            return None;
+        }
+        let allowance = 2.0 * tol.interpolation + BOUND_SLACK;
+        let at = |i: usize, j: usize| wide[(j - held.start) * nx + i];
         let (mut right, mut up) = (Vec::with_capacity(rows.len() * nx), Vec::with_capacity(rows.len() * nx));
         for j in rows {
-            right.extend((0..nx).map(|i| if i + 1 < nx { top(node(i, j), node(i + 1, j)) } else { f64::NEG_INFINITY }));
-            up.extend((0..nx).map(|i| if j + 1 < ny { top(node(i, j), node(i, j + 1)) } else { f64::NEG_INFINITY }));
+            right.extend((0..nx).map(|i| if i + 1 < nx { at(i, j).min(at(i + 1, j)) + allowance } else { f64::NEG_INFINITY }));
+            up.extend((0..nx).map(|i| if j + 1 < ny { at(i, j).min(at(i, j + 1)) + allowance } else { f64::NEG_INFINITY }));
         }
-        (right, up)
+        Some((right, up))
     }
 
-    /// The map of `cl` from its rows' heights along the edges to the right and up (its bands
+    /// The map of `cl` from its rows' bounds along the edges to the right and up (its bands
     /// joined); `None` when their number is not the grid's.
     pub fn from_rows(cl: &ClSurface, right: Vec<f64>, up: Vec<f64>) -> Option<LevelMap> {
         let n = cl.field.nx * cl.field.ny;
-        (right.len() == n && up.len() == n).then_some(LevelMap { right, up })
+        (right.len() == n && up.len() == n).then(|| LevelMap { right, up, exact: Mutex::new(HashMap::new()) })
+    }
+
+    /// The bounds along the edges to the right of every node, then those along the edges up
+    /// (with the interpolation allowance the exact heights get).
+    pub fn bounds(&self) -> (&[f64], &[f64]) {
+        (&self.right, &self.up)
+    }
+
+    /// The highest of the surface along each edge of `edges` (node × 2 + direction) with the
+    /// interpolation allowance: from its exact profile, taken once per edge.
+    fn exact_tops(&self, cl: &ClSurface, edges: &[usize], tol: &Tolerances) -> Vec<f64> {
+        let f = &cl.field;
+        let node = |c: usize| f.origin + DVec2::new((c % f.nx) as f64, (c / f.nx) as f64) * f.spacing;
+        let missing: Vec<usize> = {
+            let known = self.exact.lock().expect("the level map's cache");
+            edges.iter().copied().filter(|e| !known.contains_key(e)).collect()
+        };
+        let tops = parallel::map_heavy(missing.len(), |k| {
+            let (c, dir) = (missing[k] / 2, missing[k] % 2);
+            let other = if dir == 0 { c + 1 } else { c + f.nx };
+            cl.along(node(c), node(other)).into_iter().fold(f64::NEG_INFINITY, |m, (_, z)| m.max(z)) + 2.0 * tol.interpolation
+        });
+        let mut cache = self.exact.lock().expect("the level map's cache");
+        cache.extend(missing.into_iter().zip(tops));
+        edges.iter().map(|e| cache[e]).collect()
     }
 
     /// The region at `level`: where the cutter's centre stands at or below it, among the nodes
@@ -83,24 +140,33 @@ impl LevelMap {
         // A ridge between two low nodes (or a convex surface bulging above the level between
         // them) leaves the higher of the two out: the edge from the other then gets its
         // crossing from the exact profile along it, where the surface first rises above the
-        // level.
+        // level. Only edges whose bound rises above the level are looked at exactly.
+        let mut asked = Vec::new();
+        for c in (0..nx * ny).filter(|&c| low[c]) {
+            let (i, j) = (c % nx, c / nx);
+            if i + 1 < nx && low[c + 1] && self.right[c] > level + tol.height {
+                asked.push(2 * c);
+            }
+            if j + 1 < ny && low[c + nx] && self.up[c] > level + tol.height {
+                asked.push(2 * c + 1);
+            }
+        }
+        let tops = self.exact_tops(cl, &asked, tol);
         let mut inside = low.clone();
-        for j in 0..ny {
-            for i in 0..nx {
-                let c = j * nx + i;
-                for (other, top) in [(c + 1, if i + 1 < nx { self.right[c] } else { f64::NEG_INFINITY }), (c + nx, if j + 1 < ny { self.up[c] } else { f64::NEG_INFINITY })] {
-                    if top > level + tol.height && other < nx * ny && low[c] && low[other] {
-                        let higher = if f.z[other] >= f.z[c] { other } else { c };
-                        inside[higher] = false;
-                    }
-                }
+        for (&e, &top) in asked.iter().zip(&tops) {
+            let (c, dir) = (e / 2, e % 2);
+            let other = if dir == 0 { c + 1 } else { c + nx };
+            if top > level + tol.height {
+                let higher = if f.z[other] >= f.z[c] { other } else { c };
+                inside[higher] = false;
             }
         }
         // A node inside stands at least the back-off from the level's edge along the grid's
         // four directions: one just short of a cliff would make the boundary pass along the
         // cliff's foot, where a chord between two of its points can clip the cliff. Only a
         // cutter with a flat bottom makes cliffs (a ball's surface is smooth, and its level
-        // curves, a waterline's path, stay where the crossings put them).
+        // curves, a waterline's path, stay where the crossings put them). A node beside a
+        // ridge along one of its edges has a neighbour out already (the ridge's higher end).
         if cl.profile().flat_radius() <= 0.0 {
             return level_region(cl, &inside, level, tol);
         }
@@ -109,8 +175,6 @@ impl LevelMap {
         let edge_of = |c: usize| {
             let (i, j) = (c % nx, c / nx);
             (i > 0 && !inside[c - 1]) || (i + 1 < nx && !inside[c + 1]) || (j > 0 && !inside[c - nx]) || (j + 1 < ny && !inside[c + nx])
-                || (i + 1 < nx && self.right[c] > level + tol.height) || (j + 1 < ny && self.up[c] > level + tol.height)
-                || (i > 0 && self.right[c - 1] > level + tol.height) || (j > 0 && self.up[c - nx] > level + tol.height)
         };
         let near_edge: Vec<usize> = (0..nx * ny).filter(|&c| inside[c] && edge_of(c)).collect();
         for c in near_edge {
@@ -137,7 +201,7 @@ fn level_region(cl: &ClSurface, nodes_inside: &[bool], level: f64, tol: &Toleran
     // a until safe).
     let crossing = |a: (isize, isize), b: (isize, isize)| -> DVec2 {
         let (pa, pb) = (node(a.0, a.1), node(b.0, b.1));
-        let profile = cl.along(pa, pb);
+        let profile = cl.along_until(pa, pb, level);
         let mut t = 1.0;
         for w in profile.windows(2) {
             let ((t0, z0), (t1, z1)) = (w[0], w[1]);
@@ -337,7 +401,7 @@ fn bend(cl: &ClSurface, level: f64, ring: &[Piece], node: &dyn Fn(isize, isize) 
     let worst = |a: DVec2, b: DVec2| -> Option<f64> {
         cl.along(a, b).into_iter().filter(|&(_, z)| z > level + tol.height).max_by(|p, q| p.1.total_cmp(&q.1)).map(|(t, _)| t)
     };
-    let clears = |a: DVec2, b: DVec2| worst(a, b).is_none();
+    let clears = |a: DVec2, b: DVec2| clears_level(cl, level, a, b, tol);
     let safe = |p: DVec2| cl.height(p) <= level + tol.height;
     #[allow(clippy::too_many_arguments)]
     fn towards(a: DVec2, b: DVec2, c: DVec2, depth: usize, worst: &dyn Fn(DVec2, DVec2) -> Option<f64>, clears: &dyn Fn(DVec2, DVec2) -> bool, safe: &dyn Fn(DVec2) -> bool, out: &mut Vec<DVec2>) -> bool {
@@ -403,24 +467,15 @@ fn simplify(cl: &ClSurface, level: f64, pts: &[DVec2], tol: &Tolerances) -> Vec<
     out.push(pts[0]);
     let mut k = 1;
     while k < n {
-        // Extend the chord from the anchor as far as every skipped point stays near it.
-        let mut best = k;
+        // Extend the chord from the anchor as far as every skipped point stays near it, and
+        // take the farthest end within that whose chord clears the level (tried farthest
+        // first: on a smooth boundary the first try is the one).
+        let a = pts[anchor];
         let mut m = k + 1;
-        while m <= n {
-            let end = pts[m % n];
-            let a = pts[anchor];
-            let near = (anchor + 1..m).all(|q| distance_to_segment(pts[q], a, end) <= tol.chordal);
-            if !near {
-                break;
-            }
-            if clears(a, end) {
-                best = m;
-            }
+        while m <= n && m - anchor <= 64 && (anchor + 1..m).all(|q| distance_to_segment(pts[q], a, pts[m % n]) <= tol.chordal) {
             m += 1;
-            if m - anchor > 64 {
-                break;
-            }
         }
+        let best = (k + 1..m).rev().find(|&m| clears(a, pts[m % n])).unwrap_or(k);
         if best >= n {
             break;
         }
@@ -475,7 +530,7 @@ fn sharpen(cl: &ClSurface, level: f64, pts: &[DVec2], tol: &Tolerances) -> Vec<D
 
 /// Whether the exact surface stays at or below `level` all along the segment from `a` to `b`.
 fn clears_level(cl: &ClSurface, level: f64, a: DVec2, b: DVec2, tol: &Tolerances) -> bool {
-    cl.along(a, b).into_iter().all(|(_, z)| z <= level + tol.height)
+    cl.along_until(a, b, level + tol.height).into_iter().all(|(_, z)| z <= level + tol.height)
 }
 
 fn distance_to_segment(p: DVec2, a: DVec2, b: DVec2) -> f64 {

@@ -179,7 +179,13 @@ impl PointDrop {
     /// The z-map of these drops over `grid`: the exact builder (seed 001 §3.3) with the same
     /// profile, lifted the same way, so that its nodes equal [`PointDrop::at`] there.
     pub fn field(&self, mesh: &Mesh, grid: Grid, floor: f64, tolerances: &Tolerances, progress: &mut Progress) -> Result<HeightField> {
-        let mut field = self.builder(mesh, tolerances).field(grid, floor - self.lift, progress)?;
+        self.field_by(&self.builder(mesh, tolerances), grid, floor, progress)
+    }
+
+    /// [`PointDrop::field`] by `builder` (this drop's [`PointDrop::builder`] or
+    /// [`PointDrop::widened`] one).
+    pub fn field_by(&self, builder: &ExactBuilder, grid: Grid, floor: f64, progress: &mut Progress) -> Result<HeightField> {
+        let mut field = builder.field(grid, floor - self.lift, progress)?;
         self.lift_all(&mut field.z, floor);
         Ok(field)
     }
@@ -187,6 +193,17 @@ impl PointDrop {
     /// The exact builder for this drop's profile (made once per worker of a pool).
     pub fn builder(&self, mesh: &Mesh, tolerances: &Tolerances) -> ExactBuilder {
         ExactBuilder::new(mesh, &self.profile, tolerances)
+    }
+
+    /// The exact builder of drops no lower than these anywhere within `h` of the point: this
+    /// drop's profile grown by a horizontal disk of radius `h` (its Minkowski sum: a flat end or
+    /// bull nose with a flat wider by `h`, a ball a bull nose with a flat of radius `h`), lifted
+    /// as these are when [`PointDrop::field`] or [`PointDrop::rows`] takes it. A point within
+    /// `h` of a node drops onto nothing the widened cutter over the node would not meet
+    /// higher: every point of the part within the cutter's reach there is within the widened
+    /// reach of the node, at a radius no larger once the flat's extra `h` is taken off.
+    pub fn widened(&self, mesh: &Mesh, h: f64, tolerances: &Tolerances) -> ExactBuilder {
+        ExactBuilder::new(mesh, &Profile::new(self.profile.radius + h, self.profile.corner), tolerances)
     }
 
     /// Rows `rows` of [`PointDrop::field`], by `builder` (this drop's [`PointDrop::builder`]).

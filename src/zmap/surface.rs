@@ -89,6 +89,16 @@ impl ClSurface {
         ClSurface { field, drop, floor, nodes_exact, tolerance, probe }
     }
 
+    /// The height where no part is under the cutter.
+    pub fn floor(&self) -> f64 {
+        self.floor
+    }
+
+    /// The exact drop the surface stands on between its nodes.
+    pub fn drop(&self) -> &PointDrop {
+        &self.drop
+    }
+
     /// The cutter's profile (as grown for the program's resolution, when it was).
     pub fn profile(&self) -> &crate::cutter::Profile {
         self.drop.profile()
@@ -111,6 +121,13 @@ impl ClSurface {
     /// sorted): the exact height at each, and between two of them the surface no higher than
     /// the chord plus the tolerance (see the module's argument).
     pub fn along(&self, a: DVec2, b: DVec2) -> Vec<(f64, f64)> {
+        self.along_until(a, b, f64::INFINITY)
+    }
+
+    /// [`ClSurface::along`] as far as its first point above `stop`, which ends it: the same
+    /// points up to there, without the work beyond (where only whether, or where first, the
+    /// surface rises above a height matters).
+    pub fn along_until(&self, a: DVec2, b: DVec2, stop: f64) -> Vec<(f64, f64)> {
         let len = (b - a).length();
         let at = |t: f64| self.height(point_at(a, b, t));
         // The ends, split evenly into pieces no longer than the probe spacing.
@@ -131,18 +148,25 @@ impl ClSurface {
         }
         let mut out = Vec::with_capacity(ts.len() * 3);
         out.push((ts[0], at(ts[0])));
+        if out[0].1 > stop {
+            return out;
+        }
         for &t in &ts[1..] {
             let end = (t, at(t));
             let zm = at(0.5 * (out.last().expect("a first point").0 + t));
-            let z = self.refine(&at, len, end, zm, &mut out);
+            let Some(z) = self.refine(&at, len, end, zm, stop, &mut out) else { break };
             out.push((t, z));
+            if z > stop {
+                break;
+            }
         }
         out
     }
 
     /// Subdivides the piece from the last point of `out` to `end`, whose midpoint stands at
-    /// `zm`, pushing the points between; returns the height `end` is left at.
-    fn refine(&self, at: &impl Fn(f64) -> f64, len: f64, end: (f64, f64), zm: f64, out: &mut Vec<(f64, f64)>) -> f64 {
+    /// `zm`, pushing the points between; returns the height `end` is left at, or `None` once
+    /// it has pushed a point above `stop`.
+    fn refine(&self, at: &impl Fn(f64) -> f64, len: f64, end: (f64, f64), zm: f64, stop: f64, out: &mut Vec<(f64, f64)>) -> Option<f64> {
         let start = *out.last().expect("a piece starts at a point");
         let piece = (end.0 - start.0) * len;
         let tm = 0.5 * (start.0 + end.0);
@@ -154,7 +178,7 @@ impl ClSurface {
         let chord = |t: f64| start.1 + (end.1 - start.1) * (t - start.0) / (end.0 - start.0);
         let bent = [(t1, z1), (tm, zm), (t3, z3)].iter().any(|&(t, z)| (z - chord(t)).abs() > self.tolerance);
         if !bent && piece <= self.probe {
-            return end.1;
+            return Some(end.1);
         }
         if bent && piece <= MIN_PIECE {
             // Held level at the top, rising and falling vertically at the ends: the samples
@@ -162,15 +186,21 @@ impl ClSurface {
             let top = start.1.max(z1).max(zm).max(z3).max(end.1);
             if top > start.1 {
                 out.push((start.0, top));
+                if top > stop {
+                    return None;
+                }
             }
             if top > end.1 {
                 out.push((end.0, top));
             }
-            return end.1;
+            return Some(end.1);
         }
-        let z = self.refine(at, len, (tm, zm), z1, out);
+        let z = self.refine(at, len, (tm, zm), z1, stop, out)?;
         out.push((tm, z));
-        self.refine(at, len, end, z3, out)
+        if z > stop {
+            return None;
+        }
+        self.refine(at, len, end, z3, stop, out)
     }
 }
 
