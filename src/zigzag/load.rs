@@ -32,6 +32,7 @@ const BUDGET: usize = 12;
 
 /// The material at one level, as pixels (a bit each, by rows), and where the tool's centre
 /// may go.
+#[derive(Clone)]
 pub struct PixelMap {
     origin: DVec2,
     px: f64,
@@ -146,10 +147,11 @@ impl PixelMap {
         let j0 = ((a.y.min(b.y) - r - self.origin.y) / self.px).ceil().max(0.0) as usize;
         let j1 = (((a.y.max(b.y) + r - self.origin.y) / self.px).floor().max(-1.0) as isize).min(self.ny as isize - 1);
         let mut count = 0;
+        let swept = Swept::new(a, b, r);
         for j in j0 as isize..=j1 {
             let j = j as usize;
             let y = self.origin.y + j as f64 * self.px;
-            let Some((lo, hi)) = row_span(a, b, r, y) else { continue };
+            let Some((lo, hi)) = swept.row(y) else { continue };
             let i0 = ((lo - self.origin.x) / self.px).ceil().max(0.0) as usize;
             let i1 = ((hi - self.origin.x) / self.px).floor();
             if i1 < 0.0 {
@@ -195,6 +197,25 @@ impl PixelMap {
         self.sweep(a, b, true, usize::MAX)
     }
 
+    /// Removes what the move from `a` to `b` sweeps when that is no more than `cap` pixels
+    /// (else leaves the map as it was); returns the count either way. One sweep where counting
+    /// and then cutting would take two.
+    fn cut_within(&mut self, a: DVec2, b: DVec2, cap: f64) -> usize {
+        let (logging, mark) = (self.logging, self.undo.len());
+        self.logging = true;
+        let n = self.sweep(a, b, true, usize::MAX);
+        if n as f64 > cap {
+            while self.undo.len() > mark {
+                let (w, bits) = self.undo.pop().expect("a logged word");
+                self.material[w] = bits;
+            }
+        } else if !logging {
+            self.undo.truncate(mark);
+        }
+        self.logging = logging;
+        n
+    }
+
     /// From now on, what is cut can be taken back (a detour begins).
     fn mark(&mut self) {
         self.undo.clear();
@@ -221,44 +242,64 @@ impl PixelMap {
     }
 }
 
-/// Where the row at `y` meets the disc of radius `r` swept from `a` to `b` (a convex shape,
-/// so one interval): the union of its meetings with the two end discs and the band between.
-fn row_span(a: DVec2, b: DVec2, r: f64, y: f64) -> Option<(f64, f64)> {
-    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    for c in [a, b] {
-        let dy = y - c.y;
-        if dy.abs() <= r {
-            let w = (r * r - dy * dy).sqrt();
-            lo = lo.min(c.x - w);
-            hi = hi.max(c.x + w);
-        }
+/// The disc of radius `r` swept from `a` to `b` (a convex shape, so each row meets it in one
+/// interval), with what every row's meeting needs worked out once.
+struct Swept {
+    a: DVec2,
+    b: DVec2,
+    r: f64,
+    /// Along the move and across it (unit), its length, and `a`'s offsets along each.
+    axes: Option<(DVec2, DVec2, f64, f64, f64)>,
+}
+
+impl Swept {
+    fn new(a: DVec2, b: DVec2, r: f64) -> Swept {
+        let d = b - a;
+        let len = d.length();
+        let axes = (len > 1e-12).then(|| {
+            let (u, n) = (d / len, d.perp() / len);
+            (u, n, len, u.dot(a), n.dot(a))
+        });
+        Swept { a, b, r, axes }
     }
-    let d = b - a;
-    let len = d.length();
-    if len > 1e-12 {
-        let (u, n) = (d / len, d.perp() / len);
-        // Within r of the line, and between the ends: each a band in x along the row.
-        let (mut x0, mut x1) = (f64::NEG_INFINITY, f64::INFINITY);
-        let mut band = |coef: f64, offset: f64, min: f64, max: f64| {
-            // min <= coef * x + offset <= max
-            if coef.abs() < 1e-15 {
-                if offset < min || offset > max {
-                    x0 = f64::INFINITY;
-                }
-            } else {
-                let (p, q) = ((min - offset) / coef, (max - offset) / coef);
-                x0 = x0.max(p.min(q));
-                x1 = x1.min(p.max(q));
+
+    /// Where the row at `y` meets it: the union of its meetings with the two end discs and
+    /// the band between.
+    fn row(&self, y: f64) -> Option<(f64, f64)> {
+        let r = self.r;
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for c in [self.a, self.b] {
+            let dy = y - c.y;
+            if dy.abs() <= r {
+                let w = (r * r - dy * dy).sqrt();
+                lo = lo.min(c.x - w);
+                hi = hi.max(c.x + w);
             }
-        };
-        band(n.x, n.y * y - n.dot(a), -r, r);
-        band(u.x, u.y * y - u.dot(a), 0.0, len);
-        if x0 <= x1 {
-            lo = lo.min(x0);
-            hi = hi.max(x1);
         }
+        if let Some((u, n, len, ua, na)) = self.axes {
+            // Within r of the line, and between the ends: each a band in x along the row.
+            let (mut x0, mut x1) = (f64::NEG_INFINITY, f64::INFINITY);
+            let mut band = |coef: f64, offset: f64, min: f64, max: f64| {
+                // min <= coef * x + offset <= max
+                if coef.abs() < 1e-15 {
+                    if offset < min || offset > max {
+                        x0 = f64::INFINITY;
+                    }
+                } else {
+                    let (p, q) = ((min - offset) / coef, (max - offset) / coef);
+                    x0 = x0.max(p.min(q));
+                    x1 = x1.min(p.max(q));
+                }
+            };
+            band(n.x, n.y * y - na, -r, r);
+            band(u.x, u.y * y - ua, 0.0, len);
+            if x0 <= x1 {
+                lo = lo.min(x0);
+                hi = hi.max(x1);
+            }
+        }
+        (lo <= hi).then_some((lo, hi))
     }
-    (lo <= hi).then_some((lo, hi))
 }
 
 /// The most pixels a level's map holds (a bit and two flags each): past it the pixels grow.
@@ -400,8 +441,9 @@ fn correct(map: &mut PixelMap, run: &[DVec2], load: &Load, profile: &mut Profile
     map.cut(start, start);
     let mut out = vec![start];
     let mut pos = start;
-    let step_to = |map: &mut PixelMap, pos: &mut DVec2, q: DVec2, out: &mut Vec<DVec2>, profile: &mut Profile| {
-        let n = map.cut(*pos, q);
+    // `cut`: the count of the step when it was cut already.
+    let step_to = |map: &mut PixelMap, pos: &mut DVec2, q: DVec2, cut: Option<usize>, out: &mut Vec<DVec2>, profile: &mut Profile| {
+        let n = cut.unwrap_or_else(|| map.cut(*pos, q));
         profile.counts.push((n as f64, pos.distance(q)));
         *pos = q;
         out.push(q);
@@ -479,6 +521,8 @@ fn correct(map: &mut PixelMap, run: &[DVec2], load: &Load, profile: &mut Profile
         // The least loaded direction, where none keeps under the limit.
         let mut least: Option<(usize, DVec2, bool)> = None;
         let mut straight = usize::MAX;
+        // The chosen step's count, when choosing it cut it.
+        let mut cut = None;
         // A short step (the run's last, or the last of the way back to it) goes straight:
         // turning it only spirals in on its point.
         if budget > 0 && k >= as_is && step >= 0.5 * full {
@@ -496,9 +540,11 @@ fn correct(map: &mut PixelMap, run: &[DVec2], load: &Load, profile: &mut Profile
                 }
                 // Counted in full going straight; off the path only as far as it takes
                 // to tell whether it keeps the limit or halves the straight count.
-                let n = if a == 0 { map.count(pos, q) } else { map.count_past(pos, q, (cap as usize).max(straight / 2)) };
+                // Straight on, it is cut as it is counted (and put back if over).
+                let n = if a == 0 { map.cut_within(pos, q, cap) } else { map.count_past(pos, q, (cap as usize).max(straight / 2)) };
                 if n as f64 <= cap {
                     chosen = Some((q, a == 0));
+                    cut = (a == 0).then_some(n);
                     turned = (s, a);
                     break 'search;
                 }
@@ -518,7 +564,7 @@ fn correct(map: &mut PixelMap, run: &[DVec2], load: &Load, profile: &mut Profile
             departure = Some(Departure { out: out.len(), counts: profile.counts.len(), k });
             map.mark();
         }
-        step_to(map, &mut pos, q, &mut out, profile);
+        step_to(map, &mut pos, q, cut, &mut out, profile);
         if straight && step >= dist - 1e-12 {
             k = ahead + 1;
             on_path = true;
