@@ -46,10 +46,10 @@ impl Keepout for Floor<'_> {
     /// ([`ClSurface::along`]): a line at or above those points is at or above the polyline
     /// through them.
     fn clears(&self, a: DVec3, b: DVec3, tolerance: f64) -> bool {
-        self.cl.along(a.truncate(), b.truncate()).into_iter().all(|(t, z)| {
-            let p = point_at(a, b, t);
-            self.region.contains(p.truncate()) && p.z + tolerance >= z + self.allowance
-        })
+        let above = |t: f64, z: f64| point_at(a, b, t).z + tolerance >= z + self.allowance;
+        // Ended at the first point it passes below, if any; else every point, each in the region.
+        let along = self.cl.along_while(a.truncate(), b.truncate(), above);
+        along.iter().all(|&(t, z)| above(t, z)) && along.iter().all(|&(t, _)| self.region.contains(point_at(a, b, t).truncate()))
     }
 }
 

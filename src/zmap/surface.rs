@@ -121,13 +121,19 @@ impl ClSurface {
     /// sorted): the exact height at each, and between two of them the surface no higher than
     /// the chord plus the tolerance (see the module's argument).
     pub fn along(&self, a: DVec2, b: DVec2) -> Vec<(f64, f64)> {
-        self.along_until(a, b, f64::INFINITY)
+        self.along_while(a, b, |_, _| true)
     }
 
     /// [`ClSurface::along`] as far as its first point above `stop`, which ends it: the same
     /// points up to there, without the work beyond (where only whether, or where first, the
     /// surface rises above a height matters).
     pub fn along_until(&self, a: DVec2, b: DVec2, stop: f64) -> Vec<(f64, f64)> {
+        self.along_while(a, b, |_, z| z <= stop)
+    }
+
+    /// [`ClSurface::along`] as far as its first point `(t, z)` that `ok` refuses, which ends
+    /// it: the same points up to there.
+    pub fn along_while(&self, a: DVec2, b: DVec2, ok: impl Fn(f64, f64) -> bool) -> Vec<(f64, f64)> {
         let len = (b - a).length();
         let at = |t: f64| self.height(point_at(a, b, t));
         // The ends, split evenly into pieces no longer than the probe spacing.
@@ -148,15 +154,15 @@ impl ClSurface {
         }
         let mut out = Vec::with_capacity(ts.len() * 3);
         out.push((ts[0], at(ts[0])));
-        if out[0].1 > stop {
+        if !ok(out[0].0, out[0].1) {
             return out;
         }
         for &t in &ts[1..] {
             let end = (t, at(t));
             let zm = at(0.5 * (out.last().expect("a first point").0 + t));
-            let Some(z) = self.refine(&at, len, end, zm, stop, &mut out) else { break };
+            let Some(z) = self.refine(&at, len, end, zm, &ok, &mut out) else { break };
             out.push((t, z));
-            if z > stop {
+            if !ok(t, z) {
                 break;
             }
         }
@@ -165,8 +171,8 @@ impl ClSurface {
 
     /// Subdivides the piece from the last point of `out` to `end`, whose midpoint stands at
     /// `zm`, pushing the points between; returns the height `end` is left at, or `None` once
-    /// it has pushed a point above `stop`.
-    fn refine(&self, at: &impl Fn(f64) -> f64, len: f64, end: (f64, f64), zm: f64, stop: f64, out: &mut Vec<(f64, f64)>) -> Option<f64> {
+    /// it has pushed a point `ok` refuses.
+    fn refine(&self, at: &impl Fn(f64) -> f64, len: f64, end: (f64, f64), zm: f64, ok: &impl Fn(f64, f64) -> bool, out: &mut Vec<(f64, f64)>) -> Option<f64> {
         let start = *out.last().expect("a piece starts at a point");
         let piece = (end.0 - start.0) * len;
         let tm = 0.5 * (start.0 + end.0);
@@ -186,7 +192,7 @@ impl ClSurface {
             let top = start.1.max(z1).max(zm).max(z3).max(end.1);
             if top > start.1 {
                 out.push((start.0, top));
-                if top > stop {
+                if !ok(start.0, top) {
                     return None;
                 }
             }
@@ -195,12 +201,12 @@ impl ClSurface {
             }
             return Some(end.1);
         }
-        let z = self.refine(at, len, (tm, zm), z1, stop, out)?;
+        let z = self.refine(at, len, (tm, zm), z1, ok, out)?;
         out.push((tm, z));
-        if z > stop {
+        if !ok(tm, z) {
             return None;
         }
-        self.refine(at, len, end, z3, stop, out)
+        self.refine(at, len, end, z3, ok, out)
     }
 }
 
