@@ -133,21 +133,38 @@ impl DexelStock {
         let grow = DVec2::splat(radius - sweep.profile.radius);
         let ((i0, i1), (j0, j1)) = self.cell_range(sweep.min - grow, sweep.max + grow)?;
         let mut worst: Option<(DVec2, f64)> = None;
-        for j in j0..=j1 {
-            for i in i0..=i1 {
-                let top = self.z[j * self.nx + i];
-                if top <= sweep.lowest_tip + rise {
+        let low = sweep.lowest_tip + rise;
+        let size = self.block;
+        for bj in j0 / size..=j1 / size {
+            for bi in i0 / size..=i1 / size {
+                // A block no higher than the body's lowest point has nothing to meet.
+                if size > 1 && self.block_top[bj * self.bx + bi] <= low {
                     continue;
                 }
-                let centre = self.origin + (DVec2::new(i as f64, j as f64) + 0.5) * self.cell;
-                let (dist, z) = sweep.nearest(centre);
-                let excess = top - (z + rise);
-                if dist <= radius - 0.5 * self.cell && excess > 0.0 && worst.is_none_or(|w| excess > w.1) {
-                    worst = Some((centre, excess));
+                let (ce, cje) = (((bi + 1) * size).min(self.nx).min(i1 + 1), ((bj + 1) * size).min(self.ny).min(j1 + 1));
+                for j in (bj * size).max(j0)..cje {
+                    for i in (bi * size).max(i0)..ce {
+                        self.body_meets(sweep, radius, rise, i, j, &mut worst);
+                    }
                 }
             }
         }
         worst
+    }
+
+    /// [`DexelStock::above_body`] at cell (i, j): kept in `worst` where it is worse.
+    #[inline]
+    fn body_meets(&self, sweep: &Sweep, radius: f64, rise: f64, i: usize, j: usize, worst: &mut Option<(DVec2, f64)>) {
+        let top = self.z[j * self.nx + i];
+        if top <= sweep.lowest_tip + rise {
+            return;
+        }
+        let centre = self.origin + (DVec2::new(i as f64, j as f64) + 0.5) * self.cell;
+        let (dist, z) = sweep.nearest(centre);
+        let excess = top - (z + rise);
+        if dist <= radius - 0.5 * self.cell && excess > 0.0 && worst.is_none_or(|w| excess > w.1) {
+            *worst = Some((centre, excess));
+        }
     }
 
     /// The highest tip height at which a cutter of `profile` standing at `c` touches the
@@ -306,5 +323,54 @@ impl StockModel for DexelStock {
             }
         }
         total
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cutter::Profile;
+    use crate::geom::DVec3;
+
+    /// The body test skips a block only where nothing in it stands above the body's lowest
+    /// point: on a stock cut into steps and pockets, for sweeps at every depth, it finds the
+    /// same worst excess as a scan of every cell.
+    #[test]
+    fn the_body_test_skips_only_blocks_it_cannot_meet() {
+        let mut stock = DexelStock::new(&Aabb { min: DVec3::ZERO, max: DVec3::new(40.0, 30.0, 20.0) }, 0.25, 1);
+        assert!(stock.block > 1);
+        let flat = Profile::new(3.0, 0.0);
+        for (a, b) in [((5.0, 5.0, 12.0), (35.0, 5.0, 12.0)), ((8.0, 8.0, 6.0), (8.0, 25.0, 6.0)), ((20.0, 15.0, 2.0), (30.0, 22.0, 2.0)), ((12.0, 20.0, 15.0), (14.0, 21.0, 15.0))] {
+            stock.apply(&Sweep::line(flat, DVec3::from(a), DVec3::from(b)));
+        }
+        let mut seed = 7u64;
+        let mut next = || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let (mut met, mut clear) = (0, 0);
+        for _ in 0..400 {
+            let a = DVec3::new(40.0 * next(), 30.0 * next(), 20.0 * next());
+            let b = a + DVec3::new(8.0 * next() - 4.0, 8.0 * next() - 4.0, 0.0);
+            let sweep = Sweep::line(flat, a, b);
+            let (radius, rise) = (3.0 + 2.0 * next(), 4.0 * next());
+            let found = stock.above_body(&sweep, radius, rise).map(|w| w.1);
+            let mut worst = None;
+            let grow = DVec2::splat(radius - 3.0);
+            if let Some(((i0, i1), (j0, j1))) = stock.cell_range(sweep.min - grow, sweep.max + grow) {
+                for j in j0..=j1 {
+                    for i in i0..=i1 {
+                        stock.body_meets(&sweep, radius, rise, i, j, &mut worst);
+                    }
+                }
+            }
+            assert_eq!(found, worst.map(|w| w.1), "{a} {b}");
+            if found.is_some() {
+                met += 1;
+            } else {
+                clear += 1;
+            }
+        }
+        assert!(met > 40 && clear > 40, "{met} met, {clear} clear");
     }
 }
