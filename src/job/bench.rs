@@ -220,7 +220,7 @@ pub fn rough_row(name: &str, stl: &[u8], platform: &str, clock: &dyn Fn() -> f64
     let total = clock() - start;
     let of = |s: &str| seconds_of(&stages, &format!("z-level rough: {s}"));
     format!(
-        "{platform:<16} rough {name:<20} total {total:.3} s: CL z-map {:.3} s, edge heights {:.3} s, levels and rings {:.3} s; {} moves, {:.0} s on the machine",
+        "{platform:<16} rough {name:<20} total {total:.3} s: CL z-map {:.3} s, level map and regions {:.3} s, rings {:.3} s; {} moves, {:.0} s on the machine",
         of("CL z-map"),
         of("levels"),
         of("rings"),
