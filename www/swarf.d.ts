@@ -12,6 +12,12 @@ export interface EngineOptions {
   worker?: () => Worker;
   /** How many workers share a run (default: one per core, at most 8; 1: no pool). */
   workers?: number;
+  /**
+   * The device's memory in GB (default: `navigator.deviceMemory`, where the browser tells it). A
+   * run shares only as many workers as half of it holds: each holds its own copy of the part
+   * and its preparation, about 24 times the part file's size.
+   */
+  memory?: number;
   /** The wasm module's bytes or URL (default: pkg/swarf_bg.wasm beside the worker). */
   wasm?: BufferSource | string | URL | null;
 }
@@ -89,3 +95,6 @@ export declare class Engine {
 }
 
 export declare function createEngine(options?: EngineOptions): Promise<Engine>;
+
+/** How many of `count` workers share a run on a part of `bytes` bytes with `memoryGb` of memory. */
+export declare function workersFor(count: number, bytes: number, memoryGb?: number): number;

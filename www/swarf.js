@@ -55,6 +55,28 @@ class Channel {
   }
 }
 
+/**
+ * A pool's worker holds its own copy of the part and of its preparation (the drop index and the
+ * exact builder's features): about this many bytes per byte of the part's file, and the second
+ * figure besides (measured on the die, a 25 MB binary STL: some 600 MB a worker; BENCHMARKS.md,
+ * "Memory of the pool").
+ */
+const WORKER_BYTES_PER_PART_BYTE = 24;
+const WORKER_BYTES_BESIDES = 64 * 2 ** 20;
+/** The share of the device's memory a run's pool may take. */
+const MEMORY_SHARE = 0.5;
+
+/**
+ * How many of `count` workers share a run on a part of `bytes` bytes when the device has
+ * `memoryGb` of memory: as many as half of it holds, at least one; all where the memory is not
+ * known (`navigator.deviceMemory` is Chromium's only).
+ */
+export function workersFor(count, bytes, memoryGb) {
+  if (!(memoryGb > 0)) return count;
+  const each = WORKER_BYTES_PER_PART_BYTE * bytes + WORKER_BYTES_BESIDES;
+  return Math.max(1, Math.min(count, Math.floor((MEMORY_SHARE * memoryGb * 2 ** 30) / each)));
+}
+
 /** How many workers a run shares: `wanted`, else one per core (at most 8). */
 function poolSize(wanted) {
   const cores = globalThis.navigator?.hardwareConcurrency ?? 1;
@@ -175,15 +197,18 @@ export class Engine {
     const onAbort = () => this.cancel();
     signal?.addEventListener('abort', onAbort, { once: true });
     try {
-      if (!this.#helpers.length) return await this.call({ type: 'run', job, bytes, name }, [], onProgress);
-      return await this.#runShared(job, bytes, name, onProgress);
+      const memory = this.#options.memory ?? globalThis.navigator?.deviceMemory;
+      const sharing = workersFor(this.workers, bytes?.byteLength ?? bytes?.length ?? 0, memory);
+      if (sharing === 1) return await this.call({ type: 'run', job, bytes, name }, [], onProgress);
+      return await this.#runShared(job, bytes, name, onProgress, sharing);
     } finally {
       signal?.removeEventListener('abort', onAbort);
     }
   }
 
-  async #runShared(job, bytes, name, onProgress) {
-    const all = [this.#main, ...this.#helpers];
+  async #runShared(job, bytes, name, onProgress, sharing) {
+    const helpers = this.#helpers.slice(0, sharing - 1);
+    const all = [this.#main, ...helpers];
     const n = all.length;
     const [{ needs }] = await Promise.all(all.map((c, w) => c.call({ type: 'prepare', job, bytes, name, helper: w > 0 })));
     const { surfaces, rasters, levelMaps } = needs;
@@ -215,7 +240,7 @@ export class Engine {
     await share(all, tasks, done, stage(0.2, 0.5, 'passes and level maps'));
     for (const [surface, { right, up }] of maps) kept.push(this.#main.call({ type: 'keepLevelMap', surface, right, up }, [right.buffer, up.buffer]));
     await Promise.all(kept);
-    await Promise.all(this.#helpers.map((h) => h.call({ type: 'forget' })));
+    await Promise.all(helpers.map((h) => h.call({ type: 'forget' })));
     const from = bands.length || tasks.length ? 0.5 : 0;
     return this.#main.call({ type: 'runPlan' }, [], (f, s) => onProgress?.(from + (1 - from) * f, s));
   }
@@ -246,8 +271,10 @@ export class Engine {
 /**
  * Starts an engine. Options: `workerUrl` (default: worker.js beside this module), or `worker`
  * (a function making a Worker, for bundles; called once per worker of the pool), `wasm` (the
- * module's bytes or URL; default: pkg/swarf_bg.wasm beside the worker), and `workers` (how
- * many workers share a run; default: one per core, `navigator.hardwareConcurrency`, at most 8).
+ * module's bytes or URL; default: pkg/swarf_bg.wasm beside the worker), `workers` (how
+ * many workers the pool has; default: one per core, `navigator.hardwareConcurrency`, at most 8)
+ * and `memory` (GB the device has; default `navigator.deviceMemory` where the browser tells it:
+ * a run shares only as many workers as half of it holds for the part, see `workersFor`).
  */
 export async function createEngine(options = {}) {
   return new Engine(options).start();

@@ -96,3 +96,36 @@ test('runs asked for at once on a pool come out as each would alone', async () =
   });
   assert.deepEqual(r, { a: true, b: true, differ: true });
 });
+
+test('a pool shares a run only among as many workers as the memory holds for the part', async () => {
+  const r = await page.evaluate(async () => {
+    const { createEngine, workersFor } = await import('./swarf.js');
+    const { one, die, dieJob } = window.t;
+    const stagesOf = async (engine) => {
+      const stages = new Set();
+      const out = await engine.run(dieJob, die, 'die.stl', { onProgress: (f, stage) => stages.add(stage.replace(/^.*: /, '')) });
+      return { stages: [...stages], gcode: out.gcode };
+    };
+    // The die (120,000 triangles, 6 MB): about 210 MB a worker. With 0.5 GB, half holds one
+    // worker; with 1 GB, two of the three; with no figure, all three.
+    const small = await createEngine({ workers: 3, memory: 0.5 });
+    const some = await createEngine({ workers: 3, memory: 1 });
+    const out = {
+      rule: [workersFor(8, 25e6, 8), workersFor(8, 25e6, 2), workersFor(8, 25e6, 0.25), workersFor(3, 25e6), workersFor(8, 1e5, 4)],
+      bytes: die.byteLength,
+      small: await stagesOf(small),
+      some: await stagesOf(some),
+      alone: (await one.run(dieJob, die, 'die.stl')).gcode,
+    };
+    small.close();
+    some.close();
+    return out;
+  });
+  // 25 MB: 664 MB a worker; 4 GB of 8 hold 6, 1 GB of 2 holds 1; never fewer than one; all
+  // where the memory is not known; a small part shares among every worker.
+  assert.deepEqual(r.rule, [6, 1, 1, 3, 8]);
+  assert.ok(!r.small.stages.some((s) => /workers\)/.test(s)), `one worker ran it alone: ${r.small.stages.join(', ')}`);
+  assert.ok(r.some.stages.includes('CL z-maps (2 workers)'), r.some.stages.join(', '));
+  assert.equal(r.small.gcode, r.alone);
+  assert.equal(r.some.gcode, r.alone);
+});
