@@ -46,6 +46,11 @@ pub struct Tolerances {
 /// it (so both cells beside the line count); it absorbs rounding in computed crossings.
 pub const GRID_SNAP: f64 = 1e-9;
 
+/// Added to a bound from above that one computation makes of another's result (the widened
+/// cutter's drops bounding the exact surface along a grid edge, `zmap::contour::LevelMap`):
+/// the two are computed apart and may round differently (mm).
+pub const BOUND_SLACK: f64 = 1e-9;
+
 impl Tolerances {
     pub const DEFAULT: Tolerances =
         Tolerances { degenerate_area: 1e-12, chordal: 0.002, height: 1e-6, interpolation: 0.0005, normal: 1e-12, gouge: 0.02, chain: 0.01, arc_fit: 0.002, micro_entity: 1e-4, offset: 1e-7 };

@@ -28,7 +28,7 @@
 use std::collections::HashMap;
 use std::sync::Mutex;
 
-use crate::geom::{DVec2, Tolerances};
+use crate::geom::{tolerance::BOUND_SLACK, DVec2, Tolerances};
 use crate::mesh::Mesh;
 use crate::progress::Progress;
 use crate::parallel;
@@ -56,10 +56,6 @@ pub struct LevelMap {
     /// by node × 2 + direction (0 right, 1 up).
     exact: Mutex<HashMap<usize, f64>>,
 }
-
-/// Added to a bound: the widened cutter's drops are computed apart from the exact ones, and
-/// may round differently (mm).
-const BOUND_SLACK: f64 = 1e-9;
 
 impl LevelMap {
     /// The map of `cl` from `wide`, the widened cutter's heights at every node of its grid.
