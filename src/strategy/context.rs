@@ -182,25 +182,15 @@ impl Context {
 
     /// The part's heights on `grid` (`floor` where it is not): its CC z-map, made once.
     pub fn cc_zmap(&mut self, grid: Grid, floor: f64) -> Arc<HeightField> {
-        let key = (grid, floor.to_bits());
-        if let Some((_, f)) = self.caches.cc.iter().find(|(k, _)| *k == key) {
-            return f.clone();
-        }
-        let f = Arc::new(cc_zmap(&self.part, grid, floor, &self.tolerances));
-        self.caches.cc.push((key, f.clone()));
-        f
+        let (part, tol) = (&self.part, &self.tolerances);
+        cached(&mut self.caches.cc, (grid, floor.to_bits()), || cc_zmap(part, grid, floor, tol))
     }
 
     /// The part indexed for exact drops of `profile` grown by the program's resolution
     /// ([`PointDrop::grown`]), made once per cutter.
     pub fn drop(&mut self, profile: &Profile) -> Arc<PointDrop> {
-        let key = (*profile, self.resolution.to_bits());
-        if let Some((_, d)) = self.caches.drops.iter().find(|(k, _)| *k == key) {
-            return d.clone();
-        }
-        let d = Arc::new(PointDrop::grown(&self.part, profile, self.resolution, &self.tolerances));
-        self.caches.drops.push((key, d.clone()));
-        d
+        let (part, resolution, tol) = (&self.part, self.resolution, &self.tolerances);
+        cached(&mut self.caches.drops, (*profile, resolution.to_bits()), || PointDrop::grown(part, profile, resolution, tol))
     }
 
     /// The CL surface `request` names: its cutter over the part on its grid, its floor where
@@ -255,32 +245,25 @@ impl Context {
         if let Some((_, m)) = self.caches.levels.iter().find(|(k, _)| *k == key) {
             return m.clone();
         }
-        let grid = request.grid;
-        let wide = self.widened_rows(request, 0..grid.ny).unwrap_or_else(|_| vec![f64::INFINITY; grid.nx * grid.ny]);
-        let map = Arc::new(LevelMap::new(cl, &wide, &self.tolerances).expect("the widened heights cover the grid"));
+        let map = Arc::new(LevelMap::widened_by(cl, &self.widened(request), &self.tolerances));
         self.caches.levels.push((key, map.clone()));
         map
     }
 
-    /// The heights of the cutter of `request` widened by its grid's spacing
-    /// ([`PointDrop::widened`]) at the nodes of rows `rows` (natively on every core when the
-    /// rows are the whole grid): what [`LevelMap`] bounds its edges by.
-    pub fn widened_rows(&mut self, request: SurfaceRequest, rows: std::ops::Range<usize>) -> Result<Vec<f64>> {
+    /// The exact builder of the cutter of `request` widened by its grid's spacing
+    /// ([`PointDrop::widened`]): what [`LevelMap`] bounds its edges by. Made once per cutter
+    /// and spacing.
+    fn widened(&mut self, request: SurfaceRequest) -> Arc<ExactBuilder> {
         let drop = self.drop(&request.profile);
-        let key = (request.profile, self.resolution.to_bits(), request.grid.spacing.to_bits());
-        let builder = match self.caches.widened.iter().find(|(k, _)| *k == key) {
-            Some((_, b)) => b.clone(),
-            None => {
-                let b = Arc::new(drop.widened(&self.part, request.grid.spacing, &self.tolerances));
-                self.caches.widened.push((key, b.clone()));
-                b
-            }
-        };
-        let grid = request.grid;
-        if rows.start == 0 && rows.end >= grid.ny {
-            return Ok(drop.field_by(&builder, grid, request.floor, &mut Progress::none())?.z);
-        }
-        drop.rows(&builder, grid, request.floor, rows, &mut Progress::none())
+        let (part, tol, h) = (&self.part, &self.tolerances, request.grid.spacing);
+        cached(&mut self.caches.widened, (request.profile, self.resolution.to_bits(), h.to_bits()), || drop.widened(part, h, tol))
+    }
+
+    /// The widened cutter's heights ([`Context::widened`]) at the nodes of rows `rows` of
+    /// `request`'s grid: a band of a level map's bounds, as a worker of a pool makes it.
+    pub fn widened_rows(&mut self, request: SurfaceRequest, rows: std::ops::Range<usize>) -> Result<Vec<f64>> {
+        let builder = self.widened(request);
+        self.drop(&request.profile).rows(&builder, request.grid, request.floor, rows, &mut Progress::none())
     }
 
     /// Keeps `map` (made by a pool, band by band) as the level map of `request`'s surface.
@@ -296,15 +279,18 @@ impl Context {
     pub fn surface_rows(&mut self, request: SurfaceRequest, rows: std::ops::Range<usize>, progress: &mut Progress) -> Result<Vec<f64>> {
         debug_assert!(request.builder == ClBuilder::Exact);
         let drop = self.drop(&request.profile);
-        let key = (request.profile, self.resolution.to_bits());
-        let builder = match self.caches.builders.iter().find(|(k, _)| *k == key) {
-            Some((_, b)) => b.clone(),
-            None => {
-                let b = Arc::new(drop.builder(&self.part, &self.tolerances));
-                self.caches.builders.push((key, b.clone()));
-                b
-            }
-        };
+        let (part, tol) = (&self.part, &self.tolerances);
+        let builder = cached(&mut self.caches.builders, (request.profile, self.resolution.to_bits()), || drop.builder(part, tol));
         drop.rows(&builder, request.grid, request.floor, rows, progress)
     }
+}
+
+/// The value `list` keeps under `key`, made by `make` and kept the first time.
+fn cached<K: PartialEq, V>(list: &mut Vec<(K, Arc<V>)>, key: K, make: impl FnOnce() -> V) -> Arc<V> {
+    if let Some((_, v)) = list.iter().find(|(k, _)| *k == key) {
+        return v.clone();
+    }
+    let v = Arc::new(make());
+    list.push((key, v.clone()));
+    v
 }

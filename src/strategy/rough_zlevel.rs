@@ -193,7 +193,7 @@ impl RoughZlevel {
             cursor.safe_at = Some(Box::new(move |p: DVec2| within.as_ref().is_none_or(|c| c.contains(p))));
             cursor.traverse = Some(Box::new(move |a: DVec2, b: DVec2| {
                 let inside = before.as_ref().is_none_or(|c| Inside(c).clears(a.extend(lift), b.extend(lift), 0.0));
-                (inside && surface.along_until(a, b, ceiling - 2.0 * tol.interpolation).iter().all(|&(_, h)| h <= ceiling - 2.0 * tol.interpolation)).then_some(lift)
+                (inside && surface.stays_below(a, b, ceiling - 2.0 * tol.interpolation)).then_some(lift)
             }));
             let mut setup = Setup { tool_radius: r, top: z_prev, feed: tool.feed_rate, cursor: &mut cursor, tol: &tol };
             let air = self.air(ctx, &cl, r, z);

@@ -205,10 +205,7 @@ impl PixelMap {
         self.logging = true;
         let n = self.sweep(a, b, true, usize::MAX);
         if n as f64 > cap {
-            while self.undo.len() > mark {
-                let (w, bits) = self.undo.pop().expect("a logged word");
-                self.material[w] = bits;
-            }
+            self.restore(mark);
         } else if !logging {
             self.undo.truncate(mark);
         }
@@ -230,10 +227,15 @@ impl PixelMap {
 
     /// What was cut since the mark is put back (the detour is taken back).
     fn take_back(&mut self) {
-        while let Some((w, bits)) = self.undo.pop() {
+        self.restore(0);
+        self.logging = false;
+    }
+
+    /// Puts back the words logged since the log held `mark` entries, latest first.
+    fn restore(&mut self, mark: usize) {
+        for (w, bits) in self.undo.drain(mark..).rev() {
             self.material[w] = bits;
         }
-        self.logging = false;
     }
 
     /// Material pixels left.
@@ -624,7 +626,7 @@ mod tests {
         for _ in 0..200 {
             let a = DVec2::new(40.0 * rnd(), 40.0 * rnd());
             let b = a + DVec2::new(12.0 * rnd() - 6.0, 12.0 * rnd() - 6.0) * if rnd() < 0.5 { 0.05 } else { 1.0 };
-            let mut m = PixelMap { material: map.material.clone(), centre_in: map.centre_in.clone(), inner: map.inner.clone(), boundary: map.boundary.clone(), rows: map.rows.clone(), undo: Vec::new(), ..map };
+            let mut m = map.clone();
             let brute = (0..m.ny)
                 .flat_map(|j| (0..m.nx).map(move |i| (i, j)))
                 .filter(|&(i, j)| {

@@ -33,6 +33,7 @@ use crate::mesh::Mesh;
 use crate::progress::Progress;
 use crate::parallel;
 use crate::profile::{Loop, Shape};
+use crate::zmap::cl_exact::ExactBuilder;
 use crate::zmap::surface::ClSurface;
 
 /// Depth of the bending of one piece towards its inside node.
@@ -64,12 +65,18 @@ impl LevelMap {
         LevelMap::from_rows(cl, right, up)
     }
 
-    /// The map of `cl` over `mesh`, the part its drops are of (the widened cutter's z-map made
-    /// here).
+    /// The map of `cl` over `mesh`, the part its drops are of (the widened cutter's builder
+    /// made here).
     pub fn of_part(cl: &ClSurface, mesh: &Mesh, tol: &Tolerances) -> LevelMap {
+        LevelMap::widened_by(cl, &cl.drop().widened(mesh, cl.field.spacing, tol), tol)
+    }
+
+    /// The map of `cl` from `builder`, its drop's [`crate::zmap::drop::PointDrop::widened`]
+    /// by the grid's spacing: its z-map made here, on every core natively.
+    pub fn widened_by(cl: &ClSurface, builder: &ExactBuilder, tol: &Tolerances) -> LevelMap {
         let f = &cl.field;
-        let builder = cl.drop().widened(mesh, f.spacing, tol);
-        let wide = cl.drop().field_by(&builder, f.grid(), cl.floor(), &mut Progress::none()).map(|w| w.z).unwrap_or_else(|_| vec![f64::INFINITY; f.nx * f.ny]);
+        // Without a way to cancel it cannot fail; were it to, bounds of +inf still hold.
+        let wide = cl.drop().field_by(builder, f.grid(), cl.floor(), &mut Progress::none()).map(|w| w.z).unwrap_or_else(|_| vec![f64::INFINITY; f.nx * f.ny]);
         LevelMap::new(cl, &wide, tol).expect("the widened heights cover the grid")
     }
 
@@ -526,7 +533,7 @@ fn sharpen(cl: &ClSurface, level: f64, pts: &[DVec2], tol: &Tolerances) -> Vec<D
 
 /// Whether the exact surface stays at or below `level` all along the segment from `a` to `b`.
 fn clears_level(cl: &ClSurface, level: f64, a: DVec2, b: DVec2, tol: &Tolerances) -> bool {
-    cl.along_until(a, b, level + tol.height).into_iter().all(|(_, z)| z <= level + tol.height)
+    cl.stays_below(a, b, level + tol.height)
 }
 
 fn distance_to_segment(p: DVec2, a: DVec2, b: DVec2) -> f64 {

@@ -131,6 +131,12 @@ impl ClSurface {
         self.along_while(a, b, |_, z| z <= stop)
     }
 
+    /// Whether the surface stays at or below `h` all along the move from `a` to `b` (every
+    /// point of [`ClSurface::along`], looked at as far as the first above).
+    pub fn stays_below(&self, a: DVec2, b: DVec2, h: f64) -> bool {
+        self.along_until(a, b, h).last().is_some_and(|&(_, z)| z <= h)
+    }
+
     /// [`ClSurface::along`] as far as its first point `(t, z)` that `ok` refuses, which ends
     /// it: the same points up to there.
     pub fn along_while(&self, a: DVec2, b: DVec2, ok: impl Fn(f64, f64) -> bool) -> Vec<(f64, f64)> {
