@@ -99,7 +99,9 @@ fn one_way_passes_all_run_the_same_way_and_return_above_the_part() {
     let mut k = 0;
     while k < moves.len() {
         if let Move::Rapid { to } = moves[k] {
-            if to.z == out.clearance_z && at.z < out.clearance_z {
+            // Up from a cut: a retract (to the clearance, or the short retract just above the
+            // stock on the way).
+            if to.truncate() == at.truncate() && to.z > at.z {
                 retracts += 1;
             }
             at = to;
@@ -194,7 +196,7 @@ fn links_stay_down_only_above_the_surface() {
     let grid = Grid::covering(b.min.truncate(), b.max.truncate(), 0.5);
     let cl = surface(&out.part, grid, b.min.z, &cutter);
     let mut at = path.start;
-    let (mut rapids, mut feeds) = (0, 0);
+    let (mut rapids, mut feeds, mut across, mut lowest) = (0, 0, 0, f64::INFINITY);
     for m in &path.moves {
         let to = m.to();
         match m {
@@ -204,15 +206,23 @@ fn links_stay_down_only_above_the_surface() {
             }
             Move::Rapid { .. } => {
                 rapids += 1;
-                // Rapids are vertical, or horizontal at the clearance height.
+                // Rapids are vertical, or across no lower than the rapid gap (1 mm) above the
+                // surface all the way (the stock on the way was the box above the part).
                 let vertical = at.truncate() == to.truncate() && (to.z >= at.z || to.z > cl.height(to.truncate()));
-                assert!(vertical || (at.z == out.clearance_z && to.z == out.clearance_z), "rapid {at} -> {to}");
+                assert!(vertical || worst_gouge(&cl, &[at, to], 1.0) <= 1e-9, "rapid {at} -> {to}");
+                if !vertical {
+                    across += 1;
+                    lowest = lowest.min(at.z.min(to.z));
+                }
             }
             Move::Arc { .. } => unreachable!(),
         }
         at = to;
     }
     assert!(feeds > 1000 && rapids > 0);
+    // The stock's top is the part's top plus its margin: the short retract travels the gap
+    // above it, below the clearance (5 mm above it).
+    assert!(across > 0 && lowest < out.clearance_z - 3.0 && lowest >= b.max.z + 1.0 - 1e-9, "{across} rapids across, the lowest at {lowest}");
     assert_eq!(at.z, out.clearance_z, "the path ends at the clearance height");
 }
 

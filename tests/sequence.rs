@@ -50,9 +50,21 @@ fn a_two_tool_raster_sequence_enters_just_above_the_stock_the_first_left() {
     let fine = Cutter::ball(3.0).profile();
     let (stock_top, gap) = (out.stock.max.z, job.stock.retract);
     let mut at = out.paths[1].start;
-    let (mut descents, mut below_raw_top) = (0, 0);
+    let (mut descents, mut below_raw_top, mut across, mut low_across) = (0, 0, 0, 0);
     for (k, m) in out.paths[1].moves.iter().enumerate() {
         if let Move::Rapid { to } = *m {
+            if to.truncate() != at.truncate() {
+                // Across level (a control may move its axes one by one), the gap above the
+                // material anywhere on the way (the short retract), never higher than the
+                // clearance.
+                assert!((to.z - at.z).abs() < 1e-12, "a slanting rapid {at} -> {to}");
+                let material = left.touch_along(at.truncate(), to.truncate(), &fine, true);
+                assert!(to.z >= material + gap - 1e-9 && to.z <= out.clearance_z + 1e-9, "across at {} from {at} to {to}, the material on the way at {material}", to.z);
+                across += 1;
+                if to.z < stock_top {
+                    low_across += 1;
+                }
+            }
             if to.z < at.z && to.truncate() == at.truncate() {
                 // A rapid descent stops the gap above the material that is really there, or
                 // above the start when that is higher (then it feeds straight down to it).
@@ -72,6 +84,7 @@ fn a_two_tool_raster_sequence_enters_just_above_the_stock_the_first_left() {
     }
     assert!(descents > 0);
     assert!(below_raw_top * 2 > descents, "{below_raw_top} of {descents} descents went below the raw block's top");
+    assert!(low_across * 2 > across, "{low_across} of {across} rapids across went below the raw block's top");
     // The report per operation adds up to the program.
     let ops = &out.operations;
     assert_eq!(ops.len(), 2);

@@ -108,10 +108,12 @@ pub struct Stock {
     /// The stock as an explicit box (mm, where the part is placed), instead of margins.
     /// Default value: none.
     pub size_box: Option<Aabb>,
-    /// Height above the stock top for rapid moves (mm). Default value: 5.
+    /// Height above the stock top for rapid moves where they cannot go lower (mm): the start
+    /// and end of each operation, and retracts over stock standing that high. Default value: 5.
     pub clearance: f64,
-    /// Gap above the material under the tool where a rapid descent stops and the feed begins
-    /// (mm): the short retract. Default value: 1.
+    /// Gap above the material under the tool where a rapid descent stops and the feed begins,
+    /// and above the material on the way where a retract travels across (mm): the short
+    /// retract. Default value: 1.
     pub retract: f64,
     /// Moves part and stock so that this point is the program's origin (for parts; a sheet's
     /// top is always Z0). Default value: none (as the part's placement puts it).

@@ -174,8 +174,16 @@ impl DexelStock {
     /// estimate, for deciding what is left to cut). Blocks no higher than the best answer so
     /// far are skipped.
     pub fn touch(&self, c: DVec2, profile: &crate::cutter::Profile, whole_cells: bool) -> f64 {
+        self.touch_along(c, c, profile, whole_cells)
+    }
+
+    /// [`DexelStock::touch`] anywhere along the straight way from `a` to `b`: the lowest height
+    /// at which the cutter can travel level from above `a` to above `b` without touching the
+    /// material (a column's distance from the way is its square's, or its centre's).
+    pub fn touch_along(&self, a: DVec2, b: DVec2, profile: &crate::cutter::Profile, whole_cells: bool) -> f64 {
         let r = profile.radius;
-        let Some(((i0, i1), (j0, j1))) = self.cell_range(c - DVec2::splat(r + self.cell), c + DVec2::splat(r + self.cell)) else { return f64::NEG_INFINITY };
+        let reach = DVec2::splat(r + self.cell);
+        let Some(((i0, i1), (j0, j1))) = self.cell_range(a.min(b) - reach, a.max(b) + reach) else { return f64::NEG_INFINITY };
         let mut best = f64::NEG_INFINITY;
         let size = self.block;
         for bj in j0 / size..=j1 / size {
@@ -191,8 +199,7 @@ impl DexelStock {
                             continue;
                         }
                         let lo = self.origin + DVec2::new(i as f64, j as f64) * self.cell;
-                        let nearest = if whole_cells { c.clamp(lo, lo + DVec2::splat(self.cell)) } else { lo + DVec2::splat(self.cell * 0.5) };
-                        let d = nearest.distance(c);
+                        let d = if whole_cells { square_distance(a, b, lo, lo + DVec2::splat(self.cell)) } else { segment_distance(lo + DVec2::splat(self.cell * 0.5), a, b) };
                         if d <= r {
                             best = best.max(top - profile.height(d));
                         }
@@ -326,11 +333,55 @@ impl StockModel for DexelStock {
     }
 }
 
+/// The distance from `q` to the segment from `a` to `b`.
+fn segment_distance(q: DVec2, a: DVec2, b: DVec2) -> f64 {
+    let d = b - a;
+    let len2 = d.length_squared();
+    let t = if len2 > 0.0 { ((q - a).dot(d) / len2).clamp(0.0, 1.0) } else { 0.0 };
+    q.distance(a + d * t)
+}
+
+/// The distance from the segment from `a` to `b` to the square `[lo, hi]` (0 where they meet):
+/// the nearer of its ends' distances to the square and the square's corners' to the segment.
+fn square_distance(a: DVec2, b: DVec2, lo: DVec2, hi: DVec2) -> f64 {
+    let to_square = |p: DVec2| p.clamp(lo, hi).distance(p);
+    if a == b {
+        return to_square(a);
+    }
+    // Whether the segment crosses the square: the slabs' parameter intervals overlap.
+    let d = b - a;
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for (p, v, l, h) in [(a.x, d.x, lo.x, hi.x), (a.y, d.y, lo.y, hi.y)] {
+        if v == 0.0 {
+            if p < l || p > h {
+                t0 = f64::INFINITY;
+            }
+        } else {
+            let (u, w) = ((l - p) / v, (h - p) / v);
+            t0 = t0.max(u.min(w));
+            t1 = t1.min(u.max(w));
+        }
+    }
+    if t0 <= t1 {
+        return 0.0;
+    }
+    let corners = [lo, DVec2::new(hi.x, lo.y), hi, DVec2::new(lo.x, hi.y)];
+    corners.iter().map(|&c| segment_distance(c, a, b)).fold(to_square(a).min(to_square(b)), f64::min)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::cutter::Profile;
     use crate::geom::DVec3;
+
+    /// Numbers in [0, 1) from `seed`, the same every run.
+    fn uniform(mut seed: u64) -> impl FnMut() -> f64 {
+        move || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
 
     /// The body test skips a block only where nothing in it stands above the body's lowest
     /// point: on a stock cut into steps and pockets, for sweeps at every depth, it finds the
@@ -343,11 +394,7 @@ mod tests {
         for (a, b) in [((5.0, 5.0, 12.0), (35.0, 5.0, 12.0)), ((8.0, 8.0, 6.0), (8.0, 25.0, 6.0)), ((20.0, 15.0, 2.0), (30.0, 22.0, 2.0)), ((12.0, 20.0, 15.0), (14.0, 21.0, 15.0))] {
             stock.apply(&Sweep::line(flat, DVec3::from(a), DVec3::from(b)));
         }
-        let mut seed = 7u64;
-        let mut next = || {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = uniform(7);
         let (mut met, mut clear) = (0, 0);
         for _ in 0..400 {
             let a = DVec3::new(40.0 * next(), 30.0 * next(), 20.0 * next());
@@ -372,5 +419,41 @@ mod tests {
             }
         }
         assert!(met > 40 && clear > 40, "{met} met, {clear} clear");
+    }
+
+    /// The height a level traverse must keep along a way is at least the touch at every point
+    /// of it (dense points, each cell's whole square), and no more than a flat end a hair wider
+    /// finds at those points: on a stock cut into steps and pockets, for flat ends, balls and
+    /// bull noses, long and short ways.
+    #[test]
+    fn the_touch_along_a_way_is_the_highest_touch_on_it() {
+        let mut stock = DexelStock::new(&Aabb { min: DVec3::ZERO, max: DVec3::new(40.0, 30.0, 20.0) }, 0.25, 1);
+        let flat = Profile::new(3.0, 0.0);
+        // Faced down to 14 but for a strip along y = 30, then steps and pockets.
+        for y in (0..7).map(|k| k as f64 * 4.0) {
+            stock.apply(&Sweep::line(flat, DVec3::new(-3.0, y, 14.0), DVec3::new(43.0, y, 14.0)));
+        }
+        for (a, b) in [((5.0, 5.0, 12.0), (35.0, 5.0, 12.0)), ((8.0, 8.0, 6.0), (8.0, 25.0, 6.0)), ((20.0, 15.0, 2.0), (30.0, 22.0, 2.0)), ((12.0, 20.0, 9.0), (14.0, 21.0, 9.0))] {
+            stock.apply(&Sweep::line(flat, DVec3::from(a), DVec3::from(b)));
+        }
+        let mut next = uniform(11);
+        let mut below_top = 0;
+        for k in 0..300 {
+            let profile = [Profile::new(3.0, 0.0), Profile::new(3.0, 3.0), Profile::new(3.0, 1.0)][k % 3];
+            let a = DVec2::new(40.0 * next(), 30.0 * next());
+            let b = if k % 10 == 0 { a } else { a + DVec2::new(30.0 * next() - 15.0, 30.0 * next() - 15.0) };
+            let n = 2000;
+            let points = (0..=n).map(|q| a.lerp(b, q as f64 / n as f64));
+            let along = stock.touch_along(a, b, &profile, true);
+            let highest = points.clone().map(|p| stock.touch(p, &profile, true)).fold(f64::NEG_INFINITY, f64::max);
+            assert!(along >= highest - 1e-12, "{a} {b} {profile:?}: {along} below {highest}");
+            let wider = Profile::new(3.0 + a.distance(b) / n as f64, 0.0);
+            let bound = points.map(|p| stock.touch(p, &wider, true)).fold(f64::NEG_INFINITY, f64::max);
+            assert!(along <= bound + 1e-12, "{a} {b} {profile:?}: {along} above {bound}");
+            if along < 19.0 {
+                below_top += 1;
+            }
+        }
+        assert!(below_top > 30, "{below_top} ways below the stock's top");
     }
 }

@@ -170,9 +170,10 @@ impl Context {
         let stock = self.sim.stock();
         let material = |p: DVec2| stock.touch(p, &profile, true).min(ceiling);
         let estimate = |p: DVec2| stock.touch(p, &profile, false).min(ceiling);
+        let along = |a: DVec2, b: DVec2| stock.touch_along(a, b, &profile, true);
         let settings = LinkSettings { clearance_z: self.heights.clearance, rapid_gap: self.heights.gap, stay_down_max };
         let rates = Feeds { cut: tool.feed_rate, plunge: tool.plunge_rate };
-        let linker = Linker { settings, keep, material: &material, estimate: &estimate, threshold: self.tolerances.gouge, entry, radius: profile.radius, feeds: rates };
+        let linker = Linker { settings, keep, material: &material, material_along: &along, estimate: &estimate, threshold: self.tolerances.gouge, entry, radius: profile.radius, feeds: rates };
         let (start, moves, entries) = linker.link_fed(runs, known.0, known.1, &self.tolerances);
         if entries.plunge > 0 {
             self.warn(op, format!("{} entries found no room for a helix or a ramp and feed straight down into material", entries.plunge));

@@ -170,6 +170,13 @@ impl<'m> InStock<'m> {
         self.stock.touch(p, &self.profile, false)
     }
 
+    /// The highest tip height at which the cutter touches the material anywhere along the
+    /// straight way from `a` to `b`, each cell as a column over its whole square (`-inf` where
+    /// there is none): a level traverse above it meets no material.
+    pub fn along(&self, a: DVec2, b: DVec2) -> f64 {
+        self.stock.touch_along(a, b, &self.profile, true)
+    }
+
     /// The same as the stock model samples it, at its cells' centres, with the footprint
     /// `shy` smaller: for deciding where material is left to cut.
     pub fn estimate(&self, p: DVec2) -> f64 {
@@ -214,12 +221,14 @@ pub struct Cursor<'m> {
 }
 
 impl Cursor<'_> {
-    /// Up to the clearance (or the strategy's lower traverse), over to above `to`, rapid down
-    /// to the safe height (or the gap above the in-process stock there, when lower), then feed
-    /// down to `to`: the linker's retract ([`retract`]).
+    /// Up to the clearance (or the strategy's lower traverse, or the gap above the in-process
+    /// stock on the way, whichever is lower), over to above `to`, rapid down to the safe height
+    /// (or the gap above the in-process stock there, when lower), then feed down to `to`: the
+    /// linker's retract ([`retract`]).
     pub fn reposition(&mut self, to: DVec3, out: &mut Vec<Move>) {
         let low = self.traverse.as_ref().and_then(|f| f(self.at.truncate(), to.truncate()));
         let travel = low.map_or(self.clearance, |h| h.max(self.safe.min(self.clearance)).min(self.clearance));
+        let travel = travel.min((self.stock.along(self.at.truncate(), to.truncate()) + self.gap).max(to.z));
         let safe = if self.safe_at.as_ref().is_none_or(|f| f(to.truncate())) { self.safe } else { self.clearance };
         let stop = safe.min(travel).min(self.stock.reach(to.truncate()).max(to.z) + self.gap);
         retract(self.at, to.truncate(), travel, stop.max(to.z), out);

@@ -170,8 +170,8 @@ impl RoughZlevel {
         let clearance = ctx.heights.clearance;
         let mut cursor = sheet::cursor(ctx, &tool);
         let mut moves = Vec::new();
-        // The region the level before cleared (none above the first level).
-        let mut cleared: Option<Shape> = None;
+        // The levels cut so far, each with the region it cleared, the latest last.
+        let mut cleared: Vec<(f64, Arc<Shape>)> = Vec::new();
         let count = levels.len();
         for (k, Level { z, z_prev, region }) in levels.into_iter().enumerate() {
             if !progress.report(k as f64 / count as f64) {
@@ -182,23 +182,26 @@ impl RoughZlevel {
             // Material above this level was cleared by the level before within this region
             // (which lies inside that level's): rapids stop the gap above it.
             cursor.safe = (z_prev + ctx.heights.gap).min(clearance);
-            // The short retract: a traverse just above the level before, where the straight
-            // move there stays inside what that level cleared (its region), and over the part.
-            let (surface, ceiling, gap) = (cl.clone(), z_prev - self.allowance - tol.height, ctx.heights.gap);
-            let lift = z_prev + gap;
-            let before = cleared.take();
+            // The short retract: a traverse just above the lowest level cut so far whose
+            // region holds the straight move (what that level cleared), over the part there;
+            // above the stock's top before the first level.
+            let (surface, allowance, gap, tol_z) = (cl.clone(), self.allowance, ctx.heights.gap, tol.height + 2.0 * tol.interpolation);
+            let before = cleared.clone();
             // Rapids come down to the gap above the level before only over what it cleared:
             // elsewhere (rest roughing beside what an earlier tool left) above the stock.
-            let within = before.clone();
+            let within = before.last().map(|(_, c)| c.clone());
             cursor.safe_at = Some(Box::new(move |p: DVec2| within.as_ref().is_none_or(|c| c.contains(p))));
             cursor.traverse = Some(Box::new(move |a: DVec2, b: DVec2| {
-                let inside = before.as_ref().is_none_or(|c| Inside(c).clears(a.extend(lift), b.extend(lift), 0.0));
-                (inside && surface.stays_below(a, b, ceiling - 2.0 * tol.interpolation)).then_some(lift)
+                let over = |level: f64| surface.stays_below(a, b, level - allowance - tol_z);
+                if before.is_empty() {
+                    return over(z_prev).then_some(z_prev + gap);
+                }
+                before.iter().rev().find(|(level, c)| Inside(c).clears(a.extend(level + gap), b.extend(level + gap), 0.0) && over(*level)).map(|(level, _)| level + gap)
             }));
             let mut setup = Setup { tool_radius: r, top: z_prev, feed: tool.feed_rate, cursor: &mut cursor, tol: &tol };
             let air = self.air(ctx, &cl, r, z);
             moves.extend(clear_rings(&rings, &clearing, z_prev, z, &mut setup, Some(&air)));
-            cleared = Some(region);
+            cleared.push((z, Arc::new(region)));
         }
         Ok(sheet::toolpath(&self.name, &tool, moves, clearance))
     }

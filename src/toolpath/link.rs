@@ -1,9 +1,10 @@
 //! Linking cutting runs into one path (DESIGN.md idea 6), one pass over the runs with a
 //! pluggable test of what a link must stay clear of ([`Keepout`]: the CL surface within a
 //! region, ...). Between two runs the tool stays down and feeds straight across when that move
-//! is short and the test accepts it; otherwise it retracts to the clearance height, moves over
-//! at rapid, drops at rapid to a small gap above the material that is really there (the
-//! in-process stock under the cutter at that spot, never into it), and enters the material
+//! is short and the test accepts it; otherwise it retracts to a small gap above the highest
+//! material the cutter would meet on the way across (the in-process stock; the clearance height
+//! at most), moves over at rapid, drops at rapid to a small gap above the material that is
+//! really there (the in-process stock under the cutter at that spot, never into it), and enters the material
 //! ([`super::entry`]): a helix or a ramp, never a straight plunge into material.
 
 use serde::{Deserialize, Serialize};
@@ -68,6 +69,10 @@ pub struct Linker<'a> {
     /// The highest tip height at which the cutter touches material at a point (the in-process
     /// stock; `-inf` where there is none).
     pub material: &'a dyn Fn(DVec2) -> f64,
+    /// The highest tip height at which the cutter touches the material anywhere along the
+    /// straight way between two points (the in-process stock as the operation found it, which
+    /// holds all the material there is): a retract travels just above it.
+    pub material_along: &'a dyn Fn(DVec2, DVec2) -> f64,
     /// The same, estimated as the stock model samples the material (not bounded from above):
     /// a start where it stands no more than `threshold` above the path is entered in the air.
     pub estimate: &'a dyn Fn(DVec2) -> f64,
@@ -138,7 +143,10 @@ impl Linker<'_> {
             } else {
                 let material = (self.material)(p0.truncate());
                 let top = (p0.z.max(material) + settings.rapid_gap).min(clearance);
-                retract(at, p0.truncate(), clearance, top, &mut moves);
+                // Across at the rapid gap above the material on the way (the full clearance
+                // only where that is as high): a short retract.
+                let travel = ((self.material_along)(at.truncate(), p0.truncate()) + settings.rapid_gap).max(top).min(clearance);
+                retract(at, p0.truncate(), travel, top, &mut moves);
                 let inside = inside.and_then(|f| f.get(i).copied()).unwrap_or_else(|| (self.estimate)(p0.truncate()) > p0.z + self.threshold);
                 let (entry, kind) = enter_3d(top, if inside { material } else { f64::NEG_INFINITY }, run, self.radius, &self.entry, self.keep, (self.feeds.plunge, self.feeds.cut), tolerances.height);
                 entries.count(kind);
@@ -158,16 +166,18 @@ impl Linker<'_> {
 
 /// The retract between two cuts, as every strategy makes it (the 3D linker, the 2.5D cursor):
 /// from `at` straight up to the `travel` height (when below it), across at rapid to above
-/// `to`, and down at rapid to `stop` (when below the travel height). What follows (a feed
-/// down, an entry) is the caller's.
+/// `to` (level, at `at`'s height when that is higher: a control may move its axes one by one
+/// on a rapid, so a rapid never slants), and down at rapid to `stop` (when below). What
+/// follows (a feed down, an entry) is the caller's.
 pub fn retract(at: DVec3, to: DVec2, travel: f64, stop: f64, out: &mut Vec<Move>) {
     if at.z < travel {
         out.push(Move::Rapid { to: at.truncate().extend(travel) });
     }
-    if at.truncate() != to || at.z > travel {
-        out.push(Move::Rapid { to: to.extend(travel) });
+    let across = at.z.max(travel);
+    if at.truncate() != to {
+        out.push(Move::Rapid { to: to.extend(across) });
     }
-    if stop < travel {
+    if stop < across {
         out.push(Move::Rapid { to: to.extend(stop) });
     }
 }

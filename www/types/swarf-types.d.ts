@@ -832,12 +832,14 @@ marginSides: [number, number, number, number] | null,
  */
 sizeBox: Aabb | null, 
 /**
- * Height above the stock top for rapid moves (mm). Default value: 5.
+ * Height above the stock top for rapid moves where they cannot go lower (mm): the start
+ * and end of each operation, and retracts over stock standing that high. Default value: 5.
  */
 clearance: number, 
 /**
- * Gap above the material under the tool where a rapid descent stops and the feed begins
- * (mm): the short retract. Default value: 1.
+ * Gap above the material under the tool where a rapid descent stops and the feed begins,
+ * and above the material on the way where a retract travels across (mm): the short
+ * retract. Default value: 1.
  */
 retract: number, 
 /**
