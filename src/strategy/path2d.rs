@@ -215,6 +215,10 @@ pub struct Cursor<'m> {
     /// Where `safe` holds, when only somewhere (the region the level before cleared); past it
     /// a rapid descent stops the gap above the in-process stock. `None`: everywhere.
     pub safe_at: Option<Box<dyn Fn(DVec2) -> bool>>,
+    /// Past `safe_at`, the height down to which the operation has cleared the material about
+    /// a point already (an earlier level's region), if it has: a rapid descent stops the gap
+    /// above it, and a ramp starts on it.
+    pub cleared_to: Option<Box<dyn Fn(DVec2) -> Option<f64>>>,
     /// The in-process stock: rapid descents stop the gap above the material under the cutter
     /// at that spot (no lower than `safe` allows otherwise).
     pub stock: InStock<'m>,
@@ -229,13 +233,22 @@ impl Cursor<'_> {
         let low = self.traverse.as_ref().and_then(|f| f(self.at.truncate(), to.truncate()));
         let travel = low.map_or(self.clearance, |h| h.max(self.safe.min(self.clearance)).min(self.clearance));
         let travel = travel.min((self.stock.along(self.at.truncate(), to.truncate()) + self.gap).max(to.z));
-        let safe = if self.safe_at.as_ref().is_none_or(|f| f(to.truncate())) { self.safe } else { self.clearance };
+        let safe = if self.safe_at.as_ref().is_none_or(|f| f(to.truncate())) {
+            self.safe
+        } else {
+            self.cleared(to.truncate()).map_or(self.clearance, |h| (h + self.gap).min(self.clearance))
+        };
         let stop = safe.min(travel).min(self.stock.reach(to.truncate()).max(to.z) + self.gap);
         retract(self.at, to.truncate(), travel, stop.max(to.z), out);
         if stop > to.z {
             out.push(Move::Line { to, feed: self.plunge });
         }
         self.at = to;
+    }
+
+    /// [`Cursor::cleared_to`] at `p`.
+    pub fn cleared(&self, p: DVec2) -> Option<f64> {
+        self.cleared_to.as_ref().and_then(|f| f(p))
     }
 
     /// Where material starts for a cut from `from` down to `to` whose tool runs along `segments`:

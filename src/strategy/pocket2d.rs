@@ -379,8 +379,10 @@ impl Ctx<'_, '_, '_> {
         } else {
             // Where material stands above the level before at the start (rest roughing beside
             // what an earlier tool left, which that level did not reach), the ramp starts on it.
+            // Past the level before, the ramp starts no higher than an earlier level of the
+            // operation cleared the material there.
             let cleared = self.s.cursor.safe_at.as_ref().is_none_or(|f| f(start));
-            let top = if cleared { self.z_prev } else { self.s.cursor.stock.estimate(start) };
+            let top = if cleared { self.z_prev } else { self.s.cursor.stock.estimate(start).min(self.s.cursor.cleared(start).unwrap_or(f64::INFINITY)) };
             let from = if top > self.z_prev + self.s.tol.gouge { top } else { self.z_prev };
             self.s.cursor.reposition(start.extend(from), self.out);
             let ramp = Heights::ramp(0.0, from, self.z, self.angle);

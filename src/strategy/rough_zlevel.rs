@@ -190,7 +190,13 @@ impl RoughZlevel {
             // Rapids come down to the gap above the level before only over what it cleared:
             // elsewhere (rest roughing beside what an earlier tool left) above the stock.
             let within = before.last().map(|(_, c)| c.clone());
-            cursor.safe_at = Some(Box::new(move |p: DVec2| within.as_ref().is_none_or(|c| c.contains(p))));
+            // A ring's start lies on its region's boundary: a point a chordal tolerance from a
+            // region counts as in it.
+            let slack = tol.chordal;
+            let holds = move |c: &Shape, p: DVec2| c.contains(p) || c.distance_to(p) <= slack;
+            cursor.safe_at = Some(Box::new(move |p: DVec2| within.as_ref().is_none_or(|c| holds(c, p))));
+            let earlier = before.clone();
+            cursor.cleared_to = Some(Box::new(move |p: DVec2| earlier.iter().rev().find(|(_, c)| holds(c, p)).map(|(level, _)| *level)));
             cursor.traverse = Some(Box::new(move |a: DVec2, b: DVec2| {
                 let over = |level: f64| surface.stays_below(a, b, level - allowance - tol_z);
                 if before.is_empty() {

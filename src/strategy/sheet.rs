@@ -64,6 +64,7 @@ pub fn cursor<'m>(ctx: &'m Context, tool: &Tool) -> Cursor<'m> {
         plunge: tool.plunge_rate,
         traverse: None,
         safe_at: None,
+        cleared_to: None,
         stock,
     }
 }
