@@ -289,6 +289,27 @@ fn arcs_shorter_than_the_resolution_go_out_as_lines() {
     assert!(canon.iter().all(|(k, _)| !matches!(k, Kind::Arc { .. })));
 }
 
+/// A level arc between two lines at a height the program's resolution does not hold is written
+/// at the same Z as the lines (rounded up, like every feed's Z): not a helix a hair thin, and
+/// never below the path.
+#[test]
+fn a_level_arc_is_written_at_its_lines_height() {
+    let tools = vec![Tool { number: 1, cutter: Cutter::flat(3.0), ..Tool::default() }];
+    let z = 29.84649;
+    let moves = vec![
+        Move::Line { to: DVec3::new(10.0, 0.0, z), feed: 300.0 },
+        Move::Arc { to: DVec3::new(0.0, 10.0, z), center: DVec2::ZERO, clockwise: false, feed: 800.0 },
+        Move::Line { to: DVec3::new(-5.0, 10.0, z), feed: 300.0 },
+    ];
+    let path = Toolpath { name: "level".into(), tool: 1, spindle_rpm: 10000.0, start: DVec3::new(10.0, 0.0, 35.0), moves };
+    let gcode = write_gcode("level", std::slice::from_ref(&path), &tools, 35.0, &PostSettings::default()).unwrap();
+    let arc = gcode.lines().find(|l| l.starts_with("G3 ")).unwrap_or_else(|| panic!("no arc: {gcode}"));
+    assert!(!arc.contains('Z'), "the arc changes Z: {arc}");
+    let canon = interpret(&gcode, &tools);
+    let fed: Vec<f64> = canon.iter().filter(|(k, _)| !matches!(k, Kind::Rapid)).map(|(_, p)| p.z).collect();
+    assert!(fed.len() >= 3 && fed.iter().all(|&h| (h - fed[0]).abs() < 1e-12 && h >= z), "{fed:?}\n{gcode}");
+}
+
 /// swarf's own G-code reader (for `swarf verify`) must read a program as LinuxCNC does.
 #[test]
 fn the_reader_reads_programs_as_linuxcnc_does() {

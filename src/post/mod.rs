@@ -511,9 +511,10 @@ impl<'a> Writer<'a> {
             words.push_str(code);
         }
         for (axis, (name, value)) in [("X", to.x), ("Y", to.y), ("Z", to.z)].into_iter().enumerate() {
-            // A feed's Z is rounded up: the path was made for the resolution (see
-            // `PostSettings::resolution`), and rounding Z down would lower it.
-            let text = if axis == 2 && feed.is_some() && !is_arc { self.length_up(value) } else { self.length(value) };
+            // A feed's Z is rounded up, an arc's too: the path was made for the resolution (see
+            // `PostSettings::resolution`), and rounding Z down would lower it (and a level arc
+            // between two lines would come out a hair-thin helix).
+            let text = if axis == 2 && feed.is_some() { self.length_up(value) } else { self.length(value) };
             let changed = self.written[axis].as_deref() != Some(text.as_str());
             moved |= changed;
             if changed || (is_arc && axis < 2) || !modal {
