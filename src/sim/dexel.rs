@@ -183,6 +183,7 @@ impl DexelStock {
     pub fn touch_along(&self, a: DVec2, b: DVec2, profile: &crate::cutter::Profile, whole_cells: bool) -> f64 {
         let r = profile.radius;
         let reach = DVec2::splat(r + self.cell);
+        let half_diagonal = self.cell * std::f64::consts::FRAC_1_SQRT_2;
         let Some(((i0, i1), (j0, j1))) = self.cell_range(a.min(b) - reach, a.max(b) + reach) else { return f64::NEG_INFINITY };
         let mut best = f64::NEG_INFINITY;
         let size = self.block;
@@ -199,7 +200,9 @@ impl DexelStock {
                             continue;
                         }
                         let lo = self.origin + DVec2::new(i as f64, j as f64) * self.cell;
-                        let d = if whole_cells { square_distance(a, b, lo, lo + DVec2::splat(self.cell)) } else { segment_distance(lo + DVec2::splat(self.cell * 0.5), a, b) };
+                        let d = segment_distance(lo + DVec2::splat(self.cell * 0.5), a, b);
+                        // A square is no nearer than its centre less half its diagonal.
+                        let d = if !whole_cells || d > r + half_diagonal { d } else { square_distance(a, b, lo, lo + DVec2::splat(self.cell)) };
                         if d <= r {
                             best = best.max(top - profile.height(d));
                         }
