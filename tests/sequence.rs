@@ -97,6 +97,37 @@ fn a_two_tool_raster_sequence_enters_just_above_the_stock_the_first_left() {
     assert!(ops[0].left_max.unwrap() > 0.3 && ops[1].left_mean.unwrap() < ops[0].left_mean.unwrap(), "{ops:?}");
 }
 
+/// With full retracts (clamps the stock does not show), every rapid across goes at the
+/// clearance height; with the default minimum ones the same job is quicker.
+#[test]
+fn full_retracts_travel_at_the_clearance_height() {
+    let mut job = two_rasters();
+    let minimum = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
+    job.stock.retracts = swarf::job::Retracts::Full;
+    let full = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
+    assert!(full.verification.as_ref().unwrap().report.is_clean());
+    let across = |out: &swarf::job::JobOutput| {
+        let mut heights = Vec::new();
+        for path in &out.paths {
+            let mut at = path.start;
+            for m in &path.moves {
+                if let Move::Rapid { to } = *m {
+                    if to.truncate() != at.truncate() {
+                        heights.push(to.z);
+                    }
+                }
+                at = m.to();
+            }
+        }
+        heights
+    };
+    let (low, high) = (across(&minimum), across(&full));
+    assert!(!high.is_empty() && high.iter().all(|&z| (z - full.clearance_z).abs() < 1e-9), "{high:?}");
+    assert!(low.iter().any(|&z| z < minimum.clearance_z - 1.0), "{low:?}");
+    let seconds = |out: &swarf::job::JobOutput| out.moves.iter().map(|m| m.seconds).sum::<f64>();
+    assert!(seconds(&minimum) < seconds(&full), "{} s with minimum retracts, {} s with full ones", seconds(&minimum), seconds(&full));
+}
+
 #[test]
 fn a_second_operation_on_the_same_cutter_and_grid_gets_its_z_map_from_the_cache() {
     let job = Job {

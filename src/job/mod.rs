@@ -115,14 +115,31 @@ pub struct Stock {
     /// and above the material on the way where a retract travels across (mm): the short
     /// retract. Default value: 1.
     pub retract: f64,
+    /// How a retract between two cuts travels across: `minimum`, the retract gap above the
+    /// highest material on the way (the clearance where the stock stands that high); `full`,
+    /// at the clearance height, over clamps and fixtures the stock does not show (a z-level
+    /// roughing still crosses what it has cleared just above its levels). Default value:
+    /// minimum.
+    pub retracts: Retracts,
     /// Moves part and stock so that this point is the program's origin (for parts; a sheet's
     /// top is always Z0). Default value: none (as the part's placement puts it).
     pub zero: Option<WorkZero>,
 }
 
+/// How retracts between cuts travel ([`Stock::retracts`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(rename_all = "camelCase")]
+pub enum Retracts {
+    /// Just above the material on the way: the shortest in time.
+    #[default]
+    Minimum,
+    /// At the clearance height.
+    Full,
+}
+
 impl Default for Stock {
     fn default() -> Self {
-        Stock { margin_xy: 5.0, margin_top: 1.0, margin_bottom: 0.0, margin_sides: None, size_box: None, clearance: 5.0, retract: 1.0, zero: None }
+        Stock { margin_xy: 5.0, margin_top: 1.0, margin_bottom: 0.0, margin_sides: None, size_box: None, clearance: 5.0, retract: 1.0, retracts: Retracts::Minimum, zero: None }
     }
 }
 
@@ -503,7 +520,7 @@ impl Job {
             part,
             sheet,
             stock,
-            heights: SafeHeights { clearance: stock.max.z + self.stock.clearance, gap: self.stock.retract },
+            heights: SafeHeights { clearance: stock.max.z + self.stock.clearance, gap: self.stock.retract, full: self.stock.retracts == Retracts::Full },
             tools: self.tools.clone(),
             tolerances: self.tolerances,
             resolution,

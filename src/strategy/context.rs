@@ -33,6 +33,9 @@ pub struct SafeHeights {
     /// A rapid descent stops this far above the material under the tool (the short retract
     /// used between nearby cuts); the rest is fed.
     pub gap: f64,
+    /// Retracts across material go to the clearance height (not the gap above the material
+    /// on the way).
+    pub full: bool,
 }
 
 /// A drawing as a sheet on the machine: its top at Z0, `thickness` below.
@@ -171,7 +174,7 @@ impl Context {
         let material = |p: DVec2| stock.touch(p, &profile, true).min(ceiling);
         let estimate = |p: DVec2| stock.touch(p, &profile, false).min(ceiling);
         let along = |a: DVec2, b: DVec2| stock.touch_along(a, b, &profile, true);
-        let settings = LinkSettings { clearance_z: self.heights.clearance, rapid_gap: self.heights.gap, stay_down_max };
+        let settings = LinkSettings { clearance_z: self.heights.clearance, rapid_gap: self.heights.gap, stay_down_max, full_retract: self.heights.full };
         let rates = Feeds { cut: tool.feed_rate, plunge: tool.plunge_rate };
         let linker = Linker { settings, keep, material: &material, material_along: &along, estimate: &estimate, threshold: self.tolerances.gouge, entry, radius: profile.radius, feeds: rates };
         let (start, moves, entries) = linker.link_fed(runs, known.0, known.1, &self.tolerances);

@@ -208,6 +208,9 @@ pub struct Cursor<'m> {
     pub safe: f64,
     /// How far above the material a rapid descent stops (mm).
     pub gap: f64,
+    /// Retracts across material go to the clearance height (or the strategy's traverse), not
+    /// the gap above the material on the way.
+    pub full_retract: bool,
     pub plunge: f64,
     /// A lower traverse than the clearance height where the strategy knows one (the short
     /// retract); `None`: always the clearance height.
@@ -232,7 +235,7 @@ impl Cursor<'_> {
     pub fn reposition(&mut self, to: DVec3, out: &mut Vec<Move>) {
         let low = self.traverse.as_ref().and_then(|f| f(self.at.truncate(), to.truncate()));
         let travel = low.map_or(self.clearance, |h| h.max(self.safe.min(self.clearance)).min(self.clearance));
-        let travel = travel.min((self.stock.along(self.at.truncate(), to.truncate()) + self.gap).max(to.z));
+        let travel = if self.full_retract { travel } else { travel.min((self.stock.along(self.at.truncate(), to.truncate()) + self.gap).max(to.z)) };
         let safe = if self.safe_at.as_ref().is_none_or(|f| f(to.truncate())) {
             self.safe
         } else {

@@ -61,6 +61,7 @@ pub fn cursor<'m>(ctx: &'m Context, tool: &Tool) -> Cursor<'m> {
         clearance,
         safe: ctx.stock.max.z + ctx.heights.gap,
         gap: ctx.heights.gap,
+        full_retract: ctx.heights.full,
         plunge: tool.plunge_rate,
         traverse: None,
         safe_at: None,

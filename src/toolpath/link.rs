@@ -26,11 +26,14 @@ pub struct LinkSettings {
     pub rapid_gap: f64,
     /// Longest link that may stay down (mm). Default value: 4.
     pub stay_down_max: f64,
+    /// Retracts travel at the clearance height, not just above the material on the way.
+    /// Default value: false.
+    pub full_retract: bool,
 }
 
 impl Default for LinkSettings {
     fn default() -> Self {
-        LinkSettings { clearance_z: 5.0, rapid_gap: 1.0, stay_down_max: 4.0 }
+        LinkSettings { clearance_z: 5.0, rapid_gap: 1.0, stay_down_max: 4.0, full_retract: false }
     }
 }
 
@@ -145,7 +148,7 @@ impl Linker<'_> {
                 let top = (p0.z.max(material) + settings.rapid_gap).min(clearance);
                 // Across at the rapid gap above the material on the way (the full clearance
                 // only where that is as high): a short retract.
-                let travel = ((self.material_along)(at.truncate(), p0.truncate()) + settings.rapid_gap).max(top).min(clearance);
+                let travel = if settings.full_retract { clearance } else { ((self.material_along)(at.truncate(), p0.truncate()) + settings.rapid_gap).max(top).min(clearance) };
                 retract(at, p0.truncate(), travel, top, &mut moves);
                 let inside = inside.and_then(|f| f.get(i).copied()).unwrap_or_else(|| (self.estimate)(p0.truncate()) > p0.z + self.threshold);
                 let (entry, kind) = enter_3d(top, if inside { material } else { f64::NEG_INFINITY }, run, self.radius, &self.entry, self.keep, (self.feeds.plunge, self.feeds.cut), tolerances.height);

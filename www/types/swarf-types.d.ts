@@ -603,6 +603,11 @@ name: string,
 data?: string | null, };
 
 /**
+ * How retracts between cuts travel ([`Stock::retracts`]).
+ */
+export type Retracts = "minimum" | "full";
+
+/**
  * Octree multi-tool roughing.
  */
 export type RoughOctree = { 
@@ -842,6 +847,14 @@ clearance: number,
  * retract. Default value: 1.
  */
 retract: number, 
+/**
+ * How a retract between two cuts travels across: `minimum`, the retract gap above the
+ * highest material on the way (the clearance where the stock stands that high); `full`,
+ * at the clearance height, over clamps and fixtures the stock does not show (a z-level
+ * roughing still crosses what it has cleared just above its levels). Default value:
+ * minimum.
+ */
+retracts: Retracts, 
 /**
  * Moves part and stock so that this point is the program's origin (for parts; a sheet's
  * top is always Z0). Default value: none (as the part's placement puts it).
