@@ -50,6 +50,29 @@ impl Rect {
     pub fn is_empty(&self) -> bool {
         !(self.min.x <= self.max.x && self.min.y <= self.max.y)
     }
+
+    /// The part of the straight segment from `a` to `b` inside the rectangle (its edges
+    /// included), by Liang–Barsky; the ends are clamped into it. `None` where they do not meet.
+    pub fn clip(&self, a: DVec2, b: DVec2) -> Option<(DVec2, DVec2)> {
+        let (min, max) = (self.min, self.max);
+        let d = b - a;
+        let (mut t0, mut t1) = (0.0f64, 1.0f64);
+        for (p, q) in [(-d.x, a.x - min.x), (d.x, max.x - a.x), (-d.y, a.y - min.y), (d.y, max.y - a.y)] {
+            if p == 0.0 {
+                if q < 0.0 {
+                    return None;
+                }
+            } else {
+                let r = q / p;
+                if p < 0.0 {
+                    t0 = t0.max(r);
+                } else {
+                    t1 = t1.min(r);
+                }
+            }
+        }
+        (t0 <= t1).then(|| ((a + d * t0).clamp(min, max), (a + d * t1).clamp(min, max)))
+    }
 }
 
 /// The circle of an arc segment.

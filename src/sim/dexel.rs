@@ -15,6 +15,7 @@
 
 use super::sweep::Sweep;
 use super::StockModel;
+use crate::geom::segment::{Rect, Segment};
 use crate::geom::{Aabb, DVec2};
 use crate::zmap::{Grid, HeightField};
 
@@ -184,6 +185,7 @@ impl DexelStock {
         let r = profile.radius;
         let reach = DVec2::splat(r + self.cell);
         let half_diagonal = self.cell * std::f64::consts::FRAC_1_SQRT_2;
+        let way = Segment::line(a, b);
         let Some(((i0, i1), (j0, j1))) = self.cell_range(a.min(b) - reach, a.max(b) + reach) else { return f64::NEG_INFINITY };
         let mut best = f64::NEG_INFINITY;
         let size = self.block;
@@ -200,9 +202,14 @@ impl DexelStock {
                             continue;
                         }
                         let lo = self.origin + DVec2::new(i as f64, j as f64) * self.cell;
-                        let d = segment_distance(lo + DVec2::splat(self.cell * 0.5), a, b);
-                        // A square is no nearer than its centre less half its diagonal.
-                        let d = if !whole_cells || d > r + half_diagonal { d } else { square_distance(a, b, lo, lo + DVec2::splat(self.cell)) };
+                        let (square, centre) = (Rect { min: lo, max: lo + DVec2::splat(self.cell) }, lo + DVec2::splat(self.cell * 0.5));
+                        let d = if !whole_cells {
+                            way.distance_with(None, centre)
+                        } else if a == b || way.distance_with(None, centre) <= r + half_diagonal {
+                            square_distance(&way, &square)
+                        } else {
+                            continue; // a square is no nearer than its centre less half its diagonal
+                        };
                         if d <= r {
                             best = best.max(top - profile.height(d));
                         }
@@ -336,40 +343,19 @@ impl StockModel for DexelStock {
     }
 }
 
-/// The distance from `q` to the segment from `a` to `b`.
-fn segment_distance(q: DVec2, a: DVec2, b: DVec2) -> f64 {
-    let d = b - a;
-    let len2 = d.length_squared();
-    let t = if len2 > 0.0 { ((q - a).dot(d) / len2).clamp(0.0, 1.0) } else { 0.0 };
-    q.distance(a + d * t)
-}
-
-/// The distance from the segment from `a` to `b` to the square `[lo, hi]` (0 where they meet):
-/// the nearer of its ends' distances to the square and the square's corners' to the segment.
-fn square_distance(a: DVec2, b: DVec2, lo: DVec2, hi: DVec2) -> f64 {
-    let to_square = |p: DVec2| p.clamp(lo, hi).distance(p);
-    if a == b {
-        return to_square(a);
+/// The distance from the straight `way` to the `square` (0 where they meet): the nearer of its
+/// ends' distances to the square and the square's corners' to it.
+fn square_distance(way: &Segment, square: &Rect) -> f64 {
+    let to_square = |p: DVec2| p.clamp(square.min, square.max).distance(p);
+    if way.a == way.b {
+        return to_square(way.a);
     }
-    // Whether the segment crosses the square: the slabs' parameter intervals overlap.
-    let d = b - a;
-    let (mut t0, mut t1) = (0.0f64, 1.0f64);
-    for (p, v, l, h) in [(a.x, d.x, lo.x, hi.x), (a.y, d.y, lo.y, hi.y)] {
-        if v == 0.0 {
-            if p < l || p > h {
-                t0 = f64::INFINITY;
-            }
-        } else {
-            let (u, w) = ((l - p) / v, (h - p) / v);
-            t0 = t0.max(u.min(w));
-            t1 = t1.min(u.max(w));
-        }
-    }
-    if t0 <= t1 {
+    if square.clip(way.a, way.b).is_some() {
         return 0.0;
     }
+    let (lo, hi) = (square.min, square.max);
     let corners = [lo, DVec2::new(hi.x, lo.y), hi, DVec2::new(lo.x, hi.y)];
-    corners.iter().map(|&c| segment_distance(c, a, b)).fold(to_square(a).min(to_square(b)), f64::min)
+    corners.iter().map(|&c| way.distance_with(None, c)).fold(to_square(way.a).min(to_square(way.b)), f64::min)
 }
 
 #[cfg(test)]

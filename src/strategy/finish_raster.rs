@@ -15,6 +15,7 @@ use serde::{Deserialize, Serialize};
 use super::context::SurfaceRequest;
 use super::{Context, FieldError, Operate};
 use crate::error::{Error, Result};
+use crate::geom::segment::Rect;
 use crate::geom::{DVec2, DVec3};
 use crate::progress::Progress;
 use crate::toolpath::entry::Entry;
@@ -179,7 +180,7 @@ impl<'a> PassLayout<'a> {
     pub fn pass(&self, cl: &ClSurface, k: usize) -> Vec<Vec<DVec3>> {
         let (min, max) = self.region.bounds();
         let base = self.across * (self.v0 + self.step * k as f64);
-        clip_to_rect(base + self.along * self.s0, base + self.along * self.s1, min, max).map(|(a, b)| cut_pass(cl, self.region, a, b, self.passes)).unwrap_or_default()
+        Rect { min, max }.clip(base + self.along * self.s0, base + self.along * self.s1).map(|(a, b)| cut_pass(cl, self.region, a, b, self.passes)).unwrap_or_default()
     }
 }
 
@@ -201,27 +202,6 @@ pub fn join_passes(cut: Vec<Vec<Vec<DVec3>>>, pattern: Pattern) -> Vec<Vec<DVec3
 
 fn extent(points: &[DVec2], dir: DVec2) -> (f64, f64) {
     points.iter().map(|p| p.dot(dir)).fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), d| (lo.min(d), hi.max(d)))
-}
-
-/// Clips the segment to the rectangle (Liang–Barsky); the ends are clamped into it.
-fn clip_to_rect(a: DVec2, b: DVec2, min: DVec2, max: DVec2) -> Option<(DVec2, DVec2)> {
-    let d = b - a;
-    let (mut t0, mut t1) = (0.0f64, 1.0f64);
-    for (p, q) in [(-d.x, a.x - min.x), (d.x, max.x - a.x), (-d.y, a.y - min.y), (d.y, max.y - a.y)] {
-        if p == 0.0 {
-            if q < 0.0 {
-                return None;
-            }
-        } else {
-            let r = q / p;
-            if p < 0.0 {
-                t0 = t0.max(r);
-            } else {
-                t1 = t1.min(r);
-            }
-        }
-    }
-    (t0 <= t1).then(|| ((a + d * t0).clamp(min, max), (a + d * t1).clamp(min, max)))
 }
 
 /// One pass from `a` to `b`: the CL polyline, split where it leaves the region, each run

@@ -195,7 +195,8 @@ impl RoughZlevel {
             let slack = tol.chordal;
             let holds = move |c: &Shape, p: DVec2| c.contains(p) || c.distance_to(p) <= slack;
             cursor.safe_at = Some(Box::new(move |p: DVec2| within.as_ref().is_none_or(|c| holds(c, p))));
-            let earlier = before.clone();
+            // Past the level before (the cursor asks only where `safe_at` does not hold).
+            let earlier = before[..before.len().saturating_sub(1)].to_vec();
             cursor.cleared_to = Some(Box::new(move |p: DVec2| earlier.iter().rev().find(|(_, c)| holds(c, p)).map(|(level, _)| *level)));
             cursor.traverse = Some(Box::new(move |a: DVec2, b: DVec2| {
                 let over = |level: f64| surface.stays_below(a, b, level - allowance - tol_z);
