@@ -80,6 +80,47 @@ fn a_box_on_a_plate_is_roughed_to_the_allowances() {
 }
 
 #[test]
+fn a_flats_level_is_cut_only_where_the_level_below_cannot_go() {
+    // The box's top (8 + 0.5) is a flat between the stock's top (9) and the first step-down
+    // level (7): its level is cut about the box alone; the plate around it is taken from 9 to 7
+    // by the step-down level, not also in a thin pass at 8.5.
+    let (allowance, leave) = (0.5, 0.3);
+    let job = Job {
+        part: PartSetup { placement: Placement::Keep, ..PartSetup::default() },
+        stock: swarf::job::Stock { margin_xy: 0.0, margin_top: 1.0, ..Default::default() },
+        tools: vec![flat(1, 6.0)],
+        operations: vec![rough(allowance, leave)],
+        simulation: Simulation { verify: true, cell: Some(0.2) },
+        ..Job::default()
+    };
+    let out = job::run(&job, box_on_plate(), &mut Progress::none()).unwrap();
+    clean(&out);
+    let r = 3.0;
+    // Centres at the flat's level: over the box's top, or within the cutter (grown by the
+    // leave-stock) of it, and a node and a half of the grid past that (the band), and the
+    // region's boundary up to a node further.
+    let reach = 10.0 + r + leave + 2.5 * 0.25 + 1e-6;
+    let at_flat: Vec<DVec3> = out.paths[0].moves.iter().filter(|m| !m.is_rapid()).map(|m| m.to()).filter(|p| (p.z - 8.501).abs() < 5e-4).collect();
+    let zs: std::collections::BTreeSet<i64> = out.paths[0].moves.iter().map(|m| (m.to().z * 1e4).round() as i64).collect();
+    assert!(at_flat.len() > 20, "the flat's level is cut: {} {zs:?}", at_flat.len());
+    for p in &at_flat {
+        assert!(p.x.abs().max(p.y.abs()) <= reach, "the flat's level is cut at {p}, off the box");
+    }
+    // The plate is still cleared to its allowance, from the stock's top down in 2 mm steps.
+    let v = out.verification.as_ref().unwrap();
+    let g = v.stock.grid();
+    for j in 0..g.ny {
+        for i in 0..g.nx {
+            let p = g.node(i, j);
+            if p.x.abs().max(p.y.abs()) > 10.0 + leave + 0.3 && p.x.abs() < 29.0 && p.y.abs() < 29.0 {
+                assert!(v.stock.top(i, j) <= allowance + 0.0011, "{} left on the plate at {p}", v.stock.top(i, j));
+            }
+        }
+    }
+    assert!(out.operations[0].mrr_max.unwrap() <= 1000.0 * 2.0 * 6.0 + 1e-6, "{:?}", out.operations);
+}
+
+#[test]
 fn the_sample_part_roughed_then_finished_is_clean_and_leaves_at_most_the_stair_step() {
     let (stepdown, allowance, leave) = (2.0, 0.5, 0.5);
     let job = Job {

@@ -281,7 +281,7 @@ impl RoughOctree {
             let all = centres.get_or_insert_with(|| tree.centres(grid, r, &stock, tol));
             Some(tree.layer_at(z, 1e-9).map_or_else(|| vec![false; grid.nodes()], |k| all[k].clone()))
         };
-        let Some(levels) = zl.levels_within(ctx, progress, r, &mut within)? else { return Ok(None) };
+        let Some(levels) = zl.levels_within(ctx, progress, r, false, &mut within)? else { return Ok(None) };
         let path = zl.clear(ctx, levels, progress)?;
         let cut = advance(ctx, &path, progress)?;
         Ok(Some((path, cut)))
@@ -404,7 +404,7 @@ impl RoughOctree {
         // Every centre whose cutter touches what is left: rest material reachable only by the
         // cutter's side (a round tool's corner left by a bigger one) is cut from its top down
         // like the rest, never met by the side of a deeper pass.
-        if let Some(levels) = zl.levels_within(ctx, progress, tool.cutter.radius(), &mut |_, _| None)? {
+        if let Some(levels) = zl.levels_within(ctx, progress, tool.cutter.radius(), false, &mut |_, _| None)? {
             let path = zl.clear(ctx, levels, progress)?;
             let cut = advance(ctx, &path, progress)?;
             paths.push(path);

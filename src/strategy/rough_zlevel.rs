@@ -9,7 +9,11 @@
 //!   raises the surface: at level z the centre goes where `CL + allowance <= z`.
 //! * **Levels** run from the stock's top down by the step-down to the stock's bottom (plus the
 //!   allowance), and every flat area of the part is a level of its own (at its height plus the
-//!   allowance), so no shallow feature is skipped for lying between two levels.
+//!   allowance), so no shallow feature is skipped for lying between two levels. A flat's level
+//!   is cut only where the level below it cannot go (the flat and the slopes between the two
+//!   heights): everywhere else the level below takes the material down further, in a slab no
+//!   deeper than the step-down from the step-down level above, so cutting it there too would
+//!   be a second, thin pass over the same area.
 //! * **Never in air.** At each level only where the in-process stock still has material within
 //!   the cutter's reach: after another roughing, this is rest machining.
 
@@ -88,6 +92,8 @@ const FLAT_AREA: f64 = 2.0;
 const FLAT_SAME: f64 = 1e-4;
 /// Levels closer than this are one (mm).
 const LEVEL_SAME: f64 = 0.01;
+/// A flat's level reaches this many node spacings past where the level below cannot go.
+const FLAT_BAND: f64 = 1.5;
 
 impl Operate for RoughZlevel {
     super::named_operation!(OnPart);
@@ -134,8 +140,10 @@ pub struct Levels {
     pub levels: Vec<Level>,
 }
 
-/// One level to cut: its height, the height of the level cut before it (or the stock's top),
-/// and the region the tool's centre may occupy there, within reach of material.
+/// One level to cut: its height, the height down to which material was cut before over its
+/// whole region (the step-down level above it, or the stock's top), and the region the tool's
+/// centre may occupy there, within reach of material (at a flat's level, only where the level
+/// below cannot go).
 pub struct Level {
     pub z: f64,
     pub z_prev: f64,
@@ -187,16 +195,21 @@ impl RoughZlevel {
             // above the stock's top before the first level.
             let (surface, allowance, gap, tol_z) = (cl.clone(), self.allowance, ctx.heights.gap, tol.height + 2.0 * tol.interpolation);
             let before = cleared.clone();
-            // Rapids come down to the gap above the level before only over what it cleared:
-            // elsewhere (rest roughing beside what an earlier tool left) above the stock.
-            let within = before.last().map(|(_, c)| c.clone());
+            // Rapids come down to the gap above the level before (the step-down level above:
+            // a flat's level between cut only its band) only over what it cleared: elsewhere
+            // (rest roughing beside what an earlier tool left) above the stock.
+            let within = before.iter().rev().find(|(level, _)| *level == z_prev).map(|(_, c)| c.clone());
+            // Flats' bands cut since lie lower: where one holds the point, the cursor asks
+            // `cleared_to`.
+            let bands: Vec<Arc<Shape>> = before.iter().filter(|(level, _)| *level < z_prev).map(|(_, c)| c.clone()).collect();
             // A ring's start lies on its region's boundary: a point a chordal tolerance from a
             // region counts as in it.
             let slack = tol.chordal;
             let holds = move |c: &Shape, p: DVec2| c.contains(p) || c.distance_to(p) <= slack;
-            cursor.safe_at = Some(Box::new(move |p: DVec2| within.as_ref().is_none_or(|c| holds(c, p))));
-            // Past the level before (the cursor asks only where `safe_at` does not hold).
-            let earlier = before[..before.len().saturating_sub(1)].to_vec();
+            cursor.safe_at = Some(Box::new(move |p: DVec2| within.as_ref().is_none_or(|c| holds(c, p)) && !bands.iter().any(|c| holds(c, p))));
+            // Past the level before (the cursor asks only where `safe_at` does not hold): the
+            // lowest earlier level whose region holds the point, flats' bands included.
+            let earlier = before.clone();
             cursor.cleared_to = Some(Box::new(move |p: DVec2| earlier.iter().rev().find(|(_, c)| holds(c, p)).map(|(level, _)| *level)));
             cursor.traverse = Some(Box::new(move |a: DVec2, b: DVec2| {
                 let over = |level: f64| surface.stays_below(a, b, level - allowance - tol_z);
@@ -221,7 +234,7 @@ impl RoughZlevel {
         // Centres whose cutter reaches at least half a step into material (the outermost ring
         // then cuts that much of the stock's edge, the next a full step).
         let r = ctx.tool(&self.name, self.tool)?.cutter.radius();
-        let levels = self.levels_within(ctx, progress, (r - 0.5 * self.step(r)).max(0.0), &mut |_, _| None)?;
+        let levels = self.levels_within(ctx, progress, (r - 0.5 * self.step(r)).max(0.0), true, &mut |_, _| None)?;
         if levels.is_none() {
             ctx.warn(&self.name, "no level has material left to cut");
         }
@@ -252,11 +265,15 @@ impl RoughZlevel {
     /// The heights of the levels on `cl` for a tool of radius `r`, from the top down (see
     /// [`RoughZlevel`]).
     pub fn heights(&self, ctx: &Context, cl: &ClSurface, r: f64) -> Vec<f64> {
-        let tol = ctx.tolerances;
         // Floors are cut a hair above their height plus the allowance: the region at a level
         // counts a surface as clear when the exact profile stands below it by the interpolation
         // margin (`zmap/contour.rs`).
-        let clear = 2.0 * tol.interpolation + tol.height;
+        self.levels_and_kinds(ctx, cl, r).into_iter().map(|(z, _)| z).collect()
+    }
+
+    /// [`RoughZlevel::heights`], each with whether it is a flat's level alone.
+    fn levels_and_kinds(&self, ctx: &Context, cl: &ClSurface, r: f64) -> Vec<(f64, bool)> {
+        let clear = 2.0 * ctx.tolerances.interpolation + ctx.tolerances.height;
         self.levels(&cl.field, ctx.stock.max.z, ctx.stock.min.z, r, clear)
     }
 
@@ -264,7 +281,10 @@ impl RoughZlevel {
     /// level, each level's region limited further to the nodes of the CL z-map's grid that
     /// `within(z, grid)` accepts, where it gives a mask (seed 000's octants a tool cuts);
     /// `None`, without a warning, where no level has material left.
-    pub fn levels_within(&self, ctx: &mut Context, progress: &mut Progress, reach: f64, within: &mut dyn FnMut(f64, Grid) -> Option<Vec<bool>>) -> Result<Option<Levels>> {
+    ///
+    /// With `bands`, a flat's level is cut only where the level below cannot go (see
+    /// [`RoughZlevel`]); without (seed 000's layers, each its own octants), over its whole region.
+    pub fn levels_within(&self, ctx: &mut Context, progress: &mut Progress, reach: f64, bands: bool, within: &mut dyn FnMut(f64, Grid) -> Option<Vec<bool>>) -> Result<Option<Levels>> {
         if !progress.stage("CL z-map", 0.0, 0.3) {
             return Err(Error::Cancelled);
         }
@@ -279,7 +299,9 @@ impl RoughZlevel {
         let map = ctx.level_map(self.request(ctx)?, &cl);
         let mut levels = Vec::new();
         let mut z_prev = stock.max.z;
-        for z in self.heights(ctx, &cl, r) {
+        let heights = self.levels_and_kinds(ctx, &cl, r);
+        for (k, &(z, flat)) in heights.iter().enumerate() {
+            let flat_only = flat && bands;
             // At full reach (rest roughing: every centre whose cutter touches what is left),
             // only material the cutter can reach from a centre it may take counts (within its
             // radius of one, less half a node's spacing), not the part's walls and their
@@ -291,13 +313,27 @@ impl RoughZlevel {
             });
             let near = material_near(ctx.sim.stock(), grid, z, reach, removable.as_deref());
             let limit = within(z, grid);
-            let keep = |i: usize, j: usize| near[j * grid.nx + i] && limit.as_ref().is_none_or(|m| m[j * grid.nx + i]);
+            // A flat's level only where the level below cannot go (a node further than a node's
+            // spacing from every centre that level refuses is left to it).
+            let band = flat_only.then(|| {
+                let below = heights.get(k + 1).map_or(f64::NEG_INFINITY, |&(q, _)| q);
+                let refused: Vec<bool> = cl.field.z.iter().map(|&h| h + self.allowance > below).collect();
+                let d = crate::octree::distance_to(&refused, grid.nx, grid.ny, grid.spacing);
+                d.into_iter().map(|d| d <= FLAT_BAND * grid.spacing).collect::<Vec<bool>>()
+            });
+            let keep = |i: usize, j: usize| {
+                let n = j * grid.nx + i;
+                near[n] && limit.as_ref().is_none_or(|m| m[n]) && band.as_ref().is_none_or(|m| m[n])
+            };
             let region = map.region(&cl, z - self.allowance, &keep, &tol);
             if region.is_empty() {
                 continue;
             }
             levels.push(Level { z, z_prev, region });
-            z_prev = z;
+            // Over a flat's band only: the levels after it start from the step-down level above.
+            if !flat_only {
+                z_prev = z;
+            }
         }
         if !progress.stage("rings", 0.5, 0.5) {
             return Err(Error::Cancelled);
@@ -322,16 +358,17 @@ impl RoughZlevel {
         }
     }
     /// The levels, from the top down: every step-down from `top` to `floor` plus the
-    /// allowance, and the flats of the surface (plus the allowance) between.
-    fn levels(&self, cl: &HeightField, top: f64, floor: f64, radius: f64, clear: f64) -> Vec<f64> {
+    /// allowance, and the flats of the surface (plus the allowance) between, each with whether
+    /// it is a flat's alone (cut only where the level below cannot go).
+    fn levels(&self, cl: &HeightField, top: f64, floor: f64, radius: f64, clear: f64) -> Vec<(f64, bool)> {
         let bottom = floor + self.allowance + clear;
         let mut levels = Vec::new();
         let mut z = top - self.stepdown;
         while z > bottom + LEVEL_SAME {
-            levels.push(z);
+            levels.push((z, false));
             z -= self.stepdown;
         }
-        levels.push(bottom);
+        levels.push((bottom, false));
         if self.flats {
             let mut heights: Vec<f64> = cl.z.iter().copied().filter(|&h| h > floor + FLAT_SAME && h < top).collect();
             heights.sort_by(f64::total_cmp);
@@ -346,14 +383,22 @@ impl RoughZlevel {
                 if (e - k) as f64 >= least {
                     let level = heights[e - 1] + self.allowance + clear;
                     if level < top - LEVEL_SAME && level > bottom {
-                        levels.push(level);
+                        levels.push((level, true));
                     }
                 }
                 k = e;
             }
         }
-        levels.sort_by(|a, b| b.total_cmp(a));
-        levels.dedup_by(|a, b| (*a - *b).abs() < LEVEL_SAME);
+        levels.sort_by(|a, b| b.0.total_cmp(&a.0));
+        // Levels closer than LEVEL_SAME are one, at the higher height; a step-down level among
+        // them makes it a whole level.
+        levels.dedup_by(|a, b| {
+            let same = (a.0 - b.0).abs() < LEVEL_SAME;
+            if same {
+                b.1 &= a.1;
+            }
+            same
+        });
         levels
     }
 }
