@@ -248,6 +248,26 @@ impl Profile {
         Some(p.z + dz * (t_c + s / len) - self.height((dist2 + s * s).sqrt().min(self.radius)))
     }
 
+    /// At `s` along a line of slope `m` whose foot lies `sqrt(dist2)` from the axis: a number
+    /// with the sign of `F'(s)` (see [`Profile::contact_along`]; infinite at the rim, where the
+    /// wall is vertical), and the cutter's height there (`height(min(r, R))`), from one
+    /// evaluation with no division.
+    #[inline]
+    pub fn slope_and_height(&self, m: f64, dist2: f64, s: f64) -> (f64, f64) {
+        let r = (dist2 + s * s).sqrt();
+        let u = r - self.flat;
+        if u <= 0.0 {
+            return (m, 0.0); // on the flat bottom
+        }
+        let w2 = self.corner * self.corner - u * u;
+        if w2 <= 0.0 {
+            return (if s < 0.0 { f64::INFINITY } else { f64::NEG_INFINITY }, self.corner);
+        }
+        // F' = m - u s / (w r), with w r > 0.
+        let w = w2.sqrt();
+        (m * w * r - u * s, self.corner - w)
+    }
+
     /// An upper bound of `F(s) = m s - height(sqrt(dist2 + s²))` over `[lo, hi]` in closed form
     /// (see [`Profile::contact_along`]): the corner's height is convex, so it stands above its
     /// tangent at 45°, `r - (R - a) - a (√2 - 1)`, and above zero; with that cone for the corner

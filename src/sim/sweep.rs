@@ -40,9 +40,11 @@ pub struct Sweep {
 
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 struct LineConstants {
-    /// The move in XY, and 1 / its squared length (0 for a vertical move).
+    /// The move in XY, 1 / its squared length (0 for a vertical move), its length and 1 / it.
     d: DVec2,
     inv_len2: f64,
+    len_xy: f64,
+    inv_len_xy: f64,
     /// Unit direction in 3D, its length, and 1 / (1 - uz²) (0 when vertical).
     u: DVec3,
     length: f64,
@@ -57,7 +59,16 @@ impl Sweep {
         let length = a.distance(b);
         let u = if length > 0.0 { (b - a) / length } else { DVec3::Z };
         let along = 1.0 - u.z * u.z;
-        let line = LineConstants { d, inv_len2: if len2 > 0.0 { 1.0 / len2 } else { 0.0 }, u, length, inv_along: if along > 1e-12 { 1.0 / along } else { 0.0 } };
+        let len_xy = len2.sqrt();
+        let line = LineConstants {
+            d,
+            inv_len2: if len2 > 0.0 { 1.0 / len2 } else { 0.0 },
+            len_xy,
+            inv_len_xy: if len2 > 0.0 { 1.0 / len_xy } else { 0.0 },
+            u,
+            length,
+            inv_along: if along > 1e-12 { 1.0 / along } else { 0.0 },
+        };
         Sweep { profile, path: Path::Line { a, b }, min: a.truncate().min(b.truncate()) - r, max: a.truncate().max(b.truncate()) + r, lowest_tip: a.z.min(b.z), line }
     }
 
@@ -162,12 +173,24 @@ impl Sweep {
                     // With τ = s_w - L t the signed distance along the move from the axis to
                     // q, the height is a.z + m s_w - (m τ - height(sqrt(perp² + τ²))): its lowest
                     // point is the cutter's contact with a line of slope m, as for an edge drop.
-                    let len = (1.0 / k.inv_len2).sqrt();
-                    let s_w = w.dot(d) / len;
+                    let len = k.len_xy;
+                    let s_w = w.dot(d) * k.inv_len_xy;
                     let perp2 = (w.length_squared() - s_w * s_w).max(0.0);
-                    let m = dz / len;
-                    let tau = p.contact_along(m, perp2, s_w - len * t1, s_w - len * t0);
-                    let t = (s_w - tau) / len;
+                    let m = dz * k.inv_len_xy;
+                    let (lo, hi) = (s_w - len * t1, s_w - len * t0);
+                    // Most points are passed lowest at an end of the interval (F falls all along
+                    // it, or rises): the end's slope and height come from one evaluation.
+                    let at = |tau: f64, height: f64| a.z + m * (s_w - tau) + height;
+                    let (slope, height) = p.slope_and_height(m, perp2, lo);
+                    if slope <= 0.0 {
+                        return at(lo, height);
+                    }
+                    let (slope, height) = p.slope_and_height(m, perp2, hi);
+                    if slope >= 0.0 {
+                        return at(hi, height);
+                    }
+                    let tau = p.contact_along(m, perp2, lo, hi);
+                    let t = (s_w - tau) * k.inv_len_xy;
                     a.z + dz * t + p.height((perp2 + tau * tau).sqrt().min(p.radius))
                 } else {
                     // A vertical move: the lower end, at q's distance from the axis.
