@@ -325,6 +325,12 @@ impl Profile {
         if slope(hi) >= 0.0 {
             return hi; // rising all along: the far end is highest
         }
+        self.contact_between(m, dist2, lo, hi)
+    }
+
+    /// [`Profile::contact_along`] where F rises at `lo` and falls at `hi` (the caller has
+    /// looked): the root of F' between.
+    pub fn contact_between(&self, m: f64, dist2: f64, lo: f64, hi: f64) -> f64 {
         if m == 0.0 {
             return 0.0; // a level line: the foot (between lo and hi, where the slope changes sign)
         }

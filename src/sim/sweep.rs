@@ -189,7 +189,7 @@ impl Sweep {
                     if slope >= 0.0 {
                         return at(hi, height);
                     }
-                    let tau = p.contact_along(m, perp2, lo, hi);
+                    let tau = p.contact_between(m, perp2, lo, hi);
                     let t = (s_w - tau) * k.inv_len_xy;
                     a.z + dz * t + p.height((perp2 + tau * tau).sqrt().min(p.radius))
                 } else {
