@@ -13,7 +13,7 @@ use swarf::job::{self, FinishRaster, Job, Operation, Simulation, Tool};
 use swarf::mesh::placement::{PartSetup, Placement};
 use swarf::mesh::sample::demo_part;
 use swarf::progress::Progress;
-use swarf::strategy::rough_zlevel::RoughZlevel;
+use swarf::strategy::rough_zlevel::{Order, RoughZlevel};
 use swarf::toolpath::Move;
 
 fn flat(number: u32, d: f64) -> Tool {
@@ -212,4 +212,49 @@ fn the_feature_type_parts_holes_are_entered_from_the_level_above() {
     let holes = [DVec2::new(0.0, -25.4), DVec2::new(0.0, 25.4)];
     let in_holes = entered_from_the_level_above(part, swarf::mesh::placement::PartUnits::Inch, &holes);
     assert!(in_holes > 50, "{in_holes} descending moves in the holes");
+}
+
+/// Two square pockets 12 mm deep in a plate: cut region by region, the tool goes from one to
+/// the other once; level by level, once a level. Both programs are clean and remove the same.
+#[test]
+fn regions_first_goes_from_pocket_to_pocket_once() {
+    let centres = [DVec2::new(-15.0, 0.0), DVec2::new(15.0, 0.0)];
+    let part = swarf::mesh::sample::height_field_solid(DVec2::new(-30.0, -15.0), DVec2::new(30.0, 15.0), 241, 121, 0.0, |x, y| {
+        let p = DVec2::new(x, y);
+        if centres.iter().any(|c| (p - *c).abs().max_element() < 7.0) { 4.0 } else { 16.0 }
+    });
+    let run = |order: Order| {
+        let job = Job {
+            part: PartSetup { placement: Placement::Keep, ..PartSetup::default() },
+            stock: swarf::job::Stock { margin_xy: 0.0, margin_top: 0.0, ..Default::default() },
+            tools: vec![flat(1, 6.0)],
+            operations: vec![Operation::RoughZlevel(RoughZlevel { allowance: 0.0, leave_stock: 0.0, stepdown: 2.0, order, ..RoughZlevel::default() })],
+            simulation: Simulation { verify: true, cell: Some(0.25) },
+            ..Job::default()
+        };
+        let out = job::run(&job, part.clone(), &mut Progress::none()).unwrap();
+        clean(&out);
+        // The pocket each cut below the plate's top is in, in program order.
+        let mut at = out.paths[0].start;
+        let (mut switches, mut last, mut rapid) = (0, None, 0.0);
+        for m in &out.paths[0].moves {
+            let to = m.to();
+            if m.is_rapid() {
+                rapid += at.distance(to);
+            } else if to.z < 15.0 {
+                let pocket = to.x > 0.0;
+                if last.is_some_and(|l| l != pocket) {
+                    switches += 1;
+                }
+                last = Some(pocket);
+            }
+            at = to;
+        }
+        (switches, rapid, out.verification.unwrap().report.removed)
+    };
+    let (by_regions, by_levels) = (run(Order::Regions), run(Order::Levels));
+    assert_eq!(by_regions.0, 1, "{by_regions:?}");
+    assert!(by_levels.0 >= 5, "{by_levels:?}");
+    assert!(by_regions.1 < 0.7 * by_levels.1, "rapids {by_regions:?} against {by_levels:?}");
+    assert!((by_regions.2 - by_levels.2).abs() <= 1e-3 * by_levels.2, "removed {by_regions:?} against {by_levels:?}");
 }

@@ -249,6 +249,8 @@ impl RoughOctree {
             ramp_angle: self.ramp_angle,
             helix_radius: None,
             flats,
+            // Seed 000 cuts its octants layer by layer.
+            order: super::rough_zlevel::Order::Levels,
         }
     }
 

@@ -169,6 +169,8 @@ impl RoughZigzag {
             ramp_angle: self.ramp_angle,
             helix_radius: None,
             flats: self.flats,
+            // Its own loop cuts level by level.
+            order: super::rough_zlevel::Order::Levels,
         }
     }
 }

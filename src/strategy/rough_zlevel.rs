@@ -16,6 +16,12 @@
 //!   be a second, thin pass over the same area.
 //! * **Never in air.** At each level only where the in-process stock still has material within
 //!   the cutter's reach: after another roughing, this is rest machining.
+//! * **Order.** Each level's region falls apart into connected regions, each under the region
+//!   of the level above that holds it; by default a region is cut and then the regions under it,
+//!   down to their floors (nearest first), before the next region of its level ([`Order`]), so
+//!   the tool goes from pocket to pocket once, not once per level. Each region's material starts
+//!   at the level above, which its parent cut; retracts and entries know what has been cut, in
+//!   whatever order (the lowest cut region that holds a point or a way).
 
 use serde::{Deserialize, Serialize};
 
@@ -26,6 +32,7 @@ use super::context::SurfaceRequest;
 use super::{sheet, Context, FieldError, Operate};
 use crate::cutter::Profile;
 use crate::error::{Error, Result};
+use crate::geom::segment::Rect;
 use crate::geom::DVec2;
 use crate::progress::Progress;
 use crate::sim::DexelStock;
@@ -65,6 +72,22 @@ pub struct RoughZlevel {
     pub helix_radius: Option<f64>,
     /// Cut every flat area of the part at its own height too. Default value: true.
     pub flats: bool,
+    /// Which comes first: each region down to its floor before the next (`regions`: the tool
+    /// goes from pocket to pocket once, not once per level), or each level everywhere before
+    /// the next (`levels`). Default value: regions.
+    pub order: Order,
+}
+
+/// The order a level-by-level roughing cuts in ([`RoughZlevel::order`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(rename_all = "camelCase")]
+pub enum Order {
+    /// Each connected region of a level, then the regions under it down to their floors
+    /// (nearest first), before the next region of that level.
+    #[default]
+    Regions,
+    /// Each level everywhere, from the top down.
+    Levels,
 }
 
 impl Default for RoughZlevel {
@@ -82,6 +105,7 @@ impl Default for RoughZlevel {
             ramp_angle: 3.0,
             helix_radius: None,
             flats: true,
+            order: Order::Regions,
         }
     }
 }
@@ -157,8 +181,8 @@ impl RoughZlevel {
     }
 
     /// Clears `levels` (from [`RoughZlevel::levels_to_cut`] or [`RoughZlevel::levels_within`])
-    /// level by level: rings inside-out from the helix or ramp (or in from the air beside the
-    /// region), the region's boundary last; one tool path.
+    /// in the roughing's [`Order`]: rings inside-out from the helix or ramp (or in from the air
+    /// beside the region), the region's boundary last; one tool path.
     pub fn clear(&self, ctx: &mut Context, levels: Levels, progress: &mut Progress) -> Result<Toolpath> {
         let Levels { tool, cl, levels } = levels;
         let r = tool.cutter.radius();
@@ -178,50 +202,49 @@ impl RoughZlevel {
         let clearance = ctx.heights.clearance;
         let mut cursor = sheet::cursor(ctx, &tool);
         let mut moves = Vec::new();
-        // The levels cut so far, each with the region it cleared, the latest last.
-        let mut cleared: Vec<(f64, Arc<Shape>)> = Vec::new();
-        let count = levels.len();
-        for (k, Level { z, z_prev, region }) in levels.into_iter().enumerate() {
+        // A ring's start lies on its region's boundary: a point a chordal tolerance from a
+        // region counts as in it.
+        let slack = tol.chordal;
+        let mut pieces = Pieces::new(levels, self.order, slack);
+        // What was cut so far: each piece's height and region.
+        let mut cleared = Cleared { slack, cut: Vec::new() };
+        let count = pieces.list.len();
+        for k in 0..count {
             if !progress.report(k as f64 / count as f64) {
                 return Err(Error::Cancelled);
             }
+            let Some(Piece { z, z_prev, region, .. }) = pieces.next(cursor.at.truncate()) else { break };
             // The region is the set of centres: its rings start on it.
             let rings = rings(&region, 0.0, step, r, &tol);
             // Material above this level was cleared by the level before within this region
-            // (which lies inside that level's): rapids stop the gap above it.
+            // (which lies inside what that level cut): rapids stop the gap above it.
             cursor.safe = (z_prev + ctx.heights.gap).min(clearance);
+            // Rapids come down to the gap above the level before (the step-down level above:
+            // a flat's level between cut only its band) only over what it cleared, and lower
+            // where a flat's band was cut since: elsewhere (rest roughing beside what an earlier
+            // tool left) above the stock.
+            let (before, earlier) = (cleared.clone(), cleared.clone());
+            let levelled = before.cut.iter().any(|e| e.z == z_prev);
+            cursor.safe_at = Some(Box::new(move |p: DVec2| before.lowest_holding(p).map_or(!levelled, |level| level == z_prev)));
+            // Past it (the cursor asks only where `safe_at` does not hold): the lowest level cut
+            // so far whose region holds the point.
+            cursor.cleared_to = Some(Box::new(move |p: DVec2| earlier.lowest_holding(p)));
             // The short retract: a traverse just above the lowest level cut so far whose
             // region holds the straight move (what that level cleared), over the part there;
             // above the stock's top before the first level.
             let (surface, allowance, gap, tol_z) = (cl.clone(), self.allowance, ctx.heights.gap, tol.height + 2.0 * tol.interpolation);
-            let before = cleared.clone();
-            // Rapids come down to the gap above the level before (the step-down level above:
-            // a flat's level between cut only its band) only over what it cleared: elsewhere
-            // (rest roughing beside what an earlier tool left) above the stock.
-            let within = before.iter().rev().find(|(level, _)| *level == z_prev).map(|(_, c)| c.clone());
-            // Flats' bands cut since lie lower: where one holds the point, the cursor asks
-            // `cleared_to`.
-            let bands: Vec<Arc<Shape>> = before.iter().filter(|(level, _)| *level < z_prev).map(|(_, c)| c.clone()).collect();
-            // A ring's start lies on its region's boundary: a point a chordal tolerance from a
-            // region counts as in it.
-            let slack = tol.chordal;
-            let holds = move |c: &Shape, p: DVec2| c.contains(p) || c.distance_to(p) <= slack;
-            cursor.safe_at = Some(Box::new(move |p: DVec2| within.as_ref().is_none_or(|c| holds(c, p)) && !bands.iter().any(|c| holds(c, p))));
-            // Past the level before (the cursor asks only where `safe_at` does not hold): the
-            // lowest earlier level whose region holds the point, flats' bands included.
-            let earlier = before.clone();
-            cursor.cleared_to = Some(Box::new(move |p: DVec2| earlier.iter().rev().find(|(_, c)| holds(c, p)).map(|(level, _)| *level)));
+            let across = cleared.clone();
             cursor.traverse = Some(Box::new(move |a: DVec2, b: DVec2| {
                 let over = |level: f64| surface.stays_below(a, b, level - allowance - tol_z);
-                if before.is_empty() {
+                if across.cut.is_empty() {
                     return over(z_prev).then_some(z_prev + gap);
                 }
-                before.iter().rev().find(|(level, c)| Inside(c).clears(a.extend(level + gap), b.extend(level + gap), 0.0) && over(*level)).map(|(level, _)| level + gap)
+                across.lowest_clearing(a, b, gap, &over).map(|level| level + gap)
             }));
             let mut setup = Setup { tool_radius: r, top: z_prev, feed: tool.feed_rate, cursor: &mut cursor, tol: &tol };
             let air = self.air(ctx, &cl, r, z);
             moves.extend(clear_rings(&rings, &clearing, z_prev, z, &mut setup, Some(&air)));
-            cleared.push((z, Arc::new(region)));
+            cleared.add(z, region);
         }
         Ok(sheet::toolpath(&self.name, &tool, moves, clearance))
     }
@@ -400,6 +423,126 @@ impl RoughZlevel {
             same
         });
         levels
+    }
+}
+
+/// One connected region of a level, with the piece of the level above it that holds it.
+struct Piece {
+    z: f64,
+    z_prev: f64,
+    region: Shape,
+    parent: Option<usize>,
+}
+
+/// The pieces a roughing cuts, handed out in its order.
+struct Pieces {
+    list: Vec<Option<Piece>>,
+    children: Vec<Vec<usize>>,
+    /// The pieces no piece above holds, by level (from the top down).
+    roots: Vec<Vec<usize>>,
+    /// The pieces cut so far whose children are not all cut, the latest last.
+    open: Vec<usize>,
+}
+
+impl Pieces {
+    /// `levels` as pieces: whole levels for [`Order::Levels`], each level's connected regions
+    /// (each under the piece of the level before that holds it) for [`Order::Regions`].
+    fn new(levels: Vec<Level>, order: Order, slack: f64) -> Pieces {
+        let mut list: Vec<Option<Piece>> = Vec::new();
+        let mut children: Vec<Vec<usize>> = Vec::new();
+        let mut roots: Vec<Vec<usize>> = Vec::new();
+        for Level { z, z_prev, region } in levels {
+            let parts = match order {
+                Order::Levels => vec![region],
+                Order::Regions => region.regions(),
+            };
+            let mut level_roots = Vec::new();
+            for part in parts {
+                let probe = part.loops[0].probe_point();
+                let parent = match order {
+                    Order::Levels => None,
+                    Order::Regions => list.iter().position(|p| p.as_ref().is_some_and(|p| p.z == z_prev && holds(&p.region, probe, slack))),
+                };
+                let k = list.len();
+                match parent {
+                    Some(p) => children[p].push(k),
+                    None => level_roots.push(k),
+                }
+                list.push(Some(Piece { z, z_prev, region: part, parent }));
+                children.push(Vec::new());
+            }
+            roots.push(level_roots);
+        }
+        Pieces { list, children, roots, open: Vec::new() }
+    }
+
+    /// The next piece to cut with the tool at `at`: the nearest uncut piece under the latest
+    /// open one, else the nearest uncut piece of the highest level no piece holds.
+    fn next(&mut self, at: DVec2) -> Option<Piece> {
+        let nearest = |list: &[Option<Piece>], candidates: &[usize]| {
+            candidates
+                .iter()
+                .copied()
+                .filter(|&k| list[k].is_some())
+                .map(|k| (k, list[k].as_ref().map_or(f64::INFINITY, |p| if p.region.contains(at) { 0.0 } else { p.region.distance_to(at) })))
+                .min_by(|a, b| a.1.total_cmp(&b.1))
+                .map(|(k, _)| k)
+        };
+        let k = loop {
+            match self.open.last() {
+                Some(&o) => match nearest(&self.list, &self.children[o]) {
+                    Some(k) => break k,
+                    None => {
+                        self.open.pop();
+                    }
+                },
+                None => break self.roots.iter().find_map(|level| nearest(&self.list, level))?,
+            }
+        };
+        self.open.push(k);
+        let piece = self.list[k].take();
+        debug_assert!(piece.as_ref().is_none_or(|p| p.parent.is_none_or(|q| self.list[q].is_none())));
+        piece
+    }
+}
+
+/// Whether `region` holds `p`, counting points `slack` from it.
+fn holds(region: &Shape, p: DVec2, slack: f64) -> bool {
+    region.contains(p) || region.distance_to(p) <= slack
+}
+
+/// The pieces cut so far, from the lowest up.
+#[derive(Clone)]
+struct Cleared {
+    slack: f64,
+    cut: Vec<ClearedPiece>,
+}
+
+#[derive(Clone)]
+struct ClearedPiece {
+    z: f64,
+    region: Arc<Shape>,
+    bounds: Rect,
+}
+
+impl Cleared {
+    fn add(&mut self, z: f64, region: Shape) {
+        let bounds = region.bounds().expand(self.slack);
+        let at = self.cut.partition_point(|e| e.z <= z);
+        self.cut.insert(at, ClearedPiece { z, region: Arc::new(region), bounds });
+    }
+
+    /// The lowest level cut so far whose region holds `p`.
+    fn lowest_holding(&self, p: DVec2) -> Option<f64> {
+        let inside = |r: &Rect| p.cmpge(r.min).all() && p.cmple(r.max).all();
+        self.cut.iter().find(|e| inside(&e.bounds) && holds(&e.region, p, self.slack)).map(|e| e.z)
+    }
+
+    /// The lowest level cut so far whose region holds the straight move from `a` to `b` (at
+    /// `gap` above it) and where `over` the part stands below it.
+    fn lowest_clearing(&self, a: DVec2, b: DVec2, gap: f64, over: &dyn Fn(f64) -> bool) -> Option<f64> {
+        let inside = |r: &Rect| a.min(b).cmpge(r.min).all() && a.max(b).cmple(r.max).all();
+        self.cut.iter().find(|e| inside(&e.bounds) && Inside(&e.region).clears(a.extend(e.z + gap), b.extend(e.z + gap), 0.0) && over(e.z)).map(|e| e.z)
     }
 }
 

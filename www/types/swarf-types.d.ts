@@ -295,6 +295,11 @@ export type LoadControl = "path" | "feed" | "none";
 export type Operation = { "kind": "roughZlevel" } & RoughZlevel | { "kind": "roughZigzag" } & RoughZigzag | { "kind": "roughOctree" } & RoughOctree | { "kind": "finishRaster" } & FinishRaster | { "kind": "finishWaterline" } & FinishWaterline | { "kind": "profile2d" } & Profile2d | { "kind": "pocket2d" } & Pocket2d | { "kind": "engrave" } & Engrave;
 
 /**
+ * The order a level-by-level roughing cuts in ([`RoughZlevel::order`]).
+ */
+export type Order = "regions" | "levels";
+
+/**
  * How to read a part's coordinates.
  */
 export type PartSetup = { 
@@ -783,7 +788,13 @@ helixRadius: number | null,
 /**
  * Cut every flat area of the part at its own height too. Default value: true.
  */
-flats: boolean, };
+flats: boolean, 
+/**
+ * Which comes first: each region down to its floor before the next (`regions`: the tool
+ * goes from pocket to pocket once, not once per level), or each level everywhere before
+ * the next (`levels`). Default value: regions.
+ */
+order: Order, };
 
 /**
  * The shape of a cutter's end.
