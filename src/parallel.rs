@@ -35,3 +35,25 @@ fn map_from<U: Send>(count: usize, least: usize, f: impl Fn(usize) -> U + Sync) 
     });
     parts.into_iter().flatten().collect()
 }
+
+/// `f` on every item, each on whichever core is free next (for items of uneven work); in place,
+/// in order, in wasm.
+pub fn each_mut<T: Send>(items: &mut [T], f: impl Fn(&mut T) + Sync) {
+    let threads = threads().min(items.len());
+    if threads <= 1 {
+        items.iter_mut().for_each(f);
+        return;
+    }
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let slots: Vec<std::sync::Mutex<&mut T>> = items.iter_mut().map(std::sync::Mutex::new).collect();
+    let (f, next, slots) = (&f, &next, &slots);
+    std::thread::scope(|scope| {
+        for _ in 0..threads {
+            scope.spawn(move || loop {
+                let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                let Some(slot) = slots.get(k) else { break };
+                f(&mut slot.lock().expect("each item is taken once"));
+            });
+        }
+    });
+}

@@ -77,6 +77,65 @@ impl DexelStock {
         }
     }
 
+    /// The stock cut into about `count` bands of whole rows of blocks, from the lowest rows up
+    /// (one band for a supersampled stock): each band is a stock of its own that moves cut
+    /// exactly as they would cut those rows of the whole, so bands can be cut side by side and
+    /// [`DexelStock::join`]ed.
+    pub fn split_rows(self, count: usize) -> Vec<DexelStock> {
+        if self.k > 1 || count <= 1 {
+            return vec![self];
+        }
+        let rows = self.ny.div_ceil(count).div_ceil(self.block).max(1) * self.block;
+        let mut out = Vec::new();
+        let mut j0 = 0;
+        while j0 < self.ny {
+            let j1 = (j0 + rows).min(self.ny);
+            let (b0, b1) = (j0 / self.block, j1.div_ceil(self.block));
+            out.push(DexelStock {
+                origin: self.origin + DVec2::new(0.0, j0 as f64 * self.cell),
+                ny: j1 - j0,
+                z: self.z[j0 * self.nx..j1 * self.nx].to_vec(),
+                widths: self.widths.clone(),
+                heights: self.heights[j0..j1].to_vec(),
+                split: Vec::new(),
+                subs: Vec::new(),
+                block_top: self.block_top[b0 * self.bx..b1 * self.bx].to_vec(),
+                ..self.clone_shape()
+            });
+            j0 = j1;
+        }
+        out
+    }
+
+    /// The bands of [`DexelStock::split_rows`] as one stock again.
+    pub fn join(bands: Vec<DexelStock>) -> DexelStock {
+        let mut bands = bands.into_iter();
+        let mut whole = bands.next().expect("a stock has at least one band");
+        for band in bands {
+            whole.ny += band.ny;
+            whole.z.extend(band.z);
+            whole.heights.extend(band.heights);
+            whole.block_top.extend(band.block_top);
+        }
+        whole
+    }
+
+    /// The y range of the stock's rows (its band of the whole, after [`DexelStock::split_rows`]).
+    pub fn rows(&self) -> (f64, f64) {
+        (self.origin.y, self.origin.y + self.ny as f64 * self.cell)
+    }
+
+    /// The stock, leaving in its place one with its settings and no cells.
+    pub fn take(&mut self) -> DexelStock {
+        let empty = self.clone_shape();
+        std::mem::replace(self, empty)
+    }
+
+    /// The stock's settings with no cells (for [`DexelStock::split_rows`]).
+    fn clone_shape(&self) -> DexelStock {
+        DexelStock { z: Vec::new(), widths: Vec::new(), heights: Vec::new(), split: Vec::new(), subs: Vec::new(), block_top: Vec::new(), ..*self }
+    }
+
     #[inline]
     fn is_split(&self, c: usize) -> Option<usize> {
         match self.split.get(c) {
@@ -408,6 +467,36 @@ mod tests {
             }
         }
         assert!(met > 40 && clear > 40, "{met} met, {clear} clear");
+    }
+
+    /// Bands of rows cut by the same sweeps, each on its own, join into the stock the whole one
+    /// becomes, cell for cell, and remove the same volume; the body test finds the same worst
+    /// place in one of them. Flat ends, balls and bull noses, level and sloped moves, bands of
+    /// uneven height (the stock's rows are no multiple of them).
+    #[test]
+    fn bands_cut_as_the_whole_stock_does() {
+        let whole = DexelStock::new(&Aabb { min: DVec3::ZERO, max: DVec3::new(40.0, 30.1, 20.0) }, 0.25, 1);
+        let mut bands = whole.clone().split_rows(7);
+        assert!(bands.len() > 3 && bands.iter().all(|b| b.ny % whole.block == 0 || b.origin.y + b.ny as f64 * 0.25 > 30.0), "{}", bands.len());
+        let mut whole = whole;
+        let mut next = uniform(5);
+        for k in 0..300 {
+            let profile = [Profile::new(3.0, 0.0), Profile::new(3.0, 3.0), Profile::new(3.0, 1.0)][k % 3];
+            let a = DVec3::new(40.0 * next(), 30.0 * next(), 20.0 * next());
+            let b = a + DVec3::new(12.0 * next() - 6.0, 12.0 * next() - 6.0, if k % 2 == 0 { 0.0 } else { 4.0 * next() - 2.0 });
+            let sweep = Sweep::line(profile, a, b);
+            let body = whole.above_body(&sweep, 4.0, 6.0).map(|w| w.1);
+            let in_bands = bands.iter().filter_map(|band| band.above_body(&sweep, 4.0, 6.0)).map(|w| w.1).fold(None, |w: Option<f64>, b| Some(w.map_or(b, |w| w.max(b))));
+            assert_eq!(body, in_bands, "{a} {b}");
+            let removed = whole.apply(&sweep);
+            let banded: f64 = bands.iter_mut().map(|band| band.apply(&sweep)).sum();
+            assert!((removed - banded).abs() <= 1e-9 * removed.max(1.0), "{removed} against {banded}");
+        }
+        let joined = DexelStock::join(bands);
+        assert_eq!(joined.z, whole.z);
+        assert_eq!(joined.block_top, whole.block_top);
+        assert_eq!((joined.ny, joined.heights.clone()), (whole.ny, whole.heights.clone()));
+        assert!(whole.volume() < 40.0 * 30.1 * 20.0 * 0.9);
     }
 
     /// The height a level traverse must keep along a way is at least the touch at every point

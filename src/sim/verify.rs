@@ -12,10 +12,11 @@
 use serde::Serialize;
 
 use super::dexel::DexelStock;
+use super::sweep::Sweep;
 use super::program::ProgramMove;
 use super::StockModel;
 use crate::error::{Error, Result};
-use crate::geom::{Aabb, DVec3, Tolerances};
+use crate::geom::{Aabb, DVec2, DVec3, Tolerances};
 use crate::mesh::Mesh;
 use crate::progress::Progress;
 use crate::zmap::{cc::cc_zmap, Grid, HeightField, MAX_NODES};
@@ -166,6 +167,44 @@ pub fn verify_against(
     Ok(sim.finish(surface, settings.allowance, tolerances))
 }
 
+/// Bands of rows the stock is cut in (a fixed number, so volumes are summed alike on any
+/// number of cores).
+const BANDS: usize = 64;
+/// Moves simulated between two progress reports.
+const CHUNK: usize = 4096;
+
+/// What one band of the stock made of a run of moves.
+#[derive(Default)]
+struct Band {
+    /// The sweeps (their indices in the run) whose footprint, grown to the tool's body, may
+    /// reach the band's rows.
+    sweeps: Vec<usize>,
+    /// Per sweep of `sweeps`: the volume it removed from the band, and the worst place the
+    /// tool's body meets the band before it.
+    out: Vec<(f64, Option<(DVec2, f64)>)>,
+}
+
+impl Band {
+    /// Cuts `stock` (this band) with its sweeps of `run` (each with its move).
+    fn run(&mut self, stock: &mut DexelStock, run: &[(&ProgramMove, Sweep)], gouge: f64) {
+        self.out.clear();
+        for &k in &self.sweeps {
+            let (m, sweep) = &run[k];
+            let body = if m.mv.is_rapid() {
+                None
+            } else {
+                stock.above_body(sweep, body_radius(m), m.cutter.flute_length + gouge)
+            };
+            self.out.push((stock.apply(sweep), body));
+        }
+    }
+}
+
+/// The radius of the tool's body above its flutes.
+fn body_radius(m: &ProgramMove) -> f64 {
+    m.cutter.shank_diameter.unwrap_or(m.cutter.diameter) * 0.5
+}
+
 /// A program simulated piece by piece on a z-map stock: a job applies each operation's moves as
 /// it is made, so the next operation sees the stock the earlier ones left (the in-process
 /// stock), and the findings of the whole program are gathered on the way.
@@ -195,7 +234,11 @@ impl Simulator {
     }
 
     /// Applies the next `moves` of the program (move indices continue from the earlier ones),
-    /// reporting up to `share` of the progress stage.
+    /// reporting up to `share` of the progress stage. The stock is cut in bands of rows
+    /// ([`DexelStock::split_rows`], on every core natively), a few thousand moves at a time,
+    /// each band by the sweeps that reach it; a sweep's volume is its bands' summed in band
+    /// order, and its body collision the deepest of its bands' (the first band's where equal),
+    /// so the findings do not depend on the cores.
     pub fn run(&mut self, moves: &[ProgramMove], tolerances: &Tolerances, progress: &mut Progress, share: f64) -> Result<()> {
         let note = |list: &mut (usize, Vec<Finding>), f: Finding| {
             list.0 += 1;
@@ -203,29 +246,63 @@ impl Simulator {
                 list.1.push(f);
             }
         };
-        for (n, m) in moves.iter().enumerate() {
-            let k = self.volumes.len();
-            if n % 4096 == 0 && !progress.report(share * n as f64 / moves.len().max(1) as f64) {
-                return Err(Error::Cancelled);
+        let mut bands: Vec<(DexelStock, Band)> = self.stock.take().split_rows(BANDS).into_iter().map(|b| (b, Band::default())).collect();
+        let rows: Vec<(f64, f64)> = bands.iter().map(|(b, _)| b.rows()).collect();
+        let mut result = Ok(());
+        for (c, chunk) in moves.chunks(CHUNK).enumerate() {
+            if !progress.report(share * (c * CHUNK) as f64 / moves.len().max(1) as f64) {
+                result = Err(Error::Cancelled);
+                break;
             }
-            let mut removed = 0.0;
-            for sweep in m.sweeps(tolerances.chordal) {
-                if !m.mv.is_rapid() {
-                    let radius = m.cutter.shank_diameter.unwrap_or(m.cutter.diameter) * 0.5;
-                    if let Some((at, depth)) = self.stock.above_body(&sweep, radius, m.cutter.flute_length + tolerances.gouge) {
-                        note(&mut self.body, Finding { move_index: Some(k), at: at.extend(sweep.nearest(at).1 + m.cutter.flute_length), amount: depth });
+            // The run's sweeps, each handed to the bands its footprint (grown to the body) spans.
+            let run: Vec<(&ProgramMove, Sweep)> = chunk.iter().flat_map(|m| m.sweeps(tolerances.chordal).into_iter().map(move |s| (m, s))).collect();
+            for (_, band) in &mut bands {
+                band.sweeps.clear();
+            }
+            for (k, (m, sweep)) in run.iter().enumerate() {
+                let grow = (body_radius(m) - sweep.profile.radius).max(0.0);
+                let (lo, hi) = (sweep.min.y - grow, sweep.max.y + grow);
+                let first = rows.partition_point(|r| r.1 < lo);
+                for (b, r) in rows.iter().enumerate().skip(first).take_while(|(_, r)| r.0 <= hi) {
+                    debug_assert!(r.1 >= lo);
+                    bands[b].1.sweeps.push(k);
+                }
+            }
+            crate::parallel::each_mut(&mut bands, |(stock, band)| band.run(stock, &run, tolerances.gouge));
+            // Each sweep's volume summed and its worst body place kept band by band, in order.
+            let mut removed = vec![0.0; run.len()];
+            let mut body: Vec<Option<(DVec2, f64)>> = vec![None; run.len()];
+            for (_, band) in &bands {
+                for (&k, &(volume, worst)) in band.sweeps.iter().zip(&band.out) {
+                    removed[k] += volume;
+                    if let Some(w) = worst {
+                        if body[k].is_none_or(|b| w.1 > b.1) {
+                            body[k] = Some(w);
+                        }
                     }
                 }
-                removed += self.stock.apply(&sweep);
             }
-            if !m.mv.is_rapid() {
-                self.mrr_max = self.mrr_max.max(m.mrr(removed));
-            } else if removed > GRAZE {
-                note(&mut self.rapid, Finding { move_index: Some(k), at: m.mv.to(), amount: removed });
+            let mut k = 0;
+            for m in chunk {
+                let index = self.volumes.len();
+                let mut volume = 0.0;
+                while k < run.len() && std::ptr::eq(run[k].0, m) {
+                    if let Some((at, depth)) = body[k] {
+                        note(&mut self.body, Finding { move_index: Some(index), at: at.extend(run[k].1.nearest(at).1 + m.cutter.flute_length), amount: depth });
+                    }
+                    volume += removed[k];
+                    k += 1;
+                }
+                if !m.mv.is_rapid() {
+                    self.mrr_max = self.mrr_max.max(m.mrr(volume));
+                } else if volume > GRAZE {
+                    note(&mut self.rapid, Finding { move_index: Some(index), at: m.mv.to(), amount: volume });
+                }
+                self.volumes.push(volume);
             }
-            self.volumes.push(removed);
         }
-        Ok(())
+        self.stock = DexelStock::join(bands.into_iter().map(|(stock, _)| stock).collect());
+        result
     }
 
     /// Judges the stock against the part's heights (`surface` on the simulation's grid, −∞ where
