@@ -251,7 +251,8 @@ pub fn clear_rings(levels: &[Shape], clearing: &Clearing, z_prev: f64, z: f64, s
     let orient = |l: &Loop| if climb { l.clone() } else { l.reversed() };
     let mut out = Vec::new();
     let forest = forest(levels);
-    let mut c = Ctx { s, boundary, angle: clearing.ramp_angle, helix_r: clearing.helix_r, entry: clearing.entry, out: &mut out, z_prev, z };
+    let swept = (clearing.pattern == PocketPattern::Offset).then(|| Swept::new(boundary, s.tool_radius, z, &s.cursor.stock, s.tol.chordal));
+    let mut c = Ctx { s, boundary, angle: clearing.ramp_angle, helix_r: clearing.helix_r, entry: clearing.entry, out: &mut out, z_prev, z, swept };
     match clearing.pattern {
         PocketPattern::Offset => {
             for node in &forest {
@@ -305,9 +306,76 @@ struct Ctx<'a, 'b, 'm> {
     out: &'a mut Vec<Move>,
     z_prev: f64,
     z: f64,
+    /// What the rings cut so far at this depth swept, where the material was.
+    swept: Option<Swept>,
+}
+
+/// The material of one region at one depth as pixels (seed 004's pixel map), less what the
+/// loops cut so far swept: a loop whose tool would sweep none of it runs in the air (where the
+/// offsets round an island and those along the outer boundary meet, or over what an earlier
+/// operation cleared) and is left out. A pixel counts by its centre, so a loop left out can
+/// leave at most a sliver narrower than a pixel's half diagonal.
+struct Swept {
+    map: PixelMap,
+    chordal: f64,
+}
+
+impl Swept {
+    /// Pixels of a sixteenth of the tool's radius (fewer on a large region); only counted and
+    /// cut, so the map needs no region of its own.
+    fn new(region: &Shape, radius: f64, z: f64, stock: &super::path2d::InStock, chordal: f64) -> Swept {
+        let px = load::pixel_for(region.bounds(), radius, radius / 16.0);
+        Swept { map: PixelMap::new(region.bounds(), px, radius, |p| stock.material_at(p, z), &Shape::default()), chordal }
+    }
+
+    /// The loop as straight moves: its arcs as chords within the chordal tolerance.
+    fn chords(&self, l: &Loop) -> Vec<(DVec2, DVec2)> {
+        let mut out = Vec::new();
+        for s in l.segments() {
+            match s.arc_geom() {
+                None => out.push((s.a, s.b)),
+                Some(g) => {
+                    let angle = g.start.angle_to(g.end).abs().max(1e-9);
+                    let step = if g.radius > self.chordal { 2.0 * (1.0 - self.chordal / g.radius).acos() } else { angle };
+                    let n = ((angle / step.max(1e-3)).ceil() as usize).clamp(1, 1000);
+                    let mut a = s.a;
+                    for k in 1..=n {
+                        let b = if k == n { s.b } else { s.point_at(k as f64 / n as f64) };
+                        out.push((a, b));
+                        a = b;
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// Whether the tool going round `l` sweeps material.
+    fn cuts(&mut self, l: &Loop) -> bool {
+        self.chords(l).into_iter().any(|(a, b)| self.map.count_past(a, b, 0) > 0)
+    }
+
+    /// Takes what the tool going round `l` sweeps off the material.
+    fn cut(&mut self, l: &Loop) {
+        for (a, b) in self.chords(l) {
+            self.map.cut(a, b);
+        }
+    }
 }
 
 impl Ctx<'_, '_, '_> {
+    /// Whether `l` has material to cut (always, without a pixel map).
+    fn has_material(&mut self, l: &Loop) -> bool {
+        self.swept.as_mut().is_none_or(|s| s.cuts(l))
+    }
+
+    /// Notes `l` cut round at depth.
+    fn swept(&mut self, l: &Loop) {
+        if let Some(s) = &mut self.swept {
+            s.cut(l);
+        }
+    }
+
     /// Whether a straight move at depth from `a` to `b` stays inside the pocket.
     fn inside(&self, a: DVec2, b: DVec2) -> bool {
         Inside(self.boundary).clears(a.extend(self.z), b.extend(self.z), 0.0)
@@ -324,12 +392,16 @@ impl Ctx<'_, '_, '_> {
             self.cut_tree(child, orient);
         }
         let leaf = node.children.is_empty();
-        for (i, l) in node.shape.loops.iter().enumerate() {
-            let fresh = leaf && i == 0;
-            if fresh && self.entry == Entry::Helix && self.helix_into(&node.shape, &orient(l)) {
+        let mut fresh = leaf;
+        for l in &node.shape.loops {
+            if !self.has_material(l) {
                 continue;
             }
-            self.cut_loop(&orient(l), fresh);
+            if !(fresh && self.entry == Entry::Helix && self.helix_into(&node.shape, &orient(l))) {
+                self.cut_loop(&orient(l), fresh);
+            }
+            self.swept(l);
+            fresh = false;
         }
     }
 
@@ -351,10 +423,14 @@ impl Ctx<'_, '_, '_> {
         holes.sort_by_key(|(d, _)| std::cmp::Reverse(*d));
         let mut first = true;
         for (_, l) in outer.into_iter().chain(holes) {
-            let l = orient(l);
+            if !self.has_material(l) {
+                continue;
+            }
+            let lo = orient(l);
+            let l = &lo;
             if first {
                 // Down in the air beside the stock, in to the loop, then round.
-                let segs = start_nearest(&l, start);
+                let segs = start_nearest(l, start);
                 let (_, total) = arc_lengths(&segs);
                 self.s.cursor.reposition(outside.extend(self.z), self.out);
                 self.out.push(Move::Line { to: segs[0].a.extend(self.z), feed: self.s.feed });
@@ -362,8 +438,9 @@ impl Ctx<'_, '_, '_> {
                 self.s.cursor.moved(self.out);
                 first = false;
             } else {
-                self.cut_loop(&l, false);
+                self.cut_loop(l, false);
             }
+            self.swept(l);
         }
     }
 
