@@ -36,19 +36,30 @@ fn box_on_plate() -> swarf::mesh::Mesh {
 }
 
 
-#[test]
-fn a_box_on_a_plate_is_roughed_to_the_allowances() {
-    let (allowance, leave) = (0.5, 0.3);
+/// The allowances the box on the plate is roughed to (floors, walls).
+const BOX_ALLOWANCE: f64 = 0.5;
+const BOX_LEAVE: f64 = 0.3;
+
+/// The box on the plate z-level roughed (φ6 flat end, the stock its box and 1 mm above it), its
+/// program simulated and clean.
+fn rough_box_on_plate() -> job::JobOutput {
     let job = Job {
         part: PartSetup { placement: Placement::Keep, ..PartSetup::default() },
         stock: swarf::job::Stock { margin_xy: 0.0, margin_top: 1.0, ..Default::default() },
         tools: vec![flat(1, 6.0)],
-        operations: vec![rough(allowance, leave)],
+        operations: vec![rough(BOX_ALLOWANCE, BOX_LEAVE)],
         simulation: Simulation { verify: true, cell: Some(0.2) },
         ..Job::default()
     };
     let out = job::run(&job, box_on_plate(), &mut Progress::none()).unwrap();
     clean(&out);
+    out
+}
+
+#[test]
+fn a_box_on_a_plate_is_roughed_to_the_allowances() {
+    let (allowance, leave) = (BOX_ALLOWANCE, BOX_LEAVE);
+    let out = rough_box_on_plate();
     let v = out.verification.as_ref().unwrap();
     // On the plate away from the box and on the box's top, the floor is left at the allowance.
     let g = v.stock.grid();
@@ -84,17 +95,8 @@ fn a_flats_level_is_cut_only_where_the_level_below_cannot_go() {
     // The box's top (8 + 0.5) is a flat between the stock's top (9) and the first step-down
     // level (7): its level is cut about the box alone; the plate around it is taken from 9 to 7
     // by the step-down level, not also in a thin pass at 8.5.
-    let (allowance, leave) = (0.5, 0.3);
-    let job = Job {
-        part: PartSetup { placement: Placement::Keep, ..PartSetup::default() },
-        stock: swarf::job::Stock { margin_xy: 0.0, margin_top: 1.0, ..Default::default() },
-        tools: vec![flat(1, 6.0)],
-        operations: vec![rough(allowance, leave)],
-        simulation: Simulation { verify: true, cell: Some(0.2) },
-        ..Job::default()
-    };
-    let out = job::run(&job, box_on_plate(), &mut Progress::none()).unwrap();
-    clean(&out);
+    let (allowance, leave) = (BOX_ALLOWANCE, BOX_LEAVE);
+    let out = rough_box_on_plate();
     let r = 3.0;
     // Centres at the flat's level: over the box's top, or within the cutter (grown by the
     // leave-stock) of it, and a node and a half of the grid past that (the band), and the
