@@ -391,13 +391,15 @@ impl Ctx<'_, '_, '_> {
         for child in &node.children {
             self.cut_tree(child, orient);
         }
+        // A leaf's first loop cut is entered fresh: by the helix inside the leaf's outer loop
+        // where that loop is the one (the helix's way out goes to it), else by a ramp.
         let leaf = node.children.is_empty();
         let mut fresh = leaf;
-        for l in &node.shape.loops {
+        for (i, l) in node.shape.loops.iter().enumerate() {
             if !self.has_material(l) {
                 continue;
             }
-            if !(fresh && self.entry == Entry::Helix && self.helix_into(&node.shape, &orient(l))) {
+            if !(fresh && i == 0 && self.entry == Entry::Helix && self.helix_into(&node.shape, &orient(l))) {
                 self.cut_loop(&orient(l), fresh);
             }
             self.swept(l);
@@ -423,7 +425,8 @@ impl Ctx<'_, '_, '_> {
         holes.sort_by_key(|(d, _)| std::cmp::Reverse(*d));
         let mut first = true;
         for (_, l) in outer.into_iter().chain(holes) {
-            if !self.has_material(l) {
+            // The first loop is cut whatever it sweeps: the way in from the air goes to it.
+            if !first && !self.has_material(l) {
                 continue;
             }
             let lo = orient(l);
