@@ -321,10 +321,10 @@ struct Swept {
 }
 
 impl Swept {
-    /// Pixels of a sixteenth of the tool's radius (fewer on a large region); only counted and
+    /// Pixels of an eighth of the tool's radius (fewer on a large region); only counted and
     /// cut, so the map needs no region of its own.
     fn new(region: &Shape, radius: f64, z: f64, stock: &super::path2d::InStock, chordal: f64) -> Swept {
-        let px = load::pixel_for(region.bounds(), radius, radius / 16.0);
+        let px = load::pixel_for(region.bounds(), radius, radius / 8.0);
         Swept { map: PixelMap::new(region.bounds(), px, radius, |p| stock.material_at(p, z), &Shape::default()), chordal }
     }
 
