@@ -650,6 +650,13 @@ fn arc_arc(s1: &Segment, g1: &ArcGeom, s2: &Segment, g2: &ArcGeom, eps: f64, out
 }
 
 /// Cumulative arc lengths at the starts of a chain's segments, and its total.
+/// The largest angle (radians) an arc of `radius` may turn between chords that stay within
+/// `sag` of it (`radius (1 - cos(step / 2)) <= sag`); `None` when any chord does (the radius is
+/// no larger than the sag).
+pub fn chord_step(radius: f64, sag: f64) -> Option<f64> {
+    (radius > sag).then(|| 2.0 * (1.0 - sag / radius).acos())
+}
+
 pub fn arc_lengths(segs: &[Segment]) -> (Vec<f64>, f64) {
     let mut at = Vec::with_capacity(segs.len());
     let mut s = 0.0;

@@ -457,7 +457,7 @@ impl<'a> Writer<'a> {
         };
         let helix = to.z != from.z;
         if self.post.arcs == ArcFormat::Off || (helix && !self.post.helix) {
-            let step = if radius > ARC_CHORD_ERROR { 2.0 * (1.0 - ARC_CHORD_ERROR / radius).acos() } else { std::f64::consts::PI };
+            let step = crate::geom::segment::chord_step(radius, ARC_CHORD_ERROR).unwrap_or(std::f64::consts::PI);
             let n = ((sweep.abs() / step).ceil() as usize).max(1);
             for k in 1..n {
                 self.emit(&Move::Line { to: point(a0 + sweep * k as f64 / n as f64), feed });

@@ -105,8 +105,7 @@ impl Sweep {
                 if to.z == from.z {
                     return vec![Sweep::arc(profile, from, center, sweep)];
                 }
-                // Chord sag radius * (1 - cos(step / 2)) <= chordal.
-                let step = if radius > chordal { 2.0 * (1.0 - chordal / radius).acos() } else { sweep.abs() };
+                let step = crate::geom::segment::chord_step(radius, chordal).unwrap_or(sweep.abs());
                 let count = ((sweep.abs() / step.max(1e-3)).ceil() as usize).clamp(1, 100_000);
                 let v = from.truncate() - center;
                 let start = v.y.atan2(v.x);

@@ -336,7 +336,7 @@ impl Swept {
                 None => out.push((s.a, s.b)),
                 Some(g) => {
                     let angle = g.start.angle_to(g.end).abs().max(1e-9);
-                    let step = if g.radius > self.chordal { 2.0 * (1.0 - self.chordal / g.radius).acos() } else { angle };
+                    let step = crate::geom::segment::chord_step(g.radius, self.chordal).unwrap_or(angle);
                     let n = ((angle / step.max(1e-3)).ceil() as usize).clamp(1, 1000);
                     let mut a = s.a;
                     for k in 1..=n {
@@ -429,8 +429,7 @@ impl Ctx<'_, '_, '_> {
             if !first && !self.has_material(l) {
                 continue;
             }
-            let lo = orient(l);
-            let l = &lo;
+            let l = &orient(l);
             if first {
                 // Down in the air beside the stock, in to the loop, then round.
                 let segs = start_nearest(l, start);

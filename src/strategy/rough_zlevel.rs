@@ -213,7 +213,7 @@ impl RoughZlevel {
             if !progress.report(k as f64 / count as f64) {
                 return Err(Error::Cancelled);
             }
-            let Some(Piece { z, z_prev, region, .. }) = pieces.next(cursor.at.truncate()) else { break };
+            let Some(Piece { z, z_prev, region }) = pieces.next(cursor.at.truncate()) else { break };
             // The region is the set of centres: its rings start on it.
             let rings = rings(&region, 0.0, step, r, &tol);
             // Material above this level was cleared by the level before within this region
@@ -223,17 +223,19 @@ impl RoughZlevel {
             // a flat's level between cut only its band) only over what it cleared, and lower
             // where a flat's band was cut since: elsewhere (rest roughing beside what an earlier
             // tool left) above the stock.
-            let (before, earlier) = (cleared.clone(), cleared.clone());
-            let levelled = before.cut.iter().any(|e| e.z == z_prev);
+            let done = Arc::new(cleared.clone());
+            let levelled = done.cut.iter().any(|e| e.z == z_prev);
+            let before = done.clone();
             cursor.safe_at = Some(Box::new(move |p: DVec2| before.lowest_holding(p).map_or(!levelled, |level| level == z_prev)));
             // Past it (the cursor asks only where `safe_at` does not hold): the lowest level cut
             // so far whose region holds the point.
+            let earlier = done.clone();
             cursor.cleared_to = Some(Box::new(move |p: DVec2| earlier.lowest_holding(p)));
             // The short retract: a traverse just above the lowest level cut so far whose
             // region holds the straight move (what that level cleared), over the part there;
             // above the stock's top before the first level.
             let (surface, allowance, gap, tol_z) = (cl.clone(), self.allowance, ctx.heights.gap, tol.height + 2.0 * tol.interpolation);
-            let across = cleared.clone();
+            let across = done;
             cursor.traverse = Some(Box::new(move |a: DVec2, b: DVec2| {
                 let over = |level: f64| surface.stays_below(a, b, level - allowance - tol_z);
                 if across.cut.is_empty() {
@@ -288,14 +290,14 @@ impl RoughZlevel {
     /// The heights of the levels on `cl` for a tool of radius `r`, from the top down (see
     /// [`RoughZlevel`]).
     pub fn heights(&self, ctx: &Context, cl: &ClSurface, r: f64) -> Vec<f64> {
-        // Floors are cut a hair above their height plus the allowance: the region at a level
-        // counts a surface as clear when the exact profile stands below it by the interpolation
-        // margin (`zmap/contour.rs`).
         self.levels_and_kinds(ctx, cl, r).into_iter().map(|(z, _)| z).collect()
     }
 
     /// [`RoughZlevel::heights`], each with whether it is a flat's level alone.
     fn levels_and_kinds(&self, ctx: &Context, cl: &ClSurface, r: f64) -> Vec<(f64, bool)> {
+        // Floors are cut a hair above their height plus the allowance: the region at a level
+        // counts a surface as clear when the exact profile stands below it by the interpolation
+        // margin (`zmap/contour.rs`).
         let clear = 2.0 * ctx.tolerances.interpolation + ctx.tolerances.height;
         self.levels(&cl.field, ctx.stock.max.z, ctx.stock.min.z, r, clear)
     }
@@ -426,12 +428,11 @@ impl RoughZlevel {
     }
 }
 
-/// One connected region of a level, with the piece of the level above it that holds it.
+/// One connected region of a level (or a whole level).
 struct Piece {
     z: f64,
     z_prev: f64,
     region: Shape,
-    parent: Option<usize>,
 }
 
 /// The pieces a roughing cuts, handed out in its order.
@@ -468,7 +469,7 @@ impl Pieces {
                     Some(p) => children[p].push(k),
                     None => level_roots.push(k),
                 }
-                list.push(Some(Piece { z, z_prev, region: part, parent }));
+                list.push(Some(Piece { z, z_prev, region: part }));
                 children.push(Vec::new());
             }
             roots.push(level_roots);
@@ -482,9 +483,7 @@ impl Pieces {
         let nearest = |list: &[Option<Piece>], candidates: &[usize]| {
             candidates
                 .iter()
-                .copied()
-                .filter(|&k| list[k].is_some())
-                .map(|k| (k, list[k].as_ref().map_or(f64::INFINITY, |p| if p.region.contains(at) { 0.0 } else { p.region.distance_to(at) })))
+                .filter_map(|&k| list[k].as_ref().map(|p| (k, if p.region.contains(at) { 0.0 } else { p.region.distance_to(at) })))
                 .min_by(|a, b| a.1.total_cmp(&b.1))
                 .map(|(k, _)| k)
         };
@@ -500,9 +499,7 @@ impl Pieces {
             }
         };
         self.open.push(k);
-        let piece = self.list[k].take();
-        debug_assert!(piece.as_ref().is_none_or(|p| p.parent.is_none_or(|q| self.list[q].is_none())));
-        piece
+        self.list[k].take()
     }
 }
 
