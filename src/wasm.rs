@@ -438,6 +438,10 @@ pub struct JobPlan {
     job: Job,
     prepared: Option<job::Prepared>,
     surfaces: Vec<crate::strategy::context::SurfaceRequest>,
+    /// The planning worker's job once it plans operation by operation ([`JobPlan::start`]).
+    running: Option<job::Running>,
+    /// A helper's copy of the moves it cuts its bands of the stock with ([`JobPlan::keep_moves`]).
+    moves: Vec<crate::sim::program::ProgramMove>,
 }
 
 #[derive(serde::Serialize)]
@@ -465,7 +469,7 @@ pub fn prepare_job(job: JsValue, bytes: &[u8], name: &str) -> Result<JobPlan, Js
     };
     let prepared = job::prepare(&job, workpiece).map_err(js_error)?;
     let surfaces = prepared.surfaces().map_err(js_error)?;
-    Ok(JobPlan { job, prepared: Some(prepared), surfaces })
+    Ok(JobPlan { job, prepared: Some(prepared), surfaces, running: None, moves: Vec::new() })
 }
 
 #[wasm_bindgen]
@@ -562,15 +566,118 @@ impl JobPlan {
         self.prepared()?.keep_passes(operation, first, passes).map_err(js_error)
     }
 
+    /// Lets go of the prepared part and surfaces, keeping the job: a helper of the pool needs
+    /// only its tools and tolerances to cut bands of the stock ([`JobPlan::cut_bands`]).
+    pub fn release(&mut self) {
+        self.prepared = None;
+    }
+
+    /// Starts planning operation by operation, so a pool can cut each operation's moves into
+    /// the in-process stock ([`JobPlan::plan_next`]).
+    pub fn start(&mut self) -> Result<(), JsError> {
+        let prepared = self.prepared.take().ok_or_else(|| js_error("this plan has run"))?;
+        self.running = Some(prepared.start());
+        Ok(())
+    }
+
+    fn running(&mut self) -> Result<&mut job::Running, JsError> {
+        self.running.as_mut().ok_or_else(|| js_error("this plan has not started"))
+    }
+
+    /// Plans the next operation: `undefined` once all are planned, else how many moves wait
+    /// to cut the in-process stock (0 when none do).
+    #[wasm_bindgen(js_name = planNext)]
+    pub fn plan_next(&mut self, progress: &js_sys::Function) -> Result<Option<usize>, JsError> {
+        let mut sink = progress_sink(progress);
+        let running = self.running()?;
+        Ok(running.plan_next(&mut Progress::new(&mut sink)).map_err(js_error)?.then(|| running.pending().len()))
+    }
+
+    /// The moves waiting to cut the stock, flat, for the pool's helpers
+    /// ([`crate::sim::program::encode`]).
+    #[wasm_bindgen(js_name = pendingMoves)]
+    pub fn pending_moves(&mut self) -> Result<Vec<f64>, JsError> {
+        Ok(crate::sim::program::encode(self.running()?.pending()))
+    }
+
+    /// The in-process stock, taken out in `groups` groups of consecutive bands of rows (each flat,
+    /// [`DexelStock::to_flat`]) for the pool to cut with the pending moves;
+    /// [`JobPlan::absorb`] takes them back.
+    #[wasm_bindgen(js_name = takeBands)]
+    pub fn take_bands(&mut self, groups: usize) -> Result<js_sys::Array, JsError> {
+        let bands = self.running()?.take_bands();
+        let size = bands.len().div_ceil(groups.max(1)).max(1);
+        let out = js_sys::Array::new();
+        for group in bands.chunks(size) {
+            let mut flat = Vec::new();
+            for band in group {
+                band.to_flat(&mut flat);
+            }
+            out.push(&js_sys::Float64Array::from(&flat[..]));
+        }
+        Ok(out)
+    }
+
+    /// Keeps `flat` ([`JobPlan::pending_moves`] of the planning worker) as the moves this helper
+    /// cuts its bands with.
+    #[wasm_bindgen(js_name = keepMoves)]
+    pub fn keep_moves(&mut self, flat: &[f64]) -> Result<(), JsError> {
+        self.moves = crate::sim::program::decode(flat, &self.job.tools).map_err(js_error)?;
+        Ok(())
+    }
+
+    /// Cuts a group of bands of the stock (flat, from [`JobPlan::take_bands`]) with the pending
+    /// moves (the planning worker) or the kept ones (a helper): `[bands, cuts]`, both flat.
+    #[wasm_bindgen(js_name = cutBands)]
+    pub fn cut_bands(&mut self, group: &[f64]) -> Result<js_sys::Array, JsError> {
+        let mut bands = DexelStock::all_from_flat(group).ok_or_else(|| js_error("a group of bands of the stock ends early"))?;
+        let tolerances = self.job.tolerances;
+        let moves = match &self.running {
+            Some(r) => r.pending(),
+            None => &self.moves[..],
+        };
+        let cuts = crate::sim::verify::cut_bands(&mut bands, moves, &tolerances, &mut Progress::none(), 1.0).map_err(js_error)?;
+        let mut flat = Vec::new();
+        for band in &bands {
+            band.to_flat(&mut flat);
+        }
+        let out = js_sys::Array::new();
+        out.push(&js_sys::Float64Array::from(&flat[..]));
+        out.push(&js_sys::Float64Array::from(&cuts.iter().flat_map(|c| c.to_flat()).collect::<Vec<f64>>()[..]));
+        Ok(out)
+    }
+
+    /// Takes back the stock's groups of bands (all of them, in order, as [`JobPlan::cut_bands`]
+    /// returned them) with their cuts, flat.
+    pub fn absorb(&mut self, groups: Vec<js_sys::Float64Array>, cuts: Vec<js_sys::Float64Array>) -> Result<(), JsError> {
+        let (mut bands, mut all) = (Vec::new(), Vec::new());
+        for (g, c) in groups.iter().zip(&cuts) {
+            bands.extend(DexelStock::all_from_flat(&g.to_vec()).ok_or_else(|| js_error("a group of bands of the stock ends early"))?);
+            all.extend(crate::sim::verify::BandCut::all_from_flat(&c.to_vec()).map_err(js_error)?);
+        }
+        self.running()?.absorb(bands, &all).map_err(js_error)
+    }
+
+    /// Writes the program once every operation is planned and has cut the stock.
+    pub fn finish(&mut self, progress: &js_sys::Function) -> Result<JobResult, JsError> {
+        let running = self.running.take().ok_or_else(|| js_error("this plan has not started"))?;
+        let mut sink = progress_sink(progress);
+        let out = running.finish(&mut Progress::new(&mut sink)).map_err(js_error)?;
+        job_result(&self.job, out)
+    }
+
     /// Plans the job with what was kept and writes its program (see [`run_job`]).
     pub fn run(&mut self, progress: &js_sys::Function) -> Result<JobResult, JsError> {
         let prepared = self.prepared.take().ok_or_else(|| js_error("this plan has run"))?;
-        let mut sink = |fraction: f64, stage: &str| {
-            progress.call2(&JsValue::NULL, &JsValue::from_f64(fraction), &JsValue::from_str(stage)).map(|v| v.as_bool() != Some(false)).unwrap_or(true)
-        };
+        let mut sink = progress_sink(progress);
         let out = prepared.run(&mut Progress::new(&mut sink)).map_err(js_error)?;
         job_result(&self.job, out)
     }
+}
+
+/// A progress sink calling `progress(fraction, stage)`; the function's `false` cancels.
+fn progress_sink(progress: &js_sys::Function) -> impl FnMut(f64, &str) -> bool + '_ {
+    |fraction: f64, stage: &str| progress.call2(&JsValue::NULL, &JsValue::from_f64(fraction), &JsValue::from_str(stage)).map(|v| v.as_bool() != Some(false)).unwrap_or(true)
 }
 
 /// What the worker hands the page of a job's output.

@@ -127,3 +127,51 @@ fn the_planner_contours_on_the_level_maps_it_was_given() {
     let out = planner.run(&mut Progress::none()).map(|o| o.gcode).unwrap_or_default();
     assert_ne!(out, gcode_whole(&job));
 }
+
+/// Each operation's moves cut the in-process stock in groups of bands elsewhere, as the page's
+/// pool cuts them: the moves and the bands written as flat numbers and read back, each group
+/// cut on its own, the bands and their cuts taken back by the planner. The program, the stock
+/// and every figure of the simulation are those of the job run whole.
+#[test]
+fn the_in_process_stock_cut_in_groups_of_bands_is_the_stock_cut_whole() {
+    use swarf::sim::program::{decode, encode};
+    use swarf::sim::verify::{cut_bands, BandCut};
+    use swarf::sim::DexelStock;
+    let job = Job::demo();
+    let whole = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
+    let mut running = job::prepare(&job, demo_part()).unwrap().start();
+    let (mut operations, mut groups_cut) = (0, 0);
+    while running.plan_next(&mut Progress::none()).unwrap() {
+        operations += 1;
+        if running.pending().is_empty() {
+            continue;
+        }
+        let moves = decode(&encode(running.pending()), &job.tools).unwrap();
+        assert_eq!(moves.len(), running.pending().len());
+        let bands = running.take_bands();
+        assert!(bands.len() > 20, "{} bands", bands.len());
+        // Uneven groups, one of a single band, each through its flat form and back.
+        let (mut back, mut cuts) = (Vec::new(), Vec::new());
+        for group in [&bands[..1], &bands[1..20], &bands[20..]] {
+            let mut flat = Vec::new();
+            group.iter().for_each(|b| b.to_flat(&mut flat));
+            let mut mine = DexelStock::all_from_flat(&flat).unwrap();
+            let cut = cut_bands(&mut mine, &moves, &job.tolerances, &mut Progress::none(), 1.0).unwrap();
+            let flat: Vec<f64> = cut.iter().flat_map(BandCut::to_flat).collect();
+            cuts.extend(BandCut::all_from_flat(&flat).unwrap());
+            back.extend(mine);
+            groups_cut += 1;
+        }
+        // Bands missing: refused, and nothing is lost.
+        assert!(running.absorb(back[1..].to_vec(), &cuts[1..]).is_err());
+        running.absorb(back, &cuts).unwrap();
+    }
+    assert_eq!((operations, groups_cut), (3, 9));
+    let out = running.finish(&mut Progress::none()).unwrap();
+    assert_eq!(out.gcode, whole.gcode);
+    let (a, b) = (out.verification.unwrap(), whole.verification.unwrap());
+    assert_eq!(a.stock.heights().z, b.stock.heights().z);
+    assert_eq!(a.volumes, b.volumes);
+    assert_eq!(format!("{:?}", a.report), format!("{:?}", b.report));
+    assert!(a.report.removed > 1000.0);
+}

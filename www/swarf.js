@@ -93,7 +93,7 @@ async function share(channels, tasks, done, report) {
     try {
       while (!failed && next < tasks.length) {
         const task = tasks[next++];
-        const answer = await channel.call(task);
+        const answer = await channel.call(task, task.transfer ?? []);
         // Once a task failed, no answer of this run is used.
         if (failed) return;
         done(task, answer);
@@ -105,6 +105,9 @@ async function share(channels, tasks, done, report) {
     }
   }));
 }
+
+/** Groups of the simulated stock's bands of rows each worker of a pool cuts, on average. */
+const GROUPS_PER_WORKER = 4;
 
 /** Ranges `[from, to)` splitting `0..count` into about `pieces` even ones. */
 function ranges(count, pieces) {
@@ -182,7 +185,9 @@ export class Engine {
    * rejects with a `CancelledError`. Resolves with `{ gcode, summary, feeds, rapids, feedOps,
    * feedTools, octants, part, drawing, sim }`. With more than one worker, the pool first makes
    * the CL surfaces and the level maps of z-level work (in bands of rows) and the raster passes
-   * (in ranges) on every worker; the program is the same as one worker's. Runs asked for while
+   * (in ranges) on every worker, then plans operation by operation, each operation's moves
+   * cutting the simulated stock in groups of bands of rows on every worker; the program and
+   * its simulation are the same as one worker's. Runs asked for while
    * one runs wait for it.
    */
   run(job, bytes, name, options = {}) {
@@ -240,9 +245,29 @@ export class Engine {
     await share(all, tasks, done, stage(0.2, 0.5, 'passes and level maps'));
     for (const [surface, { right, up }] of maps) kept.push(this.#main.call({ type: 'keepLevelMap', surface, right, up }, [right.buffer, up.buffer]));
     await Promise.all(kept);
-    await Promise.all(helpers.map((h) => h.call({ type: 'forget' })));
+    // The helpers keep only the job's tools and tolerances now, to cut bands of the stock.
+    await Promise.all(helpers.map((h) => h.call({ type: 'release' })));
     const from = bands.length || tasks.length ? 0.5 : 0;
-    return this.#main.call({ type: 'runPlan' }, [], (f, s) => onProgress?.(from + (1 - from) * f, s));
+    let at = from;
+    const planning = (f, s) => onProgress?.((at = from + (1 - from) * f), s);
+    try {
+      await this.#main.call({ type: 'startPlan' });
+      // Operation by operation: the planner plans, then every worker cuts groups of the bands
+      // of the in-process stock with its moves, and the planner takes them back.
+      for (;;) {
+        const step = await this.#main.call({ type: 'planNext', groups: GROUPS_PER_WORKER * n }, [], planning);
+        if (step.done) break;
+        if (!step.groups) continue;
+        await Promise.all(helpers.map((h) => h.call({ type: 'keepMoves', moves: step.moves })));
+        const cut = { bands: [], cuts: [] };
+        const groups = step.groups.map((group, g) => ({ type: 'cutBands', group, g, transfer: [group.buffer] }));
+        await share(all, groups, (t, r) => { cut.bands[t.g] = r.bands; cut.cuts[t.g] = r.cuts; }, () => onProgress?.(at, `in-process stock (${n} workers)`));
+        await this.#main.call({ type: 'absorb', groups: cut.bands, cuts: cut.cuts }, [...cut.bands, ...cut.cuts].map((a) => a.buffer));
+      }
+      return await this.#main.call({ type: 'finishPlan' }, [], planning);
+    } finally {
+      for (const h of helpers) h.call({ type: 'forget' }).catch(() => {});
+    }
   }
 
   /** The last run's program written again for another post, without planning again. */

@@ -149,11 +149,37 @@ self.onmessage = async (event) => {
     } else if (type === 'keepPasses') {
       planned().keepPasses(event.data.operation, event.data.first, event.data.count, event.data.flat);
       self.postMessage({ id, ok: true });
-    } else if (type === 'runPlan') {
+    } else if (type === 'release') {
+      planned().release();
+      self.postMessage({ id, ok: true });
+    } else if (type === 'startPlan') {
+      planned().start();
+      self.postMessage({ id, ok: true });
+    } else if (type === 'planNext') {
+      // The next operation planned; its moves and the stock's bands go to the pool to cut.
+      const p = planned(), count = p.planNext(progressTo(id));
+      if (count === undefined) {
+        self.postMessage({ id, ok: true, done: true });
+      } else if (count === 0) {
+        self.postMessage({ id, ok: true, done: false, groups: null });
+      } else {
+        const moves = p.pendingMoves(), groups = p.takeBands(event.data.groups);
+        self.postMessage({ id, ok: true, done: false, moves, groups }, [moves.buffer, ...groups.map((g) => g.buffer)]);
+      }
+    } else if (type === 'keepMoves') {
+      planned().keepMoves(event.data.moves);
+      self.postMessage({ id, ok: true });
+    } else if (type === 'cutBands') {
+      const [bands, cuts] = planned().cutBands(event.data.group);
+      self.postMessage({ id, ok: true, bands, cuts }, [bands.buffer, cuts.buffer]);
+    } else if (type === 'absorb') {
+      planned().absorb(event.data.groups, event.data.cuts);
+      self.postMessage({ id, ok: true });
+    } else if (type === 'finishPlan') {
       const p = planned();
       plan = null;
       try {
-        send(id, p.run(progressTo(id)));
+        send(id, p.finish(progressTo(id)));
       } finally {
         p.free();
       }

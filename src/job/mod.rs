@@ -31,12 +31,14 @@ use crate::post::{write_program, CycleTime, PostSettings};
 use crate::profile::Drawing;
 use crate::progress::Progress;
 use crate::sim::program::{program_moves, ProgramMove};
-use crate::sim::verify::{Simulator, Verification, VerifySettings};
+use crate::sim::verify::{BandCut, Simulator, Verification, VerifySettings};
+use crate::sim::DexelStock;
 use crate::strategy::context::{Caches, CacheCounts, Context, SafeHeights, Sheet};
 use crate::strategy::rough_octree::StageOctants;
 use crate::strategy::Works;
 use crate::toolpath::{PathStats, Toolpath};
 use crate::zmap::cc::cc_zmap;
+use crate::zmap::HeightField;
 
 /// Which height of the setup is Z0 in the program.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
@@ -620,47 +622,166 @@ pub struct Prepared {
 
 impl Prepared {
     /// [`run`] from here.
-    pub fn run(mut self, progress: &mut Progress) -> Result<JobOutput> {
+    pub fn run(self, progress: &mut Progress) -> Result<JobOutput> {
+        let mut running = self.start();
+        while running.plan_next(progress)? {
+            running.simulate(progress)?;
+        }
+        running.finish(progress)
+    }
+
+    /// Starts planning, operation by operation ([`Running`]).
+    pub fn start(mut self) -> Running {
         self.give_passes();
-        let Prepared { job, mut ctx, mut warnings, .. } = self;
+        let Prepared { job, ctx, warnings, .. } = self;
+        let enabled: Vec<usize> = (0..job.operations.len()).filter(|&k| job.operations[k].op().enabled()).collect();
+        Running {
+            job,
+            ctx,
+            warnings,
+            enabled,
+            next: 0,
+            paths: Vec::new(),
+            path_operations: Vec::new(),
+            move_ranges: Vec::new(),
+            all_moves: Vec::new(),
+            snapshots: Vec::new(),
+            loads: Vec::new(),
+            pending: Vec::new(),
+            bands_out: 0,
+        }
+    }
+}
+
+/// A job being planned operation by operation ([`Prepared::start`]): each operation's moves cut
+/// the in-process stock before the next operation plans (and the last one's too when the program
+/// is verified). [`Running::simulate`] cuts them here; a pool of workers can cut them instead,
+/// in bands of the stock ([`Running::take_bands`], [`crate::sim::verify::cut_bands`],
+/// [`Running::absorb`]), with the same result.
+pub struct Running {
+    job: Job,
+    ctx: Context,
+    warnings: Vec<Warning>,
+    enabled: Vec<usize>,
+    /// How many of `enabled` are planned.
+    next: usize,
+    paths: Vec<Toolpath>,
+    path_operations: Vec<usize>,
+    move_ranges: Vec<std::ops::Range<usize>>,
+    all_moves: Vec<ProgramMove>,
+    snapshots: Vec<Option<HeightField>>,
+    loads: Vec<(Option<crate::strategy::rough_zigzag::LoadReport>, Option<Vec<crate::strategy::rough_octree::StageReport>>)>,
+    /// The last planned operation's moves, until they have cut the in-process stock.
+    pending: Vec<ProgramMove>,
+    /// How many bands of the stock [`Running::take_bands`] handed out.
+    bands_out: usize,
+}
+
+impl Running {
+    /// Shares of the bar each operation's planning and simulation take.
+    fn shares(&self) -> (f64, f64) {
+        if self.job.simulation.verify {
+            (0.85, 0.15)
+        } else {
+            (0.95, 0.05)
+        }
+    }
+
+    /// Plans the next enabled operation; false once all are planned. Its moves are then
+    /// [`Running::pending`] until they cut the in-process stock, unless there are none or
+    /// nothing needs them to (the last operation of a program that is not verified).
+    pub fn plan_next(&mut self, progress: &mut Progress) -> Result<bool> {
+        if !self.pending.is_empty() {
+            return Err(Error::Input("the last operation's moves have not cut the in-process stock yet".into()));
+        }
+        let Some(&k) = self.enabled.get(self.next) else {
+            return Ok(false);
+        };
+        let n = self.next;
+        self.next += 1;
+        let (plan_share, _) = self.shares();
+        let count = self.enabled.len() as f64;
+        let o = self.job.operations[k].op();
+        progress.frame(n as f64 / count, plan_share / count, Some(o.name()));
+        self.ctx.operation = k;
+        let planned = o.plan(&mut self.ctx, progress)?;
+        self.loads.push((self.ctx.load.take(), self.ctx.stages.take()));
+        let first_path = self.paths.len();
+        self.path_operations.extend(std::iter::repeat_n(k, planned.len()));
+        self.paths.extend(planned);
+        let moves = timed_moves(&self.paths, first_path, self.all_moves.last(), &self.job.tools, self.job.post.rapid_rate)?;
+        if !moves.is_empty() && (self.job.simulation.verify || self.next < self.enabled.len()) {
+            self.pending = moves;
+        } else {
+            self.settle(moves);
+        }
+        Ok(true)
+    }
+
+    /// The moves waiting to cut the in-process stock (none when nothing waits).
+    pub fn pending(&self) -> &[ProgramMove] {
+        &self.pending
+    }
+
+    /// Cuts the in-process stock with the pending moves, here.
+    pub fn simulate(&mut self, progress: &mut Progress) -> Result<()> {
+        if self.pending.is_empty() {
+            return Ok(());
+        }
+        let (plan_share, sim_share) = self.shares();
+        let count = self.enabled.len() as f64;
+        let n = (self.next - 1) as f64;
+        progress.frame(n / count + plan_share / count, sim_share / count, Some(self.job.operations[self.enabled[self.next - 1]].op().name()));
+        if !progress.stage("in-process stock", 0.0, 1.0) {
+            return Err(Error::Cancelled);
+        }
+        let moves = std::mem::take(&mut self.pending);
+        self.ctx.sim.run(&moves, &self.job.tolerances, progress, 1.0)?;
+        self.settle(moves);
+        Ok(())
+    }
+
+    /// The in-process stock in the bands of rows it is cut in, for a pool to cut with the
+    /// pending moves; [`Running::absorb`] takes them back.
+    pub fn take_bands(&mut self) -> Vec<DexelStock> {
+        let bands = self.ctx.sim.take_bands();
+        self.bands_out = bands.len();
+        bands
+    }
+
+    /// Takes back the stock's bands (all of them, in order) after the pending moves cut them,
+    /// with what each band made of them (see [`crate::sim::verify::Simulator::absorb`]).
+    pub fn absorb(&mut self, bands: Vec<DexelStock>, cuts: &[BandCut]) -> Result<()> {
+        if bands.len() != self.bands_out || cuts.len() != bands.len() {
+            return Err(Error::Input(format!("{} of the stock's {} bands came back, with {} cuts", bands.len(), self.bands_out, cuts.len())));
+        }
+        let moves = std::mem::take(&mut self.pending);
+        if let Some(&(k, ..)) = cuts.iter().flat_map(|c| c.moves.last()).find(|c| c.0 >= moves.len()) {
+            return Err(Error::Input(format!("a band's cut names move {k} of {}", moves.len())));
+        }
+        self.ctx.sim.absorb(bands, cuts, &moves);
+        self.settle(moves);
+        Ok(())
+    }
+
+    /// Adds the last planned operation's moves to the program, once the stock is cut.
+    fn settle(&mut self, moves: Vec<ProgramMove>) {
+        // What the operation left is judged against the part only when the program is verified.
+        self.snapshots.push(self.job.simulation.verify.then(|| self.ctx.sim.stock().heights()));
+        self.move_ranges.push(self.all_moves.len()..self.all_moves.len() + moves.len());
+        self.all_moves.extend(moves);
+    }
+
+    /// Writes the program once every operation is planned and has cut the stock, and judges it
+    /// when the job verifies.
+    pub fn finish(self, progress: &mut Progress) -> Result<JobOutput> {
+        if self.next < self.enabled.len() || !self.pending.is_empty() {
+            return Err(Error::Input("the job is not planned to its end yet".into()));
+        }
+        let Running { job, ctx, mut warnings, enabled, paths, path_operations, move_ranges, all_moves, snapshots, loads, .. } = self;
         let job = &job;
         let verify = job.simulation.verify;
-        let enabled: Vec<usize> = (0..job.operations.len()).filter(|&k| job.operations[k].op().enabled()).collect();
-        let count = enabled.len() as f64;
-        // Share of the bar each operation's planning and simulation take.
-        let (plan_share, sim_share) = if verify { (0.85, 0.15) } else { (0.95, 0.05) };
-        let mut paths: Vec<Toolpath> = Vec::new();
-        let mut path_operations = Vec::new();
-        let mut move_ranges = Vec::new();
-        let mut all_moves: Vec<ProgramMove> = Vec::new();
-        let mut snapshots = Vec::new();
-        let mut loads = Vec::new();
-        for (n, &k) in enabled.iter().enumerate() {
-            let o = job.operations[k].op();
-            let start = n as f64 / count;
-            progress.frame(start, plan_share / count, Some(o.name()));
-            ctx.operation = k;
-            let planned = o.plan(&mut ctx, progress)?;
-            loads.push((ctx.load.take(), ctx.stages.take()));
-            let first_path = paths.len();
-            path_operations.extend(std::iter::repeat_n(k, planned.len()));
-            paths.extend(planned);
-            // The in-process stock: this operation's moves cut it before the next one plans (and
-            // the last one's too when the program is verified).
-            let moves = timed_moves(&paths, first_path, all_moves.last(), &job.tools, job.post.rapid_rate)?;
-            let range = all_moves.len()..all_moves.len() + moves.len();
-            if verify || n + 1 < enabled.len() {
-                progress.frame(start + plan_share / count, sim_share / count, Some(o.name()));
-                if !progress.stage("in-process stock", 0.0, 1.0) {
-                    return Err(Error::Cancelled);
-                }
-                ctx.sim.run(&moves, &job.tolerances, progress, 1.0)?;
-            }
-            // What the operation left is judged against the part only when the program is verified.
-            snapshots.push(verify.then(|| ctx.sim.stock().heights()));
-            move_ranges.push(range);
-            all_moves.extend(moves);
-        }
+        let mut ctx = ctx;
         progress.frame(0.0, 1.0, None);
         warnings.append(&mut ctx.warnings);
         let (gcode, cycle) = write_program(&job.name, &paths, &job.tools, ctx.heights.clearance, &job.post)?;

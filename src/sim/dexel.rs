@@ -120,6 +120,52 @@ impl DexelStock {
         whole
     }
 
+    /// Writes the stock (a conventional one: a band of [`DexelStock::split_rows`]) to `out` as
+    /// flat numbers, for a worker of the page's pool; [`DexelStock::all_from_flat`] reads them.
+    pub fn to_flat(&self, out: &mut Vec<f64>) {
+        debug_assert_eq!(self.k, 1, "only a conventional z-map is cut in bands");
+        out.extend([self.nx as f64, self.ny as f64, self.origin.x, self.origin.y, self.cell, self.bottom, self.block as f64, self.bx as f64, self.block_top.len() as f64]);
+        out.extend_from_slice(&self.z);
+        out.extend_from_slice(&self.widths);
+        out.extend_from_slice(&self.heights);
+        out.extend_from_slice(&self.block_top);
+    }
+
+    /// The stocks [`DexelStock::to_flat`] wrote one after another in `flat`.
+    pub fn all_from_flat(flat: &[f64]) -> Option<Vec<DexelStock>> {
+        let mut out = Vec::new();
+        let mut rest = flat;
+        while !rest.is_empty() {
+            let head = rest.get(..9)?;
+            let (nx, ny, blocks) = (head[0] as usize, head[1] as usize, head[8] as usize);
+            let mut at: usize = 9;
+            let mut take = |n: usize| -> Option<Vec<f64>> {
+                let v = rest.get(at..at.checked_add(n)?)?.to_vec();
+                at += n;
+                Some(v)
+            };
+            let (z, widths, heights, block_top) = (take(nx.checked_mul(ny)?)?, take(nx)?, take(ny)?, take(blocks)?);
+            out.push(DexelStock {
+                origin: DVec2::new(head[2], head[3]),
+                cell: head[4],
+                nx,
+                ny,
+                bottom: head[5],
+                z,
+                widths,
+                heights,
+                k: 1,
+                split: Vec::new(),
+                subs: Vec::new(),
+                block_top,
+                block: head[6] as usize,
+                bx: head[7] as usize,
+            });
+            rest = &rest[at..];
+        }
+        Some(out)
+    }
+
     /// The y range of the stock's rows (its band of the whole, after [`DexelStock::split_rows`]).
     pub fn rows(&self) -> (f64, f64) {
         (self.origin.y, self.origin.y + self.ny as f64 * self.cell)

@@ -57,6 +57,20 @@ impl ProgramMove {
         self.sweeps(chordal).iter().map(|s| stock.apply(s)).sum()
     }
 
+    /// The lowest and highest y any part of the tool reaches during the move, its body above
+    /// the flutes included.
+    pub fn y_span(&self) -> (f64, f64) {
+        let reach = self.cutter.diameter.max(self.cutter.shank_diameter.unwrap_or(0.0)) * 0.5;
+        let (lo, hi) = match self.mv {
+            Move::Rapid { to } | Move::Line { to, .. } => (self.from.y.min(to.y), self.from.y.max(to.y)),
+            Move::Arc { center, .. } => {
+                let r = (self.from.truncate() - center).length();
+                (center.y - r, center.y + r)
+            }
+        };
+        (lo - reach, hi + reach)
+    }
+
     /// Material removal rate (mm³/min) of a move that removed `volume`.
     pub fn mrr(&self, volume: f64) -> f64 {
         if self.seconds > 0.0 {
@@ -65,6 +79,49 @@ impl ProgramMove {
             0.0
         }
     }
+}
+
+/// Numbers per move in [`encode`]'s flat form.
+const ENCODED: usize = 12;
+
+/// `moves` as flat numbers, for a worker of the page's pool that cuts them into its bands of
+/// the stock ([`decode`] reads them back): per move its tool number, its kind (0 rapid, 1 line,
+/// 2 clockwise arc, 3 counter-clockwise arc), where it starts and ends, an arc's centre, the
+/// feed, and when it starts and how long it takes.
+pub fn encode(moves: &[ProgramMove]) -> Vec<f64> {
+    let mut out = Vec::with_capacity(moves.len() * ENCODED);
+    for m in moves {
+        let (kind, centre, feed) = match m.mv {
+            Move::Rapid { .. } => (0.0, [0.0; 2], 0.0),
+            Move::Line { feed, .. } => (1.0, [0.0; 2], feed),
+            Move::Arc { center, clockwise, feed, .. } => (if clockwise { 2.0 } else { 3.0 }, center.to_array(), feed),
+        };
+        let to = m.mv.to();
+        out.extend([m.tool as f64, kind, m.from.x, m.from.y, m.from.z, to.x, to.y, to.z, centre[0], centre[1], feed, m.seconds]);
+    }
+    out
+}
+
+/// The moves [`encode`] wrote, each with its tool's cutter from `tools` (their paths and start
+/// times are not kept: a band's cut does not need them).
+pub fn decode(flat: &[f64], tools: &[Tool]) -> Result<Vec<ProgramMove>> {
+    if flat.len() % ENCODED != 0 {
+        return Err(Error::Input(format!("{} numbers are not whole moves of {ENCODED}", flat.len())));
+    }
+    flat.chunks_exact(ENCODED)
+        .map(|v| {
+            let tool = tools.iter().find(|t| t.number as f64 == v[0]).ok_or_else(|| Error::Input(format!("the moves name tool {}, which is not in the tool library", v[0])))?;
+            let to = DVec3::new(v[5], v[6], v[7]);
+            let center = crate::geom::DVec2::new(v[8], v[9]);
+            let mv = match v[1] as u8 {
+                0 => Move::Rapid { to },
+                1 => Move::Line { to, feed: v[10] },
+                2 | 3 => Move::Arc { to, center, clockwise: v[1] == 2.0, feed: v[10] },
+                _ => return Err(Error::Input(format!("no move is of kind {}", v[1]))),
+            };
+            Ok(ProgramMove { path: 0, tool: tool.number, cutter: tool.cutter.clone(), from: DVec3::new(v[2], v[3], v[4]), mv, start: 0.0, seconds: v[11] })
+        })
+        .collect()
 }
 
 /// Simulates `moves` on `stock` and returns the volume each removed (mm³).

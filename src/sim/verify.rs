@@ -16,7 +16,7 @@ use super::sweep::Sweep;
 use super::program::ProgramMove;
 use super::StockModel;
 use crate::error::{Error, Result};
-use crate::geom::{Aabb, DVec2, DVec3, Tolerances};
+use crate::geom::{Aabb, DVec3, Tolerances};
 use crate::mesh::Mesh;
 use crate::progress::Progress;
 use crate::zmap::{cc::cc_zmap, Grid, HeightField, MAX_NODES};
@@ -173,31 +173,128 @@ const BANDS: usize = 64;
 /// Moves simulated between two progress reports.
 const CHUNK: usize = 4096;
 
-/// What one band of the stock made of a run of moves.
-#[derive(Default)]
-struct Band {
+/// What one band of the stock made of a program's moves: per move whose sweeps reached it (in
+/// program order), the move's index, the volume its sweeps removed from the band (summed in
+/// sweep order), and the worst place its tool's body met the band before them (where, at the
+/// body's lowest point, and how deep).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct BandCut {
+    pub moves: Vec<(usize, f64, Option<(DVec3, f64)>)>,
+}
+
+/// Numbers per move in [`BandCut::to_flat`].
+const CUT_FLAT: usize = 6;
+
+impl BandCut {
+    /// As flat numbers (for a worker of the page's pool): per move its index, volume, and the
+    /// body's place and depth (NaN for none).
+    pub fn to_flat(&self) -> Vec<f64> {
+        let mut out = Vec::with_capacity(1 + self.moves.len() * CUT_FLAT);
+        out.push(self.moves.len() as f64);
+        for &(k, volume, body) in &self.moves {
+            let (at, depth) = body.unwrap_or((DVec3::NAN, f64::NAN));
+            out.extend([k as f64, volume, at.x, at.y, at.z, depth]);
+        }
+        out
+    }
+
+    /// The band cuts [`BandCut::to_flat`] wrote one after another in `flat`.
+    pub fn all_from_flat(flat: &[f64]) -> Result<Vec<BandCut>> {
+        let short = || Error::Input("a band's cut ends early".into());
+        let mut out = Vec::new();
+        let mut rest = flat;
+        while let Some((&count, tail)) = rest.split_first() {
+            let len = count as usize * CUT_FLAT;
+            let (mine, tail) = (tail.get(..len).ok_or_else(short)?, &tail[len..]);
+            let moves = mine
+                .chunks_exact(CUT_FLAT)
+                .map(|v| (v[0] as usize, v[1], (!v[5].is_nan()).then(|| (DVec3::new(v[2], v[3], v[4]), v[5]))))
+                .collect();
+            out.push(BandCut { moves });
+            rest = tail;
+        }
+        Ok(out)
+    }
+}
+
+/// A band of the stock at work on a run of sweeps.
+struct Band<'a> {
+    stock: &'a mut DexelStock,
     /// The sweeps (their indices in the run) whose footprint, grown to the tool's body, may
     /// reach the band's rows.
     sweeps: Vec<usize>,
-    /// Per sweep of `sweeps`: the volume it removed from the band, and the worst place the
-    /// tool's body meets the band before it.
-    out: Vec<(f64, Option<(DVec2, f64)>)>,
+    cut: BandCut,
 }
 
-impl Band {
-    /// Cuts `stock` (this band) with its sweeps of `run` (each with its move).
-    fn run(&mut self, stock: &mut DexelStock, run: &[(&ProgramMove, Sweep)], gouge: f64) {
-        self.out.clear();
-        for &k in &self.sweeps {
-            let (m, sweep) = &run[k];
+impl Band<'_> {
+    /// Cuts the band with its sweeps of `run` (each with its move's index in `moves`).
+    fn run(&mut self, moves: &[ProgramMove], run: &[(usize, Sweep)], gouge: f64) {
+        for &s in &self.sweeps {
+            let (k, sweep) = &run[s];
+            let m = &moves[*k];
             let body = if m.mv.is_rapid() {
                 None
             } else {
-                stock.above_body(sweep, body_radius(m), m.cutter.flute_length + gouge)
+                self.stock.above_body(sweep, body_radius(m), m.cutter.flute_length + gouge).map(|(at, depth)| (at.extend(sweep.nearest(at).1 + m.cutter.flute_length), depth))
             };
-            self.out.push((stock.apply(sweep), body));
+            let volume = self.stock.apply(sweep);
+            match self.cut.moves.last_mut() {
+                Some((last, v, worst)) if *last == *k => {
+                    *v += volume;
+                    if let Some(b) = body {
+                        if worst.is_none_or(|w| b.1 > w.1) {
+                            *worst = Some(b);
+                        }
+                    }
+                }
+                _ => self.cut.moves.push((*k, volume, body)),
+            }
         }
     }
+}
+
+/// Cuts `bands` (consecutive bands of rows of a stock, [`DexelStock::split_rows`]) with `moves`,
+/// on every core natively, a few thousand moves at a time, reporting up to `share` of the
+/// progress stage; what each band made of them, in the bands' order. A band's cut depends only
+/// on the band and the moves, so bands can be cut in groups anywhere (the page's pool) and
+/// their cuts gathered by [`Simulator::absorb`].
+pub fn cut_bands(bands: &mut [DexelStock], moves: &[ProgramMove], tolerances: &Tolerances, progress: &mut Progress, share: f64) -> Result<Vec<BandCut>> {
+    let rows: Vec<(f64, f64)> = bands.iter().map(|b| b.rows()).collect();
+    let (Some(&(low, _)), Some(&(_, high))) = (rows.first(), rows.last()) else {
+        return Ok(Vec::new());
+    };
+    let mut work: Vec<Band> = bands.iter_mut().map(|stock| Band { stock, sweeps: Vec::new(), cut: BandCut::default() }).collect();
+    for (c, chunk) in moves.chunks(CHUNK).enumerate() {
+        if !progress.report(share * (c * CHUNK) as f64 / moves.len().max(1) as f64) {
+            return Err(Error::Cancelled);
+        }
+        // The sweeps of the moves that may reach these rows, each handed to the bands its
+        // footprint (grown to the body) spans.
+        let first = c * CHUNK;
+        let run: Vec<(usize, Sweep)> = chunk
+            .iter()
+            .enumerate()
+            .filter(|(_, m)| {
+                let (lo, hi) = m.y_span();
+                hi >= low && lo <= high
+            })
+            .flat_map(|(i, m)| m.sweeps(tolerances.chordal).into_iter().map(move |s| (first + i, s)))
+            .collect();
+        for band in &mut work {
+            band.sweeps.clear();
+        }
+        for (s, (k, sweep)) in run.iter().enumerate() {
+            let grow = (body_radius(&moves[*k]) - sweep.profile.radius).max(0.0);
+            let (lo, hi) = (sweep.min.y - grow, sweep.max.y + grow);
+            let first = rows.partition_point(|r| r.1 < lo);
+            for (b, r) in rows.iter().enumerate().skip(first).take_while(|(_, r)| r.0 <= hi) {
+                debug_assert!(r.1 >= lo);
+                work[b].sweeps.push(s);
+            }
+        }
+        crate::parallel::each_mut(&mut work, |band| band.run(moves, &run, tolerances.gouge));
+    }
+    Ok(work.into_iter().map(|b| b.cut).collect())
 }
 
 /// The radius of the tool's body above its flutes.
@@ -234,75 +331,67 @@ impl Simulator {
     }
 
     /// Applies the next `moves` of the program (move indices continue from the earlier ones),
-    /// reporting up to `share` of the progress stage. The stock is cut in bands of rows
-    /// ([`DexelStock::split_rows`], on every core natively), a few thousand moves at a time,
-    /// each band by the sweeps that reach it; a sweep's volume is its bands' summed in band
-    /// order, and its body collision the deepest of its bands' (the first band's where equal),
-    /// so the findings do not depend on the cores.
+    /// reporting up to `share` of the progress stage: the stock is cut in bands of rows
+    /// ([`Simulator::take_bands`], [`cut_bands`]) and their cuts gathered
+    /// ([`Simulator::absorb`]).
     pub fn run(&mut self, moves: &[ProgramMove], tolerances: &Tolerances, progress: &mut Progress, share: f64) -> Result<()> {
+        let mut bands = self.take_bands();
+        match cut_bands(&mut bands, moves, tolerances, progress, share) {
+            Ok(cuts) => {
+                self.absorb(bands, &cuts, moves);
+                Ok(())
+            }
+            // A cancelled run leaves the stock as far as it was cut, and no figures.
+            Err(e) => {
+                self.stock = DexelStock::join(bands);
+                Err(e)
+            }
+        }
+    }
+
+    /// The stock cut into the bands of rows it is simulated in (a fixed number, so the figures
+    /// are the same on any number of cores or workers), leaving none here until
+    /// [`Simulator::absorb`] gives them back.
+    pub fn take_bands(&mut self) -> Vec<DexelStock> {
+        self.stock.take().split_rows(BANDS)
+    }
+
+    /// Takes back the stock's `bands` (all of them, in order) after `moves` cut them, with what
+    /// each band made of them (`cuts`, in the bands' order): a move's volume is its bands'
+    /// summed in band order, and its body collision the deepest of its bands' (the first
+    /// band's where equal), so the findings depend neither on the cores nor on the workers.
+    pub fn absorb(&mut self, bands: Vec<DexelStock>, cuts: &[BandCut], moves: &[ProgramMove]) {
         let note = |list: &mut (usize, Vec<Finding>), f: Finding| {
             list.0 += 1;
             if list.1.len() < KEPT {
                 list.1.push(f);
             }
         };
-        let mut bands: Vec<(DexelStock, Band)> = self.stock.take().split_rows(BANDS).into_iter().map(|b| (b, Band::default())).collect();
-        let rows: Vec<(f64, f64)> = bands.iter().map(|(b, _)| b.rows()).collect();
-        let mut result = Ok(());
-        for (c, chunk) in moves.chunks(CHUNK).enumerate() {
-            if !progress.report(share * (c * CHUNK) as f64 / moves.len().max(1) as f64) {
-                result = Err(Error::Cancelled);
-                break;
-            }
-            // The run's sweeps, each handed to the bands its footprint (grown to the body) spans.
-            let run: Vec<(&ProgramMove, Sweep)> = chunk.iter().flat_map(|m| m.sweeps(tolerances.chordal).into_iter().map(move |s| (m, s))).collect();
-            for (_, band) in &mut bands {
-                band.sweeps.clear();
-            }
-            for (k, (m, sweep)) in run.iter().enumerate() {
-                let grow = (body_radius(m) - sweep.profile.radius).max(0.0);
-                let (lo, hi) = (sweep.min.y - grow, sweep.max.y + grow);
-                let first = rows.partition_point(|r| r.1 < lo);
-                for (b, r) in rows.iter().enumerate().skip(first).take_while(|(_, r)| r.0 <= hi) {
-                    debug_assert!(r.1 >= lo);
-                    bands[b].1.sweeps.push(k);
-                }
-            }
-            crate::parallel::each_mut(&mut bands, |(stock, band)| band.run(stock, &run, tolerances.gouge));
-            // Each sweep's volume summed and its worst body place kept band by band, in order.
-            let mut removed = vec![0.0; run.len()];
-            let mut body: Vec<Option<(DVec2, f64)>> = vec![None; run.len()];
-            for (_, band) in &bands {
-                for (&k, &(volume, worst)) in band.sweeps.iter().zip(&band.out) {
-                    removed[k] += volume;
-                    if let Some(w) = worst {
-                        if body[k].is_none_or(|b| w.1 > b.1) {
-                            body[k] = Some(w);
-                        }
+        self.stock = DexelStock::join(bands);
+        let mut removed = vec![0.0; moves.len()];
+        let mut body: Vec<Option<(DVec3, f64)>> = vec![None; moves.len()];
+        for cut in cuts {
+            for &(k, volume, worst) in &cut.moves {
+                removed[k] += volume;
+                if let Some(w) = worst {
+                    if body[k].is_none_or(|b| w.1 > b.1) {
+                        body[k] = Some(w);
                     }
                 }
-            }
-            let mut k = 0;
-            for m in chunk {
-                let index = self.volumes.len();
-                let mut volume = 0.0;
-                while k < run.len() && std::ptr::eq(run[k].0, m) {
-                    if let Some((at, depth)) = body[k] {
-                        note(&mut self.body, Finding { move_index: Some(index), at: at.extend(run[k].1.nearest(at).1 + m.cutter.flute_length), amount: depth });
-                    }
-                    volume += removed[k];
-                    k += 1;
-                }
-                if !m.mv.is_rapid() {
-                    self.mrr_max = self.mrr_max.max(m.mrr(volume));
-                } else if volume > GRAZE {
-                    note(&mut self.rapid, Finding { move_index: Some(index), at: m.mv.to(), amount: volume });
-                }
-                self.volumes.push(volume);
             }
         }
-        self.stock = DexelStock::join(bands.into_iter().map(|(stock, _)| stock).collect());
-        result
+        for ((m, volume), body) in moves.iter().zip(removed).zip(body) {
+            let index = self.volumes.len();
+            if let Some((at, depth)) = body {
+                note(&mut self.body, Finding { move_index: Some(index), at, amount: depth });
+            }
+            if !m.mv.is_rapid() {
+                self.mrr_max = self.mrr_max.max(m.mrr(volume));
+            } else if volume > GRAZE {
+                note(&mut self.rapid, Finding { move_index: Some(index), at: m.mv.to(), amount: volume });
+            }
+            self.volumes.push(volume);
+        }
     }
 
     /// Judges the stock against the part's heights (`surface` on the simulation's grid, −∞ where

@@ -1,6 +1,6 @@
 // Issue 15's "every core in the browser": swarf.js's engine shares a run among a pool of
-// workers (CL surfaces and level maps in bands of rows, raster passes in ranges) and writes
-// the same program as one worker; a pooled run cancels like any other, and bad input fails the
+// workers (CL surfaces and level maps in bands of rows, raster passes in ranges, the simulated
+// stock in groups of bands of rows) and writes the same program and simulation as one worker; a pooled run cancels like any other, and bad input fails the
 // same way.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
@@ -48,7 +48,10 @@ test('a pool of workers writes the same program as one worker, on the sample job
     const out = { workers: [one.workers, pool.workers] };
     for (const [name, job, bytes, file] of [['sample', one.defaultJob(), one.sample, 'sample.stl'], ['die', dieJob, die, 'die.stl']]) {
       const [a, b] = [await one.run(job, bytes, file), await pool.run(job, bytes, file, { onProgress })];
-      out[name] = { same: a.gcode === b.gcode, lines: a.gcode.split('\n').length, moves: [a.summary.moves, b.summary.moves], cutting: b.feeds.length / 6 };
+      // The simulation (verified jobs): the stock each left, every move's removal rate, the report.
+      const equal = (x, y) => x.length === y.length && x.every((v, i) => Object.is(v, y[i]));
+      const sim = a.sim && { same: equal(a.sim.start, b.sim.start) && equal(a.sim.mrr, b.sim.mrr) && JSON.stringify(a.sim.report) === JSON.stringify(b.sim.report), removed: b.sim.report.removed, cut: b.sim.mrr.filter((v) => v > 0).length };
+      out[name] = { same: a.gcode === b.gcode, lines: a.gcode.split('\n').length, moves: [a.summary.moves, b.summary.moves], cutting: b.feeds.length / 6, sim };
     }
     out.stages = [...stages];
     return out;
@@ -59,8 +62,12 @@ test('a pool of workers writes the same program as one worker, on the sample job
     assert.ok(r[name].lines > 1000 && r[name].cutting > 1000, JSON.stringify(r[name]));
     assert.equal(r[name].moves[0], r[name].moves[1]);
   }
+  // The sample job is verified: its simulation, cut in groups of bands on every worker, is the
+  // one worker's to the last bit.
+  assert.ok(r.sample.sim && r.sample.sim.same, JSON.stringify(r.sample.sim));
+  assert.ok(r.sample.sim.removed > 1000 && r.sample.sim.cut > 1000, JSON.stringify(r.sample.sim));
   // The pool did share the work: it reported its phases.
-  assert.ok(r.stages.includes('CL z-maps (3 workers)') && r.stages.includes('passes and level maps (3 workers)'), r.stages.join(', '));
+  assert.ok(r.stages.includes('CL z-maps (3 workers)') && r.stages.includes('passes and level maps (3 workers)') && r.stages.includes('in-process stock (3 workers)'), r.stages.join(', '));
 });
 
 test('a pooled run cancels, the engine goes on, and bad input fails as with one worker', async () => {
