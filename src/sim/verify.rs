@@ -179,8 +179,11 @@ const CHUNK: usize = 4096;
 /// body's lowest point, and how deep).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct BandCut {
-    pub moves: Vec<(usize, f64, Option<(DVec3, f64)>)>,
+    pub moves: Vec<(usize, f64, Option<BodyPlace>)>,
 }
+
+/// Where a tool's body met material (at the body's lowest point), and how deep (mm).
+pub type BodyPlace = (DVec3, f64);
 
 /// Numbers per move in [`BandCut::to_flat`].
 const CUT_FLAT: usize = 6;
@@ -369,7 +372,7 @@ impl Simulator {
         };
         self.stock = DexelStock::join(bands);
         let mut removed = vec![0.0; moves.len()];
-        let mut body: Vec<Option<(DVec3, f64)>> = vec![None; moves.len()];
+        let mut body: Vec<Option<BodyPlace>> = vec![None; moves.len()];
         for cut in cuts {
             for &(k, volume, worst) in &cut.moves {
                 removed[k] += volume;
