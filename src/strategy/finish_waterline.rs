@@ -119,12 +119,26 @@ impl Operate for FinishWaterline {
         let mut runs: Vec<Vec<DVec3>> = Vec::new();
         let mut z = top - 0.5 * self.stepdown.min(top - floor);
         let bottom = floor + self.allowance;
+        // At a fixed step-down the levels are known beforehand: their regions are made on
+        // whichever core is free (by the scallop, each level's step depends on the one above).
+        let mut made: Vec<(f64, Option<crate::profile::Shape>)> = Vec::new();
+        if self.scallop.is_none() {
+            let mut at = z;
+            while at > bottom && made.len() <= 100_000 {
+                made.push((at, None));
+                at -= self.stepdown;
+            }
+            crate::parallel::each_mut(&mut made, |(z, out)| *out = Some(map.region(&cl, *z - self.allowance, &|_, _| true, &tol)));
+        }
         let mut k = 0;
         while z > bottom {
             if !progress.report((top - z) / (top - bottom).max(1e-9)) {
                 return Err(Error::Cancelled);
             }
-            let region = map.region(&cl, z - self.allowance, &|_, _| true, &tol);
+            let region = match made.get_mut(k) {
+                Some((at, region)) if *at == z => region.take().expect("each level's region is taken once"),
+                _ => map.region(&cl, z - self.allowance, &|_, _| true, &tol),
+            };
             let mut shallowest = f64::INFINITY;
             for l in &region.loops {
                 // The region's loops keep it on their left, the part on their right: climb with

@@ -325,7 +325,12 @@ impl RoughZlevel {
         let mut levels = Vec::new();
         let mut z_prev = stock.max.z;
         let heights = self.levels_and_kinds(ctx, &cl, r);
-        for (k, &(z, flat)) in heights.iter().enumerate() {
+        let limits: Vec<Option<Vec<bool>>> = heights.iter().map(|&(z, _)| within(z, grid)).collect();
+        // Each level's region on whichever core is free (they do not depend on each other).
+        let stock_now = ctx.sim.stock();
+        let mut regions: Vec<(usize, Option<Shape>)> = (0..heights.len()).map(|k| (k, None)).collect();
+        crate::parallel::each_mut(&mut regions, |(k, out)| {
+            let (z, flat) = heights[*k];
             let flat_only = flat && bands;
             // At full reach (rest roughing: every centre whose cutter touches what is left),
             // only material the cutter can reach from a centre it may take counts (within its
@@ -336,12 +341,12 @@ impl RoughZlevel {
                 let d = crate::octree::distance_to(&safe, grid.nx, grid.ny, grid.spacing);
                 d.into_iter().map(|d| d <= r - 0.5 * grid.spacing).collect::<Vec<bool>>()
             });
-            let near = material_near(ctx.sim.stock(), grid, z, reach, removable.as_deref());
-            let limit = within(z, grid);
+            let near = material_near(stock_now, grid, z, reach, removable.as_deref());
+            let limit = &limits[*k];
             // A flat's level only where the level below cannot go (a node further than a node's
             // spacing from every centre that level refuses is left to it).
             let band = flat_only.then(|| {
-                let below = heights.get(k + 1).map_or(f64::NEG_INFINITY, |&(q, _)| q);
+                let below = heights.get(*k + 1).map_or(f64::NEG_INFINITY, |&(q, _)| q);
                 let refused: Vec<bool> = cl.field.z.iter().map(|&h| h + self.allowance > below).collect();
                 let d = crate::octree::distance_to(&refused, grid.nx, grid.ny, grid.spacing);
                 d.into_iter().map(|d| d <= FLAT_BAND * grid.spacing).collect::<Vec<bool>>()
@@ -350,13 +355,16 @@ impl RoughZlevel {
                 let n = j * grid.nx + i;
                 near[n] && limit.as_ref().is_none_or(|m| m[n]) && band.as_ref().is_none_or(|m| m[n])
             };
-            let region = map.region(&cl, z - self.allowance, &keep, &tol);
+            *out = Some(map.region(&cl, z - self.allowance, &keep, &tol));
+        });
+        for ((z, flat), (_, region)) in heights.into_iter().zip(regions) {
+            let region = region.expect("every level's region is made");
             if region.is_empty() {
                 continue;
             }
             levels.push(Level { z, z_prev, region });
             // Over a flat's band only: the levels after it start from the step-down level above.
-            if !flat_only {
+            if !(flat && bands) {
                 z_prev = z;
             }
         }
