@@ -442,6 +442,8 @@ pub struct JobPlan {
     running: Option<job::Running>,
     /// A helper's copy of the moves it cuts its bands of the stock with ([`JobPlan::keep_moves`]).
     moves: Vec<crate::sim::program::ProgramMove>,
+    /// The regions the planner asked the pool for ([`JobPlan::region_work`]).
+    regions: Option<crate::strategy::rough_zlevel::RegionWork>,
 }
 
 #[derive(serde::Serialize)]
@@ -469,7 +471,7 @@ pub fn prepare_job(job: JsValue, bytes: &[u8], name: &str) -> Result<JobPlan, Js
     };
     let prepared = job::prepare(&job, workpiece).map_err(js_error)?;
     let surfaces = prepared.surfaces().map_err(js_error)?;
-    Ok(JobPlan { job, prepared: Some(prepared), surfaces, running: None, moves: Vec::new() })
+    Ok(JobPlan { job, prepared: Some(prepared), surfaces, running: None, moves: Vec::new(), regions: None })
 }
 
 #[wasm_bindgen]
@@ -566,12 +568,6 @@ impl JobPlan {
         self.prepared()?.keep_passes(operation, first, passes).map_err(js_error)
     }
 
-    /// Lets go of the prepared part and surfaces, keeping the job: a helper of the pool needs
-    /// only its tools and tolerances to cut bands of the stock ([`JobPlan::cut_bands`]).
-    pub fn release(&mut self) {
-        self.prepared = None;
-    }
-
     /// Starts planning operation by operation, so a pool can cut each operation's moves into
     /// the in-process stock ([`JobPlan::plan_next`]).
     pub fn start(&mut self) -> Result<(), JsError> {
@@ -591,6 +587,54 @@ impl JobPlan {
         let mut sink = progress_sink(progress);
         let running = self.running()?;
         Ok(running.plan_next(&mut Progress::new(&mut sink)).map_err(js_error)?.then(|| running.pending().len()))
+    }
+
+    /// The regions of the next operation's levels as work for the pool, when it has levels:
+    /// `{ surface, levels, keep }` (its surface's index in the list [`JobPlan::needs`] gave,
+    /// the height each level is contoured at, and the nodes each keeps, packed eight to a
+    /// byte, level after level), else `undefined`. The planner keeps the work until
+    /// [`JobPlan::keep_regions`].
+    #[wasm_bindgen(js_name = regionWork)]
+    pub fn region_work(&mut self) -> Result<JsValue, JsError> {
+        let Some(work) = self.running()?.region_work(&mut Progress::none()).map_err(js_error)? else { return Ok(JsValue::UNDEFINED) };
+        let Some(surface) = self.surfaces.iter().position(|s| *s == work.request) else { return Ok(JsValue::UNDEFINED) };
+        let out = js_sys::Object::new();
+        let levels: Vec<f64> = work.levels.iter().map(|l| l.0).collect();
+        let keep: Vec<u8> = work.levels.iter().flat_map(|l| l.1.iter().copied()).collect();
+        js_sys::Reflect::set(&out, &"surface".into(), &JsValue::from_f64(surface as f64)).map_err(|_| js_error("an object"))?;
+        js_sys::Reflect::set(&out, &"levels".into(), &js_sys::Float64Array::from(&levels[..])).map_err(|_| js_error("an object"))?;
+        js_sys::Reflect::set(&out, &"keep".into(), &js_sys::Uint8Array::from(&keep[..])).map_err(|_| js_error("an object"))?;
+        self.regions = Some(work);
+        Ok(out.into())
+    }
+
+    /// The regions of levels `levels` of surface `k`, each keeping the nodes of `keep` (packed,
+    /// level after level), flat ([`crate::profile::Shape::to_flat`]).
+    #[wasm_bindgen(js_name = levelRegions)]
+    pub fn level_regions(&mut self, k: usize, levels: &[f64], keep: &[u8]) -> Result<Vec<f64>, JsError> {
+        let s = self.surface(k)?;
+        let per = s.grid.nodes().div_ceil(8);
+        if keep.len() != per * levels.len() {
+            return Err(js_error(format!("{} bytes are not the kept nodes of {} levels", keep.len(), levels.len())));
+        }
+        let work: Vec<(f64, Vec<u8>)> = levels.iter().zip(keep.chunks(per.max(1))).map(|(&z, k)| (z, k.to_vec())).collect();
+        let shapes = match &mut self.running {
+            Some(r) => r.level_regions(s, &work),
+            None => self.prepared()?.level_regions(s, &work),
+        }
+        .map_err(js_error)?;
+        let mut out = Vec::new();
+        shapes.iter().for_each(|s| s.to_flat(&mut out));
+        Ok(out)
+    }
+
+    /// Keeps the regions of every level of the last [`JobPlan::region_work`] (flat, level
+    /// after level), for the next operation to take as it plans.
+    #[wasm_bindgen(js_name = keepRegions)]
+    pub fn keep_regions(&mut self, flat: &[f64]) -> Result<(), JsError> {
+        let work = self.regions.take().ok_or_else(|| js_error("no regions were asked for"))?;
+        let shapes = crate::profile::Shape::all_from_flat(flat).ok_or_else(|| js_error("the regions end early"))?;
+        self.running()?.keep_regions(&work, shapes).map_err(js_error)
     }
 
     /// The moves waiting to cut the stock, flat, for the pool's helpers

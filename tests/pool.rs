@@ -175,3 +175,46 @@ fn the_in_process_stock_cut_in_groups_of_bands_is_the_stock_cut_whole() {
     assert_eq!(format!("{:?}", a.report), format!("{:?}", b.report));
     assert!(a.report.removed > 1000.0);
 }
+
+/// The regions of the roughing's levels made by another copy of the job, as the page's pool
+/// makes them just before the operation plans, are what it plans with: the same program as
+/// the job run whole; regions given for other nodes are not taken, and regions given for the
+/// very levels are (an empty one leaves its level out).
+#[test]
+fn the_roughing_plans_on_the_regions_a_pool_made_for_its_levels() {
+    let job = job();
+    let whole = gcode_whole(&job);
+    let mut helper = job::prepare(&job, demo_part()).unwrap();
+    let mut running = job::prepare(&job, demo_part()).unwrap().start();
+    let work = running.region_work(&mut Progress::none()).unwrap().expect("the roughing has levels");
+    assert!(work.levels.len() > 5, "{} levels", work.levels.len());
+    let regions = helper.level_regions(work.request, &work.levels).unwrap();
+    assert!(regions.iter().all(|r| !r.loops.is_empty()));
+    // Through the flat form the page's workers pass them in.
+    let mut flat = Vec::new();
+    regions.iter().for_each(|r| r.to_flat(&mut flat));
+    let regions = swarf::profile::Shape::all_from_flat(&flat).unwrap();
+    assert!(running.keep_regions(&work, regions[1..].to_vec()).is_err());
+    running.keep_regions(&work, regions.clone()).unwrap();
+    while running.plan_next(&mut Progress::none()).unwrap() {
+        running.simulate(&mut Progress::none()).unwrap();
+    }
+    assert_eq!(running.finish(&mut Progress::none()).unwrap().gcode, whole);
+
+    let plan = |given: Vec<swarf::profile::Shape>, work: &swarf::strategy::rough_zlevel::RegionWork| {
+        let mut running = job::prepare(&job, demo_part()).unwrap().start();
+        running.keep_regions(work, given).unwrap();
+        while running.plan_next(&mut Progress::none()).unwrap() {
+            running.simulate(&mut Progress::none()).unwrap();
+        }
+        running.finish(&mut Progress::none()).unwrap().gcode
+    };
+    let mut empty = regions.clone();
+    empty[0] = swarf::profile::Shape::default();
+    // For other nodes (one more kept): not taken.
+    let mut other = work.clone();
+    other.levels[0].1[0] ^= 1;
+    assert_eq!(plan(empty.clone(), &other), whole);
+    // For the very level: taken, and the top level is left out.
+    assert_ne!(plan(empty, &work), whole);
+}

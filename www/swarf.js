@@ -185,9 +185,10 @@ export class Engine {
    * rejects with a `CancelledError`. Resolves with `{ gcode, summary, feeds, rapids, feedOps,
    * feedTools, octants, part, drawing, sim }`. With more than one worker, the pool first makes
    * the CL surfaces and the level maps of z-level work (in bands of rows) and the raster passes
-   * (in ranges) on every worker, then plans operation by operation, each operation's moves
-   * cutting the simulated stock in groups of bands of rows on every worker; the program and
-   * its simulation are the same as one worker's. Runs asked for while
+   * (in ranges) on every worker, then plans operation by operation: the regions of a z-level
+   * operation's levels are made on every worker first, and each operation's moves cut the
+   * simulated stock in groups of bands of rows on every worker; the program and its
+   * simulation are the same as one worker's. Runs asked for while
    * one runs wait for it.
    */
   run(job, bytes, name, options = {}) {
@@ -243,10 +244,9 @@ export class Engine {
       }
     };
     await share(all, tasks, done, stage(0.2, 0.5, 'passes and level maps'));
-    for (const [surface, { right, up }] of maps) kept.push(this.#main.call({ type: 'keepLevelMap', surface, right, up }, [right.buffer, up.buffer]));
+    // Every worker keeps the level maps: each contours regions of levels on them.
+    for (const [surface, { right, up }] of maps) kept.push(...all.map((c) => c.call({ type: 'keepLevelMap', surface, right, up })));
     await Promise.all(kept);
-    // The helpers keep only the job's tools and tolerances now, to cut bands of the stock.
-    await Promise.all(helpers.map((h) => h.call({ type: 'release' })));
     const from = bands.length || tasks.length ? 0.5 : 0;
     let at = from;
     const planning = (f, s) => onProgress?.((at = from + (1 - from) * f), s);
@@ -255,6 +255,18 @@ export class Engine {
       // Operation by operation: the planner plans, then every worker cuts groups of the bands
       // of the in-process stock with its moves, and the planner takes them back.
       for (;;) {
+        // The next operation's levels (z-level work): their regions, a level a task, made on
+        // every worker and kept by the planner for the operation to take as it plans.
+        const { work } = await this.#main.call({ type: 'regionWork' });
+        if (work && work.levels.length > 1) {
+          const { surface, levels, keep } = work, per = keep.length / levels.length;
+          const made = [];
+          const tasks = Array.from(levels, (z, k) => ({ type: 'levelRegions', surface, k, levels: levels.slice(k, k + 1), keep: keep.slice(k * per, (k + 1) * per) }));
+          await share(all, tasks, (t, r) => { made[t.k] = r.flat; }, () => onProgress?.(at, `regions of levels (${n} workers)`));
+          const flat = new Float64Array(made.reduce((sum, f) => sum + f.length, 0));
+          made.reduce((offset, f) => (flat.set(f, offset), offset + f.length), 0);
+          await this.#main.call({ type: 'keepRegions', flat }, [flat.buffer]);
+        }
         const step = await this.#main.call({ type: 'planNext', groups: GROUPS_PER_WORKER * n }, [], planning);
         if (step.done) break;
         if (!step.groups) continue;

@@ -149,11 +149,17 @@ self.onmessage = async (event) => {
     } else if (type === 'keepPasses') {
       planned().keepPasses(event.data.operation, event.data.first, event.data.count, event.data.flat);
       self.postMessage({ id, ok: true });
-    } else if (type === 'release') {
-      planned().release();
-      self.postMessage({ id, ok: true });
     } else if (type === 'startPlan') {
       planned().start();
+      self.postMessage({ id, ok: true });
+    } else if (type === 'regionWork') {
+      const work = planned().regionWork();
+      self.postMessage({ id, ok: true, work: work ?? null });
+    } else if (type === 'levelRegions') {
+      const flat = planned().levelRegions(event.data.surface, event.data.levels, event.data.keep);
+      self.postMessage({ id, ok: true, flat }, [flat.buffer]);
+    } else if (type === 'keepRegions') {
+      planned().keepRegions(event.data.flat);
       self.postMessage({ id, ok: true });
     } else if (type === 'planNext') {
       // The next operation planned; its moves and the stock's bands go to the pool to cut.

@@ -537,6 +537,7 @@ impl Job {
             rapid_rate: self.post.rapid_rate,
             operation: 0,
             given_passes: Default::default(),
+            given_regions: Vec::new(),
         })
     }
 }
@@ -704,7 +705,10 @@ impl Running {
         let o = self.job.operations[k].op();
         progress.frame(n as f64 / count, plan_share / count, Some(o.name()));
         self.ctx.operation = k;
-        let planned = o.plan(&mut self.ctx, progress)?;
+        let planned = o.plan(&mut self.ctx, progress);
+        // Regions a pool made were for this operation only.
+        self.ctx.given_regions.clear();
+        let planned = planned?;
         self.loads.push((self.ctx.load.take(), self.ctx.stages.take()));
         let first_path = self.paths.len();
         self.path_operations.extend(std::iter::repeat_n(k, planned.len()));

@@ -14,12 +14,14 @@ use std::collections::HashMap;
 use std::ops::Range;
 
 use super::operation::Operation;
-use super::Prepared;
+use super::{Prepared, Running};
 use crate::error::{Error, Result};
 use crate::geom::DVec3;
+use crate::profile::Shape;
 use crate::progress::Progress;
 use crate::strategy::context::SurfaceRequest;
 use crate::strategy::finish_raster::{FinishRaster, PassLayout, RasterPasses};
+use crate::strategy::rough_zlevel::{unpack, GivenRegion, RegionWork};
 use crate::zmap::contour::LevelMap;
 use crate::zmap::region::Region;
 use crate::zmap::ClBuilder;
@@ -165,5 +167,52 @@ impl Prepared {
                 self.ctx.given_passes.insert(op, passes);
             }
         }
+    }
+}
+
+impl Prepared {
+    /// The regions of `levels` (each the height it is contoured at and the nodes it keeps,
+    /// packed: [`RegionWork::levels`]) on the surface `request` and its level map (kept, or
+    /// made here), for the planner of a pool ([`Running::keep_regions`]).
+    pub fn level_regions(&mut self, request: SurfaceRequest, levels: &[(f64, Vec<u8>)]) -> Result<Vec<Shape>> {
+        level_regions(&mut self.ctx, request, levels)
+    }
+}
+
+/// [`Prepared::level_regions`] in `ctx`.
+fn level_regions(ctx: &mut crate::strategy::Context, request: SurfaceRequest, levels: &[(f64, Vec<u8>)]) -> Result<Vec<Shape>> {
+    let cl = ctx.cl_surface(request, &mut Progress::none())?;
+    let map = ctx.level_map(request, &cl);
+    let (grid, tol) = (cl.field.grid(), ctx.tolerances);
+    Ok(crate::parallel::map_heavy(levels.len(), |k| {
+        let keep = unpack(&levels[k].1, grid.nodes());
+        map.region(&cl, levels[k].0, &|i, j| keep[j * grid.nx + i], &tol)
+    }))
+}
+
+impl Running {
+    /// The regions of the next operation's levels, as work for a pool, when it has levels
+    /// ([`crate::strategy::Operate::region_work`]); `None` once every operation is planned.
+    pub fn region_work(&mut self, progress: &mut Progress) -> Result<Option<RegionWork>> {
+        let Some(&k) = self.enabled.get(self.next) else { return Ok(None) };
+        self.ctx.operation = k;
+        self.job.operations[k].op().region_work(&mut self.ctx, progress)
+    }
+
+    /// [`Prepared::level_regions`], by the planner of a pool as it plans.
+    pub fn level_regions(&mut self, request: SurfaceRequest, levels: &[(f64, Vec<u8>)]) -> Result<Vec<Shape>> {
+        level_regions(&mut self.ctx, request, levels)
+    }
+
+    /// Keeps `regions`, made by a pool for `work` (level by level), for the next operation to
+    /// take as it plans.
+    pub fn keep_regions(&mut self, work: &RegionWork, regions: Vec<Shape>) -> Result<()> {
+        if regions.len() != work.levels.len() {
+            return Err(Error::Input(format!("{} regions were given for {} levels", regions.len(), work.levels.len())));
+        }
+        for ((level, keep), region) in work.levels.iter().cloned().zip(regions) {
+            self.ctx.given_regions.push(GivenRegion { request: work.request, level, keep, region });
+        }
+        Ok(())
     }
 }

@@ -155,6 +155,40 @@ pub struct Shape {
 }
 
 impl Shape {
+    /// Writes the shape to `out` as flat numbers (for a worker of the page's pool): its number
+    /// of loops, and per loop its number of vertices, then each vertex's x, y and bulge.
+    pub fn to_flat(&self, out: &mut Vec<f64>) {
+        out.push(self.loops.len() as f64);
+        for l in &self.loops {
+            out.push(l.vertices.len() as f64);
+            out.extend(l.vertices.iter().flat_map(|v| [v.p.x, v.p.y, v.bulge]));
+        }
+    }
+
+    /// The shapes [`Shape::to_flat`] wrote one after another in `flat`, as they were.
+    pub fn all_from_flat(flat: &[f64]) -> Option<Vec<Shape>> {
+        let mut at = 0;
+        let mut next = || {
+            let v = *flat.get(at)?;
+            at += 1;
+            Some(v)
+        };
+        let mut out = Vec::new();
+        while let Some(loops) = next() {
+            let mut shape = Shape { loops: Vec::with_capacity(loops as usize) };
+            for _ in 0..loops as usize {
+                let count = next()? as usize;
+                let mut vertices = Vec::with_capacity(count);
+                for _ in 0..count {
+                    vertices.push(Vertex { p: DVec2::new(next()?, next()?), bulge: next()? });
+                }
+                shape.loops.push(Loop { vertices });
+            }
+            out.push(shape);
+        }
+        Some(out)
+    }
+
     /// The region bounded by `loops` (any orientation, any order): a loop nested inside an odd
     /// number of others is a hole. Loops are turned to run counter-clockwise when outer and
     /// clockwise when holes.

@@ -136,6 +136,10 @@ pub struct Context {
     /// Raster passes a pool of workers made before planning ([`crate::job::pool`]), by the
     /// index of their operation: each pass's runs, in pass order.
     pub given_passes: std::collections::HashMap<usize, Vec<Vec<Vec<DVec3>>>>,
+    /// Regions of levels a pool of workers made for the operation about to plan
+    /// ([`crate::strategy::rough_zlevel::RoughZlevel::region_work`]): a level contoured on the
+    /// same surface, at the same height, keeping the same nodes takes its region from here.
+    pub given_regions: Vec<crate::strategy::rough_zlevel::GivenRegion>,
 }
 
 impl Context {

@@ -125,6 +125,12 @@ pub trait Operate {
     fn level_maps(&self, _ctx: &Context) -> Result<Vec<context::SurfaceRequest>> {
         Ok(Vec::new())
     }
+    /// The regions of its levels, as work a pool of workers can share out just before it
+    /// plans, on the in-process stock as it is then (z-level roughing and what clears the same
+    /// levels another way; none by default).
+    fn region_work(&self, _ctx: &mut Context, _progress: &mut Progress) -> Result<Option<rough_zlevel::RegionWork>> {
+        Ok(None)
+    }
     /// Its tool paths, each with its tool, planned in the job's context. `progress` is this
     /// operation's own: stages run from 0 to 1.
     fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Vec<Toolpath>>;

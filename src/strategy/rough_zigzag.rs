@@ -203,6 +203,10 @@ impl Operate for RoughZigzag {
         self.surfaces(ctx)
     }
 
+    fn region_work(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Option<super::rough_zlevel::RegionWork>> {
+        self.as_levels().region_work(ctx, progress).map(Some)
+    }
+
     fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Vec<Toolpath>> {
         let levels = self.as_levels();
         let Some(Levels { tool, levels: cut, .. }) = levels.levels_to_cut(ctx, progress)? else { return Ok(Vec::new()) };

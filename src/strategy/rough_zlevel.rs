@@ -150,6 +150,10 @@ impl Operate for RoughZlevel {
         self.surfaces(ctx)
     }
 
+    fn region_work(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Option<super::rough_zlevel::RegionWork>> {
+        self.region_work(ctx, progress).map(Some)
+    }
+
     fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Vec<Toolpath>> {
         let Some(levels) = self.levels_to_cut(ctx, progress)? else { return Ok(Vec::new()) };
         Ok(vec![self.clear(ctx, levels, progress)?])
@@ -259,11 +263,17 @@ impl RoughZlevel {
         // Centres whose cutter reaches at least half a step into material (the outermost ring
         // then cuts that much of the stock's edge, the next a full step).
         let r = ctx.tool(&self.name, self.tool)?.cutter.radius();
-        let levels = self.levels_within(ctx, progress, (r - 0.5 * self.step(r)).max(0.0), true, &mut |_, _| None)?;
+        let levels = self.levels_within(ctx, progress, self.reach(r), true, &mut |_, _| None)?;
         if levels.is_none() {
             ctx.warn(&self.name, "no level has material left to cut");
         }
         Ok(levels)
+    }
+
+    /// How far from material above a level a centre of a tool of radius `r` is kept: its
+    /// cutter reaches at least half a step into it.
+    fn reach(&self, r: f64) -> f64 {
+        (r - 0.5 * self.step(r)).max(0.0)
     }
 
     /// The tool and its CL surface: the cutter grown by the radial allowance (the Minkowski sum
@@ -314,50 +324,28 @@ impl RoughZlevel {
             return Err(Error::Cancelled);
         }
         let (tool, cl) = self.surface(ctx, progress)?;
-        let r = tool.cutter.radius();
-        let grid = cl.field.grid();
         let stock = ctx.stock;
         if !progress.stage("levels", 0.3, 0.2) {
             return Err(Error::Cancelled);
         }
         let tol = ctx.tolerances;
-        let map = ctx.level_map(self.request(ctx)?, &cl);
+        let request = self.request(ctx)?;
+        let map = ctx.level_map(request, &cl);
         let mut levels = Vec::new();
         let mut z_prev = stock.max.z;
-        let heights = self.levels_and_kinds(ctx, &cl, r);
-        let limits: Vec<Option<Vec<bool>>> = heights.iter().map(|&(z, _)| within(z, grid)).collect();
-        // Each level's region on whichever core is free (they do not depend on each other).
-        let stock_now = ctx.sim.stock();
-        let mut regions: Vec<(usize, Option<Shape>)> = (0..heights.len()).map(|k| (k, None)).collect();
+        let inputs = self.level_inputs(ctx, &tool, &cl, reach, bands, within);
+        // Each level's region on whichever core is free (they do not depend on each other),
+        // unless a pool made it already.
+        let given = &ctx.given_regions;
+        let mut regions: Vec<(usize, Option<Shape>)> = (0..inputs.heights.len()).map(|k| (k, None)).collect();
         crate::parallel::each_mut(&mut regions, |(k, out)| {
-            let (z, flat) = heights[*k];
-            let flat_only = flat && bands;
-            // At full reach (rest roughing: every centre whose cutter touches what is left),
-            // only material the cutter can reach from a centre it may take counts (within its
-            // radius of one, less half a node's spacing), not the part's walls and their
-            // leave-stock beside the region, which every level would otherwise follow.
-            let removable = (reach >= r).then(|| {
-                let safe: Vec<bool> = cl.field.z.iter().map(|&h| h + self.allowance <= z).collect();
-                let d = crate::octree::distance_to(&safe, grid.nx, grid.ny, grid.spacing);
-                d.into_iter().map(|d| d <= r - 0.5 * grid.spacing).collect::<Vec<bool>>()
-            });
-            let near = material_near(stock_now, grid, z, reach, removable.as_deref());
-            let limit = &limits[*k];
-            // A flat's level only where the level below cannot go (a node further than a node's
-            // spacing from every centre that level refuses is left to it).
-            let band = flat_only.then(|| {
-                let below = heights.get(*k + 1).map_or(f64::NEG_INFINITY, |&(q, _)| q);
-                let refused: Vec<bool> = cl.field.z.iter().map(|&h| h + self.allowance > below).collect();
-                let d = crate::octree::distance_to(&refused, grid.nx, grid.ny, grid.spacing);
-                d.into_iter().map(|d| d <= FLAT_BAND * grid.spacing).collect::<Vec<bool>>()
-            });
-            let keep = |i: usize, j: usize| {
-                let n = j * grid.nx + i;
-                near[n] && limit.as_ref().is_none_or(|m| m[n]) && band.as_ref().is_none_or(|m| m[n])
-            };
-            *out = Some(map.region(&cl, z - self.allowance, &keep, &tol));
+            let keep = inputs.keep(*k);
+            let level = inputs.heights[*k].0 - self.allowance;
+            let packed = pack(&keep);
+            let made = given.iter().find(|g| g.request == request && g.level == level && g.keep == packed).map(|g| g.region.clone());
+            *out = Some(made.unwrap_or_else(|| map.region(&cl, level, &|i, j| keep[j * inputs.grid.nx + i], &tol)));
         });
-        for ((z, flat), (_, region)) in heights.into_iter().zip(regions) {
+        for ((z, flat), (_, region)) in inputs.heights.into_iter().zip(regions) {
             let region = region.expect("every level's region is made");
             if region.is_empty() {
                 continue;
@@ -375,6 +363,28 @@ impl RoughZlevel {
             return Ok(None);
         }
         Ok(Some(Levels { tool, cl, levels }))
+    }
+
+    /// What each level's region is made of (see [`RoughZlevel::levels_within`]): the levels,
+    /// and per level the nodes its region keeps, on the stock as it is now.
+    fn level_inputs<'a>(&'a self, ctx: &'a Context, tool: &Tool, cl: &'a ClSurface, reach: f64, bands: bool, within: &mut dyn FnMut(f64, Grid) -> Option<Vec<bool>>) -> LevelInputs<'a> {
+        let r = tool.cutter.radius();
+        let grid = cl.field.grid();
+        let heights = self.levels_and_kinds(ctx, cl, r);
+        let limits = heights.iter().map(|&(z, _)| within(z, grid)).collect();
+        LevelInputs { zl: self, cl, stock: ctx.sim.stock(), grid, r, reach, bands, heights, limits }
+    }
+
+    /// The regions [`RoughZlevel::levels_to_cut`] would make, as work a pool can share out
+    /// before the operation plans: its CL surface, and per level the height its region is
+    /// contoured at and the nodes it keeps (packed eight to a byte).
+    pub fn region_work(&self, ctx: &mut Context, progress: &mut Progress) -> Result<RegionWork> {
+        let (tool, cl) = self.surface(ctx, progress)?;
+        let request = self.request(ctx)?;
+        let r = tool.cutter.radius();
+        let inputs = self.level_inputs(ctx, &tool, &cl, self.reach(r), true, &mut |_, _| None);
+        let levels = crate::parallel::map_heavy(inputs.heights.len(), |k| (inputs.heights[k].0 - self.allowance, pack(&inputs.keep(k))));
+        Ok(RegionWork { request, levels })
     }
 
     /// In the air beside a region at level `z`: a step out from a boundary point, away from the
@@ -549,6 +559,83 @@ impl Cleared {
         let inside = |r: &Rect| a.min(b).cmpge(r.min).all() && a.max(b).cmple(r.max).all();
         self.cut.iter().find(|e| inside(&e.bounds) && Inside(&e.region).clears(a.extend(e.z + gap), b.extend(e.z + gap), 0.0) && over(e.z)).map(|e| e.z)
     }
+}
+
+/// What each level's region is made of ([`RoughZlevel::level_inputs`]).
+struct LevelInputs<'a> {
+    zl: &'a RoughZlevel,
+    cl: &'a ClSurface,
+    stock: &'a DexelStock,
+    grid: Grid,
+    r: f64,
+    reach: f64,
+    bands: bool,
+    /// The levels from the top down, each with whether it is a flat's alone.
+    heights: Vec<(f64, bool)>,
+    /// Per level, the nodes `within` limits it to, where it does.
+    limits: Vec<Option<Vec<bool>>>,
+}
+
+impl LevelInputs<'_> {
+    /// The nodes level `k`'s region keeps: within reach of material above it, within its limit,
+    /// and for a flat's level alone, where the level below cannot go.
+    fn keep(&self, k: usize) -> Vec<bool> {
+        let (zl, grid, r) = (self.zl, self.grid, self.r);
+        let (z, flat) = self.heights[k];
+        // At full reach (rest roughing: every centre whose cutter touches what is left),
+        // only material the cutter can reach from a centre it may take counts (within its
+        // radius of one, less half a node's spacing), not the part's walls and their
+        // leave-stock beside the region, which every level would otherwise follow.
+        let removable = (self.reach >= r).then(|| {
+            let safe: Vec<bool> = self.cl.field.z.iter().map(|&h| h + zl.allowance <= z).collect();
+            let d = crate::octree::distance_to(&safe, grid.nx, grid.ny, grid.spacing);
+            d.into_iter().map(|d| d <= r - 0.5 * grid.spacing).collect::<Vec<bool>>()
+        });
+        let mut keep = material_near(self.stock, grid, z, self.reach, removable.as_deref());
+        if let Some(limit) = &self.limits[k] {
+            keep.iter_mut().zip(limit).for_each(|(k, &l)| *k &= l);
+        }
+        // A flat's level only where the level below cannot go (a node further than a node's
+        // spacing from every centre that level refuses is left to it).
+        if flat && self.bands {
+            let below = self.heights.get(k + 1).map_or(f64::NEG_INFINITY, |&(q, _)| q);
+            let refused: Vec<bool> = self.cl.field.z.iter().map(|&h| h + zl.allowance > below).collect();
+            let d = crate::octree::distance_to(&refused, grid.nx, grid.ny, grid.spacing);
+            keep.iter_mut().zip(d).for_each(|(k, d)| *k &= d <= FLAT_BAND * grid.spacing);
+        }
+        keep
+    }
+}
+
+/// The regions an operation's levels will be contoured into, as work for a pool
+/// ([`RoughZlevel::region_work`]): made elsewhere and given to the context
+/// ([`Context::given_regions`]), they are taken instead of made.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RegionWork {
+    /// The CL surface (and its level map) the regions are contoured on.
+    pub request: SurfaceRequest,
+    /// Per level, the height its region is contoured at and the nodes it keeps ([`pack`]).
+    pub levels: Vec<(f64, Vec<u8>)>,
+}
+
+/// A region made elsewhere for a level: the surface, the height and the kept nodes it was
+/// contoured with.
+#[derive(Clone, Debug)]
+pub struct GivenRegion {
+    pub request: SurfaceRequest,
+    pub level: f64,
+    pub keep: Vec<u8>,
+    pub region: Shape,
+}
+
+/// Booleans packed eight to a byte, the first in the lowest bit.
+pub fn pack(bits: &[bool]) -> Vec<u8> {
+    bits.chunks(8).map(|c| c.iter().enumerate().fold(0u8, |b, (k, &v)| b | ((v as u8) << k))).collect()
+}
+
+/// The first `count` booleans [`pack`] packed.
+pub fn unpack(bytes: &[u8], count: usize) -> Vec<bool> {
+    (0..count).map(|k| bytes.get(k / 8).is_some_and(|b| b >> (k % 8) & 1 == 1)).collect()
 }
 
 /// Per node of `grid`, whether a cutter there at level `z` is within `reach` of material that

@@ -1,6 +1,6 @@
 // Issue 15's "every core in the browser": swarf.js's engine shares a run among a pool of
-// workers (CL surfaces and level maps in bands of rows, raster passes in ranges, the simulated
-// stock in groups of bands of rows) and writes the same program and simulation as one worker; a pooled run cancels like any other, and bad input fails the
+// workers (CL surfaces and level maps in bands of rows, raster passes in ranges, the regions of
+// z-level roughing's levels, the simulated stock in groups of bands of rows) and writes the same program and simulation as one worker; a pooled run cancels like any other, and bad input fails the
 // same way.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
@@ -67,7 +67,7 @@ test('a pool of workers writes the same program as one worker, on the sample job
   assert.ok(r.sample.sim && r.sample.sim.same, JSON.stringify(r.sample.sim));
   assert.ok(r.sample.sim.removed > 1000 && r.sample.sim.cut > 1000, JSON.stringify(r.sample.sim));
   // The pool did share the work: it reported its phases.
-  assert.ok(r.stages.includes('CL z-maps (3 workers)') && r.stages.includes('passes and level maps (3 workers)') && r.stages.includes('in-process stock (3 workers)'), r.stages.join(', '));
+  assert.ok(r.stages.includes('CL z-maps (3 workers)') && r.stages.includes('passes and level maps (3 workers)') && r.stages.includes('regions of levels (3 workers)') && r.stages.includes('in-process stock (3 workers)'), r.stages.join(', '));
 });
 
 test('a pooled run cancels, the engine goes on, and bad input fails as with one worker', async () => {
