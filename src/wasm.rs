@@ -568,6 +568,13 @@ impl JobPlan {
         self.prepared()?.keep_passes(operation, first, passes).map_err(js_error)
     }
 
+    /// Lets go of the prepared part and surfaces, keeping the job: a helper of the pool then
+    /// only cuts bands of the stock ([`JobPlan::cut_bands`]), for which the job's tools and
+    /// tolerances are enough.
+    pub fn release(&mut self) {
+        self.prepared = None;
+    }
+
     /// Starts planning operation by operation, so a pool can cut each operation's moves into
     /// the in-process stock ([`JobPlan::plan_next`]).
     pub fn start(&mut self) -> Result<(), JsError> {

@@ -247,6 +247,9 @@ export class Engine {
     // Every worker keeps the level maps: each contours regions of levels on them.
     for (const [surface, { right, up }] of maps) kept.push(...all.map((c) => c.call({ type: 'keepLevelMap', surface, right, up })));
     await Promise.all(kept);
+    // Without z-level work the helpers only cut bands of the stock from now on: they let go of
+    // their copy of the part and surfaces.
+    if (!levelMaps.length) await Promise.all(helpers.map((h) => h.call({ type: 'release' })));
     const from = bands.length || tasks.length ? 0.5 : 0;
     let at = from;
     const planning = (f, s) => onProgress?.((at = from + (1 - from) * f), s);

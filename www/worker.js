@@ -149,6 +149,9 @@ self.onmessage = async (event) => {
     } else if (type === 'keepPasses') {
       planned().keepPasses(event.data.operation, event.data.first, event.data.count, event.data.flat);
       self.postMessage({ id, ok: true });
+    } else if (type === 'release') {
+      planned().release();
+      self.postMessage({ id, ok: true });
     } else if (type === 'startPlan') {
       planned().start();
       self.postMessage({ id, ok: true });
