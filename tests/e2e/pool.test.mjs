@@ -91,6 +91,29 @@ test('a pooled run cancels, the engine goes on, and bad input fails as with one 
   assert.equal(r.bad[1], r.bad[0]);
 });
 
+test('a pooled run cancelled while its workers contour levels or cut the stock goes on as one worker', async () => {
+  const r = await page.evaluate(async () => {
+    const { one, pool } = window.t;
+    const job = one.defaultJob();
+    const out = {};
+    for (const phase of ['regions of levels', 'in-process stock (']) {
+      const controller = new AbortController();
+      let seen = null;
+      const onProgress = (f, stage) => { if (stage.includes(phase) && !seen) { seen = stage; controller.abort(); } };
+      const error = await pool.run(job, one.sample, 'sample.stl', { onProgress, signal: controller.signal }).then(() => null, (e) => e.name);
+      out[phase] = { seen, error };
+    }
+    const [again, alone] = [await pool.run(job, one.sample, 'sample.stl'), await one.run(job, one.sample, 'sample.stl')];
+    out.same = again.gcode === alone.gcode && JSON.stringify(again.sim.report) === JSON.stringify(alone.sim.report);
+    return out;
+  });
+  for (const phase of ['regions of levels', 'in-process stock (']) {
+    assert.ok(r[phase].seen, `the run reached "${phase}"`);
+    assert.equal(r[phase].error, 'AbortError');
+  }
+  assert.ok(r.same, 'after the cancels, the pool writes the same program and simulation as one worker');
+});
+
 test('runs asked for at once on a pool come out as each would alone', async () => {
   const r = await page.evaluate(async () => {
     const { one, pool, die, dieJob } = window.t;
