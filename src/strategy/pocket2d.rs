@@ -325,7 +325,7 @@ impl Swept {
     /// cut, so the map needs no region of its own.
     fn new(region: &Shape, radius: f64, z: f64, stock: &super::path2d::InStock, chordal: f64) -> Swept {
         let px = load::pixel_for(region.bounds(), radius, radius / 8.0);
-        Swept { map: PixelMap::new(region.bounds(), px, radius, |p| stock.material_at(p, z), &Shape::default()), chordal }
+        Swept { map: PixelMap::of_material(region.bounds(), px, radius, |p| stock.material_at(p, z)), chordal }
     }
 
     /// The loop as straight moves: its arcs as chords within the chordal tolerance.

@@ -62,20 +62,11 @@ impl PixelMap {
     /// Pixels of size `px` over `bounds` grown by the tool's `radius`; material where
     /// `material` says so; the tool's centre allowed inside `region`.
     pub fn new(bounds: Rect, px: f64, radius: f64, material: impl Fn(DVec2) -> bool, region: &Shape) -> PixelMap {
-        let b = bounds.expand(radius + 2.0 * px);
-        let nx = ((b.max.x - b.min.x) / px).ceil() as usize + 1;
-        let ny = ((b.max.y - b.min.y) / px).ceil() as usize + 1;
-        let words = nx.div_ceil(64);
-        let origin = b.min;
-        let mut m = vec![0u64; words * ny];
+        let mut map = PixelMap::of_material(bounds, px, radius, material);
+        let (nx, ny, origin) = (map.nx, map.ny, map.origin);
         let mut allowed = vec![false; nx * ny];
         for j in 0..ny {
             let y = origin.y + j as f64 * px;
-            for i in 0..nx {
-                if material(DVec2::new(origin.x + i as f64 * px, y)) {
-                    m[j * words + i / 64] |= 1 << (i % 64);
-                }
-            }
             for (x0, x1) in region.spans_at(y) {
                 let (i0, i1) = (((x0 - origin.x) / px).ceil().max(0.0) as usize, ((x1 - origin.x) / px).floor().max(0.0) as usize);
                 for i in i0..=i1.min(nx - 1) {
@@ -107,7 +98,31 @@ impl PixelMap {
                 row.push(n as u32);
             }
         }
-        PixelMap { origin, px, nx, ny, words, material: m, centre_in: allowed, inner, radius, boundary, rows: near_row, undo: Vec::new(), logging: false }
+        map.centre_in = allowed;
+        map.inner = inner;
+        map.boundary = boundary;
+        map.rows = near_row;
+        map
+    }
+
+    /// [`PixelMap::new`] for counting and cutting only: the material, and nowhere the tool's
+    /// centre is allowed to step aside to ([`PixelMap::allowed`] holds nowhere).
+    pub fn of_material(bounds: Rect, px: f64, radius: f64, material: impl Fn(DVec2) -> bool) -> PixelMap {
+        let b = bounds.expand(radius + 2.0 * px);
+        let nx = ((b.max.x - b.min.x) / px).ceil() as usize + 1;
+        let ny = ((b.max.y - b.min.y) / px).ceil() as usize + 1;
+        let words = nx.div_ceil(64);
+        let origin = b.min;
+        let mut m = vec![0u64; words * ny];
+        for j in 0..ny {
+            let y = origin.y + j as f64 * px;
+            for i in 0..nx {
+                if material(DVec2::new(origin.x + i as f64 * px, y)) {
+                    m[j * words + i / 64] |= 1 << (i % 64);
+                }
+            }
+        }
+        PixelMap { origin, px, nx, ny, words, material: m, centre_in: Vec::new(), inner: Vec::new(), radius, boundary: Vec::new(), rows: Vec::new(), undo: Vec::new(), logging: false }
     }
 
     pub fn pixel(&self) -> f64 {
@@ -123,7 +138,7 @@ impl PixelMap {
             return false;
         }
         let at = u.y as usize * self.nx + u.x as usize;
-        self.inner[at] || (self.centre_in[at] && self.contains(q))
+        self.inner.get(at).is_some_and(|&i| i) || (self.centre_in.get(at).is_some_and(|&c| c) && self.contains(q))
     }
 
     /// Whether the region holds `q` (within the map): [`Shape::contains`], counting the
