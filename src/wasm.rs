@@ -660,11 +660,7 @@ impl JobPlan {
         let size = bands.len().div_ceil(groups.max(1)).max(1);
         let out = js_sys::Array::new();
         for group in bands.chunks(size) {
-            let mut flat = Vec::new();
-            for band in group {
-                band.to_flat(&mut flat);
-            }
-            out.push(&js_sys::Float64Array::from(&flat[..]));
+            out.push(&js_sys::Float64Array::from(&DexelStock::all_to_flat(group)[..]));
         }
         Ok(out)
     }
@@ -688,12 +684,8 @@ impl JobPlan {
             None => &self.moves[..],
         };
         let cuts = crate::sim::verify::cut_bands(&mut bands, moves, &tolerances, &mut Progress::none(), 1.0).map_err(js_error)?;
-        let mut flat = Vec::new();
-        for band in &bands {
-            band.to_flat(&mut flat);
-        }
         let out = js_sys::Array::new();
-        out.push(&js_sys::Float64Array::from(&flat[..]));
+        out.push(&js_sys::Float64Array::from(&DexelStock::all_to_flat(&bands)[..]));
         out.push(&js_sys::Float64Array::from(&cuts.iter().flat_map(|c| c.to_flat()).collect::<Vec<f64>>()[..]));
         Ok(out)
     }

@@ -153,9 +153,7 @@ fn the_in_process_stock_cut_in_groups_of_bands_is_the_stock_cut_whole() {
         // Uneven groups, one of a single band, each through its flat form and back.
         let (mut back, mut cuts) = (Vec::new(), Vec::new());
         for group in [&bands[..1], &bands[1..20], &bands[20..]] {
-            let mut flat = Vec::new();
-            group.iter().for_each(|b| b.to_flat(&mut flat));
-            let mut mine = DexelStock::all_from_flat(&flat).unwrap();
+            let mut mine = DexelStock::all_from_flat(&DexelStock::all_to_flat(group)).unwrap();
             let cut = cut_bands(&mut mine, &moves, &job.tolerances, &mut Progress::none(), 1.0).unwrap();
             let flat: Vec<f64> = cut.iter().flat_map(BandCut::to_flat).collect();
             cuts.extend(BandCut::all_from_flat(&flat).unwrap());

@@ -131,6 +131,13 @@ impl DexelStock {
         out.extend_from_slice(&self.block_top);
     }
 
+    /// `stocks` written by [`DexelStock::to_flat`] one after another.
+    pub fn all_to_flat(stocks: &[DexelStock]) -> Vec<f64> {
+        let mut out = Vec::new();
+        stocks.iter().for_each(|s| s.to_flat(&mut out));
+        out
+    }
+
     /// The stocks [`DexelStock::to_flat`] wrote one after another in `flat`.
     pub fn all_from_flat(flat: &[f64]) -> Option<Vec<DexelStock>> {
         let mut out = Vec::new();

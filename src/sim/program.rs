@@ -87,7 +87,7 @@ const ENCODED: usize = 12;
 /// `moves` as flat numbers, for a worker of the page's pool that cuts them into its bands of
 /// the stock ([`decode`] reads them back): per move its tool number, its kind (0 rapid, 1 line,
 /// 2 clockwise arc, 3 counter-clockwise arc), where it starts and ends, an arc's centre, the
-/// feed, and when it starts and how long it takes.
+/// feed, and how long it takes.
 pub fn encode(moves: &[ProgramMove]) -> Vec<f64> {
     let mut out = Vec::with_capacity(moves.len() * ENCODED);
     for m in moves {

@@ -244,11 +244,7 @@ impl Band<'_> {
             match self.cut.moves.last_mut() {
                 Some((last, v, worst)) if *last == *k => {
                     *v += volume;
-                    if let Some(b) = body {
-                        if worst.is_none_or(|w| b.1 > w.1) {
-                            *worst = Some(b);
-                        }
-                    }
+                    keep_deeper(worst, body);
                 }
                 _ => self.cut.moves.push((*k, volume, body)),
             }
@@ -298,6 +294,15 @@ pub fn cut_bands(bands: &mut [DexelStock], moves: &[ProgramMove], tolerances: &T
         crate::parallel::each_mut(&mut work, |band| band.run(moves, &run, tolerances.gouge));
     }
     Ok(work.into_iter().map(|b| b.cut).collect())
+}
+
+/// `found` in `worst` where it is deeper (the first kept where equal).
+fn keep_deeper(worst: &mut Option<BodyPlace>, found: Option<BodyPlace>) {
+    if let Some(f) = found {
+        if worst.is_none_or(|w| f.1 > w.1) {
+            *worst = Some(f);
+        }
+    }
 }
 
 /// The radius of the tool's body above its flutes.
@@ -376,11 +381,7 @@ impl Simulator {
         for cut in cuts {
             for &(k, volume, worst) in &cut.moves {
                 removed[k] += volume;
-                if let Some(w) = worst {
-                    if body[k].is_none_or(|b| w.1 > b.1) {
-                        body[k] = Some(w);
-                    }
-                }
+                keep_deeper(&mut body[k], worst);
             }
         }
         for ((m, volume), body) in moves.iter().zip(removed).zip(body) {

@@ -339,11 +339,9 @@ impl RoughZlevel {
         let given = &ctx.given_regions;
         let mut regions: Vec<(usize, Option<Shape>)> = (0..inputs.heights.len()).map(|k| (k, None)).collect();
         crate::parallel::each_mut(&mut regions, |(k, out)| {
-            let keep = inputs.keep(*k);
-            let level = inputs.heights[*k].0 - self.allowance;
-            let packed = pack(&keep);
-            let made = given.iter().find(|g| g.request == request && g.level == level && g.keep == packed).map(|g| g.region.clone());
-            *out = Some(made.unwrap_or_else(|| map.region(&cl, level, &|i, j| keep[j * inputs.grid.nx + i], &tol)));
+            let (keep, level) = (inputs.keep(*k), inputs.level(*k));
+            let made = (!given.is_empty()).then(|| pack(&keep)).and_then(|packed| given.iter().find(|g| g.request == request && g.level == level && g.keep == packed));
+            *out = Some(made.map_or_else(|| map.region(&cl, level, &|i, j| keep[j * inputs.grid.nx + i], &tol), |g| g.region.clone()));
         });
         for ((z, flat), (_, region)) in inputs.heights.into_iter().zip(regions) {
             let region = region.expect("every level's region is made");
@@ -383,7 +381,7 @@ impl RoughZlevel {
         let request = self.request(ctx)?;
         let r = tool.cutter.radius();
         let inputs = self.level_inputs(ctx, &tool, &cl, self.reach(r), true, &mut |_, _| None);
-        let levels = crate::parallel::map_heavy(inputs.heights.len(), |k| (inputs.heights[k].0 - self.allowance, pack(&inputs.keep(k))));
+        let levels = crate::parallel::map_heavy(inputs.heights.len(), |k| (inputs.level(k), pack(&inputs.keep(k))));
         Ok(RegionWork { request, levels })
     }
 
@@ -577,6 +575,11 @@ struct LevelInputs<'a> {
 }
 
 impl LevelInputs<'_> {
+    /// The height level `k`'s region is contoured at: its own less the axial allowance.
+    fn level(&self, k: usize) -> f64 {
+        self.heights[k].0 - self.zl.allowance
+    }
+
     /// The nodes level `k`'s region keeps: within reach of material above it, within its limit,
     /// and for a flat's level alone, where the level below cannot go.
     fn keep(&self, k: usize) -> Vec<bool> {
