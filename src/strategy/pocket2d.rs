@@ -497,7 +497,7 @@ impl Ctx<'_, '_, '_> {
         let graph = Graph::new(region, clearing.angle, step);
         let r = self.s.tool_radius;
         let load = Load { ds: 0.5 * step, step, tolerance: clearing.load_tolerance, climb };
-        let px = load::pixel_for(region.bounds(), r, (r / 50.0).max(1e-3));
+        let px = load::pixel_for(region.bounds(), r, load::default_pixel(step));
         let limit = load.reference(px) * (1.0 + clearing.load_tolerance);
         let z = self.z;
         let mut map = (clearing.load != LoadControl::None).then(|| {

@@ -88,7 +88,7 @@ pub struct RoughZigzag {
     pub load_tolerance: f64,
     /// The sampling distance Δs (mm). Default value: half the step-over.
     pub sampling: Option<f64>,
-    /// The pixel of the load's map (mm). Default value: the tool diameter / 100.
+    /// The pixel of the load's map (mm). Default value: the step-over / 24.
     pub pixel: Option<f64>,
     /// Spacing of the CL z-map (mm). Default value: 0.25.
     pub grid: f64,
@@ -213,7 +213,7 @@ impl Operate for RoughZigzag {
         let r = tool.cutter.radius();
         let step = levels.step(r);
         let ds = self.sampling.unwrap_or(0.5 * step).max(1e-3);
-        let px = self.pixel.unwrap_or(r / 50.0).max(1e-3);
+        let px = self.pixel.unwrap_or_else(|| load::default_pixel(step)).max(1e-3);
         let load = Load { ds, step, tolerance: self.load_tolerance, climb: self.direction == Direction::Climb };
         let pattern = match self.passes {
             Passes::Zigzag => Pattern::Zigzag,

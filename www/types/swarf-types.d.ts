@@ -721,7 +721,7 @@ loadTolerance: number,
  */
 sampling: number | null, 
 /**
- * The pixel of the load's map (mm). Default value: the tool diameter / 100.
+ * The pixel of the load's map (mm). Default value: the step-over / 24.
  */
 pixel: number | null, 
 /**
