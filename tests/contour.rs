@@ -296,3 +296,47 @@ fn the_level_maps_bounds_hold_every_edges_exact_profile() {
         }
     }
 }
+
+/// A floor's node bounds (the widened cutter's heights at the nodes) decide a move only where
+/// it clears the exact surface all along: on spiky terrain, for every cutter shape, plain and
+/// grown, moves at heights about the surface's highest along them, each judged by the exact
+/// drop at 400 points wherever the bounds call it clear; and the bounds decide many of those
+/// a few tenths above (they spare the exact test there).
+#[test]
+fn a_floors_node_bounds_clear_only_moves_the_exact_surface_clears() {
+    use swarf::toolpath::link::Floor;
+    use swarf::zmap::region::Region;
+    let part = spiky_terrain(11, 8.0, 1.3, 5.0);
+    let tol = Tolerances::DEFAULT;
+    let grid = Grid::covering(DVec2::splat(-10.0), DVec2::splat(10.0), 0.25);
+    let region = Region::Rect { min: DVec2::splat(-10.0), max: DVec2::splat(10.0) };
+    let mut rng = Lcg(5);
+    for cutter in [Cutter::flat(6.0), Cutter::ball(6.0), Cutter::bull_nose(6.0, 1.0)] {
+        for rho in [0.0, 0.01] {
+            let drop = PointDrop::grown(&part, &cutter.profile(), rho, &tol);
+            let field = drop.field(&part, grid, -5.0, &tol, &mut Progress::none()).unwrap();
+            let wide = drop.field_by(&drop.widened(&part, grid.spacing, &tol), grid, -5.0, &mut Progress::none()).unwrap().z;
+            let cl = ClSurface::new(field, drop.clone(), -5.0, true, tol.interpolation);
+            let allowance = 0.3;
+            let floor = Floor { cl: &cl, allowance, region: &region, bounds: Some(&wide) };
+            let (mut high, mut decided) = (0, 0);
+            for _ in 0..400 {
+                let a = DVec2::new(16.0 * rng.next() - 8.0, 16.0 * rng.next() - 8.0);
+                let b = (a + DVec2::from_angle(std::f64::consts::TAU * rng.next()) * (0.1 + 3.9 * rng.next())).clamp(DVec2::splat(-9.0), DVec2::splat(9.0));
+                let exact: Vec<f64> = (0..=400).map(|k| drop.at(a.lerp(b, k as f64 / 400.0), -5.0)).collect();
+                let top = exact.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                let rise = 1.5 * rng.next() - 0.5;
+                let (za, zb) = (top + allowance + rise, top + allowance + rise + 0.3 * rng.next());
+                if floor.clears_by_bounds(a.extend(za), b.extend(zb), tol.height) {
+                    decided += (rise > 0.3) as usize;
+                    for (k, &z) in exact.iter().enumerate() {
+                        let t = k as f64 / 400.0;
+                        assert!(za + (zb - za) * t + tol.height >= z + allowance - 1e-9, "{cutter:?} ρ {rho}: {a} to {b} cleared by the bounds, yet {} under the surface at t {t}", z + allowance - za - (zb - za) * t);
+                    }
+                }
+                high += (rise > 0.3) as usize;
+            }
+            assert!(decided * 2 >= high, "{cutter:?} ρ {rho}: the bounds decided only {decided} of {high} moves 0.3 mm or more above the surface");
+        }
+    }
+}

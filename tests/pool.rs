@@ -45,17 +45,20 @@ fn a_job_made_by_a_pool_writes_the_same_program_as_one_made_whole() {
         planner.keep_passes(work.operation, first, passes).unwrap();
     }
     // The level maps of the roughing's surface and the waterline's (the finishing ball's).
+    // The raster's node bounds come with the waterline's level map (the same surface).
     let maps = planner.level_maps(&surfaces).unwrap();
     assert_eq!(maps, vec![0, 1]);
+    assert_eq!(planner.node_bounds(&surfaces).unwrap(), Vec::<usize>::new());
     for &k in &maps {
         let s = surfaces[k];
-        let (mut right, mut up) = (Vec::new(), Vec::new());
+        let (mut right, mut up, mut wide) = (Vec::new(), Vec::new(), Vec::new());
         for w in [0, 5, s.grid.ny / 3, s.grid.ny].windows(2) {
-            let (r, u) = helper.level_rows(s, w[0]..w[1]).unwrap();
+            let (r, u, h) = helper.level_rows(s, w[0]..w[1]).unwrap();
             right.extend(r);
             up.extend(u);
+            wide.extend(h);
         }
-        planner.keep_level_map(s, right, up).unwrap();
+        planner.keep_level_map(s, right, up, wide).unwrap();
     }
     assert_eq!(planner.run(&mut Progress::none()).unwrap().gcode, whole);
 }
@@ -72,8 +75,12 @@ fn wrong_pieces_are_refused_and_missing_passes_are_made_by_the_planner() {
     let err = planner.keep_passes(work.operation, work.passes, vec![Vec::new()]).unwrap_err().to_string();
     assert!(err.contains("given of an operation with"), "{err}");
     assert!(planner.keep_passes(0, 0, Vec::new()).is_err(), "operation 0 roughs");
-    let err = planner.keep_level_map(s, vec![0.0; 2], vec![0.0; 2]).unwrap_err().to_string();
+    let err = planner.keep_level_map(s, vec![0.0; 2], vec![0.0; 2], Vec::new()).unwrap_err().to_string();
     assert!(err.contains("wrong number of heights"), "{err}");
+    let n = s.grid.nx * s.grid.ny;
+    let err = planner.keep_level_map(s, vec![0.0; n], vec![0.0; n], vec![0.0; 3]).unwrap_err().to_string();
+    assert!(err.contains("node bounds") && err.contains("wrong number of heights"), "{err}");
+    assert!(planner.keep_node_bounds(s, vec![0.0; n + 1]).is_err());
     // Only some passes given: the operation makes them all itself.
     let some = planner.raster_passes(work.operation, 0..10).unwrap();
     assert_eq!(some.len(), 10);
@@ -101,6 +108,17 @@ fn the_planner_cuts_on_the_surfaces_and_passes_it_was_given() {
     planner.keep_passes(work.operation, 0, vec![Vec::new(); work.passes]).unwrap();
     let err = planner.run(&mut Progress::none()).unwrap_err().to_string();
     assert!(err.contains("no cutting moves"), "{err}");
+    // The node bounds its links and entries take, from bands as a pool makes them: the same
+    // program; bounds below everything (every move clears by them): another.
+    let mut planner = prepared();
+    let surfaces = planner.surfaces().unwrap();
+    assert_eq!(planner.node_bounds(&surfaces).unwrap(), vec![0]);
+    let wide: Vec<f64> = (0..s.grid.ny).step_by(9).flat_map(|j| planner.level_rows(s, j..(j + 9).min(s.grid.ny)).unwrap().2).collect();
+    planner.keep_node_bounds(s, wide).unwrap();
+    assert_eq!(planner.run(&mut Progress::none()).unwrap().gcode, whole);
+    let mut planner = prepared();
+    planner.keep_node_bounds(s, vec![f64::NEG_INFINITY; s.grid.nx * s.grid.ny]).unwrap();
+    assert_ne!(planner.run(&mut Progress::none()).unwrap().gcode, whole);
 }
 
 #[test]
@@ -113,17 +131,17 @@ fn the_planner_contours_on_the_level_maps_it_was_given() {
     // The map from bands, as a pool makes it: the same program.
     let (mut right, mut up) = (Vec::new(), Vec::new());
     for j in (0..s.grid.ny).step_by(7) {
-        let (r, u) = planner.level_rows(s, j..j + 7).unwrap();
+        let (r, u, _) = planner.level_rows(s, j..j + 7).unwrap();
         right.extend(r);
         up.extend(u);
     }
-    planner.keep_level_map(s, right, up).unwrap();
+    planner.keep_level_map(s, right, up, Vec::new()).unwrap();
     assert_eq!(planner.run(&mut Progress::none()).unwrap().gcode, gcode_whole(&job));
     // Bounds that no edge rises to: no ridge between nodes is looked for, so the contours are
     // not those of the part's own map.
     let mut planner = job::prepare(&job, demo_part()).unwrap();
     let n = s.grid.nx * s.grid.ny;
-    planner.keep_level_map(s, vec![f64::NEG_INFINITY; n], vec![f64::NEG_INFINITY; n]).unwrap();
+    planner.keep_level_map(s, vec![f64::NEG_INFINITY; n], vec![f64::NEG_INFINITY; n], Vec::new()).unwrap();
     let out = planner.run(&mut Progress::none()).map(|o| o.gcode).unwrap_or_default();
     assert_ne!(out, gcode_whole(&job));
 }

@@ -141,7 +141,10 @@ self.onmessage = async (event) => {
       const z = planned().levelRows(event.data.surface, event.data.j0, event.data.j1);
       self.postMessage({ id, ok: true, z }, [z.buffer]);
     } else if (type === 'keepLevelMap') {
-      planned().keepLevelMap(event.data.surface, event.data.right, event.data.up);
+      planned().keepLevelMap(event.data.surface, event.data.right, event.data.up, event.data.wide);
+      self.postMessage({ id, ok: true });
+    } else if (type === 'keepNodeBounds') {
+      planned().keepNodeBounds(event.data.surface, event.data.wide);
       self.postMessage({ id, ok: true });
     } else if (type === 'passes') {
       const flat = planned().rasterPasses(event.data.operation, event.data.i0, event.data.i1);

@@ -72,20 +72,55 @@ impl Prepared {
         Ok(out)
     }
 
-    /// Rows `rows` of the level map of surface `request` (kept, or made here): the bounds
-    /// along the edges to the right, then those along the edges up.
-    pub fn level_rows(&mut self, request: SurfaceRequest, rows: Range<usize>) -> Result<(Vec<f64>, Vec<f64>)> {
-        let cl = self.ctx.cl_surface(request, &mut Progress::none())?;
-        let wide = self.ctx.widened_rows(request, rows.start..rows.end.saturating_add(1))?;
-        LevelMap::rows(&cl, &wide, &self.ctx.tolerances, rows).ok_or_else(|| Error::Input("the widened cutter's heights do not cover the band".into()))
+    /// Which of `surfaces` the enabled operations want the node bounds of
+    /// ([`crate::strategy::Context::node_bounds`]) without their level maps (rasters), as
+    /// indices. Those of the level maps' come with them ([`Prepared::level_rows`]).
+    pub fn node_bounds(&self, surfaces: &[SurfaceRequest]) -> Result<Vec<usize>> {
+        let maps = self.level_maps(surfaces)?;
+        let mut out = Vec::new();
+        for op in self.job.operations.iter().map(Operation::op).filter(|o| o.enabled()) {
+            for r in op.node_bounds(&self.ctx)? {
+                if let Some(k) = surfaces.iter().position(|s| *s == r) {
+                    if !out.contains(&k) && !maps.contains(&k) {
+                        out.push(k);
+                    }
+                }
+            }
+        }
+        Ok(out)
     }
 
-    /// Keeps the level map of surface `request` from its rows' heights (its bands joined).
-    pub fn keep_level_map(&mut self, request: SurfaceRequest, right: Vec<f64>, up: Vec<f64>) -> Result<()> {
+    /// Rows `rows` of the level map of surface `request` (kept, or made here): the bounds
+    /// along the edges to the right, those along the edges up, and the widened cutter's
+    /// heights at the rows' nodes (the node bounds).
+    pub fn level_rows(&mut self, request: SurfaceRequest, rows: Range<usize>) -> Result<(Vec<f64>, Vec<f64>, Vec<f64>)> {
+        let cl = self.ctx.cl_surface(request, &mut Progress::none())?;
+        let mut wide = self.ctx.widened_rows(request, rows.start..rows.end.saturating_add(1))?;
+        let (right, up) = LevelMap::rows(&cl, &wide, &self.ctx.tolerances, rows.clone()).ok_or_else(|| Error::Input("the widened cutter's heights do not cover the band".into()))?;
+        wide.truncate(right.len());
+        Ok((right, up, wide))
+    }
+
+    /// Keeps the level map of surface `request` from its rows' heights (its bands joined),
+    /// and its node bounds when `wide` holds them (not empty).
+    pub fn keep_level_map(&mut self, request: SurfaceRequest, right: Vec<f64>, up: Vec<f64>, wide: Vec<f64>) -> Result<()> {
         let cl = self.ctx.cl_surface(request, &mut Progress::none())?;
         let map = LevelMap::from_rows(&cl, right, up).ok_or_else(|| Error::Input(format!("a level map of {} × {} nodes was given the wrong number of heights", request.grid.nx, request.grid.ny)))?;
         self.ctx.keep_level_map(request, map);
+        if !wide.is_empty() {
+            self.keep_node_bounds(request, wide)?;
+        }
         Ok(())
+    }
+
+    /// Keeps the node bounds of surface `request` from its rows' widened heights (its bands
+    /// joined).
+    pub fn keep_node_bounds(&mut self, request: SurfaceRequest, wide: Vec<f64>) -> Result<()> {
+        if self.ctx.keep_node_bounds(request, wide) {
+            Ok(())
+        } else {
+            Err(Error::Input(format!("the node bounds of {} × {} nodes were given the wrong number of heights", request.grid.nx, request.grid.ny)))
+        }
     }
 
     /// Rows `rows` of the exact surface `request`, row after row.

@@ -83,6 +83,8 @@ pub struct Caches {
     /// The builders of widened cutters ([`PointDrop::widened`]), by the cutter they widen.
     widened: Vec<((Profile, u64, u64), Arc<ExactBuilder>)>,
     levels: Vec<(SurfaceKey, Arc<LevelMap>)>,
+    /// The widened cutters' heights at the nodes of a surface's grid ([`Context::node_bounds`]).
+    bounds: Vec<(SurfaceKey, Arc<Vec<f64>>)>,
     pub counts: CacheCounts,
 }
 
@@ -253,9 +255,27 @@ impl Context {
         if let Some((_, m)) = self.caches.levels.iter().find(|(k, _)| *k == key) {
             return m.clone();
         }
-        let map = Arc::new(LevelMap::widened_by(cl, &self.widened(request), &self.tolerances));
+        let wide = self.node_bounds(request);
+        let map = Arc::new(LevelMap::new(cl, &wide, &self.tolerances).expect("the widened heights cover the grid"));
         self.caches.levels.push((key, map.clone()));
         map
+    }
+
+    /// The heights of the cutter of `request` widened by its grid's spacing at every node of
+    /// the grid ([`Context::widened`]; on every core natively): each bounds the surface from
+    /// above within a spacing of its node. Made once per request.
+    pub fn node_bounds(&mut self, request: SurfaceRequest) -> Arc<Vec<f64>> {
+        let key = self.surface_key(&request);
+        if let Some((_, b)) = self.caches.bounds.iter().find(|(k, _)| *k == key) {
+            return b.clone();
+        }
+        let builder = self.widened(request);
+        let n = request.grid.nx * request.grid.ny;
+        // Without a way to cancel it cannot fail; were it to, bounds of +inf still hold.
+        let wide = self.drop(&request.profile).field_by(&builder, request.grid, request.floor, &mut Progress::none()).map(|w| w.z).unwrap_or_else(|_| vec![f64::INFINITY; n]);
+        let wide = Arc::new(wide);
+        self.caches.bounds.push((key, wide.clone()));
+        wide
     }
 
     /// The exact builder of the cutter of `request` widened by its grid's spacing
@@ -272,6 +292,18 @@ impl Context {
     pub fn widened_rows(&mut self, request: SurfaceRequest, rows: std::ops::Range<usize>) -> Result<Vec<f64>> {
         let builder = self.widened(request);
         self.drop(&request.profile).rows(&builder, request.grid, request.floor, rows, &mut Progress::none())
+    }
+
+    /// Keeps `wide` (made by a pool, band by band) as the node bounds of `request`'s surface
+    /// ([`Context::node_bounds`]); `false` when it holds another number of heights.
+    pub fn keep_node_bounds(&mut self, request: SurfaceRequest, wide: Vec<f64>) -> bool {
+        if wide.len() != request.grid.nx * request.grid.ny {
+            return false;
+        }
+        let key = self.surface_key(&request);
+        self.caches.bounds.retain(|(k, _)| *k != key);
+        self.caches.bounds.push((key, Arc::new(wide)));
+        true
     }
 
     /// Keeps `map` (made by a pool, band by band) as the level map of `request`'s surface.

@@ -257,6 +257,10 @@ impl Operate for FinishRaster {
         Ok(vec![self.request(ctx)?])
     }
 
+    fn node_bounds(&self, ctx: &Context) -> Result<Vec<SurfaceRequest>> {
+        self.surfaces(ctx)
+    }
+
     fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Vec<Toolpath>> {
         let tool = ctx.tool(&self.name, self.tool)?.clone();
         let profile = tool.cutter.profile();
@@ -284,7 +288,8 @@ impl Operate for FinishRaster {
                 return Ok(Vec::new());
             }
         }
-        let floor_surface = Floor { cl: &cl, allowance: self.allowance, region: &region };
+        let bounds = ctx.node_bounds(request);
+        let floor_surface = Floor { cl: &cl, allowance: self.allowance, region: &region, bounds: Some(&bounds) };
         Ok(vec![ctx.link(&self.name, &tool, &runs, &floor_surface, self.entry, self.stay_down_max.unwrap_or(2.0 * self.stepover))])
     }
 }

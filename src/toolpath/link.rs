@@ -11,7 +11,7 @@ use serde::{Deserialize, Serialize};
 
 use super::entry::{enter_3d, Entry, Keepout, Kind};
 use super::Move;
-use crate::geom::{DVec2, DVec3, Tolerances};
+use crate::geom::{tolerance::BOUND_SLACK, DVec2, DVec3, Tolerances};
 use crate::zmap::region::Region;
 use crate::zmap::surface::{point_at, ClSurface};
 
@@ -42,14 +42,59 @@ pub struct Floor<'a> {
     pub cl: &'a ClSurface,
     pub allowance: f64,
     pub region: &'a Region,
+    /// The heights of the cutter widened by the grid's spacing at the z-map's nodes
+    /// ([`crate::zmap::drop::PointDrop::widened`]), where the strategy has them: each bounds
+    /// the surface from above within a spacing of its node, so a move clear of the highest of
+    /// them around it needs no exact drops ([`Floor::clears_by_bounds`]).
+    pub bounds: Option<&'a [f64]>,
 }
+
+impl Floor<'_> {
+    /// Whether the straight move from `a` to `b` surely clears the floor within the region by
+    /// the widened heights alone: every point of the move lies within a spacing of a node of
+    /// the cells around it, so the highest widened height at those nodes (each a bound from
+    /// above of the surface within a spacing of it) bounds the surface all along; and those
+    /// nodes all in the region, or the region a rectangle holding both ends. `false` says only
+    /// that the bounds do not decide.
+    pub fn clears_by_bounds(&self, a: DVec3, b: DVec3, tolerance: f64) -> bool {
+        let Some(wide) = self.bounds else { return false };
+        let f = &self.cl.field;
+        if wide.len() != f.nx * f.ny {
+            return false;
+        }
+        let (lo, hi) = (a.truncate().min(b.truncate()), a.truncate().max(b.truncate()));
+        let (u0, u1) = ((lo - f.origin) / f.spacing, (hi - f.origin) / f.spacing);
+        // The nodes of every cell the move's box meets.
+        let (i0, j0, i1, j1) = (u0.x.floor(), u0.y.floor(), u1.x.floor() + 1.0, u1.y.floor() + 1.0);
+        if !(i0 >= 0.0 && j0 >= 0.0 && i1 < f.nx as f64 && j1 < f.ny as f64) || (i1 - i0 + 1.0) * (j1 - j0 + 1.0) > MOST_BOUND_NODES {
+            return false;
+        }
+        let (i0, j0, i1, j1) = (i0 as usize, j0 as usize, i1 as usize, j1 as usize);
+        let lowest = a.z.min(b.z) + tolerance - self.allowance - BOUND_SLACK;
+        let same_grid = |m: &crate::zmap::HeightField| m.origin == f.origin && m.spacing == f.spacing && m.nx == f.nx && m.ny == f.ny;
+        let in_region = match self.region {
+            Region::Rect { .. } => self.region.contains(a.truncate()) && self.region.contains(b.truncate()),
+            Region::Mask(m) if same_grid(m) => (j0..=j1).all(|j| (i0..=i1).all(|i| m.at(i, j) >= 0.5)),
+            Region::Mask(_) => false,
+        };
+        in_region && (j0..=j1).all(|j| wide[j * f.nx + i0..=j * f.nx + i1].iter().all(|&h| h <= lowest))
+    }
+}
+
+/// The most nodes [`Floor::clears_by_bounds`] looks at: a longer move's box holds more of the
+/// surface than its way does, and the exact test is the better use of the time.
+const MOST_BOUND_NODES: f64 = 400.0;
 
 impl Keepout for Floor<'_> {
     /// Whether the straight move from `a` to `b` stays inside the region and on or above the
-    /// floor (within `tolerance`), checked at every point of the surface along it
+    /// floor (within `tolerance`): by the widened heights around it where they decide
+    /// ([`Floor::clears_by_bounds`]), else checked at every point of the surface along it
     /// ([`ClSurface::along`]): a line at or above those points is at or above the polyline
     /// through them.
     fn clears(&self, a: DVec3, b: DVec3, tolerance: f64) -> bool {
+        if self.clears_by_bounds(a, b, tolerance) {
+            return true;
+        }
         let above = |t: f64, z: f64| point_at(a, b, t).z + tolerance >= z + self.allowance;
         // Ended at the first point it passes below, if any; else every point, each in the region.
         let along = self.cl.along_while(a.truncate(), b.truncate(), above);
