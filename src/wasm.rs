@@ -458,7 +458,6 @@ struct PlanNeeds {
     surfaces: Vec<SurfaceNeed>,
     rasters: Vec<crate::job::pool::RasterWork>,
     level_maps: Vec<usize>,
-    node_bounds: Vec<usize>,
 }
 
 /// Prepares `job` on the part or drawing in `bytes` (see [`JobPlan`]).
@@ -486,15 +485,13 @@ impl JobPlan {
     }
 
     /// What can be shared: `{ surfaces: [{ nx, ny }], rasters: [{ operation, surface, passes }],
-    /// levelMaps: [surface], nodeBounds: [surface] }` (a raster's `surface` indexes
-    /// `surfaces`, or is null when each worker makes it whole; `levelMaps` lists the surfaces
-    /// whose level maps are wanted, `nodeBounds` those whose node bounds alone are).
+    /// levelMaps: [surface] }` (a raster's `surface` indexes `surfaces`, or is null when each
+    /// worker makes it whole; `levelMaps` lists the surfaces whose level maps are wanted).
     pub fn needs(&mut self) -> Result<JsValue, JsError> {
         let surfaces = self.surfaces.clone();
         let rasters = self.prepared()?.rasters(&surfaces).map_err(js_error)?;
         let level_maps = self.prepared()?.level_maps(&surfaces).map_err(js_error)?;
-        let node_bounds = self.prepared()?.node_bounds(&surfaces).map_err(js_error)?;
-        to_js(&PlanNeeds { surfaces: surfaces.iter().map(|s| SurfaceNeed { nx: s.grid.nx, ny: s.grid.ny }).collect(), rasters, level_maps, node_bounds })
+        to_js(&PlanNeeds { surfaces: surfaces.iter().map(|s| SurfaceNeed { nx: s.grid.nx, ny: s.grid.ny }).collect(), rasters, level_maps })
     }
 
     /// Rows `j0..j1` of the level map of surface `k`: the heights along the edges to the
@@ -514,13 +511,6 @@ impl JobPlan {
     pub fn keep_level_map(&mut self, k: usize, right: Vec<f64>, up: Vec<f64>, wide: Vec<f64>) -> Result<(), JsError> {
         let s = self.surface(k)?;
         self.prepared()?.keep_level_map(s, right, up, wide).map_err(js_error)
-    }
-
-    /// Keeps the node bounds of surface `k`: the widened heights at every node, row after row.
-    #[wasm_bindgen(js_name = keepNodeBounds)]
-    pub fn keep_node_bounds(&mut self, k: usize, wide: Vec<f64>) -> Result<(), JsError> {
-        let s = self.surface(k)?;
-        self.prepared()?.keep_node_bounds(s, wide).map_err(js_error)
     }
 
     /// Rows `j0..j1` of surface `k`, row after row.

@@ -316,6 +316,7 @@ fn a_floors_node_bounds_clear_only_moves_the_exact_surface_clears() {
             let drop = PointDrop::grown(&part, &cutter.profile(), rho, &tol);
             let field = drop.field(&part, grid, -5.0, &tol, &mut Progress::none()).unwrap();
             let wide = drop.field_by(&drop.widened(&part, grid.spacing, &tol), grid, -5.0, &mut Progress::none()).unwrap().z;
+            let wide = swarf::zmap::bounds::NodeBounds::whole(grid.nx, grid.ny, wide).unwrap();
             let cl = ClSurface::new(field, drop.clone(), -5.0, true, tol.interpolation);
             let allowance = 0.3;
             let floor = Floor { cl: &cl, allowance, region: &region, bounds: Some(&wide) };

@@ -48,7 +48,6 @@ fn a_job_made_by_a_pool_writes_the_same_program_as_one_made_whole() {
     // The raster's node bounds come with the waterline's level map (the same surface).
     let maps = planner.level_maps(&surfaces).unwrap();
     assert_eq!(maps, vec![0, 1]);
-    assert_eq!(planner.node_bounds(&surfaces).unwrap(), Vec::<usize>::new());
     for &k in &maps {
         let s = surfaces[k];
         let (mut right, mut up, mut wide) = (Vec::new(), Vec::new(), Vec::new());
@@ -108,11 +107,10 @@ fn the_planner_cuts_on_the_surfaces_and_passes_it_was_given() {
     planner.keep_passes(work.operation, 0, vec![Vec::new(); work.passes]).unwrap();
     let err = planner.run(&mut Progress::none()).unwrap_err().to_string();
     assert!(err.contains("no cutting moves"), "{err}");
-    // The node bounds its links and entries take, from bands as a pool makes them: the same
-    // program; bounds below everything (every move clears by them): another.
+    // The node bounds its links and entries take, given from bands (as a pool gives those of
+    // a level map's surface): the same program as those it makes itself as it needs them;
+    // bounds below everything (every move clears by them): another.
     let mut planner = prepared();
-    let surfaces = planner.surfaces().unwrap();
-    assert_eq!(planner.node_bounds(&surfaces).unwrap(), vec![0]);
     let wide: Vec<f64> = (0..s.grid.ny).step_by(9).flat_map(|j| planner.level_rows(s, j..(j + 9).min(s.grid.ny)).unwrap().2).collect();
     planner.keep_node_bounds(s, wide).unwrap();
     assert_eq!(planner.run(&mut Progress::none()).unwrap().gcode, whole);

@@ -217,7 +217,7 @@ export class Engine {
     const all = [this.#main, ...helpers];
     const n = all.length;
     const [{ needs }] = await Promise.all(all.map((c, w) => c.call({ type: 'prepare', job, bytes, name, helper: w > 0 })));
-    const { surfaces, rasters, levelMaps, nodeBounds } = needs;
+    const { surfaces, rasters, levelMaps } = needs;
     // Bands of rows of every exact CL surface, joined here.
     const joined = surfaces.map((s) => new Float64Array(s.nx * s.ny));
     const bands = surfaces.flatMap((s, surface) => ranges(s.ny, 4 * n).map(([j0, j1]) => ({ type: 'rows', surface, j0, j1 })));
@@ -228,13 +228,12 @@ export class Engine {
     await Promise.all(all.flatMap((c, w) => joined.map((z, surface) => (w === 0 || under.has(surface) ? c.call({ type: 'keepSurface', surface, z }) : null)).filter(Boolean)));
     // Ranges of raster passes, kept by the planner as they come; bands of the level maps
     // (each row's heights along the edges to the right, then up, then the widened cutter's
-    // heights at its nodes: the node bounds), joined here. The surfaces of the node bounds
-    // alone (rasters') come as level maps too; the planner keeps their bounds.
+    // heights at its nodes: the node bounds the planner's links take), joined here.
     const size = (k) => surfaces[k].nx * surfaces[k].ny;
-    const maps = new Map([...levelMaps, ...nodeBounds].map((k) => [k, { right: new Float64Array(size(k)), up: new Float64Array(size(k)), wide: new Float64Array(size(k)) }]));
+    const maps = new Map(levelMaps.map((k) => [k, { right: new Float64Array(size(k)), up: new Float64Array(size(k)), wide: new Float64Array(size(k)) }]));
     const tasks = [
       ...rasters.flatMap((r) => ranges(r.passes, 4 * n).map(([i0, i1]) => ({ type: 'passes', operation: r.operation, i0, i1 }))),
-      ...[...maps.keys()].flatMap((surface) => ranges(surfaces[surface].ny, 4 * n).map(([j0, j1]) => ({ type: 'levelRows', surface, j0, j1 }))),
+      ...levelMaps.flatMap((surface) => ranges(surfaces[surface].ny, 4 * n).map(([j0, j1]) => ({ type: 'levelRows', surface, j0, j1 }))),
     ];
     const kept = [];
     const done = (t, r) => {
@@ -249,10 +248,7 @@ export class Engine {
     };
     await share(all, tasks, done, stage(0.2, 0.5, 'passes and level maps'));
     // Every worker keeps the level maps: each contours regions of levels on them.
-    for (const [surface, { right, up, wide }] of maps) {
-      if (levelMaps.includes(surface)) kept.push(...all.map((c, w) => c.call({ type: 'keepLevelMap', surface, right, up, wide: w === 0 ? wide : new Float64Array(0) })));
-      else kept.push(this.#main.call({ type: 'keepNodeBounds', surface, wide }));
-    }
+    for (const [surface, { right, up, wide }] of maps) kept.push(...all.map((c, w) => c.call({ type: 'keepLevelMap', surface, right, up, wide: w === 0 ? wide : new Float64Array(0) })));
     await Promise.all(kept);
     // Without z-level work the helpers only cut bands of the stock from now on: they let go of
     // their copy of the part and surfaces.

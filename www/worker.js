@@ -143,9 +143,6 @@ self.onmessage = async (event) => {
     } else if (type === 'keepLevelMap') {
       planned().keepLevelMap(event.data.surface, event.data.right, event.data.up, event.data.wide);
       self.postMessage({ id, ok: true });
-    } else if (type === 'keepNodeBounds') {
-      planned().keepNodeBounds(event.data.surface, event.data.wide);
-      self.postMessage({ id, ok: true });
     } else if (type === 'passes') {
       const flat = planned().rasterPasses(event.data.operation, event.data.i0, event.data.i1);
       self.postMessage({ id, ok: true, flat }, [flat.buffer]);

@@ -72,24 +72,6 @@ impl Prepared {
         Ok(out)
     }
 
-    /// Which of `surfaces` the enabled operations want the node bounds of
-    /// ([`crate::strategy::Context::node_bounds`]) without their level maps (rasters), as
-    /// indices. Those of the level maps' come with them ([`Prepared::level_rows`]).
-    pub fn node_bounds(&self, surfaces: &[SurfaceRequest]) -> Result<Vec<usize>> {
-        let maps = self.level_maps(surfaces)?;
-        let mut out = Vec::new();
-        for op in self.job.operations.iter().map(Operation::op).filter(|o| o.enabled()) {
-            for r in op.node_bounds(&self.ctx)? {
-                if let Some(k) = surfaces.iter().position(|s| *s == r) {
-                    if !out.contains(&k) && !maps.contains(&k) {
-                        out.push(k);
-                    }
-                }
-            }
-        }
-        Ok(out)
-    }
-
     /// Rows `rows` of the level map of surface `request` (kept, or made here): the bounds
     /// along the edges to the right, those along the edges up, and the widened cutter's
     /// heights at the rows' nodes (the node bounds).
@@ -113,8 +95,8 @@ impl Prepared {
         Ok(())
     }
 
-    /// Keeps the node bounds of surface `request` from its rows' widened heights (its bands
-    /// joined).
+    /// Keeps the node bounds of surface `request` ([`crate::strategy::Context::node_bounds`])
+    /// from its rows' widened heights (its bands joined).
     pub fn keep_node_bounds(&mut self, request: SurfaceRequest, wide: Vec<f64>) -> Result<()> {
         if self.ctx.keep_node_bounds(request, wide) {
             Ok(())

@@ -15,6 +15,7 @@ use crate::progress::Progress;
 use crate::sim::verify::Simulator;
 use crate::tool::Tool;
 use crate::toolpath::entry::{Entry, Keepout};
+use crate::zmap::bounds::NodeBounds;
 use crate::toolpath::link::{Feeds, LinkSettings, Linker};
 use crate::toolpath::Toolpath;
 use crate::zmap::cc::cc_zmap;
@@ -84,7 +85,7 @@ pub struct Caches {
     widened: Vec<((Profile, u64, u64), Arc<ExactBuilder>)>,
     levels: Vec<(SurfaceKey, Arc<LevelMap>)>,
     /// The widened cutters' heights at the nodes of a surface's grid ([`Context::node_bounds`]).
-    bounds: Vec<(SurfaceKey, Arc<Vec<f64>>)>,
+    bounds: Vec<(SurfaceKey, Arc<NodeBounds>)>,
     pub counts: CacheCounts,
 }
 
@@ -255,27 +256,31 @@ impl Context {
         if let Some((_, m)) = self.caches.levels.iter().find(|(k, _)| *k == key) {
             return m.clone();
         }
-        let wide = self.node_bounds(request);
+        // The widened heights at every node (on every core natively), kept as the surface's
+        // node bounds too.
+        let builder = self.widened(request);
+        let (grid, n) = (request.grid, request.grid.nx * request.grid.ny);
+        // Without a way to cancel it cannot fail; were it to, bounds of +inf still hold.
+        let wide = self.drop(&request.profile).field_by(&builder, grid, request.floor, &mut Progress::none()).map(|w| w.z).unwrap_or_else(|_| vec![f64::INFINITY; n]);
         let map = Arc::new(LevelMap::new(cl, &wide, &self.tolerances).expect("the widened heights cover the grid"));
         self.caches.levels.push((key, map.clone()));
+        self.keep_node_bounds(request, wide);
         map
     }
 
-    /// The heights of the cutter of `request` widened by its grid's spacing at every node of
-    /// the grid ([`Context::widened`]; on every core natively): each bounds the surface from
-    /// above within a spacing of its node. Made once per request.
-    pub fn node_bounds(&mut self, request: SurfaceRequest) -> Arc<Vec<f64>> {
+    /// The heights of the cutter of `request` widened by its grid's spacing at the nodes of
+    /// its grid ([`Context::widened`]), each a bound from above of the surface within a spacing
+    /// of its node: those its level map took, else made in bands of rows as they are asked for.
+    pub fn node_bounds(&mut self, request: SurfaceRequest) -> Arc<NodeBounds> {
         let key = self.surface_key(&request);
         if let Some((_, b)) = self.caches.bounds.iter().find(|(k, _)| *k == key) {
             return b.clone();
         }
-        let builder = self.widened(request);
-        let n = request.grid.nx * request.grid.ny;
-        // Without a way to cancel it cannot fail; were it to, bounds of +inf still hold.
-        let wide = self.drop(&request.profile).field_by(&builder, request.grid, request.floor, &mut Progress::none()).map(|w| w.z).unwrap_or_else(|_| vec![f64::INFINITY; n]);
-        let wide = Arc::new(wide);
-        self.caches.bounds.push((key, wide.clone()));
-        wide
+        let (builder, drop) = (self.widened(request), self.drop(&request.profile));
+        let (grid, floor) = (request.grid, request.floor);
+        let bounds = Arc::new(NodeBounds::lazy(grid.nx, grid.ny, move |rows| drop.rows(&builder, grid, floor, rows, &mut Progress::none()).unwrap_or_default()));
+        self.caches.bounds.push((key, bounds.clone()));
+        bounds
     }
 
     /// The exact builder of the cutter of `request` widened by its grid's spacing
@@ -297,12 +302,10 @@ impl Context {
     /// Keeps `wide` (made by a pool, band by band) as the node bounds of `request`'s surface
     /// ([`Context::node_bounds`]); `false` when it holds another number of heights.
     pub fn keep_node_bounds(&mut self, request: SurfaceRequest, wide: Vec<f64>) -> bool {
-        if wide.len() != request.grid.nx * request.grid.ny {
-            return false;
-        }
+        let Some(bounds) = NodeBounds::whole(request.grid.nx, request.grid.ny, wide) else { return false };
         let key = self.surface_key(&request);
         self.caches.bounds.retain(|(k, _)| *k != key);
-        self.caches.bounds.push((key, Arc::new(wide)));
+        self.caches.bounds.push((key, Arc::new(bounds)));
         true
     }
 

@@ -257,10 +257,6 @@ impl Operate for FinishRaster {
         Ok(vec![self.request(ctx)?])
     }
 
-    fn node_bounds(&self, ctx: &Context) -> Result<Vec<SurfaceRequest>> {
-        self.surfaces(ctx)
-    }
-
     fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Vec<Toolpath>> {
         let tool = ctx.tool(&self.name, self.tool)?.clone();
         let profile = tool.cutter.profile();
@@ -289,7 +285,7 @@ impl Operate for FinishRaster {
             }
         }
         let bounds = ctx.node_bounds(request);
-        let floor_surface = Floor { cl: &cl, allowance: self.allowance, region: &region, bounds: Some(&bounds) };
+        let floor_surface = Floor { cl: &cl, allowance: self.allowance, region: &region, bounds: Some(bounds.as_ref()) };
         Ok(vec![ctx.link(&self.name, &tool, &runs, &floor_surface, self.entry, self.stay_down_max.unwrap_or(2.0 * self.stepover))])
     }
 }

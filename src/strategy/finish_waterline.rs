@@ -175,7 +175,7 @@ impl Operate for FinishWaterline {
         }
         let region = Region::Rect { min: grid.origin, max: grid.node(grid.nx - 1, grid.ny - 1) };
         let bounds = ctx.node_bounds(request);
-        let floor_surface = Floor { cl: &cl, allowance: self.allowance, region: &region, bounds: Some(&bounds) };
+        let floor_surface = Floor { cl: &cl, allowance: self.allowance, region: &region, bounds: Some(bounds.as_ref()) };
         Ok(vec![ctx.link(&self.name, &tool, &runs, &floor_surface, self.entry, 2.0 * profile.radius)])
     }
 }

@@ -125,11 +125,6 @@ pub trait Operate {
     fn level_maps(&self, _ctx: &Context) -> Result<Vec<context::SurfaceRequest>> {
         Ok(Vec::new())
     }
-    /// The CL surfaces whose widened heights at the nodes ([`Context::node_bounds`]) it will
-    /// ask for besides its level maps' (a raster's links and entries), named before it plans.
-    fn node_bounds(&self, _ctx: &Context) -> Result<Vec<context::SurfaceRequest>> {
-        Ok(Vec::new())
-    }
     /// The regions of its levels, as work a pool of workers can share out just before it
     /// plans, on the in-process stock as it is then (z-level roughing and what clears the same
     /// levels another way; none by default).

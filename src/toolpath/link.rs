@@ -12,6 +12,7 @@ use serde::{Deserialize, Serialize};
 use super::entry::{enter_3d, Entry, Keepout, Kind};
 use super::Move;
 use crate::geom::{tolerance::BOUND_SLACK, DVec2, DVec3, Tolerances};
+use crate::zmap::bounds::NodeBounds;
 use crate::zmap::region::Region;
 use crate::zmap::surface::{point_at, ClSurface};
 
@@ -46,7 +47,7 @@ pub struct Floor<'a> {
     /// ([`crate::zmap::drop::PointDrop::widened`]), where the strategy has them: each bounds
     /// the surface from above within a spacing of its node, so a move clear of the highest of
     /// them around it needs no exact drops ([`Floor::clears_by_bounds`]).
-    pub bounds: Option<&'a [f64]>,
+    pub bounds: Option<&'a NodeBounds>,
 }
 
 impl Floor<'_> {
@@ -59,7 +60,7 @@ impl Floor<'_> {
     pub fn clears_by_bounds(&self, a: DVec3, b: DVec3, tolerance: f64) -> bool {
         let Some(wide) = self.bounds else { return false };
         let f = &self.cl.field;
-        if wide.len() != f.nx * f.ny {
+        if wide.size() != (f.nx, f.ny) {
             return false;
         }
         let (lo, hi) = (a.truncate().min(b.truncate()), a.truncate().max(b.truncate()));
@@ -77,7 +78,7 @@ impl Floor<'_> {
             Region::Mask(m) if same_grid(m) => (j0..=j1).all(|j| (i0..=i1).all(|i| m.at(i, j) >= 0.5)),
             Region::Mask(_) => false,
         };
-        in_region && (j0..=j1).all(|j| wide[j * f.nx + i0..=j * f.nx + i1].iter().all(|&h| h <= lowest))
+        in_region && (j0..=j1).all(|j| wide.row(j)[i0..=i1].iter().all(|&h| h <= lowest))
     }
 }
 

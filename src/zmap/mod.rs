@@ -12,6 +12,7 @@
 
 pub mod cc;
 pub mod bench;
+pub mod bounds;
 pub mod cl_exact;
 pub mod cl_inverse;
 mod cone;
