@@ -300,8 +300,9 @@ fn the_level_maps_bounds_hold_every_edges_exact_profile() {
 /// A floor's node bounds (the widened cutter's heights at the nodes) decide a move only where
 /// it clears the exact surface all along: on spiky terrain, for every cutter shape, plain and
 /// grown, moves at heights about the surface's highest along them, each judged by the exact
-/// drop at 400 points wherever the bounds call it clear; and the bounds decide many of those
-/// a few tenths above (they spare the exact test there).
+/// drop and the region at 400 points wherever the bounds call it clear (within a rectangle and
+/// within the part's silhouette); and the bounds decide many of those a few tenths above
+/// (they spare the exact test there).
 #[test]
 fn a_floors_node_bounds_clear_only_moves_the_exact_surface_clears() {
     use swarf::toolpath::link::Floor;
@@ -319,9 +320,13 @@ fn a_floors_node_bounds_clear_only_moves_the_exact_surface_clears() {
             let wide = swarf::zmap::bounds::NodeBounds::whole(grid.nx, grid.ny, wide).unwrap();
             let cl = ClSurface::new(field, drop.clone(), -5.0, true, tol.interpolation);
             let allowance = 0.3;
-            let floor = Floor { cl: &cl, allowance, region: &region, bounds: Some(&wide) };
+            // Within the stock's rectangle, and within the part's silhouette on the same grid
+            // (where a point belongs to its nearest node's side).
+            let silhouette = Region::silhouette(&cl.field, 0.5, 1.0);
             let (mut high, mut decided) = (0, 0);
-            for _ in 0..400 {
+            for n in 0..600 {
+                let region = if n % 3 == 2 { &silhouette } else { &region };
+                let floor = Floor { cl: &cl, allowance, region, bounds: Some(&wide) };
                 let a = DVec2::new(16.0 * rng.next() - 8.0, 16.0 * rng.next() - 8.0);
                 let b = (a + DVec2::from_angle(std::f64::consts::TAU * rng.next()) * (0.1 + 3.9 * rng.next())).clamp(DVec2::splat(-9.0), DVec2::splat(9.0));
                 let exact: Vec<f64> = (0..=400).map(|k| drop.at(a.lerp(b, k as f64 / 400.0), -5.0)).collect();
@@ -332,6 +337,7 @@ fn a_floors_node_bounds_clear_only_moves_the_exact_surface_clears() {
                     decided += (rise > 0.3) as usize;
                     for (k, &z) in exact.iter().enumerate() {
                         let t = k as f64 / 400.0;
+                        assert!(region.contains(a.lerp(b, t)), "{cutter:?} ρ {rho}: {a} to {b} cleared by the bounds, yet out of the region at t {t}");
                         assert!(za + (zb - za) * t + tol.height >= z + allowance - 1e-9, "{cutter:?} ρ {rho}: {a} to {b} cleared by the bounds, yet {} under the surface at t {t}", z + allowance - za - (zb - za) * t);
                     }
                 }
