@@ -256,12 +256,8 @@ impl Context {
         if let Some((_, m)) = self.caches.levels.iter().find(|(k, _)| *k == key) {
             return m.clone();
         }
-        // The widened heights at every node (on every core natively), kept as the surface's
-        // node bounds too.
-        let builder = self.widened(request);
-        let (grid, n) = (request.grid, request.grid.nx * request.grid.ny);
-        // Without a way to cancel it cannot fail; were it to, bounds of +inf still hold.
-        let wide = self.drop(&request.profile).field_by(&builder, grid, request.floor, &mut Progress::none()).map(|w| w.z).unwrap_or_else(|_| vec![f64::INFINITY; n]);
+        // The widened heights at every node, kept as the surface's node bounds too.
+        let wide = LevelMap::widened_heights(cl, &self.widened(request));
         let map = Arc::new(LevelMap::new(cl, &wide, &self.tolerances).expect("the widened heights cover the grid"));
         self.caches.levels.push((key, map.clone()));
         self.keep_node_bounds(request, wide);

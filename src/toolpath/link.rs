@@ -72,10 +72,9 @@ impl Floor<'_> {
         }
         let (i0, j0, i1, j1) = (i0 as usize, j0 as usize, i1 as usize, j1 as usize);
         let lowest = a.z.min(b.z) + tolerance - self.allowance - BOUND_SLACK;
-        let same_grid = |m: &crate::zmap::HeightField| m.origin == f.origin && m.spacing == f.spacing && m.nx == f.nx && m.ny == f.ny;
         let in_region = match self.region {
             Region::Rect { .. } => self.region.contains(a.truncate()) && self.region.contains(b.truncate()),
-            Region::Mask(m) if same_grid(m) => (j0..=j1).all(|j| (i0..=i1).all(|i| m.at(i, j) >= 0.5)),
+            Region::Mask(m) if m.grid() == f.grid() => (j0..=j1).all(|j| (i0..=i1).all(|i| m.at(i, j) >= 0.5)),
             Region::Mask(_) => false,
         };
         in_region && (j0..=j1).all(|j| wide.row(j)[i0..=i1].iter().all(|&h| h <= lowest))

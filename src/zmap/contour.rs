@@ -74,10 +74,16 @@ impl LevelMap {
     /// The map of `cl` from `builder`, its drop's [`crate::zmap::drop::PointDrop::widened`]
     /// by the grid's spacing: its z-map made here, on every core natively.
     pub fn widened_by(cl: &ClSurface, builder: &ExactBuilder, tol: &Tolerances) -> LevelMap {
+        LevelMap::new(cl, &LevelMap::widened_heights(cl, builder), tol).expect("the widened heights cover the grid")
+    }
+
+    /// The heights of `builder`'s cutter (`cl`'s drop widened, [`crate::zmap::drop::PointDrop::widened`])
+    /// at every node of `cl`'s grid, on every core natively: what a map is made from, and the
+    /// surface's node bounds ([`crate::zmap::bounds::NodeBounds`]).
+    pub fn widened_heights(cl: &ClSurface, builder: &ExactBuilder) -> Vec<f64> {
         let f = &cl.field;
         // Without a way to cancel it cannot fail; were it to, bounds of +inf still hold.
-        let wide = cl.drop().field_by(builder, f.grid(), cl.floor(), &mut Progress::none()).map(|w| w.z).unwrap_or_else(|_| vec![f64::INFINITY; f.nx * f.ny]);
-        LevelMap::new(cl, &wide, tol).expect("the widened heights cover the grid")
+        cl.drop().field_by(builder, f.grid(), cl.floor(), &mut Progress::none()).map(|w| w.z).unwrap_or_else(|_| vec![f64::INFINITY; f.nx * f.ny])
     }
 
     /// Rows `rows` of the map (each row's bounds along the edges to the right, then those
