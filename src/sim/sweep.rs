@@ -148,6 +148,16 @@ impl Sweep {
                 if p.flat_radius() == 0.0 {
                     return self.ball_line(a, b, q);
                 }
+                if p.corner > 0.0 {
+                    // Behind the lower end (rising moves) or past it (falling ones), every
+                    // position of the move stands no lower and no nearer than that end: the
+                    // cutter there is the envelope, without the contact search.
+                    let (end, beyond) = if dz > 0.0 { (a, -w.dot(d)) } else { (b, (q - b.truncate()).dot(d)) };
+                    if beyond >= 0.0 {
+                        let dist2 = (q - end.truncate()).length_squared();
+                        return if dist2 > r2 { f64::INFINITY } else { end.z + p.height(dist2.sqrt()) };
+                    }
+                }
                 // The interval of t during which the cutter's axis is within R of q.
                 let (t0, t1) = if k.inv_len2 > 0.0 {
                     let s = w.dot(d);
