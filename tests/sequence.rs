@@ -180,6 +180,29 @@ fn no_flat_or_bull_nose_end_feeds_straight_down_into_material() {
     }
 }
 
+/// The sample mould job with its finisher a flat end or a bull nose: after the roughing, some
+/// raster runs start at the stock's edge or in a shallow step too short to ramp on as before;
+/// they are entered from the air beside the stock or by a ramp of a few legs, never by a feed
+/// straight down into material.
+#[test]
+fn the_mould_job_with_a_flat_or_bull_nose_finisher_never_plunges() {
+    for cutter in [Cutter::flat(6.0), Cutter::bull_nose(6.0, 1.0)] {
+        let mut job = Job::demo();
+        job.tools[1].cutter = Cutter { flute_length: 30.0, ..cutter.clone() };
+        let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
+        let v = out.verification.as_ref().unwrap();
+        assert!(v.report.is_clean(), "{}: {}", cutter.describe(), v.report.describe());
+        assert!(out.warnings.iter().all(|w| !w.message.contains("straight down")), "{}: {:?}", cutter.describe(), out.warnings);
+        for (m, &vol) in out.moves.iter().zip(&v.volumes) {
+            if let Move::Line { to, .. } = m.mv {
+                if to.truncate().distance(m.from.truncate()) < 1e-9 && to.z < m.from.z {
+                    assert!(vol < 0.05, "{}: a straight plunge to {to} removed {vol} mm³", cutter.describe());
+                }
+            }
+        }
+    }
+}
+
 #[test]
 fn a_pocket_then_a_profile_with_two_tools_make_one_clean_program() {
     use swarf::profile::import::read_drawing;

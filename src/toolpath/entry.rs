@@ -2,7 +2,8 @@
 //! A cutter never feeds straight down into material: it descends on a helix about a point near
 //! the start, the largest that fits between a minimum and a maximum share of the tool's
 //! diameter, or where none fits, on a ramp along the path itself; where the path starts outside
-//! the material it feeds down in the air. The ramp angle is the parameter; a helix's pitch
+//! the material it feeds down in the air. (Where neither fits, the linker tries the air beside
+//! the start before it plunges: [`Kind::Side`].) The ramp angle is the parameter; a helix's pitch
 //! follows from it (a turn of circumference C drops C·tan(angle)).
 //!
 //! 3D paths (on a CL surface) get a helix of chords, each checked against what the path must
@@ -37,6 +38,13 @@ impl Default for Entry {
 pub trait Keepout {
     /// Whether the straight move from `a` to `b` stays clear (within `tolerance`).
     fn clears(&self, a: DVec3, b: DVec3, tolerance: f64) -> bool;
+
+    /// Whether it stays clear of the part alone, wherever it goes: a lead-in from the air
+    /// beside the stock may cross the edge of the region the paths keep to. As
+    /// [`Keepout::clears`] unless the keepout knows the two apart.
+    fn clears_part(&self, a: DVec3, b: DVec3, tolerance: f64) -> bool {
+        self.clears(a, b, tolerance)
+    }
 }
 
 /// Helix diameters tried, largest first.
@@ -45,8 +53,11 @@ const HELIX_SIZES: usize = 5;
 const HELIX_DIRECTIONS: usize = 8;
 /// Legs of a ramp along a path, forth and back, before it gives up (too deep for the path).
 const MAX_RAMP_LEGS: usize = 200;
-/// The shortest path a ramp runs along (mm).
+/// The shortest path a ramp runs along (mm), unless it gets down in a few legs.
 const MIN_RAMP_RUN: f64 = 0.5;
+/// Legs a ramp may take along a run shorter than [`shortest_ramp`]: a shallow step down at the
+/// start of a short run ramps over it rather than plunging.
+const SHORT_RAMP_LEGS: f64 = 8.0;
 /// Chords per turn of a 3D helix.
 const CHORDS_PER_TURN: usize = 24;
 
@@ -67,6 +78,9 @@ pub enum Kind {
     /// No helix fits and the path is too short to ramp on: fed straight down (a ball's tip
     /// cuts at its centre; the strategy warns for other shapes).
     Plunge,
+    /// Instead of a plunge: down in the air beside the start, then in level
+    /// ([`crate::toolpath::link::Linker`]'s, where the material ends within reach).
+    Side,
 }
 
 /// The moves from above `run[0]` at height `top` down to `run[0]` (`top` above it), entering
@@ -129,8 +143,9 @@ fn helix_3d(top: f64, p0: DVec3, radius: f64, entry: &Entry, tan: f64, keep: &dy
 /// p0. `None` when the run is too short to ramp on.
 fn ramp_along(top: f64, run: &[DVec3], radius: f64, tan: f64, feed: f64) -> Option<Vec<Move>> {
     let length: f64 = run.windows(2).map(|w| w[0].truncate().distance(w[1].truncate())).sum();
-    // Shorter than this, a ramp would go back and forth on the spot.
-    if length < shortest_ramp(radius) || tan <= 0.0 {
+    // Shorter than this, a ramp would go back and forth on the spot, unless the step down is
+    // shallow enough for a few legs.
+    if tan <= 0.0 || length <= 0.0 || (length < shortest_ramp(radius) && top - run[0].z > SHORT_RAMP_LEGS * length * tan) {
         return None;
     }
     let mut moves = Vec::new();
@@ -243,6 +258,24 @@ mod tests {
             let flat = w[0].truncate().distance(w[1].truncate());
             assert!(w[0].z - w[1].z <= flat * tan + 1e-9 || (w[1].z - run_z(w[1].x)).abs() < 1e-9, "{w:?}");
         }
+    }
+
+    #[test]
+    fn a_short_run_ramps_down_a_shallow_step_and_plunges_only_down_a_deep_one() {
+        let run = [DVec3::new(0.0, 0.0, -1.0), DVec3::new(0.4, 0.0, -1.0)];
+        let tan = 3f64.to_radians().tan();
+        // 0.1 mm down takes 1.9 mm of ramp: five legs along 0.4 mm.
+        let (moves, kind) = enter_3d(-0.9, 0.0, &run, 3.0, &Entry::default(), &Never, (100.0, 500.0), 1e-6);
+        assert_eq!(kind, Kind::Ramp);
+        let pts = walk(run[0].truncate().extend(-0.9), &moves);
+        assert!(pts.last().unwrap().distance(run[0]) < 1e-12);
+        for w in pts.windows(2) {
+            assert!(w[0].z - w[1].z <= w[0].truncate().distance(w[1].truncate()) * tan + 1e-9, "{w:?}");
+            assert!(w[1].x >= -1e-12 && w[1].x <= 0.4 + 1e-12 && w[1].z >= -1.0 - 1e-12);
+        }
+        // 1 mm down would take 48 legs on the spot.
+        let (_, kind) = enter_3d(0.0, 0.0, &run, 3.0, &Entry::default(), &Never, (100.0, 500.0), 1e-6);
+        assert_eq!(kind, Kind::Plunge);
     }
 
     #[test]

@@ -85,6 +85,15 @@ impl Floor<'_> {
 /// surface than its way does, and the exact test is the better use of the time.
 const MOST_BOUND_NODES: f64 = 400.0;
 
+impl Floor<'_> {
+    /// Whether the straight move from `a` to `b` stays on or above the floor at every point of
+    /// the surface along it (within `tolerance`), in the region or not.
+    fn above_surface(&self, a: DVec3, b: DVec3, tolerance: f64) -> bool {
+        let above = |t: f64, z: f64| point_at(a, b, t).z + tolerance >= z + self.allowance;
+        self.cl.along_while(a.truncate(), b.truncate(), above).iter().all(|&(t, z)| above(t, z))
+    }
+}
+
 impl Keepout for Floor<'_> {
     /// Whether the straight move from `a` to `b` stays inside the region and on or above the
     /// floor (within `tolerance`): by the widened heights around it where they decide
@@ -99,6 +108,11 @@ impl Keepout for Floor<'_> {
         // Ended at the first point it passes below, if any; else every point, each in the region.
         let along = self.cl.along_while(a.truncate(), b.truncate(), above);
         along.iter().all(|&(t, z)| above(t, z)) && along.iter().all(|&(t, _)| self.region.contains(point_at(a, b, t).truncate()))
+    }
+
+    /// The surface alone (a lead-in from beside the stock may cross the region's edge).
+    fn clears_part(&self, a: DVec3, b: DVec3, tolerance: f64) -> bool {
+        self.above_surface(a, b, tolerance)
     }
 }
 
@@ -138,6 +152,8 @@ pub struct Entries {
     pub helix: usize,
     pub ramp: usize,
     pub plunge: usize,
+    /// In level from the air beside the start, where a plunge would have been.
+    pub side: usize,
 }
 
 impl Entries {
@@ -147,6 +163,7 @@ impl Entries {
             Kind::Helix => self.helix += 1,
             Kind::Ramp => self.ramp += 1,
             Kind::Plunge => self.plunge += 1,
+            Kind::Side => self.side += 1,
         }
     }
 }
@@ -193,12 +210,24 @@ impl Linker<'_> {
                 let top = (p0.z.max(material) + settings.rapid_gap).min(clearance);
                 // Across at the rapid gap above the material on the way (the full clearance
                 // only where that is as high): a short retract.
-                let travel = if settings.full_retract { clearance } else { ((self.material_along)(at.truncate(), p0.truncate()) + settings.rapid_gap).max(top).min(clearance) };
-                retract(at, p0.truncate(), travel, top, &mut moves);
+                let travel = |to: DVec2, stop: f64| if settings.full_retract { clearance } else { ((self.material_along)(at.truncate(), to) + settings.rapid_gap).max(stop).min(clearance) };
                 let inside = inside.and_then(|f| f.get(i).copied()).unwrap_or_else(|| (self.estimate)(p0.truncate()) > p0.z + self.threshold);
                 let (entry, kind) = enter_3d(top, if inside { material } else { f64::NEG_INFINITY }, run, self.radius, &self.entry, self.keep, (self.feeds.plunge, self.feeds.cut), tolerances.height);
-                entries.count(kind);
-                moves.extend(entry);
+                match if kind == Kind::Plunge { self.beside(p0, tolerances.height) } else { None } {
+                    Some(q) => {
+                        // Down in the air beside the start, then in level.
+                        let stop = (p0.z + settings.rapid_gap).min(clearance);
+                        retract(at, q, travel(q, stop), stop, &mut moves);
+                        moves.push(Move::Line { to: q.extend(p0.z), feed: self.feeds.plunge });
+                        moves.push(Move::Line { to: p0, feed: self.feeds.cut });
+                        entries.count(Kind::Side);
+                    }
+                    None => {
+                        retract(at, p0.truncate(), travel(p0.truncate(), top), top, &mut moves);
+                        entries.count(kind);
+                        moves.extend(entry);
+                    }
+                }
             }
             let fed = feeds.and_then(|f| f.get(i));
             moves.extend(run[1..].iter().enumerate().map(|(k, &p)| Move::Line { to: p, feed: fed.and_then(|f| f.get(k)).copied().unwrap_or(self.feeds.cut) }));
@@ -209,6 +238,27 @@ impl Linker<'_> {
             moves.push(Move::Rapid { to: at.truncate().extend(clearance) });
         }
         (start, moves, entries)
+    }
+}
+
+/// Rings of places beside a start tried for a lead-in from the air, a half radius apart, and
+/// directions tried on each.
+const SIDE_RINGS: usize = 6;
+const SIDE_DIRECTIONS: usize = 16;
+
+impl Linker<'_> {
+    /// Where the cutter may go down in the air beside `p0` and feed in level to it, instead of
+    /// plunging there: the nearest place (within three radii) where it touches no material
+    /// down to `p0`'s height and from which the level way in stays clear of the part. Where the
+    /// material ends within reach, as at the stock's edge, a run is entered from the side.
+    fn beside(&self, p0: DVec3, tolerance: f64) -> Option<DVec2> {
+        (1..=SIDE_RINGS).find_map(|ring| {
+            let distance = 0.5 * self.radius * ring as f64;
+            (0..SIDE_DIRECTIONS).find_map(|k| {
+                let q = p0.truncate() + DVec2::from_angle(std::f64::consts::TAU * k as f64 / SIDE_DIRECTIONS as f64) * distance;
+                ((self.material)(q) <= p0.z + tolerance && self.keep.clears_part(q.extend(p0.z), p0, tolerance)).then_some(q)
+            })
+        })
     }
 }
 
@@ -227,5 +277,83 @@ pub fn retract(at: DVec3, to: DVec2, travel: f64, stop: f64, out: &mut Vec<Move>
     }
     if stop < across {
         out.push(Move::Rapid { to: to.extend(stop) });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A region that refuses every helix, over a part no higher than `floor`.
+    struct Walled {
+        floor: f64,
+    }
+    impl Keepout for Walled {
+        fn clears(&self, _: DVec3, _: DVec3, _: f64) -> bool {
+            false
+        }
+        fn clears_part(&self, a: DVec3, b: DVec3, _: f64) -> bool {
+            a.z >= self.floor && b.z >= self.floor
+        }
+    }
+
+    /// A square stock of half-side `half` standing up to z = 0, for a cutter of radius 3: the
+    /// highest tip height at which the cutter at `p` touches it.
+    fn square(half: f64) -> impl Fn(DVec2) -> f64 {
+        move |p: DVec2| {
+            let outside = (p.abs() - DVec2::splat(half)).max(DVec2::ZERO).length();
+            if outside < 3.0 { 0.0 } else { f64::NEG_INFINITY }
+        }
+    }
+
+    fn linked(half: f64, run: &[DVec3]) -> (Vec<Move>, Entries) {
+        let material = square(half);
+        let along = |a: DVec2, b: DVec2| (0..=20).map(|k| material(a.lerp(b, k as f64 / 20.0))).fold(f64::NEG_INFINITY, f64::max);
+        let keep = Walled { floor: -5.0 };
+        let linker = Linker {
+            settings: LinkSettings { clearance_z: 5.0, ..LinkSettings::default() },
+            keep: &keep,
+            material: &material,
+            material_along: &along,
+            estimate: &material,
+            threshold: 0.01,
+            entry: Entry::default(),
+            radius: 3.0,
+            feeds: Feeds { cut: 1000.0, plunge: 300.0 },
+        };
+        let (_, moves, entries) = linker.link(&[run.to_vec()], &Tolerances::default());
+        (moves, entries)
+    }
+
+    #[test]
+    fn a_short_run_at_the_stocks_edge_is_entered_from_the_air_beside_it() {
+        // 2 mm deep, 0.25 mm long, 1 mm inside the edge: no helix, no ramp.
+        let run = [DVec3::new(9.0, 0.0, -2.0), DVec3::new(8.75, 0.0, -2.0)];
+        let (moves, entries) = linked(10.0, &run);
+        assert_eq!((entries.side, entries.plunge), (1, 0), "{moves:?}");
+        let material = square(10.0);
+        let mut at = DVec3::new(9.0, 0.0, 5.0);
+        let mut descents = 0;
+        for mv in &moves {
+            let to = mv.to();
+            if to.z < at.z - 1e-12 {
+                // Every descent is in the air: the cutter touches nothing above where it ends.
+                assert!(material(to.truncate()) <= to.z + 1e-9, "{at} -> {to}");
+                descents += 1;
+            }
+            at = to;
+        }
+        assert!(descents >= 1);
+        // In level to the run's start, at its height.
+        let k = moves.iter().position(|m| m.to() == run[0]).expect("the run's start");
+        assert_eq!(moves[k - 1].to().z, run[0].z);
+        assert!(matches!(moves[k], Move::Line { feed, .. } if feed == 1000.0));
+    }
+
+    #[test]
+    fn far_from_any_edge_it_still_plunges_and_says_so() {
+        let run = [DVec3::new(0.0, 0.0, -2.0), DVec3::new(0.25, 0.0, -2.0)];
+        let (_, entries) = linked(100.0, &run);
+        assert_eq!((entries.side, entries.plunge), (0, 1));
     }
 }
