@@ -232,3 +232,41 @@ fn the_roughing_plans_on_the_regions_a_pool_made_for_its_levels() {
     // For the very level: taken, and the top level is left out.
     assert_ne!(plan(empty, &work), whole);
 }
+
+/// The waterline's levels are known before it contours any (by the step-down, or by the
+/// scallop from the steep cells across each), so a pool makes their regions as it makes the
+/// roughing's: the job planned on them writes the program the job run whole writes, and a
+/// region given for one of its levels is the one taken.
+#[test]
+fn the_waterline_plans_on_the_regions_a_pool_made_for_its_levels() {
+    let job = job();
+    let whole = gcode_whole(&job);
+    let mut helper = job::prepare(&job, demo_part()).unwrap();
+    let mut plan = |emptied: Option<usize>| {
+        let mut running = job::prepare(&job, demo_part()).unwrap().start();
+        let mut works = Vec::new();
+        loop {
+            if let Some(work) = running.region_work(&mut Progress::none()).unwrap() {
+                let mut regions = helper.level_regions(work.request, &work.levels).unwrap();
+                if emptied == Some(works.len()) {
+                    let middle = regions.len() / 2;
+                    regions[middle] = swarf::profile::Shape::default();
+                }
+                running.keep_regions(&work, regions).unwrap();
+                works.push(work.levels.len());
+            }
+            if !running.plan_next(&mut Progress::none()).unwrap() {
+                break;
+            }
+            running.simulate(&mut Progress::none()).unwrap();
+        }
+        (running.finish(&mut Progress::none()).unwrap().gcode, works)
+    };
+    let (gcode, works) = plan(None);
+    // The roughing's levels, then the waterline's.
+    assert_eq!(works.len(), 2, "{works:?}");
+    assert!(works[1] > 20, "{works:?}");
+    assert_eq!(gcode, whole);
+    // A level of the waterline's given empty halfway down the part: taken, and left out.
+    assert_ne!(plan(Some(1)).0, whole);
+}

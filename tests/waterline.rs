@@ -67,3 +67,49 @@ fn the_mould_job_roughs_and_finishes_the_sample_part_clean() {
         }
     }
 }
+
+/// Levels by the scallop round a hemisphere: on the sphere the ball's centre rides (radius
+/// R + r), neighbouring levels lie about s = sqrt(8 r h) apart along it, the spacing that leaves a
+/// scallop h on a flat, wherever the slope is; where the slope is steep the step down is nearly s,
+/// where it is shallow much less.
+#[test]
+fn levels_by_the_scallop_lie_a_scallops_width_apart_along_a_hemisphere() {
+    let (rs, r, h) = (10.0, 3.0, 0.01);
+    let part = common::cap(rs, 9.9, 0.2);
+    let job = Job {
+        part: PartSetup { placement: Placement::Keep, ..PartSetup::default() },
+        stock: swarf::job::Stock { margin_xy: 5.0, margin_top: 0.5, ..Default::default() },
+        tools: vec![Tool { cutter: Cutter::ball(2.0 * r), ..Tool::default() }],
+        operations: vec![Operation::FinishWaterline(FinishWaterline { scallop: Some(h), slope_min: 25.0, ..FinishWaterline::default() })],
+        simulation: Simulation { verify: true, cell: Some(0.2) },
+        ..Job::default()
+    };
+    let out = job::run(&job, part, &mut Progress::none()).unwrap();
+    assert!(out.verification.as_ref().unwrap().report.is_clean());
+    // The levels: heights of level feeds.
+    let mut levels: Vec<f64> = Vec::new();
+    let mut at = out.paths[0].start;
+    for m in &out.paths[0].moves {
+        let to = m.to();
+        if matches!(m, Move::Line { .. }) && (to.z - at.z).abs() < 1e-12 && !levels.iter().any(|&z| (z - to.z).abs() < 1e-9) {
+            levels.push(to.z);
+        }
+        at = to;
+    }
+    levels.sort_by(|a, b| b.total_cmp(a));
+    let (rho, s) = (rs + r, (8.0 * r * h).sqrt());
+    let elevation = |z: f64| ((z + r) / rho).clamp(-1.0, 1.0).asin();
+    let mut checked = 0;
+    for w in levels.windows(2) {
+        if w[1] < 0.5 {
+            continue; // the cap's rim
+        }
+        let apart = rho * (elevation(w[0]) - elevation(w[1]));
+        assert!(apart <= 1.1 * s && apart >= 0.85 * s, "levels {} and {}: {apart} mm apart along the sphere, s = {s}", w[0], w[1]);
+        checked += 1;
+    }
+    assert!(checked >= 10, "{levels:?}");
+    // Steeper lower down: the steps grow towards the equator.
+    let steps: Vec<f64> = levels.windows(2).filter(|w| w[1] >= 0.5).map(|w| w[0] - w[1]).collect();
+    assert!(steps.last().unwrap() > &(1.5 * steps[0]), "{steps:?}");
+}

@@ -4,13 +4,17 @@
 //! than `slopeMin`); raster finishing's `slopeMax` takes the rest, so the two together finish a
 //! part "steep and shallow". Levels are spaced by the step-down, or by the scallop height: on a
 //! slope θ a ball of radius r leaves a scallop h between paths s = sqrt(8 r h) apart along the
-//! surface, so the next level lies s · sin θ lower, θ the shallowest slope on the level's
-//! contours. The contours are linked and entered by the shared linker ([`crate::toolpath::link`]).
+//! surface, so the next level lies s · sin θ lower, θ the shallowest slope of the steep grid
+//! cells across the level (those its steep contours pass through). Either way the levels are
+//! known before any is contoured, so their regions are made side by side (on threads, or by a
+//! pool of workers in the page). The contours are linked and entered by the shared linker
+//! ([`crate::toolpath::link`]).
 
 use serde::{Deserialize, Serialize};
 
 use super::profile2d::Direction;
 use super::context::SurfaceRequest;
+use super::rough_zlevel::{pack, RegionWork};
 use super::{Context, FieldError, Operate};
 use crate::error::{Error, Result};
 use crate::geom::{DVec2, DVec3};
@@ -99,6 +103,15 @@ impl Operate for FinishWaterline {
         Ok(vec![SurfaceRequest { profile, grid, floor: stock.min.z, builder: ClBuilder::Exact }])
     }
 
+    fn region_work(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Option<RegionWork>> {
+        let request = self.surfaces(ctx)?[0];
+        let cl = ctx.cl_surface(request, progress)?;
+        let profile = ctx.tool(&self.name, self.tool)?.cutter.profile();
+        let all = pack(&vec![true; request.grid.nodes()]);
+        let levels = self.heights(&cl.field, request.floor, profile.radius).into_iter().map(|z| (z - self.allowance, all.clone())).collect();
+        Ok(Some(RegionWork { request, levels }))
+    }
+
     fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Vec<Toolpath>> {
         let tool = ctx.tool(&self.name, self.tool)?.clone();
         let profile = tool.cutter.profile();
@@ -115,31 +128,23 @@ impl Operate for FinishWaterline {
         let map = ctx.level_map(request, &cl);
         let steep = self.slope_min.to_radians().tan();
         let slope = |p: DVec2| gradient(&cl.field, p);
-        let top = cl.field.max();
+        let heights = self.heights(&cl.field, floor, profile.radius);
+        // Every level's region on whichever core is free (the levels are known beforehand),
+        // unless a pool made it already.
+        let given = &ctx.given_regions;
+        let all = (!given.is_empty()).then(|| pack(&vec![true; grid.nodes()]));
+        let mut made: Vec<(f64, Option<crate::profile::Shape>)> = heights.iter().map(|&z| (z, None)).collect();
+        crate::parallel::each_mut(&mut made, |(z, out)| {
+            let level = *z - self.allowance;
+            let kept = all.as_ref().and_then(|all| given.iter().find(|g| g.request == request && g.level == level && g.keep == *all));
+            *out = Some(kept.map_or_else(|| map.region(&cl, level, &|_, _| true, &tol), |g| g.region.clone()));
+        });
         let mut runs: Vec<Vec<DVec3>> = Vec::new();
-        let mut z = top - 0.5 * self.stepdown.min(top - floor);
-        let bottom = floor + self.allowance;
-        // At a fixed step-down the levels are known beforehand: their regions are made on
-        // whichever core is free (by the scallop, each level's step depends on the one above).
-        let mut made: Vec<(f64, Option<crate::profile::Shape>)> = Vec::new();
-        if self.scallop.is_none() {
-            let mut at = z;
-            while at > bottom && made.len() <= 100_000 {
-                made.push((at, None));
-                at -= self.stepdown;
-            }
-            crate::parallel::each_mut(&mut made, |(z, out)| *out = Some(map.region(&cl, *z - self.allowance, &|_, _| true, &tol)));
-        }
-        let mut k = 0;
-        while z > bottom {
-            if !progress.report((top - z) / (top - bottom).max(1e-9)) {
+        for (k, (z, region)) in made.into_iter().enumerate() {
+            if !progress.report(k as f64 / heights.len() as f64) {
                 return Err(Error::Cancelled);
             }
-            let region = match made.get_mut(k) {
-                Some((at, region)) if *at == z => region.take().expect("each level's region is taken once"),
-                _ => map.region(&cl, z - self.allowance, &|_, _| true, &tol),
-            };
-            let mut shallowest = f64::INFINITY;
+            let region = region.expect("each level's region is made");
             for l in &region.loops {
                 // The region's loops keep it on their left, the part on their right: climb with
                 // a clockwise spindle.
@@ -150,23 +155,8 @@ impl Operate for FinishWaterline {
                     if length < SHORTEST.max(crate::toolpath::entry::shortest_ramp(profile.radius)) {
                         continue;
                     }
-                    // Kept pieces are steep at their segments' middles.
-                    shallowest = piece.windows(2).map(|w| slope((w[0] + w[1]) * 0.5)).fold(shallowest, f64::min).max(steep);
                     runs.push(piece.into_iter().map(|p| p.extend(z)).collect());
                 }
-            }
-            k += 1;
-            let step = match self.scallop {
-                Some(h) if shallowest.is_finite() => {
-                    let s = (8.0 * profile.radius * h).sqrt();
-                    let sin = (shallowest.atan()).sin();
-                    (s * sin).clamp(LEAST_STEP, self.stepdown.max(LEAST_STEP))
-                }
-                _ => self.stepdown,
-            };
-            z -= step;
-            if k > 100_000 {
-                break;
             }
         }
         if runs.is_empty() {
@@ -177,6 +167,46 @@ impl Operate for FinishWaterline {
         let bounds = ctx.node_bounds(request);
         let floor_surface = Floor { cl: &cl, allowance: self.allowance, region: &region, bounds: Some(bounds.as_ref()) };
         Ok(vec![ctx.link(&self.name, &tool, &runs, &floor_surface, self.entry, 2.0 * profile.radius)])
+    }
+}
+
+impl FinishWaterline {
+    /// The heights of the levels, from the top down, known before any is contoured: a step-down
+    /// apart, or by the scallop: the next level s · sin θ lower, s = sqrt(8 r h) and θ the
+    /// shallowest slope of the steep cells (those the level's steep contours pass through) that
+    /// reach across its height.
+    fn heights(&self, cl: &HeightField, floor: f64, radius: f64) -> Vec<f64> {
+        let top = cl.max();
+        let bottom = floor + self.allowance;
+        let steep = self.slope_min.to_radians().tan();
+        // Per steep cell: the lowest and highest of its nodes, and its slope.
+        let mut cells = Vec::new();
+        if self.scallop.is_some() {
+            for j in 0..cl.ny.saturating_sub(1) {
+                for i in 0..cl.nx.saturating_sub(1) {
+                    let slope = gradient(cl, cl.origin + (DVec2::new(i as f64, j as f64) + 0.5) * cl.spacing);
+                    if slope >= steep {
+                        let z = [cl.at(i, j), cl.at(i + 1, j), cl.at(i, j + 1), cl.at(i + 1, j + 1)];
+                        cells.push((z.iter().copied().fold(f64::INFINITY, f64::min), z.iter().copied().fold(f64::NEG_INFINITY, f64::max), slope));
+                    }
+                }
+            }
+        }
+        let mut out = Vec::new();
+        let mut z = top - 0.5 * self.stepdown.min(top - floor);
+        while z > bottom && out.len() <= 100_000 {
+            out.push(z);
+            let level = z - self.allowance;
+            let shallowest = cells.iter().filter(|&&(lo, hi, _)| lo <= level && level <= hi).map(|&(_, _, slope)| slope).fold(f64::INFINITY, f64::min);
+            z -= match self.scallop {
+                Some(h) if shallowest.is_finite() => {
+                    let s = (8.0 * radius * h).sqrt();
+                    (s * shallowest.atan().sin()).clamp(LEAST_STEP, self.stepdown.max(LEAST_STEP))
+                }
+                _ => self.stepdown,
+            };
+        }
+        out
     }
 }
 
