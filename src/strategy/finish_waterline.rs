@@ -192,12 +192,14 @@ impl FinishWaterline {
                 }
             }
         }
+        // Shallowest first: at most levels one of the first cells reaches across.
+        cells.sort_by(|a, b| a.2.total_cmp(&b.2));
         let mut out = Vec::new();
         let mut z = top - 0.5 * self.stepdown.min(top - floor);
         while z > bottom && out.len() <= 100_000 {
             out.push(z);
             let level = z - self.allowance;
-            let shallowest = cells.iter().filter(|&&(lo, hi, _)| lo <= level && level <= hi).map(|&(_, _, slope)| slope).fold(f64::INFINITY, f64::min);
+            let shallowest = cells.iter().find(|&&(lo, hi, _)| lo <= level && level <= hi).map_or(f64::INFINITY, |c| c.2);
             z -= match self.scallop {
                 Some(h) if shallowest.is_finite() => {
                     let s = (8.0 * radius * h).sqrt();
