@@ -79,20 +79,20 @@ impl Floor<'_> {
         };
         in_region && (j0..=j1).all(|j| wide.row(j)[i0..=i1].iter().all(|&h| h <= lowest))
     }
+
+    /// The points of the surface along the straight move from `a` to `b` ([`ClSurface::along`])
+    /// when the move stays on or above the floor at every one (within `tolerance`), in the
+    /// region or not; `None` from the first point it passes below.
+    fn under(&self, a: DVec3, b: DVec3, tolerance: f64) -> Option<Vec<(f64, f64)>> {
+        let above = |t: f64, z: f64| point_at(a, b, t).z + tolerance >= z + self.allowance;
+        let along = self.cl.along_while(a.truncate(), b.truncate(), above);
+        along.iter().all(|&(t, z)| above(t, z)).then_some(along)
+    }
 }
 
 /// The most nodes [`Floor::clears_by_bounds`] looks at: a longer move's box holds more of the
 /// surface than its way does, and the exact test is the better use of the time.
 const MOST_BOUND_NODES: f64 = 400.0;
-
-impl Floor<'_> {
-    /// Whether the straight move from `a` to `b` stays on or above the floor at every point of
-    /// the surface along it (within `tolerance`), in the region or not.
-    fn above_surface(&self, a: DVec3, b: DVec3, tolerance: f64) -> bool {
-        let above = |t: f64, z: f64| point_at(a, b, t).z + tolerance >= z + self.allowance;
-        self.cl.along_while(a.truncate(), b.truncate(), above).iter().all(|&(t, z)| above(t, z))
-    }
-}
 
 impl Keepout for Floor<'_> {
     /// Whether the straight move from `a` to `b` stays inside the region and on or above the
@@ -104,15 +104,13 @@ impl Keepout for Floor<'_> {
         if self.clears_by_bounds(a, b, tolerance) {
             return true;
         }
-        let above = |t: f64, z: f64| point_at(a, b, t).z + tolerance >= z + self.allowance;
-        // Ended at the first point it passes below, if any; else every point, each in the region.
-        let along = self.cl.along_while(a.truncate(), b.truncate(), above);
-        along.iter().all(|&(t, z)| above(t, z)) && along.iter().all(|&(t, _)| self.region.contains(point_at(a, b, t).truncate()))
+        // Above every point of the surface along it, each in the region.
+        self.under(a, b, tolerance).is_some_and(|along| along.iter().all(|&(t, _)| self.region.contains(point_at(a, b, t).truncate())))
     }
 
     /// The surface alone (a lead-in from beside the stock may cross the region's edge).
     fn clears_part(&self, a: DVec3, b: DVec3, tolerance: f64) -> bool {
-        self.above_surface(a, b, tolerance)
+        self.under(a, b, tolerance).is_some()
     }
 }
 
