@@ -45,6 +45,13 @@ pub trait Keepout {
     fn clears_part(&self, a: DVec3, b: DVec3, tolerance: f64) -> bool {
         self.clears(a, b, tolerance)
     }
+
+    /// Whether the point `p` stands clear: what every move through it needs, so a path whose
+    /// corners are not all admitted is refused before any move of it is looked at. As a move
+    /// from `p` to itself unless the keepout has a quicker test.
+    fn admits(&self, p: DVec3, tolerance: f64) -> bool {
+        self.clears(p, p, tolerance)
+    }
 }
 
 /// Helix diameters tried, largest first.
@@ -104,7 +111,8 @@ pub fn enter_3d(top: f64, material: f64, run: &[DVec3], radius: f64, entry: &Ent
 }
 
 /// A helix of chords from (p0, top) down to p0 in whole turns about a centre beside p0, the
-/// largest that `keep` accepts (its lowest chords are checked first: they fail most often).
+/// largest that `keep` accepts (its lowest corners and chords are checked first: they fail
+/// most often).
 #[allow(clippy::too_many_arguments)]
 fn helix_3d(top: f64, p0: DVec3, radius: f64, entry: &Entry, tan: f64, keep: &dyn Keepout, feed: f64, tolerance: f64) -> Option<Vec<Move>> {
     let (lo, hi) = (entry.helix_min * radius, entry.helix_max * radius);
@@ -127,7 +135,8 @@ fn helix_3d(top: f64, p0: DVec3, radius: f64, entry: &Entry, tan: f64, keep: &dy
                 let a = start_angle + std::f64::consts::TAU * k as f64 / CHORDS_PER_TURN as f64;
                 (centre + DVec2::from_angle(a) * r).extend(top - drop * k as f64 / n as f64)
             };
-            let fits = (0..n).rev().all(|k| keep.clears(point(k), point(k + 1), tolerance));
+            // Its corners first, from the bottom: one test each, where a chord takes dozens.
+            let fits = (0..=n).rev().all(|k| keep.admits(point(k), tolerance)) && (0..n).rev().all(|k| keep.clears(point(k), point(k + 1), tolerance));
             if fits {
                 let mut moves: Vec<Move> = (1..n).map(|k| Move::Line { to: point(k), feed }).collect();
                 moves.push(Move::Line { to: p0, feed });
@@ -276,6 +285,39 @@ mod tests {
         // 1 mm down would take 48 legs on the spot.
         let (_, kind) = enter_3d(0.0, 0.0, &run, 3.0, &Entry::default(), &Never, (100.0, 500.0), 1e-6);
         assert_eq!(kind, Kind::Plunge);
+    }
+
+    /// Clear above a height within `half_width` of the line y = 5, counting the moves it is
+    /// asked about.
+    struct Counted {
+        floor: f64,
+        half_width: f64,
+        moves: std::cell::Cell<usize>,
+    }
+    impl Keepout for Counted {
+        fn clears(&self, a: DVec3, b: DVec3, tolerance: f64) -> bool {
+            if a != b {
+                self.moves.set(self.moves.get() + 1);
+            }
+            [a, b].iter().all(|p| p.z + tolerance >= self.floor && (p.y - 5.0).abs() <= self.half_width)
+        }
+    }
+
+    #[test]
+    fn helices_whose_corners_are_refused_cost_no_move_tests() {
+        // A slot 0.4 mm wide along the run: every helix (radius 0.9 to 2.7 mm) leaves it at a
+        // corner, so none is tried move by move, and the entry ramps along the run.
+        let p0 = DVec3::new(10.0, 5.0, -4.0);
+        let run = [p0, DVec3::new(5.0, 5.0, -4.0)];
+        let keep = Counted { floor: -4.0, half_width: 0.2, moves: std::cell::Cell::new(0) };
+        let (_, kind) = enter_3d(1.0, 0.0, &run, 3.0, &Entry::default(), &keep, (100.0, 500.0), 1e-6);
+        assert_eq!(kind, Kind::Ramp);
+        assert_eq!(keep.moves.get(), 0);
+        // Room for a helix: it is found, and its moves are each tested once.
+        let keep = Counted { floor: -4.0, half_width: 10.0, moves: std::cell::Cell::new(0) };
+        let (moves, kind) = enter_3d(1.0, 0.0, &run, 3.0, &Entry::default(), &keep, (100.0, 500.0), 1e-6);
+        assert_eq!(kind, Kind::Helix);
+        assert_eq!(keep.moves.get(), moves.len());
     }
 
     #[test]

@@ -104,13 +104,22 @@ impl Keepout for Floor<'_> {
         if self.clears_by_bounds(a, b, tolerance) {
             return true;
         }
-        // Above every point of the surface along it, each in the region.
+        // Above every point of the surface along it, each in the region: its ends (points of
+        // it too) before any drop.
+        if !(self.region.contains(a.truncate()) && self.region.contains(b.truncate())) {
+            return false;
+        }
         self.under(a, b, tolerance).is_some_and(|along| along.iter().all(|&(t, _)| self.region.contains(point_at(a, b, t).truncate())))
     }
 
     /// The surface alone (a lead-in from beside the stock may cross the region's edge).
     fn clears_part(&self, a: DVec3, b: DVec3, tolerance: f64) -> bool {
         self.under(a, b, tolerance).is_some()
+    }
+
+    /// In the region, and on or above the surface there by one exact drop.
+    fn admits(&self, p: DVec3, tolerance: f64) -> bool {
+        self.region.contains(p.truncate()) && p.z + tolerance >= self.cl.height(p.truncate()) + self.allowance
     }
 }
 
