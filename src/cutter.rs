@@ -122,6 +122,11 @@ pub struct Profile {
 /// it gives is off by about the square of the step times the curvature.
 const CONTACT_STEP: f64 = 1e-13;
 
+/// A Newton step of the contact search no longer than this (mm) is its last: near the root
+/// Newton converges quadratically, so the step taken leaves an error of about its square times
+/// `|P'' / 2 P'|`, far under [`CONTACT_STEP`] (the search used to take one more step to see it).
+const CONTACT_LAST_STEP: f64 = 1e-8;
+
 /// Within this share of the corner radius from the rim, the contact found is checked against
 /// the chord's ends (see [`Profile::contact_along`]).
 const RIM: f64 = 1e-4;
@@ -348,10 +353,13 @@ impl Profile {
             let rate = 2.0 * r * u2 + 2.0 * u * (r2 - dist2) - m2 * (2.0 * r * (a * a - u2) - 2.0 * u * r2);
             (value, rate)
         };
-        // Start where a gentle line meets the corner: for small u the quartic is about
-        // (f² - dist2) u² = m² a² f².
-        let gentle = (m2 / (f * f - dist2).max(1e-12 * f * f)).sqrt() * a * f;
-        let mut u = if gentle > u_lo && gentle < u_hi { gentle } else { 0.5 * (u_lo + u_hi) };
+        // P = 0 reads u = |m| a r / sqrt(r² (1 + m²) - dist2): exact at u0 = |m| a / sqrt(1 + m²)
+        // for a line through the axis (dist2 = 0); one step of that from u0 starts the search.
+        let k2 = 1.0 + m2;
+        let r0 = f + m.abs() * a / k2.sqrt();
+        let den = r0 * r0 * k2 - dist2;
+        let guess = if den > 0.0 { m.abs() * a * r0 / den.sqrt() } else { -1.0 };
+        let mut u = if guess > u_lo && guess < u_hi { guess } else { 0.5 * (u_lo + u_hi) };
         for _ in 0..100 {
             let (value, rate) = p(u);
             if value < 0.0 {
@@ -360,7 +368,7 @@ impl Profile {
                 u_hi = u;
             }
             let newton = u - value / rate;
-            if rate > 0.0 && (newton - u).abs() <= CONTACT_STEP {
+            if rate > 0.0 && (newton - u).abs() <= CONTACT_LAST_STEP {
                 u = newton.clamp(u_lo, u_hi);
                 break;
             }
