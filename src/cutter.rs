@@ -117,14 +117,16 @@ pub struct Profile {
     flat: f64,
 }
 
-/// The search for a bull nose's contact with a line stops when its step in the corner's radial
-/// coordinate is shorter than this (mm). It finds the top of a concave function, so the height
-/// it gives is off by about the square of the step times the curvature.
+/// The search for a bull nose's contact with a line stops when its bracket in the corner's
+/// radial coordinate is narrower than this (mm), or at [`CONTACT_LAST_STEP`]. It finds the top
+/// of a concave function, so the height it gives is off by about the square of the error times
+/// the curvature.
 const CONTACT_STEP: f64 = 1e-13;
 
 /// A Newton step of the contact search no longer than this (mm) is its last: near the root
 /// Newton converges quadratically, so the step taken leaves an error of about its square times
-/// `|P'' / 2 P'|`, far under [`CONTACT_STEP`] (the search used to take one more step to see it).
+/// `|P'' / 2 P'|`, of the order of [`CONTACT_STEP`] (the search used to take one more step to
+/// see that).
 const CONTACT_LAST_STEP: f64 = 1e-8;
 
 /// Within this share of the corner radius from the rim, the contact found is checked against
