@@ -257,8 +257,11 @@ impl PointDrop {
         }
         // Every point of a triangle lies at least `near` from the axis (its box's distance),
         // where the cutter's lower surface stands `height(near)` above the tip: the triangle
-        // lifts the tip no higher than its top less that. The triangles that could beat the
-        // first height are taken best bound first, until the bound falls to the height found.
+        // lifts the tip no higher than its top less that. Of the triangles that could beat the
+        // first height, the one with the best bound is dropped onto first, then the others in
+        // the list's order (highest top first, nearly the order of their bounds, as the
+        // cutter's lower surface rises by at most its radius: no sort for every drop), each
+        // unless its bound is no higher than the height found.
         CANDIDATES.with_borrow_mut(|candidates| {
             candidates.clear();
             for &k in list {
@@ -277,10 +280,12 @@ impl PointDrop {
                     candidates.push((bound, k));
                 }
             }
-            candidates.sort_unstable_by(|a, b| b.0.total_cmp(&a.0));
+            if let Some(first) = (0..candidates.len()).max_by(|&i, &j| candidates[i].0.total_cmp(&candidates[j].0)) {
+                candidates.swap(0, first);
+            }
             for &(bound, k) in candidates.iter() {
                 if bound <= best {
-                    break;
+                    continue;
                 }
                 let t = &self.triangles[k as usize];
                 if let Some(z) = t.facet.as_ref().and_then(|f| p.drop_facet(c, f)) {
