@@ -345,21 +345,42 @@ impl DexelStock {
 }
 
 impl DexelStock {
-    /// Cuts cell (i, j); returns the volume removed.
-    #[inline]
+    /// Cuts cell (i, j); returns the volume removed. Most cells a sweep's footprint covers
+    /// stand below its tip, and a conventional z-map's cell is one point: both are decided
+    /// here, inline in the loops over the footprint; a supersampled cell goes to
+    /// [`DexelStock::cut_split_cell`].
+    #[inline(always)]
     fn cut_cell(&mut self, sweep: &Sweep, i: usize, j: usize, reach: f64) -> f64 {
         let c = j * self.nx + i;
         let top = self.z[c];
         if top <= sweep.lowest_tip || top <= self.bottom {
             return 0.0; // the cutter never reaches down to this cell's material
         }
+        if self.k > 1 {
+            return self.cut_split_cell(sweep, i, j, reach);
+        }
+        let e = sweep.lowest(self.origin + (DVec2::new(i as f64, j as f64) + 0.5) * self.cell);
+        if e < top {
+            let new = e.max(self.bottom);
+            self.z[c] = new;
+            return (top - new) * self.widths[i] * self.heights[j];
+        }
+        0.0
+    }
+
+    /// [`DexelStock::cut_cell`] on a supersampled stock, for a cell whose material the sweep
+    /// may reach.
+    #[inline(never)]
+    fn cut_split_cell(&mut self, sweep: &Sweep, i: usize, j: usize, reach: f64) -> f64 {
+        let c = j * self.nx + i;
+        let top = self.z[c];
         let centre = self.origin + (DVec2::new(i as f64, j as f64) + 0.5) * self.cell;
         let area = self.widths[i] * self.heights[j];
         let (k, k2) = (self.k, self.k * self.k);
         let base = match self.is_split(c) {
             Some(s) => s * k2,
             None => {
-                if k == 1 || !sweep.rim_near(centre, reach) {
+                if !sweep.rim_near(centre, reach) {
                     let e = sweep.lowest(centre);
                     if e < top {
                         let new = e.max(self.bottom);
