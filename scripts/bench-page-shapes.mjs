@@ -6,6 +6,8 @@
 // for more than 30 s in one call.)
 //
 //   bash scripts/build-wasm.sh && node scripts/bench-page-shapes.mjs
+//
+// WORKERS=1 runs the engine with one worker instead of its default pool (one per core).
 import { chromium } from 'playwright-core';
 import { serveWww } from './serve-www.mjs';
 
@@ -14,9 +16,9 @@ const browser = await chromium.launch({ executablePath: process.env.CHROMIUM || 
 try {
   const page = await (await browser.newContext()).newPage();
   await page.goto(`${base}embed.html`);
-  const seconds = await page.evaluate(async () => {
+  const seconds = await page.evaluate(async (workers) => {
     const { createEngine } = await import('./swarf.js');
-    const engine = await createEngine();
+    const engine = await createEngine(workers ? { workers } : {});
     const out = {};
     for (const [shape, cornerRadius] of [['ball', 0], ['bullNose', 1], ['flat', 0]]) {
       for (let run = 0; run < 2; run++) {
@@ -28,7 +30,7 @@ try {
       }
     }
     return out;
-  });
+  }, Number(process.env.WORKERS) || 0);
   const fastest = Math.min(...Object.values(seconds));
   for (const [shape, t] of Object.entries(seconds)) console.log(`page (Chromium)  ${shape.padEnd(9)} ${t.toFixed(2).padStart(7)} s  ${(t / seconds.ball).toFixed(2)} × ball  ${(t / fastest).toFixed(2)} × fastest`);
   console.log(`page (Chromium)  largest ratio between two shapes: ${(Math.max(...Object.values(seconds)) / fastest).toFixed(2)}`);
