@@ -359,10 +359,17 @@ impl DexelStock {
         if self.k > 1 {
             return self.cut_split_cell(sweep, i, j, reach);
         }
-        let e = sweep.lowest(self.origin + (DVec2::new(i as f64, j as f64) + 0.5) * self.cell);
+        self.cut_whole_cell(sweep, i, j, top, self.origin + (DVec2::new(i as f64, j as f64) + 0.5) * self.cell)
+    }
+
+    /// Lowers the whole of cell (i, j), its material at `top`, to the sweep's envelope over its
+    /// `centre`; returns the volume removed.
+    #[inline(always)]
+    fn cut_whole_cell(&mut self, sweep: &Sweep, i: usize, j: usize, top: f64, centre: DVec2) -> f64 {
+        let e = sweep.lowest(centre);
         if e < top {
             let new = e.max(self.bottom);
-            self.z[c] = new;
+            self.z[j * self.nx + i] = new;
             return (top - new) * self.widths[i] * self.heights[j];
         }
         0.0
@@ -381,13 +388,7 @@ impl DexelStock {
             Some(s) => s * k2,
             None => {
                 if !sweep.rim_near(centre, reach) {
-                    let e = sweep.lowest(centre);
-                    if e < top {
-                        let new = e.max(self.bottom);
-                        self.z[c] = new;
-                        return (top - new) * area;
-                    }
-                    return 0.0;
+                    return self.cut_whole_cell(sweep, i, j, top, centre);
                 }
                 let s = self.subs.len() / k2;
                 self.split[c] = s as u32;

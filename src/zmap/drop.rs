@@ -258,10 +258,10 @@ impl PointDrop {
         // Every point of a triangle lies at least `near` from the axis (its box's distance),
         // where the cutter's lower surface stands `height(near)` above the tip: the triangle
         // lifts the tip no higher than its top less that. Of the triangles that could beat the
-        // first height, the one with the best bound is dropped onto first, then the others in
-        // the list's order (highest top first, nearly the order of their bounds, as the
-        // cutter's lower surface rises by at most its radius: no sort for every drop), each
-        // unless its bound is no higher than the height found.
+        // first height, the one with the best bound is dropped onto first (swapped with the
+        // first), then the others in the list's order (highest top first, nearly the order of
+        // their bounds, as the cutter's lower surface rises by at most its radius: no sort for
+        // every drop), each unless its bound is no higher than the height found.
         CANDIDATES.with_borrow_mut(|candidates| {
             candidates.clear();
             for &k in list {
