@@ -104,6 +104,19 @@ pub fn sample_part() -> Vec<u8> {
     sample::demo_part().to_binary_stl()
 }
 
+/// The job the page's engine runs once as it starts ([`Job::warm_up`]), as the JSON object a
+/// run takes.
+#[wasm_bindgen(js_name = warmUpJob)]
+pub fn warm_up_job() -> Result<JsValue, JsError> {
+    to_js(&Job::warm_up())
+}
+
+/// The warm-up's part, as binary STL.
+#[wasm_bindgen(js_name = warmUpPart)]
+pub fn warm_up_part() -> Vec<u8> {
+    sample::warm_up_part().to_binary_stl()
+}
+
 /// The built-in sample drawing (a plate with holes and a pocket), as DXF text.
 #[wasm_bindgen(js_name = sampleDrawing)]
 pub fn sample_drawing() -> Vec<u8> {

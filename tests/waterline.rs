@@ -113,3 +113,23 @@ fn levels_by_the_scallop_lie_a_scallops_width_apart_along_a_hemisphere() {
     let steps: Vec<f64> = levels.windows(2).filter(|w| w[1] >= 0.5).map(|w| w[0] - w[1]).collect();
     assert!(steps.last().unwrap() > &(1.5 * steps[0]), "{steps:?}");
 }
+
+/// The page's warm-up job (swarf.js runs it in a worker of its own as an engine starts, so that
+/// the browser compiles the code before the user's first job) runs each strategy of the mould
+/// job, and the zigzag, on its small part, clean. Natively it takes about 0.1 s.
+#[test]
+fn the_warm_up_job_runs_each_strategy_on_its_small_part_clean() {
+    let job = Job::warm_up();
+    let start = std::time::Instant::now();
+    let out = job::run(&job, swarf::mesh::sample::warm_up_part(), &mut Progress::none()).unwrap();
+    let seconds = start.elapsed().as_secs_f64();
+    let v = out.verification.as_ref().expect("the warm-up verifies, as the page's jobs do");
+    assert!(v.report.is_clean(), "{}", v.report.describe());
+    let kinds: Vec<String> = job.operations.iter().map(|o| serde_json::to_value(o).unwrap()["kind"].as_str().unwrap().to_string()).collect();
+    assert_eq!(kinds, ["roughZlevel", "roughZigzag", "finishRaster", "finishWaterline"]);
+    assert_eq!(out.paths.len(), 4);
+    for path in &out.paths {
+        assert!(path.moves.len() > 20, "{}: {} moves", path.name, path.moves.len());
+    }
+    eprintln!("warm-up: {} moves, {seconds:.3} s", out.moves.len());
+}

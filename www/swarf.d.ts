@@ -20,6 +20,12 @@ export interface EngineOptions {
   memory?: number;
   /** The wasm module's bytes or URL (default: pkg/swarf_bg.wasm beside the worker). */
   wasm?: BufferSource | string | URL | null;
+  /**
+   * Runs a small built-in job once as the engine starts, in a worker of its own that ends with
+   * it (default true), so that the browser has compiled and optimised the code before the
+   * user's first run. The engine's workers stay free meanwhile. See `Engine.warmedUp`.
+   */
+  warmUp?: boolean;
 }
 
 export interface PartPreview {
@@ -81,6 +87,8 @@ export declare class Engine {
   /** The sample part (binary STL) and drawing (DXF). */
   sample: Uint8Array;
   sampleDrawing: Uint8Array;
+  /** Settles once the warm-up job has run (at once when the engine was made with `warmUp: false`). */
+  warmedUp: Promise<void>;
   defaultJob(kind?: 'part' | 'drawing'): Job;
   open(bytes: Uint8Array, name: string, job?: Job): Promise<{ part: PartPreview } | { drawing: unknown }>;
   readJob(text: string): Promise<Job>;

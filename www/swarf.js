@@ -125,6 +125,10 @@ export class Engine {
   #options;
   /** The last run asked for: the next waits for it. */
   #last = Promise.resolve();
+  /** The warm-up, once started (the engine's workers replaced on a cancel need none). */
+  #warming = null;
+  /** The warm-up's worker while it runs. */
+  #side = null;
 
   /** Use `createEngine()`. */
   constructor(options = {}) {
@@ -136,6 +140,8 @@ export class Engine {
     /** The sample part (binary STL) and drawing (DXF) the core makes. */
     this.sample = null;
     this.sampleDrawing = null;
+    /** Settles when the engine's warm-up has run (at once with `warmUp: false`). */
+    this.warmedUp = Promise.resolve();
   }
 
   /** How many workers share a run. */
@@ -151,7 +157,31 @@ export class Engine {
     const wasm = o.wasm ?? null;
     const [hello] = await Promise.all([this.#main.call({ type: 'hello', wasm }), ...this.#helpers.map((h) => h.call({ type: 'hello', helper: true, wasm }))]);
     Object.assign(this, { defaults: hello.defaults, posts: hello.posts, sample: hello.sample, sampleDrawing: hello.sampleDrawing });
+    if (o.warmUp !== false && !this.#warming) this.warmedUp = this.#warming = this.#warmUp(make, wasm);
     return this;
+  }
+
+  /**
+   * Runs the core's small warm-up job (every 3D strategy on a 16 × 12 mm part, about 0.1 s of
+   * native work) once, in a worker of its own that ends with it, while the engine's workers
+   * stay free. A browser compiles a module's functions as they are first called and optimises
+   * them only once they have run a while, and the workers of a page share that code: without
+   * the warm-up a user's first job runs partly in baseline code and takes about twice as long
+   * (BENCHMARKS.md, issue 13). A run asked for before it is over ends it. Never rejects.
+   */
+  async #warmUp(make, wasm) {
+    const side = (this.#side = new Channel(make()));
+    try {
+      const { warmUp } = await side.call({ type: 'hello', helper: true, warmUp: true, wasm });
+      // An engine with a pool runs jobs shared (the side worker alone taking every part of it).
+      if (this.#helpers.length) await this.#runShared([side], warmUp.job, warmUp.part, 'warm-up.stl');
+      else await side.call({ type: 'run', job: warmUp.job, bytes: warmUp.part, name: 'warm-up.stl' });
+    } catch {
+      // A warm-up that fails costs the first run some speed, nothing else.
+    } finally {
+      side.end(new Error('the warm-up is over'));
+      this.#side = null;
+    }
   }
 
   /** A message to the worker that plans; resolves with its answer. The page's own requests go here. */
@@ -200,21 +230,23 @@ export class Engine {
 
   async #run(job, bytes, name, { onProgress, signal } = {}) {
     if (signal?.aborted) throw new CancelledError();
+    // A warm-up still under way would only take cores from the run: it ends here.
+    this.#side?.end(new Error('a run began'));
     const onAbort = () => this.cancel();
     signal?.addEventListener('abort', onAbort, { once: true });
     try {
       const memory = this.#options.memory ?? globalThis.navigator?.deviceMemory;
       const sharing = workersFor(this.workers, bytes?.byteLength ?? bytes?.length ?? 0, memory);
       if (sharing === 1) return await this.call({ type: 'run', job, bytes, name }, [], onProgress);
-      return await this.#runShared(job, bytes, name, onProgress, sharing);
+      return await this.#runShared([this.#main, ...this.#helpers.slice(0, sharing - 1)], job, bytes, name, onProgress);
     } finally {
       signal?.removeEventListener('abort', onAbort);
     }
   }
 
-  async #runShared(job, bytes, name, onProgress, sharing) {
-    const helpers = this.#helpers.slice(0, sharing - 1);
-    const all = [this.#main, ...helpers];
+  /** A run shared by the workers `all`, the first of them planning. */
+  async #runShared(all, job, bytes, name, onProgress) {
+    const [planner, ...helpers] = all;
     const n = all.length;
     const [{ needs }] = await Promise.all(all.map((c, w) => c.call({ type: 'prepare', job, bytes, name, helper: w > 0 })));
     const { surfaces, rasters, levelMaps } = needs;
@@ -238,7 +270,7 @@ export class Engine {
     const kept = [];
     const done = (t, r) => {
       if (t.type === 'passes') {
-        kept.push(this.#main.call({ type: 'keepPasses', operation: t.operation, first: t.i0, count: t.i1 - t.i0, flat: r.flat }, [r.flat.buffer]));
+        kept.push(planner.call({ type: 'keepPasses', operation: t.operation, first: t.i0, count: t.i1 - t.i0, flat: r.flat }, [r.flat.buffer]));
       } else {
         const nx = surfaces[t.surface].nx, half = (t.j1 - t.j0) * nx, m = maps.get(t.surface);
         m.right.set(r.z.subarray(0, half), t.j0 * nx);
@@ -257,13 +289,13 @@ export class Engine {
     let at = from;
     const planning = (f, s) => onProgress?.((at = from + (1 - from) * f), s);
     try {
-      await this.#main.call({ type: 'startPlan' });
+      await planner.call({ type: 'startPlan' });
       // Operation by operation: the planner plans, then every worker cuts groups of the bands
       // of the in-process stock with its moves, and the planner takes them back.
       for (;;) {
         // The next operation's levels (z-level work): their regions, a level a task, made on
         // every worker and kept by the planner for the operation to take as it plans.
-        const { work } = await this.#main.call({ type: 'regionWork' });
+        const { work } = await planner.call({ type: 'regionWork' });
         if (work && work.levels.length > 1) {
           const { surface, levels, keep } = work, per = keep.length / levels.length;
           const made = [];
@@ -271,18 +303,18 @@ export class Engine {
           await share(all, tasks, (t, r) => { made[t.k] = r.flat; }, () => onProgress?.(at, `regions of levels (${n} workers)`));
           const flat = new Float64Array(made.reduce((sum, f) => sum + f.length, 0));
           made.reduce((offset, f) => (flat.set(f, offset), offset + f.length), 0);
-          await this.#main.call({ type: 'keepRegions', flat }, [flat.buffer]);
+          await planner.call({ type: 'keepRegions', flat }, [flat.buffer]);
         }
-        const step = await this.#main.call({ type: 'planNext', groups: GROUPS_PER_WORKER * n }, [], planning);
+        const step = await planner.call({ type: 'planNext', groups: GROUPS_PER_WORKER * n }, [], planning);
         if (step.done) break;
         if (!step.groups) continue;
         await Promise.all(helpers.map((h) => h.call({ type: 'keepMoves', moves: step.moves })));
         const cut = { bands: [], cuts: [] };
         const groups = step.groups.map((group, g) => ({ type: 'cutBands', group, g, transfer: [group.buffer] }));
         await share(all, groups, (t, r) => { cut.bands[t.g] = r.bands; cut.cuts[t.g] = r.cuts; }, () => onProgress?.(at, `in-process stock (${n} workers)`));
-        await this.#main.call({ type: 'absorb', groups: cut.bands, cuts: cut.cuts }, [...cut.bands, ...cut.cuts].map((a) => a.buffer));
+        await planner.call({ type: 'absorb', groups: cut.bands, cuts: cut.cuts }, [...cut.bands, ...cut.cuts].map((a) => a.buffer));
       }
-      return await this.#main.call({ type: 'finishPlan' }, [], planning);
+      return await planner.call({ type: 'finishPlan' }, [], planning);
     } finally {
       for (const h of helpers) h.call({ type: 'forget' }).catch(() => {});
     }
@@ -305,7 +337,7 @@ export class Engine {
 
   /** Ends the workers for good. */
   close() {
-    for (const c of [this.#main, ...this.#helpers]) c?.end(new Error('the engine was closed'));
+    for (const c of [this.#main, ...this.#helpers, this.#side]) c?.end(new Error('the engine was closed'));
     this.#main = null;
     this.#helpers = [];
   }
@@ -317,7 +349,8 @@ export class Engine {
  * module's bytes or URL; default: pkg/swarf_bg.wasm beside the worker), `workers` (how
  * many workers the pool has; default: one per core, `navigator.hardwareConcurrency`, at most 8)
  * and `memory` (GB the device has; default `navigator.deviceMemory` where the browser tells it:
- * a run shares only as many workers as half of it holds for the part, see `workersFor`).
+ * a run shares only as many workers as half of it holds for the part, see `workersFor`) and
+ * `warmUp` (default true; false: no warm-up job as the engine starts, see `Engine.warmedUp`).
  */
 export async function createEngine(options = {}) {
   return new Engine(options).start();

@@ -1,6 +1,6 @@
 // Runs the wasm pipeline off the page's thread, for swarf.js's engine. Cancel = the engine
 // terminates this worker.
-import init, { defaults, builtinPosts, readPost, readJob, writeProject, readProject, samplePart, sampleDrawing, loadPart, loadDrawing, isDrawing, runJob, prepareJob } from './pkg/swarf.js';
+import init, { defaults, builtinPosts, readPost, readJob, writeProject, readProject, samplePart, sampleDrawing, warmUpJob, warmUpPart, loadPart, loadDrawing, isDrawing, runJob, prepareJob } from './pkg/swarf.js';
 
 // The wasm is loaded on the first message: from the bytes or URL it names (a single-file page
 // passes the bytes), else from pkg/ beside the glue.
@@ -105,7 +105,7 @@ self.onmessage = async (event) => {
     ready ??= init(event.data.wasm ? { module_or_path: event.data.wasm } : undefined);
     await ready;
     if (type === 'hello' && event.data.helper) {
-      self.postMessage({ id, ok: true });
+      self.postMessage({ id, ok: true, warmUp: event.data.warmUp ? { job: warmUpJob(), part: warmUpPart() } : null });
     } else if (type === 'hello') {
       self.postMessage({ id, ok: true, defaults: defaults(), posts: builtinPosts(), sample: samplePart(), sampleDrawing: sampleDrawing() });
     } else if (type === 'readPost') {

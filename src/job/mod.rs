@@ -404,6 +404,32 @@ impl Job {
         }
     }
 
+    /// The job swarf.js's engine runs once as it starts, in a worker of its own, on
+    /// [`crate::mesh::sample::warm_up_part`] (0.1 s natively, about 0.6 s in a fresh browser):
+    /// the demo's three operations with a zigzag roughing between, so that the browser has
+    /// compiled (and mostly optimised) the code a user's first job runs before the user asks
+    /// for it. Without it that first job runs partly in baseline code: the pocket test's
+    /// zigzag 0.16–0.21 s against 0.10 s (BENCHMARKS.md, "The warm-up in a worker of its own").
+    pub fn warm_up() -> Job {
+        use crate::strategy::rough_zigzag::RoughZigzag;
+        let mut job = Job::demo();
+        job.name = "warm-up".into();
+        job.operations.insert(1, Operation::RoughZigzag(RoughZigzag { name: "zigzag".into(), tool: 1, allowance: 0.0, leave_stock: 0.0, ..RoughZigzag::default() }));
+        // Coarse and small: what matters is that each strategy's code runs, not the finish.
+        job.tools[0].cutter = Cutter { flute_length: 15.0, ..Cutter::flat(3.0) };
+        job.tools[1].cutter = Cutter { flute_length: 15.0, ..Cutter::ball(3.0) };
+        for op in &mut job.operations {
+            match op {
+                Operation::RoughZlevel(o) => (o.grid, o.stepdown) = (0.5, 2.0),
+                Operation::RoughZigzag(o) => (o.grid, o.stepdown, o.stepover) = (0.5, 3.0, 0.8),
+                Operation::FinishRaster(o) => (o.grid, o.stepover) = (0.5, 2.0),
+                Operation::FinishWaterline(o) => (o.grid, o.stepdown, o.scallop) = (0.5, 1.5, None),
+                _ => {}
+            }
+        }
+        job
+    }
+
     /// Reads a job file. A value that does not fit is named by its path
     /// (`operations[1].stepover: invalid type ...`), and so is every field this version does
     /// not know (`operations[0].stepOver`, with the known field it may mean): a misspelt

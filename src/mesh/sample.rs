@@ -118,3 +118,16 @@ pub fn octree_mould(spacing: f64) -> Mesh {
         }
     })
 }
+
+/// The part of the page's warm-up ([`crate::job::Job::warm_up`]): a 16 × 12 mm insert with a
+/// hollow (a closed pocket), a dome beside it and a ledge, 6 mm tall, sampled every 0.5 mm:
+/// every z-level and finishing case in miniature, so that one small job runs each strategy's
+/// code once.
+pub fn warm_up_part() -> Mesh {
+    height_field_solid(DVec2::new(-8.0, -6.0), DVec2::new(8.0, 6.0), 32, 24, -6.0, |x, y| {
+        let hollow = if (x + 3.0).abs() <= 3.5 && y.abs() <= 3.5 { -3.0 } else { 0.0 };
+        let dome = 2.0 * (-((x - 4.5).powi(2) + y.powi(2)) / 5.0).exp();
+        let ledge = if y > 4.5 { -1.0 } else { 0.0 };
+        hollow + dome + ledge
+    })
+}

@@ -159,3 +159,54 @@ test('a pool shares a run only among as many workers as the memory holds for the
   assert.equal(r.small.gcode, r.alone);
   assert.equal(r.some.gcode, r.alone);
 });
+
+test('an engine warms up once in a worker of its own, which a run ends; the programs are the same', async () => {
+  const r = await page.evaluate(async () => {
+    const { createEngine } = await import('./swarf.js');
+    const { one } = window.t;
+    // Workers that tell what was asked of them and whether they were ended.
+    const spied = [];
+    const worker = () => {
+      const w = new Worker(new URL('./worker.js', location.href), { type: 'module' });
+      const seen = { asked: [], ended: false };
+      const post = w.postMessage.bind(w), end = w.terminate.bind(w);
+      w.postMessage = (m, t) => { seen.asked.push(m.type); post(m, t); };
+      w.terminate = () => { seen.ended = true; end(); };
+      spied.push(seen);
+      return w;
+    };
+    const job = one.defaultJob();
+    job.operations = [{ ...job.operations[1], stepover: 3, grid: 1 }];
+    job.simulation.verify = false;
+    const alone = (await one.run(job, one.sample, 'sample.stl')).gcode;
+    // Left to warm up: one more worker than the pool, asked for a shared run, then ended.
+    const calm = await createEngine({ workers: 2, worker });
+    await calm.warmedUp;
+    const calmWorkers = structuredClone(spied.splice(0));
+    const calmRun = (await calm.run(job, one.sample, 'sample.stl')).gcode;
+    // A run asked for at once ends the warm-up under way.
+    const eager = await createEngine({ workers: 1, worker });
+    const eagerRun = (await eager.run(job, one.sample, 'sample.stl')).gcode;
+    await eager.warmedUp;
+    const eagerWorkers = structuredClone(spied.splice(0));
+    // No warm-up asked for: the pool's workers only.
+    const none = await createEngine({ workers: 2, worker, warmUp: false });
+    const noneRun = (await none.run(job, one.sample, 'sample.stl')).gcode;
+    const noneWorkers = structuredClone(spied.splice(0));
+    for (const e of [calm, eager, none]) e.close();
+    return { same: [calmRun, eagerRun, noneRun].map((g) => g === alone), lines: alone.split('\n').length, calmWorkers, eagerWorkers, noneWorkers };
+  });
+  assert.deepEqual(r.same, [true, true, true]);
+  assert.ok(r.lines > 100, `${r.lines} lines`);
+  // The pool's two workers and the warm-up's, which ran the warm-up job shared (prepared,
+  // planned, finished) and was ended; the pool's were not.
+  assert.equal(r.calmWorkers.length, 3, JSON.stringify(r.calmWorkers));
+  const side = r.calmWorkers[2];
+  assert.ok(side.ended && ['hello', 'prepare', 'startPlan', 'finishPlan'].every((t) => side.asked.includes(t)), JSON.stringify(side));
+  assert.ok(r.calmWorkers.slice(0, 2).every((w) => !w.ended && w.asked.includes('hello')), JSON.stringify(r.calmWorkers));
+  // One worker: the warm-up's worker was asked for the job whole, then ended by the run.
+  assert.equal(r.eagerWorkers.length, 2, JSON.stringify(r.eagerWorkers));
+  assert.ok(r.eagerWorkers[1].ended && r.eagerWorkers[1].asked.includes('hello'), JSON.stringify(r.eagerWorkers));
+  assert.ok(r.eagerWorkers[0].asked.includes('run') && !r.eagerWorkers[0].ended, JSON.stringify(r.eagerWorkers));
+  assert.equal(r.noneWorkers.length, 2, JSON.stringify(r.noneWorkers));
+});
