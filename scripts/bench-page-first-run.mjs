@@ -26,8 +26,7 @@ const job = {
   tools: [{ number: 1, shape: 'flat', diameter: 6, fluteLength: 50, feedRate: 1000, plungeRate: 250 }],
   operations: [{ kind: 'roughZigzag', stepdown: 2, stepover: 0.4, allowance: 0, leaveStock: 0, grid: 0.5, load: 'path' }],
 };
-// A bare page beside swarf.js: embed.html would start an engine of its own (and its warm-up).
-const { server, base } = await serveWww({ '/part': fs.readFileSync(partFile), '/bare.html': '<!doctype html><title>first run</title>' });
+const { server, base } = await serveWww({ '/part': fs.readFileSync(partFile) });
 
 async function fresh(options, pause) {
   const browser = await chromium.launch({ executablePath: process.env.CHROMIUM || '/usr/bin/chromium', headless: true, args: ['--no-sandbox', '--disable-dev-shm-usage', ...(process.env.JS_FLAGS ? [`--js-flags=${process.env.JS_FLAGS}`] : [])] });

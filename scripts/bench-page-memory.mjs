@@ -40,7 +40,7 @@ const { server, base } = await serveWww({ '/die.stl': die });
 const browser = await chromium.launch({ executablePath: process.env.CHROMIUM || '/usr/bin/chromium', headless: true, args: ['--no-sandbox', '--disable-dev-shm-usage'] });
 try {
   const page = await (await browser.newContext()).newPage();
-  await page.goto(`${base}embed.html`);
+  await page.goto(`${base}bare.html`);
   await page.evaluate(async () => {
     const { createEngine } = await import('./swarf.js');
     globalThis.bench = { createEngine, die: new Uint8Array(await (await fetch('/die.stl')).arrayBuffer()) };

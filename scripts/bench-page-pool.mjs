@@ -26,7 +26,7 @@ const browser = await chromium.launch({ executablePath: process.env.CHROMIUM || 
 const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-pool-'));
 try {
   const page = await (await browser.newContext()).newPage();
-  await page.goto(`${base}embed.html`);
+  await page.goto(`${base}bare.html`);
   const out = await page.evaluate(async (given) => {
     const { createEngine } = await import('./swarf.js');
     const cores = navigator.hardwareConcurrency;

@@ -15,7 +15,7 @@ const { server, base } = await serveWww();
 const browser = await chromium.launch({ executablePath: process.env.CHROMIUM || '/usr/bin/chromium', headless: true, args: ['--no-sandbox', '--disable-dev-shm-usage'] });
 try {
   const page = await (await browser.newContext()).newPage();
-  await page.goto(`${base}embed.html`);
+  await page.goto(`${base}bare.html`);
   const seconds = await page.evaluate(async (workers) => {
     const { createEngine } = await import('./swarf.js');
     const engine = await createEngine(workers ? { workers } : {});
