@@ -568,7 +568,6 @@ fn correct(map: &mut PixelMap, run: &[DVec2], load: &Load, profile: &mut Profile
         let mut chosen = None;
         // The least loaded direction, where none keeps under the limit.
         let mut least: Option<(usize, DVec2, bool)> = None;
-        let mut straight = usize::MAX;
         // The chosen step's count, when choosing it cut it.
         let mut cut = None;
         // A short step (the run's last, or the last of the way back to it) goes straight:
@@ -579,8 +578,17 @@ fn correct(map: &mut PixelMap, run: &[DVec2], load: &Load, profile: &mut Profile
             // extra path bends smoothly (arcs fit it) instead of zigzagging.
             let first = if turned.0 == side { turned.1.saturating_sub(2) } else { 0 };
             let order = (first..=TURNS).chain((0..first).rev());
+            let turn = |s: f64, a: usize| pos + DVec2::from_angle(s * TURN * a as f64).rotate(dir) * step;
+            // Where turns come before the straight step, the straight count is taken first
+            // (the map does not change while turns are only counted): each turn is then
+            // counted only until it passes the limit or half of it, not in full. The choice
+            // is the same: a count past that can neither keep the limit nor halve the straight
+            // count, whichever it is exactly.
+            let known = (first > 0).then(|| map.count(pos, turn(side, 0)));
+            // The straight step's count, once known.
+            let mut straight = known.unwrap_or(usize::MAX);
             'search: for (s, a) in order.map(|a| (side, a)).chain((1..=TURNS).map(|a| (-side, a))) {
-                let q = pos + DVec2::from_angle(s * TURN * a as f64).rotate(dir) * step;
+                let q = turn(s, a);
                 // Straight on towards the path (its points are in the region, and the way
                 // there was checked above), or off it only to where the region allows.
                 if a > 0 && !keeps(map, pos, q) {
@@ -589,7 +597,16 @@ fn correct(map: &mut PixelMap, run: &[DVec2], load: &Load, profile: &mut Profile
                 // Counted in full going straight; off the path only as far as it takes
                 // to tell whether it keeps the limit or halves the straight count.
                 // Straight on, it is cut as it is counted (and put back if over).
-                let n = if a == 0 { map.cut_within(pos, q, cap) } else { map.count_past(pos, q, (cap as usize).max(straight / 2)) };
+                let n = match known {
+                    Some(n) if a == 0 => {
+                        if n as f64 <= cap {
+                            map.cut(pos, q);
+                        }
+                        n
+                    }
+                    _ if a == 0 => map.cut_within(pos, q, cap),
+                    _ => map.count_past(pos, q, (cap as usize).max(straight / 2)),
+                };
                 if n as f64 <= cap {
                     chosen = Some((q, a == 0));
                     cut = (a == 0).then_some(n);
