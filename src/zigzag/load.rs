@@ -596,7 +596,8 @@ fn correct(map: &mut PixelMap, run: &[DVec2], load: &Load, profile: &mut Profile
                 }
                 // Counted in full going straight; off the path only as far as it takes
                 // to tell whether it keeps the limit or halves the straight count.
-                // Straight on, it is cut as it is counted (and put back if over).
+                // Straight on, it is cut as it is counted (and put back if over), or, its
+                // count known already, cut only if it keeps the limit.
                 let n = match known {
                     Some(n) if a == 0 => {
                         if n as f64 <= cap {
