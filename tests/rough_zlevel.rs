@@ -294,3 +294,60 @@ fn rings_in_the_air_are_left_out() {
     // cleared, and rings partly in the air, make the rest).
     assert!(air < 0.06 * fed, "{air} of {fed} mm at depth in the air");
 }
+
+/// The moves of `out` at a feed faster than their tool's: those an operation knew to cut
+/// nothing (the air feed).
+fn air_moves(out: &job::JobOutput) -> Vec<&swarf::sim::program::ProgramMove> {
+    out.moves.iter().filter(|m| m.air).collect()
+}
+
+/// Stretches of rings over ground an earlier ring took, stay-down links across it and ways in
+/// from beside the stock run at the air feed (the rapid rate by default): the path is the same,
+/// the cycle shorter, and those moves remove nothing, in the job's own simulation and in one on
+/// cells a fifth the size.
+#[test]
+fn moves_over_cleared_ground_run_at_the_air_feed_and_cut_nothing() {
+    for (name, part, keep) in [("box on a plate", box_on_plate(), true), ("sample part", demo_part(), false)] {
+        let mut job = Job {
+            part: PartSetup { placement: if keep { Placement::Keep } else { Placement::default() }, ..PartSetup::default() },
+            stock: swarf::job::Stock { margin_xy: 0.0, margin_top: 1.0, ..Default::default() },
+            tools: vec![flat(1, 6.0)],
+            operations: vec![rough(0.0, 0.0)],
+            simulation: Simulation { verify: true, cell: Some(0.25) },
+            ..Job::default()
+        };
+        let fast = job::run(&job, part.clone(), &mut Progress::none()).unwrap();
+        clean(&fast);
+        job.stock.air_feed = Some(0.0);
+        let slow = job::run(&job, part.clone(), &mut Progress::none()).unwrap();
+        clean(&slow);
+        let rapid = job.post.rapid_rate;
+        let air = air_moves(&fast);
+        let air_length: f64 = air.iter().map(|m| m.mv.length(m.from)).sum();
+        let v = fast.verification.as_ref().unwrap();
+        let air_removed: f64 = fast.moves.iter().zip(&v.volumes).filter(|(m, _)| m.air).map(|(_, &v)| v).sum();
+        // An independent simulation on cells a fifth the size, of the raw box.
+        let mut fine = swarf::sim::DexelStock::new(&fast.stock, 0.05, 1);
+        let mut fine_air = 0.0f64;
+        let mut fine_worst = 0.0f64;
+        for m in &fast.moves {
+            let vol = m.cut(&mut fine, 0.001);
+            if m.air {
+                fine_air += vol;
+                fine_worst = fine_worst.max(vol);
+            }
+        }
+        eprintln!("{name}: air {} moves, {air_length:.1} mm; removed {air_removed} (cell 0.25), {fine_air} (cell 0.05, worst {fine_worst}); cycle {:.1} s vs {:.1} s", air.len(), fast.cycle.seconds, slow.cycle.seconds);
+        assert!(air.iter().all(|m| matches!(m.mv, Move::Line { feed, .. } | Move::Arc { feed, .. } if feed == rapid)), "{name}");
+        assert!(air_length > if keep { 150.0 } else { 400.0 }, "{name}: {air_length} mm at the air feed");
+        assert!(air_removed <= 1e-6 && fine_air <= 1e-6, "{name}: the air moves removed {air_removed} mm³ ({fine_air} on finer cells)");
+        assert!(fast.cycle.seconds < slow.cycle.seconds - air_length / 1000.0 * 60.0 * 0.5, "{name}: {} s against {} s", fast.cycle.seconds, slow.cycle.seconds);
+        // The same way: the path without the air feed passes the same points in the same
+        // order, and is as long.
+        let length = |o: &job::JobOutput| o.moves.iter().map(|m| m.mv.length(m.from)).sum::<f64>();
+        assert!((length(&fast) - length(&slow)).abs() < 1e-6 * length(&slow), "{name}: {} against {}", length(&fast), length(&slow));
+        let mut ends = fast.moves.iter().map(|m| m.mv.to());
+        assert!(slow.moves.iter().all(|m| ends.any(|p| p.distance(m.mv.to()) < 1e-9)), "{name}: the air feed changed the path");
+        assert!(slow.moves.iter().all(|m| !m.air));
+    }
+}

@@ -210,6 +210,18 @@ fn verification_finds_gouges_rapids_through_stock_and_a_buried_tool_body() {
     assert_eq!(r.rapid_collision_count, 2, "{}", r.describe());
     assert_eq!(r.rapid_collisions[0].move_index, Some(0));
     assert!(r.gouge_count > 0);
+    // The same way fed at the air feed (faster than the tool's feed: a move its operation knew
+    // to cut nothing) is as wrong; at the tool's feed it is a cut.
+    let feed = job.tools[0].feed_rate;
+    for (f, wrong) in [(feed * 3.0, 2), (feed, 0)] {
+        let mut fed = rapid.clone();
+        fed[0].moves[0] = Move::Line { to: mid, feed: f };
+        let at = fed[0].moves.iter().position(|m| m.is_rapid()).unwrap();
+        let to = fed[0].moves[at].to();
+        fed[0].moves[at] = Move::Line { to, feed: f };
+        let r = check(&fed, &job.tools);
+        assert_eq!(r.rapid_collision_count, wrong, "at F{f}: {}", r.describe());
+    }
     // A 2 mm flute length buries the body where the finishing pass meets uncut stock.
     let short = vec![Tool { cutter: Cutter { flute_length: 2.0, ..job.tools[0].cutter.clone() }, ..job.tools[0].clone() }];
     let r = check(&out.paths, &short);

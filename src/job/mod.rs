@@ -123,6 +123,12 @@ pub struct Stock {
     /// roughing still crosses what it has cleared just above its levels). Default value:
     /// minimum.
     pub retracts: Retracts,
+    /// Feed (mm/min) of the moves a roughing or pocket level knows cut nothing: stretches of
+    /// rings over ground an earlier ring of the level took, stay-down links across it, the way
+    /// in from beside the stock. They stay in the path (the tool down, as G1), only faster, and
+    /// the verification holds each to cutting nothing. At most the rapid rate; no faster than
+    /// the tool's feed keeps them at it. Default value: the post's rapid rate.
+    pub air_feed: Option<f64>,
     /// Moves part and stock so that this point is the program's origin (for parts; a sheet's
     /// top is always Z0). Default value: none (as the part's placement puts it).
     pub zero: Option<WorkZero>,
@@ -141,7 +147,7 @@ pub enum Retracts {
 
 impl Default for Stock {
     fn default() -> Self {
-        Stock { margin_xy: 5.0, margin_top: 1.0, margin_bottom: 0.0, margin_sides: None, size_box: None, clearance: 5.0, retract: 1.0, retracts: Retracts::Minimum, zero: None }
+        Stock { margin_xy: 5.0, margin_top: 1.0, margin_bottom: 0.0, margin_sides: None, size_box: None, clearance: 5.0, retract: 1.0, retracts: Retracts::Minimum, air_feed: None, zero: None }
     }
 }
 
@@ -179,6 +185,11 @@ impl Stock {
             let size = b.size();
             if !(size.x > 0.0 && size.y > 0.0 && size.z > 0.0 && size.is_finite()) {
                 return bad("sizeBox", "must have a positive size on every axis".into());
+            }
+        }
+        if let Some(f) = self.air_feed {
+            if !(f >= 0.0 && f.is_finite()) {
+                return bad("airFeed", format!("must be zero or more (mm/min; got {f})"));
             }
         }
         Ok(())
@@ -561,6 +572,7 @@ impl Job {
             stages: None,
             octants: Vec::new(),
             rapid_rate: self.post.rapid_rate,
+            air_feed: self.stock.air_feed.unwrap_or(self.post.rapid_rate).min(self.post.rapid_rate),
             operation: 0,
             given_passes: Default::default(),
             given_regions: Vec::new(),

@@ -229,6 +229,11 @@ impl DexelStock {
         self.z[j * self.nx + i]
     }
 
+    /// [`DexelStock::top`] of every cell, by rows.
+    pub fn tops(&self) -> &[f64] {
+        &self.z
+    }
+
     /// [`DexelStock::top`] of the cell whose centre is nearest `p`; `None` off the stock.
     pub fn top_near(&self, p: DVec2) -> Option<f64> {
         let g = self.grid();

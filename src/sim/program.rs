@@ -23,6 +23,9 @@ pub struct ProgramMove {
     /// When it starts and how long it takes (seconds, at the programmed feeds).
     pub start: f64,
     pub seconds: f64,
+    /// A feed move faster than its tool's feed: one its operation knew to cut nothing (the air
+    /// feed, [`crate::strategy::air`]), held to that as a rapid is.
+    pub air: bool,
 }
 
 /// The moves of `paths`, each with its tool from `tools`, timed at their feeds and `rapid_rate`.
@@ -38,7 +41,8 @@ pub fn program_moves(paths: &[Toolpath], tools: &[Tool], rapid_rate: f64) -> Res
                 Move::Line { feed, .. } | Move::Arc { feed, .. } => feed,
             };
             let seconds = mv.length(at) / rate * 60.0;
-            out.push(ProgramMove { path: k, tool: tool.number, cutter: tool.cutter.clone(), from: at, mv: *mv, start: clock, seconds });
+            let air = !mv.is_rapid() && rate > tool.feed_rate * (1.0 + 1e-9);
+            out.push(ProgramMove { path: k, tool: tool.number, cutter: tool.cutter.clone(), from: at, mv: *mv, start: clock, seconds, air });
             clock += seconds;
             at = mv.to();
         }
@@ -119,7 +123,7 @@ pub fn decode(flat: &[f64], tools: &[Tool]) -> Result<Vec<ProgramMove>> {
                 2 | 3 => Move::Arc { to, center, clockwise: v[1] == 2.0, feed: v[10] },
                 _ => return Err(Error::Input(format!("no move is of kind {}", v[1]))),
             };
-            Ok(ProgramMove { path: 0, tool: tool.number, cutter: tool.cutter.clone(), from: DVec3::new(v[2], v[3], v[4]), mv, start: 0.0, seconds: v[11] })
+            Ok(ProgramMove { path: 0, tool: tool.number, cutter: tool.cutter.clone(), from: DVec3::new(v[2], v[3], v[4]), mv, start: 0.0, seconds: v[11], air: false })
         })
         .collect()
 }

@@ -4,7 +4,8 @@
 //! * **Gouge**: after the program, no cell's material lies below the part's own surface (its CC
 //!   z-map at the cell centre, not the CL surface) plus the allowance the operations promised,
 //!   by more than [`Tolerances::gouge`].
-//! * **Rapid collision**: a rapid move that removes material.
+//! * **Rapid collision**: a rapid move that removes material, or a feed move at the air feed
+//!   (faster than its tool's feed: its operation knew it to cut nothing) that does.
 //! * **Body collision**: a feed move with material standing higher above the tip than the
 //!   cutter's flute length within the shank's radius: the unfluted body would rub it.
 //! * **Residual**: material left above part + allowance, as a map, its largest and mean value.
@@ -87,7 +88,7 @@ impl Report {
         }
         if self.rapid_collision_count > 0 {
             let at = self.rapid_collisions.first().map(|f| format!(", the first {}", place(f))).unwrap_or_default();
-            parts.push(format!("{} rapid moves pass through stock{at}", self.rapid_collision_count));
+            parts.push(format!("{} rapid moves (or moves at the air feed) pass through stock{at}", self.rapid_collision_count));
         }
         if self.body_collision_count > 0 {
             let at = deepest(&self.body_collisions).map(|f| format!(", {:.3} mm past the flutes at most, {}", f.amount, place(&f))).unwrap_or_default();
@@ -391,7 +392,8 @@ impl Simulator {
             }
             if !m.mv.is_rapid() {
                 self.mrr_max = self.mrr_max.max(m.mrr(volume));
-            } else if volume > GRAZE {
+            }
+            if (m.mv.is_rapid() || m.air) && volume > GRAZE {
                 note(&mut self.rapid, Finding { move_index: Some(index), at: m.mv.to(), amount: volume });
             }
             self.volumes.push(volume);

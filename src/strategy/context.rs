@@ -134,6 +134,9 @@ pub struct Context {
     pub octants: Vec<crate::strategy::rough_octree::StageOctants>,
     /// The machine's rapid rate (mm/min), for timing what an operation plans.
     pub rapid_rate: f64,
+    /// The feed of level moves an operation knows cut nothing (the job's `stock.airFeed`, at
+    /// most the rapid rate; [`super::air`]).
+    pub air_feed: f64,
     /// The index in the job of the operation being planned.
     pub operation: usize,
     /// Raster passes a pool of workers made before planning ([`crate::job::pool`]), by the

@@ -7,6 +7,7 @@
 //! returning tool paths, each with its tool (an operation may use more than one). The job
 //! matches its `Operation` enum in one place (`job/operation.rs`).
 
+pub mod air;
 pub mod context;
 pub mod engrave;
 pub mod finish_raster;

@@ -156,6 +156,16 @@ impl<'m> InStock<'m> {
         InStock { stock, profile, smaller: Profile::new(r, profile.corner.min(r)) }
     }
 
+    /// The stock model itself.
+    pub fn model(&self) -> &'m DexelStock {
+        self.stock
+    }
+
+    /// The cutter as it meets the stock.
+    pub fn profile(&self) -> &Profile {
+        &self.profile
+    }
+
     /// Whether there is material at height `z` over `p` (the stock's top above it).
     pub fn material_at(&self, p: DVec2, z: f64) -> bool {
         crate::zigzag::load::material_at(self.stock, p, z)
@@ -225,6 +235,9 @@ pub struct Cursor<'m> {
     /// The in-process stock: rapid descents stop the gap above the material under the cutter
     /// at that spot (no lower than `safe` allows otherwise).
     pub stock: InStock<'m>,
+    /// Feed of level moves that cut nothing ([`super::air`]); no faster than the tool's feed:
+    /// none.
+    pub air_feed: f64,
 }
 
 impl Cursor<'_> {

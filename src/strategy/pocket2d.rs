@@ -20,6 +20,7 @@ use crate::profile::{Loop, Shape};
 use crate::toolpath::Move;
 use crate::strategy::rough_zigzag::LoadControl;
 use crate::toolpath::arcfit;
+use super::air::AirCuts;
 use crate::zigzag::graph::{Graph, Pattern};
 use crate::zigzag::load::{self, Load, PixelMap, Profile};
 
@@ -244,6 +245,7 @@ pub type Air<'a> = &'a dyn Fn(DVec2) -> Option<DVec2>;
 /// round its islands, farthest from them first; each takes off at most a step.
 pub fn clear_rings(levels: &[Shape], clearing: &Clearing, z_prev: f64, z: f64, s: &mut Setup, air: Option<Air>) -> Vec<Move> {
     let Some(boundary) = levels.first() else { return Vec::new() };
+    let from = s.cursor.at;
     // Cut only where the in-process stock has material, from where it starts.
     let Some(z_prev) = s.cursor.material_top(levels.iter().flat_map(|l| l.segments()), z_prev, z, s.tol.gouge) else { return Vec::new() };
     s.cursor.safe = s.cursor.safe.min(z_prev + s.cursor.gap);
@@ -275,6 +277,11 @@ pub fn clear_rings(levels: &[Shape], clearing: &Clearing, z_prev: f64, z: f64, s
                 }
             }
         }
+    }
+    if s.cursor.air_feed > s.feed {
+        let stock = &s.cursor.stock;
+        let mut air = AirCuts::new(boundary.bounds().expand(s.tool_radius), z, stock.model(), stock.profile(), s.cursor.air_feed);
+        out = air.refeed(from, out);
     }
     out
 }

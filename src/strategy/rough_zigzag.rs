@@ -18,6 +18,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::air::AirCuts;
 use super::pocket2d::Inside;
 use super::path2d::start_nearest;
 use super::profile2d::Direction;
@@ -320,6 +321,12 @@ impl Operate for RoughZigzag {
             report.cut.extend(done.rates(Some(&shares), reference, ds));
             let linked = ctx.link_fed(&self.name, &tool, &pts3, (Some(&feeds), Some(&starts)), z_prev, &inside, entry, 0.0);
             let moves = arcfit::fit(&linked.moves, linked.start, tol.chordal, &|p| region.contains(p));
+            // Stretches over what the level cleared already at the air feed.
+            let moves = if ctx.air_feed > tool.feed_rate {
+                AirCuts::new(region.bounds().expand(r), z, ctx.sim.stock(), &tool.cutter.profile(), ctx.air_feed).refeed(linked.start, moves)
+            } else {
+                moves
+            };
             match &mut path {
                 None => path = Some(Toolpath { moves, ..linked }),
                 Some(p) => {

@@ -67,6 +67,7 @@ pub fn cursor<'m>(ctx: &'m Context, tool: &Tool) -> Cursor<'m> {
         safe_at: None,
         cleared_to: None,
         stock,
+        air_feed: ctx.air_feed,
     }
 }
 

@@ -111,13 +111,19 @@ impl PixelMap {
         let b = bounds.expand(radius + 2.0 * px);
         let nx = ((b.max.x - b.min.x) / px).ceil() as usize + 1;
         let ny = ((b.max.y - b.min.y) / px).ceil() as usize + 1;
-        let words = nx.div_ceil(64);
         let origin = b.min;
+        PixelMap::on_grid(origin, px, (nx, ny), radius, |i, j| material(origin + DVec2::new(i as f64, j as f64) * px))
+    }
+
+    /// The same on pixels centred at `origin + (i, j)·px`, `size` of them: material where
+    /// `material(i, j)` says.
+    pub fn on_grid(origin: DVec2, px: f64, size: (usize, usize), radius: f64, material: impl Fn(usize, usize) -> bool) -> PixelMap {
+        let (nx, ny) = size;
+        let words = nx.div_ceil(64);
         let mut m = vec![0u64; words * ny];
         for j in 0..ny {
-            let y = origin.y + j as f64 * px;
             for i in 0..nx {
-                if material(DVec2::new(origin.x + i as f64 * px, y)) {
+                if material(i, j) {
                     m[j * words + i / 64] |= 1 << (i % 64);
                 }
             }
@@ -197,6 +203,42 @@ impl PixelMap {
             }
         }
         count
+    }
+
+    /// In one pass: the material pixels a disc of radius `count` sweeps moving from `a` to
+    /// `b` (no larger than the map's own radius), and those a disc of radius `cut` (no
+    /// larger) sweeps taken off; returns the count.
+    pub fn count_and_cut(&mut self, a: DVec2, b: DVec2, count: f64, cut: f64) -> usize {
+        let per_px = 1.0 / self.px;
+        let r = count.max(cut).min(self.radius);
+        let j0 = ((a.y.min(b.y) - r - self.origin.y) * per_px).ceil().max(0.0) as usize;
+        let j1 = (((a.y.max(b.y) + r - self.origin.y) * per_px).floor().max(-1.0) as isize).min(self.ny as isize - 1);
+        let (pa, pb) = ((a - self.origin) * per_px, (b - self.origin) * per_px);
+        let (wide, narrow) = ((count > 0.0).then(|| Swept::new(pa, pb, r * per_px)), (cut > 0.0).then(|| Swept::new(pa, pb, cut.min(r) * per_px)));
+        let last = self.nx as f64 - 1.0;
+        // The pixels of row `j` a swept shape holds, as a first and last index.
+        let span = |s: &Swept, j: usize| {
+            let (lo, hi) = s.row(j as f64)?;
+            let (i0, i1) = (lo.ceil().max(0.0), hi.floor().min(last));
+            (i0 <= i1).then_some((i0 as usize, i1 as usize))
+        };
+        let mut n = 0;
+        for j in j0 as isize..=j1 {
+            let j = j as usize;
+            let row = j * self.words;
+            if let Some((i0, i1)) = wide.as_ref().and_then(|s| span(s, j)) {
+                n += (i0 / 64..=i1 / 64).map(|w| (self.material[row + w] & word_mask(w, i0, i1)).count_ones() as usize).sum::<usize>();
+                if n > 0 && narrow.is_none() {
+                    break;
+                }
+            }
+            if let Some((i0, i1)) = narrow.as_ref().and_then(|s| span(s, j)) {
+                for w in i0 / 64..=i1 / 64 {
+                    self.material[row + w] &= !word_mask(w, i0, i1);
+                }
+            }
+        }
+        n
     }
 
     /// The material pixels moving from `a` to `b` would remove.
@@ -337,6 +379,13 @@ impl Swept {
         }
         (lo <= hi).then_some((lo, hi))
     }
+}
+
+/// The bits of word `w` of a row that lie among the row's pixels `i0..=i1`.
+fn word_mask(w: usize, i0: usize, i1: usize) -> u64 {
+    let first = if w == i0 / 64 { i0 % 64 } else { 0 };
+    let last = if w == i1 / 64 { i1 % 64 } else { 63 };
+    (u64::MAX >> (63 - last)) & (u64::MAX << first)
 }
 
 /// Pixels across the step-over on a load's map by default. A step's count then errs by about

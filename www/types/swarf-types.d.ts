@@ -867,6 +867,14 @@ retract: number,
  */
 retracts: Retracts, 
 /**
+ * Feed (mm/min) of the moves a roughing or pocket level knows cut nothing: stretches of
+ * rings over ground an earlier ring of the level took, stay-down links across it, the way
+ * in from beside the stock. They stay in the path (the tool down, as G1), only faster, and
+ * the verification holds each to cutting nothing. At most the rapid rate; no faster than
+ * the tool's feed keeps them at it. Default value: the post's rapid rate.
+ */
+airFeed: number | null, 
+/**
  * Moves part and stock so that this point is the program's origin (for parts; a sheet's
  * top is always Z0). Default value: none (as the part's placement puts it).
  */

@@ -1,0 +1,215 @@
+//! Feed moves over cleared ground at the air feed (the job's `stock.airFeed`; by default the
+//! machine's rapid rate). A level's rings partly run over ground an earlier ring of the same
+//! level took, its stay-down links cross it, and a region open to the air is approached from
+//! beside the stock: at the cutting feed that is machine time in which nothing is removed
+//! (issue 12's removal efficiency). Those stretches keep their place in the path (the tool
+//! stays down, as a G1) and only run faster.
+//!
+//! The test is conservative against the program's own simulation (the in-process stock, seed
+//! 002's z-map, whose cells stand for their centres, or a split cell's for its sub-cells'):
+//! the level's material as a pixel on each cell's centre, set where the cell's highest
+//! material stands above the level; a level move is air where no material pixel lies within
+//! the cutter's radius grown by `margin` (half a cell's diagonal: as far as a sub-cell's centre
+//! lies from its cell's) of its way, and it takes off the pixels within its flat's radius less
+//! that margin (there it surely took every cell and sub-cell down to the level). Ramps, helices and rapids take off nothing. So a stretch called air removes
+//! nothing in the simulation, and the verification holds it to that
+//! ([`crate::sim::verify`]: a move faster than its tool's feed that removes material is an
+//! error, as a rapid through stock is). A ball end (no flat) takes nothing off the map: its
+//! levels leave scallops, and only ground untouched since the operation began counts as air.
+
+use crate::cutter::Profile;
+use crate::geom::segment::{Rect, Segment};
+use crate::geom::{DVec2, DVec3};
+use crate::sim::DexelStock;
+use crate::toolpath::{arc_sweep, Move};
+use crate::zigzag::load::PixelMap;
+
+/// A stretch of air shorter than this (mm) stays at the cutting feed: a control would barely
+/// reach the faster feed on it, and the program would change feed for nothing.
+const SHORTEST: f64 = 2.0;
+/// Pieces a level move is judged in, as pixels.
+const PIECE_PIXELS: f64 = 4.0;
+
+/// The material of one level, for telling which of its moves cut nothing.
+pub struct AirCuts {
+    map: PixelMap,
+    /// Where the map holds the whole reach of a cutter whose centre stands here.
+    inside: Rect,
+    z: f64,
+    /// The radius counted (the cutter's grown by the margin) and the one taken off (its flat's
+    /// less the margin).
+    count: f64,
+    take: f64,
+    piece: f64,
+    pixel: f64,
+    feed: f64,
+}
+
+/// One piece of a level move: its move, the share of the move at its end, its length, and
+/// whether it is air.
+struct Piece {
+    mv: usize,
+    t1: f64,
+    length: f64,
+    air: bool,
+}
+
+impl AirCuts {
+    /// The material of `stock` above `z` around `bounds` (where the level's moves run), for a
+    /// cutter of `profile` whose air moves run at `feed`.
+    pub fn new(bounds: Rect, z: f64, stock: &DexelStock, profile: &Profile, feed: f64) -> AirCuts {
+        // A pixel on each cell's centre, and empty ones beyond the stock.
+        let g = stock.grid();
+        let px = g.spacing;
+        let margin = std::f64::consts::FRAC_1_SQRT_2 * px;
+        let count = profile.radius + margin;
+        let b = bounds.expand(count + 3.0 * px);
+        let (i0, j0) = (((b.min.x - g.origin.x) / px).floor(), ((b.min.y - g.origin.y) / px).floor());
+        let size = (((b.max.x - b.min.x) / px).ceil() as usize + 2, ((b.max.y - b.min.y) / px).ceil() as usize + 2);
+        let origin = g.origin + DVec2::new(i0, j0) * px;
+        let (i0, j0) = (i0 as isize, j0 as isize);
+        let tops = stock.tops();
+        let cell = |i: usize, j: usize| {
+            let (ci, cj) = ((i0 + i as isize) as usize, (j0 + j as isize) as usize);
+            ci < g.nx && cj < g.ny && tops[cj * g.nx + ci] > z + 1e-9
+        };
+        // The map reaches past its bounds by the radius counted and an arc's sag.
+        let map = PixelMap::on_grid(origin, px, size, count + px, cell);
+        AirCuts { map, inside: bounds, z, count, take: profile.flat_radius() - margin, piece: PIECE_PIXELS * px, pixel: px, feed }
+    }
+
+    /// Whether the straight way from `a` to `b` cuts nothing, the path it stands for straying
+    /// from it by `sag` at most; takes off what it surely cuts.
+    fn air(&mut self, a: DVec2, b: DVec2, sag: f64) -> bool {
+        let within = |p: DVec2| p.cmpge(self.inside.min).all() && p.cmple(self.inside.max).all();
+        if self.map.count_and_cut(a, b, self.count + sag, 0.0) == 0 {
+            return within(a) && within(b);
+        }
+        self.map.count_and_cut(a, b, 0.0, self.take - sag);
+        false
+    }
+
+    /// `moves` (starting at `from`) with every stretch of a level move that cuts nothing, and
+    /// runs on for at least [`SHORTEST`] so, at the air feed; the others as they were. Takes
+    /// what the level moves cut off the map.
+    pub fn refeed(&mut self, from: DVec3, moves: Vec<Move>) -> Vec<Move> {
+        // The level moves in pieces no longer than a piece (an arc's as chords within a
+        // quarter pixel of it), each with where it starts and ends.
+        let chord_sag = 0.25 * self.pixel;
+        let mut pieces = Vec::new();
+        let mut ends = Vec::new();
+        let mut at = from;
+        for (k, m) in moves.iter().enumerate() {
+            let to = m.to();
+            let level = !m.is_rapid() && (at.z - self.z).abs() < 1e-9 && (to.z - self.z).abs() < 1e-9;
+            if level {
+                let length = m.length(at);
+                let least = match *m {
+                    Move::Arc { center, clockwise, .. } => {
+                        let step = crate::geom::segment::chord_step(center.distance(at.truncate()), chord_sag).unwrap_or(std::f64::consts::FRAC_PI_2);
+                        (arc_sweep(at, to, center, clockwise).abs() / step.max(1e-3)).ceil() as usize
+                    }
+                    _ => 1,
+                };
+                let n = least.max((length / self.piece).ceil() as usize).max(1);
+                let mut prev = at.truncate();
+                for i in 1..=n {
+                    let t1 = i as f64 / n as f64;
+                    let q = if i == n { to.truncate() } else { point(m, at, t1).truncate() };
+                    pieces.push(Piece { mv: k, t1, length: length / n as f64, air: false });
+                    ends.push(Some((prev, q)));
+                    prev = q;
+                }
+            } else {
+                // A way through: pieces of air on either side are not one stretch.
+                pieces.push(Piece { mv: k, t1: 1.0, length: 0.0, air: false });
+                ends.push(None);
+            }
+            at = to;
+        }
+        // Runs of pieces judged as one stroke, its chord within a quarter pixel of their ends
+        // and no longer than two pieces: air all, or each cutting; each judged after those
+        // before it have taken off what they surely cut.
+        let mut i = 0;
+        while i < pieces.len() {
+            let Some((a, mut b)) = ends[i] else {
+                i += 1;
+                continue;
+            };
+            let mut j = i + 1;
+            while j < pieces.len() {
+                let Some((_, q)) = ends[j] else { break };
+                let chord = Segment::line(a, q);
+                if a.distance(q) > 2.0 * self.piece || ends[i..=j].iter().flatten().any(|&(_, p)| chord.distance_to(p) > chord_sag) {
+                    break;
+                }
+                b = q;
+                j += 1;
+            }
+            let sag = 2.0 * chord_sag;
+            let air = self.air(a, b, sag);
+            pieces[i..j].iter_mut().for_each(|p| p.air = air);
+            i = j;
+        }
+        // Stretches of air too short to be worth a change of feed stay at the cutting feed.
+        let mut i = 0;
+        while i < pieces.len() {
+            let j = (i..pieces.len()).find(|&j| !pieces[j].air).unwrap_or(pieces.len());
+            if pieces[i..j].iter().map(|p| p.length).sum::<f64>() < SHORTEST {
+                pieces[i..j].iter_mut().for_each(|p| p.air = false);
+            }
+            i = j + 1;
+        }
+        let mut out = Vec::with_capacity(moves.len());
+        let mut at = from;
+        let mut p = 0;
+        for (k, m) in moves.iter().enumerate() {
+            let end = pieces[p..].iter().position(|q| q.mv != k).map_or(pieces.len(), |n| p + n);
+            let mine = &pieces[p..end];
+            p = end;
+            if mine.iter().all(|q| !q.air) {
+                out.push(*m);
+            } else if mine.iter().all(|q| q.air) {
+                out.push(with_feed(m, m.to(), self.feed));
+            } else {
+                // Runs of pieces alike, each as the move's own kind on its way.
+                let mut s = 0;
+                while s < mine.len() {
+                    let e = (s..mine.len()).find(|&e| mine[e].air != mine[s].air).unwrap_or(mine.len());
+                    let to = if e == mine.len() { m.to() } else { point(m, at, mine[e - 1].t1) };
+                    out.push(with_feed(m, to, if mine[s].air { self.feed } else { feed_of(m) }));
+                    s = e;
+                }
+            }
+            at = m.to();
+        }
+        out
+    }
+}
+
+/// The point of feed move `m` (starting at `from`) a share `t` of the way along it.
+fn point(m: &Move, from: DVec3, t: f64) -> DVec3 {
+    match *m {
+        Move::Arc { to, center, clockwise, .. } => {
+            let sweep = arc_sweep(from, to, center, clockwise);
+            (center + DVec2::from_angle(sweep * t).rotate(from.truncate() - center)).extend(from.z + (to.z - from.z) * t)
+        }
+        _ => from.lerp(m.to(), t),
+    }
+}
+
+fn feed_of(m: &Move) -> f64 {
+    match *m {
+        Move::Line { feed, .. } | Move::Arc { feed, .. } => feed,
+        Move::Rapid { .. } => f64::INFINITY,
+    }
+}
+
+/// Feed move `m` ending at `to` at `feed` (the faster of it and the move's own).
+fn with_feed(m: &Move, to: DVec3, feed: f64) -> Move {
+    match *m {
+        Move::Line { feed: f, .. } => Move::Line { to, feed: feed.max(f) },
+        Move::Arc { center, clockwise, feed: f, .. } => Move::Arc { to, center, clockwise, feed: feed.max(f) },
+        Move::Rapid { .. } => Move::Rapid { to },
+    }
+}
