@@ -94,7 +94,7 @@ impl AirCuts {
     /// what the level moves cut off the map.
     pub fn refeed(&mut self, from: DVec3, moves: Vec<Move>) -> Vec<Move> {
         // The level moves in pieces no longer than a piece (an arc's as chords within a
-        // quarter pixel of it), each with where it starts and ends.
+        // quarter pixel of it), each with where it starts and ends and whether it is a chord.
         let chord_sag = 0.25 * self.pixel;
         let mut pieces = Vec::new();
         let mut ends = Vec::new();
@@ -112,12 +112,13 @@ impl AirCuts {
                     _ => 1,
                 };
                 let n = least.max((length / self.piece).ceil() as usize).max(1);
+                let arc = matches!(m, Move::Arc { .. });
                 let mut prev = at.truncate();
                 for i in 1..=n {
                     let t1 = i as f64 / n as f64;
                     let q = if i == n { to.truncate() } else { point(m, at, t1).truncate() };
                     pieces.push(Piece { mv: k, t1, length: length / n as f64, air: false });
-                    ends.push(Some((prev, q)));
+                    ends.push(Some((prev, q, arc)));
                     prev = q;
                 }
             } else {
@@ -132,21 +133,25 @@ impl AirCuts {
         // before it have taken off what they surely cut.
         let mut i = 0;
         while i < pieces.len() {
-            let Some((a, mut b)) = ends[i] else {
+            let Some((a, mut b, _)) = ends[i] else {
                 i += 1;
                 continue;
             };
             let mut j = i + 1;
             while j < pieces.len() {
-                let Some((_, q)) = ends[j] else { break };
+                let Some((_, q, _)) = ends[j] else { break };
                 let chord = Segment::line(a, q);
-                if a.distance(q) > 2.0 * self.piece || ends[i..=j].iter().flatten().any(|&(_, p)| chord.distance_to(p) > chord_sag) {
+                if a.distance(q) > 2.0 * self.piece || ends[i..=j].iter().flatten().any(|&(_, p, _)| chord.distance_to(p) > chord_sag) {
                     break;
                 }
                 b = q;
                 j += 1;
             }
-            let sag = 2.0 * chord_sag;
+            // How far the pieces stray from the stroke's chord: their ends, and an arc's chords
+            // from the arc.
+            let chord = Segment::line(a, b);
+            let stroke = ends[i..j].iter().flatten();
+            let sag = stroke.clone().map(|&(_, p, _)| chord.distance_to(p)).fold(0.0, f64::max) + if stroke.clone().any(|e| e.2) { chord_sag } else { 0.0 };
             let air = self.air(a, b, sag);
             pieces[i..j].iter_mut().for_each(|p| p.air = air);
             i = j;
@@ -211,5 +216,70 @@ fn with_feed(m: &Move, to: DVec3, feed: f64) -> Move {
         Move::Line { feed: f, .. } => Move::Line { to, feed: feed.max(f) },
         Move::Arc { center, clockwise, feed: f, .. } => Move::Arc { to, center, clockwise, feed: feed.max(f) },
         Move::Rapid { .. } => Move::Rapid { to },
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::Aabb;
+    use crate::sim::{StockModel, Sweep};
+
+    #[test]
+    fn what_a_level_cleared_is_crossed_at_the_air_feed_and_nothing_else() {
+        let (z, cut, fast) = (-2.0, 1000.0, 5000.0);
+        let mut stock = DexelStock::new(&Aabb { min: DVec3::new(-20.0, -20.0, -10.0), max: DVec3::new(20.0, 20.0, 0.0) }, 0.25, 1);
+        let profile = Profile::new(3.0, 0.0);
+        let p = |x: f64, y: f64| DVec3::new(x, y, z);
+        let line = |x: f64, y: f64| Move::Line { to: p(x, y), feed: cut };
+        let from = p(-15.0, -2.4);
+        let moves = vec![
+            // A channel in three passes 2.4 mm apart, then back along its middle (air) to an
+            // arc that bulges past the channel's side: its chord lies in the channel, the arc
+            // does not.
+            line(15.0, -2.4),
+            line(15.0, 0.0),
+            line(-15.0, 0.0),
+            line(-15.0, 2.4),
+            line(15.0, 2.4),
+            line(15.0, 0.0),
+            line(4.0, 0.0),
+            Move::Arc { to: p(-4.0, 0.0), center: DVec2::ZERO, clockwise: false, feed: cut },
+            line(-15.0, 0.0),
+            // Into the material, 1 mm back (air, too short to change feed for), on again.
+            line(-15.0, 8.0),
+            line(-15.0, 7.0),
+            line(-15.0, 12.0),
+        ];
+        let mut air = AirCuts::new(Rect { min: DVec2::splat(-17.0), max: DVec2::splat(17.0) }, z, &stock, &profile, fast);
+        let out = air.refeed(from, moves.clone());
+        // The same way: the same ends in order, as long.
+        let length = |ms: &[Move]| ms.iter().scan(from, |at, m| Some((m.length(std::mem::replace(at, m.to())), ()))).map(|(l, _)| l).sum::<f64>();
+        assert!((length(&out) - length(&moves)).abs() < 1e-9);
+        let mut ends = out.iter().map(|m| m.to());
+        assert!(moves.iter().all(|m| ends.any(|q| q.distance(m.to()) < 1e-12)), "{out:?}");
+        // Cut in order: what runs at the air feed removes nothing, and most of the way back
+        // along the slot does.
+        let (mut at, mut air_length) = (from, 0.0);
+        for m in &out {
+            let removed: f64 = Sweep::of_move(profile, at, m, 1e-4).iter().map(|s| stock.apply(s)).sum();
+            let feed = match *m {
+                Move::Line { feed, .. } | Move::Arc { feed, .. } => feed,
+                Move::Rapid { .. } => unreachable!(),
+            };
+            if feed == fast {
+                assert!(removed == 0.0, "{m:?} at the air feed removed {removed} mm³");
+                // The arc's ends lie in the channel, its top cuts past its side.
+                assert!(!matches!(m, Move::Arc { .. }) || at.y.max(m.to().y) < 2.5, "{m:?} from {at} cuts past the channel");
+                air_length += m.length(at);
+            } else {
+                assert_eq!(feed, cut);
+            }
+            if at.distance(p(-15.0, 8.0)) < 1e-12 {
+                assert_eq!(feed, cut, "a 1 mm stretch of air keeps the cutting feed");
+            }
+            at = m.to();
+        }
+        assert!(air_length > 20.0, "{air_length} mm of 22 along the channel's middle at the air feed: {out:?}");
     }
 }
