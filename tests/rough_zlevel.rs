@@ -351,3 +351,27 @@ fn moves_over_cleared_ground_run_at_the_air_feed_and_cut_nothing() {
         assert!(slow.moves.iter().all(|m| !m.air));
     }
 }
+
+/// Rest roughing: a φ20, then a φ3 with 9 mm flutes, region by region on ocl_mount_rush. The
+/// φ3 never works a level beside material a level above it left standing (the region of the
+/// level just above that holds a region need not be the only one within its reach): its body
+/// stays out of the material (this program buried it 12 times when a region was cut before a
+/// higher one beside it).
+#[test]
+fn rest_roughing_never_works_a_level_beside_material_left_above_it() {
+    let Some(dir) = common::shared_data("meshes") else { return };
+    let bytes = std::fs::read(dir.join("ocl_mount_rush.stl")).unwrap();
+    let part = swarf::mesh::import::read_mesh_auto(&bytes, Some("ocl_mount_rush.stl"), &swarf::geom::tolerance::Tolerances::default()).unwrap();
+    let tool = |number: u32, d: f64| Tool { number, cutter: Cutter { flute_length: 3.0 * d, ..Cutter::flat(d) }, feed_rate: 1000.0, plunge_rate: 250.0, ..Tool::default() };
+    let stage = |tool: u32, stepdown: f64| Operation::RoughZlevel(RoughZlevel { tool, stepdown, stepover: 0.5, allowance: 0.5, leave_stock: 0.5, grid: 0.5, ..RoughZlevel::default() });
+    let job = Job {
+        part: PartSetup { placement: Placement::Keep, ..PartSetup::default() },
+        stock: swarf::job::Stock { margin_xy: 0.0, margin_top: 1.0, ..Default::default() },
+        tools: vec![tool(1, 20.0), tool(4, 3.0)],
+        operations: vec![stage(1, 5.0), stage(4, 0.75)],
+        simulation: Simulation { verify: true, cell: Some(0.25) },
+        ..Job::default()
+    };
+    let out = job::run(&job, part, &mut Progress::none()).unwrap();
+    clean(&out);
+}

@@ -209,7 +209,7 @@ impl RoughZlevel {
         // A ring's start lies on its region's boundary: a point a chordal tolerance from a
         // region counts as in it.
         let slack = tol.chordal;
-        let mut pieces = Pieces::new(levels, self.order, slack);
+        let mut pieces = Pieces::new(levels, self.order, slack, r);
         // What was cut so far: each piece's height and region.
         let mut cleared = Cleared { slack, cut: Vec::new() };
         let count = pieces.list.len();
@@ -455,25 +455,31 @@ struct Piece {
 struct Pieces {
     list: Vec<Option<Piece>>,
     children: Vec<Vec<usize>>,
-    /// The pieces no piece above holds, by level (from the top down).
-    roots: Vec<Vec<usize>>,
+    /// Every piece by level (from the top down).
+    levels: Vec<Vec<usize>>,
+    /// Per piece, the pieces of higher levels within the tool's reach of it: cut before it,
+    /// so that the tool never works a level beside material a level above it left standing
+    /// (a piece can lie beside, not under, a region of a higher level: the region of the
+    /// level just above that holds it need not be the only one within reach).
+    above: Vec<Vec<usize>>,
     /// The pieces cut so far whose children are not all cut, the latest last.
     open: Vec<usize>,
 }
 
 impl Pieces {
     /// `levels` as pieces: whole levels for [`Order::Levels`], each level's connected regions
-    /// (each under the piece of the level before that holds it) for [`Order::Regions`].
-    fn new(levels: Vec<Level>, order: Order, slack: f64) -> Pieces {
+    /// (each under the piece of the level before that holds it) for [`Order::Regions`], for a
+    /// tool of radius `reach`.
+    fn new(levels: Vec<Level>, order: Order, slack: f64, reach: f64) -> Pieces {
         let mut list: Vec<Option<Piece>> = Vec::new();
         let mut children: Vec<Vec<usize>> = Vec::new();
-        let mut roots: Vec<Vec<usize>> = Vec::new();
+        let mut by_level: Vec<Vec<usize>> = Vec::new();
         for Level { z, z_prev, region } in levels {
             let parts = match order {
                 Order::Levels => vec![region],
                 Order::Regions => region.regions(),
             };
-            let mut level_roots = Vec::new();
+            let mut level = Vec::new();
             for part in parts {
                 let probe = part.loops[0].probe_point();
                 let parent = match order {
@@ -481,42 +487,96 @@ impl Pieces {
                     Order::Regions => list.iter().position(|p| p.as_ref().is_some_and(|p| p.z == z_prev && holds(&p.region, probe, slack))),
                 };
                 let k = list.len();
-                match parent {
-                    Some(p) => children[p].push(k),
-                    None => level_roots.push(k),
+                if let Some(p) = parent {
+                    children[p].push(k);
                 }
+                level.push(k);
                 list.push(Some(Piece { z, z_prev, region: part }));
                 children.push(Vec::new());
             }
-            roots.push(level_roots);
+            by_level.push(level);
         }
-        Pieces { list, children, roots, open: Vec::new() }
+        let above = match order {
+            Order::Levels => vec![Vec::new(); list.len()],
+            Order::Regions => within_reach(&list, reach),
+        };
+        Pieces { list, children, levels: by_level, above, open: Vec::new() }
     }
 
     /// The next piece to cut with the tool at `at`: the nearest uncut piece under the latest
-    /// open one, else the nearest uncut piece of the highest level no piece holds.
+    /// open one, else the nearest uncut piece of the highest level that has one; either only
+    /// once the pieces above within reach of it are cut.
     fn next(&mut self, at: DVec2) -> Option<Piece> {
-        let nearest = |list: &[Option<Piece>], candidates: &[usize]| {
+        let nearest = |list: &[Option<Piece>], above: &[Vec<usize>], candidates: &[usize]| {
             candidates
                 .iter()
+                .filter(|&&k| above[k].iter().all(|&a| list[a].is_none()))
                 .filter_map(|&k| list[k].as_ref().map(|p| (k, if p.region.contains(at) { 0.0 } else { p.region.distance_to(at) })))
                 .min_by(|a, b| a.1.total_cmp(&b.1))
                 .map(|(k, _)| k)
         };
         let k = loop {
             match self.open.last() {
-                Some(&o) => match nearest(&self.list, &self.children[o]) {
+                Some(&o) => match nearest(&self.list, &self.above, &self.children[o]) {
                     Some(k) => break k,
                     None => {
                         self.open.pop();
                     }
                 },
-                None => break self.roots.iter().find_map(|level| nearest(&self.list, level))?,
+                None => break self.levels.iter().find_map(|level| nearest(&self.list, &self.above, level))?,
             }
         };
         self.open.push(k);
         self.list[k].take()
     }
+}
+
+/// Per piece, the pieces of higher levels that come within `reach` of it, by the cells of a
+/// coarse grid each region meets (sampled along three rows a cell; the lower piece's grown by
+/// the reach and a cell).
+fn within_reach(list: &[Option<Piece>], reach: f64) -> Vec<Vec<usize>> {
+    let pieces: Vec<&Piece> = list.iter().flatten().collect();
+    let bounds = pieces.iter().fold(Rect::EMPTY, |b, p| b.union(p.region.bounds()));
+    if pieces.is_empty() || bounds.is_empty() {
+        return vec![Vec::new(); list.len()];
+    }
+    let cell = (0.25 * reach).max(0.25);
+    let origin = bounds.min - DVec2::splat(reach + 2.0 * cell);
+    let (nx, ny) = (((bounds.size().x + 2.0 * reach) / cell).ceil() as usize + 5, ((bounds.size().y + 2.0 * reach) / cell).ceil() as usize + 5);
+    let grow = (reach / cell).ceil() as isize + 1;
+    // The cells a region meets, as the ranges of columns per row, grown by `by` cells.
+    let cells = |region: &Shape, by: isize| {
+        let b = region.bounds();
+        let (j0, j1) = (((b.min.y - origin.y) / cell).floor() as isize, ((b.max.y - origin.y) / cell).floor() as isize);
+        let mut rows: Vec<Vec<(isize, isize)>> = vec![Vec::new(); ny];
+        for j in j0..=j1 {
+            for t in [0.0, 0.5, 1.0] {
+                let y = origin.y + (j as f64 + t) * cell;
+                for (x0, x1) in region.spans_at(y) {
+                    let (i0, i1) = (((x0 - origin.x) / cell).floor() as isize - by, ((x1 - origin.x) / cell).floor() as isize + by);
+                    for jj in (j - by).max(0)..=(j + by).min(ny as isize - 1) {
+                        rows[jj as usize].push((i0.max(0), i1.min(nx as isize - 1)));
+                    }
+                }
+            }
+        }
+        rows
+    };
+    let meets = |a: &[Vec<(isize, isize)>], b: &[Vec<(isize, isize)>]| a.iter().zip(b).any(|(ra, rb)| ra.iter().any(|&(a0, a1)| rb.iter().any(|&(b0, b1)| a0 <= b1 && b0 <= a1)));
+    let own: Vec<Vec<Vec<(isize, isize)>>> = list.iter().map(|p| p.as_ref().map(|p| cells(&p.region, 0)).unwrap_or_default()).collect();
+    let mut out = vec![Vec::new(); list.len()];
+    for (k, p) in list.iter().enumerate() {
+        let Some(p) = p else { continue };
+        let near = p.region.bounds().expand(reach + 2.0 * cell);
+        let mut grown = None;
+        for (j, q) in list.iter().enumerate().take(k) {
+            let Some(q) = q else { continue };
+            if q.z > p.z && q.region.bounds().overlaps(&near) && meets(grown.get_or_insert_with(|| cells(&p.region, 1 + grow)), &own[j]) {
+                out[k].push(j);
+            }
+        }
+    }
+    out
 }
 
 /// Whether `region` holds `p`, counting points `slack` from it.
@@ -664,3 +724,40 @@ pub fn material_near(stock: &DexelStock, grid: Grid, z: f64, reach: f64, counts:
     }
 }
 
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::profile::Loop;
+
+    fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Shape {
+        Shape::new(vec![Loop::rect(DVec2::new(x0, y0), DVec2::new(x1, y1))])
+    }
+
+    #[test]
+    fn a_region_beside_a_higher_one_waits_for_it() {
+        // Level 0: a region on the left and one on the right, 20 mm apart. Level −1: a region
+        // under the left one that reaches to within 1 mm of the right one (a tool of radius 3
+        // there would work beside the material the right one has still to take down).
+        let levels = |gap: f64| vec![
+            Level { z: 0.0, z_prev: 1.0, region: Shape::new(rect(0.0, 0.0, 10.0, 10.0).loops.into_iter().chain(rect(30.0, 0.0, 40.0, 10.0).loops).collect()) },
+            // Counter-clockwise from the left side's foot: its first side (its probe) lies under the left region.
+            Level { z: -1.0, z_prev: 0.0, region: Shape::new(vec![Loop::polygon(&[DVec2::new(1.0, 9.0), DVec2::new(1.0, 1.0), DVec2::new(29.0 - gap, 1.0), DVec2::new(29.0 - gap, 9.0)])]) },
+        ];
+        let order = |gap: f64, reach: f64| {
+            let mut pieces = Pieces::new(levels(gap), Order::Regions, 1e-6, reach);
+            let mut at = DVec2::ZERO;
+            std::iter::from_fn(|| {
+                let p = pieces.next(at)?;
+                at = p.region.bounds().center();
+                Some((p.z, p.region.bounds().min.x))
+            })
+            .collect::<Vec<_>>()
+        };
+        // Left, right, then the region below: not the region below before the right one.
+        assert_eq!(order(0.0, 3.0), vec![(0.0, 0.0), (0.0, 30.0), (-1.0, 1.0)]);
+        // Out of the tool's reach of the right one (7 mm from it, a radius of 3), it goes down
+        // first.
+        assert_eq!(order(6.0, 3.0), vec![(0.0, 0.0), (-1.0, 1.0), (0.0, 30.0)]);
+    }
+}
