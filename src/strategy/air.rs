@@ -6,13 +6,15 @@
 //! stays down, as a G1) and only run faster.
 //!
 //! The test is conservative against the program's own simulation (the in-process stock, seed
-//! 002's z-map, whose cells stand for their centres, or a split cell's for its sub-cells'):
-//! the level's material as a pixel on each cell's centre, set where the cell's highest
-//! material stands above the level; a level move is air where no material pixel lies within
-//! the cutter's radius grown by `margin` (half a cell's diagonal: as far as a sub-cell's centre
-//! lies from its cell's) of its way, and it takes off the pixels within its flat's radius less
-//! that margin (there it surely took every cell and sub-cell down to the level). Ramps, helices and rapids take off nothing. So a stretch called air removes
-//! nothing in the simulation, and the verification holds it to that
+//! 002's z-map, whose cells stand for their centres, or a split cell's for its sub-cells') and
+//! against the material itself: the level's material as a pixel on each cell's centre, set
+//! where the cell's highest material stands above the level; a level move is air where no
+//! material pixel lies within the cutter's radius grown by a margin of half a cell's diagonal
+//! (a cell's material, and a sub-cell's centre, lie no farther from the cell's centre) of its
+//! way, plus how far the stroke judged strays from the path; and it takes off the pixels
+//! within its flat's radius less that margin (there it surely took every cell down to the
+//! level, all of each). Ramps, helices and rapids take off nothing. So a stretch called air
+//! removes nothing, and the verification holds it to that
 //! ([`crate::sim::verify`]: a move faster than its tool's feed that removes material is an
 //! error, as a rapid through stock is). A ball end (no flat) takes nothing off the map: its
 //! levels leave scallops, and only ground untouched since the operation began counts as air.
