@@ -47,19 +47,26 @@ pub struct AirCuts {
     feed: f64,
 }
 
-/// One piece of a level move: its move, the share of the move at its end, its length, and
-/// whether it is air.
+/// One piece of a move: its move, the share of the move at its end, its length, where a
+/// level move's piece starts and ends (and whether it stands for an arc, as its chord), and
+/// whether it is air. A move that is not level is one piece, with no way: no stroke of air
+/// runs through it.
 struct Piece {
     mv: usize,
     t1: f64,
     length: f64,
+    way: Option<(DVec2, DVec2, bool)>,
     air: bool,
 }
 
 impl AirCuts {
     /// The material of `stock` above `z` around `bounds` (where the level's moves run), for a
-    /// cutter of `profile` whose air moves run at `feed`.
-    pub fn new(bounds: Rect, z: f64, stock: &DexelStock, profile: &Profile, feed: f64) -> AirCuts {
+    /// cutter of `profile` whose air moves run at `feed`; none where that is no faster than
+    /// its `cutting` feed (nothing to change).
+    pub fn new(bounds: Rect, z: f64, stock: &DexelStock, profile: &Profile, feed: f64, cutting: f64) -> Option<AirCuts> {
+        if feed <= cutting {
+            return None;
+        }
         // A pixel on each cell's centre, and empty ones beyond the stock.
         let g = stock.grid();
         let px = g.spacing;
@@ -77,17 +84,19 @@ impl AirCuts {
         };
         // The map reaches past its bounds by the radius counted and an arc's sag.
         let map = PixelMap::on_grid(origin, px, size, count + px, cell);
-        AirCuts { map, inside: bounds, z, count, take: profile.flat_radius() - margin, piece: PIECE_PIXELS * px, pixel: px, feed }
+        Some(AirCuts { map, inside: bounds, z, count, take: profile.flat_radius() - margin, piece: PIECE_PIXELS * px, pixel: px, feed })
     }
 
     /// Whether the straight way from `a` to `b` cuts nothing, the path it stands for straying
     /// from it by `sag` at most; takes off what it surely cuts.
     fn air(&mut self, a: DVec2, b: DVec2, sag: f64) -> bool {
         let within = |p: DVec2| p.cmpge(self.inside.min).all() && p.cmple(self.inside.max).all();
-        if self.map.count_and_cut(a, b, self.count + sag, 0.0) == 0 {
+        if self.map.count_past_at(a, b, self.count + sag, 0) == 0 {
             return within(a) && within(b);
         }
-        self.map.count_and_cut(a, b, 0.0, self.take - sag);
+        if self.take - sag > 0.0 {
+            self.map.cut_at(a, b, self.take - sag);
+        }
         false
     }
 
@@ -96,10 +105,9 @@ impl AirCuts {
     /// what the level moves cut off the map.
     pub fn refeed(&mut self, from: DVec3, moves: Vec<Move>) -> Vec<Move> {
         // The level moves in pieces no longer than a piece (an arc's as chords within a
-        // quarter pixel of it), each with where it starts and ends and whether it is a chord.
+        // quarter pixel of it).
         let chord_sag = 0.25 * self.pixel;
         let mut pieces = Vec::new();
-        let mut ends = Vec::new();
         let mut at = from;
         for (k, m) in moves.iter().enumerate() {
             let to = m.to();
@@ -119,14 +127,12 @@ impl AirCuts {
                 for i in 1..=n {
                     let t1 = i as f64 / n as f64;
                     let q = if i == n { to.truncate() } else { point(m, at, t1).truncate() };
-                    pieces.push(Piece { mv: k, t1, length: length / n as f64, air: false });
-                    ends.push(Some((prev, q, arc)));
+                    pieces.push(Piece { mv: k, t1, length: length / n as f64, way: Some((prev, q, arc)), air: false });
                     prev = q;
                 }
             } else {
                 // A way through: pieces of air on either side are not one stretch.
-                pieces.push(Piece { mv: k, t1: 1.0, length: 0.0, air: false });
-                ends.push(None);
+                pieces.push(Piece { mv: k, t1: 1.0, length: 0.0, way: None, air: false });
             }
             at = to;
         }
@@ -135,15 +141,15 @@ impl AirCuts {
         // before it have taken off what they surely cut.
         let mut i = 0;
         while i < pieces.len() {
-            let Some((a, mut b, _)) = ends[i] else {
+            let Some((a, mut b, _)) = pieces[i].way else {
                 i += 1;
                 continue;
             };
             let mut j = i + 1;
             while j < pieces.len() {
-                let Some((_, q, _)) = ends[j] else { break };
+                let Some((_, q, _)) = pieces[j].way else { break };
                 let chord = Segment::line(a, q);
-                if a.distance(q) > 2.0 * self.piece || ends[i..=j].iter().flatten().any(|&(_, p, _)| chord.distance_to(p) > chord_sag) {
+                if a.distance(q) > 2.0 * self.piece || pieces[i..=j].iter().filter_map(|p| p.way).any(|(_, p, _)| chord.distance_to(p) > chord_sag) {
                     break;
                 }
                 b = q;
@@ -152,8 +158,8 @@ impl AirCuts {
             // How far the pieces stray from the stroke's chord: their ends, and an arc's chords
             // from the arc.
             let chord = Segment::line(a, b);
-            let stroke = ends[i..j].iter().flatten();
-            let sag = stroke.clone().map(|&(_, p, _)| chord.distance_to(p)).fold(0.0, f64::max) + if stroke.clone().any(|e| e.2) { chord_sag } else { 0.0 };
+            let stroke = pieces[i..j].iter().filter_map(|p| p.way);
+            let sag = stroke.clone().map(|(_, p, _)| chord.distance_to(p)).fold(0.0, f64::max) + if stroke.clone().any(|(_, _, arc)| arc) { chord_sag } else { 0.0 };
             let air = self.air(a, b, sag);
             pieces[i..j].iter_mut().for_each(|p| p.air = air);
             i = j;
@@ -253,7 +259,8 @@ mod tests {
             line(-15.0, 7.0),
             line(-15.0, 12.0),
         ];
-        let mut air = AirCuts::new(Rect { min: DVec2::splat(-17.0), max: DVec2::splat(17.0) }, z, &stock, &profile, fast);
+        assert!(AirCuts::new(Rect { min: DVec2::splat(-17.0), max: DVec2::splat(17.0) }, z, &stock, &profile, cut, cut).is_none());
+        let mut air = AirCuts::new(Rect { min: DVec2::splat(-17.0), max: DVec2::splat(17.0) }, z, &stock, &profile, fast, cut).unwrap();
         let out = air.refeed(from, moves.clone());
         // The same way: the same ends in order, as long.
         let length = |ms: &[Move]| ms.iter().scan(from, |at, m| Some((m.length(std::mem::replace(at, m.to())), ()))).map(|(l, _)| l).sum::<f64>();

@@ -278,12 +278,11 @@ pub fn clear_rings(levels: &[Shape], clearing: &Clearing, z_prev: f64, z: f64, s
             }
         }
     }
-    if s.cursor.air_feed > s.feed {
-        let stock = &s.cursor.stock;
-        let mut air = AirCuts::new(boundary.bounds().expand(s.tool_radius), z, stock.model(), stock.profile(), s.cursor.air_feed);
-        out = air.refeed(from, out);
+    let stock = &s.cursor.stock;
+    match AirCuts::new(boundary.bounds().expand(s.tool_radius), z, stock.model(), stock.profile(), s.cursor.air_feed, s.feed) {
+        Some(mut air) => air.refeed(from, out),
+        None => out,
     }
-    out
 }
 
 /// The keep-out test of a pocket's links (the linker's [`Keepout`]): a straight move at depth

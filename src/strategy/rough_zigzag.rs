@@ -322,10 +322,9 @@ impl Operate for RoughZigzag {
             let linked = ctx.link_fed(&self.name, &tool, &pts3, (Some(&feeds), Some(&starts)), z_prev, &inside, entry, 0.0);
             let moves = arcfit::fit(&linked.moves, linked.start, tol.chordal, &|p| region.contains(p));
             // Stretches over what the level cleared already at the air feed.
-            let moves = if ctx.air_feed > tool.feed_rate {
-                AirCuts::new(region.bounds().expand(r), z, ctx.sim.stock(), &tool.cutter.profile(), ctx.air_feed).refeed(linked.start, moves)
-            } else {
-                moves
+            let moves = match AirCuts::new(region.bounds().expand(r), z, ctx.sim.stock(), &tool.cutter.profile(), ctx.air_feed, tool.feed_rate) {
+                Some(mut air) => air.refeed(linked.start, moves),
+                None => moves,
             };
             match &mut path {
                 None => path = Some(Toolpath { moves, ..linked }),

@@ -535,43 +535,46 @@ impl Pieces {
 /// coarse grid each region meets (sampled along three rows a cell; the lower piece's grown by
 /// the reach and a cell).
 fn within_reach(list: &[Option<Piece>], reach: f64) -> Vec<Vec<usize>> {
-    let pieces: Vec<&Piece> = list.iter().flatten().collect();
-    let bounds = pieces.iter().fold(Rect::EMPTY, |b, p| b.union(p.region.bounds()));
-    if pieces.is_empty() || bounds.is_empty() {
+    let bounds = list.iter().flatten().fold(Rect::EMPTY, |b, p| b.union(p.region.bounds()));
+    if bounds.is_empty() {
         return vec![Vec::new(); list.len()];
     }
     let cell = (0.25 * reach).max(0.25);
-    let origin = bounds.min - DVec2::splat(reach + 2.0 * cell);
-    let (nx, ny) = (((bounds.size().x + 2.0 * reach) / cell).ceil() as usize + 5, ((bounds.size().y + 2.0 * reach) / cell).ceil() as usize + 5);
+    let origin = bounds.min;
     let grow = (reach / cell).ceil() as isize + 1;
-    // The cells a region meets, as the ranges of columns per row, grown by `by` cells.
+    // The cells a region meets, grown by `by` cells: its first row, and per row from there the
+    // ranges of columns.
     let cells = |region: &Shape, by: isize| {
         let b = region.bounds();
         let (j0, j1) = (((b.min.y - origin.y) / cell).floor() as isize, ((b.max.y - origin.y) / cell).floor() as isize);
-        let mut rows: Vec<Vec<(isize, isize)>> = vec![Vec::new(); ny];
+        let mut rows: Vec<Vec<(isize, isize)>> = vec![Vec::new(); (j1 - j0 + 1 + 2 * by) as usize];
         for j in j0..=j1 {
             for t in [0.0, 0.5, 1.0] {
                 let y = origin.y + (j as f64 + t) * cell;
                 for (x0, x1) in region.spans_at(y) {
                     let (i0, i1) = (((x0 - origin.x) / cell).floor() as isize - by, ((x1 - origin.x) / cell).floor() as isize + by);
-                    for jj in (j - by).max(0)..=(j + by).min(ny as isize - 1) {
-                        rows[jj as usize].push((i0.max(0), i1.min(nx as isize - 1)));
+                    for row in &mut rows[(j - j0) as usize..=(j - j0 + 2 * by) as usize] {
+                        row.push((i0, i1));
                     }
                 }
             }
         }
-        rows
+        (j0 - by, rows)
     };
-    let meets = |a: &[Vec<(isize, isize)>], b: &[Vec<(isize, isize)>]| a.iter().zip(b).any(|(ra, rb)| ra.iter().any(|&(a0, a1)| rb.iter().any(|&(b0, b1)| a0 <= b1 && b0 <= a1)));
-    let own: Vec<Vec<Vec<(isize, isize)>>> = list.iter().map(|p| p.as_ref().map(|p| cells(&p.region, 0)).unwrap_or_default()).collect();
+    // Whether two such sets share a cell: along the rows both have.
+    let meets = |(ja, a): &(isize, Vec<Vec<(isize, isize)>>), (jb, b): &(isize, Vec<Vec<(isize, isize)>>)| {
+        let skip = |from: isize| (ja.max(jb) - from) as usize;
+        a.iter().skip(skip(*ja)).zip(b.iter().skip(skip(*jb))).any(|(ra, rb)| ra.iter().any(|&(a0, a1)| rb.iter().any(|&(b0, b1)| a0 <= b1 && b0 <= a1)))
+    };
+    let own: Vec<Option<_>> = list.iter().map(|p| p.as_ref().map(|p| cells(&p.region, 0))).collect();
     let mut out = vec![Vec::new(); list.len()];
     for (k, p) in list.iter().enumerate() {
         let Some(p) = p else { continue };
         let near = p.region.bounds().expand(reach + 2.0 * cell);
         let mut grown = None;
         for (j, q) in list.iter().enumerate().take(k) {
-            let Some(q) = q else { continue };
-            if q.z > p.z && q.region.bounds().overlaps(&near) && meets(grown.get_or_insert_with(|| cells(&p.region, 1 + grow)), &own[j]) {
+            let (Some(q), Some(theirs)) = (q, &own[j]) else { continue };
+            if q.z > p.z && q.region.bounds().overlaps(&near) && meets(grown.get_or_insert_with(|| cells(&p.region, 1 + grow)), theirs) {
                 out[k].push(j);
             }
         }

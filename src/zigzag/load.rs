@@ -164,7 +164,13 @@ impl PixelMap {
     /// removed when `cut`. Row by row: the swept shape is convex, so each row meets it in one
     /// run of pixels, counted and cleared a word at a time.
     fn sweep(&mut self, a: DVec2, b: DVec2, cut: bool, stop: usize) -> usize {
-        let r = self.radius;
+        self.sweep_at(a, b, self.radius, cut, stop)
+    }
+
+    /// [`PixelMap::sweep`] by a disc of radius `r`, no larger than the map's own (the map
+    /// reaches that far past its bounds).
+    fn sweep_at(&mut self, a: DVec2, b: DVec2, r: f64, cut: bool, stop: usize) -> usize {
+        let r = r.min(self.radius);
         let per_px = 1.0 / self.px;
         let j0 = ((a.y.min(b.y) - r - self.origin.y) * per_px).ceil().max(0.0) as usize;
         let j1 = (((a.y.max(b.y) + r - self.origin.y) * per_px).floor().max(-1.0) as isize).min(self.ny as isize - 1);
@@ -205,42 +211,6 @@ impl PixelMap {
         count
     }
 
-    /// In one pass: the material pixels a disc of radius `count` sweeps moving from `a` to
-    /// `b` (no larger than the map's own radius), and those a disc of radius `cut` (no
-    /// larger) sweeps taken off; returns the count.
-    pub fn count_and_cut(&mut self, a: DVec2, b: DVec2, count: f64, cut: f64) -> usize {
-        let per_px = 1.0 / self.px;
-        let r = count.max(cut).min(self.radius);
-        let j0 = ((a.y.min(b.y) - r - self.origin.y) * per_px).ceil().max(0.0) as usize;
-        let j1 = (((a.y.max(b.y) + r - self.origin.y) * per_px).floor().max(-1.0) as isize).min(self.ny as isize - 1);
-        let (pa, pb) = ((a - self.origin) * per_px, (b - self.origin) * per_px);
-        let (wide, narrow) = ((count > 0.0).then(|| Swept::new(pa, pb, r * per_px)), (cut > 0.0).then(|| Swept::new(pa, pb, cut.min(r) * per_px)));
-        let last = self.nx as f64 - 1.0;
-        // The pixels of row `j` a swept shape holds, as a first and last index.
-        let span = |s: &Swept, j: usize| {
-            let (lo, hi) = s.row(j as f64)?;
-            let (i0, i1) = (lo.ceil().max(0.0), hi.floor().min(last));
-            (i0 <= i1).then_some((i0 as usize, i1 as usize))
-        };
-        let mut n = 0;
-        for j in j0 as isize..=j1 {
-            let j = j as usize;
-            let row = j * self.words;
-            if let Some((i0, i1)) = wide.as_ref().and_then(|s| span(s, j)) {
-                n += (i0 / 64..=i1 / 64).map(|w| (self.material[row + w] & word_mask(w, i0, i1)).count_ones() as usize).sum::<usize>();
-                if n > 0 && narrow.is_none() {
-                    break;
-                }
-            }
-            if let Some((i0, i1)) = narrow.as_ref().and_then(|s| span(s, j)) {
-                for w in i0 / 64..=i1 / 64 {
-                    self.material[row + w] &= !word_mask(w, i0, i1);
-                }
-            }
-        }
-        n
-    }
-
     /// The material pixels moving from `a` to `b` would remove.
     pub fn count(&mut self, a: DVec2, b: DVec2) -> usize {
         self.sweep(a, b, false, usize::MAX)
@@ -254,6 +224,16 @@ impl PixelMap {
     /// Removes what the move from `a` to `b` sweeps; returns the count.
     pub fn cut(&mut self, a: DVec2, b: DVec2) -> usize {
         self.sweep(a, b, true, usize::MAX)
+    }
+
+    /// [`PixelMap::count_past`] for a disc of radius `r` (no larger than the map's own).
+    pub fn count_past_at(&mut self, a: DVec2, b: DVec2, r: f64, stop: usize) -> usize {
+        self.sweep_at(a, b, r, false, stop)
+    }
+
+    /// [`PixelMap::cut`] by a disc of radius `r` (no larger than the map's own).
+    pub fn cut_at(&mut self, a: DVec2, b: DVec2, r: f64) -> usize {
+        self.sweep_at(a, b, r, true, usize::MAX)
     }
 
     /// Removes what the move from `a` to `b` sweeps when that is no more than `cap` pixels
@@ -379,13 +359,6 @@ impl Swept {
         }
         (lo <= hi).then_some((lo, hi))
     }
-}
-
-/// The bits of word `w` of a row that lie among the row's pixels `i0..=i1`.
-fn word_mask(w: usize, i0: usize, i1: usize) -> u64 {
-    let first = if w == i0 / 64 { i0 % 64 } else { 0 };
-    let last = if w == i1 / 64 { i1 % 64 } else { 63 };
-    (u64::MAX >> (63 - last)) & (u64::MAX << first)
 }
 
 /// Pixels across the step-over on a load's map by default. A step's count then errs by about
