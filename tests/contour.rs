@@ -347,3 +347,34 @@ fn a_floors_node_bounds_clear_only_moves_the_exact_surface_clears() {
         }
     }
 }
+
+/// Where a keep mask ends a region (no material within reach there, another tool's octants),
+/// its corner is no corner of the part's: it stays chamfered, never put back towards the
+/// refused node. Put back, a ring there took a φ3 beside material in a crevice that no level
+/// above it had come as near to (ocl_wheel_in_box, after a φ20: its shank 10.5 mm deep in it).
+#[test]
+fn a_region_is_never_squared_off_past_a_node_its_keep_mask_refuses() {
+    let part = mesh(plate(20.0));
+    let tol = Tolerances::DEFAULT;
+    let grid = Grid::covering(DVec2::splat(-10.0), DVec2::splat(10.0), 0.5);
+    let cl = surface(&part, grid, -1.0, &Cutter::flat(3.0));
+    let map = LevelMap::of_part(&cl, &part, &tol);
+    // Nodes up to 3 mm on either axis kept: the region's corner lies by (3, 3).
+    let (origin, spacing) = (cl.field.origin, cl.field.spacing);
+    let node = move |i: usize, j: usize| origin + DVec2::new(i as f64, j as f64) * spacing;
+    let keep = move |i: usize, j: usize| {
+        let p = node(i, j);
+        p.x <= 3.0 + 1e-9 && p.y <= 3.0 + 1e-9
+    };
+    let region = map.region(&cl, 1.0, &keep, &tol);
+    assert_eq!(region.loops.len(), 1);
+    // The refused corner node (3.5, 3.5) and the cell towards it stay out; the chamfer runs
+    // from next to (3.5, 3) to next to (3, 3.5).
+    for p in [DVec2::new(3.4, 3.4), DVec2::new(3.3, 3.3)] {
+        assert!(!region.contains(p), "{p} is in the region, past the kept nodes' corner: {:?}", region.loops[0].vertices.iter().filter(|v| v.p.x > 2.0 && v.p.y > 2.0).map(|v| v.p).collect::<Vec<_>>());
+    }
+    assert!(region.contains(DVec2::new(3.1, 3.1)) && region.contains(DVec2::new(3.4, 2.9)));
+    for v in &region.loops[0].vertices {
+        assert!(v.p.x + v.p.y <= 7.0 + 1e-9, "{} lies past the chamfer", v.p);
+    }
+}

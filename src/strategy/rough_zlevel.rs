@@ -337,9 +337,10 @@ impl RoughZlevel {
         // Each level's region on whichever core is free (they do not depend on each other),
         // unless a pool made it already.
         let given = &ctx.given_regions;
+        let keeps = inputs.keeps();
         let mut regions: Vec<(usize, Option<Shape>)> = (0..inputs.heights.len()).map(|k| (k, None)).collect();
         crate::parallel::each_mut(&mut regions, |(k, out)| {
-            let (keep, level) = (inputs.keep(*k), inputs.level(*k));
+            let (keep, level) = (&keeps[*k], inputs.level(*k));
             let made = (!given.is_empty()).then(|| pack(&keep)).and_then(|packed| given.iter().find(|g| g.request == request && g.level == level && g.keep == packed));
             *out = Some(made.map_or_else(|| map.region(&cl, level, &|i, j| keep[j * inputs.grid.nx + i], &tol), |g| g.region.clone()));
         });
@@ -381,7 +382,7 @@ impl RoughZlevel {
         let request = self.request(ctx)?;
         let r = tool.cutter.radius();
         let inputs = self.level_inputs(ctx, &tool, &cl, self.reach(r), true, &mut |_, _| None);
-        let levels = crate::parallel::map_heavy(inputs.heights.len(), |k| (inputs.level(k), pack(&inputs.keep(k))));
+        let levels = inputs.keeps().iter().enumerate().map(|(k, keep)| (inputs.level(k), pack(keep))).collect();
         Ok(RegionWork { request, levels })
     }
 
@@ -643,9 +644,40 @@ impl LevelInputs<'_> {
         self.heights[k].0 - self.zl.allowance
     }
 
+    /// The nodes every level's region keeps ([`LevelInputs::keep`]), a step-down level's
+    /// widened by the nodes of lower levels' regions (within its limit) whose cutter touches
+    /// material above it. A node a level keeps for the material it reaches half a step into
+    /// may also touch, by a sliver, material beside it (in a crevice) that no level above came
+    /// that near: cut only from below, that material would stand over the tool's flutes up to
+    /// the top it was left at, the shank buried beside it. Kept at every step-down level above
+    /// where the cutter touches that material, the node takes it down a step at a time.
+    fn keeps(&self) -> Vec<Vec<bool>> {
+        let touching = self.r + self.grid.spacing * std::f64::consts::FRAC_1_SQRT_2;
+        let made = crate::parallel::map_heavy(self.heights.len(), |k| self.keep(k, touching));
+        // From the bottom up: the nodes of the regions of the levels below.
+        let mut below = vec![false; self.grid.nodes()];
+        let mut keeps = vec![Vec::new(); made.len()];
+        for (k, (mut keep, near)) in made.into_iter().enumerate().rev() {
+            let band = self.heights[k].1 && self.bands;
+            let limit = self.limits[k].as_deref();
+            if !band {
+                for (n, kept) in keep.iter_mut().enumerate() {
+                    *kept |= below[n] && near[n] && limit.is_none_or(|l| l[n]);
+                }
+            }
+            let level = self.level(k);
+            for (n, &kept) in keep.iter().enumerate() {
+                below[n] |= kept && self.cl.field.z[n] <= level;
+            }
+            keeps[k] = keep;
+        }
+        keeps
+    }
+
     /// The nodes level `k`'s region keeps: within reach of material above it, within its limit,
-    /// and for a flat's level alone, where the level below cannot go.
-    fn keep(&self, k: usize) -> Vec<bool> {
+    /// and for a flat's level alone, where the level below cannot go; and the nodes within
+    /// `touching` of material above it.
+    fn keep(&self, k: usize, touching: f64) -> (Vec<bool>, Vec<bool>) {
         let (zl, grid, r) = (self.zl, self.grid, self.r);
         let (z, flat) = self.heights[k];
         // At full reach (rest roughing: every centre whose cutter touches what is left),
@@ -657,7 +689,7 @@ impl LevelInputs<'_> {
             let d = crate::octree::distance_to(&safe, grid.nx, grid.ny, grid.spacing);
             d.into_iter().map(|d| d <= r - 0.5 * grid.spacing).collect::<Vec<bool>>()
         });
-        let mut keep = material_near(self.stock, grid, z, self.reach, removable.as_deref());
+        let [mut keep, near] = material_near(self.stock, grid, z, [self.reach, touching], removable.as_deref());
         if let Some(limit) = &self.limits[k] {
             keep.iter_mut().zip(limit).for_each(|(k, &l)| *k &= l);
         }
@@ -669,7 +701,7 @@ impl LevelInputs<'_> {
             let d = crate::octree::distance_to(&refused, grid.nx, grid.ny, grid.spacing);
             keep.iter_mut().zip(d).for_each(|(k, d)| *k &= d <= FLAT_BAND * grid.spacing);
         }
-        keep
+        (keep, near)
     }
 }
 
@@ -704,13 +736,14 @@ pub fn unpack(bytes: &[u8], count: usize) -> Vec<bool> {
     (0..count).map(|k| bytes.get(k / 8).is_some_and(|b| b >> (k % 8) & 1 == 1)).collect()
 }
 
-/// Per node of `grid`, whether a cutter there at level `z` is within `reach` of material that
-/// stands above `z` in the stock (at the nodes `counts` accepts, where given).
+/// Per node of `grid` and per distance in `reach`, whether a cutter there at level `z` is
+/// within that distance of material that stands above `z` in the stock (at the nodes `counts`
+/// accepts, where given).
 ///
 /// Where `counts` is given, a node's material is the highest of the stock's cells around it
 /// (within half a diagonal of the grid), so no cell between nodes goes unseen; else the cell
 /// nearest it.
-pub fn material_near(stock: &DexelStock, grid: Grid, z: f64, reach: f64, counts: Option<&[bool]>) -> Vec<bool> {
+pub fn material_near<const N: usize>(stock: &DexelStock, grid: Grid, z: f64, reach: [f64; N], counts: Option<&[bool]>) -> [Vec<bool>; N] {
     let mut above = grid.filled(0.0);
     let around = crate::cutter::Profile::new(grid.spacing * std::f64::consts::FRAC_1_SQRT_2, 0.0);
     let top = |p| if counts.is_some() { Some(stock.touch(p, &around, false)) } else { stock.top_near(p) };
@@ -721,10 +754,10 @@ pub fn material_near(stock: &DexelStock, grid: Grid, z: f64, reach: f64, counts:
             }
         }
     }
-    match Region::silhouette(&above, 0.5, reach) {
+    reach.map(|reach| match Region::silhouette(&above, 0.5, reach) {
         Region::Mask(m) => m.z.iter().map(|&v| v >= 0.5).collect(),
         Region::Rect { .. } => vec![true; grid.nodes()],
-    }
+    })
 }
 
 

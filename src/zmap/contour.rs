@@ -146,6 +146,8 @@ impl LevelMap {
         let f = &cl.field;
         let (nx, ny) = (f.nx, f.ny);
         let low: Vec<bool> = (0..nx * ny).map(|c| f.z[c] <= level && keep(c % nx, c / nx)).collect();
+        // Nodes out only because `keep` refuses them: no corner is put back towards one.
+        let refused: Vec<bool> = (0..nx * ny).map(|c| f.z[c] <= level && !low[c]).collect();
         // A ridge between two low nodes (or a convex surface bulging above the level between
         // them) leaves the higher of the two out: the edge from the other then gets its
         // crossing from the exact profile along it, where the surface first rises above the
@@ -177,7 +179,7 @@ impl LevelMap {
         // curves, a waterline's path, stay where the crossings put them). A node beside a
         // ridge along one of its edges has a neighbour out already (the ridge's higher end).
         if cl.profile().flat_radius() <= 0.0 {
-            return level_region(cl, &inside, level, tol);
+            return level_region(cl, &inside, &refused, level, tol);
         }
         let margin = back_off(cl, tol);
         let node = |i: usize, j: usize| f.origin + DVec2::new(i as f64, j as f64) * f.spacing;
@@ -194,11 +196,11 @@ impl LevelMap {
                 inside[c] = false;
             }
         }
-        level_region(cl, &inside, level, tol)
+        level_region(cl, &inside, &refused, level, tol)
     }
 }
 
-fn level_region(cl: &ClSurface, nodes_inside: &[bool], level: f64, tol: &Tolerances) -> Shape {
+fn level_region(cl: &ClSurface, nodes_inside: &[bool], refused: &[bool], level: f64, tol: &Tolerances) -> Shape {
     let f = &cl.field;
     let (nx, ny) = (f.nx, f.ny);
     let inside = |i: isize, j: isize| i >= 0 && j >= 0 && (i as usize) < nx && (j as usize) < ny && nodes_inside[j as usize * nx + i as usize];
@@ -371,7 +373,7 @@ fn level_region(cl: &ClSurface, nodes_inside: &[bool], level: f64, tol: &Toleran
         .into_iter()
         .filter_map(|ring| {
             let pts = bend(cl, level, &ring, &node, tol);
-            let pts = sharpen(cl, level, &simplify(cl, level, &pts, tol), tol);
+            let pts = sharpen(cl, level, &simplify(cl, level, &pts, tol), refused, tol);
             (pts.len() >= 3).then(|| Loop::polygon(&pts))
         })
         .filter(|l| l.area().abs() > 1e-12)
@@ -501,8 +503,11 @@ fn simplify(cl: &ClSurface, level: f64, pts: &[DVec2], tol: &Tolerances) -> Vec<
 /// makes of where the tool's centre may go, which the cells' diagonal chamfered (leaving
 /// material in the pocket's corner). The meeting point replaces the short edge when the two
 /// new edges clear the level along their length, so the boundary still never passes the safe
-/// region.
-fn sharpen(cl: &ClSurface, level: f64, pts: &[DVec2], tol: &Tolerances) -> Vec<DVec2> {
+/// region; and only where the meeting point's cell has no node a keep mask refused (`refused`:
+/// low enough, but out): there the boundary is no corner of the part's but where the region
+/// was told to end (no material within reach, another tool's octants), and a corner put back
+/// past it takes the tool where its levels above did not go.
+fn sharpen(cl: &ClSurface, level: f64, pts: &[DVec2], refused: &[bool], tol: &Tolerances) -> Vec<DVec2> {
     let n = pts.len();
     if n < 4 {
         return pts.to_vec();
@@ -510,6 +515,14 @@ fn sharpen(cl: &ClSurface, level: f64, pts: &[DVec2], tol: &Tolerances) -> Vec<D
     let clears = |a: DVec2, b: DVec2| clears_level(cl, level, a, b, tol);
     let ring = Loop::polygon(pts);
     let short = 2.0 * std::f64::consts::SQRT_2 * cl.field.spacing;
+    let f = &cl.field;
+    let near_refused = |x: DVec2| {
+        let g = (x - f.origin) / f.spacing;
+        let (i, j) = (g.x.floor() as isize, g.y.floor() as isize);
+        [(i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1)]
+            .into_iter()
+            .any(|(a, b)| a >= 0 && b >= 0 && (a as usize) < f.nx && (b as usize) < f.ny && refused[b as usize * f.nx + a as usize])
+    };
     let mut out = Vec::with_capacity(n + 4);
     for i in 0..n {
         let (a, b, c, d) = (pts[(i + n - 1) % n], pts[i], pts[(i + 1) % n], pts[(i + 2) % n]);
@@ -530,7 +543,7 @@ fn sharpen(cl: &ClSurface, level: f64, pts: &[DVec2], tol: &Tolerances) -> Vec<D
         // A convex corner: between the chamfer and the meeting point lies what the ring left
         // out (at a reflex one, what it holds).
         let between = (b + c) * 0.25 + x * 0.5;
-        if s > 0.0 && t < 0.0 && x.distance(b) <= short && x.distance(c) <= short && !ring.contains(between) && clears(b, x) && clears(x, c) {
+        if s > 0.0 && t < 0.0 && x.distance(b) <= short && x.distance(c) <= short && !ring.contains(between) && !near_refused(x) && clears(b, x) && clears(x, c) {
             out.push(x);
         }
     }
