@@ -340,9 +340,15 @@ impl RoughZlevel {
         let keeps = inputs.keeps();
         let mut regions: Vec<(usize, Option<Shape>)> = (0..inputs.heights.len()).map(|k| (k, None)).collect();
         crate::parallel::each_mut(&mut regions, |(k, out)| {
-            let (keep, level) = (&keeps[*k], inputs.level(*k));
-            let made = (!given.is_empty()).then(|| pack(&keep)).and_then(|packed| given.iter().find(|g| g.request == request && g.level == level && g.keep == packed));
-            *out = Some(made.map_or_else(|| map.region(&cl, level, &|i, j| keep[j * inputs.grid.nx + i], &tol), |g| g.region.clone()));
+            let (packed, level) = (&keeps[*k], inputs.level(*k));
+            let made = given.iter().find(|g| g.request == request && g.level == level && &g.keep == packed);
+            *out = Some(made.map_or_else(
+                || {
+                    let keep = unpack(packed, inputs.grid.nodes());
+                    map.region(&cl, level, &|i, j| keep[j * inputs.grid.nx + i], &tol)
+                },
+                |g| g.region.clone(),
+            ));
         });
         for ((z, flat), (_, region)) in inputs.heights.into_iter().zip(regions) {
             let region = region.expect("every level's region is made");
@@ -382,7 +388,7 @@ impl RoughZlevel {
         let request = self.request(ctx)?;
         let r = tool.cutter.radius();
         let inputs = self.level_inputs(ctx, &tool, &cl, self.reach(r), true, &mut |_, _| None);
-        let levels = inputs.keeps().iter().enumerate().map(|(k, keep)| (inputs.level(k), pack(keep))).collect();
+        let levels = inputs.keeps().into_iter().enumerate().map(|(k, keep)| (inputs.level(k), keep)).collect();
         Ok(RegionWork { request, levels })
     }
 
@@ -651,13 +657,19 @@ impl LevelInputs<'_> {
     /// that near: cut only from below, that material would stand over the tool's flutes up to
     /// the top it was left at, the shank buried beside it. Kept at every step-down level above
     /// where the cutter touches that material, the node takes it down a step at a time.
-    fn keeps(&self) -> Vec<Vec<bool>> {
+    /// Packed ([`pack`]): every level's are held at once.
+    fn keeps(&self) -> Vec<Vec<u8>> {
         let touching = self.r + self.grid.spacing * std::f64::consts::FRAC_1_SQRT_2;
-        let made = crate::parallel::map_heavy(self.heights.len(), |k| self.keep(k, touching));
+        let made = crate::parallel::map_heavy(self.heights.len(), |k| {
+            let (keep, near) = self.keep(k, touching);
+            (pack(&keep), pack(&near))
+        });
         // From the bottom up: the nodes of the regions of the levels below.
-        let mut below = vec![false; self.grid.nodes()];
+        let nodes = self.grid.nodes();
+        let mut below = vec![false; nodes];
         let mut keeps = vec![Vec::new(); made.len()];
-        for (k, (mut keep, near)) in made.into_iter().enumerate().rev() {
+        for (k, (keep, near)) in made.into_iter().enumerate().rev() {
+            let (mut keep, near) = (unpack(&keep, nodes), unpack(&near, nodes));
             let band = self.heights[k].1 && self.bands;
             let limit = self.limits[k].as_deref();
             if !band {
@@ -669,7 +681,7 @@ impl LevelInputs<'_> {
             for (n, &kept) in keep.iter().enumerate() {
                 below[n] |= kept && self.cl.field.z[n] <= level;
             }
-            keeps[k] = keep;
+            keeps[k] = pack(&keep);
         }
         keeps
     }
