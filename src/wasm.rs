@@ -801,7 +801,7 @@ fn simulation_view(job: &Job, out: &job::JobOutput, v: Verification) -> Result<S
     let part = v.part.z.iter().map(|&z| z as f32).collect();
     let mut times: Vec<f64> = out.moves.iter().map(|m| m.start).collect();
     times.push(out.moves.last().map_or(0.0, |m| m.start + m.seconds));
-    let mrr = out.moves.iter().zip(&v.volumes).map(|(m, &vol)| if m.mv.is_rapid() { 0.0 } else { m.mrr(vol) as f32 }).collect();
+    let mrr = v.rates.iter().map(|&r| r as f32).collect();
     let r = &v.report;
     let mut findings = Vec::new();
     for (kind, list) in [(0.0, &r.gouges), (1.0, &r.rapid_collisions), (2.0, &r.body_collisions)] {

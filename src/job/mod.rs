@@ -845,12 +845,12 @@ impl Running {
         } else {
             (None, Some(sim))
         };
-        let volumes = match (&verification, &sim) {
-            (Some(v), _) => &v.volumes[..],
-            (None, Some(sim)) => sim.volumes(),
-            (None, None) => &[],
+        let (volumes, rates) = match (&verification, &sim) {
+            (Some(v), _) => (&v.volumes[..], v.rates.clone()),
+            (None, Some(sim)) => (sim.volumes(), sim.rates()),
+            (None, None) => (&[][..], Vec::new()),
         };
-        let mut operations = report::per_operation(job, &enabled, &all_moves, &move_ranges, volumes, &snapshots, verification.as_ref());
+        let mut operations = report::per_operation(job, &enabled, &all_moves, &move_ranges, volumes, &rates, &snapshots, verification.as_ref());
         for (o, (load, stages)) in operations.iter_mut().zip(loads) {
             o.load = load;
             o.stages = stages;

@@ -66,13 +66,14 @@ impl OperationReport {
 
 /// The reports of a job's `enabled` operations: `ranges[k]` are the k-th one's moves, `volumes` what the
 /// simulation removed per move (as many as it ran), `snapshots[k]` the stock's heights after
-/// operation k when the program is verified.
+/// operation k when the program is verified, `rates` each simulated move's removal rate.
 pub fn per_operation(
     job: &Job,
     enabled: &[usize],
     moves: &[ProgramMove],
     ranges: &[std::ops::Range<usize>],
     volumes: &[f64],
+    rates: &[f64],
     snapshots: &[Option<HeightField>],
     verification: Option<&Verification>,
 ) -> Vec<OperationReport> {
@@ -100,7 +101,7 @@ pub fn per_operation(
             let simulated = range.end <= volumes.len();
             let (removed, mrr_max) = if simulated {
                 let v = &volumes[range.clone()];
-                let peak = mine.iter().zip(v).filter(|(m, _)| !m.mv.is_rapid()).map(|(m, &v)| m.mrr(v)).fold(0.0, f64::max);
+                let peak = rates[range.clone()].iter().copied().fold(0.0, f64::max);
                 (Some(v.iter().sum()), Some(peak))
             } else {
                 (None, None)

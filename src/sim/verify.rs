@@ -14,7 +14,7 @@ use serde::Serialize;
 
 use super::dexel::DexelStock;
 use super::sweep::Sweep;
-use super::program::ProgramMove;
+use super::program::{removal_rates, ProgramMove, Timing, RATE_CELLS};
 use super::StockModel;
 use crate::error::{Error, Result};
 use crate::geom::{Aabb, DVec3, Tolerances};
@@ -66,7 +66,8 @@ pub struct Report {
     /// Largest and mean material above part + allowance where the part is (mm).
     pub residual_max: f64,
     pub residual_mean: f64,
-    /// Largest material removal rate of a feed move (mm³/min).
+    /// Largest material removal rate of the feed moves (mm³/min), each measured over
+    /// [`RATE_CELLS`] cells of path ([`removal_rates`]).
     pub mrr_max: f64,
 }
 
@@ -118,8 +119,11 @@ pub struct Verification {
     pub report: Report,
     /// Volume removed by each move (mm³).
     pub volumes: Vec<f64>,
+    /// Material removal rate of each move (mm³/min, 0 for rapids; [`removal_rates`]).
+    pub rates: Vec<f64>,
     pub stock: DexelStock,
-    /// The part's surface at the stock's cell centres (NaN where the part is not).
+    /// The part's surface plus the allowance at the stock's cell centres, no higher than the raw
+    /// stock's top (NaN where the part is not).
     pub part: HeightField,
 }
 
@@ -317,16 +321,19 @@ fn body_radius(m: &ProgramMove) -> f64 {
 #[derive(Clone, Debug)]
 pub struct Simulator {
     stock: DexelStock,
+    /// The raw stock's top: a cell the program never cut stands here, whatever the part.
+    raw_top: f64,
     volumes: Vec<f64>,
+    /// Each move's length, time and kind, for its removal rate.
+    timings: Vec<Timing>,
     rapid: (usize, Vec<Finding>),
     body: (usize, Vec<Finding>),
-    mrr_max: f64,
 }
 
 impl Simulator {
     /// The untouched box `stock` on cells of side `cell`.
     pub fn new(stock: &Aabb, cell: f64) -> Result<Simulator> {
-        Ok(Simulator { stock: stock_for(stock, cell)?, volumes: Vec::new(), rapid: (0, Vec::new()), body: (0, Vec::new()), mrr_max: 0.0 })
+        Ok(Simulator { stock: stock_for(stock, cell)?, raw_top: stock.max.z, volumes: Vec::new(), timings: Vec::new(), rapid: (0, Vec::new()), body: (0, Vec::new()) })
     }
 
     /// The stock as the moves so far left it.
@@ -337,6 +344,12 @@ impl Simulator {
     /// Volume removed by each move so far (mm³).
     pub fn volumes(&self) -> &[f64] {
         &self.volumes
+    }
+
+    /// The material removal rate of each move so far (mm³/min, [`removal_rates`] over
+    /// [`RATE_CELLS`] cells of path).
+    pub fn rates(&self) -> Vec<f64> {
+        removal_rates(&self.timings, &self.volumes, RATE_CELLS * self.stock.grid().spacing)
     }
 
     /// Applies the next `moves` of the program (move indices continue from the earlier ones),
@@ -390,9 +403,7 @@ impl Simulator {
             if let Some((at, depth)) = body {
                 note(&mut self.body, Finding { move_index: Some(index), at, amount: depth });
             }
-            if !m.mv.is_rapid() {
-                self.mrr_max = self.mrr_max.max(m.mrr(volume));
-            }
+            self.timings.push(m.timing());
             if (m.mv.is_rapid() || m.air) && volume > GRAZE {
                 note(&mut self.rapid, Finding { move_index: Some(index), at: m.mv.to(), amount: volume });
             }
@@ -401,9 +412,13 @@ impl Simulator {
     }
 
     /// Judges the stock against the part's heights (`surface` on the simulation's grid, −∞ where
-    /// there is no part) plus `allowance`, and ends the simulation.
+    /// there is no part) plus `allowance`, and ends the simulation. A gouge is material the
+    /// program removed below the part plus the allowance: where the raw stock itself stands
+    /// lower than that (a part whose top is the stock's top), the program is held to the raw
+    /// top, not to a height the stock never had.
     pub fn finish(self, surface: impl FnOnce(Grid) -> HeightField, allowance: f64, tolerances: &Tolerances) -> Verification {
-        let Simulator { stock: sim, volumes, rapid, body, mrr_max } = self;
+        let rates = self.rates();
+        let Simulator { stock: sim, raw_top, volumes, rapid, body, .. } = self;
         let grid = sim.grid();
         let mut surface = surface(grid);
         let mut gouges = Vec::new();
@@ -415,7 +430,7 @@ impl Simulator {
                     surface.z[c] = f64::NAN;
                     continue;
                 }
-                surface.z[c] += allowance;
+                surface.z[c] = (surface.z[c] + allowance).min(raw_top);
                 let left = sim.top(i, j) - surface.z[c];
                 if left < -tolerances.gouge {
                     gouges.push(Finding { move_index: None, at: grid.node(i, j).extend(sim.top(i, j)), amount: -left });
@@ -442,8 +457,8 @@ impl Simulator {
             body_collisions: body.1,
             residual_max,
             residual_mean: if covered > 0 { residual_sum / covered as f64 } else { 0.0 },
-            mrr_max,
+            mrr_max: rates.iter().copied().fold(0.0, f64::max),
         };
-        Verification { report, volumes, stock: sim, part: surface }
+        Verification { report, volumes, rates, stock: sim, part: surface }
     }
 }
