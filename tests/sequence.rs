@@ -326,3 +326,41 @@ fn a_second_pocket_deeper_in_the_same_loops_starts_where_the_first_stopped() {
     assert!((a - b).abs() < 0.05 * a, "{a} {b}");
     assert!(out.operations[1].seconds < out.operations[0].seconds * 1.2, "{:?}", out.operations);
 }
+
+/// The cycle time adds up: the program's head breaks it into the operations, the tool changes
+/// and the rest, whose whole seconds sum to the total it states; the job's per-operation times
+/// are the head's (once 1–2 s off, and the page's "1:00:51 (1:00:33 of moves + 15 s)" did not
+/// add up), with a dwell and a slow tool change counted where they belong.
+#[test]
+fn the_cycle_time_adds_up_in_the_programs_head_and_the_report() {
+    let mut job = two_rasters();
+    job.post.dialect = swarf::post::Dialect::Fanuc; // a spindle dwell of 2 s at each start
+    job.post.tool_change_seconds = 40.0;
+    let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
+    let clock = |t: &str| t.split(':').fold(0u64, |acc, v| acc * 60 + v.trim().parse::<u64>().unwrap());
+    let head: Vec<&str> = out.gcode.lines().take(20).collect();
+    let total_line = head.iter().find(|l| l.contains("cycle time")).expect("the head states the cycle time");
+    let total = clock(total_line.split("cycle time ").nth(1).unwrap().split(' ').next().unwrap());
+    let items: Vec<(String, u64)> = head
+        .iter()
+        .filter(|l| l.contains("(  "))
+        .map(|l| {
+            let inner = l.split("(  ").nth(1).unwrap().trim_end_matches(')');
+            let (label, t) = inner.rsplit_once(": ").unwrap();
+            (label.to_owned(), clock(t))
+        })
+        .collect();
+    assert_eq!(items.iter().map(|i| i.1).sum::<u64>(), total, "{items:?} against {total}");
+    assert_eq!(total, out.cycle.seconds.round() as u64);
+    assert_eq!(items.iter().map(|i| (i.0.clone(), i.1)).collect::<Vec<_>>(), out.time.iter().map(|i| (i.label.clone(), i.seconds)).collect::<Vec<_>>());
+    let labels: Vec<&str> = items.iter().map(|i| i.0.as_str()).collect();
+    assert_eq!(labels, ["coarse with T1", "fine with T2", "1 tool change", "retracts and spindle starts"]);
+    assert_eq!(items[2].1, 40);
+    assert!(items[3].1 >= 4, "two dwells of 2 s: {items:?}");
+    // The report's operations take the head's times.
+    for (op, item) in out.operations.iter().zip(&items) {
+        assert!((op.seconds - item.1 as f64).abs() <= 1.0, "{} {} against {}", op.name, op.seconds, item.1);
+    }
+    let parts = out.cycle.paths.iter().sum::<f64>() + out.cycle.tool_change_seconds + out.cycle.other_seconds;
+    assert!((parts - out.cycle.seconds).abs() < 1e-9);
+}

@@ -27,7 +27,7 @@ use crate::error::{Error, Result, Warning};
 use crate::strategy::profile2d::Profile2d;
 use crate::geom::{Aabb, DVec3, Tolerances};
 use crate::mesh::{placement::PartSetup, Mesh};
-use crate::post::{write_program, CycleTime, PostSettings};
+use crate::post::{write_program, CycleTime, PostSettings, TimeItem};
 use crate::profile::Drawing;
 use crate::progress::Progress;
 use crate::sim::program::{program_moves, ProgramMove};
@@ -334,6 +334,9 @@ pub struct JobOutput {
     pub gcode: String,
     /// The program's cycle time as the post wrote it: per tool path, tool changes, in all.
     pub cycle: CycleTime,
+    /// The cycle time by operation, tool changes and the rest, in whole seconds that sum to
+    /// the whole: the breakdown the program's head, the CLI and the page show.
+    pub time: Vec<TimeItem>,
     pub stats: PathStats,
     /// Every move of the program, timed, in order.
     pub moves: Vec<ProgramMove>,
@@ -854,12 +857,15 @@ impl Running {
         for (o, (load, stages)) in operations.iter_mut().zip(loads) {
             o.load = load;
             o.stages = stages;
+            // Its time as the program's head states it: its paths' as the post wrote them.
+            o.seconds = path_operations.iter().zip(&cycle.paths).filter(|(&k, _)| k == o.index).map(|(_, s)| s).sum();
         }
+        let time = cycle.items(&CycleTime::groups(&paths));
         let problem = verification.as_ref().and_then(|v| v.report.problem());
         progress.stage("done", 1.0, 0.0);
         let drawing = sheet.map(|s| s.drawing);
         let (clearance_z, cache) = (heights.clearance, caches.counts);
-        Ok(JobOutput { part, drawing, stock, clearance_z, paths, path_operations, gcode, cycle, stats, moves: all_moves, operations, verification, warnings, problem, cache, octants })
+        Ok(JobOutput { part, drawing, stock, clearance_z, paths, path_operations, gcode, cycle, time, stats, moves: all_moves, operations, verification, warnings, problem, cache, octants })
     }
 }
 

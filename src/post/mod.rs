@@ -13,6 +13,7 @@ use std::fmt::Write as _;
 use serde::{Deserialize, Serialize};
 
 pub use self::definition::{ArcFormat, CommentStyle, Post};
+
 use self::definition::ARC_CHORD_ERROR;
 use crate::error::Error;
 use crate::geom::{DVec2, DVec3};
@@ -159,16 +160,90 @@ impl Default for PostSettings {
     }
 }
 
-/// What a program takes on the machine: the cutting and rapid moves at their feeds and the
-/// rapid rate, and the tool changes.
+/// What a program takes on the machine, part by part: each tool path's motion (its way down
+/// from the clearance height included), the tool changes, and the rest (the spindle's start
+/// dwells and the retracts to the clearance height at tool changes and at the end). The parts
+/// sum to the whole, and [`CycleTime::items`] rounds them so that they still do.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
 pub struct CycleTime {
     /// Seconds of motion of each tool path, in the program's order.
     pub paths: Vec<f64>,
+    /// When each tool path's own moves begin (s from the program's start), after its tool
+    /// change and its way down from the clearance height.
+    pub starts: Vec<f64>,
     pub tool_changes: usize,
-    /// The whole program (seconds): motion, tool changes and dwells.
+    /// Seconds of the tool changes (`post.toolChangeSeconds` each).
+    pub tool_change_seconds: f64,
+    /// Seconds of the rest: the spindle's start dwells and the retracts to the clearance
+    /// height at tool changes and at the program's end.
+    pub other_seconds: f64,
+    /// The whole program (seconds): the sum of the parts.
     pub seconds: f64,
+}
+
+/// One part of a program's cycle time, for people: what it is and how long it takes.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(rename_all = "camelCase")]
+pub struct TimeItem {
+    pub label: String,
+    /// Whole seconds.
+    pub seconds: u64,
+}
+
+impl CycleTime {
+    /// The paths of `paths` by operation, as the cycle time is broken down: consecutive paths
+    /// of one name (an operation's, one path per tool) with their tools, `rough with T1, T3`.
+    pub fn groups(paths: &[Toolpath]) -> Vec<(String, Vec<usize>)> {
+        let mut groups: Vec<(String, Vec<usize>, Vec<u32>)> = Vec::new();
+        for (k, p) in paths.iter().enumerate() {
+            match groups.last_mut() {
+                Some((name, ks, tools)) if *name == p.name => {
+                    ks.push(k);
+                    if !tools.contains(&p.tool) {
+                        tools.push(p.tool);
+                    }
+                }
+                _ => groups.push((p.name.clone(), vec![k], vec![p.tool])),
+            }
+        }
+        groups.into_iter().map(|(name, ks, tools)| (format!("{name} with {}", tools.iter().map(|t| format!("T{t}")).collect::<Vec<_>>().join(", ")), ks)).collect()
+    }
+
+    /// The parts of the cycle time in whole seconds that sum to the whole rounded to a second:
+    /// `groups` names the paths' parts (each a label and the indices of its paths, in order:
+    /// an operation's), then the tool changes and the rest follow. Each part is the rounded
+    /// running total less the one before it, so no rounding is lost or counted twice.
+    pub fn items(&self, groups: &[(String, Vec<usize>)]) -> Vec<TimeItem> {
+        let mut parts: Vec<(String, f64)> = groups.iter().map(|(label, paths)| (label.clone(), paths.iter().filter_map(|&k| self.paths.get(k)).sum())).collect();
+        if self.tool_changes > 0 {
+            let s = if self.tool_changes == 1 { "" } else { "s" };
+            parts.push((format!("{} tool change{s}", self.tool_changes), self.tool_change_seconds));
+        }
+        if self.other_seconds > 0.0 {
+            parts.push(("retracts and spindle starts".into(), self.other_seconds));
+        }
+        let (mut total, mut shown) = (0.0, 0u64);
+        parts
+            .into_iter()
+            .map(|(label, seconds)| {
+                total += seconds;
+                let upto = total.max(0.0).round() as u64;
+                let item = TimeItem { label, seconds: upto.saturating_sub(shown) };
+                shown = upto.max(shown);
+                item
+            })
+            .collect()
+    }
+}
+
+/// What [`clock`] writes `seconds` as: `h:mm:ss` or `m:ss`.
+pub fn clock_format(seconds: f64) -> &'static str {
+    if seconds.max(0.0).round() >= 3600.0 {
+        "h:mm:ss"
+    } else {
+        "m:ss"
+    }
 }
 
 /// `seconds` as h:mm:ss or m:ss.
@@ -219,7 +294,9 @@ pub fn write_program(title: &str, paths: &[Toolpath], tools: &[Tool], clearance_
                     w.line(&definition::fill(l, &[("tool", path.tool.to_string())]));
                 }
             } else if started {
-                w.comment(&format!("change to tool {}: {describe}, then resume", path.tool));
+                // Without a changer the operator changes the tool by hand, and its length is
+                // the new tool's: Z must be touched off again before the program goes on.
+                w.comment(&format!("change to tool {}: {describe}; then set Z zero again with the new tool (touch off) and resume", path.tool));
                 w.line(&post.pause);
             }
             if started {
@@ -241,6 +318,7 @@ pub fn write_program(title: &str, paths: &[Toolpath], tools: &[Tool], clearance_
         let before = w.seconds;
         w.motion(&Move::Rapid { to: path.start.truncate().extend(clearance_z) });
         w.motion(&Move::Rapid { to: path.start });
+        time.starts.push(w.seconds + time.tool_changes as f64 * settings.tool_change_seconds);
         for m in &path.moves {
             w.motion(m);
         }
@@ -252,7 +330,9 @@ pub fn write_program(title: &str, paths: &[Toolpath], tools: &[Tool], clearance_
     for l in &post.footer {
         w.line(l);
     }
-    time.seconds = w.seconds + time.tool_changes as f64 * settings.tool_change_seconds;
+    time.tool_change_seconds = time.tool_changes as f64 * settings.tool_change_seconds;
+    time.other_seconds = w.seconds - time.paths.iter().sum::<f64>();
+    time.seconds = time.paths.iter().sum::<f64>() + time.tool_change_seconds + time.other_seconds;
 
     // The head, now that the program is timed.
     let mut head = Writer::new(settings, &post);
@@ -262,12 +342,10 @@ pub fn write_program(title: &str, paths: &[Toolpath], tools: &[Tool], clearance_
     }
     head.comment(title);
     head.comment(&format!("generated by swarf {} for {}", env!("CARGO_PKG_VERSION"), post.name));
-    let changes = match time.tool_changes {
-        0 => String::new(),
-        1 => format!(", 1 tool change at {} s", settings.tool_change_seconds),
-        n => format!(", {n} tool changes at {} s each", settings.tool_change_seconds),
-    };
-    head.comment(&format!("cycle time {}{changes}, rapids at {} mm/min", clock(time.seconds), settings.rapid_rate));
+    head.comment(&format!("cycle time {} {}, rapids at {} mm/min:", clock(time.seconds), clock_format(time.seconds), settings.rapid_rate));
+    for item in time.items(&CycleTime::groups(paths)) {
+        head.comment(&format!("  {}: {}", item.label, clock(item.seconds as f64)));
+    }
     let mut listed = Vec::new();
     for path in paths {
         if !listed.contains(&path.tool) {
@@ -276,9 +354,6 @@ pub fn write_program(title: &str, paths: &[Toolpath], tools: &[Tool], clearance_
                 head.comment(&format!("T{} {}", tool.number, tool.describe()));
             }
         }
-    }
-    for (path, seconds) in paths.iter().zip(&time.paths) {
-        head.comment(&format!("{} with T{}: {}", path.name, path.tool, clock(*seconds)));
     }
     let mut lines = head.lines;
     lines.extend(w.lines);

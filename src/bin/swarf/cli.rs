@@ -359,14 +359,17 @@ fn run_job(job: &Job, workpiece: impl Into<Workpiece>, output: &Path, quiet: boo
     write(output, out.gcode_marked().as_bytes())?;
     let s = out.stats;
     eprintln!(
-        "{}: {} moves, {:.0} mm cutting, {:.0} mm rapid, about {}:{:02} min on the machine ({:.2} s to compute)",
+        "{}: {} moves, {:.0} mm cutting, {:.0} mm rapid ({:.2} s to compute); cycle time {} {}:",
         output.display(),
         s.moves,
         s.feed_length,
         s.rapid_length,
-        (s.seconds / 60.0) as u64,
-        (s.seconds % 60.0) as u64,
-        started.elapsed().as_secs_f64()
+        started.elapsed().as_secs_f64(),
+        swarf::post::clock(out.cycle.seconds),
+        swarf::post::clock_format(out.cycle.seconds),
     );
+    for item in &out.time {
+        eprintln!("  {}: {}", item.label, swarf::post::clock(item.seconds as f64));
+    }
     Ok(())
 }
