@@ -568,6 +568,12 @@ fn every_built_in_post_reproduces_the_paths_in_linuxcnc_and_grbl_reads_its_own()
         let post = dialect.post();
         // Four decimals: the rounding (0.05 µm) is well under the micrometre checked.
         let settings = PostSettings { dialect, decimals: Some(4), ..PostSettings::default() };
+        // GRBL 1.1 has no mist (M7 is off in its default build): its second tool floods.
+        let mut tools = tools.clone();
+        if post.coolant_mist.is_none() {
+            assert!(write_program("every post", &out.paths, &tools, out.clearance_z, &settings).unwrap_err().to_string().contains("no coolantMist word"));
+            tools[1].coolant = Coolant::Flood;
+        }
         let (gcode, time) = write_program("every post", &out.paths, &tools, out.clearance_z, &settings).unwrap();
         // LinuxCNC reads every built-in dialect but Fanuc's program number (an O word is a
         // subroutine label to it).
@@ -581,11 +587,21 @@ fn every_built_in_post_reproduces_the_paths_in_linuxcnc_and_grbl_reads_its_own()
         match dialect {
             Dialect::Grbl => {
                 check(&gcode, Flavour::Grbl11).unwrap_or_else(|e| panic!("GRBL 1.1 refuses: {e}"));
+                if let Some(said) = common::grblcheck(&gcode) {
+                    said.unwrap_or_else(|e| panic!("GRBL 1.1h's own parser refuses the program: {e}"));
+                }
                 assert!(!gcode.contains("M6") && gcode.contains("M0\n") && calls.iter().any(|c| c.starts_with("PROGRAM_STOP")));
             }
             Dialect::GrblHal => {
                 check(&gcode, Flavour::GrblHal).unwrap_or_else(|e| panic!("grblHAL refuses: {e}"));
                 assert!(check(&gcode, Flavour::Grbl11).is_err(), "a tool change GRBL 1.1 would refuse");
+                // GRBL 1.1h's parser reads every other line as grblHAL does: grblHAL's tool
+                // changes (M6) and mist (M7, which GRBL 1.1 builds without) aside.
+                let without_changes: String = gcode.lines().filter(|l| !l.contains("M6") && !l.contains("M7")).map(|l| format!("{l}\n")).collect();
+                if let Some(said) = common::grblcheck(&without_changes) {
+                    said.unwrap_or_else(|e| panic!("GRBL 1.1h's own parser refuses the grblHAL program: {e}"));
+                }
+                assert!(common::grblcheck(&gcode).is_none_or(|r| r.is_err()), "GRBL 1.1h refuses M6");
             }
             Dialect::Fanuc => {
                 assert!(gcode.starts_with("%\nO0001 (every post)\nN10 ") && gcode.trim_end().ends_with('%'));
@@ -606,8 +622,10 @@ fn every_built_in_post_reproduces_the_paths_in_linuxcnc_and_grbl_reads_its_own()
         assert!(arcs > 20, "{dialect:?}: {arcs} arcs");
         // Coolant per tool: flood for the flat end, mist for the ball, off before the change and at the end.
         let flood = gcode.find("\nM8").or_else(|| gcode.find(" M8")).expect("flood");
-        let mist = gcode.find("\nM7").or_else(|| gcode.find(" M7")).expect("mist");
-        assert!(flood < mist && gcode[flood..mist].contains("M9") && gcode[mist..].contains("M9"), "{dialect:?}");
+        let off = flood + gcode[flood..].find("M9").expect("coolant off before the change");
+        let second = if post.coolant_mist.is_some() { "M7" } else { "M8" };
+        let mist = off + gcode[off..].find(second).expect("the second tool's coolant");
+        assert!(gcode[mist..].contains("M9"), "{dialect:?}");
         assert!(gcode.contains("G54") || post.work_offset.is_none());
         // The head states the cycle time: motion plus one tool change.
         let motion: f64 = out.paths.iter().map(|p| p.stats(settings.rapid_rate).seconds).sum();
@@ -645,4 +663,50 @@ fn swarf_verify_reads_every_built_in_post_back_and_grbl_programs_must_be_grbl_s(
         Err(e) => e.to_string(),
     };
     assert!(e.contains("M6 is not a command GRBL 1.1"), "{e}");
+}
+
+/// Comments are ASCII on every built-in post: an operation named with "φ" and "×" is written
+/// as "D" and "x" (a Fanuc program once had 6 lines a Fanuc control may refuse).
+#[test]
+fn comments_are_ascii_on_every_built_in_post() {
+    let mut job = demo_job(Dialect::LinuxCnc, Units::Mm);
+    job.name = "plate φ20 × 3".into();
+    let Operation::FinishRaster(r) = &mut job.operations[0] else { unreachable!() };
+    r.name = "finish φ6 ball – 30°".into();
+    let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
+    for dialect in Dialect::ALL {
+        let settings = PostSettings { dialect, ..PostSettings::default() };
+        let (gcode, _) = swarf::post::write_program(&job.name, &out.paths, &job.tools, out.clearance_z, &settings).unwrap();
+        let bad: Vec<&str> = gcode.lines().filter(|l| !l.is_ascii()).collect();
+        assert!(bad.is_empty(), "{dialect:?}: {bad:?}");
+        assert!(gcode.contains("finish D6 ball - 30 deg"), "{dialect:?}");
+    }
+}
+
+/// Fanuc's N numbers never come back to N10: a program longer than the post's step allows is
+/// numbered by ones, and past the largest number the rest goes unnumbered; every number read is
+/// greater than the one before, and rs274 reads the program.
+#[test]
+fn line_numbers_never_wrap() {
+    let tools = vec![Tool { number: 1, cutter: Cutter::flat(6.0), ..Tool::default() }];
+    let path = |n: usize| Toolpath {
+        name: "zigzag".into(),
+        tool: 1,
+        spindle_rpm: 10000.0,
+        start: DVec3::new(0.0, 0.0, 1.0),
+        moves: (0..n).map(|k| Move::Line { to: DVec3::new((k % 2) as f64, k as f64 * 0.001, 0.0), feed: 500.0 }).collect(),
+    };
+    let settings = PostSettings { dialect: Dialect::Fanuc, ..PostSettings::default() };
+    for (moves, step, unnumbered) in [(5_000, 10, false), (50_000, 1, false), (120_000, 1, true)] {
+        let gcode = write_gcode("long", &[path(moves)], &tools, 5.0, &settings).unwrap();
+        let numbers: Vec<u64> = gcode.lines().filter_map(|l| l.strip_prefix('N')?.split(' ').next()?.parse().ok()).collect();
+        assert!(numbers.windows(2).all(|w| w[1] == w[0] + step), "{moves} moves: numbers go by {step}");
+        assert!(*numbers.last().unwrap() <= 99_999);
+        let bare = gcode.lines().filter(|l| !l.starts_with('N') && !l.starts_with('O') && *l != "%").count();
+        assert_eq!(bare > 0, unnumbered, "{moves} moves");
+        if moves == 5_000 {
+            let readable: String = gcode.lines().filter(|l| !l.starts_with('O')).map(|l| format!("{l}\n")).collect();
+            assert!(interpret(&readable, &tools).len() > 4_000);
+        }
+    }
 }

@@ -21,6 +21,18 @@ pub enum CommentStyle {
     None,
 }
 
+/// The characters a control reads in comments.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(rename_all = "camelCase")]
+pub enum CommentCharacters {
+    /// Printable ASCII only: anything else is written as its nearest ASCII (`φ6` → `D6`,
+    /// `×` → `x`, `é` → `e`), or `?`. What most controls (Fanuc, GRBL, Mach) read.
+    #[default]
+    Ascii,
+    /// Any character (UTF-8), as LinuxCNC reads.
+    Any,
+}
+
 /// How arcs are written.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
@@ -40,13 +52,16 @@ pub enum ArcFormat {
 /// without arcs (or without helices).
 pub const ARC_CHORD_ERROR: f64 = 0.0008;
 
-/// Line numbers (N words).
+/// Line numbers (N words). A number never comes back: a program with more lines than `start`
+/// and `step` reach before `max` is numbered by ones, and one with more lines than that is
+/// numbered up to `max` and goes on unnumbered (a control reads a line without an N word; one
+/// that reads a number twice may jump to the wrong line).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(deny_unknown_fields, rename_all = "camelCase")]
 pub struct LineNumbers {
     pub start: u32,
     pub step: u32,
-    /// The largest number the control reads; numbering starts again at `start` after it.
+    /// The largest number the control reads.
     #[serde(default = "largest_line_number")]
     pub max: u32,
 }
@@ -86,6 +101,8 @@ pub struct Post {
     /// Seconds to wait after starting the spindle (0: none). Needs `dwell`.
     pub spindle_dwell: f64,
     pub comments: CommentStyle,
+    /// The characters its comments may hold; others are transliterated. Default value: ascii.
+    pub comment_characters: CommentCharacters,
     pub line_numbers: Option<LineNumbers>,
     /// Digits after the point for lengths in millimetres and in inches, and for feeds.
     pub decimals_mm: usize,
@@ -124,6 +141,7 @@ impl Default for Post {
             dwell: Some("G4 P{seconds}".into()),
             spindle_dwell: 0.0,
             comments: CommentStyle::Parens,
+            comment_characters: CommentCharacters::Ascii,
             line_numbers: None,
             decimals_mm: 3,
             decimals_inch: 4,
@@ -236,11 +254,85 @@ impl Post {
 
     /// The comment line for `text`, in the post's style (none for a post without comments).
     pub fn comment(&self, text: &str) -> Option<String> {
-        let text = super::comment(text);
+        let text = self.comment_text(text);
         match self.comments {
             CommentStyle::Parens => Some(format!("({text})")),
             CommentStyle::Semicolon => Some(format!("; {text}")),
             CommentStyle::None => None,
+        }
+    }
+}
+
+/// `text` in printable ASCII: each other character as its nearest ASCII, or `?`.
+pub fn ascii(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        if c.is_ascii() && !c.is_ascii_control() {
+            out.push(c);
+            continue;
+        }
+        out.push_str(match c {
+            'φ' | 'Φ' | 'ø' | 'Ø' | '⌀' | 'ϕ' => "D",
+            '×' => "x",
+            '°' => " deg",
+            '²' => "2",
+            '³' => "3",
+            'µ' | 'μ' => "u",
+            'δ' => "delta",
+            'γ' => "gamma",
+            '≤' => "<=",
+            '≥' => ">=",
+            '±' => "+/-",
+            '–' | '—' | '−' => "-",
+            '‘' | '’' => "'",
+            '“' | '”' | '«' | '»' => "\"",
+            '…' => "...",
+            '·' | '•' => ".",
+            '→' => "->",
+            'ß' => "ss",
+            'æ' => "ae",
+            'Æ' => "AE",
+            'œ' => "oe",
+            'Œ' => "OE",
+            'à' | 'á' | 'â' | 'ã' | 'ä' | 'å' | 'ā' => "a",
+            'À' | 'Á' | 'Â' | 'Ã' | 'Ä' | 'Å' | 'Ā' => "A",
+            'ç' | 'č' | 'ć' => "c",
+            'Ç' | 'Č' | 'Ć' => "C",
+            'è' | 'é' | 'ê' | 'ë' | 'ē' | 'ě' => "e",
+            'È' | 'É' | 'Ê' | 'Ë' | 'Ē' | 'Ě' => "E",
+            'ì' | 'í' | 'î' | 'ï' => "i",
+            'Ì' | 'Í' | 'Î' | 'Ï' => "I",
+            'ñ' | 'ń' => "n",
+            'Ñ' | 'Ń' => "N",
+            'ò' | 'ó' | 'ô' | 'õ' | 'ö' | 'ő' => "o",
+            'Ò' | 'Ó' | 'Ô' | 'Õ' | 'Ö' | 'Ő' => "O",
+            'ù' | 'ú' | 'û' | 'ü' | 'ů' | 'ű' => "u",
+            'Ù' | 'Ú' | 'Û' | 'Ü' | 'Ů' | 'Ű' => "U",
+            'ý' | 'ÿ' => "y",
+            'Ý' => "Y",
+            'š' | 'ś' => "s",
+            'Š' | 'Ś' => "S",
+            'ž' | 'ź' | 'ż' => "z",
+            'Ž' | 'Ź' | 'Ż' => "Z",
+            'ł' => "l",
+            'Ł' => "L",
+            'ř' => "r",
+            'Ř' => "R",
+            c if c.is_whitespace() => " ",
+            _ => "?",
+        });
+    }
+    out
+}
+
+impl Post {
+    /// `text` as its comments may hold it: no parentheses (they would end the comment early),
+    /// and in ASCII where the post says so.
+    pub fn comment_text(&self, text: &str) -> String {
+        let text = super::comment(text);
+        match self.comment_characters {
+            CommentCharacters::Ascii => ascii(&text),
+            CommentCharacters::Any => text,
         }
     }
 }
@@ -298,6 +390,15 @@ mod tests {
             assert!(e.contains(needle), "{json}: {e}");
         }
         assert!(Post::from_json("{}").is_ok());
+    }
+
+    #[test]
+    fn comments_are_ascii_unless_the_post_says_otherwise() {
+        let fanuc = Post { comments: CommentStyle::Parens, ..Post::default() };
+        assert_eq!(fanuc.comment("octree rough φ20 × 3 – δ 1.5 µm, café 30° ≤ 2²").unwrap(), "(octree rough D20 x 3 - delta 1.5 um, cafe 30 deg <= 22)");
+        assert_eq!(fanuc.comment("漢字 (1)").unwrap(), "(?? -1-)");
+        let linuxcnc = Post { comment_characters: CommentCharacters::Any, ..Post::default() };
+        assert_eq!(linuxcnc.comment("φ20").unwrap(), "(φ20)");
     }
 
     #[test]

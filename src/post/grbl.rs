@@ -40,7 +40,10 @@ fn m_group(code: u32, flavour: Flavour) -> Option<&'static str> {
     Some(match code {
         0 | 1 | 2 | 30 => "stopping",
         3 | 4 | 5 => "spindle",
-        7 | 8 | 9 => "coolant",
+        8 | 9 => "coolant",
+        // Mist is built into GRBL 1.1 only with ENABLE_M7, off in its default config.h: a
+        // default board refuses M7 with error:20.
+        7 if flavour == Flavour::GrblHal => "coolant",
         6 if flavour == Flavour::GrblHal => "tool change",
         _ => return None,
     })
@@ -143,12 +146,13 @@ mod tests {
             ("%\n", "% line"),
             ("G0 A5\n", "word A"),
             ("G4\n", "needs P"),
+            ("M7\n", "M7 is not a command"),
             ("(open\n", "not closed"),
             (&format!("G1 X{} F100\n", "1".repeat(90)), "line buffer"),
         ] {
             let e = check(text, Flavour::Grbl11).unwrap_err();
             assert!(e.to_string().contains(needle), "{text:?}: {e}");
         }
-        check("T2 M6\nG43 H2\n", Flavour::GrblHal).unwrap();
+        check("T2 M6\nG43 H2\nM7\n", Flavour::GrblHal).unwrap();
     }
 }

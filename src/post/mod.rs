@@ -12,7 +12,7 @@ use std::fmt::Write as _;
 
 use serde::{Deserialize, Serialize};
 
-pub use self::definition::{ArcFormat, CommentStyle, Post};
+pub use self::definition::{ArcFormat, CommentCharacters, CommentStyle, Post};
 
 use self::definition::ARC_CHORD_ERROR;
 use crate::error::Error;
@@ -336,7 +336,7 @@ pub fn write_program(title: &str, paths: &[Toolpath], tools: &[Tool], clearance_
 
     // The head, now that the program is timed.
     let mut head = Writer::new(settings, &post);
-    let values = [("title", comment(title)), ("program", format!("{:04}", settings.program_number)), ("version", env!("CARGO_PKG_VERSION").to_owned())];
+    let values = [("title", post.comment_text(title)), ("program", format!("{:04}", settings.program_number)), ("version", env!("CARGO_PKG_VERSION").to_owned())];
     for l in &post.header {
         head.line(&definition::fill(l, &values));
     }
@@ -360,18 +360,23 @@ pub fn write_program(title: &str, paths: &[Toolpath], tools: &[Tool], clearance_
     Ok((finish(lines, &post)?, time))
 }
 
-/// Numbers the lines and holds them to the post's length.
+/// Numbers the lines and holds them to the post's length. Numbers never come back (see
+/// [`definition::LineNumbers`]): the post's step where the program fits under its largest
+/// number, else by ones, and past that no more numbers.
 fn finish(lines: Vec<String>, post: &Post) -> Result<String, Error> {
+    let numbered = |line: &String| line != "%" && !line.starts_with('O');
+    let mut n = post.line_numbers.map(|l| {
+        let count = lines.iter().filter(|l| numbered(l)).count() as u64;
+        let fits = |step: u32| (l.start as u64) + (count.saturating_sub(1)) * step as u64 <= l.max as u64;
+        (l.start as u64, if fits(l.step) { l.step } else { 1 }, l.max as u64)
+    });
     let mut out = String::new();
-    let mut n = post.line_numbers.map(|l| l.start);
     for line in lines {
         let mut line = match n.as_mut() {
             // The tape marks and the program number stand unnumbered.
-            Some(k) if line != "%" && !line.starts_with('O') => {
+            Some((k, step, max)) if numbered(&line) && *k <= *max => {
                 let numbered = format!("N{k} {line}");
-                if let Some(l) = post.line_numbers {
-                    *k = if *k > l.max - l.step { l.start } else { *k + l.step };
-                }
+                *k += *step as u64;
                 numbered
             }
             _ => line,

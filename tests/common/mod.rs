@@ -85,6 +85,26 @@ pub fn shared_data(rel: &str) -> Option<std::path::PathBuf> {
     }
 }
 
+/// GRBL 1.1h's own parser (`../shared/tools/grbl/grblcheck`, built from GRBL's source on first
+/// use) on a program: `None` where the shared tools are not beside this checkout, else what the
+/// parser said (`Err` with its message when it refused a line).
+pub fn grblcheck(gcode: &str) -> Option<Result<(), String>> {
+    let tool = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/tools/grbl/grblcheck");
+    if !tool.exists() {
+        eprintln!("skipping GRBL's own parser: {} is absent", tool.display());
+        return None;
+    }
+    let dir = std::env::temp_dir().join(format!("swarf-grblcheck-{}-{:?}", std::process::id(), std::thread::current().id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("program.nc");
+    std::fs::write(&file, gcode).unwrap();
+    let out = std::process::Command::new("bash").arg(&tool).arg(&file).output().expect("bash runs grblcheck");
+    let _ = std::fs::remove_dir_all(&dir);
+    let said = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    assert!(!said.contains("could not build"), "{said}");
+    Some(if out.status.success() && said.contains("grblcheck: OK") { Ok(()) } else { Err(said) })
+}
+
 /// Judges tool paths against the brute-force exact drop ([`cl_exact_at`] over every facet, edge
 /// and vertex within the cutter's reach of a move), at dense points along every feed move.
 pub struct Judge<'a> {
