@@ -15,9 +15,10 @@ pub enum Error {
     Import(#[from] ImportError),
     #[error(transparent)]
     Program(#[from] crate::post::read::ReadError),
-    /// A job file or setting that does not fit: the message names the field by its path
-    /// (`operations[1].stepover must be a positive number`).
-    #[error("invalid job file: {0}")]
+    /// A job setting that does not fit (from a file, the page or a portal): the message names
+    /// the field by its path (`operations[1].stepover must be a positive number`), and says
+    /// nothing of a file, which there may not be.
+    #[error("{0}")]
     Input(String),
     /// A project file that does not fit (its job's errors are named under `job.`).
     #[error("invalid project file: {0}")]

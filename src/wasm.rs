@@ -30,6 +30,32 @@ fn to_js<T: serde::Serialize>(value: &T) -> Result<JsValue, JsError> {
     value.serialize(&serde_wasm_bindgen::Serializer::json_compatible()).map_err(js_error)
 }
 
+/// A job object from the page or a portal, read by the one strict reader
+/// ([`Job::from_value`]): a misspelt field or a value of the wrong type is named by its path,
+/// as `readJob` and `swarf run` name it.
+fn job_from_js(job: JsValue) -> Result<Job, JsError> {
+    let value: serde_json::Value = serde_wasm_bindgen::from_value(job).map_err(|e| js_error(format!("the job is not a plain object: {e}")))?;
+    Job::from_value(&value).map_err(js_error)
+}
+
+/// Every setting of a job (an object) that does not fit, as `[{ path, message }]`
+/// ([`Job::problems`]); a job that does not read gives its one problem, with the path the
+/// reader named.
+#[wasm_bindgen(js_name = checkJob)]
+pub fn check_job(job: JsValue) -> Result<JsValue, JsError> {
+    let value: serde_json::Value = serde_wasm_bindgen::from_value(job).map_err(|e| js_error(format!("the job is not a plain object: {e}")))?;
+    let problems = match Job::from_value(&value) {
+        Ok(job) => job.problems(),
+        Err(e) => {
+            let message = e.to_string();
+            let named = message.strip_prefix("unknown fields: ").or_else(|| message.strip_prefix("unknown field: ")).unwrap_or(&message);
+            let path = named.split([':', ' ', ';']).next().unwrap_or_default().to_owned();
+            vec![job::Problem { path, message }]
+        }
+    };
+    to_js(&problems)
+}
+
 /// The default job, as the JSON object the page edits.
 #[wasm_bindgen(js_name = defaultJob)]
 pub fn default_job() -> Result<JsValue, JsError> {
@@ -78,8 +104,7 @@ pub fn read_post(text: &str) -> Result<JsValue, JsError> {
 /// A project file (`.swarf.json`) of `job` with the part or drawing in `bytes` embedded.
 #[wasm_bindgen(js_name = writeProject)]
 pub fn write_project(job: JsValue, name: &str, bytes: &[u8]) -> Result<String, JsError> {
-    let job: Job = serde_wasm_bindgen::from_value(job).map_err(|e| js_error(format!("invalid job: {e}")))?;
-    Ok(crate::job::project::Project::embedded(job, name, bytes).to_json())
+    Ok(crate::job::project::Project::embedded(job_from_js(job)?, name, bytes).to_json())
 }
 
 /// Reads a project file: `{job, name, bytes}` (`bytes` null when the project only names its
@@ -476,7 +501,7 @@ struct PlanNeeds {
 /// Prepares `job` on the part or drawing in `bytes` (see [`JobPlan`]).
 #[wasm_bindgen(js_name = prepareJob)]
 pub fn prepare_job(job: JsValue, bytes: &[u8], name: &str) -> Result<JobPlan, JsError> {
-    let job: Job = serde_wasm_bindgen::from_value(job).map_err(|e| js_error(format!("invalid job: {e}")))?;
+    let job = job_from_js(job)?;
     let workpiece: Workpiece = if crate::profile::import::is_drawing(Some(name), bytes) {
         read_drawing_js(bytes, name, &job.tolerances)?.into()
     } else {

@@ -25,7 +25,14 @@ fn demo_then_run_then_zmap() {
     for f in ["demo.stl", "demo.json", "demo.ngc"] {
         assert!(dir.join(f).metadata().unwrap().len() > 100, "{f}");
     }
-    assert!(String::from_utf8_lossy(&out.stderr).contains("min on the machine"));
+    // The cycle time as the program's head breaks it down (h:mm:ss), the same lines.
+    let said = String::from_utf8_lossy(&out.stderr);
+    let head = std::fs::read_to_string(dir.join("demo.ngc")).unwrap();
+    let total = said.lines().find(|l| l.contains("cycle time")).expect("the cycle time").split("cycle time ").nth(1).unwrap().split(' ').next().unwrap().to_owned();
+    assert!(head.contains(&format!("(cycle time {total} h:mm:ss")), "{said}");
+    for item in said.lines().filter(|l| l.starts_with("  ") && l.contains(" with T")) {
+        assert!(head.contains(&format!("({item})")), "{item} is not in the program's head");
+    }
 
     // The job file drives `run` to the same program.
     let ngc = dir.join("again.ngc");

@@ -53,7 +53,15 @@ fn unknown_kinds_wrong_types_and_newer_versions_say_where() {
     let mut v = default_json();
     v["operations"][0]["stepover"] = "fine".into();
     let e = error_of(&v.to_string());
-    assert!(e.contains("operations[0].stepover") && e.contains("invalid type"), "{e}");
+    assert!(e.contains(r#"operations[0].stepover: expected a number, got "fine""#), "{e}");
+
+    // A wrong type is said in a user's words, with its path.
+    let mut v = default_json();
+    v["stock"]["marginXy"] = "5".into();
+    assert_eq!(error_of(&v.to_string()), r#"stock.marginXy: expected a number, got "5""#);
+    let mut v = default_json();
+    v["tools"][0]["number"] = (-2).into();
+    assert_eq!(error_of(&v.to_string()), "tools[0].number: expected a whole number, 0 or more, got -2");
 
     let mut v = default_json();
     v["post"]["dialect"] = "heidenhain".into();
@@ -75,4 +83,26 @@ fn a_missing_tool_number_is_named() {
     let job = Job::from_json(&v.to_string()).unwrap();
     let e = job::run(&job, demo_part(), &mut Progress::none()).unwrap_err().to_string();
     assert!(e.contains("no tool number 7"), "{e}");
+}
+
+/// One word, one meaning: `stepover` is a distance in millimetres (raster finishing), and the
+/// step-over that is a fraction of the tool's diameter (roughing, pockets) is
+/// `stepoverFraction` since version 2. A version-1 file is still read as it was written; a
+/// version-2 file that says `stepover` on a roughing is told the field it means. No message
+/// blames a "job file": the same reader reads what the page and portals send.
+#[test]
+fn stepover_is_millimetres_and_a_version_1_file_reads_as_it_was_written() {
+    let v1 = r#"{"tools":[{"number":1,"shape":"flat","diameter":6}],"operations":[{"kind":"roughZlevel","tool":1,"stepover":0.3},{"kind":"finishRaster","tool":1,"stepover":0.8}]}"#;
+    let job = Job::from_json(v1).unwrap();
+    assert_eq!(job.version, JOB_VERSION);
+    let json = serde_json::to_value(&job).unwrap();
+    assert_eq!(json["operations"][0]["stepoverFraction"], 0.3);
+    assert!(json["operations"][0].get("stepover").is_none());
+    assert_eq!(json["operations"][1]["stepover"], 0.8);
+    // Written back, it reads as version 2.
+    assert_eq!(Job::from_json(&json.to_string()).unwrap(), job);
+    let v2 = v1.replace(r#"{"tools""#, r#"{"version":2,"tools""#);
+    let e = error_of(&v2);
+    assert!(e.contains("operations[0].stepover (did you mean stepoverFraction?)"), "{e}");
+    assert!(!e.contains("job file"), "{e}");
 }

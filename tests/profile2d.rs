@@ -500,7 +500,7 @@ fn a_zigzag_pocket_holds_its_load() {
     let reference = 6.0 * stepover * stepdown * feed;
     let mut seconds = Vec::new();
     for load in [LoadControl::None, LoadControl::Feed, LoadControl::Path] {
-        let pocket = Pocket2d { layers: vec!["POCKET".into()], depth: 1.5, stepdown, stepover, pattern: PocketPattern::Zigzag, load, ..Pocket2d::default() };
+        let pocket = Pocket2d { layers: vec!["POCKET".into()], depth: 1.5, stepdown, stepover_fraction: stepover, pattern: PocketPattern::Zigzag, load, ..Pocket2d::default() };
         let mut job = job_with(vec![Operation::Pocket2d(pocket)], 6.0);
         job.simulation.cell = Some(0.1);
         let out = job::run(&job, plate(), &mut Progress::none()).unwrap();

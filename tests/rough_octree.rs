@@ -220,8 +220,8 @@ fn a_library_too_big_for_the_part_is_refused_naming_a_tool_that_would_do() {
 fn its_settings_are_checked_with_their_paths() {
     let e = Job::from_json(r#"{"tools": [{"number": 1, "shape": "flat"}], "operations": [{"kind": "roughOctree", "tools": [1, 7]}]}"#).and_then(|j| j.validate().map(|_| j)).unwrap_err();
     assert!(e.to_string().contains("operations[0].tools: no tool number 7"), "{e}");
-    let e = Job::from_json(r#"{"tools": [{"number": 1, "shape": "flat"}], "operations": [{"kind": "roughOctree", "stepover": 0.9}]}"#).and_then(|j| j.validate().map(|_| j)).unwrap_err();
-    assert!(e.to_string().contains("operations[0].stepover is at most 0.85"), "{e}");
+    let e = Job::from_json(r#"{"version": 2, "tools": [{"number": 1, "shape": "flat"}], "operations": [{"kind": "roughOctree", "stepoverFraction": 0.9}]}"#).and_then(|j| j.validate().map(|_| j)).unwrap_err();
+    assert!(e.to_string().contains("operations[0].stepoverFraction is at most 0.85"), "{e}");
     let e = Job::from_json(r#"{"tools": [{"number": 1, "shape": "ball"}], "operations": [{"kind": "roughOctree"}]}"#).unwrap();
     let err = job::run(&e, block(20.0, 20.0, |_, _| Some(-3.0)), &mut Progress::none()).unwrap_err();
     assert!(err.to_string().contains("no flat or bull-nose end"), "{err}");

@@ -19,7 +19,7 @@ fn flat(number: u32, d: f64) -> Tool {
 
 /// The paper's case: φ10 flat, radial depth 3 mm, axial 0.5 mm, one level.
 fn paper_job(load: LoadControl) -> Job {
-    let op = RoughZigzag { tool: 1, stepdown: 0.5, stepover: 0.3, allowance: 0.0, leave_stock: 0.0, load, grid: 0.5, pixel: Some(0.05), ..RoughZigzag::default() };
+    let op = RoughZigzag { tool: 1, stepdown: 0.5, stepover_fraction: 0.3, allowance: 0.0, leave_stock: 0.0, load, grid: 0.5, pixel: Some(0.05), ..RoughZigzag::default() };
     let mut job = Job {
         tools: vec![flat(1, 10.0)],
         operations: vec![Operation::RoughZigzag(op)],
@@ -95,7 +95,7 @@ fn a_terrain_with_cliffs_is_roughed_without_a_gouge_with_the_load_held() {
     let Some(dir) = common::shared_data("meshes") else { return };
     let bytes = std::fs::read(dir.join("ocl_mount_rush.stl")).unwrap();
     let part = swarf::mesh::import::read_mesh_auto(&bytes, Some("ocl_mount_rush.stl"), &swarf::geom::tolerance::Tolerances::default()).unwrap();
-    let op = RoughZigzag { tool: 1, stepdown: 2.0, stepover: 0.4, allowance: 0.0, leave_stock: 0.0, load: LoadControl::Path, ..RoughZigzag::default() };
+    let op = RoughZigzag { tool: 1, stepdown: 2.0, stepover_fraction: 0.4, allowance: 0.0, leave_stock: 0.0, load: LoadControl::Path, ..RoughZigzag::default() };
     let mut job = Job {
         tools: vec![flat(1, 6.0)],
         operations: vec![Operation::RoughZigzag(op)],

@@ -363,7 +363,7 @@ fn rest_roughing_never_works_a_level_beside_material_left_above_it() {
     let bytes = std::fs::read(dir.join("ocl_mount_rush.stl")).unwrap();
     let part = swarf::mesh::import::read_mesh_auto(&bytes, Some("ocl_mount_rush.stl"), &swarf::geom::tolerance::Tolerances::default()).unwrap();
     let tool = |number: u32, d: f64| Tool { number, cutter: Cutter { flute_length: 3.0 * d, ..Cutter::flat(d) }, feed_rate: 1000.0, plunge_rate: 250.0, ..Tool::default() };
-    let stage = |tool: u32, stepdown: f64| Operation::RoughZlevel(RoughZlevel { tool, stepdown, stepover: 0.5, allowance: 0.5, leave_stock: 0.5, grid: 0.5, ..RoughZlevel::default() });
+    let stage = |tool: u32, stepdown: f64| Operation::RoughZlevel(RoughZlevel { tool, stepdown, stepover_fraction: 0.5, allowance: 0.5, leave_stock: 0.5, grid: 0.5, ..RoughZlevel::default() });
     let job = Job {
         part: PartSetup { placement: Placement::Keep, ..PartSetup::default() },
         stock: swarf::job::Stock { margin_xy: 0.0, margin_top: 1.0, ..Default::default() },

@@ -206,7 +206,7 @@ pub fn peer_rough_job() -> Job {
         stock: job::Stock { margin_xy: 0.0, margin_top: 0.0, margin_bottom: 0.0, ..Default::default() },
         post: crate::post::PostSettings { rapid_rate: 5000.0, ..Default::default() },
         tools: vec![tool],
-        operations: vec![Operation::RoughZlevel(RoughZlevel { stepdown: 2.0, stepover: 0.4, allowance: 0.0, leave_stock: 0.0, ..RoughZlevel::default() })],
+        operations: vec![Operation::RoughZlevel(RoughZlevel { stepdown: 2.0, stepover_fraction: 0.4, allowance: 0.0, leave_stock: 0.0, ..RoughZlevel::default() })],
         simulation: Simulation { verify: false, cell: None },
         ..Job::default()
     }
@@ -235,7 +235,7 @@ pub fn rough_row(name: &str, stl: &[u8], platform: &str, clock: &dyn Fn() -> f64
 pub fn paper_zigzag_job(load: crate::strategy::rough_zigzag::LoadControl) -> Job {
     use crate::strategy::rough_zigzag::RoughZigzag;
     let tool = Tool { cutter: Cutter::flat(10.0), feed_rate: 1000.0, plunge_rate: 250.0, ..Tool::default() };
-    let op = RoughZigzag { stepdown: 0.5, stepover: 0.3, allowance: 0.0, leave_stock: 0.0, load, grid: 0.5, ..RoughZigzag::default() };
+    let op = RoughZigzag { stepdown: 0.5, stepover_fraction: 0.3, allowance: 0.0, leave_stock: 0.0, load, grid: 0.5, ..RoughZigzag::default() };
     Job { tools: vec![tool], operations: vec![Operation::RoughZigzag(op)], ..peer_rough_job() }
 }
 
@@ -289,7 +289,7 @@ pub fn program_load(part: Mesh, gcode: &str, diameter: f64, cell: f64, ds: f64) 
 /// part's box) with zigzag roughing on a 0.5 mm grid, the load held by `load`.
 pub fn peer_zigzag_job(load: crate::strategy::rough_zigzag::LoadControl) -> Job {
     use crate::strategy::rough_zigzag::RoughZigzag;
-    let op = RoughZigzag { stepdown: 2.0, stepover: 0.4, allowance: 0.0, leave_stock: 0.0, grid: 0.5, load, ..RoughZigzag::default() };
+    let op = RoughZigzag { stepdown: 2.0, stepover_fraction: 0.4, allowance: 0.0, leave_stock: 0.0, grid: 0.5, load, ..RoughZigzag::default() };
     Job { operations: vec![Operation::RoughZigzag(op)], ..peer_rough_job() }
 }
 
@@ -318,7 +318,7 @@ pub fn octree_jobs(delta: f64, stepover: f64, grid: f64, cell: f64) -> [(&'stati
     use crate::strategy::rough_zlevel::RoughZlevel;
     let flat = |number: u32, d: f64| Tool { number, cutter: Cutter { flute_length: 3.0 * d, ..Cutter::flat(d) }, feed_rate: 1000.0, plunge_rate: 250.0, ..Tool::default() };
     let tools = vec![flat(1, 20.0), flat(2, 12.0), flat(3, 6.0), flat(4, 3.0)];
-    let zlevel = |tool: u32, d: f64| Operation::RoughZlevel(RoughZlevel { name: format!("z-level φ{d}"), tool, stepdown: delta * d, stepover, grid, ..RoughZlevel::default() });
+    let zlevel = |tool: u32, d: f64| Operation::RoughZlevel(RoughZlevel { name: format!("z-level φ{d}"), tool, stepdown: delta * d, stepover_fraction: stepover, grid, ..RoughZlevel::default() });
     let base = Job {
         part: crate::mesh::placement::PartSetup { placement: crate::mesh::placement::Placement::Keep, ..Default::default() },
         stock: job::Stock { margin_xy: 0.0, margin_top: 1.0, margin_bottom: 0.0, ..Default::default() },
@@ -328,7 +328,7 @@ pub fn octree_jobs(delta: f64, stepover: f64, grid: f64, cell: f64) -> [(&'stati
         ..Job::default()
     };
     [
-        ("octree (φ20 φ12 φ6 φ3)", Job { operations: vec![Operation::RoughOctree(RoughOctree { delta, stepover, grid, ..RoughOctree::default() })], ..base.clone() }),
+        ("octree (φ20 φ12 φ6 φ3)", Job { operations: vec![Operation::RoughOctree(RoughOctree { delta, stepover_fraction: stepover, grid, ..RoughOctree::default() })], ..base.clone() }),
         ("z-level φ3 alone", Job { operations: vec![zlevel(4, 3.0)], ..base.clone() }),
         ("z-level φ20, then φ3", Job { operations: vec![zlevel(1, 20.0), zlevel(4, 3.0)], ..base }),
     ]

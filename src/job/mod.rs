@@ -12,6 +12,7 @@ pub mod drawing;
 pub mod operation;
 pub mod pool;
 pub mod project;
+pub mod read;
 pub mod report;
 
 use serde::{Deserialize, Serialize};
@@ -161,39 +162,48 @@ impl Stock {
         Aabb { min: part.min - DVec3::new(l, f, self.margin_bottom), max: part.max + DVec3::new(r, k, self.margin_top) }
     }
 
-    /// Checks the settings; errors name the field.
-    fn validate(&self) -> Result<()> {
-        let bad = |field: &str, why: String| Err(Error::Input(format!("stock.{field} {why}")));
+    /// The settings that do not fit: each field with why.
+    fn problems(&self) -> Vec<(&'static str, String)> {
+        let mut out = Vec::new();
         // Rapids run at the clearance height: at or below the stock's top they would cut.
         if !(self.clearance > 0.0 && self.clearance.is_finite()) {
-            return bad("clearance", format!("(the height of rapid moves above the stock's top) must be a positive number (got {})", self.clearance));
+            out.push(("clearance", format!("(the height of rapid moves above the stock's top) must be a positive number (got {})", self.clearance)));
         }
         if !(self.retract > 0.0 && self.retract.is_finite()) {
-            return bad("retract", format!("must be a positive number (got {})", self.retract));
+            out.push(("retract", format!("must be a positive number (got {})", self.retract)));
         }
         for (field, v) in [("marginXy", self.margin_xy), ("marginTop", self.margin_top), ("marginBottom", self.margin_bottom)] {
             if !(v >= 0.0 && v.is_finite()) {
-                return bad(field, format!("must be zero or more (got {v})"));
+                out.push((field, format!("must be zero or more (got {v})")));
             }
         }
         if let Some(sides) = self.margin_sides {
             if sides.iter().any(|v| !(*v >= 0.0 && v.is_finite())) {
-                return bad("marginSides", format!("must be zero or more (got {sides:?})"));
+                out.push(("marginSides", format!("must be zero or more (got {sides:?})")));
             }
         }
         if let Some(b) = self.size_box {
             let size = b.size();
             if !(size.x > 0.0 && size.y > 0.0 && size.z > 0.0 && size.is_finite()) {
-                return bad("sizeBox", "must have a positive size on every axis".into());
+                out.push(("sizeBox", "must have a positive size on every axis".into()));
             }
         }
         if let Some(f) = self.air_feed {
             if !(f >= 0.0 && f.is_finite()) {
-                return bad("airFeed", format!("must be zero or more (mm/min; got {f})"));
+                out.push(("airFeed", format!("must be zero or more (mm/min; got {f})")));
             }
         }
-        Ok(())
+        out
     }
+}
+
+/// A setting of a job that does not fit: its path in the job and the whole message.
+#[derive(Clone, Debug, PartialEq, Serialize, ts_rs::TS)]
+pub struct Problem {
+    /// The field's path (`operations[0].stepdown`, `stock.marginXy`).
+    pub path: String,
+    /// What is wrong, naming the field.
+    pub message: String,
 }
 
 /// What a job works on: a part, or a drawing for 2.5D operations.
@@ -245,8 +255,11 @@ impl Simulation {
     }
 }
 
-/// The job file format this swarf writes and reads (files from a newer one are refused).
-pub const JOB_VERSION: u32 = 1;
+/// The job file format this swarf writes and reads (files from a newer one are refused; older
+/// ones are read as they were written, [`read`]). Version 2: the step-over that is a fraction of
+/// the tool's diameter (roughing, pockets) is `stepoverFraction`, and `stepover` is a distance
+/// in millimetres wherever it appears.
+pub const JOB_VERSION: u32 = 2;
 
 /// The version of a job file that has none: written before versions were.
 fn first_version() -> u32 {
@@ -272,34 +285,6 @@ pub struct Job {
     pub post: PostSettings,
     pub simulation: Simulation,
     pub tolerances: Tolerances,
-}
-
-/// The fields of `input` that reading it did not use: those absent from the job it made,
-/// written back (`canonical`), with a known field of the same object that differs only in case
-/// or by underscores, as a hint.
-fn unknown_fields(input: &serde_json::Value, canonical: &serde_json::Value, path: &str, out: &mut Vec<String>) {
-    use serde_json::Value;
-    match (input, canonical) {
-        (Value::Object(given), Value::Object(known)) => {
-            let squash = |k: &str| k.to_lowercase().replace(['_', '-'], "");
-            for (k, v) in given {
-                let here = if path.is_empty() { k.clone() } else { format!("{path}.{k}") };
-                match known.get(k) {
-                    Some(w) => unknown_fields(v, w, &here, out),
-                    None => match known.keys().find(|n| squash(n) == squash(k)) {
-                        Some(n) => out.push(format!("{here} (did you mean {n}?)")),
-                        None => out.push(here),
-                    },
-                }
-            }
-        }
-        (Value::Array(given), Value::Array(known)) => {
-            for (i, (v, w)) in given.iter().zip(known).enumerate() {
-                unknown_fields(v, w, &format!("{path}[{i}]"), out);
-            }
-        }
-        _ => {}
-    }
 }
 
 impl Default for Job {
@@ -435,51 +420,13 @@ impl Job {
         for op in &mut job.operations {
             match op {
                 Operation::RoughZlevel(o) => (o.grid, o.stepdown) = (0.5, 2.0),
-                Operation::RoughZigzag(o) => (o.grid, o.stepdown, o.stepover) = (0.5, 3.0, 0.8),
+                Operation::RoughZigzag(o) => (o.grid, o.stepdown, o.stepover_fraction) = (0.5, 3.0, 0.8),
                 Operation::FinishRaster(o) => (o.grid, o.stepover) = (0.5, 2.0),
                 Operation::FinishWaterline(o) => (o.grid, o.stepdown, o.scallop) = (0.5, 1.5, None),
                 _ => {}
             }
         }
         job
-    }
-
-    /// Reads a job file. A value that does not fit is named by its path
-    /// (`operations[1].stepover: invalid type ...`), and so is every field this version does
-    /// not know (`operations[0].stepOver`, with the known field it may mean): a misspelt
-    /// setting must not fall back to its default unseen. A file without a `version` is read as
-    /// version 1; one from a newer swarf is refused.
-    pub fn from_json(text: &str) -> Result<Job> {
-        let value: serde_json::Value = serde_json::from_str(text).map_err(|e| Error::Input(format!("the job file is not JSON: {e}")))?;
-        Job::from_value(&value)
-    }
-
-    /// As [`Job::from_json`], from JSON already read.
-    pub fn from_value(value: &serde_json::Value) -> Result<Job> {
-        let job: Job = serde_path_to_error::deserialize(value).map_err(|e| {
-            let path = e.path().to_string();
-            // An operation is read whole (its `kind` picks the type), so the path stops at it:
-            // read it again as its kind's type to name the field.
-            let op = value.get("operations").and_then(|ops| path.strip_prefix("operations[")?.strip_suffix(']')?.parse::<usize>().ok().and_then(|i| ops.get(i)));
-            match op.and_then(Operation::field_error) {
-                Some(inner) => Error::Input(format!("{path}.{inner}")),
-                None if path == "." => Error::Input(e.into_inner().to_string()),
-                None => Error::Input(format!("{path}: {}", e.into_inner())),
-            }
-        })?;
-        if job.version > JOB_VERSION {
-            return Err(Error::Input(format!(
-                "the job file has version {}; this swarf reads versions up to {JOB_VERSION} (a newer swarf wrote it)",
-                job.version
-            )));
-        }
-        let canonical = serde_json::to_value(&job).map_err(|e| Error::Input(e.to_string()))?;
-        let mut unknown = Vec::new();
-        unknown_fields(value, &canonical, "", &mut unknown);
-        if !unknown.is_empty() {
-            return Err(Error::Input(format!("unknown field{}: {}", if unknown.len() == 1 { "" } else { "s" }, unknown.join("; "))));
-        }
-        Ok(job)
     }
 
     /// Places the part as the job says and returns the stock box around it (both moved to the
@@ -510,37 +457,67 @@ impl Job {
         VerifySettings { cell: cell.unwrap_or_else(|| self.simulation.cell_for(stock)), allowance: if allowance.is_finite() { allowance } else { 0.0 } }
     }
 
-    /// Checks the job before any work. Every error names its field by its path in the job
-    /// file (`tools[1].feedRate`, `operations[0].stepover`).
+    /// Checks the job before any work: the first of its [`Job::problems`].
     pub fn validate(&self) -> Result<()> {
-        let positive = |field: String, v: f64| if v > 0.0 && v.is_finite() { Ok(()) } else { Err(Error::Input(format!("{field} must be a positive number (got {v})"))) };
-        for (i, tool) in self.tools.iter().enumerate() {
-            tool.cutter.validate().map_err(|e| Error::Input(format!("tools[{i}] (tool {}): {e}", tool.number)))?;
-            positive(format!("tools[{i}].spindleRpm"), tool.spindle_rpm)?;
-            positive(format!("tools[{i}].feedRate"), tool.feed_rate)?;
-            positive(format!("tools[{i}].plungeRate"), tool.plunge_rate)?;
-            if tool.stick_out.is_some_and(|s| !(s >= tool.cutter.flute_length && s.is_finite())) {
-                return Err(Error::Input(format!("tools[{i}].stickOut must be at least the flute length ({} mm)", tool.cutter.flute_length)));
-            }
-            if let Some(j) = self.tools[..i].iter().position(|t| t.number == tool.number) {
-                return Err(Error::Input(format!("tools[{i}].number: tools[{j}] has the number {} too", tool.number)));
-            }
+        match self.problems().into_iter().next() {
+            Some(p) => Err(Error::Input(p.message)),
+            None => Ok(()),
         }
-        self.post.validate(&self.tools).map_err(Error::Input)?;
-        positive("part.scale".into(), self.part.scale)?;
-        self.stock.validate()?;
-        for (i, op) in self.operations.iter().enumerate() {
-            let o = op.op();
-            for number in o.tools() {
-                if !self.tools.iter().any(|t| t.number == number) {
-                    let have: Vec<String> = self.tools.iter().map(|t| t.number.to_string()).collect();
-                    let field = if o.tools().len() == 1 && o.tools()[0] == o.tool() { "tool" } else { "tools" };
-                    return Err(Error::Input(format!("operations[{i}].{field}: no tool number {number} in the tool library (it has {})", if have.is_empty() { "none".into() } else { have.join(", ") })));
+    }
+
+    /// Every setting of the job that does not fit, each named by its path in the job
+    /// (`tools[1].feedRate`, `operations[0].stepdown`): the page marks each at its field as the
+    /// user types, with the core's own checks. An operation or a tool says its first.
+    pub fn problems(&self) -> Vec<Problem> {
+        let mut out = Vec::new();
+        let mut say = |path: String, message: String| out.push(Problem { path, message });
+        let positive = |v: f64| v > 0.0 && v.is_finite();
+        for (i, tool) in self.tools.iter().enumerate() {
+            if let Err(e) = tool.cutter.validate() {
+                let field = match e {
+                    crate::cutter::CutterError::Diameter(_) => "diameter",
+                    crate::cutter::CutterError::CornerRadius { .. } => "cornerRadius",
+                    crate::cutter::CutterError::FluteLength(_) => "fluteLength",
+                };
+                say(format!("tools[{i}].{field}"), format!("tools[{i}] (tool {}): {e}", tool.number));
+            }
+            for (field, v) in [("spindleRpm", tool.spindle_rpm), ("feedRate", tool.feed_rate), ("plungeRate", tool.plunge_rate)] {
+                if !positive(v) {
+                    say(format!("tools[{i}].{field}"), format!("tools[{i}].{field} must be a positive number (got {v})"));
                 }
             }
-            o.validate().map_err(|e| Error::Input(format!("operations[{i}].{} {} ('{}')", e.field, e.message, o.name())))?;
+            if tool.stick_out.is_some_and(|s| !(s >= tool.cutter.flute_length && s.is_finite())) {
+                say(format!("tools[{i}].stickOut"), format!("tools[{i}].stickOut must be at least the flute length ({} mm)", tool.cutter.flute_length));
+            }
+            if let Some(j) = self.tools[..i].iter().position(|t| t.number == tool.number) {
+                say(format!("tools[{i}].number"), format!("tools[{i}].number: tools[{j}] has the number {} too", tool.number));
+            }
         }
-        Ok(())
+        if let Err(e) = self.post.validate(&self.tools) {
+            say(e.split([' ', ':']).next().filter(|p| p.starts_with("post.")).unwrap_or("post").to_owned(), e);
+        }
+        if !positive(self.part.scale) {
+            say("part.scale".into(), format!("part.scale must be a positive number (got {})", self.part.scale));
+        }
+        for (field, message) in self.stock.problems() {
+            say(format!("stock.{field}"), format!("stock.{field} {message}"));
+        }
+        let thickness = self.drawing.thickness;
+        if !positive(thickness) {
+            say("drawing.thickness".into(), format!("drawing.thickness: the sheet thickness must be a positive number (got {thickness})"));
+        }
+        for (i, op) in self.operations.iter().enumerate() {
+            let o = op.op();
+            let missing = o.tools().into_iter().find(|n| !self.tools.iter().any(|t| t.number == *n));
+            if let Some(number) = missing {
+                let have: Vec<String> = self.tools.iter().map(|t| t.number.to_string()).collect();
+                let field = if o.tools().len() == 1 && o.tools()[0] == o.tool() { "tool" } else { "tools" };
+                say(format!("operations[{i}].{field}"), format!("operations[{i}].{field}: no tool number {number} in the tool library (it has {})", if have.is_empty() { "none".into() } else { have.join(", ") }));
+            } else if let Err(e) = o.validate() {
+                say(format!("operations[{i}].{}", e.field), format!("operations[{i}].{} {} ('{}')", e.field, e.message, o.name()));
+            }
+        }
+        out
     }
 
     /// The context the operations plan in, with the part placed and the in-process stock

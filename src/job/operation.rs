@@ -34,7 +34,7 @@ macro_rules! operations {
             /// Where an operation's JSON does not fit its kind's type: `field: what is wrong`.
             pub(crate) fn field_error(value: &serde_json::Value) -> Option<String> {
                 fn at<T: serde::de::DeserializeOwned>(value: &serde_json::Value) -> Option<String> {
-                    serde_path_to_error::deserialize::<_, T>(value).err().map(|e| format!("{}: {}", e.path(), e.inner()))
+                    serde_path_to_error::deserialize::<_, T>(value).err().map(|e| format!("{}: {}", e.path(), super::read::plain(&e.inner().to_string())))
                 }
                 match value.get("kind")?.as_str()? {
                     $($kind => at::<$options>(value),)*

@@ -62,7 +62,7 @@ pub struct Pocket2d {
     /// Largest depth cut in one pass (mm). Default value: 1.
     pub stepdown: f64,
     /// Distance between rings or passes as a fraction of the tool diameter. Default value: 0.4.
-    pub stepover: f64,
+    pub stepover_fraction: f64,
     /// Material left on walls and islands (mm). Default value: 0.
     pub leave_stock: f64,
     /// Default value: offset.
@@ -97,7 +97,7 @@ impl Default for Pocket2d {
             tool: 1,
             depth: 3.0,
             stepdown: 1.0,
-            stepover: 0.4,
+            stepover_fraction: 0.4,
             leave_stock: 0.0,
             pattern: PocketPattern::Offset,
             angle: 0.0,
@@ -179,7 +179,7 @@ fn forest(levels: &[Shape]) -> Vec<Node> {
 pub fn pocket_moves(region: &Shape, op: &Pocket2d, mut s: Setup) -> Result<Vec<Move>, String> {
     let r = s.tool_radius;
     let first = r + op.leave_stock;
-    let step = (op.stepover.clamp(0.01, 1.0) * 2.0 * r).max(1e-3);
+    let step = (op.stepover_fraction.clamp(0.01, 1.0) * 2.0 * r).max(1e-3);
     let levels = rings(region, first, step, s.tool_radius, s.tol);
     if levels.is_empty() {
         return Err(does_not_fit(r, op.leave_stock, "the pocket", &region.bounds()));
@@ -630,7 +630,7 @@ impl super::Operate for Pocket2d {
     fn validate(&self) -> Result<(), super::FieldError> {
         super::positive("depth", self.depth)?;
         super::positive("stepdown", self.stepdown)?;
-        super::positive("stepover", self.stepover)?;
+        super::positive("stepoverFraction", self.stepover_fraction)?;
         super::positive("rampAngle", self.ramp_angle)?;
         super::not_negative("leaveStock", self.leave_stock)?;
         super::finite("angle", self.angle)?;

@@ -64,7 +64,7 @@ pub struct RoughOctree {
     /// the tool's radius apart can leave strips where a region narrows
     /// ([`super::pocket2d::rings`]), so the default is the widest that never does. Default
     /// value: 0.5.
-    pub stepover: f64,
+    pub stepover_fraction: f64,
     /// Material left on floors (axial, mm). Default value: 0.5.
     pub allowance: f64,
     /// Material left on walls (radial, mm). Default value: 0.5.
@@ -84,7 +84,7 @@ impl Default for RoughOctree {
             enabled: true,
             tools: Vec::new(),
             delta: 0.25,
-            stepover: 0.5,
+            stepover_fraction: 0.5,
             allowance: 0.5,
             leave_stock: 0.5,
             direction: Direction::Climb,
@@ -190,9 +190,9 @@ impl Operate for RoughOctree {
 
     fn validate(&self) -> Result<(), FieldError> {
         super::positive("delta", self.delta)?;
-        super::positive("stepover", self.stepover)?;
-        if self.stepover > 0.85 {
-            return Err(FieldError { field: "stepover", message: format!("is at most 0.85 of the diameter: wider steps leave islands between rings (seed 000 §3.3; got {})", self.stepover) });
+        super::positive("stepoverFraction", self.stepover_fraction)?;
+        if self.stepover_fraction > 0.85 {
+            return Err(FieldError { field: "stepoverFraction", message: format!("is at most 0.85 of the diameter: wider steps leave islands between rings (seed 000 §3.3; got {})", self.stepover_fraction) });
         }
         super::not_negative("allowance", self.allowance)?;
         super::not_negative("leaveStock", self.leave_stock)?;
@@ -241,7 +241,7 @@ impl RoughOctree {
             enabled: true,
             tool: tool.number,
             stepdown: self.depth(tool),
-            stepover: self.stepover,
+            stepover_fraction: self.stepover_fraction,
             allowance: self.allowance,
             leave_stock: self.leave_stock,
             direction: self.direction,

@@ -72,7 +72,7 @@ pub struct RoughZigzag {
     /// Largest depth between levels (mm). Default value: 2.
     pub stepdown: f64,
     /// Distance between passes as a fraction of the tool diameter. Default value: 0.4.
-    pub stepover: f64,
+    pub stepover_fraction: f64,
     /// Material left on floors (axial, mm). Default value: 0.5.
     pub allowance: f64,
     /// Material left on walls (radial, mm). Default value: 0.5.
@@ -106,7 +106,7 @@ impl Default for RoughZigzag {
             enabled: true,
             tool: 1,
             stepdown: 2.0,
-            stepover: 0.4,
+            stepover_fraction: 0.4,
             allowance: 0.5,
             leave_stock: 0.5,
             direction: Direction::Climb,
@@ -162,7 +162,7 @@ impl RoughZigzag {
             enabled: self.enabled,
             tool: self.tool,
             stepdown: self.stepdown,
-            stepover: self.stepover,
+            stepover_fraction: self.stepover_fraction,
             allowance: self.allowance,
             leave_stock: self.leave_stock,
             direction: self.direction,

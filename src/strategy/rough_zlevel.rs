@@ -57,7 +57,7 @@ pub struct RoughZlevel {
     /// Largest depth between levels (mm). Default value: 2.
     pub stepdown: f64,
     /// Distance between rings as a fraction of the tool diameter. Default value: 0.4.
-    pub stepover: f64,
+    pub stepover_fraction: f64,
     /// Material left on floors (axial, mm). Default value: 0.5.
     pub allowance: f64,
     /// Material left on walls (radial, mm). Default value: 0.5.
@@ -97,7 +97,7 @@ impl Default for RoughZlevel {
             enabled: true,
             tool: 1,
             stepdown: 2.0,
-            stepover: 0.4,
+            stepover_fraction: 0.4,
             allowance: 0.5,
             leave_stock: 0.5,
             direction: Direction::Climb,
@@ -128,9 +128,9 @@ impl Operate for RoughZlevel {
 
     fn validate(&self) -> Result<(), FieldError> {
         super::positive("stepdown", self.stepdown)?;
-        super::positive("stepover", self.stepover)?;
-        if self.stepover > 1.0 {
-            return Err(FieldError { field: "stepover", message: format!("is a fraction of the tool's diameter, at most 1 (got {})", self.stepover) });
+        super::positive("stepoverFraction", self.stepover_fraction)?;
+        if self.stepover_fraction > 1.0 {
+            return Err(FieldError { field: "stepoverFraction", message: format!("is a fraction of the tool's diameter, at most 1 (got {})", self.stepover_fraction) });
         }
         super::not_negative("allowance", self.allowance)?;
         super::not_negative("leaveStock", self.leave_stock)?;
@@ -181,7 +181,7 @@ pub struct Level {
 impl RoughZlevel {
     /// The step-over (mm) for a tool of radius `r`.
     pub fn step(&self, r: f64) -> f64 {
-        (self.stepover * 2.0 * r).max(1e-3)
+        (self.stepover_fraction * 2.0 * r).max(1e-3)
     }
 
     /// Clears `levels` (from [`RoughZlevel::levels_to_cut`] or [`RoughZlevel::levels_within`])

@@ -22,6 +22,11 @@ export type Boundary = "stock" | "silhouette";
 export type ClBuilder = "exact" | "inverseOffset";
 
 /**
+ * The characters a control reads in comments.
+ */
+export type CommentCharacters = "ascii" | "any";
+
+/**
  * How comments are written.
  */
 export type CommentStyle = "parens" | "semicolon" | "none";
@@ -32,16 +37,32 @@ export type CommentStyle = "parens" | "semicolon" | "none";
 export type Coolant = "off" | "flood" | "mist";
 
 /**
- * What a program takes on the machine: the cutting and rapid moves at their feeds and the
- * rapid rate, and the tool changes.
+ * What a program takes on the machine, part by part: each tool path's motion (its way down
+ * from the clearance height included), the tool changes, and the rest (the spindle's start
+ * dwells and the retracts to the clearance height at tool changes and at the end). The parts
+ * sum to the whole, and [`CycleTime::items`] rounds them so that they still do.
  */
 export type CycleTime = { 
 /**
  * Seconds of motion of each tool path, in the program's order.
  */
-paths: Array<number>, toolChanges: number, 
+paths: Array<number>, 
 /**
- * The whole program (seconds): motion, tool changes and dwells.
+ * When each tool path's own moves begin (s from the program's start), after its tool
+ * change and its way down from the clearance height.
+ */
+starts: Array<number>, toolChanges: number, 
+/**
+ * Seconds of the tool changes (`post.toolChangeSeconds` each).
+ */
+toolChangeSeconds: number, 
+/**
+ * Seconds of the rest: the spindle's start dwells and the retracts to the clearance
+ * height at tool changes and at the program's end.
+ */
+otherSeconds: number, 
+/**
+ * The whole program (seconds): the sum of the parts.
  */
 seconds: number, };
 
@@ -276,11 +297,14 @@ name: string, part: PartSetup,
 drawing: DrawingSetup, stock: Stock, tools: Array<Tool>, operations: Array<Operation>, post: PostSettings, simulation: Simulation, tolerances: Tolerances, };
 
 /**
- * Line numbers (N words).
+ * Line numbers (N words). A number never comes back: a program with more lines than `start`
+ * and `step` reach before `max` is numbered by ones, and one with more lines than that is
+ * numbered up to `max` and goes on unnumbered (a control reads a line without an N word; one
+ * that reads a number twice may jump to the wrong line).
  */
 export type LineNumbers = { start: number, step: number, 
 /**
- * The largest number the control reads; numbering starts again at `start` after it.
+ * The largest number the control reads.
  */
 max: number, };
 
@@ -367,7 +391,7 @@ stepdown: number,
 /**
  * Distance between rings or passes as a fraction of the tool diameter. Default value: 0.4.
  */
-stepover: number, 
+stepoverFraction: number, 
 /**
  * Material left on walls and islands (mm). Default value: 0.
  */
@@ -473,7 +497,11 @@ dwell: string | null,
 /**
  * Seconds to wait after starting the spindle (0: none). Needs `dwell`.
  */
-spindleDwell: number, comments: CommentStyle, lineNumbers: LineNumbers | null, 
+spindleDwell: number, comments: CommentStyle, 
+/**
+ * The characters its comments may hold; others are transliterated. Default value: ascii.
+ */
+commentCharacters: CommentCharacters, lineNumbers: LineNumbers | null, 
 /**
  * Digits after the point for lengths in millimetres and in inches, and for feeds.
  */
@@ -642,7 +670,7 @@ delta: number,
  * ([`super::pocket2d::rings`]), so the default is the widest that never does. Default
  * value: 0.5.
  */
-stepover: number, 
+stepoverFraction: number, 
 /**
  * Material left on floors (axial, mm). Default value: 0.5.
  */
@@ -687,7 +715,7 @@ stepdown: number,
 /**
  * Distance between passes as a fraction of the tool diameter. Default value: 0.4.
  */
-stepover: number, 
+stepoverFraction: number, 
 /**
  * Material left on floors (axial, mm). Default value: 0.5.
  */
@@ -760,7 +788,7 @@ stepdown: number,
 /**
  * Distance between rings as a fraction of the tool diameter. Default value: 0.4.
  */
-stepover: number, 
+stepoverFraction: number, 
 /**
  * Material left on floors (axial, mm). Default value: 0.5.
  */

@@ -1,0 +1,175 @@
+//! The one strict reader of jobs: the CLI, the page (`readJob`, and every run it asks for),
+//! embedding pages (`engine.run`) and project files all read a job through [`Job::from_value`].
+//! A value that does not fit is named by its path and said in plain words
+//! (`stock.marginXy: expected a number, got "5"`), and so is every field this version does not
+//! know (`operations[0].stepOver (did you mean stepover?)`): a misspelt setting must never fall
+//! back to its default unseen. Files of an older version are read as they were written.
+
+use super::{Job, JOB_VERSION};
+use crate::error::{Error, Result};
+use crate::job::Operation;
+
+/// The fields that changed name, by version: `(version that renamed it, operation kinds, old
+/// name, new name)`. A file of an older version is read with its old names.
+const RENAMED: &[(u32, &[&str], &str, &str)] = &[(2, &["roughZlevel", "roughZigzag", "roughOctree", "pocket2d"], "stepover", "stepoverFraction")];
+
+impl Job {
+    /// Reads a job file (JSON text), see [`Job::from_value`].
+    pub fn from_json(text: &str) -> Result<Job> {
+        let value: serde_json::Value = serde_json::from_str(text).map_err(|e| Error::Input(format!("the job is not JSON: {e}")))?;
+        Job::from_value(&value)
+    }
+
+    /// Reads a job from JSON already parsed. A value that does not fit is named by its path
+    /// and what was expected; every field this version does not know is named, with the known
+    /// field it may mean. A file without a `version` is read as version 1; one from a newer
+    /// swarf is refused. The job comes back in this version's form (`version` too).
+    pub fn from_value(value: &serde_json::Value) -> Result<Job> {
+        let version = value.get("version").and_then(serde_json::Value::as_u64).unwrap_or(1);
+        if version > JOB_VERSION as u64 {
+            return Err(Error::Input(format!("the job has version {version}; this swarf reads versions up to {JOB_VERSION} (a newer swarf wrote it)")));
+        }
+        let value = &upgrade(value, version as u32);
+        let mut job: Job = serde_path_to_error::deserialize(value).map_err(|e| {
+            let path = e.path().to_string();
+            // An operation is read whole (its `kind` picks the type), so the path stops at it:
+            // read it again as its kind's type to name the field.
+            let op = value.get("operations").and_then(|ops| path.strip_prefix("operations[")?.strip_suffix(']')?.parse::<usize>().ok().and_then(|i| ops.get(i)));
+            match op.and_then(Operation::field_error) {
+                Some(inner) => Error::Input(format!("{path}.{inner}")),
+                None if path == "." => Error::Input(plain(&e.into_inner().to_string())),
+                None => Error::Input(format!("{path}: {}", plain(&e.into_inner().to_string()))),
+            }
+        })?;
+        let canonical = serde_json::to_value(&job).map_err(|e| Error::Internal(e.to_string()))?;
+        let mut unknown = Vec::new();
+        unknown_fields(value, &canonical, "", &mut unknown);
+        if !unknown.is_empty() {
+            return Err(Error::Input(format!("unknown field{}: {}", if unknown.len() == 1 { "" } else { "s" }, unknown.join("; "))));
+        }
+        job.version = JOB_VERSION;
+        Ok(job)
+    }
+}
+
+/// `value`, a job of `version`, with the fields renamed since then under their new names.
+fn upgrade(value: &serde_json::Value, version: u32) -> serde_json::Value {
+    let mut value = value.clone();
+    for &(_, kinds, old, new) in RENAMED.iter().filter(|r| r.0 > version) {
+        for op in value.get_mut("operations").and_then(serde_json::Value::as_array_mut).into_iter().flatten() {
+            let ours = op.get("kind").and_then(serde_json::Value::as_str).is_some_and(|k| kinds.contains(&k));
+            if let Some(object) = op.as_object_mut().filter(|_| ours) {
+                if !object.contains_key(new) {
+                    if let Some(v) = object.remove(old) {
+                        object.insert(new.to_owned(), v);
+                    }
+                }
+            }
+        }
+    }
+    value
+}
+
+/// A message of serde's said in a user's words: `invalid type: string "5", expected f64` is
+/// `expected a number, got "5"`.
+pub(crate) fn plain(message: &str) -> String {
+    let what = |expected: &str| -> String {
+        let e = expected.trim();
+        match e {
+            "f64" | "f32" => "a number".into(),
+            "u8" | "u16" | "u32" | "u64" | "usize" => "a whole number, 0 or more".into(),
+            "i32" | "i64" | "isize" => "a whole number".into(),
+            "a boolean" | "bool" => "true or false".into(),
+            "a string" => "text".into(),
+            "a sequence" => "a list".into(),
+            "unit" => "null".into(),
+            _ if e.starts_with("struct ") || e.starts_with("a map") => "an object".into(),
+            _ if e.starts_with("a sequence of ") || e.starts_with("an array of length") => format!("a list ({e})"),
+            _ if e.starts_with("internally tagged enum") => "an object with a kind".into(),
+            _ => e.to_owned(),
+        }
+    };
+    let got = |unexpected: &str| -> String {
+        let u = unexpected.trim();
+        let quoted = |prefix: &str| u.strip_prefix(prefix).map(|v| v.trim_matches('`').to_owned());
+        if let Some(v) = u.strip_prefix("string ") {
+            return v.to_owned();
+        }
+        for prefix in ["integer ", "floating point ", "boolean "] {
+            if let Some(v) = quoted(prefix) {
+                return v;
+            }
+        }
+        match u {
+            "map" => "an object".into(),
+            "sequence" => "a list".into(),
+            "unit value" | "null" => "null".into(),
+            _ => u.to_owned(),
+        }
+    };
+    for rest in [message.strip_prefix("invalid type: "), message.strip_prefix("invalid value: ")] {
+        if let Some((unexpected, expected)) = rest.and_then(|r| r.rsplit_once(", expected ")) {
+            return format!("expected {}, got {}", what(expected), got(unexpected));
+        }
+    }
+    if let Some(rest) = message.strip_prefix("unknown variant ") {
+        if let Some((variant, expected)) = rest.split_once(", expected ") {
+            let options = expected.trim_start_matches("one of ").replace('`', "\"");
+            return format!("{} is not one of {options}", variant.replace('`', "\""));
+        }
+    }
+    if let Some(field) = message.strip_prefix("missing field ") {
+        return format!("{} is missing", field.trim_matches('`'));
+    }
+    message.to_owned()
+}
+
+/// The fields of `input` that reading it did not use: those absent from the job it made,
+/// written back (`canonical`), with a known field of the same object that differs only in case
+/// or by underscores, as a hint.
+fn unknown_fields(input: &serde_json::Value, canonical: &serde_json::Value, path: &str, out: &mut Vec<String>) {
+    use serde_json::Value;
+    match (input, canonical) {
+        (Value::Object(given), Value::Object(known)) => {
+            let squash = |k: &str| k.to_lowercase().replace(['_', '-'], "");
+            for (k, v) in given {
+                let here = if path.is_empty() { k.clone() } else { format!("{path}.{k}") };
+                match known.get(k) {
+                    Some(w) => unknown_fields(v, w, &here, out),
+                    None => match known.keys().find(|n| squash(n) == squash(k)).or_else(|| renamed(k).and_then(|n| known.keys().find(|m| *m == n))) {
+                        Some(n) => out.push(format!("{here} (did you mean {n}?)")),
+                        None => out.push(here),
+                    },
+                }
+            }
+        }
+        (Value::Array(given), Value::Array(known)) => {
+            for (i, (v, w)) in given.iter().zip(known).enumerate() {
+                unknown_fields(v, w, &format!("{path}[{i}]"), out);
+            }
+        }
+        _ => {}
+    }
+}
+
+/// The field an old name became, if it became one.
+fn renamed(old: &str) -> Option<&'static str> {
+    RENAMED.iter().find(|r| r.2.eq_ignore_ascii_case(old)).map(|r| r.3)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::plain;
+
+    #[test]
+    fn serde_s_messages_in_a_users_words() {
+        assert_eq!(plain(r#"invalid type: string "5", expected f64"#), r#"expected a number, got "5""#);
+        assert_eq!(plain("invalid type: floating point `1.5`, expected u32"), "expected a whole number, 0 or more, got 1.5");
+        assert_eq!(plain("invalid value: integer `-1`, expected u32"), "expected a whole number, 0 or more, got -1");
+        assert_eq!(plain("invalid type: map, expected f64"), "expected a number, got an object");
+        assert_eq!(plain("invalid type: integer `3`, expected a boolean"), "expected true or false, got 3");
+        assert_eq!(plain("unknown variant `spline`, expected one of `ij`, `r`, `off`"), r#""spline" is not one of "ij", "r", "off""#);
+        assert_eq!(plain("missing field `start`"), "start is missing");
+        assert_eq!(plain("something else"), "something else");
+    }
+}
