@@ -69,21 +69,75 @@ impl Error {
 }
 
 /// Something the user should know that did not stop the job, with the operation it belongs to
-/// (none for the job as a whole: the part, the stock).
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+/// (none for the job as a whole: the part, the stock): a warning (something may not be as the
+/// user means: look) or a note (for the record). A counted warning says how many places and
+/// keeps the first of them, for the page to mark.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
 pub struct Warning {
     pub operation: Option<String>,
     pub message: String,
+    pub level: Level,
+    /// How many places it counts (0: it counts none).
+    pub count: usize,
+    /// The first of them (x, y, z in mm, as placed), at most [`Warning::KEPT`].
+    pub places: Vec<[f64; 3]>,
+    /// What is counted, for [`Warning::counted`] to add to.
+    #[serde(skip)]
+    #[ts(skip)]
+    what: String,
+}
+
+/// How much a [`Warning`] asks of the user.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, ts_rs::TS)]
+#[serde(rename_all = "camelCase")]
+pub enum Level {
+    /// Something may not be as the user means: a plunge into material, a part that may be in
+    /// the wrong unit, a loop left uncut. The page shows it in amber.
+    #[default]
+    Warning,
+    /// For the record: triangles dropped, a rest operation with nothing left to cut.
+    Note,
 }
 
 impl Warning {
+    /// Places a counted warning keeps.
+    pub const KEPT: usize = 20;
+
     pub fn job(message: impl Into<String>) -> Warning {
-        Warning { operation: None, message: message.into() }
+        Warning { operation: None, message: message.into(), level: Level::Warning, count: 0, places: Vec::new(), what: String::new() }
     }
 
     pub fn of(operation: &str, message: impl Into<String>) -> Warning {
-        Warning { operation: Some(operation.to_string()), message: message.into() }
+        Warning { operation: Some(operation.to_string()), ..Warning::job(message) }
+    }
+
+    /// A note rather than a warning.
+    pub fn note(self) -> Warning {
+        Warning { level: Level::Note, ..self }
+    }
+
+    /// A warning of `operation` (none: the job's) that counts `places` of `what`
+    /// (`entries feed straight down into material`): "3 entries … (at X1.000 Y2.000 Z-3.000, …)".
+    pub fn counted(operation: Option<&str>, what: &str, places: &[crate::geom::DVec3]) -> Warning {
+        let mut w = Warning { operation: operation.map(str::to_owned), what: what.to_owned(), ..Warning::job("") };
+        w.add(places);
+        w
+    }
+
+    /// Whether `other` counts the same thing of the same operation, so that it adds to this.
+    pub fn counts_as(&self, other: &Warning) -> bool {
+        !self.what.is_empty() && self.what == other.what && self.operation == other.operation
+    }
+
+    /// Adds `places` to a counted warning.
+    pub fn add(&mut self, places: &[crate::geom::DVec3]) {
+        self.count += places.len();
+        let room = Warning::KEPT.saturating_sub(self.places.len());
+        self.places.extend(places.iter().take(room).map(|p| p.to_array()));
+        let at: Vec<String> = self.places.iter().take(3).map(|p| format!("X{:.3} Y{:.3} Z{:.3}", p[0], p[1], p[2])).collect();
+        let more = if self.count > at.len() { ", …" } else { "" };
+        self.message = format!("{} {} (at {}{more})", self.count, self.what, at.join("; "));
     }
 }
 

@@ -173,7 +173,7 @@ fn obj_is_triangulated() {
     let mesh = read_mesh_auto(text.as_bytes(), Some("q.obj"), &TOL).unwrap();
     assert_eq!(mesh.faces.len(), 2);
     let bad = "v 0 0 0\nf 1 2 3\n";
-    assert!(matches!(read_mesh_auto(bad.as_bytes(), Some("q.obj"), &TOL), Err(ImportError::Obj(_))));
+    assert!(matches!(read_mesh_auto(bad.as_bytes(), Some("q.obj"), &TOL), Err(ImportError::Truncated(m)) if m.contains("line 2 names vertex 2")));
     assert!(matches!(MeshFormat::detect(None, text.as_bytes()), Some(MeshFormat::Obj)));
 }
 
@@ -200,6 +200,7 @@ fn shared_real_parts_load() {
         ("meshes/Box.gltf", 12),
         ("meshes/pycam_textbox.stl", 1_444),
         ("meshes/ocl_wheel_in_box.stl", 6_102),
+        ("meshes/c3d_rocker-arm.obj", 20_088),
     ];
     for (rel, triangles) in cases {
         let Some(path) = common::shared_data(rel) else { return };
@@ -264,4 +265,83 @@ fn the_khronos_duck_is_read_in_metres() {
     let size = mesh.bounds().size();
     // The Duck is 1.7 units long in its file: 1.7 m by glTF's specification.
     assert!(size.x > 1000.0 && size.x < 2500.0, "{size}");
+}
+
+/// A file that ends early is an error in every format, naming where it ends: an ASCII STL cut
+/// inside a facet or after its last facet (no endsolid), an OBJ cut mid-number (its last line
+/// still parses) or cut and joined (a face naming a vertex not yet read), a glTF whose JSON or
+/// buffer stops short, a GLB shorter than its header says. Cut in half with `head -c`, an ASCII
+/// STL once loaded as half its triangles and was machined without a word.
+#[test]
+fn a_file_that_ends_early_is_refused_in_every_format_with_where_it_ends() {
+    let truncated = |bytes: &[u8], name: &str| match read_mesh_auto(bytes, Some(name), &TOL) {
+        Err(ImportError::Truncated(m)) => m,
+        other => panic!("{name} cut at {} bytes: {other:?}", bytes.len()),
+    };
+    let tris: Vec<[[f32; 3]; 3]> = (0..40).map(|k| [[k as f32, 0., 0.], [k as f32 + 1., 0., 0.], [k as f32, 1., 0.5]]).collect();
+    let stl = ascii_stl(&tris);
+    // Cut anywhere before its last line: inside a facet, or between facets.
+    for cut in [stl.len() / 2, stl.len() / 3 + 7, stl.rfind("endfacet").unwrap() + 9, stl.rfind("endsolid").unwrap()] {
+        let m = truncated(&stl.as_bytes()[..cut], "half.stl");
+        assert!(m.contains("ASCII STL ends") && m.contains("line"), "{m}");
+    }
+    assert!(read_mesh_auto(stl.as_bytes(), Some("whole.stl"), &TOL).is_ok());
+
+    let mut obj = String::new();
+    for k in 0..30 {
+        obj += &format!("v {k}.125 0.5 1.75\nv {k}.5 1.25 0.5\nv {k}.75 0.25 2.5\n");
+    }
+    for k in 0..30 {
+        obj += &format!("f {} {} {}\n", 3 * k + 1, 3 * k + 2, 3 * k + 3);
+    }
+    assert!(read_mesh_auto(obj.as_bytes(), Some("whole.obj"), &TOL).is_ok());
+    // Cut mid-number in a vertex and in a face: the last line still parses.
+    for cut in [obj.find("v 12.5 1.2").unwrap() + 10, obj.len() - 2] {
+        let m = truncated(&obj.as_bytes()[..cut], "cut.obj");
+        assert!(m.contains("has no line end"), "{m}");
+    }
+    // Cut and joined: the faces name vertices that never came.
+    let joined = format!("{}{}", &obj[..obj.find("v 20.").unwrap()], &obj[obj.find("f 1 2 3").unwrap()..]);
+    let m = truncated(joined.as_bytes(), "joined.obj");
+    assert!(m.contains("names vertex 61") && m.contains("60 vertices"), "{m}");
+
+    let gltf = gltf_json(&format!("data:application/octet-stream;base64,{}", base64::engine::general_purpose::STANDARD.encode(triangle_bytes())));
+    assert!(read_mesh_auto(gltf.as_bytes(), Some("whole.gltf"), &TOL).is_ok());
+    let m = truncated(&gltf.as_bytes()[..gltf.len() * 2 / 3], "cut.gltf");
+    assert!(m.contains("JSON ends at line"), "{m}");
+}
+
+/// A part whose surface has holes is named in a warning with how many open edges and where:
+/// a cutter goes down through a hole. A closed part, a relief open only along its sides, and a
+/// part exported with its seams as coincident rings (as tm_featuretype is) get none.
+#[test]
+fn a_part_with_holes_in_its_surface_is_warned_of() {
+    use swarf::job::part_warnings;
+    let whole = demo_part();
+    assert!(part_warnings(&whole).is_empty());
+    // Three triangles of the dome taken out.
+    let mut holed = whole.clone();
+    let top: Vec<usize> = (0..holed.faces.len()).filter(|&f| holed.triangle(f).normal().is_some_and(|n| n.z > 0.5)).collect();
+    for f in [top[2000], top[2001], top[4000]].into_iter().rev() {
+        holed.faces.remove(f);
+    }
+    let w = part_warnings(&holed);
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert_eq!(w[0].count, 7, "{w:?}"); // 4 edges around the two neighbours, 3 around the lone one
+    assert!(w[0].message.starts_with("7 edges of the part's surface border one triangle only") && w[0].message.contains("at X"), "{}", w[0].message);
+    assert_eq!(w[0].places.len(), 7);
+    // A relief (a surface open along its sides) is not holed.
+    assert!(part_warnings(&common::plane(10.0, 0.0, 0.1, 0.2)).is_empty());
+    assert!(part_warnings(&common::faceted_terrain(7, 2.0, 0.3)).is_empty());
+    if let Some(path) = common::shared_data("meshes/tm_featuretype.stl") {
+        let mesh = read_mesh_auto(&std::fs::read(path).unwrap(), Some("featuretype.stl"), &TOL).unwrap();
+        assert!(part_warnings(&mesh).is_empty());
+    }
+    // OpenCAMLib's Mount Rushmore has gaps around the heads and open eyes (trimesh counts 862
+    // open edges too).
+    if let Some(path) = common::shared_data("meshes/ocl_mount_rush.stl") {
+        let mesh = read_mesh_auto(&std::fs::read(path).unwrap(), Some("mount_rush.stl"), &TOL).unwrap();
+        let w = part_warnings(&mesh);
+        assert!(w.len() == 1 && w[0].count > 500, "{w:?}");
+    }
 }

@@ -611,12 +611,10 @@ pub fn prepare(job: &Job, workpiece: impl Into<Workpiece>) -> Result<Prepared> {
             return Err(Error::operation(o.name(), why));
         }
     }
-    let mut warnings = Vec::new();
-    if let Workpiece::Mesh(m) = &workpiece {
-        if m.dropped_degenerate > 0 {
-            warnings.push(Warning::job(format!("{} degenerate triangles (zero area) were ignored", m.dropped_degenerate)));
-        }
-    }
+    let mut warnings = match &workpiece {
+        Workpiece::Mesh(m) => part_warnings(m),
+        Workpiece::Drawing(_) => Vec::new(),
+    };
     let ctx = job.context(workpiece)?;
     if ctx.sheet.is_none() {
         if let Some(w) = tool_larger_than_part(job, &ctx.part) {
@@ -844,6 +842,20 @@ impl Running {
         let (clearance_z, cache) = (heights.clearance, caches.counts);
         Ok(JobOutput { part, drawing, stock, clearance_z, paths, path_operations, gcode, cycle, time, stats, moves: all_moves, operations, verification, warnings, problem, cache, octants })
     }
+}
+
+/// What the user should know of a part as read: triangles dropped, and holes in its surface
+/// (edges bordering one triangle, off the rim of its outline; [`Mesh::open_edges`]).
+pub fn part_warnings(mesh: &Mesh) -> Vec<Warning> {
+    let mut out = Vec::new();
+    if mesh.dropped_degenerate > 0 {
+        out.push(Warning::job(format!("{} degenerate triangles (zero area) were ignored", mesh.dropped_degenerate)).note());
+    }
+    let open = mesh.open_edges();
+    if !open.is_empty() {
+        out.push(Warning::counted(None, "edges of the part's surface border one triangle only: it has holes, and a cutter goes down through them (a file cut short or a bad export?)", &open));
+    }
+    out
 }
 
 /// A warning when the smallest tool the job uses is wider than the placed part is in X or Y:

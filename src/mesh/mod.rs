@@ -13,6 +13,10 @@ use std::collections::HashMap;
 use crate::geom::{Aabb, DVec3, Tolerances, Triangle};
 use import::ImportError;
 
+/// The least mean width (mm: twice a loop's area over its length) of a loop of open edges that
+/// makes it a hole in [`Mesh::open_edges`]: a circle of radius 0.02 mm.
+pub const HOLE_WIDTH: f64 = 0.01;
+
 /// An edge (vertex indices, smaller first) and the faces that share it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct EdgeFaces {
@@ -125,6 +129,67 @@ impl Mesh {
             }
         }
         out
+    }
+
+    /// Holes in a surface that should be closed (a file cut short, a bad export): the edges
+    /// that border one triangle only, grouped into the loops they form, each loop kept as a
+    /// hole where it encloses an area (seen along its own normal) wider than
+    /// [`HOLE_WIDTH`] on average, and where it does not run along the rim of the part's
+    /// outline seen from above (a relief's open sides). Vertices are welded within a
+    /// millionth of the part's size first, so that seams exported as two coincident rings and
+    /// cracks at T-junctions (zero area) are not holes. Returns the loops' open edges' middles.
+    pub fn open_edges(&self) -> Vec<DVec3> {
+        let b = self.bounds();
+        let size = b.size().max_element().max(1e-9);
+        let eps = 1e-6 * size;
+        let key = |v: DVec3| [(v.x / eps).round() as i64, (v.y / eps).round() as i64, (v.z / eps).round() as i64];
+        let mut ids: HashMap<[i64; 3], u32> = HashMap::new();
+        let welded: Vec<u32> = self.vertices.iter().map(|&v| { let n = ids.len() as u32; *ids.entry(key(v)).or_insert(n) }).collect();
+        let faces: Vec<[u32; 3]> = self.faces.iter().map(|f| f.map(|v| welded[v as usize])).filter(|f| f[0] != f[1] && f[1] != f[2] && f[2] != f[0]).collect();
+        // An edge is open where one triangle has it, taken in that triangle's direction.
+        let mut count: HashMap<(u32, u32), ((u32, u32), u32)> = HashMap::new();
+        for f in &faces {
+            for k in 0..3 {
+                let (a, c) = (f[k], f[(k + 1) % 3]);
+                count.entry((a.min(c), a.max(c))).or_insert(((a, c), 0)).1 += 1;
+            }
+        }
+        let mut position = vec![DVec3::ZERO; ids.len()];
+        for (v, &w) in self.vertices.iter().zip(&welded) {
+            position[w as usize] = *v;
+        }
+        let open: Vec<(u32, u32)> = count.into_values().filter(|&(_, n)| n == 1).map(|(e, _)| e).collect();
+        // Loops by connected vertices (union–find).
+        let mut parent: HashMap<u32, u32> = HashMap::new();
+        fn root(parent: &mut HashMap<u32, u32>, x: u32) -> u32 {
+            let mut r = x;
+            while let Some(&p) = parent.get(&r).filter(|&&p| p != r) {
+                r = p;
+            }
+            parent.insert(x, r);
+            r
+        }
+        for &(a, c) in &open {
+            let (ra, rc) = (root(&mut parent, a), root(&mut parent, c));
+            if ra != rc {
+                parent.insert(ra, rc);
+            }
+        }
+        let slack = 1e-6 * size.max(1.0);
+        let on_rim = |p: DVec3| (p.x - b.min.x).abs() <= slack || (p.x - b.max.x).abs() <= slack || (p.y - b.min.y).abs() <= slack || (p.y - b.max.y).abs() <= slack;
+        // Per loop: its vector area, its length, whether it runs along the rim, its edges.
+        let mut loops: HashMap<u32, (DVec3, f64, bool, Vec<DVec3>)> = HashMap::new();
+        for &(a, c) in &open {
+            let (p, q) = (position[a as usize], position[c as usize]);
+            let l = loops.entry(root(&mut parent, a)).or_insert((DVec3::ZERO, 0.0, false, Vec::new()));
+            l.0 += p.cross(q) * 0.5;
+            l.1 += p.distance(q);
+            l.2 |= on_rim(p) && on_rim(q);
+            l.3.push((p + q) * 0.5);
+        }
+        let mut holes: Vec<(DVec3, Vec<DVec3>)> = loops.into_values().filter(|(area, length, rim, _)| !rim && area.length() > HOLE_WIDTH * length).map(|(_, _, _, m)| (m[0], m)).collect();
+        holes.sort_by(|a, b| a.0.to_array().partial_cmp(&b.0.to_array()).unwrap_or(std::cmp::Ordering::Equal));
+        holes.into_iter().flat_map(|(_, m)| m).collect()
     }
 
     /// Applies `f` to every vertex.

@@ -158,6 +158,21 @@ impl Context {
         self.warnings.push(Warning::of(op, message));
     }
 
+    /// A note of the operation `op`, for the record.
+    pub fn note(&mut self, op: &str, message: impl Into<String>) {
+        self.warnings.push(Warning::of(op, message).note());
+    }
+
+    /// Counts `places` of `what` for the operation `op`, adding to its warning of the same
+    /// thing if it has one.
+    pub fn warn_at(&mut self, op: &str, what: &str, places: &[DVec3]) {
+        let w = Warning::counted(Some(op), what, places);
+        match self.warnings.iter_mut().find(|v| v.counts_as(&w)) {
+            Some(v) => v.add(places),
+            None => self.warnings.push(w),
+        }
+    }
+
     /// The highest tip height at which a cutter of `profile` at `p` touches the in-process
     /// stock (`-inf` where it touches none), as the stock's z-map samples it at its cells'
     /// centres: an estimate, for deciding what is left to cut.
@@ -189,7 +204,7 @@ impl Context {
         let linker = Linker { settings, keep, material: &material, material_along: &along, estimate: &estimate, threshold: self.tolerances.gouge, entry, radius: profile.radius, feeds: rates };
         let (start, moves, entries) = linker.link_fed(runs, known.0, known.1, &self.tolerances);
         if entries.plunge > 0 {
-            self.warn(op, format!("{} entries found no room for a helix or a ramp and feed straight down into material", entries.plunge));
+            self.warn_at(op, "entries found no room for a helix or a ramp and feed straight down into material", &entries.plunges);
         }
         Toolpath { name: op.to_string(), tool: tool.number, spindle_rpm: tool.spindle_rpm, start, moves }
     }

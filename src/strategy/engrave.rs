@@ -132,7 +132,7 @@ impl super::Operate for Engrave {
         }
         ctx.grooves.extend(grooves);
         if in_air > 0 {
-            ctx.warn(&self.name, format!("{in_air} lines have no material left along them and are not engraved"));
+            ctx.note(&self.name, format!("{in_air} lines have no material left along them and are not engraved"));
         }
         if out.is_empty() {
             return Ok(Vec::new());

@@ -280,7 +280,7 @@ impl Operate for FinishRaster {
         if self.rest_only {
             runs = rest_only(runs, &|p: DVec2| ctx.material_estimate(p, &profile), profile.radius / 4.0, tol.gouge);
             if runs.is_empty() {
-                ctx.warn(&self.name, "the earlier operations left nothing for it to cut (rest only)");
+                ctx.note(&self.name, "the earlier operations left nothing for it to cut (rest only)");
                 return Ok(Vec::new());
             }
         }

@@ -160,7 +160,7 @@ impl Operate for FinishWaterline {
             }
         }
         if runs.is_empty() {
-            ctx.warn(&self.name, format!("no area of the part is steeper than {}°", self.slope_min));
+            ctx.note(&self.name, format!("no area of the part is steeper than {}°", self.slope_min));
             return Ok(Vec::new());
         }
         let region = Region::Rect { min: grid.origin, max: grid.node(grid.nx - 1, grid.ny - 1) };

@@ -657,7 +657,7 @@ impl super::Operate for Pocket2d {
             ctx.warn(&self.name, note);
         }
         if moves.is_empty() {
-            ctx.warn(&self.name, "the pocket has no material left to its depth (earlier operations cut it away)");
+            ctx.note(&self.name, "the pocket has no material left to its depth (earlier operations cut it away)");
             return Ok(Vec::new());
         }
         Ok(vec![sheet::toolpath(&self.name, &tool, moves, ctx.heights.clearance)])

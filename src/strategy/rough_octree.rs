@@ -315,7 +315,7 @@ impl RoughOctree {
         }
         let Some((mut current, tree)) = first else {
             if empty {
-                ctx.warn(&self.name, "no material is left to rough");
+                ctx.note(&self.name, "no material is left to rough");
                 return Ok((paths, reports, views));
             }
             return Err(self.nothing_enters(ctx, candidates, progress));

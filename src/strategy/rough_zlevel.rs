@@ -265,7 +265,7 @@ impl RoughZlevel {
         let r = ctx.tool(&self.name, self.tool)?.cutter.radius();
         let levels = self.levels_within(ctx, progress, self.reach(r), true, &mut |_, _| None)?;
         if levels.is_none() {
-            ctx.warn(&self.name, "no level has material left to cut");
+            ctx.note(&self.name, "no level has material left to cut");
         }
         Ok(levels)
     }

@@ -153,23 +153,28 @@ pub struct Linker<'a> {
 }
 
 /// Entries of each kind a linked path made.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Entries {
     pub air: usize,
     pub helix: usize,
     pub ramp: usize,
     pub plunge: usize,
+    /// Where each plunge went in (its run's first point).
+    pub plunges: Vec<DVec3>,
     /// In level from the air beside the start, where a plunge would have been.
     pub side: usize,
 }
 
 impl Entries {
-    fn count(&mut self, kind: Kind) {
+    fn count(&mut self, kind: Kind, at: DVec3) {
         match kind {
             Kind::Air => self.air += 1,
             Kind::Helix => self.helix += 1,
             Kind::Ramp => self.ramp += 1,
-            Kind::Plunge => self.plunge += 1,
+            Kind::Plunge => {
+                self.plunge += 1;
+                self.plunges.push(at);
+            }
             Kind::Side => self.side += 1,
         }
     }
@@ -208,7 +213,7 @@ impl Linker<'_> {
                 }
                 let material = (self.material)(p0.truncate()).max(p0.z + self.threshold);
                 let (entry, kind) = enter_3d(across.z, material, run, self.radius, &self.entry, self.keep, (self.feeds.plunge, self.feeds.cut), tolerances.height);
-                entries.count(kind);
+                entries.count(kind, p0);
                 moves.extend(entry);
             } else if stay {
                 moves.push(Move::Line { to: p0, feed: self.feeds.cut });
@@ -227,11 +232,11 @@ impl Linker<'_> {
                         retract(at, q, travel(q, stop), stop, &mut moves);
                         moves.push(Move::Line { to: q.extend(p0.z), feed: self.feeds.plunge });
                         moves.push(Move::Line { to: p0, feed: self.feeds.cut });
-                        entries.count(Kind::Side);
+                        entries.count(Kind::Side, p0);
                     }
                     None => {
                         retract(at, p0.truncate(), travel(p0.truncate(), top), top, &mut moves);
-                        entries.count(kind);
+                        entries.count(kind, p0);
                         moves.extend(entry);
                     }
                 }

@@ -18,7 +18,13 @@ fn broken<T>(what: impl Into<String>) -> Result<T, ImportError> {
 
 pub(super) fn read(bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, ImportError> {
     let (json_bytes, blob) = if bytes.starts_with(b"glTF") { split_glb(bytes)? } else { (bytes, None) };
-    let root: json::Root = serde_json::from_slice(json_bytes).map_err(|e| ImportError::Gltf(e.to_string()))?;
+    let root: json::Root = serde_json::from_slice(json_bytes).map_err(|e| {
+        if e.is_eof() {
+            ImportError::Truncated(format!("the glTF's JSON ends at line {}, column {}, before it is closed", e.line(), e.column()))
+        } else {
+            ImportError::Gltf(e.to_string())
+        }
+    })?;
     let buffers = load_buffers(&root, blob)?;
     let document = Document { root: &root, buffers };
     let mut triangles = Vec::new();
@@ -46,6 +52,9 @@ fn split_glb(bytes: &[u8]) -> Result<(&[u8], Option<&[u8]>), ImportError> {
     let (Some(version), Some(total)) = (word(4), word(8)) else { return broken("the GLB's header is cut short") };
     if version != 2 {
         return broken(format!("the GLB is version {version}, expected 2"));
+    }
+    if total > bytes.len() {
+        return Err(ImportError::Truncated(format!("the GLB's header says {total} bytes, the file has {}", bytes.len())));
     }
     if total != bytes.len() {
         return broken(format!("the GLB's header says {total} bytes, the file has {}", bytes.len()));
@@ -75,7 +84,7 @@ fn load_buffers(root: &json::Root, blob: Option<&[u8]>) -> Result<Vec<Vec<u8>>, 
                 (None, _) => return broken(format!("buffer {k} has no data (no URI and no GLB binary chunk)")),
             };
             if (data.len() as u64) < buffer.byte_length.0 {
-                return broken(format!("buffer {k} should hold {} bytes but has {}", buffer.byte_length.0, data.len()));
+                return Err(ImportError::Truncated(format!("the glTF's buffer {k} should hold {} bytes but has {}", buffer.byte_length.0, data.len())));
             }
             Ok(data)
         })

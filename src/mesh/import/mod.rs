@@ -23,6 +23,9 @@ pub enum ImportError {
     StlSizeMismatch { announced: u32, expected: u64, actual: u64 },
     #[error("the STL file is broken: {0}")]
     Stl(String),
+    /// The file stops before its format says it ends: a download or a copy cut short.
+    #[error("{0}: the file was cut short (a download or a copy that stopped?); open the whole file")]
+    Truncated(String),
     #[error("the glTF file is broken: {0}")]
     Gltf(String),
     #[error("the glTF file refers to an external file '{0}'; swarf never fetches anything: embed the data (data URI) or use a .glb")]

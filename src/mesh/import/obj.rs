@@ -26,31 +26,38 @@ pub(super) fn read(bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, ImportError> {
     Ok(triangles)
 }
 
-/// A file cut short usually ends inside a statement: a vertex with fewer than three numbers, a
-/// face with fewer than three corners, or a corner cut after its slash. tobj reads such a line
-/// as best it can (or skips it), so the part would load with faces missing, silently.
+/// A file cut short ends inside a statement, and tobj reads such a line as best it can (or
+/// skips it), so the part would load with faces missing, silently. Refused here, with the line:
+/// a last statement without its line end (a vertex or face cut mid-number still parses, so
+/// every unterminated statement is taken as cut: a whole file ends its last line), and a face
+/// naming a vertex no line before it gave (a file cut and joined, or written out of order).
 fn check_last_line(bytes: &[u8]) -> Result<(), ImportError> {
     let text = String::from_utf8_lossy(bytes);
-    let trimmed = text.trim_end_matches(['\r', '\n', ' ', '\t']);
-    if trimmed.len() < text.len() && text.ends_with('\n') {
+    let mut vertices = 0i64;
+    let mut number = 0;
+    for (k, line) in text.lines().enumerate() {
+        number = k + 1;
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some("v") => vertices += 1,
+            Some("f") => {
+                for corner in words {
+                    let Some(Ok(i)) = corner.split('/').next().map(str::parse::<i64>) else { continue };
+                    if i > vertices || i == 0 || -i > vertices {
+                        return Err(ImportError::Truncated(format!("the OBJ's line {number} names vertex {i}, but the {vertices} lines before it give {vertices} vertices")));
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    let trimmed = text.trim_end_matches([' ', '\t']);
+    if trimmed.ends_with(['\n', '\r']) || trimmed.is_empty() {
         return Ok(()); // a complete last line
     }
-    let number = trimmed.lines().count();
     let last = trimmed.lines().last().unwrap_or("").trim();
-    let mut words = last.split_whitespace();
-    let incomplete = match words.next() {
-        Some("v") => {
-            let numbers: Vec<&str> = words.collect();
-            numbers.len() < 3 || numbers.iter().any(|w| w.parse::<f64>().is_err())
-        }
-        Some("f") => {
-            let corners: Vec<&str> = words.collect();
-            corners.len() < 3 || corners.iter().any(|c| c.ends_with('/') || c.split('/').next().is_none_or(|i| i.parse::<i64>().is_err()))
-        }
-        _ => false,
-    };
-    if incomplete {
-        return Err(ImportError::Obj(format!("the file ends early, inside line {number} ('{last}'): it was cut short")));
+    if matches!(last.split_whitespace().next(), Some("v" | "f" | "vn" | "vt" | "l" | "p")) {
+        return Err(ImportError::Truncated(format!("the OBJ ends inside line {number} ('{}'), which has no line end", last.chars().take(60).collect::<String>())));
     }
     Ok(())
 }

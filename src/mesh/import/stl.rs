@@ -30,39 +30,72 @@ pub(super) fn read(bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, ImportError> {
     collect(reader)
 }
 
-/// ASCII STL: `facet ... outer loop, vertex x y z (three times), endloop, endfacet`. Only the
-/// vertex lines carry geometry; the rest is checked loosely, as real files vary (names after
-/// `solid`, missing `endsolid`, several solids in one file).
+/// ASCII STL: `solid`, then `facet ... outer loop, vertex x y z (three times), endloop,
+/// endfacet` per triangle, then `endsolid`. Only the vertex lines carry geometry; names after
+/// `solid` and several solids in one file are read. A file that ends inside a facet, or after
+/// its last facet without `endsolid`, was cut short (a download or a copy that stopped): it is
+/// refused with the line where it ends, never machined as half a part.
 fn read_ascii(bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, ImportError> {
     let text = std::str::from_utf8(bytes).map_err(|_| ImportError::Stl("the ASCII STL contains bytes that are not text".into()))?;
+    // A last line without its line end, other than the closing `endsolid`, was cut.
+    let last = text.trim_end_matches([' ', '\t']);
+    if !last.ends_with(['\n', '\r']) {
+        let line = last.lines().last().unwrap_or_default().trim();
+        if !line.starts_with("endsolid") {
+            let number = last.lines().count();
+            return Err(ImportError::Truncated(format!("the ASCII STL ends inside line {number} ('{}'), which has no line end", line.chars().take(60).collect::<String>())));
+        }
+    }
     let mut triangles = Vec::new();
     let mut corners: Vec<DVec3> = Vec::with_capacity(3);
+    // The line of the open facet, and of the open solid.
+    let (mut facet, mut solid) = (None, None);
+    let mut lines = 0;
     for (number, line) in text.lines().enumerate() {
+        let number = number + 1;
+        lines = number;
         let mut words = line.split_whitespace();
         match words.next() {
+            Some("solid") if facet.is_none() => solid = Some(number),
+            Some("endsolid") => {
+                if let Some(open) = facet {
+                    return Err(ImportError::Stl(format!("line {number}: the solid ends inside the facet opened at line {open}")));
+                }
+                solid = None;
+            }
+            Some("facet") => {
+                if let Some(open) = facet {
+                    return Err(ImportError::Stl(format!("line {number}: a facet begins inside the facet opened at line {open}")));
+                }
+                facet = Some(number);
+            }
             Some("vertex") => {
                 let mut xyz = [0.0; 3];
                 for c in &mut xyz {
-                    let word = words.next().ok_or_else(|| ImportError::Stl(format!("line {}: a vertex needs three numbers", number + 1)))?;
-                    *c = word.parse::<f64>().map_err(|_| ImportError::Stl(format!("line {}: '{word}' is not a number", number + 1)))?;
+                    let word = words.next().ok_or_else(|| ImportError::Stl(format!("line {number}: a vertex needs three numbers")))?;
+                    *c = word.parse::<f64>().map_err(|_| ImportError::Stl(format!("line {number}: '{word}' is not a number")))?;
                 }
                 if corners.len() == 3 {
-                    return Err(ImportError::Stl(format!("line {}: a facet has more than three vertices", number + 1)));
+                    return Err(ImportError::Stl(format!("line {number}: a facet has more than three vertices")));
                 }
                 corners.push(DVec3::from_array(xyz));
             }
-            Some("endloop") | Some("endfacet") if !corners.is_empty() => {
+            Some("endfacet") => {
                 if corners.len() != 3 {
-                    return Err(ImportError::Stl(format!("line {}: a facet has {} vertices instead of three", number + 1, corners.len())));
+                    return Err(ImportError::Stl(format!("line {number}: a facet has {} vertices instead of three", corners.len())));
                 }
                 triangles.push([corners[0], corners[1], corners[2]]);
                 corners.clear();
+                facet = None;
             }
             _ => {}
         }
     }
-    if !corners.is_empty() {
-        return Err(ImportError::Stl("the file ends inside a facet (truncated?)".into()));
+    if let Some(open) = facet {
+        return Err(ImportError::Truncated(format!("the ASCII STL ends at line {lines} inside the facet opened at line {open}")));
+    }
+    if let Some(open) = solid {
+        return Err(ImportError::Truncated(format!("the ASCII STL ends at line {lines} without the endsolid that closes the solid opened at line {open}")));
     }
     Ok(triangles)
 }
