@@ -181,7 +181,7 @@ fn obj_is_triangulated() {
 fn inches_and_y_up_are_converted_and_the_part_is_placed() {
     let text = ascii_stl(&[[[0., 0., 0.], [1., 0., 0.], [0., 2., 1.]]]);
     let mut mesh = read_mesh(text.as_bytes(), MeshFormat::Stl, &TOL).unwrap();
-    PartSetup { units: swarf::mesh::placement::PartUnits::Inch, up_axis: UpAxis::Y, placement: Placement::Keep, scale: 1.0 }.apply(&mut mesh);
+    PartSetup { units: swarf::mesh::placement::PartUnits::Inch, up_axis: UpAxis::Y, placement: Placement::Keep, scale: 1.0, rotation: 0 }.apply(&mut mesh);
     let b = mesh.bounds();
     // File Y (0..2 in) becomes Z (0..50.8 mm); file Z (0..1 in) becomes -Y.
     assert!((b.max.z - 50.8).abs() < 1e-9 && (b.min.y + 25.4).abs() < 1e-9 && (b.max.x - 25.4).abs() < 1e-9);
@@ -344,4 +344,37 @@ fn a_part_with_holes_in_its_surface_is_warned_of() {
         let w = part_warnings(&mesh);
         assert!(w.len() == 1 && w[0].count > 500, "{w:?}");
     }
+}
+
+/// Any of ±X, ±Y, ±Z can be the file's up axis, and the part turns about Z in quarter turns:
+/// each a turn, never a mirror (a part drawn Y-up with its cavity facing −Y is machined from the
+/// cavity's side, not its back).
+#[test]
+fn any_axis_can_point_up_and_the_part_turns_about_z() {
+    use swarf::mesh::placement::PartUnits;
+    let part = demo_part();
+    let volume = |m: &swarf::mesh::Mesh| m.triangles().map(|t| t.a.dot(t.b.cross(t.c))).sum::<f64>() / 6.0;
+    let v0 = volume(&part);
+    for (up, file_up) in [(UpAxis::Z, DVec3::Z), (UpAxis::Y, DVec3::Y), (UpAxis::X, DVec3::X), (UpAxis::MinusZ, -DVec3::Z), (UpAxis::MinusY, -DVec3::Y), (UpAxis::MinusX, -DVec3::X)] {
+        for rotation in [0, 90, 180, 270] {
+            let setup = PartSetup { units: PartUnits::Mm, up_axis: up, rotation, placement: Placement::Keep, scale: 1.0 };
+            let mut m = part.clone();
+            setup.apply(&mut m);
+            // The file's up direction points along +Z, and nothing is mirrored.
+            let turned = {
+                let mut probe = swarf::mesh::Mesh { vertices: vec![file_up], ..Default::default() };
+                setup.apply(&mut probe);
+                probe.vertices[0]
+            };
+            assert!((turned - DVec3::Z).length() < 1e-12, "{up:?} {rotation}: {turned}");
+            assert!((volume(&m) - v0).abs() < 1e-6 * v0.abs(), "{up:?} {rotation}: mirrored");
+        }
+    }
+    // A quarter turn takes +X to +Y.
+    let mut probe = swarf::mesh::Mesh { vertices: vec![DVec3::X], ..Default::default() };
+    PartSetup { rotation: 90, placement: Placement::Keep, ..PartSetup::default() }.apply(&mut probe);
+    assert!((probe.vertices[0] - DVec3::Y).length() < 1e-12);
+    // Up axes read from job files by their names.
+    let setup: PartSetup = serde_json::from_str(r#"{"upAxis": "-y", "rotation": 270}"#).unwrap();
+    assert_eq!((setup.up_axis, setup.rotation), (UpAxis::MinusY, 270));
 }

@@ -499,6 +499,9 @@ impl Job {
         if !positive(self.part.scale) {
             say("part.scale".into(), format!("part.scale must be a positive number (got {})", self.part.scale));
         }
+        if self.part.rotation % 90 != 0 || self.part.rotation >= 360 {
+            say("part.rotation".into(), format!("part.rotation turns the part about Z by 0, 90, 180 or 270 degrees (got {})", self.part.rotation));
+        }
         for (field, message) in self.stock.problems() {
             say(format!("stock.{field}"), format!("stock.{field} {message}"));
         }

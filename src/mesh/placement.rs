@@ -26,13 +26,41 @@ impl Units {
     }
 }
 
-/// Which axis of the file points up.
+/// Which axis of the file points up: the part is turned so that it points along +Z (a turn,
+/// never a mirror).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
-#[serde(rename_all = "camelCase")]
 pub enum UpAxis {
     #[default]
+    #[serde(rename = "z")]
     Z,
+    #[serde(rename = "y")]
     Y,
+    #[serde(rename = "x")]
+    X,
+    /// The file's −Z points up: the part turned over.
+    #[serde(rename = "-z")]
+    MinusZ,
+    #[serde(rename = "-y")]
+    MinusY,
+    #[serde(rename = "-x")]
+    MinusX,
+}
+
+impl UpAxis {
+    /// The point `v` of the file turned so that this axis points along +Z.
+    pub fn turn(self, v: DVec3) -> DVec3 {
+        match self {
+            UpAxis::Z => v,
+            // A quarter turn about X: the file's +Y becomes +Z, its +Z becomes -Y.
+            UpAxis::Y => DVec3::new(v.x, -v.z, v.y),
+            UpAxis::MinusY => DVec3::new(v.x, v.z, -v.y),
+            // A quarter turn about Y: the file's +X becomes +Z, its +Z becomes -X.
+            UpAxis::X => DVec3::new(-v.z, v.y, v.x),
+            UpAxis::MinusX => DVec3::new(v.z, v.y, -v.x),
+            // A half turn about X.
+            UpAxis::MinusZ => DVec3::new(v.x, -v.y, -v.z),
+        }
+    }
 }
 
 /// Where the part goes.
@@ -81,31 +109,35 @@ pub struct PartSetup {
     pub units: PartUnits,
     /// A free factor on top of the unit (a model made at half size: 2). Default value: 1.
     pub scale: f64,
-    /// The file's up axis. Default value: Z.
+    /// The file's up axis. Default value: z.
     pub up_axis: UpAxis,
+    /// A turn about Z after that, in degrees counterclockwise seen from above: 0, 90, 180 or
+    /// 270. Default value: 0.
+    pub rotation: u32,
     /// Where the part goes. Default value: centerTop.
     pub placement: Placement,
 }
 
 impl Default for PartSetup {
     fn default() -> Self {
-        PartSetup { units: PartUnits::Auto, scale: 1.0, up_axis: UpAxis::Z, placement: Placement::CenterTop }
+        PartSetup { units: PartUnits::Auto, scale: 1.0, up_axis: UpAxis::Z, rotation: 0, placement: Placement::CenterTop }
     }
 }
 
 impl PartSetup {
-    /// Converts the mesh to millimetres with Z up and places it.
+    /// Converts the mesh to millimetres with Z up, turns it about Z and places it.
     pub fn apply(&self, mesh: &mut Mesh) {
         let scale = self.units.mm(mesh) * self.scale;
         // Applied once: the mesh is in millimetres from here on.
         mesh.in_metres = false;
-        let up = self.up_axis;
+        let (up, quarter) = (self.up_axis, (self.rotation / 90) % 4);
         mesh.transform(|v| {
-            let v = v * scale;
-            match up {
-                UpAxis::Z => v,
-                // A quarter turn about X: the file's +Y becomes +Z, its +Z becomes -Y.
-                UpAxis::Y => DVec3::new(v.x, -v.z, v.y),
+            let v = up.turn(v * scale);
+            match quarter {
+                1 => DVec3::new(-v.y, v.x, v.z),
+                2 => DVec3::new(-v.x, -v.y, v.z),
+                3 => DVec3::new(v.y, -v.x, v.z),
+                _ => v,
             }
         });
         if self.placement == Placement::CenterTop {

@@ -287,6 +287,7 @@ fn run(cli: Cli) -> Result<(), String> {
                 },
                 scale: 1.0,
                 up_axis: if y_up { UpAxis::Y } else { UpAxis::Z },
+                rotation: 0,
                 placement: if center_top { Placement::CenterTop } else { Placement::Keep },
             };
             setup.apply(&mut mesh);
