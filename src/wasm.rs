@@ -344,7 +344,7 @@ impl JobResult {
     pub fn repost(&self, post: JsValue) -> Result<JsValue, JsError> {
         let settings: crate::post::PostSettings = serde_wasm_bindgen::from_value(post).map_err(|e| js_error(format!("invalid post: {e}")))?;
         let p = &self.program;
-        if settings.resolution() > p.post.resolution() * (1.0 + 1e-9) {
+        if settings.resolution() > p.post.planning_resolution() * (1.0 + 1e-9) {
             return Err(js_error("this post rounds coarser than the one the paths were made for: generate again"));
         }
         let (gcode, cycle) = crate::post::write_program(&p.title, &p.paths, &p.tools, p.clearance, &settings).map_err(js_error)?;

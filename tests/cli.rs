@@ -177,7 +177,7 @@ fn a_truncated_obj_says_it_ended_early() {
     std::fs::write(&job, serde_json::to_string(&swarf::job::Job::default()).unwrap()).unwrap();
     let out = swarf(&["run", job.to_str().unwrap(), obj.to_str().unwrap(), "-o", program.to_str().unwrap(), "-q"]);
     let message = String::from_utf8_lossy(&out.stderr);
-    assert!(!out.status.success() && message.contains("ends early") && message.contains("cut short"), "{message}");
+    assert!(!out.status.success() && message.contains("ends inside line 19") && message.contains("cut short"), "{message}");
     assert!(!program.exists());
     let _ = std::fs::remove_dir_all(&dir);
 }

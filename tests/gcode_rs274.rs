@@ -710,3 +710,22 @@ fn line_numbers_never_wrap() {
         }
     }
 }
+
+/// A job is planned once, in millimetres, and the post only writes it: the same job with its
+/// program in inches follows exactly the mm program's path (it once followed a path up to 1.39 mm
+/// away, planned at the inch resolution), and rs274 reads both to within their resolutions.
+#[test]
+fn a_program_in_inches_follows_the_mm_programs_path() {
+    use swarf::strategy::rough_zlevel::RoughZlevel;
+    let mut job = demo_job(Dialect::LinuxCnc, Units::Mm);
+    job.tools.push(Tool { number: 1, cutter: Cutter { flute_length: 30.0, ..Cutter::flat(6.0) }, ..Tool::default() });
+    job.operations.insert(0, Operation::RoughZlevel(RoughZlevel { tool: 1, grid: 0.5, ..RoughZlevel::default() }));
+    let mm = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
+    job.post.units = Units::Inch;
+    let inch = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
+    assert_eq!(mm.paths, inch.paths);
+    for (out, units, resolution) in [(&mm, Units::Mm, 0.0005), (&inch, Units::Inch, 0.00005)] {
+        let actual = interpret(&out.gcode, &job.tools);
+        compare(&actual, &expected_at(&out.paths, out.clearance_z, 1.0 / units.mm(), Some(2.0 * resolution)), resolution);
+    }
+}

@@ -526,7 +526,7 @@ impl Job {
     /// The context the operations plan in, with the part placed and the in-process stock
     /// fresh.
     fn context(&self, workpiece: Workpiece) -> Result<Context> {
-        let resolution = self.post.resolution();
+        let resolution = self.post.planning_resolution();
         let (part, sheet, stock) = match workpiece {
             Workpiece::Mesh(mut part) => {
                 let stock = self.place(&mut part);

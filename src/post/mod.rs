@@ -115,11 +115,27 @@ impl PostSettings {
     }
 
     /// How far rounding to the program's decimals can move a point sideways (mm): half a unit
-    /// of the last digit in X and in Y. Strategies that follow a surface take their heights as
-    /// the highest within this distance, so that the written points stay above it.
+    /// of the last digit in X and in Y.
     pub fn resolution(&self) -> f64 {
-        let decimals = self.decimals_for(&self.post());
-        0.5 * 10f64.powi(-(decimals as i32)) * self.units.mm() * std::f64::consts::SQRT_2
+        self.resolution_in(self.units)
+    }
+
+    fn resolution_in(&self, units: Units) -> f64 {
+        let decimals = self.decimals.unwrap_or(match units {
+            Units::Mm => self.post().decimals_mm,
+            Units::Inch => self.post().decimals_inch,
+        });
+        0.5 * 10f64.powi(-(decimals as i32)) * units.mm() * std::f64::consts::SQRT_2
+    }
+
+    /// The resolution paths are planned for (mm): the coarser of the post's in millimetres and
+    /// in inches. Strategies that follow a surface take their heights as the highest within
+    /// this distance, so that the written points stay above it whichever unit the program is
+    /// written in: a job is planned once, in millimetres, and the post only writes it (a
+    /// program in inches follows the same path as one in millimetres, to the inch's
+    /// resolution, and the page writes it again in the other unit without planning again).
+    pub fn planning_resolution(&self) -> f64 {
+        self.resolution_in(Units::Mm).max(self.resolution_in(Units::Inch))
     }
 
     /// Checks the settings and the post; errors name the field.

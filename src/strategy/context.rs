@@ -114,7 +114,7 @@ pub struct Context {
     pub tools: Vec<Tool>,
     pub tolerances: Tolerances,
     /// How far the program's rounding may move a point sideways (mm), see
-    /// [`crate::post::PostSettings::resolution`].
+    /// [`crate::post::PostSettings::planning_resolution`].
     pub resolution: f64,
     pub caches: Caches,
     /// The in-process stock: the raw box cut by every operation planned so far.

@@ -336,9 +336,14 @@ units: PartUnits,
  */
 scale: number, 
 /**
- * The file's up axis. Default value: Z.
+ * The file's up axis. Default value: z.
  */
 upAxis: UpAxis, 
+/**
+ * A turn about Z after that, in degrees counterclockwise seen from above: 0, 90, 180 or
+ * 270. Default value: 0.
+ */
+rotation: number, 
 /**
  * Where the part goes. Default value: centerTop.
  */
@@ -1050,9 +1055,10 @@ fluteLength: number, };
 export type Units = "mm" | "inch";
 
 /**
- * Which axis of the file points up.
+ * Which axis of the file points up: the part is turned so that it points along +Z (a turn,
+ * never a mirror).
  */
-export type UpAxis = "z" | "y";
+export type UpAxis = "z" | "y" | "x" | "-z" | "-y" | "-x";
 
 /**
  * The work zero: where the program's origin is on the setup.
