@@ -31,6 +31,7 @@ pub mod sim;
 pub mod strategy;
 pub mod tool;
 pub mod toolpath;
+pub mod view;
 pub mod zigzag;
 pub mod zmap;
 

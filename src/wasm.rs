@@ -12,8 +12,7 @@ use crate::mesh::import::read_mesh_auto;
 use crate::mesh::placement::PartSetup;
 use crate::mesh::{sample, Mesh};
 use crate::progress::Progress;
-use crate::sim::playback::Playback;
-use crate::sim::verify::Verification;
+use crate::view;
 use crate::sim::DexelStock;
 
 #[wasm_bindgen(start)]
@@ -154,91 +153,23 @@ pub fn is_drawing(bytes: &[u8], name: &str) -> bool {
     crate::profile::import::is_drawing(Some(name), bytes)
 }
 
-/// A drawing for the page's view: outer loops, holes and open chains as line segments at Z0
-/// (xyz pairs), and a list of its loops and layers.
-#[derive(serde::Serialize)]
-#[serde(rename_all = "camelCase")]
-struct DrawingView {
-    outer: Vec<f32>,
-    holes: Vec<f32>,
-    open: Vec<f32>,
-    bounds: [f64; 6],
-    loops: Vec<LoopInfo>,
-    layers: Vec<String>,
-    units: String,
-    ignored: Vec<(String, usize)>,
-    open_chains: Vec<crate::profile::OpenChain>,
-}
-
-#[derive(serde::Serialize)]
-#[serde(rename_all = "camelCase")]
-struct LoopInfo {
-    index: usize,
-    layer: String,
-    hole: bool,
-    entities: usize,
-    min: [f64; 2],
-    max: [f64; 2],
-    /// Its line segments: vertices `lines[0]..lines[1]` (in pairs) of `holes` or `outer`.
-    lines: [usize; 2],
-}
-
-fn drawing_view(d: &Drawing) -> DrawingView {
-    let nesting = crate::profile::Shape::new(d.loops.iter().map(|l| l.path.clone()).collect());
-    let (mut outer, mut holes, mut loops) = (Vec::new(), Vec::new(), Vec::new());
-    for (index, (l, o)) in d.loops.iter().zip(&nesting.loops).enumerate() {
-        let target = if o.is_ccw() { &mut outer } else { &mut holes };
-        let first = target.len() / 3;
-        for seg in l.path.segments() {
-            let n = seg.arc_geom().map_or(1, |g| ((g.sweep().abs() / 0.05).ceil() as usize).max(1));
-            for k in 0..n {
-                let (a, b) = (seg.point_at(k as f64 / n as f64), seg.point_at((k + 1) as f64 / n as f64));
-                target.extend([a.x as f32, a.y as f32, 0.0, b.x as f32, b.y as f32, 0.0]);
-            }
-        }
-        let b = l.path.bounds();
-        loops.push(LoopInfo { index, layer: l.layer.clone(), hole: !o.is_ccw(), entities: l.path.len(), min: [b.min.x, b.min.y], max: [b.max.x, b.max.y], lines: [first, target.len() / 3] });
-    }
-    let mut open = Vec::new();
-    for o in &d.open {
-        open.extend([o.start.x as f32, o.start.y as f32, 0.0, o.end.x as f32, o.end.y as f32, 0.0]);
-    }
-    let b = d.bounds();
-    DrawingView {
-        outer,
-        holes,
-        open,
-        bounds: [b.min.x, b.min.y, 0.0, b.max.x, b.max.y, 0.0],
-        loops,
-        layers: d.layers.clone(),
-        units: d.units.clone(),
-        ignored: d.ignored.clone(),
-        open_chains: d.open.clone(),
-    }
-}
-
 fn read_drawing_js(bytes: &[u8], name: &str, tolerances: &Tolerances) -> Result<Drawing, JsError> {
     crate::profile::import::read_drawing(bytes, Some(name), tolerances).map_err(|e| js_error(format!("{name}: {e}")))
 }
 
-/// Reads a drawing and places it as `setup` (a `DrawingSetup` object) says.
+/// Reads a drawing and places it as `setup` (a `DrawingSetup` object) says: a
+/// [`view::DrawingView`].
 #[wasm_bindgen(js_name = loadDrawing)]
 pub fn load_drawing(bytes: &[u8], name: &str, setup: JsValue) -> Result<JsValue, JsError> {
     let setup: crate::job::DrawingSetup = serde_wasm_bindgen::from_value(setup).map_err(js_error)?;
     let mut d = read_drawing_js(bytes, name, &Tolerances::default())?;
     setup.apply(&mut d);
-    to_js(&drawing_view(&d))
+    to_js(&view::DrawingView::of(&d))
 }
 
-/// A part read and placed, ready to draw.
+/// A part read and placed, ready to draw ([`view::PartData`]).
 #[wasm_bindgen]
-pub struct PartView {
-    positions: Vec<f32>,
-    normals: Vec<f32>,
-    bounds: Aabb,
-    triangles: usize,
-    dropped: usize,
-}
+pub struct PartView(view::PartData);
 
 #[wasm_bindgen]
 impl PartView {
@@ -246,38 +177,28 @@ impl PartView {
     /// next call into wasm).
     pub fn positions(&self) -> js_sys::Float32Array {
         // SAFETY: the view is read before wasm memory can grow again (the caller copies it).
-        unsafe { js_sys::Float32Array::view(&self.positions) }
+        unsafe { js_sys::Float32Array::view(&self.0.positions) }
     }
     /// Facet normals, one per vertex.
     pub fn normals(&self) -> js_sys::Float32Array {
         // SAFETY: as above.
-        unsafe { js_sys::Float32Array::view(&self.normals) }
+        unsafe { js_sys::Float32Array::view(&self.0.normals) }
     }
     /// [minX, minY, minZ, maxX, maxY, maxZ] in mm.
     pub fn bounds(&self) -> Vec<f64> {
-        let b = self.bounds;
-        vec![b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z]
+        self.0.bounds_array()
     }
     pub fn triangles(&self) -> usize {
-        self.triangles
+        self.0.triangles
     }
     /// Degenerate triangles dropped at import.
     pub fn dropped(&self) -> usize {
-        self.dropped
+        self.0.dropped
     }
-}
-
-fn part_view(mesh: &Mesh) -> PartView {
-    let mut positions = Vec::with_capacity(mesh.faces.len() * 9);
-    let mut normals = Vec::with_capacity(mesh.faces.len() * 9);
-    for t in mesh.triangles() {
-        let n = t.normal().unwrap_or(glam::DVec3::Z);
-        for v in t.vertices() {
-            positions.extend([v.x as f32, v.y as f32, v.z as f32]);
-            normals.extend([n.x as f32, n.y as f32, n.z as f32]);
-        }
+    /// What the user should know of the part (`Warning` objects): holes in its surface.
+    pub fn warnings(&self) -> Result<JsValue, JsError> {
+        to_js(&self.0.warnings)
     }
-    PartView { positions, normals, bounds: mesh.bounds(), triangles: mesh.faces.len(), dropped: mesh.dropped_degenerate }
 }
 
 fn read_part(bytes: &[u8], name: &str, tolerances: &Tolerances) -> Result<Mesh, JsError> {
@@ -290,175 +211,139 @@ pub fn load_part(bytes: &[u8], name: &str, setup: JsValue) -> Result<PartView, J
     let setup: PartSetup = serde_wasm_bindgen::from_value(setup).map_err(js_error)?;
     let mut mesh = read_part(bytes, name, &Tolerances::default())?;
     setup.apply(&mut mesh);
-    Ok(part_view(&mesh))
+    Ok(PartView(view::PartData::of(&mesh)))
 }
 
-/// What a job produced.
+/// What a job produced ([`view::ResultView`]), kept by the worker for scrubbing and reposting.
 #[wasm_bindgen]
-pub struct JobResult {
-    gcode: String,
-    feeds: Vec<f32>,
-    feed_ops: Vec<f32>,
-    feed_tools: Vec<f32>,
-    octants: Vec<f32>,
-    rapids: Vec<f32>,
-    summary: JsValue,
-    part: PartView,
-    drawing: JsValue,
-    simulation: Option<SimulationView>,
-    /// What the post writes, to write it again for another post.
-    program: Program,
+pub struct JobResult(view::ResultView);
+
+/// A `Float32Array` view of `data` (copy it before the next call into wasm).
+fn floats(data: &[f32]) -> js_sys::Float32Array {
+    // SAFETY: the view is read before wasm memory can grow again (the caller copies it).
+    unsafe { js_sys::Float32Array::view(data) }
 }
 
-/// The paths of a job and what writing them needs.
-struct Program {
-    title: String,
-    paths: Vec<crate::toolpath::Toolpath>,
-    tools: Vec<crate::tool::Tool>,
-    clearance: f64,
-    post: crate::post::PostSettings,
-    problem: Option<String>,
-}
-
-/// The simulated program, for the page's scrubber: the stock after any move, the part's surface
-/// on the same cells, the moves' times and material removal rates, and what verification found.
-struct SimulationView {
-    playback: Playback,
-    grid: Vec<f64>,
-    part: Vec<f32>,
-    times: Vec<f64>,
-    mrr: Vec<f32>,
-    findings: Vec<f32>,
-    report: JsValue,
+/// A `Uint32Array` view of `data` (copy it before the next call into wasm).
+fn counts(data: &[u32]) -> js_sys::Uint32Array {
+    // SAFETY: as for `floats`.
+    unsafe { js_sys::Uint32Array::view(data) }
 }
 
 #[wasm_bindgen]
 impl JobResult {
     pub fn gcode(&self) -> String {
-        self.gcode.clone()
+        self.0.gcode.clone()
     }
-
+    /// The line (0 first) of the program each move ended on (a view).
+    #[wasm_bindgen(js_name = moveLines)]
+    pub fn move_lines(&self) -> js_sys::Uint32Array {
+        counts(&self.0.move_lines)
+    }
     /// The same paths written by another post (`post`: the job's `post` object), without
-    /// planning again: `{gcode, extension, cycle}`. A post that rounds coarser than the one the
-    /// paths were made for is refused (the paths keep their clearance only at that resolution).
+    /// planning again: `{gcode, extension, post, cycle, time, moveLines}`
+    /// ([`view::Program::repost`]).
     pub fn repost(&self, post: JsValue) -> Result<JsValue, JsError> {
         let settings: crate::post::PostSettings = serde_wasm_bindgen::from_value(post).map_err(|e| js_error(format!("invalid post: {e}")))?;
-        let p = &self.program;
-        if settings.resolution() > p.post.planning_resolution() * (1.0 + 1e-9) {
-            return Err(js_error("this post rounds coarser than the one the paths were made for: generate again"));
-        }
-        let (gcode, cycle) = crate::post::write_program(&p.title, &p.paths, &p.tools, p.clearance, &settings).map_err(js_error)?;
-        let gcode = job::marked(&gcode, p.problem.as_deref());
-        to_js(&serde_json::json!({ "gcode": gcode, "extension": settings.extension(), "cycle": cycle }))
+        let r = self.0.program.repost(&settings).map_err(js_error)?;
+        let out = to_js(&r)?;
+        js_sys::Reflect::set(&out, &"moveLines".into(), &js_sys::Uint32Array::from(&r.move_lines[..])).map_err(|_| js_error("an object"))?;
+        Ok(out)
     }
     /// Cutting moves as line segments: xyz of both ends per segment (a view).
     pub fn feeds(&self) -> js_sys::Float32Array {
-        // SAFETY: as for PartView.
-        unsafe { js_sys::Float32Array::view(&self.feeds) }
+        floats(&self.0.segments.feeds)
     }
     /// The operation (its index in the job) of each cutting segment of `feeds` (a view).
     #[wasm_bindgen(js_name = feedOperations)]
     pub fn feed_operations(&self) -> js_sys::Float32Array {
-        // SAFETY: as for PartView.
-        unsafe { js_sys::Float32Array::view(&self.feed_ops) }
+        floats(&self.0.segments.feed_ops)
     }
     /// The tool number of each cutting segment of `feeds` (a view).
     #[wasm_bindgen(js_name = feedTools)]
     pub fn feed_tools(&self) -> js_sys::Float32Array {
-        // SAFETY: as for PartView.
-        unsafe { js_sys::Float32Array::view(&self.feed_tools) }
+        floats(&self.0.segments.feed_tools)
+    }
+    /// The program move of each cutting segment of `feeds` (a view).
+    #[wasm_bindgen(js_name = feedMoves)]
+    pub fn feed_moves(&self) -> js_sys::Uint32Array {
+        counts(&self.0.segments.feed_moves)
     }
     /// The octants of each stage of octree roughing (seed 000): per box `stage, tool, full
     /// (1: cut by that tool, 0: Partial), minX, minY, minZ, maxX, maxY, maxZ` (a view).
     pub fn octants(&self) -> js_sys::Float32Array {
-        // SAFETY: as for PartView.
-        unsafe { js_sys::Float32Array::view(&self.octants) }
+        floats(&self.0.octants)
     }
     /// Rapid moves as line segments (a view).
     pub fn rapids(&self) -> js_sys::Float32Array {
-        // SAFETY: as for PartView.
-        unsafe { js_sys::Float32Array::view(&self.rapids) }
+        floats(&self.0.segments.rapids)
     }
-    /// `{ moves, feedLength, rapidLength, seconds, warnings, problem, stock, clearanceZ }`.
-    pub fn summary(&self) -> JsValue {
-        self.summary.clone()
+    /// The program move of each segment of `rapids` (a view).
+    #[wasm_bindgen(js_name = rapidMoves)]
+    pub fn rapid_moves(&self) -> js_sys::Uint32Array {
+        counts(&self.0.segments.rapid_moves)
+    }
+    /// The figures, warnings and reports ([`view::Summary`]).
+    pub fn summary(&self) -> Result<JsValue, JsError> {
+        to_js(&self.0.summary)
     }
     /// Whether the program was simulated.
     #[wasm_bindgen(js_name = hasSimulation)]
     pub fn has_simulation(&self) -> bool {
-        self.simulation.is_some()
+        self.0.simulation.is_some()
     }
     /// `[originX, originY, spacing, nx, ny, stockBottom, stockTop, gougeTolerance]`: where the
     /// simulated stock's cell centres stand.
     #[wasm_bindgen(js_name = simGrid)]
     pub fn sim_grid(&self) -> Vec<f64> {
-        self.simulation.as_ref().map(|s| s.grid.clone()).unwrap_or_default()
+        self.0.simulation.as_ref().map(|s| s.grid.clone()).unwrap_or_default()
     }
     /// The part's surface plus allowance at each cell centre (NaN off the part; a view).
     #[wasm_bindgen(js_name = simPart)]
     pub fn sim_part(&self) -> js_sys::Float32Array {
-        // SAFETY: as for PartView.
-        self.simulation.as_ref().map(|s| unsafe { js_sys::Float32Array::view(&s.part) }).unwrap_or_default()
+        self.0.simulation.as_ref().map(|s| floats(&s.part)).unwrap_or_default()
     }
-    /// When each move starts (s), and at the end the program's length (a view).
+    /// When each move starts (s), and at the end the program's cycle time.
     pub fn times(&self) -> js_sys::Float64Array {
-        // SAFETY: as for PartView.
-        self.simulation.as_ref().map(|s| unsafe { js_sys::Float64Array::view(&s.times) }).unwrap_or_default()
+        // SAFETY: as for `floats`.
+        self.0.simulation.as_ref().map(|s| unsafe { js_sys::Float64Array::view(&s.times) }).unwrap_or_default()
     }
     /// Material removal rate of each move (mm³/min; a view).
     pub fn mrr(&self) -> js_sys::Float32Array {
-        // SAFETY: as for PartView.
-        self.simulation.as_ref().map(|s| unsafe { js_sys::Float32Array::view(&s.mrr) }).unwrap_or_default()
+        self.0.simulation.as_ref().map(|s| floats(&s.mrr)).unwrap_or_default()
     }
     /// Places of gouges and collisions: x, y, z, kind (0 gouge, 1 rapid, 2 tool body) per place.
     pub fn findings(&self) -> js_sys::Float32Array {
-        // SAFETY: as for PartView.
-        self.simulation.as_ref().map(|s| unsafe { js_sys::Float32Array::view(&s.findings) }).unwrap_or_default()
+        self.0.simulation.as_ref().map(|s| floats(&s.findings)).unwrap_or_default()
     }
     /// The verification report (`Report` as a JS object, with `text` for people).
-    pub fn report(&self) -> JsValue {
-        self.simulation.as_ref().map(|s| s.report.clone()).unwrap_or(JsValue::NULL)
+    pub fn report(&self) -> Result<JsValue, JsError> {
+        self.0.simulation.as_ref().map_or(Ok(JsValue::NULL), |s| to_js(&s.report))
     }
     /// The stock's height over every cell after the first `count` moves (a view: copy it before
     /// the next call).
     pub fn seek(&mut self, count: usize) -> js_sys::Float32Array {
-        match self.simulation.as_mut() {
-            // SAFETY: as for PartView.
-            Some(s) => unsafe { js_sys::Float32Array::view(s.playback.seek(count)) },
+        match self.0.simulation.as_mut() {
+            Some(s) => floats(s.playback.seek(count)),
             None => js_sys::Float32Array::default(),
         }
     }
+    /// Where the tool is a fraction `f` of the way through move `k`: `[x, y, z, tool]`, empty
+    /// without a simulation.
+    #[wasm_bindgen(js_name = toolAt)]
+    pub fn tool_at(&self, k: usize, f: f64) -> Vec<f64> {
+        self.0.tool_at(k, f).map(|t| t.to_vec()).unwrap_or_default()
+    }
     /// The drawing as the job placed it (as `loadDrawing` gives it), or null for a part.
-    pub fn drawing(&self) -> JsValue {
-        self.drawing.clone()
+    pub fn drawing(&self) -> Result<JsValue, JsError> {
+        self.0.drawing.as_ref().map_or(Ok(JsValue::NULL), to_js)
     }
     /// The part as the job placed it.
     #[wasm_bindgen(js_name = takePart)]
     pub fn take_part(&mut self) -> PartView {
-        std::mem::replace(&mut self.part, PartView { positions: vec![], normals: vec![], bounds: Aabb::EMPTY, triangles: 0, dropped: 0 })
+        let empty = view::PartData { positions: vec![], normals: vec![], bounds: Aabb::EMPTY, triangles: 0, dropped: 0, warnings: vec![] };
+        PartView(std::mem::replace(&mut self.0.part, empty))
     }
-}
-
-#[derive(serde::Serialize)]
-#[serde(rename_all = "camelCase")]
-struct Summary {
-    #[serde(flatten)]
-    stats: crate::toolpath::PathStats,
-    warnings: Vec<crate::error::Warning>,
-    /// Per operation: name, tools, time, lengths, volume removed, peak MRR, what it left.
-    operations: Vec<job::OperationReport>,
-    /// The index of each operation's first move in the program (for the scrubber's marks).
-    operation_starts: Vec<usize>,
-    /// Lookups of the CL z-map cache that found a z-map made for an earlier operation.
-    cache_hits: usize,
-    /// What makes the program unsafe to run, if verification found anything.
-    problem: Option<String>,
-    stock: [f64; 6],
-    clearance_z: f64,
-    /// The extension the post's controllers expect of the program's file.
-    extension: String,
-    /// The program's cycle time as its head states it (tool changes included).
-    cycle: crate::post::CycleTime,
 }
 
 /// Runs `job` (a `Job` object) on the part in `bytes`. `progress(fraction, stage)` is called as
@@ -764,78 +649,6 @@ fn progress_sink(progress: &js_sys::Function) -> impl FnMut(f64, &str) -> bool +
 }
 
 /// What the worker hands the page of a job's output.
-fn job_result(job: &Job, mut out: job::JobOutput) -> Result<JobResult, JsError> {
-    let simulation = out.verification.take().map(|v| simulation_view(job, &out, v)).transpose()?;
-    let (mut feeds, mut rapids, mut feed_ops, mut feed_tools) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-    for (path, &op) in out.paths.iter().zip(&out.path_operations) {
-        for (a, b, rapid) in path.segments(0.1) {
-            let target = if rapid { &mut rapids } else { &mut feeds };
-            target.extend([a.x as f32, a.y as f32, a.z as f32, b.x as f32, b.y as f32, b.z as f32]);
-            if !rapid {
-                feed_ops.push(op as f32);
-                feed_tools.push(path.tool as f32);
-            }
-        }
-    }
-    let mut operation_starts = Vec::new();
-    let mut at = 0;
-    for r in &out.operations {
-        operation_starts.push(at);
-        at += r.moves;
-    }
-    let s = out.stock;
-    let summary = Summary {
-        stats: out.stats,
-        warnings: out.warnings.clone(),
-        operations: out.operations.clone(),
-        operation_starts,
-        cache_hits: out.cache.hits,
-        problem: out.problem.clone(),
-        stock: [s.min.x, s.min.y, s.min.z, s.max.x, s.max.y, s.max.z],
-        clearance_z: out.clearance_z,
-        extension: job.post.extension(),
-        cycle: out.cycle.clone(),
-    };
-    let summary = to_js(&summary)?;
-    let drawing = match &out.drawing {
-        Some(d) => to_js(&drawing_view(d))?,
-        None => JsValue::NULL,
-    };
-    let octants = out
-        .octants
-        .iter()
-        .flat_map(|s| s.boxes.iter().map(move |b| (s, b)))
-        .flat_map(|(s, b)| [s.stage as f64, s.tool as f64, if b.full { 1.0 } else { 0.0 }, b.min[0], b.min[1], b.min[2], b.max[0], b.max[1], b.max[2]])
-        .map(|v| v as f32)
-        .collect();
-    let gcode = out.gcode_marked();
-    let program = Program { title: job.name.clone(), paths: std::mem::take(&mut out.paths), tools: job.tools.clone(), clearance: out.clearance_z, post: job.post.clone(), problem: out.problem.clone() };
-    Ok(JobResult { gcode, feeds, feed_ops, feed_tools, octants, rapids, summary, part: part_view(&out.part), drawing, simulation, program })
-}
-
-#[derive(serde::Serialize)]
-struct ReportView<'a> {
-    #[serde(flatten)]
-    report: &'a crate::sim::verify::Report,
-    text: String,
-}
-
-fn simulation_view(job: &Job, out: &job::JobOutput, v: Verification) -> Result<SimulationView, JsError> {
-    let g = v.stock.grid();
-    let grid = vec![g.origin.x, g.origin.y, g.spacing, g.nx as f64, g.ny as f64, out.stock.min.z, out.stock.max.z, job.tolerances.gouge];
-    let part = v.part.z.iter().map(|&z| z as f32).collect();
-    let mut times: Vec<f64> = out.moves.iter().map(|m| m.start).collect();
-    times.push(out.moves.last().map_or(0.0, |m| m.start + m.seconds));
-    let mrr = v.rates.iter().map(|&r| r as f32).collect();
-    let r = &v.report;
-    let mut findings = Vec::new();
-    for (kind, list) in [(0.0, &r.gouges), (1.0, &r.rapid_collisions), (2.0, &r.body_collisions)] {
-        for f in list {
-            findings.extend([f.at.x as f32, f.at.y as f32, f.at.z as f32, kind]);
-        }
-    }
-    let report = to_js(&ReportView { report: r, text: r.describe() })?;
-    let fresh = DexelStock::new(&out.stock, g.spacing, 1);
-    let playback = Playback::at_end(fresh, v.stock, out.moves.clone(), job.tolerances.chordal);
-    Ok(SimulationView { playback, grid, part, times, mrr, findings, report })
+fn job_result(job: &Job, out: job::JobOutput) -> Result<JobResult, JsError> {
+    Ok(JobResult(view::ResultView::of(job, out)))
 }

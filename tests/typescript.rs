@@ -8,7 +8,9 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 use swarf::job::project::Project;
+use swarf::job::Problem;
 use swarf::post::{CycleTime, Post};
+use swarf::view::{DrawingView, ReportView, Reposted, Summary};
 use ts_rs::{Config, TypeVisitor, TS};
 
 const HEAD: &str = "// Generated from swarf's Rust types by ts-rs (tests/typescript.rs): do not edit.\n// UPDATE_TYPES=1 cargo test --test typescript writes it anew.\n\n";
@@ -20,6 +22,11 @@ fn generate() -> String {
     Project::export_all(&cfg).unwrap();
     Post::export_all(&cfg).unwrap();
     CycleTime::export_all(&cfg).unwrap();
+    Summary::export_all(&cfg).unwrap();
+    DrawingView::export_all(&cfg).unwrap();
+    ReportView::export_all(&cfg).unwrap();
+    Reposted::export_all(&cfg).unwrap();
+    Problem::export_all(&cfg).unwrap();
     let mut files: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().path()).collect();
     files.sort();
     let mut out = HEAD.to_owned();
@@ -61,6 +68,11 @@ fn no_two_rust_types_share_a_typescript_name() {
     names.visit::<Project>();
     names.visit::<Post>();
     names.visit::<CycleTime>();
+    names.visit::<Summary>();
+    names.visit::<DrawingView>();
+    names.visit::<ReportView>();
+    names.visit::<Reposted>();
+    names.visit::<Problem>();
     assert!(names.0.len() > 20, "{:?}", names.0.keys());
     let twice: Vec<_> = names.0.values().filter(|v| v.len() > 1).collect();
     assert!(twice.is_empty(), "types sharing a TypeScript name (give one #[ts(rename)]): {twice:?}");
@@ -70,11 +82,13 @@ fn no_two_rust_types_share_a_typescript_name() {
 fn the_typescript_definitions_match_the_rust_types() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("www/types/swarf-types.d.ts");
     let made = generate();
-    for name in ["export type Job = ", "export type Operation = ", "export type Post = ", "export type Tool = ", "export type Project = "] {
+    for name in ["export type Job = ", "export type Operation = ", "export type Post = ", "export type Tool = ", "export type Project = ", "export type Summary = ", "export type OperationReport = ", "export type Warning = "] {
         assert!(made.contains(name), "{name} missing");
     }
     // Fields as the JSON has them: camelCase, the operation's kind as its tag.
     assert!(made.contains("spindleRpm: number") && made.contains("\"kind\": \"roughOctree\""), "{made}");
+    // The per-operation results are typed (their seconds once came out `unknown`).
+    assert!(!made.contains("unknown"), "{made}");
     if std::env::var_os("UPDATE_TYPES").is_some() {
         std::fs::write(&path, &made).unwrap();
     }

@@ -1,9 +1,29 @@
-// The API of swarf.js. The data it passes (jobs, tools, operations, posts, projects) has the
-// types generated from swarf's Rust serde types (types/swarf-types.d.ts); only the engine's
-// own calls are declared here.
-import type { Job, Post, PostSettings, CycleTime, Project } from './types/swarf-types';
+// The API of swarf.js. The data it passes (jobs, tools, operations, posts, projects, results)
+// has the types generated from swarf's Rust serde types (types/swarf-types.d.ts); only the
+// engine's own calls, and the input forms of those types, are declared here.
+import type { Job, Post, PostSettings, CycleTime, Project, Summary, DrawingView, ReportView, Reposted, Problem, Warning, OperationReport, TimeItem } from './types/swarf-types';
 
-export type { Job, Post, PostSettings, CycleTime, Project };
+export type { Job, Post, PostSettings, CycleTime, Project, Summary, DrawingView, ReportView, Reposted, Problem, Warning, OperationReport, TimeItem };
+
+/**
+ * What the engine takes of a type: every field the core fills with its default may be left out
+ * (an operation's `kind` may not: it says which operation it is). Fixed-length lists (a box's
+ * corners) are given whole. The engine reads what it is given as `swarf run` reads a job file:
+ * a misspelt field or a value of the wrong type is an error naming its path.
+ */
+export type Input<T> = T extends readonly [unknown, ...unknown[]]
+  ? T
+  : T extends (infer U)[]
+    ? Input<U>[]
+    : T extends object
+      ? { [K in keyof T as K extends 'kind' ? K : never]: T[K] } & { [K in keyof T as K extends 'kind' ? never : K]?: Input<T[K]> }
+      : T;
+
+/** A job as a portal writes it: only what differs from the defaults. */
+export type JobInput = Input<Job>;
+export type ToolInput = Input<Job['tools'][number]>;
+export type OperationInput = Input<Job['operations'][number]>;
+export type PostSettingsInput = Input<PostSettings>;
 
 export interface EngineOptions {
   /** The worker script (default: worker.js beside swarf.js). */
@@ -35,38 +55,45 @@ export interface PartPreview {
   bounds: number[];
   triangles: number;
   dropped: number;
+  /** Holes in its surface (open edges), triangles dropped. */
+  warnings: Warning[];
 }
 
-export interface Summary {
-  moves: number;
-  feedLength: number;
-  rapidLength: number;
-  /** Seconds of motion at the feeds and the rapid rate. */
-  seconds: number;
-  /** The program's cycle time as its head states it (tool changes included). */
-  cycle: CycleTime;
-  warnings: { operation?: string | null; message: string }[];
-  operations: Record<string, unknown>[];
-  problem: string | null;
-  /** The file extension the post expects (ngc, nc, tap). */
-  extension: string;
-  stock: number[];
-  clearanceZ: number;
+/** The simulated program, for scrubbing through it. */
+export interface Simulation {
+  /** originX, originY, spacing, nx, ny, stockBottom, stockTop, gougeTolerance of the stock's cells (as sent: coarsened to at most 512 × 512). */
+  grid: number[];
+  /** The part's surface plus the allowance per cell (NaN off the part). */
+  part: Float32Array;
+  /** When each move starts (s), and at the end the program's cycle time. */
+  times: Float64Array;
+  /** Each move's material removal rate (mm³/min). */
+  mrr: Float32Array;
+  /** Places of gouges and collisions: x, y, z, kind (0 gouge, 1 rapid, 2 tool body). */
+  findings: Float32Array;
+  report: ReportView;
+  /** The stock's heights after the last move. */
+  start: Float32Array;
 }
 
 export interface RunResult {
   gcode: string;
+  /** The line (0 first) of `gcode` each move of the program ended on. */
+  moveLines: Uint32Array;
   summary: Summary;
   /** Cutting moves as segments: x0, y0, z0, x1, y1, z1 per segment (mm). */
   feeds: Float32Array;
   rapids: Float32Array;
-  /** Per cutting segment, the index of its operation and its tool's number. */
+  /** Per cutting segment, the index of its operation, its tool's number and its move. */
   feedOps: Float32Array;
   feedTools: Float32Array;
+  feedMoves: Uint32Array;
+  /** Per rapid segment, its move. */
+  rapidMoves: Uint32Array;
   octants: Float32Array;
   part: PartPreview;
-  drawing: unknown | null;
-  sim: unknown | null;
+  drawing: DrawingView | null;
+  sim: Simulation | null;
 }
 
 export interface RunOptions {
@@ -90,13 +117,15 @@ export declare class Engine {
   /** Settles once the warm-up job has run (at once when the engine was made with `warmUp: false`). */
   warmedUp: Promise<void>;
   defaultJob(kind?: 'part' | 'drawing'): Job;
-  open(bytes: Uint8Array, name: string, job?: Job): Promise<{ part: PartPreview } | { drawing: unknown }>;
+  open(bytes: Uint8Array, name: string, job?: JobInput): Promise<{ part: PartPreview } | { drawing: DrawingView }>;
   readJob(text: string): Promise<Job>;
+  /** Every setting of a job that does not fit, by its path (empty when it is good). */
+  checkJob(job: JobInput): Promise<Problem[]>;
   readPost(text: string): Promise<Post>;
   readProject(text: string): Promise<{ job: Job; name: string; bytes: Uint8Array | null }>;
-  writeProject(job: Job, name: string, bytes: Uint8Array): Promise<string>;
-  run(job: Job, bytes: Uint8Array, name: string, options?: RunOptions): Promise<RunResult>;
-  repost(post: PostSettings): Promise<{ gcode: string; extension: string; cycle: CycleTime }>;
+  writeProject(job: JobInput, name: string, bytes: Uint8Array): Promise<string>;
+  run(job: JobInput, bytes: Uint8Array, name: string, options?: RunOptions): Promise<RunResult>;
+  repost(post: PostSettingsInput): Promise<Reposted & { moveLines: Uint32Array }>;
   seek(count: number): Promise<Float32Array>;
   cancel(): Promise<void>;
   close(): void;

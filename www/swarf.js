@@ -202,6 +202,8 @@ export class Engine {
 
   /** Reads a job file as `swarf run` does (a misspelt field is named). */
   async readJob(text) { return (await this.call({ type: 'readJob', text })).job; }
+  /** Every setting of a job that does not fit, as `[{ path, message }]` (the core's own checks). */
+  async checkJob(job) { return (await this.call({ type: 'checkJob', job })).problems; }
   /** Reads a post (JSON); the error names a field it does not know. */
   async readPost(text) { return (await this.call({ type: 'readPost', text })).post; }
   /** Reads a project file: `{ job, name, bytes }` (`bytes` null when the project only names its part). */
@@ -212,8 +214,8 @@ export class Engine {
   /**
    * Runs a job on a part or drawing. `onProgress(fraction, stage)` reports as it goes;
    * aborting `signal` ends the work (the workers are replaced, the engine stays usable) and
-   * rejects with a `CancelledError`. Resolves with `{ gcode, summary, feeds, rapids, feedOps,
-   * feedTools, octants, part, drawing, sim }`. With more than one worker, the pool first makes
+   * rejects with a `CancelledError`. Resolves with `{ gcode, moveLines, summary, feeds, rapids,
+   * feedOps, feedTools, feedMoves, rapidMoves, octants, part, drawing, sim }` (swarf.d.ts). With more than one worker, the pool first makes
    * the CL surfaces and the level maps of z-level work (in bands of rows) and the raster passes
    * (in ranges) on every worker, then plans operation by operation: the regions of a z-level
    * operation's levels are made on every worker first, and each operation's moves cut the
@@ -320,10 +322,13 @@ export class Engine {
     }
   }
 
-  /** The last run's program written again for another post, without planning again. */
+  /**
+   * The last run's program written again for another post (or in the other unit), without
+   * planning again: `{ gcode, extension, post, cycle, time, moveLines }`.
+   */
   async repost(post) {
-    const { gcode, extension, cycle } = await this.call({ type: 'repost', post });
-    return { gcode, extension, cycle };
+    const { gcode, extension, post: name, cycle, time, moveLines } = await this.call({ type: 'repost', post });
+    return { gcode, extension, post: name, cycle, time, moveLines };
   }
 
   /** The last run's simulated stock after `count` moves (a Float32Array of heights). */

@@ -1,6 +1,6 @@
 // Runs the wasm pipeline off the page's thread, for swarf.js's engine. Cancel = the engine
 // terminates this worker.
-import init, { defaults, builtinPosts, readPost, readJob, writeProject, readProject, samplePart, sampleDrawing, warmUpJob, warmUpPart, loadPart, loadDrawing, isDrawing, runJob, prepareJob } from './pkg/swarf.js';
+import init, { defaults, builtinPosts, readPost, readJob, checkJob, writeProject, readProject, samplePart, sampleDrawing, warmUpJob, warmUpPart, loadPart, loadDrawing, isDrawing, runJob, prepareJob } from './pkg/swarf.js';
 
 // The wasm is loaded on the first message: from the bytes or URL it names (a single-file page
 // passes the bytes), else from pkg/ beside the glue.
@@ -45,6 +45,7 @@ function partMessage(view) {
     bounds: Array.from(view.bounds()),
     triangles: view.triangles(),
     dropped: view.dropped(),
+    warnings: view.warnings(),
   };
   view.free();
   return { part, transfer: [part.positions.buffer, part.normals.buffer] };
@@ -73,8 +74,11 @@ function send(id, result) {
   const feeds = result.feeds().slice();
   const feedOps = result.feedOperations().slice();
   const feedTools = result.feedTools().slice();
+  const feedMoves = result.feedMoves().slice();
   const octants = result.octants().slice();
   const rapids = result.rapids().slice();
+  const rapidMoves = result.rapidMoves().slice();
+  const moveLines = result.moveLines().slice();
   const gcode = result.gcode();
   const summary = result.summary();
   const drawing = result.drawing();
@@ -96,7 +100,7 @@ function send(id, result) {
   }
   current?.free();
   current = result;
-  self.postMessage({ id, ok: true, gcode, feeds, feedOps, feedTools, octants, rapids, summary, part, drawing, sim }, [feeds.buffer, feedOps.buffer, feedTools.buffer, octants.buffer, rapids.buffer, ...transfer]);
+  self.postMessage({ id, ok: true, gcode, moveLines, feeds, feedOps, feedTools, feedMoves, octants, rapids, rapidMoves, summary, part, drawing, sim }, [feeds.buffer, feedOps.buffer, feedTools.buffer, feedMoves.buffer, octants.buffer, rapids.buffer, rapidMoves.buffer, moveLines.buffer, ...transfer]);
 }
 
 self.onmessage = async (event) => {
@@ -116,6 +120,8 @@ self.onmessage = async (event) => {
       self.postMessage({ id, ok: true, project: readProject(event.data.text) });
     } else if (type === 'readJob') {
       self.postMessage({ id, ok: true, job: readJob(event.data.text) });
+    } else if (type === 'checkJob') {
+      self.postMessage({ id, ok: true, problems: checkJob(event.data.job) });
     } else if (type === 'load') {
       if (isDrawing(event.data.bytes, event.data.name)) {
         self.postMessage({ id, ok: true, drawing: loadDrawing(event.data.bytes, event.data.name, event.data.drawingSetup) });
@@ -200,9 +206,15 @@ self.onmessage = async (event) => {
       if (!current) throw new Error('generate a program first');
       self.postMessage({ id, ok: true, ...current.repost(event.data.post) });
     } else if (type === 'seek') {
+      // The stock after `count` moves, and the tool a fraction `f` into move `at` (default:
+      // the end of the last move counted).
       if (!current) throw new Error('nothing to simulate yet');
-      const tops = coarse(current.seek(event.data.count));
-      self.postMessage({ id, ok: true, tops, count: event.data.count }, [tops.buffer]);
+      const { count, at = Math.max(0, count - 1), f = count > 0 ? 1 : 0 } = event.data;
+      const tops = coarse(current.seek(count));
+      self.postMessage({ id, ok: true, tops, count, tool: Array.from(current.toolAt(at, f)) }, [tops.buffer]);
+    } else if (type === 'toolAt') {
+      if (!current) throw new Error('nothing to simulate yet');
+      self.postMessage({ id, ok: true, tool: Array.from(current.toolAt(event.data.at, event.data.f)) });
     }
   } catch (error) {
     self.postMessage({ id, ok: false, error: String(error && error.message ? error.message : error) });

@@ -28,7 +28,7 @@ use crate::error::{Error, Result, Warning};
 use crate::strategy::profile2d::Profile2d;
 use crate::geom::{Aabb, DVec3, Tolerances};
 use crate::mesh::{placement::PartSetup, Mesh};
-use crate::post::{write_program, CycleTime, PostSettings, TimeItem};
+use crate::post::{write_mapped, CycleTime, PostSettings, TimeItem};
 use crate::profile::Drawing;
 use crate::progress::Progress;
 use crate::sim::program::{program_moves, ProgramMove};
@@ -317,6 +317,8 @@ pub struct JobOutput {
     /// Per tool path, the index of the operation that made it.
     pub path_operations: Vec<usize>,
     pub gcode: String,
+    /// The line of `gcode` each move of `moves` ended on ([`crate::post::Written::move_lines`]).
+    pub move_lines: Vec<u32>,
     /// The program's cycle time as the post wrote it: per tool path, tool changes, in all.
     pub cycle: CycleTime,
     /// The cycle time by operation, tool changes and the rest, in whole seconds that sum to
@@ -807,7 +809,7 @@ impl Running {
         let mut ctx = ctx;
         progress.frame(0.0, 1.0, None);
         warnings.append(&mut ctx.warnings);
-        let (gcode, cycle) = write_program(&job.name, &paths, &job.tools, ctx.heights.clearance, &job.post)?;
+        let crate::post::Written { gcode, cycle, move_lines } = write_mapped(&job.name, &paths, &job.tools, ctx.heights.clearance, &job.post)?;
         let stats = paths.iter().fold(PathStats::default(), |s, p| s + p.stats(job.post.rapid_rate));
         if all_moves.iter().all(|m| matches!(m.mv, crate::toolpath::Move::Rapid { .. })) {
             let why = if warnings.is_empty() { String::new() } else { format!(" ({})", warnings.iter().map(Warning::to_string).collect::<Vec<_>>().join("; ")) };
@@ -843,7 +845,7 @@ impl Running {
         progress.stage("done", 1.0, 0.0);
         let drawing = sheet.map(|s| s.drawing);
         let (clearance_z, cache) = (heights.clearance, caches.counts);
-        Ok(JobOutput { part, drawing, stock, clearance_z, paths, path_operations, gcode, cycle, time, stats, moves: all_moves, operations, verification, warnings, problem, cache, octants })
+        Ok(JobOutput { part, drawing, stock, clearance_z, paths, path_operations, gcode, move_lines, cycle, time, stats, moves: all_moves, operations, verification, warnings, problem, cache, octants })
     }
 }
 

@@ -12,7 +12,7 @@ use crate::strategy::rough_zigzag::LoadReport;
 use crate::zmap::HeightField;
 
 /// One operation's figures.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
 pub struct OperationReport {
     /// Its index in the job's operations.

@@ -279,6 +279,22 @@ pub fn write_gcode(title: &str, paths: &[Toolpath], tools: &[Tool], clearance_z:
 
 /// Writes the program and times it.
 pub fn write_program(title: &str, paths: &[Toolpath], tools: &[Tool], clearance_z: f64, settings: &PostSettings) -> Result<(String, CycleTime), Error> {
+    write_mapped(title, paths, tools, clearance_z, settings).map(|w| (w.gcode, w.cycle))
+}
+
+/// A program as written: its text, its cycle time, and where each move went.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Written {
+    pub gcode: String,
+    pub cycle: CycleTime,
+    /// The line (0 first) of the program each move of the paths ended on, the paths' moves
+    /// one after another (a move written as several lines, an arc split at the quadrants or a
+    /// helix as chords, ends on its last; one too short to write, on the line before it).
+    pub move_lines: Vec<u32>,
+}
+
+/// Writes the program, times it, and maps its moves to its lines ([`Written`]).
+pub fn write_mapped(title: &str, paths: &[Toolpath], tools: &[Tool], clearance_z: f64, settings: &PostSettings) -> Result<Written, Error> {
     settings.validate(tools).map_err(Error::Input)?;
     let post = settings.post();
     let mut w = Writer::new(settings, &post);
@@ -295,6 +311,7 @@ pub fn write_program(title: &str, paths: &[Toolpath], tools: &[Tool], clearance_
     let mut current: Option<&Tool> = None;
     let mut started = false;
     let mut time = CycleTime::default();
+    let mut move_lines = Vec::new();
     for path in paths {
         let tool = tools.iter().find(|t| t.number == path.tool);
         w.comment(&path.name);
@@ -337,6 +354,7 @@ pub fn write_program(title: &str, paths: &[Toolpath], tools: &[Tool], clearance_
         time.starts.push(w.seconds + time.tool_changes as f64 * settings.tool_change_seconds);
         for m in &path.moves {
             w.motion(m);
+            move_lines.push(w.lines.len().saturating_sub(1) as u32);
         }
         time.paths.push(w.seconds - before);
     }
@@ -371,9 +389,10 @@ pub fn write_program(title: &str, paths: &[Toolpath], tools: &[Tool], clearance_
             }
         }
     }
+    let head_lines = head.lines.len() as u32;
     let mut lines = head.lines;
     lines.extend(w.lines);
-    Ok((finish(lines, &post)?, time))
+    Ok(Written { gcode: finish(lines, &post)?, cycle: time, move_lines: move_lines.into_iter().map(|l| l + head_lines).collect() })
 }
 
 /// Numbers the lines and holds them to the post's length. Numbers never come back (see

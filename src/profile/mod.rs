@@ -280,15 +280,18 @@ fn encloses(outer: &Loop, inner: &Loop, probe: DVec2) -> bool {
 }
 
 /// Where a chain of segments failed to close.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
 pub struct OpenChain {
     pub layer: String,
+    #[ts(type = "[number, number]")]
     pub start: DVec2,
+    #[ts(type = "[number, number]")]
     pub end: DVec2,
     pub segments: usize,
     /// The chain itself, from `start` to `end` (for engraving).
     #[serde(skip)]
+    #[ts(skip)]
     pub path: Vec<crate::geom::segment::Segment>,
 }
 

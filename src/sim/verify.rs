@@ -37,18 +37,19 @@ pub struct VerifySettings {
 }
 
 /// A place where something went wrong.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
 pub struct Finding {
     /// Index of the move (in program order), when a move is to blame.
     pub move_index: Option<usize>,
+    #[ts(type = "[number, number, number]")]
     pub at: DVec3,
     /// Gouge depth, collision depth (mm), or the volume a rapid cut (mm³).
     pub amount: f64,
 }
 
 /// What verification found.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
 pub struct Report {
     pub cells: usize,

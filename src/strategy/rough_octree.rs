@@ -95,7 +95,7 @@ impl Default for RoughOctree {
 }
 
 /// Why a stage's tool was chosen.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
 pub enum StageRole {
     /// The largest tool whose octants it can enter (§3.2).
@@ -107,7 +107,7 @@ pub enum StageRole {
 }
 
 /// One stage of octree roughing: its tool, why, and what it did.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
 pub struct StageReport {
     pub tool: u32,

@@ -125,7 +125,7 @@ impl Default for RoughZigzag {
 
 /// The load along one operation's path, before and after its correction, relative to the
 /// reference (seed 004 Fig. 14): for reports and the page's plot.
-#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
 pub struct LoadReport {
     /// The reference rate at the tool's feed (mm³/min per mm of depth: step-over × feed).

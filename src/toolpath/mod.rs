@@ -76,7 +76,7 @@ pub struct Toolpath {
 }
 
 /// Lengths and an estimated time of a path.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
 pub struct PathStats {
     pub moves: usize,

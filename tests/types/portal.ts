@@ -1,6 +1,6 @@
 // What a portal writes against swarf.js, checked by TypeScript (tests/e2e: tsc --strict): the
-// README's example, and uses of the generated types that must compile, and one that must not.
-import { createEngine, type Job } from '../../www/swarf.js';
+// README's example, and uses of the generated types that must compile, and some that must not.
+import { createEngine, type Job, type JobInput, type ToolInput, type OperationReport } from '../../www/swarf.js';
 
 export async function makeProgram(stl: Uint8Array): Promise<string> {
   const engine = await createEngine();
@@ -15,7 +15,28 @@ export async function makeProgram(stl: Uint8Array): Promise<string> {
   return result.gcode;
 }
 
-export function wrong(job: Job) {
+// A portal gives only what differs from the defaults: a tool without its corner radius, shank
+// or coolant, an operation with its kind and two settings, a post with its controller.
+export async function shortJob(stl: Uint8Array): Promise<number> {
+  const engine = await createEngine({ workers: 1 });
+  const ball: ToolInput = { number: 1, shape: 'ball', diameter: 6 };
+  const input: JobInput = { tools: [ball], operations: [{ kind: 'finishRaster', tool: 1, stepover: 1 }], post: { dialect: 'grbl' } };
+  const problems = await engine.checkJob(input);
+  if (problems.length) throw new Error(problems.map((p) => `${p.path}: ${p.message}`).join('; '));
+  const result = await engine.run(input, stl, 'part.stl');
+  // The results are typed: each operation's time is a number, each warning has its level.
+  const first: OperationReport = result.summary.operations[0];
+  const seconds: number = first.seconds + result.summary.time.reduce((s, t) => s + t.seconds, 0);
+  const amber: boolean = result.summary.warnings.some((w) => w.level === 'warning');
+  const line: number = result.moveLines[0];
+  return seconds + line + (amber ? 1 : 0) + (result.sim ? result.sim.times[0] : 0);
+}
+
+export function wrong(job: Job, input: JobInput) {
   // @ts-expect-error: no such controller
   job.post.dialect = 'heidenhain';
+  // @ts-expect-error: an operation says which it is
+  input.operations = [{ tool: 1, stepover: 1 }];
+  // @ts-expect-error: a roughing's step-over is a fraction of the diameter, stepoverFraction
+  input.operations = [{ kind: 'roughZlevel', stepover: 0.4 }];
 }

@@ -104,6 +104,16 @@ thickness: number, };
 export type DrawingUnits = "file" | "mm" | "inch";
 
 /**
+ * A drawing for the page's view: outer loops, holes and open chains as line segments at Z0
+ * (xyz pairs), and a list of its loops and layers.
+ */
+export type DrawingView = { outer: Array<number>, holes: Array<number>, open: Array<number>, bounds: [number, number, number, number, number, number], loops: Array<LoopInfo>, layers: Array<string>, units: string, 
+/**
+ * What the reader left out, by kind, with how many.
+ */
+ignored: Array<[string, number]>, openChains: Array<OpenChain>, };
+
+/**
  * Engraving on a drawing.
  */
 export type Engrave = { 
@@ -164,6 +174,19 @@ helixMin: number,
  * Largest helix diameter, as a share of the tool's diameter. Default value: 0.9.
  */
 helixMax: number, };
+
+/**
+ * A place where something went wrong.
+ */
+export type Finding = { 
+/**
+ * Index of the move (in program order), when a move is to blame.
+ */
+moveIndex: number | null, at: [number, number, number], 
+/**
+ * Gouge depth, collision depth (mm), or the volume a rapid cut (mm³).
+ */
+amount: number, };
 
 /**
  * Raster finishing over the CL z-map (seed 001).
@@ -297,6 +320,11 @@ name: string, part: PartSetup,
 drawing: DrawingSetup, stock: Stock, tools: Array<Tool>, operations: Array<Operation>, post: PostSettings, simulation: Simulation, tolerances: Tolerances, };
 
 /**
+ * How much a [`Warning`] asks of the user.
+ */
+export type Level = "warning" | "note";
+
+/**
  * Line numbers (N words). A number never comes back: a program with more lines than `start`
  * and `step` reach before `max` is numbered by ones, and one with more lines than that is
  * numbered up to `max` and goes on unnumbered (a control reads a line without an N word; one
@@ -314,9 +342,96 @@ max: number, };
 export type LoadControl = "path" | "feed" | "none";
 
 /**
+ * The load along one operation's path, before and after its correction, relative to the
+ * reference (seed 004 Fig. 14): for reports and the page's plot.
+ */
+export type LoadReport = { 
+/**
+ * The reference rate at the tool's feed (mm³/min per mm of depth: step-over × feed).
+ */
+reference: number, 
+/**
+ * The same at a full step-down (mm³/min): the reference line of the page's MRR plot.
+ */
+rate: number, 
+/**
+ * Δs (mm).
+ */
+sampling: number, 
+/**
+ * Per window of Δs along the cutting moves, the plain path's load over the reference.
+ */
+plain: Array<number>, 
+/**
+ * The same for the path as cut (the tool's engagement).
+ */
+load: Array<number>, 
+/**
+ * The path as cut, at its feeds: the removal rate over the reference rate.
+ */
+cut: Array<number>, 
+/**
+ * The length of path (mm) that runs at a lowered feed because no extra path eases it.
+ */
+slowed: number, };
+
+/**
+ * One closed loop of a drawing, as the page lists it.
+ */
+export type LoopInfo = { index: number, layer: string, hole: boolean, entities: number, min: [number, number], max: [number, number], 
+/**
+ * Its line segments: vertices `lines[0]..lines[1]` (in pairs) of `holes` or `outer`.
+ */
+lines: [number, number], };
+
+/**
+ * Where a chain of segments failed to close.
+ */
+export type OpenChain = { layer: string, start: [number, number], end: [number, number], segments: number, };
+
+/**
  * One operation of a job.
  */
 export type Operation = { "kind": "roughZlevel" } & RoughZlevel | { "kind": "roughZigzag" } & RoughZigzag | { "kind": "roughOctree" } & RoughOctree | { "kind": "finishRaster" } & FinishRaster | { "kind": "finishWaterline" } & FinishWaterline | { "kind": "profile2d" } & Profile2d | { "kind": "pocket2d" } & Pocket2d | { "kind": "engrave" } & Engrave;
+
+/**
+ * One operation's figures.
+ */
+export type OperationReport = { 
+/**
+ * Its index in the job's operations.
+ */
+index: number, name: string, 
+/**
+ * The tools it used, in order.
+ */
+tools: Array<number>, moves: number, 
+/**
+ * Time at the programmed feeds and the rapid rate (s).
+ */
+seconds: number, feedLength: number, rapidLength: number, 
+/**
+ * Volume removed (mm³), when its moves were simulated.
+ */
+removed: number | null, 
+/**
+ * Largest material removal rate of its feed moves (mm³/min), when simulated.
+ */
+mrrMax: number | null, 
+/**
+ * Material left above the part plus the allowance after it, largest and mean over the
+ * part (mm), when the program was verified.
+ */
+leftMax: number | null, leftMean: number | null, 
+/**
+ * The load along its path against the reference, before and after seed 004's correction,
+ * where the operation measured it.
+ */
+load: LoadReport | null, 
+/**
+ * The stages of an operation that chose its tools (seed 000): each tool, why, and what it did.
+ */
+stages: Array<StageReport> | null, };
 
 /**
  * The order a level-by-level roughing cuts in ([`RoughZlevel::order`]).
@@ -570,6 +685,19 @@ toolChangeSeconds: number,
 programNumber: number, };
 
 /**
+ * A setting of a job that does not fit: its path in the job and the whole message.
+ */
+export type Problem = { 
+/**
+ * The field's path (`operations[0].stepdown`, `stock.marginXy`).
+ */
+path: string, 
+/**
+ * What is wrong, naming the field.
+ */
+message: string, };
+
+/**
  * Profile operation on a drawing.
  */
 export type Profile2d = { 
@@ -639,6 +767,33 @@ name: string,
  * The file's bytes in base64; none: the file lies beside the project under `name`.
  */
 data?: string | null, };
+
+/**
+ * The verification report with a text for people.
+ */
+export type ReportView = { text: string, cells: number, moves: number, 
+/**
+ * Volume removed by the whole program (mm³).
+ */
+removed: number, gougeCount: number, 
+/**
+ * Deepest gouge (mm), 0 when none.
+ */
+gougeMax: number, gouges: Array<Finding>, rapidCollisionCount: number, rapidCollisions: Array<Finding>, bodyCollisionCount: number, bodyCollisions: Array<Finding>, 
+/**
+ * Largest and mean material above part + allowance where the part is (mm).
+ */
+residualMax: number, residualMean: number, 
+/**
+ * Largest material removal rate of the feed moves (mm³/min), each measured over
+ * [`RATE_CELLS`] cells of path ([`removal_rates`]).
+ */
+mrrMax: number, };
+
+/**
+ * A program written again for another post.
+ */
+export type Reposted = { gcode: string, extension: string, post: string, cycle: CycleTime, time: Array<TimeItem>, };
 
 /**
  * How retracts between cuts travel ([`Stock::retracts`]).
@@ -854,6 +1009,44 @@ verify: boolean,
 cell: number | null, };
 
 /**
+ * One stage of octree roughing: its tool, why, and what it did.
+ */
+export type StageReport = { tool: number, diameter: number, role: StageRole, 
+/**
+ * Side of the octants matched to the tool (mm); none for profiling.
+ */
+side: number | null, 
+/**
+ * d / D.
+ */
+gamma: number | null, 
+/**
+ * Axial depth of cut (mm).
+ */
+depth: number, 
+/**
+ * Why this tool, for a person.
+ */
+why: string, 
+/**
+ * Area of the XY plane where the stage removed material (mm²).
+ */
+area: number, 
+/**
+ * Volume it removed (mm³).
+ */
+removed: number, 
+/**
+ * Machine time at its feeds and the rapid rate (s).
+ */
+seconds: number, };
+
+/**
+ * Why a stage's tool was chosen.
+ */
+export type StageRole = "first" | "octants" | "profile";
+
+/**
  * The stock, as a machinist sets it: margins around the placed part on every side, or an
  * explicit box; the heights of moves between cuts; and the work zero.
  */
@@ -914,6 +1107,49 @@ airFeed: number | null,
 zero: WorkZero | null, };
 
 /**
+ * What the page shows of a job's result beside the drawing: figures, warnings, the problem if
+ * any, the per-operation reports and the cycle time's breakdown.
+ */
+export type Summary = { warnings: Array<Warning>, 
+/**
+ * Per operation: name, tools, time, lengths, volume removed, peak MRR, what it left.
+ */
+operations: Array<OperationReport>, 
+/**
+ * The index of each operation's first move in the program (for the scrubber's marks).
+ */
+operationStarts: Array<number>, 
+/**
+ * Lookups of the CL z-map cache that found a z-map made for an earlier operation.
+ */
+cacheHits: number, 
+/**
+ * What makes the program unsafe to run, if verification found anything.
+ */
+problem: string | null, stock: [number, number, number, number, number, number], clearanceZ: number, 
+/**
+ * The extension the post's controllers expect of the program's file.
+ */
+extension: string, 
+/**
+ * The post's name, for the program's file name.
+ */
+post: string, 
+/**
+ * The program's cycle time as its head states it (tool changes included).
+ */
+cycle: CycleTime, 
+/**
+ * The cycle time by operation, tool changes and the rest, in whole seconds summing to the
+ * whole, as the program's head and the CLI give it.
+ */
+time: Array<TimeItem>, moves: number, feedLength: number, rapidLength: number, 
+/**
+ * Estimated cycle time (seconds) at the programmed feeds and the given rapid rate.
+ */
+seconds: number, };
+
+/**
  * Holding tabs for parts cut through the sheet.
  */
 export type Tabs = { 
@@ -933,6 +1169,15 @@ width: number,
  * Height of the tab above the final depth (mm). Default value: 1.5.
  */
 height: number, };
+
+/**
+ * One part of a program's cycle time, for people: what it is and how long it takes.
+ */
+export type TimeItem = { label: string, 
+/**
+ * Whole seconds.
+ */
+seconds: number, };
 
 /**
  * Distances in millimetres.
@@ -1059,6 +1304,22 @@ export type Units = "mm" | "inch";
  * never a mirror).
  */
 export type UpAxis = "z" | "y" | "x" | "-z" | "-y" | "-x";
+
+/**
+ * Something the user should know that did not stop the job, with the operation it belongs to
+ * (none for the job as a whole: the part, the stock): a warning (something may not be as the
+ * user means: look) or a note (for the record). A counted warning says how many places and
+ * keeps the first of them, for the page to mark.
+ */
+export type Warning = { operation: string | null, message: string, level: Level, 
+/**
+ * How many places it counts (0: it counts none).
+ */
+count: number, 
+/**
+ * The first of them (x, y, z in mm, as placed), at most [`Warning::KEPT`].
+ */
+places: Array<[number, number, number]>, };
 
 /**
  * The work zero: where the program's origin is on the setup.
