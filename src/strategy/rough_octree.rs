@@ -192,7 +192,7 @@ impl Operate for RoughOctree {
         super::positive("delta", self.delta)?;
         super::positive("stepoverFraction", self.stepover_fraction)?;
         if self.stepover_fraction > 0.85 {
-            return Err(FieldError { field: "stepoverFraction", message: format!("is at most 0.85 of the diameter: wider steps leave islands between rings (seed 000 §3.3; got {})", self.stepover_fraction) });
+            return Err(FieldError { field: "stepoverFraction", message: format!("is at most 0.85 of the diameter: wider steps leave islands between rings (got {})", self.stepover_fraction) });
         }
         super::not_negative("allowance", self.allowance)?;
         super::not_negative("leaveStock", self.leave_stock)?;
@@ -323,13 +323,11 @@ impl RoughOctree {
         let tool = &candidates[current];
         let mut squares = tree.squares;
         views.push(StageOctants { stage: 0, tool: tool.number, boxes: tree.boxes(VIEW_BOXES) });
+        // (§3.1: octants of side γ D, the octree's root that side times 2^depth.)
         let why = format!(
-            "the largest tool whose octants it can enter: {:.2} mm octants (γ = {GAMMA_FIRST}, root {:.1} mm = {:.2} × 2^{}), {:.0} mm² of them over {} levels entered from the air or by a helix inside 2 × 2 of them",
-            squares.side,
-            squares.side * (1u64 << squares.depth) as f64,
-            squares.side,
-            squares.depth,
+            "the largest tool that gets into the material to remove: it clears {:.0} mm² of it in blocks of {:.2} mm on {} levels, going in from the air or by a helix",
             tree.cut_area(),
+            squares.side,
             tree.layers.iter().filter(|l| l.cut.iter().any(|&c| c)).count(),
         );
         if let Some((path, cut)) = self.cut(ctx, tool, &tree, progress)? {
@@ -345,7 +343,7 @@ impl RoughOctree {
                 return Err(Error::Cancelled);
             }
             if self.reaches_all(ctx, tool, &candidates[current + 1..], progress)? {
-                profiler = Some((current, format!("reaches at every level all the material a smaller tool of the library would (§3.4), so it profiles what is left at its {:.2} mm levels", self.depth(tool))));
+                profiler = Some((current, format!("it reaches at every level all the material a smaller tool would, so it takes what is left around the part in {:.2} mm levels", self.depth(tool))));
                 break;
             }
             squares = squares.halved();
@@ -358,7 +356,7 @@ impl RoughOctree {
                     k += 1;
                 }
                 let k = k.min(candidates.len() - 1);
-                profiler = Some((k, format!("no smaller tool matches the octants any more; the largest tool that reaches all the material the smallest would, at its {:.2} mm levels", self.depth(&candidates[k]))));
+                profiler = Some((k, format!("no smaller tool fits the blocks left; it reaches all the material the smallest would, and takes what is left around the part in {:.2} mm levels", self.depth(&candidates[k]))));
                 break;
             }
             for k in current + 1..candidates.len() {
@@ -370,7 +368,7 @@ impl RoughOctree {
                 if k + 1 == candidates.len() {
                     // The smallest tool passes the stop test by itself: it profiles at once
                     // (its octants would be cut again by the profiling).
-                    profiler = Some((k, format!("matched to the octants of {:.2} mm (γ = {gamma:.2}) and the smallest tool: it passes the stop test (§3.4) and profiles everything left at its {:.2} mm levels", squares.side, self.depth(t))));
+                    profiler = Some((k, format!("the smallest tool, sized for the {:.2} mm blocks the larger tools left ({:.0} % of its diameter): it takes everything left around the part in {:.2} mm levels", squares.side, gamma * 100.0, self.depth(t))));
                     break;
                 }
                 if !stage_progress(progress, k as f64, &format!("octree φ{}", t.cutter.diameter)) {
@@ -380,12 +378,8 @@ impl RoughOctree {
                 if !tree.cuts() {
                     continue;
                 }
-                let why = format!(
-                    "matched to the newly Full octants of {:.2} mm (subdivision {}, γ = {gamma:.2} within 0.5 to 0.95): {:.0} mm² of them the tool can enter",
-                    squares.side,
-                    squares.depth,
-                    tree.cut_area()
-                );
+                // (§3.2: the newly Full octants of the subdivision, γ = side / D within 0.5 to 0.95.)
+                let why = format!("sized for the {:.2} mm blocks the larger tools left ({:.0} % of its diameter): it clears {:.0} mm² of them", squares.side, gamma * 100.0, tree.cut_area());
                 views.push(StageOctants { stage: reports.len(), tool: t.number, boxes: tree.boxes(VIEW_BOXES) });
                 if let Some((path, cut)) = self.cut(ctx, t, &tree, progress)? {
                     paths.push(path);
