@@ -106,3 +106,23 @@ fn stepover_is_millimetres_and_a_version_1_file_reads_as_it_was_written() {
     assert!(e.contains("operations[0].stepover (did you mean stepoverFraction?)"), "{e}");
     assert!(!e.contains("job file"), "{e}");
 }
+
+/// A tab's height is measured from the sheet's bottom since version 2 (it was from the cut's
+/// final depth, 0.2 mm below the bottom for a cut through): a version-1 file keeps its tabs'
+/// tops where they were.
+#[test]
+fn a_version_1_tab_height_keeps_its_top() {
+    let v1 = r#"{"drawing":{"thickness":6},"tools":[{"number":1,"shape":"flat","diameter":3}],"operations":[{"kind":"profile2d","tool":1,"tabs":{"count":4,"height":1.5}},{"kind":"profile2d","tool":1,"depth":7,"tabs":{"count":2}},{"kind":"profile2d","tool":1,"depth":3,"tabs":{"count":2,"height":1}}]}"#;
+    let job = Job::from_json(v1).unwrap();
+    let heights: Vec<f64> = job
+        .operations
+        .iter()
+        .map(|o| match o {
+            swarf::job::Operation::Profile2d(p) => p.tabs.height,
+            _ => unreachable!(),
+        })
+        .collect();
+    // Through by the default 0.2, through by 1 (default height 1.5), and not through.
+    assert_eq!(heights.len(), 3);
+    assert!((heights[0] - 1.3).abs() < 1e-12 && (heights[1] - 0.5).abs() < 1e-12 && heights[2] == 1.0, "{heights:?}");
+}

@@ -52,9 +52,13 @@ impl Job {
     }
 }
 
-/// `value`, a job of `version`, with the fields renamed since then under their new names.
+/// `value`, a job of `version`, with the fields renamed since then under their new names and
+/// the values whose meaning changed carried over.
 fn upgrade(value: &serde_json::Value, version: u32) -> serde_json::Value {
     let mut value = value.clone();
+    if version < 2 {
+        tabs_from_the_bottom(&mut value);
+    }
     for &(_, kinds, old, new) in RENAMED.iter().filter(|r| r.0 > version) {
         for op in value.get_mut("operations").and_then(serde_json::Value::as_array_mut).into_iter().flatten() {
             let ours = op.get("kind").and_then(serde_json::Value::as_str).is_some_and(|k| kinds.contains(&k));
@@ -68,6 +72,24 @@ fn upgrade(value: &serde_json::Value, version: u32) -> serde_json::Value {
         }
     }
     value
+}
+
+/// Version 1 measured a profile's tab height from the cut's final depth; version 2 measures it
+/// from the sheet's bottom (or the cut's floor, where the cut stops inside the sheet): a
+/// version-1 height over a cut through the sheet loses the cut's depth past the bottom.
+fn tabs_from_the_bottom(value: &mut serde_json::Value) {
+    let thickness = value.pointer("/drawing/thickness").and_then(serde_json::Value::as_f64).unwrap_or(crate::job::DrawingSetup::default().thickness);
+    for op in value.get_mut("operations").and_then(serde_json::Value::as_array_mut).into_iter().flatten() {
+        if op.get("kind").and_then(serde_json::Value::as_str) != Some("profile2d") {
+            continue;
+        }
+        let depth = op.get("depth").and_then(serde_json::Value::as_f64).unwrap_or(thickness + crate::strategy::sheet::BREAKTHROUGH);
+        let past = (depth - thickness).max(0.0);
+        let height = op.pointer("/tabs/height").and_then(serde_json::Value::as_f64).unwrap_or(crate::strategy::profile2d::Tabs::default().height);
+        if past > 0.0 && op.get("tabs").is_some_and(serde_json::Value::is_object) {
+            op["tabs"]["height"] = serde_json::json!(height - past);
+        }
+    }
 }
 
 /// A message of serde's said in a user's words: `invalid type: string "5", expected f64` is

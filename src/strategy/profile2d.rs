@@ -62,7 +62,8 @@ pub struct Tabs {
     pub spacing: Option<f64>,
     /// Length of material left along the part's edge (mm). Default value: 4.
     pub width: f64,
-    /// Height of the tab above the final depth (mm). Default value: 1.5.
+    /// Height of the tab above the sheet's bottom (above the cut's floor where the cut stops
+    /// inside the sheet), mm: the material that holds the part. Default value: 1.5.
     pub height: f64,
 }
 
@@ -128,6 +129,8 @@ pub struct Setup<'a, 'm> {
     pub tool_radius: f64,
     pub top: f64,
     pub depth: f64,
+    /// The sheet's bottom (z): a tab's height is measured from it.
+    pub bottom: f64,
     pub feed: f64,
     pub cursor: &'a mut Cursor<'m>,
     pub tol: &'a Tolerances,
@@ -322,7 +325,7 @@ fn cut_loop(
     let end = reached + total;
     let mut heights = Heights(z);
     if let Some(tabs) = tabs {
-        heights = heights.max(&tab_heights(tabs, total, end, z_final, s.tool_radius));
+        heights = heights.max(&tab_heights(tabs, total, end, z_final, z_final.max(s.bottom), s.tool_radius));
     }
     // Lead arcs from and to the waste side, if they keep clear of the part.
     let end_point = point_at(segs, &starts, total, end);
@@ -345,10 +348,11 @@ fn cut_loop(
 }
 
 /// Tab heights over arc lengths [0, end): trapezoids with 45° sides over each tab, the tool's
-/// width wider than the tab.
-fn tab_heights(tabs: &Tabs, total: f64, end: f64, z_final: f64, r: f64) -> Heights {
+/// width wider than the tab, standing `tabs.height` above `base` (the sheet's bottom, or the
+/// cut's floor above it).
+fn tab_heights(tabs: &Tabs, total: f64, end: f64, z_final: f64, base: f64, r: f64) -> Heights {
     let count = if tabs.count > 0 { tabs.count as usize } else { (total / tabs.spacing.unwrap_or(total)).floor().max(1.0) as usize };
-    let top = z_final + tabs.height.max(0.0);
+    let top = base + tabs.height.max(0.0);
     let low = z_final - 1.0;
     let half = tabs.width * 0.5 + r;
     let rise = top - low;
@@ -414,7 +418,7 @@ impl super::Operate for Profile2d {
         let depth = self.depth.unwrap_or(thickness + sheet::BREAKTHROUGH);
         let cuts = sheet::profile_cuts(&walls, &picked, self.side, depth, self.leave_stock);
         let mut cursor = sheet::cursor(ctx, &tool);
-        let setup = Setup { tool_radius: tool.cutter.radius(), top: ctx.stock.max.z, depth, feed: tool.feed_rate, cursor: &mut cursor, tol: &ctx.tolerances };
+        let setup = Setup { tool_radius: tool.cutter.radius(), top: ctx.stock.max.z, depth, bottom: ctx.stock.max.z - thickness, feed: tool.feed_rate, cursor: &mut cursor, tol: &ctx.tolerances };
         let (moves, notes) = profile_moves(&walls, &picked, self, setup).map_err(|e| crate::error::Error::operation(&self.name, e))?;
         ctx.cuts.extend(cuts);
         if let Some(note) = open {

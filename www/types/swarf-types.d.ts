@@ -1166,7 +1166,8 @@ spacing: number | null,
  */
 width: number, 
 /**
- * Height of the tab above the final depth (mm). Default value: 1.5.
+ * Height of the tab above the sheet's bottom (above the cut's floor where the cut stops
+ * inside the sheet), mm: the material that holds the part. Default value: 1.5.
  */
 height: number, };
 
