@@ -37,7 +37,7 @@ worker = worker.replace(imported, 'const init = __wbg_init;');
 const workerSource = `${glue}\n${worker}`;
 
 // The page's modules, in order of use.
-const modules = ['viewer', 'swarf'];
+const modules = ['viewer', 'swarf', 'state', 'forms', 'gcode', 'simulation', 'tools', 'operations', 'part', 'results'];
 let script = '';
 for (const m of modules) {
   const { src, names } = scoped(`${m}.js`);

@@ -1,15 +1,16 @@
-// WebGL2 view of the part (shaded) and the tool path (lines): orbit, pan, zoom. Z is up.
+// WebGL2 view of the part (shaded), the tool paths (lines), the simulated stock and the tool:
+// orbit, pan, zoom, view presets, a grid that gives the part's size at a glance. Z is up.
 
 const MESH_VS = `#version 300 es
 in vec3 position; in vec3 normal;
-uniform mat4 mvp; out vec3 vNormal;
-void main() { vNormal = normal; gl_Position = mvp * vec4(position, 1.0); }`;
+uniform mat4 mvp; uniform vec3 offset; out vec3 vNormal;
+void main() { vNormal = normal; gl_Position = mvp * vec4(position + offset, 1.0); }`;
 const MESH_FS = `#version 300 es
 precision highp float;
-in vec3 vNormal; uniform vec3 color; uniform vec3 light; out vec4 outColor;
+in vec3 vNormal; uniform vec4 color; uniform vec3 light; out vec4 outColor;
 void main() {
   float d = abs(dot(normalize(vNormal), light));
-  outColor = vec4(color * (0.35 + 0.65 * d), 1.0);
+  outColor = vec4(color.rgb * (0.35 + 0.65 * d), color.a);
 }`;
 const LINE_VS = `#version 300 es
 in vec3 position; uniform mat4 mvp;
@@ -83,8 +84,19 @@ function lookAt(eye, target, up) {
   return new Float32Array([x[0], y[0], z[0], 0, x[1], y[1], z[1], 0, x[2], y[2], z[2], 0, -dot(x, eye), -dot(y, eye), -dot(z, eye), 1]);
 }
 
-// Colours of the operations' cutting moves, in order (the first is the classic path blue).
-export const OP_COLORS = [[0.106, 0.455, 0.82, 1], [0.62, 0.2, 0.75, 1], [0.0, 0.6, 0.55, 1], [0.75, 0.6, 0.0, 1], [0.5, 0.3, 0.15, 1]];
+// Rapids and the places verification found are drawn in colours no operation or tool takes:
+// rapids orange, gouges red, rapids through stock magenta, the tool's body in material amber.
+export const RAPID_COLOR = [0.93, 0.42, 0.0, 0.9];
+export const MARK_COLORS = [[0.86, 0.1, 0.1, 1], [0.85, 0.0, 0.65, 1], [0.95, 0.65, 0.0, 1]];
+
+// Colours of the operations' cutting moves, in order (the first is the classic path blue), and
+// of the tools an octree roughing chose: blues, purples, greens and greys, none near red,
+// orange or magenta.
+export const OP_COLORS = [[0.106, 0.455, 0.82, 1], [0.5, 0.22, 0.78, 1], [0.0, 0.6, 0.55, 1], [0.22, 0.55, 0.12, 1], [0.12, 0.2, 0.5, 1], [0.45, 0.45, 0.5, 1]];
+export const TOOL_COLORS = [[0.0, 0.42, 0.62, 1], [0.35, 0.62, 0.2, 1], [0.42, 0.3, 0.7, 1], [0.0, 0.65, 0.78, 1], [0.3, 0.3, 0.35, 1], [0.55, 0.55, 0.15, 1]];
+export const toolColor = (number) => TOOL_COLORS[(Math.max(1, number) - 1) % TOOL_COLORS.length];
+export const opColor = (index) => OP_COLORS[index % OP_COLORS.length];
+export const cssColor = (c) => `rgb(${c.slice(0, 3).map((v) => Math.round(v * 255)).join(',')})`;
 
 // Loops picked for an operation (a bright blue, apart from the outlines' green and the holes'
 // orange).
@@ -94,9 +106,11 @@ const PICKED_LIFT = 0.05; // mm
 // The view's vertical angle (radians).
 const FOV_Y = 0.7;
 
-// Colours of the tools an octree roughing chose, by tool number (its paths and its octants).
-export const TOOL_COLORS = [[0.85, 0.2, 0.15, 1], [0.1, 0.6, 0.2, 1], [0.95, 0.55, 0.0, 1], [0.45, 0.25, 0.8, 1], [0.0, 0.55, 0.75, 1], [0.8, 0.15, 0.55, 1]];
-export const toolColor = (number) => TOOL_COLORS[(Math.max(1, number) - 1) % TOOL_COLORS.length];
+// Segments drawn while the view moves: beyond this many, every k-th (the whole once it stops),
+// so that a program of millions of moves stays orbitable without a GPU.
+const MOVING_SEGMENTS = 300000;
+// How long after the last move of the mouse or wheel the view counts as still moving (ms).
+const SETTLE_MS = 180;
 
 export class Viewer {
   constructor(canvas) {
@@ -108,10 +122,15 @@ export class Viewer {
     this.lineProgram = compile(gl, LINE_VS, LINE_FS);
     this.stockProgram = compile(gl, STOCK_VS, STOCK_FS);
     this.stock = null;
-    this.show = { part: true, paths: true, stock: true, octants: true };
+    this.show = { part: true, paths: true, stock: true, octants: true, tool: true };
+    this.hiddenOps = new Set();
     this.part = null;
     this.lines = {};
+    this.groups = [];
+    this.cutMoves = Infinity;
+    this.tool = null;
     this.camera = { yaw: -0.9, pitch: 0.75, distance: 200, target: [0, 0, 0] };
+    this.moving = false;
     this.bindInput();
     new ResizeObserver(() => this.draw()).observe(canvas);
   }
@@ -126,39 +145,76 @@ export class Viewer {
   setPart(part, frame = true) {
     this.dropPart();
     this.part = { position: this.buffer(part.positions), normal: this.buffer(part.normals), count: part.positions.length / 3 };
+    this.setGrid(part.bounds);
     if (frame) this.frame(part.bounds);
     this.draw();
   }
 
-  // Cutting moves in their operation's colour (`ops`: the operation of each segment, as
-  // `OP_COLORS` indexes them), or in their tool's for the operations in `byTool` (octree
-  // roughing; `tools`: the tool of each segment), rapids in orange.
-  setPaths(feeds, rapids, stock, ops = null, tools = null, byTool = new Set()) {
-    this.dropLines((key) => key.startsWith('feeds') || key.startsWith('octants') || key === 'rapids' || key === 'stock');
+  // Cutting moves in their operation's colour (`ops`: the operation of each segment), or in
+  // their tool's for the operations in `byTool` (octree roughing; `tools`: the tool of each
+  // segment), and rapids; `moves` and `rapidMoves` give each segment's program move, so that
+  // the path already cut can be drawn apart from the path to come (`setCut`).
+  setPaths({ feeds, rapids, stock, ops = null, tools = null, moves = null, rapidMoves = null, byTool = new Set() }) {
+    this.dropGroups();
+    this.dropLines((key) => key.startsWith('octants') || key === 'stock');
     // An operation's segments (a stage's, for octree roughing) follow each other in the
-    // program: take them as runs, and copy only a colour that comes back after another.
-    const groups = new Map();
+    // program: taken as runs, a colour that comes back after another copied once.
+    const runs = new Map();
     const n = feeds.length / 6;
     for (let start = 0; start < n;) {
       const op = ops ? ops[start] : 0, tool = tools ? tools[start] : 0, split = tools && byTool.has(op);
       let end = start + 1;
       while (end < n && (ops ? ops[end] : 0) === op && (!split || tools[end] === tool)) end++;
-      const key = split ? `t${tool}` : `${op}`;
-      if (!groups.has(key)) groups.set(key, []);
-      groups.get(key).push(feeds.subarray(start * 6, end * 6));
+      const key = split ? `${op}:${tool}` : `${op}`;
+      if (!runs.has(key)) runs.set(key, { op, color: split ? toolColor(tool) : opColor(op), parts: [] });
+      runs.get(key).parts.push([start, end]);
       start = end;
     }
-    for (const [key, runs] of groups) {
-      let data = runs[0];
-      if (runs.length > 1) {
-        data = new Float32Array(runs.reduce((sum, r) => sum + r.length, 0));
-        runs.reduce((at, r) => { data.set(r, at); return at + r.length; }, 0);
-      }
-      const color = key.startsWith('t') ? toolColor(Number(key.slice(1))) : OP_COLORS[Number(key) % OP_COLORS.length];
-      this.setLine(`feeds${key}`, { buffer: this.buffer(data), count: data.length / 3, color });
+    const total = n + rapids.length / 6;
+    const every = Math.max(1, Math.ceil(total / MOVING_SEGMENTS));
+    for (const { op, color, parts } of runs.values()) this.addGroup(feeds, moves, parts, { op, color }, every);
+    this.addGroup(rapids, rapidMoves, [[0, rapids.length / 6]], { op: -1, color: RAPID_COLOR, rapid: true }, every);
+    if (stock) this.setLine('stock', { buffer: this.buffer(boxLines(stock)), count: 24, color: [0.35, 0.4, 0.45, 0.6], mark: true });
+    this.cutMoves = Infinity;
+    this.draw();
+  }
+
+  // One colour's segments (the runs `parts` of `data`), with their moves, and every `every`-th
+  // of them for drawing while the view moves.
+  addGroup(data, moves, parts, style, every) {
+    const count = parts.reduce((s, [a, b]) => s + b - a, 0);
+    if (!count) return;
+    const all = new Float32Array(count * 6), at = new Uint32Array(count);
+    let k = 0;
+    for (const [a, b] of parts) {
+      all.set(data.subarray(a * 6, b * 6), k * 6);
+      if (moves) at.set(moves.subarray(a, b), k);
+      k += b - a;
     }
-    this.setLine('rapids', { buffer: this.buffer(rapids), count: rapids.length / 3, color: [0.85, 0.28, 0.06, 0.9] });
-    if (stock) this.setLine('stock', { buffer: this.buffer(boxLines(stock)), count: 24, color: [0.35, 0.4, 0.45, 0.6] });
+    const group = { ...style, buffer: this.buffer(all), count, moves: moves ? at : null };
+    if (every > 1) {
+      const few = Math.ceil(count / every), thin = new Float32Array(few * 6), thinMoves = new Uint32Array(few);
+      for (let i = 0; i < few; i++) { thin.set(all.subarray(i * every * 6, i * every * 6 + 6), i * 6); thinMoves[i] = at[i * every]; }
+      group.thin = { buffer: this.buffer(thin), count: few, moves: moves ? thinMoves : null };
+    }
+    this.groups.push(group);
+  }
+
+  dropGroups() {
+    for (const g of this.groups) { this.gl.deleteBuffer(g.buffer); if (g.thin) this.gl.deleteBuffer(g.thin.buffer); }
+    this.groups = [];
+  }
+
+  // The path up to (not including) program move `count` is drawn as cut, the rest faint
+  // (Infinity: all of it as cut).
+  setCut(count) {
+    this.cutMoves = count;
+    this.draw();
+  }
+
+  // The operations whose paths are hidden (their indices).
+  setHiddenOps(hidden) {
+    this.hiddenOps = new Set(hidden);
     this.draw();
   }
 
@@ -188,7 +244,8 @@ export class Viewer {
       const data = new Float32Array(d[key]);
       this.setLine(`drawing_${key}`, { buffer: this.buffer(data), count: data.length / 3, color: colors[key], mark: true });
     }
-    if (frame) this.frame(d.bounds);
+    this.setGrid(d.bounds);
+    if (frame) { this.frame(d.bounds); this.view('top', false); }
     this.draw();
   }
 
@@ -198,6 +255,39 @@ export class Viewer {
     // A hair above Z0, so that they win the depth test against the loops' own lines.
     const lifted = Float32Array.from(data, (v, k) => (k % 3 === 2 ? v + PICKED_LIFT : v));
     this.setLine('drawing_picked', { buffer: this.buffer(lifted), count: lifted.length / 3, color: PICKED_COLOR, mark: true });
+    this.draw();
+  }
+
+  // A grid under the box `b` ([minX, minY, minZ, maxX, maxY, maxZ]) whose spacing is a power of
+  // ten in mm (1, 10, 100 …) giving it 2 to 20 cells across: with the size the page states, a
+  // part read in the wrong unit looks wrong at a glance. Returns the spacing.
+  setGrid(b) {
+    const span = Math.max(b[3] - b[0], b[4] - b[1], 1e-6);
+    const spacing = 10 ** Math.floor(Math.log10(span / 2));
+    const x0 = Math.floor(b[0] / spacing - 1) * spacing, x1 = Math.ceil(b[3] / spacing + 1) * spacing;
+    const y0 = Math.floor(b[1] / spacing - 1) * spacing, y1 = Math.ceil(b[4] / spacing + 1) * spacing;
+    const z = b[2], out = [];
+    for (let x = x0; x <= x1 + spacing * 1e-6; x += spacing) out.push(x, y0, z, x, y1, z);
+    for (let y = y0; y <= y1 + spacing * 1e-6; y += spacing) out.push(x0, y, z, x1, y, z);
+    this.setLine('grid', { buffer: this.buffer(new Float32Array(out)), count: out.length / 3, color: [0.6, 0.65, 0.7, 0.55], mark: true, grid: true });
+    this.gridSpacing = spacing;
+    return spacing;
+  }
+
+  // The tool as a solid of revolution (`{ shape, diameter, cornerRadius, fluteLength,
+  // shankDiameter, stickOut }`), its tip at `setToolAt`; null: no tool.
+  setTool(tool) {
+    if (this.tool) { this.gl.deleteBuffer(this.tool.position); this.gl.deleteBuffer(this.tool.normal); }
+    this.tool = null;
+    if (tool) {
+      const { positions, normals } = toolMesh(tool);
+      this.tool = { position: this.buffer(positions), normal: this.buffer(normals), count: positions.length / 3, at: this.tool?.at ?? null };
+    }
+    this.draw();
+  }
+
+  setToolAt(at) {
+    if (this.tool) this.tool.at = at;
     this.draw();
   }
 
@@ -213,8 +303,10 @@ export class Viewer {
   }
 
   clearPaths() {
-    this.dropLines(() => true);
+    this.dropGroups();
+    this.dropLines((key) => !key.startsWith('drawing') && key !== 'grid');
     this.dropStock();
+    this.setTool(null);
     this.draw();
   }
 
@@ -236,6 +328,7 @@ export class Viewer {
   dropPart() {
     if (this.part) { this.gl.deleteBuffer(this.part.position); this.gl.deleteBuffer(this.part.normal); }
     this.part = null;
+    this.dropLines((key) => key.startsWith('drawing'));
   }
 
   dropStock() {
@@ -284,9 +377,8 @@ export class Viewer {
     this.draw();
   }
 
-  // Places verification found (x, y, z, kind per place) as crosses; the tool at `tool` (or none).
-  setMarks(findings, tool, toolLength = 30) {
-    const colors = [[0.86, 0.1, 0.1, 1], [0.75, 0.1, 0.75, 1], [0.95, 0.55, 0.05, 1]];
+  // Places verification found (x, y, z, kind per place) as crosses.
+  setMarks(findings) {
     for (let kind = 0; kind < 3; kind++) {
       const out = [];
       for (let k = 0; k < findings.length; k += 4) {
@@ -294,9 +386,8 @@ export class Viewer {
         const [x, y, z] = [findings[k], findings[k + 1], findings[k + 2]], s = 1.5;
         out.push(x - s, y, z, x + s, y, z, x, y - s, z, x, y + s, z, x, y, z - s, x, y, z + s);
       }
-      this.setLine(`marks${kind}`, { buffer: this.buffer(new Float32Array(out)), count: out.length / 3, color: colors[kind], mark: true });
+      this.setLine(`marks${kind}`, { buffer: this.buffer(new Float32Array(out)), count: out.length / 3, color: MARK_COLORS[kind], mark: true });
     }
-    if (tool) this.setLine('tool', { buffer: this.buffer(new Float32Array([tool[0], tool[1], tool[2], tool[0], tool[1], tool[2] + toolLength])), count: 2, color: [0.1, 0.1, 0.1, 1], mark: true });
     this.draw();
   }
 
@@ -304,11 +395,21 @@ export class Viewer {
   // sphere needs to fit the view's narrower angle, whatever its proportions (a tall part, a
   // cube) and the canvas's.
   frame(b) {
+    this.framed = b;
     const radius = Math.max(0.5 * Math.hypot(b[3] - b[0], b[4] - b[1], b[5] - b[2]), 0.5);
     this.camera.target = [(b[0] + b[3]) / 2, (b[1] + b[4]) / 2, (b[2] + b[5]) / 2];
     const aspect = (this.canvas.clientWidth || 1) / Math.max(this.canvas.clientHeight || 1, 1);
     const half = Math.min(FOV_Y, 2 * Math.atan(Math.tan(FOV_Y / 2) * aspect)) / 2;
     this.camera.distance = (1.08 * radius) / Math.sin(half);
+  }
+
+  // A preset view: from above (`top`), the front (−Y), the right side (+X), at an angle
+  // (`iso`), or the part framed again (`fit`).
+  view(name, draw = true) {
+    const presets = { top: [-Math.PI / 2, 1.5695], front: [-Math.PI / 2, 0], side: [0, 0], iso: [-0.9, 0.62] };
+    if (name === 'fit') { if (this.framed) this.frame(this.framed); }
+    else if (presets[name]) [this.camera.yaw, this.camera.pitch] = presets[name];
+    if (draw) this.draw();
   }
 
   matrix() {
@@ -319,7 +420,9 @@ export class Viewer {
       target[2] + distance * Math.sin(pitch),
     ];
     const aspect = this.canvas.width / Math.max(this.canvas.height, 1);
-    return multiply(perspective(FOV_Y, aspect, distance / 100, distance * 20), lookAt(eye, target, [0, 0, 1]));
+    // Looking straight down, "up" on the screen is +Y.
+    const up = Math.abs(pitch) > 1.5 ? [-Math.cos(yaw), -Math.sin(yaw), 0] : [0, 0, 1];
+    return multiply(perspective(FOV_Y, aspect, distance / 100, distance * 20), lookAt(eye, target, up));
   }
 
   // Runs `fn` (which may set the part, paths, stock and marks) and draws once after it: each
@@ -339,8 +442,13 @@ export class Viewer {
     return result;
   }
 
+  // Draws at the next frame (once, however often asked for before it).
   draw() {
-    if (this.held) return;
+    if (this.held || this.pending) return;
+    this.pending = requestAnimationFrame(() => { this.pending = 0; this.render(); });
+  }
+
+  render() {
     const gl = this.gl, canvas = this.canvas;
     const dpr = window.devicePixelRatio || 1;
     const w = Math.max(1, Math.round(canvas.clientWidth * dpr)), h = Math.max(1, Math.round(canvas.clientHeight * dpr));
@@ -349,6 +457,8 @@ export class Viewer {
     gl.clearColor(0.93, 0.945, 0.955, 1);
     gl.clear(gl.COLOR_BUFFER_BIT | gl.DEPTH_BUFFER_BIT);
     gl.enable(gl.DEPTH_TEST);
+    gl.enable(gl.BLEND);
+    gl.blendFunc(gl.SRC_ALPHA, gl.ONE_MINUS_SRC_ALPHA);
     const mvp = this.matrix();
     const l = [0.4, -0.5, 0.77], ln = Math.hypot(...l);
     const stockShown = this.stock && this.show.stock;
@@ -368,27 +478,51 @@ export class Viewer {
       gl.disable(gl.POLYGON_OFFSET_FILL);
       for (const loc of [0, 1, 2]) gl.disableVertexAttribArray(loc);
     }
-    if (this.part && this.show.part && !stockShown) {
+    const mesh = (m, color, offset = [0, 0, 0]) => {
       gl.useProgram(this.meshProgram);
       gl.uniformMatrix4fv(gl.getUniformLocation(this.meshProgram, 'mvp'), false, mvp);
-      gl.uniform3f(gl.getUniformLocation(this.meshProgram, 'color'), 0.72, 0.74, 0.76);
+      gl.uniform4fv(gl.getUniformLocation(this.meshProgram, 'color'), color);
+      gl.uniform3fv(gl.getUniformLocation(this.meshProgram, 'offset'), offset);
       gl.uniform3f(gl.getUniformLocation(this.meshProgram, 'light'), l[0] / ln, l[1] / ln, l[2] / ln);
-      this.attribute(this.meshProgram, 'position', this.part.position);
-      this.attribute(this.meshProgram, 'normal', this.part.normal);
+      this.attribute(this.meshProgram, 'position', m.position);
+      this.attribute(this.meshProgram, 'normal', m.normal);
       gl.enable(gl.POLYGON_OFFSET_FILL);
       gl.polygonOffset(1, 1);
-      gl.drawArrays(gl.TRIANGLES, 0, this.part.count);
+      gl.drawArrays(gl.TRIANGLES, 0, m.count);
       gl.disable(gl.POLYGON_OFFSET_FILL);
-    }
+      gl.disableVertexAttribArray(1);
+    };
+    if (this.part && this.show.part && !stockShown) mesh(this.part, [0.72, 0.74, 0.76, 1]);
     gl.useProgram(this.lineProgram);
     gl.uniformMatrix4fv(gl.getUniformLocation(this.lineProgram, 'mvp'), false, mvp);
     gl.disableVertexAttribArray(1);
+    const colorLoc = gl.getUniformLocation(this.lineProgram, 'color');
     for (const line of Object.values(this.lines)) {
       if (!line.count || (!line.mark && !line.octants && !this.show.paths) || (line.octants && !this.show.octants)) continue;
-      gl.uniform4fv(gl.getUniformLocation(this.lineProgram, 'color'), line.color);
+      gl.uniform4fv(colorLoc, line.color);
       this.attribute(this.lineProgram, 'position', line.buffer);
       gl.drawArrays(gl.LINES, 0, line.count);
     }
+    if (this.show.paths) {
+      for (const g of this.groups) {
+        if (this.hiddenOps.has(g.op) || (g.rapid && this.hiddenOps.has('rapids'))) continue;
+        const d = this.moving && g.thin ? g.thin : g;
+        // The segments before the first of move `cutMoves` are cut: drawn full; the rest faint.
+        const split = d.moves && Number.isFinite(this.cutMoves) ? lowerBound(d.moves, this.cutMoves) : d.count;
+        this.attribute(this.lineProgram, 'position', d.buffer);
+        if (split > 0) { gl.uniform4fv(colorLoc, g.color); gl.drawArrays(gl.LINES, 0, split * 2); }
+        if (split < d.count) {
+          gl.uniform4fv(colorLoc, [g.color[0], g.color[1], g.color[2], 0.22]);
+          gl.drawArrays(gl.LINES, split * 2, (d.count - split) * 2);
+        }
+      }
+    }
+    if (this.tool?.at && this.show.tool) {
+      gl.depthMask(false);
+      mesh(this.tool, [0.55, 0.58, 0.62, 0.55], this.tool.at);
+      gl.depthMask(true);
+    }
+    this.rendered = (this.rendered ?? 0) + 1;
   }
 
   attribute(program, name, buffer, size = 3) {
@@ -397,6 +531,14 @@ export class Viewer {
     gl.bindBuffer(gl.ARRAY_BUFFER, buffer);
     gl.enableVertexAttribArray(loc);
     gl.vertexAttribPointer(loc, size, gl.FLOAT, false, 0, 0);
+  }
+
+  // The view is moving: draw the thinned paths until it settles, then the whole.
+  moved() {
+    this.moving = true;
+    clearTimeout(this.settle);
+    this.settle = setTimeout(() => { this.moving = false; this.draw(); }, SETTLE_MS);
+    this.draw();
   }
 
   bindInput() {
@@ -426,16 +568,23 @@ export class Viewer {
         for (let i = 0; i < 3; i++) cam.target[i] += (-dx * right[i] + dy * up[i]) * s;
       } else {
         cam.yaw -= dx * 0.01;
-        cam.pitch = Math.max(-1.55, Math.min(1.55, cam.pitch + dy * 0.01));
+        cam.pitch = Math.max(-1.5695, Math.min(1.5695, cam.pitch + dy * 0.01));
       }
-      this.draw();
+      this.moved();
     });
     c.addEventListener('wheel', (e) => {
       e.preventDefault();
       this.camera.distance *= Math.exp(e.deltaY * 0.001);
-      this.draw();
+      this.moved();
     }, { passive: false });
   }
+}
+
+// The first index of the sorted `values` not below `x`.
+function lowerBound(values, x) {
+  let lo = 0, hi = values.length;
+  while (lo < hi) { const mid = (lo + hi) >> 1; if (values[mid] < x) lo = mid + 1; else hi = mid; }
+  return lo;
 }
 
 function boxLines(b) {
@@ -447,4 +596,35 @@ function boxLines(b) {
     out.push(a[0], a[1], z0, c[0], c[1], z0, a[0], a[1], z1, c[0], c[1], z1, a[0], a[1], z0, a[0], a[1], z1);
   }
   return new Float32Array(out);
+}
+
+// A tool as triangles: its profile (radius at each height above the tip) turned about Z. The
+// cutting part is its shape (a ball's half sphere, a bull nose's corner, a flat end's face) up
+// to its flute length, then the shank (its own diameter where given) up to the stick-out, or a
+// shank as long again as the flutes.
+export function toolMesh(tool) {
+  const r = tool.diameter / 2;
+  const corner = tool.shape === 'ball' ? r : tool.shape === 'bullNose' ? Math.min(tool.cornerRadius ?? 0, r) : 0;
+  const flutes = Math.max(tool.fluteLength ?? tool.diameter * 3, corner);
+  const shankR = (tool.shankDiameter ?? tool.diameter) / 2;
+  const top = Math.max(tool.stickOut ?? flutes * 2, flutes + 1e-3);
+  const profile = [[0, 0]];
+  const arc = 8;
+  if (corner > 0) for (let k = 1; k <= arc; k++) { const a = (k / arc) * (Math.PI / 2); profile.push([r - corner + corner * Math.sin(a), corner - corner * Math.cos(a)]); }
+  else profile.push([r, 0]);
+  profile.push([r, flutes], [shankR, flutes], [shankR, top], [0, top]);
+  const sides = 24, positions = [], normals = [];
+  for (let i = 0; i + 1 < profile.length; i++) {
+    const [r0, z0] = profile[i], [r1, z1] = profile[i + 1];
+    // The normal of the profile's piece in the (r, z) plane, turned with it.
+    const [nr, nz] = [z1 - z0, -(r1 - r0)], nl = Math.hypot(nr, nz) || 1;
+    for (let s = 0; s < sides; s++) {
+      const a0 = (s / sides) * 2 * Math.PI, a1 = ((s + 1) / sides) * 2 * Math.PI;
+      const p = (rr, z, a) => [rr * Math.cos(a), rr * Math.sin(a), z];
+      const n = (a) => [(nr / nl) * Math.cos(a), (nr / nl) * Math.sin(a), nz / nl];
+      const quad = [[p(r0, z0, a0), n(a0)], [p(r1, z1, a0), n(a0)], [p(r1, z1, a1), n(a1)], [p(r0, z0, a0), n(a0)], [p(r1, z1, a1), n(a1)], [p(r0, z0, a1), n(a1)]];
+      for (const [pos, nor] of quad) { positions.push(...pos); normals.push(...nor); }
+    }
+  }
+  return { positions: new Float32Array(positions), normals: new Float32Array(normals), height: top };
 }

@@ -1,0 +1,109 @@
+// The forms: a field shows a value of the job, a tool or an operation by its dotted key
+// (`data-key`), reads it back as that object holds it, and is marked where the core's own
+// checks (`checkJob`) find the setting wrong. Messages come in three styles: an error (red), a
+// warning (amber) and a note.
+import { $, state, job, getKey, buildJob } from './state.js';
+
+export function labelOf(el) {
+  const label = el.closest('label');
+  return (label?.firstChild?.textContent ?? el.name).trim();
+}
+
+// The value of a form field as its object holds it.
+export function valueOf(el) {
+  const type = el.dataset.type;
+  if (el.type === 'checkbox') return el.checked;
+  if (type === 'list') return el.value.split(',').map((v) => v.trim()).filter(Boolean);
+  if (type === 'ints') {
+    const v = el.value.split(',').map((w) => w.trim()).filter(Boolean).map(Number);
+    if (v.some((x) => !Number.isInteger(x) || x < 0)) throw new Error(`${labelOf(el)}: give whole numbers, separated by commas`);
+    return v;
+  }
+  if (type === 'numbers' || type === 'box') {
+    // A list of numbers (empty: none), and a box as its min and max corners.
+    if (el.value.trim() === '') return null;
+    const v = el.value.split(',').map((w) => Number(w.trim()));
+    if (v.length !== Number(el.dataset.count) || v.some((x) => !Number.isFinite(x))) throw new Error(`${labelOf(el)}: give ${el.dataset.count} numbers, separated by commas`);
+    return type === 'box' ? { min: v.slice(0, 3), max: v.slice(3) } : v;
+  }
+  if (el.type === 'number' || type === 'int') {
+    if (el.value === '' && type === 'optional') return null;
+    const v = Number(el.value);
+    if (el.value === '' || !Number.isFinite(v)) throw new Error(`${labelOf(el)}: not a number`);
+    return type === 'int' ? Math.round(v) : v;
+  }
+  return el.value;
+}
+
+export function show(el, value) {
+  if (el.type === 'checkbox') el.checked = !!value;
+  else if (el.dataset.type === 'list' || el.dataset.type === 'numbers' || el.dataset.type === 'ints') el.value = (value || []).join(', ');
+  else if (el.dataset.type === 'box') el.value = value ? [...value.min, ...value.max].join(', ') : '';
+  else el.value = value ?? '';
+}
+
+export function fillFields(container, obj) {
+  for (const el of container.querySelectorAll('[data-key]')) show(el, getKey(obj, el.dataset.key));
+}
+
+// The message under Generate: `level` error, warning, note or ok (empty text: none).
+export function message(text, level = 'note') {
+  const m = $('message');
+  m.className = text ? level : '';
+  m.textContent = text;
+}
+
+// A field's own message: a value that does not read (marked until it does).
+export function fieldError(el, text) {
+  el.classList.toggle('invalid', !!text);
+  el.setAttribute('aria-invalid', text ? 'true' : 'false');
+  const label = el.closest('label');
+  let note = label?.nextElementSibling?.classList.contains('field-error') ? label.nextElementSibling : null;
+  if (!text) { note?.remove(); return; }
+  if (!note) { note = document.createElement('span'); note.className = 'field-error'; label?.after(note); }
+  note.textContent = text;
+}
+
+// Where a problem's path (`operations[2].stepdown`, `tools[0].diameter`, `stock.marginXy`) is
+// in the page: its tab, and its field if that object is the one on show.
+function placeOf(path) {
+  let m = path.match(/^operations\[(\d+)\]\.(.+)$/);
+  if (m) return { tab: 'ops', op: Number(m[1]), field: Number(m[1]) === state.selected[state.kind] ? `#op-editor [data-key="${m[2]}"]` : null };
+  m = path.match(/^tools\[(\d+)\]\.(.+)$/);
+  if (m) return { tab: 'tools', tool: Number(m[1]), field: Number(m[1]) === state.selected.tool ? `#tool-editor [data-key="${m[2]}"]` : null };
+  m = path.match(/^(stock|part|drawing|post)\.(.+)$/);
+  if (m) return { tab: { stock: 'stock', part: 'part', drawing: 'part', post: 'post' }[m[1]], field: `#settings [data-key="${m[1]}.${m[2]}"]` };
+  return { tab: null, field: null };
+}
+
+// Marks the fields of `problems` (the core's checks of the job, `[{ path, message }]`), their
+// tabs, operations and tools; clears the rest.
+export function markProblems(problems) {
+  state.problems = problems;
+  for (const el of document.querySelectorAll('#settings .invalid[data-key]')) if (!el.dataset.unreadable) fieldError(el, '');
+  for (const el of document.querySelectorAll('.has-problem')) el.classList.remove('has-problem');
+  for (const p of problems) {
+    const place = placeOf(p.path);
+    const el = place.field && document.querySelector(place.field);
+    if (el && !el.closest('[hidden]')) fieldError(el, p.message);
+    if (place.tab) document.querySelector(`#tabs [data-tab="${place.tab}"]`)?.classList.add('has-problem');
+    if (place.op != null) document.querySelector(`#op-list li[data-index="${place.op}"]`)?.classList.add('has-problem');
+    if (place.tool != null) $('tool-list').options[place.tool]?.classList.add('has-problem');
+  }
+}
+
+// The problems of the job on show, as the core finds them, marked where they are; in order
+// (a later check's answer replaces an earlier one's, never the reverse).
+let asked = 0;
+export async function check() {
+  if (!state.engine || !job()) return [];
+  const k = ++asked;
+  let problems;
+  try {
+    problems = await state.engine.checkJob(buildJob({ all: true }));
+  } catch (e) {
+    problems = [{ path: '', message: e.message }];
+  }
+  if (k === asked) markProblems(problems);
+  return problems;
+}

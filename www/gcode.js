@@ -1,0 +1,75 @@
+// The program's lines in a pane that draws only those in sight (a program of millions of lines
+// scrolls as one of a hundred), with the line of the scrubber's move marked; a click on a line
+// calls `onPick(line)`.
+const LINE_HEIGHT = 18; // px, as style.css sets `#gcode .line`
+const MARGIN = 20; // lines drawn beyond those in sight
+
+export class GcodePane {
+  constructor(el, onPick) {
+    this.el = el;
+    this.onPick = onPick;
+    this.text = '';
+    this.starts = new Uint32Array([0]);
+    this.current = -1;
+    this.spacer = document.createElement('div');
+    this.spacer.className = 'spacer';
+    el.replaceChildren(this.spacer);
+    el.addEventListener('scroll', () => this.render());
+    el.addEventListener('click', (e) => {
+      const line = e.target.closest('.line');
+      if (line) this.onPick?.(Number(line.dataset.line));
+    });
+    new ResizeObserver(() => this.render()).observe(el);
+  }
+
+  get count() {
+    return this.starts.length - (this.text.endsWith('\n') ? 1 : 0);
+  }
+
+  // The program's text (empty: none).
+  set(text) {
+    this.text = text ?? '';
+    let n = 1;
+    for (let i = 0; i < this.text.length; i++) if (this.text.charCodeAt(i) === 10) n++;
+    const starts = new Uint32Array(n);
+    for (let i = 0, k = 1; i < this.text.length; i++) if (this.text.charCodeAt(i) === 10) starts[k++] = i + 1;
+    this.starts = starts;
+    this.current = -1;
+    this.spacer.style.height = `${this.count * LINE_HEIGHT}px`;
+    this.el.scrollTop = 0;
+    this.render();
+  }
+
+  line(k) {
+    const end = k + 1 < this.starts.length ? this.starts[k + 1] - 1 : this.text.length;
+    return this.text.slice(this.starts[k], end);
+  }
+
+  // Marks line `k` (0 first) and scrolls it into sight if it is not.
+  setCurrent(k) {
+    if (k === this.current) return;
+    this.current = k;
+    const top = k * LINE_HEIGHT, view = this.el.clientHeight;
+    if (view > 0 && (top < this.el.scrollTop || top + LINE_HEIGHT > this.el.scrollTop + view)) this.el.scrollTop = Math.max(0, top - view / 3);
+    this.render();
+  }
+
+  render() {
+    if (this.el.hidden || !this.text) { this.spacer.replaceChildren(); return; }
+    const first = Math.max(0, Math.floor(this.el.scrollTop / LINE_HEIGHT) - MARGIN);
+    const last = Math.min(this.count, Math.ceil((this.el.scrollTop + this.el.clientHeight) / LINE_HEIGHT) + MARGIN);
+    const rows = [];
+    for (let k = first; k < last; k++) {
+      const row = document.createElement('div');
+      row.className = k === this.current ? 'line current' : 'line';
+      row.dataset.line = String(k);
+      row.style.top = `${k * LINE_HEIGHT}px`;
+      const n = document.createElement('span');
+      n.className = 'n';
+      n.textContent = String(k + 1);
+      row.append(n, this.line(k));
+      rows.push(row);
+    }
+    this.spacer.replaceChildren(...rows);
+  }
+}

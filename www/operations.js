@@ -1,0 +1,111 @@
+// The operations of the job on show, in order: listed with their colour, tools and whether
+// they run; added, moved, removed; the picked one's form; and for drawings, the loops it cuts,
+// picked by clicking them in the view.
+import { $, state, hooks, job, selectedOp, selectedTool, is2d, store, toolsOf } from './state.js';
+import { fillFields, message } from './forms.js';
+import { opColor, cssColor } from './viewer.js';
+
+export function fillOps() {
+  const j = job(), list = $('op-list');
+  state.selected[state.kind] = Math.max(0, Math.min(state.selected[state.kind], j.operations.length - 1));
+  list.replaceChildren(...j.operations.map((op, i) => {
+    const li = document.createElement('li');
+    li.className = i === state.selected[state.kind] ? 'selected' : '';
+    li.dataset.index = String(i);
+    li.innerHTML = '<input type="checkbox" class="op-enabled" title="run this operation" aria-label="run this operation"><span class="swatch"></span><span class="op-name"></span><span class="op-buttons"><button type="button" class="op-up" title="earlier" aria-label="earlier">▲</button><button type="button" class="op-down" title="later" aria-label="later">▼</button><button type="button" class="op-remove" title="remove" aria-label="remove">✕</button></span>';
+    li.querySelector('.swatch').style.background = cssColor(opColor(i));
+    li.querySelector('.op-enabled').checked = op.enabled !== false;
+    const name = `${op.name} · ${toolsOf(op).map((t) => `T${t}`).join(' ') || 'no tool'}`;
+    li.querySelector('.op-name').textContent = name;
+    li.querySelector('.op-name').title = name;
+    return li;
+  }));
+  const op = selectedOp();
+  $('op-editor').hidden = !op;
+  if (!op) return;
+  for (const el of $('op-editor').querySelectorAll('[data-kinds]')) el.hidden = !el.dataset.kinds.split(' ').includes(op.kind);
+  for (const box of [$('fs-raster'), $('fs-2d'), $('fs-rough'), $('fs-waterline'), $('fs-octree')]) if (!box.hidden) fillFields(box, op);
+  document.querySelector('[name=opName]').value = op.name;
+  $('op-tool-label').hidden = op.kind === 'roughOctree';
+  if (op.kind !== 'roughOctree') document.querySelector('[name=opTool]').value = String(op.tool);
+  // A cut through the sheet goes past its bottom by the breakthrough (0.2 mm).
+  $('through-depth').textContent = `${(Number(state.jobs.drawing.drawing.thickness) + 0.2).toFixed(2)} mm`;
+  showPicked();
+}
+
+export function addOperation(kind) {
+  const op = structuredClone(state.defaults.operations.find((o) => o.kind === kind));
+  const j = job();
+  // Octree roughing chooses its own tools (from the whole library unless told otherwise).
+  if (kind !== 'roughOctree') op.tool = selectedTool()?.number ?? state.tools[0]?.number ?? 1;
+  const same = j.operations.filter((o) => o.kind === kind).length;
+  if (same) op.name = `${op.name} ${same + 1}`;
+  j.operations.push(op);
+  state.selected[state.kind] = j.operations.length - 1;
+  store();
+  fillOps();
+  hooks.changed?.();
+}
+
+export function onOpList(e) {
+  const li = e.target.closest('li');
+  if (!li) return;
+  const ops = job().operations, i = Number(li.dataset.index);
+  if (e.target.classList.contains('op-enabled')) { ops[i].enabled = e.target.checked; store(); hooks.changed?.(); return; }
+  if (e.target.classList.contains('op-up') && i > 0) { [ops[i - 1], ops[i]] = [ops[i], ops[i - 1]]; state.selected[state.kind] = i - 1; }
+  else if (e.target.classList.contains('op-down') && i < ops.length - 1) { [ops[i + 1], ops[i]] = [ops[i], ops[i + 1]]; state.selected[state.kind] = i + 1; }
+  else if (e.target.classList.contains('op-remove')) { ops.splice(i, 1); state.selected[state.kind] = Math.max(0, i - 1); }
+  else state.selected[state.kind] = i;
+  store();
+  fillOps();
+  hooks.changed?.();
+}
+
+// The drawing's loop `l` as line segments (xyz pairs at Z0) from the view's data.
+function loopLines(d, l) {
+  const data = l.hole ? d.holes : d.outer;
+  return data.slice(3 * l.lines[0], 3 * l.lines[1]);
+}
+
+// The loops the selected 2D operation picked, highlighted in the view.
+export function showPicked() {
+  if (!state.viewer || state.kind !== 'drawing' || !state.drawing) return;
+  const op = selectedOp(), d = state.drawing;
+  const picked = op && is2d(op) ? (op.loops ?? []) : [];
+  state.viewer.setPicked(picked.filter((k) => d.loops[k]).flatMap((k) => loopLines(d, d.loops[k])));
+}
+
+// The loop drawn nearest the canvas point (x, y) (CSS pixels), within `reach` pixels of it, or
+// null.
+function loopAt(x, y, reach = 8) {
+  const d = state.drawing, viewer = state.viewer;
+  let best = null, nearest = reach;
+  for (const l of d.loops) {
+    const data = loopLines(d, l);
+    for (let k = 0; k + 6 <= data.length; k += 6) {
+      const a = viewer.project([data[k], data[k + 1], 0]), b = viewer.project([data[k + 3], data[k + 4], 0]);
+      if (!a || !b) continue;
+      const [ex, ey] = [b[0] - a[0], b[1] - a[1]], len2 = ex * ex + ey * ey;
+      const t = len2 > 0 ? Math.max(0, Math.min(1, ((x - a[0]) * ex + (y - a[1]) * ey) / len2)) : 0;
+      const dist = Math.hypot(a[0] + t * ex - x, a[1] + t * ey - y);
+      if (dist < nearest) { nearest = dist; best = l.index; }
+    }
+  }
+  return best;
+}
+
+// Clicking a loop of the drawing adds it to the selected 2D operation's loops, or takes it
+// out again: a drawing whose loops all lie on one layer can still be cut in parts.
+export function pickLoop(x, y) {
+  if (state.kind !== 'drawing' || !state.drawing || state.running) return;
+  const op = selectedOp();
+  if (!op || !is2d(op)) return;
+  const index = loopAt(x, y);
+  if (index === null) return;
+  const loops = op.loops ?? [];
+  op.loops = loops.includes(index) ? loops.filter((k) => k !== index) : [...loops, index].sort((a, b) => a - b);
+  store();
+  fillOps();
+  const l = state.drawing.loops[index];
+  message(`${op.name}: loop ${index} (${l.layer}, ${l.hole ? 'hole' : 'outline'}) ${op.loops.includes(index) ? 'picked' : 'no longer picked'}; loops ${op.loops.length ? op.loops.join(', ') : 'all on the layers'}`, 'note');
+}

@@ -1,0 +1,142 @@
+// The part or drawing on show: read by the core (a file that does not read loses nothing: the
+// part before it and every setting stay), placed as its own settings say, and shown with its
+// size, in the view with a grid, and with what the user should know of it. How a file is read
+// (units, scale, up axis, turn) belongs to that file: a new file starts from its format's own.
+import { $, state, hooks, job, store } from './state.js';
+import { fillFields, message } from './forms.js';
+
+const FORMAT_UNITS = { stl: 'mm, as STL says nothing', obj: 'mm, as OBJ says nothing', gltf: 'metres, as glTF is', glb: 'metres, as glTF is' };
+const UP_NAMES = { z: '+Z', y: '+Y', x: '+X', '-z': '−Z', '-y': '−Y', '-x': '−X' };
+
+export function setKind(kind) {
+  state.kind = kind;
+  $('fs-drawing').hidden = kind !== 'drawing';
+  $('fs-part').hidden = kind === 'drawing';
+  document.body.dataset.kind = kind;
+  hooks.fillAll?.();
+}
+
+// The settings of how a part or drawing is read, back to the defaults (a new file's).
+export function freshSetup() {
+  state.jobs.part.part = structuredClone(state.defaults.job.part);
+  const d = state.defaults.drawingJob.drawing;
+  state.jobs.drawing.drawing = { ...state.jobs.drawing.drawing, units: d.units, origin: d.origin };
+  store();
+}
+
+const mm = (v) => v.toFixed(v < 10 ? 2 : 1);
+
+// The part's size, and how it was read: its units (the format's own, or the user's, marked),
+// scale, up axis and turn.
+function describePart(part) {
+  const b = part.bounds, size = [0, 1, 2].map((k) => b[k + 3] - b[k]);
+  const setup = state.jobs.part.part, ext = state.name.split('.').pop().toLowerCase();
+  const units = setup.units === 'auto' ? `read in ${FORMAT_UNITS[ext] ?? 'mm'}` : '';
+  const overrides = [];
+  if (setup.units !== 'auto') overrides.push(`read in ${setup.units === 'm' ? 'metres' : setup.units}`);
+  if (setup.scale !== 1) overrides.push(`scaled × ${setup.scale}`);
+  if (setup.upAxis !== 'z') overrides.push(`${UP_NAMES[setup.upAxis]} up`);
+  if (setup.rotation) overrides.push(`turned ${setup.rotation}°`);
+  const el = $('part-size');
+  el.innerHTML = '';
+  el.append(`${size.map(mm).join(' × ')} mm `);
+  const note = document.createElement('span');
+  note.className = 'units';
+  note.textContent = `(X × Y × Z; ${part.triangles.toLocaleString()} triangles${part.dropped ? `, ${part.dropped} degenerate dropped` : ''}) ${units}`;
+  el.append(note);
+  if (overrides.length) {
+    const o = document.createElement('span');
+    o.className = 'override';
+    o.textContent = overrides.join(', ');
+    el.append(' ', o);
+  }
+  return size;
+}
+
+// What the user should know of the part as read (holes in its surface), in its own panel.
+function partNotes(warnings) {
+  $('part-notes').replaceChildren(...warnings.map((w) => {
+    const div = document.createElement('div');
+    div.className = w.level === 'note' ? 'note' : 'warning';
+    div.textContent = w.message;
+    return div;
+  }));
+}
+
+function showScale(size, spacing) {
+  $('scale').textContent = `grid ${spacing >= 1 ? spacing : spacing.toPrecision(1)} mm · ${state.kind === 'drawing' ? 'drawing' : 'part'} ${size.map(mm).join(' × ')} mm`;
+}
+
+// Reads and shows a part or drawing; only when that works does it become the current one, so a
+// bad file loses nothing (the previous part and every setting stay).
+export async function showPart(bytes = state.bytes, name = state.name, label = state.label) {
+  if (!bytes) return false;
+  try {
+    const { part, drawing } = await state.engine.call({ type: 'load', bytes, name, setup: state.jobs.part.part, drawingSetup: state.jobs.drawing.drawing });
+    Object.assign(state, { bytes, name, label });
+    $('part-name').textContent = label;
+    hooks.clearResult?.();
+    if (drawing) {
+      showDrawing(drawing);
+    } else {
+      state.part = part;
+      setKind('part');
+      state.viewer?.setPart(part);
+      const size = describePart(part);
+      showScale(size, state.viewer?.gridSpacing ?? 1);
+      partNotes(part.warnings);
+      const amber = part.warnings.filter((w) => w.level !== 'note');
+      message(amber.length ? `${name}: ${amber.map((w) => w.message).join('\n')}` : '', amber.length ? 'warning' : 'note');
+    }
+    $('generate').disabled = state.running;
+    hooks.changed?.();
+    return true;
+  } catch (e) {
+    message(e.message, 'error');
+    return false;
+  }
+}
+
+// A drawing's loops in the view and a list of them (which are outlines, which are holes), with
+// its layers; open chains are reported where they are.
+function showDrawing(d) {
+  state.drawing = d;
+  setKind('drawing');
+  state.viewer?.setDrawing(d);
+  hooks.showPicked?.();
+  const outer = d.loops.filter((l) => !l.hole).length, holes = d.loops.length - outer;
+  const b = d.bounds, size = [b[3] - b[0], b[4] - b[1], Number(state.jobs.drawing.drawing.thickness)];
+  $('drawing-size').textContent = `${mm(size[0])} × ${mm(size[1])} mm, ${d.loops.length} closed loops: ${outer} outlines (green), ${holes} holes (orange); layers ${d.layers.join(', ')}; units: ${d.units}`
+    + (d.ignored.length ? `; left out: ${d.ignored.map(([k, n]) => `${n} ${k}`).join(', ')}` : '');
+  showScale(size, state.viewer?.gridSpacing ?? 1);
+  const list = d.loops.slice(0, 200).map((l) => `${l.index}: ${l.layer}, ${l.hole ? 'hole' : 'outline'}, ${l.entities} entities, (${l.min.map((v) => v.toFixed(1)).join(', ')})–(${l.max.map((v) => v.toFixed(1)).join(', ')})`);
+  $('loops').textContent = list.join('\n') + (d.loops.length > 200 ? `\n… and ${d.loops.length - 200} more` : '');
+  if (d.openChains.length) {
+    const o = d.openChains.slice(0, 5).map((c) => `layer ${c.layer} from (${c.start.map((v) => v.toFixed(2)).join(', ')}) to (${c.end.map((v) => v.toFixed(2)).join(', ')})`);
+    message(`${d.openChains.length} open chain(s), drawn in red, cannot be cut out until closed (they can be engraved): ${o.join('; ')}${d.openChains.length > 5 ? ' …' : ''}.`, 'warning');
+  } else {
+    message('');
+  }
+}
+
+// A file dropped or chosen: a job or project (JSON), else a part or drawing, read from its own
+// format's units with every reading setting back to its default.
+export async function takeFile(file) {
+  if (/\.json$/i.test(file.name)) return hooks.loadJob?.(file);
+  const bytes = new Uint8Array(await file.arrayBuffer());
+  const before = { part: structuredClone(state.jobs.part.part), drawing: structuredClone(state.jobs.drawing.drawing) };
+  freshSetup();
+  if (!(await showPart(bytes, file.name, file.name))) {
+    // The file did not read: the part on show keeps its settings.
+    state.jobs.part.part = before.part;
+    state.jobs.drawing.drawing = before.drawing;
+    store();
+    hooks.fillAll?.();
+  }
+}
+
+// The part's reading settings in its panel (after a change, the part is read again).
+export function fillPart() {
+  fillFields($('fs-part'), job());
+  fillFields($('fs-drawing'), job());
+}

@@ -1,0 +1,370 @@
+// Generate, cancel and download, and what a run gives back: the view of its paths, the
+// summary with the cycle time's breakdown, the warnings (amber, with their places) and errors
+// (red), the program in its pane, its simulation; the job, the project and the post as files.
+import { $, state, hooks, job, store, buildJob, is2d, clock, clockFormat, downloadText } from './state.js';
+import { fillFields, message, check } from './forms.js';
+import { opColor, toolColor, cssColor, RAPID_COLOR, MARK_COLORS } from './viewer.js';
+import { sim, showSimulation } from './simulation.js';
+
+// Runs `steps` one task each (the view held, then drawn once).
+async function inSteps(steps) {
+  const viewer = state.viewer;
+  if (!viewer) { steps.forEach((step) => step()); return; }
+  await viewer.batch(async () => {
+    for (const step of steps) {
+      step();
+      await new Promise((resolve) => setTimeout(resolve, 0));
+    }
+  });
+}
+
+export function setRunning(running) {
+  state.running = running;
+  $('generate').disabled = running || !state.bytes;
+  $('cancel').disabled = !running;
+  document.querySelectorAll('#settings input, #settings select, #settings button, #panel .actions button, #panel .actions input, #drop button').forEach((el) => {
+    if (el.id !== 'cancel' && el.id !== 'generate') el.disabled = running;
+  });
+  if (!running) hooks.fillAll?.();
+}
+
+// A failed or cancelled Generate, or a new part, leaves nothing of the result it replaced: no
+// path, no simulation, no statistics, no download.
+export function clearResult() {
+  Object.assign(state, { result: null, gcode: null, problem: null });
+  state.viewer?.clearPaths();
+  showSimulation(null);
+  $('stats').textContent = '';
+  $('warnings').textContent = '';
+  $('warning-count').textContent = '';
+  $('sim-report').textContent = '';
+  sim.pane?.set('');
+  $('download').disabled = true;
+  $('progress').value = 0;
+  $('stage').textContent = '';
+  legend(null);
+}
+
+// The legend over the view: each operation's colour (and for octree roughing, each tool's) and
+// tools, with a box to hide it; the rapids' and the problems' colours.
+function legend(summary, byTool = new Set()) {
+  const el = $('legend');
+  el.replaceChildren();
+  if (!summary) { el.hidden = true; return; }
+  el.hidden = false;
+  const row = (color, text, key) => {
+    const label = document.createElement('label');
+    if (key !== undefined) {
+      const box = document.createElement('input');
+      box.type = 'checkbox';
+      box.checked = !state.viewer?.hiddenOps.has(key);
+      box.dataset.op = String(key);
+      label.append(box);
+    }
+    const swatch = document.createElement('span');
+    swatch.className = 'swatch';
+    swatch.style.background = cssColor(color);
+    label.append(swatch, ` ${text}`);
+    el.append(label);
+  };
+  for (const o of summary.operations) {
+    if (byTool.has(o.index)) {
+      row(opColor(o.index), `${o.name}:`, o.index);
+      for (const t of o.tools) row(toolColor(t), `  T${t}`);
+    } else {
+      row(opColor(o.index), `${o.name} (T${o.tools.join(', T')})`, o.index);
+    }
+  }
+  row(RAPID_COLOR, 'rapids', 'rapids');
+  row(MARK_COLORS[0], 'gouge');
+  row([0.2, 0.42, 0.85, 1], 'material left');
+}
+
+export function onLegend(e) {
+  const box = e.target.closest('input[data-op]');
+  if (!box || !state.viewer) return;
+  const key = box.dataset.op === 'rapids' ? 'rapids' : Number(box.dataset.op);
+  const hidden = new Set(state.viewer.hiddenOps);
+  if (box.checked) hidden.delete(key); else hidden.add(key);
+  state.viewer.setHiddenOps(hidden);
+}
+
+// The summary: figures, and the cycle time broken down as the program's head states it.
+function summaryTable(s, computed) {
+  const el = $('stats');
+  el.replaceChildren();
+  const head = document.createElement('div');
+  head.textContent = `${s.moves.toLocaleString()} moves · ${(s.feedLength / 1000).toFixed(2)} m cutting · ${(s.rapidLength / 1000).toFixed(2)} m rapid · computed in ${computed.toFixed(2)} s`;
+  const table = document.createElement('table');
+  const tr = (cells, cls) => {
+    const r = document.createElement('tr');
+    if (cls) r.className = cls;
+    cells.forEach((c, k) => { const td = document.createElement('td'); td.textContent = c; if (k > 0) td.className = 'num'; r.append(td); });
+    table.append(r);
+  };
+  tr(['cycle time', `${clock(s.cycle.seconds)} ${clockFormat(s.cycle.seconds)}`, ''], 'head');
+  const ops = new Map(s.operations.map((o) => [o.name, o]));
+  for (const item of s.time) {
+    const o = ops.get(item.label.replace(/ with T.*$/, ''));
+    const extra = o && o.removed != null ? `${Math.round(o.removed).toLocaleString()} mm³ removed, peak ${Math.round(o.mrrMax).toLocaleString()} mm³/min${o.leftMax != null ? `, leaves ≤ ${o.leftMax.toFixed(2)} mm` : ''}` : '';
+    tr([`  ${item.label}`, clock(item.seconds), extra]);
+  }
+  tr(['  total', clock(s.time.reduce((a, i) => a + i.seconds, 0)), `(${clockFormat(s.cycle.seconds)})`], 'total');
+  el.append(head, table);
+  const stages = s.operations.flatMap((o) => (o.stages ?? []).map((st) => `${o.name}: T${st.tool} φ${st.diameter} (${st.role === 'profile' ? 'around the part' : st.role === 'first' ? 'first tool' : 'blocks left'}): ${st.why}; ${Math.round(st.area).toLocaleString()} mm² cleared, ${Math.round(st.removed).toLocaleString()} mm³ removed, ${clock(st.seconds)}`));
+  if (stages.length) {
+    const div = document.createElement('div');
+    div.className = 'stages';
+    div.textContent = stages.join('\n');
+    el.append(div);
+  }
+}
+
+// The warnings, each in its style (amber, or grey for a note) with its count and places; the
+// problem, if any, first and in red. Returns how many there are of each.
+function showWarnings(s) {
+  const el = $('warnings');
+  el.replaceChildren();
+  const line = (text, cls) => { const d = document.createElement('div'); d.className = cls; d.textContent = text; el.append(d); };
+  if (s.problem) line(`Not safe to run: ${s.problem}`, 'error');
+  for (const w of s.warnings) line(w.operation ? `${w.operation}: ${w.message}` : w.message, w.level === 'note' ? 'note' : 'warning');
+  const amber = s.warnings.filter((w) => w.level !== 'note').length;
+  const count = $('warning-count');
+  count.textContent = s.problem ? '!' : amber ? String(amber) : '';
+  count.className = s.problem ? 'error' : '';
+  return amber;
+}
+
+export function resultTab(name) {
+  for (const b of document.querySelectorAll('#result-tabs [data-result]')) b.setAttribute('aria-selected', String(b.dataset.result === name));
+  for (const r of document.querySelectorAll('#results .result')) r.hidden = r.dataset.result !== name;
+  $('results').classList.remove('collapsed');
+  if (name === 'gcode') sim.pane?.render();
+}
+
+export async function generate() {
+  const j = buildJob();
+  const wrong = j.operations.filter((op) => (state.kind === 'drawing') !== is2d(op));
+  if (wrong.length && wrong.length === j.operations.length) {
+    message(state.kind === 'drawing' ? 'add a pocket or profile operation for a drawing' : 'add a roughing or finishing operation for a part', 'error');
+    return;
+  }
+  // The core's checks first, marked at their fields: the run would refuse the same.
+  const problems = await check();
+  if (problems.length) {
+    message(`${problems.length} setting${problems.length > 1 ? 's need' : ' needs'} attention: ${problems[0].message}`, 'error');
+    return;
+  }
+  store();
+  clearResult();
+  document.body.dataset.generated = 'running';
+  setRunning(true);
+  message('');
+  $('progress').value = 0;
+  const started = performance.now();
+  try {
+    const r = await state.engine.run(j, state.bytes, state.name, {
+      onProgress: (fraction, stage) => { $('progress').value = fraction; $('stage').textContent = stage; },
+    });
+    Object.assign(state, { result: r, gcode: r.gcode, extension: r.summary.extension, postName: r.summary.post });
+    const s = r.summary;
+    // The result reaches the view in steps, each a task of its own, so that none holds the
+    // page's thread long on a die-sized result; the view draws once, after the last.
+    const byTool = new Set(j.operations.map((op, i) => (op.kind === 'roughOctree' ? i : -1)).filter((i) => i >= 0));
+    await inSteps([
+      // The part framed again (the job may have placed it elsewhere).
+      () => (r.drawing ? state.viewer?.setDrawing(r.drawing, false) : state.viewer?.setPart(r.part, true)),
+      () => {
+        state.viewer?.setPaths({ feeds: r.feeds, rapids: r.rapids, stock: s.stock, ops: r.feedOps, tools: r.feedTools, moves: r.feedMoves, rapidMoves: r.rapidMoves, byTool });
+        hooks.showPicked?.();
+        if (r.octants.length) state.viewer?.setOctants(r.octants);
+      },
+      () => sim.pane?.set(r.gcode),
+      () => showSimulation(r.sim, s),
+    ]);
+    legend(s, byTool);
+    summaryTable(s, (performance.now() - started) / 1000);
+    // A problem is shown as one, in red, with its places marked in the view; the program can
+    // still be downloaded, behind a confirmation that names it.
+    state.problem = s.problem ?? null;
+    const amber = showWarnings(s);
+    const notes = s.warnings.length - amber;
+    if (state.problem) {
+      message(`Not safe to run: ${state.problem}`, 'error');
+      resultTab('warnings');
+    } else if (amber) {
+      message(`Done, with ${amber} warning${amber > 1 ? 's' : ''}: ${s.warnings.filter((w) => w.level !== 'note').map((w) => (w.operation ? `${w.operation}: ${w.message}` : w.message)).join('\n')}`, 'warning');
+      resultTab('warnings');
+    } else {
+      message(`Done: cycle time ${clock(s.cycle.seconds)} ${clockFormat(s.cycle.seconds)}${notes ? ` (${notes} note${notes > 1 ? 's' : ''})` : ''}.`, 'ok');
+      resultTab('summary');
+    }
+    $('progress').value = 1;
+    $('stage').textContent = state.problem ? 'done, with problems' : 'done';
+    $('download').disabled = false;
+    document.body.dataset.generated = state.problem ? 'problem' : 'ok';
+  } catch (e) {
+    clearResult();
+    if (e.message !== 'cancelled by the user') message(e.message, 'error');
+    $('stage').textContent = '';
+    document.body.dataset.generated = 'failed';
+  } finally {
+    setRunning(false);
+  }
+}
+
+export function cancel() {
+  // The wasm runs synchronously in the worker, so cancelling ends the worker; a fresh one takes
+  // its place and every setting stays.
+  state.engine.cancel().catch((e) => message(e.message, 'error'));
+  sim.busy = false;
+  sim.wanted = null;
+  clearResult();
+  message('Cancelled. Your settings are kept.', 'note');
+  document.body.dataset.generated = 'cancelled';
+}
+
+// The program's file name: the part's, the controller's, and the extension its controllers
+// expect (`bracket-grbl.nc`, `bracket-fanuc.nc`: two controllers' programs never share one).
+export function programName() {
+  const slug = (state.postName ?? 'program').toLowerCase().replace(/[^a-z0-9]+/g, '').replace(/^$/, 'post');
+  return `${state.name.replace(/\.[^.]*$/, '')}-${slug}.${state.extension ?? 'nc'}`;
+}
+
+export function download() {
+  if (!state.gcode) return;
+  if (state.problem && !window.confirm(`This program is not safe to run: ${state.problem}.\n\nDownload it anyway? It starts with a warning comment.`)) return;
+  downloadText(programName(), state.gcode, 'text/plain');
+}
+
+// ---- posts as data ----------------------------------------------------------------------
+// The post in use (the user's own, else the built-in one of the chosen controller) saved as
+// JSON to edit; a loaded one is read by the core, which names a field it does not know.
+export function currentPost() {
+  const p = job().post;
+  return p.custom ?? state.posts.find((b) => b.dialect === p.dialect)?.post;
+}
+
+export function fillPost() {
+  const j = job();
+  fillFields($('fs-post'), j);
+  const custom = j.post.custom;
+  $('post-custom').hidden = !custom;
+  $('post-custom').textContent = custom ? `Using your post "${custom.name}" (choose a controller to go back to a built-in one).` : '';
+}
+
+export function savePost() {
+  const post = currentPost();
+  if (post) downloadText(`${post.name.replace(/[^\w.-]+/g, '_')}.post.json`, JSON.stringify(post, null, 2), 'application/json');
+}
+
+export async function loadPost(file) {
+  try {
+    const post = await state.engine.readPost(await file.text());
+    job().post.custom = post;
+    store();
+    fillPost();
+    message(`Loaded the post "${post.name}" from ${file.name}; programs now end in .${post.extension}.`, 'ok');
+    await repost();
+  } catch (e) {
+    message(`${file.name}: ${e.message}`, 'error');
+  }
+}
+
+// The program of the last Generate written again for the post (or the units) now chosen, no
+// planning again: the plan is in millimetres and only the writing changes. `data-posted` counts
+// the programs so written.
+export async function repost() {
+  if (!state.gcode || state.running) return;
+  try {
+    const r = await state.engine.repost(job().post);
+    Object.assign(state, { gcode: r.gcode, extension: r.extension, postName: r.post });
+    state.result.moveLines = r.moveLines;
+    state.result.gcode = r.gcode;
+    sim.pane?.set(r.gcode);
+    message(`The program is written again for ${r.post}${job().post.units === 'inch' ? ' in inches' : ''}: cycle time ${clock(r.cycle.seconds)} ${clockFormat(r.cycle.seconds)}.`, 'ok');
+  } catch (e) {
+    clearResult();
+    message(e.message, 'error');
+  }
+  document.body.dataset.posted = String(Number(document.body.dataset.posted ?? 0) + 1);
+}
+
+// ---- jobs and projects as files ----------------------------------------------------------
+// The same JSON drives the page, `swarf run job.json part.stl` and the tests.
+export function saveJob() {
+  const j = buildJob();
+  downloadText(`${j.name || 'job'}.json`, JSON.stringify(j, null, 2), 'application/json');
+}
+
+// A job file comes back whole: every operation, in order, and its tools (which join the
+// library, replacing those of the same number). The core reads it as `swarf run` would: a
+// misspelt or unknown field is named, and then nothing changes; values that do not fit are
+// marked at their fields at once.
+export async function loadJob(file) {
+  try {
+    const text = await file.text();
+    if (/"format"\s*:\s*"swarf project"/.test(text)) return await openProject(file, text);
+    const read = await state.engine.readJob(text);
+    await applyJob(read);
+    const problems = await check();
+    if (problems.length) message(`Loaded the job from ${file.name}, but ${problems.length} setting${problems.length > 1 ? 's need' : ' needs'} attention: ${problems.map((p) => p.message).join('; ')}`, 'error');
+    else message(`Loaded the job from ${file.name}: ${read.operations.length} operation(s).`, 'ok');
+  } catch (e) {
+    message(`${file.name}: ${e.message}`, 'error');
+  }
+}
+
+// A job read by the core takes the place of the page's: its tools join the library (replacing
+// those of the same number); `part` ({bytes, name}) is shown instead of the sample, read as the
+// job says (a project keeps its part's units).
+async function applyJob(read, part = null) {
+  if (!read.operations.length) throw new Error('the job has no operations');
+  for (const op of read.operations) {
+    const missing = (op.kind === 'roughOctree' ? op.tools : [op.tool]).find((n) => !read.tools.some((t) => t.number === n));
+    if (missing != null) throw new Error(`operation '${op.name}' uses tool ${missing}, which the job does not have`);
+  }
+  const kind = read.operations.every(is2d) ? 'drawing' : 'part';
+  for (const t of read.tools) {
+    const k = state.tools.findIndex((u) => u.number === t.number);
+    if (k >= 0) state.tools[k] = t; else state.tools.push(t);
+  }
+  delete read.tools;
+  // How the job reads its part belongs to that part: a project's part is read as its job says;
+  // the part on show keeps its own settings under a job file.
+  if (!part && kind === 'part') read.part = state.jobs.part.part;
+  if (!part && kind === 'drawing') read.drawing = { ...read.drawing, units: state.jobs.drawing.drawing.units, origin: state.jobs.drawing.drawing.origin };
+  state.jobs[kind] = read;
+  state.selected[kind] = 0;
+  store();
+  if (part) {
+    hooks.setKind?.(kind);
+    await hooks.showPart?.(part.bytes, part.name, part.name);
+  } else if (kind !== state.kind) {
+    const sample = kind === 'drawing' ? [state.sampleDrawing, 'sample.dxf', 'sample drawing'] : [state.sample, 'sample.stl', 'sample part'];
+    await hooks.showPart?.(...sample);
+  } else {
+    hooks.fillAll?.();
+    await hooks.showPart?.();
+  }
+}
+
+// A project file holds the job and the part or drawing (embedded), for the page and for
+// `swarf run project.swarf.json`.
+export async function saveProject() {
+  const j = buildJob();
+  const text = await state.engine.writeProject(j, state.name, state.bytes);
+  downloadText(`${state.name.replace(/\.[^.]*$/, '')}.swarf.json`, text, 'application/json');
+}
+
+export async function openProject(file, text) {
+  try {
+    const project = await state.engine.readProject(text ?? await file.text());
+    await applyJob(project.job, project.bytes ? { bytes: project.bytes, name: project.name } : null);
+    message(project.bytes
+      ? `Opened the project ${file.name}: ${project.name}, ${project.job.operations.length} operation(s).`
+      : `Opened the project ${file.name}; it names its part ${project.name} without holding it: open that file.`, project.bytes ? 'ok' : 'warning');
+  } catch (e) {
+    message(`${file.name}: ${e.message}`, 'error');
+  }
+}

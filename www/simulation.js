@@ -1,0 +1,185 @@
+// The simulated program under the view: the scrubber over the program's time (its clock the
+// program head's, tool changes included), play at a chosen speed, a step a move back or on, the
+// tool drawn where it is, the path already cut apart from the path to come, the G-code line of
+// the move in the pane, and the material removal rate over the program.
+import { $, state, hooks, clock, clockFormat } from './state.js';
+import { opColor } from './viewer.js';
+
+export const sim = { data: null, time: 0, playing: false, busy: false, wanted: null, shown: -1, marks: [], buckets: null, peak: 1, pane: null };
+
+// The move running at time `t`: `k`, the first move with times[k] <= t < times[k + 1], and how
+// far into it (`f`); past the end, the last move, finished.
+export function moveAt(t) {
+  const times = sim.data.times, n = times.length - 1;
+  if (n <= 0) return { k: 0, f: 1, done: 0 };
+  if (t >= times[n]) return { k: n - 1, f: 1, done: n };
+  let lo = 0, hi = n - 1;
+  while (lo < hi) { const mid = (lo + hi + 1) >> 1; if (times[mid] <= t) lo = mid; else hi = mid - 1; }
+  const span = times[lo + 1] - times[lo];
+  const f = span > 0 ? Math.min(1, Math.max(0, (t - times[lo]) / span)) : 1;
+  return { k: lo, f, done: f >= 1 ? lo + 1 : lo };
+}
+
+// The stock after the moves done at `t`, the tool a fraction into the move running then: one
+// request to the worker at a time, the latest wanted after it.
+async function seek(t) {
+  if (sim.busy) { sim.wanted = t; return; }
+  sim.busy = true;
+  try {
+    const { k, f, done } = moveAt(t);
+    const r = await state.engine.call({ type: 'seek', count: done, at: k, f });
+    if (done !== sim.shown) state.viewer?.updateStock(r.tops);
+    sim.shown = done;
+    if (r.tool.length) {
+      state.viewer?.setToolAt(r.tool.slice(0, 3));
+      if (r.tool[3] !== sim.toolNumber) {
+        sim.toolNumber = r.tool[3];
+        state.viewer?.setTool(state.tools.find((t) => t.number === sim.toolNumber) ?? null);
+        state.viewer?.setToolAt(r.tool.slice(0, 3));
+      }
+    }
+    state.viewer?.setCut(done >= sim.data.times.length - 1 ? Infinity : done);
+    document.body.dataset.simMoves = String(done);
+    const lines = state.result?.moveLines;
+    if (lines?.length) sim.pane?.setCurrent(lines[Math.min(k, lines.length - 1)]);
+  } catch (e) {
+    if (e.message !== 'cancelled by the user') hooks.error?.(e.message);
+  } finally {
+    sim.busy = false;
+  }
+  if (sim.wanted !== null) { const next = sim.wanted; sim.wanted = null; seek(next); }
+}
+
+export function setTime(t) {
+  if (!sim.data) return;
+  const total = sim.data.times[sim.data.times.length - 1];
+  sim.time = Math.max(0, Math.min(total, t));
+  $('scrub').value = sim.time;
+  $('sim-time').textContent = `${clock(sim.time)} / ${clock(total)} ${clockFormat(total)}`;
+  drawMrr();
+  seek(sim.time);
+}
+
+// One move back or on: to the start of the move running now (or of the one before), or to
+// the end of the move running now.
+export function step(direction) {
+  if (!sim.data) return;
+  const times = sim.data.times;
+  const { k, f } = moveAt(sim.time);
+  if (direction > 0) setTime(times[Math.min(times.length - 1, f >= 1 ? k + 2 : k + 1)]);
+  else setTime(times[Math.max(0, f > 0 && f < 1 ? k : k - 1)]);
+}
+
+// The end of the move whose G-code is on line `line` (a click in the program's pane).
+export function toLine(line) {
+  const lines = state.result?.moveLines;
+  if (!sim.data || !lines?.length) return;
+  let lo = 0, hi = lines.length - 1;
+  while (lo < hi) { const mid = (lo + hi) >> 1; if (lines[mid] < line) lo = mid + 1; else hi = mid; }
+  setTime(sim.data.times[lo + 1]);
+  sim.pane?.setCurrent(line);
+}
+
+export function play() {
+  if (!sim.data) return;
+  const total = sim.data.times[sim.data.times.length - 1];
+  if (!sim.playing && sim.time >= total) sim.time = 0;
+  sim.playing = !sim.playing;
+  $('play').textContent = sim.playing ? '❚❚' : '▶';
+  let last = performance.now();
+  const frame = (now) => {
+    if (!sim.playing) return;
+    const dt = (now - last) / 1000;
+    last = now;
+    setTime(sim.time + dt * Number($('speed').value));
+    if (sim.time >= total) { sim.playing = false; $('play').textContent = '▶'; return; }
+    requestAnimationFrame(frame);
+  };
+  requestAnimationFrame(frame);
+}
+
+export function drawMrr() {
+  const c = $('mrr');
+  if (!sim.data) return;
+  const dpr = window.devicePixelRatio || 1, w = Math.max(1, Math.round(c.clientWidth * dpr)), h = Math.round(60 * dpr);
+  if (c.width !== w || c.height !== h) { c.width = w; c.height = h; sim.buckets = null; }
+  const { times, mrr } = sim.data, total = times[times.length - 1] || 1;
+  if (!sim.buckets) {
+    const b = new Float32Array(w);
+    for (let k = 0; k < mrr.length; k++) {
+      const x = Math.min(w - 1, Math.floor((times[k] / total) * w));
+      if (mrr[k] > b[x]) b[x] = mrr[k];
+    }
+    sim.buckets = b;
+    sim.peak = b.reduce((m, v) => Math.max(m, v), 0) || 1;
+  }
+  const g = c.getContext('2d');
+  g.clearRect(0, 0, w, h);
+  g.fillStyle = '#6b8fb8';
+  for (let x = 0; x < w; x++) { const v = (sim.buckets[x] / sim.peak) * (h - 14 * dpr); g.fillRect(x, h - v, 1, v); }
+  g.fillStyle = '#394550';
+  g.font = `${11 * dpr}px system-ui`;
+  g.fillText(`material removal rate, peak ${Math.round(sim.peak).toLocaleString()} mm³/min`, 4 * dpr, 11 * dpr);
+  // Operations that hold a load (seed 004): the reference rate at a full step-down, dashed,
+  // and the plain path's rate before the correction (its windows spread over the operation's
+  // time), faint: the paper's Fig. 14.
+  sim.marks.forEach((m, k) => {
+    if (!m.load) return;
+    const end = k + 1 < sim.marks.length ? sim.marks[k + 1].t : total;
+    const [x0, x1] = [(m.t / total) * w, (end / total) * w];
+    const y = (v) => h - (v / sim.peak) * (h - 14 * dpr);
+    const plain = m.load.plain;
+    if (plain.length) {
+      g.strokeStyle = 'rgba(57, 69, 80, 0.35)';
+      g.lineWidth = dpr;
+      g.beginPath();
+      plain.forEach((r, i) => { const x = x0 + ((x1 - x0) * i) / plain.length, v = y(Math.min(r * m.load.rate, sim.peak)); if (i) g.lineTo(x, v); else g.moveTo(x, v); });
+      g.stroke();
+    }
+    g.strokeStyle = '#2b8a3e';
+    g.lineWidth = dpr;
+    g.setLineDash([4 * dpr, 3 * dpr]);
+    g.beginPath();
+    g.moveTo(x0, y(m.load.rate));
+    g.lineTo(x1, y(m.load.rate));
+    g.stroke();
+    g.setLineDash([]);
+    g.fillStyle = '#2b8a3e';
+    g.fillText(`even load ${Math.round(m.load.rate).toLocaleString()}`, x0 + 3 * dpr, Math.max(11 * dpr, y(m.load.rate) - 3 * dpr));
+  });
+  // The operations: a line in each one's colour where it starts, and its name.
+  for (const m of sim.marks) {
+    const mx = Math.round((m.t / total) * w), c = opColor(m.index).slice(0, 3).map((v) => Math.round(v * 255));
+    g.fillStyle = `rgb(${c.join(',')})`;
+    g.fillRect(mx, 0, dpr, h);
+    if (sim.marks.length > 1) g.fillText(m.name, mx + 3 * dpr, h - 3 * dpr);
+  }
+  const x = (sim.time / total) * w;
+  g.fillStyle = '#d9480f';
+  g.fillRect(x - dpr, 0, 2 * dpr, h);
+}
+
+// The simulation of a run (`data`: the result's `sim`, `summary` its summary), or none.
+export function showSimulation(data, summary = null) {
+  sim.data = data;
+  // Where each operation starts in program time, for the marks on the plot.
+  sim.marks = data && summary ? summary.operationStarts.map((m, k) => ({ t: data.times[m], name: summary.operations[k].name, index: summary.operations[k].index, load: summary.operations[k].load })) : [];
+  sim.buckets = null;
+  sim.playing = false;
+  sim.toolNumber = null;
+  $('play').textContent = '▶';
+  $('sim').hidden = !data;
+  if (!data) return;
+  const total = data.times[data.times.length - 1];
+  $('scrub').max = total;
+  const r = data.report;
+  $('sim-report').textContent = r.text.trim();
+  $('sim-report').className = r.gougeCount + r.rapidCollisionCount + r.bodyCollisionCount > 0 ? 'result problem' : 'result';
+  state.viewer?.setStock(data.grid, data.part, data.start);
+  // The stock as the run sent it: after the last move.
+  sim.shown = data.times.length - 1;
+  document.body.dataset.simMoves = String(sim.shown);
+  state.viewer?.setMarks(data.findings);
+  // Show the finished cut first; the scrubber goes back from there.
+  setTime(total);
+}

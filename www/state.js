@@ -1,0 +1,121 @@
+// The page's state: the jobs it edits (one for parts, one for drawings), the tool library, the
+// part or drawing on show and the last result; kept in the browser's storage across reloads.
+// Every module of the page reads and changes it here. Jobs are the core's JSON: the forms
+// start from the core's defaults, so no default is written twice.
+
+export const $ = (id) => document.getElementById(id);
+
+const TOOLS = 'swarf.tools', JOBS = 'swarf.jobs';
+
+export const state = {
+  engine: null, viewer: null,
+  bytes: null, name: 'sample.stl', label: 'sample part', sample: null, sampleDrawing: null, defaults: null, posts: [],
+  kind: 'part', drawing: null, part: null,
+  tools: [], jobs: { part: null, drawing: null }, selected: { tool: 0, part: 0, drawing: 0 },
+  running: false, result: null, gcode: null, problem: null, extension: null,
+  problems: [],
+};
+
+// What other modules register for one another (a page module calls the ones registered after
+// it only through these: the single-file build links modules in order).
+export const hooks = {};
+
+export const job = () => state.jobs[state.kind];
+export const selectedOp = () => job().operations[state.selected[state.kind]] ?? null;
+export const selectedTool = () => state.tools[state.selected.tool] ?? null;
+export const is2d = (op) => op.kind === 'profile2d' || op.kind === 'pocket2d' || op.kind === 'engrave';
+
+export function store() {
+  try {
+    localStorage.setItem(TOOLS, JSON.stringify(state.tools));
+    localStorage.setItem(JOBS, JSON.stringify(state.jobs));
+  } catch { /* private mode: nothing kept */ }
+}
+
+// The library and the jobs as the browser kept them, each read again by the core (an older
+// page's job is read as its version says; one that no longer reads gives way to the defaults,
+// and the message says so). How a part is read (units, scale, up axis, turn) belongs to the
+// part, not to the page: it starts from the defaults, as it does for every new file.
+export async function restore(read) {
+  const d = state.defaults;
+  const kept = (key) => { try { return JSON.parse(localStorage.getItem(key) || 'null'); } catch { return null; } };
+  const tools = kept(TOOLS), jobs = kept(JOBS);
+  const storedTools = Array.isArray(tools) && tools.length > 0;
+  state.tools = storedTools ? tools : structuredClone(d.job.tools);
+  const fresh = { part: structuredClone(d.job), drawing: structuredClone(d.drawingJob) };
+  const lost = [];
+  for (const kind of ['part', 'drawing']) {
+    const j = jobs?.[kind];
+    let restored = fresh[kind];
+    if (j && Array.isArray(j.operations)) {
+      try {
+        restored = await read({ ...j, tools: [] });
+      } catch (e) {
+        lost.push(`${kind === 'part' ? 'the part job' : 'the drawing job'} (${e.message})`);
+      }
+    }
+    restored.part = structuredClone(fresh.part.part);
+    if (kind === 'drawing') restored.drawing = { ...restored.drawing, units: fresh.drawing.drawing.units, origin: fresh.drawing.drawing.origin };
+    delete restored.tools;
+    state.jobs[kind] = restored;
+  }
+  // The drawing job's tool (a flat end mill) joins a new library, under a free number when its
+  // own is taken by another tool, and the drawing's operations follow it.
+  for (const t of storedTools ? [] : d.drawingJob.tools) {
+    const tool = structuredClone(t);
+    if (state.tools.some((u) => u.number === tool.number)) tool.number = Math.max(...state.tools.map((u) => u.number)) + 1;
+    state.tools.push(tool);
+    if (!jobs?.drawing) for (const op of state.jobs.drawing.operations) if (op.tool === t.number) op.tool = tool.number;
+  }
+  // A library from before (or emptied) leaves no operation pointing nowhere.
+  for (const j of Object.values(state.jobs)) {
+    for (const op of j.operations) {
+      if (op.kind === 'roughOctree') op.tools = (op.tools ?? []).filter((n) => state.tools.some((t) => t.number === n));
+      else if (!state.tools.some((t) => t.number === op.tool)) op.tool = state.tools[0]?.number ?? 1;
+    }
+  }
+  return lost;
+}
+
+// Objects and their fields by dotted keys ("stock.marginXy", "tabs.count").
+export function getKey(obj, key) { return key.split('.').reduce((o, k) => (o == null ? undefined : o[k]), obj); }
+export function setKey(obj, key, value) {
+  const ks = key.split('.');
+  let o = obj;
+  for (const k of ks.slice(0, -1)) { if (o[k] == null || typeof o[k] !== 'object') o[k] = {}; o = o[k]; }
+  o[ks[ks.length - 1]] = value;
+}
+
+// The tools an operation uses: its own, or for octree roughing those it may choose from (its
+// list, else every flat and bull-nose end in the library).
+export function toolsOf(op) {
+  if (op.kind !== 'roughOctree') return [op.tool];
+  return op.tools?.length ? op.tools : state.tools.filter((t) => t.shape === 'flat' || t.shape === 'bullNose').map((t) => t.number);
+}
+
+// The job to run or save: this kind's job with the library's tools its operations use (every
+// tool of the library with `all`, so that a tool's place in the job is its place in the list).
+export function buildJob({ all = false } = {}) {
+  const j = structuredClone(job());
+  j.name = state.name.replace(/\.[^.]*$/, '');
+  const used = new Set(j.operations.flatMap(toolsOf));
+  j.tools = all ? structuredClone(state.tools) : state.tools.filter((t) => used.has(t.number));
+  return j;
+}
+
+// The time `seconds` as the program's head writes it: h:mm:ss or m:ss, and which of the two.
+export function clock(seconds) {
+  const s = Math.max(0, Math.round(seconds));
+  const h = Math.floor(s / 3600), m = Math.floor((s % 3600) / 60), r = s % 60;
+  return `${h ? `${h}:${String(m).padStart(2, '0')}` : m}:${String(r).padStart(2, '0')}`;
+}
+export const clockFormat = (seconds) => (Math.round(seconds) >= 3600 ? 'h:mm:ss' : 'm:ss');
+
+export function downloadText(name, text, type) {
+  const a = document.createElement('a');
+  a.href = URL.createObjectURL(new Blob([text], { type }));
+  a.download = name;
+  document.body.appendChild(a);
+  a.click();
+  setTimeout(() => { URL.revokeObjectURL(a.href); a.remove(); }, 1000);
+}

@@ -1,0 +1,78 @@
+// The tool library: a list to pick from, a form for the picked tool, tools added, copied,
+// deleted, exported and imported as JSON (read by the core, as a job's tools are).
+import { $, state, hooks, selectedTool, store, downloadText } from './state.js';
+import { fillFields, message } from './forms.js';
+
+const shapeName = (t) => ({ ball: 'ball', flat: 'flat', bullNose: `bull nose r${t.cornerRadius}` }[t.shape] || t.shape);
+export const toolLabel = (t) => `T${t.number} · ${t.diameter} mm ${shapeName(t)}${t.name ? ` · ${t.name}` : ''}`;
+
+export function fillTools() {
+  const list = $('tool-list');
+  list.replaceChildren(...state.tools.map((t, i) => new Option(toolLabel(t), String(i))));
+  state.selected.tool = Math.max(0, Math.min(state.selected.tool, state.tools.length - 1));
+  list.value = String(state.selected.tool);
+  const t = selectedTool();
+  $('tool-editor').hidden = !t;
+  if (t) fillFields($('tool-editor'), t);
+  document.querySelector('#tool-editor [name=cornerRadius]').closest('label').hidden = t?.shape !== 'bullNose';
+  const opTool = document.querySelector('[name=opTool]');
+  opTool.replaceChildren(...state.tools.map((u) => new Option(toolLabel(u), String(u.number))));
+}
+
+export function addTool(copy) {
+  const base = copy && selectedTool() ? selectedTool() : state.defaults.tool;
+  const t = structuredClone(base);
+  t.number = Math.max(0, ...state.tools.map((u) => u.number)) + 1;
+  if (!copy) t.name = '';
+  state.tools.push(t);
+  state.selected.tool = state.tools.length - 1;
+  store();
+  fillTools();
+  hooks.changed?.();
+}
+
+export function deleteTool() {
+  const t = selectedTool();
+  if (!t) return;
+  const users = Object.values(state.jobs).flatMap((j) => j.operations).filter((op) => (op.kind === 'roughOctree' ? op.tools ?? [] : [op.tool]).includes(t.number));
+  if (users.length) { message(`T${t.number} is used by ${users.map((o) => `'${o.name}'`).join(', ')}: give them another tool first`, 'error'); return; }
+  state.tools.splice(state.selected.tool, 1);
+  store();
+  fillTools();
+  hooks.changed?.();
+}
+
+// A tool's number changed: the operations using it follow.
+export function renumber(from, to) {
+  for (const j of Object.values(state.jobs)) {
+    for (const op of j.operations) {
+      if (op.tool === from) op.tool = to;
+      if (op.tools) op.tools = op.tools.map((n) => (n === from ? to : n));
+    }
+  }
+}
+
+export function exportTools() {
+  downloadText('swarf-tools.json', JSON.stringify({ tools: state.tools }, null, 2), 'application/json');
+}
+
+// Tools are read by the core, as a job's are: a misspelt field is named. Imported tools replace
+// those of the same number and join the rest.
+export async function importTools(file) {
+  try {
+    const parsed = JSON.parse(await file.text());
+    const tools = Array.isArray(parsed) ? parsed : parsed.tools;
+    if (!Array.isArray(tools)) throw new Error('expected a list of tools, or { "tools": [...] }');
+    const read = await state.engine.readJob(JSON.stringify({ tools }));
+    for (const t of read.tools) {
+      const k = state.tools.findIndex((u) => u.number === t.number);
+      if (k >= 0) state.tools[k] = t; else state.tools.push(t);
+    }
+    store();
+    fillTools();
+    hooks.changed?.();
+    message(`Imported ${read.tools.length} tool(s) from ${file.name}.`, 'ok');
+  } catch (e) {
+    message(`${file.name}: ${e.message}`, 'error');
+  }
+}
