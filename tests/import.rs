@@ -330,6 +330,13 @@ fn a_part_with_holes_in_its_surface_is_warned_of() {
     assert_eq!(w[0].count, 7, "{w:?}"); // 4 edges around the two neighbours, 3 around the lone one
     assert!(w[0].message.starts_with("7 edges of the part's surface border one triangle only") && w[0].message.contains("at X"), "{}", w[0].message);
     assert_eq!(w[0].places.len(), 7);
+    // A box with one triangle of its top missing: every corner of the hole lies on the
+    // outline's rim, and it is a hole all the same.
+    let v = |i: usize| DVec3::new((i & 1) as f64 * 30.0, ((i >> 1) & 1) as f64 * 20.0, ((i >> 2) & 1) as f64 * 10.0);
+    let faces = [[0, 2, 3], [0, 3, 1], [4, 5, 7], [4, 7, 6], [0, 1, 5], [0, 5, 4], [2, 6, 7], [2, 7, 3], [0, 4, 6], [0, 6, 2], [1, 3, 7], [1, 7, 5]];
+    let boxed = |skip: usize| common::mesh(faces.iter().enumerate().filter(|&(k, _)| k != skip).map(|(_, f)| f.map(v)).collect());
+    assert!(part_warnings(&boxed(99)).is_empty());
+    assert_eq!(part_warnings(&boxed(2))[0].count, 3);
     // A relief (a surface open along its sides) is not holed.
     assert!(part_warnings(&common::plane(10.0, 0.0, 0.1, 0.2)).is_empty());
     assert!(part_warnings(&common::faceted_terrain(7, 2.0, 0.3)).is_empty());

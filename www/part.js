@@ -24,7 +24,8 @@ export function freshSetup() {
   store();
 }
 
-const mm = (v) => v.toFixed(v < 10 ? 2 : 1);
+// Sizes as a machinist reads them: 120.0, 5.00, 0.040.
+const mm = (v) => (Number(v.toFixed(2)) >= 10 ? v.toFixed(1) : Number(v.toPrecision(2)) >= 1 ? v.toFixed(2) : v.toPrecision(2));
 
 // The part's size, and how it was read: its units (the format's own, or the user's, marked),
 // scale, up axis and turn.

@@ -20,11 +20,10 @@ async function inSteps(steps) {
 
 export function setRunning(running) {
   state.running = running;
+  document.querySelectorAll('#settings input, #settings select, #settings button, #panel .actions button, #panel .actions input, #drop button').forEach((el) => { el.disabled = running; });
   $('generate').disabled = running || !state.bytes;
   $('cancel').disabled = !running;
-  document.querySelectorAll('#settings input, #settings select, #settings button, #panel .actions button, #panel .actions input, #drop button').forEach((el) => {
-    if (el.id !== 'cancel' && el.id !== 'generate') el.disabled = running;
-  });
+  $('download').disabled = running || !state.gcode;
   if (!running) hooks.fillAll?.();
 }
 
@@ -143,21 +142,23 @@ export function resultTab(name) {
 }
 
 export async function generate() {
+  if (state.running) return;
+  document.body.dataset.generated = 'running';
+  const refuse = (text) => { message(text, 'error'); document.body.dataset.generated = 'failed'; };
   const j = buildJob();
   const wrong = j.operations.filter((op) => (state.kind === 'drawing') !== is2d(op));
   if (wrong.length && wrong.length === j.operations.length) {
-    message(state.kind === 'drawing' ? 'add a pocket or profile operation for a drawing' : 'add a roughing or finishing operation for a part', 'error');
+    refuse(state.kind === 'drawing' ? 'add a pocket or profile operation for a drawing' : 'add a roughing or finishing operation for a part');
     return;
   }
   // The core's checks first, marked at their fields: the run would refuse the same.
   const problems = await check();
   if (problems.length) {
-    message(`${problems.length} setting${problems.length > 1 ? 's need' : ' needs'} attention: ${problems[0].message}`, 'error');
+    refuse(`${problems.length} setting${problems.length > 1 ? 's need' : ' needs'} attention: ${problems[0].message}`);
     return;
   }
   store();
   clearResult();
-  document.body.dataset.generated = 'running';
   setRunning(true);
   message('');
   $('progress').value = 0;
@@ -205,9 +206,10 @@ export async function generate() {
     document.body.dataset.generated = state.problem ? 'problem' : 'ok';
   } catch (e) {
     clearResult();
-    if (e.message !== 'cancelled by the user') message(e.message, 'error');
+    const cancelled = e.message === 'cancelled by the user';
+    if (!cancelled) message(e.message, 'error');
     $('stage').textContent = '';
-    document.body.dataset.generated = 'failed';
+    document.body.dataset.generated = cancelled ? 'cancelled' : 'failed';
   } finally {
     setRunning(false);
   }

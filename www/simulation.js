@@ -176,6 +176,7 @@ export function showSimulation(data, summary = null) {
   $('sim-report').textContent = r.text.trim();
   $('sim-report').className = r.gougeCount + r.rapidCollisionCount + r.bodyCollisionCount > 0 ? 'result problem' : 'result';
   state.viewer?.setStock(data.grid, data.part, data.start);
+  state.lastSimGrid = data.grid;
   // The stock as the run sent it: after the last move.
   sim.shown = data.times.length - 1;
   document.body.dataset.simMoves = String(sim.shown);

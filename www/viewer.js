@@ -122,7 +122,7 @@ export class Viewer {
     this.lineProgram = compile(gl, LINE_VS, LINE_FS);
     this.stockProgram = compile(gl, STOCK_VS, STOCK_FS);
     this.stock = null;
-    this.show = { part: true, paths: true, stock: true, octants: true, tool: true };
+    this.show = { part: true, paths: true, stock: true, octants: true, tool: true, grid: true };
     this.hiddenOps = new Set();
     this.part = null;
     this.lines = {};
@@ -264,8 +264,8 @@ export class Viewer {
   setGrid(b) {
     const span = Math.max(b[3] - b[0], b[4] - b[1], 1e-6);
     const spacing = 10 ** Math.floor(Math.log10(span / 2));
-    const x0 = Math.floor(b[0] / spacing - 1) * spacing, x1 = Math.ceil(b[3] / spacing + 1) * spacing;
-    const y0 = Math.floor(b[1] / spacing - 1) * spacing, y1 = Math.ceil(b[4] / spacing + 1) * spacing;
+    const x0 = Math.floor(b[0] / spacing) * spacing, x1 = Math.ceil(b[3] / spacing) * spacing;
+    const y0 = Math.floor(b[1] / spacing) * spacing, y1 = Math.ceil(b[4] / spacing) * spacing;
     const z = b[2], out = [];
     for (let x = x0; x <= x1 + spacing * 1e-6; x += spacing) out.push(x, y0, z, x, y1, z);
     for (let y = y0; y <= y1 + spacing * 1e-6; y += spacing) out.push(x0, y, z, x1, y, z);
@@ -498,7 +498,7 @@ export class Viewer {
     gl.disableVertexAttribArray(1);
     const colorLoc = gl.getUniformLocation(this.lineProgram, 'color');
     for (const line of Object.values(this.lines)) {
-      if (!line.count || (!line.mark && !line.octants && !this.show.paths) || (line.octants && !this.show.octants)) continue;
+      if (!line.count || (!line.mark && !line.octants && !this.show.paths) || (line.octants && !this.show.octants) || (line.grid && !this.show.grid)) continue;
       gl.uniform4fv(colorLoc, line.color);
       this.attribute(this.lineProgram, 'position', line.buffer);
       gl.drawArrays(gl.LINES, 0, line.count);

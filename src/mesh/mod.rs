@@ -13,10 +13,6 @@ use std::collections::HashMap;
 use crate::geom::{Aabb, DVec3, Tolerances, Triangle};
 use import::ImportError;
 
-/// The least mean width (mm: twice a loop's area over its length) of a loop of open edges that
-/// makes it a hole in [`Mesh::open_edges`]: a circle of radius 0.02 mm.
-pub const HOLE_WIDTH: f64 = 0.01;
-
 /// An edge (vertex indices, smaller first) and the faces that share it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct EdgeFaces {
@@ -132,12 +128,12 @@ impl Mesh {
     }
 
     /// Holes in a surface that should be closed (a file cut short, a bad export): the edges
-    /// that border one triangle only, grouped into the loops they form, each loop kept as a
-    /// hole where it encloses an area (seen along its own normal) wider than
-    /// [`HOLE_WIDTH`] on average, and where it does not run along the rim of the part's
-    /// outline seen from above (a relief's open sides). Vertices are welded within a
-    /// millionth of the part's size first, so that seams exported as two coincident rings and
-    /// cracks at T-junctions (zero area) are not holes. Returns the loops' open edges' middles.
+    /// that border one triangle only, less those that close against other such edges (a crack
+    /// at a T-junction, where one long edge meets a row of short ones along the same line, or a
+    /// seam exported as two coincident rings: no gap at all) and less a relief's open side (a
+    /// loop running along the rim of the part's outline seen from above around all of it).
+    /// Vertices are welded within a millionth of the part's size first. Returns the middles
+    /// of the holes' edges.
     pub fn open_edges(&self) -> Vec<DVec3> {
         let b = self.bounds();
         let size = b.size().max_element().max(1e-9);
@@ -145,23 +141,51 @@ impl Mesh {
         let key = |v: DVec3| [(v.x / eps).round() as i64, (v.y / eps).round() as i64, (v.z / eps).round() as i64];
         let mut ids: HashMap<[i64; 3], u32> = HashMap::new();
         let welded: Vec<u32> = self.vertices.iter().map(|&v| { let n = ids.len() as u32; *ids.entry(key(v)).or_insert(n) }).collect();
-        let faces: Vec<[u32; 3]> = self.faces.iter().map(|f| f.map(|v| welded[v as usize])).filter(|f| f[0] != f[1] && f[1] != f[2] && f[2] != f[0]).collect();
+        let mut position = vec![DVec3::ZERO; ids.len()];
+        for (v, &w) in self.vertices.iter().zip(&welded) {
+            position[w as usize] = *v;
+        }
         // An edge is open where one triangle has it, taken in that triangle's direction.
         let mut count: HashMap<(u32, u32), ((u32, u32), u32)> = HashMap::new();
-        for f in &faces {
+        for f in &self.faces {
+            let f = f.map(|v| welded[v as usize]);
+            if f[0] == f[1] || f[1] == f[2] || f[2] == f[0] {
+                continue;
+            }
             for k in 0..3 {
                 let (a, c) = (f[k], f[(k + 1) % 3]);
                 count.entry((a.min(c), a.max(c))).or_insert(((a, c), 0)).1 += 1;
             }
         }
-        let mut position = vec![DVec3::ZERO; ids.len()];
-        for (v, &w) in self.vertices.iter().zip(&welded) {
-            position[w as usize] = *v;
+        let open: Vec<(DVec3, DVec3)> = count.into_values().filter(|&(_, n)| n == 1).map(|((a, c), _)| (position[a as usize], position[c as usize])).collect();
+        // Open edges by the cells of a 64³ grid over the part they pass through.
+        let cell = size / 64.0;
+        let mut cells: HashMap<[i64; 3], Vec<usize>> = HashMap::new();
+        let cells_of = |(p, q): (DVec3, DVec3)| {
+            let n = (p.distance(q) / (0.5 * cell)).ceil() as usize;
+            let mut out: Vec<[i64; 3]> = (0..=n).map(|i| p.lerp(q, i as f64 / n.max(1) as f64)).map(|x| ((x - b.min) / cell).floor().as_i64vec3().to_array()).collect();
+            out.dedup();
+            out
+        };
+        for (k, &e) in open.iter().enumerate() {
+            for c in cells_of(e) {
+                cells.entry(c).or_default().push(k);
+            }
         }
-        let open: Vec<(u32, u32)> = count.into_values().filter(|&(_, n)| n == 1).map(|(e, _)| e).collect();
-        // Loops by connected vertices (union–find).
-        let mut parent: HashMap<u32, u32> = HashMap::new();
-        fn root(parent: &mut HashMap<u32, u32>, x: u32) -> u32 {
+        let gaps: Vec<(DVec3, DVec3)> = open
+            .iter()
+            .enumerate()
+            .filter(|&(k, &e)| {
+                let mut near: Vec<usize> = cells_of(e).iter().flat_map(|c| cells[c].iter().copied()).filter(|&j| j != k).collect();
+                near.sort_unstable();
+                near.dedup();
+                !closed_against(e, near.iter().map(|&j| open[j]), eps)
+            })
+            .map(|(_, &e)| e)
+            .collect();
+        // The rest as loops of touching edges (by their welded ends).
+        let mut parent: HashMap<[i64; 3], [i64; 3]> = HashMap::new();
+        fn root(parent: &mut HashMap<[i64; 3], [i64; 3]>, x: [i64; 3]) -> [i64; 3] {
             let mut r = x;
             while let Some(&p) = parent.get(&r).filter(|&&p| p != r) {
                 r = p;
@@ -169,27 +193,27 @@ impl Mesh {
             parent.insert(x, r);
             r
         }
-        for &(a, c) in &open {
-            let (ra, rc) = (root(&mut parent, a), root(&mut parent, c));
-            if ra != rc {
-                parent.insert(ra, rc);
+        for &(p, q) in &gaps {
+            let (rp, rq) = (root(&mut parent, key(p)), root(&mut parent, key(q)));
+            if rp != rq {
+                parent.insert(rp, rq);
             }
         }
         let slack = 1e-6 * size.max(1.0);
         let on_rim = |p: DVec3| (p.x - b.min.x).abs() <= slack || (p.x - b.max.x).abs() <= slack || (p.y - b.min.y).abs() <= slack || (p.y - b.max.y).abs() <= slack;
-        // Per loop: its vector area, its length, whether it runs along the rim, its edges.
-        let mut loops: HashMap<u32, (DVec3, f64, bool, Vec<DVec3>)> = HashMap::new();
-        for &(a, c) in &open {
-            let (p, q) = (position[a as usize], position[c as usize]);
-            let l = loops.entry(root(&mut parent, a)).or_insert((DVec3::ZERO, 0.0, false, Vec::new()));
-            l.0 += p.cross(q) * 0.5;
-            l.1 += p.distance(q);
-            l.2 |= on_rim(p) && on_rim(q);
-            l.3.push((p + q) * 0.5);
+        // Per loop: its area seen from above, whether it runs along the rim all the way, its
+        // edges' middles.
+        let mut loops: HashMap<[i64; 3], (f64, bool, Vec<DVec3>)> = HashMap::new();
+        for &(p, q) in &gaps {
+            let l = loops.entry(root(&mut parent, key(p))).or_insert((0.0, true, Vec::new()));
+            l.0 += 0.5 * (p.x * q.y - q.x * p.y);
+            l.1 &= on_rim(p) && on_rim(q);
+            l.2.push((p + q) * 0.5);
         }
-        let mut holes: Vec<(DVec3, Vec<DVec3>)> = loops.into_values().filter(|(area, length, rim, _)| !rim && area.length() > HOLE_WIDTH * length).map(|(_, _, _, m)| (m[0], m)).collect();
-        holes.sort_by(|a, b| a.0.to_array().partial_cmp(&b.0.to_array()).unwrap_or(std::cmp::Ordering::Equal));
-        holes.into_iter().flat_map(|(_, m)| m).collect()
+        let outline = (b.max.x - b.min.x) * (b.max.y - b.min.y);
+        let mut holes: Vec<Vec<DVec3>> = loops.into_values().filter(|(area, rim, _)| !(*rim && area.abs() >= 0.9 * outline)).map(|(_, _, m)| m).collect();
+        holes.sort_by(|a, b| a[0].to_array().partial_cmp(&b[0].to_array()).unwrap_or(std::cmp::Ordering::Equal));
+        holes.into_iter().flatten().collect()
     }
 
     /// Applies `f` to every vertex.
@@ -217,4 +241,33 @@ impl Mesh {
         }
         out
     }
+}
+
+/// Whether the open edge `(p, q)` closes against the open edges `others`: those on its line
+/// (within `eps`) cover all of its length, as a crack at a T-junction or a doubled seam has them.
+fn closed_against((p, q): (DVec3, DVec3), others: impl Iterator<Item = (DVec3, DVec3)>, eps: f64) -> bool {
+    let length = p.distance(q);
+    if length <= eps {
+        return true;
+    }
+    let dir = (q - p) / length;
+    let on_line = |x: DVec3| (x - p - dir * (x - p).dot(dir)).length() <= 10.0 * eps;
+    // The parts of its length the others cover, as intervals along it.
+    let mut covered: Vec<(f64, f64)> = others
+        .filter(|&(a, c)| on_line(a) && on_line(c))
+        .map(|(a, c)| {
+            let (s, t) = ((a - p).dot(dir), (c - p).dot(dir));
+            (s.min(t).max(0.0), s.max(t).min(length))
+        })
+        .filter(|(s, t)| t > s)
+        .collect();
+    covered.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut reach = 0.0;
+    for (s, t) in covered {
+        if s > reach + 10.0 * eps {
+            return false;
+        }
+        reach = f64::max(reach, t);
+    }
+    reach >= length - 10.0 * eps
 }

@@ -1,141 +1,15 @@
 // End-to-end: the real page in headless Chromium (Debian's, driven by playwright-core), served
 // from www/ on 127.0.0.1. Loads the sample, generates, checks the canvas shows the path,
 // downloads the G-code and runs LinuxCNC's rs274 on it; then a bad file, and a cancel.
-import { test, before, after } from 'node:test';
+import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import http from 'node:http';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { execFileSync } from 'node:child_process';
-import { fileURLToPath, pathToFileURL } from 'node:url';
-import { chromium } from 'playwright-core';
+import { pathToFileURL } from 'node:url';
 import { dieStl } from '../../scripts/die-stl.mjs';
-
-const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../../www');
-const types = { '.html': 'text/html', '.js': 'text/javascript', '.mjs': 'text/javascript', '.css': 'text/css', '.wasm': 'application/wasm' };
-const shots = path.resolve(root, '../target/e2e');
-fs.mkdirSync(shots, { recursive: true });
-
-let server, browser, base;
-const offsite = [];
-
-before(async () => {
-  server = http.createServer((req, res) => {
-    const url = new URL(req.url, 'http://x');
-    const file = path.join(root, url.pathname === '/' ? 'index.html' : decodeURIComponent(url.pathname));
-    if (!file.startsWith(root) || !fs.existsSync(file) || fs.statSync(file).isDirectory()) { res.writeHead(404); res.end(); return; }
-    res.writeHead(200, { 'content-type': types[path.extname(file)] || 'application/octet-stream' });
-    fs.createReadStream(file).pipe(res);
-  });
-  await new Promise((resolve) => server.listen(0, '127.0.0.1', resolve));
-  base = `http://127.0.0.1:${server.address().port}/`;
-  browser = await chromium.launch({
-    executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
-    headless: true,
-    args: ['--no-sandbox', '--disable-background-networking', '--disable-component-update', '--no-first-run', '--disable-sync', '--disable-dev-shm-usage'],
-  });
-});
-
-after(async () => {
-  await browser?.close();
-  server?.close();
-});
-
-// Waits are bounded by what the page itself signals, not by short fixed timeouts: a Generate is
-// awaited until the page says it ended (body[data-generated]), failing only if its progress bar
-// and stage stand still for two minutes; other waits get five minutes, so that a machine busy
-// with other builds passes too.
-const PATIENCE = 300000;
-
-async function waitForGenerated(page) {
-  let last = null, since = Date.now();
-  for (;;) {
-    const now = await page.evaluate(() => ({ state: document.body.dataset.generated, progress: document.getElementById('progress').value, stage: document.getElementById('stage').textContent }));
-    if (now.state && now.state !== 'running') return now.state;
-    const key = `${now.progress} ${now.stage}`;
-    if (key !== last) { last = key; since = Date.now(); }
-    else if (Date.now() - since > 120000) throw new Error(`Generate stalled at ${key}`);
-    await page.waitForTimeout(250);
-  }
-}
-
-async function generated(page) {
-  const state = await waitForGenerated(page);
-  assert.equal(state, 'ok', await page.textContent('#message'));
-}
-
-async function openPage() {
-  const context = await browser.newContext({ acceptDownloads: true, viewport: { width: 1280, height: 800 } });
-  context.setDefaultTimeout(PATIENCE);
-  const page = await context.newPage();
-  const errors = [];
-  page.on('pageerror', (e) => errors.push(String(e)));
-  page.on('request', (r) => { if (!r.url().startsWith(base) && !r.url().startsWith('blob:') && !r.url().startsWith('data:')) offsite.push(r.url()); });
-  await page.goto(base);
-  await page.waitForSelector('body[data-ready="true"]');
-  await page.waitForFunction(() => !document.getElementById('generate').disabled);
-  return { page, context, errors };
-}
-
-// The sample part's job is the mould job (rough, raster shallow, waterline steep); tests that
-// look at one raster finish keep only that operation, selected, on the whole part.
-async function onlyRaster(page) {
-  await page.click('#op-list li:nth-child(3) .op-remove');
-  await page.click('#op-list li:nth-child(1) .op-remove');
-  assert.equal(await page.locator('#op-list li').count(), 1);
-  assert.match(await page.textContent('#op-list li'), /finish shallow/);
-  await page.fill('input[name=slopeMax]', '');
-}
-
-const toolTable = (tools) => tools.map((t) => `T${t.number} P${t.number} Z0.000 D${t.diameter.toFixed(3)} ;${t.shape}\n`).join('');
-
-// Counts canvas pixels by colour: the path's blue (the first operation's cutting moves are drawn
-// in rgb(27, 116, 209)), the second operation's purple (rgb(158, 51, 191)),
-// the simulated stock's tan, gouge red and rest-material blue, and the drawing's outline green (rgb(31, 140, 61)) and hole orange (rgb(217, 115, 13)).
-async function pixelCounts(page) {
-  return page.evaluate(() => {
-    const c = document.getElementById('view');
-    const gl = c.getContext('webgl2');
-    const px = new Uint8Array(c.width * c.height * 4);
-    gl.readPixels(0, 0, c.width, c.height, gl.RGBA, gl.UNSIGNED_BYTE, px);
-    const n = { path: 0, purple: 0, teal: 0, tan: 0, red: 0, blue: 0, green: 0, orange: 0 };
-    for (let i = 0; i < px.length; i += 4) {
-      const [r, g, b] = [px[i], px[i + 1], px[i + 2]];
-      if (b > 150 && r < 90 && g > 80 && g < 160) n.path++;
-      if (r > 120 && b > 150 && g < 90) n.purple++;
-      if (r < 60 && g > 110 && b > 100 && Math.abs(g - b) < 50) n.teal++;
-      if (r > 90 && r > b + 25 && g > b + 5 && g < r) n.tan++;
-      if (r > 120 && g < 50 && b < 50) n.red++;
-      if (b > r + 60 && b > 120) n.blue++;
-      if (g > 110 && r < 70 && b < 90) n.green++;
-      if (r > 180 && g > 80 && g < 150 && b < 50) n.orange++;
-    }
-    return n;
-  });
-}
-
-// Counts canvas pixels in each of the given tools' colours (as the viewer's `toolColor` gives
-// them: octree roughing draws a chosen tool's path and octants in it).
-async function toolPixels(page, numbers) {
-  return page.evaluate(async (list) => {
-    const { toolColor } = await import('./viewer.js');
-    const c = document.getElementById('view');
-    const gl = c.getContext('webgl2');
-    const px = new Uint8Array(c.width * c.height * 4);
-    gl.readPixels(0, 0, c.width, c.height, gl.RGBA, gl.UNSIGNED_BYTE, px);
-    const out = {};
-    for (const n of list) {
-      const [r, g, b] = toolColor(n).map((v) => Math.round(v * 255));
-      let k = 0;
-      for (let i = 0; i < px.length; i += 4) if (Math.abs(px[i] - r) < 25 && Math.abs(px[i + 1] - g) < 25 && Math.abs(px[i + 2] - b) < 25) k++;
-      out[n] = k;
-    }
-    return out;
-  }, numbers);
-}
-
-const pathPixels = async (page) => (await pixelCounts(page)).path;
+import { root, shots, offsite, PATIENCE, browser, base, waitForGenerated, generated, tab, frame, grblcheck, openPage, onlyRaster, toolTable, pixelCounts, toolPixels, pathPixels, boxStl, boxGltf } from './harness.mjs';
 
 test('sample part → generate → path on the canvas → G-code that rs274 accepts', async () => {
   const { page, context, errors } = await openPage();
@@ -149,12 +23,12 @@ test('sample part → generate → path on the canvas → G-code that rs274 acce
   await page.screenshot({ path: path.join(shots, 'generated.png') });
   assert.ok(before < 50, `path-coloured pixels before generating: ${before}`);
   assert.ok(after > 5000, `path-coloured pixels after generating: ${after}`);
-  assert.match(await page.textContent('#stats'), /estimated cycle time \d+:\d\d min/);
+  assert.match(await page.textContent('#stats'), /cycle time\s*\d+:\d\d (m:ss|h:mm:ss)/);
 
   const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
   const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-'));
-  // Named as LinuxCNC expects (the default controller).
-  assert.match(download.suggestedFilename(), /\.ngc$/);
+  // Named for the part and the controller, as LinuxCNC expects (the default controller).
+  assert.equal(download.suggestedFilename(), 'sample-linuxcnc.ngc');
   const program = path.join(dir, download.suggestedFilename());
   await download.saveAs(program);
   const gcode = fs.readFileSync(program, 'utf8');
@@ -180,6 +54,7 @@ test('a truncated STL shows a clear error and keeps the part and the settings', 
   const { page, context, errors } = await openPage();
   await onlyRaster(page);
   await page.fill('input[name=stepover]', '0.7');
+  await tab(page, 'tools');
   await page.selectOption('select[name=shape]', 'bullNose');
   const bytes = await page.evaluate(() => Array.from(window.swarf.sample.slice(0, 1000)));
   await page.setInputFiles('#file', { name: 'broken.stl', mimeType: 'model/stl', buffer: Buffer.from(bytes) });
@@ -220,8 +95,11 @@ test('a saved job loads back and runs on the command line as in the page', async
   await onlyRaster(page);
   await page.fill('input[name=stepover]', '2.5');
   await page.fill('input[name=angle]', '30');
+  await tab(page, 'stock');
   await page.fill('input[name=marginSides]', '2, 3, 4, 5');
+  await tab(page, 'post');
   await page.selectOption('select[name=dialect]', 'grbl');
+  await tab(page, 'ops');
   const [saved] = await Promise.all([page.waitForEvent('download'), page.click('#save-job')]);
   const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-job-'));
   const jobFile = path.join(dir, 'job.json');
@@ -244,16 +122,19 @@ test('a saved job loads back and runs on the command line as in the page', async
   fs.writeFileSync(typo, JSON.stringify(bad));
   await page.setInputFiles('#load-job', typo);
   await page.waitForFunction(() => /stepOver/.test(document.getElementById('message').textContent));
-  assert.match(await page.textContent('#message'), /typo\.json: invalid job file: unknown field: operations\[0\]\.stepOver \(did you mean stepover\?\)/);
+  assert.match(await page.textContent('#message'), /typo\.json: unknown field: operations\[0\]\.stepOver \(did you mean stepover\?\)/);
+  assert.equal(await page.getAttribute('#message', 'class'), 'error');
   assert.equal(await page.inputValue('input[name=stepover]'), '2.5');
   // The page's G-code equals the CLI's for the same job and part.
   await page.click('#generate');
   await generated(page);
   const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
-  // A GRBL program is named .nc.
-  assert.match(download.suggestedFilename(), /\.nc$/);
+  // A GRBL program is named for GRBL, and GRBL 1.1h's own parser reads it.
+  assert.equal(download.suggestedFilename(), 'sample-grbl11.nc');
   const fromPage = path.join(dir, 'page.nc');
   await download.saveAs(fromPage);
+  const grbl = grblcheck(fromPage);
+  assert.ok(!grbl || grbl.ok, grbl?.said);
   const stl = path.join(dir, 'sample.stl');
   fs.writeFileSync(stl, Buffer.from(await page.evaluate(() => Array.from(window.swarf.sample))));
   const cli = path.resolve(root, '../target/debug/swarf');
@@ -271,7 +152,6 @@ test('the page asked for nothing outside its own server', () => {
   assert.deepEqual(offsite, []);
 });
 
-const stockPixels = pixelCounts;
 
 test('the simulated stock: drawn after generating, scrubbed back to the raw block and forward, MRR plotted, report clean', async () => {
   const { page, context, errors } = await openPage();
@@ -286,12 +166,12 @@ test('the simulated stock: drawn after generating, scrubbed back to the raw bloc
   assert.match(report, /rapid moves through stock: 0/);
   const moves = Number(await page.evaluate(() => document.body.dataset.simMoves));
   assert.ok(moves > 1000, `moves simulated at the end: ${moves}`);
-  const end = await stockPixels(page);
+  const end = await pixelCounts(page);
   await page.screenshot({ path: path.join(shots, 'simulated.png') });
   // Back to the start: the raw block, nothing cut, no rest-material colour yet on a flat top.
   await page.evaluate(() => { const s = document.getElementById('scrub'); s.value = '0'; s.dispatchEvent(new Event('input')); });
   await page.waitForFunction(() => document.body.dataset.simMoves === '0');
-  const start = await stockPixels(page);
+  const start = await pixelCounts(page);
   await page.screenshot({ path: path.join(shots, 'simulated-start.png') });
   // Half way, by playing: the scrubber moves on its own.
   await page.evaluate(() => { const s = document.getElementById('scrub'); s.value = String(Number(s.max) / 2); s.dispatchEvent(new Event('input')); });
@@ -324,8 +204,11 @@ test('the sample drawing: loops shown as outlines and holes, profile and pocket 
   await page.waitForFunction(() => document.body.dataset.kind === 'drawing');
   const shown = await pixelCounts(page);
   assert.ok(shown.green > 200 && shown.orange > 200, `outline and hole pixels: ${JSON.stringify(shown)}`);
-  assert.match(await page.textContent('#stats'), /6 closed loops: 2 outlines \(green\), 4 holes \(orange\)/);
-  assert.match(await page.textContent('#stats'), /layers: CUT, POCKET/);
+  assert.match(await page.textContent('#drawing-size'), /6 closed loops: 2 outlines \(green\), 4 holes \(orange\)/);
+  assert.match(await page.textContent('#drawing-size'), /layers CUT, POCKET/);
+  // A drawing is seen from above.
+  assert.ok(await page.evaluate(() => window.swarfView.camera.pitch > 1.5));
+  await tab(page, 'ops');
   // The sheet job starts with a profile on the 3 mm flat end mill; a pocket is added and moved
   // first, each on its layer, and one program makes both.
   await page.fill('input[name=layers]', 'CUT');
@@ -354,6 +237,7 @@ test('the sample drawing: loops shown as outlines and holes, profile and pocket 
   const open = '0\nSECTION\n2\nENTITIES\n0\nLINE\n8\nOPEN\n10\n0\n20\n0\n11\n10\n21\n0\n0\nENDSEC\n0\nEOF\n';
   await page.setInputFiles('#file', { name: 'open.dxf', mimeType: 'application/dxf', buffer: Buffer.from(open) });
   await page.waitForFunction(() => /open chain/.test(document.getElementById('message').textContent));
+  assert.equal(await page.getAttribute('#message', 'class'), 'warning');
   assert.match(await page.textContent('#message'), /layer OPEN from \(0\.00, 0\.00\) to \(10\.00, 0\.00\)/);
   assert.equal(await page.inputValue('input[name=layers]'), 'POCKET');
   assert.deepEqual(errors, []);
@@ -364,6 +248,7 @@ test('loops picked by clicking them in the view: highlighted, kept in the operat
   const { page, context, errors } = await openPage();
   await page.click('#use-sample-drawing');
   await page.waitForFunction(() => document.body.dataset.kind === 'drawing');
+  await tab(page, 'ops');
   assert.match(await page.textContent('#op-list li.selected'), /profile/);
   // Where the view draws the middle of the first hole's first segment, and of an outline's
   // (asked again after Generate, which makes room for the scrubber under the view).
@@ -388,11 +273,13 @@ test('loops picked by clicking them in the view: highlighted, kept in the operat
     for (let i = 0; i < px.length; i += 4) if (px[i] < 60 && px[i + 1] > 150 && px[i + 2] > 220) n++;
     return n;
   });
+  await frame(page);
   assert.equal(await cyan(), 0, 'nothing picked yet');
   await click(where.hole);
   await page.waitForFunction((k) => document.querySelector('input[name=loops]').value === String(k), where.hole.index);
   assert.match(await page.textContent('#message'), new RegExp(`loop ${where.hole.index} \\([^)]*hole\\) picked`));
   assert.deepEqual(await page.evaluate(() => window.swarf.jobs.drawing.operations[0].loops), [where.hole.index]);
+  await frame(page);
   assert.ok((await cyan()) > 50, 'the picked loop is drawn in its own colour');
   // The profile cuts that hole alone: every cutting move stays inside the hole's box.
   await page.click('#generate');
@@ -400,6 +287,7 @@ test('loops picked by clicking them in the view: highlighted, kept in the operat
   const points = [...(await page.evaluate(() => window.swarf.gcode)).matchAll(/^G[123] X(-?[\d.]+) Y(-?[\d.]+)/gm)].map((m) => [Number(m[1]), Number(m[2])]);
   assert.ok(points.length > 3, 'cutting moves');
   for (const [x, y] of points) assert.ok(x >= where.hole.min[0] - 1e-3 && x <= where.hole.max[0] + 1e-3 && y >= where.hole.min[1] - 1e-3 && y <= where.hole.max[1] + 1e-3, `(${x}, ${y}) outside the picked hole`);
+  await frame(page);
   assert.ok((await cyan()) > 50, 'still highlighted after Generate');
   // A second loop joins, then the first is clicked off.
   where = await locate();
@@ -416,6 +304,7 @@ test('loops picked by clicking them in the view: highlighted, kept in the operat
   assert.deepEqual(await page.evaluate(() => window.swarf.jobs.drawing.operations[0].loops), [where.outline.index]);
   await page.fill('input[name=loops]', '');
   await page.dispatchEvent('input[name=loops]', 'change');
+  await frame(page);
   assert.equal(await cyan(), 0, 'emptied by hand: nothing highlighted');
   assert.deepEqual(errors, []);
   await context.close();
@@ -474,6 +363,22 @@ test('a die-sized part in the page: generated, drawn from a coarse view of the s
   };
   const [hidden, shown] = [await seen(false), await seen(true)];
   assert.ok(shown > hidden + 1000, `stock pixels ${shown} shown against ${hidden} hidden`);
+  // A million segments stay orbitable: while the view moves it draws every k-th of them (the
+  // whole once it stops), in a fraction of the time.
+  const timing = await page.evaluate(() => {
+    const v = window.swarfView;
+    v.show.paths = true;
+    v.show.stock = false;
+    const pixel = new Uint8Array(4);
+    const time = (moving) => { v.moving = moving; const t0 = performance.now(); v.render(); v.gl.readPixels(0, 0, 1, 1, v.gl.RGBA, v.gl.UNSIGNED_BYTE, pixel); return performance.now() - t0; };
+    time(false);
+    const full = Math.min(time(false), time(false)), thin = Math.min(time(true), time(true));
+    v.moving = false;
+    return { full, thin, segments: v.groups.reduce((s, g) => s + g.count, 0), thinned: v.groups.reduce((s, g) => s + (g.thin ? g.thin.count : g.count), 0) };
+  });
+  console.log(`die-sized view: ${timing.segments} segments drawn in ${timing.full.toFixed(0)} ms, ${timing.thinned} while moving in ${timing.thin.toFixed(0)} ms`);
+  assert.ok(timing.thinned <= 400000 && timing.segments > 2 * timing.thinned, JSON.stringify(timing));
+  assert.ok(timing.thin < timing.full, JSON.stringify(timing));
   assert.deepEqual(errors, []);
   await context.close();
 });
@@ -481,10 +386,12 @@ test('a die-sized part in the page: generated, drawn from a coarse view of the s
 test('a program with problems shows them in red and downloads only when confirmed; a failed Generate clears the last result', async () => {
   const { page, context, errors } = await openPage();
   await onlyRaster(page);
+  await tab(page, 'tools');
   await page.selectOption('#tool-list', '1');
   await page.fill('input[name=fluteLength]', '20');
   // The stock as the boundary: the ball follows the floor along the stock's edges, 26 mm deep
   // in the raw block with 20 mm of flutes.
+  await tab(page, 'ops');
   await page.selectOption('select[name=boundary]', 'stock');
   await page.fill('input[name=stepover]', '3');
   await page.fill('input[name=grid]', '0.5');
@@ -492,7 +399,9 @@ test('a program with problems shows them in red and downloads only when confirme
   assert.equal(await waitForGenerated(page), 'problem');
   const message = await page.textContent('#message');
   assert.match(message, /Not safe to run: the simulation found problems: .*bury the tool/);
-  assert.notEqual(await page.getAttribute('#message', 'class'), 'info');
+  assert.equal(await page.getAttribute('#message', 'class'), 'error');
+  assert.match(await page.textContent('#warnings'), /Not safe to run/);
+  assert.equal(await page.textContent('#warning-count'), '!');
   assert.ok((await pathPixels(page)) > 1000, 'the path is still shown');
   const marks = await pixelCounts(page);
   assert.ok(marks.orange + marks.red > 0, `the places are marked: ${JSON.stringify(marks)}`);
@@ -526,6 +435,7 @@ test('a tool library and a second operation: both paths in their colours, one pr
   await page.fill('input[name=grid]', '0.5');
   await page.fill('input[name=allowance]', '0.3');
   // A second tool: a φ3 ball, T2.
+  await tab(page, 'tools');
   const before = await page.locator('#tool-list option').count();
   await page.click('#tool-add');
   await page.fill('input[name=toolName]', 'fine ball');
@@ -534,6 +444,7 @@ test('a tool library and a second operation: both paths in their colours, one pr
   assert.equal(await page.locator('#tool-list option').count(), before + 1);
   const number = Number(await page.inputValue('input[name=toolNumber]'));
   // A second raster, across the first, with the new tool.
+  await tab(page, 'ops');
   await page.selectOption('#op-kind', 'finishRaster');
   await page.click('#op-add');
   await page.selectOption('select[name=opTool]', String(number));
@@ -546,7 +457,7 @@ test('a tool library and a second operation: both paths in their colours, one pr
   const px = await pixelCounts(page);
   await page.screenshot({ path: path.join(shots, 'two-operations.png') });
   assert.ok(px.path > 2000 && px.purple > 2000, `both operations' colours on the canvas: ${JSON.stringify(px)}`);
-  assert.match(await page.textContent('#stats'), /raster finish 2 \(T\d+\)/);
+  assert.match(await page.textContent('#stats'), /raster finish 2 with T\d+/);
   const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
   const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-tools-'));
   const program = path.join(dir, download.suggestedFilename());
@@ -560,6 +471,7 @@ test('a tool library and a second operation: both paths in their colours, one pr
   // The library and the operations are still there after a reload.
   await page.reload();
   await page.waitForSelector('body[data-ready="true"]');
+  await tab(page, 'ops');
   assert.equal(await page.locator('#tool-list option').count(), before + 1);
   assert.match(await page.textContent('#tool-list'), /fine ball/);
   assert.equal(await page.locator('#op-list li').count(), 2);
@@ -590,7 +502,7 @@ test('the sample part\'s mould job: roughing, then shallow and steep finishing, 
   await page.screenshot({ path: path.join(shots, 'mould-job.png') });
   assert.ok(px.path > 2000 && px.purple > 2000 && px.teal > 500, `the three operations' colours: ${JSON.stringify(px)}`);
   const stats = await page.textContent('#stats');
-  assert.match(stats, /rough \(T1\)[\s\S]*finish shallow \(T2\)[\s\S]*finish steep \(T2\)/);
+  assert.match(stats, /rough with T1[\s\S]*finish shallow with T2[\s\S]*finish steep with T2[\s\S]*1 tool change/);
   const report = await page.textContent('#sim-report');
   assert.match(report, /gouges: 0/);
   assert.match(report, /rapid moves through stock: 0/);
@@ -601,6 +513,7 @@ test('the sample part\'s mould job: roughing, then shallow and steep finishing, 
 
 test('zigzag roughing with the load held: added in the page, the reference line on the MRR plot, a clean program that rs274 runs', async () => {
   const { page, context, errors } = await openPage();
+  await tab(page, 'ops');
   for (const k of [3, 2, 1]) await page.click(`#op-list li:nth-child(${k}) .op-remove`);
   await page.selectOption('#op-kind', 'roughZigzag');
   await page.click('#op-add');
@@ -641,8 +554,10 @@ test('zigzag roughing with the load held: added in the page, the reference line 
 
 test('octree roughing: the tools chosen from the library, each stage\'s path and octants in its tool\'s colour, the reasons in the report, one program that rs274 runs', async () => {
   const { page, context, errors } = await openPage();
+  await tab(page, 'ops');
   for (const k of [3, 2, 1]) await page.click(`#op-list li:nth-child(${k}) .op-remove`);
   // Two more flat ends beside the sample's φ6: a φ16 and a φ3.
+  await tab(page, 'tools');
   const numbers = [];
   for (const d of ['16', '3']) {
     await page.click('#tool-add');
@@ -651,6 +566,7 @@ test('octree roughing: the tools chosen from the library, each stage\'s path and
     await page.fill('input[name=fluteLength]', String(3 * Number(d)));
     numbers.push(Number(await page.inputValue('input[name=toolNumber]')));
   }
+  await tab(page, 'ops');
   await page.selectOption('#op-kind', 'roughOctree');
   await page.click('#op-add');
   // It picks its own tools: no tool field, an empty list (the whole library), the core's defaults.
@@ -662,14 +578,15 @@ test('octree roughing: the tools chosen from the library, each stage\'s path and
   await generated(page);
   const stats = await page.textContent('#stats');
   assert.match(stats, new RegExp(`T${numbers[0]} φ16 \\(first tool\\): the largest tool`), stats);
-  assert.match(stats, /\(profile\)/, stats);
+  assert.match(stats, /\(around the part\)/, stats);
+  assert.doesNotMatch(stats, /γ|§|octant/, 'the report in a machinist\'s words');
   const report = await page.textContent('#sim-report');
   assert.match(report, /gouges: 0/);
   assert.match(report, /rapid moves through stock: 0/);
   assert.match(report, /tool body \(above the flutes\) in material: 0/);
   // Each chosen tool's path and octants in its colour, with the stock hidden (the library's
   // other φ3, from the sample drawing's job, may be the one chosen: tools of one diameter are one).
-  const stages = [...stats.matchAll(/T(\d+) φ[\d.]+ \((first tool|octants|profile)\)/g)].map((m) => Number(m[1]));
+  const stages = [...stats.matchAll(/T(\d+) φ[\d.]+ \((first tool|blocks left|around the part)\)/g)].map((m) => Number(m[1]));
   assert.equal(stages[0], numbers[0], stats);
   const last = stages[stages.length - 1];
   await page.uncheck('#show-stock');
@@ -692,23 +609,12 @@ test('octree roughing: the tools chosen from the library, each stage\'s path and
   await context.close();
 });
 
-// A box as a binary STL (12 triangles), `size` = [x, y, z] from the origin.
-function boxStl([x, y, z]) {
-  const v = (i) => [(i & 1) * x, ((i >> 1) & 1) * y, ((i >> 2) & 1) * z];
-  const faces = [[0, 2, 3], [0, 3, 1], [4, 5, 7], [4, 7, 6], [0, 1, 5], [0, 5, 4], [2, 6, 7], [2, 7, 3], [0, 4, 6], [0, 6, 2], [1, 3, 7], [1, 7, 5]];
-  const buf = Buffer.alloc(84 + faces.length * 50);
-  buf.writeUInt32LE(faces.length, 80);
-  faces.forEach((f, k) => {
-    const o = 84 + k * 50 + 12;
-    f.forEach((i, j) => v(i).forEach((c, a) => buf.writeFloatLE(c, o + j * 12 + a * 4)));
-  });
-  return buf;
-}
-
 test('the view frames a tall part and a cube whole, on load and after Generate', async () => {
   const { page, context, errors } = await openPage();
-  // The box of pixels that are not the background.
-  const drawn = () => page.evaluate(() => {
+  // The box of pixels that are not the background (the grid under the part and the tool above
+  // it left out).
+  await page.evaluate(() => { window.swarfView.show.grid = false; window.swarfView.show.tool = false; });
+  const drawn = async () => { await frame(page); return page.evaluate(() => {
     const c = document.getElementById('view');
     const gl = c.getContext('webgl2');
     const px = new Uint8Array(c.width * c.height * 4);
@@ -719,7 +625,7 @@ test('the view frames a tall part and a cube whole, on load and after Generate',
       if (Math.abs(px[i] - 237) + Math.abs(px[i + 1] - 241) + Math.abs(px[i + 2] - 244) > 30) { x0 = Math.min(x0, x); x1 = Math.max(x1, x); y0 = Math.min(y0, y); y1 = Math.max(y1, y); }
     }
     return { x0, y0, x1, y1, w: c.width, h: c.height };
-  });
+  }); };
   for (const [name, size] of [['tall.stl', [20, 20, 150]], ['cube.stl', [400, 400, 400]]]) {
     await page.setInputFiles('#file', { name, mimeType: 'model/stl', buffer: boxStl(size) });
     await page.waitForFunction((n) => document.getElementById('part-name').textContent.includes(n), name);
@@ -757,6 +663,7 @@ test('every built-in post writes the program again without planning again, rs274
   const tools = await page.evaluate(() => window.swarf.tools);
   fs.writeFileSync(path.join(dir, 'tool.tbl'), toolTable(tools));
   const posted = () => page.evaluate(() => Number(document.body.dataset.posted ?? 0));
+  await tab(page, 'post');
   const choose = async (dialect) => {
     const before = await posted();
     await page.selectOption('select[name=dialect]', dialect);
@@ -775,19 +682,27 @@ test('every built-in post writes the program again without planning again, rs274
     return execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), file], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });
   };
   const expect = { grbl: ['nc', 'GRBL 1.1'], grblHal: ['nc', 'grblHAL'], mach3: ['tap', 'Mach3/Mach4'], fanuc: ['nc', 'Fanuc'], generic: ['nc', 'Generic RS-274'], linuxCnc: ['ngc', 'LinuxCNC'] };
-  const feeds = {};
+  const feeds = {}, names = new Set();
   for (const [dialect, [ext, name]] of Object.entries(expect)) {
     await choose(dialect);
     assert.equal(await page.textContent('#stage'), 'done', 'no Generate ran again');
     const { name: file, text } = await downloadProgram();
     assert.ok(file.endsWith(`.${ext}`), `${dialect}: ${file}`);
+    // Two controllers' programs never share a name; every comment is ASCII.
+    assert.ok(!names.has(file), `${dialect}: ${file} again`);
+    names.add(file);
+    assert.ok(/^[\x00-\x7f]*$/.test(text), `${dialect}: a character past ASCII`);
     assert.match(text, new RegExp(`generated by swarf [\\d.]+ for ${name.replace('/', '\\/')}`));
     assert.match(text, /cycle time \d+:\d\d/);
     const canon = rs274(text);
     const lines = canon.split('\n');
     feeds[dialect] = lines.filter((l) => l.includes('STRAIGHT_FEED(') || l.includes('ARC_FEED(')).length;
     if (dialect !== 'generic') assert.ok(lines.some((l) => l.includes('ARC_FEED(')), `${dialect}: rs274 saw arcs`);
-    if (dialect === 'grbl') assert.doesNotMatch(text, /M6/);
+    if (dialect === 'grbl') {
+      assert.doesNotMatch(text, /M6/);
+      const grbl = grblcheck(path.join(dir, file));
+      assert.ok(!grbl || grbl.ok, grbl?.said);
+    }
     if (dialect === 'fanuc') assert.match(text, /^%\nO0001 /);
   }
   // Quadrant splits and chords add moves; none loses any.
@@ -821,11 +736,15 @@ test('every built-in post writes the program again without planning again, rs274
 
 test('a project saved from the page holds the job and the part: the command line runs it to the page\'s program, and opening it brings back part and settings', async () => {
   const { page, context, errors } = await openPage();
-  // A part of the user's own (a box), a raster operation with settings of its own.
-  await page.setInputFiles('#file', { name: 'block.stl', mimeType: 'model/stl', buffer: boxStl([40, 30, 12]) });
+  // A part of the user's own, drawn in inches: a box 1.6 × 1.2 × 0.5 in.
+  await page.setInputFiles('#file', { name: 'block.stl', mimeType: 'model/stl', buffer: boxStl([1.6, 1.2, 0.5]) });
   await page.waitForFunction(() => /block\.stl/.test(document.getElementById('part-name').textContent));
+  await tab(page, 'part');
+  await page.selectOption('select[name=partUnits]', 'inch');
+  await page.waitForFunction(() => /40\.6 × 30\.5 × 12\.7 mm/.test(document.getElementById('part-size').textContent));
   await onlyRaster(page);
   await page.fill('input[name=stepover]', '3');
+  await tab(page, 'post');
   await page.selectOption('select[name=dialect]', 'fanuc');
   await page.click('#generate');
   await generated(page);
@@ -845,17 +764,21 @@ test('a project saved from the page holds the job and the part: the command line
   assert.ok(fs.existsSync(cli), `the swarf command line is not built at ${cli}`);
   execFileSync(cli, ['run', projectFile, '-q']);
   assert.equal(fs.readFileSync(path.join(dir, 'block.nc'), 'utf8'), fs.readFileSync(fromPage, 'utf8'));
-  // Elsewhere in the page: the sample, other settings. Opening the project brings all back.
+  // Elsewhere in the page: the sample (read in its own units again), other settings. Opening
+  // the project brings all back, its part in the units it was saved with.
   await page.click('#use-sample');
   await page.waitForFunction(() => /sample part/.test(document.getElementById('part-name').textContent));
-  await page.fill('input[name=stepover]', '7');
+  assert.equal(await page.inputValue('select[name=partUnits]'), 'auto');
   await page.selectOption('select[name=dialect]', 'linuxCnc');
+  await tab(page, 'ops');
+  await page.fill('input[name=stepover]', '7');
   await page.setInputFiles('#open-project', projectFile);
   await page.waitForFunction(() => /Opened the project/.test(document.getElementById('message').textContent));
   assert.match(await page.textContent('#part-name'), /block\.stl/);
   assert.equal(await page.inputValue('input[name=stepover]'), '3');
   assert.equal(await page.inputValue('select[name=dialect]'), 'fanuc');
-  assert.match(await page.textContent('#stats'), /size 40\.0 × 30\.0 × 12\.0 mm/);
+  assert.match(await page.textContent('#part-size'), /40\.6 × 30\.5 × 12\.7 mm/);
+  assert.equal(await page.inputValue('select[name=partUnits]'), 'inch');
   // A project with a field it does not know is named, and the page keeps what it has.
   const bad = path.join(dir, 'bad.swarf.json');
   fs.writeFileSync(bad, JSON.stringify({ ...project, notes: 'x' }));
@@ -866,40 +789,31 @@ test('a project saved from the page holds the job and the part: the command line
   await context.close();
 });
 
-// A box as a glTF file (its coordinates in the file's unit), one triangle list in a data URI.
-function boxGltf([x, y, z]) {
-  const stl = boxStl([x, y, z]);
-  const floats = [];
-  for (let f = 0; f < 12; f++) for (let k = 0; k < 9; k++) floats.push(stl.readFloatLE(84 + f * 50 + 12 + k * 4));
-  const bin = Buffer.from(new Float32Array(floats).buffer);
-  return Buffer.from(JSON.stringify({
-    asset: { version: '2.0' }, scene: 0, scenes: [{ nodes: [0] }], nodes: [{ mesh: 0 }],
-    meshes: [{ primitives: [{ attributes: { POSITION: 0 } }] }],
-    accessors: [{ bufferView: 0, componentType: 5126, count: 36, type: 'VEC3', min: [0, 0, 0], max: [x, y, z] }],
-    bufferViews: [{ buffer: 0, byteLength: bin.length }],
-    buffers: [{ byteLength: bin.length, uri: `data:application/octet-stream;base64,${bin.toString('base64')}` }],
-  }));
-}
-
 test('a glTF part is read in metres, the user can say mm or scale it, and a part smaller than the tool is named', async () => {
   const { page, context, errors } = await openPage();
   await page.selectOption('select[name=partUnits]', 'auto');
   await page.fill('input[name=partScale]', '1');
   await page.setInputFiles('#file', { name: 'box.gltf', mimeType: 'model/gltf+json', buffer: boxGltf([0.04, 0.03, 0.01]) });
-  await page.waitForFunction(() => /size 40\.0 × 30\.0 × 10\.0 mm/.test(document.getElementById('stats').textContent));
+  await page.waitForFunction(() => /40\.0 × 30\.0 × 10\.0 mm/.test(document.getElementById('part-size').textContent));
+  assert.match(await page.textContent('#part-size'), /read in metres, as glTF is/);
   // Read as millimetres it is a speck; a scale brings it back.
   await page.selectOption('select[name=partUnits]', 'mm');
-  await page.waitForFunction(() => /size 0\.0 × 0\.0 × 0\.0 mm/.test(document.getElementById('stats').textContent));
+  await page.waitForFunction(() => /0\.040 × 0\.030 × 0\.010 mm/.test(document.getElementById('part-size').textContent));
+  assert.match(await page.textContent('#part-size .override'), /read in mm/);
   await page.fill('input[name=partScale]', '500');
   await page.press('input[name=partScale]', 'Tab');
-  await page.waitForFunction(() => /size 20\.0 × 15\.0 × 5\.0 mm/.test(document.getElementById('stats').textContent));
-  // At a thousandth of its size the tool is larger than the part: the page says so.
-  await page.fill('input[name=partScale]', '0.1');
+  await page.waitForFunction(() => /20\.0 × 15\.0 × 5\.00 mm/.test(document.getElementById('part-size').textContent));
+  assert.match(await page.textContent('#part-size .override'), /read in mm, scaled × 500/);
+  // At a tenth of its size (4 × 3 × 1 mm) the tool is larger than the part: the page says so.
+  await page.fill('input[name=partScale]', '100');
   await page.press('input[name=partScale]', 'Tab');
   await onlyRaster(page);
   await page.click('#generate');
   await waitForGenerated(page);
   assert.match(await page.textContent('#message'), /smaller than the φ\d+ tool T\d+: is its unit right\?/);
+  // A warning, in amber, with its count on the tab of warnings.
+  assert.equal(await page.getAttribute('#message', 'class'), 'warning');
+  assert.equal(await page.textContent('#warning-count'), '1');
   assert.deepEqual(errors, []);
   await context.close();
 });
@@ -971,6 +885,7 @@ test('engraving: open chains on a layer of their own cut along their lines besid
   dxf += '0\nENDSEC\n0\nEOF\n';
   await page.setInputFiles('#file', { name: 'sign.dxf', mimeType: 'application/dxf', buffer: Buffer.from(dxf) });
   await page.waitForFunction(() => document.body.dataset.kind === 'drawing');
+  await tab(page, 'ops');
   await page.fill('input[name=layers]', 'CUT');
   await page.selectOption('#op-kind', 'engrave');
   await page.click('#op-add');

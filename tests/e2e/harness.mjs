@@ -1,0 +1,195 @@
+// The harness of the page's end-to-end tests: the page served from www/ on 127.0.0.1 to a
+// headless Chromium (Debian's, driven by playwright-core) for each test file that imports it,
+// and what the tests share: waiting on the page's own signals, its tabs, pixels of the view,
+// LinuxCNC's rs274 and GRBL's own parser on the programs it downloads, parts made here.
+import { before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import http from 'node:http';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { execFileSync } from 'node:child_process';
+import { fileURLToPath, pathToFileURL } from 'node:url';
+import { chromium } from 'playwright-core';
+
+export const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../../www');
+const types = { '.html': 'text/html', '.js': 'text/javascript', '.mjs': 'text/javascript', '.css': 'text/css', '.wasm': 'application/wasm' };
+export const shots = path.resolve(root, '../target/e2e');
+fs.mkdirSync(shots, { recursive: true });
+
+let server;
+export let browser, base;
+export const offsite = [];
+
+before(async () => {
+  server = http.createServer((req, res) => {
+    const url = new URL(req.url, 'http://x');
+    const file = path.join(root, url.pathname === '/' ? 'index.html' : decodeURIComponent(url.pathname));
+    if (!file.startsWith(root) || !fs.existsSync(file) || fs.statSync(file).isDirectory()) { res.writeHead(404); res.end(); return; }
+    res.writeHead(200, { 'content-type': types[path.extname(file)] || 'application/octet-stream' });
+    fs.createReadStream(file).pipe(res);
+  });
+  await new Promise((resolve) => server.listen(0, '127.0.0.1', resolve));
+  base = `http://127.0.0.1:${server.address().port}/`;
+  browser = await chromium.launch({
+    executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
+    headless: true,
+    args: ['--no-sandbox', '--disable-background-networking', '--disable-component-update', '--no-first-run', '--disable-sync', '--disable-dev-shm-usage'],
+  });
+});
+
+after(async () => {
+  await browser?.close();
+  server?.close();
+});
+
+// Waits are bounded by what the page itself signals, not by short fixed timeouts: a Generate is
+// awaited until the page says it ended (body[data-generated]), failing only if its progress bar
+// and stage stand still for two minutes; other waits get five minutes, so that a machine busy
+// with other builds passes too.
+export const PATIENCE = 300000;
+
+export async function waitForGenerated(page) {
+  let last = null, since = Date.now();
+  for (;;) {
+    const now = await page.evaluate(() => ({ state: document.body.dataset.generated, progress: document.getElementById('progress').value, stage: document.getElementById('stage').textContent }));
+    if (now.state && now.state !== 'running') return now.state;
+    const key = `${now.progress} ${now.stage}`;
+    if (key !== last) { last = key; since = Date.now(); }
+    else if (Date.now() - since > 120000) throw new Error(`Generate stalled at ${key}`);
+    await page.waitForTimeout(250);
+  }
+}
+
+export async function generated(page) {
+  const state = await waitForGenerated(page);
+  assert.equal(state, 'ok', await page.textContent('#message'));
+  await frame(page);
+}
+
+// The settings' tab `name` (part, stock, tools, ops, post): a field is filled where it shows.
+export async function tab(page, name) {
+  await page.click(`#tabs [data-tab="${name}"]`);
+}
+
+// Two frames of the page: the view draws at the next frame after a change.
+export async function frame(page) {
+  await page.evaluate(() => new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve))));
+}
+
+// GRBL 1.1h's own parser on a program (../shared/tools/grbl/grblcheck), where the shared tools
+// are beside this checkout: null where they are not, else what it said.
+export const grblcheckTool = path.resolve(root, '../../shared/tools/grbl/grblcheck');
+export function grblcheck(file) {
+  if (!fs.existsSync(grblcheckTool)) { console.log(`skipping GRBL's own parser: ${grblcheckTool} is absent`); return null; }
+  try {
+    return { ok: true, said: execFileSync('bash', [grblcheckTool, file], { encoding: 'utf8' }) };
+  } catch (e) {
+    return { ok: false, said: `${e.stdout}${e.stderr}` };
+  }
+}
+
+export async function openPage() {
+  const context = await browser.newContext({ acceptDownloads: true, viewport: { width: 1280, height: 800 } });
+  context.setDefaultTimeout(PATIENCE);
+  const page = await context.newPage();
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(String(e)));
+  page.on('request', (r) => { if (!r.url().startsWith(base) && !r.url().startsWith('blob:') && !r.url().startsWith('data:')) offsite.push(r.url()); });
+  await page.goto(base);
+  await page.waitForSelector('body[data-ready="true"]');
+  await page.waitForFunction(() => !document.getElementById('generate').disabled);
+  return { page, context, errors };
+}
+
+// The sample part's job is the mould job (rough, raster shallow, waterline steep); tests that
+// look at one raster finish keep only that operation, selected, on the whole part.
+export async function onlyRaster(page) {
+  await tab(page, 'ops');
+  await page.click('#op-list li:nth-child(3) .op-remove');
+  await page.click('#op-list li:nth-child(1) .op-remove');
+  assert.equal(await page.locator('#op-list li').count(), 1);
+  assert.match(await page.textContent('#op-list li'), /finish shallow/);
+  await page.fill('input[name=slopeMax]', '');
+}
+
+export const toolTable = (tools) => tools.map((t) => `T${t.number} P${t.number} Z0.000 D${t.diameter.toFixed(3)} ;${t.shape}\n`).join('');
+
+// Counts canvas pixels by colour: the path's blue (the first operation's cutting moves are drawn
+// in rgb(27, 116, 209)), the second operation's purple (rgb(158, 51, 191)),
+// the simulated stock's tan, gouge red and rest-material blue, and the drawing's outline green (rgb(31, 140, 61)) and hole orange (rgb(217, 115, 13)).
+export async function pixelCounts(page) {
+  await frame(page);
+  return page.evaluate(() => {
+    const c = document.getElementById('view');
+    const gl = c.getContext('webgl2');
+    const px = new Uint8Array(c.width * c.height * 4);
+    gl.readPixels(0, 0, c.width, c.height, gl.RGBA, gl.UNSIGNED_BYTE, px);
+    const n = { path: 0, purple: 0, teal: 0, tan: 0, red: 0, blue: 0, green: 0, orange: 0 };
+    for (let i = 0; i < px.length; i += 4) {
+      const [r, g, b] = [px[i], px[i + 1], px[i + 2]];
+      if (b > 150 && r < 90 && g > 80 && g < 160) n.path++;
+      if (r > 120 && b > 150 && g < 90) n.purple++;
+      if (r < 60 && g > 110 && b > 100 && Math.abs(g - b) < 50) n.teal++;
+      if (r > 90 && r > b + 25 && g > b + 5 && g < r) n.tan++;
+      if (r > 120 && g < 50 && b < 50) n.red++;
+      if (b > r + 60 && b > 120) n.blue++;
+      // Lines drawn over the background may be blended into it: outlines and holes by their hue.
+      if (g > r + 30 && g > b + 25 && r < 150) n.green++;
+      if (r > g + 30 && g > b + 30 && r > 180) n.orange++;
+    }
+    return n;
+  });
+}
+
+// Counts canvas pixels in each of the given tools' colours (as the viewer's `toolColor` gives
+// them: octree roughing draws a chosen tool's path and octants in it).
+export async function toolPixels(page, numbers) {
+  await frame(page);
+  return page.evaluate(async (list) => {
+    const { toolColor } = await import('./viewer.js');
+    const c = document.getElementById('view');
+    const gl = c.getContext('webgl2');
+    const px = new Uint8Array(c.width * c.height * 4);
+    gl.readPixels(0, 0, c.width, c.height, gl.RGBA, gl.UNSIGNED_BYTE, px);
+    const out = {};
+    for (const n of list) {
+      const [r, g, b] = toolColor(n).map((v) => Math.round(v * 255));
+      let k = 0;
+      for (let i = 0; i < px.length; i += 4) if (Math.abs(px[i] - r) < 25 && Math.abs(px[i + 1] - g) < 25 && Math.abs(px[i + 2] - b) < 25) k++;
+      out[n] = k;
+    }
+    return out;
+  }, numbers);
+}
+
+export const pathPixels = async (page) => (await pixelCounts(page)).path;
+
+// A box as a binary STL (12 triangles), `size` = [x, y, z] from the origin.
+export function boxStl([x, y, z]) {
+  const v = (i) => [(i & 1) * x, ((i >> 1) & 1) * y, ((i >> 2) & 1) * z];
+  const faces = [[0, 2, 3], [0, 3, 1], [4, 5, 7], [4, 7, 6], [0, 1, 5], [0, 5, 4], [2, 6, 7], [2, 7, 3], [0, 4, 6], [0, 6, 2], [1, 3, 7], [1, 7, 5]];
+  const buf = Buffer.alloc(84 + faces.length * 50);
+  buf.writeUInt32LE(faces.length, 80);
+  faces.forEach((f, k) => {
+    const o = 84 + k * 50 + 12;
+    f.forEach((i, j) => v(i).forEach((c, a) => buf.writeFloatLE(c, o + j * 12 + a * 4)));
+  });
+  return buf;
+}
+
+
+// A box as a glTF file (its coordinates in the file's unit), one triangle list in a data URI.
+export function boxGltf([x, y, z]) {
+  const stl = boxStl([x, y, z]);
+  const floats = [];
+  for (let f = 0; f < 12; f++) for (let k = 0; k < 9; k++) floats.push(stl.readFloatLE(84 + f * 50 + 12 + k * 4));
+  const bin = Buffer.from(new Float32Array(floats).buffer);
+  return Buffer.from(JSON.stringify({
+    asset: { version: '2.0' }, scene: 0, scenes: [{ nodes: [0] }], nodes: [{ mesh: 0 }],
+    meshes: [{ primitives: [{ attributes: { POSITION: 0 } }] }],
+    accessors: [{ bufferView: 0, componentType: 5126, count: 36, type: 'VEC3', min: [0, 0, 0], max: [x, y, z] }],
+    bufferViews: [{ buffer: 0, byteLength: bin.length }],
+    buffers: [{ byteLength: bin.length, uri: `data:application/octet-stream;base64,${bin.toString('base64')}` }],
+  }));
+}

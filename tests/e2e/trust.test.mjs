@@ -1,0 +1,365 @@
+// The page a machinist can trust (issue 36): a part's units are its own, a file cut short is an
+// error, every entry reads jobs strictly, bad values are marked where they are typed, warnings
+// look like warnings, every control is in reach at the usual screen sizes, the words are a
+// machinist's, and the simulation shows the tool, the path cut and the program's lines.
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { execFileSync } from 'node:child_process';
+import { shots, PATIENCE, browser, base, waitForGenerated, generated, tab, frame, openPage, onlyRaster, toolTable, pixelCounts, pathPixels, boxStl } from './harness.mjs';
+
+const size = (page) => page.textContent('#part-size');
+
+test('units, scale and orientation belong to the part: a new file and a reload start from the format\'s own, and any axis can point up', async () => {
+  const { page, context, errors } = await openPage();
+  assert.match(await size(page), /^90\.0 × 60\.0 × 25\.3 mm/);
+  await page.selectOption('select[name=partUnits]', 'inch');
+  await page.selectOption('select[name=upAxis]', 'y');
+  await page.fill('input[name=partScale]', '100');
+  await page.press('input[name=partScale]', 'Tab');
+  // Shown live, beside the size: the settings that are not the format's own.
+  await page.waitForFunction(() => /read in inch, scaled × 100, \+Y up/.test(document.getElementById('part-size').textContent));
+  assert.doesNotMatch(await size(page), /^90\.0 ×/);
+  // A new file starts from its format's own units, scale 1, Z up.
+  await page.setInputFiles('#file', { name: 'box.stl', mimeType: 'model/stl', buffer: boxStl([10, 20, 5]) });
+  await page.waitForFunction(() => /box\.stl/.test(document.getElementById('part-name').textContent));
+  assert.match(await size(page), /^10\.0 × 20\.0 × 5\.00 mm .*read in mm, as STL says nothing/);
+  assert.equal(await page.locator('#part-size .override').count(), 0);
+  assert.deepEqual([await page.inputValue('select[name=partUnits]'), await page.inputValue('input[name=partScale]'), await page.inputValue('select[name=upAxis]')], ['auto', '1', 'z']);
+  // −Y up then a quarter turn: (x, y, z) → (x, z, −y) → X 5, Y 10, Z 20; the grid and its size
+  // under the view say so too.
+  await page.selectOption('select[name=upAxis]', '-y');
+  await page.waitForFunction(() => /^10\.0 × 5\.00 × 20\.0 mm/.test(document.getElementById('part-size').textContent));
+  await page.selectOption('select[name=rotation]', '90');
+  await page.waitForFunction(() => /^5\.00 × 10\.0 × 20\.0 mm/.test(document.getElementById('part-size').textContent));
+  assert.match(await page.textContent('#scale'), /grid \d+ mm · part 5\.00 × 10\.0 × 20\.0 mm/);
+  assert.match(await size(page), /−Y up, turned 90°/);
+  // A reload shows the sample as it is, whatever the last part was read as.
+  await page.selectOption('select[name=partUnits]', 'inch');
+  await page.reload();
+  await page.waitForSelector('body[data-ready="true"]');
+  await page.waitForFunction(() => /sample part/.test(document.getElementById('part-name').textContent));
+  assert.match(await size(page), /^90\.0 × 60\.0 × 25\.3 mm/);
+  assert.equal(await page.inputValue('select[name=partUnits]'), 'auto');
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
+test('a file that ends early is an error in every format, with where it ends, and keeps the part on show; a part with holes is warned of', async () => {
+  const { page, context, errors } = await openPage();
+  const facet = (k) => `facet normal 0 0 1\nouter loop\nvertex ${k} 0 0\nvertex ${k + 1} 0 0\nvertex ${k} 1 0.5\nendloop\nendfacet\n`;
+  let ascii = 'solid cut\n';
+  for (let k = 0; k < 40; k++) ascii += facet(k);
+  ascii += 'endsolid cut\n';
+  let obj = '';
+  for (let k = 0; k < 30; k++) obj += `v ${k}.125 0.5 1.75\nv ${k}.5 1.25 0.5\nv ${k}.75 0.25 2.5\n`;
+  for (let k = 0; k < 30; k++) obj += `f ${3 * k + 1} ${3 * k + 2} ${3 * k + 3}\n`;
+  for (const [name, text, said] of [
+    ['half.stl', ascii.slice(0, ascii.length / 2), /ASCII STL ends (at|inside) line \d+/],
+    ['nosolidend.stl', ascii.slice(0, ascii.lastIndexOf('endsolid')), /ends at line 281 without the endsolid/],
+    ['cut.obj', obj.slice(0, obj.length - 2), /OBJ ends inside line 120 \('f 88 89 9'\)/],
+  ]) {
+    await page.setInputFiles('#file', { name, mimeType: 'application/octet-stream', buffer: Buffer.from(text) });
+    await page.waitForFunction((n) => document.getElementById('message').textContent.startsWith(n), name);
+    const message = await page.textContent('#message');
+    assert.match(message, said, message);
+    assert.match(message, /cut short/);
+    assert.equal(await page.getAttribute('#message', 'class'), 'error');
+    assert.equal(await page.textContent('#part-name'), 'sample part');
+    assert.equal(await page.isEnabled('#generate'), true);
+  }
+  // The whole OBJ reads. A surface with holes is read, and warned of, in amber, with how many
+  // open edges: a cutter goes down through them.
+  const holed = boxStl([30, 20, 10]);
+  const open = Buffer.concat([holed.subarray(0, 84 + 50 * 2), holed.subarray(84 + 50 * 3)]);
+  open.writeUInt32LE(11, 80);
+  await page.setInputFiles('#file', { name: 'holed.stl', mimeType: 'model/stl', buffer: open });
+  await page.waitForFunction(() => /holed\.stl/.test(document.getElementById('part-name').textContent));
+  assert.match(await page.textContent('#part-notes .warning'), /^3 edges of the part's surface border one triangle only: it has holes/);
+  assert.equal(await page.getAttribute('#message', 'class'), 'warning');
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
+test('every entry reads jobs strictly: a portal\'s misspelt field or wrong type is named by its path, and the core\'s checks are a call away', async () => {
+  const context = await browser.newContext();
+  context.setDefaultTimeout(PATIENCE);
+  const page = await context.newPage();
+  await page.goto(`${base}embed.html`);
+  await page.waitForSelector('body[data-ready="true"]');
+  const said = await page.evaluate(async () => {
+    const engine = window.engine;
+    const attempt = async (edit) => {
+      const job = engine.defaultJob();
+      job.operations = job.operations.filter((op) => op.kind === 'finishRaster').slice(0, 1);
+      edit(job);
+      try { await engine.run(job, engine.sample, 'sample.stl'); return 'ran'; } catch (e) { return e.message; }
+    };
+    const misspelt = await attempt((job) => { job.operations[0].stepOver = job.operations[0].stepover; delete job.operations[0].stepover; });
+    const typed = await attempt((job) => { job.stock.marginXy = '5'; });
+    const project = await engine.writeProject({ ...engine.defaultJob(), colour: 'red' }, 'x.stl', engine.sample).then(() => 'written', (e) => e.message);
+    const problems = await engine.checkJob({ tools: [{ number: 1, shape: 'flat', diameter: -3 }], operations: [{ kind: 'roughZlevel', tool: 1, stepdown: -1 }] });
+    return { misspelt, typed, project, problems };
+  });
+  assert.match(said.misspelt, /^unknown field: operations\[0\]\.stepOver \(did you mean stepover\?\)$/);
+  assert.equal(said.typed, 'stock.marginXy: expected a number, got "5"');
+  assert.match(said.project, /unknown field: colour/);
+  assert.deepEqual(said.problems.map((p) => p.path), ['tools[0].diameter', 'operations[0].stepdown']);
+  await context.close();
+});
+
+test('bad values are marked at their fields as they are typed, by the core\'s own checks; Generate and a loaded job say so at once', async () => {
+  const { page, context, errors } = await openPage();
+  await tab(page, 'ops');
+  // The mould job's roughing: a step-down of −1.
+  await page.click('#op-list li:nth-child(1) .op-name');
+  await page.fill('input[name=roughStepdown]', '-1');
+  await page.waitForSelector('input[name=roughStepdown].invalid');
+  const note = await page.textContent('#fs-rough .field-error');
+  assert.equal(note, "operations[0].stepdown must be a positive number (got -1) ('rough')");
+  assert.doesNotMatch(note, /job file/);
+  assert.ok(await page.locator('#op-list li:nth-child(1).has-problem').count());
+  assert.ok(await page.locator('#tabs [data-tab="ops"].has-problem').count());
+  await page.click('#generate');
+  assert.equal(await waitForGenerated(page), 'failed');
+  assert.match(await page.textContent('#message'), /^1 setting needs attention: operations\[0\]\.stepdown must be a positive number/);
+  assert.equal(await page.getAttribute('#message', 'class'), 'error');
+  await page.fill('input[name=roughStepdown]', '2');
+  await page.waitForFunction(() => !document.querySelector('input[name=roughStepdown]').classList.contains('invalid'));
+  assert.equal(await page.locator('#tabs .has-problem').count(), 0);
+  // A value that does not read at all is marked too, and the job keeps its last good one.
+  await page.fill('input[name=roughStepdown]', '');
+  await page.waitForSelector('input[name=roughStepdown].invalid');
+  assert.equal(await page.evaluate(() => window.swarf.jobs.part.operations[0].stepdown), 2);
+  await page.fill('input[name=roughStepdown]', '2');
+  // A tool's flute shorter than nothing, in the tools' tab.
+  await tab(page, 'tools');
+  await page.fill('input[name=fluteLength]', '0');
+  await page.waitForSelector('input[name=fluteLength].invalid');
+  assert.match(await page.textContent('#tool-editor .field-error'), /flute length must be positive/);
+  await page.fill('input[name=fluteLength]', '30');
+  await page.waitForFunction(() => !document.querySelector('#tabs .has-problem'));
+  // A job file whose values do not fit says so as it loads, and its fields are marked.
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-check-'));
+  const [saved] = await Promise.all([page.waitForEvent('download'), page.click('#save-job')]);
+  const file = path.join(dir, 'job.json');
+  await saved.saveAs(file);
+  const job = JSON.parse(fs.readFileSync(file, 'utf8'));
+  // The roughing's step-over is a fraction of the diameter, under its own name.
+  assert.equal(job.operations[0].stepoverFraction, 0.4);
+  assert.equal(job.operations[0].stepover, undefined);
+  assert.equal(job.operations[1].stepover, 0.5);
+  job.stock.marginXy = -2;
+  fs.writeFileSync(file, JSON.stringify(job));
+  await page.setInputFiles('#load-job', file);
+  await page.waitForFunction(() => /needs attention/.test(document.getElementById('message').textContent));
+  assert.match(await page.textContent('#message'), /stock\.marginXy must be zero or more \(got -2\)/);
+  await tab(page, 'stock');
+  await page.waitForSelector('input[name=marginXy].invalid');
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
+// Every button, field and list of the side panel, in every tab: inside the window's width and
+// the one that gets a click at its middle (after scrolling the panel to it).
+async function reachable(page) {
+  const out = [];
+  for (const name of ['part', 'stock', 'tools', 'ops', 'post']) {
+    await tab(page, name);
+    const found = await page.evaluate(() => {
+      const bad = [];
+      const all = [...document.querySelectorAll('#panel button, #panel input, #panel select, #panel label.button')].filter((el) => el.offsetParent !== null && !(el.type === 'file'));
+      for (const el of all) {
+        el.scrollIntoView({ block: 'nearest', inline: 'nearest' });
+        const r = el.getBoundingClientRect();
+        const x = r.left + r.width / 2, y = r.top + r.height / 2;
+        const hit = document.elementFromPoint(x, y);
+        const ok = r.left >= 0 && r.right <= window.innerWidth && r.width > 0 && hit && (hit === el || el.contains(hit) || hit.contains(el) || hit.closest('label') === el.closest('label'));
+        if (!ok) bad.push(`${el.id || el.name || el.textContent.trim().slice(0, 20)} at ${Math.round(r.left)}–${Math.round(r.right)} of ${window.innerWidth} (hit ${hit?.id || hit?.tagName})`);
+      }
+      return { bad, count: all.length, scroll: document.scrollingElement.scrollWidth - window.innerWidth, panel: document.getElementById('panel').scrollWidth - document.getElementById('panel').clientWidth };
+    });
+    out.push({ tab: name, ...found });
+  }
+  return out;
+}
+
+test('every control of the side panel is in reach at 1280×720, 1400×900 and 1920×1080, before and after Generate, and the results never displace the settings', async () => {
+  for (const [width, height] of [[1280, 720], [1400, 900], [1920, 1080]]) {
+    const context = await browser.newContext({ acceptDownloads: true, viewport: { width, height } });
+    context.setDefaultTimeout(PATIENCE);
+    const page = await context.newPage();
+    await page.goto(base);
+    await page.waitForSelector('body[data-ready="true"]');
+    await page.waitForFunction(() => !document.getElementById('generate').disabled);
+    const settings = async () => page.evaluate(() => document.getElementById('settings').getBoundingClientRect().height);
+    const before = await settings();
+    for (const t of await reachable(page)) {
+      assert.deepEqual(t.bad, [], `${width}×${height}, ${t.tab} tab: out of reach`);
+      assert.ok(t.count > 5, `${width}×${height}, ${t.tab}: ${t.count} controls`);
+      assert.ok(t.scroll <= 0 && t.panel <= 0, `${width}×${height}, ${t.tab}: scrolls sideways (${t.scroll}, ${t.panel})`);
+    }
+    await page.click('#generate');
+    assert.equal(await waitForGenerated(page), 'ok');
+    await page.screenshot({ path: path.join(shots, `reach-${width}x${height}.png`) });
+    for (const t of await reachable(page)) assert.deepEqual(t.bad, [], `${width}×${height} after Generate, ${t.tab} tab: out of reach`);
+    // The results have a pane of their own: the settings keep their height.
+    assert.equal(await settings(), before, `${width}×${height}: the settings lost height after Generate`);
+    await context.close();
+  }
+});
+
+test('the words are a machinist\'s: no paper symbol or section in the forms, the paper named in a tooltip', async () => {
+  const { page, context } = await openPage();
+  const texts = await page.evaluate(() => {
+    const visible = (el) => [...el.childNodes].map((n) => (n.nodeType === 3 ? n.textContent : n.tagName === 'SELECT' ? [...n.options].map((o) => o.text).join(' ') : n.tagName === 'INPUT' ? '' : n.textContent)).join(' ');
+    return [...document.querySelectorAll('#settings label, #settings .hint, #settings option, #op-kind option, #run, #sim, #view-tools')].map(visible);
+  });
+  for (const t of texts) assert.doesNotMatch(t, /seed \d|§|δ|γ|CL z-map|octant/i, t);
+  // The paper behind a setting is one hover away.
+  assert.match(await page.getAttribute('#fs-raster label:has([name=builder])', 'title'), /seed 001 §3\.3/);
+  await context.close();
+});
+
+test('a sheet\'s tabs and lead arcs are set in the page, a through cut\'s depth is shown, and the tab height is measured from the sheet\'s bottom', async () => {
+  const { page, context, errors } = await openPage();
+  await page.click('#use-sample-drawing');
+  await page.waitForFunction(() => document.body.dataset.kind === 'drawing');
+  await tab(page, 'ops');
+  assert.equal(await page.textContent('#through-depth'), '6.20 mm');
+  await page.fill('input[name=tabWidth]', '6');
+  await page.fill('input[name=tabHeight]', '2');
+  await page.fill('input[name=leadRadius]', '2.5');
+  await tab(page, 'part');
+  await page.fill('input[name=thickness]', '10');
+  await page.press('input[name=thickness]', 'Tab');
+  await tab(page, 'ops');
+  assert.equal(await page.textContent('#through-depth'), '10.20 mm');
+  const op = await page.evaluate(() => window.swarf.jobs.drawing.operations[0]);
+  assert.deepEqual([op.tabs.width, op.tabs.height, op.leadRadius], [6, 2, 2.5]);
+  await page.click('#generate');
+  await generated(page);
+  // The tab stands 2 mm over the 10 mm sheet's bottom: its top at Z−8.
+  const zs = [...(await page.evaluate(() => window.swarf.gcode)).matchAll(/Z(-?[\d.]+)/g)].map((m) => Number(m[1]));
+  assert.ok(zs.includes(-10.2) && zs.includes(-8), `depths ${[...new Set(zs)].sort((a, b) => a - b).slice(0, 6)}`);
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
+test('the program written again in inches after Generate, without planning again: G20, the same moves, rs274 reads it', async () => {
+  const { page, context, errors } = await openPage();
+  await onlyRaster(page);
+  await page.fill('input[name=stepover]', '3');
+  await page.click('#generate');
+  await generated(page);
+  const mm = await page.evaluate(() => window.swarf.gcode);
+  await tab(page, 'post');
+  const before = await page.evaluate(() => Number(document.body.dataset.posted ?? 0));
+  await page.selectOption('select[name=gcodeUnits]', 'inch');
+  await page.waitForFunction((n) => Number(document.body.dataset.posted ?? 0) > n, before);
+  assert.equal(await page.textContent('#stage'), 'done', 'no Generate ran again');
+  assert.match(await page.textContent('#message'), /written again for LinuxCNC in inches/);
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-inch-'));
+  const program = path.join(dir, download.suggestedFilename());
+  await download.saveAs(program);
+  const inch = fs.readFileSync(program, 'utf8');
+  assert.match(inch, /^G20$/m);
+  // The same moves: every line's X in inches is the mm program's over 25.4, to the inch's
+  // resolution.
+  const xs = (text) => [...text.matchAll(/^G1 X(-?[\d.]+) Y/gm)].map((m) => Number(m[1]));
+  const [a, b] = [xs(mm), xs(inch)];
+  assert.ok(a.length > 100 && Math.abs(a.length - b.length) <= 2, `${a.length} and ${b.length} feed lines`);
+  for (let k = 0; k < 100; k++) assert.ok(Math.abs(a[k] / 25.4 - b[k]) <= 0.0001, `line ${k}: ${a[k]} mm, ${b[k]} in`);
+  fs.writeFileSync(path.join(dir, 'tool.tbl'), toolTable(await page.evaluate(() => window.swarf.tools)));
+  execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), program], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
+test('the simulation a machinist expects: the tool shown, the path cut apart from the path to come, a move at a time, each operation shown or hidden, view presets, the program\'s lines following the scrubber, a real removal rate, a cycle time that adds up', async () => {
+  const { page, context, errors } = await openPage();
+  await page.click('#generate');
+  await generated(page);
+  const view = (fn, arg) => page.evaluate(fn, arg);
+  // The tool: its shape at the scrubber's place, drawn over the stock.
+  const toolShown = async (on) => {
+    await view((v) => { window.swarfView.show.tool = v; window.swarfView.draw(); }, on);
+    return pixelCounts(page);
+  };
+  await page.evaluate(() => { const s = document.getElementById('scrub'); s.value = String(Number(s.max) / 3); s.dispatchEvent(new Event('input')); });
+  await page.waitForFunction(() => Number(document.body.dataset.simMoves) > 0 && Number(document.body.dataset.simMoves) < 50000);
+  assert.ok(await view(() => window.swarfView.tool?.at !== null && window.swarfView.tool !== null));
+  const [withTool, without] = [await toolShown(true), await toolShown(false)];
+  assert.notDeepEqual(withTool, without, 'the tool is drawn');
+  await toolShown(true);
+  // The path to come is faint: fewer pixels in the first operation's full colour than at the end.
+  const middle = await pathPixels(page);
+  const moves = await page.evaluate(() => window.swarf.result.sim.times.length - 1);
+  await page.evaluate(() => { const s = document.getElementById('scrub'); s.value = s.max; s.dispatchEvent(new Event('input')); });
+  await page.waitForFunction((n) => Number(document.body.dataset.simMoves) === n, moves);
+  const end = await pathPixels(page);
+  assert.ok(end > middle * 1.2, `path pixels at a third ${middle}, at the end ${end}`);
+  // A move at a time, back and on.
+  await page.evaluate(() => { const s = document.getElementById('scrub'); s.value = String(Number(s.max) / 2); s.dispatchEvent(new Event('input')); });
+  await page.waitForFunction((n) => Number(document.body.dataset.simMoves) > 0.3 * n && Number(document.body.dataset.simMoves) < 0.7 * n, moves);
+  const at = Number(await page.evaluate(() => document.body.dataset.simMoves));
+  await page.click('#step-on');
+  await page.waitForFunction((n) => Number(document.body.dataset.simMoves) === n + 1, at);
+  await page.click('#step-back');
+  await page.click('#step-back');
+  await page.waitForFunction((n) => Number(document.body.dataset.simMoves) === n - 1, at);
+  // The program's pane follows: its marked line is the line of the move running.
+  await page.click('#result-tabs [data-result="gcode"]');
+  await page.waitForSelector('#gcode .line.current');
+  const current = await page.evaluate(() => {
+    const k = Number(document.body.dataset.simMoves), r = window.swarf.result;
+    return { shown: document.querySelector('#gcode .line.current').textContent, line: r.gcode.split('\n')[r.moveLines[k]], n: r.moveLines[k] };
+  });
+  assert.ok(current.shown.endsWith(current.line), `${current.shown} against line ${current.n + 1}: ${current.line}`);
+  // A click on a line takes the scrubber to its move.
+  const row = page.locator('#gcode .line:not(.current)').nth(3);
+  const clicked = Number(await row.getAttribute('data-line'));
+  await row.click();
+  await page.waitForFunction((n) => document.querySelector('#gcode .line.current')?.dataset.line === String(n), clicked);
+  const moved = await page.evaluate(() => { const k = Number(document.body.dataset.simMoves) - 1; return window.swarf.result.moveLines[k]; });
+  assert.ok(moved <= clicked && moved >= clicked - 3, `the move's line ${moved} against the clicked ${clicked}`);
+  // Each operation can be hidden from the legend; rapids and gouges in colours of their own.
+  assert.match(await page.textContent('#legend'), /rough \(T1\)[\s\S]*finish shallow \(T2\)[\s\S]*rapids[\s\S]*gouge/);
+  await page.evaluate(() => { const s = document.getElementById('scrub'); s.value = s.max; s.dispatchEvent(new Event('input')); });
+  await page.waitForFunction((n) => Number(document.body.dataset.simMoves) === n, moves);
+  await view(() => { window.swarfView.show.stock = false; });
+  const shown = await pathPixels(page);
+  await page.uncheck('#legend input[data-op="0"]');
+  const hidden = await pathPixels(page);
+  assert.ok(hidden < shown / 4, `the roughing hidden: ${hidden} of its colour's pixels against ${shown}`);
+  const colours = await page.evaluate(async () => {
+    const { OP_COLORS, TOOL_COLORS, RAPID_COLOR, MARK_COLORS } = await import('./viewer.js');
+    return { ops: [...OP_COLORS, ...TOOL_COLORS], rapid: RAPID_COLOR, marks: MARK_COLORS };
+  });
+  for (const c of colours.ops) for (const other of [colours.rapid, ...colours.marks]) {
+    assert.ok(Math.abs(c[0] - other[0]) + Math.abs(c[1] - other[1]) + Math.abs(c[2] - other[2]) > 0.45, `${c} is near ${other}`);
+  }
+  // View presets.
+  await page.click('#view-tools [data-view="top"]');
+  assert.ok(await view(() => window.swarfView.camera.pitch > 1.5));
+  await page.click('#view-tools [data-view="front"]');
+  assert.ok(await view(() => Math.abs(window.swarfView.camera.pitch) < 1e-9));
+  // The removal rate is one the tools can cut at: no higher than a full slot as deep as the
+  // roughing's flutes (it once read 739,947 mm³/min on a finishing job).
+  const peak = Number((await page.evaluate(() => window.swarf.result.summary.operations.map((o) => o.mrrMax))).reduce((a, b) => Math.max(a, b), 0));
+  const tools = await page.evaluate(() => window.swarf.tools);
+  const slot = Math.max(...tools.map((t) => t.diameter * t.fluteLength * t.feedRate));
+  assert.ok(peak > 1000 && peak <= slot, `peak ${peak} mm³/min against a slot's ${slot}`);
+  // The cycle time adds up: the summary's parts sum to its total, which is the program head's.
+  const summary = await page.evaluate(() => window.swarf.result.summary);
+  const head = (await page.evaluate(() => window.swarf.gcode)).match(/\(cycle time ([\d:]+) /)[1];
+  const clock = (s) => s.split(':').reduce((a, v) => a * 60 + Number(v), 0);
+  assert.equal(summary.time.reduce((a, t) => a + t.seconds, 0), clock(head));
+  assert.match(await page.textContent('#stats'), new RegExp(`cycle time\\s*${head} h:mm:ss[\\s\\S]*total\\s*${head}`));
+  assert.match(await page.textContent('#sim-time'), new RegExp(`/ ${head} h:mm:ss`));
+  assert.deepEqual(errors, []);
+  await context.close();
+});
