@@ -49,8 +49,13 @@ export class GcodePane {
   setCurrent(k) {
     if (k === this.current) return;
     this.current = k;
-    const top = k * LINE_HEIGHT, view = this.el.clientHeight;
-    if (view > 0 && (top < this.el.scrollTop || top + LINE_HEIGHT > this.el.scrollTop + view)) this.el.scrollTop = Math.max(0, top - view / 3);
+    this.reveal();
+  }
+
+  // The marked line scrolled into sight (once the pane shows), and the lines drawn.
+  reveal() {
+    const top = this.current * LINE_HEIGHT, view = this.el.clientHeight;
+    if (this.current >= 0 && view > 0 && (top < this.el.scrollTop || top + LINE_HEIGHT > this.el.scrollTop + view)) this.el.scrollTop = Math.max(0, top - view / 3);
     this.render();
   }
 

@@ -138,7 +138,7 @@ export function resultTab(name) {
   for (const b of document.querySelectorAll('#result-tabs [data-result]')) b.setAttribute('aria-selected', String(b.dataset.result === name));
   for (const r of document.querySelectorAll('#results .result')) r.hidden = r.dataset.result !== name;
   $('results').classList.remove('collapsed');
-  if (name === 'gcode') sim.pane?.render();
+  if (name === 'gcode') sim.pane?.reveal();
 }
 
 export async function generate() {

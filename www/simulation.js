@@ -5,7 +5,7 @@
 import { $, state, hooks, clock, clockFormat } from './state.js';
 import { opColor } from './viewer.js';
 
-export const sim = { data: null, time: 0, playing: false, busy: false, wanted: null, shown: -1, marks: [], buckets: null, peak: 1, pane: null };
+export const sim = { data: null, time: 0, playing: false, busy: false, wanted: null, shown: -1, target: 0, marks: [], buckets: null, peak: 1, pane: null };
 
 // The move running at time `t`: `k`, the first move with times[k] <= t < times[k + 1], and how
 // far into it (`f`); past the end, the last move, finished.
@@ -20,13 +20,14 @@ export function moveAt(t) {
   return { k: lo, f, done: f >= 1 ? lo + 1 : lo };
 }
 
-// The stock after the moves done at `t`, the tool a fraction into the move running then: one
-// request to the worker at a time, the latest wanted after it.
-async function seek(t) {
-  if (sim.busy) { sim.wanted = t; return; }
+// The stock after the moves done at `t`, the tool a fraction into the move running then (or at
+// the end of move `end`, where given: moves that take no time share their time with the next);
+// one request to the worker at a time, the latest wanted after it.
+async function seek(t, end = null) {
+  if (sim.busy) { sim.wanted = [t, end]; return; }
   sim.busy = true;
   try {
-    const { k, f, done } = moveAt(t);
+    const { k, f, done } = end === null ? moveAt(t) : { k: end, f: 1, done: end + 1 };
     const r = await state.engine.call({ type: 'seek', count: done, at: k, f });
     if (done !== sim.shown) state.viewer?.updateStock(r.tops);
     sim.shown = done;
@@ -47,27 +48,30 @@ async function seek(t) {
   } finally {
     sim.busy = false;
   }
-  if (sim.wanted !== null) { const next = sim.wanted; sim.wanted = null; seek(next); }
+  if (sim.wanted !== null) { const next = sim.wanted; sim.wanted = null; seek(...next); }
 }
 
-export function setTime(t) {
+export function setTime(t, end = null) {
   if (!sim.data) return;
   const total = sim.data.times[sim.data.times.length - 1];
-  sim.time = Math.max(0, Math.min(total, t));
+  // (The scrubber's value is text: the end may come back a hair short of it.)
+  sim.time = total - t < 1e-9 * Math.max(1, total) ? total : Math.max(0, t);
   $('scrub').value = sim.time;
   $('sim-time').textContent = `${clock(sim.time)} / ${clock(total)} ${clockFormat(total)}`;
   drawMrr();
-  seek(sim.time);
+  // The moves done once this request is seen to (before it is: a second step counts from it).
+  sim.target = end === null ? moveAt(sim.time).done : end + 1;
+  seek(sim.time, end);
 }
 
-// One move back or on: to the start of the move running now (or of the one before), or to
-// the end of the move running now.
+// One move back or on: the stock and the tool at the end of the move after the last one done,
+// or of the one before it (by move, not by time: some moves take no time at all).
 export function step(direction) {
   if (!sim.data) return;
-  const times = sim.data.times;
-  const { k, f } = moveAt(sim.time);
-  if (direction > 0) setTime(times[Math.min(times.length - 1, f >= 1 ? k + 2 : k + 1)]);
-  else setTime(times[Math.max(0, f > 0 && f < 1 ? k : k - 1)]);
+  const times = sim.data.times, n = times.length - 1;
+  const end = Math.max(-1, Math.min(n - 1, sim.target - 1 + direction));
+  if (end < 0) setTime(0);
+  else setTime(times[end + 1], end);
 }
 
 // The end of the move whose G-code is on line `line` (a click in the program's pane).
@@ -76,8 +80,7 @@ export function toLine(line) {
   if (!sim.data || !lines?.length) return;
   let lo = 0, hi = lines.length - 1;
   while (lo < hi) { const mid = (lo + hi) >> 1; if (lines[mid] < line) lo = mid + 1; else hi = mid; }
-  setTime(sim.data.times[lo + 1]);
-  sim.pane?.setCurrent(line);
+  setTime(sim.data.times[lo + 1], lo);
 }
 
 export function play() {

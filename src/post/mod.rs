@@ -531,13 +531,15 @@ impl<'a> Writer<'a> {
         self.number(mm * self.scale, self.decimals)
     }
 
-    /// The length rounded up to the program's resolution, never down.
+    /// The length rounded up to the program's resolution, never down (a value a millionth of
+    /// a unit above a digit, as a float's error leaves −10.2 in millimetres, takes that digit).
     fn length_up(&self, mm: f64) -> String {
         let unit = 10f64.powi(-(self.decimals as i32));
         let v = mm * self.scale;
-        let up = (v / unit).ceil() * unit;
-        // Rounding in the division may land a hair short: one more step.
-        self.number(if up < v { up + unit } else { up }, self.decimals)
+        let up = (v / unit - 1e-6).ceil() * unit;
+        // Rounding in the division may land a hair short: one more step (a millionth of a unit
+        // short is the digit itself).
+        self.number(if up < v - 2e-6 * unit { up + unit } else { up }, self.decimals)
     }
 
     fn rapid_z(&mut self, z: f64) {
