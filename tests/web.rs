@@ -41,7 +41,7 @@ fn job_runs_in_the_browser_and_writes_gcode() {
     let gcode = result.gcode();
     assert!(gcode.contains("G21") && gcode.contains("T1 M6") && gcode.trim_end().ends_with("M2"));
     assert!(result.feeds().length() > 6 * 1000, "feeds drawn as segments");
-    let summary = result.summary();
+    let summary = result.summary().unwrap();
     let seconds = js_sys::Reflect::get(&summary, &"seconds".into()).unwrap().as_f64().unwrap();
     assert!(seconds > 10.0, "a cycle-time estimate");
 }
@@ -110,7 +110,7 @@ fn job_result_scrubs_its_simulation() {
     let start = result.seek(0).to_vec();
     assert!(start.iter().all(|&z| z == top));
     assert!(end.iter().filter(|&&z| z < top - 1.0).count() > nx * ny / 2);
-    let report = result.report();
+    let report = result.report().unwrap();
     let gouges = js_sys::Reflect::get(&report, &"gougeCount".into()).unwrap().as_f64().unwrap();
     assert_eq!(gouges, 0.0);
     assert_eq!(result.mrr().length() as usize, moves);
