@@ -360,13 +360,13 @@ pub fn run_job(job: JsValue, bytes: &[u8], name: &str, progress: &js_sys::Functi
 pub struct JobPlan {
     job: Job,
     prepared: Option<job::Prepared>,
-    surfaces: Vec<crate::strategy::context::SurfaceRequest>,
+    surfaces: Vec<crate::machining::context::SurfaceRequest>,
     /// The planning worker's job once it plans operation by operation ([`JobPlan::start`]).
     running: Option<job::Running>,
     /// A helper's copy of the moves it cuts its bands of the stock with ([`JobPlan::keep_moves`]).
     moves: Vec<crate::sim::program::ProgramMove>,
     /// The regions the planner asked the pool for ([`JobPlan::region_work`]).
-    regions: Option<crate::strategy::rough_zlevel::RegionWork>,
+    regions: Option<crate::machining::levels::RegionWork>,
 }
 
 #[derive(serde::Serialize)]
@@ -403,7 +403,7 @@ impl JobPlan {
         self.prepared.as_mut().ok_or_else(|| js_error("this plan has run"))
     }
 
-    fn surface(&self, k: usize) -> Result<crate::strategy::context::SurfaceRequest, JsError> {
+    fn surface(&self, k: usize) -> Result<crate::machining::context::SurfaceRequest, JsError> {
         self.surfaces.get(k).copied().ok_or_else(|| js_error(format!("no surface {k}")))
     }
 

@@ -7,8 +7,8 @@ use swarf::geom::Tolerances;
 use swarf::job::{self, Job, Operation, Tool};
 use swarf::profile::import::read_drawing;
 use swarf::progress::Progress;
-use swarf::strategy::engrave::Engrave;
-use swarf::strategy::profile2d::Profile2d;
+use swarf::operations::Engrave;
+use swarf::operations::Profile2d;
 use swarf::toolpath::Move;
 
 /// A 60 × 40 plate outline (layer CUT), a "Z" and an arc drawn as open polylines (layer TEXT),

@@ -9,7 +9,7 @@ use swarf::geom::{DVec2, DVec3, Tolerances};
 use swarf::job::{self, Boundary, FinishRaster, Job, Operation, Tool};
 use swarf::mesh::sample::demo_part;
 use swarf::progress::Progress;
-use swarf::strategy::finish_raster::{raster_runs, Pattern, RasterPasses};
+use swarf::machining::raster::{raster_runs, Pattern, RasterPasses};
 use swarf::zmap::region::Region;
 use swarf::toolpath::Move;
 use swarf::zmap::{cl_exact::cl_exact, drop::PointDrop, surface::ClSurface, Grid};

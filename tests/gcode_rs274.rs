@@ -8,6 +8,7 @@ use std::path::PathBuf;
 use std::process::Command;
 
 use swarf::cutter::Cutter;
+use swarf::operations::Roughing;
 use swarf::geom::{DVec2, DVec3};
 use swarf::job::{self, FinishRaster, Job, Operation, Tool};
 use swarf::mesh::placement::Units;
@@ -355,8 +356,8 @@ fn the_reader_reads_programs_as_linuxcnc_does() {
 fn sheet_programs_with_helices_ramps_and_tabs_run_in_linuxcnc() {
     use swarf::profile::import::read_drawing;
     use swarf::profile::sample::plate_dxf;
-    use swarf::strategy::pocket2d::{Pocket2d, PocketPattern};
-    use swarf::strategy::profile2d::{Profile2d, Tabs};
+    use swarf::operations::{Pocket2d, PocketPattern};
+    use swarf::operations::{Profile2d, Tabs};
     let drawing = read_drawing(plate_dxf().as_bytes(), Some("plate.dxf"), &Default::default()).unwrap();
     for (dialect, units) in [(Dialect::LinuxCnc, Units::Mm), (Dialect::Grbl, Units::Inch)] {
         let mut job = Job::default_for_drawing();
@@ -377,7 +378,7 @@ fn sheet_programs_with_helices_ramps_and_tabs_run_in_linuxcnc() {
 
 #[test]
 fn roughing_then_finishing_programs_run_in_linuxcnc_with_arcs() {
-    use swarf::strategy::rough_zlevel::RoughZlevel;
+    use swarf::operations::RoughZlevel;
     let tools = vec![Tool { number: 1, cutter: Cutter { flute_length: 40.0, ..Cutter::flat(6.0) }, ..Tool::default() }, Tool { number: 2, cutter: Cutter::ball(6.0), ..Tool::default() }];
     let ops = vec![
         Operation::RoughZlevel(RoughZlevel { tool: 1, ..RoughZlevel::default() }),
@@ -396,7 +397,7 @@ fn roughing_then_finishing_programs_run_in_linuxcnc_with_arcs() {
 
 #[test]
 fn zigzag_roughing_with_its_arcs_and_feeds_runs_in_linuxcnc_move_for_move() {
-    use swarf::strategy::rough_zigzag::RoughZigzag;
+    use swarf::operations::RoughZigzag;
     let tools = vec![Tool { number: 1, cutter: Cutter { flute_length: 40.0, ..Cutter::flat(6.0) }, ..Tool::default() }];
     let job = Job { tools, operations: vec![Operation::RoughZigzag(RoughZigzag { tool: 1, stepdown: 4.0, angle: 30.0, ..RoughZigzag::default() })], ..Job::default() };
     let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
@@ -412,7 +413,7 @@ fn zigzag_roughing_with_its_arcs_and_feeds_runs_in_linuxcnc_move_for_move() {
 #[test]
 fn octree_roughing_with_its_chosen_tools_runs_in_linuxcnc_move_for_move() {
     use swarf::mesh::sample::height_field_solid;
-    use swarf::strategy::rough_octree::RoughOctree;
+    use swarf::operations::RoughOctree;
     let within = |v: f64, lo: f64, hi: f64| (lo..=hi).contains(&v);
     let part = height_field_solid(DVec2::new(-40.0, -30.0), DVec2::new(40.0, 30.0), 160, 120, -30.0, move |x, y| {
         if within(x, -30.0, 10.0) && within(y, -20.0, 20.0) || within(x, 10.0, 30.0) && within(y, -2.5, 2.5) {
@@ -422,7 +423,7 @@ fn octree_roughing_with_its_chosen_tools_runs_in_linuxcnc_move_for_move() {
         }
     });
     let flat = |number: u32, d: f64| Tool { number, cutter: Cutter { flute_length: 3.0 * d, ..Cutter::flat(d) }, ..Tool::default() };
-    let job = Job { tools: vec![flat(1, 12.0), flat(2, 3.0)], operations: vec![Operation::RoughOctree(RoughOctree { grid: 0.5, ..RoughOctree::default() })], ..Job::default() };
+    let job = Job { tools: vec![flat(1, 12.0), flat(2, 3.0)], operations: vec![Operation::RoughOctree(RoughOctree { roughing: Roughing { grid: 0.5, ..Roughing::default() }, ..RoughOctree::default() })], ..Job::default() };
     let out = job::run(&job, part, &mut Progress::none()).unwrap();
     assert!(out.verification.as_ref().unwrap().report.is_clean());
     assert_eq!(out.operations[0].tools, vec![1, 2]);
@@ -550,7 +551,7 @@ fn follows(a: &[Span], b: &[Span], tol: f64) -> Result<(), String> {
 fn every_built_in_post_reproduces_the_paths_in_linuxcnc_and_grbl_reads_its_own() {
     use swarf::post::grbl::{check, Flavour};
     use swarf::post::{write_program, Post};
-    use swarf::strategy::rough_zlevel::RoughZlevel;
+    use swarf::operations::RoughZlevel;
     use swarf::tool::Coolant;
     let tools = vec![
         Tool { number: 1, cutter: Cutter { flute_length: 40.0, ..Cutter::flat(6.0) }, coolant: Coolant::Flood, ..Tool::default() },
@@ -716,10 +717,10 @@ fn line_numbers_never_wrap() {
 /// away, planned at the inch resolution), and rs274 reads both to within their resolutions.
 #[test]
 fn a_program_in_inches_follows_the_mm_programs_path() {
-    use swarf::strategy::rough_zlevel::RoughZlevel;
+    use swarf::operations::RoughZlevel;
     let mut job = demo_job(Dialect::LinuxCnc, Units::Mm);
     job.tools.push(Tool { number: 1, cutter: Cutter { flute_length: 30.0, ..Cutter::flat(6.0) }, ..Tool::default() });
-    job.operations.insert(0, Operation::RoughZlevel(RoughZlevel { tool: 1, grid: 0.5, ..RoughZlevel::default() }));
+    job.operations.insert(0, Operation::RoughZlevel(RoughZlevel { tool: 1, roughing: Roughing { grid: 0.5, ..Roughing::default() }, ..RoughZlevel::default() }));
     let mm = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
     job.post.units = Units::Inch;
     let inch = job::run(&job, demo_part(), &mut Progress::none()).unwrap();

@@ -126,3 +126,21 @@ fn a_version_1_tab_height_keeps_its_top() {
     assert_eq!(heights.len(), 3);
     assert!((heights[0] - 1.3).abs() < 1e-12 && (heights[1] - 0.5).abs() < 1e-12 && heights[2] == 1.0, "{heights:?}");
 }
+
+#[test]
+fn a_roughing_setting_shared_by_the_roughing_kinds_is_named_by_its_path() {
+    // The roughing kinds' shared settings are flattened into each one's JSON: a bad value is
+    // still named by its own path.
+    for kind in ["roughZlevel", "roughZigzag", "roughOctree"] {
+        let mut job = serde_json::to_value(Job::demo()).unwrap();
+        job["operations"][0] = serde_json::json!({ "kind": kind, "allowance": "lots" });
+        let e = Job::from_value(&job).unwrap_err().to_string();
+        assert!(e.starts_with("operations[0].allowance: "), "{kind}: {e}");
+        job["operations"][0] = serde_json::json!({ "kind": kind, "leaveStock": -1.0 });
+        let e = Job::from_value(&job).unwrap().validate().unwrap_err().to_string();
+        assert!(e.contains("operations[0].leaveStock must be zero or more"), "{kind}: {e}");
+        job["operations"][0] = serde_json::json!({ "kind": kind, "ramp_angle": 3.0 });
+        let e = Job::from_value(&job).unwrap_err().to_string();
+        assert!(e.contains("operations[0].ramp_angle (did you mean rampAngle?)"), "{kind}: {e}");
+    }
+}

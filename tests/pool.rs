@@ -90,7 +90,7 @@ fn wrong_pieces_are_refused_and_missing_passes_are_made_by_the_planner() {
 #[test]
 fn the_planner_cuts_on_the_surfaces_and_passes_it_was_given() {
     let mut job = job();
-    job.operations.retain(|o| matches!(o, swarf::job::operation::Operation::FinishRaster(_)));
+    job.operations.retain(|o| matches!(o, swarf::operations::Operation::FinishRaster(_)));
     let whole = gcode_whole(&job);
     let prepared = || job::prepare(&job, demo_part()).unwrap();
     // A kept surface is what the operation cuts on: the context's cache finds it.
@@ -122,7 +122,7 @@ fn the_planner_cuts_on_the_surfaces_and_passes_it_was_given() {
 #[test]
 fn the_planner_contours_on_the_level_maps_it_was_given() {
     let mut job = job();
-    job.operations.retain(|o| matches!(o, swarf::job::operation::Operation::FinishWaterline(_)));
+    job.operations.retain(|o| matches!(o, swarf::operations::Operation::FinishWaterline(_)));
     let mut planner = job::prepare(&job, demo_part()).unwrap();
     let surfaces = planner.surfaces().unwrap();
     let s = surfaces[planner.level_maps(&surfaces).unwrap()[0]];
@@ -215,7 +215,7 @@ fn the_roughing_plans_on_the_regions_a_pool_made_for_its_levels() {
     }
     assert_eq!(running.finish(&mut Progress::none()).unwrap().gcode, whole);
 
-    let plan = |given: Vec<swarf::profile::Shape>, work: &swarf::strategy::rough_zlevel::RegionWork| {
+    let plan = |given: Vec<swarf::profile::Shape>, work: &swarf::machining::levels::RegionWork| {
         let mut running = job::prepare(&job, demo_part()).unwrap().start();
         running.keep_regions(work, given).unwrap();
         while running.plan_next(&mut Progress::none()).unwrap() {

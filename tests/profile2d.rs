@@ -15,8 +15,8 @@ use swarf::profile::import::read_drawing;
 use swarf::profile::sample::plate_dxf;
 use swarf::profile::{Drawing, DrawnLoop, Loop, Shape};
 use swarf::progress::Progress;
-use swarf::strategy::pocket2d::{Entry, Pocket2d, PocketPattern};
-use swarf::strategy::profile2d::{Direction, Profile2d, Tabs};
+use swarf::operations::{EntryKind, Pocket2d, PocketPattern};
+use swarf::operations::{Direction, Profile2d, Tabs};
 use swarf::toolpath::{arc_sweep, Move};
 
 fn plate() -> Drawing {
@@ -105,7 +105,7 @@ fn profile_cuts_the_plate_out_with_tabs_and_never_closer_than_the_radius() {
 #[test]
 fn pockets_remove_their_closed_form_volume_for_both_patterns() {
     for pattern in [PocketPattern::Offset, PocketPattern::Zigzag] {
-        for entry in [Entry::Helix, Entry::Ramp] {
+        for entry in [EntryKind::Helix, EntryKind::Ramp] {
             let pocket = Pocket2d { layers: vec!["POCKET".into()], depth: 3.0, stepdown: 1.5, pattern, entry, ..Pocket2d::default() };
             let mut job = job_with(vec![Operation::Pocket2d(pocket)], 6.0);
             job.simulation.cell = Some(0.1);
@@ -265,8 +265,8 @@ fn plunged_volume(out: &job::JobOutput) -> f64 {
 #[test]
 fn no_operation_plunges_into_solid_material() {
     for op in [
-        Operation::Pocket2d(Pocket2d { layers: vec!["POCKET".into()], entry: Entry::Helix, ..Pocket2d::default() }),
-        Operation::Pocket2d(Pocket2d { layers: vec!["POCKET".into()], entry: Entry::Ramp, ..Pocket2d::default() }),
+        Operation::Pocket2d(Pocket2d { layers: vec!["POCKET".into()], entry: EntryKind::Helix, ..Pocket2d::default() }),
+        Operation::Pocket2d(Pocket2d { layers: vec!["POCKET".into()], entry: EntryKind::Ramp, ..Pocket2d::default() }),
         Operation::Pocket2d(Pocket2d { layers: vec!["POCKET".into()], pattern: PocketPattern::Zigzag, ..Pocket2d::default() }),
         Operation::Profile2d(Profile2d { layers: vec!["CUT".into()], tabs: Tabs { count: 3, ..Tabs::default() }, ..Profile2d::default() }),
     ] {
@@ -496,7 +496,7 @@ fn a_fanuc_program_with_a_problem_keeps_its_tape_mark_first() {
 /// windows of three Δs, entries left out); the plain passes slot at the full diameter.
 #[test]
 fn a_zigzag_pocket_holds_its_load() {
-    use swarf::strategy::rough_zigzag::LoadControl;
+    use swarf::operations::LoadControl;
     let (stepover, stepdown, feed) = (0.4, 1.5, 800.0);
     let reference = 6.0 * stepover * stepdown * feed;
     let mut seconds = Vec::new();

@@ -8,6 +8,7 @@ mod common;
 
 use common::clean;
 use swarf::cutter::Cutter;
+use swarf::operations::Roughing;
 use swarf::error::Error;
 use swarf::geom::DVec2;
 use swarf::job::{self, Job, JobOutput, Operation, Simulation, Tool};
@@ -15,7 +16,7 @@ use swarf::mesh::placement::{PartSetup, Placement};
 use swarf::mesh::sample::{height_field_solid, octree_mould};
 use swarf::mesh::Mesh;
 use swarf::progress::Progress;
-use swarf::strategy::rough_octree::{RoughOctree, StageRole};
+use swarf::operations::{RoughOctree, StageRole};
 
 fn flat(number: u32, d: f64) -> Tool {
     Tool { number, cutter: Cutter { flute_length: 3.0 * d, ..Cutter::flat(d) }, feed_rate: 1000.0, plunge_rate: 250.0, ..Tool::default() }
@@ -40,7 +41,7 @@ fn octree_job(tools: Vec<Tool>, op: RoughOctree) -> Job {
         part: PartSetup { placement: Placement::Keep, ..PartSetup::default() },
         stock: swarf::job::Stock { margin_xy: 0.0, margin_top: 1.0, ..Default::default() },
         tools,
-        operations: vec![Operation::RoughOctree(RoughOctree { allowance: ALLOWANCE, leave_stock: LEAVE, grid: 0.5, ..op })],
+        operations: vec![Operation::RoughOctree(RoughOctree { roughing: Roughing { allowance: ALLOWANCE, leave_stock: LEAVE, grid: 0.5, ..Roughing::default() }, ..op })],
         simulation: Simulation { verify: true, cell: Some(0.25) },
         ..Job::default()
     }
@@ -235,7 +236,7 @@ fn its_settings_are_checked_with_their_paths() {
 fn the_sample_part_is_roughed_clean_with_three_flat_ends() {
     let mut job = Job::demo();
     job.tools = vec![flat(1, 6.0), flat(3, 16.0), flat(4, 3.0)];
-    job.operations = vec![Operation::RoughOctree(RoughOctree { grid: 0.5, ..RoughOctree::default() })];
+    job.operations = vec![Operation::RoughOctree(RoughOctree { roughing: Roughing { grid: 0.5, ..Roughing::default() }, ..RoughOctree::default() })];
     let out = job::run(&job, swarf::mesh::sample::demo_part(), &mut Progress::none()).unwrap();
     clean(&out);
     assert_eq!(stages(&out).len(), 3, "{:?}", stages(&out));

@@ -6,12 +6,13 @@ mod common;
 
 use common::clean;
 use swarf::cutter::Cutter;
+use swarf::operations::Roughing;
 use swarf::sim::windows::windowed_rates;
 use swarf::job::{self, Job, JobOutput, Operation, Simulation, Tool};
 use swarf::mesh::placement::{PartSetup, Placement};
 use swarf::mesh::sample::{demo_part, paper_pocket};
 use swarf::progress::Progress;
-use swarf::strategy::rough_zigzag::{LoadControl, LoadReport, Passes, RoughZigzag};
+use swarf::operations::{LoadControl, LoadReport, Passes, RoughZigzag};
 
 fn flat(number: u32, d: f64) -> Tool {
     Tool { number, name: format!("{d} mm flat"), cutter: Cutter::flat(d), feed_rate: 1000.0, plunge_rate: 250.0, ..Tool::default() }
@@ -19,7 +20,7 @@ fn flat(number: u32, d: f64) -> Tool {
 
 /// The paper's case: φ10 flat, radial depth 3 mm, axial 0.5 mm, one level.
 fn paper_job(load: LoadControl) -> Job {
-    let op = RoughZigzag { tool: 1, stepdown: 0.5, stepover_fraction: 0.3, allowance: 0.0, leave_stock: 0.0, load, grid: 0.5, pixel: Some(0.05), ..RoughZigzag::default() };
+    let op = RoughZigzag { tool: 1, stepdown: 0.5, stepover_fraction: 0.3, load, pixel: Some(0.05), roughing: Roughing { allowance: 0.0, leave_stock: 0.0, grid: 0.5, ..Roughing::default() }, ..RoughZigzag::default() };
     let mut job = Job {
         tools: vec![flat(1, 10.0)],
         operations: vec![Operation::RoughZigzag(op)],
@@ -74,7 +75,7 @@ fn the_papers_pocket_is_cleared_with_the_load_held() {
 fn the_sample_part_is_roughed_clean_to_the_stair_step_both_ways() {
     let (stepdown, allowance, leave) = (2.0, 0.5, 0.5);
     for passes in [Passes::Zigzag, Passes::OneWay] {
-        let op = RoughZigzag { tool: 1, stepdown, allowance, leave_stock: leave, passes, angle: 30.0, ..RoughZigzag::default() };
+        let op = RoughZigzag { tool: 1, stepdown, passes, angle: 30.0, roughing: Roughing { allowance, leave_stock: leave, ..Roughing::default() }, ..RoughZigzag::default() };
         let job = Job { tools: vec![flat(1, 6.0)], operations: vec![Operation::RoughZigzag(op)], simulation: Simulation { verify: true, cell: Some(0.25) }, ..Job::default() };
         let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
         clean(&out);
@@ -95,7 +96,7 @@ fn a_terrain_with_cliffs_is_roughed_without_a_gouge_with_the_load_held() {
     let Some(dir) = common::shared_data("meshes") else { return };
     let bytes = std::fs::read(dir.join("ocl_mount_rush.stl")).unwrap();
     let part = swarf::mesh::import::read_mesh_auto(&bytes, Some("ocl_mount_rush.stl"), &swarf::geom::tolerance::Tolerances::default()).unwrap();
-    let op = RoughZigzag { tool: 1, stepdown: 2.0, stepover_fraction: 0.4, allowance: 0.0, leave_stock: 0.0, load: LoadControl::Path, ..RoughZigzag::default() };
+    let op = RoughZigzag { tool: 1, stepdown: 2.0, stepover_fraction: 0.4, load: LoadControl::Path, roughing: Roughing { allowance: 0.0, leave_stock: 0.0, ..Roughing::default() }, ..RoughZigzag::default() };
     let mut job = Job {
         tools: vec![flat(1, 6.0)],
         operations: vec![Operation::RoughZigzag(op)],

@@ -8,12 +8,13 @@ use common::clean;
 
 use common::mesh;
 use swarf::cutter::Cutter;
+use swarf::operations::Roughing;
 use swarf::geom::{DVec2, DVec3};
 use swarf::job::{self, FinishRaster, Job, Operation, Simulation, Tool};
 use swarf::mesh::placement::{PartSetup, Placement};
 use swarf::mesh::sample::demo_part;
 use swarf::progress::Progress;
-use swarf::strategy::rough_zlevel::{Order, RoughZlevel};
+use swarf::operations::{Order, RoughZlevel};
 use swarf::toolpath::Move;
 
 fn flat(number: u32, d: f64) -> Tool {
@@ -21,7 +22,7 @@ fn flat(number: u32, d: f64) -> Tool {
 }
 
 fn rough(allowance: f64, leave: f64) -> Operation {
-    Operation::RoughZlevel(RoughZlevel { allowance, leave_stock: leave, ..RoughZlevel::default() })
+    Operation::RoughZlevel(RoughZlevel { roughing: Roughing { allowance, leave_stock: leave, ..Roughing::default() }, ..RoughZlevel::default() })
 }
 
 /// A plate 60 mm square at z = 0 with a 20 mm box 8 high on it, and a step 3 high.
@@ -127,7 +128,7 @@ fn the_sample_part_roughed_then_finished_is_clean_and_leaves_at_most_the_stair_s
     let (stepdown, allowance, leave) = (2.0, 0.5, 0.5);
     let job = Job {
         tools: vec![flat(1, 6.0), Tool { number: 2, cutter: Cutter::ball(6.0), ..Tool::default() }],
-        operations: vec![Operation::RoughZlevel(RoughZlevel { stepdown, allowance, leave_stock: leave, ..RoughZlevel::default() })],
+        operations: vec![Operation::RoughZlevel(RoughZlevel { stepdown, roughing: Roughing { allowance, leave_stock: leave, ..Roughing::default() }, ..RoughZlevel::default() })],
         simulation: Simulation { verify: true, cell: Some(0.25) },
         ..Job::default()
     };
@@ -160,7 +161,7 @@ fn entered_from_the_level_above(part: swarf::mesh::Mesh, units: swarf::mesh::pla
         part: PartSetup { placement: Placement::Keep, units, ..PartSetup::default() },
         stock: swarf::job::Stock { margin_xy: 0.0, margin_top: 0.0, ..Default::default() },
         tools: vec![flat(1, 6.0)],
-        operations: vec![Operation::RoughZlevel(RoughZlevel { allowance: 0.0, leave_stock: 0.0, stepdown: 2.0, ..RoughZlevel::default() })],
+        operations: vec![Operation::RoughZlevel(RoughZlevel { stepdown: 2.0, roughing: Roughing { allowance: 0.0, leave_stock: 0.0, ..Roughing::default() }, ..RoughZlevel::default() })],
         simulation: Simulation { verify: true, cell: Some(0.25) },
         ..Job::default()
     };
@@ -230,7 +231,7 @@ fn regions_first_goes_from_pocket_to_pocket_once() {
             part: PartSetup { placement: Placement::Keep, ..PartSetup::default() },
             stock: swarf::job::Stock { margin_xy: 0.0, margin_top: 0.0, ..Default::default() },
             tools: vec![flat(1, 6.0)],
-            operations: vec![Operation::RoughZlevel(RoughZlevel { allowance: 0.0, leave_stock: 0.0, stepdown: 2.0, order, ..RoughZlevel::default() })],
+            operations: vec![Operation::RoughZlevel(RoughZlevel { stepdown: 2.0, order, roughing: Roughing { allowance: 0.0, leave_stock: 0.0, ..Roughing::default() }, ..RoughZlevel::default() })],
             simulation: Simulation { verify: true, cell: Some(0.25) },
             ..Job::default()
         };
@@ -363,7 +364,7 @@ fn rest_roughing_never_works_a_level_beside_material_left_above_it() {
     let bytes = std::fs::read(dir.join("ocl_mount_rush.stl")).unwrap();
     let part = swarf::mesh::import::read_mesh_auto(&bytes, Some("ocl_mount_rush.stl"), &swarf::geom::tolerance::Tolerances::default()).unwrap();
     let tool = |number: u32, d: f64| Tool { number, cutter: Cutter { flute_length: 3.0 * d, ..Cutter::flat(d) }, feed_rate: 1000.0, plunge_rate: 250.0, ..Tool::default() };
-    let stage = |tool: u32, stepdown: f64| Operation::RoughZlevel(RoughZlevel { tool, stepdown, stepover_fraction: 0.5, allowance: 0.5, leave_stock: 0.5, grid: 0.5, ..RoughZlevel::default() });
+    let stage = |tool: u32, stepdown: f64| Operation::RoughZlevel(RoughZlevel { tool, stepdown, stepover_fraction: 0.5, roughing: Roughing { allowance: 0.5, leave_stock: 0.5, grid: 0.5, ..Roughing::default() }, ..RoughZlevel::default() });
     let job = Job {
         part: PartSetup { placement: Placement::Keep, ..PartSetup::default() },
         stock: swarf::job::Stock { margin_xy: 0.0, margin_top: 1.0, ..Default::default() },

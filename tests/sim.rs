@@ -4,6 +4,7 @@
 mod common;
 
 use swarf::cutter::{Cutter, Profile};
+use swarf::operations::Roughing;
 use swarf::geom::{Aabb, DVec2, DVec3, Tolerances};
 use swarf::job::{self, FinishRaster, Job, Operation, Tool};
 use swarf::mesh::sample::demo_part;
@@ -260,13 +261,13 @@ fn simulation_can_be_cancelled() {
 /// deep", at cells the tool never reached). Every roughing kind verifies clean.
 #[test]
 fn stock_left_under_the_allowance_by_the_raw_block_is_not_a_gouge() {
-    use swarf::strategy::{rough_octree::RoughOctree, rough_zigzag::RoughZigzag, rough_zlevel::RoughZlevel};
+    use swarf::operations::{RoughOctree, RoughZigzag, RoughZlevel};
     let part = swarf::mesh::sample::paper_pocket(8.0, 1.0);
     let flat = |n: u32, d: f64| Tool { number: n, cutter: Cutter { flute_length: 25.0, ..Cutter::flat(d) }, ..Tool::default() };
     let kinds = [
-        Operation::RoughZlevel(RoughZlevel { tool: 1, allowance: 0.3, leave_stock: 0.3, grid: 0.5, stepdown: 3.0, ..RoughZlevel::default() }),
-        Operation::RoughZigzag(RoughZigzag { tool: 1, allowance: 0.3, leave_stock: 0.3, grid: 0.5, stepdown: 3.0, ..RoughZigzag::default() }),
-        Operation::RoughOctree(RoughOctree { tools: vec![1, 2], allowance: 0.3, leave_stock: 0.3, grid: 0.5, ..RoughOctree::default() }),
+        Operation::RoughZlevel(RoughZlevel { tool: 1, stepdown: 3.0, roughing: Roughing { allowance: 0.3, leave_stock: 0.3, grid: 0.5, ..Roughing::default() }, ..RoughZlevel::default() }),
+        Operation::RoughZigzag(RoughZigzag { tool: 1, stepdown: 3.0, roughing: Roughing { allowance: 0.3, leave_stock: 0.3, grid: 0.5, ..Roughing::default() }, ..RoughZigzag::default() }),
+        Operation::RoughOctree(RoughOctree { tools: vec![1, 2], roughing: Roughing { allowance: 0.3, leave_stock: 0.3, grid: 0.5, ..Roughing::default() }, ..RoughOctree::default() }),
     ];
     for op in kinds {
         let mut job = Job { tools: vec![flat(1, 10.0), flat(2, 4.0)], operations: vec![op], ..Job::default() };

@@ -199,14 +199,14 @@ pub fn sequence_rows(platform: &str, clock: &dyn Fn() -> f64) -> Vec<String> {
 /// Issue 12's roughing settings: a φ6 flat end, step-down 2, step-over 0.4, no allowance, the
 /// stock the part's box, feed 1000, plunge 250, rapids 5000 mm/min; the part kept where it is.
 pub fn peer_rough_job() -> Job {
-    use crate::strategy::rough_zlevel::RoughZlevel;
+    use crate::operations::RoughZlevel;
     let tool = Tool { cutter: Cutter { flute_length: 50.0, ..Cutter::flat(6.0) }, feed_rate: 1000.0, plunge_rate: 250.0, ..Tool::default() };
     Job {
         part: crate::mesh::placement::PartSetup { placement: crate::mesh::placement::Placement::Keep, ..Default::default() },
         stock: job::Stock { margin_xy: 0.0, margin_top: 0.0, margin_bottom: 0.0, ..Default::default() },
         post: crate::post::PostSettings { rapid_rate: 5000.0, ..Default::default() },
         tools: vec![tool],
-        operations: vec![Operation::RoughZlevel(RoughZlevel { stepdown: 2.0, stepover_fraction: 0.4, allowance: 0.0, leave_stock: 0.0, ..RoughZlevel::default() })],
+        operations: vec![Operation::RoughZlevel(RoughZlevel { stepdown: 2.0, stepover_fraction: 0.4, roughing: crate::machining::settings::Roughing { allowance: 0.0, leave_stock: 0.0, ..Default::default() }, ..RoughZlevel::default() })],
         simulation: Simulation { verify: false, cell: None },
         ..Job::default()
     }
@@ -232,10 +232,10 @@ pub fn rough_row(name: &str, stl: &[u8], platform: &str, clock: &dyn Fn() -> f64
 /// Seed 004's case: the paper-like pocket ([`sample::paper_pocket`], 120 × 85 mm, two
 /// islands), a φ10 flat end at feed 1000, radial depth 3 mm, axial 0.5 mm, one level, zigzag
 /// roughing with the load held by `load`; the stock the plate.
-pub fn paper_zigzag_job(load: crate::strategy::rough_zigzag::LoadControl) -> Job {
-    use crate::strategy::rough_zigzag::RoughZigzag;
+pub fn paper_zigzag_job(load: crate::machining::settings::LoadControl) -> Job {
+    use crate::operations::RoughZigzag;
     let tool = Tool { cutter: Cutter::flat(10.0), feed_rate: 1000.0, plunge_rate: 250.0, ..Tool::default() };
-    let op = RoughZigzag { stepdown: 0.5, stepover_fraction: 0.3, allowance: 0.0, leave_stock: 0.0, load, grid: 0.5, ..RoughZigzag::default() };
+    let op = RoughZigzag { stepdown: 0.5, stepover_fraction: 0.3, roughing: crate::machining::settings::Roughing { allowance: 0.0, leave_stock: 0.0, grid: 0.5, ..Default::default() }, load, ..RoughZigzag::default() };
     Job { tools: vec![tool], operations: vec![Operation::RoughZigzag(op)], ..peer_rough_job() }
 }
 
@@ -244,7 +244,7 @@ pub fn paper_zigzag_job(load: crate::strategy::rough_zigzag::LoadControl) -> Job
 /// Δs, on the pixel map), the cycle time as programmed and at the feed each allows (the plain
 /// path at the one constant feed its peak load allows, 1.1 × the reference), and compute time.
 pub fn zigzag_rows(platform: &str, clock: &dyn Fn() -> f64) -> Vec<String> {
-    use crate::strategy::rough_zigzag::{LoadControl, LoadReport};
+    use crate::machining::{report::LoadReport, settings::LoadControl};
     let part = sample::paper_pocket(0.5, 0.5);
     let mut rows = Vec::new();
     for load in [LoadControl::None, LoadControl::Feed, LoadControl::Path] {
@@ -287,16 +287,16 @@ pub fn program_load(part: Mesh, gcode: &str, diameter: f64, cell: f64, ds: f64) 
 
 /// Issue 12's settings (φ6 flat, step-down 2, step-over 0.4, no allowance, the stock the
 /// part's box) with zigzag roughing on a 0.5 mm grid, the load held by `load`.
-pub fn peer_zigzag_job(load: crate::strategy::rough_zigzag::LoadControl) -> Job {
-    use crate::strategy::rough_zigzag::RoughZigzag;
-    let op = RoughZigzag { stepdown: 2.0, stepover_fraction: 0.4, allowance: 0.0, leave_stock: 0.0, grid: 0.5, load, ..RoughZigzag::default() };
+pub fn peer_zigzag_job(load: crate::machining::settings::LoadControl) -> Job {
+    use crate::operations::RoughZigzag;
+    let op = RoughZigzag { stepdown: 2.0, stepover_fraction: 0.4, roughing: crate::machining::settings::Roughing { allowance: 0.0, leave_stock: 0.0, grid: 0.5, ..Default::default() }, load, ..RoughZigzag::default() };
     Job { operations: vec![Operation::RoughZigzag(op)], ..peer_rough_job() }
 }
 
 /// Zigzag roughing of a part (STL bytes) with [`peer_zigzag_job`], each way of holding the
 /// load: compute time (without simulation) and the cycle time as programmed.
 pub fn zigzag_peer_rows(name: &str, stl: &[u8], platform: &str, clock: &dyn Fn() -> f64) -> Vec<String> {
-    use crate::strategy::rough_zigzag::LoadControl;
+    use crate::machining::settings::LoadControl;
     let part = crate::mesh::import::read_mesh_auto(stl, Some("part.stl"), &Tolerances::default()).expect("the part reads");
     [LoadControl::Path, LoadControl::Feed, LoadControl::None]
         .into_iter()
@@ -314,11 +314,11 @@ pub fn zigzag_peer_rows(name: &str, stl: &[u8], platform: &str, clock: &dyn Fn()
 /// top. Returns the jobs: octree multi-tool roughing, z-level roughing with the φ3 alone, and
 /// z-level roughing with the φ20 then with the φ3 (which sees what the φ20 left).
 pub fn octree_jobs(delta: f64, stepover: f64, grid: f64, cell: f64) -> [(&'static str, Job); 3] {
-    use crate::strategy::rough_octree::RoughOctree;
-    use crate::strategy::rough_zlevel::RoughZlevel;
+    use crate::operations::RoughOctree;
+    use crate::operations::RoughZlevel;
     let flat = |number: u32, d: f64| Tool { number, cutter: Cutter { flute_length: 3.0 * d, ..Cutter::flat(d) }, feed_rate: 1000.0, plunge_rate: 250.0, ..Tool::default() };
     let tools = vec![flat(1, 20.0), flat(2, 12.0), flat(3, 6.0), flat(4, 3.0)];
-    let zlevel = |tool: u32, d: f64| Operation::RoughZlevel(RoughZlevel { name: format!("z-level φ{d}"), tool, stepdown: delta * d, stepover_fraction: stepover, grid, ..RoughZlevel::default() });
+    let zlevel = |tool: u32, d: f64| Operation::RoughZlevel(RoughZlevel { name: format!("z-level φ{d}"), tool, stepdown: delta * d, stepover_fraction: stepover, roughing: crate::machining::settings::Roughing { grid, ..Default::default() }, ..RoughZlevel::default() });
     let base = Job {
         part: crate::mesh::placement::PartSetup { placement: crate::mesh::placement::Placement::Keep, ..Default::default() },
         stock: job::Stock { margin_xy: 0.0, margin_top: 1.0, margin_bottom: 0.0, ..Default::default() },
@@ -328,7 +328,7 @@ pub fn octree_jobs(delta: f64, stepover: f64, grid: f64, cell: f64) -> [(&'stati
         ..Job::default()
     };
     [
-        ("octree (φ20 φ12 φ6 φ3)", Job { operations: vec![Operation::RoughOctree(RoughOctree { delta, stepover_fraction: stepover, grid, ..RoughOctree::default() })], ..base.clone() }),
+        ("octree (φ20 φ12 φ6 φ3)", Job { operations: vec![Operation::RoughOctree(RoughOctree { delta, stepover_fraction: stepover, roughing: crate::machining::settings::Roughing { grid, ..Default::default() }, ..RoughOctree::default() })], ..base.clone() }),
         ("z-level φ3 alone", Job { operations: vec![zlevel(4, 3.0)], ..base.clone() }),
         ("z-level φ20, then φ3", Job { operations: vec![zlevel(1, 20.0), zlevel(4, 3.0)], ..base }),
     ]

@@ -9,7 +9,7 @@ use crate::error::{Error, Result};
 use crate::geom::{Aabb, DVec2};
 use crate::offset::offset;
 use crate::profile::Drawing;
-use crate::strategy::context::{Groove, SheetCut};
+use crate::machining::report::{Groove, SheetCut};
 use crate::zmap::{Grid, HeightField};
 
 /// The units a drawing's numbers are in.

@@ -9,7 +9,7 @@
 
 pub mod bench;
 pub mod drawing;
-pub mod operation;
+
 pub mod pool;
 pub mod project;
 pub mod read;
@@ -18,14 +18,13 @@ pub mod report;
 use serde::{Deserialize, Serialize};
 
 pub use self::drawing::{DrawingOrigin, DrawingSetup, DrawingUnits};
-pub use self::operation::Operation;
 pub use self::report::OperationReport;
-pub use crate::strategy::finish_raster::{Boundary, FinishRaster};
+pub use crate::operations::{Boundary, FinishRaster, Operation};
 pub use crate::tool::Tool;
 
 use crate::cutter::Cutter;
 use crate::error::{Error, Result, Warning};
-use crate::strategy::profile2d::Profile2d;
+use crate::operations::Profile2d;
 use crate::geom::{Aabb, DVec3, Tolerances};
 use crate::mesh::{placement::PartSetup, Mesh};
 use crate::post::{write_mapped, CycleTime, PostSettings, TimeItem};
@@ -34,9 +33,9 @@ use crate::progress::Progress;
 use crate::sim::program::{program_moves, ProgramMove};
 use crate::sim::verify::{BandCut, Simulator, Verification, VerifySettings};
 use crate::sim::DexelStock;
-use crate::strategy::context::{Caches, CacheCounts, Context, SafeHeights, Sheet};
-use crate::strategy::rough_octree::StageOctants;
-use crate::strategy::Works;
+use crate::machining::context::{Caches, CacheCounts, Context, SafeHeights, Sheet};
+use crate::machining::report::{Groove, LoadReport, Planned, SheetCut, StageOctants, StageReport};
+use crate::machining::Works;
 use crate::toolpath::{PathStats, Toolpath};
 use crate::zmap::cc::cc_zmap;
 use crate::zmap::HeightField;
@@ -380,7 +379,7 @@ impl Job {
     /// a 6 mm sheet (holes inside, outlines outside), four tabs a part.
     pub fn default_for_drawing() -> Job {
         let tool = Tool { number: 1, name: "3 mm flat end mill".into(), cutter: Cutter::flat(3.0), feed_rate: 800.0, plunge_rate: 200.0, ..Tool::default() };
-        let profile = Profile2d { tabs: crate::strategy::profile2d::Tabs { count: 4, ..Default::default() }, ..Profile2d::default() };
+        let profile = Profile2d { tabs: crate::operations::Tabs { count: 4, ..Default::default() }, ..Profile2d::default() };
         Job { name: "swarf sheet job".into(), tools: vec![tool], operations: vec![Operation::Profile2d(profile)], ..Job::default() }
     }
 
@@ -388,8 +387,8 @@ impl Job {
     /// end (leaving 0.5 mm), then a φ6 ball finishing the shallow areas by raster and the steep
     /// ones by waterline.
     pub fn demo() -> Job {
-        use crate::strategy::finish_waterline::FinishWaterline;
-        use crate::strategy::rough_zlevel::RoughZlevel;
+        use crate::operations::FinishWaterline;
+        use crate::operations::RoughZlevel;
         let flat = Tool { number: 1, name: "6 mm flat end mill".into(), cutter: Cutter { flute_length: 30.0, ..Cutter::flat(6.0) }, feed_rate: 1200.0, plunge_rate: 300.0, ..Tool::default() };
         let ball = Tool { number: 2, name: "6 mm ball end mill".into(), cutter: Cutter { flute_length: 30.0, ..Cutter::ball(6.0) }, ..Tool::default() };
         let steep = 40.0;
@@ -412,17 +411,18 @@ impl Job {
     /// for it. Without it that first job runs partly in baseline code: the pocket test's
     /// zigzag 0.16–0.21 s against 0.10 s (BENCHMARKS.md, "The warm-up in a worker of its own").
     pub fn warm_up() -> Job {
-        use crate::strategy::rough_zigzag::RoughZigzag;
+        use crate::machining::settings::Roughing;
+        use crate::operations::RoughZigzag;
         let mut job = Job::demo();
         job.name = "warm-up".into();
-        job.operations.insert(1, Operation::RoughZigzag(RoughZigzag { name: "zigzag".into(), tool: 1, allowance: 0.0, leave_stock: 0.0, ..RoughZigzag::default() }));
+        job.operations.insert(1, Operation::RoughZigzag(RoughZigzag { name: "zigzag".into(), tool: 1, roughing: Roughing { allowance: 0.0, leave_stock: 0.0, ..Roughing::default() }, ..RoughZigzag::default() }));
         // Coarse and small: what matters is that each strategy's code runs, not the finish.
         job.tools[0].cutter = Cutter { flute_length: 15.0, ..Cutter::flat(3.0) };
         job.tools[1].cutter = Cutter { flute_length: 15.0, ..Cutter::ball(3.0) };
         for op in &mut job.operations {
             match op {
-                Operation::RoughZlevel(o) => (o.grid, o.stepdown) = (0.5, 2.0),
-                Operation::RoughZigzag(o) => (o.grid, o.stepdown, o.stepover_fraction) = (0.5, 3.0, 0.8),
+                Operation::RoughZlevel(o) => (o.roughing.grid, o.stepdown) = (0.5, 2.0),
+                Operation::RoughZigzag(o) => (o.roughing.grid, o.stepdown, o.stepover_fraction) = (0.5, 3.0, 0.8),
                 Operation::FinishRaster(o) => (o.grid, o.stepover) = (0.5, 2.0),
                 Operation::FinishWaterline(o) => (o.grid, o.stepdown, o.scallop) = (0.5, 1.5, None),
                 _ => {}
@@ -551,11 +551,6 @@ impl Job {
             caches: Caches::default(),
             sim: Simulator::new(&stock, cell)?,
             warnings: Vec::new(),
-            cuts: Vec::new(),
-            grooves: Vec::new(),
-            load: None,
-            stages: None,
-            octants: Vec::new(),
             rapid_rate: self.post.rapid_rate,
             air_feed: self.stock.air_feed.unwrap_or(self.post.rapid_rate).min(self.post.rapid_rate),
             operation: 0,
@@ -669,6 +664,9 @@ impl Prepared {
             all_moves: Vec::new(),
             snapshots: Vec::new(),
             loads: Vec::new(),
+            cuts: Vec::new(),
+            grooves: Vec::new(),
+            octants: Vec::new(),
             pending: Vec::new(),
             bands_out: 0,
         }
@@ -692,7 +690,13 @@ pub struct Running {
     move_ranges: Vec<std::ops::Range<usize>>,
     all_moves: Vec<ProgramMove>,
     snapshots: Vec<Option<HeightField>>,
-    loads: Vec<(Option<crate::strategy::rough_zigzag::LoadReport>, Option<Vec<crate::strategy::rough_octree::StageReport>>)>,
+    loads: Vec<(Option<LoadReport>, Option<Vec<StageReport>>)>,
+    /// Where the operations cut a sheet, and the grooves they engraved: what a drawing's
+    /// program is verified against.
+    cuts: Vec<SheetCut>,
+    grooves: Vec<Groove>,
+    /// Octree roughing's octants, for the view.
+    octants: Vec<StageOctants>,
     /// The last planned operation's moves, until they have cut the in-process stock.
     pending: Vec<ProgramMove>,
     /// How many bands of the stock [`Running::take_bands`] handed out.
@@ -729,11 +733,14 @@ impl Running {
         let planned = o.plan(&mut self.ctx, progress);
         // Regions a pool made were for this operation only.
         self.ctx.given_regions.clear();
-        let planned = planned?;
-        self.loads.push((self.ctx.load.take(), self.ctx.stages.take()));
+        let Planned { paths, cuts, grooves, load, stages, octants } = planned?;
+        self.loads.push((load, stages));
+        self.cuts.extend(cuts);
+        self.grooves.extend(grooves);
+        self.octants.extend(octants);
         let first_path = self.paths.len();
-        self.path_operations.extend(std::iter::repeat_n(k, planned.len()));
-        self.paths.extend(planned);
+        self.path_operations.extend(std::iter::repeat_n(k, paths.len()));
+        self.paths.extend(paths);
         let moves = timed_moves(&self.paths, first_path, self.all_moves.last(), &self.job.tools, self.job.post.rapid_rate)?;
         if !moves.is_empty() && (self.job.simulation.verify || self.next < self.enabled.len()) {
             self.pending = moves;
@@ -803,7 +810,7 @@ impl Running {
         if self.next < self.enabled.len() || !self.pending.is_empty() {
             return Err(Error::Input("the job is not planned to its end yet".into()));
         }
-        let Running { job, ctx, mut warnings, enabled, paths, path_operations, move_ranges, all_moves, snapshots, loads, .. } = self;
+        let Running { job, ctx, mut warnings, enabled, paths, path_operations, move_ranges, all_moves, snapshots, loads, cuts, grooves, octants, .. } = self;
         let job = &job;
         let verify = job.simulation.verify;
         let mut ctx = ctx;
@@ -815,7 +822,7 @@ impl Running {
             let why = if warnings.is_empty() { String::new() } else { format!(" ({})", warnings.iter().map(Warning::to_string).collect::<Vec<_>>().join("; ")) };
             return Err(Error::Nothing(format!("the program has no cutting moves{why}")));
         }
-        let Context { part, sheet, stock, heights, caches, sim, cuts, grooves, octants, .. } = ctx;
+        let Context { part, sheet, stock, heights, caches, sim, .. } = ctx;
         // The simulation that carried the in-process stock judges the whole program.
         let (verification, sim) = if verify {
             let settings = job.verify_settings(&stock, None);

@@ -8,20 +8,21 @@
 //! ([`Prepared::level_rows`]). The worker that plans keeps what the others made
 //! ([`Prepared::keep_surface`], [`Prepared::keep_passes`], [`Prepared::keep_level_map`]) and plans as it would have alone:
 //! the program is the same byte for byte. Natively the same bands and passes run on threads
-//! ([`crate::zmap::cl_exact::ExactBuilder::field`], [`crate::strategy::finish_raster::raster_runs`]).
+//! ([`crate::zmap::cl_exact::ExactBuilder::field`], [`crate::machining::raster::raster_runs`]).
 
 use std::collections::HashMap;
 use std::ops::Range;
 
-use super::operation::Operation;
+use crate::operations::Operation;
 use super::{Prepared, Running};
 use crate::error::{Error, Result};
 use crate::geom::DVec3;
 use crate::profile::Shape;
 use crate::progress::Progress;
-use crate::strategy::context::SurfaceRequest;
-use crate::strategy::finish_raster::{FinishRaster, PassLayout, RasterPasses};
-use crate::strategy::rough_zlevel::{unpack, GivenRegion, RegionWork};
+use crate::machining::context::SurfaceRequest;
+use crate::machining::raster::{PassLayout, RasterPasses};
+use crate::operations::FinishRaster;
+use crate::machining::levels::{unpack, GivenRegion, RegionWork};
 use crate::zmap::contour::LevelMap;
 use crate::zmap::region::Region;
 use crate::zmap::ClBuilder;
@@ -95,7 +96,7 @@ impl Prepared {
         Ok(())
     }
 
-    /// Keeps the node bounds of surface `request` ([`crate::strategy::Context::node_bounds`])
+    /// Keeps the node bounds of surface `request` ([`crate::machining::Context::node_bounds`])
     /// from its rows' widened heights (its bands joined).
     pub fn keep_node_bounds(&mut self, request: SurfaceRequest, wide: Vec<f64>) -> Result<()> {
         if self.ctx.keep_node_bounds(request, wide) {
@@ -197,7 +198,7 @@ impl Prepared {
 }
 
 /// [`Prepared::level_regions`] in `ctx`.
-fn level_regions(ctx: &mut crate::strategy::Context, request: SurfaceRequest, levels: &[(f64, Vec<u8>)]) -> Result<Vec<Shape>> {
+fn level_regions(ctx: &mut crate::machining::Context, request: SurfaceRequest, levels: &[(f64, Vec<u8>)]) -> Result<Vec<Shape>> {
     let cl = ctx.cl_surface(request, &mut Progress::none())?;
     let map = ctx.level_map(request, &cl);
     let (grid, tol) = (cl.field.grid(), ctx.tolerances);
@@ -209,7 +210,7 @@ fn level_regions(ctx: &mut crate::strategy::Context, request: SurfaceRequest, le
 
 impl Running {
     /// The regions of the next operation's levels, as work for a pool, when it has levels
-    /// ([`crate::strategy::Operate::region_work`]); `None` once every operation is planned.
+    /// ([`crate::machining::Operate::region_work`]); `None` once every operation is planned.
     pub fn region_work(&mut self, progress: &mut Progress) -> Result<Option<RegionWork>> {
         let Some(&k) = self.enabled.get(self.next) else { return Ok(None) };
         self.ctx.operation = k;

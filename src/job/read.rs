@@ -83,9 +83,9 @@ fn tabs_from_the_bottom(value: &mut serde_json::Value) {
         if op.get("kind").and_then(serde_json::Value::as_str) != Some("profile2d") {
             continue;
         }
-        let depth = op.get("depth").and_then(serde_json::Value::as_f64).unwrap_or(thickness + crate::strategy::sheet::BREAKTHROUGH);
+        let depth = op.get("depth").and_then(serde_json::Value::as_f64).unwrap_or(thickness + crate::machining::sheet::BREAKTHROUGH);
         let past = (depth - thickness).max(0.0);
-        let height = op.pointer("/tabs/height").and_then(serde_json::Value::as_f64).unwrap_or(crate::strategy::profile2d::Tabs::default().height);
+        let height = op.pointer("/tabs/height").and_then(serde_json::Value::as_f64).unwrap_or(crate::operations::Tabs::default().height);
         if past > 0.0 && op.get("tabs").is_some_and(serde_json::Value::is_object) {
             op["tabs"]["height"] = serde_json::json!(height - past);
         }

@@ -7,8 +7,7 @@ use serde::Serialize;
 use super::Job;
 use crate::sim::program::ProgramMove;
 use crate::sim::verify::Verification;
-use crate::strategy::rough_octree::StageReport;
-use crate::strategy::rough_zigzag::LoadReport;
+use crate::machining::report::{LoadReport, StageReport};
 use crate::zmap::HeightField;
 
 /// One operation's figures.

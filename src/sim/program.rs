@@ -24,7 +24,7 @@ pub struct ProgramMove {
     pub start: f64,
     pub seconds: f64,
     /// A feed move faster than its tool's feed: one its operation knew to cut nothing (the air
-    /// feed, [`crate::strategy::air`]), held to that as a rapid is.
+    /// feed, [`crate::machining::air`]), held to that as a rapid is.
     pub air: bool,
 }
 

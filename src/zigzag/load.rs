@@ -426,11 +426,11 @@ impl Load {
 /// The load along a path: pixels removed per step, each step's length (the last of a run
 /// may be short), for the statistics.
 #[derive(Clone, Debug, Default)]
-pub struct Profile {
+pub struct LoadProfile {
     pub counts: Vec<(f64, f64)>,
 }
 
-impl Profile {
+impl LoadProfile {
     /// The load relative to the reference over consecutive windows of the path at least Δs
     /// long (steps taken whole; a short last window is left out).
     pub fn ratios(&self, reference: f64, ds: f64) -> Vec<f64> {
@@ -459,7 +459,7 @@ impl Profile {
 
 /// `run` cut as it is, in steps of `ds`: returns the path as cut (the run's points with the
 /// steps between) and the count of each step.
-pub fn plain(map: &mut PixelMap, run: &[DVec2], load: &Load, profile: &mut Profile) -> Vec<DVec2> {
+pub fn plain(map: &mut PixelMap, run: &[DVec2], load: &Load, profile: &mut LoadProfile) -> Vec<DVec2> {
     let pts = densify(run, load.ds / SUBSTEPS as f64);
     if let Some(&p) = pts.first() {
         map.cut(p, p);
@@ -481,7 +481,7 @@ pub fn plain(map: &mut PixelMap, run: &[DVec2], load: &Load, profile: &mut Profi
 /// its middle). A detour that finds no such way back to the run is taken back, and the run
 /// goes on as it is from where the detour left it; should the guard on the steps run out, the
 /// whole run is cut as it is. So the correction never takes the tool where the run would not.
-pub fn corrected(map: &mut PixelMap, run: &[DVec2], load: &Load, profile: &mut Profile) -> Vec<DVec2> {
+pub fn corrected(map: &mut PixelMap, run: &[DVec2], load: &Load, profile: &mut LoadProfile) -> Vec<DVec2> {
     let before = map.material.clone();
     let counted = profile.counts.len();
     let out = correct(map, run, load, profile);
@@ -502,7 +502,7 @@ struct Departure {
 }
 
 /// [`corrected`]'s path, or `None` when the guard on its steps runs out.
-fn correct(map: &mut PixelMap, run: &[DVec2], load: &Load, profile: &mut Profile) -> Option<Vec<DVec2>> {
+fn correct(map: &mut PixelMap, run: &[DVec2], load: &Load, profile: &mut LoadProfile) -> Option<Vec<DVec2>> {
     let pts = densify(run, load.ds / SUBSTEPS as f64);
     let Some(&start) = pts.first() else { return Some(Vec::new()) };
     let px = map.pixel();
@@ -512,7 +512,7 @@ fn correct(map: &mut PixelMap, run: &[DVec2], load: &Load, profile: &mut Profile
     let mut out = vec![start];
     let mut pos = start;
     // `cut`: the count of the step when it was cut already.
-    let step_to = |map: &mut PixelMap, pos: &mut DVec2, q: DVec2, cut: Option<usize>, out: &mut Vec<DVec2>, profile: &mut Profile| {
+    let step_to = |map: &mut PixelMap, pos: &mut DVec2, q: DVec2, cut: Option<usize>, out: &mut Vec<DVec2>, profile: &mut LoadProfile| {
         let n = cut.unwrap_or_else(|| map.cut(*pos, q));
         profile.counts.push((n as f64, pos.distance(q)));
         *pos = q;
@@ -731,12 +731,12 @@ mod tests {
     fn a_straight_pass_beside_a_cut_removes_the_reference() {
         let (mut map, _) = square_map(0.05, 5.0);
         let load = Load { ds: 1.0, step: 3.0, tolerance: 0.1, climb: true };
-        let mut first = Profile::default();
+        let mut first = LoadProfile::default();
         plain(&mut map, &[DVec2::new(5.0, 5.0), DVec2::new(35.0, 5.0)], &load, &mut first);
         // The first pass slots: the full diameter.
         let slot = first.ratios(load.reference(0.05), load.ds);
         assert!(slot[10..20].iter().all(|&r| (r - 10.0 / 3.0).abs() < 0.1), "{slot:?}");
-        let mut second = Profile::default();
+        let mut second = LoadProfile::default();
         plain(&mut map, &[DVec2::new(35.0, 8.0), DVec2::new(5.0, 8.0)], &load, &mut second);
         let beside = second.ratios(load.reference(0.05), load.ds);
         assert!(beside[10..20].iter().all(|&r| (r - 1.0).abs() < 0.05), "{beside:?}");
@@ -749,15 +749,15 @@ mod tests {
         let run = [DVec2::new(5.0, 5.0), DVec2::new(35.0, 5.0), DVec2::new(35.0, 8.0), DVec2::new(5.0, 8.0)];
         let reference = load.reference(0.1);
         let (mut a, _) = square_map(0.1, 5.0);
-        let mut before = Profile::default();
+        let mut before = LoadProfile::default();
         plain(&mut a, &run, &load, &mut before);
         let (mut b, _) = square_map(0.1, 5.0);
-        let mut after = Profile::default();
+        let mut after = LoadProfile::default();
         let path = corrected(&mut b, &run, &load, &mut after);
         // Past the first pass (a slot in both), the plain path overloads going up the side,
         // the corrected one not.
         // The first 30 mm (60 windows) are the slot.
-        let past = |p: &Profile| p.ratios(reference, load.ds).into_iter().skip(60).fold(0.0, f64::max);
+        let past = |p: &LoadProfile| p.ratios(reference, load.ds).into_iter().skip(60).fold(0.0, f64::max);
         let (worst_plain, worst) = (past(&before), past(&after));
         assert!(worst_plain > 1.5, "{worst_plain}");
         // Along the region's edge some steps find no way off the wall that keeps the limit
@@ -805,7 +805,7 @@ mod tests {
             let runs = Graph::new(&region, f64::to_radians(angle), load.step).walk(Pattern::Zigzag, climb, 0.002);
             let mut off = 0;
             for run in &runs {
-                let path = corrected(&mut map, run, &load, &mut Profile::default());
+                let path = corrected(&mut map, run, &load, &mut LoadProfile::default());
                 let on_run = |p: DVec2| run.windows(2).any(|w| crate::geom::segment::Segment::line(w[0], w[1]).distance_to(p) < 1e-9);
                 for w in path.windows(2) {
                     for p in [w[1], 0.5 * (w[0] + w[1])] {

@@ -176,6 +176,11 @@ helixMin: number,
 helixMax: number, };
 
 /**
+ * How the tool enters material.
+ */
+export type EntryKind = "helix" | "ramp";
+
+/**
  * A place where something went wrong.
  */
 export type Finding = { 
@@ -434,7 +439,7 @@ load: LoadReport | null,
 stages: Array<StageReport> | null, };
 
 /**
- * The order a level-by-level roughing cuts in ([`RoughZlevel::order`]).
+ * The order a level-by-level roughing cuts in (`order` of z-level roughing).
  */
 export type Order = "regions" | "levels";
 
@@ -536,7 +541,7 @@ loadTolerance: number,
 /**
  * Default value: helix.
  */
-entry: PocketEntry, 
+entry: EntryKind, 
 /**
  * Helix radius (mm). Default value: 0.4 × the tool diameter.
  */
@@ -558,11 +563,6 @@ layers: Array<string>,
  * islands (empty: all). Default value: empty.
  */
 loops: Array<number>, };
-
-/**
- * How the tool enters material.
- */
-export type PocketEntry = "helix" | "ramp";
 
 /**
  * How the pocket is cleared.
@@ -827,7 +827,7 @@ delta: number,
  * 0.85 (seed 000 §3.3: wider steps leave islands where boundaries meet at 90°). The paper's
  * regions are unions of square octants; here they follow the part, and rings more than
  * the tool's radius apart can leave strips where a region narrows
- * ([`super::pocket2d::rings`]), so the default is the widest that never does. Default
+ * ([`crate::machining::rings::rings`]), so the default is the widest that never does. Default
  * value: 0.5.
  */
 stepoverFraction: number, 
@@ -844,7 +844,7 @@ leaveStock: number,
  */
 direction: Direction, 
 /**
- * Spacing of the CL z-maps (mm). Default value: 0.25.
+ * Spacing of the CL z-map (mm). Default value: 0.25.
  */
 grid: number, 
 /**
@@ -877,18 +877,6 @@ stepdown: number,
  */
 stepoverFraction: number, 
 /**
- * Material left on floors (axial, mm). Default value: 0.5.
- */
-allowance: number, 
-/**
- * Material left on walls (radial, mm). Default value: 0.5.
- */
-leaveStock: number, 
-/**
- * Default value: climb.
- */
-direction: Direction, 
-/**
  * Direction of the passes (degrees from +X). Default value: 0.
  */
 angle: number, 
@@ -913,17 +901,29 @@ sampling: number | null,
  */
 pixel: number | null, 
 /**
+ * Cut every flat area of the part at its own height too. Default value: true.
+ */
+flats: boolean, 
+/**
+ * Material left on floors (axial, mm). Default value: 0.5.
+ */
+allowance: number, 
+/**
+ * Material left on walls (radial, mm). Default value: 0.5.
+ */
+leaveStock: number, 
+/**
+ * Default value: climb.
+ */
+direction: Direction, 
+/**
  * Spacing of the CL z-map (mm). Default value: 0.25.
  */
 grid: number, 
 /**
  * Steepest descent of helices and ramps (degrees). Default value: 3.
  */
-rampAngle: number, 
-/**
- * Cut every flat area of the part at its own height too. Default value: true.
- */
-flats: boolean, };
+rampAngle: number, };
 
 /**
  * Z-level roughing.
@@ -950,6 +950,20 @@ stepdown: number,
  */
 stepoverFraction: number, 
 /**
+ * Helix radius (mm). Default value: 0.4 × the tool diameter.
+ */
+helixRadius: number | null, 
+/**
+ * Cut every flat area of the part at its own height too. Default value: true.
+ */
+flats: boolean, 
+/**
+ * Which comes first: each region down to its floor before the next (`regions`: the tool
+ * goes from pocket to pocket once, not once per level), or each level everywhere before
+ * the next (`levels`). Default value: regions.
+ */
+order: Order, 
+/**
  * Material left on floors (axial, mm). Default value: 0.5.
  */
 allowance: number, 
@@ -968,21 +982,7 @@ grid: number,
 /**
  * Steepest descent of helices and ramps (degrees). Default value: 3.
  */
-rampAngle: number, 
-/**
- * Helix radius (mm). Default value: 0.4 × the tool diameter.
- */
-helixRadius: number | null, 
-/**
- * Cut every flat area of the part at its own height too. Default value: true.
- */
-flats: boolean, 
-/**
- * Which comes first: each region down to its floor before the next (`regions`: the tool
- * goes from pocket to pocket once, not once per level), or each level everywhere before
- * the next (`levels`). Default value: regions.
- */
-order: Order, };
+rampAngle: number, };
 
 /**
  * The shape of a cutter's end.

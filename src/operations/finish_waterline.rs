@@ -12,16 +12,16 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::profile2d::Direction;
-use super::context::SurfaceRequest;
-use super::rough_zlevel::{pack, RegionWork};
-use super::{Context, FieldError, Operate};
+use crate::machining::context::SurfaceRequest;
+use crate::machining::levels::{pack, RegionWork};
+use crate::machining::raster::gradient;
+use crate::machining::settings::Direction;
+use crate::machining::{finite, named_operation, not_negative, positive, Context, FieldError, Operate, Planned};
 use crate::error::{Error, Result};
 use crate::geom::{DVec2, DVec3};
 use crate::progress::Progress;
 use crate::toolpath::entry::Entry;
 use crate::toolpath::link::Floor;
-use crate::toolpath::Toolpath;
 use crate::zmap::region::Region;
 use crate::zmap::{ClBuilder, Grid, HeightField};
 
@@ -74,21 +74,21 @@ const SHORTEST: f64 = 0.5;
 const LEAST_STEP: f64 = 0.02;
 
 impl Operate for FinishWaterline {
-    super::named_operation!(OnPart);
+    named_operation!(OnPart);
 
     fn allowance(&self) -> f64 {
         self.allowance
     }
 
     fn validate(&self) -> Result<(), FieldError> {
-        super::positive("stepdown", self.stepdown)?;
+        positive("stepdown", self.stepdown)?;
         if let Some(h) = self.scallop {
-            super::positive("scallop", h)?;
+            positive("scallop", h)?;
         }
-        super::not_negative("allowance", self.allowance)?;
-        super::finite("slopeMin", self.slope_min)?;
-        super::positive("grid", self.grid)?;
-        super::positive("entry.rampAngle", self.entry.ramp_angle)?;
+        not_negative("allowance", self.allowance)?;
+        finite("slopeMin", self.slope_min)?;
+        positive("grid", self.grid)?;
+        positive("entry.rampAngle", self.entry.ramp_angle)?;
         Ok(())
     }
 
@@ -112,7 +112,7 @@ impl Operate for FinishWaterline {
         Ok(Some(RegionWork { request, levels }))
     }
 
-    fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Vec<Toolpath>> {
+    fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Planned> {
         let tool = ctx.tool(&self.name, self.tool)?.clone();
         let profile = tool.cutter.profile();
         if !progress.stage("CL z-map", 0.0, 0.3) {
@@ -161,12 +161,12 @@ impl Operate for FinishWaterline {
         }
         if runs.is_empty() {
             ctx.note(&self.name, format!("no area of the part is steeper than {}°", self.slope_min));
-            return Ok(Vec::new());
+            return Ok(Planned::default());
         }
         let region = Region::Rect { min: grid.origin, max: grid.node(grid.nx - 1, grid.ny - 1) };
         let bounds = ctx.node_bounds(request);
         let floor_surface = Floor { cl: &cl, allowance: self.allowance, region: &region, bounds: Some(bounds.as_ref()) };
-        Ok(vec![ctx.link(&self.name, &tool, &runs, &floor_surface, self.entry, 2.0 * profile.radius)])
+        Ok(vec![ctx.link(&self.name, &tool, &runs, &floor_surface, self.entry, 2.0 * profile.radius)].into())
     }
 }
 
@@ -210,16 +210,6 @@ impl FinishWaterline {
         }
         out
     }
-}
-
-/// The slope of the CL surface at `p` (rise over run), from the nodes around it.
-pub fn gradient(f: &HeightField, p: DVec2) -> f64 {
-    let u = (p - f.origin) / f.spacing;
-    let (i, j) = (u.x.floor().clamp(0.0, (f.nx - 1) as f64) as usize, u.y.floor().clamp(0.0, (f.ny - 1) as f64) as usize);
-    let (i1, j1) = ((i + 1).min(f.nx - 1), (j + 1).min(f.ny - 1));
-    let dx = ((f.at(i1, j) - f.at(i, j)).abs()).max((f.at(i1, j1) - f.at(i, j1)).abs());
-    let dy = ((f.at(i, j1) - f.at(i, j)).abs()).max((f.at(i1, j1) - f.at(i1, j)).abs());
-    (dx * dx + dy * dy).sqrt() / f.spacing
 }
 
 /// The stretches of the closed polyline `pts` (its last point its first) where the slope is at

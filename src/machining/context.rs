@@ -46,25 +46,6 @@ pub struct Sheet {
     pub thickness: f64,
 }
 
-/// Where a 2.5D operation may cut, to what depth, leaving how much on the walls: the part a
-/// drawing means, for verifying the program.
-#[derive(Clone, Debug)]
-pub struct SheetCut {
-    pub region: crate::profile::Shape,
-    /// Cuts inside the region (else everywhere outside it).
-    pub inside: bool,
-    pub depth: f64,
-    pub leave: f64,
-}
-
-/// Where an engraving cuts: within `radius` of its line, to `depth`.
-#[derive(Clone, Debug)]
-pub struct Groove {
-    pub path: Vec<crate::geom::segment::Segment>,
-    pub radius: f64,
-    pub depth: f64,
-}
-
 /// Lookups of the caches, for reports and benchmarks.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct CacheCounts {
@@ -91,7 +72,7 @@ pub struct Caches {
 
 /// A CL surface an operation asks the context for: its cutter, grid, floor (the height where
 /// no part is under the cutter) and builder. Operations name theirs before planning
-/// ([`crate::strategy::Operate::surfaces`]), so that a pool of workers can make them first.
+/// ([`crate::machining::Operate::surfaces`]), so that a pool of workers can make them first.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SurfaceRequest {
     pub profile: Profile,
@@ -120,18 +101,6 @@ pub struct Context {
     /// The in-process stock: the raw box cut by every operation planned so far.
     pub sim: Simulator,
     pub warnings: Vec<Warning>,
-    /// Where the 2.5D operations cut (for verifying a drawing's program).
-    pub cuts: Vec<SheetCut>,
-    /// The grooves engraving operations cut, for verifying the program.
-    pub grooves: Vec<Groove>,
-    /// The load along the path of the operation just planned, where it measured one (seed
-    /// 004): the job moves it into that operation's report.
-    pub load: Option<crate::strategy::rough_zigzag::LoadReport>,
-    /// The stages of the operation just planned, where it chose its tools (seed 000): the job
-    /// moves them into that operation's report.
-    pub stages: Option<Vec<crate::strategy::rough_octree::StageReport>>,
-    /// The octants of every stage of octree roughing so far, for the view.
-    pub octants: Vec<crate::strategy::rough_octree::StageOctants>,
     /// The machine's rapid rate (mm/min), for timing what an operation plans.
     pub rapid_rate: f64,
     /// The feed of level moves an operation knows cut nothing (the job's `stock.airFeed`, at
@@ -143,9 +112,9 @@ pub struct Context {
     /// index of their operation: each pass's runs, in pass order.
     pub given_passes: std::collections::HashMap<usize, Vec<Vec<Vec<DVec3>>>>,
     /// Regions of levels a pool of workers made for the operation about to plan
-    /// ([`crate::strategy::rough_zlevel::RoughZlevel::region_work`]): a level contoured on the
+    /// ([`crate::machining::levels::LevelRoughing::region_work`]): a level contoured on the
     /// same surface, at the same height, keeping the same nodes takes its region from here.
-    pub given_regions: Vec<crate::strategy::rough_zlevel::GivenRegion>,
+    pub given_regions: Vec<crate::machining::levels::GivenRegion>,
 }
 
 impl Context {

@@ -11,7 +11,7 @@
 //!    the region's boundary where it may go exactly), which is cleared by rings inside-out,
 //!    entered by the shared helix or ramp or from the air beside it, at the step-over (the
 //!    paper's `0.85 D`, the widest step that leaves no island where boundaries meet at 90°,
-//!    Fig. 13), with the z-level strategy's machinery ([`RoughZlevel::clear`]). Its moves then
+//!    Fig. 13), with the level machinery ([`LevelRoughing::clear`]). Its moves then
 //!    cut the in-process stock, so the next stage classifies against the stock as simulated
 //!    (the paper's open problem of Fig. 21: a round tool leaves the square octants' corners,
 //!    and the next tool meets them as material, not as a surprise).
@@ -33,12 +33,13 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::profile2d::Direction;
-use super::rough_zlevel::RoughZlevel;
-use super::{Context, FieldError, Operate, Works};
 use crate::cutter::Shape;
 use crate::error::{Error, Result};
-use crate::octree::{distance_to, OctantBox, Octree, Squares, Volume, GAMMA_FIRST, GAMMA_RANGE};
+use crate::machining::levels::LevelRoughing;
+use crate::machining::report::{StageOctants, StageReport, StageRole};
+use crate::machining::settings::Roughing;
+use crate::machining::{positive, Context, FieldError, Operate, Planned, Works};
+use crate::octree::{distance_to, Octree, Squares, Volume, GAMMA_FIRST, GAMMA_RANGE};
 use crate::progress::Progress;
 use crate::sim::program::program_moves;
 use crate::tool::Tool;
@@ -62,19 +63,12 @@ pub struct RoughOctree {
     /// 0.85 (seed 000 §3.3: wider steps leave islands where boundaries meet at 90°). The paper's
     /// regions are unions of square octants; here they follow the part, and rings more than
     /// the tool's radius apart can leave strips where a region narrows
-    /// ([`super::pocket2d::rings`]), so the default is the widest that never does. Default
+    /// ([`crate::machining::rings::rings`]), so the default is the widest that never does. Default
     /// value: 0.5.
     pub stepover_fraction: f64,
-    /// Material left on floors (axial, mm). Default value: 0.5.
-    pub allowance: f64,
-    /// Material left on walls (radial, mm). Default value: 0.5.
-    pub leave_stock: f64,
-    /// Default value: climb.
-    pub direction: Direction,
-    /// Spacing of the CL z-maps (mm). Default value: 0.25.
-    pub grid: f64,
-    /// Steepest descent of helices and ramps (degrees). Default value: 3.
-    pub ramp_angle: f64,
+    #[serde(flatten)]
+    #[ts(flatten)]
+    pub roughing: Roughing,
 }
 
 impl Default for RoughOctree {
@@ -85,76 +79,9 @@ impl Default for RoughOctree {
             tools: Vec::new(),
             delta: 0.25,
             stepover_fraction: 0.5,
-            allowance: 0.5,
-            leave_stock: 0.5,
-            direction: Direction::Climb,
-            grid: 0.25,
-            ramp_angle: 3.0,
+            roughing: Roughing::default(),
         }
     }
-}
-
-/// Why a stage's tool was chosen.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, ts_rs::TS)]
-#[serde(rename_all = "camelCase")]
-pub enum StageRole {
-    /// The largest tool whose octants it can enter (§3.2).
-    First,
-    /// Matched to the newly Full octants of one more subdivision (§3.2).
-    Octants,
-    /// Clears what is left at its own levels (§3.4).
-    Profile,
-}
-
-/// One stage of octree roughing: its tool, why, and what it did.
-#[derive(Clone, Debug, PartialEq, Serialize, ts_rs::TS)]
-#[serde(rename_all = "camelCase")]
-pub struct StageReport {
-    pub tool: u32,
-    pub diameter: f64,
-    pub role: StageRole,
-    /// Side of the octants matched to the tool (mm); none for profiling.
-    pub side: Option<f64>,
-    /// d / D.
-    pub gamma: Option<f64>,
-    /// Axial depth of cut (mm).
-    pub depth: f64,
-    /// Why this tool, for a person.
-    pub why: String,
-    /// Area of the XY plane where the stage removed material (mm²).
-    pub area: f64,
-    /// Volume it removed (mm³).
-    pub removed: f64,
-    /// Machine time at its feeds and the rapid rate (s).
-    pub seconds: f64,
-}
-
-impl StageReport {
-    pub fn describe(&self) -> String {
-        format!(
-            "T{} φ{:.1} ({}): {}; {:.0} mm² cleared, {:.0} mm³ removed, {:.0} s",
-            self.tool,
-            self.diameter,
-            match self.role {
-                StageRole::First => "first tool",
-                StageRole::Octants => "octants",
-                StageRole::Profile => "profile",
-            },
-            self.why,
-            self.area,
-            self.removed,
-            self.seconds
-        )
-    }
-}
-
-/// The octants of one stage, for the view.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-#[serde(rename_all = "camelCase")]
-pub struct StageOctants {
-    pub stage: usize,
-    pub tool: u32,
-    pub boxes: Vec<OctantBox>,
 }
 
 /// Boxes kept per stage for the view.
@@ -185,23 +112,19 @@ impl Operate for RoughOctree {
     }
 
     fn allowance(&self) -> f64 {
-        self.allowance.min(self.leave_stock)
+        self.roughing.allowance()
     }
 
     fn validate(&self) -> Result<(), FieldError> {
-        super::positive("delta", self.delta)?;
-        super::positive("stepoverFraction", self.stepover_fraction)?;
+        positive("delta", self.delta)?;
+        positive("stepoverFraction", self.stepover_fraction)?;
         if self.stepover_fraction > 0.85 {
             return Err(FieldError { field: "stepoverFraction", message: format!("is at most 0.85 of the diameter: wider steps leave islands between rings (got {})", self.stepover_fraction) });
         }
-        super::not_negative("allowance", self.allowance)?;
-        super::not_negative("leaveStock", self.leave_stock)?;
-        super::positive("grid", self.grid)?;
-        super::positive("rampAngle", self.ramp_angle)?;
-        Ok(())
+        self.roughing.validate()
     }
 
-    fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Vec<Toolpath>> {
+    fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Planned> {
         let candidates = self.candidates(ctx)?;
         // The stages cut a copy of the in-process stock as they go; the job then cuts the real
         // one with the whole operation, as it does for every operation.
@@ -209,13 +132,12 @@ impl Operate for RoughOctree {
         let result = self.stages(ctx, &candidates, progress);
         ctx.sim = before;
         let (paths, stages, octants) = result?;
-        ctx.stages = Some(stages);
-        ctx.octants.extend(octants);
-        Ok(paths)
+        Ok(Planned { paths, stages: Some(stages), octants, ..Planned::default() })
     }
 }
 
-type Planned = (Vec<Toolpath>, Vec<StageReport>, Vec<StageOctants>);
+/// The stages' paths, reports and octants.
+type Stages = (Vec<Toolpath>, Vec<StageReport>, Vec<StageOctants>);
 
 impl RoughOctree {
     /// The tools it may choose from, largest first.
@@ -235,23 +157,9 @@ impl RoughOctree {
 
     /// The z-level settings a stage of `tool` cuts with: its axial depth, this operation's
     /// allowances and step-over; `flats` for profiling.
-    fn zlevel(&self, tool: &Tool, flats: bool) -> RoughZlevel {
-        RoughZlevel {
-            name: self.name.clone(),
-            enabled: true,
-            tool: tool.number,
-            stepdown: self.depth(tool),
-            stepover_fraction: self.stepover_fraction,
-            allowance: self.allowance,
-            leave_stock: self.leave_stock,
-            direction: self.direction,
-            grid: self.grid,
-            ramp_angle: self.ramp_angle,
-            helix_radius: None,
-            flats,
-            // Seed 000 cuts its octants layer by layer.
-            order: super::rough_zlevel::Order::Levels,
-        }
+    /// (Seed 000 cuts its octants layer by layer: [`LevelRoughing::new`]'s order.)
+    fn zlevel(&self, tool: &Tool, flats: bool) -> LevelRoughing {
+        LevelRoughing { flats, ..LevelRoughing::new(&self.name, tool.number, self.depth(tool), self.stepover_fraction, &self.roughing) }
     }
 
     /// The axial depth of cut for `tool` (mm).
@@ -268,7 +176,7 @@ impl RoughOctree {
         let layers: Vec<(f64, f64)> = heights.iter().copied().zip(tops).collect();
         let stock = ctx.sim.stock().heights();
         let part = ctx.cc_zmap(stock.grid(), f64::NEG_INFINITY);
-        let volume = Volume { stock: &stock, part: &part, allowance: self.allowance, tolerance: ctx.tolerances.gouge };
+        let volume = Volume { stock: &stock, part: &part, allowance: self.roughing.allowance, tolerance: ctx.tolerances.gouge };
         Ok(Octree::classify(squares, &layers, &cl.field, tool.cutter.radius(), &volume))
     }
 
@@ -290,7 +198,7 @@ impl RoughOctree {
     }
 
     /// Every stage, in order: the paths, their reports and their octants.
-    fn stages(&self, ctx: &mut Context, candidates: &[Tool], progress: &mut Progress) -> Result<Planned> {
+    fn stages(&self, ctx: &mut Context, candidates: &[Tool], progress: &mut Progress) -> Result<Stages> {
         let (lo, hi) = (ctx.stock.min.truncate(), ctx.stock.max.truncate());
         let mut paths = Vec::new();
         let mut reports = Vec::new();
@@ -439,7 +347,7 @@ impl RoughOctree {
         }
         let stock = ctx.sim.stock().heights();
         let part = ctx.cc_zmap(stock.grid(), f64::NEG_INFINITY);
-        let (a, tol) = (self.allowance, ctx.tolerances.gouge);
+        let (a, tol) = (self.roughing.allowance, ctx.tolerances.gouge);
         let cell = stock.spacing * stock.spacing;
         // More than a few cells: grid rounding aside, material the smaller tool would remove.
         let limit = 4.0 * cell;

@@ -2,7 +2,7 @@
 //! the loops an operation works on and the walls it must respect, the cursor that moves
 //! between cuts, and the tool path around an operation's moves.
 
-use super::context::{Context, SheetCut};
+use super::context::Context;
 use super::path2d::{Cursor, InStock};
 use super::walls::Walls;
 use crate::error::{Error, Result};
@@ -84,18 +84,4 @@ pub fn toolpath(name: &str, tool: &Tool, mut moves: Vec<Move>, clearance_z: f64)
         }
     }
     Toolpath { name: name.to_string(), tool: tool.number, spindle_rpm: tool.spindle_rpm, start, moves }
-}
-
-/// Where a profile cuts: outside the material of every loop on its layers (the walls), and
-/// for a loop cut on the side its nesting does not give, outside or inside that loop alone.
-pub fn profile_cuts(walls: &Walls, picked: &[usize], side: super::profile2d::Side, depth: f64, leave: f64) -> Vec<SheetCut> {
-    let mut cuts = vec![SheetCut { region: walls.shape.clone(), inside: false, depth, leave }];
-    for &k in picked {
-        let l = &walls.shape.loops[k];
-        let outside = side.cuts_outside(l.is_ccw());
-        if outside != l.is_ccw() {
-            cuts.push(SheetCut { region: Shape::from_oriented(vec![l.counter_clockwise()]), inside: !outside, depth, leave });
-        }
-    }
-    cuts
 }

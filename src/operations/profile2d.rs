@@ -7,8 +7,11 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::path2d::{arc_lengths, does_not_fit, follow, point_at, start_nearest, Cursor, Heights};
-use super::walls::Walls;
+use crate::machining::path2d::{arc_lengths, does_not_fit, follow, point_at, start_nearest, Cursor, Heights};
+use crate::machining::report::SheetCut;
+use crate::machining::settings::Direction;
+use crate::machining::walls::Walls;
+use crate::machining::{named_operation, not_negative, positive, sheet, Context, FieldError, Operate, Planned};
 use crate::geom::segment::Segment;
 use crate::geom::{DVec2, Tolerances};
 use crate::offset::offset;
@@ -40,16 +43,6 @@ impl Side {
             Side::Inside => false,
         }
     }
-}
-
-/// Cutting direction for a spindle turning clockwise (M3).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
-#[serde(rename_all = "camelCase")]
-pub enum Direction {
-    /// Down milling: the part on the tool's right.
-    #[default]
-    Climb,
-    Conventional,
 }
 
 /// Holding tabs for parts cut through the sheet.
@@ -393,43 +386,53 @@ fn fitting_lead(p: DVec2, t: DVec2, waste_left: bool, rho: f64, clear: &Clear, i
     None
 }
 
-impl super::Operate for Profile2d {
-    super::named_operation!(OnDrawing);
+impl Operate for Profile2d {
+    named_operation!(OnDrawing);
 
-    fn validate(&self) -> Result<(), super::FieldError> {
-        super::positive("stepdown", self.stepdown)?;
-        super::positive("rampAngle", self.ramp_angle)?;
-        super::not_negative("leaveStock", self.leave_stock)?;
+    fn validate(&self) -> Result<(), FieldError> {
+        positive("stepdown", self.stepdown)?;
+        positive("rampAngle", self.ramp_angle)?;
+        not_negative("leaveStock", self.leave_stock)?;
         if let Some(d) = self.depth {
-            super::positive("depth", d)?;
+            positive("depth", d)?;
         }
         if let Some(r) = self.lead_radius {
-            super::not_negative("leadRadius", r)?;
+            not_negative("leadRadius", r)?;
         }
         Ok(())
     }
 
-    fn plan(&self, ctx: &mut super::Context, _progress: &mut crate::progress::Progress) -> crate::error::Result<Vec<crate::toolpath::Toolpath>> {
-        use super::sheet;
+    fn plan(&self, ctx: &mut Context, _progress: &mut crate::progress::Progress) -> crate::error::Result<Planned> {
         let tool = ctx.tool(&self.name, self.tool)?.clone();
         let (drawing, thickness) = sheet::sheet(ctx, &self.name)?;
         let (walls, picked) = sheet::selected(drawing, &self.name, &self.layers, &self.loops)?;
         let open = drawing.open_note(&self.layers);
         let depth = self.depth.unwrap_or(thickness + sheet::BREAKTHROUGH);
-        let cuts = sheet::profile_cuts(&walls, &picked, self.side, depth, self.leave_stock);
+        let cuts = profile_cuts(&walls, &picked, self.side, depth, self.leave_stock);
         let mut cursor = sheet::cursor(ctx, &tool);
         let setup = Setup { tool_radius: tool.cutter.radius(), top: ctx.stock.max.z, depth, bottom: ctx.stock.max.z - thickness, feed: tool.feed_rate, cursor: &mut cursor, tol: &ctx.tolerances };
         let (moves, notes) = profile_moves(&walls, &picked, self, setup).map_err(|e| crate::error::Error::operation(&self.name, e))?;
-        ctx.cuts.extend(cuts);
         if let Some(note) = open {
             ctx.warn(&self.name, note);
         }
         for n in notes {
             ctx.warn(&self.name, n);
         }
-        if moves.is_empty() {
-            return Ok(Vec::new());
-        }
-        Ok(vec![sheet::toolpath(&self.name, &tool, moves, ctx.heights.clearance)])
+        let paths = if moves.is_empty() { Vec::new() } else { vec![sheet::toolpath(&self.name, &tool, moves, ctx.heights.clearance)] };
+        Ok(Planned { paths, cuts, ..Planned::default() })
     }
+}
+
+/// Where a profile cuts: outside the material of every loop on its layers (the walls), and
+/// for a loop cut on the side its nesting does not give, outside or inside that loop alone.
+pub fn profile_cuts(walls: &Walls, picked: &[usize], side: Side, depth: f64, leave: f64) -> Vec<SheetCut> {
+    let mut cuts = vec![SheetCut { region: walls.shape.clone(), inside: false, depth, leave }];
+    for &k in picked {
+        let l = &walls.shape.loops[k];
+        let outside = side.cuts_outside(l.is_ccw());
+        if outside != l.is_ccw() {
+            cuts.push(SheetCut { region: Shape::from_oriented(vec![l.counter_clockwise()]), inside: !outside, depth, leave });
+        }
+    }
+    cuts
 }

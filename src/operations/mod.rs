@@ -1,18 +1,34 @@
-//! The operations a job can hold, matched in this one place: each kind is one line of the
-//! `operations!` list below (its variant, its options type beside its strategy, its name in job
-//! files); everything else goes through the [`Operate`] contract.
+//! The operations a job can hold, one file each: its options (serde, with their defaults),
+//! their `validate` and its `plan`, built on [`crate::machining`] and importing no other
+//! operation. They are matched in this one place: each kind is a `mod` line and one line of
+//! the `operations!` list below (its variant, its options type, its name in job files);
+//! everything else goes through the [`Operate`] contract. A new operation is one more file and
+//! those two lines.
 
 use serde::{Deserialize, Serialize};
 
-use crate::strategy::engrave::Engrave;
-use crate::strategy::finish_raster::FinishRaster;
-use crate::strategy::finish_waterline::FinishWaterline;
-use crate::strategy::pocket2d::Pocket2d;
-use crate::strategy::profile2d::Profile2d;
-use crate::strategy::rough_octree::RoughOctree;
-use crate::strategy::rough_zigzag::RoughZigzag;
-use crate::strategy::rough_zlevel::RoughZlevel;
-use crate::strategy::Operate;
+use crate::machining::Operate;
+
+pub mod engrave;
+pub mod finish_raster;
+pub mod finish_waterline;
+pub mod pocket2d;
+pub mod profile2d;
+pub mod rough_octree;
+pub mod rough_zigzag;
+pub mod rough_zlevel;
+
+pub use engrave::Engrave;
+pub use finish_raster::{Boundary, FinishRaster};
+pub use finish_waterline::FinishWaterline;
+pub use pocket2d::Pocket2d;
+pub use profile2d::{Profile2d, Side, Tabs};
+pub use rough_octree::RoughOctree;
+pub use rough_zigzag::{Passes, RoughZigzag};
+pub use rough_zlevel::RoughZlevel;
+
+pub use crate::machining::report::{LoadReport, StageReport, StageRole};
+pub use crate::machining::settings::{Direction, EntryKind, LoadControl, Order, PocketPattern, Roughing};
 
 macro_rules! operations {
     ($($(#[$doc:meta])* $variant:ident($options:ty) = $kind:literal,)*) => {
@@ -34,7 +50,12 @@ macro_rules! operations {
             /// Where an operation's JSON does not fit its kind's type: `field: what is wrong`.
             pub(crate) fn field_error(value: &serde_json::Value) -> Option<String> {
                 fn at<T: serde::de::DeserializeOwned>(value: &serde_json::Value) -> Option<String> {
-                    serde_path_to_error::deserialize::<_, T>(value).err().map(|e| format!("{}: {}", e.path(), super::read::plain(&e.inner().to_string())))
+                    serde_path_to_error::deserialize::<_, T>(value).err().map(|e| match e.path().to_string() {
+                        // A field of settings flattened into the kind's own (the roughing
+                        // kinds' shared ones) is named by reading them on their own.
+                        path if path == "." => at::<crate::machining::settings::Roughing>(value).unwrap_or_else(|| crate::job::read::plain(&e.inner().to_string())),
+                        path => format!("{path}: {}", crate::job::read::plain(&e.inner().to_string())),
+                    })
                 }
                 match value.get("kind")?.as_str()? {
                     $($kind => at::<$options>(value),)*

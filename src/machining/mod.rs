@@ -1,31 +1,30 @@
-//! Strategies turn a part (through its CL z-map) or a drawing (through the offsetter) into tool
-//! paths. Each one keeps the tool tip on or above the CL surface plus its allowance, so none
-//! can gouge (DESIGN.md, idea 1).
+//! The machinery operations share, owned by none of them: the contract every operation kind
+//! follows ([`Operate`]), the context they plan in ([`Context`]: inputs, caches and the
+//! in-process stock), what a plan gives back ([`Planned`]), the settings they share
+//! ([`settings`]), and the ways of cutting they are built from: levels and their order
+//! (`levels.rs`), ring clearing (`rings.rs`), raster passes (`raster.rs`), the 2D cursor
+//! (`path2d.rs`), the air feed (`air.rs`), walls (`walls.rs`) and sheets (`sheet.rs`).
 //!
-//! Every operation kind follows one contract, [`Operate`]: its options type lives beside its
-//! strategy, checks itself ([`Operate::validate`]) and plans in the job's shared [`Context`],
-//! returning tool paths, each with its tool (an operation may use more than one). The job
-//! matches its `Operation` enum in one place (`job/operation.rs`).
+//! Every path keeps the tool tip on or above the CL surface plus its allowance, so none can
+//! gouge (DESIGN.md, idea 1). The operations themselves are in [`crate::operations`], one file
+//! each, importing only from here and the geometry below.
 
 pub mod air;
 pub mod context;
-pub mod engrave;
-pub mod finish_raster;
-pub mod finish_waterline;
+pub mod levels;
 pub mod path2d;
-pub mod pocket2d;
-pub mod profile2d;
-pub mod rough_octree;
-pub mod rough_zigzag;
-pub mod rough_zlevel;
+pub mod raster;
+pub mod report;
+pub mod rings;
+pub mod settings;
 pub mod sheet;
 pub mod walls;
 
 pub use context::Context;
+pub use report::Planned;
 
 use crate::error::Result;
 use crate::progress::Progress;
-use crate::toolpath::Toolpath;
 
 /// A setting of an operation that does not fit: the field (as the job file names it) and why.
 #[derive(Clone, Debug, PartialEq)]
@@ -86,8 +85,8 @@ macro_rules! named_operation {
             self.enabled
         }
 
-        fn works(&self) -> $crate::strategy::Works {
-            $crate::strategy::Works::$works
+        fn works(&self) -> $crate::machining::Works {
+            $crate::machining::Works::$works
         }
     };
 }
@@ -129,10 +128,10 @@ pub trait Operate {
     /// The regions of its levels, as work a pool of workers can share out just before it
     /// plans, on the in-process stock as it is then (z-level roughing and what clears the same
     /// levels another way; none by default).
-    fn region_work(&self, _ctx: &mut Context, _progress: &mut Progress) -> Result<Option<rough_zlevel::RegionWork>> {
+    fn region_work(&self, _ctx: &mut Context, _progress: &mut Progress) -> Result<Option<levels::RegionWork>> {
         Ok(None)
     }
-    /// Its tool paths, each with its tool, planned in the job's context. `progress` is this
-    /// operation's own: stages run from 0 to 1.
-    fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Vec<Toolpath>>;
+    /// Its tool paths, each with its tool, planned in the job's context, with its own report
+    /// ([`Planned`]). `progress` is this operation's own: stages run from 0 to 1.
+    fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Planned>;
 }

@@ -1,4 +1,5 @@
-//! Z-level roughing on the CL z-map (DESIGN.md ideas 1 and 3): at each level, the region the
+//! Level-by-level roughing on the CL z-map (DESIGN.md ideas 1 and 3), the machinery z-level,
+//! zigzag and octree roughing share (and waterline finishing's regions): at each level, the region the
 //! cutter's centre may occupy there ([`crate::zmap::contour`]) is cleared by rings, repeated
 //! seed 003 offsets inwards at the step-over, inner rings first (each region entered by the
 //! shared helix, else a ramp), and the region's own boundary last, so the wall left is the
@@ -23,13 +24,11 @@
 //!   at the level above, which its parent cut; retracts and entries know what has been cut, in
 //!   whatever order (the lowest cut region that holds a point or a way).
 
-use serde::{Deserialize, Serialize};
-
-use super::pocket2d::{clear_rings, rings, Clearing, Entry as PocketEntry, Inside, PocketPattern, Setup};
-use crate::toolpath::entry::Keepout;
-use super::profile2d::Direction;
 use super::context::SurfaceRequest;
-use super::{sheet, Context, FieldError, Operate};
+use super::rings::{clear_rings, rings, Clearing, Inside, RingSetup};
+use super::settings::{Direction, EntryKind, LoadControl, Order, PocketPattern, Roughing};
+use super::{sheet, Context};
+use crate::toolpath::entry::Keepout;
 use crate::cutter::Profile;
 use crate::error::{Error, Result};
 use crate::geom::segment::Rect;
@@ -44,72 +43,6 @@ use crate::profile::Shape;
 use crate::tool::Tool;
 use std::sync::Arc;
 
-/// Z-level roughing.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
-#[serde(default, rename_all = "camelCase")]
-pub struct RoughZlevel {
-    /// Default value: "z-level rough".
-    pub name: String,
-    /// Whether the job runs it (a disabled operation stays in the job). Default value: true.
-    pub enabled: bool,
-    /// Default value: 1.
-    pub tool: u32,
-    /// Largest depth between levels (mm). Default value: 2.
-    pub stepdown: f64,
-    /// Distance between rings as a fraction of the tool diameter. Default value: 0.4.
-    pub stepover_fraction: f64,
-    /// Material left on floors (axial, mm). Default value: 0.5.
-    pub allowance: f64,
-    /// Material left on walls (radial, mm). Default value: 0.5.
-    pub leave_stock: f64,
-    /// Default value: climb.
-    pub direction: Direction,
-    /// Spacing of the CL z-map (mm). Default value: 0.25.
-    pub grid: f64,
-    /// Steepest descent of helices and ramps (degrees). Default value: 3.
-    pub ramp_angle: f64,
-    /// Helix radius (mm). Default value: 0.4 × the tool diameter.
-    pub helix_radius: Option<f64>,
-    /// Cut every flat area of the part at its own height too. Default value: true.
-    pub flats: bool,
-    /// Which comes first: each region down to its floor before the next (`regions`: the tool
-    /// goes from pocket to pocket once, not once per level), or each level everywhere before
-    /// the next (`levels`). Default value: regions.
-    pub order: Order,
-}
-
-/// The order a level-by-level roughing cuts in ([`RoughZlevel::order`]).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
-#[serde(rename_all = "camelCase")]
-pub enum Order {
-    /// Each connected region of a level, then the regions under it down to their floors
-    /// (nearest first), before the next region of that level.
-    #[default]
-    Regions,
-    /// Each level everywhere, from the top down.
-    Levels,
-}
-
-impl Default for RoughZlevel {
-    fn default() -> Self {
-        RoughZlevel {
-            name: "z-level rough".into(),
-            enabled: true,
-            tool: 1,
-            stepdown: 2.0,
-            stepover_fraction: 0.4,
-            allowance: 0.5,
-            leave_stock: 0.5,
-            direction: Direction::Climb,
-            grid: 0.25,
-            ramp_angle: 3.0,
-            helix_radius: None,
-            flats: true,
-            order: Order::Regions,
-        }
-    }
-}
-
 /// Nodes of equal height covering at least this many times the cutter's area make a flat (a level): more than the plateau a flat end leaves over a peak (its own disk).
 const FLAT_AREA: f64 = 2.0;
 /// Heights within this are one flat (mm).
@@ -119,44 +52,31 @@ const LEVEL_SAME: f64 = 0.01;
 /// A flat's level reaches this many node spacings past where the level below cannot go.
 const FLAT_BAND: f64 = 1.5;
 
-impl Operate for RoughZlevel {
-    super::named_operation!(OnPart);
+/// The settings of a level-by-level roughing, as each roughing kind gives them: its name (for
+/// warnings), tool, step-down, step-over and the shared [`Roughing`] settings, the helix's
+/// radius, whether flats get levels of their own, and the order regions are cut in.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LevelRoughing {
+    pub name: String,
+    pub tool: u32,
+    pub stepdown: f64,
+    pub stepover_fraction: f64,
+    pub allowance: f64,
+    pub leave_stock: f64,
+    pub direction: Direction,
+    pub grid: f64,
+    pub ramp_angle: f64,
+    pub helix_radius: Option<f64>,
+    pub flats: bool,
+    pub order: Order,
+}
 
-    fn allowance(&self) -> f64 {
-        self.allowance.min(self.leave_stock)
-    }
-
-    fn validate(&self) -> Result<(), FieldError> {
-        super::positive("stepdown", self.stepdown)?;
-        super::positive("stepoverFraction", self.stepover_fraction)?;
-        if self.stepover_fraction > 1.0 {
-            return Err(FieldError { field: "stepoverFraction", message: format!("is a fraction of the tool's diameter, at most 1 (got {})", self.stepover_fraction) });
-        }
-        super::not_negative("allowance", self.allowance)?;
-        super::not_negative("leaveStock", self.leave_stock)?;
-        super::positive("grid", self.grid)?;
-        super::positive("rampAngle", self.ramp_angle)?;
-        if let Some(r) = self.helix_radius {
-            super::positive("helixRadius", r)?;
-        }
-        Ok(())
-    }
-
-    fn surfaces(&self, ctx: &Context) -> Result<Vec<SurfaceRequest>> {
-        Ok(vec![self.request(ctx)?])
-    }
-
-    fn level_maps(&self, ctx: &Context) -> Result<Vec<SurfaceRequest>> {
-        self.surfaces(ctx)
-    }
-
-    fn region_work(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Option<super::rough_zlevel::RegionWork>> {
-        self.region_work(ctx, progress).map(Some)
-    }
-
-    fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Vec<Toolpath>> {
-        let Some(levels) = self.levels_to_cut(ctx, progress)? else { return Ok(Vec::new()) };
-        Ok(vec![self.clear(ctx, levels, progress)?])
+impl LevelRoughing {
+    /// Level-by-level roughing with `roughing`'s settings (helix radius by default, flats and
+    /// each level everywhere before the next: [`Order::Levels`]; set the fields to change them).
+    pub fn new(name: &str, tool: u32, stepdown: f64, stepover_fraction: f64, roughing: &Roughing) -> LevelRoughing {
+        let Roughing { allowance, leave_stock, direction, grid, ramp_angle } = *roughing;
+        LevelRoughing { name: name.to_owned(), tool, stepdown, stepover_fraction, allowance, leave_stock, direction, grid, ramp_angle, helix_radius: None, flats: true, order: Order::Levels }
     }
 }
 
@@ -178,13 +98,13 @@ pub struct Level {
     pub region: Shape,
 }
 
-impl RoughZlevel {
+impl LevelRoughing {
     /// The step-over (mm) for a tool of radius `r`.
     pub fn step(&self, r: f64) -> f64 {
         (self.stepover_fraction * 2.0 * r).max(1e-3)
     }
 
-    /// Clears `levels` (from [`RoughZlevel::levels_to_cut`] or [`RoughZlevel::levels_within`])
+    /// Clears `levels` (from [`LevelRoughing::levels_to_cut`] or [`LevelRoughing::levels_within`])
     /// in the roughing's [`Order`]: rings inside-out from the helix or ramp (or in from the air
     /// beside the region), the region's boundary last; one tool path.
     pub fn clear(&self, ctx: &mut Context, levels: Levels, progress: &mut Progress) -> Result<Toolpath> {
@@ -197,9 +117,9 @@ impl RoughZlevel {
             climb: self.direction == Direction::Climb,
             pattern: PocketPattern::Offset,
             angle: 0.0,
-            load: super::rough_zigzag::LoadControl::None,
+            load: LoadControl::None,
             load_tolerance: 0.0,
-            entry: PocketEntry::Helix,
+            entry: EntryKind::Helix,
             ramp_angle: self.ramp_angle.clamp(0.1, 89.0).to_radians(),
             helix_r: self.helix_radius.unwrap_or(0.4 * 2.0 * r).min(0.95 * r),
         };
@@ -247,7 +167,7 @@ impl RoughZlevel {
                 }
                 across.lowest_clearing(a, b, gap, &over).map(|level| level + gap)
             }));
-            let mut setup = Setup { tool_radius: r, top: z_prev, feed: tool.feed_rate, cursor: &mut cursor, tol: &tol };
+            let mut setup = RingSetup { tool_radius: r, top: z_prev, feed: tool.feed_rate, cursor: &mut cursor, tol: &tol };
             let air = self.air(ctx, &cl, r, z);
             moves.extend(clear_rings(&rings, &clearing, z_prev, z, &mut setup, Some(&air)));
             cleared.add(z, region);
@@ -286,7 +206,7 @@ impl RoughZlevel {
         Ok((tool, cl))
     }
 
-    /// The CL surface of [`RoughZlevel::surface`].
+    /// The CL surface of [`LevelRoughing::surface`].
     pub fn request(&self, ctx: &Context) -> Result<SurfaceRequest> {
         let profile = ctx.tool(&self.name, self.tool)?.cutter.profile();
         let r = profile.radius;
@@ -298,12 +218,12 @@ impl RoughZlevel {
     }
 
     /// The heights of the levels on `cl` for a tool of radius `r`, from the top down (see
-    /// [`RoughZlevel`]).
+    /// [`LevelRoughing`]).
     pub fn heights(&self, ctx: &Context, cl: &ClSurface, r: f64) -> Vec<f64> {
         self.levels_and_kinds(ctx, cl, r).into_iter().map(|(z, _)| z).collect()
     }
 
-    /// [`RoughZlevel::heights`], each with whether it is a flat's level alone.
+    /// [`LevelRoughing::heights`], each with whether it is a flat's level alone.
     fn levels_and_kinds(&self, ctx: &Context, cl: &ClSurface, r: f64) -> Vec<(f64, bool)> {
         // Floors are cut a hair above their height plus the allowance: the region at a level
         // counts a surface as clear when the exact profile stands below it by the interpolation
@@ -312,13 +232,13 @@ impl RoughZlevel {
         self.levels(&cl.field, ctx.stock.max.z, ctx.stock.min.z, r, clear)
     }
 
-    /// [`RoughZlevel::levels_to_cut`] with centres kept within `reach` of material above each
+    /// [`LevelRoughing::levels_to_cut`] with centres kept within `reach` of material above each
     /// level, each level's region limited further to the nodes of the CL z-map's grid that
     /// `within(z, grid)` accepts, where it gives a mask (seed 000's octants a tool cuts);
     /// `None`, without a warning, where no level has material left.
     ///
     /// With `bands`, a flat's level is cut only where the level below cannot go (see
-    /// [`RoughZlevel`]); without (seed 000's layers, each its own octants), over its whole region.
+    /// [`LevelRoughing`]); without (seed 000's layers, each its own octants), over its whole region.
     pub fn levels_within(&self, ctx: &mut Context, progress: &mut Progress, reach: f64, bands: bool, within: &mut dyn FnMut(f64, Grid) -> Option<Vec<bool>>) -> Result<Option<Levels>> {
         if !progress.stage("CL z-map", 0.0, 0.3) {
             return Err(Error::Cancelled);
@@ -370,7 +290,7 @@ impl RoughZlevel {
         Ok(Some(Levels { tool, cl, levels }))
     }
 
-    /// What each level's region is made of (see [`RoughZlevel::levels_within`]): the levels,
+    /// What each level's region is made of (see [`LevelRoughing::levels_within`]): the levels,
     /// and per level the nodes its region keeps, on the stock as it is now.
     fn level_inputs<'a>(&'a self, ctx: &'a Context, tool: &Tool, cl: &'a ClSurface, reach: f64, bands: bool, within: &mut dyn FnMut(f64, Grid) -> Option<Vec<bool>>) -> LevelInputs<'a> {
         let r = tool.cutter.radius();
@@ -380,7 +300,7 @@ impl RoughZlevel {
         LevelInputs { zl: self, cl, stock: ctx.sim.stock(), grid, r, reach, bands, heights, limits }
     }
 
-    /// The regions [`RoughZlevel::levels_to_cut`] would make, as work a pool can share out
+    /// The regions [`LevelRoughing::levels_to_cut`] would make, as work a pool can share out
     /// before the operation plans: its CL surface, and per level the height its region is
     /// contoured at and the nodes it keeps (packed eight to a byte).
     pub fn region_work(&self, ctx: &mut Context, progress: &mut Progress) -> Result<RegionWork> {
@@ -629,9 +549,9 @@ impl Cleared {
     }
 }
 
-/// What each level's region is made of ([`RoughZlevel::level_inputs`]).
+/// What each level's region is made of ([`LevelRoughing::level_inputs`]).
 struct LevelInputs<'a> {
-    zl: &'a RoughZlevel,
+    zl: &'a LevelRoughing,
     cl: &'a ClSurface,
     stock: &'a DexelStock,
     grid: Grid,
@@ -718,7 +638,7 @@ impl LevelInputs<'_> {
 }
 
 /// The regions an operation's levels will be contoured into, as work for a pool
-/// ([`RoughZlevel::region_work`]): made elsewhere and given to the context
+/// ([`LevelRoughing::region_work`]): made elsewhere and given to the context
 /// ([`Context::given_regions`]), they are taken instead of made.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RegionWork {

@@ -1,7 +1,7 @@
 //! Zigzag roughing by the intersection-points graph, with the tool's load held at the
 //! step-over's (seed 004; [`crate::zigzag`]). The levels, their regions (allowances, flats,
 //! material left by earlier operations), entries and linking are the z-level strategy's
-//! ([`RoughZlevel::levels_to_cut`], [`Context::link_fed`]); at each level this strategy clears
+//! ([`LevelRoughing::levels_to_cut`], [`Context::link_fed`]); at each level this strategy clears
 //! the region with direction-parallel passes instead of rings:
 //!
 //! 1. the graph of the region and scan lines at the angle and step-over (§2.1), walked with a
@@ -18,13 +18,14 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::air::AirCuts;
-use super::pocket2d::Inside;
-use super::path2d::start_nearest;
-use super::profile2d::Direction;
-use super::rough_zlevel::{Level, Levels, RoughZlevel};
-use super::context::SurfaceRequest;
-use super::{Context, FieldError, Operate};
+use crate::machining::air::AirCuts;
+use crate::machining::context::SurfaceRequest;
+use crate::machining::levels::{Level, LevelRoughing, Levels, RegionWork};
+use crate::machining::path2d::start_nearest;
+use crate::machining::report::LoadReport;
+use crate::machining::rings::Inside;
+use crate::machining::settings::{Direction, LoadControl, Roughing};
+use crate::machining::{finite, named_operation, not_negative, positive, Context, FieldError, Operate, Planned};
 use crate::error::{Error, Result};
 use crate::geom::{DVec2, DVec3};
 use crate::profile::Shape;
@@ -32,7 +33,7 @@ use crate::progress::Progress;
 use crate::toolpath::entry::Entry;
 use crate::toolpath::{arcfit, Move, Toolpath};
 use crate::zigzag::graph::{along_boundary, Graph, Pattern};
-use crate::zigzag::load::{self, Load, PixelMap, Profile};
+use crate::zigzag::load::{self, Load, LoadProfile, PixelMap};
 
 /// How spans are cut.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
@@ -43,20 +44,6 @@ pub enum Passes {
     Zigzag,
     /// Every pass in the cutting direction, back along the pass just cut before the next.
     OneWay,
-}
-
-/// How the load is held at the reference.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
-#[serde(rename_all = "camelCase")]
-pub enum LoadControl {
-    /// Extra path where the plain path would overload the tool (seed 004 §3.3); the feed drops
-    /// only where no extra path helps.
-    #[default]
-    Path,
-    /// The plain path, with the feed lowered wherever it would overload the tool.
-    Feed,
-    /// The plain path at the tool's feed.
-    None,
 }
 
 /// Zigzag roughing (seed 004).
@@ -73,12 +60,9 @@ pub struct RoughZigzag {
     pub stepdown: f64,
     /// Distance between passes as a fraction of the tool diameter. Default value: 0.4.
     pub stepover_fraction: f64,
-    /// Material left on floors (axial, mm). Default value: 0.5.
-    pub allowance: f64,
-    /// Material left on walls (radial, mm). Default value: 0.5.
-    pub leave_stock: f64,
-    /// Default value: climb.
-    pub direction: Direction,
+    #[serde(flatten)]
+    #[ts(flatten)]
+    pub roughing: Roughing,
     /// Direction of the passes (degrees from +X). Default value: 0.
     pub angle: f64,
     /// Default value: zigzag.
@@ -91,10 +75,6 @@ pub struct RoughZigzag {
     pub sampling: Option<f64>,
     /// The pixel of the load's map (mm). Default value: the step-over / 24.
     pub pixel: Option<f64>,
-    /// Spacing of the CL z-map (mm). Default value: 0.25.
-    pub grid: f64,
-    /// Steepest descent of helices and ramps (degrees). Default value: 3.
-    pub ramp_angle: f64,
     /// Cut every flat area of the part at its own height too. Default value: true.
     pub flats: bool,
 }
@@ -107,120 +87,75 @@ impl Default for RoughZigzag {
             tool: 1,
             stepdown: 2.0,
             stepover_fraction: 0.4,
-            allowance: 0.5,
-            leave_stock: 0.5,
-            direction: Direction::Climb,
+            roughing: Roughing::default(),
             angle: 0.0,
             passes: Passes::Zigzag,
             load: LoadControl::Path,
             load_tolerance: 0.1,
             sampling: None,
             pixel: None,
-            grid: 0.25,
-            ramp_angle: 3.0,
             flats: true,
         }
     }
 }
 
-/// The load along one operation's path, before and after its correction, relative to the
-/// reference (seed 004 Fig. 14): for reports and the page's plot.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, ts_rs::TS)]
-#[serde(rename_all = "camelCase")]
-pub struct LoadReport {
-    /// The reference rate at the tool's feed (mm³/min per mm of depth: step-over × feed).
-    pub reference: f64,
-    /// The same at a full step-down (mm³/min): the reference line of the page's MRR plot.
-    pub rate: f64,
-    /// Δs (mm).
-    pub sampling: f64,
-    /// Per window of Δs along the cutting moves, the plain path's load over the reference.
-    pub plain: Vec<f64>,
-    /// The same for the path as cut (the tool's engagement).
-    pub load: Vec<f64>,
-    /// The path as cut, at its feeds: the removal rate over the reference rate.
-    pub cut: Vec<f64>,
-    /// The length of path (mm) that runs at a lowered feed because no extra path eases it.
-    pub slowed: f64,
-}
-
-impl LoadReport {
-    /// The highest load, and the spread (standard deviation), of a series.
-    pub fn peak_and_spread(series: &[f64]) -> (f64, f64) {
-        let n = series.len().max(1) as f64;
-        let mean = series.iter().sum::<f64>() / n;
-        let var = series.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / n;
-        (series.iter().copied().fold(0.0, f64::max), var.sqrt())
-    }
-}
-
 impl RoughZigzag {
-    /// The level settings it shares with z-level roughing.
-    fn as_levels(&self) -> RoughZlevel {
-        RoughZlevel {
-            name: self.name.clone(),
-            enabled: self.enabled,
-            tool: self.tool,
-            stepdown: self.stepdown,
-            stepover_fraction: self.stepover_fraction,
-            allowance: self.allowance,
-            leave_stock: self.leave_stock,
-            direction: self.direction,
-            grid: self.grid,
-            ramp_angle: self.ramp_angle,
-            helix_radius: None,
-            flats: self.flats,
-            // Its own loop cuts level by level.
-            order: super::rough_zlevel::Order::Levels,
-        }
+    /// Its levels' settings (its own loop cuts level by level).
+    pub fn levels(&self) -> LevelRoughing {
+        LevelRoughing { flats: self.flats, ..LevelRoughing::new(&self.name, self.tool, self.stepdown, self.stepover_fraction, &self.roughing) }
     }
 }
 
 impl Operate for RoughZigzag {
-    super::named_operation!(OnPart);
+    named_operation!(OnPart);
 
     fn allowance(&self) -> f64 {
-        self.allowance.min(self.leave_stock)
+        self.roughing.allowance()
     }
 
     fn validate(&self) -> Result<(), FieldError> {
-        self.as_levels().validate()?;
-        super::finite("angle", self.angle)?;
-        super::not_negative("loadTolerance", self.load_tolerance)?;
+        positive("stepdown", self.stepdown)?;
+        positive("stepoverFraction", self.stepover_fraction)?;
+        if self.stepover_fraction > 1.0 {
+            return Err(FieldError { field: "stepoverFraction", message: format!("is a fraction of the tool's diameter, at most 1 (got {})", self.stepover_fraction) });
+        }
+        self.roughing.validate()?;
+        finite("angle", self.angle)?;
+        not_negative("loadTolerance", self.load_tolerance)?;
         if let Some(s) = self.sampling {
-            super::positive("sampling", s)?;
+            positive("sampling", s)?;
         }
         if let Some(p) = self.pixel {
-            super::positive("pixel", p)?;
+            positive("pixel", p)?;
         }
         Ok(())
     }
 
     fn surfaces(&self, ctx: &Context) -> Result<Vec<SurfaceRequest>> {
-        Ok(vec![self.as_levels().request(ctx)?])
+        Ok(vec![self.levels().request(ctx)?])
     }
 
     fn level_maps(&self, ctx: &Context) -> Result<Vec<SurfaceRequest>> {
         self.surfaces(ctx)
     }
 
-    fn region_work(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Option<super::rough_zlevel::RegionWork>> {
-        self.as_levels().region_work(ctx, progress).map(Some)
+    fn region_work(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Option<RegionWork>> {
+        self.levels().region_work(ctx, progress).map(Some)
     }
 
-    fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Vec<Toolpath>> {
-        let levels = self.as_levels();
-        let Some(Levels { tool, levels: cut, .. }) = levels.levels_to_cut(ctx, progress)? else { return Ok(Vec::new()) };
+    fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Planned> {
+        let levels = self.levels();
+        let Some(Levels { tool, levels: cut, .. }) = levels.levels_to_cut(ctx, progress)? else { return Ok(Planned::default()) };
         let r = tool.cutter.radius();
         let step = levels.step(r);
         let ds = self.sampling.unwrap_or(0.5 * step).max(1e-3);
         let px = self.pixel.unwrap_or_else(|| load::default_pixel(step)).max(1e-3);
-        let load = Load { ds, step, tolerance: self.load_tolerance, climb: self.direction == Direction::Climb };
+        let load = Load { ds, step, tolerance: self.load_tolerance, climb: self.roughing.direction == Direction::Climb };
         let pattern = match self.passes {
             Passes::Zigzag => Pattern::Zigzag,
             Passes::OneWay => Pattern::OneWay,
         };
-        let entry = Entry { ramp_angle: self.ramp_angle, ..Entry::default() };
+        let entry = Entry { ramp_angle: self.roughing.ramp_angle, ..Entry::default() };
         let tol = ctx.tolerances;
         let mut report = LoadReport { reference: step * tool.feed_rate, rate: step * tool.feed_rate * self.stepdown, sampling: ds, ..LoadReport::default() };
         let mut path: Option<Toolpath> = None;
@@ -253,8 +188,8 @@ impl Operate for RoughZigzag {
             let (mut pts3, mut feeds): (Vec<Vec<DVec3>>, Vec<Vec<f64>>) = (Vec::new(), Vec::new());
             // Whether each run starts in material, as the map of this level knows.
             let mut starts = Vec::new();
-            let mut plain = Profile::default();
-            let mut done = Profile::default();
+            let mut plain = LoadProfile::default();
+            let mut done = LoadProfile::default();
             let mut shares = Vec::new();
             for (i, run) in runs.iter().enumerate() {
                 // The plain path's load, for the report (the path itself unless corrected).
@@ -263,7 +198,7 @@ impl Operate for RoughZigzag {
                 }
                 // Joined to the run before when the straight link stays in the region and
                 // within the load.
-                let mut steps = Profile::default();
+                let mut steps = LoadProfile::default();
                 let mut pts = Vec::new();
                 let from = pts3.last().and_then(|r: &Vec<DVec3>| r.last()).map(|p| p.truncate());
                 // The link in steps of Δs, each within the load.
@@ -338,8 +273,7 @@ impl Operate for RoughZigzag {
             let runs = if left_out == 1 { "run" } else { "runs" };
             ctx.warn(&self.name, format!("{left_out} {runs} shorter than {shortest:.2} mm start in material where no helix fits: left uncut"));
         }
-        ctx.load = Some(report);
-        Ok(path.into_iter().collect())
+        Ok(Planned { paths: path.into_iter().collect(), load: Some(report), ..Planned::default() })
     }
 }
 

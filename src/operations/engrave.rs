@@ -7,12 +7,12 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::context::Groove;
-use super::path2d::{arc_lengths, follow, Heights};
-use super::sheet;
+use crate::machining::path2d::{arc_lengths, follow, Heights};
+use crate::machining::report::Groove;
+use crate::machining::{named_operation, positive, sheet, Context, FieldError, Operate, Planned};
 use crate::error::{Error, Result};
 use crate::geom::segment::Segment;
-use crate::toolpath::{Move, Toolpath};
+use crate::toolpath::Move;
 
 /// Engraving on a drawing.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
@@ -56,20 +56,20 @@ fn reversed(path: &[Segment]) -> Vec<Segment> {
     path.iter().rev().map(Segment::reversed).collect()
 }
 
-impl super::Operate for Engrave {
-    super::named_operation!(OnDrawing);
+impl Operate for Engrave {
+    named_operation!(OnDrawing);
 
-    fn validate(&self) -> std::result::Result<(), super::FieldError> {
-        super::positive("depth", self.depth)?;
-        super::positive("stepdown", self.stepdown)?;
-        super::positive("rampAngle", self.ramp_angle)?;
+    fn validate(&self) -> std::result::Result<(), FieldError> {
+        positive("depth", self.depth)?;
+        positive("stepdown", self.stepdown)?;
+        positive("rampAngle", self.ramp_angle)?;
         if self.ramp_angle > 90.0 {
-            return Err(super::FieldError { field: "rampAngle", message: format!("must be at most 90 degrees (got {})", self.ramp_angle) });
+            return Err(FieldError { field: "rampAngle", message: format!("must be at most 90 degrees (got {})", self.ramp_angle) });
         }
         Ok(())
     }
 
-    fn plan(&self, ctx: &mut super::Context, _progress: &mut crate::progress::Progress) -> Result<Vec<Toolpath>> {
+    fn plan(&self, ctx: &mut Context, _progress: &mut crate::progress::Progress) -> Result<Planned> {
         let tool = ctx.tool(&self.name, self.tool)?.clone();
         let (drawing, thickness) = sheet::sheet(ctx, &self.name)?;
         if self.depth > thickness + sheet::BREAKTHROUGH {
@@ -130,14 +130,11 @@ impl super::Operate for Engrave {
             cut_line(&path, line.closed, start_z, z_final, self.stepdown, angle, tool.feed_rate, &mut out);
             cursor.moved(&out);
         }
-        ctx.grooves.extend(grooves);
         if in_air > 0 {
             ctx.note(&self.name, format!("{in_air} lines have no material left along them and are not engraved"));
         }
-        if out.is_empty() {
-            return Ok(Vec::new());
-        }
-        Ok(vec![sheet::toolpath(&self.name, &tool, out, ctx.heights.clearance)])
+        let paths = if out.is_empty() { Vec::new() } else { vec![sheet::toolpath(&self.name, &tool, out, ctx.heights.clearance)] };
+        Ok(Planned { paths, grooves, ..Planned::default() })
     }
 }
 

@@ -1,120 +1,30 @@
-//! 2.5D pocketing of drawn regions (islands respected). Contour-parallel: rings are the
-//! region offset inwards by the tool radius plus leave-stock, then by one step-over more each
-//! (seed 003 repeated; DESIGN.md idea 3), cut inside-out: a region's inner rings before it,
+//! Clearing a region (islands respected) at one depth, as pockets and z-level roughing do.
+//! Contour-parallel: rings are the region offset inwards (by the tool radius plus leave-stock
+//! for a pocket), then by one step-over more each (seed 003 repeated; DESIGN.md idea 3), cut
+//! inside-out: a region's inner rings before it,
 //! staying down between rings where the straight link stays inside the pocket. Zigzag:
 //! parallel passes across the first ring's region by seed 004's intersection-points graph
 //! (the passes joined along the region's boundary), then that ring as a finishing contour.
 //! Material is entered by a helix where one fits, else by ramping along the path, never by a
 //! straight plunge.
 
-use serde::{Deserialize, Serialize};
-
-use super::path2d::{arc_lengths, does_not_fit, follow, start_nearest, Cursor, Heights};
+use super::path2d::{arc_lengths, follow, start_nearest, Cursor, Heights};
+use super::settings::{EntryKind, LoadControl, PocketPattern};
 use crate::toolpath::entry::helix;
-use super::profile2d::Direction;
 use crate::geom::segment::Segment;
 use crate::geom::{DVec2, DVec3, Tolerances};
 use crate::toolpath::entry::Keepout;
 use crate::offset::offset;
 use crate::profile::{Loop, Shape};
 use crate::toolpath::Move;
-use crate::strategy::rough_zigzag::LoadControl;
 use crate::toolpath::arcfit;
 use super::air::AirCuts;
 use crate::zigzag::graph::{Graph, Pattern};
-use crate::zigzag::load::{self, Load, PixelMap, Profile};
+use crate::zigzag::load::{self, Load, LoadProfile, PixelMap};
 
-/// How the pocket is cleared.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
-#[serde(rename_all = "camelCase")]
-pub enum PocketPattern {
-    /// Rings parallel to the walls.
-    #[default]
-    Offset,
-    /// Parallel passes, back and forth, then a finishing ring.
-    Zigzag,
-}
-
-/// How the tool enters material.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
-#[serde(rename_all = "camelCase")]
-#[ts(rename = "PocketEntry")]
-pub enum Entry {
-    /// A helix where it fits, else a ramp.
-    #[default]
-    Helix,
-    /// Down along the path at the ramp angle.
-    Ramp,
-}
-
-/// Pocket operation on a drawing.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
-#[serde(default, rename_all = "camelCase")]
-pub struct Pocket2d {
-    /// Default value: "pocket".
-    pub name: String,
-    /// Whether the job runs it (a disabled operation stays in the job). Default value: true.
-    pub enabled: bool,
-    /// Default value: 1.
-    pub tool: u32,
-    /// Depth below the stock top (mm). Default value: 3.
-    pub depth: f64,
-    /// Largest depth cut in one pass (mm). Default value: 1.
-    pub stepdown: f64,
-    /// Distance between rings or passes as a fraction of the tool diameter. Default value: 0.4.
-    pub stepover_fraction: f64,
-    /// Material left on walls and islands (mm). Default value: 0.
-    pub leave_stock: f64,
-    /// Default value: offset.
-    pub pattern: PocketPattern,
-    /// Direction of zigzag passes (degrees from +X). Default value: 0.
-    pub angle: f64,
-    /// How the zigzag pattern holds the tool's load at the step-over's (seed 004 §3). Default
-    /// value: path.
-    pub load: LoadControl,
-    /// How far over the reference load a zigzag step may go (0.1: 10 %). Default value: 0.1.
-    pub load_tolerance: f64,
-    /// Default value: helix.
-    pub entry: Entry,
-    /// Helix radius (mm). Default value: 0.4 × the tool diameter.
-    pub helix_radius: Option<f64>,
-    /// Steepest descent of helices and ramps (degrees). Default value: 3.
-    pub ramp_angle: f64,
-    /// Default value: climb.
-    pub direction: Direction,
-    /// Layers to pocket (empty: all). Default value: empty.
-    pub layers: Vec<String>,
-    /// Indices of the drawing's loops bounding the pocket, with the holes inside them as
-    /// islands (empty: all). Default value: empty.
-    pub loops: Vec<usize>,
-}
-
-impl Default for Pocket2d {
-    fn default() -> Self {
-        Pocket2d {
-            name: "pocket".into(),
-            enabled: true,
-            tool: 1,
-            depth: 3.0,
-            stepdown: 1.0,
-            stepover_fraction: 0.4,
-            leave_stock: 0.0,
-            pattern: PocketPattern::Offset,
-            angle: 0.0,
-            load: LoadControl::Path,
-            load_tolerance: 0.1,
-            entry: Entry::Helix,
-            helix_radius: None,
-            ramp_angle: 3.0,
-            direction: Direction::Climb,
-            layers: Vec::new(),
-            loops: Vec::new(),
-        }
-    }
-}
-
-/// What the pocket needs besides its settings.
-pub struct Setup<'a, 'm> {
+/// What clearing needs besides its settings: the tool's radius, the top of the material,
+/// the feed and the cursor the moves start from.
+pub struct RingSetup<'a, 'm> {
     pub tool_radius: f64,
     pub top: f64,
     pub feed: f64,
@@ -175,36 +85,6 @@ fn forest(levels: &[Shape]) -> Vec<Node> {
     build(levels, 0, None)
 }
 
-/// The moves of a pocket over `region` (outer loops counter-clockwise, islands clockwise).
-pub fn pocket_moves(region: &Shape, op: &Pocket2d, mut s: Setup) -> Result<Vec<Move>, String> {
-    let r = s.tool_radius;
-    let first = r + op.leave_stock;
-    let step = (op.stepover_fraction.clamp(0.01, 1.0) * 2.0 * r).max(1e-3);
-    let levels = rings(region, first, step, s.tool_radius, s.tol);
-    if levels.is_empty() {
-        return Err(does_not_fit(r, op.leave_stock, "the pocket", &region.bounds()));
-    }
-    let clearing = Clearing {
-        step,
-        climb: op.direction == Direction::Climb,
-        pattern: op.pattern,
-        angle: op.angle.to_radians(),
-        load: op.load,
-        load_tolerance: op.load_tolerance,
-        entry: op.entry,
-        ramp_angle: op.ramp_angle.clamp(0.1, 90.0).to_radians(),
-        helix_r: op.helix_radius.unwrap_or(0.8 * r),
-    };
-    let passes = (op.depth / op.stepdown.max(1e-3)).ceil().max(1.0) as usize;
-    let mut out = Vec::new();
-    for k in 1..=passes {
-        let z_prev = s.top - op.depth * (k - 1) as f64 / passes as f64;
-        let z = s.top - op.depth * k as f64 / passes as f64;
-        out.extend(clear_rings(&levels, &clearing, z_prev, z, &mut s, None));
-    }
-    Ok(out)
-}
-
 /// The map of the material at a depth that the zigzag passes cut, and the load they hold:
 /// what the boundary ring after them is held by.
 struct Held {
@@ -225,7 +105,7 @@ pub struct Clearing {
     /// How zigzag passes hold the load, and by how much over the reference.
     pub load: LoadControl,
     pub load_tolerance: f64,
-    pub entry: Entry,
+    pub entry: EntryKind,
     /// Steepest descent of helices and ramps (radians).
     pub ramp_angle: f64,
     pub helix_r: f64,
@@ -243,7 +123,7 @@ pub type Air<'a> = &'a dyn Fn(DVec2) -> Option<DVec2>;
 /// A region whose boundary reaches the `air` is cleared from the outside in: the loops that
 /// run along its outer boundary, outermost first (the first entered in the air), then those
 /// round its islands, farthest from them first; each takes off at most a step.
-pub fn clear_rings(levels: &[Shape], clearing: &Clearing, z_prev: f64, z: f64, s: &mut Setup, air: Option<Air>) -> Vec<Move> {
+pub fn clear_rings(levels: &[Shape], clearing: &Clearing, z_prev: f64, z: f64, s: &mut RingSetup, air: Option<Air>) -> Vec<Move> {
     let Some(boundary) = levels.first() else { return Vec::new() };
     let from = s.cursor.at;
     // Cut only where the in-process stock has material, from where it starts.
@@ -254,7 +134,7 @@ pub fn clear_rings(levels: &[Shape], clearing: &Clearing, z_prev: f64, z: f64, s
     let mut out = Vec::new();
     let forest = forest(levels);
     let swept = (clearing.pattern == PocketPattern::Offset).then(|| Swept::new(boundary, s.tool_radius, z, &s.cursor.stock, s.tol.chordal));
-    let mut c = Ctx { s, boundary, angle: clearing.ramp_angle, helix_r: clearing.helix_r, entry: clearing.entry, out: &mut out, z_prev, z, swept };
+    let mut c = Clearer { s, boundary, angle: clearing.ramp_angle, helix_r: clearing.helix_r, entry: clearing.entry, out: &mut out, z_prev, z, swept };
     match clearing.pattern {
         PocketPattern::Offset => {
             for node in &forest {
@@ -303,12 +183,12 @@ impl Keepout for Inside<'_> {
 /// the boundary (mm).
 const END_SLACK: f64 = 1e-7;
 
-struct Ctx<'a, 'b, 'm> {
-    s: &'a mut Setup<'b, 'm>,
+struct Clearer<'a, 'b, 'm> {
+    s: &'a mut RingSetup<'b, 'm>,
     boundary: &'a Shape,
     angle: f64,
     helix_r: f64,
-    entry: Entry,
+    entry: EntryKind,
     out: &'a mut Vec<Move>,
     z_prev: f64,
     z: f64,
@@ -369,7 +249,7 @@ impl Swept {
     }
 }
 
-impl Ctx<'_, '_, '_> {
+impl Clearer<'_, '_, '_> {
     /// Whether `l` has material to cut (always, without a pixel map).
     fn has_material(&mut self, l: &Loop) -> bool {
         self.swept.as_mut().is_none_or(|s| s.cuts(l))
@@ -405,7 +285,7 @@ impl Ctx<'_, '_, '_> {
             if !self.has_material(l) {
                 continue;
             }
-            if !(fresh && i == 0 && self.entry == Entry::Helix && self.helix_into(&node.shape, &orient(l))) {
+            if !(fresh && i == 0 && self.entry == EntryKind::Helix && self.helix_into(&node.shape, &orient(l))) {
                 self.cut_loop(&orient(l), fresh);
             }
             self.swept(l);
@@ -528,7 +408,7 @@ impl Ctx<'_, '_, '_> {
             match &mut map {
                 None => self.out.extend(run[1..].iter().map(|p| Move::Line { to: p.extend(z), feed: self.s.feed })),
                 Some(map) => {
-                    let mut steps = Profile::default();
+                    let mut steps = LoadProfile::default();
                     let pts = match clearing.load {
                         LoadControl::Path => load::corrected(map, &run, &load, &mut steps),
                         _ => load::plain(map, &run, &load, &mut steps),
@@ -624,42 +504,3 @@ impl Ctx<'_, '_, '_> {
     }
 }
 
-impl super::Operate for Pocket2d {
-    super::named_operation!(OnDrawing);
-
-    fn validate(&self) -> Result<(), super::FieldError> {
-        super::positive("depth", self.depth)?;
-        super::positive("stepdown", self.stepdown)?;
-        super::positive("stepoverFraction", self.stepover_fraction)?;
-        super::positive("rampAngle", self.ramp_angle)?;
-        super::not_negative("leaveStock", self.leave_stock)?;
-        super::finite("angle", self.angle)?;
-        super::not_negative("loadTolerance", self.load_tolerance)?;
-        if let Some(r) = self.helix_radius {
-            super::positive("helixRadius", r)?;
-        }
-        Ok(())
-    }
-
-    fn plan(&self, ctx: &mut super::Context, _progress: &mut crate::progress::Progress) -> crate::error::Result<Vec<crate::toolpath::Toolpath>> {
-        use super::sheet;
-        let tool = ctx.tool(&self.name, self.tool)?.clone();
-        let (drawing, _) = sheet::sheet(ctx, &self.name)?;
-        let (walls, picked) = sheet::selected(drawing, &self.name, &self.layers, &self.loops)?;
-        let open = drawing.open_note(&self.layers);
-        let picked: Vec<Loop> = picked.iter().map(|&k| walls.shape.loops[k].clone()).collect();
-        let region = sheet::pocket_region(&walls.shape, &picked, self.loops.is_empty());
-        let mut cursor = sheet::cursor(ctx, &tool);
-        let setup = Setup { tool_radius: tool.cutter.radius(), top: ctx.stock.max.z, feed: tool.feed_rate, cursor: &mut cursor, tol: &ctx.tolerances };
-        let moves = pocket_moves(&region, self, setup).map_err(|e| crate::error::Error::operation(&self.name, e))?;
-        ctx.cuts.push(super::context::SheetCut { region, inside: true, depth: self.depth, leave: self.leave_stock });
-        if let Some(note) = open {
-            ctx.warn(&self.name, note);
-        }
-        if moves.is_empty() {
-            ctx.note(&self.name, "the pocket has no material left to its depth (earlier operations cut it away)");
-            return Ok(Vec::new());
-        }
-        Ok(vec![sheet::toolpath(&self.name, &tool, moves, ctx.heights.clearance)])
-    }
-}

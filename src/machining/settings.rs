@@ -1,0 +1,104 @@
+//! The settings the operations share: the words of the job file that mean the same in every
+//! operation that has them (a cutting direction, an order, a pattern, how the load is held,
+//! how material is entered), and the roughing kinds' common settings ([`Roughing`]), flattened
+//! into each roughing kind's JSON and validated once.
+
+use serde::{Deserialize, Serialize};
+
+use super::{not_negative, positive, FieldError};
+
+/// Cutting direction for a spindle turning clockwise (M3).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(rename_all = "camelCase")]
+pub enum Direction {
+    /// Down milling: the part on the tool's right.
+    #[default]
+    Climb,
+    Conventional,
+}
+
+/// The order a level-by-level roughing cuts in (`order` of z-level roughing).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(rename_all = "camelCase")]
+pub enum Order {
+    /// Each connected region of a level, then the regions under it down to their floors
+    /// (nearest first), before the next region of that level.
+    #[default]
+    Regions,
+    /// Each level everywhere, from the top down.
+    Levels,
+}
+
+/// How the pocket is cleared.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(rename_all = "camelCase")]
+pub enum PocketPattern {
+    /// Rings parallel to the walls.
+    #[default]
+    Offset,
+    /// Parallel passes, back and forth, then a finishing ring.
+    Zigzag,
+}
+
+/// How the tool enters material.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(rename_all = "camelCase")]
+pub enum EntryKind {
+    /// A helix where it fits, else a ramp.
+    #[default]
+    Helix,
+    /// Down along the path at the ramp angle.
+    Ramp,
+}
+
+/// How the load is held at the reference.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(rename_all = "camelCase")]
+pub enum LoadControl {
+    /// Extra path where the plain path would overload the tool (seed 004 §3.3); the feed drops
+    /// only where no extra path helps.
+    #[default]
+    Path,
+    /// The plain path, with the feed lowered wherever it would overload the tool.
+    Feed,
+    /// The plain path at the tool's feed.
+    None,
+}
+
+/// What every roughing kind leaves and how it cuts, in each one's JSON as its own fields
+/// (`operations[1].allowance`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(default, rename_all = "camelCase")]
+pub struct Roughing {
+    /// Material left on floors (axial, mm). Default value: 0.5.
+    pub allowance: f64,
+    /// Material left on walls (radial, mm). Default value: 0.5.
+    pub leave_stock: f64,
+    /// Default value: climb.
+    pub direction: Direction,
+    /// Spacing of the CL z-map (mm). Default value: 0.25.
+    pub grid: f64,
+    /// Steepest descent of helices and ramps (degrees). Default value: 3.
+    pub ramp_angle: f64,
+}
+
+impl Default for Roughing {
+    fn default() -> Self {
+        Roughing { allowance: 0.5, leave_stock: 0.5, direction: Direction::Climb, grid: 0.25, ramp_angle: 3.0 }
+    }
+}
+
+impl Roughing {
+    /// Checks the settings, each named as the job file names it.
+    pub fn validate(&self) -> Result<(), FieldError> {
+        not_negative("allowance", self.allowance)?;
+        not_negative("leaveStock", self.leave_stock)?;
+        positive("grid", self.grid)?;
+        positive("rampAngle", self.ramp_angle)
+    }
+
+    /// The material left on the part's surface: the smaller of the two allowances.
+    pub fn allowance(&self) -> f64 {
+        self.allowance.min(self.leave_stock)
+    }
+}

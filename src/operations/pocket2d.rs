@@ -1,0 +1,148 @@
+//! 2.5D pocketing of drawn regions, islands respected: rings inside-out or zigzag passes and a
+//! finishing ring, pass by pass down to the depth (the clearing is [`crate::machining::rings`],
+//! shared with z-level roughing).
+
+use serde::{Deserialize, Serialize};
+
+use crate::machining::path2d::does_not_fit;
+use crate::machining::report::SheetCut;
+use crate::machining::rings::{clear_rings, rings, Clearing, RingSetup};
+use crate::machining::settings::{Direction, EntryKind, LoadControl, PocketPattern};
+use crate::machining::{finite, named_operation, not_negative, positive, sheet, Context, FieldError, Operate, Planned};
+use crate::profile::{Loop, Shape};
+use crate::toolpath::Move;
+
+/// Pocket operation on a drawing.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(default, rename_all = "camelCase")]
+pub struct Pocket2d {
+    /// Default value: "pocket".
+    pub name: String,
+    /// Whether the job runs it (a disabled operation stays in the job). Default value: true.
+    pub enabled: bool,
+    /// Default value: 1.
+    pub tool: u32,
+    /// Depth below the stock top (mm). Default value: 3.
+    pub depth: f64,
+    /// Largest depth cut in one pass (mm). Default value: 1.
+    pub stepdown: f64,
+    /// Distance between rings or passes as a fraction of the tool diameter. Default value: 0.4.
+    pub stepover_fraction: f64,
+    /// Material left on walls and islands (mm). Default value: 0.
+    pub leave_stock: f64,
+    /// Default value: offset.
+    pub pattern: PocketPattern,
+    /// Direction of zigzag passes (degrees from +X). Default value: 0.
+    pub angle: f64,
+    /// How the zigzag pattern holds the tool's load at the step-over's (seed 004 §3). Default
+    /// value: path.
+    pub load: LoadControl,
+    /// How far over the reference load a zigzag step may go (0.1: 10 %). Default value: 0.1.
+    pub load_tolerance: f64,
+    /// Default value: helix.
+    pub entry: EntryKind,
+    /// Helix radius (mm). Default value: 0.4 × the tool diameter.
+    pub helix_radius: Option<f64>,
+    /// Steepest descent of helices and ramps (degrees). Default value: 3.
+    pub ramp_angle: f64,
+    /// Default value: climb.
+    pub direction: Direction,
+    /// Layers to pocket (empty: all). Default value: empty.
+    pub layers: Vec<String>,
+    /// Indices of the drawing's loops bounding the pocket, with the holes inside them as
+    /// islands (empty: all). Default value: empty.
+    pub loops: Vec<usize>,
+}
+
+impl Default for Pocket2d {
+    fn default() -> Self {
+        Pocket2d {
+            name: "pocket".into(),
+            enabled: true,
+            tool: 1,
+            depth: 3.0,
+            stepdown: 1.0,
+            stepover_fraction: 0.4,
+            leave_stock: 0.0,
+            pattern: PocketPattern::Offset,
+            angle: 0.0,
+            load: LoadControl::Path,
+            load_tolerance: 0.1,
+            entry: EntryKind::Helix,
+            helix_radius: None,
+            ramp_angle: 3.0,
+            direction: Direction::Climb,
+            layers: Vec::new(),
+            loops: Vec::new(),
+        }
+    }
+}
+
+/// The moves of a pocket over `region` (outer loops counter-clockwise, islands clockwise).
+pub fn pocket_moves(region: &Shape, op: &Pocket2d, mut s: RingSetup) -> Result<Vec<Move>, String> {
+    let r = s.tool_radius;
+    let first = r + op.leave_stock;
+    let step = (op.stepover_fraction.clamp(0.01, 1.0) * 2.0 * r).max(1e-3);
+    let levels = rings(region, first, step, s.tool_radius, s.tol);
+    if levels.is_empty() {
+        return Err(does_not_fit(r, op.leave_stock, "the pocket", &region.bounds()));
+    }
+    let clearing = Clearing {
+        step,
+        climb: op.direction == Direction::Climb,
+        pattern: op.pattern,
+        angle: op.angle.to_radians(),
+        load: op.load,
+        load_tolerance: op.load_tolerance,
+        entry: op.entry,
+        ramp_angle: op.ramp_angle.clamp(0.1, 90.0).to_radians(),
+        helix_r: op.helix_radius.unwrap_or(0.8 * r),
+    };
+    let passes = (op.depth / op.stepdown.max(1e-3)).ceil().max(1.0) as usize;
+    let mut out = Vec::new();
+    for k in 1..=passes {
+        let z_prev = s.top - op.depth * (k - 1) as f64 / passes as f64;
+        let z = s.top - op.depth * k as f64 / passes as f64;
+        out.extend(clear_rings(&levels, &clearing, z_prev, z, &mut s, None));
+    }
+    Ok(out)
+}
+
+impl Operate for Pocket2d {
+    named_operation!(OnDrawing);
+
+    fn validate(&self) -> Result<(), FieldError> {
+        positive("depth", self.depth)?;
+        positive("stepdown", self.stepdown)?;
+        positive("stepoverFraction", self.stepover_fraction)?;
+        positive("rampAngle", self.ramp_angle)?;
+        not_negative("leaveStock", self.leave_stock)?;
+        finite("angle", self.angle)?;
+        not_negative("loadTolerance", self.load_tolerance)?;
+        if let Some(r) = self.helix_radius {
+            positive("helixRadius", r)?;
+        }
+        Ok(())
+    }
+
+    fn plan(&self, ctx: &mut Context, _progress: &mut crate::progress::Progress) -> crate::error::Result<Planned> {
+        let tool = ctx.tool(&self.name, self.tool)?.clone();
+        let (drawing, _) = sheet::sheet(ctx, &self.name)?;
+        let (walls, picked) = sheet::selected(drawing, &self.name, &self.layers, &self.loops)?;
+        let open = drawing.open_note(&self.layers);
+        let picked: Vec<Loop> = picked.iter().map(|&k| walls.shape.loops[k].clone()).collect();
+        let region = sheet::pocket_region(&walls.shape, &picked, self.loops.is_empty());
+        let mut cursor = sheet::cursor(ctx, &tool);
+        let setup = RingSetup { tool_radius: tool.cutter.radius(), top: ctx.stock.max.z, feed: tool.feed_rate, cursor: &mut cursor, tol: &ctx.tolerances };
+        let moves = pocket_moves(&region, self, setup).map_err(|e| crate::error::Error::operation(&self.name, e))?;
+        let cuts = vec![SheetCut { region, inside: true, depth: self.depth, leave: self.leave_stock }];
+        if let Some(note) = open {
+            ctx.warn(&self.name, note);
+        }
+        if moves.is_empty() {
+            ctx.note(&self.name, "the pocket has no material left to its depth (earlier operations cut it away)");
+            return Ok(Planned { cuts, ..Planned::default() });
+        }
+        Ok(Planned { paths: vec![sheet::toolpath(&self.name, &tool, moves, ctx.heights.clearance)], cuts, ..Planned::default() })
+    }
+}

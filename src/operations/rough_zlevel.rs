@@ -1,0 +1,101 @@
+//! Z-level roughing (DESIGN.md ideas 1 and 3): level by level, each level's region cleared by
+//! rings inside-out and its boundary last, regions down to their floors one after the other
+//! ([`crate::machining::levels`] holds the machinery, shared with zigzag and octree roughing).
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::Result;
+use crate::machining::context::SurfaceRequest;
+use crate::machining::levels::{LevelRoughing, RegionWork};
+use crate::machining::settings::{Order, Roughing};
+use crate::machining::{named_operation, positive, Context, FieldError, Operate, Planned};
+use crate::progress::Progress;
+
+/// Z-level roughing.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(default, rename_all = "camelCase")]
+pub struct RoughZlevel {
+    /// Default value: "z-level rough".
+    pub name: String,
+    /// Whether the job runs it (a disabled operation stays in the job). Default value: true.
+    pub enabled: bool,
+    /// Default value: 1.
+    pub tool: u32,
+    /// Largest depth between levels (mm). Default value: 2.
+    pub stepdown: f64,
+    /// Distance between rings as a fraction of the tool diameter. Default value: 0.4.
+    pub stepover_fraction: f64,
+    #[serde(flatten)]
+    #[ts(flatten)]
+    pub roughing: Roughing,
+    /// Helix radius (mm). Default value: 0.4 × the tool diameter.
+    pub helix_radius: Option<f64>,
+    /// Cut every flat area of the part at its own height too. Default value: true.
+    pub flats: bool,
+    /// Which comes first: each region down to its floor before the next (`regions`: the tool
+    /// goes from pocket to pocket once, not once per level), or each level everywhere before
+    /// the next (`levels`). Default value: regions.
+    pub order: Order,
+}
+
+impl Default for RoughZlevel {
+    fn default() -> Self {
+        RoughZlevel {
+            name: "z-level rough".into(),
+            enabled: true,
+            tool: 1,
+            stepdown: 2.0,
+            stepover_fraction: 0.4,
+            roughing: Roughing::default(),
+            helix_radius: None,
+            flats: true,
+            order: Order::Regions,
+        }
+    }
+}
+
+impl RoughZlevel {
+    /// Its levels' settings.
+    pub fn levels(&self) -> LevelRoughing {
+        LevelRoughing { helix_radius: self.helix_radius, flats: self.flats, order: self.order, ..LevelRoughing::new(&self.name, self.tool, self.stepdown, self.stepover_fraction, &self.roughing) }
+    }
+}
+
+impl Operate for RoughZlevel {
+    named_operation!(OnPart);
+
+    fn allowance(&self) -> f64 {
+        self.roughing.allowance()
+    }
+
+    fn validate(&self) -> Result<(), FieldError> {
+        positive("stepdown", self.stepdown)?;
+        positive("stepoverFraction", self.stepover_fraction)?;
+        if self.stepover_fraction > 1.0 {
+            return Err(FieldError { field: "stepoverFraction", message: format!("is a fraction of the tool's diameter, at most 1 (got {})", self.stepover_fraction) });
+        }
+        self.roughing.validate()?;
+        if let Some(r) = self.helix_radius {
+            positive("helixRadius", r)?;
+        }
+        Ok(())
+    }
+
+    fn surfaces(&self, ctx: &Context) -> Result<Vec<SurfaceRequest>> {
+        Ok(vec![self.levels().request(ctx)?])
+    }
+
+    fn level_maps(&self, ctx: &Context) -> Result<Vec<SurfaceRequest>> {
+        self.surfaces(ctx)
+    }
+
+    fn region_work(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Option<RegionWork>> {
+        self.levels().region_work(ctx, progress).map(Some)
+    }
+
+    fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Planned> {
+        let levels = self.levels();
+        let Some(cut) = levels.levels_to_cut(ctx, progress)? else { return Ok(Planned::default()) };
+        Ok(vec![levels.clear(ctx, cut, progress)?].into())
+    }
+}
