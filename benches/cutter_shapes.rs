@@ -5,7 +5,9 @@
 //!
 //! `cargo bench --bench cutter_shapes`
 
-use swarf::job::bench::{cutter_shape_rows, cutter_shape_seconds};
+mod support;
+
+use support::job::{cutter_shape_rows, cutter_shape_seconds};
 
 fn main() {
     let start = std::time::Instant::now();

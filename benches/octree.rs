@@ -4,10 +4,12 @@
 //!
 //! Run: `cargo bench --bench octree` (native). The wasm figures: `bash scripts/bench-wasm.sh`.
 
+mod support;
+
 fn main() {
     let origin = std::time::Instant::now();
     let clock = || origin.elapsed().as_secs_f64();
-    for row in swarf::job::bench::octree_rows("mould", &swarf::mesh::sample::octree_mould(1.0), "native", &clock) {
+    for row in support::job::octree_rows("mould", &swarf::mesh::sample::octree_mould(1.0), "native", &clock) {
         println!("{row}");
     }
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/meshes");
@@ -15,7 +17,7 @@ fn main() {
         if let Ok(stl) = std::fs::read(dir.join(format!("{part}.stl"))) {
             let mut mesh = swarf::mesh::import::read_mesh_auto(&stl, Some("part.stl"), &swarf::geom::Tolerances::default()).expect("the part reads");
             mesh.transform(|p| p * scale);
-            for row in swarf::job::bench::octree_rows(part, &mesh, "native", &clock) {
+            for row in support::job::octree_rows(part, &mesh, "native", &clock) {
                 println!("{row}");
             }
         }

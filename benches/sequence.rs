@@ -4,17 +4,19 @@
 //!
 //! Run: `cargo bench --bench sequence` (native). The wasm figures: `bash scripts/bench-wasm.sh`.
 
+mod support;
+
 fn main() {
     let origin = std::time::Instant::now();
     let clock = || origin.elapsed().as_secs_f64();
-    for row in swarf::job::bench::sequence_rows("native", &clock) {
+    for row in support::job::sequence_rows("native", &clock) {
         println!("{row}");
     }
     // Issue 12's roughing benchmark, where ../shared/data is beside the project.
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/meshes");
     for part in ["ocl_mount_rush", "kiri_pocket-test", "ocl_wheel_in_box", "pycam_textbox"] {
         if let Ok(stl) = std::fs::read(dir.join(format!("{part}.stl"))) {
-            println!("{}", swarf::job::bench::rough_row(part, &stl, "native", &clock));
+            println!("{}", support::job::rough_row(part, &stl, "native", &clock));
         }
     }
 }

@@ -4,7 +4,9 @@
 //! Run: `cargo bench --bench sim_program` (native; add `-- --die-fine` for the die at 0.1 mm,
 //! about 106 million cells). The wasm figures: `bash scripts/bench-wasm.sh`.
 
-use swarf::job::bench::{die_case, sample_case};
+mod support;
+
+use support::job::{die_case, sample_case};
 
 fn main() {
     let origin = std::time::Instant::now();

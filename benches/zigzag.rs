@@ -6,6 +6,8 @@
 //! The load of any programs with a flat end of diameter D on a part (the peers' side by side):
 //! `cargo bench --bench zigzag -- load D PART.stl PROGRAM.ngc...`.
 
+mod support;
+
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).filter(|a| a != "--bench").collect();
     if args.first().map(String::as_str) == Some("load") {
@@ -14,7 +16,7 @@ fn main() {
         let part = swarf::mesh::import::read_mesh_auto(&stl, Some("part.stl"), &Default::default()).expect("the part reads");
         for program in &args[3..] {
             let gcode = std::fs::read_to_string(program).expect("the program");
-            let (peak, mean, n) = swarf::job::bench::program_load(part.clone(), &gcode, diameter, 0.1, 1.2).expect("the program simulates");
+            let (peak, mean, n) = support::job::program_load(part.clone(), &gcode, diameter, 0.1, 1.2).expect("the program simulates");
             println!("{program}: removal rate per 1.2 mm of level cutting: peak {peak:.0} mm³/min, mean {mean:.0} mm³/min over {n} windows");
         }
         return;
@@ -25,7 +27,7 @@ fn main() {
         // `-- stages JOB.json PART.stl`: where a job's time goes.
         let job = swarf::job::Job::from_json(&std::fs::read_to_string(&args[1]).expect("the job")).expect("a job");
         let part = swarf::mesh::import::read_mesh_auto(&std::fs::read(&args[2]).expect("the part"), Some("part.stl"), &Default::default()).expect("the part reads");
-        let (stages, _) = swarf::job::bench::stage_seconds(&job, part, &clock);
+        let (stages, _) = support::job::stage_seconds(&job, part, &clock);
         for (stage, s) in stages {
             println!("{s:8.3} s  {stage}");
         }
@@ -34,14 +36,14 @@ fn main() {
     let stl = swarf::mesh::sample::paper_pocket(0.5, 0.5).to_binary_stl();
     let _ = std::fs::write(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target/paper_pocket.stl"), stl);
     println!("| platform | load held by | feed length (mm) | plain path's load: peak (spread) | as cut, at its feeds: peak (spread) | mm at a lowered feed | cycle time as programmed (s) | at the feed each allows (s) | compute (s) |");
-    for row in swarf::job::bench::zigzag_rows("native", &clock) {
+    for row in support::job::zigzag_rows("native", &clock) {
         println!("{row}");
     }
     // Beside FreeCAD's Adaptive (scripts/bench-zigzag-peers.sh), where ../shared/data is beside
     // the project.
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/meshes");
     if let Ok(stl) = std::fs::read(dir.join("kiri_pocket-test.stl")) {
-        for row in swarf::job::bench::zigzag_peer_rows("kiri_pocket-test", &stl, "native", &clock) {
+        for row in support::job::zigzag_peer_rows("kiri_pocket-test", &stl, "native", &clock) {
             println!("{row}");
         }
     }

@@ -6,7 +6,9 @@
 //! Run: `cargo bench --bench zmap_die` (native). The wasm figures come from the same code in
 //! headless Chromium: `bash scripts/bench-wasm.sh`.
 
-use swarf::zmap::bench::{die_case, DieFigures};
+mod support;
+
+use support::zmap::{die_case, DieFigures};
 
 fn main() {
     let case = die_case();

@@ -151,3 +151,74 @@ impl std::fmt::Display for Warning {
 }
 
 pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// A message of serde's said in a user's words: `invalid type: string "5", expected f64` is
+/// `expected a number, got "5"`.
+pub(crate) fn plain(message: &str) -> String {
+    let what = |expected: &str| -> String {
+        let e = expected.trim();
+        match e {
+            "f64" | "f32" => "a number".into(),
+            "u8" | "u16" | "u32" | "u64" | "usize" => "a whole number, 0 or more".into(),
+            "i32" | "i64" | "isize" => "a whole number".into(),
+            "a boolean" | "bool" => "true or false".into(),
+            "a string" => "text".into(),
+            "a sequence" => "a list".into(),
+            "unit" => "null".into(),
+            _ if e.starts_with("struct ") || e.starts_with("a map") => "an object".into(),
+            _ if e.starts_with("a sequence of ") || e.starts_with("an array of length") => format!("a list ({e})"),
+            _ if e.starts_with("internally tagged enum") => "an object with a kind".into(),
+            _ => e.to_owned(),
+        }
+    };
+    let got = |unexpected: &str| -> String {
+        let u = unexpected.trim();
+        let quoted = |prefix: &str| u.strip_prefix(prefix).map(|v| v.trim_matches('`').to_owned());
+        if let Some(v) = u.strip_prefix("string ") {
+            return v.to_owned();
+        }
+        for prefix in ["integer ", "floating point ", "boolean "] {
+            if let Some(v) = quoted(prefix) {
+                return v;
+            }
+        }
+        match u {
+            "map" => "an object".into(),
+            "sequence" => "a list".into(),
+            "unit value" | "null" => "null".into(),
+            _ => u.to_owned(),
+        }
+    };
+    for rest in [message.strip_prefix("invalid type: "), message.strip_prefix("invalid value: ")] {
+        if let Some((unexpected, expected)) = rest.and_then(|r| r.rsplit_once(", expected ")) {
+            return format!("expected {}, got {}", what(expected), got(unexpected));
+        }
+    }
+    if let Some(rest) = message.strip_prefix("unknown variant ") {
+        if let Some((variant, expected)) = rest.split_once(", expected ") {
+            let options = expected.trim_start_matches("one of ").replace('`', "\"");
+            return format!("{} is not one of {options}", variant.replace('`', "\""));
+        }
+    }
+    if let Some(field) = message.strip_prefix("missing field ") {
+        return format!("{} is missing", field.trim_matches('`'));
+    }
+    message.to_owned()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::plain;
+
+    #[test]
+    fn serde_s_messages_in_a_users_words() {
+        assert_eq!(plain(r#"invalid type: string "5", expected f64"#), r#"expected a number, got "5""#);
+        assert_eq!(plain("invalid type: floating point `1.5`, expected u32"), "expected a whole number, 0 or more, got 1.5");
+        assert_eq!(plain("invalid value: integer `-1`, expected u32"), "expected a whole number, 0 or more, got -1");
+        assert_eq!(plain("invalid type: map, expected f64"), "expected a number, got an object");
+        assert_eq!(plain("invalid type: integer `3`, expected a boolean"), "expected true or false, got 3");
+        assert_eq!(plain("unknown variant `spline`, expected one of `ij`, `r`, `off`"), r#""spline" is not one of "ij", "r", "off""#);
+        assert_eq!(plain("missing field `start`"), "start is missing");
+        assert_eq!(plain("something else"), "something else");
+    }
+}

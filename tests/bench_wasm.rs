@@ -3,6 +3,9 @@
 //! prints the figures (the tests assert only that the figures were produced).
 #![cfg(target_arch = "wasm32")]
 
+#[path = "../benches/support/mod.rs"]
+mod support;
+
 use wasm_bindgen_test::*;
 
 wasm_bindgen_test_configure!(run_in_browser);
@@ -13,7 +16,7 @@ fn now() -> f64 {
 
 #[wasm_bindgen_test]
 fn die_zmaps_in_wasm() {
-    let case = swarf::zmap::bench::die_case();
+    let case = support::zmap::die_case();
     web_sys_log(&case.describe());
     for f in case.run_with(&now) {
         web_sys_log(&f.row("wasm (Chromium)"));
@@ -35,10 +38,10 @@ fn paper_table_2_in_wasm() {
 
 #[wasm_bindgen_test]
 fn program_simulation_in_wasm() {
-    let sample = swarf::job::bench::sample_case(&now);
+    let sample = support::job::sample_case(&now);
     web_sys_log(&sample.job_row("wasm (Chromium)"));
     web_sys_log(&sample.run(sample.cell_for(1e6), None, &now).row("wasm (Chromium)"));
-    let die = swarf::job::bench::die_case(&now);
+    let die = support::job::die_case(&now);
     web_sys_log(&die.job_row("wasm (Chromium)"));
     web_sys_log(&die.run(die.cell_for(1e6), None, &now).row("wasm (Chromium)"));
     let f = die.run(die.cell_for(1e6), Some(100_000), &now);
@@ -48,7 +51,7 @@ fn program_simulation_in_wasm() {
 
 #[wasm_bindgen_test]
 fn sequences_in_wasm() {
-    let rows = swarf::job::bench::sequence_rows("wasm (Chromium)", &now);
+    let rows = support::job::sequence_rows("wasm (Chromium)", &now);
     for row in &rows {
         web_sys_log(row);
     }
@@ -60,14 +63,14 @@ fn roughing_in_wasm() {
     // Issue 12's benchmark part (read at build time from ../shared/data; this file is built
     // only by scripts/bench-wasm.sh).
     let stl = include_bytes!("../../shared/data/meshes/ocl_mount_rush.stl");
-    let row = swarf::job::bench::rough_row("ocl_mount_rush", stl, "wasm (Chromium)", &now);
+    let row = support::job::rough_row("ocl_mount_rush", stl, "wasm (Chromium)", &now);
     web_sys_log(&row);
     assert!(row.contains("total"));
 }
 
 #[wasm_bindgen_test]
 fn zigzag_in_wasm() {
-    let rows = swarf::job::bench::zigzag_rows("wasm (Chromium)", &now);
+    let rows = support::job::zigzag_rows("wasm (Chromium)", &now);
     for row in &rows {
         web_sys_log(row);
     }
@@ -78,7 +81,7 @@ fn zigzag_in_wasm() {
 fn zigzag_pocket_test_in_wasm() {
     // Beside FreeCAD's Adaptive (scripts/bench-zigzag-peers.sh), the shared pocket test.
     let stl = include_bytes!("../../shared/data/meshes/kiri_pocket-test.stl");
-    for row in swarf::job::bench::zigzag_peer_rows("kiri_pocket-test", stl, "wasm (Chromium)", &now) {
+    for row in support::job::zigzag_peer_rows("kiri_pocket-test", stl, "wasm (Chromium)", &now) {
         web_sys_log(&row);
     }
 }
@@ -86,7 +89,7 @@ fn zigzag_pocket_test_in_wasm() {
 #[wasm_bindgen_test]
 fn octree_roughing_in_wasm() {
     // Seed 000's comparison on the generated mould (octree, z-level with the φ3 alone, φ20 then φ3).
-    let rows = swarf::job::bench::octree_rows("mould", &swarf::mesh::sample::octree_mould(1.0), "wasm (Chromium)", &now);
+    let rows = support::job::octree_rows("mould", &swarf::mesh::sample::octree_mould(1.0), "wasm (Chromium)", &now);
     for row in &rows {
         web_sys_log(row);
     }

@@ -2,6 +2,9 @@
 //! material, no straight plunge into material), the material it leaves where the tool reaches
 //! bounded by the allowances and the stair-step between levels, and LinuxCNC's rs274 reads it.
 
+#[path = "../benches/support/mod.rs"]
+mod support;
+
 mod common;
 
 use common::clean;
@@ -388,7 +391,7 @@ fn rest_roughing_keeps_the_tools_body_out_of_the_crevices_a_bigger_tool_left() {
     let Some(dir) = common::shared_data("meshes") else { return };
     let bytes = std::fs::read(dir.join("ocl_wheel_in_box.stl")).unwrap();
     let part = swarf::mesh::import::read_mesh_auto(&bytes, Some("ocl_wheel_in_box.stl"), &swarf::geom::tolerance::Tolerances::default()).unwrap();
-    for (label, job) in swarf::job::bench::octree_jobs(0.25, 0.5, 0.5, 0.25) {
+    for (label, job) in support::job::octree_jobs(0.25, 0.5, 0.5, 0.25) {
         if label.contains("alone") {
             continue;
         }

@@ -2,80 +2,13 @@
 //! below), and the part the drawing means for verification: full height inside the kept
 //! region, cut to each operation's depth where it cuts.
 
-use serde::{Deserialize, Serialize};
-
-use super::Job;
+use super::schema::Job;
 use crate::error::{Error, Result};
 use crate::geom::{Aabb, DVec2};
 use crate::offset::offset;
 use crate::profile::Drawing;
 use crate::machining::report::{Groove, SheetCut};
 use crate::zmap::{Grid, HeightField};
-
-/// The units a drawing's numbers are in.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
-#[serde(rename_all = "camelCase")]
-pub enum DrawingUnits {
-    /// As the file says ($INSUNITS, the SVG's width and viewBox; px at 96 per inch).
-    #[default]
-    File,
-    Mm,
-    Inch,
-}
-
-/// Where a drawing is put.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
-#[serde(rename_all = "camelCase")]
-pub enum DrawingOrigin {
-    /// As drawn.
-    Keep,
-    /// Its lower left corner at X0 Y0.
-    #[default]
-    LowerLeft,
-    /// Its centre at X0 Y0.
-    Center,
-}
-
-/// How a drawing becomes a sheet on the machine: the stock's top is Z0.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
-#[serde(default, rename_all = "camelCase")]
-pub struct DrawingSetup {
-    /// Default value: file.
-    pub units: DrawingUnits,
-    /// Default value: lower left.
-    pub origin: DrawingOrigin,
-    /// Thickness of the sheet (mm). Default value: 6.
-    pub thickness: f64,
-}
-
-impl Default for DrawingSetup {
-    fn default() -> Self {
-        DrawingSetup { units: DrawingUnits::File, origin: DrawingOrigin::LowerLeft, thickness: 6.0 }
-    }
-}
-
-impl DrawingSetup {
-    /// Scales the drawing to the chosen units and moves it to the chosen origin.
-    pub fn apply(&self, d: &mut Drawing) {
-        let wanted = match self.units {
-            DrawingUnits::File => d.scale,
-            DrawingUnits::Mm => 1.0,
-            DrawingUnits::Inch => 25.4,
-        };
-        let k = if d.scale > 0.0 { wanted / d.scale } else { 1.0 };
-        d.transform(k, DVec2::ZERO);
-        d.scale = wanted;
-        let b = d.bounds();
-        let shift = match self.origin {
-            DrawingOrigin::Keep => DVec2::ZERO,
-            DrawingOrigin::LowerLeft => -b.min,
-            DrawingOrigin::Center => -b.center(),
-        };
-        if !b.is_empty() {
-            d.transform(1.0, shift);
-        }
-    }
-}
 
 /// Scales and places `drawing` as the job says; returns the sheet's stock (its top at Z0) and
 /// thickness.

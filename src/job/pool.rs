@@ -10,11 +10,10 @@
 //! the program is the same byte for byte. Natively the same bands and passes run on threads
 //! ([`crate::zmap::cl_exact::ExactBuilder::field`], [`crate::machining::raster::raster_runs`]).
 
-use std::collections::HashMap;
 use std::ops::Range;
 
 use crate::operations::Operation;
-use super::{Prepared, Running};
+use super::run::{Prepared, Running};
 use crate::error::{Error, Result};
 use crate::geom::DVec3;
 use crate::profile::Shape;
@@ -22,7 +21,8 @@ use crate::progress::Progress;
 use crate::machining::context::SurfaceRequest;
 use crate::machining::raster::{PassLayout, RasterPasses};
 use crate::operations::FinishRaster;
-use crate::machining::levels::{unpack, GivenRegion, RegionWork};
+use crate::machining::context::GivenRegion;
+use crate::machining::levels::{unpack, RegionWork};
 use crate::zmap::contour::LevelMap;
 use crate::zmap::region::Region;
 use crate::zmap::ClBuilder;
@@ -40,7 +40,6 @@ pub struct RasterWork {
 }
 
 /// The passes of one raster operation a pool made, by pass.
-pub(super) type GivenPasses = HashMap<usize, Vec<Option<Vec<Vec<DVec3>>>>>;
 
 impl Prepared {
     /// The exact CL surfaces the enabled operations will ask for, each once, in the order they

@@ -6,7 +6,7 @@
 use base64::Engine as _;
 use serde::{Deserialize, Serialize};
 
-use super::Job;
+use super::schema::Job;
 use crate::error::{Error, Result};
 
 /// The value of a project file's `format` field.

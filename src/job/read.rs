@@ -5,9 +5,9 @@
 //! know (`operations[0].stepOver (did you mean stepover?)`): a misspelt setting must never fall
 //! back to its default unseen. Files of an older version are read as they were written.
 
-use super::{Job, JOB_VERSION};
-use crate::error::{Error, Result};
-use crate::job::Operation;
+use super::schema::{DrawingSetup, Job, JOB_VERSION};
+use crate::error::{plain, Error, Result};
+use crate::operations::Operation;
 
 /// The fields that changed name, by version: `(version that renamed it, operation kinds, old
 /// name, new name)`. A file of an older version is read with its old names.
@@ -78,7 +78,7 @@ fn upgrade(value: &serde_json::Value, version: u32) -> serde_json::Value {
 /// from the sheet's bottom (or the cut's floor, where the cut stops inside the sheet): a
 /// version-1 height over a cut through the sheet loses the cut's depth past the bottom.
 fn tabs_from_the_bottom(value: &mut serde_json::Value) {
-    let thickness = value.pointer("/drawing/thickness").and_then(serde_json::Value::as_f64).unwrap_or(crate::job::DrawingSetup::default().thickness);
+    let thickness = value.pointer("/drawing/thickness").and_then(serde_json::Value::as_f64).unwrap_or(DrawingSetup::default().thickness);
     for op in value.get_mut("operations").and_then(serde_json::Value::as_array_mut).into_iter().flatten() {
         if op.get("kind").and_then(serde_json::Value::as_str) != Some("profile2d") {
             continue;
@@ -92,59 +92,6 @@ fn tabs_from_the_bottom(value: &mut serde_json::Value) {
     }
 }
 
-/// A message of serde's said in a user's words: `invalid type: string "5", expected f64` is
-/// `expected a number, got "5"`.
-pub(crate) fn plain(message: &str) -> String {
-    let what = |expected: &str| -> String {
-        let e = expected.trim();
-        match e {
-            "f64" | "f32" => "a number".into(),
-            "u8" | "u16" | "u32" | "u64" | "usize" => "a whole number, 0 or more".into(),
-            "i32" | "i64" | "isize" => "a whole number".into(),
-            "a boolean" | "bool" => "true or false".into(),
-            "a string" => "text".into(),
-            "a sequence" => "a list".into(),
-            "unit" => "null".into(),
-            _ if e.starts_with("struct ") || e.starts_with("a map") => "an object".into(),
-            _ if e.starts_with("a sequence of ") || e.starts_with("an array of length") => format!("a list ({e})"),
-            _ if e.starts_with("internally tagged enum") => "an object with a kind".into(),
-            _ => e.to_owned(),
-        }
-    };
-    let got = |unexpected: &str| -> String {
-        let u = unexpected.trim();
-        let quoted = |prefix: &str| u.strip_prefix(prefix).map(|v| v.trim_matches('`').to_owned());
-        if let Some(v) = u.strip_prefix("string ") {
-            return v.to_owned();
-        }
-        for prefix in ["integer ", "floating point ", "boolean "] {
-            if let Some(v) = quoted(prefix) {
-                return v;
-            }
-        }
-        match u {
-            "map" => "an object".into(),
-            "sequence" => "a list".into(),
-            "unit value" | "null" => "null".into(),
-            _ => u.to_owned(),
-        }
-    };
-    for rest in [message.strip_prefix("invalid type: "), message.strip_prefix("invalid value: ")] {
-        if let Some((unexpected, expected)) = rest.and_then(|r| r.rsplit_once(", expected ")) {
-            return format!("expected {}, got {}", what(expected), got(unexpected));
-        }
-    }
-    if let Some(rest) = message.strip_prefix("unknown variant ") {
-        if let Some((variant, expected)) = rest.split_once(", expected ") {
-            let options = expected.trim_start_matches("one of ").replace('`', "\"");
-            return format!("{} is not one of {options}", variant.replace('`', "\""));
-        }
-    }
-    if let Some(field) = message.strip_prefix("missing field ") {
-        return format!("{} is missing", field.trim_matches('`'));
-    }
-    message.to_owned()
-}
 
 /// The fields of `input` that reading it did not use: those absent from the job it made,
 /// written back (`canonical`), with a known field of the same object that differs only in case
@@ -177,21 +124,4 @@ fn unknown_fields(input: &serde_json::Value, canonical: &serde_json::Value, path
 /// The field an old name became, if it became one.
 fn renamed(old: &str) -> Option<&'static str> {
     RENAMED.iter().find(|r| r.2.eq_ignore_ascii_case(old)).map(|r| r.3)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::plain;
-
-    #[test]
-    fn serde_s_messages_in_a_users_words() {
-        assert_eq!(plain(r#"invalid type: string "5", expected f64"#), r#"expected a number, got "5""#);
-        assert_eq!(plain("invalid type: floating point `1.5`, expected u32"), "expected a whole number, 0 or more, got 1.5");
-        assert_eq!(plain("invalid value: integer `-1`, expected u32"), "expected a whole number, 0 or more, got -1");
-        assert_eq!(plain("invalid type: map, expected f64"), "expected a number, got an object");
-        assert_eq!(plain("invalid type: integer `3`, expected a boolean"), "expected true or false, got 3");
-        assert_eq!(plain("unknown variant `spline`, expected one of `ij`, `r`, `off`"), r#""spline" is not one of "ij", "r", "off""#);
-        assert_eq!(plain("missing field `start`"), "start is missing");
-        assert_eq!(plain("something else"), "something else");
-    }
 }

@@ -4,7 +4,7 @@
 
 use serde::Serialize;
 
-use super::Job;
+use super::schema::Job;
 use crate::sim::program::ProgramMove;
 use crate::sim::verify::Verification;
 use crate::machining::report::{LoadReport, StageReport};

@@ -81,6 +81,16 @@ pub struct SurfaceRequest {
     pub builder: ClBuilder,
 }
 
+/// A region made elsewhere for a level: the surface, the height and the kept nodes it was
+/// contoured with.
+#[derive(Clone, Debug)]
+pub struct GivenRegion {
+    pub request: SurfaceRequest,
+    pub level: f64,
+    pub keep: Vec<u8>,
+    pub region: crate::profile::Shape,
+}
+
 /// A request with the program's resolution, as the cache keys it.
 type SurfaceKey = (Profile, u64, Grid, u64, ClBuilder);
 
@@ -114,7 +124,7 @@ pub struct Context {
     /// Regions of levels a pool of workers made for the operation about to plan
     /// ([`crate::machining::levels::LevelRoughing::region_work`]): a level contoured on the
     /// same surface, at the same height, keeping the same nodes takes its region from here.
-    pub given_regions: Vec<crate::machining::levels::GivenRegion>,
+    pub given_regions: Vec<GivenRegion>,
 }
 
 impl Context {

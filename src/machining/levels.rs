@@ -648,15 +648,6 @@ pub struct RegionWork {
     pub levels: Vec<(f64, Vec<u8>)>,
 }
 
-/// A region made elsewhere for a level: the surface, the height and the kept nodes it was
-/// contoured with.
-#[derive(Clone, Debug)]
-pub struct GivenRegion {
-    pub request: SurfaceRequest,
-    pub level: f64,
-    pub keep: Vec<u8>,
-    pub region: Shape,
-}
 
 /// Booleans packed eight to a byte, the first in the lowest bit.
 pub fn pack(bits: &[bool]) -> Vec<u8> {

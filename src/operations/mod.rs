@@ -53,8 +53,8 @@ macro_rules! operations {
                     serde_path_to_error::deserialize::<_, T>(value).err().map(|e| match e.path().to_string() {
                         // A field of settings flattened into the kind's own (the roughing
                         // kinds' shared ones) is named by reading them on their own.
-                        path if path == "." => at::<crate::machining::settings::Roughing>(value).unwrap_or_else(|| crate::job::read::plain(&e.inner().to_string())),
-                        path => format!("{path}: {}", crate::job::read::plain(&e.inner().to_string())),
+                        path if path == "." => at::<crate::machining::settings::Roughing>(value).unwrap_or_else(|| crate::error::plain(&e.inner().to_string())),
+                        path => format!("{path}: {}", crate::error::plain(&e.inner().to_string())),
                     })
                 }
                 match value.get("kind")?.as_str()? {

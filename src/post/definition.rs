@@ -329,7 +329,7 @@ impl Post {
     /// `text` as its comments may hold it: no parentheses (they would end the comment early),
     /// and in ASCII where the post says so.
     pub fn comment_text(&self, text: &str) -> String {
-        let text = super::comment(text);
+        let text = comment(text);
         match self.comment_characters {
             CommentCharacters::Ascii => ascii(&text),
             CommentCharacters::Any => text,
@@ -365,6 +365,11 @@ pub(crate) fn fill(template: &str, values: &[(&str, String)]) -> String {
         out = out.replace(&format!("{{{name}}}"), value);
     }
     out
+}
+
+/// Comments may not hold parentheses (they would end the comment early).
+pub(crate) fn comment(text: &str) -> String {
+    text.chars().map(|c| if c == '(' || c == ')' { '-' } else { c }).filter(|c| !c.is_control()).collect()
 }
 
 #[cfg(test)]

@@ -452,10 +452,7 @@ fn fit(line: &str, max: usize) -> Option<String> {
     Some(format!("{code}{note}").trim_end().to_owned())
 }
 
-/// Comments may not hold parentheses (they would end the comment early).
-pub(crate) fn comment(text: &str) -> String {
-    text.chars().map(|c| if c == '(' || c == ')' { '-' } else { c }).filter(|c| !c.is_control()).collect()
-}
+pub(crate) use definition::comment;
 
 struct Writer<'a> {
     post: &'a Post,

@@ -11,7 +11,7 @@
 //! reach hold the floor given when the grid was laid out.
 
 pub mod cc;
-pub mod bench;
+
 pub mod bounds;
 pub mod cl_exact;
 pub mod cl_inverse;

@@ -1,12 +1,12 @@
 //! Seed 001 §4.2's case, shared by the native benchmark (`benches/zmap_die.rs`) and the same
 //! code in headless Chromium (`tests/bench_wasm.rs`), so both print comparable figures.
 
-use crate::cutter::Cutter;
-use crate::geom::Tolerances;
-use crate::mesh::{sample::fuel_tank_die, Mesh};
-use crate::progress::Progress;
+use swarf::cutter::Cutter;
+use swarf::geom::Tolerances;
+use swarf::mesh::{sample::fuel_tank_die, Mesh};
+use swarf::progress::Progress;
 
-use super::{cc::cc_zmap, cl_exact::cl_exact, cl_inverse::cl_inverse_offset, Grid};
+use swarf::zmap::{cc::cc_zmap, cl_exact::cl_exact, cl_inverse::cl_inverse_offset, Grid};
 
 /// The die, its grid, and the paper's timings.
 pub struct DieCase {

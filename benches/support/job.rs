@@ -2,14 +2,14 @@
 //! seed 001's die (the foundation issue's benchmark part). Shared by `cargo bench --bench
 //! sim_program` and the wasm benchmark, so both time the same work.
 
-use crate::sim::program::{simulate, ProgramMove};
-use crate::sim::verify::{verify, VerifySettings};
-use crate::sim::DexelStock;
-use crate::cutter::Cutter;
-use crate::geom::{Aabb, Tolerances};
-use crate::job::{self, FinishRaster, Job, Operation, Simulation, Tool};
-use crate::mesh::{sample, Mesh};
-use crate::progress::Progress;
+use swarf::sim::program::{simulate, ProgramMove};
+use swarf::sim::verify::{verify, VerifySettings};
+use swarf::sim::DexelStock;
+use swarf::cutter::Cutter;
+use swarf::geom::{Aabb, Tolerances};
+use swarf::job::{self, FinishRaster, Job, Operation, Simulation, Tool};
+use swarf::mesh::{sample, Mesh};
+use swarf::progress::Progress;
 
 /// A part with its finishing program, made once.
 pub struct ProgramCase {
@@ -199,14 +199,14 @@ pub fn sequence_rows(platform: &str, clock: &dyn Fn() -> f64) -> Vec<String> {
 /// Issue 12's roughing settings: a φ6 flat end, step-down 2, step-over 0.4, no allowance, the
 /// stock the part's box, feed 1000, plunge 250, rapids 5000 mm/min; the part kept where it is.
 pub fn peer_rough_job() -> Job {
-    use crate::operations::RoughZlevel;
+    use swarf::operations::RoughZlevel;
     let tool = Tool { cutter: Cutter { flute_length: 50.0, ..Cutter::flat(6.0) }, feed_rate: 1000.0, plunge_rate: 250.0, ..Tool::default() };
     Job {
-        part: crate::mesh::placement::PartSetup { placement: crate::mesh::placement::Placement::Keep, ..Default::default() },
+        part: swarf::mesh::placement::PartSetup { placement: swarf::mesh::placement::Placement::Keep, ..Default::default() },
         stock: job::Stock { margin_xy: 0.0, margin_top: 0.0, margin_bottom: 0.0, ..Default::default() },
-        post: crate::post::PostSettings { rapid_rate: 5000.0, ..Default::default() },
+        post: swarf::post::PostSettings { rapid_rate: 5000.0, ..Default::default() },
         tools: vec![tool],
-        operations: vec![Operation::RoughZlevel(RoughZlevel { stepdown: 2.0, stepover_fraction: 0.4, roughing: crate::machining::settings::Roughing { allowance: 0.0, leave_stock: 0.0, ..Default::default() }, ..RoughZlevel::default() })],
+        operations: vec![Operation::RoughZlevel(RoughZlevel { stepdown: 2.0, stepover_fraction: 0.4, roughing: swarf::machining::settings::Roughing { allowance: 0.0, leave_stock: 0.0, ..Default::default() }, ..RoughZlevel::default() })],
         simulation: Simulation { verify: false, cell: None },
         ..Job::default()
     }
@@ -214,7 +214,7 @@ pub fn peer_rough_job() -> Job {
 
 /// Roughing a part (STL bytes) with [`peer_rough_job`]: its stages' times, without simulation.
 pub fn rough_row(name: &str, stl: &[u8], platform: &str, clock: &dyn Fn() -> f64) -> String {
-    let part = crate::mesh::import::read_mesh_auto(stl, Some("part.stl"), &Tolerances::default()).expect("the part reads");
+    let part = swarf::mesh::import::read_mesh_auto(stl, Some("part.stl"), &Tolerances::default()).expect("the part reads");
     let start = clock();
     let (stages, out) = stage_seconds(&peer_rough_job(), part, clock);
     let total = clock() - start;
@@ -232,10 +232,10 @@ pub fn rough_row(name: &str, stl: &[u8], platform: &str, clock: &dyn Fn() -> f64
 /// Seed 004's case: the paper-like pocket ([`sample::paper_pocket`], 120 × 85 mm, two
 /// islands), a φ10 flat end at feed 1000, radial depth 3 mm, axial 0.5 mm, one level, zigzag
 /// roughing with the load held by `load`; the stock the plate.
-pub fn paper_zigzag_job(load: crate::machining::settings::LoadControl) -> Job {
-    use crate::operations::RoughZigzag;
+pub fn paper_zigzag_job(load: swarf::machining::settings::LoadControl) -> Job {
+    use swarf::operations::RoughZigzag;
     let tool = Tool { cutter: Cutter::flat(10.0), feed_rate: 1000.0, plunge_rate: 250.0, ..Tool::default() };
-    let op = RoughZigzag { stepdown: 0.5, stepover_fraction: 0.3, roughing: crate::machining::settings::Roughing { allowance: 0.0, leave_stock: 0.0, grid: 0.5, ..Default::default() }, load, ..RoughZigzag::default() };
+    let op = RoughZigzag { stepdown: 0.5, stepover_fraction: 0.3, roughing: swarf::machining::settings::Roughing { allowance: 0.0, leave_stock: 0.0, grid: 0.5, ..Default::default() }, load, ..RoughZigzag::default() };
     Job { tools: vec![tool], operations: vec![Operation::RoughZigzag(op)], ..peer_rough_job() }
 }
 
@@ -244,13 +244,13 @@ pub fn paper_zigzag_job(load: crate::machining::settings::LoadControl) -> Job {
 /// Δs, on the pixel map), the cycle time as programmed and at the feed each allows (the plain
 /// path at the one constant feed its peak load allows, 1.1 × the reference), and compute time.
 pub fn zigzag_rows(platform: &str, clock: &dyn Fn() -> f64) -> Vec<String> {
-    use crate::machining::{report::LoadReport, settings::LoadControl};
+    use swarf::machining::{report::LoadReport, settings::LoadControl};
     let part = sample::paper_pocket(0.5, 0.5);
     let mut rows = Vec::new();
     for load in [LoadControl::None, LoadControl::Feed, LoadControl::Path] {
         let job = paper_zigzag_job(load);
         let start = clock();
-        let out = crate::job::run(&job, part.clone(), &mut Progress::none()).expect("the paper's pocket roughs");
+        let out = swarf::job::run(&job, part.clone(), &mut Progress::none()).expect("the paper's pocket roughs");
         let compute = clock() - start;
         let r = &out.operations[0];
         let l = r.load.as_ref().expect("a load report");
@@ -273,36 +273,36 @@ pub fn zigzag_rows(platform: &str, clock: &dyn Fn() -> f64) -> Vec<String> {
 /// `diameter` on a part placed as in [`peer_rough_job`] (the stock the part's box), over
 /// windows of `ds` mm of level cutting (entries left out), by the project's simulation at
 /// `cell`: the highest window and the mean (mm³/min), and the number of windows.
-pub fn program_load(part: Mesh, gcode: &str, diameter: f64, cell: f64, ds: f64) -> crate::error::Result<(f64, f64, usize)> {
+pub fn program_load(part: Mesh, gcode: &str, diameter: f64, cell: f64, ds: f64) -> swarf::error::Result<(f64, f64, usize)> {
     let mut job = peer_rough_job();
     let mut part = part;
     let stock = job.place(&mut part);
     job.tools[0].cutter = Cutter { flute_length: 1e3, ..Cutter::flat(diameter) };
-    let paths = crate::post::read::read_gcode(gcode, 1)?;
-    let moves = crate::sim::program::program_moves(&paths, &job.tools, job.post.rapid_rate)?;
-    let rates = crate::sim::windows::windowed_rates(&moves, &stock, cell, ds)?;
+    let paths = swarf::post::read::read_gcode(gcode, 1)?;
+    let moves = swarf::sim::program::program_moves(&paths, &job.tools, job.post.rapid_rate)?;
+    let rates = swarf::sim::windows::windowed_rates(&moves, &stock, cell, ds)?;
     let mean = rates.iter().sum::<f64>() / rates.len().max(1) as f64;
     Ok((rates.iter().copied().fold(0.0, f64::max), mean, rates.len()))
 }
 
 /// Issue 12's settings (φ6 flat, step-down 2, step-over 0.4, no allowance, the stock the
 /// part's box) with zigzag roughing on a 0.5 mm grid, the load held by `load`.
-pub fn peer_zigzag_job(load: crate::machining::settings::LoadControl) -> Job {
-    use crate::operations::RoughZigzag;
-    let op = RoughZigzag { stepdown: 2.0, stepover_fraction: 0.4, roughing: crate::machining::settings::Roughing { allowance: 0.0, leave_stock: 0.0, grid: 0.5, ..Default::default() }, load, ..RoughZigzag::default() };
+pub fn peer_zigzag_job(load: swarf::machining::settings::LoadControl) -> Job {
+    use swarf::operations::RoughZigzag;
+    let op = RoughZigzag { stepdown: 2.0, stepover_fraction: 0.4, roughing: swarf::machining::settings::Roughing { allowance: 0.0, leave_stock: 0.0, grid: 0.5, ..Default::default() }, load, ..RoughZigzag::default() };
     Job { operations: vec![Operation::RoughZigzag(op)], ..peer_rough_job() }
 }
 
 /// Zigzag roughing of a part (STL bytes) with [`peer_zigzag_job`], each way of holding the
 /// load: compute time (without simulation) and the cycle time as programmed.
 pub fn zigzag_peer_rows(name: &str, stl: &[u8], platform: &str, clock: &dyn Fn() -> f64) -> Vec<String> {
-    use crate::machining::settings::LoadControl;
-    let part = crate::mesh::import::read_mesh_auto(stl, Some("part.stl"), &Tolerances::default()).expect("the part reads");
+    use swarf::machining::settings::LoadControl;
+    let part = swarf::mesh::import::read_mesh_auto(stl, Some("part.stl"), &Tolerances::default()).expect("the part reads");
     [LoadControl::Path, LoadControl::Feed, LoadControl::None]
         .into_iter()
         .map(|load| {
             let start = clock();
-            let out = crate::job::run(&peer_zigzag_job(load), part.clone(), &mut Progress::none()).expect("the part roughs");
+            let out = swarf::job::run(&peer_zigzag_job(load), part.clone(), &mut Progress::none()).expect("the part roughs");
             format!("| {platform} | {name} | {load:?} | compute {:.3} s | {:.0} s on the machine |", clock() - start, out.stats.seconds)
         })
         .collect()
@@ -314,21 +314,21 @@ pub fn zigzag_peer_rows(name: &str, stl: &[u8], platform: &str, clock: &dyn Fn()
 /// top. Returns the jobs: octree multi-tool roughing, z-level roughing with the φ3 alone, and
 /// z-level roughing with the φ20 then with the φ3 (which sees what the φ20 left).
 pub fn octree_jobs(delta: f64, stepover: f64, grid: f64, cell: f64) -> [(&'static str, Job); 3] {
-    use crate::operations::RoughOctree;
-    use crate::operations::RoughZlevel;
+    use swarf::operations::RoughOctree;
+    use swarf::operations::RoughZlevel;
     let flat = |number: u32, d: f64| Tool { number, cutter: Cutter { flute_length: 3.0 * d, ..Cutter::flat(d) }, feed_rate: 1000.0, plunge_rate: 250.0, ..Tool::default() };
     let tools = vec![flat(1, 20.0), flat(2, 12.0), flat(3, 6.0), flat(4, 3.0)];
-    let zlevel = |tool: u32, d: f64| Operation::RoughZlevel(RoughZlevel { name: format!("z-level φ{d}"), tool, stepdown: delta * d, stepover_fraction: stepover, roughing: crate::machining::settings::Roughing { grid, ..Default::default() }, ..RoughZlevel::default() });
+    let zlevel = |tool: u32, d: f64| Operation::RoughZlevel(RoughZlevel { name: format!("z-level φ{d}"), tool, stepdown: delta * d, stepover_fraction: stepover, roughing: swarf::machining::settings::Roughing { grid, ..Default::default() }, ..RoughZlevel::default() });
     let base = Job {
-        part: crate::mesh::placement::PartSetup { placement: crate::mesh::placement::Placement::Keep, ..Default::default() },
+        part: swarf::mesh::placement::PartSetup { placement: swarf::mesh::placement::Placement::Keep, ..Default::default() },
         stock: job::Stock { margin_xy: 0.0, margin_top: 1.0, margin_bottom: 0.0, ..Default::default() },
-        post: crate::post::PostSettings { rapid_rate: 5000.0, ..Default::default() },
+        post: swarf::post::PostSettings { rapid_rate: 5000.0, ..Default::default() },
         tools,
         simulation: Simulation { verify: true, cell: Some(cell) },
         ..Job::default()
     };
     [
-        ("octree (φ20 φ12 φ6 φ3)", Job { operations: vec![Operation::RoughOctree(RoughOctree { delta, stepover_fraction: stepover, roughing: crate::machining::settings::Roughing { grid, ..Default::default() }, ..RoughOctree::default() })], ..base.clone() }),
+        ("octree (φ20 φ12 φ6 φ3)", Job { operations: vec![Operation::RoughOctree(RoughOctree { delta, stepover_fraction: stepover, roughing: swarf::machining::settings::Roughing { grid, ..Default::default() }, ..RoughOctree::default() })], ..base.clone() }),
         ("z-level φ3 alone", Job { operations: vec![zlevel(4, 3.0)], ..base.clone() }),
         ("z-level φ20, then φ3", Job { operations: vec![zlevel(1, 20.0), zlevel(4, 3.0)], ..base }),
     ]
@@ -372,7 +372,7 @@ pub fn octree_rows(name: &str, part: &Mesh, platform: &str, clock: &dyn Fn() -> 
 /// The material a program left above the part plus its allowance (mm³): all of it, and off the
 /// band of `leave` (and a cell) beside steep walls, where every program keeps the wall's
 /// leave-stock and the cells' centres judge it by the floor below.
-pub fn left_off_walls(v: &crate::sim::verify::Verification, leave: f64) -> (f64, f64) {
+pub fn left_off_walls(v: &swarf::sim::verify::Verification, leave: f64) -> (f64, f64) {
     let r = v.residual();
     let g = v.stock.grid();
     let cell = g.spacing;
@@ -415,7 +415,7 @@ pub fn cutter_shape_seconds(shape: usize, runs: usize, clock: &dyn Fn() -> f64) 
     (0..runs.max(1))
         .map(|_| {
             let start = clock();
-            job::run(&job, crate::mesh::sample::demo_part(), &mut Progress::none()).expect("the mould job runs");
+            job::run(&job, swarf::mesh::sample::demo_part(), &mut Progress::none()).expect("the mould job runs");
             clock() - start
         })
         .fold(f64::INFINITY, f64::min)

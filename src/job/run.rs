@@ -1,0 +1,470 @@
+//! Running a job: the context its operations plan in, prepared ([`prepare`]), then planned
+//! operation by operation ([`Running`]) with each one's moves cutting the in-process stock
+//! before the next, and the program written and verified ([`JobOutput`]); and verifying any
+//! program against a job ([`verify_gcode`]).
+
+use super::drawing;
+use super::report::{self, OperationReport};
+use super::schema::{Job, Retracts, Workpiece};
+use crate::error::{Error, Result, Warning};
+use crate::geom::Aabb;
+use crate::machining::context::{Caches, CacheCounts, Context, SafeHeights, Sheet};
+use crate::machining::report::{Groove, LoadReport, Planned, SheetCut, StageOctants, StageReport};
+use crate::machining::Works;
+use crate::mesh::Mesh;
+use crate::post::{write_mapped, CycleTime, TimeItem};
+use crate::profile::Drawing;
+use crate::progress::Progress;
+use crate::sim::program::{program_moves, ProgramMove};
+use crate::sim::verify::{BandCut, Simulator, Verification};
+use crate::sim::DexelStock;
+use crate::tool::Tool;
+use crate::toolpath::{PathStats, Toolpath};
+use crate::zmap::cc::cc_zmap;
+use crate::zmap::HeightField;
+
+/// Raster passes a pool made, by operation: each pass's runs, as they came.
+pub(super) type GivenPasses = std::collections::HashMap<usize, Vec<Option<Vec<Vec<crate::geom::DVec3>>>>>;
+
+/// What a job produced.
+#[derive(Clone, Debug)]
+pub struct JobOutput {
+    /// The part as placed (mm, Z up); empty for a drawing.
+    pub part: Mesh,
+    /// The drawing as placed, for 2.5D jobs.
+    pub drawing: Option<Drawing>,
+    pub stock: Aabb,
+    pub clearance_z: f64,
+    pub paths: Vec<Toolpath>,
+    /// Per tool path, the index of the operation that made it.
+    pub path_operations: Vec<usize>,
+    pub gcode: String,
+    /// The line of `gcode` each move of `moves` ended on ([`crate::post::Written::move_lines`]).
+    pub move_lines: Vec<u32>,
+    /// The program's cycle time as the post wrote it: per tool path, tool changes, in all.
+    pub cycle: CycleTime,
+    /// The cycle time by operation, tool changes and the rest, in whole seconds that sum to
+    /// the whole: the breakdown the program's head, the CLI and the page show.
+    pub time: Vec<TimeItem>,
+    pub stats: PathStats,
+    /// Every move of the program, timed, in order.
+    pub moves: Vec<ProgramMove>,
+    /// What each operation did: time, length, volume removed, peak MRR, what it left.
+    pub operations: Vec<OperationReport>,
+    /// The simulation of the program and what it found, when the job asked for it.
+    pub verification: Option<Verification>,
+    /// Things the user should know that did not stop the job, with their operation.
+    pub warnings: Vec<Warning>,
+    /// What makes the program unsafe to run (a gouge, a rapid through stock, the tool's body in
+    /// material: [`crate::sim::verify::Report::problem`]), when verification found it. Such a
+    /// program is not a finished one: [`JobOutput::checked`] turns it into an error, the CLI
+    /// writes it only when asked to, and the page keeps its download behind a confirmation.
+    pub problem: Option<String>,
+    /// Lookups of the CL surface cache: a second operation on the same cutter and grid hits.
+    pub cache: CacheCounts,
+    /// The octants of each stage of octree roughing (seed 000), for the view.
+    pub octants: Vec<StageOctants>,
+}
+
+impl JobOutput {
+    /// The output, or [`Error::Unsafe`] when verification found a problem.
+    pub fn checked(self) -> Result<JobOutput> {
+        match self.problem {
+            Some(problem) => Err(Error::Unsafe(problem)),
+            None => Ok(self),
+        }
+    }
+
+    /// The G-code with a warning comment at its head naming the problem, if there is one (for
+    /// a program written anyway).
+    pub fn gcode_marked(&self) -> String {
+        marked(&self.gcode, self.problem.as_deref())
+    }
+}
+
+/// `gcode` with a warning comment at its head naming `problem`, if there is one.
+pub fn marked(gcode: &str, problem: Option<&str>) -> String {
+    match problem {
+        Some(problem) => {
+            // A program that starts with a tape mark (Fanuc) keeps it first.
+            let warning = format!("(WARNING: NOT SAFE TO RUN: {})\n", crate::post::comment(problem));
+            match gcode.strip_prefix("%\n") {
+                Some(rest) => format!("%\n{warning}{rest}"),
+                None => format!("{warning}{gcode}"),
+            }
+        }
+        None => gcode.to_owned(),
+    }
+}
+
+impl Job {
+    /// The context the operations plan in, with the part placed and the in-process stock
+    /// fresh.
+    fn context(&self, workpiece: Workpiece) -> Result<Context> {
+        let resolution = self.post.planning_resolution();
+        let (part, sheet, stock) = match workpiece {
+            Workpiece::Mesh(mut part) => {
+                let stock = self.place(&mut part);
+                (part, None, stock)
+            }
+            Workpiece::Drawing(mut d) => {
+                let (stock, thickness) = drawing::place(self, &mut d)?;
+                (Mesh::default(), Some(Sheet { drawing: d, thickness }), stock)
+            }
+        };
+        let cell = self.simulation.cell_for(&stock);
+        Ok(Context {
+            part,
+            sheet,
+            stock,
+            heights: SafeHeights { clearance: stock.max.z + self.stock.clearance, gap: self.stock.retract, full: self.stock.retracts == Retracts::Full },
+            tools: self.tools.clone(),
+            tolerances: self.tolerances,
+            resolution,
+            caches: Caches::default(),
+            sim: Simulator::new(&stock, cell)?,
+            warnings: Vec::new(),
+            rapid_rate: self.post.rapid_rate,
+            air_feed: self.stock.air_feed.unwrap_or(self.post.rapid_rate).min(self.post.rapid_rate),
+            operation: 0,
+            given_passes: Default::default(),
+            given_regions: Vec::new(),
+        })
+    }
+}
+
+/// Verifies a G-code program (swarf's or another's) against a job's part, stock and tools:
+/// the part is placed as the job says, the program read with [`crate::post::read::read_gcode`]
+/// (after GRBL's word-set check, [`crate::post::grbl::check`], when the job's post is GRBL's)
+/// (the job's first tool until the program picks one), and `cell` overrides the job's cell size.
+pub fn verify_gcode(job: &Job, mut part: Mesh, gcode: &str, cell: Option<f64>, progress: &mut Progress) -> Result<Verification> {
+    job.validate()?;
+    let stock = job.place(&mut part);
+    // A program for GRBL must first be one GRBL reads.
+    if job.post.custom.is_none() {
+        use crate::post::{grbl, Dialect};
+        let flavour = match job.post.dialect {
+            Dialect::Grbl => Some(grbl::Flavour::Grbl11),
+            Dialect::GrblHal => Some(grbl::Flavour::GrblHal),
+            _ => None,
+        };
+        if let Some(flavour) = flavour {
+            grbl::check(gcode, flavour)?;
+        }
+    }
+    let first_tool = job.tools.first().map_or(1, |t| t.number);
+    let paths = crate::post::read::read_gcode(gcode, first_tool)?;
+    let moves = program_moves(&paths, &job.tools, job.post.rapid_rate)?;
+    crate::sim::verify::verify(&part, &stock, &moves, &job.verify_settings(&stock, cell), &job.tolerances, progress)
+}
+
+/// Places the part (or drawing), plans every operation in turn in one context, applying each
+/// one's moves to the in-process stock before the next, and writes the G-code; the simulation
+/// that carried the stock verifies the whole program.
+pub fn run(job: &Job, workpiece: impl Into<Workpiece>, progress: &mut Progress) -> Result<JobOutput> {
+    prepare(job, workpiece)?.run(progress)
+}
+
+/// Checks the job against the workpiece, places it and makes the context every operation
+/// plans in.
+pub fn prepare(job: &Job, workpiece: impl Into<Workpiece>) -> Result<Prepared> {
+    job.validate()?;
+    let workpiece = workpiece.into();
+    let on = match workpiece {
+        Workpiece::Mesh(_) => Works::OnPart,
+        Workpiece::Drawing(_) => Works::OnDrawing,
+    };
+    for op in job.operations.iter().filter(|o| o.op().enabled()) {
+        let o = op.op();
+        if o.works() != on {
+            let why = match on {
+                Works::OnPart => "works on DXF or SVG drawings, not on a 3D part",
+                Works::OnDrawing => "works on 3D parts, not on drawings",
+            };
+            return Err(Error::operation(o.name(), why));
+        }
+    }
+    let mut warnings = match &workpiece {
+        Workpiece::Mesh(m) => part_warnings(m),
+        Workpiece::Drawing(_) => Vec::new(),
+    };
+    let ctx = job.context(workpiece)?;
+    if ctx.sheet.is_none() {
+        if let Some(w) = tool_larger_than_part(job, &ctx.part) {
+            warnings.push(w);
+        }
+    }
+    if !job.operations.iter().any(|o| o.op().enabled()) {
+        return Err(Error::Nothing("every operation of the job is disabled".into()));
+    }
+    Ok(Prepared { job: job.clone(), ctx, warnings, given: Default::default() })
+}
+
+/// A job with its part placed and its context made, ready to plan ([`Prepared::run`]); a pool
+/// of workers can first make its CL surfaces and raster passes in pieces ([`pool`]).
+pub struct Prepared {
+    pub(super) job: Job,
+    pub(super) ctx: Context,
+    pub(super) warnings: Vec<Warning>,
+    /// Raster passes a pool made, by operation.
+    pub(super) given: GivenPasses,
+}
+
+impl Prepared {
+    /// [`run`] from here.
+    pub fn run(self, progress: &mut Progress) -> Result<JobOutput> {
+        let mut running = self.start();
+        while running.plan_next(progress)? {
+            running.simulate(progress)?;
+        }
+        running.finish(progress)
+    }
+
+    /// Starts planning, operation by operation ([`Running`]).
+    pub fn start(mut self) -> Running {
+        self.give_passes();
+        let Prepared { job, ctx, warnings, .. } = self;
+        let enabled: Vec<usize> = (0..job.operations.len()).filter(|&k| job.operations[k].op().enabled()).collect();
+        Running {
+            job,
+            ctx,
+            warnings,
+            enabled,
+            next: 0,
+            paths: Vec::new(),
+            path_operations: Vec::new(),
+            move_ranges: Vec::new(),
+            all_moves: Vec::new(),
+            snapshots: Vec::new(),
+            loads: Vec::new(),
+            cuts: Vec::new(),
+            grooves: Vec::new(),
+            octants: Vec::new(),
+            pending: Vec::new(),
+            bands_out: 0,
+        }
+    }
+}
+
+/// A job being planned operation by operation ([`Prepared::start`]): each operation's moves cut
+/// the in-process stock before the next operation plans (and the last one's too when the program
+/// is verified). [`Running::simulate`] cuts them here; a pool of workers can cut them instead,
+/// in bands of the stock ([`Running::take_bands`], [`crate::sim::verify::cut_bands`],
+/// [`Running::absorb`]), with the same result.
+pub struct Running {
+    pub(super) job: Job,
+    pub(super) ctx: Context,
+    pub(super) warnings: Vec<Warning>,
+    pub(super) enabled: Vec<usize>,
+    /// How many of `enabled` are planned.
+    pub(super) next: usize,
+    pub(super) paths: Vec<Toolpath>,
+    pub(super) path_operations: Vec<usize>,
+    pub(super) move_ranges: Vec<std::ops::Range<usize>>,
+    pub(super) all_moves: Vec<ProgramMove>,
+    pub(super) snapshots: Vec<Option<HeightField>>,
+    pub(super) loads: Vec<(Option<LoadReport>, Option<Vec<StageReport>>)>,
+    /// Where the operations cut a sheet, and the grooves they engraved: what a drawing's
+    /// program is verified against.
+    pub(super) cuts: Vec<SheetCut>,
+    pub(super) grooves: Vec<Groove>,
+    /// Octree roughing's octants, for the view.
+    pub(super) octants: Vec<StageOctants>,
+    /// The last planned operation's moves, until they have cut the in-process stock.
+    pub(super) pending: Vec<ProgramMove>,
+    /// How many bands of the stock [`Running::take_bands`] handed out.
+    pub(super) bands_out: usize,
+}
+
+impl Running {
+    /// Shares of the bar each operation's planning and simulation take.
+    fn shares(&self) -> (f64, f64) {
+        if self.job.simulation.verify {
+            (0.85, 0.15)
+        } else {
+            (0.95, 0.05)
+        }
+    }
+
+    /// Plans the next enabled operation; false once all are planned. Its moves are then
+    /// [`Running::pending`] until they cut the in-process stock, unless there are none or
+    /// nothing needs them to (the last operation of a program that is not verified).
+    pub fn plan_next(&mut self, progress: &mut Progress) -> Result<bool> {
+        if !self.pending.is_empty() {
+            return Err(Error::Input("the last operation's moves have not cut the in-process stock yet".into()));
+        }
+        let Some(&k) = self.enabled.get(self.next) else {
+            return Ok(false);
+        };
+        let n = self.next;
+        self.next += 1;
+        let (plan_share, _) = self.shares();
+        let count = self.enabled.len() as f64;
+        let o = self.job.operations[k].op();
+        progress.frame(n as f64 / count, plan_share / count, Some(o.name()));
+        self.ctx.operation = k;
+        let planned = o.plan(&mut self.ctx, progress);
+        // Regions a pool made were for this operation only.
+        self.ctx.given_regions.clear();
+        let Planned { paths, cuts, grooves, load, stages, octants } = planned?;
+        self.loads.push((load, stages));
+        self.cuts.extend(cuts);
+        self.grooves.extend(grooves);
+        self.octants.extend(octants);
+        let first_path = self.paths.len();
+        self.path_operations.extend(std::iter::repeat_n(k, paths.len()));
+        self.paths.extend(paths);
+        let moves = timed_moves(&self.paths, first_path, self.all_moves.last(), &self.job.tools, self.job.post.rapid_rate)?;
+        if !moves.is_empty() && (self.job.simulation.verify || self.next < self.enabled.len()) {
+            self.pending = moves;
+        } else {
+            self.settle(moves);
+        }
+        Ok(true)
+    }
+
+    /// The moves waiting to cut the in-process stock (none when nothing waits).
+    pub fn pending(&self) -> &[ProgramMove] {
+        &self.pending
+    }
+
+    /// Cuts the in-process stock with the pending moves, here.
+    pub fn simulate(&mut self, progress: &mut Progress) -> Result<()> {
+        if self.pending.is_empty() {
+            return Ok(());
+        }
+        let (plan_share, sim_share) = self.shares();
+        let count = self.enabled.len() as f64;
+        let n = (self.next - 1) as f64;
+        progress.frame(n / count + plan_share / count, sim_share / count, Some(self.job.operations[self.enabled[self.next - 1]].op().name()));
+        if !progress.stage("in-process stock", 0.0, 1.0) {
+            return Err(Error::Cancelled);
+        }
+        let moves = std::mem::take(&mut self.pending);
+        self.ctx.sim.run(&moves, &self.job.tolerances, progress, 1.0)?;
+        self.settle(moves);
+        Ok(())
+    }
+
+    /// The in-process stock in the bands of rows it is cut in, for a pool to cut with the
+    /// pending moves; [`Running::absorb`] takes them back.
+    pub fn take_bands(&mut self) -> Vec<DexelStock> {
+        let bands = self.ctx.sim.take_bands();
+        self.bands_out = bands.len();
+        bands
+    }
+
+    /// Takes back the stock's bands (all of them, in order) after the pending moves cut them,
+    /// with what each band made of them (see [`crate::sim::verify::Simulator::absorb`]).
+    pub fn absorb(&mut self, bands: Vec<DexelStock>, cuts: &[BandCut]) -> Result<()> {
+        if bands.len() != self.bands_out || cuts.len() != bands.len() {
+            return Err(Error::Input(format!("{} of the stock's {} bands came back, with {} cuts", bands.len(), self.bands_out, cuts.len())));
+        }
+        let moves = std::mem::take(&mut self.pending);
+        if let Some(&(k, ..)) = cuts.iter().flat_map(|c| c.moves.last()).find(|c| c.0 >= moves.len()) {
+            return Err(Error::Input(format!("a band's cut names move {k} of {}", moves.len())));
+        }
+        self.ctx.sim.absorb(bands, cuts, &moves);
+        self.settle(moves);
+        Ok(())
+    }
+
+    /// Adds the last planned operation's moves to the program, once the stock is cut.
+    fn settle(&mut self, moves: Vec<ProgramMove>) {
+        // What the operation left is judged against the part only when the program is verified.
+        self.snapshots.push(self.job.simulation.verify.then(|| self.ctx.sim.stock().heights()));
+        self.move_ranges.push(self.all_moves.len()..self.all_moves.len() + moves.len());
+        self.all_moves.extend(moves);
+    }
+
+    /// Writes the program once every operation is planned and has cut the stock, and judges it
+    /// when the job verifies.
+    pub fn finish(self, progress: &mut Progress) -> Result<JobOutput> {
+        if self.next < self.enabled.len() || !self.pending.is_empty() {
+            return Err(Error::Input("the job is not planned to its end yet".into()));
+        }
+        let Running { job, ctx, mut warnings, enabled, paths, path_operations, move_ranges, all_moves, snapshots, loads, cuts, grooves, octants, .. } = self;
+        let job = &job;
+        let verify = job.simulation.verify;
+        let mut ctx = ctx;
+        progress.frame(0.0, 1.0, None);
+        warnings.append(&mut ctx.warnings);
+        let crate::post::Written { gcode, cycle, move_lines } = write_mapped(&job.name, &paths, &job.tools, ctx.heights.clearance, &job.post)?;
+        let stats = paths.iter().fold(PathStats::default(), |s, p| s + p.stats(job.post.rapid_rate));
+        if all_moves.iter().all(|m| matches!(m.mv, crate::toolpath::Move::Rapid { .. })) {
+            let why = if warnings.is_empty() { String::new() } else { format!(" ({})", warnings.iter().map(Warning::to_string).collect::<Vec<_>>().join("; ")) };
+            return Err(Error::Nothing(format!("the program has no cutting moves{why}")));
+        }
+        let Context { part, sheet, stock, heights, caches, sim, .. } = ctx;
+        // The simulation that carried the in-process stock judges the whole program.
+        let (verification, sim) = if verify {
+            let settings = job.verify_settings(&stock, None);
+            let tol = job.tolerances;
+            let v = match &sheet {
+                None => sim.finish(|grid| cc_zmap(&part, grid, f64::NEG_INFINITY, &tol), settings.allowance, &tol),
+                Some(_) => sim.finish(|grid| drawing::surface(&cuts, &grooves, grid, tol.gouge, &tol), settings.allowance, &tol),
+            };
+            (Some(v), None)
+        } else {
+            (None, Some(sim))
+        };
+        let (volumes, rates) = match (&verification, &sim) {
+            (Some(v), _) => (&v.volumes[..], v.rates.clone()),
+            (None, Some(sim)) => (sim.volumes(), sim.rates()),
+            (None, None) => (&[][..], Vec::new()),
+        };
+        let mut operations = report::per_operation(job, &enabled, &all_moves, &move_ranges, volumes, &rates, &snapshots, verification.as_ref());
+        for (o, (load, stages)) in operations.iter_mut().zip(loads) {
+            o.load = load;
+            o.stages = stages;
+            // Its time as the program's head states it: its paths' as the post wrote them.
+            o.seconds = path_operations.iter().zip(&cycle.paths).filter(|(&k, _)| k == o.index).map(|(_, s)| s).sum();
+        }
+        let time = cycle.items(&CycleTime::groups(&paths));
+        let problem = verification.as_ref().and_then(|v| v.report.problem());
+        progress.stage("done", 1.0, 0.0);
+        let drawing = sheet.map(|s| s.drawing);
+        let (clearance_z, cache) = (heights.clearance, caches.counts);
+        Ok(JobOutput { part, drawing, stock, clearance_z, paths, path_operations, gcode, move_lines, cycle, time, stats, moves: all_moves, operations, verification, warnings, problem, cache, octants })
+    }
+}
+
+/// What the user should know of a part as read: triangles dropped, and holes in its surface
+/// (edges bordering one triangle, off the rim of its outline; [`Mesh::open_edges`]).
+pub fn part_warnings(mesh: &Mesh) -> Vec<Warning> {
+    let mut out = Vec::new();
+    if mesh.dropped_degenerate > 0 {
+        out.push(Warning::job(format!("{} degenerate triangles (zero area) were ignored", mesh.dropped_degenerate)).note());
+    }
+    let open = mesh.open_edges();
+    if !open.is_empty() {
+        out.push(Warning::counted(None, "edges of the part's surface border one triangle only: it has holes, and a cutter goes down through them (a file cut short or a bad export?)", &open));
+    }
+    out
+}
+
+/// A warning when the smallest tool the job uses is wider than the placed part is in X or Y:
+/// most often a part read in the wrong unit (a glTF in metres read as millimetres is a thousand
+/// times too small).
+fn tool_larger_than_part(job: &Job, part: &Mesh) -> Option<Warning> {
+    let used: Vec<u32> = job.operations.iter().filter(|o| o.op().enabled()).flat_map(|o| o.op().tools()).collect();
+    let smallest = job.tools.iter().filter(|t| used.is_empty() || used.contains(&t.number)).min_by(|a, b| a.cutter.diameter.total_cmp(&b.cutter.diameter))?;
+    let size = part.bounds().size();
+    (smallest.cutter.diameter > size.x.min(size.y)).then(|| {
+        Warning::job(format!(
+            "the part is {:.2} × {:.2} × {:.2} mm, smaller than the φ{} tool T{}: is its unit right? (part.units: {:?}, part.scale: {})",
+            size.x, size.y, size.z, smallest.cutter.diameter, smallest.number, job.part.units, job.part.scale
+        ))
+    })
+}
+
+/// The moves of `paths[first..]`, timed on from the program's last move so far.
+fn timed_moves(paths: &[Toolpath], first: usize, last: Option<&ProgramMove>, tools: &[Tool], rapid_rate: f64) -> Result<Vec<ProgramMove>> {
+    let clock = last.map_or(0.0, |m| m.start + m.seconds);
+    let mut moves = program_moves(&paths[first..], tools, rapid_rate)?;
+    for m in &mut moves {
+        m.path += first;
+        m.start += clock;
+    }
+    Ok(moves)
+}

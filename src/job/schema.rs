@@ -1,0 +1,439 @@
+//! The job as one serde type: stock, tools, operations, post and simulation settings, with
+//! what a job file may hold and what each setting means; checked as a whole ([`Job::problems`]).
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, Result};
+use crate::geom::{Aabb, DVec2, DVec3, Tolerances};
+use crate::mesh::{placement::PartSetup, Mesh};
+use crate::operations::{FinishRaster, Operation};
+use crate::post::PostSettings;
+use crate::profile::Drawing;
+use crate::sim::verify::VerifySettings;
+use crate::tool::Tool;
+
+
+/// Which height of the setup is Z0 in the program.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(rename_all = "camelCase")]
+pub enum ZeroHeight {
+    #[default]
+    PartTop,
+    StockTop,
+    StockBottom,
+}
+
+/// Which point of the stock seen from above is X0 Y0.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(rename_all = "camelCase")]
+pub enum ZeroCorner {
+    #[default]
+    Center,
+    /// The front left corner (least X, least Y).
+    FrontLeft,
+    FrontRight,
+    BackLeft,
+    BackRight,
+}
+
+/// The work zero: where the program's origin is on the setup.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(default, rename_all = "camelCase")]
+pub struct WorkZero {
+    /// Default value: partTop.
+    pub height: ZeroHeight,
+    /// Default value: center.
+    pub corner: ZeroCorner,
+}
+
+impl WorkZero {
+    /// The point of `stock` (around a part whose top is `part_top`) that becomes the origin.
+    pub fn point(&self, stock: &Aabb, part_top: f64) -> DVec3 {
+        let z = match self.height {
+            ZeroHeight::PartTop => part_top,
+            ZeroHeight::StockTop => stock.max.z,
+            ZeroHeight::StockBottom => stock.min.z,
+        };
+        let (lo, hi, c) = (stock.min, stock.max, stock.center());
+        let (x, y) = match self.corner {
+            ZeroCorner::Center => (c.x, c.y),
+            ZeroCorner::FrontLeft => (lo.x, lo.y),
+            ZeroCorner::FrontRight => (hi.x, lo.y),
+            ZeroCorner::BackLeft => (lo.x, hi.y),
+            ZeroCorner::BackRight => (hi.x, hi.y),
+        };
+        DVec3::new(x, y, z)
+    }
+}
+
+/// The stock, as a machinist sets it: margins around the placed part on every side, or an
+/// explicit box; the heights of moves between cuts; and the work zero.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(default, rename_all = "camelCase")]
+pub struct Stock {
+    /// Extra stock around the part in X and Y (mm, each side). Default value: 5.
+    pub margin_xy: f64,
+    /// Extra stock above the part's top (mm). Default value: 1.
+    pub margin_top: f64,
+    /// Extra stock below the part's bottom (mm). Default value: 0.
+    pub margin_bottom: f64,
+    /// Margins on each side in X and Y, `[left (-X), right (+X), front (-Y), back (+Y)]` (mm),
+    /// instead of `marginXy`. Default value: none.
+    pub margin_sides: Option<[f64; 4]>,
+    /// The stock as an explicit box (mm, where the part is placed), instead of margins.
+    /// Default value: none.
+    pub size_box: Option<Aabb>,
+    /// Height above the stock top for rapid moves where they cannot go lower (mm): the start
+    /// and end of each operation, and retracts over stock standing that high. Default value: 5.
+    pub clearance: f64,
+    /// Gap above the material under the tool where a rapid descent stops and the feed begins,
+    /// and above the material on the way where a retract travels across (mm): the short
+    /// retract. Default value: 1.
+    pub retract: f64,
+    /// How a retract between two cuts travels across: `minimum`, the retract gap above the
+    /// highest material on the way (the clearance where the stock stands that high); `full`,
+    /// at the clearance height, over clamps and fixtures the stock does not show (a z-level
+    /// roughing still crosses what it has cleared just above its levels). Default value:
+    /// minimum.
+    pub retracts: Retracts,
+    /// Feed (mm/min) of the moves a roughing or pocket level knows cut nothing: stretches of
+    /// rings over ground an earlier ring of the level took, stay-down links across it, the way
+    /// in from beside the stock. They stay in the path (the tool down, as G1), only faster, and
+    /// the verification holds each to cutting nothing. At most the rapid rate; no faster than
+    /// the tool's feed keeps them at it. Default value: the post's rapid rate.
+    pub air_feed: Option<f64>,
+    /// Moves part and stock so that this point is the program's origin (for parts; a sheet's
+    /// top is always Z0). Default value: none (as the part's placement puts it).
+    pub zero: Option<WorkZero>,
+}
+
+/// How retracts between cuts travel ([`Stock::retracts`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(rename_all = "camelCase")]
+pub enum Retracts {
+    /// Just above the material on the way: the shortest in time.
+    #[default]
+    Minimum,
+    /// At the clearance height.
+    Full,
+}
+
+impl Default for Stock {
+    fn default() -> Self {
+        Stock { margin_xy: 5.0, margin_top: 1.0, margin_bottom: 0.0, margin_sides: None, size_box: None, clearance: 5.0, retract: 1.0, retracts: Retracts::Minimum, air_feed: None, zero: None }
+    }
+}
+
+impl Stock {
+    /// The stock box around a part with bounds `part`.
+    pub fn around(&self, part: &Aabb) -> Aabb {
+        if let Some(b) = self.size_box {
+            return b;
+        }
+        let [l, r, f, k] = self.margin_sides.unwrap_or([self.margin_xy; 4]);
+        Aabb { min: part.min - DVec3::new(l, f, self.margin_bottom), max: part.max + DVec3::new(r, k, self.margin_top) }
+    }
+
+    /// The settings that do not fit: each field with why.
+    fn problems(&self) -> Vec<(&'static str, String)> {
+        let mut out = Vec::new();
+        // Rapids run at the clearance height: at or below the stock's top they would cut.
+        if !(self.clearance > 0.0 && self.clearance.is_finite()) {
+            out.push(("clearance", format!("(the height of rapid moves above the stock's top) must be a positive number (got {})", self.clearance)));
+        }
+        if !(self.retract > 0.0 && self.retract.is_finite()) {
+            out.push(("retract", format!("must be a positive number (got {})", self.retract)));
+        }
+        for (field, v) in [("marginXy", self.margin_xy), ("marginTop", self.margin_top), ("marginBottom", self.margin_bottom)] {
+            if !(v >= 0.0 && v.is_finite()) {
+                out.push((field, format!("must be zero or more (got {v})")));
+            }
+        }
+        if let Some(sides) = self.margin_sides {
+            if sides.iter().any(|v| !(*v >= 0.0 && v.is_finite())) {
+                out.push(("marginSides", format!("must be zero or more (got {sides:?})")));
+            }
+        }
+        if let Some(b) = self.size_box {
+            let size = b.size();
+            if !(size.x > 0.0 && size.y > 0.0 && size.z > 0.0 && size.is_finite()) {
+                out.push(("sizeBox", "must have a positive size on every axis".into()));
+            }
+        }
+        if let Some(f) = self.air_feed {
+            if !(f >= 0.0 && f.is_finite()) {
+                out.push(("airFeed", format!("must be zero or more (mm/min; got {f})")));
+            }
+        }
+        out
+    }
+}
+
+/// A setting of a job that does not fit: its path in the job and the whole message.
+#[derive(Clone, Debug, PartialEq, Serialize, ts_rs::TS)]
+pub struct Problem {
+    /// The field's path (`operations[0].stepdown`, `stock.marginXy`).
+    pub path: String,
+    /// What is wrong, naming the field.
+    pub message: String,
+}
+
+/// What a job works on: a part, or a drawing for 2.5D operations.
+#[derive(Clone, Debug)]
+pub enum Workpiece {
+    Mesh(Mesh),
+    Drawing(Drawing),
+}
+
+impl From<Mesh> for Workpiece {
+    fn from(m: Mesh) -> Self {
+        Workpiece::Mesh(m)
+    }
+}
+
+impl From<Drawing> for Workpiece {
+    fn from(d: Drawing) -> Self {
+        Workpiece::Drawing(d)
+    }
+}
+
+/// Simulating the program after it is made (seed 002), to verify it and to show the cut.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(default, rename_all = "camelCase")]
+pub struct Simulation {
+    /// Simulate and verify every program. Default value: true.
+    pub verify: bool,
+    /// Cell size of the simulated stock (mm). Default value: the size that gives the stock
+    /// about a million cells, and no smaller than 0.05 mm.
+    pub cell: Option<f64>,
+}
+
+impl Default for Simulation {
+    fn default() -> Self {
+        Simulation { verify: true, cell: None }
+    }
+}
+
+/// Cells the simulated stock gets when the job does not say.
+pub const SIMULATION_CELLS: f64 = 1.0e6;
+
+impl Simulation {
+    /// The cell size for a stock.
+    pub fn cell_for(&self, stock: &Aabb) -> f64 {
+        self.cell.unwrap_or_else(|| {
+            let size = stock.size();
+            ((size.x * size.y / SIMULATION_CELLS).sqrt()).max(0.05)
+        })
+    }
+}
+
+/// The job file format this swarf writes and reads (files from a newer one are refused; older
+/// ones are read as they were written, [`read`]). Version 2: the step-over that is a fraction of
+/// the tool's diameter (roughing, pockets) is `stepoverFraction`, and `stepover` is a distance
+/// in millimetres wherever it appears.
+pub const JOB_VERSION: u32 = 2;
+
+/// The version of a job file that has none: written before versions were.
+fn first_version() -> u32 {
+    1
+}
+
+/// Everything needed to turn a part into G-code.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(default, rename_all = "camelCase")]
+pub struct Job {
+    /// Version of the job file's format ([`JOB_VERSION`] when written by this swarf); a file
+    /// without one is read as version 1. Default value: the current version.
+    #[serde(default = "first_version")]
+    pub version: u32,
+    /// Program title. Default value: "swarf job".
+    pub name: String,
+    pub part: PartSetup,
+    /// How a DXF or SVG drawing is placed (ignored for parts).
+    pub drawing: DrawingSetup,
+    pub stock: Stock,
+    pub tools: Vec<Tool>,
+    pub operations: Vec<Operation>,
+    pub post: PostSettings,
+    pub simulation: Simulation,
+    pub tolerances: Tolerances,
+}
+
+impl Default for Job {
+    fn default() -> Self {
+        Job {
+            version: JOB_VERSION,
+            name: "swarf job".into(),
+            part: PartSetup::default(),
+            drawing: DrawingSetup::default(),
+            stock: Stock::default(),
+            tools: vec![Tool::default()],
+            operations: vec![Operation::FinishRaster(FinishRaster::default())],
+            post: PostSettings::default(),
+            simulation: Simulation::default(),
+            tolerances: Tolerances::default(),
+        }
+    }
+}
+
+impl Job {
+    /// Places the part as the job says and returns the stock box around it (both moved to the
+    /// work zero when the stock names one).
+    pub fn place(&self, part: &mut Mesh) -> Aabb {
+        self.part.apply(part);
+        let bounds = part.bounds();
+        let stock = self.stock.around(&bounds);
+        match self.stock.zero {
+            Some(zero) => {
+                let shift = -zero.point(&stock, bounds.max.z);
+                part.transform(|v| v + shift);
+                Aabb { min: stock.min + shift, max: stock.max + shift }
+            }
+            None => stock,
+        }
+    }
+
+    /// The least material any operation leaves on the part (mm); infinite without operations.
+    pub fn allowance(&self) -> f64 {
+        self.operations.iter().filter(|o| o.op().enabled()).map(Operation::allowance).fold(f64::INFINITY, f64::min)
+    }
+
+    /// How the job's program is verified on `stock`: its simulation cell (unless `cell`
+    /// overrides it) and the least allowance of its operations (0 without operations).
+    pub fn verify_settings(&self, stock: &Aabb, cell: Option<f64>) -> VerifySettings {
+        let allowance = self.allowance();
+        VerifySettings { cell: cell.unwrap_or_else(|| self.simulation.cell_for(stock)), allowance: if allowance.is_finite() { allowance } else { 0.0 } }
+    }
+
+    /// Checks the job before any work: the first of its [`Job::problems`].
+    pub fn validate(&self) -> Result<()> {
+        match self.problems().into_iter().next() {
+            Some(p) => Err(Error::Input(p.message)),
+            None => Ok(()),
+        }
+    }
+
+    /// Every setting of the job that does not fit, each named by its path in the job
+    /// (`tools[1].feedRate`, `operations[0].stepdown`): the page marks each at its field as the
+    /// user types, with the core's own checks. An operation or a tool says its first.
+    pub fn problems(&self) -> Vec<Problem> {
+        let mut out = Vec::new();
+        let mut say = |path: String, message: String| out.push(Problem { path, message });
+        let positive = |v: f64| v > 0.0 && v.is_finite();
+        for (i, tool) in self.tools.iter().enumerate() {
+            if let Err(e) = tool.cutter.validate() {
+                let field = match e {
+                    crate::cutter::CutterError::Diameter(_) => "diameter",
+                    crate::cutter::CutterError::CornerRadius { .. } => "cornerRadius",
+                    crate::cutter::CutterError::FluteLength(_) => "fluteLength",
+                };
+                say(format!("tools[{i}].{field}"), format!("tools[{i}] (tool {}): {e}", tool.number));
+            }
+            for (field, v) in [("spindleRpm", tool.spindle_rpm), ("feedRate", tool.feed_rate), ("plungeRate", tool.plunge_rate)] {
+                if !positive(v) {
+                    say(format!("tools[{i}].{field}"), format!("tools[{i}].{field} must be a positive number (got {v})"));
+                }
+            }
+            if tool.stick_out.is_some_and(|s| !(s >= tool.cutter.flute_length && s.is_finite())) {
+                say(format!("tools[{i}].stickOut"), format!("tools[{i}].stickOut must be at least the flute length ({} mm)", tool.cutter.flute_length));
+            }
+            if let Some(j) = self.tools[..i].iter().position(|t| t.number == tool.number) {
+                say(format!("tools[{i}].number"), format!("tools[{i}].number: tools[{j}] has the number {} too", tool.number));
+            }
+        }
+        if let Err(e) = self.post.validate(&self.tools) {
+            say(e.split([' ', ':']).next().filter(|p| p.starts_with("post.")).unwrap_or("post").to_owned(), e);
+        }
+        if !positive(self.part.scale) {
+            say("part.scale".into(), format!("part.scale must be a positive number (got {})", self.part.scale));
+        }
+        if self.part.rotation % 90 != 0 || self.part.rotation >= 360 {
+            say("part.rotation".into(), format!("part.rotation turns the part about Z by 0, 90, 180 or 270 degrees (got {})", self.part.rotation));
+        }
+        for (field, message) in self.stock.problems() {
+            say(format!("stock.{field}"), format!("stock.{field} {message}"));
+        }
+        let thickness = self.drawing.thickness;
+        if !positive(thickness) {
+            say("drawing.thickness".into(), format!("drawing.thickness: the sheet thickness must be a positive number (got {thickness})"));
+        }
+        for (i, op) in self.operations.iter().enumerate() {
+            let o = op.op();
+            let missing = o.tools().into_iter().find(|n| !self.tools.iter().any(|t| t.number == *n));
+            if let Some(number) = missing {
+                let have: Vec<String> = self.tools.iter().map(|t| t.number.to_string()).collect();
+                let field = if o.tools().len() == 1 && o.tools()[0] == o.tool() { "tool" } else { "tools" };
+                say(format!("operations[{i}].{field}"), format!("operations[{i}].{field}: no tool number {number} in the tool library (it has {})", if have.is_empty() { "none".into() } else { have.join(", ") }));
+            } else if let Err(e) = o.validate() {
+                say(format!("operations[{i}].{}", e.field), format!("operations[{i}].{} {} ('{}')", e.field, e.message, o.name()));
+            }
+        }
+        out
+    }
+
+}
+
+/// The units a drawing's numbers are in.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(rename_all = "camelCase")]
+pub enum DrawingUnits {
+    /// As the file says ($INSUNITS, the SVG's width and viewBox; px at 96 per inch).
+    #[default]
+    File,
+    Mm,
+    Inch,
+}
+
+/// Where a drawing is put.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(rename_all = "camelCase")]
+pub enum DrawingOrigin {
+    /// As drawn.
+    Keep,
+    /// Its lower left corner at X0 Y0.
+    #[default]
+    LowerLeft,
+    /// Its centre at X0 Y0.
+    Center,
+}
+
+/// How a drawing becomes a sheet on the machine: the stock's top is Z0.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(default, rename_all = "camelCase")]
+pub struct DrawingSetup {
+    /// Default value: file.
+    pub units: DrawingUnits,
+    /// Default value: lower left.
+    pub origin: DrawingOrigin,
+    /// Thickness of the sheet (mm). Default value: 6.
+    pub thickness: f64,
+}
+
+impl Default for DrawingSetup {
+    fn default() -> Self {
+        DrawingSetup { units: DrawingUnits::File, origin: DrawingOrigin::LowerLeft, thickness: 6.0 }
+    }
+}
+
+impl DrawingSetup {
+    /// Scales the drawing to the chosen units and moves it to the chosen origin.
+    pub fn apply(&self, d: &mut Drawing) {
+        let wanted = match self.units {
+            DrawingUnits::File => d.scale,
+            DrawingUnits::Mm => 1.0,
+            DrawingUnits::Inch => 25.4,
+        };
+        let k = if d.scale > 0.0 { wanted / d.scale } else { 1.0 };
+        d.transform(k, DVec2::ZERO);
+        d.scale = wanted;
+        let b = d.bounds();
+        let shift = match self.origin {
+            DrawingOrigin::Keep => DVec2::ZERO,
+            DrawingOrigin::LowerLeft => -b.min,
+            DrawingOrigin::Center => -b.center(),
+        };
+        if !b.is_empty() {
+            d.transform(1.0, shift);
+        }
+    }
+}
