@@ -13,7 +13,6 @@ use crate::mesh::placement::PartSetup;
 use crate::mesh::{sample, Mesh};
 use crate::progress::Progress;
 use crate::view;
-use crate::sim::DexelStock;
 
 #[wasm_bindgen(start)]
 pub fn start() {
@@ -354,292 +353,140 @@ pub fn run_job(job: JsValue, bytes: &[u8], name: &str, progress: &js_sys::Functi
 }
 
 /// A job prepared for planning (the part read and placed), whose heavy work a pool of workers
-/// can share first ([`crate::job::pool`]): each worker prepares its own and makes bands of the
-/// CL surfaces and ranges of raster passes; the one that plans keeps them and runs.
+/// can share first: one worker's [`crate::job::wire::PoolWorker`], its pieces converted to and
+/// from typed arrays.
 #[wasm_bindgen]
-pub struct JobPlan {
-    job: Job,
-    prepared: Option<job::Prepared>,
-    surfaces: Vec<crate::machining::context::SurfaceRequest>,
-    /// The planning worker's job once it plans operation by operation ([`JobPlan::start`]).
-    running: Option<job::Running>,
-    /// A helper's copy of the moves it cuts its bands of the stock with ([`JobPlan::keep_moves`]).
-    moves: Vec<crate::sim::program::ProgramMove>,
-    /// The regions the planner asked the pool for ([`JobPlan::region_work`]).
-    regions: Option<crate::machining::levels::RegionWork>,
-}
-
-#[derive(serde::Serialize)]
-struct SurfaceNeed {
-    nx: usize,
-    ny: usize,
-}
-
-#[derive(serde::Serialize)]
-#[serde(rename_all = "camelCase")]
-struct PlanNeeds {
-    surfaces: Vec<SurfaceNeed>,
-    rasters: Vec<crate::job::pool::RasterWork>,
-    level_maps: Vec<usize>,
-}
+pub struct JobPlan(crate::job::wire::PoolWorker);
 
 /// Prepares `job` on the part or drawing in `bytes` (see [`JobPlan`]).
 #[wasm_bindgen(js_name = prepareJob)]
 pub fn prepare_job(job: JsValue, bytes: &[u8], name: &str) -> Result<JobPlan, JsError> {
     let job = job_from_js(job)?;
-    let workpiece: Workpiece = if crate::profile::import::is_drawing(Some(name), bytes) {
-        read_drawing_js(bytes, name, &job.tolerances)?.into()
-    } else {
-        read_part(bytes, name, &job.tolerances)?.into()
-    };
-    let prepared = job::prepare(&job, workpiece).map_err(js_error)?;
-    let surfaces = prepared.surfaces().map_err(js_error)?;
-    Ok(JobPlan { job, prepared: Some(prepared), surfaces, running: None, moves: Vec::new(), regions: None })
+    let workpiece = Workpiece::read(bytes, Some(name), &job.tolerances).map_err(js_error)?;
+    Ok(JobPlan(crate::job::wire::PoolWorker::prepare(job, workpiece).map_err(js_error)?))
 }
 
 #[wasm_bindgen]
 impl JobPlan {
-    fn prepared(&mut self) -> Result<&mut job::Prepared, JsError> {
-        self.prepared.as_mut().ok_or_else(|| js_error("this plan has run"))
-    }
-
-    fn surface(&self, k: usize) -> Result<crate::machining::context::SurfaceRequest, JsError> {
-        self.surfaces.get(k).copied().ok_or_else(|| js_error(format!("no surface {k}")))
-    }
-
     /// What can be shared: `{ surfaces: [{ nx, ny }], rasters: [{ operation, surface, passes }],
-    /// levelMaps: [surface] }` (a raster's `surface` indexes `surfaces`, or is null when each
-    /// worker makes it whole; `levelMaps` lists the surfaces whose level maps are wanted).
+    /// levelMaps: [surface] }` ([`crate::job::wire::PlanNeeds`]).
     pub fn needs(&mut self) -> Result<JsValue, JsError> {
-        let surfaces = self.surfaces.clone();
-        let rasters = self.prepared()?.rasters(&surfaces).map_err(js_error)?;
-        let level_maps = self.prepared()?.level_maps(&surfaces).map_err(js_error)?;
-        to_js(&PlanNeeds { surfaces: surfaces.iter().map(|s| SurfaceNeed { nx: s.grid.nx, ny: s.grid.ny }).collect(), rasters, level_maps })
+        to_js(&self.0.needs().map_err(js_error)?)
     }
 
-    /// Rows `j0..j1` of the level map of surface `k`: the heights along the edges to the
-    /// right, those along the edges up, then the node bounds (as many of each).
     #[wasm_bindgen(js_name = levelRows)]
     pub fn level_rows(&mut self, k: usize, j0: usize, j1: usize) -> Result<Vec<f64>, JsError> {
-        let s = self.surface(k)?;
-        let (mut right, up, wide) = self.prepared()?.level_rows(s, j0..j1).map_err(js_error)?;
-        right.extend(up);
-        right.extend(wide);
-        Ok(right)
+        self.0.level_rows(k, j0, j1).map_err(js_error)
     }
 
-    /// Keeps the level map of surface `k`: `right` and `up` for every node, row after row, and
-    /// its node bounds `wide` unless empty.
     #[wasm_bindgen(js_name = keepLevelMap)]
     pub fn keep_level_map(&mut self, k: usize, right: Vec<f64>, up: Vec<f64>, wide: Vec<f64>) -> Result<(), JsError> {
-        let s = self.surface(k)?;
-        self.prepared()?.keep_level_map(s, right, up, wide).map_err(js_error)
+        self.0.keep_level_map(k, right, up, wide).map_err(js_error)
     }
 
-    /// Rows `j0..j1` of surface `k`, row after row.
     #[wasm_bindgen(js_name = surfaceRows)]
     pub fn surface_rows(&mut self, k: usize, j0: usize, j1: usize) -> Result<Vec<f64>, JsError> {
-        let s = self.surface(k)?;
-        self.prepared()?.surface_rows(s, j0..j1, &mut Progress::none()).map_err(js_error)
+        self.0.surface_rows(k, j0, j1).map_err(js_error)
     }
 
-    /// Keeps the whole of surface `k` (`nx × ny` heights, row after row).
     #[wasm_bindgen(js_name = keepSurface)]
     pub fn keep_surface(&mut self, k: usize, z: Vec<f64>) -> Result<(), JsError> {
-        let s = self.surface(k)?;
-        self.prepared()?.keep_surface(s, z).map_err(js_error)
+        self.0.keep_surface(k, z).map_err(js_error)
     }
 
-    /// Passes `i0..i1` of the raster operation `operation`, flat: per pass its number of runs,
-    /// per run its number of points, then the points' x, y, z.
     #[wasm_bindgen(js_name = rasterPasses)]
     pub fn raster_passes(&mut self, operation: usize, i0: usize, i1: usize) -> Result<Vec<f64>, JsError> {
-        let passes = self.prepared()?.raster_passes(operation, i0..i1).map_err(js_error)?;
-        let mut out = Vec::new();
-        for runs in &passes {
-            out.push(runs.len() as f64);
-            for run in runs {
-                out.push(run.len() as f64);
-                out.extend(run.iter().flat_map(|p| [p.x, p.y, p.z]));
-            }
-        }
-        Ok(out)
+        self.0.raster_passes(operation, i0, i1).map_err(js_error)
     }
 
-    /// Keeps passes `first..` of the raster operation `operation`, as [`JobPlan::raster_passes`]
-    /// wrote them (`count` passes).
     #[wasm_bindgen(js_name = keepPasses)]
     pub fn keep_passes(&mut self, operation: usize, first: usize, count: usize, flat: &[f64]) -> Result<(), JsError> {
-        let mut at = 0;
-        let mut next = || -> Result<f64, JsError> {
-            let v = *flat.get(at).ok_or_else(|| js_error("the passes end early"))?;
-            at += 1;
-            Ok(v)
-        };
-        let mut passes = Vec::with_capacity(count);
-        for _ in 0..count {
-            let runs = next()? as usize;
-            let mut pass = Vec::with_capacity(runs);
-            for _ in 0..runs {
-                let points = next()? as usize;
-                let mut run = Vec::with_capacity(points);
-                for _ in 0..points {
-                    run.push(crate::geom::DVec3::new(next()?, next()?, next()?));
-                }
-                pass.push(run);
-            }
-            passes.push(pass);
-        }
-        self.prepared()?.keep_passes(operation, first, passes).map_err(js_error)
+        self.0.keep_passes(operation, first, count, flat).map_err(js_error)
     }
 
-    /// Lets go of the prepared part and surfaces, keeping the job: a helper of the pool then
-    /// only cuts bands of the stock ([`JobPlan::cut_bands`]), for which the job's tools and
-    /// tolerances are enough.
     pub fn release(&mut self) {
-        self.prepared = None;
+        self.0.release();
     }
 
-    /// Starts planning operation by operation, so a pool can cut each operation's moves into
-    /// the in-process stock ([`JobPlan::plan_next`]).
     pub fn start(&mut self) -> Result<(), JsError> {
-        let prepared = self.prepared.take().ok_or_else(|| js_error("this plan has run"))?;
-        self.running = Some(prepared.start());
-        Ok(())
+        self.0.start().map_err(js_error)
     }
 
-    fn running(&mut self) -> Result<&mut job::Running, JsError> {
-        self.running.as_mut().ok_or_else(|| js_error("this plan has not started"))
-    }
-
-    /// Plans the next operation: `undefined` once all are planned, else how many moves wait
-    /// to cut the in-process stock (0 when none do).
+    /// `undefined` once all are planned, else how many moves wait to cut the stock.
     #[wasm_bindgen(js_name = planNext)]
     pub fn plan_next(&mut self, progress: &js_sys::Function) -> Result<Option<usize>, JsError> {
         let mut sink = progress_sink(progress);
-        let running = self.running()?;
-        Ok(running.plan_next(&mut Progress::new(&mut sink)).map_err(js_error)?.then(|| running.pending().len()))
+        self.0.plan_next(&mut Progress::new(&mut sink)).map_err(js_error)
     }
 
-    /// The regions of the next operation's levels as work for the pool, when it has levels:
-    /// `{ surface, levels, keep }` (its surface's index in the list [`JobPlan::needs`] gave,
-    /// the height each level is contoured at, and the nodes each keeps, packed eight to a
-    /// byte, level after level), else `undefined`. The planner keeps the work until
-    /// [`JobPlan::keep_regions`].
+    /// `{ surface, levels, keep }` ([`crate::job::wire::LevelWork`]), or `undefined`.
     #[wasm_bindgen(js_name = regionWork)]
     pub fn region_work(&mut self) -> Result<JsValue, JsError> {
-        let Some(work) = self.running()?.region_work(&mut Progress::none()).map_err(js_error)? else { return Ok(JsValue::UNDEFINED) };
-        let Some(surface) = self.surfaces.iter().position(|s| *s == work.request) else { return Ok(JsValue::UNDEFINED) };
+        let Some(work) = self.0.region_work().map_err(js_error)? else { return Ok(JsValue::UNDEFINED) };
         let out = js_sys::Object::new();
-        let levels: Vec<f64> = work.levels.iter().map(|l| l.0).collect();
-        let keep: Vec<u8> = work.levels.iter().flat_map(|l| l.1.iter().copied()).collect();
-        js_sys::Reflect::set(&out, &"surface".into(), &JsValue::from_f64(surface as f64)).map_err(|_| js_error("an object"))?;
-        js_sys::Reflect::set(&out, &"levels".into(), &js_sys::Float64Array::from(&levels[..])).map_err(|_| js_error("an object"))?;
-        js_sys::Reflect::set(&out, &"keep".into(), &js_sys::Uint8Array::from(&keep[..])).map_err(|_| js_error("an object"))?;
-        self.regions = Some(work);
+        let set = |k: &str, v: &JsValue| js_sys::Reflect::set(&out, &k.into(), v).map(|_| ()).map_err(|_| js_error("an object"));
+        set("surface", &JsValue::from_f64(work.surface as f64))?;
+        set("levels", &js_sys::Float64Array::from(&work.levels[..]))?;
+        set("keep", &js_sys::Uint8Array::from(&work.keep[..]))?;
         Ok(out.into())
     }
 
-    /// The regions of levels `levels` of surface `k`, each keeping the nodes of `keep` (packed,
-    /// level after level), flat ([`crate::profile::Shape::to_flat`]).
     #[wasm_bindgen(js_name = levelRegions)]
     pub fn level_regions(&mut self, k: usize, levels: &[f64], keep: &[u8]) -> Result<Vec<f64>, JsError> {
-        let s = self.surface(k)?;
-        let per = s.grid.nodes().div_ceil(8);
-        if keep.len() != per * levels.len() {
-            return Err(js_error(format!("{} bytes are not the kept nodes of {} levels", keep.len(), levels.len())));
-        }
-        let work: Vec<(f64, Vec<u8>)> = levels.iter().zip(keep.chunks(per.max(1))).map(|(&z, k)| (z, k.to_vec())).collect();
-        let shapes = match &mut self.running {
-            Some(r) => r.level_regions(s, &work),
-            None => self.prepared()?.level_regions(s, &work),
-        }
-        .map_err(js_error)?;
-        let mut out = Vec::new();
-        shapes.iter().for_each(|s| s.to_flat(&mut out));
-        Ok(out)
+        self.0.level_regions(k, levels, keep).map_err(js_error)
     }
 
-    /// Keeps the regions of every level of the last [`JobPlan::region_work`] (flat, level
-    /// after level), for the next operation to take as it plans.
     #[wasm_bindgen(js_name = keepRegions)]
     pub fn keep_regions(&mut self, flat: &[f64]) -> Result<(), JsError> {
-        let work = self.regions.take().ok_or_else(|| js_error("no regions were asked for"))?;
-        let shapes = crate::profile::Shape::all_from_flat(flat).ok_or_else(|| js_error("the regions end early"))?;
-        self.running()?.keep_regions(&work, shapes).map_err(js_error)
+        self.0.keep_regions(flat).map_err(js_error)
     }
 
-    /// The moves waiting to cut the stock, flat, for the pool's helpers
-    /// ([`crate::sim::program::encode`]).
     #[wasm_bindgen(js_name = pendingMoves)]
     pub fn pending_moves(&mut self) -> Result<Vec<f64>, JsError> {
-        Ok(crate::sim::program::encode(self.running()?.pending()))
+        self.0.pending_moves().map_err(js_error)
     }
 
-    /// The in-process stock, taken out in `groups` groups of consecutive bands of rows (each flat,
-    /// [`DexelStock::to_flat`]) for the pool to cut with the pending moves;
-    /// [`JobPlan::absorb`] takes them back.
     #[wasm_bindgen(js_name = takeBands)]
     pub fn take_bands(&mut self, groups: usize) -> Result<js_sys::Array, JsError> {
-        let bands = self.running()?.take_bands();
-        let size = bands.len().div_ceil(groups.max(1)).max(1);
         let out = js_sys::Array::new();
-        for group in bands.chunks(size) {
-            out.push(&js_sys::Float64Array::from(&DexelStock::all_to_flat(group)[..]));
+        for group in self.0.take_bands(groups).map_err(js_error)? {
+            out.push(&js_sys::Float64Array::from(&group[..]));
         }
         Ok(out)
     }
 
-    /// Keeps `flat` ([`JobPlan::pending_moves`] of the planning worker) as the moves this helper
-    /// cuts its bands with.
     #[wasm_bindgen(js_name = keepMoves)]
     pub fn keep_moves(&mut self, flat: &[f64]) -> Result<(), JsError> {
-        self.moves = crate::sim::program::decode(flat, &self.job.tools).map_err(js_error)?;
-        Ok(())
+        self.0.keep_moves(flat).map_err(js_error)
     }
 
-    /// Cuts a group of bands of the stock (flat, from [`JobPlan::take_bands`]) with the pending
-    /// moves (the planning worker) or the kept ones (a helper): `[bands, cuts]`, both flat.
+    /// `[bands, cuts]`, both flat.
     #[wasm_bindgen(js_name = cutBands)]
     pub fn cut_bands(&mut self, group: &[f64]) -> Result<js_sys::Array, JsError> {
-        let mut bands = DexelStock::all_from_flat(group).ok_or_else(|| js_error("a group of bands of the stock ends early"))?;
-        let tolerances = self.job.tolerances;
-        let moves = match &self.running {
-            Some(r) => r.pending(),
-            None => &self.moves[..],
-        };
-        let cuts = crate::sim::verify::cut_bands(&mut bands, moves, &tolerances, &mut Progress::none(), 1.0).map_err(js_error)?;
+        let (bands, cuts) = self.0.cut_bands(group).map_err(js_error)?;
         let out = js_sys::Array::new();
-        out.push(&js_sys::Float64Array::from(&DexelStock::all_to_flat(&bands)[..]));
-        out.push(&js_sys::Float64Array::from(&cuts.iter().flat_map(|c| c.to_flat()).collect::<Vec<f64>>()[..]));
+        out.push(&js_sys::Float64Array::from(&bands[..]));
+        out.push(&js_sys::Float64Array::from(&cuts[..]));
         Ok(out)
     }
 
-    /// Takes back the stock's groups of bands (all of them, in order, as [`JobPlan::cut_bands`]
-    /// returned them) with their cuts, flat.
     pub fn absorb(&mut self, groups: Vec<js_sys::Float64Array>, cuts: Vec<js_sys::Float64Array>) -> Result<(), JsError> {
-        let (mut bands, mut all) = (Vec::new(), Vec::new());
-        for (g, c) in groups.iter().zip(&cuts) {
-            bands.extend(DexelStock::all_from_flat(&g.to_vec()).ok_or_else(|| js_error("a group of bands of the stock ends early"))?);
-            all.extend(crate::sim::verify::BandCut::all_from_flat(&c.to_vec()).map_err(js_error)?);
-        }
-        self.running()?.absorb(bands, &all).map_err(js_error)
+        let groups: Vec<Vec<f64>> = groups.iter().map(|g| g.to_vec()).collect();
+        let cuts: Vec<Vec<f64>> = cuts.iter().map(|c| c.to_vec()).collect();
+        self.0.absorb(&groups, &cuts).map_err(js_error)
     }
 
-    /// Writes the program once every operation is planned and has cut the stock.
     pub fn finish(&mut self, progress: &js_sys::Function) -> Result<JobResult, JsError> {
-        let running = self.running.take().ok_or_else(|| js_error("this plan has not started"))?;
         let mut sink = progress_sink(progress);
-        let out = running.finish(&mut Progress::new(&mut sink)).map_err(js_error)?;
-        job_result(&self.job, out)
+        let out = self.0.finish(&mut Progress::new(&mut sink)).map_err(js_error)?;
+        job_result(self.0.job(), out)
     }
 
     /// Plans the job with what was kept and writes its program (see [`run_job`]).
     pub fn run(&mut self, progress: &js_sys::Function) -> Result<JobResult, JsError> {
-        let prepared = self.prepared.take().ok_or_else(|| js_error("this plan has run"))?;
         let mut sink = progress_sink(progress);
-        let out = prepared.run(&mut Progress::new(&mut sink)).map_err(js_error)?;
-        job_result(&self.job, out)
+        let out = self.0.run(&mut Progress::new(&mut sink)).map_err(js_error)?;
+        job_result(self.0.job(), out)
     }
 }
 

@@ -270,3 +270,76 @@ fn the_waterline_plans_on_the_regions_a_pool_made_for_its_levels() {
     // A level of the waterline's given empty halfway down the part: taken, and left out.
     assert_ne!(plan(Some(1)).0, whole);
 }
+
+/// The page's pool, natively: two workers (a planner and a helper) exchange the job's pieces in
+/// the flat form they travel in between the browser's workers (`job::wire`), as `www/swarf.js`
+/// shares them out, and the program is the job's run whole, byte for byte.
+#[test]
+fn the_pools_wire_format_gives_the_program_made_whole() {
+    use swarf::job::wire::PoolWorker;
+    let job = job();
+    let whole = gcode_whole(&job);
+    let mut planner = PoolWorker::prepare(job.clone(), demo_part().into()).unwrap();
+    let mut helper = PoolWorker::prepare(job.clone(), demo_part().into()).unwrap();
+    let needs = planner.needs().unwrap();
+    assert_eq!(needs, helper.needs().unwrap());
+    // Bands of rows of every surface, made by the helper and joined by the planner.
+    for (k, s) in needs.surfaces.iter().enumerate() {
+        let z: Vec<f64> = [0, s.ny / 3, s.ny].windows(2).flat_map(|w| helper.surface_rows(k, w[0], w[1]).unwrap()).collect();
+        assert_eq!(z.len(), s.nx * s.ny);
+        planner.keep_surface(k, z).unwrap();
+    }
+    // Raster passes in ranges.
+    for r in &needs.rasters {
+        for first in (0..r.passes).step_by(50) {
+            let count = 50.min(r.passes - first);
+            let flat = helper.raster_passes(r.operation, first, first + count).unwrap();
+            planner.keep_passes(r.operation, first, count, &flat).unwrap();
+        }
+    }
+    // Level maps in bands.
+    for &k in &needs.level_maps {
+        let s = needs.surfaces[k];
+        let (mut right, mut up, mut wide) = (Vec::new(), Vec::new(), Vec::new());
+        for w in [0, s.ny / 2, s.ny].windows(2) {
+            let rows = helper.level_rows(k, w[0], w[1]).unwrap();
+            let n = (w[1] - w[0]) * s.nx;
+            right.extend_from_slice(&rows[..n]);
+            up.extend_from_slice(&rows[n..2 * n]);
+            wide.extend_from_slice(&rows[2 * n..]);
+        }
+        planner.keep_level_map(k, right.clone(), up.clone(), wide).unwrap();
+        helper.keep_level_map(k, right, up, Vec::new()).unwrap();
+    }
+    planner.start().unwrap();
+    let mut shared_regions = 0;
+    loop {
+        if let Some(work) = planner.region_work().unwrap() {
+            let per = work.keep.len() / work.levels.len();
+            let mut flat = Vec::new();
+            for (k, &z) in work.levels.iter().enumerate() {
+                // Every other level made by the helper.
+                let worker = if k % 2 == 0 { &mut helper } else { &mut planner };
+                flat.extend(worker.level_regions(work.surface, &[z], &work.keep[k * per..(k + 1) * per]).unwrap());
+            }
+            planner.keep_regions(&flat).unwrap();
+            shared_regions += 1;
+        }
+        let Some(pending) = planner.plan_next(&mut Progress::none()).unwrap() else { break };
+        if pending == 0 {
+            continue;
+        }
+        helper.keep_moves(&planner.pending_moves().unwrap()).unwrap();
+        let groups = planner.take_bands(3).unwrap();
+        let (mut bands, mut cuts) = (Vec::new(), Vec::new());
+        for (g, group) in groups.iter().enumerate() {
+            let worker = if g % 2 == 0 { &mut helper } else { &mut planner };
+            let (b, c) = worker.cut_bands(group).unwrap();
+            bands.push(b);
+            cuts.push(c);
+        }
+        planner.absorb(&bands, &cuts).unwrap();
+    }
+    assert!(shared_regions >= 2, "the roughing's and the waterline's levels went through the pool");
+    assert_eq!(planner.finish(&mut Progress::none()).unwrap().gcode, whole);
+}

@@ -19,6 +19,7 @@ pub mod read;
 pub mod report;
 pub mod run;
 pub mod schema;
+pub mod wire;
 
 pub use self::report::OperationReport;
 pub use self::run::{marked, part_warnings, prepare, run, verify_gcode, JobOutput, Prepared, Running};

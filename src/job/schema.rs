@@ -191,6 +191,20 @@ impl From<Mesh> for Workpiece {
     }
 }
 
+impl Workpiece {
+    /// Reads the part or drawing in `bytes` (a DXF or SVG by its name or content is a drawing,
+    /// anything else a mesh: STL, glTF/GLB, OBJ). The page, the CLI and the engine read a
+    /// workpiece through this one function; an error names the file (`part.stl: …`).
+    pub fn read(bytes: &[u8], name: Option<&str>, tolerances: &Tolerances) -> Result<Workpiece> {
+        let shown = name.unwrap_or("the file");
+        if crate::profile::import::is_drawing(name, bytes) {
+            crate::profile::import::read_drawing(bytes, name, tolerances).map(Workpiece::Drawing).map_err(|e| Error::Input(format!("{shown}: {e}")))
+        } else {
+            crate::mesh::import::read_mesh_auto(bytes, name, tolerances).map(Workpiece::Mesh).map_err(|e| Error::Input(format!("{shown}: {e}")))
+        }
+    }
+}
+
 impl From<Drawing> for Workpiece {
     fn from(d: Drawing) -> Self {
         Workpiece::Drawing(d)

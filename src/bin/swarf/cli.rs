@@ -12,7 +12,7 @@ use swarf::job::project::Project;
 use swarf::job::{self, Job};
 use swarf::job::Workpiece;
 use swarf::mesh::import::read_mesh_auto;
-use swarf::profile::import::{is_drawing, read_drawing};
+use swarf::profile::import::read_drawing;
 use swarf::mesh::placement::{PartSetup, PartUnits, Placement, UpAxis};
 use swarf::mesh::sample::demo_part;
 use swarf::progress::Progress;
@@ -194,12 +194,7 @@ fn run(cli: Cli) -> Result<(), String> {
                 let Some(part) = part else { return Err(format!("{}: a job file needs a part: swarf run job.json part.stl", file.display())) };
                 (job, part.file_name().map(|n| n.to_string_lossy().into_owned()), read(&part)?, part.with_extension(""))
             };
-            let shown = name.clone().unwrap_or_default();
-            let workpiece: Workpiece = if is_drawing(name.as_deref(), &bytes) {
-                read_drawing(&bytes, name.as_deref(), &job.tolerances).map_err(|e| format!("{shown}: {e}"))?.into()
-            } else {
-                read_mesh_auto(&bytes, name.as_deref(), &job.tolerances).map_err(|e| format!("{shown}: {e}"))?.into()
-            };
+            let workpiece = Workpiece::read(&bytes, name.as_deref(), &job.tolerances).map_err(|e| e.to_string())?;
             let output = output.unwrap_or_else(|| stem.with_extension(job.post.extension()));
             run_job(&job, workpiece, &output, quiet, write_anyway)
         }
