@@ -140,13 +140,7 @@ fn heights(dir: &Path, tol: &Tolerances) {
             // Who is right where they differ most: the brute-force drop over every triangle.
             let at = grid.node(k % grid.nx, k / grid.nx);
             let brute = cl_exact_at(&mesh, &cutter.profile(), at, tol).unwrap_or(floor).max(floor);
-            println!(
-                "| {name} | {} | {spacing:.3} | {cname} | {worst:.2e} | {off} of {} | {:.1e} / {:.1e} |",
-                mesh.faces.len(),
-                grid.nodes(),
-                (field.z[k] - brute).abs(),
-                (ocl_z[k] - brute).abs()
-            );
+            println!("| {name} | {} | {spacing:.3} | {cname} | {worst:.2e} | {off} of {} | {:.1e} / {:.1e} |", mesh.faces.len(), grid.nodes(), (field.z[k] - brute).abs(), (ocl_z[k] - brute).abs());
         }
     }
     let _ = std::fs::remove_dir_all(&scratch);

@@ -25,14 +25,8 @@ fn to_cav(shape: &Shape) -> CavShape<f64> {
 }
 
 fn from_cav(shape: &CavShape<f64>) -> Shape {
-    let loops = shape
-        .ccw_plines
-        .iter()
-        .chain(shape.cw_plines.iter())
-        .map(|ip| Loop {
-            vertices: ip.polyline.iter_vertexes().map(|v| Vertex { p: DVec2::new(v.x, v.y), bulge: v.bulge }).collect(),
-        })
-        .collect();
+    let loops =
+        shape.ccw_plines.iter().chain(shape.cw_plines.iter()).map(|ip| Loop { vertices: ip.polyline.iter_vertexes().map(|v| Vertex { p: DVec2::new(v.x, v.y), bulge: v.bulge }).collect() }).collect();
     Shape::from_oriented(loops)
 }
 

@@ -1,7 +1,7 @@
 //! A whole finishing job on seed 001's die, timed by stage: `cargo run --release --example die_job`.
 use std::time::Instant;
-use swarf::job::{self, FinishRaster, Job, Operation, Tool};
 use swarf::cutter::Cutter;
+use swarf::job::{self, FinishRaster, Job, Operation, Tool};
 use swarf::progress::Progress;
 
 fn main() {

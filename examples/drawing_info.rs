@@ -5,16 +5,7 @@ fn main() {
         match swarf::profile::import::read_drawing(&bytes, Some(&path), &swarf::geom::Tolerances::default()) {
             Ok(d) => {
                 let b = d.bounds();
-                println!(
-                    "{path}: {} loops, {} open chains, layers {:?}, units {}, ignored {:?}, bounds {:.2?}..{:.2?}",
-                    d.loops.len(),
-                    d.open.len(),
-                    d.layers,
-                    d.units,
-                    d.ignored,
-                    b.min,
-                    b.max
-                );
+                println!("{path}: {} loops, {} open chains, layers {:?}, units {}, ignored {:?}, bounds {:.2?}..{:.2?}", d.loops.len(), d.open.len(), d.layers, d.units, d.ignored, b.min, b.max);
                 for o in d.open.iter().take(3) {
                     println!("  open: {o:?}");
                 }

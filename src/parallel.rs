@@ -28,9 +28,7 @@ fn map_from<U: Send>(count: usize, least: usize, f: impl Fn(usize) -> U + Sync) 
     let chunk = count.div_ceil(threads);
     let f = &f;
     let parts: Vec<Vec<U>> = std::thread::scope(|scope| {
-        let handles: Vec<_> = (0..threads)
-            .map(|t| scope.spawn(move || (t * chunk..((t + 1) * chunk).min(count)).map(f).collect::<Vec<U>>()))
-            .collect();
+        let handles: Vec<_> = (0..threads).map(|t| scope.spawn(move || (t * chunk..((t + 1) * chunk).min(count)).map(f).collect::<Vec<U>>())).collect();
         handles.into_iter().map(|h| h.join().expect("a worker thread panicked")).collect()
     });
     parts.into_iter().flatten().collect()

@@ -7,10 +7,10 @@ use wasm_bindgen::prelude::*;
 
 use crate::geom::{Aabb, Tolerances};
 use crate::job::{self, Job, Workpiece};
-use crate::profile::Drawing;
 use crate::mesh::import::read_mesh_auto;
 use crate::mesh::placement::PartSetup;
 use crate::mesh::{sample, Mesh};
+use crate::profile::Drawing;
 use crate::progress::Progress;
 use crate::view;
 

@@ -50,10 +50,12 @@ fn demo_then_run_then_zmap() {
     let text = std::fs::read_to_string(&csv).unwrap();
     let mut lines = text.lines();
     assert_eq!(lines.next(), Some("x,y,z"));
-    let rows: Vec<[f64; 3]> = lines.map(|l| {
-        let v: Vec<f64> = l.split(',').map(|w| w.parse().unwrap()).collect();
-        [v[0], v[1], v[2]]
-    }).collect();
+    let rows: Vec<[f64; 3]> = lines
+        .map(|l| {
+            let v: Vec<f64> = l.split(',').map(|w| w.parse().unwrap()).collect();
+            [v[0], v[1], v[2]]
+        })
+        .collect();
     assert!(rows.len() > 1000);
     for row in rows.iter().step_by(37) {
         let exact = cl_exact_at(&mesh, &profile, DVec2::new(row[0], row[1]), &Tolerances::DEFAULT).unwrap_or(mesh.bounds().min.z).max(mesh.bounds().min.z);
@@ -189,12 +191,7 @@ fn output_into_a_closed_pipe_ends_quietly() {
     let circles: String = (0..3000).map(|k| format!(r#"<circle cx="{}" cy="{}" r="1"/>"#, (k % 60) * 3, (k / 60) * 3)).collect();
     let svg = dir.join("many.svg");
     std::fs::write(&svg, format!(r#"<svg xmlns="http://www.w3.org/2000/svg" width="200mm" height="200mm" viewBox="0 0 200 200">{circles}</svg>"#)).unwrap();
-    let mut child = Command::new(env!("CARGO_BIN_EXE_swarf"))
-        .args(["drawing", svg.to_str().unwrap()])
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_swarf")).args(["drawing", svg.to_str().unwrap()]).stdout(std::process::Stdio::piped()).stderr(std::process::Stdio::piped()).spawn().unwrap();
     let mut first = [0u8; 16];
     std::io::Read::read_exact(child.stdout.as_mut().unwrap(), &mut first).unwrap();
     drop(child.stdout.take());

@@ -176,7 +176,6 @@ fn on_spiky_parts_nothing_of_the_region_stands_above_the_level() {
     }
 }
 
-
 #[test]
 fn a_pocket_corner_between_nodes_is_reached() {
     // A 30.2 mm square pocket 10 deep: a φ6 flat end's centre may go within ±12.1, a square
@@ -338,7 +337,11 @@ fn a_floors_node_bounds_clear_only_moves_the_exact_surface_clears() {
                     for (k, &z) in exact.iter().enumerate() {
                         let t = k as f64 / 400.0;
                         assert!(region.contains(a.lerp(b, t)), "{cutter:?} ρ {rho}: {a} to {b} cleared by the bounds, yet out of the region at t {t}");
-                        assert!(za + (zb - za) * t + tol.height >= z + allowance - 1e-9, "{cutter:?} ρ {rho}: {a} to {b} cleared by the bounds, yet {} under the surface at t {t}", z + allowance - za - (zb - za) * t);
+                        assert!(
+                            za + (zb - za) * t + tol.height >= z + allowance - 1e-9,
+                            "{cutter:?} ρ {rho}: {a} to {b} cleared by the bounds, yet {} under the surface at t {t}",
+                            z + allowance - za - (zb - za) * t
+                        );
                     }
                 }
                 high += (rise > 0.3) as usize;
@@ -371,7 +374,11 @@ fn a_region_is_never_squared_off_past_a_node_its_keep_mask_refuses() {
     // The refused corner node (3.5, 3.5) and the cell towards it stay out; the chamfer runs
     // from next to (3.5, 3) to next to (3, 3.5).
     for p in [DVec2::new(3.4, 3.4), DVec2::new(3.3, 3.3)] {
-        assert!(!region.contains(p), "{p} is in the region, past the kept nodes' corner: {:?}", region.loops[0].vertices.iter().filter(|v| v.p.x > 2.0 && v.p.y > 2.0).map(|v| v.p).collect::<Vec<_>>());
+        assert!(
+            !region.contains(p),
+            "{p} is in the region, past the kept nodes' corner: {:?}",
+            region.loops[0].vertices.iter().filter(|v| v.p.x > 2.0 && v.p.y > 2.0).map(|v| v.p).collect::<Vec<_>>()
+        );
     }
     assert!(region.contains(DVec2::new(3.1, 3.1)) && region.contains(DVec2::new(3.4, 2.9)));
     for v in &region.loops[0].vertices {

@@ -5,10 +5,10 @@
 use swarf::cutter::Cutter;
 use swarf::geom::Tolerances;
 use swarf::job::{self, Job, Operation, Tool};
-use swarf::profile::import::read_drawing;
-use swarf::progress::Progress;
 use swarf::operations::Engrave;
 use swarf::operations::Profile2d;
+use swarf::profile::import::read_drawing;
+use swarf::progress::Progress;
 use swarf::toolpath::Move;
 
 /// A 60 × 40 plate outline (layer CUT), a "Z" and an arc drawn as open polylines (layer TEXT),

@@ -7,11 +7,11 @@ use proptest::prelude::*;
 use swarf::cutter::Cutter;
 use swarf::geom::{DVec2, DVec3, Tolerances};
 use swarf::job::{self, Boundary, FinishRaster, Job, Operation, Tool};
+use swarf::machining::raster::{raster_runs, Pattern, RasterPasses};
 use swarf::mesh::sample::demo_part;
 use swarf::progress::Progress;
-use swarf::machining::raster::{raster_runs, Pattern, RasterPasses};
-use swarf::zmap::region::Region;
 use swarf::toolpath::Move;
+use swarf::zmap::region::Region;
 use swarf::zmap::{cl_exact::cl_exact, drop::PointDrop, surface::ClSurface, Grid};
 
 fn demo_cl(grid: f64, cutter: &Cutter) -> ClSurface {
@@ -258,4 +258,3 @@ fn inverse_offset_job_is_as_exact_as_the_exact_one() {
     assert!(deepest.points > 10000);
     assert!(deepest.depth <= CHORDAL, "{:.4} mm below the exact CL at {}", deepest.depth, deepest.at);
 }
-

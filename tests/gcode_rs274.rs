@@ -8,11 +8,11 @@ use std::path::PathBuf;
 use std::process::Command;
 
 use swarf::cutter::Cutter;
-use swarf::operations::Roughing;
 use swarf::geom::{DVec2, DVec3};
 use swarf::job::{self, FinishRaster, Job, Operation, Tool};
 use swarf::mesh::placement::Units;
 use swarf::mesh::sample::demo_part;
+use swarf::operations::Roughing;
 use swarf::post::{write_gcode, Dialect, PostSettings};
 use swarf::progress::Progress;
 use swarf::toolpath::{Move, Toolpath};
@@ -104,9 +104,7 @@ fn expected_at(paths: &[Toolpath], clearance: f64, scale: f64, unit: Option<f64>
         }
     }
     let mut result: Vec<(Kind, DVec3)> = Vec::new();
-    let rounded = |k: Kind, p: DVec3| {
-        unit.map(|u| DVec3::new((p.x / u).round(), (p.y / u).round(), if k == Kind::Feed { (p.z / u - 1e-9).ceil() } else { (p.z / u).round() }))
-    };
+    let rounded = |k: Kind, p: DVec3| unit.map(|u| DVec3::new((p.x / u).round(), (p.y / u).round(), if k == Kind::Feed { (p.z / u - 1e-9).ceil() } else { (p.z / u).round() }));
     let mut last_rounded = None;
     for (k, p) in out {
         let p = p * scale;
@@ -354,10 +352,10 @@ fn the_reader_reads_programs_as_linuxcnc_does() {
 
 #[test]
 fn sheet_programs_with_helices_ramps_and_tabs_run_in_linuxcnc() {
-    use swarf::profile::import::read_drawing;
-    use swarf::profile::sample::plate_dxf;
     use swarf::operations::{Pocket2d, PocketPattern};
     use swarf::operations::{Profile2d, Tabs};
+    use swarf::profile::import::read_drawing;
+    use swarf::profile::sample::plate_dxf;
     let drawing = read_drawing(plate_dxf().as_bytes(), Some("plate.dxf"), &Default::default()).unwrap();
     for (dialect, units) in [(Dialect::LinuxCnc, Units::Mm), (Dialect::Grbl, Units::Inch)] {
         let mut job = Job::default_for_drawing();
@@ -380,10 +378,7 @@ fn sheet_programs_with_helices_ramps_and_tabs_run_in_linuxcnc() {
 fn roughing_then_finishing_programs_run_in_linuxcnc_with_arcs() {
     use swarf::operations::RoughZlevel;
     let tools = vec![Tool { number: 1, cutter: Cutter { flute_length: 40.0, ..Cutter::flat(6.0) }, ..Tool::default() }, Tool { number: 2, cutter: Cutter::ball(6.0), ..Tool::default() }];
-    let ops = vec![
-        Operation::RoughZlevel(RoughZlevel { tool: 1, ..RoughZlevel::default() }),
-        Operation::FinishRaster(FinishRaster { tool: 2, stepover: 1.5, grid: 0.5, ..FinishRaster::default() }),
-    ];
+    let ops = vec![Operation::RoughZlevel(RoughZlevel { tool: 1, ..RoughZlevel::default() }), Operation::FinishRaster(FinishRaster { tool: 2, stepover: 1.5, grid: 0.5, ..FinishRaster::default() })];
     for dialect in [Dialect::LinuxCnc, Dialect::Grbl] {
         let job = Job { tools: tools.clone(), operations: ops.clone(), post: PostSettings { dialect, ..PostSettings::default() }, ..Job::default() };
         let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
@@ -423,7 +418,11 @@ fn octree_roughing_with_its_chosen_tools_runs_in_linuxcnc_move_for_move() {
         }
     });
     let flat = |number: u32, d: f64| Tool { number, cutter: Cutter { flute_length: 3.0 * d, ..Cutter::flat(d) }, ..Tool::default() };
-    let job = Job { tools: vec![flat(1, 12.0), flat(2, 3.0)], operations: vec![Operation::RoughOctree(RoughOctree { roughing: Roughing { grid: 0.5, ..Roughing::default() }, ..RoughOctree::default() })], ..Job::default() };
+    let job = Job {
+        tools: vec![flat(1, 12.0), flat(2, 3.0)],
+        operations: vec![Operation::RoughOctree(RoughOctree { roughing: Roughing { grid: 0.5, ..Roughing::default() }, ..RoughOctree::default() })],
+        ..Job::default()
+    };
     let out = job::run(&job, part, &mut Progress::none()).unwrap();
     assert!(out.verification.as_ref().unwrap().report.is_clean());
     assert_eq!(out.operations[0].tools, vec![1, 2]);
@@ -439,7 +438,6 @@ fn each_dialect_names_the_extension_its_controllers_expect() {
     let ext: Vec<String> = Dialect::ALL.iter().map(|d| d.extension()).collect();
     assert_eq!(ext, vec!["ngc", "nc", "nc", "tap", "nc", "nc"]);
 }
-
 
 /// A move of a program in mm, from where the one before it ended.
 #[derive(Clone, Copy, Debug)]
@@ -493,7 +491,14 @@ fn canon_spans(actual: &[(Kind, DVec3)], mm: f64, first: DVec3) -> Vec<Span> {
     let start = actual.iter().position(|(_, p)| (*p * mm).distance(first) < 1e-3).unwrap_or_else(|| panic!("the program never reaches the path's start {first}: {:?}", &actual[..4.min(actual.len())]));
     actual[start..]
         .windows(2)
-        .map(|w| Span { from: w[0].1 * mm, to: w[1].1 * mm, arc: match w[1].0 { Kind::Arc { center, ccw } => Some((center * mm, ccw)), _ => None } })
+        .map(|w| Span {
+            from: w[0].1 * mm,
+            to: w[1].1 * mm,
+            arc: match w[1].0 {
+                Kind::Arc { center, ccw } => Some((center * mm, ccw)),
+                _ => None,
+            },
+        })
         .collect()
 }
 
@@ -549,18 +554,15 @@ fn follows(a: &[Span], b: &[Span], tol: f64) -> Result<(), String> {
 
 #[test]
 fn every_built_in_post_reproduces_the_paths_in_linuxcnc_and_grbl_reads_its_own() {
+    use swarf::operations::RoughZlevel;
     use swarf::post::grbl::{check, Flavour};
     use swarf::post::{write_program, Post};
-    use swarf::operations::RoughZlevel;
     use swarf::tool::Coolant;
     let tools = vec![
         Tool { number: 1, cutter: Cutter { flute_length: 40.0, ..Cutter::flat(6.0) }, coolant: Coolant::Flood, ..Tool::default() },
         Tool { number: 2, cutter: Cutter::ball(6.0), coolant: Coolant::Mist, ..Tool::default() },
     ];
-    let ops = vec![
-        Operation::RoughZlevel(RoughZlevel { tool: 1, ..RoughZlevel::default() }),
-        Operation::FinishRaster(FinishRaster { tool: 2, stepover: 2.0, grid: 0.5, ..FinishRaster::default() }),
-    ];
+    let ops = vec![Operation::RoughZlevel(RoughZlevel { tool: 1, ..RoughZlevel::default() }), Operation::FinishRaster(FinishRaster { tool: 2, stepover: 2.0, grid: 0.5, ..FinishRaster::default() })];
     let job = Job { tools: tools.clone(), operations: ops, simulation: swarf::job::Simulation { verify: false, cell: None }, ..Job::default() };
     let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
     assert!(out.paths.iter().flat_map(|p| &p.moves).any(|m| matches!(m, Move::Arc { to, .. } if to.z < 0.0)), "helices expected");
@@ -611,7 +613,10 @@ fn every_built_in_post_reproduces_the_paths_in_linuxcnc_and_grbl_reads_its_own()
             }
             Dialect::Generic => {
                 assert!(gcode.lines().all(|l| !l.starts_with("G2") || !l.contains('Z') || !l.contains("G3")));
-                assert!(gcode.contains("G1 X") && gcode.lines().filter(|l| l.starts_with("G1")).all(|l| l.contains(" X") && l.contains(" Y") && l.contains(" Z") && l.contains(" F")), "every word on every line");
+                assert!(
+                    gcode.contains("G1 X") && gcode.lines().filter(|l| l.starts_with("G1")).all(|l| l.contains(" X") && l.contains(" Y") && l.contains(" Z") && l.contains(" F")),
+                    "every word on every line"
+                );
             }
             _ => {}
         }

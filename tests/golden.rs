@@ -126,10 +126,13 @@ fn every_golden_program_is_byte_identical() {
         return;
     }
     let want = std::fs::read_to_string(FILE).expect("tests/golden/programs.tsv (UPDATE_GOLDEN=1 writes it)");
-    let want: std::collections::HashMap<&str, (&str, &str)> = want.lines().filter_map(|l| {
-        let mut f = l.split('\t');
-        Some((f.next()?, (f.next()?, f.next()?)))
-    }).collect();
+    let want: std::collections::HashMap<&str, (&str, &str)> = want
+        .lines()
+        .filter_map(|l| {
+            let mut f = l.split('\t');
+            Some((f.next()?, (f.next()?, f.next()?)))
+        })
+        .collect();
     let mut changed = Vec::new();
     for (name, hash, len) in &got {
         let Some((h, l)) = want.get(name.as_str()) else { panic!("{name}: no golden program recorded") };

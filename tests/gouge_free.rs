@@ -159,8 +159,6 @@ fn point_drop_matches_the_brute_force_drop_on_a_smooth_part() {
     }
 }
 
-
-
 /// Issue 10: rounding X and Y to the program's resolution moves a point sideways, and on a
 /// steep surface (1 in 29 here: 88° flanks) that alone would sink it below the surface. Every
 /// written feed point, read back from the G-code in inches and in millimetres, stays at or

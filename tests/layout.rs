@@ -250,5 +250,11 @@ fn the_checker_finds_a_circle() {
     edges.entry("d".into()).or_default().insert("a".into());
     assert_eq!(circles(&edges), vec![vec!["a".to_string(), "b".into(), "c".into()]]);
     let paths = named_paths(&code("use crate::machining::{levels::Level, settings};\nlet x = super::rings::f(); // crate::job::x\n"));
-    assert_eq!(paths, vec![vec!["crate", "machining", "levels"], vec!["crate", "machining", "settings"], vec!["super", "rings", "f"]].into_iter().map(|p| p.into_iter().map(String::from).collect::<Vec<_>>()).collect::<Vec<_>>());
+    assert_eq!(
+        paths,
+        vec![vec!["crate", "machining", "levels"], vec!["crate", "machining", "settings"], vec!["super", "rings", "f"]]
+            .into_iter()
+            .map(|p| p.into_iter().map(String::from).collect::<Vec<_>>())
+            .collect::<Vec<_>>()
+    );
 }

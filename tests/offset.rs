@@ -91,11 +91,7 @@ fn islands_merge_with_each_other_and_the_boundary() {
     // Two round islands 6 apart in a 40 × 20 pocket: shrinking by 1.9 keeps them apart, by 3.5
     // merges them (their 7 mm grown discs overlap), by 5 the grown islands reach the long walls
     // and split the region in two.
-    let pocket = Shape::new(vec![
-        Loop::rect(DVec2::ZERO, DVec2::new(40.0, 20.0)),
-        Loop::circle(DVec2::new(17.0, 10.0), 1.0),
-        Loop::circle(DVec2::new(23.0, 10.0), 1.0),
-    ]);
+    let pocket = Shape::new(vec![Loop::rect(DVec2::ZERO, DVec2::new(40.0, 20.0)), Loop::circle(DVec2::new(17.0, 10.0), 1.0), Loop::circle(DVec2::new(23.0, 10.0), 1.0)]);
     assert_eq!(assert_valid(&pocket, -1.9).loops.len(), 3);
     assert_eq!(assert_valid(&pocket, -3.5).loops.len(), 2);
     let split = assert_valid(&pocket, -5.0);

@@ -10,13 +10,13 @@ use swarf::cutter::Cutter;
 use swarf::geom::{DVec2, Tolerances};
 use swarf::job::{self, Job, Operation, Tool};
 use swarf::offset::trim::Original;
+use swarf::operations::{Direction, Profile2d, Tabs};
+use swarf::operations::{EntryKind, Pocket2d, PocketPattern};
 use swarf::post::Dialect;
 use swarf::profile::import::read_drawing;
 use swarf::profile::sample::plate_dxf;
 use swarf::profile::{Drawing, DrawnLoop, Loop, Shape};
 use swarf::progress::Progress;
-use swarf::operations::{EntryKind, Pocket2d, PocketPattern};
-use swarf::operations::{Direction, Profile2d, Tabs};
 use swarf::toolpath::{arc_sweep, Move};
 
 fn plate() -> Drawing {
@@ -223,7 +223,10 @@ fn an_svg_with_a_doctype_line_is_read_and_nothing_it_names_is_fetched() {
     assert_eq!(d.loops.len(), 1);
     assert!((d.loops[0].path.area().abs() - 1200.0).abs() < 1e-6);
     // An entity bomb is still refused with a message, not a hang.
-    let bomb = format!(r#"<?xml version="1.0"?><!DOCTYPE svg [<!ENTITY a "aaaaaaaaaa">{}]><svg xmlns="http://www.w3.org/2000/svg">&j;</svg>"#, (b'b'..=b'j').map(|c| format!("<!ENTITY {} \"{}\">", c as char, format!("&{};", (c - 1) as char).repeat(10))).collect::<String>());
+    let bomb = format!(
+        r#"<?xml version="1.0"?><!DOCTYPE svg [<!ENTITY a "aaaaaaaaaa">{}]><svg xmlns="http://www.w3.org/2000/svg">&j;</svg>"#,
+        (b'b'..=b'j').map(|c| format!("<!ENTITY {} \"{}\">", c as char, format!("&{};", (c - 1) as char).repeat(10))).collect::<String>()
+    );
     let e = read_drawing(bomb.as_bytes(), Some("bomb.svg"), &Tolerances::default()).unwrap_err();
     assert!(e.to_string().contains("SVG"), "{e}");
 }
@@ -254,12 +257,7 @@ fn real_profiles_read_and_cut_cleanly() {
 /// simulation's per-move volumes tell (1e-3 mm³ allows a graze).
 fn plunged_volume(out: &job::JobOutput) -> f64 {
     let v = out.verification.as_ref().unwrap();
-    out.moves
-        .iter()
-        .zip(&v.volumes)
-        .filter(|(m, _)| matches!(m.mv, Move::Line { to, .. } if to.z < m.from.z && to.truncate().distance(m.from.truncate()) < 1e-9))
-        .map(|(_, &vol)| vol)
-        .sum()
+    out.moves.iter().zip(&v.volumes).filter(|(m, _)| matches!(m.mv, Move::Line { to, .. } if to.z < m.from.z && to.truncate().distance(m.from.truncate()) < 1e-9)).map(|(_, &vol)| vol).sum()
 }
 
 #[test]
@@ -305,11 +303,7 @@ fn drawing_of(loops: Vec<Loop>) -> Drawing {
 
 /// A sheet part at `x`: a 30 × 20 outline with a round hole and a square one.
 fn part_at(x: f64) -> Vec<Loop> {
-    vec![
-        Loop::rect(DVec2::new(x, 0.0), DVec2::new(x + 30.0, 20.0)),
-        Loop::circle(DVec2::new(x + 8.0, 10.0), 4.0),
-        Loop::rect(DVec2::new(x + 16.0, 6.0), DVec2::new(x + 24.0, 14.0)),
-    ]
+    vec![Loop::rect(DVec2::new(x, 0.0), DVec2::new(x + 30.0, 20.0)), Loop::circle(DVec2::new(x + 8.0, 10.0), 4.0), Loop::rect(DVec2::new(x + 16.0, 6.0), DVec2::new(x + 24.0, 14.0))]
 }
 
 /// Runs a profile of every loop and checks what every drawing job must hold: no tool-centre
@@ -432,9 +426,7 @@ fn large_inch_arcs_keep_the_radius_in_both_units() {
 fn ellipses_keep_the_radius_within_the_arc_fit() {
     // An elliptical plate (semi-axes 40 and 16) with an elliptical hole, and a half ellipse
     // closed by a line; in mm.
-    let ellipse = |c: DVec2, major: DVec2, ratio: f64, from: f64, to: f64| {
-        format!("0\nELLIPSE\n8\n0\n10\n{}\n20\n{}\n11\n{}\n21\n{}\n40\n{ratio}\n41\n{from}\n42\n{to}\n", c.x, c.y, major.x, major.y)
-    };
+    let ellipse = |c: DVec2, major: DVec2, ratio: f64, from: f64, to: f64| format!("0\nELLIPSE\n8\n0\n10\n{}\n20\n{}\n11\n{}\n21\n{}\n40\n{ratio}\n41\n{from}\n42\n{to}\n", c.x, c.y, major.x, major.y);
     let (c1, c2) = (DVec2::new(100.0, 100.0), DVec2::new(200.0, 100.0));
     let d = dxf(
         4,

@@ -8,15 +8,15 @@ mod common;
 
 use common::clean;
 use swarf::cutter::Cutter;
-use swarf::operations::Roughing;
 use swarf::error::Error;
 use swarf::geom::DVec2;
 use swarf::job::{self, Job, JobOutput, Operation, Simulation, Tool};
 use swarf::mesh::placement::{PartSetup, Placement};
 use swarf::mesh::sample::{height_field_solid, octree_mould};
 use swarf::mesh::Mesh;
-use swarf::progress::Progress;
+use swarf::operations::Roughing;
 use swarf::operations::{RoughOctree, StageRole};
+use swarf::progress::Progress;
 
 fn flat(number: u32, d: f64) -> Tool {
     Tool { number, cutter: Cutter { flute_length: 3.0 * d, ..Cutter::flat(d) }, feed_rate: 1000.0, plunge_rate: 250.0, ..Tool::default() }
@@ -46,7 +46,6 @@ fn octree_job(tools: Vec<Tool>, op: RoughOctree) -> Job {
         ..Job::default()
     }
 }
-
 
 /// The stages as (tool, role).
 fn stages(out: &JobOutput) -> Vec<(u32, StageRole)> {
@@ -221,7 +220,9 @@ fn a_library_too_big_for_the_part_is_refused_naming_a_tool_that_would_do() {
 fn its_settings_are_checked_with_their_paths() {
     let e = Job::from_json(r#"{"tools": [{"number": 1, "shape": "flat"}], "operations": [{"kind": "roughOctree", "tools": [1, 7]}]}"#).and_then(|j| j.validate().map(|_| j)).unwrap_err();
     assert!(e.to_string().contains("operations[0].tools: no tool number 7"), "{e}");
-    let e = Job::from_json(r#"{"version": 2, "tools": [{"number": 1, "shape": "flat"}], "operations": [{"kind": "roughOctree", "stepoverFraction": 0.9}]}"#).and_then(|j| j.validate().map(|_| j)).unwrap_err();
+    let e = Job::from_json(r#"{"version": 2, "tools": [{"number": 1, "shape": "flat"}], "operations": [{"kind": "roughOctree", "stepoverFraction": 0.9}]}"#)
+        .and_then(|j| j.validate().map(|_| j))
+        .unwrap_err();
     assert!(e.to_string().contains("operations[0].stepoverFraction is at most 0.85"), "{e}");
     let e = Job::from_json(r#"{"tools": [{"number": 1, "shape": "ball"}], "operations": [{"kind": "roughOctree"}]}"#).unwrap();
     let err = job::run(&e, block(20.0, 20.0, |_, _| Some(-3.0)), &mut Progress::none()).unwrap_err();

@@ -6,13 +6,13 @@ mod common;
 
 use common::clean;
 use swarf::cutter::Cutter;
-use swarf::operations::Roughing;
-use swarf::sim::windows::windowed_rates;
 use swarf::job::{self, Job, JobOutput, Operation, Simulation, Tool};
 use swarf::mesh::placement::{PartSetup, Placement};
 use swarf::mesh::sample::{demo_part, paper_pocket};
-use swarf::progress::Progress;
+use swarf::operations::Roughing;
 use swarf::operations::{LoadControl, LoadReport, Passes, RoughZigzag};
+use swarf::progress::Progress;
+use swarf::sim::windows::windowed_rates;
 
 fn flat(number: u32, d: f64) -> Tool {
     Tool { number, name: format!("{d} mm flat"), cutter: Cutter::flat(d), feed_rate: 1000.0, plunge_rate: 250.0, ..Tool::default() }
@@ -20,7 +20,15 @@ fn flat(number: u32, d: f64) -> Tool {
 
 /// The paper's case: φ10 flat, radial depth 3 mm, axial 0.5 mm, one level.
 fn paper_job(load: LoadControl) -> Job {
-    let op = RoughZigzag { tool: 1, stepdown: 0.5, stepover_fraction: 0.3, load, pixel: Some(0.05), roughing: Roughing { allowance: 0.0, leave_stock: 0.0, grid: 0.5, ..Roughing::default() }, ..RoughZigzag::default() };
+    let op = RoughZigzag {
+        tool: 1,
+        stepdown: 0.5,
+        stepover_fraction: 0.3,
+        load,
+        pixel: Some(0.05),
+        roughing: Roughing { allowance: 0.0, leave_stock: 0.0, grid: 0.5, ..Roughing::default() },
+        ..RoughZigzag::default()
+    };
     let mut job = Job {
         tools: vec![flat(1, 10.0)],
         operations: vec![Operation::RoughZigzag(op)],
@@ -32,7 +40,6 @@ fn paper_job(load: LoadControl) -> Job {
     (job.stock.margin_xy, job.stock.margin_top, job.stock.margin_bottom) = (0.0, 0.0, 0.0);
     job
 }
-
 
 /// The removal rate over windows of Δs of the cutting moves at one height (entries left out)
 /// by the project's own simulation at `cell`, over the reference rate.
@@ -96,13 +103,15 @@ fn a_terrain_with_cliffs_is_roughed_without_a_gouge_with_the_load_held() {
     let Some(dir) = common::shared_data("meshes") else { return };
     let bytes = std::fs::read(dir.join("ocl_mount_rush.stl")).unwrap();
     let part = swarf::mesh::import::read_mesh_auto(&bytes, Some("ocl_mount_rush.stl"), &swarf::geom::tolerance::Tolerances::default()).unwrap();
-    let op = RoughZigzag { tool: 1, stepdown: 2.0, stepover_fraction: 0.4, load: LoadControl::Path, roughing: Roughing { allowance: 0.0, leave_stock: 0.0, ..Roughing::default() }, ..RoughZigzag::default() };
-    let mut job = Job {
-        tools: vec![flat(1, 6.0)],
-        operations: vec![Operation::RoughZigzag(op)],
-        part: PartSetup { placement: Placement::Keep, ..PartSetup::default() },
-        ..Job::default()
+    let op = RoughZigzag {
+        tool: 1,
+        stepdown: 2.0,
+        stepover_fraction: 0.4,
+        load: LoadControl::Path,
+        roughing: Roughing { allowance: 0.0, leave_stock: 0.0, ..Roughing::default() },
+        ..RoughZigzag::default()
     };
+    let mut job = Job { tools: vec![flat(1, 6.0)], operations: vec![Operation::RoughZigzag(op)], part: PartSetup { placement: Placement::Keep, ..PartSetup::default() }, ..Job::default() };
     (job.stock.margin_xy, job.stock.margin_top, job.stock.margin_bottom) = (0.0, 0.0, 0.0);
     let out = job::run(&job, part, &mut Progress::none()).unwrap();
     clean(&out);

@@ -11,13 +11,13 @@ use common::clean;
 
 use common::mesh;
 use swarf::cutter::Cutter;
-use swarf::operations::Roughing;
 use swarf::geom::{DVec2, DVec3};
 use swarf::job::{self, FinishRaster, Job, Operation, Simulation, Tool};
 use swarf::mesh::placement::{PartSetup, Placement};
 use swarf::mesh::sample::demo_part;
-use swarf::progress::Progress;
+use swarf::operations::Roughing;
 use swarf::operations::{Order, RoughZlevel};
+use swarf::progress::Progress;
 use swarf::toolpath::Move;
 
 fn flat(number: u32, d: f64) -> Tool {
@@ -38,7 +38,6 @@ fn box_on_plate() -> swarf::mesh::Mesh {
     tris.extend([[a, b, c], [a, c, d], [e, f, b], [e, b, a], [f, g, c], [f, c, b], [g, h, d], [g, d, c], [h, e, a], [h, a, d]]);
     mesh(tris)
 }
-
 
 /// The allowances the box on the plate is roughed to (floors, walls).
 const BOX_ALLOWANCE: f64 = 0.5;
@@ -200,7 +199,11 @@ fn a_narrow_well_is_entered_from_the_level_above_not_from_the_top() {
     let centres: Vec<DVec2> = wells.iter().map(|w| w.0).collect();
     let part = swarf::mesh::sample::height_field_solid(DVec2::splat(-16.0), DVec2::splat(16.0), 513, 513, 0.0, |x, y| {
         let p = DVec2::new(x, y);
-        if wells.iter().any(|(c, r)| p.distance(*c) < *r) { 2.0 } else { 20.0 }
+        if wells.iter().any(|(c, r)| p.distance(*c) < *r) {
+            2.0
+        } else {
+            20.0
+        }
     });
     let in_wells = entered_from_the_level_above(part, Default::default(), &centres);
     assert!(in_wells > 50, "{in_wells} descending moves in the wells");
@@ -227,7 +230,11 @@ fn regions_first_goes_from_pocket_to_pocket_once() {
     let centres = [DVec2::new(-15.0, 0.0), DVec2::new(15.0, 0.0)];
     let part = swarf::mesh::sample::height_field_solid(DVec2::new(-30.0, -15.0), DVec2::new(30.0, 15.0), 241, 121, 0.0, |x, y| {
         let p = DVec2::new(x, y);
-        if centres.iter().any(|c| (p - *c).abs().max_element() < 7.0) { 4.0 } else { 16.0 }
+        if centres.iter().any(|c| (p - *c).abs().max_element() < 7.0) {
+            4.0
+        } else {
+            16.0
+        }
     });
     let run = |order: Order| {
         let job = Job {
@@ -341,7 +348,12 @@ fn moves_over_cleared_ground_run_at_the_air_feed_and_cut_nothing() {
                 fine_worst = fine_worst.max(vol);
             }
         }
-        eprintln!("{name}: air {} moves, {air_length:.1} mm; removed {air_removed} (cell 0.25), {fine_air} (cell 0.05, worst {fine_worst}); cycle {:.1} s vs {:.1} s", air.len(), fast.cycle.seconds, slow.cycle.seconds);
+        eprintln!(
+            "{name}: air {} moves, {air_length:.1} mm; removed {air_removed} (cell 0.25), {fine_air} (cell 0.05, worst {fine_worst}); cycle {:.1} s vs {:.1} s",
+            air.len(),
+            fast.cycle.seconds,
+            slow.cycle.seconds
+        );
         assert!(air.iter().all(|m| matches!(m.mv, Move::Line { feed, .. } | Move::Arc { feed, .. } if feed == rapid)), "{name}");
         assert!(air_length > if keep { 150.0 } else { 400.0 }, "{name}: {air_length} mm at the air feed");
         assert!(air_removed <= 1e-6 && fine_air <= 1e-6, "{name}: the air moves removed {air_removed} mm³ ({fine_air} on finer cells)");
@@ -367,7 +379,15 @@ fn rest_roughing_never_works_a_level_beside_material_left_above_it() {
     let bytes = std::fs::read(dir.join("ocl_mount_rush.stl")).unwrap();
     let part = swarf::mesh::import::read_mesh_auto(&bytes, Some("ocl_mount_rush.stl"), &swarf::geom::tolerance::Tolerances::default()).unwrap();
     let tool = |number: u32, d: f64| Tool { number, cutter: Cutter { flute_length: 3.0 * d, ..Cutter::flat(d) }, feed_rate: 1000.0, plunge_rate: 250.0, ..Tool::default() };
-    let stage = |tool: u32, stepdown: f64| Operation::RoughZlevel(RoughZlevel { tool, stepdown, stepover_fraction: 0.5, roughing: Roughing { allowance: 0.5, leave_stock: 0.5, grid: 0.5, ..Roughing::default() }, ..RoughZlevel::default() });
+    let stage = |tool: u32, stepdown: f64| {
+        Operation::RoughZlevel(RoughZlevel {
+            tool,
+            stepdown,
+            stepover_fraction: 0.5,
+            roughing: Roughing { allowance: 0.5, leave_stock: 0.5, grid: 0.5, ..Roughing::default() },
+            ..RoughZlevel::default()
+        })
+    };
     let job = Job {
         part: PartSetup { placement: Placement::Keep, ..PartSetup::default() },
         stock: swarf::job::Stock { margin_xy: 0.0, margin_top: 1.0, ..Default::default() },

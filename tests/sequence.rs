@@ -7,9 +7,9 @@ use swarf::error::{Error, ErrorKind};
 use swarf::geom::DVec2;
 use swarf::job::{self, FinishRaster, Job, Operation, Simulation, Tool};
 use swarf::mesh::sample::demo_part;
-use swarf::progress::Progress;
 use swarf::operations::Pocket2d;
 use swarf::operations::Profile2d;
+use swarf::progress::Progress;
 use swarf::toolpath::Move;
 
 fn ball(number: u32, diameter: f64) -> Tool {
@@ -296,7 +296,16 @@ fn a_second_pocket_deeper_in_the_same_loops_starts_where_the_first_stopped() {
     // The pocket's outline (not its island) cut inside, deeper, with no lead arc (one would
     // reach the island).
     let outline = drawing.loops.iter().position(|l| l.layer == "POCKET" && l.path.bounds().size().x > 30.0).unwrap();
-    let wall = Profile2d { name: "wall".into(), tool: 1, side: swarf::operations::Side::Inside, depth: Some(5.0), loops: vec![outline], lead_radius: Some(0.0), layers: vec!["POCKET".into()], ..Profile2d::default() };
+    let wall = Profile2d {
+        name: "wall".into(),
+        tool: 1,
+        side: swarf::operations::Side::Inside,
+        depth: Some(5.0),
+        loops: vec![outline],
+        lead_radius: Some(0.0),
+        layers: vec!["POCKET".into()],
+        ..Profile2d::default()
+    };
     job.operations = vec![pocket("first", 2.0), pocket("deeper", 4.0), pocket("again", 4.0), Operation::Profile2d(wall)];
     let out = job::run(&job, drawing, &mut Progress::none()).unwrap();
     let v = out.verification.as_ref().unwrap();

@@ -4,10 +4,10 @@
 mod common;
 
 use swarf::cutter::{Cutter, Profile};
-use swarf::operations::Roughing;
 use swarf::geom::{Aabb, DVec2, DVec3, Tolerances};
 use swarf::job::{self, FinishRaster, Job, Operation, Tool};
 use swarf::mesh::sample::demo_part;
+use swarf::operations::Roughing;
 use swarf::progress::Progress;
 use swarf::sim::paper::{Case, Cut, CELLS, DEPTH, RADIUS, STEP};
 use swarf::sim::program::{program_moves, simulate};
@@ -86,11 +86,7 @@ fn per_move_removal_is_the_cross_section_times_the_step_once_inside_the_block() 
 fn removed_volume_is_conserved_by_every_model() {
     let stock = Case::stock();
     let profile = Profile::new(3.0, 1.0);
-    let moves = [
-        (DVec3::new(-4.0, 3.0, -2.0), DVec3::new(12.0, 9.5, -3.5)),
-        (DVec3::new(12.0, 9.5, -3.5), DVec3::new(25.0, 2.0, -1.0)),
-        (DVec3::new(25.0, 2.0, -1.0), DVec3::new(25.0, 2.0, -6.0)),
-    ];
+    let moves = [(DVec3::new(-4.0, 3.0, -2.0), DVec3::new(12.0, 9.5, -3.5)), (DVec3::new(12.0, 9.5, -3.5), DVec3::new(25.0, 2.0, -1.0)), (DVec3::new(25.0, 2.0, -1.0), DVec3::new(25.0, 2.0, -6.0))];
     for model in Model::ALL {
         let mut s = model.stock(&stock, 0.3);
         let before = s.volume();

@@ -82,7 +82,16 @@ fn no_two_rust_types_share_a_typescript_name() {
 fn the_typescript_definitions_match_the_rust_types() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("www/types/swarf-types.d.ts");
     let made = generate();
-    for name in ["export type Job = ", "export type Operation = ", "export type Post = ", "export type Tool = ", "export type Project = ", "export type Summary = ", "export type OperationReport = ", "export type Warning = "] {
+    for name in [
+        "export type Job = ",
+        "export type Operation = ",
+        "export type Post = ",
+        "export type Tool = ",
+        "export type Project = ",
+        "export type Summary = ",
+        "export type OperationReport = ",
+        "export type Warning = ",
+    ] {
         assert!(made.contains(name), "{name} missing");
     }
     // Fields as the JSON has them: camelCase, the operation's kind as its tag.

@@ -7,8 +7,8 @@ use swarf::cutter::Cutter;
 use swarf::job::{self, Job, Operation, Simulation, Tool};
 use swarf::mesh::placement::{PartSetup, Placement};
 use swarf::mesh::sample::demo_part;
-use swarf::progress::Progress;
 use swarf::operations::FinishWaterline;
+use swarf::progress::Progress;
 use swarf::toolpath::Move;
 
 #[test]

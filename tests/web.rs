@@ -49,11 +49,7 @@ fn job_runs_in_the_browser_and_writes_gcode() {
 #[wasm_bindgen_test]
 fn the_browser_gives_the_same_heights_as_native_math() {
     // The exact builder at one node, against the analytic height of a ball on a tilted plane.
-    let mesh = swarf::mesh::Mesh::from_triangles(
-        vec![[glam::DVec3::new(-20.0, -20.0, -4.0), glam::DVec3::new(20.0, -20.0, 4.0), glam::DVec3::new(20.0, 20.0, 4.0)]],
-        &Tolerances::DEFAULT,
-    )
-    .unwrap();
+    let mesh = swarf::mesh::Mesh::from_triangles(vec![[glam::DVec3::new(-20.0, -20.0, -4.0), glam::DVec3::new(20.0, -20.0, 4.0), glam::DVec3::new(20.0, 20.0, 4.0)]], &Tolerances::DEFAULT).unwrap();
     let grid = Grid::covering(DVec2::new(8.0, -4.0), DVec2::new(8.0, -4.0), 1.0);
     let field = cl_exact(&mesh, &Cutter::ball(6.0).profile(), grid, -100.0, &Tolerances::DEFAULT, &mut Progress::none()).unwrap();
     let n = glam::DVec3::new(-0.2, 0.0, 1.0).normalize();

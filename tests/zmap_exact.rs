@@ -106,7 +106,11 @@ fn ball_along_a_sharp_ridge() {
             // rides the edge.
             let facet = h - s * d + r / n.z - r;
             let edge = h + (r * r - d * d).max(0.0).sqrt() - r;
-            if d >= r * n.x { facet } else { edge }
+            if d >= r * n.x {
+                facet
+            } else {
+                edge
+            }
         });
     }
 }
@@ -121,7 +125,11 @@ fn bull_nose_and_flat_on_a_lone_vertex() {
         let field = exact(&mesh, &cutter, DVec2::splat(-2.9), DVec2::new(-0.01, 2.9), 0.1);
         check(&field, DVec2::splat(-2.9), DVec2::new(-0.01, 2.9), EXACT, |c| {
             let r = c.length();
-            if r <= p.radius { 4.0 - p.height(r) } else { FLOOR }
+            if r <= p.radius {
+                4.0 - p.height(r)
+            } else {
+                FLOOR
+            }
         });
     }
 }
@@ -156,11 +164,8 @@ fn exact_grid_matches_the_pointwise_drop() {
     let demo = swarf::mesh::sample::demo_part();
     let die = swarf::mesh::sample::fuel_tank_die(60, 45);
     let bumpy = swarf::mesh::sample::height_field_solid(DVec2::splat(-10.0), DVec2::splat(10.0), 17, 13, -5.0, |x, y| (x * 1.3).sin() * (y * 0.9).cos() * 2.0 + (x * y * 0.05).sin());
-    let cases: [(&Mesh, DVec2, DVec2, f64); 3] = [
-        (&demo, DVec2::new(-48.0, -33.0), DVec2::new(48.0, 33.0), 1.3),
-        (&die, DVec2::new(300.0, 200.0), DVec2::new(800.0, 600.0), 9.7),
-        (&bumpy, DVec2::splat(-12.0), DVec2::splat(12.0), 0.37),
-    ];
+    let cases: [(&Mesh, DVec2, DVec2, f64); 3] =
+        [(&demo, DVec2::new(-48.0, -33.0), DVec2::new(48.0, 33.0), 1.3), (&die, DVec2::new(300.0, 200.0), DVec2::new(800.0, 600.0), 9.7), (&bumpy, DVec2::splat(-12.0), DVec2::splat(12.0), 0.37)];
     for (part, min, max, spacing) in cases {
         for cutter in [Cutter::bull_nose(6.0, 1.0), Cutter::ball(5.0), Cutter::flat(3.0), Cutter::bull_nose(20.0, 4.0)] {
             let field = exact(part, &cutter, min, max, spacing);

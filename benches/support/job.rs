@@ -2,14 +2,14 @@
 //! seed 001's die (the foundation issue's benchmark part). Shared by `cargo bench --bench
 //! sim_program` and the wasm benchmark, so both time the same work.
 
-use swarf::sim::program::{simulate, ProgramMove};
-use swarf::sim::verify::{verify, VerifySettings};
-use swarf::sim::DexelStock;
 use swarf::cutter::Cutter;
 use swarf::geom::{Aabb, Tolerances};
 use swarf::job::{self, FinishRaster, Job, Operation, Simulation, Tool};
 use swarf::mesh::{sample, Mesh};
 use swarf::progress::Progress;
+use swarf::sim::program::{simulate, ProgramMove};
+use swarf::sim::verify::{verify, VerifySettings};
+use swarf::sim::DexelStock;
 
 /// A part with its finishing program, made once.
 pub struct ProgramCase {
@@ -175,12 +175,7 @@ pub fn two_rasters(tool: Tool, grid: f64, stepover: f64) -> Job {
 pub fn sample_two_tools(verify: bool) -> Job {
     let ball = |number: u32, d: f64| Tool { number, cutter: Cutter::ball(d), ..Tool::default() };
     let raster = |name: &str, tool: u32, stepover: f64, allowance: f64| Operation::FinishRaster(FinishRaster { name: name.into(), tool, stepover, allowance, ..FinishRaster::default() });
-    Job {
-        tools: vec![ball(1, 6.0), ball(2, 3.0)],
-        operations: vec![raster("coarse", 1, 1.5, 0.3), raster("fine", 2, 0.5, 0.0)],
-        simulation: Simulation { verify, cell: None },
-        ..Job::default()
-    }
+    Job { tools: vec![ball(1, 6.0), ball(2, 3.0)], operations: vec![raster("coarse", 1, 1.5, 0.3), raster("fine", 2, 0.5, 0.0)], simulation: Simulation { verify, cell: None }, ..Job::default() }
 }
 
 /// The sequence figures: the die with two rasters sharing a φ10 ball and a 0.8 mm grid, and
@@ -206,7 +201,12 @@ pub fn peer_rough_job() -> Job {
         stock: job::Stock { margin_xy: 0.0, margin_top: 0.0, margin_bottom: 0.0, ..Default::default() },
         post: swarf::post::PostSettings { rapid_rate: 5000.0, ..Default::default() },
         tools: vec![tool],
-        operations: vec![Operation::RoughZlevel(RoughZlevel { stepdown: 2.0, stepover_fraction: 0.4, roughing: swarf::machining::settings::Roughing { allowance: 0.0, leave_stock: 0.0, ..Default::default() }, ..RoughZlevel::default() })],
+        operations: vec![Operation::RoughZlevel(RoughZlevel {
+            stepdown: 2.0,
+            stepover_fraction: 0.4,
+            roughing: swarf::machining::settings::Roughing { allowance: 0.0, leave_stock: 0.0, ..Default::default() },
+            ..RoughZlevel::default()
+        })],
         simulation: Simulation { verify: false, cell: None },
         ..Job::default()
     }
@@ -235,7 +235,13 @@ pub fn rough_row(name: &str, stl: &[u8], platform: &str, clock: &dyn Fn() -> f64
 pub fn paper_zigzag_job(load: swarf::machining::settings::LoadControl) -> Job {
     use swarf::operations::RoughZigzag;
     let tool = Tool { cutter: Cutter::flat(10.0), feed_rate: 1000.0, plunge_rate: 250.0, ..Tool::default() };
-    let op = RoughZigzag { stepdown: 0.5, stepover_fraction: 0.3, roughing: swarf::machining::settings::Roughing { allowance: 0.0, leave_stock: 0.0, grid: 0.5, ..Default::default() }, load, ..RoughZigzag::default() };
+    let op = RoughZigzag {
+        stepdown: 0.5,
+        stepover_fraction: 0.3,
+        roughing: swarf::machining::settings::Roughing { allowance: 0.0, leave_stock: 0.0, grid: 0.5, ..Default::default() },
+        load,
+        ..RoughZigzag::default()
+    };
     Job { tools: vec![tool], operations: vec![Operation::RoughZigzag(op)], ..peer_rough_job() }
 }
 
@@ -289,7 +295,13 @@ pub fn program_load(part: Mesh, gcode: &str, diameter: f64, cell: f64, ds: f64) 
 /// part's box) with zigzag roughing on a 0.5 mm grid, the load held by `load`.
 pub fn peer_zigzag_job(load: swarf::machining::settings::LoadControl) -> Job {
     use swarf::operations::RoughZigzag;
-    let op = RoughZigzag { stepdown: 2.0, stepover_fraction: 0.4, roughing: swarf::machining::settings::Roughing { allowance: 0.0, leave_stock: 0.0, grid: 0.5, ..Default::default() }, load, ..RoughZigzag::default() };
+    let op = RoughZigzag {
+        stepdown: 2.0,
+        stepover_fraction: 0.4,
+        roughing: swarf::machining::settings::Roughing { allowance: 0.0, leave_stock: 0.0, grid: 0.5, ..Default::default() },
+        load,
+        ..RoughZigzag::default()
+    };
     Job { operations: vec![Operation::RoughZigzag(op)], ..peer_rough_job() }
 }
 
@@ -318,7 +330,16 @@ pub fn octree_jobs(delta: f64, stepover: f64, grid: f64, cell: f64) -> [(&'stati
     use swarf::operations::RoughZlevel;
     let flat = |number: u32, d: f64| Tool { number, cutter: Cutter { flute_length: 3.0 * d, ..Cutter::flat(d) }, feed_rate: 1000.0, plunge_rate: 250.0, ..Tool::default() };
     let tools = vec![flat(1, 20.0), flat(2, 12.0), flat(3, 6.0), flat(4, 3.0)];
-    let zlevel = |tool: u32, d: f64| Operation::RoughZlevel(RoughZlevel { name: format!("z-level φ{d}"), tool, stepdown: delta * d, stepover_fraction: stepover, roughing: swarf::machining::settings::Roughing { grid, ..Default::default() }, ..RoughZlevel::default() });
+    let zlevel = |tool: u32, d: f64| {
+        Operation::RoughZlevel(RoughZlevel {
+            name: format!("z-level φ{d}"),
+            tool,
+            stepdown: delta * d,
+            stepover_fraction: stepover,
+            roughing: swarf::machining::settings::Roughing { grid, ..Default::default() },
+            ..RoughZlevel::default()
+        })
+    };
     let base = Job {
         part: swarf::mesh::placement::PartSetup { placement: swarf::mesh::placement::Placement::Keep, ..Default::default() },
         stock: job::Stock { margin_xy: 0.0, margin_top: 1.0, margin_bottom: 0.0, ..Default::default() },
@@ -328,7 +349,18 @@ pub fn octree_jobs(delta: f64, stepover: f64, grid: f64, cell: f64) -> [(&'stati
         ..Job::default()
     };
     [
-        ("octree (φ20 φ12 φ6 φ3)", Job { operations: vec![Operation::RoughOctree(RoughOctree { delta, stepover_fraction: stepover, roughing: swarf::machining::settings::Roughing { grid, ..Default::default() }, ..RoughOctree::default() })], ..base.clone() }),
+        (
+            "octree (φ20 φ12 φ6 φ3)",
+            Job {
+                operations: vec![Operation::RoughOctree(RoughOctree {
+                    delta,
+                    stepover_fraction: stepover,
+                    roughing: swarf::machining::settings::Roughing { grid, ..Default::default() },
+                    ..RoughOctree::default()
+                })],
+                ..base.clone()
+            },
+        ),
         ("z-level φ3 alone", Job { operations: vec![zlevel(4, 3.0)], ..base.clone() }),
         ("z-level φ20, then φ3", Job { operations: vec![zlevel(1, 20.0), zlevel(4, 3.0)], ..base }),
     ]
@@ -426,7 +458,8 @@ pub fn cutter_shape_seconds(shape: usize, runs: usize, clock: &dyn Fn() -> f64) 
 pub fn cutter_shape_rows(platform: &str, seconds: &[f64; 3]) -> Vec<String> {
     let (ball, fastest) = (seconds[0], seconds.iter().copied().fold(f64::INFINITY, f64::min));
     let slowest = seconds.iter().copied().fold(0.0, f64::max);
-    let mut rows: Vec<String> = cutter_shapes().iter().zip(seconds).map(|((name, _), t)| format!("{platform:<16} {name:<16} {t:>7.2} s  {:>5.2} × ball  {:>5.2} × fastest", t / ball, t / fastest)).collect();
+    let mut rows: Vec<String> =
+        cutter_shapes().iter().zip(seconds).map(|((name, _), t)| format!("{platform:<16} {name:<16} {t:>7.2} s  {:>5.2} × ball  {:>5.2} × fastest", t / ball, t / fastest)).collect();
     rows.push(format!("{platform:<16} largest ratio between two shapes: {:.2}", slowest / fastest));
     rows
 }

@@ -36,12 +36,7 @@ pub fn die_case() -> DieCase {
 
 impl DieCase {
     pub fn describe(&self) -> String {
-        format!(
-            "die 1190 × 890 mm, {} triangles, grid 0.8 mm = {} × {} nodes",
-            self.mesh.faces.len(),
-            self.grid.nx,
-            self.grid.ny
-        )
+        format!("die 1190 × 890 mm, {} triangles, grid 0.8 mm = {} × {} nodes", self.mesh.faces.len(), self.grid.nx, self.grid.ny)
     }
 
     /// Times both builders for a 10 mm and a 20 mm ball with `clock` (seconds since an origin).

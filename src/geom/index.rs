@@ -36,10 +36,14 @@ impl RectIndex {
 
     /// Calls `visit` with the index of every rectangle that overlaps `query`.
     pub fn query(&self, query: &Rect, mut visit: impl FnMut(usize)) {
-        self.walk(0, |r| r.overlaps(query), |i| {
-            visit(i);
-            false
-        });
+        self.walk(
+            0,
+            |r| r.overlaps(query),
+            |i| {
+                visit(i);
+                false
+            },
+        );
     }
 
     /// Calls `visit` once with every pair of overlapping rectangles `(i, j)`, `i < j`. Each
@@ -47,10 +51,14 @@ impl RectIndex {
     /// skipped.
     pub fn pairs(&self, mut visit: impl FnMut(usize, usize)) {
         for (i, r) in self.levels[0].iter().enumerate() {
-            self.walk(i + 1, |node| node.overlaps(r), |j| {
-                visit(i, j);
-                false
-            });
+            self.walk(
+                i + 1,
+                |node| node.overlaps(r),
+                |j| {
+                    visit(i, j);
+                    false
+                },
+            );
         }
     }
 

@@ -215,7 +215,15 @@ impl Segment {
     pub fn sub(&self, t0: f64, t1: f64) -> Segment {
         match self.arc_geom() {
             Some(g) => {
-                let at = |t: f64| if t <= 0.0 { self.a } else if t >= 1.0 { self.b } else { g.center + DVec2::from_angle(g.sweep() * t).rotate(g.start) };
+                let at = |t: f64| {
+                    if t <= 0.0 {
+                        self.a
+                    } else if t >= 1.0 {
+                        self.b
+                    } else {
+                        g.center + DVec2::from_angle(g.sweep() * t).rotate(g.start)
+                    }
+                };
                 Segment { a: at(t0), b: at(t1), bulge: (g.sweep() * (t1 - t0) / 4.0).tan() }
             }
             None => Segment { a: self.point_at(t0), b: self.point_at(t1), bulge: 0.0 },
@@ -708,7 +716,6 @@ pub fn pieces(segs: &[Segment], s0: f64, s1: f64, cut: impl Iterator<Item = f64>
     }
     out
 }
-
 
 #[cfg(test)]
 mod tests {

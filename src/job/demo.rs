@@ -47,7 +47,10 @@ impl Job {
         use crate::operations::RoughZigzag;
         let mut job = Job::demo();
         job.name = "warm-up".into();
-        job.operations.insert(1, Operation::RoughZigzag(RoughZigzag { name: "zigzag".into(), tool: 1, roughing: Roughing { allowance: 0.0, leave_stock: 0.0, ..Roughing::default() }, ..RoughZigzag::default() }));
+        job.operations.insert(
+            1,
+            Operation::RoughZigzag(RoughZigzag { name: "zigzag".into(), tool: 1, roughing: Roughing { allowance: 0.0, leave_stock: 0.0, ..Roughing::default() }, ..RoughZigzag::default() }),
+        );
         // Coarse and small: what matters is that each strategy's code runs, not the finish.
         job.tools[0].cutter = Cutter { flute_length: 15.0, ..Cutter::flat(3.0) };
         job.tools[1].cutter = Cutter { flute_length: 15.0, ..Cutter::ball(3.0) };
@@ -62,5 +65,4 @@ impl Job {
         }
         job
     }
-
 }

@@ -5,9 +5,9 @@
 use super::schema::Job;
 use crate::error::{Error, Result};
 use crate::geom::{Aabb, DVec2};
+use crate::machining::report::{Groove, SheetCut};
 use crate::offset::offset;
 use crate::profile::Drawing;
-use crate::machining::report::{Groove, SheetCut};
 use crate::zmap::{Grid, HeightField};
 
 /// Scales and places `drawing` as the job says; returns the sheet's stock (its top at Z0) and

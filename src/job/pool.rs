@@ -12,17 +12,17 @@
 
 use std::ops::Range;
 
-use crate::operations::Operation;
 use super::run::{Prepared, Running};
 use crate::error::{Error, Result};
 use crate::geom::DVec3;
-use crate::profile::Shape;
-use crate::progress::Progress;
+use crate::machining::context::GivenRegion;
 use crate::machining::context::SurfaceRequest;
+use crate::machining::levels::{unpack, RegionWork};
 use crate::machining::raster::{PassLayout, RasterPasses};
 use crate::operations::FinishRaster;
-use crate::machining::context::GivenRegion;
-use crate::machining::levels::{unpack, RegionWork};
+use crate::operations::Operation;
+use crate::profile::Shape;
+use crate::progress::Progress;
 use crate::zmap::contour::LevelMap;
 use crate::zmap::region::Region;
 use crate::zmap::ClBuilder;

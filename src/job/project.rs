@@ -78,8 +78,8 @@ impl Project {
             Error::Input(m) => bad(format!("job.{m}")),
             other => other,
         })?;
-        let workpiece: ProjectFile = serde_path_to_error::deserialize(object.get("workpiece").ok_or_else(|| bad("workpiece is missing".into()))?)
-            .map_err(|e| bad(format!("workpiece.{}: {}", e.path(), e.inner())))?;
+        let workpiece: ProjectFile =
+            serde_path_to_error::deserialize(object.get("workpiece").ok_or_else(|| bad("workpiece is missing".into()))?).map_err(|e| bad(format!("workpiece.{}: {}", e.path(), e.inner())))?;
         if workpiece.name.trim().is_empty() {
             return Err(bad("workpiece.name must name the part's or drawing's file".into()));
         }
@@ -89,9 +89,7 @@ impl Project {
     /// The part's or drawing's bytes: embedded, else read by `read_beside` (given the name).
     pub fn workpiece_bytes(&self, read_beside: impl FnOnce(&str) -> std::io::Result<Vec<u8>>) -> Result<Vec<u8>> {
         match &self.workpiece.data {
-            Some(data) => base64::engine::general_purpose::STANDARD
-                .decode(data.trim())
-                .map_err(|e| Error::Project(format!("workpiece.data is not base64: {e}"))),
+            Some(data) => base64::engine::general_purpose::STANDARD.decode(data.trim()).map_err(|e| Error::Project(format!("workpiece.data is not base64: {e}"))),
             None => read_beside(&self.workpiece.name).map_err(|e| Error::Project(format!("its part {} (named, not embedded) could not be read: {e}", self.workpiece.name))),
         }
     }
@@ -121,7 +119,8 @@ mod tests {
         assert!(edit(&|v| v["format"] = "x".into()).contains("format must be"));
         assert!(edit(&|v| v["job"]["operations"][0]["stepOver"] = 1.into()).contains("job.unknown field: operations[0].stepOver"));
         assert!(edit(&|v| v["workpiece"]["size"] = 3.into()).contains("workpiece."));
-        let e = Project::from_json(&Project { workpiece: ProjectFile { name: "x.stl".into(), data: Some("***".into()) }, ..p.clone() }.to_json()).unwrap().workpiece_bytes(|_| unreachable!()).unwrap_err();
+        let e =
+            Project::from_json(&Project { workpiece: ProjectFile { name: "x.stl".into(), data: Some("***".into()) }, ..p.clone() }.to_json()).unwrap().workpiece_bytes(|_| unreachable!()).unwrap_err();
         assert!(e.to_string().contains("not base64"), "{e}");
     }
 }

@@ -92,7 +92,6 @@ fn tabs_from_the_bottom(value: &mut serde_json::Value) {
     }
 }
 
-
 /// The fields of `input` that reading it did not use: those absent from the job it made,
 /// written back (`canonical`), with a known field of the same object that differs only in case
 /// or by underscores, as a hint.

@@ -5,9 +5,9 @@
 use serde::Serialize;
 
 use super::schema::Job;
+use crate::machining::report::{LoadReport, StageReport};
 use crate::sim::program::ProgramMove;
 use crate::sim::verify::Verification;
-use crate::machining::report::{LoadReport, StageReport};
 use crate::zmap::HeightField;
 
 /// One operation's figures.

@@ -8,7 +8,7 @@ use super::report::{self, OperationReport};
 use super::schema::{Job, Retracts, Workpiece};
 use crate::error::{Error, Result, Warning};
 use crate::geom::Aabb;
-use crate::machining::context::{Caches, CacheCounts, Context, SafeHeights, Sheet};
+use crate::machining::context::{CacheCounts, Caches, Context, SafeHeights, Sheet};
 use crate::machining::report::{Groove, LoadReport, Planned, SheetCut, StageOctants, StageReport};
 use crate::machining::Works;
 use crate::mesh::Mesh;
@@ -425,7 +425,26 @@ impl Running {
         progress.stage("done", 1.0, 0.0);
         let drawing = sheet.map(|s| s.drawing);
         let (clearance_z, cache) = (heights.clearance, caches.counts);
-        Ok(JobOutput { part, drawing, stock, clearance_z, paths, path_operations, gcode, move_lines, cycle, time, stats, moves: all_moves, operations, verification, warnings, problem, cache, octants })
+        Ok(JobOutput {
+            part,
+            drawing,
+            stock,
+            clearance_z,
+            paths,
+            path_operations,
+            gcode,
+            move_lines,
+            cycle,
+            time,
+            stats,
+            moves: all_moves,
+            operations,
+            verification,
+            warnings,
+            problem,
+            cache,
+            octants,
+        })
     }
 }
 

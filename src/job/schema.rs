@@ -12,7 +12,6 @@ use crate::profile::Drawing;
 use crate::sim::verify::VerifySettings;
 use crate::tool::Tool;
 
-
 /// Which height of the setup is Z0 in the program.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
@@ -377,14 +376,16 @@ impl Job {
             if let Some(number) = missing {
                 let have: Vec<String> = self.tools.iter().map(|t| t.number.to_string()).collect();
                 let field = if o.tools().len() == 1 && o.tools()[0] == o.tool() { "tool" } else { "tools" };
-                say(format!("operations[{i}].{field}"), format!("operations[{i}].{field}: no tool number {number} in the tool library (it has {})", if have.is_empty() { "none".into() } else { have.join(", ") }));
+                say(
+                    format!("operations[{i}].{field}"),
+                    format!("operations[{i}].{field}: no tool number {number} in the tool library (it has {})", if have.is_empty() { "none".into() } else { have.join(", ") }),
+                );
             } else if let Err(e) = o.validate() {
                 say(format!("operations[{i}].{}", e.field), format!("operations[{i}].{} {} ('{}')", e.field, e.message, o.name()));
             }
         }
         out
     }
-
 }
 
 /// The units a drawing's numbers are in.

@@ -20,8 +20,8 @@ use crate::toolpath::Toolpath;
 use crate::zmap::bounds::NodeBounds;
 use crate::zmap::cc::cc_zmap;
 use crate::zmap::cl_exact::ExactBuilder;
-use crate::zmap::contour::LevelMap;
 use crate::zmap::cl_inverse::cl_inverse_offset;
+use crate::zmap::contour::LevelMap;
 use crate::zmap::drop::PointDrop;
 use crate::zmap::surface::ClSurface;
 use crate::zmap::{ClBuilder, Grid, HeightField};
@@ -172,7 +172,17 @@ impl Context {
     /// stock taken no higher than `ceiling` (what the operation itself has cut down to before
     /// these runs).
     #[allow(clippy::too_many_arguments)]
-    pub fn link_fed(&mut self, op: &str, tool: &Tool, runs: &[Vec<DVec3>], known: (Option<&[Vec<f64>]>, Option<&[bool]>), ceiling: f64, keep: &dyn Keepout, entry: Entry, stay_down_max: f64) -> Toolpath {
+    pub fn link_fed(
+        &mut self,
+        op: &str,
+        tool: &Tool,
+        runs: &[Vec<DVec3>],
+        known: (Option<&[Vec<f64>]>, Option<&[bool]>),
+        ceiling: f64,
+        keep: &dyn Keepout,
+        entry: Entry,
+        stay_down_max: f64,
+    ) -> Toolpath {
         let profile = tool.cutter.profile();
         let stock = self.sim.stock();
         let material = |p: DVec2| stock.touch(p, &profile, true).min(ceiling);

@@ -28,19 +28,19 @@ use super::context::SurfaceRequest;
 use super::rings::{clear_rings, rings, Clearing, Inside, RingSetup};
 use super::settings::{Direction, EntryKind, LoadControl, Order, PocketPattern, Roughing};
 use super::{sheet, Context};
-use crate::toolpath::entry::Keepout;
 use crate::cutter::Profile;
 use crate::error::{Error, Result};
 use crate::geom::segment::Rect;
 use crate::geom::DVec2;
+use crate::profile::Shape;
 use crate::progress::Progress;
 use crate::sim::DexelStock;
+use crate::tool::Tool;
+use crate::toolpath::entry::Keepout;
 use crate::toolpath::Toolpath;
 use crate::zmap::region::Region;
 use crate::zmap::surface::ClSurface;
 use crate::zmap::{ClBuilder, Grid, HeightField};
-use crate::profile::Shape;
-use crate::tool::Tool;
 use std::sync::Arc;
 
 /// Nodes of equal height covering at least this many times the cutter's area make a flat (a level): more than the plateau a flat end leaves over a peak (its own disk).
@@ -648,7 +648,6 @@ pub struct RegionWork {
     pub levels: Vec<(f64, Vec<u8>)>,
 }
 
-
 /// Booleans packed eight to a byte, the first in the lowest bit.
 pub fn pack(bits: &[bool]) -> Vec<u8> {
     bits.chunks(8).map(|c| c.iter().enumerate().fold(0u8, |b, (k, &v)| b | ((v as u8) << k))).collect()
@@ -683,7 +682,6 @@ pub fn material_near<const N: usize>(stock: &DexelStock, grid: Grid, z: f64, rea
     })
 }
 
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -698,11 +696,13 @@ mod tests {
         // Level 0: a region on the left and one on the right, 20 mm apart. Level −1: a region
         // under the left one that reaches to within 1 mm of the right one (a tool of radius 3
         // there would work beside the material the right one has still to take down).
-        let levels = |gap: f64| vec![
-            Level { z: 0.0, z_prev: 1.0, region: Shape::new(rect(0.0, 0.0, 10.0, 10.0).loops.into_iter().chain(rect(30.0, 0.0, 40.0, 10.0).loops).collect()) },
-            // Counter-clockwise from the left side's foot: its first side (its probe) lies under the left region.
-            Level { z: -1.0, z_prev: 0.0, region: Shape::new(vec![Loop::polygon(&[DVec2::new(1.0, 9.0), DVec2::new(1.0, 1.0), DVec2::new(29.0 - gap, 1.0), DVec2::new(29.0 - gap, 9.0)])]) },
-        ];
+        let levels = |gap: f64| {
+            vec![
+                Level { z: 0.0, z_prev: 1.0, region: Shape::new(rect(0.0, 0.0, 10.0, 10.0).loops.into_iter().chain(rect(30.0, 0.0, 40.0, 10.0).loops).collect()) },
+                // Counter-clockwise from the left side's foot: its first side (its probe) lies under the left region.
+                Level { z: -1.0, z_prev: 0.0, region: Shape::new(vec![Loop::polygon(&[DVec2::new(1.0, 9.0), DVec2::new(1.0, 1.0), DVec2::new(29.0 - gap, 1.0), DVec2::new(29.0 - gap, 9.0)])]) },
+            ]
+        };
         let order = |gap: f64, reach: f64| {
             let mut pieces = Pieces::new(levels(gap), Order::Regions, 1e-6, reach);
             let mut at = DVec2::ZERO;

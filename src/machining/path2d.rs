@@ -122,15 +122,7 @@ pub fn start_nearest(l: &Loop, q: DVec2) -> Vec<Segment> {
 
 /// "the φD tool (plus L leave-stock) does not fit in <what> at (x, y)–(x, y)".
 pub fn does_not_fit(tool_radius: f64, leave_stock: f64, what: &str, b: &crate::geom::segment::Rect) -> String {
-    format!(
-        "the φ{:.3} tool (plus {:.3} leave-stock) does not fit in {what} at ({:.3}, {:.3})–({:.3}, {:.3})",
-        2.0 * tool_radius,
-        leave_stock,
-        b.min.x,
-        b.min.y,
-        b.max.x,
-        b.max.y
-    )
+    format!("the φ{:.3} tool (plus {:.3} leave-stock) does not fit in {what} at ({:.3}, {:.3})–({:.3}, {:.3})", 2.0 * tool_radius, leave_stock, b.min.x, b.min.y, b.max.x, b.max.y)
 }
 
 /// A height at which the straight traverse from one point to another is safe, if there is one
@@ -249,11 +241,7 @@ impl Cursor<'_> {
         let low = self.traverse.as_ref().and_then(|f| f(self.at.truncate(), to.truncate()));
         let travel = low.map_or(self.clearance, |h| h.max(self.safe.min(self.clearance)).min(self.clearance));
         let travel = if self.full_retract { travel } else { travel.min((self.stock.along(self.at.truncate(), to.truncate()) + self.gap).max(to.z)) };
-        let safe = if self.safe_at.as_ref().is_none_or(|f| f(to.truncate())) {
-            self.safe
-        } else {
-            self.cleared(to.truncate()).map_or(self.clearance, |h| (h + self.gap).min(self.clearance))
-        };
+        let safe = if self.safe_at.as_ref().is_none_or(|f| f(to.truncate())) { self.safe } else { self.cleared(to.truncate()).map_or(self.clearance, |h| (h + self.gap).min(self.clearance)) };
         let stop = safe.min(travel).min(self.stock.reach(to.truncate()).max(to.z) + self.gap);
         retract(self.at, to.truncate(), travel, stop.max(to.z), out);
         if stop > to.z {
@@ -311,7 +299,14 @@ mod tests {
         assert_eq!(out.len(), 2);
         assert!(matches!(out[0], Move::Arc { .. }) && matches!(out[1], Move::Line { .. }), "{out:?}");
         let mut at = segs[0].a.extend(0.0);
-        let length: f64 = out.iter().map(|m| { let l = m.length(at); at = m.to(); l }).sum();
+        let length: f64 = out
+            .iter()
+            .map(|m| {
+                let l = m.length(at);
+                at = m.to();
+                l
+            })
+            .sum();
         assert!((length - total).abs() < 1e-9, "{length} against {total}");
     }
 

@@ -153,7 +153,13 @@ pub fn rest_only(runs: Vec<Vec<DVec3>>, material: &dyn Fn(DVec2) -> f64, spacing
 pub fn shallow_only(runs: Vec<Vec<DVec3>>, field: &HeightField, steep: f64) -> Vec<Vec<DVec3>> {
     keep_segments(runs, |a, b| {
         let flat = a.truncate().distance(b.truncate());
-        let own = if flat > 0.0 { (b.z - a.z).abs() / flat } else if (b.z - a.z).abs() > 0.0 { f64::INFINITY } else { 0.0 };
+        let own = if flat > 0.0 {
+            (b.z - a.z).abs() / flat
+        } else if (b.z - a.z).abs() > 0.0 {
+            f64::INFINITY
+        } else {
+            0.0
+        };
         own <= steep && gradient(field, (a.truncate() + b.truncate()) * 0.5) <= steep
     })
 }
@@ -179,7 +185,6 @@ fn keep_segments(runs: Vec<Vec<DVec3>>, keep: impl Fn(DVec3, DVec3) -> bool) -> 
     }
     out
 }
-
 
 /// The slope of the CL surface at `p` (rise over run), from the nodes around it.
 pub fn gradient(f: &HeightField, p: DVec2) -> f64 {

@@ -8,17 +8,17 @@
 //! Material is entered by a helix where one fits, else by ramping along the path, never by a
 //! straight plunge.
 
+use super::air::AirCuts;
 use super::path2d::{arc_lengths, follow, start_nearest, Cursor, Heights};
 use super::settings::{EntryKind, LoadControl, PocketPattern};
-use crate::toolpath::entry::helix;
 use crate::geom::segment::Segment;
 use crate::geom::{DVec2, DVec3, Tolerances};
-use crate::toolpath::entry::Keepout;
 use crate::offset::offset;
 use crate::profile::{Loop, Shape};
-use crate::toolpath::Move;
 use crate::toolpath::arcfit;
-use super::air::AirCuts;
+use crate::toolpath::entry::helix;
+use crate::toolpath::entry::Keepout;
+use crate::toolpath::Move;
 use crate::zigzag::graph::{Graph, Pattern};
 use crate::zigzag::load::{self, Load, LoadProfile, PixelMap};
 
@@ -413,11 +413,8 @@ impl Clearer<'_, '_, '_> {
                         LoadControl::Path => load::corrected(map, &run, &load, &mut steps),
                         _ => load::plain(map, &run, &load, &mut steps),
                     };
-                    let moves: Vec<Move> = pts[1..]
-                        .iter()
-                        .zip(&steps.counts)
-                        .map(|(p, &(n, len))| Move::Line { to: p.extend(z), feed: self.s.feed * load::feed_share(n, len, limit, load.ds).unwrap_or(1.0) })
-                        .collect();
+                    let moves: Vec<Move> =
+                        pts[1..].iter().zip(&steps.counts).map(|(p, &(n, len))| Move::Line { to: p.extend(z), feed: self.s.feed * load::feed_share(n, len, limit, load.ds).unwrap_or(1.0) }).collect();
                     self.out.extend(arcfit::fit(&moves, pa.extend(z), self.s.tol.chordal, &|p| region.contains(p)));
                 }
             }
@@ -503,4 +500,3 @@ impl Clearer<'_, '_, '_> {
         }
     }
 }
-

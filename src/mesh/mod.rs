@@ -140,7 +140,14 @@ impl Mesh {
         let eps = 1e-6 * size;
         let key = |v: DVec3| [(v.x / eps).round() as i64, (v.y / eps).round() as i64, (v.z / eps).round() as i64];
         let mut ids: HashMap<[i64; 3], u32> = HashMap::new();
-        let welded: Vec<u32> = self.vertices.iter().map(|&v| { let n = ids.len() as u32; *ids.entry(key(v)).or_insert(n) }).collect();
+        let welded: Vec<u32> = self
+            .vertices
+            .iter()
+            .map(|&v| {
+                let n = ids.len() as u32;
+                *ids.entry(key(v)).or_insert(n)
+            })
+            .collect();
         let mut position = vec![DVec3::ZERO; ids.len()];
         for (v, &w) in self.vertices.iter().zip(&welded) {
             position[w as usize] = *v;

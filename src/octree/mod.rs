@@ -320,7 +320,15 @@ impl Octree {
         let mut full = Vec::new();
         let mut partial = Vec::new();
         for layer in &self.layers {
-            let class = |s: usize| if layer.cut[s] { 1u8 } else if layer.state[s] == State::Partial { 2 } else { 0 };
+            let class = |s: usize| {
+                if layer.cut[s] {
+                    1u8
+                } else if layer.state[s] == State::Partial {
+                    2
+                } else {
+                    0
+                }
+            };
             let mut emit = |lo: DVec2, hi: DVec2, c: u8| {
                 let b = OctantBox { min: [lo.x, lo.y, layer.z], max: [hi.x, hi.y, layer.top], full: c == 1 };
                 if c == 1 {

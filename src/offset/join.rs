@@ -61,11 +61,7 @@ pub fn join_neighbours(l: &Loop, raw: &[RawEntity], distance: f64, eps: f64) -> 
         let (_, _, p0, p1) = range(&joins, i);
         if !raw[i].collapsed {
             let seg = raw[i].seg;
-            let s = if p0.is_some() || p1.is_some() {
-                seg.between(seg.arc_geom().as_ref(), p0.unwrap_or(seg.a), p1.unwrap_or(seg.b))
-            } else {
-                seg
-            };
+            let s = if p0.is_some() || p1.is_some() { seg.between(seg.arc_geom().as_ref(), p0.unwrap_or(seg.a), p1.unwrap_or(seg.b)) } else { seg };
             if s.a != s.b {
                 out.push(s);
             }

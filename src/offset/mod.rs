@@ -34,18 +34,12 @@ use crate::profile::{Loop, Shape, Vertex};
 /// The shape grown by `distance` (positive) or shrunk (negative), as loops of lines and arcs:
 /// outer loops counter-clockwise, holes clockwise. Empty when the shape vanishes.
 pub fn offset(shape: &Shape, distance: f64, tol: &Tolerances) -> Shape {
-    let input: Vec<Loop> =
-        shape.loops.iter().map(|l| merge_micro_entities(l, tol.micro_entity)).filter(|l| l.len() >= 2).collect();
+    let input: Vec<Loop> = shape.loops.iter().map(|l| merge_micro_entities(l, tol.micro_entity)).filter(|l| l.len() >= 2).collect();
     if distance == 0.0 || !distance.is_finite() {
         return Shape::from_oriented(input);
     }
     let input = Shape::from_oriented(input);
-    let joined: Vec<Vec<Segment>> = input
-        .loops
-        .iter()
-        .map(|l| join::join_neighbours(l, &raw::raw_offset(l, distance), distance, tol.offset))
-        .filter(|l| !l.is_empty())
-        .collect();
+    let joined: Vec<Vec<Segment>> = input.loops.iter().map(|l| join::join_neighbours(l, &raw::raw_offset(l, distance), distance, tol.offset)).filter(|l| !l.is_empty()).collect();
     let cut = trim::split_at_crossings(&joined, tol.offset);
     let original = trim::Original::new(&input);
     let kept = trim::discard_close(&cut, &original, distance, tol.offset);

@@ -83,8 +83,7 @@ pub fn split_at_crossings(loops: &[Vec<Segment>], eps: f64) -> CutLoops {
         // In a loop of three or more, neighbours meet once at their vertex (which is no cut).
         let loop_of_three = first[owner[g] as usize + 1] - first[owner[g] as usize] > 2;
         if loop_of_three
-            && (h == next(g) && meet_only_at_vertex(sg, geoms[g].as_ref(), sh, geoms[h].as_ref(), eps)
-                || g == next(h) && meet_only_at_vertex(sh, geoms[h].as_ref(), sg, geoms[g].as_ref(), eps))
+            && (h == next(g) && meet_only_at_vertex(sg, geoms[g].as_ref(), sh, geoms[h].as_ref(), eps) || g == next(h) && meet_only_at_vertex(sh, geoms[h].as_ref(), sg, geoms[g].as_ref(), eps))
         {
             return;
         }
@@ -128,13 +127,7 @@ fn meet_only_at_vertex(s1: &Segment, g1: Option<&ArcGeom>, s2: &Segment, g2: Opt
     match (g1, g2) {
         (None, None) => t1.dot(t2) > 0.0,
         (Some(_), None) | (None, Some(_)) => t1.dot(t2) > 0.0 && t1.perp_dot(t2).abs() < TANGENT,
-        (Some(a), Some(b)) => {
-            a.bulge.signum() == b.bulge.signum()
-                && a.bulge.abs() < 1.0
-                && b.bulge.abs() < 1.0
-                && a.center.distance(b.center) <= eps
-                && (a.radius - b.radius).abs() <= eps
-        }
+        (Some(a), Some(b)) => a.bulge.signum() == b.bulge.signum() && a.bulge.abs() < 1.0 && b.bulge.abs() < 1.0 && a.center.distance(b.center) <= eps && (a.radius - b.radius).abs() <= eps,
     }
 }
 

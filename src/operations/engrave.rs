@@ -7,11 +7,11 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::error::{Error, Result};
+use crate::geom::segment::Segment;
 use crate::machining::path2d::{arc_lengths, follow, Heights};
 use crate::machining::report::Groove;
 use crate::machining::{named_operation, positive, sheet, Context, FieldError, Operate, Planned};
-use crate::error::{Error, Result};
-use crate::geom::segment::Segment;
 use crate::toolpath::Move;
 
 /// Engraving on a drawing.

@@ -12,11 +12,11 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::error::{Error, Result};
+use crate::geom::DVec2;
 use crate::machining::context::SurfaceRequest;
 use crate::machining::raster::{join_passes, raster_runs, rest_only, shallow_only, Pattern, RasterPasses};
 use crate::machining::{finite, named_operation, not_negative, positive, Context, FieldError, Operate, Planned};
-use crate::error::{Error, Result};
-use crate::geom::DVec2;
 use crate::progress::Progress;
 use crate::toolpath::entry::Entry;
 use crate::toolpath::link::Floor;
@@ -188,4 +188,3 @@ impl FinishRaster {
         Ok((region, passes))
     }
 }
-

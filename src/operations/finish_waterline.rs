@@ -12,13 +12,13 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::error::{Error, Result};
+use crate::geom::{DVec2, DVec3};
 use crate::machining::context::SurfaceRequest;
 use crate::machining::levels::{pack, RegionWork};
 use crate::machining::raster::gradient;
 use crate::machining::settings::Direction;
 use crate::machining::{finite, named_operation, not_negative, positive, Context, FieldError, Operate, Planned};
-use crate::error::{Error, Result};
-use crate::geom::{DVec2, DVec3};
 use crate::progress::Progress;
 use crate::toolpath::entry::Entry;
 use crate::toolpath::link::Floor;

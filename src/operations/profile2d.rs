@@ -7,13 +7,13 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::geom::segment::Segment;
+use crate::geom::{DVec2, Tolerances};
 use crate::machining::path2d::{arc_lengths, does_not_fit, follow, point_at, start_nearest, Cursor, Heights};
 use crate::machining::report::SheetCut;
 use crate::machining::settings::Direction;
 use crate::machining::walls::Walls;
 use crate::machining::{named_operation, not_negative, positive, sheet, Context, FieldError, Operate, Planned};
-use crate::geom::segment::Segment;
-use crate::geom::{DVec2, Tolerances};
 use crate::offset::offset;
 use crate::offset::trim::Original;
 use crate::profile::{Loop, Shape};
@@ -277,18 +277,7 @@ pub fn profile_moves(walls: &Walls, picked: &[usize], op: &Profile2d, mut s: Set
 }
 
 #[allow(clippy::too_many_arguments)]
-fn cut_loop(
-    segs: &[Segment],
-    clear: &Clear,
-    waste_left: bool,
-    lead: f64,
-    tabs: Option<&Tabs>,
-    stepdown: f64,
-    angle: f64,
-    z_final: f64,
-    s: &mut Setup,
-    out: &mut Vec<Move>,
-) -> bool {
+fn cut_loop(segs: &[Segment], clear: &Clear, waste_left: bool, lead: f64, tabs: Option<&Tabs>, stepdown: f64, angle: f64, z_final: f64, s: &mut Setup, out: &mut Vec<Move>) -> bool {
     let (starts, total) = arc_lengths(segs);
     let start = segs[0].a;
     let t_in = segs[0].tangent_at(0.0);

@@ -73,14 +73,7 @@ pub struct RoughOctree {
 
 impl Default for RoughOctree {
     fn default() -> Self {
-        RoughOctree {
-            name: "octree rough".into(),
-            enabled: true,
-            tools: Vec::new(),
-            delta: 0.25,
-            stepover_fraction: 0.5,
-            roughing: Roughing::default(),
-        }
+        RoughOctree { name: "octree rough".into(), enabled: true, tools: Vec::new(), delta: 0.25, stepover_fraction: 0.5, roughing: Roughing::default() }
     }
 }
 
@@ -264,7 +257,13 @@ impl RoughOctree {
                     k += 1;
                 }
                 let k = k.min(candidates.len() - 1);
-                profiler = Some((k, format!("no smaller tool fits the blocks left; it reaches all the material the smallest would, and takes what is left around the part in {:.2} mm levels", self.depth(&candidates[k]))));
+                profiler = Some((
+                    k,
+                    format!(
+                        "no smaller tool fits the blocks left; it reaches all the material the smallest would, and takes what is left around the part in {:.2} mm levels",
+                        self.depth(&candidates[k])
+                    ),
+                ));
                 break;
             }
             for k in current + 1..candidates.len() {
@@ -276,7 +275,15 @@ impl RoughOctree {
                 if k + 1 == candidates.len() {
                     // The smallest tool passes the stop test by itself: it profiles at once
                     // (its octants would be cut again by the profiling).
-                    profiler = Some((k, format!("the smallest tool, sized for the {:.2} mm blocks the larger tools left ({:.0} % of its diameter): it takes everything left around the part in {:.2} mm levels", squares.side, gamma * 100.0, self.depth(t))));
+                    profiler = Some((
+                        k,
+                        format!(
+                            "the smallest tool, sized for the {:.2} mm blocks the larger tools left ({:.0} % of its diameter): it takes everything left around the part in {:.2} mm levels",
+                            squares.side,
+                            gamma * 100.0,
+                            self.depth(t)
+                        ),
+                    ));
                     break;
                 }
                 if !stage_progress(progress, k as f64, &format!("octree φ{}", t.cutter.diameter)) {
@@ -408,7 +415,11 @@ impl RoughOctree {
             d /= 2.0;
         }
         let why = match would {
-            Some(d) => format!("no tool of the library can enter the volume to remove anywhere (the smallest, φ{}, finds no octants of {:.2} mm it can clear and reach); a φ{d} flat end would", smallest.cutter.diameter, GAMMA_FIRST * smallest.cutter.diameter),
+            Some(d) => format!(
+                "no tool of the library can enter the volume to remove anywhere (the smallest, φ{}, finds no octants of {:.2} mm it can clear and reach); a φ{d} flat end would",
+                smallest.cutter.diameter,
+                GAMMA_FIRST * smallest.cutter.diameter
+            ),
             None => format!("no tool of the library can enter the volume to remove anywhere (the smallest is φ{}); not even a φ0.5 flat end would", smallest.cutter.diameter),
         };
         Error::operation(&self.name, why)

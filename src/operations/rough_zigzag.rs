@@ -18,6 +18,8 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::error::{Error, Result};
+use crate::geom::{DVec2, DVec3};
 use crate::machining::air::AirCuts;
 use crate::machining::context::SurfaceRequest;
 use crate::machining::levels::{Level, LevelRoughing, Levels, RegionWork};
@@ -26,8 +28,6 @@ use crate::machining::report::LoadReport;
 use crate::machining::rings::Inside;
 use crate::machining::settings::{Direction, LoadControl, Roughing};
 use crate::machining::{finite, named_operation, not_negative, positive, Context, FieldError, Operate, Planned};
-use crate::error::{Error, Result};
-use crate::geom::{DVec2, DVec3};
 use crate::profile::Shape;
 use crate::progress::Progress;
 use crate::toolpath::entry::Entry;

@@ -171,7 +171,11 @@ impl Post {
         let de = &mut serde_json::Deserializer::from_str(text);
         let post: Post = serde_path_to_error::deserialize(de).map_err(|e| {
             let path = e.path().to_string();
-            if path == "." { e.inner().to_string() } else { format!("{path}: {}", e.inner()) }
+            if path == "." {
+                e.inner().to_string()
+            } else {
+                format!("{path}: {}", e.inner())
+            }
         })?;
         post.validate()?;
         Ok(post)

@@ -612,10 +612,8 @@ impl<'a> Writer<'a> {
         };
         // An arc whose ends round to one point would read as a full circle: write it as a line.
         let rounds_shut = |p: Option<f64>, q: f64| p.is_some_and(|p| self.length(p) == self.length(q));
-        let short_arc = matches!(m, Move::Arc { .. })
-            && rounds_shut(self.position[0], to.x)
-            && rounds_shut(self.position[1], to.y)
-            && !(self.position[0] == Some(to.x) && self.position[1] == Some(to.y));
+        let short_arc =
+            matches!(m, Move::Arc { .. }) && rounds_shut(self.position[0], to.x) && rounds_shut(self.position[1], to.y) && !(self.position[0] == Some(to.x) && self.position[1] == Some(to.y));
         let code = if short_arc { "G1" } else { code };
         let is_arc = matches!(m, Move::Arc { .. }) && !short_arc;
         let modal = self.post.modal;

@@ -197,16 +197,10 @@ impl Shape {
         let depth: Vec<usize> = (0..loops.len())
             .map(|i| {
                 let p = loops[i].probe_point();
-                (0..loops.len())
-                    .filter(|&j| j != i && bounds[j].overlaps(&bounds[i]) && encloses(&loops[j], &loops[i], p))
-                    .count()
+                (0..loops.len()).filter(|&j| j != i && bounds[j].overlaps(&bounds[i]) && encloses(&loops[j], &loops[i], p)).count()
             })
             .collect();
-        let loops = loops
-            .into_iter()
-            .zip(depth)
-            .map(|(l, d)| if l.is_ccw() == (d % 2 == 0) { l } else { l.reversed() })
-            .collect();
+        let loops = loops.into_iter().zip(depth).map(|(l, d)| if l.is_ccw() == (d % 2 == 0) { l } else { l.reversed() }).collect();
         Shape { loops }
     }
 
@@ -258,11 +252,7 @@ impl Shape {
         for hole in self.loops.iter().filter(|l| !l.is_ccw()) {
             // The smallest outer loop around the hole.
             let p = hole.probe_point();
-            let owner = outers
-                .iter()
-                .enumerate()
-                .filter(|(_, &i)| encloses(&self.loops[i], hole, p))
-                .min_by(|a, b| self.loops[*a.1].area().total_cmp(&self.loops[*b.1].area()));
+            let owner = outers.iter().enumerate().filter(|(_, &i)| encloses(&self.loops[i], hole, p)).min_by(|a, b| self.loops[*a.1].area().total_cmp(&self.loops[*b.1].area()));
             if let Some((k, _)) = owner {
                 regions[k].push(hole.clone());
             }
@@ -330,13 +320,7 @@ pub enum ProfileError {
 }
 
 fn describe_open(open: &[OpenChain]) -> String {
-    let mut parts: Vec<String> = open
-        .iter()
-        .take(5)
-        .map(|o| {
-            format!("layer {} from ({:.3}, {:.3}) to ({:.3}, {:.3})", o.layer, o.start.x, o.start.y, o.end.x, o.end.y)
-        })
-        .collect();
+    let mut parts: Vec<String> = open.iter().take(5).map(|o| format!("layer {} from ({:.3}, {:.3}) to ({:.3}, {:.3})", o.layer, o.start.x, o.start.y, o.end.x, o.end.y)).collect();
     if open.len() > 5 {
         parts.push(format!("and {} more", open.len() - 5));
     }

@@ -10,16 +10,7 @@ pub fn plate_dxf() -> String {
     let k = (std::f64::consts::PI / 8.0).tan(); // bulge of a quarter circle
     let r = 6.0;
     // Outline: rounded rectangle 0..120 × 0..80, counter-clockwise.
-    let outline = [
-        (r, 0.0, 0.0),
-        (120.0 - r, 0.0, k),
-        (120.0, r, 0.0),
-        (120.0, 80.0 - r, k),
-        (120.0 - r, 80.0, 0.0),
-        (r, 80.0, k),
-        (0.0, 80.0 - r, 0.0),
-        (0.0, r, k),
-    ];
+    let outline = [(r, 0.0, 0.0), (120.0 - r, 0.0, k), (120.0, r, 0.0), (120.0, 80.0 - r, k), (120.0 - r, 80.0, 0.0), (r, 80.0, k), (0.0, 80.0 - r, 0.0), (0.0, r, k)];
     add(lwpolyline("CUT", &outline, true));
     add(format!("0\nCIRCLE\n8\nCUT\n10\n20.0\n20\n20.0\n30\n0.0\n40\n8.0\n"));
     for (a, b) in [((92.0, 12.0), (108.0, 12.0)), ((108.0, 12.0), (108.0, 28.0)), ((108.0, 28.0), (92.0, 28.0)), ((92.0, 28.0), (92.0, 12.0))] {

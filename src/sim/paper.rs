@@ -41,12 +41,7 @@ pub struct Case {
 }
 
 impl Case {
-    pub const ALL: [Case; 4] = [
-        Case { ball: false, cut: Cut::Groove },
-        Case { ball: false, cut: Cut::Side },
-        Case { ball: true, cut: Cut::Groove },
-        Case { ball: true, cut: Cut::Side },
-    ];
+    pub const ALL: [Case; 4] = [Case { ball: false, cut: Cut::Groove }, Case { ball: false, cut: Cut::Side }, Case { ball: true, cut: Cut::Groove }, Case { ball: true, cut: Cut::Side }];
 
     pub fn label(&self) -> String {
         format!("φ4 {} {}", if self.ball { "ball" } else { "flat" }, if self.cut == Cut::Groove { "groove" } else { "side cut" })

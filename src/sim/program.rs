@@ -7,8 +7,8 @@ use super::StockModel;
 use crate::cutter::Cutter;
 use crate::error::{Error, Result};
 use crate::geom::DVec3;
-use crate::tool::Tool;
 use crate::progress::Progress;
+use crate::tool::Tool;
 use crate::toolpath::{Move, Toolpath};
 
 /// One move of a program, ready to simulate.

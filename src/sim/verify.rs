@@ -13,8 +13,8 @@
 use serde::Serialize;
 
 use super::dexel::DexelStock;
-use super::sweep::Sweep;
 use super::program::{removal_rates, ProgramMove, Timing, RATE_CELLS};
+use super::sweep::Sweep;
 use super::StockModel;
 use crate::error::{Error, Result};
 use crate::geom::{Aabb, DVec3, Tolerances};
@@ -101,11 +101,10 @@ impl Report {
 
     /// A few lines for a person.
     pub fn describe(&self) -> String {
-        let mut s = format!(
-            "simulated {} moves on {} cells; removed {:.1} mm³, peak MRR {:.0} mm³/min\n",
-            self.moves, self.cells, self.removed, self.mrr_max
-        );
-        let first = |list: &[Finding]| list.first().map(|f| format!(", first at ({:.3}, {:.3}, {:.3}){}", f.at.x, f.at.y, f.at.z, f.move_index.map(|m| format!(" in move {}", m + 1)).unwrap_or_default())).unwrap_or_default();
+        let mut s = format!("simulated {} moves on {} cells; removed {:.1} mm³, peak MRR {:.0} mm³/min\n", self.moves, self.cells, self.removed, self.mrr_max);
+        let first = |list: &[Finding]| {
+            list.first().map(|f| format!(", first at ({:.3}, {:.3}, {:.3}){}", f.at.x, f.at.y, f.at.z, f.move_index.map(|m| format!(" in move {}", m + 1)).unwrap_or_default())).unwrap_or_default()
+        };
         s += &format!("gouges: {} (deepest {:.4} mm){}\n", self.gouge_count, self.gouge_max, first(&self.gouges));
         s += &format!("rapid moves through stock: {}{}\n", self.rapid_collision_count, first(&self.rapid_collisions));
         s += &format!("tool body (above the flutes) in material: {}{}\n", self.body_collision_count, first(&self.body_collisions));
@@ -215,10 +214,7 @@ impl BandCut {
         while let Some((&count, tail)) = rest.split_first() {
             let len = count as usize * CUT_FLAT;
             let (mine, tail) = (tail.get(..len).ok_or_else(short)?, &tail[len..]);
-            let moves = mine
-                .chunks_exact(CUT_FLAT)
-                .map(|v| (v[0] as usize, v[1], (!v[5].is_nan()).then(|| (DVec3::new(v[2], v[3], v[4]), v[5]))))
-                .collect();
+            let moves = mine.chunks_exact(CUT_FLAT).map(|v| (v[0] as usize, v[1], (!v[5].is_nan()).then(|| (DVec3::new(v[2], v[3], v[4]), v[5])))).collect();
             out.push(BandCut { moves });
             rest = tail;
         }

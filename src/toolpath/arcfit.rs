@@ -173,10 +173,12 @@ mod tests {
     #[test]
     fn dense_points_on_a_circle_and_a_line_become_one_arc_and_one_line() {
         let c = DVec2::new(10.0, 0.0);
-        let mut moves: Vec<Move> = (1..=90).map(|k| {
-            let a = std::f64::consts::PI - std::f64::consts::PI * k as f64 / 180.0;
-            Move::Line { to: (c + DVec2::from_angle(a) * 10.0).extend(-1.0), feed: 500.0 }
-        }).collect();
+        let mut moves: Vec<Move> = (1..=90)
+            .map(|k| {
+                let a = std::f64::consts::PI - std::f64::consts::PI * k as f64 / 180.0;
+                Move::Line { to: (c + DVec2::from_angle(a) * 10.0).extend(-1.0), feed: 500.0 }
+            })
+            .collect();
         moves.extend((1..=20).map(|k| Move::Line { to: DVec3::new(10.0 + k as f64, 10.0, -1.0), feed: 500.0 }));
         let out = fit(&moves, DVec3::new(0.0, 0.0, -1.0), 0.001, &|_| true);
         assert_eq!(out.len(), 2, "{out:?}");

@@ -314,7 +314,11 @@ mod tests {
     fn square(half: f64) -> impl Fn(DVec2) -> f64 {
         move |p: DVec2| {
             let outside = (p.abs() - DVec2::splat(half)).max(DVec2::ZERO).length();
-            if outside < 3.0 { 0.0 } else { f64::NEG_INFINITY }
+            if outside < 3.0 {
+                0.0
+            } else {
+                f64::NEG_INFINITY
+            }
         }
     }
 

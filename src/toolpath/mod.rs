@@ -90,12 +90,7 @@ impl std::ops::Add for PathStats {
     type Output = PathStats;
 
     fn add(self, other: PathStats) -> PathStats {
-        PathStats {
-            moves: self.moves + other.moves,
-            feed_length: self.feed_length + other.feed_length,
-            rapid_length: self.rapid_length + other.rapid_length,
-            seconds: self.seconds + other.seconds,
-        }
+        PathStats { moves: self.moves + other.moves, feed_length: self.feed_length + other.feed_length, rapid_length: self.rapid_length + other.rapid_length, seconds: self.seconds + other.seconds }
     }
 }
 
@@ -140,11 +135,7 @@ impl Toolpath {
                     for k in 1..=steps {
                         let f = k as f64 / steps as f64;
                         let th = start_angle + sweep * f;
-                        let p = if k == steps {
-                            to
-                        } else {
-                            (center + DVec2::new(th.cos(), th.sin()) * radius).extend(at.z + (to.z - at.z) * f)
-                        };
+                        let p = if k == steps { to } else { (center + DVec2::new(th.cos(), th.sin()) * radius).extend(at.z + (to.z - at.z) * f) };
                         out.push((prev, p, false));
                         prev = p;
                     }

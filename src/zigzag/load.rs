@@ -154,10 +154,15 @@ impl PixelMap {
         if !(j >= 0.0 && (j as usize) < self.ny) {
             return false;
         }
-        self.rows[j as usize].iter().map(|&n| {
-            let (s, g) = &self.boundary[n as usize];
-            s.ray_crossings_with(g.as_ref(), q)
-        }).sum::<u32>() % 2 == 1
+        self.rows[j as usize]
+            .iter()
+            .map(|&n| {
+                let (s, g) = &self.boundary[n as usize];
+                s.ray_crossings_with(g.as_ref(), q)
+            })
+            .sum::<u32>()
+            % 2
+            == 1
     }
 
     /// The material pixels (by their centres) the tool's disc sweeps moving from `a` to `b`;

@@ -245,4 +245,3 @@ fn for_nodes_in_disk(grid: &Grid, center: DVec2, radius: f64, inner: f64, rows_f
         }
     }
 }
-

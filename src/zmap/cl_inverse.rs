@@ -42,11 +42,7 @@ pub fn cl_inverse_offset(cc: &HeightField, profile: &Profile, progress: &mut Pro
             let out_row = &mut out.z[target..target + nx];
             for &(dx, h) in offsets {
                 // out[i] = max(out[i], source[i - dx] - h) for every i with i - dx on the grid.
-                let (o_lo, s_lo, len) = if dx >= 0 {
-                    (dx as usize, 0, nx.saturating_sub(dx as usize))
-                } else {
-                    (0, (-dx) as usize, nx.saturating_sub((-dx) as usize))
-                };
+                let (o_lo, s_lo, len) = if dx >= 0 { (dx as usize, 0, nx.saturating_sub(dx as usize)) } else { (0, (-dx) as usize, nx.saturating_sub((-dx) as usize)) };
                 for (o, s) in out_row[o_lo..o_lo + len].iter_mut().zip(&source[s_lo..s_lo + len]) {
                     // A compare-and-select (not f64::max, whose NaN rule has no vector form in
                     // wasm) so that it vectorises to f64x2.pmax / maxpd.

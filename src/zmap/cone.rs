@@ -333,4 +333,3 @@ pub(super) fn edge_kind(mesh: &Mesh, e: &EdgeFaces, up: &[Option<DVec3>]) -> Edg
         _ => EdgeKind::Other,
     }
 }
-

@@ -30,9 +30,9 @@ use std::sync::Mutex;
 
 use crate::geom::{tolerance::BOUND_SLACK, DVec2, Tolerances};
 use crate::mesh::Mesh;
-use crate::progress::Progress;
 use crate::parallel;
 use crate::profile::{Loop, Shape};
+use crate::progress::Progress;
 use crate::zmap::cl_exact::ExactBuilder;
 use crate::zmap::surface::ClSurface;
 
@@ -249,7 +249,11 @@ fn level_region(cl: &ClSurface, nodes_inside: &[bool], refused: &[bool], level: 
     let mut point = |k: Key| -> DVec2 {
         *points.entry(k).or_insert_with(|| {
             let (a, b) = if k.2 == 0 { ((k.0, k.1), (k.0 + 1, k.1)) } else { ((k.0, k.1), (k.0, k.1 + 1)) };
-            if inside(a.0, a.1) { crossing(a, b) } else { crossing(b, a) }
+            if inside(a.0, a.1) {
+                crossing(a, b)
+            } else {
+                crossing(b, a)
+            }
         })
     };
     for j in -1..ny as isize {
@@ -305,7 +309,11 @@ fn level_region(cl: &ClSurface, nodes_inside: &[bool], refused: &[bool], level: 
             // The corner (its index) at the inside end of an edge.
             let end_of = |e: u8| -> usize {
                 let ends = [[0usize, 1], [1, 2], [3, 2], [0, 3]][e as usize];
-                if inside(corners[ends[0]].0, corners[ends[0]].1) { ends[0] } else { ends[1] }
+                if inside(corners[ends[0]].0, corners[ends[0]].1) {
+                    ends[0]
+                } else {
+                    ends[1]
+                }
             };
             // The inside corner to bend a piece towards: the one farthest from the outside
             // corners (the diagonal one when three are inside), on the piece's side in a saddle.
@@ -409,13 +417,20 @@ fn bend(cl: &ClSurface, level: f64, ring: &[Piece], node: &dyn Fn(isize, isize) 
     // The highest point of the surface along a piece above the level, if any (between two
     // samples `along` lets the surface rise up to twice the interpolation tolerance above
     // their chord: that is how far past the level a boundary may go).
-    let worst = |a: DVec2, b: DVec2| -> Option<f64> {
-        cl.along(a, b).into_iter().filter(|&(_, z)| z > level + tol.height).max_by(|p, q| p.1.total_cmp(&q.1)).map(|(t, _)| t)
-    };
+    let worst = |a: DVec2, b: DVec2| -> Option<f64> { cl.along(a, b).into_iter().filter(|&(_, z)| z > level + tol.height).max_by(|p, q| p.1.total_cmp(&q.1)).map(|(t, _)| t) };
     let clears = |a: DVec2, b: DVec2| clears_level(cl, level, a, b, tol);
     let safe = |p: DVec2| cl.height(p) <= level + tol.height;
     #[allow(clippy::too_many_arguments)]
-    fn towards(a: DVec2, b: DVec2, c: DVec2, depth: usize, worst: &dyn Fn(DVec2, DVec2) -> Option<f64>, clears: &dyn Fn(DVec2, DVec2) -> bool, safe: &dyn Fn(DVec2) -> bool, out: &mut Vec<DVec2>) -> bool {
+    fn towards(
+        a: DVec2,
+        b: DVec2,
+        c: DVec2,
+        depth: usize,
+        worst: &dyn Fn(DVec2, DVec2) -> Option<f64>,
+        clears: &dyn Fn(DVec2, DVec2) -> bool,
+        safe: &dyn Fn(DVec2) -> bool,
+        out: &mut Vec<DVec2>,
+    ) -> bool {
         let Some(t) = worst(a, b) else {
             out.push(b);
             return true;
@@ -519,9 +534,7 @@ fn sharpen(cl: &ClSurface, level: f64, pts: &[DVec2], refused: &[bool], tol: &To
     let near_refused = |x: DVec2| {
         let g = (x - f.origin) / f.spacing;
         let (i, j) = (g.x.floor() as isize, g.y.floor() as isize);
-        [(i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1)]
-            .into_iter()
-            .any(|(a, b)| a >= 0 && b >= 0 && (a as usize) < f.nx && (b as usize) < f.ny && refused[b as usize * f.nx + a as usize])
+        [(i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1)].into_iter().any(|(a, b)| a >= 0 && b >= 0 && (a as usize) < f.nx && (b as usize) < f.ny && refused[b as usize * f.nx + a as usize])
     };
     let mut out = Vec::with_capacity(n + 4);
     for i in 0..n {

@@ -16,9 +16,9 @@ pub mod bounds;
 pub mod cl_exact;
 pub mod cl_inverse;
 mod cone;
+pub mod contour;
 pub mod drop;
 pub mod io;
-pub mod contour;
 pub mod region;
 pub mod surface;
 

@@ -7,7 +7,10 @@ use crate::zmap::HeightField;
 /// A region of the XY plane.
 #[derive(Clone, Debug)]
 pub enum Region {
-    Rect { min: DVec2, max: DVec2 },
+    Rect {
+        min: DVec2,
+        max: DVec2,
+    },
     /// Nodes of the grid with a value of at least one half are inside; a point belongs to the
     /// region of its nearest node.
     Mask(HeightField),

@@ -9,14 +9,14 @@ use clap::{Parser, Subcommand, ValueEnum};
 use swarf::cutter::{Cutter, Shape};
 use swarf::geom::Tolerances;
 use swarf::job::project::Project;
-use swarf::job::{self, Job};
+use swarf::job::verify_gcode;
 use swarf::job::Workpiece;
+use swarf::job::{self, Job};
 use swarf::mesh::import::read_mesh_auto;
-use swarf::profile::import::read_drawing;
 use swarf::mesh::placement::{PartSetup, PartUnits, Placement, UpAxis};
 use swarf::mesh::sample::demo_part;
+use swarf::profile::import::read_drawing;
 use swarf::progress::Progress;
-use swarf::job::verify_gcode;
 use swarf::zmap::{cc::cc_zmap, cl_exact::cl_exact, cl_inverse::cl_inverse_offset, io, Grid};
 
 #[derive(Parser)]
@@ -76,9 +76,7 @@ enum Command {
     },
     /// List what a drawing (DXF, SVG) holds: layers, loops (index, layer, outside or hole,
     /// size) and open chains, to choose what operations cut.
-    Drawing {
-        file: PathBuf,
-    },
+    Drawing { file: PathBuf },
     /// Simulate a G-code program on a job's stock and check it against the part: gouges, rapid
     /// moves through stock, the tool's body in material, material left. Exits with 1 when it
     /// finds a problem.

@@ -153,9 +153,9 @@ impl Document<'_> {
             let corner = |i: usize| positions[i];
             match mode {
                 Mode::Triangles => out.extend(indices.chunks_exact(3).map(|c| [corner(c[0]), corner(c[1]), corner(c[2])])),
-                Mode::TriangleStrip => out.extend(indices.windows(3).enumerate().map(|(k, w)| {
-                    if k % 2 == 0 { [corner(w[0]), corner(w[1]), corner(w[2])] } else { [corner(w[1]), corner(w[0]), corner(w[2])] }
-                })),
+                Mode::TriangleStrip => {
+                    out.extend(indices.windows(3).enumerate().map(|(k, w)| if k % 2 == 0 { [corner(w[0]), corner(w[1]), corner(w[2])] } else { [corner(w[1]), corner(w[0]), corner(w[2])] }))
+                }
                 _ => {
                     if let Some((&first, rest)) = indices.split_first() {
                         out.extend(rest.windows(2).map(|w| [corner(first), corner(w[0]), corner(w[1])]));

@@ -7,8 +7,7 @@ pub(super) fn read(bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, ImportError> {
     check_last_line(bytes)?;
     let options = tobj::LoadOptions { triangulate: true, single_index: false, ignore_points: true, ignore_lines: true };
     let mut reader = std::io::BufReader::new(bytes);
-    let (models, _materials) = tobj::load_obj_buf(&mut reader, &options, |_| Err(tobj::LoadError::OpenFileFailed))
-        .map_err(|e| ImportError::Obj(e.to_string()))?;
+    let (models, _materials) = tobj::load_obj_buf(&mut reader, &options, |_| Err(tobj::LoadError::OpenFileFailed)).map_err(|e| ImportError::Obj(e.to_string()))?;
     let mut triangles = Vec::new();
     for model in models {
         let m = model.mesh;

@@ -84,10 +84,7 @@ pub(crate) fn read_dxf(bytes: &[u8], tol: &Tolerances) -> Result<Pieces, Drawing
     let mut pairs: Vec<(i32, &str, usize)> = Vec::with_capacity(lines.len() / 2);
     for k in 0..lines.len() / 2 {
         let line = 2 * k + 1;
-        let code: i32 = lines[2 * k]
-            .trim()
-            .parse()
-            .map_err(|_| DrawingError::Dxf { line, message: format!("expected a group code, found '{}'", lines[2 * k].trim()) })?;
+        let code: i32 = lines[2 * k].trim().parse().map_err(|_| DrawingError::Dxf { line, message: format!("expected a group code, found '{}'", lines[2 * k].trim()) })?;
         pairs.push((code, lines[2 * k + 1].trim(), line + 1));
     }
     // Sections: the header's $INSUNITS and the entities.

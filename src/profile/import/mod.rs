@@ -98,11 +98,7 @@ pub fn read_drawing(bytes: &[u8], name: Option<&str>, tol: &Tolerances) -> Resul
         return Err(DrawingError::NonFinite(format!("{:?} to {:?}", s.a, s.b)));
     }
     if pieces.segments.is_empty() {
-        let ignored = if pieces.ignored.is_empty() {
-            String::new()
-        } else {
-            format!(" (ignored: {})", pieces.ignored.iter().map(|(k, n)| format!("{n} {k}")).collect::<Vec<_>>().join(", "))
-        };
+        let ignored = if pieces.ignored.is_empty() { String::new() } else { format!(" (ignored: {})", pieces.ignored.iter().map(|(k, n)| format!("{n} {k}")).collect::<Vec<_>>().join(", ")) };
         return Err(DrawingError::NothingToMachine(ignored));
     }
     // Pieces shorter than half the chaining tolerance are bridged by it anyway; alone they are

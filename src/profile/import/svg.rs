@@ -56,9 +56,7 @@ pub(crate) fn read_svg(bytes: &[u8], tol: &Tolerances) -> Result<Pieces, Drawing
         return Err(DrawingError::Svg(format!("the root element is <{}>, not <svg>", root.tag_name().name())));
     }
     // User units to mm: width over the viewBox's width when both are given.
-    let view_box: Option<Vec<f64>> = root
-        .attribute("viewBox")
-        .map(|v| v.split(|c: char| c == ',' || c.is_whitespace()).filter(|s| !s.is_empty()).filter_map(|s| s.parse().ok()).collect());
+    let view_box: Option<Vec<f64>> = root.attribute("viewBox").map(|v| v.split(|c: char| c == ',' || c.is_whitespace()).filter(|s| !s.is_empty()).filter_map(|s| s.parse().ok()).collect());
     let mut to_mm = DAffine2::from_scale(DVec2::new(MM_PER_PX, -MM_PER_PX));
     let mut units = "px (96 per inch)".to_string();
     let mut scale = MM_PER_PX;
@@ -75,8 +73,7 @@ pub(crate) fn read_svg(bytes: &[u8], tol: &Tolerances) -> Result<Pieces, Drawing
 }
 
 fn hidden(node: &Node) -> bool {
-    node.attribute("display") == Some("none")
-        || node.attribute("style").is_some_and(|s| s.replace(' ', "").contains("display:none"))
+    node.attribute("display") == Some("none") || node.attribute("style").is_some_and(|s| s.replace(' ', "").contains("display:none"))
 }
 
 impl Reader<'_> {
@@ -98,11 +95,8 @@ impl Reader<'_> {
             let name = child.tag_name().name();
             match name {
                 "g" | "a" | "switch" => {
-                    let label = child
-                        .attributes()
-                        .find(|a| a.name() == "label")
-                        .map(|a| a.value())
-                        .or_else(|| (child.attribute("groupmode") == Some("layer")).then(|| child.attribute("id")).flatten());
+                    let label =
+                        child.attributes().find(|a| a.name() == "label").map(|a| a.value()).or_else(|| (child.attribute("groupmode") == Some("layer")).then(|| child.attribute("id")).flatten());
                     let label = label.map(str::to_string).unwrap_or_else(|| layer.to_string());
                     self.walk(child, m, &label);
                 }
@@ -111,11 +105,7 @@ impl Reader<'_> {
                 "rect" => self.rect(&child, m, layer),
                 "circle" | "ellipse" => {
                     let (cx, cy) = (number(&child, "cx"), number(&child, "cy"));
-                    let (rx, ry) = if name == "circle" {
-                        (number(&child, "r"), number(&child, "r"))
-                    } else {
-                        (number(&child, "rx"), number(&child, "ry"))
-                    };
+                    let (rx, ry) = if name == "circle" { (number(&child, "r"), number(&child, "r")) } else { (number(&child, "rx"), number(&child, "ry")) };
                     if rx > 0.0 && ry > 0.0 {
                         self.ellipse_arc(m, DVec2::new(cx, cy), DVec2::new(rx, ry), 0.0, std::f64::consts::TAU, layer);
                     }
