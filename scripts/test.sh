@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs every test: native (cargo test), the pipeline in headless Chromium (wasm-bindgen-test),
+# Runs every test: the habits (fmt, clippy, doc), native (cargo test), the pipeline in headless Chromium (wasm-bindgen-test),
 # and the page end to end (Playwright driving Chromium, rs274 checking the downloaded G-code).
 # Installs what the tests need first (scripts/setup.sh skips what is already there).
 set -euo pipefail
@@ -10,6 +10,11 @@ step() { printf '\n\033[1m== %s\033[0m\n' "$*"; }
 
 step "setup"
 bash scripts/setup.sh
+
+step "the habits: formatting, lints, docs (cargo fmt, clippy, doc)"
+cargo fmt --check
+cargo clippy --all-targets -- -D warnings
+RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --quiet
 
 step "native tests (cargo test)"
 cargo test --lib --bins --tests 2>&1 | tee -a "$log"

@@ -3,7 +3,7 @@
 //! boundary in `wasm.rs`), as the `swarf` command line, in the tests and in the benchmarks.
 //!
 //! The pipeline, module by module: [`mesh`] (import and placement) → [`zmap`] (CC and CL
-//! z-maps, seed 001) → [`strategy`] (tool paths on the CL z-map) → [`toolpath`] (moves,
+//! z-maps, seed 001) → [`operations`] (tool paths on the CL z-map, each operation one file over the [`machining`] they share) → [`toolpath`] (moves,
 //! linking, reduction) → [`post`] (G-code). [`job`] ties them together.
 //!
 //! # Glossary

@@ -74,7 +74,7 @@ fn a_flat_end_keeps_its_radius_from_a_box() {
     let hole = region.loops.iter().find(|l| !l.is_ccw()).expect("a hole around the box");
     for v in &hole.vertices {
         let d = to_square(v.p, 10.0);
-        assert!(d >= 3.0 - 1e-9 && d <= 3.0 + 0.25 * 1.5, "{} at {}", d, v.p);
+        assert!((3.0 - 1e-9..=3.0 + 0.25 * 1.5).contains(&d), "{} at {}", d, v.p);
     }
     // Its area: the box grown by the radius (a rounded square), within a grid cell along the rim.
     let grown = 20.0 * 20.0 + 4.0 * 20.0 * 3.0 + std::f64::consts::PI * 9.0;
@@ -138,7 +138,7 @@ fn a_pocket_with_an_island_gives_a_ring() {
     }
     for v in &hole.vertices {
         let d = to_square(v.p, 3.0);
-        assert!(d >= 3.0 - 1e-9 && d <= 3.0 + 0.36, "{d}");
+        assert!((3.0 - 1e-9..=3.0 + 0.36).contains(&d), "{d}");
     }
     let area = region.area();
     let expected = 24.0 * 24.0 - (36.0 + 4.0 * 6.0 * 3.0 + std::f64::consts::PI * 9.0);

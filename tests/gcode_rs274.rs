@@ -58,7 +58,7 @@ fn tail(s: &str) -> String {
 }
 
 fn numbers(args: &str) -> Vec<f64> {
-    args.split(|c| c == ',' || c == ' ').filter_map(|w| w.trim().parse().ok()).collect()
+    args.split([',', ' ']).filter_map(|w| w.trim().parse().ok()).collect()
 }
 
 /// The call of a line of rs274's output (`   7 N..... STRAIGHT_FEED(…)`; the N field holds
@@ -108,7 +108,7 @@ fn expected_at(paths: &[Toolpath], clearance: f64, scale: f64, unit: Option<f64>
     let mut last_rounded = None;
     for (k, p) in out {
         let p = p * scale;
-        if matches!(k, Kind::Arc { .. }) || result.last().map_or(true, |(_, q)| q.distance(p) > 1e-9) {
+        if matches!(k, Kind::Arc { .. }) || result.last().is_none_or(|(_, q)| q.distance(p) > 1e-9) {
             let r = rounded(k, p);
             if r.is_some() && r == last_rounded && !matches!(k, Kind::Arc { .. }) {
                 continue;

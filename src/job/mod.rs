@@ -1,6 +1,6 @@
 //! A job: stock, tools, operations and post settings, as one serde type (`schema.rs`). The
 //! same JSON drives the page, the CLI and the tests, read by one strict reader (`read.rs`);
-//! [`run`] turns a job and a part or drawing into tool paths and G-code, reporting progress and
+//! [`run()`] turns a job and a part or drawing into tool paths and G-code, reporting progress and
 //! stopping when cancelled (`run.rs`).
 //!
 //! A job is a machining sequence: its operations plan one after the other in one shared

@@ -39,8 +39,6 @@ pub struct RasterWork {
     pub passes: usize,
 }
 
-/// The passes of one raster operation a pool made, by pass.
-
 impl Prepared {
     /// The exact CL surfaces the enabled operations will ask for, each once, in the order they
     /// ask.

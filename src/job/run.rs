@@ -201,7 +201,7 @@ pub fn prepare(job: &Job, workpiece: impl Into<Workpiece>) -> Result<Prepared> {
 }
 
 /// A job with its part placed and its context made, ready to plan ([`Prepared::run`]); a pool
-/// of workers can first make its CL surfaces and raster passes in pieces ([`pool`]).
+/// of workers can first make its CL surfaces and raster passes in pieces ([`super::pool`]).
 pub struct Prepared {
     pub(super) job: Job,
     pub(super) ctx: Context,

@@ -241,7 +241,7 @@ impl Simulation {
 }
 
 /// The job file format this swarf writes and reads (files from a newer one are refused; older
-/// ones are read as they were written, [`read`]). Version 2: the step-over that is a fraction of
+/// ones are read as they were written, [`super::read`]). Version 2: the step-over that is a fraction of
 /// the tool's diameter (roughing, pockets) is `stepoverFraction`, and `stepover` is a distance
 /// in millimetres wherever it appears.
 pub const JOB_VERSION: u32 = 2;

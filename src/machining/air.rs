@@ -101,7 +101,7 @@ impl AirCuts {
     }
 
     /// `moves` (starting at `from`) with every stretch of a level move that cuts nothing, and
-    /// runs on for at least [`SHORTEST`] so, at the air feed; the others as they were. Takes
+    /// runs on for at least `SHORTEST` so, at the air feed; the others as they were. Takes
     /// what the level moves cut off the map.
     pub fn refeed(&mut self, from: DVec3, moves: Vec<Move>) -> Vec<Move> {
         // The level moves in pieces no longer than a piece (an arc's as chords within a

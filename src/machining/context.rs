@@ -272,7 +272,7 @@ impl Context {
     }
 
     /// The heights of the cutter of `request` widened by its grid's spacing at the nodes of
-    /// its grid ([`Context::widened`]), each a bound from above of the surface within a spacing
+    /// its grid (`Context::widened`), each a bound from above of the surface within a spacing
     /// of its node: those its level map took, else made in bands of rows as they are asked for.
     pub fn node_bounds(&mut self, request: SurfaceRequest) -> Arc<NodeBounds> {
         let key = self.surface_key(&request);
@@ -295,7 +295,7 @@ impl Context {
         cached(&mut self.caches.widened, (request.profile, self.resolution.to_bits(), h.to_bits()), || drop.widened(part, h, tol))
     }
 
-    /// The widened cutter's heights ([`Context::widened`]) at the nodes of rows `rows` of
+    /// The widened cutter's heights (`Context::widened`) at the nodes of rows `rows` of
     /// `request`'s grid: a band of a level map's bounds, as a worker of a pool makes it.
     pub fn widened_rows(&mut self, request: SurfaceRequest, rows: std::ops::Range<usize>) -> Result<Vec<f64>> {
         let builder = self.widened(request);

@@ -120,7 +120,7 @@ pub fn start_nearest(l: &Loop, q: DVec2) -> Vec<Segment> {
     out
 }
 
-/// "the φD tool (plus L leave-stock) does not fit in <what> at (x, y)–(x, y)".
+/// "the φD tool (plus L leave-stock) does not fit in `what` at (x, y)–(x, y)".
 pub fn does_not_fit(tool_radius: f64, leave_stock: f64, what: &str, b: &crate::geom::segment::Rect) -> String {
     format!("the φ{:.3} tool (plus {:.3} leave-stock) does not fit in {what} at ({:.3}, {:.3})–({:.3}, {:.3})", 2.0 * tool_radius, leave_stock, b.min.x, b.min.y, b.max.x, b.max.y)
 }

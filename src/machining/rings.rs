@@ -39,7 +39,7 @@ struct Node {
 }
 
 /// The rings of `region` for a tool of radius `reach`, from the offset `first` inwards every
-/// `step` (outermost first; [`forest`] nests them). A step no wider than the tool's radius
+/// `step` (outermost first; `forest` nests them). A step no wider than the tool's radius
 /// leaves nothing between rings: a point deeper in than the last ring there reaches is deeper
 /// than the next ring, which then exists. A wider step (a step-over above half the diameter)
 /// can leave a strip where the region narrows between the last rings; a part of the region

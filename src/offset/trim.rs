@@ -405,10 +405,8 @@ pub fn stitch(slices: Vec<Slice>, eps: f64) -> Vec<Loop> {
             let candidates = by_x[lo..].iter().take_while(|&&i| open[i].start().x <= end.x + near).copied();
             let mut best: Option<usize> = None;
             for c in candidates {
-                if !used[c] && open[c].start().distance(end) <= near {
-                    if best.is_none() || open[c].source == open[current].source {
-                        best = Some(c);
-                    }
+                if !used[c] && open[c].start().distance(end) <= near && (best.is_none() || open[c].source == open[current].source) {
+                    best = Some(c);
                 }
             }
             let Some(next) = best else { break };

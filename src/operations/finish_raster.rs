@@ -3,7 +3,7 @@
 //!
 //! Steps, in order:
 //! 1. lay parallel passes at `angle` and `stepover` across the region's bounds;
-//! 2. follow the exact CL surface along each pass ([`ClSurface::along`]: even pieces no longer
+//! 2. follow the exact CL surface along each pass ([`crate::zmap::surface::ClSurface::along`]: even pieces no longer
 //!    than the grid spacing (half for cutters other than balls), probed at midpoints and quarters and subdivided until the surface
 //!    between two samples stays within the tolerance of the chord), and split it where it
 //!    leaves the region; passes are independent, so they run on every core;

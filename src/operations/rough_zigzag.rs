@@ -182,7 +182,7 @@ impl Operate for RoughZigzag {
             let reference = load.reference(px);
             let limit = reference * (1.0 + self.load_tolerance);
             // The plain path's own map, for the report, only where the path is not the plain one.
-            let mut map = PixelMap::new(bounds, px, r, &material, &region);
+            let mut map = PixelMap::new(bounds, px, r, material, &region);
             let mut plain_map = (self.load == LoadControl::Path).then(|| map.clone());
             let inside = Inside(&region);
             let (mut pts3, mut feeds): (Vec<Vec<DVec3>>, Vec<Vec<f64>>) = (Vec::new(), Vec::new());

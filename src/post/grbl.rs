@@ -39,7 +39,7 @@ fn g_group(code: u32, flavour: Flavour) -> Option<&'static str> {
 fn m_group(code: u32, flavour: Flavour) -> Option<&'static str> {
     Some(match code {
         0 | 1 | 2 | 30 => "stopping",
-        3 | 4 | 5 => "spindle",
+        3..=5 => "spindle",
         8 | 9 => "coolant",
         // Mist is built into GRBL 1.1 only with ENABLE_M7, off in its default config.h: a
         // default board refuses M7 with error:20.

@@ -634,7 +634,7 @@ impl<'a> Writer<'a> {
                 self.written[axis] = Some(text);
             }
         }
-        if !moved && !(is_arc && self.position[0] == Some(to.x) && self.position[1] == Some(to.y)) {
+        if !moved && (!is_arc || self.position[0] != Some(to.x) || self.position[1] != Some(to.y)) {
             return; // no motion at the program's resolution
         }
         if let (Move::Arc { center, .. }, true) = (*m, is_arc) {

@@ -194,10 +194,9 @@ impl Graph {
         let mut runs = Vec::new();
         // One-way spans run along -x when climbing.
         let starts_span = |x: usize| (nodes[x].p.x > nodes[nodes[x].partner].p.x) == climb;
-        loop {
-            // Step 1 of the walk: the lowest line's first node, on the side the first span
-            // starts from.
-            let Some(first) = (0..n).filter(|&i| !visited[i]).min_by(|&a, &b| nodes[a].line.cmp(&nodes[b].line).then(nodes[a].p.x.total_cmp(&nodes[b].p.x))) else { break };
+        // Step 1 of the walk: the lowest line's first node, on the side the first span starts
+        // from.
+        while let Some(first) = (0..n).filter(|&i| !visited[i]).min_by(|&a, &b| nodes[a].line.cmp(&nodes[b].line).then(nodes[a].p.x.total_cmp(&nodes[b].p.x))) {
             let first = if starts_span(first) { first } else { nodes[first].partner };
             let mut stack = vec![first];
             while let Some(x) = stack.pop() {
@@ -274,9 +273,9 @@ mod tests {
                 for k in 0..=20 {
                     let d = w[0].lerp(w[1], k as f64 / 20.0).distance(c);
                     if ccw {
-                        assert!(d <= 7.0 + 1e-12 && d >= 7.0 - 0.0021, "{d}");
+                        assert!((7.0 - 0.0021..=7.0 + 1e-12).contains(&d), "{d}");
                     } else {
-                        assert!(d >= 7.0 - 1e-12 && d <= 7.0 + 0.0021, "{d}");
+                        assert!((7.0 - 1e-12..=7.0 + 0.0021).contains(&d), "{d}");
                     }
                 }
             }

@@ -381,7 +381,7 @@ pub fn default_pixel(step: f64) -> f64 {
 const MOST_PIXELS: f64 = 16e6;
 
 /// The pixel of a map over `bounds` grown by `radius`: `wanted`, or larger where the map
-/// would hold more than [`MOST_PIXELS`] (a large sheet or part).
+/// would hold more than `MOST_PIXELS` (a large sheet or part).
 pub fn pixel_for(bounds: Rect, radius: f64, wanted: f64) -> f64 {
     let b = bounds.expand(radius);
     let area = ((b.max.x - b.min.x) * (b.max.y - b.min.y)).max(0.0);

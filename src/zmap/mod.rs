@@ -128,7 +128,7 @@ impl Grid {
 fn span(origin: f64, spacing: f64, count: usize, lo: f64, hi: f64) -> Option<(usize, usize)> {
     let a = ((lo - origin) / spacing).ceil().max(0.0);
     let b = ((hi - origin) / spacing).floor().min(count as f64 - 1.0);
-    (a <= b).then(|| (a as usize, b as usize))
+    (a <= b).then_some((a as usize, b as usize))
 }
 
 impl HeightField {

@@ -206,7 +206,7 @@ impl Document<'_> {
             0 => Some(0),
             n => (n - 1).checked_mul(stride).and_then(|s| s.checked_add(element)).and_then(|s| s.checked_add(offset)),
         };
-        if stride < element || needed.map_or(true, |n| n > view_bytes.len()) {
+        if stride < element || needed.is_none_or(|n| n > view_bytes.len()) {
             return broken(format!("accessor {index} runs past the end of its buffer view"));
         }
         let mut values = Vec::with_capacity(count * components);

@@ -12,7 +12,7 @@ const RECORD: u64 = 50;
 pub(super) fn read(bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, ImportError> {
     let binary_size = |n: u32| HEADER as u64 + 4 + RECORD * n as u64;
     let announced = (bytes.len() >= HEADER + 4).then(|| u32::from_le_bytes(bytes[HEADER..HEADER + 4].try_into().unwrap()));
-    let looks_ascii = bytes.trim_ascii_start().starts_with(b"solid") && announced.map_or(true, |n| binary_size(n) != bytes.len() as u64);
+    let looks_ascii = bytes.trim_ascii_start().starts_with(b"solid") && announced.is_none_or(|n| binary_size(n) != bytes.len() as u64);
     if looks_ascii {
         return read_ascii(bytes);
     }
