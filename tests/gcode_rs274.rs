@@ -13,6 +13,7 @@ use swarf::job::{self, FinishRaster, Job, Operation, Tool};
 use swarf::mesh::placement::Units;
 use swarf::mesh::sample::demo_part;
 use swarf::operations::Roughing;
+use swarf::operations::Steps;
 use swarf::post::{write_gcode, Dialect, PostSettings};
 use swarf::progress::Progress;
 use swarf::toolpath::{Move, Toolpath};
@@ -394,7 +395,8 @@ fn roughing_then_finishing_programs_run_in_linuxcnc_with_arcs() {
 fn zigzag_roughing_with_its_arcs_and_feeds_runs_in_linuxcnc_move_for_move() {
     use swarf::operations::RoughZigzag;
     let tools = vec![Tool { number: 1, cutter: Cutter { flute_length: 40.0, ..Cutter::flat(6.0) }, ..Tool::default() }];
-    let job = Job { tools, operations: vec![Operation::RoughZigzag(RoughZigzag { tool: 1, stepdown: 4.0, angle: 30.0, ..RoughZigzag::default() })], ..Job::default() };
+    let job =
+        Job { tools, operations: vec![Operation::RoughZigzag(RoughZigzag { tool: 1, angle: 30.0, steps: Steps { stepdown: 4.0, ..Steps::default() }, ..RoughZigzag::default() })], ..Job::default() };
     let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
     assert!(out.verification.as_ref().unwrap().report.is_clean());
     let actual = interpret(&out.gcode, &job.tools);

@@ -10,6 +10,7 @@ use swarf::job::{self, Job, JobOutput, Operation, Simulation, Tool};
 use swarf::mesh::placement::{PartSetup, Placement};
 use swarf::mesh::sample::{demo_part, paper_pocket};
 use swarf::operations::Roughing;
+use swarf::operations::Steps;
 use swarf::operations::{LoadControl, LoadReport, Passes, RoughZigzag};
 use swarf::progress::Progress;
 use swarf::sim::windows::windowed_rates;
@@ -22,11 +23,10 @@ fn flat(number: u32, d: f64) -> Tool {
 fn paper_job(load: LoadControl) -> Job {
     let op = RoughZigzag {
         tool: 1,
-        stepdown: 0.5,
-        stepover_fraction: 0.3,
         load,
         pixel: Some(0.05),
         roughing: Roughing { allowance: 0.0, leave_stock: 0.0, grid: 0.5, ..Roughing::default() },
+        steps: Steps { stepdown: 0.5, stepover_fraction: 0.3 },
         ..RoughZigzag::default()
     };
     let mut job = Job {
@@ -82,7 +82,14 @@ fn the_papers_pocket_is_cleared_with_the_load_held() {
 fn the_sample_part_is_roughed_clean_to_the_stair_step_both_ways() {
     let (stepdown, allowance, leave) = (2.0, 0.5, 0.5);
     for passes in [Passes::Zigzag, Passes::OneWay] {
-        let op = RoughZigzag { tool: 1, stepdown, passes, angle: 30.0, roughing: Roughing { allowance, leave_stock: leave, ..Roughing::default() }, ..RoughZigzag::default() };
+        let op = RoughZigzag {
+            tool: 1,
+            passes,
+            angle: 30.0,
+            roughing: Roughing { allowance, leave_stock: leave, ..Roughing::default() },
+            steps: Steps { stepdown, ..Steps::default() },
+            ..RoughZigzag::default()
+        };
         let job = Job { tools: vec![flat(1, 6.0)], operations: vec![Operation::RoughZigzag(op)], simulation: Simulation { verify: true, cell: Some(0.25) }, ..Job::default() };
         let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
         clean(&out);
@@ -105,10 +112,9 @@ fn a_terrain_with_cliffs_is_roughed_without_a_gouge_with_the_load_held() {
     let part = swarf::mesh::import::read_mesh_auto(&bytes, Some("ocl_mount_rush.stl"), &swarf::geom::tolerance::Tolerances::default()).unwrap();
     let op = RoughZigzag {
         tool: 1,
-        stepdown: 2.0,
-        stepover_fraction: 0.4,
         load: LoadControl::Path,
         roughing: Roughing { allowance: 0.0, leave_stock: 0.0, ..Roughing::default() },
+        steps: Steps { stepdown: 2.0, stepover_fraction: 0.4 },
         ..RoughZigzag::default()
     };
     let mut job = Job { tools: vec![flat(1, 6.0)], operations: vec![Operation::RoughZigzag(op)], part: PartSetup { placement: Placement::Keep, ..PartSetup::default() }, ..Job::default() };

@@ -16,6 +16,7 @@ use swarf::job::{self, FinishRaster, Job, Operation, Simulation, Tool};
 use swarf::mesh::placement::{PartSetup, Placement};
 use swarf::mesh::sample::demo_part;
 use swarf::operations::Roughing;
+use swarf::operations::Steps;
 use swarf::operations::{Order, RoughZlevel};
 use swarf::progress::Progress;
 use swarf::toolpath::Move;
@@ -130,7 +131,11 @@ fn the_sample_part_roughed_then_finished_is_clean_and_leaves_at_most_the_stair_s
     let (stepdown, allowance, leave) = (2.0, 0.5, 0.5);
     let job = Job {
         tools: vec![flat(1, 6.0), Tool { number: 2, cutter: Cutter::ball(6.0), ..Tool::default() }],
-        operations: vec![Operation::RoughZlevel(RoughZlevel { stepdown, roughing: Roughing { allowance, leave_stock: leave, ..Roughing::default() }, ..RoughZlevel::default() })],
+        operations: vec![Operation::RoughZlevel(RoughZlevel {
+            roughing: Roughing { allowance, leave_stock: leave, ..Roughing::default() },
+            steps: Steps { stepdown, ..Steps::default() },
+            ..RoughZlevel::default()
+        })],
         simulation: Simulation { verify: true, cell: Some(0.25) },
         ..Job::default()
     };
@@ -163,7 +168,11 @@ fn entered_from_the_level_above(part: swarf::mesh::Mesh, units: swarf::mesh::pla
         part: PartSetup { placement: Placement::Keep, units, ..PartSetup::default() },
         stock: swarf::job::Stock { margin_xy: 0.0, margin_top: 0.0, ..Default::default() },
         tools: vec![flat(1, 6.0)],
-        operations: vec![Operation::RoughZlevel(RoughZlevel { stepdown: 2.0, roughing: Roughing { allowance: 0.0, leave_stock: 0.0, ..Roughing::default() }, ..RoughZlevel::default() })],
+        operations: vec![Operation::RoughZlevel(RoughZlevel {
+            roughing: Roughing { allowance: 0.0, leave_stock: 0.0, ..Roughing::default() },
+            steps: Steps { stepdown: 2.0, ..Steps::default() },
+            ..RoughZlevel::default()
+        })],
         simulation: Simulation { verify: true, cell: Some(0.25) },
         ..Job::default()
     };
@@ -241,7 +250,12 @@ fn regions_first_goes_from_pocket_to_pocket_once() {
             part: PartSetup { placement: Placement::Keep, ..PartSetup::default() },
             stock: swarf::job::Stock { margin_xy: 0.0, margin_top: 0.0, ..Default::default() },
             tools: vec![flat(1, 6.0)],
-            operations: vec![Operation::RoughZlevel(RoughZlevel { stepdown: 2.0, order, roughing: Roughing { allowance: 0.0, leave_stock: 0.0, ..Roughing::default() }, ..RoughZlevel::default() })],
+            operations: vec![Operation::RoughZlevel(RoughZlevel {
+                order,
+                roughing: Roughing { allowance: 0.0, leave_stock: 0.0, ..Roughing::default() },
+                steps: Steps { stepdown: 2.0, ..Steps::default() },
+                ..RoughZlevel::default()
+            })],
             simulation: Simulation { verify: true, cell: Some(0.25) },
             ..Job::default()
         };
@@ -382,9 +396,8 @@ fn rest_roughing_never_works_a_level_beside_material_left_above_it() {
     let stage = |tool: u32, stepdown: f64| {
         Operation::RoughZlevel(RoughZlevel {
             tool,
-            stepdown,
-            stepover_fraction: 0.5,
             roughing: Roughing { allowance: 0.5, leave_stock: 0.5, grid: 0.5, ..Roughing::default() },
+            steps: Steps { stepdown, stepover_fraction: 0.5 },
             ..RoughZlevel::default()
         })
     };

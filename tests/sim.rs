@@ -8,6 +8,7 @@ use swarf::geom::{Aabb, DVec2, DVec3, Tolerances};
 use swarf::job::{self, FinishRaster, Job, Operation, Tool};
 use swarf::mesh::sample::demo_part;
 use swarf::operations::Roughing;
+use swarf::operations::Steps;
 use swarf::progress::Progress;
 use swarf::sim::paper::{Case, Cut, CELLS, DEPTH, RADIUS, STEP};
 use swarf::sim::program::{program_moves, simulate};
@@ -261,8 +262,18 @@ fn stock_left_under_the_allowance_by_the_raw_block_is_not_a_gouge() {
     let part = swarf::mesh::sample::paper_pocket(8.0, 1.0);
     let flat = |n: u32, d: f64| Tool { number: n, cutter: Cutter { flute_length: 25.0, ..Cutter::flat(d) }, ..Tool::default() };
     let kinds = [
-        Operation::RoughZlevel(RoughZlevel { tool: 1, stepdown: 3.0, roughing: Roughing { allowance: 0.3, leave_stock: 0.3, grid: 0.5, ..Roughing::default() }, ..RoughZlevel::default() }),
-        Operation::RoughZigzag(RoughZigzag { tool: 1, stepdown: 3.0, roughing: Roughing { allowance: 0.3, leave_stock: 0.3, grid: 0.5, ..Roughing::default() }, ..RoughZigzag::default() }),
+        Operation::RoughZlevel(RoughZlevel {
+            tool: 1,
+            roughing: Roughing { allowance: 0.3, leave_stock: 0.3, grid: 0.5, ..Roughing::default() },
+            steps: Steps { stepdown: 3.0, ..Steps::default() },
+            ..RoughZlevel::default()
+        }),
+        Operation::RoughZigzag(RoughZigzag {
+            tool: 1,
+            roughing: Roughing { allowance: 0.3, leave_stock: 0.3, grid: 0.5, ..Roughing::default() },
+            steps: Steps { stepdown: 3.0, ..Steps::default() },
+            ..RoughZigzag::default()
+        }),
         Operation::RoughOctree(RoughOctree { tools: vec![1, 2], roughing: Roughing { allowance: 0.3, leave_stock: 0.3, grid: 0.5, ..Roughing::default() }, ..RoughOctree::default() }),
     ];
     for op in kinds {

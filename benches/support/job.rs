@@ -6,6 +6,7 @@ use swarf::cutter::Cutter;
 use swarf::geom::{Aabb, Tolerances};
 use swarf::job::{self, FinishRaster, Job, Operation, Simulation, Tool};
 use swarf::mesh::{sample, Mesh};
+use swarf::operations::Steps;
 use swarf::progress::Progress;
 use swarf::sim::program::{simulate, ProgramMove};
 use swarf::sim::verify::{verify, VerifySettings};
@@ -202,9 +203,8 @@ pub fn peer_rough_job() -> Job {
         post: swarf::post::PostSettings { rapid_rate: 5000.0, ..Default::default() },
         tools: vec![tool],
         operations: vec![Operation::RoughZlevel(RoughZlevel {
-            stepdown: 2.0,
-            stepover_fraction: 0.4,
             roughing: swarf::machining::settings::Roughing { allowance: 0.0, leave_stock: 0.0, ..Default::default() },
+            steps: Steps { stepdown: 2.0, stepover_fraction: 0.4 },
             ..RoughZlevel::default()
         })],
         simulation: Simulation { verify: false, cell: None },
@@ -236,10 +236,9 @@ pub fn paper_zigzag_job(load: swarf::machining::settings::LoadControl) -> Job {
     use swarf::operations::RoughZigzag;
     let tool = Tool { cutter: Cutter::flat(10.0), feed_rate: 1000.0, plunge_rate: 250.0, ..Tool::default() };
     let op = RoughZigzag {
-        stepdown: 0.5,
-        stepover_fraction: 0.3,
         roughing: swarf::machining::settings::Roughing { allowance: 0.0, leave_stock: 0.0, grid: 0.5, ..Default::default() },
         load,
+        steps: Steps { stepdown: 0.5, stepover_fraction: 0.3 },
         ..RoughZigzag::default()
     };
     Job { tools: vec![tool], operations: vec![Operation::RoughZigzag(op)], ..peer_rough_job() }
@@ -296,10 +295,9 @@ pub fn program_load(part: Mesh, gcode: &str, diameter: f64, cell: f64, ds: f64) 
 pub fn peer_zigzag_job(load: swarf::machining::settings::LoadControl) -> Job {
     use swarf::operations::RoughZigzag;
     let op = RoughZigzag {
-        stepdown: 2.0,
-        stepover_fraction: 0.4,
         roughing: swarf::machining::settings::Roughing { allowance: 0.0, leave_stock: 0.0, grid: 0.5, ..Default::default() },
         load,
+        steps: Steps { stepdown: 2.0, stepover_fraction: 0.4 },
         ..RoughZigzag::default()
     };
     Job { operations: vec![Operation::RoughZigzag(op)], ..peer_rough_job() }
@@ -334,9 +332,8 @@ pub fn octree_jobs(delta: f64, stepover: f64, grid: f64, cell: f64) -> [(&'stati
         Operation::RoughZlevel(RoughZlevel {
             name: format!("z-level φ{d}"),
             tool,
-            stepdown: delta * d,
-            stepover_fraction: stepover,
             roughing: swarf::machining::settings::Roughing { grid, ..Default::default() },
+            steps: Steps { stepdown: delta * d, stepover_fraction: stepover },
             ..RoughZlevel::default()
         })
     };

@@ -1,5 +1,20 @@
 //! Every tolerance swarf uses, in one place. Algorithms take a `Tolerances` (or one of its
-//! fields) as a parameter; none keeps a stray epsilon of its own.
+//! fields) as a parameter where a user could tune it; below those, the slack of float
+//! arithmetic that no user tunes is named here once ([`FLOAT_ZERO`], [`FLOAT_SLACK`], [`HAIR`],
+//! [`LEAST_STEP`]), each with its reason, and none keeps a stray epsilon of its own.
+
+/// A length, angle or area this small is nothing: a degenerate segment, a zero divisor.
+pub const FLOAT_ZERO: f64 = 1e-12;
+/// Two heights, parameters or positions this close are the same: the rounding of sums of
+/// millimetres, far below every tolerance a user sets.
+pub const FLOAT_SLACK: f64 = 1e-9;
+/// A hair (mm): past the float noise of geometry on parts a metre across, far below any
+/// machine's resolution; what "above", "beyond" or "in material" leaves out as noise.
+pub const HAIR: f64 = 1e-6;
+/// The least step (mm) a setting is divided by or a path is sampled at, so that a zero or tiny
+/// step-down, step-over or sampling cannot make an endless loop (settings are checked to be
+/// positive; this keeps the arithmetic finite all the same).
+pub const LEAST_STEP: f64 = 1e-3;
 
 use serde::{Deserialize, Serialize};
 

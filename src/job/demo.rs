@@ -56,8 +56,8 @@ impl Job {
         job.tools[1].cutter = Cutter { flute_length: 15.0, ..Cutter::ball(3.0) };
         for op in &mut job.operations {
             match op {
-                Operation::RoughZlevel(o) => (o.roughing.grid, o.stepdown) = (0.5, 2.0),
-                Operation::RoughZigzag(o) => (o.roughing.grid, o.stepdown, o.stepover_fraction) = (0.5, 3.0, 0.8),
+                Operation::RoughZlevel(o) => (o.roughing.grid, o.steps.stepdown) = (0.5, 2.0),
+                Operation::RoughZigzag(o) => (o.roughing.grid, o.steps.stepdown, o.steps.stepover_fraction) = (0.5, 3.0, 0.8),
                 Operation::FinishRaster(o) => (o.grid, o.stepover) = (0.5, 2.0),
                 Operation::FinishWaterline(o) => (o.grid, o.stepdown, o.scallop) = (0.5, 1.5, None),
                 _ => {}

@@ -21,6 +21,7 @@
 
 use crate::cutter::Profile;
 use crate::geom::segment::{Rect, Segment};
+use crate::geom::tolerance::{FLOAT_SLACK, LEAST_STEP};
 use crate::geom::{DVec2, DVec3};
 use crate::sim::DexelStock;
 use crate::toolpath::{arc_sweep, Move};
@@ -80,7 +81,7 @@ impl AirCuts {
         let tops = stock.tops();
         let cell = |i: usize, j: usize| {
             let (ci, cj) = ((i0 + i as isize) as usize, (j0 + j as isize) as usize);
-            ci < g.nx && cj < g.ny && tops[cj * g.nx + ci] > z + 1e-9
+            ci < g.nx && cj < g.ny && tops[cj * g.nx + ci] > z + FLOAT_SLACK
         };
         // The map reaches past its bounds by the radius counted and an arc's sag.
         let map = PixelMap::on_grid(origin, px, size, count + px, cell);
@@ -111,13 +112,13 @@ impl AirCuts {
         let mut at = from;
         for (k, m) in moves.iter().enumerate() {
             let to = m.to();
-            let level = !m.is_rapid() && (at.z - self.z).abs() < 1e-9 && (to.z - self.z).abs() < 1e-9;
+            let level = !m.is_rapid() && (at.z - self.z).abs() < FLOAT_SLACK && (to.z - self.z).abs() < FLOAT_SLACK;
             if level {
                 let length = m.length(at);
                 let least = match *m {
                     Move::Arc { center, clockwise, .. } => {
                         let step = crate::geom::segment::chord_step(center.distance(at.truncate()), chord_sag).unwrap_or(std::f64::consts::FRAC_PI_2);
-                        (arc_sweep(at, to, center, clockwise).abs() / step.max(1e-3)).ceil() as usize
+                        (arc_sweep(at, to, center, clockwise).abs() / step.max(LEAST_STEP)).ceil() as usize
                     }
                     _ => 1,
                 };

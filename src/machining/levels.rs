@@ -26,11 +26,12 @@
 
 use super::context::SurfaceRequest;
 use super::rings::{clear_rings, rings, Clearing, Inside, RingSetup};
-use super::settings::{Direction, EntryKind, LoadControl, Order, PocketPattern, Roughing};
-use super::{sheet, Context};
+use super::settings::{Direction, EntryKind, LoadControl, Order, PocketPattern, Roughing, Steps};
+use super::{positive, sheet, Context, FieldError};
 use crate::cutter::Profile;
 use crate::error::{Error, Result};
 use crate::geom::segment::Rect;
+use crate::geom::tolerance::{HAIR, LEAST_STEP};
 use crate::geom::DVec2;
 use crate::profile::Shape;
 use crate::progress::Progress;
@@ -61,11 +62,7 @@ pub struct LevelRoughing {
     pub tool: u32,
     pub stepdown: f64,
     pub stepover_fraction: f64,
-    pub allowance: f64,
-    pub leave_stock: f64,
-    pub direction: Direction,
-    pub grid: f64,
-    pub ramp_angle: f64,
+    pub roughing: Roughing,
     pub helix_radius: Option<f64>,
     pub flats: bool,
     pub order: Order,
@@ -75,10 +72,40 @@ impl LevelRoughing {
     /// Level-by-level roughing with `roughing`'s settings (helix radius by default, flats and
     /// each level everywhere before the next: [`Order::Levels`]; set the fields to change them).
     pub fn new(name: &str, tool: u32, stepdown: f64, stepover_fraction: f64, roughing: &Roughing) -> LevelRoughing {
-        let Roughing { allowance, leave_stock, direction, grid, ramp_angle } = *roughing;
-        LevelRoughing { name: name.to_owned(), tool, stepdown, stepover_fraction, allowance, leave_stock, direction, grid, ramp_angle, helix_radius: None, flats: true, order: Order::Levels }
+        LevelRoughing { name: name.to_owned(), tool, stepdown, stepover_fraction, roughing: *roughing, helix_radius: None, flats: true, order: Order::Levels }
+    }
+
+    /// Checks the settings of a roughing that names its step-down and step-over (z-level and
+    /// zigzag roughing), each named as the job file names it.
+    pub fn validate(&self) -> Result<(), FieldError> {
+        Steps { stepdown: self.stepdown, stepover_fraction: self.stepover_fraction }.validate()?;
+        self.roughing.validate()?;
+        if let Some(r) = self.helix_radius {
+            positive("helixRadius", r)?;
+        }
+        Ok(())
     }
 }
+
+/// The [`super::Operate`] methods of an operation that cuts the levels its `levels()` gives
+/// ([`LevelRoughing`]): the CL surface and level map it asks for, and the regions of its levels
+/// as work a pool can share out.
+macro_rules! level_work {
+    () => {
+        fn surfaces(&self, ctx: &$crate::machining::Context) -> $crate::error::Result<Vec<$crate::machining::context::SurfaceRequest>> {
+            Ok(vec![self.levels().request(ctx)?])
+        }
+
+        fn level_maps(&self, ctx: &$crate::machining::Context) -> $crate::error::Result<Vec<$crate::machining::context::SurfaceRequest>> {
+            self.surfaces(ctx)
+        }
+
+        fn region_work(&self, ctx: &mut $crate::machining::Context, progress: &mut $crate::progress::Progress) -> $crate::error::Result<Option<$crate::machining::levels::RegionWork>> {
+            self.levels().region_work(ctx, progress).map(Some)
+        }
+    };
+}
+pub(crate) use level_work;
 
 /// What a level-by-level roughing cuts: its tool, the CL surface of the tool grown by the
 /// radial allowance, and the levels with material left, from the top down.
@@ -101,7 +128,7 @@ pub struct Level {
 impl LevelRoughing {
     /// The step-over (mm) for a tool of radius `r`.
     pub fn step(&self, r: f64) -> f64 {
-        (self.stepover_fraction * 2.0 * r).max(1e-3)
+        (self.stepover_fraction * 2.0 * r).max(LEAST_STEP)
     }
 
     /// Clears `levels` (from [`LevelRoughing::levels_to_cut`] or [`LevelRoughing::levels_within`])
@@ -114,13 +141,13 @@ impl LevelRoughing {
         let step = self.step(r);
         let clearing = Clearing {
             step,
-            climb: self.direction == Direction::Climb,
+            climb: self.roughing.direction == Direction::Climb,
             pattern: PocketPattern::Offset,
             angle: 0.0,
             load: LoadControl::None,
             load_tolerance: 0.0,
             entry: EntryKind::Helix,
-            ramp_angle: self.ramp_angle.clamp(0.1, 89.0).to_radians(),
+            ramp_angle: self.roughing.ramp_angle.clamp(0.1, 89.0).to_radians(),
             helix_r: self.helix_radius.unwrap_or(0.4 * 2.0 * r).min(0.95 * r),
         };
         let clearance = ctx.heights.clearance;
@@ -158,7 +185,7 @@ impl LevelRoughing {
             // The short retract: a traverse just above the lowest level cut so far whose
             // region holds the straight move (what that level cleared), over the part there;
             // above the stock's top before the first level.
-            let (surface, allowance, gap, tol_z) = (cl.clone(), self.allowance, ctx.heights.gap, tol.height + 2.0 * tol.interpolation);
+            let (surface, allowance, gap, tol_z) = (cl.clone(), self.roughing.allowance, ctx.heights.gap, tol.height + 2.0 * tol.interpolation);
             let across = done;
             cursor.traverse = Some(Box::new(move |a: DVec2, b: DVec2| {
                 let over = |level: f64| surface.stays_below(a, b, level - allowance - tol_z);
@@ -210,10 +237,10 @@ impl LevelRoughing {
     pub fn request(&self, ctx: &Context) -> Result<SurfaceRequest> {
         let profile = ctx.tool(&self.name, self.tool)?.cutter.profile();
         let r = profile.radius;
-        let grown = Profile::new(r + self.leave_stock, if profile.flat_radius() <= 0.0 { r } else { profile.corner });
+        let grown = Profile::new(r + self.roughing.leave_stock, if profile.flat_radius() <= 0.0 { r } else { profile.corner });
         let stock = ctx.stock;
-        let reach = r + self.leave_stock + 2.0 * self.grid;
-        let grid = Grid::checked(stock.min.truncate() - DVec2::splat(reach), stock.max.truncate() + DVec2::splat(reach), self.grid).map_err(|e| Error::operation(&self.name, e))?;
+        let reach = r + self.roughing.leave_stock + 2.0 * self.roughing.grid;
+        let grid = Grid::checked(stock.min.truncate() - DVec2::splat(reach), stock.max.truncate() + DVec2::splat(reach), self.roughing.grid).map_err(|e| Error::operation(&self.name, e))?;
         Ok(SurfaceRequest { profile: grown, grid, floor: stock.min.z, builder: ClBuilder::Exact })
     }
 
@@ -322,14 +349,14 @@ impl LevelRoughing {
         let (step, height) = (self.step(r), ctx.tolerances.height);
         move |p: DVec2| {
             let q = p + (p - middle).normalize_or_zero() * step;
-            (stock_now.touch(q, &flat, true) <= z + height && cl.height(q) <= z - self.allowance).then_some(q)
+            (stock_now.touch(q, &flat, true) <= z + height && cl.height(q) <= z - self.roughing.allowance).then_some(q)
         }
     }
     /// The levels, from the top down: every step-down from `top` to `floor` plus the
     /// allowance, and the flats of the surface (plus the allowance) between, each with whether
     /// it is a flat's alone (cut only where the level below cannot go).
     fn levels(&self, cl: &HeightField, top: f64, floor: f64, radius: f64, clear: f64) -> Vec<(f64, bool)> {
-        let bottom = floor + self.allowance + clear;
+        let bottom = floor + self.roughing.allowance + clear;
         let mut levels = Vec::new();
         let mut z = top - self.stepdown;
         while z > bottom + LEVEL_SAME {
@@ -349,7 +376,7 @@ impl LevelRoughing {
                     e += 1;
                 }
                 if (e - k) as f64 >= least {
-                    let level = heights[e - 1] + self.allowance + clear;
+                    let level = heights[e - 1] + self.roughing.allowance + clear;
                     if level < top - LEVEL_SAME && level > bottom {
                         levels.push((level, true));
                     }
@@ -567,7 +594,7 @@ struct LevelInputs<'a> {
 impl LevelInputs<'_> {
     /// The height level `k`'s region is contoured at: its own less the axial allowance.
     fn level(&self, k: usize) -> f64 {
-        self.heights[k].0 - self.zl.allowance
+        self.heights[k].0 - self.zl.roughing.allowance
     }
 
     /// The nodes every level's region keeps ([`LevelInputs::keep`]), a step-down level's
@@ -617,7 +644,7 @@ impl LevelInputs<'_> {
         // radius of one, less half a node's spacing), not the part's walls and their
         // leave-stock beside the region, which every level would otherwise follow.
         let removable = (self.reach >= r).then(|| {
-            let safe: Vec<bool> = self.cl.field.z.iter().map(|&h| h + zl.allowance <= z).collect();
+            let safe: Vec<bool> = self.cl.field.z.iter().map(|&h| h + zl.roughing.allowance <= z).collect();
             let d = crate::octree::distance_to(&safe, grid.nx, grid.ny, grid.spacing);
             d.into_iter().map(|d| d <= r - 0.5 * grid.spacing).collect::<Vec<bool>>()
         });
@@ -629,7 +656,7 @@ impl LevelInputs<'_> {
         // spacing from every centre that level refuses is left to it).
         if flat && self.bands {
             let below = self.heights.get(k + 1).map_or(f64::NEG_INFINITY, |&(q, _)| q);
-            let refused: Vec<bool> = self.cl.field.z.iter().map(|&h| h + zl.allowance > below).collect();
+            let refused: Vec<bool> = self.cl.field.z.iter().map(|&h| h + zl.roughing.allowance > below).collect();
             let d = crate::octree::distance_to(&refused, grid.nx, grid.ny, grid.spacing);
             keep.iter_mut().zip(d).for_each(|(k, d)| *k &= d <= FLAT_BAND * grid.spacing);
         }
@@ -671,7 +698,7 @@ pub fn material_near<const N: usize>(stock: &DexelStock, grid: Grid, z: f64, rea
     let top = |p| if counts.is_some() { Some(stock.touch(p, &around, false)) } else { stock.top_near(p) };
     for j in 0..grid.ny {
         for i in 0..grid.nx {
-            if counts.is_none_or(|c| c[j * grid.nx + i]) && top(grid.node(i, j)).is_some_and(|top| top > z + 1e-6) {
+            if counts.is_none_or(|c| c[j * grid.nx + i]) && top(grid.node(i, j)).is_some_and(|top| top > z + HAIR) {
                 above.z[j * grid.nx + i] = 1.0;
             }
         }

@@ -6,6 +6,7 @@
 use crate::cutter::Profile;
 use crate::geom::segment::Segment;
 pub use crate::geom::segment::{arc_lengths, pieces};
+use crate::geom::tolerance::{FLOAT_SLACK, LEAST_STEP};
 use crate::geom::{DVec2, DVec3};
 use crate::profile::Loop;
 use crate::sim::dexel::DexelStock;
@@ -109,12 +110,12 @@ pub fn start_nearest(l: &Loop, q: DVec2) -> Vec<Segment> {
     let n = segs.len();
     let s = segs[best];
     let mut out = Vec::with_capacity(n + 1);
-    if best_t > 1e-9 && best_t < 1.0 - 1e-9 {
+    if best_t > FLOAT_SLACK && best_t < 1.0 - FLOAT_SLACK {
         out.push(s.sub(best_t, 1.0));
         out.extend((1..n).map(|k| segs[(best + k) % n]));
         out.push(s.sub(0.0, best_t));
     } else {
-        let first = if best_t >= 1.0 - 1e-9 { best + 1 } else { best };
+        let first = if best_t >= 1.0 - FLOAT_SLACK { best + 1 } else { best };
         out.extend((0..n).map(|k| segs[(first + k) % n]));
     }
     out
@@ -190,7 +191,7 @@ impl<'m> InStock<'m> {
     pub fn highest_along(&self, segments: impl IntoIterator<Item = Segment>, spacing: f64, enough: f64) -> f64 {
         let mut top = f64::NEG_INFINITY;
         for seg in segments {
-            let n = (seg.length() / spacing.max(1e-3)).ceil().max(1.0) as usize;
+            let n = (seg.length() / spacing.max(LEAST_STEP)).ceil().max(1.0) as usize;
             for k in 0..=n {
                 top = top.max(self.estimate(seg.point_at(k as f64 / n as f64)));
                 if top >= enough {

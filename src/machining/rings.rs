@@ -12,6 +12,7 @@ use super::air::AirCuts;
 use super::path2d::{arc_lengths, follow, start_nearest, Cursor, Heights};
 use super::settings::{EntryKind, LoadControl, PocketPattern};
 use crate::geom::segment::Segment;
+use crate::geom::tolerance::{FLOAT_SLACK, FLOAT_ZERO, LEAST_STEP};
 use crate::geom::{DVec2, DVec3, Tolerances};
 use crate::offset::offset;
 use crate::profile::{Loop, Shape};
@@ -175,7 +176,7 @@ impl Keepout for Inside<'_> {
         let (a, b) = (a.truncate(), b.truncate());
         let link = Segment::line(a, b);
         let at_end = |p: DVec2| p.distance(a) <= END_SLACK || p.distance(b) <= END_SLACK;
-        self.0.contains((a + b) * 0.5) && self.0.segments().all(|s| s.crossings(&link, 1e-9).iter().all(|c| at_end(c.p)))
+        self.0.contains((a + b) * 0.5) && self.0.segments().all(|s| s.crossings(&link, FLOAT_SLACK).iter().all(|c| at_end(c.p)))
     }
 }
 
@@ -221,9 +222,9 @@ impl Swept {
             match s.arc_geom() {
                 None => out.push((s.a, s.b)),
                 Some(g) => {
-                    let angle = g.start.angle_to(g.end).abs().max(1e-9);
+                    let angle = g.start.angle_to(g.end).abs().max(FLOAT_SLACK);
                     let step = crate::geom::segment::chord_step(g.radius, self.chordal).unwrap_or(angle);
-                    let n = ((angle / step.max(1e-3)).ceil() as usize).clamp(1, 1000);
+                    let n = ((angle / step.max(LEAST_STEP)).ceil() as usize).clamp(1, 1000);
                     let mut a = s.a;
                     for k in 1..=n {
                         let b = if k == n { s.b } else { s.point_at(k as f64 / n as f64) };
@@ -268,7 +269,7 @@ impl Clearer<'_, '_, '_> {
     }
 
     fn at_depth(&self) -> bool {
-        (self.s.cursor.at.z - self.z).abs() < 1e-9
+        (self.s.cursor.at.z - self.z).abs() < FLOAT_SLACK
     }
 
     /// Inner regions first, then this one: a leaf is entered fresh, a parent is reached by
@@ -434,13 +435,13 @@ impl Clearer<'_, '_, '_> {
         let mut at = before;
         for m in moves {
             let to = m.to();
-            let level = (at.z - self.z).abs() < 1e-9 && (to.z - self.z).abs() < 1e-9;
+            let level = (at.z - self.z).abs() < FLOAT_SLACK && (to.z - self.z).abs() < FLOAT_SLACK;
             // An arc: its centre, turn and signed sweep.
             let (feed, arc) = match m {
                 Move::Line { feed, .. } if level => (feed, None),
                 Move::Arc { feed, center, clockwise, .. } if level => (feed, Some((center, clockwise, crate::toolpath::arc_sweep(at, to, center, clockwise)))),
                 _ => {
-                    if !m.is_rapid() && at.z.min(to.z) <= self.z + 1e-9 {
+                    if !m.is_rapid() && at.z.min(to.z) <= self.z + FLOAT_SLACK {
                         held.map.cut(at.truncate(), to.truncate());
                     }
                     self.out.push(m);
@@ -486,10 +487,10 @@ impl Clearer<'_, '_, '_> {
 
     /// Back and forth along `a`–`b`, descending at the ramp angle, ending at `a` at depth.
     fn ramp_on_line(&mut self, a: DVec2, b: DVec2) {
-        let len = a.distance(b).max(1e-3);
+        let len = a.distance(b).max(LEAST_STEP);
         let mut z = self.z_prev;
         let mut at_a = true;
-        while z > self.z + 1e-12 {
+        while z > self.z + FLOAT_ZERO {
             z = (z - len * self.angle.tan()).max(self.z);
             let to = if at_a { b } else { a };
             self.out.push(Move::Line { to: to.extend(z), feed: self.s.feed });

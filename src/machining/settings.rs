@@ -1,6 +1,6 @@
 //! The settings the operations share: the words of the job file that mean the same in every
 //! operation that has them (a cutting direction, an order, a pattern, how the load is held,
-//! how material is entered), and the roughing kinds' common settings ([`Roughing`]), flattened
+//! how material is entered), and the roughing kinds' common settings ([`Steps`], [`Roughing`]), flattened
 //! into each roughing kind's JSON and validated once.
 
 use serde::{Deserialize, Serialize};
@@ -63,6 +63,35 @@ pub enum LoadControl {
     Feed,
     /// The plain path at the tool's feed.
     None,
+}
+
+/// How far apart the levels and the rings or passes of a roughing are, in its JSON as its own
+/// fields (`operations[1].stepdown`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(default, rename_all = "camelCase")]
+pub struct Steps {
+    /// Largest depth between levels (mm). Default value: 2.
+    pub stepdown: f64,
+    /// Distance between rings or passes as a fraction of the tool diameter. Default value: 0.4.
+    pub stepover_fraction: f64,
+}
+
+impl Default for Steps {
+    fn default() -> Self {
+        Steps { stepdown: 2.0, stepover_fraction: 0.4 }
+    }
+}
+
+impl Steps {
+    /// Checks the steps, each named as the job file names it.
+    pub fn validate(&self) -> Result<(), FieldError> {
+        positive("stepdown", self.stepdown)?;
+        positive("stepoverFraction", self.stepover_fraction)?;
+        if self.stepover_fraction > 1.0 {
+            return Err(FieldError { field: "stepoverFraction", message: format!("is a fraction of the tool's diameter, at most 1 (got {})", self.stepover_fraction) });
+        }
+        Ok(())
+    }
 }
 
 /// What every roughing kind leaves and how it cuts, in each one's JSON as its own fields

@@ -11,6 +11,7 @@
 //! so that merge can be named.
 
 use crate::geom::segment::{Rect, Segment};
+use crate::geom::tolerance::{HAIR, LEAST_STEP};
 use crate::geom::{DVec2, Tolerances};
 use crate::offset::offset;
 use crate::offset::trim::Original;
@@ -36,6 +37,10 @@ pub struct WallPath {
     pub along: Vec<usize>,
 }
 
+/// The finest spacing the closest approach of two parts is sampled at (mm): a tenth of a micron,
+/// finer than any gap a tool could pass.
+const FINEST_SAMPLE: f64 = 1e-4;
+
 impl Walls {
     pub fn new(shape: Shape, index: Vec<usize>) -> Walls {
         let owner = shape.loops.iter().enumerate().flat_map(|(k, l)| std::iter::repeat_n(k, l.len())).collect();
@@ -60,7 +65,7 @@ impl Walls {
     /// Whether `q` keeps at least `distance` (less a thousandth of a micrometre) from every
     /// loop.
     pub fn keeps_off(&self, q: DVec2, distance: f64) -> bool {
-        let reach = distance - 1e-6;
+        let reach = distance - HAIR;
         self.original.distance(q, reach) >= reach
     }
 
@@ -69,7 +74,7 @@ impl Walls {
     /// piece's midpoint names its loop).
     pub fn paths(&self, distance: f64, tol: &Tolerances) -> Vec<WallPath> {
         let grown = offset(&self.shape, distance, tol);
-        let reach = distance.abs() * (1.0 + 1e-6) + 1e-6;
+        let reach = distance.abs() * (1.0 + HAIR) + HAIR;
         grown
             .loops
             .into_iter()
@@ -86,12 +91,12 @@ impl Walls {
     /// along `a` at a fiftieth of the gap, at most 20,000 points).
     pub fn closest_approach(&self, a: usize, b: usize) -> (f64, DVec2) {
         let (la, lb) = (&self.shape.loops[a], &self.shape.loops[b]);
-        let coarse = (la.length() / 20_000.0).max(1e-3);
+        let coarse = (la.length() / 20_000.0).max(LEAST_STEP);
         let mut best = (f64::INFINITY, DVec2::ZERO);
         closest_on(la.segments(), lb, coarse, &mut best);
         // Finer on the segments of `a` near the best point found.
         let (gap, at) = best;
-        closest_on(la.segments().filter(|s| s.distance_to(at) <= gap + 2.0 * coarse), lb, (gap / 50.0).max(1e-4), &mut best);
+        closest_on(la.segments().filter(|s| s.distance_to(at) <= gap + 2.0 * coarse), lb, (gap / 50.0).max(FINEST_SAMPLE), &mut best);
         best
     }
 }

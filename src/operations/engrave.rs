@@ -9,6 +9,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::geom::segment::Segment;
+use crate::geom::tolerance::{FLOAT_SLACK, HAIR};
 use crate::machining::path2d::{arc_lengths, follow, Heights};
 use crate::machining::report::Groove;
 use crate::machining::{named_operation, positive, sheet, Context, FieldError, Operate, Planned};
@@ -117,7 +118,7 @@ impl Operate for Engrave {
             let line = left.swap_remove(k);
             let path = if flip { reversed(&line.path) } else { line.path };
             let (_, total) = arc_lengths(&path);
-            if total <= 1e-6 {
+            if total <= HAIR {
                 continue;
             }
             grooves.push(Groove { path: path.clone(), radius: tool.cutter.radius(), depth: self.depth });
@@ -148,7 +149,7 @@ fn cut_line(path: &[Segment], closed: bool, top: f64, z_final: f64, stepdown: f6
     let mut current = top;
     let mut forward = true;
     loop {
-        let finishing = current <= z_final + 1e-9;
+        let finishing = current <= z_final + FLOAT_SLACK;
         let target = (current - stepdown).max(z_final);
         let heights = if finishing { Heights::constant(z_final) } else { Heights::ramp(0.0, current, target, angle) };
         let segs = if forward || closed { path } else { &back[..] };

@@ -28,7 +28,7 @@ pub use rough_zigzag::{Passes, RoughZigzag};
 pub use rough_zlevel::RoughZlevel;
 
 pub use crate::machining::report::{LoadReport, StageReport, StageRole};
-pub use crate::machining::settings::{Direction, EntryKind, LoadControl, Order, PocketPattern, Roughing};
+pub use crate::machining::settings::{Direction, EntryKind, LoadControl, Order, PocketPattern, Roughing, Steps};
 
 macro_rules! operations {
     ($($(#[$doc:meta])* $variant:ident($options:ty) = $kind:literal,)*) => {

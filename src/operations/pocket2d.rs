@@ -4,6 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::geom::tolerance::LEAST_STEP;
 use crate::machining::path2d::does_not_fit;
 use crate::machining::report::SheetCut;
 use crate::machining::rings::{clear_rings, rings, Clearing, RingSetup};
@@ -82,7 +83,7 @@ impl Default for Pocket2d {
 pub fn pocket_moves(region: &Shape, op: &Pocket2d, mut s: RingSetup) -> Result<Vec<Move>, String> {
     let r = s.tool_radius;
     let first = r + op.leave_stock;
-    let step = (op.stepover_fraction.clamp(0.01, 1.0) * 2.0 * r).max(1e-3);
+    let step = (op.stepover_fraction.clamp(0.01, 1.0) * 2.0 * r).max(LEAST_STEP);
     let levels = rings(region, first, step, s.tool_radius, s.tol);
     if levels.is_empty() {
         return Err(does_not_fit(r, op.leave_stock, "the pocket", &region.bounds()));
@@ -98,7 +99,7 @@ pub fn pocket_moves(region: &Shape, op: &Pocket2d, mut s: RingSetup) -> Result<V
         ramp_angle: op.ramp_angle.clamp(0.1, 90.0).to_radians(),
         helix_r: op.helix_radius.unwrap_or(0.8 * r),
     };
-    let passes = (op.depth / op.stepdown.max(1e-3)).ceil().max(1.0) as usize;
+    let passes = (op.depth / op.stepdown.max(LEAST_STEP)).ceil().max(1.0) as usize;
     let mut out = Vec::new();
     for k in 1..=passes {
         let z_prev = s.top - op.depth * (k - 1) as f64 / passes as f64;

@@ -8,6 +8,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::geom::segment::Segment;
+use crate::geom::tolerance::{FLOAT_SLACK, HAIR, LEAST_STEP};
 use crate::geom::{DVec2, Tolerances};
 use crate::machining::path2d::{arc_lengths, does_not_fit, follow, point_at, start_nearest, Cursor, Heights};
 use crate::machining::report::SheetCut;
@@ -226,7 +227,7 @@ pub fn profile_moves(walls: &Walls, picked: &[usize], op: &Profile2d, mut s: Set
         let wall = std::rc::Rc::new(Original::new(&region));
         for path in paths.loops {
             let (wall, region) = (wall.clone(), region.clone());
-            let keeps_off = move |q: DVec2| wall.distance(q, d - 1e-6) >= d - 1e-6;
+            let keeps_off = move |q: DVec2| wall.distance(q, d - HAIR) >= d - HAIR;
             let clear = Clear { keeps_off: Box::new(keeps_off), waste: Box::new(move |q| region.contains(q) != outside) };
             // An outward offset has the part on its left, an inward one on its right.
             laps.push(Lap { path, part_left: outside, outside, clear });
@@ -291,8 +292,8 @@ fn cut_loop(segs: &[Segment], clear: &Clear, waste_left: bool, lead: f64, tabs: 
     // lap at the final depth.
     let mut z = vec![(0.0, top)];
     let (mut at, mut current) = (0.0, top);
-    while current > z_final + 1e-9 {
-        let target = (current - stepdown.max(1e-3)).max(z_final);
+    while current > z_final + FLOAT_SLACK {
+        let target = (current - stepdown.max(LEAST_STEP)).max(z_final);
         let run = (current - target) / angle.tan();
         if run <= total {
             z.push((at + run, target));

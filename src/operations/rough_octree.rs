@@ -35,6 +35,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::cutter::Shape;
 use crate::error::{Error, Result};
+use crate::geom::tolerance::FLOAT_SLACK;
 use crate::machining::levels::LevelRoughing;
 use crate::machining::report::{StageOctants, StageReport, StageRole};
 use crate::machining::settings::Roughing;
@@ -182,7 +183,7 @@ impl RoughOctree {
         let mut centres: Option<Vec<Vec<bool>>> = None;
         let mut within = |z: f64, grid: crate::zmap::Grid| {
             let all = centres.get_or_insert_with(|| tree.centres(grid, r, &stock, tol));
-            Some(tree.layer_at(z, 1e-9).map_or_else(|| vec![false; grid.nodes()], |k| all[k].clone()))
+            Some(tree.layer_at(z, FLOAT_SLACK).map_or_else(|| vec![false; grid.nodes()], |k| all[k].clone()))
         };
         let Some(levels) = zl.levels_within(ctx, progress, r, false, &mut within)? else { return Ok(None) };
         let path = zl.clear(ctx, levels, progress)?;

@@ -19,14 +19,14 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
+use crate::geom::tolerance::LEAST_STEP;
 use crate::geom::{DVec2, DVec3};
 use crate::machining::air::AirCuts;
-use crate::machining::context::SurfaceRequest;
-use crate::machining::levels::{Level, LevelRoughing, Levels, RegionWork};
+use crate::machining::levels::{level_work, Level, LevelRoughing, Levels};
 use crate::machining::path2d::start_nearest;
 use crate::machining::report::LoadReport;
 use crate::machining::rings::Inside;
-use crate::machining::settings::{Direction, LoadControl, Roughing};
+use crate::machining::settings::{Direction, LoadControl, Roughing, Steps};
 use crate::machining::{finite, named_operation, not_negative, positive, Context, FieldError, Operate, Planned};
 use crate::profile::Shape;
 use crate::progress::Progress;
@@ -54,17 +54,14 @@ pub struct RoughZigzag {
     pub name: String,
     /// Whether the job runs it (a disabled operation stays in the job). Default value: true.
     pub enabled: bool,
-    /// Default value: 1.
+    /// The tool that cuts the passes. Default value: 1.
     pub tool: u32,
-    /// Largest depth between levels (mm). Default value: 2.
-    pub stepdown: f64,
-    /// Distance between passes as a fraction of the tool diameter. Default value: 0.4.
-    pub stepover_fraction: f64,
-    #[serde(flatten)]
-    #[ts(flatten)]
-    pub roughing: Roughing,
     /// Direction of the passes (degrees from +X). Default value: 0.
     pub angle: f64,
+    /// How deep the levels go and how far apart the passes are.
+    #[serde(flatten)]
+    #[ts(flatten)]
+    pub steps: Steps,
     /// Default value: zigzag.
     pub passes: Passes,
     /// Default value: path.
@@ -75,6 +72,10 @@ pub struct RoughZigzag {
     pub sampling: Option<f64>,
     /// The pixel of the load's map (mm). Default value: the step-over / 24.
     pub pixel: Option<f64>,
+    /// What it leaves, which way it cuts, its CL z-map's spacing and its entries' slope.
+    #[serde(flatten)]
+    #[ts(flatten)]
+    pub roughing: Roughing,
     /// Cut every flat area of the part at its own height too. Default value: true.
     pub flats: bool,
 }
@@ -85,8 +86,7 @@ impl Default for RoughZigzag {
             name: "zigzag rough".into(),
             enabled: true,
             tool: 1,
-            stepdown: 2.0,
-            stepover_fraction: 0.4,
+            steps: Steps::default(),
             roughing: Roughing::default(),
             angle: 0.0,
             passes: Passes::Zigzag,
@@ -102,7 +102,7 @@ impl Default for RoughZigzag {
 impl RoughZigzag {
     /// Its levels' settings (its own loop cuts level by level).
     pub fn levels(&self) -> LevelRoughing {
-        LevelRoughing { flats: self.flats, ..LevelRoughing::new(&self.name, self.tool, self.stepdown, self.stepover_fraction, &self.roughing) }
+        LevelRoughing { flats: self.flats, ..LevelRoughing::new(&self.name, self.tool, self.steps.stepdown, self.steps.stepover_fraction, &self.roughing) }
     }
 }
 
@@ -114,12 +114,7 @@ impl Operate for RoughZigzag {
     }
 
     fn validate(&self) -> Result<(), FieldError> {
-        positive("stepdown", self.stepdown)?;
-        positive("stepoverFraction", self.stepover_fraction)?;
-        if self.stepover_fraction > 1.0 {
-            return Err(FieldError { field: "stepoverFraction", message: format!("is a fraction of the tool's diameter, at most 1 (got {})", self.stepover_fraction) });
-        }
-        self.roughing.validate()?;
+        self.levels().validate()?;
         finite("angle", self.angle)?;
         not_negative("loadTolerance", self.load_tolerance)?;
         if let Some(s) = self.sampling {
@@ -131,25 +126,15 @@ impl Operate for RoughZigzag {
         Ok(())
     }
 
-    fn surfaces(&self, ctx: &Context) -> Result<Vec<SurfaceRequest>> {
-        Ok(vec![self.levels().request(ctx)?])
-    }
-
-    fn level_maps(&self, ctx: &Context) -> Result<Vec<SurfaceRequest>> {
-        self.surfaces(ctx)
-    }
-
-    fn region_work(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Option<RegionWork>> {
-        self.levels().region_work(ctx, progress).map(Some)
-    }
+    level_work!();
 
     fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Planned> {
         let levels = self.levels();
         let Some(Levels { tool, levels: cut, .. }) = levels.levels_to_cut(ctx, progress)? else { return Ok(Planned::default()) };
         let r = tool.cutter.radius();
         let step = levels.step(r);
-        let ds = self.sampling.unwrap_or(0.5 * step).max(1e-3);
-        let px = self.pixel.unwrap_or_else(|| load::default_pixel(step)).max(1e-3);
+        let ds = self.sampling.unwrap_or(0.5 * step).max(LEAST_STEP);
+        let px = self.pixel.unwrap_or_else(|| load::default_pixel(step)).max(LEAST_STEP);
         let load = Load { ds, step, tolerance: self.load_tolerance, climb: self.roughing.direction == Direction::Climb };
         let pattern = match self.passes {
             Passes::Zigzag => Pattern::Zigzag,
@@ -157,7 +142,7 @@ impl Operate for RoughZigzag {
         };
         let entry = Entry { ramp_angle: self.roughing.ramp_angle, ..Entry::default() };
         let tol = ctx.tolerances;
-        let mut report = LoadReport { reference: step * tool.feed_rate, rate: step * tool.feed_rate * self.stepdown, sampling: ds, ..LoadReport::default() };
+        let mut report = LoadReport { reference: step * tool.feed_rate, rate: step * tool.feed_rate * self.steps.stepdown, sampling: ds, ..LoadReport::default() };
         let mut path: Option<Toolpath> = None;
         let shortest = crate::toolpath::entry::shortest_ramp(r);
         let mut left_out = 0;

@@ -5,10 +5,9 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::Result;
-use crate::machining::context::SurfaceRequest;
-use crate::machining::levels::{LevelRoughing, RegionWork};
-use crate::machining::settings::{Order, Roughing};
-use crate::machining::{named_operation, positive, Context, FieldError, Operate, Planned};
+use crate::machining::levels::{level_work, LevelRoughing};
+use crate::machining::settings::{Order, Roughing, Steps};
+use crate::machining::{named_operation, Context, FieldError, Operate, Planned};
 use crate::progress::Progress;
 
 /// Z-level roughing.
@@ -19,12 +18,12 @@ pub struct RoughZlevel {
     pub name: String,
     /// Whether the job runs it (a disabled operation stays in the job). Default value: true.
     pub enabled: bool,
-    /// Default value: 1.
+    /// The tool that cuts every level. Default value: 1.
     pub tool: u32,
-    /// Largest depth between levels (mm). Default value: 2.
-    pub stepdown: f64,
-    /// Distance between rings as a fraction of the tool diameter. Default value: 0.4.
-    pub stepover_fraction: f64,
+    /// How deep the levels go and how far apart the rings are.
+    #[serde(flatten)]
+    #[ts(flatten)]
+    pub steps: Steps,
     #[serde(flatten)]
     #[ts(flatten)]
     pub roughing: Roughing,
@@ -40,24 +39,19 @@ pub struct RoughZlevel {
 
 impl Default for RoughZlevel {
     fn default() -> Self {
-        RoughZlevel {
-            name: "z-level rough".into(),
-            enabled: true,
-            tool: 1,
-            stepdown: 2.0,
-            stepover_fraction: 0.4,
-            roughing: Roughing::default(),
-            helix_radius: None,
-            flats: true,
-            order: Order::Regions,
-        }
+        RoughZlevel { name: "z-level rough".into(), enabled: true, tool: 1, steps: Steps::default(), roughing: Roughing::default(), helix_radius: None, flats: true, order: Order::Regions }
     }
 }
 
 impl RoughZlevel {
     /// Its levels' settings.
     pub fn levels(&self) -> LevelRoughing {
-        LevelRoughing { helix_radius: self.helix_radius, flats: self.flats, order: self.order, ..LevelRoughing::new(&self.name, self.tool, self.stepdown, self.stepover_fraction, &self.roughing) }
+        LevelRoughing {
+            helix_radius: self.helix_radius,
+            flats: self.flats,
+            order: self.order,
+            ..LevelRoughing::new(&self.name, self.tool, self.steps.stepdown, self.steps.stepover_fraction, &self.roughing)
+        }
     }
 }
 
@@ -69,29 +63,10 @@ impl Operate for RoughZlevel {
     }
 
     fn validate(&self) -> Result<(), FieldError> {
-        positive("stepdown", self.stepdown)?;
-        positive("stepoverFraction", self.stepover_fraction)?;
-        if self.stepover_fraction > 1.0 {
-            return Err(FieldError { field: "stepoverFraction", message: format!("is a fraction of the tool's diameter, at most 1 (got {})", self.stepover_fraction) });
-        }
-        self.roughing.validate()?;
-        if let Some(r) = self.helix_radius {
-            positive("helixRadius", r)?;
-        }
-        Ok(())
+        self.levels().validate()
     }
 
-    fn surfaces(&self, ctx: &Context) -> Result<Vec<SurfaceRequest>> {
-        Ok(vec![self.levels().request(ctx)?])
-    }
-
-    fn level_maps(&self, ctx: &Context) -> Result<Vec<SurfaceRequest>> {
-        self.surfaces(ctx)
-    }
-
-    fn region_work(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Option<RegionWork>> {
-        self.levels().region_work(ctx, progress).map(Some)
-    }
+    level_work!();
 
     fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Planned> {
         let levels = self.levels();

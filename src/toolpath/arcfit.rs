@@ -4,6 +4,7 @@
 //! serves any strategy that makes dense points.
 
 use super::Move;
+use crate::geom::tolerance::FLOAT_ZERO;
 use crate::geom::{DVec2, DVec3};
 
 /// The most points one fitted piece spans (a bound on the work per piece).
@@ -119,14 +120,14 @@ fn fits_line(p: &[DVec2], tol: f64) -> bool {
     let (a, b) = (p[0], p[p.len() - 1]);
     let d = b - a;
     let len = d.length();
-    if len < 1e-12 {
+    if len < FLOAT_ZERO {
         return false;
     }
     let u = d / len;
     let mut along = 0.0;
     p.iter().all(|&q| {
         let t = (q - a).dot(u);
-        let ok = (q - a).perp_dot(u).abs() <= tol && t >= along - 1e-12 && t <= len + 1e-12;
+        let ok = (q - a).perp_dot(u).abs() <= tol && t >= along - FLOAT_ZERO && t <= len + FLOAT_ZERO;
         along = t;
         ok
     })
@@ -138,7 +139,7 @@ fn fits_line(p: &[DVec2], tol: f64) -> bool {
 fn fits_arc(p: &[DVec2], tol: f64) -> Option<(DVec2, bool)> {
     let (a, m, b) = (p[0], p[p.len() / 2], p[p.len() - 1]);
     let d = 2.0 * ((m - a).perp_dot(b - a));
-    if d.abs() < 1e-12 {
+    if d.abs() < FLOAT_ZERO {
         return None;
     }
     // The circumcentre.

@@ -865,17 +865,9 @@ name: string,
  */
 enabled: boolean, 
 /**
- * Default value: 1.
+ * The tool that cuts the passes. Default value: 1.
  */
 tool: number, 
-/**
- * Largest depth between levels (mm). Default value: 2.
- */
-stepdown: number, 
-/**
- * Distance between passes as a fraction of the tool diameter. Default value: 0.4.
- */
-stepoverFraction: number, 
 /**
  * Direction of the passes (degrees from +X). Default value: 0.
  */
@@ -904,6 +896,14 @@ pixel: number | null,
  * Cut every flat area of the part at its own height too. Default value: true.
  */
 flats: boolean, 
+/**
+ * Largest depth between levels (mm). Default value: 2.
+ */
+stepdown: number, 
+/**
+ * Distance between rings or passes as a fraction of the tool diameter. Default value: 0.4.
+ */
+stepoverFraction: number, 
 /**
  * Material left on floors (axial, mm). Default value: 0.5.
  */
@@ -938,17 +938,9 @@ name: string,
  */
 enabled: boolean, 
 /**
- * Default value: 1.
+ * The tool that cuts every level. Default value: 1.
  */
 tool: number, 
-/**
- * Largest depth between levels (mm). Default value: 2.
- */
-stepdown: number, 
-/**
- * Distance between rings as a fraction of the tool diameter. Default value: 0.4.
- */
-stepoverFraction: number, 
 /**
  * Helix radius (mm). Default value: 0.4 × the tool diameter.
  */
@@ -963,6 +955,14 @@ flats: boolean,
  * the next (`levels`). Default value: regions.
  */
 order: Order, 
+/**
+ * Largest depth between levels (mm). Default value: 2.
+ */
+stepdown: number, 
+/**
+ * Distance between rings or passes as a fraction of the tool diameter. Default value: 0.4.
+ */
+stepoverFraction: number, 
 /**
  * Material left on floors (axial, mm). Default value: 0.5.
  */
