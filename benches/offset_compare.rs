@@ -8,10 +8,10 @@ use std::time::Instant;
 
 use cavalier_contours::polyline::{PlineSource, PlineSourceMut, Polyline};
 use cavalier_contours::shape_algorithms::Shape as CavShape;
+use swarf::drawing::{Loop, Shape, Vertex};
 use swarf::geom::{DVec2, Tolerances};
 use swarf::offset::check::{problems, random_shape, star, Rng};
 use swarf::offset::offset;
-use swarf::profile::{Loop, Shape, Vertex};
 
 fn to_cav(shape: &Shape) -> CavShape<f64> {
     let plines = shape.loops.iter().map(|l| {
@@ -71,7 +71,7 @@ fn cases() -> Vec<(String, Shape, Vec<f64>)> {
     plate.push(DVec2::new(0.0, 100.0));
     cases.push(("plate, 20 slots 3 wide".to_string(), Shape::new(vec![Loop::polygon(&plate)]), vec![-1.0, -3.0, 1.0, 2.0, 6.0]));
     for (name, path) in [("tm_LM2.dxf", "../shared/data/profiles/tm_LM2.dxf"), ("tm_1002_tray_bottom.dxf", "../shared/data/profiles/tm_1002_tray_bottom.dxf")] {
-        match std::fs::read(path).ok().and_then(|b| swarf::profile::import::read_drawing(&b, Some(name), &Tolerances::default()).ok()) {
+        match std::fs::read(path).ok().and_then(|b| swarf::drawing::import::read_drawing(&b, Some(name), &Tolerances::default()).ok()) {
             Some(drawing) => match drawing.shape(&[]) {
                 Ok(shape) => cases.push((name.to_string(), shape, vec![-1.0, -3.0, 1.0, 3.0])),
                 Err(e) => println!("{name}: {e}"),

@@ -2,7 +2,7 @@
 fn main() {
     for path in std::env::args().skip(1) {
         let bytes = std::fs::read(&path).expect("readable file");
-        match swarf::profile::import::read_drawing(&bytes, Some(&path), &swarf::geom::Tolerances::default()) {
+        match swarf::drawing::import::read_drawing(&bytes, Some(&path), &swarf::geom::Tolerances::default()) {
             Ok(d) => {
                 let b = d.bounds();
                 println!("{path}: {} loops, {} open chains, layers {:?}, units {}, ignored {:?}, bounds {:.2?}..{:.2?}", d.loops.len(), d.open.len(), d.layers, d.units, d.ignored, b.min, b.max);

@@ -17,6 +17,7 @@
 //! All tolerances live in [`geom::Tolerances`]; algorithms take them as parameters.
 
 pub mod cutter;
+pub mod drawing;
 pub mod error;
 pub mod geom;
 pub mod job;
@@ -27,7 +28,6 @@ pub mod offset;
 pub mod operations;
 pub mod parallel;
 pub mod post;
-pub mod profile;
 pub mod progress;
 pub mod sim;
 pub mod tool;

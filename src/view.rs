@@ -5,12 +5,12 @@
 
 use serde::Serialize;
 
+use crate::drawing::Drawing;
 use crate::error::{Error, Result, Warning};
 use crate::geom::{Aabb, DVec2, DVec3};
 use crate::job::{self, Job, JobOutput, OperationReport};
 use crate::mesh::Mesh;
 use crate::post::{CycleTime, PostSettings, TimeItem};
-use crate::profile::Drawing;
 use crate::sim::playback::Playback;
 use crate::sim::verify::{Report, Verification};
 use crate::sim::DexelStock;
@@ -69,7 +69,7 @@ pub struct DrawingView {
     pub units: String,
     /// What the reader left out, by kind, with how many.
     pub ignored: Vec<(String, usize)>,
-    pub open_chains: Vec<crate::profile::OpenChain>,
+    pub open_chains: Vec<crate::drawing::OpenChain>,
 }
 
 /// One closed loop of a drawing, as the page lists it.
@@ -88,7 +88,7 @@ pub struct LoopInfo {
 
 impl DrawingView {
     pub fn of(d: &Drawing) -> DrawingView {
-        let nesting = crate::profile::Shape::new(d.loops.iter().map(|l| l.path.clone()).collect());
+        let nesting = crate::drawing::Shape::new(d.loops.iter().map(|l| l.path.clone()).collect());
         let (mut outer, mut holes, mut loops) = (Vec::new(), Vec::new(), Vec::new());
         for (index, (l, o)) in d.loops.iter().zip(&nesting.loops).enumerate() {
             let target = if o.is_ccw() { &mut outer } else { &mut holes };

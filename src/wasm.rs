@@ -5,12 +5,12 @@
 
 use wasm_bindgen::prelude::*;
 
+use crate::drawing::Drawing;
 use crate::geom::{Aabb, Tolerances};
 use crate::job::{self, Job, Workpiece};
 use crate::mesh::import::read_mesh_auto;
 use crate::mesh::placement::PartSetup;
 use crate::mesh::{sample, Mesh};
-use crate::profile::Drawing;
 use crate::progress::Progress;
 use crate::view;
 
@@ -143,17 +143,17 @@ pub fn warm_up_part() -> Vec<u8> {
 /// The built-in sample drawing (a plate with holes and a pocket), as DXF text.
 #[wasm_bindgen(js_name = sampleDrawing)]
 pub fn sample_drawing() -> Vec<u8> {
-    crate::profile::sample::plate_dxf().into_bytes()
+    crate::drawing::sample::plate_dxf().into_bytes()
 }
 
 /// Whether a file is a drawing (DXF, SVG) rather than a part.
 #[wasm_bindgen(js_name = isDrawing)]
 pub fn is_drawing(bytes: &[u8], name: &str) -> bool {
-    crate::profile::import::is_drawing(Some(name), bytes)
+    crate::drawing::import::is_drawing(Some(name), bytes)
 }
 
 fn read_drawing_js(bytes: &[u8], name: &str, tolerances: &Tolerances) -> Result<Drawing, JsError> {
-    crate::profile::import::read_drawing(bytes, Some(name), tolerances).map_err(|e| js_error(format!("{name}: {e}")))
+    crate::drawing::import::read_drawing(bytes, Some(name), tolerances).map_err(|e| js_error(format!("{name}: {e}")))
 }
 
 /// Reads a drawing and places it as `setup` (a `DrawingSetup` object) says: a

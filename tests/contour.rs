@@ -6,9 +6,9 @@ mod common;
 
 use common::{mesh, spiky_terrain, Lcg};
 use swarf::cutter::Cutter;
+use swarf::drawing::Shape;
 use swarf::geom::{DVec2, DVec3, Tolerances};
 use swarf::mesh::Mesh;
-use swarf::profile::Shape;
 use swarf::progress::Progress;
 use swarf::zmap::contour::LevelMap;
 use swarf::zmap::{cl_exact::cl_exact, drop::PointDrop, surface::ClSurface, Grid};

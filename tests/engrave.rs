@@ -3,11 +3,11 @@
 //! clean against the grooves the drawing means.
 
 use swarf::cutter::Cutter;
+use swarf::drawing::import::read_drawing;
 use swarf::geom::Tolerances;
 use swarf::job::{self, Job, Operation, Tool};
 use swarf::operations::Engrave;
 use swarf::operations::Profile2d;
-use swarf::profile::import::read_drawing;
 use swarf::progress::Progress;
 use swarf::toolpath::Move;
 

@@ -353,10 +353,10 @@ fn the_reader_reads_programs_as_linuxcnc_does() {
 
 #[test]
 fn sheet_programs_with_helices_ramps_and_tabs_run_in_linuxcnc() {
+    use swarf::drawing::import::read_drawing;
+    use swarf::drawing::sample::plate_dxf;
     use swarf::operations::{Pocket2d, PocketPattern};
     use swarf::operations::{Profile2d, Tabs};
-    use swarf::profile::import::read_drawing;
-    use swarf::profile::sample::plate_dxf;
     let drawing = read_drawing(plate_dxf().as_bytes(), Some("plate.dxf"), &Default::default()).unwrap();
     for (dialect, units) in [(Dialect::LinuxCnc, Units::Mm), (Dialect::Grbl, Units::Inch)] {
         let mut job = Job::default_for_drawing();

@@ -9,10 +9,10 @@
 mod common;
 
 use serde_json::{json, Value};
+use swarf::drawing::import::read_drawing;
 use swarf::job::{self, Job, Workpiece};
 use swarf::mesh::import::read_mesh_auto;
 use swarf::mesh::sample::demo_part;
-use swarf::profile::import::read_drawing;
 use swarf::progress::Progress;
 
 const FILE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/golden/programs.tsv");

@@ -6,10 +6,10 @@
 use std::f64::consts::PI;
 
 use proptest::prelude::*;
+use swarf::drawing::{Loop, Shape, Vertex};
 use swarf::geom::{DVec2, Tolerances};
 use swarf::offset::check::{problems, random_shape, shape_from_bytes, star, Rng};
 use swarf::offset::offset;
-use swarf::profile::{Loop, Shape, Vertex};
 
 const TOL: f64 = 1e-6;
 

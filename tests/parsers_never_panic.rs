@@ -72,7 +72,7 @@ proptest! {
 /// valid drawings give a drawing with finite coordinates or an error, never a panic. The
 /// `drawing` fuzz target (`cargo fuzz run drawing`) does the same at length.
 fn check_drawing(bytes: &[u8]) {
-    use swarf::profile::import::read_drawing;
+    use swarf::drawing::import::read_drawing;
     for name in ["x.dxf", "x.svg"] {
         if let Ok(d) = read_drawing(bytes, Some(name), &Tolerances::DEFAULT) {
             assert!(d.loops.iter().flat_map(|l| &l.path.vertices).all(|v| v.p.is_finite() && v.bulge.is_finite()));
@@ -82,7 +82,7 @@ fn check_drawing(bytes: &[u8]) {
 
 fn valid_drawings() -> Vec<Vec<u8>> {
     let svg = br#"<svg xmlns="http://www.w3.org/2000/svg" width="50mm" height="50mm" viewBox="0 0 50 50"><g transform="rotate(10)"><rect x="1" y="1" width="20" height="10" rx="2"/><path d="M30 30 c 5 0 5 5 0 5 q -3 -2 0 -5 a 4 4 0 1 1 -2 2 z"/><ellipse cx="10" cy="30" rx="4" ry="2"/></g></svg>"#;
-    vec![swarf::profile::sample::plate_dxf().into_bytes(), svg.to_vec()]
+    vec![swarf::drawing::sample::plate_dxf().into_bytes(), svg.to_vec()]
 }
 
 #[test]

@@ -207,7 +207,7 @@ fn the_roughing_plans_on_the_regions_a_pool_made_for_its_levels() {
     // Through the flat form the page's workers pass them in.
     let mut flat = Vec::new();
     regions.iter().for_each(|r| r.to_flat(&mut flat));
-    let regions = swarf::profile::Shape::all_from_flat(&flat).unwrap();
+    let regions = swarf::drawing::Shape::all_from_flat(&flat).unwrap();
     assert!(running.keep_regions(&work, regions[1..].to_vec()).is_err());
     running.keep_regions(&work, regions.clone()).unwrap();
     while running.plan_next(&mut Progress::none()).unwrap() {
@@ -215,7 +215,7 @@ fn the_roughing_plans_on_the_regions_a_pool_made_for_its_levels() {
     }
     assert_eq!(running.finish(&mut Progress::none()).unwrap().gcode, whole);
 
-    let plan = |given: Vec<swarf::profile::Shape>, work: &swarf::machining::levels::RegionWork| {
+    let plan = |given: Vec<swarf::drawing::Shape>, work: &swarf::machining::levels::RegionWork| {
         let mut running = job::prepare(&job, demo_part()).unwrap().start();
         running.keep_regions(work, given).unwrap();
         while running.plan_next(&mut Progress::none()).unwrap() {
@@ -224,7 +224,7 @@ fn the_roughing_plans_on_the_regions_a_pool_made_for_its_levels() {
         running.finish(&mut Progress::none()).unwrap().gcode
     };
     let mut empty = regions.clone();
-    empty[0] = swarf::profile::Shape::default();
+    empty[0] = swarf::drawing::Shape::default();
     // For other nodes (one more kept): not taken.
     let mut other = work.clone();
     other.levels[0].1[0] ^= 1;
@@ -250,7 +250,7 @@ fn the_waterline_plans_on_the_regions_a_pool_made_for_its_levels() {
                 let mut regions = helper.level_regions(work.request, &work.levels).unwrap();
                 if emptied == Some(works.len()) {
                     let middle = regions.len() / 2;
-                    regions[middle] = swarf::profile::Shape::default();
+                    regions[middle] = swarf::drawing::Shape::default();
                 }
                 running.keep_regions(&work, regions).unwrap();
                 works.push(work.levels.len());

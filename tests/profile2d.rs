@@ -7,15 +7,15 @@ mod common;
 use std::f64::consts::PI;
 
 use swarf::cutter::Cutter;
+use swarf::drawing::import::read_drawing;
+use swarf::drawing::sample::plate_dxf;
+use swarf::drawing::{Drawing, DrawnLoop, Loop, Shape};
 use swarf::geom::{DVec2, Tolerances};
 use swarf::job::{self, Job, Operation, Tool};
 use swarf::offset::trim::Original;
 use swarf::operations::{Direction, Profile2d, Tabs};
 use swarf::operations::{EntryKind, Pocket2d, PocketPattern};
 use swarf::post::Dialect;
-use swarf::profile::import::read_drawing;
-use swarf::profile::sample::plate_dxf;
-use swarf::profile::{Drawing, DrawnLoop, Loop, Shape};
 use swarf::progress::Progress;
 use swarf::toolpath::{arc_sweep, Move};
 
@@ -403,9 +403,9 @@ fn large_inch_arcs_keep_the_radius_in_both_units() {
     let exact = Shape::new(vec![
         Loop {
             vertices: vec![
-                swarf::profile::Vertex { p: DVec2::ZERO, bulge: 0.0 },
-                swarf::profile::Vertex { p: DVec2::new(r * k, 0.0), bulge: (sweep / 4.0).tan() },
-                swarf::profile::Vertex { p: tip * k, bulge: 0.0 },
+                swarf::drawing::Vertex { p: DVec2::ZERO, bulge: 0.0 },
+                swarf::drawing::Vertex { p: DVec2::new(r * k, 0.0), bulge: (sweep / 4.0).tan() },
+                swarf::drawing::Vertex { p: tip * k, bulge: 0.0 },
             ],
         },
         Loop::circle(DVec2::new(5.0, 1.5) * k, 0.3 * k),

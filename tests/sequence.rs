@@ -209,8 +209,8 @@ fn the_mould_job_with_a_flat_or_bull_nose_finisher_never_plunges() {
 
 #[test]
 fn a_pocket_then_a_profile_with_two_tools_make_one_clean_program() {
-    use swarf::profile::import::read_drawing;
-    use swarf::profile::sample::plate_dxf;
+    use swarf::drawing::import::read_drawing;
+    use swarf::drawing::sample::plate_dxf;
     let drawing = read_drawing(plate_dxf().as_bytes(), Some("plate.dxf"), &Default::default()).unwrap();
     let mut job = Job::default_for_drawing();
     job.tools = vec![Tool { number: 4, cutter: Cutter::flat(6.0), ..Tool::default() }, Tool { number: 2, cutter: Cutter::flat(3.0), ..Tool::default() }];
@@ -252,8 +252,8 @@ fn bad_jobs_get_messages_naming_the_field_or_the_operation() {
     let e = run(&job);
     assert!(matches!(&e, Error::Operation { operation, .. } if operation == "pocket"), "{e}");
     assert_eq!(e.kind(), ErrorKind::Operation);
-    use swarf::profile::import::read_drawing;
-    use swarf::profile::sample::plate_dxf;
+    use swarf::drawing::import::read_drawing;
+    use swarf::drawing::sample::plate_dxf;
     let drawing = read_drawing(plate_dxf().as_bytes(), Some("plate.dxf"), &Default::default()).unwrap();
     let mut job = Job::default_for_drawing();
     job.tools = vec![Tool { cutter: Cutter::flat(200.0), ..Tool::default() }];
@@ -287,8 +287,8 @@ fn the_work_zero_moves_part_and_stock() {
 
 #[test]
 fn a_second_pocket_deeper_in_the_same_loops_starts_where_the_first_stopped() {
-    use swarf::profile::import::read_drawing;
-    use swarf::profile::sample::plate_dxf;
+    use swarf::drawing::import::read_drawing;
+    use swarf::drawing::sample::plate_dxf;
     let drawing = read_drawing(plate_dxf().as_bytes(), Some("plate.dxf"), &Default::default()).unwrap();
     let mut job = Job::default_for_drawing();
     job.tools = vec![Tool { number: 1, cutter: Cutter::flat(6.0), ..Tool::default() }];

@@ -4,7 +4,7 @@
 
 use libfuzzer_sys::fuzz_target;
 use swarf::geom::Tolerances;
-use swarf::profile::import::read_drawing;
+use swarf::drawing::import::read_drawing;
 
 fuzz_target!(|data: &[u8]| {
     for name in ["x.dxf", "x.svg"] {

@@ -3,11 +3,11 @@
 //! region, cut to each operation's depth where it cuts.
 
 use super::schema::Job;
+use crate::drawing::Drawing;
 use crate::error::{Error, Result};
 use crate::geom::{Aabb, DVec2};
 use crate::machining::report::{Groove, SheetCut};
 use crate::offset::offset;
-use crate::profile::Drawing;
 use crate::zmap::{Grid, HeightField};
 
 /// Scales and places `drawing` as the job says; returns the sheet's stock (its top at Z0) and

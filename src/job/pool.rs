@@ -13,6 +13,7 @@
 use std::ops::Range;
 
 use super::run::{Prepared, Running};
+use crate::drawing::Shape;
 use crate::error::{Error, Result};
 use crate::geom::DVec3;
 use crate::machining::context::GivenRegion;
@@ -21,7 +22,6 @@ use crate::machining::levels::{unpack, RegionWork};
 use crate::machining::raster::{PassLayout, RasterPasses};
 use crate::operations::FinishRaster;
 use crate::operations::Operation;
-use crate::profile::Shape;
 use crate::progress::Progress;
 use crate::zmap::contour::LevelMap;
 use crate::zmap::region::Region;

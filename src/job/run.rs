@@ -6,6 +6,7 @@
 use super::drawing;
 use super::report::{self, OperationReport};
 use super::schema::{Job, Retracts, Workpiece};
+use crate::drawing::Drawing;
 use crate::error::{Error, Result, Warning};
 use crate::geom::Aabb;
 use crate::machining::context::{CacheCounts, Caches, Context, SafeHeights, Sheet};
@@ -13,7 +14,6 @@ use crate::machining::report::{Groove, LoadReport, Planned, SheetCut, StageOctan
 use crate::machining::Works;
 use crate::mesh::Mesh;
 use crate::post::{write_mapped, CycleTime, TimeItem};
-use crate::profile::Drawing;
 use crate::progress::Progress;
 use crate::sim::program::{program_moves, ProgramMove};
 use crate::sim::verify::{BandCut, Simulator, Verification};

@@ -3,12 +3,12 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::drawing::Drawing;
 use crate::error::{Error, Result};
 use crate::geom::{Aabb, DVec2, DVec3, Tolerances};
 use crate::mesh::{placement::PartSetup, Mesh};
 use crate::operations::{FinishRaster, Operation};
 use crate::post::PostSettings;
-use crate::profile::Drawing;
 use crate::sim::verify::VerifySettings;
 use crate::tool::Tool;
 
@@ -196,8 +196,8 @@ impl Workpiece {
     /// workpiece through this one function; an error names the file (`part.stl: …`).
     pub fn read(bytes: &[u8], name: Option<&str>, tolerances: &Tolerances) -> Result<Workpiece> {
         let shown = name.unwrap_or("the file");
-        if crate::profile::import::is_drawing(name, bytes) {
-            crate::profile::import::read_drawing(bytes, name, tolerances).map(Workpiece::Drawing).map_err(|e| Error::Input(format!("{shown}: {e}")))
+        if crate::drawing::import::is_drawing(name, bytes) {
+            crate::drawing::import::read_drawing(bytes, name, tolerances).map(Workpiece::Drawing).map_err(|e| Error::Input(format!("{shown}: {e}")))
         } else {
             crate::mesh::import::read_mesh_auto(bytes, name, tolerances).map(Workpiece::Mesh).map_err(|e| Error::Input(format!("{shown}: {e}")))
         }

@@ -12,11 +12,11 @@
 use super::pool::RasterWork;
 use super::run::{JobOutput, Prepared, Running};
 use super::schema::{Job, Workpiece};
+use crate::drawing::Shape;
 use crate::error::{Error, Result};
 use crate::geom::DVec3;
 use crate::machining::context::SurfaceRequest;
 use crate::machining::levels::RegionWork;
-use crate::profile::Shape;
 use crate::progress::Progress;
 use crate::sim::program::{decode, encode, ProgramMove};
 use crate::sim::verify::{cut_bands, BandCut};

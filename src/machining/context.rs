@@ -7,10 +7,10 @@
 use std::sync::Arc;
 
 use crate::cutter::Profile;
+use crate::drawing::Drawing;
 use crate::error::{Error, Result, Warning};
 use crate::geom::{Aabb, DVec2, DVec3, Tolerances};
 use crate::mesh::Mesh;
-use crate::profile::Drawing;
 use crate::progress::Progress;
 use crate::sim::verify::Simulator;
 use crate::tool::Tool;
@@ -88,7 +88,7 @@ pub struct GivenRegion {
     pub request: SurfaceRequest,
     pub level: f64,
     pub keep: Vec<u8>,
-    pub region: crate::profile::Shape,
+    pub region: crate::drawing::Shape,
 }
 
 /// A request with the program's resolution, as the cache keys it.

@@ -29,11 +29,11 @@ use super::rings::{clear_rings, rings, Clearing, Inside, RingSetup};
 use super::settings::{Direction, EntryKind, LoadControl, Order, PocketPattern, Roughing, Steps};
 use super::{positive, sheet, Context, FieldError};
 use crate::cutter::Profile;
+use crate::drawing::Shape;
 use crate::error::{Error, Result};
 use crate::geom::segment::Rect;
 use crate::geom::tolerance::{HAIR, LEAST_STEP};
 use crate::geom::DVec2;
-use crate::profile::Shape;
 use crate::progress::Progress;
 use crate::sim::DexelStock;
 use crate::tool::Tool;
@@ -712,7 +712,7 @@ pub fn material_near<const N: usize>(stock: &DexelStock, grid: Grid, z: f64, rea
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::profile::Loop;
+    use crate::drawing::Loop;
 
     fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Shape {
         Shape::new(vec![Loop::rect(DVec2::new(x0, y0), DVec2::new(x1, y1))])

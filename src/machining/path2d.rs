@@ -4,11 +4,11 @@
 //! not parts of one strategy.
 
 use crate::cutter::Profile;
+use crate::drawing::Loop;
 use crate::geom::segment::Segment;
 pub use crate::geom::segment::{arc_lengths, pieces};
 use crate::geom::tolerance::{FLOAT_SLACK, LEAST_STEP};
 use crate::geom::{DVec2, DVec3};
-use crate::profile::Loop;
 use crate::sim::dexel::DexelStock;
 use crate::toolpath::link::retract;
 use crate::toolpath::Move;

@@ -35,7 +35,7 @@ impl From<Vec<Toolpath>> for Planned {
 /// drawing means, for verifying the program.
 #[derive(Clone, Debug)]
 pub struct SheetCut {
-    pub region: crate::profile::Shape,
+    pub region: crate::drawing::Shape,
     /// Cuts inside the region (else everywhere outside it).
     pub inside: bool,
     pub depth: f64,

@@ -11,11 +11,11 @@
 use super::air::AirCuts;
 use super::path2d::{arc_lengths, follow, start_nearest, Cursor, Heights};
 use super::settings::{EntryKind, LoadControl, PocketPattern};
+use crate::drawing::{Loop, Shape};
 use crate::geom::segment::Segment;
 use crate::geom::tolerance::{FLOAT_SLACK, FLOAT_ZERO, LEAST_STEP};
 use crate::geom::{DVec2, DVec3, Tolerances};
 use crate::offset::offset;
-use crate::profile::{Loop, Shape};
 use crate::toolpath::arcfit;
 use crate::toolpath::entry::helix;
 use crate::toolpath::entry::Keepout;

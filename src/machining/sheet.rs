@@ -5,9 +5,9 @@
 use super::context::Context;
 use super::path2d::{Cursor, InStock};
 use super::walls::Walls;
+use crate::drawing::{Drawing, Loop, Shape};
 use crate::error::{Error, Result};
 use crate::geom::{DVec2, DVec3};
-use crate::profile::{Drawing, Loop, Shape};
 use crate::tool::Tool;
 use crate::toolpath::{Move, Toolpath};
 

@@ -10,12 +10,12 @@
 //! between them is left uncut; [`Walls::paths`] says which drawn loops each path runs along,
 //! so that merge can be named.
 
+use crate::drawing::{Loop, Shape};
 use crate::geom::segment::{Rect, Segment};
 use crate::geom::tolerance::{HAIR, LEAST_STEP};
 use crate::geom::{DVec2, Tolerances};
 use crate::offset::offset;
 use crate::offset::trim::Original;
-use crate::profile::{Loop, Shape};
 
 /// The material of a drawing: its loops by nesting (outer loops counter-clockwise around
 /// material, holes clockwise), each with its index in the drawing, indexed for distance

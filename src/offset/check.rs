@@ -1,10 +1,10 @@
 //! What a correct offset is, checked point by point: the properties the tests, the fuzz target
 //! and the benchmark's random corpus demand of every result. Also the random shapes they use.
 
+use crate::drawing::{Loop, Shape, Vertex};
 use crate::geom::index::RectIndex;
 use crate::geom::segment::{Rect, Segment};
 use crate::geom::DVec2;
-use crate::profile::{Loop, Shape, Vertex};
 
 use super::trim::Original;
 

@@ -1,9 +1,9 @@
 //! Step 2 of seed 003 (§2-2, Figs. 4–7): neighbouring raw entities are joined into one loop.
 
 use super::raw::RawEntity;
+use crate::drawing::Loop;
 use crate::geom::segment::Segment;
 use crate::geom::DVec2;
-use crate::profile::Loop;
 
 /// How the raw entity `i` meets entity `i + 1`.
 #[derive(Clone, Copy, Debug, PartialEq)]

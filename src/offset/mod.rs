@@ -27,9 +27,9 @@ pub mod join;
 pub mod raw;
 pub mod trim;
 
+use crate::drawing::{Loop, Shape, Vertex};
 use crate::geom::segment::Segment;
 use crate::geom::Tolerances;
-use crate::profile::{Loop, Shape, Vertex};
 
 /// The shape grown by `distance` (positive) or shrunk (negative), as loops of lines and arcs:
 /// outer loops counter-clockwise, holes clockwise. Empty when the shape vanishes.

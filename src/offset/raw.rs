@@ -1,8 +1,8 @@
 //! Step 1 of seed 003 (§2-1, Figs. 1–3): the raw offset of every entity of a loop.
 
+use crate::drawing::Loop;
 use crate::geom::segment::Segment;
 use crate::geom::DVec2;
-use crate::profile::Loop;
 
 /// One entity moved to its right by `distance` (to its left when negative). Lines move along
 /// their normal. Arcs keep their centre and sweep and change radius: `R + d` for

@@ -3,10 +3,10 @@
 //! between cuts that come closer to the input than the distance are the twisted parts and go;
 //! the rest are joined back into loops.
 
+use crate::drawing::{Loop, Shape};
 use crate::geom::index::RectIndex;
 use crate::geom::segment::{ArcGeom, Rect, Segment};
 use crate::geom::DVec2;
-use crate::profile::{Loop, Shape};
 
 /// A piece of a joined loop between two cuts (or a whole loop that nothing crosses), kept.
 #[derive(Clone, Debug)]

@@ -133,7 +133,7 @@ impl Operate for FinishWaterline {
         // unless a pool made it already.
         let given = &ctx.given_regions;
         let all = (!given.is_empty()).then(|| pack(&vec![true; grid.nodes()]));
-        let mut made: Vec<(f64, Option<crate::profile::Shape>)> = heights.iter().map(|&z| (z, None)).collect();
+        let mut made: Vec<(f64, Option<crate::drawing::Shape>)> = heights.iter().map(|&z| (z, None)).collect();
         crate::parallel::each_mut(&mut made, |(z, out)| {
             let level = *z - self.allowance;
             let kept = all.as_ref().and_then(|all| given.iter().find(|g| g.request == request && g.level == level && g.keep == *all));

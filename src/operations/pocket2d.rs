@@ -4,13 +4,13 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::drawing::{Loop, Shape};
 use crate::geom::tolerance::LEAST_STEP;
 use crate::machining::path2d::does_not_fit;
 use crate::machining::report::SheetCut;
 use crate::machining::rings::{clear_rings, rings, Clearing, RingSetup};
 use crate::machining::settings::{Direction, EntryKind, LoadControl, PocketPattern};
 use crate::machining::{finite, named_operation, not_negative, positive, sheet, Context, FieldError, Operate, Planned};
-use crate::profile::{Loop, Shape};
 use crate::toolpath::Move;
 
 /// Pocket operation on a drawing.

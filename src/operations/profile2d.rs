@@ -7,6 +7,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::drawing::{Loop, Shape};
 use crate::geom::segment::Segment;
 use crate::geom::tolerance::{FLOAT_SLACK, HAIR, LEAST_STEP};
 use crate::geom::{DVec2, Tolerances};
@@ -17,7 +18,6 @@ use crate::machining::walls::Walls;
 use crate::machining::{named_operation, not_negative, positive, sheet, Context, FieldError, Operate, Planned};
 use crate::offset::offset;
 use crate::offset::trim::Original;
-use crate::profile::{Loop, Shape};
 use crate::toolpath::Move;
 
 /// Spacing of the points a lead arc is checked at (mm).

@@ -18,6 +18,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::drawing::Shape;
 use crate::error::{Error, Result};
 use crate::geom::tolerance::LEAST_STEP;
 use crate::geom::{DVec2, DVec3};
@@ -28,7 +29,6 @@ use crate::machining::report::LoadReport;
 use crate::machining::rings::Inside;
 use crate::machining::settings::{Direction, LoadControl, Roughing, Steps};
 use crate::machining::{finite, named_operation, not_negative, positive, Context, FieldError, Operate, Planned};
-use crate::profile::Shape;
 use crate::progress::Progress;
 use crate::toolpath::entry::Entry;
 use crate::toolpath::{arcfit, Move, Toolpath};

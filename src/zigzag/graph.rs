@@ -10,9 +10,9 @@
 //! line and cuts back, pushing every unvisited neighbour it passes on a stack; when it is stuck
 //! it pops the stack, so the tool leaves the material only where the region forces it.
 
+use crate::drawing::{Loop, Shape};
 use crate::geom::segment::{arc_lengths, pieces, Segment};
 use crate::geom::DVec2;
-use crate::profile::{Loop, Shape};
 
 /// Points for moving along `piece`, a piece of a region's boundary (the region on its left),
 /// from its start, short of its end, each line between them within `chord` of it and never

@@ -15,9 +15,9 @@
 //!
 //! The extra segments come out as short lines; [`crate::toolpath::arcfit`] turns them into arcs.
 
+use crate::drawing::Shape;
 use crate::geom::segment::{ArcGeom, Rect, Segment};
 use crate::geom::DVec2;
-use crate::profile::Shape;
 
 /// Directions tried on each side of the way to the path, as steps of this angle (radians),
 /// up to a quarter turn: turning further back only shuttles in cleared material.
@@ -696,7 +696,7 @@ pub fn densify(run: &[DVec2], ds: f64) -> Vec<DVec2> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::profile::Loop;
+    use crate::drawing::Loop;
 
     fn square_map(px: f64, r: f64) -> (PixelMap, Shape) {
         // A 40 mm square pocket, the centre's region inset by r.

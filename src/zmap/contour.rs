@@ -28,10 +28,10 @@
 use std::collections::HashMap;
 use std::sync::Mutex;
 
+use crate::drawing::{Loop, Shape};
 use crate::geom::{tolerance::BOUND_SLACK, DVec2, Tolerances};
 use crate::mesh::Mesh;
 use crate::parallel;
-use crate::profile::{Loop, Shape};
 use crate::progress::Progress;
 use crate::zmap::cl_exact::ExactBuilder;
 use crate::zmap::surface::ClSurface;

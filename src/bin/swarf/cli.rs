@@ -7,6 +7,7 @@ use std::time::Instant;
 
 use clap::{Parser, Subcommand, ValueEnum};
 use swarf::cutter::{Cutter, Shape};
+use swarf::drawing::import::read_drawing;
 use swarf::geom::Tolerances;
 use swarf::job::project::Project;
 use swarf::job::verify_gcode;
@@ -15,7 +16,6 @@ use swarf::job::{self, Job};
 use swarf::mesh::import::read_mesh_auto;
 use swarf::mesh::placement::{PartSetup, PartUnits, Placement, UpAxis};
 use swarf::mesh::sample::demo_part;
-use swarf::profile::import::read_drawing;
 use swarf::progress::Progress;
 use swarf::zmap::{cc::cc_zmap, cl_exact::cl_exact, cl_inverse::cl_inverse_offset, io, Grid};
 
@@ -229,7 +229,7 @@ fn run(cli: Cli) -> Result<(), String> {
             for (k, n) in &d.ignored {
                 println!("ignored: {n} {k}");
             }
-            let nesting = swarf::profile::Shape::new(d.loops.iter().map(|l| l.path.clone()).collect());
+            let nesting = swarf::drawing::Shape::new(d.loops.iter().map(|l| l.path.clone()).collect());
             for (i, (l, o)) in d.loops.iter().zip(&nesting.loops).enumerate() {
                 let b = l.path.bounds();
                 println!(

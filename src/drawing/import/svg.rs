@@ -12,9 +12,9 @@ use roxmltree::Node;
 use svgtypes::{Length, LengthUnit, PointsParser, SimplePathSegment, SimplifyingPathParser, Transform};
 
 use super::{DrawingError, Pieces};
+use crate::drawing::arcfit::fit_arcs;
 use crate::geom::segment::Segment;
 use crate::geom::{DVec2, Tolerances};
-use crate::profile::arcfit::fit_arcs;
 
 const MM_PER_PX: f64 = 25.4 / 96.0;
 

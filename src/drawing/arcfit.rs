@@ -73,7 +73,7 @@ mod tests {
             let d = out.iter().map(|s| s.distance_to(p)).fold(f64::INFINITY, f64::min);
             assert!(d < 1.1e-3, "{d}");
         }
-        let area: f64 = crate::profile::Loop::from_segments(&out).area();
+        let area: f64 = crate::drawing::Loop::from_segments(&out).area();
         assert!((area - std::f64::consts::PI * 40.0).abs() < 0.05, "{area}");
     }
 }

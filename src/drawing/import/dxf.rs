@@ -7,9 +7,9 @@
 use std::f64::consts::TAU;
 
 use super::{DrawingError, Pieces};
+use crate::drawing::arcfit::fit_arcs;
 use crate::geom::segment::Segment;
 use crate::geom::{DVec2, Tolerances};
-use crate::profile::arcfit::fit_arcs;
 
 /// One entity: its type, the line it starts on, and its group codes and values.
 struct Entity<'a> {
