@@ -12,8 +12,10 @@ async function inSteps(steps) {
   if (!viewer) { steps.forEach((step) => step()); return; }
   await viewer.batch(async () => {
     for (const step of steps) {
-      step();
+      // Each step in a task of its own, the first too: the task that brought the result
+      // (its message from the worker) holds the page's thread no longer than it takes to read.
       await new Promise((resolve) => setTimeout(resolve, 0));
+      step();
     }
   });
 }

@@ -272,7 +272,11 @@ export class Engine {
     const kept = [];
     const done = (t, r) => {
       if (t.type === 'passes') {
-        kept.push(planner.call({ type: 'keepPasses', operation: t.operation, first: t.i0, count: t.i1 - t.i0, flat: r.flat }, [r.flat.buffer]));
+        // Awaited below; handled now too, so that a pool ended before then (a cancel, a run that
+        // ends the warm-up) leaves no rejection unhandled.
+        const keep = planner.call({ type: 'keepPasses', operation: t.operation, first: t.i0, count: t.i1 - t.i0, flat: r.flat }, [r.flat.buffer]);
+        keep.catch(() => {});
+        kept.push(keep);
       } else {
         const nx = surfaces[t.surface].nx, half = (t.j1 - t.j0) * nx, m = maps.get(t.surface);
         m.right.set(r.z.subarray(0, half), t.j0 * nx);

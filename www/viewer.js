@@ -112,6 +112,15 @@ const MOVING_SEGMENTS = 300000;
 // How long after the last move of the mouse or wheel the view counts as still moving (ms).
 const SETTLE_MS = 180;
 
+// A part's positions told apart from another's cheaply: their count and a thousand of them
+// spread over the array (a part turned or moved changes them).
+function fingerprint(positions) {
+  const n = positions.length, step = Math.max(1, Math.floor(n / 1000));
+  let out = `${n}`;
+  for (let i = 0; i < n; i += step) out += `,${positions[i]}`;
+  return out;
+}
+
 export class Viewer {
   constructor(canvas) {
     this.canvas = canvas;
@@ -143,7 +152,16 @@ export class Viewer {
   }
 
   setPart(part, frame = true) {
+    // The same part again (a run's result on the part the view shows): kept, not uploaded
+    // again (a die-sized part is tens of megabytes).
+    const source = fingerprint(part.positions);
+    if (this.part && this.partSource === source) {
+      if (frame) this.frame(part.bounds);
+      this.draw();
+      return;
+    }
     this.dropPart();
+    this.partSource = source;
     this.part = { position: this.buffer(part.positions), normal: this.buffer(part.normals), count: part.positions.length / 3 };
     this.setGrid(part.bounds);
     if (frame) this.frame(part.bounds);
@@ -328,6 +346,7 @@ export class Viewer {
   dropPart() {
     if (this.part) { this.gl.deleteBuffer(this.part.position); this.gl.deleteBuffer(this.part.normal); }
     this.part = null;
+    this.partSource = null;
     this.dropLines((key) => key.startsWith('drawing'));
   }
 
