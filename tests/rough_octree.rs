@@ -242,3 +242,18 @@ fn the_sample_part_is_roughed_clean_with_three_flat_ends() {
     clean(&out);
     assert_eq!(stages(&out).len(), 3, "{:?}", stages(&out));
 }
+
+/// Issue 38's rocker arm (scale 100, Y up, flat ends φ20/12/6/3, allowance 0): the φ6 and φ3
+/// stages went in from the air beside regions their octants cut short, across the part, 4.2 mm
+/// deep at most (OpenCAMLib's drop cutter agreed: `gcheck.py` −4.17 mm). The program is clean.
+#[test]
+fn the_rocker_arms_octree_roughing_is_clean() {
+    let (Some(job), Some(part)) = (common::shared_data("jobs/octree-rocker.json"), common::shared_data("meshes/c3d_rocker-arm.obj")) else { return };
+    let job = Job::from_json(&std::fs::read_to_string(job).unwrap()).unwrap();
+    let bytes = std::fs::read(&part).unwrap();
+    let workpiece = swarf::job::Workpiece::read(&bytes, Some("c3d_rocker-arm.obj"), &job.tolerances).unwrap();
+    let out = swarf::job::run(&job, workpiece, &mut Progress::none()).unwrap();
+    let v = out.verification.as_ref().unwrap();
+    assert_eq!(out.problem, None, "{:?}", v.report);
+    assert_eq!(v.report.gouge_count, 0);
+}

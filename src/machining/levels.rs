@@ -341,15 +341,18 @@ impl LevelRoughing {
 
     /// In the air beside a region at level `z`: a step out from a boundary point, away from the
     /// stock's middle, where the cutter touches nothing the earlier operations left (beside the
-    /// stock, or where another operation cleared it).
+    /// stock, or where another operation cleared it), and the way in from there to the point
+    /// stays clear of the part all along (a region cut short by a mask, octree roughing's
+    /// octants, can end beside a thin wall of the part that the step out would cross).
     pub fn air<'a>(&'a self, ctx: &'a Context, cl: &'a ClSurface, r: f64, z: f64) -> impl Fn(DVec2) -> Option<DVec2> + 'a {
         let stock_now = ctx.sim.stock();
         let middle = ctx.stock.center().truncate();
         let flat = Profile::new(r, 0.0);
         let (step, height) = (self.step(r), ctx.tolerances.height);
+        let floor = z - self.roughing.allowance;
         move |p: DVec2| {
             let q = p + (p - middle).normalize_or_zero() * step;
-            (stock_now.touch(q, &flat, true) <= z + height && cl.height(q) <= z - self.roughing.allowance).then_some(q)
+            (stock_now.touch(q, &flat, true) <= z + height && cl.height(q) <= floor && cl.stays_below(q, p, floor + height)).then_some(q)
         }
     }
     /// The levels, from the top down: every step-down from `top` to `floor` plus the
@@ -713,6 +716,69 @@ pub fn material_near<const N: usize>(stock: &DexelStock, grid: Grid, z: f64, rea
 mod tests {
     use super::*;
     use crate::drawing::Loop;
+
+    /// A thin pin (0.2 mm square, 20 mm tall) on nothing, in a stock 60 mm across.
+    fn pin_context() -> Context {
+        use crate::geom::{Aabb, DVec3, Tolerances};
+        let v = DVec3::new;
+        let (a, h) = (0.1, 20.0);
+        let c = [v(-a, -a, 0.0), v(a, -a, 0.0), v(a, a, 0.0), v(-a, a, 0.0), v(-a, -a, h), v(a, -a, h), v(a, a, h), v(-a, a, h)];
+        let quads = [[0, 1, 2, 3], [4, 7, 6, 5], [0, 4, 5, 1], [1, 5, 6, 2], [2, 6, 7, 3], [3, 7, 4, 0]];
+        let tris = quads.iter().flat_map(|q| [[c[q[0]], c[q[1]], c[q[2]]], [c[q[0]], c[q[2]], c[q[3]]]]);
+        let tolerances = Tolerances::default();
+        let part = crate::mesh::Mesh::from_triangles(tris, &tolerances).unwrap();
+        let stock = Aabb { min: v(-30.0, -30.0, -1.0), max: v(30.0, 30.0, h) };
+        let tool = Tool { number: 1, cutter: crate::cutter::Cutter::flat(6.0), ..Tool::default() };
+        Context {
+            part,
+            sheet: None,
+            stock,
+            heights: crate::machining::context::SafeHeights { clearance: h + 5.0, gap: 1.0, full: false },
+            tools: vec![tool],
+            tolerances,
+            resolution: 0.001,
+            caches: Default::default(),
+            // The in-process stock already cut down to 5 mm: the air over it.
+            sim: crate::sim::verify::Simulator::new(&Aabb { min: stock.min, max: v(30.0, 30.0, 5.0) }, 0.5).unwrap(),
+            warnings: Vec::new(),
+            rapid_rate: 5000.0,
+            air_feed: 5000.0,
+            operation: 0,
+            given_passes: Default::default(),
+            given_regions: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn the_way_in_from_the_air_never_crosses_the_part() {
+        // A region cut short by a mask (octree roughing's octants) can end at a point whose
+        // step out, away from the stock's middle, passes the side of a pin: both ends stand
+        // clear of it (the φ6 flat end's centre 3.1 mm from its side), the way
+        // between does not. The rocker arm's φ6 and φ3 stages fed through it, deeper at every
+        // level (issue 38).
+        let mut ctx = pin_context();
+        let roughing = LevelRoughing::new("rough", 1, 2.0, 0.4, &Roughing { allowance: 0.0, leave_stock: 0.0, ..Roughing::default() });
+        let (tool, cl) = roughing.surface(&mut ctx, &mut Progress::none()).unwrap();
+        let r = tool.cutter.radius();
+        let z = 10.0;
+        // Two points level with each other beside the pin's axis, a step apart: the step out
+        // from the first (the stock's middle put behind it) lands on the second.
+        let step = roughing.step(r);
+        let (p, q) = (DVec2::new(-0.5 * step, 3.0), DVec2::new(0.5 * step, 3.0));
+        assert!(cl.height(p) <= z && cl.height(q) <= z, "both ends clear of the pin");
+        assert!(!cl.stays_below(p, q, z), "the way between passes over the pin's shadow");
+        let middle_behind = |from: DVec2| {
+            let m = from - (q - p) * 10.0;
+            crate::geom::Aabb { min: (m - DVec2::splat(1.0)).extend(-1.0), max: (m + DVec2::splat(1.0)).extend(20.0) }
+        };
+        ctx.stock = middle_behind(p);
+        assert_eq!(roughing.air(&ctx, &cl, r, z)(p), None, "no way in from the air across the pin");
+        // Farther from the pin, with nothing in the way, the way in stays.
+        let far = DVec2::new(-0.5 * step, 9.0);
+        ctx.stock = middle_behind(far);
+        let air = roughing.air(&ctx, &cl, r, z);
+        assert!(air(far).is_some_and(|a| a.distance(far + (q - p)) < 1e-9), "{:?}", air(far));
+    }
 
     fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Shape {
         Shape::new(vec![Loop::rect(DVec2::new(x0, y0), DVec2::new(x1, y1))])
