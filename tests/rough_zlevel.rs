@@ -434,3 +434,51 @@ fn rest_roughing_keeps_the_tools_body_out_of_the_crevices_a_bigger_tool_left() {
         clean(&out);
     }
 }
+
+/// Issue 38's guards: settings off by orders of magnitude are refused before any work starts,
+/// naming the setting, in well under a second; a part the stock does not hold is refused.
+#[test]
+fn absurd_settings_and_a_part_outside_the_stock_are_refused_at_once() {
+    use swarf::job::{self, Job, Operation};
+    use swarf::mesh::sample::demo_part;
+    use swarf::progress::Progress;
+    let refused = |job: &Job| {
+        let started = std::time::Instant::now();
+        let e = job::run(job, demo_part(), &mut Progress::none()).unwrap_err().to_string();
+        (e, started.elapsed().as_secs_f64())
+    };
+    // A step-down of 0.001 mm: tens of thousands of levels.
+    let mut job = Job::demo();
+    if let Operation::RoughZlevel(o) = &mut job.operations[0] {
+        o.steps.stepdown = 0.001;
+    }
+    let (e, s) = refused(&job);
+    assert!(e.contains("a step-down of 0.001 mm makes") && e.contains("levels") && e.starts_with("rough"), "{e}");
+    assert!(s < 1.0, "{s} s");
+    // Zigzag, waterline, raster and octree alike.
+    let mut job = Job::demo();
+    for op in &mut job.operations {
+        match op {
+            Operation::FinishWaterline(o) => (o.stepdown, o.scallop) = (0.0005, None),
+            Operation::FinishRaster(o) => o.stepover = 0.001,
+            _ => {}
+        }
+    }
+    let (e, _) = refused(&job);
+    assert!(e.contains("a step-over of 0.001 mm makes") && e.contains("passes"), "{e}");
+    job.operations.retain(|o| matches!(o, Operation::FinishWaterline(_)));
+    let (e, _) = refused(&job);
+    assert!(e.contains("a step-down of 0.0005 mm makes") && e.contains("levels"), "{e}");
+    let mut job = Job::demo();
+    job.operations = vec![Operation::RoughOctree(swarf::operations::RoughOctree { delta: 0.0001, ..Default::default() })];
+    let (e, s) = refused(&job);
+    assert!(e.contains("δ = 0.0001") && e.contains("levels"), "{e}");
+    assert!(s < 1.0, "{s} s");
+    // A stock box that does not hold the part: below it, above it, beside it.
+    for (z0, z1, x0, what) in [(100.0, 200.0, -200.0, "below the stock's bottom"), (-200.0, -100.0, -200.0, "above the stock's top"), (-200.0, 200.0, 500.0, "beside the stock")] {
+        let mut job = Job::demo();
+        job.stock.size_box = Some(swarf::geom::Aabb { min: swarf::geom::DVec3::new(x0, -200.0, z0), max: swarf::geom::DVec3::new(x0 + 400.0, 200.0, z1) });
+        let (e, _) = refused(&job);
+        assert!(e.contains(what), "{what}: {e}");
+    }
+}

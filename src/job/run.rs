@@ -13,6 +13,7 @@ use crate::machining::context::{CacheCounts, Caches, Context, SafeHeights, Sheet
 use crate::machining::report::{Groove, LoadReport, Planned, SheetCut, StageOctants, StageReport};
 use crate::machining::Works;
 use crate::mesh::Mesh;
+use crate::operations::Operation;
 use crate::post::{write_mapped, CycleTime, TimeItem};
 use crate::progress::Progress;
 use crate::sim::program::{program_moves, ProgramMove};
@@ -105,6 +106,7 @@ impl Job {
         let (part, sheet, stock) = match workpiece {
             Workpiece::Mesh(mut part) => {
                 let stock = self.place(&mut part);
+                outside_the_stock(&part.bounds(), &stock)?;
                 (part, None, stock)
             }
             Workpiece::Drawing(mut d) => {
@@ -189,6 +191,10 @@ pub fn prepare(job: &Job, workpiece: impl Into<Workpiece>) -> Result<Prepared> {
         Workpiece::Drawing(_) => Vec::new(),
     };
     let ctx = job.context(workpiece)?;
+    // Work off by orders of magnitude is refused before any starts, naming the setting.
+    for o in job.operations.iter().map(Operation::op).filter(|o| o.enabled()) {
+        o.check_scale(&ctx)?;
+    }
     if ctx.sheet.is_none() {
         if let Some(w) = tool_larger_than_part(job, &ctx.part) {
             warnings.push(w);
@@ -486,4 +492,19 @@ fn timed_moves(paths: &[Toolpath], first: usize, last: Option<&ProgramMove>, too
         m.start += clock;
     }
     Ok(moves)
+}
+
+/// The error for a part the stock does not hold: wholly below its bottom (the whole stock would
+/// be milled away down to the bottom), above its top (nothing to cut), or beside it.
+fn outside_the_stock(part: &Aabb, stock: &Aabb) -> Result<()> {
+    let why = if part.max.z <= stock.min.z {
+        format!("the part lies wholly below the stock's bottom (its top at Z{:.3}, the stock's bottom at Z{:.3}): every operation would mill the whole stock away", part.max.z, stock.min.z)
+    } else if part.min.z >= stock.max.z {
+        format!("the part lies wholly above the stock's top (its bottom at Z{:.3}, the stock's top at Z{:.3}): there is nothing to cut", part.min.z, stock.max.z)
+    } else if part.max.x <= stock.min.x || part.min.x >= stock.max.x || part.max.y <= stock.min.y || part.min.y >= stock.max.y {
+        "the part lies wholly beside the stock, not in it".to_owned()
+    } else {
+        return Ok(());
+    };
+    Err(Error::Input(format!("{why}; check stock.sizeBox, stock.zero and the part's placement")))
 }

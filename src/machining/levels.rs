@@ -75,6 +75,12 @@ impl LevelRoughing {
         LevelRoughing { name: name.to_owned(), tool, stepdown, stepover_fraction, roughing: *roughing, helix_radius: None, flats: true, order: Order::Levels }
     }
 
+    /// The levels this stock's height makes at the step-down, within [`super::MAX_LEVELS`].
+    pub fn check_scale(&self, ctx: &Context) -> Result<()> {
+        let height = ctx.stock.max.z - ctx.stock.min.z;
+        super::too_many(&self.name, "levels", height / self.stepdown, super::MAX_LEVELS, "a step-down of", self.stepdown, height)
+    }
+
     /// Checks the settings of a roughing that names its step-down and step-over (z-level and
     /// zigzag roughing), each named as the job file names it.
     pub fn validate(&self) -> Result<(), FieldError> {
@@ -88,8 +94,8 @@ impl LevelRoughing {
 }
 
 /// The [`super::Operate`] methods of an operation that cuts the levels its `levels()` gives
-/// ([`LevelRoughing`]): the CL surface and level map it asks for, and the regions of its levels
-/// as work a pool can share out.
+/// ([`LevelRoughing`]): the CL surface and level map it asks for, the regions of its levels as
+/// work a pool can share out, and the number of its levels checked before any work.
 macro_rules! level_work {
     () => {
         fn surfaces(&self, ctx: &$crate::machining::Context) -> $crate::error::Result<Vec<$crate::machining::context::SurfaceRequest>> {
@@ -102,6 +108,10 @@ macro_rules! level_work {
 
         fn region_work(&self, ctx: &mut $crate::machining::Context, progress: &mut $crate::progress::Progress) -> $crate::error::Result<Option<$crate::machining::levels::RegionWork>> {
             self.levels().region_work(ctx, progress).map(Some)
+        }
+
+        fn check_scale(&self, ctx: &$crate::machining::Context) -> $crate::error::Result<()> {
+            self.levels().check_scale(ctx)
         }
     };
 }

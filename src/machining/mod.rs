@@ -23,6 +23,22 @@ pub mod walls;
 pub use context::Context;
 pub use report::Planned;
 
+/// The most levels an operation may cut: more is a setting off by orders of magnitude (a
+/// 100 mm stock at a 0.1 mm step-down is 1000 levels).
+pub const MAX_LEVELS: f64 = 2000.0;
+/// The most raster passes an operation may run: more is a step-over off by orders of magnitude
+/// (a 1 m stock at 0.1 mm is 10,000 passes).
+pub const MAX_PASSES: f64 = 20000.0;
+
+/// The error for `count` of `what` (levels, passes) made by `field` = `value` over `span` mm,
+/// when it passes `most`.
+pub fn too_many(op: &str, what: &str, count: f64, most: f64, field: &str, value: f64, span: f64) -> Result<()> {
+    if count <= most {
+        return Ok(());
+    }
+    Err(crate::error::Error::operation(op, format!("{field} {value} mm makes {count:.0} {what} over {span:.1} mm (at most {most:.0}): check the setting and the part's units")))
+}
+
 use crate::error::Result;
 use crate::progress::Progress;
 
@@ -114,6 +130,12 @@ pub trait Operate {
     }
     /// Checks its settings before any work.
     fn validate(&self) -> Result<(), FieldError>;
+    /// Whether the work its settings ask for on this stock is within reason (levels, passes),
+    /// checked before any work starts: an error naming the setting where it is not (a step-down
+    /// of 0.001 mm over an 18 mm stock is 18,000 levels, minutes of silence).
+    fn check_scale(&self, _ctx: &Context) -> Result<()> {
+        Ok(())
+    }
     /// The CL surfaces it will ask the context for, named before it plans, so that a pool of
     /// workers can make them first, band by band (none by default: it makes what it needs as
     /// it plans).

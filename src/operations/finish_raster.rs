@@ -16,7 +16,7 @@ use crate::error::{Error, Result};
 use crate::geom::DVec2;
 use crate::machining::context::SurfaceRequest;
 use crate::machining::raster::{join_passes, raster_runs, rest_only, shallow_only, Pattern, RasterPasses};
-use crate::machining::{finite, named_operation, not_negative, positive, Context, FieldError, Operate, Planned};
+use crate::machining::{finite, named_operation, not_negative, positive, too_many, Context, FieldError, Operate, Planned, MAX_PASSES};
 use crate::progress::Progress;
 use crate::toolpath::entry::Entry;
 use crate::toolpath::link::Floor;
@@ -125,6 +125,11 @@ impl Operate for FinishRaster {
             finite("slopeMax", s)?;
         }
         Ok(())
+    }
+
+    fn check_scale(&self, ctx: &Context) -> Result<()> {
+        let span = (ctx.stock.max - ctx.stock.min).truncate().length();
+        too_many(&self.name, "passes", span / self.stepover, MAX_PASSES, "a step-over of", self.stepover, span)
     }
 
     fn surfaces(&self, ctx: &Context) -> Result<Vec<SurfaceRequest>> {

@@ -18,7 +18,7 @@ use crate::machining::context::SurfaceRequest;
 use crate::machining::levels::{pack, RegionWork};
 use crate::machining::raster::gradient;
 use crate::machining::settings::Direction;
-use crate::machining::{finite, named_operation, not_negative, positive, Context, FieldError, Operate, Planned};
+use crate::machining::{finite, named_operation, not_negative, positive, too_many, Context, FieldError, Operate, Planned, MAX_LEVELS};
 use crate::progress::Progress;
 use crate::toolpath::entry::Entry;
 use crate::toolpath::link::Floor;
@@ -90,6 +90,15 @@ impl Operate for FinishWaterline {
         positive("grid", self.grid)?;
         positive("entry.rampAngle", self.entry.ramp_angle)?;
         Ok(())
+    }
+
+    fn check_scale(&self, ctx: &Context) -> Result<()> {
+        // Levels by the scallop are at least LEAST_STEP apart (`heights`); by the step-down, as set.
+        let height = ctx.stock.max.z - ctx.stock.min.z;
+        match self.scallop {
+            Some(_) => Ok(()),
+            None => too_many(&self.name, "levels", height / self.stepdown, MAX_LEVELS, "a step-down of", self.stepdown, height),
+        }
     }
 
     fn level_maps(&self, ctx: &Context) -> Result<Vec<SurfaceRequest>> {

@@ -39,7 +39,7 @@ use crate::geom::tolerance::FLOAT_SLACK;
 use crate::machining::levels::LevelRoughing;
 use crate::machining::report::{StageOctants, StageReport, StageRole};
 use crate::machining::settings::Roughing;
-use crate::machining::{positive, Context, FieldError, Operate, Planned, Works};
+use crate::machining::{positive, too_many, Context, FieldError, Operate, Planned, Works, MAX_LEVELS};
 use crate::octree::{distance_to, Octree, Squares, Volume, GAMMA_FIRST, GAMMA_RANGE};
 use crate::progress::Progress;
 use crate::sim::program::program_moves;
@@ -116,6 +116,15 @@ impl Operate for RoughOctree {
             return Err(FieldError { field: "stepoverFraction", message: format!("is at most 0.85 of the diameter: wider steps leave islands between rings (got {})", self.stepover_fraction) });
         }
         self.roughing.validate()
+    }
+
+    fn check_scale(&self, ctx: &Context) -> Result<()> {
+        // The smallest tool's layers are the most.
+        let height = ctx.stock.max.z - ctx.stock.min.z;
+        match self.candidates(ctx)?.last() {
+            Some(t) => too_many(&self.name, "levels", height / self.depth(t), MAX_LEVELS, &format!("δ = {} makes the φ{} tool's depth of cut", self.delta, t.cutter.diameter), self.depth(t), height),
+            None => Ok(()),
+        }
     }
 
     fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Planned> {
