@@ -252,6 +252,18 @@ fn a_part_smaller_than_the_tool_is_named_in_a_warning_and_a_bad_scale_is_refused
         Err(e) => e.to_string(),
     };
     assert!(warned.contains("smaller than the φ6 tool T1: is its unit right?"), "{warned}");
+    // A part wider than the tool one way and narrower the other is not called smaller (issue
+    // 38: "228.60 × 164.71 × 15.88 mm, smaller than the φ180 tool"): the warning says what the
+    // tool can do on it. The sample is 90 × 60 mm: a φ70 tool.
+    let mut wide = Job::default();
+    wide.tools[0].cutter = swarf::cutter::Cutter { flute_length: 80.0, ..swarf::cutter::Cutter::flat(70.0) };
+    wide.simulation.verify = false;
+    wide.operations.truncate(1);
+    let warned = match job::run(&wide, swarf::mesh::sample::demo_part(), &mut Progress::none()) {
+        Ok(out) => out.warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>().join("\n"),
+        Err(e) => e.to_string(),
+    };
+    assert!(warned.contains("narrower across than the φ70 tool T1: the tool fits in none of its pockets") && !warned.contains("smaller than"), "{warned}");
     job.part.scale = 0.0;
     let e = job::run(&job, swarf::mesh::sample::demo_part(), &mut Progress::none()).unwrap_err().to_string();
     assert!(e.contains("part.scale must be a positive number"), "{e}");

@@ -475,12 +475,18 @@ fn tool_larger_than_part(job: &Job, part: &Mesh) -> Option<Warning> {
     let used: Vec<u32> = job.operations.iter().filter(|o| o.op().enabled()).flat_map(|o| o.op().tools()).collect();
     let smallest = job.tools.iter().filter(|t| used.is_empty() || used.contains(&t.number)).min_by(|a, b| a.cutter.diameter.total_cmp(&b.cutter.diameter))?;
     let size = part.bounds().size();
-    (smallest.cutter.diameter > size.x.min(size.y)).then(|| {
-        Warning::job(format!(
-            "the part is {:.2} × {:.2} × {:.2} mm, smaller than the φ{} tool T{}: is its unit right? (part.units: {:?}, part.scale: {})",
-            size.x, size.y, size.z, smallest.cutter.diameter, smallest.number, job.part.units, job.part.scale
-        ))
-    })
+    let d = smallest.cutter.diameter;
+    let unit = format!("is its unit right? (part.units: {:?}, part.scale: {})", job.part.units, job.part.scale);
+    if d > size.x.max(size.y) {
+        Some(Warning::job(format!("the part is {:.2} × {:.2} × {:.2} mm, smaller than the φ{d} tool T{}: {unit}", size.x, size.y, size.z, smallest.number)))
+    } else if d > size.x.min(size.y) {
+        Some(Warning::job(format!(
+            "the part is {:.2} × {:.2} × {:.2} mm, narrower across than the φ{d} tool T{}: the tool fits in none of its pockets or gaps and cuts only around it; {unit}",
+            size.x, size.y, size.z, smallest.number
+        )))
+    } else {
+        None
+    }
 }
 
 /// The moves of `paths[first..]`, timed on from the program's last move so far.
