@@ -257,3 +257,23 @@ fn the_rocker_arms_octree_roughing_is_clean() {
     assert_eq!(out.problem, None, "{:?}", v.report);
     assert_eq!(v.report.gouge_count, 0);
 }
+
+/// Issue 38: material the library's tools reach but cannot enter as the octree's blocks
+/// (a pocket with no room for a helix over 2 × 2 blocks and no side open to the air) was
+/// refused ("no tool of the library can enter … a φ1.5 flat end would") although z-level
+/// roughing with the same tool cuts it. The largest tool that reaches what the smallest would
+/// now takes it in levels, clean.
+#[test]
+fn a_pocket_no_block_can_be_entered_in_is_roughed_in_levels() {
+    let pocket = |x: f64, y: f64| (within(x, -4.5, 4.5) && within(y, -4.5, 4.5)).then_some(-6.0);
+    let mut job = octree_job(vec![flat(1, 6.0)], RoughOctree::default());
+    job.stock.margin_top = 0.0;
+    let out = job::run(&job, block(20.0, 20.0, pocket), &mut Progress::none()).unwrap();
+    clean(&out);
+    let stages = out.operations[0].stages.as_ref().unwrap();
+    assert_eq!(stages.len(), 1, "{stages:?}");
+    assert_eq!(stages[0].role, StageRole::Profile);
+    assert!(stages[0].why.contains("no tool clears a whole block"), "{}", stages[0].why);
+    // Most of the pocket, 9 × 9 × (6 − 0.5) mm, is taken.
+    assert!(stages[0].removed > 0.6 * 9.0 * 9.0 * 5.5, "{stages:?}");
+}

@@ -229,7 +229,24 @@ impl RoughOctree {
                 ctx.note(&self.name, "no material is left to rough");
                 return Ok((paths, reports, views));
             }
-            return Err(self.nothing_enters(ctx, candidates, progress));
+            // No tool can clear a whole block anywhere (the blocks are partly part wherever
+            // there is material, as on a shallow mould insert): the largest tool that reaches
+            // all the smallest would takes what it can in levels, as z-level roughing would,
+            // rather than nothing at all.
+            let mut k = 0;
+            while k + 1 < candidates.len() && !self.reaches_all(ctx, &candidates[k], &candidates[k + 1..], progress)? {
+                k += 1;
+            }
+            let why = format!(
+                "no tool clears a whole block of the material anywhere (blocks of {:.2} mm and less are partly part everywhere), so the largest tool that reaches all the smallest would takes it in {:.2} mm levels",
+                GAMMA_FIRST * candidates[k].cutter.diameter,
+                self.depth(&candidates[k])
+            );
+            self.profile(ctx, &candidates[k], why, count, &mut paths, &mut reports, progress)?;
+            if paths.is_empty() {
+                return Err(self.nothing_enters(ctx, candidates, progress));
+            }
+            return Ok((paths, reports, views));
         };
         let tool = &candidates[current];
         let mut squares = tree.squares;
@@ -317,8 +334,14 @@ impl RoughOctree {
 
         // §3.4: profiling.
         let (k, why) = profiler.expect("the loop ends with a profiling tool");
-        let tool = &candidates[k];
-        if !stage_progress(progress, count - 1.0, &format!("profile φ{}", tool.cutter.diameter)) {
+        self.profile(ctx, &candidates[k], why, count, &mut paths, &mut reports, progress)?;
+        Ok((paths, reports, views))
+    }
+
+    /// The profiling stage (§3.4): `tool` takes what is left at its own levels (every
+    /// step-down and every flat).
+    fn profile(&self, ctx: &mut Context, tool: &Tool, why: String, count: f64, paths: &mut Vec<Toolpath>, reports: &mut Vec<StageReport>, progress: &mut Progress) -> Result<()> {
+        if !progress.stage(&format!("profile φ{}", tool.cutter.diameter), ((count - 1.0) / count).min(0.95), 1.0 / count) {
             return Err(Error::Cancelled);
         }
         let zl = self.zlevel(tool, true);
@@ -331,7 +354,7 @@ impl RoughOctree {
             paths.push(path);
             reports.push(self.report(tool, StageRole::Profile, None, why, cut));
         }
-        Ok((paths, reports, views))
+        Ok(())
     }
 
     fn report(&self, tool: &Tool, role: StageRole, octants: Option<(f64, f64)>, why: String, cut: Cut) -> StageReport {
