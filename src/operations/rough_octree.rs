@@ -162,7 +162,11 @@ impl RoughOctree {
     /// allowances and step-over; `flats` for profiling.
     /// (Seed 000 cuts its octants layer by layer: [`LevelRoughing::new`]'s order.)
     fn zlevel(&self, tool: &Tool, flats: bool) -> LevelRoughing {
-        LevelRoughing { flats, ..LevelRoughing::new(&self.name, tool.number, self.depth(tool), self.stepover_fraction, &self.roughing) }
+        // The profiling stage (`flats`) cuts what is left region by region, each down to its
+        // floor before the next, so the tool travels between the rest regions once rather than
+        // once per level; the octant stages cut layer by layer, as seed 000 does.
+        let order = if flats { crate::machining::settings::Order::Regions } else { crate::machining::settings::Order::Levels };
+        LevelRoughing { flats, order, ..LevelRoughing::new(&self.name, tool.number, self.depth(tool), self.stepover_fraction, &self.roughing) }
     }
 
     /// The axial depth of cut for `tool` (mm).
