@@ -1,6 +1,6 @@
-//! Seed 000: octree multi-tool roughing against z-level roughing with the smallest tool alone
-//! and with the largest then the smallest, on the generated mould and the shared parts
-//! (`job::bench::octree_rows`).
+//! Seed 000: octree multi-tool roughing against z-level roughing with each tool of its library
+//! alone (and the best of them named) and with the largest then the smallest, on the generated
+//! mould and the shared parts, the rocker arm of issue 38 among them (`support::job::octree_rows`).
 //!
 //! Run: `cargo bench --bench octree` (native). The wasm figures: `bash scripts/bench-wasm.sh`.
 
@@ -13,10 +13,14 @@ fn main() {
         println!("{row}");
     }
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/meshes");
-    for (part, scale) in [("ocl_mount_rush", 1.0), ("ocl_wheel_in_box", 1.0), ("tm_featuretype", 25.4), ("kiri_pocket-test", 1.0)] {
-        if let Ok(stl) = std::fs::read(dir.join(format!("{part}.stl"))) {
-            let mut mesh = swarf::mesh::import::read_mesh_auto(&stl, Some("part.stl"), &swarf::geom::Tolerances::default()).expect("the part reads");
-            mesh.transform(|p| p * scale);
+    // (file, scale, Y up)
+    for (file, scale, y_up) in
+        [("ocl_mount_rush.stl", 1.0, false), ("ocl_wheel_in_box.stl", 1.0, false), ("tm_featuretype.stl", 25.4, false), ("kiri_pocket-test.stl", 1.0, false), ("c3d_rocker-arm.obj", 100.0, true)]
+    {
+        let part = file.split('.').next().unwrap_or(file);
+        if let Ok(bytes) = std::fs::read(dir.join(file)) {
+            let mut mesh = swarf::mesh::import::read_mesh_auto(&bytes, Some(file), &swarf::geom::Tolerances::default()).expect("the part reads");
+            mesh.transform(|p| if y_up { swarf::geom::DVec3::new(p.x, -p.z, p.y) * scale } else { p * scale });
             for row in support::job::octree_rows(part, &mesh, "native", &clock) {
                 println!("{row}");
             }
