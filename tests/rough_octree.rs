@@ -277,3 +277,21 @@ fn a_pocket_no_block_can_be_entered_in_is_roughed_in_levels() {
     // Most of the pocket, 9 × 9 × (6 − 0.5) mm, is taken.
     assert!(stages[0].removed > 0.6 * 9.0 * 9.0 * 5.5, "{stages:?}");
 }
+
+/// Issue 38's terraces: a convex part taken by a φ20 alone at 5 mm levels (δ 0.25) keeps steps
+/// up to 5 mm high for the finishing tool; the operation says so. At δ 0.1 (2 mm levels) it
+/// does not need to.
+#[test]
+fn steps_the_last_stage_leaves_for_finishing_are_named() {
+    let dome = |x: f64, y: f64| Some(12.0 * (1.0 - (x / 30.0).powi(2)).max(0.0) * (1.0 - (y / 20.0).powi(2)).max(0.0) - 12.0);
+    let warned = |delta: f64| {
+        let job = octree_job(vec![flat(1, 20.0)], RoughOctree { delta, ..RoughOctree::default() });
+        let out = job::run(&job, block(30.0, 20.0, dome), &mut Progress::none()).unwrap();
+        clean(&out);
+        out.warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>().join("\n")
+    };
+    let w = warned(0.25);
+    assert!(w.contains("φ20, cuts levels 5.00 mm apart: on slopes it leaves steps up to that high"), "{w}");
+    let w = warned(0.1);
+    assert!(!w.contains("cuts levels"), "{w}");
+}

@@ -78,6 +78,10 @@ impl Default for RoughOctree {
     }
 }
 
+/// Steps higher than this (mm) that the last stage leaves on slopes are warned of: a finishing
+/// ball meeting more than 2 mm of stock at a step is a finishing pass doing roughing's work.
+const TERRACES: f64 = 2.0;
+
 /// Boxes kept per stage for the view.
 const VIEW_BOXES: usize = 20_000;
 /// Levels sampled by the stop test at most.
@@ -357,6 +361,13 @@ impl RoughOctree {
             let cut = advance(ctx, &path, progress)?;
             paths.push(path);
             reports.push(self.report(tool, StageRole::Profile, None, why, cut));
+        }
+        let depth = self.depth(tool);
+        if depth > TERRACES {
+            ctx.warn(
+                &self.name,
+                format!("its last tool, φ{}, cuts levels {depth:.2} mm apart: on slopes it leaves steps up to that high for the next operation to meet (a smaller δ, or a z-level roughing at a smaller step-down before finishing, takes them)", tool.cutter.diameter),
+            );
         }
         Ok(())
     }
