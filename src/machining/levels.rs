@@ -60,8 +60,7 @@ const FLAT_BAND: f64 = 1.5;
 pub struct LevelRoughing {
     pub name: String,
     pub tool: u32,
-    pub stepdown: f64,
-    pub stepover_fraction: f64,
+    pub steps: Steps,
     pub roughing: Roughing,
     pub helix_radius: Option<f64>,
     pub flats: bool,
@@ -71,20 +70,20 @@ pub struct LevelRoughing {
 impl LevelRoughing {
     /// Level-by-level roughing with `roughing`'s settings (helix radius by default, flats and
     /// each level everywhere before the next: [`Order::Levels`]; set the fields to change them).
-    pub fn new(name: &str, tool: u32, stepdown: f64, stepover_fraction: f64, roughing: &Roughing) -> LevelRoughing {
-        LevelRoughing { name: name.to_owned(), tool, stepdown, stepover_fraction, roughing: *roughing, helix_radius: None, flats: true, order: Order::Levels }
+    pub fn new(name: &str, tool: u32, steps: Steps, roughing: &Roughing) -> LevelRoughing {
+        LevelRoughing { name: name.to_owned(), tool, steps, roughing: *roughing, helix_radius: None, flats: true, order: Order::Levels }
     }
 
     /// The levels this stock's height makes at the step-down, within [`super::MAX_LEVELS`].
     pub fn check_scale(&self, ctx: &Context) -> Result<()> {
         let height = ctx.stock.max.z - ctx.stock.min.z;
-        super::too_many(&self.name, "levels", height / self.stepdown, super::MAX_LEVELS, "a step-down of", self.stepdown, height)
+        super::too_many(&self.name, "levels", height / self.steps.stepdown, super::MAX_LEVELS, "a step-down of", self.steps.stepdown, height)
     }
 
     /// Checks the settings of a roughing that names its step-down and step-over (z-level and
     /// zigzag roughing), each named as the job file names it.
     pub fn validate(&self) -> Result<(), FieldError> {
-        Steps { stepdown: self.stepdown, stepover_fraction: self.stepover_fraction }.validate()?;
+        self.steps.validate()?;
         self.roughing.validate()?;
         if let Some(r) = self.helix_radius {
             positive("helixRadius", r)?;
@@ -138,7 +137,7 @@ pub struct Level {
 impl LevelRoughing {
     /// The step-over (mm) for a tool of radius `r`.
     pub fn step(&self, r: f64) -> f64 {
-        (self.stepover_fraction * 2.0 * r).max(LEAST_STEP)
+        (self.steps.stepover_fraction * 2.0 * r).max(LEAST_STEP)
     }
 
     /// Clears `levels` (from [`LevelRoughing::levels_to_cut`] or [`LevelRoughing::levels_within`])
@@ -371,10 +370,10 @@ impl LevelRoughing {
     fn levels(&self, cl: &HeightField, top: f64, floor: f64, radius: f64, clear: f64) -> Vec<(f64, bool)> {
         let bottom = floor + self.roughing.allowance + clear;
         let mut levels = Vec::new();
-        let mut z = top - self.stepdown;
+        let mut z = top - self.steps.stepdown;
         while z > bottom + LEVEL_SAME {
             levels.push((z, false));
-            z -= self.stepdown;
+            z -= self.steps.stepdown;
         }
         levels.push((bottom, false));
         if self.flats {
@@ -767,7 +766,7 @@ mod tests {
         // between does not. The rocker arm's φ6 and φ3 stages fed through it, deeper at every
         // level (issue 38).
         let mut ctx = pin_context();
-        let roughing = LevelRoughing::new("rough", 1, 2.0, 0.4, &Roughing { allowance: 0.0, leave_stock: 0.0, ..Roughing::default() });
+        let roughing = LevelRoughing::new("rough", 1, Steps { stepdown: 2.0, stepover_fraction: 0.4 }, &Roughing { allowance: 0.0, leave_stock: 0.0, ..Roughing::default() });
         let (tool, cl) = roughing.surface(&mut ctx, &mut Progress::none()).unwrap();
         let r = tool.cutter.radius();
         let z = 10.0;

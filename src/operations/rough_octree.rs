@@ -38,7 +38,7 @@ use crate::error::{Error, Result};
 use crate::geom::tolerance::FLOAT_SLACK;
 use crate::machining::levels::LevelRoughing;
 use crate::machining::report::{StageOctants, StageReport, StageRole};
-use crate::machining::settings::Roughing;
+use crate::machining::settings::{Order, Roughing, Steps};
 use crate::machining::{positive, too_many, Context, FieldError, Operate, Planned, Works, MAX_LEVELS};
 use crate::octree::{distance_to, Octree, Squares, Volume, GAMMA_FIRST, GAMMA_RANGE};
 use crate::progress::Progress;
@@ -126,7 +126,7 @@ impl Operate for RoughOctree {
         // The smallest tool's layers are the most.
         let height = ctx.stock.max.z - ctx.stock.min.z;
         match self.candidates(ctx)?.last() {
-            Some(t) => too_many(&self.name, "levels", height / self.depth(t), MAX_LEVELS, &format!("δ = {} makes the φ{} tool's depth of cut", self.delta, t.cutter.diameter), self.depth(t), height),
+            Some(t) => too_many(&self.name, "levels", height / self.depth(t), MAX_LEVELS, &format!("δ = {}: the φ{} tool's depth of cut of", self.delta, t.cutter.diameter), self.depth(t), height),
             None => Ok(()),
         }
     }
@@ -164,13 +164,12 @@ impl RoughOctree {
 
     /// The z-level settings a stage of `tool` cuts with: its axial depth, this operation's
     /// allowances and step-over; `flats` for profiling.
-    /// (Seed 000 cuts its octants layer by layer: [`LevelRoughing::new`]'s order.)
     fn zlevel(&self, tool: &Tool, flats: bool) -> LevelRoughing {
         // The profiling stage (`flats`) cuts what is left region by region, each down to its
         // floor before the next, so the tool travels between the rest regions once rather than
         // once per level; the octant stages cut layer by layer, as seed 000 does.
-        let order = if flats { crate::machining::settings::Order::Regions } else { crate::machining::settings::Order::Levels };
-        LevelRoughing { flats, order, ..LevelRoughing::new(&self.name, tool.number, self.depth(tool), self.stepover_fraction, &self.roughing) }
+        let order = if flats { Order::Regions } else { Order::Levels };
+        LevelRoughing { flats, order, ..LevelRoughing::new(&self.name, tool.number, Steps { stepdown: self.depth(tool), stepover_fraction: self.stepover_fraction }, &self.roughing) }
     }
 
     /// The axial depth of cut for `tool` (mm).

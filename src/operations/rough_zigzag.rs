@@ -102,7 +102,7 @@ impl Default for RoughZigzag {
 impl RoughZigzag {
     /// Its levels' settings (its own loop cuts level by level).
     pub fn levels(&self) -> LevelRoughing {
-        LevelRoughing { flats: self.flats, ..LevelRoughing::new(&self.name, self.tool, self.steps.stepdown, self.steps.stepover_fraction, &self.roughing) }
+        LevelRoughing { flats: self.flats, ..LevelRoughing::new(&self.name, self.tool, self.steps, &self.roughing) }
     }
 }
 

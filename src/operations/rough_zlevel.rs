@@ -46,12 +46,7 @@ impl Default for RoughZlevel {
 impl RoughZlevel {
     /// Its levels' settings.
     pub fn levels(&self) -> LevelRoughing {
-        LevelRoughing {
-            helix_radius: self.helix_radius,
-            flats: self.flats,
-            order: self.order,
-            ..LevelRoughing::new(&self.name, self.tool, self.steps.stepdown, self.steps.stepover_fraction, &self.roughing)
-        }
+        LevelRoughing { helix_radius: self.helix_radius, flats: self.flats, order: self.order, ..LevelRoughing::new(&self.name, self.tool, self.steps, &self.roughing) }
     }
 }
 
