@@ -135,7 +135,7 @@ pub fn clear_rings(levels: &[Shape], clearing: &Clearing, z_prev: f64, z: f64, s
     let mut out = Vec::new();
     let forest = forest(levels);
     let swept = (clearing.pattern == PocketPattern::Offset).then(|| Swept::new(boundary, s.tool_radius, z, &s.cursor.stock, s.tol.chordal));
-    let mut c = Clearer { s, boundary, angle: clearing.ramp_angle, helix_r: clearing.helix_r, entry: clearing.entry, out: &mut out, z_prev, z, swept };
+    let mut c = Clearer { s, boundary, angle: clearing.ramp_angle, helix_r: clearing.helix_r, entry: clearing.entry, out: &mut out, z_prev, z, step: clearing.step, swept };
     match clearing.pattern {
         PocketPattern::Offset => {
             for node in &forest {
@@ -193,6 +193,8 @@ struct Clearer<'a, 'b, 'm> {
     out: &'a mut Vec<Move>,
     z_prev: f64,
     z: f64,
+    /// The step between rings.
+    step: f64,
     /// What the rings cut so far at this depth swept, where the material was.
     swept: Option<Swept>,
 }
@@ -263,6 +265,21 @@ impl Clearer<'_, '_, '_> {
         }
     }
 
+    /// Whether the leaf ring region `leaf` (whose rings lie a step inside the ring before it)
+    /// holds points farther than the tool's radius from that ring, over material: its points
+    /// more than the radius less a step inside it, sampled along their outline every eighth of
+    /// the radius.
+    fn beyond_reach(&self, leaf: &Shape) -> bool {
+        let r = self.s.tool_radius;
+        let core = offset(leaf, -(r - self.step).max(0.0), self.s.tol);
+        let every = (r / 8.0).max(LEAST_STEP);
+        let found = core.segments().any(|seg| {
+            let n = ((seg.length() / every).ceil() as usize).clamp(1, 10_000);
+            (0..=n).any(|k| self.s.cursor.stock.material_at(seg.point_at(k as f64 / n as f64), self.z))
+        });
+        found
+    }
+
     /// Whether a straight move at depth from `a` to `b` stays inside the pocket.
     fn inside(&self, a: DVec2, b: DVec2) -> bool {
         Inside(self.boundary).clears(a.extend(self.z), b.extend(self.z), 0.0)
@@ -297,23 +314,30 @@ impl Clearer<'_, '_, '_> {
     /// A region open to the air, from the outside in: down in the air at `outside`, across to
     /// `start` on its outer boundary, its outer loops ring by ring inwards, then the loops round
     /// its islands from the innermost ring out to the walls.
+    ///
+    /// Cut from the outside in, a ring in the middle of the region comes after the rings on
+    /// both sides of it: the pixel map may then find nothing left for it where the two cut
+    /// within a pixel of each other, though a sliver stands between them. So a leaf ring whose
+    /// region holds points beyond the reach of the ring before it, over material, is cut
+    /// whatever the map says ([`Clearer::beyond_reach`]).
     fn cut_outside_in(&mut self, node: &Node, start: DVec2, outside: DVec2, orient: &dyn Fn(&Loop) -> Loop) {
-        fn gather<'n>(node: &'n Node, depth: usize, out: &mut Vec<(usize, &'n Loop)>) {
-            out.extend(node.shape.loops.iter().map(|l| (depth, l)));
+        fn gather<'n>(c: &Clearer, node: &'n Node, depth: usize, out: &mut Vec<(usize, &'n Loop, bool)>) {
+            let needed = node.children.is_empty() && c.beyond_reach(&node.shape);
+            out.extend(node.shape.loops.iter().map(|l| (depth, l, needed)));
             for child in &node.children {
-                gather(child, depth + 1, out);
+                gather(c, child, depth + 1, out);
             }
         }
         let mut loops = Vec::new();
-        gather(node, 0, &mut loops);
-        let mut outer: Vec<(usize, &Loop)> = loops.iter().copied().filter(|(_, l)| l.is_ccw()).collect();
-        let mut holes: Vec<(usize, &Loop)> = loops.iter().copied().filter(|(_, l)| !l.is_ccw()).collect();
-        outer.sort_by_key(|(d, _)| *d);
-        holes.sort_by_key(|(d, _)| std::cmp::Reverse(*d));
+        gather(self, node, 0, &mut loops);
+        let mut outer: Vec<(usize, &Loop, bool)> = loops.iter().copied().filter(|(_, l, _)| l.is_ccw()).collect();
+        let mut holes: Vec<(usize, &Loop, bool)> = loops.iter().copied().filter(|(_, l, _)| !l.is_ccw()).collect();
+        outer.sort_by_key(|(d, _, _)| *d);
+        holes.sort_by_key(|(d, _, _)| std::cmp::Reverse(*d));
         let mut first = true;
-        for (_, l) in outer.into_iter().chain(holes) {
+        for (_, l, needed) in outer.into_iter().chain(holes) {
             // The first loop is cut whatever it sweeps: the way in from the air goes to it.
-            if !first && !self.has_material(l) {
+            if !first && !needed && !self.has_material(l) {
                 continue;
             }
             let l = &orient(l);
