@@ -47,11 +47,11 @@ impl Default for Cutter {
 /// What is wrong with a cutter's description.
 #[derive(Debug, thiserror::Error, Clone, PartialEq)]
 pub enum CutterError {
-    #[error("the cutter diameter must be a positive number of millimetres (got {0})")]
+    #[error("the cutter diameter must lie between {min} and {max} mm (got {})", crate::limits::shown(*.0), min = crate::limits::MIN_TOOL_DIAMETER, max = crate::limits::MAX_TOOL_DIAMETER)]
     Diameter(f64),
-    #[error("a bull nose's corner radius must lie between 0 and half the diameter (got {corner} for diameter {diameter})")]
+    #[error("the corner radius must lie between 0 and half the diameter (got {corner} for diameter {diameter})")]
     CornerRadius { corner: f64, diameter: f64 },
-    #[error("the flute length must be positive (got {0})")]
+    #[error("the flute length must be a positive number of millimetres, at most 10 m (got {})", crate::limits::shown(*.0))]
     FluteLength(f64),
 }
 
@@ -67,13 +67,14 @@ impl Cutter {
     }
 
     pub fn validate(&self) -> Result<(), CutterError> {
-        if !(self.diameter > 0.0 && self.diameter.is_finite()) {
+        if !(crate::limits::MIN_TOOL_DIAMETER..=crate::limits::MAX_TOOL_DIAMETER).contains(&self.diameter) {
             return Err(CutterError::Diameter(self.diameter));
         }
-        if self.shape == Shape::BullNose && !(self.corner_radius >= 0.0 && self.corner_radius <= self.diameter / 2.0) {
+        // Only a bull nose uses it, but a negative one is a mistake on any.
+        if !(self.corner_radius >= 0.0 && (self.shape != Shape::BullNose || self.corner_radius <= self.diameter / 2.0)) {
             return Err(CutterError::CornerRadius { corner: self.corner_radius, diameter: self.diameter });
         }
-        if !(self.flute_length > 0.0) {
+        if !(self.flute_length > 0.0 && self.flute_length <= crate::limits::MAX_SIZE) {
             return Err(CutterError::FluteLength(self.flute_length));
         }
         Ok(())

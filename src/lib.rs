@@ -21,6 +21,7 @@ pub mod drawing;
 pub mod error;
 pub mod geom;
 pub mod job;
+pub mod limits;
 pub mod machining;
 pub mod mesh;
 pub mod octree;

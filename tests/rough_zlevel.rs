@@ -503,7 +503,11 @@ fn a_regions_rings_leave_no_sliver_standing_between_them() {
             part: PartSetup { placement: Placement::Keep, ..PartSetup::default() },
             stock: swarf::job::Stock { margin_xy: 0.0, margin_top: 0.0, ..Default::default() },
             tools: vec![flat(1, 12.0)],
-            operations: vec![Operation::RoughZlevel(RoughZlevel { steps: Steps { stepdown: 3.0, stepover_fraction: 0.45 }, roughing: Roughing { allowance: 0.0, leave_stock: 0.0, ..Roughing::default() }, ..RoughZlevel::default() })],
+            operations: vec![Operation::RoughZlevel(RoughZlevel {
+                steps: Steps { stepdown: 3.0, stepover_fraction: 0.45 },
+                roughing: Roughing { allowance: 0.0, leave_stock: 0.0, ..Roughing::default() },
+                ..RoughZlevel::default()
+            })],
             simulation: Simulation { verify: true, cell: Some(0.1) },
             ..Job::default()
         };

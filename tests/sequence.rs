@@ -239,7 +239,7 @@ fn bad_jobs_get_messages_naming_the_field_or_the_operation() {
     // A bad setting, named by its path.
     let mut job = two_rasters();
     job.operations[1] = raster("fine", 2, -1.0, 0.0, 0.5);
-    assert!(run(&job).to_string().contains("operations[1].stepover must be a positive number (got -1)"), "{}", run(&job));
+    assert!(run(&job).to_string().contains("operations[1].stepover must be a positive number, at most 10000 (got -1)"), "{}", run(&job));
     let mut job = two_rasters();
     job.tools[1].feed_rate = 0.0;
     assert!(run(&job).to_string().contains("tools[1].feedRate must be a positive number"), "{}", run(&job));

@@ -115,6 +115,9 @@ function showDrawing(d) {
   if (d.openChains.length) {
     const o = d.openChains.slice(0, 5).map((c) => `layer ${c.layer} from (${c.start.map((v) => v.toFixed(2)).join(', ')}) to (${c.end.map((v) => v.toFixed(2)).join(', ')})`);
     message(`${d.openChains.length} open chain(s), drawn in red, cannot be cut out until closed (they can be engraved): ${o.join('; ')}${d.openChains.length > 5 ? ' …' : ''}.`, 'warning');
+  } else if (d.ignored.length) {
+    // What the file holds that draws nothing (a circle of radius 0, text) is said in amber.
+    message(`The drawing left out: ${d.ignored.map(([k, n]) => `${n} ${k}`).join('; ')}.`, 'warning');
   } else {
     message('');
   }

@@ -67,6 +67,20 @@ pub const GRID_SNAP: f64 = 1e-9;
 pub const BOUND_SLACK: f64 = 1e-9;
 
 impl Tolerances {
+    /// Each tolerance outside its range ([`crate::limits::TOLERANCE_RANGES`]): the field as
+    /// the job file names it, and why.
+    pub fn problems(&self) -> Vec<(&'static str, String)> {
+        let values = [self.degenerate_area, self.chordal, self.height, self.interpolation, self.normal, self.gouge, self.chain, self.arc_fit, self.micro_entity, self.offset];
+        crate::limits::TOLERANCE_RANGES
+            .iter()
+            .zip(values)
+            .filter(|((_, least, most), v)| !(*v >= *least && *v <= *most))
+            .map(|(&(field, least, most), v)| {
+                (field, format!("must lie between {least:e} and {most:e} (got {}): a tolerance finer than that makes the work grow without bound", crate::limits::shown(v)))
+            })
+            .collect()
+    }
+
     pub const DEFAULT: Tolerances =
         Tolerances { degenerate_area: 1e-12, chordal: 0.002, height: 1e-6, interpolation: 0.0005, normal: 1e-12, gouge: 0.02, chain: 0.01, arc_fit: 0.002, micro_entity: 1e-4, offset: 1e-7 };
 }

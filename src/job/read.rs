@@ -17,6 +17,9 @@ impl Job {
     /// Reads a job file (JSON text), see [`Job::from_value`].
     pub fn from_json(text: &str) -> Result<Job> {
         let value: serde_json::Value = serde_json::from_str(text).map_err(|e| Error::Input(format!("the job is not JSON: {e}")))?;
+        // A parsed value keeps the last of two keys of the same name: the first (two
+        // `"operations"`, one edited and one pasted) would be dropped without a word.
+        serde_json::from_str::<NoDuplicateKeys>(text).map_err(|e| Error::Input(format!("the job {}", plain(&e.to_string()))))?;
         Job::from_value(&value)
     }
 
@@ -123,4 +126,52 @@ fn unknown_fields(input: &serde_json::Value, canonical: &serde_json::Value, path
 /// The field an old name became, if it became one.
 fn renamed(old: &str) -> Option<&'static str> {
     RENAMED.iter().find(|r| r.2.eq_ignore_ascii_case(old)).map(|r| r.3)
+}
+
+/// A JSON text read only to refuse an object that names a key twice ([`Job::from_json`]).
+struct NoDuplicateKeys;
+
+impl<'de> serde::Deserialize<'de> for NoDuplicateKeys {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        struct Visit;
+        impl<'de> serde::de::Visitor<'de> for Visit {
+            type Value = NoDuplicateKeys;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("any JSON value")
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(self, mut map: A) -> std::result::Result<Self::Value, A::Error> {
+                let mut seen = std::collections::HashSet::new();
+                while let Some(key) = map.next_key::<String>()? {
+                    if !seen.insert(key.clone()) {
+                        return Err(serde::de::Error::custom(format!("names the key \"{key}\" twice in one object: only one can be meant; remove the other")));
+                    }
+                    map.next_value::<NoDuplicateKeys>()?;
+                }
+                Ok(NoDuplicateKeys)
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(self, mut seq: A) -> std::result::Result<Self::Value, A::Error> {
+                while seq.next_element::<NoDuplicateKeys>()?.is_some() {}
+                Ok(NoDuplicateKeys)
+            }
+            fn visit_bool<E>(self, _: bool) -> std::result::Result<Self::Value, E> {
+                Ok(NoDuplicateKeys)
+            }
+            fn visit_i64<E>(self, _: i64) -> std::result::Result<Self::Value, E> {
+                Ok(NoDuplicateKeys)
+            }
+            fn visit_u64<E>(self, _: u64) -> std::result::Result<Self::Value, E> {
+                Ok(NoDuplicateKeys)
+            }
+            fn visit_f64<E>(self, _: f64) -> std::result::Result<Self::Value, E> {
+                Ok(NoDuplicateKeys)
+            }
+            fn visit_str<E>(self, _: &str) -> std::result::Result<Self::Value, E> {
+                Ok(NoDuplicateKeys)
+            }
+            fn visit_unit<E>(self) -> std::result::Result<Self::Value, E> {
+                Ok(NoDuplicateKeys)
+            }
+        }
+        d.deserialize_any(Visit)
+    }
 }

@@ -106,6 +106,7 @@ impl Job {
         let (part, sheet, stock) = match workpiece {
             Workpiece::Mesh(mut part) => {
                 let stock = self.place(&mut part);
+                larger_than_any_machine("part", part.bounds().size(), "its unit (part.units) and part.scale")?;
                 outside_the_stock(&part.bounds(), &stock)?;
                 (part, None, stock)
             }
@@ -114,6 +115,7 @@ impl Job {
                 (Mesh::default(), Some(Sheet { drawing: d, thickness }), stock)
             }
         };
+        larger_than_any_machine("stock", stock.size(), "the stock's margins, size and the part's unit")?;
         let cell = self.simulation.cell_for(&stock);
         Ok(Context {
             part,
@@ -133,6 +135,16 @@ impl Job {
             given_regions: Vec::new(),
         })
     }
+}
+
+/// Refuses a part or stock larger than any machine ([`crate::limits::MAX_SIZE`]) before any
+/// work, with its size and the settings to check.
+fn larger_than_any_machine(what: &str, size: crate::geom::DVec3, check: &str) -> Result<()> {
+    if size.is_finite() && size.max_element() <= crate::limits::MAX_SIZE {
+        return Ok(());
+    }
+    let [x, y, z] = size.to_array().map(|v| crate::limits::shown((v * 100.0).round() / 100.0));
+    Err(Error::Input(format!("the {what} is {x} × {y} × {z} mm, larger than any machine (at most 10 m): check {check}")))
 }
 
 /// Verifies a G-code program (swarf's or another's) against a job's part, stock and tools:
@@ -188,7 +200,7 @@ pub fn prepare(job: &Job, workpiece: impl Into<Workpiece>) -> Result<Prepared> {
     }
     let mut warnings = match &workpiece {
         Workpiece::Mesh(m) => part_warnings(m),
-        Workpiece::Drawing(_) => Vec::new(),
+        Workpiece::Drawing(d) => drawing_warnings(d),
     };
     let ctx = job.context(workpiece)?;
     // Work off by orders of magnitude is refused before any starts, naming the setting.
@@ -454,10 +466,24 @@ impl Running {
     }
 }
 
+/// What the user should know of a drawing as read: what it left out (text, dimensions, and
+/// elements that draw nothing: a circle of radius 0, a line to a coordinate that is not a
+/// number), by kind, with counts.
+pub fn drawing_warnings(d: &Drawing) -> Vec<Warning> {
+    if d.ignored.is_empty() {
+        return Vec::new();
+    }
+    let list: Vec<String> = d.ignored.iter().map(|(k, n)| format!("{n} {k}")).collect();
+    vec![Warning::job(format!("the drawing left out: {}", list.join("; ")))]
+}
+
 /// What the user should know of a part as read: triangles dropped, and holes in its surface
 /// (edges bordering one triangle, off the rim of its outline; [`Mesh::open_edges`]).
 pub fn part_warnings(mesh: &Mesh) -> Vec<Warning> {
     let mut out = Vec::new();
+    if mesh.dropped_duplicates > 0 {
+        out.push(Warning::job(format!("{} triangles were copies of others (the same three corners) and were ignored", mesh.dropped_duplicates)).note());
+    }
     if mesh.dropped_degenerate > 0 {
         out.push(Warning::job(format!("{} degenerate triangles (zero area) were ignored", mesh.dropped_degenerate)).note());
     }

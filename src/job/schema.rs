@@ -137,31 +137,32 @@ impl Stock {
     fn problems(&self) -> Vec<(&'static str, String)> {
         let mut out = Vec::new();
         // Rapids run at the clearance height: at or below the stock's top they would cut.
-        if !(self.clearance > 0.0 && self.clearance.is_finite()) {
-            out.push(("clearance", format!("(the height of rapid moves above the stock's top) must be a positive number (got {})", self.clearance)));
+        let size = crate::limits::MAX_SIZE;
+        if !(self.clearance > 0.0 && self.clearance <= size) {
+            out.push(("clearance", format!("(the height of rapid moves above the stock's top) must be a positive number of mm, at most {size} (got {})", crate::limits::shown(self.clearance))));
         }
-        if !(self.retract > 0.0 && self.retract.is_finite()) {
-            out.push(("retract", format!("must be a positive number (got {})", self.retract)));
+        if !(self.retract > 0.0 && self.retract <= size) {
+            out.push(("retract", format!("must be a positive number of mm, at most {size} (got {})", crate::limits::shown(self.retract))));
         }
         for (field, v) in [("marginXy", self.margin_xy), ("marginTop", self.margin_top), ("marginBottom", self.margin_bottom)] {
-            if !(v >= 0.0 && v.is_finite()) {
-                out.push((field, format!("must be zero or more (got {v})")));
+            if !(v >= 0.0 && v <= size) {
+                out.push((field, format!("must be zero or more mm, at most {size} (got {})", crate::limits::shown(v))));
             }
         }
         if let Some(sides) = self.margin_sides {
-            if sides.iter().any(|v| !(*v >= 0.0 && v.is_finite())) {
-                out.push(("marginSides", format!("must be zero or more (got {sides:?})")));
+            if sides.iter().any(|v| !(*v >= 0.0 && *v <= size)) {
+                out.push(("marginSides", format!("must be zero or more mm, at most {size} (got {sides:?})")));
             }
         }
         if let Some(b) = self.size_box {
-            let size = b.size();
-            if !(size.x > 0.0 && size.y > 0.0 && size.z > 0.0 && size.is_finite()) {
-                out.push(("sizeBox", "must have a positive size on every axis".into()));
+            let extent = b.size();
+            if !(extent.x > 0.0 && extent.y > 0.0 && extent.z > 0.0 && extent.max_element() <= size && b.min.is_finite()) {
+                out.push(("sizeBox", format!("must have a positive size on every axis, at most {size} mm")));
             }
         }
         if let Some(f) = self.air_feed {
-            if !(f >= 0.0 && f.is_finite()) {
-                out.push(("airFeed", format!("must be zero or more (mm/min; got {f})")));
+            if !(0.0..=crate::limits::MAX_FEED).contains(&f) {
+                out.push(("airFeed", format!("must be zero or more mm/min, at most {} (got {})", crate::limits::MAX_FEED, crate::limits::shown(f))));
             }
         }
         out
@@ -333,6 +334,15 @@ impl Job {
         let mut out = Vec::new();
         let mut say = |path: String, message: String| out.push(Problem { path, message });
         let positive = |v: f64| v > 0.0 && v.is_finite();
+        if self.tools.len() > crate::limits::MAX_TOOLS {
+            say("tools".into(), format!("tools: {} tools, more than a library holds (at most {})", self.tools.len(), crate::limits::MAX_TOOLS));
+        }
+        if self.operations.len() > crate::limits::MAX_OPERATIONS {
+            say("operations".into(), format!("operations: {} operations, more than a job needs (at most {}); split the job", self.operations.len(), crate::limits::MAX_OPERATIONS));
+        }
+        for (field, message) in self.tolerances.problems() {
+            say(format!("tolerances.{field}"), format!("tolerances.{field} {message}"));
+        }
         for (i, tool) in self.tools.iter().enumerate() {
             if let Err(e) = tool.cutter.validate() {
                 let field = match e {
@@ -342,13 +352,15 @@ impl Job {
                 };
                 say(format!("tools[{i}].{field}"), format!("tools[{i}] (tool {}): {e}", tool.number));
             }
-            for (field, v) in [("spindleRpm", tool.spindle_rpm), ("feedRate", tool.feed_rate), ("plungeRate", tool.plunge_rate)] {
-                if !positive(v) {
-                    say(format!("tools[{i}].{field}"), format!("tools[{i}].{field} must be a positive number (got {v})"));
+            for (field, v, most) in
+                [("spindleRpm", tool.spindle_rpm, crate::limits::MAX_RPM), ("feedRate", tool.feed_rate, crate::limits::MAX_FEED), ("plungeRate", tool.plunge_rate, crate::limits::MAX_FEED)]
+            {
+                if !(positive(v) && v <= most) {
+                    say(format!("tools[{i}].{field}"), format!("tools[{i}].{field} must be a positive number, at most {most} (got {})", crate::limits::shown(v)));
                 }
             }
-            if tool.stick_out.is_some_and(|s| !(s >= tool.cutter.flute_length && s.is_finite())) {
-                say(format!("tools[{i}].stickOut"), format!("tools[{i}].stickOut must be at least the flute length ({} mm)", tool.cutter.flute_length));
+            if tool.stick_out.is_some_and(|s| !(s >= tool.cutter.flute_length && s <= crate::limits::MAX_SIZE)) {
+                say(format!("tools[{i}].stickOut"), format!("tools[{i}].stickOut must be at least the flute length ({} mm) and at most 10 m", tool.cutter.flute_length));
             }
             if let Some(j) = self.tools[..i].iter().position(|t| t.number == tool.number) {
                 say(format!("tools[{i}].number"), format!("tools[{i}].number: tools[{j}] has the number {} too", tool.number));
@@ -358,7 +370,7 @@ impl Job {
             say(e.split([' ', ':']).next().filter(|p| p.starts_with("post.")).unwrap_or("post").to_owned(), e);
         }
         if !positive(self.part.scale) {
-            say("part.scale".into(), format!("part.scale must be a positive number (got {})", self.part.scale));
+            say("part.scale".into(), format!("part.scale must be a positive number (got {})", crate::limits::shown(self.part.scale)));
         }
         if self.part.rotation % 90 != 0 || self.part.rotation >= 360 {
             say("part.rotation".into(), format!("part.rotation turns the part about Z by 0, 90, 180 or 270 degrees (got {})", self.part.rotation));
@@ -367,8 +379,11 @@ impl Job {
             say(format!("stock.{field}"), format!("stock.{field} {message}"));
         }
         let thickness = self.drawing.thickness;
-        if !positive(thickness) {
-            say("drawing.thickness".into(), format!("drawing.thickness: the sheet thickness must be a positive number (got {thickness})"));
+        if !(positive(thickness) && thickness <= crate::limits::MAX_SIZE) {
+            say(
+                "drawing.thickness".into(),
+                format!("drawing.thickness: the sheet thickness must be a positive number of mm, at most {} (got {})", crate::limits::MAX_SIZE, crate::limits::shown(thickness)),
+            );
         }
         for (i, op) in self.operations.iter().enumerate() {
             let o = op.op();

@@ -23,12 +23,10 @@ pub mod walls;
 pub use context::Context;
 pub use report::Planned;
 
-/// The most levels an operation may cut: more is a setting off by orders of magnitude (a
-/// 100 mm stock at a 0.1 mm step-down is 1000 levels).
-pub const MAX_LEVELS: f64 = 2000.0;
-/// The most raster passes an operation may run: more is a step-over off by orders of magnitude
-/// (a 1 m stock at 0.1 mm is 10,000 passes).
-pub const MAX_PASSES: f64 = 20000.0;
+/// The most levels an operation may cut ([`crate::limits`]): more is a setting off by orders
+/// of magnitude (a 100 mm stock at a 0.1 mm step-down is 1000 levels); and the most raster
+/// passes (a 1 m stock at 0.1 mm is 10,000 passes).
+pub use crate::limits::{MAX_LEVELS, MAX_PASSES};
 
 /// The error for `count` of `what` (levels, passes) made by `field` = `value` over `span` mm,
 /// when it passes `most`.
@@ -49,30 +47,50 @@ pub struct FieldError {
     pub message: String,
 }
 
-/// `Ok` when `value` is a positive finite number, else the error naming `field`.
+/// `Ok` when `value` is a positive number no larger than [`crate::limits::MAX_SIZE`] (every
+/// length of an operation: a depth, a step, an allowance, a radius), else the error naming
+/// `field`.
 pub fn positive(field: &'static str, value: f64) -> Result<(), FieldError> {
-    if value > 0.0 && value.is_finite() {
+    if value > 0.0 && value <= crate::limits::MAX_SIZE {
         Ok(())
     } else {
-        Err(FieldError { field, message: format!("must be a positive number (got {value})") })
+        Err(FieldError { field, message: format!("must be a positive number, at most {} (got {})", crate::limits::MAX_SIZE, crate::limits::shown(value)) })
     }
 }
 
-/// `Ok` when `value` is zero or a positive finite number.
+/// `Ok` when `value` is zero or a positive number no larger than [`crate::limits::MAX_SIZE`].
 pub fn not_negative(field: &'static str, value: f64) -> Result<(), FieldError> {
-    if value >= 0.0 && value.is_finite() {
+    if (0.0..=crate::limits::MAX_SIZE).contains(&value) {
         Ok(())
     } else {
-        Err(FieldError { field, message: format!("must be zero or more (got {value})") })
+        Err(FieldError { field, message: format!("must be zero or more, at most {} (got {})", crate::limits::MAX_SIZE, crate::limits::shown(value)) })
     }
 }
 
-/// `Ok` when `value` is a finite number.
+/// `Ok` when `value` is a number no farther from zero than [`crate::limits::MAX_SIZE`].
 pub fn finite(field: &'static str, value: f64) -> Result<(), FieldError> {
-    if value.is_finite() {
+    if crate::limits::in_size(value) {
         Ok(())
     } else {
-        Err(FieldError { field, message: format!("must be a number (got {value})") })
+        Err(FieldError { field, message: format!("must be a number from -{0} to {0} (got {1})", crate::limits::MAX_SIZE, crate::limits::shown(value)) })
+    }
+}
+
+/// `Ok` when `value` is a share of the tool's diameter above 0 and at most 1 (a step-over).
+pub fn fraction(field: &'static str, value: f64) -> Result<(), FieldError> {
+    if value > 0.0 && value <= 1.0 {
+        Ok(())
+    } else {
+        Err(FieldError { field, message: format!("must be a share of the tool's diameter above 0 and at most 1 (got {})", crate::limits::shown(value)) })
+    }
+}
+
+/// `Ok` when `value` is an angle in degrees from `least` to `most`.
+pub fn angle(field: &'static str, value: f64, least: f64, most: f64) -> Result<(), FieldError> {
+    if (least..=most).contains(&value) {
+        Ok(())
+    } else {
+        Err(FieldError { field, message: format!("must be an angle from {least}° to {most}° (got {})", crate::limits::shown(value)) })
     }
 }
 

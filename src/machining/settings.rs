@@ -86,7 +86,7 @@ impl Steps {
     /// Checks the steps, each named as the job file names it.
     pub fn validate(&self) -> Result<(), FieldError> {
         positive("stepdown", self.stepdown)?;
-        positive("stepoverFraction", self.stepover_fraction)?;
+        crate::machining::fraction("stepoverFraction", self.stepover_fraction)?;
         if self.stepover_fraction > 1.0 {
             return Err(FieldError { field: "stepoverFraction", message: format!("is a fraction of the tool's diameter, at most 1 (got {})", self.stepover_fraction) });
         }
@@ -123,7 +123,7 @@ impl Roughing {
         not_negative("allowance", self.allowance)?;
         not_negative("leaveStock", self.leave_stock)?;
         positive("grid", self.grid)?;
-        positive("rampAngle", self.ramp_angle)
+        crate::machining::angle("rampAngle", self.ramp_angle, 0.1, 90.0)
     }
 
     /// The material left on the part's surface: the smaller of the two allowances.

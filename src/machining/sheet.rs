@@ -14,6 +14,13 @@ use crate::toolpath::{Move, Toolpath};
 /// Depth below the sheet a through cut goes (mm).
 pub const BREAKTHROUGH: f64 = 0.2;
 
+/// Refuses a 2.5D operation whose `stepdown` makes more than [`super::MAX_LEVELS`] passes
+/// down to `depth` (the sheet's thickness and the breakthrough when `None`), before any work.
+pub fn check_levels(ctx: &Context, op: &str, depth: Option<f64>, stepdown: f64) -> Result<()> {
+    let depth = depth.unwrap_or(ctx.stock.max.z - ctx.stock.min.z + BREAKTHROUGH);
+    super::too_many(op, "levels", depth / stepdown, super::MAX_LEVELS, "a step-down of", stepdown, depth)
+}
+
 /// The drawing and sheet thickness of the context, or the error for a 2.5D operation on a part.
 pub fn sheet<'a>(ctx: &'a Context, op: &str) -> Result<(&'a Drawing, f64)> {
     ctx.sheet.as_ref().map(|s| (&s.drawing, s.thickness)).ok_or_else(|| Error::operation(op, "works on DXF or SVG drawings, not on a 3D part"))

@@ -11,8 +11,9 @@
 //! so that merge can be named.
 
 use crate::drawing::{Loop, Shape};
+use crate::geom::index::RectIndex;
 use crate::geom::segment::{Rect, Segment};
-use crate::geom::tolerance::{HAIR, LEAST_STEP};
+use crate::geom::tolerance::HAIR;
 use crate::geom::{DVec2, Tolerances};
 use crate::offset::offset;
 use crate::offset::trim::Original;
@@ -20,6 +21,9 @@ use crate::offset::trim::Original;
 /// The material of a drawing: its loops by nesting (outer loops counter-clockwise around
 /// material, holes clockwise), each with its index in the drawing, indexed for distance
 /// queries (the offsetter's [`Original`]).
+/// The finest first sampling of [`Walls::closest_approach`] (mm).
+const COARSEST_SAMPLE: f64 = 0.01;
+
 pub struct Walls {
     pub shape: Shape,
     /// The drawing's index of each loop of `shape`.
@@ -27,7 +31,11 @@ pub struct Walls {
     original: Original,
     /// The loop (position in `shape`) of each of the shape's segments, in order.
     owner: Vec<usize>,
-    bounds: Vec<Rect>,
+    /// The loops' bounds, indexed: a point's loops are found without a look at every loop
+    /// (a sheet of 30,000 holes).
+    bounds: RectIndex,
+    /// Each loop's bounds, by position.
+    rects: Vec<Rect>,
 }
 
 /// A tool-centre path around the material and the loops (positions in [`Walls::shape`]) it
@@ -44,8 +52,9 @@ const FINEST_SAMPLE: f64 = 1e-4;
 impl Walls {
     pub fn new(shape: Shape, index: Vec<usize>) -> Walls {
         let owner = shape.loops.iter().enumerate().flat_map(|(k, l)| std::iter::repeat_n(k, l.len())).collect();
-        let bounds = shape.loops.iter().map(Loop::bounds).collect();
-        Walls { original: Original::new(&shape), shape, index, owner, bounds }
+        let rects: Vec<Rect> = shape.loops.iter().map(Loop::bounds).collect();
+        let bounds = RectIndex::new(&rects);
+        Walls { original: Original::new(&shape), shape, index, owner, bounds, rects }
     }
 
     /// The loop nearest `q` among those closer than `reach`, and its distance.
@@ -55,11 +64,13 @@ impl Walls {
 
     /// Whether a point lies in material (even-odd over the loops around it).
     pub fn in_material(&self, q: DVec2) -> bool {
-        let around = (0..self.shape.loops.len()).filter(|&k| {
-            let b = &self.bounds[k];
-            q.x >= b.min.x && q.x <= b.max.x && q.y >= b.min.y && q.y <= b.max.y && self.shape.loops[k].contains(q)
+        let mut around = 0;
+        self.bounds.query(&Rect { min: q, max: q }, |k| {
+            if self.shape.loops[k].contains(q) {
+                around += 1;
+            }
         });
-        around.count() % 2 == 1
+        around % 2 == 1
     }
 
     /// Whether `q` keeps at least `distance` (less a thousandth of a micrometre) from every
@@ -89,9 +100,21 @@ impl Walls {
 
     /// Where loops `a` and `b` come closest: the gap and a point midway across it (sampled
     /// along `a` at a fiftieth of the gap, at most 20,000 points).
+    /// The pairs of `loops` (positions in [`Walls::shape`]) whose bounds come within `gap` of
+    /// each other: the only ones that can be closer than `gap`, found without a look at every
+    /// pair (one path round a sheet of 30,000 holes runs along all of them).
+    pub fn near_pairs(&self, loops: &[usize], gap: f64) -> Vec<(usize, usize)> {
+        let grown: Vec<Rect> = loops.iter().map(|&k| self.rects[k].expand(0.5 * gap)).collect();
+        let mut out = Vec::new();
+        RectIndex::new(&grown).pairs(|i, j| out.push((loops[i], loops[j])));
+        out
+    }
+
     pub fn closest_approach(&self, a: usize, b: usize) -> (f64, DVec2) {
         let (la, lb) = (&self.shape.loops[a], &self.shape.loops[b]);
-        let coarse = (la.length() / 20_000.0).max(LEAST_STEP);
+        // At most 20,000 samples, and no closer than a hundredth of a millimetre (a small
+        // loop's): the search is refined near the best of them.
+        let coarse = (la.length() / 20_000.0).max(COARSEST_SAMPLE);
         let mut best = (f64::INFINITY, DVec2::ZERO);
         closest_on(la.segments(), lb, coarse, &mut best);
         // Finer on the segments of `a` near the best point found.

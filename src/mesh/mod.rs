@@ -30,22 +30,30 @@ pub struct Mesh {
     pub faces: Vec<[u32; 3]>,
     /// Triangles dropped at import because their area was below the tolerance.
     pub dropped_degenerate: usize,
+    /// Triangles dropped at import because the file held the same triangle (the same three
+    /// vertices) before: a copy adds nothing to the part and only slows every operation.
+    pub dropped_duplicates: usize,
     /// The file's format states its unit as metres (glTF, by its specification); others say
     /// nothing and are taken as millimetres unless the user says otherwise.
     pub in_metres: bool,
 }
 
 impl Mesh {
-    /// Builds a mesh from loose triangles: rejects non-finite coordinates, drops degenerate
-    /// triangles, welds bitwise-identical vertices.
+    /// Builds a mesh from loose triangles: rejects non-finite coordinates and coordinates
+    /// beyond [`crate::limits::MAX_COORDINATE`], drops degenerate triangles and copies of a
+    /// triangle, welds bitwise-identical vertices.
     pub fn from_triangles(triangles: impl IntoIterator<Item = [DVec3; 3]>, tolerances: &Tolerances) -> Result<Mesh, ImportError> {
         let mut mesh = Mesh::default();
         let mut index: HashMap<[u64; 3], u32> = HashMap::new();
         let mut seen = 0usize;
+        let mut faces: std::collections::HashSet<[u32; 3]> = std::collections::HashSet::new();
         for (i, tri) in triangles.into_iter().enumerate() {
             seen += 1;
             if let Some(bad) = tri.iter().find(|v| !v.is_finite()) {
                 return Err(ImportError::NonFinite { triangle: i, value: format!("{bad}") });
+            }
+            if let Some(far) = tri.iter().flat_map(|v| v.to_array()).find(|c| c.abs() > crate::limits::MAX_COORDINATE) {
+                return Err(ImportError::OutOfRange { triangle: i + 1, value: crate::limits::shown(far) });
             }
             if Triangle::new(tri[0], tri[1], tri[2]).cross().length() * 0.5 <= tolerances.degenerate_area {
                 mesh.dropped_degenerate += 1;
@@ -58,6 +66,12 @@ impl Mesh {
                     mesh.vertices.push(*v);
                     (mesh.vertices.len() - 1) as u32
                 });
+            }
+            let mut key = face;
+            key.sort_unstable();
+            if !faces.insert(key) {
+                mesh.dropped_duplicates += 1;
+                continue;
             }
             mesh.faces.push(face);
         }

@@ -60,10 +60,14 @@ fn reversed(path: &[Segment]) -> Vec<Segment> {
 impl Operate for Engrave {
     named_operation!(OnDrawing);
 
+    fn check_scale(&self, ctx: &Context) -> crate::error::Result<()> {
+        sheet::check_levels(ctx, &self.name, Some(self.depth), self.stepdown)
+    }
+
     fn validate(&self) -> std::result::Result<(), FieldError> {
         positive("depth", self.depth)?;
         positive("stepdown", self.stepdown)?;
-        positive("rampAngle", self.ramp_angle)?;
+        crate::machining::angle("rampAngle", self.ramp_angle, 0.1, 90.0)?;
         if self.ramp_angle > 90.0 {
             return Err(FieldError { field: "rampAngle", message: format!("must be at most 90 degrees (got {})", self.ramp_angle) });
         }

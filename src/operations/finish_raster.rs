@@ -108,8 +108,8 @@ impl Operate for FinishRaster {
         positive("stepover", self.stepover)?;
         positive("grid", self.grid)?;
         not_negative("allowance", self.allowance)?;
-        finite("angle", self.angle)?;
-        positive("entry.rampAngle", self.entry.ramp_angle)?;
+        crate::machining::angle("angle", self.angle, -360.0, 360.0)?;
+        crate::machining::angle("entry.rampAngle", self.entry.ramp_angle, 0.1, 90.0)?;
         not_negative("entry.helixMin", self.entry.helix_min)?;
         not_negative("entry.helixMax", self.entry.helix_max)?;
         if let Some(m) = self.margin {
@@ -122,14 +122,32 @@ impl Operate for FinishRaster {
             not_negative("stayDownMax", d)?;
         }
         if let Some(s) = self.slope_max {
-            finite("slopeMax", s)?;
+            crate::machining::angle("slopeMax", s, 0.0, 90.0)?;
         }
         Ok(())
     }
 
     fn check_scale(&self, ctx: &Context) -> Result<()> {
         let span = (ctx.stock.max - ctx.stock.min).truncate().length();
-        too_many(&self.name, "passes", span / self.stepover, MAX_PASSES, "a step-over of", self.stepover, span)
+        too_many(&self.name, "passes", span / self.stepover, MAX_PASSES, "a step-over of", self.stepover, span)?;
+        // The points the passes follow the surface at, one a grid step apart.
+        let size = (ctx.stock.max - ctx.stock.min).truncate();
+        let points = size.x * size.y / (self.stepover * self.grid);
+        if points > crate::limits::MAX_PATH_POINTS {
+            return Err(Error::operation(
+                &self.name,
+                format!(
+                    "a step-over of {} mm at a grid of {} mm makes about {:.1} million points over the {:.0} × {:.0} mm stock (at most {:.0} million): choose a coarser step-over or grid, or check the part's unit",
+                    self.stepover,
+                    self.grid,
+                    points / 1e6,
+                    size.x,
+                    size.y,
+                    crate::limits::MAX_PATH_POINTS / 1e6
+                ),
+            ));
+        }
+        Ok(())
     }
 
     fn surfaces(&self, ctx: &Context) -> Result<Vec<SurfaceRequest>> {

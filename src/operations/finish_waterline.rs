@@ -18,7 +18,7 @@ use crate::machining::context::SurfaceRequest;
 use crate::machining::levels::{pack, RegionWork};
 use crate::machining::raster::gradient;
 use crate::machining::settings::Direction;
-use crate::machining::{finite, named_operation, not_negative, positive, too_many, Context, FieldError, Operate, Planned, MAX_LEVELS};
+use crate::machining::{named_operation, not_negative, positive, too_many, Context, FieldError, Operate, Planned, MAX_LEVELS};
 use crate::progress::Progress;
 use crate::toolpath::entry::Entry;
 use crate::toolpath::link::Floor;
@@ -86,9 +86,9 @@ impl Operate for FinishWaterline {
             positive("scallop", h)?;
         }
         not_negative("allowance", self.allowance)?;
-        finite("slopeMin", self.slope_min)?;
+        crate::machining::angle("slopeMin", self.slope_min, 0.0, 90.0)?;
         positive("grid", self.grid)?;
-        positive("entry.rampAngle", self.entry.ramp_angle)?;
+        crate::machining::angle("entry.rampAngle", self.entry.ramp_angle, 0.1, 90.0)?;
         Ok(())
     }
 

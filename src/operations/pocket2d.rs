@@ -10,7 +10,7 @@ use crate::machining::path2d::does_not_fit;
 use crate::machining::report::SheetCut;
 use crate::machining::rings::{clear_rings, rings, Clearing, RingSetup};
 use crate::machining::settings::{Direction, EntryKind, LoadControl, PocketPattern};
-use crate::machining::{finite, named_operation, not_negative, positive, sheet, Context, FieldError, Operate, Planned};
+use crate::machining::{named_operation, not_negative, positive, sheet, Context, FieldError, Operate, Planned};
 use crate::toolpath::Move;
 
 /// Pocket operation on a drawing.
@@ -112,13 +112,17 @@ pub fn pocket_moves(region: &Shape, op: &Pocket2d, mut s: RingSetup) -> Result<V
 impl Operate for Pocket2d {
     named_operation!(OnDrawing);
 
+    fn check_scale(&self, ctx: &Context) -> crate::error::Result<()> {
+        sheet::check_levels(ctx, &self.name, Some(self.depth), self.stepdown)
+    }
+
     fn validate(&self) -> Result<(), FieldError> {
         positive("depth", self.depth)?;
         positive("stepdown", self.stepdown)?;
-        positive("stepoverFraction", self.stepover_fraction)?;
-        positive("rampAngle", self.ramp_angle)?;
+        crate::machining::fraction("stepoverFraction", self.stepover_fraction)?;
+        crate::machining::angle("rampAngle", self.ramp_angle, 0.1, 90.0)?;
         not_negative("leaveStock", self.leave_stock)?;
-        finite("angle", self.angle)?;
+        crate::machining::angle("angle", self.angle, -360.0, 360.0)?;
         not_negative("loadTolerance", self.load_tolerance)?;
         if let Some(r) = self.helix_radius {
             positive("helixRadius", r)?;

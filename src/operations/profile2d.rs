@@ -187,8 +187,9 @@ pub fn profile_moves(walls: &Walls, picked: &[usize], op: &Profile2d, mut s: Set
             for &k in &wp.along {
                 served[k] = true;
             }
-            for (i, &a) in wp.along.iter().enumerate() {
-                for &b in &wp.along[i + 1..] {
+            for (a, b) in walls.near_pairs(&wp.along, 2.0 * d) {
+                let (a, b) = (a.min(b), a.max(b));
+                {
                     // A merged group's outer path and the paths of the waste it encloses run
                     // along the same loops: each pair is named once.
                     if !named.insert((a, b)) {
@@ -251,12 +252,6 @@ pub fn profile_moves(walls: &Walls, picked: &[usize], op: &Profile2d, mut s: Set
         }
         s.cursor.moved(&out);
     }
-    if out.is_empty() && in_air == 0 {
-        return Err(warnings.join("; "));
-    }
-    if in_air > 0 {
-        warnings.push(format!("{in_air} of {} paths have no material left along them (earlier operations cut it away) and are not cut", laps.len()));
-    }
     too_small.sort_by_key(|t| t.0);
     match too_small.as_slice() {
         [] => {}
@@ -273,6 +268,13 @@ pub fn profile_moves(walls: &Walls, picked: &[usize], op: &Profile2d, mut s: Set
                 does_not_fit(r, op.leave_stock, &format!("loop {k}"), b).replace("the φ", "the first: the φ")
             ));
         }
+    }
+    // Nothing cut and nothing in the air: what was said (every loop too small) is the error.
+    if out.is_empty() && in_air == 0 {
+        return Err(if warnings.is_empty() { "no loop of the drawing gives a path to cut".into() } else { warnings.join("; ") });
+    }
+    if in_air > 0 {
+        warnings.push(format!("{in_air} of {} paths have no material left along them (earlier operations cut it away) and are not cut", laps.len()));
     }
     Ok((out, warnings))
 }
@@ -379,9 +381,13 @@ fn fitting_lead(p: DVec2, t: DVec2, waste_left: bool, rho: f64, clear: &Clear, i
 impl Operate for Profile2d {
     named_operation!(OnDrawing);
 
+    fn check_scale(&self, ctx: &Context) -> crate::error::Result<()> {
+        sheet::check_levels(ctx, &self.name, self.depth, self.stepdown)
+    }
+
     fn validate(&self) -> Result<(), FieldError> {
         positive("stepdown", self.stepdown)?;
-        positive("rampAngle", self.ramp_angle)?;
+        crate::machining::angle("rampAngle", self.ramp_angle, 0.1, 90.0)?;
         not_negative("leaveStock", self.leave_stock)?;
         if let Some(d) = self.depth {
             positive("depth", d)?;

@@ -115,7 +115,7 @@ impl Operate for RoughOctree {
 
     fn validate(&self) -> Result<(), FieldError> {
         positive("delta", self.delta)?;
-        positive("stepoverFraction", self.stepover_fraction)?;
+        crate::machining::fraction("stepoverFraction", self.stepover_fraction)?;
         if self.stepover_fraction > 0.85 {
             return Err(FieldError { field: "stepoverFraction", message: format!("is at most 0.85 of the diameter: wider steps leave islands between rings (got {})", self.stepover_fraction) });
         }

@@ -28,7 +28,7 @@ use crate::machining::path2d::start_nearest;
 use crate::machining::report::LoadReport;
 use crate::machining::rings::Inside;
 use crate::machining::settings::{Direction, LoadControl, Roughing, Steps};
-use crate::machining::{finite, named_operation, not_negative, positive, Context, FieldError, Operate, Planned};
+use crate::machining::{named_operation, not_negative, positive, Context, FieldError, Operate, Planned};
 use crate::progress::Progress;
 use crate::toolpath::entry::Entry;
 use crate::toolpath::{arcfit, Move, Toolpath};
@@ -115,7 +115,7 @@ impl Operate for RoughZigzag {
 
     fn validate(&self) -> Result<(), FieldError> {
         self.levels().validate()?;
-        finite("angle", self.angle)?;
+        crate::machining::angle("angle", self.angle, -360.0, 360.0)?;
         not_negative("loadTolerance", self.load_tolerance)?;
         if let Some(s) = self.sampling {
             positive("sampling", s)?;

@@ -148,11 +148,11 @@ impl PostSettings {
                 return Err(format!("post.decimals must be 1 to 6 (got {d})"));
             }
         }
-        if !(self.rapid_rate > 0.0 && self.rapid_rate.is_finite()) {
-            return Err(format!("post.rapidRate must be a positive number (got {})", self.rapid_rate));
+        if !(self.rapid_rate > 0.0 && self.rapid_rate <= crate::limits::MAX_FEED) {
+            return Err(format!("post.rapidRate must be a positive number of mm/min, at most {} (got {})", crate::limits::MAX_FEED, crate::limits::shown(self.rapid_rate)));
         }
-        if !(self.tool_change_seconds >= 0.0 && self.tool_change_seconds.is_finite()) {
-            return Err(format!("post.toolChangeSeconds must be zero or more (got {})", self.tool_change_seconds));
+        if !(self.tool_change_seconds >= 0.0 && self.tool_change_seconds <= crate::limits::MAX_TOOL_CHANGE) {
+            return Err(format!("post.toolChangeSeconds must be zero or more seconds, at most a day (got {})", crate::limits::shown(self.tool_change_seconds)));
         }
         let post = self.post();
         for t in tools {

@@ -61,9 +61,9 @@ pub enum ClBuilder {
     InverseOffset,
 }
 
-/// Largest number of nodes a grid may have (about 1.6 GB of f64 at the limit); above it the user
-/// is asked for a coarser spacing instead of running out of memory in the browser.
-pub const MAX_NODES: usize = 200_000_000;
+/// Largest number of nodes a grid may have ([`crate::limits::MAX_NODES`]); above it the user is
+/// asked for a coarser spacing instead of running out of memory in the browser.
+pub use crate::limits::MAX_NODES;
 
 impl Grid {
     /// The grid covering `[min, max]` at `spacing`, or a message a user understands when the

@@ -118,7 +118,7 @@ test('bad values are marked at their fields as they are typed, by the core\'s ow
   await page.fill('input[name=roughStepdown]', '-1');
   await page.waitForSelector('input[name=roughStepdown].invalid');
   const note = await page.textContent('#fs-rough .field-error');
-  assert.equal(note, "operations[0].stepdown must be a positive number (got -1) ('rough')");
+  assert.equal(note, "operations[0].stepdown must be a positive number, at most 10000 (got -1) ('rough')");
   assert.doesNotMatch(note, /job file/);
   assert.ok(await page.locator('#op-list li:nth-child(1).has-problem').count());
   assert.ok(await page.locator('#tabs [data-tab="ops"].has-problem').count());
@@ -376,6 +376,37 @@ test('the simulation a machinist expects: the tool shown, the path cut apart fro
   assert.equal(summary.time.reduce((a, t) => a + t.seconds, 0), clock(head));
   assert.match(await page.textContent('#stats'), new RegExp(`cycle time\\s*${head} h:mm:ss[\\s\\S]*total\\s*${head}`));
   assert.match(await page.textContent('#sim-time'), new RegExp(`/ ${head} h:mm:ss`));
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
+test('malformed drawings are answered at once in the page, the tab alive and the settings kept: nesting past any drawing, numbers past any machine, curves that would never end, a file cut short', async () => {
+  const { page, context, errors } = await openPage();
+  await tab(page, 'stock');
+  await page.fill('input[name=marginTop]', '2.5');
+  const svg = (inner) => `<svg xmlns="http://www.w3.org/2000/svg" width="100mm" height="100mm" viewBox="0 0 100 100"><rect x="10" y="10" width="60" height="40"/>${inner}</svg>`;
+  const dxf = (extra, end) => `0\nSECTION\n2\nENTITIES\n0\nCIRCLE\n8\n0\n10\n20\n20\n20\n40\n8\n${extra}0\nENDSEC\n${end}`;
+  for (const [name, text, said] of [
+    ['deep.svg', svg('<g>'.repeat(100000) + '</g>'.repeat(100000)), /elements nest deeper than 256/],
+    ['scale.svg', svg('<g transform="scale(1e200) scale(1e200)"><circle r="5"/></g>'), /larger than any machine/],
+    ['ellipse.dxf', dxf('0\nELLIPSE\n8\n0\n10\n5\n20\n5\n11\n2\n21\n0\n40\n0.5\n41\n0\n42\n1e300\n', '0\nEOF\n'), /ELLIPSE whose start or end parameter .* is not an angle/],
+    ['cut.dxf', dxf('', ''), /without its EOF marker.*cut short/],
+  ]) {
+    await page.setInputFiles('#file', { name, mimeType: 'application/octet-stream', buffer: Buffer.from(text) });
+    await page.waitForFunction((n) => document.getElementById('message').textContent.startsWith(n), name, { timeout: PATIENCE });
+    const message = await page.textContent('#message');
+    assert.match(message, said, message);
+    assert.equal(await page.getAttribute('#message', 'class'), 'error');
+    assert.equal(await page.textContent('#part-name'), 'sample part');
+    assert.equal(await page.isEnabled('#generate'), true);
+    assert.equal(await page.inputValue('input[name=marginTop]'), '2.5');
+  }
+  // A drawing with a circle of radius 0 is read, and the left-out circle named.
+  await page.setInputFiles('#file', { name: 'zero.dxf', mimeType: 'application/octet-stream', buffer: Buffer.from(dxf('0\nCIRCLE\n8\nHOLES\n10\n5\n20\n5\n40\n0\n', '0\nEOF\n')) });
+  await page.waitForFunction(() => /left out/.test(document.getElementById('drawing-size').textContent), null, { timeout: PATIENCE });
+  assert.match(await page.textContent('#drawing-size'), /left out: 1 circles with a radius ≤ 0 on layer HOLES/);
+  assert.match(await page.textContent('#message'), /^The drawing left out: 1 circles with a radius ≤ 0 on layer HOLES/);
+  assert.equal(await page.getAttribute('#message', 'class'), 'warning');
   assert.deepEqual(errors, []);
   await context.close();
 });

@@ -87,6 +87,11 @@ pub(crate) fn read_dxf(bytes: &[u8], tol: &Tolerances) -> Result<Pieces, Drawing
         let code: i32 = lines[2 * k].trim().parse().map_err(|_| DrawingError::Dxf { line, message: format!("expected a group code, found '{}'", lines[2 * k].trim()) })?;
         pairs.push((code, lines[2 * k + 1].trim(), line + 1));
     }
+    // A DXF ends with `0 EOF`: a file without it was cut short, and what it holds is not the
+    // whole drawing.
+    if !pairs.last().is_some_and(|&(code, value, _)| code == 0 && value.eq_ignore_ascii_case("EOF")) {
+        return Err(DrawingError::CutShort { format: "DXF", line: lines.len(), marker: "EOF marker (0 / EOF)" });
+    }
     // Sections: the header's $INSUNITS and the entities.
     let mut scale = (1.0, "unitless (read as mm)");
     let mut entities: Vec<Entity> = Vec::new();
@@ -127,6 +132,7 @@ pub(crate) fn read_dxf(bytes: &[u8], tol: &Tolerances) -> Result<Pieces, Drawing
     let mut k = 0;
     while k < entities.len() {
         let e = &entities[k];
+        pieces.line = e.line;
         let mut out: Vec<Segment> = Vec::new();
         match e.kind {
             "LINE" => {
@@ -148,11 +154,14 @@ pub(crate) fn read_dxf(bytes: &[u8], tol: &Tolerances) -> Result<Pieces, Drawing
                     (a0, sweep)
                 };
                 if r > 0.0 {
+                    pieces.fits(e.kind, 2.0 * r * s)?;
                     // Halves, so no segment's bulge runs away near a full turn.
                     let n = if sweep > TAU / 2.0 { 2 } else { 1 };
                     for h in 0..n {
                         out.push(Segment::arc_from(c, r, start + sweep * h as f64 / n as f64, sweep / n as f64));
                     }
+                } else {
+                    pieces.ignore(&format!("{} with a radius ≤ 0 on layer {}", if e.kind == "CIRCLE" { "circles" } else { "arcs" }, e.layer()));
                 }
             }
             "LWPOLYLINE" => {
@@ -202,7 +211,24 @@ pub(crate) fn read_dxf(bytes: &[u8], tol: &Tolerances) -> Result<Pieces, Drawing
                 let c = DVec2::new(e.need(10)?, e.need(20)?);
                 let major = DVec2::new(e.need(11)?, e.need(21)?);
                 let ratio = e.need(40)?;
-                let (t0, mut t1) = (e.or(41, 0.0)?, e.or(42, TAU)?);
+                if !(ratio > 0.0) || major.length() == 0.0 {
+                    pieces.ignore(&format!("ellipses with no width (an axis or ratio of 0) on layer {}", e.layer()));
+                    k += 1;
+                    continue;
+                }
+                pieces.fits("ELLIPSE", 2.0 * major.length() * ratio.max(1.0) * s)?;
+                // The parameters are angles in radians, from 0 to 2π: one far past that is not
+                // an angle any writer meant (a parameter of 1e300 would ask for endless arcs).
+                let (mut t0, mut t1) = (e.or(41, 0.0)?, e.or(42, TAU)?);
+                if t0.abs().max(t1.abs()) > 2.0 * TAU {
+                    return Err(DrawingError::Dxf {
+                        line: e.line,
+                        message: format!("an ELLIPSE whose start or end parameter ({}, {}) is not an angle from 0 to 2π", crate::limits::shown(t0), crate::limits::shown(t1)),
+                    });
+                }
+                let span = t1 - t0;
+                t0 = t0.rem_euclid(TAU);
+                t1 = if span.abs() >= TAU { t0 + TAU } else { t1.rem_euclid(TAU) };
                 if t1 <= t0 {
                     t1 += TAU;
                 }
@@ -211,7 +237,7 @@ pub(crate) fn read_dxf(bytes: &[u8], tol: &Tolerances) -> Result<Pieces, Drawing
                 let pieces_n = ((t1 - t0) / (TAU / 8.0)).ceil().max(1.0) as usize;
                 fit_arcs(&f, t0, t1, pieces_n, tol.arc_fit / s, &mut out);
             }
-            "SPLINE" => spline(e, tol.arc_fit / s, &mut out)?,
+            "SPLINE" => spline(e, tol.arc_fit / s, s, &pieces, &mut out)?,
             "VERTEX" | "SEQEND" => {}
             other => pieces.ignore(other),
         }
@@ -243,8 +269,13 @@ fn polyline(vertices: &[(DVec2, f64)], closed: bool, out: &mut Vec<Segment>) {
 
 /// A B-spline (rational when it has weights) evaluated by de Boor's algorithm and fitted
 /// with arcs; a spline with only fit points is taken through them as lines.
-fn spline(e: &Entity, tol: f64, out: &mut Vec<Segment>) -> Result<(), DrawingError> {
-    let degree = e.or(71, 3.0)? as usize;
+fn spline(e: &Entity, tol: f64, scale: f64, pieces: &Pieces, out: &mut Vec<Segment>) -> Result<(), DrawingError> {
+    let bad = |message: String| DrawingError::Dxf { line: e.line, message };
+    let degree = e.or(71, 3.0)?;
+    if !(1.0..=crate::limits::MAX_SPLINE_DEGREE as f64).contains(&degree) || degree.fract() != 0.0 {
+        return Err(bad(format!("a SPLINE of degree {degree} (a degree is a whole number from 1 to {})", crate::limits::MAX_SPLINE_DEGREE)));
+    }
+    let degree = degree as usize;
     let knots = e.all(40)?;
     let xs = e.all(10)?;
     let ys = e.all(20)?;
@@ -256,11 +287,20 @@ fn spline(e: &Entity, tol: f64, out: &mut Vec<Segment>) -> Result<(), DrawingErr
         polyline(&fit, false, out);
         return Ok(());
     }
-    if degree == 0 || knots.len() != n + degree + 1 {
-        return Err(DrawingError::Dxf { line: e.line, message: format!("SPLINE with {n} control points, degree {degree} and {} knots", knots.len()) });
+    if n <= degree || knots.len() != n + degree + 1 {
+        return Err(bad(format!("SPLINE with {n} control points, degree {degree} and {} knots", knots.len())));
+    }
+    if knots.windows(2).any(|k| k[1] < k[0]) {
+        return Err(bad("a SPLINE whose knots decrease".into()));
+    }
+    if weights.len() == n && weights.iter().any(|&w| w <= 0.0) {
+        return Err(bad("a SPLINE with a weight of 0 or less (weights are positive)".into()));
     }
     let w: Vec<f64> = if weights.len() == n { weights } else { vec![1.0; n] };
     let ctrl: Vec<DVec2> = (0..n).map(|i| DVec2::new(xs[i], ys[i])).collect();
+    // The curve lies in its control points' hull.
+    let (lo, hi) = ctrl.iter().fold((ctrl[0], ctrl[0]), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+    pieces.fits("SPLINE", (hi - lo).max_element() * scale)?;
     let (t0, t1) = (knots[degree], knots[n]);
     let eval = |t: f64| -> DVec2 {
         // The knot span holding t.

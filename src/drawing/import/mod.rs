@@ -27,6 +27,12 @@ pub enum DrawingError {
     NonFinite(String),
     #[error("the drawing has no lines, arcs or curves to machine{0}")]
     NothingToMachine(String),
+    #[error("{what} is {} mm across, larger than any machine (at most 10 m): a coordinate out of range, or a drawing in the wrong unit", crate::limits::shown(size.round()))]
+    TooLarge { what: String, size: f64 },
+    #[error("the drawing has more than {max} lines and arcs once its curves are fitted", max = crate::limits::MAX_PIECES)]
+    TooManyPieces,
+    #[error("the {format} ends at line {line} without its {marker}: the file was cut short (a download or a copy that stopped?); open the whole file")]
+    CutShort { format: &'static str, line: usize, marker: &'static str },
 }
 
 /// Drawing formats.
@@ -68,6 +74,12 @@ pub(crate) struct Pieces {
     pub ignored: Vec<(String, usize)>,
     pub units: String,
     pub scale: f64,
+    /// The line of the file the element being read starts on, and its name.
+    pub line: usize,
+    pub element: String,
+    /// The drawing's extremes so far (least x, most x, least y, most y), each with the line of
+    /// the element that reaches it: a drawing too large names the element farthest out.
+    extremes: Option<[(f64, usize); 4]>,
 }
 
 impl Pieces {
@@ -75,7 +87,38 @@ impl Pieces {
         if !self.layers.iter().any(|l| l == layer) {
             self.layers.push(layer.to_string());
         }
+        let b = s.bounds();
+        let line = self.line;
+        let e = self.extremes.get_or_insert([(b.min.x, line), (b.max.x, line), (b.min.y, line), (b.max.y, line)]);
+        for (k, v) in [b.min.x, b.max.x, b.min.y, b.max.y].into_iter().enumerate() {
+            if (k % 2 == 0 && v < e[k].0) || (k % 2 == 1 && v > e[k].0) {
+                e[k] = (v, line);
+            }
+        }
         self.segments.push((s, layer.to_string()));
+    }
+
+    /// Refuses what is larger than any machine: the element at `self.line` (a curve, before it
+    /// is fitted: `extent` its size, mm), named `what`.
+    pub fn fits(&self, what: &str, extent: f64) -> Result<(), DrawingError> {
+        if extent.is_finite() && extent <= crate::limits::MAX_SIZE {
+            Ok(())
+        } else {
+            Err(DrawingError::TooLarge { what: format!("the {what} at line {}", self.line), size: extent })
+        }
+    }
+
+    /// Refuses a drawing larger than any machine, naming the element farthest out.
+    fn check_size(&self) -> Result<(), DrawingError> {
+        let Some(e) = self.extremes else { return Ok(()) };
+        let (w, h) = (e[1].0 - e[0].0, e[3].0 - e[2].0);
+        let size = w.max(h);
+        if size.is_finite() && size <= crate::limits::MAX_SIZE {
+            return Ok(());
+        }
+        // The element farthest from the origin: an outlier's coordinate is.
+        let far = e.iter().max_by(|a, b| a.0.abs().total_cmp(&b.0.abs())).map_or(0, |x| x.1);
+        Err(DrawingError::TooLarge { what: format!("the drawing (its element at line {far} reaches farthest out)"), size })
     }
     pub fn ignore(&mut self, kind: &str) {
         match self.ignored.iter_mut().find(|(k, _)| k == kind) {
@@ -96,6 +139,10 @@ pub fn read_drawing(bytes: &[u8], name: Option<&str>, tol: &Tolerances) -> Resul
     };
     if let Some((s, _)) = pieces.segments.iter().find(|(s, _)| !(s.a.is_finite() && s.b.is_finite() && s.bulge.is_finite())) {
         return Err(DrawingError::NonFinite(format!("{:?} to {:?}", s.a, s.b)));
+    }
+    pieces.check_size()?;
+    if pieces.segments.len() > crate::limits::MAX_PIECES {
+        return Err(DrawingError::TooManyPieces);
     }
     if pieces.segments.is_empty() {
         let ignored = if pieces.ignored.is_empty() { String::new() } else { format!(" (ignored: {})", pieces.ignored.iter().map(|(k, n)| format!("{n} {k}")).collect::<Vec<_>>().join(", ")) };

@@ -34,6 +34,8 @@ pub enum ImportError {
     Obj(String),
     #[error("triangle {triangle} has a coordinate that is not a finite number ({value})")]
     NonFinite { triangle: usize, value: String },
+    #[error("triangle {triangle} has a coordinate of {value}, out of range for any part (more than 10 km from the origin): a number damaged in the file?")]
+    OutOfRange { triangle: usize, value: String },
     #[error("the file has no triangles")]
     NoTriangles,
     #[error("all {count} triangles of the file are degenerate (zero area)")]

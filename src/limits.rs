@@ -1,0 +1,99 @@
+//! The limits every input is held to, in one place: what a file or a job may ask for before
+//! swarf refuses it with a message naming the file's element or the job's field (and, for a
+//! count of work, the setting to change). None of them limits a real part or drawing on a real
+//! machine; each keeps a careless or hostile input from running for minutes, exhausting memory
+//! or overflowing the stack (issue 42's cases: a coordinate of 1e308, 100,000 nested SVG groups,
+//! a tool of diameter 1e9, a step-down of 1e-9).
+
+/// The largest part, drawing, stock or length a job may hold (mm): 10 m, more than any machine
+/// swarf writes for travels. A file whose extent passes it holds a coordinate out of range (or
+/// is in the wrong unit), and is refused with its size and the element that makes it.
+pub const MAX_SIZE: f64 = 10_000.0;
+
+/// The farthest a part's coordinate may lie from its file's origin, in the file's own unit:
+/// 10 km in millimetres, so a part drawn in microns, or far from its origin, still reads; a
+/// coordinate beyond it is a damaged number (1e39, 1e308), refused with its triangle.
+pub const MAX_COORDINATE: f64 = 1e7;
+
+/// The largest tool diameter (mm): a face mill of a metre is already beyond any spindle.
+pub const MAX_TOOL_DIAMETER: f64 = 1_000.0;
+
+/// The smallest tool diameter (mm): below a hundredth of a millimetre no cutter exists, and
+/// a z-map fine enough for it would not fit in memory.
+pub const MIN_TOOL_DIAMETER: f64 = 0.01;
+
+/// The deepest nesting of elements in an SVG (groups in groups): Inkscape's deepest real files
+/// nest a few dozen; deeper is refused before the walk would overflow the stack.
+pub const MAX_NESTING: usize = 256;
+
+/// The most operations a job may hold.
+pub const MAX_OPERATIONS: usize = 100;
+
+/// The most tools a job's library may hold.
+pub const MAX_TOOLS: usize = 1_000;
+
+/// The most pieces (lines and arcs) a drawing may hold once its curves are fitted.
+pub const MAX_PIECES: usize = 2_000_000;
+
+/// The highest degree of a DXF SPLINE (AutoCAD draws up to 11).
+pub const MAX_SPLINE_DEGREE: usize = 25;
+
+/// The most levels (step-downs) one operation may cut.
+pub const MAX_LEVELS: f64 = 2000.0;
+
+/// The most passes (raster lines, rings) one operation may cut at a level.
+pub const MAX_PASSES: f64 = 20000.0;
+
+/// The most nodes of a CL z-map (or cells of a simulation): 50 million f64 heights are 400 MB,
+/// what a browser tab can hold beside the rest of the job.
+pub const MAX_NODES: usize = 50_000_000;
+
+/// The most points a surface-following path (raster finishing) may have before it is reduced:
+/// step-over and grid over the stock's area. 10 million are a 200 mm mould at a 0.1 mm
+/// step-over and a 0.04 mm grid; the Khronos Duck read as the 1.7 m its glTF says, finished
+/// at the default step-over and grid, is 13 million (and 10 GB).
+pub const MAX_PATH_POINTS: f64 = 10_000_000.0;
+
+/// The fastest feed or rapid rate (mm/min): 1,000 m/min is beyond any machine tool.
+pub const MAX_FEED: f64 = 1_000_000.0;
+
+/// The fastest spindle (rpm).
+pub const MAX_RPM: f64 = 1_000_000.0;
+
+/// The longest a tool change may take (s): a day.
+pub const MAX_TOOL_CHANGE: f64 = 86_400.0;
+
+/// The range of each of the job's tolerances (mm; the normal's and area's are ratios and mm²):
+/// below its least the work grows without bound (an interpolation tolerance of 1e-9 asks for
+/// billions of points), above its most the result is no longer a tolerance of anything.
+pub const TOLERANCE_RANGES: [(&str, f64, f64); 10] = [
+    ("degenerateArea", 0.0, 1.0),
+    ("chordal", 1e-5, 1.0),
+    ("height", 1e-12, 0.01),
+    ("interpolation", 1e-5, 0.1),
+    ("normal", 0.0, 1e-3),
+    ("gouge", 1e-4, 10.0),
+    ("chain", 1e-6, 1.0),
+    ("arcFit", 1e-5, 1.0),
+    ("microEntity", 0.0, 0.1),
+    ("offset", 1e-12, 1e-3),
+];
+
+/// Whether `v` is a length a job may give (finite, at most [`MAX_SIZE`] either way).
+pub fn in_size(v: f64) -> bool {
+    v.is_finite() && v.abs() <= MAX_SIZE
+}
+
+/// A number as a message shows it: plainly, or in exponent form where plain would run to dozens
+/// of digits (a coordinate of 1e308 is not 309 digits long on the screen).
+pub fn shown(v: f64) -> String {
+    if v != 0.0 && v.is_finite() && !(1e-6..1e9).contains(&v.abs()) {
+        // Four significant digits, without trailing zeros: 3.266e17, 1e308, 1e-9.
+        let text = format!("{v:.3e}");
+        let (mantissa, exponent) = text.split_once('e').unwrap_or((&text, "0"));
+        let mantissa = if mantissa.contains('.') { mantissa.trim_end_matches('0').trim_end_matches('.') } else { mantissa };
+        format!("{mantissa}e{exponent}")
+    } else {
+        format!("{v}")
+    }
+}

@@ -1,0 +1,319 @@
+//! Every malformed file and absurd setting answered in seconds (issue 42): the cases of
+//! `../shared/data/bad/` run through the `swarf` binary under a 1 GB memory limit, each within
+//! 5 s, with a message naming the file's element or the job's field (or a program with a
+//! warning where the file holds elements that draw nothing), never a panic, a stack overflow, a
+//! memory abort or a file cut short machined as if whole; and one generated case of each class,
+//! run in the process, that needs no shared data.
+
+mod common;
+
+use std::process::Command;
+use std::time::{Duration, Instant};
+
+use swarf::geom::{DVec3, Tolerances};
+use swarf::job::{self, Job, Workpiece};
+use swarf::progress::Progress;
+
+/// The longest any case may take (s), on a busy machine as on this one (they take 0.1 s).
+const SECONDS: f64 = 5.0;
+
+/// What each row of `MANIFEST.tsv` must answer: `Err(words)` an error whose message holds the
+/// words, `Ok(words)` a program with a warning that holds them.
+fn expected(file: &str) -> Option<Result<&'static str, &'static str>> {
+    let tag = &file[..3];
+    Some(match tag {
+        "004" | "006" | "058" | "172" | "173" | "176" | "178" | "180" => Err("cut short"),
+        "010" | "016" | "161" => Err("out of range for any part"),
+        "198" | "264" | "260" | "213" | "254" | "257" | "262" | "278" | "280" => Err("larger than any machine"),
+        "196" | "197" => Ok("circles with a radius ≤ 0 on layer"),
+        "277" => Ok("circles with a radius ≤ 0 on layer"),
+        "279" => Ok("circles with a centre or radius that is not a number"),
+        "282" => Ok("rects with a width or height ≤ 0"),
+        "286" => Ok("lines with an end that is not a number"),
+        "293" => Ok("viewBox that is not four numbers"),
+        "211" | "212" => Err("is not an angle from 0 to 2π"),
+        "216" => Err("SPLINE of degree"),
+        "221" => Err("SPLINE with a weight of 0"),
+        "251" => Err("nest deeper than 256"),
+        "350" => Err("step-over of"),
+        "368" => Err("tolerances.interpolation"),
+        "391" => Err("200 operations"),
+        "426" => Err("drawing.thickness"),
+        "436" => Err("cutter diameter must lie between"),
+        "449" => Err("operations[0].leaveStock"),
+        "432" => Err("stock.clearance"),
+        "445" => Err("step-down of"),
+        _ => return None,
+    })
+}
+
+#[test]
+fn every_shared_bad_case_is_answered_in_seconds_within_a_gigabyte() {
+    let Some(dir) = common::shared_data("bad") else { return };
+    let manifest = std::fs::read_to_string(dir.join("MANIFEST.tsv")).unwrap();
+    let out_dir = std::env::temp_dir().join(format!("swarf-bad-{}", std::process::id()));
+    std::fs::create_dir_all(&out_dir).unwrap();
+    let mut failures = Vec::new();
+    let mut count = 0;
+    for row in manifest.lines().skip(1).filter(|l| !l.trim().is_empty()) {
+        let cols: Vec<&str> = row.split('\t').collect();
+        let (file, job) = (cols[0], cols[1]);
+        // A `*_value.json` row is the job itself, run on the part its second column names.
+        let (job_path, part_path) = if job.starts_with("job_") {
+            (dir.join(job), dir.join(file))
+        } else {
+            let part = job.split("part: ").nth(1).and_then(|p| p.strip_suffix(')')).unwrap();
+            (dir.join(file), dir.join(part))
+        };
+        let Some(want) = expected(file) else {
+            failures.push(format!("{file}: a new case; say what it must answer"));
+            continue;
+        };
+        let program = out_dir.join(format!("{file}.ngc"));
+        let _ = std::fs::remove_file(&program);
+        // `ulimit -v`: the address space a run may take, 1 GB.
+        let script = "ulimit -v 1048576; exec \"$0\" run \"$1\" \"$2\" -o \"$3\" -q";
+        let start = Instant::now();
+        let out = Command::new("sh").args(["-c", script, env!("CARGO_BIN_EXE_swarf")]).arg(&job_path).arg(&part_path).arg(&program).output().unwrap();
+        let took = start.elapsed().as_secs_f64();
+        count += 1;
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        let text = format!("{}{stderr}", String::from_utf8_lossy(&out.stdout));
+        let code = out.status.code();
+        if took > SECONDS {
+            failures.push(format!("{file}: took {took:.1} s"));
+        }
+        if stderr.contains("panicked") || stderr.contains("overflow") || stderr.contains("memory allocation") || !matches!(code, Some(0 | 1)) {
+            failures.push(format!("{file}: died (exit {code:?}): {}", stderr.lines().take(3).collect::<Vec<_>>().join(" / ")));
+            continue;
+        }
+        match want {
+            Err(words) => {
+                if code != Some(1) || !text.contains(words) {
+                    failures.push(format!("{file}: expected an error saying '{words}', got exit {code:?}: {}", text.trim()));
+                } else if program.exists() {
+                    failures.push(format!("{file}: refused, yet a program was written"));
+                }
+            }
+            Ok(words) => {
+                if code != Some(0) || !text.contains(words) || !program.exists() {
+                    failures.push(format!("{file}: expected a program and a warning saying '{words}', got exit {code:?}: {}", text.trim()));
+                }
+            }
+        }
+    }
+    let _ = std::fs::remove_dir_all(&out_dir);
+    assert!(count >= 40, "only {count} cases in the manifest");
+    assert!(failures.is_empty(), "{} of {count} cases answered wrongly:\n{}", failures.len(), failures.join("\n"));
+}
+
+/// Reads `bytes` as the file `name` and runs the job on it, within [`SECONDS`]: the error's
+/// message, or the run's warnings.
+fn answer(job: &Job, bytes: &[u8], name: &str) -> Result<Vec<String>, String> {
+    let start = Instant::now();
+    let result = Workpiece::read(bytes, Some(name), &job.tolerances).and_then(|w| job::run(job, w, &mut Progress::none()));
+    let took = start.elapsed();
+    assert!(took < Duration::from_secs_f64(SECONDS), "{name}: took {took:?}");
+    result.map(|out| out.warnings.iter().map(|w| w.message.clone()).collect()).map_err(|e| e.to_string())
+}
+
+fn refused(job: &Job, bytes: &[u8], name: &str, words: &str) {
+    match answer(job, bytes, name) {
+        Err(e) => assert!(e.contains(words), "{name}: the message does not say '{words}': {e}"),
+        Ok(_) => panic!("{name}: machined, though it should be refused ('{words}')"),
+    }
+}
+
+fn warned(job: &Job, bytes: &[u8], name: &str, words: &str) {
+    match answer(job, bytes, name) {
+        Ok(warnings) => assert!(warnings.iter().any(|w| w.contains(words)), "{name}: no warning says '{words}': {warnings:?}"),
+        Err(e) => panic!("{name}: refused ({e}), though it holds a drawing to machine"),
+    }
+}
+
+/// A profile of a drawing with a φ3 flat end, its program simulated.
+fn drawing_job() -> Job {
+    Job { operations: vec![job::Operation::Profile2d(swarf::operations::Profile2d::default())], ..Job::default() }
+}
+
+/// A DXF of a 40 mm square and a circle, with `extra` entities after them, ending as given.
+fn dxf(extra: &str, end: &str) -> Vec<u8> {
+    let square = "0\nLWPOLYLINE\n8\n0\n90\n4\n70\n1\n10\n0\n20\n0\n10\n40\n20\n0\n10\n40\n20\n40\n10\n0\n20\n40\n";
+    format!("0\nSECTION\n2\nENTITIES\n{square}0\nCIRCLE\n8\n0\n10\n20\n20\n20\n40\n8\n{extra}0\nENDSEC\n{end}").into_bytes()
+}
+
+fn svg(inner: &str, view_box: &str) -> Vec<u8> {
+    format!("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"100mm\" height=\"100mm\" viewBox=\"{view_box}\"><rect x=\"10\" y=\"10\" width=\"60\" height=\"40\"/>{inner}</svg>").into_bytes()
+}
+
+#[test]
+fn generated_drawings_cut_short_out_of_range_or_endless_are_refused_at_once() {
+    let job = drawing_job();
+    let eof = "0\nEOF\n";
+    // Cut short: no EOF marker.
+    refused(&job, &dxf("", ""), "cut.dxf", "without its EOF marker");
+    // Out of range, and curves that would never end.
+    refused(&job, &dxf("0\nCIRCLE\n8\n0\n10\n0\n20\n0\n40\n1e308\n", eof), "huge.dxf", "larger than any machine");
+    refused(&job, &dxf("0\nLINE\n8\n0\n10\n0\n20\n0\n11\n1e300\n21\n0\n", eof), "far.dxf", "larger than any machine");
+    let ellipse = |end: &str, ratio: &str| format!("0\nELLIPSE\n8\n0\n10\n20\n20\n20\n11\n5\n21\n0\n40\n{ratio}\n41\n0\n42\n{end}\n");
+    refused(&job, &dxf(&ellipse("1e300", "0.5"), eof), "ellipse-end.dxf", "not an angle");
+    refused(&job, &dxf(&ellipse("6.2", "1e308"), eof), "ellipse-ratio.dxf", "larger than any machine");
+    let spline = |degree: &str, weight: &str| {
+        let mut s = format!("0\nSPLINE\n8\n0\n71\n{degree}\n");
+        for k in [0, 0, 0, 0, 1, 1, 1, 1] {
+            s += &format!("40\n{k}\n");
+        }
+        for (x, y) in [(0, 0), (10, 5), (20, 5), (30, 0)] {
+            s += &format!("10\n{x}\n20\n{y}\n41\n{weight}\n");
+        }
+        s
+    };
+    refused(&job, &dxf(&spline("1e20", "1"), eof), "spline-degree.dxf", "SPLINE of degree");
+    refused(&job, &dxf(&spline("3", "0"), eof), "spline-weights.dxf", "weight of 0");
+    // A good spline of the same shape still reads.
+    assert!(answer(&job, &dxf(&spline("3", "1"), eof), "spline.dxf").is_ok());
+    // SVG: nesting, transforms and sizes past any machine.
+    let deep = format!("{}{}", "<g>".repeat(100_000), "</g>".repeat(100_000));
+    refused(&job, &svg(&deep, "0 0 100 100"), "deep.svg", "nest deeper than 256");
+    refused(&job, &svg("<g transform=\"scale(1e200) scale(1e200)\"><circle r=\"5\"/></g>", "0 0 100 100"), "scale.svg", "larger than any machine");
+    refused(&job, &svg("<circle cx=\"5\" cy=\"5\" r=\"1e308\"/>", "0 0 100 100"), "circle.svg", "larger than any machine");
+    refused(&job, &svg("<ellipse rx=\"1e308\" ry=\"1e-308\"/>", "0 0 100 100"), "ellipse.svg", "larger than any machine");
+    refused(&job, &svg("<path d=\"M 0 0 L 1e308 5 L 5 5 Z\"/>", "0 0 100 100"), "path.svg", "larger than any machine");
+    refused(&job, &svg("<g transform=\"skewX(90)\"><circle r=\"5\"/></g>", "0 0 100 100"), "skew.svg", "larger than any machine");
+    refused(&job, svg("", "0 0 100 100").split_at(60).0, "cut.svg", "SVG");
+}
+
+#[test]
+fn generated_elements_that_draw_nothing_are_counted_and_named() {
+    let job = drawing_job();
+    let eof = "0\nEOF\n";
+    warned(&job, &dxf("0\nCIRCLE\n8\nHOLES\n10\n5\n20\n5\n40\n0\n0\nCIRCLE\n8\nHOLES\n10\n5\n20\n5\n40\n-5\n", eof), "zero.dxf", "2 circles with a radius ≤ 0 on layer HOLES");
+    warned(&job, &svg("<circle cx=\"5\" cy=\"5\" r=\"-1\"/>", "0 0 100 100"), "r.svg", "circles with a radius ≤ 0");
+    warned(&job, &svg("<circle cx=\"5\" cy=\"5\" r=\"nan\"/>", "0 0 100 100"), "nan.svg", "not a number");
+    warned(&job, &svg("<rect x=\"5\" y=\"5\" width=\"-10\" height=\"4\"/>", "0 0 100 100"), "rect.svg", "rects with a width or height ≤ 0");
+    warned(&job, &svg("<line x1=\"0\" y1=\"0\" x2=\"nan\" y2=\"4\"/>", "0 0 100 100"), "line.svg", "lines with an end that is not a number");
+    warned(&job, &svg("", "nan nan nan nan"), "viewbox.svg", "viewBox");
+    warned(&job, &svg("", "0 0 0 0"), "viewbox0.svg", "viewBox");
+}
+
+/// An ASCII STL of `facets` triangles, the `k`-th vertex's x replaced by `x` when given.
+fn stl(facets: &[[DVec3; 3]], bad: Option<(usize, &str)>) -> Vec<u8> {
+    let mut s = String::from("solid t\n");
+    let mut k = 0;
+    for f in facets {
+        s += "facet normal 0 0 1\nouter loop\n";
+        for v in f {
+            let x = match bad {
+                Some((at, x)) if at == k => x.to_string(),
+                _ => v.x.to_string(),
+            };
+            s += &format!("vertex {x} {} {}\n", v.y, v.z);
+            k += 1;
+        }
+        s += "endloop\nendfacet\n";
+    }
+    s += "endsolid t\n";
+    s.into_bytes()
+}
+
+#[test]
+fn generated_parts_out_of_range_or_repeated_are_refused_or_read_once() {
+    let part = swarf::mesh::sample::demo_part();
+    let facets: Vec<[DVec3; 3]> = part.triangles().map(|t| [t.a, t.b, t.c]).collect();
+    let job = Job { simulation: job::Simulation { verify: false, cell: None }, ..Job::default() };
+    refused(&job, &stl(&facets, Some((4, "1e308"))), "inf.stl", "out of range for any part");
+    refused(&job, &stl(&facets, Some((4, "1e39"))), "e39.stl", "out of range for any part");
+    // A part read 1000 times too large (a unit off) is refused with its size before any work.
+    let mut scaled = job.clone();
+    scaled.part.scale = 1000.0;
+    refused(&scaled, &stl(&facets, None), "metres.stl", "larger than any machine");
+    // The same triangles 3,000 times over: read once, with a note, as fast as the part alone.
+    let small = [[DVec3::new(0.0, 0.0, 0.0), DVec3::new(20.0, 0.0, 0.0), DVec3::new(0.0, 20.0, 5.0)], [DVec3::new(20.0, 0.0, 0.0), DVec3::new(20.0, 20.0, 5.0), DVec3::new(0.0, 20.0, 5.0)]];
+    let repeated: Vec<[DVec3; 3]> = small.iter().cycle().take(6000).copied().collect();
+    let mesh = swarf::mesh::Mesh::from_triangles(repeated, &Tolerances::DEFAULT).unwrap();
+    assert_eq!((mesh.faces.len(), mesh.dropped_duplicates), (2, 5998));
+    warned(&job, &stl(&small.iter().cycle().take(6000).copied().collect::<Vec<_>>(), None), "copies.stl", "5998 triangles were copies");
+}
+
+#[test]
+fn generated_absurd_settings_are_refused_naming_the_field() {
+    let part = swarf::mesh::sample::demo_part();
+    let stl = part.to_binary_stl();
+    let base = Job { simulation: job::Simulation { verify: false, cell: None }, ..Job::default() };
+    let edit = |f: &dyn Fn(&mut serde_json::Value)| {
+        let mut v = serde_json::to_value(&base).unwrap();
+        f(&mut v);
+        v
+    };
+    let cases: Vec<(serde_json::Value, &str)> = vec![
+        (edit(&|v| v["tolerances"]["interpolation"] = 1e-9.into()), "tolerances.interpolation"),
+        (edit(&|v| v["tolerances"]["chordal"] = (-1.0).into()), "tolerances.chordal"),
+        (edit(&|v| v["stock"]["clearance"] = 1e308.into()), "stock.clearance"),
+        (edit(&|v| v["stock"]["marginXy"] = 1e9.into()), "stock.marginXy"),
+        (edit(&|v| v["tools"][0]["diameter"] = 1e9.into()), "diameter"),
+        (edit(&|v| v["tools"][0]["diameter"] = 1e-9.into()), "diameter"),
+        (edit(&|v| v["tools"][0]["cornerRadius"] = (-1.0).into()), "corner radius"),
+        (edit(&|v| v["tools"][0]["feedRate"] = 1e12.into()), "feedRate"),
+        (edit(&|v| v["post"]["rapidRate"] = 1e300.into()), "post.rapidRate"),
+        (edit(&|v| v["operations"][0]["allowance"] = 1e9.into()), "operations[0].allowance"),
+        (edit(&|v| v["operations"][0]["rampAngle"] = 1e308.into()), "operations[0].rampAngle"),
+        (
+            edit(&|v| {
+                let op = v["operations"][0].clone();
+                v["operations"] = serde_json::Value::Array(vec![op; 200]);
+            }),
+            "200 operations",
+        ),
+    ];
+    for (value, words) in cases {
+        let start = Instant::now();
+        let result = Job::from_value(&value).and_then(|job| job::run(&job, Workpiece::read(&stl, Some("part.stl"), &job.tolerances)?, &mut Progress::none()));
+        assert!(start.elapsed() < Duration::from_secs_f64(SECONDS));
+        match result {
+            Err(e) => assert!(e.to_string().contains(words), "expected '{words}': {e}"),
+            Ok(_) => panic!("accepted a job that should be refused ('{words}')"),
+        }
+    }
+    // A job that names a key twice.
+    let text = serde_json::to_string(&base).unwrap();
+    let doubled = text.replacen("\"operations\":", "\"operations\":[],\"operations\":", 1);
+    let e = Job::from_json(&doubled).unwrap_err().to_string();
+    assert!(e.contains("\"operations\" twice"), "{e}");
+    // A step-down of a nanometre on a drawing: refused before the levels are cut.
+    let mut job = drawing_job();
+    if let Some(serde_json::Value::Object(op)) = serde_json::to_value(&job.operations[0]).ok().as_mut() {
+        op.insert("stepdown".into(), 1e-9.into());
+        job.operations[0] = serde_json::from_value(serde_json::Value::Object(op.clone())).unwrap();
+    }
+    refused(&job, &dxf("", "0\nEOF\n"), "fine.dxf", "step-down of");
+}
+
+/// A profile that finds nothing to cut says why (it once said only `profile: `): 300 holes
+/// smaller than the tool, cut inside.
+#[test]
+fn a_profile_with_nothing_to_cut_says_why() {
+    let mut s = String::from("0\nSECTION\n2\nENTITIES\n");
+    for i in 0..300 {
+        s += &format!("0\nCIRCLE\n8\n0\n10\n{}\n20\n{}\n40\n1.0\n", (i % 20) * 5, (i / 20) * 5);
+    }
+    s += "0\nENDSEC\n0\nEOF\n";
+    let mut job = drawing_job();
+    job.operations = vec![job::Operation::Profile2d(swarf::operations::Profile2d { side: swarf::operations::Side::Inside, ..Default::default() })];
+    match answer(&job, s.as_bytes(), "holes.dxf") {
+        Err(e) => assert!(e.contains("300 loops are smaller than the φ"), "{e}"),
+        Ok(_) => panic!("holes smaller than the tool were cut"),
+    }
+}
+
+/// The Khronos Duck is 1.7 m long by the glTF's metres: the default job's raster finish over
+/// it would be 20 million points (it ran 59 s and took 10 GB before failing); the work is
+/// estimated and refused before it starts, naming the settings.
+#[test]
+fn the_duck_at_its_glb_size_is_refused_before_the_work_starts() {
+    let Some(path) = common::shared_data("meshes/tm_Duck.glb") else { return };
+    let bytes = std::fs::read(path).unwrap();
+    match answer(&Job::default(), &bytes, "tm_Duck.glb") {
+        Err(e) => assert!(e.contains("million points") && e.contains("step-over"), "{e}"),
+        Ok(_) => panic!("the Duck at 1.7 m was machined with the default job"),
+    }
+}
