@@ -85,6 +85,25 @@ fn valid_drawings() -> Vec<Vec<u8>> {
     vec![swarf::drawing::sample::plate_dxf().into_bytes(), svg.to_vec()]
 }
 
+/// What the `drawing` fuzz target kept (`tests/fuzz_regressions/drawing-*.bin`: an SVG whose
+/// viewBox puts an ellipse 1e117 mm out, which once fitted arcs for minutes) is answered at
+/// once, never with a panic.
+#[test]
+fn kept_drawing_fuzz_failures_are_answered_at_once() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fuzz_regressions");
+    let mut count = 0;
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.file_name().and_then(|n| n.to_str()).is_some_and(|n| n.starts_with("drawing-") && n.ends_with(".bin")) {
+            let start = std::time::Instant::now();
+            check_drawing(&std::fs::read(&path).unwrap());
+            assert!(start.elapsed().as_secs_f64() < 5.0, "{}: {:?}", path.display(), start.elapsed());
+            count += 1;
+        }
+    }
+    assert!(count >= 2);
+}
+
 #[test]
 fn every_truncation_of_valid_drawings_is_handled() {
     for file in valid_drawings() {

@@ -217,6 +217,7 @@ pub(crate) fn read_dxf(bytes: &[u8], tol: &Tolerances) -> Result<Pieces, Drawing
                     continue;
                 }
                 pieces.fits("ELLIPSE", 2.0 * major.length() * ratio.max(1.0) * s)?;
+                pieces.near_origin("ELLIPSE", c * s)?;
                 // The parameters are angles in radians, from 0 to 2π: one far past that is not
                 // an angle any writer meant (a parameter of 1e300 would ask for endless arcs).
                 let (mut t0, mut t1) = (e.or(41, 0.0)?, e.or(42, TAU)?);
@@ -301,6 +302,7 @@ fn spline(e: &Entity, tol: f64, scale: f64, pieces: &Pieces, out: &mut Vec<Segme
     // The curve lies in its control points' hull.
     let (lo, hi) = ctrl.iter().fold((ctrl[0], ctrl[0]), |(lo, hi), &p| (lo.min(p), hi.max(p)));
     pieces.fits("SPLINE", (hi - lo).max_element() * scale)?;
+    pieces.near_origin("SPLINE", lo.abs().max(hi.abs()) * scale)?;
     let (t0, t1) = (knots[degree], knots[n]);
     let eval = |t: f64| -> DVec2 {
         // The knot span holding t.

@@ -10,7 +10,7 @@ use thiserror::Error;
 use super::chain::chain;
 use super::Drawing;
 use crate::geom::segment::Segment;
-use crate::geom::Tolerances;
+use crate::geom::{DVec2, Tolerances};
 
 /// What can be wrong with a drawing file, for the person who dropped it.
 #[derive(Debug, Error, Clone, PartialEq)]
@@ -29,6 +29,8 @@ pub enum DrawingError {
     NothingToMachine(String),
     #[error("{what} is {} mm across, larger than any machine (at most 10 m): a coordinate out of range, or a drawing in the wrong unit", crate::limits::shown(size.round()))]
     TooLarge { what: String, size: f64 },
+    #[error("{what} has a coordinate of {value} mm, out of range for any drawing (more than 10 km from the origin, in millimetres as placed): a number damaged in the file?")]
+    OutOfRange { what: String, value: String },
     #[error("the drawing has more than {max} lines and arcs once its curves are fitted", max = crate::limits::MAX_PIECES)]
     TooManyPieces,
     #[error("the {format} ends at line {line} without its {marker}: the file was cut short (a download or a copy that stopped?); open the whole file")]
@@ -108,9 +110,23 @@ impl Pieces {
         }
     }
 
+    /// Refuses the element at `self.line`, named `what`, when a point of it (`at`, mm) lies past
+    /// [`crate::limits::MAX_COORDINATE`] from the origin: so far out a double no longer holds
+    /// its shape to the tolerance, and fitting arcs to it would never end.
+    pub fn near_origin(&self, what: &str, at: DVec2) -> Result<(), DrawingError> {
+        if at.abs().max_element() <= crate::limits::MAX_COORDINATE {
+            Ok(())
+        } else {
+            Err(DrawingError::OutOfRange { what: format!("the {what} at line {}", self.line), value: crate::limits::shown(at.abs().max_element()) })
+        }
+    }
+
     /// Refuses a drawing larger than any machine, naming the element farthest out.
     fn check_size(&self) -> Result<(), DrawingError> {
         let Some(e) = self.extremes else { return Ok(()) };
+        if let Some(&(v, line)) = e.iter().find(|(v, _)| v.abs() > crate::limits::MAX_COORDINATE) {
+            return Err(DrawingError::OutOfRange { what: format!("the element at line {line}"), value: crate::limits::shown(v.abs()) });
+        }
         let (w, h) = (e[1].0 - e[0].0, e[3].0 - e[2].0);
         let size = w.max(h);
         if size.is_finite() && size <= crate::limits::MAX_SIZE {

@@ -184,6 +184,9 @@ impl Reader<'_, '_> {
         let extent = if hull.iter().all(|p| p.is_finite()) { (hi - lo).max_element() } else { f64::INFINITY };
         let what = self.pieces.element.clone();
         self.pieces.fits(&what, extent)?;
+        if let Some(&p) = hull.first() {
+            self.pieces.near_origin(&what, p)?;
+        }
         let mut out = Vec::new();
         fit_arcs(f, t0, t1, pieces, self.tol.arc_fit, &mut out);
         for s in out {
