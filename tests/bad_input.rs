@@ -181,6 +181,7 @@ fn generated_drawings_cut_short_out_of_range_or_endless_are_refused_at_once() {
     refused(&job, &svg("<ellipse rx=\"1e308\" ry=\"1e-308\"/>", "0 0 100 100"), "ellipse.svg", "larger than any machine");
     refused(&job, &svg("<path d=\"M 0 0 L 1e308 5 L 5 5 Z\"/>", "0 0 100 100"), "path.svg", "out of range for any drawing");
     refused(&job, &svg("<ellipse rx=\"4\" ry=\"2\"/>", "0 7e117 1 100"), "far.svg", "out of range for any drawing");
+    refused(&job, &svg("<path d=\"M 0 0 A 5 5 0 0 1 7e38 10\"/>", "0 0 100 100"), "arc.svg", "out of range for any drawing");
     refused(&job, &svg("<g transform=\"skewX(90)\"><circle r=\"5\"/></g>", "0 0 100 100"), "skew.svg", "larger than any machine");
     refused(&job, svg("", "0 0 100 100").split_at(60).0, "cut.svg", "SVG");
 }

@@ -235,6 +235,16 @@ impl Reader<'_, '_> {
     }
 
     fn path(&mut self, d: &str, m: DAffine2, layer: &str) -> Result<(), DrawingError> {
+        // The parser turns arcs into Béziers before they reach us, as many as the radius asks
+        // for: an arc past any drawing is refused first (a radius of 1e38 never ends).
+        for seg in svgtypes::PathParser::from(d).flatten() {
+            if let svgtypes::PathSegment::EllipticalArc { rx, ry, x, y, .. } = seg {
+                let far = [rx, ry, x, y].into_iter().map(f64::abs).fold(0.0, f64::max);
+                if far.is_nan() || far > crate::limits::MAX_COORDINATE {
+                    return Err(DrawingError::OutOfRange { what: format!("the arc of the <path> at line {}", self.pieces.line), value: crate::limits::shown(far) });
+                }
+            }
+        }
         let (mut start, mut at) = (DVec2::ZERO, DVec2::ZERO);
         for seg in SimplifyingPathParser::from(d) {
             let Ok(seg) = seg else {
