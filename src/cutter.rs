@@ -51,7 +51,7 @@ pub enum CutterError {
     Diameter(f64),
     #[error("the corner radius must lie between 0 and half the diameter (got {corner} for diameter {diameter})")]
     CornerRadius { corner: f64, diameter: f64 },
-    #[error("the flute length must be a positive number of millimetres, at most 10 m (got {})", crate::limits::shown(*.0))]
+    #[error("the flute length must be positive, in millimetres, at most 10 m (got {})", crate::limits::shown(*.0))]
     FluteLength(f64),
 }
 

@@ -137,7 +137,7 @@ impl Operate for FinishRaster {
             return Err(Error::operation(
                 &self.name,
                 format!(
-                    "a step-over of {} mm at a grid of {} mm makes about {:.1} million points over the {:.0} × {:.0} mm stock (at most {:.0} million): choose a coarser step-over or grid, or check the part's unit",
+                    "a step-over of {} mm at a grid of {} mm makes about {:.1} million points over the {:.0} × {:.0} mm stock (at most {:.0} million): choose a coarser grid or step-over, or check the part's unit",
                     self.stepover,
                     self.grid,
                     points / 1e6,

@@ -154,7 +154,7 @@ test('bad values are marked at their fields as they are typed, by the core\'s ow
   fs.writeFileSync(file, JSON.stringify(job));
   await page.setInputFiles('#load-job', file);
   await page.waitForFunction(() => /^Loaded the job from job\.json, but 1 setting needs attention/.test(document.getElementById('message').textContent));
-  assert.match(await page.textContent('#message'), /stock\.marginXy must be zero or more \(got -2\)/);
+  assert.match(await page.textContent('#message'), /stock\.marginXy must be zero or more mm, at most 10000 \(got -2\)/);
   await tab(page, 'stock');
   await page.waitForSelector('input[name=marginXy].invalid');
   assert.deepEqual(errors, []);
