@@ -6,7 +6,7 @@
 import { Viewer } from './viewer.js';
 import { createEngine } from './swarf.js';
 import { $, state, hooks, job, selectedOp, selectedTool, store, restore, setKey } from './state.js';
-import { valueOf, fillFields, message, fieldError, check } from './forms.js';
+import { valueOf, fillFields, message, fieldError, check, markProblems } from './forms.js';
 import { GcodePane } from './gcode.js';
 import { sim, setTime, step, play, drawMrr, toLine } from './simulation.js';
 import { fillTools, addTool, deleteTool, exportTools, importTools, renumber } from './tools.js';
@@ -102,6 +102,8 @@ function onField(el) {
 function tab(name) {
   for (const b of document.querySelectorAll('#tabs [data-tab]')) b.setAttribute('aria-selected', String(b.dataset.tab === name));
   for (const t of document.querySelectorAll('#settings .tab')) t.hidden = t.dataset.tab !== name;
+  // A check answered while this tab was hidden marked no field in it: mark them now.
+  if (state.problems) markProblems(state.problems);
 }
 
 // ---- wiring ------------------------------------------------------------------------------

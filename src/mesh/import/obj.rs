@@ -32,18 +32,30 @@ pub(super) fn read(bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, ImportError> {
 /// naming a vertex no line before it gave (a file cut and joined, or written out of order).
 fn check_last_line(bytes: &[u8]) -> Result<(), ImportError> {
     let text = String::from_utf8_lossy(bytes);
-    let mut vertices = 0i64;
+    let (mut vertices, mut textures, mut normals) = (0i64, 0i64, 0i64);
     let mut number = 0;
     for (k, line) in text.lines().enumerate() {
         number = k + 1;
         let mut words = line.split_whitespace();
         match words.next() {
             Some("v") => vertices += 1,
+            Some("vt") => textures += 1,
+            Some("vn") => normals += 1,
             Some("f") => {
                 for corner in words {
-                    let Some(Ok(i)) = corner.split('/').next().map(str::parse::<i64>) else { continue };
+                    let mut parts = corner.split('/');
+                    let Some(Ok(i)) = parts.next().map(str::parse::<i64>) else { continue };
                     if i > vertices || i == 0 || -i > vertices {
                         return Err(ImportError::Truncated(format!("the OBJ's line {number} names vertex {i}, but the {vertices} lines before it give {vertices} vertices")));
+                    }
+                    // A texture or normal index out of range (a relative −12 of 2) would overflow
+                    // the reader's arithmetic: refused here, with the line.
+                    for (what, count) in [("texture coordinate", textures), ("normal", normals)] {
+                        if let Some(Ok(k)) = parts.next().filter(|p| !p.is_empty()).map(str::parse::<i64>) {
+                            if k > count || k == 0 || -k > count {
+                                return Err(ImportError::Obj(format!("line {number} names {what} {k}, but the lines before it give {count}")));
+                            }
+                        }
                     }
                 }
             }
