@@ -27,18 +27,20 @@ fn valid_files() -> Vec<Vec<u8>> {
     vec![stl[..84 + 50 * 40].to_vec(), ascii, obj, gltf]
 }
 
+/// The inputs kept in `tests/fuzz_regressions/` whose names start with `prefix`.
+fn kept(prefix: &str) -> Vec<std::path::PathBuf> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fuzz_regressions");
+    let named = |p: &std::path::Path| p.file_name().and_then(|n| n.to_str()).is_some_and(|n| n.starts_with(prefix) && n.ends_with(".bin"));
+    std::fs::read_dir(dir).unwrap().map(|e| e.unwrap().path()).filter(|p| named(p)).collect()
+}
+
 #[test]
 fn kept_fuzz_failures_do_not_panic() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fuzz_regressions");
-    let mut count = 0;
-    for entry in std::fs::read_dir(dir).unwrap() {
-        let path = entry.unwrap().path();
-        if path.extension().is_some_and(|e| e == "bin") {
-            check(&std::fs::read(&path).unwrap());
-            count += 1;
-        }
+    let paths = kept("");
+    for path in &paths {
+        check(&std::fs::read(path).unwrap());
     }
-    assert!(count > 0, "the regression corpus is empty");
+    assert!(!paths.is_empty(), "the regression corpus is empty");
 }
 
 #[test]
@@ -90,18 +92,13 @@ fn valid_drawings() -> Vec<Vec<u8>> {
 /// once, never with a panic.
 #[test]
 fn kept_drawing_fuzz_failures_are_answered_at_once() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fuzz_regressions");
-    let mut count = 0;
-    for entry in std::fs::read_dir(dir).unwrap() {
-        let path = entry.unwrap().path();
-        if path.file_name().and_then(|n| n.to_str()).is_some_and(|n| n.starts_with("drawing-") && n.ends_with(".bin")) {
-            let start = std::time::Instant::now();
-            check_drawing(&std::fs::read(&path).unwrap());
-            assert!(start.elapsed().as_secs_f64() < 5.0, "{}: {:?}", path.display(), start.elapsed());
-            count += 1;
-        }
+    let paths = kept("drawing-");
+    for path in &paths {
+        let start = std::time::Instant::now();
+        check_drawing(&std::fs::read(path).unwrap());
+        assert!(start.elapsed().as_secs_f64() < 5.0, "{}: {:?}", path.display(), start.elapsed());
     }
-    assert!(count >= 2);
+    assert!(paths.len() >= 2);
 }
 
 #[test]

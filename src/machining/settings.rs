@@ -86,11 +86,7 @@ impl Steps {
     /// Checks the steps, each named as the job file names it.
     pub fn validate(&self) -> Result<(), FieldError> {
         positive("stepdown", self.stepdown)?;
-        crate::machining::fraction("stepoverFraction", self.stepover_fraction)?;
-        if self.stepover_fraction > 1.0 {
-            return Err(FieldError { field: "stepoverFraction", message: format!("is a fraction of the tool's diameter, at most 1 (got {})", self.stepover_fraction) });
-        }
-        Ok(())
+        crate::machining::fraction("stepoverFraction", self.stepover_fraction)
     }
 }
 

@@ -67,11 +67,7 @@ impl Operate for Engrave {
     fn validate(&self) -> std::result::Result<(), FieldError> {
         positive("depth", self.depth)?;
         positive("stepdown", self.stepdown)?;
-        crate::machining::angle("rampAngle", self.ramp_angle, 0.1, 90.0)?;
-        if self.ramp_angle > 90.0 {
-            return Err(FieldError { field: "rampAngle", message: format!("must be at most 90 degrees (got {})", self.ramp_angle) });
-        }
-        Ok(())
+        crate::machining::angle("rampAngle", self.ramp_angle, 0.1, 90.0)
     }
 
     fn plan(&self, ctx: &mut Context, _progress: &mut crate::progress::Progress) -> Result<Planned> {

@@ -189,27 +189,25 @@ pub fn profile_moves(walls: &Walls, picked: &[usize], op: &Profile2d, mut s: Set
             }
             for (a, b) in walls.near_pairs(&wp.along, 2.0 * d) {
                 let (a, b) = (a.min(b), a.max(b));
-                {
-                    // A merged group's outer path and the paths of the waste it encloses run
-                    // along the same loops: each pair is named once.
-                    if !named.insert((a, b)) {
-                        continue;
-                    }
-                    // A path can run along loops that meet only through a third one.
-                    let (gap, at) = walls.closest_approach(a, b);
-                    if gap >= 2.0 * d {
-                        continue;
-                    }
-                    warnings.push(format!(
-                        "loops {} and {} are {gap:.3} mm apart near ({:.3}, {:.3}), less than the φ{:.3} tool needs ({:.3} mm); one path runs around both and the gap between them is left uncut",
-                        walls.index[a],
-                        walls.index[b],
-                        at.x,
-                        at.y,
-                        2.0 * r,
-                        2.0 * d
-                    ));
+                // A merged group's outer path and the paths of the waste it encloses run
+                // along the same loops: each pair is named once.
+                if !named.insert((a, b)) {
+                    continue;
                 }
+                // A path can run along loops that meet only through a third one.
+                let (gap, at) = walls.closest_approach(a, b);
+                if gap >= 2.0 * d {
+                    continue;
+                }
+                warnings.push(format!(
+                    "loops {} and {} are {gap:.3} mm apart near ({:.3}, {:.3}), less than the φ{:.3} tool needs ({:.3} mm); one path runs around both and the gap between them is left uncut",
+                    walls.index[a],
+                    walls.index[b],
+                    at.x,
+                    at.y,
+                    2.0 * r,
+                    2.0 * d
+                ));
             }
             let outside = wp.path.is_ccw();
             let clear = Clear { keeps_off: Box::new(move |q| walls.keeps_off(q, d)), waste: Box::new(|q| !walls.in_material(q)) };
