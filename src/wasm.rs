@@ -234,6 +234,13 @@ impl JobResult {
     pub fn gcode(&self) -> String {
         self.0.gcode.clone()
     }
+    /// The program as UTF-8 bytes (a view): sent to the page's thread without a copy, the text
+    /// made from it only when asked for (a die-sized program is tens of megabytes).
+    #[wasm_bindgen(js_name = gcodeBytes)]
+    pub fn gcode_bytes(&self) -> js_sys::Uint8Array {
+        // SAFETY: as for `floats`.
+        unsafe { js_sys::Uint8Array::view(self.0.gcode.as_bytes()) }
+    }
     /// The line (0 first) of the program each move ended on (a view).
     #[wasm_bindgen(js_name = moveLines)]
     pub fn move_lines(&self) -> js_sys::Uint32Array {

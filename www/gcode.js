@@ -8,7 +8,8 @@ export class GcodePane {
   constructor(el, onPick) {
     this.el = el;
     this.onPick = onPick;
-    this.text = '';
+    this.bytes = new Uint8Array(0);
+    this.decoder = new TextDecoder();
     this.starts = new Uint32Array([0]);
     this.current = -1;
     this.spacer = document.createElement('div');
@@ -23,17 +24,16 @@ export class GcodePane {
   }
 
   get count() {
-    return this.starts.length - (this.text.endsWith('\n') ? 1 : 0);
+    const n = this.bytes.length;
+    return this.starts.length - (n && this.bytes[n - 1] === 10 ? 1 : 0);
   }
 
-  // The program's text (empty: none).
-  set(text) {
-    this.text = text ?? '';
-    let n = 1;
-    for (let i = 0; i < this.text.length; i++) if (this.text.charCodeAt(i) === 10) n++;
-    const starts = new Uint32Array(n);
-    for (let i = 0, k = 1; i < this.text.length; i++) if (this.text.charCodeAt(i) === 10) starts[k++] = i + 1;
-    this.starts = starts;
+  // The program as UTF-8 bytes (empty: none) and where each of its lines starts (as the
+  // engine gives them, `gcodeBytes` and `lineStarts`): each line is made text only when drawn,
+  // so a program of tens of megabytes is never one string here.
+  set(bytes, starts) {
+    this.bytes = bytes ?? new Uint8Array(0);
+    this.starts = starts ?? new Uint32Array([0]);
     this.current = -1;
     this.spacer.style.height = `${this.count * LINE_HEIGHT}px`;
     this.el.scrollTop = 0;
@@ -41,8 +41,8 @@ export class GcodePane {
   }
 
   line(k) {
-    const end = k + 1 < this.starts.length ? this.starts[k + 1] - 1 : this.text.length;
-    return this.text.slice(this.starts[k], end);
+    const end = k + 1 < this.starts.length ? this.starts[k + 1] - 1 : this.bytes.length;
+    return this.decoder.decode(this.bytes.subarray(this.starts[k], end));
   }
 
   // Marks line `k` (0 first) and scrolls it into sight if it is not.
@@ -60,7 +60,7 @@ export class GcodePane {
   }
 
   render() {
-    if (this.el.hidden || !this.text) { this.spacer.replaceChildren(); return; }
+    if (this.el.hidden || !this.bytes.length) { this.spacer.replaceChildren(); return; }
     const first = Math.max(0, Math.floor(this.el.scrollTop / LINE_HEIGHT) - MARGIN);
     const last = Math.min(this.count, Math.ceil((this.el.scrollTop + this.el.clientHeight) / LINE_HEIGHT) + MARGIN);
     const rows = [];

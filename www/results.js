@@ -6,16 +6,20 @@ import { fillFields, message, check } from './forms.js';
 import { opColor, toolColor, cssColor, RAPID_COLOR, MARK_COLORS } from './viewer.js';
 import { sim, showSimulation } from './simulation.js';
 
-// Runs `steps` one task each (the view held, then drawn once).
+// Runs `steps` one task each (the view held, then drawn once); a step that returns steps has
+// them run so too.
 async function inSteps(steps) {
   const viewer = state.viewer;
-  if (!viewer) { steps.forEach((step) => step()); return; }
+  const run = (step) => { const more = step(); if (Array.isArray(more)) more.forEach(run); };
+  if (!viewer) { steps.forEach(run); return; }
   await viewer.batch(async () => {
-    for (const step of steps) {
+    const queue = [...steps];
+    while (queue.length) {
       // Each step in a task of its own, the first too: the task that brought the result
       // (its message from the worker) holds the page's thread no longer than it takes to read.
       await new Promise((resolve) => setTimeout(resolve, 0));
-      step();
+      const more = queue.shift()();
+      if (Array.isArray(more)) queue.unshift(...more);
     }
   });
 }
@@ -25,21 +29,21 @@ export function setRunning(running) {
   document.querySelectorAll('#settings input, #settings select, #settings button, #panel .actions button, #panel .actions input, #drop button').forEach((el) => { el.disabled = running; });
   $('generate').disabled = running || !state.bytes;
   $('cancel').disabled = !running;
-  $('download').disabled = running || !state.gcode;
+  $('download').disabled = running || !state.result;
   if (!running) hooks.fillAll?.();
 }
 
 // A failed or cancelled Generate, or a new part, leaves nothing of the result it replaced: no
 // path, no simulation, no statistics, no download.
 export function clearResult() {
-  Object.assign(state, { result: null, gcode: null, problem: null });
+  Object.assign(state, { result: null, problem: null });
   state.viewer?.clearPaths();
   showSimulation(null);
   $('stats').textContent = '';
   $('warnings').textContent = '';
   $('warning-count').textContent = '';
   $('sim-report').textContent = '';
-  sim.pane?.set('');
+  sim.pane?.set(null);
   $('download').disabled = true;
   $('progress').value = 0;
   $('stage').textContent = '';
@@ -169,7 +173,7 @@ export async function generate() {
     const r = await state.engine.run(j, state.bytes, state.name, {
       onProgress: (fraction, stage) => { $('progress').value = fraction; $('stage').textContent = stage; },
     });
-    Object.assign(state, { result: r, gcode: r.gcode, extension: r.summary.extension, postName: r.summary.post });
+    Object.assign(state, { result: r, extension: r.summary.extension, postName: r.summary.post });
     const s = r.summary;
     // The result reaches the view in steps, each a task of its own, so that none holds the
     // page's thread long on a die-sized result; the view draws once, after the last.
@@ -177,12 +181,14 @@ export async function generate() {
     await inSteps([
       // The part framed again (the job may have placed it elsewhere).
       () => (r.drawing ? state.viewer?.setDrawing(r.drawing, false) : state.viewer?.setPart(r.part, true)),
-      () => {
-        state.viewer?.setPaths({ feeds: r.feeds, rapids: r.rapids, stock: s.stock, ops: r.feedOps, tools: r.feedTools, moves: r.feedMoves, rapidMoves: r.rapidMoves, byTool });
-        hooks.showPicked?.();
-        if (r.octants.length) state.viewer?.setOctants(r.octants);
-      },
-      () => sim.pane?.set(r.gcode),
+      () => [
+        ...(state.viewer?.pathSteps({ feeds: r.feeds, rapids: r.rapids, stock: s.stock, ops: r.feedOps, tools: r.feedTools, moves: r.feedMoves, rapidMoves: r.rapidMoves, byTool }) ?? []),
+        () => {
+          hooks.showPicked?.();
+          if (r.octants.length) state.viewer?.setOctants(r.octants);
+        },
+      ],
+      () => sim.pane?.set(r.gcodeBytes, r.lineStarts),
       () => showSimulation(r.sim, s),
     ]);
     legend(s, byTool);
@@ -236,9 +242,9 @@ export function programName() {
 }
 
 export function download() {
-  if (!state.gcode) return;
+  if (!state.result) return;
   if (state.problem && !window.confirm(`This program is not safe to run: ${state.problem}.\n\nDownload it anyway? It starts with a warning comment.`)) return;
-  downloadText(programName(), state.gcode, 'text/plain');
+  downloadText(programName(), state.result.gcodeBytes, 'text/plain');
 }
 
 // ---- posts as data ----------------------------------------------------------------------
@@ -279,13 +285,13 @@ export async function loadPost(file) {
 // planning again: the plan is in millimetres and only the writing changes. `data-posted` counts
 // the programs so written.
 export async function repost() {
-  if (!state.gcode || state.running) return;
+  if (!state.result || state.running) return;
   try {
     const r = await state.engine.repost(job().post);
-    Object.assign(state, { gcode: r.gcode, extension: r.extension, postName: r.post });
+    Object.assign(state, { extension: r.extension, postName: r.post });
     state.result.moveLines = r.moveLines;
-    state.result.gcode = r.gcode;
-    sim.pane?.set(r.gcode);
+    Object.assign(state.result, { gcodeBytes: r.gcodeBytes, lineStarts: r.lineStarts });
+    sim.pane?.set(r.gcodeBytes, r.lineStarts);
     message(`The program is written again for ${r.post}${job().post.units === 'inch' ? ' in inches' : ''}: cycle time ${clock(r.cycle.seconds)} ${clockFormat(r.cycle.seconds)}.`, 'ok');
   } catch (e) {
     clearResult();

@@ -12,8 +12,10 @@ export const state = {
   bytes: null, name: 'sample.stl', label: 'sample part', sample: null, sampleDrawing: null, defaults: null, posts: [],
   kind: 'part', drawing: null, part: null,
   tools: [], jobs: { part: null, drawing: null }, selected: { tool: 0, part: 0, drawing: 0 },
-  running: false, result: null, gcode: null, problem: null, extension: null,
+  running: false, result: null, problem: null, extension: null,
   problems: [],
+  // The last program's text (made when read: the page itself shows and downloads its bytes).
+  get gcode() { return this.result?.gcode ?? null; },
 };
 
 // What other modules register for one another (a page module calls the ones registered after

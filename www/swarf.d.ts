@@ -77,7 +77,12 @@ export interface Simulation {
 }
 
 export interface RunResult {
-  gcode: string;
+  /** The program (made from `gcodeBytes` when first read). */
+  readonly gcode: string;
+  /** The program as UTF-8 bytes: what a page shows or downloads without making one string of it. */
+  gcodeBytes: Uint8Array;
+  /** Where each line of the program starts in `gcodeBytes` (line 0 at 0). */
+  lineStarts: Uint32Array;
   /** The line (0 first) of `gcode` each move of the program ended on. */
   moveLines: Uint32Array;
   summary: Summary;
@@ -125,7 +130,7 @@ export declare class Engine {
   readProject(text: string): Promise<{ job: Job; name: string; bytes: Uint8Array | null }>;
   writeProject(job: JobInput, name: string, bytes: Uint8Array): Promise<string>;
   run(job: JobInput, bytes: Uint8Array, name: string, options?: RunOptions): Promise<RunResult>;
-  repost(post: PostSettingsInput): Promise<Reposted & { moveLines: Uint32Array }>;
+  repost(post: PostSettingsInput): Promise<Reposted & { moveLines: Uint32Array; gcodeBytes: Uint8Array; lineStarts: Uint32Array }>;
   seek(count: number): Promise<Float32Array>;
   cancel(): Promise<void>;
   close(): void;

@@ -214,7 +214,7 @@ export class Engine {
   /**
    * Runs a job on a part or drawing. `onProgress(fraction, stage)` reports as it goes;
    * aborting `signal` ends the work (the workers are replaced, the engine stays usable) and
-   * rejects with a `CancelledError`. Resolves with `{ gcode, moveLines, summary, feeds, rapids,
+   * rejects with a `CancelledError`. Resolves with `{ gcode, gcodeBytes, lineStarts, moveLines, summary, feeds, rapids,
    * feedOps, feedTools, feedMoves, rapidMoves, octants, part, drawing, sim }` (swarf.d.ts). With more than one worker, the pool first makes
    * the CL surfaces and the level maps of z-level work (in bands of rows) and the raster passes
    * (in ranges) on every worker, then plans operation by operation: the regions of a z-level
@@ -239,8 +239,8 @@ export class Engine {
     try {
       const memory = this.#options.memory ?? globalThis.navigator?.deviceMemory;
       const sharing = workersFor(this.workers, bytes?.byteLength ?? bytes?.length ?? 0, memory);
-      if (sharing === 1) return await this.call({ type: 'run', job, bytes, name }, [], onProgress);
-      return await this.#runShared([this.#main, ...this.#helpers.slice(0, sharing - 1)], job, bytes, name, onProgress);
+      if (sharing === 1) return withText(await this.call({ type: 'run', job, bytes, name }, [], onProgress));
+      return withText(await this.#runShared([this.#main, ...this.#helpers.slice(0, sharing - 1)], job, bytes, name, onProgress));
     } finally {
       signal?.removeEventListener('abort', onAbort);
     }
@@ -328,11 +328,11 @@ export class Engine {
 
   /**
    * The last run's program written again for another post (or in the other unit), without
-   * planning again: `{ gcode, extension, post, cycle, time, moveLines }`.
+   * planning again: `{ gcode, gcodeBytes, lineStarts, extension, post, cycle, time, moveLines }`.
    */
   async repost(post) {
-    const { gcode, extension, post: name, cycle, time, moveLines } = await this.call({ type: 'repost', post });
-    return { gcode, extension, post: name, cycle, time, moveLines };
+    const { gcodeBytes, lineStarts, extension, post: name, cycle, time, moveLines } = await this.call({ type: 'repost', post });
+    return withText({ gcodeBytes, lineStarts, extension, post: name, cycle, time, moveLines });
   }
 
   /** The last run's simulated stock after `count` moves (a Float32Array of heights). */
@@ -350,6 +350,24 @@ export class Engine {
     this.#main = null;
     this.#helpers = [];
   }
+}
+
+/**
+ * `m` with `gcode`, the program's text, made from `m.gcodeBytes` (its UTF-8 bytes, as the
+ * worker sent them without a copy) when first read, and again if the bytes are replaced: a
+ * die-sized program is tens of megabytes, and a page that shows it from the bytes and downloads
+ * the bytes never holds its thread making the text.
+ */
+function withText(m) {
+  let made = null;
+  Object.defineProperty(m, 'gcode', {
+    enumerable: true,
+    get() {
+      if (made?.bytes !== m.gcodeBytes) made = { bytes: m.gcodeBytes, text: new TextDecoder().decode(m.gcodeBytes) };
+      return made.text;
+    },
+  });
+  return m;
 }
 
 /**

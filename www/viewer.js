@@ -109,6 +109,9 @@ const FOV_Y = 0.7;
 // Segments drawn while the view moves: beyond this many, every k-th (the whole once it stops),
 // so that a program of millions of moves stays orbitable without a GPU.
 const MOVING_SEGMENTS = 300000;
+// Segments a group of the path holds at most: each is uploaded in a task of its own (a die-sized
+// program of a million segments in four), its draw a call of its own.
+const GROUP_SEGMENTS = 1 << 18;
 // How long after the last move of the mouse or wheel the view counts as still moving (ms).
 const SETTLE_MS = 180;
 
@@ -118,6 +121,23 @@ function fingerprint(positions) {
   const n = positions.length, step = Math.max(1, Math.floor(n / 1000));
   let out = `${n}`;
   for (let i = 0; i < n; i += step) out += `,${positions[i]}`;
+  return out;
+}
+
+// The runs `parts` ([start, end) of segments) cut into lists of runs of at most `size` segments.
+function chunks(parts, size) {
+  const out = [];
+  let current = [], count = 0;
+  for (let [a, b] of parts) {
+    while (a < b) {
+      const e = Math.min(b, a + size - count);
+      current.push([a, e]);
+      count += e - a;
+      a = e;
+      if (count === size) { out.push(current); current = []; count = 0; }
+    }
+  }
+  if (count) out.push(current);
   return out;
 }
 
@@ -172,7 +192,14 @@ export class Viewer {
   // their tool's for the operations in `byTool` (octree roughing; `tools`: the tool of each
   // segment), and rapids; `moves` and `rapidMoves` give each segment's program move, so that
   // the path already cut can be drawn apart from the path to come (`setCut`).
-  setPaths({ feeds, rapids, stock, ops = null, tools = null, moves = null, rapidMoves = null, byTool = new Set() }) {
+  setPaths(paths) {
+    for (const step of this.pathSteps(paths)) step();
+  }
+
+  // `setPaths` as steps to run one after the other, each a task of its own if the caller likes
+  // (a step uploads at most GROUP_SEGMENTS segments: a die-sized program's million segments
+  // never hold the page's thread in one task).
+  pathSteps({ feeds, rapids, stock, ops = null, tools = null, moves = null, rapidMoves = null, byTool = new Set() }) {
     this.dropGroups();
     this.dropLines((key) => key.startsWith('octants') || key === 'stock');
     // An operation's segments (a stage's, for octree roughing) follow each other in the
@@ -190,11 +217,18 @@ export class Viewer {
     }
     const total = n + rapids.length / 6;
     const every = Math.max(1, Math.ceil(total / MOVING_SEGMENTS));
-    for (const { op, color, parts } of runs.values()) this.addGroup(feeds, moves, parts, { op, color }, every);
-    this.addGroup(rapids, rapidMoves, [[0, rapids.length / 6]], { op: -1, color: RAPID_COLOR, rapid: true }, every);
-    if (stock) this.setLine('stock', { buffer: this.buffer(boxLines(stock)), count: 24, color: [0.35, 0.4, 0.45, 0.6], mark: true });
-    this.cutMoves = Infinity;
-    this.draw();
+    const steps = [];
+    const add = (data, segmentMoves, parts, style) => {
+      for (const chunk of chunks(parts, GROUP_SEGMENTS)) steps.push(() => this.addGroup(data, segmentMoves, chunk, style, every));
+    };
+    for (const { op, color, parts } of runs.values()) add(feeds, moves, parts, { op, color });
+    add(rapids, rapidMoves, [[0, rapids.length / 6]], { op: -1, color: RAPID_COLOR, rapid: true });
+    steps.push(() => {
+      if (stock) this.setLine('stock', { buffer: this.buffer(boxLines(stock)), count: 24, color: [0.35, 0.4, 0.45, 0.6], mark: true });
+      this.cutMoves = Infinity;
+      this.draw();
+    });
+    return steps;
   }
 
   // One colour's segments (the runs `parts` of `data`), with their moves, and every `every`-th

@@ -69,6 +69,16 @@ function progressTo(id) {
   };
 }
 
+// Where each line of a program (its UTF-8 bytes) starts: found here, in the worker, so that the
+// page's thread only draws the lines in sight.
+function linesOf(bytes) {
+  let n = 1;
+  for (let i = 0; i < bytes.length; i++) if (bytes[i] === 10) n++;
+  const starts = new Uint32Array(n);
+  for (let i = 0, k = 1; i < bytes.length; i++) if (bytes[i] === 10) starts[k++] = i + 1;
+  return starts;
+}
+
 // Sends a run's result (a JobResult) to the engine and keeps it for scrubbing and reposting.
 function send(id, result) {
   const feeds = result.feeds().slice();
@@ -79,7 +89,7 @@ function send(id, result) {
   const rapids = result.rapids().slice();
   const rapidMoves = result.rapidMoves().slice();
   const moveLines = result.moveLines().slice();
-  const gcode = result.gcode();
+  const gcodeBytes = result.gcodeBytes().slice(), lineStarts = linesOf(gcodeBytes);
   const summary = result.summary();
   const drawing = result.drawing();
   const { part, transfer } = partMessage(result.takePart());
@@ -100,7 +110,7 @@ function send(id, result) {
   }
   current?.free();
   current = result;
-  self.postMessage({ id, ok: true, gcode, moveLines, feeds, feedOps, feedTools, feedMoves, octants, rapids, rapidMoves, summary, part, drawing, sim }, [feeds.buffer, feedOps.buffer, feedTools.buffer, feedMoves.buffer, octants.buffer, rapids.buffer, rapidMoves.buffer, moveLines.buffer, ...transfer]);
+  self.postMessage({ id, ok: true, gcodeBytes, lineStarts, moveLines, feeds, feedOps, feedTools, feedMoves, octants, rapids, rapidMoves, summary, part, drawing, sim }, [gcodeBytes.buffer, lineStarts.buffer, feeds.buffer, feedOps.buffer, feedTools.buffer, feedMoves.buffer, octants.buffer, rapids.buffer, rapidMoves.buffer, moveLines.buffer, ...transfer]);
 }
 
 self.onmessage = async (event) => {
@@ -204,7 +214,10 @@ self.onmessage = async (event) => {
       self.postMessage({ id, ok: true });
     } else if (type === 'repost') {
       if (!current) throw new Error('generate a program first');
-      self.postMessage({ id, ok: true, ...current.repost(event.data.post) });
+      // The program as bytes, as a run's is (see `send`).
+      const { gcode, ...rest } = current.repost(event.data.post);
+      const gcodeBytes = new TextEncoder().encode(gcode), lineStarts = linesOf(gcodeBytes);
+      self.postMessage({ id, ok: true, ...rest, gcodeBytes, lineStarts }, [gcodeBytes.buffer, lineStarts.buffer, rest.moveLines.buffer]);
     } else if (type === 'seek') {
       // The stock after `count` moves, and the tool a fraction `f` into move `at` (default:
       // the end of the last move counted).
