@@ -7,6 +7,11 @@
 //! which it touches the feature and nowhere cuts into it; the CL height over `c` is the largest
 //! drop over all vertices, edges and facets (the "offset facet" model of seed 001 §3.3, and the
 //! same fixed vertex + facet + edge decomposition that OpenCAMLib's drop-cutter uses).
+//!
+//! A cone (drill, spot drill, V-bit or chamfer mill) has a flat tip of radius `f` (zero for a
+//! point) and a side rising `k = cot(half the included angle)` per millimetre out to `R`: its
+//! height above the tip is `(r - f) k`. Its drops are closed forms: the same cases as the
+//! torus's with the corner's arc replaced by a line (OpenCAMLib's `ConeCutter`).
 
 use serde::{Deserialize, Serialize};
 
@@ -19,6 +24,13 @@ pub enum Shape {
     Flat,
     Ball,
     BullNose,
+    /// A twist drill: a cone of its point angle (118° by default).
+    Drill,
+    /// A spot (centre) drill: a cone of its point angle (90° by default).
+    SpotDrill,
+    /// A V-bit or chamfer mill: a cone of its included angle (90° by default) from a tip of
+    /// `tipDiameter` (0: a point).
+    VBit,
 }
 
 /// A milling cutter's geometry, in millimetres.
@@ -36,11 +48,18 @@ pub struct Cutter {
     pub shank_diameter: Option<f64>,
     /// Length of the fluted part (mm), kept for collision checks. Default value: 20.
     pub flute_length: f64,
+    /// Included angle of a drill's point or a V-bit's cone (degrees, more than 0 and less than
+    /// 180); ignored for the other shapes. Default value: 118 for a drill, 90 for a spot drill
+    /// and a V-bit.
+    pub angle: Option<f64>,
+    /// Diameter of a V-bit's or chamfer mill's flat tip (mm, less than the diameter); ignored
+    /// for the other shapes. Default value: 0.
+    pub tip_diameter: f64,
 }
 
 impl Default for Cutter {
     fn default() -> Self {
-        Cutter { shape: Shape::Ball, diameter: 6.0, corner_radius: 1.0, shank_diameter: None, flute_length: 20.0 }
+        Cutter { shape: Shape::Ball, diameter: 6.0, corner_radius: 1.0, shank_diameter: None, flute_length: 20.0, angle: None, tip_diameter: 0.0 }
     }
 }
 
@@ -53,6 +72,10 @@ pub enum CutterError {
     CornerRadius { corner: f64, diameter: f64 },
     #[error("the flute length must be positive, in millimetres, at most 10 m (got {})", crate::limits::shown(*.0))]
     FluteLength(f64),
+    #[error("the point or included angle must lie between 1 and 179 degrees (got {})", crate::limits::shown(*.0))]
+    Angle(f64),
+    #[error("the tip diameter must lie from 0 to less than the diameter (got {tip} for diameter {diameter})")]
+    TipDiameter { tip: f64, diameter: f64 },
 }
 
 impl Cutter {
@@ -65,6 +88,46 @@ impl Cutter {
     pub fn bull_nose(diameter: f64, corner_radius: f64) -> Cutter {
         Cutter { shape: Shape::BullNose, diameter, corner_radius, ..Cutter::default() }
     }
+    pub fn drill(diameter: f64, angle: f64) -> Cutter {
+        Cutter { shape: Shape::Drill, diameter, angle: Some(angle), ..Cutter::default() }
+    }
+    pub fn v_bit(diameter: f64, angle: f64, tip_diameter: f64) -> Cutter {
+        Cutter { shape: Shape::VBit, diameter, angle: Some(angle), tip_diameter, ..Cutter::default() }
+    }
+
+    /// Whether its end is a cone (a drill, a spot drill, a V-bit).
+    pub fn is_cone(&self) -> bool {
+        matches!(self.shape, Shape::Drill | Shape::SpotDrill | Shape::VBit)
+    }
+
+    /// The included angle of a cone's point (degrees; 180 for the other shapes, which end flat
+    /// or round).
+    pub fn point_angle(&self) -> f64 {
+        match self.shape {
+            Shape::Drill => self.angle.unwrap_or(118.0),
+            Shape::SpotDrill | Shape::VBit => self.angle.unwrap_or(90.0),
+            _ => 180.0,
+        }
+    }
+
+    /// The radius of a cone's flat tip (0 for a drill's point).
+    pub fn tip_radius(&self) -> f64 {
+        if self.shape == Shape::VBit {
+            self.tip_diameter / 2.0
+        } else {
+            0.0
+        }
+    }
+
+    /// How far a cone's full diameter stands above its tip (0 for the other shapes): what a
+    /// through hole's depth adds so that the drill's full diameter breaks through.
+    pub fn tip_length(&self) -> f64 {
+        if self.is_cone() {
+            (self.radius() - self.tip_radius()) / (self.point_angle().to_radians() / 2.0).tan()
+        } else {
+            0.0
+        }
+    }
 
     pub fn validate(&self) -> Result<(), CutterError> {
         if !(crate::limits::MIN_TOOL_DIAMETER..=crate::limits::MAX_TOOL_DIAMETER).contains(&self.diameter) {
@@ -76,6 +139,14 @@ impl Cutter {
         }
         if !(self.flute_length > 0.0 && self.flute_length <= crate::limits::MAX_SIZE) {
             return Err(CutterError::FluteLength(self.flute_length));
+        }
+        if let Some(angle) = self.angle {
+            if !(1.0..=179.0).contains(&angle) {
+                return Err(CutterError::Angle(angle));
+            }
+        }
+        if !(self.tip_diameter >= 0.0 && (self.shape != Shape::VBit || self.tip_diameter < self.diameter)) {
+            return Err(CutterError::TipDiameter { tip: self.tip_diameter, diameter: self.diameter });
         }
         Ok(())
     }
@@ -90,6 +161,7 @@ impl Cutter {
             Shape::Flat => 0.0,
             Shape::Ball => self.radius(),
             Shape::BullNose => self.corner_radius.clamp(0.0, self.radius()),
+            Shape::Drill | Shape::SpotDrill | Shape::VBit => 0.0,
         }
     }
 
@@ -99,11 +171,19 @@ impl Cutter {
             Shape::Flat => format!("{} mm flat end", self.diameter),
             Shape::Ball => format!("{} mm ball end", self.diameter),
             Shape::BullNose => format!("{} mm bull nose r{}", self.diameter, self.corner_radius),
+            Shape::Drill => format!("{} mm drill {}°", self.diameter, self.point_angle()),
+            Shape::SpotDrill => format!("{} mm spot drill {}°", self.diameter, self.point_angle()),
+            Shape::VBit if self.tip_diameter > 0.0 => format!("{} mm V-bit {}° tip {}", self.diameter, self.point_angle(), self.tip_diameter),
+            Shape::VBit => format!("{} mm V-bit {}°", self.diameter, self.point_angle()),
         }
     }
 
     pub fn profile(&self) -> Profile {
-        Profile::new(self.radius(), self.corner())
+        if self.is_cone() {
+            Profile::cone(self.radius(), self.tip_radius(), self.point_angle().to_radians() / 2.0)
+        } else {
+            Profile::new(self.radius(), self.corner())
+        }
     }
 }
 
@@ -114,8 +194,12 @@ pub struct Profile {
     pub radius: f64,
     /// Corner radius a.
     pub corner: f64,
-    /// R - a: radius of the flat bottom, and of the circle the corner's centres lie on.
+    /// R - a: radius of the flat bottom, and of the circle the corner's centres lie on; a
+    /// cone's flat tip.
     flat: f64,
+    /// A cone's rise per millimetre out from its tip (cot of half its included angle); 0 for
+    /// the torus family.
+    taper: f64,
 }
 
 /// The search for a bull nose's contact with a line stops when its bracket in the corner's
@@ -136,7 +220,25 @@ const RIM: f64 = 1e-4;
 
 impl Profile {
     pub fn new(radius: f64, corner: f64) -> Profile {
-        Profile { radius, corner, flat: radius - corner }
+        Profile { radius, corner, flat: radius - corner, taper: 0.0 }
+    }
+
+    /// A cone of radius `radius` from a flat tip of radius `tip`, its side at `half_angle`
+    /// (radians) from the axis.
+    pub fn cone(radius: f64, tip: f64, half_angle: f64) -> Profile {
+        Profile { radius, corner: 0.0, flat: tip.clamp(0.0, radius), taper: 1.0 / half_angle.tan() }
+    }
+
+    /// Whether it is a cone's.
+    #[inline]
+    pub fn is_cone(&self) -> bool {
+        self.taper > 0.0
+    }
+
+    /// A cone's rise per millimetre (0 for the torus family).
+    #[inline]
+    pub fn taper(&self) -> f64 {
+        self.taper
     }
 
     /// R - a: the radius of the flat bottom.
@@ -150,6 +252,8 @@ impl Profile {
     pub fn height(&self, r: f64) -> f64 {
         if r <= self.flat {
             0.0
+        } else if self.taper > 0.0 {
+            (r.min(self.radius) - self.flat) * self.taper
         } else {
             let d = r - self.flat;
             self.corner - (self.corner * self.corner - d * d).max(0.0).sqrt()
@@ -162,6 +266,13 @@ impl Profile {
     pub fn reach_squared(&self, rise: f64) -> f64 {
         if rise <= 0.0 {
             0.0
+        } else if self.taper > 0.0 {
+            let r = self.flat + rise / self.taper;
+            if r > self.radius {
+                f64::INFINITY
+            } else {
+                r * r
+            }
         } else if rise > self.corner {
             f64::INFINITY
         } else {
@@ -185,6 +296,14 @@ impl Profile {
     pub fn drop_facet(&self, c: DVec2, facet: &FacetPlane) -> Option<f64> {
         let n = facet.normal;
         let plane_z = facet.point.z - ((c.x - facet.point.x) * n.x + (c.y - facet.point.y) * n.y) / n.z;
+        if self.taper > 0.0 {
+            // A cone on a plane rising `t` per mm: the top of `t r - height(r)` is at the tip's
+            // rim where the plane is flatter than the side, else at the cone's rim.
+            let t = facet.slope_sin / n.z;
+            let r = if t < self.taper { self.flat } else { self.radius };
+            let contact = c + facet.uphill * r;
+            return facet.contains(contact).then(|| plane_z + t * r - self.height(r));
+        }
         let contact = c + facet.uphill * (self.flat + self.corner * facet.slope_sin);
         facet.contains(contact).then(|| plane_z + (self.flat * facet.slope_sin + self.corner) / n.z - self.corner)
     }
@@ -224,6 +343,11 @@ impl Profile {
         }
         let dz = q.z - p.z;
         let z_at = |t: f64| p.z + dz * t;
+        if self.taper > 0.0 {
+            let (m, s_lo, s_hi) = (dz / len, (lo - t_c) * len, (hi - t_c) * len);
+            let s = self.cone_top(m, dist2, s_lo, s_hi);
+            return Some(z_at(t_c) + m * s - self.height((dist2 + s * s).sqrt()));
+        }
         if self.corner <= 0.0 {
             // Flat end: the disk meets the edge along [lo, hi]; the higher end decides.
             return Some(z_at(lo).max(z_at(hi)));
@@ -267,6 +391,10 @@ impl Profile {
         if u <= 0.0 {
             return (m, 0.0); // on the flat bottom
         }
+        if self.taper > 0.0 {
+            // F' = m - k s / r.
+            return (m * r - self.taper * s, self.height(r));
+        }
         let w2 = self.corner * self.corner - u * u;
         if w2 <= 0.0 {
             return (if s < 0.0 { f64::INFINITY } else { f64::NEG_INFINITY }, self.corner);
@@ -281,6 +409,27 @@ impl Profile {
     /// tangent at 45°, `r - (R - a) - a (√2 - 1)`, and above zero; with that cone for the corner
     /// F is bounded by a concave function whose top is a square root away. It lets the edge drop
     /// skip the search where even this bound cannot rise above the height already found.
+    /// Where a cone (its tip's radius `f`, its rise `k` per mm) meets a line of slope `m` at
+    /// horizontal distance `sqrt(dist2)` from its axis: the `s` in `[lo, hi]` that maximises the
+    /// concave `F(s) = m s - k max(0, sqrt(dist2 + s²) - f)`. Where `|m| >= k` the line rises
+    /// at least as fast as the side and the chord's end is highest; else F' = 0 at
+    /// `s = sign(m) sqrt(dist2) |m| / sqrt(k² - m²)` if that lies on the side, else where the
+    /// side meets the flat tip.
+    pub fn cone_top(&self, m: f64, dist2: f64, lo: f64, hi: f64) -> f64 {
+        let (k, f) = (self.taper, self.flat);
+        let top = if m.abs() >= k {
+            m.signum() * f64::INFINITY
+        } else {
+            let s_side = m.signum() * (dist2 / (k * k - m * m)).sqrt() * m.abs();
+            if dist2 + s_side * s_side >= f * f {
+                s_side
+            } else {
+                m.signum() * (f * f - dist2).max(0.0).sqrt()
+            }
+        };
+        top.clamp(lo, hi)
+    }
+
     fn cone_bound(&self, m: f64, dist2: f64, lo: f64, hi: f64) -> f64 {
         let r1 = self.flat + self.corner * (std::f64::consts::SQRT_2 - 1.0);
         let g = |s: f64| m * s - ((dist2 + s * s).sqrt() - r1).max(0.0);
@@ -314,6 +463,9 @@ impl Profile {
     /// positive at the rim, with its one root there. A safeguarded Newton iteration on P needs
     /// no square roots and stays smooth at the rim, where F's own slope is infinite.
     pub fn contact_along(&self, m: f64, dist2: f64, lo: f64, hi: f64) -> f64 {
+        if self.taper > 0.0 {
+            return self.cone_top(m, dist2, lo, hi);
+        }
         let slope = |s: f64| {
             let r = (dist2 + s * s).sqrt();
             let u = r - self.flat;
@@ -339,6 +491,9 @@ impl Profile {
     /// [`Profile::contact_along`] where F rises at `lo` and falls at `hi` (the caller has
     /// looked): the root of F' between.
     pub fn contact_between(&self, m: f64, dist2: f64, lo: f64, hi: f64) -> f64 {
+        if self.taper > 0.0 {
+            return self.cone_top(m, dist2, lo, hi);
+        }
         if m == 0.0 {
             return 0.0; // a level line: the foot (between lo and hi, where the slope changes sign)
         }
@@ -477,6 +632,68 @@ mod edge_tests {
                 assert!(bound >= best - 1e-9 * (1.0 + m.abs()), "R{radius} a{corner} d {d} m {m} [{lo}, {hi}]: bound {bound} below {best}");
                 assert!((lo..=hi).contains(&s), "R{radius} a{corner} d {d} m {m}: {s} outside [{lo}, {hi}]");
                 assert!(f(s) >= best - 1e-8 * (1.0 + m.abs()), "R{radius} a{corner} d {d} m {m} [{lo}, {hi}]: F({s}) = {} below {best}", f(s));
+            }
+        }
+    }
+
+    /// The cone's edge drop (a drill's point, a V-bit with a flat tip, a shallow and a steep
+    /// cone) against a dense scan along the edge, and its facet drop against a dense scan over
+    /// the facet's points under the cutter.
+    #[test]
+    fn cone_drops_match_dense_scans() {
+        for cutter in [Cutter::drill(6.0, 118.0), Cutter::v_bit(10.0, 90.0, 2.0), Cutter::v_bit(6.0, 30.0, 0.0), Cutter::v_bit(8.0, 160.0, 1.0)] {
+            edge_drop_matches_a_dense_scan(&cutter, 1500);
+            let p = cutter.profile();
+            let mut seed = 99u64;
+            let mut rnd = || {
+                seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                (seed >> 11) as f64 / (1u64 << 53) as f64
+            };
+            for _ in 0..300 {
+                let corners = [0, 1, 2].map(|_| DVec3::new(rnd() * 20.0 - 10.0, rnd() * 20.0 - 10.0, rnd() * 12.0 - 6.0));
+                let Some(facet) = FacetPlane::new(corners[0], corners[1], corners[2], 1e-9) else { continue };
+                let c = DVec2::new(rnd() * 8.0 - 4.0, rnd() * 8.0 - 4.0);
+                let Some(got) = p.drop_facet(c, &facet) else { continue };
+                // The plane's points under the cutter: the drop is the highest of theirs.
+                let mut best = f64::NEG_INFINITY;
+                for i in 0..=400 {
+                    for j in 0..=40 {
+                        let (r, a) = (p.radius * i as f64 / 400.0, std::f64::consts::TAU * j as f64 / 40.0);
+                        let q = c + DVec2::from_angle(a) * r;
+                        best = best.max(facet.z_at(q) - p.height(r));
+                    }
+                }
+                let along = c + facet.uphill * p.radius;
+                best = best.max(facet.z_at(along) - p.height(p.radius)).max(facet.z_at(c + facet.uphill * p.flat_radius()));
+                assert!(got >= best - 1e-9 && got <= best + 1e-3, "{cutter:?} {c}: facet drop {got} against a scan's {best}");
+            }
+        }
+    }
+
+    fn edge_drop_matches_a_dense_scan(cutter: &Cutter, count: usize) {
+        let p = cutter.profile();
+        let mut seed = 12345u64;
+        let mut rnd = || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for _ in 0..count {
+            let a = DVec3::new(rnd() * 10.0 - 5.0, rnd() * 10.0 - 5.0, rnd() * 6.0 - 3.0);
+            let b = DVec3::new(rnd() * 10.0 - 5.0, rnd() * 10.0 - 5.0, rnd() * 6.0 - 3.0);
+            let c = DVec2::new(rnd() * 4.0 - 2.0, rnd() * 4.0 - 2.0);
+            let got = p.drop_edge(c, a, b);
+            let mut best: Option<f64> = None;
+            let n = 200_000;
+            for k in 0..=n {
+                let q = a.lerp(b, k as f64 / n as f64);
+                if let Some(z) = p.drop_vertex(c, q) {
+                    best = Some(best.map_or(z, |v: f64| v.max(z)));
+                }
+            }
+            match (got, best) {
+                (Some(g), Some(w)) => assert!(g >= w - 1e-6 && g <= w + 1e-3, "{cutter:?} {a} {b} {c}: {g} vs scan {w}"),
+                (None, Some(w)) => panic!("{cutter:?} {a} {b} {c}: none vs scan {w}"),
+                _ => {}
             }
         }
     }

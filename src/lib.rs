@@ -20,6 +20,7 @@ pub mod cutter;
 pub mod drawing;
 pub mod error;
 pub mod geom;
+pub mod holes;
 pub mod job;
 pub mod limits;
 pub mod machining;

@@ -4,9 +4,6 @@
 
 mod common;
 
-use std::path::PathBuf;
-use std::process::Command;
-
 use swarf::cutter::Cutter;
 use swarf::geom::{DVec2, DVec3};
 use swarf::job::{self, FinishRaster, Job, Operation, Tool};
@@ -27,35 +24,7 @@ enum Kind {
 
 /// Runs rs274 on the program; returns its canonical motions (kind, end point in program units).
 fn interpret(gcode: &str, tools: &[Tool]) -> Vec<(Kind, DVec3)> {
-    let dir = std::env::temp_dir().join(format!("swarf-rs274-{}-{}", std::process::id(), rand_suffix()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let program: PathBuf = dir.join("program.ngc");
-    std::fs::write(&program, gcode).unwrap();
-    let table = dir.join("tool.tbl");
-    let lines: String = tools.iter().map(|t| format!("T{0} P{0} Z0.000 D{1:.3} ;{2}\n", t.number, t.cutter.diameter, t.describe())).collect();
-    std::fs::write(&table, lines).unwrap();
-    // rs274 keeps its parameter file in the working directory and its tool table in a file
-    // mapped from $HOME (~/.tool.mmap): each run gets its own, so parallel tests cannot mix
-    // their tool tables.
-    let output = match Command::new("rs274").current_dir(&dir).env("HOME", &dir).arg("-g").arg("-t").arg(&table).arg(&program).output() {
-        Ok(o) => o,
-        Err(e) => panic!("rs274 (LinuxCNC's interpreter) could not be run: {e}; scripts/setup.sh installs it (apt-get install linuxcnc-uspace)"),
-    };
-    let stdout = String::from_utf8_lossy(&output.stdout);
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    assert!(output.status.success() && !stderr.contains("rror"), "rs274 refused the program:\n{stderr}\n{}", tail(&stdout));
-    let _ = std::fs::remove_dir_all(&dir);
-    stdout.lines().filter_map(parse_canon).collect()
-}
-
-fn rand_suffix() -> u64 {
-    use std::sync::atomic::{AtomicU64, Ordering};
-    static N: AtomicU64 = AtomicU64::new(0);
-    N.fetch_add(1, Ordering::Relaxed)
-}
-
-fn tail(s: &str) -> String {
-    s.lines().rev().take(8).collect::<Vec<_>>().join("\n")
+    common::rs274(gcode, tools).lines().filter_map(parse_canon).collect()
 }
 
 fn numbers(args: &str) -> Vec<f64> {
@@ -188,14 +157,7 @@ fn demo_programs_run_in_linuxcnc_for_every_dialect_and_unit() {
 
 /// The tool-change calls rs274 makes (`CHANGE_TOOL`, `PROGRAM_STOP` for a GRBL pause), in order.
 fn tool_calls(gcode: &str, tools: &[Tool]) -> Vec<String> {
-    let dir = std::env::temp_dir().join(format!("swarf-rs274-tc-{}-{}", std::process::id(), rand_suffix()));
-    std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(dir.join("p.ngc"), gcode).unwrap();
-    let lines: String = tools.iter().map(|t| format!("T{0} P{0} Z0.000 D{1:.3} ;{2}\n", t.number, t.cutter.diameter, t.describe())).collect();
-    std::fs::write(dir.join("tool.tbl"), lines).unwrap();
-    let output = Command::new("rs274").current_dir(&dir).env("HOME", &dir).arg("-g").arg("-t").arg(dir.join("tool.tbl")).arg(dir.join("p.ngc")).output().unwrap();
-    let _ = std::fs::remove_dir_all(&dir);
-    String::from_utf8_lossy(&output.stdout)
+    common::rs274(gcode, tools)
         .lines()
         .filter_map(|l| canon_call(l).map(str::to_owned))
         .filter(|c| c.starts_with("CHANGE_TOOL(") || c.starts_with("PROGRAM_STOP") || c.starts_with("USE_TOOL_LENGTH_OFFSET"))
@@ -256,7 +218,7 @@ fn arcs_and_helices_go_out_as_g2_g3_with_relative_centres() {
         Move::Arc { to: DVec3::new(14.0, 4.0, -2.0), center: DVec2::new(14.0, 0.0), clockwise: true, feed: 800.0 },
         Move::Rapid { to: DVec3::new(14.0, 4.0, 5.0) },
     ];
-    let path = Toolpath { name: "arcs".into(), tool: 1, spindle_rpm: 10000.0, start: DVec3::new(10.0, 0.0, 5.0), moves };
+    let path = Toolpath { name: "arcs".into(), tool: 1, spindle_rpm: 10000.0, start: DVec3::new(10.0, 0.0, 5.0), moves, cycles: Vec::new() };
     for units in [Units::Mm, Units::Inch] {
         let settings = PostSettings { units, ..PostSettings::default() };
         let gcode = write_gcode("arcs", std::slice::from_ref(&path), &tools, 5.0, &settings).unwrap();
@@ -281,7 +243,7 @@ fn arcs_shorter_than_the_resolution_go_out_as_lines() {
         Move::Arc { to: DVec3::new(10.0, 0.0002, -1.0), center: DVec2::new(9.96, 0.0), clockwise: false, feed: 800.0 },
         Move::Line { to: DVec3::new(10.0, 5.0, -1.0), feed: 300.0 },
     ];
-    let path = Toolpath { name: "tiny".into(), tool: 1, spindle_rpm: 10000.0, start: DVec3::new(10.0, 0.0, 5.0), moves };
+    let path = Toolpath { name: "tiny".into(), tool: 1, spindle_rpm: 10000.0, start: DVec3::new(10.0, 0.0, 5.0), moves, cycles: Vec::new() };
     let gcode = write_gcode("tiny", std::slice::from_ref(&path), &tools, 5.0, &PostSettings::default()).unwrap();
     assert!(!gcode.lines().any(|l| l.starts_with("G2 ") || l.starts_with("G3 ")), "{gcode}");
     assert!(!gcode.lines().any(|l| l.starts_with('F')), "a feed without a move: {gcode}");
@@ -301,7 +263,7 @@ fn a_level_arc_is_written_at_its_lines_height() {
         Move::Arc { to: DVec3::new(0.0, 10.0, z), center: DVec2::ZERO, clockwise: false, feed: 800.0 },
         Move::Line { to: DVec3::new(-5.0, 10.0, z), feed: 300.0 },
     ];
-    let path = Toolpath { name: "level".into(), tool: 1, spindle_rpm: 10000.0, start: DVec3::new(10.0, 0.0, 35.0), moves };
+    let path = Toolpath { name: "level".into(), tool: 1, spindle_rpm: 10000.0, start: DVec3::new(10.0, 0.0, 35.0), moves, cycles: Vec::new() };
     let gcode = write_gcode("level", std::slice::from_ref(&path), &tools, 35.0, &PostSettings::default()).unwrap();
     let arc = gcode.lines().find(|l| l.starts_with("G3 ")).unwrap_or_else(|| panic!("no arc: {gcode}"));
     assert!(!arc.contains('Z'), "the arc changes Z: {arc}");
@@ -703,6 +665,7 @@ fn line_numbers_never_wrap() {
         spindle_rpm: 10000.0,
         start: DVec3::new(0.0, 0.0, 1.0),
         moves: (0..n).map(|k| Move::Line { to: DVec3::new((k % 2) as f64, k as f64 * 0.001, 0.0), feed: 500.0 }).collect(),
+        cycles: Vec::new(),
     };
     let settings = PostSettings { dialect: Dialect::Fanuc, ..PostSettings::default() };
     for (moves, step, unnumbered) in [(5_000, 10, false), (50_000, 1, false), (120_000, 1, true)] {

@@ -1,7 +1,7 @@
 // Generate, cancel and download, and what a run gives back: the view of its paths, the
 // summary with the cycle time's breakdown, the warnings (amber, with their places) and errors
 // (red), the program in its pane, its simulation; the job, the project and the post as files.
-import { $, state, hooks, job, store, buildJob, is2d, clock, clockFormat, downloadText } from './state.js';
+import { $, state, hooks, job, store, buildJob, is2d, isEither, clock, clockFormat, downloadText } from './state.js';
 import { fillFields, message, check } from './forms.js';
 import { opColor, toolColor, cssColor, RAPID_COLOR, MARK_COLORS } from './viewer.js';
 import { sim, showSimulation } from './simulation.js';
@@ -152,7 +152,7 @@ export async function generate() {
   document.body.dataset.generated = 'running';
   const refuse = (text) => { message(text, 'error'); document.body.dataset.generated = 'failed'; };
   const j = buildJob();
-  const wrong = j.operations.filter((op) => (state.kind === 'drawing') !== is2d(op));
+  const wrong = j.operations.filter((op) => !isEither(op) && (state.kind === 'drawing') !== is2d(op));
   if (wrong.length && wrong.length === j.operations.length) {
     refuse(state.kind === 'drawing' ? 'add a pocket or profile operation for a drawing' : 'add a roughing or finishing operation for a part');
     return;
@@ -334,7 +334,7 @@ async function applyJob(read, part = null) {
     const missing = (op.kind === 'roughOctree' ? op.tools : [op.tool]).find((n) => !read.tools.some((t) => t.number === n));
     if (missing != null) throw new Error(`operation '${op.name}' uses tool ${missing}, which the job does not have`);
   }
-  const kind = read.operations.every(is2d) ? 'drawing' : 'part';
+  const kind = read.operations.some(is2d) && read.operations.every((op) => is2d(op) || isEither(op)) ? 'drawing' : 'part';
   for (const t of read.tools) {
     const k = state.tools.findIndex((u) => u.number === t.number);
     if (k >= 0) state.tools[k] = t; else state.tools.push(t);

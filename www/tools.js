@@ -3,7 +3,7 @@
 import { $, state, hooks, selectedTool, store, downloadText } from './state.js';
 import { fillFields, message } from './forms.js';
 
-const shapeName = (t) => ({ ball: 'ball', flat: 'flat', bullNose: `bull nose r${t.cornerRadius}` }[t.shape] || t.shape);
+const shapeName = (t) => ({ ball: 'ball', flat: 'flat', bullNose: `bull nose r${t.cornerRadius}`, drill: `drill ${t.angle ?? 118}°`, spotDrill: `spot drill ${t.angle ?? 90}°`, vBit: `V-bit ${t.angle ?? 90}°` }[t.shape] || t.shape);
 export const toolLabel = (t) => `T${t.number} · ${t.diameter} mm ${shapeName(t)}${t.name ? ` · ${t.name}` : ''}`;
 
 export function fillTools() {
@@ -15,6 +15,8 @@ export function fillTools() {
   $('tool-editor').hidden = !t;
   if (t) fillFields($('tool-editor'), t);
   document.querySelector('#tool-editor [name=cornerRadius]').closest('label').hidden = t?.shape !== 'bullNose';
+  document.querySelector('#tool-editor [name=pointAngle]').closest('label').hidden = !['drill', 'spotDrill', 'vBit'].includes(t?.shape);
+  document.querySelector('#tool-editor [name=tipDiameter]').closest('label').hidden = t?.shape !== 'vBit';
   const opTool = document.querySelector('[name=opTool]');
   opTool.replaceChildren(...state.tools.map((u) => new Option(toolLabel(u), String(u.number))));
 }

@@ -21,7 +21,6 @@ use crate::sim::verify::{BandCut, Simulator, Verification};
 use crate::sim::DexelStock;
 use crate::tool::Tool;
 use crate::toolpath::{PathStats, Toolpath};
-use crate::zmap::cc::cc_zmap;
 use crate::zmap::HeightField;
 
 /// Raster passes a pool made, by operation: each pass's runs, as they came.
@@ -99,6 +98,14 @@ pub fn marked(gcode: &str, problem: Option<&str>) -> String {
 }
 
 impl Job {
+    /// The holes a drilling operation of this job finds in `workpiece` (placed as the job
+    /// places it), in the order its `holes` field numbers them: a part's vertical round holes,
+    /// or a drawing's circles (numbered as its loops).
+    pub fn holes(&self, workpiece: impl Into<Workpiece>) -> Result<Vec<crate::holes::Hole>> {
+        self.validate()?;
+        Ok(crate::operations::drill::holes_of(&self.context(workpiece.into())?))
+    }
+
     /// The context the operations plan in, with the part placed and the in-process stock
     /// fresh.
     fn context(&self, workpiece: Workpiece) -> Result<Context> {
@@ -190,11 +197,8 @@ pub fn prepare(job: &Job, workpiece: impl Into<Workpiece>) -> Result<Prepared> {
     };
     for op in job.operations.iter().filter(|o| o.op().enabled()) {
         let o = op.op();
-        if o.works() != on {
-            let why = match on {
-                Works::OnPart => "works on DXF or SVG drawings, not on a 3D part",
-                Works::OnDrawing => "works on 3D parts, not on drawings",
-            };
+        if o.works() != on && o.works() != Works::Either {
+            let why = if on == Works::OnPart { "works on DXF or SVG drawings, not on a 3D part" } else { "works on 3D parts, not on drawings" };
             return Err(Error::operation(o.name(), why));
         }
     }
@@ -419,7 +423,7 @@ impl Running {
             let settings = job.verify_settings(&stock, None);
             let tol = job.tolerances;
             let v = match &sheet {
-                None => sim.finish(|grid| cc_zmap(&part, grid, f64::NEG_INFINITY, &tol), settings.allowance, &tol),
+                None => sim.finish_mesh(&part, settings.allowance, &tol),
                 Some(_) => sim.finish(|grid| drawing::surface(&cuts, &grooves, grid, tol.gouge, &tol), settings.allowance, &tol),
             };
             (Some(v), None)

@@ -349,6 +349,8 @@ impl Job {
                     crate::cutter::CutterError::Diameter(_) => "diameter",
                     crate::cutter::CutterError::CornerRadius { .. } => "cornerRadius",
                     crate::cutter::CutterError::FluteLength(_) => "fluteLength",
+                    crate::cutter::CutterError::Angle(_) => "angle",
+                    crate::cutter::CutterError::TipDiameter { .. } => "tipDiameter",
                 };
                 say(format!("tools[{i}].{field}"), format!("tools[{i}] (tool {}): {e}", tool.number));
             }
@@ -394,6 +396,12 @@ impl Job {
                 say(
                     format!("operations[{i}].{field}"),
                     format!("operations[{i}].{field}: no tool number {number} in the tool library (it has {})", if have.is_empty() { "none".into() } else { have.join(", ") }),
+                );
+            } else if let Some(t) = self.tools.iter().find(|t| o.tools().contains(&t.number) && t.cutter.is_cone() && !o.takes_cones()) {
+                let field = if o.tools().len() == 1 && o.tools()[0] == o.tool() { "tool" } else { "tools" };
+                say(
+                    format!("operations[{i}].{field}"),
+                    format!("operations[{i}].{field}: T{} is a {}: a cone drills, spots and engraves; '{}' cuts with flat, ball and bull-nose tools", t.number, t.cutter.describe(), o.name()),
                 );
             } else if let Err(e) = o.validate() {
                 say(format!("operations[{i}].{}", e.field), format!("operations[{i}].{} {} ('{}')", e.field, e.message, o.name()));

@@ -195,7 +195,7 @@ impl Context {
         if entries.plunge > 0 {
             self.warn_at(op, "entries found no room for a helix or a ramp and feed straight down into material", &entries.plunges);
         }
-        Toolpath { name: op.to_string(), tool: tool.number, spindle_rpm: tool.spindle_rpm, start, moves }
+        Toolpath { name: op.to_string(), tool: tool.number, spindle_rpm: tool.spindle_rpm, start, moves, cycles: Vec::new() }
     }
 
     /// The part's heights on `grid` (`floor` where it is not): its CC z-map, made once.

@@ -101,6 +101,8 @@ pub enum Works {
     OnPart,
     /// A drawing (DXF, SVG) as a sheet: 2.5D operations.
     OnDrawing,
+    /// Either (drilling: a drawing's circles or a part's holes).
+    Either,
 }
 
 /// The [`Operate`] methods every operation's options answer from their `name`, `tool` and
@@ -140,6 +142,12 @@ pub trait Operate {
     }
     /// Whether the job runs it (a disabled operation stays in the job file).
     fn enabled(&self) -> bool;
+    /// Whether it cuts with a cone (a drill, a spot drill, a V-bit) as well as with flat, ball
+    /// and bull-nose tools: drilling and engraving do; the 3D operations' CL surfaces are made
+    /// for the torus family only so far, and refuse a cone by name.
+    fn takes_cones(&self) -> bool {
+        false
+    }
     fn works(&self) -> Works;
     /// Material it leaves on the part's surface (mm); 2.5D operations leave theirs on the walls
     /// (their verification keeps it in the regions they cut) and have none.

@@ -90,5 +90,5 @@ pub fn toolpath(name: &str, tool: &Tool, mut moves: Vec<Move>, clearance_z: f64)
             moves.push(Move::Rapid { to: last.truncate().extend(clearance_z) });
         }
     }
-    Toolpath { name: name.to_string(), tool: tool.number, spindle_rpm: tool.spindle_rpm, start, moves }
+    Toolpath { name: name.to_string(), tool: tool.number, spindle_rpm: tool.spindle_rpm, start, moves, cycles: Vec::new() }
 }

@@ -60,6 +60,10 @@ fn reversed(path: &[Segment]) -> Vec<Segment> {
 impl Operate for Engrave {
     named_operation!(OnDrawing);
 
+    fn takes_cones(&self) -> bool {
+        true
+    }
+
     fn check_scale(&self, ctx: &Context) -> crate::error::Result<()> {
         sheet::check_levels(ctx, &self.name, Some(self.depth), self.stepdown)
     }

@@ -9,6 +9,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::machining::Operate;
 
+pub mod drill;
 pub mod engrave;
 pub mod finish_raster;
 pub mod finish_waterline;
@@ -18,6 +19,7 @@ pub mod rough_octree;
 pub mod rough_zigzag;
 pub mod rough_zlevel;
 
+pub use drill::{Drill, DrillCycle, ReturnLevel};
 pub use engrave::Engrave;
 pub use finish_raster::{Boundary, FinishRaster};
 pub use finish_waterline::FinishWaterline;
@@ -93,6 +95,9 @@ operations! {
     /// Engraving along a drawing's lines: open chains and chosen loops, the tool's centre on
     /// the line.
     Engrave(Engrave) = "engrave",
+    /// Drilling a drawing's circles or a part's holes: spot, drill, dwell, peck, chip break
+    /// (canned cycles where the control has them).
+    Drill(Drill) = "drill",
 }
 
 impl Operation {

@@ -116,6 +116,10 @@ pub struct Post {
     pub helix: bool,
     /// Leave out a motion word or coordinate that has not changed.
     pub modal: bool,
+    /// The control runs the drilling cycles G81, G82, G83 and G73 (with R, Q, P, G98/G99 and
+    /// G80): a drilling operation's holes are written as those; without (GRBL 1.1), as the
+    /// moves they make.
+    pub canned_cycles: bool,
     /// The longest line the control reads (characters), or none. Comments are shortened to
     /// fit; a motion that cannot fit is an error.
     pub max_line_length: Option<usize>,
@@ -150,6 +154,7 @@ impl Default for Post {
             arc_quadrants: false,
             helix: true,
             modal: true,
+            canned_cycles: false,
             max_line_length: None,
             footer: vec!["M30".into()],
         }

@@ -19,6 +19,7 @@ use crate::error::Error;
 use crate::geom::{DVec2, DVec3};
 use crate::mesh::placement::Units;
 use crate::tool::{Coolant, Tool};
+use crate::toolpath::cycle::{Cycle, CycleKind};
 use crate::toolpath::{arc_sweep, Move, Toolpath};
 
 /// The built-in posts, by the controller family they are written for.
@@ -352,9 +353,35 @@ pub fn write_mapped(title: &str, paths: &[Toolpath], tools: &[Tool], clearance_z
         w.motion(&Move::Rapid { to: path.start.truncate().extend(clearance_z) });
         w.motion(&Move::Rapid { to: path.start });
         time.starts.push(w.seconds + time.tool_changes as f64 * settings.tool_change_seconds);
-        for m in &path.moves {
-            w.motion(m);
+        // Drilling cycles by their first move; a run of canned blocks ends with G80.
+        let cycles: std::collections::HashMap<usize, &Cycle> = path.cycles.iter().map(|c| (c.first, c)).collect();
+        let mut dwell_after = None;
+        let mut canned = false;
+        let mut k = 0;
+        while k < path.moves.len() {
+            if let Some(c) = cycles.get(&k) {
+                let moves = &path.moves[k..(k + c.count).min(path.moves.len())];
+                if w.canned(c, moves) {
+                    canned = true;
+                    move_lines.extend(std::iter::repeat_n(w.lines.len().saturating_sub(1) as u32, moves.len()));
+                    k += moves.len();
+                    continue;
+                }
+                dwell_after = (c.kind == CycleKind::Dwell).then(|| (k + c.moves().1, c.dwell));
+            }
+            if std::mem::take(&mut canned) {
+                w.line("G80");
+            }
+            w.motion(&path.moves[k]);
             move_lines.push(w.lines.len().saturating_sub(1) as u32);
+            if let Some((_, seconds)) = dwell_after.filter(|&(at, _)| at == k) {
+                w.dwell(seconds)?;
+                dwell_after = None;
+            }
+            k += 1;
+        }
+        if canned {
+            w.line("G80");
         }
         time.paths.push(w.seconds - before);
     }
@@ -537,6 +564,68 @@ impl<'a> Writer<'a> {
         // Rounding in the division may land a hair short: one more step (a millionth of a unit
         // short is the digit itself).
         self.number(if up < v - 2e-6 * unit { up + unit } else { up }, self.decimals)
+    }
+
+    /// A dwell of `seconds` in the post's words (G4 P…).
+    fn dwell(&mut self, seconds: f64) -> Result<(), Error> {
+        let dwell = self.post.dwell.clone().ok_or_else(|| Error::Input(format!("the post '{}' has no dwell word (dwell), which a drilling cycle's dwell needs", self.post.name)))?;
+        let values = [("seconds", self.number(seconds, 3)), ("millis", self.number(seconds * 1000.0, 0))];
+        self.line(&definition::fill(&dwell, &values));
+        self.seconds += seconds;
+        Ok(())
+    }
+
+    /// A value as the program writes it, read back in millimetres.
+    fn as_written(&self, mm: f64, up: bool) -> f64 {
+        let text = if up { self.length_up(mm) } else { self.length(mm) };
+        text.parse::<f64>().unwrap_or(mm * self.scale) / self.scale
+    }
+
+    /// The drilling cycle `c`, whose moves are `moves`, written as one canned block where the
+    /// post has them and the control would make the same moves of the values as written (its
+    /// pecks counted on the rounded R, Z and Q; the tool standing at the cycle's starting
+    /// height); false where it is not, and the moves are to be written as they are.
+    fn canned(&mut self, c: &Cycle, moves: &[Move]) -> bool {
+        if !self.post.canned_cycles || moves.len() != c.count {
+            return false;
+        }
+        let written = Cycle {
+            at: DVec2::new(self.as_written(c.at.x, false), self.as_written(c.at.y, false)),
+            initial: self.as_written(c.initial, false),
+            r: self.as_written(c.r, false),
+            bottom: self.as_written(c.bottom, true),
+            peck: self.as_written(c.peck, false),
+            ..*c
+        };
+        let unit = 10f64.powi(-(self.decimals as i32)) / self.scale;
+        let standing = self.position[2].is_some_and(|z| self.length(z) == self.length(c.initial));
+        if !standing || written.r < written.bottom || written.initial < written.r || written.peck <= 0.0 || !written.matches(moves, 1.01 * unit) {
+            return false;
+        }
+        let Some(from) = self.at() else { return false };
+        let (expanded, _) = written.moves();
+        let mut at = from;
+        for m in &expanded {
+            self.seconds += m.length(at) / if m.is_rapid() { self.rapid_rate } else { c.feed } * 60.0;
+            at = m.to();
+        }
+        let mut words = format!("{} {} X{} Y{} Z{} R{}", if c.to_initial { "G98" } else { "G99" }, c.kind.code(), self.length(c.at.x), self.length(c.at.y), self.length_up(c.bottom), self.length(c.r));
+        if matches!(c.kind, CycleKind::Peck | CycleKind::ChipBreak) {
+            let _ = write!(words, " Q{}", self.length(c.peck));
+        }
+        if c.kind == CycleKind::Dwell {
+            // The dwell in the unit the post's own dwell word uses (Fanuc's P counts ms).
+            let millis = self.post.dwell.as_deref().is_some_and(|d| d.contains("{millis}"));
+            let _ = write!(words, " P{}", if millis { self.number(c.dwell * 1000.0, 0) } else { self.number(c.dwell, 3) });
+            self.seconds += c.dwell;
+        }
+        let _ = write!(words, " F{}", self.number(c.feed * self.scale, self.post.feed_decimals));
+        self.line(&words);
+        self.feed = Some(c.feed);
+        let end = written.at.extend(written.clear());
+        self.position = [Some(end.x), Some(end.y), Some(end.z)];
+        self.written = [Some(self.length(end.x)), Some(self.length(end.y)), Some(self.length(end.z))];
+        true
     }
 
     fn rapid_z(&mut self, z: f64) {

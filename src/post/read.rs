@@ -1,11 +1,15 @@
 //! Reads G-code back into tool paths, so programs swarf did not write can be simulated and
 //! verified. It knows what the dialects of [`super::Dialect`] write and the common words around
 //! them: G0–G3 (arcs by I/J or R, in the XY plane), G17, G20/G21, G90/G91, G90.1/G91.1, G94,
-//! feeds, tool changes (T, M6), spindle and coolant words, comments. What it cannot simulate
-//! faithfully (other planes, cutter compensation, canned cycles, machine coordinates, rotary
-//! axes, inverse-time feed) is refused with the line number, never skipped silently.
+//! feeds, tool changes (T, M6), spindle and coolant words, comments, and the drilling cycles
+//! G81, G82, G83 and G73 with G98/G99 and G80 (read into the moves LinuxCNC makes of them,
+//! [`crate::toolpath::cycle`]; G82's P in seconds, or in milliseconds in a program with an O
+//! number, as Fanuc's). What it cannot simulate faithfully (other planes, cutter compensation,
+//! other canned cycles, machine coordinates, rotary axes, inverse-time feed) is refused with
+//! the line number, never skipped silently.
 
 use crate::geom::{DVec2, DVec3};
+use crate::toolpath::cycle::{Cycle, CycleKind};
 use crate::toolpath::{Move, Toolpath};
 
 /// Why a program could not be read.
@@ -29,12 +33,34 @@ struct State {
     spindle: f64,
     selected: Option<u32>,
     position: [Option<f64>; 3],
+    /// G98 (back to the starting height after a drilling cycle) rather than G99 (to R).
+    to_initial: bool,
+    /// A drilling cycle's sticky words: R, the bottom Z, Q and P (in mm and as written).
+    cycle_r: Option<f64>,
+    cycle_z: Option<f64>,
+    cycle_q: Option<f64>,
+    cycle_p: Option<f64>,
 }
 
 /// The program's tool paths: a new one at each tool change. `default_tool` is used until the
 /// program selects one (GRBL programs never do).
 pub fn read_gcode(text: &str, default_tool: u32) -> Result<Vec<Toolpath>, ReadError> {
-    let mut st = State { scale: 1.0, incremental: false, arc_incremental: true, motion: None, feed: None, spindle: 0.0, selected: None, position: [None; 3] };
+    let mut st = State {
+        scale: 1.0,
+        incremental: false,
+        arc_incremental: true,
+        motion: None,
+        feed: None,
+        spindle: 0.0,
+        selected: None,
+        position: [None; 3],
+        to_initial: true,
+        cycle_r: None,
+        cycle_z: None,
+        cycle_q: None,
+        cycle_p: None,
+    };
+    let dwell_in_millis = text.lines().any(|l| l.trim_start().strip_prefix('O').is_some_and(|rest| rest.starts_with(|c: char| c.is_ascii_digit())));
     let mut paths: Vec<Toolpath> = Vec::new();
     let mut tool = default_tool;
     for (index, raw) in text.lines().enumerate() {
@@ -46,6 +72,7 @@ pub fn read_gcode(text: &str, default_tool: u32) -> Result<Vec<Toolpath>, ReadEr
         }
         let mut axes: [Option<f64>; 3] = [None; 3];
         let (mut i, mut j, mut r) = (None, None, None);
+        let (mut q, mut p) = (None, None);
         let mut motion_word = None;
         let mut change_tool = false;
         let mut end = false;
@@ -65,7 +92,10 @@ pub fn read_gcode(text: &str, default_tool: u32) -> Result<Vec<Toolpath>, ReadEr
                         911 => st.arc_incremental = true,
                         180 | 190 => return Err(err("arcs outside the XY plane (G18/G19) are not simulated".into())),
                         410 | 420 => return Err(err("cutter radius compensation (G41/G42) is not simulated; post the program with compensation off".into())),
-                        810..=890 | 730 | 760 => return Err(err(format!("canned cycle G{value} is not simulated"))),
+                        810 | 820 | 830 | 730 => motion_word = Some(code / 10),
+                        980 => st.to_initial = true,
+                        990 => st.to_initial = false,
+                        840..=890 | 760 => return Err(err(format!("canned cycle G{value} is not simulated"))),
                         280 | 300 | 530 | 920 => return Err(err(format!("G{value} moves in machine or offset coordinates, which are not simulated"))),
                         930 => return Err(err("inverse-time feed (G93) is not simulated".into())),
                         _ => return Err(err(format!("G{value} is not understood"))),
@@ -86,19 +116,31 @@ pub fn read_gcode(text: &str, default_tool: u32) -> Result<Vec<Toolpath>, ReadEr
                 'F' => st.feed = Some(value),
                 'S' => st.spindle = value,
                 'T' => st.selected = Some(value as u32),
-                'H' | 'D' | 'P' | 'N' | 'O' | 'K' => {}
+                'Q' => q = Some(value),
+                'P' => p = Some(value),
+                'H' | 'D' | 'N' | 'O' | 'K' => {}
                 'A' | 'B' | 'C' | 'U' | 'V' | 'W' => return Err(err(format!("the {letter} axis is not simulated (3-axis only)"))),
                 other => return Err(err(format!("the word {other} is not understood"))),
             }
         }
         if change_tool {
             tool = st.selected.unwrap_or(tool);
-            paths.push(Toolpath { name: format!("T{tool}"), tool, spindle_rpm: st.spindle, start: DVec3::NAN, moves: Vec::new() });
+            paths.push(Toolpath { name: format!("T{tool}"), tool, spindle_rpm: st.spindle, start: DVec3::NAN, moves: Vec::new(), cycles: Vec::new() });
         }
         if let Some(m) = motion_word {
             st.motion = Some(m);
         }
-        if axes.iter().any(Option::is_some) {
+        if let Some(kind) = st.motion.and_then(cycle_kind) {
+            // A drilling cycle: its words stick from block to block; a block with X or Y (or
+            // the cycle's own G word) drills a hole.
+            st.cycle_r = r.map(|v| v * st.scale).or(st.cycle_r);
+            st.cycle_z = axes[2].map(|v| v * st.scale).or(st.cycle_z);
+            st.cycle_q = q.map(|v| v * st.scale).or(st.cycle_q);
+            st.cycle_p = p.or(st.cycle_p);
+            if axes[0].is_some() || axes[1].is_some() || motion_word.is_some() {
+                drill(&mut st, kind, [axes[0], axes[1]], &mut paths, tool, dwell_in_millis).map_err(err)?;
+            }
+        } else if axes.iter().any(Option::is_some) {
             let Some(motion) = st.motion else { return Err(err("coordinates without a motion mode (G0, G1, G2 or G3)".into())) };
             let from = st.position;
             let mut to = from;
@@ -112,7 +154,7 @@ pub fn read_gcode(text: &str, default_tool: u32) -> Result<Vec<Toolpath>, ReadEr
             let (Some(fx), Some(fy), Some(fz)) = (from[0], from[1], from[2]) else { continue };
             let (from, to) = (DVec3::new(fx, fy, fz), DVec3::new(to[0].unwrap_or(fx), to[1].unwrap_or(fy), to[2].unwrap_or(fz)));
             if paths.is_empty() {
-                paths.push(Toolpath { name: format!("T{tool}"), tool, spindle_rpm: st.spindle, start: DVec3::NAN, moves: Vec::new() });
+                paths.push(Toolpath { name: format!("T{tool}"), tool, spindle_rpm: st.spindle, start: DVec3::NAN, moves: Vec::new(), cycles: Vec::new() });
             }
             let path = paths.last_mut().expect("pushed above");
             if path.start.is_nan() {
@@ -151,6 +193,59 @@ pub fn read_gcode(text: &str, default_tool: u32) -> Result<Vec<Toolpath>, ReadEr
     }
     paths.retain(|p| !p.moves.is_empty());
     Ok(paths)
+}
+
+/// The drilling cycle's G word's kind (motion 81, 82, 83, 73).
+fn cycle_kind(motion: u32) -> Option<CycleKind> {
+    match motion {
+        81 => Some(CycleKind::Drill),
+        82 => Some(CycleKind::Dwell),
+        83 => Some(CycleKind::Peck),
+        73 => Some(CycleKind::ChipBreak),
+        _ => None,
+    }
+}
+
+/// One hole of a drilling cycle at X, Y (those given; the others where the tool is), as the
+/// moves LinuxCNC makes of it: up to R first where the tool stands below it.
+fn drill(st: &mut State, kind: CycleKind, xy: [Option<f64>; 2], paths: &mut Vec<Toolpath>, tool: u32, dwell_in_millis: bool) -> Result<(), String> {
+    if st.incremental {
+        return Err("drilling cycles in incremental distance mode (G91) are not simulated".into());
+    }
+    let [Some(x0), Some(y0), Some(z0)] = st.position else { return Err("a drilling cycle before the tool's position is known".into()) };
+    let r = st.cycle_r.ok_or("a drilling cycle needs R, the height it feeds from")?;
+    let bottom = st.cycle_z.ok_or("a drilling cycle needs Z, the hole's bottom")?;
+    if r < bottom {
+        return Err(format!("a drilling cycle's R ({r}) is below its bottom Z ({bottom})"));
+    }
+    let feed = st.feed.map(|f| f * st.scale).filter(|f| *f > 0.0).ok_or("a drilling cycle before any feed rate (F)")?;
+    let peck = match kind {
+        CycleKind::Peck | CycleKind::ChipBreak => st.cycle_q.filter(|q| *q > 0.0).ok_or("a peck cycle (G83, G73) needs a positive Q")?,
+        _ => 0.0,
+    };
+    let dwell = match kind {
+        CycleKind::Dwell => st.cycle_p.filter(|p| *p >= 0.0).ok_or("G82 needs P, its dwell")? / if dwell_in_millis { 1000.0 } else { 1.0 },
+        _ => 0.0,
+    };
+    let at = DVec2::new(xy[0].map_or(x0, |v| v * st.scale), xy[1].map_or(y0, |v| v * st.scale));
+    if paths.is_empty() {
+        paths.push(Toolpath { name: format!("T{tool}"), tool, spindle_rpm: st.spindle, start: DVec3::NAN, moves: Vec::new(), cycles: Vec::new() });
+    }
+    let path = paths.last_mut().expect("pushed above");
+    if path.start.is_nan() {
+        path.start = DVec3::new(x0, y0, z0);
+    }
+    if z0 < r {
+        path.moves.push(Move::Rapid { to: DVec3::new(x0, y0, r) });
+    }
+    let initial = z0.max(r);
+    let mut cycle = Cycle { kind, first: path.moves.len(), count: 0, at, initial, r, bottom, to_initial: st.to_initial, peck, dwell, feed };
+    let (moves, _) = cycle.moves();
+    cycle.count = moves.len();
+    path.moves.extend(moves);
+    path.cycles.push(cycle);
+    st.position = [Some(at.x), Some(at.y), Some(cycle.clear())];
+    Ok(())
 }
 
 /// The centre of an arc given by its radius (negative: the longer way round).

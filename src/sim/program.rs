@@ -35,12 +35,14 @@ pub fn program_moves(paths: &[Toolpath], tools: &[Tool], rapid_rate: f64) -> Res
     for (k, path) in paths.iter().enumerate() {
         let tool = tools.iter().find(|t| t.number == path.tool).ok_or_else(|| Error::Input(format!("the program uses tool number {}, which is not in the tool library", path.tool)))?;
         let mut at = path.start;
-        for mv in &path.moves {
+        // A drilling cycle's dwell at the bottom counts in the move that reached it.
+        let dwells: std::collections::HashMap<usize, f64> = path.cycles.iter().filter(|c| c.kind == crate::toolpath::cycle::CycleKind::Dwell).map(|c| (c.first + c.moves().1, c.dwell)).collect();
+        for (i, mv) in path.moves.iter().enumerate() {
             let rate = match *mv {
                 Move::Rapid { .. } => rapid_rate,
                 Move::Line { feed, .. } | Move::Arc { feed, .. } => feed,
             };
-            let seconds = mv.length(at) / rate * 60.0;
+            let seconds = mv.length(at) / rate * 60.0 + dwells.get(&i).copied().unwrap_or(0.0);
             let air = !mv.is_rapid() && rate > tool.feed_rate * (1.0 + 1e-9);
             out.push(ProgramMove { path: k, tool: tool.number, cutter: tool.cutter.clone(), from: at, mv: *mv, start: clock, seconds, air });
             clock += seconds;

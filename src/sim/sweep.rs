@@ -139,16 +139,16 @@ impl Sweep {
                     let dist2 = (w - d * t).length_squared();
                     return if dist2 > r2 {
                         f64::INFINITY
-                    } else if p.flat_radius() == 0.0 {
+                    } else if p.flat_radius() == 0.0 && !p.is_cone() {
                         a.z + p.radius - (r2 - dist2).sqrt()
                     } else {
                         a.z + p.height(dist2.sqrt())
                     };
                 }
-                if p.flat_radius() == 0.0 {
+                if p.flat_radius() == 0.0 && !p.is_cone() {
                     return self.ball_line(a, b, q);
                 }
-                if p.corner > 0.0 {
+                if p.corner > 0.0 || p.is_cone() {
                     // Behind the lower end (rising moves) or past it (falling ones), every
                     // position of the move stands no lower and no nearer than that end: the
                     // cutter there is the envelope, without the contact search.
@@ -175,7 +175,7 @@ impl Sweep {
                 if t0 > t1 {
                     return f64::INFINITY;
                 }
-                if p.corner == 0.0 {
+                if p.corner == 0.0 && !p.is_cone() {
                     // Flat end: the bottom is level, so the lowest point is at an end.
                     a.z + dz * if dz > 0.0 { t0 } else { t1 }
                 } else if k.inv_len2 > 0.0 {
@@ -347,7 +347,8 @@ mod tests {
 
     #[test]
     fn envelope_equals_brute_force_for_every_shape_and_slope() {
-        let profiles = [Profile::new(3.0, 0.0), Profile::new(3.0, 3.0), Profile::new(3.0, 1.0)];
+        // Flat, ball, bull nose, a drill's 118° point and a V-bit's 90° cone from a 1 mm tip.
+        let profiles = [Profile::new(3.0, 0.0), Profile::new(3.0, 3.0), Profile::new(3.0, 1.0), Profile::cone(3.0, 0.0, 59f64.to_radians()), Profile::cone(3.0, 0.5, 45f64.to_radians())];
         let paths = [
             (DVec3::new(0.0, 0.0, 0.0), DVec3::new(10.0, 2.0, 0.0)),
             (DVec3::new(0.0, 0.0, 0.0), DVec3::new(10.0, 2.0, -3.0)),
@@ -376,7 +377,7 @@ mod tests {
 
     #[test]
     fn arc_envelope_equals_brute_force() {
-        for profile in [Profile::new(2.0, 0.0), Profile::new(2.0, 2.0), Profile::new(2.0, 0.5)] {
+        for profile in [Profile::new(2.0, 0.0), Profile::new(2.0, 2.0), Profile::new(2.0, 0.5), Profile::cone(2.0, 0.0, 45f64.to_radians())] {
             for sweep_angle in [1.0, -2.5, 4.0, -std::f64::consts::TAU] {
                 let sweep = Sweep::arc(profile, DVec3::new(5.0, 1.0, -1.0), DVec2::new(1.0, 1.0), sweep_angle);
                 let exact = brute(&sweep, 20_000);

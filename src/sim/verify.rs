@@ -17,7 +17,7 @@ use super::program::{removal_rates, ProgramMove, Timing, RATE_CELLS};
 use super::sweep::Sweep;
 use super::StockModel;
 use crate::error::{Error, Result};
-use crate::geom::{Aabb, DVec3, Tolerances};
+use crate::geom::{Aabb, DVec2, DVec3, Tolerances};
 use crate::mesh::Mesh;
 use crate::progress::Progress;
 use crate::zmap::{cc::cc_zmap, Grid, HeightField, MAX_NODES};
@@ -151,9 +151,22 @@ pub fn stock_for(stock: &Aabb, cell: f64) -> Result<DexelStock> {
     Ok(DexelStock::new(stock, cell, 1))
 }
 
+/// Cells found cut below the part that [`Simulator::finish_near`] judges again by the part's
+/// heights beside them.
+pub const WALL_RECHECKS: usize = 20_000;
+
+/// The part's lowest height (−∞ where it is absent) at `p` and at sixteen points round it at
+/// the gouge tolerance: what [`Simulator::finish_near`] judges a cell beside a wall by.
+pub fn lowest_near(drop: &crate::zmap::drop::PointDrop, p: DVec2, reach: f64) -> f64 {
+    (0..16).map(|k| p + DVec2::from_angle(k as f64 * std::f64::consts::TAU / 16.0) * reach).chain([p]).map(|q| drop.at(q, f64::NEG_INFINITY)).fold(f64::INFINITY, f64::min)
+}
+
 /// Simulates `moves` on the box `stock` and checks them against `part`.
 pub fn verify(part: &Mesh, stock: &Aabb, moves: &[ProgramMove], settings: &VerifySettings, tolerances: &Tolerances, progress: &mut Progress) -> Result<Verification> {
-    verify_against(|grid| cc_zmap(part, grid, f64::NEG_INFINITY, tolerances), stock, moves, settings, tolerances, progress)
+    let mut sim = Simulator::new(stock, settings.cell)?;
+    sim.run(moves, tolerances, progress, 0.9)?;
+    progress.report(0.9);
+    Ok(sim.finish_mesh(part, settings.allowance, tolerances))
 }
 
 /// Simulates `moves` on the box `stock` and checks them against the part's heights on the
@@ -408,17 +421,35 @@ impl Simulator {
         }
     }
 
+    /// [`Simulator::finish_near`] against a mesh: its heights at the cells' centres, and beside
+    /// them within the gouge tolerance.
+    pub fn finish_mesh(self, part: &Mesh, allowance: f64, tolerances: &Tolerances) -> Verification {
+        let point = crate::zmap::drop::PointDrop::new(part, &crate::cutter::Profile::new(1e-9, 0.0), tolerances);
+        self.finish_near(|grid| cc_zmap(part, grid, f64::NEG_INFINITY, tolerances), |p| Some(lowest_near(&point, p, tolerances.gouge)), allowance, tolerances)
+    }
+
     /// Judges the stock against the part's heights (`surface` on the simulation's grid, −∞ where
     /// there is no part) plus `allowance`, and ends the simulation. A gouge is material the
     /// program removed below the part plus the allowance: where the raw stock itself stands
     /// lower than that (a part whose top is the stock's top), the program is held to the raw
     /// top, not to a height the stock never had.
     pub fn finish(self, surface: impl FnOnce(Grid) -> HeightField, allowance: f64, tolerances: &Tolerances) -> Verification {
+        self.finish_near(surface, |_| None, allowance, tolerances)
+    }
+
+    /// [`Simulator::finish`], with a cell found cut below the part judged again by `lowest_near`
+    /// (the part's lowest height within the gouge tolerance of a point, sideways; `None`: not
+    /// known): a cell beside a vertical wall, cut within the tolerance of the wall (a drill of
+    /// the hole's own diameter in a hole tessellated inside its circle), is no gouge, though
+    /// its centre stands on the part, a wall's height above the cut. At most
+    /// [`WALL_RECHECKS`] cells are judged again; beyond, a program gouges anyway.
+    pub fn finish_near(self, surface: impl FnOnce(Grid) -> HeightField, lowest_near: impl Fn(DVec2) -> Option<f64>, allowance: f64, tolerances: &Tolerances) -> Verification {
         let rates = self.rates();
         let Simulator { stock: sim, raw_top, volumes, rapid, body, .. } = self;
         let grid = sim.grid();
         let mut surface = surface(grid);
         let mut gouges = Vec::new();
+        let mut rechecked = 0;
         let (mut residual_max, mut residual_sum, mut covered) = (0.0f64, 0.0, 0usize);
         for j in 0..grid.ny {
             for i in 0..grid.nx {
@@ -429,7 +460,11 @@ impl Simulator {
                 }
                 surface.z[c] = (surface.z[c] + allowance).min(raw_top);
                 let left = sim.top(i, j) - surface.z[c];
-                if left < -tolerances.gouge {
+                let mut beside_wall = || {
+                    rechecked += 1;
+                    rechecked <= WALL_RECHECKS && lowest_near(grid.node(i, j)).is_some_and(|low| sim.top(i, j) - (low + allowance).min(raw_top) >= -tolerances.gouge)
+                };
+                if left < -tolerances.gouge && !beside_wall() {
                     gouges.push(Finding { move_index: None, at: grid.node(i, j).extend(sim.top(i, j)), amount: -left });
                 }
                 residual_max = residual_max.max(left);

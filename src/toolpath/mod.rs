@@ -2,6 +2,7 @@
 //! point reduction are passes over this data ([`link`], [`reduce`]), not parts of a strategy.
 
 pub mod arcfit;
+pub mod cycle;
 pub mod entry;
 pub mod link;
 pub mod reduce;
@@ -73,6 +74,10 @@ pub struct Toolpath {
     /// Where the path starts: above its first point at the clearance height.
     pub start: DVec3,
     pub moves: Vec<Move>,
+    /// Drilling cycles among the moves: each marks the moves one cycle makes at one hole, for
+    /// a post to write as a canned cycle where the control has them.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub cycles: Vec<cycle::Cycle>,
 }
 
 /// Lengths and an estimated time of a path.
@@ -113,7 +118,13 @@ impl Toolpath {
             }
             at = m.to();
         }
+        stats.seconds += self.dwell_seconds();
         stats
+    }
+
+    /// Seconds its cycles dwell at the bottom of their holes.
+    pub fn dwell_seconds(&self) -> f64 {
+        self.cycles.iter().filter(|c| c.kind == cycle::CycleKind::Dwell).map(|c| c.dwell).sum()
     }
 
     /// The path as line segments for drawing: each segment's two end points, and whether it is

@@ -85,6 +85,33 @@ pub fn shared_data(rel: &str) -> Option<std::path::PathBuf> {
     }
 }
 
+/// LinuxCNC's interpreter (`rs274 -g`) on a program with `tools` in its tool table: its
+/// canonical calls, one a line. Panics where it refuses the program.
+pub fn rs274(gcode: &str, tools: &[swarf::job::Tool]) -> String {
+    use std::sync::atomic::{AtomicU64, Ordering};
+    static RUN: AtomicU64 = AtomicU64::new(0);
+    let dir = std::env::temp_dir().join(format!("swarf-rs274-{}-{}", std::process::id(), RUN.fetch_add(1, Ordering::Relaxed)));
+    std::fs::create_dir_all(&dir).unwrap();
+    let program = dir.join("program.ngc");
+    std::fs::write(&program, gcode).unwrap();
+    let table = dir.join("tool.tbl");
+    let lines: String = tools.iter().map(|t| format!("T{0} P{0} Z0.000 D{1:.3} ;{2}\n", t.number, t.cutter.diameter, t.describe())).collect();
+    std::fs::write(&table, lines).unwrap();
+    // rs274 keeps its parameter file in the working directory and its tool table in a file
+    // mapped from $HOME (~/.tool.mmap): each run gets its own, so parallel tests cannot mix
+    // their tool tables.
+    let output = match std::process::Command::new("rs274").current_dir(&dir).env("HOME", &dir).arg("-g").arg("-t").arg(&table).arg(&program).output() {
+        Ok(o) => o,
+        Err(e) => panic!("rs274 (LinuxCNC's interpreter) could not be run: {e}; scripts/setup.sh installs it (apt-get install linuxcnc-uspace)"),
+    };
+    let stdout = String::from_utf8_lossy(&output.stdout).into_owned();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    let tail: Vec<&str> = stdout.lines().rev().take(8).collect();
+    assert!(output.status.success() && !stderr.contains("rror"), "rs274 refused the program:\n{stderr}\n{}", tail.join("\n"));
+    let _ = std::fs::remove_dir_all(&dir);
+    stdout
+}
+
 /// GRBL 1.1h's own parser (`../shared/tools/grbl/grblcheck`, built from GRBL's source on first
 /// use) on a program: `None` where the shared tools are not beside this checkout, else what the
 /// parser said (`Err` with its message when it refused a line).

@@ -114,6 +114,75 @@ export type DrawingView = { outer: Array<number>, holes: Array<number>, open: Ar
 ignored: Array<[string, number]>, openChains: Array<OpenChain>, };
 
 /**
+ * Drilling holes.
+ */
+export type Drill = { 
+/**
+ * Default value: "drill".
+ */
+name: string, 
+/**
+ * Whether the job runs it. Default value: true.
+ */
+enabled: boolean, 
+/**
+ * Default value: 1.
+ */
+tool: number, 
+/**
+ * Default value: drill.
+ */
+cycle: DrillCycle, 
+/**
+ * The holes to drill, by their index as `swarf holes` (a part) or `swarf drawing` (a
+ * drawing's loops) numbers them. Default value: all (within the diameters).
+ */
+holes: Array<number>, 
+/**
+ * Only holes at least this wide (mm). Default value: none.
+ */
+minDiameter: number | null, 
+/**
+ * Only holes at most this wide (mm). Default value: none.
+ */
+maxDiameter: number | null, 
+/**
+ * Depth below each hole's top (mm). Default value: the hole's own (through: past its
+ * bottom by the drill's point and the breakthrough; a spot: the depth of a cone
+ * `spotDiameter` across).
+ */
+depth: number | null, 
+/**
+ * How far the drill's full diameter goes past a through hole's bottom (mm). Default value: 0.5.
+ */
+breakthrough: number, 
+/**
+ * The spot's diameter at the top (mm). Default value: the hole's diameter, at most the tool's.
+ */
+spotDiameter: number | null, 
+/**
+ * Depth of each peck (mm; peck and chip break). Default value: 2.
+ */
+peck: number, 
+/**
+ * Seconds at the bottom (dwell). Default value: 0.5.
+ */
+dwell: number, 
+/**
+ * The R plane's height above the material over the hole (mm). Default value: 1.
+ */
+retract: number, 
+/**
+ * Default value: initial.
+ */
+returnTo: ReturnLevel, };
+
+/**
+ * Which drilling cycle.
+ */
+export type DrillCycle = "spot" | "drill" | "dwell" | "peck" | "chipBreak";
+
+/**
  * Engraving on a drawing.
  */
 export type Engrave = { 
@@ -397,7 +466,7 @@ export type OpenChain = { layer: string, start: [number, number], end: [number, 
 /**
  * One operation of a job.
  */
-export type Operation = { "kind": "roughZlevel" } & RoughZlevel | { "kind": "roughZigzag" } & RoughZigzag | { "kind": "roughOctree" } & RoughOctree | { "kind": "finishRaster" } & FinishRaster | { "kind": "finishWaterline" } & FinishWaterline | { "kind": "profile2d" } & Profile2d | { "kind": "pocket2d" } & Pocket2d | { "kind": "engrave" } & Engrave;
+export type Operation = { "kind": "roughZlevel" } & RoughZlevel | { "kind": "roughZigzag" } & RoughZigzag | { "kind": "roughOctree" } & RoughOctree | { "kind": "finishRaster" } & FinishRaster | { "kind": "finishWaterline" } & FinishWaterline | { "kind": "profile2d" } & Profile2d | { "kind": "pocket2d" } & Pocket2d | { "kind": "engrave" } & Engrave | { "kind": "drill" } & Drill;
 
 /**
  * One operation's figures.
@@ -640,6 +709,12 @@ helix: boolean,
  */
 modal: boolean, 
 /**
+ * The control runs the drilling cycles G81, G82, G83 and G73 (with R, Q, P, G98/G99 and
+ * G80): a drilling operation's holes are written as those; without (GRBL 1.1), as the
+ * moves they make.
+ */
+cannedCycles: boolean, 
+/**
  * The longest line the control reads (characters), or none. Comments are shortened to
  * fit; a motion that cannot fit is an error.
  */
@@ -799,6 +874,11 @@ export type Reposted = { gcode: string, extension: string, post: string, cycle: 
  * How retracts between cuts travel ([`Stock::retracts`]).
  */
 export type Retracts = "minimum" | "full";
+
+/**
+ * Where the tool goes between holes.
+ */
+export type ReturnLevel = "initial" | "retract";
 
 /**
  * Octree multi-tool roughing.
@@ -987,7 +1067,7 @@ rampAngle: number, };
 /**
  * The shape of a cutter's end.
  */
-export type Shape = "flat" | "ball" | "bullNose";
+export type Shape = "flat" | "ball" | "bullNose" | "drill" | "spotDrill" | "vBit";
 
 /**
  * Which side of a loop the tool runs on.
@@ -1293,7 +1373,18 @@ shankDiameter: number | null,
 /**
  * Length of the fluted part (mm), kept for collision checks. Default value: 20.
  */
-fluteLength: number, };
+fluteLength: number, 
+/**
+ * Included angle of a drill's point or a V-bit's cone (degrees, more than 0 and less than
+ * 180); ignored for the other shapes. Default value: 118 for a drill, 90 for a spot drill
+ * and a V-bit.
+ */
+angle: number | null, 
+/**
+ * Diameter of a V-bit's or chamfer mill's flat tip (mm, less than the diameter); ignored
+ * for the other shapes. Default value: 0.
+ */
+tipDiameter: number, };
 
 /**
  * Length unit of a file or of G-code.

@@ -77,6 +77,17 @@ enum Command {
     /// List what a drawing (DXF, SVG) holds: layers, loops (index, layer, outside or hole,
     /// size) and open chains, to choose what operations cut.
     Drawing { file: PathBuf },
+    /// List the holes a drilling operation finds: a part's vertical round holes (centre,
+    /// diameter, top and bottom, through or blind with a flat or cone bottom) or a drawing's
+    /// circles, placed as the job places the part, numbered as a drilling operation's `holes`
+    /// takes them, and grouped by diameter.
+    Holes {
+        /// The part (STL, glTF/GLB, OBJ) or drawing (DXF, SVG).
+        file: PathBuf,
+        /// The job whose placement to use (default: the default job's).
+        #[arg(long)]
+        job: Option<PathBuf>,
+    },
     /// Simulate a G-code program on a job's stock and check it against the part: gouges, rapid
     /// moves through stock, the tool's body in material, material left. Exits with 1 when it
     /// finds a problem.
@@ -246,6 +257,33 @@ fn run(cli: Cli) -> Result<(), String> {
             for o in &d.open {
                 println!("open chain: layer {}, {} entities, from ({:.3}, {:.3}) to ({:.3}, {:.3}) mm", o.layer, o.segments, o.start.x, o.start.y, o.end.x, o.end.y);
             }
+            Ok(())
+        }
+        Command::Holes { file, job } => {
+            let job = match job {
+                Some(path) => Job::from_json(&String::from_utf8_lossy(&read(&path)?)).map_err(|e| e.to_string())?,
+                None => Job::default(),
+            };
+            let name = file.file_name().map(|n| n.to_string_lossy().into_owned());
+            let bytes = read(&file)?;
+            let started = Instant::now();
+            let workpiece: Workpiece = if swarf::drawing::import::is_drawing(name.as_deref(), &bytes) {
+                Workpiece::Drawing(read_drawing(&bytes, name.as_deref(), &job.tolerances).map_err(|e| format!("{}: {e}", file.display()))?)
+            } else {
+                Workpiece::Mesh(read_mesh_auto(&bytes, name.as_deref(), &job.tolerances).map_err(|e| format!("{}: {e}", file.display()))?)
+            };
+            let holes = job.holes(workpiece).map_err(|e| e.to_string())?;
+            for (k, h) in holes.iter().enumerate() {
+                let kind = match (h.through, h.bottom_shape) {
+                    (true, _) => "through".to_string(),
+                    (false, swarf::holes::Bottom::Cone) => "blind, cone bottom".to_string(),
+                    (false, _) => "blind, flat bottom".to_string(),
+                };
+                let index = h.loop_index.map_or(k, |l| l);
+                println!("hole {index}: φ{:.3} at ({:.3}, {:.3}), top {:.3}, bottom {:.3} ({:.3} deep), {kind}", h.diameter, h.center.x, h.center.y, h.top, h.bottom, h.depth());
+            }
+            let sizes = swarf::operations::drill::sizes(&holes);
+            println!("{} holes{}{} ({:.2} s)", holes.len(), if sizes.is_empty() { "" } else { ": " }, sizes.join(", "), started.elapsed().as_secs_f64());
             Ok(())
         }
         Command::Verify { job, part, program, cell, json } => {

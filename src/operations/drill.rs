@@ -1,0 +1,298 @@
+//! Drilling: spot, drill (G81), drill with a dwell (G82), peck with full retract (G83) and
+//! chip-break pecking (G73), at a drawing's circles or a part's vertical holes
+//! ([`crate::holes`]), picked by index or by a diameter range. Holes are taken in a short
+//! order (nearest neighbour, then 2-opt); each is drilled from the R plane just above the
+//! material over it to the hole's bottom, or for a through hole past it by the drill's point
+//! and a breakthrough. Each hole's moves are marked as a [`Cycle`], so a control with canned
+//! cycles gets one `G8x` block per hole and GRBL the same moves written out.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, Result};
+use crate::geom::segment::Segment;
+use crate::geom::DVec2;
+use crate::holes::{self, Bottom, Hole};
+use crate::machining::report::Groove;
+use crate::machining::{named_operation, not_negative, positive, Context, FieldError, Operate, Planned};
+use crate::toolpath::cycle::{Cycle, CycleKind};
+use crate::toolpath::{Move, Toolpath};
+
+/// Which drilling cycle.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(rename_all = "camelCase")]
+pub enum DrillCycle {
+    /// A spot (centre) drill or a V-bit marks each hole: a cone `spotDiameter` across at the
+    /// top (G81, or G82 with a dwell).
+    Spot,
+    /// Straight to the bottom and out (G81).
+    #[default]
+    Drill,
+    /// To the bottom, a dwell, out (G82).
+    Dwell,
+    /// Pecks, out of the hole after each to clear the chips (G83).
+    Peck,
+    /// Pecks, backing off a little after each to break the chip (G73).
+    ChipBreak,
+}
+
+/// Where the tool goes between holes.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(rename_all = "camelCase")]
+pub enum ReturnLevel {
+    /// Back to the clearance height (G98): over clamps and the part's high places.
+    #[default]
+    Initial,
+    /// To the R plane (G99): shorter, where nothing stands between the holes.
+    Retract,
+}
+
+/// Drilling holes.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(default, rename_all = "camelCase")]
+pub struct Drill {
+    /// Default value: "drill".
+    pub name: String,
+    /// Whether the job runs it. Default value: true.
+    pub enabled: bool,
+    /// Default value: 1.
+    pub tool: u32,
+    /// Default value: drill.
+    pub cycle: DrillCycle,
+    /// The holes to drill, by their index as `swarf holes` (a part) or `swarf drawing` (a
+    /// drawing's loops) numbers them. Default value: all (within the diameters).
+    pub holes: Vec<usize>,
+    /// Only holes at least this wide (mm). Default value: none.
+    pub min_diameter: Option<f64>,
+    /// Only holes at most this wide (mm). Default value: none.
+    pub max_diameter: Option<f64>,
+    /// Depth below each hole's top (mm). Default value: the hole's own (through: past its
+    /// bottom by the drill's point and the breakthrough; a spot: the depth of a cone
+    /// `spotDiameter` across).
+    pub depth: Option<f64>,
+    /// How far the drill's full diameter goes past a through hole's bottom (mm). Default value: 0.5.
+    pub breakthrough: f64,
+    /// The spot's diameter at the top (mm). Default value: the hole's diameter, at most the tool's.
+    pub spot_diameter: Option<f64>,
+    /// Depth of each peck (mm; peck and chip break). Default value: 2.
+    pub peck: f64,
+    /// Seconds at the bottom (dwell). Default value: 0.5.
+    pub dwell: f64,
+    /// The R plane's height above the material over the hole (mm). Default value: 1.
+    pub retract: f64,
+    /// Default value: initial.
+    pub return_to: ReturnLevel,
+}
+
+impl Default for Drill {
+    fn default() -> Self {
+        Drill {
+            name: "drill".into(),
+            enabled: true,
+            tool: 1,
+            cycle: DrillCycle::Drill,
+            holes: Vec::new(),
+            min_diameter: None,
+            max_diameter: None,
+            depth: None,
+            breakthrough: 0.5,
+            spot_diameter: None,
+            peck: 2.0,
+            dwell: 0.5,
+            retract: 1.0,
+            return_to: ReturnLevel::Initial,
+        }
+    }
+}
+
+/// The holes of the workpiece: a drawing's circles through the sheet, else the part's.
+pub fn holes_of(ctx: &Context) -> Vec<Hole> {
+    match &ctx.sheet {
+        Some(sheet) => holes::in_drawing(&sheet.drawing, ctx.stock.max.z, ctx.stock.max.z - sheet.thickness),
+        None => holes::mesh::find(&ctx.part),
+    }
+}
+
+impl Operate for Drill {
+    named_operation!(Either);
+
+    fn takes_cones(&self) -> bool {
+        true
+    }
+
+    fn validate(&self) -> std::result::Result<(), FieldError> {
+        if let Some(d) = self.depth {
+            positive("depth", d)?;
+        }
+        for (field, v) in [("minDiameter", self.min_diameter), ("maxDiameter", self.max_diameter), ("spotDiameter", self.spot_diameter)] {
+            if let Some(v) = v {
+                positive(field, v)?;
+            }
+        }
+        not_negative("breakthrough", self.breakthrough)?;
+        positive("peck", self.peck)?;
+        not_negative("dwell", self.dwell)?;
+        if self.dwell > 600.0 {
+            return Err(FieldError { field: "dwell", message: format!("must be at most 600 seconds (got {})", self.dwell) });
+        }
+        positive("retract", self.retract)
+    }
+
+    fn plan(&self, ctx: &mut Context, _progress: &mut crate::progress::Progress) -> Result<Planned> {
+        let tool = ctx.tool(&self.name, self.tool)?.clone();
+        let cutter = &tool.cutter;
+        let spot = self.cycle == DrillCycle::Spot;
+        if spot && !cutter.is_cone() {
+            return Err(Error::operation(&self.name, format!("spotting needs a spot drill, a drill or a V-bit; T{} is a {}", tool.number, cutter.describe())));
+        }
+        let all = holes_of(ctx);
+        if let Some(&k) = self.holes.iter().find(|&&k| k >= all.len()) {
+            return Err(Error::operation(&self.name, format!("there is no hole {k} (the {} has {})", if ctx.sheet.is_some() { "drawing" } else { "part" }, all.len())));
+        }
+        let picked: Vec<&Hole> = all
+            .iter()
+            .enumerate()
+            .filter(|(k, h)| {
+                let by_index = if ctx.sheet.is_some() { h.loop_index.unwrap_or(*k) } else { *k };
+                (self.holes.is_empty() || self.holes.contains(&by_index) || self.holes.contains(k))
+                    && self.min_diameter.is_none_or(|d| h.diameter >= d - 1e-9)
+                    && self.max_diameter.is_none_or(|d| h.diameter <= d + 1e-9)
+            })
+            .map(|(_, h)| h)
+            .collect();
+        if picked.is_empty() {
+            let sizes: Vec<String> = sizes(&all);
+            return Err(Error::operation(
+                &self.name,
+                if all.is_empty() {
+                    "no holes found: a drawing's holes are its circles, a part's its vertical round holes".to_string()
+                } else {
+                    format!("none of the holes fits the choice (there are {})", sizes.join(", "))
+                },
+            ));
+        }
+        let profile = cutter.profile();
+        let tip = cutter.tip_length();
+        let half = cutter.point_angle().to_radians() / 2.0;
+        let points: Vec<DVec2> = picked.iter().map(|h| h.center).collect();
+        let start = DVec2::new(ctx.stock.min.x, ctx.stock.min.y);
+        let order = holes::order(&points, start);
+        let initial = ctx.heights.clearance;
+        let mut moves: Vec<Move> = Vec::new();
+        let mut cycles = Vec::new();
+        // On a sheet, what each hole may lose: its circle, to the drill's depth (the sheet's
+        // verification holds everything else to the sheet's top).
+        let mut grooves = Vec::new();
+        let (mut flat_floors, mut wider, mut narrower) = (0, 0, 0);
+        for &k in &order {
+            let h = picked[k];
+            let bottom = match (self.depth, spot) {
+                (Some(d), _) => h.top - d,
+                (None, true) => {
+                    let across = self.spot_diameter.unwrap_or(h.diameter).min(cutter.diameter);
+                    h.top - (across / 2.0 - cutter.tip_radius()).max(0.0) / half.tan()
+                }
+                (None, false) if h.through => h.bottom - tip - self.breakthrough,
+                (None, false) => {
+                    if h.bottom_shape == Bottom::Flat && cutter.is_cone() {
+                        flat_floors += 1;
+                    }
+                    // A cone-bottomed hole is as deep as its full diameter plus the point.
+                    if h.bottom_shape == Bottom::Cone {
+                        h.bottom - tip
+                    } else {
+                        h.bottom
+                    }
+                }
+            };
+            if !spot {
+                if cutter.diameter > h.diameter + 1e-6 {
+                    wider += 1;
+                } else if cutter.diameter < h.diameter - 0.01 {
+                    narrower += 1;
+                }
+            }
+            let depth = h.top - bottom;
+            if depth > cutter.flute_length + 1e-9 {
+                return Err(Error::operation(
+                    &self.name,
+                    format!("the hole at X{:.3} Y{:.3} is {depth:.2} mm deep, deeper than T{}'s flutes ({} mm)", h.center.x, h.center.y, tool.number, cutter.flute_length),
+                ));
+            }
+            // R just above what stands over the hole now (the part's top there, or stock not
+            // yet cut).
+            let over = ctx.material_estimate(h.center, &profile).max(h.top);
+            let r = over + self.retract;
+            if r > initial {
+                return Err(Error::operation(&self.name, format!("the R plane ({r:.3}) lies above the clearance height ({initial:.3}): raise stock.clearance")));
+            }
+            let kind = match self.cycle {
+                DrillCycle::Spot | DrillCycle::Drill => CycleKind::Drill,
+                DrillCycle::Dwell => CycleKind::Dwell,
+                DrillCycle::Peck => CycleKind::Peck,
+                DrillCycle::ChipBreak => CycleKind::ChipBreak,
+            };
+            let from_initial = cycles.is_empty() || self.return_to == ReturnLevel::Initial;
+            // Under G99 the tool stands at the last hole's R plane: the next hole starts there
+            // when that is no lower than its own R, else from the clearance height.
+            let standing = moves.last().map_or(initial, |m: &Move| m.to().z);
+            let begin = if from_initial || standing < r { initial } else { standing };
+            if begin != standing {
+                moves.push(Move::Rapid { to: moves.last().map_or(h.center, |m| m.to().truncate()).extend(begin) });
+            }
+            let mut c = Cycle {
+                kind,
+                first: moves.len(),
+                count: 0,
+                at: h.center,
+                initial: begin,
+                r,
+                bottom,
+                to_initial: self.return_to == ReturnLevel::Initial,
+                peck: self.peck,
+                dwell: if kind == CycleKind::Dwell { self.dwell } else { 0.0 },
+                feed: tool.plunge_rate,
+            };
+            if ctx.sheet.is_some() {
+                grooves.push(Groove { path: vec![Segment::line(h.center, h.center)], radius: h.diameter / 2.0, depth: ctx.stock.max.z - bottom });
+            }
+            let (m, _) = c.moves();
+            c.count = m.len();
+            moves.extend(m);
+            cycles.push(c);
+        }
+        if flat_floors > 0 {
+            ctx.warn(
+                &self.name,
+                format!("{flat_floors} blind holes have flat floors: the drill's point leaves a cone below them and their full diameter {tip:.2} mm short; finish the floors with a flat end mill"),
+            );
+        }
+        if wider > 0 {
+            ctx.warn(&self.name, format!("{wider} holes are narrower than T{} ({} mm): the drill makes them wider", tool.number, cutter.diameter));
+        }
+        if narrower > 0 {
+            ctx.note(&self.name, format!("{narrower} holes are wider than T{} ({} mm): bore them to size after drilling", tool.number, cutter.diameter));
+        }
+        if moves.last().is_some_and(|m| m.to().z < initial) {
+            moves.push(Move::Rapid { to: moves.last().expect("a move").to().truncate().extend(initial) });
+        }
+        let first = cycles.first().map_or(DVec2::ZERO, |c| c.at).extend(initial);
+        // The first cycle's first move is the rapid to its centre at the clearance height,
+        // where the path starts: kept, a move of no length.
+        let path = Toolpath { name: self.name.clone(), tool: tool.number, spindle_rpm: tool.spindle_rpm, start: first, moves, cycles };
+        Ok(Planned { paths: vec![path], grooves, ..Planned::default() })
+    }
+}
+
+/// The holes by diameter, for messages: "3 × φ6, 2 × φ8.5".
+pub fn sizes(holes: &[Hole]) -> Vec<String> {
+    let mut by: Vec<(f64, usize)> = Vec::new();
+    for h in holes {
+        let d = (h.diameter * 1000.0).round() / 1000.0;
+        match by.iter_mut().find(|(x, _)| (*x - d).abs() < 1e-9) {
+            Some((_, n)) => *n += 1,
+            None => by.push((d, 1)),
+        }
+    }
+    by.sort_by(|a, b| a.0.total_cmp(&b.0));
+    by.into_iter().map(|(d, n)| format!("{n} × φ{}", crate::limits::shown(d))).collect()
+}

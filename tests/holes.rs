@@ -1,0 +1,423 @@
+//! Holes found in generated parts and drawings with known holes, and drilled: canned cycles
+//! read by LinuxCNC's interpreter move the tool as the same cycles written out as moves (GRBL's
+//! form, which GRBL's own parser reads); the programs verify clean.
+
+mod common;
+
+use std::process::Command;
+
+use swarf::cutter::Cutter;
+use swarf::geom::{DVec2, DVec3, Tolerances};
+use swarf::holes::{mesh::find, Bottom, Hole};
+use swarf::job::{self, Job, Operation, Tool};
+use swarf::mesh::Mesh;
+use swarf::operations::{Drill, DrillCycle, ReturnLevel};
+use swarf::post::Dialect;
+use swarf::progress::Progress;
+
+/// A hole of the generated block.
+#[derive(Clone, Copy)]
+enum Kind {
+    Through { d: f64 },
+    Blind { d: f64, depth: f64, cone: bool },
+    Counterbore { big: f64, deep: f64, d: f64 },
+}
+
+#[derive(Clone, Copy)]
+struct Spec {
+    tile: (usize, usize),
+    kind: Kind,
+    /// Where the first vertex of its circles lies (radians): holes not lined up with the grid.
+    phase: f64,
+    sides: usize,
+}
+
+/// Half a drill's 118° point.
+const POINT: f64 = 59.0 * std::f64::consts::PI / 180.0;
+
+/// A block of `nx` × `ny` square tiles of side `side`, `thick` deep (top at 0), with the holes
+/// of `specs` at their tiles' centres (tessellated cylinders, floors, cone bottoms, a
+/// counterbore's annulus). Tiles meet at T-junctions, as many exported parts do.
+fn block(nx: usize, ny: usize, side: f64, thick: f64, specs: &[Spec]) -> Mesh {
+    let mut tris: Vec<[DVec3; 3]> = Vec::new();
+    let mut push = |t: [DVec3; 3], hint: DVec3| {
+        let n = (t[1] - t[0]).cross(t[2] - t[0]);
+        tris.push(if n.dot(hint) < 0.0 { [t[0], t[2], t[1]] } else { t });
+    };
+    let half = side / 2.0;
+    for i in 0..nx {
+        for j in 0..ny {
+            let c = DVec2::new((i as f64 + 0.5) * side, (j as f64 + 0.5) * side);
+            let spec = specs.iter().find(|s| s.tile == (i, j));
+            let square = |z: f64| [c + DVec2::new(-half, -half), c + DVec2::new(half, -half), c + DVec2::new(half, half), c + DVec2::new(-half, half)].map(|p| p.extend(z));
+            let plain = |z: f64, up: f64, push: &mut dyn FnMut([DVec3; 3], DVec3)| {
+                let q = square(z);
+                push([q[0], q[1], q[2]], DVec3::Z * up);
+                push([q[0], q[2], q[3]], DVec3::Z * up);
+            };
+            let Some(s) = spec else {
+                plain(0.0, 1.0, &mut push);
+                plain(-thick, -1.0, &mut push);
+                continue;
+            };
+            let n = s.sides;
+            let at = |k: usize, r: f64, z: f64| (c + DVec2::from_angle(s.phase + std::f64::consts::TAU * k as f64 / n as f64) * r).extend(z);
+            // The face between the tile's square and a circle of radius `r` at `z`.
+            let ring = |r: f64, z: f64, up: f64, push: &mut dyn FnMut([DVec3; 3], DVec3)| {
+                let on_square = |a: f64| {
+                    let d = DVec2::from_angle(a);
+                    (c + d * (half / d.x.abs().max(d.y.abs()))).extend(z)
+                };
+                for k in 0..n {
+                    let (a0, a1) = (s.phase + std::f64::consts::TAU * k as f64 / n as f64, s.phase + std::f64::consts::TAU * (k + 1) as f64 / n as f64);
+                    let (c0, c1) = (at(k, r, z), at(k + 1, r, z));
+                    let mut outer = vec![on_square(a0)];
+                    for q in 0..4 {
+                        // The square's corners at 45°, 135°, …: those strictly inside this sector.
+                        let corner = std::f64::consts::FRAC_PI_4 + q as f64 * std::f64::consts::FRAC_PI_2;
+                        let mut rel = (corner - a0).rem_euclid(std::f64::consts::TAU);
+                        if rel > 0.0 && rel < a1 - a0 {
+                            rel += a0;
+                            outer.push((c + DVec2::from_angle(rel) * half * std::f64::consts::SQRT_2).extend(z));
+                        }
+                    }
+                    outer.push(on_square(a1));
+                    push([c1, c0, outer[0]], DVec3::Z * up);
+                    for w in outer.windows(2) {
+                        push([c1, w[0], w[1]], DVec3::Z * up);
+                    }
+                }
+            };
+            let wall = |r: f64, top: f64, bottom: f64, push: &mut dyn FnMut([DVec3; 3], DVec3)| {
+                for k in 0..n {
+                    let (a, b, cc, d) = (at(k, r, top), at(k + 1, r, top), at(k + 1, r, bottom), at(k, r, bottom));
+                    let inward = (c - ((a + b) / 2.0).truncate()).extend(0.0);
+                    push([a, b, cc], inward);
+                    push([a, cc, d], inward);
+                }
+            };
+            let floor = |r: f64, z: f64, cone: bool, push: &mut dyn FnMut([DVec3; 3], DVec3)| {
+                let apex = c.extend(if cone { z - r / POINT.tan() } else { z });
+                for k in 0..n {
+                    push([apex, at(k, r, z), at(k + 1, r, z)], DVec3::Z);
+                }
+            };
+            match s.kind {
+                Kind::Through { d } => {
+                    ring(d / 2.0, 0.0, 1.0, &mut push);
+                    wall(d / 2.0, 0.0, -thick, &mut push);
+                    ring(d / 2.0, -thick, -1.0, &mut push);
+                }
+                Kind::Blind { d, depth, cone } => {
+                    ring(d / 2.0, 0.0, 1.0, &mut push);
+                    wall(d / 2.0, 0.0, -depth, &mut push);
+                    floor(d / 2.0, -depth, cone, &mut push);
+                    plain(-thick, -1.0, &mut push);
+                }
+                Kind::Counterbore { big, deep, d } => {
+                    ring(big / 2.0, 0.0, 1.0, &mut push);
+                    wall(big / 2.0, 0.0, -deep, &mut push);
+                    for k in 0..n {
+                        let (a, b, cc, e) = (at(k, big / 2.0, -deep), at(k + 1, big / 2.0, -deep), at(k + 1, d / 2.0, -deep), at(k, d / 2.0, -deep));
+                        push([a, b, cc], DVec3::Z);
+                        push([a, cc, e], DVec3::Z);
+                    }
+                    wall(d / 2.0, -deep, -thick, &mut push);
+                    ring(d / 2.0, -thick, -1.0, &mut push);
+                }
+            }
+        }
+    }
+    // The block's sides.
+    let (w, h) = (nx as f64 * side, ny as f64 * side);
+    let corners = [DVec2::new(0.0, 0.0), DVec2::new(w, 0.0), DVec2::new(w, h), DVec2::new(0.0, h)];
+    for k in 0..4 {
+        let (a, b) = (corners[k], corners[(k + 1) % 4]);
+        let out = DVec2::new(b.y - a.y, a.x - b.x).extend(0.0);
+        push([a.extend(0.0), b.extend(0.0), b.extend(-thick)], out);
+        push([a.extend(0.0), b.extend(-thick), a.extend(-thick)], out);
+    }
+    Mesh::from_triangles(tris, &Tolerances::DEFAULT).unwrap()
+}
+
+const SIDE: f64 = 14.0;
+const THICK: f64 = 10.0;
+
+fn specs() -> Vec<Spec> {
+    vec![
+        Spec { tile: (0, 0), kind: Kind::Through { d: 6.0 }, phase: 0.0, sides: 64 },
+        Spec { tile: (1, 0), kind: Kind::Blind { d: 8.0, depth: 5.0, cone: false }, phase: 0.12, sides: 48 },
+        Spec { tile: (2, 0), kind: Kind::Blind { d: 5.0, depth: 6.0, cone: true }, phase: 0.05, sides: 40 },
+        Spec { tile: (0, 1), kind: Kind::Counterbore { big: 11.0, deep: 3.0, d: 6.6 }, phase: 0.3, sides: 64 },
+        // 0.75 mm from the block's side.
+        Spec { tile: (2, 1), kind: Kind::Through { d: 12.5 }, phase: 0.7, sides: 72 },
+        Spec { tile: (1, 2), kind: Kind::Through { d: 6.0 }, phase: 0.2, sides: 32 },
+    ]
+}
+
+/// What each spec's holes must be: (centre, diameter, top, bottom, through, bottom).
+fn expected(specs: &[Spec]) -> Vec<(DVec2, f64, f64, f64, Bottom)> {
+    let mut out = Vec::new();
+    for s in specs {
+        let c = DVec2::new((s.tile.0 as f64 + 0.5) * SIDE, (s.tile.1 as f64 + 0.5) * SIDE);
+        match s.kind {
+            Kind::Through { d } => out.push((c, d, 0.0, -THICK, Bottom::Open)),
+            Kind::Blind { d, depth, cone } => out.push((c, d, 0.0, -depth, if cone { Bottom::Cone } else { Bottom::Flat })),
+            Kind::Counterbore { big, deep, d } => {
+                out.push((c, big, 0.0, -deep, Bottom::Flat));
+                out.push((c, d, -deep, -THICK, Bottom::Open));
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn every_hole_of_a_generated_block_is_found_with_its_size_and_depth() {
+    let specs = specs();
+    let part = block(3, 3, SIDE, THICK, &specs);
+    let started = std::time::Instant::now();
+    let found = find(&part);
+    eprintln!("{} holes found in {} triangles in {:.1} ms", found.len(), part.faces.len(), started.elapsed().as_secs_f64() * 1e3);
+    let want = expected(&specs);
+    assert_eq!(found.len(), want.len(), "{found:#?}");
+    for (c, d, top, bottom, shape) in want {
+        let h: &Hole = found.iter().find(|h| h.center.distance(c) < 0.01 && (h.diameter - d).abs() < 0.01).unwrap_or_else(|| panic!("no φ{d} hole at {c}: {found:#?}"));
+        // The fitted circle passes through the tessellation's vertices: the diameter is exact.
+        assert!((h.diameter - d).abs() < 0.01 && (h.top - top).abs() < 0.01 && (h.bottom - bottom).abs() < 0.01, "{h:?} against φ{d} {top}..{bottom}");
+        assert_eq!((h.through, h.bottom_shape), (shape == Bottom::Open, shape), "{h:?}");
+    }
+    // A counterbore is two holes on one axis, the wider first.
+    let k = found.iter().position(|h| (h.diameter - 11.0).abs() < 0.01).unwrap();
+    assert!((found[k + 1].diameter - 6.6).abs() < 0.01 && found[k + 1].center.distance(found[k].center) < 1e-6);
+}
+
+#[test]
+fn parts_without_holes_have_none() {
+    assert!(find(&block(3, 2, SIDE, THICK, &[])).is_empty(), "a plain block");
+    assert!(find(&swarf::mesh::sample::demo_part()).is_empty(), "the sample part");
+    assert!(find(&common::mesa(20.0, 5.0, 30.0)).is_empty(), "a mesa");
+    // A round boss is no hole: its normals point away from its axis.
+    let n = 48;
+    let at = |k: usize, z: f64| (DVec2::from_angle(std::f64::consts::TAU * k as f64 / n as f64) * 5.0).extend(z);
+    let mut tris = Vec::new();
+    for k in 0..n {
+        tris.push([at(k, 0.0), at(k + 1, 0.0), at(k + 1, 8.0)]);
+        tris.push([at(k, 0.0), at(k + 1, 8.0), at(k, 8.0)]);
+        tris.push([DVec3::new(0.0, 0.0, 8.0), at(k, 8.0), at(k + 1, 8.0)]);
+        tris.push([DVec3::ZERO, at(k + 1, 0.0), at(k, 0.0)]);
+    }
+    assert!(find(&common::mesh(tris)).is_empty(), "a round boss");
+}
+
+fn drill_tool(number: u32, cutter: Cutter) -> Tool {
+    Tool { number, cutter: Cutter { flute_length: 30.0, ..cutter }, spindle_rpm: 3000.0, feed_rate: 300.0, plunge_rate: 150.0, ..Tool::default() }
+}
+
+fn drilling_job(dialect: Dialect) -> Job {
+    let mut job = Job {
+        tools: vec![drill_tool(1, Cutter { shape: swarf::cutter::Shape::SpotDrill, diameter: 10.0, angle: Some(90.0), ..Cutter::default() }), drill_tool(2, Cutter::drill(6.0, 118.0))],
+        ..Job::default()
+    };
+    job.post.dialect = dialect;
+    let six = |cycle| Drill { tool: 2, cycle, min_diameter: Some(5.9), max_diameter: Some(6.1), ..Drill::default() };
+    job.operations = vec![
+        Operation::Drill(Drill { name: "spot".into(), tool: 1, cycle: DrillCycle::Spot, max_diameter: Some(7.0), return_to: ReturnLevel::Retract, ..Drill::default() }),
+        Operation::Drill(Drill { name: "peck".into(), ..six(DrillCycle::Peck) }),
+        Operation::Drill(Drill { name: "chip".into(), peck: 1.5, return_to: ReturnLevel::Retract, ..six(DrillCycle::ChipBreak) }),
+        Operation::Drill(Drill { name: "dwell".into(), dwell: 0.5, ..six(DrillCycle::Dwell) }),
+    ];
+    job
+}
+
+/// rs274's motions of a program: (call, end) for each traverse and feed that goes somewhere
+/// (the interpreter repeats a cycle's position when the tool is already there), and the dwells.
+fn canon(gcode: &str, tools: &[Tool]) -> Vec<(String, DVec3)> {
+    let out = common::rs274(gcode, tools);
+    let mut motions: Vec<(String, DVec3)> = out
+        .lines()
+        .filter_map(|line| {
+            let call = line.split_once('(').map(|(a, b)| (a.split_whitespace().last().unwrap_or(""), b))?;
+            let args: Vec<f64> = call.1.trim_end_matches(')').split([',', ' ']).filter_map(|w| w.trim().parse().ok()).collect();
+            match call.0 {
+                "STRAIGHT_TRAVERSE" | "STRAIGHT_FEED" => Some((call.0.to_string(), DVec3::new(args[0], args[1], args[2]))),
+                "DWELL" => Some(("DWELL".to_string(), DVec3::splat(args[0]))),
+                _ => None,
+            }
+        })
+        .collect();
+    motions.dedup_by(|b, a| b.0 != "DWELL" && b.1 == a.1);
+    motions
+}
+
+#[test]
+fn holes_drilled_in_canned_cycles_move_as_the_same_cycles_written_out() {
+    let specs = specs();
+    let part = block(3, 3, SIDE, THICK, &specs);
+    let job = drilling_job(Dialect::LinuxCnc);
+    let out = job::run(&job, part.clone(), &mut Progress::none()).expect("drilled");
+    let v = out.verification.as_ref().expect("verified");
+    assert!(v.report.is_clean(), "{}", v.report.describe());
+    let gcode = &out.gcode;
+    for word in ["G99 G81", "G98 G83", "G99 G73", "G98 G82", "G80"] {
+        assert!(gcode.contains(word), "{word} in the program");
+    }
+    assert!(gcode.contains(" P0.5 "), "G82's dwell in seconds");
+    // Where the drill goes: the placed holes, as `swarf holes` lists them.
+    let holes = job.holes(part.clone()).unwrap();
+    let through: Vec<&Hole> = holes.iter().filter(|h| (h.diameter - 6.0).abs() < 0.01).collect();
+    assert_eq!(through.len(), 2);
+    let tip = 3.0 / POINT.tan();
+    for h in &through {
+        // A feed's Z is written rounded up.
+        let bottom = ((h.bottom - tip - 0.5) * 1000.0 - 1e-6).ceil() / 1000.0;
+        let text = format!("X{} Y{} Z{}", short(h.center.x), short(h.center.y), short(bottom));
+        assert!(gcode.contains(&text), "the drill goes through by its point and 0.5 mm: {text}");
+    }
+    // The same paths written by a post without canned cycles: rs274 makes the same motions
+    // of both.
+    let mut expanded = job.clone();
+    expanded.post.custom = Some(swarf::post::Post { canned_cycles: false, ..Dialect::LinuxCnc.post() });
+    let out2 = job::run(&expanded, part.clone(), &mut Progress::none()).unwrap();
+    assert!(!out2.gcode.contains("G83") && !out2.gcode.lines().any(|l| l == "G80"), "no canned cycle written");
+    assert!(out2.gcode.contains("G4 P0.5"), "the dwell written out");
+    let (a, b) = (canon(gcode, &job.tools), canon(&out2.gcode, &job.tools));
+    assert!(a.len() > 40, "{} motions", a.len());
+    assert_eq!(a.len(), b.len(), "as many motions in both");
+    for (k, (x, y)) in a.iter().zip(&b).enumerate() {
+        assert!(x.0 == y.0 && x.1.distance(y.1) < 2e-3, "motion {k}: {x:?} canned against {y:?} written out");
+    }
+    assert!((out.cycle.seconds - out2.cycle.seconds).abs() < 0.5, "cycle {} against {}", out.cycle.seconds, out2.cycle.seconds);
+    // Read back, the canned program is the planned one.
+    let read = swarf::job::verify_gcode(&job, part.clone(), gcode, None, &mut Progress::none()).unwrap();
+    assert!(read.report.is_clean(), "{}", read.report.describe());
+    let planned: usize = out.paths.iter().map(|p| p.moves.len()).sum();
+    let read_back: usize = swarf::post::read::read_gcode(gcode, 1).unwrap().iter().map(|p| p.moves.len()).sum();
+    assert!(read_back >= planned && read_back <= planned + 12, "read back {read_back} moves against {planned} planned");
+}
+
+/// A length as the LinuxCNC post writes it.
+fn short(v: f64) -> String {
+    let s = format!("{v:.3}");
+    let s = s.trim_end_matches('0').trim_end_matches('.').to_string();
+    if s == "-0" {
+        "0".into()
+    } else {
+        s
+    }
+}
+
+#[test]
+fn grbl_gets_the_cycles_as_moves_its_own_parser_reads() {
+    let part = block(3, 3, SIDE, THICK, &specs());
+    for dialect in [Dialect::Grbl, Dialect::GrblHal] {
+        let out = job::run(&drilling_job(dialect), part.clone(), &mut Progress::none()).unwrap();
+        assert!(out.verification.as_ref().unwrap().report.is_clean());
+        for word in ["G81", "G82", "G83", "G73", "G80", "G98", "G99"] {
+            assert!(!out.gcode.contains(word), "{dialect:?}: no {word}");
+        }
+        assert!(out.gcode.contains("G4 P0.5"));
+        // GRBL 1.1h's parser reads every line as grblHAL does but grblHAL's tool changes (M6).
+        let without_changes: String = out.gcode.lines().filter(|l| !l.contains("M6")).map(|l| format!("{l}\n")).collect();
+        if let Some(said) = common::grblcheck(&without_changes) {
+            said.unwrap_or_else(|e| panic!("{dialect:?}: {e}"));
+        }
+    }
+}
+
+#[test]
+fn fanuc_dwells_in_milliseconds_and_reads_back_alike() {
+    let part = block(3, 3, SIDE, THICK, &specs());
+    let out = job::run(&drilling_job(Dialect::Fanuc), part.clone(), &mut Progress::none()).unwrap();
+    assert!(out.gcode.lines().any(|l| l.contains("G82") && l.contains(" P500 ")), "G82 P500");
+    let paths = swarf::post::read::read_gcode(&out.gcode, 1).unwrap();
+    let dwells: f64 = paths.iter().map(|p| p.dwell_seconds()).sum();
+    assert!((dwells - 1.0).abs() < 1e-9, "two holes dwell 0.5 s each: {dwells}");
+}
+
+#[test]
+fn a_drill_deeper_than_its_flutes_and_a_spot_without_a_cone_are_refused() {
+    let part = block(3, 3, SIDE, THICK, &specs());
+    let mut job = drilling_job(Dialect::LinuxCnc);
+    job.tools[1].cutter.flute_length = 8.0;
+    let e = job::run(&job, part.clone(), &mut Progress::none()).unwrap_err().to_string();
+    assert!(e.contains("deeper than T2's flutes (8 mm)"), "{e}");
+    let mut job = drilling_job(Dialect::LinuxCnc);
+    job.tools[0].cutter = Cutter::flat(6.0);
+    let e = job::run(&job, part.clone(), &mut Progress::none()).unwrap_err().to_string();
+    assert!(e.contains("spotting needs a spot drill"), "{e}");
+    // A cone in a 3D operation is named.
+    let mut job = drilling_job(Dialect::LinuxCnc);
+    job.operations = vec![Operation::RoughZlevel(swarf::operations::RoughZlevel { tool: 2, ..Default::default() })];
+    let e = job::run(&job, part, &mut Progress::none()).unwrap_err().to_string();
+    assert!(e.contains("T2 is a 6 mm drill 118°"), "{e}");
+}
+
+#[test]
+fn a_drawings_circles_are_spotted_and_drilled_through_the_sheet() {
+    // A plate 60 × 40 with four φ5 holes, a φ8 one, and a slot that is no hole.
+    let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" width="60mm" height="40mm" viewBox="0 0 60 40">
+      <rect x="0" y="0" width="60" height="40" fill="none" stroke="black"/>
+      <circle cx="8" cy="8" r="2.5"/><circle cx="52" cy="8" r="2.5"/><circle cx="52" cy="32" r="2.5"/><circle cx="8" cy="32" r="2.5"/>
+      <circle cx="30" cy="20" r="4"/>
+      <rect x="20" y="30" width="20" height="4" rx="2"/>
+    </svg>"#;
+    let drawing = swarf::drawing::import::read_drawing(svg.as_bytes(), Some("plate.svg"), &Tolerances::DEFAULT).unwrap();
+    let mut job = Job::default_for_drawing();
+    job.drawing.thickness = 6.0;
+    let holes = job.holes(drawing.clone()).unwrap();
+    assert_eq!(holes.len(), 5, "{holes:#?}");
+    assert_eq!(holes.iter().filter(|h| (h.diameter - 5.0).abs() < 1e-6).count(), 4);
+    assert!(holes.iter().all(|h| h.through && (h.top - 0.0).abs() < 1e-9 && (h.bottom + 6.0).abs() < 1e-9));
+    job.tools = vec![drill_tool(1, Cutter { shape: swarf::cutter::Shape::SpotDrill, diameter: 10.0, angle: Some(90.0), ..Cutter::default() }), drill_tool(2, Cutter::drill(5.0, 118.0))];
+    let profile = job.operations[0].clone();
+    job.tools.push(Tool { number: 3, cutter: Cutter::flat(3.0), ..Tool::default() });
+    let profile = match profile {
+        Operation::Profile2d(p) => Operation::Profile2d(swarf::operations::Profile2d { tool: 3, ..p }),
+        other => other,
+    };
+    job.operations = vec![
+        Operation::Drill(Drill { name: "spot".into(), tool: 1, cycle: DrillCycle::Spot, ..Drill::default() }),
+        Operation::Drill(Drill { name: "drill".into(), tool: 2, cycle: DrillCycle::Peck, max_diameter: Some(5.1), ..Drill::default() }),
+        profile,
+    ];
+    // Drilled alone, the holes are the drill's to cut: the sheet's verification holds the rest.
+    let alone = Job { operations: job.operations[..2].to_vec(), ..job.clone() };
+    let out = job::run(&alone, drawing.clone(), &mut Progress::none()).unwrap();
+    assert!(out.verification.as_ref().unwrap().report.is_clean(), "{}", out.verification.as_ref().unwrap().report.describe());
+    // A drill wider than the holes cuts into the plate: a gouge.
+    let mut wide = alone.clone();
+    wide.tools[1].cutter.diameter = 5.5;
+    let out = job::run(&wide, drawing.clone(), &mut Progress::none()).unwrap();
+    assert!(out.verification.as_ref().unwrap().report.gouge_count > 0, "a φ5.5 drill in φ5 holes gouges");
+    for dialect in [Dialect::LinuxCnc, Dialect::Grbl] {
+        job.post.dialect = dialect;
+        let out = job::run(&job, drawing.clone(), &mut Progress::none()).unwrap();
+        assert!(out.verification.as_ref().unwrap().report.is_clean(), "{}", out.verification.as_ref().unwrap().report.describe());
+        canon(&out.gcode, &job.tools);
+        if dialect == Dialect::Grbl {
+            if let Some(said) = common::grblcheck(&out.gcode) {
+                said.unwrap();
+            }
+        } else {
+            assert_eq!(out.gcode.matches("G98 G83").count(), 4, "four φ5 holes pecked");
+            assert_eq!(out.gcode.matches("G98 G81").count(), 5, "five spots");
+        }
+    }
+}
+
+/// `swarf holes` lists a part's holes with their sizes.
+#[test]
+fn the_cli_lists_holes() {
+    let part = block(3, 3, SIDE, THICK, &specs());
+    let dir = std::env::temp_dir().join(format!("swarf-holes-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let stl = dir.join("block.stl");
+    std::fs::write(&stl, part.to_binary_stl()).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_swarf")).arg("holes").arg(&stl).output().unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{text}{}", String::from_utf8_lossy(&out.stderr));
+    assert!(text.contains("7 holes: 1 × φ5, 2 × φ6, 1 × φ6.6, 1 × φ8, 1 × φ11, 1 × φ12.5"), "{text}");
+    assert!(text.contains("blind, cone bottom") && text.contains("blind, flat bottom") && text.contains("through"), "{text}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
