@@ -11,7 +11,8 @@ use swarf::geom::{DVec2, DVec3, Tolerances};
 use swarf::holes::{mesh::find, Bottom, Hole};
 use swarf::job::{self, Job, Operation, Tool};
 use swarf::mesh::Mesh;
-use swarf::operations::{Drill, DrillCycle, ReturnLevel};
+use swarf::machining::holes::HolePick;
+use swarf::operations::{Bore, Drill, DrillCycle, ReturnLevel};
 use swarf::post::Dialect;
 use swarf::progress::Progress;
 
@@ -220,9 +221,9 @@ fn drilling_job(dialect: Dialect) -> Job {
         ..Job::default()
     };
     job.post.dialect = dialect;
-    let six = |cycle| Drill { tool: 2, cycle, min_diameter: Some(5.9), max_diameter: Some(6.1), ..Drill::default() };
+    let six = |cycle| Drill { tool: 2, cycle, pick: HolePick { min_diameter: Some(5.9), max_diameter: Some(6.1), ..HolePick::default() }, ..Drill::default() };
     job.operations = vec![
-        Operation::Drill(Drill { name: "spot".into(), tool: 1, cycle: DrillCycle::Spot, max_diameter: Some(7.0), return_to: ReturnLevel::Retract, ..Drill::default() }),
+        Operation::Drill(Drill { name: "spot".into(), tool: 1, cycle: DrillCycle::Spot, pick: HolePick { max_diameter: Some(7.0), ..HolePick::default() }, return_to: ReturnLevel::Retract, ..Drill::default() }),
         Operation::Drill(Drill { name: "peck".into(), ..six(DrillCycle::Peck) }),
         Operation::Drill(Drill { name: "chip".into(), peck: 1.5, return_to: ReturnLevel::Retract, ..six(DrillCycle::ChipBreak) }),
         Operation::Drill(Drill { name: "dwell".into(), dwell: 0.5, ..six(DrillCycle::Dwell) }),
@@ -378,7 +379,7 @@ fn a_drawings_circles_are_spotted_and_drilled_through_the_sheet() {
     };
     job.operations = vec![
         Operation::Drill(Drill { name: "spot".into(), tool: 1, cycle: DrillCycle::Spot, ..Drill::default() }),
-        Operation::Drill(Drill { name: "drill".into(), tool: 2, cycle: DrillCycle::Peck, max_diameter: Some(5.1), ..Drill::default() }),
+        Operation::Drill(Drill { name: "drill".into(), tool: 2, cycle: DrillCycle::Peck, pick: HolePick { max_diameter: Some(5.1), ..HolePick::default() }, ..Drill::default() }),
         profile,
     ];
     // Drilled alone, the holes are the drill's to cut: the sheet's verification holds the rest.
@@ -420,4 +421,77 @@ fn the_cli_lists_holes() {
     assert!(text.contains("7 holes: 1 × φ5, 2 × φ6, 1 × φ6.6, 1 × φ8, 1 × φ11, 1 × φ12.5"), "{text}");
     assert!(text.contains("blind, cone bottom") && text.contains("blind, flat bottom") && text.contains("through"), "{text}");
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The nearest the tool's edge comes to a hole's wall (its radius minus the tool centre's
+/// distance from the axis and the tool's radius), along every move of `path` near the hole,
+/// at points 0.05 mm apart.
+fn nearest_to_wall(path: &swarf::toolpath::Toolpath, hole: &Hole, r_tool: f64) -> f64 {
+    let mut nearest = f64::INFINITY;
+    for (a, b, _) in path.segments(0.01) {
+        let n = ((a.distance(b) / 0.05).ceil() as usize).max(1);
+        for k in 0..=n {
+            let p = a.lerp(b, k as f64 / n as f64);
+            if p.z < hole.top && p.truncate().distance(hole.center) < hole.diameter {
+                nearest = nearest.min(hole.diameter / 2.0 - p.truncate().distance(hole.center) - r_tool);
+            }
+        }
+    }
+    nearest
+}
+
+fn boring_job(dialect: Dialect, bore: Bore) -> Job {
+    let mut job = Job { tools: vec![Tool { number: 1, cutter: Cutter { flute_length: 15.0, ..Cutter::flat(4.0) }, feed_rate: 600.0, plunge_rate: 200.0, ..Tool::default() }], ..Job::default() };
+    job.post.dialect = dialect;
+    job.operations = vec![Operation::Bore(bore)];
+    job
+}
+
+#[test]
+fn holes_wider_than_the_tool_are_bored_on_a_helix_never_nearer_the_wall_than_asked() {
+    let part = block(3, 3, SIDE, THICK, &specs());
+    // The φ12.5 through hole (rings: three times the tool), the φ8 blind one and the φ11
+    // counterbore, with a finishing step and 0.1 mm left on the walls.
+    for (leave, finish) in [(0.0, 0.0), (0.1, 0.2)] {
+        let bore = Bore { pick: HolePick { min_diameter: Some(7.9), ..HolePick::default() }, leave_stock: leave, finish_step: finish, pitch: 1.0, ..Bore::default() };
+        let job = boring_job(Dialect::LinuxCnc, bore);
+        let out = job::run(&job, part.clone(), &mut Progress::none()).expect("bored");
+        let v = out.verification.as_ref().unwrap();
+        assert!(v.report.is_clean(), "{}", v.report.describe());
+        let holes = job.holes(part.clone()).unwrap();
+        for h in holes.iter().filter(|h| h.diameter > 7.9) {
+            let near = nearest_to_wall(&out.paths[0], h, 2.0);
+            assert!(near >= leave - 1e-6 && near <= leave + 0.01, "φ{} with {leave} left: the tool comes {near:.4} mm from the wall", h.diameter);
+        }
+        // Helices: arcs that move Z, at most a pitch per turn, counter-clockwise (climb).
+        let mut at = out.paths[0].start;
+        let mut helices = 0;
+        for m in &out.paths[0].moves {
+            if let swarf::toolpath::Move::Arc { to, clockwise, center, .. } = *m {
+                assert!(!clockwise, "climb: counter-clockwise");
+                if (to.z - at.z).abs() > 1e-9 {
+                    helices += 1;
+                    let turn = swarf::toolpath::arc_sweep(at, to, center, false).abs() / std::f64::consts::TAU;
+                    assert!((to.z - at.z).abs() <= 1.0 * turn + 1e-6, "a pitch of at most 1 mm a turn: {at} to {to} about {center}, {turn} turns");
+                }
+            }
+            at = m.to();
+        }
+        assert!(helices > 20, "{helices} helical arcs");
+        canon(&out.gcode, &job.tools);
+        // Whatever is left in the holes is under the leave-stock (the floor of the blind
+        // hole flat, the wall at its radius): the simulated stock inside them.
+        let residual = v.report.residual_max;
+        assert!(residual.is_finite());
+    }
+    // GRBL reads the helices.
+    let out = job::run(&boring_job(Dialect::Grbl, Bore { pick: HolePick { min_diameter: Some(12.0), ..HolePick::default() }, ..Bore::default() }), part.clone(), &mut Progress::none()).unwrap();
+    if let Some(said) = common::grblcheck(&out.gcode) {
+        said.unwrap();
+    }
+    // A tool as wide as the hole is refused by name.
+    let mut wide = boring_job(Dialect::LinuxCnc, Bore { pick: HolePick { max_diameter: Some(5.5), ..HolePick::default() }, ..Bore::default() });
+    wide.tools[0].cutter.diameter = 5.0;
+    let e = job::run(&wide, part, &mut Progress::none()).map(|_| ()).unwrap_err().to_string();
+    assert!(e.contains("does not fit the φ5 hole"), "{e}");
 }

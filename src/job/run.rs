@@ -103,7 +103,7 @@ impl Job {
     /// or a drawing's circles (numbered as its loops).
     pub fn holes(&self, workpiece: impl Into<Workpiece>) -> Result<Vec<crate::holes::Hole>> {
         self.validate()?;
-        Ok(crate::operations::drill::holes_of(&self.context(workpiece.into())?))
+        Ok(crate::machining::holes::holes_of(&self.context(workpiece.into())?))
     }
 
     /// The context the operations plan in, with the part placed and the in-process stock

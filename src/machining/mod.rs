@@ -11,6 +11,7 @@
 
 pub mod air;
 pub mod context;
+pub mod holes;
 pub mod levels;
 pub mod path2d;
 pub mod raster;

@@ -11,7 +11,8 @@ use serde::{Deserialize, Serialize};
 use crate::error::{Error, Result};
 use crate::geom::segment::Segment;
 use crate::geom::DVec2;
-use crate::holes::{self, Bottom, Hole};
+use crate::holes::Bottom;
+use crate::machining::holes::HolePick;
 use crate::machining::report::Groove;
 use crate::machining::{named_operation, not_negative, positive, Context, FieldError, Operate, Planned};
 use crate::toolpath::cycle::{Cycle, CycleKind};
@@ -58,13 +59,10 @@ pub struct Drill {
     pub tool: u32,
     /// Default value: drill.
     pub cycle: DrillCycle,
-    /// The holes to drill, by their index as `swarf holes` (a part) or `swarf drawing` (a
-    /// drawing's loops) numbers them. Default value: all (within the diameters).
-    pub holes: Vec<usize>,
-    /// Only holes at least this wide (mm). Default value: none.
-    pub min_diameter: Option<f64>,
-    /// Only holes at most this wide (mm). Default value: none.
-    pub max_diameter: Option<f64>,
+    /// The holes to drill.
+    #[serde(flatten)]
+    #[ts(flatten)]
+    pub pick: HolePick,
     /// Depth below each hole's top (mm). Default value: the hole's own (through: past its
     /// bottom by the drill's point and the breakthrough; a spot: the depth of a cone
     /// `spotDiameter` across).
@@ -90,9 +88,7 @@ impl Default for Drill {
             enabled: true,
             tool: 1,
             cycle: DrillCycle::Drill,
-            holes: Vec::new(),
-            min_diameter: None,
-            max_diameter: None,
+            pick: HolePick::default(),
             depth: None,
             breakthrough: 0.5,
             spot_diameter: None,
@@ -101,14 +97,6 @@ impl Default for Drill {
             retract: 1.0,
             return_to: ReturnLevel::Initial,
         }
-    }
-}
-
-/// The holes of the workpiece: a drawing's circles through the sheet, else the part's.
-pub fn holes_of(ctx: &Context) -> Vec<Hole> {
-    match &ctx.sheet {
-        Some(sheet) => holes::in_drawing(&sheet.drawing, ctx.stock.max.z, ctx.stock.max.z - sheet.thickness),
-        None => holes::mesh::find(&ctx.part),
     }
 }
 
@@ -123,10 +111,9 @@ impl Operate for Drill {
         if let Some(d) = self.depth {
             positive("depth", d)?;
         }
-        for (field, v) in [("minDiameter", self.min_diameter), ("maxDiameter", self.max_diameter), ("spotDiameter", self.spot_diameter)] {
-            if let Some(v) = v {
-                positive(field, v)?;
-            }
+        self.pick.validate()?;
+        if let Some(v) = self.spot_diameter {
+            positive("spotDiameter", v)?;
         }
         not_negative("breakthrough", self.breakthrough)?;
         positive("peck", self.peck)?;
@@ -144,38 +131,10 @@ impl Operate for Drill {
         if spot && !cutter.is_cone() {
             return Err(Error::operation(&self.name, format!("spotting needs a spot drill, a drill or a V-bit; T{} is a {}", tool.number, cutter.describe())));
         }
-        let all = holes_of(ctx);
-        if let Some(&k) = self.holes.iter().find(|&&k| k >= all.len()) {
-            return Err(Error::operation(&self.name, format!("there is no hole {k} (the {} has {})", if ctx.sheet.is_some() { "drawing" } else { "part" }, all.len())));
-        }
-        let picked: Vec<&Hole> = all
-            .iter()
-            .enumerate()
-            .filter(|(k, h)| {
-                let by_index = if ctx.sheet.is_some() { h.loop_index.unwrap_or(*k) } else { *k };
-                (self.holes.is_empty() || self.holes.contains(&by_index) || self.holes.contains(k))
-                    && self.min_diameter.is_none_or(|d| h.diameter >= d - 1e-9)
-                    && self.max_diameter.is_none_or(|d| h.diameter <= d + 1e-9)
-            })
-            .map(|(_, h)| h)
-            .collect();
-        if picked.is_empty() {
-            let sizes: Vec<String> = sizes(&all);
-            return Err(Error::operation(
-                &self.name,
-                if all.is_empty() {
-                    "no holes found: a drawing's holes are its circles, a part's its vertical round holes".to_string()
-                } else {
-                    format!("none of the holes fits the choice (there are {})", sizes.join(", "))
-                },
-            ));
-        }
+        let picked = self.pick.pick(ctx, &self.name)?;
         let profile = cutter.profile();
         let tip = cutter.tip_length();
         let half = cutter.point_angle().to_radians() / 2.0;
-        let points: Vec<DVec2> = picked.iter().map(|h| h.center).collect();
-        let start = DVec2::new(ctx.stock.min.x, ctx.stock.min.y);
-        let order = holes::order(&points, start);
         let initial = ctx.heights.clearance;
         let mut moves: Vec<Move> = Vec::new();
         let mut cycles = Vec::new();
@@ -183,8 +142,7 @@ impl Operate for Drill {
         // verification holds everything else to the sheet's top).
         let mut grooves = Vec::new();
         let (mut flat_floors, mut wider, mut narrower) = (0, 0, 0);
-        for &k in &order {
-            let h = picked[k];
+        for h in &picked {
             let bottom = match (self.depth, spot) {
                 (Some(d), _) => h.top - d,
                 (None, true) => {
@@ -281,18 +239,4 @@ impl Operate for Drill {
         let path = Toolpath { name: self.name.clone(), tool: tool.number, spindle_rpm: tool.spindle_rpm, start: first, moves, cycles };
         Ok(Planned { paths: vec![path], grooves, ..Planned::default() })
     }
-}
-
-/// The holes by diameter, for messages: "3 × φ6, 2 × φ8.5".
-pub fn sizes(holes: &[Hole]) -> Vec<String> {
-    let mut by: Vec<(f64, usize)> = Vec::new();
-    for h in holes {
-        let d = (h.diameter * 1000.0).round() / 1000.0;
-        match by.iter_mut().find(|(x, _)| (*x - d).abs() < 1e-9) {
-            Some((_, n)) => *n += 1,
-            None => by.push((d, 1)),
-        }
-    }
-    by.sort_by(|a, b| a.0.total_cmp(&b.0));
-    by.into_iter().map(|(d, n)| format!("{n} × φ{}", crate::limits::shown(d))).collect()
 }

@@ -9,6 +9,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::machining::Operate;
 
+pub mod bore;
 pub mod drill;
 pub mod engrave;
 pub mod finish_raster;
@@ -19,6 +20,7 @@ pub mod rough_octree;
 pub mod rough_zigzag;
 pub mod rough_zlevel;
 
+pub use bore::Bore;
 pub use drill::{Drill, DrillCycle, ReturnLevel};
 pub use engrave::Engrave;
 pub use finish_raster::{Boundary, FinishRaster};
@@ -98,6 +100,8 @@ operations! {
     /// Drilling a drawing's circles or a part's holes: spot, drill, dwell, peck, chip break
     /// (canned cycles where the control has them).
     Drill(Drill) = "drill",
+    /// Helical boring of holes wider than the tool.
+    Bore(Bore) = "bore",
 }
 
 impl Operation {

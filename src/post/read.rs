@@ -346,7 +346,11 @@ mod tests {
         for (text, needle) in [
             ("G0 X0 Y0 Z0\nG18\n", "line 2"),
             ("G41 D1\n", "compensation"),
-            ("G0 X0 Y0 Z5\nG81 X1 Y1 Z-1 R1\n", "canned cycle"),
+            ("G0 X0 Y0 Z5\nG84 X1 Y1 Z-1 R1\n", "canned cycle"),
+            ("G0 X0 Y0 Z5\nG81 X1 Y1 Z-1 R1\n", "before any feed rate"),
+            ("G0 X0 Y0 Z5\nG83 X1 Y1 Z-1 R1 F100\n", "positive Q"),
+            ("G0 X0 Y0 Z5\nG81 X1 Y1 Z2 R1 F100\n", "below its bottom"),
+            ("G91\nG0 X0 Y0 Z5\nG81 X1 Y1 Z-1 R1 F100\n", "incremental"),
             ("G0 X0 Y0 Z0 A90\n", "A axis"),
             ("G0 X0 Y0 Z0\nG1 X5\n", "feed rate"),
             ("G0 X0 Y0 Z0\nG2 X5 Y0 F100\n", "I and J"),

@@ -282,7 +282,7 @@ fn run(cli: Cli) -> Result<(), String> {
                 let index = h.loop_index.map_or(k, |l| l);
                 println!("hole {index}: φ{:.3} at ({:.3}, {:.3}), top {:.3}, bottom {:.3} ({:.3} deep), {kind}", h.diameter, h.center.x, h.center.y, h.top, h.bottom, h.depth());
             }
-            let sizes = swarf::operations::drill::sizes(&holes);
+            let sizes = swarf::machining::holes::sizes(&holes);
             println!("{} holes{}{} ({:.2} s)", holes.len(), if sizes.is_empty() { "" } else { ": " }, sizes.join(", "), started.elapsed().as_secs_f64());
             Ok(())
         }
