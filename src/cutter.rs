@@ -31,6 +31,9 @@ pub enum Shape {
     /// A V-bit or chamfer mill: a cone of its included angle (90° by default) from a tip of
     /// `tipDiameter` (0: a point).
     VBit,
+    /// A single-form thread mill: a disc of the cutting diameter at the tip (its form's angle
+    /// 60° by default) on a neck `fluteLength` long; simulated as a flat end of its diameter.
+    ThreadMill,
 }
 
 /// A milling cutter's geometry, in millimetres.
@@ -161,7 +164,7 @@ impl Cutter {
             Shape::Flat => 0.0,
             Shape::Ball => self.radius(),
             Shape::BullNose => self.corner_radius.clamp(0.0, self.radius()),
-            Shape::Drill | Shape::SpotDrill | Shape::VBit => 0.0,
+            Shape::Drill | Shape::SpotDrill | Shape::VBit | Shape::ThreadMill => 0.0,
         }
     }
 
@@ -175,6 +178,7 @@ impl Cutter {
             Shape::SpotDrill => format!("{} mm spot drill {}°", self.diameter, self.point_angle()),
             Shape::VBit if self.tip_diameter > 0.0 => format!("{} mm V-bit {}° tip {}", self.diameter, self.point_angle(), self.tip_diameter),
             Shape::VBit => format!("{} mm V-bit {}°", self.diameter, self.point_angle()),
+            Shape::ThreadMill => format!("{} mm thread mill", self.diameter),
         }
     }
 

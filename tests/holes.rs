@@ -10,9 +10,9 @@ use swarf::cutter::Cutter;
 use swarf::geom::{DVec2, DVec3, Tolerances};
 use swarf::holes::{mesh::find, Bottom, Hole};
 use swarf::job::{self, Job, Operation, Tool};
-use swarf::mesh::Mesh;
 use swarf::machining::holes::HolePick;
-use swarf::operations::{Bore, Drill, DrillCycle, ReturnLevel};
+use swarf::mesh::Mesh;
+use swarf::operations::{Bore, Chamfer, Drill, DrillCycle, Hand, ReturnLevel, ThreadMill};
 use swarf::post::Dialect;
 use swarf::progress::Progress;
 
@@ -223,7 +223,14 @@ fn drilling_job(dialect: Dialect) -> Job {
     job.post.dialect = dialect;
     let six = |cycle| Drill { tool: 2, cycle, pick: HolePick { min_diameter: Some(5.9), max_diameter: Some(6.1), ..HolePick::default() }, ..Drill::default() };
     job.operations = vec![
-        Operation::Drill(Drill { name: "spot".into(), tool: 1, cycle: DrillCycle::Spot, pick: HolePick { max_diameter: Some(7.0), ..HolePick::default() }, return_to: ReturnLevel::Retract, ..Drill::default() }),
+        Operation::Drill(Drill {
+            name: "spot".into(),
+            tool: 1,
+            cycle: DrillCycle::Spot,
+            pick: HolePick { max_diameter: Some(7.0), ..HolePick::default() },
+            return_to: ReturnLevel::Retract,
+            ..Drill::default()
+        }),
         Operation::Drill(Drill { name: "peck".into(), ..six(DrillCycle::Peck) }),
         Operation::Drill(Drill { name: "chip".into(), peck: 1.5, return_to: ReturnLevel::Retract, ..six(DrillCycle::ChipBreak) }),
         Operation::Drill(Drill { name: "dwell".into(), dwell: 0.5, ..six(DrillCycle::Dwell) }),
@@ -351,7 +358,7 @@ fn a_drill_deeper_than_its_flutes_and_a_spot_without_a_cone_are_refused() {
     let mut job = drilling_job(Dialect::LinuxCnc);
     job.operations = vec![Operation::RoughZlevel(swarf::operations::RoughZlevel { tool: 2, ..Default::default() })];
     let e = job::run(&job, part, &mut Progress::none()).unwrap_err().to_string();
-    assert!(e.contains("T2 is a 6 mm drill 118°"), "{e}");
+    assert!(e.contains("T2 is a 6 mm drill 118°: 'rough' cuts with flat, ball and bull-nose tools") || e.contains("T2 is a 6 mm drill 118°"), "{e}");
 }
 
 #[test]
@@ -494,4 +501,136 @@ fn holes_wider_than_the_tool_are_bored_on_a_helix_never_nearer_the_wall_than_ask
     wide.tools[0].cutter.diameter = 5.0;
     let e = job::run(&wide, part, &mut Progress::none()).map(|_| ()).unwrap_err().to_string();
     assert!(e.contains("does not fit the φ5 hole"), "{e}");
+}
+
+#[test]
+fn chamfers_lie_on_the_cone_at_the_asked_width_and_nowhere_else() {
+    let part = block(3, 3, SIDE, THICK, &specs());
+    let mut job = Job { tools: vec![Tool { number: 1, cutter: Cutter { flute_length: 10.0, ..Cutter::v_bit(6.0, 90.0, 0.0) }, ..Tool::default() }], ..Job::default() };
+    job.stock.margin_top = 0.0;
+    let width = 0.6;
+    job.operations = vec![Operation::Chamfer(Chamfer { width, pick: HolePick { max_diameter: Some(8.5), ..HolePick::default() }, ..Chamfer::default() })];
+    let out = job::run(&job, part.clone(), &mut Progress::none()).expect("chamfered");
+    let v = out.verification.as_ref().unwrap();
+    assert!(v.report.is_clean(), "{}", v.report.describe());
+    assert!(out.warnings.iter().any(|w| w.to_string().contains("1 holes lie below the part around them")), "the counterbore's hole is left: {:?}", out.warnings);
+    let grid = v.stock.grid();
+    let holes = job.holes(part.clone()).unwrap();
+    let mut checked = 0;
+    for h in holes.iter().filter(|h| h.diameter < 8.5 && h.top > -1e-9) {
+        let r_hole = h.diameter / 2.0;
+        for j in 0..grid.ny {
+            for i in 0..grid.nx {
+                let p = grid.node(i, j);
+                let r = p.distance(h.center);
+                let top = v.stock.top(i, j);
+                if r > r_hole + 0.05 && r < r_hole + width - 0.05 {
+                    // On the 45° cone: as deep below the top as it is inside the chamfer's rim.
+                    let ideal = h.top - (r_hole + width - r);
+                    assert!((top - ideal).abs() < 0.01, "φ{} at r {r:.3}: stock at {top:.4}, the chamfer at {ideal:.4}", h.diameter);
+                    checked += 1;
+                } else if r > r_hole + width + 0.05 && r < r_hole + width + 3.0 {
+                    assert!(top >= h.top - 1e-6, "φ{} at r {r:.3}: cut to {top:.4} beyond the chamfer", h.diameter);
+                }
+            }
+        }
+    }
+    assert!(checked > 50, "{checked} cells on the chamfers");
+    canon(&out.gcode, &job.tools);
+    // A chamfer the cone cannot make in one circle is refused by name.
+    let mut wide = job.clone();
+    wide.operations = vec![Operation::Chamfer(Chamfer { width: 3.5, ..Chamfer::default() })];
+    let e = job::run(&wide, part, &mut Progress::none()).map(|_| ()).unwrap_err().to_string();
+    assert!(e.contains("needs a cone"), "{e}");
+}
+
+fn threading_job(dialect: Dialect, op: ThreadMill) -> Job {
+    let tool =
+        Tool { number: 1, cutter: Cutter { shape: swarf::cutter::Shape::ThreadMill, diameter: 4.0, flute_length: 12.0, ..Cutter::default() }, feed_rate: 300.0, plunge_rate: 200.0, ..Tool::default() };
+    let mut job = Job { tools: vec![tool], ..Job::default() };
+    job.stock.margin_top = 0.0;
+    job.post.dialect = dialect;
+    job.operations = vec![Operation::ThreadMill(op)];
+    job
+}
+
+#[test]
+fn threads_are_milled_a_pitch_a_turn_to_their_major_diameter() {
+    let part = block(3, 3, SIDE, THICK, &specs());
+    // M6 in the φ5 blind hole, M8 in the counterbore's φ6.6 hole; right hand in two passes,
+    // then left hand.
+    for (thread, pick, hand) in [("M6", (4.9, 5.1), Hand::Right), ("M8", (6.5, 6.7), Hand::Right), ("M6", (4.9, 5.1), Hand::Left)] {
+        let op = ThreadMill { thread: thread.into(), hand, passes: 2, pick: HolePick { min_diameter: Some(pick.0), max_diameter: Some(pick.1), ..HolePick::default() }, ..ThreadMill::default() };
+        let (major, pitch) = op.size().unwrap();
+        let job = threading_job(Dialect::LinuxCnc, op);
+        let out = job::run(&job, part.clone(), &mut Progress::none()).unwrap_or_else(|e| panic!("{thread}: {e}"));
+        let v = out.verification.as_ref().unwrap();
+        assert!(v.report.is_clean(), "{thread}: {}", v.report.describe());
+        let h = job.holes(part.clone()).unwrap().into_iter().find(|h| h.diameter > pick.0 && h.diameter < pick.1).unwrap();
+        // Every helical arc about the hole's axis: counter-clockwise (climb), half a pitch a
+        // half turn, rising for a right-hand thread; the last pass's radius reaches the major
+        // diameter with the tool's edge.
+        let (mut at, mut rises, mut falls, mut widest) = (out.paths[0].start, 0, 0, 0.0f64);
+        for m in &out.paths[0].moves {
+            if let swarf::toolpath::Move::Arc { to, center, clockwise, .. } = *m {
+                assert!(!clockwise, "{thread}: climb");
+                if center.distance(h.center) < 1e-9 {
+                    let turn = swarf::toolpath::arc_sweep(at, to, center, false) / std::f64::consts::TAU;
+                    assert!(((to.z - at.z).abs() - pitch * turn).abs() < 1e-6, "{thread}: {} mm in {turn} turns", to.z - at.z);
+                    if to.z > at.z {
+                        rises += 1
+                    } else {
+                        falls += 1
+                    }
+                    widest = widest.max(to.truncate().distance(center));
+                }
+            }
+            at = m.to();
+        }
+        assert!(if hand == Hand::Right { rises > 10 && falls == 0 } else { falls > 10 && rises == 0 }, "{thread} {hand:?}: {rises} up, {falls} down");
+        assert!((widest + 2.0 - major / 2.0).abs() < 1e-9, "{thread}: the tool reaches φ{}", 2.0 * (widest + 2.0));
+        // The simulated stock: the thread's annulus cut, nothing beyond the major diameter.
+        let grid = v.stock.grid();
+        let (mut cut, mut beyond) = (0, 0);
+        for j in 0..grid.ny {
+            for i in 0..grid.nx {
+                let r = grid.node(i, j).distance(h.center);
+                let top = v.stock.top(i, j);
+                if r > h.diameter / 2.0 + 0.05 && r < major / 2.0 - 0.05 {
+                    assert!(top < h.top - 1.0, "{thread}: the thread's annulus at r {r:.3} stands at {top:.3}");
+                    cut += 1;
+                } else if r > major / 2.0 + 0.05 && r < major / 2.0 + 2.0 {
+                    if top < h.top - 1e-6 {
+                        beyond += 1;
+                    }
+                }
+            }
+        }
+        assert!(cut > 10 && beyond == 0, "{thread}: {cut} cells cut in the annulus, {beyond} beyond it");
+        canon(&out.gcode, &job.tools);
+    }
+    let grbl = threading_job(Dialect::Grbl, ThreadMill { thread: "M6".into(), pick: HolePick { max_diameter: Some(5.1), ..HolePick::default() }, ..ThreadMill::default() });
+    let out = job::run(&grbl, part.clone(), &mut Progress::none()).unwrap();
+    if let Some(said) = common::grblcheck(&out.gcode) {
+        said.unwrap();
+    }
+    // A thread mill wider than the minor diameter, and a thread in a wider hole, are refused.
+    let e = job::run(
+        &threading_job(Dialect::LinuxCnc, ThreadMill { thread: "M4".into(), pick: HolePick { max_diameter: Some(5.1), ..HolePick::default() }, ..ThreadMill::default() }),
+        part.clone(),
+        &mut Progress::none(),
+    )
+    .map(|_| ())
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("does not fit the thread's minor diameter"), "{e}");
+    let e = job::run(
+        &threading_job(Dialect::LinuxCnc, ThreadMill { thread: "M6".into(), pick: HolePick { min_diameter: Some(7.0), max_diameter: Some(9.0), ..HolePick::default() }, ..ThreadMill::default() }),
+        part,
+        &mut Progress::none(),
+    )
+    .map(|_| ())
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("wider than the thread's major diameter"), "{e}");
 }

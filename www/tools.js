@@ -3,7 +3,7 @@
 import { $, state, hooks, selectedTool, store, downloadText } from './state.js';
 import { fillFields, message } from './forms.js';
 
-const shapeName = (t) => ({ ball: 'ball', flat: 'flat', bullNose: `bull nose r${t.cornerRadius}`, drill: `drill ${t.angle ?? 118}°`, spotDrill: `spot drill ${t.angle ?? 90}°`, vBit: `V-bit ${t.angle ?? 90}°` }[t.shape] || t.shape);
+const shapeName = (t) => ({ ball: 'ball', flat: 'flat', bullNose: `bull nose r${t.cornerRadius}`, drill: `drill ${t.angle ?? 118}°`, spotDrill: `spot drill ${t.angle ?? 90}°`, vBit: `V-bit ${t.angle ?? 90}°`, threadMill: 'thread mill' }[t.shape] || t.shape);
 export const toolLabel = (t) => `T${t.number} · ${t.diameter} mm ${shapeName(t)}${t.name ? ` · ${t.name}` : ''}`;
 
 export function fillTools() {

@@ -32,23 +32,7 @@ pub fn place(job: &Job, drawing: &mut Drawing) -> Result<(Aabb, f64)> {
 /// hair.
 pub fn surface(cuts: &[SheetCut], grooves: &[Groove], grid: Grid, gouge: f64, tol: &crate::geom::Tolerances) -> HeightField {
     let mut field = grid.filled(0.0);
-    // An engraving's groove: every node within its radius (and the gouge tolerance) of the line.
-    for g in grooves {
-        let reach = g.radius + gouge;
-        for seg in &g.path {
-            let b = seg.bounds().expand(reach);
-            let (Some((i0, i1)), Some((j0, j1))) = (grid.columns(b.min.x, b.max.x), grid.rows(b.min.y, b.max.y)) else { continue };
-            for j in j0..=j1 {
-                for i in i0..=i1 {
-                    let q = grid.node(i, j);
-                    if seg.distance_to(q) < reach {
-                        let c = j * grid.nx + i;
-                        field.z[c] = field.z[c].min(-g.depth);
-                    }
-                }
-            }
-        }
-    }
+    lower_in_grooves(&mut field, grooves, grid, gouge, 0.0);
     for SheetCut { region, inside, depth, leave } in cuts {
         let widen = gouge - leave;
         let region = offset(region, if *inside { widen } else { -widen }, tol);
@@ -68,4 +52,26 @@ pub fn surface(cuts: &[SheetCut], grooves: &[Groove], grid: Grid, gouge: f64, to
         }
     }
     field
+}
+
+/// Lowers `field` (on `grid`) within each groove's reach (its radius and `gouge`) of its line
+/// to the groove's depth below `top`: where an engraving, a drilled hole or a chamfer may
+/// take material the part keeps elsewhere.
+pub fn lower_in_grooves(field: &mut HeightField, grooves: &[Groove], grid: Grid, gouge: f64, top: f64) {
+    for g in grooves {
+        let reach = g.radius + gouge;
+        for seg in &g.path {
+            let b = seg.bounds().expand(reach);
+            let (Some((i0, i1)), Some((j0, j1))) = (grid.columns(b.min.x, b.max.x), grid.rows(b.min.y, b.max.y)) else { continue };
+            for j in j0..=j1 {
+                for i in i0..=i1 {
+                    let q = grid.node(i, j);
+                    if seg.distance_to(q) < reach {
+                        let c = j * grid.nx + i;
+                        field.z[c] = field.z[c].min(top - g.depth);
+                    }
+                }
+            }
+        }
+    }
 }

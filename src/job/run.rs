@@ -423,7 +423,7 @@ impl Running {
             let settings = job.verify_settings(&stock, None);
             let tol = job.tolerances;
             let v = match &sheet {
-                None => sim.finish_mesh(&part, settings.allowance, &tol),
+                None => sim.finish_mesh_cut(&part, |field, grid| drawing::lower_in_grooves(field, &grooves, grid, tol.gouge, stock.max.z), settings.allowance, &tol),
                 Some(_) => sim.finish(|grid| drawing::surface(&cuts, &grooves, grid, tol.gouge, &tol), settings.allowance, &tol),
             };
             (Some(v), None)

@@ -397,12 +397,9 @@ impl Job {
                     format!("operations[{i}].{field}"),
                     format!("operations[{i}].{field}: no tool number {number} in the tool library (it has {})", if have.is_empty() { "none".into() } else { have.join(", ") }),
                 );
-            } else if let Some(t) = self.tools.iter().find(|t| o.tools().contains(&t.number) && t.cutter.is_cone() && !o.takes_cones()) {
+            } else if let Some((t, takes)) = self.tools.iter().filter(|t| o.tools().contains(&t.number)).find_map(|t| o.takes(&t.cutter).err().map(|w| (t, w))) {
                 let field = if o.tools().len() == 1 && o.tools()[0] == o.tool() { "tool" } else { "tools" };
-                say(
-                    format!("operations[{i}].{field}"),
-                    format!("operations[{i}].{field}: T{} is a {}: a cone drills, spots and engraves; '{}' cuts with flat, ball and bull-nose tools", t.number, t.cutter.describe(), o.name()),
-                );
+                say(format!("operations[{i}].{field}"), format!("operations[{i}].{field}: T{} is a {}: '{}' cuts with {takes}", t.number, t.cutter.describe(), o.name()));
             } else if let Err(e) = o.validate() {
                 say(format!("operations[{i}].{}", e.field), format!("operations[{i}].{} {} ('{}')", e.field, e.message, o.name()));
             }

@@ -54,16 +54,18 @@ impl HolePick {
             .filter(|(k, h)| {
                 // A drawing's holes go by their loop's number, a part's by their own.
                 let index = h.loop_index.unwrap_or(*k);
-                (self.holes.is_empty() || self.holes.contains(&index))
-                    && self.min_diameter.is_none_or(|d| h.diameter >= d - 1e-9)
-                    && self.max_diameter.is_none_or(|d| h.diameter <= d + 1e-9)
+                (self.holes.is_empty() || self.holes.contains(&index)) && self.min_diameter.is_none_or(|d| h.diameter >= d - 1e-9) && self.max_diameter.is_none_or(|d| h.diameter <= d + 1e-9)
             })
             .map(|(_, h)| h.clone())
             .collect();
         if picked.is_empty() {
             return Err(Error::operation(
                 op,
-                if all.is_empty() { "no holes found: a drawing's holes are its circles, a part's its vertical round holes".to_string() } else { format!("none of the holes fits the choice (there are {})", sizes(&all).join(", ")) },
+                if all.is_empty() {
+                    "no holes found: a drawing's holes are its circles, a part's its vertical round holes".to_string()
+                } else {
+                    format!("none of the holes fits the choice (there are {})", sizes(&all).join(", "))
+                },
             ));
         }
         let points: Vec<DVec2> = picked.iter().map(|h| h.center).collect();

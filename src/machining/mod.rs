@@ -19,6 +19,7 @@ pub mod report;
 pub mod rings;
 pub mod settings;
 pub mod sheet;
+pub mod threads;
 pub mod walls;
 
 pub use context::Context;
@@ -143,11 +144,16 @@ pub trait Operate {
     }
     /// Whether the job runs it (a disabled operation stays in the job file).
     fn enabled(&self) -> bool;
-    /// Whether it cuts with a cone (a drill, a spot drill, a V-bit) as well as with flat, ball
-    /// and bull-nose tools: drilling and engraving do; the 3D operations' CL surfaces are made
-    /// for the torus family only so far, and refuse a cone by name.
-    fn takes_cones(&self) -> bool {
-        false
+    /// Whether it cuts with `cutter`, and if not, what it cuts with (for the message): the 3D
+    /// operations' CL surfaces are made for the torus family (flat, ball, bull nose) only so
+    /// far, and refuse a cone (drill, spot drill, V-bit) or a thread mill by name; drilling,
+    /// chamfering and engraving take cones too, thread milling only thread mills.
+    fn takes(&self, cutter: &crate::cutter::Cutter) -> Result<(), &'static str> {
+        if cutter.is_cone() || cutter.shape == crate::cutter::Shape::ThreadMill {
+            Err("flat, ball and bull-nose tools")
+        } else {
+            Ok(())
+        }
     }
     fn works(&self) -> Works;
     /// Material it leaves on the part's surface (mm); 2.5D operations leave theirs on the walls

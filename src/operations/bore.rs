@@ -101,7 +101,15 @@ impl Operate for Bore {
             if outer <= 1e-3 {
                 return Err(Error::operation(
                     &self.name,
-                    format!("T{} (φ{}) does not fit the φ{} hole at X{:.3} Y{:.3} with {} mm left on its wall: bore with a smaller tool, or drill it", tool.number, tool.cutter.diameter, crate::limits::shown((h.diameter * 1000.0).round() / 1000.0), h.center.x, h.center.y, self.leave_stock),
+                    format!(
+                        "T{} (φ{}) does not fit the φ{} hole at X{:.3} Y{:.3} with {} mm left on its wall: bore with a smaller tool, or drill it",
+                        tool.number,
+                        tool.cutter.diameter,
+                        crate::limits::shown((h.diameter * 1000.0).round() / 1000.0),
+                        h.center.x,
+                        h.center.y,
+                        self.leave_stock
+                    ),
                 ));
             }
             let bottom = match self.depth {
@@ -110,7 +118,10 @@ impl Operate for Bore {
                 None => h.bottom,
             };
             if h.top - bottom > tool.cutter.flute_length + 1e-9 {
-                return Err(Error::operation(&self.name, format!("the hole at X{:.3} Y{:.3} is {:.2} mm deep, deeper than T{}'s flutes ({} mm)", h.center.x, h.center.y, h.top - bottom, tool.number, tool.cutter.flute_length)));
+                return Err(Error::operation(
+                    &self.name,
+                    format!("the hole at X{:.3} Y{:.3} is {:.2} mm deep, deeper than T{}'s flutes ({} mm)", h.center.x, h.center.y, h.top - bottom, tool.number, tool.cutter.flute_length),
+                ));
             }
             let start = ctx.material_estimate(h.center, &profile).max(h.top) + self.retract;
             if start > clearance {

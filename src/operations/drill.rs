@@ -103,8 +103,12 @@ impl Default for Drill {
 impl Operate for Drill {
     named_operation!(Either);
 
-    fn takes_cones(&self) -> bool {
-        true
+    fn takes(&self, cutter: &crate::cutter::Cutter) -> std::result::Result<(), &'static str> {
+        if cutter.shape == crate::cutter::Shape::ThreadMill {
+            Err("end mills, drills and V-bits")
+        } else {
+            Ok(())
+        }
     }
 
     fn validate(&self) -> std::result::Result<(), FieldError> {

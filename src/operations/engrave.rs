@@ -60,8 +60,12 @@ fn reversed(path: &[Segment]) -> Vec<Segment> {
 impl Operate for Engrave {
     named_operation!(OnDrawing);
 
-    fn takes_cones(&self) -> bool {
-        true
+    fn takes(&self, cutter: &crate::cutter::Cutter) -> std::result::Result<(), &'static str> {
+        if cutter.shape == crate::cutter::Shape::ThreadMill {
+            Err("end mills, drills and V-bits")
+        } else {
+            Ok(())
+        }
     }
 
     fn check_scale(&self, ctx: &Context) -> crate::error::Result<()> {

@@ -10,6 +10,7 @@ use serde::{Deserialize, Serialize};
 use crate::machining::Operate;
 
 pub mod bore;
+pub mod chamfer;
 pub mod drill;
 pub mod engrave;
 pub mod finish_raster;
@@ -19,8 +20,10 @@ pub mod profile2d;
 pub mod rough_octree;
 pub mod rough_zigzag;
 pub mod rough_zlevel;
+pub mod thread_mill;
 
 pub use bore::Bore;
+pub use chamfer::Chamfer;
 pub use drill::{Drill, DrillCycle, ReturnLevel};
 pub use engrave::Engrave;
 pub use finish_raster::{Boundary, FinishRaster};
@@ -30,6 +33,7 @@ pub use profile2d::{Profile2d, Side, Tabs};
 pub use rough_octree::RoughOctree;
 pub use rough_zigzag::{Passes, RoughZigzag};
 pub use rough_zlevel::RoughZlevel;
+pub use thread_mill::{Hand, ThreadMill};
 
 pub use crate::machining::report::{LoadReport, StageReport, StageRole};
 pub use crate::machining::settings::{Direction, EntryKind, LoadControl, Order, PocketPattern, Roughing, Steps};
@@ -102,6 +106,10 @@ operations! {
     Drill(Drill) = "drill",
     /// Helical boring of holes wider than the tool.
     Bore(Bore) = "bore",
+    /// Chamfering (countersinking) holes' top edges with a V-bit or chamfer mill.
+    Chamfer(Chamfer) = "chamfer",
+    /// Milling internal threads with a single-form thread mill.
+    ThreadMill(ThreadMill) = "threadMill",
 }
 
 impl Operation {

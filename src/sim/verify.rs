@@ -424,8 +424,19 @@ impl Simulator {
     /// [`Simulator::finish_near`] against a mesh: its heights at the cells' centres, and beside
     /// them within the gouge tolerance.
     pub fn finish_mesh(self, part: &Mesh, allowance: f64, tolerances: &Tolerances) -> Verification {
+        self.finish_mesh_cut(part, |_, _| {}, allowance, tolerances)
+    }
+
+    /// [`Simulator::finish_mesh`], the part's heights first lowered by `cut` where operations
+    /// may take more than the mesh has (a chamfer on its edges, a thread in its holes).
+    pub fn finish_mesh_cut(self, part: &Mesh, cut: impl FnOnce(&mut HeightField, Grid), allowance: f64, tolerances: &Tolerances) -> Verification {
         let point = crate::zmap::drop::PointDrop::new(part, &crate::cutter::Profile::new(1e-9, 0.0), tolerances);
-        self.finish_near(|grid| cc_zmap(part, grid, f64::NEG_INFINITY, tolerances), |p| Some(lowest_near(&point, p, tolerances.gouge)), allowance, tolerances)
+        let surface = |grid| {
+            let mut field = cc_zmap(part, grid, f64::NEG_INFINITY, tolerances);
+            cut(&mut field, grid);
+            field
+        };
+        self.finish_near(surface, |p| Some(lowest_near(&point, p, tolerances.gouge)), allowance, tolerances)
     }
 
     /// Judges the stock against the part's heights (`surface` on the simulation's grid, −∞ where

@@ -910,3 +910,54 @@ test('engraving: open chains on a layer of their own cut along their lines besid
   assert.deepEqual(errors, []);
   await context.close();
 });
+
+test('holes in the page: a plate\'s circles spotted and pecked with a spot drill and a drill from the library, canned cycles that rs274 runs, clean', async () => {
+  const { page, context, errors } = await openPage();
+  const svg = `<svg xmlns="http://www.w3.org/2000/svg" width="60mm" height="40mm" viewBox="0 0 60 40">
+    <rect x="0" y="0" width="60" height="40" fill="none" stroke="black"/>
+    <circle cx="8" cy="8" r="2.5"/><circle cx="52" cy="8" r="2.5"/><circle cx="52" cy="32" r="2.5"/><circle cx="8" cy="32" r="2.5"/>
+  </svg>`;
+  await page.setInputFiles('#file', { name: 'plate.svg', mimeType: 'image/svg+xml', buffer: Buffer.from(svg) });
+  await page.waitForFunction(() => document.body.dataset.kind === 'drawing');
+  // A spot drill and a φ5 drill in the library.
+  await tab(page, 'tools');
+  await page.click('#tool-add');
+  await page.selectOption('select[name=shape]', 'spotDrill');
+  await page.fill('input[name=diameter]', '10');
+  assert.equal(await page.isVisible('input[name=pointAngle]'), true, 'a cone\'s angle is asked for');
+  const spot = Number(await page.inputValue('input[name=toolNumber]'));
+  await page.click('#tool-add');
+  await page.selectOption('select[name=shape]', 'drill');
+  await page.fill('input[name=diameter]', '5');
+  await page.fill('input[name=fluteLength]', '30');
+  const drill = Number(await page.inputValue('input[name=toolNumber]'));
+  // Spot, then peck, in place of the drawing's default operations.
+  await tab(page, 'ops');
+  await page.evaluate(() => { window.swarf.jobs.drawing.operations = []; });
+  await page.selectOption('#op-kind', 'drill');
+  await page.click('#op-add');
+  await page.selectOption('select[name=opTool]', String(spot));
+  await page.selectOption('select[name=drillCycle]', 'spot');
+  await page.selectOption('#op-kind', 'drill');
+  await page.click('#op-add');
+  await page.selectOption('select[name=opTool]', String(drill));
+  await page.selectOption('select[name=drillCycle]', 'peck');
+  await page.fill('input[name=peck]', '1.5');
+  await page.click('#generate');
+  await generated(page);
+  assert.doesNotMatch(await page.textContent('#sim-report'), /gouge[^\n]*[1-9]/);
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-holes-'));
+  const program = path.join(dir, download.suggestedFilename());
+  await download.saveAs(program);
+  const gcode = fs.readFileSync(program, 'utf8');
+  assert.equal((gcode.match(/^G98 G81 /gm) ?? []).length, 4, 'four spots');
+  assert.equal((gcode.match(/^G98 G83 .* Q1\.5 /gm) ?? []).length, 4, 'four holes pecked 1.5 mm at a time');
+  assert.match(gcode, /^G80$/m);
+  const tools = await page.evaluate(() => window.swarf.tools);
+  fs.writeFileSync(path.join(dir, 'tool.tbl'), toolTable(tools));
+  const canon = execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), program], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });
+  assert.ok((canon.match(/STRAIGHT_FEED/g) ?? []).length >= 4 * 5, 'the pecks fed');
+  assert.deepEqual(errors, []);
+  await context.close();
+});

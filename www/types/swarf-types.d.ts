@@ -12,9 +12,121 @@ export type Aabb = { min: [number, number, number], max: [number, number, number
 export type ArcFormat = "ij" | "r" | "off";
 
 /**
+ * Helical boring of holes.
+ */
+export type Bore = { 
+/**
+ * Default value: "bore".
+ */
+name: string, 
+/**
+ * Whether the job runs it. Default value: true.
+ */
+enabled: boolean, 
+/**
+ * Default value: 1.
+ */
+tool: number, 
+/**
+ * Descent per turn of the helix (mm). Default value: 1.
+ */
+pitch: number, 
+/**
+ * Step between rings where the hole is more than twice the tool (fraction of the tool's
+ * diameter). Default value: 0.4.
+ */
+stepoverFraction: number, 
+/**
+ * Material left on the wall (mm). Default value: 0.
+ */
+leaveStock: number, 
+/**
+ * The finishing pass's radial step (mm; 0: none): the wall is roughed this much short,
+ * then finished climbing from the bottom. Default value: 0.
+ */
+finishStep: number, 
+/**
+ * Depth below each hole's top (mm). Default value: the hole's own (through: past its
+ * bottom by the breakthrough).
+ */
+depth: number | null, 
+/**
+ * How far past a through hole's bottom (mm). Default value: 0.5.
+ */
+breakthrough: number, 
+/**
+ * Height above the material over the hole where the helix starts (mm). Default value: 1.
+ */
+retract: number, 
+/**
+ * Default value: climb.
+ */
+direction: Direction, 
+/**
+ * The holes, by their index as `swarf holes` (a part) or `swarf drawing` (a drawing's
+ * loops) numbers them. Default value: all (within the diameters).
+ */
+holes: Array<number>, 
+/**
+ * Only holes at least this wide (mm). Default value: none.
+ */
+minDiameter: number | null, 
+/**
+ * Only holes at most this wide (mm). Default value: none.
+ */
+maxDiameter: number | null, };
+
+/**
  * Where the tool's centre may go.
  */
 export type Boundary = "stock" | "silhouette";
+
+/**
+ * Chamfering holes' edges.
+ */
+export type Chamfer = { 
+/**
+ * Default value: "chamfer".
+ */
+name: string, 
+/**
+ * Whether the job runs it. Default value: true.
+ */
+enabled: boolean, 
+/**
+ * A V-bit, chamfer mill or spot drill. Default value: 1.
+ */
+tool: number, 
+/**
+ * The chamfer's width at the top (mm, measured out from the hole's edge). Default value: 0.5.
+ */
+width: number, 
+/**
+ * How far below the chamfer's foot the tip goes, so the cone's side cuts the edge (mm).
+ * Default value: 0.2.
+ */
+extraDepth: number, 
+/**
+ * Height above the material over the hole where feeding starts (mm). Default value: 1.
+ */
+retract: number, 
+/**
+ * Default value: climb.
+ */
+direction: Direction, 
+/**
+ * The holes, by their index as `swarf holes` (a part) or `swarf drawing` (a drawing's
+ * loops) numbers them. Default value: all (within the diameters).
+ */
+holes: Array<number>, 
+/**
+ * Only holes at least this wide (mm). Default value: none.
+ */
+minDiameter: number | null, 
+/**
+ * Only holes at most this wide (mm). Default value: none.
+ */
+maxDiameter: number | null, };
 
 /**
  * Which CL z-map builder an operation uses.
@@ -134,19 +246,6 @@ tool: number,
  */
 cycle: DrillCycle, 
 /**
- * The holes to drill, by their index as `swarf holes` (a part) or `swarf drawing` (a
- * drawing's loops) numbers them. Default value: all (within the diameters).
- */
-holes: Array<number>, 
-/**
- * Only holes at least this wide (mm). Default value: none.
- */
-minDiameter: number | null, 
-/**
- * Only holes at most this wide (mm). Default value: none.
- */
-maxDiameter: number | null, 
-/**
  * Depth below each hole's top (mm). Default value: the hole's own (through: past its
  * bottom by the drill's point and the breakthrough; a spot: the depth of a cone
  * `spotDiameter` across).
@@ -175,7 +274,20 @@ retract: number,
 /**
  * Default value: initial.
  */
-returnTo: ReturnLevel, };
+returnTo: ReturnLevel, 
+/**
+ * The holes, by their index as `swarf holes` (a part) or `swarf drawing` (a drawing's
+ * loops) numbers them. Default value: all (within the diameters).
+ */
+holes: Array<number>, 
+/**
+ * Only holes at least this wide (mm). Default value: none.
+ */
+minDiameter: number | null, 
+/**
+ * Only holes at most this wide (mm). Default value: none.
+ */
+maxDiameter: number | null, };
 
 /**
  * Which drilling cycle.
@@ -376,6 +488,11 @@ direction: Direction,
 grid: number, entry: Entry, };
 
 /**
+ * Which way the thread turns.
+ */
+export type Hand = "right" | "left";
+
+/**
  * Everything needed to turn a part into G-code.
  */
 export type Job = { 
@@ -466,7 +583,7 @@ export type OpenChain = { layer: string, start: [number, number], end: [number, 
 /**
  * One operation of a job.
  */
-export type Operation = { "kind": "roughZlevel" } & RoughZlevel | { "kind": "roughZigzag" } & RoughZigzag | { "kind": "roughOctree" } & RoughOctree | { "kind": "finishRaster" } & FinishRaster | { "kind": "finishWaterline" } & FinishWaterline | { "kind": "profile2d" } & Profile2d | { "kind": "pocket2d" } & Pocket2d | { "kind": "engrave" } & Engrave | { "kind": "drill" } & Drill;
+export type Operation = { "kind": "roughZlevel" } & RoughZlevel | { "kind": "roughZigzag" } & RoughZigzag | { "kind": "roughOctree" } & RoughOctree | { "kind": "finishRaster" } & FinishRaster | { "kind": "finishWaterline" } & FinishWaterline | { "kind": "profile2d" } & Profile2d | { "kind": "pocket2d" } & Pocket2d | { "kind": "engrave" } & Engrave | { "kind": "drill" } & Drill | { "kind": "bore" } & Bore | { "kind": "chamfer" } & Chamfer | { "kind": "threadMill" } & ThreadMill;
 
 /**
  * One operation's figures.
@@ -1067,7 +1184,7 @@ rampAngle: number, };
 /**
  * The shape of a cutter's end.
  */
-export type Shape = "flat" | "ball" | "bullNose" | "drill" | "spotDrill" | "vBit";
+export type Shape = "flat" | "ball" | "bullNose" | "drill" | "spotDrill" | "vBit" | "threadMill";
 
 /**
  * Which side of a loop the tool runs on.
@@ -1250,6 +1367,64 @@ width: number,
  * inside the sheet), mm: the material that holds the part. Default value: 1.5.
  */
 height: number, };
+
+/**
+ * Milling internal threads.
+ */
+export type ThreadMill = { 
+/**
+ * Default value: "thread".
+ */
+name: string, 
+/**
+ * Whether the job runs it. Default value: true.
+ */
+enabled: boolean, 
+/**
+ * A thread mill. Default value: 1.
+ */
+tool: number, 
+/**
+ * The thread's name: M8, M8x1, 1/4-20, #10-32, 1/4 UNC. Default value: M6.
+ */
+thread: string, 
+/**
+ * The major diameter (mm), instead of the name's. Default value: none.
+ */
+majorDiameter: number | null, 
+/**
+ * The pitch (mm), instead of the name's. Default value: none.
+ */
+pitch: number | null, 
+/**
+ * Default value: right.
+ */
+hand: Hand, 
+/**
+ * Radial passes to the full depth. Default value: 1.
+ */
+passes: number, 
+/**
+ * How deep the thread goes below the hole's top (mm). Default value: the hole's depth.
+ */
+length: number | null, 
+/**
+ * Height above the material over the hole the tool enters from (mm). Default value: 1.
+ */
+retract: number, 
+/**
+ * The holes, by their index as `swarf holes` (a part) or `swarf drawing` (a drawing's
+ * loops) numbers them. Default value: all (within the diameters).
+ */
+holes: Array<number>, 
+/**
+ * Only holes at least this wide (mm). Default value: none.
+ */
+minDiameter: number | null, 
+/**
+ * Only holes at most this wide (mm). Default value: none.
+ */
+maxDiameter: number | null, };
 
 /**
  * One part of a program's cycle time, for people: what it is and how long it takes.
