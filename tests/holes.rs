@@ -599,10 +599,8 @@ fn threads_are_milled_a_pitch_a_turn_to_their_major_diameter() {
                 if r > h.diameter / 2.0 + 0.05 && r < major / 2.0 - 0.05 {
                     assert!(top < h.top - 1.0, "{thread}: the thread's annulus at r {r:.3} stands at {top:.3}");
                     cut += 1;
-                } else if r > major / 2.0 + 0.05 && r < major / 2.0 + 2.0 {
-                    if top < h.top - 1e-6 {
-                        beyond += 1;
-                    }
+                } else if r > major / 2.0 + 0.05 && r < major / 2.0 + 2.0 && top < h.top - 1e-6 {
+                    beyond += 1;
                 }
             }
         }
