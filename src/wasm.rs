@@ -352,6 +352,15 @@ impl JobResult {
     }
 }
 
+/// The holes a hole operation of `job` finds in the part or drawing in `bytes`, placed as the
+/// job places it, numbered as the operations' `holes` take them (`swarf holes`).
+#[wasm_bindgen(js_name = findHoles)]
+pub fn find_holes(job: JsValue, bytes: &[u8], name: &str) -> Result<JsValue, JsError> {
+    let job = job_from_js(job)?;
+    let workpiece = Workpiece::read(bytes, Some(name), &job.tolerances).map_err(js_error)?;
+    to_js(&job.holes(workpiece).map_err(js_error)?)
+}
+
 /// Runs `job` (a `Job` object) on the part in `bytes`. `progress(fraction, stage)` is called as
 /// the work goes on; returning `false` cancels.
 #[wasm_bindgen(js_name = runJob)]

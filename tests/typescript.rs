@@ -7,6 +7,7 @@ use std::any::TypeId;
 use std::collections::BTreeMap;
 use std::path::Path;
 
+use swarf::holes::Hole;
 use swarf::job::project::Project;
 use swarf::job::Problem;
 use swarf::post::{CycleTime, Post};
@@ -27,6 +28,7 @@ fn generate() -> String {
     ReportView::export_all(&cfg).unwrap();
     Reposted::export_all(&cfg).unwrap();
     Problem::export_all(&cfg).unwrap();
+    Hole::export_all(&cfg).unwrap();
     let mut files: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().path()).collect();
     files.sort();
     let mut out = HEAD.to_owned();
@@ -73,6 +75,7 @@ fn no_two_rust_types_share_a_typescript_name() {
     names.visit::<ReportView>();
     names.visit::<Reposted>();
     names.visit::<Problem>();
+    names.visit::<Hole>();
     assert!(names.0.len() > 20, "{:?}", names.0.keys());
     let twice: Vec<_> = names.0.values().filter(|v| v.len() > 1).collect();
     assert!(twice.is_empty(), "types sharing a TypeScript name (give one #[ts(rename)]): {twice:?}");

@@ -10,7 +10,7 @@ import { valueOf, fillFields, message, fieldError, check, markProblems } from '.
 import { GcodePane } from './gcode.js';
 import { sim, setTime, step, play, drawMrr, toLine } from './simulation.js';
 import { fillTools, addTool, deleteTool, exportTools, importTools, renumber } from './tools.js';
-import { fillOps, addOperation, onOpList, showPicked, pickLoop } from './operations.js';
+import { fillOps, addOperation, onOpList, showPicked, pickLoop, findHoles, onHoleList, presetHoles } from './operations.js';
 import { setKind, showPart, takeFile, fillPart, freshSetup } from './part.js';
 import { generate, cancel, download, clearResult, onLegend, resultTab, fillPost, savePost, loadPost, repost, saveJob, loadJob, saveProject, openProject, setRunning } from './results.js';
 
@@ -149,6 +149,9 @@ $('tool-export').addEventListener('click', exportTools);
 $('tool-import').addEventListener('change', (e) => { if (e.target.files[0]) importTools(e.target.files[0]); e.target.value = ''; });
 $('op-list').addEventListener('click', onOpList);
 $('op-add').addEventListener('click', () => addOperation($('op-kind').value));
+$('find-holes').addEventListener('click', findHoles);
+$('hole-list').addEventListener('click', onHoleList);
+$('hole-preset').addEventListener('click', presetHoles);
 const drop = $('drop');
 for (const t of ['dragenter', 'dragover']) document.addEventListener(t, (e) => { e.preventDefault(); drop.classList.add('over'); });
 for (const t of ['dragleave', 'drop']) document.addEventListener(t, (e) => { e.preventDefault(); drop.classList.remove('over'); });

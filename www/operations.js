@@ -1,7 +1,7 @@
 // The operations of the job on show, in order: listed with their colour, tools and whether
 // they run; added, moved, removed; the picked one's form; and for drawings, the loops it cuts,
 // picked by clicking them in the view.
-import { $, state, hooks, job, selectedOp, selectedTool, is2d, store, toolsOf } from './state.js';
+import { $, state, hooks, job, selectedOp, selectedTool, is2d, store, toolsOf, buildJob } from './state.js';
 import { fillFields, message } from './forms.js';
 import { opColor, cssColor } from './viewer.js';
 
@@ -24,13 +24,14 @@ export function fillOps() {
   $('op-editor').hidden = !op;
   if (!op) return;
   for (const el of $('op-editor').querySelectorAll('[data-kinds]')) el.hidden = !el.dataset.kinds.split(' ').includes(op.kind);
-  for (const box of [$('fs-raster'), $('fs-2d'), $('fs-rough'), $('fs-waterline'), $('fs-octree')]) if (!box.hidden) fillFields(box, op);
+  for (const box of [$('fs-raster'), $('fs-2d'), $('fs-rough'), $('fs-waterline'), $('fs-octree'), $('fs-drill'), $('fs-holes')]) if (!box.hidden) fillFields(box, op);
   document.querySelector('[name=opName]').value = op.name;
   $('op-tool-label').hidden = op.kind === 'roughOctree';
   if (op.kind !== 'roughOctree') document.querySelector('[name=opTool]').value = String(op.tool);
   // A cut through the sheet goes past its bottom by the breakthrough (0.2 mm).
   $('through-depth').textContent = `${(Number(state.jobs.drawing.drawing.thickness) + 0.2).toFixed(2)} mm`;
   showPicked();
+  showHoles();
 }
 
 export function addOperation(kind) {
@@ -108,4 +109,79 @@ export function pickLoop(x, y) {
   fillOps();
   const l = state.drawing.loops[index];
   message(`${op.name}: loop ${index} (${l.layer}, ${l.hole ? 'hole' : 'outline'}) ${op.loops.includes(index) ? 'picked' : 'no longer picked'}; loops ${op.loops.length ? op.loops.join(', ') : 'all on the layers'}`, 'note');
+}
+
+// ---- holes ------------------------------------------------------------------------------
+// The holes the hole operations find (`swarf holes`), listed under their form and drawn in the
+// view; a click on one adds it to the operation's holes or takes it out. `state.holes` belongs
+// to the part or drawing it was found in.
+const HOLE_OPS = ['drill', 'bore', 'chamfer', 'threadMill'];
+const mm = (v) => String(Math.round(v * 1000) / 1000);
+
+export async function findHoles() {
+  try {
+    const holes = await state.engine.holes(buildJob(), state.bytes, state.name);
+    state.holes = { of: state.name, holes };
+    message(holes.length ? `${holes.length} hole${holes.length > 1 ? 's' : ''} found: click one to pick it.` : 'No holes found: a part\'s holes are its vertical round holes, a drawing\'s its circles.', holes.length ? 'ok' : 'warning');
+  } catch (e) {
+    message(e.message, 'error');
+  }
+  showHoles();
+}
+
+export function showHoles() {
+  const op = selectedOp();
+  const holes = state.holes?.of === state.name ? state.holes.holes : [];
+  const picked = new Set(op && HOLE_OPS.includes(op.kind) ? (op.holes ?? []) : []);
+  $('hole-list').replaceChildren(...holes.map((h, k) => {
+    const li = document.createElement('li');
+    const index = h.loopIndex ?? k;
+    li.dataset.index = String(index);
+    li.className = picked.has(index) ? 'picked' : '';
+    li.textContent = `hole ${index}: φ${mm(h.diameter)} at (${mm(h.center[0])}, ${mm(h.center[1])}), ${mm(h.top - h.bottom)} mm deep, ${h.through ? 'through' : `blind (${h.bottomShape} bottom)`}`;
+    return li;
+  }));
+  state.viewer?.setHoles(op && HOLE_OPS.includes(op.kind) ? holes : [], picked);
+}
+
+export function onHoleList(e) {
+  const li = e.target.closest('li');
+  const op = selectedOp();
+  if (!li || !op || !HOLE_OPS.includes(op.kind)) return;
+  const k = Number(li.dataset.index);
+  const set = new Set(op.holes ?? []);
+  if (set.has(k)) set.delete(k); else set.add(k);
+  op.holes = [...set].sort((a, b) => a - b);
+  store();
+  fillOps();
+  hooks.changed?.();
+}
+
+// Spot, drill and chamfer the picked holes (all found, if none is picked): three operations,
+// each with the library's tool for it (a spot drill, the drill nearest the holes' size, a V-bit).
+export function presetHoles() {
+  const op = selectedOp();
+  const holes = state.holes?.of === state.name ? state.holes.holes : [];
+  const picked = op?.holes?.length ? op.holes : holes.map((h, k) => h.loopIndex ?? k);
+  if (!picked.length) { message('Find the holes first, and pick the ones to make.', 'warning'); return; }
+  const sizes = holes.filter((h, k) => picked.includes(h.loopIndex ?? k)).map((h) => h.diameter);
+  const mean = sizes.reduce((a, b) => a + b, 0) / Math.max(1, sizes.length);
+  const spot = state.tools.find((t) => t.shape === 'spotDrill') ?? state.tools.find((t) => t.shape === 'vBit');
+  const drill = state.tools.filter((t) => t.shape === 'drill').sort((a, b) => Math.abs(a.diameter - mean) - Math.abs(b.diameter - mean))[0];
+  const chamfer = state.tools.find((t) => t.shape === 'vBit') ?? spot;
+  const missing = [!spot && 'a spot drill or V-bit', !drill && 'a drill'].filter(Boolean);
+  if (missing.length) { message(`Add ${missing.join(' and ')} to the tool library first.`, 'warning'); return; }
+  const add = (kind, fields) => {
+    const o = structuredClone(state.defaults.operations.find((d) => d.kind === kind));
+    Object.assign(o, fields, { holes: [...picked] });
+    job().operations.push(o);
+  };
+  add('drill', { name: 'spot', tool: spot.number, cycle: 'spot' });
+  add('drill', { name: 'drill', tool: drill.number, cycle: 'peck' });
+  if (chamfer) add('chamfer', { tool: chamfer.number });
+  state.selected[state.kind] = job().operations.length - 1;
+  store();
+  fillOps();
+  hooks.changed?.();
+  message(`Spot, drill (T${drill.number}, φ${drill.diameter}) and chamfer ${picked.length} hole${picked.length > 1 ? 's' : ''}.`, 'ok');
 }

@@ -1,9 +1,9 @@
 // The API of swarf.js. The data it passes (jobs, tools, operations, posts, projects, results)
 // has the types generated from swarf's Rust serde types (types/swarf-types.d.ts); only the
 // engine's own calls, and the input forms of those types, are declared here.
-import type { Job, Post, PostSettings, CycleTime, Project, Summary, DrawingView, ReportView, Reposted, Problem, Warning, OperationReport, TimeItem } from './types/swarf-types';
+import type { Job, Post, PostSettings, CycleTime, Project, Summary, DrawingView, ReportView, Reposted, Problem, Warning, OperationReport, TimeItem, Hole } from './types/swarf-types';
 
-export type { Job, Post, PostSettings, CycleTime, Project, Summary, DrawingView, ReportView, Reposted, Problem, Warning, OperationReport, TimeItem };
+export type { Job, Post, PostSettings, CycleTime, Project, Summary, DrawingView, ReportView, Reposted, Problem, Warning, OperationReport, TimeItem, Hole };
 
 /**
  * What the engine takes of a type: every field the core fills with its default may be left out
@@ -130,6 +130,7 @@ export declare class Engine {
   readProject(text: string): Promise<{ job: Job; name: string; bytes: Uint8Array | null }>;
   writeProject(job: JobInput, name: string, bytes: Uint8Array): Promise<string>;
   run(job: JobInput, bytes: Uint8Array, name: string, options?: RunOptions): Promise<RunResult>;
+  holes(job: JobInput, bytes: Uint8Array, name: string): Promise<Hole[]>;
   repost(post: PostSettingsInput): Promise<Reposted & { moveLines: Uint32Array; gcodeBytes: Uint8Array; lineStarts: Uint32Array }>;
   seek(count: number): Promise<Float32Array>;
   cancel(): Promise<void>;

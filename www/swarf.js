@@ -200,6 +200,13 @@ export class Engine {
     return r.drawing ? { drawing: r.drawing } : { part: r.part };
   }
 
+  /**
+   * The holes the hole operations (drill, bore, chamfer, threadMill) of `job` find in the part
+   * or drawing in `bytes`, placed as the job places it, in the order their `holes` field numbers
+   * them (a drawing's by its loops): `[{ center, diameter, top, bottom, through, bottomShape,
+   * loopIndex, layer }]` (`swarf holes`).
+   */
+  async holes(job, bytes, name) { return (await this.call({ type: 'holes', job, bytes, name })).holes; }
   /** Reads a job file as `swarf run` does (a misspelt field is named). */
   async readJob(text) { return (await this.call({ type: 'readJob', text })).job; }
   /** Every setting of a job that does not fit, as `[{ path, message }]` (the core's own checks). */

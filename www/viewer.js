@@ -270,6 +270,25 @@ export class Viewer {
     this.draw();
   }
 
+  // Holes (as the engine finds them) as circles at their tops, the picked ones (their indices,
+  // a drawing's by loop) in orange, the others grey.
+  setHoles(holes, picked = new Set()) {
+    this.dropLines((key) => key.startsWith('holes'));
+    const groups = { picked: [], others: [] };
+    holes.forEach((h, k) => {
+      const into = picked.has(h.loopIndex ?? k) ? groups.picked : groups.others;
+      const r = h.diameter / 2, n = 48;
+      for (let i = 0; i < n; i++) {
+        const a = (2 * Math.PI * i) / n, b = (2 * Math.PI * (i + 1)) / n;
+        into.push(h.center[0] + r * Math.cos(a), h.center[1] + r * Math.sin(a), h.top, h.center[0] + r * Math.cos(b), h.center[1] + r * Math.sin(b), h.top);
+      }
+    });
+    for (const [key, data] of Object.entries(groups)) {
+      if (data.length) this.setLine(`holes_${key}`, { buffer: this.buffer(new Float32Array(data)), count: data.length / 3, color: key === 'picked' ? [0.9, 0.55, 0.1, 1] : [0.45, 0.48, 0.52, 1], mark: true });
+    }
+    this.draw();
+  }
+
   // The octants of octree roughing's stages (as `JobResult.octants` gives them, 9 numbers a
   // box) as wire boxes: those a tool cut in its colour, the Partial ones grey.
   setOctants(octants) {

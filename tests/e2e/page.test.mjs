@@ -943,6 +943,18 @@ test('holes in the page: a plate\'s circles spotted and pecked with a spot drill
   await page.selectOption('select[name=opTool]', String(drill));
   await page.selectOption('select[name=drillCycle]', 'peck');
   await page.fill('input[name=peck]', '1.5');
+  // The holes listed and drawn; a click picks one for the operation, a second click lets it go.
+  assert.equal(await page.inputValue('input[name=drillRetract]'), '1', 'the form shows the operation\'s settings');
+  await page.click('#find-holes');
+  await page.waitForFunction(() => document.querySelectorAll('#hole-list li').length === 4);
+  assert.match(await page.textContent('#hole-list li:first-child'), /φ5 at .* 6 mm deep, through/);
+  await page.click('#hole-list li:first-child');
+  await page.waitForFunction(() => document.querySelector('#hole-list li.picked'));
+  const first = await page.getAttribute('#hole-list li.picked', 'data-index');
+  assert.equal(await page.inputValue('input[name=drillHoles]'), first, 'the picked hole in the operation');
+  await page.click('#hole-list li.picked');
+  await page.waitForFunction(() => !document.querySelector('#hole-list li.picked'));
+  assert.equal(await page.inputValue('input[name=drillHoles]'), '');
   await page.click('#generate');
   await generated(page);
   assert.doesNotMatch(await page.textContent('#sim-report'), /gouge[^\n]*[1-9]/);
@@ -958,6 +970,12 @@ test('holes in the page: a plate\'s circles spotted and pecked with a spot drill
   fs.writeFileSync(path.join(dir, 'tool.tbl'), toolTable(tools));
   const canon = execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), program], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });
   assert.ok((canon.match(/STRAIGHT_FEED/g) ?? []).length >= 4 * 5, 'the pecks fed');
+  // Spot, drill and chamfer in one click, with the library's tools.
+  const ops = await page.locator('#op-list li').count();
+  await page.click('#hole-preset');
+  await page.waitForFunction((n) => document.querySelectorAll('#op-list li').length === n + 3, ops);
+  const added = await page.evaluate(() => window.swarf.jobs.drawing.operations.slice(-3).map((o) => `${o.kind}:${o.cycle ?? ''}:T${o.tool}`));
+  assert.deepEqual(added, [`drill:spot:T${spot}`, `drill:peck:T${drill}`, `chamfer::T${spot}`]);
   assert.deepEqual(errors, []);
   await context.close();
 });

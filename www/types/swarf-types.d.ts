@@ -77,6 +77,11 @@ minDiameter: number | null,
 maxDiameter: number | null, };
 
 /**
+ * A blind hole's bottom.
+ */
+export type Bottom = "flat" | "cone" | "open";
+
+/**
  * Where the tool's centre may go.
  */
 export type Boundary = "stock" | "silhouette";
@@ -491,6 +496,35 @@ grid: number, entry: Entry, };
  * Which way the thread turns.
  */
 export type Hand = "right" | "left";
+
+/**
+ * A round vertical hole.
+ */
+export type Hole = { 
+/**
+ * Centre (mm).
+ */
+center: [number, number], diameter: number, 
+/**
+ * Where the hole starts and ends (Z, mm); a drawing's holes go through the sheet.
+ */
+top: number, bottom: number, 
+/**
+ * Open at the bottom.
+ */
+through: boolean, 
+/**
+ * How its bottom ends where it is blind: flat, or a cone (a drill's point).
+ */
+bottomShape: Bottom, 
+/**
+ * The drawing's loop it is (as `swarf drawing` numbers them), for a drawing's hole.
+ */
+loopIndex: number | null, 
+/**
+ * The drawing's layer, for a drawing's hole.
+ */
+layer: string | null, };
 
 /**
  * Everything needed to turn a part into G-code.
