@@ -354,6 +354,13 @@ fn a_drill_deeper_than_its_flutes_and_a_spot_without_a_cone_are_refused() {
     job.tools[0].cutter = Cutter::flat(6.0);
     let e = job::run(&job, part.clone(), &mut Progress::none()).unwrap_err().to_string();
     assert!(e.contains("spotting needs a spot drill"), "{e}");
+    // A peck deeper than the hole is named.
+    let mut job = drilling_job(Dialect::LinuxCnc);
+    if let Operation::Drill(d) = &mut job.operations[1] {
+        d.peck = 20.0;
+    }
+    let e = job::run(&job, part.clone(), &mut Progress::none()).map(|_| ()).unwrap_err().to_string();
+    assert!(e.contains("the peck (20 mm) is deeper than the hole"), "{e}");
     // A cone in a 3D operation is named.
     let mut job = drilling_job(Dialect::LinuxCnc);
     job.operations = vec![Operation::RoughZlevel(swarf::operations::RoughZlevel { tool: 2, ..Default::default() })];
@@ -427,6 +434,12 @@ fn the_cli_lists_holes() {
     assert!(out.status.success(), "{text}{}", String::from_utf8_lossy(&out.stderr));
     assert!(text.contains("7 holes: 1 × φ5, 2 × φ6, 1 × φ6.6, 1 × φ8, 1 × φ11, 1 × φ12.5"), "{text}");
     assert!(text.contains("blind, cone bottom") && text.contains("blind, flat bottom") && text.contains("through"), "{text}");
+    // A drawing's circles, listed by `swarf drawing` with its loops.
+    let svg = dir.join("plate.svg");
+    std::fs::write(&svg, r#"<svg xmlns="http://www.w3.org/2000/svg" width="60mm" height="40mm" viewBox="0 0 60 40"><rect x="0" y="0" width="60" height="40" fill="none" stroke="black"/><circle cx="8" cy="8" r="2.5"/><circle cx="52" cy="8" r="2.5"/><circle cx="30" cy="20" r="4"/></svg>"#).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_swarf")).arg("drawing").arg(&svg).output().unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("holes: 2 × φ5, 1 × φ8") && text.contains("φ8.000 at (30.000, -20.000) mm"), "{text}");
     let _ = std::fs::remove_dir_all(&dir);
 }
 

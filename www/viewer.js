@@ -671,7 +671,8 @@ function boxLines(b) {
 }
 
 // A tool as triangles: its profile (radius at each height above the tip) turned about Z. The
-// cutting part is its shape (a ball's half sphere, a bull nose's corner, a flat end's face) up
+// cutting part is its shape (a ball's half sphere, a bull nose's corner, a flat end's face, a
+// drill's or V-bit's cone) up
 // to its flute length, then the shank (its own diameter where given) up to the stick-out, or a
 // shank as long again as the flutes.
 export function toolMesh(tool) {
@@ -682,7 +683,13 @@ export function toolMesh(tool) {
   const top = Math.max(tool.stickOut ?? flutes * 2, flutes + 1e-3);
   const profile = [[0, 0]];
   const arc = 8;
-  if (corner > 0) for (let k = 1; k <= arc; k++) { const a = (k / arc) * (Math.PI / 2); profile.push([r - corner + corner * Math.sin(a), corner - corner * Math.cos(a)]); }
+  // A cone (drill, spot drill, V-bit): from its tip (a point, or a V-bit's flat) out to the full
+  // diameter at its point angle.
+  const cone = ['drill', 'spotDrill', 'vBit'].includes(tool.shape);
+  const angle = tool.angle ?? (tool.shape === 'drill' ? 118 : 90);
+  const tip = tool.shape === 'vBit' ? (tool.tipDiameter ?? 0) / 2 : 0;
+  if (cone) profile.push([tip, 0], [r, (r - tip) / Math.tan((angle * Math.PI) / 360)]);
+  else if (corner > 0) for (let k = 1; k <= arc; k++) { const a = (k / arc) * (Math.PI / 2); profile.push([r - corner + corner * Math.sin(a), corner - corner * Math.cos(a)]); }
   else profile.push([r, 0]);
   profile.push([r, flutes], [shankR, flutes], [shankR, top], [0, top]);
   const sides = 24, positions = [], normals = [];

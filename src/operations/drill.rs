@@ -174,6 +174,12 @@ impl Operate for Drill {
                 }
             }
             let depth = h.top - bottom;
+            if matches!(self.cycle, DrillCycle::Peck | DrillCycle::ChipBreak) && self.peck > depth + self.retract {
+                return Err(Error::operation(
+                    &self.name,
+                    format!("the peck ({} mm) is deeper than the hole at X{:.3} Y{:.3} ({depth:.3} mm from its top): drill it without pecking, or peck less", self.peck, h.center.x, h.center.y),
+                ));
+            }
             if depth > cutter.flute_length + 1e-9 {
                 return Err(Error::operation(
                     &self.name,

@@ -257,6 +257,14 @@ fn run(cli: Cli) -> Result<(), String> {
             for o in &d.open {
                 println!("open chain: layer {}, {} entities, from ({:.3}, {:.3}) to ({:.3}, {:.3}) mm", o.layer, o.segments, o.start.x, o.start.y, o.end.x, o.end.y);
             }
+            // Its circles: the holes a drilling operation finds, by loop, and by diameter.
+            let holes = swarf::holes::in_drawing(&d, 0.0, 0.0);
+            for h in &holes {
+                println!("hole (loop {}): φ{:.3} at ({:.3}, {:.3}) mm, layer {}", h.loop_index.unwrap_or(0), h.diameter, h.center.x, h.center.y, h.layer.as_deref().unwrap_or(""));
+            }
+            if !holes.is_empty() {
+                println!("holes: {}", swarf::machining::holes::sizes(&holes).join(", "));
+            }
             Ok(())
         }
         Command::Holes { file, job } => {
