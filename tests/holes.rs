@@ -12,7 +12,7 @@ use swarf::holes::{mesh::find, Bottom, Hole};
 use swarf::job::{self, Job, Operation, Tool};
 use swarf::machining::holes::HolePick;
 use swarf::mesh::Mesh;
-use swarf::operations::{Bore, Chamfer, Drill, DrillCycle, Hand, ReturnLevel, ThreadMill};
+use swarf::operations::{Bore, Chamfer, Drill, DrillCycle, Face, FacePattern, Hand, ReturnLevel, ThreadMill};
 use swarf::post::Dialect;
 use swarf::progress::Progress;
 
@@ -644,4 +644,58 @@ fn threads_are_milled_a_pitch_a_turn_to_their_major_diameter() {
     .unwrap_err()
     .to_string();
     assert!(e.contains("wider than the thread's major diameter"), "{e}");
+}
+
+#[test]
+fn facing_leaves_the_top_flat_at_its_height_over_the_whole_stock() {
+    // The generated block under 2.5 mm of stock, faced down to its top at 1 mm a level.
+    let part = block(3, 3, SIDE, THICK, &[]);
+    for pattern in [FacePattern::Zigzag, FacePattern::Spiral] {
+        let mut job = Job { tools: vec![Tool { number: 1, cutter: Cutter::flat(10.0), feed_rate: 1200.0, ..Tool::default() }], ..Job::default() };
+        job.stock.margin_top = 2.5;
+        job.operations = vec![Operation::Face(Face { pattern, ..Face::default() })];
+        let out = job::run(&job, part.clone(), &mut Progress::none()).unwrap_or_else(|e| panic!("{pattern:?}: {e}"));
+        let v = out.verification.as_ref().unwrap();
+        assert!(v.report.is_clean(), "{pattern:?}: {}", v.report.describe());
+        let grid = v.stock.grid();
+        let (mut lowest, mut highest) = (f64::INFINITY, f64::NEG_INFINITY);
+        for j in 0..grid.ny {
+            for i in 0..grid.nx {
+                let top = v.stock.top(i, j);
+                lowest = lowest.min(top);
+                highest = highest.max(top);
+            }
+        }
+        // The part's top is at 0 (placed), the stock's at 2.5: every cell at 0, no ridge.
+        assert!(lowest > -0.01 && highest < 0.01, "{pattern:?}: the faced top spans {lowest:.4} to {highest:.4}");
+        // Three levels (2.5 mm at most 1 mm each), each entered from outside the stock.
+        let levels: Vec<f64> = out.paths[0]
+            .moves
+            .iter()
+            .filter_map(|m| match m {
+                swarf::toolpath::Move::Rapid { to } if to.z < 2.0 => Some(to.z),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(levels.len(), 3, "{pattern:?}: {levels:?}");
+        canon(&out.gcode, &job.tools);
+        if let Some(said) =
+            common::grblcheck(&job::run(&Job { post: swarf::post::PostSettings { dialect: Dialect::Grbl, ..job.post.clone() }, ..job.clone() }, part.clone(), &mut Progress::none()).unwrap().gcode)
+        {
+            said.unwrap();
+        }
+        eprintln!("{pattern:?}: cycle {:.0} s", out.cycle.seconds);
+    }
+    // A sheet is faced by a depth.
+    let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" width="60mm" height="40mm" viewBox="0 0 60 40"><rect x="0" y="0" width="60" height="40" fill="none" stroke="black"/></svg>"#;
+    let drawing = swarf::drawing::import::read_drawing(svg.as_bytes(), Some("sheet.svg"), &Tolerances::DEFAULT).unwrap();
+    let mut job = Job::default_for_drawing();
+    job.tools = vec![Tool { number: 1, cutter: Cutter::flat(10.0), ..Tool::default() }];
+    job.operations = vec![Operation::Face(Face::default())];
+    let e = job::run(&job, drawing.clone(), &mut Progress::none()).map(|_| ()).unwrap_err().to_string();
+    assert!(e.contains("give the depth"), "{e}");
+    job.operations = vec![Operation::Face(Face { depth: Some(0.5), ..Face::default() })];
+    let out = job::run(&job, drawing, &mut Progress::none()).unwrap();
+    let lowest = out.paths[0].moves.iter().map(|m| m.to().z).fold(f64::INFINITY, f64::min);
+    assert!((lowest + 0.5).abs() < 1e-9, "faced to {lowest}");
 }

@@ -24,7 +24,7 @@ export function fillOps() {
   $('op-editor').hidden = !op;
   if (!op) return;
   for (const el of $('op-editor').querySelectorAll('[data-kinds]')) el.hidden = !el.dataset.kinds.split(' ').includes(op.kind);
-  for (const box of [$('fs-raster'), $('fs-2d'), $('fs-rough'), $('fs-waterline'), $('fs-octree'), $('fs-drill'), $('fs-holes')]) if (!box.hidden) fillFields(box, op);
+  for (const box of [$('fs-raster'), $('fs-2d'), $('fs-rough'), $('fs-waterline'), $('fs-octree'), $('fs-drill'), $('fs-holes'), $('fs-face')]) if (!box.hidden) fillFields(box, op);
   document.querySelector('[name=opName]').value = op.name;
   $('op-tool-label').hidden = op.kind === 'roughOctree';
   if (op.kind !== 'roughOctree') document.querySelector('[name=opTool]').value = String(op.tool);

@@ -26,8 +26,9 @@ export const job = () => state.jobs[state.kind];
 export const selectedOp = () => job().operations[state.selected[state.kind]] ?? null;
 export const selectedTool = () => state.tools[state.selected.tool] ?? null;
 export const is2d = (op) => op.kind === 'profile2d' || op.kind === 'pocket2d' || op.kind === 'engrave';
-// The hole operations work on a part's holes and on a drawing's circles alike.
-export const isEither = (op) => ['drill', 'bore', 'chamfer', 'threadMill'].includes(op.kind);
+// The hole operations work on a part's holes and on a drawing's circles alike, facing on a
+// part's stock and a sheet alike.
+export const isEither = (op) => ['drill', 'bore', 'chamfer', 'threadMill', 'face'].includes(op.kind);
 
 export function store() {
   try {

@@ -13,6 +13,7 @@ pub mod bore;
 pub mod chamfer;
 pub mod drill;
 pub mod engrave;
+pub mod face;
 pub mod finish_raster;
 pub mod finish_waterline;
 pub mod pocket2d;
@@ -26,6 +27,7 @@ pub use bore::Bore;
 pub use chamfer::Chamfer;
 pub use drill::{Drill, DrillCycle, ReturnLevel};
 pub use engrave::Engrave;
+pub use face::{Face, FacePattern};
 pub use finish_raster::{Boundary, FinishRaster};
 pub use finish_waterline::FinishWaterline;
 pub use pocket2d::Pocket2d;
@@ -110,6 +112,8 @@ operations! {
     Chamfer(Chamfer) = "chamfer",
     /// Milling internal threads with a single-form thread mill.
     ThreadMill(ThreadMill) = "threadMill",
+    /// Facing the stock's top down to the part's top or by a depth.
+    Face(Face) = "face",
 }
 
 impl Operation {

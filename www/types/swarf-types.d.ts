@@ -367,6 +367,48 @@ helixMax: number, };
 export type EntryKind = "helix" | "ramp";
 
 /**
+ * Facing the stock's top.
+ */
+export type Face = { 
+/**
+ * Default value: "face".
+ */
+name: string, 
+/**
+ * Whether the job runs it. Default value: true.
+ */
+enabled: boolean, 
+/**
+ * A flat end mill or face mill. Default value: 1.
+ */
+tool: number, 
+/**
+ * How much to take off the stock's top (mm). Default value: down to the part's top.
+ */
+depth: number | null, 
+/**
+ * Largest depth cut in one level (mm). Default value: 1.
+ */
+stepdown: number, 
+/**
+ * Distance between passes (fraction of the tool's diameter, at most its flat). Default value: 0.7.
+ */
+stepoverFraction: number, 
+/**
+ * How far the tool reaches past the stock's outline (fraction of its diameter). Default value: 0.5.
+ */
+overlap: number, 
+/**
+ * Default value: zigzag.
+ */
+pattern: FacePattern, };
+
+/**
+ * How a level is cleared.
+ */
+export type FacePattern = "zigzag" | "spiral";
+
+/**
  * A place where something went wrong.
  */
 export type Finding = { 
@@ -617,7 +659,7 @@ export type OpenChain = { layer: string, start: [number, number], end: [number, 
 /**
  * One operation of a job.
  */
-export type Operation = { "kind": "roughZlevel" } & RoughZlevel | { "kind": "roughZigzag" } & RoughZigzag | { "kind": "roughOctree" } & RoughOctree | { "kind": "finishRaster" } & FinishRaster | { "kind": "finishWaterline" } & FinishWaterline | { "kind": "profile2d" } & Profile2d | { "kind": "pocket2d" } & Pocket2d | { "kind": "engrave" } & Engrave | { "kind": "drill" } & Drill | { "kind": "bore" } & Bore | { "kind": "chamfer" } & Chamfer | { "kind": "threadMill" } & ThreadMill;
+export type Operation = { "kind": "roughZlevel" } & RoughZlevel | { "kind": "roughZigzag" } & RoughZigzag | { "kind": "roughOctree" } & RoughOctree | { "kind": "finishRaster" } & FinishRaster | { "kind": "finishWaterline" } & FinishWaterline | { "kind": "profile2d" } & Profile2d | { "kind": "pocket2d" } & Pocket2d | { "kind": "engrave" } & Engrave | { "kind": "drill" } & Drill | { "kind": "bore" } & Bore | { "kind": "chamfer" } & Chamfer | { "kind": "threadMill" } & ThreadMill | { "kind": "face" } & Face;
 
 /**
  * One operation's figures.
