@@ -705,31 +705,6 @@ mod edge_tests {
     /// The bull nose's edge drop against a dense scan along the edge.
     #[test]
     fn bull_nose_edge_drop_matches_a_dense_scan() {
-        let cutter = Cutter::bull_nose(6.0, 1.0);
-        let p = cutter.profile();
-        let mut seed = 12345u64;
-        let mut rnd = || {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
-        for _ in 0..2000 {
-            let a = DVec3::new(rnd() * 10.0 - 5.0, rnd() * 10.0 - 5.0, rnd() * 6.0 - 3.0);
-            let b = DVec3::new(rnd() * 10.0 - 5.0, rnd() * 10.0 - 5.0, rnd() * 6.0 - 3.0);
-            let c = DVec2::new(rnd() * 4.0 - 2.0, rnd() * 4.0 - 2.0);
-            let got = p.drop_edge(c, a, b);
-            let mut best: Option<f64> = None;
-            let n = 200_000;
-            for k in 0..=n {
-                let q = a.lerp(b, k as f64 / n as f64);
-                if let Some(z) = p.drop_vertex(c, q) {
-                    best = Some(best.map_or(z, |v: f64| v.max(z)));
-                }
-            }
-            match (got, best) {
-                (Some(g), Some(w)) => assert!(g >= w - 1e-6 && g <= w + 1e-3, "{a} {b} {c}: {g} vs scan {w}"),
-                (None, Some(w)) => panic!("{a} {b} {c}: none vs scan {w}"),
-                _ => {}
-            }
-        }
+        edge_drop_matches_a_dense_scan(&Cutter::bull_nose(6.0, 1.0), 2000);
     }
 }

@@ -130,6 +130,16 @@ macro_rules! named_operation {
 }
 pub(crate) use named_operation;
 
+/// [`Operate::takes`] for the operations that cut with any tool but a thread mill (drilling,
+/// chamfering, engraving).
+pub fn takes_all_but_thread_mills(cutter: &crate::cutter::Cutter) -> Result<(), &'static str> {
+    if cutter.shape == crate::cutter::Shape::ThreadMill {
+        Err("end mills, drills and V-bits")
+    } else {
+        Ok(())
+    }
+}
+
 /// One kind of operation.
 pub trait Operate {
     /// Shown in progress, warnings and the program's comments.

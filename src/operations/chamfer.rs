@@ -50,11 +50,7 @@ impl Operate for Chamfer {
     named_operation!(Either);
 
     fn takes(&self, cutter: &crate::cutter::Cutter) -> std::result::Result<(), &'static str> {
-        if cutter.shape == crate::cutter::Shape::ThreadMill {
-            Err("end mills, drills and V-bits")
-        } else {
-            Ok(())
-        }
+        crate::machining::takes_all_but_thread_mills(cutter)
     }
 
     fn validate(&self) -> std::result::Result<(), FieldError> {

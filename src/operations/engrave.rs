@@ -61,11 +61,7 @@ impl Operate for Engrave {
     named_operation!(OnDrawing);
 
     fn takes(&self, cutter: &crate::cutter::Cutter) -> std::result::Result<(), &'static str> {
-        if cutter.shape == crate::cutter::Shape::ThreadMill {
-            Err("end mills, drills and V-bits")
-        } else {
-            Ok(())
-        }
+        crate::machining::takes_all_but_thread_mills(cutter)
     }
 
     fn check_scale(&self, ctx: &Context) -> crate::error::Result<()> {
