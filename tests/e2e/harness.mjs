@@ -193,3 +193,65 @@ export function boxGltf([x, y, z]) {
     buffers: [{ byteLength: bin.length, uri: `data:application/octet-stream;base64,${bin.toString('base64')}` }],
   }));
 }
+
+// A plate `w` × `h` × `t` (top at z = t) with round through holes (`holes`: [x, y, diameter],
+// each at the centre of a square tile of side `tile` that tiles the plate), as a binary STL:
+// each hole a 48-sided cylinder, its tile's top and bottom fanned from the circle to the
+// tile's square (tiles meet at T-junctions, as many exported parts do).
+export function plateStl(w, h, t, tile, holes) {
+  const tris = [];
+  const push = (a, b, c, hint) => {
+    const u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]], v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+    const n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
+    tris.push(n[0] * hint[0] + n[1] * hint[1] + n[2] * hint[2] < 0 ? [a, c, b] : [a, b, c]);
+  };
+  const n = 48, half = tile / 2;
+  for (let i = 0; i < w / tile; i++) {
+    for (let j = 0; j < h / tile; j++) {
+      const cx = (i + 0.5) * tile, cy = (j + 0.5) * tile;
+      const hole = holes.find(([x, y]) => Math.abs(x - cx) < 1e-9 && Math.abs(y - cy) < 1e-9);
+      for (const [z, up] of [[t, 1], [0, -1]]) {
+        if (!hole) {
+          const q = [[cx - half, cy - half, z], [cx + half, cy - half, z], [cx + half, cy + half, z], [cx - half, cy + half, z]];
+          push(q[0], q[1], q[2], [0, 0, up]);
+          push(q[0], q[2], q[3], [0, 0, up]);
+          continue;
+        }
+        const r = hole[2] / 2;
+        const at = (k) => { const a = (2 * Math.PI * k) / n; return [cx + r * Math.cos(a), cy + r * Math.sin(a), z]; };
+        const sq = (a) => { const c = Math.cos(a), s = Math.sin(a), m = half / Math.max(Math.abs(c), Math.abs(s)); return [cx + c * m, cy + s * m, z]; };
+        for (let k = 0; k < n; k++) {
+          const a0 = (2 * Math.PI * k) / n, a1 = (2 * Math.PI * (k + 1)) / n;
+          const outer = [sq(a0)];
+          for (let q = 0; q < 4; q++) {
+            const corner = Math.PI / 4 + (q * Math.PI) / 2;
+            if (corner > a0 && corner < a1) outer.push([cx + half * Math.sign(Math.cos(corner)), cy + half * Math.sign(Math.sin(corner)), z]);
+          }
+          outer.push(sq(a1));
+          push(at(k + 1), at(k), outer[0], [0, 0, up]);
+          for (let m = 0; m + 1 < outer.length; m++) push(at(k + 1), outer[m], outer[m + 1], [0, 0, up]);
+        }
+      }
+      if (hole) {
+        const r = hole[2] / 2;
+        for (let k = 0; k < n; k++) {
+          const a0 = (2 * Math.PI * k) / n, a1 = (2 * Math.PI * (k + 1)) / n;
+          const p = (a, z) => [cx + r * Math.cos(a), cy + r * Math.sin(a), z];
+          const inward = [-Math.cos((a0 + a1) / 2), -Math.sin((a0 + a1) / 2), 0];
+          push(p(a0, t), p(a1, t), p(a1, 0), inward);
+          push(p(a0, t), p(a1, 0), p(a0, 0), inward);
+        }
+      }
+    }
+  }
+  const c = [[0, 0], [w, 0], [w, h], [0, h]];
+  for (let k = 0; k < 4; k++) {
+    const [a, b] = [c[k], c[(k + 1) % 4]], out = [b[1] - a[1], a[0] - b[0], 0];
+    push([a[0], a[1], t], [b[0], b[1], t], [b[0], b[1], 0], out);
+    push([a[0], a[1], t], [b[0], b[1], 0], [a[0], a[1], 0], out);
+  }
+  const buf = Buffer.alloc(84 + tris.length * 50);
+  buf.writeUInt32LE(tris.length, 80);
+  tris.forEach((f, k) => f.forEach((p, j) => p.forEach((v, a) => buf.writeFloatLE(v, 84 + k * 50 + 12 + j * 12 + a * 4))));
+  return buf;
+}

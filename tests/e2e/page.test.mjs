@@ -9,7 +9,7 @@ import path from 'node:path';
 import { execFileSync } from 'node:child_process';
 import { pathToFileURL } from 'node:url';
 import { dieStl } from '../../scripts/die-stl.mjs';
-import { root, shots, offsite, PATIENCE, browser, base, waitForGenerated, generated, tab, frame, grblcheck, openPage, onlyRaster, toolTable, pixelCounts, toolPixels, pathPixels, boxStl, boxGltf } from './harness.mjs';
+import { root, shots, offsite, PATIENCE, browser, base, waitForGenerated, generated, tab, frame, grblcheck, openPage, onlyRaster, toolTable, pixelCounts, toolPixels, pathPixels, boxStl, boxGltf, plateStl } from './harness.mjs';
 
 test('sample part → generate → path on the canvas → G-code that rs274 accepts', async () => {
   const { page, context, errors } = await openPage();
@@ -979,3 +979,52 @@ test('holes in the page: a plate\'s circles spotted and pecked with a spot drill
   assert.deepEqual(errors, []);
   await context.close();
 });
+
+test('holes in a 3D part: found in its triangles, roughed over, pecked and threaded M6 in one program that rs274 runs, clean', async () => {
+  const { page, context, errors } = await openPage();
+  // A plate 40 × 20 × 10 with two φ5 through holes (M6's tap drill is 5).
+  await page.setInputFiles('#file', { name: 'plate.stl', mimeType: 'model/stl', buffer: plateStl(40, 20, 10, 20, [[10, 10, 5], [30, 10, 5]]) });
+  await page.waitForFunction(() => /plate\.stl/.test(document.body.textContent) && !document.getElementById('generate').disabled);
+  await tab(page, 'tools');
+  const add = async (shape, diameter, flutes) => {
+    await page.click('#tool-add');
+    await page.selectOption('select[name=shape]', shape);
+    await page.fill('input[name=diameter]', String(diameter));
+    await page.fill('input[name=fluteLength]', String(flutes));
+    return Number(await page.inputValue('input[name=toolNumber]'));
+  };
+  const flat = await add('flat', 6, 20), drill = await add('drill', 5, 30), threads = await add('threadMill', 4, 15);
+  await tab(page, 'ops');
+  await page.evaluate(() => { window.swarf.jobs.part.operations = []; });
+  await page.selectOption('#op-kind', 'roughZlevel');
+  await page.click('#op-add');
+  await page.selectOption('select[name=opTool]', String(flat));
+  await page.selectOption('#op-kind', 'drill');
+  await page.click('#op-add');
+  await page.selectOption('select[name=opTool]', String(drill));
+  await page.selectOption('select[name=drillCycle]', 'peck');
+  await page.click('#find-holes');
+  await page.waitForFunction(() => document.querySelectorAll('#hole-list li').length === 2);
+  assert.match(await page.textContent('#hole-list'), /φ5 at \(-10, 0\), 10 mm deep, through/);
+  await page.selectOption('#op-kind', 'threadMill');
+  await page.click('#op-add');
+  await page.selectOption('select[name=opTool]', String(threads));
+  await page.fill('input[name=thread]', 'M6');
+  await page.dispatchEvent('input[name=thread]', 'change');
+  await page.click('#generate');
+  await generated(page);
+  assert.doesNotMatch(await page.textContent('#sim-report'), /gouge[^\n]*[1-9]/);
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-holes3d-'));
+  const program = path.join(dir, download.suggestedFilename());
+  await download.saveAs(program);
+  const gcode = fs.readFileSync(program, 'utf8');
+  assert.equal((gcode.match(/^G98 G83 /gm) ?? []).length, 2, 'two holes pecked');
+  assert.match(gcode, /\(thread\)[\s\S]*G3 X[-\d.]+ Y[-\d.]+ Z[-\d.]+ I/, 'the thread milled on helices');
+  const tools = await page.evaluate(() => window.swarf.tools);
+  fs.writeFileSync(path.join(dir, 'tool.tbl'), toolTable(tools));
+  execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), program], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
