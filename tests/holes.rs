@@ -699,3 +699,53 @@ fn facing_leaves_the_top_flat_at_its_height_over_the_whole_stock() {
     let lowest = out.paths[0].moves.iter().map(|m| m.to().z).fold(f64::INFINITY, f64::min);
     assert!((lowest + 0.5).abs() < 1e-9, "faced to {lowest}");
 }
+
+/// The shared plate drawing (tm_LM2.dxf, 40 loops on layers HOLES and IZREZ): its circles
+/// spotted, the φ3.2 ones pecked, the φ12 ones chamfered, the outline profiled, in one program
+/// that verifies clean and that LinuxCNC's interpreter and GRBL's parser read.
+#[test]
+fn a_shared_plate_is_spotted_drilled_chamfered_and_cut_out() {
+    let Some(path) = common::shared_data("profiles/tm_LM2.dxf") else { return };
+    let drawing = swarf::drawing::import::read_drawing(&std::fs::read(path).unwrap(), Some("tm_LM2.dxf"), &Tolerances::DEFAULT).unwrap();
+    let mut job = Job::default_for_drawing();
+    let holes = job.holes(drawing.clone()).unwrap();
+    assert_eq!(holes.len(), 36, "{}", swarf::machining::holes::sizes(&holes).join(", "));
+    job.tools = vec![
+        drill_tool(1, Cutter { shape: swarf::cutter::Shape::SpotDrill, diameter: 10.0, angle: Some(90.0), ..Cutter::default() }),
+        drill_tool(2, Cutter::drill(3.2, 118.0)),
+        drill_tool(3, Cutter { flute_length: 10.0, ..Cutter::v_bit(16.0, 90.0, 0.0) }),
+        Tool { number: 4, cutter: Cutter::flat(3.0), ..Tool::default() },
+    ];
+    let profile = match job.operations[0].clone() {
+        Operation::Profile2d(p) => Operation::Profile2d(swarf::operations::Profile2d { tool: 4, layers: vec!["IZREZ".into()], ..p }),
+        other => panic!("{other:?}"),
+    };
+    job.operations = vec![
+        Operation::Drill(Drill { name: "spot".into(), tool: 1, cycle: DrillCycle::Spot, spot_diameter: Some(3.0), ..Drill::default() }),
+        Operation::Drill(Drill {
+            name: "drill".into(),
+            tool: 2,
+            cycle: DrillCycle::Peck,
+            pick: HolePick { min_diameter: Some(3.19), max_diameter: Some(3.21), ..HolePick::default() },
+            ..Drill::default()
+        }),
+        Operation::Chamfer(Chamfer { tool: 3, width: 0.5, pick: HolePick { min_diameter: Some(11.9), ..HolePick::default() }, ..Chamfer::default() }),
+        profile,
+    ];
+    for dialect in [Dialect::LinuxCnc, Dialect::Grbl] {
+        job.post.dialect = dialect;
+        let out = job::run(&job, drawing.clone(), &mut Progress::none()).unwrap_or_else(|e| panic!("{dialect:?}: {e}"));
+        let v = out.verification.as_ref().unwrap();
+        assert!(v.report.is_clean(), "{dialect:?}: {}", v.report.describe());
+        canon(&out.gcode, &job.tools);
+        if dialect == Dialect::Grbl {
+            let without_changes: String = out.gcode.lines().filter(|l| !l.contains("M6")).map(|l| format!("{l}\n")).collect();
+            if let Some(said) = common::grblcheck(&without_changes) {
+                said.unwrap();
+            }
+        } else {
+            assert_eq!(out.gcode.matches("G81 ").count(), 36, "every circle spotted");
+            assert_eq!(out.gcode.matches("G83 ").count(), 26, "the φ3.2 holes pecked");
+        }
+    }
+}
