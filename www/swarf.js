@@ -20,6 +20,8 @@ export class CancelledError extends Error {
 /** One worker and the calls waiting on its answers. */
 class Channel {
   #worker;
+  /** The last part (triangles) the worker sent. */
+  #part = null;
   #pending = new Map();
   #nextId = 1;
 
@@ -29,8 +31,15 @@ class Channel {
       const m = event.data, entry = this.#pending.get(m.id);
       if (!entry) return;
       if (m.type === 'progress') { entry.onProgress?.(m.fraction, m.stage); return; }
+      // A large answer comes in pieces, each a task of its own: kept until the last.
+      if (m.type === 'piece') { entry.pieces = Object.assign(entry.pieces ?? {}, m.piece); return; }
       this.#pending.delete(m.id);
-      if (m.ok) entry.resolve(m); else entry.reject(new Error(m.error));
+      if (!m.ok) { entry.reject(new Error(m.error)); return; }
+      if (entry.pieces) Object.assign(m, entry.pieces);
+      // A part this worker sent before comes back as `same`: its triangles are those kept here.
+      if (m.part?.same && this.#part) m.part = { ...this.#part, ...m.part, same: undefined };
+      else if (m.part?.positions) this.#part = m.part;
+      entry.resolve(m);
     };
     worker.onerror = (e) => this.#fail(new Error(e.message || 'the worker failed'));
   }
@@ -246,11 +255,16 @@ export class Engine {
     try {
       const memory = this.#options.memory ?? globalThis.navigator?.deviceMemory;
       const sharing = workersFor(this.workers, bytes?.byteLength ?? bytes?.length ?? 0, memory);
-      if (sharing === 1) return withText(await this.call({ type: 'run', job, bytes, name }, [], onProgress));
-      return withText(await this.#runShared([this.#main, ...this.#helpers.slice(0, sharing - 1)], job, bytes, name, onProgress));
+      if (sharing === 1) return this.#result(await this.call({ type: 'run', job, bytes, name }, [], onProgress));
+      return this.#result(await this.#runShared([this.#main, ...this.#helpers.slice(0, sharing - 1)], job, bytes, name, onProgress));
     } finally {
       signal?.removeEventListener('abort', onAbort);
     }
+  }
+
+  /** A run's answer made whole: the program's text from its bytes when read. */
+  #result(m) {
+    return withText(m);
   }
 
   /** A run shared by the workers `all`, the first of them planning. */

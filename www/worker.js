@@ -38,15 +38,27 @@ function coarse(values) {
   return out;
 }
 
-function partMessage(view) {
-  const part = {
-    positions: view.positions().slice(),
-    normals: view.normals().slice(),
-    bounds: Array.from(view.bounds()),
-    triangles: view.triangles(),
-    dropped: view.dropped(),
-    warnings: view.warnings(),
-  };
+// The part last sent to the engine, by its count and a thousand of its coordinates: a run on
+// the part the page already shows sends it back as `same` (tens of megabytes on a die-sized
+// part, arriving with the result on the page's thread), and the engine puts back its own.
+let sentPart = null;
+
+function partKey(positions) {
+  const step = Math.max(1, Math.floor(positions.length / 1000));
+  let key = `${positions.length}`;
+  for (let i = 0; i < positions.length; i += step) key += `,${positions[i]}`;
+  return key;
+}
+
+function partMessage(view, reuse = false) {
+  const meta = { bounds: Array.from(view.bounds()), triangles: view.triangles(), dropped: view.dropped(), warnings: view.warnings() };
+  const positions = view.positions(), key = partKey(positions);
+  if (reuse && key === sentPart) {
+    view.free();
+    return { part: { ...meta, same: true }, transfer: [] };
+  }
+  const part = { positions: positions.slice(), normals: view.normals().slice(), ...meta };
+  sentPart = key;
   view.free();
   return { part, transfer: [part.positions.buffer, part.normals.buffer] };
 }
@@ -92,7 +104,7 @@ function send(id, result) {
   const gcodeBytes = result.gcodeBytes().slice(), lineStarts = linesOf(gcodeBytes);
   const summary = result.summary();
   const drawing = result.drawing();
-  const { part, transfer } = partMessage(result.takePart());
+  const { part, transfer } = partMessage(result.takePart(), true);
   let sim = null;
   if (result.hasSimulation()) {
     const grid = Array.from(result.simGrid());
@@ -110,7 +122,12 @@ function send(id, result) {
   }
   current?.free();
   current = result;
-  self.postMessage({ id, ok: true, gcodeBytes, lineStarts, moveLines, feeds, feedOps, feedTools, feedMoves, octants, rapids, rapidMoves, summary, part, drawing, sim }, [gcodeBytes.buffer, lineStarts.buffer, feeds.buffer, feedOps.buffer, feedTools.buffer, feedMoves.buffer, octants.buffer, rapids.buffer, rapidMoves.buffer, moveLines.buffer, ...transfer]);
+  // In pieces, each a task of its own on the page's thread (the engine puts them together):
+  // a die-sized result is a hundred megabytes of arrays.
+  self.postMessage({ id, type: 'piece', piece: { part } }, transfer.slice(0, part.positions ? 2 : 0));
+  self.postMessage({ id, type: 'piece', piece: { feeds, feedOps, feedTools, feedMoves, octants, rapids, rapidMoves } }, [feeds.buffer, feedOps.buffer, feedTools.buffer, feedMoves.buffer, octants.buffer, rapids.buffer, rapidMoves.buffer]);
+  self.postMessage({ id, type: 'piece', piece: { gcodeBytes, lineStarts, moveLines } }, [gcodeBytes.buffer, lineStarts.buffer, moveLines.buffer]);
+  self.postMessage({ id, ok: true, summary, drawing, sim }, transfer.slice(part.positions ? 2 : 0));
 }
 
 self.onmessage = async (event) => {
