@@ -335,7 +335,7 @@ export class Engine {
         const step = await planner.call({ type: 'planNext', groups: GROUPS_PER_WORKER * n }, [], planning);
         if (step.done) break;
         if (!step.groups) continue;
-        await Promise.all(helpers.map((h) => h.call({ type: 'keepMoves', moves: step.moves })));
+        await sendMoves(helpers, step.moves);
         const cut = { bands: [], cuts: [] };
         const groups = step.groups.map((group, g) => ({ type: 'cutBands', group, g, transfer: [group.buffer] }));
         await share(all, groups, (t, r) => { cut.bands[t.g] = r.bands; cut.cuts[t.g] = r.cuts; }, () => onProgress?.(at, `in-process stock (${n} workers)`));
@@ -371,6 +371,28 @@ export class Engine {
     this.#main = null;
     this.#helpers = [];
   }
+}
+
+/** Floats of an operation's moves sent to a helper in one message (8 MB). */
+const MOVES_CHUNK = 1 << 20;
+
+/**
+ * An operation's moves (as the planner encoded them) sent to every helper in pieces of at
+ * most MOVES_CHUNK floats, each copied and transferred in a task of its own: a million moves
+ * are some 70 MB, and one message copying them held the page's thread 55 ms (over 200 on a
+ * busy machine). The last helper gets the original's pieces too; each helper joins its pieces.
+ */
+async function sendMoves(helpers, moves) {
+  const parts = Math.max(1, Math.ceil(moves.length / MOVES_CHUNK));
+  const calls = [];
+  for (let k = 0; k < parts; k++) {
+    for (const h of helpers) {
+      const piece = moves.slice(k * MOVES_CHUNK, Math.min(moves.length, (k + 1) * MOVES_CHUNK));
+      calls.push(h.call({ type: 'keepMoves', moves: piece, part: k, parts }, [piece.buffer]));
+    }
+    if (k + 1 < parts) await new Promise((resolve) => setTimeout(resolve, 0));
+  }
+  await Promise.all(calls);
 }
 
 /**

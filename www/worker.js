@@ -43,6 +43,9 @@ function coarse(values) {
 // part, arriving with the result on the page's thread), and the engine puts back its own.
 let sentPart = null;
 
+// The pieces of an operation's moves received so far ('keepMoves').
+let movePieces = [];
+
 function partKey(positions) {
   const step = Math.max(1, Math.floor(positions.length / 1000));
   let key = `${positions.length}`;
@@ -209,7 +212,16 @@ self.onmessage = async (event) => {
         self.postMessage({ id, ok: true, done: false, moves, groups }, [moves.buffer, ...groups.map((g) => g.buffer)]);
       }
     } else if (type === 'keepMoves') {
-      planned().keepMoves(event.data.moves);
+      // The moves come in pieces (`part` of `parts`), joined here before the planner takes them.
+      const { moves, part = 0, parts = 1 } = event.data;
+      if (part === 0) movePieces = [];
+      movePieces.push(moves);
+      if (part + 1 === parts) {
+        const all = new Float64Array(movePieces.reduce((n, p) => n + p.length, 0));
+        movePieces.reduce((at, p) => (all.set(p, at), at + p.length), 0);
+        movePieces = [];
+        planned().keepMoves(all);
+      }
       self.postMessage({ id, ok: true });
     } else if (type === 'cutBands') {
       const [bands, cuts] = planned().cutBands(event.data.group);
