@@ -408,47 +408,22 @@ impl Profile {
         (m * w * r - u * s, self.corner - w)
     }
 
+    /// Where this cone meets a line of slope `m` at horizontal distance `sqrt(dist2)` from its
+    /// axis: the `s` in `[lo, hi]` that maximises `F(s) = m s - height(sqrt(dist2 + s²))` (see
+    /// `cone_peak`: towards the chord's end, where F' = 0 on the side, or where the side meets the tip).
+    pub fn cone_top(&self, m: f64, dist2: f64, lo: f64, hi: f64) -> f64 {
+        cone_peak(m, dist2, self.taper, self.flat, lo, hi)
+    }
+
     /// An upper bound of `F(s) = m s - height(sqrt(dist2 + s²))` over `[lo, hi]` in closed form
     /// (see [`Profile::contact_along`]): the corner's height is convex, so it stands above its
     /// tangent at 45°, `r - (R - a) - a (√2 - 1)`, and above zero; with that cone for the corner
     /// F is bounded by a concave function whose top is a square root away. It lets the edge drop
     /// skip the search where even this bound cannot rise above the height already found.
-    /// Where a cone (its tip's radius `f`, its rise `k` per mm) meets a line of slope `m` at
-    /// horizontal distance `sqrt(dist2)` from its axis: the `s` in `[lo, hi]` that maximises the
-    /// concave `F(s) = m s - k max(0, sqrt(dist2 + s²) - f)`. Where `|m| >= k` the line rises
-    /// at least as fast as the side and the chord's end is highest; else F' = 0 at
-    /// `s = sign(m) sqrt(dist2) |m| / sqrt(k² - m²)` if that lies on the side, else where the
-    /// side meets the flat tip.
-    pub fn cone_top(&self, m: f64, dist2: f64, lo: f64, hi: f64) -> f64 {
-        let (k, f) = (self.taper, self.flat);
-        let top = if m.abs() >= k {
-            m.signum() * f64::INFINITY
-        } else {
-            let s_side = m.signum() * (dist2 / (k * k - m * m)).sqrt() * m.abs();
-            if dist2 + s_side * s_side >= f * f {
-                s_side
-            } else {
-                m.signum() * (f * f - dist2).max(0.0).sqrt()
-            }
-        };
-        top.clamp(lo, hi)
-    }
-
     fn cone_bound(&self, m: f64, dist2: f64, lo: f64, hi: f64) -> f64 {
         let r1 = self.flat + self.corner * (std::f64::consts::SQRT_2 - 1.0);
         let g = |s: f64| m * s - ((dist2 + s * s).sqrt() - r1).max(0.0);
-        let top = if m.abs() >= 1.0 {
-            m.signum() * f64::INFINITY // rising faster than the cone: towards the chord's end
-        } else {
-            // The cone's stationary point, else the kink where it meets the flat.
-            let s_cone = m * (dist2 / (1.0 - m * m)).sqrt();
-            if dist2 + s_cone * s_cone >= r1 * r1 {
-                s_cone
-            } else {
-                m.signum() * (r1 * r1 - dist2).max(0.0).sqrt()
-            }
-        };
-        g(top.clamp(lo, hi))
+        g(cone_peak(m, dist2, 1.0, r1, lo, hi))
     }
 
     /// Where a bull nose meets a line of slope `m` at horizontal distance `sqrt(dist2)` from its
@@ -549,6 +524,25 @@ impl Profile {
         let value = |s: f64| m * s - self.height((dist2 + s * s).sqrt().min(self.radius));
         [lo, hi].into_iter().fold(s, |best, end| if value(end) > value(best) { end } else { best })
     }
+}
+
+/// The `s` in `[lo, hi]` that maximises the concave `F(s) = m s - k max(0, sqrt(dist2 + s²) - f)`
+/// (a line of slope `m` at horizontal distance `sqrt(dist2)` from the axis of a cone rising `k`
+/// per mm from a flat of radius `f`): towards the chord's end where the line rises at least as
+/// fast as the side (`|m| >= k`), else where F' = 0, `s = m sqrt(dist2 / (k² - m²))`, if that lies
+/// on the side, else where the side meets the flat.
+fn cone_peak(m: f64, dist2: f64, k: f64, f: f64, lo: f64, hi: f64) -> f64 {
+    let top = if m.abs() >= k {
+        m.signum() * f64::INFINITY
+    } else {
+        let s_side = m * (dist2 / (k * k - m * m)).sqrt();
+        if dist2 + s_side * s_side >= f * f {
+            s_side
+        } else {
+            m.signum() * (f * f - dist2).max(0.0).sqrt()
+        }
+    };
+    top.clamp(lo, hi)
 }
 
 /// A facet prepared for repeated drops: its plane, its projected corners, and the direction of

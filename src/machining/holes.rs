@@ -5,11 +5,14 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::cutter::Profile;
 use crate::error::{Error, Result};
 use crate::geom::{DVec2, DVec3};
 use crate::holes::{self, Hole};
 use crate::machining::{positive, Context, FieldError};
-use crate::toolpath::Move;
+use crate::tool::Tool;
+use crate::toolpath::cycle::Cycle;
+use crate::toolpath::{Move, Toolpath};
 
 /// Which holes an operation works on.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize, ts_rs::TS)]
@@ -86,6 +89,19 @@ pub fn sizes(holes: &[Hole]) -> Vec<String> {
     }
     by.sort_by(|a, b| a.0.total_cmp(&b.0));
     by.into_iter().map(|(d, n)| format!("{n} × φ{}", crate::limits::shown(d))).collect()
+}
+
+/// Where a hole operation starts feeding over `hole`: `retract` above what stands over it now
+/// under a cutter of `profile` (the hole's top, or stock not yet cut above it).
+pub fn entry_height(ctx: &Context, hole: &Hole, profile: &Profile, retract: f64) -> f64 {
+    ctx.material_estimate(hole.center, profile).max(hole.top) + retract
+}
+
+/// A hole operation's moves (and drilling cycles) as its tool path with `tool`, starting where
+/// its first move goes (above the first hole at the clearance height, a move of no length).
+pub fn hole_path(name: &str, tool: &Tool, moves: Vec<Move>, cycles: Vec<Cycle>, clearance: f64) -> Toolpath {
+    let start = moves.first().map_or(DVec3::new(0.0, 0.0, clearance), Move::to);
+    Toolpath { name: name.to_string(), tool: tool.number, spindle_rpm: tool.spindle_rpm, start, moves, cycles }
 }
 
 /// A helix about `center` at `radius` from the height `from` to `to`, rising or falling

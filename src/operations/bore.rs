@@ -9,11 +9,11 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::geom::segment::Segment;
-use crate::machining::holes::{circle, helix, point, HolePick};
+use crate::machining::holes::{circle, entry_height, helix, hole_path, point, HolePick};
 use crate::machining::report::Groove;
 use crate::machining::settings::Direction;
 use crate::machining::{named_operation, not_negative, positive, Context, FieldError, Operate, Planned};
-use crate::toolpath::{Move, Toolpath};
+use crate::toolpath::Move;
 
 /// Helical boring of holes.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
@@ -123,7 +123,7 @@ impl Operate for Bore {
                     format!("the hole at X{:.3} Y{:.3} is {:.2} mm deep, deeper than T{}'s flutes ({} mm)", h.center.x, h.center.y, h.top - bottom, tool.number, tool.cutter.flute_length),
                 ));
             }
-            let start = ctx.material_estimate(h.center, &profile).max(h.top) + self.retract;
+            let start = entry_height(ctx, h, &profile, self.retract);
             if start > clearance {
                 return Err(Error::operation(&self.name, format!("the helix would start ({start:.3}) above the clearance height ({clearance:.3}): raise stock.clearance")));
             }
@@ -164,8 +164,6 @@ impl Operate for Bore {
                 grooves.push(Groove { path: vec![Segment::line(c, c)], radius: h.diameter / 2.0, depth: ctx.stock.max.z - bottom });
             }
         }
-        let first = moves.first().map_or(clearance * crate::geom::DVec3::Z, |m: &Move| m.to());
-        let path = Toolpath { name: self.name.clone(), tool: tool.number, spindle_rpm: tool.spindle_rpm, start: first, moves, cycles: Vec::new() };
-        Ok(Planned { paths: vec![path], grooves, ..Planned::default() })
+        Ok(Planned { paths: vec![hole_path(&self.name, &tool, moves, Vec::new(), clearance)], grooves, ..Planned::default() })
     }
 }

@@ -9,11 +9,11 @@ use serde::{Deserialize, Serialize};
 use crate::drawing::Loop;
 use crate::error::{Error, Result};
 use crate::geom::segment::Segment;
-use crate::machining::holes::{circle, point, HolePick};
+use crate::machining::holes::{circle, entry_height, hole_path, point, HolePick};
 use crate::machining::report::Groove;
 use crate::machining::settings::Direction;
 use crate::machining::{named_operation, not_negative, positive, Context, FieldError, Operate, Planned};
-use crate::toolpath::{Move, Toolpath};
+use crate::toolpath::Move;
 
 /// Chamfering holes' edges.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
@@ -124,7 +124,7 @@ impl Operate for Chamfer {
                     continue;
                 }
             }
-            let start = ctx.material_estimate(c, &profile).max(h.top) + self.retract;
+            let start = entry_height(ctx, h, &profile, self.retract);
             moves.push(Move::Rapid { to: c.extend(clearance) });
             moves.push(Move::Rapid { to: c.extend(start) });
             moves.push(Move::Line { to: c.extend(tip), feed: tool.plunge_rate });
@@ -147,8 +147,6 @@ impl Operate for Chamfer {
         if moves.is_empty() {
             return Err(Error::operation(&self.name, "no hole's edge is clear for the tool to chamfer"));
         }
-        let first = moves.first().map_or(clearance * crate::geom::DVec3::Z, |m: &Move| m.to());
-        let path = Toolpath { name: self.name.clone(), tool: tool.number, spindle_rpm: tool.spindle_rpm, start: first, moves, cycles: Vec::new() };
-        Ok(Planned { paths: vec![path], grooves, ..Planned::default() })
+        Ok(Planned { paths: vec![hole_path(&self.name, &tool, moves, Vec::new(), clearance)], grooves, ..Planned::default() })
     }
 }

@@ -10,13 +10,12 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::geom::segment::Segment;
-use crate::geom::DVec2;
 use crate::holes::Bottom;
-use crate::machining::holes::HolePick;
+use crate::machining::holes::{entry_height, hole_path, HolePick};
 use crate::machining::report::Groove;
 use crate::machining::{named_operation, not_negative, positive, Context, FieldError, Operate, Planned};
 use crate::toolpath::cycle::{Cycle, CycleKind};
-use crate::toolpath::{Move, Toolpath};
+use crate::toolpath::Move;
 
 /// Which drilling cycle.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
@@ -136,6 +135,12 @@ impl Operate for Drill {
         let tip = cutter.tip_length();
         let half = cutter.point_angle().to_radians() / 2.0;
         let initial = ctx.heights.clearance;
+        let kind = match self.cycle {
+            DrillCycle::Spot | DrillCycle::Drill => CycleKind::Drill,
+            DrillCycle::Dwell => CycleKind::Dwell,
+            DrillCycle::Peck => CycleKind::Peck,
+            DrillCycle::ChipBreak => CycleKind::ChipBreak,
+        };
         let mut moves: Vec<Move> = Vec::new();
         let mut cycles = Vec::new();
         // On a sheet, what each hole may lose: its circle, to the drill's depth (the sheet's
@@ -184,17 +189,10 @@ impl Operate for Drill {
             }
             // R just above what stands over the hole now (the part's top there, or stock not
             // yet cut).
-            let over = ctx.material_estimate(h.center, &profile).max(h.top);
-            let r = over + self.retract;
+            let r = entry_height(ctx, h, &profile, self.retract);
             if r > initial {
                 return Err(Error::operation(&self.name, format!("the R plane ({r:.3}) lies above the clearance height ({initial:.3}): raise stock.clearance")));
             }
-            let kind = match self.cycle {
-                DrillCycle::Spot | DrillCycle::Drill => CycleKind::Drill,
-                DrillCycle::Dwell => CycleKind::Dwell,
-                DrillCycle::Peck => CycleKind::Peck,
-                DrillCycle::ChipBreak => CycleKind::ChipBreak,
-            };
             let from_initial = cycles.is_empty() || self.return_to == ReturnLevel::Initial;
             // Under G99 the tool stands at the last hole's R plane: the next hole starts there
             // when that is no lower than its own R, else from the clearance height.
@@ -219,7 +217,7 @@ impl Operate for Drill {
             if ctx.sheet.is_some() {
                 grooves.push(Groove { path: vec![Segment::line(h.center, h.center)], radius: h.diameter / 2.0, depth: ctx.stock.max.z - bottom });
             }
-            let (m, _) = c.moves();
+            let m = c.moves();
             c.count = m.len();
             moves.extend(m);
             cycles.push(c);
@@ -239,10 +237,8 @@ impl Operate for Drill {
         if moves.last().is_some_and(|m| m.to().z < initial) {
             moves.push(Move::Rapid { to: moves.last().expect("a move").to().truncate().extend(initial) });
         }
-        let first = cycles.first().map_or(DVec2::ZERO, |c| c.at).extend(initial);
-        // The first cycle's first move is the rapid to its centre at the clearance height,
-        // where the path starts: kept, a move of no length.
-        let path = Toolpath { name: self.name.clone(), tool: tool.number, spindle_rpm: tool.spindle_rpm, start: first, moves, cycles };
-        Ok(Planned { paths: vec![path], grooves, ..Planned::default() })
+        // The first cycle's first move is the rapid to its centre at the clearance height, where
+        // the path starts: kept (a move of no length), so the cycles' indices hold.
+        Ok(Planned { paths: vec![hole_path(&self.name, &tool, moves, cycles, initial)], grooves, ..Planned::default() })
     }
 }

@@ -10,10 +10,10 @@ use serde::{Deserialize, Serialize};
 use crate::drawing::Loop;
 use crate::error::{Error, Result};
 use crate::geom::DVec2;
-use crate::machining::holes::{helix, point, HolePick};
+use crate::machining::holes::{entry_height, helix, hole_path, point, HolePick};
 use crate::machining::report::Groove;
 use crate::machining::{named_operation, positive, threads, Context, FieldError, Operate, Planned};
-use crate::toolpath::{Move, Toolpath};
+use crate::toolpath::Move;
 
 /// Which way the thread turns.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
@@ -151,7 +151,7 @@ impl Operate for ThreadMill {
             let high = low + turns * pitch;
             let (from, to) = if self.hand == Hand::Right { (low, high) } else { (high, low) };
             let c = h.center;
-            let start = ctx.material_estimate(c, &profile).max(h.top) + self.retract;
+            let start = entry_height(ctx, h, &profile, self.retract);
             moves.push(Move::Rapid { to: c.extend(clearance) });
             moves.push(Move::Rapid { to: c.extend(start) });
             let n = self.passes;
@@ -171,8 +171,6 @@ impl Operate for ThreadMill {
         if small > 0 {
             ctx.warn(&self.name, format!("{small} holes are narrower than the thread's minor diameter φ{minor:.3}: drill them to that first"));
         }
-        let first = moves.first().map_or(clearance * crate::geom::DVec3::Z, |m: &Move| m.to());
-        let path = Toolpath { name: self.name.clone(), tool: tool.number, spindle_rpm: tool.spindle_rpm, start: first, moves, cycles: Vec::new() };
-        Ok(Planned { paths: vec![path], grooves, ..Planned::default() })
+        Ok(Planned { paths: vec![hole_path(&self.name, &tool, moves, Vec::new(), clearance)], grooves, ..Planned::default() })
     }
 }

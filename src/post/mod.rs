@@ -19,7 +19,7 @@ use crate::error::Error;
 use crate::geom::{DVec2, DVec3};
 use crate::mesh::placement::Units;
 use crate::tool::{Coolant, Tool};
-use crate::toolpath::cycle::{Cycle, CycleKind};
+use crate::toolpath::cycle::{same_moves, Cycle, CycleKind};
 use crate::toolpath::{arc_sweep, Move, Toolpath};
 
 /// The built-in posts, by the controller family they are written for.
@@ -367,7 +367,7 @@ pub fn write_mapped(title: &str, paths: &[Toolpath], tools: &[Tool], clearance_z
                     k += moves.len();
                     continue;
                 }
-                dwell_after = (c.kind == CycleKind::Dwell).then(|| (k + c.moves().1, c.dwell));
+                dwell_after = (c.kind == CycleKind::Dwell).then(|| (c.bottom_move(), c.dwell));
             }
             if std::mem::take(&mut canned) {
                 w.line("G80");
@@ -599,11 +599,15 @@ impl<'a> Writer<'a> {
         };
         let unit = 10f64.powi(-(self.decimals as i32)) / self.scale;
         let standing = self.position[2].is_some_and(|z| self.length(z) == self.length(c.initial));
-        if !standing || written.r < written.bottom || written.initial < written.r || written.peck <= 0.0 || !written.matches(moves, 1.01 * unit) {
+        // (The cheap checks first: a peck of 0 would never reach the bottom.)
+        if !standing || written.r < written.bottom || written.initial < written.r || written.peck <= 0.0 {
             return false;
         }
         let Some(from) = self.at() else { return false };
-        let (expanded, _) = written.moves();
+        let expanded = written.moves();
+        if !same_moves(&expanded, moves, 1.01 * unit) {
+            return false;
+        }
         let mut at = from;
         for m in &expanded {
             self.seconds += m.length(at) / if m.is_rapid() { self.rapid_rate } else { c.feed } * 60.0;

@@ -125,7 +125,7 @@ pub fn read_gcode(text: &str, default_tool: u32) -> Result<Vec<Toolpath>, ReadEr
         }
         if change_tool {
             tool = st.selected.unwrap_or(tool);
-            paths.push(Toolpath { name: format!("T{tool}"), tool, spindle_rpm: st.spindle, start: DVec3::NAN, moves: Vec::new(), cycles: Vec::new() });
+            paths.push(empty_path(tool, st.spindle));
         }
         if let Some(m) = motion_word {
             st.motion = Some(m);
@@ -153,13 +153,7 @@ pub fn read_gcode(text: &str, default_tool: u32) -> Result<Vec<Toolpath>, ReadEr
             st.position = to;
             let (Some(fx), Some(fy), Some(fz)) = (from[0], from[1], from[2]) else { continue };
             let (from, to) = (DVec3::new(fx, fy, fz), DVec3::new(to[0].unwrap_or(fx), to[1].unwrap_or(fy), to[2].unwrap_or(fz)));
-            if paths.is_empty() {
-                paths.push(Toolpath { name: format!("T{tool}"), tool, spindle_rpm: st.spindle, start: DVec3::NAN, moves: Vec::new(), cycles: Vec::new() });
-            }
-            let path = paths.last_mut().expect("pushed above");
-            if path.start.is_nan() {
-                path.start = from;
-            }
+            let path = path_from(&mut paths, tool, st.spindle, from);
             let feed = || st.feed.map(|f| f * st.scale).filter(|f| *f > 0.0).ok_or_else(|| err("a feed move before any feed rate (F)".into()));
             let mv = match motion {
                 0 => Move::Rapid { to },
@@ -195,6 +189,24 @@ pub fn read_gcode(text: &str, default_tool: u32) -> Result<Vec<Toolpath>, ReadEr
     Ok(paths)
 }
 
+/// A tool's path before its first move (its start is where the tool stands then).
+fn empty_path(tool: u32, spindle: f64) -> Toolpath {
+    Toolpath { name: format!("T{tool}"), tool, spindle_rpm: spindle, start: DVec3::NAN, moves: Vec::new(), cycles: Vec::new() }
+}
+
+/// The path the next move goes into (a first one for `tool` in a program that never changes
+/// tools), started at `from` if it has no move yet.
+fn path_from(paths: &mut Vec<Toolpath>, tool: u32, spindle: f64, from: DVec3) -> &mut Toolpath {
+    if paths.is_empty() {
+        paths.push(empty_path(tool, spindle));
+    }
+    let path = paths.last_mut().expect("pushed above");
+    if path.start.is_nan() {
+        path.start = from;
+    }
+    path
+}
+
 /// The drilling cycle's G word's kind (motion 81, 82, 83, 73).
 fn cycle_kind(motion: u32) -> Option<CycleKind> {
     match motion {
@@ -228,19 +240,13 @@ fn drill(st: &mut State, kind: CycleKind, xy: [Option<f64>; 2], paths: &mut Vec<
         _ => 0.0,
     };
     let at = DVec2::new(xy[0].map_or(x0, |v| v * st.scale), xy[1].map_or(y0, |v| v * st.scale));
-    if paths.is_empty() {
-        paths.push(Toolpath { name: format!("T{tool}"), tool, spindle_rpm: st.spindle, start: DVec3::NAN, moves: Vec::new(), cycles: Vec::new() });
-    }
-    let path = paths.last_mut().expect("pushed above");
-    if path.start.is_nan() {
-        path.start = DVec3::new(x0, y0, z0);
-    }
+    let path = path_from(paths, tool, st.spindle, DVec3::new(x0, y0, z0));
     if z0 < r {
         path.moves.push(Move::Rapid { to: DVec3::new(x0, y0, r) });
     }
     let initial = z0.max(r);
     let mut cycle = Cycle { kind, first: path.moves.len(), count: 0, at, initial, r, bottom, to_initial: st.to_initial, peck, dwell, feed };
-    let (moves, _) = cycle.moves();
+    let moves = cycle.moves();
     cycle.count = moves.len();
     path.moves.extend(moves);
     path.cycles.push(cycle);

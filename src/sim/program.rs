@@ -36,7 +36,7 @@ pub fn program_moves(paths: &[Toolpath], tools: &[Tool], rapid_rate: f64) -> Res
         let tool = tools.iter().find(|t| t.number == path.tool).ok_or_else(|| Error::Input(format!("the program uses tool number {}, which is not in the tool library", path.tool)))?;
         let mut at = path.start;
         // A drilling cycle's dwell at the bottom counts in the move that reached it.
-        let dwells: std::collections::HashMap<usize, f64> = path.cycles.iter().filter(|c| c.kind == crate::toolpath::cycle::CycleKind::Dwell).map(|c| (c.first + c.moves().1, c.dwell)).collect();
+        let dwells: std::collections::HashMap<usize, f64> = path.cycles.iter().filter(|c| c.kind == crate::toolpath::cycle::CycleKind::Dwell).map(|c| (c.bottom_move(), c.dwell)).collect();
         for (i, mv) in path.moves.iter().enumerate() {
             let rate = match *mv {
                 Move::Rapid { .. } => rapid_rate,

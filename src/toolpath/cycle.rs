@@ -12,7 +12,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::Move;
-use crate::geom::{DVec2, DVec3};
+use crate::geom::DVec2;
 
 /// How far above the last peck's depth G83 and G73 come back down (or back off) at the rapid
 /// rate: LinuxCNC's `G83_RAPID_DELTA`, 0.010 inch.
@@ -80,9 +80,9 @@ impl Cycle {
         }
     }
 
-    /// Its moves, from anywhere at the height `initial`; and the index among them of the move
-    /// that reaches the bottom, after which G82 dwells.
-    pub fn moves(&self) -> (Vec<Move>, usize) {
+    /// Its moves, from anywhere at the height `initial`: they end with the feed to the bottom
+    /// and the rapid out.
+    pub fn moves(&self) -> Vec<Move> {
         let at = |z: f64| self.at.extend(z);
         let (clear, feed) = (self.clear(), self.feed);
         let mut out = vec![Move::Rapid { to: at(self.initial) }];
@@ -103,21 +103,21 @@ impl Cycle {
             }
         }
         out.push(Move::Line { to: at(self.bottom), feed });
-        let bottom = out.len() - 1;
         out.push(Move::Rapid { to: at(clear) });
-        (out, bottom)
+        out
     }
 
-    /// Whether `moves` are this cycle's, each end within `within` of where the cycle puts it.
-    pub fn matches(&self, moves: &[Move], within: f64) -> bool {
-        let (mine, _) = self.moves();
-        mine.len() == moves.len() && mine.iter().zip(moves).all(|(a, b)| a.is_rapid() == b.is_rapid() && !matches!(b, Move::Arc { .. }) && a.to().distance(b.to()) <= within)
+    /// The index in its path of the move that reaches the bottom, after which G82 dwells: the
+    /// last but one of its [`Cycle::count`] moves.
+    pub fn bottom_move(&self) -> usize {
+        (self.first + self.count).saturating_sub(2)
     }
 }
 
-/// The point a cycle's moves end at.
-pub fn end_of(c: &Cycle) -> DVec3 {
-    c.at.extend(c.clear())
+/// Whether `moves` are a cycle's moves `expected` (lines and rapids alike), each end within
+/// `within` of where the cycle puts it.
+pub fn same_moves(expected: &[Move], moves: &[Move], within: f64) -> bool {
+    expected.len() == moves.len() && expected.iter().zip(moves).all(|(a, b)| a.is_rapid() == b.is_rapid() && !matches!(b, Move::Arc { .. }) && a.to().distance(b.to()) <= within)
 }
 
 #[cfg(test)]
@@ -130,16 +130,17 @@ mod tests {
 
     #[test]
     fn pecks_are_counted_from_r_as_the_interpreter_counts_them() {
-        let (moves, bottom) = cycle(CycleKind::Peck).moves();
+        let moves = cycle(CycleKind::Peck).moves();
+        let bottom = Cycle { count: moves.len(), ..cycle(CycleKind::Peck) }.bottom_move();
         let feeds: Vec<f64> = moves.iter().filter(|m| !m.is_rapid()).map(|m| m.to().z).collect();
         assert_eq!(feeds, vec![-1.0, -3.0, -5.0, -7.0, -7.5]);
         assert_eq!(moves[bottom].to().z, -7.5);
         // Out to R after each peck, back to just above the last depth.
         assert_eq!(moves[3].to().z, 1.0);
         assert!((moves[4].to().z - (-1.0 + PECK_CLEARANCE)).abs() < 1e-12);
-        let (chip, _) = cycle(CycleKind::ChipBreak).moves();
+        let chip = cycle(CycleKind::ChipBreak).moves();
         assert!(chip.iter().all(|m| m.to().z <= 15.0));
         assert_eq!(chip.iter().filter(|m| m.to().z >= 1.0).count(), 3, "G73 stays in the hole between pecks");
-        assert_eq!(cycle(CycleKind::Drill).moves().0.len(), 4);
+        assert_eq!(cycle(CycleKind::Drill).moves().len(), 4);
     }
 }
