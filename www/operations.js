@@ -1,7 +1,7 @@
 // The operations of the job on show, in order: listed with their colour, tools and whether
 // they run; added, moved, removed; the picked one's form; and for drawings, the loops it cuts,
 // picked by clicking them in the view.
-import { $, state, hooks, job, selectedOp, selectedTool, is2d, store, toolsOf, buildJob } from './state.js';
+import { $, state, hooks, job, selectedOp, selectedTool, is2d, store, toolsOf, buildJob, HOLE_OPS } from './state.js';
 import { fillFields, message } from './forms.js';
 import { opColor, cssColor } from './viewer.js';
 
@@ -115,7 +115,6 @@ export function pickLoop(x, y) {
 // The holes the hole operations find (`swarf holes`), listed under their form and drawn in the
 // view; a click on one adds it to the operation's holes or takes it out. `state.holes` belongs
 // to the part or drawing it was found in.
-const HOLE_OPS = ['drill', 'bore', 'chamfer', 'threadMill'];
 const mm = (v) => String(Math.round(v * 1000) / 1000);
 
 export async function findHoles() {

@@ -28,7 +28,8 @@ export const selectedTool = () => state.tools[state.selected.tool] ?? null;
 export const is2d = (op) => op.kind === 'profile2d' || op.kind === 'pocket2d' || op.kind === 'engrave';
 // The hole operations work on a part's holes and on a drawing's circles alike, facing on a
 // part's stock and a sheet alike.
-export const isEither = (op) => ['drill', 'bore', 'chamfer', 'threadMill', 'face'].includes(op.kind);
+export const HOLE_OPS = ['drill', 'bore', 'chamfer', 'threadMill'];
+export const isEither = (op) => HOLE_OPS.includes(op.kind) || op.kind === 'face';
 
 export function store() {
   try {

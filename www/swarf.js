@@ -255,16 +255,11 @@ export class Engine {
     try {
       const memory = this.#options.memory ?? globalThis.navigator?.deviceMemory;
       const sharing = workersFor(this.workers, bytes?.byteLength ?? bytes?.length ?? 0, memory);
-      if (sharing === 1) return this.#result(await this.call({ type: 'run', job, bytes, name }, [], onProgress));
-      return this.#result(await this.#runShared([this.#main, ...this.#helpers.slice(0, sharing - 1)], job, bytes, name, onProgress));
+      if (sharing === 1) return withText(await this.call({ type: 'run', job, bytes, name }, [], onProgress));
+      return withText(await this.#runShared([this.#main, ...this.#helpers.slice(0, sharing - 1)], job, bytes, name, onProgress));
     } finally {
       signal?.removeEventListener('abort', onAbort);
     }
-  }
-
-  /** A run's answer made whole: the program's text from its bytes when read. */
-  #result(m) {
-    return withText(m);
   }
 
   /** A run shared by the workers `all`, the first of them planning. */

@@ -191,14 +191,10 @@ export class Viewer {
   // Cutting moves in their operation's colour (`ops`: the operation of each segment), or in
   // their tool's for the operations in `byTool` (octree roughing; `tools`: the tool of each
   // segment), and rapids; `moves` and `rapidMoves` give each segment's program move, so that
-  // the path already cut can be drawn apart from the path to come (`setCut`).
-  setPaths(paths) {
-    for (const step of this.pathSteps(paths)) step();
-  }
-
-  // `setPaths` as steps to run one after the other, each a task of its own if the caller likes
-  // (a step uploads at most GROUP_SEGMENTS segments: a die-sized program's million segments
-  // never hold the page's thread in one task).
+  // the path already cut can be drawn apart from the path to come (`setCut`). Returned as steps
+  // to run one after the other, each a task of its own if the caller likes (a step uploads at
+  // most GROUP_SEGMENTS segments: a die-sized program's million segments never hold the page's
+  // thread in one task).
   pathSteps({ feeds, rapids, stock, ops = null, tools = null, moves = null, rapidMoves = null, byTool = new Set() }) {
     this.dropGroups();
     this.dropLines((key) => key.startsWith('octants') || key === 'stock');

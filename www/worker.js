@@ -107,7 +107,8 @@ function send(id, result) {
   const gcodeBytes = result.gcodeBytes().slice(), lineStarts = linesOf(gcodeBytes);
   const summary = result.summary();
   const drawing = result.drawing();
-  const { part, transfer } = partMessage(result.takePart(), true);
+  const { part, transfer: partTransfer } = partMessage(result.takePart(), true);
+  const simTransfer = [];
   let sim = null;
   if (result.hasSimulation()) {
     const grid = Array.from(result.simGrid());
@@ -121,16 +122,16 @@ function send(id, result) {
       report: result.report(),
       start: coarse(result.seek(result.times().length - 1)),
     };
-    transfer.push(sim.part.buffer, sim.times.buffer, sim.mrr.buffer, sim.findings.buffer, sim.start.buffer);
+    simTransfer.push(sim.part.buffer, sim.times.buffer, sim.mrr.buffer, sim.findings.buffer, sim.start.buffer);
   }
   current?.free();
   current = result;
   // In pieces, each a task of its own on the page's thread (the engine puts them together):
   // a die-sized result is a hundred megabytes of arrays.
-  self.postMessage({ id, type: 'piece', piece: { part } }, transfer.slice(0, part.positions ? 2 : 0));
+  self.postMessage({ id, type: 'piece', piece: { part } }, partTransfer);
   self.postMessage({ id, type: 'piece', piece: { feeds, feedOps, feedTools, feedMoves, octants, rapids, rapidMoves } }, [feeds.buffer, feedOps.buffer, feedTools.buffer, feedMoves.buffer, octants.buffer, rapids.buffer, rapidMoves.buffer]);
   self.postMessage({ id, type: 'piece', piece: { gcodeBytes, lineStarts, moveLines } }, [gcodeBytes.buffer, lineStarts.buffer, moveLines.buffer]);
-  self.postMessage({ id, ok: true, summary, drawing, sim }, transfer.slice(part.positions ? 2 : 0));
+  self.postMessage({ id, ok: true, summary, drawing, sim }, simTransfer);
 }
 
 self.onmessage = async (event) => {
