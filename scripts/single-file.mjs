@@ -5,6 +5,7 @@
 import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
+import { workerSource } from './worker-source.mjs';
 
 const www = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../www');
 const read = (f) => fs.readFileSync(path.join(www, f), 'utf8');
@@ -26,15 +27,8 @@ function linked(src, modules) {
   });
 }
 
-// The worker: wasm-bindgen's glue as a classic script, then the worker with its import bound.
-let glue = read('pkg/swarf.js');
-glue = glue.replace(/^export (function|class|async function) /gm, '$1 ').replace(/^export \{[^}]*\};?\s*$/m, '').replace(/import\.meta\.url/g, 'self.location.href');
-if (/^export /m.test(glue)) throw new Error('pkg/swarf.js: an export this build does not know');
-let worker = read('worker.js');
-const imported = /^import init, \{([^}]*)\} from '\.\/pkg\/swarf\.js';$/m;
-if (!imported.test(worker)) throw new Error('worker.js: its import of the glue changed');
-worker = worker.replace(imported, 'const init = __wbg_init;');
-const workerSource = `${glue}\n${worker}`;
+// The worker as one classic script, made from a Blob.
+const worker = workerSource(www);
 
 // The page's modules, in order of use.
 const modules = ['viewer', 'swarf', 'state', 'forms', 'gcode', 'simulation', 'tools', 'operations', 'part', 'results'];
@@ -45,7 +39,7 @@ for (const m of modules) {
 }
 const wasm = fs.readFileSync(path.join(www, 'pkg/swarf_bg.wasm')).toString('base64');
 script += `
-const WORKER_SOURCE = ${JSON.stringify(workerSource)};
+const WORKER_SOURCE = ${JSON.stringify(worker)};
 const WASM_BASE64 = '${wasm}';
 window.SWARF_ENGINE_OPTIONS = {
   worker: () => new Worker(URL.createObjectURL(new Blob([WORKER_SOURCE], { type: 'text/javascript' }))),

@@ -53,6 +53,12 @@ export function message(text, level = 'note') {
   m.textContent = text;
 }
 
+// A file or job taken in has had its answer (read, or refused with the message): counted on
+// the page's body (`data-answered`), the signal a test or a portal waits on.
+export function answered() {
+  document.body.dataset.answered = String(Number(document.body.dataset.answered ?? 0) + 1);
+}
+
 // A field's own message: a value that does not read (marked until it does).
 export function fieldError(el, text) {
   el.classList.toggle('invalid', !!text);

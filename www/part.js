@@ -3,7 +3,7 @@
 // size, in the view with a grid, and with what the user should know of it. How a file is read
 // (units, scale, up axis, turn) belongs to that file: a new file starts from its format's own.
 import { $, state, hooks, job, store } from './state.js';
-import { fillFields, message } from './forms.js';
+import { fillFields, message, answered } from './forms.js';
 
 const FORMAT_UNITS = { stl: 'mm, as STL says nothing', obj: 'mm, as OBJ says nothing', gltf: 'metres, as glTF is', glb: 'metres, as glTF is' };
 const UP_NAMES = { z: '+Z', y: '+Y', x: '+X', '-z': '−Z', '-y': '−Y', '-x': '−X' };
@@ -127,6 +127,14 @@ function showDrawing(d) {
 // format's units with every reading setting back to its default.
 export async function takeFile(file) {
   if (/\.json$/i.test(file.name)) return hooks.loadJob?.(file);
+  try {
+    await readFile(file);
+  } finally {
+    answered();
+  }
+}
+
+async function readFile(file) {
   const bytes = new Uint8Array(await file.arrayBuffer());
   const before = { part: structuredClone(state.jobs.part.part), drawing: structuredClone(state.jobs.drawing.drawing) };
   freshSetup();

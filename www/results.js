@@ -2,7 +2,7 @@
 // summary with the cycle time's breakdown, the warnings (amber, with their places) and errors
 // (red), the program in its pane, its simulation; the job, the project and the post as files.
 import { $, state, hooks, job, store, buildJob, is2d, isEither, clock, clockFormat, downloadText } from './state.js';
-import { fillFields, message, check } from './forms.js';
+import { fillFields, message, check, answered } from './forms.js';
 import { opColor, toolColor, cssColor, RAPID_COLOR, MARK_COLORS } from './viewer.js';
 import { sim, showSimulation } from './simulation.js';
 
@@ -322,6 +322,8 @@ export async function loadJob(file) {
     else message(`Loaded the job from ${file.name}: ${read.operations.length} operation(s).`, 'ok');
   } catch (e) {
     message(`${file.name}: ${e.message}`, 'error');
+  } finally {
+    answered();
   }
 }
 

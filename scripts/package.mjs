@@ -1,0 +1,118 @@
+// Makes swarf's npm package folder, target/package/swarf/, from what scripts/build-wasm.sh
+// built in www/ (scripts/build-package.sh runs both, then `npm pack`). Two entries:
+//   swarf        index.js: the engine with its worker and wasm inside the module (a Blob worker,
+//                the wasm's bytes), so any bundler (esbuild, Vite, webpack, Rollup) or none
+//                takes it with no configuration;
+//   swarf/files  engine.js: the same engine finding worker.js and pkg/swarf_bg.wasm beside it
+//                (`new URL('./worker.js', import.meta.url)`), for pages that serve the package's
+//                files as they are (smaller, and no `blob:` worker for a strict CSP).
+// The types: swarf.d.ts and the types generated from the Rust serde types, for both entries.
+import fs from 'node:fs';
+import path from 'node:path';
+import { execFileSync } from 'node:child_process';
+import { fileURLToPath } from 'node:url';
+import { workerSource } from './worker-source.mjs';
+
+const repo = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
+const www = path.join(repo, 'www');
+const out = path.join(repo, 'target/package/swarf');
+fs.rmSync(out, { recursive: true, force: true });
+fs.mkdirSync(path.join(out, 'pkg'), { recursive: true });
+fs.mkdirSync(path.join(out, 'types'), { recursive: true });
+
+const cargo = fs.readFileSync(path.join(repo, 'Cargo.toml'), 'utf8');
+const field = (name) => cargo.match(new RegExp(`^${name}\\s*=\\s*"([^"]*)"`, 'm'))?.[1];
+const version = field('version');
+const license = field('license');
+if (!version || !license) throw new Error('Cargo.toml: no version or license');
+
+const copy = (from, to = from) => fs.copyFileSync(path.join(www, from), path.join(out, to));
+// The files entry: the page's own module, worker and wasm, as the page serves them.
+copy('swarf.js', 'engine.js');
+copy('worker.js');
+copy('pkg/swarf.js');
+copy('pkg/swarf_bg.wasm');
+copy('types/swarf-types.d.ts');
+copy('swarf.d.ts', 'engine.d.ts');
+
+// The self-contained entry: the worker as one classic script and the wasm as base64, inside.
+const inline = `// The engine's worker (wasm-bindgen's glue and worker.js as one script) and its wasm, kept
+// inside the module so that a bundler needs no configuration to ship them. Generated.
+export const WORKER_SOURCE = ${JSON.stringify(workerSource(www))};
+export const WASM_BASE64 = '${fs.readFileSync(path.join(www, 'pkg/swarf_bg.wasm')).toString('base64')}';
+`;
+fs.writeFileSync(path.join(out, 'inline.js'), inline);
+fs.writeFileSync(
+  path.join(out, 'index.js'),
+  `// swarf's engine, its worker and wasm inside this module: \`import { createEngine } from 'swarf'\`.
+// Options as engine.js takes them (see index.d.ts); a \`worker\` or \`workerUrl\` given is used
+// instead of the one inside (then \`wasm\` defaults to pkg/swarf_bg.wasm beside that worker).
+import { createEngine as createFrom } from './engine.js';
+import { WORKER_SOURCE, WASM_BASE64 } from './inline.js';
+
+export * from './engine.js';
+
+let workerUrl = null;
+let wasm = null;
+
+function inlineWorker() {
+  workerUrl ??= URL.createObjectURL(new Blob([WORKER_SOURCE], { type: 'text/javascript' }));
+  return new Worker(workerUrl);
+}
+
+function inlineWasm() {
+  if (!wasm) {
+    const text = atob(WASM_BASE64);
+    wasm = new Uint8Array(text.length);
+    for (let i = 0; i < text.length; i++) wasm[i] = text.charCodeAt(i);
+  }
+  return wasm;
+}
+
+/** Starts an engine (see engine.js): its workers made from the worker inside this module. */
+export function createEngine(options = {}) {
+  if (options.worker || options.workerUrl) return createFrom(options);
+  return createFrom({ ...options, worker: inlineWorker, wasm: options.wasm ?? inlineWasm() });
+}
+`,
+);
+fs.writeFileSync(path.join(out, 'index.d.ts'), "// swarf's engine with its worker and wasm inside the module; the API is engine.d.ts's.\nexport * from './engine.js';\n");
+
+// The licences: swarf's, and those of the crates built into the wasm (from cargo's own tree).
+for (const f of ['LICENSE-MIT', 'LICENSE-APACHE']) fs.copyFileSync(path.join(repo, f), path.join(out, f));
+const tree = execFileSync('cargo', ['tree', '--target', 'wasm32-unknown-unknown', '-e', 'normal', '--prefix', 'none', '--format', '{p}|{l}'], { cwd: repo, encoding: 'utf8' });
+const crates = [...new Set(tree.split('\n').filter((l) => l.includes('|')).map((l) => l.replace(/ \((\*|proc-macro|\/[^)]*)\)/g, '').trim()))]
+  .filter((l) => !l.startsWith('swarf '))
+  .sort();
+fs.writeFileSync(
+  path.join(out, 'THIRD-PARTY.md'),
+  `# The crates inside swarf_bg.wasm\n\nswarf ${version} is ${license}. The wasm is built from these Rust crates (and the procedural macros that generate some of their code), each under the licence crates.io gives:\n\n| crate | version | licence |\n|---|---|---|\n${crates
+    .map((l) => {
+      const [p, lic] = l.split('|');
+      const [name, v] = p.split(' ');
+      return `| ${name} | ${v.replace(/^v/, '')} | ${lic} |`;
+    })
+    .join('\n')}\n`,
+);
+
+fs.copyFileSync(path.join(repo, 'package/README.md'), path.join(out, 'README.md'));
+const pkg = {
+  name: 'swarf',
+  version,
+  description: 'CAM in the browser: parts (STL, glTF, OBJ) and drawings (DXF, SVG) in, gouge-free tool paths and G-code out, in a Web Worker.',
+  license,
+  type: 'module',
+  main: './index.js',
+  module: './index.js',
+  types: './index.d.ts',
+  exports: {
+    '.': { types: './index.d.ts', default: './index.js' },
+    './files': { types: './engine.d.ts', default: './engine.js' },
+    './package.json': './package.json',
+  },
+  files: ['index.js', 'index.d.ts', 'inline.js', 'engine.js', 'engine.d.ts', 'worker.js', 'pkg/swarf.js', 'pkg/swarf_bg.wasm', 'types/swarf-types.d.ts', 'README.md', 'THIRD-PARTY.md', 'LICENSE-MIT', 'LICENSE-APACHE'],
+  sideEffects: false,
+  keywords: ['cam', 'cnc', 'g-code', 'gcode', 'toolpath', 'milling', 'wasm', 'stl', 'dxf'],
+};
+fs.writeFileSync(path.join(out, 'package.json'), `${JSON.stringify(pkg, null, 2)}\n`);
+console.log(`target/package/swarf: swarf ${version}`);

@@ -1,0 +1,170 @@
+// swarf as an npm package (issue 41): the tarball scripts/build-package.sh makes (from the wasm
+// scripts/build-wasm.sh built) installed into a scratch project, bundled by esbuild with no
+// configuration, opened in Chromium: a job run on a part, one cancelled, the next run, the
+// G-code read by LinuxCNC's rs274; a strict TypeScript portal compiled against the installed
+// types; the tarball's contents and size.
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import fs from 'node:fs';
+import http from 'node:http';
+import os from 'node:os';
+import path from 'node:path';
+import { execFileSync } from 'node:child_process';
+import { root, browser, PATIENCE, toolTable } from './harness.mjs';
+
+const repo = path.resolve(root, '..');
+const bin = (name) => path.join(repo, 'node_modules/.bin', name);
+/** The most the tarball may weigh (bytes), as the package's README says. */
+const MOST = 2.5e6;
+let tarball, scratch, server, base;
+
+before(() => {
+  execFileSync('bash', ['scripts/build-package.sh', '--no-wasm'], { cwd: repo, stdio: 'pipe' });
+  const dir = path.join(repo, 'target/package');
+  tarball = path.join(dir, fs.readdirSync(dir).find((f) => /^swarf-.*\.tgz$/.test(f)));
+  // A portal's project: nothing but the tarball installed, and its own code.
+  scratch = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-portal-'));
+  fs.writeFileSync(path.join(scratch, 'package.json'), JSON.stringify({ name: 'portal', private: true, type: 'module' }));
+  execFileSync('npm', ['install', '--offline', '--no-audit', '--no-fund', tarball], { cwd: scratch, stdio: 'pipe' });
+});
+
+after(() => server?.close());
+
+test('the tarball holds the engine, its worker, wasm, types, README and licences, and no test data, source maps or machine paths, under its stated size', () => {
+  const files = execFileSync('tar', ['tzf', tarball], { encoding: 'utf8' }).trim().split('\n').map((f) => f.replace(/^package\//, ''));
+  for (const f of ['package.json', 'index.js', 'index.d.ts', 'engine.js', 'engine.d.ts', 'worker.js', 'pkg/swarf.js', 'pkg/swarf_bg.wasm', 'types/swarf-types.d.ts', 'README.md', 'THIRD-PARTY.md', 'LICENSE-MIT', 'LICENSE-APACHE']) assert.ok(files.includes(f), `${f} is missing from ${files.join(', ')}`);
+  assert.deepEqual(files.filter((f) => /\.(map|stl|obj|gltf|glb|dxf|svg|ngc|nc|tap|tsv)$/i.test(f) || /^(tests?|data|src)\//.test(f)), []);
+  const size = fs.statSync(tarball).size;
+  assert.ok(size < MOST, `the tarball is ${size} bytes`);
+  const readme = fs.readFileSync(path.join(scratch, 'node_modules/swarf/README.md'), 'utf8');
+  assert.match(readme, /stays under 2\.5 MB/);
+  assert.match(readme, /npm install \.\/swarf-/);
+  // No path of the machine that built it: neither this checkout nor the crates' sources.
+  const installed = path.join(scratch, 'node_modules/swarf');
+  const home = os.homedir();
+  for (const f of files) {
+    const text = fs.readFileSync(path.join(installed, f)).toString('latin1');
+    for (const p of [repo, home, path.join(home, '.cargo')]) assert.ok(!text.includes(p), `${f} holds ${p}`);
+  }
+  const pkg = JSON.parse(fs.readFileSync(path.join(installed, 'package.json'), 'utf8'));
+  const cargo = fs.readFileSync(path.join(repo, 'Cargo.toml'), 'utf8').match(/^version\s*=\s*"([^"]*)"/m)[1];
+  assert.equal(pkg.version, cargo);
+  assert.equal(pkg.type, 'module');
+  assert.equal(pkg.sideEffects, false);
+  assert.equal(pkg.exports['.'].types, './index.d.ts');
+  assert.match(fs.readFileSync(path.join(installed, 'THIRD-PARTY.md'), 'utf8'), /\| glam \| [\d.]+ \| MIT OR Apache-2\.0 \|/);
+});
+
+test('a strict TypeScript portal compiles against the installed package\'s types, and a wrong field does not', () => {
+  const ts = `import { createEngine, CancelledError, type JobInput, type RunResult, type Engine } from 'swarf';
+import { createEngine as fromFiles } from 'swarf/files';
+export async function portal(bytes: Uint8Array, signal: AbortSignal): Promise<string> {
+  const engine: Engine = await createEngine({ workers: 2, warmUp: false });
+  const job: JobInput = { tools: [{ number: 1, shape: 'flat', diameter: 6 }], operations: [{ kind: 'roughZlevel', tool: 1, stepdown: 2 }], post: { dialect: 'grbl' } };
+  const problems = await engine.checkJob(job);
+  if (problems.length) throw new Error(problems.map((p) => p.message).join('; '));
+  const r: RunResult = await engine.run(job, bytes, 'part.stl', { signal, onProgress: (f: number, stage: string) => console.log(f, stage) });
+  const seconds: number = r.summary.cycle.seconds;
+  engine.close();
+  void fromFiles;
+  void CancelledError;
+  return \`\${r.gcode.length} \${seconds}\`;
+}
+`;
+  fs.writeFileSync(path.join(scratch, 'portal.ts'), ts);
+  const tsc = (file) => execFileSync(process.execPath, [path.join(repo, 'node_modules/typescript/bin/tsc'), '--strict', '--noEmit', '--target', 'es2022', '--module', 'esnext', '--moduleResolution', 'bundler', '--lib', 'es2022,dom', file], { cwd: scratch, encoding: 'utf8', stdio: 'pipe' });
+  tsc('portal.ts');
+  // The types say what a job may hold: a misspelt field fails the compile.
+  fs.writeFileSync(path.join(scratch, 'wrong.ts'), ts.replace('stepdown: 2', 'stepDown: 2'));
+  assert.throws(() => tsc('wrong.ts'), (e) => /stepDown/.test(String(e.stdout)));
+});
+
+test('installed and bundled by esbuild with no configuration, the portal runs a job, cancels one, runs again, and rs274 reads its G-code', async () => {
+  const portal = `import { createEngine } from 'swarf';
+const engine = await createEngine({ workers: 2 });
+window.portal = {
+  engine,
+  // A run on the sample part: its program, or how it ended.
+  async run(cancelAfterProgress) {
+    const job = engine.defaultJob();
+    job.operations = job.operations.filter((op) => op.kind === 'finishRaster').slice(0, 1);
+    job.operations[0].stepover = cancelAfterProgress ? 0.2 : 1.5;
+    const controller = new AbortController();
+    let progress = 0;
+    try {
+      const r = await engine.run(job, engine.sample, 'sample.stl', {
+        signal: controller.signal,
+        onProgress: () => { progress++; if (cancelAfterProgress && progress === 2) controller.abort(); },
+      });
+      return { ok: true, gcode: r.gcode, moves: r.summary.moves, tools: job.tools, progress };
+    } catch (e) {
+      return { ok: false, name: e.name, message: e.message, progress };
+    }
+  },
+};
+document.body.dataset.ready = 'true';
+`;
+  fs.writeFileSync(path.join(scratch, 'portal.js'), portal);
+  const dist = path.join(scratch, 'dist');
+  fs.mkdirSync(dist, { recursive: true });
+  execFileSync(bin('esbuild'), ['portal.js', '--bundle', '--format=esm', '--outfile=dist/portal.js'], { cwd: scratch, stdio: 'pipe' });
+  fs.writeFileSync(path.join(dist, 'index.html'), '<!doctype html><meta charset="utf-8"><title>portal</title><link rel="icon" href="data:,"><script type="module" src="portal.js"></script>');
+  // The bundle is the only script served: no worker.js or wasm beside it.
+  assert.deepEqual(fs.readdirSync(dist).sort(), ['index.html', 'portal.js']);
+  // The bundle's folder at /, and the installed package's files as they are at /swarf/ (for
+  // the `swarf/files` entry, imported unbundled).
+  const installed = path.join(scratch, 'node_modules/swarf');
+  const types = { '.js': 'text/javascript', '.html': 'text/html', '.wasm': 'application/wasm' };
+  server = http.createServer((req, res) => {
+    const name = decodeURIComponent(new URL(req.url, 'http://x').pathname);
+    const [dir, rest] = name.startsWith('/swarf/') ? [installed, name.slice('/swarf'.length)] : [dist, name === '/' ? '/index.html' : name];
+    const file = path.join(dir, rest);
+    if (!file.startsWith(dir) || !fs.existsSync(file) || fs.statSync(file).isDirectory()) { res.writeHead(404); res.end(); return; }
+    res.writeHead(200, { 'content-type': types[path.extname(file)] ?? 'application/octet-stream' });
+    fs.createReadStream(file).pipe(res);
+  });
+  await new Promise((resolve) => server.listen(0, '127.0.0.1', resolve));
+  base = `http://127.0.0.1:${server.address().port}/`;
+  const context = await browser.newContext();
+  context.setDefaultTimeout(PATIENCE);
+  const page = await context.newPage();
+  const errors = [];
+  const asked = [];
+  page.on('pageerror', (e) => errors.push(String(e)));
+  page.on('request', (r) => asked.push(r.url()));
+  await page.goto(base);
+  await page.waitForFunction(() => document.body?.dataset.ready === 'true');
+  assert.equal(await page.evaluate(() => window.portal.engine.workers), 2);
+  const first = await page.evaluate(() => window.portal.run(false));
+  assert.ok(first.ok, first.message);
+  assert.ok(first.moves > 1000, `${first.moves} moves`);
+  const cancelled = await page.evaluate(() => window.portal.run(true));
+  assert.equal(cancelled.ok, false);
+  assert.equal(cancelled.name, 'AbortError', cancelled.message);
+  const again = await page.evaluate(() => window.portal.run(false));
+  assert.ok(again.ok, again.message);
+  assert.equal(again.gcode, first.gcode);
+  // What the page asked for: the page and the bundle, nothing else (no worker or wasm file).
+  assert.deepEqual([...new Set(asked.filter((u) => !u.startsWith('blob:')))].sort(), [base, `${base}portal.js`].sort());
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-portal-gcode-'));
+  const program = path.join(dir, 'portal.ngc');
+  fs.writeFileSync(program, first.gcode);
+  fs.writeFileSync(path.join(dir, 'tool.tbl'), toolTable(first.tools));
+  const canon = execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), program], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });
+  assert.ok(canon.split('\n').filter((l) => l.includes('STRAIGHT_FEED(')).length > 1000);
+  // The files entry, unbundled: its worker and wasm found beside its module.
+  fs.writeFileSync(path.join(dist, 'files.html'), `<!doctype html><meta charset="utf-8"><title>files</title><link rel="icon" href="data:,"><script type="module">
+import { createEngine } from '/swarf/engine.js';
+const engine = await createEngine({ workers: 1, warmUp: false });
+const job = engine.defaultJob('drawing');
+const r = await engine.run(job, engine.sampleDrawing, 'sample.dxf');
+document.body.dataset.moves = String(r.summary.moves);
+</script>`);
+  asked.length = 0;
+  await page.goto(`${base}files.html`);
+  await page.waitForFunction(() => Number(document.body?.dataset.moves) > 0);
+  const files = asked.map((u) => new URL(u).pathname);
+  for (const f of ['/swarf/engine.js', '/swarf/worker.js', '/swarf/pkg/swarf.js', '/swarf/pkg/swarf_bg.wasm']) assert.ok(files.includes(f), `${f} not asked for: ${files.join(', ')}`);
+  assert.deepEqual(errors, []);
+  await context.close();
+});
