@@ -12,7 +12,7 @@ use swarf::holes::{mesh::find, Bottom, Hole};
 use swarf::job::{self, Job, Operation, Tool};
 use swarf::machining::holes::HolePick;
 use swarf::mesh::Mesh;
-use swarf::operations::{Bore, Chamfer, Drill, DrillCycle, Face, FacePattern, Hand, ReturnLevel, ThreadMill};
+use swarf::operations::{Bore, Chamfer, ChamferEdges, Drill, DrillCycle, Face, FacePattern, Hand, ReturnLevel, ThreadMill};
 use swarf::post::Dialect;
 use swarf::progress::Progress;
 
@@ -709,7 +709,10 @@ fn a_shared_plate_is_spotted_drilled_chamfered_and_cut_out() {
     let drawing = swarf::drawing::import::read_drawing(&std::fs::read(path).unwrap(), Some("tm_LM2.dxf"), &Tolerances::DEFAULT).unwrap();
     let mut job = Job::default_for_drawing();
     let holes = job.holes(drawing.clone()).unwrap();
-    assert_eq!(holes.len(), 36, "{}", swarf::machining::holes::sizes(&holes).join(", "));
+    // Its 36 circles, and 31 POINTs (its dimensions' anchors, at the plate's corners among
+    // them: drill marks the operations below leave out unless asked for).
+    assert_eq!(holes.iter().filter(|h| !h.mark).count(), 36, "{}", swarf::machining::holes::sizes(&holes).join(", "));
+    assert_eq!(holes.iter().filter(|h| h.mark).count(), 31);
     job.tools = vec![
         drill_tool(1, Cutter { shape: swarf::cutter::Shape::SpotDrill, diameter: 10.0, angle: Some(90.0), ..Cutter::default() }),
         drill_tool(2, Cutter::drill(3.2, 118.0)),
@@ -748,4 +751,174 @@ fn a_shared_plate_is_spotted_drilled_chamfered_and_cut_out() {
             assert_eq!(out.gcode.matches("G83 ").count(), 26, "the φ3.2 holes pecked");
         }
     }
+}
+
+/// A DXF's POINTs are drill marks: listed by `swarf drawing` after the loops, drilled as wide
+/// as the drill (with the drawing's circles, in one short path), left out of a bore of all the
+/// holes and refused where picked by number; a drawing of marks alone is drilled too.
+#[test]
+fn a_drawings_points_are_drill_marks() {
+    let point = |x: f64, y: f64, layer: &str| format!("0\nPOINT\n8\n{layer}\n10\n{x}\n20\n{y}\n30\n0\n");
+    let outline = "0\nLWPOLYLINE\n8\n0\n90\n4\n70\n1\n10\n0\n20\n0\n10\n80\n20\n0\n10\n80\n20\n50\n10\n0\n20\n50\n";
+    let circle = "0\nCIRCLE\n8\n0\n10\n40\n20\n25\n40\n6\n";
+    let marks = [point(10.0, 10.0, "DRILL"), point(70.0, 10.0, "DRILL"), point(70.0, 40.0, "DRILL")].concat();
+    let dxf = format!("0\nSECTION\n2\nENTITIES\n{outline}{circle}{marks}0\nENDSEC\n0\nEOF\n");
+    let drawing = swarf::drawing::import::read_drawing(dxf.as_bytes(), Some("marks.dxf"), &Tolerances::DEFAULT).unwrap();
+    assert_eq!(drawing.points.len(), 3);
+    assert!(drawing.ignored.is_empty(), "{:?}", drawing.ignored);
+    assert!(drawing.layers.contains(&"DRILL".to_string()));
+    let mut job = Job::default_for_drawing();
+    job.drawing.thickness = 4.0;
+    let holes = job.holes(drawing.clone()).unwrap();
+    assert_eq!(holes.len(), 4, "{holes:#?}");
+    let marks: Vec<&Hole> = holes.iter().filter(|h| h.mark).collect();
+    assert_eq!(marks.len(), 3);
+    // Numbered after the drawing's two loops.
+    assert_eq!(marks.iter().map(|h| h.loop_index.unwrap()).collect::<Vec<_>>(), vec![2, 3, 4]);
+    assert!(marks.iter().all(|h| h.diameter == 0.0 && h.through && h.layer.as_deref() == Some("DRILL")));
+    // Drilled, all four: the marks at the drill's own width, and the program clean.
+    job.tools = vec![drill_tool(1, Cutter::drill(4.0, 118.0)), Tool { number: 2, cutter: Cutter::flat(6.0), ..Tool::default() }];
+    // "All the holes" is the circle alone: a DXF's points are as often its dimensions' anchors.
+    job.operations = vec![Operation::Drill(Drill { name: "drill".into(), tool: 1, cycle: DrillCycle::Peck, ..Drill::default() })];
+    let out = job::run(&job, drawing.clone(), &mut Progress::none()).unwrap();
+    assert_eq!(out.gcode.matches("G98 G83").count(), 1, "{}", out.gcode);
+    job.operations = vec![Operation::Drill(Drill { name: "drill".into(), tool: 1, cycle: DrillCycle::Peck, pick: HolePick { marks: true, ..HolePick::default() }, ..Drill::default() })];
+    let out = job::run(&job, drawing.clone(), &mut Progress::none()).unwrap();
+    let report = &out.verification.as_ref().unwrap().report;
+    assert!(report.is_clean(), "{}", report.describe());
+    assert_eq!(out.gcode.matches("G98 G83").count(), 4, "{}", out.gcode);
+    canon(&out.gcode, &job.tools);
+    // Only the φ12 circle is said to be wider than the drill: the marks are its own width.
+    assert!(!out.warnings.iter().any(|w| w.message.contains("narrower")), "{:?}", out.warnings);
+    assert!(out.warnings.iter().any(|w| w.message.starts_with("1 holes are wider")), "{:?}", out.warnings);
+    // Picked by a diameter range, the marks (no diameter) are not taken.
+    let mut ranged = job.clone();
+    ranged.operations = vec![Operation::Drill(Drill { name: "drill".into(), tool: 1, pick: HolePick { max_diameter: Some(20.0), ..HolePick::default() }, ..Drill::default() })];
+    let out = job::run(&ranged, drawing.clone(), &mut Progress::none()).unwrap();
+    assert_eq!(out.gcode.matches("G98 G81").count(), 1);
+    // A bore of all the holes bores the circle; a bore of a mark by number is refused.
+    let bore = |pick: HolePick| Job { operations: vec![Operation::Bore(Bore { name: "bore".into(), tool: 2, pick, ..Bore::default() })], ..job.clone() };
+    let out = job::run(&bore(HolePick::default()), drawing.clone(), &mut Progress::none()).unwrap();
+    assert!(out.verification.as_ref().unwrap().report.is_clean());
+    match job::run(&bore(HolePick { holes: vec![1, 3], ..HolePick::default() }), drawing.clone(), &mut Progress::none()) {
+        Err(e) => assert!(e.to_string().contains("holes 3 are drill marks"), "{e}"),
+        Ok(_) => panic!("a drill mark was bored"),
+    }
+    // Picked by number, a mark is drilled without `marks`.
+    let numbered = Job { operations: vec![Operation::Drill(Drill { name: "drill".into(), tool: 1, pick: HolePick { holes: vec![3, 4], ..HolePick::default() }, ..Drill::default() })], ..job.clone() };
+    let out = job::run(&numbered, drawing.clone(), &mut Progress::none()).unwrap();
+    assert_eq!(out.gcode.matches("G98 G81").count(), 2);
+    // Marks alone: a drawing of points is a drilling job, the marks asked for.
+    let only = format!("0\nSECTION\n2\nENTITIES\n{}0\nENDSEC\n0\nEOF\n", [point(0.0, 0.0, "0"), point(30.0, 0.0, "0"), point(30.0, 20.0, "0")].concat());
+    let drawing = swarf::drawing::import::read_drawing(only.as_bytes(), Some("only.dxf"), &Tolerances::DEFAULT).unwrap();
+    match job::run(&Job { operations: vec![Operation::Drill(Drill { name: "drill".into(), tool: 1, ..Drill::default() })], ..job.clone() }, drawing.clone(), &mut Progress::none()) {
+        Err(e) => assert!(e.to_string().contains("there are 3 drill marks; drill marks (POINTs) are taken by number, or all of them with marks: true"), "{e}"),
+        Ok(_) => panic!("marks drilled unasked"),
+    }
+    let out = job::run(&job, drawing, &mut Progress::none()).unwrap();
+    assert_eq!(out.gcode.matches("G98 G83").count(), 3);
+    assert!(out.verification.as_ref().unwrap().report.is_clean());
+    // The command line lists them.
+    let dir = std::env::temp_dir().join(format!("swarf-marks-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("marks.dxf");
+    std::fs::write(&file, &dxf).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_swarf")).arg("drawing").arg(&file).output().unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("drill mark 2: at (10.000, 10.000) mm, layer DRILL") && text.contains("holes: 3 drill marks, 1 × φ12"), "{text}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A drawing's loops chamfered (issue 40): outside the outlines, inside the holes, concave and
+/// convex corners alike. The cone never reaches into the part beyond the chamfer: along every
+/// move, at points 0.05 mm apart, the axis keeps from every drawn loop at least the distance
+/// at which the cone's width at the top is the chamfer's; the simulated stock lies on the
+/// 45° bevel within the width and is untouched beyond it; a hole too small for the cone is
+/// left with a warning.
+#[test]
+fn a_drawings_loops_are_chamfered_outside_outlines_and_inside_holes_and_nowhere_beyond() {
+    let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" width="60mm" height="40mm" viewBox="0 0 60 40">
+      <path d="M 0 0 H 60 V 40 H 30 V 20 H 0 Z"/>
+      <circle cx="15" cy="10" r="5"/><rect x="40" y="10" width="12" height="6"/><circle cx="50" cy="30" r="0.15"/>
+    </svg>"#;
+    let drawing = swarf::drawing::import::read_drawing(svg.as_bytes(), Some("l.svg"), &Tolerances::DEFAULT).unwrap();
+    let mut job = Job::default_for_drawing();
+    job.drawing.thickness = 6.0;
+    job.tools = vec![Tool { number: 1, cutter: Cutter { flute_length: 10.0, ..Cutter::v_bit(6.0, 90.0, 0.0) }, ..Tool::default() }];
+    let (width, extra) = (0.5, 0.2);
+    job.operations = vec![Operation::Chamfer(Chamfer { edges: ChamferEdges::Loops, width, extra_depth: extra, ..Chamfer::default() })];
+    let out = job::run(&job, drawing.clone(), &mut Progress::none()).expect("chamfered");
+    let v = out.verification.as_ref().unwrap();
+    assert!(v.report.is_clean(), "{}", v.report.describe());
+    assert!(out.warnings.iter().any(|w| w.to_string().contains("1 loops are too small")), "{:?}", out.warnings);
+    // The axis's distance from the edge where the 90° cone is the chamfer's width at the top.
+    let away = extra;
+    let placed = {
+        let mut d = drawing.clone();
+        job.drawing.apply(&mut d);
+        d
+    };
+    let edges: Vec<&swarf::drawing::Loop> = placed.loops.iter().map(|l| &l.path).filter(|l| l.area().abs() > 1.0).collect();
+    let (mut checked, mut nearest) = (0, f64::INFINITY);
+    for path in &out.paths {
+        for (a, b, _) in path.segments(0.01) {
+            let n = ((a.distance(b) / 0.05).ceil() as usize).max(1);
+            for k in 0..=n {
+                let p = a.lerp(b, k as f64 / n as f64);
+                if p.z >= 0.0 {
+                    continue;
+                }
+                // The cone's width at the top for a tip this deep: never more than the chamfer
+                // past the nearest edge.
+                let reach = -p.z;
+                let d = edges.iter().map(|l| l.distance_to(p.truncate())).fold(f64::INFINITY, f64::min);
+                assert!(reach - d <= width + 1e-6, "at {p:?} the cone reaches {:.4} mm past an edge", reach - d);
+                if (p.z - (-width - extra)).abs() < 1e-9 {
+                    nearest = nearest.min(d);
+                }
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked > 1000, "{checked} points checked");
+    assert!((nearest - away).abs() < 1e-3, "the axis comes {nearest:.4} mm from an edge, not {away}");
+    // The stock: on the bevel within the width, untouched beyond it.
+    let shape = swarf::drawing::Shape::new(edges.iter().map(|l| (*l).clone()).collect());
+    let grid = v.stock.grid();
+    let (mut on, mut beyond) = (0, 0);
+    for j in 0..grid.ny {
+        for i in 0..grid.nx {
+            let p = grid.node(i, j);
+            if !shape.contains(p) {
+                continue;
+            }
+            let d = shape.distance_to(p);
+            let top = v.stock.top(i, j);
+            if d > 0.05 && d < width - 0.05 {
+                // Never below the bevel; on it, but where the axis turns a concave corner of
+                // the part (its path's sharp corner keeps farther from the cells beside it).
+                let ideal = -(width - d);
+                assert!(top >= ideal - 0.01, "at {p:?}, {d:.3} mm in: stock at {top:.4}, below the bevel at {ideal:.4}");
+                let corner = edges.iter().flat_map(|l| l.vertices.iter()).any(|v| v.p.distance(p) < 2.0 * width);
+                if !corner {
+                    assert!((top - ideal).abs() < 0.01, "at {p:?}, {d:.3} mm in: stock at {top:.4}, the bevel at {ideal:.4}");
+                    on += 1;
+                }
+            } else if d > width + 0.05 {
+                assert!(top >= -1e-6, "at {p:?}, {d:.3} mm in: cut to {top:.4} beyond the chamfer");
+                beyond += 1;
+            }
+        }
+    }
+    assert!(on > 200 && beyond > 1000, "{on} cells on the bevel, {beyond} beyond");
+    canon(&out.gcode, &job.tools);
+    if let Some(said) =
+        common::grblcheck(&job::run(&Job { post: swarf::post::PostSettings { dialect: Dialect::Grbl, ..job.post.clone() }, ..job.clone() }, drawing.clone(), &mut Progress::none()).unwrap().gcode)
+    {
+        said.unwrap();
+    }
+    // On a 3D part, loops are a drawing's.
+    let part = block(3, 3, SIDE, THICK, &specs());
+    let e = job::run(&Job { tools: job.tools.clone(), operations: job.operations.clone(), ..Job::default() }, part, &mut Progress::none()).map(|_| ()).unwrap_err().to_string();
+    assert!(e.contains("drawings"), "{e}");
 }

@@ -68,11 +68,14 @@ function loopLines(d, l) {
   return data.slice(3 * l.lines[0], 3 * l.lines[1]);
 }
 
+// Whether an operation works on a drawing's loops: the 2D ones, and a chamfer of loops.
+const picksLoops = (op) => is2d(op) || (op.kind === 'chamfer' && op.edges === 'loops');
+
 // The loops the selected 2D operation picked, highlighted in the view.
 export function showPicked() {
   if (!state.viewer || state.kind !== 'drawing' || !state.drawing) return;
   const op = selectedOp(), d = state.drawing;
-  const picked = op && is2d(op) ? (op.loops ?? []) : [];
+  const picked = op && picksLoops(op) ? (op.loops ?? []) : [];
   state.viewer.setPicked(picked.filter((k) => d.loops[k]).flatMap((k) => loopLines(d, d.loops[k])));
 }
 
@@ -100,7 +103,7 @@ function loopAt(x, y, reach = 8) {
 export function pickLoop(x, y) {
   if (state.kind !== 'drawing' || !state.drawing || state.running) return;
   const op = selectedOp();
-  if (!op || !is2d(op)) return;
+  if (!op || !picksLoops(op)) return;
   const index = loopAt(x, y);
   if (index === null) return;
   const loops = op.loops ?? [];
@@ -137,7 +140,8 @@ export function showHoles() {
     const index = h.loopIndex ?? k;
     li.dataset.index = String(index);
     li.className = picked.has(index) ? 'picked' : '';
-    li.textContent = `hole ${index}: φ${mm(h.diameter)} at (${mm(h.center[0])}, ${mm(h.center[1])}), ${mm(h.top - h.bottom)} mm deep, ${h.through ? 'through' : `blind (${h.bottomShape} bottom)`}`;
+    if (h.mark) li.textContent = `hole ${index}: a drill mark at (${mm(h.center[0])}, ${mm(h.center[1])}), layer ${h.layer}, drilled as wide as its drill`;
+    else li.textContent = `hole ${index}: φ${mm(h.diameter)} at (${mm(h.center[0])}, ${mm(h.center[1])}), ${mm(h.top - h.bottom)} mm deep, ${h.through ? 'through' : `blind (${h.bottomShape} bottom)`}`;
     return li;
   }));
   state.viewer?.setHoles(op && HOLE_OPS.includes(op.kind) ? holes : [], picked);
@@ -161,9 +165,14 @@ export function onHoleList(e) {
 export function presetHoles() {
   const op = selectedOp();
   const holes = state.holes?.of === state.name ? state.holes.holes : [];
-  const picked = op?.holes?.length ? op.holes : holes.map((h, k) => h.loopIndex ?? k);
+  // Nothing picked: every hole but the drill marks (a DXF's POINTs are as often its
+  // dimensions' anchors), as the operations take "all".
+  const picked = op?.holes?.length ? op.holes : holes.map((h, k) => (h.mark ? null : h.loopIndex ?? k)).filter((k) => k !== null);
   if (!picked.length) { message('Find the holes first, and pick the ones to make.', 'warning'); return; }
-  const sizes = holes.filter((h, k) => picked.includes(h.loopIndex ?? k)).map((h) => h.diameter);
+  // Drill marks (a drawing's POINTs) have no size: the drill is chosen by the holes that do,
+  // and they are spotted and drilled but not chamfered.
+  const marks = holes.filter((h, k) => h.mark && picked.includes(h.loopIndex ?? k)).map((h) => h.loopIndex);
+  const sizes = holes.filter((h, k) => !h.mark && picked.includes(h.loopIndex ?? k)).map((h) => h.diameter);
   const mean = sizes.reduce((a, b) => a + b, 0) / Math.max(1, sizes.length);
   const spot = state.tools.find((t) => t.shape === 'spotDrill') ?? state.tools.find((t) => t.shape === 'vBit');
   const drill = state.tools.filter((t) => t.shape === 'drill').sort((a, b) => Math.abs(a.diameter - mean) - Math.abs(b.diameter - mean))[0];
@@ -177,7 +186,10 @@ export function presetHoles() {
   };
   add('drill', { name: 'spot', tool: spot.number, cycle: 'spot' });
   add('drill', { name: 'drill', tool: drill.number, cycle: 'peck' });
-  if (chamfer) add('chamfer', { tool: chamfer.number });
+  if (chamfer && sizes.length) {
+    add('chamfer', { tool: chamfer.number });
+    job().operations.at(-1).holes = picked.filter((k) => !marks.includes(k));
+  }
   state.selected[state.kind] = job().operations.length - 1;
   store();
   fillOps();

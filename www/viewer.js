@@ -273,6 +273,12 @@ export class Viewer {
     const groups = { picked: [], others: [] };
     holes.forEach((h, k) => {
       const into = picked.has(h.loopIndex ?? k) ? groups.picked : groups.others;
+      // A drill mark (no diameter of its own): a cross 3 mm across.
+      if (h.mark) {
+        const [x, y] = h.center;
+        into.push(x - 1.5, y, h.top, x + 1.5, y, h.top, x, y - 1.5, h.top, x, y + 1.5, h.top);
+        return;
+      }
       const r = h.diameter / 2, n = 48;
       for (let i = 0; i < n; i++) {
         const a = (2 * Math.PI * i) / n, b = (2 * Math.PI * (i + 1)) / n;

@@ -269,6 +269,13 @@ fn encloses(outer: &Loop, inner: &Loop, probe: DVec2) -> bool {
     points.find(|&p| outer.distance_to(p) > 1e-9 * scale).is_some_and(|p| outer.contains(p))
 }
 
+/// A drill mark: a POINT entity of a DXF, in mm.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct DrawnPoint {
+    pub at: DVec2,
+    pub layer: String,
+}
+
 /// Where a chain of segments failed to close.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
@@ -300,6 +307,9 @@ pub struct DrawnLoop {
 pub struct Drawing {
     pub loops: Vec<DrawnLoop>,
     pub open: Vec<OpenChain>,
+    /// Drill marks: a DXF's POINT entities, each a place to drill.
+    #[serde(default)]
+    pub points: Vec<DrawnPoint>,
     /// Every layer that holds geometry, in the file's order.
     pub layers: Vec<String>,
     /// Entities that were ignored (text, dimensions, points ...), by kind, with counts.
@@ -354,7 +364,8 @@ impl Drawing {
 
     pub fn bounds(&self) -> Rect {
         let loops = self.loops.iter().fold(Rect::EMPTY, |r, l| r.union(l.path.bounds()));
-        self.open.iter().fold(loops, |r, o| r.grow(o.start).grow(o.end))
+        let open = self.open.iter().fold(loops, |r, o| r.grow(o.start).grow(o.end));
+        self.points.iter().fold(open, |r, p| r.grow(p.at))
     }
 
     /// Moves and scales the drawing (mm per drawing unit).
@@ -368,6 +379,9 @@ impl Drawing {
         for o in &mut self.open {
             o.start = f(o.start);
             o.end = f(o.end);
+        }
+        for p in &mut self.points {
+            p.at = f(p.at);
         }
     }
 }

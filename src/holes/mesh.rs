@@ -124,7 +124,7 @@ pub fn find(mesh: &Mesh) -> Vec<Hole> {
         } else {
             (false, Bottom::Flat)
         };
-        holes.push(Hole { center, diameter: 2.0 * radius, top, bottom, through, bottom_shape, loop_index: None, layer: None });
+        holes.push(Hole { center, diameter: 2.0 * radius, top, bottom, through, bottom_shape, loop_index: None, layer: None, mark: false });
     }
     // By centre to a ten-thousandth of a millimetre (a counterbore's centre and its hole's
     // differ in the last bits), the higher first on one axis.

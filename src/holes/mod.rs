@@ -24,10 +24,16 @@ pub struct Hole {
     pub through: bool,
     /// How its bottom ends where it is blind: flat, or a cone (a drill's point).
     pub bottom_shape: Bottom,
-    /// The drawing's loop it is (as `swarf drawing` numbers them), for a drawing's hole.
+    /// The number `swarf drawing` lists a drawing's hole by: its loop's, or for a drill mark the
+    /// number after the loops (the loops' count plus the mark's place among the marks).
     pub loop_index: Option<usize>,
     /// The drawing's layer, for a drawing's hole.
     pub layer: Option<String>,
+    /// A drill mark (a DXF POINT): a place to drill with no diameter of its own (`diameter` is
+    /// 0); drilling makes it as wide as its drill, and the operations that need a hole's size
+    /// (bore, chamfer, thread) refuse it.
+    #[serde(default)]
+    pub mark: bool,
 }
 
 /// A blind hole's bottom.
@@ -57,7 +63,8 @@ const FEWEST_SIDES: usize = 8;
 
 /// The drawing's closed loops that are circles (a CIRCLE, two or more arcs about one centre,
 /// or a polyline of at least eight vertices all within 0.1 % of the radius from a circle), as
-/// holes through a sheet from `top` to `bottom`, in the drawing's loop order.
+/// holes through a sheet from `top` to `bottom`, in the drawing's loop order; then its drill
+/// marks (DXF POINTs), numbered after the loops.
 pub fn in_drawing(drawing: &Drawing, top: f64, bottom: f64) -> Vec<Hole> {
     drawing
         .loops
@@ -65,8 +72,19 @@ pub fn in_drawing(drawing: &Drawing, top: f64, bottom: f64) -> Vec<Hole> {
         .enumerate()
         .filter_map(|(k, l)| {
             let (center, radius) = circle_of(&l.path)?;
-            Some(Hole { center, diameter: 2.0 * radius, top, bottom, through: true, bottom_shape: Bottom::Open, loop_index: Some(k), layer: Some(l.layer.clone()) })
+            Some(Hole { center, diameter: 2.0 * radius, top, bottom, through: true, bottom_shape: Bottom::Open, loop_index: Some(k), layer: Some(l.layer.clone()), mark: false })
         })
+        .chain(drawing.points.iter().enumerate().map(|(i, p)| Hole {
+            center: p.at,
+            diameter: 0.0,
+            top,
+            bottom,
+            through: true,
+            bottom_shape: Bottom::Open,
+            loop_index: Some(drawing.loops.len() + i),
+            layer: Some(p.layer.clone()),
+            mark: true,
+        }))
         .collect()
 }
 

@@ -25,6 +25,10 @@ pub struct HolePick {
     pub min_diameter: Option<f64>,
     /// Only holes at most this wide (mm). Default value: none.
     pub max_diameter: Option<f64>,
+    /// A drawing's drill marks (its POINTs) too, which "all the holes" leaves out: a DXF's points
+    /// are as often its dimensions' anchors as places to drill (a mark picked by number is
+    /// taken anyway). Default value: false.
+    pub marks: bool,
 }
 
 /// The holes of the workpiece: a drawing's circles through the sheet, else the part's.
@@ -57,6 +61,10 @@ impl HolePick {
             .filter(|(k, h)| {
                 // A drawing's holes go by their loop's number, a part's by their own.
                 let index = h.loop_index.unwrap_or(*k);
+                if h.mark {
+                    // A drill mark has no diameter for a range to take it by.
+                    return self.holes.contains(&index) || self.marks && self.holes.is_empty() && self.min_diameter.is_none() && self.max_diameter.is_none();
+                }
                 (self.holes.is_empty() || self.holes.contains(&index)) && self.min_diameter.is_none_or(|d| h.diameter >= d - 1e-9) && self.max_diameter.is_none_or(|d| h.diameter <= d + 1e-9)
             })
             .map(|(_, h)| h.clone())
@@ -67,13 +75,25 @@ impl HolePick {
                 if all.is_empty() {
                     "no holes found: a drawing's holes are its circles, a part's its vertical round holes".to_string()
                 } else {
-                    format!("none of the holes fits the choice (there are {})", sizes(&all).join(", "))
+                    let marks = if all.iter().any(|h| h.mark) { "; drill marks (POINTs) are taken by number, or all of them with marks: true" } else { "" };
+                    format!("none of the holes fits the choice (there are {}{marks})", sizes(&all).join(", "))
                 },
             ));
         }
         let points: Vec<DVec2> = picked.iter().map(|h| h.center).collect();
         let order = holes::order(&points, DVec2::new(ctx.stock.min.x, ctx.stock.min.y));
         Ok(order.into_iter().map(|k| picked[k].clone()).collect())
+    }
+
+    /// The picked holes for an operation that works to a hole's size (boring, chamfering,
+    /// threading): refused where one is a drill mark (a drawing's POINT), which has none.
+    pub fn sized(&self, ctx: &Context, op: &str) -> Result<Vec<Hole>> {
+        let holes = self.pick(ctx, op)?;
+        let marks: Vec<String> = holes.iter().filter(|h| h.mark).map(|h| h.loop_index.unwrap_or(0).to_string()).collect();
+        if marks.is_empty() {
+            return Ok(holes);
+        }
+        Err(Error::operation(op, format!("holes {} are drill marks (the drawing's POINTs), with no diameter to work to: drill them", marks.join(", "))))
     }
 }
 
@@ -88,7 +108,8 @@ pub fn sizes(holes: &[Hole]) -> Vec<String> {
         }
     }
     by.sort_by(|a, b| a.0.total_cmp(&b.0));
-    by.into_iter().map(|(d, n)| format!("{n} × φ{}", crate::limits::shown(d))).collect()
+    // A drill mark's diameter is 0: it has none.
+    by.into_iter().map(|(d, n)| if d == 0.0 { format!("{n} drill marks") } else { format!("{n} × φ{}", crate::limits::shown(d)) }).collect()
 }
 
 /// Where a hole operation starts feeding over `hole`: `retract` above what stands over it now

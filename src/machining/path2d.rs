@@ -274,6 +274,36 @@ impl Cursor<'_> {
     }
 }
 
+/// A path run the other way.
+pub fn reversed(path: &[Segment]) -> Vec<Segment> {
+    path.iter().rev().map(Segment::reversed).collect()
+}
+
+/// The passes along one line from `top` to `z_final`: each descends along the line at the ramp
+/// angle by at most `stepdown`; an open line is cut back and forth, a closed one in laps; the
+/// last pass follows the whole line at the final depth.
+#[allow(clippy::too_many_arguments)]
+pub fn cut_line(path: &[Segment], closed: bool, top: f64, z_final: f64, stepdown: f64, angle: f64, feed: f64, out: &mut Vec<Move>) {
+    let (_, total) = arc_lengths(path);
+    let back = reversed(path);
+    let mut current = top;
+    let mut forward = true;
+    loop {
+        let finishing = current <= z_final + FLOAT_SLACK;
+        let target = (current - stepdown).max(z_final);
+        let heights = if finishing { Heights::constant(z_final) } else { Heights::ramp(0.0, current, target, angle) };
+        let segs = if forward || closed { path } else { &back[..] };
+        follow(segs, 0.0, total, &heights, feed, out);
+        if finishing {
+            break;
+        }
+        current = heights.at(total);
+        if !closed {
+            forward = !forward;
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -88,7 +88,7 @@ impl Operate for Bore {
     fn plan(&self, ctx: &mut Context, _progress: &mut crate::progress::Progress) -> Result<Planned> {
         let tool = ctx.tool(&self.name, self.tool)?.clone();
         let r_tool = tool.cutter.radius();
-        let holes = self.pick.pick(ctx, &self.name)?;
+        let holes = self.pick.sized(ctx, &self.name)?;
         let profile = tool.cutter.profile();
         let clearance = ctx.heights.clearance;
         let ccw = self.direction == Direction::Climb;

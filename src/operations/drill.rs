@@ -130,7 +130,8 @@ impl Operate for Drill {
         if spot && !cutter.is_cone() {
             return Err(Error::operation(&self.name, format!("spotting needs a spot drill, a drill or a V-bit; T{} is a {}", tool.number, cutter.describe())));
         }
-        let picked = self.pick.pick(ctx, &self.name)?;
+        // A drill mark is drilled as wide as its drill.
+        let picked: Vec<_> = self.pick.pick(ctx, &self.name)?.into_iter().map(|h| if h.mark { crate::holes::Hole { diameter: cutter.diameter, ..h } } else { h }).collect();
         let profile = cutter.profile();
         let tip = cutter.tip_length();
         let half = cutter.point_angle().to_radians() / 2.0;

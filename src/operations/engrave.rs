@@ -9,8 +9,8 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::geom::segment::Segment;
-use crate::geom::tolerance::{FLOAT_SLACK, HAIR};
-use crate::machining::path2d::{arc_lengths, follow, Heights};
+use crate::geom::tolerance::HAIR;
+use crate::machining::path2d::{arc_lengths, cut_line, reversed};
 use crate::machining::report::Groove;
 use crate::machining::{named_operation, positive, sheet, Context, FieldError, Operate, Planned};
 use crate::toolpath::Move;
@@ -51,10 +51,6 @@ impl Default for Engrave {
 struct Line {
     path: Vec<Segment>,
     closed: bool,
-}
-
-fn reversed(path: &[Segment]) -> Vec<Segment> {
-    path.iter().rev().map(Segment::reversed).collect()
 }
 
 impl Operate for Engrave {
@@ -140,30 +136,5 @@ impl Operate for Engrave {
         }
         let paths = if out.is_empty() { Vec::new() } else { vec![sheet::toolpath(&self.name, &tool, out, ctx.heights.clearance)] };
         Ok(Planned { paths, grooves, ..Planned::default() })
-    }
-}
-
-/// The passes along one line from `top` to `z_final`: each descends along the line at the ramp
-/// angle by at most `stepdown`; an open line is cut back and forth, a closed one in laps; the
-/// last pass follows the whole line at the final depth.
-#[allow(clippy::too_many_arguments)]
-fn cut_line(path: &[Segment], closed: bool, top: f64, z_final: f64, stepdown: f64, angle: f64, feed: f64, out: &mut Vec<Move>) {
-    let (_, total) = arc_lengths(path);
-    let back = reversed(path);
-    let mut current = top;
-    let mut forward = true;
-    loop {
-        let finishing = current <= z_final + FLOAT_SLACK;
-        let target = (current - stepdown).max(z_final);
-        let heights = if finishing { Heights::constant(z_final) } else { Heights::ramp(0.0, current, target, angle) };
-        let segs = if forward || closed { path } else { &back[..] };
-        follow(segs, 0.0, total, &heights, feed, out);
-        if finishing {
-            break;
-        }
-        current = heights.at(total);
-        if !closed {
-            forward = !forward;
-        }
     }
 }

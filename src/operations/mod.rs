@@ -24,7 +24,7 @@ pub mod rough_zlevel;
 pub mod thread_mill;
 
 pub use bore::Bore;
-pub use chamfer::Chamfer;
+pub use chamfer::{Chamfer, ChamferEdges};
 pub use drill::{Drill, DrillCycle, ReturnLevel};
 pub use engrave::Engrave;
 pub use face::{Face, FacePattern};

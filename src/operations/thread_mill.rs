@@ -124,7 +124,7 @@ impl Operate for ThreadMill {
                 format!("T{} (φ{}) does not fit the thread's minor diameter φ{minor:.3}: use a thread mill smaller than that", tool.number, tool.cutter.diameter),
             ));
         }
-        let holes = self.pick.pick(ctx, &self.name)?;
+        let holes = self.pick.sized(ctx, &self.name)?;
         let clearance = ctx.heights.clearance;
         let profile = tool.cutter.profile();
         let feed = tool.feed_rate;

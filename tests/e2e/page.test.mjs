@@ -976,6 +976,20 @@ test('holes in the page: a plate\'s circles spotted and pecked with a spot drill
   await page.waitForFunction((n) => document.querySelectorAll('#op-list li').length === n + 3, ops);
   const added = await page.evaluate(() => window.swarf.jobs.drawing.operations.slice(-3).map((o) => `${o.kind}:${o.cycle ?? ''}:T${o.tool}`));
   assert.deepEqual(added, [`drill:spot:T${spot}`, `drill:peck:T${drill}`, `chamfer::T${spot}`]);
+  // The preset's chamfer turned to the drawing's loops: outside the outline, inside the holes,
+  // the spot drill's tip 0.2 mm below the 0.5 mm chamfer.
+  await page.click('#op-list li:last-child .op-name');
+  await page.selectOption('select[name=chamferEdges]', 'loops');
+  assert.equal(await page.isVisible('input[name=chamferLoops]'), true);
+  await page.fill('input[name=chamferWidth]', '0.5');
+  await page.click('#generate');
+  await generated(page);
+  assert.doesNotMatch(await page.textContent('#sim-report'), /gouge[^\n]*[1-9]/);
+  const [chamfered] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
+  const loops = path.join(dir, 'loops.ngc');
+  await chamfered.saveAs(loops);
+  assert.ok((fs.readFileSync(loops, 'utf8').match(/Z-0\.7(?!\d)/g) ?? []).length >= 5, 'the outline and four holes chamfered at the tip\'s depth');
+  execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), loops], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });
   assert.deepEqual(errors, []);
   await context.close();
 });

@@ -74,7 +74,13 @@ minDiameter: number | null,
 /**
  * Only holes at most this wide (mm). Default value: none.
  */
-maxDiameter: number | null, };
+maxDiameter: number | null, 
+/**
+ * A drawing's drill marks (its POINTs) too, which "all the holes" leaves out: a DXF's points
+ * are as often its dimensions' anchors as places to drill (a mark picked by number is
+ * taken anyway). Default value: false.
+ */
+marks: boolean, };
 
 /**
  * A blind hole's bottom.
@@ -120,6 +126,24 @@ retract: number,
  */
 direction: Direction, 
 /**
+ * Which edges: the holes' (picked as above), or a drawing's loops (on `layers`, or those
+ * named in `loops`). Default value: holes.
+ */
+edges: ChamferEdges, 
+/**
+ * A drawing's layers whose loops to chamfer (edges: loops). Default value: all.
+ */
+layers: Array<string>, 
+/**
+ * The drawing's loops to chamfer, by index as `swarf drawing` lists them (edges: loops).
+ * Default value: all on the layers.
+ */
+loops: Array<number>, 
+/**
+ * The angle a loop's chamfer is entered at, along the loop (degrees). Default value: 10.
+ */
+rampAngle: number, 
+/**
  * The holes, by their index as `swarf holes` (a part) or `swarf drawing` (a drawing's
  * loops) numbers them. Default value: all (within the diameters).
  */
@@ -131,7 +155,18 @@ minDiameter: number | null,
 /**
  * Only holes at most this wide (mm). Default value: none.
  */
-maxDiameter: number | null, };
+maxDiameter: number | null, 
+/**
+ * A drawing's drill marks (its POINTs) too, which "all the holes" leaves out: a DXF's points
+ * are as often its dimensions' anchors as places to drill (a mark picked by number is
+ * taken anyway). Default value: false.
+ */
+marks: boolean, };
+
+/**
+ * The edges a chamfer breaks.
+ */
+export type ChamferEdges = "holes" | "loops";
 
 /**
  * Which CL z-map builder an operation uses.
@@ -292,7 +327,13 @@ minDiameter: number | null,
 /**
  * Only holes at most this wide (mm). Default value: none.
  */
-maxDiameter: number | null, };
+maxDiameter: number | null, 
+/**
+ * A drawing's drill marks (its POINTs) too, which "all the holes" leaves out: a DXF's points
+ * are as often its dimensions' anchors as places to drill (a mark picked by number is
+ * taken anyway). Default value: false.
+ */
+marks: boolean, };
 
 /**
  * Which drilling cycle.
@@ -560,13 +601,20 @@ through: boolean,
  */
 bottomShape: Bottom, 
 /**
- * The drawing's loop it is (as `swarf drawing` numbers them), for a drawing's hole.
+ * The number `swarf drawing` lists a drawing's hole by: its loop's, or for a drill mark the
+ * number after the loops (the loops' count plus the mark's place among the marks).
  */
 loopIndex: number | null, 
 /**
  * The drawing's layer, for a drawing's hole.
  */
-layer: string | null, };
+layer: string | null, 
+/**
+ * A drill mark (a DXF POINT): a place to drill with no diameter of its own (`diameter` is
+ * 0); drilling makes it as wide as its drill, and the operations that need a hole's size
+ * (bore, chamfer, thread) refuse it.
+ */
+mark: boolean, };
 
 /**
  * Everything needed to turn a part into G-code.
@@ -1500,7 +1548,13 @@ minDiameter: number | null,
 /**
  * Only holes at most this wide (mm). Default value: none.
  */
-maxDiameter: number | null, };
+maxDiameter: number | null, 
+/**
+ * A drawing's drill marks (its POINTs) too, which "all the holes" leaves out: a DXF's points
+ * are as often its dimensions' anchors as places to drill (a mark picked by number is
+ * taken anyway). Default value: false.
+ */
+marks: boolean, };
 
 /**
  * One part of a program's cycle time, for people: what it is and how long it takes.

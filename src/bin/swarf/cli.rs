@@ -260,7 +260,13 @@ fn run(cli: Cli) -> Result<(), String> {
             // Its circles: the holes a drilling operation finds, by loop, and by diameter.
             let holes = swarf::holes::in_drawing(&d, 0.0, 0.0);
             for h in &holes {
-                println!("hole (loop {}): φ{:.3} at ({:.3}, {:.3}) mm, layer {}", h.loop_index.unwrap_or(0), h.diameter, h.center.x, h.center.y, h.layer.as_deref().unwrap_or(""));
+                let index = h.loop_index.unwrap_or(0);
+                let layer = h.layer.as_deref().unwrap_or("");
+                if h.mark {
+                    println!("drill mark {index}: at ({:.3}, {:.3}) mm, layer {layer}", h.center.x, h.center.y);
+                } else {
+                    println!("hole (loop {index}): φ{:.3} at ({:.3}, {:.3}) mm, layer {layer}", h.diameter, h.center.x, h.center.y);
+                }
             }
             if !holes.is_empty() {
                 println!("holes: {}", swarf::machining::holes::sizes(&holes).join(", "));
@@ -288,6 +294,10 @@ fn run(cli: Cli) -> Result<(), String> {
                     (false, _) => "blind, flat bottom".to_string(),
                 };
                 let index = h.loop_index.map_or(k, |l| l);
+                if h.mark {
+                    println!("hole {index}: a drill mark at ({:.3}, {:.3}), top {:.3}, bottom {:.3}, through (drilled as wide as its drill)", h.center.x, h.center.y, h.top, h.bottom);
+                    continue;
+                }
                 println!("hole {index}: φ{:.3} at ({:.3}, {:.3}), top {:.3}, bottom {:.3} ({:.3} deep), {kind}", h.diameter, h.center.x, h.center.y, h.top, h.bottom, h.depth());
             }
             let sizes = swarf::machining::holes::sizes(&holes);

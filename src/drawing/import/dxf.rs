@@ -1,7 +1,7 @@
 //! ASCII DXF: LINE, ARC, CIRCLE, LWPOLYLINE and POLYLINE (with bulges), ELLIPSE and SPLINE
-//! (as arcs within tolerance) from the ENTITIES section, with their layers; `$INSUNITS`
-//! scales to millimetres. Text, dimensions, points, hatches and block references are counted
-//! and ignored. Entities drawn with a mirrored extrusion (210/220/230 = 0, 0, −1) are mirrored.
+//! (as arcs within tolerance) from the ENTITIES section, with their layers, and POINTs as drill
+//! marks; `$INSUNITS` scales to millimetres. Text, dimensions, hatches and block references
+//! are counted and ignored. Entities drawn with a mirrored extrusion (210/220/230 = 0, 0, −1) are mirrored.
 //! The group-code reader is a few lines; the entity geometry is swarf's own.
 
 use std::f64::consts::TAU;
@@ -239,6 +239,13 @@ pub(crate) fn read_dxf(bytes: &[u8], tol: &Tolerances) -> Result<Pieces, Drawing
                 fit_arcs(&f, t0, t1, pieces_n, tol.arc_fit / s, &mut out);
             }
             "SPLINE" => spline(e, tol.arc_fit / s, s, &pieces, &mut out)?,
+            "POINT" => {
+                // A drill mark: a place to drill, no geometry to cut along.
+                let at = DVec2::new(e.need(10)?, e.need(20)?) * s;
+                pieces.near_origin("POINT", at)?;
+                let at = if e.mirrored()? { DVec2::new(-at.x, at.y) } else { at };
+                pieces.point(at, e.layer());
+            }
             "VERTEX" | "SEQEND" => {}
             other => pieces.ignore(other),
         }

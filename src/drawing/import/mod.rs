@@ -72,6 +72,8 @@ pub fn is_drawing(name: Option<&str>, bytes: &[u8]) -> bool {
 #[derive(Default)]
 pub(crate) struct Pieces {
     pub segments: Vec<(Segment, String)>,
+    /// Drill marks (DXF POINTs), in mm, with their layers.
+    pub points: Vec<(DVec2, String)>,
     pub layers: Vec<String>,
     pub ignored: Vec<(String, usize)>,
     pub units: String,
@@ -86,18 +88,29 @@ pub(crate) struct Pieces {
 
 impl Pieces {
     pub fn push(&mut self, s: Segment, layer: &str) {
+        let b = s.bounds();
+        self.reach(b.min, b.max, layer);
+        self.segments.push((s, layer.to_string()));
+    }
+
+    /// A drill mark at `at` (mm).
+    pub fn point(&mut self, at: DVec2, layer: &str) {
+        self.reach(at, at, layer);
+        self.points.push((at, layer.to_string()));
+    }
+
+    /// Notes the layer, and the extremes an element from `min` to `max` reaches.
+    fn reach(&mut self, min: DVec2, max: DVec2, layer: &str) {
         if !self.layers.iter().any(|l| l == layer) {
             self.layers.push(layer.to_string());
         }
-        let b = s.bounds();
         let line = self.line;
-        let e = self.extremes.get_or_insert([(b.min.x, line), (b.max.x, line), (b.min.y, line), (b.max.y, line)]);
-        for (k, v) in [b.min.x, b.max.x, b.min.y, b.max.y].into_iter().enumerate() {
+        let e = self.extremes.get_or_insert([(min.x, line), (max.x, line), (min.y, line), (max.y, line)]);
+        for (k, v) in [min.x, max.x, min.y, max.y].into_iter().enumerate() {
             if (k % 2 == 0 && v < e[k].0) || (k % 2 == 1 && v > e[k].0) {
                 e[k] = (v, line);
             }
         }
-        self.segments.push((s, layer.to_string()));
     }
 
     /// Refuses what is larger than any machine: the element at `self.line` (a curve, before it
@@ -160,7 +173,7 @@ pub fn read_drawing(bytes: &[u8], name: Option<&str>, tol: &Tolerances) -> Resul
     if pieces.segments.len() > crate::limits::MAX_PIECES {
         return Err(DrawingError::TooManyPieces);
     }
-    if pieces.segments.is_empty() {
+    if pieces.segments.is_empty() && pieces.points.is_empty() {
         let ignored = if pieces.ignored.is_empty() { String::new() } else { format!(" (ignored: {})", pieces.ignored.iter().map(|(k, n)| format!("{n} {k}")).collect::<Vec<_>>().join(", ")) };
         return Err(DrawingError::NothingToMachine(ignored));
     }
@@ -180,5 +193,6 @@ pub fn read_drawing(bytes: &[u8], name: Option<&str>, tol: &Tolerances) -> Resul
         pieces.ignored.push(("duplicated entities (drawn twice on the same layer)".into(), before - pieces.segments.len()));
     }
     let (loops, open) = chain(pieces.segments, tol.chain);
-    Ok(Drawing { loops, open, layers: pieces.layers, ignored: pieces.ignored, units: pieces.units, scale: pieces.scale })
+    let points = pieces.points.into_iter().map(|(at, layer)| crate::drawing::DrawnPoint { at, layer }).collect();
+    Ok(Drawing { loops, open, points, layers: pieces.layers, ignored: pieces.ignored, units: pieces.units, scale: pieces.scale })
 }
