@@ -3,10 +3,10 @@
 # wasm-opt from npm's binaryen (Debian's breaks the module; see shared/TOOLCHAIN.md).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-# The target's flags of .cargo/config.toml (SIMD), and the build machine's paths left out of
+# The target's flags of .cargo/config.toml (SIMD, getrandom's backend), and the build machine's paths left out of
 # the module's panic messages (the crates' sources under CARGO_HOME, this checkout): the npm
 # package ships this file.
-export RUSTFLAGS="-C target-feature=+simd128 --remap-path-prefix=${CARGO_HOME:-$HOME/.cargo}=/cargo --remap-path-prefix=$PWD=/swarf"
+export RUSTFLAGS="-C target-feature=+simd128 --cfg getrandom_backend=\"wasm_js\" --remap-path-prefix=${CARGO_HOME:-$HOME/.cargo}=/cargo --remap-path-prefix=$PWD=/swarf"
 cargo build --release --lib --target wasm32-unknown-unknown
 wasm-bindgen --target web --no-typescript --out-dir www/pkg target/wasm32-unknown-unknown/release/swarf.wasm
 node_modules/.bin/wasm-opt -O3 --enable-bulk-memory --enable-nontrapping-float-to-int --enable-sign-ext --enable-mutable-globals --enable-reference-types --enable-multivalue --enable-simd www/pkg/swarf_bg.wasm -o www/pkg/swarf_bg.wasm

@@ -25,7 +25,7 @@ export const hooks = {};
 export const job = () => state.jobs[state.kind];
 export const selectedOp = () => job().operations[state.selected[state.kind]] ?? null;
 export const selectedTool = () => state.tools[state.selected.tool] ?? null;
-export const is2d = (op) => op.kind === 'profile2d' || op.kind === 'pocket2d' || op.kind === 'engrave';
+export const is2d = (op) => op.kind === 'profile2d' || op.kind === 'pocket2d' || op.kind === 'engrave' || op.kind === 'vcarve';
 // The hole operations work on a part's holes and on a drawing's circles alike, facing on a
 // part's stock and a sheet alike.
 export const HOLE_OPS = ['drill', 'bore', 'chamfer', 'threadMill'];
@@ -95,6 +95,8 @@ export function setKey(obj, key, value) {
 // The tools an operation uses: its own, or for octree roughing those it may choose from (its
 // list, else every flat and bull-nose end in the library).
 export function toolsOf(op) {
+  // A V-carve's flat tool clears its floor.
+  if (op.kind === 'vcarve') return op.flatTool != null ? [op.tool, op.flatTool] : [op.tool];
   if (op.kind !== 'roughOctree') return [op.tool];
   return op.tools?.length ? op.tools : state.tools.filter((t) => t.shape === 'flat' || t.shape === 'bullNose').map((t) => t.number);
 }

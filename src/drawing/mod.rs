@@ -5,6 +5,7 @@
 pub mod arcfit;
 pub mod chain;
 pub mod import;
+pub mod medial;
 pub mod sample;
 
 use serde::{Deserialize, Serialize};

@@ -304,6 +304,24 @@ pub fn cut_line(path: &[Segment], closed: bool, top: f64, z_final: f64, stepdown
     }
 }
 
+/// Which of `left` to cut next from `here`, and whether from its far end: the nearest of their
+/// starts and, where they may be run backwards, their ends (`ends` gives both; `None`: forwards
+/// only, as a closed loop).
+pub fn nearest_end<T>(left: &[T], here: DVec2, ends: impl Fn(&T) -> (DVec2, Option<DVec2>)) -> (usize, bool) {
+    let mut best = (0, false, f64::INFINITY);
+    for (k, item) in left.iter().enumerate() {
+        let (start, end) = ends(item);
+        for (flip, p) in [(false, Some(start)), (true, end)] {
+            if let Some(d) = p.map(|p| p.distance(here)) {
+                if d < best.2 {
+                    best = (k, flip, d);
+                }
+            }
+        }
+    }
+    (best.0, best.1)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

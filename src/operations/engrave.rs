@@ -10,7 +10,7 @@ use serde::{Deserialize, Serialize};
 use crate::error::{Error, Result};
 use crate::geom::segment::Segment;
 use crate::geom::tolerance::HAIR;
-use crate::machining::path2d::{arc_lengths, cut_line, reversed};
+use crate::machining::path2d::{arc_lengths, cut_line, nearest_end, reversed};
 use crate::machining::report::Groove;
 use crate::machining::{named_operation, positive, sheet, Context, FieldError, Operate, Planned};
 use crate::toolpath::Move;
@@ -104,17 +104,7 @@ impl Operate for Engrave {
         let mut left: Vec<Line> = lines;
         while !left.is_empty() {
             let here = cursor.at.truncate();
-            let (k, flip) = left
-                .iter()
-                .enumerate()
-                .flat_map(|(k, l)| {
-                    let start = l.path[0].a.distance(here);
-                    let end = if l.closed { f64::INFINITY } else { l.path[l.path.len() - 1].b.distance(here) };
-                    [(k, false, start), (k, true, end)]
-                })
-                .min_by(|a, b| a.2.total_cmp(&b.2))
-                .map(|(k, f, _)| (k, f))
-                .expect("lines left");
+            let (k, flip) = nearest_end(&left, here, |l| (l.path[0].a, (!l.closed).then(|| l.path[l.path.len() - 1].b)));
             let line = left.swap_remove(k);
             let path = if flip { reversed(&line.path) } else { line.path };
             let (_, total) = arc_lengths(&path);

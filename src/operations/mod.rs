@@ -22,6 +22,7 @@ pub mod rough_octree;
 pub mod rough_zigzag;
 pub mod rough_zlevel;
 pub mod thread_mill;
+pub mod vcarve;
 
 pub use bore::Bore;
 pub use chamfer::{Chamfer, ChamferEdges};
@@ -36,6 +37,7 @@ pub use rough_octree::RoughOctree;
 pub use rough_zigzag::{Passes, RoughZigzag};
 pub use rough_zlevel::RoughZlevel;
 pub use thread_mill::{Hand, ThreadMill};
+pub use vcarve::VCarve;
 
 pub use crate::machining::report::{LoadReport, StageReport, StageRole};
 pub use crate::machining::settings::{Direction, EntryKind, LoadControl, Order, PocketPattern, Roughing, Steps};
@@ -114,6 +116,9 @@ operations! {
     ThreadMill(ThreadMill) = "threadMill",
     /// Facing the stock's top down to the part's top or by a depth.
     Face(Face) = "face",
+    /// V-carving a drawing's regions along their medial axis, flat-bottomed below a depth.
+    #[serde(rename = "vcarve")]
+    VCarve(VCarve) = "vcarve",
 }
 
 impl Operation {
@@ -127,5 +132,15 @@ impl Operation {
 
     pub fn allowance(&self) -> f64 {
         self.op().allowance()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    /// The name a job file gives each kind is the one its JSON carries.
+    #[test]
+    fn each_kind_is_written_by_its_name() {
+        let written: Vec<String> = super::Operation::defaults().iter().map(|op| serde_json::to_value(op).unwrap()["kind"].as_str().unwrap().to_string()).collect();
+        assert_eq!(written, super::Operation::KINDS);
     }
 }

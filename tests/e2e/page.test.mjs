@@ -1042,3 +1042,50 @@ test('holes in a 3D part: found in its triangles, roughed over, pecked and threa
   await context.close();
 });
 
+test('V-carving in the page: letters carved along their middle with a V-bit, flat-bottomed where wide with a flat tool, clean, in a program rs274 runs', async () => {
+  const { page, context, errors } = await openPage();
+  const svg = `<svg xmlns="http://www.w3.org/2000/svg" width="70mm" height="30mm" viewBox="0 0 70 30">
+    <rect x="5" y="3" width="30" height="10"/><path d="M 5 16 H 35 V 26 H 5 Z"/><circle cx="52" cy="15" r="10"/><circle cx="52" cy="15" r="4"/>
+  </svg>`;
+  await page.setInputFiles('#file', { name: 'letters.svg', mimeType: 'image/svg+xml', buffer: Buffer.from(svg) });
+  await page.waitForFunction(() => document.body.dataset.kind === 'drawing');
+  // A 90° V-bit and a φ2 flat end in the library.
+  await tab(page, 'tools');
+  await page.click('#tool-add');
+  await page.selectOption('select[name=shape]', 'vBit');
+  await page.fill('input[name=diameter]', '12');
+  await page.fill('input[name=pointAngle]', '90');
+  await page.fill('input[name=fluteLength]', '15');
+  const vbit = Number(await page.inputValue('input[name=toolNumber]'));
+  await page.click('#tool-add');
+  await page.selectOption('select[name=shape]', 'flat');
+  await page.fill('input[name=diameter]', '2');
+  const flat = Number(await page.inputValue('input[name=toolNumber]'));
+  await tab(page, 'ops');
+  await page.evaluate(() => { window.swarf.jobs.drawing.operations = []; });
+  await page.selectOption('#op-kind', 'vcarve');
+  await page.click('#op-add');
+  await page.selectOption('select[name=opTool]', String(vbit));
+  assert.equal(await page.isVisible('input[name=vMaxDepth]'), true, 'the flat depth is asked for');
+  assert.equal(await page.isVisible('select[name=side]'), false, 'a profile\'s side is not');
+  await page.fill('input[name=vMaxDepth]', '3');
+  await page.fill('input[name=vFlatTool]', String(flat));
+  await page.click('#generate');
+  await generated(page);
+  assert.doesNotMatch(await page.textContent('#sim-report'), /gouge[^\n]*[1-9]/);
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-vcarve-'));
+  const program = path.join(dir, download.suggestedFilename());
+  await download.saveAs(program);
+  const gcode = fs.readFileSync(program, 'utf8');
+  // The flat tool clears the bars' floors at 3 mm (they are 10 mm wide), then the V-bit carves.
+  assert.ok(gcode.indexOf(`T${flat} M6`) >= 0 && gcode.indexOf(`T${flat} M6`) < gcode.indexOf(`T${vbit} M6`), 'the flat tool first, then the V-bit');
+  assert.match(gcode, /Z-3(\.0+)?\b/);
+  const tools = await page.evaluate(() => window.swarf.tools);
+  fs.writeFileSync(path.join(dir, 'tool.tbl'), toolTable(tools));
+  const canon = execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), program], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });
+  assert.ok((canon.match(/STRAIGHT_FEED/g) ?? []).length > 20);
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+

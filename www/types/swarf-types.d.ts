@@ -707,7 +707,7 @@ export type OpenChain = { layer: string, start: [number, number], end: [number, 
 /**
  * One operation of a job.
  */
-export type Operation = { "kind": "roughZlevel" } & RoughZlevel | { "kind": "roughZigzag" } & RoughZigzag | { "kind": "roughOctree" } & RoughOctree | { "kind": "finishRaster" } & FinishRaster | { "kind": "finishWaterline" } & FinishWaterline | { "kind": "profile2d" } & Profile2d | { "kind": "pocket2d" } & Pocket2d | { "kind": "engrave" } & Engrave | { "kind": "drill" } & Drill | { "kind": "bore" } & Bore | { "kind": "chamfer" } & Chamfer | { "kind": "threadMill" } & ThreadMill | { "kind": "face" } & Face;
+export type Operation = { "kind": "roughZlevel" } & RoughZlevel | { "kind": "roughZigzag" } & RoughZigzag | { "kind": "roughOctree" } & RoughOctree | { "kind": "finishRaster" } & FinishRaster | { "kind": "finishWaterline" } & FinishWaterline | { "kind": "profile2d" } & Profile2d | { "kind": "pocket2d" } & Pocket2d | { "kind": "engrave" } & Engrave | { "kind": "drill" } & Drill | { "kind": "bore" } & Bore | { "kind": "chamfer" } & Chamfer | { "kind": "threadMill" } & ThreadMill | { "kind": "face" } & Face | { "kind": "vcarve" } & VCarve;
 
 /**
  * One operation's figures.
@@ -1701,6 +1701,50 @@ export type Units = "mm" | "inch";
  * never a mirror).
  */
 export type UpAxis = "z" | "y" | "x" | "-z" | "-y" | "-x";
+
+/**
+ * V-carving a drawing's regions.
+ */
+export type VCarve = { 
+/**
+ * Default value: "V-carve".
+ */
+name: string, 
+/**
+ * Whether the job runs it. Default value: true.
+ */
+enabled: boolean, 
+/**
+ * A V-bit (or a spot drill). Default value: 1.
+ */
+tool: number, 
+/**
+ * The layers whose loops make the regions. Default value: all.
+ */
+layers: Array<string>, 
+/**
+ * The loops to carve, by index as `swarf drawing` lists them (each with the loops inside
+ * it as islands). Default value: all on the layers.
+ */
+loops: Array<number>, 
+/**
+ * The deepest the V-bit goes (mm); deeper, the region is flat-bottomed at this depth.
+ * Default value: none (as deep as the region is wide).
+ */
+maxDepth: number | null, 
+/**
+ * A flat end mill that clears the flat floor below `maxDepth`. Default value: none (the
+ * V-bit cuts the walls down to the floor; the floor is left with a warning).
+ */
+flatTool: number | null, 
+/**
+ * The flat tool's step-over (fraction of its diameter). Default value: 0.4.
+ */
+stepoverFraction: number, 
+/**
+ * The flat tool's step-down (mm). Default value: 2.
+ */
+stepdown: number, };
 
 /**
  * Something the user should know that did not stop the job, with the operation it belongs to

@@ -1,0 +1,284 @@
+//! The medial axis of a drawing's region, for V-carving: the points inside it with two or more
+//! nearest points on its boundary, each with its clearance (its distance to the boundary). Made
+//! from the Voronoi diagram of the boundary's segments (arcs taken as chords within a given
+//! tolerance), which `boostvoronoi` builds by Boost.Polygon's sweepline on integer coordinates:
+//! the diagram's primary edges inside the region are the axis. An edge between two segments is
+//! straight; one between a segment and a corner (a reflex vertex of the boundary) is a parabola,
+//! sampled here from its own equation, so every point's clearance is exact for the chords.
+
+use boostvoronoi::{Builder, SourceCategory};
+
+use super::Shape;
+use crate::geom::DVec2;
+
+/// A piece of the medial axis: points along it and their clearances (mm).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Branch {
+    pub points: Vec<DVec2>,
+    pub clearance: Vec<f64>,
+}
+
+impl Branch {
+    pub fn reversed(&self) -> Branch {
+        Branch { points: self.points.iter().rev().copied().collect(), clearance: self.clearance.iter().rev().copied().collect() }
+    }
+}
+
+/// A boundary site of the diagram: a segment, or one of its ends.
+#[derive(Clone, Copy, Debug)]
+enum Site {
+    Point(DVec2),
+    Segment(DVec2, DVec2),
+}
+
+impl Site {
+    fn distance(&self, p: DVec2) -> f64 {
+        match *self {
+            Site::Point(q) => p.distance(q),
+            Site::Segment(a, b) => {
+                let ab = b - a;
+                let t = ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0);
+                p.distance(a + ab * t)
+            }
+        }
+    }
+}
+
+/// The boundary of `region` as closed polygons: lines as they are, arcs as chords no farther
+/// than `chord` from them.
+fn polygons(region: &Shape, chord: f64) -> Vec<Vec<DVec2>> {
+    region
+        .loops
+        .iter()
+        .map(|l| {
+            let mut pts = Vec::new();
+            for s in l.segments() {
+                match s.arc_geom() {
+                    None => pts.push(s.a),
+                    Some(g) => {
+                        let step = 2.0 * (1.0 - (chord / g.radius).min(1.0)).acos();
+                        let n = ((g.sweep().abs() / step.max(1e-3)).ceil() as usize).clamp(1, 10_000);
+                        pts.extend((0..n).map(|k| s.point_at(k as f64 / n as f64)));
+                    }
+                }
+            }
+            pts
+        })
+        .collect()
+}
+
+/// The medial axis of `region` (outlines counter-clockwise with their islands, as a [`Shape`]
+/// holds them): each primary Voronoi edge inside the region as a branch, its ends alone where
+/// the clearance changes linearly along it (a straight edge between two segments), else
+/// sampled at most `step` apart; branches joined end to end where they meet.
+pub fn medial_axis(region: &Shape, chord: f64, step: f64) -> Result<Vec<Branch>, String> {
+    let b = region.bounds();
+    if b.is_empty() {
+        return Ok(Vec::new());
+    }
+    // Integer coordinates for the sweepline: 10 nm, or coarser for a very large drawing.
+    let scale = (1e5f64).min(1e9 / b.size().max_element().max(1e-9));
+    let origin = b.min;
+    let quantize = |p: DVec2| [((p.x - origin.x) * scale).round() as i32, ((p.y - origin.y) * scale).round() as i32];
+    let back = |q: [i32; 2]| origin + DVec2::new(q[0] as f64, q[1] as f64) / scale;
+    let mut segments: Vec<[i32; 4]> = Vec::new();
+    for poly in polygons(region, chord) {
+        let mut q: Vec<[i32; 2]> = Vec::new();
+        for p in poly {
+            let p = quantize(p);
+            if q.last() != Some(&p) {
+                q.push(p);
+            }
+        }
+        while q.len() > 1 && q.first() == q.last() {
+            q.pop();
+        }
+        if q.len() < 3 {
+            continue;
+        }
+        for k in 0..q.len() {
+            let (a, c) = (q[k], q[(k + 1) % q.len()]);
+            segments.push([a[0], a[1], c[0], c[1]]);
+        }
+    }
+    if segments.is_empty() {
+        return Ok(Vec::new());
+    }
+    let sites: Vec<(DVec2, DVec2)> = segments.iter().map(|s| (back([s[0], s[1]]), back([s[2], s[3]]))).collect();
+    let diagram = Builder::<i32, f64>::default().with_segments(segments.iter()).and_then(|b| b.build()).map_err(|e| format!("the medial axis could not be built: {e}"))?;
+    let site_of = |cell: boostvoronoi::CellIndex| -> Result<Site, String> {
+        let cell = diagram.get_cell(cell).map_err(|e| e.to_string())?.get();
+        let (a, c) = sites[cell.source_index()];
+        Ok(match cell.source_category() {
+            SourceCategory::SegmentStart => Site::Point(a),
+            SourceCategory::SegmentEnd => Site::Point(c),
+            _ => Site::Segment(a, c),
+        })
+    };
+    let vertex = |v: boostvoronoi::VertexIndex| -> Result<DVec2, String> {
+        let v = diagram.vertex_get(v).map_err(|e| e.to_string())?.get();
+        Ok(origin + DVec2::new(v.x(), v.y()) / scale)
+    };
+    // Each edge once (an edge and its twin), both ends finite, primary, inside the region.
+    let mut edges: Vec<(usize, usize, Branch)> = Vec::new();
+    for e in diagram.edges() {
+        let edge = e.get();
+        let id = edge.id();
+        let twin = edge.twin().map_err(|e| e.to_string())?;
+        if twin.0 < id.0 || !edge.is_primary() {
+            continue;
+        }
+        let (Some(v0), Some(v1)) = (edge.vertex0(), diagram.edge_get_vertex1(id).map_err(|e| e.to_string())?) else { continue };
+        let (p0, p1) = (vertex(v0)?, vertex(v1)?);
+        let s1 = site_of(edge.cell().map_err(|e| e.to_string())?)?;
+        let s2 = site_of(diagram.get_edge(twin).map_err(|e| e.to_string())?.get().cell().map_err(|e| e.to_string())?)?;
+        let points = match (edge.is_curved(), s1, s2) {
+            (true, Site::Point(p), Site::Segment(a, c)) | (true, Site::Segment(a, c), Site::Point(p)) => parabola(p, a, c, p0, p1, step),
+            // Between two segments the clearance is the distance to either's line, which changes
+            // linearly along a straight edge: its ends are enough.
+            (false, Site::Segment(..), Site::Segment(..)) => vec![p0, p1],
+            _ => line(p0, p1, step),
+        };
+        // Inside the region: judged at the edge's middle (never at an end, which may lie on
+        // the boundary while the edge runs outside it).
+        let mid = if points.len() == 2 { points[0].lerp(points[1], 0.5) } else { points[points.len() / 2] };
+        if !region.contains(mid) || region.distance_to(mid) <= 1e-9 {
+            continue;
+        }
+        let clearance = points.iter().map(|&q| s1.distance(q).min(s2.distance(q))).collect();
+        edges.push((v0.0, v1.0, Branch { points, clearance }));
+    }
+    Ok(joined(edges))
+}
+
+/// Points from `a` to `b` at most `step` apart.
+fn line(a: DVec2, b: DVec2, step: f64) -> Vec<DVec2> {
+    let n = ((a.distance(b) / step).ceil() as usize).max(1);
+    (0..=n).map(|k| a.lerp(b, k as f64 / n as f64)).collect()
+}
+
+/// Points of the parabola equidistant from the point `p` and the line through `a` and `c`, from
+/// `p0` to `p1` (both on it), at most about `step` apart.
+fn parabola(p: DVec2, a: DVec2, c: DVec2, p0: DVec2, p1: DVec2, step: f64) -> Vec<DVec2> {
+    let u = (c - a).normalize();
+    let mut n = u.perp();
+    let mut py = (p - a).dot(n);
+    if py < 0.0 {
+        n = -n;
+        py = -py;
+    }
+    if py < 1e-9 {
+        return line(p0, p1, step);
+    }
+    let px = (p - a).dot(u);
+    let (x0, x1) = ((p0 - a).dot(u), (p1 - a).dot(u));
+    let y = |x: f64| ((x - px).powi(2) + py * py) / (2.0 * py);
+    let count = (((x1 - x0).abs() + (y(x1) - y(x0)).abs()) / step).ceil().max(2.0) as usize;
+    let mut out: Vec<DVec2> = (0..=count).map(|k| x0 + (x1 - x0) * k as f64 / count as f64).map(|x| a + u * x + n * y(x)).collect();
+    // The ends exactly where the diagram put them.
+    out[0] = p0;
+    out[count] = p1;
+    out
+}
+
+/// Branches joined end to end at the vertices they share: each chain grows at its end while an
+/// unused branch meets it there.
+fn joined(edges: Vec<(usize, usize, Branch)>) -> Vec<Branch> {
+    let mut at: std::collections::HashMap<usize, Vec<usize>> = std::collections::HashMap::new();
+    for (k, (v0, v1, _)) in edges.iter().enumerate() {
+        at.entry(*v0).or_default().push(k);
+        at.entry(*v1).or_default().push(k);
+    }
+    let mut used = vec![false; edges.len()];
+    let mut out = Vec::new();
+    for start in 0..edges.len() {
+        if used[start] {
+            continue;
+        }
+        used[start] = true;
+        let (_, mut end, first) = &edges[start];
+        let mut chain = first.clone();
+        while let Some(&k) = at.get(&end).and_then(|list| list.iter().find(|&&k| !used[k])) {
+            used[k] = true;
+            let (v0, v1, b) = &edges[k];
+            let next = if *v0 == end { b.clone() } else { b.reversed() };
+            end = if *v0 == end { *v1 } else { *v0 };
+            chain.points.extend_from_slice(&next.points[1..]);
+            chain.clearance.extend_from_slice(&next.clearance[1..]);
+        }
+        out.push(chain);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::drawing::Loop;
+
+    /// A rectangle's axis: the middle line and the four branches to its corners, each point as
+    /// far from the boundary as the axis says.
+    #[test]
+    fn a_rectangles_medial_axis_is_its_middle_line_and_corner_bisectors() {
+        let (w, h) = (40.0, 10.0);
+        let region = Shape::new(vec![Loop::rect(DVec2::ZERO, DVec2::new(w, h))]);
+        let axis = medial_axis(&region, 0.001, 0.1).unwrap();
+        let mut points = 0;
+        let mut middle = 0.0f64;
+        for b in &axis {
+            for (p, c) in b.points.iter().zip(&b.clearance) {
+                let exact = p.x.min(w - p.x).min(p.y).min(h - p.y);
+                assert!((c - exact).abs() < 1e-6, "at {p:?}: clearance {c}, the boundary {exact} away");
+                points += 1;
+                middle = middle.max(*c);
+            }
+        }
+        // Straight edges between two sides are their ends alone: the middle line and four
+        // half-diagonals.
+        assert!(points >= 5, "{points} points");
+        assert!((middle - h / 2.0).abs() < 1e-6);
+        // Total length: the middle line w − h and four half-diagonals of h/2 · √2.
+        let length: f64 = axis.iter().map(|b| b.points.windows(2).map(|p| p[0].distance(p[1])).sum::<f64>()).sum();
+        assert!((length - (w - h + 4.0 * h / 2.0 * 2f64.sqrt())).abs() < 1e-3, "{length}");
+    }
+
+    /// Between the points of a branch its clearance is what the points' say, linearly: a ring
+    /// (a circle round an island, both as chords) checked at points 0.01 mm apart.
+    #[test]
+    fn between_its_points_a_branch_keeps_its_clearance() {
+        let region = Shape::new(vec![Loop::circle(DVec2::ZERO, 10.0), Loop::circle(DVec2::ZERO, 5.0)]);
+        let axis = medial_axis(&region, 0.002, 0.1).unwrap();
+        let mut worst = 0.0f64;
+        for b in &axis {
+            for k in 1..b.points.len() {
+                let n = ((b.points[k - 1].distance(b.points[k]) / 0.01).ceil() as usize).max(1);
+                for i in 0..=n {
+                    let t = i as f64 / n as f64;
+                    let p = b.points[k - 1].lerp(b.points[k], t);
+                    let c = b.clearance[k - 1] + (b.clearance[k] - b.clearance[k - 1]) * t;
+                    worst = worst.max((c - region.distance_to(p)).abs());
+                }
+            }
+        }
+        assert!(worst < 0.005, "off by {worst} mm between points");
+    }
+
+    /// An L's reflex corner makes a parabola: its points are as far from the corner as from the
+    /// side they face.
+    #[test]
+    fn a_reflex_corner_gives_a_parabola_at_its_true_clearance() {
+        let region = Shape::new(vec![Loop::polygon(&[DVec2::new(0.0, 0.0), DVec2::new(30.0, 0.0), DVec2::new(30.0, 10.0), DVec2::new(10.0, 10.0), DVec2::new(10.0, 30.0), DVec2::new(0.0, 30.0)])]);
+        let axis = medial_axis(&region, 0.001, 0.05).unwrap();
+        for b in &axis {
+            for (p, c) in b.points.iter().zip(&b.clearance) {
+                let exact = region.distance_to(*p);
+                assert!((c - exact).abs() < 1e-6, "at {p:?}: clearance {c}, the boundary {exact} away");
+            }
+        }
+        // Beside the corner (10, 10), the axis is the parabola as far from it as from the wall
+        // y = 0: y = ((x − 10)² + 100) / 20.
+        let on =
+            axis.iter().flat_map(|b| b.points.iter()).filter(|p| p.x > 6.5 && p.x < 9.5 && p.y < 8.0).inspect(|p| assert!((p.y - ((p.x - 10.0).powi(2) + 100.0) / 20.0).abs() < 1e-6, "{p:?}")).count();
+        assert!(on > 20, "{on} points on the parabola");
+    }
+}

@@ -1,0 +1,210 @@
+//! V-carving a drawing's regions (letters, logos, inlays; islands inside) with a V-bit: the
+//! tool's axis runs along the region's medial axis ([`crate::drawing::medial`]), at each point
+//! as deep as the point's clearance allows, so the cone's side touches the boundary on both
+//! sides: depth = (clearance − tip radius) / tan(half angle). Sharp corners get their spikes
+//! (the axis runs into them as its clearance falls to 0).
+//!
+//! With a maximum depth, the region is flat-bottomed there (Vectric's "flat depth"): the V-bit
+//! cuts the walls down to it along the region shrunk by the clearance at that depth, and a
+//! second, flat tool clears the floor inside by pocketing at that depth (when one is named).
+
+use serde::{Deserialize, Serialize};
+
+use crate::drawing::medial::{medial_axis, Branch};
+use crate::drawing::{Loop, Shape};
+use crate::error::{Error, Result};
+use crate::machining::path2d::{arc_lengths, follow, nearest_end, start_nearest, Heights};
+use crate::machining::report::SheetCut;
+use crate::machining::rings::{clear_rings, rings, Clearing, RingSetup};
+use crate::machining::settings::{EntryKind, LoadControl, PocketPattern};
+use crate::machining::{named_operation, positive, sheet, Context, FieldError, Operate, Planned};
+use crate::offset::offset;
+use crate::toolpath::Move;
+
+/// V-carving a drawing's regions.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(default, rename_all = "camelCase")]
+pub struct VCarve {
+    /// Default value: "V-carve".
+    pub name: String,
+    /// Whether the job runs it. Default value: true.
+    pub enabled: bool,
+    /// A V-bit (or a spot drill). Default value: 1.
+    pub tool: u32,
+    /// The layers whose loops make the regions. Default value: all.
+    pub layers: Vec<String>,
+    /// The loops to carve, by index as `swarf drawing` lists them (each with the loops inside
+    /// it as islands). Default value: all on the layers.
+    pub loops: Vec<usize>,
+    /// The deepest the V-bit goes (mm); deeper, the region is flat-bottomed at this depth.
+    /// Default value: none (as deep as the region is wide).
+    pub max_depth: Option<f64>,
+    /// A flat end mill that clears the flat floor below `maxDepth`. Default value: none (the
+    /// V-bit cuts the walls down to the floor; the floor is left with a warning).
+    pub flat_tool: Option<u32>,
+    /// The flat tool's step-over (fraction of its diameter). Default value: 0.4.
+    pub stepover_fraction: f64,
+    /// The flat tool's step-down (mm). Default value: 2.
+    pub stepdown: f64,
+}
+
+impl Default for VCarve {
+    fn default() -> Self {
+        VCarve { name: "V-carve".into(), enabled: true, tool: 1, layers: Vec::new(), loops: Vec::new(), max_depth: None, flat_tool: None, stepover_fraction: 0.4, stepdown: 2.0 }
+    }
+}
+
+/// Points along the medial axis closer than this (mm) are not taken apart.
+const STEP: f64 = 0.1;
+
+impl Operate for VCarve {
+    named_operation!(OnDrawing);
+
+    fn tools(&self) -> Vec<u32> {
+        std::iter::once(self.tool).chain(self.flat_tool).collect()
+    }
+
+    /// A V-bit carves; a flat end mill may clear the floor.
+    fn takes(&self, cutter: &crate::cutter::Cutter) -> std::result::Result<(), &'static str> {
+        if cutter.is_cone() || cutter.shape == crate::cutter::Shape::Flat {
+            Ok(())
+        } else {
+            Err("V-bits, chamfer mills and spot drills (and a flat end mill for the floor)")
+        }
+    }
+
+    fn validate(&self) -> std::result::Result<(), FieldError> {
+        if let Some(d) = self.max_depth {
+            positive("maxDepth", d)?;
+        }
+        crate::machining::fraction("stepoverFraction", self.stepover_fraction)?;
+        positive("stepdown", self.stepdown)
+    }
+
+    fn plan(&self, ctx: &mut Context, _progress: &mut crate::progress::Progress) -> Result<Planned> {
+        let tool = ctx.tool(&self.name, self.tool)?.clone();
+        let cutter = &tool.cutter;
+        if !cutter.is_cone() {
+            return Err(Error::operation(&self.name, format!("V-carving needs a V-bit, chamfer mill or spot drill; T{} is a {}", tool.number, cutter.describe())));
+        }
+        let (drawing, thickness) = sheet::sheet(ctx, &self.name)?;
+        let (walls, picked) = sheet::selected(drawing, &self.name, &self.layers, &self.loops)?;
+        let picked: Vec<Loop> = picked.iter().map(|&k| walls.shape.loops[k].clone()).collect();
+        let region = sheet::pocket_region(&walls.shape, &picked, self.loops.is_empty());
+        let tan = (cutter.point_angle().to_radians() / 2.0).tan();
+        let tip = cutter.tip_radius();
+        // The clearance at which the cone is as deep as it may go: its own height, the sheet,
+        // the maximum depth.
+        let cone_depth = (cutter.radius() - tip) / tan;
+        let deepest = self.max_depth.unwrap_or(f64::INFINITY).min(cone_depth).min(thickness);
+        let c_max = tip + deepest * tan;
+        let top = ctx.stock.max.z;
+        let z_at = |c: f64| top - ((c.min(c_max) - tip).max(0.0) / tan);
+        let axis = medial_axis(&region, ctx.tolerances.arc_fit, STEP).map_err(|e| Error::operation(&self.name, e))?;
+        if axis.is_empty() {
+            return Err(Error::operation(&self.name, "the regions have no inside to carve"));
+        }
+        let widest = axis.iter().flat_map(|b| b.clearance.iter().copied()).fold(0.0f64, f64::max);
+        let flat = widest > c_max + 1e-6;
+        if flat && self.max_depth.is_none() {
+            let why = if deepest == thickness { format!("the {thickness} mm sheet") } else { format!("T{}'s cone ({} mm across)", tool.number, cutter.diameter) };
+            ctx.warn(
+                &self.name,
+                format!(
+                    "the regions are up to {:.3} mm wide, deeper than {why} lets the V-bit go: they are carved flat at {deepest:.3} mm; set maxDepth and a flatTool to clear the floor",
+                    2.0 * widest
+                ),
+            );
+        }
+        let mut out: Vec<Move> = Vec::new();
+        let mut paths = Vec::new();
+        // The flat floor: cleared by the flat tool, then its walls cut by the V-bit.
+        let floor = if flat { offset(&region, -c_max, &ctx.tolerances) } else { Shape::new(Vec::new()) };
+        if flat && !floor.is_empty() {
+            match self.flat_tool {
+                Some(n) => {
+                    let flat_tool = ctx.tool(&self.name, n)?.clone();
+                    if flat_tool.cutter.shape != crate::cutter::Shape::Flat {
+                        return Err(Error::operation(&self.name, format!("the flat tool T{n} is a {}: the floor needs a flat end mill", flat_tool.cutter.describe())));
+                    }
+                    let r = flat_tool.cutter.radius();
+                    let mut cursor = sheet::cursor(ctx, &flat_tool);
+                    let setup = RingSetup { tool_radius: r, top, feed: flat_tool.feed_rate, cursor: &mut cursor, tol: &ctx.tolerances };
+                    let moves = flat_floor(&floor, r, self, deepest, setup);
+                    if moves.is_empty() {
+                        ctx.warn(&self.name, format!("the flat tool T{n} fits nowhere on the floor: the floor is left"));
+                    } else {
+                        paths.push(sheet::toolpath(&self.name, &flat_tool, moves, ctx.heights.clearance));
+                    }
+                }
+                None if self.max_depth.is_some() => {
+                    ctx.warn(&self.name, format!("the flat floor at {deepest:.3} mm ({:.0} mm²) is left: name a flatTool to clear it", floor.area().abs()));
+                }
+                None => {}
+            }
+        }
+        let mut cursor = sheet::cursor(ctx, &tool);
+        // The floor's walls at the full depth, each loop from its point nearest the tool.
+        let z_floor = z_at(c_max);
+        for l in &floor.loops {
+            let path = start_nearest(l, cursor.at.truncate());
+            cursor.reposition(path[0].a.extend(z_floor), &mut out);
+            let (_, total) = arc_lengths(&path);
+            follow(&path, 0.0, total, &Heights::constant(z_floor), tool.feed_rate, &mut out);
+            cursor.moved(&out);
+        }
+        // The medial axis, nearest branch first, from its nearer end.
+        let mut left: Vec<Branch> = axis;
+        while !left.is_empty() {
+            let here = cursor.at.truncate();
+            let (k, flip) = nearest_end(&left, here, |b| (b.points[0], b.points.last().copied()));
+            let branch = left.swap_remove(k);
+            let branch = if flip { branch.reversed() } else { branch };
+            let first = branch.points[0].extend(z_at(branch.clearance[0]));
+            cursor.reposition(first, &mut out);
+            for k in 1..branch.points.len() {
+                let (p0, c0, p1, c1) = (branch.points[k - 1], branch.clearance[k - 1], branch.points[k], branch.clearance[k]);
+                // Where the clearance crosses the flat depth's, the depth stops (or starts) falling.
+                if (c0 - c_max) * (c1 - c_max) < 0.0 {
+                    let t = (c_max - c0) / (c1 - c0);
+                    out.push(Move::Line { to: p0.lerp(p1, t).extend(z_at(c_max)), feed: tool.feed_rate });
+                }
+                out.push(Move::Line { to: p1.extend(z_at(c1)), feed: tool.feed_rate });
+            }
+            cursor.moved(&out);
+        }
+        paths.push(sheet::toolpath(&self.name, &tool, out, ctx.heights.clearance));
+        let cuts = vec![SheetCut { region, inside: true, depth: deepest, leave: 0.0 }];
+        Ok(Planned { paths, cuts, ..Planned::default() })
+    }
+}
+
+/// The flat floor's moves: the floor (the region shrunk by the clearance at the full depth)
+/// pocketed by the flat tool of radius `r`, in levels of the step-down down to `depth`.
+fn flat_floor(floor: &Shape, r: f64, op: &VCarve, depth: f64, mut s: RingSetup) -> Vec<Move> {
+    let step = op.stepover_fraction * 2.0 * r;
+    let levels = rings(floor, r, step, r, s.tol);
+    if levels.is_empty() {
+        return Vec::new();
+    }
+    // As a pocket clears by default: rings from the wall in, entered on a helix.
+    let clearing = Clearing {
+        step,
+        climb: true,
+        pattern: PocketPattern::Offset,
+        angle: 0.0,
+        load: LoadControl::Path,
+        load_tolerance: 0.1,
+        entry: EntryKind::Helix,
+        ramp_angle: 3f64.to_radians(),
+        helix_r: 0.8 * r,
+    };
+    let passes = (depth / op.stepdown).ceil().max(1.0) as usize;
+    let mut out = Vec::new();
+    for k in 1..=passes {
+        let z_prev = s.top - depth * (k - 1) as f64 / passes as f64;
+        let z = s.top - depth * k as f64 / passes as f64;
+        out.extend(clear_rings(&levels, &clearing, z_prev, z, &mut s, None));
+    }
+    out
+}
