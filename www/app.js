@@ -10,7 +10,7 @@ import { valueOf, fillFields, message, fieldError, check, markProblems } from '.
 import { GcodePane } from './gcode.js';
 import { sim, setTime, step, play, drawMrr, toLine } from './simulation.js';
 import { fillTools, addTool, deleteTool, exportTools, importTools, renumber } from './tools.js';
-import { fillOps, addOperation, onOpList, showPicked, pickLoop, findHoles, onHoleList, presetHoles } from './operations.js';
+import { fillOps, addOperation, onOpList, showPicked, pickInView, findHoles, onHoleList, presetHoles } from './operations.js';
 import { setKind, showPart, takeFile, fillPart, freshSetup } from './part.js';
 import { generate, cancel, download, clearResult, onLegend, resultTab, fillPost, savePost, loadPost, repost, saveJob, loadJob, saveProject, openProject, setRunning } from './results.js';
 
@@ -19,7 +19,7 @@ window.swarf = state; // for the end-to-end test and the curious
 
 try { state.viewer = new Viewer($('view')); } catch (e) { message(`3D view unavailable: ${e.message}`, 'error'); }
 window.swarfView = state.viewer; // for the end-to-end test
-if (state.viewer) state.viewer.onPick = pickLoop;
+if (state.viewer) state.viewer.onPick = pickInView;
 sim.pane = new GcodePane($('gcode'), toLine);
 
 function fillStock() {

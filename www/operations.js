@@ -151,13 +151,42 @@ export function onHoleList(e) {
   const li = e.target.closest('li');
   const op = selectedOp();
   if (!li || !op || !HOLE_OPS.includes(op.kind)) return;
-  const k = Number(li.dataset.index);
+  toggleHole(op, Number(li.dataset.index));
+}
+
+// The hole drawn at the canvas point (x, y) (CSS pixels): the nearest whose circle holds the
+// point, or whose centre lies within `reach` pixels of it; null if none.
+function holeAt(x, y, reach = 10) {
+  const holes = state.holes?.of === state.name ? state.holes.holes : [], viewer = state.viewer;
+  let best = null, nearest = Infinity;
+  holes.forEach((h, k) => {
+    const c = viewer.project([h.center[0], h.center[1], h.top]), rim = viewer.project([h.center[0] + h.diameter / 2, h.center[1], h.top]);
+    if (!c || !rim) return;
+    const d = Math.hypot(c[0] - x, c[1] - y);
+    if (d <= Math.max(reach, Math.hypot(rim[0] - c[0], rim[1] - c[1])) && d < nearest) { nearest = d; best = h.loopIndex ?? k; }
+  });
+  return best;
+}
+
+// A click in the view: with a hole operation selected and the holes found, picks the hole
+// under it (or lets it go); else a drawing's loop, for the operations that take loops.
+export function pickInView(x, y) {
+  const op = selectedOp();
+  if (op && HOLE_OPS.includes(op.kind) && !state.running) {
+    const k = holeAt(x, y);
+    if (k !== null) { toggleHole(op, k); return; }
+  }
+  pickLoop(x, y);
+}
+
+function toggleHole(op, k) {
   const set = new Set(op.holes ?? []);
   if (set.has(k)) set.delete(k); else set.add(k);
   op.holes = [...set].sort((a, b) => a - b);
   store();
   fillOps();
   hooks.changed?.();
+  message(`${op.name}: hole ${k} ${set.has(k) ? 'picked' : 'no longer picked'}; holes ${op.holes.length ? op.holes.join(', ') : 'all'}`, 'note');
 }
 
 // Spot, drill and chamfer the picked holes (all found, if none is picked): three operations,

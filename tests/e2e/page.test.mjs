@@ -1020,6 +1020,18 @@ test('holes in a 3D part: found in its triangles, roughed over, pecked and threa
   await page.click('#find-holes');
   await page.waitForFunction(() => document.querySelectorAll('#hole-list li').length === 2);
   assert.match(await page.textContent('#hole-list'), /φ5 at \(-10, 0\), 10 mm deep, through/);
+  // A click on a hole in the view picks it for the operation; a second lets it go.
+  const centre = await page.evaluate(() => {
+    const h = window.swarf.holes.holes.find((x) => x.center[0] < 0);
+    return { xy: window.swarfView.project([h.center[0], h.center[1], h.top]), index: String(window.swarf.holes.holes.indexOf(h)) };
+  });
+  const box = await page.locator('#view').boundingBox();
+  await page.mouse.click(box.x + centre.xy[0], box.y + centre.xy[1]);
+  await page.waitForFunction(() => document.querySelector('#hole-list li.picked'));
+  assert.equal(await page.getAttribute('#hole-list li.picked', 'data-index'), centre.index);
+  assert.equal(await page.evaluate(() => window.swarf.jobs.part.operations.at(-1).holes.join(',')), centre.index);
+  await page.mouse.click(box.x + centre.xy[0], box.y + centre.xy[1]);
+  await page.waitForFunction(() => !document.querySelector('#hole-list li.picked'));
   await page.selectOption('#op-kind', 'threadMill');
   await page.click('#op-add');
   await page.selectOption('select[name=opTool]', String(threads));
