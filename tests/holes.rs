@@ -884,30 +884,21 @@ fn a_drawings_loops_are_chamfered_outside_outlines_and_inside_holes_and_nowhere_
     assert!((nearest - away).abs() < 1e-3, "the axis comes {nearest:.4} mm from an edge, not {away}");
     // The stock: on the bevel within the width, untouched beyond it.
     let shape = swarf::drawing::Shape::new(edges.iter().map(|l| (*l).clone()).collect());
-    let grid = v.stock.grid();
     let (mut on, mut beyond) = (0, 0);
-    for j in 0..grid.ny {
-        for i in 0..grid.nx {
-            let p = grid.node(i, j);
-            if !shape.contains(p) {
-                continue;
+    for (p, _, d, top) in common::cells(&v.stock, &shape).filter(|c| c.1) {
+        if d > 0.05 && d < width - 0.05 {
+            // Never below the bevel; on it, but where the axis turns a concave corner of the
+            // part (its path's sharp corner keeps farther from the cells beside it).
+            let ideal = -(width - d);
+            assert!(top >= ideal - 0.01, "at {p:?}, {d:.3} mm in: stock at {top:.4}, below the bevel at {ideal:.4}");
+            let corner = edges.iter().flat_map(|l| l.vertices.iter()).any(|v| v.p.distance(p) < 2.0 * width);
+            if !corner {
+                assert!((top - ideal).abs() < 0.01, "at {p:?}, {d:.3} mm in: stock at {top:.4}, the bevel at {ideal:.4}");
+                on += 1;
             }
-            let d = shape.distance_to(p);
-            let top = v.stock.top(i, j);
-            if d > 0.05 && d < width - 0.05 {
-                // Never below the bevel; on it, but where the axis turns a concave corner of
-                // the part (its path's sharp corner keeps farther from the cells beside it).
-                let ideal = -(width - d);
-                assert!(top >= ideal - 0.01, "at {p:?}, {d:.3} mm in: stock at {top:.4}, below the bevel at {ideal:.4}");
-                let corner = edges.iter().flat_map(|l| l.vertices.iter()).any(|v| v.p.distance(p) < 2.0 * width);
-                if !corner {
-                    assert!((top - ideal).abs() < 0.01, "at {p:?}, {d:.3} mm in: stock at {top:.4}, the bevel at {ideal:.4}");
-                    on += 1;
-                }
-            } else if d > width + 0.05 {
-                assert!(top >= -1e-6, "at {p:?}, {d:.3} mm in: cut to {top:.4} beyond the chamfer");
-                beyond += 1;
-            }
+        } else if d > width + 0.05 {
+            assert!(top >= -1e-6, "at {p:?}, {d:.3} mm in: cut to {top:.4} beyond the chamfer");
+            beyond += 1;
         }
     }
     assert!(on > 200 && beyond > 1000, "{on} cells on the bevel, {beyond} beyond");

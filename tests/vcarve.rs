@@ -74,22 +74,16 @@ fn letters_are_carved_to_the_distance_from_their_outline() {
     }
     assert!(middle >= 2 && round > 10, "{middle} points along the bar's middle, {round} round the ring");
     // The stock: on the surface as deep as the point is in from the outline, untouched outside.
-    let grid = v.stock.grid();
     let (mut inside, mut outside) = (0, 0);
-    for j in 0..grid.ny {
-        for i in 0..grid.nx {
-            let p = grid.node(i, j);
-            let d = shape.distance_to(p);
-            let top = v.stock.top(i, j);
-            if shape.contains(p) {
-                if d > 0.02 {
-                    assert!((top + d).abs() < 0.02, "at {p:?}, {d:.3} mm in: the stock at {top:.4}");
-                    inside += 1;
-                }
-            } else if d > 0.02 {
-                assert!(top >= -1e-9, "at {p:?}, {d:.3} mm outside: cut to {top:.4}");
-                outside += 1;
+    for (p, holds, d, top) in common::cells(&v.stock, &shape) {
+        if holds {
+            if d > 0.02 {
+                assert!((top + d).abs() < 0.02, "at {p:?}, {d:.3} mm in: the stock at {top:.4}");
+                inside += 1;
             }
+        } else if d > 0.02 {
+            assert!(top >= -1e-9, "at {p:?}, {d:.3} mm outside: cut to {top:.4}");
+            outside += 1;
         }
     }
     assert!(inside > 50_000 && outside > 100_000, "{inside} cells inside, {outside} outside");
@@ -111,25 +105,16 @@ fn a_flat_depth_leaves_a_floor_cleared_by_the_flat_tool() {
     assert_eq!(out.paths.len(), 2, "the flat tool's path, then the V-bit's");
     assert_eq!(out.paths[0].tool, 2);
     let shape = placed(&job, &drawing);
-    let grid = v.stock.grid();
     let (mut floor, mut walls) = (0, 0);
-    for j in 0..grid.ny {
-        for i in 0..grid.nx {
-            let p = grid.node(i, j);
-            if !shape.contains(p) {
-                continue;
-            }
-            let d = shape.distance_to(p);
-            let top = v.stock.top(i, j);
-            // The floor's sharp corners are the V-bit's: the flat tool's round end leaves them.
-            let corner = shape.loops.iter().flat_map(|l| l.vertices.iter()).any(|v| v.p.distance(p) < 3.0 * depth);
-            if d > depth + 0.05 && !corner {
-                assert!((top + depth).abs() < 0.01, "at {p:?}, {d:.3} mm in: the floor at {top:.4}");
-                floor += 1;
-            } else if d > 0.02 && d < depth - 0.05 {
-                assert!((top + d).abs() < 0.02, "at {p:?}, {d:.3} mm in: the wall at {top:.4}");
-                walls += 1;
-            }
+    for (p, _, d, top) in common::cells(&v.stock, &shape).filter(|c| c.1) {
+        // The floor's sharp corners are the V-bit's: the flat tool's round end leaves them.
+        let corner = shape.loops.iter().flat_map(|l| l.vertices.iter()).any(|v| v.p.distance(p) < 3.0 * depth);
+        if d > depth + 0.05 && !corner {
+            assert!((top + depth).abs() < 0.01, "at {p:?}, {d:.3} mm in: the floor at {top:.4}");
+            floor += 1;
+        } else if d > 0.02 && d < depth - 0.05 {
+            assert!((top + d).abs() < 0.02, "at {p:?}, {d:.3} mm in: the wall at {top:.4}");
+            walls += 1;
         }
     }
     assert!(floor > 10_000 && walls > 10_000, "{floor} cells on the floor, {walls} on the walls");

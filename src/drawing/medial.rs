@@ -9,6 +9,7 @@
 use boostvoronoi::{Builder, SourceCategory};
 
 use super::Shape;
+use crate::geom::segment::{chord_step, Segment};
 use crate::geom::DVec2;
 
 /// A piece of the medial axis: points along it and their clearances (mm).
@@ -35,11 +36,7 @@ impl Site {
     fn distance(&self, p: DVec2) -> f64 {
         match *self {
             Site::Point(q) => p.distance(q),
-            Site::Segment(a, b) => {
-                let ab = b - a;
-                let t = ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0);
-                p.distance(a + ab * t)
-            }
+            Site::Segment(a, b) => Segment::line(a, b).distance_to(p),
         }
     }
 }
@@ -56,8 +53,9 @@ fn polygons(region: &Shape, chord: f64) -> Vec<Vec<DVec2>> {
                 match s.arc_geom() {
                     None => pts.push(s.a),
                     Some(g) => {
-                        let step = 2.0 * (1.0 - (chord / g.radius).min(1.0)).acos();
-                        let n = ((g.sweep().abs() / step.max(1e-3)).ceil() as usize).clamp(1, 10_000);
+                        let sweep = g.sweep().abs();
+                        let step = chord_step(g.radius, chord).unwrap_or(sweep);
+                        let n = ((sweep / step.max(1e-3)).ceil() as usize).clamp(1, 10_000);
                         pts.extend((0..n).map(|k| s.point_at(k as f64 / n as f64)));
                     }
                 }

@@ -280,3 +280,13 @@ pub fn clean(out: &swarf::job::JobOutput) {
         }
     }
 }
+
+/// Every cell of a simulated stock: its place, whether `shape` holds it, its distance from the
+/// shape's boundary, and the stock's top there (for judging a 2.5D cut against its drawing).
+pub fn cells<'a>(stock: &'a swarf::sim::dexel::DexelStock, shape: &'a swarf::drawing::Shape) -> impl Iterator<Item = (DVec2, bool, f64, f64)> + 'a {
+    let grid = stock.grid();
+    (0..grid.ny).flat_map(move |j| (0..grid.nx).map(move |i| (i, j))).map(move |(i, j)| {
+        let p = grid.node(i, j);
+        (p, shape.contains(p), shape.distance_to(p), stock.top(i, j))
+    })
+}
