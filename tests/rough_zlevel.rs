@@ -526,3 +526,75 @@ fn a_regions_rings_leave_no_sliver_standing_between_them() {
         assert!(highest < floor + 0.01, "a channel {:.2} mm wide: stock stands {:.3} mm over its floor", 2.0 * half, highest - floor);
     }
 }
+
+/// Rapid length over feed length of a program (the traverses between cuts, up and across).
+fn rapid_over_feed(out: &job::JobOutput) -> (f64, f64) {
+    let (mut rapid, mut feed) = (0.0, 0.0);
+    for m in &out.moves {
+        let length = m.from.distance(m.mv.to());
+        if m.mv.is_rapid() {
+            rapid += length;
+        } else {
+            feed += length;
+        }
+    }
+    (rapid, feed)
+}
+
+/// Issue 38's terrain: z-level roughing (φ6 flat, step-down 2, step-over 0.4, the stock the
+/// part's box) links its regions at depth: a traverse goes just over what still stands on its
+/// way (the in-process stock as the operation's own pieces left it), not over the stock's top,
+/// and the rapids come to under a fifth of the feed. A generated range of peaks, and the shared
+/// ocl_mount_rush (3.57 m of rapids for 12.86 m of feed before, 0.28).
+#[test]
+fn a_terrains_regions_are_linked_at_depth() {
+    let peaks = [(-25.0, 10.0, 4.0, 15.0), (-10.0, -10.0, 5.0, 14.0), (5.0, 10.0, 5.0, 13.0), (20.0, -10.0, 5.0, 12.0), (28.0, 12.0, 4.0, 10.0)];
+    let terrain = swarf::mesh::sample::height_field_solid(DVec2::new(-35.0, -20.0), DVec2::new(35.0, 20.0), 140, 80, 0.0, |x, y| {
+        1.0 + peaks.iter().map(|&(px, py, s, h)| h * (-((x - px).powi(2) + (y - py).powi(2)) / (s * s)).exp()).sum::<f64>()
+    });
+    let mut parts = vec![("generated peaks", terrain)];
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/meshes");
+    if let Ok(bytes) = std::fs::read(dir.join("ocl_mount_rush.stl")) {
+        parts.push(("ocl_mount_rush", swarf::mesh::import::read_mesh_auto(&bytes, Some("ocl_mount_rush.stl"), &swarf::geom::tolerance::Tolerances::default()).unwrap()));
+    }
+    for (name, part) in parts {
+        let job = Job { simulation: Simulation { verify: true, cell: Some(0.25) }, ..support::job::peer_rough_job() };
+        let out = job::run(&job, part, &mut Progress::none()).unwrap();
+        clean(&out);
+        // Replayed on a stock of the simulation's cells: where the tool rises to cross over,
+        // it rises no higher than the gap over what stands on its way then (judged with a
+        // cutter 0.05 mm wider, so that a cell at the rim of a cut counts as standing), give or
+        // take the planner's own margin: it judges the way on cells of an eighth of the
+        // cutter's radius, each as high as the highest simulation cell it holds (half a
+        // millimetre here), and the part by a bound from its z-map's nodes where that stands
+        // no more than the gap higher (before, traverses rose up to 16 mm higher here).
+        const SLACK: f64 = 1.5;
+        const STEPDOWN: f64 = 2.0;
+        let mut stock = swarf::sim::DexelStock::new(&out.stock, 0.25, 1);
+        let mut high = Vec::new();
+        for (k, m) in out.moves.iter().enumerate() {
+            let next = out.moves.get(k + 1).map(|n| n.mv.to());
+            if let (true, Some(to)) = (m.mv.is_rapid(), next) {
+                let (lift, over) = (m.mv.to(), to);
+                if lift.truncate() == m.from.truncate() && lift.z > m.from.z && over.z == lift.z && over.truncate() != lift.truncate() && k > 0 {
+                    let wider = swarf::cutter::Profile::new(m.cutter.radius() + 0.05, m.cutter.profile().corner);
+                    let stands = stock.touch_along(lift.truncate(), over.truncate(), &wider, true);
+                    // Nor lower than the gap over the level above the cut it comes down to.
+                    let land = out.moves[k..].iter().find(|n| !n.mv.is_rapid()).map_or(f64::NEG_INFINITY, |n| n.mv.to().z + STEPDOWN);
+                    if lift.z > stands.max(land) + job.stock.retract + SLACK {
+                        high.push((lift, over, stands));
+                    }
+                }
+            }
+            for sweep in swarf::sim::sweep::Sweep::of_move(m.cutter.profile(), m.from, &m.mv, 0.002) {
+                swarf::sim::StockModel::apply(&mut stock, &sweep);
+            }
+        }
+        let worst = high.iter().map(|h| h.0.z - h.2).fold(0.0, f64::max);
+        assert!(high.is_empty(), "{name}: {} traverses higher than the gap over what stands on their way, up to {worst:.3} mm, as {:?}", high.len(), high.first());
+        let (rapid, feed) = rapid_over_feed(&out);
+        eprintln!("{name}: {rapid:.0} mm of rapids for {feed:.0} mm of feed ({:.3})", rapid / feed);
+        assert!(rapid < 0.2 * feed, "{name}: {rapid:.0} mm of rapids for {feed:.0} mm of feed");
+        common::rs274(&out.gcode, &job.tools);
+    }
+}

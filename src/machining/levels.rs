@@ -23,25 +23,31 @@
 //!   the tool goes from pocket to pocket once, not once per level. Each region's material starts
 //!   at the level above, which its parent cut; retracts and entries know what has been cut, in
 //!   whatever order (the lowest cut region that holds a point or a way).
+//! * **Traverses** between pieces cross at the gap over the lowest level whose cut regions
+//!   together hold the straight way (the air beside the stock needs none), or over what still
+//!   stands on the way by the operation's own cuts so far, whichever is lower (issue 38: on a
+//!   terrain the tool crosses a ridge at the ridge, not at the stock's top).
 
 use super::context::SurfaceRequest;
-use super::rings::{clear_rings, rings, Clearing, Inside, RingSetup};
+use super::rings::{clear_rings, rings, Clearing, RingSetup};
 use super::settings::{Direction, EntryKind, LoadControl, Order, PocketPattern, Roughing, Steps};
 use super::{positive, sheet, Context, FieldError};
 use crate::cutter::Profile;
 use crate::drawing::Shape;
 use crate::error::{Error, Result};
-use crate::geom::segment::Rect;
-use crate::geom::tolerance::{HAIR, LEAST_STEP};
-use crate::geom::DVec2;
+use crate::geom::segment::{Rect, Segment};
+use crate::geom::tolerance::{FLOAT_SLACK, HAIR, LEAST_STEP};
+use crate::geom::{DVec2, DVec3};
 use crate::progress::Progress;
-use crate::sim::DexelStock;
+use crate::sim::sweep::Sweep;
+use crate::sim::{DexelStock, StockModel};
 use crate::tool::Tool;
-use crate::toolpath::entry::Keepout;
-use crate::toolpath::Toolpath;
+use crate::toolpath::{Move, Toolpath};
 use crate::zmap::region::Region;
 use crate::zmap::surface::ClSurface;
 use crate::zmap::{ClBuilder, Grid, HeightField};
+use std::cell::RefCell;
+use std::rc::Rc;
 use std::sync::Arc;
 
 /// Nodes of equal height covering at least this many times the cutter's area make a flat (a level): more than the plateau a flat end leaves over a peak (its own disk).
@@ -161,13 +167,18 @@ impl LevelRoughing {
         };
         let clearance = ctx.heights.clearance;
         let mut cursor = sheet::cursor(ctx, &tool);
-        let mut moves = Vec::new();
+        let mut moves: Vec<Move> = Vec::new();
+        // The in-process stock as this roughing's pieces so far left it, brought up to date
+        // where a traverse asks: it crosses just over what still stands on its way.
+        let standing = Rc::new(RefCell::new(Standing::new(ctx.sim.stock(), tool.cutter.profile())));
         // A ring's start lies on its region's boundary: a point a chordal tolerance from a
         // region counts as in it.
         let slack = tol.chordal;
         let mut pieces = Pieces::new(levels, self.order, slack, r);
         // What was cut so far: each piece's height and region.
-        let mut cleared = Cleared { slack, cut: Vec::new() };
+        // Beyond the stock's sides by more than the cutter's radius, no height holds material.
+        let air = Rect { min: ctx.stock.min.truncate(), max: ctx.stock.max.truncate() }.expand(r + slack);
+        let mut cleared = Cleared { slack, air, cut: Vec::new() };
         let count = pieces.list.len();
         for k in 0..count {
             if !progress.report(k as f64 / count as f64) {
@@ -196,16 +207,37 @@ impl LevelRoughing {
             // above the stock's top before the first level.
             let (surface, allowance, gap, tol_z) = (cl.clone(), self.roughing.allowance, ctx.heights.gap, tol.height + 2.0 * tol.interpolation);
             let across = done;
+            let stands = standing.clone();
             cursor.traverse = Some(Box::new(move |a: DVec2, b: DVec2| {
                 let over = |level: f64| surface.stays_below(a, b, level - allowance - tol_z);
                 if across.cut.is_empty() {
                     return over(z_prev).then_some(z_prev + gap);
                 }
-                across.lowest_clearing(a, b, gap, &over).map(|level| level + gap)
+                // Over what this roughing cut (no lower than the level above: the cursor keeps
+                // its rapids there), else just over what stands on the way.
+                let by_regions = across.lowest_covering(a, b, &over);
+                if by_regions.is_some_and(|level| level <= z_prev) {
+                    return by_regions.map(|level| level + gap);
+                }
+                let by_stock = stands.borrow_mut().along(a, b);
+                // Over the part too: by the nodes' bound (or the exact surface, where the nodes
+                // are not the exact drop), the exact surface only where the bound stands much
+                // higher (beside a wall the bound counts, half a node off the cutter's reach).
+                let bound = surface.bound_along(a, b).map(|top| top + allowance + tol_z);
+                let by_stock = match bound {
+                    Some(b) if b <= by_stock + gap => Some(b.max(by_stock)),
+                    _ if over(by_stock) => Some(by_stock),
+                    _ => bound,
+                };
+                let by_stock = by_stock.filter(|&level| by_regions.is_none_or(|r| level < r));
+                by_regions.into_iter().chain(by_stock).reduce(f64::min).map(|level| level + gap)
             }));
+            let from = cursor.at;
             let mut setup = RingSetup { tool_radius: r, top: z_prev, feed: tool.feed_rate, cursor: &mut cursor, tol: &tol };
             let air = self.air(ctx, &cl, r, z);
-            moves.extend(clear_rings(&rings, &clearing, z_prev, z, &mut setup, Some(&air)));
+            let cut = clear_rings(&rings, &clearing, z_prev, z, &mut setup, Some(&air));
+            standing.borrow_mut().cut(from, &cut, tol.chordal);
+            moves.extend(cut);
             cleared.add(z, region);
         }
         Ok(sheet::toolpath(&self.name, &tool, moves, clearance))
@@ -553,10 +585,68 @@ fn holds(region: &Shape, p: DVec2, slack: f64) -> bool {
     region.contains(p) || region.distance_to(p) <= slack
 }
 
+/// The in-process stock as an operation's cuts so far left it, for its traverses: the cuts'
+/// sweeps are kept and taken off the stock only where a traverse asks what stands on its way
+/// (a stock of one height a cell is cut the same in any order), on cells of about an eighth
+/// of the cutter's radius. Each coarse cell stands as high as the highest of the simulation's
+/// cells it holds, and is cut by a cutter narrower by the reach of its corners from its centre
+/// (and its answers raised as much): it never stands lower than the simulation's cells would.
+struct Standing {
+    stock: DexelStock,
+    /// The cutter the coarse cells are cut by, and how much higher it stands than it cuts.
+    narrower: Profile,
+    raise: f64,
+    profile: Profile,
+    waiting: Vec<Sweep>,
+}
+
+impl Standing {
+    fn new(stock: &DexelStock, profile: Profile) -> Standing {
+        let fine = stock.grid().spacing;
+        let factor = ((profile.radius / 8.0 / fine).floor() as usize).max(1);
+        // The simulation's cells' centres in a coarse cell lie this near its own.
+        // (at most an eighth of the radius: the cutter stays a cutter).
+        let raise = (factor - 1) as f64 * fine * std::f64::consts::FRAC_1_SQRT_2;
+        let radius = profile.radius - raise;
+        let narrower = Profile::new(radius, profile.corner.min(radius));
+        Standing { stock: stock.coarsened(factor), narrower, raise, profile, waiting: Vec::new() }
+    }
+
+    /// Keeps the sweeps of `moves`, made from `from`.
+    fn cut(&mut self, mut from: DVec3, moves: &[Move], chordal: f64) {
+        for m in moves {
+            if !m.is_rapid() {
+                self.waiting.extend(Sweep::of_move(self.narrower, from, m, chordal));
+            }
+            from = m.to();
+        }
+    }
+
+    /// The highest tip height at which the cutter touches what stands anywhere along the
+    /// straight way from `a` to `b`, each cell as a column over its whole square (`-inf` where
+    /// nothing stands).
+    fn along(&mut self, a: DVec2, b: DVec2) -> f64 {
+        let reach = self.profile.radius + 2.0 * self.stock.grid().spacing;
+        let stock = &mut self.stock;
+        // The cuts whose footprints come within the cutter's reach of the way.
+        self.waiting.retain(|s| {
+            let near = Rect { min: s.min, max: s.max }.expand(reach);
+            let meets = outside(&near, a, b) != [(0.0, 1.0)];
+            if meets {
+                stock.apply(s);
+            }
+            !meets
+        });
+        self.stock.touch_along(a, b, &self.profile, true) + self.raise
+    }
+}
+
 /// The pieces cut so far, from the lowest up.
 #[derive(Clone)]
 struct Cleared {
     slack: f64,
+    /// Centres outside it meet no stock at any height.
+    air: Rect,
     cut: Vec<ClearedPiece>,
 }
 
@@ -580,12 +670,83 @@ impl Cleared {
         self.cut.iter().find(|e| inside(&e.bounds) && holds(&e.region, p, self.slack)).map(|e| e.z)
     }
 
-    /// The lowest level cut so far whose region holds the straight move from `a` to `b` (at
-    /// `gap` above it) and where `over` the part stands below it.
-    fn lowest_clearing(&self, a: DVec2, b: DVec2, gap: f64, over: &dyn Fn(f64) -> bool) -> Option<f64> {
-        let inside = |r: &Rect| a.min(b).cmpge(r.min).all() && a.max(b).cmple(r.max).all();
-        self.cut.iter().find(|e| inside(&e.bounds) && Inside(&e.region).clears(a.extend(e.z + gap), b.extend(e.z + gap), 0.0) && over(e.z)).map(|e| e.z)
+    /// The lowest height from which the straight move from `a` to `b` lies over what was cut:
+    /// the lowest level such that the regions cut at it and below it together hold the whole
+    /// move (a traverse over a ridge between two pockets goes at the ridge's level, not the
+    /// stock's top), where `over` the part stands below it. Where the move passes outside the
+    /// stock's sides (by the cutter's radius) it needs no region.
+    fn lowest_covering(&self, a: DVec2, b: DVec2, over: &dyn Fn(f64) -> bool) -> Option<f64> {
+        let (lo, hi) = (a.min(b), a.max(b));
+        let meets = |r: &Rect| lo.cmple(r.max).all() && hi.cmpge(r.min).all();
+        let length = a.distance(b);
+        if length <= self.slack {
+            return self.lowest_holding(a).into_iter().chain(self.lowest_holding(b)).reduce(f64::max).filter(|&z| over(z));
+        }
+        // Each end under a piece or in the air beside the stock, first (a quick answer where not).
+        let aired = |p: DVec2| !(p.cmpge(self.air.min).all() && p.cmple(self.air.max).all());
+        let held = |p: DVec2| if aired(p) { Some(f64::NEG_INFINITY) } else { self.lowest_holding(p) };
+        let lowest = held(a)?.max(held(b)?);
+        // The parts of the move (as fractions of it) in the air beside the stock and under the
+        // pieces cut so far, level by level from the lowest up, until they join from end to end.
+        let link = Segment::line(a, b);
+        let mut under: Vec<(f64, f64)> = outside(&self.air, a, b);
+        let gap = self.slack / length;
+        for (k, e) in self.cut.iter().enumerate() {
+            if meets(&e.bounds) {
+                under.extend(spans_inside(&e.region, &link, self.slack));
+            }
+            if self.cut.get(k + 1).is_some_and(|n| n.z == e.z) || e.z < lowest {
+                continue;
+            }
+            under.sort_by(|p, q| p.0.total_cmp(&q.0));
+            let mut reach = 0.0;
+            for &(t0, t1) in &under {
+                if t0 > reach + gap {
+                    break;
+                }
+                reach = f64::max(reach, t1);
+            }
+            if reach >= 1.0 - gap {
+                return over(e.z).then_some(e.z);
+            }
+        }
+        None
     }
+}
+
+/// The parts of the straight move from `a` to `b` (as fractions of it) outside `rect`.
+fn outside(rect: &Rect, a: DVec2, b: DVec2) -> Vec<(f64, f64)> {
+    // The part inside, clipped slab by slab (Liang and Barsky).
+    let d = b - a;
+    let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
+    for (p, lo, hi, dp) in [(a.x, rect.min.x, rect.max.x, d.x), (a.y, rect.min.y, rect.max.y, d.y)] {
+        if dp == 0.0 {
+            if p < lo || p > hi {
+                return vec![(0.0, 1.0)];
+            }
+            continue;
+        }
+        let (u, v) = ((lo - p) / dp, (hi - p) / dp);
+        t0 = t0.max(u.min(v));
+        t1 = t1.min(u.max(v));
+    }
+    if t0 >= t1 {
+        return vec![(0.0, 1.0)];
+    }
+    [(0.0, t0), (t1, 1.0)].into_iter().filter(|s| s.1 > s.0).collect()
+}
+
+/// The parts of `link` (as fractions of it, from its start) that lie in `region` or within
+/// `slack` of it.
+fn spans_inside(region: &Shape, link: &Segment, slack: f64) -> Vec<(f64, f64)> {
+    let mut ts = vec![0.0, 1.0];
+    let g = link.arc_geom();
+    for s in region.segments() {
+        ts.extend(s.crossings_with(s.arc_geom().as_ref(), link, g.as_ref(), FLOAT_SLACK).iter().map(|c| c.u.clamp(0.0, 1.0)));
+    }
+    ts.sort_by(f64::total_cmp);
+    ts.dedup();
+    ts.windows(2).filter(|w| holds(region, link.point_at(0.5 * (w[0] + w[1])), slack)).map(|w| (w[0], w[1])).collect()
 }
 
 /// What each level's region is made of ([`LevelRoughing::level_inputs`]).

@@ -107,6 +107,31 @@ impl DexelStock {
         out
     }
 
+    /// The stock on cells `factor` times as wide, from the same corner, each as high as the
+    /// highest of the cells it holds (a split cell by its highest sub-cell): a conventional
+    /// z-map that stands nowhere lower than this one, for estimates that may err high, never low.
+    pub fn coarsened(&self, factor: usize) -> DexelStock {
+        let f = factor.max(1);
+        if f == 1 && self.k == 1 {
+            return self.clone();
+        }
+        let size = DVec2::new(self.widths.iter().sum(), self.heights.iter().sum());
+        let bounds = Aabb { min: self.origin.extend(self.bottom), max: (self.origin + size).extend(self.bottom) };
+        let mut out = DexelStock::new(&bounds, self.cell * f as f64, 1);
+        for j in 0..self.ny {
+            for i in 0..self.nx {
+                let c = (j / f).min(out.ny - 1) * out.nx + (i / f).min(out.nx - 1);
+                out.z[c] = out.z[c].max(self.z[j * self.nx + i]);
+            }
+        }
+        let b = out.block;
+        for (k, top) in out.block_top.iter_mut().enumerate() {
+            let (bi, bj) = (k % out.bx, k / out.bx);
+            *top = (bj * b..((bj + 1) * b).min(out.ny)).flat_map(|j| (bi * b..((bi + 1) * b).min(out.nx)).map(move |i| (i, j))).fold(out.bottom, |m, (i, j)| m.max(out.z[j * out.nx + i]));
+        }
+        out
+    }
+
     /// The bands of [`DexelStock::split_rows`] as one stock again.
     pub fn join(bands: Vec<DexelStock>) -> DexelStock {
         let mut bands = bands.into_iter();
@@ -502,6 +527,35 @@ mod tests {
     use super::*;
     use crate::cutter::Profile;
     use crate::geom::DVec3;
+
+    #[test]
+    fn a_coarsened_stock_stands_nowhere_lower() {
+        let bounds = Aabb { min: DVec3::new(-10.0, -7.0, 0.0), max: DVec3::new(10.3, 8.1, 10.0) };
+        let mut fine = DexelStock::new(&bounds, 0.1, 1);
+        let mut next = uniform(7);
+        for _ in 0..40 {
+            let mut at = || DVec3::new(-10.0 + 20.3 * next(), -7.0 + 15.1 * next(), 10.0 * next());
+            fine.apply(&Sweep::line(Profile::new(1.5, 0.5), at(), at()));
+        }
+        let coarse = fine.coarsened(4);
+        assert_eq!((coarse.nx, coarse.ny), (fine.nx.div_ceil(4), fine.ny.div_ceil(4)));
+        let g = coarse.grid();
+        for j in 0..fine.ny {
+            for i in 0..fine.nx {
+                let (ci, cj) = (i / 4, j / 4);
+                assert!(coarse.top(ci, cj) >= fine.top(i, j), "cell ({i}, {j})");
+                // Each coarse cell is the highest of its own cells.
+                let own = (0..fine.ny).filter(|&y| y / 4 == cj).flat_map(|y| (0..fine.nx).filter(move |&x| x / 4 == ci).map(move |x| (x, y)));
+                assert_eq!(own.map(|(x, y)| fine.top(x, y)).fold(f64::NEG_INFINITY, f64::max), coarse.top(ci, cj));
+            }
+        }
+        // A whole-cells answer on the coarse stock is never below the fine one's.
+        for _ in 0..200 {
+            let c = g.origin + DVec2::new(20.0 * next(), 15.0 * next());
+            let p = Profile::new(2.0, 0.0);
+            assert!(coarse.touch(c, &p, true) >= fine.touch(c, &p, true));
+        }
+    }
 
     /// Numbers in [0, 1) from `seed`, the same every run.
     fn uniform(mut seed: u64) -> impl FnMut() -> f64 {

@@ -175,6 +175,39 @@ impl ClSurface {
         out
     }
 
+    /// An upper bound of the exact surface anywhere along the straight move from `a` to `b`,
+    /// from the nodes alone: the highest node within the cutter's radius and half a node
+    /// diagonal of the move, plus the cutter's rise that far off its axis (every point of the
+    /// part under the cutter lies within half a diagonal of a node, whose drop that point holds
+    /// up to the rise). `None` where the nodes are not the exact drop.
+    pub fn bound_along(&self, a: DVec2, b: DVec2) -> Option<f64> {
+        if !self.nodes_exact {
+            return None;
+        }
+        let f = &self.field;
+        let half = f.spacing * std::f64::consts::FRAC_1_SQRT_2;
+        let p = self.profile();
+        let reach = p.radius + half;
+        let (lo, hi) = ((a.min(b) - DVec2::splat(reach) - f.origin) / f.spacing, (a.max(b) + DVec2::splat(reach) - f.origin) / f.spacing);
+        let (i0, j0) = (lo.x.ceil().max(0.0) as usize, lo.y.ceil().max(0.0) as usize);
+        let (i1, j1) = (hi.x.floor().min(f.nx as f64 - 1.0), hi.y.floor().min(f.ny as f64 - 1.0));
+        let mut top = self.floor;
+        if i1 >= 0.0 && j1 >= 0.0 {
+            let d = b - a;
+            let len2 = d.length_squared();
+            for j in j0..=j1 as usize {
+                for i in i0..=i1 as usize {
+                    let q = f.origin + DVec2::new(i as f64, j as f64) * f.spacing;
+                    let t = if len2 > 0.0 { ((q - a).dot(d) / len2).clamp(0.0, 1.0) } else { 0.0 };
+                    if q.distance_squared(a + d * t) <= reach * reach {
+                        top = top.max(f.at(i, j));
+                    }
+                }
+            }
+        }
+        Some(top + p.height(half))
+    }
+
     /// Subdivides the piece from the last point of `out` to `end`, whose midpoint stands at
     /// `zm`, pushing the points between; returns the height `end` is left at, or `None` once
     /// it has pushed a point `ok` refuses.
