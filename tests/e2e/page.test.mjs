@@ -994,6 +994,73 @@ test('holes in the page: a plate\'s circles spotted and pecked with a spot drill
   await context.close();
 });
 
+test('the shared plate drawing in the page: its circles spotted, the φ3.2 holes pecked, the φ12 holes chamfered and the outline cut, clean, in a program rs274 runs', async (t) => {
+  const file = path.resolve(root, '../../shared/data/profiles/tm_LM2.dxf');
+  if (!fs.existsSync(file)) return t.skip('../shared/data/profiles/tm_LM2.dxf is absent');
+  const { page, context, errors } = await openPage();
+  await page.setInputFiles('#file', { name: 'tm_LM2.dxf', mimeType: 'application/dxf', buffer: fs.readFileSync(file) });
+  await page.waitForFunction(() => document.body.dataset.kind === 'drawing' && /tm_LM2\.dxf/.test(document.body.textContent));
+  // The library: a spot drill, a φ3.2 drill, a 90° V-bit and a φ3 flat end.
+  await tab(page, 'tools');
+  const add = async (shape, diameter, flutes) => {
+    await page.click('#tool-add');
+    await page.selectOption('select[name=shape]', shape);
+    await page.fill('input[name=diameter]', String(diameter));
+    await page.fill('input[name=fluteLength]', String(flutes));
+    return Number(await page.inputValue('input[name=toolNumber]'));
+  };
+  const spot = await add('spotDrill', 10, 20);
+  const drill = await add('drill', 3.2, 30);
+  const vbit = await add('vBit', 16, 10);
+  const flat = await add('flat', 3, 20);
+  await tab(page, 'ops');
+  await page.evaluate(() => { window.swarf.jobs.drawing.operations = []; });
+  // Every circle spotted 3 mm wide.
+  await page.selectOption('#op-kind', 'drill');
+  await page.click('#op-add');
+  await page.selectOption('select[name=opTool]', String(spot));
+  await page.selectOption('select[name=drillCycle]', 'spot');
+  await page.fill('input[name=spotDiameter]', '3');
+  // The φ3.2 holes pecked.
+  await page.selectOption('#op-kind', 'drill');
+  await page.click('#op-add');
+  await page.selectOption('select[name=opTool]', String(drill));
+  await page.selectOption('select[name=drillCycle]', 'peck');
+  await page.fill('input[name=minDiameter]', '3.19');
+  await page.fill('input[name=maxDiameter]', '3.21');
+  // The φ12 holes chamfered 0.5 mm.
+  await page.selectOption('#op-kind', 'chamfer');
+  await page.click('#op-add');
+  await page.selectOption('select[name=opTool]', String(vbit));
+  await page.fill('input[name=holeMin]', '11.9');
+  await page.fill('input[name=chamferWidth]', '0.5');
+  // The outline (layer IZREZ) cut out with the φ3.
+  await page.selectOption('#op-kind', 'profile2d');
+  await page.click('#op-add');
+  await page.selectOption('select[name=opTool]', String(flat));
+  await page.fill('input[name=layers]', 'IZREZ');
+  // The holes the page finds: 36 circles and 31 drill marks (the dimensions' anchors).
+  await page.click('#op-list li:first-child .op-name');
+  await page.click('#find-holes');
+  await page.waitForFunction(() => document.querySelectorAll('#hole-list li').length === 67);
+  await page.click('#generate');
+  await generated(page);
+  assert.doesNotMatch(await page.textContent('#sim-report'), /gouge[^\n]*[1-9]/);
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-plate-'));
+  const program = path.join(dir, download.suggestedFilename());
+  await download.saveAs(program);
+  const gcode = fs.readFileSync(program, 'utf8');
+  assert.equal((gcode.match(/^G98 G81 /gm) ?? []).length, 36, 'every circle spotted');
+  assert.equal((gcode.match(/^G98 G83 /gm) ?? []).length, 26, 'the φ3.2 holes pecked');
+  const tools = await page.evaluate(() => window.swarf.tools);
+  fs.writeFileSync(path.join(dir, 'tool.tbl'), toolTable(tools));
+  const canon = execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), program], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });
+  assert.equal((canon.match(/CHANGE_TOOL\(/g) ?? []).length, 4, 'rs274 changed to each of the four tools');
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
 test('holes in a 3D part: found in its triangles, roughed over, pecked and threaded M6 in one program that rs274 runs, clean', async () => {
   const { page, context, errors } = await openPage();
   // A plate 40 × 20 × 10 with two φ5 through holes (M6's tap drill is 5).
