@@ -136,3 +136,35 @@ fn the_warm_up_job_runs_each_strategy_on_its_small_part_clean() {
     }
     eprintln!("warm-up: {} moves, {seconds:.3} s", out.moves.len());
 }
+
+/// Issue 38: waterline finishing after roughing plunged straight down in 157 and 269 entries on
+/// two mould inserts ("found no room for a helix or a ramp"). On the generated mould (walls,
+/// ribs, pockets and slots) and the shared parts, a φ6 flat z-level rough then a φ6 ball
+/// waterline (their default settings) enters every level from the air beside it, from
+/// the level above along the surface or from what the roughing cleared: no such warning, and no
+/// straight plunge into material.
+#[test]
+fn waterline_after_roughing_never_plunges_into_material() {
+    let mut parts = vec![("generated mould", swarf::mesh::sample::octree_mould(1.0))];
+    for file in ["kiri_pocket-test.stl", "pycam_textbox.stl"] {
+        if let Some(path) = common::shared_data(&format!("meshes/{file}")) {
+            parts.push((file, swarf::mesh::import::read_mesh_auto(&std::fs::read(path).unwrap(), Some(file), &swarf::geom::tolerance::Tolerances::default()).unwrap()));
+        }
+    }
+    for (name, part) in parts {
+        let job = Job {
+            part: PartSetup { placement: Placement::Keep, ..PartSetup::default() },
+            tools: vec![
+                Tool { number: 1, cutter: Cutter { flute_length: 40.0, ..Cutter::flat(6.0) }, feed_rate: 1000.0, plunge_rate: 250.0, ..Tool::default() },
+                Tool { number: 2, cutter: Cutter { flute_length: 40.0, ..Cutter::ball(6.0) }, feed_rate: 1000.0, plunge_rate: 250.0, ..Tool::default() },
+            ],
+            operations: vec![Operation::RoughZlevel(swarf::operations::RoughZlevel { tool: 1, ..Default::default() }), Operation::FinishWaterline(FinishWaterline { tool: 2, ..Default::default() })],
+            simulation: Simulation { verify: true, cell: Some(0.25) },
+            ..Job::default()
+        };
+        let out = job::run(&job, part, &mut Progress::none()).unwrap();
+        common::clean(&out);
+        let plunges: Vec<String> = out.warnings.iter().map(|w| w.to_string()).filter(|w| w.contains("no room")).collect();
+        assert!(plunges.is_empty(), "{name}: {plunges:?}");
+    }
+}
