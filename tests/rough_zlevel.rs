@@ -527,20 +527,6 @@ fn a_regions_rings_leave_no_sliver_standing_between_them() {
     }
 }
 
-/// Rapid length over feed length of a program (the traverses between cuts, up and across).
-fn rapid_over_feed(out: &job::JobOutput) -> (f64, f64) {
-    let (mut rapid, mut feed) = (0.0, 0.0);
-    for m in &out.moves {
-        let length = m.from.distance(m.mv.to());
-        if m.mv.is_rapid() {
-            rapid += length;
-        } else {
-            feed += length;
-        }
-    }
-    (rapid, feed)
-}
-
 /// Issue 38's terrain: z-level roughing (φ6 flat, step-down 2, step-over 0.4, the stock the
 /// part's box) links its regions at depth: a traverse goes just over what still stands on its
 /// way (the in-process stock as the operation's own pieces left it), not over the stock's top,
@@ -592,7 +578,7 @@ fn a_terrains_regions_are_linked_at_depth() {
         }
         let worst = high.iter().map(|h| h.0.z - h.2).fold(0.0, f64::max);
         assert!(high.is_empty(), "{name}: {} traverses higher than the gap over what stands on their way, up to {worst:.3} mm, as {:?}", high.len(), high.first());
-        let (rapid, feed) = rapid_over_feed(&out);
+        let (rapid, feed) = (out.stats.rapid_length, out.stats.feed_length);
         eprintln!("{name}: {rapid:.0} mm of rapids for {feed:.0} mm of feed ({:.3})", rapid / feed);
         assert!(rapid < 0.2 * feed, "{name}: {rapid:.0} mm of rapids for {feed:.0} mm of feed");
         common::rs274(&out.gcode, &job.tools);

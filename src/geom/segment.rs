@@ -54,6 +54,12 @@ impl Rect {
     /// The part of the straight segment from `a` to `b` inside the rectangle (its edges
     /// included), by Liang–Barsky; the ends are clamped into it. `None` where they do not meet.
     pub fn clip(&self, a: DVec2, b: DVec2) -> Option<(DVec2, DVec2)> {
+        let d = b - a;
+        self.clip_fractions(a, b).map(|(t0, t1)| ((a + d * t0).clamp(self.min, self.max), (a + d * t1).clamp(self.min, self.max)))
+    }
+
+    /// [`Rect::clip`] as fractions of the segment from `a`: where its part inside starts and ends.
+    pub fn clip_fractions(&self, a: DVec2, b: DVec2) -> Option<(f64, f64)> {
         let (min, max) = (self.min, self.max);
         let d = b - a;
         let (mut t0, mut t1) = (0.0f64, 1.0f64);
@@ -71,7 +77,7 @@ impl Rect {
                 }
             }
         }
-        (t0 <= t1).then(|| ((a + d * t0).clamp(min, max), (a + d * t1).clamp(min, max)))
+        (t0 <= t1).then_some((t0, t1))
     }
 }
 

@@ -604,8 +604,8 @@ impl Standing {
     fn new(stock: &DexelStock, profile: Profile) -> Standing {
         let fine = stock.grid().spacing;
         let factor = ((profile.radius / 8.0 / fine).floor() as usize).max(1);
-        // The simulation's cells' centres in a coarse cell lie this near its own.
-        // (at most an eighth of the radius: the cutter stays a cutter).
+        // The simulation's cells' centres in a coarse cell lie this near its own (at most an
+        // eighth of the radius: the narrower cutter stays a cutter).
         let raise = (factor - 1) as f64 * fine * std::f64::consts::FRAC_1_SQRT_2;
         let radius = profile.radius - raise;
         let narrower = Profile::new(radius, profile.corner.min(radius));
@@ -630,8 +630,7 @@ impl Standing {
         let stock = &mut self.stock;
         // The cuts whose footprints come within the cutter's reach of the way.
         self.waiting.retain(|s| {
-            let near = Rect { min: s.min, max: s.max }.expand(reach);
-            let meets = outside(&near, a, b) != [(0.0, 1.0)];
+            let meets = Rect { min: s.min, max: s.max }.expand(reach).clip_fractions(a, b).is_some();
             if meets {
                 stock.apply(s);
             }
@@ -716,24 +715,10 @@ impl Cleared {
 
 /// The parts of the straight move from `a` to `b` (as fractions of it) outside `rect`.
 fn outside(rect: &Rect, a: DVec2, b: DVec2) -> Vec<(f64, f64)> {
-    // The part inside, clipped slab by slab (Liang and Barsky).
-    let d = b - a;
-    let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
-    for (p, lo, hi, dp) in [(a.x, rect.min.x, rect.max.x, d.x), (a.y, rect.min.y, rect.max.y, d.y)] {
-        if dp == 0.0 {
-            if p < lo || p > hi {
-                return vec![(0.0, 1.0)];
-            }
-            continue;
-        }
-        let (u, v) = ((lo - p) / dp, (hi - p) / dp);
-        t0 = t0.max(u.min(v));
-        t1 = t1.min(u.max(v));
+    match rect.clip_fractions(a, b) {
+        None => vec![(0.0, 1.0)],
+        Some((t0, t1)) => [(0.0, t0), (t1, 1.0)].into_iter().filter(|s| s.1 > s.0).collect(),
     }
-    if t0 >= t1 {
-        return vec![(0.0, 1.0)];
-    }
-    [(0.0, t0), (t1, 1.0)].into_iter().filter(|s| s.1 > s.0).collect()
 }
 
 /// The parts of `link` (as fractions of it, from its start) that lie in `region` or within

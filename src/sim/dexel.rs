@@ -124,12 +124,17 @@ impl DexelStock {
                 out.z[c] = out.z[c].max(self.z[j * self.nx + i]);
             }
         }
-        let b = out.block;
-        for (k, top) in out.block_top.iter_mut().enumerate() {
-            let (bi, bj) = (k % out.bx, k / out.bx);
-            *top = (bj * b..((bj + 1) * b).min(out.ny)).flat_map(|j| (bi * b..((bi + 1) * b).min(out.nx)).map(move |i| (i, j))).fold(out.bottom, |m, (i, j)| m.max(out.z[j * out.nx + i]));
+        for k in 0..out.block_top.len() {
+            out.block_top[k] = out.block_highest(k % out.bx, k / out.bx);
         }
         out
+    }
+
+    /// The highest cell of block (`bi`, `bj`) (the stock's bottom where none stands higher).
+    fn block_highest(&self, bi: usize, bj: usize) -> f64 {
+        let size = self.block;
+        let (ci, ce) = (bi * size, ((bi + 1) * size).min(self.nx));
+        (bj * size..((bj + 1) * size).min(self.ny)).fold(self.bottom, |highest, j| self.z[j * self.nx + ci..j * self.nx + ce].iter().fold(highest, |m, &z| m.max(z)))
     }
 
     /// The bands of [`DexelStock::split_rows`] as one stock again.
@@ -479,11 +484,7 @@ impl StockModel for DexelStock {
                     }
                 }
                 if removed > before {
-                    let mut highest = self.bottom;
-                    for j in cj..cje {
-                        highest = self.z[j * self.nx + ci..j * self.nx + ce].iter().fold(highest, |m, &z| m.max(z));
-                    }
-                    self.block_top[block] = highest;
+                    self.block_top[block] = self.block_highest(bi, bj);
                 }
             }
         }

@@ -193,13 +193,11 @@ impl ClSurface {
         let (i1, j1) = (hi.x.floor().min(f.nx as f64 - 1.0), hi.y.floor().min(f.ny as f64 - 1.0));
         let mut top = self.floor;
         if i1 >= 0.0 && j1 >= 0.0 {
-            let d = b - a;
-            let len2 = d.length_squared();
+            let way = crate::geom::segment::Segment::line(a, b);
             for j in j0..=j1 as usize {
                 for i in i0..=i1 as usize {
                     let q = f.origin + DVec2::new(i as f64, j as f64) * f.spacing;
-                    let t = if len2 > 0.0 { ((q - a).dot(d) / len2).clamp(0.0, 1.0) } else { 0.0 };
-                    if q.distance_squared(a + d * t) <= reach * reach {
+                    if way.distance_with(None, q) <= reach {
                         top = top.max(f.at(i, j));
                     }
                 }

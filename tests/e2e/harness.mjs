@@ -113,6 +113,16 @@ export async function onlyRaster(page) {
   await page.fill('input[name=slopeMax]', '');
 }
 
+// Adds a tool to the library in the tool form (the tools tab open): its shape, diameter and
+// flute length; returns its number.
+export async function addTool(page, shape, diameter, flutes) {
+  await page.click('#tool-add');
+  await page.selectOption('select[name=shape]', shape);
+  await page.fill('input[name=diameter]', String(diameter));
+  await page.fill('input[name=fluteLength]', String(flutes));
+  return Number(await page.inputValue('input[name=toolNumber]'));
+}
+
 export const toolTable = (tools) => tools.map((t) => `T${t.number} P${t.number} Z0.000 D${t.diameter.toFixed(3)} ;${t.shape}\n`).join('');
 
 // Counts canvas pixels by colour: the path's blue (the first operation's cutting moves are drawn

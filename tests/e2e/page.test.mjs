@@ -9,7 +9,7 @@ import path from 'node:path';
 import { execFileSync } from 'node:child_process';
 import { pathToFileURL } from 'node:url';
 import { dieStl } from '../../scripts/die-stl.mjs';
-import { root, shots, offsite, PATIENCE, browser, base, waitForGenerated, generated, tab, frame, grblcheck, openPage, onlyRaster, toolTable, pixelCounts, toolPixels, pathPixels, boxStl, boxGltf, plateStl } from './harness.mjs';
+import { root, shots, offsite, PATIENCE, browser, base, waitForGenerated, generated, tab, frame, grblcheck, openPage, onlyRaster, toolTable, addTool, pixelCounts, toolPixels, pathPixels, boxStl, boxGltf, plateStl } from './harness.mjs';
 
 test('sample part → generate → path on the canvas → G-code that rs274 accepts', async () => {
   const { page, context, errors } = await openPage();
@@ -1002,43 +1002,26 @@ test('the shared plate drawing in the page: its circles spotted, the φ3.2 holes
   await page.waitForFunction(() => document.body.dataset.kind === 'drawing' && /tm_LM2\.dxf/.test(document.body.textContent));
   // The library: a spot drill, a φ3.2 drill, a 90° V-bit and a φ3 flat end.
   await tab(page, 'tools');
-  const add = async (shape, diameter, flutes) => {
-    await page.click('#tool-add');
-    await page.selectOption('select[name=shape]', shape);
-    await page.fill('input[name=diameter]', String(diameter));
-    await page.fill('input[name=fluteLength]', String(flutes));
-    return Number(await page.inputValue('input[name=toolNumber]'));
-  };
-  const spot = await add('spotDrill', 10, 20);
-  const drill = await add('drill', 3.2, 30);
-  const vbit = await add('vBit', 16, 10);
-  const flat = await add('flat', 3, 20);
+  const spot = await addTool(page, 'spotDrill', 10, 20);
+  const drill = await addTool(page, 'drill', 3.2, 30);
+  const vbit = await addTool(page, 'vBit', 16, 10);
+  const flat = await addTool(page, 'flat', 3, 20);
   await tab(page, 'ops');
   await page.evaluate(() => { window.swarf.jobs.drawing.operations = []; });
-  // Every circle spotted 3 mm wide.
-  await page.selectOption('#op-kind', 'drill');
-  await page.click('#op-add');
-  await page.selectOption('select[name=opTool]', String(spot));
-  await page.selectOption('select[name=drillCycle]', 'spot');
-  await page.fill('input[name=spotDiameter]', '3');
-  // The φ3.2 holes pecked.
-  await page.selectOption('#op-kind', 'drill');
-  await page.click('#op-add');
-  await page.selectOption('select[name=opTool]', String(drill));
-  await page.selectOption('select[name=drillCycle]', 'peck');
-  await page.fill('input[name=minDiameter]', '3.19');
-  await page.fill('input[name=maxDiameter]', '3.21');
-  // The φ12 holes chamfered 0.5 mm.
-  await page.selectOption('#op-kind', 'chamfer');
-  await page.click('#op-add');
-  await page.selectOption('select[name=opTool]', String(vbit));
-  await page.fill('input[name=holeMin]', '11.9');
-  await page.fill('input[name=chamferWidth]', '0.5');
-  // The outline (layer IZREZ) cut out with the φ3.
-  await page.selectOption('#op-kind', 'profile2d');
-  await page.click('#op-add');
-  await page.selectOption('select[name=opTool]', String(flat));
-  await page.fill('input[name=layers]', 'IZREZ');
+  // An operation of `kind` with `tool`, its form's selects and fields set.
+  const addOp = async (kind, tool, selects, fields) => {
+    await page.selectOption('#op-kind', kind);
+    await page.click('#op-add');
+    await page.selectOption('select[name=opTool]', String(tool));
+    for (const [name, value] of Object.entries(selects)) await page.selectOption(`select[name=${name}]`, value);
+    for (const [name, value] of Object.entries(fields)) await page.fill(`input[name=${name}]`, value);
+  };
+  // Every circle spotted 3 mm wide; the φ3.2 holes pecked; the φ12 holes chamfered 0.5 mm; the
+  // outline (layer IZREZ) cut out with the φ3.
+  await addOp('drill', spot, { drillCycle: 'spot' }, { spotDiameter: '3' });
+  await addOp('drill', drill, { drillCycle: 'peck' }, { minDiameter: '3.19', maxDiameter: '3.21' });
+  await addOp('chamfer', vbit, {}, { holeMin: '11.9', chamferWidth: '0.5' });
+  await addOp('profile2d', flat, {}, { layers: 'IZREZ' });
   // The holes the page finds: 36 circles and 31 drill marks (the dimensions' anchors).
   await page.click('#op-list li:first-child .op-name');
   await page.click('#find-holes');
@@ -1067,14 +1050,7 @@ test('holes in a 3D part: found in its triangles, roughed over, pecked and threa
   await page.setInputFiles('#file', { name: 'plate.stl', mimeType: 'model/stl', buffer: plateStl(40, 20, 10, 20, [[10, 10, 5], [30, 10, 5]]) });
   await page.waitForFunction(() => /plate\.stl/.test(document.body.textContent) && !document.getElementById('generate').disabled);
   await tab(page, 'tools');
-  const add = async (shape, diameter, flutes) => {
-    await page.click('#tool-add');
-    await page.selectOption('select[name=shape]', shape);
-    await page.fill('input[name=diameter]', String(diameter));
-    await page.fill('input[name=fluteLength]', String(flutes));
-    return Number(await page.inputValue('input[name=toolNumber]'));
-  };
-  const flat = await add('flat', 6, 20), drill = await add('drill', 5, 30), threads = await add('threadMill', 4, 15);
+  const flat = await addTool(page, 'flat', 6, 20), drill = await addTool(page, 'drill', 5, 30), threads = await addTool(page, 'threadMill', 4, 15);
   await tab(page, 'ops');
   await page.evaluate(() => { window.swarf.jobs.part.operations = []; });
   await page.selectOption('#op-kind', 'roughZlevel');
