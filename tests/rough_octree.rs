@@ -124,22 +124,22 @@ fn stepped(x: f64, y: f64) -> Option<f64> {
 }
 
 #[test]
-fn a_stepped_cavity_takes_a_tool_per_step_matched_to_halved_octants() {
+fn a_stepped_cavity_takes_a_tool_per_step_matched_to_halved_octants_the_smallest_only_where_it_must() {
     let job = octree_job(vec![flat(1, 16.0), flat(2, 8.0), flat(3, 4.0)], RoughOctree::default());
     let out = job::run(&job, block(40.0, 30.0, stepped), &mut Progress::none()).unwrap();
     clean(&out);
-    // φ16 first (13.6 mm octants); 6.8 mm octants match φ8 (γ = 0.85), which clears the middle
-    // step (30 × 20); the innermost (10 × 8) takes φ4 (γ = 0.85 at 3.4 mm), the smallest, which
-    // profiles.
+    // φ16 first (13.6 mm octants); 6.8 mm octants match φ8 (γ = 0.85), whose 2 mm levels leave
+    // no steps worth a finer tool: it profiles everything it reaches, the middle step (30 × 20)
+    // among it; the innermost (10 × 8, 9 wide with the allowance and leave-stock) is out of its
+    // reach and takes φ4 (γ = 0.85 at 3.4 mm), the smallest, only there.
     let s = stages(&out);
-    assert_eq!(s.first(), Some(&(1, StageRole::First)), "{s:?}");
-    assert_eq!(s.last(), Some(&(3, StageRole::Profile)), "{s:?}");
-    assert!(s.contains(&(2, StageRole::Octants)), "{s:?}");
+    assert_eq!(s, vec![(1, StageRole::First), (2, StageRole::Profile), (3, StageRole::Rest)]);
     let r = out.operations[0].stages.as_ref().unwrap();
-    for st in r.iter().filter(|st| st.role == StageRole::Octants) {
-        let g = st.gamma.unwrap();
-        assert!((0.5..=0.95).contains(&g), "{st:?}");
-    }
+    assert!(r[0].side.is_some_and(|d| (d - 13.6).abs() < 1e-9), "{r:?}");
+    assert!(r[1].why.contains("sized for the 6.80 mm blocks") && r[1].why.contains("85 %"), "{r:?}");
+    // The φ4 cuts only inside the innermost step and the corners of the middle one (its
+    // centres within its radius of what the φ8 cannot reach), not round the whole cavity.
+    assert!(r[2].area < 0.4 * 20.0 * 16.0 && r[2].area < 0.2 * r[1].area, "{r:?}");
     // The innermost floor leaves the φ4's centres 15 mm², less than the flats the z-level
     // levels take (twice the cutter's area): it is cut at the level above, within the
     // stair-step (the φ4's axial depth, 1 mm); the other floors are flats.
@@ -189,7 +189,8 @@ fn the_mould_is_roughed_biggest_tool_first_and_clean() {
     clean(&out);
     let s = stages(&out);
     assert_eq!(s.first(), Some(&(1, StageRole::First)), "{s:?}");
-    assert_eq!(s.last(), Some(&(4, StageRole::Profile)), "{s:?}");
+    // The φ6 profiles (1.5 mm levels), the φ3 goes only where the φ6 cannot.
+    assert_eq!(s[s.len() - 2..], [(3, StageRole::Profile), (4, StageRole::Rest)], "{s:?}");
     let r = out.operations[0].stages.as_ref().unwrap();
     // Each stage's report adds up to the operation's.
     let removed: f64 = r.iter().map(|s| s.removed).sum();

@@ -116,7 +116,7 @@ function summaryTable(s, computed) {
   }
   tr(['  total', clock(s.time.reduce((a, i) => a + i.seconds, 0)), `(${clockFormat(s.cycle.seconds)})`], 'total');
   el.append(head, table);
-  const stages = s.operations.flatMap((o) => (o.stages ?? []).map((st) => `${o.name}: T${st.tool} φ${st.diameter} (${st.role === 'profile' ? 'around the part' : st.role === 'first' ? 'first tool' : 'blocks left'}): ${st.why}; ${Math.round(st.area).toLocaleString()} mm² cleared, ${Math.round(st.removed).toLocaleString()} mm³ removed, ${clock(st.seconds)}`));
+  const stages = s.operations.flatMap((o) => (o.stages ?? []).map((st) => `${o.name}: T${st.tool} φ${st.diameter} (${{ profile: 'around the part', first: 'first tool', rest: 'only where the larger cannot reach' }[st.role] ?? 'blocks left'}): ${st.why}; ${Math.round(st.area).toLocaleString()} mm² cleared, ${Math.round(st.removed).toLocaleString()} mm³ removed, ${clock(st.seconds)}`));
   if (stages.length) {
     const div = document.createElement('div');
     div.className = 'stages';

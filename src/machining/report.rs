@@ -91,6 +91,9 @@ pub enum StageRole {
     Octants,
     /// Clears what is left at its own levels (§3.4).
     Profile,
+    /// After the profile, goes only where the profiling tool cannot reach (a slot or corner
+    /// narrower than it).
+    Rest,
 }
 
 /// One stage of octree roughing: its tool, why, and what it did.
@@ -126,6 +129,7 @@ impl StageReport {
                 StageRole::First => "first tool",
                 StageRole::Octants => "octants",
                 StageRole::Profile => "profile",
+                StageRole::Rest => "rest",
             },
             self.why,
             self.area,

@@ -26,10 +26,20 @@
 //! 5. **Profiling** (§3.4): that tool clears what is left at its own levels (every step-down and
 //!    every flat, z-level rest roughing), so the material left is the allowance plus the
 //!    stair-step between its levels.
+//! 6. **The rest** (not in the paper): where the stop test hands the profile to a tool smaller
+//!    than the last stage's, that tool would follow the whole part again at its own fine levels
+//!    to reach a few slots and corners (issue 38: the smallest tool's profile took 60–90 % of
+//!    the time for 1–14 % of the volume). Instead the largest tool between them whose levels
+//!    leave steps no higher than [`TERRACES`] (or than the smaller's would) profiles, and the
+//!    smaller goes, at its own levels, only where the material left is out of that one's reach
+//!    and within its own. A tool matched to halved octants whose levels are that fine profiles
+//!    at once, its octants being part of what it profiles.
 //!
 //! One program with a tool change per stage; the report says which tools were chosen and why
 //! (octant side, γ, the entry test), and per stage the area cleared, the volume removed and the
 //! machine time; the page draws each stage's octants.
+
+use std::sync::Arc;
 
 use serde::{Deserialize, Serialize};
 
@@ -45,6 +55,8 @@ use crate::progress::Progress;
 use crate::sim::program::program_moves;
 use crate::tool::Tool;
 use crate::toolpath::Toolpath;
+use crate::zmap::surface::ClSurface;
+use crate::zmap::HeightField;
 
 /// Octree multi-tool roughing.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
@@ -306,13 +318,16 @@ impl RoughOctree {
                 if !(GAMMA_RANGE.0..=GAMMA_RANGE.1).contains(&gamma) {
                     continue;
                 }
-                if k + 1 == candidates.len() {
-                    // The smallest tool passes the stop test by itself: it profiles at once
-                    // (its octants would be cut again by the profiling).
+                if k + 1 == candidates.len() || self.depth(t) <= TERRACES {
+                    // The smallest tool passes the stop test by itself, and a tool whose levels
+                    // leave no steps to speak of will profile whatever the stop test says (see
+                    // below): it profiles at once (its octants would be cut again by the
+                    // profiling).
+                    let which = if k + 1 == candidates.len() { "the smallest tool" } else { "a tool fine enough to take the steps between levels" };
                     profiler = Some((
                         k,
                         format!(
-                            "the smallest tool, sized for the {:.2} mm blocks the larger tools left ({:.0} % of its diameter): it takes everything left around the part in {:.2} mm levels",
+                            "{which}, sized for the {:.2} mm blocks the larger tools left ({:.0} % of its diameter): it takes everything left that it can reach around the part in {:.2} mm levels",
                             squares.side,
                             gamma * 100.0,
                             self.depth(t)
@@ -339,9 +354,30 @@ impl RoughOctree {
             }
         }
 
-        // §3.4: profiling.
+        // §3.4: profiling. Where the stop test hands it to a smaller tool than the last stage's,
+        // that tool would follow the whole part again at its own fine levels to reach a few
+        // slots and corners: the largest tool between them that leaves steps no higher than it
+        // would (or than [`TERRACES`]) profiles, and the smaller tools go only where that one
+        // cannot reach.
         let (k, why) = profiler.expect("the loop ends with a profiling tool");
-        self.profile(ctx, &candidates[k], why, count, &mut paths, &mut reports, progress)?;
+        let fine = TERRACES.max(self.depth(&candidates[k]));
+        let p = (current..k).find(|&p| self.depth(&candidates[p]) <= fine).unwrap_or(k);
+        let why = if p == k {
+            why
+        } else {
+            format!("it takes everything left that it can reach around the part in {:.2} mm levels; the smaller tools go only where it cannot, rather than round the whole part again at their finer levels", self.depth(&candidates[p]))
+        };
+        self.profile(ctx, &candidates[p], why, count, &mut paths, &mut reports, progress)?;
+        if p + 1 < candidates.len() && !self.reaches_all(ctx, &candidates[p], &candidates[p + 1..], progress)? {
+            // The rest: the largest smaller tool that reaches what the smallest would.
+            let mut r = p + 1;
+            while r + 1 < candidates.len() && !self.reaches_all(ctx, &candidates[r], &candidates[r + 1..], progress)? {
+                r += 1;
+            }
+            let (big, small) = (&candidates[p], &candidates[r]);
+            let why = format!("only where the material left is out of the φ{}'s reach (slots and corners narrower than it), in {:.2} mm levels", big.cutter.diameter, self.depth(small));
+            self.rest(ctx, big, small, why, count, &mut paths, &mut reports, progress)?;
+        }
         Ok((paths, reports, views))
     }
 
@@ -391,54 +427,43 @@ impl RoughOctree {
     /// any level, for the grids' rounding).
     fn reaches_all(&self, ctx: &mut Context, tool: &Tool, smaller: &[Tool], progress: &mut Progress) -> Result<bool> {
         let Some(small) = smaller.last() else { return Ok(true) };
-        let (zl_big, zl_small) = (self.zlevel(tool, false), self.zlevel(small, false));
-        let (_, cl_big) = zl_big.surface(ctx, progress)?;
-        let (_, cl_small) = zl_small.surface(ctx, progress)?;
-        let mut levels = zl_small.heights(ctx, &cl_small, small.cutter.radius());
+        let reach = Reach::new(self, ctx, tool, small, progress)?;
+        let mut levels = self.zlevel(small, false).heights(ctx, &reach.cl_small, small.cutter.radius());
         if levels.len() > REACH_LEVELS {
             let n = levels.len();
             levels = (0..REACH_LEVELS).map(|k| levels[k * (n - 1) / (REACH_LEVELS - 1)]).collect();
         }
-        let stock = ctx.sim.stock().heights();
-        let part = ctx.cc_zmap(stock.grid(), f64::NEG_INFINITY);
-        let (a, tol) = (self.roughing.allowance, ctx.tolerances.gouge);
-        let cell = stock.spacing * stock.spacing;
+        let cell = reach.stock.spacing * reach.stock.spacing;
         // More than a few cells: grid rounding aside, material the smaller tool would remove.
         let limit = 4.0 * cell;
-        // Per node of a CL z-map, the distance to the nearest centre the tool may take at `z`,
-        // and a stock cell's distance read at its nearest node.
-        // Per node of a CL z-map, the distance to the nearest centre the tool may take at `z`;
-        // a stock cell's is read at its nearest node.
-        let reach = |cl: &crate::zmap::surface::ClSurface, z: f64| {
-            let f = &cl.field;
-            let safe: Vec<bool> = f.z.iter().map(|&h| h + a <= z).collect();
-            distance_to(&safe, f.nx, f.ny, f.spacing)
-        };
-        let at = |cl: &crate::zmap::surface::ClSurface, d: &[f64], p: crate::geom::DVec2| {
-            let f = &cl.field;
-            let u = ((p - f.origin) / f.spacing).round();
-            if u.x < 0.0 || u.y < 0.0 || u.x as usize >= f.nx || u.y as usize >= f.ny {
-                return f64::INFINITY;
-            }
-            d[u.y as usize * f.nx + u.x as usize]
-        };
-        let sg = stock.grid();
-        for z in levels {
-            let material: Vec<usize> = (0..sg.nodes()).filter(|&c| stock.z[c] - z.max(part.z[c] + a) > tol).collect();
-            if material.is_empty() {
-                continue;
-            }
-            let (big, little) = (reach(&cl_big, z), reach(&cl_small, z));
-            let (rb, rs) = (tool.cutter.radius() + cl_big.field.spacing, small.cutter.radius());
-            let missed = material.iter().filter(|&&c| {
-                let p = sg.node(c % sg.nx, c / sg.nx);
-                at(&cl_small, &little, p) <= rs && at(&cl_big, &big, p) > rb
-            });
-            if missed.count() as f64 * cell > limit {
-                return Ok(false);
-            }
+        Ok(levels.into_iter().all(|z| reach.missed(z).into_iter().filter(|&m| m).count() as f64 * cell <= limit))
+    }
+
+    /// The rest stage: `small` goes, at its own levels, only where the material left is out
+    /// of `big`'s reach and within its own (a slot or a corner narrower than `big`), after
+    /// `big` has profiled the rest.
+    #[allow(clippy::too_many_arguments)]
+    fn rest(&self, ctx: &mut Context, big: &Tool, small: &Tool, why: String, count: f64, paths: &mut Vec<Toolpath>, reports: &mut Vec<StageReport>, progress: &mut Progress) -> Result<()> {
+        if !progress.stage(&format!("rest φ{}", small.cutter.diameter), ((count - 0.5) / count).min(0.97), 0.5 / count) {
+            return Err(Error::Cancelled);
         }
-        Ok(true)
+        let reach = Reach::new(self, ctx, big, small, progress)?;
+        let sg = reach.stock.grid();
+        let r = small.cutter.radius();
+        // Centres within the small tool's radius (and a cell, for the grids' rounding) of
+        // material only it reaches.
+        let mut within = |z: f64, grid: crate::zmap::Grid| {
+            let near = distance_to(&reach.missed(z), sg.nx, sg.ny, sg.spacing);
+            Some((0..grid.nodes()).map(|n| at(sg, &near, grid.node(n % grid.nx, n / grid.nx)) <= r + sg.spacing).collect())
+        };
+        let zl = self.zlevel(small, true);
+        if let Some(levels) = zl.levels_within(ctx, progress, r, false, &mut within)? {
+            let path = zl.clear(ctx, levels, progress)?;
+            let cut = advance(ctx, &path, progress)?;
+            paths.push(path);
+            reports.push(self.report(small, StageRole::Rest, None, why, cut));
+        }
+        Ok(())
     }
 
     /// The error when no tool of the library can enter the volume anywhere: names the largest
@@ -490,4 +515,61 @@ fn advance(ctx: &mut Context, path: &Toolpath, progress: &mut Progress) -> Resul
     let after = ctx.sim.stock().heights();
     let lowered = before.z.iter().zip(&after.z).filter(|(b, a)| *b - *a > ctx.tolerances.gouge).count();
     Ok(Cut { area: lowered as f64 * before.spacing * before.spacing, removed, seconds: moves.iter().map(|m| m.seconds).sum() })
+}
+
+/// What a larger and a smaller tool reach of the material left: the stop test's and the rest
+/// stage's question.
+struct Reach {
+    cl_big: Arc<ClSurface>,
+    cl_small: Arc<ClSurface>,
+    r_big: f64,
+    r_small: f64,
+    stock: HeightField,
+    part: Arc<HeightField>,
+    allowance: f64,
+    tolerance: f64,
+}
+
+impl Reach {
+    fn new(op: &RoughOctree, ctx: &mut Context, big: &Tool, small: &Tool, progress: &mut Progress) -> Result<Reach> {
+        let (_, cl_big) = op.zlevel(big, false).surface(ctx, progress)?;
+        let (_, cl_small) = op.zlevel(small, false).surface(ctx, progress)?;
+        let stock = ctx.sim.stock().heights();
+        let part = ctx.cc_zmap(stock.grid(), f64::NEG_INFINITY);
+        let r_big = big.cutter.radius() + cl_big.field.spacing;
+        Ok(Reach { cl_big, cl_small, r_big, r_small: small.cutter.radius(), stock, part, allowance: op.roughing.allowance, tolerance: ctx.tolerances.gouge })
+    }
+
+    /// Per stock cell, whether it holds material at level `z` that the small tool reaches and
+    /// the big one does not.
+    fn missed(&self, z: f64) -> Vec<bool> {
+        let (a, tol) = (self.allowance, self.tolerance);
+        // Per node of a CL z-map, the distance to the nearest centre the tool may take at `z`.
+        let reach = |cl: &ClSurface| {
+            let f = &cl.field;
+            let safe: Vec<bool> = f.z.iter().map(|&h| h + a <= z).collect();
+            distance_to(&safe, f.nx, f.ny, f.spacing)
+        };
+        let sg = self.stock.grid();
+        let material = |c: usize| self.stock.z[c] - z.max(self.part.z[c] + a) > tol;
+        if !(0..sg.nodes()).any(material) {
+            return vec![false; sg.nodes()];
+        }
+        let (big, little) = (reach(&self.cl_big), reach(&self.cl_small));
+        (0..sg.nodes())
+            .map(|c| {
+                let p = sg.node(c % sg.nx, c / sg.nx);
+                material(c) && at(self.cl_small.field.grid(), &little, p) <= self.r_small && at(self.cl_big.field.grid(), &big, p) > self.r_big
+            })
+            .collect()
+    }
+}
+
+/// A grid's value `d` at its node nearest `p` (+∞ off the grid).
+fn at(g: crate::zmap::Grid, d: &[f64], p: crate::geom::DVec2) -> f64 {
+    let u = ((p - g.origin) / g.spacing).round();
+    if u.x < 0.0 || u.y < 0.0 || u.x as usize >= g.nx || u.y as usize >= g.ny {
+        return f64::INFINITY;
+    }
+    d[u.y as usize * g.nx + u.x as usize]
 }

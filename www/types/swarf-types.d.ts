@@ -1365,7 +1365,7 @@ seconds: number, };
 /**
  * Why a stage's tool was chosen.
  */
-export type StageRole = "first" | "octants" | "profile";
+export type StageRole = "first" | "octants" | "profile" | "rest";
 
 /**
  * The stock, as a machinist sets it: margins around the placed part on every side, or an
