@@ -318,7 +318,7 @@ fn octree_roughing_beats_its_own_phi6_alone_leaving_no_more() {
         single.operations = vec![Operation::RoughZlevel(swarf::operations::RoughZlevel {
             tool: job.tools.iter().find(|t| t.cutter.diameter == 6.0).unwrap().number,
             steps: swarf::operations::Steps { stepdown: op.delta * 6.0, stepover_fraction: op.stepover_fraction },
-            roughing: op.roughing.clone(),
+            roughing: op.roughing,
             ..Default::default()
         })];
         let phi6 = job::run(&single, part, &mut Progress::none()).unwrap();

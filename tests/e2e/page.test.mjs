@@ -586,14 +586,17 @@ test('octree roughing: the tools chosen from the library, each stage\'s path and
   assert.match(report, /tool body \(above the flutes\) in material: 0/);
   // Each chosen tool's path and octants in its colour, with the stock hidden (the library's
   // other φ3, from the sample drawing's job, may be the one chosen: tools of one diameter are one).
-  const stages = [...stats.matchAll(/T(\d+) φ[\d.]+ \((first tool|blocks left|around the part|only where the larger cannot reach)\)/g)].map((m) => Number(m[1]));
-  assert.equal(stages[0], numbers[0], stats);
-  const last = stages[stages.length - 1];
+  const stages = [...stats.matchAll(/T(\d+) φ[\d.]+ \((first tool|blocks left|around the part|only where the larger cannot reach)\)/g)].map((m) => [Number(m[1]), m[2]]);
+  assert.equal(stages[0][0], numbers[0], stats);
+  // The tool that takes what is left around the part, and the smallest, only where that one
+  // cannot reach (a few corners of the sample part).
+  const profile = stages.find(([, role]) => role === 'around the part')[0];
+  const rest = stages.find(([, role]) => role === 'only where the larger cannot reach')?.[0];
   await page.uncheck('#show-stock');
   const tools = await page.evaluate(() => window.swarf.tools);
-  const colours = await toolPixels(page, [numbers[0], last]);
+  const colours = await toolPixels(page, [numbers[0], profile, ...(rest ? [rest] : [])]);
   await page.screenshot({ path: path.join(shots, 'octree.png') });
-  assert.ok(colours[numbers[0]] > 1000 && colours[last] > 200, `the first and the last tool's colours on the canvas: ${JSON.stringify(colours)}`);
+  assert.ok(colours[numbers[0]] > 1000 && colours[profile] > 200 && (!rest || colours[rest] > 20), `the first, the profiling and the rest tool's colours on the canvas: ${JSON.stringify(colours)}`);
   // Without the octants, fewer pixels of the first tool's colour.
   await page.uncheck('#show-octants');
   const without = (await toolPixels(page, [numbers[0]]))[numbers[0]];
@@ -1144,3 +1147,37 @@ test('V-carving in the page: letters carved along their middle with a V-bit, fla
   await context.close();
 });
 
+
+test('3D carving with a V-bit: the sample part roughed, then raster-finished with a 60° V-bit from the library, clean, in a program rs274 runs', async () => {
+  const { page, context, errors } = await openPage();
+  await tab(page, 'tools');
+  const vbit = await addTool(page, 'vBit', 6, 20);
+  await page.fill('input[name=pointAngle]', '60');
+  await tab(page, 'ops');
+  // The sample's roughing stays; its two finishing passes give way to one with the V-bit.
+  await page.click('#op-list li:nth-child(3) .op-remove');
+  await page.click('#op-list li:nth-child(2) .op-remove');
+  await page.selectOption('#op-kind', 'finishRaster');
+  await page.click('#op-add');
+  await page.selectOption('select[name=opTool]', String(vbit));
+  await page.fill('input[name=stepover]', '0.5');
+  await page.fill('input[name=grid]', '0.5');
+  await page.click('#generate');
+  await generated(page);
+  assert.match(await page.textContent('#stats'), new RegExp(`raster finish[^\\n]* with T${vbit}`));
+  const report = await page.textContent('#sim-report');
+  assert.match(report, /gouges: 0/, report);
+  assert.match(report, /rapid moves through stock: 0/, report);
+  assert.match(report, /tool body \(above the flutes\) in material: 0/, report);
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-vbit3d-'));
+  const program = path.join(dir, download.suggestedFilename());
+  await download.saveAs(program);
+  assert.match(fs.readFileSync(program, 'utf8'), new RegExp(`^T${vbit} M6$`, 'm'));
+  const tools = await page.evaluate(() => window.swarf.tools);
+  fs.writeFileSync(path.join(dir, 'tool.tbl'), toolTable(tools));
+  const canon = execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), program], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });
+  assert.ok((canon.match(/STRAIGHT_FEED/g) ?? []).length > 1000);
+  assert.deepEqual(errors, []);
+  await context.close();
+});
