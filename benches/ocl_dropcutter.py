@@ -1,9 +1,11 @@
 """OpenCAMLib's BatchDropCutter on a grid, for benches/ocl_compare.rs.
 
 usage: ocl_dropcutter.py STL X0 Y0 SPACING NX NY FLOOR SHAPE DIAMETER CORNER
+(SHAPE cone: a pointed cone, CORNER its half angle in degrees)
 Prints JSON: {"seconds": run time of BatchDropCutter, "threads": ..., "z": [heights row-major]}.
 """
 import json
+import math
 import sys
 import time
 
@@ -20,6 +22,7 @@ cutter = {
     "ball": lambda: ocl.BallCutter(diameter, length),
     "flat": lambda: ocl.CylCutter(diameter, length),
     "bullNose": lambda: ocl.BullCutter(diameter, corner, length),
+    "cone": lambda: ocl.ConeCutter(diameter, math.radians(corner), length),
 }[shape]()
 
 started = time.perf_counter()

@@ -239,6 +239,35 @@ impl Profile {
         self.taper > 0.0
     }
 
+    /// Whether it is a ball's (a round end with no flat: not a pointed cone).
+    #[inline]
+    pub fn is_ball(&self) -> bool {
+        self.flat <= 0.0 && self.taper == 0.0
+    }
+
+    /// Its Minkowski sum with a horizontal disk of radius `h`: the same shape with a flat (or a
+    /// cone's tip) wider by `h` (a ball becomes a bull nose of its radius).
+    pub fn widened(&self, h: f64) -> Profile {
+        Profile { radius: self.radius + h, flat: self.flat + h, ..*self }
+    }
+
+    /// The horizontal distance from the tip's axis to where the cutter touches a plane whose
+    /// upward unit normal has horizontal length `slope_sin` and height `n_z`, towards the
+    /// plane's uphill side: a torus's `R - a + a |n_xy|`; a cone's tip rim where the plane is
+    /// flatter than its side, else its rim.
+    #[inline]
+    pub fn plane_contact(&self, slope_sin: f64, n_z: f64) -> f64 {
+        if self.taper > 0.0 {
+            if slope_sin / n_z < self.taper {
+                self.flat
+            } else {
+                self.radius
+            }
+        } else {
+            self.flat + self.corner * slope_sin
+        }
+    }
+
     /// A cone's rise per millimetre (0 for the torus family).
     #[inline]
     pub fn taper(&self) -> f64 {
@@ -300,15 +329,14 @@ impl Profile {
     pub fn drop_facet(&self, c: DVec2, facet: &FacetPlane) -> Option<f64> {
         let n = facet.normal;
         let plane_z = facet.point.z - ((c.x - facet.point.x) * n.x + (c.y - facet.point.y) * n.y) / n.z;
+        let r = self.plane_contact(facet.slope_sin, n.z);
+        let contact = c + facet.uphill * r;
         if self.taper > 0.0 {
             // A cone on a plane rising `t` per mm: the top of `t r - height(r)` is at the tip's
             // rim where the plane is flatter than the side, else at the cone's rim.
             let t = facet.slope_sin / n.z;
-            let r = if t < self.taper { self.flat } else { self.radius };
-            let contact = c + facet.uphill * r;
             return facet.contains(contact).then(|| plane_z + t * r - self.height(r));
         }
-        let contact = c + facet.uphill * (self.flat + self.corner * facet.slope_sin);
         facet.contains(contact).then(|| plane_z + (self.flat * facet.slope_sin + self.corner) / n.z - self.corner)
     }
 

@@ -39,8 +39,8 @@ fn deepest(out: &JobOutput, cutter: &Cutter) -> Deepest {
     judge.deepest(out.paths[0].start, &out.paths[0].moves, 0.0, PER_MM)
 }
 
-fn cutters() -> [Cutter; 5] {
-    [Cutter::ball(3.0), Cutter::ball(6.0), Cutter::flat(6.0), Cutter::bull_nose(6.0, 1.0), Cutter::bull_nose(10.0, 2.5)]
+fn cutters() -> [Cutter; 7] {
+    [Cutter::ball(3.0), Cutter::ball(6.0), Cutter::flat(6.0), Cutter::bull_nose(6.0, 1.0), Cutter::bull_nose(10.0, 2.5), Cutter::v_bit(6.0, 90.0, 0.0), Cutter::v_bit(10.0, 60.0, 0.5)]
 }
 
 fn assert_gouge_free(name: &str, part: &Mesh, grids: &[f64], stepover: f64, angle: f64) {
@@ -101,7 +101,7 @@ fn rough_part(seed: u64) -> Mesh {
 proptest! {
     #![proptest_config(ProptestConfig { cases: 12, .. ProptestConfig::default() })]
     #[test]
-    fn random_rough_parts_are_finished_gouge_free(seed in 1u64..1_000_000, angle in -90.0f64..90.0, stepover in 0.6f64..2.0, shape in 0usize..5, grid in prop::sample::select(vec![0.25, 0.5, 1.0, 2.0])) {
+    fn random_rough_parts_are_finished_gouge_free(seed in 1u64..1_000_000, angle in -90.0f64..90.0, stepover in 0.6f64..2.0, shape in 0usize..7, grid in prop::sample::select(vec![0.25, 0.5, 1.0, 2.0])) {
         let part = rough_part(seed);
         let cutter = cutters()[shape].clone();
         let out = finish(&part, &cutter, grid, stepover, angle);
@@ -150,7 +150,7 @@ fn point_drop_matches_the_brute_force_drop_on_a_smooth_part() {
         // ball raised by 0.01 (never lower than the grown cutter's drop).
         let grown = swarf::zmap::drop::PointDrop::grown(&part, &cutter.profile(), 0.01, &tol);
         let p = cutter.profile();
-        let wider = Judge { part: &part, profile: swarf::cutter::Profile::new(p.radius + 0.01, p.corner), floor: -100.0 };
+        let wider = Judge { part: &part, profile: p.widened(0.01), floor: -100.0 };
         for _ in 0..100 {
             let c = DVec2::new(b.min.x + rng.next() * (b.max.x - b.min.x), b.min.y + rng.next() * (b.max.y - b.min.y));
             let (a, e) = (grown.at(c, -100.0), wider.exact(c));

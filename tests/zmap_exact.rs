@@ -167,7 +167,7 @@ fn exact_grid_matches_the_pointwise_drop() {
     let cases: [(&Mesh, DVec2, DVec2, f64); 3] =
         [(&demo, DVec2::new(-48.0, -33.0), DVec2::new(48.0, 33.0), 1.3), (&die, DVec2::new(300.0, 200.0), DVec2::new(800.0, 600.0), 9.7), (&bumpy, DVec2::splat(-12.0), DVec2::splat(12.0), 0.37)];
     for (part, min, max, spacing) in cases {
-        for cutter in [Cutter::bull_nose(6.0, 1.0), Cutter::ball(5.0), Cutter::flat(3.0), Cutter::bull_nose(20.0, 4.0)] {
+        for cutter in [Cutter::bull_nose(6.0, 1.0), Cutter::ball(5.0), Cutter::flat(3.0), Cutter::bull_nose(20.0, 4.0), Cutter::v_bit(6.0, 90.0, 0.0), Cutter::v_bit(12.0, 60.0, 1.0)] {
             let field = exact(part, &cutter, min, max, spacing);
             check(&field, min, max, EXACT, |c| cl_exact_at(part, &cutter.profile(), c, &Tolerances::DEFAULT).unwrap_or(FLOOR).max(FLOOR));
         }
@@ -260,7 +260,7 @@ mod random_parts {
         fn grid_builder_equals_the_brute_force_drop(
             heights in proptest::collection::vec(-3.0f64..3.0, 7 * 7),
             diagonals in proptest::collection::vec(any::<bool>(), 6 * 6),
-            shape in 0usize..3,
+            shape in 0usize..5,
             diameter in 0.8f64..9.0,
             corner_fraction in 0.05f64..0.95,
             spacing in 0.23f64..0.9,
@@ -269,7 +269,10 @@ mod random_parts {
             let cutter = match shape {
                 0 => Cutter::flat(diameter),
                 1 => Cutter::ball(diameter),
-                _ => Cutter::bull_nose(diameter, diameter / 2.0 * corner_fraction),
+                2 => Cutter::bull_nose(diameter, diameter / 2.0 * corner_fraction),
+                // Cones: pointed, from 20° to 160° included, and with a flat tip.
+                3 => Cutter::v_bit(diameter, 20.0 + 140.0 * corner_fraction, 0.0),
+                _ => Cutter::v_bit(diameter, 30.0 + 120.0 * corner_fraction, diameter * corner_fraction * 0.6),
             };
             let (min, max) = (DVec2::splat(-2.0), DVec2::splat(11.0));
             let field = exact(&part, &cutter, min, max, spacing);
@@ -378,4 +381,77 @@ fn every_shared_mesh_every_node_exact_and_ordered() {
         eprintln!("{name}: {} triangles, {:.1} s", part.faces.len(), started.elapsed().as_secs_f64());
     }
     assert!(meshes >= 5, "only {meshes} shared meshes read");
+}
+
+/// Issue 39: a cone (a V-bit, pointed or with a flat tip) in the exact z-map, against closed
+/// forms: on a plane flatter than its side it stands on its tip's rim, on a steeper one on its
+/// rim; over a lone peak it stands as low as its side lets the peak in; beside a vertical step
+/// its side meets the step's top edge.
+#[test]
+fn a_cone_over_planes_a_peak_and_a_step_stands_where_the_closed_forms_say() {
+    let v = DVec3::new;
+    for (angle, tip) in [(90.0f64, 0.0f64), (60.0, 0.0), (60.0, 1.0), (120.0, 0.4)] {
+        let cutter = Cutter::v_bit(6.0, angle, tip);
+        let (r, flat, taper) = (3.0, tip / 2.0, 1.0 / (angle / 2.0).to_radians().tan());
+        // Planes rising along x at 10° and 70°.
+        for slope in [10f64, 70.0] {
+            let t = slope.to_radians().tan();
+            let plane = mesh(vec![[v(-20.0, -20.0, -20.0 * t), v(20.0, -20.0, 20.0 * t), v(20.0, 20.0, 20.0 * t)], [v(-20.0, -20.0, -20.0 * t), v(20.0, 20.0, 20.0 * t), v(-20.0, 20.0, -20.0 * t)]]);
+            let field = exact(&plane, &cutter, DVec2::splat(-10.0), DVec2::splat(10.0), 0.37);
+            let contact = if t < taper { flat } else { r };
+            check(&field, DVec2::splat(-10.0), DVec2::splat(10.0), EXACT, |c| (c.x + contact) * t - (contact - flat) * taper);
+        }
+        // A peak: a pyramid with 5° flanks, its apex at the origin, 1 mm high.
+        let (s, h) = (20.0, 1.0);
+        let peak = mesh(vec![
+            [v(-s, -s, 0.0), v(s, -s, 0.0), v(0.0, 0.0, h)],
+            [v(s, -s, 0.0), v(s, s, 0.0), v(0.0, 0.0, h)],
+            [v(s, s, 0.0), v(-s, s, 0.0), v(0.0, 0.0, h)],
+            [v(-s, s, 0.0), v(-s, -s, 0.0), v(0.0, 0.0, h)],
+        ]);
+        let field = exact(&peak, &cutter, DVec2::splat(-4.0), DVec2::splat(4.0), 0.29);
+        // Within the tip's flat it stands on the apex; beyond, the apex enters its side (the
+        // flanks are flatter than the side, so they never touch it first near the apex).
+        let apex = |c: DVec2| {
+            let d = c.length();
+            if d <= r {
+                h - if d <= flat { 0.0 } else { (d - flat) * taper }
+            } else {
+                f64::NEG_INFINITY
+            }
+        };
+        let grid = field.grid();
+        for j in 0..field.ny {
+            for i in 0..field.nx {
+                let c = grid.node(i, j);
+                let brute = cl_exact_at(&peak, &cutter.profile(), c, &Tolerances::DEFAULT).unwrap();
+                assert!((field.at(i, j) - brute).abs() < EXACT, "{} at {c}", cutter.describe());
+                assert!(field.at(i, j) >= apex(c) - EXACT, "{} at {c}: {} under the apex's {}", cutter.describe(), field.at(i, j), apex(c));
+                if c.length() <= flat {
+                    assert!((field.at(i, j) - h).abs() < EXACT, "{} on the apex at {c}", cutter.describe());
+                }
+            }
+        }
+        // A vertical step 5 mm high at x = 0 (the floor at 0 for x < 0): beside it, within the
+        // cone's radius, its side rests on the step's top edge.
+        let step = mesh(vec![
+            [v(-20.0, -20.0, 0.0), v(0.0, -20.0, 0.0), v(0.0, 20.0, 0.0)],
+            [v(-20.0, -20.0, 0.0), v(0.0, 20.0, 0.0), v(-20.0, 20.0, 0.0)],
+            [v(0.0, -20.0, 0.0), v(0.0, -20.0, 5.0), v(0.0, 20.0, 5.0)],
+            [v(0.0, -20.0, 0.0), v(0.0, 20.0, 5.0), v(0.0, 20.0, 0.0)],
+            [v(0.0, -20.0, 5.0), v(20.0, -20.0, 5.0), v(20.0, 20.0, 5.0)],
+            [v(0.0, -20.0, 5.0), v(20.0, 20.0, 5.0), v(0.0, 20.0, 5.0)],
+        ]);
+        let field = exact(&step, &cutter, DVec2::new(-8.0, -3.0), DVec2::new(-0.01, 3.0), 0.23);
+        check(&field, DVec2::new(-8.0, -3.0), DVec2::new(-0.01, 3.0), EXACT, |c| {
+            let d = -c.x;
+            if d <= flat {
+                5.0
+            } else if d <= r {
+                (5.0 - (d - flat) * taper).max(0.0)
+            } else {
+                0.0
+            }
+        });
+    }
 }

@@ -132,6 +132,17 @@ pub(crate) use named_operation;
 
 /// [`Operate::takes`] for the operations that cut with any tool but a thread mill (drilling,
 /// chamfering, engraving).
+/// What the finishing operations cut with: the torus family and the cones that cut on their
+/// side (V-bits, chamfer mills and spot drills: a V-bit's 3D carving); a twist drill cuts at
+/// its point only, a thread mill only its thread.
+pub fn takes_end_mills_and_v_bits(cutter: &crate::cutter::Cutter) -> Result<(), &'static str> {
+    use crate::cutter::Shape;
+    match cutter.shape {
+        Shape::Drill | Shape::ThreadMill => Err("flat, ball and bull-nose end mills, V-bits and spot drills"),
+        _ => Ok(()),
+    }
+}
+
 pub fn takes_all_but_thread_mills(cutter: &crate::cutter::Cutter) -> Result<(), &'static str> {
     if cutter.shape == crate::cutter::Shape::ThreadMill {
         Err("end mills, drills and V-bits")
@@ -154,10 +165,11 @@ pub trait Operate {
     }
     /// Whether the job runs it (a disabled operation stays in the job file).
     fn enabled(&self) -> bool;
-    /// Whether it cuts with `cutter`, and if not, what it cuts with (for the message): the 3D
-    /// operations' CL surfaces are made for the torus family (flat, ball, bull nose) only so
-    /// far, and refuse a cone (drill, spot drill, V-bit) or a thread mill by name; drilling,
-    /// chamfering and engraving take cones too, thread milling only thread mills.
+    /// Whether it cuts with `cutter`, and if not, what it cuts with (for the message): roughing
+    /// takes the torus family (flat, ball, bull nose) and refuses a cone (drill, spot drill,
+    /// V-bit) or a thread mill by name; finishing takes V-bits too
+    /// ([`takes_end_mills_and_v_bits`]); drilling, chamfering and engraving take cones, thread
+    /// milling only thread mills.
     fn takes(&self, cutter: &crate::cutter::Cutter) -> Result<(), &'static str> {
         if cutter.is_cone() || cutter.shape == crate::cutter::Shape::ThreadMill {
             Err("flat, ball and bull-nose tools")

@@ -98,6 +98,10 @@ impl Default for FinishRaster {
 }
 
 impl Operate for FinishRaster {
+    fn takes(&self, cutter: &crate::cutter::Cutter) -> std::result::Result<(), &'static str> {
+        crate::machining::takes_end_mills_and_v_bits(cutter)
+    }
+
     named_operation!(OnPart);
 
     fn allowance(&self) -> f64 {

@@ -74,6 +74,10 @@ const SHORTEST: f64 = 0.5;
 const LEAST_STEP: f64 = 0.02;
 
 impl Operate for FinishWaterline {
+    fn takes(&self, cutter: &crate::cutter::Cutter) -> std::result::Result<(), &'static str> {
+        crate::machining::takes_end_mills_and_v_bits(cutter)
+    }
+
     named_operation!(OnPart);
 
     fn allowance(&self) -> f64 {

@@ -50,13 +50,22 @@ impl Features {
             .triangles()
             .filter_map(|t| {
                 let facet = FacetPlane::new(t.a, t.b, t.c, tolerances.normal)?;
-                let shift = facet.uphill * (profile.radius - profile.corner + profile.corner * facet.slope_sin);
+                let shift = facet.uphill * profile.plane_contact(facet.slope_sin, facet.normal.z);
                 let b = t.bounds();
                 Some((facet, b.min.truncate() - shift, b.max.truncate() - shift))
             })
             .collect();
         let (up, kinds) = edge_kinds(mesh, tolerances);
-        let reach = if profile.corner > 0.0 { vertex_cones(mesh, &kinds, profile) } else { vertex_reaches(mesh, &kinds, &up, profile) };
+        // A cone's tip and rims are edges of its lower surface, with a fan of normals each:
+        // the normal cones' arguments (one contact direction shared by the cutter and the
+        // feature) do not hold there, so every vertex reaches its whole disk.
+        let reach = if profile.is_cone() {
+            vec![VertexReach::Disk; mesh.vertices.len()]
+        } else if profile.corner > 0.0 {
+            vertex_cones(mesh, &kinds, profile)
+        } else {
+            vertex_reaches(mesh, &kinds, &up, profile)
+        };
         let v = &mesh.vertices;
         let vertices = v
             .iter()

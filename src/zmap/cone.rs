@@ -283,7 +283,10 @@ pub(super) fn edge_regions(mesh: &Mesh, kinds: &[(EdgeFaces, EdgeKind)], profile
     kinds
         .iter()
         .filter_map(|(e, kind)| {
+            // (A cone's tip and rims have a fan of normals each, so the normal cones' argument
+            // does not hold for it: every edge, valleys too, reaches its whole disk.)
             let (offset_lo, offset_hi) = match *kind {
+                _ if profile.is_cone() => (DVec2::splat(-profile.radius), DVec2::splat(profile.radius)),
                 EdgeKind::Valley => return None,
                 EdgeKind::Ridge(n1, n2) => cone_offsets(profile, n1, n2),
                 EdgeKind::Other => (DVec2::splat(-profile.radius), DVec2::splat(profile.radius)),

@@ -178,7 +178,7 @@ impl LevelMap {
         // cutter with a flat bottom makes cliffs (a ball's surface is smooth, and its level
         // curves, a waterline's path, stay where the crossings put them). A node beside a
         // ridge along one of its edges has a neighbour out already (the ridge's higher end).
-        if cl.profile().flat_radius() <= 0.0 {
+        if cl.profile().is_ball() {
             return level_region(cl, &inside, &refused, level, tol);
         }
         let margin = back_off(cl, tol);

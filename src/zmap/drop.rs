@@ -124,12 +124,12 @@ impl PointDrop {
         if rho <= 0.0 {
             return PointDrop::new(mesh, profile, tolerances);
         }
-        let ball = profile.flat_radius() <= 0.0;
-        let r = profile.radius + rho;
-        let mut drop = PointDrop::new(mesh, &Profile::new(r, if ball { r } else { profile.corner }), tolerances);
-        if ball {
-            drop.lift = rho;
+        if !profile.is_ball() {
+            return PointDrop::new(mesh, &profile.widened(rho), tolerances);
         }
+        let r = profile.radius + rho;
+        let mut drop = PointDrop::new(mesh, &Profile::new(r, r), tolerances);
+        drop.lift = rho;
         drop
     }
 
@@ -203,7 +203,7 @@ impl PointDrop {
     /// higher: every point of the part within the cutter's reach there is within the widened
     /// reach of the node, at a radius no larger once the flat's extra `h` is taken off.
     pub fn widened(&self, mesh: &Mesh, h: f64, tolerances: &Tolerances) -> ExactBuilder {
-        ExactBuilder::new(mesh, &Profile::new(self.profile.radius + h, self.profile.corner), tolerances)
+        ExactBuilder::new(mesh, &self.profile.widened(h), tolerances)
     }
 
     /// Rows `rows` of [`PointDrop::field`], by `builder` (this drop's [`PointDrop::builder`]).

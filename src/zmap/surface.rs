@@ -84,7 +84,7 @@ impl ClSurface {
         // 0.002 mm cap between quarters 0.1 mm apart).
         let p = drop.profile();
         let cap = |rho: f64| if rho > 0.0 { (128.0 * rho * tolerance).sqrt() } else { f64::INFINITY };
-        let probe = if p.flat_radius() <= 0.0 { field.spacing.min(p.radius / 2.0) } else { (field.spacing / 2.0).min(p.radius / 4.0) };
+        let probe = if p.is_ball() { field.spacing.min(p.radius / 2.0) } else { (field.spacing / 2.0).min(p.radius / 4.0) };
         let probe = probe.min(cap(p.corner));
         ClSurface { field, drop, floor, nodes_exact, tolerance, probe }
     }

@@ -116,6 +116,12 @@ enum Command {
         /// Corner radius of a bull nose (mm).
         #[arg(long, default_value_t = 1.0)]
         corner: f64,
+        /// Included angle of a V-bit (degrees).
+        #[arg(long, default_value_t = 90.0)]
+        angle: f64,
+        /// Tip diameter of a V-bit (mm; 0 for a point).
+        #[arg(long, default_value_t = 0.0)]
+        tip: f64,
         /// Grid spacing (mm).
         #[arg(long, default_value_t = 0.5)]
         grid: f64,
@@ -145,6 +151,7 @@ enum ShapeArg {
     Flat,
     Ball,
     BullNose,
+    VBit,
 }
 #[derive(Clone, Copy, ValueEnum)]
 enum BuilderArg {
@@ -323,7 +330,7 @@ fn run(cli: Cli) -> Result<(), String> {
                 Err(format!("{}: the program has problems (see above)", program.display()))
             }
         }
-        Command::Zmap { part, shape, diameter, corner, grid, builder, units, y_up, center_top, floor, format, output } => {
+        Command::Zmap { part, shape, diameter, corner, angle, tip, grid, builder, units, y_up, center_top, floor, format, output } => {
             let tolerances = Tolerances::default();
             let name = part.file_name().map(|n| n.to_string_lossy().into_owned());
             let mut mesh = read_mesh_auto(&read(&part)?, name.as_deref(), &tolerances).map_err(|e| format!("{}: {e}", part.display()))?;
@@ -340,15 +347,18 @@ fn run(cli: Cli) -> Result<(), String> {
                 placement: if center_top { Placement::CenterTop } else { Placement::Keep },
             };
             setup.apply(&mut mesh);
-            let cutter = Cutter {
-                shape: match shape {
-                    ShapeArg::Flat => Shape::Flat,
-                    ShapeArg::Ball => Shape::Ball,
-                    ShapeArg::BullNose => Shape::BullNose,
+            let cutter = match shape {
+                ShapeArg::VBit => Cutter::v_bit(diameter, angle, tip),
+                ShapeArg::Flat | ShapeArg::Ball | ShapeArg::BullNose => Cutter {
+                    shape: match shape {
+                        ShapeArg::Flat => Shape::Flat,
+                        ShapeArg::Ball => Shape::Ball,
+                        _ => Shape::BullNose,
+                    },
+                    diameter,
+                    corner_radius: corner,
+                    ..Cutter::default()
                 },
-                diameter,
-                corner_radius: corner,
-                ..Cutter::default()
             };
             cutter.validate().map_err(|e| e.to_string())?;
             let b = mesh.bounds();
