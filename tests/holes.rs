@@ -913,3 +913,82 @@ fn a_drawings_loops_are_chamfered_outside_outlines_and_inside_holes_and_nowhere_
     let e = job::run(&Job { tools: job.tools.clone(), operations: job.operations.clone(), ..Job::default() }, part, &mut Progress::none()).map(|_| ()).unwrap_err().to_string();
     assert!(e.contains("drawings"), "{e}");
 }
+
+/// A part's sharp top edges chamfered (issue 40): a block with a pocket in its top and a step
+/// down at one end. The top face's outline and the pocket's rim drop down steep walls and are
+/// found sharp; the pocket floor's and the step's lower face's edges meet walls going up and
+/// are not (a chamfer cannot follow them). The simulated stock lies on the 45° bevel within the
+/// chamfer's width of every sharp edge and is untouched beyond it; the program is clean and
+/// rs274 runs it.
+#[test]
+fn a_parts_sharp_top_edges_are_chamfered_and_nowhere_beyond() {
+    let inside = |x: f64, y: f64, x0: f64, x1: f64, y0: f64, y1: f64| (x0..=x1).contains(&x) && (y0..=y1).contains(&y);
+    let top = move |x: f64, y: f64| {
+        if inside(x, y, -8.0, 8.0, -5.0, 5.0) {
+            -6.0
+        } else if x > 22.0 {
+            -3.0
+        } else {
+            0.0
+        }
+    };
+    let part = swarf::mesh::sample::height_field_solid(DVec2::new(-30.0, -20.0), DVec2::new(30.0, 20.0), 240, 160, -10.0, top);
+    let edges = swarf::mesh::edges::top_edges(&part);
+    let sharp: Vec<&swarf::mesh::edges::TopEdge> = edges.iter().filter(|e| e.sharp).collect();
+    // The top face (z 0): its outline and the pocket's rim; the step's face (z -3): its
+    // outline but where it meets the top face's wall going up, so not sharp all round; the
+    // pocket's floor (z -6) meets walls going up only: no edge to break, not listed.
+    assert_eq!(sharp.len(), 2, "{edges:?}");
+    assert!(sharp.iter().all(|e| e.z.abs() < 1e-9), "{edges:?}");
+    assert!(edges.len() == 3 && edges.iter().any(|e| (e.z + 3.0).abs() < 1e-9 && !e.sharp), "{edges:?}");
+    let mut job = Job::default();
+    job.part = swarf::mesh::placement::PartSetup { placement: swarf::mesh::placement::Placement::Keep, ..Default::default() };
+    job.stock = swarf::job::Stock { margin_xy: 0.0, margin_top: 0.0, ..Default::default() };
+    job.simulation.cell = Some(0.05);
+    job.tools = vec![Tool { number: 1, cutter: Cutter { flute_length: 10.0, ..Cutter::v_bit(6.0, 90.0, 0.0) }, ..Tool::default() }];
+    let (width, extra) = (0.8, 0.2);
+    job.operations = vec![Operation::Chamfer(Chamfer { edges: ChamferEdges::PartEdges, width, extra_depth: extra, ..Chamfer::default() })];
+    let out = job::run(&job, part.clone(), &mut Progress::none()).expect("chamfered");
+    let v = out.verification.as_ref().unwrap();
+    assert!(v.report.is_clean(), "{}", v.report.describe());
+    // The stock over the top face: on the bevel within the width of its sharp edges, untouched
+    // beyond. (The height field's walls lean across one sample, 0.25 mm: the edges are where
+    // the top face ends.)
+    let shape = swarf::drawing::Shape::new(sharp.iter().map(|e| e.outline.clone()).collect());
+    let (mut on, mut beyond) = (0, 0);
+    for (p, held, d, z) in common::cells(&v.stock, &shape) {
+        if !held {
+            continue;
+        }
+        let corner = sharp.iter().flat_map(|e| e.outline.vertices.iter()).any(|w| w.p.distance(p) < 2.0 * width);
+        if d > 0.05 && d < width - 0.05 && !corner {
+            let ideal = -(width - d);
+            assert!((z - ideal).abs() < 0.02, "at {p:?}, {d:.3} mm in: stock at {z:.4}, the bevel at {ideal:.4}");
+            on += 1;
+        } else if d > width + 0.05 && p.x < 21.0 {
+            assert!(z >= -1e-6, "at {p:?}, {d:.3} mm in: cut to {z:.4} beyond the chamfer");
+            beyond += 1;
+        }
+    }
+    assert!(on > 2000 && beyond > 10_000, "{on} cells on the bevel, {beyond} beyond");
+    canon(&out.gcode, &job.tools);
+    // The command line lists them, numbered as the chamfer takes them.
+    let dir = std::env::temp_dir().join(format!("swarf-edges-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("part.stl"), part.to_binary_stl()).unwrap();
+    std::fs::write(dir.join("job.json"), serde_json::to_string(&job).unwrap()).unwrap();
+    let listed = Command::new(env!("CARGO_BIN_EXE_swarf")).args(["edges", "--job"]).arg(dir.join("job.json")).arg(dir.join("part.stl")).output().unwrap();
+    let text = String::from_utf8_lossy(&listed.stdout);
+    assert!(
+        listed.status.success()
+            && text.contains(&format!("{} top edges, 2 sharp", edges.len()))
+            && text.contains("edge 0: the outline of a face at Z0.000, 184.0 mm long, X-30.000..22.000 Y-20.000..20.000: sharp"),
+        "{text}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+    // Edges named that are not sharp are refused by name.
+    let blunt = edges.iter().position(|e| !e.sharp).unwrap();
+    job.operations = vec![Operation::Chamfer(Chamfer { edges: ChamferEdges::PartEdges, width, loops: vec![blunt], ..Chamfer::default() })];
+    let e = job::run(&job, part, &mut Progress::none()).map(|_| ()).unwrap_err().to_string();
+    assert!(e.contains(&format!("top edge {blunt} is not sharp all round")), "{e}");
+}

@@ -106,6 +106,14 @@ impl Job {
         Ok(crate::machining::holes::holes_of(&self.context(workpiece.into())?))
     }
 
+    /// The part's top edges as a chamfer finds them (`edges: partEdges`), placed as this job
+    /// places the part, numbered as its `loops` takes them.
+    pub fn top_edges(&self, mut part: Mesh) -> Result<Vec<crate::mesh::edges::TopEdge>> {
+        self.validate()?;
+        self.place(&mut part);
+        Ok(crate::mesh::edges::top_edges(&part))
+    }
+
     /// The context the operations plan in, with the part placed and the in-process stock
     /// fresh.
     fn context(&self, workpiece: Workpiece) -> Result<Context> {

@@ -4,6 +4,7 @@
 //! drops degenerate triangles (counting them) and welds identical vertices, so that edges
 //! shared by two facets are stored once (the exact CL builder visits each edge once).
 
+pub mod edges;
 pub mod import;
 pub mod placement;
 pub mod sample;

@@ -66,6 +66,10 @@ pub enum ChamferEdges {
     Holes,
     /// A drawing's loops: outside its outlines, inside its holes.
     Loops,
+    /// A part's sharp top edges: where a horizontal face meets a steep wall falling away from
+    /// it, round every such outline of the face (`loops` picks them by the number `swarf
+    /// edges` lists them by; all by default).
+    PartEdges,
 }
 
 impl Default for Chamfer {
@@ -108,10 +112,9 @@ impl Operate for Chamfer {
         if !cutter.is_cone() {
             return Err(Error::operation(&self.name, format!("a chamfer needs a V-bit, chamfer mill or spot drill; T{} is a {}", tool.number, cutter.describe())));
         }
-        let half = cutter.point_angle().to_radians() / 2.0;
         // The chamfer's depth at the cone's angle, and the cone's radius where it meets the top.
-        let depth = self.width / half.tan();
-        let at_top = cutter.tip_radius() + (depth + self.extra_depth) * half.tan();
+        let depth = self.width / (cutter.point_angle().to_radians() / 2.0).tan();
+        let at_top = self.at_top(&tool, depth);
         if at_top > cutter.radius() + 1e-9 {
             return Err(Error::operation(
                 &self.name,
@@ -125,8 +128,10 @@ impl Operate for Chamfer {
                 ),
             ));
         }
-        if self.edges == ChamferEdges::Loops {
-            return self.plan_loops(ctx, &tool, depth, at_top);
+        match self.edges {
+            ChamferEdges::Loops => return self.plan_loops(ctx, &tool, depth, at_top),
+            ChamferEdges::PartEdges => return self.plan_part_edges(ctx, &tool, depth, at_top),
+            ChamferEdges::Holes => {}
         }
         let holes = self.pick.sized(ctx, &self.name)?;
         let clearance = ctx.heights.clearance;
@@ -197,6 +202,11 @@ impl Operate for Chamfer {
 }
 
 impl Chamfer {
+    /// The cone's radius at the top of a chamfer `depth` deep, its tip the extra depth below.
+    fn at_top(&self, tool: &Tool, depth: f64) -> f64 {
+        tool.cutter.tip_radius() + (depth + self.extra_depth) * (tool.cutter.point_angle().to_radians() / 2.0).tan()
+    }
+
     /// A drawing's loops chamfered: the sheet's parts (the loops on the layers) grown by the
     /// axis's distance from the edge, `at_top - width`; each grown loop that keeps that distance
     /// from a chosen loop is cut at the tip's depth, entered along the loop at the ramp angle.
@@ -230,7 +240,71 @@ impl Chamfer {
             return Err(Error::operation(&self.name, format!("no chosen loop leaves room for T{}'s cone at this chamfer", tool.number)));
         }
         let top = ctx.stock.max.z;
-        let tip = top - depth - self.extra_depth;
+        let rings = rings.into_iter().map(|r| (r.clone(), top)).collect();
+        self.cut_rings(ctx, tool, rings, depth)
+    }
+
+    /// A part's sharp top edges chamfered: each flat's region grown by the axis's distance from
+    /// the edge, as a drawing's loops are, cut at the tip's depth below the flat; a ring along
+    /// which the exact drop of the cone onto the part stands higher than the edge itself would
+    /// hold it (another face within the cone's reach: it would cut more than the chamfer) is
+    /// left, named.
+    fn plan_part_edges(&self, ctx: &mut Context, tool: &Tool, depth: f64, at_top: f64) -> Result<Planned> {
+        if ctx.sheet.is_some() {
+            return Err(Error::operation(&self.name, "a part's edges: this is a drawing (chamfer its loops instead)"));
+        }
+        let edges = crate::mesh::edges::top_edges(&ctx.part);
+        if let Some(&k) = self.loops.iter().find(|&&k| k >= edges.len()) {
+            return Err(Error::operation(&self.name, format!("the part has no top edge {k} (it has {}; swarf edges lists them)", edges.len())));
+        }
+        let chosen: Vec<usize> = (0..edges.len()).filter(|&k| if self.loops.is_empty() { edges[k].sharp } else { self.loops.contains(&k) }).collect();
+        if let Some(&k) = chosen.iter().find(|&&k| !edges[k].sharp) {
+            return Err(Error::operation(&self.name, format!("the part's top edge {k} is not sharp all round (a rounded or bevelled edge, or a step up): a chamfer cannot follow it")));
+        }
+        if chosen.is_empty() {
+            return Err(Error::operation(&self.name, "the part has no sharp top edge (a horizontal face falling away down a steep wall) to chamfer"));
+        }
+        let away = at_top - self.width;
+        let near = away + ctx.tolerances.chain.max(1e-6);
+        let profile = tool.cutter.profile();
+        let drop = crate::zmap::drop::PointDrop::new(&ctx.part, &profile, &ctx.tolerances);
+        // Where the cone stands on the edge alone, its axis `away` from it.
+        let on_edge = (away - profile.flat_radius()).max(0.0) * profile.taper();
+        let mut rings = Vec::new();
+        let mut refused = Vec::new();
+        let mut flats: Vec<usize> = chosen.iter().map(|&k| edges[k].flat).collect();
+        flats.dedup();
+        for flat in flats {
+            let group: Vec<&crate::mesh::edges::TopEdge> = edges.iter().filter(|e| e.flat == flat).collect();
+            let z = group[0].z;
+            let shape = crate::drawing::Shape::new(group.iter().map(|e| e.outline.clone()).collect());
+            let grown = offset(&shape, away, &ctx.tolerances);
+            let mine: Vec<&Loop> = chosen.iter().filter(|&&k| edges[k].flat == flat).map(|&k| &edges[k].outline).collect();
+            for ring in grown.loops.iter().filter(|l| mine.iter().any(|c| l.vertices.iter().any(|v| c.distance_to(v.p) <= near))) {
+                // The cone's drop along the ring, every tenth of a millimetre.
+                let worst = ring.segments().flat_map(|s| {
+                    let n = (s.length() / 0.1).ceil().max(1.0) as usize;
+                    (0..n).map(move |i| s.point_at(i as f64 / n as f64))
+                });
+                match worst.map(|p| (p, drop.at(p, f64::NEG_INFINITY))).find(|&(_, h)| h > z - on_edge + ctx.tolerances.gouge) {
+                    Some((p, _)) => refused.push(p),
+                    None => rings.push((ring.clone(), z)),
+                }
+            }
+        }
+        if !refused.is_empty() {
+            let at: Vec<String> = refused.iter().take(3).map(|p| format!("X{:.3} Y{:.3}", p.x, p.y)).collect();
+            ctx.warn(&self.name, format!("{} edges not chamfered: T{}'s cone would cut the part beyond the chamfer (another face within its reach, at {})", refused.len(), tool.number, at.join(", ")));
+        }
+        if rings.is_empty() {
+            return Err(Error::operation(&self.name, format!("no sharp top edge leaves room for T{}'s cone at this chamfer", tool.number)));
+        }
+        self.cut_rings(ctx, tool, rings, depth)
+    }
+
+    /// Cuts `rings` (each with the height of the edge it breaks) with the tip `depth` and the
+    /// extra depth below it, the nearest next, each entered along a ramp.
+    fn cut_rings(&self, ctx: &mut Context, tool: &Tool, rings: Vec<(Loop, f64)>, depth: f64) -> Result<Planned> {
         let angle = self.ramp_angle.to_radians();
         let mut cursor = sheet::cursor(ctx, tool);
         let mut out: Vec<Move> = Vec::new();
@@ -239,14 +313,15 @@ impl Chamfer {
         while !left.is_empty() {
             // The nearest loop next, from its point nearest the tool.
             let here = cursor.at.truncate();
-            let k = (0..left.len()).min_by(|&a, &b| left[a].distance_to(here).total_cmp(&left[b].distance_to(here))).expect("loops left");
-            let ring = left.swap_remove(k);
+            let k = (0..left.len()).min_by(|&a, &b| left[a].0.distance_to(here).total_cmp(&left[b].0.distance_to(here))).expect("loops left");
+            let (ring, top) = left.swap_remove(k);
+            let tip = top - depth - self.extra_depth;
             // Grown outlines run counter-clockwise and holes clockwise: the material on the
             // left, a conventional cut; climb runs them the other way.
-            let ring = if self.direction == Direction::Climb { ring.reversed() } else { ring.clone() };
+            let ring = if self.direction == Direction::Climb { ring.reversed() } else { ring };
             let path = start_nearest(&ring, here);
-            grooves.push(Groove { path: path.clone(), radius: at_top, depth: top - tip });
-            let start_z = cursor.material_top(path.iter().copied(), top, tip, ctx.tolerances.gouge).unwrap_or(tip);
+            grooves.push(Groove { path: path.clone(), radius: self.at_top(tool, depth), depth: ctx.stock.max.z - tip });
+            let start_z = cursor.material_top(path.iter().copied(), ctx.stock.max.z, tip, ctx.tolerances.gouge).unwrap_or(tip);
             cursor.safe = start_z.max(tip) + cursor.gap;
             cursor.reposition(path[0].a.extend(start_z), &mut out);
             cut_line(&path, true, start_z, tip, depth + self.extra_depth, angle, tool.feed_rate, &mut out);

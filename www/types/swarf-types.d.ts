@@ -166,7 +166,7 @@ marks: boolean, };
 /**
  * The edges a chamfer breaks.
  */
-export type ChamferEdges = "holes" | "loops";
+export type ChamferEdges = "holes" | "loops" | "partEdges";
 
 /**
  * Which CL z-map builder an operation uses.

@@ -88,6 +88,16 @@ enum Command {
         #[arg(long)]
         job: Option<PathBuf>,
     },
+    /// List a part's top edges as a chamfer (edges: partEdges) finds them: the outlines of its
+    /// horizontal faces, numbered as the chamfer's `loops` takes them, each sharp (dropping down
+    /// a steep wall all round: a chamfer can break it) or not, placed as the job places the part.
+    Edges {
+        /// The part (STL, glTF/GLB, OBJ).
+        file: PathBuf,
+        /// The job whose placement to use (default: the default job's).
+        #[arg(long)]
+        job: Option<PathBuf>,
+    },
     /// Simulate a G-code program on a job's stock and check it against the part: gouges, rapid
     /// moves through stock, the tool's body in material, material left. Exits with 1 when it
     /// finds a problem.
@@ -278,6 +288,30 @@ fn run(cli: Cli) -> Result<(), String> {
             if !holes.is_empty() {
                 println!("holes: {}", swarf::machining::holes::sizes(&holes).join(", "));
             }
+            Ok(())
+        }
+        Command::Edges { file, job } => {
+            let job = match job {
+                Some(path) => Job::from_json(&String::from_utf8_lossy(&read(&path)?)).map_err(|e| e.to_string())?,
+                None => Job::default(),
+            };
+            let name = file.file_name().map(|n| n.to_string_lossy().into_owned());
+            let mesh = read_mesh_auto(&read(&file)?, name.as_deref(), &job.tolerances).map_err(|e| format!("{}: {e}", file.display()))?;
+            let edges = job.top_edges(mesh).map_err(|e| e.to_string())?;
+            for (k, e) in edges.iter().enumerate() {
+                let b = e.outline.bounds();
+                println!(
+                    "edge {k}: the outline of a face at Z{:.3}, {:.1} mm long, X{:.3}..{:.3} Y{:.3}..{:.3}: {}",
+                    e.z,
+                    e.outline.length(),
+                    b.min.x,
+                    b.max.x,
+                    b.min.y,
+                    b.max.y,
+                    if e.sharp { "sharp (a chamfer can break it)" } else { "not sharp all round" }
+                );
+            }
+            println!("{} top edges, {} sharp", edges.len(), edges.iter().filter(|e| e.sharp).count());
             Ok(())
         }
         Command::Holes { file, job } => {
