@@ -336,3 +336,18 @@ fn octree_roughing_beats_its_own_phi6_alone_leaving_no_more() {
         compare("rocker arm", &job, workpiece);
     }
 }
+
+/// Issue 38: the profile's way is chosen by time. In a plain square pocket the φ12 leaves only
+/// a band along the walls and the corners: the φ3 round everything once is quicker than the φ6
+/// round everything and then the φ3 corner by corner, so the φ3 profiles; in the stepped
+/// cavity the other way round (see above). The report says which and by how much.
+#[test]
+fn the_quicker_way_to_take_what_is_left_is_kept() {
+    let pocket = |x: f64, y: f64| (within(x, -20.0, 20.0) && within(y, -20.0, 20.0)).then_some(-8.0);
+    let job = octree_job(vec![flat(1, 12.0), flat(2, 6.0), flat(3, 3.0)], RoughOctree::default());
+    let out = job::run(&job, block(30.0, 30.0, pocket), &mut Progress::none()).unwrap();
+    clean(&out);
+    assert_eq!(stages(&out), vec![(1, StageRole::First), (3, StageRole::Profile)]);
+    let r = out.operations[0].stages.as_ref().unwrap();
+    assert!(r[1].why.contains("quicker than the φ6 round everything and then the φ3 only where it cannot reach"), "{r:?}");
+}
