@@ -992,3 +992,121 @@ fn a_parts_sharp_top_edges_are_chamfered_and_nowhere_beyond() {
     let e = job::run(&job, part, &mut Progress::none()).map(|_| ()).unwrap_err().to_string();
     assert!(e.contains(&format!("top edge {blunt} is not sharp all round")), "{e}");
 }
+
+/// A plate 40 × 40 (top at -12) with a φ10 stud 12 mm high on its middle, the stud's wall in
+/// `sides` facets.
+fn stud_part(sides: usize) -> Mesh {
+    let v = DVec3::new;
+    let (r, top, plate, base) = (5.0, 0.0, -12.0, -20.0);
+    let mut tris = Vec::new();
+    let at = |k: usize, z: f64| {
+        let a = std::f64::consts::TAU * k as f64 / sides as f64;
+        v(r * a.cos(), r * a.sin(), z)
+    };
+    for k in 0..sides {
+        let (b0, b1, t0, t1) = (at(k, plate), at(k + 1, plate), at(k, top), at(k + 1, top));
+        tris.push([b0, b1, t1]);
+        tris.push([b0, t1, t0]);
+        tris.push([v(0.0, 0.0, top), t0, t1]);
+    }
+    let (s, lo, hi) = (20.0, base, plate);
+    tris.push([v(-s, -s, hi), v(s, -s, hi), v(s, s, hi)]);
+    tris.push([v(-s, -s, hi), v(s, s, hi), v(-s, s, hi)]);
+    tris.push([v(-s, -s, lo), v(s, s, lo), v(s, -s, lo)]);
+    tris.push([v(-s, -s, lo), v(-s, s, lo), v(s, s, lo)]);
+    for (a, b) in [((-s, -s), (s, -s)), ((s, -s), (s, s)), ((s, s), (-s, s)), ((-s, s), (-s, -s))] {
+        tris.push([v(a.0, a.1, lo), v(b.0, b.1, lo), v(b.0, b.1, hi)]);
+        tris.push([v(a.0, a.1, lo), v(b.0, b.1, hi), v(a.0, a.1, hi)]);
+    }
+    Mesh::from_triangles(tris, &Tolerances::DEFAULT).unwrap()
+}
+
+/// Issue 39: an external thread milled on a part's stud: the stud found as a boss (and listed
+/// by `swarf holes --bosses`), roughed round, then M10 right hand in two passes and left hand:
+/// every helical arc about the stud's axis clockwise (climb outside), a pitch a turn, down for
+/// a right-hand thread and up for a left-hand one, never nearer the axis than the thread's
+/// root; the simulated stud keeps its major diameter above the thread and is cut to the root
+/// within it; the program is clean and rs274 runs it.
+#[test]
+fn an_external_thread_is_milled_round_a_stud() {
+    let part = stud_part(64);
+    let bosses = swarf::holes::mesh::bosses(&part);
+    assert_eq!(bosses.len(), 1, "{bosses:?}");
+    let b = &bosses[0];
+    assert!(b.center.length() < 1e-9 && (b.diameter - 10.0).abs() < 1e-3 && (b.top - 0.0).abs() < 1e-9 && (b.bottom + 12.0).abs() < 1e-9, "{b:?}");
+    assert!(swarf::holes::mesh::find(&part).is_empty(), "a stud is no hole");
+    let thread_mill =
+        Tool { number: 2, cutter: Cutter { shape: swarf::cutter::Shape::ThreadMill, diameter: 6.0, flute_length: 14.0, ..Cutter::default() }, feed_rate: 300.0, plunge_rate: 200.0, ..Tool::default() };
+    let flat = Tool { number: 1, cutter: Cutter { flute_length: 25.0, ..Cutter::flat(6.0) }, ..Tool::default() };
+    for (hand, passes) in [(Hand::Right, 2), (Hand::Left, 1)] {
+        let mut job = Job { tools: vec![flat.clone(), thread_mill.clone()], ..Job::default() };
+        job.part.placement = swarf::mesh::placement::Placement::Keep;
+        job.stock.margin_top = 0.0;
+        job.stock.margin_xy = 0.0;
+        job.operations = vec![
+            Operation::RoughZlevel(swarf::operations::RoughZlevel {
+                tool: 1,
+                steps: swarf::operations::Steps { stepdown: 3.0, stepover_fraction: 0.4 },
+                roughing: swarf::operations::Roughing { allowance: 0.0, leave_stock: 0.0, ..Default::default() },
+                ..Default::default()
+            }),
+            Operation::ThreadMill(ThreadMill { tool: 2, thread: "M10".into(), external: true, hand, passes, length: Some(10.0), ..ThreadMill::default() }),
+        ];
+        let out = job::run(&job, part.clone(), &mut Progress::none()).unwrap_or_else(|e| panic!("{hand:?}: {e}"));
+        let v = out.verification.as_ref().unwrap();
+        assert!(v.report.is_clean(), "{hand:?}: {}", v.report.describe());
+        let (major, pitch) = (10.0, 1.5);
+        let root = major / 2.0 - swarf::machining::threads::external_depth(pitch);
+        let path = out.paths.iter().find(|p| p.tool == 2).unwrap();
+        let (mut at, mut rises, mut falls, mut nearest) = (path.start, 0, 0, f64::INFINITY);
+        for m in &path.moves {
+            nearest = nearest.min(m.to().truncate().length() - 3.0);
+            if let swarf::toolpath::Move::Arc { to, center, clockwise, .. } = *m {
+                if center.length() < 1e-9 {
+                    assert!(clockwise, "{hand:?}: climb round the outside");
+                    let turn = swarf::toolpath::arc_sweep(at, to, center, true).abs() / std::f64::consts::TAU;
+                    assert!(((to.z - at.z).abs() - pitch * turn).abs() < 1e-6, "{hand:?}: {} mm in {turn} turns", to.z - at.z);
+                    if to.z > at.z {
+                        rises += 1
+                    } else {
+                        falls += 1
+                    }
+                }
+            }
+            at = m.to();
+        }
+        assert!(if hand == Hand::Right { falls > 10 && rises == 0 } else { rises > 10 && falls == 0 }, "{hand:?}: {rises} up, {falls} down");
+        assert!((nearest - root).abs() < 1e-9, "{hand:?}: the tool's edge comes to r {nearest:.4}, the root is at {root:.4}");
+        // The simulated stud: its core inside the root untouched, the ring between the root and
+        // the major diameter cut where the thread's form runs out over the top.
+        let grid = v.stock.grid();
+        let (mut core, mut ring) = (0, 0);
+        for j in 0..grid.ny {
+            for i in 0..grid.nx {
+                let r = grid.node(i, j).length();
+                let top = v.stock.top(i, j);
+                if r < root - 0.1 {
+                    assert!(top > -1e-3, "{hand:?}: the stud's core at r {r:.3} is cut to {top:.3}");
+                    core += 1;
+                } else if r > root + 0.1 && r < major / 2.0 - 0.1 && top < -0.1 {
+                    ring += 1;
+                }
+            }
+        }
+        assert!(core > 100 && ring > 10, "{hand:?}: {core} core cells, {ring} ring cells cut");
+        canon(&out.gcode, &job.tools);
+    }
+    // Listed by the command line.
+    let dir = std::env::temp_dir().join(format!("swarf-bosses-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("stud.stl"), part.to_binary_stl()).unwrap();
+    let listed = Command::new(env!("CARGO_BIN_EXE_swarf")).args(["holes", "--bosses"]).arg(dir.join("stud.stl")).output().unwrap();
+    let text = String::from_utf8_lossy(&listed.stdout);
+    assert!(listed.status.success() && text.contains("φ10.000, top 0.000, bottom -12.000") && text.contains("1 bosses"), "{text}");
+    let _ = std::fs::remove_dir_all(&dir);
+    // A stud wider than the thread is refused by name.
+    let mut job = Job { tools: vec![thread_mill], ..Job::default() };
+    job.operations = vec![Operation::ThreadMill(ThreadMill { tool: 2, thread: "M8".into(), external: true, ..ThreadMill::default() })];
+    let e = job::run(&job, part, &mut Progress::none()).map(|_| ()).unwrap_err().to_string();
+    assert!(e.contains("wider than the thread's major diameter φ8"), "{e}");
+}

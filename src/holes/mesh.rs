@@ -4,7 +4,8 @@
 //! top and bottom are the wall's; what meets the wall's lower rim says whether it goes
 //! through (a face outside the circle: the part's bottom) or ends in a floor (inside: flat
 //! when level, a cone when it slopes, as a drill leaves it). A counterbore is two holes on one
-//! axis, each found on its own.
+//! axis, each found on its own. A piece whose normals point out from the axis is a boss (a
+//! stud an external thread is milled on).
 
 use std::collections::HashMap;
 
@@ -26,6 +27,18 @@ const LARGEST_GAP: f64 = std::f64::consts::FRAC_PI_3;
 /// Every vertical round hole of `mesh`, largest first where two share an axis (a
 /// counterbore above its hole), otherwise in order of their centres (x, then y).
 pub fn find(mesh: &Mesh) -> Vec<Hole> {
+    cylinders(mesh, false)
+}
+
+/// Every vertical round boss (a stud, for an external thread) of `mesh`: a wall whose normals
+/// point out from its axis, its top and bottom the wall's; in the order of [`find`].
+pub fn bosses(mesh: &Mesh) -> Vec<Hole> {
+    cylinders(mesh, true)
+}
+
+/// The vertical round walls of `mesh` facing their axis (holes) or away from it (`outward`:
+/// bosses).
+fn cylinders(mesh: &Mesh, outward: bool) -> Vec<Hole> {
     let ids = welded(mesh);
     let faces: Vec<[usize; 3]> = mesh.faces.iter().map(|f| f.map(|v| ids[v as usize])).collect();
     let normal = |f: &[usize; 3]| {
@@ -84,11 +97,15 @@ pub fn find(mesh: &Mesh) -> Vec<Hole> {
                 normals[k].map_or(0.0, |n| n.truncate().dot(center - mid))
             })
             .sum();
-        if inward <= 0.0 {
+        if (inward > 0.0) == outward || inward == 0.0 {
             continue;
         }
         let zs = verts.iter().map(|&v| mesh.vertices[v].z);
         let (bottom, top) = zs.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), z| (lo.min(z), hi.max(z)));
+        if outward {
+            holes.push(Hole { center, diameter: 2.0 * radius, top, bottom, through: false, bottom_shape: Bottom::Flat, loop_index: None, layer: None, mark: false });
+            continue;
+        }
         // What meets the lower rim: the faces (not walls of this piece) on its edges at the
         // bottom, inside the circle or out.
         let in_piece: std::collections::HashSet<usize> = piece.iter().copied().collect();

@@ -106,6 +106,14 @@ impl Job {
         Ok(crate::machining::holes::holes_of(&self.context(workpiece.into())?))
     }
 
+    /// The part's round bosses as an external thread mill finds them, placed as this job places
+    /// the part, numbered as its `holes` takes them.
+    pub fn bosses(&self, mut part: Mesh) -> Result<Vec<crate::holes::Hole>> {
+        self.validate()?;
+        self.place(&mut part);
+        Ok(crate::holes::mesh::bosses(&part))
+    }
+
     /// The part's top edges as a chamfer finds them (`edges: partEdges`), placed as this job
     /// places the part, numbered as its `loops` takes them.
     pub fn top_edges(&self, mut part: Mesh) -> Result<Vec<crate::mesh::edges::TopEdge>> {

@@ -51,7 +51,11 @@ impl HolePick {
 
     /// The picked holes of the workpiece, in the order to visit them from the stock's corner.
     pub fn pick(&self, ctx: &Context, op: &str) -> Result<Vec<Hole>> {
-        let all = holes_of(ctx);
+        self.pick_from(holes_of(ctx), ctx, op)
+    }
+
+    /// The picked ones of `all` (holes, or a part's bosses), in the order to visit them.
+    pub fn pick_from(&self, all: Vec<Hole>, ctx: &Context, op: &str) -> Result<Vec<Hole>> {
         if let Some(&k) = self.holes.iter().find(|&&k| k >= all.len() && !all.iter().any(|h| h.loop_index == Some(k))) {
             return Err(Error::operation(op, format!("there is no hole {k} (the {} has {})", if ctx.sheet.is_some() { "drawing" } else { "part" }, all.len())));
         }

@@ -98,6 +98,12 @@ pub fn internal_depth(pitch: f64) -> f64 {
     5.0 / 8.0 * 3f64.sqrt() / 2.0 * pitch
 }
 
+/// How deep an external thread is cut (mm): ISO 68-1's h3 = 17/24 H, to the bolt's minor
+/// diameter d3 with its rounded root's clearance.
+pub fn external_depth(pitch: f64) -> f64 {
+    17.0 / 24.0 * 3f64.sqrt() / 2.0 * pitch
+}
+
 /// An internal thread's basic minor diameter: the tap drill's size.
 pub fn minor_diameter(major: f64, pitch: f64) -> f64 {
     major - 2.0 * internal_depth(pitch)

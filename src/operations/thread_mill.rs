@@ -52,6 +52,11 @@ pub struct ThreadMill {
     pub length: Option<f64>,
     /// Height above the material over the hole the tool enters from (mm). Default value: 1.
     pub retract: f64,
+    /// An external thread, on a part's round boss (a stud turned or milled to the major
+    /// diameter, cleared round), picked as `swarf holes --bosses` lists them: the tool comes
+    /// down beside it and goes round it clockwise (climb: down for a right-hand thread, up for a
+    /// left-hand one). Default value: false (internal, in holes).
+    pub external: bool,
 }
 
 impl Default for ThreadMill {
@@ -68,6 +73,7 @@ impl Default for ThreadMill {
             passes: 1,
             length: None,
             retract: 1.0,
+            external: false,
         }
     }
 }
@@ -111,6 +117,9 @@ impl Operate for ThreadMill {
     }
 
     fn plan(&self, ctx: &mut Context, _progress: &mut crate::progress::Progress) -> Result<Planned> {
+        if self.external {
+            return self.plan_external(ctx);
+        }
         let tool = ctx.tool(&self.name, self.tool)?.clone();
         let (major, pitch) = self.size().map_err(|e| Error::operation(&self.name, format!("{}: {}", e.field, e.message)))?;
         let minor = threads::minor_diameter(major, pitch);
@@ -170,6 +179,79 @@ impl Operate for ThreadMill {
         }
         if small > 0 {
             ctx.warn(&self.name, format!("{small} holes are narrower than the thread's minor diameter φ{minor:.3}: drill them to that first"));
+        }
+        Ok(Planned { paths: vec![hole_path(&self.name, &tool, moves, Vec::new(), clearance)], grooves, ..Planned::default() })
+    }
+}
+
+impl ThreadMill {
+    /// External threads on a part's bosses: per boss, down beside it (outside the major
+    /// diameter by the tool's radius and a millimetre), a half circle in tangent to the thread,
+    /// the helix clockwise one pitch a turn (down for a right-hand thread, up for a left-hand),
+    /// a half circle out, in radial passes from the major diameter to the thread's depth.
+    fn plan_external(&self, ctx: &mut Context) -> Result<Planned> {
+        if ctx.sheet.is_some() {
+            return Err(Error::operation(&self.name, "external threads are milled on a part's round bosses, not on a drawing"));
+        }
+        let tool = ctx.tool(&self.name, self.tool)?.clone();
+        let (major, pitch) = self.size().map_err(|e| Error::operation(&self.name, format!("{}: {}", e.field, e.message)))?;
+        let depth = threads::external_depth(pitch);
+        let bosses = crate::holes::mesh::bosses(&ctx.part);
+        if bosses.is_empty() {
+            return Err(Error::operation(&self.name, "the part has no round boss to thread (a vertical cylinder standing up, cleared round)"));
+        }
+        let bosses = self.pick.pick_from(bosses, ctx, &self.name)?;
+        let r_tool = tool.cutter.radius();
+        let clearance = ctx.heights.clearance;
+        let profile = tool.cutter.profile();
+        let feed = tool.feed_rate;
+        let mut moves = Vec::new();
+        let mut grooves = Vec::new();
+        for b in &bosses {
+            if b.diameter > major + 1e-3 {
+                return Err(Error::operation(
+                    &self.name,
+                    format!("the φ{:.3} boss at X{:.3} Y{:.3} is wider than the thread's major diameter φ{major}: turn it to that first", b.diameter, b.center.x, b.center.y),
+                ));
+            }
+            if b.diameter < major - 2.0 * depth {
+                return Err(Error::operation(
+                    &self.name,
+                    format!("the φ{:.3} boss at X{:.3} Y{:.3} is narrower than the thread's minor diameter φ{:.3}", b.diameter, b.center.x, b.center.y, major - 2.0 * depth),
+                ));
+            }
+            let length = self.length.unwrap_or(b.top - b.bottom);
+            let low = b.top - length;
+            if low < b.bottom - 1e-9 {
+                return Err(Error::operation(&self.name, format!("the thread is {length} mm long; the boss at X{:.3} Y{:.3} is {:.3} mm high", b.center.x, b.center.y, b.top - b.bottom)));
+            }
+            if length > tool.cutter.flute_length + 1e-9 {
+                return Err(Error::operation(&self.name, format!("the thread is {length} mm long, longer than T{}'s neck ({} mm)", tool.number, tool.cutter.flute_length)));
+            }
+            // Whole turns from the thread's foot until the form has passed the top.
+            let turns = ((b.top + pitch / 2.0 - low) / pitch).ceil().max(1.0);
+            let high = low + turns * pitch;
+            let (from, to) = if self.hand == Hand::Right { (high, low) } else { (low, high) };
+            let c = b.center;
+            // Beside the boss, clear of it.
+            let out = major / 2.0 + r_tool + 1.0;
+            let beside = point(c, out, 0.0, 0.0).truncate();
+            let start = ctx.material_estimate(beside, &profile).max(b.top) + self.retract;
+            moves.push(Move::Rapid { to: beside.extend(clearance) });
+            moves.push(Move::Rapid { to: beside.extend(start) });
+            let n = self.passes;
+            for k in 1..=n {
+                let rho = major / 2.0 + r_tool - depth * k as f64 / n as f64;
+                let mid = c + DVec2::new((out + rho) / 2.0, 0.0);
+                // Down (or up) beside the boss, a half circle in, tangent to the helix.
+                moves.push(Move::Line { to: beside.extend(from), feed: tool.plunge_rate });
+                moves.push(Move::Arc { to: point(c, rho, 0.0, from), center: mid, clockwise: false, feed });
+                helix(c, rho, 0.0, from, to, pitch, false, feed, &mut moves);
+                moves.push(Move::Arc { to: beside.extend(to), center: mid, clockwise: false, feed });
+            }
+            moves.push(Move::Rapid { to: beside.extend(clearance) });
+            let rho = major / 2.0 + r_tool - depth;
+            grooves.push(Groove { path: Loop::circle(c, rho).segments().collect(), radius: r_tool, depth: ctx.stock.max.z - low.min(high) });
         }
         Ok(Planned { paths: vec![hole_path(&self.name, &tool, moves, Vec::new(), clearance)], grooves, ..Planned::default() })
     }

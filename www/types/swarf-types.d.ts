@@ -1537,6 +1537,13 @@ length: number | null,
  */
 retract: number, 
 /**
+ * An external thread, on a part's round boss (a stud turned or milled to the major
+ * diameter, cleared round), picked as `swarf holes --bosses` lists them: the tool comes
+ * down beside it and goes round it clockwise (climb: down for a right-hand thread, up for a
+ * left-hand one). Default value: false (internal, in holes).
+ */
+external: boolean, 
+/**
  * The holes, by their index as `swarf holes` (a part) or `swarf drawing` (a drawing's
  * loops) numbers them. Default value: all (within the diameters).
  */

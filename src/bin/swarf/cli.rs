@@ -87,6 +87,10 @@ enum Command {
         /// The job whose placement to use (default: the default job's).
         #[arg(long)]
         job: Option<PathBuf>,
+        /// A part's round bosses instead (studs for an external thread: threadMill with
+        /// external), numbered as the thread mill's `holes` takes them.
+        #[arg(long)]
+        bosses: bool,
     },
     /// List a part's top edges as a chamfer (edges: partEdges) finds them: the outlines of its
     /// horizontal faces, numbered as the chamfer's `loops` takes them, each sharp (dropping down
@@ -314,7 +318,21 @@ fn run(cli: Cli) -> Result<(), String> {
             println!("{} top edges, {} sharp", edges.len(), edges.iter().filter(|e| e.sharp).count());
             Ok(())
         }
-        Command::Holes { file, job } => {
+        Command::Holes { file, job, bosses: true } => {
+            let job = match job {
+                Some(path) => Job::from_json(&String::from_utf8_lossy(&read(&path)?)).map_err(|e| e.to_string())?,
+                None => Job::default(),
+            };
+            let name = file.file_name().map(|n| n.to_string_lossy().into_owned());
+            let mesh = read_mesh_auto(&read(&file)?, name.as_deref(), &job.tolerances).map_err(|e| format!("{}: {e}", file.display()))?;
+            let bosses = job.bosses(mesh).map_err(|e| e.to_string())?;
+            for (k, b) in bosses.iter().enumerate() {
+                println!("boss {k}: at ({:.3}, {:.3}), φ{:.3}, top {:.3}, bottom {:.3}", b.center.x, b.center.y, b.diameter, b.top, b.bottom);
+            }
+            println!("{} bosses", bosses.len());
+            Ok(())
+        }
+        Command::Holes { file, job, bosses: false } => {
             let job = match job {
                 Some(path) => Job::from_json(&String::from_utf8_lossy(&read(&path)?)).map_err(|e| e.to_string())?,
                 None => Job::default(),
