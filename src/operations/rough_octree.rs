@@ -30,7 +30,7 @@
 //!    than the last stage's, that tool would follow the whole part again at its own fine levels
 //!    to reach a few slots and corners (issue 38: the smallest tool's profile took 60–90 % of
 //!    the time for 1–14 % of the volume). Instead the largest tool between them whose levels
-//!    leave steps no higher than [`TERRACES`] (or than the smaller's would) profiles, and the
+//!    leave steps no higher than 2 mm (`TERRACES`, or than the smaller's would) profiles, and the
 //!    smaller goes, at its own levels, only where the material left is out of that one's reach
 //!    and within its own. A tool matched to halved octants whose levels are that fine profiles
 //!    at once, its octants being part of what it profiles.

@@ -147,17 +147,7 @@ impl Operate for ThreadMill {
             if h.diameter < minor - 0.05 {
                 small += 1;
             }
-            let length = self.length.unwrap_or(h.depth());
-            let low = h.top - length;
-            if !h.through && low < h.bottom - 1e-9 {
-                return Err(Error::operation(&self.name, format!("the thread is {length} mm long; the hole at X{:.3} Y{:.3} is {:.3} mm deep", h.center.x, h.center.y, h.depth())));
-            }
-            if length > tool.cutter.flute_length + 1e-9 {
-                return Err(Error::operation(&self.name, format!("the thread is {length} mm long, longer than T{}'s neck ({} mm)", tool.number, tool.cutter.flute_length)));
-            }
-            // Whole turns from the thread's foot until the form has passed the top.
-            let turns = ((h.top + pitch / 2.0 - low) / pitch).ceil().max(1.0);
-            let high = low + turns * pitch;
+            let (low, high) = self.span(&tool, h, pitch, "hole", "deep")?;
             let (from, to) = if self.hand == Hand::Right { (low, high) } else { (high, low) };
             let c = h.center;
             let start = entry_height(ctx, h, &profile, self.retract);
@@ -185,6 +175,23 @@ impl Operate for ThreadMill {
 }
 
 impl ThreadMill {
+    /// The heights the thread's helix runs between on `h` (a hole, or a boss: `what`, its
+    /// height said as `tall`): from its foot, the thread's length below the top (the whole
+    /// hole or boss by default), whole turns up until the form has passed the top; refused where
+    /// the thread is longer than the hole or boss, or than the tool's neck.
+    fn span(&self, tool: &crate::tool::Tool, h: &crate::holes::Hole, pitch: f64, what: &str, tall: &str) -> Result<(f64, f64)> {
+        let length = self.length.unwrap_or(h.top - h.bottom);
+        let low = h.top - length;
+        if !h.through && low < h.bottom - 1e-9 {
+            return Err(Error::operation(&self.name, format!("the thread is {length} mm long; the {what} at X{:.3} Y{:.3} is {:.3} mm {tall}", h.center.x, h.center.y, h.top - h.bottom)));
+        }
+        if length > tool.cutter.flute_length + 1e-9 {
+            return Err(Error::operation(&self.name, format!("the thread is {length} mm long, longer than T{}'s neck ({} mm)", tool.number, tool.cutter.flute_length)));
+        }
+        let turns = ((h.top + pitch / 2.0 - low) / pitch).ceil().max(1.0);
+        Ok((low, low + turns * pitch))
+    }
+
     /// External threads on a part's bosses: per boss, down beside it (outside the major
     /// diameter by the tool's radius and a millimetre), a half circle in tangent to the thread,
     /// the helix clockwise one pitch a turn (down for a right-hand thread, up for a left-hand),
@@ -220,17 +227,7 @@ impl ThreadMill {
                     format!("the φ{:.3} boss at X{:.3} Y{:.3} is narrower than the thread's minor diameter φ{:.3}", b.diameter, b.center.x, b.center.y, major - 2.0 * depth),
                 ));
             }
-            let length = self.length.unwrap_or(b.top - b.bottom);
-            let low = b.top - length;
-            if low < b.bottom - 1e-9 {
-                return Err(Error::operation(&self.name, format!("the thread is {length} mm long; the boss at X{:.3} Y{:.3} is {:.3} mm high", b.center.x, b.center.y, b.top - b.bottom)));
-            }
-            if length > tool.cutter.flute_length + 1e-9 {
-                return Err(Error::operation(&self.name, format!("the thread is {length} mm long, longer than T{}'s neck ({} mm)", tool.number, tool.cutter.flute_length)));
-            }
-            // Whole turns from the thread's foot until the form has passed the top.
-            let turns = ((b.top + pitch / 2.0 - low) / pitch).ceil().max(1.0);
-            let high = low + turns * pitch;
+            let (low, high) = self.span(&tool, b, pitch, "boss", "high")?;
             let (from, to) = if self.hand == Hand::Right { (high, low) } else { (low, high) };
             let c = b.center;
             // Beside the boss, clear of it.

@@ -196,6 +196,20 @@ pub fn main() -> ExitCode {
     }
 }
 
+/// The job file's job, or the default job.
+fn job_or_default(path: Option<&Path>) -> Result<Job, String> {
+    match path {
+        Some(path) => Job::from_json(&String::from_utf8_lossy(&read(path)?)).map_err(|e| e.to_string()),
+        None => Ok(Job::default()),
+    }
+}
+
+/// A part file read as a mesh with the job's tolerances.
+fn read_part(file: &Path, job: &Job) -> Result<swarf::mesh::Mesh, String> {
+    let name = file.file_name().map(|n| n.to_string_lossy().into_owned());
+    read_mesh_auto(&read(file)?, name.as_deref(), &job.tolerances).map_err(|e| format!("{}: {e}", file.display()))
+}
+
 fn read(path: &Path) -> Result<Vec<u8>, String> {
     std::fs::read(path).map_err(|e| format!("cannot read {}: {e}", path.display()))
 }
@@ -295,12 +309,8 @@ fn run(cli: Cli) -> Result<(), String> {
             Ok(())
         }
         Command::Edges { file, job } => {
-            let job = match job {
-                Some(path) => Job::from_json(&String::from_utf8_lossy(&read(&path)?)).map_err(|e| e.to_string())?,
-                None => Job::default(),
-            };
-            let name = file.file_name().map(|n| n.to_string_lossy().into_owned());
-            let mesh = read_mesh_auto(&read(&file)?, name.as_deref(), &job.tolerances).map_err(|e| format!("{}: {e}", file.display()))?;
+            let job = job_or_default(job.as_deref())?;
+            let mesh = read_part(&file, &job)?;
             let edges = job.top_edges(mesh).map_err(|e| e.to_string())?;
             for (k, e) in edges.iter().enumerate() {
                 let b = e.outline.bounds();
@@ -319,12 +329,8 @@ fn run(cli: Cli) -> Result<(), String> {
             Ok(())
         }
         Command::Holes { file, job, bosses: true } => {
-            let job = match job {
-                Some(path) => Job::from_json(&String::from_utf8_lossy(&read(&path)?)).map_err(|e| e.to_string())?,
-                None => Job::default(),
-            };
-            let name = file.file_name().map(|n| n.to_string_lossy().into_owned());
-            let mesh = read_mesh_auto(&read(&file)?, name.as_deref(), &job.tolerances).map_err(|e| format!("{}: {e}", file.display()))?;
+            let job = job_or_default(job.as_deref())?;
+            let mesh = read_part(&file, &job)?;
             let bosses = job.bosses(mesh).map_err(|e| e.to_string())?;
             for (k, b) in bosses.iter().enumerate() {
                 println!("boss {k}: at ({:.3}, {:.3}), φ{:.3}, top {:.3}, bottom {:.3}", b.center.x, b.center.y, b.diameter, b.top, b.bottom);
@@ -333,10 +339,7 @@ fn run(cli: Cli) -> Result<(), String> {
             Ok(())
         }
         Command::Holes { file, job, bosses: false } => {
-            let job = match job {
-                Some(path) => Job::from_json(&String::from_utf8_lossy(&read(&path)?)).map_err(|e| e.to_string())?,
-                None => Job::default(),
-            };
+            let job = job_or_default(job.as_deref())?;
             let name = file.file_name().map(|n| n.to_string_lossy().into_owned());
             let bytes = read(&file)?;
             let started = Instant::now();
