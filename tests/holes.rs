@@ -421,6 +421,25 @@ fn a_drawings_circles_are_spotted_and_drilled_through_the_sheet() {
     }
 }
 
+/// What `swarf ARGS [--job JOB] PART` prints, `part` (and `job`) written to a scratch folder
+/// named for `what`; it must succeed.
+fn listed(what: &str, args: &[&str], part: &Mesh, job: Option<&Job>) -> String {
+    let dir = std::env::temp_dir().join(format!("swarf-{what}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("part.stl"), part.to_binary_stl()).unwrap();
+    let mut command = Command::new(env!("CARGO_BIN_EXE_swarf"));
+    command.args(args);
+    if let Some(job) = job {
+        std::fs::write(dir.join("job.json"), serde_json::to_string(job).unwrap()).unwrap();
+        command.arg("--job").arg(dir.join("job.json"));
+    }
+    let out = command.arg(dir.join("part.stl")).output().unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(out.status.success(), "swarf {args:?}: {text}{}", String::from_utf8_lossy(&out.stderr));
+    text
+}
+
 /// `swarf holes` lists a part's holes with their sizes.
 #[test]
 fn the_cli_lists_holes() {
@@ -973,19 +992,11 @@ fn a_parts_sharp_top_edges_are_chamfered_and_nowhere_beyond() {
     assert!(on > 2000 && beyond > 10_000, "{on} cells on the bevel, {beyond} beyond");
     canon(&out.gcode, &job.tools);
     // The command line lists them, numbered as the chamfer takes them.
-    let dir = std::env::temp_dir().join(format!("swarf-edges-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(dir.join("part.stl"), part.to_binary_stl()).unwrap();
-    std::fs::write(dir.join("job.json"), serde_json::to_string(&job).unwrap()).unwrap();
-    let listed = Command::new(env!("CARGO_BIN_EXE_swarf")).args(["edges", "--job"]).arg(dir.join("job.json")).arg(dir.join("part.stl")).output().unwrap();
-    let text = String::from_utf8_lossy(&listed.stdout);
+    let text = listed("edges", &["edges"], &part, Some(&job));
     assert!(
-        listed.status.success()
-            && text.contains(&format!("{} top edges, 2 sharp", edges.len()))
-            && text.contains("edge 0: the outline of a face at Z0.000, 184.0 mm long, X-30.000..22.000 Y-20.000..20.000: sharp"),
+        text.contains(&format!("{} top edges, 2 sharp", edges.len())) && text.contains("edge 0: the outline of a face at Z0.000, 184.0 mm long, X-30.000..22.000 Y-20.000..20.000: sharp"),
         "{text}"
     );
-    let _ = std::fs::remove_dir_all(&dir);
     // Edges named that are not sharp are refused by name.
     let blunt = edges.iter().position(|e| !e.sharp).unwrap();
     job.operations = vec![Operation::Chamfer(Chamfer { edges: ChamferEdges::PartEdges, width, loops: vec![blunt], ..Chamfer::default() })];
@@ -1097,13 +1108,8 @@ fn an_external_thread_is_milled_round_a_stud() {
         canon(&out.gcode, &job.tools);
     }
     // Listed by the command line.
-    let dir = std::env::temp_dir().join(format!("swarf-bosses-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(dir.join("stud.stl"), part.to_binary_stl()).unwrap();
-    let listed = Command::new(env!("CARGO_BIN_EXE_swarf")).args(["holes", "--bosses"]).arg(dir.join("stud.stl")).output().unwrap();
-    let text = String::from_utf8_lossy(&listed.stdout);
-    assert!(listed.status.success() && text.contains("φ10.000, top 0.000, bottom -12.000") && text.contains("1 bosses"), "{text}");
-    let _ = std::fs::remove_dir_all(&dir);
+    let text = listed("bosses", &["holes", "--bosses"], &part, None);
+    assert!(text.contains("φ10.000, top 0.000, bottom -12.000") && text.contains("1 bosses"), "{text}");
     // A stud wider than the thread is refused by name.
     let mut job = Job { tools: vec![thread_mill], ..Job::default() };
     job.operations = vec![Operation::ThreadMill(ThreadMill { tool: 2, thread: "M8".into(), external: true, ..ThreadMill::default() })];

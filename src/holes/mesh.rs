@@ -11,7 +11,7 @@ use std::collections::HashMap;
 
 use super::{Bottom, Hole};
 use crate::geom::{DVec2, DVec3};
-use crate::mesh::Mesh;
+use crate::mesh::{union_root, Mesh};
 
 /// A wall's normal may lean this far from horizontal (its z component).
 const VERTICAL: f64 = 1e-3;
@@ -58,23 +58,16 @@ fn cylinders(mesh: &Mesh, outward: bool) -> Vec<Hole> {
     }
     // Walls joined along shared edges (union-find).
     let mut parent: Vec<usize> = (0..faces.len()).collect();
-    fn root(parent: &mut [usize], mut k: usize) -> usize {
-        while parent[k] != k {
-            parent[k] = parent[parent[k]];
-            k = parent[k];
-        }
-        k
-    }
     for list in edges.values() {
         let walls: Vec<usize> = list.iter().copied().filter(|&k| wall[k]).collect();
         for w in walls.windows(2) {
-            let (a, b) = (root(&mut parent, w[0]), root(&mut parent, w[1]));
+            let (a, b) = (union_root(&mut parent, w[0]), union_root(&mut parent, w[1]));
             parent[a] = b;
         }
     }
     let mut pieces: HashMap<usize, Vec<usize>> = HashMap::new();
     for k in (0..faces.len()).filter(|&k| wall[k]) {
-        let r = root(&mut parent, k);
+        let r = union_root(&mut parent, k);
         pieces.entry(r).or_default().push(k);
     }
     let mut holes = Vec::new();

@@ -130,8 +130,6 @@ macro_rules! named_operation {
 }
 pub(crate) use named_operation;
 
-/// [`Operate::takes`] for the operations that cut with any tool but a thread mill (drilling,
-/// chamfering, engraving).
 /// What the finishing operations cut with: the torus family and the cones that cut on their
 /// side (V-bits, chamfer mills and spot drills: a V-bit's 3D carving); a twist drill cuts at
 /// its point only, a thread mill only its thread.
@@ -143,6 +141,8 @@ pub fn takes_end_mills_and_v_bits(cutter: &crate::cutter::Cutter) -> Result<(), 
     }
 }
 
+/// [`Operate::takes`] for the operations that cut with any tool but a thread mill (drilling,
+/// chamfering, engraving).
 pub fn takes_all_but_thread_mills(cutter: &crate::cutter::Cutter) -> Result<(), &'static str> {
     if cutter.shape == crate::cutter::Shape::ThreadMill {
         Err("end mills, drills and V-bits")

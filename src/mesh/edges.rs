@@ -7,7 +7,7 @@
 
 use crate::drawing::Loop;
 use crate::geom::{DVec2, DVec3};
-use crate::mesh::Mesh;
+use crate::mesh::{union_root, Mesh};
 
 /// A facet is a flat's when its upward normal is within this of vertical (cos 2°).
 const FLAT_NORMAL_Z: f64 = 0.9994;
@@ -43,17 +43,10 @@ pub fn top_edges(mesh: &Mesh) -> Vec<TopEdge> {
     // Flats: union-find over edges shared by two flat facets at one height.
     let edges = mesh.edges_with_faces();
     let mut parent: Vec<usize> = (0..mesh.faces.len()).collect();
-    fn root(parent: &mut [usize], mut k: usize) -> usize {
-        while parent[k] != k {
-            parent[k] = parent[parent[k]];
-            k = parent[k];
-        }
-        k
-    }
     for e in &edges {
         let [a, b] = e.faces.map(|f| f as usize);
         if e.count == 2 && flat(a) && flat(b) && (height(a) - height(b)).abs() <= FLAT_HEIGHT {
-            let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+            let (ra, rb) = (union_root(&mut parent, a), union_root(&mut parent, b));
             parent[ra] = rb;
         }
     }
@@ -67,7 +60,7 @@ pub fn top_edges(mesh: &Mesh) -> Vec<TopEdge> {
                 continue;
             }
             let other = faces.get(1 - k).copied();
-            if other.is_some_and(|o| flat(o) && root(&mut parent, o) == root(&mut parent, f)) {
+            if other.is_some_and(|o| flat(o) && union_root(&mut parent, o) == union_root(&mut parent, f)) {
                 continue;
             }
             // The edge as the facet runs it (counter-clockwise from above: the facet on its left).
@@ -80,7 +73,7 @@ pub fn top_edges(mesh: &Mesh) -> Vec<TopEdge> {
                     let far = mesh.faces[o].into_iter().find(|v| !e.edge.contains(v)).map(|v| mesh.vertices[v as usize].z);
                     normals[o].z.abs() < WALL_NORMAL_Z && far.is_some_and(|z| z < height(f) - FLAT_HEIGHT)
                 });
-            boundary.entry(root(&mut parent, f)).or_default().push((from, to, sharp));
+            boundary.entry(union_root(&mut parent, f)).or_default().push((from, to, sharp));
         }
     }
     let mut out = Vec::new();

@@ -24,6 +24,16 @@ pub struct EdgeFaces {
     pub count: u8,
 }
 
+/// The root of `k`'s set in a union-find forest (`parent[k] == k` at a root), halving the path
+/// on the way: how facets are joined into walls and faces.
+pub(crate) fn union_root(parent: &mut [usize], mut k: usize) -> usize {
+    while parent[k] != k {
+        parent[k] = parent[parent[k]];
+        k = parent[k];
+    }
+    k
+}
+
 /// An indexed triangle mesh.
 #[derive(Clone, Debug, Default)]
 pub struct Mesh {

@@ -285,12 +285,7 @@ impl Octree {
     pub fn centres(&self, grid: Grid, radius: f64, stock: &HeightField, tolerance: f64) -> Vec<Vec<bool>> {
         let sg = stock.grid();
         // The stock's cell nearest each node (none off the stock).
-        let cell: Vec<Option<usize>> = (0..grid.nodes())
-            .map(|c| {
-                let u = ((grid.node(c % grid.nx, c / grid.nx) - sg.origin) / sg.spacing).round();
-                (u.x >= 0.0 && u.y >= 0.0 && (u.x as usize) < sg.nx && (u.y as usize) < sg.ny).then(|| u.y as usize * sg.nx + u.x as usize)
-            })
-            .collect();
+        let cell: Vec<Option<usize>> = (0..grid.nodes()).map(|c| sg.nearest(grid.node(c % grid.nx, c / grid.nx))).collect();
         let mut out: Vec<Vec<bool>> = Vec::with_capacity(self.layers.len());
         for layer in &self.layers {
             let d = distance_to(&self.mask(layer, grid), grid.nx, grid.ny, grid.spacing);

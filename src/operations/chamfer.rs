@@ -269,7 +269,7 @@ impl Chamfer {
         let profile = tool.cutter.profile();
         let drop = crate::zmap::drop::PointDrop::new(&ctx.part, &profile, &ctx.tolerances);
         // Where the cone stands on the edge alone, its axis `away` from it.
-        let on_edge = (away - profile.flat_radius()).max(0.0) * profile.taper();
+        let on_edge = profile.height(away);
         let mut rings = Vec::new();
         let mut refused = Vec::new();
         let mut flats: Vec<usize> = chosen.iter().map(|&k| edges[k].flat).collect();

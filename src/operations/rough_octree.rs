@@ -370,7 +370,7 @@ impl RoughOctree {
         // The paper's way too, the quicker kept: where little is left but corners (a square
         // pocket after one large tool), the small tool round everything beats the larger one
         // and then the small one corner by corner.
-        let seconds = |r: &[StageReport]| r.iter().map(|s| s.seconds).sum::<f64>();
+        let seconds = |stages: &[StageReport]| stages.iter().map(|s| s.seconds).sum::<f64>();
         let (with_rest, with_rest_paths, with_rest_sim) = (reports.split_off(from), paths.split_off(from), std::mem::replace(&mut ctx.sim, before));
         let small = &candidates[r];
         let why = format!("it takes everything left around the part in {:.2} mm levels", self.depth(small));
@@ -586,9 +586,5 @@ impl Reach {
 
 /// A grid's value `d` at its node nearest `p` (+∞ off the grid).
 fn at(g: crate::zmap::Grid, d: &[f64], p: crate::geom::DVec2) -> f64 {
-    let u = ((p - g.origin) / g.spacing).round();
-    if u.x < 0.0 || u.y < 0.0 || u.x as usize >= g.nx || u.y as usize >= g.ny {
-        return f64::INFINITY;
-    }
-    d[u.y as usize * g.nx + u.x as usize]
+    g.nearest(p).map_or(f64::INFINITY, |c| d[c])
 }

@@ -266,9 +266,7 @@ impl DexelStock {
 
     /// [`DexelStock::top`] of the cell whose centre is nearest `p`; `None` off the stock.
     pub fn top_near(&self, p: DVec2) -> Option<f64> {
-        let g = self.grid();
-        let u = ((p - g.origin) / g.spacing).round();
-        (u.x >= 0.0 && u.y >= 0.0 && (u.x as usize) < self.nx && (u.y as usize) < self.ny).then(|| self.top(u.x as usize, u.y as usize))
+        self.grid().nearest(p).map(|c| self.z[c])
     }
 
     /// The worst place where material stands more than `rise` above the tip within `radius` of

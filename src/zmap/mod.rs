@@ -107,6 +107,13 @@ impl Grid {
         self.origin + DVec2::new(i as f64, j as f64) * self.spacing
     }
 
+    /// The index (row after row) of the node nearest `p`, or `None` off the grid.
+    #[inline]
+    pub fn nearest(&self, p: DVec2) -> Option<usize> {
+        let u = ((p - self.origin) / self.spacing).round();
+        (u.x >= 0.0 && u.y >= 0.0 && (u.x as usize) < self.nx && (u.y as usize) < self.ny).then(|| u.y as usize * self.nx + u.x as usize)
+    }
+
     /// Node indices i with x-coordinate in `[lo, hi]`, or `None`.
     #[inline]
     pub fn columns(&self, lo: f64, hi: f64) -> Option<(usize, usize)> {

@@ -66,10 +66,7 @@ impl Region {
     pub fn contains(&self, p: DVec2) -> bool {
         match self {
             Region::Rect { min, max } => p.cmpge(*min).all() && p.cmple(*max).all(),
-            Region::Mask(m) => {
-                let u = ((p - m.origin) / m.spacing).round();
-                u.x >= 0.0 && u.y >= 0.0 && (u.x as usize) < m.nx && (u.y as usize) < m.ny && m.at(u.x as usize, u.y as usize) >= 0.5
-            }
+            Region::Mask(m) => m.grid().nearest(p).is_some_and(|c| m.z[c] >= 0.5),
         }
     }
 }
