@@ -361,6 +361,18 @@ pub fn find_holes(job: JsValue, bytes: &[u8], name: &str) -> Result<JsValue, JsE
     to_js(&job.holes(workpiece).map_err(js_error)?)
 }
 
+/// The round bosses (studs) an external thread mill of `job` finds on the part in `bytes`,
+/// placed as the job places it, numbered as the operation's `holes` take them (`swarf holes
+/// --bosses`). A drawing has none: an error says so.
+#[wasm_bindgen(js_name = findBosses)]
+pub fn find_bosses(job: JsValue, bytes: &[u8], name: &str) -> Result<JsValue, JsError> {
+    let job = job_from_js(job)?;
+    match Workpiece::read(bytes, Some(name), &job.tolerances).map_err(js_error)? {
+        Workpiece::Mesh(part) => to_js(&job.bosses(part).map_err(js_error)?),
+        Workpiece::Drawing(_) => Err(JsError::new("a drawing has no bosses: external threads are milled round a 3D part's round studs")),
+    }
+}
+
 /// Runs `job` (a `Job` object) on the part in `bytes`. `progress(fraction, stage)` is called as
 /// the work goes on; returning `false` cancels.
 #[wasm_bindgen(js_name = runJob)]

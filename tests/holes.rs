@@ -1109,7 +1109,7 @@ fn an_external_thread_is_milled_round_a_stud() {
     }
     // Listed by the command line.
     let text = listed("bosses", &["holes", "--bosses"], &part, None);
-    assert!(text.contains("φ10.000, top 0.000, bottom -12.000") && text.contains("1 bosses"), "{text}");
+    assert!(text.contains("φ10.000, top 0.000, bottom -12.000") && text.contains("\n1 boss\n"), "{text}");
     // A stud wider than the thread is refused by name.
     let mut job = Job { tools: vec![thread_mill], ..Job::default() };
     job.operations = vec![Operation::ThreadMill(ThreadMill { tool: 2, thread: "M8".into(), external: true, ..ThreadMill::default() })];

@@ -10,7 +10,7 @@ import { valueOf, fillFields, message, fieldError, check, markProblems } from '.
 import { GcodePane } from './gcode.js';
 import { sim, setTime, step, play, drawMrr, toLine } from './simulation.js';
 import { fillTools, addTool, deleteTool, exportTools, importTools, renumber } from './tools.js';
-import { fillOps, addOperation, onOpList, showPicked, pickInView, findHoles, onHoleList, presetHoles } from './operations.js';
+import { fillOps, addOperation, onOpList, showPicked, showHoles, pickInView, findHoles, onHoleList, presetHoles } from './operations.js';
 import { setKind, showPart, takeFile, fillPart, freshSetup } from './part.js';
 import { generate, cancel, download, clearResult, onLegend, resultTab, fillPost, savePost, loadPost, repost, saveJob, loadJob, saveProject, openProject, setRunning } from './results.js';
 
@@ -82,6 +82,7 @@ function onField(el) {
     setKey(op, el.dataset.key, value);
     if (el.dataset.key === 'name' || el.dataset.key === 'tool') fillOps();
     if (el.dataset.key === 'loops') showPicked();
+    if (el.dataset.key === 'holes' || el.dataset.key === 'external') showHoles();
   } else if (el.name === 'zeroHeight' || el.name === 'zeroCorner') {
     const height = form.elements.zeroHeight.value;
     job().stock.zero = height ? { height, corner: form.elements.zeroCorner.value } : null;

@@ -116,15 +116,27 @@ export function pickLoop(x, y) {
 
 // ---- holes ------------------------------------------------------------------------------
 // The holes the hole operations find (`swarf holes`), listed under their form and drawn in the
-// view; a click on one adds it to the operation's holes or takes it out. `state.holes` belongs
-// to the part or drawing it was found in.
+// view; a click on one adds it to the operation's holes or takes it out. An external thread
+// mill takes the part's round bosses instead (`swarf holes --bosses`), found, listed and picked
+// alike. `state.holes` and `state.bosses` belong to the part or drawing they were found in.
 const mm = (v) => String(Math.round(v * 1000) / 1000);
+const onBosses = (op) => op?.kind === 'threadMill' && op.external === true;
+
+// What the selected operation picks from: the holes found, or the bosses for an external thread.
+function found(op = selectedOp()) {
+  const f = onBosses(op) ? state.bosses : state.holes;
+  return f?.of === state.name ? f.holes : [];
+}
 
 export async function findHoles() {
+  const bosses = onBosses(selectedOp()), what = bosses ? 'boss' : 'hole';
   try {
-    const holes = await state.engine.holes(buildJob(), state.bytes, state.name);
-    state.holes = { of: state.name, holes };
-    message(holes.length ? `${holes.length} hole${holes.length > 1 ? 's' : ''} found: click one to pick it.` : 'No holes found: a part\'s holes are its vertical round holes, a drawing\'s its circles.', holes.length ? 'ok' : 'warning');
+    const holes = await (bosses ? state.engine.bosses : state.engine.holes).call(state.engine, buildJob(), state.bytes, state.name);
+    state[bosses ? 'bosses' : 'holes'] = { of: state.name, holes };
+    const n = holes.length, plural = bosses ? 'es' : 's';
+    message(n ? `${n} ${what}${n > 1 ? plural : ''} found: click one to pick it.`
+      : bosses ? 'No bosses found: a boss is a vertical round stud standing on the part, its wall facing out.'
+        : 'No holes found: a part\'s holes are its vertical round holes, a drawing\'s its circles.', n ? 'ok' : 'warning');
   } catch (e) {
     message(e.message, 'error');
   }
@@ -132,15 +144,19 @@ export async function findHoles() {
 }
 
 export function showHoles() {
-  const op = selectedOp();
-  const holes = state.holes?.of === state.name ? state.holes.holes : [];
+  const op = selectedOp(), bosses = onBosses(op);
+  const holes = found(op);
   const picked = new Set(op && HOLE_OPS.includes(op.kind) ? (op.holes ?? []) : []);
+  $('find-holes').textContent = bosses ? 'Find the bosses' : 'Find the holes';
+  $('hole-preset').hidden = bosses;
+  $('hole-list').setAttribute('aria-label', bosses ? 'bosses found' : 'holes found');
   $('hole-list').replaceChildren(...holes.map((h, k) => {
     const li = document.createElement('li');
     const index = h.loopIndex ?? k;
     li.dataset.index = String(index);
     li.className = picked.has(index) ? 'picked' : '';
-    if (h.mark) li.textContent = `hole ${index}: a drill mark at (${mm(h.center[0])}, ${mm(h.center[1])}), layer ${h.layer}, drilled as wide as its drill`;
+    if (bosses) li.textContent = `boss ${index}: φ${mm(h.diameter)} at (${mm(h.center[0])}, ${mm(h.center[1])}), ${mm(h.top - h.bottom)} mm tall`;
+    else if (h.mark) li.textContent = `hole ${index}: a drill mark at (${mm(h.center[0])}, ${mm(h.center[1])}), layer ${h.layer}, drilled as wide as its drill`;
     else li.textContent = `hole ${index}: φ${mm(h.diameter)} at (${mm(h.center[0])}, ${mm(h.center[1])}), ${mm(h.top - h.bottom)} mm deep, ${h.through ? 'through' : `blind (${h.bottomShape} bottom)`}`;
     return li;
   }));
@@ -154,10 +170,10 @@ export function onHoleList(e) {
   toggleHole(op, Number(li.dataset.index));
 }
 
-// The hole drawn at the canvas point (x, y) (CSS pixels): the nearest whose circle holds the
-// point, or whose centre lies within `reach` pixels of it; null if none.
+// The hole (or boss) drawn at the canvas point (x, y) (CSS pixels): the nearest whose circle
+// holds the point, or whose centre lies within `reach` pixels of it; null if none.
 function holeAt(x, y, reach = 10) {
-  const holes = state.holes?.of === state.name ? state.holes.holes : [], viewer = state.viewer;
+  const holes = found(), viewer = state.viewer;
   let best = null, nearest = Infinity;
   holes.forEach((h, k) => {
     const c = viewer.project([h.center[0], h.center[1], h.top]), rim = viewer.project([h.center[0] + h.diameter / 2, h.center[1], h.top]);
@@ -186,14 +202,15 @@ function toggleHole(op, k) {
   store();
   fillOps();
   hooks.changed?.();
-  message(`${op.name}: hole ${k} ${set.has(k) ? 'picked' : 'no longer picked'}; holes ${op.holes.length ? op.holes.join(', ') : 'all'}`, 'note');
+  const what = onBosses(op) ? ['boss', 'bosses'] : ['hole', 'holes'];
+  message(`${op.name}: ${what[0]} ${k} ${set.has(k) ? 'picked' : 'no longer picked'}; ${what[1]} ${op.holes.length ? op.holes.join(', ') : 'all'}`, 'note');
 }
 
 // Spot, drill and chamfer the picked holes (all found, if none is picked): three operations,
 // each with the library's tool for it (a spot drill, the drill nearest the holes' size, a V-bit).
 export function presetHoles() {
   const op = selectedOp();
-  const holes = state.holes?.of === state.name ? state.holes.holes : [];
+  const holes = found(op);
   // Nothing picked: every hole but the drill marks (a DXF's POINTs are as often its
   // dimensions' anchors), as the operations take "all".
   const picked = op?.holes?.length ? op.holes : holes.map((h, k) => (h.mark ? null : h.loopIndex ?? k)).filter((k) => k !== null);

@@ -131,6 +131,8 @@ export declare class Engine {
   writeProject(job: JobInput, name: string, bytes: Uint8Array): Promise<string>;
   run(job: JobInput, bytes: Uint8Array, name: string, options?: RunOptions): Promise<RunResult>;
   holes(job: JobInput, bytes: Uint8Array, name: string): Promise<Hole[]>;
+  /** A part's round bosses (studs), for an external thread mill: numbered as its `holes` take them. */
+  bosses(job: JobInput, bytes: Uint8Array, name: string): Promise<Hole[]>;
   repost(post: PostSettingsInput): Promise<Reposted & { moveLines: Uint32Array; gcodeBytes: Uint8Array; lineStarts: Uint32Array }>;
   seek(count: number): Promise<Float32Array>;
   cancel(): Promise<void>;

@@ -216,6 +216,12 @@ export class Engine {
    * loopIndex, layer }]` (`swarf holes`).
    */
   async holes(job, bytes, name) { return (await this.call({ type: 'holes', job, bytes, name })).holes; }
+  /**
+   * The round bosses (studs) an external thread mill (`threadMill` with `external: true`) of
+   * `job` finds on the part in `bytes`, placed and numbered as its `holes` take them, in the
+   * holes' form (`swarf holes --bosses`). A drawing has none: the promise rejects, saying so.
+   */
+  async bosses(job, bytes, name) { return (await this.call({ type: 'bosses', job, bytes, name })).holes; }
   /** Reads a job file as `swarf run` does (a misspelt field is named). */
   async readJob(text) { return (await this.call({ type: 'readJob', text })).job; }
   /** Every setting of a job that does not fit, as `[{ path, message }]` (the core's own checks). */

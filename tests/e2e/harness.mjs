@@ -209,12 +209,7 @@ export function boxGltf([x, y, z]) {
 // each hole a 48-sided cylinder, its tile's top and bottom fanned from the circle to the
 // tile's square (tiles meet at T-junctions, as many exported parts do).
 export function plateStl(w, h, t, tile, holes) {
-  const tris = [];
-  const push = (a, b, c, hint) => {
-    const u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]], v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
-    const n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
-    tris.push(n[0] * hint[0] + n[1] * hint[1] + n[2] * hint[2] < 0 ? [a, c, b] : [a, b, c]);
-  };
+  const tris = [], push = facing(tris);
   const n = 48, half = tile / 2;
   for (let i = 0; i < w / tile; i++) {
     for (let j = 0; j < h / tile; j++) {
@@ -260,8 +255,54 @@ export function plateStl(w, h, t, tile, holes) {
     push([a[0], a[1], t], [b[0], b[1], t], [b[0], b[1], 0], out);
     push([a[0], a[1], t], [b[0], b[1], 0], [a[0], a[1], 0], out);
   }
+  return binaryStl(tris);
+}
+
+// Adds triangles to `tris`, each wound so its normal points along `hint`.
+function facing(tris) {
+  return (a, b, c, hint) => {
+    const u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]], v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+    const n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
+    tris.push(n[0] * hint[0] + n[1] * hint[1] + n[2] * hint[2] < 0 ? [a, c, b] : [a, b, c]);
+  };
+}
+
+function binaryStl(tris) {
   const buf = Buffer.alloc(84 + tris.length * 50);
   buf.writeUInt32LE(tris.length, 80);
   tris.forEach((f, k) => f.forEach((p, j) => p.forEach((v, a) => buf.writeFloatLE(v, 84 + k * 50 + 12 + j * 12 + a * 4))));
   return buf;
+}
+
+// A square plate `side` across and `t` thick, its corner at the origin, with a round stud
+// (φ`d`, `height` tall, `n` sides) standing on its middle: a boss for an external thread.
+export function studStl(side, t, d, height, n = 64) {
+  const tris = [], push = facing(tris), c = side / 2, r = d / 2, top = t + height;
+  const rim = (k, z) => { const a = (2 * Math.PI * k) / n; return [c + r * Math.cos(a), c + r * Math.sin(a), z]; };
+  const sq = (k) => { const a = (2 * Math.PI * k) / n, x = Math.cos(a), y = Math.sin(a), m = c / Math.max(Math.abs(x), Math.abs(y)); return [c + x * m, c + y * m, t]; };
+  for (let k = 0; k < n; k++) {
+    // The plate's top, the ring between the square and the stud (corners added where they fall).
+    const a0 = (2 * Math.PI * k) / n, a1 = (2 * Math.PI * (k + 1)) / n, outer = [sq(k)];
+    for (let q = 0; q < 4; q++) {
+      const corner = Math.PI / 4 + (q * Math.PI) / 2;
+      if (corner > a0 && corner < a1) outer.push([c + c * Math.sign(Math.cos(corner)), c + c * Math.sign(Math.sin(corner)), t]);
+    }
+    outer.push(sq(k + 1));
+    push(rim(k + 1, t), rim(k, t), outer[0], [0, 0, 1]);
+    for (let m = 0; m + 1 < outer.length; m++) push(rim(k + 1, t), outer[m], outer[m + 1], [0, 0, 1]);
+    // The stud's wall and its top.
+    const out = [Math.cos((a0 + a1) / 2), Math.sin((a0 + a1) / 2), 0];
+    push(rim(k, t), rim(k + 1, t), rim(k + 1, top), out);
+    push(rim(k, t), rim(k + 1, top), rim(k, top), out);
+    push([c, c, top], rim(k, top), rim(k + 1, top), [0, 0, 1]);
+  }
+  const q = [[0, 0], [side, 0], [side, side], [0, side]];
+  push([0, 0, 0], [side, side, 0], [side, 0, 0], [0, 0, -1]);
+  push([0, 0, 0], [0, side, 0], [side, side, 0], [0, 0, -1]);
+  for (let k = 0; k < 4; k++) {
+    const [a, b] = [q[k], q[(k + 1) % 4]], out = [b[1] - a[1], a[0] - b[0], 0];
+    push([a[0], a[1], t], [b[0], b[1], t], [b[0], b[1], 0], out);
+    push([a[0], a[1], t], [b[0], b[1], 0], [a[0], a[1], 0], out);
+  }
+  return binaryStl(tris);
 }

@@ -9,7 +9,7 @@ import path from 'node:path';
 import { execFileSync } from 'node:child_process';
 import { pathToFileURL } from 'node:url';
 import { dieStl } from '../../scripts/die-stl.mjs';
-import { root, shots, offsite, PATIENCE, browser, base, waitForGenerated, generated, tab, frame, grblcheck, openPage, onlyRaster, toolTable, addTool, pixelCounts, toolPixels, pathPixels, boxStl, boxGltf, plateStl } from './harness.mjs';
+import { root, shots, offsite, PATIENCE, browser, base, waitForGenerated, generated, tab, frame, grblcheck, openPage, onlyRaster, toolTable, addTool, pixelCounts, toolPixels, pathPixels, boxStl, boxGltf, plateStl, studStl } from './harness.mjs';
 
 test('sample part → generate → path on the canvas → G-code that rs274 accepts', async () => {
   const { page, context, errors } = await openPage();
@@ -1093,6 +1093,62 @@ test('holes in a 3D part: found in its triangles, roughed over, pecked and threa
   const gcode = fs.readFileSync(program, 'utf8');
   assert.equal((gcode.match(/^G98 G83 /gm) ?? []).length, 2, 'two holes pecked');
   assert.match(gcode, /\(thread\)[\s\S]*G3 X[-\d.]+ Y[-\d.]+ Z[-\d.]+ I/, 'the thread milled on helices');
+  const tools = await page.evaluate(() => window.swarf.tools);
+  fs.writeFileSync(path.join(dir, 'tool.tbl'), toolTable(tools));
+  execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), program], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
+test('an external thread in the page: the part\'s stud found as a boss, listed, picked by a click in the view, roughed round and threaded M10, clean, in a program rs274 runs', async () => {
+  const { page, context, errors } = await openPage();
+  // A plate 30 × 30 × 6 with a φ10 stud 12 mm tall on its middle.
+  await page.setInputFiles('#file', { name: 'stud.stl', mimeType: 'model/stl', buffer: studStl(30, 6, 10, 12) });
+  await page.waitForFunction(() => /stud\.stl/.test(document.body.textContent) && !document.getElementById('generate').disabled);
+  await tab(page, 'tools');
+  const flat = await addTool(page, 'flat', 6, 25), threads = await addTool(page, 'threadMill', 6, 15);
+  await tab(page, 'ops');
+  await page.evaluate(() => { window.swarf.jobs.part.operations = []; });
+  await page.selectOption('#op-kind', 'roughZlevel');
+  await page.click('#op-add');
+  await page.selectOption('select[name=opTool]', String(flat));
+  await page.fill('input[name=roughAllowance]', '0');
+  await page.dispatchEvent('input[name=roughAllowance]', 'change');
+  await page.fill('input[name=roughLeave]', '0');
+  await page.dispatchEvent('input[name=roughLeave]', 'change');
+  await page.selectOption('#op-kind', 'threadMill');
+  await page.click('#op-add');
+  await page.selectOption('select[name=opTool]', String(threads));
+  await page.fill('input[name=thread]', 'M10');
+  await page.dispatchEvent('input[name=thread]', 'change');
+  await page.fill('input[name=threadLength]', '10');
+  await page.dispatchEvent('input[name=threadLength]', 'change');
+  // In a hole the button finds holes (there are none); outside, it finds the bosses.
+  assert.equal(await page.textContent('#find-holes'), 'Find the holes');
+  await page.check('input[name=threadExternal]');
+  await page.waitForFunction(() => document.getElementById('find-holes').textContent === 'Find the bosses' && document.getElementById('hole-preset').hidden);
+  await page.click('#find-holes');
+  await page.waitForFunction(() => document.querySelectorAll('#hole-list li').length === 1);
+  assert.match(await page.textContent('#hole-list'), /boss 0: φ10 at \(0, 0\), 12 mm tall/);
+  // Clicked in the view, the stud is picked for the thread; the list says so.
+  const xy = await page.evaluate(() => { const b = window.swarf.bosses.holes[0]; return window.swarfView.project([b.center[0], b.center[1], b.top]); });
+  const box = await page.locator('#view').boundingBox();
+  await page.mouse.click(box.x + xy[0], box.y + xy[1]);
+  await page.waitForFunction(() => document.querySelector('#hole-list li.picked'));
+  assert.equal(await page.evaluate(() => JSON.stringify(window.swarf.jobs.part.operations.at(-1).holes)), '[0]');
+  assert.match(await page.textContent('#message'), /boss 0 picked/);
+  await page.click('#generate');
+  await generated(page);
+  assert.doesNotMatch(await page.textContent('#sim-report'), /gouge[^\n]*[1-9]/);
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-stud-'));
+  const program = path.join(dir, download.suggestedFilename());
+  await download.saveAs(program);
+  const gcode = fs.readFileSync(program, 'utf8');
+  // Round the outside, climbing: clockwise helices about the stud's axis, down a pitch a turn.
+  const thread = gcode.slice(gcode.indexOf('(thread'));
+  assert.match(thread, /G2 X[-\d.]+ Y[-\d.]+ Z[-\d.]+ I/, 'clockwise helices');
+  assert.doesNotMatch(thread, /G3 X[-\d.]+ Y[-\d.]+ Z[-\d.]+ I/, 'no counter-clockwise helix');
   const tools = await page.evaluate(() => window.swarf.tools);
   fs.writeFileSync(path.join(dir, 'tool.tbl'), toolTable(tools));
   execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), program], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });

@@ -335,7 +335,7 @@ fn run(cli: Cli) -> Result<(), String> {
             for (k, b) in bosses.iter().enumerate() {
                 println!("boss {k}: at ({:.3}, {:.3}), φ{:.3}, top {:.3}, bottom {:.3}", b.center.x, b.center.y, b.diameter, b.top, b.bottom);
             }
-            println!("{} bosses", bosses.len());
+            println!("{} {}", bosses.len(), if bosses.len() == 1 { "boss" } else { "bosses" });
             Ok(())
         }
         Command::Holes { file, job, bosses: false } => {
