@@ -72,6 +72,27 @@ pub struct DrawingView {
     pub open_chains: Vec<crate::drawing::OpenChain>,
 }
 
+/// A part's top edge as the page lists and draws it (`swarf edges`): numbered as the chamfer's
+/// `loops` takes them (its place in the list).
+#[derive(Clone, Debug, Serialize, ts_rs::TS)]
+#[serde(rename_all = "camelCase")]
+pub struct EdgeView {
+    /// The height of the face it bounds (mm).
+    pub z: f64,
+    /// It drops down a steep wall all round: a chamfer can break it.
+    pub sharp: bool,
+    /// Its length (mm).
+    pub length: f64,
+    /// The loop's corners in plan (mm), closed back to the first.
+    pub points: Vec<[f64; 2]>,
+}
+
+impl EdgeView {
+    pub fn of(e: &crate::mesh::edges::TopEdge) -> EdgeView {
+        EdgeView { z: e.z, sharp: e.sharp, length: e.outline.length(), points: e.outline.vertices.iter().map(|v| v.p.to_array()).collect() }
+    }
+}
+
 /// One closed loop of a drawing, as the page lists it.
 #[derive(Clone, Debug, Serialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]

@@ -373,6 +373,18 @@ pub fn find_bosses(job: JsValue, bytes: &[u8], name: &str) -> Result<JsValue, Js
     }
 }
 
+/// The part's top edges a chamfer of `job` (`edges: partEdges`) finds on the part in `bytes`,
+/// placed as the job places it, numbered as its `loops` take them (`swarf edges`). A drawing's
+/// edges are its loops: an error says so.
+#[wasm_bindgen(js_name = findEdges)]
+pub fn find_edges(job: JsValue, bytes: &[u8], name: &str) -> Result<JsValue, JsError> {
+    let job = job_from_js(job)?;
+    match Workpiece::read(bytes, Some(name), &job.tolerances).map_err(js_error)? {
+        Workpiece::Mesh(part) => to_js(&job.top_edges(part).map_err(js_error)?.iter().map(view::EdgeView::of).collect::<Vec<_>>()),
+        Workpiece::Drawing(_) => Err(JsError::new("a drawing's edges are its loops: chamfer them with edges: loops")),
+    }
+}
+
 /// Runs `job` (a `Job` object) on the part in `bytes`. `progress(fraction, stage)` is called as
 /// the work goes on; returning `false` cancels.
 #[wasm_bindgen(js_name = runJob)]

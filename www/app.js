@@ -82,7 +82,7 @@ function onField(el) {
     setKey(op, el.dataset.key, value);
     if (el.dataset.key === 'name' || el.dataset.key === 'tool') fillOps();
     if (el.dataset.key === 'loops') showPicked();
-    if (el.dataset.key === 'holes' || el.dataset.key === 'external') showHoles();
+    if (['holes', 'external', 'loops', 'edges'].includes(el.dataset.key)) showHoles();
   } else if (el.name === 'zeroHeight' || el.name === 'zeroCorner') {
     const height = form.elements.zeroHeight.value;
     job().stock.zero = height ? { height, corner: form.elements.zeroCorner.value } : null;

@@ -117,26 +117,37 @@ export function pickLoop(x, y) {
 // ---- holes ------------------------------------------------------------------------------
 // The holes the hole operations find (`swarf holes`), listed under their form and drawn in the
 // view; a click on one adds it to the operation's holes or takes it out. An external thread
-// mill takes the part's round bosses instead (`swarf holes --bosses`), found, listed and picked
-// alike. `state.holes` and `state.bosses` belong to the part or drawing they were found in.
+// mill takes the part's round bosses instead (`swarf holes --bosses`), and a chamfer of a
+// part's edges its top edges (`swarf edges`, into its `loops`): found, listed and picked alike.
+// `state.holes`, `state.bosses` and `state.edges` belong to the part or drawing they were
+// found in.
 const mm = (v) => String(Math.round(v * 1000) / 1000);
-const onBosses = (op) => op?.kind === 'threadMill' && op.external === true;
+const MODES = {
+  holes: { one: 'hole', many: 'holes', field: 'holes', none: 'No holes found: a part\'s holes are its vertical round holes, a drawing\'s its circles.' },
+  bosses: { one: 'boss', many: 'bosses', field: 'holes', none: 'No bosses found: a boss is a vertical round stud standing on the part, its wall facing out.' },
+  edges: { one: 'edge', many: 'edges', field: 'loops', none: 'No top edges found: a top edge is the outline of a flat face of the part where it drops down a steep wall.' },
+};
+// What the operation picks from (a key of MODES), or null for an operation that picks none.
+function modeOf(op) {
+  if (!op || !HOLE_OPS.includes(op.kind)) return null;
+  if (op.kind === 'threadMill' && op.external === true) return 'bosses';
+  if (op.kind === 'chamfer' && op.edges === 'partEdges') return 'edges';
+  return 'holes';
+}
 
-// What the selected operation picks from: the holes found, or the bosses for an external thread.
+// What the selected operation picks from, as found for the part or drawing on show.
 function found(op = selectedOp()) {
-  const f = onBosses(op) ? state.bosses : state.holes;
-  return f?.of === state.name ? f.holes : [];
+  const mode = modeOf(op) ?? 'holes', f = state[mode];
+  return f?.of === state.name ? f.items : [];
 }
 
 export async function findHoles() {
-  const bosses = onBosses(selectedOp()), what = bosses ? 'boss' : 'hole';
+  const mode = modeOf(selectedOp()) ?? 'holes', m = MODES[mode];
   try {
-    const holes = await (bosses ? state.engine.bosses : state.engine.holes).call(state.engine, buildJob(), state.bytes, state.name);
-    state[bosses ? 'bosses' : 'holes'] = { of: state.name, holes };
-    const n = holes.length, plural = bosses ? 'es' : 's';
-    message(n ? `${n} ${what}${n > 1 ? plural : ''} found: click one to pick it.`
-      : bosses ? 'No bosses found: a boss is a vertical round stud standing on the part, its wall facing out.'
-        : 'No holes found: a part\'s holes are its vertical round holes, a drawing\'s its circles.', n ? 'ok' : 'warning');
+    const items = await state.engine[mode](buildJob(), state.bytes, state.name);
+    state[mode] = { of: state.name, items };
+    const n = items.length;
+    message(n ? `${n} ${n > 1 ? m.many : m.one} found: click one to pick it.` : m.none, n ? 'ok' : 'warning');
   } catch (e) {
     message(e.message, 'error');
   }
@@ -144,29 +155,31 @@ export async function findHoles() {
 }
 
 export function showHoles() {
-  const op = selectedOp(), bosses = onBosses(op);
-  const holes = found(op);
-  const picked = new Set(op && HOLE_OPS.includes(op.kind) ? (op.holes ?? []) : []);
-  $('find-holes').textContent = bosses ? 'Find the bosses' : 'Find the holes';
-  $('hole-preset').hidden = bosses;
-  $('hole-list').setAttribute('aria-label', bosses ? 'bosses found' : 'holes found');
-  $('hole-list').replaceChildren(...holes.map((h, k) => {
+  const op = selectedOp(), mode = modeOf(op) ?? 'holes', m = MODES[mode];
+  const items = found(op);
+  const picked = new Set(modeOf(op) ? (op[m.field] ?? []) : []);
+  $('find-holes').textContent = `Find the ${m.many}`;
+  $('hole-preset').hidden = mode !== 'holes';
+  $('hole-list').setAttribute('aria-label', `${m.many} found`);
+  $('hole-list').replaceChildren(...items.map((h, k) => {
     const li = document.createElement('li');
     const index = h.loopIndex ?? k;
     li.dataset.index = String(index);
     li.className = picked.has(index) ? 'picked' : '';
-    if (bosses) li.textContent = `boss ${index}: φ${mm(h.diameter)} at (${mm(h.center[0])}, ${mm(h.center[1])}), ${mm(h.top - h.bottom)} mm tall`;
+    if (mode === 'edges') li.textContent = `edge ${index}: the outline of a face at Z${mm(h.z)}, ${mm(h.length)} mm long: ${h.sharp ? 'sharp' : 'not sharp all round (a chamfer leaves it)'}`;
+    else if (mode === 'bosses') li.textContent = `boss ${index}: φ${mm(h.diameter)} at (${mm(h.center[0])}, ${mm(h.center[1])}), ${mm(h.top - h.bottom)} mm tall`;
     else if (h.mark) li.textContent = `hole ${index}: a drill mark at (${mm(h.center[0])}, ${mm(h.center[1])}), layer ${h.layer}, drilled as wide as its drill`;
     else li.textContent = `hole ${index}: φ${mm(h.diameter)} at (${mm(h.center[0])}, ${mm(h.center[1])}), ${mm(h.top - h.bottom)} mm deep, ${h.through ? 'through' : `blind (${h.bottomShape} bottom)`}`;
     return li;
   }));
-  state.viewer?.setHoles(op && HOLE_OPS.includes(op.kind) ? holes : [], picked);
+  state.viewer?.setHoles(modeOf(op) && mode !== 'edges' ? items : [], picked);
+  state.viewer?.setEdges(mode === 'edges' ? items : [], picked);
 }
 
 export function onHoleList(e) {
   const li = e.target.closest('li');
   const op = selectedOp();
-  if (!li || !op || !HOLE_OPS.includes(op.kind)) return;
+  if (!li || !modeOf(op)) return;
   toggleHole(op, Number(li.dataset.index));
 }
 
@@ -184,26 +197,45 @@ function holeAt(x, y, reach = 10) {
   return best;
 }
 
-// A click in the view: with a hole operation selected and the holes found, picks the hole
-// under it (or lets it go); else a drawing's loop, for the operations that take loops.
+// The top edge drawn nearest the canvas point (x, y), if within `reach` pixels of its line.
+function edgeAt(x, y, reach = 8) {
+  const viewer = state.viewer;
+  let best = null, nearest = reach;
+  found().forEach((e, k) => {
+    const pts = e.points.map(([px, py]) => viewer.project([px, py, e.z]));
+    pts.forEach((a, i) => {
+      const b = pts[(i + 1) % pts.length];
+      if (!a || !b) return;
+      const dx = b[0] - a[0], dy = b[1] - a[1], len2 = dx * dx + dy * dy;
+      const t = len2 > 0 ? Math.max(0, Math.min(1, ((x - a[0]) * dx + (y - a[1]) * dy) / len2)) : 0;
+      const d = Math.hypot(a[0] + t * dx - x, a[1] + t * dy - y);
+      if (d <= nearest) { nearest = d; best = k; }
+    });
+  });
+  return best;
+}
+
+// A click in the view: with a hole operation selected and the holes (bosses, edges) found,
+// picks the one under it (or lets it go); else a drawing's loop, for the operations that take
+// loops.
 export function pickInView(x, y) {
-  const op = selectedOp();
-  if (op && HOLE_OPS.includes(op.kind) && !state.running) {
-    const k = holeAt(x, y);
+  const op = selectedOp(), mode = modeOf(op);
+  if (mode && !state.running) {
+    const k = mode === 'edges' ? edgeAt(x, y) : holeAt(x, y);
     if (k !== null) { toggleHole(op, k); return; }
   }
   pickLoop(x, y);
 }
 
 function toggleHole(op, k) {
-  const set = new Set(op.holes ?? []);
+  const m = MODES[modeOf(op)];
+  const set = new Set(op[m.field] ?? []);
   if (set.has(k)) set.delete(k); else set.add(k);
-  op.holes = [...set].sort((a, b) => a - b);
+  op[m.field] = [...set].sort((a, b) => a - b);
   store();
   fillOps();
   hooks.changed?.();
-  const what = onBosses(op) ? ['boss', 'bosses'] : ['hole', 'holes'];
-  message(`${op.name}: ${what[0]} ${k} ${set.has(k) ? 'picked' : 'no longer picked'}; ${what[1]} ${op.holes.length ? op.holes.join(', ') : 'all'}`, 'note');
+  message(`${op.name}: ${m.one} ${k} ${set.has(k) ? 'picked' : 'no longer picked'}; ${m.many} ${op[m.field].length ? op[m.field].join(', ') : 'all'}`, 'note');
 }
 
 // Spot, drill and chamfer the picked holes (all found, if none is picked): three operations,

@@ -1,9 +1,9 @@
 // The API of swarf.js. The data it passes (jobs, tools, operations, posts, projects, results)
 // has the types generated from swarf's Rust serde types (types/swarf-types.d.ts); only the
 // engine's own calls, and the input forms of those types, are declared here.
-import type { Job, Post, PostSettings, CycleTime, Project, Summary, DrawingView, ReportView, Reposted, Problem, Warning, OperationReport, TimeItem, Hole } from './types/swarf-types';
+import type { Job, Post, PostSettings, CycleTime, Project, Summary, DrawingView, ReportView, Reposted, Problem, Warning, OperationReport, TimeItem, Hole, EdgeView } from './types/swarf-types';
 
-export type { Job, Post, PostSettings, CycleTime, Project, Summary, DrawingView, ReportView, Reposted, Problem, Warning, OperationReport, TimeItem, Hole };
+export type { Job, Post, PostSettings, CycleTime, Project, Summary, DrawingView, ReportView, Reposted, Problem, Warning, OperationReport, TimeItem, Hole, EdgeView };
 
 /**
  * What the engine takes of a type: every field the core fills with its default may be left out
@@ -133,6 +133,8 @@ export declare class Engine {
   holes(job: JobInput, bytes: Uint8Array, name: string): Promise<Hole[]>;
   /** A part's round bosses (studs), for an external thread mill: numbered as its `holes` take them. */
   bosses(job: JobInput, bytes: Uint8Array, name: string): Promise<Hole[]>;
+  /** A part's top edges for a chamfer (`edges: 'partEdges'`): numbered as its `loops` take them. */
+  edges(job: JobInput, bytes: Uint8Array, name: string): Promise<EdgeView[]>;
   repost(post: PostSettingsInput): Promise<Reposted & { moveLines: Uint32Array; gcodeBytes: Uint8Array; lineStarts: Uint32Array }>;
   seek(count: number): Promise<Float32Array>;
   cancel(): Promise<void>;

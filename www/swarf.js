@@ -222,6 +222,12 @@ export class Engine {
    * holes' form (`swarf holes --bosses`). A drawing has none: the promise rejects, saying so.
    */
   async bosses(job, bytes, name) { return (await this.call({ type: 'bosses', job, bytes, name })).holes; }
+  /**
+   * A part's top edges as a chamfer with `edges: 'partEdges'` of `job` finds them, placed as
+   * the job places the part, numbered as its `loops` take them: `[{ z, sharp, length, points }]`
+   * (`swarf edges`). A drawing's edges are its loops: the promise rejects, saying so.
+   */
+  async edges(job, bytes, name) { return (await this.call({ type: 'edges', job, bytes, name })).edges; }
   /** Reads a job file as `swarf run` does (a misspelt field is named). */
   async readJob(text) { return (await this.call({ type: 'readJob', text })).job; }
   /** Every setting of a job that does not fit, as `[{ path, message }]` (the core's own checks). */

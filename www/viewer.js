@@ -291,6 +291,25 @@ export class Viewer {
     this.draw();
   }
 
+  // A part's top edges (as the engine finds them) as loops at their heights: the picked ones
+  // (their indices) in orange, the other sharp ones grey, those a chamfer cannot break faint.
+  setEdges(edges, picked = new Set()) {
+    this.dropLines((key) => key.startsWith('edges'));
+    const groups = { picked: [], sharp: [], blunt: [] };
+    edges.forEach((e, k) => {
+      const into = picked.has(k) ? groups.picked : e.sharp ? groups.sharp : groups.blunt;
+      e.points.forEach((p, i) => {
+        const q = e.points[(i + 1) % e.points.length];
+        into.push(p[0], p[1], e.z, q[0], q[1], e.z);
+      });
+    });
+    const colors = { picked: [0.9, 0.55, 0.1, 1], sharp: [0.45, 0.48, 0.52, 1], blunt: [0.78, 0.8, 0.82, 1] };
+    for (const [key, data] of Object.entries(groups)) {
+      if (data.length) this.setLine(`edges_${key}`, { buffer: this.buffer(new Float32Array(data)), count: data.length / 3, color: colors[key], mark: true });
+    }
+    this.draw();
+  }
+
   // The octants of octree roughing's stages (as `JobResult.octants` gives them, 9 numbers a
   // box) as wire boxes: those a tool cut in its colour, the Partial ones grey.
   setOctants(octants) {

@@ -1,6 +1,6 @@
 // Runs the wasm pipeline off the page's thread, for swarf.js's engine. Cancel = the engine
 // terminates this worker.
-import init, { defaults, builtinPosts, readPost, readJob, checkJob, writeProject, readProject, samplePart, sampleDrawing, warmUpJob, warmUpPart, loadPart, loadDrawing, isDrawing, runJob, prepareJob, findHoles, findBosses } from './pkg/swarf.js';
+import init, { defaults, builtinPosts, readPost, readJob, checkJob, writeProject, readProject, samplePart, sampleDrawing, warmUpJob, warmUpPart, loadPart, loadDrawing, isDrawing, runJob, prepareJob, findHoles, findBosses, findEdges } from './pkg/swarf.js';
 
 // The wasm is loaded on the first message: from the bytes or URL it names (a single-file page
 // passes the bytes), else from pkg/ beside the glue.
@@ -246,6 +246,8 @@ self.onmessage = async (event) => {
       self.postMessage({ id, ok: true, holes: findHoles(event.data.job, event.data.bytes, event.data.name) });
     } else if (type === 'bosses') {
       self.postMessage({ id, ok: true, holes: findBosses(event.data.job, event.data.bytes, event.data.name) });
+    } else if (type === 'edges') {
+      self.postMessage({ id, ok: true, edges: findEdges(event.data.job, event.data.bytes, event.data.name) });
     } else if (type === 'repost') {
       if (!current) throw new Error('generate a program first');
       // The program as bytes, as a run's is (see `send`).

@@ -276,10 +276,12 @@ function binaryStl(tris) {
 
 // A square plate `side` across and `t` thick, its corner at the origin, with a round stud
 // (φ`d`, `height` tall, `n` sides) standing on its middle: a boss for an external thread.
+// Watertight: the plate's walls and bottom meet its top at the same points.
 export function studStl(side, t, d, height, n = 64) {
   const tris = [], push = facing(tris), c = side / 2, r = d / 2, top = t + height;
   const rim = (k, z) => { const a = (2 * Math.PI * k) / n; return [c + r * Math.cos(a), c + r * Math.sin(a), z]; };
   const sq = (k) => { const a = (2 * Math.PI * k) / n, x = Math.cos(a), y = Math.sin(a), m = c / Math.max(Math.abs(x), Math.abs(y)); return [c + x * m, c + y * m, t]; };
+  const outline = [];
   for (let k = 0; k < n; k++) {
     // The plate's top, the ring between the square and the stud (corners added where they fall).
     const a0 = (2 * Math.PI * k) / n, a1 = (2 * Math.PI * (k + 1)) / n, outer = [sq(k)];
@@ -290,19 +292,19 @@ export function studStl(side, t, d, height, n = 64) {
     outer.push(sq(k + 1));
     push(rim(k + 1, t), rim(k, t), outer[0], [0, 0, 1]);
     for (let m = 0; m + 1 < outer.length; m++) push(rim(k + 1, t), outer[m], outer[m + 1], [0, 0, 1]);
+    outline.push(...outer.slice(0, -1));
     // The stud's wall and its top.
     const out = [Math.cos((a0 + a1) / 2), Math.sin((a0 + a1) / 2), 0];
     push(rim(k, t), rim(k + 1, t), rim(k + 1, top), out);
     push(rim(k, t), rim(k + 1, top), rim(k, top), out);
     push([c, c, top], rim(k, top), rim(k + 1, top), [0, 0, 1]);
   }
-  const q = [[0, 0], [side, 0], [side, side], [0, side]];
-  push([0, 0, 0], [side, side, 0], [side, 0, 0], [0, 0, -1]);
-  push([0, 0, 0], [0, side, 0], [side, side, 0], [0, 0, -1]);
-  for (let k = 0; k < 4; k++) {
-    const [a, b] = [q[k], q[(k + 1) % 4]], out = [b[1] - a[1], a[0] - b[0], 0];
-    push([a[0], a[1], t], [b[0], b[1], t], [b[0], b[1], 0], out);
-    push([a[0], a[1], t], [b[0], b[1], 0], [a[0], a[1], 0], out);
-  }
+  // The plate's walls through the top's outline points, and its bottom a fan from the middle.
+  outline.forEach((p, i) => {
+    const q = outline[(i + 1) % outline.length], out = [q[1] - p[1], p[0] - q[0], 0];
+    push(p, q, [q[0], q[1], 0], out);
+    push(p, [q[0], q[1], 0], [p[0], p[1], 0], out);
+    push([c, c, 0], [p[0], p[1], 0], [q[0], q[1], 0], [0, 0, -1]);
+  });
   return binaryStl(tris);
 }

@@ -1068,8 +1068,8 @@ test('holes in a 3D part: found in its triangles, roughed over, pecked and threa
   assert.match(await page.textContent('#hole-list'), /φ5 at \(-10, 0\), 10 mm deep, through/);
   // A click on a hole in the view picks it for the operation; a second lets it go.
   const centre = await page.evaluate(() => {
-    const h = window.swarf.holes.holes.find((x) => x.center[0] < 0);
-    return { xy: window.swarfView.project([h.center[0], h.center[1], h.top]), index: String(window.swarf.holes.holes.indexOf(h)) };
+    const h = window.swarf.holes.items.find((x) => x.center[0] < 0);
+    return { xy: window.swarfView.project([h.center[0], h.center[1], h.top]), index: String(window.swarf.holes.items.indexOf(h)) };
   });
   const box = await page.locator('#view').boundingBox();
   await page.mouse.click(box.x + centre.xy[0], box.y + centre.xy[1]);
@@ -1131,7 +1131,7 @@ test('an external thread in the page: the part\'s stud found as a boss, listed, 
   await page.waitForFunction(() => document.querySelectorAll('#hole-list li').length === 1);
   assert.match(await page.textContent('#hole-list'), /boss 0: φ10 at \(0, 0\), 12 mm tall/);
   // Clicked in the view, the stud is picked for the thread; the list says so.
-  const xy = await page.evaluate(() => { const b = window.swarf.bosses.holes[0]; return window.swarfView.project([b.center[0], b.center[1], b.top]); });
+  const xy = await page.evaluate(() => { const b = window.swarf.bosses.items[0]; return window.swarfView.project([b.center[0], b.center[1], b.top]); });
   const box = await page.locator('#view').boundingBox();
   await page.mouse.click(box.x + xy[0], box.y + xy[1]);
   await page.waitForFunction(() => document.querySelector('#hole-list li.picked'));
@@ -1149,6 +1149,72 @@ test('an external thread in the page: the part\'s stud found as a boss, listed, 
   const thread = gcode.slice(gcode.indexOf('(thread'));
   assert.match(thread, /G2 X[-\d.]+ Y[-\d.]+ Z[-\d.]+ I/, 'clockwise helices');
   assert.doesNotMatch(thread, /G3 X[-\d.]+ Y[-\d.]+ Z[-\d.]+ I/, 'no counter-clockwise helix');
+  const tools = await page.evaluate(() => window.swarf.tools);
+  fs.writeFileSync(path.join(dir, 'tool.tbl'), toolTable(tools));
+  execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), program], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
+test('a part\'s top edges in the page: found, listed sharp or not, the stud\'s rim picked by a click in the view and chamfered alone with a V-bit, clean, in a program rs274 runs', async () => {
+  const { page, context, errors } = await openPage();
+  // A plate 30 × 30 × 6 with a φ10 stud 12 mm tall: the stud's rim and the plate's outline are
+  // sharp top edges; the ring round the stud's foot rises, it is no edge to break.
+  await page.setInputFiles('#file', { name: 'stud.stl', mimeType: 'model/stl', buffer: studStl(30, 6, 10, 12) });
+  await page.waitForFunction(() => /stud\.stl/.test(document.body.textContent) && !document.getElementById('generate').disabled);
+  await tab(page, 'tools');
+  const flat = await addTool(page, 'flat', 6, 25), vbit = await addTool(page, 'vBit', 12, 10);
+  await tab(page, 'ops');
+  await page.evaluate(() => { window.swarf.jobs.part.operations = []; });
+  await page.selectOption('#op-kind', 'roughZlevel');
+  await page.click('#op-add');
+  await page.selectOption('select[name=opTool]', String(flat));
+  for (const field of ['roughAllowance', 'roughLeave']) {
+    await page.fill(`input[name=${field}]`, '0');
+    await page.dispatchEvent(`input[name=${field}]`, 'change');
+  }
+  await page.selectOption('#op-kind', 'chamfer');
+  await page.click('#op-add');
+  await page.selectOption('select[name=opTool]', String(vbit));
+  await page.selectOption('select[name=chamferEdges]', 'partEdges');
+  await page.waitForFunction(() => document.getElementById('find-holes').textContent === 'Find the edges');
+  await page.click('#find-holes');
+  await page.waitForFunction(() => document.querySelectorAll('#hole-list li').length === 2);
+  const listed = await page.$$eval('#hole-list li', (lis) => lis.map((li) => li.textContent));
+  assert.match(listed[0], /^edge 0: the outline of a face at Z0, 31\.4\d* mm long: sharp$/, 'the stud\'s rim first (the highest face)');
+  assert.match(listed[1], /^edge 1: the outline of a face at Z-12, 120 mm long: sharp$/, 'the plate\'s outline');
+  // A click on the rim's line in the view picks it into the chamfer's loops.
+  const xy = await page.evaluate(() => { const e = window.swarf.edges.items[0]; return window.swarfView.project([e.points[0][0], e.points[0][1], e.z]); });
+  const box = await page.locator('#view').boundingBox();
+  await page.mouse.click(box.x + xy[0], box.y + xy[1]);
+  await page.waitForFunction(() => document.querySelector('#hole-list li.picked'));
+  assert.equal(await page.getAttribute('#hole-list li.picked', 'data-index'), '0');
+  assert.equal(await page.evaluate(() => JSON.stringify(window.swarf.jobs.part.operations.at(-1).loops)), '[0]');
+  assert.equal(await page.inputValue('input[name=chamferLoops]'), '0');
+  assert.match(await page.textContent('#message'), /edge 0 picked/);
+  await page.click('#generate');
+  await generated(page);
+  assert.doesNotMatch(await page.textContent('#sim-report'), /gouge[^\n]*[1-9]/);
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-edges-'));
+  const program = path.join(dir, download.suggestedFilename());
+  await download.saveAs(program);
+  const gcode = fs.readFileSync(program, 'utf8');
+  // The chamfer goes round the rim alone: every cutting move's end a constant distance from
+  // the stud's axis (the rim is a 64-gon: within its 6 µm), just outside the rim, none at
+  // the plate's outline.
+  const chamfer = gcode.slice(gcode.indexOf('(chamfer'));
+  let z = null;
+  const radii = [];
+  for (const line of chamfer.split('\n')) {
+    const zw = line.match(/Z(-?[\d.]+)/);
+    if (zw) z = Number(zw[1]);
+    const m = line.match(/^G[123]\b.*X(-?[\d.]+) Y(-?[\d.]+)/);
+    if (m && z !== null && z < 0) radii.push(Math.hypot(Number(m[1]), Number(m[2])));
+  }
+  assert.ok(radii.length > 8, `the chamfer's moves: ${radii.length}`);
+  const [lo, hi] = [Math.min(...radii), Math.max(...radii)];
+  assert.ok(lo > 5 && hi < 8 && hi - lo < 0.02, `round the rim only: ${lo}..${hi}`);
   const tools = await page.evaluate(() => window.swarf.tools);
   fs.writeFileSync(path.join(dir, 'tool.tbl'), toolTable(tools));
   execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), program], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });

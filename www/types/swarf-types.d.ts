@@ -341,6 +341,28 @@ marks: boolean, };
 export type DrillCycle = "spot" | "drill" | "dwell" | "peck" | "chipBreak";
 
 /**
+ * A part's top edge as the page lists and draws it (`swarf edges`): numbered as the chamfer's
+ * `loops` takes them (its place in the list).
+ */
+export type EdgeView = { 
+/**
+ * The height of the face it bounds (mm).
+ */
+z: number, 
+/**
+ * It drops down a steep wall all round: a chamfer can break it.
+ */
+sharp: boolean, 
+/**
+ * Its length (mm).
+ */
+length: number, 
+/**
+ * The loop's corners in plan (mm), closed back to the first.
+ */
+points: Array<[number, number]>, };
+
+/**
  * Engraving on a drawing.
  */
 export type Engrave = { 
