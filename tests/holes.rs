@@ -717,6 +717,72 @@ fn facing_leaves_the_top_flat_at_its_height_over_the_whole_stock() {
     let out = job::run(&job, drawing, &mut Progress::none()).unwrap();
     let lowest = out.paths[0].moves.iter().map(|m| m.to().z).fold(f64::INFINITY, f64::min);
     assert!((lowest + 0.5).abs() < 1e-9, "faced to {lowest}");
+    // What facing takes is the sheet's to lose: no gouge (before, every cell was one).
+    let v = out.verification.as_ref().unwrap();
+    assert!(v.report.is_clean() && v.report.gouge_count == 0, "{}", v.report.describe());
+}
+
+/// Facing a chosen region of a drawing: the inside of loop 1 (a 20 × 15 rectangle in a 60 × 40
+/// sheet) faced, the tool past it by the overlap and no further; with no overlap, inside it.
+#[test]
+fn a_drawings_chosen_loops_are_faced_and_nothing_beyond() {
+    let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" width="60mm" height="40mm" viewBox="0 0 60 40"><rect x="0" y="0" width="60" height="40" fill="none" stroke="black"/><rect x="10" y="10" width="20" height="15" fill="none" stroke="black"/></svg>"#;
+    let drawing = swarf::drawing::import::read_drawing(svg.as_bytes(), Some("sheet.svg"), &Tolerances::DEFAULT).unwrap();
+    // Loop 1 placed (the SVG's y down, the sheet's up from its lower left corner).
+    let (lo, hi) = (DVec2::new(10.0, 15.0), DVec2::new(30.0, 30.0));
+    // How far a point lies outside the rectangle (negative inside: how far in from its edge).
+    let outside = |p: DVec2| {
+        let d = (lo - p).max(p - hi);
+        if d.x > 0.0 || d.y > 0.0 {
+            d.max(DVec2::ZERO).length()
+        } else {
+            d.x.max(d.y)
+        }
+    };
+    let r = 5.0;
+    for (pattern, overlap, depth, stepdown, levels) in [(FacePattern::Zigzag, 0.5, 0.5, 1.0, 1), (FacePattern::Spiral, 0.0, 1.5, 0.5, 3)] {
+        let mut job = Job::default_for_drawing();
+        job.tools = vec![Tool { number: 1, cutter: Cutter::flat(2.0 * r), ..Tool::default() }];
+        job.operations = vec![Operation::Face(Face { depth: Some(depth), stepdown, overlap, pattern, loops: vec![1], ..Face::default() })];
+        let out = job::run(&job, drawing.clone(), &mut Progress::none()).unwrap_or_else(|e| panic!("{pattern:?}: {e}"));
+        let v = out.verification.as_ref().unwrap();
+        assert!(v.report.is_clean(), "{pattern:?}: {}", v.report.describe());
+        // The tool reaches `overlap` diameters past the loop: faced within, untouched beyond.
+        let past = overlap * 2.0 * r;
+        let grid = v.stock.grid();
+        let cell = grid.spacing * std::f64::consts::SQRT_2;
+        let (mut faced, mut kept) = (0, 0);
+        for j in 0..grid.ny {
+            for i in 0..grid.nx {
+                let p = grid.node(i, j);
+                let (d, top) = (outside(p), v.stock.top(i, j));
+                // Within: everywhere inside the reach, but for a round tool's corners when it
+                // stays inside (no overlap): there only where it is the radius from a corner.
+                let corners = [lo, hi, DVec2::new(lo.x, hi.y), DVec2::new(hi.x, lo.y)];
+                let reached = d < past - cell && (past > 0.0 || corners.iter().all(|c| c.distance(p) > r + cell));
+                if reached {
+                    assert!((top + depth).abs() < 0.01, "{pattern:?}: at {p:?} ({d:.3} outside) the top is {top:.4}, not {}", -depth);
+                    faced += 1;
+                } else if d > past + cell {
+                    assert!(top > -1e-6, "{pattern:?}: at {p:?}, {d:.3} outside the loop, beyond the tool's reach, the sheet is cut to {top:.4}");
+                    kept += 1;
+                }
+            }
+        }
+        assert!(faced > 1000 && kept > 1000, "{pattern:?}: {faced} cells faced, {kept} kept");
+        // The depth in its levels.
+        let mut zs: Vec<i64> = out.paths[0].moves.iter().filter(|m| !m.is_rapid()).map(|m| (m.to().z * 1000.0).round() as i64).collect();
+        zs.sort();
+        zs.dedup();
+        assert_eq!(zs.iter().filter(|&&z| z < 0 && (z % 500) == 0).count(), levels, "{pattern:?}: levels {zs:?}");
+        canon(&out.gcode, &job.tools);
+    }
+    // Loops are a drawing's: a 3D part is faced whole.
+    let mut job = Job { tools: vec![Tool { number: 1, cutter: Cutter::flat(10.0), ..Tool::default() }], ..Job::default() };
+    job.stock.margin_top = 1.0;
+    job.operations = vec![Operation::Face(Face { loops: vec![0], ..Face::default() })];
+    let e = job::run(&job, block(3, 3, SIDE, THICK, &[]), &mut Progress::none()).map(|_| ()).unwrap_err().to_string();
+    assert!(e.contains("faces a drawing's loops"), "{e}");
 }
 
 /// The shared plate drawing (tm_LM2.dxf, 40 loops on layers HOLES and IZREZ): its circles

@@ -68,8 +68,9 @@ function loopLines(d, l) {
   return data.slice(3 * l.lines[0], 3 * l.lines[1]);
 }
 
-// Whether an operation works on a drawing's loops: the 2D ones, and a chamfer of loops.
-const picksLoops = (op) => is2d(op) || (op.kind === 'chamfer' && op.edges === 'loops');
+// Whether an operation works on a drawing's loops: the 2D ones, a chamfer of loops, and a
+// drawing's facing (a region).
+const picksLoops = (op) => is2d(op) || (op.kind === 'chamfer' && op.edges === 'loops') || (op.kind === 'face' && state.kind === 'drawing');
 
 // The loops the selected 2D operation picked, highlighted in the view.
 export function showPicked() {

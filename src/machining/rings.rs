@@ -112,6 +112,25 @@ pub struct Clearing {
     pub helix_r: f64,
 }
 
+/// Clears `region` from `s.top` down by `depth`, in passes of at most `stepdown`: its
+/// tool-centre rings from `first` in from its boundary (a negative `first`: out past it) every
+/// `clearing.step`, each pass by [`clear_rings`]. A 2.5D pocket, or facing a drawn region. None
+/// when no ring fits.
+pub fn clear_down(region: &Shape, first: f64, clearing: &Clearing, depth: f64, stepdown: f64, mut s: RingSetup) -> Option<Vec<Move>> {
+    let levels = rings(region, first, clearing.step, s.tool_radius, s.tol);
+    if levels.is_empty() {
+        return None;
+    }
+    let passes = (depth / stepdown.max(LEAST_STEP)).ceil().max(1.0) as usize;
+    let mut out = Vec::new();
+    for k in 1..=passes {
+        let z_prev = s.top - depth * (k - 1) as f64 / passes as f64;
+        let z = s.top - depth * k as f64 / passes as f64;
+        out.extend(clear_rings(&levels, clearing, z_prev, z, &mut s, None));
+    }
+    Some(out)
+}
+
 /// For a point of a region's outer boundary, a point beside it where the tool at the depth
 /// being cut touches no material (the air beside the stock), if there is one: such regions are
 /// entered there and cleared from there inwards instead of from a helix.

@@ -3,12 +3,22 @@
 //! spiral, the tool overlapping the stock's outline by a share of its diameter (half by
 //! default) so no ridge stands at the edge, each level entered from outside the stock. The
 //! step-over never exceeds the tool's flat width, so no ridge stands between passes.
+//!
+//! On a drawing, facing takes the whole sheet, or the insides of chosen loops (`loops`): a
+//! region cleared to the depth by the pocket's rings or passes ([`clear_down`]), the tool past
+//! the loops by the same overlap, entered by a helix or a ramp where the region lies inside
+//! the sheet. What it takes is the part's to lose (a [`SheetCut`] for the verification).
 
 use serde::{Deserialize, Serialize};
 
+use crate::drawing::{Loop, Shape};
 use crate::error::{Error, Result};
 use crate::geom::{DVec2, DVec3};
-use crate::machining::{named_operation, not_negative, positive, Context, FieldError, Operate, Planned};
+use crate::machining::report::SheetCut;
+use crate::machining::rings::{clear_down, Clearing, RingSetup};
+use crate::machining::settings::{EntryKind, LoadControl, PocketPattern};
+use crate::machining::{named_operation, not_negative, positive, sheet, Context, FieldError, Operate, Planned};
+use crate::tool::Tool;
 use crate::toolpath::{Move, Toolpath};
 
 /// How a level is cleared.
@@ -42,11 +52,14 @@ pub struct Face {
     pub overlap: f64,
     /// Default value: zigzag.
     pub pattern: FacePattern,
+    /// A drawing's loops whose insides to face, as `swarf drawing` numbers them (the holes
+    /// inside them faced over); empty: the whole stock. Default value: empty.
+    pub loops: Vec<usize>,
 }
 
 impl Default for Face {
     fn default() -> Self {
-        Face { name: "face".into(), enabled: true, tool: 1, depth: None, stepdown: 1.0, stepover_fraction: 0.7, overlap: 0.5, pattern: FacePattern::Zigzag }
+        Face { name: "face".into(), enabled: true, tool: 1, depth: None, stepdown: 1.0, stepover_fraction: 0.7, overlap: 0.5, pattern: FacePattern::Zigzag, loops: Vec::new() }
     }
 }
 
@@ -96,6 +109,9 @@ impl Operate for Face {
         if step <= 1e-6 {
             return Err(Error::operation(&self.name, "the tool has no flat to face with"));
         }
+        if !self.loops.is_empty() {
+            return self.plan_region(ctx, &tool, top - target, step);
+        }
         // The rectangle the tool's centre covers: the stock's outline, out by the overlap less
         // the radius (half a diameter of overlap: the centre on the edge).
         let out = self.overlap * cutter.diameter - r;
@@ -127,7 +143,50 @@ impl Operate for Face {
         }
         let start = moves[0].to();
         let path = Toolpath { name: self.name.clone(), tool: tool.number, spindle_rpm: tool.spindle_rpm, start, moves, cycles: Vec::new() };
-        Ok(Planned { paths: vec![path], ..Planned::default() })
+        // On a sheet the faced top is the part's to lose: the stock's outline, as far past it as
+        // the tool reaches.
+        let cuts = match ctx.sheet {
+            Some(_) => vec![SheetCut { region: Shape::new(vec![Loop::rect(ctx.stock.min.truncate(), ctx.stock.max.truncate())]), inside: true, depth: top - target, leave: -(out + r) }],
+            None => Vec::new(),
+        };
+        Ok(Planned { paths: vec![path], cuts, ..Planned::default() })
+    }
+}
+
+impl Face {
+    /// Faces the insides of a drawing's chosen loops `depth` down from the sheet's top.
+    fn plan_region(&self, ctx: &mut Context, tool: &Tool, depth: f64, step: f64) -> Result<Planned> {
+        let (drawing, _) = sheet::sheet(ctx, &self.name).map_err(|_| Error::operation(&self.name, "faces a drawing's loops; a 3D part's top is faced whole (leave loops empty)"))?;
+        let (walls, picked) = sheet::selected(drawing, &self.name, &[], &self.loops)?;
+        // Each picked loop's inside, once: a loop inside another picked one is faced with it.
+        let chosen: Vec<Loop> = picked.iter().map(|&k| walls.shape.loops[k].counter_clockwise()).collect();
+        let outer: Vec<Loop> = chosen.iter().enumerate().filter(|&(i, l)| !chosen.iter().enumerate().any(|(j, m)| j != i && m.contains(l.probe_point()) && !l.contains(m.probe_point()))).map(|(_, l)| l.clone()).collect();
+        let region = Shape::new(outer);
+        let r = tool.cutter.radius();
+        let past = self.overlap * tool.cutter.diameter;
+        let clearing = Clearing {
+            step,
+            climb: true,
+            pattern: match self.pattern {
+                FacePattern::Zigzag => PocketPattern::Zigzag,
+                FacePattern::Spiral => PocketPattern::Offset,
+            },
+            angle: 0.0,
+            load: LoadControl::Path,
+            load_tolerance: 0.1,
+            entry: EntryKind::Helix,
+            ramp_angle: 3f64.to_radians(),
+            helix_r: 0.8 * r,
+        };
+        let mut cursor = sheet::cursor(ctx, tool);
+        let setup = RingSetup { tool_radius: r, top: ctx.stock.max.z, feed: tool.feed_rate, cursor: &mut cursor, tol: &ctx.tolerances };
+        let moves = clear_down(&region, r - past, &clearing, depth, self.stepdown, setup).ok_or_else(|| Error::operation(&self.name, "the loops are too small for the tool"))?;
+        let cuts = vec![SheetCut { region, inside: true, depth, leave: -past }];
+        if moves.is_empty() {
+            ctx.note(&self.name, "nothing left to face in the loops (earlier operations cut it away)");
+            return Ok(Planned { cuts, ..Planned::default() });
+        }
+        Ok(Planned { paths: vec![sheet::toolpath(&self.name, tool, moves, ctx.heights.clearance)], cuts, ..Planned::default() })
     }
 }
 

@@ -8,7 +8,7 @@ use crate::drawing::{Loop, Shape};
 use crate::geom::tolerance::LEAST_STEP;
 use crate::machining::path2d::does_not_fit;
 use crate::machining::report::SheetCut;
-use crate::machining::rings::{clear_rings, rings, Clearing, RingSetup};
+use crate::machining::rings::{clear_down, Clearing, RingSetup};
 use crate::machining::settings::{Direction, EntryKind, LoadControl, PocketPattern};
 use crate::machining::{named_operation, not_negative, positive, sheet, Context, FieldError, Operate, Planned};
 use crate::toolpath::Move;
@@ -80,14 +80,9 @@ impl Default for Pocket2d {
 }
 
 /// The moves of a pocket over `region` (outer loops counter-clockwise, islands clockwise).
-pub fn pocket_moves(region: &Shape, op: &Pocket2d, mut s: RingSetup) -> Result<Vec<Move>, String> {
+pub fn pocket_moves(region: &Shape, op: &Pocket2d, s: RingSetup) -> Result<Vec<Move>, String> {
     let r = s.tool_radius;
-    let first = r + op.leave_stock;
     let step = (op.stepover_fraction.clamp(0.01, 1.0) * 2.0 * r).max(LEAST_STEP);
-    let levels = rings(region, first, step, s.tool_radius, s.tol);
-    if levels.is_empty() {
-        return Err(does_not_fit(r, op.leave_stock, "the pocket", &region.bounds()));
-    }
     let clearing = Clearing {
         step,
         climb: op.direction == Direction::Climb,
@@ -99,14 +94,7 @@ pub fn pocket_moves(region: &Shape, op: &Pocket2d, mut s: RingSetup) -> Result<V
         ramp_angle: op.ramp_angle.clamp(0.1, 90.0).to_radians(),
         helix_r: op.helix_radius.unwrap_or(0.8 * r),
     };
-    let passes = (op.depth / op.stepdown.max(LEAST_STEP)).ceil().max(1.0) as usize;
-    let mut out = Vec::new();
-    for k in 1..=passes {
-        let z_prev = s.top - op.depth * (k - 1) as f64 / passes as f64;
-        let z = s.top - op.depth * k as f64 / passes as f64;
-        out.extend(clear_rings(&levels, &clearing, z_prev, z, &mut s, None));
-    }
-    Ok(out)
+    clear_down(region, r + op.leave_stock, &clearing, op.depth, op.stepdown, s).ok_or_else(|| does_not_fit(r, op.leave_stock, "the pocket", &region.bounds()))
 }
 
 impl Operate for Pocket2d {

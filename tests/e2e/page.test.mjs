@@ -1222,6 +1222,60 @@ test('a part\'s top edges in the page: found, listed sharp or not, the stud\'s r
   await context.close();
 });
 
+test('facing a region of a drawing: a loop clicked in the view, faced to the depth and past it by half the tool, clean, in a program rs274 runs', async () => {
+  const { page, context, errors } = await openPage();
+  const svg = '<svg xmlns="http://www.w3.org/2000/svg" width="60mm" height="40mm" viewBox="0 0 60 40"><rect x="0" y="0" width="60" height="40" fill="none" stroke="black"/><rect x="10" y="10" width="20" height="15" fill="none" stroke="black"/></svg>';
+  await page.setInputFiles('#file', { name: 'sheet.svg', mimeType: 'image/svg+xml', buffer: Buffer.from(svg) });
+  await page.waitForFunction(() => document.body.dataset.kind === 'drawing' && /sheet\.svg/.test(document.body.textContent) && !document.getElementById('generate').disabled);
+  await tab(page, 'tools');
+  const flat = await addTool(page, 'flat', 10, 20);
+  await tab(page, 'ops');
+  await page.evaluate(() => { window.swarf.jobs.drawing.operations = []; });
+  await page.selectOption('#op-kind', 'face');
+  await page.click('#op-add');
+  await page.selectOption('select[name=opTool]', String(flat));
+  await page.fill('input[name=faceDepth]', '0.5');
+  await page.dispatchEvent('input[name=faceDepth]', 'change');
+  assert.ok(await page.isVisible('input[name=faceLoops]'), 'a drawing\'s facing takes a region');
+  // The inner rectangle's first segment, clicked in the view.
+  const inner = await page.evaluate(() => {
+    const d = window.swarf.drawing, view = window.swarfView, l = d.loops.find((x) => x.hole);
+    const k = 3 * l.lines[0];
+    return { index: l.index, min: l.min, max: l.max, xy: view.project([(d.holes[k] + d.holes[k + 3]) / 2, (d.holes[k + 1] + d.holes[k + 4]) / 2, 0]) };
+  });
+  const box = await page.locator('#view').boundingBox();
+  await page.mouse.click(box.x + inner.xy[0], box.y + inner.xy[1]);
+  await page.waitForFunction((k) => document.querySelector('input[name=faceLoops]').value === String(k), inner.index);
+  await page.click('#generate');
+  await generated(page);
+  assert.doesNotMatch(await page.textContent('#sim-report'), /gouge[^\n]*[1-9]/);
+  const gcode = await page.evaluate(() => window.swarf.gcode);
+  // Every cutting move's centre within the loop (the overlap of half the diameter puts the
+  // tool's centre on it at most), at the depth.
+  // The words are modal: the position and the motion carried from line to line.
+  const points = [];
+  let motion = 0, at = { X: 0, Y: 0, Z: 0 };
+  for (const line of gcode.split('\n')) {
+    if (line.startsWith('(')) continue;
+    const g = line.match(/\bG0?([0-3])\b/);
+    if (g) motion = Number(g[1]);
+    const words = [...line.matchAll(/([XYZ])(-?[\d.]+)/g)];
+    for (const [, axis, v] of words) at[axis] = Number(v);
+    if (words.length && motion > 0 && at.Z < 0) points.push([at.X, at.Y, at.Z]);
+  }
+  assert.ok(points.length > 4, `cutting moves: ${points.length}`);
+  for (const [x, y] of points) assert.ok(x >= inner.min[0] - 1e-3 && x <= inner.max[0] + 1e-3 && y >= inner.min[1] - 1e-3 && y <= inner.max[1] + 1e-3, `(${x}, ${y}) outside the region`);
+  assert.equal(Math.min(...points.map((p) => p[2])), -0.5, 'faced to the depth');
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-face-'));
+  const program = path.join(dir, 'face.ngc');
+  fs.writeFileSync(program, gcode);
+  const tools = await page.evaluate(() => window.swarf.tools);
+  fs.writeFileSync(path.join(dir, 'tool.tbl'), toolTable(tools));
+  execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), program], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
 test('V-carving in the page: letters carved along their middle with a V-bit, flat-bottomed where wide with a flat tool, clean, in a program rs274 runs', async () => {
   const { page, context, errors } = await openPage();
   const svg = `<svg xmlns="http://www.w3.org/2000/svg" width="70mm" height="30mm" viewBox="0 0 70 30">
