@@ -121,7 +121,7 @@ $('play').addEventListener('click', play);
 $('step-back').addEventListener('click', () => step(-1));
 $('step-on').addEventListener('click', () => step(1));
 $('scrub').addEventListener('input', (e) => setTime(Number(e.target.value)));
-for (const [box, key] of [['show-stock', 'stock'], ['show-paths', 'paths'], ['show-octants', 'octants'], ['show-tool', 'tool']]) {
+for (const [box, key] of [['show-stock', 'stock'], ['show-depth', 'depth'], ['show-paths', 'paths'], ['show-octants', 'octants'], ['show-tool', 'tool']]) {
   $(box).addEventListener('change', (e) => { if (state.viewer) { state.viewer.show[key] = e.target.checked; state.viewer.draw(); } });
 }
 new ResizeObserver(() => { sim.buckets = null; drawMrr(); }).observe($('mrr'));

@@ -2,7 +2,7 @@
 // program head's, tool changes included), play at a chosen speed, a step a move back or on, the
 // tool drawn where it is, the path already cut apart from the path to come, the G-code line of
 // the move in the pane, and the material removal rate over the program.
-import { $, state, hooks, clock, clockFormat } from './state.js';
+import { $, state, hooks, clock, clockFormat, job } from './state.js';
 import { opColor } from './viewer.js';
 
 export const sim = { data: null, time: 0, playing: false, busy: false, wanted: null, shown: -1, target: 0, marks: [], buckets: null, peak: 1, pane: null };
@@ -178,6 +178,10 @@ export function showSimulation(data, summary = null) {
   const r = data.report;
   $('sim-report').textContent = r.text.trim();
   $('sim-report').className = r.gougeCount + r.rapidCollisionCount + r.bodyCollisionCount > 0 ? 'result problem' : 'result';
+  // A V-carve is judged by its depths: coloured so from the start (the box turns it off).
+  const carved = job().operations.some((o) => o.kind === 'vcarve' && o.enabled !== false);
+  $('show-depth').checked = carved;
+  if (state.viewer) state.viewer.show.depth = carved;
   state.viewer?.setStock(data.grid, data.part, data.start);
   state.lastSimGrid = data.grid;
   // The stock as the run sent it: after the last move.

@@ -22,7 +22,9 @@ void main() { outColor = color; }`;
 
 // The simulated stock: a height field on the simulation's cells, shaded by its own slope and
 // coloured by the material left above the part (+ allowance): red where it lies below (a gouge),
-// blue where material is left, tan elsewhere; off the part, plain stock colour.
+// blue where material is left, tan elsewhere; off the part, plain stock colour. Coloured by
+// depth instead (`byDepth`, as a V-carve or a relief is judged): tan where uncut, then yellow
+// through orange to violet at the part's lowest (`depthTop` less `depthSpan`); gouges red still.
 const STOCK_VS = `#version 300 es
 in vec2 xy; in float z; in float partZ;
 uniform mat4 mvp; out vec3 world; out float left; out float onPart;
@@ -35,15 +37,17 @@ void main() {
 const STOCK_FS = `#version 300 es
 precision highp float;
 in vec3 world; in float left; in float onPart;
-uniform vec3 light; uniform float tol; out vec4 outColor;
+uniform vec3 light; uniform float tol; uniform bool byDepth; uniform float depthTop; uniform float depthSpan; out vec4 outColor;
 void main() {
   vec3 n = normalize(cross(dFdx(world), dFdy(world)));
   float d = abs(dot(n, light));
   vec3 base = vec3(0.80, 0.72, 0.58);
-  if (onPart > 0.5) {
-    if (left < -tol) base = vec3(0.86, 0.10, 0.10);
-    else base = mix(base, vec3(0.20, 0.42, 0.85), clamp((left - 0.02) / 1.0, 0.0, 1.0));
-  }
+  float t = (depthTop - world.z) / depthSpan;
+  if (onPart > 0.5 && left < -tol) base = vec3(0.86, 0.10, 0.10);
+  else if (byDepth && t > 0.002) {
+    t = clamp(t, 0.0, 1.0);
+    base = t < 0.5 ? mix(vec3(0.98, 0.86, 0.40), vec3(0.93, 0.48, 0.16), t * 2.0) : mix(vec3(0.93, 0.48, 0.16), vec3(0.36, 0.12, 0.50), t * 2.0 - 1.0);
+  } else if (onPart > 0.5) base = mix(base, vec3(0.20, 0.42, 0.85), clamp((left - 0.02) / 1.0, 0.0, 1.0));
   outColor = vec4(base * (0.35 + 0.65 * d), 1.0);
 }`;
 
@@ -151,7 +155,7 @@ export class Viewer {
     this.lineProgram = compile(gl, LINE_VS, LINE_FS);
     this.stockProgram = compile(gl, STOCK_VS, STOCK_FS);
     this.stock = null;
-    this.show = { part: true, paths: true, stock: true, octants: true, tool: true, grid: true };
+    this.show = { part: true, paths: true, stock: true, octants: true, tool: true, grid: true, depth: false };
     this.hiddenOps = new Set();
     this.part = null;
     this.lines = {};
@@ -452,13 +456,20 @@ export class Viewer {
       this.stockGrid = { key, xy: this.buffer(xy), elements, count: index.length };
     }
     const partZ = new Float32Array(part.length);
-    for (let k = 0; k < part.length; k++) partZ[k] = Number.isNaN(part[k]) ? -1e9 : part[k];
+    let lowest = Infinity;
+    for (let k = 0; k < part.length; k++) {
+      partZ[k] = Number.isNaN(part[k]) ? -1e9 : part[k];
+      if (!Number.isNaN(part[k])) lowest = Math.min(lowest, part[k]);
+    }
+    // Depth is coloured from the stock's top down to the part's lowest (else the stock's bottom).
+    const [, , , , , bottom, top] = grid;
+    const depthSpan = top - (lowest < top - 1e-3 ? lowest : bottom);
     this.dropStock();
     const z = gl.createBuffer();
     gl.bindBuffer(gl.ARRAY_BUFFER, z);
     gl.bufferData(gl.ARRAY_BUFFER, tops, gl.DYNAMIC_DRAW);
     const g = this.stockGrid;
-    this.stock = { xy: g.xy, z, partZ: this.buffer(partZ), elements: g.elements, count: g.count, tol };
+    this.stock = { xy: g.xy, z, partZ: this.buffer(partZ), elements: g.elements, count: g.count, tol, depthTop: top, depthSpan: Math.max(depthSpan, 1e-3) };
     this.draw();
   }
 
@@ -561,6 +572,9 @@ export class Viewer {
       gl.uniformMatrix4fv(gl.getUniformLocation(p, 'mvp'), false, mvp);
       gl.uniform3f(gl.getUniformLocation(p, 'light'), l[0] / ln, l[1] / ln, l[2] / ln);
       gl.uniform1f(gl.getUniformLocation(p, 'tol'), s.tol);
+      gl.uniform1i(gl.getUniformLocation(p, 'byDepth'), this.show.depth ? 1 : 0);
+      gl.uniform1f(gl.getUniformLocation(p, 'depthTop'), s.depthTop);
+      gl.uniform1f(gl.getUniformLocation(p, 'depthSpan'), s.depthSpan);
       this.attribute(p, 'xy', s.xy, 2);
       this.attribute(p, 'z', s.z, 1);
       this.attribute(p, 'partZ', s.partZ, 1);

@@ -1307,6 +1307,27 @@ test('V-carving in the page: letters carved along their middle with a V-bit, fla
   await page.click('#generate');
   await generated(page);
   assert.doesNotMatch(await page.textContent('#sim-report'), /gouge[^\n]*[1-9]/);
+  // The carved stock coloured by depth from the start, seen from above: violet at the flat
+  // floors (the part's deepest, 3 mm), none once the box is unticked.
+  assert.equal(await page.isChecked('#show-depth'), true, 'a V-carve is coloured by depth');
+  await page.uncheck('#show-paths');
+  await page.evaluate(() => window.swarfView.view('top'));
+  const violet = async () => {
+    await frame(page);
+    return page.evaluate(() => {
+      const c = document.getElementById('view'), gl = c.getContext('webgl2');
+      const px = new Uint8Array(c.width * c.height * 4);
+      gl.readPixels(0, 0, c.width, c.height, gl.RGBA, gl.UNSIGNED_BYTE, px);
+      let n = 0;
+      for (let i = 0; i < px.length; i += 4) if (px[i + 2] > 60 && px[i + 1] < 0.5 * px[i + 2] && px[i] < px[i + 2] && px[i] > px[i + 1] + 15) n++;
+      return n;
+    });
+  };
+  const deep = await violet();
+  assert.ok(deep > 500, `the floors in violet: ${deep} pixels`);
+  await page.uncheck('#show-depth');
+  assert.ok((await violet()) < deep / 20, 'unticked: the stock in its own colours');
+  await page.check('#show-paths');
   const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
   const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-vcarve-'));
   const program = path.join(dir, download.suggestedFilename());
