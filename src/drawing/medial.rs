@@ -130,6 +130,9 @@ pub fn medial_axis(region: &Shape, chord: f64, step: f64) -> Result<Vec<Branch>,
         let (p0, p1) = (vertex(v0)?, vertex(v1)?);
         let s1 = site_of(edge.cell().map_err(|e| e.to_string())?)?;
         let s2 = site_of(diagram.get_edge(twin).map_err(|e| e.to_string())?.get().cell().map_err(|e| e.to_string())?)?;
+        if needless_spike(s1, s2, p0, p1, chord) {
+            continue;
+        }
         let points = match (edge.is_curved(), s1, s2) {
             (true, Site::Point(p), Site::Segment(a, c)) | (true, Site::Segment(a, c), Site::Point(p)) => parabola(p, a, c, p0, p1, step),
             // Between two segments the clearance is the distance to either's line, which changes
@@ -147,6 +150,37 @@ pub fn medial_axis(region: &Shape, chord: f64, step: f64) -> Result<Vec<Branch>,
         edges.push((v0.0, v1.0, Branch { points, clearance }));
     }
     Ok(joined(edges))
+}
+
+/// Whether the edge `p0`–`p1` between two sites is a spike into a corner of the boundary that
+/// carves nothing the rest of the axis leaves: an edge between two segments meeting at a
+/// corner, from the corner in, where they turn so little that the cone on the rest of the axis
+/// reaches within `chord` of the corner (the corner lies `c (1/cos(φ/2) − 1)` beyond the reach
+/// of the axis point at clearance `c` the spike runs to, for a turn of φ). These are the corners
+/// between an arc's chords (no corner at all on the drawn arc, and one spike each would carve
+/// it a bristle of dead-end branches) and a polyline's flattest bends; a drawn corner keeps its
+/// spike.
+fn needless_spike(s1: Site, s2: Site, p0: DVec2, p1: DVec2, chord: f64) -> bool {
+    let (Site::Segment(a1, b1), Site::Segment(a2, b2)) = (s1, s2) else { return false };
+    // The corner they share, and the segments' directions through it.
+    let (corner, d_in, d_out) = if b1 == a2 {
+        (b1, b1 - a1, b2 - a2)
+    } else if b2 == a1 {
+        (b2, b2 - a2, b1 - a1)
+    } else {
+        return false;
+    };
+    let far = if p0.distance(corner) < 1e-9 {
+        p1
+    } else if p1.distance(corner) < 1e-9 {
+        p0
+    } else {
+        return false;
+    };
+    let cos = d_in.normalize_or_zero().dot(d_out.normalize_or_zero()).clamp(-1.0, 1.0);
+    let half = cos.acos() / 2.0;
+    let c = s1.distance(far);
+    c * (1.0 / half.cos() - 1.0) <= chord
 }
 
 /// Points from `a` to `b` at most `step` apart.
@@ -259,6 +293,24 @@ mod tests {
             }
         }
         assert!(worst < 0.005, "off by {worst} mm between points");
+    }
+
+    /// A ring's axis is its middle circle alone: no bristle of spikes into the corners between
+    /// the chords its circles are taken as (one a chord before: hundreds of dead-end branches,
+    /// each a retract and a plunge when carved); a drawn corner keeps its spike.
+    #[test]
+    fn an_arcs_chords_give_no_spikes_and_a_drawn_corner_keeps_its_own() {
+        let region = Shape::new(vec![Loop::circle(DVec2::ZERO, 10.0), Loop::circle(DVec2::ZERO, 4.0)]);
+        let axis = medial_axis(&region, 0.002, 0.1).unwrap();
+        let lowest = axis.iter().flat_map(|b| b.clearance.iter().copied()).fold(f64::INFINITY, f64::min);
+        assert!(axis.len() <= 2 && lowest > 3.0 - 0.002, "{} branches, the lowest clearance {lowest}", axis.len());
+        let length: f64 = axis.iter().map(|b| b.points.windows(2).map(|p| p[0].distance(p[1])).sum::<f64>()).sum();
+        assert!((length - 2.0 * std::f64::consts::PI * 7.0).abs() < 0.01, "{length}");
+        // An octagon turns 45° at each corner: eight spikes, each down to the corner.
+        let octagon: Vec<DVec2> = (0..8).map(|k| DVec2::from_angle(k as f64 * std::f64::consts::FRAC_PI_4) * 10.0).collect();
+        let axis = medial_axis(&Shape::new(vec![Loop::polygon(&octagon)]), 0.002, 0.1).unwrap();
+        let corners = octagon.iter().filter(|c| axis.iter().any(|b| b.points.iter().any(|p| p.distance(**c) < 1e-4))).count();
+        assert_eq!(corners, 8, "{axis:?}");
     }
 
     /// An L's reflex corner makes a parabola: its points are as far from the corner as from the

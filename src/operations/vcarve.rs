@@ -15,7 +15,7 @@ use crate::drawing::{Loop, Shape};
 use crate::error::{Error, Result};
 use crate::machining::path2d::{arc_lengths, follow, nearest_end, start_nearest, Heights};
 use crate::machining::report::SheetCut;
-use crate::machining::rings::{clear_rings, rings, Clearing, RingSetup};
+use crate::machining::rings::{clear_down, Clearing, RingSetup};
 use crate::machining::settings::{EntryKind, LoadControl, PocketPattern};
 use crate::machining::{named_operation, positive, sheet, Context, FieldError, Operate, Planned};
 use crate::offset::offset;
@@ -180,14 +180,10 @@ impl Operate for VCarve {
 }
 
 /// The flat floor's moves: the floor (the region shrunk by the clearance at the full depth)
-/// pocketed by the flat tool of radius `r`, in levels of the step-down down to `depth`.
-fn flat_floor(floor: &Shape, r: f64, op: &VCarve, depth: f64, mut s: RingSetup) -> Vec<Move> {
+/// pocketed by the flat tool of radius `r`, in levels of the step-down down to `depth`, as a
+/// pocket clears by default: rings from the wall in, entered on a helix.
+fn flat_floor(floor: &Shape, r: f64, op: &VCarve, depth: f64, s: RingSetup) -> Vec<Move> {
     let step = op.stepover_fraction * 2.0 * r;
-    let levels = rings(floor, r, step, r, s.tol);
-    if levels.is_empty() {
-        return Vec::new();
-    }
-    // As a pocket clears by default: rings from the wall in, entered on a helix.
     let clearing = Clearing {
         step,
         climb: true,
@@ -199,12 +195,5 @@ fn flat_floor(floor: &Shape, r: f64, op: &VCarve, depth: f64, mut s: RingSetup) 
         ramp_angle: 3f64.to_radians(),
         helix_r: 0.8 * r,
     };
-    let passes = (depth / op.stepdown).ceil().max(1.0) as usize;
-    let mut out = Vec::new();
-    for k in 1..=passes {
-        let z_prev = s.top - depth * (k - 1) as f64 / passes as f64;
-        let z = s.top - depth * k as f64 / passes as f64;
-        out.extend(clear_rings(&levels, &clearing, z_prev, z, &mut s, None));
-    }
-    out
+    clear_down(floor, r, &clearing, depth, op.stepdown, s).unwrap_or_default()
 }
