@@ -9,6 +9,7 @@
 use boostvoronoi::{Builder, SourceCategory};
 
 use super::Shape;
+use crate::mesh::union_root;
 use crate::geom::segment::{chord_step, Segment};
 use crate::geom::DVec2;
 
@@ -68,8 +69,11 @@ fn polygons(region: &Shape, chord: f64) -> Vec<Vec<DVec2>> {
 /// The medial axis of `region` (outlines counter-clockwise with their islands, as a [`Shape`]
 /// holds them): each primary Voronoi edge inside the region as a branch, its ends alone where
 /// the clearance changes linearly along it (a straight edge between two segments), else
-/// sampled at most `step` apart; branches joined end to end where they meet.
-pub fn medial_axis(region: &Shape, chord: f64, step: f64) -> Result<Vec<Branch>, String> {
+/// sampled at most `step` apart; branches joined end to end where they meet. `reach` is the
+/// largest clearance the carving uses (its cone's at its deepest; beyond it a floor's walls
+/// are cut apart from the axis): spikes into corners that carve nothing the rest of the axis
+/// and those walls leave are left out ([`SPIKE_SLIVER`]).
+pub fn medial_axis(region: &Shape, chord: f64, step: f64, reach: f64) -> Result<Vec<Branch>, String> {
     let b = region.bounds();
     if b.is_empty() {
         return Ok(Vec::new());
@@ -130,7 +134,7 @@ pub fn medial_axis(region: &Shape, chord: f64, step: f64) -> Result<Vec<Branch>,
         let (p0, p1) = (vertex(v0)?, vertex(v1)?);
         let s1 = site_of(edge.cell().map_err(|e| e.to_string())?)?;
         let s2 = site_of(diagram.get_edge(twin).map_err(|e| e.to_string())?.get().cell().map_err(|e| e.to_string())?)?;
-        if needless_spike(s1, s2, p0, p1, chord) {
+        if needless_spike(s1, s2, p0, p1, reach, SPIKE_SLIVER * chord) {
             continue;
         }
         let points = match (edge.is_curved(), s1, s2) {
@@ -149,18 +153,40 @@ pub fn medial_axis(region: &Shape, chord: f64, step: f64) -> Result<Vec<Branch>,
         let clearance = points.iter().map(|&q| s1.distance(q).min(s2.distance(q))).collect();
         edges.push((v0.0, v1.0, Branch { points, clearance }));
     }
-    Ok(joined(edges))
+    // Edges shorter than the slivers spikes are dropped by are taken as their ends met: the
+    // tangle of tiny edges where an arc's chord spikes would meet, near its centre, becomes one
+    // junction the branches run through.
+    let tiny = SPIKE_SLIVER * chord;
+    let mut parent: Vec<usize> = (0..edges.iter().map(|e| e.0.max(e.1) + 1).max().unwrap_or(0)).collect();
+    let mut kept = Vec::with_capacity(edges.len());
+    for (v0, v1, b) in edges {
+        if b.points.windows(2).map(|p| p[0].distance(p[1])).sum::<f64>() < tiny {
+            let (r0, r1) = (union_root(&mut parent, v0), union_root(&mut parent, v1));
+            parent[r0] = r1;
+        } else {
+            kept.push((v0, v1, b));
+        }
+    }
+    let kept = kept.into_iter().map(|(v0, v1, b)| (union_root(&mut parent, v0), union_root(&mut parent, v1), b)).collect();
+    Ok(joined(kept))
 }
+
+/// A spike into a corner is left out where all it would carve, beside what the rest of the
+/// axis carves, lies within this many chord tolerances of the corner: the corners between an
+/// arc's chords or a flattened curve's (the chords stand within one chord tolerance of the
+/// curve, and a convex curve's spikes run to its centre of curvature, carving slivers about as
+/// thick as that), well within the walls' 0.02 mm.
+pub const SPIKE_SLIVER: f64 = 4.0;
 
 /// Whether the edge `p0`–`p1` between two sites is a spike into a corner of the boundary that
 /// carves nothing the rest of the axis leaves: an edge between two segments meeting at a
 /// corner, from the corner in, where they turn so little that the cone on the rest of the axis
-/// reaches within `chord` of the corner (the corner lies `c (1/cos(φ/2) − 1)` beyond the reach
-/// of the axis point at clearance `c` the spike runs to, for a turn of φ). These are the corners
-/// between an arc's chords (no corner at all on the drawn arc, and one spike each would carve
-/// it a bristle of dead-end branches) and a polyline's flattest bends; a drawn corner keeps its
-/// spike.
-fn needless_spike(s1: Site, s2: Site, p0: DVec2, p1: DVec2, chord: f64) -> bool {
+/// reaches within `sliver` of the corner (the corner lies `c (1/cos(φ/2) − 1)` beyond the reach
+/// of the axis point at clearance `c` the spike runs to, for a turn of φ; `c` no more than the
+/// `reach` the carving uses). These are the corners between an arc's chords (no corner at all
+/// on the drawn arc, and one spike each would carve it a bristle of dead-end branches) and a
+/// polyline's flattest bends; a drawn corner keeps its spike.
+fn needless_spike(s1: Site, s2: Site, p0: DVec2, p1: DVec2, reach: f64, sliver: f64) -> bool {
     let (Site::Segment(a1, b1), Site::Segment(a2, b2)) = (s1, s2) else { return false };
     // The corner they share, and the segments' directions through it.
     let (corner, d_in, d_out) = if b1 == a2 {
@@ -179,8 +205,8 @@ fn needless_spike(s1: Site, s2: Site, p0: DVec2, p1: DVec2, chord: f64) -> bool 
     };
     let cos = d_in.normalize_or_zero().dot(d_out.normalize_or_zero()).clamp(-1.0, 1.0);
     let half = cos.acos() / 2.0;
-    let c = s1.distance(far);
-    c * (1.0 / half.cos() - 1.0) <= chord
+    let c = s1.distance(far).min(reach);
+    c * (1.0 / half.cos() - 1.0) <= sliver
 }
 
 /// Points from `a` to `b` at most `step` apart.
@@ -228,15 +254,23 @@ fn joined(edges: Vec<(usize, usize, Branch)>) -> Vec<Branch> {
             continue;
         }
         used[start] = true;
-        let (_, mut end, first) = &edges[start];
+        let (mut begin, mut end, first) = &edges[start];
         let mut chain = first.clone();
-        while let Some(&k) = at.get(&end).and_then(|list| list.iter().find(|&&k| !used[k])) {
-            used[k] = true;
-            let (v0, v1, b) = &edges[k];
-            let next = if *v0 == end { b.clone() } else { b.reversed() };
-            end = if *v0 == end { *v1 } else { *v0 };
-            chain.points.extend_from_slice(&next.points[1..]);
-            chain.clearance.extend_from_slice(&next.clearance[1..]);
+        // On from its end, then (reversed) on from its start: a chain begun mid-way along a
+        // run of edges takes the whole run.
+        for forward in [true, false] {
+            if !forward {
+                chain = chain.reversed();
+                std::mem::swap(&mut begin, &mut end);
+            }
+            while let Some(&k) = at.get(&end).and_then(|list| list.iter().find(|&&k| !used[k])) {
+                used[k] = true;
+                let (v0, v1, b) = &edges[k];
+                let next = if *v0 == end { b.clone() } else { b.reversed() };
+                end = if *v0 == end { *v1 } else { *v0 };
+                chain.points.extend_from_slice(&next.points[1..]);
+                chain.clearance.extend_from_slice(&next.clearance[1..]);
+            }
         }
         out.push(chain);
     }
@@ -246,7 +280,7 @@ fn joined(edges: Vec<(usize, usize, Branch)>) -> Vec<Branch> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::drawing::Loop;
+    use crate::drawing::{Loop, Vertex};
 
     /// A rectangle's axis: the middle line and the four branches to its corners, each point as
     /// far from the boundary as the axis says.
@@ -254,7 +288,7 @@ mod tests {
     fn a_rectangles_medial_axis_is_its_middle_line_and_corner_bisectors() {
         let (w, h) = (40.0, 10.0);
         let region = Shape::new(vec![Loop::rect(DVec2::ZERO, DVec2::new(w, h))]);
-        let axis = medial_axis(&region, 0.001, 0.1).unwrap();
+        let axis = medial_axis(&region, 0.001, 0.1, f64::INFINITY).unwrap();
         let mut points = 0;
         let mut middle = 0.0f64;
         for b in &axis {
@@ -279,7 +313,7 @@ mod tests {
     #[test]
     fn between_its_points_a_branch_keeps_its_clearance() {
         let region = Shape::new(vec![Loop::circle(DVec2::ZERO, 10.0), Loop::circle(DVec2::ZERO, 5.0)]);
-        let axis = medial_axis(&region, 0.002, 0.1).unwrap();
+        let axis = medial_axis(&region, 0.002, 0.1, f64::INFINITY).unwrap();
         let mut worst = 0.0f64;
         for b in &axis {
             for k in 1..b.points.len() {
@@ -301,16 +335,28 @@ mod tests {
     #[test]
     fn an_arcs_chords_give_no_spikes_and_a_drawn_corner_keeps_its_own() {
         let region = Shape::new(vec![Loop::circle(DVec2::ZERO, 10.0), Loop::circle(DVec2::ZERO, 4.0)]);
-        let axis = medial_axis(&region, 0.002, 0.1).unwrap();
+        let axis = medial_axis(&region, 0.002, 0.1, f64::INFINITY).unwrap();
         let lowest = axis.iter().flat_map(|b| b.clearance.iter().copied()).fold(f64::INFINITY, f64::min);
         assert!(axis.len() <= 2 && lowest > 3.0 - 0.002, "{} branches, the lowest clearance {lowest}", axis.len());
         let length: f64 = axis.iter().map(|b| b.points.windows(2).map(|p| p[0].distance(p[1])).sum::<f64>()).sum();
         assert!((length - 2.0 * std::f64::consts::PI * 7.0).abs() < 0.01, "{length}");
         // An octagon turns 45° at each corner: eight spikes, each down to the corner.
         let octagon: Vec<DVec2> = (0..8).map(|k| DVec2::from_angle(k as f64 * std::f64::consts::FRAC_PI_4) * 10.0).collect();
-        let axis = medial_axis(&Shape::new(vec![Loop::polygon(&octagon)]), 0.002, 0.1).unwrap();
+        let axis = medial_axis(&Shape::new(vec![Loop::polygon(&octagon)]), 0.002, 0.1, f64::INFINITY).unwrap();
         let corners = octagon.iter().filter(|c| axis.iter().any(|b| b.points.iter().any(|p| p.distance(**c) < 1e-4))).count();
         assert_eq!(corners, 8, "{axis:?}");
+    }
+
+    /// A slot (two half circles joined by lines) has one branch: its middle line, whole,
+    /// whichever of its many edges (between the circles' chords) the diagram lists first.
+    #[test]
+    fn a_slots_axis_is_one_branch() {
+        let (a, b, r) = (DVec2::new(0.0, 0.0), DVec2::new(40.0, 0.0), 6.0);
+        let slot = Loop { vertices: vec![Vertex { p: a - DVec2::Y * r, bulge: 0.0 }, Vertex { p: b - DVec2::Y * r, bulge: 1.0 }, Vertex { p: b + DVec2::Y * r, bulge: 0.0 }, Vertex { p: a + DVec2::Y * r, bulge: 1.0 }] };
+        let axis = medial_axis(&Shape::new(vec![slot]), 0.002, 0.1, f64::INFINITY).unwrap();
+        assert_eq!(axis.len(), 1, "{} branches: {:?}", axis.len(), axis.iter().map(|b| (b.points[0], b.clearance[0], *b.points.last().unwrap(), *b.clearance.last().unwrap(), b.points.len())).collect::<Vec<_>>());
+        let ends = [axis[0].points[0], *axis[0].points.last().unwrap()];
+        assert!(ends.iter().any(|p| p.distance(a) < 0.01) && ends.iter().any(|p| p.distance(b) < 0.01), "{ends:?}");
     }
 
     /// An L's reflex corner makes a parabola: its points are as far from the corner as from the
@@ -318,7 +364,7 @@ mod tests {
     #[test]
     fn a_reflex_corner_gives_a_parabola_at_its_true_clearance() {
         let region = Shape::new(vec![Loop::polygon(&[DVec2::new(0.0, 0.0), DVec2::new(30.0, 0.0), DVec2::new(30.0, 10.0), DVec2::new(10.0, 10.0), DVec2::new(10.0, 30.0), DVec2::new(0.0, 30.0)])]);
-        let axis = medial_axis(&region, 0.001, 0.05).unwrap();
+        let axis = medial_axis(&region, 0.001, 0.05, f64::INFINITY).unwrap();
         for b in &axis {
             for (p, c) in b.points.iter().zip(&b.clearance) {
                 let exact = region.distance_to(*p);

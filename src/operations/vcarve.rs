@@ -100,7 +100,7 @@ impl Operate for VCarve {
         let c_max = tip + deepest * tan;
         let top = ctx.stock.max.z;
         let z_at = |c: f64| top - ((c.min(c_max) - tip).max(0.0) / tan);
-        let axis = medial_axis(&region, ctx.tolerances.arc_fit, STEP).map_err(|e| Error::operation(&self.name, e))?;
+        let axis = medial_axis(&region, ctx.tolerances.arc_fit, STEP, c_max).map_err(|e| Error::operation(&self.name, e))?;
         if axis.is_empty() {
             return Err(Error::operation(&self.name, "the regions have no inside to carve"));
         }
