@@ -11,7 +11,7 @@ use swarf::cutter::Cutter;
 use swarf::drawing::Shape;
 use swarf::geom::Tolerances;
 use swarf::job::{self, Job, Operation, Tool};
-use swarf::operations::VCarve;
+use swarf::operations::{Engrave, VCarve};
 use swarf::post::Dialect;
 use swarf::progress::Progress;
 
@@ -134,6 +134,49 @@ fn a_v_carve_takes_a_v_bit_and_works_on_drawings() {
     let part = swarf::mesh::sample::demo_part();
     let e = job::run(&Job { tools: job.tools.clone(), operations: job.operations.clone(), ..Job::default() }, part, &mut Progress::none()).map(|_| ()).unwrap_err().to_string();
     assert!(e.contains("drawings"), "{e}");
+}
+
+/// A single-line font's strokes (open chains) engraved by the V-bit at a fixed depth: the
+/// groove a V as deep as asked along the line, as wide at the top as the cone there, nothing
+/// cut beyond; the verification holds the groove to that width (it allowed the bit's whole
+/// radius before).
+#[test]
+fn open_chains_are_engraved_by_the_v_bit_at_their_depth() {
+    let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" width="60mm" height="40mm" viewBox="0 0 60 40"><rect x="0" y="0" width="60" height="40" fill="none" stroke="black"/><path d="M 10 30 L 40 30 L 40 10" fill="none" stroke="black"/></svg>"#;
+    let drawing = swarf::drawing::import::read_drawing(svg.as_bytes(), Some("stroke.svg"), &Tolerances::DEFAULT).unwrap();
+    let (mut job, _) = carving(VCarve::default());
+    let depth = 1.5;
+    job.operations = vec![Operation::Engrave(Engrave { depth, stepdown: depth, ..Engrave::default() })];
+    let out = job::run(&job, drawing.clone(), &mut Progress::none()).expect("engraved");
+    let v = out.verification.as_ref().unwrap();
+    assert!(v.report.is_clean(), "{}", v.report.describe());
+    let mut d = drawing.clone();
+    job.drawing.apply(&mut d);
+    let stroke = &d.open[0].path;
+    // A 90° V-bit: the groove's wall one millimetre out for each millimetre up.
+    let (mut inside, mut outside) = (0, 0);
+    let grid = v.stock.grid();
+    for j in 0..grid.ny {
+        for i in 0..grid.nx {
+            let p = grid.node(i, j);
+            let off = stroke.iter().map(|s| s.distance_to(p)).fold(f64::INFINITY, f64::min);
+            let top = v.stock.top(i, j);
+            if off < depth - 0.05 {
+                assert!((top + depth - off).abs() < 0.03, "at {p:?}, {off:.3} from the stroke: the stock at {top:.4}, the V at {:.4}", off - depth);
+                inside += 1;
+            } else if off > depth + 0.05 {
+                assert!(top >= -1e-9, "at {p:?}, {off:.3} from the stroke: cut to {top:.4}");
+                outside += 1;
+            }
+        }
+    }
+    assert!(inside > 10_000 && outside > 100_000, "{inside} cells in the groove, {outside} beside");
+    common::rs274(&out.gcode, &job.tools);
+    let mut grbl = job.clone();
+    grbl.post.dialect = Dialect::Grbl;
+    if let Some(said) = common::grblcheck(&job::run(&grbl, drawing, &mut Progress::none()).unwrap().gcode) {
+        said.unwrap();
+    }
 }
 
 /// The shared drawings carve clean (their loops as regions, a 60° V-bit flat at 2 mm).

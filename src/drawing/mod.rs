@@ -365,7 +365,8 @@ impl Drawing {
 
     pub fn bounds(&self) -> Rect {
         let loops = self.loops.iter().fold(Rect::EMPTY, |r, l| r.union(l.path.bounds()));
-        let open = self.open.iter().fold(loops, |r, o| r.grow(o.start).grow(o.end));
+        // An open chain's whole course (an arc of it may bow out past its ends).
+        let open = self.open.iter().fold(loops, |r, o| o.path.iter().fold(r.grow(o.start).grow(o.end), |r, s| r.union(s.bounds())));
         self.points.iter().fold(open, |r, p| r.grow(p.at))
     }
 
@@ -380,6 +381,11 @@ impl Drawing {
         for o in &mut self.open {
             o.start = f(o.start);
             o.end = f(o.end);
+            // The chain itself too (a bulge is the same under scaling and moving).
+            for s in &mut o.path {
+                s.a = f(s.a);
+                s.b = f(s.b);
+            }
         }
         for p in &mut self.points {
             p.at = f(p.at);

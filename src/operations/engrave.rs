@@ -72,6 +72,9 @@ impl Operate for Engrave {
 
     fn plan(&self, ctx: &mut Context, _progress: &mut crate::progress::Progress) -> Result<Planned> {
         let tool = ctx.tool(&self.name, self.tool)?.clone();
+        // How far from the line the tool cuts at the top: its radius, or a V-bit's cone where
+        // it crosses the top at the depth (a single-line font's stroke width).
+        let reach = if tool.cutter.is_cone() { (tool.cutter.tip_radius() + self.depth * (tool.cutter.point_angle().to_radians() / 2.0).tan()).min(tool.cutter.radius()) } else { tool.cutter.radius() };
         let (drawing, thickness) = sheet::sheet(ctx, &self.name)?;
         if self.depth > thickness + sheet::BREAKTHROUGH {
             return Err(Error::operation(&self.name, format!("the depth {} mm is deeper than the {thickness} mm sheet", self.depth)));
@@ -111,7 +114,7 @@ impl Operate for Engrave {
             if total <= HAIR {
                 continue;
             }
-            grooves.push(Groove { path: path.clone(), radius: tool.cutter.radius(), depth: self.depth });
+            grooves.push(Groove { path: path.clone(), radius: reach, depth: self.depth });
             let Some(start_z) = cursor.material_top(path.iter().copied(), top, z_final, ctx.tolerances.gouge) else {
                 in_air += 1;
                 continue;
