@@ -16,7 +16,7 @@ use crate::error::{Error, Result};
 use crate::geom::{DVec2, DVec3};
 use crate::machining::report::SheetCut;
 use crate::machining::rings::{clear_down, Clearing, RingSetup};
-use crate::machining::settings::{EntryKind, LoadControl, PocketPattern};
+use crate::machining::settings::PocketPattern;
 use crate::machining::{named_operation, not_negative, positive, sheet, Context, FieldError, Operate, Planned};
 use crate::tool::Tool;
 use crate::toolpath::{Move, Toolpath};
@@ -164,20 +164,11 @@ impl Face {
         let region = Shape::new(outer);
         let r = tool.cutter.radius();
         let past = self.overlap * tool.cutter.diameter;
-        let clearing = Clearing {
-            step,
-            climb: true,
-            pattern: match self.pattern {
-                FacePattern::Zigzag => PocketPattern::Zigzag,
-                FacePattern::Spiral => PocketPattern::Offset,
-            },
-            angle: 0.0,
-            load: LoadControl::Path,
-            load_tolerance: 0.1,
-            entry: EntryKind::Helix,
-            ramp_angle: 3f64.to_radians(),
-            helix_r: 0.8 * r,
+        let pattern = match self.pattern {
+            FacePattern::Zigzag => PocketPattern::Zigzag,
+            FacePattern::Spiral => PocketPattern::Offset,
         };
+        let clearing = Clearing::plain(step, r, pattern);
         let mut cursor = sheet::cursor(ctx, tool);
         let setup = RingSetup { tool_radius: r, top: ctx.stock.max.z, feed: tool.feed_rate, cursor: &mut cursor, tol: &ctx.tolerances };
         let moves = clear_down(&region, r - past, &clearing, depth, self.stepdown, setup).ok_or_else(|| Error::operation(&self.name, "the loops are too small for the tool"))?;

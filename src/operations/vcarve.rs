@@ -16,7 +16,7 @@ use crate::error::{Error, Result};
 use crate::machining::path2d::{arc_lengths, follow, nearest_end, start_nearest, Heights};
 use crate::machining::report::SheetCut;
 use crate::machining::rings::{clear_down, Clearing, RingSetup};
-use crate::machining::settings::{EntryKind, LoadControl, PocketPattern};
+use crate::machining::settings::PocketPattern;
 use crate::machining::{named_operation, positive, sheet, Context, FieldError, Operate, Planned};
 use crate::offset::offset;
 use crate::toolpath::Move;
@@ -184,16 +184,6 @@ impl Operate for VCarve {
 /// pocket clears by default: rings from the wall in, entered on a helix.
 fn flat_floor(floor: &Shape, r: f64, op: &VCarve, depth: f64, s: RingSetup) -> Vec<Move> {
     let step = op.stepover_fraction * 2.0 * r;
-    let clearing = Clearing {
-        step,
-        climb: true,
-        pattern: PocketPattern::Offset,
-        angle: 0.0,
-        load: LoadControl::Path,
-        load_tolerance: 0.1,
-        entry: EntryKind::Helix,
-        ramp_angle: 3f64.to_radians(),
-        helix_r: 0.8 * r,
-    };
+    let clearing = Clearing::plain(step, r, PocketPattern::Offset);
     clear_down(floor, r, &clearing, depth, op.stepdown, s).unwrap_or_default()
 }
