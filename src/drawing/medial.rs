@@ -9,9 +9,9 @@
 use boostvoronoi::{Builder, SourceCategory};
 
 use super::Shape;
-use crate::mesh::union_root;
 use crate::geom::segment::{chord_step, Segment};
 use crate::geom::DVec2;
+use crate::mesh::union_root;
 
 /// A piece of the medial axis: points along it and their clearances (mm).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -352,9 +352,22 @@ mod tests {
     #[test]
     fn a_slots_axis_is_one_branch() {
         let (a, b, r) = (DVec2::new(0.0, 0.0), DVec2::new(40.0, 0.0), 6.0);
-        let slot = Loop { vertices: vec![Vertex { p: a - DVec2::Y * r, bulge: 0.0 }, Vertex { p: b - DVec2::Y * r, bulge: 1.0 }, Vertex { p: b + DVec2::Y * r, bulge: 0.0 }, Vertex { p: a + DVec2::Y * r, bulge: 1.0 }] };
+        let slot = Loop {
+            vertices: vec![
+                Vertex { p: a - DVec2::Y * r, bulge: 0.0 },
+                Vertex { p: b - DVec2::Y * r, bulge: 1.0 },
+                Vertex { p: b + DVec2::Y * r, bulge: 0.0 },
+                Vertex { p: a + DVec2::Y * r, bulge: 1.0 },
+            ],
+        };
         let axis = medial_axis(&Shape::new(vec![slot]), 0.002, 0.1, f64::INFINITY).unwrap();
-        assert_eq!(axis.len(), 1, "{} branches: {:?}", axis.len(), axis.iter().map(|b| (b.points[0], b.clearance[0], *b.points.last().unwrap(), *b.clearance.last().unwrap(), b.points.len())).collect::<Vec<_>>());
+        assert_eq!(
+            axis.len(),
+            1,
+            "{} branches: {:?}",
+            axis.len(),
+            axis.iter().map(|b| (b.points[0], b.clearance[0], *b.points.last().unwrap(), *b.clearance.last().unwrap(), b.points.len())).collect::<Vec<_>>()
+        );
         let ends = [axis[0].points[0], *axis[0].points.last().unwrap()];
         assert!(ends.iter().any(|p| p.distance(a) < 0.01) && ends.iter().any(|p| p.distance(b) < 0.01), "{ends:?}");
     }

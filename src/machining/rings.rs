@@ -116,17 +116,7 @@ impl Clearing {
     /// As a pocket clears by default, with a tool of radius `r`: climb, entered on a helix
     /// (0.8 r) or a 3° ramp, zigzag passes along X with the load held by the path.
     pub fn plain(step: f64, r: f64, pattern: PocketPattern) -> Clearing {
-        Clearing {
-            step,
-            climb: true,
-            pattern,
-            angle: 0.0,
-            load: LoadControl::Path,
-            load_tolerance: 0.1,
-            entry: EntryKind::Helix,
-            ramp_angle: 3f64.to_radians(),
-            helix_r: 0.8 * r,
-        }
+        Clearing { step, climb: true, pattern, angle: 0.0, load: LoadControl::Path, load_tolerance: 0.1, entry: EntryKind::Helix, ramp_angle: 3f64.to_radians(), helix_r: 0.8 * r }
     }
 }
 

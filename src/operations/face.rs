@@ -160,7 +160,12 @@ impl Face {
         let (walls, picked) = sheet::selected(drawing, &self.name, &[], &self.loops)?;
         // Each picked loop's inside, once: a loop inside another picked one is faced with it.
         let chosen: Vec<Loop> = picked.iter().map(|&k| walls.shape.loops[k].counter_clockwise()).collect();
-        let outer: Vec<Loop> = chosen.iter().enumerate().filter(|&(i, l)| !chosen.iter().enumerate().any(|(j, m)| j != i && m.contains(l.probe_point()) && !l.contains(m.probe_point()))).map(|(_, l)| l.clone()).collect();
+        let outer: Vec<Loop> = chosen
+            .iter()
+            .enumerate()
+            .filter(|&(i, l)| !chosen.iter().enumerate().any(|(j, m)| j != i && m.contains(l.probe_point()) && !l.contains(m.probe_point())))
+            .map(|(_, l)| l.clone())
+            .collect();
         let region = Shape::new(outer);
         let r = tool.cutter.radius();
         let past = self.overlap * tool.cutter.diameter;
