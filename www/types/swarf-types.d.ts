@@ -464,7 +464,12 @@ overlap: number,
 /**
  * Default value: zigzag.
  */
-pattern: FacePattern, };
+pattern: FacePattern, 
+/**
+ * A drawing's loops whose insides to face, as `swarf drawing` numbers them (the holes
+ * inside them faced over); empty: the whole stock. Default value: empty.
+ */
+loops: Array<number>, };
 
 /**
  * How a level is cleared.
