@@ -367,10 +367,8 @@ pub fn find_holes(job: JsValue, bytes: &[u8], name: &str) -> Result<JsValue, JsE
 #[wasm_bindgen(js_name = findBosses)]
 pub fn find_bosses(job: JsValue, bytes: &[u8], name: &str) -> Result<JsValue, JsError> {
     let job = job_from_js(job)?;
-    match Workpiece::read(bytes, Some(name), &job.tolerances).map_err(js_error)? {
-        Workpiece::Mesh(part) => to_js(&job.bosses(part).map_err(js_error)?),
-        Workpiece::Drawing(_) => Err(JsError::new("a drawing has no bosses: external threads are milled round a 3D part's round studs")),
-    }
+    let part = mesh_only(bytes, name, &job, "a drawing has no bosses: external threads are milled round a 3D part's round studs")?;
+    to_js(&job.bosses(part).map_err(js_error)?)
 }
 
 /// The part's top edges a chamfer of `job` (`edges: partEdges`) finds on the part in `bytes`,
@@ -379,9 +377,15 @@ pub fn find_bosses(job: JsValue, bytes: &[u8], name: &str) -> Result<JsValue, Js
 #[wasm_bindgen(js_name = findEdges)]
 pub fn find_edges(job: JsValue, bytes: &[u8], name: &str) -> Result<JsValue, JsError> {
     let job = job_from_js(job)?;
+    let part = mesh_only(bytes, name, &job, "a drawing's edges are its loops: chamfer them with edges: loops")?;
+    to_js(&job.top_edges(part).map_err(js_error)?.iter().map(view::EdgeView::of).collect::<Vec<_>>())
+}
+
+/// The part in `bytes` as a mesh; a drawing is refused with `why`.
+fn mesh_only(bytes: &[u8], name: &str, job: &Job, why: &str) -> Result<crate::mesh::Mesh, JsError> {
     match Workpiece::read(bytes, Some(name), &job.tolerances).map_err(js_error)? {
-        Workpiece::Mesh(part) => to_js(&job.top_edges(part).map_err(js_error)?.iter().map(view::EdgeView::of).collect::<Vec<_>>()),
-        Workpiece::Drawing(_) => Err(JsError::new("a drawing's edges are its loops: chamfer them with edges: loops")),
+        Workpiece::Mesh(part) => Ok(part),
+        Workpiece::Drawing(_) => Err(JsError::new(why)),
     }
 }
 

@@ -156,9 +156,9 @@ export async function findHoles() {
 }
 
 export function showHoles() {
-  const op = selectedOp(), mode = modeOf(op) ?? 'holes', m = MODES[mode];
+  const op = selectedOp(), picking = modeOf(op), mode = picking ?? 'holes', m = MODES[mode];
   const items = found(op);
-  const picked = new Set(modeOf(op) ? (op[m.field] ?? []) : []);
+  const picked = new Set(picking ? (op[m.field] ?? []) : []);
   $('find-holes').textContent = `Find the ${m.many}`;
   $('hole-preset').hidden = mode !== 'holes';
   $('hole-list').setAttribute('aria-label', `${m.many} found`);
@@ -173,7 +173,7 @@ export function showHoles() {
     else li.textContent = `hole ${index}: φ${mm(h.diameter)} at (${mm(h.center[0])}, ${mm(h.center[1])}), ${mm(h.top - h.bottom)} mm deep, ${h.through ? 'through' : `blind (${h.bottomShape} bottom)`}`;
     return li;
   }));
-  state.viewer?.setHoles(modeOf(op) && mode !== 'edges' ? items : [], picked);
+  state.viewer?.setHoles(picking && mode !== 'edges' ? items : [], picked);
   state.viewer?.setEdges(mode === 'edges' ? items : [], picked);
 }
 

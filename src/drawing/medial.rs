@@ -254,14 +254,14 @@ fn joined(edges: Vec<(usize, usize, Branch)>) -> Vec<Branch> {
             continue;
         }
         used[start] = true;
-        let (mut begin, mut end, first) = &edges[start];
+        let (begin, mut end, first) = &edges[start];
         let mut chain = first.clone();
         // On from its end, then (reversed) on from its start: a chain begun mid-way along a
         // run of edges takes the whole run.
         for forward in [true, false] {
             if !forward {
                 chain = chain.reversed();
-                std::mem::swap(&mut begin, &mut end);
+                end = *begin;
             }
             while let Some(&k) = at.get(&end).and_then(|list| list.iter().find(|&&k| !used[k])) {
                 used[k] = true;

@@ -74,7 +74,7 @@ impl Operate for Engrave {
         let tool = ctx.tool(&self.name, self.tool)?.clone();
         // How far from the line the tool cuts at the top: its radius, or a V-bit's cone where
         // it crosses the top at the depth (a single-line font's stroke width).
-        let reach = if tool.cutter.is_cone() { (tool.cutter.tip_radius() + self.depth * (tool.cutter.point_angle().to_radians() / 2.0).tan()).min(tool.cutter.radius()) } else { tool.cutter.radius() };
+        let reach = if tool.cutter.is_cone() { tool.cutter.profile().reach_squared(self.depth).sqrt().min(tool.cutter.radius()) } else { tool.cutter.radius() };
         let (drawing, thickness) = sheet::sheet(ctx, &self.name)?;
         if self.depth > thickness + sheet::BREAKTHROUGH {
             return Err(Error::operation(&self.name, format!("the depth {} mm is deeper than the {thickness} mm sheet", self.depth)));
