@@ -29,7 +29,7 @@
 //!   terrain the tool crosses a ridge at the ridge, not at the stock's top).
 
 use super::context::SurfaceRequest;
-use super::rings::{clear_rings, rings, Clearing, RingSetup};
+use super::rings::{clear_rings, rings, way_out, Clearing, RingSetup};
 use super::settings::{Direction, EntryKind, LoadControl, Order, PocketPattern, Roughing, Steps};
 use super::{positive, sheet, Context, FieldError};
 use crate::cutter::Profile;
@@ -380,19 +380,19 @@ impl LevelRoughing {
         Ok(RegionWork { request, levels })
     }
 
-    /// In the air beside a region at level `z`: a step out from a boundary point, away from the
-    /// stock's middle, where the cutter touches nothing the earlier operations left (beside the
+    /// In the air beside a region at level `z`: a step out from a boundary point, the way out
+    /// ([`way_out`]) asked, where the cutter touches nothing the earlier operations left (beside the
     /// stock, or where another operation cleared it), and the way in from there to the point
     /// stays clear of the part all along (a region cut short by a mask, octree roughing's
     /// octants, can end beside a thin wall of the part that the step out would cross).
-    pub fn air<'a>(&'a self, ctx: &'a Context, cl: &'a ClSurface, r: f64, z: f64) -> impl Fn(DVec2) -> Option<DVec2> + 'a {
+    pub fn air<'a>(&'a self, ctx: &'a Context, cl: &'a ClSurface, r: f64, z: f64) -> impl Fn(DVec2, usize) -> Option<DVec2> + 'a {
         let stock_now = ctx.sim.stock();
         let middle = ctx.stock.center().truncate();
         let flat = Profile::new(r, 0.0);
         let (step, height) = (self.step(r), ctx.tolerances.height);
         let floor = z - self.roughing.allowance;
-        move |p: DVec2| {
-            let q = p + (p - middle).normalize_or_zero() * step;
+        move |p: DVec2, k: usize| {
+            let q = p + way_out(k, p, middle) * step;
             (stock_now.touch(q, &flat, true) <= z + height && cl.height(q) <= floor && cl.stays_below(q, p, floor + height)).then_some(q)
         }
     }
@@ -927,12 +927,19 @@ mod tests {
             crate::geom::Aabb { min: (m - DVec2::splat(1.0)).extend(-1.0), max: (m + DVec2::splat(1.0)).extend(20.0) }
         };
         ctx.stock = middle_behind(p);
-        assert_eq!(roughing.air(&ctx, &cl, r, z)(p), None, "no way in from the air across the pin");
+        {
+            let air = roughing.air(&ctx, &cl, r, z);
+            assert_eq!(air(p, 0), None, "no way in from the air across the pin");
+            // Another way out may be taken (the compass directions after it), never across the pin.
+            for k in 1..crate::machining::rings::WAYS_OUT {
+                assert!(air(p, k).is_none_or(|a| cl.stays_below(a, p, z)), "way {k} crosses the pin: {:?}", air(p, k));
+            }
+        }
         // Farther from the pin, with nothing in the way, the way in stays.
         let far = DVec2::new(-0.5 * step, 9.0);
         ctx.stock = middle_behind(far);
         let air = roughing.air(&ctx, &cl, r, z);
-        assert!(air(far).is_some_and(|a| a.distance(far + (q - p)) < 1e-9), "{:?}", air(far));
+        assert!(air(far, 0).is_some_and(|a| a.distance(far + (q - p)) < 1e-9), "{:?}", air(far, 0));
     }
 
     fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Shape {

@@ -139,10 +139,26 @@ pub fn clear_down(region: &Shape, first: f64, clearing: &Clearing, depth: f64, s
     Some(out)
 }
 
-/// For a point of a region's outer boundary, a point beside it where the tool at the depth
-/// being cut touches no material (the air beside the stock), if there is one: such regions are
+/// For a point of a region's outer boundary and a way out of it ([`way_out`]'s `k`), a point
+/// beside it that way where the tool at the depth being cut touches no material (the air
+/// beside the stock, or ground an earlier stage cleared), if there is one: such regions are
 /// entered there and cleared from there inwards instead of from a helix.
-pub type Air<'a> = &'a dyn Fn(DVec2) -> Option<DVec2>;
+pub type Air<'a> = &'a dyn Fn(DVec2, usize) -> Option<DVec2>;
+
+/// The ways out of a region tried for a way in from the air, in order: away from the stock's
+/// middle (the air beside the stock), then the eight compass directions (issue 38: a rest
+/// region in a gully opens onto ground the larger tool cleared on either side, not towards the
+/// stock's edge; its φ3 went in by 188 helices on ocl_mount_rush).
+pub const WAYS_OUT: usize = 9;
+
+/// The unit direction of way out `k` (below [`WAYS_OUT`]) from `p` of a region in a stock
+/// whose middle is `middle`.
+pub fn way_out(k: usize, p: DVec2, middle: DVec2) -> DVec2 {
+    match k {
+        0 => (p - middle).normalize_or_zero(),
+        _ => DVec2::from_angle((k - 1) as f64 * std::f64::consts::FRAC_PI_4),
+    }
+}
 
 /// Clears from `z_prev` (where the material starts) down to `z` the region whose tool-centre
 /// rings are `levels` (the region itself first, then one step further in each), inner rings
@@ -166,7 +182,9 @@ pub fn clear_rings(levels: &[Shape], clearing: &Clearing, z_prev: f64, z: f64, s
     match clearing.pattern {
         PocketPattern::Offset => {
             for node in &forest {
-                match air.and_then(|air| node.shape.loops.iter().filter(|l| l.is_ccw()).flat_map(|l| l.vertices.iter().map(|v| v.p)).find_map(|p| air(p).map(|q| (p, q)))) {
+                // Every point of the boundary tried one way out before the next way.
+                let points = || node.shape.loops.iter().filter(|l| l.is_ccw()).flat_map(|l| l.vertices.iter().map(|v| v.p));
+                match air.and_then(|air| (0..WAYS_OUT).find_map(|k| points().find_map(|p| air(p, k).map(|q| (p, q))))) {
                     Some((start, outside)) => c.cut_outside_in(node, start, outside, &orient),
                     None => c.cut_tree(node, &orient),
                 }
