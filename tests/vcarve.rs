@@ -35,6 +35,17 @@ fn carving(op: VCarve) -> (Job, swarf::drawing::Drawing) {
     (job, drawing)
 }
 
+/// LinuxCNC's rs274 reads `gcode`, the job's program, and GRBL 1.1's parser the same job
+/// posted for GRBL (where grblcheck is built).
+fn controllers_read(job: &Job, drawing: swarf::drawing::Drawing, gcode: &str) {
+    common::rs274(gcode, &job.tools);
+    let mut grbl = job.clone();
+    grbl.post.dialect = Dialect::Grbl;
+    if let Some(said) = common::grblcheck(&job::run(&grbl, drawing, &mut Progress::none()).unwrap().gcode) {
+        said.unwrap();
+    }
+}
+
 /// The regions as the job places them, to measure the stock against.
 fn placed(job: &Job, drawing: &swarf::drawing::Drawing) -> Shape {
     let mut d = drawing.clone();
@@ -87,12 +98,7 @@ fn letters_are_carved_to_the_distance_from_their_outline() {
         }
     }
     assert!(inside > 50_000 && outside > 100_000, "{inside} cells inside, {outside} outside");
-    common::rs274(&out.gcode, &job.tools);
-    let mut grbl = job.clone();
-    grbl.post.dialect = Dialect::Grbl;
-    if let Some(said) = common::grblcheck(&job::run(&grbl, drawing, &mut Progress::none()).unwrap().gcode) {
-        said.unwrap();
-    }
+    controllers_read(&job, drawing, &out.gcode);
 }
 
 #[test]
@@ -171,12 +177,7 @@ fn open_chains_are_engraved_by_the_v_bit_at_their_depth() {
         }
     }
     assert!(inside > 10_000 && outside > 100_000, "{inside} cells in the groove, {outside} beside");
-    common::rs274(&out.gcode, &job.tools);
-    let mut grbl = job.clone();
-    grbl.post.dialect = Dialect::Grbl;
-    if let Some(said) = common::grblcheck(&job::run(&grbl, drawing, &mut Progress::none()).unwrap().gcode) {
-        said.unwrap();
-    }
+    controllers_read(&job, drawing, &out.gcode);
 }
 
 /// The shared drawings carve clean (their loops as regions, a 60° V-bit flat at 2 mm).
