@@ -385,3 +385,41 @@ fn a_region_is_never_squared_off_past_a_node_its_keep_mask_refuses() {
         assert!(v.p.x + v.p.y <= 7.0 + 1e-9, "{} lies past the chamfer", v.p);
     }
 }
+
+/// The points of a region's loops, in order.
+fn points(shape: &Shape) -> Vec<Vec<DVec2>> {
+    shape.loops.iter().map(|l| l.vertices.iter().map(|v| v.p).collect()).collect()
+}
+
+#[test]
+fn a_crossing_kept_from_one_level_gives_every_other_level_the_region_a_fresh_map_gives() {
+    // Walls off the grid's lines (a wall's foot is the same crossing at every level below its
+    // top) and a terrain (every level its own crossings), on a flat end and a ball.
+    let mut walls = plate(30.0);
+    walls.extend(boxed(DVec3::new(-10.13, -7.71, 0.0), DVec3::new(9.37, 11.09, 8.0)));
+    walls.extend(boxed(DVec3::new(-20.3, -20.6, 0.0), DVec3::new(-14.9, 14.2, 3.3)));
+    let tol = Tolerances::DEFAULT;
+    let grid = Grid::covering(DVec2::splat(-25.0), DVec2::splat(25.0), 0.5);
+    let levels = [7.5, 0.5, 5.25, 2.0, 3.1, 6.0, 1.2];
+    for (part, cutter) in [(mesh(walls), Cutter::flat(6.0)), (spiky_terrain(7, 20.0, 4.0, 6.0), Cutter::ball(6.0))] {
+        let cl = surface(&part, grid, -1.0, &cutter);
+        let kept = LevelMap::of_part(&cl, &part, &tol);
+        let mut taken = Vec::new();
+        for &level in &levels {
+            let fresh = LevelMap::of_part(&cl, &part, &tol);
+            let expected = fresh.region(&cl, level, &|_, _| true, &tol);
+            let region = kept.region(&cl, level, &|_, _| true, &tol);
+            assert_eq!(points(&region), points(&expected), "level {level}");
+            assert!(!expected.loops.is_empty(), "level {level} has a region");
+            taken.push((kept.profiles_taken(), fresh.profiles_taken()));
+        }
+        if cutter.profile().is_ball() {
+            continue;
+        }
+        // Below the walls' tops the crossings at their feet were all taken by the first level
+        // under them: the levels after it take only the few a level's own crossings add.
+        let fresh_total: usize = taken.iter().map(|t| t.1).sum();
+        let kept_total = taken.last().unwrap().0;
+        assert!(kept_total * 3 < fresh_total, "the kept map took {kept_total} profiles, fresh maps {fresh_total}");
+    }
+}

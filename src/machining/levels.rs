@@ -50,6 +50,10 @@ use std::cell::RefCell;
 use std::rc::Rc;
 use std::sync::Arc;
 
+/// Which nodes of a level's grid its region may keep, by the level's height (`None`: all), as
+/// [`LevelRoughing::levels_within`] asks each level on whichever core is free.
+pub type Within<'a> = dyn Fn(f64, Grid) -> Option<Vec<bool>> + Sync + 'a;
+
 /// Nodes of equal height covering at least this many times the cutter's area make a flat (a level): more than the plateau a flat end leaves over a peak (its own disk).
 const FLAT_AREA: f64 = 2.0;
 /// Heights within this are one flat (mm).
@@ -251,7 +255,7 @@ impl LevelRoughing {
         // Centres whose cutter reaches at least half a step into material (the outermost ring
         // then cuts that much of the stock's edge, the next a full step).
         let r = ctx.tool(&self.name, self.tool)?.cutter.radius();
-        let levels = self.levels_within(ctx, progress, self.reach(r), true, &mut |_, _| None)?;
+        let levels = self.levels_within(ctx, progress, self.reach(r), true, &|_, _| None)?;
         if levels.is_none() {
             ctx.note(&self.name, "no level has material left to cut");
         }
@@ -307,7 +311,7 @@ impl LevelRoughing {
     ///
     /// With `bands`, a flat's level is cut only where the level below cannot go (see
     /// [`LevelRoughing`]); without (seed 000's layers, each its own octants), over its whole region.
-    pub fn levels_within(&self, ctx: &mut Context, progress: &mut Progress, reach: f64, bands: bool, within: &mut dyn FnMut(f64, Grid) -> Option<Vec<bool>>) -> Result<Option<Levels>> {
+    pub fn levels_within(&self, ctx: &mut Context, progress: &mut Progress, reach: f64, bands: bool, within: &Within) -> Result<Option<Levels>> {
         if !progress.stage("CL z-map", 0.0, 0.3) {
             return Err(Error::Cancelled);
         }
@@ -360,11 +364,12 @@ impl LevelRoughing {
 
     /// What each level's region is made of (see [`LevelRoughing::levels_within`]): the levels,
     /// and per level the nodes its region keeps, on the stock as it is now.
-    fn level_inputs<'a>(&'a self, ctx: &'a Context, tool: &Tool, cl: &'a ClSurface, reach: f64, bands: bool, within: &mut dyn FnMut(f64, Grid) -> Option<Vec<bool>>) -> LevelInputs<'a> {
+    fn level_inputs<'a>(&'a self, ctx: &'a Context, tool: &Tool, cl: &'a ClSurface, reach: f64, bands: bool, within: &Within) -> LevelInputs<'a> {
         let r = tool.cutter.radius();
         let grid = cl.field.grid();
         let heights = self.levels_and_kinds(ctx, cl, r);
-        let limits = heights.iter().map(|&(z, _)| within(z, grid)).collect();
+        // Each level's mask on whichever core is free (a rest stage's takes distance maps).
+        let limits = crate::parallel::map_heavy(heights.len(), |k| within(heights[k].0, grid));
         LevelInputs { zl: self, cl, stock: ctx.sim.stock(), grid, r, reach, bands, heights, limits }
     }
 
@@ -375,7 +380,7 @@ impl LevelRoughing {
         let (tool, cl) = self.surface(ctx, progress)?;
         let request = self.request(ctx)?;
         let r = tool.cutter.radius();
-        let inputs = self.level_inputs(ctx, &tool, &cl, self.reach(r), true, &mut |_, _| None);
+        let inputs = self.level_inputs(ctx, &tool, &cl, self.reach(r), true, &|_, _| None);
         let levels = inputs.keeps().into_iter().enumerate().map(|(k, keep)| (inputs.level(k), keep)).collect();
         Ok(RegionWork { request, levels })
     }

@@ -396,54 +396,75 @@ pub fn distance_to(inside: &[bool], nx: usize, ny: usize, spacing: f64) -> Vec<f
     let far = 1e20;
     let mut d2: Vec<f64> = inside.iter().map(|&b| if b { 0.0 } else { far }).collect();
     let mut line = Vec::new();
-    let mut out = Vec::new();
+    let mut work = Envelope::default();
+    // A line with no node inside (nor near one, in the second pass) stays far: most of them
+    // where what is looked for is sparse, such as the material a rest tool alone reaches.
     for i in 0..nx {
+        if !(0..ny).any(|j| inside[j * nx + i]) {
+            continue;
+        }
         line.clear();
         line.extend((0..ny).map(|j| d2[j * nx + i]));
-        envelope(&line, &mut out);
+        work.run(&line);
         for j in 0..ny {
-            d2[j * nx + i] = out[j];
+            d2[j * nx + i] = work.out[j];
         }
     }
     for j in 0..ny {
-        line.clear();
-        line.extend_from_slice(&d2[j * nx..(j + 1) * nx]);
-        envelope(&line, &mut out);
-        d2[j * nx..(j + 1) * nx].copy_from_slice(&out);
+        let row = &mut d2[j * nx..(j + 1) * nx];
+        if row.iter().all(|&v| v >= far) {
+            continue;
+        }
+        work.run(row);
+        row.copy_from_slice(&work.out);
     }
     d2.into_iter().map(|v| if v >= far { f64::INFINITY } else { v.sqrt() * spacing }).collect()
 }
 
-/// The squared distance transform along one line: `out[q] = min_p (q − p)² + f[p]`.
-fn envelope(f: &[f64], out: &mut Vec<f64>) {
-    let n = f.len();
-    out.clear();
-    out.resize(n, 0.0);
-    let mut v = vec![0usize; n];
-    let mut z = vec![0.0f64; n + 1];
-    let mut k = 0;
-    z[0] = f64::NEG_INFINITY;
-    z[1] = f64::INFINITY;
-    let s = |q: usize, p: usize| ((f[q] + (q * q) as f64) - (f[p] + (p * p) as f64)) / (2.0 * (q as f64 - p as f64));
-    for q in 1..n {
-        let mut x = s(q, v[k]);
-        // z[0] is −∞, so the loop stops at k = 0 at the latest.
-        while x <= z[k] {
-            k -= 1;
-            x = s(q, v[k]);
-        }
-        k += 1;
-        v[k] = q;
-        z[k] = x;
-        z[k + 1] = f64::INFINITY;
-    }
-    k = 0;
-    for (q, o) in out.iter_mut().enumerate() {
-        while z[k + 1] < q as f64 {
+/// The squared distance transform along one line, `out[q] = min_p (q − p)² + f[p]`, with its
+/// working space kept from line to line.
+#[derive(Default)]
+struct Envelope {
+    out: Vec<f64>,
+    /// The parabolas of the lower envelope, and the boundaries between them.
+    v: Vec<usize>,
+    z: Vec<f64>,
+}
+
+impl Envelope {
+    fn run(&mut self, f: &[f64]) {
+        let n = f.len();
+        let (out, v, z) = (&mut self.out, &mut self.v, &mut self.z);
+        out.clear();
+        out.resize(n, 0.0);
+        v.clear();
+        v.resize(n, 0);
+        z.clear();
+        z.resize(n + 1, 0.0);
+        let mut k = 0;
+        z[0] = f64::NEG_INFINITY;
+        z[1] = f64::INFINITY;
+        let s = |q: usize, p: usize| ((f[q] + (q * q) as f64) - (f[p] + (p * p) as f64)) / (2.0 * (q as f64 - p as f64));
+        for q in 1..n {
+            let mut x = s(q, v[k]);
+            // z[0] is −∞, so the loop stops at k = 0 at the latest.
+            while x <= z[k] {
+                k -= 1;
+                x = s(q, v[k]);
+            }
             k += 1;
+            v[k] = q;
+            z[k] = x;
+            z[k + 1] = f64::INFINITY;
         }
-        let p = v[k];
-        *o = (q as f64 - p as f64).powi(2) + f[p];
+        k = 0;
+        for (q, o) in out.iter_mut().enumerate() {
+            while z[k + 1] < q as f64 {
+                k += 1;
+            }
+            let p = v[k];
+            *o = (q as f64 - p as f64).powi(2) + f[p];
+        }
     }
 }
 

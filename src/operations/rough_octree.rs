@@ -208,12 +208,12 @@ impl RoughOctree {
         let zl = self.zlevel(tool, true);
         let (stock, tol) = (ctx.sim.stock().heights(), ctx.tolerances.gouge);
         let r = tool.cutter.radius();
-        let mut centres: Option<Vec<Vec<bool>>> = None;
-        let mut within = |z: f64, grid: crate::zmap::Grid| {
-            let all = centres.get_or_insert_with(|| tree.centres(grid, r, &stock, tol));
+        let centres: std::sync::OnceLock<Vec<Vec<bool>>> = std::sync::OnceLock::new();
+        let within = |z: f64, grid: crate::zmap::Grid| {
+            let all = centres.get_or_init(|| tree.centres(grid, r, &stock, tol));
             Some(tree.layer_at(z, FLOAT_SLACK).map_or_else(|| vec![false; grid.nodes()], |k| all[k].clone()))
         };
-        let Some(levels) = zl.levels_within(ctx, progress, r, false, &mut within)? else { return Ok(None) };
+        let Some(levels) = zl.levels_within(ctx, progress, r, false, &within)? else { return Ok(None) };
         let path = zl.clear(ctx, levels, progress)?;
         let cut = advance(ctx, &path, progress)?;
         Ok(Some((path, cut)))
@@ -400,7 +400,7 @@ impl RoughOctree {
         // Every centre whose cutter touches what is left: rest material reachable only by the
         // cutter's side (a round tool's corner left by a bigger one) is cut from its top down
         // like the rest, never met by the side of a deeper pass.
-        if let Some(levels) = zl.levels_within(ctx, progress, tool.cutter.radius(), false, &mut |_, _| None)? {
+        if let Some(levels) = zl.levels_within(ctx, progress, tool.cutter.radius(), false, &|_, _| None)? {
             let path = zl.clear(ctx, levels, progress)?;
             let cut = advance(ctx, &path, progress)?;
             paths.push(path);
@@ -470,12 +470,12 @@ impl RoughOctree {
         let radius = small.cutter.radius();
         // Centres within the small tool's radius (and a cell, for the grids' rounding) of
         // material only it reaches.
-        let mut within = |z: f64, grid: crate::zmap::Grid| {
+        let within = |z: f64, grid: crate::zmap::Grid| {
             let near = distance_to(&reach.missed(z), sg.nx, sg.ny, sg.spacing);
             Some((0..grid.nodes()).map(|n| at(sg, &near, grid.node(n % grid.nx, n / grid.nx)) <= radius + sg.spacing).collect())
         };
         let zl = self.zlevel(small, true);
-        if let Some(levels) = zl.levels_within(ctx, progress, radius, false, &mut within)? {
+        if let Some(levels) = zl.levels_within(ctx, progress, radius, false, &within)? {
             let path = zl.clear(ctx, levels, progress)?;
             let cut = advance(ctx, &path, progress)?;
             paths.push(path);

@@ -12,7 +12,7 @@
 //!    mask refuses (outside the stock, no
 //!    material near); the grid's border is outside. The crossing on an edge from an inside
 //!    node is where the exact surface along the edge first rises above the level (found on the
-//!    edge's exact profile, then checked at the point itself);
+//!    edge's exact profile, kept for the map's other levels, then checked at the point itself);
 //! 3. every piece between two crossings is checked along its length and, where the surface
 //!    rises above the level (a peak inside the cell), bent in towards the cell's inside node;
 //! 4. loops are simplified within the chordal tolerance where the chord itself clears, and the
@@ -26,7 +26,8 @@
 //! 0.003 mm for a φ6 ball on a 0.25 mm grid).
 
 use std::collections::HashMap;
-use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex};
 
 use crate::drawing::{Loop, Shape};
 use crate::geom::{tolerance::BOUND_SLACK, DVec2, Tolerances};
@@ -56,7 +57,18 @@ pub struct LevelMap {
     /// The exact highest (with the interpolation allowance) along edges a level asked about,
     /// by node × 2 + direction (0 right, 1 up).
     exact: Mutex<HashMap<usize, f64>>,
+    /// The exact profile along the grid edges levels found a crossing on, from the inside node
+    /// to the outside one, as far as the first point above the level that asked
+    /// ([`ClSurface::along_until`]): a wall's foot is the same crossing at every level below its
+    /// top, and finding it takes a search down to [`crate::zmap::surface::MIN_PIECE`].
+    profiles: Profiles,
+    /// How many edge profiles levels have had to take (not found kept).
+    taken: AtomicUsize,
 }
+
+/// Exact profiles along grid edges, by the edge's two nodes (from, to): whether it is the whole
+/// profile (no point above the level that took it), and its points.
+type Profiles = Mutex<HashMap<((isize, isize), (isize, isize)), (bool, Arc<[(f64, f64)]>)>>;
 
 impl LevelMap {
     /// The map of `cl` from `wide`, the widened cutter's heights at every node of its grid.
@@ -112,7 +124,13 @@ impl LevelMap {
     /// joined); `None` when their number is not the grid's.
     pub fn from_rows(cl: &ClSurface, right: Vec<f64>, up: Vec<f64>) -> Option<LevelMap> {
         let n = cl.field.nx * cl.field.ny;
-        (right.len() == n && up.len() == n).then(|| LevelMap { right, up, exact: Mutex::new(HashMap::new()) })
+        (right.len() == n && up.len() == n).then(|| LevelMap { right, up, exact: Mutex::new(HashMap::new()), profiles: Mutex::new(HashMap::new()), taken: AtomicUsize::new(0) })
+    }
+
+    /// How many exact profiles along grid edges the regions asked of this map have taken: a
+    /// crossing's profile is kept and serves every level it reaches above.
+    pub fn profiles_taken(&self) -> usize {
+        self.taken.load(Ordering::Relaxed)
     }
 
     /// The bounds along the edges to the right of every node, then those along the edges up
@@ -179,7 +197,7 @@ impl LevelMap {
         // curves, a waterline's path, stay where the crossings put them). A node beside a
         // ridge along one of its edges has a neighbour out already (the ridge's higher end).
         if cl.profile().is_ball() {
-            return level_region(cl, &inside, &refused, level, tol);
+            return level_region(cl, &inside, &refused, level, self, tol);
         }
         let margin = back_off(cl, tol);
         let node = |i: usize, j: usize| f.origin + DVec2::new(i as f64, j as f64) * f.spacing;
@@ -196,11 +214,11 @@ impl LevelMap {
                 inside[c] = false;
             }
         }
-        level_region(cl, &inside, &refused, level, tol)
+        level_region(cl, &inside, &refused, level, self, tol)
     }
 }
 
-fn level_region(cl: &ClSurface, nodes_inside: &[bool], refused: &[bool], level: f64, tol: &Tolerances) -> Shape {
+fn level_region(cl: &ClSurface, nodes_inside: &[bool], refused: &[bool], level: f64, map: &LevelMap, tol: &Tolerances) -> Shape {
     let f = &cl.field;
     let (nx, ny) = (f.nx, f.ny);
     let inside = |i: isize, j: isize| i >= 0 && j >= 0 && (i as usize) < nx && (j as usize) < ny && nodes_inside[j as usize * nx + i as usize];
@@ -209,10 +227,21 @@ fn level_region(cl: &ClSurface, nodes_inside: &[bool], refused: &[bool], level: 
     let margin = back_off(cl, tol);
     // The crossing on the edge from inside node a to outside node b: where the exact profile
     // along the edge first rises above the level, checked at the point (and pulled back towards
-    // a until safe).
+    // a until safe). The profile is kept for other levels: up to its first point above a level
+    // it is the same for every level, so a kept one that reaches above this level serves it
+    // (a wall's foot is the same crossing at every level below its top), and so does a whole
+    // one (an edge out past the grid's border).
     let crossing = |a: (isize, isize), b: (isize, isize)| -> DVec2 {
         let (pa, pb) = (node(a.0, a.1), node(b.0, b.1));
-        let profile = cl.along_until(pa, pb, level);
+        let known = map.profiles.lock().expect("the level map's profiles").get(&(a, b)).cloned();
+        let (_, profile) = known.filter(|(whole, p)| *whole || p.iter().any(|&(_, z)| z > level)).unwrap_or_else(|| {
+            let profile: Arc<[(f64, f64)]> = cl.along_until(pa, pb, level).into();
+            // Nothing above the level: the whole profile, which serves every level.
+            let kept = (profile.iter().all(|&(_, z)| z <= level), profile);
+            map.taken.fetch_add(1, Ordering::Relaxed);
+            map.profiles.lock().expect("the level map's profiles").insert((a, b), kept.clone());
+            kept
+        });
         let mut t = 1.0;
         for w in profile.windows(2) {
             let ((t0, z0), (t1, z1)) = (w[0], w[1]);
