@@ -48,7 +48,7 @@ use crate::zmap::surface::ClSurface;
 use crate::zmap::{ClBuilder, Grid, HeightField};
 use std::cell::RefCell;
 use std::rc::Rc;
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 /// Which nodes of a level's grid its region may keep, by the level's height (`None`: all), as
 /// [`LevelRoughing::levels_within`] asks each level on whichever core is free.
@@ -370,7 +370,8 @@ impl LevelRoughing {
         let heights = self.levels_and_kinds(ctx, cl, r);
         // Each level's mask on whichever core is free (a rest stage's takes distance maps).
         let limits = crate::parallel::map_heavy(heights.len(), |k| within(heights[k].0, grid));
-        LevelInputs { zl: self, cl, stock: ctx.sim.stock(), grid, r, reach, bands, heights, limits }
+        let tops = (0..grid.nodes()).map(|_| OnceLock::new()).collect();
+        LevelInputs { zl: self, cl, stock: ctx.sim.stock(), grid, r, reach, bands, heights, limits, tops }
     }
 
     /// The regions [`LevelRoughing::levels_to_cut`] would make, as work a pool can share out
@@ -752,6 +753,8 @@ struct LevelInputs<'a> {
     heights: Vec<(f64, bool)>,
     /// Per level, the nodes `within` limits it to, where it does.
     limits: Vec<Option<Vec<bool>>>,
+    /// Per node, the stock's highest around it, once a level asked ([`material_near`]).
+    tops: Vec<OnceLock<f64>>,
 }
 
 impl LevelInputs<'_> {
@@ -811,7 +814,7 @@ impl LevelInputs<'_> {
             let d = crate::octree::distance_to(&safe, grid.nx, grid.ny, grid.spacing);
             d.into_iter().map(|d| d <= r - 0.5 * grid.spacing).collect::<Vec<bool>>()
         });
-        let [mut keep, near] = material_near(self.stock, grid, z, [self.reach, touching], removable.as_deref());
+        let [mut keep, near] = material_near(self.stock, grid, z, [self.reach, touching], removable.as_deref(), &self.tops);
         if let Some(limit) = &self.limits[k] {
             keep.iter_mut().zip(limit).for_each(|(k, &l)| *k &= l);
         }
@@ -855,18 +858,21 @@ pub fn unpack(bytes: &[u8], count: usize) -> Vec<bool> {
 /// Where `counts` is given, a node's material is the highest of the stock's cells around it
 /// (within half a diagonal of the grid), so no cell between nodes goes unseen; else the cell
 /// nearest it.
-pub fn material_near<const N: usize>(stock: &DexelStock, grid: Grid, z: f64, reach: [f64; N], counts: Option<&[bool]>) -> [Vec<bool>; N] {
+///
+/// `tops` holds per node the highest of the cells around it once a level has asked (the same
+/// for every level of one stock): `material_near` fills it as it goes.
+pub fn material_near<const N: usize>(stock: &DexelStock, grid: Grid, z: f64, reach: [f64; N], counts: Option<&[bool]>, tops: &[OnceLock<f64>]) -> [Vec<bool>; N] {
     let mut above = grid.filled(0.0);
     let around = crate::cutter::Profile::new(grid.spacing * std::f64::consts::FRAC_1_SQRT_2, 0.0);
-    let top = |p| if counts.is_some() { Some(stock.touch(p, &around, false)) } else { stock.top_near(p) };
+    let top = |i: usize, j: usize| if counts.is_some() { Some(*tops[j * grid.nx + i].get_or_init(|| stock.touch(grid.node(i, j), &around, false))) } else { stock.top_near(grid.node(i, j)) };
     for j in 0..grid.ny {
         for i in 0..grid.nx {
-            if counts.is_none_or(|c| c[j * grid.nx + i]) && top(grid.node(i, j)).is_some_and(|top| top > z + HAIR) {
+            if counts.is_none_or(|c| c[j * grid.nx + i]) && top(i, j).is_some_and(|top| top > z + HAIR) {
                 above.z[j * grid.nx + i] = 1.0;
             }
         }
     }
-    reach.map(|reach| match Region::silhouette(&above, 0.5, reach) {
+    Region::silhouettes(&above, 0.5, reach).map(|region| match region {
         Region::Mask(m) => m.z.iter().map(|&v| v >= 0.5).collect(),
         Region::Rect { .. } => vec![true; grid.nodes()],
     })
