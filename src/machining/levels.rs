@@ -811,7 +811,7 @@ impl LevelInputs<'_> {
         // leave-stock beside the region, which every level would otherwise follow.
         let removable = (self.reach >= r).then(|| {
             let safe: Vec<bool> = self.cl.field.z.iter().map(|&h| h + zl.roughing.allowance <= z).collect();
-            let d = crate::octree::distance_to(&safe, grid.nx, grid.ny, grid.spacing);
+            let d = crate::zmap::distance::distance_to(&safe, grid.nx, grid.ny, grid.spacing);
             d.into_iter().map(|d| d <= r - 0.5 * grid.spacing).collect::<Vec<bool>>()
         });
         let [mut keep, near] = material_near(self.stock, grid, z, [self.reach, touching], removable.as_deref(), &self.tops);
@@ -823,7 +823,7 @@ impl LevelInputs<'_> {
         if flat && self.bands {
             let below = self.heights.get(k + 1).map_or(f64::NEG_INFINITY, |&(q, _)| q);
             let refused: Vec<bool> = self.cl.field.z.iter().map(|&h| h + zl.roughing.allowance > below).collect();
-            let d = crate::octree::distance_to(&refused, grid.nx, grid.ny, grid.spacing);
+            let d = crate::zmap::distance::distance_to(&refused, grid.nx, grid.ny, grid.spacing);
             keep.iter_mut().zip(d).for_each(|(k, d)| *k &= d <= FLAT_BAND * grid.spacing);
         }
         (keep, near)

@@ -50,11 +50,12 @@ use crate::machining::levels::LevelRoughing;
 use crate::machining::report::{StageOctants, StageReport, StageRole};
 use crate::machining::settings::{Order, Roughing, Steps};
 use crate::machining::{positive, too_many, Context, FieldError, Operate, Planned, Works, MAX_LEVELS};
-use crate::octree::{distance_to, Octree, Squares, Volume, GAMMA_FIRST, GAMMA_RANGE};
+use crate::octree::{Octree, Squares, Volume, GAMMA_FIRST, GAMMA_RANGE};
 use crate::progress::Progress;
 use crate::sim::program::program_moves;
 use crate::tool::Tool;
 use crate::toolpath::Toolpath;
+use crate::zmap::distance::distance_to;
 use crate::zmap::surface::ClSurface;
 use crate::zmap::HeightField;
 

@@ -17,6 +17,7 @@ pub mod cl_exact;
 pub mod cl_inverse;
 mod cone;
 pub mod contour;
+pub mod distance;
 pub mod drop;
 pub mod io;
 pub mod region;

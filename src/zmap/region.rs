@@ -26,13 +26,13 @@ impl Region {
         region
     }
 
-    /// [`Region::silhouette`] grown by each of `margins`: the covered nodes' distance map made
-    /// once (seed 000's envelope, [`crate::octree::distance_to`]) decides every node but those
-    /// whose distance lies within a hair of a margin, which the rows decide as before.
+    /// [`Region::silhouette`] grown by each of `margins`: the covered nodes' distance map
+    /// ([`crate::zmap::distance::distance_to`]), made once, decides every node but those whose
+    /// distance lies within a hair of a margin, which the rows decide as before.
     pub fn silhouettes<const N: usize>(cc: &HeightField, floor: f64, margins: [f64; N]) -> [Region; N] {
         let (nx, ny, spacing) = (cc.nx, cc.ny, cc.spacing);
         let covered: Vec<bool> = cc.z.iter().map(|&z| z > floor).collect();
-        let distance = crate::octree::distance_to(&covered, nx, ny, spacing);
+        let distance = crate::zmap::distance::distance_to(&covered, nx, ny, spacing);
         let far = usize::MAX / 4;
         let mut along = vec![far; nx * ny]; // nodes to the nearest covered node in the row
         for j in 0..ny {

@@ -1,0 +1,99 @@
+//! Distance maps over a grid's nodes: how far every node is from the nearest node of a mask
+//! (the centres a tool may take, the material only a smaller tool reaches, a part's
+//! silhouette), by the lower envelope of parabolas that seed 000's reach maps use.
+
+/// The Euclidean distance from every node of an `nx × ny` grid of `spacing` to the nearest node
+/// where `inside` holds (+∞ with none), by two passes of the lower envelope of parabolas
+/// (Felzenszwalb and Huttenlocher); what a tool reaches around the centres it may take.
+pub fn distance_to(inside: &[bool], nx: usize, ny: usize, spacing: f64) -> Vec<f64> {
+    let far = 1e20;
+    let mut d2: Vec<f64> = inside.iter().map(|&b| if b { 0.0 } else { far }).collect();
+    let mut line = Vec::new();
+    let mut work = Envelope::default();
+    // A line with no node inside (nor near one, in the second pass) stays far: most of them
+    // where what is looked for is sparse, such as the material a rest tool alone reaches.
+    for i in 0..nx {
+        if !(0..ny).any(|j| inside[j * nx + i]) {
+            continue;
+        }
+        line.clear();
+        line.extend((0..ny).map(|j| d2[j * nx + i]));
+        work.run(&line);
+        for j in 0..ny {
+            d2[j * nx + i] = work.out[j];
+        }
+    }
+    for j in 0..ny {
+        let row = &mut d2[j * nx..(j + 1) * nx];
+        if row.iter().all(|&v| v >= far) {
+            continue;
+        }
+        work.run(row);
+        row.copy_from_slice(&work.out);
+    }
+    d2.into_iter().map(|v| if v >= far { f64::INFINITY } else { v.sqrt() * spacing }).collect()
+}
+
+/// The squared distance transform along one line, `out[q] = min_p (q − p)² + f[p]`, with its
+/// working space kept from line to line.
+#[derive(Default)]
+struct Envelope {
+    out: Vec<f64>,
+    /// The parabolas of the lower envelope, and the boundaries between them.
+    v: Vec<usize>,
+    z: Vec<f64>,
+}
+
+impl Envelope {
+    fn run(&mut self, f: &[f64]) {
+        let n = f.len();
+        let (out, v, z) = (&mut self.out, &mut self.v, &mut self.z);
+        out.clear();
+        out.resize(n, 0.0);
+        v.clear();
+        v.resize(n, 0);
+        z.clear();
+        z.resize(n + 1, 0.0);
+        let mut k = 0;
+        z[0] = f64::NEG_INFINITY;
+        z[1] = f64::INFINITY;
+        let s = |q: usize, p: usize| ((f[q] + (q * q) as f64) - (f[p] + (p * p) as f64)) / (2.0 * (q as f64 - p as f64));
+        for q in 1..n {
+            let mut x = s(q, v[k]);
+            // z[0] is −∞, so the loop stops at k = 0 at the latest.
+            while x <= z[k] {
+                k -= 1;
+                x = s(q, v[k]);
+            }
+            k += 1;
+            v[k] = q;
+            z[k] = x;
+            z[k + 1] = f64::INFINITY;
+        }
+        k = 0;
+        for (q, o) in out.iter_mut().enumerate() {
+            while z[k + 1] < q as f64 {
+                k += 1;
+            }
+            let p = v[k];
+            *o = (q as f64 - p as f64).powi(2) + f[p];
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn distances_match_brute_force() {
+        let (nx, ny) = (23, 17);
+        let inside: Vec<bool> = (0..nx * ny).map(|c| (c * 7919) % 53 == 0).collect();
+        let d = distance_to(&inside, nx, ny, 0.5);
+        for c in 0..nx * ny {
+            let (i, j) = ((c % nx) as f64, (c / nx) as f64);
+            let brute = (0..nx * ny).filter(|&o| inside[o]).map(|o| (((o % nx) as f64 - i).powi(2) + ((o / nx) as f64 - j).powi(2)).sqrt() * 0.5).fold(f64::INFINITY, f64::min);
+            assert!((d[c] - brute).abs() < 1e-9, "node {c}: {} against {brute}", d[c]);
+        }
+    }
+}
