@@ -371,7 +371,7 @@ impl LevelRoughing {
         // Each level's mask on whichever core is free (a rest stage's takes distance maps).
         let limits = crate::parallel::map_heavy(heights.len(), |k| within(heights[k].0, grid));
         let tops = (0..grid.nodes()).map(|_| OnceLock::new()).collect();
-        LevelInputs { zl: self, cl, stock: ctx.sim.stock(), grid, r, reach, bands, heights, limits, tops }
+        LevelInputs { zl: self, cl, stock: ctx.sim.stock(), grid, r, reach, bands, heights, limits, tops, nearest: OnceLock::new() }
     }
 
     /// The regions [`LevelRoughing::levels_to_cut`] would make, as work a pool can share out
@@ -753,8 +753,10 @@ struct LevelInputs<'a> {
     heights: Vec<(f64, bool)>,
     /// Per level, the nodes `within` limits it to, where it does.
     limits: Vec<Option<Vec<bool>>>,
-    /// Per node, the stock's highest around it, once a level asked ([`material_near`]).
+    /// Per node, the stock's highest around it, once a level asked ([`material_above`]).
     tops: Vec<OnceLock<f64>>,
+    /// Per node, the stock's height at the cell nearest it, once a level asked.
+    nearest: OnceLock<Vec<Option<f64>>>,
 }
 
 impl LevelInputs<'_> {
@@ -773,12 +775,18 @@ impl LevelInputs<'_> {
     /// Packed ([`pack`]): every level's are held at once.
     fn keeps(&self) -> Vec<Vec<u8>> {
         let touching = self.r + self.grid.spacing * std::f64::consts::FRAC_1_SQRT_2;
-        let made = crate::parallel::map_heavy(self.heights.len(), |k| {
-            let (keep, near) = self.keep(k, touching);
-            (pack(&keep), pack(&near))
+        let count = self.heights.len();
+        let nodes = self.grid.nodes();
+        // The material above each level decides how near it a centre is: levels with no top of
+        // the stock between them (a fresh stock's whole depth) share one distance map.
+        let above = crate::parallel::map_heavy(count, |k| pack(&self.above(k)));
+        let owner: Vec<usize> = (0..count).map(|k| (0..k).find(|&j| above[j] == above[k]).unwrap_or(k)).collect();
+        let reached = crate::parallel::map_heavy(count, |k| (owner[k] == k).then(|| within_reach_of(&unpack(&above[k], nodes), self.grid, [self.reach, touching]).map(|m| pack(&m))));
+        let made = crate::parallel::map_heavy(count, |k| {
+            let [keep, near] = reached[owner[k]].as_ref().expect("every shared level's reach is made");
+            (pack(&self.keep(k, unpack(keep, nodes))), near.clone())
         });
         // From the bottom up: the nodes of the regions of the levels below.
-        let nodes = self.grid.nodes();
         let mut below = vec![false; nodes];
         let mut keeps = vec![Vec::new(); made.len()];
         for (k, (keep, near)) in made.into_iter().enumerate().rev() {
@@ -799,22 +807,33 @@ impl LevelInputs<'_> {
         keeps
     }
 
-    /// The nodes level `k`'s region keeps: within reach of material above it, within its limit,
-    /// and for a flat's level alone, where the level below cannot go; and the nodes within
-    /// `touching` of material above it.
-    fn keep(&self, k: usize, touching: f64) -> (Vec<bool>, Vec<bool>) {
+    /// The nodes of the stock's grid with material above level `k` ([`material_above`]), at
+    /// full reach (rest roughing: every centre whose cutter touches what is left) only material
+    /// the cutter can reach from a centre it may take (within its radius of one, less half a
+    /// node's spacing), not the part's walls and their leave-stock beside the region, which
+    /// every level would otherwise follow.
+    fn above(&self, k: usize) -> Vec<bool> {
         let (zl, grid, r) = (self.zl, self.grid, self.r);
-        let (z, flat) = self.heights[k];
-        // At full reach (rest roughing: every centre whose cutter touches what is left),
-        // only material the cutter can reach from a centre it may take counts (within its
-        // radius of one, less half a node's spacing), not the part's walls and their
-        // leave-stock beside the region, which every level would otherwise follow.
+        let z = self.heights[k].0;
         let removable = (self.reach >= r).then(|| {
             let safe: Vec<bool> = self.cl.field.z.iter().map(|&h| h + zl.roughing.allowance <= z).collect();
             let d = crate::zmap::distance::distance_to(&safe, grid.nx, grid.ny, grid.spacing);
             d.into_iter().map(|d| d <= r - 0.5 * grid.spacing).collect::<Vec<bool>>()
         });
-        let [mut keep, near] = material_near(self.stock, grid, z, [self.reach, touching], removable.as_deref(), &self.tops);
+        match removable {
+            Some(counts) => material_above(self.stock, grid, z, Some(&counts), &self.tops),
+            None => {
+                let nearest = self.nearest.get_or_init(|| (0..grid.nodes()).map(|n| self.stock.top_near(grid.node(n % grid.nx, n / grid.nx))).collect());
+                nearest.iter().map(|top| top.is_some_and(|top| top > z + HAIR)).collect()
+            }
+        }
+    }
+
+    /// The nodes level `k`'s region keeps of `near`, those within reach of material above it:
+    /// within its limit, and for a flat's level alone, where the level below cannot go.
+    fn keep(&self, k: usize, mut keep: Vec<bool>) -> Vec<bool> {
+        let (zl, grid) = (self.zl, self.grid);
+        let flat = self.heights[k].1;
         if let Some(limit) = &self.limits[k] {
             keep.iter_mut().zip(limit).for_each(|(k, &l)| *k &= l);
         }
@@ -826,7 +845,7 @@ impl LevelInputs<'_> {
             let d = crate::zmap::distance::distance_to(&refused, grid.nx, grid.ny, grid.spacing);
             keep.iter_mut().zip(d).for_each(|(k, d)| *k &= d <= FLAT_BAND * grid.spacing);
         }
-        (keep, near)
+        keep
     }
 }
 
@@ -853,26 +872,35 @@ pub fn unpack(bytes: &[u8], count: usize) -> Vec<bool> {
 
 /// Per node of `grid` and per distance in `reach`, whether a cutter there at level `z` is
 /// within that distance of material that stands above `z` in the stock (at the nodes `counts`
-/// accepts, where given).
+/// accepts, where given): [`within_reach_of`] the nodes [`material_above`].
+pub fn material_near<const N: usize>(stock: &DexelStock, grid: Grid, z: f64, reach: [f64; N], counts: Option<&[bool]>, tops: &[OnceLock<f64>]) -> [Vec<bool>; N] {
+    within_reach_of(&material_above(stock, grid, z, counts, tops), grid, reach)
+}
+
+/// Per node of `grid`, whether material stands above `z` in the stock there (at the nodes
+/// `counts` accepts, where given).
 ///
 /// Where `counts` is given, a node's material is the highest of the stock's cells around it
 /// (within half a diagonal of the grid), so no cell between nodes goes unseen; else the cell
 /// nearest it.
 ///
 /// `tops` holds per node the highest of the cells around it once a level has asked (the same
-/// for every level of one stock): `material_near` fills it as it goes.
-pub fn material_near<const N: usize>(stock: &DexelStock, grid: Grid, z: f64, reach: [f64; N], counts: Option<&[bool]>, tops: &[OnceLock<f64>]) -> [Vec<bool>; N] {
-    let mut above = grid.filled(0.0);
+/// for every level of one stock): `material_above` fills it as it goes.
+pub fn material_above(stock: &DexelStock, grid: Grid, z: f64, counts: Option<&[bool]>, tops: &[OnceLock<f64>]) -> Vec<bool> {
     let around = crate::cutter::Profile::new(grid.spacing * std::f64::consts::FRAC_1_SQRT_2, 0.0);
     let top = |i: usize, j: usize| if counts.is_some() { Some(*tops[j * grid.nx + i].get_or_init(|| stock.touch(grid.node(i, j), &around, false))) } else { stock.top_near(grid.node(i, j)) };
-    for j in 0..grid.ny {
-        for i in 0..grid.nx {
-            if counts.is_none_or(|c| c[j * grid.nx + i]) && top(i, j).is_some_and(|top| top > z + HAIR) {
-                above.z[j * grid.nx + i] = 1.0;
-            }
-        }
+    (0..grid.nodes()).map(|n| counts.is_none_or(|c| c[n]) && top(n % grid.nx, n / grid.nx).is_some_and(|top| top > z + HAIR)).collect()
+}
+
+/// Per distance in `reach`, the nodes of `grid` within it of a node of `above`
+/// ([`Region::silhouettes`]; every node where every node is above).
+pub fn within_reach_of<const N: usize>(above: &[bool], grid: Grid, reach: [f64; N]) -> [Vec<bool>; N] {
+    if above.iter().all(|&a| a) {
+        return reach.map(|_| vec![true; grid.nodes()]);
     }
-    Region::silhouettes(&above, 0.5, reach).map(|region| match region {
+    let mut mask = grid.filled(0.0);
+    mask.z.iter_mut().zip(above).for_each(|(m, &a)| *m = if a { 1.0 } else { 0.0 });
+    Region::silhouettes(&mask, 0.5, reach).map(|region| match region {
         Region::Mask(m) => m.z.iter().map(|&v| v >= 0.5).collect(),
         Region::Rect { .. } => vec![true; grid.nodes()],
     })

@@ -541,14 +541,7 @@ impl<'a> Writer<'a> {
 
     /// A number with at most `decimals` digits, without trailing zeros or a negative zero.
     fn number(&self, value: f64, decimals: usize) -> String {
-        let mut s = format!("{value:.decimals$}");
-        if s.contains('.') {
-            s = s.trim_end_matches('0').trim_end_matches('.').to_owned();
-        }
-        if s == "-0" {
-            s = "0".to_owned();
-        }
-        s
+        number(value, decimals)
     }
 
     fn length(&self, mm: f64) -> String {
@@ -747,5 +740,114 @@ impl<'a> Writer<'a> {
         self.line(words.trim_start());
         self.mode = Some(code);
         self.position = [Some(to.x), Some(to.y), Some(to.z)];
+    }
+}
+
+/// `value` with at most `decimals` digits, rounded as `format!("{value:.decimals$}")` rounds
+/// it (the exact binary value, halves to even), without trailing zeros or a negative zero.
+///
+/// Programs hold a number for every word, so the common case skips the formatter: below 2⁵²
+/// units of the last digit every half unit is a float, and the product `value × 10^decimals`
+/// is rounded to the nearest float, so it lands on the same side of each half as the exact
+/// product does and rounding it to an integer gives the formatter's digits. A product that
+/// is exactly a half (the formatter rounds those to even), or larger, is formatted.
+pub fn number(value: f64, decimals: usize) -> String {
+    use std::fmt::Write;
+    const POWERS: [u64; 7] = [1, 10, 100, 1_000, 10_000, 100_000, 1_000_000];
+    const HALVES_EXACT: f64 = (1u64 << 52) as f64;
+    if let Some(&unit) = POWERS.get(decimals) {
+        let y = value * unit as f64;
+        if y.abs() < HALVES_EXACT && y.fract().abs() != 0.5 {
+            let units = y.round() as i64;
+            let (whole, part) = (units.unsigned_abs() / unit, units.unsigned_abs() % unit);
+            let mut s = String::with_capacity(12);
+            if units < 0 {
+                s.push('-');
+            }
+            let _ = write!(s, "{whole}");
+            if part != 0 {
+                let mut digits = format!("{part:0decimals$}");
+                digits.truncate(digits.trim_end_matches('0').len());
+                s.push('.');
+                s.push_str(&digits);
+            }
+            return s;
+        }
+    }
+    let mut s = format!("{value:.decimals$}");
+    if s.contains('.') {
+        s = s.trim_end_matches('0').trim_end_matches('.').to_owned();
+    }
+    if s == "-0" {
+        s = "0".to_owned();
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::number;
+
+    /// What [`number`] stands for: the standard formatting, trimmed.
+    fn formatted(value: f64, decimals: usize) -> String {
+        let mut s = format!("{value:.decimals$}");
+        if s.contains('.') {
+            s = s.trim_end_matches('0').trim_end_matches('.').to_owned();
+        }
+        if s == "-0" {
+            s = "0".to_owned();
+        }
+        s
+    }
+
+    #[test]
+    fn numbers_are_written_as_the_standard_formatting_writes_them() {
+        // Halves and near halves (written exactly, and a float's error off them), round
+        // values and their neighbours, tiny and huge values, signs, every count of decimals.
+        let mut values = vec![
+            0.0,
+            -0.0,
+            0.5,
+            -0.5,
+            1.5,
+            2.5,
+            0.0005,
+            -0.0005,
+            0.0015,
+            1e-12,
+            -1e-12,
+            1e9,
+            1e12,
+            -3.7e15,
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            999.9995,
+            999.9994999,
+            -10.2,
+            10.2 - 1e-15,
+            0.1 + 0.2,
+        ];
+        let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
+        for _ in 0..200_000 {
+            // xorshift: values from a millionth to thousands, some at halves of a last digit.
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let v = (x % 4_000_000_000) as f64 / 1000.0 - 2_000_000.0;
+            let scale = [1.0, 0.001, 0.0001, 1e-6, 0.37][(x >> 40) as usize % 5];
+            values.push(v * scale);
+            values.push((v * scale * 2000.0).round() / 2000.0 + 0.00025);
+            values.push(f64::from_bits(x >> 2));
+            // Large values whose last digits fall near and beyond 2^52 units.
+            let large = (x % 10_000_000_000_000) as f64 * [1e-6, 1e-5, 1e-4, 1e-3, 0.0125][(x >> 50) as usize % 5];
+            values.push(large);
+            values.push(large + 0.0000005);
+        }
+        for &v in &values {
+            for decimals in 0..9 {
+                assert_eq!(number(v, decimals), formatted(v, decimals), "{v:e} to {decimals} decimals");
+            }
+        }
     }
 }
