@@ -242,3 +242,34 @@ fn a_project_file_holds_the_job_and_the_part_and_runs_as_they_do() {
     let out = swarf(&["run", &s(&job_file), "-q"]);
     assert!(!out.status.success() && String::from_utf8_lossy(&out.stderr).contains("a job file needs a part"));
 }
+
+#[test]
+fn stage_times_add_up_to_the_compute_time() {
+    let dir = temp("stages");
+    assert!(swarf(&["demo", "-o", dir.to_str().unwrap()]).status.success());
+    let ngc = dir.join("timed.ngc");
+    let out = swarf(&["run", dir.join("demo.json").to_str().unwrap(), dir.join("demo.stl").to_str().unwrap(), "-o", ngc.to_str().unwrap(), "-q", "--stage-times"]);
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{said}");
+    let compute: f64 = said.split(" s to compute").next().unwrap().rsplit('(').next().unwrap().parse().unwrap();
+    let stages: Vec<(f64, &str)> = said
+        .lines()
+        .skip_while(|l| *l != "stage times:")
+        .skip(1)
+        .map(|l| {
+            let (seconds, stage) = l.trim().split_once(" s  ").expect("seconds, then the stage");
+            (seconds.parse().unwrap(), stage)
+        })
+        .collect();
+    // The setting up, then each operation's stages as the progress names them, each once.
+    assert!(stages[0].1.starts_with("(setting up"), "{said}");
+    assert!(stages.len() >= 3, "{said}");
+    let names: std::collections::HashSet<&str> = stages.iter().map(|s| s.1).collect();
+    assert_eq!(names.len(), stages.len(), "a stage met again adds to its line: {said}");
+    // Times measured within the compute time (rounded to hundredths there, thousandths here).
+    let sum: f64 = stages.iter().map(|s| s.0).sum();
+    assert!(stages.iter().all(|s| s.0 >= 0.0) && sum <= compute + 0.01 && sum >= 0.5 * compute - 0.01, "{sum} s of stages, {compute} s to compute: {said}");
+    // Without the flag, no stage times.
+    let out = swarf(&["run", dir.join("demo.json").to_str().unwrap(), dir.join("demo.stl").to_str().unwrap(), "-o", ngc.to_str().unwrap(), "-q"]);
+    assert!(!String::from_utf8_lossy(&out.stderr).contains("stage times"));
+}

@@ -47,6 +47,10 @@ enum Command {
         /// such a program is not written and the command fails.
         #[arg(long)]
         write_anyway: bool,
+        /// After the program, print how long each stage of the job took, in the order they
+        /// ran (where planning spends its time; BENCHMARKS.md's profiles).
+        #[arg(long)]
+        stage_times: bool,
     },
     /// Make a project file (`.swarf.json`) of a job and its part or drawing, to open in the
     /// page or run with `swarf run`.
@@ -220,7 +224,7 @@ fn write(path: &Path, bytes: &[u8]) -> Result<(), String> {
 
 fn run(cli: Cli) -> Result<(), String> {
     match cli.command {
-        Command::Run { job: file, part, output, quiet, write_anyway } => {
+        Command::Run { job: file, part, output, quiet, write_anyway, stage_times } => {
             let text = String::from_utf8_lossy(&read(&file)?).into_owned();
             let (job, name, bytes, stem) = if Project::is_project(&text) {
                 let project = Project::from_json(&text).map_err(|e| format!("{}: {e}", file.display()))?;
@@ -240,7 +244,7 @@ fn run(cli: Cli) -> Result<(), String> {
             };
             let workpiece = Workpiece::read(&bytes, name.as_deref(), &job.tolerances).map_err(|e| e.to_string())?;
             let output = output.unwrap_or_else(|| stem.with_extension(job.post.extension()));
-            run_job(&job, workpiece, &output, quiet, write_anyway)
+            run_job(&job, workpiece, &output, RunOptions { quiet, write_anyway, stage_times })
         }
         Command::Project { job, part, output, reference } => {
             let job = Job::from_json(&String::from_utf8_lossy(&read(&job)?)).map_err(|e| e.to_string())?;
@@ -260,7 +264,7 @@ fn run(cli: Cli) -> Result<(), String> {
             // The program is made from the STL as written (f32), so that `swarf run demo.json
             // demo.stl` gives the same program.
             let part = read_mesh_auto(&stl, Some("demo.stl"), &job.tolerances).map_err(|e| e.to_string())?;
-            run_job(&job, part, &output.join("demo.ngc"), false, false)
+            run_job(&job, part, &output.join("demo.ngc"), RunOptions { quiet: false, write_anyway: false, stage_times: false })
         }
         Command::Job { drawing } => {
             let job = if drawing { Job::default_for_drawing() } else { Job::default() };
@@ -434,10 +438,35 @@ fn run(cli: Cli) -> Result<(), String> {
     }
 }
 
-fn run_job(job: &Job, workpiece: impl Into<Workpiece>, output: &Path, quiet: bool, write_anyway: bool) -> Result<(), String> {
+/// How `swarf run` reports.
+#[derive(Clone, Copy)]
+struct RunOptions {
+    quiet: bool,
+    write_anyway: bool,
+    stage_times: bool,
+}
+
+fn run_job(job: &Job, workpiece: impl Into<Workpiece>, output: &Path, options: RunOptions) -> Result<(), String> {
+    let RunOptions { quiet, write_anyway, stage_times } = options;
     let started = Instant::now();
     let mut last = -1i32;
+    // Each stage as the progress names it, in the order first met, and its seconds: from each
+    // report that enters it to the next report of another stage.
+    let mut stages: Vec<(String, f64)> = Vec::new();
+    let mut current: Option<usize> = None;
+    let mut since = Instant::now();
     let mut sink = |fraction: f64, stage: &str| {
+        if stage_times && current.is_none_or(|i| stages[i].0 != stage) {
+            match current {
+                Some(i) => stages[i].1 += since.elapsed().as_secs_f64(),
+                None => stages.push(("(setting up: the part, the stock, the tools)".to_owned(), since.elapsed().as_secs_f64())),
+            }
+            since = Instant::now();
+            current = Some(stages.iter().position(|(s, _)| s == stage).unwrap_or_else(|| {
+                stages.push((stage.to_owned(), 0.0));
+                stages.len() - 1
+            }));
+        }
         let percent = (fraction * 100.0) as i32;
         if !quiet && percent != last {
             last = percent;
@@ -447,6 +476,9 @@ fn run_job(job: &Job, workpiece: impl Into<Workpiece>, output: &Path, quiet: boo
         true
     };
     let out = job::run(job, workpiece, &mut Progress::new(&mut sink)).map_err(|e| e.to_string())?;
+    if let Some(i) = current {
+        stages[i].1 += since.elapsed().as_secs_f64();
+    }
     if !quiet {
         eprintln!();
     }
@@ -485,6 +517,12 @@ fn run_job(job: &Job, workpiece: impl Into<Workpiece>, output: &Path, quiet: boo
     );
     for item in &out.time {
         eprintln!("  {}: {}", item.label, swarf::post::clock(item.seconds as f64));
+    }
+    if stage_times {
+        eprintln!("stage times:");
+        for (stage, seconds) in &stages {
+            eprintln!("  {seconds:8.3} s  {stage}");
+        }
     }
     Ok(())
 }
