@@ -186,9 +186,9 @@ impl PixelMap {
         for j in j0 as isize..=j1 {
             let j = j as usize;
             let Some((lo, hi)) = swept.row(j as f64) else { continue };
-            let i0 = lo.ceil().max(0.0) as usize;
-            let i1 = hi.floor();
-            if i1 < 0.0 {
+            let i0 = ceil_index(lo).max(0) as usize;
+            let i1 = floor_index(hi);
+            if i1 < 0 {
                 continue;
             }
             let i1 = (i1 as usize).min(last);
@@ -363,6 +363,29 @@ impl Swept {
             }
         }
         (lo <= hi).then_some((lo, hi))
+    }
+}
+
+/// `x.floor()` as an index (saturating far out, 0 for NaN), without the call `floor` is on
+/// targets with no rounding instruction: the sweeps ask it of every row.
+#[inline]
+fn floor_index(x: f64) -> isize {
+    let t = x as isize;
+    if (t as f64) > x {
+        t.saturating_sub(1)
+    } else {
+        t
+    }
+}
+
+/// `x.ceil()` as an index, as [`floor_index`].
+#[inline]
+fn ceil_index(x: f64) -> isize {
+    let t = x as isize;
+    if (t as f64) < x {
+        t.saturating_add(1)
+    } else {
+        t
     }
 }
 
@@ -704,6 +727,27 @@ mod tests {
         let bounds = Rect { min: DVec2::ZERO, max: DVec2::splat(40.0) };
         let map = PixelMap::new(bounds, px, r, |p| p.x >= 0.0 && p.y >= 0.0 && p.x <= 40.0 && p.y <= 40.0, &region);
         (map, region)
+    }
+
+    #[test]
+    fn indices_round_as_floor_and_ceil_do() {
+        let mut values = vec![0.0, -0.0, 1.0, -1.0, 0.5, -0.5, 1e-300, -1e-300, 2.0 - 1e-15, -2.0 + 1e-15, 1e15 + 0.5, -1e15 - 0.5, 4503599627370497.0];
+        let mut x: u64 = 0x2545_f491_4f6c_dd1d;
+        for _ in 0..100_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let v = (x % 2_000_000) as f64 / 64.0 - 15_625.0;
+            values.extend([v, v * 1e-3, v.round() + [0.0, 1e-12, -1e-12][(x >> 50) as usize % 3]]);
+        }
+        for v in values {
+            assert_eq!(floor_index(v), v.floor() as isize, "floor {v:e}");
+            assert_eq!(ceil_index(v), v.ceil() as isize, "ceil {v:e}");
+        }
+        // Far out and not a number, as the casts of floor and ceil give them.
+        for v in [f64::INFINITY, f64::NEG_INFINITY, f64::NAN, 1e300, -1e300] {
+            assert_eq!((floor_index(v), ceil_index(v)), (v.floor() as isize, v.ceil() as isize), "{v:e}");
+        }
     }
 
     #[test]
