@@ -828,12 +828,10 @@ mod tests {
             10.2 - 1e-15,
             0.1 + 0.2,
         ];
-        let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
+        let mut rng = crate::offset::check::Rng::new(0x9e37_79b9_7f4a_7c15);
         for _ in 0..200_000 {
-            // xorshift: values from a millionth to thousands, some at halves of a last digit.
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
+            // Values from a millionth to thousands, some at halves of a last digit.
+            let x = rng.next_u64();
             let v = (x % 4_000_000_000) as f64 / 1000.0 - 2_000_000.0;
             let scale = [1.0, 0.001, 0.0001, 1e-6, 0.37][(x >> 40) as usize % 5];
             values.push(v * scale);
