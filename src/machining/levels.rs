@@ -817,8 +817,9 @@ impl LevelInputs<'_> {
         let z = self.heights[k].0;
         let removable = (self.reach >= r).then(|| {
             let safe: Vec<bool> = self.cl.field.z.iter().map(|&h| h + zl.roughing.allowance <= z).collect();
-            let d = crate::zmap::distance::distance_to(&safe, grid.nx, grid.ny, grid.spacing);
-            d.into_iter().map(|d| d <= r - 0.5 * grid.spacing).collect::<Vec<bool>>()
+            let within = r - 0.5 * grid.spacing;
+            let d = crate::zmap::distance::distance_within(&safe, grid.nx, grid.ny, grid.spacing, within);
+            d.into_iter().map(|d| d <= within).collect::<Vec<bool>>()
         });
         match removable {
             Some(counts) => material_above(self.stock, grid, z, Some(&counts), &self.tops),
@@ -842,8 +843,9 @@ impl LevelInputs<'_> {
         if flat && self.bands {
             let below = self.heights.get(k + 1).map_or(f64::NEG_INFINITY, |&(q, _)| q);
             let refused: Vec<bool> = self.cl.field.z.iter().map(|&h| h + zl.roughing.allowance > below).collect();
-            let d = crate::zmap::distance::distance_to(&refused, grid.nx, grid.ny, grid.spacing);
-            keep.iter_mut().zip(d).for_each(|(k, d)| *k &= d <= FLAT_BAND * grid.spacing);
+            let band = FLAT_BAND * grid.spacing;
+            let d = crate::zmap::distance::distance_within(&refused, grid.nx, grid.ny, grid.spacing, band);
+            keep.iter_mut().zip(d).for_each(|(k, d)| *k &= d <= band);
         }
         keep
     }

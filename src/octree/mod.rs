@@ -39,7 +39,7 @@
 use serde::Serialize;
 
 use crate::geom::DVec2;
-use crate::zmap::distance::distance_to;
+use crate::zmap::distance::{distance_to, distance_within};
 use crate::zmap::{Grid, HeightField};
 
 /// γ = d / D for the first tool (§3.2 (2)): the largest radial depth of cut.
@@ -289,11 +289,11 @@ impl Octree {
         let cell: Vec<Option<usize>> = (0..grid.nodes()).map(|c| sg.nearest(grid.node(c % grid.nx, c / grid.nx))).collect();
         let mut out: Vec<Vec<bool>> = Vec::with_capacity(self.layers.len());
         for layer in &self.layers {
-            let d = distance_to(&self.mask(layer, grid), grid.nx, grid.ny, grid.spacing);
+            let d = distance_within(&self.mask(layer, grid), grid.nx, grid.ny, grid.spacing, radius + grid.spacing);
             let mut keep: Vec<bool> = d.iter().map(|&d| d <= radius + grid.spacing).collect();
             if let Some(above) = out.last() {
                 let high: Vec<bool> = cell.iter().map(|c| c.is_some_and(|c| stock.z[c] > layer.top + tolerance)).collect();
-                let near = distance_to(&high, grid.nx, grid.ny, grid.spacing);
+                let near = distance_within(&high, grid.nx, grid.ny, grid.spacing, radius + 2.0 * grid.spacing);
                 for (c, k) in keep.iter_mut().enumerate() {
                     *k = *k && (above[c] || near[c] > radius + 2.0 * grid.spacing);
                 }

@@ -55,7 +55,7 @@ use crate::progress::Progress;
 use crate::sim::program::program_moves;
 use crate::tool::Tool;
 use crate::toolpath::Toolpath;
-use crate::zmap::distance::distance_to;
+use crate::zmap::distance::distance_within;
 use crate::zmap::surface::ClSurface;
 use crate::zmap::HeightField;
 
@@ -472,7 +472,7 @@ impl RoughOctree {
         // Centres within the small tool's radius (and a cell, for the grids' rounding) of
         // material only it reaches.
         let within = |z: f64, grid: crate::zmap::Grid| {
-            let near = distance_to(&reach.missed(z), sg.nx, sg.ny, sg.spacing);
+            let near = distance_within(&reach.missed(z), sg.nx, sg.ny, sg.spacing, radius + sg.spacing);
             Some((0..grid.nodes()).map(|n| at(sg, &near, grid.node(n % grid.nx, n / grid.nx)) <= radius + sg.spacing).collect())
         };
         let zl = self.zlevel(small, true);
@@ -565,17 +565,18 @@ impl Reach {
     fn missed(&self, z: f64) -> Vec<bool> {
         let (a, tol) = (self.allowance, self.tolerance);
         // Per node of a CL z-map, the distance to the nearest centre the tool may take at `z`.
-        let reach = |cl: &ClSurface| {
+        // (Only whether it is within the tool's radius is asked: no farther is worked out.)
+        let reach = |cl: &ClSurface, radius: f64| {
             let f = &cl.field;
             let safe: Vec<bool> = f.z.iter().map(|&h| h + a <= z).collect();
-            distance_to(&safe, f.nx, f.ny, f.spacing)
+            distance_within(&safe, f.nx, f.ny, f.spacing, radius)
         };
         let sg = self.stock.grid();
         let material = |c: usize| self.stock.z[c] - z.max(self.part.z[c] + a) > tol;
         if !(0..sg.nodes()).any(material) {
             return vec![false; sg.nodes()];
         }
-        let (big, little) = (reach(&self.cl_big), reach(&self.cl_small));
+        let (big, little) = (reach(&self.cl_big, self.r_big), reach(&self.cl_small, self.r_small));
         (0..sg.nodes())
             .map(|c| {
                 let p = sg.node(c % sg.nx, c / sg.nx);

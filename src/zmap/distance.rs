@@ -6,7 +6,19 @@
 /// where `inside` holds (+∞ with none), by two passes of the lower envelope of parabolas
 /// (Felzenszwalb and Huttenlocher); what a tool reaches around the centres it may take.
 pub fn distance_to(inside: &[bool], nx: usize, ny: usize, spacing: f64) -> Vec<f64> {
+    distance_within(inside, nx, ny, spacing, f64::INFINITY)
+}
+
+/// [`distance_to`] where it is no more than `cap`, +∞ beyond: the same distances there, with
+/// only the rows within `cap` of a node inside worked through (where only "within reach"
+/// is asked and what is looked for is sparse, most rows are not).
+///
+/// A node's nearest node inside is no farther down its column than from the node itself, so
+/// dropping the column distances beyond `cap` keeps it wherever the distance is within `cap`.
+pub fn distance_within(inside: &[bool], nx: usize, ny: usize, spacing: f64, cap: f64) -> Vec<f64> {
     let far = 1e20;
+    // Column distances (in nodes) past this one are dropped: a node past it lies farther than `cap`.
+    let reach = (cap / spacing).floor() + 1.0;
     // Along the columns the values are 0 and far, so the envelope's minimum is the squared
     // distance to the nearest node inside in the column: two sweeps down and up find it for all
     // columns at once, row by row (the same values: whole numbers, exact in f64).
@@ -31,7 +43,7 @@ pub fn distance_to(inside: &[bool], nx: usize, ny: usize, spacing: f64) -> Vec<f
     }
     // A column with no node inside stays far: most of them where what is looked for is sparse,
     // such as the material a rest tool alone reaches.
-    d2.iter_mut().for_each(|v| *v = if v.is_finite() { *v * *v } else { far });
+    d2.iter_mut().for_each(|v| *v = if v.is_finite() && *v <= reach { *v * *v } else { far });
     let mut work = Envelope::default();
     for j in 0..ny {
         let row = &mut d2[j * nx..(j + 1) * nx];
@@ -41,7 +53,7 @@ pub fn distance_to(inside: &[bool], nx: usize, ny: usize, spacing: f64) -> Vec<f
         work.run(row);
         row.copy_from_slice(&work.out);
     }
-    d2.into_iter().map(|v| if v >= far { f64::INFINITY } else { v.sqrt() * spacing }).collect()
+    d2.into_iter().map(|v| if v >= far { f64::INFINITY } else { v.sqrt() * spacing }).map(|d| if d <= cap { d } else { f64::INFINITY }).collect()
 }
 
 /// The squared distance transform along one line, `out[q] = min_p (q − p)² + f[p]`, with its
@@ -133,6 +145,24 @@ mod tests {
             let (fast, slow) = (distance_to(&inside, nx, ny, 0.37), by_envelopes(&inside, nx, ny, 0.37));
             for c in 0..nx * ny {
                 assert_eq!(fast[c].to_bits(), slow[c].to_bits(), "case {case} ({nx} × {ny}), node {c}");
+            }
+        }
+    }
+
+    #[test]
+    fn capped_distances_are_the_distances_within_the_cap() {
+        let mut rng = crate::offset::check::Rng::new(51);
+        for case in 0..200 {
+            let (nx, ny) = (1 + rng.below(90), 1 + rng.below(90));
+            let density = [0.0, 0.002, 0.02, 0.3, 1.0][case % 5];
+            let inside: Vec<bool> = (0..nx * ny).map(|_| rng.next_f64() < density).collect();
+            let spacing: f64 = 0.37;
+            // Caps on node distances, between them, none and beyond the grid.
+            let cap = [0.0, spacing, 2.0 * spacing, 3.3 * spacing, 4.0 * spacing.hypot(spacing), rng.range(0.0, 40.0), 1e9][case % 7];
+            let (all, capped) = (distance_to(&inside, nx, ny, spacing), distance_within(&inside, nx, ny, spacing, cap));
+            for c in 0..nx * ny {
+                let want = if all[c] <= cap { all[c] } else { f64::INFINITY };
+                assert_eq!(capped[c].to_bits(), want.to_bits(), "case {case} ({nx} × {ny}, cap {cap}), node {c}");
             }
         }
     }
