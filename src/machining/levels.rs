@@ -777,10 +777,16 @@ impl LevelInputs<'_> {
         let touching = self.r + self.grid.spacing * std::f64::consts::FRAC_1_SQRT_2;
         let count = self.heights.len();
         let nodes = self.grid.nodes();
-        // The material above each level decides how near it a centre is: levels with no top of
-        // the stock between them (a fresh stock's whole depth) share one distance map.
+        // The material above each level decides how near it a centre is: a level with no top of
+        // the stock between it and the level before (a fresh stock's whole depth) shares that
+        // level's distance map.
         let above = crate::parallel::map_heavy(count, |k| pack(&self.above(k)));
-        let owner: Vec<usize> = (0..count).map(|k| (0..k).find(|&j| above[j] == above[k]).unwrap_or(k)).collect();
+        let mut owner: Vec<usize> = (0..count).collect();
+        for k in 1..count {
+            if above[k] == above[k - 1] {
+                owner[k] = owner[k - 1];
+            }
+        }
         let reached = crate::parallel::map_heavy(count, |k| (owner[k] == k).then(|| within_reach_of(&unpack(&above[k], nodes), self.grid, [self.reach, touching]).map(|m| pack(&m))));
         let made = crate::parallel::map_heavy(count, |k| {
             let [keep, near] = reached[owner[k]].as_ref().expect("every shared level's reach is made");
@@ -822,7 +828,8 @@ impl LevelInputs<'_> {
             d.into_iter().map(|d| d <= within).collect::<Vec<bool>>()
         });
         match removable {
-            Some(counts) => material_above(self.stock, grid, z, Some(&counts), &self.tops),
+            Some(counts) => material_above(self.stock, grid, z, &counts, &self.tops),
+            // Else the stock's cell nearest each node.
             None => {
                 let nearest = self.nearest.get_or_init(|| (0..grid.nodes()).map(|n| self.stock.top_near(grid.node(n % grid.nx, n / grid.nx))).collect());
                 nearest.iter().map(|top| top.is_some_and(|top| top > z + HAIR)).collect()
@@ -872,31 +879,21 @@ pub fn unpack(bytes: &[u8], count: usize) -> Vec<bool> {
     (0..count).map(|k| bytes.get(k / 8).is_some_and(|b| b >> (k % 8) & 1 == 1)).collect()
 }
 
-/// Per node of `grid` and per distance in `reach`, whether a cutter there at level `z` is
-/// within that distance of material that stands above `z` in the stock (at the nodes `counts`
-/// accepts, where given): [`within_reach_of`] the nodes [`material_above`].
-pub fn material_near<const N: usize>(stock: &DexelStock, grid: Grid, z: f64, reach: [f64; N], counts: Option<&[bool]>, tops: &[OnceLock<f64>]) -> [Vec<bool>; N] {
-    within_reach_of(&material_above(stock, grid, z, counts, tops), grid, reach)
-}
-
-/// Per node of `grid`, whether material stands above `z` in the stock there (at the nodes
-/// `counts` accepts, where given).
-///
-/// Where `counts` is given, a node's material is the highest of the stock's cells around it
-/// (within half a diagonal of the grid), so no cell between nodes goes unseen; else the cell
-/// nearest it.
+/// Per node of `grid`, whether material stands above `z` in the stock there, at the nodes
+/// `counts` accepts: the highest of the stock's cells around the node (within half a diagonal
+/// of the grid), so no cell between nodes goes unseen.
 ///
 /// `tops` holds per node the highest of the cells around it once a level has asked (the same
 /// for every level of one stock): `material_above` fills it as it goes.
-pub fn material_above(stock: &DexelStock, grid: Grid, z: f64, counts: Option<&[bool]>, tops: &[OnceLock<f64>]) -> Vec<bool> {
+fn material_above(stock: &DexelStock, grid: Grid, z: f64, counts: &[bool], tops: &[OnceLock<f64>]) -> Vec<bool> {
     let around = crate::cutter::Profile::new(grid.spacing * std::f64::consts::FRAC_1_SQRT_2, 0.0);
-    let top = |i: usize, j: usize| if counts.is_some() { Some(*tops[j * grid.nx + i].get_or_init(|| stock.touch(grid.node(i, j), &around, false))) } else { stock.top_near(grid.node(i, j)) };
-    (0..grid.nodes()).map(|n| counts.is_none_or(|c| c[n]) && top(n % grid.nx, n / grid.nx).is_some_and(|top| top > z + HAIR)).collect()
+    let top = |n: usize| *tops[n].get_or_init(|| stock.touch(grid.node(n % grid.nx, n / grid.nx), &around, false));
+    (0..grid.nodes()).map(|n| counts[n] && top(n) > z + HAIR).collect()
 }
 
 /// Per distance in `reach`, the nodes of `grid` within it of a node of `above`
 /// ([`Region::silhouettes`]; every node where every node is above).
-pub fn within_reach_of<const N: usize>(above: &[bool], grid: Grid, reach: [f64; N]) -> [Vec<bool>; N] {
+fn within_reach_of<const N: usize>(above: &[bool], grid: Grid, reach: [f64; N]) -> [Vec<bool>; N] {
     if above.iter().all(|&a| a) {
         return reach.map(|_| vec![true; grid.nodes()]);
     }

@@ -338,11 +338,11 @@ pub fn write_mapped(title: &str, paths: &[Toolpath], tools: &[Tool], clearance_z
             }
             started = true;
             current = tool;
-            let rpm = w.number(path.spindle_rpm, 0);
+            let rpm = number(path.spindle_rpm, 0);
             w.line(&definition::fill(&post.spindle_on, &[("rpm", rpm)]));
             if post.spindle_dwell > 0.0 {
                 if let Some(dwell) = &post.dwell {
-                    let values = [("seconds", w.number(post.spindle_dwell, 3)), ("millis", w.number(post.spindle_dwell * 1000.0, 0))];
+                    let values = [("seconds", number(post.spindle_dwell, 3)), ("millis", number(post.spindle_dwell * 1000.0, 0))];
                     w.line(&definition::fill(dwell, &values));
                     w.seconds += post.spindle_dwell;
                 }
@@ -539,13 +539,8 @@ impl<'a> Writer<'a> {
         }
     }
 
-    /// A number with at most `decimals` digits, without trailing zeros or a negative zero.
-    fn number(&self, value: f64, decimals: usize) -> String {
-        number(value, decimals)
-    }
-
     fn length(&self, mm: f64) -> String {
-        self.number(mm * self.scale, self.decimals)
+        number(mm * self.scale, self.decimals)
     }
 
     /// The length rounded up to the program's resolution, never down (a value a millionth of
@@ -556,13 +551,13 @@ impl<'a> Writer<'a> {
         let up = (v / unit - 1e-6).ceil() * unit;
         // Rounding in the division may land a hair short: one more step (a millionth of a unit
         // short is the digit itself).
-        self.number(if up < v - 2e-6 * unit { up + unit } else { up }, self.decimals)
+        number(if up < v - 2e-6 * unit { up + unit } else { up }, self.decimals)
     }
 
     /// A dwell of `seconds` in the post's words (G4 P…).
     fn dwell(&mut self, seconds: f64) -> Result<(), Error> {
         let dwell = self.post.dwell.clone().ok_or_else(|| Error::Input(format!("the post '{}' has no dwell word (dwell), which a drilling cycle's dwell needs", self.post.name)))?;
-        let values = [("seconds", self.number(seconds, 3)), ("millis", self.number(seconds * 1000.0, 0))];
+        let values = [("seconds", number(seconds, 3)), ("millis", number(seconds * 1000.0, 0))];
         self.line(&definition::fill(&dwell, &values));
         self.seconds += seconds;
         Ok(())
@@ -613,10 +608,10 @@ impl<'a> Writer<'a> {
         if c.kind == CycleKind::Dwell {
             // The dwell in the unit the post's own dwell word uses (Fanuc's P counts ms).
             let millis = self.post.dwell.as_deref().is_some_and(|d| d.contains("{millis}"));
-            let _ = write!(words, " P{}", if millis { self.number(c.dwell * 1000.0, 0) } else { self.number(c.dwell, 3) });
+            let _ = write!(words, " P{}", if millis { number(c.dwell * 1000.0, 0) } else { number(c.dwell, 3) });
             self.seconds += c.dwell;
         }
-        let _ = write!(words, " F{}", self.number(c.feed * self.scale, self.post.feed_decimals));
+        let _ = write!(words, " F{}", number(c.feed * self.scale, self.post.feed_decimals));
         self.line(&words);
         self.feed = Some(c.feed);
         let end = written.at.extend(written.clear());
@@ -733,7 +728,7 @@ impl<'a> Writer<'a> {
         }
         if let Some(feed) = feed {
             if self.feed != Some(feed) || !modal {
-                let _ = write!(words, " F{}", self.number(feed * self.scale, self.post.feed_decimals));
+                let _ = write!(words, " F{}", number(feed * self.scale, self.post.feed_decimals));
                 self.feed = Some(feed);
             }
         }
@@ -751,7 +746,7 @@ impl<'a> Writer<'a> {
 /// is rounded to the nearest float, so it lands on the same side of each half as the exact
 /// product does and rounding it to an integer gives the formatter's digits. A product that
 /// is exactly a half (the formatter rounds those to even), or larger, is formatted.
-pub fn number(value: f64, decimals: usize) -> String {
+fn number(value: f64, decimals: usize) -> String {
     use std::fmt::Write;
     const POWERS: [u64; 7] = [1, 10, 100, 1_000, 10_000, 100_000, 1_000_000];
     const HALVES_EXACT: f64 = (1u64 << 52) as f64;

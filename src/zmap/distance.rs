@@ -3,8 +3,9 @@
 //! silhouette), by the lower envelope of parabolas that seed 000's reach maps use.
 
 /// The Euclidean distance from every node of an `nx × ny` grid of `spacing` to the nearest node
-/// where `inside` holds (+∞ with none), by two passes of the lower envelope of parabolas
-/// (Felzenszwalb and Huttenlocher); what a tool reaches around the centres it may take.
+/// where `inside` holds (+∞ with none): down the columns by two sweeps, then along the rows by
+/// the lower envelope of parabolas (Felzenszwalb and Huttenlocher); what a tool reaches around
+/// the centres it may take.
 pub fn distance_to(inside: &[bool], nx: usize, ny: usize, spacing: f64) -> Vec<f64> {
     distance_within(inside, nx, ny, spacing, f64::INFINITY)
 }
@@ -41,8 +42,9 @@ pub fn distance_within(inside: &[bool], nx: usize, ny: usize, spacing: f64, cap:
             d2[c] = d2[c].min(d2[c + nx] + 1.0);
         }
     }
-    // A column with no node inside stays far: most of them where what is looked for is sparse,
-    // such as the material a rest tool alone reaches.
+    // A column with no node inside, or none within `cap`, stays far, and a row all far is left
+    // out below: most of them where what is looked for is sparse, such as the material a rest
+    // tool alone reaches.
     d2.iter_mut().for_each(|v| *v = if v.is_finite() && *v <= reach { *v * *v } else { far });
     let mut work = Envelope::default();
     for j in 0..ny {
