@@ -334,10 +334,15 @@ test('the simulation a machinist expects: the tool shown, the path cut apart fro
     return { shown: document.querySelector('#gcode .line.current').textContent, line: r.gcode.split('\n')[r.moveLines[k]], n: r.moveLines[k] };
   });
   assert.ok(current.shown.endsWith(current.line), `${current.shown} against line ${current.n + 1}: ${current.line}`);
-  // A click on a line takes the scrubber to its move.
-  const row = page.locator('#gcode .line:not(.current)').nth(3);
-  const clicked = Number(await row.getAttribute('data-line'));
-  await row.click();
+  // A click on a line takes the scrubber to its move: a line drawn, not the current one, that
+  // holds a move. (Found by its line number: Playwright scrolls it into sight before the click,
+  // the pane draws its rows anew, and a locator by position would then name another line.)
+  const clicked = await page.evaluate(() => {
+    const moves = new Set(window.swarf.result.moveLines);
+    return [...document.querySelectorAll('#gcode .line:not(.current)')].map((row) => Number(row.dataset.line)).filter((k) => moves.has(k))[3];
+  });
+  assert.ok(Number.isInteger(clicked), 'a line with a move is drawn in the pane');
+  await page.locator(`#gcode .line[data-line="${clicked}"]`).click();
   await page.waitForFunction((n) => document.querySelector('#gcode .line.current')?.dataset.line === String(n), clicked);
   // (to the end of the first move written on that line or after it)
   const [moved, before] = await page.evaluate(() => { const k = Number(document.body.dataset.simMoves) - 1, l = window.swarf.result.moveLines; return [l[k], k > 0 ? l[k - 1] : -1]; });
