@@ -60,6 +60,35 @@ struct Piece {
     air: bool,
 }
 
+/// One level's moves, from `from`, to be judged later against the material of `stock` above
+/// `z` around `bounds` ([`AirCuts::new`], [`AirCuts::refeed`]): a job a second thread can take
+/// while the next piece is planned (the stock is the operation's starting one, which planning
+/// does not change).
+pub struct Refeed<'m> {
+    pub bounds: Rect,
+    pub z: f64,
+    pub stock: &'m DexelStock,
+    pub profile: Profile,
+    /// The air feed and the cutting one.
+    pub feed: f64,
+    pub cutting: f64,
+    pub from: DVec3,
+    pub moves: Vec<Move>,
+}
+
+impl Refeed<'_> {
+    /// The moves with their stretches of air at the air feed.
+    pub fn run(self) -> Vec<Move> {
+        if self.moves.is_empty() {
+            return self.moves;
+        }
+        match AirCuts::new(self.bounds, self.z, self.stock, &self.profile, self.feed, self.cutting) {
+            Some(mut air) => air.refeed(self.from, self.moves),
+            None => self.moves,
+        }
+    }
+}
+
 impl AirCuts {
     /// The material of `stock` above `z` around `bounds` (where the level's moves run), for a
     /// cutter of `profile` whose air moves run at `feed`; none where that is no faster than

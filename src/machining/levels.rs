@@ -28,8 +28,10 @@
 //!   stands on the way by the operation's own cuts so far, whichever is lower (issue 38: on a
 //!   terrain the tool crosses a ridge at the ridge, not at the stock's top).
 
+use super::air::Refeed;
 use super::context::SurfaceRequest;
-use super::rings::{clear_rings, rings, way_out, Clearing, RingSetup};
+use super::path2d::Cursor;
+use super::rings::{clear_rings_at_feed, rings, way_out, Clearing, RingSetup};
 use super::settings::{Direction, EntryKind, LoadControl, Order, PocketPattern, Roughing, Steps};
 use super::{positive, sheet, Context, FieldError};
 use crate::cutter::Profile;
@@ -170,81 +172,101 @@ impl LevelRoughing {
             helix_r: self.helix_radius.unwrap_or(0.4 * 2.0 * r).min(0.95 * r),
         };
         let clearance = ctx.heights.clearance;
-        let mut cursor = sheet::cursor(ctx, &tool);
-        let mut moves: Vec<Move> = Vec::new();
-        // The in-process stock as this roughing's pieces so far left it, brought up to date
-        // where a traverse asks: it crosses just over what still stands on its way.
-        let standing = Rc::new(RefCell::new(Standing::new(ctx.sim.stock(), tool.cutter.profile())));
-        // A ring's start lies on its region's boundary: a point a chordal tolerance from a
-        // region counts as in it.
-        let slack = tol.chordal;
-        let mut pieces = Pieces::new(levels, self.order, slack, r);
-        // What was cut so far: each piece's height and region.
-        // Beyond the stock's sides by more than the cutter's radius, no height holds material.
-        let air = Rect { min: ctx.stock.min.truncate(), max: ctx.stock.max.truncate() }.expand(r + slack);
-        let mut cleared = Cleared { slack, air, cut: Vec::new() };
+        let ctx = &*ctx;
+        let mut run = Run {
+            clearing,
+            cursor: sheet::cursor(ctx, &tool),
+            // The in-process stock as this roughing's pieces so far left it, brought up to date
+            // where a traverse asks: it crosses just over what still stands on its way.
+            standing: Rc::new(RefCell::new(Standing::new(ctx.sim.stock(), tool.cutter.profile()))),
+            // What was cut so far: each piece's height and region. Beyond the stock's sides by
+            // more than the cutter's radius, no height holds material. (A ring's start lies on
+            // its region's boundary: a point a chordal tolerance from a region counts as in it.)
+            cleared: Cleared { slack: tol.chordal, air: Rect { min: ctx.stock.min.truncate(), max: ctx.stock.max.truncate() }.expand(r + tol.chordal), cut: Vec::new() },
+        };
+        let mut pieces = Pieces::new(levels, self.order, tol.chordal, r);
         let count = pieces.list.len();
-        for k in 0..count {
-            if !progress.report(k as f64 / count as f64) {
-                return Err(Error::Cancelled);
-            }
-            let Some(Piece { z, z_prev, region }) = pieces.next(cursor.at.truncate()) else { break };
-            // The region is the set of centres: its rings start on it.
-            let rings = rings(&region, 0.0, step, r, &tol);
-            // Material above this level was cleared by the level before within this region
-            // (which lies inside what that level cut): rapids stop the gap above it.
-            cursor.safe = (z_prev + ctx.heights.gap).min(clearance);
-            // Rapids come down to the gap above the level before (the step-down level above:
-            // a flat's level between cut only its band) only over what it cleared, and lower
-            // where a flat's band was cut since: elsewhere (rest roughing beside what an earlier
-            // tool left) above the stock.
-            let done = Arc::new(cleared.clone());
-            let levelled = done.cut.iter().any(|e| e.z == z_prev);
-            let before = done.clone();
-            cursor.safe_at = Some(Box::new(move |p: DVec2| before.lowest_holding(p).map_or(!levelled, |level| level == z_prev)));
-            // Past it (the cursor asks only where `safe_at` does not hold): the lowest level cut
-            // so far whose region holds the point.
-            let earlier = done.clone();
-            cursor.cleared_to = Some(Box::new(move |p: DVec2| earlier.lowest_holding(p)));
-            // The short retract: a traverse just above the lowest level cut so far whose
-            // region holds the straight move (what that level cleared), over the part there;
-            // above the stock's top before the first level.
-            let (surface, allowance, gap, tol_z) = (cl.clone(), self.roughing.allowance, ctx.heights.gap, tol.height + 2.0 * tol.interpolation);
-            let across = done;
-            let stands = standing.clone();
-            cursor.traverse = Some(Box::new(move |a: DVec2, b: DVec2| {
-                let over = |level: f64| surface.stays_below(a, b, level - allowance - tol_z);
-                if across.cut.is_empty() {
-                    return over(z_prev).then_some(z_prev + gap);
+        // The region is the set of centres: its rings start on it. Each piece's rings are made
+        // ahead of the clearing on a second thread, and each piece's stretches of air judged
+        // behind it (the rings depend only on the region, the air only on the stock the
+        // operation starts from): the same program, sooner.
+        let regions: Vec<Arc<Shape>> = pieces.list.iter().flatten().map(|p| p.region.clone()).collect();
+        let make = |k: usize| rings(&regions[k], 0.0, step, r, &tol);
+        let (cancelled, fed) = crate::parallel::ahead(count, make, |rings_of| {
+            crate::parallel::behind(Refeed::run, |send| {
+                for n in 0..count {
+                    if !progress.report(n as f64 / count as f64) {
+                        return true;
+                    }
+                    let Some((k, Piece { z, z_prev, region })) = pieces.next(run.cursor.at.truncate()) else { break };
+                    send(self.clear_piece(ctx, &tool, &cl, &mut run, (z, z_prev), &rings_of(k)));
+                    run.cleared.add(z, region);
                 }
-                // Over what this roughing cut (no lower than the level above: the cursor keeps
-                // its rapids there), else just over what stands on the way.
-                let by_regions = across.lowest_covering(a, b, &over);
-                if by_regions.is_some_and(|level| level <= z_prev) {
-                    return by_regions.map(|level| level + gap);
-                }
-                let by_stock = stands.borrow_mut().along(a, b);
-                // Over the part too: by the nodes' bound (or the exact surface, where the nodes
-                // are not the exact drop), the exact surface only where the bound stands much
-                // higher (beside a wall the bound counts, half a node off the cutter's reach).
-                let bound = surface.bound_along(a, b).map(|top| top + allowance + tol_z);
-                let by_stock = match bound {
-                    Some(b) if b <= by_stock + gap => Some(b.max(by_stock)),
-                    _ if over(by_stock) => Some(by_stock),
-                    _ => bound,
-                };
-                let by_stock = by_stock.filter(|&level| by_regions.is_none_or(|r| level < r));
-                by_regions.into_iter().chain(by_stock).reduce(f64::min).map(|level| level + gap)
-            }));
-            let from = cursor.at;
-            let mut setup = RingSetup { tool_radius: r, top: z_prev, feed: tool.feed_rate, cursor: &mut cursor, tol: &tol };
-            let air = self.air(ctx, &cl, r, z);
-            let cut = clear_rings(&rings, &clearing, z_prev, z, &mut setup, Some(&air));
-            standing.borrow_mut().cut(from, &cut, tol.chordal);
-            moves.extend(cut);
-            cleared.add(z, region);
+                false
+            })
+        });
+        if cancelled {
+            return Err(Error::Cancelled);
         }
-        Ok(sheet::toolpath(&self.name, &tool, moves, clearance))
+        Ok(sheet::toolpath(&self.name, &tool, fed.into_iter().flatten().collect(), clearance))
+    }
+
+    /// One piece of [`LevelRoughing::clear`], cleared by `rings` from `z_prev` down to `z`
+    /// with the cursor, the stock and the regions cleared as the pieces before left them.
+    fn clear_piece<'m>(&self, ctx: &'m Context, tool: &Tool, cl: &Arc<ClSurface>, run: &mut Run<'m>, (z, z_prev): (f64, f64), rings: &[Shape]) -> Refeed<'m> {
+        let (r, tol) = (tool.cutter.radius(), ctx.tolerances);
+        // Material above this level was cleared by the level before within this region
+        // (which lies inside what that level cut): rapids stop the gap above it.
+        run.cursor.safe = (z_prev + ctx.heights.gap).min(ctx.heights.clearance);
+        // Rapids come down to the gap above the level before (the step-down level above:
+        // a flat's level between cut only its band) only over what it cleared, and lower
+        // where a flat's band was cut since: elsewhere (rest roughing beside what an earlier
+        // tool left) above the stock.
+        let done = Arc::new(run.cleared.clone());
+        let levelled = done.cut.iter().any(|e| e.z == z_prev);
+        let before = done.clone();
+        run.cursor.safe_at = Some(Box::new(move |p: DVec2| before.lowest_holding(p).map_or(!levelled, |level| level == z_prev)));
+        // Past it (the cursor asks only where `safe_at` does not hold): the lowest level cut
+        // so far whose region holds the point.
+        let earlier = done.clone();
+        run.cursor.cleared_to = Some(Box::new(move |p: DVec2| earlier.lowest_holding(p)));
+        // The short retract: a traverse just above the lowest level cut so far whose
+        // region holds the straight move (what that level cleared), over the part there;
+        // above the stock's top before the first level.
+        let (surface, allowance, gap, tol_z) = (cl.clone(), self.roughing.allowance, ctx.heights.gap, tol.height + 2.0 * tol.interpolation);
+        let across = done;
+        let stands = run.standing.clone();
+        run.cursor.traverse = Some(Box::new(move |a: DVec2, b: DVec2| {
+            let over = |level: f64| surface.stays_below(a, b, level - allowance - tol_z);
+            if across.cut.is_empty() {
+                return over(z_prev).then_some(z_prev + gap);
+            }
+            // Over what this roughing cut (no lower than the level above: the cursor keeps
+            // its rapids there), else just over what stands on the way.
+            let by_regions = across.lowest_covering(a, b, &over);
+            if by_regions.is_some_and(|level| level <= z_prev) {
+                return by_regions.map(|level| level + gap);
+            }
+            let by_stock = stands.borrow_mut().along(a, b);
+            // Over the part too: by the nodes' bound (or the exact surface, where the nodes
+            // are not the exact drop), the exact surface only where the bound stands much
+            // higher (beside a wall the bound counts, half a node off the cutter's reach).
+            let bound = surface.bound_along(a, b).map(|top| top + allowance + tol_z);
+            let by_stock = match bound {
+                Some(b) if b <= by_stock + gap => Some(b.max(by_stock)),
+                _ if over(by_stock) => Some(by_stock),
+                _ => bound,
+            };
+            let by_stock = by_stock.filter(|&level| by_regions.is_none_or(|r| level < r));
+            by_regions.into_iter().chain(by_stock).reduce(f64::min).map(|level| level + gap)
+        }));
+        let from = run.cursor.at;
+        let mut setup = RingSetup { tool_radius: r, top: z_prev, feed: tool.feed_rate, cursor: &mut run.cursor, tol: &tol };
+        let air = self.air(ctx, cl, r, z);
+        let cut = clear_rings_at_feed(rings, &run.clearing, z_prev, z, &mut setup, Some(&air));
+        // (The stock as it stands: the same whatever the feeds.)
+        run.standing.borrow_mut().cut(from, &cut.moves, tol.chordal);
+        cut
     }
 
     /// The levels this roughing cuts (the z-level strategy's and every strategy that clears
@@ -452,7 +474,17 @@ impl LevelRoughing {
 struct Piece {
     z: f64,
     z_prev: f64,
-    region: Shape,
+    region: Arc<Shape>,
+}
+
+/// How clearing cuts each piece, and what it carries from one piece to the next: where the
+/// tool is and how it moves, the stock as the pieces so far left it, and the regions they
+/// cleared.
+struct Run<'m> {
+    clearing: Clearing,
+    cursor: Cursor<'m>,
+    standing: Rc<RefCell<Standing>>,
+    cleared: Cleared,
 }
 
 /// The pieces a roughing cuts, handed out in its order.
@@ -495,7 +527,7 @@ impl Pieces {
                     children[p].push(k);
                 }
                 level.push(k);
-                list.push(Some(Piece { z, z_prev, region: part }));
+                list.push(Some(Piece { z, z_prev, region: Arc::new(part) }));
                 children.push(Vec::new());
             }
             by_level.push(level);
@@ -510,7 +542,7 @@ impl Pieces {
     /// The next piece to cut with the tool at `at`: the nearest uncut piece under the latest
     /// open one, else the nearest uncut piece of the highest level that has one; either only
     /// once the pieces above within reach of it are cut.
-    fn next(&mut self, at: DVec2) -> Option<Piece> {
+    fn next(&mut self, at: DVec2) -> Option<(usize, Piece)> {
         let nearest = |list: &[Option<Piece>], above: &[Vec<usize>], candidates: &[usize]| {
             candidates
                 .iter()
@@ -531,7 +563,7 @@ impl Pieces {
             }
         };
         self.open.push(k);
-        self.list[k].take()
+        self.list[k].take().map(|p| (k, p))
     }
 }
 
@@ -663,10 +695,10 @@ struct ClearedPiece {
 }
 
 impl Cleared {
-    fn add(&mut self, z: f64, region: Shape) {
+    fn add(&mut self, z: f64, region: Arc<Shape>) {
         let bounds = region.bounds().expand(self.slack);
         let at = self.cut.partition_point(|e| e.z <= z);
-        self.cut.insert(at, ClearedPiece { z, region: Arc::new(region), bounds });
+        self.cut.insert(at, ClearedPiece { z, region, bounds });
     }
 
     /// The lowest level cut so far whose region holds `p`.
@@ -1000,7 +1032,7 @@ mod tests {
             let mut pieces = Pieces::new(levels(gap), Order::Regions, 1e-6, reach);
             let mut at = DVec2::ZERO;
             std::iter::from_fn(|| {
-                let p = pieces.next(at)?;
+                let (_, p) = pieces.next(at)?;
                 at = p.region.bounds().center();
                 Some((p.z, p.region.bounds().min.x))
             })

@@ -8,11 +8,11 @@
 //! Material is entered by a helix where one fits, else by ramping along the path, never by a
 //! straight plunge.
 
-use super::air::AirCuts;
+use super::air::Refeed;
 use super::path2d::{arc_lengths, follow, start_nearest, Cursor, Heights};
 use super::settings::{EntryKind, LoadControl, PocketPattern};
 use crate::drawing::{Loop, Shape};
-use crate::geom::segment::Segment;
+use crate::geom::segment::{Rect, Segment};
 use crate::geom::tolerance::{FLOAT_SLACK, FLOAT_ZERO, LEAST_STEP};
 use crate::geom::{DVec2, DVec3, Tolerances};
 use crate::offset::offset;
@@ -168,10 +168,18 @@ pub fn way_out(k: usize, p: DVec2, middle: DVec2) -> DVec2 {
 /// run along its outer boundary, outermost first (the first entered in the air), then those
 /// round its islands, farthest from them first; each takes off at most a step.
 pub fn clear_rings(levels: &[Shape], clearing: &Clearing, z_prev: f64, z: f64, s: &mut RingSetup, air: Option<Air>) -> Vec<Move> {
-    let Some(boundary) = levels.first() else { return Vec::new() };
-    let from = s.cursor.at;
+    clear_rings_at_feed(levels, clearing, z_prev, z, s, air).run()
+}
+
+/// [`clear_rings`] with every feed move at the cutting feed, and the job that puts the
+/// stretches of air at the air feed.
+pub fn clear_rings_at_feed<'m>(levels: &[Shape], clearing: &Clearing, z_prev: f64, z: f64, s: &mut RingSetup<'_, 'm>, air: Option<Air>) -> Refeed<'m> {
+    let stock = &s.cursor.stock;
+    let mut job = Refeed { bounds: Rect::EMPTY, z, stock: stock.model(), profile: *stock.profile(), feed: s.cursor.air_feed, cutting: s.feed, from: s.cursor.at, moves: Vec::new() };
+    let Some(boundary) = levels.first() else { return job };
+    job.bounds = boundary.bounds().expand(s.tool_radius);
     // Cut only where the in-process stock has material, from where it starts.
-    let Some(z_prev) = s.cursor.material_top(levels.iter().flat_map(|l| l.segments()), z_prev, z, s.tol.gouge) else { return Vec::new() };
+    let Some(z_prev) = s.cursor.material_top(levels.iter().flat_map(|l| l.segments()), z_prev, z, s.tol.gouge) else { return job };
     s.cursor.safe = s.cursor.safe.min(z_prev + s.cursor.gap);
     let climb = clearing.climb;
     let orient = |l: &Loop| if climb { l.clone() } else { l.reversed() };
@@ -204,11 +212,8 @@ pub fn clear_rings(levels: &[Shape], clearing: &Clearing, z_prev: f64, z: f64, s
             }
         }
     }
-    let stock = &s.cursor.stock;
-    match AirCuts::new(boundary.bounds().expand(s.tool_radius), z, stock.model(), stock.profile(), s.cursor.air_feed, s.feed) {
-        Some(mut air) => air.refeed(from, out),
-        None => out,
-    }
+    job.moves = out;
+    job
 }
 
 /// The keep-out test of a pocket's links (the linker's [`Keepout`]): a straight move at depth
