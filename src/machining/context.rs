@@ -183,6 +183,26 @@ impl Context {
         entry: Entry,
         stay_down_max: f64,
     ) -> Toolpath {
+        let (path, plunges) = self.link_quietly(op, tool, runs, known, ceiling, keep, entry, stay_down_max);
+        self.warn_plunges(op, &plunges);
+        path
+    }
+
+    /// [`Context::link_fed`] without the warning: the tool path and where its entries feed
+    /// straight down into material, for [`Context::warn_plunges`] (planning that runs on
+    /// several threads warns afterwards, in order).
+    #[allow(clippy::too_many_arguments)]
+    pub fn link_quietly(
+        &self,
+        op: &str,
+        tool: &Tool,
+        runs: &[Vec<DVec3>],
+        known: (Option<&[Vec<f64>]>, Option<&[bool]>),
+        ceiling: f64,
+        keep: &dyn Keepout,
+        entry: Entry,
+        stay_down_max: f64,
+    ) -> (Toolpath, Vec<DVec3>) {
         let profile = tool.cutter.profile();
         let stock = self.sim.stock();
         let material = |p: DVec2| stock.touch(p, &profile, true).min(ceiling);
@@ -192,10 +212,14 @@ impl Context {
         let rates = Feeds { cut: tool.feed_rate, plunge: tool.plunge_rate };
         let linker = Linker { settings, keep, material: &material, material_along: &along, estimate: &estimate, threshold: self.tolerances.gouge, entry, radius: profile.radius, feeds: rates };
         let (start, moves, entries) = linker.link_fed(runs, known.0, known.1, &self.tolerances);
-        if entries.plunge > 0 {
-            self.warn_at(op, "entries found no room for a helix or a ramp and feed straight down into material", &entries.plunges);
+        (Toolpath { name: op.to_string(), tool: tool.number, spindle_rpm: tool.spindle_rpm, start, moves, cycles: Vec::new() }, entries.plunges)
+    }
+
+    /// Warns of entries of `op` at `plunges` that found no room for a helix or a ramp.
+    pub fn warn_plunges(&mut self, op: &str, plunges: &[DVec3]) {
+        if !plunges.is_empty() {
+            self.warn_at(op, "entries found no room for a helix or a ramp and feed straight down into material", plunges);
         }
-        Toolpath { name: op.to_string(), tool: tool.number, spindle_rpm: tool.spindle_rpm, start, moves, cycles: Vec::new() }
     }
 
     /// The part's heights on `grid` (`floor` where it is not): its CC z-map, made once.

@@ -30,6 +30,7 @@ use crate::machining::rings::Inside;
 use crate::machining::settings::{Direction, LoadControl, Roughing, Steps};
 use crate::machining::{named_operation, not_negative, positive, Context, FieldError, Operate, Planned};
 use crate::progress::Progress;
+use crate::tool::Tool;
 use crate::toolpath::entry::Entry;
 use crate::toolpath::{arcfit, Move, Toolpath};
 use crate::zigzag::graph::{along_boundary, Graph, Pattern};
@@ -104,6 +105,139 @@ impl RoughZigzag {
     pub fn levels(&self) -> LevelRoughing {
         LevelRoughing { flats: self.flats, ..LevelRoughing::new(&self.name, self.tool, self.steps, &self.roughing) }
     }
+
+    /// One level's tool path (none where every run was left out), its share of the load
+    /// report, and what to warn of: the runs left out, the entries that plunged.
+    fn level(&self, ctx: &Context, settings: &Settings, level: &Level) -> LevelCut {
+        let Settings { tool, step, ds, px, load, pattern, entry } = *settings;
+        let Level { z, z_prev, ref region } = *level;
+        let r = tool.cutter.radius();
+        let tol = ctx.tolerances;
+        let shortest = crate::toolpath::entry::shortest_ramp(r);
+        let mut out = LevelCut::default();
+        // §2: the passes, then the boundary.
+        let graph = Graph::new(region, self.angle.to_radians(), step);
+        let mut runs = graph.walk(pattern, load.climb, tol.chordal);
+        let end = runs.last().and_then(|r| r.last()).copied().unwrap_or(DVec2::ZERO);
+        // The last contour finishes the wall: its load is held by the feed, never by moving
+        // it off the boundary (a corrected path rounds the region's corners off).
+        let contours_from = runs.len();
+        runs.extend(boundary_runs(region, load.climb, tol.chordal, end));
+        // §3: the load on the material at this level.
+        let stock = ctx.sim.stock();
+        let material = |p: DVec2| load::material_at(stock, p, z);
+        let bounds = region.bounds();
+        let px = load::pixel_for(bounds, r, px);
+        let reference = load.reference(px);
+        let limit = reference * (1.0 + self.load_tolerance);
+        // The plain path's own map, for the report, only where the path is not the plain one.
+        let mut map = PixelMap::new(bounds, px, r, material, region);
+        let mut plain_map = (self.load == LoadControl::Path).then(|| map.clone());
+        let inside = Inside(region);
+        let (mut pts3, mut feeds): (Vec<Vec<DVec3>>, Vec<Vec<f64>>) = (Vec::new(), Vec::new());
+        // Whether each run starts in material, as the map of this level knows.
+        let mut starts = Vec::new();
+        let mut plain = LoadProfile::default();
+        let mut done = LoadProfile::default();
+        let mut shares = Vec::new();
+        for (i, run) in runs.iter().enumerate() {
+            // The plain path's load, for the report (the path itself unless corrected).
+            if let Some(m) = &mut plain_map {
+                load::plain(m, run, &load, &mut plain);
+            }
+            // Joined to the run before when the straight link stays in the region and
+            // within the load.
+            let mut steps = LoadProfile::default();
+            let mut pts = Vec::new();
+            let from = pts3.last().and_then(|r: &Vec<DVec3>| r.last()).map(|p| p.truncate());
+            // The link in steps of Δs, each within the load.
+            let link = from.map(|a| load::densify(&[a, run[0]], ds / load::SUBSTEPS as f64)).unwrap_or_default();
+            let joined = from.is_some_and(|a| {
+                use crate::toolpath::entry::Keepout;
+                inside.clears(a.extend(z), run[0].extend(z), 0.0) && load::link_keeps(&mut map, &link, limit, ds)
+            });
+            let in_material = map.count(run[0], run[0]) > 0;
+            if !joined && too_short(run, shortest) && in_material {
+                // Too short to ramp into the material at its start, in a place too narrow
+                // for a helix: left, with a warning.
+                out.left_out += 1;
+                continue;
+            }
+            if joined {
+                for w in link.windows(2) {
+                    let n = map.cut(w[0], w[1]);
+                    steps.counts.push((n as f64, w[0].distance(w[1])));
+                }
+                pts.extend(&link[..link.len() - 1]);
+            }
+            pts.extend(match self.load {
+                LoadControl::Path if i < contours_from => load::corrected(&mut map, run, &load, &mut steps),
+                _ => load::plain(&mut map, run, &load, &mut steps),
+            });
+            let mut fed = Vec::with_capacity(steps.counts.len());
+            for &(n, len) in &steps.counts {
+                let slow = if self.load == LoadControl::None { None } else { load::feed_share(n, len, limit, ds) };
+                if slow.is_some() {
+                    out.slowed += len;
+                }
+                let share = slow.unwrap_or(1.0);
+                shares.push(share);
+                fed.push(tool.feed_rate * share);
+            }
+            done.counts.extend(steps.counts);
+            let run3: Vec<DVec3> = pts.iter().map(|p| p.extend(z)).collect();
+            if joined {
+                pts3.last_mut().unwrap().extend(run3.into_iter().skip(1));
+                feeds.last_mut().unwrap().extend(fed);
+            } else {
+                pts3.push(run3);
+                feeds.push(fed);
+                starts.push(in_material);
+            }
+        }
+        out.load = done.ratios(reference, ds);
+        if plain_map.is_some() {
+            out.plain = plain.ratios(reference, ds);
+        } else {
+            // Cut as it is: the plain path's load is the path's own, links included.
+            out.plain = done.ratios(reference, ds);
+        }
+        out.cut = done.rates(Some(&shares), reference, ds);
+        let (linked, plunges) = ctx.link_quietly(&self.name, tool, &pts3, (Some(&feeds), Some(&starts)), z_prev, &inside, entry, 0.0);
+        let moves = arcfit::fit(&linked.moves, linked.start, tol.chordal, &|p| region.contains(p));
+        // Stretches over what the level cleared already at the air feed.
+        let moves = match AirCuts::new(region.bounds().expand(r), z, ctx.sim.stock(), &tool.cutter.profile(), ctx.air_feed, tool.feed_rate) {
+            Some(mut air) => air.refeed(linked.start, moves),
+            None => moves,
+        };
+        out.plunges = plunges;
+        out.path = Some(Toolpath { moves, ..linked });
+        out
+    }
+}
+
+/// What every level of a zigzag roughing shares.
+#[derive(Clone, Copy)]
+struct Settings<'a> {
+    tool: &'a Tool,
+    step: f64,
+    ds: f64,
+    px: f64,
+    load: Load,
+    pattern: Pattern,
+    entry: Entry,
+}
+
+/// One level of a zigzag roughing ([`RoughZigzag::level`]).
+#[derive(Default)]
+struct LevelCut {
+    path: Option<Toolpath>,
+    load: Vec<f64>,
+    plain: Vec<f64>,
+    cut: Vec<f64>,
+    slowed: f64,
+    left_out: usize,
+    plunges: Vec<DVec3>,
 }
 
 impl Operate for RoughZigzag {
@@ -141,119 +275,40 @@ impl Operate for RoughZigzag {
             Passes::OneWay => Pattern::OneWay,
         };
         let entry = Entry { ramp_angle: self.roughing.ramp_angle, ..Entry::default() };
-        let tol = ctx.tolerances;
         let mut report = LoadReport { reference: step * tool.feed_rate, rate: step * tool.feed_rate * self.steps.stepdown, sampling: ds, ..LoadReport::default() };
         let mut path: Option<Toolpath> = None;
-        let shortest = crate::toolpath::entry::shortest_ramp(r);
         let mut left_out = 0;
         let count = cut.len();
-        for (k, Level { z, z_prev, region }) in cut.into_iter().enumerate() {
-            if !progress.report(k as f64 / count as f64) {
+        let settings = Settings { tool: &tool, step, ds, px, load, pattern, entry };
+        // The levels on every core, a batch at a time (each level's material is the stock's
+        // as the operation found it, below the levels before: they do not depend on each
+        // other), joined in order; progress and cancel between batches.
+        let batch = crate::parallel::threads();
+        for first in (0..count).step_by(batch) {
+            if !progress.report(first as f64 / count as f64) {
                 return Err(Error::Cancelled);
             }
-            // §2: the passes, then the boundary.
-            let graph = Graph::new(&region, self.angle.to_radians(), step);
-            let mut runs = graph.walk(pattern, load.climb, tol.chordal);
-            let end = runs.last().and_then(|r| r.last()).copied().unwrap_or(DVec2::ZERO);
-            // The last contour finishes the wall: its load is held by the feed, never by moving
-            // it off the boundary (a corrected path rounds the region's corners off).
-            let contours_from = runs.len();
-            runs.extend(boundary_runs(&region, load.climb, tol.chordal, end));
-            // §3: the load on the material at this level.
-            let stock = ctx.sim.stock();
-            let material = |p: DVec2| load::material_at(stock, p, z);
-            let bounds = region.bounds();
-            let px = load::pixel_for(bounds, r, px);
-            let reference = load.reference(px);
-            let limit = reference * (1.0 + self.load_tolerance);
-            // The plain path's own map, for the report, only where the path is not the plain one.
-            let mut map = PixelMap::new(bounds, px, r, material, &region);
-            let mut plain_map = (self.load == LoadControl::Path).then(|| map.clone());
-            let inside = Inside(&region);
-            let (mut pts3, mut feeds): (Vec<Vec<DVec3>>, Vec<Vec<f64>>) = (Vec::new(), Vec::new());
-            // Whether each run starts in material, as the map of this level knows.
-            let mut starts = Vec::new();
-            let mut plain = LoadProfile::default();
-            let mut done = LoadProfile::default();
-            let mut shares = Vec::new();
-            for (i, run) in runs.iter().enumerate() {
-                // The plain path's load, for the report (the path itself unless corrected).
-                if let Some(m) = &mut plain_map {
-                    load::plain(m, run, &load, &mut plain);
-                }
-                // Joined to the run before when the straight link stays in the region and
-                // within the load.
-                let mut steps = LoadProfile::default();
-                let mut pts = Vec::new();
-                let from = pts3.last().and_then(|r: &Vec<DVec3>| r.last()).map(|p| p.truncate());
-                // The link in steps of Δs, each within the load.
-                let link = from.map(|a| load::densify(&[a, run[0]], ds / load::SUBSTEPS as f64)).unwrap_or_default();
-                let joined = from.is_some_and(|a| {
-                    use crate::toolpath::entry::Keepout;
-                    inside.clears(a.extend(z), run[0].extend(z), 0.0) && load::link_keeps(&mut map, &link, limit, ds)
-                });
-                let in_material = map.count(run[0], run[0]) > 0;
-                if !joined && too_short(run, shortest) && in_material {
-                    // Too short to ramp into the material at its start, in a place too narrow
-                    // for a helix: left, with a warning.
-                    left_out += 1;
-                    continue;
-                }
-                if joined {
-                    for w in link.windows(2) {
-                        let n = map.cut(w[0], w[1]);
-                        steps.counts.push((n as f64, w[0].distance(w[1])));
+            let these = &cut[first..(first + batch).min(count)];
+            let ctx_now = &*ctx;
+            let made = crate::parallel::map_heavy(these.len(), |k| self.level(ctx_now, &settings, &these[k]));
+            for level in made {
+                report.load.extend(level.load);
+                report.plain.extend(level.plain);
+                report.cut.extend(level.cut);
+                report.slowed += level.slowed;
+                left_out += level.left_out;
+                ctx.warn_plunges(&self.name, &level.plunges);
+                let Some(level_path) = level.path else { continue };
+                match &mut path {
+                    None => path = Some(level_path),
+                    Some(p) => {
+                        p.moves.push(Move::Rapid { to: level_path.start });
+                        p.moves.extend(level_path.moves);
                     }
-                    pts.extend(&link[..link.len() - 1]);
-                }
-                pts.extend(match self.load {
-                    LoadControl::Path if i < contours_from => load::corrected(&mut map, run, &load, &mut steps),
-                    _ => load::plain(&mut map, run, &load, &mut steps),
-                });
-                let mut fed = Vec::with_capacity(steps.counts.len());
-                for &(n, len) in &steps.counts {
-                    let slow = if self.load == LoadControl::None { None } else { load::feed_share(n, len, limit, ds) };
-                    if slow.is_some() {
-                        report.slowed += len;
-                    }
-                    let share = slow.unwrap_or(1.0);
-                    shares.push(share);
-                    fed.push(tool.feed_rate * share);
-                }
-                done.counts.extend(steps.counts);
-                let run3: Vec<DVec3> = pts.iter().map(|p| p.extend(z)).collect();
-                if joined {
-                    pts3.last_mut().unwrap().extend(run3.into_iter().skip(1));
-                    feeds.last_mut().unwrap().extend(fed);
-                } else {
-                    pts3.push(run3);
-                    feeds.push(fed);
-                    starts.push(in_material);
-                }
-            }
-            report.load.extend(done.ratios(reference, ds));
-            if plain_map.is_some() {
-                report.plain.extend(plain.ratios(reference, ds));
-            } else {
-                // Cut as it is: the plain path's load is the path's own, links included.
-                report.plain.extend(done.ratios(reference, ds));
-            }
-            report.cut.extend(done.rates(Some(&shares), reference, ds));
-            let linked = ctx.link_fed(&self.name, &tool, &pts3, (Some(&feeds), Some(&starts)), z_prev, &inside, entry, 0.0);
-            let moves = arcfit::fit(&linked.moves, linked.start, tol.chordal, &|p| region.contains(p));
-            // Stretches over what the level cleared already at the air feed.
-            let moves = match AirCuts::new(region.bounds().expand(r), z, ctx.sim.stock(), &tool.cutter.profile(), ctx.air_feed, tool.feed_rate) {
-                Some(mut air) => air.refeed(linked.start, moves),
-                None => moves,
-            };
-            match &mut path {
-                None => path = Some(Toolpath { moves, ..linked }),
-                Some(p) => {
-                    p.moves.push(Move::Rapid { to: linked.start });
-                    p.moves.extend(moves);
                 }
             }
         }
+        let shortest = crate::toolpath::entry::shortest_ramp(tool.cutter.radius());
         if left_out > 0 {
             let runs = if left_out == 1 { "run" } else { "runs" };
             ctx.warn(&self.name, format!("{left_out} {runs} shorter than {shortest:.2} mm start in material where no helix fits: left uncut"));
