@@ -602,20 +602,22 @@ fn within_reach(list: &[Option<Piece>], reach: f64) -> Vec<Vec<usize>> {
         let skip = |from: isize| (ja.max(jb) - from) as usize;
         a.iter().skip(skip(*ja)).zip(b.iter().skip(skip(*jb))).any(|(ra, rb)| ra.iter().any(|&(a0, a1)| rb.iter().any(|&(b0, b1)| a0 <= b1 && b0 <= a1)))
     };
-    let own: Vec<Option<_>> = list.iter().map(|p| p.as_ref().map(|p| cells(&p.region, 0))).collect();
-    let mut out = vec![Vec::new(); list.len()];
-    for (k, p) in list.iter().enumerate() {
-        let Some(p) = p else { continue };
+    // Each piece on whichever core is free (a later piece has more pieces before it to try).
+    let mut own: Vec<(usize, Option<_>)> = (0..list.len()).map(|k| (k, None)).collect();
+    crate::parallel::each_mut(&mut own, |(k, out)| *out = list[*k].as_ref().map(|p| cells(&p.region, 0)));
+    let mut out: Vec<(usize, Vec<usize>)> = (0..list.len()).map(|k| (k, Vec::new())).collect();
+    crate::parallel::each_mut(&mut out, |(k, out)| {
+        let Some(p) = &list[*k] else { return };
         let near = p.region.bounds().expand(reach + 2.0 * cell);
         let mut grown = None;
-        for (j, q) in list.iter().enumerate().take(k) {
-            let (Some(q), Some(theirs)) = (q, &own[j]) else { continue };
+        for (j, q) in list.iter().enumerate().take(*k) {
+            let (Some(q), (_, Some(theirs))) = (q, &own[j]) else { continue };
             if q.z > p.z && q.region.bounds().overlaps(&near) && meets(grown.get_or_insert_with(|| cells(&p.region, 1 + grow)), theirs) {
-                out[k].push(j);
+                out.push(j);
             }
         }
-    }
-    out
+    });
+    out.into_iter().map(|(_, above)| above).collect()
 }
 
 /// Whether `region` holds `p`, counting points `slack` from it.
