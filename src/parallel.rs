@@ -1,13 +1,27 @@
 //! Data parallelism without a dependency: natively, work is split into one chunk per core with
 //! scoped threads; in wasm (one thread) it runs in place.
 
-/// How many threads work shares: the cores natively, one in wasm.
+/// How many threads work shares: the cores natively, one in wasm (and within [`alone`]).
 pub fn threads() -> usize {
-    if cfg!(target_arch = "wasm32") {
+    if cfg!(target_arch = "wasm32") || ALONE.get() {
         1
     } else {
         std::thread::available_parallelism().map_or(1, |n| n.get()).clamp(1, 8)
     }
+}
+
+thread_local! {
+    static ALONE: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// `f` with all its work on this thread, as the page's engine does it in wasm: for checking
+/// that the cores change nothing but the time (with one thread no other is started, so the
+/// setting holds wherever the work goes).
+pub fn alone<R>(f: impl FnOnce() -> R) -> R {
+    let before = ALONE.replace(true);
+    let out = f();
+    ALONE.set(before);
+    out
 }
 
 /// `(0..count).map(f)`, in order, on every core.

@@ -116,6 +116,40 @@ fn programs() -> Vec<(String, String)> {
     out
 }
 
+/// The page plans on one thread (wasm), the CLI on every core: the same programs either way,
+/// on the demo part (always here) with the strategies that share their work between threads
+/// (the levels' regions, the rings made ahead and the air judged behind, zigzag's levels, the
+/// octree's stages, the simulated stock's bands), and on a shared part where it is here.
+#[test]
+fn one_thread_writes_the_programs_every_core_writes() {
+    let mut cases: Vec<(String, Job, Workpiece)> = vec![("demo".into(), Job::demo(), demo_part().into())];
+    let ops = [
+        ("zlevel", json!([{ "kind": "roughZlevel", "tool": 1, "stepdown": 3.0, "grid": 0.5 }])),
+        ("zigzag", json!([{ "kind": "roughZigzag", "tool": 1, "stepdown": 3.0, "grid": 0.5 }])),
+        ("octree", json!([{ "kind": "roughOctree", "tools": [], "grid": 0.5 }])),
+    ];
+    for (name, op) in &ops {
+        cases.push((format!("demo part/{name}"), part_job(op.clone()), demo_part().into()));
+    }
+    if let Some(path) = common::shared_data("meshes/pycam_textbox.stl") {
+        let mesh = read_mesh_auto(&std::fs::read(path).unwrap(), Some("pycam_textbox.stl"), &swarf::geom::Tolerances::default()).unwrap();
+        for (name, op) in &ops {
+            let mut job = part_job(op.clone());
+            job.simulation.verify = true;
+            cases.push((format!("pycam_textbox/{name}"), job, mesh.clone().into()));
+        }
+    }
+    // (On a machine of one core both runs are the same run.)
+    for (name, job, workpiece) in cases {
+        let every = run(&job, workpiece.clone());
+        let one = swarf::parallel::alone(|| {
+            assert_eq!(swarf::parallel::threads(), 1);
+            run(&job, workpiece)
+        });
+        assert!(every == one, "{name}: {} bytes on every core, {} on one thread", every.len(), one.len());
+    }
+}
+
 #[test]
 fn every_golden_program_is_byte_identical() {
     let got: Vec<(String, u64, usize)> = programs().into_iter().map(|(n, g)| (n, fnv1a(g.as_bytes()), g.len())).collect();
