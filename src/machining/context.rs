@@ -164,33 +164,17 @@ impl Context {
     /// the retract gap above the in-process stock, entries by `entry`. Entries that found no
     /// room for a helix or a ramp are warned of.
     pub fn link(&mut self, op: &str, tool: &Tool, runs: &[Vec<DVec3>], keep: &dyn Keepout, entry: Entry, stay_down_max: f64) -> Toolpath {
-        self.link_fed(op, tool, runs, (None, None), f64::INFINITY, keep, entry, stay_down_max)
-    }
-
-    /// [`Context::link`] with, where given, a feed for each move along the runs and whether
-    /// each run starts in material (`known`, see [`Linker::link_fed`]), and the in-process
-    /// stock taken no higher than `ceiling` (what the operation itself has cut down to before
-    /// these runs).
-    #[allow(clippy::too_many_arguments)]
-    pub fn link_fed(
-        &mut self,
-        op: &str,
-        tool: &Tool,
-        runs: &[Vec<DVec3>],
-        known: (Option<&[Vec<f64>]>, Option<&[bool]>),
-        ceiling: f64,
-        keep: &dyn Keepout,
-        entry: Entry,
-        stay_down_max: f64,
-    ) -> Toolpath {
-        let (path, plunges) = self.link_quietly(op, tool, runs, known, ceiling, keep, entry, stay_down_max);
+        let (path, plunges) = self.link_quietly(op, tool, runs, (None, None), f64::INFINITY, keep, entry, stay_down_max);
         self.warn_plunges(op, &plunges);
         path
     }
 
-    /// [`Context::link_fed`] without the warning: the tool path and where its entries feed
-    /// straight down into material, for [`Context::warn_plunges`] (planning that runs on
-    /// several threads warns afterwards, in order).
+    /// [`Context::link`] without the warning (planning that runs on several threads warns
+    /// afterwards, in order, by [`Context::warn_plunges`]): the tool path and where its
+    /// entries feed straight down into material. Where given, a feed for each move along the
+    /// runs and whether each run starts in material (`known`, see [`Linker::link_fed`]), and
+    /// the in-process stock taken no higher than `ceiling` (what the operation itself has cut
+    /// down to before these runs).
     #[allow(clippy::too_many_arguments)]
     pub fn link_quietly(
         &self,

@@ -1,8 +1,8 @@
 //! Zigzag roughing by the intersection-points graph, with the tool's load held at the
 //! step-over's (seed 004; [`crate::zigzag`]). The levels, their regions (allowances, flats,
 //! material left by earlier operations), entries and linking are the z-level strategy's
-//! ([`LevelRoughing::levels_to_cut`], [`Context::link_fed`]); at each level this strategy clears
-//! the region with direction-parallel passes instead of rings:
+//! ([`LevelRoughing::levels_to_cut`], [`Context::link_quietly`]); at each level this strategy
+//! clears the region with direction-parallel passes instead of rings:
 //!
 //! 1. the graph of the region and scan lines at the angle and step-over (§2.1), walked with a
 //!    stack (§2.2) into runs the tool cuts staying down;
