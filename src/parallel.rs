@@ -48,6 +48,14 @@ fn map_from<U: Send>(count: usize, least: usize, f: impl Fn(usize) -> U + Sync) 
     parts.into_iter().flatten().collect()
 }
 
+/// `(0..count).map(f)`, in order, each item on whichever core is free next (items of uneven
+/// work, such as regions of different sizes); in place in wasm.
+pub fn map_uneven<U: Send>(count: usize, f: impl Fn(usize) -> U + Sync) -> Vec<U> {
+    let mut slots: Vec<(usize, Option<U>)> = (0..count).map(|k| (k, None)).collect();
+    each_mut(&mut slots, |(k, out)| *out = Some(f(*k)));
+    slots.into_iter().map(|(_, made)| made.expect("every item is made")).collect()
+}
+
 /// `f` on every item, each on whichever core is free next (for items of uneven work); in place,
 /// in order, in wasm.
 pub fn each_mut<T: Send>(items: &mut [T], f: impl Fn(&mut T) + Sync) {
@@ -139,6 +147,15 @@ pub fn behind<J: Send, U: Send, R>(work: impl Fn(J) -> U + Sync, main: impl FnOn
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn uneven_items_come_back_in_order() {
+        // Work growing with the item (as later pieces try more pieces before them).
+        let got = map_uneven(300, |k| (0..k * 50).fold(k as u64, |a, j| a.wrapping_mul(31).wrapping_add(j as u64)));
+        let want: Vec<u64> = (0..300).map(|k| (0..k * 50).fold(k as u64, |a, j| a.wrapping_mul(31).wrapping_add(j as u64))).collect();
+        assert_eq!(got, want);
+        assert!(map_uneven(0, |k| k).is_empty());
+    }
 
     #[test]
     fn items_made_ahead_are_the_items_asked_for_in_any_order() {

@@ -352,20 +352,18 @@ impl LevelRoughing {
         // unless a pool made it already.
         let given = &ctx.given_regions;
         let keeps = inputs.keeps();
-        let mut regions: Vec<(usize, Option<Shape>)> = (0..inputs.heights.len()).map(|k| (k, None)).collect();
-        crate::parallel::each_mut(&mut regions, |(k, out)| {
-            let (packed, level) = (&keeps[*k], inputs.level(*k));
+        let regions = crate::parallel::map_uneven(inputs.heights.len(), |k| {
+            let (packed, level) = (&keeps[k], inputs.level(k));
             let made = given.iter().find(|g| g.request == request && g.level == level && &g.keep == packed);
-            *out = Some(made.map_or_else(
+            made.map_or_else(
                 || {
                     let keep = unpack(packed, inputs.grid.nodes());
                     map.region(&cl, level, &|i, j| keep[j * inputs.grid.nx + i], &tol)
                 },
                 |g| g.region.clone(),
-            ));
+            )
         });
-        for ((z, flat), (_, region)) in inputs.heights.into_iter().zip(regions) {
-            let region = region.expect("every level's region is made");
+        for ((z, flat), region) in inputs.heights.into_iter().zip(regions) {
             if region.is_empty() {
                 continue;
             }
@@ -603,21 +601,20 @@ fn within_reach(list: &[Option<Piece>], reach: f64) -> Vec<Vec<usize>> {
         a.iter().skip(skip(*ja)).zip(b.iter().skip(skip(*jb))).any(|(ra, rb)| ra.iter().any(|&(a0, a1)| rb.iter().any(|&(b0, b1)| a0 <= b1 && b0 <= a1)))
     };
     // Each piece on whichever core is free (a later piece has more pieces before it to try).
-    let mut own: Vec<(usize, Option<_>)> = (0..list.len()).map(|k| (k, None)).collect();
-    crate::parallel::each_mut(&mut own, |(k, out)| *out = list[*k].as_ref().map(|p| cells(&p.region, 0)));
-    let mut out: Vec<(usize, Vec<usize>)> = (0..list.len()).map(|k| (k, Vec::new())).collect();
-    crate::parallel::each_mut(&mut out, |(k, out)| {
-        let Some(p) = &list[*k] else { return };
+    let own = crate::parallel::map_uneven(list.len(), |k| list[k].as_ref().map(|p| cells(&p.region, 0)));
+    crate::parallel::map_uneven(list.len(), |k| {
+        let Some(p) = &list[k] else { return Vec::new() };
         let near = p.region.bounds().expand(reach + 2.0 * cell);
         let mut grown = None;
-        for (j, q) in list.iter().enumerate().take(*k) {
-            let (Some(q), (_, Some(theirs))) = (q, &own[j]) else { continue };
+        let mut above = Vec::new();
+        for (j, q) in list.iter().enumerate().take(k) {
+            let (Some(q), Some(theirs)) = (q, &own[j]) else { continue };
             if q.z > p.z && q.region.bounds().overlaps(&near) && meets(grown.get_or_insert_with(|| cells(&p.region, 1 + grow)), theirs) {
-                out.push(j);
+                above.push(j);
             }
         }
-    });
-    out.into_iter().map(|(_, above)| above).collect()
+        above
+    })
 }
 
 /// Whether `region` holds `p`, counting points `slack` from it.

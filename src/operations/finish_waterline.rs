@@ -146,18 +146,16 @@ impl Operate for FinishWaterline {
         // unless a pool made it already.
         let given = &ctx.given_regions;
         let all = (!given.is_empty()).then(|| pack(&vec![true; grid.nodes()]));
-        let mut made: Vec<(f64, Option<crate::drawing::Shape>)> = heights.iter().map(|&z| (z, None)).collect();
-        crate::parallel::each_mut(&mut made, |(z, out)| {
-            let level = *z - self.allowance;
+        let made = crate::parallel::map_uneven(heights.len(), |k| {
+            let level = heights[k] - self.allowance;
             let kept = all.as_ref().and_then(|all| given.iter().find(|g| g.request == request && g.level == level && g.keep == *all));
-            *out = Some(kept.map_or_else(|| map.region(&cl, level, &|_, _| true, &tol), |g| g.region.clone()));
+            kept.map_or_else(|| map.region(&cl, level, &|_, _| true, &tol), |g| g.region.clone())
         });
         let mut runs: Vec<Vec<DVec3>> = Vec::new();
-        for (k, (z, region)) in made.into_iter().enumerate() {
+        for (k, (&z, region)) in heights.iter().zip(made).enumerate() {
             if !progress.report(k as f64 / heights.len() as f64) {
                 return Err(Error::Cancelled);
             }
-            let region = region.expect("each level's region is made");
             for l in &region.loops {
                 // The region's loops keep it on their left, the part on their right: climb with
                 // a clockwise spindle.

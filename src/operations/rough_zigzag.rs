@@ -22,7 +22,7 @@ use crate::drawing::Shape;
 use crate::error::{Error, Result};
 use crate::geom::tolerance::LEAST_STEP;
 use crate::geom::{DVec2, DVec3};
-use crate::machining::air::AirCuts;
+use crate::machining::air::Refeed;
 use crate::machining::levels::{level_work, Level, LevelRoughing, Levels};
 use crate::machining::path2d::start_nearest;
 use crate::machining::report::LoadReport;
@@ -106,15 +106,14 @@ impl RoughZigzag {
         LevelRoughing { flats: self.flats, ..LevelRoughing::new(&self.name, self.tool, self.steps, &self.roughing) }
     }
 
-    /// One level's tool path (none where every run was left out), its share of the load
-    /// report, and what to warn of: the runs left out, the entries that plunged.
+    /// One level's tool path, its share of the load report, and what to warn of: the runs
+    /// left out, the entries that plunged.
     fn level(&self, ctx: &Context, settings: &Settings, level: &Level) -> LevelCut {
-        let Settings { tool, step, ds, px, load, pattern, entry } = *settings;
+        let Settings { tool, step, ds, px, load, pattern, entry, shortest } = *settings;
         let Level { z, z_prev, ref region } = *level;
         let r = tool.cutter.radius();
         let tol = ctx.tolerances;
-        let shortest = crate::toolpath::entry::shortest_ramp(r);
-        let mut out = LevelCut::default();
+        let (mut left_out, mut slowed) = (0, 0.0);
         // §2: the passes, then the boundary.
         let graph = Graph::new(region, self.angle.to_radians(), step);
         let mut runs = graph.walk(pattern, load.climb, tol.chordal);
@@ -160,7 +159,7 @@ impl RoughZigzag {
             if !joined && too_short(run, shortest) && in_material {
                 // Too short to ramp into the material at its start, in a place too narrow
                 // for a helix: left, with a warning.
-                out.left_out += 1;
+                left_out += 1;
                 continue;
             }
             if joined {
@@ -178,7 +177,7 @@ impl RoughZigzag {
             for &(n, len) in &steps.counts {
                 let slow = if self.load == LoadControl::None { None } else { load::feed_share(n, len, limit, ds) };
                 if slow.is_some() {
-                    out.slowed += len;
+                    slowed += len;
                 }
                 let share = slow.unwrap_or(1.0);
                 shares.push(share);
@@ -195,24 +194,15 @@ impl RoughZigzag {
                 starts.push(in_material);
             }
         }
-        out.load = done.ratios(reference, ds);
-        if plain_map.is_some() {
-            out.plain = plain.ratios(reference, ds);
-        } else {
-            // Cut as it is: the plain path's load is the path's own, links included.
-            out.plain = done.ratios(reference, ds);
-        }
-        out.cut = done.rates(Some(&shares), reference, ds);
+        // Cut as it is (no plain path's map), the plain path's load is the path's own, links
+        // included.
+        let plain = if plain_map.is_some() { plain.ratios(reference, ds) } else { done.ratios(reference, ds) };
         let (linked, plunges) = ctx.link_quietly(&self.name, tool, &pts3, (Some(&feeds), Some(&starts)), z_prev, &inside, entry, 0.0);
         let moves = arcfit::fit(&linked.moves, linked.start, tol.chordal, &|p| region.contains(p));
         // Stretches over what the level cleared already at the air feed.
-        let moves = match AirCuts::new(region.bounds().expand(r), z, ctx.sim.stock(), &tool.cutter.profile(), ctx.air_feed, tool.feed_rate) {
-            Some(mut air) => air.refeed(linked.start, moves),
-            None => moves,
-        };
-        out.plunges = plunges;
-        out.path = Some(Toolpath { moves, ..linked });
-        out
+        let moves =
+            Refeed { bounds: region.bounds().expand(r), z, stock: ctx.sim.stock(), profile: tool.cutter.profile(), feed: ctx.air_feed, cutting: tool.feed_rate, from: linked.start, moves }.run();
+        LevelCut { path: Toolpath { moves, ..linked }, load: done.ratios(reference, ds), plain, cut: done.rates(Some(&shares), reference, ds), slowed, left_out, plunges }
     }
 }
 
@@ -226,12 +216,13 @@ struct Settings<'a> {
     load: Load,
     pattern: Pattern,
     entry: Entry,
+    /// A run shorter than this that starts in material, where no helix fits, is left out.
+    shortest: f64,
 }
 
 /// One level of a zigzag roughing ([`RoughZigzag::level`]).
-#[derive(Default)]
 struct LevelCut {
-    path: Option<Toolpath>,
+    path: Toolpath,
     load: Vec<f64>,
     plain: Vec<f64>,
     cut: Vec<f64>,
@@ -279,7 +270,8 @@ impl Operate for RoughZigzag {
         let mut path: Option<Toolpath> = None;
         let mut left_out = 0;
         let count = cut.len();
-        let settings = Settings { tool: &tool, step, ds, px, load, pattern, entry };
+        let shortest = crate::toolpath::entry::shortest_ramp(r);
+        let settings = Settings { tool: &tool, step, ds, px, load, pattern, entry, shortest };
         // The levels on every core, a batch at a time (each level's material is the stock's
         // as the operation found it, below the levels before: they do not depend on each
         // other), joined in order; progress and cancel between batches.
@@ -298,17 +290,15 @@ impl Operate for RoughZigzag {
                 report.slowed += level.slowed;
                 left_out += level.left_out;
                 ctx.warn_plunges(&self.name, &level.plunges);
-                let Some(level_path) = level.path else { continue };
                 match &mut path {
-                    None => path = Some(level_path),
+                    None => path = Some(level.path),
                     Some(p) => {
-                        p.moves.push(Move::Rapid { to: level_path.start });
-                        p.moves.extend(level_path.moves);
+                        p.moves.push(Move::Rapid { to: level.path.start });
+                        p.moves.extend(level.path.moves);
                     }
                 }
             }
         }
-        let shortest = crate::toolpath::entry::shortest_ramp(tool.cutter.radius());
         if left_out > 0 {
             let runs = if left_out == 1 { "run" } else { "runs" };
             ctx.warn(&self.name, format!("{left_out} {runs} shorter than {shortest:.2} mm start in material where no helix fits: left uncut"));
