@@ -190,7 +190,8 @@ impl LevelRoughing {
         // ahead of the clearing on a second thread, and each piece's stretches of air judged
         // behind it (the rings depend only on the region, the air only on the stock the
         // operation starts from): the same program, sooner.
-        let regions: Vec<Arc<Shape>> = pieces.list.iter().flatten().map(|p| p.region.clone()).collect();
+        // Piece k's rings are made from region k: every piece is still in the list.
+        let regions: Vec<Arc<Shape>> = pieces.list.iter().map(|p| p.as_ref().expect("no piece is cut yet").region.clone()).collect();
         let make = |k: usize| rings(&regions[k], 0.0, step, r, &tol);
         let (cancelled, fed) = crate::parallel::ahead(count, make, |rings_of| {
             crate::parallel::behind(Refeed::run, |send| {
