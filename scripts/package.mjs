@@ -108,6 +108,11 @@ const pkg = {
   exports: {
     '.': { types: './index.d.ts', default: './index.js' },
     './files': { types: './engine.d.ts', default: './engine.js' },
+    // The files entry's worker and wasm, for a page or bundler that places them itself.
+    './worker.js': './worker.js',
+    './pkg/swarf.js': './pkg/swarf.js',
+    './swarf_bg.wasm': './pkg/swarf_bg.wasm',
+    './pkg/swarf_bg.wasm': './pkg/swarf_bg.wasm',
     './package.json': './package.json',
   },
   files: ['index.js', 'index.d.ts', 'inline.js', 'engine.js', 'engine.d.ts', 'worker.js', 'pkg/swarf.js', 'pkg/swarf_bg.wasm', 'types/swarf-types.d.ts', 'README.md', 'THIRD-PARTY.md', 'LICENSE-MIT', 'LICENSE-APACHE'],

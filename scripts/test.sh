@@ -6,7 +6,13 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
-step() { printf '\n\033[1m== %s\033[0m\n' "$*"; }
+# Each stage's time, printed as it ends and together at the end (a fresh run must stay well
+# inside CI's 90 minutes: the slowest stages and tests are named there).
+times=()
+stage_name=""
+stage_start=$SECONDS
+end_stage() { if [ -n "$stage_name" ]; then times+=("$(printf '%5d s  %s' $((SECONDS - stage_start)) "$stage_name")"); printf '\033[1m-- %s: %d s\033[0m\n' "$stage_name" $((SECONDS - stage_start)); fi; }
+step() { end_stage; stage_name="$*"; stage_start=$SECONDS; printf '\n\033[1m== %s\033[0m\n' "$*"; }
 
 step "setup"
 bash scripts/setup.sh
@@ -26,6 +32,14 @@ WASM_BINDGEN_TEST_TIMEOUT=${WASM_BINDGEN_TEST_TIMEOUT:-600} cargo test --target 
 step "the page end to end (Playwright + Chromium + rs274)"
 bash scripts/build-wasm.sh
 node --test tests/e2e/ 2>&1 | tee -a "$log"
+end_stage
+
+echo
+echo "stage times:"
+printf '%s\n' "${times[@]}"
+# The slowest page tests (node's TAP: a test's duration follows its "ok" line).
+echo "slowest page tests:"
+awk '/^ *(not )?ok [0-9]+ - / { sub(/^ *(not )?ok [0-9]+ - /, ""); name = $0 } /duration_ms:/ && name != "" { printf "%8.1f s  %s\n", $2 / 1000, name; name = "" }' "$log" | grep -v '/tests/e2e/' | sort -rn | head -8 || true
 
 # One closing line over all three runners.
 read -r passed failed < <(awk '

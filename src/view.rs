@@ -32,6 +32,9 @@ pub struct PartData {
     pub dropped: usize,
     /// Holes in its surface, triangles dropped ([`job::part_warnings`]).
     pub warnings: Vec<Warning>,
+    /// The placed triangles' identity ([`PartData::hash_of`]): two parts are the same to the
+    /// page (kept, not uploaded again) only when this is the same.
+    pub hash: String,
 }
 
 impl PartData {
@@ -45,7 +48,25 @@ impl PartData {
                 normals.extend([n.x as f32, n.y as f32, n.z as f32]);
             }
         }
-        PartData { positions, normals, bounds: mesh.bounds(), triangles: mesh.faces.len(), dropped: mesh.dropped_degenerate, warnings: job::part_warnings(mesh) }
+        let hash = PartData::hash_of(&positions);
+        PartData { positions, normals, bounds: mesh.bounds(), triangles: mesh.faces.len(), dropped: mesh.dropped_degenerate, warnings: job::part_warnings(mesh), hash }
+    }
+
+    /// A part with no triangles (what a result holds once its part is taken).
+    pub fn empty() -> PartData {
+        PartData { positions: vec![], normals: vec![], bounds: Aabb::EMPTY, triangles: 0, dropped: 0, warnings: vec![], hash: PartData::hash_of(&[]) }
+    }
+
+    /// 64-bit FNV-1a over every coordinate's bits, in hex: any placement that moves a single
+    /// vertex (a flip, a turn, a scale) gives another hash; the normals follow the positions.
+    pub fn hash_of(positions: &[f32]) -> String {
+        let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+        for v in positions {
+            for b in v.to_bits().to_le_bytes() {
+                h = (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3);
+            }
+        }
+        format!("{:016x}-{}", h, positions.len())
     }
 
     /// `[minX, minY, minZ, maxX, maxY, maxZ]` (mm).
@@ -349,10 +370,13 @@ impl Program {
 }
 
 /// The program with a warning at its head naming `problem`, if there is one, and its move
-/// lines shifted past that line.
+/// lines shifted past the warning's lines.
 fn marked(gcode: String, lines: Vec<u32>, problem: Option<&str>) -> (String, Vec<u32>) {
     match problem {
-        Some(_) => (job::marked(&gcode, problem), lines.into_iter().map(|l| l + 1).collect()),
+        Some(p) => {
+            let added = job::warning_lines(p).len() as u32;
+            (job::marked(&gcode, problem), lines.into_iter().map(|l| l + added).collect())
+        }
         None => (gcode, lines),
     }
 }
@@ -426,6 +450,36 @@ impl ResultView {
 mod tests {
     use super::*;
     use crate::progress::Progress;
+
+    /// Issue 55: the page keeps a part's triangles when a run gives back the same part, and
+    /// only then. Every up axis and turn of a part without symmetry is another hash (a flip
+    /// keeps a centred part's bounds: a sample of coordinates once took −Z for the same part),
+    /// and the same placement the same hash.
+    #[test]
+    fn every_placement_is_another_part_and_the_same_one_the_same() {
+        use crate::mesh::placement::{PartSetup, UpAxis};
+        let mut seen = std::collections::HashMap::new();
+        for up in [UpAxis::Z, UpAxis::Y, UpAxis::X, UpAxis::MinusZ, UpAxis::MinusY, UpAxis::MinusX] {
+            for rotation in [0, 90, 180, 270] {
+                let setup = PartSetup { up_axis: up, rotation, ..PartSetup::default() };
+                let mut mesh = crate::mesh::sample::demo_part();
+                setup.apply(&mut mesh);
+                let data = PartData::of(&mesh);
+                let mut again = crate::mesh::sample::demo_part();
+                setup.apply(&mut again);
+                assert_eq!(PartData::of(&again).hash, data.hash, "{up:?} {rotation}");
+                if let Some(other) = seen.insert(data.hash.clone(), (up, rotation)) {
+                    panic!("{up:?} turned {rotation} has the hash of {other:?}");
+                }
+            }
+        }
+        // One coordinate moved by its last bit is another part.
+        let data = PartData::of(&crate::mesh::sample::demo_part());
+        let mut moved = data.positions.clone();
+        moved[4] = f32::from_bits(moved[4].to_bits() + 1);
+        assert_ne!(PartData::hash_of(&moved), data.hash);
+        assert_ne!(PartData::empty().hash, data.hash);
+    }
 
     #[test]
     fn segments_name_their_moves_and_the_scrubbers_clock_is_the_programs() {

@@ -6,7 +6,7 @@
 use wasm_bindgen::prelude::*;
 
 use crate::drawing::Drawing;
-use crate::geom::{Aabb, Tolerances};
+use crate::geom::Tolerances;
 use crate::job::{self, Job, Workpiece};
 use crate::mesh::import::read_mesh_auto;
 use crate::mesh::placement::PartSetup;
@@ -37,13 +37,16 @@ fn job_from_js(job: JsValue) -> Result<Job, JsError> {
 }
 
 /// Every setting of a job (an object) that does not fit, as `[{ path, message }]`
-/// ([`Job::problems`]); a job that does not read gives its one problem, with the path the
-/// reader named.
+/// ([`Job::problems_with`]): with `part`, the placed part's bounds (`[minX, minY, minZ, maxX,
+/// maxY, maxZ]`, as `loadPart` gives them), also a stock box the part sticks out of. A job that
+/// does not read gives its one problem, with the path the reader named.
 #[wasm_bindgen(js_name = checkJob)]
-pub fn check_job(job: JsValue) -> Result<JsValue, JsError> {
+pub fn check_job(job: JsValue, part: Option<Vec<f64>>) -> Result<JsValue, JsError> {
     let value: serde_json::Value = serde_wasm_bindgen::from_value(job).map_err(|e| js_error(format!("the job is not a plain object: {e}")))?;
+    let bounds =
+        part.filter(|b| b.len() == 6 && b.iter().all(|v| v.is_finite())).map(|b| crate::geom::Aabb { min: crate::geom::DVec3::new(b[0], b[1], b[2]), max: crate::geom::DVec3::new(b[3], b[4], b[5]) });
     let problems = match Job::from_value(&value) {
-        Ok(job) => job.problems(),
+        Ok(job) => job.problems_with(bounds.as_ref()),
         Err(e) => {
             let message = e.to_string();
             let named = message.strip_prefix("unknown fields: ").or_else(|| message.strip_prefix("unknown field: ")).unwrap_or(&message);
@@ -198,6 +201,10 @@ impl PartView {
     pub fn warnings(&self) -> Result<JsValue, JsError> {
         to_js(&self.0.warnings)
     }
+    /// The placed triangles' identity: the same only for the same triangles in the same place.
+    pub fn hash(&self) -> String {
+        self.0.hash.clone()
+    }
 }
 
 fn read_part(bytes: &[u8], name: &str, tolerances: &Tolerances) -> Result<Mesh, JsError> {
@@ -347,8 +354,7 @@ impl JobResult {
     /// The part as the job placed it.
     #[wasm_bindgen(js_name = takePart)]
     pub fn take_part(&mut self) -> PartView {
-        let empty = view::PartData { positions: vec![], normals: vec![], bounds: Aabb::EMPTY, triangles: 0, dropped: 0, warnings: vec![] };
-        PartView(std::mem::replace(&mut self.0.part, empty))
+        PartView(std::mem::replace(&mut self.0.part, view::PartData::empty()))
     }
 }
 

@@ -2,6 +2,8 @@
 
 use std::process::Command;
 
+mod common;
+
 use swarf::cutter::Cutter;
 use swarf::geom::{DVec2, Tolerances};
 use swarf::mesh::import::read_mesh_auto;
@@ -138,6 +140,52 @@ fn a_program_with_problems_is_written_only_when_asked() {
     assert!(forced.status.success(), "{}", String::from_utf8_lossy(&forced.stderr));
     let gcode = std::fs::read_to_string(&program).unwrap();
     assert!(gcode.starts_with("(WARNING: NOT SAFE TO RUN: the simulation found problems:"), "{}", &gcode[..200]);
+    // The warning fits a control's line (issue 55: rs274 refused its 290 characters as "Command
+    // too long"): each of its lines a comment of at most 70 characters, together the whole
+    // problem as the command said it, and rs274 reads the program.
+    let head: Vec<&str> = gcode.lines().take_while(|l| l.starts_with('(')).collect();
+    let warning: Vec<&str> = head.iter().copied().take_while(|l| !l.starts_with("(WARNING") || l.len() > 9).collect();
+    assert!(warning.len() > 1, "{head:?}");
+    for line in &head {
+        assert!(line.len() <= 70 && line.ends_with(')') && line.is_ascii(), "{line:?}");
+    }
+    let said: String = head.iter().map(|l| l.trim_matches(|c| c == '(' || c == ')')).collect::<Vec<_>>().join(" ");
+    assert!(said.contains("bury the tool") && said.contains("past the flutes"), "{said}");
+    let tools: Vec<swarf::job::Tool> = serde_json::from_value(job["tools"].clone()).unwrap();
+    common::rs274(&gcode, &tools);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Issue 55: `-o` never names an input: the part, the job or the project stay as they are,
+/// however the path is spelt, and nothing is written.
+#[test]
+fn an_output_that_is_an_input_is_refused() {
+    let dir = temp("overwrite");
+    assert!(swarf(&["demo", "-o", dir.to_str().unwrap()]).status.success());
+    let arg = |p: &std::path::Path| p.to_str().unwrap().to_owned();
+    let (job, part) = (dir.join("demo.json"), dir.join("demo.stl"));
+    let before = (std::fs::read(&job).unwrap(), std::fs::read(&part).unwrap());
+    let spelt = dir.join(".").join("demo.stl");
+    for output in [&part, &job, &spelt] {
+        let out = swarf(&["run", &arg(&job), &arg(&part), "-o", &arg(output), "-q"]);
+        let message = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success() && message.contains("is an input of this command"), "{message}");
+    }
+    let out = swarf(&["project", &arg(&job), &arg(&part), "-o", &arg(&part)]);
+    assert!(!out.status.success() && String::from_utf8_lossy(&out.stderr).contains("is an input"));
+    let out = swarf(&["zmap", &arg(&part), "--diameter", "6", "-o", &arg(&part)]);
+    assert!(!out.status.success() && String::from_utf8_lossy(&out.stderr).contains("is an input"));
+    assert_eq!((std::fs::read(&job).unwrap(), std::fs::read(&part).unwrap()), before, "an input was changed");
+    // A project that names its part beside it: the part is an input too.
+    let project = dir.join("demo.swarf.json");
+    assert!(swarf(&["project", &arg(&job), &arg(&part), "--reference", "-o", &arg(&project)]).status.success());
+    let out = swarf(&["run", &arg(&project), "-o", &arg(&part), "-q"]);
+    assert!(!out.status.success() && String::from_utf8_lossy(&out.stderr).contains("is an input"));
+    assert_eq!(std::fs::read(&part).unwrap(), before.1);
+    // Another name is written as before.
+    let program = dir.join("demo-out.ngc");
+    assert!(swarf(&["run", &arg(&job), &arg(&part), "-o", &arg(&program), "-q"]).status.success());
+    assert!(program.exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -144,3 +144,45 @@ fn a_roughing_setting_shared_by_the_roughing_kinds_is_named_by_its_path() {
         assert!(e.contains("operations[0].ramp_angle (did you mean rampAngle?)"), "{kind}: {e}");
     }
 }
+
+/// Issue 55: a stock box smaller than the part is an error naming by how much on which side,
+/// at `stock.sizeBox` in the checks the page marks as the user types (given the part's
+/// bounds) and when the job runs; a part reaching below the box's bottom is a warning; a box
+/// that holds the part runs as before.
+#[test]
+fn a_stock_box_smaller_than_the_part_is_refused_naming_the_sides() {
+    use swarf::geom::{Aabb, DVec3};
+    let part = swarf::mesh::sample::demo_part();
+    let mut job = swarf::job::Job::demo();
+    let mut placed = part.clone();
+    job.place(&mut placed);
+    let b = placed.bounds();
+    // A 40 × 40 box under the 90 × 60 sample.
+    job.stock.size_box = Some(Aabb { min: DVec3::new(-20.0, -20.0, b.min.z - 1.0), max: DVec3::new(20.0, 20.0, b.max.z + 1.0) });
+    let problems = job.problems_with(Some(&b));
+    let p = problems.iter().find(|p| p.path == "stock.sizeBox").unwrap_or_else(|| panic!("{problems:?}"));
+    let (dx, dy) = ((b.max.x - 20.0), (b.max.y - 20.0));
+    for side in [format!("{dx:.3} mm at -X"), format!("{dx:.3} mm at +X"), format!("{dy:.3} mm at -Y"), format!("{dy:.3} mm at +Y")] {
+        assert!(p.message.contains(&side), "{side}: {}", p.message);
+    }
+    assert!(!p.message.contains("at the top"), "{}", p.message);
+    // Without the part the job alone cannot tell.
+    assert!(job.problems().iter().all(|p| p.path != "stock.sizeBox"));
+    let e = match swarf::job::run(&job, part.clone(), &mut swarf::progress::Progress::none()) {
+        Ok(_) => panic!("the run must be refused"),
+        Err(e) => e.to_string(),
+    };
+    assert!(e.contains("sticks out of the stock") && e.contains("at +X"), "{e}");
+    // Only the top out: named alone.
+    job.stock.size_box = Some(Aabb { min: b.min - DVec3::splat(5.0), max: DVec3::new(b.max.x + 5.0, b.max.y + 5.0, b.max.z - 2.0) });
+    let p = job.problems_with(Some(&b)).into_iter().find(|p| p.path == "stock.sizeBox").expect("the top sticks out");
+    assert!(p.message.contains("2.000 mm at the top") && !p.message.contains("at -X"), "{}", p.message);
+    // Below the bottom only: a warning, and the program is made.
+    job.stock.size_box = Some(Aabb { min: DVec3::new(b.min.x - 5.0, b.min.y - 5.0, b.min.z + 3.0), max: b.max + DVec3::splat(1.0) });
+    assert!(job.problems_with(Some(&b)).iter().all(|p| p.path != "stock.sizeBox"));
+    let out = swarf::job::run(&job, part.clone(), &mut swarf::progress::Progress::none()).expect("a part below the box's bottom runs");
+    assert!(out.warnings.iter().any(|w| w.to_string().contains("3.000 mm below the stock box's bottom")), "{:?}", out.warnings);
+    // A box that holds the part: nothing said.
+    job.stock.size_box = Some(Aabb { min: b.min - DVec3::splat(2.0), max: b.max + DVec3::splat(2.0) });
+    assert!(job.problems_with(Some(&b)).is_empty(), "{:?}", job.problems_with(Some(&b)));
+}

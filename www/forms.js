@@ -42,6 +42,16 @@ export function show(el, value) {
   else el.value = value ?? '';
 }
 
+// Keeps `n` children in `list`, made by `make()` where there are too few, and returns them to
+// be filled in place: a list is never rebuilt under the pointer, so a click that began on an
+// item before a field's change event refreshed the list (blurring the field fires it between
+// mousedown and mouseup) still lands on it.
+export function sized(list, n, make) {
+  while (list.children.length > n) list.lastElementChild.remove();
+  while (list.children.length < n) list.append(make());
+  return [...list.children];
+}
+
 export function fillFields(container, obj) {
   for (const el of container.querySelectorAll('[data-key]')) show(el, getKey(obj, el.dataset.key));
 }
@@ -106,7 +116,7 @@ export async function check() {
   const k = ++asked;
   let problems;
   try {
-    problems = await state.engine.checkJob(buildJob({ all: true }));
+    problems = await state.engine.checkJob(buildJob({ all: true }), state.kind === 'part' ? state.part?.bounds : null);
   } catch (e) {
     problems = [{ path: '', message: e.message }];
   }

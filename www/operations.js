@@ -2,24 +2,27 @@
 // they run; added, moved, removed; the picked one's form; and for drawings, the loops it cuts,
 // picked by clicking them in the view.
 import { $, state, hooks, job, selectedOp, selectedTool, is2d, store, toolsOf, buildJob, HOLE_OPS } from './state.js';
-import { fillFields, message } from './forms.js';
+import { fillFields, message, sized } from './forms.js';
 import { opColor, cssColor } from './viewer.js';
 
 export function fillOps() {
   const j = job(), list = $('op-list');
   state.selected[state.kind] = Math.max(0, Math.min(state.selected[state.kind], j.operations.length - 1));
-  list.replaceChildren(...j.operations.map((op, i) => {
+  const items = sized(list, j.operations.length, () => {
     const li = document.createElement('li');
+    li.innerHTML = '<input type="checkbox" class="op-enabled" title="run this operation" aria-label="run this operation"><span class="swatch"></span><span class="op-name"></span><span class="op-buttons"><button type="button" class="op-up" title="earlier" aria-label="earlier">▲</button><button type="button" class="op-down" title="later" aria-label="later">▼</button><button type="button" class="op-remove" title="remove" aria-label="remove">✕</button></span>';
+    return li;
+  });
+  j.operations.forEach((op, i) => {
+    const li = items[i];
     li.className = i === state.selected[state.kind] ? 'selected' : '';
     li.dataset.index = String(i);
-    li.innerHTML = '<input type="checkbox" class="op-enabled" title="run this operation" aria-label="run this operation"><span class="swatch"></span><span class="op-name"></span><span class="op-buttons"><button type="button" class="op-up" title="earlier" aria-label="earlier">▲</button><button type="button" class="op-down" title="later" aria-label="later">▼</button><button type="button" class="op-remove" title="remove" aria-label="remove">✕</button></span>';
     li.querySelector('.swatch').style.background = cssColor(opColor(i));
     li.querySelector('.op-enabled').checked = op.enabled !== false;
     const name = `${op.name} · ${toolsOf(op).map((t) => `T${t}`).join(' ') || 'no tool'}`;
     li.querySelector('.op-name').textContent = name;
     li.querySelector('.op-name').title = name;
-    return li;
-  }));
+  });
   const op = selectedOp();
   $('op-editor').hidden = !op;
   if (!op) return;
@@ -162,8 +165,9 @@ export function showHoles() {
   $('find-holes').textContent = `Find the ${m.many}`;
   $('hole-preset').hidden = mode !== 'holes';
   $('hole-list').setAttribute('aria-label', `${m.many} found`);
-  $('hole-list').replaceChildren(...items.map((h, k) => {
-    const li = document.createElement('li');
+  const rows = sized($('hole-list'), items.length, () => document.createElement('li'));
+  items.forEach((h, k) => {
+    const li = rows[k];
     const index = h.loopIndex ?? k;
     li.dataset.index = String(index);
     li.className = picked.has(index) ? 'picked' : '';
@@ -171,8 +175,7 @@ export function showHoles() {
     else if (mode === 'bosses') li.textContent = `boss ${index}: φ${mm(h.diameter)} at (${mm(h.center[0])}, ${mm(h.center[1])}), ${mm(h.top - h.bottom)} mm tall`;
     else if (h.mark) li.textContent = `hole ${index}: a drill mark at (${mm(h.center[0])}, ${mm(h.center[1])}), layer ${h.layer}, drilled as wide as its drill`;
     else li.textContent = `hole ${index}: φ${mm(h.diameter)} at (${mm(h.center[0])}, ${mm(h.center[1])}), ${mm(h.top - h.bottom)} mm deep, ${h.through ? 'through' : `blind (${h.bottomShape} bottom)`}`;
-    return li;
-  }));
+  });
   state.viewer?.setHoles(picking && mode !== 'edges' ? items : [], picked);
   state.viewer?.setEdges(mode === 'edges' ? items : [], picked);
 }

@@ -91,6 +91,8 @@ export async function showPart(bytes = state.bytes, name = state.name, label = s
     }
     $('generate').disabled = state.running;
     hooks.changed?.();
+    // Counted on the page's body: a test (or a portal) waits on it for the part as placed.
+    document.body.dataset.parts = String(Number(document.body.dataset.parts ?? 0) + 1);
     return true;
   } catch (e) {
     message(e.message, 'error');

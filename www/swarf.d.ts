@@ -1,7 +1,7 @@
 // The API of swarf.js. The data it passes (jobs, tools, operations, posts, projects, results)
 // has the types generated from swarf's Rust serde types (types/swarf-types.d.ts); only the
 // engine's own calls, and the input forms of those types, are declared here.
-import type { Job, Post, PostSettings, CycleTime, Project, Summary, DrawingView, ReportView, Reposted, Problem, Warning, OperationReport, TimeItem, Hole, EdgeView } from './types/swarf-types';
+import type { Job, Post, PostSettings, CycleTime, Project, Summary, DrawingView, ReportView, Reposted, Problem, Warning, OperationReport, TimeItem, Hole, EdgeView } from './types/swarf-types.js';
 
 export type { Job, Post, PostSettings, CycleTime, Project, Summary, DrawingView, ReportView, Reposted, Problem, Warning, OperationReport, TimeItem, Hole, EdgeView };
 
@@ -24,6 +24,9 @@ export type JobInput = Input<Job>;
 export type ToolInput = Input<Job['tools'][number]>;
 export type OperationInput = Input<Job['operations'][number]>;
 export type PostSettingsInput = Input<PostSettings>;
+/** The default job (`defaultJob`): every field filled, and its lists of operations and tools
+ * open to ones written as inputs (`job.operations.push({ kind: 'drill', tool: 3 })`). */
+export type DefaultJob = Omit<Job, 'operations' | 'tools'> & { operations: (Job['operations'][number] | OperationInput)[]; tools: (Job['tools'][number] | ToolInput)[] };
 
 export interface EngineOptions {
   /** The worker script (default: worker.js beside swarf.js). */
@@ -57,6 +60,8 @@ export interface PartPreview {
   dropped: number;
   /** Holes in its surface (open edges), triangles dropped. */
   warnings: Warning[];
+  /** The placed triangles' identity: equal only for the same triangles in the same place. */
+  hash: string;
 }
 
 /** The simulated program, for scrubbing through it. */
@@ -80,7 +85,7 @@ export interface RunResult {
   /** The program (made from `gcodeBytes` when first read). */
   readonly gcode: string;
   /** The program as UTF-8 bytes: what a page shows or downloads without making one string of it. */
-  gcodeBytes: Uint8Array;
+  gcodeBytes: Uint8Array<ArrayBuffer>;
   /** Where each line of the program starts in `gcodeBytes` (line 0 at 0). */
   lineStarts: Uint32Array;
   /** The line (0 first) of `gcode` each move of the program ended on. */
@@ -105,10 +110,23 @@ export interface RunOptions {
   onProgress?: (fraction: number, stage: string) => void;
   /** Aborting it ends the work; the promise rejects with a CancelledError. */
   signal?: AbortSignal;
+  /**
+   * Resolve with a program its simulation refuses (a gouge, a rapid through stock, the tool's
+   * body in material; it then starts with a warning comment), as `swarf run --write-anyway`
+   * writes it. Default false: such a run rejects with an UnsafeProgramError.
+   */
+  allowUnsafe?: boolean;
 }
 
 export declare class CancelledError extends Error {
   name: 'AbortError';
+}
+
+/** A run whose program is not safe to run: `problem` says why; `result` is the run's result. */
+export declare class UnsafeProgramError extends Error {
+  name: 'UnsafeProgramError';
+  problem: string;
+  result: RunResult;
 }
 
 export declare class Engine {
@@ -121,11 +139,13 @@ export declare class Engine {
   sampleDrawing: Uint8Array;
   /** Settles once the warm-up job has run (at once when the engine was made with `warmUp: false`). */
   warmedUp: Promise<void>;
-  defaultJob(kind?: 'part' | 'drawing'): Job;
+  /** Every field filled; a portal may push operations and tools written as inputs. */
+  defaultJob(kind?: 'part' | 'drawing'): DefaultJob;
   open(bytes: Uint8Array, name: string, job?: JobInput): Promise<{ part: PartPreview } | { drawing: DrawingView }>;
   readJob(text: string): Promise<Job>;
   /** Every setting of a job that does not fit, by its path (empty when it is good). */
-  checkJob(job: JobInput): Promise<Problem[]>;
+  /** With `partBounds` (a part's `bounds`), also a stock box the part sticks out of (`stock.sizeBox`). */
+  checkJob(job: JobInput, partBounds?: number[] | null): Promise<Problem[]>;
   readPost(text: string): Promise<Post>;
   readProject(text: string): Promise<{ job: Job; name: string; bytes: Uint8Array | null }>;
   writeProject(job: JobInput, name: string, bytes: Uint8Array): Promise<string>;
@@ -135,7 +155,7 @@ export declare class Engine {
   bosses(job: JobInput, bytes: Uint8Array, name: string): Promise<Hole[]>;
   /** A part's top edges for a chamfer (`edges: 'partEdges'`): numbered as its `loops` take them. */
   edges(job: JobInput, bytes: Uint8Array, name: string): Promise<EdgeView[]>;
-  repost(post: PostSettingsInput): Promise<Reposted & { moveLines: Uint32Array; gcodeBytes: Uint8Array; lineStarts: Uint32Array }>;
+  repost(post: PostSettingsInput): Promise<Reposted & { moveLines: Uint32Array; gcodeBytes: Uint8Array<ArrayBuffer>; lineStarts: Uint32Array }>;
   seek(count: number): Promise<Float32Array>;
   cancel(): Promise<void>;
   close(): void;

@@ -17,6 +17,25 @@ export class CancelledError extends Error {
   }
 }
 
+/**
+ * Thrown (as the promise's rejection) when a run's program is not safe to run: its simulation
+ * found a gouge, a rapid move through stock or the tool's body in material (`problem` says
+ * which and where). The run's result is `result`, for a page that shows the places; a caller
+ * that means to take such a program passes `allowUnsafe: true` (the CLI's `--write-anyway`).
+ */
+export class UnsafeProgramError extends Error {
+  constructor(problem, result) {
+    super(`the program is not safe to run: ${problem}`);
+    this.name = 'UnsafeProgramError';
+    this.problem = problem;
+    this.result = result;
+  }
+}
+
+/** The last Content-Security-Policy violation the page's document reported, if any. */
+let violation = null;
+globalThis.document?.addEventListener?.('securitypolicyviolation', (e) => { violation = e; });
+
 /** One worker and the calls waiting on its answers. */
 class Channel {
   #worker;
@@ -41,7 +60,12 @@ class Channel {
       else if (m.part?.positions) this.#part = m.part;
       entry.resolve(m);
     };
-    worker.onerror = (e) => this.#fail(new Error(e.message || 'the worker failed'));
+    // A worker that cannot start: said with the Content-Security-Policy's directive where the
+    // page's policy blocked it (the violation is reported to the page's document).
+    worker.onerror = (e) => {
+      e.preventDefault?.();
+      setTimeout(() => this.#fail(new Error(violation ? `blocked by the Content-Security-Policy (${violation.effectiveDirective} does not allow ${violation.blockedURI || 'the worker'}): the worker could not start` : e.message || 'the worker failed to start (its script could not be loaded or run)')), 0);
+    };
   }
 
   call(message, transfer = [], onProgress) {
@@ -160,7 +184,13 @@ export class Engine {
 
   async start() {
     const o = this.#options;
-    const make = () => o.worker ? o.worker() : new Worker(o.workerUrl ?? new URL('./worker.js', import.meta.url), { type: 'module' });
+    const make = () => {
+      if (o.worker) return o.worker();
+      if (o.workerUrl) return new Worker(o.workerUrl, { type: 'module' });
+      // Written as bundlers look for it (Vite, webpack, Parcel, Rollup's plugins): the worker
+      // and the wasm it loads beside it are followed and emitted with the bundle.
+      return new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
+    };
     this.#main = new Channel(make());
     this.#helpers = Array.from({ length: poolSize(o.workers) - 1 }, () => new Channel(make()));
     const wasm = o.wasm ?? null;
@@ -231,7 +261,11 @@ export class Engine {
   /** Reads a job file as `swarf run` does (a misspelt field is named). */
   async readJob(text) { return (await this.call({ type: 'readJob', text })).job; }
   /** Every setting of a job that does not fit, as `[{ path, message }]` (the core's own checks). */
-  async checkJob(job) { return (await this.call({ type: 'checkJob', job })).problems; }
+  /**
+   * Every setting of `job` that does not fit, by its path; with `partBounds` (a part's
+   * `bounds`, as `open` gives them) also a stock box the part sticks out of.
+   */
+  async checkJob(job, partBounds = null) { return (await this.call({ type: 'checkJob', job, part: partBounds ? Array.from(partBounds) : null })).problems; }
   /** Reads a post (JSON); the error names a field it does not know. */
   async readPost(text) { return (await this.call({ type: 'readPost', text })).post; }
   /** Reads a project file: `{ job, name, bytes }` (`bytes` null when the project only names its part). */
@@ -242,7 +276,8 @@ export class Engine {
   /**
    * Runs a job on a part or drawing. `onProgress(fraction, stage)` reports as it goes;
    * aborting `signal` ends the work (the workers are replaced, the engine stays usable) and
-   * rejects with a `CancelledError`. Resolves with `{ gcode, gcodeBytes, lineStarts, moveLines, summary, feeds, rapids,
+   * rejects with a `CancelledError`. A program its simulation refuses rejects with an
+   * `UnsafeProgramError` unless `allowUnsafe` is true. Resolves with `{ gcode, gcodeBytes, lineStarts, moveLines, summary, feeds, rapids,
    * feedOps, feedTools, feedMoves, rapidMoves, octants, part, drawing, sim }` (swarf.d.ts). With more than one worker, the pool first makes
    * the CL surfaces and the level maps of z-level work (in bands of rows) and the raster passes
    * (in ranges) on every worker, then plans operation by operation: the regions of a z-level
@@ -258,7 +293,14 @@ export class Engine {
     return turn;
   }
 
-  async #run(job, bytes, name, { onProgress, signal } = {}) {
+  async #run(job, bytes, name, { onProgress, signal, allowUnsafe = false } = {}) {
+    const result = await this.#plan(job, bytes, name, onProgress, signal);
+    // A program its own simulation refuses never leaves the engine quietly.
+    if (result.summary.problem && !allowUnsafe) throw new UnsafeProgramError(result.summary.problem, result);
+    return result;
+  }
+
+  async #plan(job, bytes, name, onProgress, signal) {
     if (signal?.aborted) throw new CancelledError();
     // A warm-up still under way would only take cores from the run: it ends here.
     this.#side?.end(new Error('a run began'));

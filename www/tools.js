@@ -1,14 +1,15 @@
 // The tool library: a list to pick from, a form for the picked tool, tools added, copied,
 // deleted, exported and imported as JSON (read by the core, as a job's tools are).
 import { $, state, hooks, selectedTool, store, downloadText } from './state.js';
-import { fillFields, message } from './forms.js';
+import { fillFields, message, sized } from './forms.js';
 
 const shapeName = (t) => ({ ball: 'ball', flat: 'flat', bullNose: `bull nose r${t.cornerRadius}`, drill: `drill ${t.angle ?? 118}°`, spotDrill: `spot drill ${t.angle ?? 90}°`, vBit: `V-bit ${t.angle ?? 90}°`, threadMill: 'thread mill' }[t.shape] || t.shape);
 export const toolLabel = (t) => `T${t.number} · ${t.diameter} mm ${shapeName(t)}${t.name ? ` · ${t.name}` : ''}`;
 
 export function fillTools() {
   const list = $('tool-list');
-  list.replaceChildren(...state.tools.map((t, i) => new Option(toolLabel(t), String(i))));
+  const options = sized(list, state.tools.length, () => new Option());
+  state.tools.forEach((t, i) => { options[i].text = toolLabel(t); options[i].value = String(i); });
   state.selected.tool = Math.max(0, Math.min(state.selected.tool, state.tools.length - 1));
   list.value = String(state.selected.tool);
   const t = selectedTool();
@@ -18,7 +19,8 @@ export function fillTools() {
   document.querySelector('#tool-editor [name=pointAngle]').closest('label').hidden = !['drill', 'spotDrill', 'vBit'].includes(t?.shape);
   document.querySelector('#tool-editor [name=tipDiameter]').closest('label').hidden = t?.shape !== 'vBit';
   const opTool = document.querySelector('[name=opTool]');
-  opTool.replaceChildren(...state.tools.map((u) => new Option(toolLabel(u), String(u.number))));
+  const choices = sized(opTool, state.tools.length, () => new Option());
+  state.tools.forEach((u, i) => { choices[i].text = toolLabel(u); choices[i].value = String(u.number); });
 }
 
 export function addTool(copy) {

@@ -119,13 +119,20 @@ const GROUP_SEGMENTS = 1 << 18;
 // How long after the last move of the mouse or wheel the view counts as still moving (ms).
 const SETTLE_MS = 180;
 
-// A part's positions told apart from another's cheaply: their count and a thousand of them
-// spread over the array (a part turned or moved changes them).
-function fingerprint(positions) {
-  const n = positions.length, step = Math.max(1, Math.floor(n / 1000));
-  let out = `${n}`;
-  for (let i = 0; i < n; i += step) out += `,${positions[i]}`;
-  return out;
+// What the view draws of a part, from the very coordinates uploaded: their bounds and the
+// mean of its triangles' corners (a flip keeps a centred part's bounds but moves this).
+function drawnShape(p) {
+  const min = [Infinity, Infinity, Infinity], max = [-Infinity, -Infinity, -Infinity], sum = [0, 0, 0];
+  for (let i = 0; i < p.length; i += 3) {
+    for (let k = 0; k < 3; k++) {
+      const v = p[i + k];
+      if (v < min[k]) min[k] = v;
+      if (v > max[k]) max[k] = v;
+      sum[k] += v;
+    }
+  }
+  const n = Math.max(1, p.length / 3);
+  return { bounds: [...min, ...max], mean: sum.map((s) => s / n) };
 }
 
 // The runs `parts` ([start, end) of segments) cut into lists of runs of at most `size` segments.
@@ -177,16 +184,17 @@ export class Viewer {
 
   setPart(part, frame = true) {
     // The same part again (a run's result on the part the view shows): kept, not uploaded
-    // again (a die-sized part is tens of megabytes).
-    const source = fingerprint(part.positions);
-    if (this.part && this.partSource === source) {
+    // again (a die-sized part is tens of megabytes). The same only by the core's hash of the
+    // placed triangles: a part without one is always drawn anew.
+    const source = part.hash ?? null;
+    if (this.part && source !== null && this.partSource === source) {
       if (frame) this.frame(part.bounds);
       this.draw();
       return;
     }
     this.dropPart();
     this.partSource = source;
-    this.part = { position: this.buffer(part.positions), normal: this.buffer(part.normals), count: part.positions.length / 3 };
+    this.part = { position: this.buffer(part.positions), normal: this.buffer(part.normals), count: part.positions.length / 3, drawn: drawnShape(part.positions) };
     this.setGrid(part.bounds);
     if (frame) this.frame(part.bounds);
     this.draw();

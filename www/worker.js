@@ -38,24 +38,19 @@ function coarse(values) {
   return out;
 }
 
-// The part last sent to the engine, by its count and a thousand of its coordinates: a run on
-// the part the page already shows sends it back as `same` (tens of megabytes on a die-sized
-// part, arriving with the result on the page's thread), and the engine puts back its own.
+// The part last sent to the engine, by the core's hash of its placed triangles: a run on the
+// part the page already shows sends it back as `same` (tens of megabytes on a die-sized part,
+// arriving with the result on the page's thread), and the engine puts back its own. Only the
+// very same triangles are the same part: a flip or a turn is a new one.
 let sentPart = null;
 
 // The pieces of an operation's moves received so far ('keepMoves').
 let movePieces = [];
 
-function partKey(positions) {
-  const step = Math.max(1, Math.floor(positions.length / 1000));
-  let key = `${positions.length}`;
-  for (let i = 0; i < positions.length; i += step) key += `,${positions[i]}`;
-  return key;
-}
-
 function partMessage(view, reuse = false) {
-  const meta = { bounds: Array.from(view.bounds()), triangles: view.triangles(), dropped: view.dropped(), warnings: view.warnings() };
-  const positions = view.positions(), key = partKey(positions);
+  const key = view.hash();
+  const meta = { bounds: Array.from(view.bounds()), triangles: view.triangles(), dropped: view.dropped(), warnings: view.warnings(), hash: key };
+  const positions = view.positions();
   if (reuse && key === sentPart) {
     view.free();
     return { part: { ...meta, same: true }, transfer: [] };
@@ -134,6 +129,17 @@ function send(id, result) {
   self.postMessage({ id, ok: true, summary, drawing, sim }, simTransfer);
 }
 
+// A Content-Security-Policy that blocks what the worker needs (compiling the wasm, fetching
+// it) is said as such, with its directive, instead of a bare "Failed to fetch".
+let violation = null;
+self.addEventListener?.('securitypolicyviolation', (e) => { violation = e; });
+function explained(error) {
+  const text = String(error && error.message ? error.message : error);
+  if (violation) return `blocked by the Content-Security-Policy (${violation.effectiveDirective} does not allow ${violation.blockedURI || 'it'}): ${text}`;
+  if (/WebAssembly|wasm-unsafe-eval|unsafe-eval/i.test(text) && /Content Security Policy|Refused to compile/i.test(text)) return `blocked by the Content-Security-Policy (script-src needs 'wasm-unsafe-eval'): ${text}`;
+  return text;
+}
+
 self.onmessage = async (event) => {
   const { id, type } = event.data;
   try {
@@ -152,7 +158,7 @@ self.onmessage = async (event) => {
     } else if (type === 'readJob') {
       self.postMessage({ id, ok: true, job: readJob(event.data.text) });
     } else if (type === 'checkJob') {
-      self.postMessage({ id, ok: true, problems: checkJob(event.data.job) });
+      self.postMessage({ id, ok: true, problems: checkJob(event.data.job, event.data.part ? Float64Array.from(event.data.part) : undefined) });
     } else if (type === 'load') {
       if (isDrawing(event.data.bytes, event.data.name)) {
         self.postMessage({ id, ok: true, drawing: loadDrawing(event.data.bytes, event.data.name, event.data.drawingSetup) });
@@ -266,6 +272,8 @@ self.onmessage = async (event) => {
       self.postMessage({ id, ok: true, tool: Array.from(current.toolAt(event.data.at, event.data.f)) });
     }
   } catch (error) {
-    self.postMessage({ id, ok: false, error: String(error && error.message ? error.message : error) });
+    // A policy's violation is reported a moment after the fetch it blocked fails.
+    if (error instanceof TypeError && !violation) await new Promise((resolve) => setTimeout(resolve, 50));
+    self.postMessage({ id, ok: false, error: explained(error) });
   }
 };

@@ -22,7 +22,7 @@ pub mod schema;
 pub mod wire;
 
 pub use self::report::OperationReport;
-pub use self::run::{marked, part_warnings, prepare, run, verify_gcode, JobOutput, Prepared, Running};
+pub use self::run::{marked, part_warnings, prepare, run, verify_gcode, warning_lines, JobOutput, Prepared, Running};
 pub use self::schema::*;
 pub use crate::operations::{Boundary, FinishRaster, Operation};
 pub use crate::tool::Tool;

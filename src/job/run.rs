@@ -82,12 +82,25 @@ impl JobOutput {
     }
 }
 
-/// `gcode` with a warning comment at its head naming `problem`, if there is one.
+/// The widest line of the warning at the head of a program written anyway: a control reads it
+/// whole (rs274 refuses a line of 256 characters or more; GRBL keeps 80, some panels fewer).
+pub const WARNING_WIDTH: usize = 70;
+
+/// The warning comments at the head of a program written anyway, naming `problem`: ASCII, each
+/// line at most [`WARNING_WIDTH`] characters, broken between words.
+pub fn warning_lines(problem: &str) -> Vec<String> {
+    let text = format!("WARNING: NOT SAFE TO RUN: {}", crate::post::ascii(&crate::post::comment(problem)));
+    crate::post::wrap(&text, WARNING_WIDTH - 2).into_iter().map(|line| format!("({line})")).collect()
+}
+
+/// `gcode` with warning comments at its head naming `problem` ([`warning_lines`]), if there is
+/// one.
 pub fn marked(gcode: &str, problem: Option<&str>) -> String {
     match problem {
         Some(problem) => {
+            let mut warning = warning_lines(problem).join("\n");
+            warning.push('\n');
             // A program that starts with a tape mark (Fanuc) keeps it first.
-            let warning = format!("(WARNING: NOT SAFE TO RUN: {})\n", crate::post::comment(problem));
             match gcode.strip_prefix("%\n") {
                 Some(rest) => format!("%\n{warning}{rest}"),
                 None => format!("{warning}{gcode}"),
@@ -131,6 +144,9 @@ impl Job {
                 let stock = self.place(&mut part);
                 larger_than_any_machine("part", part.bounds().size(), "its unit (part.units) and part.scale")?;
                 outside_the_stock(&part.bounds(), &stock)?;
+                if let Some(message) = super::schema::part_outside_error(&stock, &part.bounds()) {
+                    return Err(Error::Input(message));
+                }
                 (part, None, stock)
             }
             Workpiece::Drawing(mut d) => {
@@ -230,6 +246,9 @@ pub fn prepare(job: &Job, workpiece: impl Into<Workpiece>) -> Result<Prepared> {
     if ctx.sheet.is_none() {
         if let Some(w) = tool_larger_than_part(job, &ctx.part) {
             warnings.push(w);
+        }
+        if let Some(w) = super::schema::below_bottom(&ctx.stock, &ctx.part.bounds()) {
+            warnings.push(Warning::job(w));
         }
     }
     if !job.operations.iter().any(|o| o.op().enabled()) {

@@ -123,6 +123,53 @@ impl Default for Stock {
     }
 }
 
+/// How far a part may stand out of an explicit stock box before it counts (mm): the box as
+/// typed to a micrometre.
+pub const PART_OUTSIDE: f64 = 1e-3;
+
+/// Where a part with bounds `part` sticks out of the stock box `stock` and by how much (mm),
+/// beyond [`PART_OUTSIDE`]: each side as the page names it (`-X`, `+X`, `-Y`, `+Y`, `the top`,
+/// `the bottom`). Only an explicit box (`sizeBox`) can leave it out: margins are never
+/// negative.
+pub fn part_outside(stock: &Aabb, part: &Aabb) -> Vec<(&'static str, f64)> {
+    let sides = [
+        ("-X", stock.min.x - part.min.x),
+        ("+X", part.max.x - stock.max.x),
+        ("-Y", stock.min.y - part.min.y),
+        ("+Y", part.max.y - stock.max.y),
+        ("the top", part.max.z - stock.max.z),
+        ("the bottom", stock.min.z - part.min.z),
+    ];
+    sides.into_iter().filter(|(_, by)| *by > PART_OUTSIDE).collect()
+}
+
+/// The error for a part sticking out of the stock at its sides or top (the material to make it
+/// is not there): `None` where it fits, or only reaches below the stock's bottom (a relief cut
+/// from a thinner board: [`below_bottom`] warns of that).
+pub fn part_outside_error(stock: &Aabb, part: &Aabb) -> Option<String> {
+    let out: Vec<String> = part_outside(stock, part).into_iter().filter(|(side, _)| *side != "the bottom").map(|(side, by)| format!("{by:.3} mm at {side}")).collect();
+    if out.is_empty() {
+        return None;
+    }
+    let (s, p) = (stock.size(), part.size());
+    Some(format!(
+        "the part sticks out of the stock by {}: the stock box is {:.3} × {:.3} × {:.3} mm, the part {:.3} × {:.3} × {:.3} mm (Stock → stock as a box: make it larger, or empty for the part with its margins)",
+        out.join(", "),
+        s.x,
+        s.y,
+        s.z,
+        p.x,
+        p.y,
+        p.z
+    ))
+}
+
+/// A warning for a part reaching below the stock box's bottom: its lowest part is not made.
+pub fn below_bottom(stock: &Aabb, part: &Aabb) -> Option<String> {
+    let (_, by) = part_outside(stock, part).into_iter().find(|(side, _)| *side == "the bottom")?;
+    Some(format!("the part reaches {by:.3} mm below the stock box's bottom: that much of its bottom is not made (Stock → stock as a box)"))
+}
+
 impl Stock {
     /// The stock box around a part with bounds `part`.
     pub fn around(&self, part: &Aabb) -> Aabb {
@@ -331,6 +378,12 @@ impl Job {
     /// (`tools[1].feedRate`, `operations[0].stepdown`): the page marks each at its field as the
     /// user types, with the core's own checks. An operation or a tool says its first.
     pub fn problems(&self) -> Vec<Problem> {
+        self.problems_with(None)
+    }
+
+    /// [`Job::problems`], and with `part` (the placed part's bounds, as the page shows them)
+    /// also what does not fit that part: a stock box the part sticks out of.
+    pub fn problems_with(&self, part: Option<&Aabb>) -> Vec<Problem> {
         let mut out = Vec::new();
         let mut say = |path: String, message: String| out.push(Problem { path, message });
         let positive = |v: f64| v > 0.0 && v.is_finite();
@@ -379,6 +432,11 @@ impl Job {
         }
         for (field, message) in self.stock.problems() {
             say(format!("stock.{field}"), format!("stock.{field} {message}"));
+        }
+        if let Some(part) = part {
+            if let Some(message) = part_outside_error(&self.stock.around(part), part) {
+                say("stock.sizeBox".into(), message);
+            }
         }
         let thickness = self.drawing.thickness;
         if !(positive(thickness) && thickness <= crate::limits::MAX_SIZE) {

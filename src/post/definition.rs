@@ -376,6 +376,39 @@ pub(crate) fn fill(template: &str, values: &[(&str, String)]) -> String {
     out
 }
 
+/// `text` in lines of at most `width` characters, broken between words (a word longer than a
+/// line is cut), no line empty.
+pub fn wrap(text: &str, width: usize) -> Vec<String> {
+    let width = width.max(1);
+    let mut lines: Vec<String> = Vec::new();
+    let mut line = String::new();
+    for word in text.split_whitespace() {
+        let mut word: Vec<char> = word.chars().collect();
+        loop {
+            let used = line.chars().count();
+            let room = if used == 0 { width } else { width.saturating_sub(used + 1) };
+            if word.len() <= room {
+                if used > 0 {
+                    line.push(' ');
+                }
+                line.extend(word);
+                break;
+            }
+            if used > 0 {
+                lines.push(std::mem::take(&mut line));
+                continue;
+            }
+            let rest = word.split_off(width);
+            lines.push(word.into_iter().collect());
+            word = rest;
+        }
+    }
+    if !line.is_empty() {
+        lines.push(line);
+    }
+    lines
+}
+
 /// Comments may not hold parentheses (they would end the comment early).
 pub(crate) fn comment(text: &str) -> String {
     text.chars().map(|c| if c == '(' || c == ')' { '-' } else { c }).filter(|c| !c.is_control()).collect()
@@ -384,6 +417,22 @@ pub(crate) fn comment(text: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn wrapped_lines_keep_every_word_within_the_width() {
+        let text = "2091 moves bury the tool deeper than its flute length: the first at X12.5 Y-3 Z-40 (T2 φ6 flat), abcdefghijklmnopqrstuvwxyz0123456789abcdefghij";
+        for width in [10, 30, 68] {
+            let lines = wrap(text, width);
+            assert!(lines.iter().all(|l| !l.is_empty() && l.chars().count() <= width), "{width}: {lines:?}");
+            // Nothing lost or added: the words (cut ones joined again) in order.
+            let joined: String = lines.join(" ");
+            let squeeze = |s: &str| s.split_whitespace().collect::<String>();
+            assert_eq!(squeeze(&joined), squeeze(text), "{width}");
+        }
+        assert_eq!(wrap("a bc def", 4), ["a bc", "def"]);
+        assert_eq!(wrap("abcdefghij", 4), ["abcd", "efgh", "ij"]);
+        assert!(wrap("   ", 5).is_empty());
+    }
 
     #[test]
     fn bad_posts_are_refused_naming_the_field() {

@@ -480,6 +480,7 @@ fn fit(line: &str, max: usize) -> Option<String> {
 }
 
 pub(crate) use definition::comment;
+pub use definition::{ascii, wrap};
 
 struct Writer<'a> {
     post: &'a Post,

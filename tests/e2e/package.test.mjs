@@ -56,7 +56,7 @@ test('the tarball holds the engine, its worker, wasm, types, README and licences
 });
 
 test('a strict TypeScript portal compiles against the installed package\'s types, and a wrong field does not', () => {
-  const ts = `import { createEngine, CancelledError, type JobInput, type RunResult, type Engine } from 'swarf';
+  const ts = `import { createEngine, CancelledError, UnsafeProgramError, type JobInput, type RunResult, type Engine } from 'swarf';
 import { createEngine as fromFiles } from 'swarf/files';
 export async function portal(bytes: Uint8Array, signal: AbortSignal): Promise<string> {
   const engine: Engine = await createEngine({ workers: 2, warmUp: false });
@@ -65,18 +65,35 @@ export async function portal(bytes: Uint8Array, signal: AbortSignal): Promise<st
   if (problems.length) throw new Error(problems.map((p) => p.message).join('; '));
   const r: RunResult = await engine.run(job, bytes, 'part.stl', { signal, onProgress: (f: number, stage: string) => console.log(f, stage) });
   const seconds: number = r.summary.cycle.seconds;
+  // The README's download: a Blob of the program's bytes, in strict TypeScript.
+  const blob = new Blob([r.gcodeBytes], { type: 'text/plain' });
+  // The default job takes operations written as inputs.
+  const own = engine.defaultJob();
+  own.operations.push({ kind: 'drill', tool: 1 });
+  try {
+    await engine.run(own, bytes, 'part.stl');
+  } catch (e) {
+    if (e instanceof UnsafeProgramError) console.log(e.problem, e.result.summary.moves);
+  }
+  const anyway: RunResult = await engine.run(own, bytes, 'part.stl', { allowUnsafe: true });
   engine.close();
   void fromFiles;
   void CancelledError;
+  void blob;
+  void anyway;
   return \`\${r.gcode.length} \${seconds}\`;
 }
 `;
   fs.writeFileSync(path.join(scratch, 'portal.ts'), ts);
-  const tsc = (file) => execFileSync(process.execPath, [path.join(repo, 'node_modules/typescript/bin/tsc'), '--strict', '--noEmit', '--target', 'es2022', '--module', 'esnext', '--moduleResolution', 'bundler', '--lib', 'es2022,dom', file], { cwd: scratch, encoding: 'utf8', stdio: 'pipe' });
-  tsc('portal.ts');
-  // The types say what a job may hold: a misspelt field fails the compile.
-  fs.writeFileSync(path.join(scratch, 'wrong.ts'), ts.replace('stepdown: 2', 'stepDown: 2'));
-  assert.throws(() => tsc('wrong.ts'), (e) => /stepDown/.test(String(e.stdout)));
+  // As a bundler resolves modules, and as Node does (nodenext, with skipLibCheck: an import
+  // of the generated types without its .js once made every type silently \`any\` there).
+  for (const resolution of [['--module', 'esnext', '--moduleResolution', 'bundler'], ['--module', 'nodenext', '--moduleResolution', 'nodenext', '--skipLibCheck']]) {
+    const tsc = (file) => execFileSync(process.execPath, [path.join(repo, 'node_modules/typescript/bin/tsc'), '--strict', '--noEmit', '--target', 'es2022', ...resolution, '--lib', 'es2022,dom', file], { cwd: scratch, encoding: 'utf8', stdio: 'pipe' });
+    tsc('portal.ts');
+    // The types say what a job may hold: a misspelt field fails the compile.
+    fs.writeFileSync(path.join(scratch, 'wrong.ts'), ts.replace('stepdown: 2', 'stepDown: 2'));
+    assert.throws(() => tsc('wrong.ts'), (e) => /stepDown/.test(String(e.stdout)), resolution.join(' '));
+  }
 });
 
 test('installed and bundled by esbuild with no configuration, the portal runs a job, cancels one, runs again, and rs274 reads its G-code', async () => {

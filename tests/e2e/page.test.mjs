@@ -177,8 +177,10 @@ test('the simulated stock: drawn after generating, scrubbed back to the raw bloc
   await page.evaluate(() => { const s = document.getElementById('scrub'); s.value = String(Number(s.max) / 2); s.dispatchEvent(new Event('input')); });
   await page.waitForFunction((n) => Number(document.body.dataset.simMoves) > n / 4 && Number(document.body.dataset.simMoves) < n, moves);
   await page.selectOption('#speed', '1000');
-  await page.click('#play');
+  // Where it stands before Play: read after, at 1000× on a busy machine the playing may
+  // already have run to the end and stopped there, and no later time would ever come.
   const t0 = Number(await page.inputValue('#scrub'));
+  await page.click('#play');
   await page.waitForFunction((t) => Number(document.getElementById('scrub').value) > t, t0);
   const t1 = Number(await page.inputValue('#scrub'));
   assert.ok(t1 > t0, `playing advances the program time: ${t0} → ${t1}`);

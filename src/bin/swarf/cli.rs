@@ -218,6 +218,18 @@ fn read(path: &Path) -> Result<Vec<u8>, String> {
     std::fs::read(path).map_err(|e| format!("cannot read {}: {e}", path.display()))
 }
 
+/// Refuses an output that is one of the command's inputs (`-o part.stl` would put G-code in
+/// place of the part): compared as the files they are, whatever the path's spelling.
+fn not_an_input(output: &Path, inputs: &[&Path]) -> Result<(), String> {
+    let Ok(out) = std::fs::canonicalize(output) else { return Ok(()) };
+    for input in inputs {
+        if std::fs::canonicalize(input).is_ok_and(|i| i == out) {
+            return Err(format!("{} is an input of this command: name another file to write (-o), it would be overwritten", output.display()));
+        }
+    }
+    Ok(())
+}
+
 fn write(path: &Path, bytes: &[u8]) -> Result<(), String> {
     std::fs::write(path, bytes).map_err(|e| format!("cannot write {}: {e}", path.display()))
 }
@@ -225,6 +237,9 @@ fn write(path: &Path, bytes: &[u8]) -> Result<(), String> {
 fn run(cli: Cli) -> Result<(), String> {
     match cli.command {
         Command::Run { job: file, part, output, quiet, write_anyway, stage_times } => {
+            if let Some(output) = &output {
+                not_an_input(output, &[&file, part.as_deref().unwrap_or(&file)])?;
+            }
             let text = String::from_utf8_lossy(&read(&file)?).into_owned();
             let (job, name, bytes, stem) = if Project::is_project(&text) {
                 let project = Project::from_json(&text).map_err(|e| format!("{}: {e}", file.display()))?;
@@ -232,6 +247,9 @@ fn run(cli: Cli) -> Result<(), String> {
                     Some(part) => (part.file_name().map(|n| n.to_string_lossy().into_owned()), read(part)?),
                     None => {
                         let dir = file.parent().map(Path::to_path_buf).unwrap_or_default();
+                        if let Some(output) = &output {
+                            not_an_input(output, &[&dir.join(&project.workpiece.name)])?;
+                        }
                         (Some(project.workpiece.name.clone()), project.workpiece_bytes(|n| std::fs::read(dir.join(n))).map_err(|e| format!("{}: {e}", file.display()))?)
                     }
                 };
@@ -239,18 +257,21 @@ fn run(cli: Cli) -> Result<(), String> {
                 (project.job, name, bytes, PathBuf::from(stem))
             } else {
                 let job = Job::from_json(&text).map_err(|e| e.to_string())?;
-                let Some(part) = part else { return Err(format!("{}: a job file needs a part: swarf run job.json part.stl", file.display())) };
-                (job, part.file_name().map(|n| n.to_string_lossy().into_owned()), read(&part)?, part.with_extension(""))
+                let Some(part) = part.as_deref() else { return Err(format!("{}: a job file needs a part: swarf run job.json part.stl", file.display())) };
+                (job, part.file_name().map(|n| n.to_string_lossy().into_owned()), read(part)?, part.with_extension(""))
             };
             let workpiece = Workpiece::read(&bytes, name.as_deref(), &job.tolerances).map_err(|e| e.to_string())?;
             let output = output.unwrap_or_else(|| stem.with_extension(job.post.extension()));
+            // The default name too: a part named part.ngc would become its own program.
+            not_an_input(&output, &[&file, part.as_deref().unwrap_or(&file)])?;
             run_job(&job, workpiece, &output, RunOptions { quiet, write_anyway, stage_times })
         }
-        Command::Project { job, part, output, reference } => {
-            let job = Job::from_json(&String::from_utf8_lossy(&read(&job)?)).map_err(|e| e.to_string())?;
+        Command::Project { job: job_file, part, output, reference } => {
+            let job = Job::from_json(&String::from_utf8_lossy(&read(&job_file)?)).map_err(|e| e.to_string())?;
             let name = part.file_name().map(|n| n.to_string_lossy().into_owned()).ok_or_else(|| format!("{}: not a file", part.display()))?;
             let project = if reference { Project::referencing(job, &name) } else { Project::embedded(job, &name, &read(&part)?) };
             let output = output.unwrap_or_else(|| part.with_extension("swarf.json"));
+            not_an_input(&output, &[&job_file, &part])?;
             write(&output, project.to_json().as_bytes())?;
             println!("wrote {}", output.display());
             Ok(())
@@ -390,6 +411,7 @@ fn run(cli: Cli) -> Result<(), String> {
             }
         }
         Command::Zmap { part, shape, diameter, corner, angle, tip, grid, builder, units, y_up, center_top, floor, format, output } => {
+            not_an_input(&output, &[&part])?;
             let tolerances = Tolerances::default();
             let name = part.file_name().map(|n| n.to_string_lossy().into_owned());
             let mut mesh = read_mesh_auto(&read(&part)?, name.as_deref(), &tolerances).map_err(|e| format!("{}: {e}", part.display()))?;
