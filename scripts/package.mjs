@@ -30,6 +30,7 @@ const copy = (from, to = from) => fs.copyFileSync(path.join(www, from), path.joi
 // The files entry: the page's own module, worker and wasm, as the page serves them.
 copy('swarf.js', 'engine.js');
 copy('worker.js');
+copy('node-worker.js');
 copy('pkg/swarf.js');
 copy('pkg/swarf_bg.wasm');
 copy('types/swarf-types.d.ts');
@@ -72,6 +73,9 @@ function inlineWasm() {
 /** Starts an engine (see engine.js): its workers made from the worker inside this module. */
 export function createEngine(options = {}) {
   if (options.worker || options.workerUrl) return createFrom(options);
+  // Under Node (no Web Worker): worker_threads running node-worker.js beside engine.js, with
+  // the wasm inside this module.
+  if (typeof Worker === 'undefined') return createFrom({ ...options, wasm: options.wasm ?? inlineWasm() });
   return createFrom({ ...options, worker: inlineWorker, wasm: options.wasm ?? inlineWasm() });
 }
 `,
@@ -115,7 +119,7 @@ const pkg = {
     './pkg/swarf_bg.wasm': './pkg/swarf_bg.wasm',
     './package.json': './package.json',
   },
-  files: ['index.js', 'index.d.ts', 'inline.js', 'engine.js', 'engine.d.ts', 'worker.js', 'pkg/swarf.js', 'pkg/swarf_bg.wasm', 'types/swarf-types.d.ts', 'README.md', 'THIRD-PARTY.md', 'LICENSE-MIT', 'LICENSE-APACHE'],
+  files: ['index.js', 'index.d.ts', 'inline.js', 'engine.js', 'engine.d.ts', 'worker.js', 'node-worker.js', 'pkg/swarf.js', 'pkg/swarf_bg.wasm', 'types/swarf-types.d.ts', 'README.md', 'THIRD-PARTY.md', 'LICENSE-MIT', 'LICENSE-APACHE'],
   sideEffects: false,
   keywords: ['cam', 'cnc', 'g-code', 'gcode', 'toolpath', 'milling', 'wasm', 'stl', 'dxf'],
 };

@@ -1182,3 +1182,36 @@ fn an_external_thread_is_milled_round_a_stud() {
     let e = job::run(&job, part, &mut Progress::none()).map(|_| ()).unwrap_err().to_string();
     assert!(e.contains("wider than the thread's major diameter φ8"), "{e}");
 }
+
+/// Issue 55: holes are judged against the circles their facets approximate. A φ6.35 hole of 32
+/// sides lies 0.015 mm inside its circle between vertices, a φ12 of 32 sides 0.029 mm: a
+/// clearance drill 0.0125 mm over on the radius and a bore to the φ12 are clean, not "gouges …
+/// 10 mm deep"; a φ6.4 drill in the φ6.35 holes is refused in a machinist's words, with how
+/// far over on the radius.
+#[test]
+fn holes_are_judged_as_their_circles_and_an_oversize_drill_is_said_as_one() {
+    let specs = [
+        Spec { tile: (0, 0), kind: Kind::Through { d: 6.35 }, phase: 0.1, sides: 32 },
+        Spec { tile: (1, 0), kind: Kind::Through { d: 6.35 }, phase: 0.4, sides: 32 },
+        Spec { tile: (2, 0), kind: Kind::Through { d: 12.0 }, phase: 0.05, sides: 32 },
+    ];
+    let part = block(3, 1, SIDE, THICK, &specs);
+    let drill = |d: f64| {
+        let mut job = Job { tools: vec![drill_tool(2, Cutter::drill(d, 118.0))], ..Job::default() };
+        job.simulation.cell = Some(0.05);
+        job.operations = vec![Operation::Drill(Drill { tool: 2, cycle: DrillCycle::Peck, pick: HolePick { max_diameter: Some(7.0), ..HolePick::default() }, ..Drill::default() })];
+        job
+    };
+    // 0.0125 mm over on the radius: within the gouge tolerance of the true circle.
+    let out = job::run(&drill(6.375), part.clone(), &mut Progress::none()).expect("planned");
+    assert!(out.problem.is_none(), "{:?}", out.problem);
+    // Bored to the φ12's size.
+    let mut bore = boring_job(Dialect::LinuxCnc, Bore { pick: HolePick { min_diameter: Some(11.0), ..HolePick::default() }, pitch: 1.0, ..Bore::default() });
+    bore.simulation.cell = Some(0.05);
+    let out = job::run(&bore, part.clone(), &mut Progress::none()).expect("bored");
+    assert!(out.problem.is_none(), "{:?}", out.problem);
+    // 0.025 mm over on the radius: said as such, first.
+    let out = job::run(&drill(6.4), part.clone(), &mut Progress::none()).expect("planned");
+    let problem = out.problem.expect("a φ6.4 drill in φ6.35 holes cuts the walls back");
+    assert!(problem.contains("φ6.4 drill (T2) in φ6.35 holes: 0.025 mm oversize on the radius"), "{problem}");
+}

@@ -5,7 +5,7 @@
 // and results.js (Generate and what it gives back).
 import { Viewer } from './viewer.js';
 import { createEngine } from './swarf.js';
-import { $, state, hooks, job, selectedOp, selectedTool, store, restore, setKey } from './state.js';
+import { $, state, hooks, job, selectedOp, selectedTool, store, restore, setKey, undo, canUndo, canRedo, startHistory } from './state.js';
 import { valueOf, fillFields, message, fieldError, check, markProblems } from './forms.js';
 import { GcodePane } from './gcode.js';
 import { sim, setTime, step, play, drawMrr, toLine } from './simulation.js';
@@ -37,6 +37,7 @@ function fillAll() {
   fillTools();
   fillOps();
   changed();
+  if (!state.running) showHistory();
 }
 
 // Something of the job changed: the core checks it again (a little later, once typing pauses),
@@ -47,8 +48,14 @@ function changed() {
   checking = setTimeout(() => check(), 120);
 }
 
+// The undo and redo buttons say whether there is a step to take.
+function showHistory() {
+  $('undo').disabled = !canUndo();
+  $('redo').disabled = !canRedo();
+}
+
 Object.assign(hooks, {
-  fillAll, changed, showPicked, clearResult, setKind, showPart, loadJob,
+  fillAll, changed, showPicked, clearResult, setKind, showPart, loadJob, fillTools, history: showHistory,
   error: (text) => message(text, 'error'),
 });
 
@@ -94,7 +101,7 @@ function onField(el) {
     // Choosing a controller goes back to its built-in post.
     if (el.dataset.key === 'post.dialect' && job().post.custom) { job().post.custom = null; fillPost(); }
   }
-  store();
+  store(el.dataset.key);
   changed();
   if (el.dataset.key === 'drawing.thickness') fillOps();
   if (el.dataset.key.startsWith('post.')) repost();
@@ -126,6 +133,27 @@ for (const [box, key] of [['show-stock', 'stock'], ['show-depth', 'depth'], ['sh
 }
 new ResizeObserver(() => { sim.buckets = null; drawMrr(); }).observe($('mrr'));
 $('cancel').addEventListener('click', cancel);
+$('undo').addEventListener('click', () => undo(true));
+$('redo').addEventListener('click', () => undo(false));
+// Keyboard shortcuts: Ctrl+Z and Ctrl+Shift+Z (or Ctrl+Y) undo and redo the settings (in a text
+// field the field's own undo comes first), Ctrl+Enter generates, Escape cancels a run, and
+// outside the fields Space plays or pauses the simulation and the arrows step it.
+document.addEventListener('keydown', (e) => {
+  const t = e.target, typing = t instanceof HTMLElement && (t.tagName === 'TEXTAREA' || (t.tagName === 'INPUT' && !['checkbox', 'radio', 'button', 'file'].includes(t.type)) || t.isContentEditable);
+  const mod = e.ctrlKey || e.metaKey, key = e.key.toLowerCase();
+  if (mod && key === 'enter') { e.preventDefault(); if (!$('generate').disabled) generate(); return; }
+  if (e.key === 'Escape' && state.running) { e.preventDefault(); cancel(); return; }
+  if (typing || e.altKey) return;
+  if (mod && (key === 'z' || key === 'y')) {
+    e.preventDefault();
+    if (!state.running) undo(!(key === 'y' || e.shiftKey));
+    return;
+  }
+  if (mod || t.tagName === 'SELECT' || t.tagName === 'BUTTON') return;
+  if (key === ' ' && !$('sim').hidden) { e.preventDefault(); play(); }
+  else if (e.key === 'ArrowLeft' && !$('sim').hidden) { e.preventDefault(); step(-1); }
+  else if (e.key === 'ArrowRight' && !$('sim').hidden) { e.preventDefault(); step(1); }
+});
 $('download').addEventListener('click', download);
 $('save-job').addEventListener('click', saveJob);
 $('save-project').addEventListener('click', saveProject);
@@ -165,6 +193,7 @@ createEngine(window.SWARF_ENGINE_OPTIONS ?? {}).then(async (engine) => {
   setKind('part');
   await showPart(engine.sample, 'sample.stl', 'sample part');
   if (lost.length) message(`The settings kept from before could not be read, and the defaults took their place: ${lost.join('; ')}`, 'warning');
+  startHistory();
   setRunning(false);
 }).then(() => {
   document.body.dataset.ready = 'true';

@@ -10,7 +10,7 @@ export function fillOps() {
   state.selected[state.kind] = Math.max(0, Math.min(state.selected[state.kind], j.operations.length - 1));
   const items = sized(list, j.operations.length, () => {
     const li = document.createElement('li');
-    li.innerHTML = '<input type="checkbox" class="op-enabled" title="run this operation" aria-label="run this operation"><span class="swatch"></span><span class="op-name"></span><span class="op-buttons"><button type="button" class="op-up" title="earlier" aria-label="earlier">▲</button><button type="button" class="op-down" title="later" aria-label="later">▼</button><button type="button" class="op-remove" title="remove" aria-label="remove">✕</button></span>';
+    li.innerHTML = '<input type="checkbox" class="op-enabled" title="run this operation" aria-label="run this operation"><span class="swatch"></span><span class="op-name"></span><span class="op-buttons"><button type="button" class="op-up" title="earlier" aria-label="earlier">▲</button><button type="button" class="op-down" title="later" aria-label="later">▼</button><button type="button" class="op-copy" title="duplicate" aria-label="duplicate">⧉</button><button type="button" class="op-remove" title="remove (Ctrl+Z brings it back)" aria-label="remove">✕</button></span>';
     return li;
   });
   j.operations.forEach((op, i) => {
@@ -58,7 +58,16 @@ export function onOpList(e) {
   if (e.target.classList.contains('op-enabled')) { ops[i].enabled = e.target.checked; store(); hooks.changed?.(); return; }
   if (e.target.classList.contains('op-up') && i > 0) { [ops[i - 1], ops[i]] = [ops[i], ops[i - 1]]; state.selected[state.kind] = i - 1; }
   else if (e.target.classList.contains('op-down') && i < ops.length - 1) { [ops[i + 1], ops[i]] = [ops[i], ops[i + 1]]; state.selected[state.kind] = i + 1; }
-  else if (e.target.classList.contains('op-remove')) { ops.splice(i, 1); state.selected[state.kind] = Math.max(0, i - 1); }
+  else if (e.target.classList.contains('op-copy')) {
+    const copy = structuredClone(ops[i]);
+    copy.name = `${ops[i].name} copy`;
+    ops.splice(i + 1, 0, copy);
+    state.selected[state.kind] = i + 1;
+  } else if (e.target.classList.contains('op-remove')) {
+    const [gone] = ops.splice(i, 1);
+    state.selected[state.kind] = Math.max(0, i - 1);
+    message(`Removed '${gone.name}': Undo (Ctrl+Z) brings it back.`, 'note');
+  }
   else state.selected[state.kind] = i;
   store();
   fillOps();
@@ -242,8 +251,13 @@ function toggleHole(op, k) {
   message(`${op.name}: ${m.one} ${k} ${set.has(k) ? 'picked' : 'no longer picked'}; ${m.many} ${op[m.field].length ? op[m.field].join(', ') : 'all'}`, 'note');
 }
 
-// Spot, drill and chamfer the picked holes (all found, if none is picked): three operations,
-// each with the library's tool for it (a spot drill, the drill nearest the holes' size, a V-bit).
+// Spot, drill and chamfer the picked holes (all found, if none is picked), as a machinist
+// plans them: the holes grouped by size, each group drilled with the library's drill that fits
+// it (a new drill of that size where none does), bored on a helix with an end mill where the
+// library has one narrow enough and no drill fits, recesses shallower than a spot left to the
+// milling operations; the drilled holes spotted first, and all chamfered.
+const DRILL_UNDER = 0.1; // a drill this much under a hole's size still fits it (mm)
+const DRILL_OVER = 0.02; // … and this much over (0.01 on the radius, inside the gouge tolerance)
 export function presetHoles() {
   const op = selectedOp();
   const holes = found(op);
@@ -251,30 +265,69 @@ export function presetHoles() {
   // dimensions' anchors), as the operations take "all".
   const picked = op?.holes?.length ? op.holes : holes.map((h, k) => (h.mark ? null : h.loopIndex ?? k)).filter((k) => k !== null);
   if (!picked.length) { message('Find the holes first, and pick the ones to make.', 'warning'); return; }
-  // Drill marks (a drawing's POINTs) have no size: the drill is chosen by the holes that do,
-  // and they are spotted and drilled but not chamfered.
-  const marks = holes.filter((h, k) => h.mark && picked.includes(h.loopIndex ?? k)).map((h) => h.loopIndex);
-  const sizes = holes.filter((h, k) => !h.mark && picked.includes(h.loopIndex ?? k)).map((h) => h.diameter);
-  const mean = sizes.reduce((a, b) => a + b, 0) / Math.max(1, sizes.length);
+  const indexOf = (h) => h.loopIndex ?? holes.indexOf(h);
+  const chosen = holes.filter((h) => picked.includes(indexOf(h)));
   const spot = state.tools.find((t) => t.shape === 'spotDrill') ?? state.tools.find((t) => t.shape === 'vBit');
-  const drill = state.tools.filter((t) => t.shape === 'drill').sort((a, b) => Math.abs(a.diameter - mean) - Math.abs(b.diameter - mean))[0];
   const chamfer = state.tools.find((t) => t.shape === 'vBit') ?? spot;
-  const missing = [!spot && 'a spot drill or V-bit', !drill && 'a drill'].filter(Boolean);
-  if (missing.length) { message(`Add ${missing.join(' and ')} to the tool library first.`, 'warning'); return; }
-  const add = (kind, fields) => {
+  if (!spot) { message('Add a spot drill or a V-bit to the tool library first.', 'warning'); return; }
+  // A spot's depth in a hole: a cone as wide as the hole (at most the tool).
+  const spotDepth = (h) => Math.min(h.diameter, spot.diameter) / 2 / Math.tan(((spot.angle ?? 90) * Math.PI) / 360);
+  const recesses = chosen.filter((h) => !h.mark && h.top - h.bottom < spotDepth(h));
+  const made = chosen.filter((h) => !recesses.includes(h));
+  // Groups by size (to a hundredth of a millimetre); drill marks go with the smallest drill.
+  const groups = new Map();
+  for (const h of made.filter((x) => !x.mark)) {
+    const key = Math.round(h.diameter * 100) / 100;
+    if (!groups.has(key)) groups.set(key, []);
+    groups.get(key).push(h);
+  }
+  const drills = state.tools.filter((t) => t.shape === 'drill');
+  const mills = state.tools.filter((t) => t.shape === 'flat' || t.shape === 'bullNose');
+  const added = [], drilled = [], bored = [], plan = [];
+  for (const [, list] of [...groups].sort((a, b) => a[0] - b[0])) {
+    const size = Math.round(list[0].diameter * 1000) / 1000;
+    const fit = drills.filter((t) => t.diameter <= size + DRILL_OVER && t.diameter >= size - DRILL_UNDER).sort((a, b) => Math.abs(a.diameter - size) - Math.abs(b.diameter - size))[0];
+    // A bore's tool: the widest end mill that leaves room for a helix (at most 80 % of the hole).
+    const mill = mills.filter((t) => t.diameter <= 0.8 * size).sort((a, b) => b.diameter - a.diameter)[0];
+    if (fit) { plan.push({ kind: 'drill', tool: fit, size, list }); drilled.push(...list); }
+    else if (mill) { plan.push({ kind: 'bore', tool: mill, size, list }); bored.push(...list); }
+    else {
+      const t = structuredClone(state.defaults.tool);
+      Object.assign(t, { number: Math.max(0, ...state.tools.map((u) => u.number)) + 1, name: `drill φ${size}`, shape: 'drill', diameter: size, angle: 118, fluteLength: Math.max(t.fluteLength ?? 0, Math.ceil(Math.max(...list.map((h) => h.top - h.bottom)) + 3)) });
+      state.tools.push(t);
+      drills.push(t);
+      added.push(t);
+      plan.push({ kind: 'drill', tool: t, size, list });
+      drilled.push(...list);
+    }
+  }
+  const marks = made.filter((h) => h.mark);
+  if (marks.length) {
+    const smallest = plan.find((p) => p.kind === 'drill');
+    if (smallest) { smallest.list.push(...marks); drilled.push(...marks); }
+    else if (drills[0]) { plan.push({ kind: 'drill', tool: drills[0], size: drills[0].diameter, list: marks }); drilled.push(...marks); }
+  }
+  const add = (kind, fields, list) => {
     const o = structuredClone(state.defaults.operations.find((d) => d.kind === kind));
-    Object.assign(o, fields, { holes: [...picked] });
+    Object.assign(o, fields, { holes: list.map(indexOf).sort((a, b) => a - b) });
     job().operations.push(o);
   };
-  add('drill', { name: 'spot', tool: spot.number, cycle: 'spot' });
-  add('drill', { name: 'drill', tool: drill.number, cycle: 'peck' });
-  if (chamfer && sizes.length) {
-    add('chamfer', { tool: chamfer.number });
-    job().operations.at(-1).holes = picked.filter((k) => !marks.includes(k));
+  if (drilled.length) add('drill', { name: 'spot', tool: spot.number, cycle: 'spot' }, drilled);
+  for (const p of plan) {
+    if (p.kind === 'drill') add('drill', { name: `drill φ${p.tool.diameter}`, tool: p.tool.number, cycle: 'peck' }, p.list);
+    else add('bore', { name: `bore φ${p.size}`, tool: p.tool.number }, p.list);
   }
+  const edged = made.filter((h) => !h.mark);
+  if (chamfer && edged.length) add('chamfer', { tool: chamfer.number }, edged);
   state.selected[state.kind] = job().operations.length - 1;
   store();
+  hooks.fillTools?.();
   fillOps();
   hooks.changed?.();
-  message(`Spot, drill (T${drill.number}, φ${drill.diameter}) and chamfer ${picked.length} hole${picked.length > 1 ? 's' : ''}.`, 'ok');
+  const said = plan.map((p) => `${p.kind === 'drill' ? `drill T${p.tool.number} φ${p.tool.diameter}` : `bore with T${p.tool.number} φ${p.tool.diameter}`}: ${p.list.length} hole${p.list.length > 1 ? 's' : ''}${p.kind === 'bore' ? '' : ''} φ${p.size}`);
+  const notes = [
+    added.length ? `added ${added.map((t) => `T${t.number} (φ${t.diameter} drill)`).join(', ')} to the library, as no drill there fits` : '',
+    recesses.length ? `left ${recesses.length} recess${recesses.length > 1 ? 'es' : ''} shallower than a spot (${recesses.map((h) => `φ${h.diameter} ${Math.round((h.top - h.bottom) * 1000) / 1000} mm deep`).join(', ')}) to the milling operations` : '',
+  ].filter(Boolean);
+  message(`Spot, ${said.join('; ')}${edged.length && chamfer ? '; chamfer' : ''}.${notes.length ? ` ${notes.join('; ')}.` : ''}`, 'ok');
 }

@@ -31,11 +31,71 @@ export const is2d = (op) => op.kind === 'profile2d' || op.kind === 'pocket2d' ||
 export const HOLE_OPS = ['drill', 'bore', 'chamfer', 'threadMill'];
 export const isEither = (op) => HOLE_OPS.includes(op.kind) || op.kind === 'face';
 
-export function store() {
+// Keeps the settings and makes their change a step to undo; the changes of one field typed
+// without a pause (`burst`: the field's key) are one step.
+export function store(burst = null) {
+  keep();
+  record(burst);
+}
+
+function keep() {
   try {
     localStorage.setItem(TOOLS, JSON.stringify(state.tools));
     localStorage.setItem(JOBS, JSON.stringify(state.jobs));
   } catch { /* private mode: nothing kept */ }
+}
+
+// ---- undo and redo ------------------------------------------------------------------------
+// Every change that is stored is a step back (the library and both jobs as they were before
+// it); the changes of one burst (the keystrokes of one field's value, typed without a pause)
+// are one.
+const UNDO_STEPS = 200;
+const BURST_MS = 800;
+const history = { done: [], undone: [], current: null, last: 0, burst: null };
+const snapshot = () => JSON.stringify({ tools: state.tools, jobs: state.jobs });
+
+function record(burst) {
+  const now = snapshot();
+  if (history.current === null || now === history.current) { history.current = now; return; }
+  const same = burst !== null && burst === history.burst && performance.now() - history.last <= BURST_MS;
+  history.burst = burst;
+  if (!same || !history.done.length) {
+    history.done.push(history.current);
+    if (history.done.length > UNDO_STEPS) history.done.shift();
+  }
+  history.last = performance.now();
+  history.current = now;
+  history.undone = [];
+  hooks.history?.();
+}
+
+// The settings as they stand become the start of the history (after the page has restored them).
+export function startHistory() {
+  Object.assign(history, { done: [], undone: [], current: snapshot(), last: 0 });
+  hooks.history?.();
+}
+
+export const canUndo = () => history.done.length > 0;
+export const canRedo = () => history.undone.length > 0;
+
+// Goes one step back (`back`) or forward again; false where there is none.
+export function undo(back = true) {
+  const [from, to] = back ? [history.done, history.undone] : [history.undone, history.done];
+  if (!from.length) return false;
+  to.push(snapshot());
+  const then = JSON.parse(from.pop());
+  const placed = JSON.stringify(state.jobs[state.kind]?.part);
+  state.tools = then.tools;
+  state.jobs = then.jobs;
+  history.current = snapshot();
+  history.last = 0;
+  history.burst = null;
+  keep();
+  hooks.fillAll?.();
+  // A part read another way (units, scale, up axis, turn) is shown again as it was read.
+  if (JSON.stringify(state.jobs[state.kind]?.part) !== placed) hooks.showPart?.();
+  hooks.history?.();
+  return true;
 }
 
 // The library and the jobs as the browser kept them, each read again by the core (an older

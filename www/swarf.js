@@ -472,5 +472,31 @@ function withText(m) {
  * `warmUp` (default true; false: no warm-up job as the engine starts, see `Engine.warmedUp`).
  */
 export async function createEngine(options = {}) {
+  if (!options.worker && !options.workerUrl && inNode()) options = { ...options, ...(await nodeOptions(options)) };
   return new Engine(options).start();
+}
+
+/** Whether this runs under Node (no Web Worker; worker_threads instead). */
+function inNode() {
+  return typeof Worker === 'undefined' && typeof process !== 'undefined' && !!process.versions?.node;
+}
+
+/**
+ * Under Node: workers from worker_threads running node-worker.js (worker.js as a Web Worker
+ * sees it), the wasm read from pkg/ beside this module, one worker per core. The modules are
+ * named through a variable so that no bundler making a page pulls Node's in.
+ */
+async function nodeOptions(options) {
+  const load = (name) => import(/* webpackIgnore: true */ /* @vite-ignore */ name);
+  const [{ Worker: NodeWorker }, fs, os] = await Promise.all([load('node:worker_threads'), load('node:fs'), load('node:os')]);
+  const script = new URL('./node-worker.js', import.meta.url);
+  const worker = () => {
+    const w = new NodeWorker(script);
+    const port = { onmessage: null, onerror: null, postMessage: (m, transfer) => w.postMessage(m, transfer), terminate: () => w.terminate() };
+    w.on('message', (data) => port.onmessage?.({ data }));
+    w.on('error', (e) => port.onerror?.({ message: e.message, preventDefault() {} }));
+    return port;
+  };
+  const wasm = options.wasm ?? fs.readFileSync(new URL('./pkg/swarf_bg.wasm', import.meta.url));
+  return { worker, wasm, workers: options.workers ?? Math.min(8, os.availableParallelism?.() ?? os.cpus().length) };
 }

@@ -161,6 +161,72 @@ pub fn lowest_near(drop: &crate::zmap::drop::PointDrop, p: DVec2, reach: f64) ->
     (0..16).map(|k| p + DVec2::from_angle(k as f64 * std::f64::consts::TAU / 16.0) * reach).chain([p]).map(|q| drop.at(q, f64::NEG_INFINITY)).fold(f64::INFINITY, f64::min)
 }
 
+/// The part's heights lowered to each round hole's bottom inside its circle (the facets of a
+/// tessellated hole lie inside it).
+fn lower_in_holes(field: &mut HeightField, grid: Grid, holes: &[crate::holes::Hole]) {
+    for h in holes {
+        let r = h.diameter / 2.0;
+        let (Some((i0, i1)), Some((j0, j1))) = (grid.columns(h.center.x - r, h.center.x + r), grid.rows(h.center.y - r, h.center.y + r)) else { continue };
+        for j in j0..=j1 {
+            for i in i0..=i1 {
+                if grid.node(i, j).distance(h.center) < r {
+                    let c = j * grid.nx + i;
+                    field.z[c] = field.z[c].min(h.bottom);
+                }
+            }
+        }
+    }
+}
+
+/// Gouges on the walls of a part's round holes, in a machinist's words: the tool that reaches
+/// farthest into each hole's wall where a gouge lies, its diameter, the holes' and how far over
+/// on the radius ("φ6.4 drill (T2) in φ6.35 holes: 0.025 mm oversize on the radius").
+pub fn hole_overcuts(report: &Report, holes: &[crate::holes::Hole], moves: &[ProgramMove]) -> Vec<String> {
+    // Per hole with a gouge on its wall: the feed move inside it reaching farthest out.
+    let mut walls: Vec<usize> = Vec::new();
+    for g in &report.gouges {
+        let p = g.at.truncate();
+        let near = holes.iter().enumerate().filter(|(_, h)| h.center.distance(p) < h.diameter / 2.0 + 2.0 && g.at.z >= h.bottom - 1e-6);
+        if let Some((k, _)) = near.min_by(|a, b| a.1.center.distance(p).total_cmp(&b.1.center.distance(p))) {
+            if !walls.contains(&k) {
+                walls.push(k);
+            }
+        }
+    }
+    // (tool number, tool diameter, hole diameter) → the worst overcut, the first hole's place.
+    let mut found: Vec<((u32, u64, u64), f64, DVec2, &'static str)> = Vec::new();
+    for k in walls {
+        let h = &holes[k];
+        let r = h.diameter / 2.0;
+        let reach = |m: &ProgramMove| m.mv.to().truncate().distance(h.center) + m.cutter.diameter / 2.0;
+        let inside = moves.iter().filter(|m| !m.mv.is_rapid() && m.mv.to().z < h.top && m.mv.to().truncate().distance(h.center) < r);
+        let Some(m) = inside.max_by(|a, b| reach(a).total_cmp(&reach(b))) else { continue };
+        let over = reach(m) - r;
+        if over <= 0.0 {
+            continue;
+        }
+        let kind = match m.cutter.shape {
+            crate::cutter::Shape::Drill => "drill",
+            crate::cutter::Shape::SpotDrill => "spot drill",
+            crate::cutter::Shape::VBit => "V-bit",
+            crate::cutter::Shape::ThreadMill => "thread mill",
+            _ => "end mill",
+        };
+        let key = (m.tool, m.cutter.diameter.to_bits(), h.diameter.to_bits());
+        match found.iter_mut().find(|f| f.0 == key) {
+            Some(f) => f.1 = f.1.max(over),
+            None => found.push((key, over, h.center, kind)),
+        }
+    }
+    let mm = |v: f64| format!("{v:.3}").trim_end_matches('0').trim_end_matches('.').to_owned();
+    found
+        .into_iter()
+        .map(|((tool, d, hole), over, at, kind)| {
+            format!("φ{} {kind} (T{tool}) in φ{} holes: {over:.3} mm oversize on the radius (the first at X{:.3} Y{:.3})", mm(f64::from_bits(d)), mm(f64::from_bits(hole)), at.x, at.y)
+        })
+        .collect()
+}
+
 /// Simulates `moves` on the box `stock` and checks them against `part`.
 pub fn verify(part: &Mesh, stock: &Aabb, moves: &[ProgramMove], settings: &VerifySettings, tolerances: &Tolerances, progress: &mut Progress) -> Result<Verification> {
     let mut sim = Simulator::new(stock, settings.cell)?;
@@ -429,14 +495,25 @@ impl Simulator {
 
     /// [`Simulator::finish_mesh`], the part's heights first lowered by `cut` where operations
     /// may take more than the mesh has (a chamfer on its edges, a thread in its holes).
+    ///
+    /// The part's round holes are judged as the circles their facets approximate (the hole
+    /// finder's, [`crate::holes::mesh::find`]), not as the polygons inscribed in them: a bore to
+    /// a tessellated hole's size or a clearance drill a hair over it cuts past the facets by
+    /// their sagitta (0.029 mm for a φ12 hole of 32 sides) without cutting the part as drawn.
     pub fn finish_mesh_cut(self, part: &Mesh, cut: impl FnOnce(&mut HeightField, Grid), allowance: f64, tolerances: &Tolerances) -> Verification {
         let point = crate::zmap::drop::PointDrop::new(part, &crate::cutter::Profile::new(1e-9, 0.0), tolerances);
+        let holes = crate::holes::mesh::find(part);
         let surface = |grid| {
             let mut field = cc_zmap(part, grid, f64::NEG_INFINITY, tolerances);
             cut(&mut field, grid);
+            lower_in_holes(&mut field, grid, &holes);
             field
         };
-        self.finish_near(surface, |p| Some(lowest_near(&point, p, tolerances.gouge)), allowance, tolerances)
+        let lowest = |p: DVec2| {
+            let beside = holes.iter().filter(|h| p.distance(h.center) < h.diameter / 2.0 + tolerances.gouge).map(|h| h.bottom).fold(f64::INFINITY, f64::min);
+            Some(lowest_near(&point, p, tolerances.gouge).min(beside))
+        };
+        self.finish_near(surface, lowest, allowance, tolerances)
     }
 
     /// Judges the stock against the part's heights (`surface` on the simulation's grid, −∞ where

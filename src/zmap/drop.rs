@@ -109,7 +109,7 @@ impl PointDrop {
         // Highest first within every bucket: insert in that order.
         triangles.sort_by(|a, b| b.top.total_cmp(&a.top));
         let (start, entries) = bucket_lists(&triangles, nx, ny, span);
-        let peaks = peaks(mesh);
+        let peaks = peaks(mesh, profile.taper());
         let (peak_start, peak_entries) = bucket_lists(&peaks, nx, ny, |v| (cell(v.x - r, lo.x, nx), cell(v.x + r, lo.x, nx), cell(v.y - r, lo.y, ny), cell(v.y + r, lo.y, ny)));
         PointDrop { profile: *profile, lift: 0.0, triangles, edges, origin: lo, size, nx, ny, start, entries, peaks, peak_start, peak_entries }
     }
@@ -341,14 +341,21 @@ fn bucket_lists<T>(items: &[T], nx: usize, ny: usize, span: impl Fn(&T) -> (usiz
 
 /// Vertices with no higher neighbour and at least one lower: the tops of spikes, cones and
 /// mesas' corners. A cutter passing one of them feels its highest there, so paths probe them.
-fn peaks(mesh: &Mesh) -> Vec<DVec3> {
+///
+/// A cone's tip (`taper`, its rise per unit of radius, above 0) sits on more of them: a vertex
+/// decides its drop wherever no neighbour rises above the cone standing on it, so every vertex
+/// whose neighbours all stand lower than `taper` times their distance is one (a V-bit's tip
+/// dropped on a vertex of a ridge draws a tent along a path, narrower than any probe spacing
+/// where the neighbours are nearly as steep).
+fn peaks(mesh: &Mesh, taper: f64) -> Vec<DVec3> {
     let v = &mesh.vertices;
     let (mut higher, mut lower) = (vec![false; v.len()], vec![false; v.len()]);
     for face in &mesh.faces {
         for (a, b) in [(face[0], face[1]), (face[1], face[2]), (face[2], face[0])] {
             let (za, zb) = (v[a as usize].z, v[b as usize].z);
-            higher[a as usize] |= zb > za;
-            higher[b as usize] |= za > zb;
+            let rise = taper * v[a as usize].truncate().distance(v[b as usize].truncate());
+            higher[a as usize] |= zb - za > rise;
+            higher[b as usize] |= za - zb > rise;
             lower[a as usize] |= zb < za;
             lower[b as usize] |= za < zb;
         }

@@ -47,7 +47,7 @@ after(async () => {
 // awaited until the page says it ended (body[data-generated]), failing only if its progress bar
 // and stage stand still for two minutes; other waits get five minutes, so that a machine busy
 // with other builds passes too.
-export const PATIENCE = 300000;
+export const PATIENCE = Number(process.env.PATIENCE ?? 300000);
 
 export async function waitForGenerated(page) {
   let last = null, since = Date.now();

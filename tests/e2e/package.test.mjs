@@ -185,3 +185,25 @@ document.body.dataset.moves = String(r.summary.moves);
   assert.deepEqual(errors, []);
   await context.close();
 });
+
+test('under Node, both entries run a job in worker_threads: importing is safe and createEngine works, as the compared packages do', () => {
+  const script = (entry) => `import { createEngine } from '${entry}';
+const engine = await createEngine({ warmUp: false });
+const job = engine.defaultJob();
+job.operations = job.operations.filter((op) => op.kind === 'finishRaster').slice(0, 1);
+const r = await engine.run(job, engine.sample, 'sample.stl');
+console.log(JSON.stringify({ workers: engine.workers, moves: r.summary.moves, lines: r.gcode.split('\\n').length, problem: r.summary.problem ?? null }));
+engine.close();
+`;
+  const said = {};
+  for (const entry of ['swarf', 'swarf/files']) {
+    const file = path.join(scratch, `node-${entry.replace('/', '-')}.mjs`);
+    fs.writeFileSync(file, script(entry));
+    // It ends by itself once the engine is closed (no worker left running).
+    const out = execFileSync(process.execPath, [file], { cwd: scratch, encoding: 'utf8', timeout: PATIENCE });
+    said[entry] = JSON.parse(out.trim().split('\n').at(-1));
+    assert.ok(said[entry].moves > 1000 && said[entry].lines > 1000 && said[entry].problem === null, `${entry}: ${out}`);
+    assert.ok(said[entry].workers >= 1);
+  }
+  assert.equal(said.swarf.moves, said['swarf/files'].moves);
+});

@@ -209,3 +209,97 @@ test('under a strict Content-Security-Policy the engine starts, and a policy tha
   assert.deepEqual(errors, []);
   await context.close();
 });
+
+test('"Spot, drill and chamfer them" plans as a machinist: holes grouped by size, the library\'s drill that fits each, a new drill where none does, a bore where a drill would not do', async () => {
+  const { page, context, errors } = await openPage();
+  // φ3.175, φ6.35 and φ12.7 through holes in a 10 mm plate; the library: the φ6 flat and ball,
+  // a φ6.35 drill and a spot drill.
+  await page.setInputFiles('#file', { name: 'plate.stl', mimeType: 'model/stl', buffer: plateStl(60, 20, 10, 20, [[10, 10, 3.175], [30, 10, 6.35], [50, 10, 12.7]]) });
+  await page.waitForFunction(() => /plate\.stl/.test(document.body.textContent) && !document.getElementById('generate').disabled);
+  await tab(page, 'tools');
+  const drill = await addTool(page, 'drill', 6.35, 30);
+  const spot = await addTool(page, 'spotDrill', 10, 20);
+  await tab(page, 'ops');
+  await page.evaluate(() => { window.swarf.jobs.part.operations = []; });
+  await page.selectOption('#op-kind', 'drill');
+  await page.click('#op-add');
+  await page.click('#find-holes');
+  await page.waitForFunction(() => document.querySelectorAll('#hole-list li').length === 3);
+  await page.click('#hole-preset');
+  await page.waitForFunction(() => window.swarf.jobs.part.operations.length > 1);
+  const { ops, tools } = await page.evaluate(() => ({ ops: window.swarf.jobs.part.operations.slice(1), tools: window.swarf.tools }));
+  const holes = await page.evaluate(() => window.swarf.holes.items.map((h, k) => ({ k: h.loopIndex ?? k, d: h.diameter })));
+  const idx = (d) => holes.filter((h) => Math.abs(h.d - d) < 0.01).map((h) => h.k);
+  const added = tools.find((t) => t.shape === 'drill' && Math.abs(t.diameter - 3.175) < 1e-9);
+  assert.ok(added, `a φ3.175 drill added to the library: ${JSON.stringify(tools)}`);
+  const plan = ops.map((o) => `${o.kind}:${o.cycle ?? ''}:T${o.tool}:${o.holes.join(',')}`);
+  assert.deepEqual(plan, [
+    `drill:spot:T${spot}:${[...idx(3.175), ...idx(6.35)].sort((a, b) => a - b).join(',')}`,
+    `drill:peck:T${added.number}:${idx(3.175).join(',')}`,
+    `drill:peck:T${drill}:${idx(6.35).join(',')}`,
+    `bore::T1:${idx(12.7).join(',')}`,
+    `chamfer::T${spot}:${holes.map((h) => h.k).sort((a, b) => a - b).join(',')}`,
+  ]);
+  assert.match(await page.textContent('#message'), /added T\d+ \(φ3\.175 drill\) to the library/);
+  // The first operation (the one the holes were found with) off: the preset's run verified clean.
+  await page.evaluate(() => { window.swarf.jobs.part.operations[0].enabled = false; });
+  await page.click('#op-list li:nth-child(2) .op-name');
+  await page.click('#generate');
+  assert.equal(await waitForGenerated(page), 'ok', await page.textContent('#message'));
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
+test('undo and redo every change of the settings, duplicate an operation, and the keyboard: Ctrl+Z, Ctrl+Shift+Z, Ctrl+Enter, Space', async () => {
+  const { page, context, errors } = await openPage();
+  await tab(page, 'ops');
+  const names = () => page.evaluate(() => window.swarf.jobs.part.operations.map((o) => o.name));
+  const before = await names();
+  assert.ok(before.length >= 2, before.join(', '));
+  assert.equal(await page.isDisabled('#undo'), true, 'nothing to undo at first');
+  // Duplicate the first, then remove the second: each a step back.
+  await page.click('#op-list li:nth-child(1) .op-copy');
+  await page.waitForFunction((n) => window.swarf.jobs.part.operations.length === n + 1, before.length);
+  assert.deepEqual(await names(), [before[0], `${before[0]} copy`, ...before.slice(1)]);
+  await page.click('#op-list li:nth-child(3) .op-remove');
+  await page.waitForFunction((n) => window.swarf.jobs.part.operations.length === n, before.length);
+  assert.match(await page.textContent('#message'), /Removed .*Undo \(Ctrl\+Z\)/);
+  // A value typed in a field: one step, however many keys.
+  await page.click('#op-list li:nth-child(1) .op-name');
+  await page.fill('input[name=opName]', 'roughing first');
+  await page.keyboard.press('Tab');
+  await page.waitForFunction(() => window.swarf.jobs.part.operations[0].name === 'roughing first');
+  // Ctrl+Z outside the fields: back through the three.
+  await page.click('#op-list li:nth-child(1) .swatch');
+  await page.keyboard.press('Control+z');
+  await page.waitForFunction((n) => window.swarf.jobs.part.operations[0].name === n, before[0]);
+  assert.equal(await page.inputValue('input[name=opName]'), before[0], 'the form follows');
+  await page.keyboard.press('Control+z');
+  await page.waitForFunction((n) => window.swarf.jobs.part.operations.length === n + 1, before.length);
+  await page.click('#undo');
+  await page.waitForFunction((n) => window.swarf.jobs.part.operations.length === n, before.length);
+  assert.deepEqual(await names(), before);
+  assert.equal(await page.isDisabled('#undo'), true);
+  // And forward again.
+  await page.keyboard.press('Control+Shift+z');
+  await page.waitForFunction((n) => window.swarf.jobs.part.operations.length === n + 1, before.length);
+  await page.click('#redo');
+  await page.waitForFunction((n) => window.swarf.jobs.part.operations.length === n, before.length);
+  assert.equal(await page.evaluate(() => JSON.parse(localStorage.getItem('swarf.jobs')).part.operations.length), before.length, 'kept across a reload');
+  // Ctrl+Enter generates; Space plays the simulation; the arrows step it.
+  await page.evaluate(() => { const ops = window.swarf.jobs.part.operations; ops.splice(1); });
+  await page.click('#op-list li:nth-child(1) .swatch');
+  await page.keyboard.press('Control+Enter');
+  assert.equal(await waitForGenerated(page), 'ok', await page.textContent('#message'));
+  await page.waitForSelector('#sim:not([hidden])');
+  await page.evaluate(() => { const s = document.getElementById('scrub'); s.value = '0'; s.dispatchEvent(new Event('input')); });
+  await page.waitForFunction(() => document.body.dataset.simMoves === '0');
+  // Focus away from the fields and buttons: on the view.
+  await page.click('#view', { position: { x: 5, y: 5 } });
+  await page.keyboard.press('ArrowRight');
+  await page.waitForFunction(() => Number(document.body.dataset.simMoves) > 0);
+  await page.keyboard.press(' ');
+  await page.waitForFunction(() => document.getElementById('play').textContent === '❚❚' || Number(document.getElementById('scrub').value) >= Number(document.getElementById('scrub').max) - 1e-6);
+  assert.deepEqual(errors, []);
+  await context.close();
+});
