@@ -489,7 +489,10 @@ function inNode() {
 async function nodeOptions(options) {
   const load = (name) => import(/* webpackIgnore: true */ /* @vite-ignore */ name);
   const [{ Worker: NodeWorker }, fs, os] = await Promise.all([load('node:worker_threads'), load('node:fs'), load('node:os')]);
-  const script = new URL('./node-worker.js', import.meta.url);
+  // Named through variables too: a bundler that follows `new URL('…', import.meta.url)` would
+  // emit them into a page's bundle.
+  const [workerFile, wasmFile] = ['./node-worker.js', './pkg/swarf_bg.wasm'];
+  const script = new URL(/* webpackIgnore: true */ workerFile, import.meta.url);
   const worker = () => {
     const w = new NodeWorker(script);
     const port = { onmessage: null, onerror: null, postMessage: (m, transfer) => w.postMessage(m, transfer), terminate: () => w.terminate() };
@@ -497,6 +500,6 @@ async function nodeOptions(options) {
     w.on('error', (e) => port.onerror?.({ message: e.message, preventDefault() {} }));
     return port;
   };
-  const wasm = options.wasm ?? fs.readFileSync(new URL('./pkg/swarf_bg.wasm', import.meta.url));
+  const wasm = options.wasm ?? fs.readFileSync(new URL(/* webpackIgnore: true */ wasmFile, import.meta.url));
   return { worker, wasm, workers: options.workers ?? Math.min(8, os.availableParallelism?.() ?? os.cpus().length) };
 }

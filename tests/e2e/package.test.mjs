@@ -207,3 +207,57 @@ engine.close();
   }
   assert.equal(said.swarf.moves, said['swarf/files'].moves);
 });
+
+test('Vite and webpack production builds of both entries run a job under a strict Content-Security-Policy, with no configuration', async () => {
+  const app = (entry) => `import { createEngine } from '${entry}';
+(async () => {
+  const engine = await createEngine({ workers: 1, warmUp: false });
+  const r = await engine.run(engine.defaultJob('drawing'), engine.sampleDrawing, 'sample.dxf');
+  document.body.dataset.moves = String(r.summary.moves);
+})().catch((e) => { document.body.dataset.error = e.message; });
+`;
+  // What each entry needs of a page's policy (the package README's table).
+  const policy = {
+    swarf: "default-src 'none'; script-src 'self' 'wasm-unsafe-eval'; worker-src blob:",
+    'swarf/files': "default-src 'none'; script-src 'self' 'wasm-unsafe-eval'; worker-src 'self'; connect-src 'self'",
+  };
+  const types = { '.js': 'text/javascript', '.html': 'text/html', '.wasm': 'application/wasm' };
+  const builds = [];
+  for (const entry of ['swarf', 'swarf/files']) {
+    const dir = fs.mkdtempSync(path.join(scratch, 'bundle-'));
+    fs.writeFileSync(path.join(dir, 'app.js'), app(entry));
+    fs.writeFileSync(path.join(dir, 'index.html'), '<!doctype html><meta charset="utf-8"><title>portal</title><link rel="icon" href="data:,"><script type="module" src="/app.js"></script>');
+    // Vite: its own defaults, from the project's folder (node_modules/swarf found from there).
+    execFileSync(bin('vite'), ['build', dir, '--outDir', path.join(dir, 'vite'), '--logLevel', 'error'], { cwd: scratch, stdio: 'pipe' });
+    builds.push({ entry, dist: path.join(dir, 'vite'), by: 'Vite' });
+    // webpack: production mode, nothing but the entry; it warns of nothing but the wasm's size.
+    const out = execFileSync(bin('webpack'), ['--mode', 'production', '--entry', path.join(dir, 'app.js'), '--output-path', path.join(dir, 'webpack')], { cwd: scratch, encoding: 'utf8', stdio: 'pipe' });
+    const warnings = out.split('\n').filter((l) => /^WARNING in/.test(l) && !/asset size limit|entrypoint size limit|webpack performance/.test(l));
+    assert.deepEqual(warnings, [], `webpack warned: ${out}`);
+    fs.writeFileSync(path.join(dir, 'webpack/index.html'), '<!doctype html><meta charset="utf-8"><title>portal</title><link rel="icon" href="data:,"><script src="main.js"></script>');
+    builds.push({ entry, dist: path.join(dir, 'webpack'), by: 'webpack' });
+  }
+  const context = await browser.newContext();
+  context.setDefaultTimeout(PATIENCE);
+  for (const { entry, dist, by } of builds) {
+    const site = http.createServer((req, res) => {
+      const name = decodeURIComponent(new URL(req.url, 'http://x').pathname);
+      const file = path.join(dist, name === '/' ? 'index.html' : name);
+      if (!file.startsWith(dist) || !fs.existsSync(file) || fs.statSync(file).isDirectory()) { res.writeHead(404); res.end(); return; }
+      res.writeHead(200, { 'content-type': types[path.extname(file)] ?? 'application/octet-stream', 'content-security-policy': policy[entry] });
+      fs.createReadStream(file).pipe(res);
+    });
+    await new Promise((resolve) => site.listen(0, '127.0.0.1', resolve));
+    const page = await context.newPage();
+    const errors = [];
+    page.on('pageerror', (e) => errors.push(String(e)));
+    await page.goto(`http://127.0.0.1:${site.address().port}/`);
+    await page.waitForFunction(() => document.body?.dataset.moves || document.body?.dataset.error);
+    const said = await page.evaluate(() => ({ ...document.body.dataset }));
+    assert.ok(Number(said.moves) > 100, `${by}, ${entry}: ${JSON.stringify(said)}`);
+    assert.deepEqual(errors, [], `${by}, ${entry}`);
+    await page.close();
+    site.close();
+  }
+  await context.close();
+});
