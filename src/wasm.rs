@@ -46,12 +46,12 @@ pub fn check_job(job: JsValue, part: Option<Vec<f64>>) -> Result<JsValue, JsErro
     let bounds =
         part.filter(|b| b.len() == 6 && b.iter().all(|v| v.is_finite())).map(|b| crate::geom::Aabb { min: crate::geom::DVec3::new(b[0], b[1], b[2]), max: crate::geom::DVec3::new(b[3], b[4], b[5]) });
     let problems = match Job::from_value(&value) {
-        Ok(job) => job.problems_with(bounds.as_ref()),
+        Ok(job) => job.problems_with(bounds.as_ref()).into_iter().map(job::Problem::at_field).collect(),
         Err(e) => {
             let message = e.to_string();
             let named = message.strip_prefix("unknown fields: ").or_else(|| message.strip_prefix("unknown field: ")).unwrap_or(&message);
             let path = named.split([':', ' ', ';']).next().unwrap_or_default().to_owned();
-            vec![job::Problem { path, message }]
+            vec![job::Problem { path, message }.at_field()]
         }
     };
     to_js(&problems)

@@ -186,3 +186,36 @@ fn a_stock_box_smaller_than_the_part_is_refused_naming_the_sides() {
     job.stock.size_box = Some(Aabb { min: b.min - DVec3::splat(2.0), max: b.max + DVec3::splat(2.0) });
     assert!(job.problems_with(Some(&b)).is_empty(), "{:?}", job.problems_with(Some(&b)));
 }
+
+/// Issue 55: inside a tool a misspelt field gets its "did you mean" and a wrong value is named
+/// at its field; the messages the page shows at a field do not repeat its path.
+#[test]
+fn a_tools_fields_are_named_and_a_fields_message_does_not_repeat_its_path() {
+    let job = |tool: &str| format!(r#"{{"tools":[{tool}],"operations":[{{"kind":"roughZlevel","tool":1}}]}}"#);
+    let e = error_of(&job(r#"{"number":1,"shape":"flat","diamter":6}"#));
+    assert!(e.contains("tools[0].diamter (did you mean diameter?)"), "{e}");
+    let e = error_of(&job(r#"{"number":1,"shape":"flat","fluteLenght":20}"#));
+    assert!(e.contains("(did you mean fluteLength?)"), "{e}");
+    let e = error_of(&job(r#"{"number":1,"shape":"flat","diameter":"x"}"#));
+    assert!(e.starts_with("tools[0].diameter: expected a number"), "{e}");
+    // A name far from every field gets no guess.
+    let e = error_of(&job(r#"{"number":1,"shape":"flat","colour":"red"}"#));
+    assert!(e.contains("tools[0].colour") && !e.contains("did you mean"), "{e}");
+    use swarf::job::Problem;
+    let bare = |path: &str, message: &str| Problem { path: path.into(), message: message.into() }.at_field().message;
+    assert_eq!(bare("operations[0].stepdown", "operations[0].stepdown must be a positive number (got -1) ('rough')"), "must be a positive number (got -1) ('rough')");
+    assert_eq!(bare("tools[0].diameter", "tools[0] (tool 1): the cutter diameter must lie between 0.01 and 1000 mm (got -6)"), "the cutter diameter must lie between 0.01 and 1000 mm (got -6)");
+    assert_eq!(bare("tools[0].diamter", "unknown field: tools[0].diamter (did you mean diameter?)"), "unknown field (did you mean diameter?)");
+    assert_eq!(bare("stock.marginXy", "stock.marginXy: expected a number, got \"5\""), "expected a number, got \"5\"");
+    // Every problem of a job with many, at its field: none names its path again.
+    let mut job = swarf::job::Job::demo();
+    job.tools[0].cutter.diameter = -6.0;
+    job.stock.margin_xy = -2.0;
+    let problems = job.problems();
+    assert!(problems.len() >= 2, "{problems:?}");
+    for p in problems {
+        let path = p.path.clone();
+        let at = p.at_field();
+        assert!(!at.message.contains(&path) && !at.message.starts_with(':') && !at.message.is_empty(), "{path}: {}", at.message);
+    }
+}

@@ -92,6 +92,32 @@ function placeOf(path) {
   return { tab: null, field: null };
 }
 
+// Where a problem's path is, in the page's words: "Operations → 'rough' → Step-down",
+// "Tools → T1 → Diameter", "Stock → Stock around the part, X and Y" (the core's messages name no
+// path: `checkJob` leaves it to the page).
+const TAB_NAMES = { stock: 'Stock', part: 'Part', drawing: 'Part', post: 'Controller' };
+export function placeWords(path) {
+  // The field on show where one is (several operation kinds share a key), its label without
+  // the unit in brackets.
+  const label = (selector) => {
+    const all = [...document.querySelectorAll(selector)], el = all.find((e) => !e.closest('[hidden]')) ?? all[0];
+    return el ? labelOf(el).replace(/\s*\([^)]*\)\s*$/, '') : null;
+  };
+  let m = path.match(/^operations\[(\d+)\]\.(.+)$/);
+  if (m) {
+    const op = job()?.operations[Number(m[1])];
+    return `Operations → '${op?.name ?? `operation ${Number(m[1]) + 1}`}' → ${label(`#op-editor [data-key="${m[2]}"]`) ?? m[2]}`;
+  }
+  m = path.match(/^tools\[(\d+)\]\.(.+)$/);
+  if (m) return `Tools → T${state.tools[Number(m[1])]?.number ?? Number(m[1]) + 1} → ${label(`#tool-editor [data-key="${m[2]}"]`) ?? m[2]}`;
+  m = path.match(/^(stock|part|drawing|post)\.(.+)$/);
+  if (m) return `${TAB_NAMES[m[1]]} → ${label(`#settings [data-key="${m[1]}.${m[2]}"]`) ?? m[2]}`;
+  return path;
+}
+
+// A problem said in the page's words: where, then what.
+export const problemWords = (p) => (p.path ? `${placeWords(p.path)}: ${p.message}` : p.message);
+
 // Marks the fields of `problems` (the core's checks of the job, `[{ path, message }]`), their
 // tabs, operations and tools; clears the rest.
 export function markProblems(problems) {

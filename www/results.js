@@ -2,7 +2,7 @@
 // summary with the cycle time's breakdown, the warnings (amber, with their places) and errors
 // (red), the program in its pane, its simulation; the job, the project and the post as files.
 import { $, state, hooks, job, store, buildJob, is2d, isEither, clock, clockFormat, downloadText } from './state.js';
-import { fillFields, message, check, answered } from './forms.js';
+import { fillFields, message, check, answered, problemWords } from './forms.js';
 import { opColor, toolColor, cssColor, RAPID_COLOR, MARK_COLORS } from './viewer.js';
 import { sim, showSimulation } from './simulation.js';
 
@@ -160,7 +160,7 @@ export async function generate() {
   // The core's checks first, marked at their fields: the run would refuse the same.
   const problems = await check();
   if (problems.length) {
-    refuse(`${problems.length} setting${problems.length > 1 ? 's need' : ' needs'} attention: ${problems[0].message}`);
+    refuse(`${problems.length} setting${problems.length > 1 ? 's need' : ' needs'} attention: ${problemWords(problems[0])}`);
     return;
   }
   store();
@@ -321,7 +321,7 @@ export async function loadJob(file) {
     const read = await state.engine.readJob(text);
     await applyJob(read);
     const problems = await check();
-    if (problems.length) message(`Loaded the job from ${file.name}, but ${problems.length} setting${problems.length > 1 ? 's need' : ' needs'} attention: ${problems.map((p) => p.message).join('; ')}`, 'error');
+    if (problems.length) message(`Loaded the job from ${file.name}, but ${problems.length} setting${problems.length > 1 ? 's need' : ' needs'} attention: ${problems.map(problemWords).join('; ')}`, 'error');
     else message(`Loaded the job from ${file.name}: ${read.operations.length} operation(s).`, 'ok');
   } catch (e) {
     message(`${file.name}: ${e.message}`, 'error');

@@ -99,7 +99,39 @@ export const MARK_COLORS = [[0.86, 0.1, 0.1, 1], [0.85, 0.0, 0.65, 1], [0.95, 0.
 export const OP_COLORS = [[0.106, 0.455, 0.82, 1], [0.5, 0.22, 0.78, 1], [0.0, 0.6, 0.55, 1], [0.22, 0.55, 0.12, 1], [0.12, 0.2, 0.5, 1], [0.45, 0.45, 0.5, 1]];
 export const TOOL_COLORS = [[0.0, 0.42, 0.62, 1], [0.35, 0.62, 0.2, 1], [0.42, 0.3, 0.7, 1], [0.0, 0.65, 0.78, 1], [0.3, 0.3, 0.35, 1], [0.55, 0.55, 0.15, 1]];
 export const toolColor = (number) => TOOL_COLORS[(Math.max(1, number) - 1) % TOOL_COLORS.length];
-export const opColor = (index) => OP_COLORS[index % OP_COLORS.length];
+// Past the six chosen ones, each operation gets a colour of its own, as far from every colour
+// taken before it (the six, the earlier ones, the rapids' and the marks') as a palette of
+// greens, cyans, blues and violets allows (hues 90° to 275°, three saturations and lightnesses,
+// none near the marks),
+// so that no two operations of a job share one. Made once, as many as a job may hold.
+const MOST_OPERATIONS = 100;
+const hsl = (hue, s, l) => {
+  const c = (1 - Math.abs(2 * l - 1)) * s, h = hue / 60, x = c * (1 - Math.abs((h % 2) - 1)), m = l - c / 2;
+  const [r, g, b] = h < 1 ? [c, x, 0] : h < 2 ? [x, c, 0] : h < 3 ? [0, c, x] : h < 4 ? [0, x, c] : h < 5 ? [x, 0, c] : [c, 0, x];
+  return [r + m, g + m, b + m, 1];
+};
+const PALETTE = (() => {
+  const candidates = [];
+  const d = (a, b) => Math.hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+  const marks = [RAPID_COLOR, ...MARK_COLORS];
+  for (let hue = 90; hue <= 275; hue += 5) {
+    for (const s of [0.45, 0.65, 0.85]) for (const l of [0.3, 0.42, 0.55]) {
+      const c = hsl(hue, s, l);
+      if (marks.every((m) => d(c, m) > 0.4)) candidates.push(c);
+    }
+  }
+  const taken = [...OP_COLORS, ...marks];
+  const far = (c) => Math.min(...taken.map((t) => d(c, t)));
+  const out = [...OP_COLORS];
+  while (out.length < MOST_OPERATIONS) {
+    let best = null, bestFar = -1;
+    for (const c of candidates) { const f = far(c); if (f > bestFar) { best = c; bestFar = f; } }
+    out.push(best);
+    taken.push(best);
+  }
+  return out;
+})();
+export const opColor = (index) => PALETTE[index % PALETTE.length];
 export const cssColor = (c) => `rgb(${c.slice(0, 3).map((v) => Math.round(v * 255)).join(',')})`;
 
 // Loops picked for an operation (a bright blue, apart from the outlines' green and the holes'

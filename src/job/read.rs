@@ -38,7 +38,10 @@ impl Job {
             // An operation is read whole (its `kind` picks the type), so the path stops at it:
             // read it again as its kind's type to name the field.
             let op = value.get("operations").and_then(|ops| path.strip_prefix("operations[")?.strip_suffix(']')?.parse::<usize>().ok().and_then(|i| ops.get(i)));
-            match op.and_then(Operation::field_error) {
+            // A tool is read whole too (its cutter's fields flattened in): each of its fields
+            // is tried on a default tool to find the one that does not fit.
+            let tool = value.get("tools").and_then(|tools| path.strip_prefix("tools[")?.strip_suffix(']')?.parse::<usize>().ok().and_then(|i| tools.get(i)));
+            match op.and_then(Operation::field_error).or_else(|| tool.and_then(tool_field_error)) {
                 Some(inner) => Error::Input(format!("{path}.{inner}")),
                 None if path == "." => Error::Input(plain(&e.into_inner().to_string())),
                 None => Error::Input(format!("{path}: {}", plain(&e.into_inner().to_string()))),
@@ -102,12 +105,11 @@ fn unknown_fields(input: &serde_json::Value, canonical: &serde_json::Value, path
     use serde_json::Value;
     match (input, canonical) {
         (Value::Object(given), Value::Object(known)) => {
-            let squash = |k: &str| k.to_lowercase().replace(['_', '-'], "");
             for (k, v) in given {
                 let here = if path.is_empty() { k.clone() } else { format!("{path}.{k}") };
                 match known.get(k) {
                     Some(w) => unknown_fields(v, w, &here, out),
-                    None => match known.keys().find(|n| squash(n) == squash(k)).or_else(|| renamed(k).and_then(|n| known.keys().find(|m| *m == n))) {
+                    None => match likely(k, known.keys()) {
                         Some(n) => out.push(format!("{here} (did you mean {n}?)")),
                         None => out.push(here),
                     },
@@ -121,6 +123,57 @@ fn unknown_fields(input: &serde_json::Value, canonical: &serde_json::Value, path
         }
         _ => {}
     }
+}
+
+/// Where a tool's JSON does not fit: `field: what is wrong`, the first field that, put alone on
+/// a default tool, does not read.
+fn tool_field_error(value: &serde_json::Value) -> Option<String> {
+    let base = serde_json::to_value(super::Tool::default()).ok()?;
+    for (key, v) in value.as_object()? {
+        let mut one = base.clone();
+        one[key] = v.clone();
+        if let Err(e) = serde_json::from_value::<super::Tool>(one) {
+            return Some(format!("{key}: {}", plain(&e.to_string())));
+        }
+    }
+    None
+}
+
+/// How many single-character edits (insert, delete, change, swap two neighbours) make `a` into
+/// `b`, case aside.
+fn edits(a: &str, b: &str) -> usize {
+    let (a, b): (Vec<char>, Vec<char>) = (a.to_lowercase().chars().collect(), b.to_lowercase().chars().collect());
+    let mut d = vec![vec![0usize; b.len() + 1]; a.len() + 1];
+    for (i, row) in d.iter_mut().enumerate() {
+        row[0] = i;
+    }
+    for j in 0..=b.len() {
+        d[0][j] = j;
+    }
+    for i in 1..=a.len() {
+        for j in 1..=b.len() {
+            let change = usize::from(a[i - 1] != b[j - 1]);
+            d[i][j] = (d[i - 1][j] + 1).min(d[i][j - 1] + 1).min(d[i - 1][j - 1] + change);
+            if i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] {
+                d[i][j] = d[i][j].min(d[i - 2][j - 2] + 1);
+            }
+        }
+    }
+    d[a.len()][b.len()]
+}
+
+/// The known field a misspelt `given` most likely means: one that differs by case or
+/// underscores, an old name, or one within two edits (one for short names).
+fn likely<'a>(given: &str, known: impl Iterator<Item = &'a String> + Clone) -> Option<&'a String> {
+    let squash = |k: &str| k.to_lowercase().replace(['_', '-'], "");
+    if let Some(n) = known.clone().find(|n| squash(n) == squash(given)) {
+        return Some(n);
+    }
+    if let Some(n) = renamed(given).and_then(|n| known.clone().find(|m| *m == n)) {
+        return Some(n);
+    }
+    let most = if given.chars().count() <= 4 { 1 } else { 2 };
+    known.map(|n| (edits(&squash(n), &squash(given)), n)).filter(|(d, _)| *d <= most).min_by_key(|(d, _)| *d).map(|(_, n)| n)
 }
 
 /// The field an old name became, if it became one.

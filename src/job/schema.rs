@@ -221,8 +221,34 @@ impl Stock {
 pub struct Problem {
     /// The field's path (`operations[0].stepdown`, `stock.marginXy`).
     pub path: String,
-    /// What is wrong, naming the field.
+    /// What is wrong: naming the field (as the CLI says it), or, as `checkJob` gives it for a
+    /// page that shows it at the field, without the path ([`Problem::at_field`]).
     pub message: String,
+}
+
+impl Problem {
+    /// The problem with its message no longer repeating its path: "must be a positive number
+    /// …" for `operations[0].stepdown`, "the cutter diameter must lie between …" for
+    /// `tools[0].diameter`, "unknown field (did you mean diameter?)" for `tools[0].diamter`.
+    pub fn at_field(self) -> Problem {
+        let Problem { path, message } = self;
+        // The object the path starts with (`tools[0]`, `operations[2]`, `stock`).
+        let head = path.split('.').next().unwrap_or_default();
+        let bare = if let Some(rest) = message.strip_prefix(&path) {
+            rest.to_owned()
+        } else if let Some(k) = message.find(&path) {
+            // "unknown field: tools[0].diamter (did you mean diameter?)".
+            format!("{}{}", message[..k].trim_end().trim_end_matches(':'), &message[k + path.len()..])
+        } else if let Some(rest) = message.strip_prefix(head).filter(|_| !head.is_empty()) {
+            // "tools[0] (tool 1): the cutter diameter …": what stands before the colon names
+            // the object the field belongs to.
+            rest.split_once(": ").map_or(rest, |(_, after)| after).to_owned()
+        } else {
+            message
+        };
+        let bare = bare.trim_start_matches([':', ' ']).to_owned();
+        Problem { path, message: bare }
+    }
 }
 
 /// What a job works on: a part, or a drawing for 2.5D operations.

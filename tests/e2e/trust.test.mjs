@@ -107,6 +107,9 @@ test('every entry reads jobs strictly: a portal\'s misspelt field or wrong type 
   assert.equal(said.typed, 'stock.marginXy: expected a number, got "5"');
   assert.match(said.project, /unknown field: colour/);
   assert.deepEqual(said.problems.map((p) => p.path), ['tools[0].diameter', 'operations[0].stepdown']);
+  // A message does not repeat its path (issue 55): a portal shows it at its field.
+  for (const p of said.problems) assert.ok(!p.message.includes(p.path) && !/^tools\[|^operations\[/.test(p.message), JSON.stringify(p));
+  assert.match(said.problems[0].message, /^the cutter diameter must/);
   await context.close();
 });
 
@@ -118,13 +121,15 @@ test('bad values are marked at their fields as they are typed, by the core\'s ow
   await page.fill('input[name=roughStepdown]', '-1');
   await page.waitForSelector('input[name=roughStepdown].invalid');
   const note = await page.textContent('#fs-rough .field-error');
-  assert.equal(note, "operations[0].stepdown must be a positive number, at most 10000 (got -1) ('rough')");
+  // At its field the message names no path (issue 55): the field is where it stands.
+  assert.equal(note, "must be a positive number, at most 10000 (got -1) ('rough')");
   assert.doesNotMatch(note, /job file/);
   assert.ok(await page.locator('#op-list li:nth-child(1).has-problem').count());
   assert.ok(await page.locator('#tabs [data-tab="ops"].has-problem').count());
   await page.click('#generate');
   assert.equal(await waitForGenerated(page), 'failed');
-  assert.match(await page.textContent('#message'), /^1 setting needs attention: operations\[0\]\.stepdown must be a positive number/);
+  // Beside Generate, in the page's words: where the setting is, not its path in the job file.
+  assert.match(await page.textContent('#message'), /^1 setting needs attention: Operations → 'rough' → Step-down: must be a positive number/);
   assert.equal(await page.getAttribute('#message', 'class'), 'error');
   await page.fill('input[name=roughStepdown]', '2');
   await page.waitForFunction(() => !document.querySelector('input[name=roughStepdown]').classList.contains('invalid') && !document.querySelector('#tabs .has-problem'));
@@ -154,7 +159,7 @@ test('bad values are marked at their fields as they are typed, by the core\'s ow
   fs.writeFileSync(file, JSON.stringify(job));
   await page.setInputFiles('#load-job', file);
   await page.waitForFunction(() => /^Loaded the job from job\.json, but 1 setting needs attention/.test(document.getElementById('message').textContent));
-  assert.match(await page.textContent('#message'), /stock\.marginXy must be zero or more mm, at most 10000 \(got -2\)/);
+  assert.match(await page.textContent('#message'), /Stock → Stock around the part, X and Y: must be zero or more mm, at most 10000 \(got -2\)/);
   await tab(page, 'stock');
   await page.waitForSelector('input[name=marginXy].invalid');
   assert.deepEqual(errors, []);

@@ -303,3 +303,18 @@ test('undo and redo every change of the settings, duplicate an operation, and th
   assert.deepEqual(errors, []);
   await context.close();
 });
+
+test('the legend\'s colours never repeat within a job of forty operations, and none looks like the rapids\' or the problems\' colours', async () => {
+  const { page, context } = await openPage();
+  const colours = await page.evaluate(async () => {
+    const { opColor, RAPID_COLOR, MARK_COLORS } = await import('./viewer.js');
+    return { ops: Array.from({ length: 40 }, (_, k) => opColor(k)), marks: [RAPID_COLOR, ...MARK_COLORS] };
+  });
+  const rgb = (c) => c.slice(0, 3).map((v) => Math.round(v * 255));
+  const apart = (a, b) => Math.hypot(...rgb(a).map((v, i) => v - rgb(b)[i]));
+  for (let i = 0; i < colours.ops.length; i++) {
+    for (let j = 0; j < i; j++) assert.ok(apart(colours.ops[i], colours.ops[j]) > 12, `operations ${j} and ${i}: ${rgb(colours.ops[j])} and ${rgb(colours.ops[i])}`);
+    for (const m of colours.marks) assert.ok(apart(colours.ops[i], m) > 80, `operation ${i} ${rgb(colours.ops[i])} looks like ${rgb(m)}`);
+  }
+  await context.close();
+});
