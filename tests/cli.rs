@@ -119,14 +119,22 @@ fn verify_reads_a_program_and_reports_its_faults() {
 }
 
 /// Issue 10: a program whose simulation finds a problem is not a finished program. Here the
-/// roughing tool's flutes are 1 mm long and it steps down 2 mm: the body rubs.
+/// ball of the shallow finish has 20 mm of flutes and follows the stock's edges, 26 mm deep in
+/// the raw block (the roughing left out): the body rubs. (A step-down deeper than the flutes,
+/// the case this test used before, is now refused as the settings are checked, issue 55.)
 #[test]
 fn a_program_with_problems_is_written_only_when_asked() {
     let dir = temp("unsafe");
     assert!(swarf(&["demo", "-o", dir.to_str().unwrap()]).status.success());
     let text = std::fs::read_to_string(dir.join("demo.json")).unwrap();
     let mut job: serde_json::Value = serde_json::from_str(&text).unwrap();
-    job["tools"][0]["fluteLength"] = serde_json::json!(1.0);
+    job["tools"][1]["fluteLength"] = serde_json::json!(20.0);
+    let mut finish = job["operations"][1].clone();
+    finish["boundary"] = serde_json::json!("stock");
+    finish["slopeMax"] = serde_json::Value::Null;
+    finish["stepover"] = serde_json::json!(3.0);
+    finish["grid"] = serde_json::json!(0.5);
+    job["operations"] = serde_json::json!([finish]);
     let short = dir.join("short.json");
     std::fs::write(&short, job.to_string()).unwrap();
     let (part, program) = (dir.join("demo.stl"), dir.join("short.ngc"));
@@ -320,4 +328,24 @@ fn stage_times_add_up_to_the_compute_time() {
     // Without the flag, no stage times.
     let out = swarf(&["run", dir.join("demo.json").to_str().unwrap(), dir.join("demo.stl").to_str().unwrap(), "-o", ngc.to_str().unwrap(), "-q"]);
     assert!(!String::from_utf8_lossy(&out.stderr).contains("stage times"));
+}
+
+/// Issue 55: a step-down deeper than the tool's flutes is refused before any work, naming both
+/// settings (it used to be found by the simulation after the plan: "bury the tool").
+#[test]
+fn a_stepdown_deeper_than_the_flutes_is_refused_before_any_work() {
+    let dir = temp("deep");
+    assert!(swarf(&["demo", "-o", dir.to_str().unwrap()]).status.success());
+    let arg = |p: &std::path::Path| p.to_str().unwrap().to_owned();
+    let (job, part) = (dir.join("demo.json"), dir.join("demo.stl"));
+    // A step-down deeper than the flutes is refused before any work, naming both settings.
+    let mut deep: serde_json::Value = serde_json::from_slice(&std::fs::read(&job).unwrap()).unwrap();
+    deep["tools"][0]["fluteLength"] = serde_json::json!(1.0);
+    let deep_job = dir.join("deep.json");
+    std::fs::write(&deep_job, deep.to_string()).unwrap();
+    let out = swarf(&["run", &arg(&deep_job), &arg(&part), "-o", &arg(&dir.join("deep.ngc")), "-q"]);
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success() && said.contains("operations[0].stepdown: the step-down (2 mm) is deeper than T1's flutes (1 mm)"), "{said}");
+    assert!(!dir.join("deep.ngc").exists());
+    let _ = std::fs::remove_dir_all(&dir);
 }

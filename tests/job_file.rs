@@ -219,3 +219,25 @@ fn a_tools_fields_are_named_and_a_fields_message_does_not_repeat_its_path() {
         assert!(!at.message.contains(&path) && !at.message.starts_with(':') && !at.message.is_empty(), "{path}: {}", at.message);
     }
 }
+
+/// Issue 55: a tool wider than the whole part is refused at once (a φ150 on the 90 mm sample
+/// planned for minutes to a program that left 10 mm); a face mill wider than the part still
+/// faces it, with the warning.
+#[test]
+fn a_tool_wider_than_the_whole_part_is_refused_at_once_unless_it_faces() {
+    let mut job = swarf::job::Job::demo();
+    for t in &mut job.tools {
+        t.cutter.diameter = 150.0;
+        t.cutter.flute_length = 50.0;
+    }
+    let started = std::time::Instant::now();
+    let e = match swarf::job::run(&job, demo_part(), &mut Progress::none()) {
+        Ok(_) => panic!("a φ150 tool on a 90 × 60 mm part ran"),
+        Err(e) => e.to_string(),
+    };
+    assert!(e.contains("smaller than the φ150 tool") && e.contains("choose a smaller tool"), "{e}");
+    assert!(started.elapsed().as_secs_f64() < 5.0, "refused after {:?}", started.elapsed());
+    job.operations = vec![swarf::job::Operation::Face(swarf::operations::Face { tool: 1, ..Default::default() })];
+    let out = swarf::job::run(&job, demo_part(), &mut Progress::none()).expect("a wide face mill faces the part");
+    assert!(out.warnings.iter().any(|w| w.to_string().contains("smaller than the φ150 tool")), "{:?}", out.warnings);
+}

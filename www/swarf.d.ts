@@ -26,7 +26,7 @@ export type OperationInput = Input<Job['operations'][number]>;
 export type PostSettingsInput = Input<PostSettings>;
 /** The default job (`defaultJob`): every field filled, and its lists of operations and tools
  * open to ones written as inputs (`job.operations.push({ kind: 'drill', tool: 3 })`). */
-export type DefaultJob = Omit<Job, 'operations' | 'tools'> & { operations: (Job['operations'][number] | OperationInput)[]; tools: (Job['tools'][number] | ToolInput)[] };
+export type DefaultJob = Job & { operations: (Job['operations'][number] | OperationInput)[]; tools: (Job['tools'][number] | ToolInput)[] };
 
 export interface EngineOptions {
   /** The worker script (default: worker.js beside swarf.js). */

@@ -144,7 +144,7 @@ impl Job {
                 let stock = self.place(&mut part);
                 larger_than_any_machine("part", part.bounds().size(), "its unit (part.units) and part.scale")?;
                 outside_the_stock(&part.bounds(), &stock)?;
-                if let Some(message) = super::schema::part_outside_error(&stock, &part.bounds()) {
+                if let Some(message) = self.stock.size_box.and_then(|_| super::schema::part_outside_error(&stock, &part.bounds())) {
                     return Err(Error::Input(message));
                 }
                 (part, None, stock)
@@ -244,7 +244,15 @@ pub fn prepare(job: &Job, workpiece: impl Into<Workpiece>) -> Result<Prepared> {
         o.check_scale(&ctx)?;
     }
     if ctx.sheet.is_none() {
-        if let Some(w) = tool_larger_than_part(job, &ctx.part) {
+        if let Some((w, whole)) = tool_larger_than_part(job, &ctx.part) {
+            // Every tool wider than the whole part, and no facing (a face mill wider than the
+            // part is how a top is faced): nothing of the part is reached but its outside, and
+            // the exact surface of so wide a tool costs minutes (a φ150 on the 90 mm sample:
+            // 300 s to a program that leaves 10 mm). Refused at once.
+            let facing = job.operations.iter().any(|o| o.op().enabled() && matches!(o, Operation::Face(_)));
+            if whole && !facing {
+                return Err(Error::Input(format!("{w}; choose a smaller tool")));
+            }
             warnings.push(w);
         }
         if let Some(w) = super::schema::below_bottom(&ctx.stock, &ctx.part.bounds()) {
@@ -545,19 +553,22 @@ pub fn part_warnings(mesh: &Mesh) -> Vec<Warning> {
 /// A warning when the smallest tool the job uses is wider than the placed part is in X or Y:
 /// most often a part read in the wrong unit (a glTF in metres read as millimetres is a thousand
 /// times too small).
-fn tool_larger_than_part(job: &Job, part: &Mesh) -> Option<Warning> {
+fn tool_larger_than_part(job: &Job, part: &Mesh) -> Option<(Warning, bool)> {
     let used: Vec<u32> = job.operations.iter().filter(|o| o.op().enabled()).flat_map(|o| o.op().tools()).collect();
     let smallest = job.tools.iter().filter(|t| used.is_empty() || used.contains(&t.number)).min_by(|a, b| a.cutter.diameter.total_cmp(&b.cutter.diameter))?;
     let size = part.bounds().size();
     let d = smallest.cutter.diameter;
     let unit = format!("is its unit right? (part.units: {:?}, part.scale: {})", job.part.units, job.part.scale);
     if d > size.x.max(size.y) {
-        Some(Warning::job(format!("the part is {:.2} × {:.2} × {:.2} mm, smaller than the φ{d} tool T{}: {unit}", size.x, size.y, size.z, smallest.number)))
+        Some((Warning::job(format!("the part is {:.2} × {:.2} × {:.2} mm, smaller than the φ{d} tool T{}: {unit}", size.x, size.y, size.z, smallest.number)), true))
     } else if d > size.x.min(size.y) {
-        Some(Warning::job(format!(
-            "the part is {:.2} × {:.2} × {:.2} mm, narrower across than the φ{d} tool T{}: the tool fits in none of its pockets or gaps and cuts only around it; {unit}",
-            size.x, size.y, size.z, smallest.number
-        )))
+        Some((
+            Warning::job(format!(
+                "the part is {:.2} × {:.2} × {:.2} mm, narrower across than the φ{d} tool T{}: the tool fits in none of its pockets or gaps and cuts only around it; {unit}",
+                size.x, size.y, size.z, smallest.number
+            )),
+            false,
+        ))
     } else {
         None
     }

@@ -459,7 +459,8 @@ impl Job {
         for (field, message) in self.stock.problems() {
             say(format!("stock.{field}"), format!("stock.{field} {message}"));
         }
-        if let Some(part) = part {
+        // Only a box can leave the part out (margins are checked on their own above).
+        if let (Some(part), Some(_)) = (part, self.stock.size_box) {
             if let Some(message) = part_outside_error(&self.stock.around(part), part) {
                 say("stock.sizeBox".into(), message);
             }
@@ -486,10 +487,39 @@ impl Job {
                 say(format!("operations[{i}].{field}"), format!("operations[{i}].{field}: T{} is a {}: '{}' cuts with {takes}", t.number, t.cutter.describe(), o.name()));
             } else if let Err(e) = o.validate() {
                 say(format!("operations[{i}].{}", e.field), format!("operations[{i}].{} {} ('{}')", e.field, e.message, o.name()));
+            } else if let Some((step, tool)) = deeper_than_the_flutes(op, &self.tools) {
+                // Two settings that do not fit each other, said as they are typed (issue 55),
+                // not after the plan by the simulation's "bury the tool".
+                say(
+                    format!("operations[{i}].stepdown"),
+                    format!(
+                        "operations[{i}].stepdown: the step-down ({} mm) is deeper than T{}'s flutes ({} mm): its body would rub the material; step down at most {} mm, or give T{} its real flute length ('{}')",
+                        crate::limits::shown(step),
+                        tool.number,
+                        crate::limits::shown(tool.cutter.flute_length),
+                        crate::limits::shown(tool.cutter.flute_length),
+                        tool.number,
+                        o.name()
+                    ),
+                );
             }
         }
         out
     }
+}
+
+/// The step-down of an operation that steps down into material at its tool's full width
+/// (roughing in levels or zigzag passes, pockets, profiles, engraving, facing), with its tool,
+/// where it is deeper than the tool's flutes.
+fn deeper_than_the_flutes<'a>(op: &Operation, tools: &'a [Tool]) -> Option<(f64, &'a Tool)> {
+    const STEPPING: &[&str] = &["roughZlevel", "roughZigzag", "pocket2d", "profile2d", "engrave", "face"];
+    let value = serde_json::to_value(op).ok()?;
+    if !STEPPING.contains(&value.get("kind")?.as_str()?) {
+        return None;
+    }
+    let step = value.get("stepdown")?.as_f64()?;
+    let tool = tools.iter().find(|t| t.number == op.op().tool())?;
+    (step > tool.cutter.flute_length + 1e-9).then_some((step, tool))
 }
 
 /// The units a drawing's numbers are in.

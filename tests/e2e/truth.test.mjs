@@ -154,9 +154,12 @@ test('an unsafe program never leaves the engine quietly: run rejects naming the 
     const { createEngine } = await import('./swarf.js');
     const engine = await createEngine({ workers: 1, warmUp: false });
     const job = engine.defaultJob();
-    // The roughing tool's flutes 1 mm long, stepping down 2 mm: its body rubs.
-    job.tools[0].fluteLength = 1;
-    job.operations = job.operations.slice(0, 1);
+    // The shallow finish alone on the stock's rectangle, its ball with 20 mm of flutes: 26 mm
+    // deep in the raw block at the stock's edges, its body rubs.
+    const finish = job.operations.find((o) => o.kind === 'finishRaster');
+    Object.assign(finish, { boundary: 'stock', slopeMax: null, stepover: 3, grid: 0.5 });
+    job.tools.find((t) => t.number === finish.tool).fluteLength = 20;
+    job.operations = [finish];
     const refused = await engine.run(job, engine.sample, 'sample.stl').then(() => null, (e) => ({ name: e.name, message: e.message, problem: e.problem, summary: e.result?.summary.problem }));
     const taken = await engine.run(job, engine.sample, 'sample.stl', { allowUnsafe: true });
     engine.close();
@@ -316,5 +319,24 @@ test('the legend\'s colours never repeat within a job of forty operations, and n
     for (let j = 0; j < i; j++) assert.ok(apart(colours.ops[i], colours.ops[j]) > 12, `operations ${j} and ${i}: ${rgb(colours.ops[j])} and ${rgb(colours.ops[i])}`);
     for (const m of colours.marks) assert.ok(apart(colours.ops[i], m) > 80, `operation ${i} ${rgb(colours.ops[i])} looks like ${rgb(m)}`);
   }
+  await context.close();
+});
+
+test('two settings that do not fit each other are marked as they are typed: a step-down deeper than the tool\'s flutes', async () => {
+  const { page, context, errors } = await openPage();
+  await tab(page, 'tools');
+  await page.selectOption('#tool-list', '0');
+  await page.fill('input[name=fluteLength]', '1.5');
+  await tab(page, 'ops');
+  await page.click('#op-list li:nth-child(1) .op-name');
+  await page.waitForSelector('input[name=roughStepdown].invalid');
+  assert.match(await page.textContent('#fs-rough .field-error'), /^the step-down \(2 mm\) is deeper than T1's flutes \(1\.5 mm\)/);
+  await page.click('#generate');
+  assert.equal(await waitForGenerated(page), 'failed');
+  assert.match(await page.textContent('#message'), /Operations → 'rough' → Step-down: the step-down \(2 mm\) is deeper than T1's flutes/);
+  // Either setting made right clears the mark.
+  await page.fill('input[name=roughStepdown]', '1.5');
+  await page.waitForFunction(() => !document.querySelector('input[name=roughStepdown]').classList.contains('invalid'));
+  assert.deepEqual(errors, []);
   await context.close();
 });

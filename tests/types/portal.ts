@@ -40,3 +40,15 @@ export function wrong(job: Job, input: JobInput) {
   // @ts-expect-error: a roughing's step-over is a fraction of the diameter, stepoverFraction
   input.operations = [{ kind: 'roughZlevel', stepover: 0.4 }];
 }
+
+// The default job takes operations and tools written as inputs (issue 55), and stays a Job.
+export async function addToDefaults(stl: Uint8Array): Promise<number> {
+  const engine = await createEngine({ workers: 1 });
+  const job = engine.defaultJob();
+  job.tools.push({ number: 3, shape: 'drill', diameter: 5, fluteLength: 30 });
+  job.operations.push({ kind: 'drill', tool: 3, cycle: 'peck' });
+  const whole: Job = job;
+  const diameter: number = job.tools[0].diameter;
+  const r = await engine.run(whole, stl, 'part.stl', { allowUnsafe: true });
+  return diameter + r.summary.moves;
+}
