@@ -1215,3 +1215,47 @@ fn holes_are_judged_as_their_circles_and_an_oversize_drill_is_said_as_one() {
     let problem = out.problem.expect("a φ6.4 drill in φ6.35 holes cuts the walls back");
     assert!(problem.contains("φ6.4 drill (T2) in φ6.35 holes: 0.025 mm oversize on the radius"), "{problem}");
 }
+
+/// Issue 55's judging of holes as circles never forgives what stands inside a hole: a boss in a
+/// moat (the moat's wall a hole to the finder) plunged into is a gouge, and the moat's wall cut
+/// back is one too.
+#[test]
+fn what_stands_inside_a_hole_is_judged_as_the_mesh_has_it() {
+    let (n, outer, boss, side) = (48usize, 10.0, 4.0, 15.0);
+    let at = |r: f64, k: usize, z: f64| (DVec2::from_angle(std::f64::consts::TAU * (k % n) as f64 / n as f64) * r).extend(z);
+    // The point of the square's edge in the direction of circle point k.
+    let edge = |k: usize, z: f64| {
+        let d = DVec2::from_angle(std::f64::consts::TAU * (k % n) as f64 / n as f64);
+        (d * (side / d.x.abs().max(d.y.abs()))).extend(z)
+    };
+    let mut tris = Vec::new();
+    for k in 0..n {
+        // The plate's top around the moat, the moat's wall (facing the axis), its floor, the
+        // boss's wall (facing out) and its top 1 mm below the plate's.
+        tris.push([at(outer, k, 0.0), edge(k, 0.0), edge(k + 1, 0.0)]);
+        tris.push([at(outer, k, 0.0), edge(k + 1, 0.0), at(outer, k + 1, 0.0)]);
+        tris.push([at(outer, k, 0.0), at(outer, k + 1, 0.0), at(outer, k + 1, -5.0)]);
+        tris.push([at(outer, k, 0.0), at(outer, k + 1, -5.0), at(outer, k, -5.0)]);
+        tris.push([at(outer, k, -5.0), at(outer, k + 1, -5.0), at(boss, k + 1, -5.0)]);
+        tris.push([at(outer, k, -5.0), at(boss, k + 1, -5.0), at(boss, k, -5.0)]);
+        tris.push([at(boss, k, -5.0), at(boss, k + 1, -5.0), at(boss, k + 1, -1.0)]);
+        tris.push([at(boss, k, -5.0), at(boss, k + 1, -1.0), at(boss, k, -1.0)]);
+        tris.push([DVec3::new(0.0, 0.0, -1.0), at(boss, k, -1.0), at(boss, k + 1, -1.0)]);
+    }
+    let part = common::mesh(tris);
+    let found = find(&part);
+    assert!(found.iter().any(|h| (h.diameter - 2.0 * outer).abs() < 0.01), "the moat's wall is a hole to the finder: {found:?}");
+    let mut job = Job { tools: vec![Tool { number: 1, cutter: Cutter { flute_length: 20.0, ..Cutter::flat(3.0) }, ..Tool::default() }], ..Job::default() };
+    job.part.placement = swarf::mesh::placement::Placement::Keep;
+    job.simulation.cell = Some(0.1);
+    let verify = |gcode: &str| job::verify_gcode(&job, part.clone(), gcode, None, &mut Progress::none()).unwrap().report;
+    // Into the boss's top, 2 mm.
+    let boss_plunge = verify("G21 G90\nT1 M6\nG0 Z5\nG0 X0 Y0\nG1 Z-3 F100\nG0 Z5\nM30\n");
+    assert!(boss_plunge.gouge_count > 0 && boss_plunge.gouge_max > 1.9, "{}", boss_plunge.describe());
+    // Down the moat beside the boss, clear of both walls: clean.
+    let moat = verify("G21 G90\nT1 M6\nG0 Z5\nG0 X7 Y0\nG1 Z-5 F100\nG0 Z5\nM30\n");
+    assert_eq!(moat.gouge_count, 0, "{}", moat.describe());
+    // Into the moat's wall, 0.5 mm past its circle: a gouge.
+    let wall = verify("G21 G90\nT1 M6\nG0 Z5\nG0 X9 Y0\nG1 Z-4 F100\nG0 Z5\nM30\n");
+    assert!(wall.gouge_count > 0, "{}", wall.describe());
+}

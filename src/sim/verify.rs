@@ -161,16 +161,32 @@ pub fn lowest_near(drop: &crate::zmap::drop::PointDrop, p: DVec2, reach: f64) ->
     (0..16).map(|k| p + DVec2::from_angle(k as f64 * std::f64::consts::TAU / 16.0) * reach).chain([p]).map(|q| drop.at(q, f64::NEG_INFINITY)).fold(f64::INFINITY, f64::min)
 }
 
-/// The part's heights lowered to each round hole's bottom inside its circle (the facets of a
-/// tessellated hole lie inside it).
+/// The widest sliver between a hole's facets and its circle, as a share of its radius: the
+/// sagitta of the widest gap the hole finder lets a wall leave between vertices (60°).
+const SLIVER: f64 = 0.134;
+/// How near the hole's top a cell of the sliver stands (mm): the sliver is the top face around
+/// the hole, never other geometry inside it (a boss in a moat stands higher or lower).
+const SLIVER_HEIGHT: f64 = 1e-3;
+
+/// Whether `p` lies on the wall of hole `h`: between the widest sliver inside its circle and
+/// `beyond` outside it.
+fn on_wall(h: &crate::holes::Hole, p: DVec2, beyond: f64) -> bool {
+    let (r, d) = (h.diameter / 2.0, p.distance(h.center));
+    d >= r * (1.0 - SLIVER) && d < r + beyond
+}
+
+/// The part's heights lowered to each round hole's bottom in the sliver of top face between its
+/// facets and its circle (the facets of a tessellated hole lie inside the circle): only cells
+/// near the wall standing at the hole's top, so whatever stands inside the hole (a boss in a
+/// moat) is judged as the mesh has it.
 fn lower_in_holes(field: &mut HeightField, grid: Grid, holes: &[crate::holes::Hole]) {
     for h in holes {
         let r = h.diameter / 2.0;
         let (Some((i0, i1)), Some((j0, j1))) = (grid.columns(h.center.x - r, h.center.x + r), grid.rows(h.center.y - r, h.center.y + r)) else { continue };
         for j in j0..=j1 {
             for i in i0..=i1 {
-                if grid.node(i, j).distance(h.center) < r {
-                    let c = j * grid.nx + i;
+                let c = j * grid.nx + i;
+                if on_wall(h, grid.node(i, j), 0.0) && (field.z[c] - h.top).abs() <= SLIVER_HEIGHT {
                     field.z[c] = field.z[c].min(h.bottom);
                 }
             }
@@ -510,7 +526,10 @@ impl Simulator {
             field
         };
         let lowest = |p: DVec2| {
-            let beside = holes.iter().filter(|h| p.distance(h.center) < h.diameter / 2.0 + tolerances.gouge).map(|h| h.bottom).fold(f64::INFINITY, f64::min);
+            // Beside a hole's wall, within the gouge tolerance of its circle (the sliver of top
+            // face between its facets and the circle included): the hole's bottom.
+            let top = point.at(p, f64::NEG_INFINITY);
+            let beside = holes.iter().filter(|h| on_wall(h, p, tolerances.gouge) && (top - h.top).abs() <= SLIVER_HEIGHT).map(|h| h.bottom).fold(f64::INFINITY, f64::min);
             Some(lowest_near(&point, p, tolerances.gouge).min(beside))
         };
         self.finish_near(surface, lowest, allowance, tolerances)

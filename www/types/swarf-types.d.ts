@@ -1036,7 +1036,8 @@ export type Problem = {
  */
 path: string, 
 /**
- * What is wrong, naming the field.
+ * What is wrong: naming the field (as the CLI says it), or, as `checkJob` gives it for a
+ * page that shows it at the field, without the path ([`Problem::at_field`]).
  */
 message: string, };
 
