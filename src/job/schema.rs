@@ -509,15 +509,10 @@ impl Job {
 }
 
 /// The step-down of an operation that steps down into material at its tool's full width
-/// (roughing in levels or zigzag passes, pockets, profiles, engraving, facing), with its tool,
-/// where it is deeper than the tool's flutes.
+/// ([`crate::machining::Operate::stepdown`]), with its tool, where it is deeper than the tool's
+/// flutes.
 fn deeper_than_the_flutes<'a>(op: &Operation, tools: &'a [Tool]) -> Option<(f64, &'a Tool)> {
-    const STEPPING: &[&str] = &["roughZlevel", "roughZigzag", "pocket2d", "profile2d", "engrave", "face"];
-    let value = serde_json::to_value(op).ok()?;
-    if !STEPPING.contains(&value.get("kind")?.as_str()?) {
-        return None;
-    }
-    let step = value.get("stepdown")?.as_f64()?;
+    let step = op.op().stepdown()?;
     let tool = tools.iter().find(|t| t.number == op.op().tool())?;
     (step > tool.cutter.flute_length + 1e-9).then_some((step, tool))
 }

@@ -183,6 +183,11 @@ pub trait Operate {
     fn allowance(&self) -> f64 {
         0.0
     }
+    /// How deep it steps into material at its tool's full width, a level at a time (mm), for the
+    /// kinds that do: the step-down the tool's flutes must reach (`Job::problems`).
+    fn stepdown(&self) -> Option<f64> {
+        None
+    }
     /// Checks its settings before any work.
     fn validate(&self) -> Result<(), FieldError>;
     /// Whether the work its settings ask for on this stock is within reason (levels, passes),

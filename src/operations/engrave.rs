@@ -56,6 +56,10 @@ struct Line {
 impl Operate for Engrave {
     named_operation!(OnDrawing);
 
+    fn stepdown(&self) -> Option<f64> {
+        Some(self.stepdown)
+    }
+
     fn takes(&self, cutter: &crate::cutter::Cutter) -> std::result::Result<(), &'static str> {
         crate::machining::takes_all_but_thread_mills(cutter)
     }

@@ -66,6 +66,10 @@ impl Default for Face {
 impl Operate for Face {
     named_operation!(Either);
 
+    fn stepdown(&self) -> Option<f64> {
+        Some(self.stepdown)
+    }
+
     fn validate(&self) -> std::result::Result<(), FieldError> {
         if let Some(d) = self.depth {
             positive("depth", d)?;

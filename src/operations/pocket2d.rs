@@ -100,6 +100,10 @@ pub fn pocket_moves(region: &Shape, op: &Pocket2d, s: RingSetup) -> Result<Vec<M
 impl Operate for Pocket2d {
     named_operation!(OnDrawing);
 
+    fn stepdown(&self) -> Option<f64> {
+        Some(self.stepdown)
+    }
+
     fn check_scale(&self, ctx: &Context) -> crate::error::Result<()> {
         sheet::check_levels(ctx, &self.name, Some(self.depth), self.stepdown)
     }

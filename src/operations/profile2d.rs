@@ -379,6 +379,10 @@ fn fitting_lead(p: DVec2, t: DVec2, waste_left: bool, rho: f64, clear: &Clear, i
 impl Operate for Profile2d {
     named_operation!(OnDrawing);
 
+    fn stepdown(&self) -> Option<f64> {
+        Some(self.stepdown)
+    }
+
     fn check_scale(&self, ctx: &Context) -> crate::error::Result<()> {
         sheet::check_levels(ctx, &self.name, self.depth, self.stepdown)
     }

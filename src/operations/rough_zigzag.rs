@@ -234,6 +234,10 @@ struct LevelCut {
 impl Operate for RoughZigzag {
     named_operation!(OnPart);
 
+    fn stepdown(&self) -> Option<f64> {
+        Some(self.steps.stepdown)
+    }
+
     fn allowance(&self) -> f64 {
         self.roughing.allowance()
     }

@@ -53,6 +53,10 @@ impl RoughZlevel {
 impl Operate for RoughZlevel {
     named_operation!(OnPart);
 
+    fn stepdown(&self) -> Option<f64> {
+        Some(self.steps.stepdown)
+    }
+
     fn allowance(&self) -> f64 {
         self.roughing.allowance()
     }

@@ -237,19 +237,16 @@ fn write(path: &Path, bytes: &[u8]) -> Result<(), String> {
 fn run(cli: Cli) -> Result<(), String> {
     match cli.command {
         Command::Run { job: file, part, output, quiet, write_anyway, stage_times } => {
-            if let Some(output) = &output {
-                not_an_input(output, &[&file, part.as_deref().unwrap_or(&file)])?;
-            }
             let text = String::from_utf8_lossy(&read(&file)?).into_owned();
+            // The part a project names beside it is an input too.
+            let mut named = None;
             let (job, name, bytes, stem) = if Project::is_project(&text) {
                 let project = Project::from_json(&text).map_err(|e| format!("{}: {e}", file.display()))?;
                 let (name, bytes) = match &part {
                     Some(part) => (part.file_name().map(|n| n.to_string_lossy().into_owned()), read(part)?),
                     None => {
                         let dir = file.parent().map(Path::to_path_buf).unwrap_or_default();
-                        if let Some(output) = &output {
-                            not_an_input(output, &[&dir.join(&project.workpiece.name)])?;
-                        }
+                        named = Some(dir.join(&project.workpiece.name));
                         (Some(project.workpiece.name.clone()), project.workpiece_bytes(|n| std::fs::read(dir.join(n))).map_err(|e| format!("{}: {e}", file.display()))?)
                     }
                 };
@@ -263,7 +260,7 @@ fn run(cli: Cli) -> Result<(), String> {
             let workpiece = Workpiece::read(&bytes, name.as_deref(), &job.tolerances).map_err(|e| e.to_string())?;
             let output = output.unwrap_or_else(|| stem.with_extension(job.post.extension()));
             // The default name too: a part named part.ngc would become its own program.
-            not_an_input(&output, &[&file, part.as_deref().unwrap_or(&file)])?;
+            not_an_input(&output, &[&file, part.as_deref().unwrap_or(&file), named.as_deref().unwrap_or(&file)])?;
             run_job(&job, workpiece, &output, RunOptions { quiet, write_anyway, stage_times })
         }
         Command::Project { job: job_file, part, output, reference } => {
