@@ -21,9 +21,10 @@ function scoped(file) {
 
 // Imports of sibling modules become lookups of their scopes.
 function linked(src, modules) {
-  return src.replace(/^import (\{[^}]*\}) from '\.\/([\w-]+)\.js';$/gm, (_, names, file) => {
+  return src.replace(/^import (\{[^}]*\}|\* as [\w$]+) from '\.\/([\w-]+)\.js';$/gm, (_, names, file) => {
     if (!modules.includes(file)) throw new Error(`an import of ${file}.js this build does not inline`);
-    return `const ${names.replace(/ as /g, ': ')} = __${file.replace(/-/g, '_')};`;
+    const bound = names.startsWith('*') ? names.slice(5) : names.replace(/ as /g, ': ');
+    return `const ${bound} = __${file.replace(/-/g, '_')};`;
   });
 }
 
@@ -31,7 +32,7 @@ function linked(src, modules) {
 const worker = workerSource(www);
 
 // The page's modules, in order of use.
-const modules = ['viewer', 'swarf', 'state', 'forms', 'gcode', 'simulation', 'tools', 'operations', 'part', 'results'];
+const modules = ['viewer', 'swarf', 'units', 'state', 'forms', 'gcode', 'simulation', 'tools', 'operations', 'part', 'results'];
 let script = '';
 for (const m of modules) {
   const { src, names } = scoped(`${m}.js`);

@@ -38,15 +38,24 @@ fn job_from_js(job: JsValue) -> Result<Job, JsError> {
 
 /// Every setting of a job (an object) that does not fit, as `[{ path, message }]`
 /// ([`Job::problems_with`]): with `part`, the placed part's bounds (`[minX, minY, minZ, maxX,
-/// maxY, maxZ]`, as `loadPart` gives them), also a stock box the part sticks out of. A job that
-/// does not read gives its one problem, with the path the reader named.
+/// maxY, maxZ]`, as `loadPart` gives them), also a stock box the part sticks out of; with
+/// `holes` (the holes found in the workpiece, as `findHoles` gives them), a hole operation's
+/// settings that do not fit its holes. A job that does not read gives its one problem, with the
+/// path the reader named.
 #[wasm_bindgen(js_name = checkJob)]
-pub fn check_job(job: JsValue, part: Option<Vec<f64>>) -> Result<JsValue, JsError> {
+pub fn check_job(job: JsValue, part: Option<Vec<f64>>, holes: JsValue) -> Result<JsValue, JsError> {
     let value: serde_json::Value = serde_wasm_bindgen::from_value(job).map_err(|e| js_error(format!("the job is not a plain object: {e}")))?;
     let bounds =
         part.filter(|b| b.len() == 6 && b.iter().all(|v| v.is_finite())).map(|b| crate::geom::Aabb { min: crate::geom::DVec3::new(b[0], b[1], b[2]), max: crate::geom::DVec3::new(b[3], b[4], b[5]) });
     let problems = match Job::from_value(&value) {
-        Ok(job) => job.problems_with(bounds.as_ref()).into_iter().map(job::Problem::at_field).collect(),
+        Ok(job) => {
+            let holes: Option<Vec<crate::holes::Hole>> = if holes.is_null() || holes.is_undefined() {
+                None
+            } else {
+                Some(serde_wasm_bindgen::from_value(holes).map_err(|e| js_error(format!("the holes are not as findHoles gives them: {e}")))?)
+            };
+            job.problems_with(job::Known { part: bounds.as_ref(), holes: holes.as_deref() }).into_iter().map(job::Problem::at_field).collect()
+        }
         Err(e) => {
             let message = e.to_string();
             let named = message.strip_prefix("unknown fields: ").or_else(|| message.strip_prefix("unknown field: ")).unwrap_or(&message);

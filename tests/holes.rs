@@ -343,13 +343,33 @@ fn fanuc_dwells_in_milliseconds_and_reads_back_alike() {
     assert!((dwells - 1.0).abs() < 1e-9, "two holes dwell 0.5 s each: {dwells}");
 }
 
+/// What the job's checks say as the settings are typed, once the holes are known (issue 55),
+/// at `path`: the same words the plan refuses with. Without the holes nothing is said.
+fn said_as_typed(job: &Job, part: &Mesh, path: &str, words: &str) {
+    assert!(job.problems().is_empty(), "{:?}", job.problems());
+    let holes = job.holes(part.clone()).unwrap();
+    let problems = job.problems_with(job::Known { holes: Some(&holes), ..Default::default() });
+    let p = problems.iter().find(|p| p.path == path).unwrap_or_else(|| panic!("nothing at {path}: {problems:?}"));
+    assert!(p.message.contains(words), "{}", p.message);
+}
+
 #[test]
 fn a_drill_deeper_than_its_flutes_and_a_spot_without_a_cone_are_refused() {
     let part = block(3, 3, SIDE, THICK, &specs());
+    // The holes known, a good job is clean.
+    let job = drilling_job(Dialect::LinuxCnc);
+    let holes = job.holes(part.clone()).unwrap();
+    assert!(job.problems_with(job::Known { holes: Some(&holes), ..Default::default() }).is_empty());
     let mut job = drilling_job(Dialect::LinuxCnc);
     job.tools[1].cutter.flute_length = 8.0;
     let e = job::run(&job, part.clone(), &mut Progress::none()).unwrap_err().to_string();
     assert!(e.contains("deeper than T2's flutes (8 mm)"), "{e}");
+    // As typed: at the drilling's tool (its depth is the hole's own), or at its depth.
+    said_as_typed(&job, &part, "operations[1].tool", "deeper than T2's flutes (8 mm)");
+    if let Operation::Drill(d) = &mut job.operations[1] {
+        d.depth = Some(9.0);
+    }
+    said_as_typed(&job, &part, "operations[1].depth", "9.00 mm deep, deeper than T2's flutes (8 mm)");
     let mut job = drilling_job(Dialect::LinuxCnc);
     job.tools[0].cutter = Cutter::flat(6.0);
     let e = job::run(&job, part.clone(), &mut Progress::none()).unwrap_err().to_string();
@@ -361,6 +381,7 @@ fn a_drill_deeper_than_its_flutes_and_a_spot_without_a_cone_are_refused() {
     }
     let e = job::run(&job, part.clone(), &mut Progress::none()).map(|_| ()).unwrap_err().to_string();
     assert!(e.contains("the peck (20 mm) is deeper than the hole"), "{e}");
+    said_as_typed(&job, &part, "operations[1].peck", "the peck (20 mm) is deeper than the hole");
     // A cone in a 3D operation is named.
     let mut job = drilling_job(Dialect::LinuxCnc);
     job.operations = vec![Operation::RoughZlevel(swarf::operations::RoughZlevel { tool: 2, ..Default::default() })];
@@ -531,8 +552,9 @@ fn holes_wider_than_the_tool_are_bored_on_a_helix_never_nearer_the_wall_than_ask
     // A tool as wide as the hole is refused by name.
     let mut wide = boring_job(Dialect::LinuxCnc, Bore { pick: HolePick { max_diameter: Some(5.5), ..HolePick::default() }, ..Bore::default() });
     wide.tools[0].cutter.diameter = 5.0;
-    let e = job::run(&wide, part, &mut Progress::none()).map(|_| ()).unwrap_err().to_string();
+    let e = job::run(&wide, part.clone(), &mut Progress::none()).map(|_| ()).unwrap_err().to_string();
     assert!(e.contains("does not fit the φ5 hole"), "{e}");
+    said_as_typed(&wide, &part, "operations[0].tool", "does not fit the φ5 hole");
 }
 
 #[test]
@@ -1213,7 +1235,12 @@ fn holes_are_judged_as_their_circles_and_an_oversize_drill_is_said_as_one() {
     // 0.025 mm over on the radius: said as such, first.
     let out = job::run(&drill(6.4), part.clone(), &mut Progress::none()).expect("planned");
     let problem = out.problem.expect("a φ6.4 drill in φ6.35 holes cuts the walls back");
-    assert!(problem.contains("φ6.4 drill (T2) in φ6.35 holes: 0.025 mm oversize on the radius"), "{problem}");
+    let words = "φ6.4 drill (T2) in φ6.35 holes: 0.025 mm oversize on the radius";
+    assert!(problem.contains(words), "{problem}");
+    // `swarf verify` on the program says it alike (the simulation's report carries it).
+    let v = job::verify_gcode(&drill(6.4), part.clone(), &out.gcode, Some(0.05), &mut Progress::none()).unwrap();
+    assert!(v.report.problem().is_some_and(|p| p.starts_with(words)), "{:?}", v.report.problem());
+    assert!(v.report.describe().contains(words), "{}", v.report.describe());
 }
 
 /// Issue 55's judging of holes as circles never forgives what stands inside a hole: a boss in a

@@ -159,7 +159,7 @@ fn a_stock_box_smaller_than_the_part_is_refused_naming_the_sides() {
     let b = placed.bounds();
     // A 40 × 40 box under the 90 × 60 sample.
     job.stock.size_box = Some(Aabb { min: DVec3::new(-20.0, -20.0, b.min.z - 1.0), max: DVec3::new(20.0, 20.0, b.max.z + 1.0) });
-    let problems = job.problems_with(Some(&b));
+    let problems = job.problems_with(swarf::job::Known { part: Some(&b), holes: None });
     let p = problems.iter().find(|p| p.path == "stock.sizeBox").unwrap_or_else(|| panic!("{problems:?}"));
     let (dx, dy) = ((b.max.x - 20.0), (b.max.y - 20.0));
     for side in [format!("{dx:.3} mm at -X"), format!("{dx:.3} mm at +X"), format!("{dy:.3} mm at -Y"), format!("{dy:.3} mm at +Y")] {
@@ -175,16 +175,16 @@ fn a_stock_box_smaller_than_the_part_is_refused_naming_the_sides() {
     assert!(e.contains("sticks out of the stock") && e.contains("at +X"), "{e}");
     // Only the top out: named alone.
     job.stock.size_box = Some(Aabb { min: b.min - DVec3::splat(5.0), max: DVec3::new(b.max.x + 5.0, b.max.y + 5.0, b.max.z - 2.0) });
-    let p = job.problems_with(Some(&b)).into_iter().find(|p| p.path == "stock.sizeBox").expect("the top sticks out");
+    let p = job.problems_with(swarf::job::Known { part: Some(&b), holes: None }).into_iter().find(|p| p.path == "stock.sizeBox").expect("the top sticks out");
     assert!(p.message.contains("2.000 mm at the top") && !p.message.contains("at -X"), "{}", p.message);
     // Below the bottom only: a warning, and the program is made.
     job.stock.size_box = Some(Aabb { min: DVec3::new(b.min.x - 5.0, b.min.y - 5.0, b.min.z + 3.0), max: b.max + DVec3::splat(1.0) });
-    assert!(job.problems_with(Some(&b)).iter().all(|p| p.path != "stock.sizeBox"));
+    assert!(job.problems_with(swarf::job::Known { part: Some(&b), holes: None }).iter().all(|p| p.path != "stock.sizeBox"));
     let out = swarf::job::run(&job, part.clone(), &mut swarf::progress::Progress::none()).expect("a part below the box's bottom runs");
     assert!(out.warnings.iter().any(|w| w.to_string().contains("3.000 mm below the stock box's bottom")), "{:?}", out.warnings);
     // A box that holds the part: nothing said.
     job.stock.size_box = Some(Aabb { min: b.min - DVec3::splat(2.0), max: b.max + DVec3::splat(2.0) });
-    assert!(job.problems_with(Some(&b)).is_empty(), "{:?}", job.problems_with(Some(&b)));
+    assert!(job.problems_with(swarf::job::Known { part: Some(&b), holes: None }).is_empty(), "{:?}", job.problems_with(swarf::job::Known { part: Some(&b), holes: None }));
 }
 
 /// Issue 55: inside a tool a misspelt field gets its "did you mean" and a wrong value is named

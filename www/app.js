@@ -11,8 +11,9 @@ import { GcodePane } from './gcode.js';
 import { sim, setTime, step, play, drawMrr, toLine } from './simulation.js';
 import { fillTools, addTool, deleteTool, exportTools, importTools, renumber } from './tools.js';
 import { fillOps, addOperation, onOpList, showPicked, showHoles, pickInView, findHoles, onHoleList, presetHoles } from './operations.js';
-import { setKind, showPart, takeFile, fillPart, freshSetup } from './part.js';
-import { generate, cancel, download, clearResult, onLegend, resultTab, fillPost, savePost, loadPost, repost, saveJob, loadJob, saveProject, openProject, setRunning } from './results.js';
+import { setKind, showPart, takeFile, fillPart, freshSetup, showSizes } from './part.js';
+import { pageUnits, setPageUnits } from './units.js';
+import { showSummary, generate, cancel, download, clearResult, onLegend, resultTab, fillPost, savePost, loadPost, repost, saveJob, loadJob, saveProject, openProject, setRunning } from './results.js';
 
 const form = $('settings');
 window.swarf = state; // for the end-to-end test and the curious
@@ -181,6 +182,26 @@ $('op-add').addEventListener('click', () => addOperation($('op-kind').value));
 $('find-holes').addEventListener('click', findHoles);
 $('hole-list').addEventListener('click', onHoleList);
 $('hole-preset').addEventListener('click', presetHoles);
+// The page's units: every field and figure says them; a program still in the page's old units
+// follows (a user who works in inches means G20), one set apart from them stays.
+$('page-units').value = pageUnits();
+$('page-units').addEventListener('change', (e) => {
+  const was = pageUnits();
+  setPageUnits(e.target.value);
+  let followed = false;
+  for (const kind of ['part', 'drawing']) {
+    const post = state.jobs[kind].post;
+    if (post.units === was) { post.units = pageUnits(); followed = true; }
+  }
+  if (followed) { store('post.units'); repost(); }
+  fillAll();
+  showSizes();
+  showHoles();
+  showSummary();
+  drawMrr();
+  message(`The page shows ${pageUnits() === 'inch' ? 'inches' : 'mm'}${followed ? `, and the program is written in them (${pageUnits() === 'inch' ? 'G20' : 'G21'}; the controller's tab sets it apart)` : ''}; the job and its files keep mm.`, 'note');
+});
+
 const drop = $('drop');
 for (const t of ['dragenter', 'dragover']) document.addEventListener(t, (e) => { e.preventDefault(); drop.classList.add('over'); });
 for (const t of ['dragleave', 'drop']) document.addEventListener(t, (e) => { e.preventDefault(); drop.classList.remove('over'); });
@@ -197,4 +218,4 @@ createEngine(window.SWARF_ENGINE_OPTIONS ?? {}).then(async (engine) => {
   setRunning(false);
 }).then(() => {
   document.body.dataset.ready = 'true';
-}).catch((e) => message(`swarf could not start: ${e.message}`, 'error'));
+}).catch((e) => { console.error(e); message(`swarf could not start: ${e.message}`, 'error'); });

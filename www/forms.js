@@ -3,6 +3,7 @@
 // checks (`checkJob`) find the setting wrong. Messages come in three styles: an error (red), a
 // warning (amber) and a note.
 import { $, state, job, getKey, buildJob } from './state.js';
+import { unitOf, fromPage, fieldText } from './units.js';
 
 export function labelOf(el) {
   const label = el.closest('label');
@@ -19,27 +20,31 @@ export function valueOf(el) {
     if (v.some((x) => !Number.isInteger(x) || x < 0)) throw new Error(`${labelOf(el)}: give whole numbers, separated by commas`);
     return v;
   }
+  // A length or a feed is typed in the page's units and kept in mm.
+  const mm = unitOf(el) ? fromPage : (v) => v;
   if (type === 'numbers' || type === 'box') {
     // A list of numbers (empty: none), and a box as its min and max corners.
     if (el.value.trim() === '') return null;
     const v = el.value.split(',').map((w) => Number(w.trim()));
     if (v.length !== Number(el.dataset.count) || v.some((x) => !Number.isFinite(x))) throw new Error(`${labelOf(el)}: give ${el.dataset.count} numbers, separated by commas`);
-    return type === 'box' ? { min: v.slice(0, 3), max: v.slice(3) } : v;
+    const kept = v.map(mm);
+    return type === 'box' ? { min: kept.slice(0, 3), max: kept.slice(3) } : kept;
   }
   if (el.type === 'number' || type === 'int') {
     if (el.value === '' && type === 'optional') return null;
     const v = Number(el.value);
     if (el.value === '' || !Number.isFinite(v)) throw new Error(`${labelOf(el)}: not a number`);
-    return type === 'int' ? Math.round(v) : v;
+    return type === 'int' ? Math.round(v) : mm(v);
   }
   return el.value;
 }
 
 export function show(el, value) {
+  const page = (v) => (unitOf(el) && typeof v === 'number' ? fieldText(v) : v);
   if (el.type === 'checkbox') el.checked = !!value;
-  else if (el.dataset.type === 'list' || el.dataset.type === 'numbers' || el.dataset.type === 'ints') el.value = (value || []).join(', ');
-  else if (el.dataset.type === 'box') el.value = value ? [...value.min, ...value.max].join(', ') : '';
-  else el.value = value ?? '';
+  else if (el.dataset.type === 'list' || el.dataset.type === 'numbers' || el.dataset.type === 'ints') el.value = (value || []).map(page).join(', ');
+  else if (el.dataset.type === 'box') el.value = value ? [...value.min, ...value.max].map(page).join(', ') : '';
+  else el.value = page(value) ?? '';
 }
 
 // Keeps `n` children in `list`, made by `make()` where there are too few, and returns them to
@@ -142,7 +147,9 @@ export async function check() {
   const k = ++asked;
   let problems;
   try {
-    problems = await state.engine.checkJob(buildJob({ all: true }), state.kind === 'part' ? state.part?.bounds : null);
+    // The holes found in the part or drawing on show, for the hole operations' checks.
+    const holes = state.holes?.of === state.name ? state.holes.items : null;
+    problems = await state.engine.checkJob(buildJob({ all: true }), state.kind === 'part' ? state.part?.bounds : null, holes);
   } catch (e) {
     problems = [{ path: '', message: e.message }];
   }

@@ -2,8 +2,9 @@
 // they run; added, moved, removed; the picked one's form; and for drawings, the loops it cuts,
 // picked by clicking them in the view.
 import { $, state, hooks, job, selectedOp, selectedTool, is2d, store, toolsOf, buildJob, HOLE_OPS } from './state.js';
-import { fillFields, message, sized } from './forms.js';
+import { fillFields, message, sized, check } from './forms.js';
 import { opColor, cssColor } from './viewer.js';
+import * as units from './units.js';
 
 export function fillOps() {
   const j = job(), list = $('op-list');
@@ -32,7 +33,7 @@ export function fillOps() {
   $('op-tool-label').hidden = op.kind === 'roughOctree';
   if (op.kind !== 'roughOctree') document.querySelector('[name=opTool]').value = String(op.tool);
   // A cut through the sheet goes past its bottom by the breakthrough (0.2 mm).
-  $('through-depth').textContent = `${(Number(state.jobs.drawing.drawing.thickness) + 0.2).toFixed(2)} mm`;
+  $('through-depth').textContent = `${units.place(Number(state.jobs.drawing.drawing.thickness) + 0.2)} ${units.lengthUnit()}`;
   showPicked();
   showHoles();
 }
@@ -134,7 +135,7 @@ export function pickLoop(x, y) {
 // part's edges its top edges (`swarf edges`, into its `loops`): found, listed and picked alike.
 // `state.holes`, `state.bosses` and `state.edges` belong to the part or drawing they were
 // found in.
-const mm = (v) => String(Math.round(v * 1000) / 1000);
+const mm = units.exact, unit = units.lengthUnit;
 const MODES = {
   holes: { one: 'hole', many: 'holes', field: 'holes', none: 'No holes found: a part\'s holes are its vertical round holes, a drawing\'s its circles.' },
   bosses: { one: 'boss', many: 'bosses', field: 'holes', none: 'No bosses found: a boss is a vertical round stud standing on the part, its wall facing out.' },
@@ -159,6 +160,8 @@ export async function findHoles() {
   try {
     const items = await state.engine[mode](buildJob(), state.bytes, state.name);
     state[mode] = { of: state.name, items };
+    // The hole operations' settings are checked against the holes now known.
+    if (mode === 'holes') check();
     const n = items.length;
     message(n ? `${n} ${n > 1 ? m.many : m.one} found: click one to pick it.` : m.none, n ? 'ok' : 'warning');
   } catch (e) {
@@ -180,10 +183,10 @@ export function showHoles() {
     const index = h.loopIndex ?? k;
     li.dataset.index = String(index);
     li.className = picked.has(index) ? 'picked' : '';
-    if (mode === 'edges') li.textContent = `edge ${index}: the outline of a face at Z${mm(h.z)}, ${mm(h.length)} mm long: ${h.sharp ? 'sharp' : 'not sharp all round (a chamfer leaves it)'}`;
-    else if (mode === 'bosses') li.textContent = `boss ${index}: φ${mm(h.diameter)} at (${mm(h.center[0])}, ${mm(h.center[1])}), ${mm(h.top - h.bottom)} mm tall`;
+    if (mode === 'edges') li.textContent = `edge ${index}: the outline of a face at Z${mm(h.z)}, ${mm(h.length)} ${unit()} long: ${h.sharp ? 'sharp' : 'not sharp all round (a chamfer leaves it)'}`;
+    else if (mode === 'bosses') li.textContent = `boss ${index}: φ${mm(h.diameter)} at (${mm(h.center[0])}, ${mm(h.center[1])}), ${mm(h.top - h.bottom)} ${unit()} tall`;
     else if (h.mark) li.textContent = `hole ${index}: a drill mark at (${mm(h.center[0])}, ${mm(h.center[1])}), layer ${h.layer}, drilled as wide as its drill`;
-    else li.textContent = `hole ${index}: φ${mm(h.diameter)} at (${mm(h.center[0])}, ${mm(h.center[1])}), ${mm(h.top - h.bottom)} mm deep, ${h.through ? 'through' : `blind (${h.bottomShape} bottom)`}`;
+    else li.textContent = `hole ${index}: φ${mm(h.diameter)} at (${mm(h.center[0])}, ${mm(h.center[1])}), ${mm(h.top - h.bottom)} ${unit()} deep, ${h.through ? 'through' : `blind (${h.bottomShape} bottom)`}`;
   });
   state.viewer?.setHoles(picking && mode !== 'edges' ? items : [], picked);
   state.viewer?.setEdges(mode === 'edges' ? items : [], picked);
@@ -293,7 +296,7 @@ export function presetHoles() {
     else if (mill) { plan.push({ kind: 'bore', tool: mill, size, list }); bored.push(...list); }
     else {
       const t = structuredClone(state.defaults.tool);
-      Object.assign(t, { number: Math.max(0, ...state.tools.map((u) => u.number)) + 1, name: `drill φ${size}`, shape: 'drill', diameter: size, angle: 118, fluteLength: Math.max(t.fluteLength ?? 0, Math.ceil(Math.max(...list.map((h) => h.top - h.bottom)) + 3)) });
+      Object.assign(t, { number: Math.max(0, ...state.tools.map((u) => u.number)) + 1, name: `drill φ${mm(size)}`, shape: 'drill', diameter: size, angle: 118, fluteLength: Math.max(t.fluteLength ?? 0, Math.ceil(Math.max(...list.map((h) => h.top - h.bottom)) + 3)) });
       state.tools.push(t);
       drills.push(t);
       added.push(t);
@@ -314,8 +317,8 @@ export function presetHoles() {
   };
   if (drilled.length) add('drill', { name: 'spot', tool: spot.number, cycle: 'spot' }, drilled);
   for (const p of plan) {
-    if (p.kind === 'drill') add('drill', { name: `drill φ${p.tool.diameter}`, tool: p.tool.number, cycle: 'peck' }, p.list);
-    else add('bore', { name: `bore φ${p.size}`, tool: p.tool.number }, p.list);
+    if (p.kind === 'drill') add('drill', { name: `drill φ${mm(p.tool.diameter)}`, tool: p.tool.number, cycle: 'peck' }, p.list);
+    else add('bore', { name: `bore φ${mm(p.size)}`, tool: p.tool.number }, p.list);
   }
   const edged = made.filter((h) => !h.mark);
   if (chamfer && edged.length) add('chamfer', { tool: chamfer.number }, edged);
@@ -324,10 +327,10 @@ export function presetHoles() {
   hooks.fillTools?.();
   fillOps();
   hooks.changed?.();
-  const said = plan.map((p) => `${p.kind === 'drill' ? `drill T${p.tool.number} φ${p.tool.diameter}` : `bore with T${p.tool.number} φ${p.tool.diameter}`}: ${p.list.length} hole${p.list.length > 1 ? 's' : ''}${p.kind === 'bore' ? '' : ''} φ${p.size}`);
+  const said = plan.map((p) => `${p.kind === 'drill' ? `drill T${p.tool.number} φ${mm(p.tool.diameter)}` : `bore with T${p.tool.number} φ${mm(p.tool.diameter)}`}: ${p.list.length} hole${p.list.length > 1 ? 's' : ''} φ${mm(p.size)}`);
   const notes = [
-    added.length ? `added ${added.map((t) => `T${t.number} (φ${t.diameter} drill)`).join(', ')} to the library, as no drill there fits` : '',
-    recesses.length ? `left ${recesses.length} recess${recesses.length > 1 ? 'es' : ''} shallower than a spot (${recesses.map((h) => `φ${h.diameter} ${Math.round((h.top - h.bottom) * 1000) / 1000} mm deep`).join(', ')}) to the milling operations` : '',
+    added.length ? `added ${added.map((t) => `T${t.number} (φ${mm(t.diameter)} drill)`).join(', ')} to the library, as no drill there fits` : '',
+    recesses.length ? `left ${recesses.length} recess${recesses.length > 1 ? 'es' : ''} shallower than a spot (${recesses.map((h) => `φ${mm(h.diameter)} ${mm(h.top - h.bottom)} ${unit()} deep`).join(', ')}) to the milling operations` : '',
   ].filter(Boolean);
   message(`Spot, ${said.join('; ')}${edged.length && chamfer ? '; chamfer' : ''}.${notes.length ? ` ${notes.join('; ')}.` : ''}`, 'ok');
 }

@@ -4,6 +4,7 @@
 // (units, scale, up axis, turn) belongs to that file: a new file starts from its format's own.
 import { $, state, hooks, job, store } from './state.js';
 import { fillFields, message, answered } from './forms.js';
+import * as units from './units.js';
 
 const FORMAT_UNITS = { stl: 'mm, as STL says nothing', obj: 'mm, as OBJ says nothing', gltf: 'metres, as glTF is', glb: 'metres, as glTF is' };
 const UP_NAMES = { z: '+Z', y: '+Y', x: '+X', '-z': '−Z', '-y': '−Y', '-x': '−X' };
@@ -24,15 +25,13 @@ export function freshSetup() {
   store();
 }
 
-// Sizes as a machinist reads them: 120.0, 5.00, 0.040.
-const mm = (v) => (Number(v.toFixed(2)) >= 10 ? v.toFixed(1) : Number(v.toPrecision(2)) >= 1 ? v.toFixed(2) : v.toPrecision(2));
 
 // The part's size, and how it was read: its units (the format's own, or the user's, marked),
 // scale, up axis and turn.
 function describePart(part) {
   const b = part.bounds, size = [0, 1, 2].map((k) => b[k + 3] - b[k]);
   const setup = state.jobs.part.part, ext = state.name.split('.').pop().toLowerCase();
-  const units = setup.units === 'auto' ? `read in ${FORMAT_UNITS[ext] ?? 'mm'}` : '';
+  const readIn = setup.units === 'auto' ? `read in ${FORMAT_UNITS[ext] ?? 'mm'}` : '';
   const overrides = [];
   if (setup.units !== 'auto') overrides.push(`read in ${setup.units === 'm' ? 'metres' : setup.units}`);
   if (setup.scale !== 1) overrides.push(`scaled × ${setup.scale}`);
@@ -40,10 +39,10 @@ function describePart(part) {
   if (setup.rotation) overrides.push(`turned ${setup.rotation}°`);
   const el = $('part-size');
   el.innerHTML = '';
-  el.append(`${size.map(mm).join(' × ')} mm `);
+  el.append(`${size.map(units.size).join(' × ')} ${units.lengthUnit()} `);
   const note = document.createElement('span');
   note.className = 'units';
-  note.textContent = `(X × Y × Z; ${part.triangles.toLocaleString()} triangles${part.dropped ? `, ${part.dropped} degenerate dropped` : ''}) ${units}`;
+  note.textContent = `(X × Y × Z; ${part.triangles.toLocaleString()} triangles${part.dropped ? `, ${part.dropped} degenerate dropped` : ''}) ${readIn}`;
   el.append(note);
   if (overrides.length) {
     const o = document.createElement('span');
@@ -64,8 +63,16 @@ function partNotes(warnings) {
   }));
 }
 
-function showScale(size, spacing) {
-  $('scale').textContent = `grid ${spacing >= 1 ? spacing : spacing.toPrecision(1)} mm · ${state.kind === 'drawing' ? 'drawing' : 'part'} ${size.map(mm).join(' × ')} mm`;
+// The view's grid and the line under it, in the page's units.
+function showScale(size) {
+  const spacing = state.viewer?.setGrid(undefined, units.unitLength()) ?? units.unitLength();
+  $('scale').textContent = `grid ${units.exact(spacing)} ${units.lengthUnit()} · ${state.kind === 'drawing' ? 'drawing' : 'part'} ${size.map(units.size).join(' × ')} ${units.lengthUnit()}`;
+}
+
+// The sizes shown of the part or drawing on show, said again in the page's units.
+export function showSizes() {
+  if (state.kind === 'drawing' && state.drawing) describeDrawing(state.drawing);
+  else if (state.part) showScale(describePart(state.part));
 }
 
 // Reads and shows a part or drawing; only when that works does it become the current one, so a
@@ -83,8 +90,7 @@ export async function showPart(bytes = state.bytes, name = state.name, label = s
       state.part = part;
       setKind('part');
       state.viewer?.setPart(part);
-      const size = describePart(part);
-      showScale(size, state.viewer?.gridSpacing ?? 1);
+      showScale(describePart(part));
       partNotes(part.warnings);
       const amber = part.warnings.filter((w) => w.level !== 'note');
       message(amber.length ? `${name}: ${amber.map((w) => w.message).join('\n')}` : '', amber.length ? 'warning' : 'note');
@@ -107,15 +113,9 @@ function showDrawing(d) {
   setKind('drawing');
   state.viewer?.setDrawing(d);
   hooks.showPicked?.();
-  const outer = d.loops.filter((l) => !l.hole).length, holes = d.loops.length - outer;
-  const b = d.bounds, size = [b[3] - b[0], b[4] - b[1], Number(state.jobs.drawing.drawing.thickness)];
-  $('drawing-size').textContent = `${mm(size[0])} × ${mm(size[1])} mm, ${d.loops.length} closed loops: ${outer} outlines (green), ${holes} holes (orange); layers ${d.layers.join(', ')}; units: ${d.units}`
-    + (d.ignored.length ? `; left out: ${d.ignored.map(([k, n]) => `${n} ${k}`).join(', ')}` : '');
-  showScale(size, state.viewer?.gridSpacing ?? 1);
-  const list = d.loops.slice(0, 200).map((l) => `${l.index}: ${l.layer}, ${l.hole ? 'hole' : 'outline'}, ${l.entities} entities, (${l.min.map((v) => v.toFixed(1)).join(', ')})–(${l.max.map((v) => v.toFixed(1)).join(', ')})`);
-  $('loops').textContent = list.join('\n') + (d.loops.length > 200 ? `\n… and ${d.loops.length - 200} more` : '');
+  describeDrawing(d);
   if (d.openChains.length) {
-    const o = d.openChains.slice(0, 5).map((c) => `layer ${c.layer} from (${c.start.map((v) => v.toFixed(2)).join(', ')}) to (${c.end.map((v) => v.toFixed(2)).join(', ')})`);
+    const o = d.openChains.slice(0, 5).map((c) => `layer ${c.layer} from (${c.start.map(units.place).join(', ')}) to (${c.end.map(units.place).join(', ')})`);
     message(`${d.openChains.length} open chain(s), drawn in red, cannot be cut out until closed (they can be engraved): ${o.join('; ')}${d.openChains.length > 5 ? ' …' : ''}.`, 'warning');
   } else if (d.ignored.length) {
     // What the file holds that draws nothing (a circle of radius 0, text) is said in amber.
@@ -123,6 +123,18 @@ function showDrawing(d) {
   } else {
     message('');
   }
+}
+
+// The drawing's size, loops and layers, in the page's units.
+function describeDrawing(d) {
+  const outer = d.loops.filter((l) => !l.hole).length, holes = d.loops.length - outer;
+  const b = d.bounds, size = [b[3] - b[0], b[4] - b[1], Number(state.jobs.drawing.drawing.thickness)];
+  $('drawing-size').textContent = `${units.size(size[0])} × ${units.size(size[1])} ${units.lengthUnit()}, ${d.loops.length} closed loops: ${outer} outlines (green), ${holes} holes (orange); layers ${d.layers.join(', ')}; units of the file: ${d.units}`
+    + (d.ignored.length ? `; left out: ${d.ignored.map(([k, n]) => `${n} ${k}`).join(', ')}` : '');
+  showScale(size);
+  const at = (p) => p.map((v) => units.size(v)).join(', ');
+  const list = d.loops.slice(0, 200).map((l) => `${l.index}: ${l.layer}, ${l.hole ? 'hole' : 'outline'}, ${l.entities} entities, (${at(l.min)})–(${at(l.max)})`);
+  $('loops').textContent = list.join('\n') + (d.loops.length > 200 ? `\n… and ${d.loops.length - 200} more` : '');
 }
 
 // A file dropped or chosen: a job or project (JSON), else a part or drawing, read from its own

@@ -5,6 +5,7 @@ import { $, state, hooks, job, store, buildJob, is2d, isEither, clock, clockForm
 import { fillFields, message, check, answered, problemWords } from './forms.js';
 import { opColor, toolColor, cssColor, RAPID_COLOR, MARK_COLORS } from './viewer.js';
 import { sim, showSimulation } from './simulation.js';
+import * as units from './units.js';
 
 // Runs `steps` one task each (the view held, then drawn once); a step that returns steps has
 // them run so too.
@@ -94,12 +95,17 @@ export function onLegend(e) {
   state.viewer.setHiddenOps(hidden);
 }
 
+// The summary of the last Generate again (in the page's units, after they change).
+export function showSummary() {
+  if (state.summary && state.result) summaryTable(state.summary.s, state.summary.computed);
+}
+
 // The summary: figures, and the cycle time broken down as the program's head states it.
 function summaryTable(s, computed) {
   const el = $('stats');
   el.replaceChildren();
   const head = document.createElement('div');
-  head.textContent = `${s.moves.toLocaleString()} moves · ${(s.feedLength / 1000).toFixed(2)} m cutting · ${(s.rapidLength / 1000).toFixed(2)} m rapid · computed in ${computed.toFixed(2)} s`;
+  head.textContent = `${s.moves.toLocaleString()} moves · ${units.distance(s.feedLength)} cutting · ${units.distance(s.rapidLength)} rapid · computed in ${computed.toFixed(2)} s`;
   const table = document.createElement('table');
   const tr = (cells, cls) => {
     const r = document.createElement('tr');
@@ -111,12 +117,12 @@ function summaryTable(s, computed) {
   const ops = new Map(s.operations.map((o) => [o.name, o]));
   for (const item of s.time) {
     const o = ops.get(item.label.replace(/ with T.*$/, ''));
-    const extra = o && o.removed != null ? `${Math.round(o.removed).toLocaleString()} mm³ removed, peak ${Math.round(o.mrrMax).toLocaleString()} mm³/min${o.leftMax != null ? `, leaves ≤ ${o.leftMax.toFixed(2)} mm` : ''}` : '';
+    const extra = o && o.removed != null ? `${units.volume(o.removed)} removed, peak ${units.volume(o.mrrMax)}/min${o.leftMax != null ? `, leaves ≤ ${units.sized(o.leftMax)}` : ''}` : '';
     tr([`  ${item.label}`, clock(item.seconds), extra]);
   }
   tr(['  total', clock(s.time.reduce((a, i) => a + i.seconds, 0)), `(${clockFormat(s.cycle.seconds)})`], 'total');
   el.append(head, table);
-  const stages = s.operations.flatMap((o) => (o.stages ?? []).map((st) => `${o.name}: T${st.tool} φ${st.diameter} (${{ profile: 'around the part', first: 'first tool', rest: 'only where the larger cannot reach' }[st.role] ?? 'blocks left'}): ${st.why}; ${Math.round(st.area).toLocaleString()} mm² cleared, ${Math.round(st.removed).toLocaleString()} mm³ removed, ${clock(st.seconds)}`));
+  const stages = s.operations.flatMap((o) => (o.stages ?? []).map((st) => `${o.name}: T${st.tool} φ${units.exact(st.diameter)} (${{ profile: 'around the part', first: 'first tool', rest: 'only where the larger cannot reach' }[st.role] ?? 'blocks left'}): ${st.why}; ${units.area(st.area)} cleared, ${units.volume(st.removed)} removed, ${clock(st.seconds)}`));
   if (stages.length) {
     const div = document.createElement('div');
     div.className = 'stages';
@@ -195,7 +201,8 @@ export async function generate() {
       () => showSimulation(r.sim, s),
     ]);
     legend(s, byTool);
-    summaryTable(s, (performance.now() - started) / 1000);
+    state.summary = { s, computed: (performance.now() - started) / 1000 };
+    showSummary();
     // A problem is shown as one, in red, with its places marked in the view; the program can
     // still be downloaded, behind a confirmation that names it.
     state.problem = s.problem ?? null;

@@ -4,6 +4,7 @@
 // the move in the pane, and the material removal rate over the program.
 import { $, state, hooks, clock, clockFormat, job } from './state.js';
 import { opColor } from './viewer.js';
+import * as units from './units.js';
 
 export const sim = { data: null, time: 0, playing: false, busy: false, wanted: null, shown: -1, target: 0, marks: [], buckets: null, peak: 1, pane: null };
 
@@ -122,7 +123,7 @@ export function drawMrr() {
   for (let x = 0; x < w; x++) { const v = (sim.buckets[x] / sim.peak) * (h - 14 * dpr); g.fillRect(x, h - v, 1, v); }
   g.fillStyle = '#394550';
   g.font = `${11 * dpr}px system-ui`;
-  g.fillText(`material removal rate, peak ${Math.round(sim.peak).toLocaleString()} mm³/min`, 4 * dpr, 11 * dpr);
+  g.fillText(`material removal rate, peak ${units.volume(sim.peak)}/min`, 4 * dpr, 11 * dpr);
   // Operations that hold a load (seed 004): the reference rate at a full step-down, dashed,
   // and the plain path's rate before the correction (its windows spread over the operation's
   // time), faint: the paper's Fig. 14.

@@ -143,9 +143,12 @@ export declare class Engine {
   defaultJob(kind?: 'part' | 'drawing'): DefaultJob;
   open(bytes: Uint8Array, name: string, job?: JobInput): Promise<{ part: PartPreview } | { drawing: DrawingView }>;
   readJob(text: string): Promise<Job>;
-  /** Every setting of a job that does not fit, by its path (empty when it is good). */
-  /** With `partBounds` (a part's `bounds`), also a stock box the part sticks out of (`stock.sizeBox`). */
-  checkJob(job: JobInput, partBounds?: number[] | null): Promise<Problem[]>;
+  /**
+   * Every setting of a job that does not fit, by its path (empty when it is good). With
+   * `partBounds` (a part's `bounds`), also a stock box the part sticks out of (`stock.sizeBox`);
+   * with `holes` (as `holes` finds them), a hole operation's settings that do not fit its holes.
+   */
+  checkJob(job: JobInput, partBounds?: number[] | null, holes?: Hole[] | null): Promise<Problem[]>;
   readPost(text: string): Promise<Post>;
   readProject(text: string): Promise<{ job: Job; name: string; bytes: Uint8Array | null }>;
   writeProject(job: JobInput, name: string, bytes: Uint8Array): Promise<string>;

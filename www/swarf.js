@@ -260,12 +260,13 @@ export class Engine {
   async edges(job, bytes, name) { return (await this.call({ type: 'edges', job, bytes, name })).edges; }
   /** Reads a job file as `swarf run` does (a misspelt field is named). */
   async readJob(text) { return (await this.call({ type: 'readJob', text })).job; }
-  /** Every setting of a job that does not fit, as `[{ path, message }]` (the core's own checks). */
   /**
-   * Every setting of `job` that does not fit, by its path; with `partBounds` (a part's
-   * `bounds`, as `open` gives them) also a stock box the part sticks out of.
+   * Every setting of `job` that does not fit, as `[{ path, message }]` (the core's own checks);
+   * with `partBounds` (a part's `bounds`, as `open` gives them) also a stock box the part
+   * sticks out of; with `holes` (as `holes` finds them) a hole operation's settings that do not
+   * fit its holes: a hole deeper than the flutes, a peck deeper than the hole.
    */
-  async checkJob(job, partBounds = null) { return (await this.call({ type: 'checkJob', job, part: partBounds ? Array.from(partBounds) : null })).problems; }
+  async checkJob(job, partBounds = null, holes = null) { return (await this.call({ type: 'checkJob', job, part: partBounds ? Array.from(partBounds) : null, holes })).problems; }
   /** Reads a post (JSON); the error names a field it does not know. */
   async readPost(text) { return (await this.call({ type: 'readPost', text })).post; }
   /** Reads a project file: `{ job, name, bytes }` (`bytes` null when the project only names its part). */

@@ -2,9 +2,10 @@
 // deleted, exported and imported as JSON (read by the core, as a job's tools are).
 import { $, state, hooks, selectedTool, store, downloadText } from './state.js';
 import { fillFields, message, sized } from './forms.js';
+import * as units from './units.js';
 
 const shapeName = (t) => ({ ball: 'ball', flat: 'flat', bullNose: `bull nose r${t.cornerRadius}`, drill: `drill ${t.angle ?? 118}°`, spotDrill: `spot drill ${t.angle ?? 90}°`, vBit: `V-bit ${t.angle ?? 90}°`, threadMill: 'thread mill' }[t.shape] || t.shape);
-export const toolLabel = (t) => `T${t.number} · ${t.diameter} mm ${shapeName(t)}${t.name ? ` · ${t.name}` : ''}`;
+export const toolLabel = (t) => `T${t.number} · ${units.exact(t.diameter)} ${units.lengthUnit()} ${shapeName(t)}${t.name ? ` · ${t.name}` : ''}`;
 
 export function fillTools() {
   const list = $('tool-list');

@@ -395,11 +395,15 @@ export class Viewer {
   }
 
   // A grid under the box `b` ([minX, minY, minZ, maxX, maxY, maxZ]) whose spacing is a power of
-  // ten in mm (1, 10, 100 …) giving it 2 to 20 cells across: with the size the page states, a
-  // part read in the wrong unit looks wrong at a glance. Returns the spacing.
-  setGrid(b) {
+  // ten of the page's unit (`unit` mm: 1, 10, 100 mm, or 0.1, 1, 10 in) giving it 2 to 20 cells
+  // across: with the size the page states, a part read in the wrong unit looks wrong at a
+  // glance. Returns the spacing (mm).
+  setGrid(b = this.gridBox, unit = this.gridUnit ?? 1) {
+    if (!b) return null;
+    this.gridBox = b;
+    this.gridUnit = unit;
     const span = Math.max(b[3] - b[0], b[4] - b[1], 1e-6);
-    const spacing = 10 ** Math.floor(Math.log10(span / 2));
+    const spacing = unit * 10 ** Math.floor(Math.log10(span / unit / 2));
     const x0 = Math.floor(b[0] / spacing) * spacing, x1 = Math.ceil(b[3] / spacing) * spacing;
     const y0 = Math.floor(b[1] / spacing) * spacing, y1 = Math.ceil(b[4] / spacing) * spacing;
     const z = b[2], out = [];

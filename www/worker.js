@@ -158,7 +158,7 @@ self.onmessage = async (event) => {
     } else if (type === 'readJob') {
       self.postMessage({ id, ok: true, job: readJob(event.data.text) });
     } else if (type === 'checkJob') {
-      self.postMessage({ id, ok: true, problems: checkJob(event.data.job, event.data.part ? Float64Array.from(event.data.part) : undefined) });
+      self.postMessage({ id, ok: true, problems: checkJob(event.data.job, event.data.part ? Float64Array.from(event.data.part) : undefined, event.data.holes ?? null) });
     } else if (type === 'load') {
       if (isDrawing(event.data.bytes, event.data.name)) {
         self.postMessage({ id, ok: true, drawing: loadDrawing(event.data.bytes, event.data.name, event.data.drawingSetup) });

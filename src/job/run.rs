@@ -462,7 +462,7 @@ impl Running {
         }
         let Context { part, sheet, stock, heights, caches, sim, .. } = ctx;
         // The simulation that carried the in-process stock judges the whole program.
-        let (verification, sim) = if verify {
+        let (mut verification, sim) = if verify {
             let settings = job.verify_settings(&stock, None);
             let tol = job.tolerances;
             let v = match &sheet {
@@ -486,16 +486,10 @@ impl Running {
             o.seconds = path_operations.iter().zip(&cycle.paths).filter(|(&k, _)| k == o.index).map(|(_, s)| s).sum();
         }
         let time = cycle.items(&CycleTime::groups(&paths));
-        let problem = verification.as_ref().and_then(|v| v.report.problem()).map(|problem| {
-            // Gouges on a hole's wall said as a machinist says them, before the cells.
-            let holes = if sheet.is_none() { crate::holes::mesh::find(&part) } else { Vec::new() };
-            let said = verification.as_ref().map(|v| crate::sim::verify::hole_overcuts(&v.report, &holes, &all_moves)).unwrap_or_default();
-            if said.is_empty() {
-                problem
-            } else {
-                format!("{}; {problem}", said.join("; "))
-            }
-        });
+        if let Some(v) = verification.as_mut() {
+            v.word_holes(&all_moves);
+        }
+        let problem = verification.as_ref().and_then(|v| v.report.problem());
         progress.stage("done", 1.0, 0.0);
         let drawing = sheet.map(|s| s.drawing);
         let (clearance_z, cache) = (heights.clearance, caches.counts);

@@ -404,12 +404,15 @@ impl Job {
     /// (`tools[1].feedRate`, `operations[0].stepdown`): the page marks each at its field as the
     /// user types, with the core's own checks. An operation or a tool says its first.
     pub fn problems(&self) -> Vec<Problem> {
-        self.problems_with(None)
+        self.problems_with(Known::default())
     }
 
-    /// [`Job::problems`], and with `part` (the placed part's bounds, as the page shows them)
-    /// also what does not fit that part: a stock box the part sticks out of.
-    pub fn problems_with(&self, part: Option<&Aabb>) -> Vec<Problem> {
+    /// [`Job::problems`], and what does not fit what is `known` of the workpiece: with the
+    /// placed part's bounds (as the page shows them), a stock box the part sticks out of; with
+    /// the holes found in it, a hole operation's settings that do not fit the holes it takes (a
+    /// hole deeper than the flutes, a peck deeper than the hole).
+    pub fn problems_with(&self, known: Known) -> Vec<Problem> {
+        let part = known.part;
         let mut out = Vec::new();
         let mut say = |path: String, message: String| out.push(Problem { path, message });
         let positive = |v: f64| v > 0.0 && v.is_finite();
@@ -502,10 +505,24 @@ impl Job {
                         o.name()
                     ),
                 );
+            } else if let (Some(holes), Some(tool)) = (known.holes, self.tools.iter().find(|t| t.number == o.tool())) {
+                for (field, message) in o.hole_problems(holes, tool) {
+                    say(format!("operations[{i}].{field}"), format!("operations[{i}].{field}: {message} ('{}')", o.name()));
+                }
             }
         }
         out
     }
+}
+
+/// What is known of the workpiece beside the job, for the checks that need it
+/// ([`Job::problems_with`]).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Known<'a> {
+    /// The placed part's bounds.
+    pub part: Option<&'a Aabb>,
+    /// The holes found in the part or drawing, numbered as the operations take them.
+    pub holes: Option<&'a [crate::holes::Hole]>,
 }
 
 /// The step-down of an operation that steps down into material at its tool's full width

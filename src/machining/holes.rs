@@ -59,20 +59,7 @@ impl HolePick {
         if let Some(&k) = self.holes.iter().find(|&&k| k >= all.len() && !all.iter().any(|h| h.loop_index == Some(k))) {
             return Err(Error::operation(op, format!("there is no hole {k} (the {} has {})", if ctx.sheet.is_some() { "drawing" } else { "part" }, all.len())));
         }
-        let picked: Vec<Hole> = all
-            .iter()
-            .enumerate()
-            .filter(|(k, h)| {
-                // A drawing's holes go by their loop's number, a part's by their own.
-                let index = h.loop_index.unwrap_or(*k);
-                if h.mark {
-                    // A drill mark has no diameter for a range to take it by.
-                    return self.holes.contains(&index) || self.marks && self.holes.is_empty() && self.min_diameter.is_none() && self.max_diameter.is_none();
-                }
-                (self.holes.is_empty() || self.holes.contains(&index)) && self.min_diameter.is_none_or(|d| h.diameter >= d - 1e-9) && self.max_diameter.is_none_or(|d| h.diameter <= d + 1e-9)
-            })
-            .map(|(_, h)| h.clone())
-            .collect();
+        let picked = self.chosen(&all);
         if picked.is_empty() {
             return Err(Error::operation(
                 op,
@@ -87,6 +74,24 @@ impl HolePick {
         let points: Vec<DVec2> = picked.iter().map(|h| h.center).collect();
         let order = holes::order(&points, DVec2::new(ctx.stock.min.x, ctx.stock.min.y));
         Ok(order.into_iter().map(|k| picked[k].clone()).collect())
+    }
+
+    /// The holes of `all` the choice takes, in their order there (no error where it takes none,
+    /// nor for a number past the last: [`HolePick::pick_from`] says those).
+    pub fn chosen(&self, all: &[Hole]) -> Vec<Hole> {
+        all.iter()
+            .enumerate()
+            .filter(|(k, h)| {
+                // A drawing's holes go by their loop's number, a part's by their own.
+                let index = h.loop_index.unwrap_or(*k);
+                if h.mark {
+                    // A drill mark has no diameter for a range to take it by.
+                    return self.holes.contains(&index) || self.marks && self.holes.is_empty() && self.min_diameter.is_none() && self.max_diameter.is_none();
+                }
+                (self.holes.is_empty() || self.holes.contains(&index)) && self.min_diameter.is_none_or(|d| h.diameter >= d - 1e-9) && self.max_diameter.is_none_or(|d| h.diameter <= d + 1e-9)
+            })
+            .map(|(_, h)| h.clone())
+            .collect()
     }
 
     /// The picked holes for an operation that works to a hole's size (boring, chamfering,

@@ -188,6 +188,13 @@ pub trait Operate {
     fn stepdown(&self) -> Option<f64> {
         None
     }
+    /// What does not fit between its settings, its tool and the holes it takes of `holes` (every
+    /// hole found in the workpiece, as the page lists them): `(field, message)`, said as the
+    /// settings are typed (`Job::problems_with`) rather than after the plan: a hole deeper
+    /// than the flutes, a peck deeper than the hole.
+    fn hole_problems(&self, _holes: &[crate::holes::Hole], _tool: &crate::tool::Tool) -> Vec<(&'static str, String)> {
+        Vec::new()
+    }
     /// Checks its settings before any work.
     fn validate(&self) -> Result<(), FieldError>;
     /// Whether the work its settings ask for on this stock is within reason (levels, passes),

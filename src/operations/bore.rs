@@ -9,10 +9,12 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::geom::segment::Segment;
+use crate::holes::Hole;
 use crate::machining::holes::{circle, entry_height, helix, hole_path, point, HolePick};
 use crate::machining::report::Groove;
 use crate::machining::settings::Direction;
 use crate::machining::{named_operation, not_negative, positive, Context, FieldError, Operate, Planned};
+use crate::tool::Tool;
 use crate::toolpath::Move;
 
 /// Helical boring of holes.
@@ -69,6 +71,43 @@ impl Default for Bore {
     }
 }
 
+impl Bore {
+    /// How deep it bores `h`: to its depth where one is set, else the hole's own (a through
+    /// hole past its bottom by the breakthrough).
+    fn bottom(&self, h: &Hole) -> f64 {
+        match self.depth {
+            Some(d) => h.top - d,
+            None if h.through => h.bottom - self.breakthrough,
+            None => h.bottom,
+        }
+    }
+
+    /// The setting that does not fit boring `h` to `bottom` with `tool`, with its field: a tool
+    /// too wide for the hole, a hole deeper than the flutes.
+    fn misfit(&self, h: &Hole, bottom: f64, tool: &Tool) -> Option<(&'static str, String)> {
+        if h.diameter / 2.0 - self.leave_stock - tool.cutter.radius() <= 1e-3 {
+            return Some((
+                "tool",
+                format!(
+                    "T{} (φ{}) does not fit the φ{} hole at X{:.3} Y{:.3} with {} mm left on its wall: bore with a smaller tool, or drill it",
+                    tool.number,
+                    tool.cutter.diameter,
+                    crate::limits::shown((h.diameter * 1000.0).round() / 1000.0),
+                    h.center.x,
+                    h.center.y,
+                    self.leave_stock
+                ),
+            ));
+        }
+        (h.top - bottom > tool.cutter.flute_length + 1e-9).then(|| {
+            (
+                if self.depth.is_some() { "depth" } else { "tool" },
+                format!("the hole at X{:.3} Y{:.3} is {:.2} mm deep, deeper than T{}'s flutes ({} mm)", h.center.x, h.center.y, h.top - bottom, tool.number, tool.cutter.flute_length),
+            )
+        })
+    }
+}
+
 impl Operate for Bore {
     named_operation!(Either);
 
@@ -85,6 +124,11 @@ impl Operate for Bore {
         positive("retract", self.retract)
     }
 
+    fn hole_problems(&self, holes: &[Hole], tool: &Tool) -> Vec<(&'static str, String)> {
+        // Drill marks have no size to bore to (the plan refuses them by name).
+        self.pick.chosen(holes).into_iter().filter(|h| !h.mark).find_map(|h| self.misfit(&h, self.bottom(&h), tool)).into_iter().collect()
+    }
+
     fn plan(&self, ctx: &mut Context, _progress: &mut crate::progress::Progress) -> Result<Planned> {
         let tool = ctx.tool(&self.name, self.tool)?.clone();
         let r_tool = tool.cutter.radius();
@@ -98,30 +142,9 @@ impl Operate for Bore {
         let mut grooves = Vec::new();
         for h in &holes {
             let outer = h.diameter / 2.0 - self.leave_stock - r_tool;
-            if outer <= 1e-3 {
-                return Err(Error::operation(
-                    &self.name,
-                    format!(
-                        "T{} (φ{}) does not fit the φ{} hole at X{:.3} Y{:.3} with {} mm left on its wall: bore with a smaller tool, or drill it",
-                        tool.number,
-                        tool.cutter.diameter,
-                        crate::limits::shown((h.diameter * 1000.0).round() / 1000.0),
-                        h.center.x,
-                        h.center.y,
-                        self.leave_stock
-                    ),
-                ));
-            }
-            let bottom = match self.depth {
-                Some(d) => h.top - d,
-                None if h.through => h.bottom - self.breakthrough,
-                None => h.bottom,
-            };
-            if h.top - bottom > tool.cutter.flute_length + 1e-9 {
-                return Err(Error::operation(
-                    &self.name,
-                    format!("the hole at X{:.3} Y{:.3} is {:.2} mm deep, deeper than T{}'s flutes ({} mm)", h.center.x, h.center.y, h.top - bottom, tool.number, tool.cutter.flute_length),
-                ));
+            let bottom = self.bottom(h);
+            if let Some((_, message)) = self.misfit(h, bottom, &tool) {
+                return Err(Error::operation(&self.name, message));
             }
             let start = entry_height(ctx, h, &profile, self.retract);
             if start > clearance {

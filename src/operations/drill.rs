@@ -8,12 +8,14 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::cutter::Cutter;
 use crate::error::{Error, Result};
 use crate::geom::segment::Segment;
-use crate::holes::Bottom;
+use crate::holes::{Bottom, Hole};
 use crate::machining::holes::{entry_height, hole_path, HolePick};
 use crate::machining::report::Groove;
 use crate::machining::{named_operation, not_negative, positive, Context, FieldError, Operate, Planned};
+use crate::tool::Tool;
 use crate::toolpath::cycle::{Cycle, CycleKind};
 use crate::toolpath::Move;
 
@@ -99,6 +101,51 @@ impl Default for Drill {
     }
 }
 
+impl Drill {
+    /// A drill mark (a drawing's POINT) drilled with `cutter`: as wide as the drill.
+    fn sized(h: Hole, cutter: &Cutter) -> Hole {
+        if h.mark {
+            Hole { diameter: cutter.diameter, ..h }
+        } else {
+            h
+        }
+    }
+
+    /// How deep it drills `h` with `cutter`: to its depth where one is set; a spot to the depth
+    /// of a cone `spotDiameter` across; else the hole's own (a through hole past its bottom by
+    /// the drill's point and the breakthrough, a cone-bottomed one by the point).
+    fn bottom(&self, h: &Hole, cutter: &Cutter) -> f64 {
+        match (self.depth, self.cycle == DrillCycle::Spot) {
+            (Some(d), _) => h.top - d,
+            (None, true) => {
+                let across = self.spot_diameter.unwrap_or(h.diameter).min(cutter.diameter);
+                h.top - (across / 2.0 - cutter.tip_radius()).max(0.0) / (cutter.point_angle().to_radians() / 2.0).tan()
+            }
+            (None, false) if h.through => h.bottom - cutter.tip_length() - self.breakthrough,
+            (None, false) if h.bottom_shape == Bottom::Cone => h.bottom - cutter.tip_length(),
+            (None, false) => h.bottom,
+        }
+    }
+
+    /// The setting that does not fit drilling `h` to `bottom` with `tool`, with its field: a
+    /// peck deeper than the hole, a hole deeper than the flutes.
+    fn misfit(&self, h: &Hole, bottom: f64, tool: &Tool) -> Option<(&'static str, String)> {
+        let depth = h.top - bottom;
+        if matches!(self.cycle, DrillCycle::Peck | DrillCycle::ChipBreak) && self.peck > depth + self.retract {
+            return Some((
+                "peck",
+                format!("the peck ({} mm) is deeper than the hole at X{:.3} Y{:.3} ({depth:.3} mm from its top): drill it without pecking, or peck less", self.peck, h.center.x, h.center.y),
+            ));
+        }
+        (depth > tool.cutter.flute_length + 1e-9).then(|| {
+            (
+                if self.depth.is_some() { "depth" } else { "tool" },
+                format!("the hole at X{:.3} Y{:.3} is {depth:.2} mm deep, deeper than T{}'s flutes ({} mm)", h.center.x, h.center.y, tool.number, tool.cutter.flute_length),
+            )
+        })
+    }
+}
+
 impl Operate for Drill {
     named_operation!(Either);
 
@@ -123,6 +170,11 @@ impl Operate for Drill {
         positive("retract", self.retract)
     }
 
+    fn hole_problems(&self, holes: &[Hole], tool: &Tool) -> Vec<(&'static str, String)> {
+        // The first hole that does not fit says it (as the plan would).
+        self.pick.chosen(holes).into_iter().map(|h| Self::sized(h, &tool.cutter)).find_map(|h| self.misfit(&h, self.bottom(&h, &tool.cutter), tool)).into_iter().collect()
+    }
+
     fn plan(&self, ctx: &mut Context, _progress: &mut crate::progress::Progress) -> Result<Planned> {
         let tool = ctx.tool(&self.name, self.tool)?.clone();
         let cutter = &tool.cutter;
@@ -131,10 +183,9 @@ impl Operate for Drill {
             return Err(Error::operation(&self.name, format!("spotting needs a spot drill, a drill or a V-bit; T{} is a {}", tool.number, cutter.describe())));
         }
         // A drill mark is drilled as wide as its drill.
-        let picked: Vec<_> = self.pick.pick(ctx, &self.name)?.into_iter().map(|h| if h.mark { crate::holes::Hole { diameter: cutter.diameter, ..h } } else { h }).collect();
+        let picked: Vec<_> = self.pick.pick(ctx, &self.name)?.into_iter().map(|h| Self::sized(h, cutter)).collect();
         let profile = cutter.profile();
         let tip = cutter.tip_length();
-        let half = cutter.point_angle().to_radians() / 2.0;
         let initial = ctx.heights.clearance;
         let kind = match self.cycle {
             DrillCycle::Spot | DrillCycle::Drill => CycleKind::Drill,
@@ -149,44 +200,19 @@ impl Operate for Drill {
         let mut grooves = Vec::new();
         let (mut flat_floors, mut wider, mut narrower) = (0, 0, 0);
         for h in &picked {
-            let bottom = match (self.depth, spot) {
-                (Some(d), _) => h.top - d,
-                (None, true) => {
-                    let across = self.spot_diameter.unwrap_or(h.diameter).min(cutter.diameter);
-                    h.top - (across / 2.0 - cutter.tip_radius()).max(0.0) / half.tan()
-                }
-                (None, false) if h.through => h.bottom - tip - self.breakthrough,
-                (None, false) => {
-                    if h.bottom_shape == Bottom::Flat && cutter.is_cone() {
-                        flat_floors += 1;
-                    }
-                    // A cone-bottomed hole is as deep as its full diameter plus the point.
-                    if h.bottom_shape == Bottom::Cone {
-                        h.bottom - tip
-                    } else {
-                        h.bottom
-                    }
-                }
-            };
+            let bottom = self.bottom(h, cutter);
+            if self.depth.is_none() && !spot && !h.through && h.bottom_shape == Bottom::Flat && cutter.is_cone() {
+                flat_floors += 1;
+            }
+            if let Some((_, message)) = self.misfit(h, bottom, &tool) {
+                return Err(Error::operation(&self.name, message));
+            }
             if !spot {
                 if cutter.diameter > h.diameter + 1e-6 {
                     wider += 1;
                 } else if cutter.diameter < h.diameter - 0.01 {
                     narrower += 1;
                 }
-            }
-            let depth = h.top - bottom;
-            if matches!(self.cycle, DrillCycle::Peck | DrillCycle::ChipBreak) && self.peck > depth + self.retract {
-                return Err(Error::operation(
-                    &self.name,
-                    format!("the peck ({} mm) is deeper than the hole at X{:.3} Y{:.3} ({depth:.3} mm from its top): drill it without pecking, or peck less", self.peck, h.center.x, h.center.y),
-                ));
-            }
-            if depth > cutter.flute_length + 1e-9 {
-                return Err(Error::operation(
-                    &self.name,
-                    format!("the hole at X{:.3} Y{:.3} is {depth:.2} mm deep, deeper than T{}'s flutes ({} mm)", h.center.x, h.center.y, tool.number, cutter.flute_length),
-                ));
             }
             // R just above what stands over the hole now (the part's top there, or stock not
             // yet cut).

@@ -70,6 +70,9 @@ pub struct Report {
     /// Largest material removal rate of the feed moves (mm³/min), each measured over
     /// [`RATE_CELLS`] cells of path ([`removal_rates`]).
     pub mrr_max: f64,
+    /// The gouges on the walls of the part's round holes in a machinist's words
+    /// ([`hole_overcuts`]: "φ6.4 drill (T2) in φ6.35 holes: 0.025 mm oversize on the radius").
+    pub overcuts: Vec<String>,
 }
 
 impl Report {
@@ -96,7 +99,15 @@ impl Report {
             let at = deepest(&self.body_collisions).map(|f| format!(", {:.3} mm past the flutes at most, {}", f.amount, place(&f))).unwrap_or_default();
             parts.push(format!("{} moves bury the tool deeper than its flute length{at}", self.body_collision_count));
         }
-        (!parts.is_empty()).then(|| format!("the simulation found problems: {}", parts.join("; ")))
+        // Gouges on holes' walls said as a machinist says them, before the cells.
+        (!parts.is_empty()).then(|| {
+            let found = format!("the simulation found problems: {}", parts.join("; "));
+            if self.overcuts.is_empty() {
+                found
+            } else {
+                format!("{}; {found}", self.overcuts.join("; "))
+            }
+        })
     }
 
     /// A few lines for a person.
@@ -106,6 +117,9 @@ impl Report {
             list.first().map(|f| format!(", first at ({:.3}, {:.3}, {:.3}){}", f.at.x, f.at.y, f.at.z, f.move_index.map(|m| format!(" in move {}", m + 1)).unwrap_or_default())).unwrap_or_default()
         };
         s += &format!("gouges: {} (deepest {:.4} mm){}\n", self.gouge_count, self.gouge_max, first(&self.gouges));
+        for o in &self.overcuts {
+            s += &format!("  {o}\n");
+        }
         s += &format!("rapid moves through stock: {}{}\n", self.rapid_collision_count, first(&self.rapid_collisions));
         s += &format!("tool body (above the flutes) in material: {}{}\n", self.body_collision_count, first(&self.body_collisions));
         s += &format!("material left on the part: max {:.3} mm, mean {:.3} mm\n", self.residual_max, self.residual_mean);
@@ -125,9 +139,17 @@ pub struct Verification {
     /// The part's surface plus the allowance at the stock's cell centres, no higher than the raw
     /// stock's top (NaN where the part is not).
     pub part: HeightField,
+    /// The part's round holes, judged as their circles (none for a drawing's sheet).
+    pub holes: Vec<crate::holes::Hole>,
 }
 
 impl Verification {
+    /// Says the gouges on the walls of the part's round holes in a machinist's words
+    /// ([`Report::overcuts`]), with the program's `moves` (whose tool went too far out).
+    pub fn word_holes(&mut self, moves: &[ProgramMove]) {
+        self.report.overcuts = hole_overcuts(&self.report, &self.holes, moves);
+    }
+
     /// Material above part + allowance per cell: negative where gouged, NaN off the part.
     pub fn residual(&self) -> HeightField {
         let mut field = self.stock.heights();
@@ -248,7 +270,9 @@ pub fn verify(part: &Mesh, stock: &Aabb, moves: &[ProgramMove], settings: &Verif
     let mut sim = Simulator::new(stock, settings.cell)?;
     sim.run(moves, tolerances, progress, 0.9)?;
     progress.report(0.9);
-    Ok(sim.finish_mesh(part, settings.allowance, tolerances))
+    let mut v = sim.finish_mesh(part, settings.allowance, tolerances);
+    v.word_holes(moves);
+    Ok(v)
 }
 
 /// Simulates `moves` on the box `stock` and checks them against the part's heights on the
@@ -532,7 +556,9 @@ impl Simulator {
             let beside = holes.iter().filter(|h| on_wall(h, p, tolerances.gouge) && (top - h.top).abs() <= SLIVER_HEIGHT).map(|h| h.bottom).fold(f64::INFINITY, f64::min);
             Some(lowest_near(&point, p, tolerances.gouge).min(beside))
         };
-        self.finish_near(surface, lowest, allowance, tolerances)
+        let mut v = self.finish_near(surface, lowest, allowance, tolerances);
+        v.holes = holes;
+        v
     }
 
     /// Judges the stock against the part's heights (`surface` on the simulation's grid, −∞ where
@@ -597,7 +623,8 @@ impl Simulator {
             residual_max,
             residual_mean: if covered > 0 { residual_sum / covered as f64 } else { 0.0 },
             mrr_max: rates.iter().copied().fold(0.0, f64::max),
+            overcuts: Vec::new(),
         };
-        Verification { report, volumes, rates, stock: sim, part: surface }
+        Verification { report, volumes, rates, stock: sim, part: surface, holes: Vec::new() }
     }
 }

@@ -204,8 +204,8 @@ export function boxGltf([x, y, z]) {
   }));
 }
 
-// A plate `w` × `h` × `t` (top at z = t) with round through holes (`holes`: [x, y, diameter],
-// each at the centre of a square tile of side `tile` that tiles the plate), as a binary STL:
+// A plate `w` × `h` × `t` (top at z = t) with round holes (`holes`: [x, y, diameter] through,
+// [x, y, diameter, depth] blind with a flat floor; each at the centre of a square tile of side `tile` that tiles the plate), as a binary STL:
 // each hole a 48-sided cylinder, its tile's top and bottom fanned from the circle to the
 // tile's square (tiles meet at T-junctions, as many exported parts do).
 export function plateStl(w, h, t, tile, holes) {
@@ -215,8 +215,10 @@ export function plateStl(w, h, t, tile, holes) {
     for (let j = 0; j < h / tile; j++) {
       const cx = (i + 0.5) * tile, cy = (j + 0.5) * tile;
       const hole = holes.find(([x, y]) => Math.abs(x - cx) < 1e-9 && Math.abs(y - cy) < 1e-9);
+      // A hole's fourth figure: its depth, a blind hole with a flat floor (none: through).
+      const floor = hole?.[3] != null ? t - hole[3] : 0;
       for (const [z, up] of [[t, 1], [0, -1]]) {
-        if (!hole) {
+        if (!hole || (z === 0 && floor > 0)) {
           const q = [[cx - half, cy - half, z], [cx + half, cy - half, z], [cx + half, cy + half, z], [cx - half, cy + half, z]];
           push(q[0], q[1], q[2], [0, 0, up]);
           push(q[0], q[2], q[3], [0, 0, up]);
@@ -243,8 +245,9 @@ export function plateStl(w, h, t, tile, holes) {
           const a0 = (2 * Math.PI * k) / n, a1 = (2 * Math.PI * (k + 1)) / n;
           const p = (a, z) => [cx + r * Math.cos(a), cy + r * Math.sin(a), z];
           const inward = [-Math.cos((a0 + a1) / 2), -Math.sin((a0 + a1) / 2), 0];
-          push(p(a0, t), p(a1, t), p(a1, 0), inward);
-          push(p(a0, t), p(a1, 0), p(a0, 0), inward);
+          push(p(a0, t), p(a1, t), p(a1, floor), inward);
+          push(p(a0, t), p(a1, floor), p(a0, floor), inward);
+          if (floor > 0) push([cx, cy, floor], p(a0, floor), p(a1, floor), [0, 0, 1]);
         }
       }
     }

@@ -4,7 +4,8 @@
 // engine unless the caller asks for it.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { PATIENCE, tab, frame, openPage, addTool, plateStl, waitForGenerated } from './harness.mjs';
+import fs from 'node:fs';
+import { PATIENCE, tab, frame, openPage, addTool, plateStl, waitForGenerated, onlyRaster } from './harness.mjs';
 
 // Boxes ([min, max] each) as one binary STL, 12 triangles a box.
 function boxesStl(boxes) {
@@ -215,9 +216,10 @@ test('under a strict Content-Security-Policy the engine starts, and a policy tha
 
 test('"Spot, drill and chamfer them" plans as a machinist: holes grouped by size, the library\'s drill that fits each, a new drill where none does, a bore where a drill would not do', async () => {
   const { page, context, errors } = await openPage();
-  // φ3.175, φ6.35 and φ12.7 through holes in a 10 mm plate; the library: the φ6 flat and ball,
-  // a φ6.35 drill and a spot drill.
-  await page.setInputFiles('#file', { name: 'plate.stl', mimeType: 'model/stl', buffer: plateStl(60, 20, 10, 20, [[10, 10, 3.175], [30, 10, 6.35], [50, 10, 12.7]]) });
+  // φ3.175, φ6.35 and φ12.7 through holes in a 10 mm plate, and a φ8 recess 0.635 mm deep
+  // (shallower than a spot's cone); the library: the φ6 flat and ball, a φ6.35 drill and a
+  // spot drill.
+  await page.setInputFiles('#file', { name: 'plate.stl', mimeType: 'model/stl', buffer: plateStl(80, 20, 10, 20, [[10, 10, 3.175], [30, 10, 6.35], [50, 10, 12.7], [70, 10, 8, 0.635]]) });
   await page.waitForFunction(() => /plate\.stl/.test(document.body.textContent) && !document.getElementById('generate').disabled);
   await tab(page, 'tools');
   const drill = await addTool(page, 'drill', 6.35, 30);
@@ -227,11 +229,14 @@ test('"Spot, drill and chamfer them" plans as a machinist: holes grouped by size
   await page.selectOption('#op-kind', 'drill');
   await page.click('#op-add');
   await page.click('#find-holes');
-  await page.waitForFunction(() => document.querySelectorAll('#hole-list li').length === 3);
+  await page.waitForFunction(() => document.querySelectorAll('#hole-list li').length === 4);
   await page.click('#hole-preset');
   await page.waitForFunction(() => window.swarf.jobs.part.operations.length > 1);
   const { ops, tools } = await page.evaluate(() => ({ ops: window.swarf.jobs.part.operations.slice(1), tools: window.swarf.tools }));
-  const holes = await page.evaluate(() => window.swarf.holes.items.map((h, k) => ({ k: h.loopIndex ?? k, d: h.diameter })));
+  const all = await page.evaluate(() => window.swarf.holes.items.map((h, k) => ({ k: h.loopIndex ?? k, d: h.diameter, depth: h.top - h.bottom })));
+  // The recess is found as one, and left to the milling operations.
+  assert.ok(all.some((h) => Math.abs(h.d - 8) < 0.01 && Math.abs(h.depth - 0.635) < 0.01), JSON.stringify(all));
+  const holes = all.filter((h) => Math.abs(h.d - 8) > 0.01);
   const idx = (d) => holes.filter((h) => Math.abs(h.d - d) < 0.01).map((h) => h.k);
   const added = tools.find((t) => t.shape === 'drill' && Math.abs(t.diameter - 3.175) < 1e-9);
   assert.ok(added, `a φ3.175 drill added to the library: ${JSON.stringify(tools)}`);
@@ -244,11 +249,49 @@ test('"Spot, drill and chamfer them" plans as a machinist: holes grouped by size
     `chamfer::T${spot}:${holes.map((h) => h.k).sort((a, b) => a - b).join(',')}`,
   ]);
   assert.match(await page.textContent('#message'), /added T\d+ \(φ3\.175 drill\) to the library/);
+  assert.match(await page.textContent('#message'), /left 1 recess shallower than a spot \(φ8 0\.635 mm deep\) to the milling operations/);
   // The first operation (the one the holes were found with) off: the preset's run verified clean.
   await page.evaluate(() => { window.swarf.jobs.part.operations[0].enabled = false; });
   await page.click('#op-list li:nth-child(2) .op-name');
   await page.click('#generate');
   assert.equal(await waitForGenerated(page), 'ok', await page.textContent('#message'));
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
+test('once the holes are found, a peck deeper than the hole and a hole deeper than the flutes are marked as they are typed', async () => {
+  const { page, context, errors } = await openPage();
+  // φ6.35 through holes in a 10 mm plate, a φ6.35 drill with 30 mm flutes.
+  await page.setInputFiles('#file', { name: 'plate.stl', mimeType: 'model/stl', buffer: plateStl(60, 20, 10, 20, [[10, 10, 6.35], [50, 10, 6.35]]) });
+  await page.waitForFunction(() => /plate\.stl/.test(document.body.textContent) && !document.getElementById('generate').disabled);
+  await tab(page, 'tools');
+  const drill = await addTool(page, 'drill', 6.35, 30);
+  await tab(page, 'ops');
+  await page.evaluate(() => { window.swarf.jobs.part.operations = []; });
+  await page.selectOption('#op-kind', 'drill');
+  await page.click('#op-add');
+  await page.selectOption('select[name=opTool]', String(drill));
+  await page.selectOption('select[name=drillCycle]', 'peck');
+  await page.fill('input[name=peck]', '20');
+  // Before the holes are known nothing can be said; once found, the peck is marked.
+  await page.click('#find-holes');
+  await page.waitForFunction(() => document.querySelectorAll('#hole-list li').length === 2);
+  await page.waitForSelector('input[name=peck].invalid');
+  assert.match(await page.textContent('#fs-drill .field-error'), /^the peck \(20 mm\) is deeper than the hole at X/);
+  assert.ok(await page.evaluate(() => document.querySelector('#op-list li[data-index="0"]').classList.contains('has-problem')));
+  await page.fill('input[name=peck]', '2');
+  await page.waitForFunction(() => !document.querySelector('input[name=peck]').classList.contains('invalid'));
+  // The drill's flutes shortened in the library: the operation's tool is marked, in the page's words.
+  await tab(page, 'tools');
+  await page.selectOption('#tool-list', String(await page.evaluate((n) => window.swarf.tools.findIndex((t) => t.number === n), drill)));
+  await page.fill('input[name=fluteLength]', '8');
+  await tab(page, 'ops');
+  await page.click('#op-list li:nth-child(1) .op-name');
+  await page.waitForSelector('select[name=opTool].invalid');
+  assert.match(await page.textContent('#op-editor .field-error'), new RegExp(`deeper than T${drill}'s flutes \\(8 mm\\)`));
+  await page.click('#generate');
+  assert.equal(await waitForGenerated(page), 'failed');
+  assert.match(await page.textContent('#message'), /Operations → 'drill' → Tool: the hole at X\S+ Y\S+ is 1\d\.\d\d mm deep, deeper than T\d+'s flutes/);
   assert.deepEqual(errors, []);
   await context.close();
 });
@@ -337,6 +380,56 @@ test('two settings that do not fit each other are marked as they are typed: a st
   // Either setting made right clears the mark.
   await page.fill('input[name=roughStepdown]', '1.5');
   await page.waitForFunction(() => !document.querySelector('input[name=roughStepdown]').classList.contains('invalid'));
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
+test('the page in inches: the fields, the read-outs and the view\'s grid say inches, the job and its files keep mm, the program follows, and the choice is kept for the next visit', async () => {
+  const { page, context, errors } = await openPage();
+  await onlyRaster(page);
+  const stepover = async () => page.evaluate(() => window.swarf.jobs.part.operations[0].stepover);
+  const mmStep = await stepover();
+  await page.selectOption('#page-units', 'inch');
+  // A length field: its label and its value in inches; typed in inches, kept in mm.
+  assert.match(await page.evaluate(() => document.querySelector('input[name=stepover]').closest('label').textContent), /^Step-over \(in\)/);
+  assert.equal(await page.inputValue('input[name=stepover]'), String(Number((mmStep / 25.4).toFixed(5))));
+  await page.fill('input[name=stepover]', '0.06');
+  await page.fill('input[name=grid]', '0.02');
+  assert.ok(Math.abs(await stepover() - 1.524) < 1e-9, `stepover kept as ${await stepover()} mm`);
+  // A feed: in/min.
+  await tab(page, 'tools');
+  assert.match(await page.evaluate(() => document.querySelector('#tool-editor input[name=feedRate]').closest('label').textContent), /\(in\/min/);
+  const feed = await page.evaluate(() => window.swarf.tools[0].feedRate);
+  assert.equal(Number(await page.inputValue('#tool-editor input[name=feedRate]')), Number((feed / 25.4).toFixed(5)));
+  // The read-outs: the part's size (the 90 mm sample is 3.543 in), the grid, the library.
+  assert.match(await page.textContent('#part-size'), /^3\.543 × \S+ × \S+ in /);
+  assert.match(await page.textContent('#scale'), /^grid (0\.1|1|10) in · part 3\.543 × /);
+  const d0 = await page.evaluate(() => window.swarf.tools[0].diameter);
+  assert.match(await page.textContent('#tool-list'), new RegExp(`T\\d+ · ${String(Number((d0 / 25.4).toFixed(4))).replace('.', '\\.')} in `));
+  // The program follows the page into inches (G20); the summary says inches.
+  assert.equal(await page.evaluate(() => window.swarf.jobs.part.post.units), 'inch');
+  await tab(page, 'ops');
+  await page.click('#generate');
+  assert.equal(await waitForGenerated(page), 'ok', await page.textContent('#message'));
+  assert.match(await page.textContent('#stats'), /[\d,]+ in cutting · [\d,]+ in rapid/);
+  const gcode = await page.evaluate(() => new TextDecoder().decode(window.swarf.result.gcodeBytes));
+  assert.match(gcode, /^G20$/m);
+  // The saved job keeps mm.
+  const [saved] = await Promise.all([page.waitForEvent('download'), page.click('#save-job')]);
+  const job = JSON.parse(fs.readFileSync(await saved.path(), 'utf8'));
+  assert.ok(Math.abs(job.operations[0].stepover - 1.524) < 1e-9, `the file says ${job.operations[0].stepover}`);
+  // The next visit opens in inches.
+  await page.reload();
+  await page.waitForSelector('body[data-ready="true"]');
+  assert.equal(await page.inputValue('#page-units'), 'inch');
+  await tab(page, 'ops');
+  await page.click('#op-list li:nth-child(1) .op-name');
+  assert.equal(await page.inputValue('input[name=stepover]'), '0.06');
+  // Back to mm: every figure in mm again, the program with it.
+  await page.selectOption('#page-units', 'mm');
+  assert.equal(await page.inputValue('input[name=stepover]'), '1.524');
+  assert.match(await page.textContent('#part-size'), /^90\.0 × /);
+  assert.equal(await page.evaluate(() => window.swarf.jobs.part.post.units), 'mm');
   assert.deepEqual(errors, []);
   await context.close();
 });

@@ -1132,7 +1132,12 @@ residualMax: number, residualMean: number,
  * Largest material removal rate of the feed moves (mm³/min), each measured over
  * [`RATE_CELLS`] cells of path ([`removal_rates`]).
  */
-mrrMax: number, };
+mrrMax: number, 
+/**
+ * The gouges on the walls of the part's round holes in a machinist's words
+ * ([`hole_overcuts`]: "φ6.4 drill (T2) in φ6.35 holes: 0.025 mm oversize on the radius").
+ */
+overcuts: Array<string>, };
 
 /**
  * A program written again for another post.
