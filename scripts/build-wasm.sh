@@ -7,8 +7,9 @@ cd "$(dirname "$0")/.."
 # the module's panic messages (the crates' sources under CARGO_HOME, this checkout): the npm
 # package ships this file.
 export RUSTFLAGS="-C target-feature=+simd128 --cfg getrandom_backend=\"wasm_js\" --remap-path-prefix=${CARGO_HOME:-$HOME/.cargo}=/cargo --remap-path-prefix=$PWD=/swarf"
-cargo build --release --lib --target wasm32-unknown-unknown
-wasm-bindgen --target web --no-typescript --out-dir www/pkg target/wasm32-unknown-unknown/release/swarf.wasm
+# The wasm profile: the release build, the file readers built for size (Cargo.toml).
+cargo build --profile wasm --lib --target wasm32-unknown-unknown
+wasm-bindgen --target web --no-typescript --out-dir www/pkg target/wasm32-unknown-unknown/wasm/swarf.wasm
 node_modules/.bin/wasm-opt -O3 --enable-bulk-memory --enable-nontrapping-float-to-int --enable-sign-ext --enable-mutable-globals --enable-reference-types --enable-multivalue --enable-simd www/pkg/swarf_bg.wasm -o www/pkg/swarf_bg.wasm
 ls -l www/pkg/swarf_bg.wasm
 node scripts/single-file.mjs

@@ -28,6 +28,9 @@ pub const MAX_NESTING: usize = 256;
 
 /// The most operations a job may hold.
 pub const MAX_OPERATIONS: usize = 100;
+/// Tabs on one loop of a profile: more than any part is held by (a tab every 4 mm round a
+/// 1 m × 1 m sheet is 1,000).
+pub const MAX_TABS: u32 = 1_000;
 
 /// The most tools a job's library may hold.
 pub const MAX_TOOLS: usize = 1_000;

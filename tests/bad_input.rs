@@ -300,3 +300,58 @@ fn the_duck_at_its_glb_size_is_refused_before_the_work_starts() {
         Ok(_) => panic!("the Duck at 1.7 m was machined with the default job"),
     }
 }
+
+/// Issue 56: settings that pass their own range but write a program no control runs, or run
+/// away, are refused naming the field, at once: tabs past any sheet (a height of 1e300 once
+/// panicked in the removal rates), closer than their own width, more than a part is held by, or
+/// as tall as the sheet over the cut's floor (the tool in the air over them); a spindle speed
+/// written S0, a feed written F0; a list where the job's settings belong.
+#[test]
+fn settings_a_control_cannot_run_are_refused_naming_the_field() {
+    let square = dxf("", "0\nEOF\n");
+    let profile = |f: &dyn Fn(&mut serde_json::Value)| {
+        let mut v = serde_json::to_value(drawing_job()).unwrap();
+        v["operations"][0]["tabs"] = serde_json::json!({ "count": 4, "width": 4.0, "height": 1.5 });
+        f(&mut v);
+        v
+    };
+    let cases: Vec<(serde_json::Value, &str)> = vec![
+        (profile(&|v| v["operations"][0]["tabs"]["height"] = 1e300.into()), "operations[0].tabs.height must be zero or more, at most 10000"),
+        (profile(&|v| v["operations"][0]["tabs"]["width"] = 0.0.into()), "operations[0].tabs.width must be a positive number"),
+        (profile(&|v| v["operations"][0]["tabs"]["count"] = 100_000.into()), "operations[0].tabs.count must be at most 1000 tabs"),
+        (
+            profile(&|v| {
+                v["operations"][0]["tabs"]["count"] = 0.into();
+                v["operations"][0]["tabs"]["spacing"] = 1e-9.into();
+            }),
+            "operations[0].tabs.spacing must be at least the tabs' width (4 mm)",
+        ),
+        (profile(&|v| v["operations"][0]["tabs"]["height"] = 6.2.into()), "tabs.height (6.2 mm) reaches the sheet's top from the cut's floor (6 mm below it)"),
+        (profile(&|v| v["tools"][0]["spindleRpm"] = 0.5.into()), "tools[0].spindleRpm is written as whole turns a minute: 0.5 is S0"),
+        (profile(&|v| v["tools"][0]["feedRate"] = 1e-9.into()), "tools[0].feedRate of 1e-9 mm/min is written F0"),
+        (
+            profile(&|v| {
+                v["post"]["units"] = "inch".into();
+                v["tools"][0]["plungeRate"] = 1.0.into();
+            }),
+            "tools[0].plungeRate of 1 mm/min is written F0 with the post's 1 decimals (in/min)",
+        ),
+    ];
+    for (value, words) in cases {
+        let start = Instant::now();
+        let result = Job::from_value(&value).and_then(|job| job::run(&job, Workpiece::read(&square, Some("square.dxf"), &job.tolerances)?, &mut Progress::none()));
+        assert!(start.elapsed() < Duration::from_secs_f64(SECONDS));
+        match result {
+            Err(e) => assert!(e.to_string().contains(words), "expected '{words}': {e}"),
+            Ok(_) => panic!("accepted a job that should be refused ('{words}')"),
+        }
+    }
+    // Tabs as tall as the sheet less a hair: cut, the tabs standing.
+    let ok = Job::from_value(&profile(&|v| v["operations"][0]["tabs"]["height"] = 5.9.into())).unwrap();
+    assert!(answer(&ok, &square, "square.dxf").is_ok());
+    // A list where the job, or a part of it, belongs.
+    for (text, words) in [("[]", "the job is a list, not an object of settings"), (r#"{"stock": []}"#, "stock: a list, where its settings belong in an object")] {
+        let e = Job::from_json(text).unwrap_err().to_string();
+        assert!(e.contains(words), "{text}: {e}");
+    }
+}

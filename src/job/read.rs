@@ -28,6 +28,18 @@ impl Job {
     /// field it may mean. A file without a `version` is read as version 1; one from a newer
     /// swarf is refused. The job comes back in this version's form (`version` too).
     pub fn from_value(value: &serde_json::Value) -> Result<Job> {
+        // A job is an object of settings: serde reads a struct from an array too (its fields in
+        // order), and an empty array would be the default job without a word.
+        if !value.is_object() {
+            let what = match value {
+                serde_json::Value::Array(_) => "a list",
+                serde_json::Value::String(_) => "a string",
+                serde_json::Value::Number(_) => "a number",
+                serde_json::Value::Bool(_) => "true or false",
+                _ => "null",
+            };
+            return Err(Error::Input(format!("the job is {what}, not an object of settings ({{ \"operations\": […], \"tools\": […], … }}, as `swarf job` prints it)")));
+        }
         let version = value.get("version").and_then(serde_json::Value::as_u64).unwrap_or(1);
         if version > JOB_VERSION as u64 {
             return Err(Error::Input(format!("the job has version {version}; this swarf reads versions up to {JOB_VERSION} (a newer swarf wrote it)")));
@@ -48,6 +60,9 @@ impl Job {
             }
         })?;
         let canonical = serde_json::to_value(&job).map_err(|e| Error::Internal(e.to_string()))?;
+        if let Some(path) = list_for_object(value, &canonical, "") {
+            return Err(Error::Input(format!("{path}: a list, where its settings belong in an object ({{ … }})")));
+        }
         let mut unknown = Vec::new();
         unknown_fields(value, &canonical, "", &mut unknown);
         if !unknown.is_empty() {
@@ -122,6 +137,20 @@ fn unknown_fields(input: &serde_json::Value, canonical: &serde_json::Value, path
             }
         }
         _ => {}
+    }
+}
+
+/// The first place in `input` where a list stands for an object of settings (serde reads a
+/// struct from a list of its fields in order, an empty one as the defaults, without a word).
+fn list_for_object(input: &serde_json::Value, canonical: &serde_json::Value, path: &str) -> Option<String> {
+    use serde_json::Value;
+    match (input, canonical) {
+        (Value::Array(_), Value::Object(_)) => Some(path.to_string()),
+        (Value::Object(given), Value::Object(known)) => {
+            given.iter().find_map(|(k, v)| known.get(k).and_then(|w| list_for_object(v, w, &if path.is_empty() { k.clone() } else { format!("{path}.{k}") })))
+        }
+        (Value::Array(given), Value::Array(known)) => given.iter().zip(known).enumerate().find_map(|(i, (v, w))| list_for_object(v, w, &format!("{path}[{i}]"))),
+        _ => None,
     }
 }
 

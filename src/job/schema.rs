@@ -443,6 +443,26 @@ impl Job {
                     say(format!("tools[{i}].{field}"), format!("tools[{i}].{field} must be a positive number, at most {most} (got {})", crate::limits::shown(v)));
                 }
             }
+            // What the post writes of them: a speed or a feed that rounds to nothing is one the
+            // control refuses (`F0`) or stops the spindle with (`S0`).
+            let per_unit = 1.0 / self.post.units.mm();
+            let decimals = self.post.post().feed_decimals;
+            let written = |v: f64, decimals: usize| crate::post::number(v, decimals).parse::<f64>().unwrap_or(0.0);
+            if positive(tool.spindle_rpm) && written(tool.spindle_rpm, 0) < 1.0 {
+                say(format!("tools[{i}].spindleRpm"), format!("tools[{i}].spindleRpm is written as whole turns a minute: {} is S0, no spindle at all", crate::limits::shown(tool.spindle_rpm)));
+            }
+            for (field, v) in [("feedRate", tool.feed_rate), ("plungeRate", tool.plunge_rate)] {
+                if positive(v) && written(v * per_unit, decimals) <= 0.0 {
+                    say(
+                        format!("tools[{i}].{field}"),
+                        format!(
+                            "tools[{i}].{field} of {} mm/min is written F0 with the post's {decimals} decimals ({}), which a control refuses",
+                            crate::limits::shown(v),
+                            if per_unit == 1.0 { "mm/min" } else { "in/min" }
+                        ),
+                    );
+                }
+            }
             if tool.stick_out.is_some_and(|s| !(s >= tool.cutter.flute_length && s <= crate::limits::MAX_SIZE)) {
                 say(format!("tools[{i}].stickOut"), format!("tools[{i}].stickOut must be at least the flute length ({} mm) and at most 10 m", tool.cutter.flute_length));
             }

@@ -61,6 +61,28 @@ pub struct Tabs {
     pub height: f64,
 }
 
+impl Tabs {
+    /// Checks its numbers: a tab is wider than nothing and no taller than a sheet can be, and
+    /// tabs are no closer than their own width, nor more on a loop than a part is held by.
+    pub fn validate(&self) -> Result<(), FieldError> {
+        positive("tabs.width", self.width)?;
+        not_negative("tabs.height", self.height)?;
+        if self.count > crate::limits::MAX_TABS {
+            return Err(FieldError { field: "tabs.count", message: format!("must be at most {} tabs on a loop (got {})", crate::limits::MAX_TABS, self.count) });
+        }
+        if let Some(spacing) = self.spacing {
+            positive("tabs.spacing", spacing)?;
+            if spacing < self.width {
+                return Err(FieldError {
+                    field: "tabs.spacing",
+                    message: format!("must be at least the tabs' width ({} mm), or the tabs run into each other (got {})", crate::limits::shown(self.width), crate::limits::shown(spacing)),
+                });
+            }
+        }
+        Ok(())
+    }
+}
+
 impl Default for Tabs {
     fn default() -> Self {
         Tabs { count: 0, spacing: None, width: 4.0, height: 1.5 }
@@ -334,7 +356,8 @@ fn cut_loop(segs: &[Segment], clear: &Clear, waste_left: bool, lead: f64, tabs: 
 /// width wider than the tab, standing `tabs.height` above `base` (the sheet's bottom, or the
 /// cut's floor above it).
 fn tab_heights(tabs: &Tabs, total: f64, end: f64, z_final: f64, base: f64, r: f64) -> Heights {
-    let count = if tabs.count > 0 { tabs.count as usize } else { (total / tabs.spacing.unwrap_or(total)).floor().max(1.0) as usize };
+    // By spacing, as many as fit the loop, at most as many as a count may ask for.
+    let count = if tabs.count > 0 { tabs.count as usize } else { (total / tabs.spacing.unwrap_or(total)).floor().clamp(1.0, f64::from(crate::limits::MAX_TABS)) as usize };
     let top = base + tabs.height.max(0.0);
     let low = z_final - 1.0;
     let half = tabs.width * 0.5 + r;
@@ -397,7 +420,7 @@ impl Operate for Profile2d {
         if let Some(r) = self.lead_radius {
             not_negative("leadRadius", r)?;
         }
-        Ok(())
+        self.tabs.validate()
     }
 
     fn plan(&self, ctx: &mut Context, _progress: &mut crate::progress::Progress) -> crate::error::Result<Planned> {
@@ -406,6 +429,19 @@ impl Operate for Profile2d {
         let (walls, picked) = sheet::selected(drawing, &self.name, &self.layers, &self.loops)?;
         let open = drawing.open_note(&self.layers);
         let depth = self.depth.unwrap_or(thickness + sheet::BREAKTHROUGH);
+        // Tabs as tall as the sheet over the cut's floor would leave the tool in the air over
+        // them: said, not cut.
+        let floor = (ctx.stock.max.z - depth).max(ctx.stock.max.z - thickness);
+        if (self.tabs.count > 0 || self.tabs.spacing.is_some()) && floor + self.tabs.height >= ctx.stock.max.z - 1e-9 {
+            return Err(crate::error::Error::operation(
+                &self.name,
+                format!(
+                    "tabs.height ({} mm) reaches the sheet's top from the cut's floor ({} mm below it): the tool would pass over the tabs in the air; make them lower",
+                    crate::limits::shown(self.tabs.height),
+                    crate::limits::shown(ctx.stock.max.z - floor)
+                ),
+            ));
+        }
         let cuts = profile_cuts(&walls, &picked, self.side, depth, self.leave_stock);
         let mut cursor = sheet::cursor(ctx, &tool);
         let setup = Setup { tool_radius: tool.cutter.radius(), top: ctx.stock.max.z, depth, bottom: ctx.stock.max.z - thickness, feed: tool.feed_rate, cursor: &mut cursor, tol: &ctx.tolerances };

@@ -747,7 +747,7 @@ impl<'a> Writer<'a> {
 /// is rounded to the nearest float, so it lands on the same side of each half as the exact
 /// product does and rounding it to an integer gives the formatter's digits. A product that
 /// is exactly a half (the formatter rounds those to even), or larger, is formatted.
-fn number(value: f64, decimals: usize) -> String {
+pub(crate) fn number(value: f64, decimals: usize) -> String {
     use std::fmt::Write;
     const POWERS: [u64; 7] = [1, 10, 100, 1_000, 10_000, 100_000, 1_000_000];
     const HALVES_EXACT: f64 = (1u64 << 52) as f64;

@@ -100,7 +100,7 @@ impl Pieces {
     }
 
     /// Notes the layer, and the extremes an element from `min` to `max` reaches.
-    fn reach(&mut self, min: DVec2, max: DVec2, layer: &str) {
+    pub(crate) fn reach(&mut self, min: DVec2, max: DVec2, layer: &str) {
         if !self.layers.iter().any(|l| l == layer) {
             self.layers.push(layer.to_string());
         }
