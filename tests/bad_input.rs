@@ -355,3 +355,32 @@ fn settings_a_control_cannot_run_are_refused_naming_the_field() {
         assert!(e.contains(words), "{text}: {e}");
     }
 }
+
+/// Issue 56: what a file says besides its solid is never part of it, and its units are its
+/// own: an OBJ's polyline (`l`) above a cube leaves the cube 10 mm tall; an ASCII STL vertex
+/// with a fourth number is refused, not read as its first three; a DXF in miles is larger than
+/// any machine and one in nanometres tiny, not either read as millimetres.
+#[test]
+fn what_a_file_says_besides_its_solid_is_never_part_of_it() {
+    use swarf::mesh::import::read_mesh_auto;
+    let mut obj = String::from("v 0 0 0\nv 10 0 0\nv 10 10 0\nv 0 10 0\nv 0 0 10\nv 10 0 10\nv 10 10 10\nv 0 10 10\nv 0 0 30\n");
+    obj += "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\nl 1 9\n";
+    let cube = read_mesh_auto(obj.as_bytes(), Some("cube.obj"), &Tolerances::default()).unwrap();
+    let b = cube.bounds();
+    assert!((b.max.z - b.min.z - 10.0).abs() < 1e-9, "the cube reads {} tall", b.max.z - b.min.z);
+    let stl = "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0 7\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n";
+    let e = read_mesh_auto(stl.as_bytes(), Some("t.stl"), &Tolerances::default()).map(|_| ()).unwrap_err().to_string();
+    assert!(e.contains("line 5") && e.contains("three numbers"), "{e}");
+    let square = |code: i64| {
+        format!("0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n{code}\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n0\nLWPOLYLINE\n8\n0\n90\n4\n70\n1\n10\n0\n20\n0\n10\n1\n20\n0\n10\n1\n20\n1\n10\n0\n20\n1\n0\nENDSEC\n0\nEOF\n")
+    };
+    let e = swarf::drawing::import::read_drawing(square(3).as_bytes(), Some("miles.dxf"), &Tolerances::default()).map(|_| ()).unwrap_err().to_string();
+    assert!(e.contains("larger than any machine"), "{e}");
+    let d = swarf::drawing::import::read_drawing(square(12).as_bytes(), Some("nm.dxf"), &Tolerances::default());
+    // A square a nanometre wide is nothing to machine (refused or read a nanometre wide).
+    if let Ok(d) = d {
+        assert!(d.units.contains("nm") && d.bounds().size().max_element() < 1e-5, "{} {:?}", d.units, d.bounds());
+    }
+    let d = swarf::drawing::import::read_drawing(square(7).as_bytes(), Some("km.dxf"), &Tolerances::default()).map(|_| ()).unwrap_err().to_string();
+    assert!(d.contains("larger than any machine"), "{d}");
+}

@@ -68,7 +68,24 @@ fn units(code: i64) -> (f64, &'static str) {
         10 => (914.4, "yard"),
         13 => (1e-3, "micron"),
         14 => (100.0, "dm"),
-        _ => (1.0, "unitless (read as mm)"),
+        // The rest of the header's table: each its own size (a drawing in miles or light
+        // years is then larger than any machine, and said so, not read as millimetres).
+        3 => (1_609_344.0, "mile"),
+        7 => (1e6, "km"),
+        11 => (1e-7, "ångström"),
+        12 => (1e-6, "nm"),
+        15 => (1e4, "decametre"),
+        16 => (1e5, "hectometre"),
+        17 => (1e12, "gigametre"),
+        18 => (1.495_978_707e14, "astronomical unit"),
+        19 => (9.460_730_472_580_8e18, "light year"),
+        20 => (3.085_677_581e19, "parsec"),
+        21 => (1200.0 / 3937.0 * 1000.0, "US survey foot"),
+        22 => (1000.0 / 39.37, "US survey inch"),
+        23 => (3600.0 / 3937.0 * 1000.0, "US survey yard"),
+        24 => (6_336_000.0 / 3937.0 * 1000.0, "US survey mile"),
+        0 => (1.0, "unitless (read as mm)"),
+        _ => (1.0, "an unknown $INSUNITS (read as mm)"),
     }
 }
 

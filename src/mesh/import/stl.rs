@@ -73,6 +73,11 @@ fn read_ascii(bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, ImportError> {
                     let word = words.next().ok_or_else(|| ImportError::Stl(format!("line {number}: a vertex needs three numbers")))?;
                     *c = word.parse::<f64>().map_err(|_| ImportError::Stl(format!("line {number}: '{word}' is not a number")))?;
                 }
+                // A fourth number is a damaged line (two run together, a point from elsewhere),
+                // not one to read as its first three.
+                if let Some(extra) = words.next() {
+                    return Err(ImportError::Stl(format!("line {number}: a vertex has three numbers, and this one goes on with '{extra}'")));
+                }
                 if corners.len() == 3 {
                     return Err(ImportError::Stl(format!("line {number}: a facet has more than three vertices")));
                 }
