@@ -75,11 +75,12 @@ pub(crate) fn read_svg(bytes: &[u8], tol: &Tolerances) -> Result<Pieces, Drawing
     }
     // The walk: at 96 px per inch, the root's viewBox scaled to its size (near enough to refuse
     // what is past any machine; usvg sizes the drawing).
-    let view_box: Option<Vec<f64>> = root.attribute("viewBox").map(|v| v.split(|c: char| c == ',' || c.is_whitespace()).filter(|s| !s.is_empty()).map(|s| s.parse().unwrap_or(f64::NAN)).collect());
-    let usable = |v: &Vec<f64>| v.len() == 4 && v.iter().all(|x| x.is_finite()) && v[2] > 0.0 && v[3] > 0.0;
-    let bad_view_box = view_box.as_ref().is_some_and(|v| !usable(v));
+    let (view_box, bad_view_box) = match view_box_of(&root) {
+        Ok(vb) => (vb, false),
+        Err(()) => (None, true),
+    };
     let mut to_mm = DAffine2::from_scale(DVec2::new(MM_PER_PX, -MM_PER_PX));
-    if let Some(vb) = view_box.clone().filter(usable) {
+    if let Some(vb) = view_box {
         let w = length_mm(root.attribute("width")).unwrap_or(vb[2] * MM_PER_PX);
         let h = length_mm(root.attribute("height")).unwrap_or(vb[3] * MM_PER_PX);
         to_mm = DAffine2::from_scale(DVec2::new(w / vb[2], -h / vb[3])) * DAffine2::from_translation(DVec2::new(-vb[0], -vb[1]));
@@ -113,22 +114,8 @@ pub(crate) fn read_svg(bytes: &[u8], tol: &Tolerances) -> Result<Pieces, Drawing
     // Millimetres per user unit of the root (its viewBox's, uniformly scaled unless it asks
     // otherwise): what "units: as the file says" keeps.
     let (w_mm, h_mm) = (f64::from(size.width()) * MM_PER_PX, f64::from(size.height()) * MM_PER_PX);
-    let (units, scale) = match view_box.filter(usable) {
-        Some(vb) => {
-            let (sx, sy) = (w_mm / vb[2], h_mm / vb[3]);
-            let none = root.attribute("preserveAspectRatio").is_some_and(|a| a.trim_start().starts_with("none"));
-            let slice = root.attribute("preserveAspectRatio").is_some_and(|a| a.contains("slice"));
-            (
-                format!("viewBox scaled to {w_mm:.3} × {h_mm:.3} mm"),
-                if none {
-                    sx
-                } else if slice {
-                    sx.max(sy)
-                } else {
-                    sx.min(sy)
-                },
-            )
-        }
+    let (units, scale) = match view_box {
+        Some(vb) => (format!("viewBox scaled to {w_mm:.3} × {h_mm:.3} mm"), aspect_scale(root.attribute("preserveAspectRatio").unwrap_or(""), w_mm / vb[2], h_mm / vb[3])),
         None => ("px (96 per inch)".to_string(), MM_PER_PX),
     };
     let mut paths = Paths { tol, pieces: Pieces { units, scale, ignored: walked.ignored, ..Pieces::default() }, layers: &layers, lines: &lines, size: f64::from(size.width().max(size.height())) };
@@ -164,11 +151,30 @@ fn root_el_facts(doc: &roxmltree::Document) -> Option<RootFacts> {
             }
         }
     };
-    let v: Vec<f64> = root.attribute("viewBox")?.split(|c: char| c == ',' || c.is_whitespace()).filter(|s| !s.is_empty()).map(|s| s.parse().unwrap_or(f64::NAN)).collect();
-    if !(v.len() == 4 && v.iter().all(|x| x.is_finite()) && v[2] > 0.0 && v[3] > 0.0) {
-        return None;
+    Some(RootFacts { width: px("width")?, height: px("height")?, view_box: view_box_of(&root).ok()??, aspect: root.attribute("preserveAspectRatio").unwrap_or("").to_string() })
+}
+
+/// The root's viewBox: `Ok(None)` where it has none, `Err` where it is not four numbers with a
+/// positive width and height.
+fn view_box_of(root: &Node) -> Result<Option<[f64; 4]>, ()> {
+    let Some(text) = root.attribute("viewBox") else { return Ok(None) };
+    let v: Vec<f64> = text.split(|c: char| c == ',' || c.is_whitespace()).filter(|s| !s.is_empty()).map(|s| s.parse().unwrap_or(f64::NAN)).collect();
+    match v[..] {
+        [x, y, w, h] if v.iter().all(|x| x.is_finite()) && w > 0.0 && h > 0.0 => Ok(Some([x, y, w, h])),
+        _ => Err(()),
     }
-    Some(RootFacts { width: px("width")?, height: px("height")?, view_box: [v[0], v[1], v[2], v[3]], aspect: root.attribute("preserveAspectRatio").unwrap_or("").to_string() })
+}
+
+/// The scale of a viewBox fitted to a viewport `sx` by `sy` (viewport over viewBox) as
+/// `preserveAspectRatio` says: stretched (`none`, the horizontal), or uniform, to fit
+/// (`meet`, the default) or to fill (`slice`).
+fn aspect_scale(aspect: &str, sx: f64, sy: f64) -> f64 {
+    let mut words = aspect.split_whitespace().skip_while(|w| *w == "defer");
+    match (words.next(), words.next()) {
+        (Some("none"), _) => sx,
+        (_, Some("slice")) => sx.max(sy),
+        _ => sx.min(sy),
+    }
 }
 
 /// The root's viewBox mapping in f64, as SVG gives it (a missing width or height from the
@@ -187,13 +193,12 @@ fn viewport(facts: &Option<RootFacts>, size: usvg::Size) -> Option<DAffine2> {
     if (w - f64::from(size.width())).abs() > 1e-5 * w || (h - f64::from(size.height())).abs() > 1e-5 * h {
         return None;
     }
-    let words: Vec<&str> = f.aspect.split_whitespace().collect();
-    let align = words.first().copied().unwrap_or("xMidYMid");
+    let align = f.aspect.split_whitespace().find(|w| *w != "defer").unwrap_or("xMidYMid");
     let (sx, sy) = (w / vw, h / vh);
     if align == "none" {
         return Some(DAffine2::from_scale(DVec2::new(sx, sy)) * DAffine2::from_translation(DVec2::new(-x, -y)));
     }
-    let s = if words.get(1) == Some(&"slice") { sx.max(sy) } else { sx.min(sy) };
+    let s = aspect_scale(&f.aspect, sx, sy);
     let at = |word: &str, min: &str, mid: &str, room: f64| {
         if word.contains(min) {
             0.0
@@ -488,7 +493,7 @@ impl Reader<'_> {
                     let (cx, cy) = (number(&child, "cx"), number(&child, "cy"));
                     let (rx, ry) = if name == "circle" { (number(&child, "r"), number(&child, "r")) } else { (number(&child, "rx"), number(&child, "ry")) };
                     if rx > 0.0 && ry > 0.0 {
-                        self.ellipse_arc(m, DVec2::new(cx, cy), DVec2::new(rx, ry), 0.0, std::f64::consts::TAU, layer)?;
+                        self.ellipse(m, DVec2::new(cx, cy), DVec2::new(rx, ry), layer)?;
                     } else {
                         self.pieces.ignore(&format!("{name}s with a radius ≤ 0 on layer {layer}"));
                     }
@@ -525,9 +530,9 @@ impl Reader<'_> {
         }
     }
 
-    /// Refuses the curve `f` whose defining points (after the transform) are `hull` where it
-    /// is larger than any machine or lies past any drawing: a curve lies in their hull.
-    fn curve(&mut self, _f: &dyn Fn(f64) -> DVec2, _t0: f64, _t1: f64, _pieces: usize, layer: &str, hull: &[DVec2]) -> Result<(), DrawingError> {
+    /// Refuses a curve whose defining points (after the transform) are `hull` where it is
+    /// larger than any machine or lies past any drawing: a curve lies in their hull.
+    fn curve(&mut self, layer: &str, hull: &[DVec2]) -> Result<(), DrawingError> {
         let (lo, hi) = hull.iter().fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)));
         let extent = if hull.iter().all(|p| p.is_finite()) { (hi - lo).max_element() } else { f64::INFINITY };
         let what = self.pieces.element.clone();
@@ -541,12 +546,11 @@ impl Reader<'_> {
         Ok(())
     }
 
-    fn ellipse_arc(&mut self, m: DAffine2, c: DVec2, r: DVec2, t0: f64, t1: f64, layer: &str) -> Result<(), DrawingError> {
-        let f = |t: f64| m.transform_point2(c + DVec2::new(r.x * t.cos(), r.y * t.sin()));
-        let n = ((t1 - t0).abs() / (std::f64::consts::TAU / 8.0)).ceil().clamp(1.0, 8.0) as usize;
-        // The ellipse's bounding box's corners: its hull.
+    /// An ellipse (or an arc of it) about `c` with radii `r`: its bounding box's corners are
+    /// its hull.
+    fn ellipse(&mut self, m: DAffine2, c: DVec2, r: DVec2, layer: &str) -> Result<(), DrawingError> {
         let hull = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)].map(|(x, y)| m.transform_point2(c + DVec2::new(r.x * x, r.y * y)));
-        self.curve(&f, t0, t1, n, layer, &hull)
+        self.curve(layer, &hull)
     }
 
     fn rect(&mut self, node: &Node, m: DAffine2, layer: &str) -> Result<(), DrawingError> {
@@ -571,7 +575,7 @@ impl Reader<'_> {
         use std::f64::consts::FRAC_PI_2 as Q;
         let corners = [(x + w - rx, y + ry, -Q), (x + w - rx, y + h - ry, 0.0), (x + rx, y + h - ry, Q), (x + rx, y + ry, 2.0 * Q)];
         for (k, &(cx, cy, start)) in corners.iter().enumerate() {
-            self.ellipse_arc(m, DVec2::new(cx, cy), DVec2::new(rx, ry), start, start + Q, layer)?;
+            self.ellipse(m, DVec2::new(cx, cy), DVec2::new(rx, ry), layer)?;
             let (nx, ny, _) = corners[(k + 1) % 4];
             let end = DVec2::new(cx, cy) + DVec2::new(rx * (start + Q).cos(), ry * (start + Q).sin());
             let next = DVec2::new(nx, ny) + DVec2::new(rx * (start + Q).cos(), ry * (start + Q).sin());
@@ -612,21 +616,13 @@ impl Reader<'_> {
                     at = to;
                 }
                 SimplePathSegment::CurveTo { x1, y1, x2, y2, x, y } => {
-                    let (p0, p1, p2, p3) = (at, DVec2::new(x1, y1), DVec2::new(x2, y2), DVec2::new(x, y));
-                    let f = |t: f64| {
-                        let u = 1.0 - t;
-                        m.transform_point2(p0 * (u * u * u) + p1 * (3.0 * u * u * t) + p2 * (3.0 * u * t * t) + p3 * (t * t * t))
-                    };
-                    self.curve(&f, 0.0, 1.0, 2, layer, &[p0, p1, p2, p3].map(|p| m.transform_point2(p)))?;
+                    let p3 = DVec2::new(x, y);
+                    self.curve(layer, &[at, DVec2::new(x1, y1), DVec2::new(x2, y2), p3].map(|p| m.transform_point2(p)))?;
                     at = p3;
                 }
                 SimplePathSegment::Quadratic { x1, y1, x, y } => {
-                    let (p0, p1, p2) = (at, DVec2::new(x1, y1), DVec2::new(x, y));
-                    let f = |t: f64| {
-                        let u = 1.0 - t;
-                        m.transform_point2(p0 * (u * u) + p1 * (2.0 * u * t) + p2 * (t * t))
-                    };
-                    self.curve(&f, 0.0, 1.0, 2, layer, &[p0, p1, p2].map(|p| m.transform_point2(p)))?;
+                    let p2 = DVec2::new(x, y);
+                    self.curve(layer, &[at, DVec2::new(x1, y1), p2].map(|p| m.transform_point2(p)))?;
                     at = p2;
                 }
                 SimplePathSegment::ClosePath => {
