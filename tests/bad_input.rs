@@ -112,6 +112,20 @@ fn warned(job: &Job, bytes: &[u8], name: &str, words: &str) {
     }
 }
 
+/// Each job of `cases` (JSON) is refused on the workpiece in `bytes` within the time allowed,
+/// its message saying the case's words.
+fn settings_refused(cases: &[(serde_json::Value, &str)], bytes: &[u8], name: &str) {
+    for (value, words) in cases {
+        let start = Instant::now();
+        let result = Job::from_value(value).and_then(|job| job::run(&job, Workpiece::read(bytes, Some(name), &job.tolerances)?, &mut Progress::none()));
+        assert!(start.elapsed() < Duration::from_secs_f64(SECONDS));
+        match result {
+            Err(e) => assert!(e.to_string().contains(words), "expected '{words}': {e}"),
+            Ok(_) => panic!("accepted a job that should be refused ('{words}')"),
+        }
+    }
+}
+
 /// A profile of a drawing with a φ3 flat end, its program simulated.
 fn drawing_job() -> Job {
     Job { operations: vec![job::Operation::Profile2d(swarf::operations::Profile2d::default())], ..Job::default() }
@@ -248,15 +262,7 @@ fn generated_absurd_settings_are_refused_naming_the_field() {
             "200 operations",
         ),
     ];
-    for (value, words) in cases {
-        let start = Instant::now();
-        let result = Job::from_value(&value).and_then(|job| job::run(&job, Workpiece::read(&stl, Some("part.stl"), &job.tolerances)?, &mut Progress::none()));
-        assert!(start.elapsed() < Duration::from_secs_f64(SECONDS));
-        match result {
-            Err(e) => assert!(e.to_string().contains(words), "expected '{words}': {e}"),
-            Ok(_) => panic!("accepted a job that should be refused ('{words}')"),
-        }
-    }
+    settings_refused(&cases, &stl, "part.stl");
     // A job that names a key twice.
     let text = serde_json::to_string(&base).unwrap();
     let doubled = text.replacen("\"operations\":", "\"operations\":[],\"operations\":", 1);
@@ -337,15 +343,7 @@ fn settings_a_control_cannot_run_are_refused_naming_the_field() {
             "tools[0].plungeRate of 1 mm/min is written F0 with the post's 1 decimals (in/min)",
         ),
     ];
-    for (value, words) in cases {
-        let start = Instant::now();
-        let result = Job::from_value(&value).and_then(|job| job::run(&job, Workpiece::read(&square, Some("square.dxf"), &job.tolerances)?, &mut Progress::none()));
-        assert!(start.elapsed() < Duration::from_secs_f64(SECONDS));
-        match result {
-            Err(e) => assert!(e.to_string().contains(words), "expected '{words}': {e}"),
-            Ok(_) => panic!("accepted a job that should be refused ('{words}')"),
-        }
-    }
+    settings_refused(&cases, &square, "square.dxf");
     // Tabs as tall as the sheet less a hair: cut, the tabs standing.
     let ok = Job::from_value(&profile(&|v| v["operations"][0]["tabs"]["height"] = 5.9.into())).unwrap();
     assert!(answer(&ok, &square, "square.dxf").is_ok());

@@ -19,6 +19,13 @@ fn temp(name: &str) -> std::path::PathBuf {
     dir
 }
 
+/// A folder of its own holding `swarf demo`'s sample part, job and program.
+fn demo(name: &str) -> std::path::PathBuf {
+    let dir = temp(name);
+    assert!(swarf(&["demo", "-o", dir.to_str().unwrap()]).status.success());
+    dir
+}
+
 #[test]
 fn demo_then_run_then_zmap() {
     let dir = temp("demo");
@@ -94,8 +101,7 @@ fn bad_input_gives_a_message_and_a_failure_code() {
 
 #[test]
 fn verify_reads_a_program_and_reports_its_faults() {
-    let dir = temp("verify");
-    assert!(swarf(&["demo", "-o", dir.to_str().unwrap()]).status.success());
+    let dir = demo("verify");
     let (job, part, program) = (dir.join("demo.json"), dir.join("demo.stl"), dir.join("demo.ngc"));
     let arg = |p: &std::path::Path| p.to_str().unwrap().to_owned();
     let ok = swarf(&["verify", &arg(&job), &arg(&part), &arg(&program), "--cell", "0.3"]);
@@ -124,8 +130,7 @@ fn verify_reads_a_program_and_reports_its_faults() {
 /// the case this test used before, is now refused as the settings are checked, issue 55.)
 #[test]
 fn a_program_with_problems_is_written_only_when_asked() {
-    let dir = temp("unsafe");
-    assert!(swarf(&["demo", "-o", dir.to_str().unwrap()]).status.success());
+    let dir = demo("unsafe");
     let text = std::fs::read_to_string(dir.join("demo.json")).unwrap();
     let mut job: serde_json::Value = serde_json::from_str(&text).unwrap();
     job["tools"][1]["fluteLength"] = serde_json::json!(20.0);
@@ -168,8 +173,7 @@ fn a_program_with_problems_is_written_only_when_asked() {
 /// however the path is spelt, and nothing is written.
 #[test]
 fn an_output_that_is_an_input_is_refused() {
-    let dir = temp("overwrite");
-    assert!(swarf(&["demo", "-o", dir.to_str().unwrap()]).status.success());
+    let dir = demo("overwrite");
     let arg = |p: &std::path::Path| p.to_str().unwrap().to_owned();
     let (job, part) = (dir.join("demo.json"), dir.join("demo.stl"));
     let before = (std::fs::read(&job).unwrap(), std::fs::read(&part).unwrap());
@@ -301,8 +305,7 @@ fn a_project_file_holds_the_job_and_the_part_and_runs_as_they_do() {
 
 #[test]
 fn stage_times_add_up_to_the_compute_time() {
-    let dir = temp("stages");
-    assert!(swarf(&["demo", "-o", dir.to_str().unwrap()]).status.success());
+    let dir = demo("stages");
     let ngc = dir.join("timed.ngc");
     let out = swarf(&["run", dir.join("demo.json").to_str().unwrap(), dir.join("demo.stl").to_str().unwrap(), "-o", ngc.to_str().unwrap(), "-q", "--stage-times"]);
     let said = String::from_utf8_lossy(&out.stderr);
@@ -334,8 +337,7 @@ fn stage_times_add_up_to_the_compute_time() {
 /// settings (it used to be found by the simulation after the plan: "bury the tool").
 #[test]
 fn a_stepdown_deeper_than_the_flutes_is_refused_before_any_work() {
-    let dir = temp("deep");
-    assert!(swarf(&["demo", "-o", dir.to_str().unwrap()]).status.success());
+    let dir = demo("deep");
     let arg = |p: &std::path::Path| p.to_str().unwrap().to_owned();
     let (job, part) = (dir.join("demo.json"), dir.join("demo.stl"));
     // A step-down deeper than the flutes is refused before any work, naming both settings.

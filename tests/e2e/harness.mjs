@@ -113,6 +113,16 @@ export async function onlyRaster(page) {
   await page.fill('input[name=slopeMax]', '');
 }
 
+// The operations tab, the job's operations cleared and one of `kind` added and selected, with
+// the tool numbered `tool` where one is given.
+export async function soleOperation(page, kind, tool = null) {
+  await tab(page, 'ops');
+  await page.evaluate(() => { window.swarf.jobs[window.swarf.kind].operations = []; });
+  await page.selectOption('#op-kind', kind);
+  await page.click('#op-add');
+  if (tool != null) await page.selectOption('select[name=opTool]', String(tool));
+}
+
 // Adds a tool to the library in the tool form (the tools tab open): its shape, diameter and
 // flute length; returns its number.
 export async function addTool(page, shape, diameter, flutes) {

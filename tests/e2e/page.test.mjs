@@ -9,7 +9,7 @@ import path from 'node:path';
 import { execFileSync } from 'node:child_process';
 import { pathToFileURL } from 'node:url';
 import { dieStl } from '../../scripts/die-stl.mjs';
-import { root, shots, offsite, PATIENCE, browser, base, waitForGenerated, generated, tab, frame, grblcheck, openPage, onlyRaster, toolTable, addTool, pixelCounts, toolPixels, pathPixels, boxStl, boxGltf, plateStl, studStl } from './harness.mjs';
+import { root, shots, offsite, PATIENCE, browser, base, waitForGenerated, generated, tab, frame, grblcheck, openPage, onlyRaster, toolTable, addTool, pixelCounts, toolPixels, pathPixels, boxStl, boxGltf, plateStl, studStl, soleOperation } from './harness.mjs';
 
 test('sample part → generate → path on the canvas → G-code that rs274 accepts', async () => {
   const { page, context, errors } = await openPage();
@@ -940,11 +940,7 @@ test('holes in the page: a plate\'s circles spotted and pecked with a spot drill
   await page.fill('input[name=fluteLength]', '30');
   const drill = Number(await page.inputValue('input[name=toolNumber]'));
   // Spot, then peck, in place of the drawing's default operations.
-  await tab(page, 'ops');
-  await page.evaluate(() => { window.swarf.jobs.drawing.operations = []; });
-  await page.selectOption('#op-kind', 'drill');
-  await page.click('#op-add');
-  await page.selectOption('select[name=opTool]', String(spot));
+  await soleOperation(page, 'drill', spot);
   await page.selectOption('select[name=drillCycle]', 'spot');
   await page.selectOption('#op-kind', 'drill');
   await page.click('#op-add');
@@ -1059,11 +1055,7 @@ test('holes in a 3D part: found in its triangles, roughed over, pecked and threa
   await page.waitForFunction(() => /plate\.stl/.test(document.body.textContent) && !document.getElementById('generate').disabled);
   await tab(page, 'tools');
   const flat = await addTool(page, 'flat', 6, 20), drill = await addTool(page, 'drill', 5, 30), threads = await addTool(page, 'threadMill', 4, 15);
-  await tab(page, 'ops');
-  await page.evaluate(() => { window.swarf.jobs.part.operations = []; });
-  await page.selectOption('#op-kind', 'roughZlevel');
-  await page.click('#op-add');
-  await page.selectOption('select[name=opTool]', String(flat));
+  await soleOperation(page, 'roughZlevel', flat);
   await page.selectOption('#op-kind', 'drill');
   await page.click('#op-add');
   await page.selectOption('select[name=opTool]', String(drill));
@@ -1112,11 +1104,7 @@ test('an external thread in the page: the part\'s stud found as a boss, listed, 
   await page.waitForFunction(() => /stud\.stl/.test(document.body.textContent) && !document.getElementById('generate').disabled);
   await tab(page, 'tools');
   const flat = await addTool(page, 'flat', 6, 25), threads = await addTool(page, 'threadMill', 6, 15);
-  await tab(page, 'ops');
-  await page.evaluate(() => { window.swarf.jobs.part.operations = []; });
-  await page.selectOption('#op-kind', 'roughZlevel');
-  await page.click('#op-add');
-  await page.selectOption('select[name=opTool]', String(flat));
+  await soleOperation(page, 'roughZlevel', flat);
   await page.fill('input[name=roughAllowance]', '0');
   await page.dispatchEvent('input[name=roughAllowance]', 'change');
   await page.fill('input[name=roughLeave]', '0');
@@ -1169,11 +1157,7 @@ test('a part\'s top edges in the page: found, listed sharp or not, the stud\'s r
   await page.waitForFunction(() => /stud\.stl/.test(document.body.textContent) && !document.getElementById('generate').disabled);
   await tab(page, 'tools');
   const flat = await addTool(page, 'flat', 6, 25), vbit = await addTool(page, 'vBit', 12, 10);
-  await tab(page, 'ops');
-  await page.evaluate(() => { window.swarf.jobs.part.operations = []; });
-  await page.selectOption('#op-kind', 'roughZlevel');
-  await page.click('#op-add');
-  await page.selectOption('select[name=opTool]', String(flat));
+  await soleOperation(page, 'roughZlevel', flat);
   for (const field of ['roughAllowance', 'roughLeave']) {
     await page.fill(`input[name=${field}]`, '0');
     await page.dispatchEvent(`input[name=${field}]`, 'change');
@@ -1234,11 +1218,7 @@ test('facing a region of a drawing: a loop clicked in the view, faced to the dep
   await page.waitForFunction(() => document.body.dataset.kind === 'drawing' && /sheet\.svg/.test(document.body.textContent) && !document.getElementById('generate').disabled);
   await tab(page, 'tools');
   const flat = await addTool(page, 'flat', 10, 20);
-  await tab(page, 'ops');
-  await page.evaluate(() => { window.swarf.jobs.drawing.operations = []; });
-  await page.selectOption('#op-kind', 'face');
-  await page.click('#op-add');
-  await page.selectOption('select[name=opTool]', String(flat));
+  await soleOperation(page, 'face', flat);
   await page.fill('input[name=faceDepth]', '0.5');
   await page.dispatchEvent('input[name=faceDepth]', 'change');
   assert.ok(await page.isVisible('input[name=faceLoops]'), 'a drawing\'s facing takes a region');
@@ -1300,11 +1280,7 @@ test('V-carving in the page: letters carved along their middle with a V-bit, fla
   await page.selectOption('select[name=shape]', 'flat');
   await page.fill('input[name=diameter]', '2');
   const flat = Number(await page.inputValue('input[name=toolNumber]'));
-  await tab(page, 'ops');
-  await page.evaluate(() => { window.swarf.jobs.drawing.operations = []; });
-  await page.selectOption('#op-kind', 'vcarve');
-  await page.click('#op-add');
-  await page.selectOption('select[name=opTool]', String(vbit));
+  await soleOperation(page, 'vcarve', vbit);
   assert.equal(await page.isVisible('input[name=vMaxDepth]'), true, 'the flat depth is asked for');
   assert.equal(await page.isVisible('select[name=side]'), false, 'a profile\'s side is not');
   await page.fill('input[name=vMaxDepth]', '3');

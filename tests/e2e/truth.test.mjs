@@ -5,7 +5,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
-import { PATIENCE, tab, frame, openPage, addTool, plateStl, waitForGenerated, onlyRaster } from './harness.mjs';
+import { PATIENCE, tab, frame, openPage, addTool, plateStl, waitForGenerated, onlyRaster, soleOperation } from './harness.mjs';
 
 // Boxes ([min, max] each) as one binary STL, 12 triangles a box.
 function boxesStl(boxes) {
@@ -224,10 +224,7 @@ test('"Spot, drill and chamfer them" plans as a machinist: holes grouped by size
   await tab(page, 'tools');
   const drill = await addTool(page, 'drill', 6.35, 30);
   const spot = await addTool(page, 'spotDrill', 10, 20);
-  await tab(page, 'ops');
-  await page.evaluate(() => { window.swarf.jobs.part.operations = []; });
-  await page.selectOption('#op-kind', 'drill');
-  await page.click('#op-add');
+  await soleOperation(page, 'drill');
   await page.click('#find-holes');
   await page.waitForFunction(() => document.querySelectorAll('#hole-list li').length === 4);
   await page.click('#hole-preset');
@@ -266,11 +263,7 @@ test('once the holes are found, a peck deeper than the hole and a hole deeper th
   await page.waitForFunction(() => /plate\.stl/.test(document.body.textContent) && !document.getElementById('generate').disabled);
   await tab(page, 'tools');
   const drill = await addTool(page, 'drill', 6.35, 30);
-  await tab(page, 'ops');
-  await page.evaluate(() => { window.swarf.jobs.part.operations = []; });
-  await page.selectOption('#op-kind', 'drill');
-  await page.click('#op-add');
-  await page.selectOption('select[name=opTool]', String(drill));
+  await soleOperation(page, 'drill', drill);
   await page.selectOption('select[name=drillCycle]', 'peck');
   await page.fill('input[name=peck]', '20');
   // Before the holes are known nothing can be said; once found, the peck is marked.
