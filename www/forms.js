@@ -3,7 +3,7 @@
 // checks (`checkJob`) find the setting wrong. Messages come in three styles: an error (red), a
 // warning (amber) and a note.
 import { $, state, job, getKey, buildJob } from './state.js';
-import { unitOf, fromPage, fieldText } from './units.js';
+import { unitOf, fromPage, fieldText, words } from './units.js';
 
 export function labelOf(el) {
   const label = el.closest('label');
@@ -65,7 +65,7 @@ export function fillFields(container, obj) {
 export function message(text, level = 'note') {
   const m = $('message');
   m.className = text ? level : '';
-  m.textContent = text;
+  m.textContent = words(text);
 }
 
 // A file or job taken in has had its answer (read, or refused with the message): counted on
@@ -82,7 +82,7 @@ export function fieldError(el, text) {
   let note = label?.nextElementSibling?.classList.contains('field-error') ? label.nextElementSibling : null;
   if (!text) { note?.remove(); return; }
   if (!note) { note = document.createElement('span'); note.className = 'field-error'; label?.after(note); }
-  note.textContent = text;
+  note.textContent = words(text);
 }
 
 // Where a problem's path (`operations[2].stepdown`, `tools[0].diameter`, `stock.marginXy`) is

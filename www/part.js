@@ -58,7 +58,7 @@ function partNotes(warnings) {
   $('part-notes').replaceChildren(...warnings.map((w) => {
     const div = document.createElement('div');
     div.className = w.level === 'note' ? 'note' : 'warning';
-    div.textContent = w.message;
+    div.textContent = units.words(w.message);
     return div;
   }));
 }

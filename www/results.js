@@ -137,8 +137,8 @@ function showWarnings(s) {
   const el = $('warnings');
   el.replaceChildren();
   const line = (text, cls) => { const d = document.createElement('div'); d.className = cls; d.textContent = text; el.append(d); };
-  if (s.problem) line(`Not safe to run: ${s.problem}`, 'error');
-  for (const w of s.warnings) line(w.operation ? `${w.operation}: ${w.message}` : w.message, w.level === 'note' ? 'note' : 'warning');
+  if (s.problem) line(`Not safe to run: ${units.words(s.problem)}`, 'error');
+  for (const w of s.warnings) line(units.words(w.operation ? `${w.operation}: ${w.message}` : w.message), w.level === 'note' ? 'note' : 'warning');
   const amber = s.warnings.filter((w) => w.level !== 'note').length;
   const count = $('warning-count');
   count.textContent = s.problem ? '!' : amber ? String(amber) : '';

@@ -177,7 +177,7 @@ export function showSimulation(data, summary = null) {
   const total = data.times[data.times.length - 1];
   $('scrub').max = total;
   const r = data.report;
-  $('sim-report').textContent = r.text.trim();
+  $('sim-report').textContent = units.words(r.text.trim());
   $('sim-report').className = r.gougeCount + r.rapidCollisionCount + r.bodyCollisionCount > 0 ? 'result problem' : 'result';
   // A V-carve is judged by its depths: coloured so from the start (the box turns it off).
   const carved = job().operations.some((o) => o.kind === 'vcarve' && o.enabled !== false);

@@ -18,7 +18,6 @@ export function setPageUnits(u) {
   unit = u === 'inch' ? 'inch' : 'mm';
   try { localStorage.setItem(KEY, unit); } catch { /* private mode: for this visit */ }
   document.body.dataset.units = unit;
-relabel();
   relabel();
 }
 
@@ -58,6 +57,25 @@ export const area = (mm2) => (inInches() ? `${(mm2 / INCH ** 2).toLocaleString(u
 export const volume = (mm3) => (inInches() ? `${(mm3 / INCH ** 3).toLocaleString(undefined, { maximumFractionDigits: 2 })} in³` : `${Math.round(mm3).toLocaleString()} mm³`);
 // One length of the page's units in mm (the view's grid steps in powers of ten of it).
 export const unitLength = () => (inInches() ? INCH : 1);
+
+// The engine's words in the page's units: its messages say mm ("a step-over of 0.00254 mm",
+// "φ6.4 drill in φ6.35 holes: 0.025 mm oversize", "12.0 × 8.0 mm"); in inches each figure
+// with its unit (and a φ's) is said in inches, the rest of the sentence as the engine put it.
+export const words = (text) => (inInches() && text ? wordsIn(text) : text);
+
+const NUMBER = String.raw`-?(?:\d{1,3}(?:,\d{3})+|\d+)(?:\.\d+)?(?:e[-+]?\d+)?`;
+const SPAN = new RegExp(String.raw`((?:${NUMBER}\s*(?:×|x|to|and|–)\s*)*${NUMBER})\s?(mm\/min|mm³|mm²|mm)(?![\w/²³])`, 'g');
+const DIAMETER = new RegExp(String.raw`φ(${NUMBER})(?!\s?(?:mm|in)\b|[\d.])`, 'g');
+const inchFigure = (v) => (Math.abs(v) >= 1000 ? Math.round(v).toLocaleString('en') : String(Number(v.toPrecision(4))));
+
+// `text` with its millimetre figures in inches (exported for the tests).
+export function wordsIn(text) {
+  const power = { 'mm/min': 1, mm: 1, 'mm²': 2, 'mm³': 3 };
+  const named = { 'mm/min': 'in/min', mm: 'in', 'mm²': 'in²', 'mm³': 'in³' };
+  return text
+    .replace(SPAN, (_, figures, u) => `${figures.replace(new RegExp(NUMBER, 'g'), (n) => inchFigure(Number(n.replace(/,/g, '')) / INCH ** power[u]))} ${named[u]}`)
+    .replace(DIAMETER, (_, n) => `φ${inchFigure(Number(n.replace(/,/g, '')) / INCH)} in`);
+}
 
 // What a field holds, by its label: 'length', 'feed', or null (a count, an angle, a ratio).
 export function unitOf(el) {

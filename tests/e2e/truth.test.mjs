@@ -418,6 +418,14 @@ test('the page in inches: the fields, the read-outs and the view\'s grid say inc
   await tab(page, 'ops');
   await page.click('#op-list li:nth-child(1) .op-name');
   assert.equal(await page.inputValue('input[name=stepover]'), '0.06');
+  // The engine's words in inches too: a step-over too fine for the part is refused in inches.
+  await page.fill('input[name=stepover]', '0.0001');
+  await page.click('#generate');
+  assert.equal(await waitForGenerated(page), 'failed');
+  const said = await page.textContent('#message');
+  assert.match(said, /step-over of 0\.0001 in .*over \d+(\.\d+)? in/, said);
+  assert.doesNotMatch(said, /\bmm\b/, said);
+  await page.fill('input[name=stepover]', '0.06');
   // Back to mm: every figure in mm again, the program with it.
   await page.selectOption('#page-units', 'mm');
   assert.equal(await page.inputValue('input[name=stepover]'), '1.524');
