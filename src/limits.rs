@@ -47,6 +47,11 @@ pub const MAX_LEVELS: f64 = 2000.0;
 /// The most passes (raster lines, rings) one operation may cut at a level.
 pub const MAX_PASSES: f64 = 20000.0;
 
+/// The most turns one helix may make (a helical entry, a bore, a thread): a bore of 50 mm at
+/// a 0.025 mm pitch. More is a pitch or helix radius in the wrong unit (1e-9), whose moves
+/// would not fit in memory.
+pub const MAX_TURNS: f64 = 2000.0;
+
 /// The most nodes of a CL z-map (or cells of a simulation): 50 million f64 heights are 400 MB,
 /// what a browser tab can hold beside the rest of the job.
 pub const MAX_NODES: usize = 50_000_000;

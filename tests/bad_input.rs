@@ -307,6 +307,40 @@ fn the_duck_at_its_glb_size_is_refused_before_the_work_starts() {
     }
 }
 
+/// Issue 56: options whose work had no bound (each once aborted on memory at 3.6–5.4 GB) are
+/// refused before the work, in a moment, naming the setting: a helical entry of radius 1e-9
+/// (z-level roughing, a pocket), a bore's pitch of 1e-9 or 0.001 (7,500 turns: 37 s and a 31-hour
+/// program) and its step-over of 1e-9, a thread's pitch of 1e-9.
+#[test]
+fn options_whose_work_has_no_bound_are_refused_before_it() {
+    let stl = swarf::mesh::sample::demo_part().to_binary_stl();
+    let part = |f: &dyn Fn(&mut serde_json::Value)| {
+        let mut v = serde_json::to_value(Job { simulation: job::Simulation { verify: false, cell: None }, ..Job::default() }).unwrap();
+        f(&mut v);
+        v
+    };
+    let zlevel = part(&|v| v["operations"] = serde_json::json!([{ "kind": "roughZlevel", "name": "r", "tool": 1, "helixRadius": 1e-9 }]));
+    settings_refused(&[(zlevel, "a helix radius of 1e-9 mm makes")], &stl, "part.stl");
+    let square = dxf("", "0\nEOF\n");
+    let sheet = |op: serde_json::Value| {
+        let mut v = serde_json::to_value(drawing_job()).unwrap();
+        v["operations"] = serde_json::json!([op]);
+        v["tools"] = serde_json::json!([
+            { "number": 1, "shape": "flat", "diameter": 3.0, "fluteLength": 20.0 },
+            { "number": 2, "shape": "threadMill", "diameter": 10.0, "fluteLength": 20.0 }
+        ]);
+        v
+    };
+    let cases: Vec<(serde_json::Value, &str)> = vec![
+        (sheet(serde_json::json!({ "kind": "pocket2d", "name": "p", "tool": 1, "depth": 2.0, "helixRadius": 1e-9 })), "a helix radius of 1e-9 mm makes"),
+        (sheet(serde_json::json!({ "kind": "bore", "name": "b", "tool": 1, "pitch": 1e-9 })), "a pitch of 1e-9 mm makes"),
+        (sheet(serde_json::json!({ "kind": "bore", "name": "b", "tool": 1, "pitch": 0.001 })), "turns over"),
+        (sheet(serde_json::json!({ "kind": "bore", "name": "b", "tool": 1, "stepoverFraction": 1e-9 })), "rings over"),
+        (sheet(serde_json::json!({ "kind": "threadMill", "name": "t", "tool": 2, "majorDiameter": 16.0, "pitch": 1e-9 })), "a pitch of 1e-9 mm makes"),
+    ];
+    settings_refused(&cases, &square, "square.dxf");
+}
+
 /// Issue 56: settings that pass their own range but write a program no control runs, or run
 /// away, are refused naming the field, at once: tabs past any sheet (a height of 1e300 once
 /// panicked in the removal rates), closer than their own width, more than a part is held by, or

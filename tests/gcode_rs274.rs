@@ -251,6 +251,51 @@ fn arcs_shorter_than_the_resolution_go_out_as_lines() {
     assert!(canon.iter().all(|(k, _)| !matches!(k, Kind::Arc { .. })));
 }
 
+/// An arc whose centre lies farther than the post's largest radius (a curve bowing 1e-4 mm over
+/// 40 mm: its centre 2 km away) is written as lines: GRBL computes arcs in float32, which puts
+/// such a centre a quarter of a millimetre off. GRBL's posts write arcs up to 2 m, the others up
+/// to 100 m; the lines keep within the chord error, and each control reads the program.
+#[test]
+fn arcs_larger_than_the_post_takes_go_out_as_lines() {
+    let tools = vec![Tool { number: 1, cutter: Cutter::flat(3.0), ..Tool::default() }];
+    let bowed = |radius: f64| {
+        // From (−20, 0) to (20, 0) on a circle of `radius` below them, bowing up.
+        let centre = DVec2::new(0.0, -(radius * radius - 400.0).sqrt());
+        vec![
+            Move::Line { to: DVec3::new(-20.0, 0.0, -1.0), feed: 300.0 },
+            Move::Arc { to: DVec3::new(20.0, 0.0, -1.0), center: centre, clockwise: true, feed: 800.0 },
+            Move::Line { to: DVec3::new(20.0, 5.0, -1.0), feed: 300.0 },
+        ]
+    };
+    for (dialect, radius, as_arc) in
+        [(Dialect::Grbl, 2_000_000.0, false), (Dialect::Grbl, 5_000.0, false), (Dialect::Grbl, 500.0, true), (Dialect::LinuxCnc, 2_000_000.0, false), (Dialect::LinuxCnc, 5_000.0, true)]
+    {
+        let path = Toolpath { name: "bowed".into(), tool: 1, spindle_rpm: 10000.0, start: DVec3::new(-20.0, 0.0, 5.0), moves: bowed(radius), cycles: Vec::new() };
+        let settings = PostSettings { dialect, ..PostSettings::default() };
+        let gcode = write_gcode("bowed", std::slice::from_ref(&path), &tools, 5.0, &settings).unwrap();
+        let arcs = gcode.lines().filter(|l| l.starts_with("G2 ") || l.starts_with("G3 ")).count();
+        assert_eq!(arcs > 0, as_arc, "{dialect:?} r {radius}: {gcode}");
+        // Every point the control passes lies within the chord error of the arc.
+        let Move::Arc { center, .. } = bowed(radius)[1] else { unreachable!() };
+        let (mut x, mut y) = (f64::NAN, f64::NAN);
+        for l in gcode.lines().filter(|l| !l.starts_with('(')) {
+            let word = |w: char| l.split_whitespace().find_map(|t| t.strip_prefix(w)).and_then(|v| v.parse::<f64>().ok());
+            let moved = word('X').is_some() || word('Y').is_some();
+            (x, y) = (word('X').unwrap_or(x), word('Y').unwrap_or(y));
+            if moved && x.abs() < 20.0 && y > 0.0 {
+                assert!(((DVec2::new(x, y) - center).length() - radius).abs() < 0.002, "{dialect:?} r {radius}: {l}");
+            }
+        }
+        if dialect == Dialect::Grbl {
+            if let Some(read) = common::grblcheck(&gcode) {
+                read.unwrap_or_else(|e| panic!("r {radius}: {e}\n{gcode}"));
+            }
+        } else {
+            interpret(&gcode, &tools);
+        }
+    }
+}
+
 /// A level arc between two lines at a height the program's resolution does not hold is written
 /// at the same Z as the lines (rounded up, like every feed's Z): not a helix a hair thin, and
 /// never below the path.

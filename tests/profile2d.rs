@@ -514,3 +514,55 @@ fn a_zigzag_pocket_holds_its_load() {
     // Held, the pocket takes longer at the tool's feed than the plain one (which overloads).
     assert!(seconds[1] > seconds[0] && seconds[2] > seconds[0], "{seconds:?}");
 }
+
+/// A plate 80 × 60 whose φ20 hole at (40, 30) is drawn as `n` lines, and whose top-right
+/// corner is rounded (r 10) by `fillet` lines: an SVG as an exporter flattening curves writes it.
+fn finely_drawn_plate(n: usize, fillet: usize) -> String {
+    let hole: Vec<String> = (0..n)
+        .map(|k| {
+            let t = std::f64::consts::TAU * k as f64 / n as f64;
+            format!("{:.9},{:.9}", 40.0 + 10.0 * t.cos(), 30.0 + 10.0 * t.sin())
+        })
+        .collect();
+    let mut outline = vec!["0,0".to_string(), "80,0".to_string()];
+    outline.extend((0..=fillet).map(|k| {
+        let t = std::f64::consts::FRAC_PI_2 * k as f64 / fillet as f64;
+        format!("{:.9},{:.9}", 70.0 + 10.0 * t.cos(), 50.0 + 10.0 * t.sin())
+    }));
+    outline.push("0,60".into());
+    format!(r#"<svg xmlns="http://www.w3.org/2000/svg" width="80mm" height="60mm" viewBox="0 0 80 60"><polygon points="{}"/><polygon points="{}"/></svg>"#, outline.join(" "), hole.join(" "))
+}
+
+#[test]
+fn a_curve_drawn_finely_divided_is_the_curve() {
+    let tol = Tolerances::default();
+    let area = 80.0 * 60.0 - (100.0 - 25.0 * PI) - 100.0 * PI;
+    for (n, fillet) in [(100_000, 2_000), (5_000, 500), (64, 2)] {
+        let started = std::time::Instant::now();
+        let d = read_drawing(finely_drawn_plate(n, fillet).as_bytes(), Some("plate.svg"), &tol).unwrap();
+        let read_in = started.elapsed().as_secs_f64();
+        assert!(d.open.is_empty(), "{n}: open {:?}", d.open.iter().map(|o| (o.start, o.end, o.segments)).collect::<Vec<_>>());
+        assert_eq!(d.loops.len(), 2, "{n}: {:?} (ignored {:?})", d.loops.iter().map(|l| l.path.area()).collect::<Vec<_>>(), d.ignored);
+        let shape = Shape::new(d.loops.iter().map(|l| l.path.clone()).collect());
+        // The chords' sagitta: the polygon's own area, less than the circle's.
+        let sag = |k: usize, r: f64, turn: f64| r * r * 0.5 * (turn - k as f64 * (turn / k as f64).sin());
+        let expected = area + sag(n, 10.0, std::f64::consts::TAU) - sag(fillet, 10.0, std::f64::consts::FRAC_PI_2);
+        assert!((shape.area() - expected).abs() < 2e-3 * 100.0, "{n}: area {} vs {expected}", shape.area());
+        let pieces: usize = d.loops.iter().map(|l| l.path.len()).sum();
+        if n >= 5_000 {
+            // Fitted: a handful of arcs, not thousands of lines.
+            assert!(pieces < 40, "{n}: {pieces} pieces");
+            assert!(read_in < 2.0, "{n}: read in {read_in:.2} s");
+        }
+        // A φ3 tool profiles the plate and its hole, never closer to it than its radius.
+        let profile = Profile2d::default();
+        let out = job::run(&job_with(vec![Operation::Profile2d(profile)], 3.0), d, &mut Progress::none()).unwrap_or_else(|e| panic!("{n}: {e}"));
+        let placed = out.drawing.as_ref().unwrap();
+        let placed = Shape::new(placed.loops.iter().map(|l| l.path.clone()).collect());
+        let approach = closest_approach(&out, &placed);
+        assert!(approach >= 1.5 - 2.0 * tol.arc_fit, "{n}: a cutting move came {approach} from the drawing");
+        // The hole is cut: some cutting move lies within 8.5 mm of its centre.
+        let centre = placed.bounds().min + DVec2::new(40.0, 30.0);
+        assert!(out.paths.iter().flat_map(|p| &p.moves).any(|m| !m.is_rapid() && (m.to().truncate() - centre).length() < 8.6), "{n}: the hole is not cut");
+    }
+}

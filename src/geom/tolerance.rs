@@ -16,6 +16,12 @@ pub const HAIR: f64 = 1e-6;
 /// positive; this keeps the arithmetic finite all the same).
 pub const LEAST_STEP: f64 = 1e-3;
 
+/// A line of a drawn chain shorter than this (mm) may be a piece of a curve drawn finely
+/// divided (an exporter's flattening, a hole as thousands of segments): runs of three or more
+/// are fitted with the arcs they trace, within the arc-fit tolerance (`drawing::chain::tidy`).
+/// Longer lines are the drawing's own and stay as drawn.
+pub const FINE_PIECE: f64 = 0.5;
+
 use serde::{Deserialize, Serialize};
 
 /// Distances in millimetres.

@@ -171,6 +171,7 @@ impl LevelRoughing {
             ramp_angle: self.roughing.ramp_angle.clamp(0.1, 89.0).to_radians(),
             helix_r: self.helix_radius.unwrap_or(0.4 * 2.0 * r).min(0.95 * r),
         };
+        clearing.check_helix(&self.name, self.steps.stepdown)?;
         let clearance = ctx.heights.clearance;
         let ctx = &*ctx;
         let mut run = Run {

@@ -36,7 +36,7 @@ pub fn too_many(op: &str, what: &str, count: f64, most: f64, field: &str, value:
     if count <= most {
         return Ok(());
     }
-    Err(crate::error::Error::operation(op, format!("{field} {value} mm makes {count:.0} {what} over {span:.1} mm (at most {most:.0}): check the setting and the part's units")))
+    Err(crate::error::Error::operation(op, format!("{field} {} mm makes {count:.0} {what} over {span:.1} mm (at most {most:.0}): check the setting and the part's units", crate::limits::shown(value))))
 }
 
 use crate::error::Result;

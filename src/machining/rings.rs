@@ -113,6 +113,16 @@ pub struct Clearing {
 }
 
 impl Clearing {
+    /// Refuses a helical entry that would turn more than [`crate::limits::MAX_TURNS`] times to
+    /// descend `descent` (mm; a level's step-down), naming the operation `op` and the radius.
+    pub fn check_helix(&self, op: &str, descent: f64) -> crate::error::Result<()> {
+        if self.entry != EntryKind::Helix {
+            return Ok(());
+        }
+        let per_turn = std::f64::consts::TAU * self.helix_r * self.ramp_angle.tan();
+        super::too_many(op, "helix turns", descent / per_turn, crate::limits::MAX_TURNS, "a helix radius of", self.helix_r, descent)
+    }
+
     /// As a pocket clears by default, with a tool of radius `r`: climb, entered on a helix
     /// (0.8 r) or a 3° ramp, zigzag passes along X with the load held by the path.
     pub fn plain(step: f64, r: f64, pattern: PocketPattern) -> Clearing {

@@ -147,6 +147,8 @@ impl Operate for Bore {
                 return Err(Error::operation(&self.name, message));
             }
             let start = entry_height(ctx, h, &profile, self.retract);
+            crate::machining::too_many(&self.name, "turns", (start - bottom) / self.pitch, crate::limits::MAX_TURNS, "a pitch of", self.pitch, start - bottom)?;
+            crate::machining::too_many(&self.name, "rings", outer / step, crate::limits::MAX_PASSES, "a step-over of", step, outer)?;
             if start > clearance {
                 return Err(Error::operation(&self.name, format!("the helix would start ({start:.3}) above the clearance height ({clearance:.3}): raise stock.clearance")));
             }

@@ -131,6 +131,9 @@ impl Operate for Pocket2d {
         let region = sheet::pocket_region(&walls.shape, &picked, self.loops.is_empty());
         let mut cursor = sheet::cursor(ctx, &tool);
         let setup = RingSetup { tool_radius: tool.cutter.radius(), top: ctx.stock.max.z, feed: tool.feed_rate, cursor: &mut cursor, tol: &ctx.tolerances };
+        let r = tool.cutter.radius();
+        let entry = Clearing { entry: self.entry, ramp_angle: self.ramp_angle.clamp(0.1, 90.0).to_radians(), helix_r: self.helix_radius.unwrap_or(0.8 * r), ..Clearing::plain(r, r, self.pattern) };
+        entry.check_helix(&self.name, self.stepdown.min(self.depth))?;
         let moves = pocket_moves(&region, self, setup).map_err(|e| crate::error::Error::operation(&self.name, e))?;
         let cuts = vec![SheetCut { region, inside: true, depth: self.depth, leave: self.leave_stock }];
         if let Some(note) = open {

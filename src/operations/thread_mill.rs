@@ -188,6 +188,7 @@ impl ThreadMill {
         if length > tool.cutter.flute_length + 1e-9 {
             return Err(Error::operation(&self.name, format!("the thread is {length} mm long, longer than T{}'s neck ({} mm)", tool.number, tool.cutter.flute_length)));
         }
+        crate::machining::too_many(&self.name, "turns", length / pitch, crate::limits::MAX_TURNS, "a pitch of", pitch, length)?;
         let turns = ((h.top + pitch / 2.0 - low) / pitch).ceil().max(1.0);
         Ok((low, low + turns * pitch))
     }

@@ -114,6 +114,11 @@ pub struct Post {
     pub arc_quadrants: bool,
     /// Arcs may move Z (helices); without, a helix is written as chords.
     pub helix: bool,
+    /// The largest radius written as an arc (mm); a larger one (a curve bowing a hair over its
+    /// length) is written as chords within [`ARC_CHORD_ERROR`]. GRBL computes arcs in
+    /// float32, which holds a centre 2.7 km off to a quarter of a millimetre: its posts set 2 m.
+    /// Default value: 100,000 (100 m, for controls computing in double).
+    pub max_arc_radius: f64,
     /// Leave out a motion word or coordinate that has not changed.
     pub modal: bool,
     /// The control runs the drilling cycles G81, G82, G83 and G73 (with R, Q, P, G98/G99 and
@@ -153,6 +158,7 @@ impl Default for Post {
             arcs: ArcFormat::Ij,
             arc_quadrants: false,
             helix: true,
+            max_arc_radius: 100_000.0,
             modal: true,
             canned_cycles: false,
             max_line_length: None,
@@ -235,6 +241,9 @@ impl Post {
         }
         if self.spindle_dwell > 0.0 && self.dwell.is_none() {
             return Err("spindleDwell needs a dwell word (dwell)".into());
+        }
+        if !(self.max_arc_radius >= 1.0 && self.max_arc_radius <= crate::limits::MAX_SIZE * 100.0) {
+            return Err(format!("maxArcRadius must be 1 to {} mm (got {})", crate::limits::MAX_SIZE * 100.0, crate::limits::shown(self.max_arc_radius)));
         }
         if !(1..=6).contains(&self.decimals_mm) {
             return Err(format!("decimalsMm must be 1 to 6 (got {})", self.decimals_mm));

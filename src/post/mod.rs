@@ -652,7 +652,7 @@ impl<'a> Writer<'a> {
             (center + DVec2::from_angle(angle) * radius).extend(from.z + (to.z - from.z) * t)
         };
         let helix = to.z != from.z;
-        if self.post.arcs == ArcFormat::Off || (helix && !self.post.helix) {
+        if self.post.arcs == ArcFormat::Off || (helix && !self.post.helix) || radius > self.post.max_arc_radius {
             let step = crate::geom::segment::chord_step(radius, ARC_CHORD_ERROR).unwrap_or(std::f64::consts::PI);
             let n = ((sweep.abs() / step).ceil() as usize).max(1);
             for k in 1..n {

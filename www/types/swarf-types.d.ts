@@ -973,6 +973,13 @@ arcQuadrants: boolean,
  */
 helix: boolean, 
 /**
+ * The largest radius written as an arc (mm); a larger one (a curve bowing a hair over its
+ * length) is written as chords within [`ARC_CHORD_ERROR`]. GRBL computes arcs in
+ * float32, which holds a centre 2.7 km off to a quarter of a millimetre: its posts set 2 m.
+ * Default value: 100,000 (100 m, for controls computing in double).
+ */
+maxArcRadius: number, 
+/**
  * Leave out a motion word or coordinate that has not changed.
  */
 modal: boolean, 

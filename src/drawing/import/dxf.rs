@@ -1,8 +1,13 @@
 //! ASCII DXF: LINE, ARC, CIRCLE, LWPOLYLINE and POLYLINE (with bulges), ELLIPSE and SPLINE
 //! (as arcs within tolerance) from the ENTITIES section, with their layers, and POINTs as drill
 //! marks; `$INSUNITS` scales to millimetres. Text, dimensions, hatches and block references
-//! are counted and ignored. Entities drawn with a mirrored extrusion (210/220/230 = 0, 0, −1) are mirrored.
-//! The group-code reader is a few lines; the entity geometry is swarf's own.
+//! are counted and ignored. The entities DXF places in their own plane (ARC, CIRCLE, LWPOLYLINE,
+//! a 2D POLYLINE: their Object Coordinate System, set by the extrusion 210/220/230) are read as
+//! drawn when it faces +Z, mirrored when it faces −Z, and left out with a note when it stands
+//! out of the XY plane (a circle in YZ is not a hole in XY); LINE, POINT, SPLINE, a 3D POLYLINE
+//! and an ELLIPSE's axes are in world coordinates, projected onto XY. Files with a byte-order mark
+//! or any line ends (CR LF, LF, old Mac's CR) read alike. The group-code reader is a few lines;
+//! the entity geometry is swarf's own.
 
 use std::f64::consts::TAU;
 
@@ -40,11 +45,34 @@ impl Entity<'_> {
     fn layer(&self) -> &str {
         self.text(8).unwrap_or("0")
     }
-    /// Whether the entity's extrusion points down (its OCS is mirrored in x).
-    fn mirrored(&self) -> Result<bool, DrawingError> {
-        Ok(self.or(230, 1.0)? < 0.0)
+    /// Where the entity's own plane faces: its extrusion (210, 220, 230; +Z when absent).
+    fn facing(&self) -> Result<Facing, DrawingError> {
+        let n = [self.or(210, 0.0)?, self.or(220, 0.0)?, self.or(230, 1.0)?];
+        let length = n.iter().map(|v| v * v).sum::<f64>().sqrt();
+        if !(length > 0.0) {
+            return Ok(Facing::Up);
+        }
+        // Within a millionth of a radian of ±Z: the XY plane (a writer's rounding of 0, 0, 1).
+        Ok(match n[2] / length {
+            z if z >= 1.0 - 1e-12 => Facing::Up,
+            z if z <= -1.0 + 1e-12 => Facing::Down,
+            _ => Facing::Out([n[0] / length, n[1] / length, n[2] / length]),
+        })
     }
 }
+
+/// Where an entity's plane faces: up (as drawn), down (its OCS mirrored in x), or out of the XY
+/// plane (its normal).
+#[derive(Clone, Copy, PartialEq)]
+enum Facing {
+    Up,
+    Down,
+    Out([f64; 3]),
+}
+
+/// The largest start or end angle of an ARC (degrees), ten turns: writers give −90 or 450, none
+/// 1e300 (whose difference from its start is no angle at all).
+const MAX_ARC_ANGLE: f64 = 3600.0;
 
 fn parse(t: &str, line: usize) -> Result<f64, DrawingError> {
     let v: f64 = t.trim().parse().map_err(|_| DrawingError::Dxf { line, message: format!("'{}' is not a number", t.trim()) })?;
@@ -93,8 +121,13 @@ pub(crate) fn read_dxf(bytes: &[u8], tol: &Tolerances) -> Result<Pieces, Drawing
     if bytes.starts_with(b"AutoCAD Binary DXF") {
         return Err(DrawingError::BinaryDxf);
     }
+    // A byte-order mark is no part of the first group code; old Mac files end lines with CR.
+    let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
     let text = String::from_utf8_lossy(bytes);
-    let lines: Vec<&str> = text.lines().collect();
+    let mut lines: Vec<&str> = text.split('\n').flat_map(|l| l.strip_suffix('\r').unwrap_or(l).split('\r')).collect();
+    if lines.last() == Some(&"") {
+        lines.pop();
+    }
     if lines.len() < 2 {
         return Err(DrawingError::Dxf { line: 1, message: "too short to be a DXF file".into() });
     }
@@ -151,6 +184,22 @@ pub(crate) fn read_dxf(bytes: &[u8], tol: &Tolerances) -> Result<Pieces, Drawing
         let e = &entities[k];
         pieces.line = e.line;
         let mut out: Vec<Segment> = Vec::new();
+        // The entities drawn in their own plane: left out (and said) where it is not XY's.
+        let in_own_plane = matches!(e.kind, "ARC" | "CIRCLE" | "LWPOLYLINE" | "ELLIPSE") || (e.kind == "POLYLINE" && (e.or(70, 0.0)? as i64) & (8 | 16 | 64) == 0);
+        let facing = if in_own_plane { e.facing()? } else { Facing::Up };
+        if let Facing::Out(n) = facing {
+            pieces.ignore(&format!("{}s out of the XY plane (facing {:.3}, {:.3}, {:.3}) on layer {}", e.kind, n[0], n[1], n[2], e.layer()));
+            k += 1;
+            if e.kind == "POLYLINE" {
+                while k < entities.len() && matches!(entities[k].kind, "VERTEX" | "SEQEND") {
+                    k += 1;
+                }
+            }
+            continue;
+        }
+        // Mirrored where the OCS faces −Z (an ELLIPSE's axes are in world coordinates: its
+        // facing turns its sweep instead).
+        let mirrored = facing == Facing::Down && e.kind != "ELLIPSE";
         match e.kind {
             "LINE" => {
                 let a = DVec2::new(e.need(10)?, e.need(20)?);
@@ -163,7 +212,14 @@ pub(crate) fn read_dxf(bytes: &[u8], tol: &Tolerances) -> Result<Pieces, Drawing
                 let (start, sweep) = if e.kind == "CIRCLE" {
                     (0.0, TAU)
                 } else {
-                    let (a0, a1) = (e.need(50)?.to_radians(), e.need(51)?.to_radians());
+                    let (a0, a1) = (e.need(50)?, e.need(51)?);
+                    if a0.abs().max(a1.abs()) > MAX_ARC_ANGLE {
+                        return Err(DrawingError::Dxf {
+                            line: e.line,
+                            message: format!("an ARC whose start or end angle ({}°, {}°) is not an angle (degrees, within ±{MAX_ARC_ANGLE})", crate::limits::shown(a0), crate::limits::shown(a1)),
+                        });
+                    }
+                    let (a0, a1) = (a0.to_radians(), a1.to_radians());
                     let mut sweep = (a1 - a0).rem_euclid(TAU);
                     if sweep == 0.0 {
                         sweep = TAU;
@@ -219,7 +275,6 @@ pub(crate) fn read_dxf(bytes: &[u8], tol: &Tolerances) -> Result<Pieces, Drawing
                 } else {
                     polyline(&vertices, flags & 1 == 1, &mut out);
                 }
-                let mirrored = e.mirrored()?;
                 emit(&mut pieces, out, e.layer(), s, mirrored);
                 k = j;
                 continue;
@@ -250,7 +305,8 @@ pub(crate) fn read_dxf(bytes: &[u8], tol: &Tolerances) -> Result<Pieces, Drawing
                 if t1 <= t0 {
                     t1 += TAU;
                 }
-                let minor = major.perp() * ratio;
+                // The minor axis is the normal × the major: turned back where it faces −Z.
+                let minor = major.perp() * if facing == Facing::Down { -ratio } else { ratio };
                 let f = |t: f64| c + major * t.cos() + minor * t.sin();
                 let pieces_n = ((t1 - t0) / (TAU / 8.0)).ceil().max(1.0) as usize;
                 fit_arcs(&f, t0, t1, pieces_n, tol.arc_fit / s, &mut out);
@@ -260,13 +316,11 @@ pub(crate) fn read_dxf(bytes: &[u8], tol: &Tolerances) -> Result<Pieces, Drawing
                 // A drill mark: a place to drill, no geometry to cut along.
                 let at = DVec2::new(e.need(10)?, e.need(20)?) * s;
                 pieces.near_origin("POINT", at)?;
-                let at = if e.mirrored()? { DVec2::new(-at.x, at.y) } else { at };
                 pieces.point(at, e.layer());
             }
             "VERTEX" | "SEQEND" => {}
             other => pieces.ignore(other),
         }
-        let mirrored = e.mirrored()?;
         emit(&mut pieces, out, e.layer(), s, mirrored);
         k += 1;
     }

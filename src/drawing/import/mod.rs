@@ -162,7 +162,7 @@ pub fn read_drawing(bytes: &[u8], name: Option<&str>, tol: &Tolerances) -> Resul
     if bytes.is_empty() {
         return Err(DrawingError::Empty);
     }
-    let pieces = match DrawingFormat::detect(name, bytes) {
+    let mut pieces = match DrawingFormat::detect(name, bytes) {
         Some(DrawingFormat::Svg) => svg::read_svg(bytes, tol)?,
         _ => dxf::read_dxf(bytes, tol)?,
     };
@@ -177,14 +177,6 @@ pub fn read_drawing(bytes: &[u8], name: Option<&str>, tol: &Tolerances) -> Resul
         let ignored = if pieces.ignored.is_empty() { String::new() } else { format!(" (ignored: {})", pieces.ignored.iter().map(|(k, n)| format!("{n} {k}")).collect::<Vec<_>>().join(", ")) };
         return Err(DrawingError::NothingToMachine(ignored));
     }
-    // Pieces shorter than half the chaining tolerance are bridged by it anyway; alone they are
-    // artefacts (an SVG arc that starts where it ends draws nothing).
-    let mut pieces = pieces;
-    let before = pieces.segments.len();
-    pieces.segments.retain(|(s, _)| s.length() >= tol.chain * 0.5);
-    if pieces.segments.len() < before {
-        pieces.ignored.push(("pieces shorter than the chaining tolerance".into(), before - pieces.segments.len()));
-    }
     // The same entity drawn twice (a LINE copied onto itself, an SVG path repeated) would
     // leave a stray piece at every joint: one of each is kept, and how many went is said.
     let before = pieces.segments.len();
@@ -192,7 +184,16 @@ pub fn read_drawing(bytes: &[u8], name: Option<&str>, tol: &Tolerances) -> Resul
     if pieces.segments.len() < before {
         pieces.ignored.push(("duplicated entities (drawn twice on the same layer)".into(), before - pieces.segments.len()));
     }
-    let (loops, open) = chain(pieces.segments, tol.chain);
+    // Every piece is chained, however short (a curve drawn finely divided is a curve); what
+    // is shorter than the chaining tolerance all told, alone, is an artefact (an SVG arc that
+    // starts where it ends draws nothing), left out and said.
+    let (mut loops, mut open) = chain(pieces.segments, tol.chain, tol.arc_fit);
+    let before = loops.len() + open.len();
+    loops.retain(|l| l.path.length() >= tol.chain);
+    open.retain(|o| o.path.iter().map(|s| s.length()).sum::<f64>() >= tol.chain * 0.5);
+    if loops.len() + open.len() < before {
+        pieces.ignored.push(("pieces shorter than the chaining tolerance".into(), before - loops.len() - open.len()));
+    }
     let points = pieces.points.into_iter().map(|(at, layer)| crate::drawing::DrawnPoint { at, layer }).collect();
     Ok(Drawing { loops, open, points, layers: pieces.layers, ignored: pieces.ignored, units: pieces.units, scale: pieces.scale })
 }
