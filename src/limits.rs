@@ -52,6 +52,11 @@ pub const MAX_PASSES: f64 = 20000.0;
 /// would not fit in memory.
 pub const MAX_TURNS: f64 = 2000.0;
 
+/// The most points at which zigzag roughing weighs the load on its passes, over all levels
+/// (the stock's area over the step-over and sampling, a level at a time): 4 million take a few
+/// seconds; a sampling of 0.001 mm, or a φ0.01 tool, asks hundreds of millions.
+pub const MAX_LOAD_SAMPLES: f64 = 4_000_000.0;
+
 /// The most nodes of a CL z-map (or cells of a simulation): 50 million f64 heights are 400 MB,
 /// what a browser tab can hold beside the rest of the job.
 pub const MAX_NODES: usize = 50_000_000;
@@ -73,14 +78,16 @@ pub const MAX_TOOL_CHANGE: f64 = 86_400.0;
 
 /// The range of each of the job's tolerances (mm; the normal's and area's are ratios and mm²):
 /// below its least the work grows without bound (an interpolation tolerance of 1e-9 asks for
-/// billions of points), above its most the result is no longer a tolerance of anything.
+/// billions of points), above its most the result is no longer a tolerance of anything (a
+/// gouge tolerance of 10 mm passed a program cutting 9 mm into the part: past half a millimetre
+/// no finished part is within it).
 pub const TOLERANCE_RANGES: [(&str, f64, f64); 10] = [
     ("degenerateArea", 0.0, 1.0),
     ("chordal", 1e-5, 1.0),
     ("height", 1e-12, 0.01),
     ("interpolation", 1e-5, 0.1),
     ("normal", 0.0, 1e-3),
-    ("gouge", 1e-4, 10.0),
+    ("gouge", 1e-4, 0.5),
     ("chain", 1e-6, 1.0),
     ("arcFit", 1e-5, 1.0),
     ("microEntity", 0.0, 0.1),

@@ -320,7 +320,23 @@ fn options_whose_work_has_no_bound_are_refused_before_it() {
         v
     };
     let zlevel = part(&|v| v["operations"] = serde_json::json!([{ "kind": "roughZlevel", "name": "r", "tool": 1, "helixRadius": 1e-9 }]));
-    settings_refused(&[(zlevel, "a helix radius of 1e-9 mm makes")], &stl, "part.stl");
+    let zigzag = |op: serde_json::Value, tool: Option<serde_json::Value>| {
+        part(&|v| {
+            v["operations"] = serde_json::json!([op.clone()]);
+            if let Some(t) = &tool {
+                v["tools"] = serde_json::json!([t]);
+            }
+        })
+    };
+    let cases: Vec<(serde_json::Value, &str)> = vec![
+        (zlevel, "a helix radius of 1e-9 mm makes"),
+        (zigzag(serde_json::json!({ "kind": "roughZigzag", "name": "z", "tool": 1, "sampling": 0.001 }), None), "a sampling of 0.001 mm weighs the load at about 38 million points"),
+        (
+            zigzag(serde_json::json!({ "kind": "roughZigzag", "name": "z", "tool": 1 }), Some(serde_json::json!({ "number": 1, "shape": "flat", "diameter": 0.01 }))),
+            "the φ0.01 tool's step-over of 0.004 mm",
+        ),
+    ];
+    settings_refused(&cases, &stl, "part.stl");
     let square = dxf("", "0\nEOF\n");
     let sheet = |op: serde_json::Value| {
         let mut v = serde_json::to_value(drawing_job()).unwrap();
@@ -415,4 +431,34 @@ fn what_a_file_says_besides_its_solid_is_never_part_of_it() {
     }
     let d = swarf::drawing::import::read_drawing(square(7).as_bytes(), Some("km.dxf"), &Tolerances::default()).map(|_| ()).unwrap_err().to_string();
     assert!(d.contains("larger than any machine"), "{d}");
+}
+
+/// Issue 56: a check that checked nothing never says "clean". A simulation cell wider than the
+/// smallest tool's radius (the job's 1e300, `swarf verify --cell 1e6`) could not see that tool's
+/// cuts nor a gouge by it; a gouge tolerance of 10 mm (once inside its range) passed a program
+/// cutting 9 mm into the part. Each is refused naming the setting; cells as fine as the tool
+/// are taken.
+#[test]
+fn checks_that_could_not_see_are_refused() {
+    let part = swarf::mesh::sample::demo_part();
+    let stl = part.to_binary_stl();
+    let job_with = |f: &dyn Fn(&mut serde_json::Value)| {
+        let mut v = serde_json::to_value(Job::default()).unwrap();
+        f(&mut v);
+        v
+    };
+    let cases: Vec<(serde_json::Value, &str)> = vec![
+        (job_with(&|v| v["simulation"]["cell"] = 1e300.into()), "simulation.cell: cells of 1e300 mm are wider than the radius of T1"),
+        (job_with(&|v| v["simulation"]["cell"] = 3.5.into()), "choose cells of at most 3 mm"),
+        (job_with(&|v| v["tolerances"]["gouge"] = 10.0.into()), "tolerances.gouge must lie between 1e-4 and 5e-1 (got 10): a coarser one is no longer a tolerance"),
+    ];
+    settings_refused(&cases, &stl, "part.stl");
+    // The job's program, checked by `swarf verify` with cells of a kilometre: refused; with
+    // cells as fine as the tool: checked.
+    let mut job = Job::default();
+    job.simulation.verify = false;
+    let out = job::run(&job, Workpiece::read(&stl, Some("part.stl"), &job.tolerances).unwrap(), &mut Progress::none()).unwrap();
+    let e = job::run::verify_gcode(&job, part.clone(), &out.gcode, Some(1e6), &mut Progress::none()).unwrap_err().to_string();
+    assert!(e.contains("the cell: cells of 1000000 mm are wider than the radius"), "{e}");
+    assert!(job::run::verify_gcode(&job, part, &out.gcode, Some(0.5), &mut Progress::none()).is_ok());
 }

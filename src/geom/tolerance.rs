@@ -82,7 +82,9 @@ impl Tolerances {
             .zip(values)
             .filter(|((_, least, most), v)| !(*v >= *least && *v <= *most))
             .map(|(&(field, least, most), v)| {
-                (field, format!("must lie between {least:e} and {most:e} (got {}): a tolerance finer than that makes the work grow without bound", crate::limits::shown(v)))
+                let why =
+                    if v > most { "a coarser one is no longer a tolerance of the part (it would pass what it should find)" } else { "a tolerance finer than that makes the work grow without bound" };
+                (field, format!("must lie between {least:e} and {most:e} (got {}): {why}", crate::limits::shown(v)))
             })
             .collect()
     }

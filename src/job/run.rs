@@ -156,6 +156,9 @@ impl Job {
         };
         larger_than_any_machine("stock", stock.size(), "the stock's margins, size and the part's unit")?;
         let cell = self.simulation.cell_for(&stock);
+        if self.simulation.cell.is_some() {
+            self.sees_with(cell, "simulation.cell")?;
+        }
         Ok(Context {
             part,
             sheet,
@@ -190,6 +193,26 @@ fn larger_than_any_machine(what: &str, size: crate::geom::DVec3, check: &str) ->
 /// the part is placed as the job says, the program read with [`crate::post::read::read_gcode`]
 /// (after GRBL's word-set check, [`crate::post::grbl::check`], when the job's post is GRBL's)
 /// (the job's first tool until the program picks one), and `cell` overrides the job's cell size.
+impl Job {
+    /// Refuses a simulation cell (`field`, as the job or the command names it) wider than the
+    /// smallest tool's radius: its cuts, and a gouge by it, would fall between the cells, and a
+    /// check that could not see them would say "clean" (a cell of 1e300 passed a program cutting
+    /// 9 mm through the plate).
+    pub fn sees_with(&self, cell: f64, field: &str) -> Result<()> {
+        let Some(tool) = self.tools.iter().min_by(|a, b| a.cutter.diameter.total_cmp(&b.cutter.diameter)) else { return Ok(()) };
+        let most = tool.cutter.radius();
+        if cell <= most {
+            return Ok(());
+        }
+        Err(Error::Input(format!(
+            "{field}: cells of {} mm are wider than the radius of T{}, φ{} ({most} mm): the simulation could not see its cuts, nor a gouge by it; choose cells of at most {most} mm",
+            crate::limits::shown(cell),
+            tool.number,
+            tool.cutter.diameter
+        )))
+    }
+}
+
 pub fn verify_gcode(job: &Job, mut part: Mesh, gcode: &str, cell: Option<f64>, progress: &mut Progress) -> Result<Verification> {
     job.validate()?;
     let stock = job.place(&mut part);
@@ -208,7 +231,11 @@ pub fn verify_gcode(job: &Job, mut part: Mesh, gcode: &str, cell: Option<f64>, p
     let first_tool = job.tools.first().map_or(1, |t| t.number);
     let paths = crate::post::read::read_gcode(gcode, first_tool)?;
     let moves = program_moves(&paths, &job.tools, job.post.rapid_rate)?;
-    crate::sim::verify::verify(&part, &stock, &moves, &job.verify_settings(&stock, cell), &job.tolerances, progress)
+    let settings = job.verify_settings(&stock, cell);
+    if cell.is_some() || job.simulation.cell.is_some() {
+        job.sees_with(settings.cell, if cell.is_some() { "the cell" } else { "simulation.cell" })?;
+    }
+    crate::sim::verify::verify(&part, &stock, &moves, &settings, &job.tolerances, progress)
 }
 
 /// Places the part (or drawing), plans every operation in turn in one context, applying each

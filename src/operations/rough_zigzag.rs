@@ -259,6 +259,10 @@ impl Operate for RoughZigzag {
 
     fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Planned> {
         let levels = self.levels();
+        // One level's work before the levels are found (a φ0.01 tool's are thousands).
+        let tool = ctx.tool(&self.name, self.tool)?.clone();
+        let step = levels.step(tool.cutter.radius());
+        self.weigh(ctx, &tool, step, self.sampling.unwrap_or(0.5 * step).max(LEAST_STEP), 1)?;
         let Some(Levels { tool, levels: cut, .. }) = levels.levels_to_cut(ctx, progress)? else { return Ok(Planned::default()) };
         let r = tool.cutter.radius();
         let step = levels.step(r);
@@ -269,6 +273,7 @@ impl Operate for RoughZigzag {
             Passes::Zigzag => Pattern::Zigzag,
             Passes::OneWay => Pattern::OneWay,
         };
+        self.weigh(ctx, &tool, step, ds, cut.len())?;
         let entry = Entry { ramp_angle: self.roughing.ramp_angle, ..Entry::default() };
         let mut report = LoadReport { reference: step * tool.feed_rate, rate: step * tool.feed_rate * self.steps.stepdown, sampling: ds, ..LoadReport::default() };
         let mut path: Option<Toolpath> = None;
@@ -308,6 +313,34 @@ impl Operate for RoughZigzag {
             ctx.warn(&self.name, format!("{left_out} {runs} shorter than {shortest:.2} mm start in material where no helix fits: left uncut"));
         }
         Ok(Planned { paths: path.into_iter().collect(), load: Some(report), ..Planned::default() })
+    }
+}
+
+impl RoughZigzag {
+    /// Refuses, before the work, passes every `step` over the stock's area sampled every `ds`
+    /// on `levels` levels that weigh the load at more than [`crate::limits::MAX_LOAD_SAMPLES`]
+    /// points, naming the setting (the sampling, or the tool whose step-over it follows).
+    fn weigh(&self, ctx: &Context, tool: &crate::tool::Tool, step: f64, ds: f64, levels: usize) -> Result<()> {
+        let size = ctx.stock.max - ctx.stock.min;
+        let samples = levels as f64 * size.x * size.y / (step * ds);
+        if samples <= crate::limits::MAX_LOAD_SAMPLES {
+            return Ok(());
+        }
+        let why = match self.sampling {
+            Some(s) => format!("a sampling of {} mm", crate::limits::shown(s)),
+            None => format!("the φ{} tool's step-over of {} mm (sampled every {} mm)", tool.cutter.diameter, crate::limits::shown(step), crate::limits::shown(ds)),
+        };
+        let over = if levels == 1 { "a level".to_string() } else { format!("{levels} levels") };
+        Err(Error::operation(
+            &self.name,
+            format!(
+                "{why} weighs the load at about {} million points over {over} of the {:.0} × {:.0} mm stock (at most {:.0} million): choose a coarser sampling or a larger tool, or check the part's units",
+                crate::limits::shown((samples / 1e6).round()),
+                size.x,
+                size.y,
+                crate::limits::MAX_LOAD_SAMPLES / 1e6
+            ),
+        ))
     }
 }
 
