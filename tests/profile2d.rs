@@ -566,3 +566,36 @@ fn a_curve_drawn_finely_divided_is_the_curve() {
         assert!(out.paths.iter().flat_map(|p| &p.moves).any(|m| !m.is_rapid() && (m.to().truncate() - centre).length() < 8.6), "{n}: the hole is not cut");
     }
 }
+
+/// A perforated panel: `n` φ4 holes at an 8 mm pitch inside its outline, as a DXF.
+fn panel(n: usize) -> String {
+    let cols = ((n as f64 * 1.5).sqrt().ceil()) as usize;
+    let rows = n.div_ceil(cols);
+    let (w, h) = ((cols * 8 + 10) as f64, (rows * 8 + 10) as f64);
+    let mut s = String::from("0\nSECTION\n2\nENTITIES\n");
+    s += &format!("0\nLWPOLYLINE\n8\n0\n90\n4\n70\n1\n10\n0\n20\n0\n10\n{w}\n20\n0\n10\n{w}\n20\n{h}\n10\n0\n20\n{h}\n");
+    for k in 0..n {
+        s += &format!("0\nCIRCLE\n8\n0\n10\n{}\n20\n{}\n40\n2\n", 9 + (k % cols) * 8, 9 + (k / cols) * 8);
+    }
+    s + "0\nENDSEC\n0\nEOF\n"
+}
+
+/// Issue 56: a panel's holes are read and nested in time in proportion to their number (100,000
+/// holes took 15 s, each compared with every other to find which holds which; now under a
+/// second): ten times the holes take well under a hundred times as long.
+#[test]
+fn a_perforated_panel_reads_in_proportion_to_its_holes() {
+    let time = |n: usize| {
+        let text = panel(n);
+        let started = std::time::Instant::now();
+        let d = read_drawing(text.as_bytes(), Some("panel.dxf"), &Tolerances::default()).unwrap();
+        assert_eq!(d.loops.len(), n + 1);
+        // Its holes found inside its plate (as every listing and operation finds them).
+        let shape = Shape::new(d.loops.iter().map(|l| l.path.clone()).collect());
+        assert_eq!(shape.regions().len(), 1, "one plate with its holes");
+        started.elapsed().as_secs_f64()
+    };
+    let (small, large) = (time(5_000).max(1e-3), time(50_000));
+    eprintln!("panel: 5,000 holes {small:.3} s, 50,000 {large:.3} s");
+    assert!(large < 40.0 * small, "5,000 holes read in {small:.3} s, 50,000 in {large:.3} s");
+}

@@ -116,42 +116,89 @@ fn fit_run(p: &[DVec2], fit: f64, out: &mut Vec<Segment>) {
 /// a piece shorter than four times `tol`, within a quarter of its length (the next piece of a
 /// finely divided curve is no copy of it).
 pub fn without_duplicates(pieces: Vec<(Segment, String)>, tol: f64) -> Vec<(Segment, String)> {
-    // Each piece with its ends in order (lower x first), so a reversed copy sorts beside it.
+    // Each piece with its ends in order (lower x first), so a reversed copy has the same start.
     let canonical = |s: &Segment| if (s.a.x, s.a.y) <= (s.b.x, s.b.y) { *s } else { s.reversed() };
-    let mut order: Vec<usize> = (0..pieces.len()).collect();
     let keys: Vec<Segment> = pieces.iter().map(|(s, _)| canonical(s)).collect();
-    order.sort_by(|&i, &j| keys[i].a.x.total_cmp(&keys[j].a.x));
+    let starts = PointGrid::new(keys.iter().map(|s| s.a), tol);
     let mut dropped = vec![false; pieces.len()];
-    for (n, &i) in order.iter().enumerate() {
+    for i in 0..keys.len() {
         if dropped[i] {
             continue;
         }
         let (si, li) = (&keys[i], &pieces[i].1);
         let near = tol.min(si.length() * 0.25);
-        for &j in order[n + 1..].iter().take_while(|&&j| keys[j].a.x <= si.a.x + near) {
+        starts.near(si.a, near, |j| {
             let sj = &keys[j];
-            if !dropped[j] && pieces[j].1 == *li && sj.a.distance(si.a) <= near && sj.b.distance(si.b) <= near && sj.point_at(0.5).distance(si.point_at(0.5)) <= near {
+            if j > i && !dropped[j] && pieces[j].1 == *li && sj.b.distance(si.b) <= near && sj.point_at(0.5).distance(si.point_at(0.5)) <= near {
                 dropped[j] = true;
             }
-        }
+        });
     }
     pieces.into_iter().zip(dropped).filter(|(_, d)| !d).map(|(p, _)| p).collect()
 }
 
-fn chain_layer(segs: &[Segment], tol: f64, fit: f64, layer: &str, loops: &mut Vec<DrawnLoop>, open: &mut Vec<OpenChain>) {
-    // End points sorted by x, to find the ends within `tol` of a point.
-    let mut ends: Vec<(f64, usize, bool)> = Vec::with_capacity(segs.len() * 2);
-    for (i, s) in segs.iter().enumerate() {
-        ends.push((s.a.x, i, false));
-        ends.push((s.b.x, i, true));
+/// Points in square cells as wide as the tolerance they are looked up within: the points near
+/// one are those of its cell and the eight around it, however the drawing lines its entities up
+/// (a panel's 100,000 holes share their ends' x by the hundred; sorted by x, each lookup read
+/// them all).
+struct PointGrid {
+    cell: f64,
+    cells: std::collections::HashMap<(i64, i64), Vec<usize>>,
+    points: Vec<DVec2>,
+}
+
+impl PointGrid {
+    fn new(points: impl Iterator<Item = DVec2>, tol: f64) -> PointGrid {
+        let points: Vec<DVec2> = points.collect();
+        let cell = tol.max(crate::geom::tolerance::FLOAT_SLACK);
+        let mut cells: std::collections::HashMap<(i64, i64), Vec<usize>> = std::collections::HashMap::with_capacity(points.len());
+        for (k, p) in points.iter().enumerate() {
+            cells.entry(Self::key(*p, cell)).or_default().push(k);
+        }
+        PointGrid { cell, cells, points }
     }
-    ends.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let point = |i: usize, at_b: bool| if at_b { segs[i].b } else { segs[i].a };
+
+    fn key(p: DVec2, cell: f64) -> (i64, i64) {
+        ((p.x / cell).floor() as i64, (p.y / cell).floor() as i64)
+    }
+
+    /// Calls `f` with each point within `within` (at most the grid's tolerance) of `p`.
+    fn near(&self, p: DVec2, within: f64, mut f: impl FnMut(usize)) {
+        let (i, j) = Self::key(p, self.cell);
+        for di in -1..=1 {
+            for dj in -1..=1 {
+                if let Some(ks) = self.cells.get(&(i + di, j + dj)) {
+                    for &k in ks {
+                        if self.points[k].distance(p) <= within {
+                            f(k);
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+fn chain_layer(segs: &[Segment], tol: f64, fit: f64, layer: &str, loops: &mut Vec<DrawnLoop>, open: &mut Vec<OpenChain>) {
+    // The end points in a grid, to find the ends within `tol` of a point: a, then b, of each
+    // segment (point 2i is segment i's a, 2i + 1 its b).
+    let ends = PointGrid::new(segs.iter().flat_map(|s| [s.a, s.b]), tol);
     let mut used = vec![false; segs.len()];
-    // The unused segment with an end within tol of p, whether that end is its b, and how far.
+    // The unused segment with an end within tol of p, whether that end is its b, and how far
+    // (the nearest; of two as near, the first drawn).
     let find = |p: DVec2, used: &[bool]| -> Option<(usize, bool, f64)> {
-        let lo = ends.partition_point(|e| e.0 < p.x - tol);
-        ends[lo..].iter().take_while(|e| e.0 <= p.x + tol).filter(|e| !used[e.1]).map(|e| (e.1, e.2, point(e.1, e.2).distance(p))).filter(|e| e.2 <= tol).min_by(|a, b| a.2.total_cmp(&b.2))
+        let mut best: Option<(usize, bool, f64)> = None;
+        ends.near(p, tol, |k| {
+            let (i, at_b) = (k / 2, k % 2 == 1);
+            if used[i] {
+                return;
+            }
+            let d = ends.points[k].distance(p);
+            if best.is_none_or(|b| (d, k) < (b.2, 2 * b.0 + b.1 as usize)) {
+                best = Some((i, at_b, d));
+            }
+        });
+        best
     };
     for first in 0..segs.len() {
         if used[first] {
