@@ -462,3 +462,17 @@ fn checks_that_could_not_see_are_refused() {
     assert!(e.contains("the cell: cells of 1000000 mm are wider than the radius"), "{e}");
     assert!(job::run::verify_gcode(&job, part, &out.gcode, Some(0.5), &mut Progress::none()).is_ok());
 }
+
+/// Issue 56: a part handed to the drawing reader (`swarf drawing part.stl`) is named as a part,
+/// and a binary file's bytes never reach a message: they are escaped, the quote cut short.
+#[test]
+fn a_part_is_not_read_as_a_drawing_and_binary_bytes_are_not_printed() {
+    use swarf::drawing::import::read_drawing;
+    let stl = swarf::mesh::sample::demo_part().to_binary_stl();
+    let e = read_drawing(&stl, Some("part.stl"), &Tolerances::default()).unwrap_err().to_string();
+    assert!(e.contains("this is a part (an STL), not a drawing"), "{e}");
+    let e = read_drawing(b"solid x\nfacet normal 0 0 1\n", None, &Tolerances::default()).unwrap_err().to_string();
+    assert!(e.contains("not a drawing"), "{e}");
+    let e = read_drawing(&stl, None, &Tolerances::default()).unwrap_err().to_string();
+    assert!(!e.chars().any(|c| c.is_control() || c == '\u{FFFD}') && e.len() < 400, "{e:?}");
+}

@@ -74,8 +74,16 @@ enum Facing {
 /// 1e300 (whose difference from its start is no angle at all).
 const MAX_ARC_ANGLE: f64 = 3600.0;
 
+/// A line of the file as a message quotes it: its first 40 characters, anything unprintable (a
+/// binary file's bytes) escaped.
+fn shown(text: &str) -> String {
+    let head: String = text.chars().take(40).collect();
+    let more = if text.chars().count() > 40 { "…" } else { "" };
+    format!("{}{more}", head.chars().map(|c| if c.is_control() || c == '\u{FFFD}' { format!("\\x{:02x}", c as u32 & 0xff) } else { c.to_string() }).collect::<String>())
+}
+
 fn parse(t: &str, line: usize) -> Result<f64, DrawingError> {
-    let v: f64 = t.trim().parse().map_err(|_| DrawingError::Dxf { line, message: format!("'{}' is not a number", t.trim()) })?;
+    let v: f64 = t.trim().parse().map_err(|_| DrawingError::Dxf { line, message: format!("'{}' is not a number", shown(t.trim())) })?;
     if v.is_finite() {
         Ok(v)
     } else {
@@ -134,7 +142,7 @@ pub(crate) fn read_dxf(bytes: &[u8], tol: &Tolerances) -> Result<Pieces, Drawing
     let mut pairs: Vec<(i32, &str, usize)> = Vec::with_capacity(lines.len() / 2);
     for k in 0..lines.len() / 2 {
         let line = 2 * k + 1;
-        let code: i32 = lines[2 * k].trim().parse().map_err(|_| DrawingError::Dxf { line, message: format!("expected a group code, found '{}'", lines[2 * k].trim()) })?;
+        let code: i32 = lines[2 * k].trim().parse().map_err(|_| DrawingError::Dxf { line, message: format!("expected a group code, found '{}'", shown(lines[2 * k].trim())) })?;
         pairs.push((code, lines[2 * k + 1].trim(), line + 1));
     }
     // A DXF ends with `0 EOF`: a file without it was cut short, and what it holds is not the

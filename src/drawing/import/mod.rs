@@ -35,6 +35,8 @@ pub enum DrawingError {
     TooManyPieces,
     #[error("the {format} ends at line {line} without its {marker}: the file was cut short (a download or a copy that stopped?); open the whole file")]
     CutShort { format: &'static str, line: usize, marker: &'static str },
+    #[error("this is a part ({0}), not a drawing: a drawing is a DXF or an SVG; a part is machined with a part's job")]
+    NotADrawing(&'static str),
 }
 
 /// Drawing formats.
@@ -157,6 +159,20 @@ impl Pieces {
     }
 }
 
+/// The part format a file plainly is (by its name, a GLB's magic or an STL's `solid`), to
+/// say so rather than read its bytes as a DXF's.
+fn part_format(name: Option<&str>, bytes: &[u8]) -> Option<&'static str> {
+    let ext = name.and_then(|n| n.rsplit_once('.')).map(|(_, e)| e.to_ascii_lowercase());
+    match ext.as_deref() {
+        Some("stl") => Some("an STL"),
+        Some("obj") => Some("an OBJ"),
+        Some("glb") | Some("gltf") => Some("a glTF"),
+        _ if bytes.starts_with(b"glTF") => Some("a glTF"),
+        _ if bytes.trim_ascii_start().starts_with(b"solid") => Some("an STL"),
+        _ => None,
+    }
+}
+
 /// Reads a DXF or SVG drawing and chains it into loops, in millimetres.
 pub fn read_drawing(bytes: &[u8], name: Option<&str>, tol: &Tolerances) -> Result<Drawing, DrawingError> {
     if bytes.is_empty() {
@@ -164,7 +180,11 @@ pub fn read_drawing(bytes: &[u8], name: Option<&str>, tol: &Tolerances) -> Resul
     }
     let mut pieces = match DrawingFormat::detect(name, bytes) {
         Some(DrawingFormat::Svg) => svg::read_svg(bytes, tol)?,
-        _ => dxf::read_dxf(bytes, tol)?,
+        Some(DrawingFormat::Dxf) => dxf::read_dxf(bytes, tol)?,
+        None => match part_format(name, bytes) {
+            Some(format) => return Err(DrawingError::NotADrawing(format)),
+            None => dxf::read_dxf(bytes, tol)?,
+        },
     };
     if let Some((s, _)) = pieces.segments.iter().find(|(s, _)| !(s.a.is_finite() && s.b.is_finite() && s.bulge.is_finite())) {
         return Err(DrawingError::NonFinite(format!("{:?} to {:?}", s.a, s.b)));
