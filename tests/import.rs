@@ -399,3 +399,20 @@ fn any_axis_can_point_up_and_the_part_turns_about_z() {
     let setup: PartSetup = serde_json::from_str(r#"{"upAxis": "-y", "rotation": 270}"#).unwrap();
     assert_eq!((setup.up_axis, setup.rotation), (UpAxis::MinusY, 270));
 }
+
+/// Issue 56: a scene that places its nodes over and over (20 nodes, each listing the next twice:
+/// 2^20 instances, which once asked 5.4 GB) is refused at once, saying so; a few such levels read.
+#[test]
+fn a_gltf_scene_placing_its_nodes_a_million_times_is_refused() {
+    let uri = format!("data:application/octet-stream;base64,{}", base64::engine::general_purpose::STANDARD.encode(triangle_bytes()));
+    let chain = |levels: usize| {
+        let nodes: Vec<String> = (0..levels).map(|k| if k + 1 < levels { format!(r#"{{"children":[{},{}],"translation":[{k},0,0]}}"#, k + 1, k + 1) } else { r#"{"mesh":0}"#.to_string() }).collect();
+        gltf_json(&uri).replace(r#""nodes":[{"mesh":0,"translation":[10,20,30]}]"#, &format!(r#""nodes":[{}]"#, nodes.join(",")))
+    };
+    let started = std::time::Instant::now();
+    let e = read_mesh_auto(chain(21).as_bytes(), Some("t.gltf"), &TOL).unwrap_err().to_string();
+    assert!(e.contains("places its nodes more than 100000 times"), "{e}");
+    assert!(started.elapsed().as_secs_f64() < 5.0);
+    // Two levels: the triangle placed twice over (four instances, one place) reads.
+    assert!(read_mesh_auto(chain(3).as_bytes(), Some("t.gltf"), &TOL).is_ok());
+}

@@ -26,7 +26,7 @@ pub(super) fn read(bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, ImportError> {
         }
     })?;
     let buffers = load_buffers(&root, blob)?;
-    let document = Document { root: &root, buffers };
+    let document = Document { root: &root, buffers, placed: std::cell::Cell::new(0) };
     let mut triangles = Vec::new();
     let scene = root.scene.map(|s| s.value()).or((!root.scenes.is_empty()).then_some(0));
     match scene {
@@ -101,15 +101,26 @@ fn decode_data_uri(uri: &str) -> Result<Vec<u8>, ImportError> {
 
 const MAX_DEPTH: usize = 64;
 
+/// The most node instances a scene may place: a node listed as a child of several others is
+/// placed once for each path to it, and 20 nodes each listing the next twice place 2^20 (the
+/// read once asked 5.4 GB). A real assembly places a few thousand.
+const MAX_INSTANCES: usize = 100_000;
+
 struct Document<'a> {
     root: &'a json::Root,
     buffers: Vec<Vec<u8>>,
+    /// Node instances placed so far.
+    placed: std::cell::Cell<usize>,
 }
 
 impl Document<'_> {
     fn visit(&self, index: usize, parent: DMat4, out: &mut Vec<[DVec3; 3]>, depth: usize) -> Result<(), ImportError> {
         if depth > MAX_DEPTH {
             return broken("the node hierarchy is deeper than 64 levels (a cycle?)");
+        }
+        self.placed.set(self.placed.get() + 1);
+        if self.placed.get() > MAX_INSTANCES {
+            return broken(format!("the scene places its nodes more than {MAX_INSTANCES} times (nodes listed as children of several others, over and over)"));
         }
         let Some(node) = self.root.nodes.get(index) else { return broken(format!("node {index} does not exist")) };
         let local = match node.matrix {
