@@ -80,6 +80,13 @@ impl Walls {
         self.original.distance(q, reach) >= reach
     }
 
+    /// [`Walls::keeps_off`] for points within `radius` of `p`, the walls near them looked up once.
+    pub fn keeps_off_around(&self, p: DVec2, radius: f64, distance: f64) -> impl Fn(DVec2) -> bool + '_ {
+        let reach = distance - HAIR;
+        let ids = self.original.near(p, radius + reach);
+        move |q| self.original.distance_among(&ids, q, reach) >= reach
+    }
+
     /// The boundary of the material grown by `distance`, each loop with the drawn loops it runs
     /// along (every piece of an offset is at the distance from the entity it came from, so a
     /// piece's midpoint names its loop).

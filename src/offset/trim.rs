@@ -282,6 +282,23 @@ impl Original {
         self.nearest(q, cap).map_or(cap, |(_, d)| d)
     }
 
+    /// The entities whose bounds come closer than `radius` to `p`: every one that can come
+    /// closer than `cap` to a point within `radius - cap` of `p`, for [`Original::distance_among`].
+    pub fn near(&self, p: DVec2, radius: f64) -> Vec<usize> {
+        let mut ids = Vec::new();
+        self.index.any_within(p, radius, |i| {
+            ids.push(i);
+            false
+        });
+        ids
+    }
+
+    /// [`Original::distance`] among the entities `ids` ([`Original::near`] a point, for many
+    /// points about it: a lead arc's samples look the walls up once, not once each).
+    pub fn distance_among(&self, ids: &[usize], q: DVec2, cap: f64) -> f64 {
+        ids.iter().map(|&i| self.segs[i].distance_with(self.geoms[i].as_ref(), q)).fold(cap, f64::min)
+    }
+
     /// The entity nearest `q` (its position in the shape's segments, loop after loop) and its
     /// distance, among those closer than `cap`.
     pub fn nearest(&self, q: DVec2, cap: f64) -> Option<(usize, f64)> {

@@ -161,11 +161,15 @@ struct Lap<'a> {
     clear: Clear<'a>,
 }
 
+/// Whether each point within a radius of a point keeps off the walls.
+type KeepsOffAround<'a> = Box<dyn Fn(DVec2, f64) -> Box<dyn Fn(DVec2) -> bool + 'a> + 'a>;
+
 /// What a lead arc must keep clear of: every point of it at least `distance` from the walls
-/// (`keeps_off`), and on the waste side of them (`waste`, asked at one point: an arc that keeps
-/// off every wall crosses none).
+/// (`keeps_off`: given a point and a radius, the test for the points within it, the walls near
+/// them looked up once), and on the waste side of them (`waste`, asked at one point: an arc
+/// that keeps off every wall crosses none).
 struct Clear<'a> {
-    keeps_off: Box<dyn Fn(DVec2) -> bool + 'a>,
+    keeps_off: KeepsOffAround<'a>,
     waste: Box<dyn Fn(DVec2) -> bool + 'a>,
 }
 
@@ -232,7 +236,7 @@ pub fn profile_moves(walls: &Walls, picked: &[usize], op: &Profile2d, mut s: Set
                 ));
             }
             let outside = wp.path.is_ccw();
-            let clear = Clear { keeps_off: Box::new(move |q| walls.keeps_off(q, d)), waste: Box::new(|q| !walls.in_material(q)) };
+            let clear = Clear { keeps_off: Box::new(move |p, radius| Box::new(walls.keeps_off_around(p, radius, d))), waste: Box::new(|q| !walls.in_material(q)) };
             laps.push(Lap { path: wp.path, part_left: true, outside, clear });
         }
         for k in (0..n).filter(|&k| grouped[k] && !served[k]) {
@@ -248,8 +252,12 @@ pub fn profile_moves(walls: &Walls, picked: &[usize], op: &Profile2d, mut s: Set
         let wall = std::rc::Rc::new(Original::new(&region));
         for path in paths.loops {
             let (wall, region) = (wall.clone(), region.clone());
-            let keeps_off = move |q: DVec2| wall.distance(q, d - HAIR) >= d - HAIR;
-            let clear = Clear { keeps_off: Box::new(keeps_off), waste: Box::new(move |q| region.contains(q) != outside) };
+            let keeps_off: KeepsOffAround = Box::new(move |p, radius| {
+                let (wall, reach) = (wall.clone(), d - HAIR);
+                let ids = wall.near(p, radius + reach);
+                Box::new(move |q: DVec2| wall.distance_among(&ids, q, reach) >= reach)
+            });
+            let clear = Clear { keeps_off, waste: Box::new(move |q| region.contains(q) != outside) };
             // An outward offset has the part on its left, an inward one on its right.
             laps.push(Lap { path, part_left: outside, outside, clear });
         }
@@ -388,7 +396,9 @@ fn fitting_lead(p: DVec2, t: DVec2, waste_left: bool, rho: f64, clear: &Clear, i
         let sweep = (p - c).angle_to(far - c); // a quarter turn either way
         let samples = (rho * std::f64::consts::FRAC_PI_2 / LEAD_SAMPLE).ceil().clamp(16.0, 4096.0) as usize;
         let at = |k: usize| c + DVec2::from_angle(sweep * k as f64 / samples as f64).rotate(p - c);
-        let arc_fits = (clear.waste)(at(samples)) && (1..=samples).all(|k| (clear.keeps_off)(at(k)));
+        // Every sample lies within 2ρ of p.
+        let keeps_off = (clear.keeps_off)(p, 2.0 * rho);
+        let arc_fits = (clear.waste)(at(samples)) && (1..=samples).all(|k| keeps_off(at(k)));
         if arc_fits {
             // The arc turns towards the waste side going into the path: counter-clockwise when
             // the waste is on the left.
