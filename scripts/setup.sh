@@ -50,15 +50,16 @@ fi
 # python3 needs python3-venv for it); pinned so its readings stay put.
 EZDXF_VERSION=1.4.5
 if ! .venv/bin/python -c "import ezdxf, sys; sys.exit(ezdxf.__version__ != '$EZDXF_VERSION')" 2>/dev/null; then
-  if ! python3 -c 'import ensurepip' 2>/dev/null; then
+  say "installing ezdxf $EZDXF_VERSION (the DXF tests' oracle)"
+  rm -rf .venv
+  if ! python3 -m venv .venv >/dev/null 2>&1; then
     say "installing Debian packages: python3-venv"
     export DEBIAN_FRONTEND=noninteractive
     apt-get update -q
     apt-get install -y -q --no-install-recommends python3-venv
+    rm -rf .venv
+    python3 -m venv .venv
   fi
-  say "installing ezdxf $EZDXF_VERSION (the DXF tests' oracle)"
-  rm -rf .venv
-  python3 -m venv .venv
   .venv/bin/pip install -q "ezdxf==$EZDXF_VERSION"
 fi
 say "ready"
