@@ -119,10 +119,9 @@ pub fn circle_of(path: &crate::drawing::Loop) -> Option<(DVec2, f64)> {
 
 /// The order to visit `points` in, from `start`: nearest neighbour first, then 2-opt (a
 /// stretch of the tour reversed wherever that shortens it) until no reversal does. The tour
-/// is open (it ends at its last point). Past [`EXHAUSTIVE`] points (a perforated panel's tens of
-/// thousands), the nearest is found in a grid and 2-opt reverses stretches of at most
-/// [`WINDOW`] points: the work grows with the points, not with their square (30,000 holes took
-/// 10 s).
+/// is open (it ends at its last point). Past 2,000 points (a perforated panel's tens of
+/// thousands), the nearest is found in a grid and 2-opt reverses stretches of at most 64
+/// points: the work grows with the points, not with their square (30,000 holes took 10 s).
 pub fn order(points: &[DVec2], start: DVec2) -> Vec<usize> {
     let n = points.len();
     let mut tour = if n <= EXHAUSTIVE { nearest_first(points, start) } else { nearest_first_in_grid(points, start) };
