@@ -416,3 +416,38 @@ fn a_gltf_scene_placing_its_nodes_a_million_times_is_refused() {
     // Two levels: the triangle placed twice over (four instances, one place) reads.
     assert!(read_mesh_auto(chain(3).as_bytes(), Some("t.gltf"), &TOL).is_ok());
 }
+
+/// Issue 56: an OBJ face of 100,000 corners (a disc's cap) is triangulated as a strip across it,
+/// not a fan of slivers from one corner (with which every node of a z-map met every triangle):
+/// the triangles cover the cap once, turn as the face does, and none spans more than a sliver of
+/// it in both directions.
+#[test]
+fn an_obj_face_of_100000_corners_is_a_strip_of_thin_bands() {
+    let n = 100_000;
+    let mut obj = String::new();
+    for k in 0..n {
+        let t = std::f64::consts::TAU * k as f64 / n as f64;
+        obj += &format!("v {:.9} {:.9} 0\n", 40.0 * t.cos(), 40.0 * t.sin());
+    }
+    obj += "v 0 0 -5\nf";
+    for k in 0..n {
+        obj += &format!(" {}", k + 1);
+    }
+    obj += "\nf 1 2 100001\n";
+    let mesh = read_mesh_auto(obj.as_bytes(), Some("cap.obj"), &TOL).unwrap();
+    let cap: Vec<[DVec3; 3]> = mesh.faces.iter().map(|f| f.map(|i| mesh.vertices[i as usize])).filter(|t| t.iter().all(|p| p.z == 0.0)).collect();
+    assert_eq!(cap.len() + mesh.dropped_degenerate, n - 2);
+    let area: f64 = cap.iter().map(|[a, b, c]| (*b - *a).cross(*c - *a).z * 0.5).sum();
+    let polygon = 0.5 * n as f64 * 1600.0 * (std::f64::consts::TAU / n as f64).sin();
+    assert!((area - polygon).abs() < 1e-6 * polygon, "{area} vs {polygon}");
+    assert!(cap.iter().all(|[a, b, c]| (*b - *a).cross(*c - *a).z >= 0.0), "every triangle turns as the face");
+    // Thin bands: no triangle's box is more than a few percent of the cap's in both directions.
+    let fat = cap.iter().filter(|t| {
+        let (lo, hi) = t.iter().fold((DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
+        (hi.x - lo.x).min(hi.y - lo.y) > 4.0
+    });
+    assert_eq!(fat.count(), 0);
+    // A face of four corners is still the fan tobj makes (two triangles from its first).
+    let quad = read_mesh_auto(b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nf 1 2 3 4\nf 1 2 5\n", Some("q.obj"), &TOL).unwrap();
+    assert_eq!(quad.faces.len(), 3);
+}

@@ -1,11 +1,15 @@
-//! Wavefront OBJ through the `tobj` crate, triangulated; material libraries are never loaded.
+//! Wavefront OBJ through the `tobj` crate; material libraries are never loaded. Faces are
+//! triangulated here: up to [`FAN_MOST`] corners as a fan from the first (as tobj does), larger
+//! ones (a cylinder's cap of 100,000 corners) as a strip across the polygon, whose triangles are
+//! thin bands rather than slivers all reaching from one corner across the part (with which
+//! every node of a z-map met every triangle: past a minute on a φ80 disc).
 
 use super::ImportError;
 use crate::geom::DVec3;
 
 pub(super) fn read(bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, ImportError> {
     check_last_line(bytes)?;
-    let options = tobj::LoadOptions { triangulate: true, single_index: false, ignore_points: true, ignore_lines: true };
+    let options = tobj::LoadOptions { triangulate: false, single_index: false, ignore_points: true, ignore_lines: true };
     let mut reader = std::io::BufReader::new(bytes);
     let (models, _materials) = tobj::load_obj_buf(&mut reader, &options, |_| Err(tobj::LoadError::OpenFileFailed)).map_err(|e| ImportError::Obj(e.to_string()))?;
     let mut triangles = Vec::new();
@@ -18,11 +22,49 @@ pub(super) fn read(bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, ImportError> {
                 .map(|p| DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64))
                 .ok_or_else(|| ImportError::Obj(format!("face refers to vertex {} of {}", i / 3 + 1, m.positions.len() / 3)))
         };
-        for c in m.indices.chunks_exact(3) {
-            triangles.push([vertex(c[0])?, vertex(c[1])?, vertex(c[2])?]);
+        // Without arities every face is a triangle.
+        let arities: Vec<u32> = if m.face_arities.is_empty() { vec![3; m.indices.len() / 3] } else { m.face_arities.clone() };
+        let mut first = 0;
+        for &n in &arities {
+            let n = n as usize;
+            let Some(face) = m.indices.get(first..first + n) else { return Err(ImportError::Obj(format!("a face of {n} corners runs past the file's indices"))) };
+            first += n;
+            for [a, b, c] in triangulate(n) {
+                triangles.push([vertex(face[a])?, vertex(face[b])?, vertex(face[c])?]);
+            }
         }
     }
     Ok(triangles)
+}
+
+/// The most corners a face is triangulated as a fan from its first.
+const FAN_MOST: usize = 32;
+
+/// The triangles of a face of `n` corners, as corner positions in the face's order (each
+/// turning as the face does).
+fn triangulate(n: usize) -> Vec<[usize; 3]> {
+    if n < 3 {
+        return Vec::new();
+    }
+    if n <= FAN_MOST {
+        return (1..n - 1).map(|k| [0, k, k + 1]).collect();
+    }
+    // A strip: the edge across the face steps forward from its front and back from its back
+    // in turn.
+    let (mut a, mut b) = (0, n - 1);
+    let mut out = Vec::with_capacity(n - 2);
+    let mut front = true;
+    while b - a >= 2 {
+        if front {
+            out.push([a, a + 1, b]);
+            a += 1;
+        } else {
+            out.push([a, b - 1, b]);
+            b -= 1;
+        }
+        front = !front;
+    }
+    out
 }
 
 /// A file cut short ends inside a statement, and tobj reads such a line as best it can (or
