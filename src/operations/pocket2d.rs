@@ -82,9 +82,14 @@ impl Default for Pocket2d {
 /// The moves of a pocket over `region` (outer loops counter-clockwise, islands clockwise).
 pub fn pocket_moves(region: &Shape, op: &Pocket2d, s: RingSetup) -> Result<Vec<Move>, String> {
     let r = s.tool_radius;
-    let step = (op.stepover_fraction.clamp(0.01, 1.0) * 2.0 * r).max(LEAST_STEP);
-    let clearing = Clearing {
-        step,
+    let clearing = clearing(op, r);
+    clear_down(region, r + op.leave_stock, &clearing, op.depth, op.stepdown, s).ok_or_else(|| does_not_fit(r, op.leave_stock, "the pocket", &region.bounds()))
+}
+
+/// How `op` clears with a tool of radius `r`: its rings or passes, and its entry.
+fn clearing(op: &Pocket2d, r: f64) -> Clearing {
+    Clearing {
+        step: (op.stepover_fraction.clamp(0.01, 1.0) * 2.0 * r).max(LEAST_STEP),
         climb: op.direction == Direction::Climb,
         pattern: op.pattern,
         angle: op.angle.to_radians(),
@@ -93,8 +98,7 @@ pub fn pocket_moves(region: &Shape, op: &Pocket2d, s: RingSetup) -> Result<Vec<M
         entry: op.entry,
         ramp_angle: op.ramp_angle.clamp(0.1, 90.0).to_radians(),
         helix_r: op.helix_radius.unwrap_or(0.8 * r),
-    };
-    clear_down(region, r + op.leave_stock, &clearing, op.depth, op.stepdown, s).ok_or_else(|| does_not_fit(r, op.leave_stock, "the pocket", &region.bounds()))
+    }
 }
 
 impl Operate for Pocket2d {
@@ -131,9 +135,7 @@ impl Operate for Pocket2d {
         let region = sheet::pocket_region(&walls.shape, &picked, self.loops.is_empty());
         let mut cursor = sheet::cursor(ctx, &tool);
         let setup = RingSetup { tool_radius: tool.cutter.radius(), top: ctx.stock.max.z, feed: tool.feed_rate, cursor: &mut cursor, tol: &ctx.tolerances };
-        let r = tool.cutter.radius();
-        let entry = Clearing { entry: self.entry, ramp_angle: self.ramp_angle.clamp(0.1, 90.0).to_radians(), helix_r: self.helix_radius.unwrap_or(0.8 * r), ..Clearing::plain(r, r, self.pattern) };
-        entry.check_helix(&self.name, self.stepdown.min(self.depth))?;
+        clearing(self, tool.cutter.radius()).check_helix(&self.name, self.stepdown.min(self.depth))?;
         let moves = pocket_moves(&region, self, setup).map_err(|e| crate::error::Error::operation(&self.name, e))?;
         let cuts = vec![SheetCut { region, inside: true, depth: self.depth, leave: self.leave_stock }];
         if let Some(note) = open {

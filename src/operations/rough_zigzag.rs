@@ -101,6 +101,11 @@ impl Default for RoughZigzag {
 }
 
 impl RoughZigzag {
+    /// The sampling distance at a step-over of `step`: the set one, or half the step.
+    fn sampling_at(&self, step: f64) -> f64 {
+        self.sampling.unwrap_or(0.5 * step).max(LEAST_STEP)
+    }
+
     /// Its levels' settings (its own loop cuts level by level).
     pub fn levels(&self) -> LevelRoughing {
         LevelRoughing { flats: self.flats, ..LevelRoughing::new(&self.name, self.tool, self.steps, &self.roughing) }
@@ -262,11 +267,11 @@ impl Operate for RoughZigzag {
         // One level's work before the levels are found (a φ0.01 tool's are thousands).
         let tool = ctx.tool(&self.name, self.tool)?.clone();
         let step = levels.step(tool.cutter.radius());
-        self.weigh(ctx, &tool, step, self.sampling.unwrap_or(0.5 * step).max(LEAST_STEP), 1)?;
+        self.weigh(ctx, &tool, step, self.sampling_at(step), 1)?;
         let Some(Levels { tool, levels: cut, .. }) = levels.levels_to_cut(ctx, progress)? else { return Ok(Planned::default()) };
         let r = tool.cutter.radius();
         let step = levels.step(r);
-        let ds = self.sampling.unwrap_or(0.5 * step).max(LEAST_STEP);
+        let ds = self.sampling_at(step);
         let px = self.pixel.unwrap_or_else(|| load::default_pixel(step)).max(LEAST_STEP);
         let load = Load { ds, step, tolerance: self.load_tolerance, climb: self.roughing.direction == Direction::Climb };
         let pattern = match self.passes {
