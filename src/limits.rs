@@ -52,17 +52,40 @@ pub const MAX_PASSES: f64 = 20000.0;
 /// would not fit in memory.
 pub const MAX_TURNS: f64 = 2000.0;
 
+/// The most pecks a drilling cycle may make in one hole: a 100 mm hole at a 0.05 mm peck. A
+/// peck of 1e-9 mm would make billions of moves to simulate.
+pub const MAX_PECKS: f64 = 2000.0;
+
 /// The most points at which zigzag roughing weighs the load on its passes, over all levels
 /// (the stock's area over the step-over and sampling, a level at a time): 4 million take a few
 /// seconds; a sampling of 0.001 mm, or a φ0.01 tool, asks hundreds of millions.
 pub const MAX_LOAD_SAMPLES: f64 = 4_000_000.0;
 
+/// The most rows of its levels' maps zigzag roughing sweeps to weigh the load at a sampling
+/// or pixel finer than its defaults (each point weighed sweeps the tool's disk, its diameter
+/// over the pixel in rows): 15 million take about 6 s on the 90 mm sample; a sampling of 0.05
+/// mm there swept 45 million and ran for minutes, though its 0.8 million points were few.
+pub const MAX_LOAD_ROWS: f64 = 15_000_000.0;
+
 /// The most nodes of a CL z-map (or cells of a simulation): 50 million f64 heights are 400 MB,
 /// what a browser tab can hold beside the rest of the job.
 pub const MAX_NODES: usize = 50_000_000;
 
+/// The most level-map nodes a level-by-level operation (roughing, waterline) reads, over all
+/// its levels (levels × the nodes of its grid over the stock): each level's region is found
+/// over the whole map, about 0.4 s a million. 20 million are a 200 × 200 mm mould of 30 levels
+/// on a 0.25 mm grid; a step-down of 0.05 mm on the 90 mm sample is 60 million.
+pub const MAX_LEVEL_NODES: f64 = 20_000_000.0;
+
+/// The most rings a level-by-level roughing may plan over all its levels (half the stock's
+/// narrower side over the step-over, on every level), each an offset of its level's region: a
+/// 200 mm mould of 30 levels at a φ6 tool's 40% is 1,250; a step-over of 0.006 mm on a 30 mm
+/// part, 12,500 and 25 s.
+pub const MAX_RINGS: f64 = 5_000.0;
+
 /// The most points a surface-following path (raster finishing) may have before it is reduced:
-/// step-over and grid over the stock's area. 10 million are a 200 mm mould at a 0.1 mm
+/// step-over and grid over the stock's area; and the most points of a roughing's rings, the
+/// stock's area over the step-over and grid on every level. 10 million are a 200 mm mould at a 0.1 mm
 /// step-over and a 0.04 mm grid; the Khronos Duck read as the 1.7 m its glTF says, finished
 /// at the default step-over and grid, is 13 million (and 10 GB).
 pub const MAX_PATH_POINTS: f64 = 10_000_000.0;

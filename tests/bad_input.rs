@@ -330,7 +330,7 @@ fn options_whose_work_has_no_bound_are_refused_before_it() {
     };
     let cases: Vec<(serde_json::Value, &str)> = vec![
         (zlevel, "a helix radius of 1e-9 mm makes"),
-        (zigzag(serde_json::json!({ "kind": "roughZigzag", "name": "z", "tool": 1, "sampling": 0.001 }), None), "a sampling of 0.001 mm weighs the load at about 38 million points"),
+        (zigzag(serde_json::json!({ "kind": "roughZigzag", "name": "z", "tool": 1, "sampling": 0.001 }), None), "a sampling of 0.001 mm weighs the load at about 2.92 million points over a level"),
         (
             zigzag(serde_json::json!({ "kind": "roughZigzag", "name": "z", "tool": 1 }), Some(serde_json::json!({ "number": 1, "shape": "flat", "diameter": 0.01 }))),
             "the φ0.01 tool's step-over of 0.004 mm",

@@ -142,6 +142,18 @@ fn a_v_carve_takes_a_v_bit_and_works_on_drawings() {
     assert!(e.contains("drawings"), "{e}");
 }
 
+/// Issue 56: a loop that crosses itself (a bow tie) is refused where it crosses, not carved
+/// into a gouge 6 mm deep ("gouges the part", its cause unsaid).
+#[test]
+fn a_loop_crossing_itself_is_refused_where_it_crosses() {
+    let bow = r#"<svg xmlns="http://www.w3.org/2000/svg" width="60mm" height="40mm" viewBox="0 0 60 40"><path d="M5 5 L55 35 L55 5 L5 35 Z"/></svg>"#;
+    let drawing = swarf::drawing::import::read_drawing(bow.as_bytes(), Some("bow.svg"), &Tolerances::DEFAULT).unwrap();
+    let (job, _) = carving(VCarve::default());
+    let e = job::run(&job, drawing, &mut Progress::none()).map(|_| ()).unwrap_err().to_string();
+    // Lower-left origin: the crossing at (30, 20) of the file is (25, 15) on the machine.
+    assert!(e.contains("crosses itself or another loop at X25.000 Y15.000"), "{e}");
+}
+
 /// A single-line font's strokes (open chains) engraved by the V-bit at a fixed depth: the
 /// groove a V as deep as asked along the line, as wide at the top as the cone there, nothing
 /// cut beyond; the verification holds the groove to that width (it allowed the bit's whole

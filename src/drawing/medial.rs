@@ -107,7 +107,16 @@ pub fn medial_axis(region: &Shape, chord: f64, step: f64, reach: f64) -> Result<
         return Ok(Vec::new());
     }
     let sites: Vec<(DVec2, DVec2)> = segments.iter().map(|s| (back([s[0], s[1]]), back([s[2], s[3]]))).collect();
-    let diagram = Builder::<i32, f64>::default().with_segments(segments.iter()).and_then(|b| b.build()).map_err(|e| format!("the medial axis could not be built: {e}"))?;
+    // The diagram is of segments that meet only at their ends: a loop crossing itself or
+    // another would give an axis outside the region (or none).
+    if let Some(q) = crossing(&segments) {
+        let p = origin + q / scale;
+        return Err(format!("the outline crosses itself or another loop at X{:.3} Y{:.3}: a V-carve follows loops that do not cross; mend the drawing there", p.x, p.y));
+    }
+    let diagram = Builder::<i32, f64>::default()
+        .with_segments(segments.iter())
+        .and_then(|b| b.build())
+        .map_err(|e| format!("the medial axis could not be built from these {} segments ({e:?}); a drawing of loops that touch or nearly cross is the usual cause", segments.len()))?;
     let site_of = |cell: boostvoronoi::CellIndex| -> Result<Site, String> {
         let cell = diagram.get_cell(cell).map_err(|e| e.to_string())?.get();
         let (a, c) = sites[cell.source_index()];
@@ -209,6 +218,38 @@ fn needless_spike(s1: Site, s2: Site, p0: DVec2, p1: DVec2, reach: f64, sliver: 
     c * (1.0 / half.cos() - 1.0) <= sliver
 }
 
+/// Where two of `segments` (integer coordinates, as the diagram takes them) cross or overlap
+/// other than at an end they share: a point of the first such pair found.
+fn crossing(segments: &[[i32; 4]]) -> Option<DVec2> {
+    let ends = |s: &[i32; 4]| [[s[0] as i64, s[1] as i64], [s[2] as i64, s[3] as i64]];
+    let side = |a: [i64; 2], b: [i64; 2], c: [i64; 2]| ((b[0] - a[0]) as i128 * (c[1] - a[1]) as i128 - (b[1] - a[1]) as i128 * (c[0] - a[0]) as i128).signum();
+    let within = |a: [i64; 2], b: [i64; 2], c: [i64; 2]| a[0].min(b[0]) <= c[0] && c[0] <= a[0].max(b[0]) && a[1].min(b[1]) <= c[1] && c[1] <= a[1].max(b[1]);
+    let rects: Vec<crate::geom::segment::Rect> =
+        segments.iter().map(|s| crate::geom::segment::Rect::EMPTY.grow(DVec2::new(s[0] as f64, s[1] as f64)).grow(DVec2::new(s[2] as f64, s[3] as f64))).collect();
+    let mut found = None;
+    crate::geom::index::RectIndex::new(&rects).pairs(|i, j| {
+        if found.is_some() {
+            return;
+        }
+        let ([a, b], [c, d]) = (ends(&segments[i]), ends(&segments[j]));
+        let shared = [a, b].iter().filter(|p| **p == c || **p == d).count();
+        let (d1, d2, d3, d4) = (side(a, b, c), side(a, b, d), side(c, d, a), side(c, d, b));
+        let touching = |p: [i64; 2]| [a, b, c, d].iter().filter(|&&q| q == p).count() < 2;
+        let at = |p: [i64; 2]| DVec2::new(p[0] as f64, p[1] as f64);
+        found = if d1 * d2 < 0 && d3 * d4 < 0 {
+            // A proper crossing, where the lines meet.
+            let (a, b, c, d) = (at(a), at(b), at(c), at(d));
+            Some(a + (b - a) * ((c - a).perp_dot(d - c) / (b - a).perp_dot(d - c)))
+        } else if shared == 0 || (d1 == 0 && d2 == 0) {
+            // One's end on the other (not the end they share), or the two along one line.
+            [(d1, a, b, c), (d2, a, b, d), (d3, c, d, a), (d4, c, d, b)].into_iter().find(|&(o, p, q, r)| o == 0 && within(p, q, r) && touching(r)).map(|t| at(t.3))
+        } else {
+            None
+        };
+    });
+    found
+}
+
 /// Points from `a` to `b` at most `step` apart.
 fn line(a: DVec2, b: DVec2, step: f64) -> Vec<DVec2> {
     let n = ((a.distance(b) / step).ceil() as usize).max(1);
@@ -231,7 +272,19 @@ fn parabola(p: DVec2, a: DVec2, c: DVec2, p0: DVec2, p1: DVec2, step: f64) -> Ve
     let px = (p - a).dot(u);
     let (x0, x1) = ((p0 - a).dot(u), (p1 - a).dot(u));
     let y = |x: f64| ((x - px).powi(2) + py * py) / (2.0 * py);
-    let count = (((x1 - x0).abs() + (y(x1) - y(x0)).abs()) / step).ceil().max(2.0) as usize;
+    // The ends as the diagram put them must lie on the parabola; where the point nearly lies on
+    // the line (a spike's parabola, a few nanometres wide) its heights blow up with any error in
+    // the ends (a wrench's outline once asked 20 GB of points here): the chord serves.
+    let (y0, y1) = ((p0 - a).dot(n), (p1 - a).dot(n));
+    let off = (y(x0) - y0).abs().max((y(x1) - y1).abs());
+    if !(off <= step.max(p0.distance(p1) * 1e-3)) {
+        return line(p0, p1, step);
+    }
+    // Its length is at most its run along the line plus its rise and fall (down to its vertex,
+    // py / 2, where that lies between the ends).
+    let lowest = if (x0.min(x1)..=x0.max(x1)).contains(&px) { py / 2.0 } else { y0.min(y1) };
+    let length = (x1 - x0).abs() + (y0 - lowest).abs() + (y1 - lowest).abs();
+    let count = (length / step).ceil().clamp(2.0, crate::limits::MAX_PATH_POINTS) as usize;
     let mut out: Vec<DVec2> = (0..=count).map(|k| x0 + (x1 - x0) * k as f64 / count as f64).map(|x| a + u * x + n * y(x)).collect();
     // The ends exactly where the diagram put them.
     out[0] = p0;
@@ -370,6 +423,27 @@ mod tests {
         );
         let ends = [axis[0].points[0], *axis[0].points.last().unwrap()];
         assert!(ends.iter().any(|p| p.distance(a) < 0.01) && ends.iter().any(|p| p.distance(b) < 0.01), "{ends:?}");
+    }
+
+    /// A point a hair off its line makes a parabola whose heights blow up with any error in
+    /// the ends the diagram gives: the chord between them then, a hundred points, not the
+    /// billions (20 GB) the parabola's own heights asked.
+    #[test]
+    fn a_parabola_whose_point_nearly_lies_on_its_line_stays_small() {
+        let points = parabola(DVec2::new(0.0, 1e-8), DVec2::new(-10.0, 0.0), DVec2::new(10.0, 0.0), DVec2::new(0.0, 5.0), DVec2::new(1.0, 5.0), 0.01);
+        assert!(points.len() < 200, "{} points", points.len());
+        assert_eq!((points[0], *points.last().unwrap()), (DVec2::new(0.0, 5.0), DVec2::new(1.0, 5.0)));
+    }
+
+    #[test]
+    fn crossing_segments_are_found_and_a_shared_end_is_not_a_crossing() {
+        let square = [[0, 0, 10, 0], [10, 0, 10, 10], [10, 10, 0, 10], [0, 10, 0, 0]];
+        assert_eq!(crossing(&square), None);
+        let bow = [[0, 0, 10, 10], [10, 10, 10, 0], [10, 0, 0, 10], [0, 10, 0, 0]];
+        assert_eq!(crossing(&bow), Some(DVec2::new(5.0, 5.0)));
+        // A spike folding back on itself along one line.
+        let fold = [[0, 0, 10, 0], [10, 0, 4, 0], [4, 0, 0, 5], [0, 5, 0, 0]];
+        assert!(crossing(&fold).is_some());
     }
 
     /// An L's reflex corner makes a parabola: its points are as far from the corner as from the

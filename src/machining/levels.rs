@@ -86,10 +86,60 @@ impl LevelRoughing {
         LevelRoughing { name: name.to_owned(), tool, steps, roughing: *roughing, helix_radius: None, flats: true, order: Order::Levels }
     }
 
-    /// The levels this stock's height makes at the step-down, within [`super::MAX_LEVELS`].
+    /// The levels this stock's height makes at the step-down, within [`super::MAX_LEVELS`], and
+    /// the work they ask of this roughing's tool ([`LevelRoughing::check_work`]).
     pub fn check_scale(&self, ctx: &Context) -> Result<()> {
         let height = ctx.stock.max.z - ctx.stock.min.z;
-        super::too_many(&self.name, "levels", height / self.steps.stepdown, super::MAX_LEVELS, "a step-down of", self.steps.stepdown, height)
+        super::too_many(&self.name, "levels", height / self.steps.stepdown, super::MAX_LEVELS, "a step-down of", self.steps.stepdown, height)?;
+        self.check_work(ctx, ctx.tool(&self.name, self.tool)?, 1.0)
+    }
+
+    /// Refuses, before the work, levels that read more than [`crate::limits::MAX_LEVEL_NODES`]
+    /// nodes of the level map in all (each level's region is found over the whole grid), more
+    /// than [`crate::limits::MAX_RINGS`] rings (each an offset of its region), or rings of more
+    /// than [`crate::limits::MAX_PATH_POINTS`] points at the grid's spacing (the
+    /// stock's area over the step-over, on every level): a step-down of 0.01 mm inside the
+    /// levels' limit, or a step-over of 1% of the tool, ran for minutes. `stages`: how many
+    /// times the levels are cut over (octree roughing's octant and profiling stages).
+    pub fn check_work(&self, ctx: &Context, tool: &Tool, stages: f64) -> Result<()> {
+        let size = ctx.stock.max - ctx.stock.min;
+        let levels = stages * (size.z / self.steps.stepdown).ceil().max(1.0);
+        let grid = self.roughing.grid;
+        let nodes = (size.x / grid + 1.0) * (size.y / grid + 1.0);
+        super::level_work(&self.name, levels, nodes, &format!("a step-down of {} mm", crate::limits::shown(self.steps.stepdown)), grid, size)?;
+        let step = self.step(tool.cutter.radius());
+        // Rings from the middle of the widest region out, each an offset of the whole region.
+        let rings = levels * 0.5 * size.x.min(size.y) / step;
+        if rings > crate::limits::MAX_RINGS {
+            return Err(Error::operation(
+                &self.name,
+                format!(
+                    "the φ{} tool's step-over of {} mm makes up to {rings:.0} rings over {levels:.0} levels of the {:.0} × {:.0} mm stock (at most {:.0}): choose a larger step-over or step-down, or check the part's units",
+                    tool.cutter.diameter,
+                    crate::limits::shown(step),
+                    size.x,
+                    size.y,
+                    crate::limits::MAX_RINGS
+                ),
+            ));
+        }
+        let points = levels * size.x * size.y / (step * grid);
+        if points > crate::limits::MAX_PATH_POINTS {
+            return Err(Error::operation(
+                &self.name,
+                format!(
+                    "the φ{} tool's step-over of {} mm on {levels:.0} levels over the {:.0} × {:.0} × {:.0} mm stock makes about {} million path points to plan (at most {:.0} million): choose a larger step-over, step-down or grid, or check the part's units",
+                    tool.cutter.diameter,
+                    crate::limits::shown(step),
+                    size.x,
+                    size.y,
+                    size.z,
+                    crate::limits::shown((points / 1e6).round().max(1.0)),
+                    crate::limits::MAX_PATH_POINTS / 1e6
+                ),
+            ));
+        }
+        Ok(())
     }
 
     /// Checks the settings of a roughing that names its step-down and step-over (z-level and

@@ -128,13 +128,27 @@ impl Drill {
     }
 
     /// The setting that does not fit drilling `h` to `bottom` with `tool`, with its field: a
-    /// peck deeper than the hole, a hole deeper than the flutes.
+    /// peck deeper than the hole or so shallow it pecks past [`crate::limits::MAX_PECKS`], a
+    /// hole deeper than the flutes.
     fn misfit(&self, h: &Hole, bottom: f64, tool: &Tool) -> Option<(&'static str, String)> {
         let depth = h.top - bottom;
         if matches!(self.cycle, DrillCycle::Peck | DrillCycle::ChipBreak) && self.peck > depth + self.retract {
             return Some((
                 "peck",
                 format!("the peck ({} mm) is deeper than the hole at X{:.3} Y{:.3} ({depth:.3} mm from its top): drill it without pecking, or peck less", self.peck, h.center.x, h.center.y),
+            ));
+        }
+        let pecks = depth / self.peck;
+        if matches!(self.cycle, DrillCycle::Peck | DrillCycle::ChipBreak) && pecks > crate::limits::MAX_PECKS {
+            return Some((
+                "peck",
+                format!(
+                    "a peck of {} mm makes {pecks:.0} pecks in the hole at X{:.3} Y{:.3} ({depth:.3} mm deep; at most {:.0}): peck deeper, or check the setting's unit",
+                    crate::limits::shown(self.peck),
+                    h.center.x,
+                    h.center.y,
+                    crate::limits::MAX_PECKS
+                ),
             ));
         }
         (depth > tool.cutter.flute_length + 1e-9).then(|| {

@@ -113,9 +113,7 @@ impl Operate for FinishRaster {
         positive("grid", self.grid)?;
         not_negative("allowance", self.allowance)?;
         crate::machining::angle("angle", self.angle, -360.0, 360.0)?;
-        crate::machining::angle("entry.rampAngle", self.entry.ramp_angle, 0.1, 90.0)?;
-        not_negative("entry.helixMin", self.entry.helix_min)?;
-        not_negative("entry.helixMax", self.entry.helix_max)?;
+        self.entry.validate()?;
         if let Some(m) = self.margin {
             finite("margin", m)?;
         }

@@ -92,7 +92,7 @@ impl Operate for FinishWaterline {
         not_negative("allowance", self.allowance)?;
         crate::machining::angle("slopeMin", self.slope_min, 0.0, 90.0)?;
         positive("grid", self.grid)?;
-        crate::machining::angle("entry.rampAngle", self.entry.ramp_angle, 0.1, 90.0)?;
+        self.entry.validate()?;
         Ok(())
     }
 
@@ -101,7 +101,13 @@ impl Operate for FinishWaterline {
         let height = ctx.stock.max.z - ctx.stock.min.z;
         match self.scallop {
             Some(_) => Ok(()),
-            None => too_many(&self.name, "levels", height / self.stepdown, MAX_LEVELS, "a step-down of", self.stepdown, height),
+            None => {
+                let levels = height / self.stepdown;
+                too_many(&self.name, "levels", levels, MAX_LEVELS, "a step-down of", self.stepdown, height)?;
+                let size = ctx.stock.max - ctx.stock.min;
+                let nodes = (size.x / self.grid + 1.0) * (size.y / self.grid + 1.0);
+                crate::machining::level_work(&self.name, levels.ceil(), nodes, &format!("a step-down of {} mm", crate::limits::shown(self.stepdown)), self.grid, size)
+            }
         }
     }
 
@@ -121,7 +127,7 @@ impl Operate for FinishWaterline {
         let cl = ctx.cl_surface(request, progress)?;
         let profile = ctx.tool(&self.name, self.tool)?.cutter.profile();
         let all = pack(&vec![true; request.grid.nodes()]);
-        let levels = self.heights(&cl.field, request.floor, profile.radius).into_iter().map(|z| (z - self.allowance, all.clone())).collect();
+        let levels = self.heights(&cl.field, request.floor, profile.radius)?.into_iter().map(|z| (z - self.allowance, all.clone())).collect();
         Ok(Some(RegionWork { request, levels }))
     }
 
@@ -141,7 +147,7 @@ impl Operate for FinishWaterline {
         let map = ctx.level_map(request, &cl);
         let steep = self.slope_min.to_radians().tan();
         let slope = |p: DVec2| gradient(&cl.field, p);
-        let heights = self.heights(&cl.field, floor, profile.radius);
+        let heights = self.heights(&cl.field, floor, profile.radius)?;
         // Every level's region on whichever core is free (the levels are known beforehand),
         // unless a pool made it already.
         let given = &ctx.given_regions;
@@ -185,8 +191,9 @@ impl FinishWaterline {
     /// The heights of the levels, from the top down, known before any is contoured: a step-down
     /// apart, or by the scallop: the next level s · sin θ lower, s = sqrt(8 r h) and θ the
     /// shallowest slope of the steep cells (those the level's steep contours pass through) that
-    /// reach across its height.
-    fn heights(&self, cl: &HeightField, floor: f64, radius: f64) -> Vec<f64> {
+    /// reach across its height. More than [`MAX_LEVELS`] (a scallop of 1e-9 mm, the levels
+    /// [`LEAST_STEP`] apart) are refused as soon as they are counted.
+    fn heights(&self, cl: &HeightField, floor: f64, radius: f64) -> Result<Vec<f64>> {
         let top = cl.max();
         let bottom = floor + self.allowance;
         let steep = self.slope_min.to_radians().tan();
@@ -207,7 +214,17 @@ impl FinishWaterline {
         cells.sort_by(|a, b| a.2.total_cmp(&b.2));
         let mut out = Vec::new();
         let mut z = top - 0.5 * self.stepdown.min(top - floor);
-        while z > bottom && out.len() <= 100_000 {
+        let nodes = (cl.nx * cl.ny) as f64;
+        let cap = MAX_LEVELS.min(crate::limits::MAX_LEVEL_NODES / nodes);
+        while z > bottom {
+            if out.len() as f64 >= cap {
+                // More levels than a limit allows: at least these and the one below.
+                let more = (out.len() as f64 * (top - bottom) / (top - z)).max(out.len() as f64 + 1.0);
+                let (what, h) = self.scallop.map_or(("a step-down of", self.stepdown), |h| ("a scallop of", h));
+                too_many(&self.name, "levels", more, MAX_LEVELS, what, h, top - bottom)?;
+                let size = DVec3::new(cl.spacing * (cl.nx - 1) as f64, cl.spacing * (cl.ny - 1) as f64, top - floor);
+                crate::machining::level_work(&self.name, more, nodes, &format!("{what} {} mm", crate::limits::shown(h)), cl.spacing, size)?;
+            }
             out.push(z);
             let level = z - self.allowance;
             let shallowest = cells.iter().find(|&&(lo, hi, _)| lo <= level && level <= hi).map_or(f64::INFINITY, |c| c.2);
@@ -219,7 +236,7 @@ impl FinishWaterline {
                 _ => self.stepdown,
             };
         }
-        out
+        Ok(out)
     }
 }
 

@@ -138,10 +138,12 @@ impl Operate for RoughOctree {
     fn check_scale(&self, ctx: &Context) -> Result<()> {
         // The smallest tool's layers are the most.
         let height = ctx.stock.max.z - ctx.stock.min.z;
-        match self.candidates(ctx)?.last() {
-            Some(t) => too_many(&self.name, "levels", height / self.depth(t), MAX_LEVELS, &format!("δ = {}: the φ{} tool's depth of cut of", self.delta, t.cutter.diameter), self.depth(t), height),
-            None => Ok(()),
+        let candidates = self.candidates(ctx)?;
+        if let Some(t) = candidates.last() {
+            too_many(&self.name, "levels", height / self.depth(t), MAX_LEVELS, &format!("δ = {}: the φ{} tool's depth of cut of", self.delta, t.cutter.diameter), self.depth(t), height)?;
         }
+        // Each tool cuts its levels twice: its octants', then what is left profiled.
+        candidates.iter().try_for_each(|t| self.zlevel(t, false).check_work(ctx, t, 2.0))
     }
 
     fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Planned> {

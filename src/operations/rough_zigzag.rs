@@ -106,6 +106,11 @@ impl RoughZigzag {
         self.sampling.unwrap_or(0.5 * step).max(LEAST_STEP)
     }
 
+    /// The pixel of the load's map at a step-over of `step` (mm).
+    fn pixel_at(&self, step: f64) -> f64 {
+        self.pixel.unwrap_or_else(|| load::default_pixel(step)).max(LEAST_STEP)
+    }
+
     /// Its levels' settings (its own loop cuts level by level).
     pub fn levels(&self) -> LevelRoughing {
         LevelRoughing { flats: self.flats, ..LevelRoughing::new(&self.name, self.tool, self.steps, &self.roughing) }
@@ -267,18 +272,18 @@ impl Operate for RoughZigzag {
         // One level's work before the levels are found (a φ0.01 tool's are thousands).
         let tool = ctx.tool(&self.name, self.tool)?.clone();
         let step = levels.step(tool.cutter.radius());
-        self.weigh(ctx, &tool, step, self.sampling_at(step), 1)?;
+        self.weigh(ctx, &tool, step, self.sampling_at(step), self.pixel_at(step), 1)?;
         let Some(Levels { tool, levels: cut, .. }) = levels.levels_to_cut(ctx, progress)? else { return Ok(Planned::default()) };
         let r = tool.cutter.radius();
         let step = levels.step(r);
         let ds = self.sampling_at(step);
-        let px = self.pixel.unwrap_or_else(|| load::default_pixel(step)).max(LEAST_STEP);
+        let px = self.pixel_at(step);
         let load = Load { ds, step, tolerance: self.load_tolerance, climb: self.roughing.direction == Direction::Climb };
         let pattern = match self.passes {
             Passes::Zigzag => Pattern::Zigzag,
             Passes::OneWay => Pattern::OneWay,
         };
-        self.weigh(ctx, &tool, step, ds, cut.len())?;
+        self.weigh(ctx, &tool, step, ds, px, cut.len())?;
         let entry = Entry { ramp_angle: self.roughing.ramp_angle, ..Entry::default() };
         let mut report = LoadReport { reference: step * tool.feed_rate, rate: step * tool.feed_rate * self.steps.stepdown, sampling: ds, ..LoadReport::default() };
         let mut path: Option<Toolpath> = None;
@@ -324,11 +329,21 @@ impl Operate for RoughZigzag {
 impl RoughZigzag {
     /// Refuses, before the work, passes every `step` over the stock's area sampled every `ds`
     /// on `levels` levels that weigh the load at more than [`crate::limits::MAX_LOAD_SAMPLES`]
-    /// points, naming the setting (the sampling, or the tool whose step-over it follows).
-    fn weigh(&self, ctx: &Context, tool: &crate::tool::Tool, step: f64, ds: f64, levels: usize) -> Result<()> {
+    /// points, or sweep more than [`crate::limits::MAX_LOAD_ROWS`] rows of the levels' maps
+    /// doing it (each point sweeps the tool's disk at the pixel `px`, no finer than a level's
+    /// map holds) at a sampling or pixel finer than the defaults, naming the setting (the sampling, or the tool whose step-over it follows).
+    fn weigh(&self, ctx: &Context, tool: &crate::tool::Tool, step: f64, ds: f64, px: f64, levels: usize) -> Result<()> {
         let size = ctx.stock.max - ctx.stock.min;
-        let samples = levels as f64 * size.x * size.y / (step * ds);
-        if samples <= crate::limits::MAX_LOAD_SAMPLES {
+        let points = |ds: f64| levels as f64 * size.x * size.y / (step * ds);
+        let samples = points(ds);
+        // Each point sweeps the tool's disk over the level's map row by row.
+        let finest = (size.x * size.y / load::MOST_PIXELS).sqrt();
+        let rows = |px: f64| tool.cutter.diameter / px.max(finest);
+        let work = samples * rows(px);
+        // The defaults' own work grows with the part, which the levels' limits bound; only a
+        // sampling or pixel set finer than theirs is held to this one.
+        let plain = points(0.5 * step) * rows(load::default_pixel(step));
+        if samples <= crate::limits::MAX_LOAD_SAMPLES && work <= crate::limits::MAX_LOAD_ROWS.max(plain) {
             return Ok(());
         }
         let why = match self.sampling {
@@ -336,14 +351,18 @@ impl RoughZigzag {
             None => format!("the φ{} tool's step-over of {} mm (sampled every {} mm)", tool.cutter.diameter, crate::limits::shown(step), crate::limits::shown(ds)),
         };
         let over = if levels == 1 { "a level".to_string() } else { format!("{levels} levels") };
+        let most = if samples > crate::limits::MAX_LOAD_SAMPLES {
+            format!("at most {:.0} million", crate::limits::MAX_LOAD_SAMPLES / 1e6)
+        } else {
+            format!("each sweeping the tool's {:.0} rows of {} mm pixels: at most {:.0} million rows in all", rows(px), (px.max(finest) * 1e4).round() / 1e4, crate::limits::MAX_LOAD_ROWS / 1e6)
+        };
         Err(Error::operation(
             &self.name,
             format!(
-                "{why} weighs the load at about {} million points over {over} of the {:.0} × {:.0} mm stock (at most {:.0} million): choose a coarser sampling or a larger tool, or check the part's units",
-                crate::limits::shown((samples / 1e6).round()),
+                "{why} weighs the load at about {} million points over {over} of the {:.0} × {:.0} mm stock ({most}): choose a coarser sampling or pixel, or a larger tool, or check the part's units",
+                crate::limits::shown((samples / 1e4).round() / 100.0),
                 size.x,
                 size.y,
-                crate::limits::MAX_LOAD_SAMPLES / 1e6
             ),
         ))
     }

@@ -28,6 +28,27 @@ pub struct Entry {
     pub helix_max: f64,
 }
 
+/// The smallest share of the tool's diameter a helix may be, where it is one (0 turns the
+/// helix off): a helix tighter than a twentieth of the tool turns thousands of times to go down
+/// a millimetre, on the spot (an entry's helix of 1e-9 once ran for minutes).
+pub const LEAST_HELIX_SHARE: f64 = 0.05;
+
+impl Entry {
+    /// Checks the settings, each named as the job file names it under `entry`.
+    pub fn validate(&self) -> Result<(), crate::machining::FieldError> {
+        crate::machining::angle("entry.rampAngle", self.ramp_angle, 0.1, 90.0)?;
+        for (field, share) in [("entry.helixMin", self.helix_min), ("entry.helixMax", self.helix_max)] {
+            if !(share == 0.0 || (LEAST_HELIX_SHARE..=10.0).contains(&share)) {
+                return Err(crate::machining::FieldError {
+                    field,
+                    message: format!("is a share of the tool's diameter: 0 (no helix) or from {LEAST_HELIX_SHARE} to 10 (got {})", crate::limits::shown(share)),
+                });
+            }
+        }
+        Ok(())
+    }
+}
+
 impl Default for Entry {
     fn default() -> Self {
         Entry { ramp_angle: 3.0, helix_min: 0.3, helix_max: 0.9 }
@@ -127,7 +148,12 @@ fn helix_3d(top: f64, p0: DVec3, radius: f64, entry: &Entry, tan: f64, keep: &dy
         if r <= 0.0 {
             continue;
         }
-        let turns = (drop / (std::f64::consts::TAU * r * tan)).ceil().max(1.0) as usize;
+        let turns = (drop / (std::f64::consts::TAU * r * tan)).ceil().max(1.0);
+        // Tighter still, the helix turns on the spot: a ramp (or the next entry) serves.
+        if turns > crate::limits::MAX_TURNS {
+            break;
+        }
+        let turns = turns as usize;
         let n = turns * CHORDS_PER_TURN;
         for d in 0..HELIX_DIRECTIONS {
             let dir = DVec2::from_angle(std::f64::consts::TAU * d as f64 / HELIX_DIRECTIONS as f64);

@@ -401,7 +401,7 @@ pub fn default_pixel(step: f64) -> f64 {
 }
 
 /// The most pixels a level's map holds (a bit and two flags each): past it the pixels grow.
-const MOST_PIXELS: f64 = 16e6;
+pub const MOST_PIXELS: f64 = 16e6;
 
 /// The pixel of a map over `bounds` grown by `radius`: `wanted`, or larger where the map
 /// would hold more than `MOST_PIXELS` (a large sheet or part).
