@@ -73,19 +73,29 @@ pub const MAX_NODES: usize = 50_000_000;
 
 /// The most level-map nodes a level-by-level operation (roughing, waterline) reads, over all
 /// its levels (levels × the nodes of its grid over the stock): each level's region is found
-/// over the whole map, about 0.4 s a million. 20 million are a 200 × 200 mm mould of 30 levels
-/// on a 0.25 mm grid; a step-down of 0.05 mm on the 90 mm sample is 60 million.
-pub const MAX_LEVEL_NODES: f64 = 20_000_000.0;
+/// over the whole map, 0.06–0.1 s a million (release build: 72 million for the 200 mm
+/// wheel_in_box at a 0.5 mm step-down took 4.4 s, 149 million for a waterline at 0.02 mm on
+/// the 90 mm sample 10.9 s of its 18). 150 million are wheel_in_box's waterline at a 0.25 mm
+/// step-down on the default 0.25 mm grid; a step-down of 0.015 mm on the sample asks 198
+/// million, and a grid of 0.04 mm there 233 million at a 0.5 mm step-down.
+pub const MAX_LEVEL_NODES: f64 = 150_000_000.0;
 
-/// The most rings a level-by-level roughing may plan over all its levels (half the stock's
-/// narrower side over the step-over, on every level), each an offset of its level's region: a
-/// 200 mm mould of 30 levels at a φ6 tool's 40% is 1,250; a step-over of 0.006 mm on a 30 mm
-/// part, 12,500 and 25 s.
+/// The most cut one clearing of a level-by-level roughing may plan (mm): the area of its
+/// levels' regions over the step-over, known before any ring is made. Planning and
+/// simulating take 20–30 µs a mm of it (release build): 0.65 km for the 200 mm wheel_in_box
+/// at a 0.5 mm step-down with a φ10 took 13.7 s, 0.49 km for the 90 mm sample at 0.1 mm
+/// with its φ6 13.2 s, and 0.99 km there at 0.05 mm 28 s. 0.75 km is 12 hours of cutting at
+/// 1 m/min.
+pub const MAX_CUT_LENGTH: f64 = 750_000.0;
+
+/// The most rings one clearing of a level-by-level roughing may plan, over all its levels'
+/// regions (each region's inradius over the step-over), each an offset of its region however
+/// close to the last: a step-over of 0.06 mm on the sample (about 7,600) took 9 s, one of
+/// 0.006 mm on the 40 mm warm-up part (16,000) 20 s.
 pub const MAX_RINGS: f64 = 5_000.0;
 
 /// The most points a surface-following path (raster finishing) may have before it is reduced:
-/// step-over and grid over the stock's area; and the most points of a roughing's rings, the
-/// stock's area over the step-over and grid on every level. 10 million are a 200 mm mould at a 0.1 mm
+/// step-over and grid over the stock's area. 10 million are a 200 mm mould at a 0.1 mm
 /// step-over and a 0.04 mm grid; the Khronos Duck read as the 1.7 m its glTF says, finished
 /// at the default step-over and grid, is 13 million (and 10 GB).
 pub const MAX_PATH_POINTS: f64 = 10_000_000.0;

@@ -475,7 +475,7 @@ fn absurd_settings_and_a_part_outside_the_stock_are_refused_at_once() {
     let mut job = Job::demo();
     job.operations = vec![Operation::RoughOctree(swarf::operations::RoughOctree { delta: 0.0001, ..Default::default() })];
     let (e, s) = refused(&job);
-    assert!(e.contains("δ = 0.0001") && e.contains("levels"), "{e}");
+    assert!(e.contains("delta is at least 0.01") && e.contains("got 0.0001"), "{e}");
     assert!(s < 1.0, "{s} s");
     // A stock box that does not hold the part: below it, above it, beside it.
     for (z0, z1, x0, what) in [(100.0, 200.0, -200.0, "below the stock's bottom"), (-200.0, -100.0, -200.0, "above the stock's top"), (-200.0, 200.0, 500.0, "beside the stock")] {

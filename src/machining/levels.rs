@@ -91,51 +91,63 @@ impl LevelRoughing {
     pub fn check_scale(&self, ctx: &Context) -> Result<()> {
         let height = ctx.stock.max.z - ctx.stock.min.z;
         super::too_many(&self.name, "levels", height / self.steps.stepdown, super::MAX_LEVELS, "a step-down of", self.steps.stepdown, height)?;
-        self.check_work(ctx, ctx.tool(&self.name, self.tool)?, 1.0)
+        self.check_work(ctx)
     }
 
     /// Refuses, before the work, levels that read more than [`crate::limits::MAX_LEVEL_NODES`]
-    /// nodes of the level map in all (each level's region is found over the whole grid), more
-    /// than [`crate::limits::MAX_RINGS`] rings (each an offset of its region), or rings of more
-    /// than [`crate::limits::MAX_PATH_POINTS`] points at the grid's spacing (the
-    /// stock's area over the step-over, on every level): a step-down of 0.01 mm inside the
-    /// levels' limit, or a step-over of 1% of the tool, ran for minutes. `stages`: how many
-    /// times the levels are cut over (octree roughing's octant and profiling stages).
-    pub fn check_work(&self, ctx: &Context, tool: &Tool, stages: f64) -> Result<()> {
+    /// nodes of the level map in all (each level's region is found over the whole grid): a
+    /// step-down of 0.01 mm inside the levels' limit ran for minutes. The rings the levels'
+    /// regions ask are weighed once the regions are known ([`LevelRoughing::check_rings`]).
+    pub fn check_work(&self, ctx: &Context) -> Result<()> {
         let size = ctx.stock.max - ctx.stock.min;
-        let levels = stages * (size.z / self.steps.stepdown).ceil().max(1.0);
+        let levels = (size.z / self.steps.stepdown).ceil().max(1.0);
         let grid = self.roughing.grid;
         let nodes = (size.x / grid + 1.0) * (size.y / grid + 1.0);
-        super::level_work(&self.name, levels, nodes, &format!("a step-down of {} mm", crate::limits::shown(self.steps.stepdown)), grid, size)?;
-        let step = self.step(tool.cutter.radius());
-        // Rings from the middle of the widest region out, each an offset of the whole region.
-        let rings = levels * 0.5 * size.x.min(size.y) / step;
-        if rings > crate::limits::MAX_RINGS {
+        super::level_work(&self.name, levels, nodes, &format!("a step-down of {} mm", crate::limits::shown(self.steps.stepdown)), grid, size)
+    }
+
+    /// Refuses, before any ring is made, regions that would take more than
+    /// [`crate::limits::MAX_RINGS`] rings `step` apart in all (each region's rings from its
+    /// middle out: its inradius, about twice its area over its perimeter, over the step), or
+    /// more than [`crate::limits::MAX_CUT_LENGTH`] mm of cut (their area over the step): a
+    /// step-over of 1% of the tool, or a step-down of 0.05 mm, on the sample ran for minutes.
+    /// The regions are those the levels really cut, so rest roughing after a larger tool, and
+    /// octree roughing's octants, are weighed by what they leave, not by the whole stock.
+    pub fn check_rings(&self, tool: &Tool, regions: &[Arc<Shape>], step: f64) -> Result<()> {
+        let (mut rings, mut length) = (0.0, 0.0);
+        for region in regions {
+            let (area, perimeter) = (region.area().abs(), region.length());
+            if perimeter > 0.0 {
+                let b = region.bounds();
+                let across = (2.0 * area / perimeter).min(0.5 * (b.max - b.min).min_element());
+                rings += across / step + 1.0;
+                length += area / step + perimeter;
+            }
+        }
+        let shown_step = crate::limits::shown((step * 1e6).round() / 1e6);
+        let most = crate::limits::MAX_RINGS;
+        if rings > most {
             return Err(Error::operation(
                 &self.name,
                 format!(
-                    "the φ{} tool's step-over of {} mm makes up to {rings:.0} rings over {levels:.0} levels of the {:.0} × {:.0} mm stock (at most {:.0}): choose a larger step-over or step-down, or check the part's units",
+                    "the φ{} tool's step-over of {shown_step} mm makes about {rings:.0} rings over the {} regions of its levels (at most {most:.0}): choose a larger step-over or step-down, or check the part's units",
                     tool.cutter.diameter,
-                    crate::limits::shown(step),
-                    size.x,
-                    size.y,
-                    crate::limits::MAX_RINGS
+                    regions.len(),
                 ),
             ));
         }
-        let points = levels * size.x * size.y / (step * grid);
-        if points > crate::limits::MAX_PATH_POINTS {
+        if length > crate::limits::MAX_CUT_LENGTH {
             return Err(Error::operation(
                 &self.name,
                 format!(
-                    "the φ{} tool's step-over of {} mm on {levels:.0} levels over the {:.0} × {:.0} × {:.0} mm stock makes about {} million path points to plan (at most {:.0} million): choose a larger step-over, step-down or grid, or check the part's units",
+                    "the φ{} tool's step-over of {shown_step} mm over the {} regions of its levels (a step-down of {} mm) cuts about {} km ({} hours at {} mm/min; at most {} km planned at once): choose a larger step-over or step-down, or check the part's units",
                     tool.cutter.diameter,
-                    crate::limits::shown(step),
-                    size.x,
-                    size.y,
-                    size.z,
-                    crate::limits::shown((points / 1e6).round().max(1.0)),
-                    crate::limits::MAX_PATH_POINTS / 1e6
+                    regions.len(),
+                    crate::limits::shown(self.steps.stepdown),
+                    crate::limits::shown((length / 1e5).round() / 10.0),
+                    crate::limits::shown((length / tool.feed_rate.max(1.0) / 60.0).round()),
+                    crate::limits::shown(tool.feed_rate),
+                    crate::limits::shown(crate::limits::MAX_CUT_LENGTH / 1e6)
                 ),
             ));
         }
@@ -243,6 +255,7 @@ impl LevelRoughing {
         // operation starts from): the same program, sooner.
         // Piece k's rings are made from region k: every piece is still in the list.
         let regions: Vec<Arc<Shape>> = pieces.list.iter().map(|p| p.as_ref().expect("no piece is cut yet").region.clone()).collect();
+        self.check_rings(&tool, &regions, step)?;
         let make = |k: usize| rings(&regions[k], 0.0, step, r, &tol);
         let (cancelled, fed) = crate::parallel::ahead(count, make, |rings_of| {
             crate::parallel::behind(Refeed::run, |send| {
@@ -1023,6 +1036,22 @@ mod tests {
             given_passes: Default::default(),
             given_regions: Vec::new(),
         }
+    }
+
+    #[test]
+    fn rings_are_weighed_by_the_regions_they_clear() {
+        // Square regions of side a, a step s: about a / 2s rings and a² / s mm of cut each.
+        let roughing = LevelRoughing::new("rough", 1, Steps { stepdown: 2.0, stepover_fraction: 0.4 }, &Roughing::default());
+        let tool = Tool { number: 1, cutter: crate::cutter::Cutter::flat(6.0), feed_rate: 1000.0, ..Tool::default() };
+        let square = |a: f64| Arc::new(Shape::new(vec![Loop::rect(DVec2::ZERO, DVec2::splat(a))]));
+        // Two 500 mm squares at 2.4 mm: 210 rings, 212 m of cut (area and outline); ten, 1.06 km.
+        assert!(roughing.check_rings(&tool, &vec![square(500.0); 2], 2.4).is_ok());
+        let e = roughing.check_rings(&tool, &vec![square(500.0); 10], 2.4).unwrap_err().to_string();
+        assert!(e.contains("cuts about 1.1 km (18 hours at 1000 mm/min"), "{e}");
+        // A 20 mm square at 0.006 mm: 1,668 rings (its inradius over the step, and one); three of them are more than the limit allows.
+        assert!(roughing.check_rings(&tool, &vec![square(20.0); 2], 0.006).is_ok());
+        let e = roughing.check_rings(&tool, &vec![square(20.0); 3], 0.006).unwrap_err().to_string();
+        assert!(e.contains("step-over of 0.006 mm makes about 5003 rings over the 3 regions"), "{e}");
     }
 
     #[test]

@@ -37,7 +37,7 @@ pub struct FinishWaterline {
     pub tool: u32,
     /// Height between levels (mm); used when `scallop` is not set. Default value: 0.5.
     pub stepdown: f64,
-    /// Largest scallop height between levels (mm): levels closer where the surface is
+    /// Largest scallop height between levels (mm, at least 0.001): levels closer where the surface is
     /// shallower. Default value: none (the step-down).
     pub scallop: Option<f64>,
     /// Material left on the part (mm). Default value: 0.
@@ -72,6 +72,9 @@ impl Default for FinishWaterline {
 const SHORTEST: f64 = 0.5;
 /// Smallest step between levels (mm), however shallow the slope.
 const LEAST_STEP: f64 = 0.02;
+/// Smallest scallop height (mm): a micron, finer than any machine holds; a scallop of 1e-9 mm
+/// would put every level [`LEAST_STEP`] apart, 1,300 levels on the 26 mm sample.
+const LEAST_SCALLOP: f64 = 0.001;
 
 impl Operate for FinishWaterline {
     fn takes(&self, cutter: &crate::cutter::Cutter) -> std::result::Result<(), &'static str> {
@@ -88,6 +91,9 @@ impl Operate for FinishWaterline {
         positive("stepdown", self.stepdown)?;
         if let Some(h) = self.scallop {
             positive("scallop", h)?;
+            if h < LEAST_SCALLOP {
+                return Err(FieldError { field: "scallop", message: format!("is at least {LEAST_SCALLOP} mm, a micron: finer than any machine holds (got {})", crate::limits::shown(h)) });
+            }
         }
         not_negative("allowance", self.allowance)?;
         crate::machining::angle("slopeMin", self.slope_min, 0.0, 90.0)?;
@@ -191,8 +197,8 @@ impl FinishWaterline {
     /// The heights of the levels, from the top down, known before any is contoured: a step-down
     /// apart, or by the scallop: the next level s · sin θ lower, s = sqrt(8 r h) and θ the
     /// shallowest slope of the steep cells (those the level's steep contours pass through) that
-    /// reach across its height. More than [`MAX_LEVELS`] (a scallop of 1e-9 mm, the levels
-    /// [`LEAST_STEP`] apart) are refused as soon as they are counted.
+    /// reach across its height. More than [`MAX_LEVELS`] (levels [`LEAST_STEP`] apart on a tall
+    /// part), or more than the level map allows, are refused as soon as they are counted.
     fn heights(&self, cl: &HeightField, floor: f64, radius: f64) -> Result<Vec<f64>> {
         let top = cl.max();
         let bottom = floor + self.allowance;

@@ -59,6 +59,8 @@ use crate::zmap::distance::distance_within;
 use crate::zmap::surface::ClSurface;
 use crate::zmap::HeightField;
 
+/// The thinnest axial depth of cut, as a fraction of the diameter (δ): a hundredth.
+const LEAST_DELTA: f64 = 0.01;
 /// Octree multi-tool roughing.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(default, rename_all = "camelCase")]
@@ -70,8 +72,8 @@ pub struct RoughOctree {
     /// The tools it may choose from, by number. Default value: empty, meaning every flat and
     /// bull-nose end in the job's library.
     pub tools: Vec<u32>,
-    /// Axial depth of cut as a fraction of each tool's diameter (seed 000's δ = h / D), never
-    /// more than the tool's flute length. Default value: 0.25.
+    /// Axial depth of cut as a fraction of each tool's diameter (seed 000's δ = h / D), at least
+    /// 0.01 and never more than the tool's flute length. Default value: 0.25.
     pub delta: f64,
     /// Distance between rings after the first as a fraction of the tool's diameter, at most
     /// 0.85 (seed 000 §3.3: wider steps leave islands where boundaries meet at 90°). The paper's
@@ -128,6 +130,12 @@ impl Operate for RoughOctree {
 
     fn validate(&self) -> Result<(), FieldError> {
         positive("delta", self.delta)?;
+        if self.delta < LEAST_DELTA {
+            return Err(FieldError {
+                field: "delta",
+                message: format!("is at least {LEAST_DELTA} of the diameter: a thinner cut rubs rather than cuts, and takes thousands of levels (got {})", crate::limits::shown(self.delta)),
+            });
+        }
         crate::machining::fraction("stepoverFraction", self.stepover_fraction)?;
         if self.stepover_fraction > 0.85 {
             return Err(FieldError { field: "stepoverFraction", message: format!("is at most 0.85 of the diameter: wider steps leave islands between rings (got {})", self.stepover_fraction) });
@@ -142,8 +150,8 @@ impl Operate for RoughOctree {
         if let Some(t) = candidates.last() {
             too_many(&self.name, "levels", height / self.depth(t), MAX_LEVELS, &format!("δ = {}: the φ{} tool's depth of cut of", self.delta, t.cutter.diameter), self.depth(t), height)?;
         }
-        // Each tool cuts its levels twice: its octants', then what is left profiled.
-        candidates.iter().try_for_each(|t| self.zlevel(t, false).check_work(ctx, t, 2.0))
+        // Each tool's levels read the level map; their rings are weighed as they are cut.
+        candidates.iter().try_for_each(|t| self.zlevel(t, false).check_work(ctx))
     }
 
     fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Planned> {

@@ -446,15 +446,15 @@ test('every case of the shared bad files and jobs is answered in the page: the m
   const take = (file) => answer('#file', file);
   const loadJob = (file) => answer('#load-job', file);
   // Two cases kept out of the folder: the Khronos Duck, 1.7 m long by its glTF, under the
-  // sample's mould job (its raster finish would be millions of points: refused before the work,
-  // naming the settings), and kiri_pocket-test's facets 3,000 times over (read once, a note).
+  // sample's mould job (its roughing's levels would read 24 billion level-map nodes, and its
+  // raster finish millions of points: refused before the work, naming the settings), and kiri_pocket-test's facets 3,000 times over (read once, a note).
   const duck = path.resolve(dir, '../meshes/tm_Duck.glb');
   if (fs.existsSync(duck)) {
     const read = await take(duck);
     assert.notEqual(read.level, 'error', read.text);
     await page.click('#generate');
     assert.equal(await waitForGenerated(page), 'failed');
-    assert.match(await page.textContent('#message'), /million points.*step-over/s);
+    assert.match(await page.textContent('#message'), /a step-down of 2 mm.*million level-map nodes.*check the part's units/s);
   }
   const pocket = fs.readFileSync(path.resolve(dir, '../meshes/kiri_pocket-test.stl'), 'utf8');
   const facets = pocket.slice(pocket.indexOf('facet'), pocket.lastIndexOf('endsolid'));

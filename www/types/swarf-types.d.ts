@@ -581,7 +581,7 @@ tool: number,
  */
 stepdown: number, 
 /**
- * Largest scallop height between levels (mm): levels closer where the surface is
+ * Largest scallop height between levels (mm, at least 0.001): levels closer where the surface is
  * shallower. Default value: none (the step-down).
  */
 scallop: number | null, 
@@ -1179,8 +1179,8 @@ enabled: boolean,
  */
 tools: Array<number>, 
 /**
- * Axial depth of cut as a fraction of each tool's diameter (seed 000's δ = h / D), never
- * more than the tool's flute length. Default value: 0.25.
+ * Axial depth of cut as a fraction of each tool's diameter (seed 000's δ = h / D), at least
+ * 0.01 and never more than the tool's flute length. Default value: 0.25.
  */
 delta: number, 
 /**
