@@ -400,3 +400,16 @@ fn a_gully_the_larger_tool_cannot_enter_is_entered_from_the_ground_it_cleared() 
     let (worst, n) = left_on_floors(&out, 1.5 + LEAVE + 0.3, |x, y| gully(x, y).filter(|_| within(y, -5.0, 5.0)));
     assert!(n >= 30 && worst <= 0.0011, "{worst} mm above the allowance on {n} gully cells");
 }
+
+/// Issue 56: at a step-over of 0.03 of a φ6 (0.18 mm, under the 0.375 mm pixels the rings'
+/// material map had) a ring whose band held no pixel's centre was left out, its band standing a
+/// level high; the traverse over the level, taken as cleared, went through it (the sample's
+/// octree roughing was refused: a rapid through stock). The rings' map is now finer than half
+/// the step (or absent): the program is clean.
+#[test]
+fn a_step_over_finer_than_the_rings_pixels_leaves_no_band_standing() {
+    let mut job = Job::demo();
+    job.operations = vec![Operation::RoughOctree(RoughOctree { tools: vec![1], stepover_fraction: 0.03, ..RoughOctree::default() })];
+    let out = job::run(&job, swarf::mesh::sample::demo_part(), &mut Progress::none()).unwrap_or_else(|e| panic!("{e}"));
+    clean(&out);
+}
