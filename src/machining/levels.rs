@@ -87,23 +87,12 @@ impl LevelRoughing {
     }
 
     /// The levels this stock's height makes at the step-down, within [`super::MAX_LEVELS`], and
-    /// the work they ask of this roughing's tool ([`LevelRoughing::check_work`]).
+    /// the level-map nodes they read, within [`crate::limits::MAX_LEVEL_NODES`] (each level's
+    /// region is found over the whole grid: a step-down of 0.01 mm inside the levels' limit ran
+    /// for minutes). The rings the levels' regions ask are weighed once the regions are known
+    /// ([`LevelRoughing::check_rings`]).
     pub fn check_scale(&self, ctx: &Context) -> Result<()> {
-        let height = ctx.stock.max.z - ctx.stock.min.z;
-        super::too_many(&self.name, "levels", height / self.steps.stepdown, super::MAX_LEVELS, "a step-down of", self.steps.stepdown, height)?;
-        self.check_work(ctx)
-    }
-
-    /// Refuses, before the work, levels that read more than [`crate::limits::MAX_LEVEL_NODES`]
-    /// nodes of the level map in all (each level's region is found over the whole grid): a
-    /// step-down of 0.01 mm inside the levels' limit ran for minutes. The rings the levels'
-    /// regions ask are weighed once the regions are known ([`LevelRoughing::check_rings`]).
-    pub fn check_work(&self, ctx: &Context) -> Result<()> {
-        let size = ctx.stock.max - ctx.stock.min;
-        let levels = (size.z / self.steps.stepdown).ceil().max(1.0);
-        let grid = self.roughing.grid;
-        let nodes = (size.x / grid + 1.0) * (size.y / grid + 1.0);
-        super::level_work(&self.name, levels, nodes, &format!("a step-down of {} mm", crate::limits::shown(self.steps.stepdown)), grid, size)
+        super::check_levels(&self.name, ctx.stock, self.steps.stepdown, self.roughing.grid)
     }
 
     /// Refuses, before any ring is made, regions that would take more than

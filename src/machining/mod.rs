@@ -39,11 +39,19 @@ pub fn too_many(op: &str, what: &str, count: f64, most: f64, field: &str, value:
     Err(crate::error::Error::operation(op, format!("{field} {} mm makes {count:.0} {what} over {span:.1} mm (at most {most:.0}): check the setting and the part's units", crate::limits::shown(value))))
 }
 
-/// Refuses, before the work, `levels` levels that each read a level map of `nodes` nodes on a
-/// `grid` mm grid, when they read more than [`crate::limits::MAX_LEVEL_NODES`] in all; `why`
-/// names what makes the levels ("a step-down of 0.05 mm").
-pub fn level_work(op: &str, levels: f64, nodes: f64, why: &str, grid: f64, stock: crate::geom::DVec3) -> Result<()> {
-    let work = levels * nodes;
+/// Refuses, before the work, levels `stepdown` apart down `stock` past [`MAX_LEVELS`], or
+/// reading more level-map nodes on a `grid` mm grid than [`level_work`] allows.
+pub fn check_levels(op: &str, stock: crate::geom::Aabb, stepdown: f64, grid: f64) -> Result<()> {
+    let size = stock.max - stock.min;
+    too_many(op, "levels", size.z / stepdown, MAX_LEVELS, "a step-down of", stepdown, size.z)?;
+    level_work(op, (size.z / stepdown).ceil().max(1.0), &format!("a step-down of {} mm", crate::limits::shown(stepdown)), grid, size)
+}
+
+/// Refuses, before the work, `levels` levels that each read a level map on a `grid` mm grid
+/// over a stock of `size`, when they read more than [`crate::limits::MAX_LEVEL_NODES`] nodes
+/// in all; `why` names what makes the levels ("a step-down of 0.05 mm").
+pub fn level_work(op: &str, levels: f64, why: &str, grid: f64, size: crate::geom::DVec3) -> Result<()> {
+    let work = levels * (size.x / grid + 1.0) * (size.y / grid + 1.0);
     if work <= crate::limits::MAX_LEVEL_NODES {
         return Ok(());
     }
@@ -52,9 +60,9 @@ pub fn level_work(op: &str, levels: f64, nodes: f64, why: &str, grid: f64, stock
         format!(
             "{levels:.0} levels ({why}) on a {} mm grid over the {:.0} × {:.0} × {:.0} mm stock read about {} million level-map nodes (at most {:.0} million): choose fewer levels or a coarser grid, or check the part's units",
             crate::limits::shown(grid),
-            stock.x,
-            stock.y,
-            stock.z,
+            size.x,
+            size.y,
+            size.z,
             crate::limits::shown((work / 1e6).round().max(1.0)),
             crate::limits::MAX_LEVEL_NODES / 1e6
         ),

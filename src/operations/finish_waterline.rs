@@ -104,16 +104,9 @@ impl Operate for FinishWaterline {
 
     fn check_scale(&self, ctx: &Context) -> Result<()> {
         // Levels by the scallop are at least LEAST_STEP apart (`heights`); by the step-down, as set.
-        let height = ctx.stock.max.z - ctx.stock.min.z;
         match self.scallop {
             Some(_) => Ok(()),
-            None => {
-                let levels = height / self.stepdown;
-                too_many(&self.name, "levels", levels, MAX_LEVELS, "a step-down of", self.stepdown, height)?;
-                let size = ctx.stock.max - ctx.stock.min;
-                let nodes = (size.x / self.grid + 1.0) * (size.y / self.grid + 1.0);
-                crate::machining::level_work(&self.name, levels.ceil(), nodes, &format!("a step-down of {} mm", crate::limits::shown(self.stepdown)), self.grid, size)
-            }
+            None => crate::machining::check_levels(&self.name, ctx.stock, self.stepdown, self.grid),
         }
     }
 
@@ -229,7 +222,7 @@ impl FinishWaterline {
                 let (what, h) = self.scallop.map_or(("a step-down of", self.stepdown), |h| ("a scallop of", h));
                 too_many(&self.name, "levels", more, MAX_LEVELS, what, h, top - bottom)?;
                 let size = DVec3::new(cl.spacing * (cl.nx - 1) as f64, cl.spacing * (cl.ny - 1) as f64, top - floor);
-                crate::machining::level_work(&self.name, more, nodes, &format!("{what} {} mm", crate::limits::shown(h)), cl.spacing, size)?;
+                crate::machining::level_work(&self.name, more, &format!("{what} {} mm", crate::limits::shown(h)), cl.spacing, size)?;
             }
             out.push(z);
             let level = z - self.allowance;

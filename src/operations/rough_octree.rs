@@ -151,7 +151,7 @@ impl Operate for RoughOctree {
             too_many(&self.name, "levels", height / self.depth(t), MAX_LEVELS, &format!("δ = {}: the φ{} tool's depth of cut of", self.delta, t.cutter.diameter), self.depth(t), height)?;
         }
         // Each tool's levels read the level map; their rings are weighed as they are cut.
-        candidates.iter().try_for_each(|t| self.zlevel(t, false).check_work(ctx))
+        candidates.iter().try_for_each(|t| self.zlevel(t, false).check_scale(ctx))
     }
 
     fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Planned> {
