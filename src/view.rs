@@ -299,7 +299,7 @@ impl SimulationData {
         }
         let report = ReportView { report: r.clone(), text: r.describe() };
         let fresh = DexelStock::new(&out.stock, g.spacing, 1);
-        let playback = Playback::at_end(fresh, v.stock, out.moves.clone(), job.tolerances.chordal);
+        let playback = Playback::at_end(fresh, v.stock, out.moves.clone(), job.tolerances.simulated_chordal());
         SimulationData { playback, grid, part, times: program_times(out), mrr, findings, report }
     }
 }

@@ -476,3 +476,45 @@ fn a_part_is_not_read_as_a_drawing_and_binary_bytes_are_not_printed() {
     let e = read_drawing(&stl, None, &Tolerances::default()).unwrap_err().to_string();
     assert!(!e.chars().any(|c| c.is_control() || c == '\u{FFFD}') && e.len() < 400, "{e:?}");
 }
+
+/// Issue 56: a program that gouges says why where the drawing does, before the simulation's
+/// cells: a drill wider than the drawing's holes, loops that cross; and a coarse chordal
+/// tolerance no longer reads as a gouge where the program follows the part.
+#[test]
+fn a_gouge_says_its_cause() {
+    let problem = |job: &Job, bytes: &[u8]| {
+        let out = job::run(job, Workpiece::read(bytes, Some("plate.dxf"), &job.tolerances).unwrap(), &mut Progress::none()).unwrap();
+        out.problem.unwrap_or_else(|| panic!("the program verified clean"))
+    };
+    let square = |x: f64, y: f64, side: f64| format!("0\nLWPOLYLINE\n8\n0\n90\n4\n70\n1\n10\n{x}\n20\n{y}\n10\n{}\n20\n{y}\n10\n{}\n20\n{}\n10\n{x}\n20\n{}\n", x + side, x + side, y + side, y + side);
+    let circle = |x: f64, y: f64, r: f64| format!("0\nCIRCLE\n8\n0\n10\n{x}\n20\n{y}\n40\n{r}\n");
+    let drawing = |entities: &str| format!("0\nSECTION\n2\nENTITIES\n{entities}0\nENDSEC\n0\nEOF\n").into_bytes();
+
+    // A φ6 drill in φ5 holes.
+    let plate = drawing(&(square(0.0, 0.0, 60.0) + &circle(15.0, 20.0, 2.5) + &circle(40.0, 20.0, 2.5)));
+    let job = Job {
+        tools: vec![serde_json::from_value(serde_json::json!({ "number": 1, "shape": "drill", "diameter": 6.0, "angle": 118, "fluteLength": 20, "feedRate": 200, "plungeRate": 100 })).unwrap()],
+        operations: vec![serde_json::from_value(serde_json::json!({ "kind": "drill", "tool": 1 })).unwrap()],
+        ..Job::default()
+    };
+    let p = problem(&job, &plate);
+    assert!(p.starts_with("φ6 drill (T1) in φ5 holes: 0.500 mm oversize on the radius (the first at X"), "{p}");
+
+    // Two squares that cross, each profiled outside.
+    let crossing = drawing(&(square(0.0, 0.0, 30.0) + &square(20.0, 20.0, 30.0)));
+    let p = problem(&drawing_job(), &crossing);
+    assert!(p.starts_with("the drawing's loops 0 and 1 cross (at X"), "{p}");
+    assert!(p.contains("it gouges the part"), "{p}");
+    // Apart, the same squares verify clean.
+    let apart = drawing(&(square(0.0, 0.0, 30.0) + &square(40.0, 40.0, 30.0)));
+    let out = job::run(&drawing_job(), Workpiece::read(&apart, Some("plate.dxf"), &Tolerances::default()).unwrap(), &mut Progress::none()).unwrap();
+    assert_eq!(out.problem, None);
+
+    // A disc profiled with a chordal tolerance of 0.5 mm: its ramp's helices are simulated
+    // within a tenth of the gouge tolerance, and its program (arcs) verifies clean.
+    let disc = drawing(&circle(30.0, 30.0, 25.0));
+    let mut job = drawing_job();
+    job.tolerances.chordal = 0.5;
+    let out = job::run(&job, Workpiece::read(&disc, Some("disc.dxf"), &job.tolerances).unwrap(), &mut Progress::none()).unwrap();
+    assert_eq!(out.problem, None);
+}

@@ -353,6 +353,26 @@ fn describe_open(open: &[OpenChain]) -> String {
 }
 
 impl Drawing {
+    /// Where two of its closed loops cross or touch, if any do: the first pair found (their
+    /// numbers, as `swarf drawing` lists the loops) and a point they share. Loops that nest (a
+    /// hole in an outline) or stand apart never meet; two that cross draw no one part, and a
+    /// cut round each goes into the other.
+    pub fn crossing_loops(&self) -> Option<(usize, usize, DVec2)> {
+        let segments: Vec<(usize, Segment)> = self.loops.iter().enumerate().flat_map(|(k, l)| l.path.segments().map(move |s| (k, s))).collect();
+        let rects: Vec<Rect> = segments.iter().map(|(_, s)| s.bounds()).collect();
+        let mut found = None;
+        crate::geom::index::RectIndex::new(&rects).pairs(|i, j| {
+            let ((k, a), (l, b)) = (&segments[i], &segments[j]);
+            if found.is_some() || k == l {
+                return;
+            }
+            if let Some(c) = a.crossings_with(a.arc_geom().as_ref(), b, b.arc_geom().as_ref(), crate::geom::tolerance::FLOAT_SLACK).iter().next() {
+                found = Some((*k.min(l), *k.max(l), c.p));
+            }
+        });
+        found
+    }
+
     /// The loops on `layers` (all layers when empty) as one shape. Open chains beside them are
     /// left out ([`Drawing::open_note`] says where); on layers with open chains and no loop,
     /// the error says where they are.

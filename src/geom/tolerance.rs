@@ -67,12 +67,26 @@ pub struct Tolerances {
 /// it (so both cells beside the line count); it absorbs rounding in computed crossings.
 pub const GRID_SNAP: f64 = 1e-9;
 
+/// Material this little above a height counts as none there (mm): a cut to the height leaves
+/// the stock's cells a rounding above it.
+pub const MATERIAL_SLACK: f64 = 1e-6;
+
 /// Added to a bound from above that one computation makes of another's result (the widened
 /// cutter's drops bounding the exact surface along a grid edge, `zmap::contour::LevelMap`):
 /// the two are computed apart and may round differently (mm).
 pub const BOUND_SLACK: f64 = 1e-9;
 
 impl Tolerances {
+    /// The chordal tolerance the simulation sweeps a helix (a ramp round an arc) with, as
+    /// chords inside it: the job's, no coarser than a tenth of the gouge tolerance. The machine
+    /// follows the helix itself; chords a coarse chordal tolerance apart would cut into the part
+    /// past the gouge tolerance where the program does not (a disc profiled with a chordal
+    /// tolerance of 0.05 mm was refused for gouges 3.5 mm deep: the ramp's chords cut into its
+    /// edge all the way down).
+    pub fn simulated_chordal(&self) -> f64 {
+        self.chordal.min(0.1 * self.gouge)
+    }
+
     /// Each tolerance outside its range ([`crate::limits::TOLERANCE_RANGES`]): the field as
     /// the job file names it, and why.
     pub fn problems(&self) -> Vec<(&'static str, String)> {

@@ -494,7 +494,13 @@ impl Running {
             let tol = job.tolerances;
             let v = match &sheet {
                 None => sim.finish_mesh_cut(&part, |field, grid| drawing::lower_in_grooves(field, &grooves, grid, tol.gouge, stock.max.z), settings.allowance, &tol),
-                Some(_) => sim.finish(|grid| drawing::surface(&cuts, &grooves, grid, tol.gouge, &tol), settings.allowance, &tol),
+                Some(sheet) => {
+                    let mut v = sim.finish(|grid| drawing::surface(&cuts, &grooves, grid, tol.gouge, &tol), settings.allowance, &tol);
+                    // The drawing's circles are its holes: a gouge on one's wall is said as a
+                    // tool too wide for it (a φ6 drill in φ5 holes), not as cells.
+                    v.holes = crate::holes::in_drawing(&sheet.drawing, stock.max.z, stock.max.z - sheet.thickness).into_iter().filter(|h| !h.mark).collect();
+                    v
+                }
             };
             (Some(v), None)
         } else {
@@ -516,7 +522,12 @@ impl Running {
         if let Some(v) = verification.as_mut() {
             v.word_holes(&all_moves);
         }
-        let problem = verification.as_ref().and_then(|v| v.report.problem());
+        let problem = verification.as_ref().and_then(|v| v.report.problem()).map(|found| {
+            match gouge_causes(sheet.as_ref().map(|s| &s.drawing), &verification.as_ref().expect("a problem is the verification's").report) {
+                causes if causes.is_empty() => found,
+                causes => format!("{}; {found}", causes.join("; ")),
+            }
+        });
         progress.stage("done", 1.0, 0.0);
         let drawing = sheet.map(|s| s.drawing);
         let (clearance_z, cache) = (heights.clearance, caches.counts);
@@ -541,6 +552,23 @@ impl Running {
             octants,
         })
     }
+}
+
+/// Why a program gouges, where the drawing says it before the simulation's cells do: its loops
+/// cross (they draw no one part, and the cut round each goes into the other). A tool too wide
+/// for a hole is said by [`crate::sim::verify::hole_overcuts`].
+fn gouge_causes(drawing: Option<&Drawing>, report: &crate::sim::verify::Report) -> Vec<String> {
+    let mut out = Vec::new();
+    if report.gouge_count == 0 {
+        return out;
+    }
+    if let Some((a, b, at)) = drawing.and_then(Drawing::crossing_loops) {
+        out.push(format!(
+            "the drawing's loops {a} and {b} cross (at X{:.3} Y{:.3}): they draw no one part, and the cut round each goes into the other; join them into one outline, or choose the loops to cut",
+            at.x, at.y
+        ));
+    }
+    out
 }
 
 /// What the user should know of a drawing as read: what it left out (text, dimensions, and

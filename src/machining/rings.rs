@@ -195,7 +195,7 @@ pub fn clear_rings_at_feed<'m>(levels: &[Shape], clearing: &Clearing, z_prev: f6
     let orient = |l: &Loop| if climb { l.clone() } else { l.reversed() };
     let mut out = Vec::new();
     let forest = forest(levels);
-    let swept = if clearing.pattern == PocketPattern::Offset { Swept::new(boundary, s.tool_radius, clearing.step, z, &s.cursor.stock, s.tol.chordal) } else { None };
+    let swept = (clearing.pattern == PocketPattern::Offset).then(|| Swept::new(boundary, s.tool_radius, z, &s.cursor.stock, s.tol.chordal));
     let mut c = Clearer { s, boundary, angle: clearing.ramp_angle, helix_r: clearing.helix_r, entry: clearing.entry, out: &mut out, z_prev, z, step: clearing.step, swept };
     match clearing.pattern {
         PocketPattern::Offset => {
@@ -262,25 +262,50 @@ struct Clearer<'a, 'b, 'm> {
 /// The material of one region at one depth as pixels (seed 004's pixel map), less what the
 /// loops cut so far swept: a loop whose tool would sweep none of it runs in the air (where the
 /// offsets round an island and those along the outer boundary meet, or over what an earlier
-/// operation cleared) and is left out. A pixel counts by its centre, so a loop left out can
-/// leave at most a sliver narrower than a pixel's half diagonal.
+/// operation cleared) and is left out.
+///
+/// The map is the in-process stock as the program's simulation sees it (seed 002's z-map,
+/// each cell's material at its centre): a pixel on each cell's centre, holding material where
+/// the cell stands above the level. A loop counts the pixels within the cutter's radius and
+/// the chordal tolerance (its arcs are judged as chords) and takes off those within the radius
+/// less that tolerance, as the simulation cuts them; so a loop is left out only where its
+/// cutter would meet no material the simulation holds. (A map of its own pixels, counted by
+/// their centres, left a loop out whose sweep passed a pixel's centre at exactly the radius:
+/// the sliver beside it, a few hundredths wide and standing the level's height, was in the
+/// way of the traverses over the level, taken as cleared.) Over a region of more cells than a
+/// map holds, the pixels are coarser and conservative: material where any cell whose square
+/// meets the pixel's stands above the level, counted within the radius grown by a pixel's half
+/// diagonal, taken off within the radius less it.
 struct Swept {
     map: PixelMap,
+    /// The radius each loop takes off the map.
+    take: f64,
     chordal: f64,
 }
 
 impl Swept {
-    /// Pixels of an eighth of the tool's radius, or half the `step` between rings where that is
-    /// finer (fewer on a large region); only counted and cut, so the map needs no region of its
-    /// own. `None` (every loop cut) where the region holds too many pixels of half a step: a
-    /// pixel wider than the step can fall between two rings' sweeps, and the ring between them,
-    /// found to sweep no pixel's centre, would be left out with its band of material standing
-    /// the level's height (a step-over of 0.18 mm with a φ6 left such bands, through which the
-    /// traverses over the level, taken as cleared, went).
-    fn new(region: &Shape, radius: f64, step: f64, z: f64, stock: &super::path2d::InStock, chordal: f64) -> Option<Swept> {
-        let wanted = (radius / 8.0).min(0.5 * step);
-        let px = load::pixel_for(region.bounds(), radius, wanted);
-        (px <= wanted).then(|| Swept { map: PixelMap::of_material(region.bounds(), px, radius, |p| stock.material_at(p, z)), chordal })
+    fn new(region: &Shape, radius: f64, z: f64, stock: &super::path2d::InStock, chordal: f64) -> Swept {
+        let model = stock.model();
+        let g = model.grid();
+        let b = region.bounds().expand(radius + chordal + 2.0 * g.spacing);
+        let (i0, j0) = (((b.min.x - g.origin.x) / g.spacing).floor(), ((b.min.y - g.origin.y) / g.spacing).floor());
+        let size = (((b.max.x - b.min.x) / g.spacing).ceil() as usize + 2, ((b.max.y - b.min.y) / g.spacing).ceil() as usize + 2);
+        if (size.0 * size.1) as f64 <= load::MOST_PIXELS {
+            let tops = model.tops();
+            let (i0, j0) = (i0 as isize, j0 as isize);
+            let cell = |i: usize, j: usize| {
+                let (ci, cj) = (i0 + i as isize, j0 + j as isize);
+                ci >= 0 && cj >= 0 && (ci as usize) < g.nx && (cj as usize) < g.ny && tops[cj as usize * g.nx + ci as usize] > z + crate::geom::tolerance::MATERIAL_SLACK
+            };
+            let origin = g.origin + DVec2::new(i0 as f64, j0 as f64) * g.spacing;
+            let map = PixelMap::on_grid(origin, g.spacing, size, radius + chordal, cell);
+            return Swept { map, take: radius - chordal, chordal };
+        }
+        let px = load::pixel_for(region.bounds(), radius, radius / 8.0);
+        let margin = std::f64::consts::FRAC_1_SQRT_2 * px + chordal;
+        let half = DVec2::splat(0.5 * px);
+        let map = PixelMap::of_material(region.bounds(), px, radius + margin, |p| model.material_over(p - half, p + half, z));
+        Swept { map, take: radius - margin, chordal }
     }
 
     /// The loop as straight moves: its arcs as chords within the chordal tolerance.
@@ -310,10 +335,13 @@ impl Swept {
         self.chords(l).into_iter().any(|(a, b)| self.map.count_past(a, b, 0) > 0)
     }
 
-    /// Takes what the tool going round `l` sweeps off the material.
+    /// Takes what the tool going round `l` surely sweeps off the material.
     fn cut(&mut self, l: &Loop) {
+        if self.take <= 0.0 {
+            return;
+        }
         for (a, b) in self.chords(l) {
-            self.map.cut(a, b);
+            self.map.cut_at(a, b, self.take);
         }
     }
 }
@@ -588,6 +616,71 @@ impl Clearer<'_, '_, '_> {
         }
         if !at_a {
             self.out.push(Move::Line { to: a.extend(self.z), feed: self.s.feed });
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cutter::Profile;
+    use crate::geom::Aabb;
+    use crate::sim::sweep::Sweep;
+    use crate::sim::{DexelStock, StockModel};
+
+    /// Whatever the pixels, a region cleared from the outside in leaves nothing above its level
+    /// within the cutter's reach of it (what the traverses over a level take as cleared): a
+    /// sliver of material two cells wide standing a hair past the outer ring's reach, the
+    /// region's edge moved across the map's pixels a hundredth at a time.
+    #[test]
+    fn a_sliver_a_hair_past_the_outer_rings_reach_is_cut_by_the_next() {
+        let (r, tol) = (3.0, Tolerances::default());
+        let profile = Profile::new(r, 0.0);
+        let clearing = Clearing { entry: EntryKind::Ramp, ..Clearing::plain(0.24, r, PocketPattern::Offset) };
+        for k in 0..12 {
+            let x0 = 0.005 + 0.01 * k as f64;
+            // Material at z 1 only in the cells whose centres are at x0 + r + 0.005 and + 0.025,
+            // the rest lowered to -1, below the level at 0.
+            let mut stock = DexelStock::new(&Aabb { min: DVec3::new(-5.0 + x0 - 0.005, -5.0, -2.0), max: DVec3::new(25.0, 25.0, 1.0) }, 0.02, 1);
+            let wide = Profile::new(10.0, 0.0);
+            let (lo, hi) = (x0 + r - 0.005, x0 + r + 0.035);
+            stock.apply(&Sweep::line(wide, DVec3::new(lo - 10.0, -20.0, -1.0), DVec3::new(lo - 10.0, 45.0, -1.0)));
+            stock.apply(&Sweep::line(wide, DVec3::new(hi + 10.0, -20.0, -1.0), DVec3::new(hi + 10.0, 45.0, -1.0)));
+            let region = Shape::new(vec![Loop::rect(DVec2::new(x0, 0.0), DVec2::new(x0 + 20.0, 20.0))]);
+            let levels = rings(&region, 0.0, clearing.step, r, &tol);
+            let before = stock.clone();
+            let mut cursor = Cursor {
+                at: DVec3::new(x0 - 5.0, 10.0, 5.0),
+                clearance: 5.0,
+                safe: 2.0,
+                gap: 1.0,
+                full_retract: false,
+                plunge: 300.0,
+                traverse: None,
+                safe_at: None,
+                cleared_to: None,
+                stock: super::super::path2d::InStock::new(&before, profile, tol.gouge),
+                air_feed: 1000.0,
+            };
+            let mut setup = RingSetup { tool_radius: r, top: 1.0, feed: 1000.0, cursor: &mut cursor, tol: &tol };
+            let from = setup.cursor.at;
+            let beside = |p: DVec2, _: usize| Some(p - DVec2::new(r + 1.0, 0.0));
+            let moves = clear_rings(&levels, &clearing, 1.0, 0.0, &mut setup, Some(&beside));
+            let mut at = from;
+            for m in &moves {
+                for s in Sweep::of_move(profile, at, m, tol.chordal) {
+                    stock.apply(&s);
+                }
+                at = m.to();
+            }
+            let g = stock.grid();
+            for j in 0..g.ny {
+                for i in 0..g.nx {
+                    let c = g.node(i, j);
+                    let off = DVec2::new((x0 - c.x).max(c.x - x0 - 20.0).max(0.0), (-c.y).max(c.y - 20.0).max(0.0)).length();
+                    assert!(off > r - 0.005 || stock.top(i, j) <= 1e-6, "edge at x {x0}: material at {:.3} over ({:.3}, {:.3}), {off:.3} from the region", stock.top(i, j), c.x, c.y);
+                }
+            }
         }
     }
 }

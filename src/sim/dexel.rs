@@ -269,6 +269,14 @@ impl DexelStock {
         self.grid().nearest(p).map(|c| self.z[c])
     }
 
+    /// Whether material stands above `z` anywhere over the rectangle from `lo` to `hi`: in a
+    /// cell whose square meets it (a cell's material lies at its centre, a split cell's at its
+    /// sub-cells' anywhere in its square; its top is their highest).
+    pub fn material_over(&self, lo: DVec2, hi: DVec2, z: f64) -> bool {
+        let Some(((i0, i1), (j0, j1))) = self.cell_range(lo, hi) else { return false };
+        (j0..=j1).any(|j| self.z[j * self.nx + i0..=j * self.nx + i1].iter().any(|&top| top > z + crate::geom::tolerance::MATERIAL_SLACK))
+    }
+
     /// The worst place where material stands more than `rise` above the tip within `radius` of
     /// the sweep's path (the tool's body above its flutes would meet it): the point and by how
     /// much, or `None`. A cell counts when its centre lies at least half a cell inside that

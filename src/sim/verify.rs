@@ -398,7 +398,7 @@ pub fn cut_bands(bands: &mut [DexelStock], moves: &[ProgramMove], tolerances: &T
                 let (lo, hi) = m.y_span();
                 hi >= low && lo <= high
             })
-            .flat_map(|(i, m)| m.sweeps(tolerances.chordal).into_iter().map(move |s| (first + i, s)))
+            .flat_map(|(i, m)| m.sweeps(tolerances.simulated_chordal()).into_iter().map(move |s| (first + i, s)))
             .collect();
         for band in &mut work {
             band.sweeps.clear();

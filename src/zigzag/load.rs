@@ -413,7 +413,7 @@ pub fn pixel_for(bounds: Rect, radius: f64, wanted: f64) -> f64 {
 
 /// Whether `stock` has material at height `z` over `p`: the material of a level's map.
 pub fn material_at(stock: &crate::sim::DexelStock, p: DVec2, z: f64) -> bool {
-    stock.top_near(p).is_some_and(|top| top > z + 1e-6)
+    stock.top_near(p).is_some_and(|top| top > z + crate::geom::tolerance::MATERIAL_SLACK)
 }
 
 /// The share of the full feed a step that removes `n` pixels over `len` mm may run at so that
