@@ -1250,7 +1250,8 @@ loadTolerance: number,
  */
 sampling: number | null, 
 /**
- * The pixel of the load's map (mm). Default value: the step-over / 24.
+ * The pixel of the load's map (mm), at most an eighth of the step-over. Default value: the
+ * step-over / 24.
  */
 pixel: number | null, 
 /**
