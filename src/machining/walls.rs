@@ -73,14 +73,8 @@ impl Walls {
         around % 2 == 1
     }
 
-    /// Whether `q` keeps at least `distance` (less a thousandth of a micrometre) from every
-    /// loop.
-    pub fn keeps_off(&self, q: DVec2, distance: f64) -> bool {
-        let reach = distance - HAIR;
-        self.original.distance(q, reach) >= reach
-    }
-
-    /// [`Walls::keeps_off`] for points within `radius` of `p`, the walls near them looked up once.
+    /// For points within `radius` of `p` (the walls near them looked up once): whether one
+    /// keeps at least `distance` (less a thousandth of a micrometre) from every loop.
     pub fn keeps_off_around(&self, p: DVec2, radius: f64, distance: f64) -> impl Fn(DVec2) -> bool + '_ {
         let reach = distance - HAIR;
         let ids = self.original.near(p, radius + reach);
@@ -175,7 +169,7 @@ mod tests {
     #[test]
     fn clear_means_out_of_material_by_the_distance() {
         let w = two_squares(10.0);
-        let clear = |q: DVec2, d: f64| !w.in_material(q) && w.keeps_off(q, d);
+        let clear = |q: DVec2, d: f64| !w.in_material(q) && w.keeps_off_around(q, 0.0, d)(q);
         assert!(!clear(DVec2::new(10.0, 10.0), 1.0));
         assert!(clear(DVec2::new(25.0, 10.0), 4.9));
         assert!(!clear(DVec2::new(25.0, 10.0), 5.1));
