@@ -239,6 +239,12 @@ impl Profile {
         self.taper > 0.0
     }
 
+    /// Whether it is a flat end's (a level bottom to its rim).
+    #[inline]
+    pub fn is_flat(&self) -> bool {
+        self.corner == 0.0 && self.taper == 0.0
+    }
+
     /// Whether it is a ball's (a round end with no flat: not a pointed cone).
     #[inline]
     pub fn is_ball(&self) -> bool {

@@ -255,6 +255,28 @@ impl Shape {
         xs.chunks_exact(2).map(|p| (p[0], p[1])).collect()
     }
 
+    /// [`Shape::spans_at`] on each of the rows at heights `ys` (ascending): each segment is
+    /// asked only on the rows its height reaches, so the work goes with the rows plus the
+    /// crossings, not with their product (a perforated panel's thousands of holes on as many
+    /// rows).
+    pub fn spans_on_rows(&self, ys: &[f64]) -> Vec<Vec<(f64, f64)>> {
+        debug_assert!(ys.windows(2).all(|w| w[0] <= w[1]));
+        let mut xs: Vec<Vec<f64>> = vec![Vec::new(); ys.len()];
+        for s in self.segments() {
+            let b = s.bounds();
+            let (first, last) = (ys.partition_point(|&y| y < b.min.y), ys.partition_point(|&y| y <= b.max.y));
+            for (row, &y) in xs[first..last].iter_mut().zip(&ys[first..last]) {
+                row.extend(s.crossings_at_y(y));
+            }
+        }
+        xs.into_iter()
+            .map(|mut row| {
+                row.sort_by(f64::total_cmp);
+                row.chunks_exact(2).map(|p| (p[0], p[1])).collect()
+            })
+            .collect()
+    }
+
     /// The outer loops, each with the holes directly inside it (its islands).
     pub fn regions(&self) -> Vec<Shape> {
         let outers: Vec<usize> = (0..self.loops.len()).filter(|&i| self.loops[i].is_ccw()).collect();
@@ -430,6 +452,26 @@ impl Drawing {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The spans of many rows at once are each row's own, on rows that meet vertices, arcs'
+    /// tops and nothing, in a plate with round holes and a diamond.
+    #[test]
+    fn spans_on_rows_are_each_rows_spans() {
+        let mut loops = vec![Loop::circle(DVec2::new(5.0, 5.0), 2.0), Loop::circle(DVec2::new(12.0, 5.5), 1.5)];
+        loops.push(Loop::rect(DVec2::new(-1.0, -1.0), DVec2::new(20.0, 12.0)));
+        loops.push(Loop::polygon(&[DVec2::new(8.0, 8.0), DVec2::new(9.0, 9.0), DVec2::new(8.0, 10.0), DVec2::new(7.0, 9.0)]));
+        let shape = Shape::new(loops);
+        let mut ys: Vec<f64> = (0..=70).map(|k| -2.0 + k as f64 * 0.25).chain([3.0, 7.0, 9.0, 9.0, 10.0]).collect();
+        ys.sort_by(f64::total_cmp);
+        let many = shape.spans_on_rows(&ys);
+        assert_eq!(many.len(), ys.len());
+        let mut crossed = 0;
+        for (y, spans) in ys.iter().zip(&many) {
+            assert_eq!(spans, &shape.spans_at(*y), "at y {y}");
+            crossed += spans.len();
+        }
+        assert!(crossed > 60, "{crossed}");
+    }
 
     #[test]
     fn area_containment_and_nesting() {

@@ -36,12 +36,17 @@ pub fn surface(cuts: &[SheetCut], grooves: &[Groove], grid: Grid, gouge: f64, to
     for SheetCut { region, inside, depth, leave } in cuts {
         let widen = gouge - leave;
         let region = offset(region, if *inside { widen } else { -widen }, tol);
-        for j in 0..grid.ny {
-            let y = grid.node(0, j).y;
-            let spans = region.spans_at(y);
+        let ys: Vec<f64> = (0..grid.ny).map(|j| grid.node(0, j).y).collect();
+        for (j, spans) in region.spans_on_rows(&ys).into_iter().enumerate() {
+            // The spans are in order and apart: the first not wholly left of a node is the
+            // only one that may hold it.
+            let mut k = 0;
             for i in 0..grid.nx {
                 let x = grid.node(i, 0).x;
-                let within = spans.iter().any(|&(a, b)| x > a && x < b);
+                while k < spans.len() && spans[k].1 <= x {
+                    k += 1;
+                }
+                let within = spans.get(k).is_some_and(|&(a, b)| x > a && x < b);
                 // A profile cutting outside a loop cuts everything but the loop's inside.
                 let cut = if *inside { within } else { !within };
                 if cut {

@@ -432,7 +432,7 @@ fn finish(lines: Vec<String>, post: &Post) -> Result<String, Error> {
         let fits = |step: u32| (l.start as u64) + (count.saturating_sub(1)) * step as u64 <= l.max as u64;
         (l.start as u64, if fits(l.step) { l.step } else { 1 }, l.max as u64)
     });
-    let mut out = String::new();
+    let mut out = String::with_capacity(lines.iter().map(|l| l.len() + 1).sum::<usize>() + if n.is_some() { 8 * lines.len() } else { 0 });
     for line in lines {
         let mut line = match n.as_mut() {
             // The tape marks and the program number stand unnumbered.
@@ -490,7 +490,7 @@ struct Writer<'a> {
     rapid_rate: f64,
     position: [Option<f64>; 3],
     /// The words last written for X, Y and Z.
-    written: [Option<String>; 3],
+    written: [Option<Word>; 3],
     feed: Option<f64>,
     mode: Option<&'static str>,
     coolant: bool,
@@ -540,19 +540,19 @@ impl<'a> Writer<'a> {
         }
     }
 
-    fn length(&self, mm: f64) -> String {
-        number(mm * self.scale, self.decimals)
+    fn length(&self, mm: f64) -> Word {
+        Word::number(mm * self.scale, self.decimals)
     }
 
     /// The length rounded up to the program's resolution, never down (a value a millionth of
     /// a unit above a digit, as a float's error leaves −10.2 in millimetres, takes that digit).
-    fn length_up(&self, mm: f64) -> String {
+    fn length_up(&self, mm: f64) -> Word {
         let unit = 10f64.powi(-(self.decimals as i32));
         let v = mm * self.scale;
         let up = (v / unit - 1e-6).ceil() * unit;
         // Rounding in the division may land a hair short: one more step (a millionth of a unit
         // short is the digit itself).
-        number(if up < v - 2e-6 * unit { up + unit } else { up }, self.decimals)
+        Word::number(if up < v - 2e-6 * unit { up + unit } else { up }, self.decimals)
     }
 
     /// A dwell of `seconds` in the post's words (G4 P…).
@@ -567,7 +567,7 @@ impl<'a> Writer<'a> {
     /// A value as the program writes it, read back in millimetres.
     fn as_written(&self, mm: f64, up: bool) -> f64 {
         let text = if up { self.length_up(mm) } else { self.length(mm) };
-        text.parse::<f64>().unwrap_or(mm * self.scale) / self.scale
+        text.as_str().parse::<f64>().unwrap_or(mm * self.scale) / self.scale
     }
 
     /// The drilling cycle `c`, whose moves are `moves`, written as one canned block where the
@@ -692,27 +692,34 @@ impl<'a> Writer<'a> {
             Move::Arc { clockwise: true, feed, .. } => ("G2", Some(feed)),
             Move::Arc { clockwise: false, feed, .. } => ("G3", Some(feed)),
         };
+        let texts = [self.length(to.x), self.length(to.y), if feed.is_some() { self.length_up(to.z) } else { self.length(to.z) }];
         // An arc whose ends round to one point would read as a full circle: write it as a line.
-        let rounds_shut = |p: Option<f64>, q: f64| p.is_some_and(|p| self.length(p) == self.length(q));
-        let short_arc =
-            matches!(m, Move::Arc { .. }) && rounds_shut(self.position[0], to.x) && rounds_shut(self.position[1], to.y) && !(self.position[0] == Some(to.x) && self.position[1] == Some(to.y));
+        // (What was written for X and Y is the position's own rounding.)
+        let rounds_shut = |axis: usize| self.position[axis].is_some() && self.written[axis].as_ref() == Some(&texts[axis]);
+        let short_arc = matches!(m, Move::Arc { .. }) && rounds_shut(0) && rounds_shut(1) && !(self.position[0] == Some(to.x) && self.position[1] == Some(to.y));
         let code = if short_arc { "G1" } else { code };
         let is_arc = matches!(m, Move::Arc { .. }) && !short_arc;
         let modal = self.post.modal;
-        let mut words = String::new();
+        let mut words: Vec<u8> = Vec::with_capacity(48);
         let mut moved = false;
         if self.mode != Some(code) || is_arc || !modal {
-            words.push_str(code);
+            words.extend_from_slice(code.as_bytes());
         }
-        for (axis, (name, value)) in [("X", to.x), ("Y", to.y), ("Z", to.z)].into_iter().enumerate() {
-            // A feed's Z is rounded up, an arc's too: the path was made for the resolution (see
-            // `PostSettings::resolution`), and rounding Z down would lower it (and a level arc
-            // between two lines would come out a hair-thin helix).
-            let text = if axis == 2 && feed.is_some() { self.length_up(value) } else { self.length(value) };
-            let changed = self.written[axis].as_deref() != Some(text.as_str());
+        let word = |words: &mut Vec<u8>, name: &str, text: &[u8]| {
+            if !words.is_empty() {
+                words.push(b' ');
+            }
+            words.extend_from_slice(name.as_bytes());
+            words.extend_from_slice(text);
+        };
+        // A feed's Z is rounded up, an arc's too: the path was made for the resolution (see
+        // `PostSettings::resolution`), and rounding Z down would lower it (and a level arc
+        // between two lines would come out a hair-thin helix).
+        for (axis, (name, text)) in ["X", "Y", "Z"].into_iter().zip(texts).enumerate() {
+            let changed = self.written[axis].as_ref() != Some(&text);
             moved |= changed;
             if changed || (is_arc && axis < 2) || !modal {
-                words.push_str(&format!(" {name}{text}"));
+                word(&mut words, name, text.bytes());
                 self.written[axis] = Some(text);
             }
         }
@@ -722,18 +729,21 @@ impl<'a> Writer<'a> {
         if let (Move::Arc { center, .. }, true) = (*m, is_arc) {
             let from = DVec3::new(self.position[0].unwrap_or(to.x), self.position[1].unwrap_or(to.y), 0.0);
             if self.post.arcs == ArcFormat::R {
-                let _ = write!(words, " R{}", self.length((from.truncate() - center).length()));
+                word(&mut words, "R", self.length((from.truncate() - center).length()).bytes());
             } else {
-                let _ = write!(words, " I{} J{}", self.length(center.x - from.x), self.length(center.y - from.y));
+                word(&mut words, "I", self.length(center.x - from.x).bytes());
+                word(&mut words, "J", self.length(center.y - from.y).bytes());
             }
         }
         if let Some(feed) = feed {
             if self.feed != Some(feed) || !modal {
-                let _ = write!(words, " F{}", number(feed * self.scale, self.post.feed_decimals));
+                word(&mut words, "F", Word::number(feed * self.scale, self.post.feed_decimals).bytes());
                 self.feed = Some(feed);
             }
         }
-        self.line(words.trim_start());
+        if !words.is_empty() {
+            self.lines.push(String::from_utf8(words).expect("a motion's words are ASCII"));
+        }
         self.mode = Some(code);
         self.position = [Some(to.x), Some(to.y), Some(to.z)];
     }
@@ -748,36 +758,99 @@ impl<'a> Writer<'a> {
 /// product does and rounding it to an integer gives the formatter's digits. A product that
 /// is exactly a half (the formatter rounds those to even), or larger, is formatted.
 pub(crate) fn number(value: f64, decimals: usize) -> String {
-    use std::fmt::Write;
-    const POWERS: [u64; 7] = [1, 10, 100, 1_000, 10_000, 100_000, 1_000_000];
-    const HALVES_EXACT: f64 = (1u64 << 52) as f64;
-    if let Some(&unit) = POWERS.get(decimals) {
-        let y = value * unit as f64;
-        if y.abs() < HALVES_EXACT && y.fract().abs() != 0.5 {
-            let units = y.round() as i64;
-            let (whole, part) = (units.unsigned_abs() / unit, units.unsigned_abs() % unit);
-            let mut s = String::with_capacity(12);
-            if units < 0 {
-                s.push('-');
+    Word::number(value, decimals).as_str().to_owned()
+}
+
+/// A number as the program writes it ([`number`]), held without a heap allocation when short
+/// (every coordinate and feed a program writes; a program of millions of moves writes millions
+/// of them).
+#[derive(Clone, Debug)]
+enum Word {
+    Short { len: u8, bytes: [u8; 30] },
+    Long(String),
+}
+
+impl PartialEq for Word {
+    fn eq(&self, other: &Word) -> bool {
+        self.bytes() == other.bytes()
+    }
+}
+
+impl Word {
+    /// `value` rounded to `decimals`, trailing zeros dropped (as `format!("{value:.decimals$}")`
+    /// trimmed writes it, with no "-0").
+    fn number(value: f64, decimals: usize) -> Word {
+        const POWERS: [u64; 7] = [1, 10, 100, 1_000, 10_000, 100_000, 1_000_000];
+        const HALVES_EXACT: f64 = (1u64 << 52) as f64;
+        if let Some(&unit) = POWERS.get(decimals) {
+            let y = value * unit as f64;
+            if y.abs() < HALVES_EXACT && y.fract().abs() != 0.5 {
+                let units = y.round() as i64;
+                let (whole, mut part) = (units.unsigned_abs() / unit, units.unsigned_abs() % unit);
+                let mut bytes = [0u8; 30];
+                let mut len = 0;
+                if units < 0 {
+                    bytes[0] = b'-';
+                    len = 1;
+                }
+                len += digits(whole, 1, &mut bytes[len..]);
+                if part != 0 {
+                    let mut places = decimals;
+                    while part % 10 == 0 {
+                        part /= 10;
+                        places -= 1;
+                    }
+                    bytes[len] = b'.';
+                    len += 1 + digits(part, places, &mut bytes[len + 1..]);
+                }
+                return Word::Short { len: len as u8, bytes };
             }
-            let _ = write!(s, "{whole}");
-            if part != 0 {
-                let mut digits = format!("{part:0decimals$}");
-                digits.truncate(digits.trim_end_matches('0').len());
-                s.push('.');
-                s.push_str(&digits);
-            }
-            return s;
+        }
+        let mut s = format!("{value:.decimals$}");
+        if s.contains('.') {
+            s = s.trim_end_matches('0').trim_end_matches('.').to_owned();
+        }
+        if s == "-0" {
+            s = "0".to_owned();
+        }
+        Word::Long(s)
+    }
+
+    fn bytes(&self) -> &[u8] {
+        match self {
+            Word::Short { len, bytes } => &bytes[..*len as usize],
+            Word::Long(s) => s.as_bytes(),
         }
     }
-    let mut s = format!("{value:.decimals$}");
-    if s.contains('.') {
-        s = s.trim_end_matches('0').trim_end_matches('.').to_owned();
+
+    fn as_str(&self) -> &str {
+        match self {
+            Word::Short { len, bytes } => std::str::from_utf8(&bytes[..*len as usize]).expect("digits are ASCII"),
+            Word::Long(s) => s,
+        }
     }
-    if s == "-0" {
-        s = "0".to_owned();
+}
+
+impl std::fmt::Display for Word {
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        f.write_str(self.as_str())
     }
-    s
+}
+
+/// Writes `value`'s decimal digits, at least `width` of them (zeros in front), at the start of
+/// `out`; returns how many.
+fn digits(mut value: u64, width: usize, out: &mut [u8]) -> usize {
+    let mut held = [0u8; 20];
+    let mut n = 0;
+    while value > 0 || n < width {
+        held[n] = b'0' + (value % 10) as u8;
+        value /= 10;
+        n += 1;
+    }
+    for (k, d) in held[..n].iter().rev().enumerate() {
+        out[k] = *d;
+    }
+    n
 }
 
 #[cfg(test)]

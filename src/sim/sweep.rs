@@ -8,7 +8,8 @@
 //! an end of the interval of the move during which it covers the point; a ball sweeps a capsule,
 //! whose lower surface is one of the end spheres or the cylinder between them); for a bull nose
 //! by the contact search the CL z-map's edge drop uses ([`Profile::contact_along`]), since
-//! `z(t) + height(|q - c(t)|)` is convex in the move's parameter. Planar arcs are exact too; helical arcs are split into chords first.
+//! `z(t) + height(|q - c(t)|)` is convex in the move's parameter. Planar arcs are exact too, and a flat end's helical arc (the window of angles over which it
+//! covers a point, by the law of cosines); other cutters' helical arcs are split into chords.
 
 use crate::cutter::Profile;
 use crate::geom::{DVec2, DVec3};
@@ -19,9 +20,10 @@ use crate::toolpath::{arc_sweep, Move};
 pub enum Path {
     /// A straight move from `a` to `b`.
     Line { a: DVec3, b: DVec3 },
-    /// A planar arc at height `z` about `center`, from angle `start` through the signed `sweep`
-    /// (radians, counter-clockwise positive).
-    Arc { center: DVec2, radius: f64, start: f64, sweep: f64, z: f64 },
+    /// An arc about `center`, from angle `start` through the signed `sweep` (radians,
+    /// counter-clockwise positive), starting at height `z` and rising `rise` evenly on the way
+    /// (0 for a planar arc; a helix only for a flat end, whose envelope it has in closed form).
+    Arc { center: DVec2, radius: f64, start: f64, sweep: f64, z: f64, rise: f64 },
 }
 
 /// A cutter moving along a path.
@@ -91,11 +93,23 @@ impl Sweep {
             }
         }
         let r = DVec2::splat(profile.radius);
-        Sweep { profile, path: Path::Arc { center, radius, start, sweep, z: from.z }, min: min - r, max: max + r, lowest_tip: from.z, line: LineConstants::default() }
+        Sweep { profile, path: Path::Arc { center, radius, start, sweep, z: from.z, rise: 0.0 }, min: min - r, max: max + r, lowest_tip: from.z, line: LineConstants::default() }
     }
 
-    /// The sweeps of one programmed move from `from`: a line, a planar arc, or a helix split into
-    /// chords that stay within `chordal` of it.
+    /// A flat end's helical arc from `from` about `center`, sweeping `sweep` radians while its
+    /// height changes evenly by `rise`.
+    fn helix(profile: Profile, from: DVec3, center: DVec2, sweep: f64, rise: f64) -> Sweep {
+        debug_assert!(profile.is_flat());
+        let mut s = Sweep::arc(profile, from, center, sweep);
+        if let Path::Arc { rise: r, .. } = &mut s.path {
+            *r = rise;
+        }
+        s.lowest_tip = from.z.min(from.z + rise);
+        s
+    }
+
+    /// The sweeps of one programmed move from `from`: a line, a planar arc, a flat end's helix,
+    /// or another cutter's helix split into chords that stay within `chordal` of it.
     pub fn of_move(profile: Profile, from: DVec3, mv: &Move, chordal: f64) -> Vec<Sweep> {
         match *mv {
             Move::Rapid { to } | Move::Line { to, .. } => vec![Sweep::line(profile, from, to)],
@@ -104,6 +118,9 @@ impl Sweep {
                 let radius = (from.truncate() - center).length();
                 if to.z == from.z {
                     return vec![Sweep::arc(profile, from, center, sweep)];
+                }
+                if profile.is_flat() {
+                    return vec![Sweep::helix(profile, from, center, sweep, to.z - from.z)];
                 }
                 let step = crate::geom::segment::chord_step(radius, chordal).unwrap_or(sweep.abs());
                 let count = ((sweep.abs() / step.max(1e-3)).ceil() as usize).clamp(1, 100_000);
@@ -206,8 +223,9 @@ impl Sweep {
                     a.z.min(b.z) + p.height(w.length().min(p.radius))
                 }
             }
-            Path::Arc { center, radius, start, sweep, z } => {
-                let dist = arc_distance(q, center, radius, start, sweep);
+            Path::Arc { center, radius, start, sweep, z, rise } if rise != 0.0 => helix_lowest(q, center, radius, start, sweep, z, rise, p.radius),
+            Path::Arc { center, radius, start, sweep, z, .. } => {
+                let dist = arc_distance(q, center, radius, start, sweep).0;
                 if dist <= p.radius {
                     z + p.height(dist)
                 } else {
@@ -269,7 +287,10 @@ impl Sweep {
                 let z = if len2 > 0.0 { p.z } else { a.z.min(b.z) };
                 ((q - p.truncate()).length(), z)
             }
-            Path::Arc { center, radius, start, sweep, z } => (arc_distance(q, center, radius, start, sweep), z),
+            Path::Arc { center, radius, start, sweep, z, rise } => {
+                let (dist, t) = arc_distance(q, center, radius, start, sweep);
+                (dist, z + rise * t)
+            }
         }
     }
 
@@ -309,16 +330,77 @@ fn angle_within(start: f64, sweep: f64, angle: f64) -> bool {
     }
 }
 
-/// Horizontal distance from `q` to an arc.
-fn arc_distance(q: DVec2, center: DVec2, radius: f64, start: f64, sweep: f64) -> f64 {
+/// Horizontal distance from `q` to an arc, and the fraction of the arc (0 at its start, 1 at
+/// its end) at the nearest point.
+fn arc_distance(q: DVec2, center: DVec2, radius: f64, start: f64, sweep: f64) -> (f64, f64) {
     let v = q - center;
     let len = v.length();
-    if len == 0.0 || angle_within(start, sweep, v.y.atan2(v.x)) {
-        return (len - radius).abs();
+    if len == 0.0 {
+        return (radius, 0.0);
+    }
+    let angle = v.y.atan2(v.x);
+    if angle_within(start, sweep, angle) {
+        let turned = if sweep >= 0.0 { (angle - start).rem_euclid(std::f64::consts::TAU) } else { (start - angle).rem_euclid(std::f64::consts::TAU) };
+        return ((len - radius).abs(), if sweep == 0.0 { 0.0 } else { (turned / sweep.abs()).min(1.0) });
     }
     let a = center + DVec2::from_angle(start) * radius;
     let b = center + DVec2::from_angle(start + sweep) * radius;
-    q.distance(a).min(q.distance(b))
+    let (da, db) = (q.distance(a), q.distance(b));
+    if da <= db {
+        (da, 0.0)
+    } else {
+        (db, 1.0)
+    }
+}
+
+/// The lowest height a flat end of radius `reach` reaches over `q` on a helical arc (about
+/// `center` at `radius`, from angle `start` through `sweep`, from height `z` rising `rise`), or
+/// infinity where it never covers `q`. The end covers `q` while the angle to its axis lies
+/// within `α` of `q`'s own angle about the centre (`cos α = (d² + r² − R²) / 2dr`, law of
+/// cosines): the turns of that window met by the arc's angles, taken at the arc's end that is
+/// lowest (the latest angle on a descent, the earliest on a climb).
+#[allow(clippy::too_many_arguments)]
+fn helix_lowest(q: DVec2, center: DVec2, radius: f64, start: f64, sweep: f64, z: f64, rise: f64, reach: f64) -> f64 {
+    use std::f64::consts::{PI, TAU};
+    let v = q - center;
+    let d = v.length();
+    let total = sweep.abs();
+    let height = |turned: f64| z + rise * if total > 0.0 { turned / total } else { 0.0 };
+    let half = if d == 0.0 || radius == 0.0 {
+        if (d - radius).abs() <= reach {
+            PI
+        } else {
+            return f64::INFINITY;
+        }
+    } else {
+        let cos = (d * d + radius * radius - reach * reach) / (2.0 * d * radius);
+        if cos > 1.0 {
+            return f64::INFINITY;
+        }
+        cos.max(-1.0).acos()
+    };
+    // The window's middle, as an angle turned from the start in the arc's direction.
+    let toward = v.y.atan2(v.x);
+    let middle = if sweep >= 0.0 { (toward - start).rem_euclid(TAU) } else { (start - toward).rem_euclid(TAU) };
+    if half >= PI {
+        return height(if rise < 0.0 { total } else { 0.0 });
+    }
+    if rise < 0.0 {
+        // The latest angle covered: in the last window that starts by the end.
+        let n = ((total - middle + half) / TAU).floor();
+        let end = middle + n * TAU + half;
+        if end < 0.0 {
+            return f64::INFINITY;
+        }
+        height(end.min(total))
+    } else {
+        let n = ((-half - middle) / TAU).ceil();
+        let begin = middle + n * TAU - half;
+        if begin > total {
+            return f64::INFINITY;
+        }
+        height(begin.max(0.0))
+    }
 }
 
 #[cfg(test)]
@@ -334,7 +416,7 @@ mod tests {
                 let t = k as f64 / samples as f64;
                 let (c, z) = match sweep.path {
                     Path::Line { a, b } => (a.lerp(b, t).truncate(), a.z + (b.z - a.z) * t),
-                    Path::Arc { center, radius, start, sweep, z } => (center + DVec2::from_angle(start + sweep * t) * radius, z),
+                    Path::Arc { center, radius, start, sweep, z, rise } => (center + DVec2::from_angle(start + sweep * t) * radius, z + rise * t),
                 };
                 let d = (q - c).length();
                 if d <= p.radius {
@@ -421,7 +503,7 @@ mod tests {
     fn helix_is_split_into_chords_within_tolerance() {
         let from = DVec3::new(5.0, 0.0, 0.0);
         let mv = Move::Arc { to: DVec3::new(5.0, 0.0, -2.0), center: DVec2::ZERO, clockwise: false, feed: 100.0 };
-        let sweeps = Sweep::of_move(Profile::new(1.0, 0.0), from, &mv, 0.001);
+        let sweeps = Sweep::of_move(Profile::new(1.0, 0.5), from, &mv, 0.001);
         assert!(sweeps.len() > 20);
         let last = match sweeps.last().unwrap().path {
             Path::Line { b, .. } => b,
@@ -434,6 +516,48 @@ mod tests {
                 assert!(5.0 - mid.length() <= 0.001 + 1e-12);
             }
         }
+    }
+
+    /// A flat end's helix is one sweep, its envelope the lowest of a dense scan of the helix
+    /// at every point (descending and climbing, either way round, less than and more than a
+    /// turn, a tool wider than the helix and one narrower), and the bounds hold over it.
+    #[test]
+    fn a_flat_ends_helix_is_exact() {
+        let mut checked = 0;
+        for (tool, helix) in [(1.0, 3.0), (2.0, 1.0), (1.5, 1.5)] {
+            let profile = Profile::new(tool, 0.0);
+            for (turn, rise) in [(2.0, -1.5), (-2.0, -1.5), (5.0, 2.0), (-7.0, 0.7), (std::f64::consts::TAU, -3.0), (0.3, -0.2)] {
+                let from = DVec3::new(1.0 + helix * 0.6, -2.0 + helix * 0.8, 4.0);
+                let center = DVec2::new(1.0, -2.0);
+                let end = center + DVec2::from_angle((0.8f64).atan2(0.6) + turn) * helix;
+                let mv = Move::Arc { to: end.extend(from.z + rise), center, clockwise: turn < 0.0, feed: 100.0 };
+                let sweeps = Sweep::of_move(profile, from, &mv, 0.001);
+                assert_eq!(sweeps.len(), 1);
+                let sweep = sweeps[0];
+                let exact = brute(&sweep, 20_000);
+                for i in 0..40 {
+                    for j in 0..40 {
+                        // Off the round figures, where a point on the rim is in or out by rounding.
+                        let q = DVec2::new(-5.0123 + i as f64 * 0.3, -8.0071 + j as f64 * 0.3);
+                        let (fast, slow) = (sweep.lowest(q), exact(q));
+                        assert!(fast <= slow + 1e-9, "{tool} {helix} {turn} {rise} at {q}: {fast} vs {slow} {:?}", sweep.path);
+                        if slow.is_finite() {
+                            assert!(fast >= slow - 1e-3, "{tool} {helix} {turn} {rise} at {q}: {fast} vs {slow} {:?}", sweep.path);
+                            checked += 1;
+                        } else {
+                            // The scan may miss a sliver at the rim, never more.
+                            assert!(!fast.is_finite() || sweep.nearest(q).0 >= tool - 1e-3, "{q}: {fast}");
+                        }
+                        assert!(fast >= sweep.lowest_tip);
+                        let inside = q.x >= sweep.min.x && q.x <= sweep.max.x && q.y >= sweep.min.y && q.y <= sweep.max.y;
+                        assert!(inside || !fast.is_finite(), "{q} outside the footprint box");
+                        let (lower, upper) = sweep.bounds_over(q - 0.1, q + 0.1);
+                        assert!(fast >= lower - 1e-12 && fast <= upper + 1e-12, "{q}: {fast} not in [{lower}, {upper}]");
+                    }
+                }
+            }
+        }
+        assert!(checked > 3_000, "{checked}");
     }
 
     /// The bull nose's sloped sweeps against a dense scan of the move, at random points of

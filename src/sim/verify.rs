@@ -21,6 +21,7 @@ use crate::geom::{Aabb, DVec2, DVec3, Tolerances};
 use crate::mesh::Mesh;
 use crate::progress::Progress;
 use crate::zmap::{cc::cc_zmap, Grid, HeightField, MAX_NODES};
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Rapid moves removing less than this (mm³) only grazed the stock's surface.
 const GRAZE: f64 = 1e-6;
@@ -373,22 +374,63 @@ impl Band<'_> {
     }
 }
 
-/// Cuts `bands` (consecutive bands of rows of a stock, [`DexelStock::split_rows`]) with `moves`,
-/// on every core natively, a few thousand moves at a time, reporting up to `share` of the
-/// progress stage; what each band made of them, in the bands' order. A band's cut depends only
-/// on the band and the moves, so bands can be cut in groups anywhere (the page's pool) and
-/// their cuts gathered by [`Simulator::absorb`].
+/// Cuts `bands` (bands of rows of a stock in order, [`DexelStock::split_rows`]) with `moves`,
+/// a few thousand moves at a time, reporting up to `share` of the progress stage; what each
+/// band made of them, in the bands' order. A band's cut depends only on the band and the
+/// moves, so bands can be cut in groups anywhere (the page's pool) and their cuts gathered by
+/// [`Simulator::absorb`]. Natively the bands are dealt to the cores in turn (band k to core k
+/// mod n), each core running through the whole program for its bands: a program cuts one
+/// region at a time, and every core then has its share of each region's bands.
 pub fn cut_bands(bands: &mut [DexelStock], moves: &[ProgramMove], tolerances: &Tolerances, progress: &mut Progress, share: f64) -> Result<Vec<BandCut>> {
+    let threads = crate::parallel::threads().min(bands.len());
+    let stop = AtomicBool::new(false);
+    if threads <= 1 {
+        return cut_group(bands.iter_mut().collect(), moves, tolerances, progress, share, &stop);
+    }
+    let mut groups: Vec<Vec<&mut DexelStock>> = (0..threads).map(|_| Vec::new()).collect();
+    for (b, band) in bands.iter_mut().enumerate() {
+        groups[b % threads].push(band);
+    }
+    let mut groups = groups.into_iter();
+    let first = groups.next().expect("two groups or more");
+    let stop = &stop;
+    let made: Vec<Result<Vec<BandCut>>> = std::thread::scope(|scope| {
+        let others: Vec<_> = groups.map(|g| scope.spawn(move || cut_group(g, moves, tolerances, &mut Progress::none(), share, stop))).collect();
+        // This thread's group reports the progress, and a cancel stops the others too.
+        let mine = cut_group(first, moves, tolerances, progress, share, stop);
+        if mine.is_err() {
+            stop.store(true, Ordering::Relaxed);
+        }
+        std::iter::once(mine).chain(others.into_iter().map(|h| h.join().expect("a simulating thread panicked"))).collect()
+    });
+    let mut cuts: Vec<Vec<BandCut>> = Vec::with_capacity(threads);
+    for m in made {
+        cuts.push(m?);
+    }
+    // Back in the bands' order: band k is the (k / n)th of group k mod n.
+    let mut dealt: Vec<std::vec::IntoIter<BandCut>> = cuts.into_iter().map(Vec::into_iter).collect();
+    Ok((0..bands.len()).map(|k| dealt[k % threads].next().expect("every band has its cut")).collect())
+}
+
+/// [`cut_bands`] on one thread, for `bands` in order (not necessarily next to one another);
+/// stops, cancelled, when `progress` says so or another thread sets `stop`.
+fn cut_group(mut bands: Vec<&mut DexelStock>, moves: &[ProgramMove], tolerances: &Tolerances, progress: &mut Progress, share: f64, stop: &AtomicBool) -> Result<Vec<BandCut>> {
     let rows: Vec<(f64, f64)> = bands.iter().map(|b| b.rows()).collect();
-    let (Some(&(low, _)), Some(&(_, high))) = (rows.first(), rows.last()) else {
+    if rows.is_empty() {
         return Ok(Vec::new());
+    }
+    // The bands whose rows `[lo, hi]` meets: from the first not wholly below it.
+    let reaching = |lo: f64, hi: f64| {
+        let first = rows.partition_point(|r| r.1 < lo);
+        rows.iter().enumerate().skip(first).take_while(move |(_, r)| r.0 <= hi).map(|(b, _)| b)
     };
     let mut work: Vec<Band> = bands.iter_mut().map(|stock| Band { stock, sweeps: Vec::new(), cut: BandCut::default() }).collect();
     for (c, chunk) in moves.chunks(CHUNK).enumerate() {
-        if !progress.report(share * (c * CHUNK) as f64 / moves.len().max(1) as f64) {
+        if stop.load(Ordering::Relaxed) || !progress.report(share * (c * CHUNK) as f64 / moves.len().max(1) as f64) {
+            stop.store(true, Ordering::Relaxed);
             return Err(Error::Cancelled);
         }
-        // The sweeps of the moves that may reach these rows, each handed to the bands its
+        // The sweeps of the moves that may reach these bands, each handed to the bands its
         // footprint (grown to the body) spans.
         let first = c * CHUNK;
         let run: Vec<(usize, Sweep)> = chunk
@@ -396,7 +438,7 @@ pub fn cut_bands(bands: &mut [DexelStock], moves: &[ProgramMove], tolerances: &T
             .enumerate()
             .filter(|(_, m)| {
                 let (lo, hi) = m.y_span();
-                hi >= low && lo <= high
+                reaching(lo, hi).next().is_some()
             })
             .flat_map(|(i, m)| m.sweeps(tolerances.simulated_chordal()).into_iter().map(move |s| (first + i, s)))
             .collect();
@@ -405,14 +447,13 @@ pub fn cut_bands(bands: &mut [DexelStock], moves: &[ProgramMove], tolerances: &T
         }
         for (s, (k, sweep)) in run.iter().enumerate() {
             let grow = (body_radius(&moves[*k]) - sweep.profile.radius).max(0.0);
-            let (lo, hi) = (sweep.min.y - grow, sweep.max.y + grow);
-            let first = rows.partition_point(|r| r.1 < lo);
-            for (b, r) in rows.iter().enumerate().skip(first).take_while(|(_, r)| r.0 <= hi) {
-                debug_assert!(r.1 >= lo);
+            for b in reaching(sweep.min.y - grow, sweep.max.y + grow) {
                 work[b].sweeps.push(s);
             }
         }
-        crate::parallel::each_mut(&mut work, |band| band.run(moves, &run, tolerances.gouge));
+        for band in &mut work {
+            band.run(moves, &run, tolerances.gouge);
+        }
     }
     Ok(work.into_iter().map(|b| b.cut).collect())
 }

@@ -65,9 +65,9 @@ impl PixelMap {
         let mut map = PixelMap::of_material(bounds, px, radius, material);
         let (nx, ny, origin) = (map.nx, map.ny, map.origin);
         let mut allowed = vec![false; nx * ny];
-        for j in 0..ny {
-            let y = origin.y + j as f64 * px;
-            for (x0, x1) in region.spans_at(y) {
+        let ys: Vec<f64> = (0..ny).map(|j| origin.y + j as f64 * px).collect();
+        for (j, spans) in region.spans_on_rows(&ys).into_iter().enumerate() {
+            for (x0, x1) in spans {
                 let (i0, i1) = (((x0 - origin.x) / px).ceil().max(0.0) as usize, ((x1 - origin.x) / px).floor().max(0.0) as usize);
                 for i in i0..=i1.min(nx - 1) {
                     allowed[j * nx + i] = true;
