@@ -522,11 +522,12 @@ impl Running {
         if let Some(v) = verification.as_mut() {
             v.word_holes(&all_moves);
         }
-        let problem = verification.as_ref().and_then(|v| v.report.problem()).map(|found| {
-            match gouge_causes(sheet.as_ref().map(|s| &s.drawing), &verification.as_ref().expect("a problem is the verification's").report) {
+        let problem = verification.as_ref().and_then(|v| {
+            let found = v.report.problem()?;
+            Some(match gouge_causes(sheet.as_ref().map(|s| &s.drawing), &v.report) {
                 causes if causes.is_empty() => found,
                 causes => format!("{}; {found}", causes.join("; ")),
-            }
+            })
         });
         progress.stage("done", 1.0, 0.0);
         let drawing = sheet.map(|s| s.drawing);

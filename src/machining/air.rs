@@ -97,23 +97,11 @@ impl AirCuts {
         if feed <= cutting {
             return None;
         }
-        // A pixel on each cell's centre, and empty ones beyond the stock.
-        let g = stock.grid();
-        let px = g.spacing;
+        let px = stock.grid().spacing;
         let margin = std::f64::consts::FRAC_1_SQRT_2 * px;
         let count = profile.radius + margin;
-        let b = bounds.expand(count + 3.0 * px);
-        let (i0, j0) = (((b.min.x - g.origin.x) / px).floor(), ((b.min.y - g.origin.y) / px).floor());
-        let size = (((b.max.x - b.min.x) / px).ceil() as usize + 2, ((b.max.y - b.min.y) / px).ceil() as usize + 2);
-        let origin = g.origin + DVec2::new(i0, j0) * px;
-        let (i0, j0) = (i0 as isize, j0 as isize);
-        let tops = stock.tops();
-        let cell = |i: usize, j: usize| {
-            let (ci, cj) = ((i0 + i as isize) as usize, (j0 + j as isize) as usize);
-            ci < g.nx && cj < g.ny && tops[cj * g.nx + ci] > z + FLOAT_SLACK
-        };
         // The map reaches past its bounds by the radius counted and an arc's sag.
-        let map = PixelMap::on_grid(origin, px, size, count + px, cell);
+        let map = PixelMap::on_cells(stock, bounds.expand(count + 3.0 * px), z, count + px)?;
         Some(AirCuts { map, inside: bounds, z, count, take: profile.flat_radius() - margin, piece: PIECE_PIXELS * px, pixel: px, feed })
     }
 

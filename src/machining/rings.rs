@@ -286,19 +286,8 @@ struct Swept {
 impl Swept {
     fn new(region: &Shape, radius: f64, z: f64, stock: &super::path2d::InStock, chordal: f64) -> Swept {
         let model = stock.model();
-        let g = model.grid();
-        let b = region.bounds().expand(radius + chordal + 2.0 * g.spacing);
-        let (i0, j0) = (((b.min.x - g.origin.x) / g.spacing).floor(), ((b.min.y - g.origin.y) / g.spacing).floor());
-        let size = (((b.max.x - b.min.x) / g.spacing).ceil() as usize + 2, ((b.max.y - b.min.y) / g.spacing).ceil() as usize + 2);
-        if (size.0 * size.1) as f64 <= load::MOST_PIXELS {
-            let tops = model.tops();
-            let (i0, j0) = (i0 as isize, j0 as isize);
-            let cell = |i: usize, j: usize| {
-                let (ci, cj) = (i0 + i as isize, j0 + j as isize);
-                ci >= 0 && cj >= 0 && (ci as usize) < g.nx && (cj as usize) < g.ny && tops[cj as usize * g.nx + ci as usize] > z + crate::geom::tolerance::MATERIAL_SLACK
-            };
-            let origin = g.origin + DVec2::new(i0 as f64, j0 as f64) * g.spacing;
-            let map = PixelMap::on_grid(origin, g.spacing, size, radius + chordal, cell);
+        let reach = region.bounds().expand(radius + chordal + 2.0 * model.grid().spacing);
+        if let Some(map) = PixelMap::on_cells(model, reach, z, radius + chordal) {
             return Swept { map, take: radius - chordal, chordal };
         }
         let px = load::pixel_for(region.bounds(), radius, radius / 8.0);

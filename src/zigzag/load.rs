@@ -17,6 +17,7 @@
 
 use crate::drawing::Shape;
 use crate::geom::segment::{ArcGeom, Rect, Segment};
+use crate::geom::tolerance::MATERIAL_SLACK;
 use crate::geom::DVec2;
 
 /// Directions tried on each side of the way to the path, as steps of this angle (radians),
@@ -129,6 +130,28 @@ impl PixelMap {
             }
         }
         PixelMap { origin, px, nx, ny, words, material: m, centre_in: Vec::new(), inner: Vec::new(), radius, boundary: Vec::new(), rows: Vec::new(), undo: Vec::new(), logging: false }
+    }
+
+    /// A pixel on the centre of each of `stock`'s cells over `bounds` (and empty ones beyond
+    /// the stock), material where the cell's column stands above `z` (by more than
+    /// [`MATERIAL_SLACK`]): the map of what the simulation holds, counted within `radius`;
+    /// `None` past [`MOST_PIXELS`].
+    pub fn on_cells(stock: &crate::sim::DexelStock, bounds: Rect, z: f64, radius: f64) -> Option<PixelMap> {
+        let g = stock.grid();
+        let px = g.spacing;
+        let (i0, j0) = (((bounds.min.x - g.origin.x) / px).floor(), ((bounds.min.y - g.origin.y) / px).floor());
+        let size = (((bounds.max.x - bounds.min.x) / px).ceil() as usize + 2, ((bounds.max.y - bounds.min.y) / px).ceil() as usize + 2);
+        if (size.0 * size.1) as f64 > MOST_PIXELS {
+            return None;
+        }
+        let origin = g.origin + DVec2::new(i0, j0) * px;
+        let (i0, j0) = (i0 as isize, j0 as isize);
+        let tops = stock.tops();
+        let cell = |i: usize, j: usize| {
+            let (ci, cj) = (i0 + i as isize, j0 + j as isize);
+            ci >= 0 && cj >= 0 && (ci as usize) < g.nx && (cj as usize) < g.ny && tops[cj as usize * g.nx + ci as usize] > z + MATERIAL_SLACK
+        };
+        Some(PixelMap::on_grid(origin, px, size, radius, cell))
     }
 
     pub fn pixel(&self) -> f64 {
