@@ -248,17 +248,10 @@ impl Shape {
         self.loops.iter().flat_map(|l| l.segments())
     }
 
-    /// The spans of the horizontal line at `y` that lie inside the shape, left to right.
-    pub fn spans_at(&self, y: f64) -> Vec<(f64, f64)> {
-        let mut xs: Vec<f64> = self.segments().flat_map(|s| s.crossings_at_y(y)).collect();
-        xs.sort_by(f64::total_cmp);
-        xs.chunks_exact(2).map(|p| (p[0], p[1])).collect()
-    }
-
-    /// [`Shape::spans_at`] on each of the rows at heights `ys` (ascending): each segment is
-    /// asked only on the rows its height reaches, so the work goes with the rows plus the
-    /// crossings, not with their product (a perforated panel's thousands of holes on as many
-    /// rows).
+    /// The spans inside the shape of the horizontal line at each height of `ys` (ascending),
+    /// left to right: each segment is asked only on the rows its height reaches, so the work
+    /// goes with the rows plus the crossings, not with their product (a perforated panel's
+    /// thousands of holes on as many rows).
     pub fn spans_on_rows(&self, ys: &[f64]) -> Vec<Vec<(f64, f64)>> {
         debug_assert!(ys.windows(2).all(|w| w[0] <= w[1]));
         let mut xs: Vec<Vec<f64>> = vec![Vec::new(); ys.len()];
@@ -453,6 +446,13 @@ impl Drawing {
 mod tests {
     use super::*;
 
+    /// The spans of the line at `y` inside `shape`, from every segment's crossings with it.
+    fn spans_at(shape: &Shape, y: f64) -> Vec<(f64, f64)> {
+        let mut xs: Vec<f64> = shape.segments().flat_map(|s| s.crossings_at_y(y)).collect();
+        xs.sort_by(f64::total_cmp);
+        xs.chunks_exact(2).map(|p| (p[0], p[1])).collect()
+    }
+
     /// The spans of many rows at once are each row's own, on rows that meet vertices, arcs'
     /// tops and nothing, in a plate with round holes and a diamond.
     #[test]
@@ -467,7 +467,7 @@ mod tests {
         assert_eq!(many.len(), ys.len());
         let mut crossed = 0;
         for (y, spans) in ys.iter().zip(&many) {
-            assert_eq!(spans, &shape.spans_at(*y), "at y {y}");
+            assert_eq!(spans, &spans_at(&shape, *y), "at y {y}");
             crossed += spans.len();
         }
         assert!(crossed > 60, "{crossed}");

@@ -636,9 +636,10 @@ fn within_reach(list: &[Option<Piece>], reach: f64) -> Vec<Vec<usize>> {
         let b = region.bounds();
         let (j0, j1) = (((b.min.y - origin.y) / cell).floor() as isize, ((b.max.y - origin.y) / cell).floor() as isize);
         let mut rows: Vec<Vec<(isize, isize)>> = vec![Vec::new(); (j1 - j0 + 1 + 2 * by) as usize];
-        let ys: Vec<(isize, f64)> = (j0..=j1).flat_map(|j| [0.0, 0.5, 1.0].map(|t| (j, origin.y + (j as f64 + t) * cell))).collect();
-        let heights: Vec<f64> = ys.iter().map(|r| r.1).collect();
-        for (&(j, _), spans) in ys.iter().zip(region.spans_on_rows(&heights)) {
+        // Three heights a row: its bottom, middle and top.
+        let heights: Vec<f64> = (j0..=j1).flat_map(|j| [0.0, 0.5, 1.0].map(|t| origin.y + (j as f64 + t) * cell)).collect();
+        for (k, spans) in region.spans_on_rows(&heights).into_iter().enumerate() {
+            let j = j0 + (k / 3) as isize;
             for (x0, x1) in spans {
                 let (i0, i1) = (((x0 - origin.x) / cell).floor() as isize - by, ((x1 - origin.x) / cell).floor() as isize + by);
                 for row in &mut rows[(j - j0) as usize..=(j - j0 + 2 * by) as usize] {

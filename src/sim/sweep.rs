@@ -8,8 +8,9 @@
 //! an end of the interval of the move during which it covers the point; a ball sweeps a capsule,
 //! whose lower surface is one of the end spheres or the cylinder between them); for a bull nose
 //! by the contact search the CL z-map's edge drop uses ([`Profile::contact_along`]), since
-//! `z(t) + height(|q - c(t)|)` is convex in the move's parameter. Planar arcs are exact too, and a flat end's helical arc (the window of angles over which it
-//! covers a point, by the law of cosines); other cutters' helical arcs are split into chords.
+//! `z(t) + height(|q - c(t)|)` is convex in the move's parameter. Planar arcs are exact too,
+//! and so is a flat end's helical arc (by the window of angles over which it covers a point,
+//! from the law of cosines); other cutters' helical arcs are split into chords.
 
 use crate::cutter::Profile;
 use crate::geom::{DVec2, DVec3};
@@ -330,6 +331,16 @@ fn angle_within(start: f64, sweep: f64, angle: f64) -> bool {
     }
 }
 
+/// How far an arc starting at `start` and turning the way `sweep` does turns to reach the
+/// direction `angle` (radians, in [0, 2π)).
+fn turned(start: f64, sweep: f64, angle: f64) -> f64 {
+    if sweep >= 0.0 {
+        (angle - start).rem_euclid(std::f64::consts::TAU)
+    } else {
+        (start - angle).rem_euclid(std::f64::consts::TAU)
+    }
+}
+
 /// Horizontal distance from `q` to an arc, and the fraction of the arc (0 at its start, 1 at
 /// its end) at the nearest point.
 fn arc_distance(q: DVec2, center: DVec2, radius: f64, start: f64, sweep: f64) -> (f64, f64) {
@@ -340,8 +351,7 @@ fn arc_distance(q: DVec2, center: DVec2, radius: f64, start: f64, sweep: f64) ->
     }
     let angle = v.y.atan2(v.x);
     if angle_within(start, sweep, angle) {
-        let turned = if sweep >= 0.0 { (angle - start).rem_euclid(std::f64::consts::TAU) } else { (start - angle).rem_euclid(std::f64::consts::TAU) };
-        return ((len - radius).abs(), if sweep == 0.0 { 0.0 } else { (turned / sweep.abs()).min(1.0) });
+        return ((len - radius).abs(), if sweep == 0.0 { 0.0 } else { (turned(start, sweep, angle) / sweep.abs()).min(1.0) });
     }
     let a = center + DVec2::from_angle(start) * radius;
     let b = center + DVec2::from_angle(start + sweep) * radius;
@@ -380,8 +390,7 @@ fn helix_lowest(q: DVec2, center: DVec2, radius: f64, start: f64, sweep: f64, z:
         cos.max(-1.0).acos()
     };
     // The window's middle, as an angle turned from the start in the arc's direction.
-    let toward = v.y.atan2(v.x);
-    let middle = if sweep >= 0.0 { (toward - start).rem_euclid(TAU) } else { (start - toward).rem_euclid(TAU) };
+    let middle = turned(start, sweep, v.y.atan2(v.x));
     if half >= PI {
         return height(if rise < 0.0 { total } else { 0.0 });
     }

@@ -403,18 +403,14 @@ pub fn cut_bands(bands: &mut [DexelStock], moves: &[ProgramMove], tolerances: &T
         }
         std::iter::once(mine).chain(others.into_iter().map(|h| h.join().expect("a simulating thread panicked"))).collect()
     });
-    let mut cuts: Vec<Vec<BandCut>> = Vec::with_capacity(threads);
-    for m in made {
-        cuts.push(m?);
-    }
     // Back in the bands' order: band k is the (k / n)th of group k mod n.
-    let mut dealt: Vec<std::vec::IntoIter<BandCut>> = cuts.into_iter().map(Vec::into_iter).collect();
+    let mut dealt: Vec<std::vec::IntoIter<BandCut>> = made.into_iter().map(|m| m.map(Vec::into_iter)).collect::<Result<_>>()?;
     Ok((0..bands.len()).map(|k| dealt[k % threads].next().expect("every band has its cut")).collect())
 }
 
 /// [`cut_bands`] on one thread, for `bands` in order (not necessarily next to one another);
 /// stops, cancelled, when `progress` says so or another thread sets `stop`.
-fn cut_group(mut bands: Vec<&mut DexelStock>, moves: &[ProgramMove], tolerances: &Tolerances, progress: &mut Progress, share: f64, stop: &AtomicBool) -> Result<Vec<BandCut>> {
+fn cut_group(bands: Vec<&mut DexelStock>, moves: &[ProgramMove], tolerances: &Tolerances, progress: &mut Progress, share: f64, stop: &AtomicBool) -> Result<Vec<BandCut>> {
     let rows: Vec<(f64, f64)> = bands.iter().map(|b| b.rows()).collect();
     if rows.is_empty() {
         return Ok(Vec::new());
@@ -424,7 +420,7 @@ fn cut_group(mut bands: Vec<&mut DexelStock>, moves: &[ProgramMove], tolerances:
         let first = rows.partition_point(|r| r.1 < lo);
         rows.iter().enumerate().skip(first).take_while(move |(_, r)| r.0 <= hi).map(|(b, _)| b)
     };
-    let mut work: Vec<Band> = bands.iter_mut().map(|stock| Band { stock, sweeps: Vec::new(), cut: BandCut::default() }).collect();
+    let mut work: Vec<Band> = bands.into_iter().map(|stock| Band { stock, sweeps: Vec::new(), cut: BandCut::default() }).collect();
     for (c, chunk) in moves.chunks(CHUNK).enumerate() {
         if stop.load(Ordering::Relaxed) || !progress.report(share * (c * CHUNK) as f64 / moves.len().max(1) as f64) {
             stop.store(true, Ordering::Relaxed);
