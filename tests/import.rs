@@ -134,28 +134,30 @@ fn gltf_pointing_at_an_external_uri_is_refused_and_nothing_is_fetched() {
     }
 }
 
+/// A GLB of `json` with `bin` as its binary chunk.
+fn glb(json: &str, bin: &[u8]) -> Vec<u8> {
+    let pad = |mut v: Vec<u8>, fill: u8| {
+        while v.len() % 4 != 0 {
+            v.push(fill);
+        }
+        v
+    };
+    let (j, b) = (pad(json.as_bytes().to_vec(), b' '), pad(bin.to_vec(), 0));
+    let mut out = b"glTF".to_vec();
+    out.extend(2u32.to_le_bytes());
+    out.extend(((12 + 8 + j.len() + 8 + b.len()) as u32).to_le_bytes());
+    out.extend((j.len() as u32).to_le_bytes());
+    out.extend(b"JSON");
+    out.extend(j);
+    out.extend((b.len() as u32).to_le_bytes());
+    out.extend(b"BIN\0");
+    out.extend(b);
+    out
+}
+
 #[test]
 fn glb_is_read_and_lying_accessors_are_refused() {
     let json = gltf_json("").replace(r#","uri":"""#, "");
-    let glb = |json: &str, bin: &[u8]| {
-        let pad = |mut v: Vec<u8>, fill: u8| {
-            while v.len() % 4 != 0 {
-                v.push(fill);
-            }
-            v
-        };
-        let (j, b) = (pad(json.as_bytes().to_vec(), b' '), pad(bin.to_vec(), 0));
-        let mut out = b"glTF".to_vec();
-        out.extend(2u32.to_le_bytes());
-        out.extend(((12 + 8 + j.len() + 8 + b.len()) as u32).to_le_bytes());
-        out.extend((j.len() as u32).to_le_bytes());
-        out.extend(b"JSON");
-        out.extend(j);
-        out.extend((b.len() as u32).to_le_bytes());
-        out.extend(b"BIN\0");
-        out.extend(b);
-        out
-    };
     let mesh = read_mesh_auto(&glb(&json, &triangle_bytes()), Some("t.glb"), &TOL).unwrap();
     assert_eq!(mesh.faces.len(), 1);
     // An accessor claiming more vertices than its view holds.
@@ -450,4 +452,65 @@ fn an_obj_face_of_100000_corners_is_a_strip_of_thin_bands() {
     // A face of four corners is still the fan tobj makes (two triangles from its first).
     let quad = read_mesh_auto(b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nf 1 2 3 4\nf 1 2 5\n", Some("q.obj"), &TOL).unwrap();
     assert_eq!(quad.faces.len(), 3);
+}
+
+/// Issue 56: a glTF triangle fan over a flat convex polygon of 100,000 corners (a disc's cap,
+/// from a corner of it or from its centre) is cut as a strip of thin bands, as an OBJ face is,
+/// covering the same area; a fan over any other shape (a star round its hub, a cone) is kept
+/// triangle for triangle as the file gives it.
+#[test]
+fn a_gltf_fan_over_a_flat_convex_polygon_is_a_strip_and_any_other_fan_is_kept() {
+    let read_fan = |corners: &[[f32; 3]]| {
+        let json = format!(
+            r#"{{"asset":{{"version":"2.0"}},"scene":0,"scenes":[{{"nodes":[0]}}],"nodes":[{{"mesh":0}}],
+            "meshes":[{{"primitives":[{{"attributes":{{"POSITION":0}},"mode":6}}]}}],
+            "accessors":[{{"bufferView":0,"componentType":5126,"count":{n},"type":"VEC3"}}],
+            "bufferViews":[{{"buffer":0,"byteLength":{len}}}],"buffers":[{{"byteLength":{len}}}]}}"#,
+            n = corners.len(),
+            len = corners.len() * 12
+        );
+        let bin: Vec<u8> = corners.iter().flatten().flat_map(|f| f.to_le_bytes()).collect();
+        let mut mesh = read_mesh_auto(&glb(&json, &bin), Some("fan.glb"), &TOL).unwrap();
+        // In the file's own numbers (metres: scaling comes with the part's setup).
+        let triangles: Vec<[DVec3; 3]> = mesh.faces.drain(..).map(|f| f.map(|i| mesh.vertices[i as usize])).collect();
+        triangles
+    };
+    let area = |ts: &[[DVec3; 3]]| ts.iter().map(|[a, b, c]| (*b - *a).cross(*c - *a).length() * 0.5).sum::<f64>();
+    let widest = |ts: &[[DVec3; 3]]| {
+        ts.iter()
+            .map(|t| {
+                let (lo, hi) = t.iter().fold((DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
+                (hi.x - lo.x).min(hi.y - lo.y)
+            })
+            .fold(0.0, f64::max)
+    };
+    let n = 100_000;
+    let rim: Vec<[f32; 3]> = (0..n).map(|k| std::f64::consts::TAU * k as f64 / n as f64).map(|t| [(0.04 * t.cos()) as f32, (0.04 * t.sin()) as f32, 0.01]).collect();
+    let polygon = 0.5 * n as f64 * 0.04f64.powi(2) * (std::f64::consts::TAU / n as f64).sin();
+    // From a corner (f32 corners wobble off the circle by more than its turn between them).
+    let from_corner = read_fan(&rim);
+    // From the centre, the rim closed on its first corner.
+    let hub: Vec<[f32; 3]> = std::iter::once([0.0, 0.0, 0.01]).chain(rim.iter().copied()).chain(std::iter::once(rim[0])).collect();
+    let from_hub = read_fan(&hub);
+    for (what, ts) in [("corner", &from_corner), ("hub", &from_hub)] {
+        assert!((area(ts) - polygon).abs() < 1e-6 * polygon, "{what}: {} vs {polygon}", area(ts));
+        assert!(ts.len() <= n - 2, "{what}: {} triangles", ts.len());
+        assert!(widest(ts) < 0.004, "{what}: a triangle {} m wide both ways", widest(ts));
+        assert!(ts.iter().all(|[a, b, c]| (*b - *a).cross(*c - *a).z >= 0.0), "{what}: every triangle turns as the fan");
+    }
+    // A star of 40 points round its hub, and a cone: each triangle as given.
+    let star: Vec<[f32; 3]> = std::iter::once([0.0, 0.0, 0.0])
+        .chain((0..=80).map(|k| {
+            let (t, r) = (std::f64::consts::TAU * k as f64 / 80.0, if k % 2 == 0 { 0.04 } else { 0.02 });
+            [(r * t.cos()) as f32, (r * t.sin()) as f32, 0.0]
+        }))
+        .collect();
+    let cone: Vec<[f32; 3]> = std::iter::once([0.0, 0.0, 0.03]).chain(rim.iter().step_by(1000).copied()).collect();
+    for (what, fan) in [("star", &star), ("cone", &cone)] {
+        let ts = read_fan(fan);
+        let given: Vec<[DVec3; 3]> = fan[1..].windows(2).map(|w| [fan[0], w[0], w[1]].map(|p| DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64))).collect();
+        assert_eq!(ts.len(), given.len(), "{what}");
+        assert!((area(&ts) - area(&given)).abs() < 1e-9 * area(&given), "{what}");
+        assert!(widest(&ts) > 0.01, "{what}: the file's own triangles reach across");
+    }
 }

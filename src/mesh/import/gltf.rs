@@ -9,6 +9,7 @@ use base64::Engine;
 use glam::{DMat4, DQuat, DVec3 as V3, Mat4};
 use gltf::json::{self, accessor::ComponentType, accessor::Type, mesh::Mode, mesh::Semantic, validation::Checked};
 
+use super::face::{fan_polygon, triangulate, FAN_MOST};
 use super::ImportError;
 use crate::geom::DVec3;
 
@@ -168,8 +169,13 @@ impl Document<'_> {
                     out.extend(indices.windows(3).enumerate().map(|(k, w)| if k % 2 == 0 { [corner(w[0]), corner(w[1]), corner(w[2])] } else { [corner(w[1]), corner(w[0]), corner(w[2])] }))
                 }
                 _ => {
-                    if let Some((&first, rest)) = indices.split_first() {
-                        out.extend(rest.windows(2).map(|w| [corner(first), corner(w[0]), corner(w[1])]));
+                    // A large fan over a flat convex polygon is that polygon: cut as a strip
+                    // (see `face`); any other fan is kept as the file gives it.
+                    let ring: Vec<DVec3> = indices.iter().map(|&i| corner(i)).collect();
+                    if let Some(polygon) = fan_polygon(&ring).filter(|p| p.len() > FAN_MOST) {
+                        out.extend(triangulate(polygon.len()).into_iter().map(|[a, b, c]| [polygon[a], polygon[b], polygon[c]]));
+                    } else if let Some((&first, rest)) = ring.split_first() {
+                        out.extend(rest.windows(2).map(|w| [first, w[0], w[1]]));
                     }
                 }
             }

@@ -2,6 +2,7 @@
 //! and `.glb`), Wavefront OBJ. Nothing is ever fetched: a glTF that points at an external URI
 //! is refused.
 
+mod face;
 mod gltf;
 mod obj;
 mod stl;

@@ -1,9 +1,8 @@
 //! Wavefront OBJ through the `tobj` crate; material libraries are never loaded. Faces are
-//! triangulated here: up to [`FAN_MOST`] corners as a fan from the first (as tobj does), larger
-//! ones (a cylinder's cap of 100,000 corners) as a strip across the polygon, whose triangles are
-//! thin bands rather than slivers all reaching from one corner across the part (with which
-//! every node of a z-map met every triangle: past a minute on a φ80 disc).
+//! triangulated here ([`super::face::triangulate`]): small ones as a fan from the first corner
+//! (as tobj does), large ones (a cylinder's cap of 100,000 corners) as a strip across them.
 
+use super::face::triangulate;
 use super::ImportError;
 use crate::geom::DVec3;
 
@@ -35,36 +34,6 @@ pub(super) fn read(bytes: &[u8]) -> Result<Vec<[DVec3; 3]>, ImportError> {
         }
     }
     Ok(triangles)
-}
-
-/// The most corners a face is triangulated as a fan from its first.
-const FAN_MOST: usize = 32;
-
-/// The triangles of a face of `n` corners, as corner positions in the face's order (each
-/// turning as the face does).
-fn triangulate(n: usize) -> Vec<[usize; 3]> {
-    if n < 3 {
-        return Vec::new();
-    }
-    if n <= FAN_MOST {
-        return (1..n - 1).map(|k| [0, k, k + 1]).collect();
-    }
-    // A strip: the edge across the face steps forward from its front and back from its back
-    // in turn.
-    let (mut a, mut b) = (0, n - 1);
-    let mut out = Vec::with_capacity(n - 2);
-    let mut front = true;
-    while b - a >= 2 {
-        if front {
-            out.push([a, a + 1, b]);
-            a += 1;
-        } else {
-            out.push([a, b - 1, b]);
-            b -= 1;
-        }
-        front = !front;
-    }
-    out
 }
 
 /// A file cut short ends inside a statement, and tobj reads such a line as best it can (or
