@@ -28,6 +28,10 @@ pub const MAX_NESTING: usize = 256;
 
 /// The most operations a job may hold.
 pub const MAX_OPERATIONS: usize = 100;
+
+/// The most setups a job holds: a block has six faces, and a part turned in the vise a few
+/// more ways.
+pub const MAX_SETUPS: usize = 12;
 /// Tabs on one loop of a profile: more than any part is held by (a tab every 4 mm round a
 /// 1 m × 1 m sheet is 1,000).
 pub const MAX_TABS: u32 = 1_000;

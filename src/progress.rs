@@ -58,4 +58,20 @@ impl<'a> Progress<'a> {
         }
         !self.cancelled
     }
+
+    /// Runs `work` with a progress of its own whose whole is `[start, start + span]` of this
+    /// one's, its stages named after `name` (one setup of several, each a whole job):
+    /// cancelling it cancels this one.
+    pub fn within<R>(&mut self, start: f64, span: f64, name: &str, work: impl FnOnce(&mut Progress) -> R) -> R {
+        let Some(outer) = self.sink.as_mut() else { return work(&mut Progress::none()) };
+        let mut cancelled = false;
+        let mut sink = |f: f64, stage: &str| {
+            let ok = outer(start + span * f, &format!("{name}: {stage}"));
+            cancelled |= !ok;
+            ok
+        };
+        let out = work(&mut Progress::new(&mut sink));
+        self.cancelled |= cancelled;
+        out
+    }
 }

@@ -351,3 +351,30 @@ fn a_stepdown_deeper_than_the_flutes_is_refused_before_any_work() {
     assert!(!dir.join("deep.ngc").exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Issue 57: the two-sided example from one command, and its job run again on its part: one
+/// program a setup, named after the part, the setup and the controller, each in its own work
+/// offset, the same as the demo's.
+#[test]
+fn the_two_sided_example_writes_one_program_a_setup() {
+    let dir = temp("two-sided");
+    let out = swarf(&["demo", "--two-sided", "-o", dir.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let programs = ["two-sided-op1-linuxcnc.ngc", "two-sided-op2-linuxcnc.ngc"];
+    for (f, offset) in programs.iter().zip(["G54", "G55"]) {
+        let text = std::fs::read_to_string(dir.join(f)).unwrap_or_else(|e| panic!("{f}: {e}"));
+        assert!(text.contains(&format!("\n{offset}\n")), "{f} selects {offset}");
+    }
+    let stl = dir.join("two-sided.stl");
+    let out = swarf(&["run", dir.join("two-sided.json").to_str().unwrap(), stl.to_str().unwrap(), "-o", dir.join("again.nc").to_str().unwrap(), "-q"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    for (k, f) in programs.iter().enumerate() {
+        let again = dir.join(format!("again-op{}-linuxcnc.nc", k + 1));
+        assert!(std::fs::read(&again).unwrap() == std::fs::read(dir.join(f)).unwrap(), "{} differs from {f}", again.display());
+    }
+    // A drawing has one side.
+    let svg = dir.join("plate.svg");
+    std::fs::write(&svg, r#"<svg xmlns="http://www.w3.org/2000/svg" width="50mm" height="40mm" viewBox="0 0 50 40"><rect x="5" y="5" width="40" height="30"/></svg>"#).unwrap();
+    let out = swarf(&["run", dir.join("two-sided.json").to_str().unwrap(), svg.to_str().unwrap(), "-q"]);
+    assert!(!out.status.success() && String::from_utf8_lossy(&out.stderr).contains("a drawing is cut from one side"), "{}", String::from_utf8_lossy(&out.stderr));
+}

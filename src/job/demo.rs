@@ -36,6 +36,31 @@ impl Job {
         }
     }
 
+    /// The two-sided example's job ([`crate::mesh::sample::two_sided_part`],
+    /// `examples/two-sided/`): the top (pocket and dome) in G54, then the part turned over
+    /// about X in the vise and its bottom (slot and boss) in G55, each roughed by z-level with a
+    /// φ6 flat end and finished by raster with a φ6 ball, from a block 3 mm larger each side
+    /// and 1 mm over and under, zero on the centre of the part's top in each setup.
+    pub fn two_sided() -> Job {
+        use super::schema::{Flip, Setup, WorkZero};
+        use crate::operations::RoughZlevel;
+        let demo = Job::demo();
+        let operations = vec![
+            Operation::RoughZlevel(RoughZlevel { name: "rough".into(), tool: 1, ..RoughZlevel::default() }),
+            Operation::FinishRaster(FinishRaster { name: "finish".into(), tool: 2, stepover: 0.6, ..FinishRaster::default() }),
+        ];
+        let mut job = Job { name: "two-sided plate".into(), tools: demo.tools, operations: Vec::new(), ..Job::default() };
+        job.stock.margin_xy = 3.0;
+        job.stock.margin_top = 1.0;
+        job.stock.margin_bottom = 1.0;
+        job.stock.zero = Some(WorkZero::default());
+        job.setups = vec![
+            Setup { name: "top".into(), work_offset: Some("G54".into()), operations: operations.clone(), ..Setup::default() },
+            Setup { name: "bottom".into(), flip: Flip::AboutX, work_offset: Some("G55".into()), operations, ..Setup::default() },
+        ];
+        job
+    }
+
     /// The job swarf.js's engine runs once as it starts, in a worker of its own, on
     /// [`crate::mesh::sample::warm_up_part`] (0.1 s natively, about 0.6 s in a fresh browser):
     /// the demo's three operations with a zigzag roughing between, so that the browser has

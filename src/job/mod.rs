@@ -19,10 +19,13 @@ pub mod read;
 pub mod report;
 pub mod run;
 pub mod schema;
+pub mod setups;
+pub mod sheet;
 pub mod wire;
 
 pub use self::report::OperationReport;
 pub use self::run::{marked, part_warnings, prepare, run, verify_gcode, warning_lines, JobOutput, Prepared, Running};
 pub use self::schema::*;
+pub use self::setups::{run_setups, SetupOutput};
 pub use crate::operations::{Boundary, FinishRaster, Operation};
 pub use crate::tool::Tool;

@@ -68,6 +68,14 @@ impl Job {
         if !unknown.is_empty() {
             return Err(Error::Input(format!("unknown field{}: {}", if unknown.len() == 1 { "" } else { "s" }, unknown.join("; "))));
         }
+        // A job of setups lists each setup's operations in it: operations beside them would
+        // belong to none.
+        if !job.setups.is_empty() {
+            if value.get("operations").and_then(serde_json::Value::as_array).is_some_and(|ops| !ops.is_empty()) {
+                return Err(Error::Input("operations: a job with setups lists its operations in each setup (setups[0].operations, …), not beside them".into()));
+            }
+            job.operations = Vec::new();
+        }
         job.version = JOB_VERSION;
         Ok(job)
     }

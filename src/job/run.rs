@@ -249,6 +249,9 @@ pub fn run(job: &Job, workpiece: impl Into<Workpiece>, progress: &mut Progress) 
 /// plans in.
 pub fn prepare(job: &Job, workpiece: impl Into<Workpiece>) -> Result<Prepared> {
     job.validate()?;
+    if !job.setups.is_empty() {
+        return Err(Error::Input(format!("the job has {} setups, each a program of its own: run it with `swarf run` (the page makes one setup's program so far)", job.setups.len())));
+    }
     let workpiece = workpiece.into();
     let on = match workpiece {
         Workpiece::Mesh(_) => Works::OnPart,
@@ -303,6 +306,13 @@ pub struct Prepared {
 }
 
 impl Prepared {
+    /// Starts from the stock earlier work left instead of the raw box (the setup before this
+    /// one's, [`super::setups`]): each cell of the in-process stock holding the material
+    /// `(floor, top)` that `material` gives at its centre.
+    pub fn carry(&mut self, material: impl Fn(crate::geom::DVec2) -> (f64, f64)) {
+        self.ctx.sim.carry(material);
+    }
+
     /// [`run`] from here.
     pub fn run(self, progress: &mut Progress) -> Result<JobOutput> {
         let mut running = self.start();

@@ -344,6 +344,51 @@ pub struct Job {
     pub post: PostSettings,
     pub simulation: Simulation,
     pub tolerances: Tolerances,
+    /// The part machined from more than one side: each setup holds it its own way up, with
+    /// its own work offset and operations, and starts from the stock the one before left
+    /// ([`crate::job::setups`]). Empty: the job is one setup, its `operations`. Default value:
+    /// none.
+    pub setups: Vec<Setup>,
+}
+
+/// How a setup turns the part over from the setup before it (the first: from the part as
+/// placed), about an axis through the stock's centre, as a machinist turns it in the vise.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(rename_all = "camelCase")]
+pub enum Flip {
+    /// The same face up.
+    #[default]
+    None,
+    /// Over about the X axis: the bottom up, front and back swapped.
+    AboutX,
+    /// Over about the Y axis: the bottom up, left and right swapped.
+    AboutY,
+}
+
+/// One setup of a part machined from more than one side.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(default, rename_all = "camelCase")]
+pub struct Setup {
+    /// Its name, in its program's name and on its setup sheet. Default value: "Setup N".
+    pub name: String,
+    /// How the part is turned over from the setup before. Default value: none.
+    pub flip: Flip,
+    /// Then a turn about the spindle, counter-clockwise seen from above (degrees: 0, 90, 180
+    /// or 270). Default value: 0.
+    pub turn: u32,
+    /// The work offset its program selects (`G54` to `G59`). Default value: the job's post's.
+    pub work_offset: Option<String>,
+    /// The point of the stock, as this setup holds it, that is its program's origin. Default
+    /// value: the job's `stock.zero`.
+    pub zero: Option<WorkZero>,
+    /// What this setup cuts, in order. Default value: none.
+    pub operations: Vec<Operation>,
+}
+
+impl Default for Setup {
+    fn default() -> Self {
+        Setup { name: String::new(), flip: Flip::None, turn: 0, work_offset: None, zero: None, operations: Vec::new() }
+    }
 }
 
 impl Default for Job {
@@ -359,6 +404,7 @@ impl Default for Job {
             post: PostSettings::default(),
             simulation: Simulation::default(),
             tolerances: Tolerances::default(),
+            setups: Vec::new(),
         }
     }
 }
@@ -412,6 +458,35 @@ impl Job {
     /// the holes found in it, a hole operation's settings that do not fit the holes it takes (a
     /// hole deeper than the flutes, a peck deeper than the hole).
     pub fn problems_with(&self, known: Known) -> Vec<Problem> {
+        if self.setups.is_empty() {
+            return self.problems_of_one(known);
+        }
+        // The job's own settings, then each setup's: its operations as a job of their own.
+        let mut out = Job { operations: Vec::new(), setups: Vec::new(), ..self.clone() }.problems_of_one(known);
+        let mut say = |path: String, message: String| out.push(Problem { path, message });
+        if self.setups.len() > crate::limits::MAX_SETUPS {
+            say("setups".into(), format!("setups: {} setups, more than a part has sides (at most {})", self.setups.len(), crate::limits::MAX_SETUPS));
+        }
+        for (k, setup) in self.setups.iter().enumerate() {
+            if setup.turn % 90 != 0 || setup.turn >= 360 {
+                say(format!("setups[{k}].turn"), format!("setups[{k}].turn turns the part about the spindle by 0, 90, 180 or 270 degrees (got {})", setup.turn));
+            }
+            if let Some(w) = setup.work_offset.as_deref().filter(|w| !crate::post::definition::is_work_offset(w)) {
+                say(format!("setups[{k}].workOffset"), format!("setups[{k}].workOffset must be one of G54 to G59 (got {w:?})"));
+            }
+            if !setup.operations.iter().any(|o| o.op().enabled()) {
+                say(format!("setups[{k}].operations"), format!("setups[{k}].operations: the setup has nothing to cut"));
+            }
+            let one = Job { operations: setup.operations.clone(), setups: Vec::new(), ..self.clone() };
+            for p in one.problems_of_one(Known::default()).into_iter().filter(|p| p.path.starts_with("operations")) {
+                say(format!("setups[{k}].{}", p.path), format!("setups[{k}].{}", p.message));
+            }
+        }
+        out
+    }
+
+    /// [`Job::problems_with`] of a job of one setup.
+    fn problems_of_one(&self, known: Known) -> Vec<Problem> {
         let part = known.part;
         let mut out = Vec::new();
         let mut say = |path: String, message: String| out.push(Problem { path, message });

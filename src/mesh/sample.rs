@@ -8,13 +8,24 @@ use crate::geom::{DVec2, DVec3, Tolerances};
 /// A closed solid over `[min, max]` whose top is `top(x, y)`, sampled on `nx × ny` quads, with
 /// its bottom at `bottom`.
 pub fn height_field_solid(min: DVec2, max: DVec2, nx: usize, ny: usize, bottom: f64, top: impl Fn(f64, f64) -> f64) -> Mesh {
+    two_height_solid(min, max, nx, ny, |_, _| bottom, top)
+}
+
+/// A closed solid over `[min, max]` between `bottom(x, y)` and `top(x, y)` (the top higher
+/// everywhere), both sampled on `nx × ny` quads, with walls between their edges; a flat bottom
+/// is one face of two triangles.
+fn two_height_solid(min: DVec2, max: DVec2, nx: usize, ny: usize, bottom: impl Fn(f64, f64) -> f64, top: impl Fn(f64, f64) -> f64) -> Mesh {
     let (nx, ny) = (nx.max(1), ny.max(1));
+    let xy = |i: usize, j: usize| DVec2::new(min.x + (max.x - min.x) * i as f64 / nx as f64, min.y + (max.y - min.y) * j as f64 / ny as f64);
     let at = |i: usize, j: usize| {
-        let x = min.x + (max.x - min.x) * i as f64 / nx as f64;
-        let y = min.y + (max.y - min.y) * j as f64 / ny as f64;
-        DVec3::new(x, y, top(x, y))
+        let p = xy(i, j);
+        p.extend(top(p.x, p.y))
     };
-    let mut tris = Vec::with_capacity(2 * nx * ny + 4 * (nx + ny) + 2);
+    let under = |i: usize, j: usize| {
+        let p = xy(i, j);
+        p.extend(bottom(p.x, p.y))
+    };
+    let mut tris = Vec::with_capacity(4 * nx * ny + 4 * (nx + ny));
     for j in 0..ny {
         for i in 0..nx {
             let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
@@ -22,23 +33,66 @@ pub fn height_field_solid(min: DVec2, max: DVec2, nx: usize, ny: usize, bottom: 
             tris.push([a, c, d]);
         }
     }
-    let floor = |p: DVec3| DVec3::new(p.x, p.y, bottom);
-    let mut wall = |p: DVec3, q: DVec3| {
-        tris.push([p, floor(p), floor(q)]);
-        tris.push([p, floor(q), q]);
+    let mut wall = |(i, j): (usize, usize), (k, l): (usize, usize)| {
+        let (p, q) = (at(i, j), at(k, l));
+        tris.push([p, under(i, j), under(k, l)]);
+        tris.push([p, under(k, l), q]);
     };
     for i in 0..nx {
-        wall(at(i + 1, 0), at(i, 0));
-        wall(at(i, ny), at(i + 1, ny));
+        wall((i + 1, 0), (i, 0));
+        wall((i, ny), (i + 1, ny));
     }
     for j in 0..ny {
-        wall(at(0, j), at(0, j + 1));
-        wall(at(nx, j + 1), at(nx, j));
+        wall((0, j), (0, j + 1));
+        wall((nx, j + 1), (nx, j));
     }
-    let corners = [min.extend(bottom), DVec3::new(max.x, min.y, bottom), max.extend(bottom), DVec3::new(min.x, max.y, bottom)];
-    tris.push([corners[0], corners[2], corners[1]]);
-    tris.push([corners[0], corners[3], corners[2]]);
+    // A flat bottom is one face (as the sample part has always had); any other is a grid
+    // facing down.
+    let z0 = bottom(min.x, min.y);
+    let flat = (0..=ny).all(|j| (0..=nx).all(|i| under(i, j).z == z0));
+    if flat {
+        let corners = [min.extend(z0), DVec3::new(max.x, min.y, z0), max.extend(z0), DVec3::new(min.x, max.y, z0)];
+        tris.push([corners[0], corners[2], corners[1]]);
+        tris.push([corners[0], corners[3], corners[2]]);
+    } else {
+        for j in 0..ny {
+            for i in 0..nx {
+                let (a, b, c, d) = (under(i, j), under(i + 1, j), under(i + 1, j + 1), under(i, j + 1));
+                tris.push([a, c, b]);
+                tris.push([a, d, c]);
+            }
+        }
+    }
     Mesh::from_triangles(tris, &Tolerances::DEFAULT).expect("a generated solid has triangles")
+}
+
+/// A part with features on both sides, for setups: an 80 × 50 × 16 mm plate (top at z = 0)
+/// with a 30 × 20 mm pocket 5 deep and a shallow dome on top, and underneath a slot 10 wide and
+/// 4 deep across its width and a round boss φ16 standing 2 mm below the rest of the bottom.
+/// Its walls lean by the half-millimetre grid it is sampled on.
+pub fn two_sided_part() -> Mesh {
+    two_height_solid(
+        DVec2::new(-40.0, -25.0),
+        DVec2::new(40.0, 25.0),
+        160,
+        100,
+        |x, y| {
+            if (x - 20.0).abs() < 5.0 {
+                -12.0 // the slot
+            } else if (x + 15.0).hypot(y) < 8.0 {
+                -18.0 // the boss
+            } else {
+                -16.0
+            }
+        },
+        |x, y| {
+            if (x + 15.0).abs() < 15.0 && y.abs() < 10.0 {
+                -5.0 // the pocket
+            } else {
+                1.5 * (-((x - 22.0).powi(2) + y.powi(2)) / 40.0).exp() - 1.5
+            }
+        },
+    )
 }
 
 /// The built-in sample part: a 90 × 60 mm mould insert with a dome, a hollow and a ridge, 25 mm

@@ -225,8 +225,7 @@ impl Post {
             check_template(line, &[]).map_err(|e| format!("{field}: {e}"))?;
         }
         if let Some(w) = &self.work_offset {
-            let ok = w.strip_prefix('G').and_then(|n| n.parse::<f64>().ok()).is_some_and(|n| (54.0..=59.9).contains(&n));
-            if !ok {
+            if !is_work_offset(w) {
                 return Err(format!("workOffset must be one of G54 to G59 (got {w:?})"));
             }
         }
@@ -421,6 +420,11 @@ pub fn wrap(text: &str, width: usize) -> Vec<String> {
 /// Comments may not hold parentheses (they would end the comment early).
 pub(crate) fn comment(text: &str) -> String {
     text.chars().map(|c| if c == '(' || c == ')' { '-' } else { c }).filter(|c| !c.is_control()).collect()
+}
+
+/// Whether `w` selects a work offset: `G54` to `G59` (and `G59.1` to `G59.3`).
+pub fn is_work_offset(w: &str) -> bool {
+    matches!(w, "G54" | "G55" | "G56" | "G57" | "G58" | "G59" | "G59.1" | "G59.2" | "G59.3")
 }
 
 #[cfg(test)]

@@ -95,12 +95,20 @@ pub struct PostSettings {
     pub tool_change_seconds: f64,
     /// Program number (O word) for posts that write one. Default value: 1.
     pub program_number: u32,
+    /// The work offset the program selects (`G54` to `G59`), instead of the post's: each
+    /// setup of a part holds its own zero. Default value: the post's (G54 in the built-in
+    /// posts).
+    pub work_offset: Option<String>,
 }
 
 impl PostSettings {
     /// The post in use: the user's own, else the built-in one.
     pub fn post(&self) -> Post {
-        self.custom.clone().unwrap_or_else(|| self.dialect.post())
+        let mut post = self.custom.clone().unwrap_or_else(|| self.dialect.post());
+        if let Some(w) = &self.work_offset {
+            post.work_offset = Some(w.clone());
+        }
+        post
     }
 
     /// The file extension of the program.
@@ -144,6 +152,11 @@ impl PostSettings {
         if let Some(custom) = &self.custom {
             custom.validate().map_err(|e| format!("post.custom.{e}"))?;
         }
+        if let Some(w) = &self.work_offset {
+            if !crate::post::definition::is_work_offset(w) {
+                return Err(format!("post.workOffset must be one of G54 to G59 (got {w:?})"));
+            }
+        }
         if let Some(d) = self.decimals {
             if !(1..=6).contains(&d) {
                 return Err(format!("post.decimals must be 1 to 6 (got {d})"));
@@ -173,7 +186,7 @@ impl PostSettings {
 
 impl Default for PostSettings {
     fn default() -> Self {
-        PostSettings { dialect: Dialect::LinuxCnc, custom: None, units: Units::Mm, decimals: None, rapid_rate: 3000.0, tool_change_seconds: 15.0, program_number: 1 }
+        PostSettings { dialect: Dialect::LinuxCnc, custom: None, units: Units::Mm, decimals: None, rapid_rate: 3000.0, tool_change_seconds: 15.0, program_number: 1, work_offset: None }
     }
 }
 

@@ -43,6 +43,10 @@ pub struct DexelStock {
     /// Per cell, the index of its `k * k` sub-cell heights in `subs`, or `UNSPLIT`.
     split: Vec<u32>,
     subs: Vec<f64>,
+    /// Per cell, the height its material starts at, where that is not the bottom: a stock
+    /// turned over, whose columns a setup before cut from what is now below (empty: the bottom
+    /// everywhere). A cut down to a cell's floor empties it. Conventional z-maps only.
+    floors: Vec<f64>,
     /// The highest cell of each block of `BLOCK × BLOCK` cells, row-major.
     block_top: Vec<f64>,
     /// Cells per block side (1: no blocks), and blocks per row.
@@ -71,6 +75,7 @@ impl DexelStock {
             k: k.max(1),
             split: if k > 1 { vec![UNSPLIT; nx * ny] } else { Vec::new() },
             subs: Vec::new(),
+            floors: Vec::new(),
             block_top: vec![stock.max.z; nx.div_ceil(block) * ny.div_ceil(block)],
             block,
             bx: nx.div_ceil(block),
@@ -99,6 +104,7 @@ impl DexelStock {
                 heights: self.heights[j0..j1].to_vec(),
                 split: Vec::new(),
                 subs: Vec::new(),
+                floors: if self.floors.is_empty() { Vec::new() } else { self.floors[j0 * self.nx..j1 * self.nx].to_vec() },
                 block_top: self.block_top[b0 * self.bx..b1 * self.bx].to_vec(),
                 ..self.clone_shape()
             });
@@ -130,6 +136,35 @@ impl DexelStock {
         out
     }
 
+    /// This stock holding in each cell the material `material` gives at its centre, as
+    /// `(floor, top)` within this stock's box (an empty column: a top at or below its floor):
+    /// the stock as earlier work left it (a setup before this one, turned into this one's
+    /// frame). Before any cut; a conventional z-map's cells only.
+    pub fn with_material(mut self, material: impl Fn(DVec2) -> (f64, f64)) -> DexelStock {
+        debug_assert!(self.k == 1, "a conventional z-map");
+        let g = self.grid();
+        let top = self.z.first().copied().unwrap_or(self.bottom);
+        let mut floors = vec![self.bottom; self.z.len()];
+        for j in 0..self.ny {
+            for i in 0..self.nx {
+                let c = j * self.nx + i;
+                let (floor, z) = material(g.origin + DVec2::new(i as f64, j as f64) * g.spacing);
+                let (floor, z) = (floor.max(self.bottom), z.min(top));
+                (self.z[c], floors[c]) = if z > floor { (z, floor) } else { (self.bottom, self.bottom) };
+            }
+        }
+        self.floors = if floors.iter().any(|&f| f > self.bottom) { floors } else { Vec::new() };
+        for k in 0..self.block_top.len() {
+            self.block_top[k] = self.block_highest(k % self.bx, k / self.bx);
+        }
+        self
+    }
+
+    /// Where the material of cell (i, j) starts: its floor, or the bottom.
+    pub fn floor(&self, i: usize, j: usize) -> f64 {
+        self.floors.get(j * self.nx + i).copied().unwrap_or(self.bottom)
+    }
+
     /// The highest cell of block (`bi`, `bj`) (the stock's bottom where none stands higher).
     fn block_highest(&self, bi: usize, bj: usize) -> f64 {
         let size = self.block;
@@ -146,6 +181,7 @@ impl DexelStock {
             whole.z.extend(band.z);
             whole.heights.extend(band.heights);
             whole.block_top.extend(band.block_top);
+            whole.floors.extend(band.floors);
         }
         whole
     }
@@ -154,11 +190,12 @@ impl DexelStock {
     /// flat numbers, for a worker of the page's pool; [`DexelStock::all_from_flat`] reads them.
     pub fn to_flat(&self, out: &mut Vec<f64>) {
         debug_assert_eq!(self.k, 1, "only a conventional z-map is cut in bands");
-        out.extend([self.nx as f64, self.ny as f64, self.origin.x, self.origin.y, self.cell, self.bottom, self.block as f64, self.bx as f64, self.block_top.len() as f64]);
+        out.extend([self.nx as f64, self.ny as f64, self.origin.x, self.origin.y, self.cell, self.bottom, self.block as f64, self.bx as f64, self.block_top.len() as f64, self.floors.len() as f64]);
         out.extend_from_slice(&self.z);
         out.extend_from_slice(&self.widths);
         out.extend_from_slice(&self.heights);
         out.extend_from_slice(&self.block_top);
+        out.extend_from_slice(&self.floors);
     }
 
     /// `stocks` written by [`DexelStock::to_flat`] one after another.
@@ -173,15 +210,15 @@ impl DexelStock {
         let mut out = Vec::new();
         let mut rest = flat;
         while !rest.is_empty() {
-            let head = rest.get(..9)?;
-            let (nx, ny, blocks) = (head[0] as usize, head[1] as usize, head[8] as usize);
-            let mut at: usize = 9;
+            let head = rest.get(..10)?;
+            let (nx, ny, blocks, floors) = (head[0] as usize, head[1] as usize, head[8] as usize, head[9] as usize);
+            let mut at: usize = 10;
             let mut take = |n: usize| -> Option<Vec<f64>> {
                 let v = rest.get(at..at.checked_add(n)?)?.to_vec();
                 at += n;
                 Some(v)
             };
-            let (z, widths, heights, block_top) = (take(nx.checked_mul(ny)?)?, take(nx)?, take(ny)?, take(blocks)?);
+            let (z, widths, heights, block_top, floors) = (take(nx.checked_mul(ny)?)?, take(nx)?, take(ny)?, take(blocks)?, take(floors)?);
             out.push(DexelStock {
                 origin: DVec2::new(head[2], head[3]),
                 cell: head[4],
@@ -194,6 +231,7 @@ impl DexelStock {
                 k: 1,
                 split: Vec::new(),
                 subs: Vec::new(),
+                floors,
                 block_top,
                 block: head[6] as usize,
                 bx: head[7] as usize,
@@ -216,7 +254,7 @@ impl DexelStock {
 
     /// The stock's settings with no cells (for [`DexelStock::split_rows`]).
     fn clone_shape(&self) -> DexelStock {
-        DexelStock { z: Vec::new(), widths: Vec::new(), heights: Vec::new(), split: Vec::new(), subs: Vec::new(), block_top: Vec::new(), ..*self }
+        DexelStock { z: Vec::new(), widths: Vec::new(), heights: Vec::new(), split: Vec::new(), subs: Vec::new(), floors: Vec::new(), block_top: Vec::new(), ..*self }
     }
 
     #[inline]
@@ -409,9 +447,12 @@ impl DexelStock {
     fn cut_whole_cell(&mut self, sweep: &Sweep, i: usize, j: usize, top: f64, centre: DVec2) -> f64 {
         let e = sweep.lowest(centre);
         if e < top {
-            let new = e.max(self.bottom);
-            self.z[j * self.nx + i] = new;
-            return (top - new) * self.widths[i] * self.heights[j];
+            let c = j * self.nx + i;
+            let floor = self.floors.get(c).copied().unwrap_or(self.bottom);
+            // Cut down to its floor, a column is empty: nothing stands in it any more.
+            let new = if e > floor { e } else { self.bottom };
+            self.z[c] = new;
+            return (top - new.max(floor)) * self.widths[i] * self.heights[j];
         }
         0.0
     }
@@ -504,7 +545,7 @@ impl StockModel for DexelStock {
             for i in 0..self.nx {
                 let c = j * self.nx + i;
                 let mean_height = match self.is_split(c) {
-                    None => self.z[c] - self.bottom,
+                    None => (self.z[c] - self.floor(i, j)).max(0.0),
                     Some(s) => self.subs[s * k2..(s + 1) * k2].iter().map(|h| h - self.bottom).sum::<f64>() / k2 as f64,
                 };
                 total += mean_height * self.widths[i] * self.heights[j];

@@ -489,6 +489,13 @@ impl Simulator {
         Ok(Simulator { stock: stock_for(stock, cell)?, raw_top: stock.max.z, volumes: Vec::new(), timings: Vec::new(), rapid: (0, Vec::new()), body: (0, Vec::new()) })
     }
 
+    /// Starts from the stock earlier work left instead of the raw box: each cell's material
+    /// `(floor, top)` as `material` gives it at its centre ([`DexelStock::with_material`]).
+    /// Before any move.
+    pub fn carry(&mut self, material: impl Fn(DVec2) -> (f64, f64)) {
+        self.stock = self.stock.take().with_material(material);
+    }
+
     /// The stock as the moves so far left it.
     pub fn stock(&self) -> &DexelStock {
         &self.stock

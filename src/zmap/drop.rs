@@ -240,14 +240,9 @@ impl PointDrop {
         let list = &self.entries[self.start[b] as usize..self.start[b + 1] as usize];
         // A first height from the triangles right under the axis (any single feature's drop is
         // a lower bound), so that most triangles are ruled out before any drop onto them.
-        // No feature lifts the tip above its own top, and the list runs highest top first: once
-        // the height found reaches a triangle's top, no later triangle can raise it.
         let mut best = floor;
         for &k in list {
             let t = &self.triangles[k as usize];
-            if t.top <= best {
-                break;
-            }
             if c.x < t.lo.x + p.radius || c.y < t.lo.y + p.radius || c.x > t.hi.x - p.radius || c.y > t.hi.y - p.radius {
                 continue;
             }

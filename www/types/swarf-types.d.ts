@@ -603,6 +603,12 @@ direction: Direction,
 grid: number, entry: Entry, };
 
 /**
+ * How a setup turns the part over from the setup before it (the first: from the part as
+ * placed), about an axis through the stock's centre, as a machinist turns it in the vise.
+ */
+export type Flip = "none" | "aboutX" | "aboutY";
+
+/**
  * Which way the thread turns.
  */
 export type Hand = "right" | "left";
@@ -659,7 +665,14 @@ name: string, part: PartSetup,
 /**
  * How a DXF or SVG drawing is placed (ignored for parts).
  */
-drawing: DrawingSetup, stock: Stock, tools: Array<Tool>, operations: Array<Operation>, post: PostSettings, simulation: Simulation, tolerances: Tolerances, };
+drawing: DrawingSetup, stock: Stock, tools: Array<Tool>, operations: Array<Operation>, post: PostSettings, simulation: Simulation, tolerances: Tolerances, 
+/**
+ * The part machined from more than one side: each setup holds it its own way up, with
+ * its own work offset and operations, and starts from the stock the one before left
+ * ([`crate::job::setups`]). Empty: the job is one setup, its `operations`. Default value:
+ * none.
+ */
+setups: Array<Setup>, };
 
 /**
  * How much a [`Warning`] asks of the user.
@@ -1032,7 +1045,13 @@ toolChangeSeconds: number,
 /**
  * Program number (O word) for posts that write one. Default value: 1.
  */
-programNumber: number, };
+programNumber: number, 
+/**
+ * The work offset the program selects (`G54` to `G59`), instead of the post's: each
+ * setup of a part holds its own zero. Default value: the post's (G54 in the built-in
+ * posts).
+ */
+workOffset: string | null, };
 
 /**
  * A setting of a job that does not fit: its path in the job and the whole message.
@@ -1345,6 +1364,37 @@ grid: number,
  * Steepest descent of helices and ramps (degrees). Default value: 3.
  */
 rampAngle: number, };
+
+/**
+ * One setup of a part machined from more than one side.
+ */
+export type Setup = { 
+/**
+ * Its name, in its program's name and on its setup sheet. Default value: "Setup N".
+ */
+name: string, 
+/**
+ * How the part is turned over from the setup before. Default value: none.
+ */
+flip: Flip, 
+/**
+ * Then a turn about the spindle, counter-clockwise seen from above (degrees: 0, 90, 180
+ * or 270). Default value: 0.
+ */
+turn: number, 
+/**
+ * The work offset its program selects (`G54` to `G59`). Default value: the job's post's.
+ */
+workOffset: string | null, 
+/**
+ * The point of the stock, as this setup holds it, that is its program's origin. Default
+ * value: the job's `stock.zero`.
+ */
+zero: WorkZero | null, 
+/**
+ * What this setup cuts, in order. Default value: none.
+ */
+operations: Array<Operation>, };
 
 /**
  * The shape of a cutter's end.

@@ -15,7 +15,7 @@ use swarf::job::Workpiece;
 use swarf::job::{self, Job};
 use swarf::mesh::import::read_mesh_auto;
 use swarf::mesh::placement::{PartSetup, PartUnits, Placement, UpAxis};
-use swarf::mesh::sample::demo_part;
+use swarf::mesh::sample::{demo_part, two_sided_part};
 use swarf::progress::Progress;
 use swarf::zmap::{cc::cc_zmap, cl_exact::cl_exact, cl_inverse::cl_inverse_offset, io, Grid};
 
@@ -71,6 +71,23 @@ enum Command {
         /// Folder to write demo.stl, demo.json and demo.ngc into.
         #[arg(short, long, default_value = ".")]
         output: PathBuf,
+        /// The two-sided example instead: a plate with a pocket on top and a slot and a boss
+        /// underneath, machined in two setups (two-sided.stl, two-sided.json and one program a
+        /// setup).
+        #[arg(long)]
+        two_sided: bool,
+    },
+    /// Write a job's setup sheet for a part (printable HTML): for each setup how to hold the
+    /// part, its work offset and zero, the stock, a picture from above, the tools, the
+    /// operations and the cycle times.
+    Sheet {
+        /// Job (JSON), with setups or without (one setup).
+        job: PathBuf,
+        /// The part (STL, glTF/GLB, OBJ).
+        part: PathBuf,
+        /// Where to write the sheet (default: the part's name with .sheet.html).
+        #[arg(short, long)]
+        output: Option<PathBuf>,
     },
     /// Print the default job as JSON, to edit and pass to `swarf run`.
     Job {
@@ -273,16 +290,27 @@ fn run(cli: Cli) -> Result<(), String> {
             println!("wrote {}", output.display());
             Ok(())
         }
-        Command::Demo { output } => {
+        Command::Demo { output, two_sided } => {
             std::fs::create_dir_all(&output).map_err(|e| format!("cannot create {}: {e}", output.display()))?;
-            let job = Job::demo();
-            let stl = demo_part().to_binary_stl();
-            write(&output.join("demo.stl"), &stl)?;
-            write(&output.join("demo.json"), serde_json::to_string_pretty(&job).unwrap().as_bytes())?;
+            let (name, job, part) = if two_sided { ("two-sided", Job::two_sided(), two_sided_part()) } else { ("demo", Job::demo(), demo_part()) };
+            let stl = part.to_binary_stl();
+            write(&output.join(format!("{name}.stl")), &stl)?;
+            write(&output.join(format!("{name}.json")), serde_json::to_string_pretty(&job).unwrap().as_bytes())?;
             // The program is made from the STL as written (f32), so that `swarf run demo.json
             // demo.stl` gives the same program.
-            let part = read_mesh_auto(&stl, Some("demo.stl"), &job.tolerances).map_err(|e| e.to_string())?;
-            run_job(&job, part, &output.join("demo.ngc"), RunOptions { quiet: false, write_anyway: false, stage_times: false })
+            let part = read_mesh_auto(&stl, Some("part.stl"), &job.tolerances).map_err(|e| e.to_string())?;
+            run_job(&job, part, &output.join(format!("{name}.{}", job.post.extension())), RunOptions { quiet: false, write_anyway: false, stage_times: false })
+        }
+        Command::Sheet { job: job_file, part, output } => {
+            let job = Job::from_json(&String::from_utf8_lossy(&read(&job_file)?)).map_err(|e| e.to_string())?;
+            let mesh = read_part(&part, &job)?;
+            let output = output.unwrap_or_else(|| part.with_extension("sheet.html"));
+            not_an_input(&output, &[&job_file, &part])?;
+            let setups = job::run_setups(&job, mesh, &mut Progress::none()).map_err(|e| e.to_string())?;
+            let name = part.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+            write(&output, job::sheet::setup_sheet(&job, &name, &setups).as_bytes())?;
+            println!("wrote {}", output.display());
+            Ok(())
         }
         Command::Job { drawing } => {
             let job = if drawing { Job::default_for_drawing() } else { Job::default() };
@@ -465,6 +493,18 @@ struct RunOptions {
     stage_times: bool,
 }
 
+/// Setup `k`'s program beside `output`: named after the part, the setup and the controller
+/// (`bracket-op2-grbl.nc`).
+fn setup_path(output: &Path, k: usize, job: &Job) -> PathBuf {
+    let stem = output.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "part".into());
+    let control = match &job.post.custom {
+        Some(_) => "custom".to_owned(),
+        None => serde_json::to_value(job.post.dialect).ok().and_then(|v| v.as_str().map(str::to_lowercase)).unwrap_or_default(),
+    };
+    let ext = output.extension().map(|e| e.to_string_lossy().into_owned()).unwrap_or_else(|| job.post.extension());
+    output.with_file_name(format!("{stem}-op{}-{control}.{ext}", k + 1))
+}
+
 fn run_job(job: &Job, workpiece: impl Into<Workpiece>, output: &Path, options: RunOptions) -> Result<(), String> {
     let RunOptions { quiet, write_anyway, stage_times } = options;
     let started = Instant::now();
@@ -494,48 +534,67 @@ fn run_job(job: &Job, workpiece: impl Into<Workpiece>, output: &Path, options: R
         }
         true
     };
-    let out = job::run(job, workpiece, &mut Progress::new(&mut sink)).map_err(|e| e.to_string())?;
+    let workpiece = workpiece.into();
+    let outs: Vec<(PathBuf, job::JobOutput)> = if job.setups.is_empty() {
+        vec![(output.to_owned(), job::run(job, workpiece, &mut Progress::new(&mut sink)).map_err(|e| e.to_string())?)]
+    } else {
+        let Workpiece::Mesh(part) = workpiece else { return Err("setups turn a 3D part over; a drawing is cut from one side (a job without setups)".into()) };
+        let setups = job::run_setups(job, part, &mut Progress::new(&mut sink)).map_err(|e| e.to_string())?;
+        setups.into_iter().enumerate().map(|(k, s)| (setup_path(output, k, job), s.output)).collect()
+    };
     if let Some(i) = current {
         stages[i].1 += since.elapsed().as_secs_f64();
     }
     if !quiet {
         eprintln!();
     }
-    for w in &out.warnings {
-        eprintln!("warning: {w}");
-    }
-    if out.operations.len() > 1 || out.operations.iter().any(|o| o.stages.is_some() || o.load.is_some()) {
-        for r in &out.operations {
-            eprintln!("  {}", r.describe());
+    let mut unsafe_programs = Vec::new();
+    for (path, out) in &outs {
+        if outs.len() > 1 {
+            eprintln!("{}:", path.display());
+        }
+        for w in &out.warnings {
+            eprintln!("warning: {w}");
+        }
+        if out.operations.len() > 1 || out.operations.iter().any(|o| o.stages.is_some() || o.load.is_some()) {
+            for r in &out.operations {
+                eprintln!("  {}", r.describe());
+            }
+        }
+        if let Some(v) = &out.verification {
+            let r = &v.report;
+            eprintln!(
+                "simulated on {} cells: {} gouges, {} rapids through stock, {} body collisions; material left {:.3} mm at most",
+                r.cells, r.gouge_count, r.rapid_collision_count, r.body_collision_count, r.residual_max
+            );
+        }
+        if let Some(problem) = &out.problem {
+            unsafe_programs.push(if outs.len() > 1 { format!("{}: {problem}", path.display()) } else { problem.clone() });
         }
     }
-    if let Some(v) = &out.verification {
-        let r = &v.report;
-        eprintln!(
-            "simulated on {} cells: {} gouges, {} rapids through stock, {} body collisions; material left {:.3} mm at most",
-            r.cells, r.gouge_count, r.rapid_collision_count, r.body_collision_count, r.residual_max
-        );
-    }
-    if let Some(problem) = &out.problem {
+    if !unsafe_programs.is_empty() {
+        let problems = unsafe_programs.join("\n");
         if !write_anyway {
-            return Err(format!("{problem}\nno program written (pass --write-anyway to write it with a warning at its head)"));
+            return Err(format!("{problems}\nno program written (pass --write-anyway to write it with a warning at its head)"));
         }
-        eprintln!("warning: {problem}\nwritten anyway, with a warning at its head");
+        eprintln!("warning: {problems}\nwritten anyway, with a warning at its head");
     }
-    write(output, out.gcode_marked().as_bytes())?;
-    let s = out.stats;
-    eprintln!(
-        "{}: {} moves, {:.0} mm cutting, {:.0} mm rapid ({:.2} s to compute); cycle time {} {}:",
-        output.display(),
-        s.moves,
-        s.feed_length,
-        s.rapid_length,
-        started.elapsed().as_secs_f64(),
-        swarf::post::clock(out.cycle.seconds),
-        swarf::post::clock_format(out.cycle.seconds),
-    );
-    for item in &out.time {
-        eprintln!("  {}: {}", item.label, swarf::post::clock(item.seconds as f64));
+    for (path, out) in &outs {
+        write(path, out.gcode_marked().as_bytes())?;
+        let s = out.stats;
+        eprintln!(
+            "{}: {} moves, {:.0} mm cutting, {:.0} mm rapid ({:.2} s to compute); cycle time {} {}:",
+            path.display(),
+            s.moves,
+            s.feed_length,
+            s.rapid_length,
+            started.elapsed().as_secs_f64(),
+            swarf::post::clock(out.cycle.seconds),
+            swarf::post::clock_format(out.cycle.seconds),
+        );
+        for item in &out.time {
+            eprintln!("  {}: {}", item.label, swarf::post::clock(item.seconds as f64));
+        }
     }
     if stage_times {
         eprintln!("stage times:");

@@ -1,0 +1,181 @@
+//! Setups: one part machined from more than one side, from one stock.
+//!
+//! Every setup is the part and its stock turned by a rigid motion of the first setup's frame
+//! (the part as the job places it, the stock around it): a flip about X or Y and a turn about
+//! the spindle, each about the stock's centre, so the box stays a box and the part keeps its
+//! place in it as it does in the vise; then moved so that the setup's zero is the origin. Each
+//! setup is then a job of its own (its operations, its work offset, the stock box as it holds
+//! it), planned, written and verified as any job is, except that its in-process stock starts as
+//! the setup before left it, turned into its frame ([`carried`]).
+//!
+//! The carried stock is the simulation's z-map with a floor in each cell: the material of a
+//! column runs from its floor to its top, so a stock turned over is carried exactly as far as
+//! its columns go (a flip about X or Y turns columns into columns): its top is the raw face
+//! the setup before never cut, its floor what that setup cut from above, and a cut reaching a
+//! floor empties the column. What one column cannot hold (material above a cavity in it) no
+//! 3-axis setup from above or below makes.
+
+use glam::DMat3;
+
+use super::run::{prepare, JobOutput};
+use super::schema::{Flip, Job, Workpiece};
+use crate::error::{Error, Result};
+use crate::geom::{Aabb, DVec2, DVec3};
+use crate::mesh::placement::{PartSetup, Placement};
+use crate::mesh::Mesh;
+use crate::progress::Progress;
+use crate::sim::DexelStock;
+
+/// Where a setup holds the part: `p ↦ rotation · (p − centre) + centre + shift` from the first
+/// setup's frame (the part as the job places it, before any work zero).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Orientation {
+    /// A rotation by quarter turns (a signed permutation of the axes).
+    pub rotation: DMat3,
+    /// The raw stock's centre in the first setup's frame.
+    pub centre: DVec3,
+    pub shift: DVec3,
+}
+
+impl Orientation {
+    pub fn apply(&self, p: DVec3) -> DVec3 {
+        self.rotation * (p - self.centre) + self.centre + self.shift
+    }
+
+    /// The point of the first setup's frame that this one puts at `p`.
+    pub fn unapply(&self, p: DVec3) -> DVec3 {
+        self.rotation.transpose() * (p - self.centre - self.shift) + self.centre
+    }
+
+    /// The box `b` as this setup holds it (a box again: the rotation is by quarter turns).
+    pub fn apply_box(&self, b: &Aabb) -> Aabb {
+        let (p, q) = (self.apply(b.min), self.apply(b.max));
+        Aabb { min: p.min(q), max: p.max(q) }
+    }
+}
+
+/// What one setup made.
+#[derive(Clone, Debug)]
+pub struct SetupOutput {
+    /// The setup's name (its `name`, or "Setup N").
+    pub name: String,
+    /// Where it holds the part.
+    pub orientation: Orientation,
+    /// Its program, as any job's (its part, stock and moves in its own frame).
+    pub output: JobOutput,
+}
+
+/// The rotation of a flip.
+fn flip_rotation(flip: Flip) -> DMat3 {
+    match flip {
+        Flip::None => DMat3::IDENTITY,
+        Flip::AboutX => DMat3::from_diagonal(DVec3::new(1.0, -1.0, -1.0)),
+        Flip::AboutY => DMat3::from_diagonal(DVec3::new(-1.0, 1.0, -1.0)),
+    }
+}
+
+/// The rotation of a turn about Z by `degrees` (a multiple of 90).
+fn turn_rotation(degrees: u32) -> DMat3 {
+    match (degrees / 90) % 4 {
+        1 => DMat3::from_cols(DVec3::Y, -DVec3::X, DVec3::Z),
+        2 => DMat3::from_diagonal(DVec3::new(-1.0, -1.0, 1.0)),
+        3 => DMat3::from_cols(-DVec3::Y, DVec3::X, DVec3::Z),
+        _ => DMat3::IDENTITY,
+    }
+}
+
+impl Job {
+    /// The setups' names: each one's own, or "Setup N".
+    pub fn setup_names(&self) -> Vec<String> {
+        self.setups.iter().enumerate().map(|(k, s)| if s.name.trim().is_empty() { format!("Setup {}", k + 1) } else { s.name.clone() }).collect()
+    }
+
+    /// The job setup `k` is on its own: its operations and work offset, the part already in
+    /// its frame (kept where it is given), its stock the box `stock` as it holds it.
+    pub(super) fn setup_job(&self, k: usize, stock: Aabb) -> Job {
+        let setup = &self.setups[k];
+        let mut job = self.clone();
+        job.setups = Vec::new();
+        job.operations = setup.operations.clone();
+        job.name = format!("{} - {}", self.name, self.setup_names()[k]);
+        job.part = PartSetup { placement: Placement::Keep, ..PartSetup::default() };
+        job.stock.size_box = Some(stock);
+        job.stock.margin_sides = None;
+        job.stock.zero = None;
+        if setup.work_offset.is_some() {
+            job.post.work_offset = setup.work_offset.clone();
+        }
+        // The next setup starts from what the simulation left.
+        if k + 1 < self.setups.len() {
+            job.simulation.verify = true;
+        }
+        job
+    }
+}
+
+/// Runs every setup of `job` on `part` in turn, each from the stock the one before left: one
+/// program each. A job without setups is its one setup.
+pub fn run_setups(job: &Job, mut part: Mesh, progress: &mut Progress) -> Result<Vec<SetupOutput>> {
+    job.validate()?;
+    if job.setups.is_empty() {
+        let output = super::run(job, part, progress)?;
+        let orientation = Orientation { rotation: DMat3::IDENTITY, centre: DVec3::ZERO, shift: DVec3::ZERO };
+        return Ok(vec![SetupOutput { name: job.name.clone(), orientation, output }]);
+    }
+    job.part.apply(&mut part);
+    let raw = job.stock.around(&part.bounds());
+    let names = job.setup_names();
+    let n = job.setups.len();
+    let mut rotation = DMat3::IDENTITY;
+    let mut out: Vec<SetupOutput> = Vec::with_capacity(n);
+    for (k, setup) in job.setups.iter().enumerate() {
+        rotation = turn_rotation(setup.turn) * flip_rotation(setup.flip) * rotation;
+        let turned = Orientation { rotation, centre: raw.center(), shift: DVec3::ZERO };
+        let mut held = part.clone();
+        held.transform(|v| turned.apply(v));
+        let stock = turned.apply_box(&raw);
+        let shift = match setup.zero.or(job.stock.zero) {
+            Some(zero) => -zero.point(&stock, held.bounds().max.z),
+            None => DVec3::ZERO,
+        };
+        held.transform(|v| v + shift);
+        let orientation = Orientation { shift, ..turned };
+        let stock = orientation.apply_box(&raw);
+        let sub = job.setup_job(k, stock);
+        let named = |e: Error| match e {
+            Error::Input(m) => Error::Input(format!("setups[{k}] ({}): {m}", names[k])),
+            Error::Operation { operation, why } => Error::Operation { operation: format!("{} ({})", operation, names[k]), why },
+            e => e,
+        };
+        let mut prepared = prepare(&sub, Workpiece::Mesh(held)).map_err(named)?;
+        if let Some(before) = out.last() {
+            let left = before.output.verification.as_ref().map(|v| &v.stock).ok_or_else(|| Error::Internal("a setup before another was not simulated".into()))?;
+            let (from, to) = (before.orientation, orientation);
+            prepared.carry(|p| carried(left, &from, &to, p));
+        }
+        let output = progress.within(k as f64 / n as f64, 1.0 / n as f64, &names[k], |p| prepared.run(p)).map_err(named)?;
+        out.push(SetupOutput { name: names[k].clone(), orientation, output });
+    }
+    Ok(out)
+}
+
+/// The material over `p` (in the frame `to`) as `(floor, top)`, of the stock `left` in the
+/// frame `from`: the column over `p` is a column there too (the frames differ by quarter turns
+/// and a shift), its material from the cell's floor to its top there, turned over when the
+/// frames are; an emptied column stays empty.
+pub fn carried(left: &DexelStock, from: &Orientation, to: &Orientation, p: DVec2) -> (f64, f64) {
+    let to_before = |z: f64| from.apply(to.unapply(p.extend(z)));
+    let (a, b) = (to_before(0.0), to_before(1.0));
+    let q = a.truncate();
+    let g = left.grid();
+    let cell = |v: f64, o: f64, n: usize| (((v - o) / g.spacing).round().max(0.0) as usize).min(n - 1);
+    let (i, j) = (cell(q.x, g.origin.x, g.nx), cell(q.y, g.origin.y, g.ny));
+    let (floor, top) = (left.floor(i, j), left.top(i, j));
+    if top <= floor {
+        return (f64::NEG_INFINITY, f64::NEG_INFINITY);
+    }
+    // A height there is `a.z + (b.z - a.z) z` of a height z here (b.z - a.z is 1 or -1).
+    let here = |z_before: f64| (z_before - a.z) / (b.z - a.z);
+    let (u, v) = (here(floor), here(top));
+    (u.min(v), u.max(v))
+}

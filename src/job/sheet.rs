@@ -1,0 +1,216 @@
+//! The setup sheet: one printable HTML page that tells the machinist how to hold the part for
+//! each setup and what each program does (`swarf sheet`), as Fusion's and FreeCAD's do: how the
+//! part is turned from the setup before, the work offset and where its zero is, the stock's size,
+//! a picture of the part and stock from above with the zero marked, each tool with its
+//! stick-out, each operation with its tool, feed and time, and the cycle times.
+
+use std::fmt::Write;
+
+use super::schema::{Flip, Job, WorkZero, ZeroCorner, ZeroHeight};
+use super::setups::SetupOutput;
+use crate::post::clock;
+
+/// Longest side of the picture's grid of shades: the part's heights sampled this coarsely.
+const PICTURE_CELLS: usize = 120;
+
+/// The setup sheet of `job`'s `setups` (as [`super::run_setups`] made them) for the part named
+/// `part`, as a standalone HTML page.
+pub fn setup_sheet(job: &Job, part: &str, setups: &[SetupOutput]) -> String {
+    let mut h = String::new();
+    let title = format!("{} — setup sheet", escape(&job.name));
+    let total: f64 = setups.iter().map(|s| s.output.cycle.seconds).sum();
+    let _ = write!(
+        h,
+        "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>{title}</title><style>\
+body{{font:14px system-ui,sans-serif;margin:2em;color:#111}}table{{border-collapse:collapse;margin:.5em 0 1em}}\
+td,th{{border:1px solid #999;padding:.2em .6em;text-align:left}}th{{background:#eee}}section{{break-after:page;margin-bottom:2em}}\
+svg{{border:1px solid #ccc;background:#fafafa}}.n{{text-align:right}}</style></head><body>\n\
+<h1>{title}</h1>\n<p>Part: {}. {} setup{}, cycle time {} in all.</p>\n",
+        escape(part),
+        setups.len(),
+        if setups.len() == 1 { "" } else { "s" },
+        clock(total)
+    );
+    for (k, s) in setups.iter().enumerate() {
+        let out = &s.output;
+        let setup = job.setups.get(k);
+        let _ = write!(h, "<section>\n<h2>{}: {}</h2>\n", k + 1, escape(&s.name));
+        // How to hold it.
+        let mut hold = Vec::new();
+        match setup.map(|s| s.flip) {
+            Some(Flip::AboutX) => hold.push("turn the part over about X (front edge to the back)".to_owned()),
+            Some(Flip::AboutY) => hold.push("turn the part over about Y (left edge to the right)".to_owned()),
+            _ => {}
+        }
+        if let Some(turn) = setup.map(|s| s.turn).filter(|&t| t != 0) {
+            hold.push(format!("turn it {turn}° counter-clockwise seen from above"));
+        }
+        let from = if k == 0 { "the raw stock".to_owned() } else { format!("the stock setup {} left", k) };
+        let hold = if hold.is_empty() {
+            format!("Hold {from} as {}.", if k == 0 { "the part is drawn, its top up" } else { "the setup before held it" })
+        } else {
+            format!("From {from}: {}.", hold.join(", then "))
+        };
+        let offset = out.gcode.lines().find(|l| crate::post::definition::is_work_offset(l.trim())).unwrap_or("none (the machine's current)");
+        let zero = setup.and_then(|s| s.zero).or(job.stock.zero);
+        let size = out.stock.size();
+        let _ = write!(
+            h,
+            "<p>{hold}</p>\n<table><tr><th>Work offset</th><td>{}</td></tr><tr><th>Zero (X0 Y0 Z0)</th><td>{}</td></tr>\
+<tr><th>Stock</th><td>{:.1} × {:.1} × {:.1} mm (X × Y × Z), from X{:.3} Y{:.3} Z{:.3} to X{:.3} Y{:.3} Z{:.3}</td></tr>\
+<tr><th>Program</th><td>{} moves, cycle time {}</td></tr></table>\n",
+            escape(offset),
+            zero_words(zero),
+            size.x,
+            size.y,
+            size.z,
+            out.stock.min.x,
+            out.stock.min.y,
+            out.stock.min.z,
+            out.stock.max.x,
+            out.stock.max.y,
+            out.stock.max.z,
+            out.moves.len(),
+            clock(out.cycle.seconds)
+        );
+        h.push_str(&picture(s));
+        // Tools, in the order the program takes them.
+        let mut used: Vec<u32> = Vec::new();
+        for p in &out.paths {
+            if !used.contains(&p.tool) {
+                used.push(p.tool);
+            }
+        }
+        h.push_str("<h3>Tools</h3>\n<table><tr><th>Tool</th><th>Cutter</th><th>Stick-out</th><th>Holder</th><th class=n>Speed</th><th class=n>Feed</th></tr>\n");
+        for tool in used.iter().filter_map(|n| job.tools.iter().find(|t| t.number == *n)) {
+            let _ = writeln!(
+                h,
+                "<tr><td>T{}</td><td>{}</td><td>{}</td><td>—</td><td class=n>{:.0} rpm</td><td class=n>{:.0} mm/min</td></tr>",
+                tool.number,
+                escape(&tool.describe()),
+                tool.stick_out.map_or_else(|| format!("at least {:.1} mm (its flutes)", tool.cutter.flute_length), |s| format!("{s:.1} mm")),
+                tool.spindle_rpm,
+                tool.feed_rate
+            );
+        }
+        h.push_str("</table>\n<h3>Operations</h3>\n<table><tr><th>#</th><th>Operation</th><th>Tool</th><th class=n>Time</th><th class=n>Cutting</th><th class=n>Removed</th></tr>\n");
+        for (i, o) in out.operations.iter().enumerate() {
+            let tools: Vec<String> = o.tools.iter().map(|t| format!("T{t}")).collect();
+            let _ = writeln!(
+                h,
+                "<tr><td>{}</td><td>{}</td><td>{}</td><td class=n>{}</td><td class=n>{:.0} mm</td><td class=n>{}</td></tr>",
+                i + 1,
+                escape(&o.name),
+                tools.join(", "),
+                clock(o.seconds),
+                o.feed_length,
+                o.removed.map_or_else(String::new, |v| format!("{:.1} cm³", v / 1000.0))
+            );
+        }
+        h.push_str("</table>\n<h3>Cycle time</h3>\n<table>\n");
+        for item in &out.time {
+            let _ = writeln!(h, "<tr><td>{}</td><td class=n>{}</td></tr>", escape(&item.label), clock(item.seconds as f64));
+        }
+        let _ = writeln!(h, "<tr><th>In all</th><th class=n>{}</th></tr></table>\n</section>", clock(out.cycle.seconds));
+    }
+    h.push_str("</body></html>\n");
+    h
+}
+
+/// Where the zero is, in a machinist's words.
+fn zero_words(zero: Option<WorkZero>) -> String {
+    let Some(zero) = zero else { return "where the part's placement puts it (the centre of the part's top)".into() };
+    let corner = match zero.corner {
+        ZeroCorner::Center => "the centre",
+        ZeroCorner::FrontLeft => "the front left corner",
+        ZeroCorner::FrontRight => "the front right corner",
+        ZeroCorner::BackLeft => "the back left corner",
+        ZeroCorner::BackRight => "the back right corner",
+    };
+    let height = match zero.height {
+        ZeroHeight::PartTop => "Z0 on the part's top",
+        ZeroHeight::StockTop => "Z0 on the stock's top",
+        ZeroHeight::StockBottom => "Z0 on the stock's bottom",
+    };
+    format!("X0 Y0 at {corner} of the stock seen from above, {height}")
+}
+
+/// The part and stock of one setup seen from above, as an SVG: the stock's outline, the part
+/// shaded by height (darker lower) from the simulation's grid, and the zero's axes.
+fn picture(s: &SetupOutput) -> String {
+    let out = &s.output;
+    let b = out.stock;
+    let (w, d) = (b.size().x, b.size().y);
+    let scale = 480.0 / w.max(d).max(1e-9);
+    let (pw, ph) = (w * scale + 40.0, d * scale + 40.0);
+    // Screen coordinates: X right, Y up, 20 px margin.
+    let sx = |x: f64| 20.0 + (x - b.min.x) * scale;
+    let sy = |y: f64| 20.0 + (b.max.y - y) * scale;
+    let mut svg =
+        format!("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{pw:.0}\" height=\"{ph:.0}\" viewBox=\"0 0 {pw:.1} {ph:.1}\" role=\"img\" aria-label=\"{} from above\">\n", escape(&s.name));
+    let _ = writeln!(svg, "<rect x=\"{:.1}\" y=\"{:.1}\" width=\"{:.1}\" height=\"{:.1}\" fill=\"#e8e2d0\" stroke=\"#555\"/>", sx(b.min.x), sy(b.max.y), w * scale, d * scale);
+    if let Some(v) = &out.verification {
+        let f = &v.part;
+        let step = (f.nx.max(f.ny) as f64 / PICTURE_CELLS as f64).ceil().max(1.0) as usize;
+        let (lo, hi) = f.z.iter().filter(|z| z.is_finite()).fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &z| (lo.min(z), hi.max(z)));
+        let span = (hi - lo).max(1e-9);
+        let cell = f.spacing * step as f64;
+        for j in (0..f.ny).step_by(step) {
+            // Runs of cells of one shade along the row.
+            let mut run: Option<(usize, u8)> = None;
+            let shade_at = |i: usize| {
+                let z = f.z[j * f.nx + i];
+                z.is_finite().then(|| (60.0 + 160.0 * (z - lo) / span) as u8)
+            };
+            let flush = |from: usize, to: usize, shade: u8, svg: &mut String| {
+                let (x0, y0) = (f.origin.x + from as f64 * f.spacing - f.spacing / 2.0, f.origin.y + j as f64 * f.spacing - f.spacing / 2.0);
+                let _ = writeln!(
+                    svg,
+                    "<rect x=\"{:.1}\" y=\"{:.1}\" width=\"{:.1}\" height=\"{:.1}\" fill=\"rgb({shade},{shade},{})\"/>",
+                    sx(x0),
+                    sy(y0 + cell),
+                    (to - from) as f64 * f.spacing * scale + 0.3,
+                    cell * scale + 0.3,
+                    shade.saturating_add(20)
+                );
+            };
+            let mut i = 0;
+            while i < f.nx {
+                let shade = shade_at(i);
+                if run.map(|r| r.1) != shade {
+                    if let Some((from, s)) = run {
+                        flush(from, i, s, &mut svg);
+                    }
+                    run = shade.map(|t| (i, t));
+                }
+                i += step;
+            }
+            if let Some((from, s)) = run {
+                flush(from, f.nx, s, &mut svg);
+            }
+        }
+    }
+    // The zero: red X, green Y, as controls draw them.
+    let (zx, zy) = (sx(0.0), sy(0.0));
+    let arm = 40.0;
+    let _ = write!(
+        svg,
+        "<line x1=\"{zx:.1}\" y1=\"{zy:.1}\" x2=\"{:.1}\" y2=\"{zy:.1}\" stroke=\"#c00\" stroke-width=\"2\"/><text x=\"{:.1}\" y=\"{:.1}\" fill=\"#c00\">X</text>\
+<line x1=\"{zx:.1}\" y1=\"{zy:.1}\" x2=\"{zx:.1}\" y2=\"{:.1}\" stroke=\"#080\" stroke-width=\"2\"/><text x=\"{:.1}\" y=\"{:.1}\" fill=\"#080\">Y</text>\
+<circle cx=\"{zx:.1}\" cy=\"{zy:.1}\" r=\"4\" fill=\"none\" stroke=\"#000\" stroke-width=\"1.5\"/><text x=\"{:.1}\" y=\"{:.1}\">X0 Y0</text>\n</svg>\n",
+        zx + arm,
+        zx + arm + 3.0,
+        zy + 4.0,
+        zy - arm,
+        zx - 4.0,
+        zy - arm - 4.0,
+        zx + 6.0,
+        zy + 16.0
+    );
+    svg
+}
+
+/// `text` safe inside HTML.
+fn escape(text: &str) -> String {
+    text.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+}

@@ -1,0 +1,147 @@
+//! Setups (issue 57): a part machined from both sides, each setup from the stock the one before
+//! left, each program verified and read by the controls.
+
+mod common;
+
+use swarf::job::{run_setups, Job};
+use swarf::mesh::sample::two_sided_part;
+use swarf::progress::Progress;
+use swarf::sim::StockModel;
+
+#[test]
+fn a_plate_with_features_on_both_sides_is_machined_in_two_setups() {
+    let job = Job::two_sided();
+    let part = two_sided_part();
+    let t = std::time::Instant::now();
+    let setups = run_setups(&job, part.clone(), &mut Progress::none()).unwrap();
+    eprintln!("planned in {:.1} s", t.elapsed().as_secs_f64());
+    assert_eq!(setups.len(), 2);
+    for s in &setups {
+        let v = s.output.verification.as_ref().unwrap();
+        eprintln!(
+            "{}: {} moves, removed {:.0} mm³, left {:.3} mm at most, cycle {:.0} s, {}",
+            s.name,
+            s.output.moves.len(),
+            v.volumes.iter().sum::<f64>(),
+            v.report.residual_max,
+            s.output.cycle.seconds,
+            v.report.describe()
+        );
+        common::clean(&s.output);
+    }
+    assert!(setups[0].output.gcode.contains("\nG54\n"));
+    assert!(setups[1].output.gcode.contains("\nG55\n"));
+    // The stock carried exactly: what both setups removed and what the second left add up to
+    // the raw block, and what is left holds the part.
+    let raw = setups[0].output.stock;
+    let block = raw.size().x * raw.size().y * raw.size().z;
+    let removed: f64 = setups.iter().map(|s| s.output.verification.as_ref().unwrap().volumes.iter().sum::<f64>()).sum();
+    let left = setups[1].output.verification.as_ref().unwrap().stock.volume();
+    // Between its top and bottom: each facet's area seen from above (up positive, down
+    // negative) times its mean height; walls add nothing.
+    let solid: f64 = part.triangles().map(|t| (t.b - t.a).cross(t.c - t.a).z / 2.0 * (t.a.z + t.b.z + t.c.z) / 3.0).sum();
+    eprintln!("block {block:.0} mm³, removed {removed:.0}, left {left:.0}, part {solid:.0}");
+    assert!((removed + left - block).abs() < 1e-6 * block, "the second setup removed material the first had taken, or none it had left");
+    assert!(left > solid, "the part is cut into: {left} mm³ left of a {solid} mm³ part");
+    // Left over: the roughing's 0.5 mm on the outside walls (260 mm round, 18 mm high), which
+    // the raster does not finish, and at most 0.1 mm over the faces both setups finish.
+    let over = 0.5 * 260.0 * 18.0 + 0.1 * 2.0 * 80.0 * 50.0;
+    assert!(left - solid < over, "{} mm³ left over the part", left - solid);
+    // Without the carried stock the second setup would cut the air round the part again.
+    let bottom = setups[1].output.verification.as_ref().unwrap().volumes.iter().sum::<f64>();
+    assert!(bottom < 0.6 * (block - solid), "{bottom}");
+    // Both programs are ones LinuxCNC's interpreter reads, each in its own work offset.
+    for s in &setups {
+        let canon = common::rs274(&s.output.gcode, &job.tools);
+        assert!(canon.contains("STRAIGHT_FEED"), "{}", s.name);
+    }
+}
+
+/// Three setups: the top, the same face turned a quarter (carried exactly), then the part
+/// turned over about Y: what they remove and what is left still add up to the block, the
+/// programs stay clean, and the job file reads back the same.
+#[test]
+fn a_turn_and_a_flip_about_y_carry_the_stock_too() {
+    use swarf::job::{Flip, Setup};
+    let mut job = Job::two_sided();
+    let rough = job.setups[0].operations[0].clone();
+    let finish = job.setups[0].operations[1].clone();
+    job.setups = vec![
+        Setup { name: "rough top".into(), operations: vec![rough.clone()], ..Setup::default() },
+        Setup { name: "finish top".into(), turn: 90, work_offset: Some("G56".into()), operations: vec![finish], ..Setup::default() },
+        Setup { name: "bottom".into(), flip: Flip::AboutY, turn: 270, work_offset: Some("G57".into()), operations: vec![rough], ..Setup::default() },
+    ];
+    let text = serde_json::to_string(&job).unwrap();
+    assert_eq!(Job::from_json(&text).unwrap(), job);
+    let setups = run_setups(&job, two_sided_part(), &mut Progress::none()).unwrap();
+    let raw = setups[0].output.stock;
+    let block = raw.size().x * raw.size().y * raw.size().z;
+    let removed: Vec<f64> = setups.iter().map(|s| s.output.verification.as_ref().unwrap().volumes.iter().sum::<f64>()).collect();
+    let left = setups[2].output.verification.as_ref().unwrap().stock.volume();
+    eprintln!("removed {removed:?}, left {left:.0} of {block:.0}");
+    assert!((removed.iter().sum::<f64>() + left - block).abs() < 1e-6 * block);
+    for s in &setups {
+        common::clean(&s.output);
+    }
+    // Turned a quarter, the stock box is too: 56 × 86 where the first setup's is 86 × 56.
+    let turned = setups[1].output.stock.size();
+    assert!((turned.x - raw.size().y).abs() < 1e-9 && (turned.y - raw.size().x).abs() < 1e-9, "{turned}");
+    // The finish removes only what the roughing left, far less than the roughing did.
+    assert!(removed[1] < 0.3 * removed[0], "{removed:?}");
+    assert!(setups[1].output.gcode.contains("\nG56\n") && setups[2].output.gcode.contains("\nG57\n"));
+}
+
+/// Setup settings are checked as every field is, named by their path, and a job of setups
+/// does not also list operations beside them.
+#[test]
+fn setups_are_checked_before_any_work() {
+    let mut job = Job::two_sided();
+    job.setups[1].work_offset = Some("G92".into());
+    job.setups[1].turn = 45;
+    job.setups[0].operations[0] = swarf::job::Operation::FinishRaster(swarf::job::FinishRaster { tool: 9, ..Default::default() });
+    let problems: Vec<String> = job.problems().into_iter().map(|p| p.path).collect();
+    assert_eq!(problems, ["setups[0].operations[0].tool", "setups[1].turn", "setups[1].workOffset"]);
+    let e = run_setups(&job, two_sided_part(), &mut Progress::none()).unwrap_err().to_string();
+    assert!(e.contains("setups[0].operations[0].tool: no tool number 9"), "{e}");
+    let mut text: serde_json::Value = serde_json::to_value(Job::two_sided()).unwrap();
+    text["operations"] = serde_json::to_value(Job::demo().operations).unwrap();
+    let e = Job::from_json(&text.to_string()).unwrap_err().to_string();
+    assert!(e.contains("lists its operations in each setup"), "{e}");
+    // A job of setups is not run as one.
+    let e = swarf::job::run(&Job::two_sided(), two_sided_part(), &mut Progress::none()).unwrap_err().to_string();
+    assert!(e.contains("2 setups"), "{e}");
+}
+
+/// The setup sheet says, for each setup, how to hold the part, its work offset and zero, the
+/// stock, a picture from above, the tools and operations with their times, as the programs do.
+#[test]
+fn the_setup_sheet_says_how_to_hold_the_part_for_each_setup() {
+    let job = Job::two_sided();
+    let setups = run_setups(&job, two_sided_part(), &mut Progress::none()).unwrap();
+    let sheet = swarf::job::sheet::setup_sheet(&job, "plate <2>.stl", &setups);
+    assert!(sheet.starts_with("<!doctype html>") && sheet.trim_end().ends_with("</html>"));
+    assert!(sheet.contains("plate &lt;2&gt;.stl"), "the part's name is escaped");
+    assert_eq!(sheet.matches("<section>").count(), 2);
+    assert_eq!(sheet.matches("<svg ").count(), 2);
+    assert!(sheet.contains("<h2>1: top</h2>") && sheet.contains("<h2>2: bottom</h2>"));
+    assert!(sheet.contains("<td>G54</td>") && sheet.contains("<td>G55</td>"));
+    assert!(sheet.contains("turn the part over about X"));
+    assert!(sheet.contains("86.0 × 56.0 × 20.0 mm"));
+    for s in &setups {
+        // The program's head and the sheet give the same times.
+        assert!(sheet.contains(&format!("cycle time {}", swarf::post::clock(s.output.cycle.seconds))), "{}", s.name);
+        for item in &s.output.time {
+            if item.seconds > 0 {
+                assert!(s.output.gcode.contains(&format!("(  {}: {})", item.label, swarf::post::clock(item.seconds as f64))), "{}", item.label);
+            }
+            assert!(sheet.contains(&format!("<td>{}</td><td class=n>{}</td>", item.label, swarf::post::clock(item.seconds as f64))), "{}", item.label);
+        }
+    }
+    let total: f64 = setups.iter().map(|s| s.output.cycle.seconds).sum();
+    assert!(sheet.contains(&format!("cycle time {} in all", swarf::post::clock(total))));
+    for tool in ["<tr><td>T1</td><td>6 mm flat end mill", "<tr><td>T2</td><td>6 mm ball end mill"] {
+        assert_eq!(sheet.matches(tool).count(), 2, "{tool} in both setups");
+    }
+    // The part drawn in shades: the pocket (deep) darker than the plate's top.
+    assert!(sheet.matches("<rect ").count() > 100);
+}
