@@ -145,3 +145,65 @@ fn the_setup_sheet_says_how_to_hold_the_part_for_each_setup() {
     // The part drawn in shades: the pocket (deep) darker than the plate's top.
     assert!(sheet.matches("<rect ").count() > 100);
 }
+
+/// A round solid: a cylinder of radius `r` about the Z axis from `bottom` to `top`, `n` sides.
+fn puck(r: f64, bottom: f64, top: f64, n: usize) -> swarf::mesh::Mesh {
+    use swarf::geom::DVec3;
+    let rim = |k: usize, z: f64| {
+        let t = std::f64::consts::TAU * k as f64 / n as f64;
+        DVec3::new(r * t.cos(), r * t.sin(), z)
+    };
+    let mut tris = Vec::new();
+    for k in 0..n {
+        let (a, b) = (k, (k + 1) % n);
+        tris.push([DVec3::new(0.0, 0.0, top), rim(a, top), rim(b, top)]);
+        tris.push([DVec3::new(0.0, 0.0, bottom), rim(b, bottom), rim(a, bottom)]);
+        tris.push([rim(a, bottom), rim(b, bottom), rim(b, top)]);
+        tris.push([rim(a, bottom), rim(b, top), rim(a, top)]);
+    }
+    swarf::mesh::Mesh::from_triangles(tris, &swarf::geom::Tolerances::DEFAULT).unwrap()
+}
+
+/// Bar stock: a φ40 puck from a φ46 bar stood on end, and a block lying in a φ30 bar along X.
+/// The bar's material is what the simulation starts from (the removed and the left add up to
+/// the bar, not the box round it), the air round the bar is never cut (the program is shorter
+/// than the same from the box) and a part that does not fit the bar is refused.
+#[test]
+fn bar_stock_is_round_and_its_air_is_not_cut() {
+    use swarf::job::{Bar, BarAxis};
+    let job_for = |bar: Option<Bar>| {
+        let mut job = Job::two_sided();
+        let operations = job.setups[0].operations.clone();
+        job.setups.clear();
+        job.operations = operations;
+        job.stock.bar = bar;
+        job
+    };
+    let part = puck(20.0, -10.0, 0.0, 96);
+    let bar = Bar { diameter: 46.0, axis: BarAxis::Z };
+    let round = swarf::job::run(&job_for(Some(bar)), part.clone(), &mut Progress::none()).unwrap();
+    let boxed = swarf::job::run(&job_for(None), part.clone(), &mut Progress::none()).unwrap();
+    common::clean(&round);
+    let v = round.verification.as_ref().unwrap();
+    let size = round.stock.size();
+    assert!((size.x - 46.0).abs() < 1e-9 && (size.y - 46.0).abs() < 1e-9, "the bar's box: {size}");
+    let material = std::f64::consts::PI * 23.0 * 23.0 * size.z;
+    let (removed, left) = (v.volumes.iter().sum::<f64>(), v.stock.volume());
+    eprintln!("bar: removed {removed:.0} + left {left:.0} of {material:.0} mm³; cycle {:.0} s from the bar, {:.0} s from the box", round.cycle.seconds, boxed.cycle.seconds);
+    assert!((removed + left - material).abs() < 0.01 * material, "{removed} + {left} against the bar's {material}");
+    assert!(round.cycle.seconds < 0.9 * boxed.cycle.seconds, "{} s from the bar, {} s from the box", round.cycle.seconds, boxed.cycle.seconds);
+    // Too thin a bar.
+    let e = swarf::job::run(&job_for(Some(Bar { diameter: 39.0, ..bar })), part, &mut Progress::none()).unwrap_err().to_string();
+    assert!(e.contains("outside a φ39 bar; choose a bar of at least φ40"), "{e}");
+    // A block lying in a bar along X: the bar's round top is the stock's.
+    let block = swarf::mesh::sample::height_field_solid(swarf::geom::DVec2::new(-30.0, -8.0), swarf::geom::DVec2::new(30.0, 8.0), 4, 4, -16.0, |_, _| 0.0);
+    let lying = swarf::job::run(&job_for(Some(Bar { diameter: 30.0, axis: BarAxis::X })), block, &mut Progress::none()).unwrap();
+    common::clean(&lying);
+    let v = lying.verification.as_ref().unwrap();
+    let size = lying.stock.size();
+    let material = std::f64::consts::PI * 15.0 * 15.0 * size.x;
+    let (removed, left) = (v.volumes.iter().sum::<f64>(), v.stock.volume());
+    eprintln!("lying bar: removed {removed:.0} + left {left:.0} of {material:.0} mm³");
+    assert!((size.y - 30.0).abs() < 1e-9 && (size.z - 30.0).abs() < 1e-9, "{size}");
+    assert!((removed + left - material).abs() < 0.01 * material, "{removed} + {left} against the bar's {material}");
+}

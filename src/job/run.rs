@@ -147,6 +147,17 @@ impl Job {
                 if let Some(message) = self.stock.size_box.and_then(|_| super::schema::part_outside_error(&stock, &part.bounds())) {
                     return Err(Error::Input(message));
                 }
+                if let Some(bar) = self.stock.bar {
+                    let reach = part.vertices.iter().map(|&v| bar.distance(&stock, v)).fold(0.0, f64::max);
+                    if reach > bar.diameter / 2.0 + 1e-9 {
+                        return Err(Error::Input(format!(
+                            "stock.bar: the part reaches {:.3} mm from the bar's axis, outside a φ{} bar; choose a bar of at least φ{:.3}",
+                            reach,
+                            crate::limits::shown(bar.diameter),
+                            2.0 * reach
+                        )));
+                    }
+                }
                 (part, None, stock)
             }
             Workpiece::Drawing(mut d) => {
@@ -159,6 +170,10 @@ impl Job {
         if self.simulation.cell.is_some() {
             self.sees_with(cell, "simulation.cell")?;
         }
+        let mut sim = Simulator::new(&stock, cell)?;
+        if let Some(bar) = self.stock.bar.filter(|_| sheet.is_none()) {
+            sim.carry(bar.material(&stock));
+        }
         Ok(Context {
             part,
             sheet,
@@ -168,7 +183,7 @@ impl Job {
             tolerances: self.tolerances,
             resolution,
             caches: Caches::default(),
-            sim: Simulator::new(&stock, cell)?,
+            sim,
             warnings: Vec::new(),
             rapid_rate: self.post.rapid_rate,
             air_feed: self.stock.air_feed.unwrap_or(self.post.rapid_rate).min(self.post.rapid_rate),

@@ -104,6 +104,69 @@ pub struct Stock {
     /// Moves part and stock so that this point is the program's origin (for parts; a sheet's
     /// top is always Z0). Default value: none (as the part's placement puts it).
     pub zero: Option<WorkZero>,
+    /// Round bar stock instead of a box: its diameter and the axis it lies along, centred on
+    /// the part, as long as the part and the margins along its axis (the margins across it
+    /// are the bar's). Default value: none.
+    pub bar: Option<Bar>,
+}
+
+/// Round bar stock ([`Stock::bar`]): the material a sawn length of bar holds, so that the
+/// operations, the air-cut skipping and the verification see the air round it.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(default, rename_all = "camelCase")]
+pub struct Bar {
+    /// The bar's diameter (mm). Default value: 50.
+    pub diameter: f64,
+    /// The axis it lies along: `z` stands it on end (a disc, a knob cut from its end), `x` or
+    /// `y` lays it in the vise. Default value: z.
+    pub axis: BarAxis,
+}
+
+impl Default for Bar {
+    fn default() -> Self {
+        Bar { diameter: 50.0, axis: BarAxis::Z }
+    }
+}
+
+/// The axis of bar stock.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(rename_all = "camelCase")]
+pub enum BarAxis {
+    X,
+    Y,
+    #[default]
+    Z,
+}
+
+impl Bar {
+    /// The material over `p` of this bar filling `stock` (its bounding box), as `(floor, top)`
+    /// (empty outside it).
+    pub fn material(&self, stock: &Aabb) -> impl Fn(DVec2) -> (f64, f64) {
+        let (c, r, axis) = (stock.center(), self.diameter / 2.0, self.axis);
+        let (bottom, top) = (stock.min.z, stock.max.z);
+        move |p: DVec2| {
+            let across = match axis {
+                BarAxis::Z => return if (p - c.truncate()).length() <= r { (bottom, top) } else { (f64::NEG_INFINITY, f64::NEG_INFINITY) },
+                BarAxis::X => p.y - c.y,
+                BarAxis::Y => p.x - c.x,
+            };
+            if across.abs() >= r {
+                return (f64::NEG_INFINITY, f64::NEG_INFINITY);
+            }
+            let h = (r * r - across * across).sqrt();
+            (c.z - h, c.z + h)
+        }
+    }
+
+    /// How far `p` lies from the axis of this bar filling `stock`.
+    pub fn distance(&self, stock: &Aabb, p: DVec3) -> f64 {
+        let d = p - stock.center();
+        match self.axis {
+            BarAxis::X => d.y.hypot(d.z),
+            BarAxis::Y => d.x.hypot(d.z),
+            BarAxis::Z => d.x.hypot(d.y),
+        }
+    }
 }
 
 /// How retracts between cuts travel ([`Stock::retracts`]).
@@ -119,7 +182,19 @@ pub enum Retracts {
 
 impl Default for Stock {
     fn default() -> Self {
-        Stock { margin_xy: 5.0, margin_top: 1.0, margin_bottom: 0.0, margin_sides: None, size_box: None, clearance: 5.0, retract: 1.0, retracts: Retracts::Minimum, air_feed: None, zero: None }
+        Stock {
+            margin_xy: 5.0,
+            margin_top: 1.0,
+            margin_bottom: 0.0,
+            margin_sides: None,
+            size_box: None,
+            clearance: 5.0,
+            retract: 1.0,
+            retracts: Retracts::Minimum,
+            air_feed: None,
+            zero: None,
+            bar: None,
+        }
     }
 }
 
@@ -177,7 +252,16 @@ impl Stock {
             return b;
         }
         let [l, r, f, k] = self.margin_sides.unwrap_or([self.margin_xy; 4]);
-        Aabb { min: part.min - DVec3::new(l, f, self.margin_bottom), max: part.max + DVec3::new(r, k, self.margin_top) }
+        let boxed = Aabb { min: part.min - DVec3::new(l, f, self.margin_bottom), max: part.max + DVec3::new(r, k, self.margin_top) };
+        let Some(bar) = self.bar else { return boxed };
+        // Across its axis the bar's own size, about the part's centre; along it the margins.
+        let (c, half) = (part.center(), bar.diameter / 2.0);
+        let round = Aabb { min: c - DVec3::splat(half), max: c + DVec3::splat(half) };
+        match bar.axis {
+            BarAxis::X => Aabb { min: DVec3::new(boxed.min.x, round.min.y, round.min.z), max: DVec3::new(boxed.max.x, round.max.y, round.max.z) },
+            BarAxis::Y => Aabb { min: DVec3::new(round.min.x, boxed.min.y, round.min.z), max: DVec3::new(round.max.x, boxed.max.y, round.max.z) },
+            BarAxis::Z => Aabb { min: DVec3::new(round.min.x, round.min.y, boxed.min.z), max: DVec3::new(round.max.x, round.max.y, boxed.max.z) },
+        }
     }
 
     /// The settings that do not fit: each field with why.
@@ -205,6 +289,11 @@ impl Stock {
             let extent = b.size();
             if !(extent.x > 0.0 && extent.y > 0.0 && extent.z > 0.0 && extent.max_element() <= size && b.min.is_finite()) {
                 out.push(("sizeBox", format!("must have a positive size on every axis, at most {size} mm")));
+            }
+        }
+        if let Some(bar) = self.bar {
+            if !(bar.diameter > 0.0 && bar.diameter <= size) {
+                out.push(("bar.diameter", format!("must be a positive number of mm, at most {size} (got {})", crate::limits::shown(bar.diameter))));
             }
         }
         if let Some(f) = self.air_feed {

@@ -18,7 +18,7 @@
 use glam::DMat3;
 
 use super::run::{prepare, JobOutput};
-use super::schema::{Flip, Job, Workpiece};
+use super::schema::{Bar, BarAxis, Flip, Job, Workpiece};
 use crate::error::{Error, Result};
 use crate::geom::{Aabb, DVec2, DVec3};
 use crate::mesh::placement::{PartSetup, Placement};
@@ -92,7 +92,7 @@ impl Job {
 
     /// The job setup `k` is on its own: its operations and work offset, the part already in
     /// its frame (kept where it is given), its stock the box `stock` as it holds it.
-    pub(super) fn setup_job(&self, k: usize, stock: Aabb) -> Job {
+    pub(super) fn setup_job(&self, k: usize, stock: Aabb, rotation: DMat3) -> Job {
         let setup = &self.setups[k];
         let mut job = self.clone();
         job.setups = Vec::new();
@@ -102,6 +102,24 @@ impl Job {
         job.stock.size_box = Some(stock);
         job.stock.margin_sides = None;
         job.stock.zero = None;
+        // Bar stock fills the first setup's box along its axis as turned; later setups start
+        // from what the one before left.
+        job.stock.bar = self.stock.bar.filter(|_| k == 0).map(|bar| {
+            let along = match bar.axis {
+                BarAxis::X => DVec3::X,
+                BarAxis::Y => DVec3::Y,
+                BarAxis::Z => DVec3::Z,
+            };
+            let turned = (rotation * along).abs();
+            let axis = if turned.x > 0.5 {
+                BarAxis::X
+            } else if turned.y > 0.5 {
+                BarAxis::Y
+            } else {
+                BarAxis::Z
+            };
+            Bar { axis, ..bar }
+        });
         if setup.work_offset.is_some() {
             job.post.work_offset = setup.work_offset.clone();
         }
@@ -141,7 +159,7 @@ pub fn run_setups(job: &Job, mut part: Mesh, progress: &mut Progress) -> Result<
         held.transform(|v| v + shift);
         let orientation = Orientation { shift, ..turned };
         let stock = orientation.apply_box(&raw);
-        let sub = job.setup_job(k, stock);
+        let sub = job.setup_job(k, stock, rotation);
         let named = |e: Error| match e {
             Error::Input(m) => Error::Input(format!("setups[{k}] ({}): {m}", names[k])),
             Error::Operation { operation, why } => Error::Operation { operation: format!("{} ({})", operation, names[k]), why },

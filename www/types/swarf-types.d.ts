@@ -12,6 +12,26 @@ export type Aabb = { min: [number, number, number], max: [number, number, number
 export type ArcFormat = "ij" | "r" | "off";
 
 /**
+ * Round bar stock ([`Stock::bar`]): the material a sawn length of bar holds, so that the
+ * operations, the air-cut skipping and the verification see the air round it.
+ */
+export type Bar = { 
+/**
+ * The bar's diameter (mm). Default value: 50.
+ */
+diameter: number, 
+/**
+ * The axis it lies along: `z` stands it on end (a disc, a knob cut from its end), `x` or
+ * `y` lays it in the vise. Default value: z.
+ */
+axis: BarAxis, };
+
+/**
+ * The axis of bar stock.
+ */
+export type BarAxis = "x" | "y" | "z";
+
+/**
  * Helical boring of holes.
  */
 export type Bore = { 
@@ -1516,7 +1536,13 @@ airFeed: number | null,
  * Moves part and stock so that this point is the program's origin (for parts; a sheet's
  * top is always Z0). Default value: none (as the part's placement puts it).
  */
-zero: WorkZero | null, };
+zero: WorkZero | null, 
+/**
+ * Round bar stock instead of a box: its diameter and the axis it lies along, centred on
+ * the part, as long as the part and the margins along its axis (the margins across it
+ * are the bar's). Default value: none.
+ */
+bar: Bar | null, };
 
 /**
  * What the page shows of a job's result beside the drawing: figures, warnings, the problem if
