@@ -138,6 +138,29 @@ pub enum BarAxis {
     Z,
 }
 
+impl BarAxis {
+    /// The axis as a unit vector.
+    pub fn unit(self) -> DVec3 {
+        match self {
+            BarAxis::X => DVec3::X,
+            BarAxis::Y => DVec3::Y,
+            BarAxis::Z => DVec3::Z,
+        }
+    }
+
+    /// The axis nearest the direction `v`.
+    pub fn along(v: DVec3) -> BarAxis {
+        let v = v.abs();
+        if v.x >= v.y && v.x >= v.z {
+            BarAxis::X
+        } else if v.y >= v.z {
+            BarAxis::Y
+        } else {
+            BarAxis::Z
+        }
+    }
+}
+
 impl Bar {
     /// The material over `p` of this bar filling `stock` (its bounding box), as `(floor, top)`
     /// (empty outside it).
@@ -160,12 +183,8 @@ impl Bar {
 
     /// How far `p` lies from the axis of this bar filling `stock`.
     pub fn distance(&self, stock: &Aabb, p: DVec3) -> f64 {
-        let d = p - stock.center();
-        match self.axis {
-            BarAxis::X => d.y.hypot(d.z),
-            BarAxis::Y => d.x.hypot(d.z),
-            BarAxis::Z => d.x.hypot(d.y),
-        }
+        let (d, a) = (p - stock.center(), self.axis.unit());
+        (d - a * d.dot(a)).length()
     }
 }
 

@@ -104,22 +104,7 @@ impl Job {
         job.stock.zero = None;
         // Bar stock fills the first setup's box along its axis as turned; later setups start
         // from what the one before left.
-        job.stock.bar = self.stock.bar.filter(|_| k == 0).map(|bar| {
-            let along = match bar.axis {
-                BarAxis::X => DVec3::X,
-                BarAxis::Y => DVec3::Y,
-                BarAxis::Z => DVec3::Z,
-            };
-            let turned = (rotation * along).abs();
-            let axis = if turned.x > 0.5 {
-                BarAxis::X
-            } else if turned.y > 0.5 {
-                BarAxis::Y
-            } else {
-                BarAxis::Z
-            };
-            Bar { axis, ..bar }
-        });
+        job.stock.bar = self.stock.bar.filter(|_| k == 0).map(|bar| Bar { axis: BarAxis::along(rotation * bar.axis.unit()), ..bar });
         if setup.work_offset.is_some() {
             job.post.work_offset = setup.work_offset.clone();
         }

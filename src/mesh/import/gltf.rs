@@ -170,9 +170,11 @@ impl Document<'_> {
                 }
                 _ => {
                     // A large fan over a flat convex polygon is that polygon: cut as a strip
-                    // (see `face`); any other fan is kept as the file gives it.
+                    // (see `face`); any other fan is kept as the file gives it. A small one is
+                    // kept without looking.
                     let ring: Vec<DVec3> = indices.iter().map(|&i| corner(i)).collect();
-                    if let Some(polygon) = fan_polygon(&ring).filter(|p| p.len() > FAN_MOST) {
+                    let polygon = if ring.len() > FAN_MOST { fan_polygon(&ring).filter(|p| p.len() > FAN_MOST) } else { None };
+                    if let Some(polygon) = polygon {
                         out.extend(triangulate(polygon.len()).into_iter().map(|[a, b, c]| [polygon[a], polygon[b], polygon[c]]));
                     } else if let Some((&first, rest)) = ring.split_first() {
                         out.extend(rest.windows(2).map(|w| [first, w[0], w[1]]));
