@@ -285,7 +285,7 @@ pub struct SimulationData {
 }
 
 impl SimulationData {
-    fn of(job: &Job, out: &JobOutput, v: Verification) -> SimulationData {
+    fn of(job: &Job, out: &JobOutput, mut v: Verification) -> SimulationData {
         let g = v.stock.grid();
         let grid = vec![g.origin.x, g.origin.y, g.spacing, g.nx as f64, g.ny as f64, out.stock.min.z, out.stock.max.z, job.tolerances.gouge];
         let part = v.part.z.iter().map(|&z| z as f32).collect();
@@ -298,7 +298,9 @@ impl SimulationData {
             }
         }
         let report = ReportView { report: r.clone(), text: r.describe() };
-        let fresh = DexelStock::new(&out.stock, g.spacing, 1);
+        // The playback starts where the program did: the raw box, or the bar or the stock the
+        // setup before left.
+        let fresh = v.start.take().unwrap_or_else(|| DexelStock::new(&out.stock, g.spacing, 1));
         let playback = Playback::at_end(fresh, v.stock, out.moves.clone(), job.tolerances.simulated_chordal());
         SimulationData { playback, grid, part, times: program_times(out), mrr, findings, report }
     }
@@ -378,6 +380,33 @@ fn marked(gcode: String, lines: Vec<u32>, problem: Option<&str>) -> (String, Vec
             (job::marked(&gcode, problem), lines.into_iter().map(|l| l + added).collect())
         }
         None => (gcode, lines),
+    }
+}
+
+/// Where a setup holds the part, for the view and a portal: a point `p` of the part as the job
+/// places it is at `rotation · (p − centre) + centre + shift` in the setup (the rotation by
+/// quarter turns, column after column); `stock` is the raw stock's box there.
+#[derive(Clone, Debug, Serialize, ts_rs::TS)]
+#[serde(rename_all = "camelCase")]
+pub struct SetupView {
+    pub index: usize,
+    pub name: String,
+    pub rotation: [f64; 9],
+    pub centre: [f64; 3],
+    pub shift: [f64; 3],
+    pub stock: Aabb,
+}
+
+impl SetupView {
+    pub fn of(index: usize, name: &str, orientation: &job::setups::Orientation, stock: Aabb) -> SetupView {
+        SetupView { index, name: name.to_owned(), rotation: orientation.rotation.to_cols_array(), centre: orientation.centre.to_array(), shift: orientation.shift.to_array(), stock }
+    }
+
+    /// Every setup of `job` on a part whose bounds (placed as the job places it) are `part`
+    /// ([`job::setups::setup_frames`]); none for a job without setups.
+    pub fn frames(job: &Job, part: &Aabb) -> Vec<SetupView> {
+        let names = job.setup_names();
+        job::setups::setup_frames(job, part).iter().enumerate().map(|(k, (o, stock))| SetupView::of(k, &names[k], o, *stock)).collect()
     }
 }
 

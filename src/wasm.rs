@@ -231,7 +231,15 @@ pub fn load_part(bytes: &[u8], name: &str, setup: JsValue) -> Result<PartView, J
 
 /// What a job produced ([`view::ResultView`]), kept by the worker for scrubbing and reposting.
 #[wasm_bindgen]
-pub struct JobResult(view::ResultView);
+pub struct JobResult {
+    view: view::ResultView,
+    /// The setup it is of, for a job with setups.
+    setup: Option<job::wire::SetupPlace>,
+    /// The stock it left, where a setup follows to carry it on.
+    end: Option<crate::sim::DexelStock>,
+    /// What the setup sheet says of it.
+    sheet: job::sheet::SheetSetup,
+}
 
 /// A `Float32Array` view of `data` (copy it before the next call into wasm).
 fn floats(data: &[f32]) -> js_sys::Float32Array {
@@ -248,104 +256,104 @@ fn counts(data: &[u32]) -> js_sys::Uint32Array {
 #[wasm_bindgen]
 impl JobResult {
     pub fn gcode(&self) -> String {
-        self.0.gcode.clone()
+        self.view.gcode.clone()
     }
     /// The program as UTF-8 bytes (a view): sent to the page's thread without a copy, the text
     /// made from it only when asked for (a die-sized program is tens of megabytes).
     #[wasm_bindgen(js_name = gcodeBytes)]
     pub fn gcode_bytes(&self) -> js_sys::Uint8Array {
         // SAFETY: as for `floats`.
-        unsafe { js_sys::Uint8Array::view(self.0.gcode.as_bytes()) }
+        unsafe { js_sys::Uint8Array::view(self.view.gcode.as_bytes()) }
     }
     /// The line (0 first) of the program each move ended on (a view).
     #[wasm_bindgen(js_name = moveLines)]
     pub fn move_lines(&self) -> js_sys::Uint32Array {
-        counts(&self.0.move_lines)
+        counts(&self.view.move_lines)
     }
     /// The same paths written by another post (`post`: the job's `post` object), without
     /// planning again: `{gcode, extension, post, cycle, time, moveLines}`
     /// ([`view::Program::repost`]).
     pub fn repost(&self, post: JsValue) -> Result<JsValue, JsError> {
         let settings: crate::post::PostSettings = serde_wasm_bindgen::from_value(post).map_err(|e| js_error(format!("invalid post: {e}")))?;
-        let r = self.0.program.repost(&settings).map_err(js_error)?;
+        let r = self.view.program.repost(&settings).map_err(js_error)?;
         let out = to_js(&r)?;
         js_sys::Reflect::set(&out, &"moveLines".into(), &js_sys::Uint32Array::from(&r.move_lines[..])).map_err(|_| js_error("an object"))?;
         Ok(out)
     }
     /// Cutting moves as line segments: xyz of both ends per segment (a view).
     pub fn feeds(&self) -> js_sys::Float32Array {
-        floats(&self.0.segments.feeds)
+        floats(&self.view.segments.feeds)
     }
     /// The operation (its index in the job) of each cutting segment of `feeds` (a view).
     #[wasm_bindgen(js_name = feedOperations)]
     pub fn feed_operations(&self) -> js_sys::Float32Array {
-        floats(&self.0.segments.feed_ops)
+        floats(&self.view.segments.feed_ops)
     }
     /// The tool number of each cutting segment of `feeds` (a view).
     #[wasm_bindgen(js_name = feedTools)]
     pub fn feed_tools(&self) -> js_sys::Float32Array {
-        floats(&self.0.segments.feed_tools)
+        floats(&self.view.segments.feed_tools)
     }
     /// The program move of each cutting segment of `feeds` (a view).
     #[wasm_bindgen(js_name = feedMoves)]
     pub fn feed_moves(&self) -> js_sys::Uint32Array {
-        counts(&self.0.segments.feed_moves)
+        counts(&self.view.segments.feed_moves)
     }
     /// The octants of each stage of octree roughing (seed 000): per box `stage, tool, full
     /// (1: cut by that tool, 0: Partial), minX, minY, minZ, maxX, maxY, maxZ` (a view).
     pub fn octants(&self) -> js_sys::Float32Array {
-        floats(&self.0.octants)
+        floats(&self.view.octants)
     }
     /// Rapid moves as line segments (a view).
     pub fn rapids(&self) -> js_sys::Float32Array {
-        floats(&self.0.segments.rapids)
+        floats(&self.view.segments.rapids)
     }
     /// The program move of each segment of `rapids` (a view).
     #[wasm_bindgen(js_name = rapidMoves)]
     pub fn rapid_moves(&self) -> js_sys::Uint32Array {
-        counts(&self.0.segments.rapid_moves)
+        counts(&self.view.segments.rapid_moves)
     }
     /// The figures, warnings and reports ([`view::Summary`]).
     pub fn summary(&self) -> Result<JsValue, JsError> {
-        to_js(&self.0.summary)
+        to_js(&self.view.summary)
     }
     /// Whether the program was simulated.
     #[wasm_bindgen(js_name = hasSimulation)]
     pub fn has_simulation(&self) -> bool {
-        self.0.simulation.is_some()
+        self.view.simulation.is_some()
     }
     /// `[originX, originY, spacing, nx, ny, stockBottom, stockTop, gougeTolerance]`: where the
     /// simulated stock's cell centres stand.
     #[wasm_bindgen(js_name = simGrid)]
     pub fn sim_grid(&self) -> Vec<f64> {
-        self.0.simulation.as_ref().map(|s| s.grid.clone()).unwrap_or_default()
+        self.view.simulation.as_ref().map(|s| s.grid.clone()).unwrap_or_default()
     }
     /// The part's surface plus allowance at each cell centre (NaN off the part; a view).
     #[wasm_bindgen(js_name = simPart)]
     pub fn sim_part(&self) -> js_sys::Float32Array {
-        self.0.simulation.as_ref().map(|s| floats(&s.part)).unwrap_or_default()
+        self.view.simulation.as_ref().map(|s| floats(&s.part)).unwrap_or_default()
     }
     /// When each move starts (s), and at the end the program's cycle time.
     pub fn times(&self) -> js_sys::Float64Array {
         // SAFETY: as for `floats`.
-        self.0.simulation.as_ref().map(|s| unsafe { js_sys::Float64Array::view(&s.times) }).unwrap_or_default()
+        self.view.simulation.as_ref().map(|s| unsafe { js_sys::Float64Array::view(&s.times) }).unwrap_or_default()
     }
     /// Material removal rate of each move (mm³/min; a view).
     pub fn mrr(&self) -> js_sys::Float32Array {
-        self.0.simulation.as_ref().map(|s| floats(&s.mrr)).unwrap_or_default()
+        self.view.simulation.as_ref().map(|s| floats(&s.mrr)).unwrap_or_default()
     }
     /// Places of gouges and collisions: x, y, z, kind (0 gouge, 1 rapid, 2 tool body) per place.
     pub fn findings(&self) -> js_sys::Float32Array {
-        self.0.simulation.as_ref().map(|s| floats(&s.findings)).unwrap_or_default()
+        self.view.simulation.as_ref().map(|s| floats(&s.findings)).unwrap_or_default()
     }
     /// The verification report (`Report` as a JS object, with `text` for people).
     pub fn report(&self) -> Result<JsValue, JsError> {
-        self.0.simulation.as_ref().map_or(Ok(JsValue::NULL), |s| to_js(&s.report))
+        self.view.simulation.as_ref().map_or(Ok(JsValue::NULL), |s| to_js(&s.report))
     }
     /// The stock's height over every cell after the first `count` moves (a view: copy it before
     /// the next call).
     pub fn seek(&mut self, count: usize) -> js_sys::Float32Array {
-        match self.0.simulation.as_mut() {
+        match self.view.simulation.as_mut() {
             Some(s) => floats(s.playback.seek(count)),
             None => js_sys::Float32Array::default(),
         }
@@ -354,16 +362,34 @@ impl JobResult {
     /// without a simulation.
     #[wasm_bindgen(js_name = toolAt)]
     pub fn tool_at(&self, k: usize, f: f64) -> Vec<f64> {
-        self.0.tool_at(k, f).map(|t| t.to_vec()).unwrap_or_default()
+        self.view.tool_at(k, f).map(|t| t.to_vec()).unwrap_or_default()
     }
     /// The drawing as the job placed it (as `loadDrawing` gives it), or null for a part.
     pub fn drawing(&self) -> Result<JsValue, JsError> {
-        self.0.drawing.as_ref().map_or(Ok(JsValue::NULL), to_js)
+        self.view.drawing.as_ref().map_or(Ok(JsValue::NULL), to_js)
     }
     /// The part as the job placed it.
+    /// Where the setup this result is of holds the part (`SetupView`), or `undefined` for a
+    /// job without setups.
+    pub fn setup(&self) -> Result<JsValue, JsError> {
+        match &self.setup {
+            Some(s) => {
+                let b = self.view.summary.stock;
+                let stock = crate::geom::Aabb { min: crate::geom::DVec3::new(b[0], b[1], b[2]), max: crate::geom::DVec3::new(b[3], b[4], b[5]) };
+                to_js(&view::SetupView::of(s.index, &s.name, &s.orientation, stock))
+            }
+            None => Ok(JsValue::UNDEFINED),
+        }
+    }
+
+    /// What the setup sheet says of this program ([`job::sheet::SheetSetup`]), for `setupSheet`.
+    pub fn sheet(&self) -> Result<JsValue, JsError> {
+        to_js(&self.sheet)
+    }
+
     #[wasm_bindgen(js_name = takePart)]
     pub fn take_part(&mut self) -> PartView {
-        PartView(std::mem::replace(&mut self.0.part, view::PartData::empty()))
+        PartView(std::mem::replace(&mut self.view.part, view::PartData::empty()))
     }
 }
 
@@ -408,7 +434,7 @@ fn mesh_only(bytes: &[u8], name: &str, job: &Job, why: &str) -> Result<crate::me
 /// the work goes on; returning `false` cancels.
 #[wasm_bindgen(js_name = runJob)]
 pub fn run_job(job: JsValue, bytes: &[u8], name: &str, progress: &js_sys::Function) -> Result<JobResult, JsError> {
-    prepare_job(job, bytes, name)?.run(progress)
+    prepare_job(job, bytes, name, None)?.run(progress)
 }
 
 /// A job prepared for planning (the part read and placed), whose heavy work a pool of workers
@@ -419,16 +445,50 @@ pub struct JobPlan(crate::job::wire::PoolWorker);
 
 /// Prepares `job` on the part or drawing in `bytes` (see [`JobPlan`]).
 #[wasm_bindgen(js_name = prepareJob)]
-pub fn prepare_job(job: JsValue, bytes: &[u8], name: &str) -> Result<JobPlan, JsError> {
+pub fn prepare_job(job: JsValue, bytes: &[u8], name: &str, setup: Option<usize>) -> Result<JobPlan, JsError> {
     let job = job_from_js(job)?;
     let workpiece = Workpiece::read(bytes, Some(name), &job.tolerances).map_err(js_error)?;
-    Ok(JobPlan(crate::job::wire::PoolWorker::prepare(job, workpiece).map_err(js_error)?))
+    let worker = match setup {
+        Some(k) => job::wire::PoolWorker::prepare_setup(&job, workpiece, k),
+        None if !job.setups.is_empty() => Err(crate::error::Error::Input("a job with setups runs one setup at a time: name the setup".into())),
+        None => job::wire::PoolWorker::prepare(job, workpiece),
+    };
+    Ok(JobPlan(worker.map_err(js_error)?))
+}
+
+/// The setup sheet (a standalone HTML page) of `job` on the part named `part`, from each
+/// setup's result's `sheet()` in order (one for a job without setups).
+#[wasm_bindgen(js_name = setupSheet)]
+pub fn setup_sheet(job: JsValue, part: &str, sheets: JsValue) -> Result<String, JsError> {
+    let job = job_from_js(job)?;
+    let sheets: Vec<job::sheet::SheetSetup> = serde_wasm_bindgen::from_value(sheets).map_err(|e| js_error(format!("the sheets are not as results give them: {e}")))?;
+    Ok(job::sheet::setup_sheet(&job, part, &sheets))
+}
+
+/// Where each setup of `job` holds a part whose bounds (placed as the job places it) are `part`
+/// (`[minX, minY, minZ, maxX, maxY, maxZ]`, as `loadPart` gives them): `[SetupView]`, empty
+/// for a job without setups.
+#[wasm_bindgen(js_name = setupFrames)]
+pub fn setup_frames(job: JsValue, part: Vec<f64>) -> Result<JsValue, JsError> {
+    let job = job_from_js(job)?;
+    if part.len() != 6 || part.iter().any(|v| !v.is_finite()) {
+        return Err(js_error("the part's bounds are six numbers"));
+    }
+    let bounds = crate::geom::Aabb { min: crate::geom::DVec3::new(part[0], part[1], part[2]), max: crate::geom::DVec3::new(part[3], part[4], part[5]) };
+    to_js(&view::SetupView::frames(&job, &bounds))
 }
 
 #[wasm_bindgen]
 impl JobPlan {
     /// What can be shared: `{ surfaces: [{ nx, ny }], rasters: [{ operation, surface, passes }],
     /// levelMaps: [surface] }` ([`crate::job::wire::PlanNeeds`]).
+    /// Starts from the stock the setup before left (`before`, its result): before planning.
+    #[wasm_bindgen(js_name = carryFrom)]
+    pub fn carry_from(&mut self, before: &JobResult) -> Result<(), JsError> {
+        let (Some(left), Some(place)) = (&before.end, &before.setup) else { return Err(js_error("that result leaves no stock to carry on (it is not of a setup another follows)")) };
+        self.0.carry_from(left, &place.orientation).map_err(js_error)
+    }
+
     pub fn needs(&mut self) -> Result<JsValue, JsError> {
         to_js(&self.0.needs().map_err(js_error)?)
     }
@@ -538,14 +598,14 @@ impl JobPlan {
     pub fn finish(&mut self, progress: &js_sys::Function) -> Result<JobResult, JsError> {
         let mut sink = progress_sink(progress);
         let out = self.0.finish(&mut Progress::new(&mut sink)).map_err(js_error)?;
-        job_result(self.0.job(), out)
+        job_result(&self.0, out)
     }
 
     /// Plans the job with what was kept and writes its program (see [`run_job`]).
     pub fn run(&mut self, progress: &js_sys::Function) -> Result<JobResult, JsError> {
         let mut sink = progress_sink(progress);
         let out = self.0.run(&mut Progress::new(&mut sink)).map_err(js_error)?;
-        job_result(self.0.job(), out)
+        job_result(&self.0, out)
     }
 }
 
@@ -554,7 +614,10 @@ fn progress_sink(progress: &js_sys::Function) -> impl FnMut(f64, &str) -> bool +
     |fraction: f64, stage: &str| progress.call2(&JsValue::NULL, &JsValue::from_f64(fraction), &JsValue::from_str(stage)).map(|v| v.as_bool() != Some(false)).unwrap_or(true)
 }
 
-/// What the worker hands the page of a job's output.
-fn job_result(job: &Job, out: job::JobOutput) -> Result<JobResult, JsError> {
-    Ok(JobResult(view::ResultView::of(job, out)))
+/// What the worker hands the page of a job's output (of `worker`'s setup, if any).
+fn job_result(worker: &job::wire::PoolWorker, out: job::JobOutput) -> Result<JobResult, JsError> {
+    let setup = worker.setup().cloned();
+    let end = setup.as_ref().filter(|s| s.more).and_then(|_| out.verification.as_ref().map(|v| v.stock.clone()));
+    let sheet = job::sheet::SheetSetup::of(setup.as_ref().map_or(&worker.job().name, |s| &s.name), &out);
+    Ok(JobResult { view: view::ResultView::of(worker.job(), out), setup, end, sheet })
 }

@@ -118,7 +118,8 @@ fn setups_are_checked_before_any_work() {
 fn the_setup_sheet_says_how_to_hold_the_part_for_each_setup() {
     let job = Job::two_sided();
     let setups = run_setups(&job, two_sided_part(), &mut Progress::none()).unwrap();
-    let sheet = swarf::job::sheet::setup_sheet(&job, "plate <2>.stl", &setups);
+    let sheets: Vec<_> = setups.iter().map(|s| swarf::job::sheet::SheetSetup::of(&s.name, &s.output)).collect();
+    let sheet = swarf::job::sheet::setup_sheet(&job, "plate <2>.stl", &sheets);
     assert!(sheet.starts_with("<!doctype html>") && sheet.trim_end().ends_with("</html>"));
     assert!(sheet.contains("plate &lt;2&gt;.stl"), "the part's name is escaped");
     assert_eq!(sheet.matches("<section>").count(), 2);
@@ -192,6 +193,14 @@ fn bar_stock_is_round_and_its_air_is_not_cut() {
     eprintln!("bar: removed {removed:.0} + left {left:.0} of {material:.0} mm³; cycle {:.0} s from the bar, {:.0} s from the box", round.cycle.seconds, boxed.cycle.seconds);
     assert!((removed + left - material).abs() < 0.01 * material, "{removed} + {left} against the bar's {material}");
     assert!(round.cycle.seconds < 0.9 * boxed.cycle.seconds, "{} s from the bar, {} s from the box", round.cycle.seconds, boxed.cycle.seconds);
+    // The page's playback starts from the bar, not from the box round it: before the first
+    // move a corner of the box holds no material, the bar's middle its whole height.
+    let mut view = swarf::view::ResultView::of(&job_for(Some(bar)), round.clone());
+    let g = v.stock.grid();
+    let tops = view.simulation.as_mut().unwrap().playback.seek(0).to_vec();
+    let (corner, middle) = (tops[0] as f64, tops[(g.ny / 2) * g.nx + g.nx / 2] as f64);
+    assert!(corner <= round.stock.min.z + 1e-6, "a corner of the box starts at {corner}");
+    assert!((middle - round.stock.max.z).abs() < 1e-4, "the bar's middle starts at {middle}");
     // Too thin a bar.
     let e = swarf::job::run(&job_for(Some(Bar { diameter: 39.0, ..bar })), part, &mut Progress::none()).unwrap_err().to_string();
     assert!(e.contains("outside a φ39 bar; choose a bar of at least φ40"), "{e}");
@@ -206,4 +215,55 @@ fn bar_stock_is_round_and_its_air_is_not_cut() {
     eprintln!("lying bar: removed {removed:.0} + left {left:.0} of {material:.0} mm³");
     assert!((size.y - 30.0).abs() < 1e-9 && (size.z - 30.0).abs() < 1e-9, "{size}");
     assert!((removed + left - material).abs() < 0.01 * material, "{removed} + {left} against the bar's {material}");
+}
+
+/// The page's pool runs a job with setups one setup at a time: every worker prepares that setup
+/// (the part held as it holds it) and the planner carries in what the setup before left. The
+/// programs and stocks are those of the job run whole, and each setup's playback starts from
+/// the stock it was given.
+#[test]
+fn the_pool_runs_setups_one_at_a_time_as_the_job_runs_whole() {
+    use swarf::job::wire::PoolWorker;
+    use swarf::job::Workpiece;
+    let job = Job::two_sided();
+    let whole = run_setups(&job, two_sided_part(), &mut Progress::none()).unwrap();
+    let mut before: Option<(swarf::sim::DexelStock, swarf::job::setups::Orientation)> = None;
+    for (k, w) in whole.iter().enumerate() {
+        let mut worker = PoolWorker::prepare_setup(&job, Workpiece::Mesh(two_sided_part()), k).unwrap();
+        let place = worker.setup().unwrap().clone();
+        assert_eq!((place.index, place.more, place.orientation), (k, k == 0, w.orientation));
+        // The first setup has nothing to carry in.
+        if let Some((left, from)) = &before {
+            worker.carry_from(left, from).unwrap();
+        }
+        let out = worker.run(&mut Progress::none()).unwrap();
+        assert_eq!(out.gcode, w.output.gcode, "setup {k}");
+        let v = out.verification.clone().unwrap();
+        assert_eq!(v.stock.heights().z, w.output.verification.as_ref().unwrap().stock.heights().z);
+        assert_eq!(v.start.is_some(), k > 0);
+        let mut view = swarf::view::ResultView::of(worker.job(), out);
+        let start: Vec<f32> = view.simulation.as_mut().unwrap().playback.seek(0).to_vec();
+        match &v.start {
+            Some(s) => assert_eq!(start, s.heights().z.iter().map(|&z| z as f32).collect::<Vec<_>>()),
+            None => assert!(start.iter().all(|&z| (z as f64 - w.output.stock.max.z).abs() < 1e-4)),
+        }
+        before = Some((v.stock, place.orientation));
+    }
+    // The frames a view shows before a run are those the run holds the part in.
+    let mut placed = two_sided_part();
+    job.part.apply(&mut placed);
+    let frames = swarf::view::SetupView::frames(&job, &placed.bounds());
+    for (f, w) in frames.iter().zip(&whole) {
+        assert_eq!(f.rotation, w.orientation.rotation.to_cols_array());
+        assert_eq!(f.shift, w.orientation.shift.to_array());
+        assert_eq!(f.stock, w.output.stock);
+    }
+    // No such setup, a job's setup named for a job without setups, a drawing turned over.
+    let e = PoolWorker::prepare_setup(&job, Workpiece::Mesh(two_sided_part()), 2).err().unwrap().to_string();
+    assert!(e.contains("the job has 2 setups"), "{e}");
+    let mut first = PoolWorker::prepare_setup(&job, Workpiece::Mesh(two_sided_part()), 0).unwrap();
+    let (left, from) = before.unwrap();
+    first.carry_from(&left, &from).unwrap();
+    let mut plain = PoolWorker::prepare(Job::demo(), Workpiece::Mesh(swarf::mesh::sample::demo_part())).unwrap();
+    assert!(plain.carry_from(&left, &from).is_err());
 }

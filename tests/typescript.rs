@@ -11,7 +11,7 @@ use swarf::holes::Hole;
 use swarf::job::project::Project;
 use swarf::job::Problem;
 use swarf::post::{CycleTime, Post};
-use swarf::view::{DrawingView, EdgeView, ReportView, Reposted, Summary};
+use swarf::view::{DrawingView, EdgeView, ReportView, Reposted, SetupView, Summary};
 use ts_rs::{Config, TypeVisitor, TS};
 
 const HEAD: &str = "// Generated from swarf's Rust types by ts-rs (tests/typescript.rs): do not edit.\n// UPDATE_TYPES=1 cargo test --test typescript writes it anew.\n\n";
@@ -30,6 +30,7 @@ fn generate() -> String {
     Problem::export_all(&cfg).unwrap();
     Hole::export_all(&cfg).unwrap();
     EdgeView::export_all(&cfg).unwrap();
+    SetupView::export_all(&cfg).unwrap();
     let mut files: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().path()).collect();
     files.sort();
     let mut out = HEAD.to_owned();
@@ -78,6 +79,7 @@ fn no_two_rust_types_share_a_typescript_name() {
     names.visit::<Problem>();
     names.visit::<Hole>();
     names.visit::<EdgeView>();
+    names.visit::<SetupView>();
     assert!(names.0.len() > 20, "{:?}", names.0.keys());
     let twice: Vec<_> = names.0.values().filter(|v| v.len() > 1).collect();
     assert!(twice.is_empty(), "types sharing a TypeScript name (give one #[ts(rename)]): {twice:?}");

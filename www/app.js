@@ -11,9 +11,10 @@ import { GcodePane } from './gcode.js';
 import { sim, setTime, step, play, drawMrr, toLine } from './simulation.js';
 import { fillTools, addTool, deleteTool, exportTools, importTools, renumber } from './tools.js';
 import { fillOps, addOperation, onOpList, showPicked, showHoles, pickInView, findHoles, onHoleList, presetHoles } from './operations.js';
+import { fillSetups, addSetup, removeSetup, onSetupTabs, onSetupField, showHeld, playSetup } from './setups.js';
 import { setKind, showPart, takeFile, fillPart, freshSetup, showSizes } from './part.js';
 import { pageUnits, setPageUnits } from './units.js';
-import { showSummary, generate, cancel, download, clearResult, onLegend, resultTab, fillPost, savePost, loadPost, repost, saveJob, loadJob, saveProject, openProject, setRunning } from './results.js';
+import { showSummary, generate, cancel, download, clearResult, onLegend, resultTab, fillPost, savePost, loadPost, repost, saveJob, loadJob, saveProject, openProject, setRunning, showSetupResult, showSheet } from './results.js';
 
 const form = $('settings');
 window.swarf = state; // for the end-to-end test and the curious
@@ -56,7 +57,7 @@ function showHistory() {
 }
 
 Object.assign(hooks, {
-  fillAll, changed, showPicked, clearResult, setKind, showPart, loadJob, fillTools, history: showHistory,
+  fillAll, changed, showPicked, clearResult, setKind, showPart, loadJob, fillTools, fillSetups, showHeld, showSetupResult, playSetup, history: showHistory,
   error: (text) => message(text, 'error'),
 });
 
@@ -156,6 +157,7 @@ document.addEventListener('keydown', (e) => {
   else if (e.key === 'ArrowRight' && !$('sim').hidden) { e.preventDefault(); step(1); }
 });
 $('download').addEventListener('click', download);
+$('sheet').addEventListener('click', showSheet);
 $('save-job').addEventListener('click', saveJob);
 $('save-project').addEventListener('click', saveProject);
 $('open-project').addEventListener('change', (e) => { if (e.target.files[0]) openProject(e.target.files[0]); e.target.value = ''; });
@@ -178,6 +180,10 @@ $('tool-delete').addEventListener('click', deleteTool);
 $('tool-export').addEventListener('click', exportTools);
 $('tool-import').addEventListener('change', (e) => { if (e.target.files[0]) importTools(e.target.files[0]); e.target.value = ''; });
 $('op-list').addEventListener('click', onOpList);
+$('setup-tabs').addEventListener('click', onSetupTabs);
+$('setup-add').addEventListener('click', addSetup);
+$('setup-remove').addEventListener('click', removeSetup);
+$('setup-editor').addEventListener('change', (e) => onSetupField(e.target));
 $('op-add').addEventListener('click', () => addOperation($('op-kind').value));
 $('find-holes').addEventListener('click', findHoles);
 $('hole-list').addEventListener('click', onHoleList);

@@ -2,7 +2,7 @@
 // (`data-key`), reads it back as that object holds it, and is marked where the core's own
 // checks (`checkJob`) find the setting wrong. Messages come in three styles: an error (red), a
 // warning (amber) and a note.
-import { $, state, job, getKey, buildJob } from './state.js';
+import { $, state, job, ops, setupIndex, getKey, buildJob } from './state.js';
 import { unitOf, fromPage, fieldText, words } from './units.js';
 
 export function labelOf(el) {
@@ -88,7 +88,15 @@ export function fieldError(el, text) {
 // Where a problem's path (`operations[2].stepdown`, `tools[0].diameter`, `stock.marginXy`) is
 // in the page: its tab, and its field if that object is the one on show.
 function placeOf(path) {
-  let m = path.match(/^operations\[(\d+)\]\.(.+)$/);
+  // A setup's operation is the list's when the setup is on show.
+  let m = path.match(/^setups\[(\d+)\]\.(.+)$/);
+  if (m) {
+    const k = Number(m[1]), rest = m[2], shown = k === setupIndex();
+    const inner = rest.startsWith('operations[') && shown ? placeOf(rest) : {};
+    const field = !rest.startsWith('operations') && shown ? `#setup-editor [data-setup="${rest}"]` : inner.field ?? null;
+    return { tab: 'ops', setup: k, op: inner.op ?? null, field };
+  }
+  m = path.match(/^operations\[(\d+)\]\.(.+)$/);
   if (m) return { tab: 'ops', op: Number(m[1]), field: Number(m[1]) === state.selected[state.kind] ? `#op-editor [data-key="${m[2]}"]` : null };
   m = path.match(/^tools\[(\d+)\]\.(.+)$/);
   if (m) return { tab: 'tools', tool: Number(m[1]), field: Number(m[1]) === state.selected.tool ? `#tool-editor [data-key="${m[2]}"]` : null };
@@ -108,9 +116,16 @@ export function placeWords(path) {
     const all = [...document.querySelectorAll(selector)], el = all.find((e) => !e.closest('[hidden]')) ?? all[0];
     return el ? labelOf(el).replace(/\s*\([^)]*\)\s*$/, '') : null;
   };
-  let m = path.match(/^operations\[(\d+)\]\.(.+)$/);
+  let m = path.match(/^setups\[(\d+)\]\.(.+)$/);
   if (m) {
-    const op = job()?.operations[Number(m[1])];
+    const k = Number(m[1]), setup = job()?.setups?.[k], name = setup?.name || `Setup ${k + 1}`;
+    const op = m[2].match(/^operations\[(\d+)\]\.(.+)$/);
+    if (op) return `Operations → ${name} → '${setup?.operations?.[Number(op[1])]?.name ?? `operation ${Number(op[1]) + 1}`}' → ${label(`#op-editor [data-key="${op[2]}"]`) ?? op[2]}`;
+    return `Operations → ${name} → ${label(`#setup-editor [data-setup="${m[2]}"]`) ?? m[2]}`;
+  }
+  m = path.match(/^operations\[(\d+)\]\.(.+)$/);
+  if (m) {
+    const op = ops()[Number(m[1])];
     return `Operations → '${op?.name ?? `operation ${Number(m[1]) + 1}`}' → ${label(`#op-editor [data-key="${m[2]}"]`) ?? m[2]}`;
   }
   m = path.match(/^tools\[(\d+)\]\.(.+)$/);
@@ -135,6 +150,7 @@ export function markProblems(problems) {
     if (el && !el.closest('[hidden]')) fieldError(el, p.message);
     if (place.tab) document.querySelector(`#tabs [data-tab="${place.tab}"]`)?.classList.add('has-problem');
     if (place.op != null) document.querySelector(`#op-list li[data-index="${place.op}"]`)?.classList.add('has-problem');
+    if (place.setup != null) document.querySelector(`#setup-tabs [data-setup-index="${place.setup}"]`)?.classList.add('has-problem');
     if (place.tool != null) $('tool-list').options[place.tool]?.classList.add('has-problem');
   }
 }

@@ -1,20 +1,21 @@
 // The operations of the job on show, in order: listed with their colour, tools and whether
 // they run; added, moved, removed; the picked one's form; and for drawings, the loops it cuts,
 // picked by clicking them in the view.
-import { $, state, hooks, job, selectedOp, selectedTool, is2d, store, toolsOf, buildJob, HOLE_OPS } from './state.js';
+import { $, state, hooks, ops, selectedOp, selectedTool, is2d, store, toolsOf, buildJob, HOLE_OPS } from './state.js';
 import { fillFields, message, sized, check } from './forms.js';
 import { opColor, cssColor } from './viewer.js';
 import * as units from './units.js';
 
 export function fillOps() {
-  const j = job(), list = $('op-list');
-  state.selected[state.kind] = Math.max(0, Math.min(state.selected[state.kind], j.operations.length - 1));
-  const items = sized(list, j.operations.length, () => {
+  const list = $('op-list'), operations = ops();
+  hooks.fillSetups?.();
+  state.selected[state.kind] = Math.max(0, Math.min(state.selected[state.kind], operations.length - 1));
+  const items = sized(list, operations.length, () => {
     const li = document.createElement('li');
     li.innerHTML = '<input type="checkbox" class="op-enabled" title="run this operation" aria-label="run this operation"><span class="swatch"></span><span class="op-name"></span><span class="op-buttons"><button type="button" class="op-up" title="earlier" aria-label="earlier">▲</button><button type="button" class="op-down" title="later" aria-label="later">▼</button><button type="button" class="op-copy" title="duplicate" aria-label="duplicate">⧉</button><button type="button" class="op-remove" title="remove (Ctrl+Z brings it back)" aria-label="remove">✕</button></span>';
     return li;
   });
-  j.operations.forEach((op, i) => {
+  operations.forEach((op, i) => {
     const li = items[i];
     li.className = i === state.selected[state.kind] ? 'selected' : '';
     li.dataset.index = String(i);
@@ -40,13 +41,13 @@ export function fillOps() {
 
 export function addOperation(kind) {
   const op = structuredClone(state.defaults.operations.find((o) => o.kind === kind));
-  const j = job();
+  const operations = ops();
   // Octree roughing chooses its own tools (from the whole library unless told otherwise).
   if (kind !== 'roughOctree') op.tool = selectedTool()?.number ?? state.tools[0]?.number ?? 1;
-  const same = j.operations.filter((o) => o.kind === kind).length;
+  const same = operations.filter((o) => o.kind === kind).length;
   if (same) op.name = `${op.name} ${same + 1}`;
-  j.operations.push(op);
-  state.selected[state.kind] = j.operations.length - 1;
+  operations.push(op);
+  state.selected[state.kind] = operations.length - 1;
   store();
   fillOps();
   hooks.changed?.();
@@ -55,17 +56,17 @@ export function addOperation(kind) {
 export function onOpList(e) {
   const li = e.target.closest('li');
   if (!li) return;
-  const ops = job().operations, i = Number(li.dataset.index);
-  if (e.target.classList.contains('op-enabled')) { ops[i].enabled = e.target.checked; store(); hooks.changed?.(); return; }
-  if (e.target.classList.contains('op-up') && i > 0) { [ops[i - 1], ops[i]] = [ops[i], ops[i - 1]]; state.selected[state.kind] = i - 1; }
-  else if (e.target.classList.contains('op-down') && i < ops.length - 1) { [ops[i + 1], ops[i]] = [ops[i], ops[i + 1]]; state.selected[state.kind] = i + 1; }
+  const list = ops(), i = Number(li.dataset.index);
+  if (e.target.classList.contains('op-enabled')) { list[i].enabled = e.target.checked; store(); hooks.changed?.(); return; }
+  if (e.target.classList.contains('op-up') && i > 0) { [list[i - 1], list[i]] = [list[i], list[i - 1]]; state.selected[state.kind] = i - 1; }
+  else if (e.target.classList.contains('op-down') && i < list.length - 1) { [list[i + 1], list[i]] = [list[i], list[i + 1]]; state.selected[state.kind] = i + 1; }
   else if (e.target.classList.contains('op-copy')) {
-    const copy = structuredClone(ops[i]);
-    copy.name = `${ops[i].name} copy`;
-    ops.splice(i + 1, 0, copy);
+    const copy = structuredClone(list[i]);
+    copy.name = `${list[i].name} copy`;
+    list.splice(i + 1, 0, copy);
     state.selected[state.kind] = i + 1;
   } else if (e.target.classList.contains('op-remove')) {
-    const [gone] = ops.splice(i, 1);
+    const [gone] = list.splice(i, 1);
     state.selected[state.kind] = Math.max(0, i - 1);
     message(`Removed '${gone.name}': Undo (Ctrl+Z) brings it back.`, 'note');
   }
@@ -313,7 +314,7 @@ export function presetHoles() {
   const add = (kind, fields, list) => {
     const o = structuredClone(state.defaults.operations.find((d) => d.kind === kind));
     Object.assign(o, fields, { holes: list.map(indexOf).sort((a, b) => a - b) });
-    job().operations.push(o);
+    ops().push(o);
   };
   if (drilled.length) add('drill', { name: 'spot', tool: spot.number, cycle: 'spot' }, drilled);
   for (const p of plan) {
@@ -322,7 +323,7 @@ export function presetHoles() {
   }
   const edged = made.filter((h) => !h.mark);
   if (chamfer && edged.length) add('chamfer', { tool: chamfer.number }, edged);
-  state.selected[state.kind] = job().operations.length - 1;
+  state.selected[state.kind] = ops().length - 1;
   store();
   hooks.fillTools?.();
   fillOps();

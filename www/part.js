@@ -90,6 +90,8 @@ export async function showPart(bytes = state.bytes, name = state.name, label = s
       state.part = part;
       setKind('part');
       state.viewer?.setPart(part);
+      // A job with setups shows the part as the setup on show holds it.
+      hooks.showHeld?.();
       showScale(describePart(part));
       partNotes(part.warnings);
       const amber = part.warnings.filter((w) => w.level !== 'note');

@@ -1,7 +1,7 @@
 // Generate, cancel and download, and what a run gives back: the view of its paths, the
 // summary with the cycle time's breakdown, the warnings (amber, with their places) and errors
 // (red), the program in its pane, its simulation; the job, the project and the post as files.
-import { $, state, hooks, job, store, buildJob, is2d, isEither, clock, clockFormat, downloadText } from './state.js';
+import { $, state, hooks, job, store, buildJob, is2d, isEither, allOps, hasSetups, setupIndex, clock, clockFormat, downloadText } from './state.js';
 import { fillFields, message, check, answered, problemWords } from './forms.js';
 import { opColor, toolColor, cssColor, RAPID_COLOR, MARK_COLORS } from './viewer.js';
 import { sim, showSimulation } from './simulation.js';
@@ -30,14 +30,14 @@ export function setRunning(running) {
   document.querySelectorAll('#settings input, #settings select, #settings button, #panel .actions button, #panel .actions input, #drop button').forEach((el) => { el.disabled = running; });
   $('generate').disabled = running || !state.bytes;
   $('cancel').disabled = !running;
-  $('download').disabled = running || !state.result;
+  $('download').disabled = $('sheet').disabled = running || !state.result;
   if (!running) hooks.fillAll?.();
 }
 
 // A failed or cancelled Generate, or a new part, leaves nothing of the result it replaced: no
 // path, no simulation, no statistics, no download.
 export function clearResult() {
-  Object.assign(state, { result: null, problem: null });
+  Object.assign(state, { result: null, results: null, problem: null });
   state.viewer?.clearPaths();
   showSimulation(null);
   $('stats').textContent = '';
@@ -45,7 +45,7 @@ export function clearResult() {
   $('warning-count').textContent = '';
   $('sim-report').textContent = '';
   sim.pane?.set(null);
-  $('download').disabled = true;
+  $('download').disabled = $('sheet').disabled = true;
   $('progress').value = 0;
   $('stage').textContent = '';
   legend(null);
@@ -158,8 +158,8 @@ export async function generate() {
   document.body.dataset.generated = 'running';
   const refuse = (text) => { message(text, 'error'); document.body.dataset.generated = 'failed'; };
   const j = buildJob();
-  const wrong = j.operations.filter((op) => !isEither(op) && (state.kind === 'drawing') !== is2d(op));
-  if (wrong.length && wrong.length === j.operations.length) {
+  const wrong = allOps(j).filter((op) => !isEither(op) && (state.kind === 'drawing') !== is2d(op));
+  if (wrong.length && wrong.length === allOps(j).length) {
     refuse(state.kind === 'drawing' ? 'add a pocket or profile operation for a drawing' : 'add a roughing or finishing operation for a part');
     return;
   }
@@ -178,49 +178,40 @@ export async function generate() {
   try {
     // The page takes an unsafe program too: it shows the problem in red with its places marked,
     // and asks before a download.
-    const r = await state.engine.run(j, state.bytes, state.name, {
+    const options = {
       allowUnsafe: true,
       onProgress: (fraction, stage) => { $('progress').value = fraction; $('stage').textContent = stage; },
-    });
-    Object.assign(state, { result: r, extension: r.summary.extension, postName: r.summary.post });
-    const s = r.summary;
-    // The result reaches the view in steps, each a task of its own, so that none holds the
-    // page's thread long on a die-sized result; the view draws once, after the last.
-    const byTool = new Set(j.operations.map((op, i) => (op.kind === 'roughOctree' ? i : -1)).filter((i) => i >= 0));
-    await inSteps([
-      // The part framed again (the job may have placed it elsewhere).
-      () => (r.drawing ? state.viewer?.setDrawing(r.drawing, false) : state.viewer?.setPart(r.part, true)),
-      () => [
-        ...(state.viewer?.pathSteps({ feeds: r.feeds, rapids: r.rapids, stock: s.stock, ops: r.feedOps, tools: r.feedTools, moves: r.feedMoves, rapidMoves: r.rapidMoves, byTool }) ?? []),
-        () => {
-          hooks.showPicked?.();
-          if (r.octants.length) state.viewer?.setOctants(r.octants);
-        },
-      ],
-      () => sim.pane?.set(r.gcodeBytes, r.lineStarts),
-      () => showSimulation(r.sim, s),
-    ]);
-    legend(s, byTool);
-    state.summary = { s, computed: (performance.now() - started) / 1000 };
-    showSummary();
+    };
+    // A job with setups gives a result a setup; the one on show is the setup on show's.
+    const many = hasSetups(j);
+    const results = many ? (await state.engine.runSetups(j, state.bytes, state.name, options)).setups : [await state.engine.run(j, state.bytes, state.name, options)];
+    const computed = (performance.now() - started) / 1000;
+    const k = many ? setupIndex(j) : 0;
+    await showResult(results[k], many ? j.setups[k].operations : j.operations, computed);
+    state.results = many ? results : null;
+    state.computed = computed;
     // A problem is shown as one, in red, with its places marked in the view; the program can
     // still be downloaded, behind a confirmation that names it.
-    state.problem = s.problem ?? null;
-    const amber = showWarnings(s);
-    const notes = s.warnings.length - amber;
+    const unsafe = results.find((r) => r.summary.problem);
+    state.problem = unsafe ? (many ? `${unsafe.setup.name}: ${unsafe.summary.problem}` : unsafe.summary.problem) : null;
+    const warned = results.flatMap((r) => r.summary.warnings.map((w) => ({ ...w, setup: many ? r.setup.name : null })));
+    const amber = warned.filter((w) => w.level !== 'note');
+    const notes = warned.length - amber.length;
+    const cycle = results.reduce((t, r) => t + r.summary.cycle.seconds, 0);
+    const each = many ? ` (${results.map((r) => `${r.setup.name} ${clock(r.summary.cycle.seconds)}`).join(', ')})` : '';
     if (state.problem) {
       message(`Not safe to run: ${state.problem}`, 'error');
       resultTab('warnings');
-    } else if (amber) {
-      message(`Done, with ${amber} warning${amber > 1 ? 's' : ''}: ${s.warnings.filter((w) => w.level !== 'note').map((w) => (w.operation ? `${w.operation}: ${w.message}` : w.message)).join('\n')}`, 'warning');
+    } else if (amber.length) {
+      message(`Done, with ${amber.length} warning${amber.length > 1 ? 's' : ''}: ${amber.map((w) => [w.setup, w.operation, w.message].filter(Boolean).join(': ')).join('\n')}`, 'warning');
       resultTab('warnings');
     } else {
-      message(`Done: cycle time ${clock(s.cycle.seconds)} ${clockFormat(s.cycle.seconds)}${notes ? ` (${notes} note${notes > 1 ? 's' : ''})` : ''}.`, 'ok');
+      message(`Done: cycle time ${clock(cycle)} ${clockFormat(cycle)}${each}${notes ? ` (${notes} note${notes > 1 ? 's' : ''})` : ''}.`, 'ok');
       resultTab('summary');
     }
     $('progress').value = 1;
     $('stage').textContent = state.problem ? 'done, with problems' : 'done';
-    $('download').disabled = false;
+    $('download').disabled = $('sheet').disabled = false;
     document.body.dataset.generated = state.problem ? 'problem' : 'ok';
   } catch (e) {
     clearResult();
@@ -230,6 +221,58 @@ export async function generate() {
     document.body.dataset.generated = cancelled ? 'cancelled' : 'failed';
   } finally {
     setRunning(false);
+  }
+}
+
+// Shows the result `r` of a run of `operations` (a job's, or one setup's): its part as placed,
+// its paths, program, simulation, legend, summary and warnings.
+async function showResult(r, operations, computed) {
+  // Which setup's result is on show (the simulation's requests name it).
+  Object.assign(state, { result: r, extension: r.summary.extension, postName: r.summary.post, shownSetup: r.setup?.index });
+  const s = r.summary;
+  // The result reaches the view in steps, each a task of its own, so that none holds the
+  // page's thread long on a die-sized result; the view draws once, after the last.
+  const byTool = new Set(operations.map((op, i) => (op.kind === 'roughOctree' ? i : -1)).filter((i) => i >= 0));
+  await inSteps([
+    // The part framed again (the job may have placed it elsewhere).
+    () => (r.drawing ? state.viewer?.setDrawing(r.drawing, false) : state.viewer?.setPart(r.part, true)),
+    () => [
+      ...(state.viewer?.pathSteps({ feeds: r.feeds, rapids: r.rapids, stock: s.stock, ops: r.feedOps, tools: r.feedTools, moves: r.feedMoves, rapidMoves: r.rapidMoves, byTool }) ?? []),
+      () => {
+        hooks.showPicked?.();
+        if (r.octants.length) state.viewer?.setOctants(r.octants);
+      },
+    ],
+    () => sim.pane?.set(r.gcodeBytes, r.lineStarts),
+    () => showSimulation(r.sim, s),
+  ]);
+  legend(s, byTool);
+  state.summary = { s, computed };
+  showSummary();
+  showWarnings(s);
+  document.body.dataset.shownSetup = String(r.setup?.index ?? 0);
+}
+
+// Setup `k`'s result on show (its tab chosen after Generate).
+export async function showSetupResult(k) {
+  const results = state.results;
+  if (!results?.[k]) return;
+  await showResult(results[k], job().setups[k].operations, state.computed ?? 0);
+  state.results = results;
+  $('download').disabled = $('sheet').disabled = false;
+}
+
+// The setup sheet of the last Generate, opened in a tab of its own to print (saved as a file
+// where the browser opens no tab).
+export async function showSheet() {
+  if (!state.result) return;
+  try {
+    const html = await state.engine.setupSheet(buildJob(), state.name);
+    const url = URL.createObjectURL(new Blob([html], { type: 'text/html' }));
+    if (!window.open(url, '_blank')) downloadText(`${state.name.replace(/\.[^.]*$/, '')}-setup-sheet.html`, html, 'text/html');
+    setTimeout(() => URL.revokeObjectURL(url), 60000);
+  } catch (e) {
+    message(e.message, 'error');
   }
 }
 
@@ -246,15 +289,20 @@ export function cancel() {
 
 // The program's file name: the part's, the controller's, and the extension its controllers
 // expect (`bracket-grbl.nc`, `bracket-fanuc.nc`: two controllers' programs never share one).
-export function programName() {
+// A setup's program (`setup`: its index) says which it is: `bracket-op2-grbl.nc`, as
+// `swarf run` names it.
+export function programName(setup = null) {
   const slug = (state.postName ?? 'program').toLowerCase().replace(/[^a-z0-9]+/g, '').replace(/^$/, 'post');
-  return `${state.name.replace(/\.[^.]*$/, '')}-${slug}.${state.extension ?? 'nc'}`;
+  return `${state.name.replace(/\.[^.]*$/, '')}${setup === null ? '' : `-op${setup + 1}`}-${slug}.${state.extension ?? 'nc'}`;
 }
 
+// The program, or with setups every setup's program (one file each).
 export function download() {
   if (!state.result) return;
   if (state.problem && !window.confirm(`This program is not safe to run: ${state.problem}.\n\nDownload it anyway? It starts with a warning comment.`)) return;
-  downloadText(programName(), state.result.gcodeBytes, 'text/plain');
+  if (!state.results) { downloadText(programName(), state.result.gcodeBytes, 'text/plain'); return; }
+  state.results.forEach((r, k) => downloadText(programName(k), r.gcodeBytes, 'text/plain'));
+  message(`Downloaded ${state.results.length} programs, one a setup: ${state.results.map((r, k) => programName(k)).join(', ')}.`, 'ok');
 }
 
 // ---- posts as data ----------------------------------------------------------------------
@@ -297,11 +345,14 @@ export async function loadPost(file) {
 export async function repost() {
   if (!state.result || state.running) return;
   try {
-    const r = await state.engine.repost(job().post);
+    // Every setup's program, each written again.
+    let r = null;
+    for (const [k, result] of (state.results ?? [state.result]).entries()) {
+      r = await state.engine.repost(job().post, state.results ? k : undefined);
+      Object.assign(result, { moveLines: r.moveLines, gcodeBytes: r.gcodeBytes, lineStarts: r.lineStarts });
+    }
     Object.assign(state, { extension: r.extension, postName: r.post });
-    state.result.moveLines = r.moveLines;
-    Object.assign(state.result, { gcodeBytes: r.gcodeBytes, lineStarts: r.lineStarts });
-    sim.pane?.set(r.gcodeBytes, r.lineStarts);
+    sim.pane?.set(state.result.gcodeBytes, state.result.lineStarts);
     message(`The program is written again for ${r.post}${job().post.units === 'inch' ? ' in inches' : ''}: cycle time ${clock(r.cycle.seconds)} ${clockFormat(r.cycle.seconds)}.`, 'ok');
   } catch (e) {
     clearResult();
@@ -329,7 +380,7 @@ export async function loadJob(file) {
     await applyJob(read);
     const problems = await check();
     if (problems.length) message(`Loaded the job from ${file.name}, but ${problems.length} setting${problems.length > 1 ? 's need' : ' needs'} attention: ${problems.map(problemWords).join('; ')}`, 'error');
-    else message(`Loaded the job from ${file.name}: ${read.operations.length} operation(s).`, 'ok');
+    else message(`Loaded the job from ${file.name}: ${read.setups?.length ? `${read.setups.length} setups, ` : ''}${allOps(read).length} operation(s).`, 'ok');
   } catch (e) {
     message(`${file.name}: ${e.message}`, 'error');
   } finally {
@@ -341,12 +392,14 @@ export async function loadJob(file) {
 // those of the same number); `part` ({bytes, name}) is shown instead of the sample, read as the
 // job says (a project keeps its part's units).
 async function applyJob(read, part = null) {
-  if (!read.operations.length) throw new Error('the job has no operations');
-  for (const op of read.operations) {
+  const every = allOps(read);
+  if (!every.length) throw new Error('the job has no operations');
+  for (const op of every) {
     const missing = (op.kind === 'roughOctree' ? op.tools : [op.tool]).find((n) => !read.tools.some((t) => t.number === n));
     if (missing != null) throw new Error(`operation '${op.name}' uses tool ${missing}, which the job does not have`);
   }
-  const kind = read.operations.some(is2d) && read.operations.every((op) => is2d(op) || isEither(op)) ? 'drawing' : 'part';
+  // A job with setups turns a part over: a drawing is cut from one side.
+  const kind = !read.setups?.length && every.some(is2d) && every.every((op) => is2d(op) || isEither(op)) ? 'drawing' : 'part';
   for (const t of read.tools) {
     const k = state.tools.findIndex((u) => u.number === t.number);
     if (k >= 0) state.tools[k] = t; else state.tools.push(t);
@@ -358,6 +411,7 @@ async function applyJob(read, part = null) {
   if (!part && kind === 'drawing') read.drawing = { ...read.drawing, units: state.jobs.drawing.drawing.units, origin: state.jobs.drawing.drawing.origin };
   state.jobs[kind] = read;
   state.selected[kind] = 0;
+  state.selected.setup = 0;
   store();
   if (part) {
     hooks.setKind?.(kind);
@@ -384,7 +438,7 @@ export async function openProject(file, text) {
     const project = await state.engine.readProject(text ?? await file.text());
     await applyJob(project.job, project.bytes ? { bytes: project.bytes, name: project.name } : null);
     message(project.bytes
-      ? `Opened the project ${file.name}: ${project.name}, ${project.job.operations.length} operation(s).`
+      ? `Opened the project ${file.name}: ${project.name}, ${allOps(project.job).length} operation(s).`
       : `Opened the project ${file.name}; it names its part ${project.name} without holding it: open that file.`, project.bytes ? 'ok' : 'warning');
   } catch (e) {
     message(`${file.name}: ${e.message}`, 'error');

@@ -2,7 +2,7 @@
 // program head's, tool changes included), play at a chosen speed, a step a move back or on, the
 // tool drawn where it is, the path already cut apart from the path to come, the G-code line of
 // the move in the pane, and the material removal rate over the program.
-import { $, state, hooks, clock, clockFormat, job } from './state.js';
+import { $, state, hooks, clock, clockFormat, ops } from './state.js';
 import { opColor } from './viewer.js';
 import * as units from './units.js';
 
@@ -29,7 +29,7 @@ async function seek(t, end = null) {
   sim.busy = true;
   try {
     const { k, f, done } = end === null ? moveAt(t) : { k: end, f: 1, done: end + 1 };
-    const r = await state.engine.call({ type: 'seek', count: done, at: k, f });
+    const r = await state.engine.call({ type: 'seek', count: done, at: k, f, setup: state.shownSetup });
     if (done !== sim.shown) state.viewer?.updateStock(r.tops);
     sim.shown = done;
     if (r.tool.length) {
@@ -96,7 +96,14 @@ export function play() {
     const dt = (now - last) / 1000;
     last = now;
     setTime(sim.time + dt * Number($('speed').value));
-    if (sim.time >= total) { sim.playing = false; $('play').textContent = '▶'; return; }
+    if (sim.time >= total) {
+      sim.playing = false;
+      $('play').textContent = '▶';
+      // A setup's program over, the next setup's plays on from the stock it left.
+      const next = state.shownSetup == null ? null : state.shownSetup + 1;
+      if (next !== null && state.results?.[next]) hooks.playSetup?.(next);
+      return;
+    }
     requestAnimationFrame(frame);
   };
   requestAnimationFrame(frame);
@@ -180,7 +187,7 @@ export function showSimulation(data, summary = null) {
   $('sim-report').textContent = units.words(r.text.trim());
   $('sim-report').className = r.gougeCount + r.rapidCollisionCount + r.bodyCollisionCount > 0 ? 'result problem' : 'result';
   // A V-carve is judged by its depths: coloured so from the start (the box turns it off).
-  const carved = job().operations.some((o) => o.kind === 'vcarve' && o.enabled !== false);
+  const carved = ops().some((o) => o.kind === 'vcarve' && o.enabled !== false);
   $('show-depth').checked = carved;
   if (state.viewer) state.viewer.show.depth = carved;
   state.viewer?.setStock(data.grid, data.part, data.start);

@@ -11,8 +11,9 @@ export const state = {
   engine: null, viewer: null,
   bytes: null, name: 'sample.stl', label: 'sample part', sample: null, sampleDrawing: null, defaults: null, posts: [],
   kind: 'part', drawing: null, part: null,
-  tools: [], jobs: { part: null, drawing: null }, selected: { tool: 0, part: 0, drawing: 0 },
-  running: false, result: null, problem: null, extension: null,
+  tools: [], jobs: { part: null, drawing: null }, selected: { tool: 0, part: 0, drawing: 0, setup: 0 },
+  // A job with setups gives a result a setup (`results`); `result` is the one on show.
+  running: false, result: null, results: null, problem: null, extension: null,
   problems: [],
   // The last program's text (made when read: the page itself shows and downloads its bytes).
   get gcode() { return this.result?.gcode ?? null; },
@@ -23,7 +24,14 @@ export const state = {
 export const hooks = {};
 
 export const job = () => state.jobs[state.kind];
-export const selectedOp = () => job().operations[state.selected[state.kind]] ?? null;
+// A part's job may have setups (each its own operations; a job without is its one setup): the
+// setup on show, and the operations the list edits (those of the setup on show).
+export const hasSetups = (j = job()) => state.kind === 'part' && (j?.setups?.length ?? 0) > 0;
+export const setupIndex = (j = job()) => (hasSetups(j) ? Math.max(0, Math.min(state.selected.setup, j.setups.length - 1)) : 0);
+export const ops = (j = job()) => (hasSetups(j) ? j.setups[setupIndex(j)].operations : j.operations);
+// Every operation of a job, of every setup.
+export const allOps = (j) => [...(j.operations ?? []), ...(j.setups ?? []).flatMap((s) => s.operations ?? [])];
+export const selectedOp = () => ops()[state.selected[state.kind]] ?? null;
 export const selectedTool = () => state.tools[state.selected.tool] ?? null;
 export const is2d = (op) => op.kind === 'profile2d' || op.kind === 'pocket2d' || op.kind === 'engrave' || op.kind === 'vcarve';
 // The hole operations work on a part's holes and on a drawing's circles alike, facing on a
@@ -94,6 +102,7 @@ export function undo(back = true) {
   hooks.fillAll?.();
   // A part read another way (units, scale, up axis, turn) is shown again as it was read.
   if (JSON.stringify(state.jobs[state.kind]?.part) !== placed) hooks.showPart?.();
+  else hooks.showHeld?.();
   hooks.history?.();
   return true;
 }
@@ -135,7 +144,7 @@ export async function restore(read) {
   }
   // A library from before (or emptied) leaves no operation pointing nowhere.
   for (const j of Object.values(state.jobs)) {
-    for (const op of j.operations) {
+    for (const op of allOps(j)) {
       if (op.kind === 'roughOctree') op.tools = (op.tools ?? []).filter((n) => state.tools.some((t) => t.number === n));
       else if (!state.tools.some((t) => t.number === op.tool)) op.tool = state.tools[0]?.number ?? 1;
     }
@@ -166,7 +175,7 @@ export function toolsOf(op) {
 export function buildJob({ all = false } = {}) {
   const j = structuredClone(job());
   j.name = state.name.replace(/\.[^.]*$/, '');
-  const used = new Set(j.operations.flatMap(toolsOf));
+  const used = new Set(allOps(j).flatMap(toolsOf));
   j.tools = all ? structuredClone(state.tools) : state.tools.filter((t) => used.has(t.number));
   return j;
 }

@@ -1,9 +1,9 @@
 // The API of swarf.js. The data it passes (jobs, tools, operations, posts, projects, results)
 // has the types generated from swarf's Rust serde types (types/swarf-types.d.ts); only the
 // engine's own calls, and the input forms of those types, are declared here.
-import type { Job, Post, PostSettings, CycleTime, Project, Summary, DrawingView, ReportView, Reposted, Problem, Warning, OperationReport, TimeItem, Hole, EdgeView } from './types/swarf-types.js';
+import type { Job, Post, PostSettings, CycleTime, Project, Summary, DrawingView, ReportView, Reposted, Problem, Warning, OperationReport, TimeItem, Hole, EdgeView, SetupView } from './types/swarf-types.js';
 
-export type { Job, Post, PostSettings, CycleTime, Project, Summary, DrawingView, ReportView, Reposted, Problem, Warning, OperationReport, TimeItem, Hole, EdgeView };
+export type { Job, Post, PostSettings, CycleTime, Project, Summary, DrawingView, ReportView, Reposted, Problem, Warning, OperationReport, TimeItem, Hole, EdgeView, SetupView };
 
 /**
  * What the engine takes of a type: every field the core fills with its default may be left out
@@ -106,6 +106,16 @@ export interface RunResult {
   sim: Simulation | null;
 }
 
+/** Where a setup holds the part, and its result. */
+export interface SetupResult extends RunResult {
+  setup: SetupView;
+}
+
+/** A job with setups, run: one result a setup, in order. */
+export interface SetupsResult {
+  setups: SetupResult[];
+}
+
 export interface RunOptions {
   onProgress?: (fraction: number, stage: string) => void;
   /** Aborting it ends the work; the promise rejects with a CancelledError. */
@@ -152,14 +162,21 @@ export declare class Engine {
   readPost(text: string): Promise<Post>;
   readProject(text: string): Promise<{ job: Job; name: string; bytes: Uint8Array | null }>;
   writeProject(job: JobInput, name: string, bytes: Uint8Array): Promise<string>;
+  /** Runs a job without setups (one with setups rejects: see `runSetups`). */
   run(job: JobInput, bytes: Uint8Array, name: string, options?: RunOptions): Promise<RunResult>;
+  /** Runs a job with setups, one after another, each from the stock the one before left. */
+  runSetups(job: JobInput, bytes: Uint8Array, name: string, options?: RunOptions): Promise<SetupsResult>;
+  /** The last run's setup sheet (every setup's), a printable HTML page. */
+  setupSheet(job: JobInput, name: string): Promise<string>;
+  /** Where each setup of `job` holds a part of these bounds, before a run (empty without setups). */
+  setupFrames(job: JobInput, partBounds: ArrayLike<number>): Promise<SetupView[]>;
   holes(job: JobInput, bytes: Uint8Array, name: string): Promise<Hole[]>;
   /** A part's round bosses (studs), for an external thread mill: numbered as its `holes` take them. */
   bosses(job: JobInput, bytes: Uint8Array, name: string): Promise<Hole[]>;
   /** A part's top edges for a chamfer (`edges: 'partEdges'`): numbered as its `loops` take them. */
   edges(job: JobInput, bytes: Uint8Array, name: string): Promise<EdgeView[]>;
-  repost(post: PostSettingsInput): Promise<Reposted & { moveLines: Uint32Array; gcodeBytes: Uint8Array<ArrayBuffer>; lineStarts: Uint32Array }>;
-  seek(count: number): Promise<Float32Array>;
+  repost(post: PostSettingsInput, setup?: number): Promise<Reposted & { moveLines: Uint32Array; gcodeBytes: Uint8Array<ArrayBuffer>; lineStarts: Uint32Array }>;
+  seek(count: number, setup?: number): Promise<Float32Array>;
   cancel(): Promise<void>;
   close(): void;
 }

@@ -285,7 +285,7 @@ export class Engine {
    * operation's levels are made on every worker first, and each operation's moves cut the
    * simulated stock in groups of bands of rows on every worker; the program and its
    * simulation are the same as one worker's. Runs asked for while
-   * one runs wait for it.
+   * one runs wait for it. A job with setups runs through `runSetups`.
    */
   run(job, bytes, name, options = {}) {
     // One run at a time: a pool's workers hold one prepared job each.
@@ -295,13 +295,42 @@ export class Engine {
   }
 
   async #run(job, bytes, name, { onProgress, signal, allowUnsafe = false } = {}) {
+    if (job.setups?.length) throw new Error('the job has setups: run it with runSetups, which gives a program a setup');
     const result = await this.#plan(job, bytes, name, onProgress, signal);
     // A program its own simulation refuses never leaves the engine quietly.
     if (result.summary.problem && !allowUnsafe) throw new UnsafeProgramError(result.summary.problem, result);
     return result;
   }
 
-  async #plan(job, bytes, name, onProgress, signal) {
+  /**
+   * Runs a job with setups (a part machined from more than one side), one setup after another,
+   * each from the stock the one before left (the planning worker keeps it), with the same
+   * options as `run`: resolves with `{ setups: [result] }`, each a run's result with `setup`
+   * (a SetupView: its index, name, where it holds the part and its stock box). A setup whose
+   * program is unsafe rejects with an UnsafeProgramError naming the setup (its `result` the
+   * whole), unless `allowUnsafe`. `seek` and `repost` then name the setup.
+   */
+  runSetups(job, bytes, name, options = {}) {
+    const turn = this.#last.catch(() => {}).then(() => this.#runSetups(job, bytes, name, options));
+    this.#last = turn;
+    return turn;
+  }
+
+  async #runSetups(job, bytes, name, { onProgress, signal, allowUnsafe = false } = {}) {
+    if (!job.setups?.length) throw new Error('the job has no setups: run it with run');
+    const n = job.setups.length, setups = [];
+    for (let k = 0; k < n; k++) {
+      const within = (f, stage) => onProgress?.((k + f) / n, `${job.setups[k].name || `Setup ${k + 1}`}: ${stage}`);
+      const r = await this.#plan(job, bytes, name, within, signal, k);
+      setups.push(r);
+    }
+    const result = { setups };
+    const unsafe = setups.find((r) => r.summary.problem);
+    if (unsafe && !allowUnsafe) throw new UnsafeProgramError(`${unsafe.setup.name}: ${unsafe.summary.problem}`, result);
+    return result;
+  }
+
+  async #plan(job, bytes, name, onProgress, signal, setup) {
     if (signal?.aborted) throw new CancelledError();
     // A warm-up still under way would only take cores from the run: it ends here.
     this.#side?.end(new Error('a run began'));
@@ -310,18 +339,18 @@ export class Engine {
     try {
       const memory = this.#options.memory ?? globalThis.navigator?.deviceMemory;
       const sharing = workersFor(this.workers, bytes?.byteLength ?? bytes?.length ?? 0, memory);
-      if (sharing === 1) return withText(await this.call({ type: 'run', job, bytes, name }, [], onProgress));
-      return withText(await this.#runShared([this.#main, ...this.#helpers.slice(0, sharing - 1)], job, bytes, name, onProgress));
+      if (sharing === 1) return withText(await this.call({ type: 'run', job, bytes, name, setup }, [], onProgress));
+      return withText(await this.#runShared([this.#main, ...this.#helpers.slice(0, sharing - 1)], job, bytes, name, onProgress, setup));
     } finally {
       signal?.removeEventListener('abort', onAbort);
     }
   }
 
-  /** A run shared by the workers `all`, the first of them planning. */
-  async #runShared(all, job, bytes, name, onProgress) {
+  /** A run shared by the workers `all`, the first of them planning (of setup `setup`, if any). */
+  async #runShared(all, job, bytes, name, onProgress, setup) {
     const [planner, ...helpers] = all;
     const n = all.length;
-    const [{ needs }] = await Promise.all(all.map((c, w) => c.call({ type: 'prepare', job, bytes, name, helper: w > 0 })));
+    const [{ needs }] = await Promise.all(all.map((c, w) => c.call({ type: 'prepare', job, bytes, name, setup, helper: w > 0 })));
     const { surfaces, rasters, levelMaps } = needs;
     // Bands of rows of every exact CL surface, joined here.
     const joined = surfaces.map((s) => new Float64Array(s.nx * s.ny));
@@ -398,16 +427,32 @@ export class Engine {
   }
 
   /**
-   * The last run's program written again for another post (or in the other unit), without
-   * planning again: `{ gcode, gcodeBytes, lineStarts, extension, post, cycle, time, moveLines }`.
+   * The setup sheet of the last run (every setup of a job with setups) as a standalone,
+   * printable HTML page: how to hold the part for each setup, its work offset and zero, the
+   * stock, a picture from above with the zero marked, the tools, the operations and the times
+   * (`swarf sheet`). `job` is the job that ran, `name` the part's file name.
    */
-  async repost(post) {
-    const { gcodeBytes, lineStarts, extension, post: name, cycle, time, moveLines } = await this.call({ type: 'repost', post });
+  async setupSheet(job, name) { return (await this.call({ type: 'sheet', job, name })).html; }
+
+  /**
+   * Where each setup of `job` holds a part whose bounds are `partBounds` (as `open` gives them),
+   * before a run: `[SetupView]` (empty for a job without setups), for a view that shows the
+   * part turned over as the setup holds it.
+   */
+  async setupFrames(job, partBounds) { return (await this.call({ type: 'setupFrames', job, part: Array.from(partBounds) })).frames; }
+
+  /**
+   * The last run's program (of its setup `setup`, for a job with setups) written again for
+   * another post (or in the other unit), without planning again: `{ gcode, gcodeBytes,
+   * lineStarts, extension, post, cycle, time, moveLines }`.
+   */
+  async repost(post, setup) {
+    const { gcodeBytes, lineStarts, extension, post: name, cycle, time, moveLines } = await this.call({ type: 'repost', post, setup });
     return withText({ gcodeBytes, lineStarts, extension, post: name, cycle, time, moveLines });
   }
 
-  /** The last run's simulated stock after `count` moves (a Float32Array of heights). */
-  async seek(count) { return (await this.call({ type: 'seek', count })).tops; }
+  /** The last run's simulated stock (of its setup `setup`) after `count` moves (a Float32Array of heights). */
+  async seek(count, setup) { return (await this.call({ type: 'seek', count, setup })).tops; }
 
   /** Ends whatever runs: its promise rejects with a `CancelledError`; fresh workers take over. */
   async cancel() {

@@ -1,20 +1,22 @@
 // Runs the wasm pipeline off the page's thread, for swarf.js's engine. Cancel = the engine
 // terminates this worker.
-import init, { defaults, builtinPosts, readPost, readJob, checkJob, writeProject, readProject, samplePart, sampleDrawing, warmUpJob, warmUpPart, loadPart, loadDrawing, isDrawing, runJob, prepareJob, findHoles, findBosses, findEdges } from './pkg/swarf.js';
+import init, { defaults, builtinPosts, readPost, readJob, checkJob, writeProject, readProject, samplePart, sampleDrawing, warmUpJob, warmUpPart, loadPart, loadDrawing, isDrawing, runJob, prepareJob, setupFrames, setupSheet, findHoles, findBosses, findEdges } from './pkg/swarf.js';
 
 // The wasm is loaded on the first message: from the bytes or URL it names (a single-file page
 // passes the bytes), else from pkg/ beside the glue.
 let ready = null;
-// The last job's result stays here so the page can scrub through its simulation.
-let current = null;
-// The job being shared out by the engine's pool (a JobPlan): every worker prepares its own.
+// The last job's results stay here so the page can scrub through their simulations: one, or
+// one a setup of a job with setups ({ result, block } each, by the setup's index).
+let results = [];
+// The job being shared out by the engine's pool (a JobPlan): every worker prepares its own;
+// and the setup it is of (undefined for a job without setups).
 let plan = null;
+let planSetup;
 
 // The simulated stock goes to the view on at most this many cells: a finer simulation is shown
 // by the highest of each block of its cells (so no material is hidden), which keeps drawing,
 // scrubbing and the messages behind them quick on a die-sized job.
 const VIEW_CELLS = 512 * 512;
-let block = null; // { factor, nx, ny, vx, vy } of the current result
 
 function blockOf(grid) {
   const [, , , nx, ny] = grid;
@@ -23,8 +25,8 @@ function blockOf(grid) {
 }
 
 // The highest value of each block of cells (NaN only where the whole block is), as a copy the
-// message can own.
-function coarse(values) {
+// message can own. `block`: { factor, nx, ny, vx, vy } of the result.
+function coarse(values, block) {
   const { factor, nx, ny, vx, vy } = block;
   if (factor === 1) return values.slice();
   const out = new Float32Array(vx * vy).fill(NaN);
@@ -89,8 +91,28 @@ function linesOf(bytes) {
   return starts;
 }
 
-// Sends a run's result (a JobResult) to the engine and keeps it for scrubbing and reposting.
-function send(id, result) {
+// The result kept for setup `setup` (a job without setups: its one).
+function kept(setup) {
+  const r = results[setup ?? 0];
+  if (!r) throw new Error('generate a program first');
+  return r;
+}
+
+// A plan of setup `setup` (undefined: a job without setups), starting from the stock the setup
+// before left (its result is kept here, from the run before).
+function prepared(job, bytes, name, setup, carry) {
+  const p = prepareJob(job, bytes, name, setup);
+  if (carry && setup > 0) {
+    const before = results[setup - 1];
+    if (!before) { p.free(); throw new Error(`setup ${setup} needs the stock setup ${setup - 1} left: run that first`); }
+    p.carryFrom(before.result);
+  }
+  return p;
+}
+
+// Sends a run's result (a JobResult) to the engine and keeps it for scrubbing and reposting:
+// a job's, or setup `setup`'s (the first setup's forgets those of the run before).
+function send(id, result, setup) {
   const feeds = result.feeds().slice();
   const feedOps = result.feedOperations().slice();
   const feedTools = result.feedTools().slice();
@@ -104,29 +126,35 @@ function send(id, result) {
   const drawing = result.drawing();
   const { part, transfer: partTransfer } = partMessage(result.takePart(), true);
   const simTransfer = [];
-  let sim = null;
+  let sim = null, block = null;
   if (result.hasSimulation()) {
     const grid = Array.from(result.simGrid());
     block = blockOf(grid);
     sim = {
       grid: [grid[0], grid[1], grid[2] * block.factor, block.vx, block.vy, ...grid.slice(5)],
-      part: coarse(result.simPart()),
+      part: coarse(result.simPart(), block),
       times: result.times().slice(),
       mrr: result.mrr().slice(),
       findings: result.findings().slice(),
       report: result.report(),
-      start: coarse(result.seek(result.times().length - 1)),
+      start: coarse(result.seek(result.times().length - 1), block),
     };
     simTransfer.push(sim.part.buffer, sim.times.buffer, sim.mrr.buffer, sim.findings.buffer, sim.start.buffer);
   }
-  current?.free();
-  current = result;
+  const place = result.setup() ?? null;
+  if (!setup) {
+    for (const r of results) r?.result.free();
+    results = [];
+  } else {
+    results[setup]?.result.free();
+  }
+  results[setup ?? 0] = { result, block };
   // In pieces, each a task of its own on the page's thread (the engine puts them together):
   // a die-sized result is a hundred megabytes of arrays.
   self.postMessage({ id, type: 'piece', piece: { part } }, partTransfer);
   self.postMessage({ id, type: 'piece', piece: { feeds, feedOps, feedTools, feedMoves, octants, rapids, rapidMoves } }, [feeds.buffer, feedOps.buffer, feedTools.buffer, feedMoves.buffer, octants.buffer, rapids.buffer, rapidMoves.buffer]);
   self.postMessage({ id, type: 'piece', piece: { gcodeBytes, lineStarts, moveLines } }, [gcodeBytes.buffer, lineStarts.buffer, moveLines.buffer]);
-  self.postMessage({ id, ok: true, summary, drawing, sim }, simTransfer);
+  self.postMessage({ id, ok: true, summary, drawing, sim, setup: place }, simTransfer);
 }
 
 // A Content-Security-Policy that blocks what the worker needs (compiling the wasm, fetching
@@ -166,12 +194,28 @@ self.onmessage = async (event) => {
         const { part, transfer } = partMessage(loadPart(event.data.bytes, event.data.name, event.data.setup));
         self.postMessage({ id, ok: true, part }, transfer);
       }
+    } else if (type === 'sheet') {
+      if (!results.length) throw new Error('generate a program first');
+      self.postMessage({ id, ok: true, html: setupSheet(event.data.job, event.data.name, results.map((r) => r.result.sheet())) });
+    } else if (type === 'setupFrames') {
+      self.postMessage({ id, ok: true, frames: setupFrames(event.data.job, Float64Array.from(event.data.part)) });
     } else if (type === 'run') {
-      send(id, runJob(event.data.job, event.data.bytes, event.data.name, progressTo(id)));
+      const { job, bytes, name, setup } = event.data;
+      if (setup === undefined) {
+        send(id, runJob(job, bytes, name, progressTo(id)));
+      } else {
+        const p = prepared(job, bytes, name, setup, true);
+        try {
+          send(id, p.run(progressTo(id)), setup);
+        } finally {
+          p.free();
+        }
+      }
     } else if (type === 'prepare') {
       plan?.free();
       plan = null;
-      plan = prepareJob(event.data.job, event.data.bytes, event.data.name);
+      planSetup = event.data.setup;
+      plan = prepared(event.data.job, event.data.bytes, event.data.name, planSetup, !event.data.helper);
       // Only the planning worker's list of what can be shared is used.
       self.postMessage({ id, ok: true, needs: event.data.helper ? null : plan.needs() });
     } else if (type === 'rows') {
@@ -240,7 +284,7 @@ self.onmessage = async (event) => {
       const p = planned();
       plan = null;
       try {
-        send(id, p.finish(progressTo(id)));
+        send(id, p.finish(progressTo(id)), planSetup);
       } finally {
         p.free();
       }
@@ -255,21 +299,19 @@ self.onmessage = async (event) => {
     } else if (type === 'edges') {
       self.postMessage({ id, ok: true, edges: findEdges(event.data.job, event.data.bytes, event.data.name) });
     } else if (type === 'repost') {
-      if (!current) throw new Error('generate a program first');
       // The program as bytes, as a run's is (see `send`).
-      const { gcode, ...rest } = current.repost(event.data.post);
+      const { gcode, ...rest } = kept(event.data.setup).result.repost(event.data.post);
       const gcodeBytes = new TextEncoder().encode(gcode), lineStarts = linesOf(gcodeBytes);
       self.postMessage({ id, ok: true, ...rest, gcodeBytes, lineStarts }, [gcodeBytes.buffer, lineStarts.buffer, rest.moveLines.buffer]);
     } else if (type === 'seek') {
       // The stock after `count` moves, and the tool a fraction `f` into move `at` (default:
       // the end of the last move counted).
-      if (!current) throw new Error('nothing to simulate yet');
       const { count, at = Math.max(0, count - 1), f = count > 0 ? 1 : 0 } = event.data;
-      const tops = coarse(current.seek(count));
-      self.postMessage({ id, ok: true, tops, count, tool: Array.from(current.toolAt(at, f)) }, [tops.buffer]);
+      const { result, block } = kept(event.data.setup);
+      const tops = coarse(result.seek(count), block);
+      self.postMessage({ id, ok: true, tops, count, tool: Array.from(result.toolAt(at, f)) }, [tops.buffer]);
     } else if (type === 'toolAt') {
-      if (!current) throw new Error('nothing to simulate yet');
-      self.postMessage({ id, ok: true, tool: Array.from(current.toolAt(event.data.at, event.data.f)) });
+      self.postMessage({ id, ok: true, tool: Array.from(kept(event.data.setup).result.toolAt(event.data.at, event.data.f)) });
     }
   } catch (error) {
     // A policy's violation is reported a moment after the fetch it blocked fails.

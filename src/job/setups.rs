@@ -116,6 +116,48 @@ impl Job {
     }
 }
 
+/// Where each setup of `job` holds a part whose bounds (as the job places it) are `part`, and
+/// the raw stock's box in that setup's frame: the frames [`run_setups`] runs the setups in,
+/// for a view that shows a setup before it is run.
+pub fn setup_frames(job: &Job, part: &Aabb) -> Vec<(Orientation, Aabb)> {
+    let raw = job.stock.around(part);
+    let mut rotation = DMat3::IDENTITY;
+    job.setups
+        .iter()
+        .map(|setup| {
+            rotation = turn_rotation(setup.turn) * flip_rotation(setup.flip) * rotation;
+            let turned = Orientation { rotation, centre: raw.center(), shift: DVec3::ZERO };
+            let stock = turned.apply_box(&raw);
+            // A quarter-turned box of the part is the turned part's box.
+            let shift = match setup.zero.or(job.stock.zero) {
+                Some(zero) => -zero.point(&stock, turned.apply_box(part).max.z),
+                None => DVec3::ZERO,
+            };
+            let orientation = Orientation { shift, ..turned };
+            (orientation, orientation.apply_box(&raw))
+        })
+        .collect()
+}
+
+/// Setup `k` of `job` as a job of its own on `part` (placed as the job places it), held as
+/// `frame` ([`setup_frames`]) holds it: ready to prepare. Errors it meets are to be named
+/// with [`setup_error`].
+pub fn setup_stage(job: &Job, k: usize, part: &Mesh, frame: &(Orientation, Aabb)) -> (Job, Mesh) {
+    let (orientation, stock) = *frame;
+    let mut held = part.clone();
+    held.transform(|v| orientation.apply(v));
+    (job.setup_job(k, stock, orientation.rotation), held)
+}
+
+/// An error of setup `k`, named `name`, said with the setup's place and name.
+pub fn setup_error(k: usize, name: &str, e: Error) -> Error {
+    match e {
+        Error::Input(m) => Error::Input(format!("setups[{k}] ({name}): {m}")),
+        Error::Operation { operation, why } => Error::Operation { operation: format!("{operation} ({name})"), why },
+        e => e,
+    }
+}
+
 /// Runs every setup of `job` on `part` in turn, each from the stock the one before left: one
 /// program each. A job without setups is its one setup.
 pub fn run_setups(job: &Job, mut part: Mesh, progress: &mut Progress) -> Result<Vec<SetupOutput>> {
@@ -126,38 +168,20 @@ pub fn run_setups(job: &Job, mut part: Mesh, progress: &mut Progress) -> Result<
         return Ok(vec![SetupOutput { name: job.name.clone(), orientation, output }]);
     }
     job.part.apply(&mut part);
-    let raw = job.stock.around(&part.bounds());
+    let frames = setup_frames(job, &part.bounds());
     let names = job.setup_names();
     let n = job.setups.len();
-    let mut rotation = DMat3::IDENTITY;
     let mut out: Vec<SetupOutput> = Vec::with_capacity(n);
-    for (k, setup) in job.setups.iter().enumerate() {
-        rotation = turn_rotation(setup.turn) * flip_rotation(setup.flip) * rotation;
-        let turned = Orientation { rotation, centre: raw.center(), shift: DVec3::ZERO };
-        let mut held = part.clone();
-        held.transform(|v| turned.apply(v));
-        let stock = turned.apply_box(&raw);
-        let shift = match setup.zero.or(job.stock.zero) {
-            Some(zero) => -zero.point(&stock, held.bounds().max.z),
-            None => DVec3::ZERO,
-        };
-        held.transform(|v| v + shift);
-        let orientation = Orientation { shift, ..turned };
-        let stock = orientation.apply_box(&raw);
-        let sub = job.setup_job(k, stock, rotation);
-        let named = |e: Error| match e {
-            Error::Input(m) => Error::Input(format!("setups[{k}] ({}): {m}", names[k])),
-            Error::Operation { operation, why } => Error::Operation { operation: format!("{} ({})", operation, names[k]), why },
-            e => e,
-        };
-        let mut prepared = prepare(&sub, Workpiece::Mesh(held)).map_err(named)?;
+    for (k, frame) in frames.iter().enumerate() {
+        let (sub, held) = setup_stage(job, k, &part, frame);
+        let mut prepared = prepare(&sub, Workpiece::Mesh(held)).map_err(|e| setup_error(k, &names[k], e))?;
         if let Some(before) = out.last() {
             let left = before.output.verification.as_ref().map(|v| &v.stock).ok_or_else(|| Error::Internal("a setup before another was not simulated".into()))?;
-            let (from, to) = (before.orientation, orientation);
+            let (from, to) = (before.orientation, frame.0);
             prepared.carry(|p| carried(left, &from, &to, p));
         }
-        let output = progress.within(k as f64 / n as f64, 1.0 / n as f64, &names[k], |p| prepared.run(p)).map_err(named)?;
-        out.push(SetupOutput { name: names[k].clone(), orientation, output });
+        let output = progress.within(k as f64 / n as f64, 1.0 / n as f64, &names[k], |p| prepared.run(p)).map_err(|e| setup_error(k, &names[k], e))?;
+        out.push(SetupOutput { name: names[k].clone(), orientation: frame.0, output });
     }
     Ok(out)
 }

@@ -6,19 +6,76 @@
 
 use std::fmt::Write;
 
+use serde::{Deserialize, Serialize};
+
+use super::run::JobOutput;
 use super::schema::{Flip, Job, WorkZero, ZeroCorner, ZeroHeight};
-use super::setups::SetupOutput;
-use crate::post::clock;
+use crate::geom::Aabb;
+use crate::post::{clock, TimeItem};
 
 /// Longest side of the picture's grid of shades: the part's heights sampled this coarsely.
 const PICTURE_CELLS: usize = 120;
 
-/// The setup sheet of `job`'s `setups` (as [`super::run_setups`] made them) for the part named
-/// `part`, as a standalone HTML page.
-pub fn setup_sheet(job: &Job, part: &str, setups: &[SetupOutput]) -> String {
+/// What a setup sheet says of one setup's program: taken from its output as it is made
+/// ([`SheetSetup::of`]), so that the page's worker keeps it beside the result it shows and the
+/// sheet is written from the same figures in the page and by `swarf sheet`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub struct SheetSetup {
+    pub name: String,
+    /// The work offset its program selects (`G55`), if any.
+    pub work_offset: Option<String>,
+    pub stock: Aabb,
+    pub moves: usize,
+    pub cycle: f64,
+    /// The tools in the order the program takes them.
+    pub tools: Vec<u32>,
+    pub operations: Vec<SheetOperation>,
+    pub time: Vec<TimeItem>,
+    /// The part and stock from above with the zero marked (SVG).
+    pub picture: String,
+}
+
+/// One operation's line on the sheet.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub struct SheetOperation {
+    pub name: String,
+    pub tools: Vec<u32>,
+    pub seconds: f64,
+    pub feed_length: f64,
+    pub removed: Option<f64>,
+}
+
+impl SheetSetup {
+    /// The sheet's figures of the program `out` of the setup named `name`.
+    pub fn of(name: &str, out: &JobOutput) -> SheetSetup {
+        let mut tools: Vec<u32> = Vec::new();
+        for p in &out.paths {
+            if !tools.contains(&p.tool) {
+                tools.push(p.tool);
+            }
+        }
+        SheetSetup {
+            name: name.to_owned(),
+            work_offset: out.gcode.lines().map(str::trim).find(|l| crate::post::definition::is_work_offset(l)).map(str::to_owned),
+            stock: out.stock,
+            moves: out.moves.len(),
+            cycle: out.cycle.seconds,
+            tools,
+            operations: out.operations.iter().map(|o| SheetOperation { name: o.name.clone(), tools: o.tools.clone(), seconds: o.seconds, feed_length: o.feed_length, removed: o.removed }).collect(),
+            time: out.time.clone(),
+            picture: picture(name, out),
+        }
+    }
+}
+
+/// The setup sheet of `job`'s `setups` (each as [`SheetSetup::of`] took it from its program)
+/// for the part named `part`, as a standalone HTML page.
+pub fn setup_sheet(job: &Job, part: &str, setups: &[SheetSetup]) -> String {
     let mut h = String::new();
     let title = format!("{} — setup sheet", escape(&job.name));
-    let total: f64 = setups.iter().map(|s| s.output.cycle.seconds).sum();
+    let total: f64 = setups.iter().map(|s| s.cycle).sum();
     let _ = write!(
         h,
         "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>{title}</title><style>\
@@ -32,7 +89,6 @@ svg{{border:1px solid #ccc;background:#fafafa}}.n{{text-align:right}}</style></h
         clock(total)
     );
     for (k, s) in setups.iter().enumerate() {
-        let out = &s.output;
         let setup = job.setups.get(k);
         let _ = write!(h, "<section>\n<h2>{}: {}</h2>\n", k + 1, escape(&s.name));
         // How to hold it.
@@ -51,9 +107,9 @@ svg{{border:1px solid #ccc;background:#fafafa}}.n{{text-align:right}}</style></h
         } else {
             format!("From {from}: {}.", hold.join(", then "))
         };
-        let offset = out.gcode.lines().find(|l| crate::post::definition::is_work_offset(l.trim())).unwrap_or("none (the machine's current)");
+        let offset = s.work_offset.as_deref().unwrap_or("none (the machine's current)");
         let zero = setup.and_then(|s| s.zero).or(job.stock.zero);
-        let size = out.stock.size();
+        let size = s.stock.size();
         let _ = write!(
             h,
             "<p>{hold}</p>\n<table><tr><th>Work offset</th><td>{}</td></tr><tr><th>Zero (X0 Y0 Z0)</th><td>{}</td></tr>\
@@ -64,25 +120,19 @@ svg{{border:1px solid #ccc;background:#fafafa}}.n{{text-align:right}}</style></h
             size.x,
             size.y,
             size.z,
-            out.stock.min.x,
-            out.stock.min.y,
-            out.stock.min.z,
-            out.stock.max.x,
-            out.stock.max.y,
-            out.stock.max.z,
-            out.moves.len(),
-            clock(out.cycle.seconds)
+            s.stock.min.x,
+            s.stock.min.y,
+            s.stock.min.z,
+            s.stock.max.x,
+            s.stock.max.y,
+            s.stock.max.z,
+            s.moves,
+            clock(s.cycle)
         );
-        h.push_str(&picture(s));
+        h.push_str(&s.picture);
         // Tools, in the order the program takes them.
-        let mut used: Vec<u32> = Vec::new();
-        for p in &out.paths {
-            if !used.contains(&p.tool) {
-                used.push(p.tool);
-            }
-        }
         h.push_str("<h3>Tools</h3>\n<table><tr><th>Tool</th><th>Cutter</th><th>Stick-out</th><th>Holder</th><th class=n>Speed</th><th class=n>Feed</th></tr>\n");
-        for tool in used.iter().filter_map(|n| job.tools.iter().find(|t| t.number == *n)) {
+        for tool in s.tools.iter().filter_map(|n| job.tools.iter().find(|t| t.number == *n)) {
             let _ = writeln!(
                 h,
                 "<tr><td>T{}</td><td>{}</td><td>{}</td><td>—</td><td class=n>{:.0} rpm</td><td class=n>{:.0} mm/min</td></tr>",
@@ -94,7 +144,7 @@ svg{{border:1px solid #ccc;background:#fafafa}}.n{{text-align:right}}</style></h
             );
         }
         h.push_str("</table>\n<h3>Operations</h3>\n<table><tr><th>#</th><th>Operation</th><th>Tool</th><th class=n>Time</th><th class=n>Cutting</th><th class=n>Removed</th></tr>\n");
-        for (i, o) in out.operations.iter().enumerate() {
+        for (i, o) in s.operations.iter().enumerate() {
             let tools: Vec<String> = o.tools.iter().map(|t| format!("T{t}")).collect();
             let _ = writeln!(
                 h,
@@ -108,10 +158,10 @@ svg{{border:1px solid #ccc;background:#fafafa}}.n{{text-align:right}}</style></h
             );
         }
         h.push_str("</table>\n<h3>Cycle time</h3>\n<table>\n");
-        for item in &out.time {
+        for item in &s.time {
             let _ = writeln!(h, "<tr><td>{}</td><td class=n>{}</td></tr>", escape(&item.label), clock(item.seconds as f64));
         }
-        let _ = writeln!(h, "<tr><th>In all</th><th class=n>{}</th></tr></table>\n</section>", clock(out.cycle.seconds));
+        let _ = writeln!(h, "<tr><th>In all</th><th class=n>{}</th></tr></table>\n</section>", clock(s.cycle));
     }
     h.push_str("</body></html>\n");
     h
@@ -137,8 +187,7 @@ fn zero_words(zero: Option<WorkZero>) -> String {
 
 /// The part and stock of one setup seen from above, as an SVG: the stock's outline, the part
 /// shaded by height (darker lower) from the simulation's grid, and the zero's axes.
-fn picture(s: &SetupOutput) -> String {
-    let out = &s.output;
+fn picture(name: &str, out: &JobOutput) -> String {
     let b = out.stock;
     let (w, d) = (b.size().x, b.size().y);
     let scale = 480.0 / w.max(d).max(1e-9);
@@ -146,8 +195,7 @@ fn picture(s: &SetupOutput) -> String {
     // Screen coordinates: X right, Y up, 20 px margin.
     let sx = |x: f64| 20.0 + (x - b.min.x) * scale;
     let sy = |y: f64| 20.0 + (b.max.y - y) * scale;
-    let mut svg =
-        format!("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{pw:.0}\" height=\"{ph:.0}\" viewBox=\"0 0 {pw:.1} {ph:.1}\" role=\"img\" aria-label=\"{} from above\">\n", escape(&s.name));
+    let mut svg = format!("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{pw:.0}\" height=\"{ph:.0}\" viewBox=\"0 0 {pw:.1} {ph:.1}\" role=\"img\" aria-label=\"{} from above\">\n", escape(name));
     let _ = writeln!(svg, "<rect x=\"{:.1}\" y=\"{:.1}\" width=\"{:.1}\" height=\"{:.1}\" fill=\"#e8e2d0\" stroke=\"#555\"/>", sx(b.min.x), sy(b.max.y), w * scale, d * scale);
     if let Some(v) = &out.verification {
         let f = &v.part;

@@ -12,6 +12,7 @@
 use super::pool::RasterWork;
 use super::run::{JobOutput, Prepared, Running};
 use super::schema::{Job, Workpiece};
+use super::setups::{carried, setup_error, setup_frames, setup_stage, Orientation};
 use crate::drawing::Shape;
 use crate::error::{Error, Result};
 use crate::geom::DVec3;
@@ -61,6 +62,18 @@ pub struct PoolWorker {
     moves: Vec<ProgramMove>,
     /// The regions the planner asked the pool for ([`PoolWorker::region_work`]).
     regions: Option<RegionWork>,
+    /// The setup this worker plans, for a job with setups ([`PoolWorker::prepare_setup`]).
+    setup: Option<SetupPlace>,
+}
+
+/// Which setup of a job with setups a worker plans and where it holds the part.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SetupPlace {
+    pub index: usize,
+    pub name: String,
+    pub orientation: Orientation,
+    /// Whether a setup follows it (its stock is carried on).
+    pub more: bool,
 }
 
 impl PoolWorker {
@@ -68,7 +81,46 @@ impl PoolWorker {
     pub fn prepare(job: Job, workpiece: Workpiece) -> Result<PoolWorker> {
         let prepared = super::run::prepare(&job, workpiece)?;
         let surfaces = prepared.surfaces()?;
-        Ok(PoolWorker { job, prepared: Some(prepared), surfaces, running: None, moves: Vec::new(), regions: None })
+        Ok(PoolWorker { job, prepared: Some(prepared), surfaces, running: None, moves: Vec::new(), regions: None, setup: None })
+    }
+
+    /// Prepares setup `k` of `job` (a job with setups) on `workpiece`: the part held as that
+    /// setup holds it ([`super::setups`]), its stock the raw box until
+    /// [`PoolWorker::carry_from`] carries in what the setup before left.
+    pub fn prepare_setup(job: &Job, workpiece: Workpiece, k: usize) -> Result<PoolWorker> {
+        job.validate()?;
+        let names = job.setup_names();
+        let name = names.get(k).cloned().ok_or_else(|| Error::Input(format!("setup {k}: the job has {} setups", job.setups.len())))?;
+        let Workpiece::Mesh(mut part) = workpiece else {
+            return Err(Error::Input("setups turn a 3D part over; a drawing is cut from one side (a job without setups)".into()));
+        };
+        job.part.apply(&mut part);
+        let frame = setup_frames(job, &part.bounds())[k];
+        let (sub, held) = setup_stage(job, k, &part, &frame);
+        let mut worker = PoolWorker::prepare(sub, Workpiece::Mesh(held)).map_err(|e| setup_error(k, &name, e))?;
+        worker.setup = Some(SetupPlace { index: k, name, orientation: frame.0, more: k + 1 < names.len() });
+        Ok(worker)
+    }
+
+    /// The setup this worker plans, if the job has setups.
+    pub fn setup(&self) -> Option<&SetupPlace> {
+        self.setup.as_ref()
+    }
+
+    /// Starts from the stock `left` that the setup before (holding the part as `from`) left,
+    /// turned into this setup's frame. Before planning.
+    pub fn carry_from(&mut self, left: &DexelStock, from: &Orientation) -> Result<()> {
+        let to = self.setup.as_ref().map(|s| s.orientation).ok_or_else(|| Error::Input("only a setup's plan carries a stock in".into()))?;
+        self.prepared()?.carry(|p| carried(left, from, &to, p));
+        Ok(())
+    }
+
+    /// `e` said with this worker's setup, if any.
+    fn named(&self, e: Error) -> Error {
+        match &self.setup {
+            Some(s) => setup_error(s.index, &s.name, e),
+            None => e,
+        }
     }
 
     pub fn job(&self) -> &Job {
@@ -182,7 +234,10 @@ impl PoolWorker {
     /// the in-process stock (0 when none do).
     pub fn plan_next(&mut self, progress: &mut Progress) -> Result<Option<usize>> {
         let running = self.running()?;
-        Ok(running.plan_next(progress)?.then(|| running.pending().len()))
+        match running.plan_next(progress) {
+            Ok(more) => Ok(more.then(|| running.pending().len())),
+            Err(e) => Err(self.named(e)),
+        }
     }
 
     /// The regions of the next operation's levels as work for the pool, when it has levels on
@@ -270,12 +325,12 @@ impl PoolWorker {
     /// Writes the program once every operation is planned and has cut the stock.
     pub fn finish(&mut self, progress: &mut Progress) -> Result<JobOutput> {
         let running = self.running.take().ok_or_else(|| Error::Input("this plan has not started".into()))?;
-        running.finish(progress)
+        running.finish(progress).map_err(|e| self.named(e))
     }
 
     /// Plans the job with what was kept and writes its program, on this worker alone.
     pub fn run(&mut self, progress: &mut Progress) -> Result<JobOutput> {
         let prepared = self.prepared.take().ok_or_else(|| Error::Input("this plan has run".into()))?;
-        prepared.run(progress)
+        prepared.run(progress).map_err(|e| self.named(e))
     }
 }

@@ -137,6 +137,9 @@ pub struct Verification {
     /// Material removal rate of each move (mm³/min, 0 for rapids; [`removal_rates`]).
     pub rates: Vec<f64>,
     pub stock: DexelStock,
+    /// The stock the program started from where that was not the raw box (a bar, what the
+    /// setup before left: [`Simulator::carry`]); a playback starts from it.
+    pub start: Option<DexelStock>,
     /// The part's surface plus the allowance at the stock's cell centres, no higher than the raw
     /// stock's top (NaN where the part is not).
     pub part: HeightField,
@@ -481,12 +484,14 @@ pub struct Simulator {
     timings: Vec<Timing>,
     rapid: (usize, Vec<Finding>),
     body: (usize, Vec<Finding>),
+    /// The stock carried in, as it was before the first move.
+    start: Option<DexelStock>,
 }
 
 impl Simulator {
     /// The untouched box `stock` on cells of side `cell`.
     pub fn new(stock: &Aabb, cell: f64) -> Result<Simulator> {
-        Ok(Simulator { stock: stock_for(stock, cell)?, raw_top: stock.max.z, volumes: Vec::new(), timings: Vec::new(), rapid: (0, Vec::new()), body: (0, Vec::new()) })
+        Ok(Simulator { stock: stock_for(stock, cell)?, raw_top: stock.max.z, volumes: Vec::new(), timings: Vec::new(), rapid: (0, Vec::new()), body: (0, Vec::new()), start: None })
     }
 
     /// Starts from the stock earlier work left instead of the raw box: each cell's material
@@ -494,6 +499,7 @@ impl Simulator {
     /// Before any move.
     pub fn carry(&mut self, material: impl Fn(DVec2) -> (f64, f64)) {
         self.stock = self.stock.take().with_material(material);
+        self.start = Some(self.stock.clone());
     }
 
     /// The stock as the moves so far left it.
@@ -622,7 +628,7 @@ impl Simulator {
     /// [`WALL_RECHECKS`] cells are judged again; beyond, a program gouges anyway.
     pub fn finish_near(self, surface: impl FnOnce(Grid) -> HeightField, lowest_near: impl Fn(DVec2) -> Option<f64>, allowance: f64, tolerances: &Tolerances) -> Verification {
         let rates = self.rates();
-        let Simulator { stock: sim, raw_top, volumes, rapid, body, .. } = self;
+        let Simulator { stock: sim, raw_top, volumes, rapid, body, start, .. } = self;
         let grid = sim.grid();
         let mut surface = surface(grid);
         let mut gouges = Vec::new();
@@ -669,6 +675,6 @@ impl Simulator {
             mrr_max: rates.iter().copied().fold(0.0, f64::max),
             overcuts: Vec::new(),
         };
-        Verification { report, volumes, rates, stock: sim, part: surface, holes: Vec::new() }
+        Verification { report, volumes, rates, stock: sim, start, part: surface, holes: Vec::new() }
     }
 }

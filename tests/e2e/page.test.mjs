@@ -1359,3 +1359,154 @@ test('3D carving with a V-bit: the sample part roughed, then raster-finished wit
   assert.deepEqual(errors, []);
   await context.close();
 });
+
+test('a part from both sides in the page: the two-sided job loaded, its setups as tabs, the part turned over in the view, one program a setup (the command line\'s own), the simulation playing on into the second setup', async () => {
+  const { page, context, errors } = await openPage();
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-setups-'));
+  const cli = path.resolve(root, '../target/debug/swarf');
+  assert.ok(fs.existsSync(cli), `the swarf command line is not built at ${cli}`);
+  execFileSync(cli, ['demo', '--two-sided', '-o', dir]);
+  const stl = path.join(dir, 'two-sided.stl'), jobFile = path.resolve(root, '../examples/two-sided/two-sided.json');
+  let parts = Number(await page.evaluate(() => document.body.dataset.parts));
+  await page.setInputFiles('#file', stl);
+  await page.waitForFunction((n) => Number(document.body.dataset.parts) > n, parts);
+  await tab(page, 'ops');
+  // One setup to begin with: a tab, and a button to turn the part over.
+  assert.equal(await page.locator('#setup-tabs button').count(), 1);
+  assert.ok(await page.isHidden('#setup-editor'));
+  await page.setInputFiles('#load-job', jobFile);
+  await page.waitForFunction(() => /Loaded the job/.test(document.getElementById('message').textContent));
+  assert.match(await page.textContent('#message'), /2 setups, 4 operation\(s\)/);
+  assert.deepEqual(await page.locator('#setup-tabs button').allTextContents(), ['top', 'bottom']);
+  assert.equal(await page.locator('#op-list li').count(), 2);
+  // The second setup: its own operations and fields, and the part shown bottom up (the view's
+  // part is the one turned as the core turns it: its bounds are the turned part's).
+  const shown = Number(await page.evaluate(() => document.body.dataset.setupShown ?? 0));
+  await page.click('#setup-tabs button:nth-child(2)');
+  await page.waitForFunction((n) => Number(document.body.dataset.setupShown ?? 0) > n, shown);
+  // The list and the form edit the setup on show's operations.
+  await page.click('#op-list li:nth-child(1) .op-name');
+  await page.fill('input[name=opName]', 'rough underneath');
+  assert.deepEqual(await page.evaluate(() => window.swarf.jobs.part.setups.map((s) => s.operations[0].name)), ['rough', 'rough underneath']);
+  assert.match(await page.textContent('#op-list'), /rough underneath/);
+  await page.fill('input[name=opName]', 'rough');
+  assert.equal(await page.inputValue('#setup-editor [data-setup=flip]'), 'aboutX');
+  assert.equal(await page.inputValue('#setup-editor [data-setup=workOffset]'), 'G55');
+  const frames = await page.evaluate(async () => window.swarf.engine.setupFrames(window.swarf.jobs.part, window.swarf.part.bounds));
+  assert.deepEqual(frames.map((f) => f.rotation[8]), [1, -1]);
+  // A setup with nothing to cut is named at its tab, and Generate refuses it.
+  await page.evaluate(() => { window.swarf.jobs.part.setups[1].operations.splice(0); });
+  await page.click('#setup-tabs button:nth-child(2)');
+  await page.click('#generate');
+  assert.equal(await waitForGenerated(page), 'failed');
+  assert.match(await page.textContent('#message'), /Operations → bottom → .*the setup has nothing to cut/);
+  assert.ok(await page.locator('#setup-tabs button.has-problem').count() === 1);
+  await page.click('#undo');
+  await page.waitForFunction(() => window.swarf.jobs.part.setups[1].operations.length === 2);
+  await page.click('#generate');
+  await generated(page);
+  assert.match(await page.textContent('#message'), /Done: cycle time [\d:]+ m:ss \(top [\d:]+, bottom [\d:]+\)/);
+  // The second setup's result is on show: its program works in G55.
+  assert.equal(await page.evaluate(() => document.body.dataset.shownSetup), '1');
+  assert.match(await page.evaluate(() => window.swarf.result.gcode), /^G55$/m);
+  const report = await page.textContent('#sim-report');
+  assert.match(report, /gouges: 0/, report);
+  // One program a setup, named as the command line names them, and the very same programs.
+  const downloads = [];
+  page.on('download', (d) => downloads.push(d));
+  await page.click('#download');
+  await page.waitForFunction(() => /Downloaded 2 programs/.test(document.getElementById('message').textContent));
+  while (downloads.length < 2) await page.waitForTimeout(100);
+  const names = downloads.map((d) => d.suggestedFilename()).sort();
+  assert.deepEqual(names, ['two-sided-op1-linuxcnc.ngc', 'two-sided-op2-linuxcnc.ngc']);
+  // The job as the page saves it (named for its part) runs on the command line to the same
+  // programs.
+  const [saved] = await Promise.all([page.waitForEvent('download'), page.click('#save-job')]);
+  const pageJob = path.join(dir, 'page-job.json');
+  await saved.saveAs(pageJob);
+  assert.equal(JSON.parse(fs.readFileSync(pageJob, 'utf8')).setups.length, 2);
+  execFileSync(cli, ['run', pageJob, stl, '-o', path.join(dir, 'cli.ngc'), '-q']);
+  for (const d of downloads.slice(0, 2)) {
+    const file = path.join(dir, `page-${d.suggestedFilename()}`);
+    await d.saveAs(file);
+    const k = d.suggestedFilename().match(/op(\d)/)[1];
+    assert.equal(fs.readFileSync(file, 'utf8'), fs.readFileSync(path.join(dir, `cli-op${k}-linuxcnc.ngc`), 'utf8'), `setup ${k}`);
+    fs.writeFileSync(path.join(dir, 'tool.tbl'), toolTable(await page.evaluate(() => window.swarf.tools)));
+    const canon = execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), file], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });
+    assert.ok((canon.match(/STRAIGHT_FEED/g) ?? []).length > 100, `setup ${k}`);
+  }
+  // The setup sheet, printable from the page: both setups, each held and zeroed as it says,
+  // with the times the programs state.
+  const [sheet] = await Promise.all([context.waitForEvent('page'), page.click('#sheet')]);
+  await sheet.waitForLoadState();
+  const text = await sheet.textContent('body');
+  assert.match(text, /two-sided\.stl\. 2 setups, cycle time/);
+  assert.match(text, /1: top/);
+  assert.match(text, /2: bottom.*turn the part over about X/s);
+  assert.match(text, /Work offsetG55/);
+  assert.equal(await sheet.locator('svg').count(), 2);
+  await sheet.close();
+  // The first setup's result on its tab; its simulation, played from its last move, plays on
+  // into the second setup's, which starts from the stock the first left.
+  await page.click('#setup-tabs button:nth-child(1)');
+  await page.waitForFunction(() => document.body.dataset.shownSetup === '0');
+  assert.match(await page.evaluate(() => window.swarf.result.gcode), /^G54$/m);
+  const first = await page.evaluate(async () => Array.from(await window.swarf.engine.seek(0, 0)));
+  const carried = await page.evaluate(async () => Array.from(await window.swarf.engine.seek(0, 1)));
+  // The raw block before the top's first cut; the bottom's begins with the block's uncut
+  // underside up, at its stock's top (the top's work now underneath, the programs above the
+  // command line's, which carries it).
+  const tops = await page.evaluate(() => window.swarf.results.map((r) => r.sim.grid[6]));
+  assert.ok(first.every((z) => Math.abs(z - tops[0]) < 1e-3), 'the first setup starts from the raw block');
+  assert.ok(carried.every((z) => Math.abs(z - tops[1]) < 1e-3), `the second setup starts from the block's underside at ${tops[1]}`);
+  await page.selectOption('#speed', '1000');
+  await page.evaluate(() => { const s = document.getElementById('scrub'); s.value = s.max * 0.999; s.dispatchEvent(new Event('input')); });
+  await page.click('#play');
+  await page.waitForFunction(() => document.body.dataset.shownSetup === '1');
+  await page.waitForFunction(() => Number(document.body.dataset.simMoves) > 0);
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
+test('turning the part over in the page: a second setup added (bottom up, faced first, in G55), shown turned in the view, its fields kept, and removed again to one setup', async () => {
+  const { page, context, errors } = await openPage();
+  await tab(page, 'ops');
+  const before = await page.evaluate(() => window.swarf.jobs.part.operations.map((o) => o.name));
+  const shown = Number(await page.evaluate(() => document.body.dataset.setupShown ?? 0));
+  await page.click('#setup-add');
+  await page.waitForFunction((n) => Number(document.body.dataset.setupShown ?? 0) > n, shown);
+  assert.deepEqual(await page.locator('#setup-tabs button').allTextContents(), ['Top', 'Bottom']);
+  const job = await page.evaluate(() => window.swarf.jobs.part);
+  assert.deepEqual(job.operations, []);
+  assert.deepEqual(job.setups[0].operations.map((o) => o.name), before);
+  assert.deepEqual([job.setups[1].flip, job.setups[1].workOffset, job.setups[1].operations.map((o) => o.kind)], ['aboutX', 'G55', ['face']]);
+  // The view holds the part bottom up: its top is where the part's bottom was, turned about
+  // the stock's centre.
+  const frames = await page.evaluate(async () => window.swarf.engine.setupFrames(window.swarf.jobs.part, window.swarf.part.bounds));
+  assert.equal(frames[1].rotation[8], -1);
+  const [c, dz] = [frames[1].centre, frames[1].shift];
+  const [placed, drawn] = await page.evaluate(() => [window.swarf.part.bounds, window.swarfView.part.drawn]);
+  // Turned about X through the stock's centre (y and z mirrored), then shifted to the zero.
+  const expected = [placed[0] + dz[0], 2 * c[1] - placed[4] + dz[1], 2 * c[2] - placed[5] + dz[2], placed[3] + dz[0], 2 * c[1] - placed[1] + dz[1], 2 * c[2] - placed[2] + dz[2]];
+  drawn.bounds.forEach((v, k) => assert.ok(Math.abs(v - expected[k]) < 1e-3, `the view's part bounds ${drawn.bounds} against ${expected}`));
+  // The setup's fields: a quarter turn, another work offset; the problems' words name it.
+  await page.selectOption('#setup-editor [data-setup=turn]', '90');
+  await page.selectOption('#setup-editor [data-setup=workOffset]', 'G57');
+  await page.fill('#setup-editor [data-setup=name]', 'underside');
+  await page.press('#setup-editor [data-setup=name]', 'Tab');
+  assert.deepEqual(await page.evaluate(() => { const s = window.swarf.jobs.part.setups[1]; return [s.turn, s.workOffset, s.name]; }), [90, 'G57', 'underside']);
+  assert.deepEqual(await page.locator('#setup-tabs button').allTextContents(), ['Top', 'underside']);
+  await page.screenshot({ path: path.join(shots, 'setups.png') });
+  // The first setup turns nothing over.
+  await page.click('#setup-tabs button:nth-child(1)');
+  assert.ok(await page.isDisabled('#setup-editor [data-setup=flip]'));
+  // Removed: one setup again, its operations the job's.
+  await page.click('#setup-tabs button:nth-child(2)');
+  await page.click('#setup-remove');
+  await page.waitForFunction(() => document.querySelectorAll('#setup-tabs button').length === 1);
+  const after = await page.evaluate(() => window.swarf.jobs.part);
+  assert.deepEqual([after.setups, after.operations.map((o) => o.name)], [[], before]);
+  assert.ok(await page.isHidden('#setup-editor'));
+  assert.deepEqual(errors, []);
+  await context.close();
+});

@@ -32,6 +32,16 @@ export async function shortJob(stl: Uint8Array): Promise<number> {
   return seconds + line + (amber ? 1 : 0) + (result.sim ? result.sim.times[0] : 0);
 }
 
+// A part from both sides: a job with setups gives a program a setup, each named and placed.
+export async function bothSides(stl: Uint8Array, job: JobInput): Promise<string[]> {
+  const engine = await createEngine();
+  const frames = await engine.setupFrames(job, [-40, -25, -20, 40, 25, 0]);
+  const turned: boolean = frames.some((f) => f.rotation[8] < 0);
+  const { setups } = await engine.runSetups(job, stl, 'part.stl');
+  const bottom = await engine.seek(0, 1);
+  return setups.map((r) => `${r.setup.name} ${r.setup.stock.max[2]} ${turned} ${bottom.length}: ${r.gcode}`);
+}
+
 export function wrong(job: Job, input: JobInput) {
   // @ts-expect-error: no such controller
   job.post.dialect = 'heidenhain';

@@ -1417,6 +1417,13 @@ zero: WorkZero | null,
 operations: Array<Operation>, };
 
 /**
+ * Where a setup holds the part, for the view and a portal: a point `p` of the part as the job
+ * places it is at `rotation · (p − centre) + centre + shift` in the setup (the rotation by
+ * quarter turns, column after column); `stock` is the raw stock's box there.
+ */
+export type SetupView = { index: number, name: string, rotation: [number, number, number, number, number, number, number, number, number], centre: [number, number, number], shift: [number, number, number], stock: Aabb, };
+
+/**
  * The shape of a cutter's end.
  */
 export type Shape = "flat" | "ball" | "bullNose" | "drill" | "spotDrill" | "vBit" | "threadMill";

@@ -308,7 +308,7 @@ fn run(cli: Cli) -> Result<(), String> {
             not_an_input(&output, &[&job_file, &part])?;
             let setups = job::run_setups(&job, mesh, &mut Progress::none()).map_err(|e| e.to_string())?;
             let name = part.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
-            write(&output, job::sheet::setup_sheet(&job, &name, &setups).as_bytes())?;
+            write(&output, job::sheet::setup_sheet(&job, &name, &setups.iter().map(|s| job::sheet::SheetSetup::of(&s.name, &s.output)).collect::<Vec<_>>()).as_bytes())?;
             println!("wrote {}", output.display());
             Ok(())
         }

@@ -1,0 +1,170 @@
+// Setups: a part machined from more than one side. The setups are tabs over the operation list,
+// each with its own operations, how the part is turned over for it (from the setup before, as
+// a machinist turns it in the vise) and its work offset; a job without setups is its one setup.
+// Before Generate the view shows the part as the setup on show holds it; after, that setup's
+// paths, program and simulation (results.js shows them, `hooks.showSetupResult`).
+import { $, state, hooks, job, hasSetups, setupIndex, store } from './state.js';
+import { sized, message, fieldError } from './forms.js';
+import { setTime, play } from './simulation.js';
+
+const WORK_OFFSETS = ['G54', 'G55', 'G56', 'G57', 'G58', 'G59'];
+
+// A setup's name: its own, or "Setup N" as the core names it.
+export const setupName = (s, k) => s.name || `Setup ${k + 1}`;
+
+// The tabs and the setup's own fields (a part's job only: a drawing is cut from one side).
+export function fillSetups() {
+  const box = $('setups'), j = job();
+  box.hidden = state.kind !== 'part' || !j;
+  if (box.hidden) return;
+  const many = hasSetups(j), shown = setupIndex(j);
+  const names = many ? j.setups.map(setupName) : ['Setup 1'];
+  const tabs = sized($('setup-tabs'), names.length, () => {
+    const b = document.createElement('button');
+    b.type = 'button';
+    b.setAttribute('role', 'tab');
+    return b;
+  });
+  names.forEach((n, k) => {
+    tabs[k].textContent = n;
+    tabs[k].dataset.setupIndex = String(k);
+    tabs[k].setAttribute('aria-selected', String(k === shown));
+  });
+  $('setup-editor').hidden = !many;
+  if (!many) return;
+  const s = j.setups[shown];
+  for (const el of $('setup-editor').querySelectorAll('[data-setup]')) {
+    const v = s[el.dataset.setup];
+    el.value = v == null ? '' : String(v);
+  }
+  // The first setup holds the part as it is placed: it turns nothing over.
+  $('setup-editor').querySelector('[data-setup="flip"]').disabled = state.running || shown === 0;
+  $('setup-remove').disabled = state.running;
+}
+
+// Another setup: the part turned over about X (its bottom up), facing its new top first; the
+// operations so far become the first setup's.
+export function addSetup() {
+  const j = job();
+  if (!hasSetups(j)) {
+    j.setups = [{ name: 'Top', flip: 'none', turn: 0, workOffset: null, zero: null, operations: j.operations }];
+    j.operations = [];
+  }
+  const face = structuredClone(state.defaults.operations.find((o) => o.kind === 'face'));
+  const flat = state.tools.find((t) => t.shape === 'flat') ?? state.tools[0];
+  if (flat) face.tool = flat.number;
+  const k = j.setups.length;
+  j.setups.push({ name: k === 1 ? 'Bottom' : `Setup ${k + 1}`, flip: 'aboutX', turn: 0, workOffset: WORK_OFFSETS[k] ?? null, zero: null, operations: [face] });
+  message(`Added the setup '${j.setups[k].name}': the part turned over about X (its bottom up), held in ${j.setups[k].workOffset ?? 'the controller\'s work offset'}; it starts from the stock the setup before leaves.`, 'note');
+  select(k);
+}
+
+// The setup on show removed; the last one left makes the job one setup again.
+export function removeSetup() {
+  const j = job();
+  if (!hasSetups(j)) return;
+  const k = setupIndex(j);
+  const [gone] = j.setups.splice(k, 1);
+  if (j.setups.length === 1) {
+    j.operations = j.setups[0].operations;
+    j.setups = [];
+  }
+  message(`Removed the setup '${setupName(gone, k)}': Undo (Ctrl+Z) brings it back.`, 'note');
+  select(Math.max(0, k - 1));
+}
+
+// Shows setup `k`: its operations, and its result or the part as it holds it.
+export async function select(k) {
+  state.selected.setup = k;
+  state.selected.part = 0;
+  store();
+  hooks.fillAll?.();
+  hooks.changed?.();
+  if (state.results?.[k]) {
+    await hooks.showSetupResult?.(k);
+  } else {
+    hooks.clearResult?.();
+    await showHeld();
+  }
+}
+
+// The simulation of setup `k` played from its start (the stock the setup before left).
+export async function playSetup(k) {
+  await select(k);
+  setTime(0);
+  play();
+}
+
+export function onSetupTabs(e) {
+  const b = e.target.closest('[data-setup-index]');
+  if (b && !state.running) select(Number(b.dataset.setupIndex));
+}
+
+// A setup's field changed: the job follows (a result of other settings is no longer shown).
+export function onSetupField(el) {
+  const j = job(), key = el.dataset.setup;
+  if (!key || !hasSetups(j)) return;
+  const s = j.setups[setupIndex(j)];
+  let value = el.value;
+  if (key === 'turn') value = Number(value);
+  if (key === 'workOffset' && value === '') value = null;
+  if (key === 'name') value = value.trim();
+  fieldError(el, '');
+  if (s[key] === value) return;
+  s[key] = value;
+  store(`setup.${key}`);
+  if (key === 'name') { fillSetups(); hooks.changed?.(); return; }
+  state.results = null;
+  hooks.clearResult?.();
+  hooks.changed?.();
+  showHeld();
+}
+
+// Turns `part` (positions and normals, as the engine gives them) as `frame` holds it.
+export function held(part, frame) {
+  const [a, b, c, d, e, f, g, h, i] = frame.rotation;
+  const [cx, cy, cz] = frame.centre, [sx, sy, sz] = frame.shift;
+  const turn = (src, shifted) => {
+    const out = new Float32Array(src.length);
+    for (let k = 0; k < src.length; k += 3) {
+      const x = src[k] - (shifted ? cx : 0), y = src[k + 1] - (shifted ? cy : 0), z = src[k + 2] - (shifted ? cz : 0);
+      // Column after column: the first three numbers are where X goes.
+      out[k] = a * x + d * y + g * z + (shifted ? cx + sx : 0);
+      out[k + 1] = b * x + e * y + h * z + (shifted ? cy + sy : 0);
+      out[k + 2] = c * x + f * y + i * z + (shifted ? cz + sz : 0);
+    }
+    return out;
+  };
+  const positions = turn(part.positions, true);
+  const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+  for (let k = 0; k < positions.length; k++) {
+    lo[k % 3] = Math.min(lo[k % 3], positions[k]);
+    hi[k % 3] = Math.max(hi[k % 3], positions[k]);
+  }
+  return { ...part, positions, normals: turn(part.normals, false), bounds: [...lo, ...hi], hash: null };
+}
+
+// The part in the view as the setup on show holds it (before Generate); counted on the page's
+// body (`data-setup-shown`), the signal a test waits on.
+let asked = 0, turned = false;
+export async function showHeld() {
+  const j = job(), k = ++asked;
+  if (state.kind !== 'part' || !state.part || !state.viewer) return;
+  // The part as placed is on show already (the view keeps its camera).
+  if (!hasSetups(j) && !turned) return;
+  let part = state.part;
+  if (hasSetups(j)) {
+    try {
+      const frames = await state.engine.setupFrames(j, state.part.bounds);
+      if (k !== asked) return;
+      const frame = frames[setupIndex(j)];
+      if (frame) part = held(state.part, frame);
+    } catch {
+      // A job that does not read is marked at its fields; the part stays as placed.
+    }
+  }
+  if (k !== asked || state.result) return;
+  turned = part !== state.part;
+  state.viewer.setPart(part);
+  document.body.dataset.setupShown = String(Number(document.body.dataset.setupShown ?? 0) + 1);
+}
