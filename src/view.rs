@@ -181,6 +181,8 @@ pub struct Summary {
     /// What makes the program unsafe to run, if verification found anything.
     pub problem: Option<String>,
     pub stock: [f64; 6],
+    /// What holds the stock (a vise's jaws, clamps): each box's least and greatest corner.
+    pub fixtures: Vec<[f64; 6]>,
     pub clearance_z: f64,
     /// The extension the post's controllers expect of the program's file.
     pub extension: String,
@@ -445,6 +447,15 @@ impl ResultView {
             cache_hits: out.cache.hits,
             problem: out.problem.clone(),
             stock: [s.min.x, s.min.y, s.min.z, s.max.x, s.max.y, s.max.z],
+            fixtures: job
+                .fixtures
+                .held(&s)
+                .iter()
+                .map(|h| {
+                    let (a, b) = (h.solid.min, h.solid.max);
+                    [a.x, a.y, a.z, b.x, b.y, b.z]
+                })
+                .collect(),
             clearance_z: out.clearance_z,
             extension: job.post.extension(),
             post: job.post.post().name,

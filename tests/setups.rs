@@ -267,3 +267,36 @@ fn the_pool_runs_setups_one_at_a_time_as_the_job_runs_whole() {
     let mut plain = PoolWorker::prepare(Job::demo(), Workpiece::Mesh(swarf::mesh::sample::demo_part())).unwrap();
     assert!(plain.carry_from(&left, &from).is_err());
 }
+
+/// A third setup stands the plate on its front (its back up, `up: "+y"`) and finishes that side
+/// (the roughing of the two before left its wall 0.5 mm):
+/// it starts from all the material the two before left (a column here is a line across their
+/// columns, carried as one span: never less than there is), its box is the raw block stood on
+/// end, and its program is clean.
+#[test]
+fn a_setup_stands_the_part_on_its_side() {
+    use swarf::job::{Setup, Up};
+    let mut job = Job::two_sided();
+    let finish = job.setups[0].operations[1].clone();
+    job.setups.push(Setup { name: "back".into(), up: Some(Up::PlusY), work_offset: Some("G56".into()), operations: vec![finish], ..Setup::default() });
+    let setups = run_setups(&job, two_sided_part(), &mut Progress::none()).unwrap();
+    assert_eq!(setups.len(), 3);
+    let (raw, side) = (setups[0].output.stock.size(), setups[2].output.stock.size());
+    assert!((side.x - raw.x).abs() < 1e-9 && (side.y - raw.z).abs() < 1e-9 && (side.z - raw.y).abs() < 1e-9, "{raw} stood on end is {side}");
+    for s in &setups {
+        common::clean(&s.output);
+    }
+    let v = setups[2].output.verification.as_ref().unwrap();
+    let start = v.start.as_ref().expect("carried").volume();
+    let left = setups[1].output.verification.as_ref().unwrap().stock.volume();
+    let removed: f64 = v.volumes.iter().sum();
+    eprintln!("the side setup starts from {start:.0} mm³ (the bottom left {left:.0}), removes {removed:.0}; {}", v.report.describe());
+    assert!(start >= left - 1e-6 * left && start <= raw.x * raw.y * raw.z, "{start} against {left}");
+    assert!(removed > 0.0 && (start - removed - v.stock.volume()).abs() < 1e-6 * start);
+    assert!(setups[2].output.gcode.contains("\nG56\n"));
+    let sheets: Vec<_> = setups.iter().map(|s| swarf::job::sheet::SheetSetup::of(&s.name, &s.output)).collect();
+    assert!(swarf::job::sheet::setup_sheet(&job, "plate.stl", &sheets).contains("stand the part on its side, its back (+Y) face up"));
+    // Both a face up and a flip: named.
+    job.setups[2].flip = swarf::job::Flip::AboutX;
+    assert_eq!(job.problems()[0].path, "setups[2].up");
+}

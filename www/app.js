@@ -30,6 +30,21 @@ function fillStock() {
   $('fs-stock').querySelector('[name=zeroHeight]').value = j.stock.zero?.height ?? '';
   $('fs-stock').querySelector('[name=zeroCorner]').value = j.stock.zero?.corner ?? 'center';
   for (const el of document.querySelectorAll('.part-only')) el.hidden = state.kind !== 'part';
+  // A vise's fields where the stock is held in one.
+  const vise = !!j.fixtures?.vise;
+  form.elements.vise.checked = vise;
+  $('vise-fields').hidden = state.kind !== 'part' || !vise;
+}
+
+// Held in a vise or not: a vise as the core makes it by default (its jaws follow the stock).
+async function onVise(box) {
+  const j = job();
+  const made = box.checked ? (await state.engine.readJob(JSON.stringify({ fixtures: { vise: {} } }))).fixtures : null;
+  j.fixtures = box.checked ? { ...made, ...j.fixtures, vise: made.vise } : { ...j.fixtures, vise: null };
+  store('fixtures.vise');
+  clearResult();
+  fillStock();
+  changed();
 }
 
 function fillAll() {
@@ -170,6 +185,7 @@ $('use-sample-drawing').addEventListener('click', () => { freshSetup(); fillPart
 form.addEventListener('input', (e) => { if (e.target.type !== 'checkbox' && e.target.tagName !== 'SELECT') onField(e.target); });
 form.addEventListener('change', (e) => {
   if (e.target.closest('#op-list')) return;
+  if (e.target.name === 'vise') { onVise(e.target); return; }
   onField(e.target);
   if (e.target.closest('#fs-part') || e.target.closest('#fs-drawing')) showPart();
 });

@@ -237,7 +237,7 @@ async function showResult(r, operations, computed) {
     // The part framed again (the job may have placed it elsewhere).
     () => (r.drawing ? state.viewer?.setDrawing(r.drawing, false) : state.viewer?.setPart(r.part, true)),
     () => [
-      ...(state.viewer?.pathSteps({ feeds: r.feeds, rapids: r.rapids, stock: s.stock, ops: r.feedOps, tools: r.feedTools, moves: r.feedMoves, rapidMoves: r.rapidMoves, byTool }) ?? []),
+      ...(state.viewer?.pathSteps({ feeds: r.feeds, rapids: r.rapids, stock: s.stock, fixtures: s.fixtures, ops: r.feedOps, tools: r.feedTools, moves: r.feedMoves, rapidMoves: r.rapidMoves, byTool }) ?? []),
       () => {
         hooks.showPicked?.();
         if (r.octants.length) state.viewer?.setOctants(r.octants);

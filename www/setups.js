@@ -38,7 +38,7 @@ export function fillSetups() {
     el.value = v == null ? '' : String(v);
   }
   // The first setup holds the part as it is placed: it turns nothing over.
-  $('setup-editor').querySelector('[data-setup="flip"]').disabled = state.running || shown === 0;
+  $('setup-editor').querySelector('[data-setup="flip"]').disabled = state.running || shown === 0 || s.up != null;
   $('setup-remove').disabled = state.running;
 }
 
@@ -107,7 +107,9 @@ export function onSetupField(el) {
   const s = j.setups[setupIndex(j)];
   let value = el.value;
   if (key === 'turn') value = Number(value);
-  if (key === 'workOffset' && value === '') value = null;
+  if ((key === 'workOffset' || key === 'up') && value === '') value = null;
+  // A face up is the setup's whole orientation: no flip from the setup before besides.
+  if (key === 'up' && value !== null) s.flip = 'none';
   if (key === 'name') value = value.trim();
   fieldError(el, '');
   if (s[key] === value) return;
@@ -116,6 +118,7 @@ export function onSetupField(el) {
   if (key === 'name') { fillSetups(); hooks.changed?.(); return; }
   state.results = null;
   hooks.clearResult?.();
+  fillSetups();
   hooks.changed?.();
   showHeld();
 }

@@ -239,9 +239,9 @@ export class Viewer {
   // to run one after the other, each a task of its own if the caller likes (a step uploads at
   // most GROUP_SEGMENTS segments: a die-sized program's million segments never hold the page's
   // thread in one task).
-  pathSteps({ feeds, rapids, stock, ops = null, tools = null, moves = null, rapidMoves = null, byTool = new Set() }) {
+  pathSteps({ feeds, rapids, stock, fixtures = [], ops = null, tools = null, moves = null, rapidMoves = null, byTool = new Set() }) {
     this.dropGroups();
-    this.dropLines((key) => key.startsWith('octants') || key === 'stock');
+    this.dropLines((key) => key.startsWith('octants') || key === 'stock' || key === 'fixtures');
     // An operation's segments (a stage's, for octree roughing) follow each other in the
     // program: taken as runs, a colour that comes back after another copied once.
     const runs = new Map();
@@ -265,6 +265,12 @@ export class Viewer {
     add(rapids, rapidMoves, [[0, rapids.length / 6]], { op: -1, color: RAPID_COLOR, rapid: true });
     steps.push(() => {
       if (stock) this.setLine('stock', { buffer: this.buffer(boxLines(stock)), count: 24, color: [0.35, 0.4, 0.45, 0.6], mark: true });
+      // What holds the stock (a vise's jaws, clamps), in the red of things not to touch.
+      if (fixtures.length) {
+        const lines = new Float32Array(fixtures.length * 72);
+        fixtures.forEach((b, k) => lines.set(boxLines(b), k * 72));
+        this.setLine('fixtures', { buffer: this.buffer(lines), count: 24 * fixtures.length, color: [0.75, 0.15, 0.1, 0.9], mark: true });
+      }
       this.cutMoves = Infinity;
       this.draw();
     });

@@ -76,6 +76,10 @@ pub const MATERIAL_SLACK: f64 = 1e-6;
 /// the two are computed apart and may round differently (mm).
 pub const BOUND_SLACK: f64 = 1e-9;
 
+/// A feed move whose tool comes this close to a fixture's clearance (mm) was stopped short by
+/// it: its operation says so ([`crate::job::fixtures`]).
+pub const FIXTURE_CONTACT: f64 = 0.25;
+
 impl Tolerances {
     /// The chordal tolerance the simulation sweeps a helix (a ramp round an arc) with, as
     /// chords inside it: the job's, no coarser than a tenth of the gouge tolerance. The machine

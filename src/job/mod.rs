@@ -13,6 +13,7 @@
 
 pub mod demo;
 pub mod drawing;
+pub mod fixtures;
 pub mod pool;
 pub mod project;
 pub mod read;

@@ -174,6 +174,9 @@ impl Job {
         if let Some(bar) = self.stock.bar.filter(|_| sheet.is_none()) {
             sim.carry(bar.material(&stock));
         }
+        // What holds the stock joins the part in what the cutter is dropped onto.
+        let keep_out = self.fixtures.keep_out(&stock);
+        let solid = (sheet.is_none() && !keep_out.is_empty()).then(|| super::fixtures::solid(&part, &keep_out));
         Ok(Context {
             part,
             sheet,
@@ -190,6 +193,8 @@ impl Job {
             operation: 0,
             given_passes: Default::default(),
             given_regions: Vec::new(),
+            keep_out,
+            solid,
         })
     }
 }
@@ -432,12 +437,32 @@ impl Running {
         self.path_operations.extend(std::iter::repeat_n(k, paths.len()));
         self.paths.extend(paths);
         let moves = timed_moves(&self.paths, first_path, self.all_moves.last(), &self.job.tools, self.job.post.rapid_rate)?;
+        self.stopped_short(k, &moves);
         if !moves.is_empty() && (self.job.simulation.verify || self.next < self.enabled.len()) {
             self.pending = moves;
         } else {
             self.settle(moves);
         }
         Ok(true)
+    }
+
+    /// Says where operation `k`'s cutting `moves` were stopped short by a fixture (came to its
+    /// clearance): material may be left beside it.
+    fn stopped_short(&mut self, k: usize, moves: &[ProgramMove]) {
+        if self.ctx.keep_out.is_empty() {
+            return;
+        }
+        let cutting: Vec<ProgramMove> = moves.iter().filter(|m| !m.mv.is_rapid()).cloned().collect();
+        let near = crate::sim::fixtures::collisions(&cutting, &self.ctx.keep_out, -crate::geom::tolerance::FIXTURE_CONTACT);
+        let name = self.job.operations[k].op().name().to_owned();
+        let clearance = crate::limits::shown(self.job.fixtures.clearance);
+        for h in self.ctx.keep_out.clone() {
+            let places: Vec<crate::geom::DVec3> = near.iter().filter(|n| n.fixture == h.name).map(|n| n.at).collect();
+            if !places.is_empty() {
+                let what = format!("places stopped short of {} ({clearance} mm clear of it): material may be left beside it", h.name);
+                self.ctx.warn_at(&name, &what, &places);
+            }
+        }
     }
 
     /// The moves waiting to cut the in-process stock (none when nothing waits).
@@ -512,7 +537,7 @@ impl Running {
             let why = if warnings.is_empty() { String::new() } else { format!(" ({})", warnings.iter().map(Warning::to_string).collect::<Vec<_>>().join("; ")) };
             return Err(Error::Nothing(format!("the program has no cutting moves{why}")));
         }
-        let Context { part, sheet, stock, heights, caches, sim, .. } = ctx;
+        let Context { part, sheet, stock, heights, caches, sim, keep_out, .. } = ctx;
         // The simulation that carried the in-process stock judges the whole program.
         let (mut verification, sim) = if verify {
             let settings = job.verify_settings(&stock, None);
@@ -546,6 +571,8 @@ impl Running {
         let time = cycle.items(&CycleTime::groups(&paths));
         if let Some(v) = verification.as_mut() {
             v.word_holes(&all_moves);
+            // Every move against what holds the stock, by its name.
+            v.report.fixtures(keep_out.len(), crate::sim::fixtures::collisions(&all_moves, &keep_out, job.tolerances.gouge));
         }
         let problem = verification.as_ref().and_then(|v| {
             let found = v.report.problem()?;

@@ -3,6 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::fixtures::Fixtures;
 use crate::drawing::Drawing;
 use crate::error::{Error, Result};
 use crate::geom::{Aabb, DVec2, DVec3, Tolerances};
@@ -457,6 +458,10 @@ pub struct Job {
     /// ([`crate::job::setups`]). Empty: the job is one setup, its `operations`. Default value:
     /// none.
     pub setups: Vec<Setup>,
+    /// What holds the stock (a vise, clamps), kept out of by every operation and checked
+    /// against every move ([`crate::job::fixtures`]); a setup may name its own. Default value:
+    /// none.
+    pub fixtures: Fixtures,
 }
 
 /// How a setup turns the part over from the setup before it (the first: from the part as
@@ -473,6 +478,27 @@ pub enum Flip {
     AboutY,
 }
 
+/// Which face of the part (as the job places it) a setup holds up, towards the spindle.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
+pub enum Up {
+    /// The part's top, as placed.
+    #[serde(rename = "+z")]
+    PlusZ,
+    /// Its bottom.
+    #[serde(rename = "-z")]
+    MinusZ,
+    /// Its right side (+X) up: stood on its left side.
+    #[serde(rename = "+x")]
+    PlusX,
+    #[serde(rename = "-x")]
+    MinusX,
+    /// Its back (+Y) up: stood on its front.
+    #[serde(rename = "+y")]
+    PlusY,
+    #[serde(rename = "-y")]
+    MinusY,
+}
+
 /// One setup of a part machined from more than one side.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(default, rename_all = "camelCase")]
@@ -481,6 +507,10 @@ pub struct Setup {
     pub name: String,
     /// How the part is turned over from the setup before. Default value: none.
     pub flip: Flip,
+    /// Which face of the part it holds up, whatever the setups before did (instead of a
+    /// `flip` from the setup before): `+z` its top, `-z` its bottom, `+x`, `-x`, `+y`, `-y` a
+    /// side, the part stood on the opposite one. Default value: none (as `flip` says).
+    pub up: Option<Up>,
     /// Then a turn about the spindle, counter-clockwise seen from above (degrees: 0, 90, 180
     /// or 270). Default value: 0.
     pub turn: u32,
@@ -491,11 +521,13 @@ pub struct Setup {
     pub zero: Option<WorkZero>,
     /// What this setup cuts, in order. Default value: none.
     pub operations: Vec<Operation>,
+    /// What holds the stock in this setup. Default value: the job's `fixtures`.
+    pub fixtures: Option<Fixtures>,
 }
 
 impl Default for Setup {
     fn default() -> Self {
-        Setup { name: String::new(), flip: Flip::None, turn: 0, work_offset: None, zero: None, operations: Vec::new() }
+        Setup { name: String::new(), flip: Flip::None, up: None, turn: 0, work_offset: None, zero: None, operations: Vec::new(), fixtures: None }
     }
 }
 
@@ -513,6 +545,7 @@ impl Default for Job {
             simulation: Simulation::default(),
             tolerances: Tolerances::default(),
             setups: Vec::new(),
+            fixtures: Fixtures::default(),
         }
     }
 }
@@ -576,11 +609,17 @@ impl Job {
             say("setups".into(), format!("setups: {} setups, more than a part has sides (at most {})", self.setups.len(), crate::limits::MAX_SETUPS));
         }
         for (k, setup) in self.setups.iter().enumerate() {
+            if setup.up.is_some() && setup.flip != Flip::None {
+                say(format!("setups[{k}].up"), format!("setups[{k}]: give the face up (up) or a flip from the setup before (flip), not both"));
+            }
             if setup.turn % 90 != 0 || setup.turn >= 360 {
                 say(format!("setups[{k}].turn"), format!("setups[{k}].turn turns the part about the spindle by 0, 90, 180 or 270 degrees (got {})", setup.turn));
             }
             if let Some(w) = setup.work_offset.as_deref().filter(|w| !crate::post::definition::is_work_offset(w)) {
                 say(format!("setups[{k}].workOffset"), format!("setups[{k}].workOffset must be one of G54 to G59 (got {w:?})"));
+            }
+            for (path, message) in setup.fixtures.as_ref().map(|f| f.problems(&format!("setups[{k}].fixtures"))).unwrap_or_default() {
+                say(path, message);
             }
             if !setup.operations.iter().any(|o| o.op().enabled()) {
                 say(format!("setups[{k}].operations"), format!("setups[{k}].operations: the setup has nothing to cut"));
@@ -598,6 +637,9 @@ impl Job {
         let part = known.part;
         let mut out = Vec::new();
         let mut say = |path: String, message: String| out.push(Problem { path, message });
+        for (path, message) in self.fixtures.problems("fixtures") {
+            say(path, message);
+        }
         let positive = |v: f64| v > 0.0 && v.is_finite();
         if self.tools.len() > crate::limits::MAX_TOOLS {
             say("tools".into(), format!("tools: {} tools, more than a library holds (at most {})", self.tools.len(), crate::limits::MAX_TOOLS));

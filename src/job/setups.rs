@@ -18,7 +18,7 @@
 use glam::DMat3;
 
 use super::run::{prepare, JobOutput};
-use super::schema::{Bar, BarAxis, Flip, Job, Workpiece};
+use super::schema::{Bar, BarAxis, Flip, Job, Up, Workpiece};
 use crate::error::{Error, Result};
 use crate::geom::{Aabb, DVec2, DVec3};
 use crate::mesh::placement::{PartSetup, Placement};
@@ -74,6 +74,20 @@ fn flip_rotation(flip: Flip) -> DMat3 {
     }
 }
 
+/// The rotation that holds face `up` of the part up.
+fn up_rotation(up: Up) -> DMat3 {
+    match up {
+        Up::PlusZ => DMat3::IDENTITY,
+        Up::MinusZ => flip_rotation(Flip::AboutX),
+        // About Y by -90°: X up, Z to -X.
+        Up::PlusX => DMat3::from_cols(DVec3::Z, DVec3::Y, -DVec3::X),
+        Up::MinusX => DMat3::from_cols(-DVec3::Z, DVec3::Y, DVec3::X),
+        // About X by 90°: Y up, Z to -Y.
+        Up::PlusY => DMat3::from_cols(DVec3::X, DVec3::Z, -DVec3::Y),
+        Up::MinusY => DMat3::from_cols(DVec3::X, -DVec3::Z, DVec3::Y),
+    }
+}
+
 /// The rotation of a turn about Z by `degrees` (a multiple of 90).
 fn turn_rotation(degrees: u32) -> DMat3 {
     match (degrees / 90) % 4 {
@@ -108,6 +122,9 @@ impl Job {
         if setup.work_offset.is_some() {
             job.post.work_offset = setup.work_offset.clone();
         }
+        if let Some(fixtures) = &setup.fixtures {
+            job.fixtures = fixtures.clone();
+        }
         // The next setup starts from what the simulation left.
         if k + 1 < self.setups.len() {
             job.simulation.verify = true;
@@ -125,7 +142,10 @@ pub fn setup_frames(job: &Job, part: &Aabb) -> Vec<(Orientation, Aabb)> {
     job.setups
         .iter()
         .map(|setup| {
-            rotation = turn_rotation(setup.turn) * flip_rotation(setup.flip) * rotation;
+            rotation = match setup.up {
+                Some(up) => turn_rotation(setup.turn) * up_rotation(up),
+                None => turn_rotation(setup.turn) * flip_rotation(setup.flip) * rotation,
+            };
             let turned = Orientation { rotation, centre: raw.center(), shift: DVec3::ZERO };
             let stock = turned.apply_box(&raw);
             // A quarter-turned box of the part is the turned part's box.
@@ -193,6 +213,9 @@ pub fn run_setups(job: &Job, mut part: Mesh, progress: &mut Progress) -> Result<
 pub fn carried(left: &DexelStock, from: &Orientation, to: &Orientation, p: DVec2) -> (f64, f64) {
     let to_before = |z: f64| from.apply(to.unapply(p.extend(z)));
     let (a, b) = (to_before(0.0), to_before(1.0));
+    if (b.z - a.z).abs() < 0.5 {
+        return carried_across(left, a, b - a);
+    }
     let q = a.truncate();
     let g = left.grid();
     let cell = |v: f64, o: f64, n: usize| (((v - o) / g.spacing).round().max(0.0) as usize).min(n - 1);
@@ -205,4 +228,72 @@ pub fn carried(left: &DexelStock, from: &Orientation, to: &Orientation, p: DVec2
     let here = |z_before: f64| (z_before - a.z) / (b.z - a.z);
     let (u, v) = (here(floor), here(top));
     (u.min(v), u.max(v))
+}
+
+/// [`carried`] for a setup that stands the part on a side of the one before: the column here
+/// is a line across the columns there, `a + dir t` (`dir` along X or Y there), at the height
+/// `a.z`. Its material is where that line runs through material there (in the rows within a
+/// cell of it, within half a cell of its height); a column holds one span, so it carries the
+/// span from the first such cell to the last, half a cell out each way: all the material, and any cavity between taken as material (the simulation then
+/// cuts air there at the feed, never a rapid through material it did not know).
+fn carried_across(left: &DexelStock, a: DVec3, dir: DVec3) -> (f64, f64) {
+    let g = left.grid();
+    let along_x = dir.x.abs() > 0.5;
+    let (fixed, o_fixed, n_fixed) = if along_x { (a.y, g.origin.y, g.ny) } else { (a.x, g.origin.x, g.nx) };
+    // The rows within a cell of the line, and material within half a cell of its height: the
+    // line's place rounds to no one row, and a span may only err towards more material.
+    let none = (f64::NEG_INFINITY, f64::NEG_INFINITY);
+    let at = (fixed - o_fixed) / g.spacing;
+    let (k0, k1) = ((at - 1.0).ceil().max(0.0), (at + 1.0).floor().min(n_fixed as f64 - 1.0));
+    if k1 < k0 {
+        return none;
+    }
+    let (n, o, start, sign) = if along_x { (g.nx, g.origin.x, a.x, dir.x) } else { (g.ny, g.origin.y, a.y, dir.y) };
+    let slack = g.spacing / 2.0;
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for k in k0 as usize..=k1 as usize {
+        for c in 0..n {
+            let (i, j) = if along_x { (c, k) } else { (k, c) };
+            let (floor, top) = (left.floor(i, j), left.top(i, j));
+            if top > floor && floor - slack <= a.z && a.z <= top + slack {
+                let t = (o + c as f64 * g.spacing - start) / sign;
+                lo = lo.min(t);
+                hi = hi.max(t);
+            }
+        }
+    }
+    if lo > hi {
+        return none;
+    }
+    (lo - g.spacing / 2.0, hi + g.spacing / 2.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A part stood on its side: the column over a point is a line across the columns the
+    /// setup before left, and it carries their span, half a cell out each way.
+    #[test]
+    fn a_stock_stood_on_its_side_carries_the_span_its_columns_cross() {
+        let raw = Aabb { min: DVec3::new(0.0, 0.0, 0.0), max: DVec3::new(10.0, 10.0, 10.0) };
+        // Material in the columns whose centres are at x = 1.5 to 5.5, up to z = 5.
+        let left = DexelStock::new(&raw, 1.0, 1).with_material(|p| if (1.0..6.0).contains(&p.x) { (0.0, 5.0) } else { (0.0, 0.0) });
+        let first = Orientation { rotation: DMat3::IDENTITY, centre: raw.center(), shift: DVec3::ZERO };
+        // Its -X face up: the old X runs down the new Z (x = 5 + z here, about the centre).
+        let side = Orientation { rotation: up_rotation(Up::MinusX), centre: raw.center(), shift: DVec3::ZERO };
+        // A column at the old height 3: it holds the old x from 1 to 6, those cells' edges.
+        let p = side.apply(DVec3::new(0.0, 4.0, 3.0)).truncate();
+        let (floor, top) = carried(&left, &first, &side, p);
+        let x_at = |z: f64| first.apply(side.unapply(p.extend(z))).x;
+        assert!((x_at(floor) - 6.0).abs() < 1e-9 && (x_at(top) - 1.0).abs() < 1e-9, "{floor} {top}: x from {} to {}", x_at(floor), x_at(top));
+        // Above the material there (the old height 7): nothing.
+        let q = side.apply(DVec3::new(0.0, 4.0, 7.0)).truncate();
+        assert_eq!(carried(&left, &first, &side, q).1, f64::NEG_INFINITY);
+        // Each face up is a rotation by quarter turns that holds that face up.
+        for (up, face) in [(Up::PlusX, DVec3::X), (Up::MinusX, -DVec3::X), (Up::PlusY, DVec3::Y), (Up::MinusY, -DVec3::Y), (Up::MinusZ, -DVec3::Z), (Up::PlusZ, DVec3::Z)] {
+            let r = up_rotation(up);
+            assert!((r * face - DVec3::Z).length() < 1e-12 && (r.determinant() - 1.0).abs() < 1e-12, "{up:?}");
+        }
+    }
 }

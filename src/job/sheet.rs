@@ -9,7 +9,7 @@ use std::fmt::Write;
 use serde::{Deserialize, Serialize};
 
 use super::run::JobOutput;
-use super::schema::{Flip, Job, WorkZero, ZeroCorner, ZeroHeight};
+use super::schema::{Flip, Job, Up, WorkZero, ZeroCorner, ZeroHeight};
 use crate::geom::Aabb;
 use crate::post::{clock, TimeItem};
 
@@ -93,9 +93,22 @@ svg{{border:1px solid #ccc;background:#fafafa}}.n{{text-align:right}}</style></h
         let _ = write!(h, "<section>\n<h2>{}: {}</h2>\n", k + 1, escape(&s.name));
         // How to hold it.
         let mut hold = Vec::new();
-        match setup.map(|s| s.flip) {
-            Some(Flip::AboutX) => hold.push("turn the part over about X (front edge to the back)".to_owned()),
-            Some(Flip::AboutY) => hold.push("turn the part over about Y (left edge to the right)".to_owned()),
+        match (setup.and_then(|s| s.up), setup.map(|s| s.flip)) {
+            (Some(up), _) => hold.push(match up {
+                Up::PlusZ => "hold the part its top up".to_owned(),
+                Up::MinusZ => "hold the part its bottom up".to_owned(),
+                side => format!(
+                    "stand the part on its side, its {} face up",
+                    match side {
+                        Up::PlusX => "right (+X)",
+                        Up::MinusX => "left (−X)",
+                        Up::PlusY => "back (+Y)",
+                        _ => "front (−Y)",
+                    }
+                ),
+            }),
+            (None, Some(Flip::AboutX)) => hold.push("turn the part over about X (front edge to the back)".to_owned()),
+            (None, Some(Flip::AboutY)) => hold.push("turn the part over about Y (left edge to the right)".to_owned()),
             _ => {}
         }
         if let Some(turn) = setup.map(|s| s.turn).filter(|&t| t != 0) {

@@ -125,6 +125,11 @@ pub struct Context {
     /// ([`crate::machining::levels::LevelRoughing::region_work`]): a level contoured on the
     /// same surface, at the same height, keeping the same nodes takes its region from here.
     pub given_regions: Vec<GivenRegion>,
+    /// What holds the stock, each grown by its clearance ([`crate::job::fixtures`]).
+    pub keep_out: Vec<crate::job::fixtures::Held>,
+    /// The part with `keep_out`'s boxes, where there are any: what the cutter is dropped onto,
+    /// so that every CL surface, and every strategy above one, stays out of them.
+    pub solid: Option<Mesh>,
 }
 
 impl Context {
@@ -215,7 +220,7 @@ impl Context {
     /// The part indexed for exact drops of `profile` grown by the program's resolution
     /// ([`PointDrop::grown`]), made once per cutter.
     pub fn drop(&mut self, profile: &Profile) -> Arc<PointDrop> {
-        let (part, resolution, tol) = (&self.part, self.resolution, &self.tolerances);
+        let (part, resolution, tol) = (self.solid.as_ref().unwrap_or(&self.part), self.resolution, &self.tolerances);
         cached(&mut self.caches.drops, (*profile, resolution.to_bits()), || PointDrop::grown(part, profile, resolution, tol))
     }
 
@@ -235,9 +240,14 @@ impl Context {
         let field = match builder {
             // The exact z-map is the grown cutter's, so its nodes stand in for the drop where
             // a pass crosses them.
-            ClBuilder::Exact => drop.field(&self.part, grid, floor, &self.tolerances, progress)?,
+            ClBuilder::Exact => drop.field(self.solid.as_ref().unwrap_or(&self.part), grid, floor, &self.tolerances, progress)?,
             ClBuilder::InverseOffset => {
-                let cc = self.cc_zmap(grid, floor);
+                // The part's heights with the fixtures' (not kept: the part's own outline is
+                // what the cached one gives).
+                let cc = match &self.solid {
+                    Some(solid) => Arc::new(cc_zmap(solid, grid, floor, &self.tolerances)),
+                    None => self.cc_zmap(grid, floor),
+                };
                 cl_inverse_offset(&cc, &profile, progress)?
             }
         };
@@ -299,7 +309,7 @@ impl Context {
     /// and spacing.
     fn widened(&mut self, request: SurfaceRequest) -> Arc<ExactBuilder> {
         let drop = self.drop(&request.profile);
-        let (part, tol, h) = (&self.part, &self.tolerances, request.grid.spacing);
+        let (part, tol, h) = (self.solid.as_ref().unwrap_or(&self.part), &self.tolerances, request.grid.spacing);
         cached(&mut self.caches.widened, (request.profile, self.resolution.to_bits(), h.to_bits()), || drop.widened(part, h, tol))
     }
 
@@ -333,7 +343,7 @@ impl Context {
     pub fn surface_rows(&mut self, request: SurfaceRequest, rows: std::ops::Range<usize>, progress: &mut Progress) -> Result<Vec<f64>> {
         debug_assert!(request.builder == ClBuilder::Exact);
         let drop = self.drop(&request.profile);
-        let (part, tol) = (&self.part, &self.tolerances);
+        let (part, tol) = (self.solid.as_ref().unwrap_or(&self.part), &self.tolerances);
         let builder = cached(&mut self.caches.builders, (request.profile, self.resolution.to_bits()), || drop.builder(part, tol));
         drop.rows(&builder, request.grid, request.floor, rows, progress)
     }

@@ -1024,6 +1024,8 @@ mod tests {
             operation: 0,
             given_passes: Default::default(),
             given_regions: Vec::new(),
+            keep_out: Vec::new(),
+            solid: None,
         }
     }
 

@@ -49,6 +49,27 @@ pub struct Finding {
     pub amount: f64,
 }
 
+/// A move into a fixture's clearance: which fixture, which tool, where and how deep.
+#[derive(Clone, Debug, PartialEq, Serialize, ts_rs::TS)]
+#[serde(rename_all = "camelCase")]
+pub struct FixtureCollision {
+    pub fixture: String,
+    pub tool: u32,
+    pub finding: Finding,
+}
+
+impl Report {
+    /// Takes in the moves found running into fixtures (`checked` of them named), the deepest
+    /// first.
+    pub fn fixtures(&mut self, checked: usize, mut hits: Vec<super::fixtures::FixtureHit>) {
+        hits.sort_by(|a, b| b.depth.total_cmp(&a.depth));
+        self.fixtures_checked = checked;
+        self.fixture_collision_count = hits.len();
+        self.fixture_collisions =
+            hits.into_iter().take(KEPT).map(|h| FixtureCollision { fixture: h.fixture, tool: h.tool, finding: Finding { move_index: Some(h.move_index), at: h.at, amount: h.depth } }).collect();
+    }
+}
+
 /// What verification found.
 #[derive(Clone, Debug, Serialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
@@ -65,6 +86,11 @@ pub struct Report {
     pub rapid_collisions: Vec<Finding>,
     pub body_collision_count: usize,
     pub body_collisions: Vec<Finding>,
+    /// Moves into what holds the stock, grown by its clearance ([`super::fixtures`]); none
+    /// checked where the job names no fixtures (`fixtures_checked`).
+    pub fixtures_checked: usize,
+    pub fixture_collision_count: usize,
+    pub fixture_collisions: Vec<FixtureCollision>,
     /// Largest and mean material above part + allowance where the part is (mm).
     pub residual_max: f64,
     pub residual_mean: f64,
@@ -78,7 +104,7 @@ pub struct Report {
 
 impl Report {
     pub fn is_clean(&self) -> bool {
-        self.gouge_count == 0 && self.rapid_collision_count == 0 && self.body_collision_count == 0
+        self.gouge_count == 0 && self.rapid_collision_count == 0 && self.body_collision_count == 0 && self.fixture_collision_count == 0
     }
 
     /// What makes the program unsafe to run, in one message that says where and how deep, or
@@ -99,6 +125,10 @@ impl Report {
         if self.body_collision_count > 0 {
             let at = deepest(&self.body_collisions).map(|f| format!(", {:.3} mm past the flutes at most, {}", f.amount, place(&f))).unwrap_or_default();
             parts.push(format!("{} moves bury the tool deeper than its flute length{at}", self.body_collision_count));
+        }
+        if let Some(c) = self.fixture_collisions.first() {
+            let inside = if c.finding.amount > 0.0 { format!("{:.3} mm into its clearance", c.finding.amount) } else { String::new() };
+            parts.push(format!("{} moves run into what holds the stock: T{} into {}, {inside}, {}", self.fixture_collision_count, c.tool, c.fixture, place(&c.finding)));
         }
         // Gouges on holes' walls said as a machinist says them, before the cells.
         (!parts.is_empty()).then(|| {
@@ -123,6 +153,14 @@ impl Report {
         }
         s += &format!("rapid moves through stock: {}{}\n", self.rapid_collision_count, first(&self.rapid_collisions));
         s += &format!("tool body (above the flutes) in material: {}{}\n", self.body_collision_count, first(&self.body_collisions));
+        if self.fixtures_checked > 0 {
+            let at = self
+                .fixture_collisions
+                .first()
+                .map(|c| format!(", the deepest into {} by {:.3} mm at ({:.3}, {:.3}, {:.3})", c.fixture, c.finding.amount, c.finding.at.x, c.finding.at.y, c.finding.at.z))
+                .unwrap_or_default();
+            s += &format!("moves into the {} fixtures' clearance: {}{at}\n", self.fixtures_checked, self.fixture_collision_count);
+        }
         s += &format!("material left on the part: max {:.3} mm, mean {:.3} mm\n", self.residual_max, self.residual_mean);
         s
     }
@@ -670,6 +708,9 @@ impl Simulator {
             rapid_collisions: rapid.1,
             body_collision_count: body.0,
             body_collisions: body.1,
+            fixtures_checked: 0,
+            fixture_collision_count: 0,
+            fixture_collisions: Vec::new(),
             residual_max,
             residual_mean: if covered > 0 { residual_sum / covered as f64 } else { 0.0 },
             mrr_max: rates.iter().copied().fold(0.0, f64::max),

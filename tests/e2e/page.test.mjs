@@ -1497,6 +1497,13 @@ test('turning the part over in the page: a second setup added (bottom up, faced 
   assert.deepEqual(await page.evaluate(() => { const s = window.swarf.jobs.part.setups[1]; return [s.turn, s.workOffset, s.name]; }), [90, 'G57', 'underside']);
   assert.deepEqual(await page.locator('#setup-tabs button').allTextContents(), ['Top', 'underside']);
   await page.screenshot({ path: path.join(shots, 'setups.png') });
+  // A face up instead: the part stood on its front, its back up (no flip besides).
+  await page.selectOption('#setup-editor [data-setup=up]', '+y');
+  assert.deepEqual(await page.evaluate(() => { const s = window.swarf.jobs.part.setups[1]; return [s.up, s.flip]; }), ['+y', 'none']);
+  assert.ok(await page.isDisabled('#setup-editor [data-setup=flip]'));
+  const standing = await page.evaluate(async () => (await window.swarf.engine.setupFrames(window.swarf.jobs.part, window.swarf.part.bounds))[1]);
+  // Its back (+Y) up, then the quarter turn: Y goes to Z.
+  assert.deepEqual(standing.rotation.slice(3, 6).map(Math.round), [0, 0, 1]);
   // The first setup turns nothing over.
   await page.click('#setup-tabs button:nth-child(1)');
   assert.ok(await page.isDisabled('#setup-editor [data-setup=flip]'));
@@ -1507,6 +1514,40 @@ test('turning the part over in the page: a second setup added (bottom up, faced 
   const after = await page.evaluate(() => window.swarf.jobs.part);
   assert.deepEqual([after.setups, after.operations.map((o) => o.name)], [[], before]);
   assert.ok(await page.isHidden('#setup-editor'));
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
+test('held in a vise: the jaws follow the stock, drawn in the view, every operation stops short of them and says so, and the simulation checks every move clear of them', async () => {
+  const { page, context, errors } = await openPage();
+  await tab(page, 'stock');
+  assert.ok(await page.isHidden('#vise-fields'));
+  await page.check('input[name=vise]');
+  await page.waitForFunction(() => !!window.swarf.jobs.part.fixtures.vise);
+  assert.ok(await page.isVisible('#vise-fields'));
+  // The core's vise: 6 mm of grip by default, closing on the front and back.
+  assert.equal(await page.inputValue('input[name=viseGrip]'), '6');
+  await page.fill('input[name=viseGrip]', '10');
+  await page.fill('input[name=fixtureClearance]', '2');
+  assert.deepEqual(await page.evaluate(() => [window.swarf.jobs.part.fixtures.vise.grip, window.swarf.jobs.part.fixtures.clearance]), [10, 2]);
+  await page.click('#generate');
+  await generated(page);
+  const report = await page.textContent('#sim-report');
+  assert.match(report, /moves into the 2 fixtures' clearance: 0/, report);
+  assert.match(report, /gouges: 0/, report);
+  assert.match(await page.textContent('#warnings'), /places stopped short of the vise's (front|back) jaw \(2 mm clear of it\)/);
+  // Both jaws drawn round the stock.
+  const jaws = await page.evaluate(() => window.swarf.result.summary.fixtures);
+  const stock = await page.evaluate(() => window.swarf.result.summary.stock);
+  assert.equal(jaws.length, 2);
+  assert.equal(jaws[0][4], stock[1]);
+  assert.equal(jaws[1][1], stock[4]);
+  assert.ok(Math.abs(jaws[0][5] - (stock[2] + 10)) < 1e-9);
+  assert.equal(await page.evaluate(() => window.swarfView.lines.fixtures?.count), 48);
+  await page.screenshot({ path: path.join(shots, 'vise.png') });
+  // Unticked: no vise, nothing drawn after the next Generate.
+  await page.uncheck('input[name=vise]');
+  await page.waitForFunction(() => window.swarf.jobs.part.fixtures.vise === null);
   assert.deepEqual(errors, []);
   await context.close();
 });

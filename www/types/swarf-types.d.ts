@@ -623,6 +623,46 @@ direction: Direction,
 grid: number, entry: Entry, };
 
 /**
+ * A box no tool may enter: a clamp, a plate, a stop.
+ */
+export type FixtureBox = { 
+/**
+ * Its name, in the messages. Default value: "fixture N".
+ */
+name: string, 
+/**
+ * Its least corner (mm, in the program's coordinates). Default value: [0, 0, 0].
+ */
+min: [number, number, number], 
+/**
+ * Its greatest corner. Default value: [0, 0, 0].
+ */
+max: [number, number, number], };
+
+/**
+ * A move into a fixture's clearance: which fixture, which tool, where and how deep.
+ */
+export type FixtureCollision = { fixture: string, tool: number, finding: Finding, };
+
+/**
+ * What holds the stock in a setup.
+ */
+export type Fixtures = { 
+/**
+ * A vise gripping the stock's sides; its jaws follow the stock. Default value: none.
+ */
+vise: Vise | null, 
+/**
+ * Clamps, a plate, anything else: boxes in the program's coordinates (mm from the work
+ * zero). Default value: none.
+ */
+boxes: Array<FixtureBox>, 
+/**
+ * How far every tool keeps from each of them (mm). Default value: 1.
+ */
+clearance: number, };
+
+/**
  * How a setup turns the part over from the setup before it (the first: from the part as
  * placed), about an axis through the stock's centre, as a machinist turns it in the vise.
  */
@@ -692,7 +732,13 @@ drawing: DrawingSetup, stock: Stock, tools: Array<Tool>, operations: Array<Opera
  * ([`crate::job::setups`]). Empty: the job is one setup, its `operations`. Default value:
  * none.
  */
-setups: Array<Setup>, };
+setups: Array<Setup>, 
+/**
+ * What holds the stock (a vise, clamps), kept out of by every operation and checked
+ * against every move ([`crate::job::fixtures`]); a setup may name its own. Default value:
+ * none.
+ */
+fixtures: Fixtures, };
 
 /**
  * How much a [`Warning`] asks of the user.
@@ -1171,6 +1217,11 @@ removed: number, gougeCount: number,
  */
 gougeMax: number, gouges: Array<Finding>, rapidCollisionCount: number, rapidCollisions: Array<Finding>, bodyCollisionCount: number, bodyCollisions: Array<Finding>, 
 /**
+ * Moves into what holds the stock, grown by its clearance ([`super::fixtures`]); none
+ * checked where the job names no fixtures (`fixtures_checked`).
+ */
+fixturesChecked: number, fixtureCollisionCount: number, fixtureCollisions: Array<FixtureCollision>, 
+/**
  * Largest and mean material above part + allowance where the part is (mm).
  */
 residualMax: number, residualMean: number, 
@@ -1398,6 +1449,12 @@ name: string,
  */
 flip: Flip, 
 /**
+ * Which face of the part it holds up, whatever the setups before did (instead of a
+ * `flip` from the setup before): `+z` its top, `-z` its bottom, `+x`, `-x`, `+y`, `-y` a
+ * side, the part stood on the opposite one. Default value: none (as `flip` says).
+ */
+up: Up | null, 
+/**
  * Then a turn about the spindle, counter-clockwise seen from above (degrees: 0, 90, 180
  * or 270). Default value: 0.
  */
@@ -1414,7 +1471,11 @@ zero: WorkZero | null,
 /**
  * What this setup cuts, in order. Default value: none.
  */
-operations: Array<Operation>, };
+operations: Array<Operation>, 
+/**
+ * What holds the stock in this setup. Default value: the job's `fixtures`.
+ */
+fixtures: Fixtures | null, };
 
 /**
  * Where a setup holds the part, for the view and a portal: a point `p` of the part as the job
@@ -1571,7 +1632,11 @@ cacheHits: number,
 /**
  * What makes the program unsafe to run, if verification found anything.
  */
-problem: string | null, stock: [number, number, number, number, number, number], clearanceZ: number, 
+problem: string | null, stock: [number, number, number, number, number, number], 
+/**
+ * What holds the stock (a vise's jaws, clamps): each box's least and greatest corner.
+ */
+fixtures: Array<[number, number, number, number, number, number]>, clearanceZ: number, 
 /**
  * The extension the post's controllers expect of the program's file.
  */
@@ -1828,6 +1893,11 @@ tipDiameter: number, };
 export type Units = "mm" | "inch";
 
 /**
+ * Which face of the part (as the job places it) a setup holds up, towards the spindle.
+ */
+export type Up = "+z" | "-z" | "+x" | "-x" | "+y" | "-y";
+
+/**
  * Which axis of the file points up: the part is turned so that it points along +Z (a turn,
  * never a mirror).
  */
@@ -1876,6 +1946,33 @@ stepoverFraction: number,
  * The flat tool's step-down (mm). Default value: 2.
  */
 stepdown: number, };
+
+/**
+ * A machine vise: two jaws gripping the stock's sides from its bottom up.
+ */
+export type Vise = { 
+/**
+ * How far up the stock's sides the jaws reach, from its bottom (mm). Default value: 6.
+ */
+grip: number, 
+/**
+ * The jaws' width along the stock's side (mm). Default value: 150.
+ */
+jawWidth: number, 
+/**
+ * The jaws' thickness, out from the stock (mm). Default value: 20.
+ */
+jawThickness: number, 
+/**
+ * Which way the jaws close: `y` grips the front and back of the stock, `x` its left and
+ * right. Default value: y.
+ */
+closes: ViseAxis, };
+
+/**
+ * Which way a vise's jaws close.
+ */
+export type ViseAxis = "x" | "y";
 
 /**
  * Something the user should know that did not stop the job, with the operation it belongs to

@@ -1,0 +1,159 @@
+//! Every move checked against what holds the stock ([`crate::job::fixtures`]): the tool, its
+//! cutter and the shank above it (the holder is not modelled), against each fixture grown by
+//! its clearance. The tool stands on its tip and rises without end, so at a point of its move
+//! it runs into a box where the box's footprint comes within the tool's radius of its axis and
+//! the tool's lower surface there (the cutter's profile within the cutter's radius, the
+//! flutes' top under a wider shank) stands below the box's top. The moves are judged at points
+//! no farther apart than a fiftieth of the tool's radius (and 0.05 mm), never only at their
+//! ends.
+
+use crate::cutter::Cutter;
+use crate::geom::{Aabb, DVec2, DVec3};
+use crate::job::fixtures::Held;
+use crate::toolpath::{arc_sweep, Move};
+
+use super::program::ProgramMove;
+
+/// A move that runs into a fixture.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FixtureHit {
+    /// The fixture, by name ("the vise's front jaw").
+    pub fixture: String,
+    pub move_index: usize,
+    pub tool: u32,
+    /// The tool's tip where it is deepest in the fixture's clearance.
+    pub at: DVec3,
+    /// How far into the clearance it goes (mm): past the clearance into the fixture itself
+    /// once it exceeds it.
+    pub depth: f64,
+}
+
+/// The height above the tip of the tool's lower surface at `d` from its axis (`None` beyond
+/// the tool's widest radius).
+fn body_height(c: &Cutter, d: f64) -> Option<f64> {
+    let r = c.diameter / 2.0;
+    let shank = c.shank_diameter.unwrap_or(c.diameter) / 2.0;
+    if d <= r {
+        Some(c.profile().height(d))
+    } else if d <= shank {
+        Some(c.flute_length)
+    } else {
+        None
+    }
+}
+
+/// The distance in XY from `p` to the rectangle of `b`.
+fn to_rectangle(p: DVec2, b: &Aabb) -> f64 {
+    let dx = (b.min.x - p.x).max(p.x - b.max.x).max(0.0);
+    let dy = (b.min.y - p.y).max(p.y - b.max.y).max(0.0);
+    dx.hypot(dy)
+}
+
+/// How far the tool at tip `p` is into `b`: the lesser of how far its lower surface stands
+/// below the box's top and how far the box's side comes inside its widest radius (a tool
+/// touching the box's side or top is not in it); below 0, how far it keeps clear of the box
+/// in the nearer of the two senses.
+fn into(c: &Cutter, p: DVec3, b: &Aabb) -> f64 {
+    let d = to_rectangle(p.truncate(), b);
+    let reach = c.diameter.max(c.shank_diameter.unwrap_or(0.0)) / 2.0;
+    let h = body_height(c, d.min(reach)).unwrap_or(c.flute_length);
+    (b.max.z - (p.z + h)).min(reach - d)
+}
+
+/// The tip's place a fraction `t` along move `m` from `from`.
+fn along(from: DVec3, m: &Move, t: f64) -> DVec3 {
+    match *m {
+        Move::Rapid { to } | Move::Line { to, .. } => from.lerp(to, t),
+        Move::Arc { to, center, clockwise, .. } => {
+            let sweep = arc_sweep(from, to, center, clockwise);
+            let a = from.truncate() - center;
+            let (s, c) = (sweep * t).sin_cos();
+            let p = center + DVec2::new(a.x * c - a.y * s, a.x * s + a.y * c);
+            p.extend(from.z + (to.z - from.z) * t)
+        }
+    }
+}
+
+/// The moves of `moves` that run into a fixture of `keep_out` (each grown by its clearance)
+/// by more than `tolerance` (below 0: that come within `-tolerance` of one): the deepest
+/// point of each such move and fixture.
+pub fn collisions(moves: &[ProgramMove], keep_out: &[Held], tolerance: f64) -> Vec<FixtureHit> {
+    let mut out = Vec::new();
+    if keep_out.is_empty() {
+        return out;
+    }
+    for (k, m) in moves.iter().enumerate() {
+        let reach = (m.cutter.diameter.max(m.cutter.shank_diameter.unwrap_or(0.0))) / 2.0;
+        let to = m.mv.to();
+        // The move's box: an arc's is its circle's.
+        let (lo, hi) = match m.mv {
+            Move::Arc { center, .. } => {
+                let r = (m.from.truncate() - center).length();
+                (center.extend(m.from.z.min(to.z)) - DVec3::new(r, r, 0.0), center.extend(m.from.z.max(to.z)) + DVec3::new(r, r, 0.0))
+            }
+            _ => (m.from.min(to), m.from.max(to)),
+        };
+        for h in keep_out {
+            let b = &h.solid;
+            let near = -tolerance.min(0.0);
+            if lo.z >= b.max.z + near || lo.x > b.max.x + reach + near || hi.x < b.min.x - reach - near || lo.y > b.max.y + reach + near || hi.y < b.min.y - reach - near {
+                continue;
+            }
+            let step = (m.cutter.diameter / 100.0).clamp(1e-3, 0.05);
+            let n = (m.mv.length(m.from) / step).ceil().max(1.0) as usize;
+            let mut worst: Option<(f64, DVec3)> = None;
+            for i in 0..=n {
+                let p = along(m.from, &m.mv, i as f64 / n as f64);
+                let d = into(&m.cutter, p, b);
+                if d > tolerance && worst.is_none_or(|(w, _)| d > w) {
+                    worst = Some((d, p));
+                }
+            }
+            if let Some((depth, at)) = worst {
+                out.push(FixtureHit { fixture: h.name.clone(), move_index: k, tool: m.tool, at, depth });
+            }
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::toolpath::Move;
+
+    fn moving(cutter: &Cutter, from: DVec3, to: DVec3) -> ProgramMove {
+        ProgramMove { path: 0, tool: 1, cutter: cutter.clone(), from, mv: Move::Line { to, feed: 1000.0 }, start: 0.0, seconds: 1.0, air: false }
+    }
+
+    #[test]
+    fn a_tool_beside_a_jaw_clears_it_by_its_profile_and_one_over_it_runs_in() {
+        let jaw = Held { name: "the vise's front jaw".into(), solid: Aabb { min: DVec3::new(-50.0, -40.0, -60.0), max: DVec3::new(50.0, -25.0, -10.0) } };
+        let ball = Cutter { shape: crate::cutter::Shape::Ball, diameter: 6.0, corner_radius: 3.0, shank_diameter: None, flute_length: 20.0, angle: None, tip_diameter: 0.0 };
+        // Along the jaw's face, 3 mm off: the ball's side just touches it, no more.
+        let beside = moving(&ball, DVec3::new(-30.0, -22.0, -15.0), DVec3::new(30.0, -22.0, -15.0));
+        assert!(collisions(std::slice::from_ref(&beside), std::slice::from_ref(&jaw), 1e-9).is_empty());
+        // 1 mm closer: 1 mm into its side (the tip 5 mm below the jaw's top).
+        let closer = moving(&ball, DVec3::new(-30.0, -23.0, -15.0), DVec3::new(30.0, -23.0, -15.0));
+        let hits = collisions(&[closer], std::slice::from_ref(&jaw), 1e-9);
+        assert_eq!(hits.len(), 1);
+        assert!((hits[0].depth - 1.0).abs() < 1e-9, "{}", hits[0].depth);
+        // Across the jaw's end 1 mm off it, the tip 1 mm under its top: the ball's side
+        // 0.83 mm into it, found between the move's ends (both well clear of the jaw).
+        let over = moving(&ball, DVec3::new(-51.0, -10.0, -11.0), DVec3::new(-51.0, -55.0, -11.0));
+        let hits = collisions(&[over], std::slice::from_ref(&jaw), 1e-9);
+        assert_eq!(hits.len(), 1);
+        assert_eq!(hits[0].fixture, "the vise's front jaw");
+        assert!((hits[0].depth - (1.0 - (3.0 - 8.0f64.sqrt()))).abs() < 1e-9, "{}", hits[0].depth);
+        assert!((-40.0..=-25.0).contains(&hits[0].at.y), "{}", hits[0].at);
+        // 0.2 mm off its side: clear, but within 0.25 of it.
+        let near = moving(&ball, DVec3::new(-30.0, -21.8, -15.0), DVec3::new(30.0, -21.8, -15.0));
+        assert!(collisions(std::slice::from_ref(&near), std::slice::from_ref(&jaw), 1e-9).is_empty());
+        let touching = collisions(&[near], std::slice::from_ref(&jaw), -0.25);
+        assert_eq!(touching.len(), 1);
+        assert!((touching[0].depth + 0.2).abs() < 1e-9, "{}", touching[0].depth);
+        // Above it: clear.
+        let high = moving(&ball, DVec3::new(0.0, -60.0, -9.99), DVec3::new(0.0, 0.0, -9.99));
+        assert!(collisions(&[high], &[jaw], 1e-9).is_empty());
+    }
+}
