@@ -300,3 +300,26 @@ fn a_setup_stands_the_part_on_its_side() {
     job.setups[2].flip = swarf::job::Flip::AboutX;
     assert_eq!(job.problems()[0].path, "setups[2].up");
 }
+
+/// A setup's work offset is one its control has: Fanuc's extended `G54.1 P7` is written as
+/// such; GRBL 1.1 has no `G59.1` (LinuxCNC has), and the message says what it has.
+#[test]
+fn a_setups_work_offset_is_one_its_control_has() {
+    use swarf::post::Dialect;
+    let mut job = Job::two_sided();
+    job.post.dialect = Dialect::Fanuc;
+    job.setups[1].work_offset = Some("G54.1 P7".into());
+    assert!(job.problems().is_empty(), "{:?}", job.problems());
+    let setups = run_setups(&job, two_sided_part(), &mut Progress::none()).unwrap();
+    // (Fanuc numbers its lines.)
+    assert!(setups[1].output.gcode.lines().any(|l| l.ends_with(" G54.1 P7")), "{}", &setups[1].output.gcode[..400]);
+    let sheets: Vec<_> = setups.iter().map(|s| swarf::job::sheet::SheetSetup::of(&s.name, &s.output)).collect();
+    assert_eq!(sheets[1].work_offset.as_deref(), Some("G54.1 P7"));
+    job.setups[1].work_offset = Some("G54.1 P49".into());
+    assert_eq!(job.problems()[0].message, "setups[1].workOffset must be one of G54 to G59, G54.1 P1 to G54.1 P48 (Fanuc) (got \"G54.1 P49\")");
+    job.post.dialect = Dialect::Grbl;
+    job.setups[1].work_offset = Some("G59.1".into());
+    assert_eq!(job.problems()[0].message, "setups[1].workOffset must be one of G54 to G59 (GRBL 1.1) (got \"G59.1\")");
+    job.post.dialect = Dialect::LinuxCnc;
+    assert!(job.problems().is_empty());
+}

@@ -514,7 +514,9 @@ pub struct Setup {
     /// Then a turn about the spindle, counter-clockwise seen from above (degrees: 0, 90, 180
     /// or 270). Default value: 0.
     pub turn: u32,
-    /// The work offset its program selects (`G54` to `G59`). Default value: the job's post's.
+    /// The work offset its program selects: `G54` to `G59`, or one the control has besides
+    /// (`G59.1` to `G59.3` on LinuxCNC and grblHAL, `G54.1 P1` to `G54.1 P48` on Fanuc).
+    /// Default value: the job's post's.
     pub work_offset: Option<String>,
     /// The point of the stock, as this setup holds it, that is its program's origin. Default
     /// value: the job's `stock.zero`.
@@ -615,8 +617,9 @@ impl Job {
             if setup.turn % 90 != 0 || setup.turn >= 360 {
                 say(format!("setups[{k}].turn"), format!("setups[{k}].turn turns the part about the spindle by 0, 90, 180 or 270 degrees (got {})", setup.turn));
             }
-            if let Some(w) = setup.work_offset.as_deref().filter(|w| !crate::post::definition::is_work_offset(w)) {
-                say(format!("setups[{k}].workOffset"), format!("setups[{k}].workOffset must be one of G54 to G59 (got {w:?})"));
+            let post = self.post.post();
+            if let Some(w) = setup.work_offset.as_deref().filter(|w| !post.has_work_offset(w)) {
+                say(format!("setups[{k}].workOffset"), format!("setups[{k}].workOffset must be {} (got {w:?})", post.work_offsets_words()));
             }
             for (path, message) in setup.fixtures.as_ref().map(|f| f.problems(&format!("setups[{k}].fixtures"))).unwrap_or_default() {
                 say(path, message);

@@ -58,7 +58,7 @@ impl SheetSetup {
         }
         SheetSetup {
             name: name.to_owned(),
-            work_offset: out.gcode.lines().map(str::trim).find(|l| crate::post::definition::is_work_offset(l)).map(str::to_owned),
+            work_offset: out.gcode.lines().map(without_number).find(|l| crate::post::definition::is_work_offset(l)).map(str::to_owned),
             stock: out.stock,
             moves: out.moves.len(),
             cycle: out.cycle.seconds,
@@ -67,6 +67,15 @@ impl SheetSetup {
             time: out.time.clone(),
             picture: picture(name, out),
         }
+    }
+}
+
+/// A program's line without its line number (`N120 G55`: `G55`).
+fn without_number(line: &str) -> &str {
+    let line = line.trim();
+    match line.split_once(' ') {
+        Some((n, rest)) if n.len() > 1 && n.starts_with('N') && n[1..].chars().all(|c| c.is_ascii_digit()) => rest.trim(),
+        _ => line,
     }
 }
 

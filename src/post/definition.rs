@@ -82,8 +82,10 @@ pub struct Post {
     pub header: Vec<String>,
     /// Modal setup lines, written after the units word (G20/G21).
     pub setup: Vec<String>,
-    /// The work offset to select (`G54` … `G59`), or none.
+    /// The work offset to select (`G54` … `G59`, and those of `workOffsets`), or none.
     pub work_offset: Option<String>,
+    /// The work offsets the control has beyond `G54` to `G59`. Default value: none.
+    pub work_offsets: WorkOffsets,
     /// Lines that change the tool (`T{tool} M6`, `G43 H{tool}`). Empty: the control has no tool
     /// changer, and the program stops the spindle, names the tool in a comment and pauses.
     pub tool_change: Vec<String>,
@@ -140,6 +142,7 @@ impl Default for Post {
             header: Vec::new(),
             setup: vec!["G90 G94 G17".into()],
             work_offset: None,
+            work_offsets: WorkOffsets::default(),
             tool_change: vec!["T{tool} M6".into()],
             pause: "M0".into(),
             spindle_on: "S{rpm} M3".into(),
@@ -225,8 +228,8 @@ impl Post {
             check_template(line, &[]).map_err(|e| format!("{field}: {e}"))?;
         }
         if let Some(w) = &self.work_offset {
-            if !is_work_offset(w) {
-                return Err(format!("workOffset must be one of G54 to G59 (got {w:?})"));
+            if !self.has_work_offset(w) {
+                return Err(format!("workOffset must be {} (got {w:?})", self.work_offsets_words()));
             }
         }
         if self.tool_change.is_empty() && self.pause.trim().is_empty() {
@@ -422,9 +425,44 @@ pub(crate) fn comment(text: &str) -> String {
     text.chars().map(|c| if c == '(' || c == ')' { '-' } else { c }).filter(|c| !c.is_control()).collect()
 }
 
-/// Whether `w` selects a work offset: `G54` to `G59` (and `G59.1` to `G59.3`).
+/// The work offsets a control has beyond `G54` to `G59`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(default, deny_unknown_fields, rename_all = "camelCase")]
+pub struct WorkOffsets {
+    /// `G59.1` to `G59.3` (LinuxCNC, grblHAL). Default value: false.
+    pub g59_dot: bool,
+    /// The largest `n` of the extended offsets `G54.1 Pn` (Fanuc's 48), 0 for none. Default
+    /// value: 0.
+    pub extended: u32,
+}
+
+impl Post {
+    /// Whether the control has the work offset `w` (`G55`, `G59.2`, `G54.1 P12`).
+    pub fn has_work_offset(&self, w: &str) -> bool {
+        match w {
+            "G54" | "G55" | "G56" | "G57" | "G58" | "G59" => true,
+            "G59.1" | "G59.2" | "G59.3" => self.work_offsets.g59_dot,
+            _ => w.strip_prefix("G54.1 P").and_then(|n| n.parse::<u32>().ok()).is_some_and(|n| n >= 1 && n <= self.work_offsets.extended),
+        }
+    }
+
+    /// The work offsets the control has, in words ("G54 to G59, G59.1 to G59.3").
+    pub fn work_offsets_words(&self) -> String {
+        let mut words = vec!["G54 to G59".to_owned()];
+        if self.work_offsets.g59_dot {
+            words.push("G59.1 to G59.3".into());
+        }
+        if self.work_offsets.extended > 0 {
+            words.push(format!("G54.1 P1 to G54.1 P{}", self.work_offsets.extended));
+        }
+        format!("one of {} ({})", words.join(", "), self.name)
+    }
+}
+
+/// Whether the line `w` selects a work offset, on any control: `G54` to `G59`, `G59.1` to
+/// `G59.3`, `G54.1 Pn`.
 pub fn is_work_offset(w: &str) -> bool {
-    matches!(w, "G54" | "G55" | "G56" | "G57" | "G58" | "G59" | "G59.1" | "G59.2" | "G59.3")
+    matches!(w, "G54" | "G55" | "G56" | "G57" | "G58" | "G59" | "G59.1" | "G59.2" | "G59.3") || w.strip_prefix("G54.1 P").is_some_and(|n| n.parse::<u32>().is_ok())
 }
 
 #[cfg(test)]

@@ -153,8 +153,9 @@ impl PostSettings {
             custom.validate().map_err(|e| format!("post.custom.{e}"))?;
         }
         if let Some(w) = &self.work_offset {
-            if !crate::post::definition::is_work_offset(w) {
-                return Err(format!("post.workOffset must be one of G54 to G59 (got {w:?})"));
+            let post = self.post();
+            if !post.has_work_offset(w) {
+                return Err(format!("post.workOffset must be {} (got {w:?})", post.work_offsets_words()));
             }
         }
         if let Some(d) = self.decimals {

@@ -1006,9 +1006,13 @@ header: Array<string>,
  */
 setup: Array<string>, 
 /**
- * The work offset to select (`G54` … `G59`), or none.
+ * The work offset to select (`G54` … `G59`, and those of `workOffsets`), or none.
  */
 workOffset: string | null, 
+/**
+ * The work offsets the control has beyond `G54` to `G59`. Default value: none.
+ */
+workOffsets: WorkOffsets, 
 /**
  * Lines that change the tool (`T{tool} M6`, `G43 H{tool}`). Empty: the control has no tool
  * changer, and the program stops the spindle, names the tool in a comment and pauses.
@@ -1460,7 +1464,9 @@ up: Up | null,
  */
 turn: number, 
 /**
- * The work offset its program selects (`G54` to `G59`). Default value: the job's post's.
+ * The work offset its program selects: `G54` to `G59`, or one the control has besides
+ * (`G59.1` to `G59.3` on LinuxCNC and grblHAL, `G54.1 P1` to `G54.1 P48` on Fanuc).
+ * Default value: the job's post's.
  */
 workOffset: string | null, 
 /**
@@ -1989,6 +1995,20 @@ count: number,
  * The first of them (x, y, z in mm, as placed), at most [`Warning::KEPT`].
  */
 places: Array<[number, number, number]>, };
+
+/**
+ * The work offsets a control has beyond `G54` to `G59`.
+ */
+export type WorkOffsets = { 
+/**
+ * `G59.1` to `G59.3` (LinuxCNC, grblHAL). Default value: false.
+ */
+g59Dot: boolean, 
+/**
+ * The largest `n` of the extended offsets `G54.1 Pn` (Fanuc's 48), 0 for none. Default
+ * value: 0.
+ */
+extended: number, };
 
 /**
  * The work zero: where the program's origin is on the setup.
