@@ -394,21 +394,36 @@ impl JobResult {
 }
 
 /// The holes a hole operation of `job` finds in the part or drawing in `bytes`, placed as the
-/// job places it, numbered as the operations' `holes` take them (`swarf holes`).
+/// job places it (with `setup`, as that setup of a job with setups holds it), numbered as the
+/// operations' `holes` take them (`swarf holes`).
 #[wasm_bindgen(js_name = findHoles)]
-pub fn find_holes(job: JsValue, bytes: &[u8], name: &str) -> Result<JsValue, JsError> {
+pub fn find_holes(job: JsValue, bytes: &[u8], name: &str, setup: Option<usize>) -> Result<JsValue, JsError> {
     let job = job_from_js(job)?;
     let workpiece = Workpiece::read(bytes, Some(name), &job.tolerances).map_err(js_error)?;
-    to_js(&job.holes(workpiece).map_err(js_error)?)
+    let holes = match (setup, workpiece) {
+        (Some(k), Workpiece::Mesh(part)) => job.for_setup(k, part).and_then(|(sub, held, _)| sub.holes(held)),
+        (_, workpiece) => job.holes(workpiece),
+    };
+    to_js(&holes.map_err(js_error)?)
+}
+
+/// `job` (and the part as read), or with `setup` that setup's job and the part held as it
+/// holds it: where a setup's operations find what they pick from.
+fn as_held(job: Job, part: crate::mesh::Mesh, setup: Option<usize>) -> Result<(Job, crate::mesh::Mesh), JsError> {
+    match setup {
+        Some(k) => job.for_setup(k, part).map(|(sub, held, _)| (sub, held)).map_err(js_error),
+        None => Ok((job, part)),
+    }
 }
 
 /// The round bosses (studs) an external thread mill of `job` finds on the part in `bytes`,
 /// placed as the job places it, numbered as the operation's `holes` take them (`swarf holes
 /// --bosses`). A drawing has none: an error says so.
 #[wasm_bindgen(js_name = findBosses)]
-pub fn find_bosses(job: JsValue, bytes: &[u8], name: &str) -> Result<JsValue, JsError> {
+pub fn find_bosses(job: JsValue, bytes: &[u8], name: &str, setup: Option<usize>) -> Result<JsValue, JsError> {
     let job = job_from_js(job)?;
     let part = mesh_only(bytes, name, &job, "a drawing has no bosses: external threads are milled round a 3D part's round studs")?;
+    let (job, part) = as_held(job, part, setup)?;
     to_js(&job.bosses(part).map_err(js_error)?)
 }
 
@@ -416,9 +431,10 @@ pub fn find_bosses(job: JsValue, bytes: &[u8], name: &str) -> Result<JsValue, Js
 /// placed as the job places it, numbered as its `loops` take them (`swarf edges`). A drawing's
 /// edges are its loops: an error says so.
 #[wasm_bindgen(js_name = findEdges)]
-pub fn find_edges(job: JsValue, bytes: &[u8], name: &str) -> Result<JsValue, JsError> {
+pub fn find_edges(job: JsValue, bytes: &[u8], name: &str, setup: Option<usize>) -> Result<JsValue, JsError> {
     let job = job_from_js(job)?;
     let part = mesh_only(bytes, name, &job, "a drawing's edges are its loops: chamfer them with edges: loops")?;
+    let (job, part) = as_held(job, part, setup)?;
     to_js(&job.top_edges(part).map_err(js_error)?.iter().map(view::EdgeView::of).collect::<Vec<_>>())
 }
 

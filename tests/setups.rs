@@ -323,3 +323,30 @@ fn a_setups_work_offset_is_one_its_control_has() {
     job.post.dialect = Dialect::LinuxCnc;
     assert!(job.problems().is_empty());
 }
+
+/// What a setup's operations pick from is found in the part as that setup holds it: from the
+/// top, the highest edge is the rim of the face round the pocket, under the dome; from below,
+/// the boss's end (the plate's lowest face) is the highest face and its rim the highest edge.
+#[test]
+fn a_setup_finds_its_edges_in_the_part_as_it_holds_it() {
+    let job = Job::two_sided();
+    let highest = |k: usize| {
+        let (sub, held, _) = job.for_setup(k, two_sided_part()).unwrap();
+        let top = held.bounds().max.z;
+        let edges = sub.top_edges(held).unwrap();
+        eprintln!("setup {k}: {} top edges at z {:?}, the part's top at {top:.3}", edges.len(), edges.iter().map(|e| (e.z * 1000.0).round() / 1000.0).collect::<Vec<_>>());
+        (edges.iter().map(|e| e.z).fold(f64::NEG_INFINITY, f64::max), top, edges.len())
+    };
+    let (top_edge, top_top, top_count) = highest(0);
+    let (bottom_edge, bottom_top, bottom_count) = highest(1);
+    assert!(top_count > 0 && bottom_count > 0);
+    // From below, the boss's end is the part's top, and its rim the highest edge.
+    assert!((bottom_edge - bottom_top).abs() < 1e-6, "{bottom_edge} against {bottom_top}");
+    // From the top, the dome rises 1.5 mm above the face round the pocket, whose rim is the
+    // highest edge (the part as placed: 2 edges; from below: the boss, the bottom face, the slot).
+    assert!((top_top - top_edge - 1.5).abs() < 1e-6, "{top_edge} against {top_top}");
+    assert_ne!(top_count, bottom_count);
+    let (_, _, orientation) = job.for_setup(1, two_sided_part()).unwrap();
+    assert_eq!(orientation.rotation.z_axis.z, -1.0);
+    assert!(job.for_setup(2, two_sided_part()).is_err());
+}

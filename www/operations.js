@@ -1,7 +1,7 @@
 // The operations of the job on show, in order: listed with their colour, tools and whether
 // they run; added, moved, removed; the picked one's form; and for drawings, the loops it cuts,
 // picked by clicking them in the view.
-import { $, state, hooks, ops, selectedOp, selectedTool, is2d, store, toolsOf, buildJob, HOLE_OPS } from './state.js';
+import { $, state, hooks, ops, hasSetups, setupIndex, selectedOp, selectedTool, is2d, store, toolsOf, buildJob, HOLE_OPS } from './state.js';
 import { fillFields, message, sized, check } from './forms.js';
 import { opColor, cssColor } from './viewer.js';
 import * as units from './units.js';
@@ -150,17 +150,22 @@ function modeOf(op) {
   return 'holes';
 }
 
+// What the finds belong to: the part or drawing on show, and with setups the setup on show
+// (a setup finds them in the part as it holds it).
+const findsOf = () => (hasSetups() ? `${state.name} (setup ${setupIndex()})` : state.name);
+
 // What the selected operation picks from, as found for the part or drawing on show.
 function found(op = selectedOp()) {
   const mode = modeOf(op) ?? 'holes', f = state[mode];
-  return f?.of === state.name ? f.items : [];
+  return f?.of === findsOf() ? f.items : [];
 }
 
 export async function findHoles() {
   const mode = modeOf(selectedOp()) ?? 'holes', m = MODES[mode];
   try {
-    const items = await state.engine[mode](buildJob(), state.bytes, state.name);
-    state[mode] = { of: state.name, items };
+    const j = buildJob();
+    const items = await state.engine[mode](j, state.bytes, state.name, hasSetups(j) ? setupIndex(j) : undefined);
+    state[mode] = { of: findsOf(), items };
     // The hole operations' settings are checked against the holes now known.
     if (mode === 'holes') check();
     const n = items.length;

@@ -170,11 +170,11 @@ export declare class Engine {
   setupSheet(job: JobInput, name: string): Promise<string>;
   /** Where each setup of `job` holds a part of these bounds, before a run (empty without setups). */
   setupFrames(job: JobInput, partBounds: ArrayLike<number>): Promise<SetupView[]>;
-  holes(job: JobInput, bytes: Uint8Array, name: string): Promise<Hole[]>;
+  holes(job: JobInput, bytes: Uint8Array, name: string, setup?: number): Promise<Hole[]>;
   /** A part's round bosses (studs), for an external thread mill: numbered as its `holes` take them. */
-  bosses(job: JobInput, bytes: Uint8Array, name: string): Promise<Hole[]>;
+  bosses(job: JobInput, bytes: Uint8Array, name: string, setup?: number): Promise<Hole[]>;
   /** A part's top edges for a chamfer (`edges: 'partEdges'`): numbered as its `loops` take them. */
-  edges(job: JobInput, bytes: Uint8Array, name: string): Promise<EdgeView[]>;
+  edges(job: JobInput, bytes: Uint8Array, name: string, setup?: number): Promise<EdgeView[]>;
   repost(post: PostSettingsInput, setup?: number): Promise<Reposted & { moveLines: Uint32Array; gcodeBytes: Uint8Array<ArrayBuffer>; lineStarts: Uint32Array }>;
   seek(count: number, setup?: number): Promise<Float32Array>;
   cancel(): Promise<void>;

@@ -243,21 +243,22 @@ export class Engine {
    * The holes the hole operations (drill, bore, chamfer, threadMill) of `job` find in the part
    * or drawing in `bytes`, placed as the job places it, in the order their `holes` field numbers
    * them (a drawing's by its loops): `[{ center, diameter, top, bottom, through, bottomShape,
-   * loopIndex, layer }]` (`swarf holes`).
+   * loopIndex, layer }]` (`swarf holes`). With `setup` (a job with setups), those of the part
+   * as that setup holds it, which its operations pick from.
    */
-  async holes(job, bytes, name) { return (await this.call({ type: 'holes', job, bytes, name })).holes; }
+  async holes(job, bytes, name, setup) { return (await this.call({ type: 'holes', job, bytes, name, setup })).holes; }
   /**
    * The round bosses (studs) an external thread mill (`threadMill` with `external: true`) of
    * `job` finds on the part in `bytes`, placed and numbered as its `holes` take them, in the
    * holes' form (`swarf holes --bosses`). A drawing has none: the promise rejects, saying so.
    */
-  async bosses(job, bytes, name) { return (await this.call({ type: 'bosses', job, bytes, name })).holes; }
+  async bosses(job, bytes, name, setup) { return (await this.call({ type: 'bosses', job, bytes, name, setup })).holes; }
   /**
    * A part's top edges as a chamfer with `edges: 'partEdges'` of `job` finds them, placed as
    * the job places the part, numbered as its `loops` take them: `[{ z, sharp, length, points }]`
    * (`swarf edges`). A drawing's edges are its loops: the promise rejects, saying so.
    */
-  async edges(job, bytes, name) { return (await this.call({ type: 'edges', job, bytes, name })).edges; }
+  async edges(job, bytes, name, setup) { return (await this.call({ type: 'edges', job, bytes, name, setup })).edges; }
   /** Reads a job file as `swarf run` does (a misspelt field is named). */
   async readJob(text) { return (await this.call({ type: 'readJob', text })).job; }
   /**

@@ -293,11 +293,11 @@ self.onmessage = async (event) => {
       plan = null;
       self.postMessage({ id, ok: true });
     } else if (type === 'holes') {
-      self.postMessage({ id, ok: true, holes: findHoles(event.data.job, event.data.bytes, event.data.name) });
+      self.postMessage({ id, ok: true, holes: findHoles(event.data.job, event.data.bytes, event.data.name, event.data.setup) });
     } else if (type === 'bosses') {
-      self.postMessage({ id, ok: true, holes: findBosses(event.data.job, event.data.bytes, event.data.name) });
+      self.postMessage({ id, ok: true, holes: findBosses(event.data.job, event.data.bytes, event.data.name, event.data.setup) });
     } else if (type === 'edges') {
-      self.postMessage({ id, ok: true, edges: findEdges(event.data.job, event.data.bytes, event.data.name) });
+      self.postMessage({ id, ok: true, edges: findEdges(event.data.job, event.data.bytes, event.data.name, event.data.setup) });
     } else if (type === 'repost') {
       // The program as bytes, as a run's is (see `send`).
       const { gcode, ...rest } = kept(event.data.setup).result.repost(event.data.post);

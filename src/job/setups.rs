@@ -169,6 +169,22 @@ pub fn setup_stage(job: &Job, k: usize, part: &Mesh, frame: &(Orientation, Aabb)
     (job.setup_job(k, stock, orientation.rotation), held)
 }
 
+impl Job {
+    /// Setup `k` of this job (one with setups) on its own: its job, `part` (as read) held as
+    /// the setup holds it, and where that is; what [`crate::job::wire::PoolWorker::prepare_setup`]
+    /// plans, and what finds the holes, bosses and edges that setup's operations pick from.
+    pub fn for_setup(&self, k: usize, mut part: Mesh) -> Result<(Job, Mesh, Orientation)> {
+        self.validate()?;
+        if k >= self.setups.len() {
+            return Err(Error::Input(format!("setup {k}: the job has {} setups", self.setups.len())));
+        }
+        self.part.apply(&mut part);
+        let frame = setup_frames(self, &part.bounds())[k];
+        let (job, held) = setup_stage(self, k, &part, &frame);
+        Ok((job, held, frame.0))
+    }
+}
+
 /// An error of setup `k`, named `name`, said with the setup's place and name.
 pub fn setup_error(k: usize, name: &str, e: Error) -> Error {
     match e {

@@ -12,7 +12,7 @@
 use super::pool::RasterWork;
 use super::run::{JobOutput, Prepared, Running};
 use super::schema::{Job, Workpiece};
-use super::setups::{carried, setup_error, setup_frames, setup_stage, Orientation};
+use super::setups::{carried, setup_error, Orientation};
 use crate::drawing::Shape;
 use crate::error::{Error, Result};
 use crate::geom::DVec3;
@@ -88,17 +88,14 @@ impl PoolWorker {
     /// setup holds it ([`super::setups`]), its stock the raw box until
     /// [`PoolWorker::carry_from`] carries in what the setup before left.
     pub fn prepare_setup(job: &Job, workpiece: Workpiece, k: usize) -> Result<PoolWorker> {
-        job.validate()?;
-        let names = job.setup_names();
-        let name = names.get(k).cloned().ok_or_else(|| Error::Input(format!("setup {k}: the job has {} setups", job.setups.len())))?;
-        let Workpiece::Mesh(mut part) = workpiece else {
+        let Workpiece::Mesh(part) = workpiece else {
             return Err(Error::Input("setups turn a 3D part over; a drawing is cut from one side (a job without setups)".into()));
         };
-        job.part.apply(&mut part);
-        let frame = setup_frames(job, &part.bounds())[k];
-        let (sub, held) = setup_stage(job, k, &part, &frame);
+        let (sub, held, orientation) = job.for_setup(k, part)?;
+        let names = job.setup_names();
+        let name = names[k].clone();
         let mut worker = PoolWorker::prepare(sub, Workpiece::Mesh(held)).map_err(|e| setup_error(k, &name, e))?;
-        worker.setup = Some(SetupPlace { index: k, name, orientation: frame.0, more: k + 1 < names.len() });
+        worker.setup = Some(SetupPlace { index: k, name, orientation, more: k + 1 < names.len() });
         Ok(worker)
     }
 

@@ -1394,6 +1394,11 @@ test('a part from both sides in the page: the two-sided job loaded, its setups a
   assert.equal(await page.inputValue('#setup-editor [data-setup=workOffset]'), 'G55');
   const frames = await page.evaluate(async () => window.swarf.engine.setupFrames(window.swarf.jobs.part, window.swarf.part.bounds));
   assert.deepEqual(frames.map((f) => f.rotation[8]), [1, -1]);
+  // What a setup's operations pick from is found in the part as it holds it: from below, the
+  // boss's end is the highest top edge.
+  const edges = await page.evaluate(async () => Promise.all([0, 1].map((k) => window.swarf.engine.edges({ ...window.swarf.jobs.part, tools: window.swarf.tools }, window.swarf.bytes, window.swarf.name, k))));
+  assert.deepEqual(edges.map((e) => e.length), [2, 4]);
+  assert.equal(Math.max(...edges[1].map((e) => e.z)), 0);
   // A setup with nothing to cut is named at its tab, and Generate refuses it.
   await page.evaluate(() => { window.swarf.jobs.part.setups[1].operations.splice(0); });
   await page.click('#setup-tabs button:nth-child(2)');
