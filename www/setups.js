@@ -33,6 +33,7 @@ export function fillSetups() {
   $('setup-editor').hidden = !many;
   if (!many) return;
   const s = j.setups[shown];
+  offsetChoices(j, s.workOffset);
   for (const el of $('setup-editor').querySelectorAll('[data-setup]')) {
     const v = s[el.dataset.setup];
     el.value = v == null ? '' : String(v);
@@ -40,6 +41,20 @@ export function fillSetups() {
   // The first setup holds the part as it is placed: it turns nothing over.
   $('setup-editor').querySelector('[data-setup="flip"]').disabled = state.running || shown === 0 || s.up != null;
   $('setup-remove').disabled = state.running;
+}
+
+// The work offsets the job's control has (its post's `workOffsets`: G59.1 to G59.3 on
+// LinuxCNC and grblHAL, G54.1 P1 to P48 on Fanuc), and `current` whatever it is.
+function offsetChoices(j, current) {
+  const post = j.post.custom ?? state.posts.find((p) => p.dialect === j.post.dialect)?.post;
+  const more = post?.workOffsets ?? {};
+  const words = [...WORK_OFFSETS, ...(more.g59Dot ? ['G59.1', 'G59.2', 'G59.3'] : []), ...Array.from({ length: more.extended ?? 0 }, (_, k) => `G54.1 P${k + 1}`)];
+  if (current && !words.includes(current)) words.push(current);
+  const select = $('setup-editor').querySelector('[data-setup="workOffset"]');
+  const key = words.join(',');
+  if (select.dataset.choices === key) return;
+  select.dataset.choices = key;
+  select.replaceChildren(new Option('the controller\'s', ''), ...words.map((w) => new Option(w, w)));
 }
 
 // Another setup: the part turned over about X (its bottom up), facing its new top first; the

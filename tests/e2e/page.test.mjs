@@ -1497,6 +1497,12 @@ test('turning the part over in the page: a second setup added (bottom up, faced 
   // The setup's fields: a quarter turn, another work offset; the problems' words name it.
   await page.selectOption('#setup-editor [data-setup=turn]', '90');
   await page.selectOption('#setup-editor [data-setup=workOffset]', 'G57');
+  // The control's own offsets besides: LinuxCNC's G59.1 to G59.3, Fanuc's G54.1 P1 to P48.
+  assert.ok((await page.locator('#setup-editor [data-setup=workOffset] option').allTextContents()).includes('G59.3'));
+  await page.evaluate(() => { window.swarf.jobs.part.post.dialect = 'fanuc'; });
+  await page.click('#setup-tabs button:nth-child(2)');
+  assert.equal(await page.locator('#setup-editor [data-setup=workOffset] option').count(), 1 + 6 + 48);
+  await page.evaluate(() => { window.swarf.jobs.part.post.dialect = 'linuxCnc'; });
   await page.fill('#setup-editor [data-setup=name]', 'underside');
   await page.press('#setup-editor [data-setup=name]', 'Tab');
   assert.deepEqual(await page.evaluate(() => { const s = window.swarf.jobs.part.setups[1]; return [s.turn, s.workOffset, s.name]; }), [90, 'G57', 'underside']);
