@@ -241,7 +241,7 @@ export class Viewer {
   // thread in one task).
   pathSteps({ feeds, rapids, stock, fixtures = [], ops = null, tools = null, moves = null, rapidMoves = null, byTool = new Set() }) {
     this.dropGroups();
-    this.dropLines((key) => key.startsWith('octants') || key === 'stock' || key === 'fixtures' || key.startsWith('zero'));
+    this.dropLines((key) => key.startsWith('octants') || key === 'stock' || key === 'fixtures');
     // An operation's segments (a stage's, for octree roughing) follow each other in the
     // program: taken as runs, a colour that comes back after another copied once.
     const runs = new Map();
@@ -265,12 +265,6 @@ export class Viewer {
     add(rapids, rapidMoves, [[0, rapids.length / 6]], { op: -1, color: RAPID_COLOR, rapid: true });
     steps.push(() => {
       if (stock) this.setLine('stock', { buffer: this.buffer(boxLines(stock)), count: 24, color: [0.35, 0.4, 0.45, 0.6], mark: true });
-      // The work zero, the program's X0 Y0 Z0: its axes as the controls draw them (X red, Y
-      // green, Z blue), a sixth of the stock's size long.
-      if (stock) {
-        const arm = Math.max(stock[3] - stock[0], stock[4] - stock[1], stock[5] - stock[2]) / 6;
-        [[1, 0, 0], [0, 1, 0], [0, 0, 1]].forEach((d, k) => this.setLine(`zero-${'xyz'[k]}`, { buffer: this.buffer(new Float32Array([0, 0, 0, d[0] * arm, d[1] * arm, d[2] * arm])), count: 2, color: [[0.85, 0.1, 0.1, 1], [0.1, 0.65, 0.15, 1], [0.15, 0.3, 0.9, 1]][k], mark: true }));
-      }
       // What holds the stock (a vise's jaws, clamps), in the red of things not to touch.
       if (fixtures.length) {
         const lines = new Float32Array(fixtures.length * 72);
