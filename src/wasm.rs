@@ -368,16 +368,11 @@ impl JobResult {
     pub fn drawing(&self) -> Result<JsValue, JsError> {
         self.view.drawing.as_ref().map_or(Ok(JsValue::NULL), to_js)
     }
-    /// The part as the job placed it.
-    /// Where the setup this result is of holds the part (`SetupView`), or `undefined` for a
-    /// job without setups.
+    /// Where the setup this result is of holds the part (`SetupView`, its stock the program's),
+    /// or `undefined` for a job without setups.
     pub fn setup(&self) -> Result<JsValue, JsError> {
         match &self.setup {
-            Some(s) => {
-                let b = self.view.summary.stock;
-                let stock = crate::geom::Aabb { min: crate::geom::DVec3::new(b[0], b[1], b[2]), max: crate::geom::DVec3::new(b[3], b[4], b[5]) };
-                to_js(&view::SetupView::of(s.index, &s.name, &s.orientation, stock))
-            }
+            Some(s) => to_js(&view::SetupView::of(s.index, &s.name, &s.orientation, self.sheet.stock)),
             None => Ok(JsValue::UNDEFINED),
         }
     }
@@ -387,6 +382,7 @@ impl JobResult {
         to_js(&self.sheet)
     }
 
+    /// The part as the job placed it.
     #[wasm_bindgen(js_name = takePart)]
     pub fn take_part(&mut self) -> PartView {
         PartView(std::mem::replace(&mut self.view.part, view::PartData::empty()))
@@ -401,7 +397,10 @@ pub fn find_holes(job: JsValue, bytes: &[u8], name: &str, setup: Option<usize>) 
     let job = job_from_js(job)?;
     let workpiece = Workpiece::read(bytes, Some(name), &job.tolerances).map_err(js_error)?;
     let holes = match (setup, workpiece) {
-        (Some(k), Workpiece::Mesh(part)) => job.for_setup(k, part).and_then(|(sub, held, _)| sub.holes(held)),
+        (Some(_), Workpiece::Mesh(part)) => {
+            let (job, part) = as_held(job, part, setup)?;
+            job.holes(part)
+        }
         (_, workpiece) => job.holes(workpiece),
     };
     to_js(&holes.map_err(js_error)?)

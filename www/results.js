@@ -158,8 +158,9 @@ export async function generate() {
   document.body.dataset.generated = 'running';
   const refuse = (text) => { message(text, 'error'); document.body.dataset.generated = 'failed'; };
   const j = buildJob();
-  const wrong = allOps(j).filter((op) => !isEither(op) && (state.kind === 'drawing') !== is2d(op));
-  if (wrong.length && wrong.length === allOps(j).length) {
+  const every = allOps(j);
+  const wrong = every.filter((op) => !isEither(op) && (state.kind === 'drawing') !== is2d(op));
+  if (wrong.length && wrong.length === every.length) {
     refuse(state.kind === 'drawing' ? 'add a pocket or profile operation for a drawing' : 'add a roughing or finishing operation for a part');
     return;
   }
@@ -258,7 +259,6 @@ export async function showSetupResult(k) {
   const results = state.results;
   if (!results?.[k]) return;
   await showResult(results[k], job().setups[k].operations, state.computed ?? 0);
-  state.results = results;
   $('download').disabled = $('sheet').disabled = false;
 }
 

@@ -143,7 +143,7 @@ export function held(part, frame) {
   const [a, b, c, d, e, f, g, h, i] = frame.rotation;
   const [cx, cy, cz] = frame.centre, [sx, sy, sz] = frame.shift;
   const turn = (src, shifted) => {
-    const out = new Float32Array(src.length);
+    const out = new src.constructor(src.length);
     for (let k = 0; k < src.length; k += 3) {
       const x = src[k] - (shifted ? cx : 0), y = src[k + 1] - (shifted ? cy : 0), z = src[k + 2] - (shifted ? cz : 0);
       // Column after column: the first three numbers are where X goes.
@@ -153,13 +153,11 @@ export function held(part, frame) {
     }
     return out;
   };
-  const positions = turn(part.positions, true);
-  const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
-  for (let k = 0; k < positions.length; k++) {
-    lo[k % 3] = Math.min(lo[k % 3], positions[k]);
-    hi[k % 3] = Math.max(hi[k % 3], positions[k]);
-  }
-  return { ...part, positions, normals: turn(part.normals, false), bounds: [...lo, ...hi], hash: null };
+  // A box turned by quarter turns is the turned part's box: its corners turned, each axis's
+  // least and greatest.
+  const corners = turn(Float64Array.from(part.bounds), true);
+  const bounds = [0, 1, 2].map((a) => Math.min(corners[a], corners[a + 3])).concat([0, 1, 2].map((a) => Math.max(corners[a], corners[a + 3])));
+  return { ...part, positions: turn(part.positions, true), normals: turn(part.normals, false), bounds, hash: null };
 }
 
 // The part in the view as the setup on show holds it (before Generate); counted on the page's

@@ -289,8 +289,12 @@ export class Engine {
    * one runs wait for it. A job with setups runs through `runSetups`.
    */
   run(job, bytes, name, options = {}) {
-    // One run at a time: a pool's workers hold one prepared job each.
-    const turn = this.#last.catch(() => {}).then(() => this.#run(job, bytes, name, options));
+    return this.#queued(() => this.#run(job, bytes, name, options));
+  }
+
+  /** `work` once the runs asked for before it are over: a pool's workers hold one prepared job each. */
+  #queued(work) {
+    const turn = this.#last.catch(() => {}).then(work);
     this.#last = turn;
     return turn;
   }
@@ -312,9 +316,7 @@ export class Engine {
    * whole), unless `allowUnsafe`. `seek` and `repost` then name the setup.
    */
   runSetups(job, bytes, name, options = {}) {
-    const turn = this.#last.catch(() => {}).then(() => this.#runSetups(job, bytes, name, options));
-    this.#last = turn;
-    return turn;
+    return this.#queued(() => this.#runSetups(job, bytes, name, options));
   }
 
   async #runSetups(job, bytes, name, { onProgress, signal, allowUnsafe = false } = {}) {

@@ -1,6 +1,6 @@
 // Runs the wasm pipeline off the page's thread, for swarf.js's engine. Cancel = the engine
 // terminates this worker.
-import init, { defaults, builtinPosts, readPost, readJob, checkJob, writeProject, readProject, samplePart, sampleDrawing, warmUpJob, warmUpPart, loadPart, loadDrawing, isDrawing, runJob, prepareJob, setupFrames, setupSheet, findHoles, findBosses, findEdges } from './pkg/swarf.js';
+import init, { defaults, builtinPosts, readPost, readJob, checkJob, writeProject, readProject, samplePart, sampleDrawing, warmUpJob, warmUpPart, loadPart, loadDrawing, isDrawing, prepareJob, setupFrames, setupSheet, findHoles, findBosses, findEdges } from './pkg/swarf.js';
 
 // The wasm is loaded on the first message: from the bytes or URL it names (a single-file page
 // passes the bytes), else from pkg/ beside the glue.
@@ -201,15 +201,11 @@ self.onmessage = async (event) => {
       self.postMessage({ id, ok: true, frames: setupFrames(event.data.job, Float64Array.from(event.data.part)) });
     } else if (type === 'run') {
       const { job, bytes, name, setup } = event.data;
-      if (setup === undefined) {
-        send(id, runJob(job, bytes, name, progressTo(id)));
-      } else {
-        const p = prepared(job, bytes, name, setup, true);
-        try {
-          send(id, p.run(progressTo(id)), setup);
-        } finally {
-          p.free();
-        }
+      const p = prepared(job, bytes, name, setup, true);
+      try {
+        send(id, p.run(progressTo(id)), setup);
+      } finally {
+        p.free();
       }
     } else if (type === 'prepare') {
       plan?.free();

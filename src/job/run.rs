@@ -452,16 +452,22 @@ impl Running {
         if self.ctx.keep_out.is_empty() {
             return;
         }
-        let cutting: Vec<ProgramMove> = moves.iter().filter(|m| !m.mv.is_rapid()).cloned().collect();
-        let near = crate::sim::fixtures::collisions(&cutting, &self.ctx.keep_out, -crate::geom::tolerance::FIXTURE_CONTACT);
-        let name = self.job.operations[k].op().name().to_owned();
+        let near = crate::sim::fixtures::collisions(moves, &self.ctx.keep_out, -crate::geom::tolerance::FIXTURE_CONTACT);
         let clearance = crate::limits::shown(self.job.fixtures.clearance);
-        for h in self.ctx.keep_out.clone() {
-            let places: Vec<crate::geom::DVec3> = near.iter().filter(|n| n.fixture == h.name).map(|n| n.at).collect();
-            if !places.is_empty() {
-                let what = format!("places stopped short of {} ({clearance} mm clear of it): material may be left beside it", h.name);
-                self.ctx.warn_at(&name, &what, &places);
-            }
+        // The cutting moves' places by fixture.
+        let said: Vec<(String, Vec<crate::geom::DVec3>)> = self
+            .ctx
+            .keep_out
+            .iter()
+            .map(|h| {
+                let places = near.iter().filter(|n| n.fixture == h.name && !moves[n.move_index].mv.is_rapid()).map(|n| n.at).collect();
+                (format!("places stopped short of {} ({clearance} mm clear of it): material may be left beside it", h.name), places)
+            })
+            .filter(|(_, places): &(String, Vec<_>)| !places.is_empty())
+            .collect();
+        let name = self.job.operations[k].op().name().to_owned();
+        for (what, places) in said {
+            self.ctx.warn_at(&name, &what, &places);
         }
     }
 

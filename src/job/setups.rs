@@ -250,8 +250,9 @@ pub fn carried(left: &DexelStock, from: &Orientation, to: &Orientation, p: DVec2
 /// is a line across the columns there, `a + dir t` (`dir` along X or Y there), at the height
 /// `a.z`. Its material is where that line runs through material there (in the rows within a
 /// cell of it, within half a cell of its height); a column holds one span, so it carries the
-/// span from the first such cell to the last, half a cell out each way: all the material, and any cavity between taken as material (the simulation then
-/// cuts air there at the feed, never a rapid through material it did not know).
+/// span from the first such cell to the last, half a cell out each way: all the material, and
+/// any cavity between taken as material (the simulation then cuts air there at the feed, never
+/// a rapid through material it did not know).
 fn carried_across(left: &DexelStock, a: DVec3, dir: DVec3) -> (f64, f64) {
     let g = left.grid();
     let along_x = dir.x.abs() > 0.5;

@@ -84,6 +84,9 @@ pub fn collisions(moves: &[ProgramMove], keep_out: &[Held], tolerance: f64) -> V
     }
     for (k, m) in moves.iter().enumerate() {
         let reach = (m.cutter.diameter.max(m.cutter.shank_diameter.unwrap_or(0.0))) / 2.0;
+        // Points along the move this far apart, when one comes near a fixture.
+        let step = (m.cutter.diameter / 100.0).clamp(1e-3, 0.05);
+        let n = (m.mv.length(m.from) / step).ceil().max(1.0) as usize;
         let to = m.mv.to();
         // The move's box: an arc's is its circle's.
         let (lo, hi) = match m.mv {
@@ -99,8 +102,6 @@ pub fn collisions(moves: &[ProgramMove], keep_out: &[Held], tolerance: f64) -> V
             if lo.z >= b.max.z + near || lo.x > b.max.x + reach + near || hi.x < b.min.x - reach - near || lo.y > b.max.y + reach + near || hi.y < b.min.y - reach - near {
                 continue;
             }
-            let step = (m.cutter.diameter / 100.0).clamp(1e-3, 0.05);
-            let n = (m.mv.length(m.from) / step).ceil().max(1.0) as usize;
             let mut worst: Option<(f64, DVec3)> = None;
             for i in 0..=n {
                 let p = along(m.from, &m.mv, i as f64 / n as f64);
