@@ -17,6 +17,7 @@
 //! All tolerances live in [`geom::Tolerances`]; algorithms take them as parameters.
 
 pub mod cutter;
+pub mod cutting;
 pub mod drawing;
 pub mod error;
 pub mod geom;

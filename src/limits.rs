@@ -149,3 +149,6 @@ pub fn shown(v: f64) -> String {
         format!("{v}")
     }
 }
+
+/// The most cutting edges a tool may have.
+pub const MAX_FLUTES: u32 = 16;

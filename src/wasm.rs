@@ -79,14 +79,26 @@ struct Defaults {
     drawing_job: Job,
     tool: crate::tool::Tool,
     operations: Vec<job::Operation>,
+    forms: Vec<crate::machining::form::OperationForm>,
+    materials: Vec<crate::cutting::MaterialChoice>,
+    machines: Vec<crate::cutting::Machine>,
 }
 
-/// Every default the page's forms start from: `{ job, drawingJob, tool, operations }`: the
-/// mould job for parts ([`Job::demo`]), the sheet job for drawings, and one operation of each
-/// kind.
+/// Every default the page's forms start from: `{ job, drawingJob, tool, operations, forms }`:
+/// the mould job for parts ([`Job::demo`]), the sheet job for drawings, one operation of each
+/// kind, each kind's form (its fields, in the kinds' order), the stock materials and the
+/// built-in machines.
 #[wasm_bindgen]
 pub fn defaults() -> Result<JsValue, JsError> {
-    to_js(&Defaults { job: Job::demo(), drawing_job: Job::default_for_drawing(), tool: crate::tool::Tool::default(), operations: job::Operation::defaults() })
+    to_js(&Defaults {
+        job: Job::demo(),
+        drawing_job: Job::default_for_drawing(),
+        tool: crate::tool::Tool::default(),
+        operations: job::Operation::defaults(),
+        forms: job::Operation::forms(),
+        materials: crate::cutting::Material::choices(),
+        machines: crate::cutting::Machine::builtin(),
+    })
 }
 
 /// Reads a job file's text as `swarf run` does (every unknown or misspelt field named by its
@@ -274,11 +286,31 @@ impl JobResult {
     /// planning again: `{gcode, extension, post, cycle, time, moveLines}`
     /// ([`view::Program::repost`]).
     pub fn repost(&self, post: JsValue) -> Result<JsValue, JsError> {
-        let settings: crate::post::PostSettings = serde_wasm_bindgen::from_value(post).map_err(|e| js_error(format!("invalid post: {e}")))?;
-        let r = self.view.program.repost(&settings).map_err(js_error)?;
+        let r = self.view.program.repost(&self.settings(post)?).map_err(js_error)?;
         let out = to_js(&r)?;
         js_sys::Reflect::set(&out, &"moveLines".into(), &js_sys::Uint32Array::from(&r.move_lines[..])).map_err(|_| js_error("an object"))?;
         Ok(out)
+    }
+    /// The job's `post` object as this program is written by it: a setup's program keeps its
+    /// setup's work offset (`G55`), whatever the job's post selects.
+    fn settings(&self, post: JsValue) -> Result<crate::post::PostSettings, JsError> {
+        let mut settings: crate::post::PostSettings = serde_wasm_bindgen::from_value(post).map_err(|e| js_error(format!("invalid post: {e}")))?;
+        if self.setup.is_some() {
+            settings.work_offset = self.view.program.post.work_offset.clone();
+        }
+        Ok(settings)
+    }
+    /// The program as `post` (the job's `post` object) writes it, without the warning at its
+    /// head a program not safe to run has: a setup's part of one program for all
+    /// (`oneProgram`).
+    pub fn program(&self, post: JsValue) -> Result<String, JsError> {
+        let p = &self.view.program;
+        let settings = self.settings(post)?;
+        Ok(crate::post::write_program(&p.title, &p.paths, &p.tools, p.clearance, &settings).map_err(js_error)?.0)
+    }
+    /// Why the program is not safe to run, if it is not.
+    pub fn problem(&self) -> Option<String> {
+        self.view.program.problem.clone()
     }
     /// Cutting moves as line segments: xyz of both ends per segment (a view).
     pub fn feeds(&self) -> js_sys::Float32Array {
@@ -471,6 +503,29 @@ pub fn prepare_job(job: JsValue, bytes: &[u8], name: &str, setup: Option<usize>)
     Ok(JobPlan(worker.map_err(js_error)?))
 }
 
+/// Each tool's speeds and feeds as `job` cuts them (from the stock's material, or as typed),
+/// with how they were worked out: `[CuttingData]` ([`crate::cutting`]).
+#[wasm_bindgen(js_name = cuttingData)]
+pub fn cutting_data(job: JsValue) -> Result<JsValue, JsError> {
+    to_js(&job_from_js(job)?.cutting_data())
+}
+
+/// Every setup of `job` in one program (`post.oneProgram`), an operator stop between them:
+/// from each setup's result's `sheet()`, `program(job.post)` and `problem()` in order. A
+/// program not safe to run has the warning of each setup that is not at its head.
+#[wasm_bindgen(js_name = oneProgram)]
+pub fn one_program(job: JsValue, sheets: JsValue, programs: Vec<String>, problems: Vec<String>) -> Result<String, JsError> {
+    let job = job_from_js(job)?;
+    let sheets: Vec<job::sheet::SheetSetup> = serde_wasm_bindgen::from_value(sheets).map_err(|e| js_error(format!("the sheets are not as results give them: {e}")))?;
+    if sheets.len() != programs.len() {
+        return Err(js_error("one sheet and one program a setup"));
+    }
+    let parts: Vec<_> = sheets.iter().zip(&programs).map(|(s, g)| (s, g.as_str())).collect();
+    let joined = job::setups::one_program(&job, &parts).map_err(js_error)?;
+    let problems: Vec<&str> = problems.iter().map(String::as_str).filter(|p| !p.is_empty()).collect();
+    Ok(job::marked(&joined, (!problems.is_empty()).then(|| problems.join("; ")).as_deref()))
+}
+
 /// The setup sheet (a standalone HTML page) of `job` on the part named `part`, from each
 /// setup's result's `sheet()` in order (one for a job without setups).
 #[wasm_bindgen(js_name = setupSheet)]
@@ -483,14 +538,27 @@ pub fn setup_sheet(job: JsValue, part: &str, sheets: JsValue) -> Result<String, 
 /// Where each setup of `job` holds a part whose bounds (placed as the job places it) are `part`
 /// (`[minX, minY, minZ, maxX, maxY, maxZ]`, as `loadPart` gives them): `[SetupView]`, empty
 /// for a job without setups.
-#[wasm_bindgen(js_name = setupFrames)]
-pub fn setup_frames(job: JsValue, part: Vec<f64>) -> Result<JsValue, JsError> {
+/// The work zero of `job` (or of its setup `setup`) with X0 Y0 on the point `(x, y)` where it
+/// holds the part now (a hole's centre as `findHoles` gives it), its height kept
+/// ([`Job::zero_on`]); `part` is the part's bounds as `setupFrames` takes them.
+#[wasm_bindgen(js_name = zeroOn)]
+pub fn zero_on(job: JsValue, part: Vec<f64>, setup: Option<usize>, x: f64, y: f64) -> Result<JsValue, JsError> {
     let job = job_from_js(job)?;
+    to_js(&job.zero_on(&bounds_of(&part)?, setup, crate::geom::DVec2::new(x, y)).map_err(js_error)?)
+}
+
+/// Six numbers as a box (min then max corner).
+fn bounds_of(part: &[f64]) -> Result<crate::geom::Aabb, JsError> {
     if part.len() != 6 || part.iter().any(|v| !v.is_finite()) {
         return Err(js_error("the part's bounds are six numbers"));
     }
-    let bounds = crate::geom::Aabb { min: crate::geom::DVec3::new(part[0], part[1], part[2]), max: crate::geom::DVec3::new(part[3], part[4], part[5]) };
-    to_js(&view::SetupView::frames(&job, &bounds))
+    Ok(crate::geom::Aabb { min: crate::geom::DVec3::new(part[0], part[1], part[2]), max: crate::geom::DVec3::new(part[3], part[4], part[5]) })
+}
+
+#[wasm_bindgen(js_name = setupFrames)]
+pub fn setup_frames(job: JsValue, part: Vec<f64>) -> Result<JsValue, JsError> {
+    let job = job_from_js(job)?;
+    to_js(&view::SetupView::frames(&job, &bounds_of(&part)?))
 }
 
 #[wasm_bindgen]

@@ -1312,3 +1312,45 @@ fn a_perforated_panels_holes_are_ordered_in_proportion_to_their_number() {
     let (small, large) = (time(3_000).max(1e-3), time(30_000));
     assert!(large < 40.0 * small, "3,000 holes ordered in {small:.3} s, 30,000 in {large:.3} s");
 }
+
+/// The work zero on a hole's centre (`zero.at`, set by `Job::zero_on` from a hole as found):
+/// in each setup of a block drilled from both sides, and in a job without setups; the hole then
+/// lies at X0 Y0, the zero's height kept. The setup sheet says where the zero is.
+#[test]
+fn the_zero_goes_on_a_holes_centre() {
+    let part = block(3, 3, SIDE, THICK, &specs());
+    let mut job = drilling_job(Dialect::LinuxCnc);
+    let ops = std::mem::take(&mut job.operations);
+    job.setups = vec![
+        job::Setup { name: "top".into(), operations: ops.clone(), ..Default::default() },
+        job::Setup { name: "bottom".into(), flip: job::Flip::AboutX, work_offset: Some("G55".into()), operations: ops, ..Default::default() },
+    ];
+    let placed = {
+        let mut p = part.clone();
+        job.part.apply(&mut p);
+        p.bounds()
+    };
+    for k in 0..2 {
+        let (sub, held, _) = job.for_setup(k, part.clone()).unwrap();
+        let holes = sub.holes(held).unwrap();
+        let h = holes.iter().find(|h| h.through && h.diameter > 12.0).expect("the φ12.5 through hole, from either side");
+        let height = job.setups[k].zero.or(job.stock.zero).map(|z| z.height).unwrap_or_default();
+        let zero = job.zero_on(&placed, Some(k), DVec2::new(h.center[0], h.center[1])).unwrap();
+        assert_eq!(zero.height, height);
+        job.setups[k].zero = Some(zero);
+        let (sub, held, _) = job.for_setup(k, part.clone()).unwrap();
+        let moved = sub.holes(held).unwrap().into_iter().find(|g| g.through && g.diameter > 12.0).unwrap();
+        assert!(moved.center[0].abs() < 1e-9 && moved.center[1].abs() < 1e-9, "setup {k}: the hole is at {:?}", moved.center);
+    }
+    // Without setups.
+    let mut plain = drilling_job(Dialect::LinuxCnc);
+    let h = plain.holes(part.clone()).unwrap().into_iter().find(|h| h.diameter < 7.0 && h.through).unwrap();
+    plain.stock.zero = Some(plain.zero_on(&placed, None, DVec2::new(h.center[0], h.center[1])).unwrap());
+    let again = plain.holes(part.clone()).unwrap();
+    assert!(again.iter().any(|g| g.center[0].abs() < 1e-9 && g.center[1].abs() < 1e-9 && (g.diameter - h.diameter).abs() < 1e-9));
+    // The sheet says where it is.
+    let setups = job::run_setups(&job, part, &mut Progress::none()).unwrap();
+    let sheets: Vec<_> = setups.iter().map(|s| job::sheet::SheetSetup::of(&s.name, &s.output)).collect();
+    let html = job::sheet::setup_sheet(&job, "block.stl", &sheets);
+    assert_eq!(html.matches("from the centre of the stock seen from above (a hole's centre, say), Z0 on").count(), 2, "{html:.3000}");
+}

@@ -273,7 +273,7 @@ fn the_work_zero_moves_part_and_stock() {
     let mut job = two_rasters();
     job.operations.truncate(1);
     job.simulation.verify = false;
-    job.stock.zero = Some(WorkZero { height: ZeroHeight::StockBottom, corner: ZeroCorner::FrontLeft });
+    job.stock.zero = Some(WorkZero { height: ZeroHeight::StockBottom, corner: ZeroCorner::FrontLeft, at: None });
     let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
     assert!(out.stock.min.distance(swarf::geom::DVec3::ZERO) < 1e-9, "{:?}", out.stock);
     // Nothing below the stock's bottom, nothing beyond its front and left sides but entries

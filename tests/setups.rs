@@ -350,3 +350,78 @@ fn a_setup_finds_its_edges_in_the_part_as_it_holds_it() {
     assert_eq!(orientation.rotation.z_axis.z, -1.0);
     assert!(job.for_setup(2, two_sided_part()).is_err());
 }
+
+/// Every setup in one program (`post.oneProgram`): the setups' programs one after another, an
+/// operator stop between them that says how to hold the part, where to set the zero and, on a
+/// control without a tool changer, which tool to put in; one head and one end of program; the
+/// lines numbered on where the post numbers them. LinuxCNC's interpreter and GRBL's parser
+/// read it, and it cuts what the programs cut.
+#[test]
+fn every_setup_in_one_program_stops_between_them() {
+    use swarf::post::{write_program, Dialect, PostSettings};
+    let mut job = Job::two_sided();
+    job.post.one_program = true;
+    let setups = run_setups(&job, two_sided_part(), &mut Progress::none()).unwrap();
+    let names = job.setup_names();
+    // Each setup's program for `dialect`, as the job's own setups post it.
+    let posted = |dialect: Dialect| -> Vec<(swarf::job::sheet::SheetSetup, String)> {
+        setups
+            .iter()
+            .enumerate()
+            .map(|(k, s)| {
+                let settings = PostSettings { dialect, work_offset: job.setups[k].work_offset.clone(), ..job.post.clone() };
+                let (gcode, _) = write_program(&names[k], &s.output.paths, &job.tools, s.output.clearance_z, &settings).unwrap();
+                (swarf::job::sheet::SheetSetup::of(&names[k], &s.output), gcode)
+            })
+            .collect()
+    };
+    let join = |dialect: Dialect| {
+        let programs = posted(dialect);
+        let mut j = job.clone();
+        j.post.dialect = dialect;
+        let refs: Vec<_> = programs.iter().map(|(s, g)| (s, g.as_str())).collect();
+        (swarf::job::setups::one_program(&j, &refs).unwrap(), programs)
+    };
+    let feeds = |canon: &str| canon.lines().filter(|l| l.contains("STRAIGHT_FEED") || l.contains("ARC_FEED")).count();
+
+    // LinuxCNC: one end, one stop, the second setup's offset after it; the same cuts.
+    let (one, programs) = join(Dialect::LinuxCnc);
+    let lines: Vec<&str> = one.lines().collect();
+    assert_eq!(lines.iter().filter(|l| **l == "M2").count(), 1);
+    assert_eq!(*lines.last().unwrap(), "M2");
+    let stop = lines.iter().position(|l| *l == "M0").expect("an operator stop between the setups");
+    // The message: the comments over the stop.
+    let said_over = |lines: &[&str], stop: usize| {
+        lines[..stop].iter().rev().take_while(|l| l.starts_with('(')).map(|l| l.trim_matches(|c| c == '(' || c == ')')).collect::<Vec<_>>().into_iter().rev().collect::<Vec<_>>().join(" ")
+    };
+    let said = said_over(&lines, stop);
+    assert!(said.starts_with("setup 2 of 2, ") && said.contains("turn the part over about X") && said.contains("set the zero of G55"), "{said}");
+    assert!(lines[..stop].contains(&"G54") && lines[stop..].contains(&"G55") && !lines[stop..].contains(&"G54"));
+    let canon = common::rs274(&one, &job.tools);
+    let apart: usize = programs.iter().map(|(_, g)| feeds(&common::rs274(g, &job.tools))).sum();
+    assert_eq!(feeds(&canon), apart, "the joined program cuts what the setups' programs cut");
+    assert!(canon.contains("PROGRAM_STOP") || canon.contains("PROGRAM_END"), "{canon:.300}");
+
+    // Fanuc: the tape marks and the program number once, the lines numbered on without a
+    // number coming back.
+    let (one, _) = join(Dialect::Fanuc);
+    let lines: Vec<&str> = one.lines().collect();
+    assert_eq!(lines.first(), Some(&"%"));
+    assert_eq!(lines.last(), Some(&"%"));
+    assert_eq!(lines.iter().filter(|l| **l == "%").count(), 2);
+    assert_eq!(lines.iter().filter(|l| l.starts_with('O')).count(), 1);
+    let numbers: Vec<u64> = lines.iter().filter_map(|l| l.strip_prefix('N')?.split(' ').next()?.parse().ok()).collect();
+    assert!(numbers.len() > 100 && numbers.windows(2).all(|w| w[0] < w[1]), "line numbers come back");
+    assert_eq!(lines.iter().filter(|l| l.ends_with(" M30")).count(), 1);
+
+    // GRBL: no tool changer: the stop names the tool to put in; its parser reads it all.
+    let (one, _) = join(Dialect::Grbl);
+    let lines: Vec<&str> = one.lines().collect();
+    let from = lines.iter().position(|l| l.starts_with("(setup 2 of 2")).unwrap();
+    let said = said_over(&lines, from + lines[from..].iter().position(|l| *l == "M0").unwrap());
+    assert!(said.contains("set the zero of G55; put in T"), "{said}");
+    assert!(one.lines().all(|l| l.len() <= 80));
+    if let Some(read) = common::grblcheck(&one) {
+        read.unwrap();
+    }
+}

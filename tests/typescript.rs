@@ -7,9 +7,11 @@ use std::any::TypeId;
 use std::collections::BTreeMap;
 use std::path::Path;
 
+use swarf::cutting::{CuttingData, MaterialChoice};
 use swarf::holes::Hole;
 use swarf::job::project::Project;
 use swarf::job::Problem;
+use swarf::machining::form::OperationForm;
 use swarf::post::{CycleTime, Post};
 use swarf::view::{DrawingView, EdgeView, ReportView, Reposted, SetupView, Summary};
 use ts_rs::{Config, TypeVisitor, TS};
@@ -31,6 +33,9 @@ fn generate() -> String {
     Hole::export_all(&cfg).unwrap();
     EdgeView::export_all(&cfg).unwrap();
     SetupView::export_all(&cfg).unwrap();
+    OperationForm::export_all(&cfg).unwrap();
+    CuttingData::export_all(&cfg).unwrap();
+    MaterialChoice::export_all(&cfg).unwrap();
     let mut files: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().path()).collect();
     files.sort();
     let mut out = HEAD.to_owned();
@@ -80,6 +85,9 @@ fn no_two_rust_types_share_a_typescript_name() {
     names.visit::<Hole>();
     names.visit::<EdgeView>();
     names.visit::<SetupView>();
+    names.visit::<OperationForm>();
+    names.visit::<CuttingData>();
+    names.visit::<MaterialChoice>();
     assert!(names.0.len() > 20, "{:?}", names.0.keys());
     let twice: Vec<_> = names.0.values().filter(|v| v.len() > 1).collect();
     assert!(twice.is_empty(), "types sharing a TypeScript name (give one #[ts(rename)]): {twice:?}");

@@ -9,8 +9,8 @@ import { $, state, hooks, job, selectedOp, selectedTool, store, restore, setKey,
 import { valueOf, fillFields, message, fieldError, check, markProblems } from './forms.js';
 import { GcodePane } from './gcode.js';
 import { sim, setTime, step, play, drawMrr, toLine } from './simulation.js';
-import { fillTools, addTool, deleteTool, exportTools, importTools, renumber } from './tools.js';
-import { fillOps, addOperation, onOpList, showPicked, showHoles, pickInView, findHoles, onHoleList, presetHoles } from './operations.js';
+import { fillTools, fillToolChoices, showSpeeds, addTool, deleteTool, exportTools, importTools, renumber } from './tools.js';
+import { fillOps, fillKinds, addOperation, onOpList, showPicked, showHoles, pickInView, findHoles, onHoleList, presetHoles, zeroOnHole } from './operations.js';
 import { fillSetups, addSetup, removeSetup, onSetupTabs, onSetupField, showHeld, playSetup } from './setups.js';
 import { setKind, showPart, takeFile, fillPart, freshSetup, showSizes } from './part.js';
 import { pageUnits, setPageUnits } from './units.js';
@@ -28,7 +28,8 @@ function fillStock() {
   const j = job();
   fillFields($('fs-stock'), j);
   $('fs-stock').querySelector('[name=zeroHeight]').value = j.stock.zero?.height ?? '';
-  $('fs-stock').querySelector('[name=zeroCorner]').value = j.stock.zero?.corner ?? 'center';
+  $('fs-stock').querySelector('[name=zeroCorner]').value = j.stock.zero?.at ? 'at' : j.stock.zero?.corner ?? 'center';
+  $('fs-stock').querySelector('[name=zeroCorner] [value=at]').hidden = !j.stock.zero?.at;
   for (const el of document.querySelectorAll('.part-only')) el.hidden = state.kind !== 'part';
   // A vise's fields where the stock is held in one.
   const vise = !!j.fixtures?.vise;
@@ -45,6 +46,26 @@ async function onVise(box) {
   clearResult();
   fillStock();
   changed();
+}
+
+// A built-in machine chosen: its limits, which the speeds and feeds from the material keep to.
+function onMachine(name) {
+  const m = state.defaults.machines.find((x) => x.name === name);
+  if (!m) return;
+  job().machine = structuredClone(m);
+  store('machine');
+  fillPost();
+  fillTools();
+  changed();
+}
+
+// The stock's materials and the built-in machines, as the core lists them.
+function fillChoices() {
+  const material = form.elements.material;
+  for (const m of state.defaults.materials) material.append(new Option(m.words, m.value));
+  const machine = form.elements.machine;
+  for (const m of state.defaults.machines) machine.append(new Option(m.name, m.name));
+  machine.append(new Option('your own (as set below)', ''));
 }
 
 function fillAll() {
@@ -72,7 +93,7 @@ function showHistory() {
 }
 
 Object.assign(hooks, {
-  fillAll, changed, showPicked, clearResult, setKind, showPart, loadJob, fillTools, fillSetups, showHeld, showSetupResult, playSetup, history: showHistory,
+  fillAll, changed, showPicked, clearResult, setKind, showPart, loadJob, fillTools, fillToolChoices, fillSetups, showHeld, showSetupResult, playSetup, history: showHistory,
   error: (text) => message(text, 'error'),
 });
 
@@ -98,6 +119,8 @@ function onField(el) {
       renumber(t.number, value);
     }
     setKey(t, el.dataset.key, value);
+    // A speed or feed typed is the tool's own from then on, whatever the material.
+    if (['spindleRpm', 'feedRate', 'plungeRate'].includes(el.dataset.key)) t.speeds = 'asTyped';
     fillTools();
     fillOps();
   } else if (el.closest('#op-editor')) {
@@ -109,7 +132,9 @@ function onField(el) {
     if (['holes', 'external', 'loops', 'edges'].includes(el.dataset.key)) showHoles();
   } else if (el.name === 'zeroHeight' || el.name === 'zeroCorner') {
     const height = form.elements.zeroHeight.value;
-    job().stock.zero = height ? { height, corner: form.elements.zeroCorner.value } : null;
+    // A zero on a hole's centre keeps its place until a corner is chosen.
+    const corner = form.elements.zeroCorner.value, at = corner === 'at' ? job().stock.zero?.at : null;
+    job().stock.zero = height ? { height, corner: at ? 'center' : corner, at } : null;
   } else if (el.closest('#fs-part') || el.closest('#fs-drawing')) {
     // How a part is read is kept with the jobs of its kind.
     setKey(state.jobs[el.closest('#fs-part') ? 'part' : 'drawing'], el.dataset.key, value);
@@ -121,6 +146,8 @@ function onField(el) {
   store(el.dataset.key);
   changed();
   if (el.dataset.key === 'drawing.thickness') fillOps();
+  // The speeds and feeds follow the material and the machine.
+  if (el.dataset.key === 'stock.material' || el.dataset.key.startsWith('machine.')) { showSpeeds(); if (el.dataset.key.startsWith('machine.')) fillPost(); }
   if (el.dataset.key.startsWith('post.')) repost();
 }
 
@@ -186,6 +213,7 @@ form.addEventListener('input', (e) => { if (e.target.type !== 'checkbox' && e.ta
 form.addEventListener('change', (e) => {
   if (e.target.closest('#op-list')) return;
   if (e.target.name === 'vise') { onVise(e.target); return; }
+  if (e.target.name === 'machine') { onMachine(e.target.value); return; }
   onField(e.target);
   if (e.target.closest('#fs-part') || e.target.closest('#fs-drawing')) showPart();
 });
@@ -204,6 +232,7 @@ $('op-add').addEventListener('click', () => addOperation($('op-kind').value));
 $('find-holes').addEventListener('click', findHoles);
 $('hole-list').addEventListener('click', onHoleList);
 $('hole-preset').addEventListener('click', presetHoles);
+$('hole-zero').addEventListener('click', zeroOnHole);
 // The page's units: every field and figure says them; a program still in the page's old units
 // follows (a user who works in inches means G20), one set apart from them stays.
 $('page-units').value = pageUnits();
@@ -232,6 +261,8 @@ document.addEventListener('drop', (e) => { const f = e.dataTransfer?.files?.[0];
 createEngine(window.SWARF_ENGINE_OPTIONS ?? {}).then(async (engine) => {
   state.engine = engine;
   Object.assign(state, { defaults: engine.defaults, posts: engine.posts, sample: engine.sample, sampleDrawing: engine.sampleDrawing });
+  fillKinds();
+  fillChoices();
   const lost = await restore((j) => engine.readJob(JSON.stringify(j)));
   setKind('part');
   await showPart(engine.sample, 'sample.stl', 'sample part');

@@ -2,7 +2,7 @@
 // (`data-key`), reads it back as that object holds it, and is marked where the core's own
 // checks (`checkJob`) find the setting wrong. Messages come in three styles: an error (red), a
 // warning (amber) and a note.
-import { $, state, job, ops, setupIndex, getKey, buildJob } from './state.js';
+import { $, state, job, ops, setupIndex, getKey, buildJob, formOf } from './state.js';
 import { unitOf, fromPage, fieldText, words } from './units.js';
 
 export function labelOf(el) {
@@ -13,6 +13,8 @@ export function labelOf(el) {
 // The value of a form field as its object holds it.
 export function valueOf(el) {
   const type = el.dataset.type;
+  // A choice that may be none (`data-none`): its empty option is null.
+  if (el.dataset.none !== undefined && el.value === '') return null;
   if (el.type === 'checkbox') return el.checked;
   if (type === 'list') return el.value.split(',').map((v) => v.trim()).filter(Boolean);
   if (type === 'ints') {
@@ -100,15 +102,17 @@ function placeOf(path) {
   if (m) return { tab: 'ops', op: Number(m[1]), field: Number(m[1]) === state.selected[state.kind] ? `#op-editor [data-key="${m[2]}"]` : null };
   m = path.match(/^tools\[(\d+)\]\.(.+)$/);
   if (m) return { tab: 'tools', tool: Number(m[1]), field: Number(m[1]) === state.selected.tool ? `#tool-editor [data-key="${m[2]}"]` : null };
-  m = path.match(/^(stock|part|drawing|post)\.(.+)$/);
-  if (m) return { tab: { stock: 'stock', part: 'part', drawing: 'part', post: 'post' }[m[1]], field: `#settings [data-key="${m[1]}.${m[2]}"]` };
+  m = path.match(/^(stock|part|drawing|post|machine)\.(.+)$/);
+  if (m) return { tab: { stock: 'stock', part: 'part', drawing: 'part', post: 'post', machine: 'post' }[m[1]], field: `#settings [data-key="${m[1]}.${m[2]}"]` };
   return { tab: null, field: null };
 }
 
 // Where a problem's path is, in the page's words: "Operations → 'rough' → Step-down",
 // "Tools → T1 → Diameter", "Stock → Stock around the part, X and Y" (the core's messages name no
 // path: `checkJob` leaves it to the page).
-const TAB_NAMES = { stock: 'Stock', part: 'Part', drawing: 'Part', post: 'Controller' };
+const TAB_NAMES = { stock: 'Stock', part: 'Part', drawing: 'Part', post: 'Controller', machine: 'Controller' };
+// An operation's setting in its form's words (the key where the form has no field for it).
+const fieldWords = (op, key) => (op && formOf(op.kind)?.fields.find((f) => f.key === key)?.label) ?? key;
 export function placeWords(path) {
   // The field on show where one is (several operation kinds share a key), its label without
   // the unit in brackets.
@@ -120,17 +124,20 @@ export function placeWords(path) {
   if (m) {
     const k = Number(m[1]), setup = job()?.setups?.[k], name = setup?.name || `Setup ${k + 1}`;
     const op = m[2].match(/^operations\[(\d+)\]\.(.+)$/);
-    if (op) return `Operations → ${name} → '${setup?.operations?.[Number(op[1])]?.name ?? `operation ${Number(op[1]) + 1}`}' → ${label(`#op-editor [data-key="${op[2]}"]`) ?? op[2]}`;
+    if (op) {
+      const o = setup?.operations?.[Number(op[1])];
+      return `Operations → ${name} → '${o?.name ?? `operation ${Number(op[1]) + 1}`}' → ${fieldWords(o, op[2])}`;
+    }
     return `Operations → ${name} → ${label(`#setup-editor [data-setup="${m[2]}"]`) ?? m[2]}`;
   }
   m = path.match(/^operations\[(\d+)\]\.(.+)$/);
   if (m) {
     const op = ops()[Number(m[1])];
-    return `Operations → '${op?.name ?? `operation ${Number(m[1]) + 1}`}' → ${label(`#op-editor [data-key="${m[2]}"]`) ?? m[2]}`;
+    return `Operations → '${op?.name ?? `operation ${Number(m[1]) + 1}`}' → ${fieldWords(op, m[2])}`;
   }
   m = path.match(/^tools\[(\d+)\]\.(.+)$/);
   if (m) return `Tools → T${state.tools[Number(m[1])]?.number ?? Number(m[1]) + 1} → ${label(`#tool-editor [data-key="${m[2]}"]`) ?? m[2]}`;
-  m = path.match(/^(stock|part|drawing|post)\.(.+)$/);
+  m = path.match(/^(stock|part|drawing|post|machine)\.(.+)$/);
   if (m) return `${TAB_NAMES[m[1]]} → ${label(`#settings [data-key="${m[1]}.${m[2]}"]`) ?? m[2]}`;
   return path;
 }

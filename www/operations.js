@@ -1,7 +1,7 @@
 // The operations of the job on show, in order: listed with their colour, tools and whether
 // they run; added, moved, removed; the picked one's form; and for drawings, the loops it cuts,
 // picked by clicking them in the view.
-import { $, state, hooks, ops, hasSetups, setupIndex, selectedOp, selectedTool, is2d, store, toolsOf, buildJob, HOLE_OPS } from './state.js';
+import { $, state, hooks, job, ops, hasSetups, setupIndex, selectedOp, selectedTool, is2d, store, toolsOf, buildJob, formOf, picksHoles } from './state.js';
 import { fillFields, message, sized, check } from './forms.js';
 import { opColor, cssColor } from './viewer.js';
 import * as units from './units.js';
@@ -28,15 +28,91 @@ export function fillOps() {
   const op = selectedOp();
   $('op-editor').hidden = !op;
   if (!op) return;
-  for (const el of $('op-editor').querySelectorAll('[data-kinds]')) el.hidden = !el.dataset.kinds.split(' ').includes(op.kind);
-  for (const box of [$('fs-raster'), $('fs-2d'), $('fs-rough'), $('fs-waterline'), $('fs-octree'), $('fs-drill'), $('fs-holes'), $('fs-face')]) if (!box.hidden) fillFields(box, op);
-  document.querySelector('[name=opName]').value = op.name;
-  $('op-tool-label').hidden = op.kind === 'roughOctree';
-  if (op.kind !== 'roughOctree') document.querySelector('[name=opTool]').value = String(op.tool);
+  buildForm(op.kind);
+  fillFields($('op-fields'), op);
   // A cut through the sheet goes past its bottom by the breakthrough (0.2 mm).
-  $('through-depth').textContent = `${units.place(Number(state.jobs.drawing.drawing.thickness) + 0.2)} ${units.lengthUnit()}`;
+  const through = $('through-depth');
+  if (through) through.textContent = `${units.place(Number(state.jobs.drawing.drawing.thickness) + 0.2)} ${units.lengthUnit()}`;
   showPicked();
   showHoles();
+}
+
+// ---- forms ------------------------------------------------------------------------------
+// An operation's form is made from the core's description of its kind (`defaults.forms`: each
+// field's key, words, unit, range and what empty means), never written here per kind: a new
+// kind of operation is one Rust file. A field is named `op-` and its key (`op-stepdown`,
+// `op-tabs-count`).
+const UNIT_WORDS = { length: 'mm', feed: 'mm/min', degrees: '°', seconds: 's', none: '' };
+
+// The kinds to add, grouped by what they work on.
+export function fillKinds() {
+  const select = $('op-kind'), groups = { part: 'for parts', drawing: 'for drawings (2D)', either: 'for parts and drawings' };
+  select.replaceChildren();
+  for (const [applies, words] of Object.entries(groups)) {
+    const group = document.createElement('optgroup');
+    group.label = words;
+    for (const f of state.defaults.forms.filter((g) => g.applies === applies)) group.append(new Option(f.title, f.kind));
+    select.append(group);
+  }
+}
+
+function fieldElement(f) {
+  const label = document.createElement('label');
+  const input = document.createElement(f.input === 'choice' || f.input === 'tool' ? 'select' : 'input');
+  input.name = `op-${f.key.replace(/\./g, '-')}`;
+  input.dataset.key = f.key;
+  input.dataset.unit = f.unit === 'length' ? 'length' : f.unit === 'feed' ? 'feed' : '';
+  if (f.help) label.title = f.help;
+  if (f.applies === 'drawing') label.classList.add('drawing-only');
+  if (f.input === 'check') {
+    input.type = 'checkbox';
+    label.className = 'check';
+    label.append(input, ` ${f.label}`);
+    return label;
+  }
+  const said = [UNIT_WORDS[f.unit], f.note, f.empty && `empty: ${f.empty}`].filter(Boolean).join('; ');
+  const words = document.createElement('span');
+  // The depth through a sheet is said as a figure, kept up to date by fillOps.
+  const [before, after] = `${f.label}${said ? ` (${said})` : ''}`.split('{throughDepth}');
+  words.append(before);
+  if (after !== undefined) {
+    const figure = document.createElement('span');
+    figure.id = 'through-depth';
+    words.append(figure, after);
+  }
+  label.append(words, ' ', input);
+  if (f.input === 'choice') for (const c of f.choices) input.append(new Option(c.label, c.value));
+  else if (f.input === 'tool') input.dataset.type = 'int';
+  else if (f.input === 'number' || f.input === 'int') {
+    input.type = 'number';
+    input.step = f.input === 'int' ? '1' : 'any';
+    if (f.min != null) input.min = String(f.min);
+    if (f.max != null) input.max = String(f.max);
+    if (f.empty) input.dataset.type = 'optional';
+    else if (f.input === 'int') input.dataset.type = 'int';
+  } else {
+    input.type = 'text';
+    if (f.input === 'words') input.dataset.type = 'list';
+    if (f.input === 'ints') input.dataset.type = 'ints';
+  }
+  return label;
+}
+
+// The form of operations of `kind` in the editor (made anew only when the kind changes), with
+// the holes found to pick from after its name and tool where the kind picks holes.
+function buildForm(kind) {
+  const box = $('op-fields'), form = formOf(kind);
+  if (!form || box.dataset.kind === kind) return;
+  const holes = $('fs-hole-list');
+  $('op-editor').append(holes);
+  box.replaceChildren(...form.fields.map(fieldElement));
+  box.dataset.kind = kind;
+  $('op-hint').textContent = form.hint ?? '';
+  $('op-hint').hidden = !form.hint;
+  holes.hidden = form.picks !== 'holes';
+  if (form.picks === 'holes') box.insertBefore(holes, [...box.children].find((l) => !['name', 'tool'].includes(l.querySelector('[data-key]')?.dataset.key)) ?? null);
+  units.relabel(box);
+  hooks.fillToolChoices?.();
 }
 
 export function addOperation(kind) {
@@ -144,7 +220,7 @@ const MODES = {
 };
 // What the operation picks from (a key of MODES), or null for an operation that picks none.
 function modeOf(op) {
-  if (!op || !HOLE_OPS.includes(op.kind)) return null;
+  if (!op || !picksHoles(op)) return null;
   if (op.kind === 'threadMill' && op.external === true) return 'bosses';
   if (op.kind === 'chamfer' && op.edges === 'partEdges') return 'edges';
   return 'holes';
@@ -174,6 +250,28 @@ export async function findHoles() {
     message(e.message, 'error');
   }
   showHoles();
+}
+
+// X0 Y0 on the centre of the one hole the selected operation picked: the work zero of the job,
+// or with setups of the setup on show, its height kept (the core works out where that is from
+// the stock's centre as the part is held). The holes are found again where they now lie.
+export async function zeroOnHole() {
+  const op = selectedOp(), picked = op?.holes ?? [];
+  const h = found(op).find((x, k) => (x.loopIndex ?? k) === picked[0]);
+  if (state.kind !== 'part' || picked.length !== 1 || !h) { message('Find the holes of a part and pick one (click it in the list or the view) to set X0 Y0 on its centre.', 'warning'); return; }
+  try {
+    const j = buildJob({ all: true }), k = hasSetups(j) ? setupIndex(j) : undefined;
+    const zero = await state.engine.zeroOn(j, state.part.bounds, k, h.center);
+    if (k === undefined) job().stock.zero = zero; else job().setups[k].zero = zero;
+    store();
+    hooks.fillAll?.();
+    hooks.changed?.();
+    await hooks.showHeld?.();
+    await findHoles();
+    message(`X0 Y0 on the centre of hole ${picked[0]} (φ${mm(h.diameter)})${k === undefined ? '' : ` in setup ${k + 1}`}: ${mm(zero.at[0])}, ${mm(zero.at[1])} ${unit()} from the stock's centre.`, 'ok');
+  } catch (e) {
+    message(e.message, 'error');
+  }
 }
 
 export function showHoles() {

@@ -301,8 +301,20 @@ export function download() {
   if (!state.result) return;
   if (state.problem && !window.confirm(`This program is not safe to run: ${state.problem}.\n\nDownload it anyway? It starts with a warning comment.`)) return;
   if (!state.results) { downloadText(programName(), state.result.gcodeBytes, 'text/plain'); return; }
+  if (job().post.oneProgram) { downloadOne(); return; }
   state.results.forEach((r, k) => downloadText(programName(k), r.gcodeBytes, 'text/plain'));
   message(`Downloaded ${state.results.length} programs, one a setup: ${state.results.map((r, k) => programName(k)).join(', ')}.`, 'ok');
+}
+
+// Every setup in one program, stopping between them (the core joins them).
+async function downloadOne() {
+  try {
+    const gcode = await state.engine.oneProgram(buildJob({ all: true }));
+    downloadText(programName(), gcode, 'text/plain');
+    message(`Downloaded ${programName()}: ${state.results.length} setups in one program, the machine stopping (M0) between them.`, 'ok');
+  } catch (e) {
+    message(e.message, 'error');
+  }
 }
 
 // ---- posts as data ----------------------------------------------------------------------
@@ -316,6 +328,8 @@ export function currentPost() {
 export function fillPost() {
   const j = job();
   fillFields($('fs-post'), j);
+  const same = state.defaults.machines.find((m) => JSON.stringify(m) === JSON.stringify(j.machine));
+  $('fs-post').querySelector('[name=machine]').value = same?.name ?? '';
   const custom = j.post.custom;
   $('post-custom').hidden = !custom;
   $('post-custom').textContent = custom ? `Using your post "${custom.name}" (choose a controller to go back to a built-in one).` : '';

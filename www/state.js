@@ -33,11 +33,14 @@ export const ops = (j = job()) => (hasSetups(j) ? j.setups[setupIndex(j)].operat
 export const allOps = (j) => [...(j.operations ?? []), ...(j.setups ?? []).flatMap((s) => s.operations ?? [])];
 export const selectedOp = () => ops()[state.selected[state.kind]] ?? null;
 export const selectedTool = () => state.tools[state.selected.tool] ?? null;
-export const is2d = (op) => op.kind === 'profile2d' || op.kind === 'pocket2d' || op.kind === 'engrave' || op.kind === 'vcarve';
+// Each kind's form, as the core describes it (`defaults.forms`): what it works on, what it
+// picks from.
+export const formOf = (kind) => state.defaults?.forms?.find((f) => f.kind === kind);
+export const is2d = (op) => formOf(op.kind)?.applies === 'drawing';
 // The hole operations work on a part's holes and on a drawing's circles alike, facing on a
 // part's stock and a sheet alike.
-export const HOLE_OPS = ['drill', 'bore', 'chamfer', 'threadMill'];
-export const isEither = (op) => HOLE_OPS.includes(op.kind) || op.kind === 'face';
+export const picksHoles = (op) => formOf(op.kind)?.picks === 'holes';
+export const isEither = (op) => formOf(op.kind)?.applies === 'either';
 
 // Keeps the settings and makes their change a step to undo; the changes of one field typed
 // without a pause (`burst`: the field's key) are one step.

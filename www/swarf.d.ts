@@ -1,7 +1,7 @@
 // The API of swarf.js. The data it passes (jobs, tools, operations, posts, projects, results)
 // has the types generated from swarf's Rust serde types (types/swarf-types.d.ts); only the
 // engine's own calls, and the input forms of those types, are declared here.
-import type { Job, Post, PostSettings, CycleTime, Project, Summary, DrawingView, ReportView, Reposted, Problem, Warning, OperationReport, TimeItem, Hole, EdgeView, SetupView } from './types/swarf-types.js';
+import type { Job, Post, PostSettings, CycleTime, Project, Summary, DrawingView, ReportView, Reposted, Problem, Warning, OperationReport, TimeItem, Hole, EdgeView, SetupView, OperationForm, WorkZero, MaterialChoice, Machine, CuttingData } from './types/swarf-types.js';
 
 export type { Job, Post, PostSettings, CycleTime, Project, Summary, DrawingView, ReportView, Reposted, Problem, Warning, OperationReport, TimeItem, Hole, EdgeView, SetupView };
 
@@ -142,7 +142,7 @@ export declare class UnsafeProgramError extends Error {
 export declare class Engine {
   /** How many workers share a run. */
   readonly workers: number;
-  defaults: { job: Job; drawingJob: Job; tool: Job['tools'][number]; operations: Job['operations'] };
+  defaults: { job: Job; drawingJob: Job; tool: Job['tools'][number]; operations: Job['operations']; forms: OperationForm[]; materials: MaterialChoice[]; machines: Machine[] };
   posts: { dialect: PostSettings['dialect']; post: Post }[];
   /** The sample part (binary STL) and drawing (DXF). */
   sample: Uint8Array;
@@ -168,6 +168,12 @@ export declare class Engine {
   runSetups(job: JobInput, bytes: Uint8Array, name: string, options?: RunOptions): Promise<SetupsResult>;
   /** The last run's setup sheet (every setup's), a printable HTML page. */
   setupSheet(job: JobInput, name: string): Promise<string>;
+  /** The last run's setups in one program (`job.post`), an operator stop (M0) between them saying how to hold the part next. */
+  oneProgram(job: JobInput): Promise<string>;
+  /** Each tool's speeds and feeds as `job` cuts them (from the stock's material, or as typed), with how they were worked out. */
+  cuttingData(job: JobInput): Promise<CuttingData[]>;
+  /** The work zero with X0 Y0 on `point` (a hole's centre as `holes` gives it) where `job`, or its setup `setup`, holds the part now; its height kept. */
+  zeroOn(job: JobInput, partBounds: ArrayLike<number>, setup: number | undefined, point: ArrayLike<number>): Promise<WorkZero>;
   /** Where each setup of `job` holds a part of these bounds, before a run (empty without setups). */
   setupFrames(job: JobInput, partBounds: ArrayLike<number>): Promise<SetupView[]>;
   holes(job: JobInput, bytes: Uint8Array, name: string, setup?: number): Promise<Hole[]>;

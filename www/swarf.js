@@ -438,6 +438,23 @@ export class Engine {
   async setupSheet(job, name) { return (await this.call({ type: 'sheet', job, name })).html; }
 
   /**
+   * The last `runSetups`'s setups in one program, as `job.post` writes them (`post.oneProgram`):
+   * each setup's program after the one before, the control stopping (M0) between them with a
+   * message on how to hold the part, where to set the zero and which tool to put in.
+   */
+  async oneProgram(job) { return (await this.call({ type: 'oneProgram', job })).gcode; }
+
+  /** Each tool's speeds and feeds as `job` cuts them (from the stock's material, or as typed): `[CuttingData]`. */
+  async cuttingData(job) { return (await this.call({ type: 'cuttingData', job })).data; }
+
+  /**
+   * The work zero of `job` (or of its setup `setup`) with X0 Y0 on `point` ([x, y] where it
+   * holds the part now: a hole's centre as `holes` gives it), its height kept: `WorkZero`, to
+   * set as `job.stock.zero` or the setup's `zero`.
+   */
+  async zeroOn(job, partBounds, setup, point) { return (await this.call({ type: 'zeroOn', job, part: Array.from(partBounds), setup, point: Array.from(point) })).zero; }
+
+  /**
    * Where each setup of `job` holds a part whose bounds are `partBounds` (as `open` gives them),
    * before a run: `[SetupView]` (empty for a job without setups), for a view that shows the
    * part turned over as the setup holds it.

@@ -1,6 +1,6 @@
 // The tool library: a list to pick from, a form for the picked tool, tools added, copied,
 // deleted, exported and imported as JSON (read by the core, as a job's tools are).
-import { $, state, hooks, selectedTool, store, downloadText } from './state.js';
+import { $, state, hooks, selectedTool, store, downloadText, buildJob } from './state.js';
 import { fillFields, message, sized } from './forms.js';
 import * as units from './units.js';
 
@@ -19,7 +19,39 @@ export function fillTools() {
   document.querySelector('#tool-editor [name=cornerRadius]').closest('label').hidden = t?.shape !== 'bullNose';
   document.querySelector('#tool-editor [name=pointAngle]').closest('label').hidden = !['drill', 'spotDrill', 'vBit'].includes(t?.shape);
   document.querySelector('#tool-editor [name=tipDiameter]').closest('label').hidden = t?.shape !== 'vBit';
-  const opTool = document.querySelector('[name=opTool]');
+  fillToolChoices();
+  showSpeeds();
+}
+
+// The picked tool's speeds and feeds as the job cuts them, with how they were worked out (the
+// core's, from the stock's material or as typed); the fields show the figures it runs at.
+let asked = 0;
+export async function showSpeeds() {
+  const t = selectedTool(), k = ++asked;
+  if (!t || !state.engine) return;
+  let data;
+  try {
+    data = (await state.engine.cuttingData({ ...buildJob({ all: true }), tools: [t] }))[0];
+  } catch {
+    return;
+  }
+  if (k !== asked || !data) return;
+  const hint = $('tool-speeds');
+  hint.textContent = data.fromMaterial ? `${units.words(data.reason)}. Source: ${data.source}.` : `Speeds and feeds ${data.reason}.`;
+  hint.dataset.fromMaterial = String(data.fromMaterial);
+  // The figures it runs at, in the fields (kept as typed in the tool for when it goes back).
+  if (data.fromMaterial) {
+    for (const [name, v] of [['spindleRpm', data.spindleRpm], ['feedRate', data.feedRate], ['plungeRate', data.plungeRate]]) {
+      const el = document.querySelector(`#tool-editor [name=${name}]`);
+      if (document.activeElement !== el) el.value = name === 'spindleRpm' ? String(v) : units.fieldText(v);
+    }
+  }
+}
+
+// The library's tools, to choose an operation's tool from (where its form has one).
+export function fillToolChoices() {
+  const opTool = document.querySelector('#op-editor [name=op-tool]');
+  if (!opTool) return;
   const choices = sized(opTool, state.tools.length, () => new Option());
   state.tools.forEach((u, i) => { choices[i].text = toolLabel(u); choices[i].value = String(u.number); });
 }

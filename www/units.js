@@ -86,10 +86,10 @@ export function unitOf(el) {
   return found || null;
 }
 
-// The labels of the length and feed fields say the page's units, and their spinners step in
-// them (a step of 1 mm is one of 0.04 in).
-function relabel() {
-  for (const el of document.querySelectorAll('#settings [data-key]')) {
+// The labels of the length and feed fields (of the settings, or of `root` made anew) say the
+// page's units, and their spinners step in them (a step of 1 mm is one of 0.04 in).
+export function relabel(root = document.getElementById('settings')) {
+  for (const el of root.querySelectorAll('[data-key]')) {
     const label = unitOf(el) && el.closest('label');
     if (!label) continue;
     // The text that names the unit (the label's own, or within its first span), its figures

@@ -1,6 +1,6 @@
 // Runs the wasm pipeline off the page's thread, for swarf.js's engine. Cancel = the engine
 // terminates this worker.
-import init, { defaults, builtinPosts, readPost, readJob, checkJob, writeProject, readProject, samplePart, sampleDrawing, warmUpJob, warmUpPart, loadPart, loadDrawing, isDrawing, prepareJob, setupFrames, setupSheet, findHoles, findBosses, findEdges } from './pkg/swarf.js';
+import init, { defaults, builtinPosts, readPost, readJob, checkJob, writeProject, readProject, samplePart, sampleDrawing, warmUpJob, warmUpPart, loadPart, loadDrawing, isDrawing, prepareJob, setupFrames, setupSheet, oneProgram, zeroOn, cuttingData, findHoles, findBosses, findEdges } from './pkg/swarf.js';
 
 // The wasm is loaded on the first message: from the bytes or URL it names (a single-file page
 // passes the bytes), else from pkg/ beside the glue.
@@ -197,6 +197,15 @@ self.onmessage = async (event) => {
     } else if (type === 'sheet') {
       if (!results.length) throw new Error('generate a program first');
       self.postMessage({ id, ok: true, html: setupSheet(event.data.job, event.data.name, results.map((r) => r.result.sheet())) });
+    } else if (type === 'oneProgram') {
+      if (!results.length) throw new Error('generate a program first');
+      const kept = results.map((r) => r.result), post = event.data.job.post ?? {};
+      self.postMessage({ id, ok: true, gcode: oneProgram(event.data.job, kept.map((r) => r.sheet()), kept.map((r) => r.program(post)), kept.map((r) => r.problem() ?? '')) });
+    } else if (type === 'cuttingData') {
+      self.postMessage({ id, ok: true, data: cuttingData(event.data.job) });
+    } else if (type === 'zeroOn') {
+      const { job, part, setup, point } = event.data;
+      self.postMessage({ id, ok: true, zero: zeroOn(job, Float64Array.from(part), setup ?? undefined, point[0], point[1]) });
     } else if (type === 'setupFrames') {
       self.postMessage({ id, ok: true, frames: setupFrames(event.data.job, Float64Array.from(event.data.part)) });
     } else if (type === 'run') {

@@ -269,6 +269,9 @@ pub fn run(job: &Job, workpiece: impl Into<Workpiece>, progress: &mut Progress) 
 /// plans in.
 pub fn prepare(job: &Job, workpiece: impl Into<Workpiece>) -> Result<Prepared> {
     job.validate()?;
+    // The tools' speeds and feeds from the stock's material, where they take them.
+    let cut = job.with_cutting_data();
+    let job: &Job = &cut;
     if !job.setups.is_empty() {
         return Err(Error::Input(format!("the job has {} setups, each a program of its own: run it with `swarf run` (the page makes one setup's program so far)", job.setups.len())));
     }

@@ -37,13 +37,17 @@ pub enum ZeroCorner {
 }
 
 /// The work zero: where the program's origin is on the setup.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(default, rename_all = "camelCase")]
 pub struct WorkZero {
     /// Default value: partTop.
     pub height: ZeroHeight,
     /// Default value: center.
     pub corner: ZeroCorner,
+    /// X0 Y0 at this point instead of `corner`: how far it lies from the stock's centre seen
+    /// from above, in X and Y as the setup holds the part (mm); the page sets it on a hole's
+    /// centre ([`Job::zero_on`]). Default value: none.
+    pub at: Option<[f64; 2]>,
 }
 
 impl WorkZero {
@@ -55,12 +59,15 @@ impl WorkZero {
             ZeroHeight::StockBottom => stock.min.z,
         };
         let (lo, hi, c) = (stock.min, stock.max, stock.center());
-        let (x, y) = match self.corner {
-            ZeroCorner::Center => (c.x, c.y),
-            ZeroCorner::FrontLeft => (lo.x, lo.y),
-            ZeroCorner::FrontRight => (hi.x, lo.y),
-            ZeroCorner::BackLeft => (lo.x, hi.y),
-            ZeroCorner::BackRight => (hi.x, hi.y),
+        let (x, y) = match (self.at, self.corner) {
+            (Some([dx, dy]), _) => (c.x + dx, c.y + dy),
+            (None, corner) => match corner {
+                ZeroCorner::Center => (c.x, c.y),
+                ZeroCorner::FrontLeft => (lo.x, lo.y),
+                ZeroCorner::FrontRight => (hi.x, lo.y),
+                ZeroCorner::BackLeft => (lo.x, hi.y),
+                ZeroCorner::BackRight => (hi.x, hi.y),
+            },
         };
         DVec3::new(x, y, z)
     }
@@ -109,6 +116,9 @@ pub struct Stock {
     /// the part, as long as the part and the margins along its axis (the margins across it
     /// are the bar's). Default value: none.
     pub bar: Option<Bar>,
+    /// What the stock is: the tools' speeds and feeds follow from it ([`crate::cutting`]).
+    /// Default value: none (every tool's as typed).
+    pub material: Option<crate::cutting::Material>,
 }
 
 /// Round bar stock ([`Stock::bar`]): the material a sawn length of bar holds, so that the
@@ -214,6 +224,7 @@ impl Default for Stock {
             air_feed: None,
             zero: None,
             bar: None,
+            material: None,
         }
     }
 }
@@ -462,6 +473,10 @@ pub struct Job {
     /// against every move ([`crate::job::fixtures`]); a setup may name its own. Default value:
     /// none.
     pub fixtures: Fixtures,
+    /// The machine's limits: its spindle's speed range and fastest feed, which the speeds and
+    /// feeds from the material keep to. Default value: a hobby router (8000–24000 rpm, 5000
+    /// mm/min).
+    pub machine: crate::cutting::Machine,
 }
 
 /// How a setup turns the part over from the setup before it (the first: from the part as
@@ -548,6 +563,7 @@ impl Default for Job {
             tolerances: Tolerances::default(),
             setups: Vec::new(),
             fixtures: Fixtures::default(),
+            machine: crate::cutting::Machine::default(),
         }
     }
 }
@@ -567,6 +583,25 @@ impl Job {
             }
             None => stock,
         }
+    }
+
+    /// The work zero with X0 Y0 on the point `p` (X and Y where the job, or its setup `setup`,
+    /// holds the part now: a hole's centre as its holes are found), its height kept: the job's
+    /// `stock.zero` or the setup's `zero`. `part` is the part's box as the job places it.
+    pub fn zero_on(&self, part: &Aabb, setup: Option<usize>, p: DVec2) -> Result<WorkZero> {
+        let (stock, zero) = match setup {
+            Some(k) => {
+                let frame = crate::job::setups::setup_frames(self, part).get(k).copied().ok_or_else(|| Error::Input(format!("setup {k}: the job has {} setups", self.setups.len())))?;
+                (frame.1, self.setups[k].zero.or(self.stock.zero))
+            }
+            None => {
+                let stock = self.stock.around(part);
+                let shift = self.stock.zero.map_or(DVec3::ZERO, |z| -z.point(&stock, part.max.z));
+                (Aabb { min: stock.min + shift, max: stock.max + shift }, self.stock.zero)
+            }
+        };
+        let c = stock.center();
+        Ok(WorkZero { at: Some([p.x - c.x, p.y - c.y]), ..zero.unwrap_or_default() })
     }
 
     /// The least material any operation leaves on the part (mm); infinite without operations.
@@ -653,6 +688,9 @@ impl Job {
         for (field, message) in self.tolerances.problems() {
             say(format!("tolerances.{field}"), format!("tolerances.{field} {message}"));
         }
+        for (field, message) in self.machine.problems() {
+            say(format!("machine.{field}"), format!("machine.{field} {message}"));
+        }
         for (i, tool) in self.tools.iter().enumerate() {
             if let Err(e) = tool.cutter.validate() {
                 let field = match e {
@@ -690,6 +728,9 @@ impl Job {
                         ),
                     );
                 }
+            }
+            if !(1..=crate::limits::MAX_FLUTES).contains(&tool.flutes) {
+                say(format!("tools[{i}].flutes"), format!("tools[{i}].flutes must be 1 to {} (got {})", crate::limits::MAX_FLUTES, tool.flutes));
             }
             if tool.stick_out.is_some_and(|s| !(s >= tool.cutter.flute_length && s <= crate::limits::MAX_SIZE)) {
                 say(format!("tools[{i}].stickOut"), format!("tools[{i}].stickOut must be at least the flute length ({} mm) and at most 10 m", tool.cutter.flute_length));

@@ -222,6 +222,34 @@ pub fn run_setups(job: &Job, mut part: Mesh, progress: &mut Progress) -> Result<
     Ok(out)
 }
 
+/// The setups' programs as one (`post.oneProgram`, [`crate::post::join_setups`]): `programs`
+/// are each setup's sheet figures and program text, in order; between two setups the control
+/// stops with a message saying how to hold the part, where to set the zero and (without a tool
+/// changer) which tool to put in.
+pub fn one_program(job: &Job, programs: &[(&super::sheet::SheetSetup, &str)]) -> Result<String> {
+    let post = job.post.post();
+    let joined: Vec<crate::post::SetupProgram> = programs
+        .iter()
+        .enumerate()
+        .map(|(k, (sheet, gcode))| {
+            let hold = super::sheet::hold_words(job, k);
+            crate::post::SetupProgram {
+                name: &sheet.name,
+                held: if hold.is_empty() { "hold the part as the setup before did".to_owned() } else { hold.join(", then ") },
+                work_offset: sheet.work_offset.clone().unwrap_or_else(|| "the work offset".to_owned()),
+                first_tool: if post.tool_change.is_empty() {
+                    sheet.tools.first().map(|n| job.tools.iter().find(|t| t.number == *n).map_or_else(|| format!("T{n}"), |t| format!("T{n}, {}", t.describe())))
+                } else {
+                    None
+                },
+                gcode,
+                seconds: sheet.cycle,
+            }
+        })
+        .collect();
+    crate::post::join_setups(&job.post, &joined)
+}
+
 /// The material over `p` (in the frame `to`) as `(floor, top)`, of the stock `left` in the
 /// frame `from`: the column over `p` is a column there too (the frames differ by quarter turns
 /// and a shift), its material from the cell's floor to its top there, turned over when the

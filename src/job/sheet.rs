@@ -58,7 +58,7 @@ impl SheetSetup {
         }
         SheetSetup {
             name: name.to_owned(),
-            work_offset: out.gcode.lines().map(without_number).find(|l| crate::post::definition::is_work_offset(l)).map(str::to_owned),
+            work_offset: out.gcode.lines().map(crate::post::without_number).find(|l| crate::post::definition::is_work_offset(l)).map(str::to_owned),
             stock: out.stock,
             moves: out.moves.len(),
             cycle: out.cycle.seconds,
@@ -67,15 +67,6 @@ impl SheetSetup {
             time: out.time.clone(),
             picture: picture(name, out),
         }
-    }
-}
-
-/// A program's line without its line number (`N120 G55`: `G55`).
-fn without_number(line: &str) -> &str {
-    let line = line.trim();
-    match line.split_once(' ') {
-        Some((n, rest)) if n.len() > 1 && n.starts_with('N') && n[1..].chars().all(|c| c.is_ascii_digit()) => rest.trim(),
-        _ => line,
     }
 }
 
@@ -97,32 +88,13 @@ svg{{border:1px solid #ccc;background:#fafafa}}.n{{text-align:right}}</style></h
         if setups.len() == 1 { "" } else { "s" },
         clock(total)
     );
+    // Each tool as it cuts, with where its speeds and feeds come from.
+    let cutting = job.cutting_data();
+    let cut: Vec<(crate::tool::Tool, String)> = job.with_cutting_data().tools.iter().cloned().zip(cutting.into_iter().map(|c| c.reason)).collect();
     for (k, s) in setups.iter().enumerate() {
         let setup = job.setups.get(k);
         let _ = write!(h, "<section>\n<h2>{}: {}</h2>\n", k + 1, escape(&s.name));
-        // How to hold it.
-        let mut hold = Vec::new();
-        match (setup.and_then(|s| s.up), setup.map(|s| s.flip)) {
-            (Some(up), _) => hold.push(match up {
-                Up::PlusZ => "hold the part its top up".to_owned(),
-                Up::MinusZ => "hold the part its bottom up".to_owned(),
-                side => format!(
-                    "stand the part on its side, its {} face up",
-                    match side {
-                        Up::PlusX => "right (+X)",
-                        Up::MinusX => "left (−X)",
-                        Up::PlusY => "back (+Y)",
-                        _ => "front (−Y)",
-                    }
-                ),
-            }),
-            (None, Some(Flip::AboutX)) => hold.push("turn the part over about X (front edge to the back)".to_owned()),
-            (None, Some(Flip::AboutY)) => hold.push("turn the part over about Y (left edge to the right)".to_owned()),
-            _ => {}
-        }
-        if let Some(turn) = setup.map(|s| s.turn).filter(|&t| t != 0) {
-            hold.push(format!("turn it {turn}° counter-clockwise seen from above"));
-        }
+        let hold = hold_words(job, k);
         let from = if k == 0 { "the raw stock".to_owned() } else { format!("the stock setup {} left", k) };
         let hold = if hold.is_empty() {
             format!("Hold {from} as {}.", if k == 0 { "the part is drawn, its top up" } else { "the setup before held it" })
@@ -153,16 +125,17 @@ svg{{border:1px solid #ccc;background:#fafafa}}.n{{text-align:right}}</style></h
         );
         h.push_str(&s.picture);
         // Tools, in the order the program takes them.
-        h.push_str("<h3>Tools</h3>\n<table><tr><th>Tool</th><th>Cutter</th><th>Stick-out</th><th>Holder</th><th class=n>Speed</th><th class=n>Feed</th></tr>\n");
-        for tool in s.tools.iter().filter_map(|n| job.tools.iter().find(|t| t.number == *n)) {
+        h.push_str("<h3>Tools</h3>\n<table><tr><th>Tool</th><th>Cutter</th><th>Stick-out</th><th>Holder</th><th class=n>Speed</th><th class=n>Feed</th><th>Speeds from</th></tr>\n");
+        for (tool, why) in s.tools.iter().filter_map(|n| cut.iter().find(|(t, _)| t.number == *n)) {
             let _ = writeln!(
                 h,
-                "<tr><td>T{}</td><td>{}</td><td>{}</td><td>—</td><td class=n>{:.0} rpm</td><td class=n>{:.0} mm/min</td></tr>",
+                "<tr><td>T{}</td><td>{}</td><td>{}</td><td>—</td><td class=n>{:.0} rpm</td><td class=n>{:.0} mm/min</td><td>{}</td></tr>",
                 tool.number,
                 escape(&tool.describe()),
                 tool.stick_out.map_or_else(|| format!("at least {:.1} mm (its flutes)", tool.cutter.flute_length), |s| format!("{s:.1} mm")),
                 tool.spindle_rpm,
-                tool.feed_rate
+                tool.feed_rate,
+                escape(why)
             );
         }
         h.push_str("</table>\n<h3>Operations</h3>\n<table><tr><th>#</th><th>Operation</th><th>Tool</th><th class=n>Time</th><th class=n>Cutting</th><th class=n>Removed</th></tr>\n");
@@ -189,9 +162,44 @@ svg{{border:1px solid #ccc;background:#fafafa}}.n{{text-align:right}}</style></h
     h
 }
 
+/// How setup `k` holds the part, in a machinist's words ("turn the part over about X (front
+/// edge to the back)", "turn it 90° counter-clockwise seen from above"); none where it holds it
+/// as the setup before did.
+pub fn hold_words(job: &Job, k: usize) -> Vec<String> {
+    let setup = job.setups.get(k);
+    let mut hold = Vec::new();
+    match (setup.and_then(|s| s.up), setup.map(|s| s.flip)) {
+        (Some(up), _) => hold.push(match up {
+            Up::PlusZ => "hold the part its top up".to_owned(),
+            Up::MinusZ => "hold the part its bottom up".to_owned(),
+            side => format!(
+                "stand the part on its side, its {} face up",
+                match side {
+                    Up::PlusX => "right (+X)",
+                    Up::MinusX => "left (−X)",
+                    Up::PlusY => "back (+Y)",
+                    _ => "front (−Y)",
+                }
+            ),
+        }),
+        (None, Some(Flip::AboutX)) => hold.push("turn the part over about X (front edge to the back)".to_owned()),
+        (None, Some(Flip::AboutY)) => hold.push("turn the part over about Y (left edge to the right)".to_owned()),
+        _ => {}
+    }
+    if let Some(turn) = setup.map(|s| s.turn).filter(|&t| t != 0) {
+        hold.push(format!("turn it {turn}° counter-clockwise seen from above"));
+    }
+    hold
+}
+
 /// Where the zero is, in a machinist's words.
 fn zero_words(zero: Option<WorkZero>) -> String {
     let Some(zero) = zero else { return "where the part's placement puts it (the centre of the part's top)".into() };
+    if let Some([dx, dy]) = zero.at {
+        let height = zero_words(Some(WorkZero { at: None, ..zero }));
+        let height = height.split_once(", ").map_or("", |(_, h)| h);
+        return format!("X0 Y0 at X{dx:+.3} Y{dy:+.3} from the centre of the stock seen from above (a hole's centre, say), {height}");
+    }
     let corner = match zero.corner {
         ZeroCorner::Center => "the centre",
         ZeroCorner::FrontLeft => "the front left corner",

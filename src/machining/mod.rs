@@ -11,6 +11,7 @@
 
 pub mod air;
 pub mod context;
+pub mod form;
 pub mod holes;
 pub mod levels;
 pub mod path2d;
@@ -227,6 +228,12 @@ pub trait Operate {
     }
     /// Checks its settings before any work.
     fn validate(&self) -> Result<(), FieldError>;
+
+    /// The page's form for these options ([`form`]): their fields, in the words a machinist
+    /// uses, with units and ranges.
+    fn form() -> form::OperationForm
+    where
+        Self: Sized;
     /// Whether the work its settings ask for on this stock is within reason (levels, passes),
     /// checked before any work starts: an error naming the setting where it is not (a step-down
     /// of 0.001 mm over an 18 mm stock is 18,000 levels, minutes of silence).

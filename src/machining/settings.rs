@@ -5,6 +5,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::form::FormField;
 use super::{not_negative, positive, FieldError};
 
 /// Cutting direction for a spindle turning clockwise (M3).
@@ -83,6 +84,11 @@ impl Default for Steps {
 }
 
 impl Steps {
+    /// Their fields in a roughing's form.
+    pub fn fields() -> [FormField; 2] {
+        [FormField::length("stepdown", "Step-down", 0.01), FormField::fraction("stepoverFraction", "Step-over", "fraction of the tool's diameter", 1.0)]
+    }
+
     /// Checks the steps, each named as the job file names it.
     pub fn validate(&self) -> Result<(), FieldError> {
         positive("stepdown", self.stepdown)?;
@@ -113,7 +119,22 @@ impl Default for Roughing {
     }
 }
 
+/// The first fields of a one-tool roughing's form: its name and tool, its steps, what it
+/// leaves and how it cuts, and whether it cuts the flats.
+pub fn roughing_form() -> Vec<FormField> {
+    let mut fields = FormField::name_and_tool().to_vec();
+    fields.extend(Steps::fields());
+    fields.extend(Roughing::fields());
+    fields.push(FormField::check("flats", "also cut every flat at its own height"));
+    fields
+}
+
 impl Roughing {
+    /// Their fields in a roughing's form.
+    pub fn fields() -> [FormField; 5] {
+        [FormField::length("allowance", "Leave on floors", 0.0), FormField::length("leaveStock", "Leave on walls", 0.0), FormField::direction(), FormField::grid(), FormField::ramp_angle()]
+    }
+
     /// Checks the settings, each named as the job file names it.
     pub fn validate(&self) -> Result<(), FieldError> {
         not_negative("allowance", self.allowance)?;

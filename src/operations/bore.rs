@@ -111,6 +111,24 @@ impl Bore {
 impl Operate for Bore {
     named_operation!(Either);
 
+    fn form() -> crate::machining::form::OperationForm {
+        use crate::machining::form::{FormField as F, OperationForm, Picks};
+        let mut fields = F::name_and_tool().to_vec();
+        fields.extend(F::which_holes());
+        fields.extend([
+            F::length("pitch", "Descent per turn", 0.01),
+            F::fraction("stepoverFraction", "Step between rings", "fraction of the tool's diameter", 1.0),
+            F::length("leaveStock", "Leave on the wall", 0.0),
+            F::length("finishStep", "Finishing step", 0.0).note("0: none"),
+            F::length("depth", "Depth below the hole's top", 0.01).empty("the hole's"),
+            F::length("breakthrough", "Past a through hole's bottom", 0.0),
+            F::start_above(),
+            F::direction(),
+            F::marks(),
+        ]);
+        OperationForm::new("bore holes on a helix", fields).picks(Picks::Holes)
+    }
+
     fn validate(&self) -> std::result::Result<(), FieldError> {
         self.pick.validate()?;
         positive("pitch", self.pitch)?;

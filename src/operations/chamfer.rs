@@ -94,6 +94,24 @@ impl Default for Chamfer {
 impl Operate for Chamfer {
     named_operation!(Either);
 
+    fn form() -> crate::machining::form::OperationForm {
+        use crate::machining::form::{FormField as F, OperationForm, Picks};
+        let mut fields = F::name_and_tool().to_vec();
+        fields.extend(F::which_holes());
+        fields.extend([
+            F::choice("edges", "Edges", &[("holes", "the holes' edges"), ("loops", "a drawing's loops: outside outlines, inside holes"), ("partEdges", "a part's sharp top edges")]),
+            F::words("layers", "Loops on layers", "edges: loops; with commas").empty("all"),
+            F::loops("Loops", "edges: loops, or a part's top edges as swarf edges lists them; numbers with commas, or click them", "all on the layers, every sharp edge"),
+            F::length("width", "Chamfer width at the top", 0.01),
+            F::length("extraDepth", "Tip below the chamfer", 0.0),
+            F::start_above(),
+            F::direction(),
+            F::degrees("rampAngle", "Ramp angle along a loop", 0.1, 89.0),
+            F::marks(),
+        ]);
+        OperationForm::new("chamfer edges (of holes, a drawing's loops, a part's top edges)", fields).picks(Picks::Holes)
+    }
+
     fn takes(&self, cutter: &crate::cutter::Cutter) -> std::result::Result<(), &'static str> {
         crate::machining::takes_all_but_thread_mills(cutter)
     }

@@ -163,6 +163,34 @@ impl Drill {
 impl Operate for Drill {
     named_operation!(Either);
 
+    fn form() -> crate::machining::form::OperationForm {
+        use crate::machining::form::{FieldUnit as U, FormField as F, OperationForm, Picks};
+        let mut fields = F::name_and_tool().to_vec();
+        fields.push(F::choice(
+            "cycle",
+            "Cycle",
+            &[
+                ("drill", "drill (G81)"),
+                ("peck", "peck, out of the hole after each (G83)"),
+                ("chipBreak", "peck, breaking the chip (G73)"),
+                ("dwell", "drill, dwell at the bottom (G82)"),
+                ("spot", "spot (a spot drill or V-bit)"),
+            ],
+        ));
+        fields.extend(F::which_holes());
+        fields.extend([
+            F::length("depth", "Depth below the hole's top", 0.01).empty("the hole's, through holes past the bottom by the point and the breakthrough"),
+            F::length("breakthrough", "Breakthrough", 0.0),
+            F::length("peck", "Peck depth", 0.01),
+            F::number("dwell", "Dwell at the bottom", U::Seconds).range(0.0, None),
+            F::length("spotDiameter", "Spot diameter", 0.01).empty("the hole's"),
+            F::length("retract", "R plane above the material", 0.01),
+            F::choice("returnTo", "Between holes", &[("initial", "back to the clearance height (G98)"), ("retract", "to the R plane (G99)")]),
+            F::marks(),
+        ]);
+        OperationForm::new("drill holes (spot, drill, peck)", fields).picks(Picks::Holes)
+    }
+
     fn takes(&self, cutter: &crate::cutter::Cutter) -> std::result::Result<(), &'static str> {
         crate::machining::takes_all_but_thread_mills(cutter)
     }

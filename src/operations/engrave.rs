@@ -56,6 +56,18 @@ struct Line {
 impl Operate for Engrave {
     named_operation!(OnDrawing);
 
+    fn form() -> crate::machining::form::OperationForm {
+        use crate::machining::form::{FormField as F, OperationForm};
+        let mut fields = F::sheet_cut();
+        fields.extend([
+            F::check("chains", "open chains on the layers"),
+            F::check("allLoops", "every closed loop on the layers"),
+            F::loops("Loops", "numbers with commas, or click them in the view", "none"),
+            F::ramp_angle(),
+        ]);
+        OperationForm::new("engrave lines and text (2D)", fields)
+    }
+
     fn stepdown(&self) -> Option<f64> {
         Some(self.stepdown)
     }

@@ -66,6 +66,20 @@ impl Default for Face {
 impl Operate for Face {
     named_operation!(Either);
 
+    fn form() -> crate::machining::form::OperationForm {
+        use crate::machining::form::{Applies, FieldUnit as U, FormField as F, OperationForm};
+        let mut fields = F::name_and_tool().to_vec();
+        fields.extend([
+            F::length("depth", "Depth off the stock's top", 0.01).empty("down to the part's top"),
+            F::length("stepdown", "Step-down", 0.01),
+            F::fraction("stepoverFraction", "Step-over", "fraction of the tool's diameter, at most its flat", 1.0),
+            F::number("overlap", "Past the stock's edge, or the region's loops", U::None).note("fraction of the tool's diameter").range(0.0, Some(1.0)),
+            F::choice("pattern", "Pattern", &[("zigzag", "zigzag"), ("spiral", "spiral inwards")]),
+            F::loops("Region", "a drawing's loops to face inside: numbers with commas, or click them in the view", "the whole sheet").applies(Applies::Drawing),
+        ]);
+        OperationForm::new("face the stock's top", fields)
+    }
+
     fn stepdown(&self) -> Option<f64> {
         Some(self.stepdown)
     }

@@ -104,6 +104,27 @@ impl Operate for FinishRaster {
 
     named_operation!(OnPart);
 
+    fn form() -> crate::machining::form::OperationForm {
+        use crate::machining::form::{FieldUnit as U, FormField as F, OperationForm};
+        let mut fields = F::name_and_tool().to_vec();
+        fields.extend([
+            F::length("stepover", "Step-over", 0.01),
+            F::number("angle", "Pass angle", U::Degrees),
+            F::choice("pattern", "Passes", &[("zigzag", "back and forth"), ("oneWay", "one way")]),
+            F::choice("boundary", "Area", &[("silhouette", "the part's outline + the tool's radius"), ("stock", "the whole stock")]),
+            F::number("margin", "Outline grown by", U::Length).note("less than 0: shrunk").empty("the tool's radius"),
+            F::length("allowance", "Leave on the part", 0.0),
+            F::grid().help("How finely the part's surface is sampled under the tool: the tool's lowest safe height is worked out at points this far apart, and the passes follow the exact surface between them. Finer: slower to compute, closer into narrow places."),
+            F::choice("builder", "Surface", &[("exact", "exact (safe everywhere)"), ("inverseOffset", "fast estimate (leaves some at walls)")]).help("Exact: the tool's lowest safe height at every point, from every facet, edge and corner of the part. Fast estimate: from the part's heights alone: quicker, but it can leave material at steep walls. (The methods: seed 001 §3.3 and §3.1.)"),
+            F::degrees("slopeMax", "Only where no steeper than", 0.0, 90.0).empty("everywhere"),
+            F::check("restOnly", "only what earlier operations left (rest machining)"),
+            F::number("floor", "Lowest the tip goes beside the part", U::Length).empty("the stock's bottom"),
+            F::length("stayDownMax", "Longest link that stays down", 0.0).empty("twice the step-over"),
+        ]);
+        fields.extend(F::entry());
+        OperationForm::new("finish by parallel passes", fields)
+    }
+
     fn allowance(&self) -> f64 {
         self.allowance
     }

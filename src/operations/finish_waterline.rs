@@ -83,6 +83,21 @@ impl Operate for FinishWaterline {
 
     named_operation!(OnPart);
 
+    fn form() -> crate::machining::form::OperationForm {
+        use crate::machining::form::{FormField as F, OperationForm};
+        let mut fields = F::name_and_tool().to_vec();
+        fields.extend([
+            F::length("stepdown", "Step-down", 0.01),
+            F::length("scallop", "Scallop height", 0.001).empty("by the step-down"),
+            F::length("allowance", "Leave on the part", 0.0),
+            F::degrees("slopeMin", "Only where steeper than", 0.0, 90.0),
+            F::direction(),
+            F::grid(),
+        ]);
+        fields.extend(F::entry());
+        OperationForm::new("finish steep walls in levels", fields)
+    }
+
     fn allowance(&self) -> f64 {
         self.allowance
     }

@@ -81,6 +81,16 @@ macro_rules! operations {
                 vec![$(Operation::$variant(<$options>::default())),*]
             }
 
+            /// Every kind's form for the page, in this list's order.
+            pub fn forms() -> Vec<crate::machining::form::OperationForm> {
+                vec![$({
+                    let mut form = <$options as Operate>::form();
+                    form.kind = $kind;
+                    form.applies = <$options>::default().works().into();
+                    form
+                }),*]
+            }
+
             /// The kinds a job file may name.
             pub const KINDS: &'static [&'static str] = &[$($kind),*];
         }

@@ -104,6 +104,28 @@ fn clearing(op: &Pocket2d, r: f64) -> Clearing {
 impl Operate for Pocket2d {
     named_operation!(OnDrawing);
 
+    fn form() -> crate::machining::form::OperationForm {
+        use crate::machining::form::{FieldUnit as U, FormField as F, OperationForm};
+        let mut fields = F::sheet_cut();
+        fields.extend([
+            F::length("leaveStock", "Leave on walls", 0.0),
+            F::direction(),
+            F::choice("pattern", "Pattern", &[("offset", "rings (offset)"), ("zigzag", "zigzag")]),
+            F::number("angle", "Zigzag pass angle", U::Degrees),
+            F::load(
+                "Zigzag: keep the load even by",
+                "Where a zigzag pass would take a heavier cut than a full step-over (into a corner), the path adds a short detour to keep the chip load even, or the feed drops there.",
+            ),
+            F::number("loadTolerance", "Zigzag: load allowed over the even one", U::None).note("fraction").range(0.0, None),
+            F::fraction("stepoverFraction", "Step-over", "fraction of the tool's diameter", 1.0),
+            F::choice("entry", "Entry", &[("helix", "helix"), ("ramp", "ramp")]),
+            F::length("helixRadius", "Helix radius", 0.01).empty("0.4 × the tool's diameter"),
+            F::loops("Loops", "numbers with commas, or click them in the view", "every loop on the layers"),
+            F::ramp_angle(),
+        ]);
+        OperationForm::new("pocket (2D)", fields)
+    }
+
     fn stepdown(&self) -> Option<f64> {
         Some(self.stepdown)
     }

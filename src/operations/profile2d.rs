@@ -412,6 +412,27 @@ fn fitting_lead(p: DVec2, t: DVec2, waste_left: bool, rho: f64, clear: &Clear, i
 impl Operate for Profile2d {
     named_operation!(OnDrawing);
 
+    fn form() -> crate::machining::form::OperationForm {
+        use crate::machining::form::{FormField as F, OperationForm};
+        let mut fields = F::name_and_tool().to_vec();
+        fields.extend([
+            F::words("layers", "Layers", "with commas").empty("all"),
+            F::length("depth", "Depth", 0.01).empty("through, {throughDepth}"),
+            F::length("stepdown", "Step-down per pass", 0.01),
+            F::length("leaveStock", "Leave on walls", 0.0),
+            F::choice("side", "Side", &[("auto", "outside outlines, inside holes"), ("outside", "outside"), ("inside", "inside")]),
+            F::direction(),
+            F::int("tabs.count", "Tabs per part", 0.0, None),
+            F::length("tabs.spacing", "Tabs every", 0.01).note("along the path, with no tabs per part").empty("none"),
+            F::length("tabs.width", "Tab width", 0.0),
+            F::length("tabs.height", "Tab height above the sheet's bottom", 0.0),
+            F::length("leadRadius", "Lead-in and lead-out arc radius", 0.0).empty("the tool's radius; 0: none"),
+            F::loops("Loops", "numbers with commas, or click them in the view", "every loop on the layers"),
+            F::ramp_angle(),
+        ]);
+        OperationForm::new("cut out along lines (2D)", fields)
+    }
+
     fn stepdown(&self) -> Option<f64> {
         Some(self.stepdown)
     }

@@ -103,6 +103,22 @@ const VIEW_BOXES: usize = 20_000;
 const REACH_LEVELS: usize = 24;
 
 impl Operate for RoughOctree {
+    fn form() -> crate::machining::form::OperationForm {
+        use crate::machining::form::{FieldUnit as U, FormField as F, OperationForm};
+        let mut fields = vec![
+            F::name(),
+            F::ints("tools", "Tools it may use", "numbers, with commas").empty("every flat and bull-nose end"),
+            F::number("delta", "Step-down", U::None)
+                .note("× each tool's diameter")
+                .range(0.01, None)
+                .help("Each tool steps down this many times its own diameter (0.5: a φ10 steps 5 mm, a φ4 steps 2 mm)."),
+            F::fraction("stepoverFraction", "Step-over", "fraction of the diameter, at most 0.85", 0.85),
+        ];
+        fields.extend(Roughing::fields());
+        OperationForm::new("rough with several tools (picks them)", fields)
+            .hint("Picks its tools from the library: the largest that gets into the material goes first, smaller ones clear what it left, and the last takes what remains around the part.")
+    }
+
     fn name(&self) -> &str {
         &self.name
     }

@@ -264,6 +264,20 @@ struct LevelCut {
 impl Operate for RoughZigzag {
     named_operation!(OnPart);
 
+    fn form() -> crate::machining::form::OperationForm {
+        use crate::machining::form::{FieldUnit as U, FormField as F, OperationForm};
+        let mut fields = crate::machining::settings::roughing_form();
+        fields.extend([
+            F::number("angle", "Pass angle", U::Degrees),
+            F::choice("passes", "Passes", &[("zigzag", "back and forth"), ("oneWay", "one way")]),
+            F::load("Keep the load even by", "Where a pass would take a heavier cut than a full step-over at the step-down (into a corner, across a slot), the path adds a short detour to keep the chip load even, or the feed drops there."),
+            F::number("loadTolerance", "Load allowed over the even one", U::None).note("fraction").range(0.0, None),
+            F::length("sampling", "Load sampled along the passes every", 0.001).empty("half the step-over"),
+            F::length("pixel", "Load map's pixel", 0.001).empty("the step-over / 24"),
+        ]);
+        OperationForm::new("rough by zigzag passes (even load)", fields)
+    }
+
     fn stepdown(&self) -> Option<f64> {
         Some(self.steps.stepdown)
     }

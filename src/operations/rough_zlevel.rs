@@ -53,6 +53,16 @@ impl RoughZlevel {
 impl Operate for RoughZlevel {
     named_operation!(OnPart);
 
+    fn form() -> crate::machining::form::OperationForm {
+        use crate::machining::form::{FormField as F, OperationForm};
+        let mut fields = crate::machining::settings::roughing_form();
+        fields.extend([
+            F::choice("order", "Order", &[("regions", "each pocket down to its floor"), ("levels", "level by level")]),
+            F::length("helixRadius", "Helix radius", 0.01).empty("0.4 × the tool's diameter"),
+        ]);
+        OperationForm::new("rough in levels", fields)
+    }
+
     fn stepdown(&self) -> Option<f64> {
         Some(self.steps.stepdown)
     }

@@ -91,6 +91,24 @@ impl ThreadMill {
 impl Operate for ThreadMill {
     named_operation!(Either);
 
+    fn form() -> crate::machining::form::OperationForm {
+        use crate::machining::form::{FormField as F, OperationForm, Picks};
+        let mut fields = F::name_and_tool().to_vec();
+        fields.extend(F::which_holes());
+        fields.extend([
+            F::text("thread", "Thread").note("M8, M8x1, 1/4-20, #10-32, 1/4 UNC"),
+            F::check("external", "external: round a boss of the part (a stud), not in a hole"),
+            F::choice("hand", "Hand", &[("right", "right"), ("left", "left")]),
+            F::int("passes", "Radial passes", 1.0, Some(20.0)),
+            F::length("length", "Thread length below the top", 0.01).empty("the hole's depth"),
+            F::length("majorDiameter", "Major diameter", 0.01).empty("the thread's"),
+            F::length("pitch", "Pitch", 0.01).empty("the thread's"),
+            F::start_above(),
+            F::marks(),
+        ]);
+        OperationForm::new("mill threads (in holes, or round studs)", fields).picks(Picks::Holes)
+    }
+
     fn takes(&self, cutter: &crate::cutter::Cutter) -> std::result::Result<(), &'static str> {
         if cutter.shape == crate::cutter::Shape::ThreadMill {
             Ok(())

@@ -60,6 +60,20 @@ const STEP: f64 = 0.1;
 impl Operate for VCarve {
     named_operation!(OnDrawing);
 
+    fn form() -> crate::machining::form::OperationForm {
+        use crate::machining::form::{FormField as F, OperationForm};
+        let mut fields = F::name_and_tool().to_vec();
+        fields.extend([
+            F::words("layers", "Layers", "with commas").empty("all"),
+            F::loops("Loops", "numbers with commas, or click them in the view", "every loop on the layers"),
+            F::length("maxDepth", "Flat depth", 0.01).empty("as deep as the letters are wide"),
+            F::int("flatTool", "Flat tool for the floor", 1.0, None).note("its number").empty("none"),
+            F::length("stepdown", "Flat tool's step-down", 0.01),
+            F::fraction("stepoverFraction", "Flat tool's step-over", "fraction of its diameter", 1.0),
+        ]);
+        OperationForm::new("V-carve letters and shapes (2D)", fields)
+    }
+
     fn tools(&self) -> Vec<u32> {
         std::iter::once(self.tool).chain(self.flat_tool).collect()
     }

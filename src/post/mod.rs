@@ -99,6 +99,10 @@ pub struct PostSettings {
     /// setup of a part holds its own zero. Default value: the post's (G54 in the built-in
     /// posts).
     pub work_offset: Option<String>,
+    /// With setups: every setup in one program, the control stopping (the post's pause, `M0`)
+    /// between them with a message on how to hold the part next, instead of a program per
+    /// setup. Default value: false.
+    pub one_program: bool,
 }
 
 impl PostSettings {
@@ -187,7 +191,17 @@ impl PostSettings {
 
 impl Default for PostSettings {
     fn default() -> Self {
-        PostSettings { dialect: Dialect::LinuxCnc, custom: None, units: Units::Mm, decimals: None, rapid_rate: 3000.0, tool_change_seconds: 15.0, program_number: 1, work_offset: None }
+        PostSettings {
+            dialect: Dialect::LinuxCnc,
+            custom: None,
+            units: Units::Mm,
+            decimals: None,
+            rapid_rate: 3000.0,
+            tool_change_seconds: 15.0,
+            program_number: 1,
+            work_offset: None,
+            one_program: false,
+        }
     }
 }
 
@@ -434,6 +448,68 @@ pub fn write_mapped(title: &str, paths: &[Toolpath], tools: &[Tool], clearance_z
     let mut lines = head.lines;
     lines.extend(w.lines);
     Ok(Written { gcode: finish(lines, &post)?, cycle: time, move_lines: move_lines.into_iter().map(|l| l + head_lines).collect() })
+}
+
+/// One setup's program, for [`join_setups`].
+#[derive(Clone, Debug)]
+pub struct SetupProgram<'a> {
+    /// The setup's name.
+    pub name: &'a str,
+    /// How the part is held: "turned over about X", "left side (-X) up".
+    pub held: String,
+    /// The work offset its zero is set in (`G55`).
+    pub work_offset: String,
+    /// Its first tool, where the control has no changer and the operator puts it in.
+    pub first_tool: Option<String>,
+    /// The program as [`write_program`] wrote it.
+    pub gcode: &'a str,
+    pub seconds: f64,
+}
+
+/// The setups' programs as one (`post.oneProgram`): the first one's head, then each setup's
+/// program without the tape marks and program number of its head nor the end of program of its
+/// foot, an operator stop (the post's pause, `M0`) between them with a message saying how to
+/// hold the part, where to set the zero and which tool to put in; one end of program. Each
+/// setup's own lines select its units, modes and work offset again, so nothing carries over
+/// but the machine's state the stop leaves (the spindle and coolant off, the tool up). The
+/// lines are numbered anew as the post numbers them.
+pub fn join_setups(settings: &PostSettings, programs: &[SetupProgram]) -> Result<String, Error> {
+    let post = settings.post();
+    if post.pause.trim().is_empty() {
+        return Err(Error::Input(format!("the post {} has no pause (M0) to stop between setups: write a program per setup", post.name)));
+    }
+    let (head, foot) = (post.header.len(), post.footer.len());
+    let n = programs.len();
+    let total: f64 = programs.iter().map(|p| p.seconds).sum();
+    let mut lines: Vec<String> = Vec::new();
+    for (k, p) in programs.iter().enumerate() {
+        let own: Vec<String> = p.gcode.lines().map(|l| without_number(l).to_owned()).collect();
+        let end = if k + 1 < n { own.len().saturating_sub(foot) } else { own.len() };
+        let start = if k == 0 { 0 } else { head.min(end) };
+        if k == 0 {
+            lines.extend(own[..head.min(end)].iter().cloned());
+            lines.extend(post.comment(&format!("{n} setups in one program, cycle time {} {} without the stops between them", clock(total), clock_format(total))));
+            lines.extend(own[head.min(end)..end].iter().cloned());
+        } else {
+            let tool = p.first_tool.as_ref().map(|t| format!("; put in {t}")).unwrap_or_default();
+            let say = format!("setup {} of {n}, {}: {}; clamp it, set the zero of {}{tool}; then resume", k + 1, p.name, p.held, p.work_offset);
+            // Said in lines the control keeps whole (GRBL reads 80 characters).
+            let width = post.max_line_length.map_or(76, |m| m.saturating_sub(12)).clamp(20, 76);
+            lines.extend(wrap(&post.comment_text(&say), width).iter().filter_map(|l| post.comment(l)));
+            lines.push(post.pause.clone());
+            lines.extend(own[start..end].iter().cloned());
+        }
+    }
+    finish(lines, &post)
+}
+
+/// `line` without its line number (`N120 G1 X5` → `G1 X5`).
+pub fn without_number(line: &str) -> &str {
+    let line = line.trim();
+    match line.split_once(' ') {
+        Some((n, rest)) if n.len() > 1 && n.starts_with('N') && n[1..].chars().all(|c| c.is_ascii_digit()) => rest.trim(),
+        _ => line,
+    }
 }
 
 /// Numbers the lines and holds them to the post's length. Numbers never come back (see

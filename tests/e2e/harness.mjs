@@ -110,7 +110,7 @@ export async function onlyRaster(page) {
   await page.click('#op-list li:nth-child(1) .op-remove');
   assert.equal(await page.locator('#op-list li').count(), 1);
   assert.match(await page.textContent('#op-list li'), /finish shallow/);
-  await page.fill('input[name=slopeMax]', '');
+  await page.fill('input[name=op-slopeMax]', '');
 }
 
 // The operations tab, the job's operations cleared and one of `kind` added and selected, with
@@ -120,7 +120,7 @@ export async function soleOperation(page, kind, tool = null) {
   await page.evaluate(() => { window.swarf.jobs[window.swarf.kind].operations = []; });
   await page.selectOption('#op-kind', kind);
   await page.click('#op-add');
-  if (tool != null) await page.selectOption('select[name=opTool]', String(tool));
+  if (tool != null) await page.selectOption('select[name=op-tool]', String(tool));
 }
 
 // Adds a tool to the library in the tool form (the tools tab open): its shape, diameter and

@@ -15,8 +15,8 @@ test('sample part → generate → path on the canvas → G-code that rs274 acce
   const { page, context, errors } = await openPage();
   const before = await pathPixels(page);
   await onlyRaster(page);
-  await page.fill('input[name=stepover]', '1.5');
-  await page.fill('input[name=grid]', '0.5');
+  await page.fill('input[name=op-stepover]', '1.5');
+  await page.fill('input[name=op-grid]', '0.5');
   await page.click('#generate');
   await generated(page);
   const after = await pathPixels(page);
@@ -53,7 +53,7 @@ test('sample part → generate → path on the canvas → G-code that rs274 acce
 test('a truncated STL shows a clear error and keeps the part and the settings', async () => {
   const { page, context, errors } = await openPage();
   await onlyRaster(page);
-  await page.fill('input[name=stepover]', '0.7');
+  await page.fill('input[name=op-stepover]', '0.7');
   await tab(page, 'tools');
   await page.selectOption('select[name=shape]', 'bullNose');
   const bytes = await page.evaluate(() => Array.from(window.swarf.sample.slice(0, 1000)));
@@ -63,7 +63,7 @@ test('a truncated STL shows a clear error and keeps the part and the settings', 
   await page.setInputFiles('#file', { name: 'broken.stl', mimeType: 'model/stl', buffer: Buffer.from(bytes) });
   await page.waitForFunction((n) => Number(document.body.dataset.answered ?? 0) > n, before);
   assert.match(await page.textContent('#message'), /truncated/);
-  assert.equal(await page.inputValue('input[name=stepover]'), '0.7');
+  assert.equal(await page.inputValue('input[name=op-stepover]'), '0.7');
   assert.equal(await page.inputValue('select[name=shape]'), 'bullNose');
   assert.equal(await page.textContent('#part-name'), 'sample part');
   assert.equal(await page.isEnabled('#generate'), true);
@@ -78,16 +78,16 @@ test('a truncated STL shows a clear error and keeps the part and the settings', 
 test('cancel stops a long job, keeps the settings, and the next run works', async () => {
   const { page, context } = await openPage();
   await onlyRaster(page);
-  await page.fill('input[name=grid]', '0.05');
-  await page.fill('input[name=stepover]', '0.3');
+  await page.fill('input[name=op-grid]', '0.05');
+  await page.fill('input[name=op-stepover]', '0.3');
   await page.click('#generate');
   await page.waitForFunction(() => document.getElementById('progress').value > 0);
   await page.click('#cancel');
   await page.waitForFunction(() => /Cancelled/.test(document.getElementById('message').textContent));
-  assert.equal(await page.inputValue('input[name=grid]'), '0.05');
+  assert.equal(await page.inputValue('input[name=op-grid]'), '0.05');
   assert.equal(await page.isEnabled('#generate'), true);
-  await page.fill('input[name=grid]', '0.5');
-  await page.fill('input[name=stepover]', '3');
+  await page.fill('input[name=op-grid]', '0.5');
+  await page.fill('input[name=op-stepover]', '3');
   await page.click('#generate');
   await generated(page);
   await context.close();
@@ -96,8 +96,8 @@ test('cancel stops a long job, keeps the settings, and the next run works', asyn
 test('a saved job loads back and runs on the command line as in the page', async () => {
   const { page, context, errors } = await openPage();
   await onlyRaster(page);
-  await page.fill('input[name=stepover]', '2.5');
-  await page.fill('input[name=angle]', '30');
+  await page.fill('input[name=op-stepover]', '2.5');
+  await page.fill('input[name=op-angle]', '30');
   await tab(page, 'stock');
   await page.fill('input[name=marginSides]', '2, 3, 4, 5');
   await tab(page, 'post');
@@ -112,10 +112,10 @@ test('a saved job loads back and runs on the command line as in the page', async
   assert.deepEqual(job.stock.marginSides, [2, 3, 4, 5]);
   assert.equal(job.post.dialect, 'grbl');
   // Change the form, then load the job back: the form follows the file.
-  await page.fill('input[name=stepover]', '9');
+  await page.fill('input[name=op-stepover]', '9');
   await page.setInputFiles('#load-job', jobFile);
   await page.waitForFunction(() => /Loaded the job/.test(document.getElementById('message').textContent));
-  assert.equal(await page.inputValue('input[name=stepover]'), '2.5');
+  assert.equal(await page.inputValue('input[name=op-stepover]'), '2.5');
   assert.equal(await page.inputValue('select[name=dialect]'), 'grbl');
   // A misspelt field is named, and the form keeps what it had.
   const typo = path.join(dir, 'typo.json');
@@ -127,7 +127,7 @@ test('a saved job loads back and runs on the command line as in the page', async
   await page.waitForFunction(() => /stepOver/.test(document.getElementById('message').textContent));
   assert.match(await page.textContent('#message'), /typo\.json: unknown field: operations\[0\]\.stepOver \(did you mean stepover\?\)/);
   assert.equal(await page.getAttribute('#message', 'class'), 'error');
-  assert.equal(await page.inputValue('input[name=stepover]'), '2.5');
+  assert.equal(await page.inputValue('input[name=op-stepover]'), '2.5');
   // The page's G-code equals the CLI's for the same job and part.
   await page.click('#generate');
   await generated(page);
@@ -159,8 +159,8 @@ test('the page asked for nothing outside its own server', () => {
 test('the simulated stock: drawn after generating, scrubbed back to the raw block and forward, MRR plotted, report clean', async () => {
   const { page, context, errors } = await openPage();
   await onlyRaster(page);
-  await page.fill('input[name=stepover]', '1.5');
-  await page.fill('input[name=grid]', '0.5');
+  await page.fill('input[name=op-stepover]', '1.5');
+  await page.fill('input[name=op-grid]', '0.5');
   await page.click('#generate');
   await generated(page);
   await page.waitForSelector('#sim:not([hidden])');
@@ -216,10 +216,10 @@ test('the sample drawing: loops shown as outlines and holes, profile and pocket 
   await tab(page, 'ops');
   // The sheet job starts with a profile on the 3 mm flat end mill; a pocket is added and moved
   // first, each on its layer, and one program makes both.
-  await page.fill('input[name=layers]', 'CUT');
+  await page.fill('input[name=op-layers]', 'CUT');
   await page.selectOption('#op-kind', 'pocket2d');
   await page.click('#op-add');
-  await page.fill('input[name=layers]', 'POCKET');
+  await page.fill('input[name=op-layers]', 'POCKET');
   await page.click('#op-list li:nth-child(2) .op-up');
   assert.match(await page.textContent('#op-list li:nth-child(1)'), /pocket/);
   await page.click('#generate');
@@ -244,7 +244,7 @@ test('the sample drawing: loops shown as outlines and holes, profile and pocket 
   await page.waitForFunction(() => /open chain/.test(document.getElementById('message').textContent));
   assert.equal(await page.getAttribute('#message', 'class'), 'warning');
   assert.match(await page.textContent('#message'), /layer OPEN from \(0\.00, 0\.00\) to \(10\.00, 0\.00\)/);
-  assert.equal(await page.inputValue('input[name=layers]'), 'POCKET');
+  assert.equal(await page.inputValue('input[name=op-layers]'), 'POCKET');
   assert.deepEqual(errors, []);
   await context.close();
 });
@@ -281,7 +281,7 @@ test('loops picked by clicking them in the view: highlighted, kept in the operat
   await frame(page);
   assert.equal(await cyan(), 0, 'nothing picked yet');
   await click(where.hole);
-  await page.waitForFunction((k) => document.querySelector('input[name=loops]').value === String(k), where.hole.index);
+  await page.waitForFunction((k) => document.querySelector('input[name=op-loops]').value === String(k), where.hole.index);
   assert.match(await page.textContent('#message'), new RegExp(`loop ${where.hole.index} \\([^)]*hole\\) picked`));
   assert.deepEqual(await page.evaluate(() => window.swarf.jobs.drawing.operations[0].loops), [where.hole.index]);
   await frame(page);
@@ -299,7 +299,7 @@ test('loops picked by clicking them in the view: highlighted, kept in the operat
   await click(where.outline);
   await page.waitForFunction(() => window.swarf.jobs.drawing.operations[0].loops.length === 2);
   await click(where.hole);
-  await page.waitForFunction((k) => document.querySelector('input[name=loops]').value === String(k), where.outline.index);
+  await page.waitForFunction((k) => document.querySelector('input[name=op-loops]').value === String(k), where.outline.index);
   // A drag across the view turns it and picks nothing.
   const box = await page.locator('#view').boundingBox();
   await page.mouse.move(box.x + 200, box.y + 200);
@@ -307,8 +307,8 @@ test('loops picked by clicking them in the view: highlighted, kept in the operat
   await page.mouse.move(box.x + 260, box.y + 230, { steps: 5 });
   await page.mouse.up();
   assert.deepEqual(await page.evaluate(() => window.swarf.jobs.drawing.operations[0].loops), [where.outline.index]);
-  await page.fill('input[name=loops]', '');
-  await page.dispatchEvent('input[name=loops]', 'change');
+  await page.fill('input[name=op-loops]', '');
+  await page.dispatchEvent('input[name=op-loops]', 'change');
   await frame(page);
   assert.equal(await cyan(), 0, 'emptied by hand: nothing highlighted');
   assert.deepEqual(errors, []);
@@ -336,8 +336,8 @@ test('a die-sized part in the page: generated, drawn from a coarse view of the s
   await page.setInputFiles('#file', { name: 'die.stl', mimeType: 'model/stl', buffer: dieStl(580, 430) });
   await page.waitForFunction(() => /die\.stl/.test(document.body.textContent) && !document.getElementById('generate').disabled);
   await onlyRaster(page);
-  await page.fill('input[name=grid]', '0.8');
-  await page.fill('input[name=stepover]', '2');
+  await page.fill('input[name=op-grid]', '0.8');
+  await page.fill('input[name=op-stepover]', '2');
   const started = await page.evaluate(() => performance.now());
   await page.click('#generate');
   // The φ6 ball's flutes are shorter than the die's cavity is deep: the page says so (in red),
@@ -397,9 +397,9 @@ test('a program with problems shows them in red and downloads only when confirme
   // The stock as the boundary: the ball follows the floor along the stock's edges, 26 mm deep
   // in the raw block with 20 mm of flutes.
   await tab(page, 'ops');
-  await page.selectOption('select[name=boundary]', 'stock');
-  await page.fill('input[name=stepover]', '3');
-  await page.fill('input[name=grid]', '0.5');
+  await page.selectOption('select[name=op-boundary]', 'stock');
+  await page.fill('input[name=op-stepover]', '3');
+  await page.fill('input[name=op-grid]', '0.5');
   await page.click('#generate');
   assert.equal(await waitForGenerated(page), 'problem');
   const message = await page.textContent('#message');
@@ -422,7 +422,7 @@ test('a program with problems shows them in red and downloads only when confirme
   const text = fs.readFileSync(await download.path(), 'utf8');
   assert.match(text.split('\n')[0], /^\(WARNING: NOT SAFE TO RUN: /);
   // A Generate that fails leaves nothing of the result it replaced.
-  await page.fill('input[name=grid]', '0.0001');
+  await page.fill('input[name=op-grid]', '0.0001');
   await page.click('#generate');
   assert.equal(await waitForGenerated(page), 'failed');
   assert.match(await page.textContent('#message'), /coarser grid/);
@@ -436,9 +436,9 @@ test('a program with problems shows them in red and downloads only when confirme
 test('a tool library and a second operation: both paths in their colours, one program with a tool change that rs274 runs, the library kept across reloads', async () => {
   const { page, context, errors } = await openPage();
   await onlyRaster(page);
-  await page.fill('input[name=stepover]', '2');
-  await page.fill('input[name=grid]', '0.5');
-  await page.fill('input[name=allowance]', '0.3');
+  await page.fill('input[name=op-stepover]', '2');
+  await page.fill('input[name=op-grid]', '0.5');
+  await page.fill('input[name=op-allowance]', '0.3');
   // A second tool: a φ3 ball, T2.
   await tab(page, 'tools');
   const before = await page.locator('#tool-list option').count();
@@ -452,11 +452,11 @@ test('a tool library and a second operation: both paths in their colours, one pr
   await tab(page, 'ops');
   await page.selectOption('#op-kind', 'finishRaster');
   await page.click('#op-add');
-  await page.selectOption('select[name=opTool]', String(number));
-  await page.fill('input[name=angle]', '90');
-  await page.fill('input[name=stepover]', '1.5');
-  await page.fill('input[name=grid]', '0.5');
-  await page.fill('input[name=allowance]', '0');
+  await page.selectOption('select[name=op-tool]', String(number));
+  await page.fill('input[name=op-angle]', '90');
+  await page.fill('input[name=op-stepover]', '1.5');
+  await page.fill('input[name=op-grid]', '0.5');
+  await page.fill('input[name=op-allowance]', '0');
   await page.click('#generate');
   await generated(page);
   const px = await pixelCounts(page);
@@ -524,10 +524,10 @@ test('zigzag roughing with the load held: added in the page, the reference line 
   await page.click('#op-add');
   assert.equal(await page.locator('#op-list li').count(), 1);
   // The form starts from the core's defaults for this kind.
-  assert.equal(await page.inputValue('select[name=zzLoad]'), 'path');
-  assert.equal(await page.inputValue('input[name=zzTolerance]'), '0.1');
-  await page.fill('input[name=roughStepdown]', '5');
-  await page.fill('input[name=zzAngle]', '30');
+  assert.equal(await page.inputValue('select[name=op-load]'), 'path');
+  assert.equal(await page.inputValue('input[name=op-loadTolerance]'), '0.1');
+  await page.fill('input[name=op-stepdown]', '5');
+  await page.fill('input[name=op-angle]', '30');
   await page.click('#generate');
   await generated(page);
   assert.ok(await pathPixels(page) > 2000, 'the path on the canvas');
@@ -575,10 +575,10 @@ test('octree roughing: the tools chosen from the library, each stage\'s path and
   await page.selectOption('#op-kind', 'roughOctree');
   await page.click('#op-add');
   // It picks its own tools: no tool field, an empty list (the whole library), the core's defaults.
-  assert.ok(await page.locator('#op-tool-label').isHidden());
-  assert.equal(await page.inputValue('input[name=octTools]'), '');
-  assert.equal(await page.inputValue('input[name=octStepover]'), '0.5');
-  await page.fill('input[name=octGrid]', '0.5');
+  assert.equal(await page.locator('#op-editor [name=op-tool]').count(), 0, 'no tool field: it picks its tools');
+  assert.equal(await page.inputValue('input[name=op-tools]'), '');
+  assert.equal(await page.inputValue('input[name=op-stepoverFraction]'), '0.5');
+  await page.fill('input[name=op-grid]', '0.5');
   await page.click('#generate');
   await generated(page);
   const stats = await page.textContent('#stats');
@@ -647,8 +647,8 @@ test('the view frames a tall part and a cube whole, on load and after Generate',
   await page.setInputFiles('#file', { name: 'tall2.stl', mimeType: 'model/stl', buffer: boxStl([20, 20, 150]) });
   await page.waitForFunction(() => document.getElementById('part-name').textContent.includes('tall2.stl'));
   await onlyRaster(page);
-  await page.fill('input[name=stepover]', '2');
-  await page.fill('input[name=grid]', '0.5');
+  await page.fill('input[name=op-stepover]', '2');
+  await page.fill('input[name=op-grid]', '0.5');
   await page.mouse.move(700, 300);
   await page.mouse.wheel(0, -2000); // zoomed right in before Generate
   await page.click('#generate');
@@ -751,7 +751,7 @@ test('a project saved from the page holds the job and the part: the command line
   await page.selectOption('select[name=partUnits]', 'inch');
   await page.waitForFunction(() => /40\.6 × 30\.5 × 12\.7 mm/.test(document.getElementById('part-size').textContent));
   await onlyRaster(page);
-  await page.fill('input[name=stepover]', '3');
+  await page.fill('input[name=op-stepover]', '3');
   await tab(page, 'post');
   await page.selectOption('select[name=dialect]', 'fanuc');
   await page.click('#generate');
@@ -779,11 +779,11 @@ test('a project saved from the page holds the job and the part: the command line
   assert.equal(await page.inputValue('select[name=partUnits]'), 'auto');
   await page.selectOption('select[name=dialect]', 'linuxCnc');
   await tab(page, 'ops');
-  await page.fill('input[name=stepover]', '7');
+  await page.fill('input[name=op-stepover]', '7');
   await page.setInputFiles('#open-project', projectFile);
   await page.waitForFunction(() => /Opened the project/.test(document.getElementById('message').textContent));
   assert.match(await page.textContent('#part-name'), /block\.stl/);
-  assert.equal(await page.inputValue('input[name=stepover]'), '3');
+  assert.equal(await page.inputValue('input[name=op-stepover]'), '3');
   assert.equal(await page.inputValue('select[name=dialect]'), 'fanuc');
   assert.match(await page.textContent('#part-size'), /40\.6 × 30\.5 × 12\.7 mm/);
   assert.equal(await page.inputValue('select[name=partUnits]'), 'inch');
@@ -792,7 +792,7 @@ test('a project saved from the page holds the job and the part: the command line
   fs.writeFileSync(bad, JSON.stringify({ ...project, notes: 'x' }));
   await page.setInputFiles('#open-project', bad);
   await page.waitForFunction(() => /unknown field: notes/.test(document.getElementById('message').textContent));
-  assert.equal(await page.inputValue('input[name=stepover]'), '3');
+  assert.equal(await page.inputValue('input[name=op-stepover]'), '3');
   assert.deepEqual(errors, []);
   await context.close();
 });
@@ -894,12 +894,12 @@ test('engraving: open chains on a layer of their own cut along their lines besid
   await page.setInputFiles('#file', { name: 'sign.dxf', mimeType: 'application/dxf', buffer: Buffer.from(dxf) });
   await page.waitForFunction(() => document.body.dataset.kind === 'drawing');
   await tab(page, 'ops');
-  await page.fill('input[name=layers]', 'CUT');
+  await page.fill('input[name=op-layers]', 'CUT');
   await page.selectOption('#op-kind', 'engrave');
   await page.click('#op-add');
-  await page.fill('input[name=layers]', 'TEXT');
-  await page.fill('input[name=pocketDepth]', '0.8');
-  assert.equal(await page.isChecked('input[name=chains]'), true);
+  await page.fill('input[name=op-layers]', 'TEXT');
+  await page.fill('input[name=op-depth]', '0.8');
+  assert.equal(await page.isChecked('input[name=op-chains]'), true);
   await page.click('#generate');
   await generated(page);
   assert.doesNotMatch(await page.textContent('#sim-report'), /gouge[^\n]*[1-9]/);
@@ -941,24 +941,24 @@ test('holes in the page: a plate\'s circles spotted and pecked with a spot drill
   const drill = Number(await page.inputValue('input[name=toolNumber]'));
   // Spot, then peck, in place of the drawing's default operations.
   await soleOperation(page, 'drill', spot);
-  await page.selectOption('select[name=drillCycle]', 'spot');
+  await page.selectOption('select[name=op-cycle]', 'spot');
   await page.selectOption('#op-kind', 'drill');
   await page.click('#op-add');
-  await page.selectOption('select[name=opTool]', String(drill));
-  await page.selectOption('select[name=drillCycle]', 'peck');
-  await page.fill('input[name=peck]', '1.5');
+  await page.selectOption('select[name=op-tool]', String(drill));
+  await page.selectOption('select[name=op-cycle]', 'peck');
+  await page.fill('input[name=op-peck]', '1.5');
   // The holes listed and drawn; a click picks one for the operation, a second click lets it go.
-  assert.equal(await page.inputValue('input[name=drillRetract]'), '1', 'the form shows the operation\'s settings');
+  assert.equal(await page.inputValue('input[name=op-retract]'), '1', 'the form shows the operation\'s settings');
   await page.click('#find-holes');
   await page.waitForFunction(() => document.querySelectorAll('#hole-list li').length === 4);
   assert.match(await page.textContent('#hole-list li:first-child'), /φ5 at .* 6 mm deep, through/);
   await page.click('#hole-list li:first-child');
   await page.waitForFunction(() => document.querySelector('#hole-list li.picked'));
   const first = await page.getAttribute('#hole-list li.picked', 'data-index');
-  assert.equal(await page.inputValue('input[name=drillHoles]'), first, 'the picked hole in the operation');
+  assert.equal(await page.inputValue('input[name=op-holes]'), first, 'the picked hole in the operation');
   await page.click('#hole-list li.picked');
   await page.waitForFunction(() => !document.querySelector('#hole-list li.picked'));
-  assert.equal(await page.inputValue('input[name=drillHoles]'), '');
+  assert.equal(await page.inputValue('input[name=op-holes]'), '');
   await page.click('#generate');
   await generated(page);
   assert.doesNotMatch(await page.textContent('#sim-report'), /gouge[^\n]*[1-9]/);
@@ -983,9 +983,9 @@ test('holes in the page: a plate\'s circles spotted and pecked with a spot drill
   // The preset's chamfer turned to the drawing's loops: outside the outline, inside the holes,
   // the spot drill's tip 0.2 mm below the 0.5 mm chamfer.
   await page.click('#op-list li:last-child .op-name');
-  await page.selectOption('select[name=chamferEdges]', 'loops');
-  assert.equal(await page.isVisible('input[name=chamferLoops]'), true);
-  await page.fill('input[name=chamferWidth]', '0.5');
+  await page.selectOption('select[name=op-edges]', 'loops');
+  assert.equal(await page.isVisible('input[name=op-loops]'), true);
+  await page.fill('input[name=op-width]', '0.5');
   await page.click('#generate');
   await generated(page);
   assert.doesNotMatch(await page.textContent('#sim-report'), /gouge[^\n]*[1-9]/);
@@ -1016,15 +1016,15 @@ test('the shared plate drawing in the page: its circles spotted, the φ3.2 holes
   const addOp = async (kind, tool, selects, fields) => {
     await page.selectOption('#op-kind', kind);
     await page.click('#op-add');
-    await page.selectOption('select[name=opTool]', String(tool));
-    for (const [name, value] of Object.entries(selects)) await page.selectOption(`select[name=${name}]`, value);
-    for (const [name, value] of Object.entries(fields)) await page.fill(`input[name=${name}]`, value);
+    await page.selectOption('select[name=op-tool]', String(tool));
+    for (const [key, value] of Object.entries(selects)) await page.selectOption(`select[name=op-${key}]`, value);
+    for (const [key, value] of Object.entries(fields)) await page.fill(`input[name=op-${key}]`, value);
   };
   // Every circle spotted 3 mm wide; the φ3.2 holes pecked; the φ12 holes chamfered 0.5 mm; the
   // outline (layer IZREZ) cut out with the φ3.
-  await addOp('drill', spot, { drillCycle: 'spot' }, { spotDiameter: '3' });
-  await addOp('drill', drill, { drillCycle: 'peck' }, { minDiameter: '3.19', maxDiameter: '3.21' });
-  await addOp('chamfer', vbit, {}, { holeMin: '11.9', chamferWidth: '0.5' });
+  await addOp('drill', spot, { cycle: 'spot' }, { spotDiameter: '3' });
+  await addOp('drill', drill, { cycle: 'peck' }, { minDiameter: '3.19', maxDiameter: '3.21' });
+  await addOp('chamfer', vbit, {}, { minDiameter: '11.9', width: '0.5' });
   await addOp('profile2d', flat, {}, { layers: 'IZREZ' });
   // The holes the page finds: 36 circles and 31 drill marks (the dimensions' anchors).
   await page.click('#op-list li:first-child .op-name');
@@ -1048,6 +1048,64 @@ test('the shared plate drawing in the page: its circles spotted, the φ3.2 holes
   await context.close();
 });
 
+test('the work zero on a hole\'s centre: a hole picked, X0 Y0 set on it, the holes found again about it, the stock tab saying so', async () => {
+  const { page, context, errors } = await openPage();
+  await page.setInputFiles('#file', { name: 'plate.stl', mimeType: 'model/stl', buffer: plateStl(40, 20, 10, 20, [[10, 10, 5], [30, 10, 5]]) });
+  await page.waitForFunction(() => /plate\.stl/.test(document.body.textContent) && !document.getElementById('generate').disabled);
+  await soleOperation(page, 'drill');
+  await page.click('#find-holes');
+  await page.waitForFunction(() => document.querySelectorAll('#hole-list li').length === 2);
+  const index = await page.evaluate(() => String(window.swarf.holes.items.findIndex((x) => x.center[0] > 0)));
+  await page.click(`#hole-list li[data-index="${index}"]`);
+  await page.waitForFunction(() => document.querySelector('#hole-list li.picked'));
+  await page.click('#hole-zero');
+  await page.waitForFunction(() => /X0 Y0 on the centre of hole/.test(document.getElementById('message').textContent));
+  const zero = await page.evaluate(() => window.swarf.jobs.part.stock.zero);
+  assert.deepEqual(zero.at.map((v) => Math.round(v * 1000) / 1000), [10, 0]);
+  // Found again about the new zero: the picked hole at X0 Y0, the other 20 mm to its left.
+  await page.waitForFunction(() => /hole \d: φ5 at \(0, 0\)/.test(document.getElementById('hole-list').textContent));
+  assert.match(await page.textContent('#hole-list'), /φ5 at \(-20, 0\)/);
+  await tab(page, 'stock');
+  assert.equal(await page.inputValue('select[name=zeroCorner]'), 'at');
+  // A corner chosen again takes the zero off the hole.
+  await page.selectOption('select[name=zeroCorner]', 'frontLeft');
+  assert.equal(await page.evaluate(() => window.swarf.jobs.part.stock.zero.at), null);
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
+test('speeds and feeds from the stock\'s material: each tool shows them with how they were worked out and their source, held to the machine, and the program runs at them; a speed typed is the tool\'s own', async () => {
+  const { page, context, errors } = await openPage();
+  await tab(page, 'stock');
+  await page.selectOption('select[name=material]', 'aluminium6061');
+  await tab(page, 'tools');
+  await page.waitForFunction(() => /in aluminium 6061: /.test(document.getElementById('tool-speeds').textContent));
+  const d = await page.evaluate(() => window.swarf.tools[window.swarf.selected.tool].diameter);
+  // The closed form: 800 SFM (243.84 m/min) on a φd, held to the hobby router's 8000–24000 rpm.
+  const rpm = (top) => Math.round(Math.min(top, Math.max(8000, (1000 * 800 * 0.3048) / (Math.PI * d))));
+  assert.equal(await page.inputValue('input[name=spindleRpm]'), String(rpm(24000)));
+  assert.match(await page.textContent('#tool-speeds'), /Source: Torbide Tooling/);
+  // The small VMC's spindle stops at 12,000 rpm: the speed is held there, and says so.
+  await tab(page, 'post');
+  await page.selectOption('select[name=machine]', 'small VMC');
+  assert.equal(await page.inputValue('input[name=spindleMax]'), '12000');
+  await tab(page, 'tools');
+  await page.waitForFunction(() => /held at the machine's 12000 rpm/.test(document.getElementById('tool-speeds').textContent));
+  assert.equal(await page.inputValue('input[name=spindleRpm]'), String(rpm(12000)));
+  // The program runs at them.
+  await page.click('#generate');
+  await generated(page);
+  assert.match(await page.evaluate(() => window.swarf.result.gcode), new RegExp(`^S${rpm(12000)} M3$`, 'm'));
+  // A speed typed is the tool's own from then on.
+  await page.fill('input[name=spindleRpm]', '9000');
+  await page.dispatchEvent('input[name=spindleRpm]', 'change');
+  assert.equal(await page.inputValue('select[name=speeds]'), 'asTyped');
+  await page.waitForFunction(() => /as typed/.test(document.getElementById('tool-speeds').textContent));
+  assert.equal(await page.evaluate(() => window.swarf.tools[window.swarf.selected.tool].spindleRpm), 9000);
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
 test('holes in a 3D part: found in its triangles, roughed over, pecked and threaded M6 in one program that rs274 runs, clean', async () => {
   const { page, context, errors } = await openPage();
   // A plate 40 × 20 × 10 with two φ5 through holes (M6's tap drill is 5).
@@ -1058,8 +1116,8 @@ test('holes in a 3D part: found in its triangles, roughed over, pecked and threa
   await soleOperation(page, 'roughZlevel', flat);
   await page.selectOption('#op-kind', 'drill');
   await page.click('#op-add');
-  await page.selectOption('select[name=opTool]', String(drill));
-  await page.selectOption('select[name=drillCycle]', 'peck');
+  await page.selectOption('select[name=op-tool]', String(drill));
+  await page.selectOption('select[name=op-cycle]', 'peck');
   await page.click('#find-holes');
   await page.waitForFunction(() => document.querySelectorAll('#hole-list li').length === 2);
   assert.match(await page.textContent('#hole-list'), /φ5 at \(-10, 0\), 10 mm deep, through/);
@@ -1077,9 +1135,9 @@ test('holes in a 3D part: found in its triangles, roughed over, pecked and threa
   await page.waitForFunction(() => !document.querySelector('#hole-list li.picked'));
   await page.selectOption('#op-kind', 'threadMill');
   await page.click('#op-add');
-  await page.selectOption('select[name=opTool]', String(threads));
-  await page.fill('input[name=thread]', 'M6');
-  await page.dispatchEvent('input[name=thread]', 'change');
+  await page.selectOption('select[name=op-tool]', String(threads));
+  await page.fill('input[name=op-thread]', 'M6');
+  await page.dispatchEvent('input[name=op-thread]', 'change');
   await page.click('#generate');
   await generated(page);
   assert.doesNotMatch(await page.textContent('#sim-report'), /gouge[^\n]*[1-9]/);
@@ -1105,20 +1163,20 @@ test('an external thread in the page: the part\'s stud found as a boss, listed, 
   await tab(page, 'tools');
   const flat = await addTool(page, 'flat', 6, 25), threads = await addTool(page, 'threadMill', 6, 15);
   await soleOperation(page, 'roughZlevel', flat);
-  await page.fill('input[name=roughAllowance]', '0');
-  await page.dispatchEvent('input[name=roughAllowance]', 'change');
-  await page.fill('input[name=roughLeave]', '0');
-  await page.dispatchEvent('input[name=roughLeave]', 'change');
+  await page.fill('input[name=op-allowance]', '0');
+  await page.dispatchEvent('input[name=op-allowance]', 'change');
+  await page.fill('input[name=op-leaveStock]', '0');
+  await page.dispatchEvent('input[name=op-leaveStock]', 'change');
   await page.selectOption('#op-kind', 'threadMill');
   await page.click('#op-add');
-  await page.selectOption('select[name=opTool]', String(threads));
-  await page.fill('input[name=thread]', 'M10');
-  await page.dispatchEvent('input[name=thread]', 'change');
-  await page.fill('input[name=threadLength]', '10');
-  await page.dispatchEvent('input[name=threadLength]', 'change');
+  await page.selectOption('select[name=op-tool]', String(threads));
+  await page.fill('input[name=op-thread]', 'M10');
+  await page.dispatchEvent('input[name=op-thread]', 'change');
+  await page.fill('input[name=op-length]', '10');
+  await page.dispatchEvent('input[name=op-length]', 'change');
   // In a hole the button finds holes (there are none); outside, it finds the bosses.
   assert.equal(await page.textContent('#find-holes'), 'Find the holes');
-  await page.check('input[name=threadExternal]');
+  await page.check('input[name=op-external]');
   await page.waitForFunction(() => document.getElementById('find-holes').textContent === 'Find the bosses' && document.getElementById('hole-preset').hidden);
   await page.click('#find-holes');
   await page.waitForFunction(() => document.querySelectorAll('#hole-list li').length === 1);
@@ -1158,14 +1216,14 @@ test('a part\'s top edges in the page: found, listed sharp or not, the stud\'s r
   await tab(page, 'tools');
   const flat = await addTool(page, 'flat', 6, 25), vbit = await addTool(page, 'vBit', 12, 10);
   await soleOperation(page, 'roughZlevel', flat);
-  for (const field of ['roughAllowance', 'roughLeave']) {
+  for (const field of ['op-allowance', 'op-leaveStock']) {
     await page.fill(`input[name=${field}]`, '0');
     await page.dispatchEvent(`input[name=${field}]`, 'change');
   }
   await page.selectOption('#op-kind', 'chamfer');
   await page.click('#op-add');
-  await page.selectOption('select[name=opTool]', String(vbit));
-  await page.selectOption('select[name=chamferEdges]', 'partEdges');
+  await page.selectOption('select[name=op-tool]', String(vbit));
+  await page.selectOption('select[name=op-edges]', 'partEdges');
   await page.waitForFunction(() => document.getElementById('find-holes').textContent === 'Find the edges');
   await page.click('#find-holes');
   await page.waitForFunction(() => document.querySelectorAll('#hole-list li').length === 2);
@@ -1179,7 +1237,7 @@ test('a part\'s top edges in the page: found, listed sharp or not, the stud\'s r
   await page.waitForFunction(() => document.querySelector('#hole-list li.picked'));
   assert.equal(await page.getAttribute('#hole-list li.picked', 'data-index'), '0');
   assert.equal(await page.evaluate(() => JSON.stringify(window.swarf.jobs.part.operations.at(-1).loops)), '[0]');
-  assert.equal(await page.inputValue('input[name=chamferLoops]'), '0');
+  assert.equal(await page.inputValue('input[name=op-loops]'), '0');
   assert.match(await page.textContent('#message'), /edge 0 picked/);
   await page.click('#generate');
   await generated(page);
@@ -1219,9 +1277,9 @@ test('facing a region of a drawing: a loop clicked in the view, faced to the dep
   await tab(page, 'tools');
   const flat = await addTool(page, 'flat', 10, 20);
   await soleOperation(page, 'face', flat);
-  await page.fill('input[name=faceDepth]', '0.5');
-  await page.dispatchEvent('input[name=faceDepth]', 'change');
-  assert.ok(await page.isVisible('input[name=faceLoops]'), 'a drawing\'s facing takes a region');
+  await page.fill('input[name=op-depth]', '0.5');
+  await page.dispatchEvent('input[name=op-depth]', 'change');
+  assert.ok(await page.isVisible('input[name=op-loops]'), 'a drawing\'s facing takes a region');
   // The inner rectangle's first segment, clicked in the view.
   const inner = await page.evaluate(() => {
     const d = window.swarf.drawing, view = window.swarfView, l = d.loops.find((x) => x.hole);
@@ -1230,7 +1288,7 @@ test('facing a region of a drawing: a loop clicked in the view, faced to the dep
   });
   const box = await page.locator('#view').boundingBox();
   await page.mouse.click(box.x + inner.xy[0], box.y + inner.xy[1]);
-  await page.waitForFunction((k) => document.querySelector('input[name=faceLoops]').value === String(k), inner.index);
+  await page.waitForFunction((k) => document.querySelector('input[name=op-loops]').value === String(k), inner.index);
   await page.click('#generate');
   await generated(page);
   assert.doesNotMatch(await page.textContent('#sim-report'), /gouge[^\n]*[1-9]/);
@@ -1281,10 +1339,10 @@ test('V-carving in the page: letters carved along their middle with a V-bit, fla
   await page.fill('input[name=diameter]', '2');
   const flat = Number(await page.inputValue('input[name=toolNumber]'));
   await soleOperation(page, 'vcarve', vbit);
-  assert.equal(await page.isVisible('input[name=vMaxDepth]'), true, 'the flat depth is asked for');
-  assert.equal(await page.isVisible('select[name=side]'), false, 'a profile\'s side is not');
-  await page.fill('input[name=vMaxDepth]', '3');
-  await page.fill('input[name=vFlatTool]', String(flat));
+  assert.equal(await page.isVisible('input[name=op-maxDepth]'), true, 'the flat depth is asked for');
+  assert.equal(await page.isVisible('select[name=op-side]'), false, 'a profile\'s side is not');
+  await page.fill('input[name=op-maxDepth]', '3');
+  await page.fill('input[name=op-flatTool]', String(flat));
   await page.click('#generate');
   await generated(page);
   assert.doesNotMatch(await page.textContent('#sim-report'), /gouge[^\n]*[1-9]/);
@@ -1337,9 +1395,9 @@ test('3D carving with a V-bit: the sample part roughed, then raster-finished wit
   await page.click('#op-list li:nth-child(2) .op-remove');
   await page.selectOption('#op-kind', 'finishRaster');
   await page.click('#op-add');
-  await page.selectOption('select[name=opTool]', String(vbit));
-  await page.fill('input[name=stepover]', '0.5');
-  await page.fill('input[name=grid]', '0.5');
+  await page.selectOption('select[name=op-tool]', String(vbit));
+  await page.fill('input[name=op-stepover]', '0.5');
+  await page.fill('input[name=op-grid]', '0.5');
   await page.click('#generate');
   await generated(page);
   assert.match(await page.textContent('#stats'), new RegExp(`raster finish[^\\n]* with T${vbit}`));
@@ -1386,10 +1444,10 @@ test('a part from both sides in the page: the two-sided job loaded, its setups a
   await page.waitForFunction((n) => Number(document.body.dataset.setupShown ?? 0) > n, shown);
   // The list and the form edit the setup on show's operations.
   await page.click('#op-list li:nth-child(1) .op-name');
-  await page.fill('input[name=opName]', 'rough underneath');
+  await page.fill('input[name=op-name]', 'rough underneath');
   assert.deepEqual(await page.evaluate(() => window.swarf.jobs.part.setups.map((s) => s.operations[0].name)), ['rough', 'rough underneath']);
   assert.match(await page.textContent('#op-list'), /rough underneath/);
-  await page.fill('input[name=opName]', 'rough');
+  await page.fill('input[name=op-name]', 'rough');
   assert.equal(await page.inputValue('#setup-editor [data-setup=flip]'), 'aboutX');
   assert.equal(await page.inputValue('#setup-editor [data-setup=workOffset]'), 'G55');
   const frames = await page.evaluate(async () => window.swarf.engine.setupFrames(window.swarf.jobs.part, window.swarf.part.bounds));
@@ -1440,6 +1498,29 @@ test('a part from both sides in the page: the two-sided job loaded, its setups a
     const canon = execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), file], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });
     assert.ok((canon.match(/STRAIGHT_FEED/g) ?? []).length > 100, `setup ${k}`);
   }
+  // Another controller: each setup's program is written again, in its own work offset.
+  await tab(page, 'post');
+  const posted = Number(await page.evaluate(() => document.body.dataset.posted ?? 0));
+  await page.selectOption('select[name=dialect]', 'grblHal');
+  await page.waitForFunction((n) => Number(document.body.dataset.posted ?? 0) > n, posted);
+  const offsets = await page.evaluate(() => window.swarf.results.map((r) => r.gcode.match(/^G5[4-9]$/m)?.[0]));
+  assert.deepEqual(offsets, ['G54', 'G55']);
+  // Every setup in one program: one file, the machine stopping between the setups with how to
+  // hold the part next; LinuxCNC's interpreter reads it.
+  await page.check('input[name=oneProgram]');
+  const [one] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
+  assert.equal(one.suggestedFilename(), 'two-sided-grblhal.nc');
+  const onePath = path.join(dir, 'one.ngc');
+  await one.saveAs(onePath);
+  const joined = fs.readFileSync(onePath, 'utf8');
+  assert.match(joined.replace(/\)\n\(/g, ' '), /setup 2 of 2, bottom: turn the part over about X/);
+  assert.equal((joined.match(/^M0$/gm) ?? []).length, 1);
+  assert.equal((joined.match(/^M30$/gm) ?? []).length, 1);
+  assert.ok(joined.indexOf('\nG55\n') > joined.indexOf('\nM0\n'));
+  const oneCanon = execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), onePath], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });
+  assert.match(oneCanon, /PROGRAM_STOP/);
+  await page.uncheck('input[name=oneProgram]');
+  await tab(page, 'ops');
   // The setup sheet, printable from the page: both setups, each held and zeroed as it says,
   // with the times the programs state.
   const [sheet] = await Promise.all([context.waitForEvent('page'), page.click('#sheet')]);

@@ -118,9 +118,9 @@ test('bad values are marked at their fields as they are typed, by the core\'s ow
   await tab(page, 'ops');
   // The mould job's roughing: a step-down of −1.
   await page.click('#op-list li:nth-child(1) .op-name');
-  await page.fill('input[name=roughStepdown]', '-1');
-  await page.waitForSelector('input[name=roughStepdown].invalid');
-  const note = await page.textContent('#fs-rough .field-error');
+  await page.fill('input[name=op-stepdown]', '-1');
+  await page.waitForSelector('input[name=op-stepdown].invalid');
+  const note = await page.textContent('#op-fields .field-error');
   // At its field the message names no path (issue 55): the field is where it stands.
   assert.equal(note, "must be a positive number, at most 10000 (got -1) ('rough')");
   assert.doesNotMatch(note, /job file/);
@@ -131,13 +131,13 @@ test('bad values are marked at their fields as they are typed, by the core\'s ow
   // Beside Generate, in the page's words: where the setting is, not its path in the job file.
   assert.match(await page.textContent('#message'), /^1 setting needs attention: Operations → 'rough' → Step-down: must be a positive number/);
   assert.equal(await page.getAttribute('#message', 'class'), 'error');
-  await page.fill('input[name=roughStepdown]', '2');
-  await page.waitForFunction(() => !document.querySelector('input[name=roughStepdown]').classList.contains('invalid') && !document.querySelector('#tabs .has-problem'));
+  await page.fill('input[name=op-stepdown]', '2');
+  await page.waitForFunction(() => !document.querySelector('input[name=op-stepdown]').classList.contains('invalid') && !document.querySelector('#tabs .has-problem'));
   // A value that does not read at all is marked too, and the job keeps its last good one.
-  await page.fill('input[name=roughStepdown]', '');
-  await page.waitForSelector('input[name=roughStepdown].invalid');
+  await page.fill('input[name=op-stepdown]', '');
+  await page.waitForSelector('input[name=op-stepdown].invalid');
   assert.equal(await page.evaluate(() => window.swarf.jobs.part.operations[0].stepdown), 2);
-  await page.fill('input[name=roughStepdown]', '2');
+  await page.fill('input[name=op-stepdown]', '2');
   // A tool's flute shorter than nothing, in the tools' tab.
   await tab(page, 'tools');
   await page.fill('input[name=fluteLength]', '0');
@@ -217,13 +217,23 @@ test('every control of the side panel is in reach at 1280×720, 1400×900 and 19
 
 test('the words are a machinist\'s: no paper symbol or section in the forms, the paper named in a tooltip', async () => {
   const { page, context } = await openPage();
-  const texts = await page.evaluate(() => {
+  const words = () => page.evaluate(() => {
     const visible = (el) => [...el.childNodes].map((n) => (n.nodeType === 3 ? n.textContent : n.tagName === 'SELECT' ? [...n.options].map((o) => o.text).join(' ') : n.tagName === 'INPUT' ? '' : n.textContent)).join(' ');
     return [...document.querySelectorAll('#settings label, #settings .hint, #settings option, #op-kind option, #run, #sim, #view-tools')].map(visible);
   });
+  const texts = await words();
+  // Every kind's form (made when an operation of it is picked).
+  await tab(page, 'ops');
+  for (const kind of await page.$$eval('#op-kind option', (os) => os.map((o) => o.value))) {
+    await page.selectOption('#op-kind', kind);
+    await page.click('#op-add');
+    await page.waitForFunction((k) => document.querySelector('#op-fields').dataset.kind === k, kind);
+    texts.push(...(await words()));
+    // The paper behind a setting is one hover away.
+    if (kind === 'finishRaster') assert.match(await page.getAttribute('#op-fields label:has([name=op-builder])', 'title'), /seed 001 §3\.3/);
+  }
+  assert.ok(texts.length > 100, `${texts.length} texts`);
   for (const t of texts) assert.doesNotMatch(t, /seed \d|§|δ|γ|CL z-map|octant/i, t);
-  // The paper behind a setting is one hover away.
-  assert.match(await page.getAttribute('#fs-raster label:has([name=builder])', 'title'), /seed 001 §3\.3/);
   await context.close();
 });
 
@@ -233,9 +243,9 @@ test('a sheet\'s tabs and lead arcs are set in the page, a through cut\'s depth 
   await page.waitForFunction(() => document.body.dataset.kind === 'drawing');
   await tab(page, 'ops');
   assert.equal(await page.textContent('#through-depth'), '6.20 mm');
-  await page.fill('input[name=tabWidth]', '6');
-  await page.fill('input[name=tabHeight]', '2');
-  await page.fill('input[name=leadRadius]', '2.5');
+  await page.fill('input[name=op-tabs-width]', '6');
+  await page.fill('input[name=op-tabs-height]', '2');
+  await page.fill('input[name=op-leadRadius]', '2.5');
   await tab(page, 'part');
   await page.fill('input[name=thickness]', '10');
   await page.press('input[name=thickness]', 'Tab');
@@ -255,7 +265,7 @@ test('a sheet\'s tabs and lead arcs are set in the page, a through cut\'s depth 
 test('the program written again in inches after Generate, without planning again: G20, the same moves, rs274 reads it', async () => {
   const { page, context, errors } = await openPage();
   await onlyRaster(page);
-  await page.fill('input[name=stepover]', '3');
+  await page.fill('input[name=op-stepover]', '3');
   await page.click('#generate');
   await generated(page);
   const mm = await page.evaluate(() => window.swarf.gcode);

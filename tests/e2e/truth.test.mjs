@@ -127,12 +127,12 @@ test('a click on a list just after typing a name lands: the operations, the hole
   await tab(page, 'ops');
   await page.selectOption('#op-kind', 'drill');
   await page.click('#op-add');
-  await page.selectOption('select[name=opTool]', String(drill));
+  await page.selectOption('select[name=op-tool]', String(drill));
   await page.click('#find-holes');
   await page.waitForFunction(() => document.querySelectorAll('#hole-list li').length === 3);
   // The holes: three renames, each followed at once by a click on a hole.
   for (const k of [0, 1, 2]) {
-    await page.fill('input[name=opName]', `drill pass ${k}`);
+    await page.fill('input[name=op-name]', `drill pass ${k}`);
     await page.click(`#hole-list li:nth-child(${k + 1})`);
     await page.waitForFunction((n) => document.querySelectorAll('#hole-list li.picked').length === n, k + 1);
   }
@@ -140,7 +140,7 @@ test('a click on a list just after typing a name lands: the operations, the hole
   assert.equal(await page.evaluate(() => window.swarf.jobs.part.operations.at(-1).name), 'drill pass 2');
   // The operations: rename, then click the first operation at once.
   const count = await page.locator('#op-list li').count();
-  await page.fill('input[name=opName]', 'drill the three');
+  await page.fill('input[name=op-name]', 'drill the three');
   await page.click('#op-list li:nth-child(1) .op-name');
   await page.waitForFunction(() => window.swarf.selected.part === 0);
   assert.equal(await page.locator('#op-list li').count(), count);
@@ -264,23 +264,23 @@ test('once the holes are found, a peck deeper than the hole and a hole deeper th
   await tab(page, 'tools');
   const drill = await addTool(page, 'drill', 6.35, 30);
   await soleOperation(page, 'drill', drill);
-  await page.selectOption('select[name=drillCycle]', 'peck');
-  await page.fill('input[name=peck]', '20');
+  await page.selectOption('select[name=op-cycle]', 'peck');
+  await page.fill('input[name=op-peck]', '20');
   // Before the holes are known nothing can be said; once found, the peck is marked.
   await page.click('#find-holes');
   await page.waitForFunction(() => document.querySelectorAll('#hole-list li').length === 2);
-  await page.waitForSelector('input[name=peck].invalid');
-  assert.match(await page.textContent('#fs-drill .field-error'), /^the peck \(20 mm\) is deeper than the hole at X/);
+  await page.waitForSelector('input[name=op-peck].invalid');
+  assert.match(await page.textContent('#op-fields .field-error'), /^the peck \(20 mm\) is deeper than the hole at X/);
   assert.ok(await page.evaluate(() => document.querySelector('#op-list li[data-index="0"]').classList.contains('has-problem')));
-  await page.fill('input[name=peck]', '2');
-  await page.waitForFunction(() => !document.querySelector('input[name=peck]').classList.contains('invalid'));
+  await page.fill('input[name=op-peck]', '2');
+  await page.waitForFunction(() => !document.querySelector('input[name=op-peck]').classList.contains('invalid'));
   // The drill's flutes shortened in the library: the operation's tool is marked, in the page's words.
   await tab(page, 'tools');
   await page.selectOption('#tool-list', String(await page.evaluate((n) => window.swarf.tools.findIndex((t) => t.number === n), drill)));
   await page.fill('input[name=fluteLength]', '8');
   await tab(page, 'ops');
   await page.click('#op-list li:nth-child(1) .op-name');
-  await page.waitForSelector('select[name=opTool].invalid');
+  await page.waitForSelector('select[name=op-tool].invalid');
   assert.match(await page.textContent('#op-editor .field-error'), new RegExp(`deeper than T${drill}'s flutes \\(8 mm\\)`));
   await page.click('#generate');
   assert.equal(await waitForGenerated(page), 'failed');
@@ -305,14 +305,14 @@ test('undo and redo every change of the settings, duplicate an operation, and th
   assert.match(await page.textContent('#message'), /Removed .*Undo \(Ctrl\+Z\)/);
   // A value typed in a field: one step, however many keys.
   await page.click('#op-list li:nth-child(1) .op-name');
-  await page.fill('input[name=opName]', 'roughing first');
+  await page.fill('input[name=op-name]', 'roughing first');
   await page.keyboard.press('Tab');
   await page.waitForFunction(() => window.swarf.jobs.part.operations[0].name === 'roughing first');
   // Ctrl+Z outside the fields: back through the three.
   await page.click('#op-list li:nth-child(1) .swatch');
   await page.keyboard.press('Control+z');
   await page.waitForFunction((n) => window.swarf.jobs.part.operations[0].name === n, before[0]);
-  assert.equal(await page.inputValue('input[name=opName]'), before[0], 'the form follows');
+  assert.equal(await page.inputValue('input[name=op-name]'), before[0], 'the form follows');
   await page.keyboard.press('Control+z');
   await page.waitForFunction((n) => window.swarf.jobs.part.operations.length === n + 1, before.length);
   await page.click('#undo');
@@ -365,14 +365,14 @@ test('two settings that do not fit each other are marked as they are typed: a st
   await page.fill('input[name=fluteLength]', '1.5');
   await tab(page, 'ops');
   await page.click('#op-list li:nth-child(1) .op-name');
-  await page.waitForSelector('input[name=roughStepdown].invalid');
-  assert.match(await page.textContent('#fs-rough .field-error'), /^the step-down \(2 mm\) is deeper than T1's flutes \(1\.5 mm\)/);
+  await page.waitForSelector('input[name=op-stepdown].invalid');
+  assert.match(await page.textContent('#op-fields .field-error'), /^the step-down \(2 mm\) is deeper than T1's flutes \(1\.5 mm\)/);
   await page.click('#generate');
   assert.equal(await waitForGenerated(page), 'failed');
   assert.match(await page.textContent('#message'), /Operations → 'rough' → Step-down: the step-down \(2 mm\) is deeper than T1's flutes/);
   // Either setting made right clears the mark.
-  await page.fill('input[name=roughStepdown]', '1.5');
-  await page.waitForFunction(() => !document.querySelector('input[name=roughStepdown]').classList.contains('invalid'));
+  await page.fill('input[name=op-stepdown]', '1.5');
+  await page.waitForFunction(() => !document.querySelector('input[name=op-stepdown]').classList.contains('invalid'));
   assert.deepEqual(errors, []);
   await context.close();
 });
@@ -384,10 +384,10 @@ test('the page in inches: the fields, the read-outs and the view\'s grid say inc
   const mmStep = await stepover();
   await page.selectOption('#page-units', 'inch');
   // A length field: its label and its value in inches; typed in inches, kept in mm.
-  assert.match(await page.evaluate(() => document.querySelector('input[name=stepover]').closest('label').textContent), /^Step-over \(in\)/);
-  assert.equal(await page.inputValue('input[name=stepover]'), String(Number((mmStep / 25.4).toFixed(5))));
-  await page.fill('input[name=stepover]', '0.06');
-  await page.fill('input[name=grid]', '0.02');
+  assert.match(await page.evaluate(() => document.querySelector('input[name=op-stepover]').closest('label').textContent), /^Step-over \(in\)/);
+  assert.equal(await page.inputValue('input[name=op-stepover]'), String(Number((mmStep / 25.4).toFixed(5))));
+  await page.fill('input[name=op-stepover]', '0.06');
+  await page.fill('input[name=op-grid]', '0.02');
   assert.ok(Math.abs(await stepover() - 1.524) < 1e-9, `stepover kept as ${await stepover()} mm`);
   // A feed: in/min.
   await tab(page, 'tools');
@@ -417,18 +417,18 @@ test('the page in inches: the fields, the read-outs and the view\'s grid say inc
   assert.equal(await page.inputValue('#page-units'), 'inch');
   await tab(page, 'ops');
   await page.click('#op-list li:nth-child(1) .op-name');
-  assert.equal(await page.inputValue('input[name=stepover]'), '0.06');
+  assert.equal(await page.inputValue('input[name=op-stepover]'), '0.06');
   // The engine's words in inches too: a step-over too fine for the part is refused in inches.
-  await page.fill('input[name=stepover]', '0.0001');
+  await page.fill('input[name=op-stepover]', '0.0001');
   await page.click('#generate');
   assert.equal(await waitForGenerated(page), 'failed');
   const said = await page.textContent('#message');
   assert.match(said, /step-over of 0\.0001 in .*over \d+(\.\d+)? in/, said);
   assert.doesNotMatch(said, /\bmm\b/, said);
-  await page.fill('input[name=stepover]', '0.06');
+  await page.fill('input[name=op-stepover]', '0.06');
   // Back to mm: every figure in mm again, the program with it.
   await page.selectOption('#page-units', 'mm');
-  assert.equal(await page.inputValue('input[name=stepover]'), '1.524');
+  assert.equal(await page.inputValue('input[name=op-stepover]'), '1.524');
   assert.match(await page.textContent('#part-size'), /^90\.0 × /);
   assert.equal(await page.evaluate(() => window.swarf.jobs.part.post.units), 'mm');
   assert.deepEqual(errors, []);

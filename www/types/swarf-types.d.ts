@@ -7,6 +7,11 @@
 export type Aabb = { min: [number, number, number], max: [number, number, number], };
 
 /**
+ * What a form or a field is for.
+ */
+export type Applies = "part" | "drawing" | "either";
+
+/**
  * How arcs are written.
  */
 export type ArcFormat = "ij" | "r" | "off";
@@ -207,6 +212,23 @@ export type CommentStyle = "parens" | "semicolon" | "none";
  * Coolant for a tool.
  */
 export type Coolant = "off" | "flood" | "mist";
+
+/**
+ * A tool's speeds and feeds as worked out, with the reasons in words.
+ */
+export type CuttingData = { tool: number, spindleRpm: number, feedRate: number, plungeRate: number, 
+/**
+ * Whether they come from the material (false: as typed).
+ */
+fromMaterial: boolean, 
+/**
+ * How they were worked out ("φ6 carbide, 2 flutes, in aluminium 6061: 244 m/min → …").
+ */
+reason: string, 
+/**
+ * Where the material's figures come from.
+ */
+source: string | null, };
 
 /**
  * What a program takes on the machine, part by part: each tool path's motion (its way down
@@ -497,6 +519,22 @@ loops: Array<number>, };
 export type FacePattern = "zigzag" | "spiral";
 
 /**
+ * One choice of a [`FieldInput::Choice`] field: its value in the job file and its words.
+ */
+export type FieldChoice = { value: string, label: string, };
+
+/**
+ * How a field is typed in.
+ */
+export type FieldInput = "number" | "int" | "choice" | "check" | "words" | "ints" | "text" | "tool";
+
+/**
+ * What a field holds, for its label and the page's units: a length and a feed follow the
+ * page's mm or inches; the others are said as they are.
+ */
+export type FieldUnit = "none" | "length" | "feed" | "degrees" | "seconds";
+
+/**
  * A place where something went wrong.
  */
 export type Finding = { 
@@ -669,6 +707,43 @@ clearance: number, };
 export type Flip = "none" | "aboutX" | "aboutY";
 
 /**
+ * One field of an operation's form.
+ */
+export type FormField = { 
+/**
+ * The setting it edits, dotted into objects (`tabs.count`).
+ */
+key: string, 
+/**
+ * Its words, without the unit ("Step-down").
+ */
+label: string, input: FieldInput, unit: FieldUnit, 
+/**
+ * What the number means beyond its unit ("fraction of the tool's diameter").
+ */
+note: string | null, 
+/**
+ * What an empty field means ("down to the part's top"); none: it must be filled.
+ */
+empty: string | null, 
+/**
+ * The least and the most it takes (in mm for a length).
+ */
+min: number | null, max: number | null, 
+/**
+ * The choices of a [`FieldInput::Choice`].
+ */
+choices: Array<FieldChoice>, 
+/**
+ * A longer word on what it does (the field's tooltip).
+ */
+help: string | null, 
+/**
+ * Shown for a part, a drawing or either.
+ */
+applies: Applies, };
+
+/**
  * Which way the thread turns.
  */
 export type Hand = "right" | "left";
@@ -738,7 +813,13 @@ setups: Array<Setup>,
  * against every move ([`crate::job::fixtures`]); a setup may name its own. Default value:
  * none.
  */
-fixtures: Fixtures, };
+fixtures: Fixtures, 
+/**
+ * The machine's limits: its spindle's speed range and fastest feed, which the speeds and
+ * feeds from the material keep to. Default value: a hobby router (8000–24000 rpm, 5000
+ * mm/min).
+ */
+machine: Machine, };
 
 /**
  * How much a [`Warning`] asks of the user.
@@ -806,6 +887,33 @@ export type LoopInfo = { index: number, layer: string, hole: boolean, entities: 
 lines: [number, number], };
 
 /**
+ * The machine's limits the speeds and feeds keep to.
+ */
+export type Machine = { 
+/**
+ * Shown in the page and on the setup sheet. Default value: "hobby router".
+ */
+name: string, 
+/**
+ * The spindle's slowest and fastest speeds (rpm). Default value: 8000 and 24000.
+ */
+spindleMin: number, spindleMax: number, 
+/**
+ * The fastest cutting feed (mm/min). Default value: 5000.
+ */
+maxFeed: number, };
+
+/**
+ * The stock's material.
+ */
+export type Material = "aluminium6061" | "mildSteel" | "stainless304" | "brass" | "acrylic" | "hdpe" | "hardwood" | "mdf" | "plywood";
+
+/**
+ * A material as the page lists it.
+ */
+export type MaterialChoice = { value: Material, words: string, source: string, };
+
+/**
  * Where a chain of segments failed to close.
  */
 export type OpenChain = { layer: string, start: [number, number], end: [number, number], segments: number, };
@@ -814,6 +922,27 @@ export type OpenChain = { layer: string, start: [number, number], end: [number, 
  * One operation of a job.
  */
 export type Operation = { "kind": "roughZlevel" } & RoughZlevel | { "kind": "roughZigzag" } & RoughZigzag | { "kind": "roughOctree" } & RoughOctree | { "kind": "finishRaster" } & FinishRaster | { "kind": "finishWaterline" } & FinishWaterline | { "kind": "profile2d" } & Profile2d | { "kind": "pocket2d" } & Pocket2d | { "kind": "engrave" } & Engrave | { "kind": "drill" } & Drill | { "kind": "bore" } & Bore | { "kind": "chamfer" } & Chamfer | { "kind": "threadMill" } & ThreadMill | { "kind": "face" } & Face | { "kind": "vcarve" } & VCarve;
+
+/**
+ * An operation's form.
+ */
+export type OperationForm = { 
+/**
+ * The kind, as the job file names it.
+ */
+kind: string, 
+/**
+ * Its name in the list of operations to add ("face the stock's top").
+ */
+title: string, 
+/**
+ * A paragraph shown over its fields.
+ */
+hint: string | null, applies: Applies, picks: Picks | null, fields: Array<FormField>, 
+/**
+ * Settings of the job file the form leaves out (set in the file only).
+ */
+keptOut: Array<string>, };
 
 /**
  * One operation's figures.
@@ -899,6 +1028,11 @@ export type Passes = "zigzag" | "oneWay";
  * How consecutive passes run.
  */
 export type Pattern = "zigzag" | "oneWay";
+
+/**
+ * What the page finds for an operation to pick from, shown above its fields.
+ */
+export type Picks = "holes";
 
 /**
  * Where the part goes.
@@ -1121,7 +1255,13 @@ programNumber: number,
  * setup of a part holds its own zero. Default value: the post's (G54 in the built-in
  * posts).
  */
-workOffset: string | null, };
+workOffset: string | null, 
+/**
+ * With setups: every setup in one program, the control stopping (the post's pause, `M0`)
+ * between them with a message on how to hold the part next, instead of a program per
+ * setup. Default value: false.
+ */
+oneProgram: boolean, };
 
 /**
  * A setting of a job that does not fit: its path in the job and the whole message.
@@ -1515,6 +1655,11 @@ verify: boolean,
 cell: number | null, };
 
 /**
+ * Where a tool's spindle speed and feeds come from.
+ */
+export type Speeds = "fromMaterial" | "asTyped";
+
+/**
  * One stage of octree roughing: its tool, why, and what it did.
  */
 export type StageReport = { tool: number, diameter: number, role: StageRole, 
@@ -1616,7 +1761,12 @@ zero: WorkZero | null,
  * the part, as long as the part and the margins along its axis (the margins across it
  * are the bar's). Default value: none.
  */
-bar: Bar | null, };
+bar: Bar | null, 
+/**
+ * What the stock is: the tools' speeds and feeds follow from it ([`crate::cutting`]).
+ * Default value: none (every tool's as typed).
+ */
+material: Material | null, };
 
 /**
  * What the page shows of a job's result beside the drawing: figures, warnings, the problem if
@@ -1838,7 +1988,8 @@ number: number,
  */
 name: string, 
 /**
- * Spindle speed (rpm). Default value: 12000.
+ * Spindle speed (rpm), where the tool's speeds are as typed or the stock's material is
+ * not set. Default value: 12000.
  */
 spindleRpm: number, 
 /**
@@ -1860,6 +2011,20 @@ stickOut: number | null,
  * Default value: off.
  */
 coolant: Coolant, 
+/**
+ * Cutting edges (flutes) of a mill; a drill has its two lips. Default value: 2.
+ */
+flutes: number, 
+/**
+ * What its edges are made of: `carbide` or `hss`. Default value: carbide.
+ */
+toolMaterial: ToolMaterial, 
+/**
+ * Where its speed and feeds come from: `fromMaterial` (the stock's material, where the job
+ * names one; [`crate::cutting`]) or `asTyped` (`spindleRpm`, `feedRate`, `plungeRate`).
+ * Default value: fromMaterial.
+ */
+speeds: Speeds, 
 /**
  * End shape. Default value: ball.
  */
@@ -1892,6 +2057,11 @@ angle: number | null,
  * for the other shapes. Default value: 0.
  */
 tipDiameter: number, };
+
+/**
+ * What a tool's cutting edges are made of.
+ */
+export type ToolMaterial = "carbide" | "hss";
 
 /**
  * Length unit of a file or of G-code.
@@ -2021,7 +2191,13 @@ height: ZeroHeight,
 /**
  * Default value: center.
  */
-corner: ZeroCorner, };
+corner: ZeroCorner, 
+/**
+ * X0 Y0 at this point instead of `corner`: how far it lies from the stock's centre seen
+ * from above, in X and Y as the setup holds the part (mm); the page sets it on a hole's
+ * centre ([`Job::zero_on`]). Default value: none.
+ */
+at: [number, number] | null, };
 
 /**
  * Which point of the stock seen from above is X0 Y0.

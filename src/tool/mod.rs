@@ -4,6 +4,9 @@
 use serde::{Deserialize, Serialize};
 
 use crate::cutter::Cutter;
+pub use crate::cutting::{Speeds, ToolMaterial};
+
+pub mod library;
 
 /// A tool in the library: a cutter with its cutting data.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
@@ -15,7 +18,8 @@ pub struct Tool {
     pub name: String,
     #[serde(flatten)]
     pub cutter: Cutter,
-    /// Spindle speed (rpm). Default value: 12000.
+    /// Spindle speed (rpm), where the tool's speeds are as typed or the stock's material is
+    /// not set. Default value: 12000.
     pub spindle_rpm: f64,
     /// Cutting feed (mm/min). Default value: 1000.
     pub feed_rate: f64,
@@ -28,6 +32,14 @@ pub struct Tool {
     /// Coolant while this tool cuts: off, flood (M8) or mist (M7), as the post writes them.
     /// Default value: off.
     pub coolant: Coolant,
+    /// Cutting edges (flutes) of a mill; a drill has its two lips. Default value: 2.
+    pub flutes: u32,
+    /// What its edges are made of: `carbide` or `hss`. Default value: carbide.
+    pub tool_material: ToolMaterial,
+    /// Where its speed and feeds come from: `fromMaterial` (the stock's material, where the job
+    /// names one; [`crate::cutting`]) or `asTyped` (`spindleRpm`, `feedRate`, `plungeRate`).
+    /// Default value: fromMaterial.
+    pub speeds: Speeds,
 }
 
 /// Coolant for a tool.
@@ -42,7 +54,19 @@ pub enum Coolant {
 
 impl Default for Tool {
     fn default() -> Self {
-        Tool { number: 1, name: String::new(), cutter: Cutter::default(), spindle_rpm: 12000.0, feed_rate: 1000.0, plunge_rate: 300.0, stick_out: None, coolant: Coolant::Off }
+        Tool {
+            number: 1,
+            name: String::new(),
+            cutter: Cutter::default(),
+            spindle_rpm: 12000.0,
+            feed_rate: 1000.0,
+            plunge_rate: 300.0,
+            stick_out: None,
+            coolant: Coolant::Off,
+            flutes: 2,
+            tool_material: ToolMaterial::Carbide,
+            speeds: Speeds::FromMaterial,
+        }
     }
 }
 

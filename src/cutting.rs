@@ -1,0 +1,305 @@
+//! Speeds and feeds from the stock's material (issue 58): the cutting speed and the chip load a
+//! tooth of a tool of its diameter takes, from published tables, each row with its source;
+//! from them the spindle speed `n = 1000·vc / (π·D)` and the feed `f = fz·z·n`, capped by the
+//! machine's spindle range and feed. A tool takes them unless it says its own are as typed
+//! (`speeds: asTyped`): the program, its cycle time and the setup sheet all read the tools as
+//! they come out of [`Job::with_cutting_data`].
+//!
+//! The chip loads are for a cut as deep as the tool is wide at full width (the tables'
+//! condition); what the operations do with lighter cuts is theirs.
+
+use serde::{Deserialize, Serialize};
+
+use crate::cutter::Shape;
+use crate::job::Job;
+use crate::tool::Tool;
+
+/// The stock's material.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(rename_all = "camelCase")]
+pub enum Material {
+    /// Wrought aluminium (6061-T6, 2024, 7075).
+    Aluminium6061,
+    /// Low-carbon and low-alloy steel (1018, 1045).
+    MildSteel,
+    /// Austenitic stainless (304, 316).
+    Stainless304,
+    /// Yellow, free-cutting and red brass.
+    Brass,
+    /// Cast or extruded acrylic (PMMA).
+    Acrylic,
+    /// HDPE and other soft plastics.
+    Hdpe,
+    /// Hardwood (oak, maple, walnut).
+    Hardwood,
+    /// MDF and particle board.
+    Mdf,
+    /// Plywood.
+    Plywood,
+}
+
+/// What a tool's cutting edges are made of.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(rename_all = "camelCase")]
+pub enum ToolMaterial {
+    #[default]
+    Carbide,
+    /// High-speed steel: half the cutting speed of carbide.
+    Hss,
+}
+
+/// Where a tool's spindle speed and feeds come from.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(rename_all = "camelCase")]
+pub enum Speeds {
+    /// From the stock's material (where the job names one), else as typed.
+    #[default]
+    FromMaterial,
+    /// As typed in the tool (`spindleRpm`, `feedRate`, `plungeRate`), whatever the material.
+    AsTyped,
+}
+
+/// The machine's limits the speeds and feeds keep to.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(default, rename_all = "camelCase")]
+pub struct Machine {
+    /// Shown in the page and on the setup sheet. Default value: "hobby router".
+    pub name: String,
+    /// The spindle's slowest and fastest speeds (rpm). Default value: 8000 and 24000.
+    pub spindle_min: f64,
+    pub spindle_max: f64,
+    /// The fastest cutting feed (mm/min). Default value: 5000.
+    pub max_feed: f64,
+}
+
+impl Default for Machine {
+    fn default() -> Self {
+        Machine::builtin()[0].clone()
+    }
+}
+
+impl Machine {
+    /// The built-in machines: a hobby router, a benchtop mill and a small VMC.
+    pub fn builtin() -> Vec<Machine> {
+        vec![
+            Machine { name: "hobby router".into(), spindle_min: 8000.0, spindle_max: 24000.0, max_feed: 5000.0 },
+            Machine { name: "benchtop mill".into(), spindle_min: 100.0, spindle_max: 10000.0, max_feed: 2500.0 },
+            Machine { name: "small VMC".into(), spindle_min: 100.0, spindle_max: 12000.0, max_feed: 10000.0 },
+        ]
+    }
+
+    /// What is wrong with the limits, if anything: `(field, message)`.
+    pub fn problems(&self) -> Vec<(&'static str, String)> {
+        let mut out = Vec::new();
+        if !(self.spindle_min.is_finite() && self.spindle_min >= 0.0) {
+            out.push(("spindleMin", format!("must be zero or more rpm (got {})", crate::limits::shown(self.spindle_min))));
+        }
+        if !(self.spindle_max.is_finite() && self.spindle_max > 0.0 && self.spindle_max >= self.spindle_min && self.spindle_max <= crate::limits::MAX_RPM) {
+            out.push(("spindleMax", format!("must be more than 0 rpm, at least spindleMin and at most {} (got {})", crate::limits::MAX_RPM, crate::limits::shown(self.spindle_max))));
+        }
+        if !(self.max_feed.is_finite() && self.max_feed > 0.0 && self.max_feed <= crate::limits::MAX_FEED) {
+            out.push(("maxFeed", format!("must be more than 0 mm/min, at most {} (got {})", crate::limits::MAX_FEED, crate::limits::shown(self.max_feed))));
+        }
+        out
+    }
+}
+
+/// A material as the page lists it.
+#[derive(Clone, Debug, PartialEq, Serialize, ts_rs::TS)]
+pub struct MaterialChoice {
+    pub value: Material,
+    pub words: &'static str,
+    pub source: &'static str,
+}
+
+impl Material {
+    /// Every material of the table, in its order.
+    pub fn choices() -> Vec<MaterialChoice> {
+        TABLE.iter().map(|r| MaterialChoice { value: r.material, words: r.words, source: r.source }).collect()
+    }
+}
+
+/// One material's row: its cutting speed for carbide (m/min; none: as fast as the spindle
+/// goes, as router bits in wood run) and its chip load a tooth (mm) at the tool diameters
+/// `DIAMETERS`, with where the figures come from.
+struct Row {
+    material: Material,
+    words: &'static str,
+    vc_carbide: Option<f64>,
+    chip: [f64; 4],
+    source: &'static str,
+}
+
+/// The diameters the chip loads are given at (mm): 1/8", 1/4", 3/8", 1/2"; between them the
+/// chip load is interpolated, below the first and above the last it is in proportion to the
+/// diameter and held at the last.
+const DIAMETERS: [f64; 4] = [3.175, 6.35, 9.525, 12.7];
+
+const IN: f64 = 25.4;
+/// Surface feet a minute in metres a minute.
+const SFM: f64 = 0.3048;
+
+const METALS: &str = "Torbide Tooling, Feeds & Speeds chart for carbide end mills (torbidetooling.com/feeds-speeds): the low end of the SFM range, inch a tooth by diameter";
+const ROUTER: &str =
+    "AST Tooling, Recommended Feeds & Speeds for Solid Carbide Router Bits (asttooling.com/pages/speeds-and-feeds-charts): the middle of each chip-load range, the spindle at its top speed";
+const PLASTICS: &str = "chip load: AST Tooling's router-bit chart (asttooling.com/pages/speeds-and-feeds-charts), the middle of each range; cutting speed: Torbide Tooling's plastics row (200–500 SFM), kept low so the plastic does not melt";
+
+const TABLE: [Row; 9] = [
+    Row { material: Material::Aluminium6061, words: "aluminium 6061", vc_carbide: Some(800.0 * SFM), chip: [0.001 * IN, 0.002 * IN, 0.003 * IN, 0.004 * IN], source: METALS },
+    Row { material: Material::MildSteel, words: "mild steel", vc_carbide: Some(100.0 * SFM), chip: [0.0005 * IN, 0.0015 * IN, 0.002 * IN, 0.003 * IN], source: METALS },
+    Row { material: Material::Stainless304, words: "stainless 304", vc_carbide: Some(100.0 * SFM), chip: [0.0001 * IN, 0.0005 * IN, 0.001 * IN, 0.0015 * IN], source: METALS },
+    Row { material: Material::Brass, words: "brass", vc_carbide: Some(800.0 * SFM), chip: [0.001 * IN, 0.002 * IN, 0.0025 * IN, 0.003 * IN], source: METALS },
+    Row { material: Material::Acrylic, words: "acrylic", vc_carbide: Some(350.0 * SFM), chip: [0.003 * IN, 0.0065 * IN, 0.009 * IN, 0.0115 * IN], source: PLASTICS },
+    Row { material: Material::Hdpe, words: "HDPE", vc_carbide: Some(500.0 * SFM), chip: [0.004 * IN, 0.0075 * IN, 0.010 * IN, 0.0125 * IN], source: PLASTICS },
+    Row { material: Material::Hardwood, words: "hardwood", vc_carbide: None, chip: [0.003 * IN, 0.006 * IN, 0.014 * IN, 0.018 * IN], source: ROUTER },
+    Row { material: Material::Mdf, words: "MDF", vc_carbide: None, chip: [0.0055 * IN, 0.0135 * IN, 0.018 * IN, 0.0225 * IN], source: ROUTER },
+    Row { material: Material::Plywood, words: "plywood", vc_carbide: None, chip: [0.004 * IN, 0.0075 * IN, 0.0165 * IN, 0.0195 * IN], source: ROUTER },
+];
+
+fn row(material: Material) -> &'static Row {
+    TABLE.iter().find(|r| r.material == material).expect("every material has a row")
+}
+
+impl Material {
+    /// Its name in a machinist's words.
+    pub fn words(self) -> &'static str {
+        row(self).words
+    }
+
+    /// Where its figures come from.
+    pub fn source(self) -> &'static str {
+        row(self).source
+    }
+
+    /// The cutting speed for a tool of `tool` material (m/min), or none: the spindle's top.
+    pub fn cutting_speed(self, tool: ToolMaterial) -> Option<f64> {
+        row(self).vc_carbide.map(|v| match tool {
+            ToolMaterial::Carbide => v,
+            ToolMaterial::Hss => v / 2.0,
+        })
+    }
+
+    /// The chip load a tooth of a tool `diameter` wide takes (mm).
+    pub fn chip_load(self, diameter: f64) -> f64 {
+        let c = row(self).chip;
+        if diameter <= DIAMETERS[0] {
+            return c[0] * diameter / DIAMETERS[0];
+        }
+        for k in 1..DIAMETERS.len() {
+            if diameter <= DIAMETERS[k] {
+                let t = (diameter - DIAMETERS[k - 1]) / (DIAMETERS[k] - DIAMETERS[k - 1]);
+                return c[k - 1] + t * (c[k] - c[k - 1]);
+            }
+        }
+        c[DIAMETERS.len() - 1]
+    }
+}
+
+/// A tool's speeds and feeds as worked out, with the reasons in words.
+#[derive(Clone, Debug, PartialEq, Serialize, ts_rs::TS)]
+#[serde(rename_all = "camelCase")]
+pub struct CuttingData {
+    pub tool: u32,
+    pub spindle_rpm: f64,
+    pub feed_rate: f64,
+    pub plunge_rate: f64,
+    /// Whether they come from the material (false: as typed).
+    pub from_material: bool,
+    /// How they were worked out ("φ6 carbide, 2 flutes, in aluminium 6061: 244 m/min → …").
+    pub reason: String,
+    /// Where the material's figures come from.
+    pub source: Option<String>,
+}
+
+/// `tool`'s speeds and feeds cutting `material` on `machine` (as typed where the tool says so
+/// or the job names no material).
+pub fn cutting_data(tool: &Tool, material: Option<Material>, machine: &Machine) -> CuttingData {
+    let typed = |why: &str| CuttingData {
+        tool: tool.number,
+        spindle_rpm: tool.spindle_rpm,
+        feed_rate: tool.feed_rate,
+        plunge_rate: tool.plunge_rate,
+        from_material: false,
+        reason: why.to_owned(),
+        source: None,
+    };
+    let Some(material) = material else { return typed("as typed: the stock's material is not set") };
+    if tool.speeds == Speeds::AsTyped {
+        return typed("as typed (the tool's own)");
+    }
+    let c = &tool.cutter;
+    let d = c.diameter;
+    // A drill's two lips, a thread mill's single form, an end mill's flutes.
+    let teeth = match c.shape {
+        Shape::Drill | Shape::SpotDrill => 2,
+        _ => tool.flutes.max(1),
+    } as f64;
+    let shown = crate::limits::shown;
+    let mut why = format!(
+        "φ{} {}, {} {}, in {}: ",
+        shown(d),
+        match tool.tool_material {
+            ToolMaterial::Carbide => "carbide",
+            ToolMaterial::Hss => "HSS",
+        },
+        teeth,
+        if matches!(c.shape, Shape::Drill | Shape::SpotDrill) {
+            "lips"
+        } else if teeth == 1.0 {
+            "flute"
+        } else {
+            "flutes"
+        },
+        material.words()
+    );
+    let wanted = match material.cutting_speed(tool.tool_material) {
+        Some(vc) => {
+            let n = 1000.0 * vc / (std::f64::consts::PI * d);
+            why += &format!("{} m/min → {} rpm", shown((vc * 10.0).round() / 10.0), shown(n.round()));
+            n
+        }
+        None => {
+            why += "the spindle's top speed";
+            machine.spindle_max
+        }
+    };
+    let rpm = wanted.clamp(machine.spindle_min, machine.spindle_max).round();
+    if rpm < wanted.round() {
+        why += &format!(" (held at the machine's {} rpm)", shown(rpm));
+    } else if rpm > wanted.round() {
+        why += &format!(" (the machine's slowest, {} rpm)", shown(rpm));
+    }
+    // Thread mills take a light chip: half the table's.
+    let fz = material.chip_load(d) * if c.shape == Shape::ThreadMill { 0.5 } else { 1.0 };
+    let wanted_feed = fz * teeth * rpm;
+    let feed = wanted_feed.min(machine.max_feed).max(1.0);
+    why += &format!("; {} mm a tooth × {} × {} rpm = {} mm/min", shown((fz * 1000.0).round() / 1000.0), teeth, shown(rpm), shown(wanted_feed.round()));
+    if feed < wanted_feed {
+        why += &format!(" (held at the machine's {} mm/min)", shown(machine.max_feed));
+    }
+    // A drill feeds at its feed; an end mill plunges at half its feed.
+    let plunge = if matches!(c.shape, Shape::Drill | Shape::SpotDrill) { feed } else { feed / 2.0 };
+    CuttingData { tool: tool.number, spindle_rpm: rpm, feed_rate: feed.round(), plunge_rate: plunge.round().max(1.0), from_material: true, reason: why, source: Some(material.source().to_owned()) }
+}
+
+impl Job {
+    /// Each tool's speeds and feeds as this job cuts them ([`cutting_data`]).
+    pub fn cutting_data(&self) -> Vec<CuttingData> {
+        self.tools.iter().map(|t| cutting_data(t, self.stock.material, &self.machine)).collect()
+    }
+
+    /// The job with its tools' speeds and feeds from the stock's material, where they take
+    /// them: what runs, is timed and posted.
+    pub fn with_cutting_data(&self) -> std::borrow::Cow<'_, Job> {
+        if self.stock.material.is_none() {
+            return std::borrow::Cow::Borrowed(self);
+        }
+        let mut job = self.clone();
+        for (t, c) in job.tools.iter_mut().zip(self.cutting_data()) {
+            t.spindle_rpm = c.spindle_rpm;
+            t.feed_rate = c.feed_rate;
+            t.plunge_rate = c.plunge_rate;
+        }
+        std::borrow::Cow::Owned(job)
+    }
+}

@@ -1,0 +1,101 @@
+//! Issue 58: speeds and feeds from the stock's material. Each tool's spindle speed and feed
+//! against the closed form `n = 1000·vc/(π·D)`, `f = fz·z·n` with the table's figures, held to
+//! the machine's spindle range and feed; a tool whose speeds are its own keeps them; the
+//! program a job with a material writes runs at them, and says so on the setup sheet.
+
+use std::f64::consts::PI;
+
+use swarf::cutter::{Cutter, Shape};
+use swarf::cutting::{cutting_data, Machine, Material, Speeds, ToolMaterial};
+use swarf::drawing::import::read_drawing;
+use swarf::drawing::sample::plate_dxf;
+use swarf::job::{self, Job, Tool};
+use swarf::progress::Progress;
+
+const SFM: f64 = 0.3048;
+const IN: f64 = 25.4;
+
+fn mill(d: f64, flutes: u32) -> Tool {
+    Tool { number: 1, cutter: Cutter::flat(d), flutes, ..Tool::default() }
+}
+
+/// The closed form, held to `machine`: (rpm, feed).
+fn closed(vc: Option<f64>, fz: f64, teeth: f64, d: f64, machine: &Machine) -> (f64, f64) {
+    let n = vc.map_or(machine.spindle_max, |vc| 1000.0 * vc / (PI * d)).clamp(machine.spindle_min, machine.spindle_max).round();
+    (n, (fz * teeth * n).min(machine.max_feed).round())
+}
+
+#[test]
+fn speeds_and_feeds_follow_the_table_in_closed_form() {
+    let router = Machine::default();
+    let vmc = Machine::builtin().into_iter().find(|m| m.name == "small VMC").unwrap();
+    // (material, tool, machine, cutting speed m/min, chip load mm at that diameter, teeth)
+    let cases: Vec<(Material, Tool, &Machine, Option<f64>, f64, f64)> = vec![
+        // φ1/4" carbide, 2 flutes, in 6061: 800 SFM, 0.002" a tooth.
+        (Material::Aluminium6061, mill(6.35, 2), &router, Some(800.0 * SFM), 0.002 * IN, 2.0),
+        // Held at the router's top speed: φ3 carbide in aluminium wants 25,900 rpm.
+        (Material::Aluminium6061, mill(3.0, 3), &router, Some(800.0 * SFM), 0.001 * IN * 3.0 / 3.175, 3.0),
+        // HSS at half the speed; between the table's diameters the chip load is interpolated.
+        (Material::MildSteel, Tool { tool_material: ToolMaterial::Hss, ..mill(8.0, 4) }, &vmc, Some(100.0 * SFM / 2.0), (0.0015 + (8.0 - 6.35) / 3.175 * 0.0005) * IN, 4.0),
+        (Material::Stainless304, mill(12.7, 4), &vmc, Some(100.0 * SFM), 0.0015 * IN, 4.0),
+        (Material::Brass, mill(20.0, 3), &vmc, Some(800.0 * SFM), 0.003 * IN, 3.0),
+        // Wood at the spindle's top speed; the feed held at the router's 5000 mm/min.
+        (Material::Mdf, mill(6.35, 2), &router, None, 0.0135 * IN, 2.0),
+        (Material::Plywood, mill(3.175, 1), &router, None, 0.004 * IN, 1.0),
+        (Material::Acrylic, mill(6.35, 1), &router, Some(350.0 * SFM), 0.0065 * IN, 1.0),
+        // A drill's two lips, whatever its flutes say.
+        (Material::Aluminium6061, Tool { cutter: Cutter::drill(6.35, 118.0), flutes: 4, ..mill(6.35, 4) }, &vmc, Some(800.0 * SFM), 0.002 * IN, 2.0),
+    ];
+    for (material, tool, machine, vc, fz, teeth) in cases {
+        let c = cutting_data(&tool, Some(material), machine);
+        let (n, f) = closed(vc, fz, teeth, tool.cutter.diameter, machine);
+        assert!(c.from_material && c.source.is_some());
+        assert_eq!(c.spindle_rpm, n, "{material:?} φ{}: {}", tool.cutter.diameter, c.reason);
+        assert!((c.feed_rate - f).abs() <= 1.0, "{material:?} φ{}: {} against {f}: {}", tool.cutter.diameter, c.feed_rate, c.reason);
+        assert!(c.spindle_rpm >= machine.spindle_min && c.spindle_rpm <= machine.spindle_max && c.feed_rate <= machine.max_feed);
+        let plunge = if tool.cutter.shape == Shape::Drill { c.feed_rate } else { (c.feed_rate / 2.0).round() };
+        assert!((c.plunge_rate - plunge).abs() <= 1.0);
+    }
+    // What held them is said.
+    let c = cutting_data(&mill(3.0, 3), Some(Material::Aluminium6061), &router);
+    assert!(c.reason.contains("held at the machine's 24000 rpm"), "{}", c.reason);
+    let c = cutting_data(&mill(12.7, 3), Some(Material::Mdf), &router);
+    assert!(c.reason.contains("held at the machine's 5000 mm/min"), "{}", c.reason);
+    // A tool whose speeds are its own, and a job without a material, keep the typed ones.
+    let own = Tool { speeds: Speeds::AsTyped, spindle_rpm: 9000.0, feed_rate: 700.0, ..mill(6.0, 2) };
+    let c = cutting_data(&own, Some(Material::Brass), &router);
+    assert_eq!((c.spindle_rpm, c.feed_rate, c.from_material), (9000.0, 700.0, false));
+    let c = cutting_data(&mill(6.0, 2), None, &router);
+    assert_eq!((c.spindle_rpm, c.feed_rate), (12000.0, 1000.0));
+}
+
+#[test]
+fn a_job_in_a_material_runs_at_its_speeds_and_feeds() {
+    let drawing = read_drawing(plate_dxf().as_bytes(), Some("plate.dxf"), &Default::default()).unwrap();
+    let mut job = Job::default_for_drawing();
+    job.stock.material = Some(Material::Plywood);
+    job.tools[0].flutes = 2;
+    let c = &job.cutting_data()[0];
+    let out = job::run(&job, drawing.clone(), &mut Progress::none()).unwrap();
+    assert!(out.gcode.lines().any(|l| l == format!("S{} M3", c.spindle_rpm)), "{}", &out.gcode[..600]);
+    // The feeds the program runs at: the material's, not the typed 800 mm/min.
+    let feeds = |gcode: &str| -> Vec<f64> { gcode.split_whitespace().filter_map(|w| w.strip_prefix('F')?.parse().ok()).collect() };
+    let fs = feeds(&out.gcode);
+    assert!(fs.contains(&c.feed_rate) && fs.contains(&c.plunge_rate), "{fs:?}");
+    assert!(!fs.contains(&800.0));
+    // The sheet says where they come from.
+    let sheet = swarf::job::sheet::SheetSetup::of("sheet", &out);
+    let html = swarf::job::sheet::setup_sheet(&job, "plate.dxf", &[sheet]);
+    assert!(html.contains("in plywood: the spindle's top speed"), "{html:.4000}");
+    // Typed speeds stay typed.
+    job.tools[0].speeds = Speeds::AsTyped;
+    let out = job::run(&job, drawing, &mut Progress::none()).unwrap();
+    assert!(out.gcode.contains("S12000 M3") && feeds(&out.gcode).contains(&800.0));
+    // The machine's limits are checked like any setting.
+    job.machine.spindle_max = 50.0;
+    job.machine.spindle_min = 100.0;
+    assert_eq!(job.problems()[0].path, "machine.spindleMax");
+    job.machine = Machine::default();
+    job.tools[0].flutes = 0;
+    assert_eq!(job.problems()[0].path, "tools[0].flutes");
+}
