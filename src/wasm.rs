@@ -510,6 +510,31 @@ pub fn cutting_data(job: JsValue) -> Result<JsValue, JsError> {
     to_js(&job_from_js(job)?.cutting_data())
 }
 
+/// A FreeCAD bit given with its library, as text.
+#[derive(serde::Deserialize)]
+struct BitFile {
+    name: String,
+    text: String,
+}
+
+/// Reads a tool library (Fusion's JSON, a LinuxCNC `.tbl`, a FreeCAD `.fctb`, or a `.fctl`
+/// with its bits given in `bits` as `[{ name, text }]`): `{ tools, notes }`
+/// ([`crate::tool::library::read_library`]); `inches` reads a tool table in inches.
+#[wasm_bindgen(js_name = readToolLibrary)]
+pub fn read_tool_library(bytes: &[u8], name: &str, inches: bool, bits: JsValue) -> Result<JsValue, JsError> {
+    let bits: Vec<BitFile> = if bits.is_undefined() || bits.is_null() { Vec::new() } else { serde_wasm_bindgen::from_value(bits).map_err(|e| js_error(format!("bits: {e}")))? };
+    let bits: Vec<(String, Vec<u8>)> = bits.into_iter().map(|b| (b.name, b.text.into_bytes())).collect();
+    to_js(&crate::tool::library::read_library(bytes, name, inches, &bits).map_err(js_error)?)
+}
+
+/// `tools` (swarf's, as a job holds them) as a library of `format` (`fusion` or `linuxCnc`).
+#[wasm_bindgen(js_name = writeToolLibrary)]
+pub fn write_tool_library(tools: JsValue, format: JsValue) -> Result<String, JsError> {
+    let tools: Vec<crate::tool::Tool> = serde_wasm_bindgen::from_value(tools).map_err(|e| js_error(format!("tools: {e}")))?;
+    let format: crate::tool::library::LibraryFormat = serde_wasm_bindgen::from_value(format).map_err(|e| js_error(format!("format: {e}")))?;
+    Ok(crate::tool::library::write_library(&tools, format))
+}
+
 /// Every setup of `job` in one program (`post.oneProgram`), an operator stop between them:
 /// from each setup's result's `sheet()`, `program(job.post)` and `problem()` in order. A
 /// program not safe to run has the warning of each setup that is not at its head.

@@ -378,3 +378,28 @@ fn the_two_sided_example_writes_one_program_a_setup() {
     let out = swarf(&["run", dir.join("two-sided.json").to_str().unwrap(), svg.to_str().unwrap(), "-q"]);
     assert!(!out.status.success() && String::from_utf8_lossy(&out.stderr).contains("a drawing is cut from one side"), "{}", String::from_utf8_lossy(&out.stderr));
 }
+
+/// `swarf tools`: a FreeCAD library with its bits read into swarf's tools, what was not taken
+/// said on stderr; the same tools printed as a LinuxCNC tool table.
+#[test]
+fn tools_reads_a_library_machinists_keep() {
+    let dir = temp("tools");
+    let bit = dir.join("6mm_Endmill.fctb");
+    std::fs::write(&bit, r#"{ "version": 2, "name": "6mm Endmill", "shape": "endmill.fcstd", "parameter": { "Diameter": "6 mm", "CuttingEdgeHeight": "20 mm", "Flutes": 3, "Coating": "TiAlN" } }"#)
+        .unwrap();
+    let lib = dir.join("shop.fctl");
+    std::fs::write(&lib, r#"{ "version": 1, "tools": [ { "nr": 4, "path": "../Bit/6mm_Endmill.fctb" } ] }"#).unwrap();
+    let out = swarf(&["tools", lib.to_str().unwrap(), bit.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let tools: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(tools["tools"][0]["number"], 4);
+    assert_eq!(tools["tools"][0]["diameter"], 6.0);
+    assert_eq!(tools["tools"][0]["flutes"], 3);
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert!(said.contains("note: 6mm Endmill: not taken, as swarf does not model them: Coating") && said.contains("1 tools read"), "{said}");
+    let out = swarf(&["tools", lib.to_str().unwrap(), bit.to_str().unwrap(), "--to", "linuxcnc"]);
+    assert_eq!(String::from_utf8_lossy(&out.stdout).trim(), "T4 P4 D6 ;6mm Endmill: 6 mm flat end");
+    let out = swarf(&["tools", lib.to_str().unwrap()]);
+    assert!(out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("T4: its bit 6mm_Endmill.fctb was not given"));
+}

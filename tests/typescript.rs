@@ -13,6 +13,7 @@ use swarf::job::project::Project;
 use swarf::job::Problem;
 use swarf::machining::form::OperationForm;
 use swarf::post::{CycleTime, Post};
+use swarf::tool::library::{Imported, LibraryFormat};
 use swarf::view::{DrawingView, EdgeView, ReportView, Reposted, SetupView, Summary};
 use ts_rs::{Config, TypeVisitor, TS};
 
@@ -36,6 +37,8 @@ fn generate() -> String {
     OperationForm::export_all(&cfg).unwrap();
     CuttingData::export_all(&cfg).unwrap();
     MaterialChoice::export_all(&cfg).unwrap();
+    Imported::export_all(&cfg).unwrap();
+    LibraryFormat::export_all(&cfg).unwrap();
     let mut files: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().path()).collect();
     files.sort();
     let mut out = HEAD.to_owned();
@@ -88,6 +91,8 @@ fn no_two_rust_types_share_a_typescript_name() {
     names.visit::<OperationForm>();
     names.visit::<CuttingData>();
     names.visit::<MaterialChoice>();
+    names.visit::<Imported>();
+    names.visit::<LibraryFormat>();
     assert!(names.0.len() > 20, "{:?}", names.0.keys());
     let twice: Vec<_> = names.0.values().filter(|v| v.len() > 1).collect();
     assert!(twice.is_empty(), "types sharing a TypeScript name (give one #[ts(rename)]): {twice:?}");

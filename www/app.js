@@ -222,7 +222,7 @@ $('tool-add').addEventListener('click', () => addTool(false));
 $('tool-copy').addEventListener('click', () => addTool(true));
 $('tool-delete').addEventListener('click', deleteTool);
 $('tool-export').addEventListener('click', exportTools);
-$('tool-import').addEventListener('change', (e) => { if (e.target.files[0]) importTools(e.target.files[0]); e.target.value = ''; });
+$('tool-import').addEventListener('change', (e) => { if (e.target.files.length) importTools([...e.target.files]); e.target.value = ''; });
 $('op-list').addEventListener('click', onOpList);
 $('setup-tabs').addEventListener('click', onSetupTabs);
 $('setup-add').addEventListener('click', addSetup);

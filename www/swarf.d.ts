@@ -1,7 +1,7 @@
 // The API of swarf.js. The data it passes (jobs, tools, operations, posts, projects, results)
 // has the types generated from swarf's Rust serde types (types/swarf-types.d.ts); only the
 // engine's own calls, and the input forms of those types, are declared here.
-import type { Job, Post, PostSettings, CycleTime, Project, Summary, DrawingView, ReportView, Reposted, Problem, Warning, OperationReport, TimeItem, Hole, EdgeView, SetupView, OperationForm, WorkZero, MaterialChoice, Machine, CuttingData } from './types/swarf-types.js';
+import type { Job, Post, PostSettings, CycleTime, Project, Summary, DrawingView, ReportView, Reposted, Problem, Warning, OperationReport, TimeItem, Hole, EdgeView, SetupView, OperationForm, WorkZero, MaterialChoice, Machine, CuttingData, Imported, LibraryFormat } from './types/swarf-types.js';
 
 export type { Job, Post, PostSettings, CycleTime, Project, Summary, DrawingView, ReportView, Reposted, Problem, Warning, OperationReport, TimeItem, Hole, EdgeView, SetupView };
 
@@ -170,6 +170,10 @@ export declare class Engine {
   setupSheet(job: JobInput, name: string): Promise<string>;
   /** The last run's setups in one program (`job.post`), an operator stop (M0) between them saying how to hold the part next. */
   oneProgram(job: JobInput): Promise<string>;
+  /** Reads a tool library (Fusion JSON, LinuxCNC .tbl, FreeCAD .fctb, or .fctl with its bits among `files`): swarf's tools and what was not taken. */
+  readToolLibrary(files: { name: string; bytes: Uint8Array }[], options?: { inches?: boolean }): Promise<Imported>;
+  /** `tools` as Fusion's tool library JSON or a LinuxCNC tool table. */
+  writeToolLibrary(tools: Job['tools'], format: LibraryFormat): Promise<string>;
   /** Each tool's speeds and feeds as `job` cuts them (from the stock's material, or as typed), with how they were worked out. */
   cuttingData(job: JobInput): Promise<CuttingData[]>;
   /** The work zero with X0 Y0 on `point` (a hole's centre as `holes` gives it) where `job`, or its setup `setup`, holds the part now; its height kept. */

@@ -444,6 +444,21 @@ export class Engine {
    */
   async oneProgram(job) { return (await this.call({ type: 'oneProgram', job })).gcode; }
 
+  /**
+   * Reads a tool library machinists keep: Fusion's tool library JSON, a LinuxCNC tool table
+   * (`.tbl`; `options.inches` when it is in inches), a FreeCAD bit (`.fctb`), or a FreeCAD
+   * library (`.fctl`) with the bits it names among `files` (`[{ name, bytes }]`). Resolves
+   * with `{ tools, notes }`: swarf's tools, and what the file holds that swarf did not take.
+   */
+  async readToolLibrary(files, options = {}) {
+    const main = files.find((f) => /\.fctl$/i.test(f.name)) ?? files[0];
+    const bits = files.filter((f) => f !== main).map((f) => ({ name: f.name, text: new TextDecoder().decode(f.bytes) }));
+    return (await this.call({ type: 'readToolLibrary', bytes: main.bytes, name: main.name, inches: !!options.inches, bits })).library;
+  }
+
+  /** `tools` as a library of `format`: `'fusion'` (Fusion's JSON) or `'linuxCnc'` (a tool table): its text. */
+  async writeToolLibrary(tools, format) { return (await this.call({ type: 'writeToolLibrary', tools, format })).text; }
+
   /** Each tool's speeds and feeds as `job` cuts them (from the stock's material, or as typed): `[CuttingData]`. */
   async cuttingData(job) { return (await this.call({ type: 'cuttingData', job })).data; }
 

@@ -89,27 +89,42 @@ export function renumber(from, to) {
   }
 }
 
-export function exportTools() {
-  downloadText('swarf-tools.json', JSON.stringify({ tools: state.tools }, null, 2), 'application/json');
+export async function exportTools() {
+  const format = $('tool-export-format').value;
+  if (format === 'swarf') { downloadText('swarf-tools.json', JSON.stringify({ tools: state.tools }, null, 2), 'application/json'); return; }
+  try {
+    const text = await state.engine.writeToolLibrary(state.tools, format);
+    downloadText(format === 'fusion' ? 'swarf-tools.fusion.json' : 'swarf-tools.tbl', text, format === 'fusion' ? 'application/json' : 'text/plain');
+  } catch (e) {
+    message(e.message, 'error');
+  }
 }
 
-// Tools are read by the core, as a job's are: a misspelt field is named. Imported tools replace
-// those of the same number and join the rest.
-export async function importTools(file) {
+// Imported tools replace those of the same number and join the rest. swarf's own JSON is read
+// by the core as a job's tools are (a misspelt field is named); the libraries machinists keep
+// (Fusion's, a LinuxCNC tool table, FreeCAD's bits and libraries) are read by the core too,
+// and what they hold that swarf does not take is said.
+export async function importTools(files) {
+  const name = files.map((f) => f.name).join(', ');
   try {
-    const parsed = JSON.parse(await file.text());
-    const tools = Array.isArray(parsed) ? parsed : parsed.tools;
-    if (!Array.isArray(tools)) throw new Error('expected a list of tools, or { "tools": [...] }');
-    const read = await state.engine.readJob(JSON.stringify({ tools }));
-    for (const t of read.tools) {
+    let tools, notes = [];
+    const text = files.length === 1 && /\.json$/i.test(files[0].name) ? await files[0].text() : null;
+    const parsed = text ? JSON.parse(text) : null;
+    if (parsed && (Array.isArray(parsed) || Array.isArray(parsed.tools))) {
+      tools = (await state.engine.readJob(JSON.stringify({ tools: Array.isArray(parsed) ? parsed : parsed.tools }))).tools;
+    } else {
+      const read = await state.engine.readToolLibrary(await Promise.all(files.map(async (f) => ({ name: f.name, bytes: new Uint8Array(await f.arrayBuffer()) }))), { inches: $('tool-import-inches').checked });
+      ({ tools, notes } = read);
+    }
+    for (const t of tools) {
       const k = state.tools.findIndex((u) => u.number === t.number);
       if (k >= 0) state.tools[k] = t; else state.tools.push(t);
     }
     store();
     fillTools();
     hooks.changed?.();
-    message(`Imported ${read.tools.length} tool(s) from ${file.name}.`, 'ok');
+    message(`Imported ${tools.length} tool(s) from ${name}.${notes.length ? ` Not taken: ${notes.join('; ')}.` : ''}`, notes.length ? 'warning' : 'ok');
   } catch (e) {
-    message(`${file.name}: ${e.message}`, 'error');
+    message(`${name}: ${e.message}`, 'error');
   }
 }

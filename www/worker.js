@@ -1,6 +1,6 @@
 // Runs the wasm pipeline off the page's thread, for swarf.js's engine. Cancel = the engine
 // terminates this worker.
-import init, { defaults, builtinPosts, readPost, readJob, checkJob, writeProject, readProject, samplePart, sampleDrawing, warmUpJob, warmUpPart, loadPart, loadDrawing, isDrawing, prepareJob, setupFrames, setupSheet, oneProgram, zeroOn, cuttingData, findHoles, findBosses, findEdges } from './pkg/swarf.js';
+import init, { defaults, builtinPosts, readPost, readJob, checkJob, writeProject, readProject, samplePart, sampleDrawing, warmUpJob, warmUpPart, loadPart, loadDrawing, isDrawing, prepareJob, setupFrames, setupSheet, oneProgram, zeroOn, cuttingData, readToolLibrary, writeToolLibrary, findHoles, findBosses, findEdges } from './pkg/swarf.js';
 
 // The wasm is loaded on the first message: from the bytes or URL it names (a single-file page
 // passes the bytes), else from pkg/ beside the glue.
@@ -201,6 +201,11 @@ self.onmessage = async (event) => {
       if (!results.length) throw new Error('generate a program first');
       const kept = results.map((r) => r.result), post = event.data.job.post ?? {};
       self.postMessage({ id, ok: true, gcode: oneProgram(event.data.job, kept.map((r) => r.sheet()), kept.map((r) => r.program(post)), kept.map((r) => r.problem() ?? '')) });
+    } else if (type === 'readToolLibrary') {
+      const { bytes, name, inches, bits } = event.data;
+      self.postMessage({ id, ok: true, library: readToolLibrary(bytes, name, inches, bits) });
+    } else if (type === 'writeToolLibrary') {
+      self.postMessage({ id, ok: true, text: writeToolLibrary(event.data.tools, event.data.format) });
     } else if (type === 'cuttingData') {
       self.postMessage({ id, ok: true, data: cuttingData(event.data.job) });
     } else if (type === 'zeroOn') {

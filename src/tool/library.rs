@@ -106,7 +106,7 @@ fn fusion(value: &Value) -> Imported {
     let mut tools = Vec::new();
     let mut unknown: Vec<String> = Vec::new();
     const TAKEN: &[&str] = &["type", "unit", "description", "product-id", "vendor", "geometry", "post-process", "start-values", "guid", "holder", "BMC", "GRADE"];
-    const GEOMETRY: &[&str] = &["DC", "SFDM", "NOF", "LCF", "OAL", "RE", "SIG", "TA", "tip-diameter", "LB"];
+    const GEOMETRY: &[&str] = &["DC", "SFDM", "NOF", "LCF", "RE", "SIG", "TA", "tip-diameter", "LB"];
     for (k, entry) in value["data"].as_array().into_iter().flatten().enumerate() {
         let kind = entry.get("type").and_then(Value::as_str).unwrap_or("");
         let number = entry.pointer("/post-process/number").and_then(Value::as_u64).map_or(k as u32 + 1, |n| n as u32);
@@ -168,8 +168,10 @@ fn fusion(value: &Value) -> Imported {
                 unknown.push(key.clone());
             }
         }
-        for key in g.as_object().map(Map::keys).into_iter().flatten().filter(|k| !GEOMETRY.contains(&k.as_str())) {
-            let key = format!("geometry.{key}");
+        let post = entry.get("post-process").cloned().unwrap_or(json!({}));
+        let geometry = g.as_object().map(Map::keys).into_iter().flatten().filter(|k| !GEOMETRY.contains(&k.as_str())).map(|k| format!("geometry.{k}"));
+        let posting = post.as_object().map(Map::keys).into_iter().flatten().filter(|k| *k != "number").map(|k| format!("post-process.{k}"));
+        for key in geometry.chain(posting) {
             if !unknown.contains(&key) {
                 unknown.push(key);
             }

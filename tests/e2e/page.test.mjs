@@ -1106,6 +1106,39 @@ test('speeds and feeds from the stock\'s material: each tool shows them with how
   await context.close();
 });
 
+test('tool libraries machinists keep: a Fusion library and a LinuxCNC tool table imported into the library, what was not taken said; the library exported as a tool table', async () => {
+  const { page, context, errors } = await openPage();
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-tools-'));
+  const fusion = path.join(dir, 'mill.json'), tbl = path.join(dir, 'lathe-room.tbl');
+  fs.writeFileSync(fusion, JSON.stringify({ data: [
+    { type: 'flat end mill', unit: 'millimeters', description: '8mm 3F', geometry: { DC: 8, NOF: 3, LCF: 20, OAL: 60 }, 'post-process': { number: 21 }, 'start-values': { presets: [{ name: 'alu', n: 14000, v_f: 1500, v_f_plunge: 500 }] } },
+    { type: 'tap right hand', unit: 'millimeters', description: 'M8 tap', geometry: { DC: 8 }, 'post-process': { number: 22 } },
+  ] }));
+  fs.writeFileSync(tbl, 'T31 P31 D3.175 ;1/8 ball\nT32 P32 D6 ;spot drill 90°\n');
+  await tab(page, 'tools');
+  const before = await page.locator('#tool-list option').count();
+  await page.setInputFiles('#tool-import', fusion);
+  await page.waitForFunction(() => /Imported 1 tool\(s\) from mill\.json/.test(document.getElementById('message').textContent));
+  assert.match(await page.textContent('#message'), /Not taken: .*M8 tap.*no shape in swarf.*geometry\.OAL/);
+  const t21 = await page.evaluate(() => window.swarf.tools.find((t) => t.number === 21));
+  assert.deepEqual([t21.shape, t21.diameter, t21.flutes, t21.spindleRpm, t21.feedRate, t21.speeds], ['flat', 8, 3, 14000, 1500, 'asTyped']);
+  await page.setInputFiles('#tool-import', tbl);
+  await page.waitForFunction(() => /Imported 2 tool\(s\) from lathe-room\.tbl/.test(document.getElementById('message').textContent));
+  assert.equal(await page.locator('#tool-list option').count(), before + 3);
+  assert.deepEqual(await page.evaluate(() => window.swarf.tools.filter((t) => t.number > 30).map((t) => [t.number, t.shape, t.diameter])), [[31, 'ball', 3.175], [32, 'spotDrill', 6]]);
+  // Exported as a LinuxCNC tool table: one line a tool, read back the same.
+  await page.selectOption('#tool-export-format', 'linuxCnc');
+  const [saved] = await Promise.all([page.waitForEvent('download'), page.click('#tool-export')]);
+  assert.equal(saved.suggestedFilename(), 'swarf-tools.tbl');
+  const out = path.join(dir, 'out.tbl');
+  await saved.saveAs(out);
+  const lines = fs.readFileSync(out, 'utf8').trim().split('\n');
+  assert.equal(lines.length, before + 3);
+  assert.ok(lines.includes('T21 P21 D8 ;8mm 3F: 8 mm flat end'), lines.join('\n'));
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
 test('holes in a 3D part: found in its triangles, roughed over, pecked and threaded M6 in one program that rs274 runs, clean', async () => {
   const { page, context, errors } = await openPage();
   // A plate 40 × 20 × 10 with two φ5 through holes (M6's tap drill is 5).

@@ -785,6 +785,15 @@ layer: string | null,
 mark: boolean, };
 
 /**
+ * The tools read from a library, and what of it was not taken.
+ */
+export type Imported = { tools: Array<Tool>, 
+/**
+ * What the file holds that swarf did not take, each said once.
+ */
+notes: Array<string>, };
+
+/**
  * Everything needed to turn a part into G-code.
  */
 export type Job = { 
@@ -825,6 +834,11 @@ machine: Machine, };
  * How much a [`Warning`] asks of the user.
  */
 export type Level = "warning" | "note";
+
+/**
+ * The formats a library is written in.
+ */
+export type LibraryFormat = "fusion" | "linuxCnc";
 
 /**
  * Line numbers (N words). A number never comes back: a program with more lines than `start`

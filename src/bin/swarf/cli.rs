@@ -89,6 +89,21 @@ enum Command {
         #[arg(short, long)]
         output: Option<PathBuf>,
     },
+    /// Read a tool library machinists keep (Fusion's JSON, a LinuxCNC .tbl, FreeCAD .fctb bits
+    /// or a .fctl library with its bits) and print it as swarf's tools (JSON, for a job's
+    /// `tools`), or as another library (`--to`); what it holds that swarf does not take is said
+    /// on stderr.
+    Tools {
+        /// The library, then for a FreeCAD .fctl the bit files it names.
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+        /// A LinuxCNC tool table is in inches (it does not say).
+        #[arg(long)]
+        inches: bool,
+        /// Print it as `fusion` (Fusion's tool library JSON) or `linuxcnc` (a tool table).
+        #[arg(long)]
+        to: Option<String>,
+    },
     /// Print the default job as JSON, to edit and pass to `swarf run`.
     Job {
         /// The default job for a drawing (DXF, SVG): a profile around its loops.
@@ -310,6 +325,27 @@ fn run(cli: Cli) -> Result<(), String> {
             let name = part.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
             write(&output, job::sheet::setup_sheet(&job, &name, &setups.iter().map(|s| job::sheet::SheetSetup::of(&s.name, &s.output)).collect::<Vec<_>>()).as_bytes())?;
             println!("wrote {}", output.display());
+            Ok(())
+        }
+        Command::Tools { files, inches, to } => {
+            let main = files.iter().find(|f| f.extension().is_some_and(|e| e == "fctl")).unwrap_or(&files[0]);
+            let name = |f: &PathBuf| f.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+            let mut bits = Vec::new();
+            for f in files.iter().filter(|f| *f != main) {
+                bits.push((name(f), read(f)?));
+            }
+            let read = swarf::tool::library::read_library(&read(main)?, &name(main), inches, &bits).map_err(|e| e.to_string())?;
+            for note in &read.notes {
+                eprintln!("note: {note}");
+            }
+            let text = match to.as_deref() {
+                None | Some("swarf") => serde_json::to_string_pretty(&serde_json::json!({ "tools": read.tools })).map_err(|e| e.to_string())?,
+                Some("fusion") => swarf::tool::library::write_library(&read.tools, swarf::tool::library::LibraryFormat::Fusion),
+                Some("linuxcnc") => swarf::tool::library::write_library(&read.tools, swarf::tool::library::LibraryFormat::LinuxCnc),
+                Some(other) => return Err(format!("--to {other}: give fusion, linuxcnc or swarf")),
+            };
+            println!("{}", text.trim_end());
+            eprintln!("{} tools read from {}", read.tools.len(), main.display());
             Ok(())
         }
         Command::Job { drawing } => {

@@ -1,0 +1,113 @@
+//! Issue 58: the tool libraries machinists already keep, read and written: Fusion's JSON,
+//! LinuxCNC's tool table, FreeCAD's bits and libraries. Each tool's shape and sizes as the file
+//! says them (in its units), its speeds where the file has them; what swarf does not take is
+//! named in the notes; a library written and read back is the same library.
+
+use swarf::cutter::Shape;
+use swarf::cutting::Speeds;
+use swarf::tool::library::{read_library, write_library, LibraryFormat};
+
+const FUSION: &str = r#"{
+  "data": [
+    { "type": "flat end mill", "unit": "millimeters", "description": "6mm 3F alu", "guid": "a",
+      "geometry": { "DC": 6, "SFDM": 6, "NOF": 3, "LCF": 18, "OAL": 60, "LB": 25, "CSP": false, "HAND": true },
+      "post-process": { "number": 4, "diameter-offset": 4 },
+      "start-values": { "presets": [ { "name": "Aluminium roughing", "n": 15000, "v_f": 1800, "v_f_plunge": 600 },
+                                      { "name": "Aluminium finishing", "n": 18000, "v_f": 1200 } ] },
+      "holder": { "description": "ER20 collet chuck", "type": "holder" } },
+    { "type": "ball end mill", "unit": "inches", "description": "1/8 ball", "geometry": { "DC": 0.125, "NOF": 2, "LCF": 0.5 },
+      "post-process": { "number": 7 } },
+    { "type": "bull nose end mill", "unit": "millimeters", "geometry": { "DC": 10, "RE": 1.5, "NOF": 4, "LCF": 25 }, "post-process": { "number": 2 } },
+    { "type": "drill", "unit": "millimeters", "description": "5 mm jobber", "geometry": { "DC": 5, "SIG": 135, "LCF": 40 }, "post-process": { "number": 11 } },
+    { "type": "chamfer mill", "unit": "millimeters", "geometry": { "DC": 12, "TA": 45, "tip-diameter": 0.5, "NOF": 2 }, "post-process": { "number": 12 } },
+    { "type": "tap right hand", "unit": "millimeters", "description": "M6 tap", "geometry": { "DC": 6 }, "post-process": { "number": 20 } },
+    { "type": "holder", "description": "BT30 shrink fit" },
+    { "type": "probe", "description": "Renishaw OMP40" }
+  ],
+  "version": 2
+}"#;
+
+#[test]
+fn fusions_tool_library_is_read_with_its_speeds_and_what_is_left_said() {
+    let read = read_library(FUSION.as_bytes(), "library.json", false, &[]).unwrap();
+    let t: Vec<_> = read.tools.iter().map(|t| (t.number, t.cutter.shape, t.cutter.diameter)).collect();
+    assert_eq!(t, vec![(4, Shape::Flat, 6.0), (7, Shape::Ball, 3.175), (2, Shape::BullNose, 10.0), (11, Shape::Drill, 5.0), (12, Shape::VBit, 12.0)]);
+    let flat = &read.tools[0];
+    assert_eq!((flat.flutes, flat.cutter.flute_length, flat.stick_out), (3, 18.0, Some(25.0)));
+    assert_eq!((flat.spindle_rpm, flat.feed_rate, flat.plunge_rate, flat.speeds), (15000.0, 1800.0, 600.0, Speeds::AsTyped));
+    assert_eq!(flat.name, "6mm 3F alu");
+    assert_eq!(read.tools[1].cutter.flute_length, 12.7);
+    assert_eq!(read.tools[1].speeds, Speeds::FromMaterial, "no preset: the material's speeds");
+    assert_eq!(read.tools[2].cutter.corner_radius, 1.5);
+    assert_eq!(read.tools[3].cutter.angle, Some(135.0));
+    assert_eq!((read.tools[4].cutter.angle, read.tools[4].cutter.tip_diameter), (Some(90.0), 0.5));
+    for t in &read.tools {
+        t.cutter.validate().unwrap();
+    }
+    let notes = read.notes.join("\n");
+    for said in [
+        "T4: 2 presets: the first ('Aluminium roughing')",
+        "T4: its holder (ER20 collet chuck)",
+        "T20 (M6 tap): a \"tap right hand\" has no shape in swarf",
+        "a holder (BT30 shrink fit) is not a cutting tool",
+        "a probe (Renishaw OMP40)",
+        "geometry.CSP",
+        "geometry.HAND",
+        "geometry.OAL",
+        "post-process.diameter-offset",
+    ] {
+        assert!(notes.contains(said), "{said:?} not in:\n{notes}");
+    }
+    // Broken files are said so.
+    let e = read_library(&FUSION.as_bytes()[..200], "library.json", false, &[]).unwrap_err().to_string();
+    assert!(e.starts_with("library.json: not a tool library"), "{e}");
+    let e = read_library(b"{\"what\": 1}", "x.json", false, &[]).unwrap_err().to_string();
+    assert!(e.contains("not a tool library swarf reads"), "{e}");
+}
+
+#[test]
+fn a_linuxcnc_tool_table_is_read_in_its_units() {
+    let tbl = "T1 P1 Z0.511 D6.000 ;6 mm flat end mill\nT2 P2 D3.175 Z12 ;1/8 ball nose\n\nT5 P5 D5 ;drill 118°\nT9 P9 D0.25 ;\nT10 P10 ;no diameter\n";
+    let read = read_library(tbl.as_bytes(), "tool.tbl", false, &[]).unwrap();
+    let t: Vec<_> = read.tools.iter().map(|t| (t.number, t.cutter.shape, t.cutter.diameter)).collect();
+    assert_eq!(t, vec![(1, Shape::Flat, 6.0), (2, Shape::Ball, 3.175), (5, Shape::Drill, 5.0), (9, Shape::Flat, 0.25)]);
+    assert_eq!(read.tools[2].cutter.angle, Some(118.0));
+    let notes = read.notes.join("\n");
+    assert!(notes.contains("offsets and orientations") && notes.contains("T9: the comment names no shape") && notes.contains("line 6: a tool needs its T number and a diameter"), "{notes}");
+    let inches = read_library(tbl.as_bytes(), "tool.tbl", true, &[]).unwrap();
+    assert_eq!(inches.tools[0].cutter.diameter, 6.0 * 25.4);
+}
+
+#[test]
+fn freecad_bits_and_libraries_are_read() {
+    let endmill = r#"{ "version": 2, "name": "5mm Endmill", "shape": "endmill.fcstd", "parameter": { "CuttingEdgeHeight": "30.0000 mm", "Diameter": "5.0000 mm", "Length": "50.0000 mm", "ShankDiameter": "3.0000 mm", "Flutes": 2 }, "attribute": {} }"#;
+    let vbit = r#"{ "version": 2, "name": "60 deg V-bit", "shape": "v-bit.fcstd", "parameter": { "CuttingEdgeAngle": "60.0000 °", "Diameter": "0.5 in", "TipDiameter": "0.2 mm", "CuttingEdgeHeight": "10 mm", "ShankDiameter": "6 mm" } }"#;
+    let probe = r#"{ "version": 2, "name": "probe", "shape": "probe.fcstd", "parameter": { "Diameter": "2 mm" } }"#;
+    let one = read_library(endmill.as_bytes(), "5mm_Endmill.fctb", false, &[]).unwrap();
+    assert_eq!((one.tools[0].cutter.shape, one.tools[0].cutter.diameter, one.tools[0].cutter.flute_length, one.tools[0].cutter.shank_diameter), (Shape::Flat, 5.0, 30.0, Some(3.0)));
+    let library = r#"{ "version": 1, "tools": [ { "nr": 3, "path": "5mm_Endmill.fctb" }, { "nr": 8, "path": "../Bit/60deg_Vbit.fctb" }, { "nr": 9, "path": "probe.fctb" }, { "nr": 10, "path": "missing.fctb" } ] }"#;
+    let bits = vec![("5mm_Endmill.fctb".to_owned(), endmill.as_bytes().to_vec()), ("60deg_Vbit.fctb".to_owned(), vbit.as_bytes().to_vec()), ("probe.fctb".to_owned(), probe.as_bytes().to_vec())];
+    let read = read_library(library.as_bytes(), "Default.fctl", false, &bits).unwrap();
+    let t: Vec<_> = read.tools.iter().map(|t| (t.number, t.cutter.shape, t.cutter.diameter)).collect();
+    assert_eq!(t, vec![(3, Shape::Flat, 5.0), (8, Shape::VBit, 12.7)]);
+    assert_eq!((read.tools[1].cutter.angle, read.tools[1].cutter.tip_diameter), (Some(60.0), 0.2));
+    let notes = read.notes.join("\n");
+    assert!(notes.contains("probe: its shape \"probe.fcstd\" has none in swarf") && notes.contains("T10: its bit missing.fctb was not given"), "{notes}");
+}
+
+#[test]
+fn a_library_written_reads_back_the_same() {
+    let read = read_library(FUSION.as_bytes(), "library.json", false, &[]).unwrap();
+    let back = read_library(write_library(&read.tools, LibraryFormat::Fusion).as_bytes(), "out.json", false, &[]).unwrap();
+    assert!(back.notes.is_empty(), "{:?}", back.notes);
+    for (a, b) in read.tools.iter().zip(&back.tools) {
+        assert_eq!((a.number, &a.cutter, a.flutes, a.stick_out), (b.number, &b.cutter, b.flutes, b.stick_out));
+        assert_eq!((a.spindle_rpm, a.feed_rate, a.plunge_rate), (b.spindle_rpm, b.feed_rate, b.plunge_rate));
+    }
+    // A tool table holds numbers, diameters, shapes (in the comment) and point angles.
+    let tbl = write_library(&read.tools, LibraryFormat::LinuxCnc);
+    let back = read_library(tbl.as_bytes(), "tool.tbl", false, &[]).unwrap();
+    let shapes = |tools: &[swarf::tool::Tool]| tools.iter().map(|t| (t.number, t.cutter.shape, t.cutter.diameter)).collect::<Vec<_>>();
+    assert_eq!(shapes(&back.tools), shapes(&read.tools), "{tbl}");
+    assert_eq!(back.tools[3].cutter.angle, Some(135.0));
+}
