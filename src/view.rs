@@ -294,7 +294,7 @@ impl SimulationData {
         let mrr = v.rates.iter().map(|&r| r as f32).collect();
         let r = &v.report;
         let mut findings = Vec::new();
-        for (kind, list) in [(0.0, &r.gouges), (1.0, &r.rapid_collisions), (2.0, &r.body_collisions)] {
+        for (kind, list) in [(0.0, &r.gouges), (1.0, &r.rapid_collisions), (2.0, &r.body_collisions), (2.0, &r.holder_collisions)] {
             for f in list {
                 findings.extend([f.at.x as f32, f.at.y as f32, f.at.z as f32, kind]);
             }

@@ -82,12 +82,13 @@ struct Defaults {
     forms: Vec<crate::machining::form::OperationForm>,
     materials: Vec<crate::cutting::MaterialChoice>,
     machines: Vec<crate::cutting::Machine>,
+    holders: Vec<crate::tool::Holder>,
 }
 
 /// Every default the page's forms start from: `{ job, drawingJob, tool, operations, forms }`:
 /// the mould job for parts ([`Job::demo`]), the sheet job for drawings, one operation of each
-/// kind, each kind's form (its fields, in the kinds' order), the stock materials and the
-/// built-in machines.
+/// kind, each kind's form (its fields, in the kinds' order), the stock materials, the
+/// built-in machines and holders.
 #[wasm_bindgen]
 pub fn defaults() -> Result<JsValue, JsError> {
     to_js(&Defaults {
@@ -98,6 +99,7 @@ pub fn defaults() -> Result<JsValue, JsError> {
         forms: job::Operation::forms(),
         materials: crate::cutting::Material::choices(),
         machines: crate::cutting::Machine::builtin(),
+        holders: crate::tool::Holder::builtin(),
     })
 }
 

@@ -14,7 +14,7 @@ const FUSION: &str = r#"{
       "post-process": { "number": 4, "diameter-offset": 4 },
       "start-values": { "presets": [ { "name": "Aluminium roughing", "n": 15000, "v_f": 1800, "v_f_plunge": 600 },
                                       { "name": "Aluminium finishing", "n": 18000, "v_f": 1200 } ] },
-      "holder": { "description": "ER20 collet chuck", "type": "holder" } },
+      "holder": { "description": "ER20 collet chuck", "type": "holder", "unit": "millimeters", "segments": [ { "height": 20, "lower-diameter": 34, "upper-diameter": 34 }, { "height": 10, "lower-diameter": 34, "upper-diameter": 40 } ] } },
     { "type": "ball end mill", "unit": "inches", "description": "1/8 ball", "geometry": { "DC": 0.125, "NOF": 2, "LCF": 0.5 },
       "post-process": { "number": 7 } },
     { "type": "bull nose end mill", "unit": "millimeters", "geometry": { "DC": 10, "RE": 1.5, "NOF": 4, "LCF": 25 }, "post-process": { "number": 2 } },
@@ -36,6 +36,9 @@ fn fusions_tool_library_is_read_with_its_speeds_and_what_is_left_said() {
     assert_eq!((flat.flutes, flat.cutter.flute_length, flat.stick_out), (3, 18.0, Some(25.0)));
     assert_eq!((flat.spindle_rpm, flat.feed_rate, flat.plunge_rate, flat.speeds), (15000.0, 1800.0, 600.0, Speeds::AsTyped));
     assert_eq!(flat.name, "6mm 3F alu");
+    let holder = flat.holder.as_ref().expect("its holder taken");
+    assert_eq!(holder.name, "ER20 collet chuck");
+    assert_eq!(holder.sections.iter().map(|s| (s.diameter, s.length, s.top_diameter)).collect::<Vec<_>>(), vec![(34.0, 20.0, None), (34.0, 10.0, Some(40.0))]);
     assert_eq!(read.tools[1].cutter.flute_length, 12.7);
     assert_eq!(read.tools[1].speeds, Speeds::FromMaterial, "no preset: the material's speeds");
     assert_eq!(read.tools[2].cutter.corner_radius, 1.5);
@@ -47,7 +50,6 @@ fn fusions_tool_library_is_read_with_its_speeds_and_what_is_left_said() {
     let notes = read.notes.join("\n");
     for said in [
         "T4: 2 presets: the first ('Aluminium roughing')",
-        "T4: its holder (ER20 collet chuck)",
         "T20 (M6 tap): a \"tap right hand\" has no shape in swarf",
         "a holder (BT30 shrink fit) is not a cutting tool",
         "a probe (Renishaw OMP40)",
@@ -101,7 +103,7 @@ fn a_library_written_reads_back_the_same() {
     let back = read_library(write_library(&read.tools, LibraryFormat::Fusion).as_bytes(), "out.json", false, &[]).unwrap();
     assert!(back.notes.is_empty(), "{:?}", back.notes);
     for (a, b) in read.tools.iter().zip(&back.tools) {
-        assert_eq!((a.number, &a.cutter, a.flutes, a.stick_out), (b.number, &b.cutter, b.flutes, b.stick_out));
+        assert_eq!((a.number, &a.cutter, a.flutes, a.stick_out, &a.holder), (b.number, &b.cutter, b.flutes, b.stick_out, &b.holder));
         assert_eq!((a.spindle_rpm, a.feed_rate, a.plunge_rate), (b.spindle_rpm, b.feed_rate, b.plunge_rate));
     }
     // A tool table holds numbers, diameters, shapes (in the comment) and point angles.

@@ -9,7 +9,7 @@ import { $, state, hooks, job, selectedOp, selectedTool, store, restore, setKey,
 import { valueOf, fillFields, message, fieldError, check, markProblems } from './forms.js';
 import { GcodePane } from './gcode.js';
 import { sim, setTime, step, play, drawMrr, toLine } from './simulation.js';
-import { fillTools, fillToolChoices, showSpeeds, addTool, deleteTool, exportTools, importTools, renumber } from './tools.js';
+import { fillTools, fillToolChoices, showSpeeds, onHolderField, addTool, deleteTool, exportTools, importTools, renumber } from './tools.js';
 import { fillOps, fillKinds, addOperation, onOpList, showPicked, showHoles, pickInView, findHoles, onHoleList, presetHoles, zeroOnHole } from './operations.js';
 import { fillSetups, addSetup, removeSetup, onSetupTabs, onSetupField, showHeld, playSetup } from './setups.js';
 import { setKind, showPart, takeFile, fillPart, freshSetup, showSizes } from './part.js';
@@ -214,6 +214,7 @@ form.addEventListener('change', (e) => {
   if (e.target.closest('#op-list')) return;
   if (e.target.name === 'vise') { onVise(e.target); return; }
   if (e.target.name === 'machine') { onMachine(e.target.value); return; }
+  if (e.target.name === 'holder' || e.target.name === 'holderSections') { onHolderField(e.target); return; }
   onField(e.target);
   if (e.target.closest('#fs-part') || e.target.closest('#fs-drawing')) showPart();
 });

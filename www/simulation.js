@@ -185,7 +185,7 @@ export function showSimulation(data, summary = null) {
   $('scrub').max = total;
   const r = data.report;
   $('sim-report').textContent = units.words(r.text.trim());
-  $('sim-report').className = r.gougeCount + r.rapidCollisionCount + r.bodyCollisionCount > 0 ? 'result problem' : 'result';
+  $('sim-report').className = r.gougeCount + r.rapidCollisionCount + r.bodyCollisionCount + r.holderCollisionCount + r.fixtureCollisionCount > 0 ? 'result problem' : 'result';
   // A V-carve is judged by its depths: coloured so from the start (the box turns it off).
   const carved = ops().some((o) => o.kind === 'vcarve' && o.enabled !== false);
   $('show-depth').checked = carved;

@@ -1,7 +1,7 @@
 // The API of swarf.js. The data it passes (jobs, tools, operations, posts, projects, results)
 // has the types generated from swarf's Rust serde types (types/swarf-types.d.ts); only the
 // engine's own calls, and the input forms of those types, are declared here.
-import type { Job, Post, PostSettings, CycleTime, Project, Summary, DrawingView, ReportView, Reposted, Problem, Warning, OperationReport, TimeItem, Hole, EdgeView, SetupView, OperationForm, WorkZero, MaterialChoice, Machine, CuttingData, Imported, LibraryFormat } from './types/swarf-types.js';
+import type { Job, Post, PostSettings, CycleTime, Project, Summary, DrawingView, ReportView, Reposted, Problem, Warning, OperationReport, TimeItem, Hole, EdgeView, SetupView, OperationForm, WorkZero, MaterialChoice, Machine, CuttingData, Imported, LibraryFormat, Holder } from './types/swarf-types.js';
 
 export type { Job, Post, PostSettings, CycleTime, Project, Summary, DrawingView, ReportView, Reposted, Problem, Warning, OperationReport, TimeItem, Hole, EdgeView, SetupView };
 
@@ -142,7 +142,7 @@ export declare class UnsafeProgramError extends Error {
 export declare class Engine {
   /** How many workers share a run. */
   readonly workers: number;
-  defaults: { job: Job; drawingJob: Job; tool: Job['tools'][number]; operations: Job['operations']; forms: OperationForm[]; materials: MaterialChoice[]; machines: Machine[] };
+  defaults: { job: Job; drawingJob: Job; tool: Job['tools'][number]; operations: Job['operations']; forms: OperationForm[]; materials: MaterialChoice[]; machines: Machine[]; holders: Holder[] };
   posts: { dialect: PostSettings['dialect']; post: Post }[];
   /** The sample part (binary STL) and drawing (DXF). */
   sample: Uint8Array;

@@ -1,7 +1,7 @@
 // The tool library: a list to pick from, a form for the picked tool, tools added, copied,
 // deleted, exported and imported as JSON (read by the core, as a job's tools are).
 import { $, state, hooks, selectedTool, store, downloadText, buildJob } from './state.js';
-import { fillFields, message, sized } from './forms.js';
+import { fillFields, message, sized, fieldError } from './forms.js';
 import * as units from './units.js';
 
 const shapeName = (t) => ({ ball: 'ball', flat: 'flat', bullNose: `bull nose r${t.cornerRadius}`, drill: `drill ${t.angle ?? 118}°`, spotDrill: `spot drill ${t.angle ?? 90}°`, vBit: `V-bit ${t.angle ?? 90}°`, threadMill: 'thread mill' }[t.shape] || t.shape);
@@ -19,6 +19,7 @@ export function fillTools() {
   document.querySelector('#tool-editor [name=cornerRadius]').closest('label').hidden = t?.shape !== 'bullNose';
   document.querySelector('#tool-editor [name=pointAngle]').closest('label').hidden = !['drill', 'spotDrill', 'vBit'].includes(t?.shape);
   document.querySelector('#tool-editor [name=tipDiameter]').closest('label').hidden = t?.shape !== 'vBit';
+  fillHolder(t);
   fillToolChoices();
   showSpeeds();
 }
@@ -46,6 +47,50 @@ export async function showSpeeds() {
       if (document.activeElement !== el) el.value = name === 'spindleRpm' ? String(v) : units.fieldText(v);
     }
   }
+}
+
+// ---- holders ------------------------------------------------------------------------------
+// A tool's holder: none, one of the core's built-in ones (ER collet chucks, a router's nut), or
+// the tool's own (imported, or its sections edited), its sections said as "34 × 19.5, 40 × 40"
+// (a cone "20 × 8 to 28"), diameters and lengths in the page's units.
+const mmText = (v) => units.fieldText(v);
+export const sectionsText = (h) => h.sections.map((s) => `${mmText(s.diameter)} × ${mmText(s.length)}${s.topDiameter != null ? ` to ${mmText(s.topDiameter)}` : ''}`).join(', ');
+
+function fillHolder(t) {
+  const select = document.querySelector('#tool-editor [name=holder]');
+  if (select.options.length === 1) for (const h of state.defaults?.holders ?? []) select.append(new Option(h.name, h.name));
+  select.querySelector('[value=own]')?.remove();
+  const builtin = t?.holder && state.defaults.holders.find((h) => JSON.stringify(h) === JSON.stringify(t.holder));
+  if (t?.holder && !builtin) select.append(new Option(`its own: ${t.holder.name}`, 'own'));
+  select.value = !t?.holder ? '' : builtin ? builtin.name : 'own';
+  const sections = document.querySelector('#tool-editor [name=holderSections]');
+  sections.closest('label').hidden = !t?.holder;
+  if (t?.holder && document.activeElement !== sections) sections.value = sectionsText(t.holder);
+}
+
+// The holder chosen, or its sections typed.
+export function onHolderField(el) {
+  const t = selectedTool();
+  if (!t) return;
+  if (el.name === 'holder') {
+    if (el.value === 'own') return;
+    const h = state.defaults.holders.find((x) => x.name === el.value);
+    t.holder = h ? structuredClone(h) : null;
+  } else {
+    const sections = [];
+    for (const part of el.value.split(',').map((p) => p.trim()).filter(Boolean)) {
+      const m = part.match(/^([\d.]+)\s*[x×*]\s*([\d.]+)(?:\s*to\s*([\d.]+))?$/i);
+      if (!m || [m[1], m[2], m[3]].some((v) => v !== undefined && !(Number(v) > 0))) { fieldError(el, `"${part}": give a section as diameter × length, a cone as diameter × length to its top diameter`); return; }
+      sections.push({ diameter: units.fromPage(Number(m[1])), length: units.fromPage(Number(m[2])), topDiameter: m[3] === undefined ? null : units.fromPage(Number(m[3])) });
+    }
+    if (!sections.length) { fieldError(el, 'a holder needs at least one section (or choose none)'); return; }
+    fieldError(el, '');
+    t.holder = { name: t.holder?.name ?? 'holder', sections };
+    if (state.defaults.holders.some((h) => h.name === t.holder.name && JSON.stringify(h.sections) !== JSON.stringify(sections))) t.holder.name = `${t.holder.name} (edited)`;
+  }
+  store();
+  fillTools();
+  hooks.changed?.();
 }
 
 // The library's tools, to choose an operation's tool from (where its form has one).

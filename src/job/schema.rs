@@ -729,6 +729,9 @@ impl Job {
                     );
                 }
             }
+            for (field, message) in tool.holder.iter().flat_map(|h| h.problems()) {
+                say(format!("tools[{i}].holder.{field}"), format!("tools[{i}].holder.{field} {message}"));
+            }
             if !(1..=crate::limits::MAX_FLUTES).contains(&tool.flutes) {
                 say(format!("tools[{i}].flutes"), format!("tools[{i}].flutes must be 1 to {} (got {})", crate::limits::MAX_FLUTES, tool.flutes));
             }

@@ -129,10 +129,11 @@ svg{{border:1px solid #ccc;background:#fafafa}}.n{{text-align:right}}</style></h
         for (tool, why) in s.tools.iter().filter_map(|n| cut.iter().find(|(t, _)| t.number == *n)) {
             let _ = writeln!(
                 h,
-                "<tr><td>T{}</td><td>{}</td><td>{}</td><td>—</td><td class=n>{:.0} rpm</td><td class=n>{:.0} mm/min</td><td>{}</td></tr>",
+                "<tr><td>T{}</td><td>{}</td><td>{}</td><td>{}</td><td class=n>{:.0} rpm</td><td class=n>{:.0} mm/min</td><td>{}</td></tr>",
                 tool.number,
                 escape(&tool.describe()),
                 tool.stick_out.map_or_else(|| format!("at least {:.1} mm (its flutes)", tool.cutter.flute_length), |s| format!("{s:.1} mm")),
+                tool.holder.as_ref().map_or_else(|| "—".to_owned(), |h| escape(&h.name)),
                 tool.spindle_rpm,
                 tool.feed_rate,
                 escape(why)

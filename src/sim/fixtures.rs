@@ -124,7 +124,7 @@ mod tests {
     use crate::toolpath::Move;
 
     fn moving(cutter: &Cutter, from: DVec3, to: DVec3) -> ProgramMove {
-        ProgramMove { path: 0, tool: 1, cutter: cutter.clone(), from, mv: Move::Line { to, feed: 1000.0 }, start: 0.0, seconds: 1.0, air: false }
+        ProgramMove { path: 0, tool: 1, cutter: cutter.clone(), from, mv: Move::Line { to, feed: 1000.0 }, start: 0.0, seconds: 1.0, air: false, holder: None }
     }
 
     #[test]

@@ -26,6 +26,8 @@ pub struct ProgramMove {
     /// A feed move faster than its tool's feed: one its operation knew to cut nothing (the air
     /// feed, [`crate::machining::air`]), held to that as a rapid is.
     pub air: bool,
+    /// Its tool's holder as rings `(radius, rise above the tip)` ([`crate::tool::Holder::rings`]).
+    pub holder: Option<std::sync::Arc<Vec<(f64, f64)>>>,
 }
 
 /// The moves of `paths`, each with its tool from `tools`, timed at their feeds and `rapid_rate`.
@@ -34,6 +36,7 @@ pub fn program_moves(paths: &[Toolpath], tools: &[Tool], rapid_rate: f64) -> Res
     let mut clock = 0.0;
     for (k, path) in paths.iter().enumerate() {
         let tool = tools.iter().find(|t| t.number == path.tool).ok_or_else(|| Error::Input(format!("the program uses tool number {}, which is not in the tool library", path.tool)))?;
+        let holder = tool.holder_rings();
         let mut at = path.start;
         // A drilling cycle's dwell at the bottom counts in the move that reached it.
         let dwells: std::collections::HashMap<usize, f64> = path.cycles.iter().filter(|c| c.kind == crate::toolpath::cycle::CycleKind::Dwell).map(|c| (c.bottom_move(), c.dwell)).collect();
@@ -44,7 +47,7 @@ pub fn program_moves(paths: &[Toolpath], tools: &[Tool], rapid_rate: f64) -> Res
             };
             let seconds = mv.length(at) / rate * 60.0 + dwells.get(&i).copied().unwrap_or(0.0);
             let air = !mv.is_rapid() && rate > tool.feed_rate * (1.0 + 1e-9);
-            out.push(ProgramMove { path: k, tool: tool.number, cutter: tool.cutter.clone(), from: at, mv: *mv, start: clock, seconds, air });
+            out.push(ProgramMove { path: k, tool: tool.number, cutter: tool.cutter.clone(), from: at, mv: *mv, start: clock, seconds, air, holder: holder.clone() });
             clock += seconds;
             at = mv.to();
         }
@@ -178,7 +181,7 @@ pub fn decode(flat: &[f64], tools: &[Tool]) -> Result<Vec<ProgramMove>> {
                 2 | 3 => Move::Arc { to, center, clockwise: v[1] == 2.0, feed: v[10] },
                 _ => return Err(Error::Input(format!("no move is of kind {}", v[1]))),
             };
-            Ok(ProgramMove { path: 0, tool: tool.number, cutter: tool.cutter.clone(), from: DVec3::new(v[2], v[3], v[4]), mv, start: 0.0, seconds: v[11], air: false })
+            Ok(ProgramMove { path: 0, tool: tool.number, cutter: tool.cutter.clone(), from: DVec3::new(v[2], v[3], v[4]), mv, start: 0.0, seconds: v[11], air: false, holder: tool.holder_rings() })
         })
         .collect()
 }

@@ -8,6 +8,8 @@
 //!   (faster than its tool's feed: its operation knew it to cut nothing) that does.
 //! * **Body collision**: a feed move with material standing higher above the tip than the
 //!   cutter's flute length within the shank's radius: the unfluted body would rub it.
+//! * **Holder collision**: a feed move with material within a section of the tool's holder
+//!   ([`crate::tool::Holder::rings`]) above that section's bottom.
 //! * **Residual**: material left above part + allowance, as a map, its largest and mean value.
 
 use serde::Serialize;
@@ -86,6 +88,10 @@ pub struct Report {
     pub rapid_collisions: Vec<Finding>,
     pub body_collision_count: usize,
     pub body_collisions: Vec<Finding>,
+    /// Moves that drive the tool's holder into material (how deep past its face), where the
+    /// tool has a holder.
+    pub holder_collision_count: usize,
+    pub holder_collisions: Vec<Finding>,
     /// Moves into what holds the stock, grown by its clearance ([`super::fixtures`]); none
     /// checked where the job names no fixtures (`fixtures_checked`).
     pub fixtures_checked: usize,
@@ -104,7 +110,7 @@ pub struct Report {
 
 impl Report {
     pub fn is_clean(&self) -> bool {
-        self.gouge_count == 0 && self.rapid_collision_count == 0 && self.body_collision_count == 0 && self.fixture_collision_count == 0
+        self.gouge_count == 0 && self.rapid_collision_count == 0 && self.body_collision_count == 0 && self.holder_collision_count == 0 && self.fixture_collision_count == 0
     }
 
     /// What makes the program unsafe to run, in one message that says where and how deep, or
@@ -125,6 +131,10 @@ impl Report {
         if self.body_collision_count > 0 {
             let at = deepest(&self.body_collisions).map(|f| format!(", {:.3} mm past the flutes at most, {}", f.amount, place(&f))).unwrap_or_default();
             parts.push(format!("{} moves bury the tool deeper than its flute length{at}", self.body_collision_count));
+        }
+        if self.holder_collision_count > 0 {
+            let at = deepest(&self.holder_collisions).map(|f| format!(", {:.3} mm into material at most, {}", f.amount, place(&f))).unwrap_or_default();
+            parts.push(format!("{} moves drive the tool's holder into material (a longer stick-out or a slimmer holder reaches){at}", self.holder_collision_count));
         }
         if let Some(c) = self.fixture_collisions.first() {
             let inside = if c.finding.amount > 0.0 { format!("{:.3} mm into its clearance", c.finding.amount) } else { String::new() };
@@ -153,6 +163,9 @@ impl Report {
         }
         s += &format!("rapid moves through stock: {}{}\n", self.rapid_collision_count, first(&self.rapid_collisions));
         s += &format!("tool body (above the flutes) in material: {}{}\n", self.body_collision_count, first(&self.body_collisions));
+        if self.holder_collision_count > 0 {
+            s += &format!("holder in material: {}{}\n", self.holder_collision_count, first(&self.holder_collisions));
+        }
         if self.fixtures_checked > 0 {
             let at = self
                 .fixture_collisions
@@ -348,11 +361,12 @@ pub struct BandCut {
     pub moves: Vec<(usize, f64, Option<BodyPlace>)>,
 }
 
-/// Where a tool's body met material (at the body's lowest point), and how deep (mm).
-pub type BodyPlace = (DVec3, f64);
+/// Where a tool's body met material (at the body's lowest point), how deep (mm), and whether
+/// it was the holder (else the shank above the flutes).
+pub type BodyPlace = (DVec3, f64, bool);
 
 /// Numbers per move in [`BandCut::to_flat`].
-const CUT_FLAT: usize = 6;
+const CUT_FLAT: usize = 7;
 
 impl BandCut {
     /// As flat numbers (for a worker of the page's pool): per move its index, volume, and the
@@ -361,8 +375,8 @@ impl BandCut {
         let mut out = Vec::with_capacity(1 + self.moves.len() * CUT_FLAT);
         out.push(self.moves.len() as f64);
         for &(k, volume, body) in &self.moves {
-            let (at, depth) = body.unwrap_or((DVec3::NAN, f64::NAN));
-            out.extend([k as f64, volume, at.x, at.y, at.z, depth]);
+            let (at, depth, holder) = body.unwrap_or((DVec3::NAN, f64::NAN, false));
+            out.extend([k as f64, volume, at.x, at.y, at.z, depth, if holder { 1.0 } else { 0.0 }]);
         }
         out
     }
@@ -375,7 +389,7 @@ impl BandCut {
         while let Some((&count, tail)) = rest.split_first() {
             let len = count as usize * CUT_FLAT;
             let (mine, tail) = (tail.get(..len).ok_or_else(short)?, &tail[len..]);
-            let moves = mine.chunks_exact(CUT_FLAT).map(|v| (v[0] as usize, v[1], (!v[5].is_nan()).then(|| (DVec3::new(v[2], v[3], v[4]), v[5])))).collect();
+            let moves = mine.chunks_exact(CUT_FLAT).map(|v| (v[0] as usize, v[1], (!v[5].is_nan()).then(|| (DVec3::new(v[2], v[3], v[4]), v[5], v[6] == 1.0)))).collect();
             out.push(BandCut { moves });
             rest = tail;
         }
@@ -401,7 +415,13 @@ impl Band<'_> {
             let body = if m.mv.is_rapid() {
                 None
             } else {
-                self.stock.above_body(sweep, body_radius(m), m.cutter.flute_length + gouge).map(|(at, depth)| (at.extend(sweep.nearest(at).1 + m.cutter.flute_length), depth))
+                // The holder first: in material, it is the worse of the two.
+                let rings = m.holder.as_deref().map(Vec::as_slice).unwrap_or_default();
+                let holder = rings
+                    .iter()
+                    .filter_map(|&(r, rise)| self.stock.above_body(sweep, r, rise + gouge).map(|(at, depth)| (at.extend(sweep.nearest(at).1 + rise), depth, true)))
+                    .max_by(|a, b| a.1.total_cmp(&b.1));
+                holder.or_else(|| self.stock.above_body(sweep, body_radius(m), m.cutter.flute_length + gouge).map(|(at, depth)| (at.extend(sweep.nearest(at).1 + m.cutter.flute_length), depth, false)))
             };
             let volume = self.stock.apply(sweep);
             match self.cut.moves.last_mut() {
@@ -483,7 +503,7 @@ fn cut_group(bands: Vec<&mut DexelStock>, moves: &[ProgramMove], tolerances: &To
             band.sweeps.clear();
         }
         for (s, (k, sweep)) in run.iter().enumerate() {
-            let grow = (body_radius(&moves[*k]) - sweep.profile.radius).max(0.0);
+            let grow = (reach_radius(&moves[*k]) - sweep.profile.radius).max(0.0);
             for b in reaching(sweep.min.y - grow, sweep.max.y + grow) {
                 work[b].sweeps.push(s);
             }
@@ -509,6 +529,11 @@ fn body_radius(m: &ProgramMove) -> f64 {
     m.cutter.shank_diameter.unwrap_or(m.cutter.diameter) * 0.5
 }
 
+/// How far from its axis the tool meets material: its body, or its holder's widest section.
+fn reach_radius(m: &ProgramMove) -> f64 {
+    m.holder.iter().flat_map(|rings| rings.iter().map(|r| r.0)).fold(body_radius(m), f64::max)
+}
+
 /// A program simulated piece by piece on a z-map stock: a job applies each operation's moves as
 /// it is made, so the next operation sees the stock the earlier ones left (the in-process
 /// stock), and the findings of the whole program are gathered on the way.
@@ -522,6 +547,7 @@ pub struct Simulator {
     timings: Vec<Timing>,
     rapid: (usize, Vec<Finding>),
     body: (usize, Vec<Finding>),
+    holder: (usize, Vec<Finding>),
     /// The stock carried in, as it was before the first move.
     start: Option<DexelStock>,
 }
@@ -529,7 +555,16 @@ pub struct Simulator {
 impl Simulator {
     /// The untouched box `stock` on cells of side `cell`.
     pub fn new(stock: &Aabb, cell: f64) -> Result<Simulator> {
-        Ok(Simulator { stock: stock_for(stock, cell)?, raw_top: stock.max.z, volumes: Vec::new(), timings: Vec::new(), rapid: (0, Vec::new()), body: (0, Vec::new()), start: None })
+        Ok(Simulator {
+            stock: stock_for(stock, cell)?,
+            raw_top: stock.max.z,
+            volumes: Vec::new(),
+            timings: Vec::new(),
+            rapid: (0, Vec::new()),
+            body: (0, Vec::new()),
+            holder: (0, Vec::new()),
+            start: None,
+        })
     }
 
     /// Starts from the stock earlier work left instead of the raw box: each cell's material
@@ -604,8 +639,8 @@ impl Simulator {
         }
         for ((m, volume), body) in moves.iter().zip(removed).zip(body) {
             let index = self.volumes.len();
-            if let Some((at, depth)) = body {
-                note(&mut self.body, Finding { move_index: Some(index), at, amount: depth });
+            if let Some((at, depth, holder)) = body {
+                note(if holder { &mut self.holder } else { &mut self.body }, Finding { move_index: Some(index), at, amount: depth });
             }
             self.timings.push(m.timing());
             if (m.mv.is_rapid() || m.air) && volume > GRAZE {
@@ -666,7 +701,7 @@ impl Simulator {
     /// [`WALL_RECHECKS`] cells are judged again; beyond, a program gouges anyway.
     pub fn finish_near(self, surface: impl FnOnce(Grid) -> HeightField, lowest_near: impl Fn(DVec2) -> Option<f64>, allowance: f64, tolerances: &Tolerances) -> Verification {
         let rates = self.rates();
-        let Simulator { stock: sim, raw_top, volumes, rapid, body, start, .. } = self;
+        let Simulator { stock: sim, raw_top, volumes, rapid, body, holder, start, .. } = self;
         let grid = sim.grid();
         let mut surface = surface(grid);
         let mut gouges = Vec::new();
@@ -708,6 +743,8 @@ impl Simulator {
             rapid_collisions: rapid.1,
             body_collision_count: body.0,
             body_collisions: body.1,
+            holder_collision_count: holder.0,
+            holder_collisions: holder.1,
             fixtures_checked: 0,
             fixture_collision_count: 0,
             fixture_collisions: Vec::new(),

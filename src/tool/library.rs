@@ -7,7 +7,7 @@
 
 use serde_json::{json, Map, Value};
 
-use super::{Speeds, Tool};
+use super::{HolderSection, Speeds, Tool};
 use crate::cutter::{Cutter, Shape};
 use crate::error::{Error, Result};
 
@@ -161,7 +161,26 @@ fn fusion(value: &Value) -> Imported {
         }
         if let Some(h) = entry.get("holder").filter(|h| !h.is_null()) {
             let what = h.get("description").and_then(Value::as_str).unwrap_or("a holder");
-            notes.say(format!("T{number}: its holder ({what}) is not taken: swarf keeps holders out of the part only by the stick-out so far"));
+            let hs = if h.get("unit").and_then(Value::as_str) == Some("inches") { INCH } else { 1.0 };
+            // Its segments from the tool up: each as high as it is, from its lower to its upper
+            // diameter.
+            let sections: Vec<HolderSection> = h
+                .get("segments")
+                .and_then(Value::as_array)
+                .into_iter()
+                .flatten()
+                .filter_map(|seg| {
+                    let v = |k: &str| seg.get(k).and_then(Value::as_f64).map(|x| x * hs);
+                    let (d, l) = (v("lower-diameter")?, v("height")?);
+                    let top = v("upper-diameter").filter(|u| (u - d).abs() > 1e-9);
+                    Some(HolderSection { diameter: d, length: l, top_diameter: top })
+                })
+                .collect();
+            if sections.is_empty() {
+                notes.say(format!("T{number}: its holder ({what}) gives no segments (height, lower and upper diameter): not taken"));
+            } else {
+                tool.holder = Some(super::Holder { name: what.to_owned(), sections });
+            }
         }
         for key in entry.as_object().map(Map::keys).into_iter().flatten().filter(|k| !TAKEN.contains(&k.as_str())) {
             if !unknown.contains(key) {
@@ -371,7 +390,13 @@ pub fn write_library(tools: &[Tool], format: LibraryFormat) -> String {
                     if let Some(s) = t.stick_out {
                         g["LB"] = json!(s);
                     }
+                    let holder = t.holder.as_ref().map(|h| {
+                        let segments: Vec<Value> =
+                            h.sections.iter().map(|s| json!({ "height": s.length, "lower-diameter": s.diameter, "upper-diameter": s.top_diameter.unwrap_or(s.diameter) })).collect();
+                        json!({ "description": h.name, "type": "holder", "unit": "millimeters", "segments": segments })
+                    });
                     json!({
+                        "holder": holder,
                         "type": kind,
                         "unit": "millimeters",
                         "description": if t.name.is_empty() { c.describe() } else { t.name.clone() },

@@ -6,7 +6,10 @@ use serde::{Deserialize, Serialize};
 use crate::cutter::Cutter;
 pub use crate::cutting::{Speeds, ToolMaterial};
 
+pub mod holder;
 pub mod library;
+
+pub use holder::{Holder, HolderSection};
 
 /// A tool in the library: a cutter with its cutting data.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
@@ -25,8 +28,8 @@ pub struct Tool {
     pub feed_rate: f64,
     /// Feed for vertical entries (mm/min). Default value: 300.
     pub plunge_rate: f64,
-    /// How far the tool stands out of its holder (mm), for the library and the setup sheet
-    /// (the simulation checks the shank above the flutes; holders are not modelled yet).
+    /// How far the tool stands out of its holder (mm): where the holder's face is, for the
+    /// verification, the library and the setup sheet.
     /// Default value: none.
     pub stick_out: Option<f64>,
     /// Coolant while this tool cuts: off, flood (M8) or mist (M7), as the post writes them.
@@ -40,6 +43,10 @@ pub struct Tool {
     /// names one; [`crate::cutting`]) or `asTyped` (`spindleRpm`, `feedRate`, `plungeRate`).
     /// Default value: fromMaterial.
     pub speeds: Speeds,
+    /// What holds it (a collet chuck, a router's nut), `stickOut` below its face (the flute
+    /// length where that is not set): the verification finds it in material. Default value:
+    /// none.
+    pub holder: Option<Holder>,
 }
 
 /// Coolant for a tool.
@@ -66,11 +73,17 @@ impl Default for Tool {
             flutes: 2,
             tool_material: ToolMaterial::Carbide,
             speeds: Speeds::FromMaterial,
+            holder: None,
         }
     }
 }
 
 impl Tool {
+    /// Its holder's rings, `(radius, rise above the tip)` ([`Holder::rings`]), if it has one.
+    pub fn holder_rings(&self) -> Option<std::sync::Arc<Vec<(f64, f64)>>> {
+        self.holder.as_ref().map(|h| std::sync::Arc::new(h.rings(self.stick_out.unwrap_or(self.cutter.flute_length))))
+    }
+
     pub fn describe(&self) -> String {
         if self.name.is_empty() {
             self.cutter.describe()

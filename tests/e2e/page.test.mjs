@@ -1139,6 +1139,32 @@ test('tool libraries machinists keep: a Fusion library and a LinuxCNC tool table
   await context.close();
 });
 
+test('a tool\'s holder in the page: a built-in ER chuck chosen, its sections shown and edited, kept in the tool the job runs', async () => {
+  const { page, context, errors } = await openPage();
+  await tab(page, 'tools');
+  await page.selectOption('select[name=holder]', 'ER20 collet chuck');
+  await page.waitForFunction(() => !document.querySelector('[name=holderSections]').closest('label').hidden);
+  assert.equal(await page.inputValue('input[name=holderSections]'), '34 × 19.5, 40 × 40');
+  await page.fill('input[name=holderSections]', '30 x 20, 30 x 10 to 44');
+  await page.dispatchEvent('input[name=holderSections]', 'change');
+  const holder = await page.evaluate(() => window.swarf.tools[window.swarf.selected.tool].holder);
+  assert.equal(holder.name, 'ER20 collet chuck (edited)');
+  assert.deepEqual(holder.sections, [{ diameter: 30, length: 20, topDiameter: null }, { diameter: 30, length: 10, topDiameter: 44 }]);
+  assert.equal(await page.inputValue('select[name=holder]'), 'own');
+  // A section that does not read is said at the field, and the holder kept.
+  await page.fill('input[name=holderSections]', '30 by 20');
+  await page.dispatchEvent('input[name=holderSections]', 'change');
+  assert.match(await page.textContent('#tool-editor .field-error'), /give a section as diameter × length/);
+  assert.equal(await page.evaluate(() => window.swarf.tools[window.swarf.selected.tool].holder.sections.length), 2);
+  // The job the page runs carries it.
+  const t = await page.evaluate(async () => (await window.swarf.engine.readJob(JSON.stringify({ tools: window.swarf.tools }))).tools.find((x) => x.holder));
+  assert.equal(t.holder.sections[1].topDiameter, 44);
+  await page.selectOption('select[name=holder]', '');
+  assert.equal(await page.evaluate(() => window.swarf.tools[window.swarf.selected.tool].holder), null);
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
 test('holes in a 3D part: found in its triangles, roughed over, pecked and threaded M6 in one program that rs274 runs, clean', async () => {
   const { page, context, errors } = await openPage();
   // A plate 40 × 20 × 10 with two φ5 through holes (M6's tap drill is 5).

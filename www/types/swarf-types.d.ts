@@ -749,6 +749,36 @@ applies: Applies, };
 export type Hand = "right" | "left";
 
 /**
+ * A holder: its sections from the face the tool stands out of (the collet nut's) upward.
+ */
+export type Holder = { 
+/**
+ * Shown in the library and on the setup sheet. Default value: "holder".
+ */
+name: string, 
+/**
+ * From the nut's face up. Default value: one section 30 mm wide and 20 mm long.
+ */
+sections: Array<HolderSection>, };
+
+/**
+ * One section of a holder: a cylinder, or a cone whose top is `topDiameter` wide.
+ */
+export type HolderSection = { 
+/**
+ * Its diameter at its bottom (mm). Default value: 30.
+ */
+diameter: number, 
+/**
+ * Its length up the tool's axis (mm). Default value: 20.
+ */
+length: number, 
+/**
+ * A cone's diameter at its top (mm). Default value: as at its bottom (a cylinder).
+ */
+topDiameter: number | null, };
+
+/**
  * A round vertical hole.
  */
 export type Hole = { 
@@ -1374,6 +1404,11 @@ removed: number, gougeCount: number,
  * Deepest gouge (mm), 0 when none.
  */
 gougeMax: number, gouges: Array<Finding>, rapidCollisionCount: number, rapidCollisions: Array<Finding>, bodyCollisionCount: number, bodyCollisions: Array<Finding>, 
+/**
+ * Moves that drive the tool's holder into material (how deep past its face), where the
+ * tool has a holder.
+ */
+holderCollisionCount: number, holderCollisions: Array<Finding>, 
 /**
  * Moves into what holds the stock, grown by its clearance ([`super::fixtures`]); none
  * checked where the job names no fixtures (`fixtures_checked`).
@@ -2015,8 +2050,8 @@ feedRate: number,
  */
 plungeRate: number, 
 /**
- * How far the tool stands out of its holder (mm), for the library and the setup sheet
- * (the simulation checks the shank above the flutes; holders are not modelled yet).
+ * How far the tool stands out of its holder (mm): where the holder's face is, for the
+ * verification, the library and the setup sheet.
  * Default value: none.
  */
 stickOut: number | null, 
@@ -2039,6 +2074,12 @@ toolMaterial: ToolMaterial,
  * Default value: fromMaterial.
  */
 speeds: Speeds, 
+/**
+ * What holds it (a collet chuck, a router's nut), `stickOut` below its face (the flute
+ * length where that is not set): the verification finds it in material. Default value:
+ * none.
+ */
+holder: Holder | null, 
 /**
  * End shape. Default value: ball.
  */

@@ -1,0 +1,64 @@
+//! Issue 58: a tool's holder, found in material by the verification. A 20 mm square pocket 20
+//! deep roughed with a φ6 end mill in an ER20 chuck (its nut 34 mm across, wider than the
+//! pocket): standing 12 mm out of the nut, the nut meets the plate's top once the tool is more
+//! than 12 mm down, and the program is refused, saying where and how deep; standing 30 mm out,
+//! it is clean. A section of a holder as a cone is checked in steps, never later than it meets.
+
+use swarf::cutter::Cutter;
+use swarf::geom::DVec2;
+use swarf::job::{self, Job, Operation, Tool};
+use swarf::mesh::sample::height_field_solid;
+use swarf::operations::RoughZlevel;
+use swarf::progress::Progress;
+use swarf::tool::{Holder, HolderSection};
+
+fn pocket() -> swarf::mesh::Mesh {
+    height_field_solid(DVec2::new(-20.0, -20.0), DVec2::new(20.0, 20.0), 80, 80, -30.0, |x, y| if x.abs() < 10.0 && y.abs() < 10.0 { -20.0 } else { 0.0 })
+}
+
+fn job(stick_out: f64) -> Job {
+    let er20 = Holder::builtin().into_iter().find(|h| h.name.starts_with("ER20")).unwrap();
+    let tool = Tool { number: 1, cutter: Cutter { flute_length: 10.0, ..Cutter::flat(6.0) }, stick_out: Some(stick_out), holder: Some(er20), ..Tool::default() };
+    let mut rough = RoughZlevel::default();
+    rough.steps.stepdown = 5.0;
+    Job { tools: vec![tool], operations: vec![Operation::RoughZlevel(rough)], ..Job::default() }
+}
+
+#[test]
+fn a_holder_in_material_is_found_and_a_longer_stick_out_clears_it() {
+    let short = job::run(&job(12.0), pocket(), &mut Progress::none()).unwrap();
+    let r = &short.verification.as_ref().unwrap().report;
+    assert!(r.holder_collision_count > 0, "{}", r.describe());
+    let deepest = r.holder_collisions.iter().map(|f| f.amount).fold(0.0, f64::max);
+    // The tool goes 19.5 mm down (0.5 left on the floor): the nut's face 12 mm above its tip
+    // stands at most 7.5 mm under the plate's top (the first findings are kept, from the
+    // levels where it first goes in).
+    assert!(deepest > 1.0 && deepest < 7.5 + 0.6, "the nut {deepest} mm into the plate");
+    let problem = short.problem.as_deref().unwrap();
+    assert!(problem.contains("moves drive the tool's holder into material"), "{problem}");
+    let long = job::run(&job(30.0), pocket(), &mut Progress::none()).unwrap();
+    let r = &long.verification.as_ref().unwrap().report;
+    assert_eq!(r.holder_collision_count, 0, "{}", r.describe());
+    assert!(long.problem.is_none(), "{:?}", long.problem);
+    // Without a holder the short stick-out is not judged by one.
+    let mut bare = job(12.0);
+    bare.tools[0].holder = None;
+    let out = job::run(&bare, pocket(), &mut Progress::none()).unwrap();
+    assert_eq!(out.verification.as_ref().unwrap().report.holder_collision_count, 0);
+}
+
+#[test]
+fn a_holders_sections_are_rings_up_the_tool() {
+    let h = Holder { name: "cone".into(), sections: vec![HolderSection { diameter: 20.0, length: 10.0, top_diameter: None }, HolderSection { diameter: 20.0, length: 8.0, top_diameter: Some(28.0) }] };
+    let rings = h.rings(15.0);
+    assert_eq!(rings[0], (10.0, 15.0));
+    // The cone in four steps, each as wide as its wider end.
+    assert_eq!(rings[1..].iter().map(|r| r.0).collect::<Vec<_>>(), vec![11.0, 12.0, 13.0, 14.0]);
+    assert_eq!(rings[1..].iter().map(|r| r.1).collect::<Vec<_>>(), vec![25.0, 27.0, 29.0, 31.0]);
+    let mut bad = h.clone();
+    bad.sections[0].diameter = -1.0;
+    assert_eq!(bad.problems()[0].0, "sections[0].diameter");
+    let mut j = job(12.0);
+    j.tools[0].holder = Some(bad);
+    assert_eq!(j.problems()[0].path, "tools[0].holder.sections[0].diameter");
+}
