@@ -3,7 +3,7 @@
 //! from them the spindle speed `n = 1000·vc / (π·D)` and the feed `f = fz·z·n`, capped by the
 //! machine's spindle range and feed. A tool takes them unless it says its own are as typed
 //! (`speeds: asTyped`): the program, its cycle time and the setup sheet all read the tools as
-//! they come out of [`Job::with_cutting_data`].
+//! they come out of `Job::with_cutting_data`.
 //!
 //! The chip loads are for a cut as deep as the tool is wide at full width (the tables'
 //! condition); what the operations do with lighter cuts is theirs.
@@ -11,8 +11,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::cutter::Shape;
-use crate::job::Job;
-use crate::tool::Tool;
+use crate::tool::{Speeds, Tool, ToolMaterial};
 
 /// The stock's material.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
@@ -36,27 +35,6 @@ pub enum Material {
     Mdf,
     /// Plywood.
     Plywood,
-}
-
-/// What a tool's cutting edges are made of.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
-#[serde(rename_all = "camelCase")]
-pub enum ToolMaterial {
-    #[default]
-    Carbide,
-    /// High-speed steel: half the cutting speed of carbide.
-    Hss,
-}
-
-/// Where a tool's spindle speed and feeds come from.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
-#[serde(rename_all = "camelCase")]
-pub enum Speeds {
-    /// From the stock's material (where the job names one), else as typed.
-    #[default]
-    FromMaterial,
-    /// As typed in the tool (`spindleRpm`, `feedRate`, `plungeRate`), whatever the material.
-    AsTyped,
 }
 
 /// The machine's limits the speeds and feeds keep to.
@@ -280,26 +258,4 @@ pub fn cutting_data(tool: &Tool, material: Option<Material>, machine: &Machine) 
     // A drill feeds at its feed; an end mill plunges at half its feed.
     let plunge = if matches!(c.shape, Shape::Drill | Shape::SpotDrill) { feed } else { feed / 2.0 };
     CuttingData { tool: tool.number, spindle_rpm: rpm, feed_rate: feed.round(), plunge_rate: plunge.round().max(1.0), from_material: true, reason: why, source: Some(material.source().to_owned()) }
-}
-
-impl Job {
-    /// Each tool's speeds and feeds as this job cuts them ([`cutting_data`]).
-    pub fn cutting_data(&self) -> Vec<CuttingData> {
-        self.tools.iter().map(|t| cutting_data(t, self.stock.material, &self.machine)).collect()
-    }
-
-    /// The job with its tools' speeds and feeds from the stock's material, where they take
-    /// them: what runs, is timed and posted.
-    pub fn with_cutting_data(&self) -> std::borrow::Cow<'_, Job> {
-        if self.stock.material.is_none() {
-            return std::borrow::Cow::Borrowed(self);
-        }
-        let mut job = self.clone();
-        for (t, c) in job.tools.iter_mut().zip(self.cutting_data()) {
-            t.spindle_rpm = c.spindle_rpm;
-            t.feed_rate = c.feed_rate;
-            t.plunge_rate = c.plunge_rate;
-        }
-        std::borrow::Cow::Owned(job)
-    }
 }

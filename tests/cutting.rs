@@ -6,11 +6,12 @@
 use std::f64::consts::PI;
 
 use swarf::cutter::{Cutter, Shape};
-use swarf::cutting::{cutting_data, Machine, Material, Speeds, ToolMaterial};
+use swarf::cutting::{cutting_data, Machine, Material};
 use swarf::drawing::import::read_drawing;
 use swarf::drawing::sample::plate_dxf;
 use swarf::job::{self, Job, Tool};
 use swarf::progress::Progress;
+use swarf::tool::{Speeds, ToolMaterial};
 
 const SFM: f64 = 0.3048;
 const IN: f64 = 25.4;

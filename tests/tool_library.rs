@@ -4,8 +4,8 @@
 //! named in the notes; a library written and read back is the same library.
 
 use swarf::cutter::Shape;
-use swarf::cutting::Speeds;
 use swarf::tool::library::{read_library, write_library, LibraryFormat};
+use swarf::tool::Speeds;
 
 const FUSION: &str = r#"{
   "data": [

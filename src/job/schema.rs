@@ -585,25 +585,6 @@ impl Job {
         }
     }
 
-    /// The work zero with X0 Y0 on the point `p` (X and Y where the job, or its setup `setup`,
-    /// holds the part now: a hole's centre as its holes are found), its height kept: the job's
-    /// `stock.zero` or the setup's `zero`. `part` is the part's box as the job places it.
-    pub fn zero_on(&self, part: &Aabb, setup: Option<usize>, p: DVec2) -> Result<WorkZero> {
-        let (stock, zero) = match setup {
-            Some(k) => {
-                let frame = crate::job::setups::setup_frames(self, part).get(k).copied().ok_or_else(|| Error::Input(format!("setup {k}: the job has {} setups", self.setups.len())))?;
-                (frame.1, self.setups[k].zero.or(self.stock.zero))
-            }
-            None => {
-                let stock = self.stock.around(part);
-                let shift = self.stock.zero.map_or(DVec3::ZERO, |z| -z.point(&stock, part.max.z));
-                (Aabb { min: stock.min + shift, max: stock.max + shift }, self.stock.zero)
-            }
-        };
-        let c = stock.center();
-        Ok(WorkZero { at: Some([p.x - c.x, p.y - c.y]), ..zero.unwrap_or_default() })
-    }
-
     /// The least material any operation leaves on the part (mm); infinite without operations.
     pub fn allowance(&self) -> f64 {
         self.operations.iter().filter(|o| o.op().enabled()).map(Operation::allowance).fold(f64::INFINITY, f64::min)
@@ -888,5 +869,27 @@ impl DrawingSetup {
         if !b.is_empty() {
             d.transform(1.0, shift);
         }
+    }
+}
+
+impl Job {
+    /// Each tool's speeds and feeds as this job cuts them ([`crate::cutting::cutting_data`]).
+    pub fn cutting_data(&self) -> Vec<crate::cutting::CuttingData> {
+        self.tools.iter().map(|t| crate::cutting::cutting_data(t, self.stock.material, &self.machine)).collect()
+    }
+
+    /// The job with its tools' speeds and feeds from the stock's material, where they take
+    /// them: what runs, is timed and posted.
+    pub fn with_cutting_data(&self) -> std::borrow::Cow<'_, Job> {
+        if self.stock.material.is_none() {
+            return std::borrow::Cow::Borrowed(self);
+        }
+        let mut job = self.clone();
+        for (t, c) in job.tools.iter_mut().zip(self.cutting_data()) {
+            t.spindle_rpm = c.spindle_rpm;
+            t.feed_rate = c.feed_rate;
+            t.plunge_rate = c.plunge_rate;
+        }
+        std::borrow::Cow::Owned(job)
     }
 }

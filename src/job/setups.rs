@@ -18,7 +18,7 @@
 use glam::DMat3;
 
 use super::run::{prepare, JobOutput};
-use super::schema::{Bar, BarAxis, Flip, Job, Up, Workpiece};
+use super::schema::{Bar, BarAxis, Flip, Job, Up, WorkZero, Workpiece};
 use crate::error::{Error, Result};
 use crate::geom::{Aabb, DVec2, DVec3};
 use crate::mesh::placement::{PartSetup, Placement};
@@ -170,6 +170,25 @@ pub fn setup_stage(job: &Job, k: usize, part: &Mesh, frame: &(Orientation, Aabb)
 }
 
 impl Job {
+    /// The work zero with X0 Y0 on the point `p` (X and Y where the job, or its setup `setup`,
+    /// holds the part now: a hole's centre as its holes are found), its height kept: the job's
+    /// `stock.zero` or the setup's `zero`. `part` is the part's box as the job places it.
+    pub fn zero_on(&self, part: &Aabb, setup: Option<usize>, p: DVec2) -> Result<WorkZero> {
+        let (stock, zero) = match setup {
+            Some(k) => {
+                let frame = setup_frames(self, part).get(k).copied().ok_or_else(|| Error::Input(format!("setup {k}: the job has {} setups", self.setups.len())))?;
+                (frame.1, self.setups[k].zero.or(self.stock.zero))
+            }
+            None => {
+                let stock = self.stock.around(part);
+                let shift = self.stock.zero.map_or(DVec3::ZERO, |z| -z.point(&stock, part.max.z));
+                (Aabb { min: stock.min + shift, max: stock.max + shift }, self.stock.zero)
+            }
+        };
+        let c = stock.center();
+        Ok(WorkZero { at: Some([p.x - c.x, p.y - c.y]), ..zero.unwrap_or_default() })
+    }
+
     /// Setup `k` of this job (one with setups) on its own: its job, `part` (as read) held as
     /// the setup holds it, and where that is; what [`crate::job::wire::PoolWorker::prepare_setup`]
     /// plans, and what finds the holes, bosses and edges that setup's operations pick from.

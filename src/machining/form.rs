@@ -9,8 +9,6 @@
 
 use serde::Serialize;
 
-use super::Works;
-
 /// What a field holds, for its label and the page's units: a length and a feed follow the
 /// page's mm or inches; the others are said as they are.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, ts_rs::TS)]
@@ -91,16 +89,6 @@ pub enum Applies {
     Drawing,
     #[default]
     Either,
-}
-
-impl From<Works> for Applies {
-    fn from(w: Works) -> Self {
-        match w {
-            Works::OnPart => Applies::Part,
-            Works::OnDrawing => Applies::Drawing,
-            Works::Either => Applies::Either,
-        }
-    }
 }
 
 /// What the page finds for an operation to pick from, shown above its fields.

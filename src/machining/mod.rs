@@ -138,6 +138,16 @@ pub enum Works {
     Either,
 }
 
+impl From<Works> for form::Applies {
+    fn from(w: Works) -> Self {
+        match w {
+            Works::OnPart => form::Applies::Part,
+            Works::OnDrawing => form::Applies::Drawing,
+            Works::Either => form::Applies::Either,
+        }
+    }
+}
+
 /// The [`Operate`] methods every operation's options answer from their `name`, `tool` and
 /// `enabled` fields, and what it works on (`OnPart` or `OnDrawing`).
 macro_rules! named_operation {

@@ -4,7 +4,6 @@
 use serde::{Deserialize, Serialize};
 
 use crate::cutter::Cutter;
-pub use crate::cutting::{Speeds, ToolMaterial};
 
 pub mod holder;
 pub mod library;
@@ -47,6 +46,27 @@ pub struct Tool {
     /// length where that is not set): the verification finds it in material. Default value:
     /// none.
     pub holder: Option<Holder>,
+}
+
+/// What a tool's cutting edges are made of.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(rename_all = "camelCase")]
+pub enum ToolMaterial {
+    #[default]
+    Carbide,
+    /// High-speed steel: half the cutting speed of carbide.
+    Hss,
+}
+
+/// Where a tool's spindle speed and feeds come from.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(rename_all = "camelCase")]
+pub enum Speeds {
+    /// From the stock's material (where the job names one), else as typed.
+    #[default]
+    FromMaterial,
+    /// As typed in the tool (`spindleRpm`, `feedRate`, `plungeRate`), whatever the material.
+    AsTyped,
 }
 
 /// Coolant for a tool.
