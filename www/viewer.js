@@ -759,7 +759,7 @@ function boxLines(b) {
 // cutting part is its shape (a ball's half sphere, a bull nose's corner, a flat end's face, a
 // drill's or V-bit's cone) up
 // to its flute length, then the shank (its own diameter where given) up to the stick-out, or a
-// shank as long again as the flutes.
+// shank as long again as the flutes, then its holder where it has one.
 export function toolMesh(tool) {
   const r = tool.diameter / 2;
   const corner = tool.shape === 'ball' ? r : tool.shape === 'bullNose' ? Math.min(tool.cornerRadius ?? 0, r) : 0;
@@ -776,7 +776,14 @@ export function toolMesh(tool) {
   if (cone) profile.push([tip, 0], [r, (r - tip) / Math.tan((angle * Math.PI) / 360)]);
   else if (corner > 0) for (let k = 1; k <= arc; k++) { const a = (k / arc) * (Math.PI / 2); profile.push([r - corner + corner * Math.sin(a), corner - corner * Math.cos(a)]); }
   else profile.push([r, 0]);
-  profile.push([r, flutes], [shankR, flutes], [shankR, top], [0, top]);
+  profile.push([r, flutes], [shankR, flutes], [shankR, top]);
+  // Its holder, section by section from the nut's face up (a cone to its top diameter).
+  let height = top;
+  for (const s of tool.holder?.sections ?? []) {
+    profile.push([s.diameter / 2, height], [(s.topDiameter ?? s.diameter) / 2, height + s.length]);
+    height += s.length;
+  }
+  profile.push([0, height]);
   const sides = 24, positions = [], normals = [];
   for (let i = 0; i + 1 < profile.length; i++) {
     const [r0, z0] = profile[i], [r1, z1] = profile[i + 1];
@@ -790,5 +797,5 @@ export function toolMesh(tool) {
       for (const [pos, nor] of quad) { positions.push(...pos); normals.push(...nor); }
     }
   }
-  return { positions: new Float32Array(positions), normals: new Float32Array(normals), height: top };
+  return { positions: new Float32Array(positions), normals: new Float32Array(normals), height };
 }

@@ -1156,6 +1156,16 @@ test('a tool\'s holder in the page: a built-in ER chuck chosen, its sections sho
   await page.dispatchEvent('input[name=holderSections]', 'change');
   assert.match(await page.textContent('#tool-editor .field-error'), /give a section as diameter × length/);
   assert.equal(await page.evaluate(() => window.swarf.tools[window.swarf.selected.tool].holder.sections.length), 2);
+  // The simulation draws it on the tool: as tall as the stick-out and its sections.
+  const drawn = await page.evaluate(async () => {
+    const { toolMesh } = await import('./viewer.js');
+    const t = window.swarf.tools[window.swarf.selected.tool];
+    const plain = toolMesh({ ...t, holder: null, stickOut: 40 }), held = toolMesh({ ...t, stickOut: 40 });
+    let widest = 0;
+    for (let k = 0; k < held.positions.length; k += 3) widest = Math.max(widest, Math.hypot(held.positions[k], held.positions[k + 1]));
+    return { plain: plain.height, held: held.height, widest };
+  });
+  assert.deepEqual([drawn.plain, drawn.held, Math.round(drawn.widest)], [40, 70, 22]);
   // The job the page runs carries it.
   const t = await page.evaluate(async () => (await window.swarf.engine.readJob(JSON.stringify({ tools: window.swarf.tools }))).tools.find((x) => x.holder));
   assert.equal(t.holder.sections[1].topDiameter, 44);
