@@ -544,13 +544,11 @@ pub fn write_tool_library(tools: JsValue, format: JsValue) -> Result<String, JsE
 pub fn one_program(job: JsValue, sheets: JsValue, programs: Vec<String>, problems: Vec<String>) -> Result<String, JsError> {
     let job = job_from_js(job)?;
     let sheets: Vec<job::sheet::SheetSetup> = serde_wasm_bindgen::from_value(sheets).map_err(|e| js_error(format!("the sheets are not as results give them: {e}")))?;
-    if sheets.len() != programs.len() {
-        return Err(js_error("one sheet and one program a setup"));
+    if sheets.len() != programs.len() || problems.len() != programs.len() {
+        return Err(js_error("one sheet, one program and one problem (empty: none) a setup"));
     }
-    let parts: Vec<_> = sheets.iter().zip(&programs).map(|(s, g)| (s, g.as_str())).collect();
-    let joined = job::setups::one_program(&job, &parts).map_err(js_error)?;
-    let problems: Vec<&str> = problems.iter().map(String::as_str).filter(|p| !p.is_empty()).collect();
-    Ok(job::marked(&joined, (!problems.is_empty()).then(|| problems.join("; ")).as_deref()))
+    let parts: Vec<_> = sheets.iter().zip(&programs).zip(&problems).map(|((s, g), p)| (s, g.as_str(), Some(p.as_str()).filter(|p| !p.is_empty()))).collect();
+    job::setups::one_program(&job, &parts).map_err(js_error)
 }
 
 /// The setup sheet (a standalone HTML page) of `job` on the part named `part`, from each
@@ -562,9 +560,6 @@ pub fn setup_sheet(job: JsValue, part: &str, sheets: JsValue) -> Result<String, 
     Ok(job::sheet::setup_sheet(&job, part, &sheets))
 }
 
-/// Where each setup of `job` holds a part whose bounds (placed as the job places it) are `part`
-/// (`[minX, minY, minZ, maxX, maxY, maxZ]`, as `loadPart` gives them): `[SetupView]`, empty
-/// for a job without setups.
 /// The work zero of `job` (or of its setup `setup`) with X0 Y0 on the point `(x, y)` where it
 /// holds the part now (a hole's centre as `findHoles` gives it), its height kept
 /// ([`Job::zero_on`]); `part` is the part's bounds as `setupFrames` takes them.
@@ -582,6 +577,9 @@ fn bounds_of(part: &[f64]) -> Result<crate::geom::Aabb, JsError> {
     Ok(crate::geom::Aabb { min: crate::geom::DVec3::new(part[0], part[1], part[2]), max: crate::geom::DVec3::new(part[3], part[4], part[5]) })
 }
 
+/// Where each setup of `job` holds a part whose bounds (placed as the job places it) are `part`
+/// (`[minX, minY, minZ, maxX, maxY, maxZ]`, as `loadPart` gives them): `[SetupView]`, empty
+/// for a job without setups.
 #[wasm_bindgen(js_name = setupFrames)]
 pub fn setup_frames(job: JsValue, part: Vec<f64>) -> Result<JsValue, JsError> {
     let job = job_from_js(job)?;

@@ -379,7 +379,7 @@ fn every_setup_in_one_program_stops_between_them() {
         let programs = posted(dialect);
         let mut j = job.clone();
         j.post.dialect = dialect;
-        let refs: Vec<_> = programs.iter().map(|(s, g)| (s, g.as_str())).collect();
+        let refs: Vec<_> = programs.iter().map(|(s, g)| (s, g.as_str(), None)).collect();
         (swarf::job::setups::one_program(&j, &refs).unwrap(), programs)
     };
     let feeds = |canon: &str| canon.lines().filter(|l| l.contains("STRAIGHT_FEED") || l.contains("ARC_FEED")).count();

@@ -573,16 +573,19 @@ impl Job {
     /// work zero when the stock names one).
     pub fn place(&self, part: &mut Mesh) -> Aabb {
         self.part.apply(part);
-        let bounds = part.bounds();
-        let stock = self.stock.around(&bounds);
-        match self.stock.zero {
-            Some(zero) => {
-                let shift = -zero.point(&stock, bounds.max.z);
-                part.transform(|v| v + shift);
-                Aabb { min: stock.min + shift, max: stock.max + shift }
-            }
-            None => stock,
+        let (stock, shift) = self.stock_at_zero(&part.bounds());
+        if self.stock.zero.is_some() {
+            part.transform(|v| v + shift);
         }
+        stock
+    }
+
+    /// The stock box round a part placed with `bounds`, moved to the work zero when the stock
+    /// names one, and the move.
+    pub fn stock_at_zero(&self, bounds: &Aabb) -> (Aabb, DVec3) {
+        let stock = self.stock.around(bounds);
+        let shift = self.stock.zero.map_or(DVec3::ZERO, |zero| -zero.point(&stock, bounds.max.z));
+        (Aabb { min: stock.min + shift, max: stock.max + shift }, shift)
     }
 
     /// The least material any operation leaves on the part (mm); infinite without operations.

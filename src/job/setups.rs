@@ -179,11 +179,7 @@ impl Job {
                 let frame = setup_frames(self, part).get(k).copied().ok_or_else(|| Error::Input(format!("setup {k}: the job has {} setups", self.setups.len())))?;
                 (frame.1, self.setups[k].zero.or(self.stock.zero))
             }
-            None => {
-                let stock = self.stock.around(part);
-                let shift = self.stock.zero.map_or(DVec3::ZERO, |z| -z.point(&stock, part.max.z));
-                (Aabb { min: stock.min + shift, max: stock.max + shift }, self.stock.zero)
-            }
+            None => (self.stock_at_zero(part).0, self.stock.zero),
         };
         let c = stock.center();
         Ok(WorkZero { at: Some([p.x - c.x, p.y - c.y]), ..zero.unwrap_or_default() })
@@ -242,15 +238,16 @@ pub fn run_setups(job: &Job, mut part: Mesh, progress: &mut Progress) -> Result<
 }
 
 /// The setups' programs as one (`post.oneProgram`, [`crate::post::join_setups`]): `programs`
-/// are each setup's sheet figures and program text, in order; between two setups the control
-/// stops with a message saying how to hold the part, where to set the zero and (without a tool
-/// changer) which tool to put in.
-pub fn one_program(job: &Job, programs: &[(&super::sheet::SheetSetup, &str)]) -> Result<String> {
+/// are each setup's sheet figures, program text (unmarked) and why it is not safe to run, if
+/// it is not, in order; between two setups the control stops with a message saying how to hold
+/// the part, where to set the zero and (without a tool changer) which tool to put in. A setup
+/// not safe to run puts its warning, named for it, at the joined program's head.
+pub fn one_program(job: &Job, programs: &[(&super::sheet::SheetSetup, &str, Option<&str>)]) -> Result<String> {
     let post = job.post.post();
     let joined: Vec<crate::post::SetupProgram> = programs
         .iter()
         .enumerate()
-        .map(|(k, (sheet, gcode))| {
+        .map(|(k, (sheet, gcode, _))| {
             let hold = super::sheet::hold_words(job, k);
             crate::post::SetupProgram {
                 name: &sheet.name,
@@ -266,7 +263,9 @@ pub fn one_program(job: &Job, programs: &[(&super::sheet::SheetSetup, &str)]) ->
             }
         })
         .collect();
-    crate::post::join_setups(&job.post, &joined)
+    let joined = crate::post::join_setups(&job.post, &joined)?;
+    let problems: Vec<String> = programs.iter().filter_map(|(sheet, _, problem)| problem.map(|p| format!("{}: {p}", sheet.name))).collect();
+    Ok(super::run::marked(&joined, (!problems.is_empty()).then(|| problems.join("; ")).as_deref()))
 }
 
 /// The material over `p` (in the frame `to`) as `(floor, top)`, of the stock `left` in the

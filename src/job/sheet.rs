@@ -88,9 +88,8 @@ svg{{border:1px solid #ccc;background:#fafafa}}.n{{text-align:right}}</style></h
         if setups.len() == 1 { "" } else { "s" },
         clock(total)
     );
-    // Each tool as it cuts, with where its speeds and feeds come from.
-    let cutting = job.cutting_data();
-    let cut: Vec<(crate::tool::Tool, String)> = job.with_cutting_data().tools.iter().cloned().zip(cutting.into_iter().map(|c| c.reason)).collect();
+    // Each tool with the speeds and feeds it cuts at, and where they come from.
+    let cut: Vec<(&crate::tool::Tool, crate::cutting::CuttingData)> = job.tools.iter().zip(job.cutting_data()).collect();
     for (k, s) in setups.iter().enumerate() {
         let setup = job.setups.get(k);
         let _ = write!(h, "<section>\n<h2>{}: {}</h2>\n", k + 1, escape(&s.name));
@@ -126,7 +125,7 @@ svg{{border:1px solid #ccc;background:#fafafa}}.n{{text-align:right}}</style></h
         h.push_str(&s.picture);
         // Tools, in the order the program takes them.
         h.push_str("<h3>Tools</h3>\n<table><tr><th>Tool</th><th>Cutter</th><th>Stick-out</th><th>Holder</th><th class=n>Speed</th><th class=n>Feed</th><th>Speeds from</th></tr>\n");
-        for (tool, why) in s.tools.iter().filter_map(|n| cut.iter().find(|(t, _)| t.number == *n)) {
+        for (tool, data) in s.tools.iter().filter_map(|n| cut.iter().find(|(t, _)| t.number == *n)) {
             let _ = writeln!(
                 h,
                 "<tr><td>T{}</td><td>{}</td><td>{}</td><td>{}</td><td class=n>{:.0} rpm</td><td class=n>{:.0} mm/min</td><td>{}</td></tr>",
@@ -134,9 +133,9 @@ svg{{border:1px solid #ccc;background:#fafafa}}.n{{text-align:right}}</style></h
                 escape(&tool.describe()),
                 tool.stick_out.map_or_else(|| format!("at least {:.1} mm (its flutes)", tool.cutter.flute_length), |s| format!("{s:.1} mm")),
                 tool.holder.as_ref().map_or_else(|| "—".to_owned(), |h| escape(&h.name)),
-                tool.spindle_rpm,
-                tool.feed_rate,
-                escape(why)
+                data.spindle_rpm,
+                data.feed_rate,
+                escape(&data.reason)
             );
         }
         h.push_str("</table>\n<h3>Operations</h3>\n<table><tr><th>#</th><th>Operation</th><th>Tool</th><th class=n>Time</th><th class=n>Cutting</th><th class=n>Removed</th></tr>\n");
@@ -196,9 +195,12 @@ pub fn hold_words(job: &Job, k: usize) -> Vec<String> {
 /// Where the zero is, in a machinist's words.
 fn zero_words(zero: Option<WorkZero>) -> String {
     let Some(zero) = zero else { return "where the part's placement puts it (the centre of the part's top)".into() };
+    let height = match zero.height {
+        ZeroHeight::PartTop => "Z0 on the part's top",
+        ZeroHeight::StockTop => "Z0 on the stock's top",
+        ZeroHeight::StockBottom => "Z0 on the stock's bottom",
+    };
     if let Some([dx, dy]) = zero.at {
-        let height = zero_words(Some(WorkZero { at: None, ..zero }));
-        let height = height.split_once(", ").map_or("", |(_, h)| h);
         return format!("X0 Y0 at X{dx:+.3} Y{dy:+.3} from the centre of the stock seen from above (a hole's centre, say), {height}");
     }
     let corner = match zero.corner {
@@ -207,11 +209,6 @@ fn zero_words(zero: Option<WorkZero>) -> String {
         ZeroCorner::FrontRight => "the front right corner",
         ZeroCorner::BackLeft => "the back left corner",
         ZeroCorner::BackRight => "the back right corner",
-    };
-    let height = match zero.height {
-        ZeroHeight::PartTop => "Z0 on the part's top",
-        ZeroHeight::StockTop => "Z0 on the stock's top",
-        ZeroHeight::StockBottom => "Z0 on the stock's bottom",
     };
     format!("X0 Y0 at {corner} of the stock seen from above, {height}")
 }

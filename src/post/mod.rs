@@ -485,11 +485,10 @@ pub fn join_setups(settings: &PostSettings, programs: &[SetupProgram]) -> Result
     for (k, p) in programs.iter().enumerate() {
         let own: Vec<String> = p.gcode.lines().map(|l| without_number(l).to_owned()).collect();
         let end = if k + 1 < n { own.len().saturating_sub(foot) } else { own.len() };
-        let start = if k == 0 { 0 } else { head.min(end) };
+        let body = head.min(end);
         if k == 0 {
-            lines.extend(own[..head.min(end)].iter().cloned());
+            lines.extend(own[..body].iter().cloned());
             lines.extend(post.comment(&format!("{n} setups in one program, cycle time {} {} without the stops between them", clock(total), clock_format(total))));
-            lines.extend(own[head.min(end)..end].iter().cloned());
         } else {
             let tool = p.first_tool.as_ref().map(|t| format!("; put in {t}")).unwrap_or_default();
             let say = format!("setup {} of {n}, {}: {}; clamp it, set the zero of {}{tool}; then resume", k + 1, p.name, p.held, p.work_offset);
@@ -497,8 +496,8 @@ pub fn join_setups(settings: &PostSettings, programs: &[SetupProgram]) -> Result
             let width = post.max_line_length.map_or(76, |m| m.saturating_sub(12)).clamp(20, 76);
             lines.extend(wrap(&post.comment_text(&say), width).iter().filter_map(|l| post.comment(l)));
             lines.push(post.pause.clone());
-            lines.extend(own[start..end].iter().cloned());
         }
+        lines.extend(own[body..end].iter().cloned());
     }
     finish(lines, &post)
 }

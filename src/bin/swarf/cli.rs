@@ -619,9 +619,8 @@ fn run_job(job: &Job, workpiece: impl Into<Workpiece>, output: &Path, options: R
     if job.post.one_program && !job.setups.is_empty() {
         let names = job.setup_names();
         let sheets: Vec<_> = outs.iter().zip(&names).map(|((_, out), name)| job::sheet::SheetSetup::of(name, out)).collect();
-        let programs: Vec<_> = sheets.iter().zip(&outs).map(|(s, (_, out))| (s, out.gcode.as_str())).collect();
+        let programs: Vec<_> = sheets.iter().zip(&outs).map(|(s, (_, out))| (s, out.gcode.as_str(), out.problem.as_deref())).collect();
         let joined = job::setups::one_program(job, &programs).map_err(|e| e.to_string())?;
-        let joined = job::run::marked(&joined, (!unsafe_programs.is_empty()).then(|| unsafe_programs.join("; ")).as_deref());
         write(output, joined.as_bytes())?;
         let total: f64 = outs.iter().map(|(_, out)| out.cycle.seconds).sum();
         eprintln!("{}: {} setups in one program, an operator stop (M0) between them; cycle time {} {}", output.display(), outs.len(), swarf::post::clock(total), swarf::post::clock_format(total));
