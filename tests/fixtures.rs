@@ -33,20 +33,41 @@ fn a_vise_holds_the_stock_and_every_operation_stops_short_of_its_jaws() {
     assert!(said.iter().any(|w| w.contains("places stopped short of the vise's front jaw (1 mm clear of it)")), "{said:?}");
 }
 
-/// A clamp on the stock's top where the facing passes: the program that would run into it is
-/// refused, the clamp named; a clamp's setting that does not fit is named at its field.
+/// A clamp on the stock's front edge where the facing passes: the facing lifts over it and
+/// comes back down beyond it, saying so, and the program runs clear of the clamp; the same
+/// program made without the clamp, verified against the job that has it, is refused with the
+/// clamp named. A clamp's setting that does not fit is named at its field.
 #[test]
-fn a_move_into_a_clamp_is_an_error_that_names_it() {
+fn a_clamp_in_the_way_is_lifted_over_and_a_program_into_it_is_refused() {
     use swarf::operations::{Face, Operation};
     let mut job = Job::two_sided();
-    let stock = run_setups(&job, two_sided_part(), &mut Progress::none()).unwrap()[0].output.stock;
-    job.setups[0].operations.insert(0, Operation::Face(Face { tool: 1, ..Face::default() }));
-    let clamp = FixtureBox { name: "the front left clamp".into(), min: [stock.min.x, stock.min.y, stock.max.z], max: [stock.min.x + 12.0, stock.min.y + 12.0, stock.max.z + 10.0] };
-    job.setups[0].fixtures = Some(Fixtures { boxes: vec![clamp.clone()], ..Fixtures::default() });
-    let e = run_setups(&job, two_sided_part(), &mut Progress::none()).and_then(|s| s.into_iter().map(|s| s.output.checked()).collect::<Result<Vec<_>, _>>()).unwrap_err().to_string();
-    assert!(e.contains("run into what holds the stock: T1 into the front left clamp"), "{e}");
-    // The second setup names no fixtures of its own, and the job none: nothing is checked there.
-    job.setups[0].fixtures = Some(Fixtures { boxes: vec![FixtureBox { min: [0.0, 0.0, 5.0], max: [1.0, 1.0, 4.0], ..clamp }], clearance: f64::NAN, ..Fixtures::default() });
+    job.setups.clear();
+    job.operations = vec![Operation::Face(Face { tool: 1, ..Face::default() })];
+    let free = swarf::job::run(&job, two_sided_part(), &mut Progress::none()).unwrap();
+    let stock = free.stock;
+    // Over the stock's front edge, standing 10 mm above its top.
+    let clamp = FixtureBox { name: "the front clamp".into(), min: [-10.0, stock.min.y - 5.0, stock.max.z], max: [10.0, stock.min.y + 12.0, stock.max.z + 10.0] };
+    job.fixtures = Fixtures { boxes: vec![clamp.clone()], ..Fixtures::default() };
+    let keep_out = job.fixtures.keep_out(&stock);
+    assert!(!collisions(&free.moves, &keep_out, 0.0).is_empty(), "the free program must run into the clamp: the test holds nothing");
+    let held = swarf::job::run(&job, two_sided_part(), &mut Progress::none()).unwrap();
+    let v = held.verification.as_ref().unwrap();
+    assert_eq!((v.report.fixtures_checked, v.report.fixture_collision_count), (1, 0), "{}", v.report.describe());
+    assert!(collisions(&held.moves, &keep_out, 1e-9).is_empty());
+    assert!(v.report.is_clean(), "{}", v.report.describe());
+    let said: Vec<String> = held.warnings.iter().map(|w| w.to_string()).collect();
+    assert!(said.iter().any(|w| w.contains("places stopped short of the front clamp")), "{said:?}");
+    // The facing still faces the rest: it cuts nearly as long as without the clamp, and the
+    // stock's top away from the clamp is faced.
+    let feed = |out: &swarf::job::JobOutput| out.moves.iter().filter(|m| !m.mv.is_rapid()).map(|m| m.mv.length(m.from)).sum::<f64>();
+    assert!(feed(&held) > 0.7 * feed(&free), "{} against {}", feed(&held), feed(&free));
+    // Rapids run above the clamp.
+    assert!(held.moves.iter().filter(|m| m.mv.is_rapid()).all(|m| collisions(std::slice::from_ref(m), &keep_out, 0.0).is_empty()));
+    // The program made without the clamp is refused against the job with it.
+    let checked = swarf::job::verify_gcode(&job, two_sided_part(), &free.gcode, None, &mut Progress::none()).unwrap();
+    assert!(checked.report.fixture_collision_count > 0, "{}", checked.report.describe());
+    assert!(checked.report.describe().contains("the front clamp"), "{}", checked.report.describe());
+    job.fixtures = Fixtures { boxes: vec![FixtureBox { min: [0.0, 0.0, 5.0], max: [1.0, 1.0, 4.0], ..clamp }], clearance: f64::NAN, ..Fixtures::default() };
     let problems: Vec<String> = job.problems().into_iter().map(|p| p.path).collect();
-    assert_eq!(problems, ["setups[0].fixtures.clearance", "setups[0].fixtures.boxes[0]"]);
+    assert_eq!(problems, ["fixtures.clearance", "fixtures.boxes[0]"]);
 }

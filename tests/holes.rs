@@ -258,6 +258,36 @@ fn canon(gcode: &str, tools: &[Tool]) -> Vec<(String, DVec3)> {
     motions
 }
 
+/// A clamp over one hole of the block (issue 57): the drilling leaves that hole out whole and
+/// says so, drills the rest, and its program runs clear of the clamp.
+#[test]
+fn a_hole_under_a_clamp_is_left_out_and_said() {
+    use swarf::job::fixtures::{FixtureBox, Fixtures};
+    let part = block(3, 3, SIDE, THICK, &specs());
+    let mut job = drilling_job(Dialect::LinuxCnc);
+    let free = job::run(&job, part.clone(), &mut Progress::none()).expect("drilled");
+    let cycles = |out: &job::JobOutput| out.paths.iter().map(|p| p.cycles.iter().map(|c| c.at).collect::<Vec<_>>()).collect::<Vec<_>>();
+    let all = cycles(&free);
+    let (c, top) = (all[1][0], free.stock.max.z);
+    job.fixtures = Fixtures { boxes: vec![FixtureBox { name: "the clamp".into(), min: [c.x - 4.0, c.y - 4.0, top], max: [c.x + 4.0, c.y + 4.0, top + 8.0] }], ..Fixtures::default() };
+    let held = job::run(&job, part, &mut Progress::none()).expect("drilled");
+    let v = held.verification.as_ref().unwrap();
+    assert!(v.report.is_clean(), "{}", v.report.describe());
+    assert_eq!((v.report.fixtures_checked, v.report.fixture_collision_count), (1, 0));
+    // Each operation drills what it did but the hole under the clamp.
+    for (before, after) in all.iter().zip(cycles(&held)) {
+        let expected: Vec<DVec2> = before.iter().copied().filter(|&h| h != c).collect();
+        assert_eq!(after, expected);
+    }
+    let said: Vec<String> = held.warnings.iter().map(|w| w.to_string()).collect();
+    assert_eq!(said.iter().filter(|w| w.contains("holes left out: drilling them would run into the clamp (1 mm clear of it)")).count(), all.iter().filter(|p| p.contains(&c)).count(), "{said:?}");
+    // The holes after the one left out are still canned cycles, and read as LinuxCNC reads them.
+    for word in ["G99 G81", "G98 G83", "G99 G73", "G98 G82"] {
+        assert!(held.gcode.contains(word), "{word} in the program");
+    }
+    common::rs274(&held.gcode, &job.tools);
+}
+
 #[test]
 fn holes_drilled_in_canned_cycles_move_as_the_same_cycles_written_out() {
     let specs = specs();

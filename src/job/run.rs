@@ -174,14 +174,16 @@ impl Job {
         if let Some(bar) = self.stock.bar.filter(|_| sheet.is_none()) {
             sim.carry(bar.material(&stock));
         }
-        // What holds the stock joins the part in what the cutter is dropped onto.
+        // What holds the stock joins the part in what the cutter is dropped onto, and rapids
+        // across run above it.
         let keep_out = self.fixtures.keep_out(&stock);
         let solid = (sheet.is_none() && !keep_out.is_empty()).then(|| super::fixtures::solid(&part, &keep_out));
+        let above_fixtures = keep_out.iter().map(|h| h.solid.max.z + self.stock.retract).fold(f64::NEG_INFINITY, f64::max);
         Ok(Context {
             part,
             sheet,
             stock,
-            heights: SafeHeights { clearance: stock.max.z + self.stock.clearance, gap: self.stock.retract, full: self.stock.retracts == Retracts::Full },
+            heights: SafeHeights { clearance: (stock.max.z + self.stock.clearance).max(above_fixtures), gap: self.stock.retract, full: self.stock.retracts == Retracts::Full },
             tools: self.tools.clone(),
             tolerances: self.tolerances,
             resolution,
@@ -209,10 +211,6 @@ fn larger_than_any_machine(what: &str, size: crate::geom::DVec3, check: &str) ->
     Err(Error::Input(format!("the {what} is {x} × {y} × {z} mm, larger than any machine (at most 10 m): check {check}")))
 }
 
-/// Verifies a G-code program (swarf's or another's) against a job's part, stock and tools:
-/// the part is placed as the job says, the program read with [`crate::post::read::read_gcode`]
-/// (after GRBL's word-set check, [`crate::post::grbl::check`], when the job's post is GRBL's)
-/// (the job's first tool until the program picks one), and `cell` overrides the job's cell size.
 impl Job {
     /// Refuses a simulation cell (`field`, as the job or the command names it) wider than the
     /// smallest tool's radius: its cuts, and a gouge by it, would fall between the cells, and a
@@ -233,6 +231,11 @@ impl Job {
     }
 }
 
+/// Verifies a G-code program (swarf's or another's) against a job's part, stock and tools:
+/// the part is placed as the job says, the program read with [`crate::post::read::read_gcode`]
+/// (after GRBL's word-set check, [`crate::post::grbl::check`], when the job's post is GRBL's)
+/// (the job's first tool until the program picks one), and `cell` overrides the job's cell size.
+/// Every move is checked against the job's fixtures too.
 pub fn verify_gcode(job: &Job, mut part: Mesh, gcode: &str, cell: Option<f64>, progress: &mut Progress) -> Result<Verification> {
     job.validate()?;
     let stock = job.place(&mut part);
@@ -255,7 +258,11 @@ pub fn verify_gcode(job: &Job, mut part: Mesh, gcode: &str, cell: Option<f64>, p
     if cell.is_some() || job.simulation.cell.is_some() {
         job.sees_with(settings.cell, if cell.is_some() { "the cell" } else { "simulation.cell" })?;
     }
-    crate::sim::verify::verify(&part, &stock, &moves, &settings, &job.tolerances, progress)
+    let mut v = crate::sim::verify::verify(&part, &stock, &moves, &settings, &job.tolerances, progress)?;
+    // Every move against what holds the stock, as a job's own program is.
+    let keep_out = job.fixtures.keep_out(&stock);
+    v.report.fixtures(keep_out.len(), crate::sim::fixtures::collisions(&moves, &keep_out, job.tolerances.gouge));
+    Ok(v)
 }
 
 /// Places the part (or drawing), plans every operation in turn in one context, applying each
@@ -431,7 +438,11 @@ impl Running {
         let planned = o.plan(&mut self.ctx, progress);
         // Regions a pool made were for this operation only.
         self.ctx.given_regions.clear();
-        let Planned { paths, cuts, grooves, load, stages, octants } = planned?;
+        let round = o.plans_round_fixtures();
+        let Planned { mut paths, cuts, grooves, load, stages, octants } = planned?;
+        if !round {
+            self.keep_clear(k, &mut paths);
+        }
         self.loads.push((load, stages));
         self.cuts.extend(cuts);
         self.grooves.extend(grooves);
@@ -447,6 +458,30 @@ impl Running {
             self.settle(moves);
         }
         Ok(true)
+    }
+
+    /// Keeps operation `k`'s `paths` clear of the fixtures where it planned without them
+    /// ([`crate::machining::fixtures::keep_clear`]), and says which holes it left out.
+    fn keep_clear(&mut self, k: usize, paths: &mut [Toolpath]) {
+        if self.ctx.keep_out.is_empty() {
+            return;
+        }
+        let name = self.job.operations[k].op().name().to_owned();
+        let mut skipped: Vec<(String, crate::geom::DVec3)> = Vec::new();
+        for path in paths.iter_mut() {
+            let Some(tool) = self.job.tools.iter().find(|t| t.number == path.tool) else { continue };
+            let over = crate::machining::fixtures::Over { clearance: self.ctx.heights.clearance, top: self.ctx.stock.max.z, gap: self.ctx.heights.gap, plunge: tool.plunge_rate };
+            let cleared = crate::machining::fixtures::keep_clear(path, &tool.cutter, &self.ctx.keep_out, over);
+            skipped.extend(cleared.skipped.into_iter().map(|(f, at)| (f, at.extend(self.ctx.stock.max.z))));
+        }
+        let names: Vec<String> = self.ctx.keep_out.iter().map(|h| h.name.clone()).collect();
+        for fixture in names {
+            let places: Vec<_> = skipped.iter().filter(|(f, _)| *f == fixture).map(|(_, at)| *at).collect();
+            if !places.is_empty() {
+                let what = format!("holes left out: drilling them would run into {fixture} ({} mm clear of it)", crate::limits::shown(self.job.fixtures.clearance));
+                self.ctx.warn_at(&name, &what, &places);
+            }
+        }
     }
 
     /// Says where operation `k`'s cutting `moves` were stopped short by a fixture (came to its

@@ -11,6 +11,7 @@
 
 pub mod air;
 pub mod context;
+pub mod fixtures;
 pub mod form;
 pub mod holes;
 pub mod levels;
@@ -238,6 +239,12 @@ pub trait Operate {
     }
     /// Checks its settings before any work.
     fn validate(&self) -> Result<(), FieldError>;
+    /// Whether it plans round the fixtures itself (the 3D operations, dropped onto the part
+    /// with the fixtures joined: [`Context::solid`]); the others' paths are kept clear of them
+    /// after they plan ([`fixtures::keep_clear`]).
+    fn plans_round_fixtures(&self) -> bool {
+        false
+    }
 
     /// The page's form for these options ([`form`]): their fields, in the words a machinist
     /// uses, with units and ranges.

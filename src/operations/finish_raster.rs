@@ -98,6 +98,9 @@ impl Default for FinishRaster {
 }
 
 impl Operate for FinishRaster {
+    fn plans_round_fixtures(&self) -> bool {
+        true
+    }
     fn takes(&self, cutter: &crate::cutter::Cutter) -> std::result::Result<(), &'static str> {
         crate::machining::takes_end_mills_and_v_bits(cutter)
     }

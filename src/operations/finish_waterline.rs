@@ -77,6 +77,9 @@ const LEAST_STEP: f64 = 0.02;
 const LEAST_SCALLOP: f64 = 0.001;
 
 impl Operate for FinishWaterline {
+    fn plans_round_fixtures(&self) -> bool {
+        true
+    }
     fn takes(&self, cutter: &crate::cutter::Cutter) -> std::result::Result<(), &'static str> {
         crate::machining::takes_end_mills_and_v_bits(cutter)
     }

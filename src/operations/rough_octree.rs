@@ -103,6 +103,9 @@ const VIEW_BOXES: usize = 20_000;
 const REACH_LEVELS: usize = 24;
 
 impl Operate for RoughOctree {
+    fn plans_round_fixtures(&self) -> bool {
+        true
+    }
     fn form() -> crate::machining::form::OperationForm {
         use crate::machining::form::{FieldUnit as U, FormField as F, OperationForm};
         let mut fields = vec![

@@ -262,6 +262,9 @@ struct LevelCut {
 }
 
 impl Operate for RoughZigzag {
+    fn plans_round_fixtures(&self) -> bool {
+        true
+    }
     named_operation!(OnPart);
 
     fn form() -> crate::machining::form::OperationForm {

@@ -51,6 +51,9 @@ impl RoughZlevel {
 }
 
 impl Operate for RoughZlevel {
+    fn plans_round_fixtures(&self) -> bool {
+        true
+    }
     named_operation!(OnPart);
 
     fn form() -> crate::machining::form::OperationForm {

@@ -53,7 +53,7 @@ fn to_rectangle(p: DVec2, b: &Aabb) -> f64 {
 /// below the box's top and how far the box's side comes inside its widest radius (a tool
 /// touching the box's side or top is not in it); below 0, how far it keeps clear of the box
 /// in the nearer of the two senses.
-fn into(c: &Cutter, p: DVec3, b: &Aabb) -> f64 {
+pub fn depth_into(c: &Cutter, p: DVec3, b: &Aabb) -> f64 {
     let d = to_rectangle(p.truncate(), b);
     let reach = c.diameter.max(c.shank_diameter.unwrap_or(0.0)) / 2.0;
     let h = body_height(c, d.min(reach)).unwrap_or(c.flute_length);
@@ -61,7 +61,7 @@ fn into(c: &Cutter, p: DVec3, b: &Aabb) -> f64 {
 }
 
 /// The tip's place a fraction `t` along move `m` from `from`.
-fn along(from: DVec3, m: &Move, t: f64) -> DVec3 {
+pub fn along(from: DVec3, m: &Move, t: f64) -> DVec3 {
     match *m {
         Move::Rapid { to } | Move::Line { to, .. } => from.lerp(to, t),
         Move::Arc { to, center, clockwise, .. } => {
@@ -72,6 +72,11 @@ fn along(from: DVec3, m: &Move, t: f64) -> DVec3 {
             p.extend(from.z + (to.z - from.z) * t)
         }
     }
+}
+
+/// How far apart along a move the tool is judged against the fixtures (mm).
+pub fn sample_step(c: &Cutter) -> f64 {
+    (c.diameter / 100.0).clamp(1e-3, 0.05)
 }
 
 /// The moves of `moves` that run into a fixture of `keep_out` (each grown by its clearance)
@@ -85,7 +90,7 @@ pub fn collisions(moves: &[ProgramMove], keep_out: &[Held], tolerance: f64) -> V
     for (k, m) in moves.iter().enumerate() {
         let reach = (m.cutter.diameter.max(m.cutter.shank_diameter.unwrap_or(0.0))) / 2.0;
         // Points along the move this far apart, when one comes near a fixture.
-        let step = (m.cutter.diameter / 100.0).clamp(1e-3, 0.05);
+        let step = sample_step(&m.cutter);
         let n = (m.mv.length(m.from) / step).ceil().max(1.0) as usize;
         let to = m.mv.to();
         // The move's box: an arc's is its circle's.
@@ -105,7 +110,7 @@ pub fn collisions(moves: &[ProgramMove], keep_out: &[Held], tolerance: f64) -> V
             let mut worst: Option<(f64, DVec3)> = None;
             for i in 0..=n {
                 let p = along(m.from, &m.mv, i as f64 / n as f64);
-                let d = into(&m.cutter, p, b);
+                let d = depth_into(&m.cutter, p, b);
                 if d > tolerance && worst.is_none_or(|(w, _)| d > w) {
                     worst = Some((d, p));
                 }
