@@ -379,6 +379,30 @@ fn the_two_sided_example_writes_one_program_a_setup() {
     assert!(!out.status.success() && String::from_utf8_lossy(&out.stderr).contains("a drawing is cut from one side"), "{}", String::from_utf8_lossy(&out.stderr));
 }
 
+/// A job naming a mesh stock (`stock.mesh.name`) runs with the blank read from beside the job
+/// file; a blank that is not there is named.
+#[test]
+fn a_mesh_stock_named_by_a_job_is_read_from_beside_it() {
+    let dir = temp("blank");
+    assert!(swarf(&["demo", "--two-sided", "-o", dir.to_str().unwrap()]).status.success());
+    let blank = swarf::mesh::sample::height_field_solid(swarf::geom::DVec2::new(-43.0, -28.0), swarf::geom::DVec2::new(43.0, 28.0), 4, 4, -18.5, |_, _| 0.5);
+    std::fs::write(dir.join("casting.stl"), blank.to_binary_stl()).unwrap();
+    let mut job: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.join("two-sided.json")).unwrap()).unwrap();
+    job["stock"]["mesh"] = serde_json::json!({ "name": "casting.stl" });
+    let file = dir.join("cast.json");
+    std::fs::write(&file, job.to_string()).unwrap();
+    let (stl, out) = (dir.join("two-sided.stl"), dir.join("cast.nc"));
+    let run = swarf(&["run", file.to_str().unwrap(), stl.to_str().unwrap(), "-o", out.to_str().unwrap(), "-q"]);
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let first = std::fs::read_to_string(dir.join("cast-op1-linuxcnc.nc")).unwrap();
+    assert!(first.contains("\nG54\n") && first.ends_with("M2\n"), "{first}");
+    job["stock"]["mesh"] = serde_json::json!({ "name": "lost.stl" });
+    std::fs::write(&file, job.to_string()).unwrap();
+    let run = swarf(&["run", file.to_str().unwrap(), stl.to_str().unwrap(), "-o", out.to_str().unwrap(), "-q"]);
+    let said = String::from_utf8_lossy(&run.stderr);
+    assert!(!run.status.success() && said.contains("stock.mesh names") && said.contains("lost.stl"), "{said}");
+}
+
 /// `swarf tools`: a FreeCAD library with its bits read into swarf's tools, what was not taken
 /// said on stderr; the same tools printed as a LinuxCNC tool table.
 #[test]

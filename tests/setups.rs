@@ -217,6 +217,76 @@ fn bar_stock_is_round_and_its_air_is_not_cut() {
     assert!((removed + left - material).abs() < 0.01 * material, "{removed} + {left} against the bar's {material}");
 }
 
+/// A cast blank round the two-sided plate: its top 1 mm over the plate's, its sides drafted
+/// down from the plate's edges (6 mm out in X, 4 in Y), its bottom 0.5 mm under the boss. In
+/// the part's own coordinates, as a CAD model exports both.
+fn cast_blank() -> swarf::mesh::Mesh {
+    use swarf::geom::DVec2;
+    swarf::mesh::sample::height_field_solid(DVec2::new(-46.0, -29.0), DVec2::new(46.0, 29.0), 92, 58, -18.5, |x, y| 1.0 - 1.5 * (x.abs() - 40.0).max(0.0) - 2.0 * (y.abs() - 25.0).max(0.0))
+}
+
+/// [`cast_blank`]'s volume: its 92 × 58 × 19.5 mm box less its drafts (the grid's nodes on their
+/// edges, so its facets are exact).
+const CAST_BLANK_VOLUME: f64 = 92.0 * 58.0 * 19.5 - 1.5 * (6.0 * 6.0) * 58.0 - 2.0 * (4.0 * 4.0) * 92.0;
+
+/// Stock from a mesh (a casting): the job carries the file; the blank is placed with the part
+/// (its top's centre at the origin, the part 1 mm under it as in the files); the simulation
+/// starts from the blank's material, not its box (the removed and the left add up to the
+/// blank); the air round the drafted sides is not cut (the program is shorter than the same
+/// from the blank's box); both setups run from it and verify clean; a blank that cannot be
+/// read is named at its field, and a part outside its blank is refused.
+#[test]
+fn a_cast_blank_is_the_stock_and_its_air_is_not_cut() {
+    use swarf::job::blank::MeshFile;
+    let blank = cast_blank();
+    let file = MeshFile::embedded("casting.stl", &blank.to_binary_stl());
+    let job_for = |mesh: Option<MeshFile>| {
+        let mut job = Job::two_sided();
+        let operations = job.setups[0].operations.clone();
+        job.setups.clear();
+        job.operations = operations;
+        job.stock.zero = None;
+        job.stock.mesh = mesh;
+        job
+    };
+    let job = job_for(Some(file.clone()));
+    // The job carries the file through JSON.
+    let back = Job::from_json(&serde_json::to_string(&job).unwrap()).unwrap();
+    assert_eq!(back.stock.mesh.as_ref().map(|f| &f.name), Some(&"casting.stl".to_owned()));
+    let cast = swarf::job::run(&back, two_sided_part(), &mut Progress::none()).unwrap();
+    common::clean(&cast);
+    // The stock's box is the blank's, its top at 0; the part's top 1 mm under it.
+    let b = blank.bounds();
+    assert!((cast.stock.size() - b.size()).length() < 1e-3 && cast.stock.max.z.abs() < 1e-4, "{:?}", cast.stock);
+    let mut placed = two_sided_part();
+    job.place(&mut placed);
+    assert!((placed.bounds().max.z + 1.0).abs() < 1e-3, "{:?}", placed.bounds());
+    let v = cast.verification.as_ref().unwrap();
+    let material = CAST_BLANK_VOLUME;
+    let (removed, left) = (v.volumes.iter().sum::<f64>(), v.stock.volume());
+    let mut boxed_job = job_for(None);
+    boxed_job.stock.size_box = Some(cast.stock);
+    let boxed = swarf::job::run(&boxed_job, two_sided_part(), &mut Progress::none()).unwrap();
+    eprintln!("cast blank: removed {removed:.0} + left {left:.0} of {material:.0} mm³; cycle {:.0} s from the blank, {:.0} s from its box", cast.cycle.seconds, boxed.cycle.seconds);
+    assert!((removed + left - material).abs() < 0.01 * material, "{removed} + {left} against the blank's {material}");
+    assert!(cast.cycle.seconds < 0.95 * boxed.cycle.seconds, "{} s from the blank, {} s from its box", cast.cycle.seconds, boxed.cycle.seconds);
+    // Both sides from the blank: the second setup starts from what the first left.
+    let mut two = Job::two_sided();
+    two.stock.mesh = Some(file.clone());
+    let sides = run_setups(&two, two_sided_part(), &mut Progress::none()).unwrap();
+    for s in &sides {
+        let v = s.output.verification.as_ref().unwrap();
+        assert!(v.report.is_clean(), "{}: {}", s.name, v.report.describe());
+    }
+    // A blank that cannot be read, and one the part does not fit.
+    let bad = job_for(Some(MeshFile::embedded("casting.stl", b"solid")));
+    let problems: Vec<String> = bad.problems().into_iter().map(|p| format!("{}: {}", p.path, p.message)).collect();
+    assert!(problems.iter().any(|p| p.starts_with("stock.mesh:") && p.contains("casting.stl")), "{problems:?}");
+    let small = swarf::mesh::sample::height_field_solid(swarf::geom::DVec2::new(-30.0, -20.0), swarf::geom::DVec2::new(30.0, 20.0), 4, 4, -18.5, |_, _| 1.0);
+    let e = swarf::job::run(&job_for(Some(MeshFile::embedded("small.stl", &small.to_binary_stl()))), two_sided_part(), &mut Progress::none()).unwrap_err().to_string();
+    assert!(e.contains("at -X"), "{e}");
+}
+
 /// The page's pool runs a job with setups one setup at a time: every worker prepares that setup
 /// (the part held as it holds it) and the planner carries in what the setup before left. The
 /// programs and stocks are those of the job run whole, and each setup's playback starts from

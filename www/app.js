@@ -31,6 +31,12 @@ function fillStock() {
   $('fs-stock').querySelector('[name=zeroCorner]').value = j.stock.zero?.at ? 'at' : j.stock.zero?.corner ?? 'center';
   $('fs-stock').querySelector('[name=zeroCorner] [value=at]').hidden = !j.stock.zero?.at;
   for (const el of document.querySelectorAll('.part-only')) el.hidden = state.kind !== 'part';
+  // The stock's shape: a box, a bar or a mesh, with the fields of the one it is.
+  const shape = j.stock.mesh ? 'mesh' : j.stock.bar ? 'bar' : 'box';
+  form.elements.stockShape.value = state.blankChosen && shape === 'box' ? 'mesh' : shape;
+  $('bar-fields').hidden = state.kind !== 'part' || shape !== 'bar';
+  $('blank-fields').hidden = state.kind !== 'part' || form.elements.stockShape.value !== 'mesh';
+  $('stock-mesh-name').textContent = j.stock.mesh ? `${j.stock.mesh.name}: the stock is this mesh, placed with the part (centred on its top where the part is centred); its box is the stock's.` : 'Choose the file: until then the stock is a box.';
   // A vise's fields where the stock is held in one.
   const vise = !!j.fixtures?.vise;
   form.elements.vise.checked = vise;
@@ -43,6 +49,35 @@ async function onVise(box) {
   const made = box.checked ? (await state.engine.readJob(JSON.stringify({ fixtures: { vise: {} } }))).fixtures : null;
   j.fixtures = box.checked ? { ...made, ...j.fixtures, vise: made.vise } : { ...j.fixtures, vise: null };
   store('fixtures.vise');
+  clearResult();
+  fillStock();
+  changed();
+}
+
+// The stock's shape chosen: a bar as the core makes one by default, a mesh once its file is
+// read (a box until then), or a box again.
+async function onStockShape(shape) {
+  const j = job();
+  state.blankChosen = shape === 'mesh';
+  if (shape === 'bar' && !j.stock.bar) j.stock.bar = (await state.engine.readJob(JSON.stringify({ stock: { bar: {} } }))).stock.bar;
+  if (shape !== 'bar') j.stock.bar = null;
+  if (shape !== 'mesh') j.stock.mesh = null;
+  store('stock.shape');
+  clearResult();
+  fillStock();
+  changed();
+}
+
+// A casting's or blank's file read into the job (its bytes travel with the job, to the workers,
+// into projects and saved jobs).
+async function onStockMesh(file) {
+  const bytes = new Uint8Array(await file.arrayBuffer());
+  let text = '';
+  for (let i = 0; i < bytes.length; i += 0x8000) text += String.fromCharCode(...bytes.subarray(i, i + 0x8000));
+  const j = job();
+  j.stock.mesh = { name: file.name, data: btoa(text) };
+  j.stock.bar = null;
+  store('stock.mesh');
   clearResult();
   fillStock();
   changed();
@@ -213,6 +248,8 @@ form.addEventListener('input', (e) => { if (e.target.type !== 'checkbox' && e.ta
 form.addEventListener('change', (e) => {
   if (e.target.closest('#op-list')) return;
   if (e.target.name === 'vise') { onVise(e.target); return; }
+  if (e.target.name === 'stockShape') { onStockShape(e.target.value); return; }
+  if (e.target.id === 'stock-mesh') { if (e.target.files[0]) onStockMesh(e.target.files[0]); e.target.value = ''; return; }
   if (e.target.name === 'machine') { onMachine(e.target.value); return; }
   if (e.target.name === 'holder' || e.target.name === 'holderSections') { onHolderField(e.target); return; }
   onField(e.target);

@@ -9,8 +9,10 @@
 //! stock, so the next one enters and links over the material that is really there (DESIGN.md
 //! ideas 5 and 6). A pool of workers can make a run's pieces (`pool.rs`); drawings become sheets
 //! (`drawing.rs`); each operation is reported (`report.rs`); projects hold a job and its part
-//! (`project.rs`); swarf brings a few jobs of its own (`demo.rs`).
+//! (`project.rs`); a mesh stock is read and placed in `blank.rs`; swarf brings a few jobs of its
+//! own (`demo.rs`).
 
+pub mod blank;
 pub mod demo;
 pub mod drawing;
 pub mod fixtures;

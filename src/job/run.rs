@@ -144,7 +144,7 @@ impl Job {
                 let stock = self.place(&mut part);
                 larger_than_any_machine("part", part.bounds().size(), "its unit (part.units) and part.scale")?;
                 outside_the_stock(&part.bounds(), &stock)?;
-                if let Some(message) = self.stock.size_box.and_then(|_| super::schema::part_outside_error(&stock, &part.bounds())) {
+                if let Some(message) = (self.stock.size_box.is_some() || self.stock.mesh.is_some()).then(|| super::schema::part_outside_error(&stock, &part.bounds())).flatten() {
                     return Err(Error::Input(message));
                 }
                 if let Some(bar) = self.stock.bar {
@@ -173,6 +173,12 @@ impl Job {
         let mut sim = Simulator::new(&stock, cell)?;
         if let Some(bar) = self.stock.bar.filter(|_| sheet.is_none()) {
             sim.carry(bar.material(&stock));
+        } else if let Some(blank) = self.blank().filter(|_| sheet.is_none()) {
+            // The blank moved to the work zero as the stock's box was.
+            let to_zero = stock.min - self.stock_box(&stock).min;
+            let mut blank = (*blank).clone();
+            blank.transform(|v| v + to_zero);
+            sim.carry(super::blank::material(&blank));
         }
         // What holds the stock joins the part in what the cutter is dropped onto, and rapids
         // across run above it.

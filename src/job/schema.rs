@@ -75,7 +75,7 @@ impl WorkZero {
 
 /// The stock, as a machinist sets it: margins around the placed part on every side, or an
 /// explicit box; the heights of moves between cuts; and the work zero.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(default, rename_all = "camelCase")]
 pub struct Stock {
     /// Extra stock around the part in X and Y (mm, each side). Default value: 5.
@@ -119,6 +119,10 @@ pub struct Stock {
     /// What the stock is: the tools' speeds and feeds follow from it ([`crate::cutting`]).
     /// Default value: none (every tool's as typed).
     pub material: Option<crate::cutting::Material>,
+    /// A mesh as the stock instead of a box: a casting or a near-net blank, in the part's own
+    /// coordinates (both from one CAD model), placed with the part; its box is the stock's
+    /// ([`super::blank`]). Default value: none.
+    pub mesh: Option<super::blank::MeshFile>,
 }
 
 /// Round bar stock ([`Stock::bar`]): the material a sawn length of bar holds, so that the
@@ -225,6 +229,7 @@ impl Default for Stock {
             zero: None,
             bar: None,
             material: None,
+            mesh: None,
         }
     }
 }
@@ -325,6 +330,13 @@ impl Stock {
         if let Some(bar) = self.bar {
             if !(bar.diameter > 0.0 && bar.diameter <= size) {
                 out.push(("bar.diameter", format!("must be a positive number of mm, at most {size} (got {})", crate::limits::shown(bar.diameter))));
+            }
+        }
+        if let Some(file) = self.mesh.as_ref().filter(|f| f.given.is_none()) {
+            if let Err(e) = file.mesh() {
+                out.push(("mesh", format!("(the stock's mesh) cannot be read: {e}")));
+            } else if self.bar.is_some() {
+                out.push(("mesh", "(the stock's mesh) and bar: the stock is a bar or a mesh, not both".to_owned()));
             }
         }
         if let Some(f) = self.air_feed {
@@ -572,7 +584,7 @@ impl Job {
     /// Places the part as the job says and returns the stock box around it (both moved to the
     /// work zero when the stock names one).
     pub fn place(&self, part: &mut Mesh) -> Aabb {
-        self.part.apply(part);
+        self.place_part(part);
         let (stock, shift) = self.stock_at_zero(&part.bounds());
         if self.stock.zero.is_some() {
             part.transform(|v| v + shift);
@@ -580,10 +592,52 @@ impl Job {
         stock
     }
 
+    /// Places a part as read (its units, axes and turn, then where `part.placement` puts it:
+    /// with a mesh stock, the blank's top centred, the part keeping its place in it), before
+    /// any work zero.
+    pub fn place_part(&self, part: &mut Mesh) {
+        self.part.turn(part);
+        let shift = match self.turned_blank() {
+            Some(blank) => self.part.shift(&blank.bounds()),
+            None => self.part.shift(&part.bounds()),
+        };
+        part.transform(|v| v + shift);
+    }
+
+    /// The mesh stock's file read and turned as the part is, not yet placed (none without a
+    /// file to read: no mesh stock, one given already placed, or one that cannot be read,
+    /// which [`Job::problems`] names).
+    fn turned_blank(&self) -> Option<Mesh> {
+        let file = self.stock.mesh.as_ref().filter(|f| f.given.is_none())?;
+        let mut blank = (*file.mesh().ok()?).clone();
+        self.part.turn(&mut blank);
+        Some(blank)
+    }
+
+    /// The mesh stock placed with the part ([`Job::place_part`]), before any work zero.
+    pub fn blank(&self) -> Option<std::sync::Arc<Mesh>> {
+        if let Some(given) = self.stock.mesh.as_ref().and_then(|f| f.given.clone()) {
+            return Some(given);
+        }
+        let mut blank = self.turned_blank()?;
+        let shift = self.part.shift(&blank.bounds());
+        blank.transform(|v| v + shift);
+        Some(std::sync::Arc::new(blank))
+    }
+
+    /// The stock's box round a part placed with `bounds` (before any work zero): the explicit
+    /// box, the mesh stock's, or the margins round the part (a bar's across its axis).
+    pub fn stock_box(&self, bounds: &Aabb) -> Aabb {
+        match (self.stock.size_box, self.blank()) {
+            (None, Some(blank)) => blank.bounds(),
+            _ => self.stock.around(bounds),
+        }
+    }
+
     /// The stock box round a part placed with `bounds`, moved to the work zero when the stock
     /// names one, and the move.
     pub fn stock_at_zero(&self, bounds: &Aabb) -> (Aabb, DVec3) {
-        let stock = self.stock.around(bounds);
+        let stock = self.stock_box(bounds);
         let shift = self.stock.zero.map_or(DVec3::ZERO, |zero| -zero.point(&stock, bounds.max.z));
         (Aabb { min: stock.min + shift, max: stock.max + shift }, shift)
     }
@@ -740,7 +794,7 @@ impl Job {
         }
         // Only a box can leave the part out (margins are checked on their own above).
         if let (Some(part), Some(_)) = (part, self.stock.size_box) {
-            if let Some(message) = part_outside_error(&self.stock.around(part), part) {
+            if let Some(message) = part_outside_error(&self.stock_box(part), part) {
                 say("stock.sizeBox".into(), message);
             }
         }

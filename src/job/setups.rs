@@ -119,6 +119,8 @@ impl Job {
         // Bar stock fills the first setup's box along its axis as turned; later setups start
         // from what the one before left.
         job.stock.bar = self.stock.bar.filter(|_| k == 0).map(|bar| Bar { axis: BarAxis::along(rotation * bar.axis.unit()), ..bar });
+        // So does a mesh stock (turned as the setup holds it: [`setup_stage`]).
+        job.stock.mesh = None;
         if setup.work_offset.is_some() {
             job.post.work_offset = setup.work_offset.clone();
         }
@@ -137,7 +139,7 @@ impl Job {
 /// the raw stock's box in that setup's frame: the frames [`run_setups`] runs the setups in,
 /// for a view that shows a setup before it is run.
 pub fn setup_frames(job: &Job, part: &Aabb) -> Vec<(Orientation, Aabb)> {
-    let raw = job.stock.around(part);
+    let raw = job.stock_box(part);
     let mut rotation = DMat3::IDENTITY;
     job.setups
         .iter()
@@ -166,7 +168,14 @@ pub fn setup_stage(job: &Job, k: usize, part: &Mesh, frame: &(Orientation, Aabb)
     let (orientation, stock) = *frame;
     let mut held = part.clone();
     held.transform(|v| orientation.apply(v));
-    (job.setup_job(k, stock, orientation.rotation), held)
+    let mut setup = job.setup_job(k, stock, orientation.rotation);
+    if let Some(blank) = job.blank().filter(|_| k == 0) {
+        let mut turned = (*blank).clone();
+        turned.transform(|v| orientation.apply(v));
+        let name = job.stock.mesh.as_ref().map_or(String::new(), |f| f.name.clone());
+        setup.stock.mesh = Some(super::blank::MeshFile::given(&name, turned));
+    }
+    (setup, held)
 }
 
 impl Job {
@@ -193,7 +202,7 @@ impl Job {
         if k >= self.setups.len() {
             return Err(Error::Input(format!("setup {k}: the job has {} setups", self.setups.len())));
         }
-        self.part.apply(&mut part);
+        self.place_part(&mut part);
         let frame = setup_frames(self, &part.bounds())[k];
         let (job, held) = setup_stage(self, k, &part, &frame);
         Ok((job, held, frame.0))
@@ -218,7 +227,7 @@ pub fn run_setups(job: &Job, mut part: Mesh, progress: &mut Progress) -> Result<
         let orientation = Orientation { rotation: DMat3::IDENTITY, centre: DVec3::ZERO, shift: DVec3::ZERO };
         return Ok(vec![SetupOutput { name: job.name.clone(), orientation, output }]);
     }
-    job.part.apply(&mut part);
+    job.place_part(&mut part);
     let frames = setup_frames(job, &part.bounds());
     let names = job.setup_names();
     let n = job.setups.len();

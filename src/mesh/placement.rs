@@ -127,6 +127,13 @@ impl Default for PartSetup {
 impl PartSetup {
     /// Converts the mesh to millimetres with Z up, turns it about Z and places it.
     pub fn apply(&self, mesh: &mut Mesh) {
+        self.turn(mesh);
+        let shift = self.shift(&mesh.bounds());
+        mesh.transform(|v| v + shift);
+    }
+
+    /// Converts the mesh to millimetres with Z up and turns it about Z, without placing it.
+    pub fn turn(&self, mesh: &mut Mesh) {
         let scale = self.units.mm(mesh) * self.scale;
         // Applied once: the mesh is in millimetres from here on.
         mesh.in_metres = false;
@@ -140,10 +147,14 @@ impl PartSetup {
                 _ => v,
             }
         });
-        if self.placement == Placement::CenterTop {
-            let b = mesh.bounds();
-            let shift = DVec3::new(-b.center().x, -b.center().y, -b.max.z);
-            mesh.transform(|v| v + shift);
+    }
+
+    /// The move that places a turned mesh whose box is `turned`: its top's centre to the
+    /// origin (`centerTop`), or none (`keep`).
+    pub fn shift(&self, turned: &crate::geom::Aabb) -> DVec3 {
+        match self.placement {
+            Placement::CenterTop if !turned.is_empty() => DVec3::new(-turned.center().x, -turned.center().y, -turned.max.z),
+            _ => DVec3::ZERO,
         }
     }
 }

@@ -186,8 +186,8 @@ export async function toolPixels(page, numbers) {
 export const pathPixels = async (page) => (await pixelCounts(page)).path;
 
 // A box as a binary STL (12 triangles), `size` = [x, y, z] from the origin.
-export function boxStl([x, y, z]) {
-  const v = (i) => [(i & 1) * x, ((i >> 1) & 1) * y, ((i >> 2) & 1) * z];
+export function boxStl([x, y, z], [x0, y0, z0] = [0, 0, 0]) {
+  const v = (i) => [x0 + (i & 1) * x, y0 + ((i >> 1) & 1) * y, z0 + ((i >> 2) & 1) * z];
   const faces = [[0, 2, 3], [0, 3, 1], [4, 5, 7], [4, 7, 6], [0, 1, 5], [0, 5, 4], [2, 6, 7], [2, 7, 3], [0, 4, 6], [0, 6, 2], [1, 3, 7], [1, 7, 5]];
   const buf = Buffer.alloc(84 + faces.length * 50);
   buf.writeUInt32LE(faces.length, 80);

@@ -1712,3 +1712,35 @@ test('held in a vise: the jaws follow the stock, drawn in the view, every operat
   assert.deepEqual(errors, []);
   await context.close();
 });
+
+test('the stock as a casting or a bar: a blank\'s file read into the job, the stock its box with the part where the model has it; a round bar by its diameter', async () => {
+  const { page, context, errors } = await openPage();
+  await page.setInputFiles('#file', { name: 'block.stl', mimeType: 'model/stl', buffer: boxStl([40, 30, 10]) });
+  await page.waitForFunction(() => document.getElementById('part-name').textContent.includes('block.stl'));
+  await onlyRaster(page);
+  await tab(page, 'stock');
+  await page.selectOption('select[name=stockShape]', 'mesh');
+  assert.equal(await page.isVisible('#stock-mesh'), true);
+  // The casting: 3 mm round the block in X, 2 in Y, 1 under it and 2 over its top.
+  await page.setInputFiles('#stock-mesh', { name: 'casting.stl', mimeType: 'model/stl', buffer: boxStl([46, 34, 13], [-3, -2, -1]) });
+  await page.waitForFunction(() => /casting\.stl: the stock is this mesh/.test(document.getElementById('stock-mesh-name').textContent));
+  assert.equal(await page.evaluate(() => window.swarf.jobs.part.stock.mesh.name), 'casting.stl');
+  await page.click('#generate');
+  await generated(page);
+  const near = (a, b) => a.every((v, i) => Math.abs(v - b[i]) < 1e-3);
+  const cast = await page.evaluate(() => window.swarf.summary.s.stock);
+  assert.ok(near(cast, [-23, -17, -13, 23, 17, 0]), `the casting's box, its top centred: ${cast}`);
+  // The block's top 2 mm under the casting's: the raster runs over it at Z-2.
+  assert.match(await page.evaluate(() => window.swarf.result.gcode), /Z-2(\.0+)?(\s|$)/m);
+  // A round bar stood on end: its diameter across X and Y.
+  await page.selectOption('select[name=stockShape]', 'bar');
+  assert.equal(await page.evaluate(() => window.swarf.jobs.part.stock.mesh), null);
+  await page.fill('input[name=barDiameter]', '60');
+  await page.dispatchEvent('input[name=barDiameter]', 'change');
+  await page.click('#generate');
+  await generated(page);
+  const bar = await page.evaluate(() => window.swarf.summary.s.stock);
+  assert.ok(Math.abs(bar[3] - bar[0] - 60) < 1e-6 && Math.abs(bar[4] - bar[1] - 60) < 1e-6, `a φ60 bar: ${bar}`);
+  assert.deepEqual(errors, []);
+  await context.close();
+});

@@ -958,6 +958,20 @@ export type Material = "aluminium6061" | "mildSteel" | "stainless304" | "brass" 
 export type MaterialChoice = { value: Material, words: string, source: string, };
 
 /**
+ * A mesh file in the job: its name (the extension tells the format) and its bytes.
+ */
+export type MeshFile = { 
+/**
+ * The file's name, with its extension. Default value: "".
+ */
+name: string, 
+/**
+ * Its bytes in base64; none: the file lies beside the job file under `name` (the CLI
+ * reads it). Default value: none.
+ */
+data: string | null, };
+
+/**
  * Where a chain of segments failed to close.
  */
 export type OpenChain = { layer: string, start: [number, number], end: [number, number], segments: number, };
@@ -1815,7 +1829,13 @@ bar: Bar | null,
  * What the stock is: the tools' speeds and feeds follow from it ([`crate::cutting`]).
  * Default value: none (every tool's as typed).
  */
-material: Material | null, };
+material: Material | null, 
+/**
+ * A mesh as the stock instead of a box: a casting or a near-net blank, in the part's own
+ * coordinates (both from one CAD model), placed with the part; its box is the stock's
+ * ([`super::blank`]). Default value: none.
+ */
+mesh: MeshFile | null, };
 
 /**
  * What the page shows of a job's result beside the drawing: figures, warnings, the problem if

@@ -235,7 +235,7 @@ pub fn main() -> ExitCode {
 /// The job file's job, or the default job.
 fn job_or_default(path: Option<&Path>) -> Result<Job, String> {
     match path {
-        Some(path) => Job::from_json(&String::from_utf8_lossy(&read(path)?)).map_err(|e| e.to_string()),
+        Some(path) => read_job(path),
         None => Ok(Job::default()),
     }
 }
@@ -262,6 +262,23 @@ fn not_an_input(output: &Path, inputs: &[&Path]) -> Result<(), String> {
     Ok(())
 }
 
+/// A job file read, with a mesh stock it only names read from beside it.
+fn read_job(path: &Path) -> Result<Job, String> {
+    let job = Job::from_json(&String::from_utf8_lossy(&read(path)?)).map_err(|e| e.to_string())?;
+    embed_beside(job, path)
+}
+
+/// `job` (read from `file`) with the mesh stock it names (`stock.mesh.name`, without its
+/// bytes) read from beside `file` and carried in it.
+fn embed_beside(mut job: Job, file: &Path) -> Result<Job, String> {
+    if let Some(mesh) = job.stock.mesh.as_mut().filter(|m| m.data.is_none() && m.given.is_none()) {
+        let path = file.parent().map(Path::to_path_buf).unwrap_or_default().join(&mesh.name);
+        let bytes = std::fs::read(&path).map_err(|e| format!("{}: stock.mesh names {}, which cannot be read: {e}", file.display(), path.display()))?;
+        *mesh = swarf::job::blank::MeshFile::embedded(&mesh.name, &bytes);
+    }
+    Ok(job)
+}
+
 fn write(path: &Path, bytes: &[u8]) -> Result<(), String> {
     std::fs::write(path, bytes).map_err(|e| format!("cannot write {}: {e}", path.display()))
 }
@@ -283,9 +300,9 @@ fn run(cli: Cli) -> Result<(), String> {
                     }
                 };
                 let stem = file.to_string_lossy().trim_end_matches(".json").trim_end_matches(".swarf").to_owned();
-                (project.job, name, bytes, PathBuf::from(stem))
+                (embed_beside(project.job, &file)?, name, bytes, PathBuf::from(stem))
             } else {
-                let job = Job::from_json(&text).map_err(|e| e.to_string())?;
+                let job = embed_beside(Job::from_json(&text).map_err(|e| e.to_string())?, &file)?;
                 let Some(part) = part.as_deref() else { return Err(format!("{}: a job file needs a part: swarf run job.json part.stl", file.display())) };
                 (job, part.file_name().map(|n| n.to_string_lossy().into_owned()), read(part)?, part.with_extension(""))
             };
@@ -296,7 +313,7 @@ fn run(cli: Cli) -> Result<(), String> {
             run_job(&job, workpiece, &output, RunOptions { quiet, write_anyway, stage_times })
         }
         Command::Project { job: job_file, part, output, reference } => {
-            let job = Job::from_json(&String::from_utf8_lossy(&read(&job_file)?)).map_err(|e| e.to_string())?;
+            let job = read_job(&job_file)?;
             let name = part.file_name().map(|n| n.to_string_lossy().into_owned()).ok_or_else(|| format!("{}: not a file", part.display()))?;
             let project = if reference { Project::referencing(job, &name) } else { Project::embedded(job, &name, &read(&part)?) };
             let output = output.unwrap_or_else(|| part.with_extension("swarf.json"));
@@ -317,7 +334,7 @@ fn run(cli: Cli) -> Result<(), String> {
             run_job(&job, part, &output.join(format!("{name}.{}", job.post.extension())), RunOptions { quiet: false, write_anyway: false, stage_times: false })
         }
         Command::Sheet { job: job_file, part, output } => {
-            let job = Job::from_json(&String::from_utf8_lossy(&read(&job_file)?)).map_err(|e| e.to_string())?;
+            let job = read_job(&job_file)?;
             let mesh = read_part(&part, &job)?;
             let output = output.unwrap_or_else(|| part.with_extension("sheet.html"));
             not_an_input(&output, &[&job_file, &part])?;
@@ -453,7 +470,7 @@ fn run(cli: Cli) -> Result<(), String> {
             Ok(())
         }
         Command::Verify { job, part, program, cell, json } => {
-            let job = Job::from_json(&String::from_utf8_lossy(&read(&job)?)).map_err(|e| e.to_string())?;
+            let job = read_job(&job)?;
             let name = part.file_name().map(|n| n.to_string_lossy().into_owned());
             let mesh = read_mesh_auto(&read(&part)?, name.as_deref(), &job.tolerances).map_err(|e| format!("{}: {e}", part.display()))?;
             let text = String::from_utf8_lossy(&read(&program)?).into_owned();
