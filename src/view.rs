@@ -397,11 +397,41 @@ pub struct SetupView {
     pub centre: [f64; 3],
     pub shift: [f64; 3],
     pub stock: Aabb,
+    /// What holds the stock in it (a vise's jaws, clamps, fixtures as meshes by their boxes):
+    /// each box's least and greatest corner.
+    pub fixtures: Vec<[f64; 6]>,
+}
+
+/// The boxes of `held`, as the view draws them.
+fn fixture_boxes(held: &[job::fixtures::Held]) -> Vec<[f64; 6]> {
+    held.iter()
+        .map(|h| {
+            let (a, b) = (h.solid.min, h.solid.max);
+            [a.x, a.y, a.z, b.x, b.y, b.z]
+        })
+        .collect()
 }
 
 impl SetupView {
     pub fn of(index: usize, name: &str, orientation: &job::setups::Orientation, stock: Aabb) -> SetupView {
-        SetupView { index, name: name.to_owned(), rotation: orientation.rotation.to_cols_array(), centre: orientation.centre.to_array(), shift: orientation.shift.to_array(), stock }
+        SetupView { index, name: name.to_owned(), rotation: orientation.rotation.to_cols_array(), centre: orientation.centre.to_array(), shift: orientation.shift.to_array(), stock, fixtures: Vec::new() }
+    }
+
+    /// How the view shows a job before it runs, on a part whose bounds (placed as the job
+    /// places it, before any work zero) are `part`: each setup as [`SetupView::frames`] holds
+    /// it, or a job without setups as its one, the part moved to the work zero; each with its
+    /// stock's box and its fixtures, in the program's coordinates (the zero at the origin).
+    pub fn stage(job: &Job, part: &Aabb) -> Vec<SetupView> {
+        if job.setups.is_empty() {
+            let (stock, shift) = job.stock_at_zero(part);
+            let orientation = job::setups::Orientation { rotation: glam::DMat3::IDENTITY, centre: crate::geom::DVec3::ZERO, shift };
+            return vec![SetupView { fixtures: fixture_boxes(&job.fixtures.held(&stock)), ..SetupView::of(0, &job.name, &orientation, stock) }];
+        }
+        let mut frames = SetupView::frames(job, part);
+        for (frame, setup) in frames.iter_mut().zip(&job.setups) {
+            frame.fixtures = fixture_boxes(&setup.fixtures.as_ref().unwrap_or(&job.fixtures).held(&frame.stock));
+        }
+        frames
     }
 
     /// Every setup of `job` on a part whose bounds (placed as the job places it) are `part`
@@ -447,15 +477,7 @@ impl ResultView {
             cache_hits: out.cache.hits,
             problem: out.problem.clone(),
             stock: [s.min.x, s.min.y, s.min.z, s.max.x, s.max.y, s.max.z],
-            fixtures: job
-                .fixtures
-                .held(&s)
-                .iter()
-                .map(|h| {
-                    let (a, b) = (h.solid.min, h.solid.max);
-                    [a.x, a.y, a.z, b.x, b.y, b.z]
-                })
-                .collect(),
+            fixtures: fixture_boxes(&job.fixtures.held(&s)),
             clearance_z: out.clearance_z,
             extension: job.post.extension(),
             post: job.post.post().name,

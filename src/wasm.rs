@@ -234,12 +234,17 @@ fn read_part(bytes: &[u8], name: &str, tolerances: &Tolerances) -> Result<Mesh, 
     read_mesh_auto(bytes, Some(name), tolerances).map_err(|e| js_error(format!("{name}: {e}")))
 }
 
-/// Reads a part and places it as `setup` (a `PartSetup` object) says.
+/// Reads a part and places it as `setup` (a `PartSetup` object) says, with a mesh stock
+/// (`stockMesh`, the job's `stock.mesh`) as a job with it places it.
 #[wasm_bindgen(js_name = loadPart)]
-pub fn load_part(bytes: &[u8], name: &str, setup: JsValue) -> Result<PartView, JsError> {
+pub fn load_part(bytes: &[u8], name: &str, setup: JsValue, stock_mesh: JsValue) -> Result<PartView, JsError> {
     let setup: PartSetup = serde_wasm_bindgen::from_value(setup).map_err(js_error)?;
     let mut mesh = read_part(bytes, name, &Tolerances::default())?;
-    setup.apply(&mut mesh);
+    // Placed as the job places it: with a mesh stock, by the blank's top.
+    let mesh_stock: Option<crate::job::blank::MeshFile> = if stock_mesh.is_null() || stock_mesh.is_undefined() { None } else { Some(serde_wasm_bindgen::from_value(stock_mesh).map_err(js_error)?) };
+    let mut job = Job { part: setup, ..Job::default() };
+    job.stock.mesh = mesh_stock;
+    job.place_part(&mut mesh);
     Ok(PartView(view::PartData::of(&mesh)))
 }
 
@@ -580,6 +585,15 @@ fn bounds_of(part: &[f64]) -> Result<crate::geom::Aabb, JsError> {
 /// Where each setup of `job` holds a part whose bounds (placed as the job places it) are `part`
 /// (`[minX, minY, minZ, maxX, maxY, maxZ]`, as `loadPart` gives them): `[SetupView]`, empty
 /// for a job without setups.
+/// How the view shows `job` before it runs ([`view::SetupView::stage`]): each setup's frame,
+/// or the job's one, with its stock box and fixtures; `part` is the part's bounds as
+/// `loadPart` placed it.
+#[wasm_bindgen(js_name = stageFrames)]
+pub fn stage_frames(job: JsValue, part: Vec<f64>) -> Result<JsValue, JsError> {
+    let job = job_from_js(job)?;
+    to_js(&view::SetupView::stage(&job, &bounds_of(&part)?))
+}
+
 #[wasm_bindgen(js_name = setupFrames)]
 pub fn setup_frames(job: JsValue, part: Vec<f64>) -> Result<JsValue, JsError> {
     let job = job_from_js(job)?;

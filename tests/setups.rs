@@ -495,3 +495,37 @@ fn every_setup_in_one_program_stops_between_them() {
         read.unwrap();
     }
 }
+
+/// What the view shows before a run ([`swarf::view::SetupView::stage`]) is what the run has:
+/// the stock at the work zero and the fixtures round it, for a job without setups and for each
+/// setup of one with them.
+#[test]
+fn the_stage_before_a_run_is_the_runs_stock_and_fixtures() {
+    use swarf::job::fixtures::{Fixtures, Vise};
+    use swarf::job::{WorkZero, ZeroCorner, ZeroHeight};
+    let mut job = Job::two_sided();
+    job.fixtures = Fixtures { vise: Some(Vise { grip: 8.0, ..Vise::default() }), ..Fixtures::default() };
+    let mut placed = two_sided_part();
+    job.place_part(&mut placed);
+    let whole = run_setups(&job, two_sided_part(), &mut Progress::none()).unwrap();
+    let stage = swarf::view::SetupView::stage(&job, &placed.bounds());
+    assert_eq!(stage.len(), 2);
+    for (k, (s, w)) in stage.iter().zip(&whole).enumerate() {
+        assert!((s.stock.min - w.output.stock.min).length() < 1e-9 && (s.stock.max - w.output.stock.max).length() < 1e-9, "setup {k}: {:?} against {:?}", s.stock, w.output.stock);
+        assert_eq!(s.fixtures.len(), 2, "setup {k}");
+    }
+    let mut one = job.clone();
+    one.operations = one.setups[0].operations.clone();
+    one.setups.clear();
+    one.stock.zero = Some(WorkZero { corner: ZeroCorner::FrontLeft, height: ZeroHeight::StockTop, ..WorkZero::default() });
+    let out = swarf::job::run(&one, two_sided_part(), &mut Progress::none()).unwrap();
+    let stage = swarf::view::SetupView::stage(&one, &placed.bounds());
+    assert_eq!(stage.len(), 1);
+    assert!((stage[0].stock.min - out.stock.min).length() < 1e-9 && (stage[0].stock.max - out.stock.max).length() < 1e-9);
+    assert!(stage[0].stock.min.x.abs() < 1e-9 && stage[0].stock.min.y.abs() < 1e-9 && stage[0].stock.max.z.abs() < 1e-9);
+    // The part moves with the stock: by the frame's shift.
+    let shift = swarf::geom::DVec3::from_array(stage[0].shift);
+    let mut moved = two_sided_part();
+    one.place(&mut moved);
+    assert!((moved.bounds().min - (placed.bounds().min + shift)).length() < 1e-9);
+}

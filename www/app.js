@@ -11,7 +11,7 @@ import { GcodePane } from './gcode.js';
 import { sim, setTime, step, play, drawMrr, toLine } from './simulation.js';
 import { fillTools, fillToolChoices, showSpeeds, onHolderField, addTool, deleteTool, exportTools, importTools, renumber } from './tools.js';
 import { fillOps, fillKinds, addOperation, onOpList, showPicked, showHoles, pickInView, findHoles, onHoleList, presetHoles, zeroOnHole } from './operations.js';
-import { fillSetups, addSetup, removeSetup, onSetupTabs, onSetupField, showHeld, playSetup } from './setups.js';
+import { fillSetups, addSetup, removeSetup, onSetupTabs, onSetupField, showHeld, restage, playSetup } from './setups.js';
 import { setKind, showPart, takeFile, fillPart, freshSetup, showSizes } from './part.js';
 import { pageUnits, setPageUnits } from './units.js';
 import { showSummary, generate, cancel, download, clearResult, onLegend, resultTab, fillPost, savePost, loadPost, repost, saveJob, loadJob, saveProject, openProject, setRunning, showSetupResult, showSheet } from './results.js';
@@ -37,6 +37,9 @@ function fillStock() {
   $('bar-fields').hidden = state.kind !== 'part' || shape !== 'bar';
   $('blank-fields').hidden = state.kind !== 'part' || form.elements.stockShape.value !== 'mesh';
   $('stock-mesh-name').textContent = j.stock.mesh ? `${j.stock.mesh.name}: the stock is this mesh, placed with the part (centred on its top where the part is centred); its box is the stock's.` : 'Choose the file: until then the stock is a box.';
+  const meshes = j.fixtures?.meshes ?? [];
+  $('fixture-mesh-names').textContent = meshes.length ? `Fixtures as meshes: ${meshes.map((m) => m.name || m.file.name).join(', ')}.` : '';
+  $('fixture-meshes-clear').hidden = !meshes.length;
   // A vise's fields where the stock is held in one.
   const vise = !!j.fixtures?.vise;
   form.elements.vise.checked = vise;
@@ -61,23 +64,43 @@ async function onStockShape(shape) {
   state.blankChosen = shape === 'mesh';
   if (shape === 'bar' && !j.stock.bar) j.stock.bar = (await state.engine.readJob(JSON.stringify({ stock: { bar: {} } }))).stock.bar;
   if (shape !== 'bar') j.stock.bar = null;
+  const hadMesh = !!j.stock.mesh;
   if (shape !== 'mesh') j.stock.mesh = null;
   store('stock.shape');
   clearResult();
   fillStock();
   changed();
+  // The part is placed by a blank's top: placed again without it.
+  if (hadMesh && !j.stock.mesh) await showPart();
 }
 
 // A casting's or blank's file read into the job (its bytes travel with the job, to the workers,
 // into projects and saved jobs).
 async function onStockMesh(file) {
+  const j = job();
+  j.stock.mesh = { name: file.name, data: await base64Of(file) };
+  j.stock.bar = null;
+  store('stock.mesh');
+  clearResult();
+  fillStock();
+  // The part placed by the blank's top, as the job places it.
+  await showPart();
+}
+
+// A file's bytes in base64, as the job carries a mesh.
+async function base64Of(file) {
   const bytes = new Uint8Array(await file.arrayBuffer());
   let text = '';
   for (let i = 0; i < bytes.length; i += 0x8000) text += String.fromCharCode(...bytes.subarray(i, i + 0x8000));
+  return btoa(text);
+}
+
+// Fixtures as meshes added to the job (or all of them taken out).
+async function onFixtureMeshes(files) {
   const j = job();
-  j.stock.mesh = { name: file.name, data: btoa(text) };
-  j.stock.bar = null;
-  store('stock.mesh');
+  const made = await Promise.all(files.map(async (f) => ({ name: f.name, file: { name: f.name, data: await base64Of(f) } })));
+  j.fixtures = { ...j.fixtures, meshes: files.length ? [...(j.fixtures?.meshes ?? []), ...made] : [] };
+  store('fixtures.meshes');
   clearResult();
   fillStock();
   changed();
@@ -118,7 +141,7 @@ function fillAll() {
 let checking = null;
 function changed() {
   clearTimeout(checking);
-  checking = setTimeout(() => check(), 120);
+  checking = setTimeout(() => { check(); showHeld(); }, 120);
 }
 
 // The undo and redo buttons say whether there is a step to take.
@@ -128,7 +151,7 @@ function showHistory() {
 }
 
 Object.assign(hooks, {
-  fillAll, changed, showPicked, clearResult, setKind, showPart, loadJob, fillTools, fillToolChoices, fillSetups, showHeld, showSetupResult, playSetup, history: showHistory,
+  fillAll, changed, showPicked, clearResult, setKind, showPart, loadJob, fillTools, fillToolChoices, fillSetups, showHeld, restage, showSetupResult, playSetup, history: showHistory,
   error: (text) => message(text, 'error'),
 });
 
@@ -249,6 +272,7 @@ form.addEventListener('change', (e) => {
   if (e.target.closest('#op-list')) return;
   if (e.target.name === 'vise') { onVise(e.target); return; }
   if (e.target.name === 'stockShape') { onStockShape(e.target.value); return; }
+  if (e.target.id === 'fixture-meshes') { if (e.target.files.length) onFixtureMeshes([...e.target.files]); e.target.value = ''; return; }
   if (e.target.id === 'stock-mesh') { if (e.target.files[0]) onStockMesh(e.target.files[0]); e.target.value = ''; return; }
   if (e.target.name === 'machine') { onMachine(e.target.value); return; }
   if (e.target.name === 'holder' || e.target.name === 'holderSections') { onHolderField(e.target); return; }
@@ -256,6 +280,7 @@ form.addEventListener('change', (e) => {
   if (e.target.closest('#fs-part') || e.target.closest('#fs-drawing')) showPart();
 });
 $('tool-list').addEventListener('change', (e) => { state.selected.tool = Number(e.target.value); fillTools(); changed(); });
+$('fixture-meshes-clear').addEventListener('click', () => onFixtureMeshes([]));
 $('tool-add').addEventListener('click', () => addTool(false));
 $('tool-copy').addEventListener('click', () => addTool(true));
 $('tool-delete').addEventListener('click', deleteTool);

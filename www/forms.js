@@ -32,6 +32,16 @@ export function valueOf(el) {
     const kept = v.map(mm);
     return type === 'box' ? { min: kept.slice(0, 3), max: kept.slice(3) } : kept;
   }
+  if (type === 'boxes') {
+    // Boxes, each as its min and max corners, ";" between them.
+    if (el.value.trim() === '') return [];
+    return el.value.split(';').map((part) => {
+      const v = part.split(',').map((w) => Number(w.trim()));
+      if (v.length !== 6 || v.some((x) => !Number.isFinite(x))) throw new Error(`${labelOf(el)}: give each box as 6 numbers separated by commas, and ";" between boxes`);
+      const kept = v.map(mm);
+      return { name: '', min: kept.slice(0, 3), max: kept.slice(3) };
+    });
+  }
   if (el.type === 'number' || type === 'int') {
     if (el.value === '' && type === 'optional') return null;
     const v = Number(el.value);
@@ -45,6 +55,7 @@ export function show(el, value) {
   const page = (v) => (unitOf(el) && typeof v === 'number' ? fieldText(v) : v);
   if (el.type === 'checkbox') el.checked = !!value;
   else if (el.dataset.type === 'list' || el.dataset.type === 'numbers' || el.dataset.type === 'ints') el.value = (value || []).map(page).join(', ');
+  else if (el.dataset.type === 'boxes') el.value = (value || []).map((b) => [...b.min, ...b.max].map(page).join(', ')).join('; ');
   else if (el.dataset.type === 'box') el.value = value ? [...value.min, ...value.max].map(page).join(', ') : '';
   else el.value = page(value) ?? '';
 }

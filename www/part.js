@@ -80,7 +80,7 @@ export function showSizes() {
 export async function showPart(bytes = state.bytes, name = state.name, label = state.label) {
   if (!bytes) return false;
   try {
-    const { part, drawing } = await state.engine.call({ type: 'load', bytes, name, setup: state.jobs.part.part, drawingSetup: state.jobs.drawing.drawing });
+    const { part, drawing } = await state.engine.call({ type: 'load', bytes, name, setup: state.jobs.part.part, stockMesh: state.jobs.part.stock.mesh ?? null, drawingSetup: state.jobs.drawing.drawing });
     Object.assign(state, { bytes, name, label });
     $('part-name').textContent = label;
     hooks.clearResult?.();

@@ -49,6 +49,8 @@ export function clearResult() {
   $('progress').value = 0;
   $('stage').textContent = '';
   legend(null);
+  // The part as the program will see it again, with its stock, fixtures and zero.
+  hooks.restage?.();
 }
 
 // The legend over the view: each operation's colour (and for octree roughing, each tool's) and

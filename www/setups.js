@@ -160,27 +160,42 @@ export function held(part, frame) {
   return { ...part, positions: turn(part.positions, true), normals: turn(part.normals, false), bounds, hash: null };
 }
 
-// The part in the view as the setup on show holds it (before Generate); counted on the page's
-// body (`data-setup-shown`), the signal a test waits on.
-let asked = 0, turned = false;
+// The part in the view as the setup on show holds it (before Generate), moved to its work zero,
+// with the stock's box, the fixtures and the zero: what the program will see. Counted on the
+// page's body (`data-setup-shown`), the signal a test waits on.
+let asked = 0, shownPart = null, shownAs = null;
 export async function showHeld() {
+  return stage(false);
+}
+
+// The view has lost the part as staged (a result was shown, or cleared): stages it again.
+export function restage() {
+  return stage(true);
+}
+
+async function stage(again) {
+  if (again) shownAs = undefined;
   const j = job(), k = ++asked;
   if (state.kind !== 'part' || !state.part || !state.viewer) return;
-  // The part as placed is on show already (the view keeps its camera).
-  if (!hasSetups(j) && !turned) return;
-  let part = state.part;
-  if (hasSetups(j)) {
-    try {
-      const frames = await state.engine.setupFrames(j, state.part.bounds);
-      if (k !== asked) return;
-      const frame = frames[setupIndex(j)];
-      if (frame) part = held(state.part, frame);
-    } catch {
-      // A job that does not read is marked at its fields; the part stays as placed.
-    }
+  let frame = null;
+  try {
+    const frames = await state.engine.stageFrames(j, state.part.bounds);
+    if (k !== asked) return;
+    frame = frames[hasSetups(j) ? setupIndex(j) : 0] ?? null;
+  } catch {
+    // A job that does not read is marked at its fields; the part stays as placed.
   }
   if (k !== asked || state.result) return;
-  turned = part !== state.part;
-  state.viewer.setPart(part);
+  // The part drawn again only where it moved (a die-sized part is tens of megabytes).
+  const as = frame ? JSON.stringify([frame.rotation, frame.centre, frame.shift]) : null;
+  if (state.part !== shownPart || as !== shownAs) {
+    const moved = frame && (frame.rotation.some((v, i) => v !== [1, 0, 0, 0, 1, 0, 0, 0, 1][i]) || frame.shift.some((v) => v !== 0));
+    // A new part is framed, and one moved (a setup turned, the zero moved); one drawn again
+    // after a result keeps the camera.
+    state.viewer.setPart(moved ? held(state.part, frame) : state.part, state.part !== shownPart || shownAs !== undefined);
+    [shownPart, shownAs] = [state.part, as];
+  }
+  state.viewer.setStage(frame ? { stock: [...frame.stock.min, ...frame.stock.max], fixtures: frame.fixtures } : null);
   document.body.dataset.setupShown = String(Number(document.body.dataset.setupShown ?? 0) + 1);
 }
+

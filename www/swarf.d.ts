@@ -180,6 +180,8 @@ export declare class Engine {
   zeroOn(job: JobInput, partBounds: ArrayLike<number>, setup: number | undefined, point: ArrayLike<number>): Promise<WorkZero>;
   /** Where each setup of `job` holds a part of these bounds, before a run (empty without setups). */
   setupFrames(job: JobInput, partBounds: ArrayLike<number>): Promise<SetupView[]>;
+  /** How a view shows `job` before a run: each setup's frame, or the job's one (the part moved to the work zero), with its stock box and fixtures' boxes. */
+  stageFrames(job: JobInput, partBounds: ArrayLike<number>): Promise<SetupView[]>;
   holes(job: JobInput, bytes: Uint8Array, name: string, setup?: number): Promise<Hole[]>;
   /** A part's round bosses (studs), for an external thread mill: numbered as its `holes` take them. */
   bosses(job: JobInput, bytes: Uint8Array, name: string, setup?: number): Promise<Hole[]>;

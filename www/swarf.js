@@ -235,7 +235,7 @@ export class Engine {
 
   /** Reads a part or drawing for the view: `{ part }` (typed arrays) or `{ drawing }`. */
   async open(bytes, name, job = this.defaultJob()) {
-    const r = await this.call({ type: 'load', bytes, name, setup: job.part, drawingSetup: job.drawing });
+    const r = await this.call({ type: 'load', bytes, name, setup: job.part, stockMesh: job.stock?.mesh ?? null, drawingSetup: job.drawing });
     return r.drawing ? { drawing: r.drawing } : { part: r.part };
   }
 
@@ -475,6 +475,14 @@ export class Engine {
    * part turned over as the setup holds it.
    */
   async setupFrames(job, partBounds) { return (await this.call({ type: 'setupFrames', job, part: Array.from(partBounds) })).frames; }
+
+  /**
+   * How a view shows `job` before a run, on a part whose bounds are `partBounds` (as `open`
+   * gives them): `[SetupView]`, each setup's frame, or the job's one for a job without setups
+   * (the part moved to the work zero), each with its stock box and its fixtures' boxes in the
+   * program's coordinates.
+   */
+  async stageFrames(job, partBounds) { return (await this.call({ type: 'stageFrames', job, part: Array.from(partBounds) })).frames; }
 
   /**
    * The last run's program (of its setup `setup`, for a job with setups) written again for

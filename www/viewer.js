@@ -265,6 +265,7 @@ export class Viewer {
     add(rapids, rapidMoves, [[0, rapids.length / 6]], { op: -1, color: RAPID_COLOR, rapid: true });
     steps.push(() => {
       if (stock) this.setLine('stock', { buffer: this.buffer(boxLines(stock)), count: 24, color: [0.35, 0.4, 0.45, 0.6], mark: true });
+      if (stock) this.setZero(stock);
       // What holds the stock (a vise's jaws, clamps), in the red of things not to touch.
       if (fixtures.length) {
         const lines = new Float32Array(fixtures.length * 72);
@@ -275,6 +276,30 @@ export class Viewer {
       this.draw();
     });
     return steps;
+  }
+
+  // Before a run, as the setup on show holds the part: the stock's box, what holds the stock
+  // (`stage.fixtures`, boxes) and the work zero; `null` takes them away.
+  setStage(stage) {
+    this.dropLines((key) => key === 'stock' || key === 'fixtures' || key.startsWith('zero'));
+    this.staged = stage;
+    if (stage) {
+      this.setLine('stock', { buffer: this.buffer(boxLines(stage.stock)), count: 24, color: [0.35, 0.4, 0.45, 0.6], mark: true });
+      if (stage.fixtures.length) {
+        const lines = new Float32Array(stage.fixtures.length * 72);
+        stage.fixtures.forEach((b, k) => lines.set(boxLines(b), k * 72));
+        this.setLine('fixtures', { buffer: this.buffer(lines), count: 24 * stage.fixtures.length, color: [0.75, 0.15, 0.1, 0.9], mark: true });
+      }
+      this.setZero(stage.stock);
+    }
+    this.draw();
+  }
+
+  // The work zero, the program's origin: X red, Y green and Z blue, a sixth of the stock long.
+  setZero(stock) {
+    const size = Math.max(stock[3] - stock[0], stock[4] - stock[1], stock[5] - stock[2]) / 6;
+    const axes = [['zero_x', [1, 0, 0], [0.85, 0.15, 0.1, 1]], ['zero_y', [0, 1, 0], [0.1, 0.6, 0.15, 1]], ['zero_z', [0, 0, 1], [0.15, 0.3, 0.9, 1]]];
+    for (const [key, [x, y, z], color] of axes) this.setLine(key, { buffer: this.buffer(new Float32Array([0, 0, 0, x * size, y * size, z * size])), count: 2, color, mark: true });
   }
 
   // One colour's segments (the runs `parts` of `data`), with their moves, and every `every`-th

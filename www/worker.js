@@ -1,6 +1,6 @@
 // Runs the wasm pipeline off the page's thread, for swarf.js's engine. Cancel = the engine
 // terminates this worker.
-import init, { defaults, builtinPosts, readPost, readJob, checkJob, writeProject, readProject, samplePart, sampleDrawing, warmUpJob, warmUpPart, loadPart, loadDrawing, isDrawing, prepareJob, setupFrames, setupSheet, oneProgram, zeroOn, cuttingData, readToolLibrary, writeToolLibrary, findHoles, findBosses, findEdges } from './pkg/swarf.js';
+import init, { defaults, builtinPosts, readPost, readJob, checkJob, writeProject, readProject, samplePart, sampleDrawing, warmUpJob, warmUpPart, loadPart, loadDrawing, stageFrames, isDrawing, prepareJob, setupFrames, setupSheet, oneProgram, zeroOn, cuttingData, readToolLibrary, writeToolLibrary, findHoles, findBosses, findEdges } from './pkg/swarf.js';
 
 // The wasm is loaded on the first message: from the bytes or URL it names (a single-file page
 // passes the bytes), else from pkg/ beside the glue.
@@ -191,7 +191,7 @@ self.onmessage = async (event) => {
       if (isDrawing(event.data.bytes, event.data.name)) {
         self.postMessage({ id, ok: true, drawing: loadDrawing(event.data.bytes, event.data.name, event.data.drawingSetup) });
       } else {
-        const { part, transfer } = partMessage(loadPart(event.data.bytes, event.data.name, event.data.setup));
+        const { part, transfer } = partMessage(loadPart(event.data.bytes, event.data.name, event.data.setup, event.data.stockMesh ?? null));
         self.postMessage({ id, ok: true, part }, transfer);
       }
     } else if (type === 'sheet') {
@@ -211,6 +211,8 @@ self.onmessage = async (event) => {
     } else if (type === 'zeroOn') {
       const { job, part, setup, point } = event.data;
       self.postMessage({ id, ok: true, zero: zeroOn(job, Float64Array.from(part), setup ?? undefined, point[0], point[1]) });
+    } else if (type === 'stageFrames') {
+      self.postMessage({ id, ok: true, frames: stageFrames(event.data.job, Float64Array.from(event.data.part)) });
     } else if (type === 'setupFrames') {
       self.postMessage({ id, ok: true, frames: setupFrames(event.data.job, Float64Array.from(event.data.part)) });
     } else if (type === 'run') {

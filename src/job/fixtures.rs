@@ -19,13 +19,17 @@ pub struct Fixtures {
     /// Clamps, a plate, anything else: boxes in the program's coordinates (mm from the work
     /// zero). Default value: none.
     pub boxes: Vec<FixtureBox>,
+    /// Fixtures as meshes (a vise's model, a strap clamp, a soft jaw), in the program's
+    /// coordinates (mm from the work zero): the operations keep out of the box round each,
+    /// the verification out of the mesh itself. Default value: none.
+    pub meshes: Vec<FixtureMesh>,
     /// How far every tool keeps from each of them (mm). Default value: 1.
     pub clearance: f64,
 }
 
 impl Default for Fixtures {
     fn default() -> Self {
-        Fixtures { vise: None, boxes: Vec::new(), clearance: 1.0 }
+        Fixtures { vise: None, boxes: Vec::new(), meshes: Vec::new(), clearance: 1.0 }
     }
 }
 
@@ -77,20 +81,48 @@ impl Default for FixtureBox {
     }
 }
 
+/// A fixture as a mesh.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(default, rename_all = "camelCase")]
+pub struct FixtureMesh {
+    /// Its name, in the messages. Default value: its file's name.
+    pub name: String,
+    /// Its file (STL, OBJ, glTF), in the program's coordinates (mm).
+    pub file: super::blank::MeshFile,
+}
+
 /// How far below the stock's bottom a vise's jaws reach: far enough that no tool reaches
 /// under them.
 const JAW_DEPTH: f64 = 60.0;
 
-/// One fixture as the planning and the verification see it: its name and its box.
-#[derive(Clone, Debug, PartialEq)]
+/// One fixture as the planning and the verification see it: its name and its box, and for a
+/// mesh fixture the mesh (the box is then the mesh's, which the planning keeps out of and the
+/// verification looks inside for the mesh itself).
+#[derive(Clone, Debug)]
 pub struct Held {
     pub name: String,
     pub solid: Aabb,
+    pub mesh: Option<std::sync::Arc<Mesh>>,
+    /// How far the box was grown round the fixture (its clearance, in [`Fixtures::keep_out`]).
+    pub grown: f64,
+}
+
+impl PartialEq for Held {
+    fn eq(&self, other: &Held) -> bool {
+        self.name == other.name && self.solid == other.solid && self.grown == other.grown && self.mesh.is_some() == other.mesh.is_some()
+    }
+}
+
+impl Held {
+    /// A box fixture.
+    pub fn solid(name: &str, solid: Aabb) -> Held {
+        Held { name: name.to_owned(), solid, mesh: None, grown: 0.0 }
+    }
 }
 
 impl Fixtures {
     pub fn is_empty(&self) -> bool {
-        self.vise.is_none() && self.boxes.is_empty()
+        self.vise.is_none() && self.boxes.is_empty() && self.meshes.is_empty()
     }
 
     /// Every fixture round `stock` (the program's coordinates), each box as it stands.
@@ -111,11 +143,17 @@ impl Fixtures {
                     ("the vise's right jaw", jaw(DVec3::new(hi.x, c.y - half, z0), DVec3::new(hi.x + v.jaw_thickness, c.y + half, z1))),
                 ],
             };
-            out.extend(jaws.into_iter().map(|(name, solid)| Held { name: name.to_owned(), solid }));
+            out.extend(jaws.into_iter().map(|(name, solid)| Held::solid(name, solid)));
         }
         for (k, b) in self.boxes.iter().enumerate() {
             let name = if b.name.trim().is_empty() { format!("fixture {}", k + 1) } else { b.name.clone() };
-            out.push(Held { name, solid: Aabb { min: DVec3::from_array(b.min), max: DVec3::from_array(b.max) } });
+            out.push(Held::solid(&name, Aabb { min: DVec3::from_array(b.min), max: DVec3::from_array(b.max) }));
+        }
+        for (k, m) in self.meshes.iter().enumerate() {
+            // One that cannot be read is named by `problems`.
+            let Ok(mesh) = m.file.mesh() else { continue };
+            let name = [&m.name, &m.file.name].into_iter().find(|n| !n.trim().is_empty()).cloned().unwrap_or_else(|| format!("fixture mesh {}", k + 1));
+            out.push(Held { name, solid: mesh.bounds(), mesh: Some(mesh), grown: 0.0 });
         }
         out
     }
@@ -123,7 +161,7 @@ impl Fixtures {
     /// What no tool may enter round `stock`: each fixture grown by the clearance.
     pub fn keep_out(&self, stock: &Aabb) -> Vec<Held> {
         let c = DVec3::splat(self.clearance.max(0.0));
-        self.held(stock).into_iter().map(|h| Held { solid: Aabb { min: h.solid.min - c, max: h.solid.max + c }, ..h }).collect()
+        self.held(stock).into_iter().map(|h| Held { solid: Aabb { min: h.solid.min - c, max: h.solid.max + c }, grown: c.x, ..h }).collect()
     }
 
     /// The settings that do not fit, as `(field, message)` under `at` (`fixtures`, or a
@@ -146,6 +184,11 @@ impl Fixtures {
         for (k, b) in self.boxes.iter().enumerate() {
             if !(0..3).all(|i| b.min[i].is_finite() && b.max[i].is_finite() && b.min[i] < b.max[i]) {
                 say(format!("{at}.boxes[{k}]"), format!("{at}.boxes[{k}]: a fixture's least corner must be below its greatest in X, Y and Z (got {:?} to {:?})", b.min, b.max));
+            }
+        }
+        for (k, m) in self.meshes.iter().enumerate() {
+            if let Err(e) = m.file.mesh() {
+                say(format!("{at}.meshes[{k}]"), format!("{at}.meshes[{k}]: the fixture's mesh cannot be read: {e}"));
             }
         }
         out
@@ -189,7 +232,7 @@ mod tests {
         let volume: f64 = m.faces.iter().map(|f| m.vertices[f[0] as usize].dot(m.vertices[f[1] as usize].cross(m.vertices[f[2] as usize])) / 6.0).sum();
         let size = out[0].solid.size();
         assert!((volume - size.x * size.y * size.z).abs() < 1e-6, "{volume}");
-        let bad = Fixtures { vise: Some(Vise { grip: 0.0, ..Vise::default() }), boxes: vec![FixtureBox { min: [0.0, 0.0, 1.0], max: [1.0, 1.0, 0.0], ..FixtureBox::default() }], clearance: -1.0 };
+        let bad = Fixtures { vise: Some(Vise { grip: 0.0, ..Vise::default() }), boxes: vec![FixtureBox { min: [0.0, 0.0, 1.0], max: [1.0, 1.0, 0.0], ..FixtureBox::default() }], clearance: -1.0, ..Fixtures::default() };
         let fields: Vec<String> = bad.problems("fixtures").into_iter().map(|p| p.0).collect();
         assert_eq!(fields, ["fixtures.clearance", "fixtures.vise.grip", "fixtures.boxes[0]"]);
     }

@@ -209,7 +209,7 @@ mod tests {
     #[test]
     fn a_cut_lifts_over_a_clamp_and_comes_back_down_beyond_it() {
         let cutter = Cutter { flute_length: 20.0, ..Cutter::flat(6.0) };
-        let clamp = Held { name: "clamp".into(), solid: Aabb { min: DVec3::new(20.0, -5.0, -10.0), max: DVec3::new(30.0, 5.0, 8.0) } };
+        let clamp = Held::solid("clamp", Aabb { min: DVec3::new(20.0, -5.0, -10.0), max: DVec3::new(30.0, 5.0, 8.0) });
         let keep_out = [clamp];
         let start = DVec3::new(0.0, 0.0, 25.0);
         let moves = vec![

@@ -74,6 +74,42 @@ pub fn along(from: DVec3, m: &Move, t: f64) -> DVec3 {
     }
 }
 
+/// A mesh fixture as one tool meets it: the lowest tip heights at which the cutter, and a
+/// shank wider than it, keep the clearance from the mesh.
+struct MeshDrops {
+    cutter: crate::zmap::drop::PointDrop,
+    /// The drop of the cutter grown by a horizontal disk of the clearance is raised by it too
+    /// (a ball grown about its centre keeps it every way already).
+    lift: f64,
+    /// A shank wider than the cutter: its drop, and how far above the tip it starts less the
+    /// clearance it is raised by.
+    shank: Option<(crate::zmap::drop::PointDrop, f64)>,
+}
+
+impl MeshDrops {
+    fn new(mesh: &crate::mesh::Mesh, c: &Cutter, clearance: f64) -> MeshDrops {
+        use crate::cutter::Profile;
+        use crate::zmap::drop::PointDrop;
+        let tol = crate::geom::Tolerances::default();
+        let profile = c.profile();
+        let cutter = PointDrop::grown(mesh, &profile, clearance, &tol);
+        let lift = if profile.is_ball() || clearance <= 0.0 { 0.0 } else { clearance };
+        // A flat shank grown by a disk is raised by the clearance too.
+        let shank = c.shank_diameter.filter(|&d| d > c.diameter).map(|d| (PointDrop::grown(mesh, &Profile::new(d / 2.0, 0.0), clearance, &tol), c.flute_length - clearance.max(0.0)));
+        MeshDrops { cutter, lift, shank }
+    }
+
+    /// How far the tool with its tip at `p` is into the clearance (below 0: clear of it).
+    fn depth(&self, p: DVec3) -> f64 {
+        let at = p.truncate();
+        let mut lowest = self.cutter.at(at, f64::NEG_INFINITY) + self.lift;
+        if let Some((shank, rise)) = &self.shank {
+            lowest = lowest.max(shank.at(at, f64::NEG_INFINITY) - rise);
+        }
+        lowest - p.z
+    }
+}
+
 /// How far apart along a move the tool is judged against the fixtures (mm).
 pub fn sample_step(c: &Cutter) -> f64 {
     (c.diameter / 100.0).clamp(1e-3, 0.05)
@@ -87,6 +123,8 @@ pub fn collisions(moves: &[ProgramMove], keep_out: &[Held], tolerance: f64) -> V
     if keep_out.is_empty() {
         return out;
     }
+    // Each mesh fixture's drops for each tool that comes into its box, made once.
+    let mut drops: std::collections::HashMap<(usize, u32), MeshDrops> = std::collections::HashMap::new();
     for (k, m) in moves.iter().enumerate() {
         let reach = (m.cutter.diameter.max(m.cutter.shank_diameter.unwrap_or(0.0))) / 2.0;
         // Points along the move this far apart, when one comes near a fixture.
@@ -101,7 +139,7 @@ pub fn collisions(moves: &[ProgramMove], keep_out: &[Held], tolerance: f64) -> V
             }
             _ => (m.from.min(to), m.from.max(to)),
         };
-        for h in keep_out {
+        for (f, h) in keep_out.iter().enumerate() {
             let b = &h.solid;
             let near = -tolerance.min(0.0);
             if lo.z >= b.max.z + near || lo.x > b.max.x + reach + near || hi.x < b.min.x - reach - near || lo.y > b.max.y + reach + near || hi.y < b.min.y - reach - near {
@@ -110,7 +148,11 @@ pub fn collisions(moves: &[ProgramMove], keep_out: &[Held], tolerance: f64) -> V
             let mut worst: Option<(f64, DVec3)> = None;
             for i in 0..=n {
                 let p = along(m.from, &m.mv, i as f64 / n as f64);
-                let d = depth_into(&m.cutter, p, b);
+                let mut d = depth_into(&m.cutter, p, b);
+                // Within a mesh fixture's box: how far into the clearance of the mesh itself.
+                if let (Some(mesh), true) = (&h.mesh, d > tolerance) {
+                    d = drops.entry((f, m.tool)).or_insert_with(|| MeshDrops::new(mesh, &m.cutter, h.grown)).depth(p);
+                }
                 if d > tolerance && worst.is_none_or(|(w, _)| d > w) {
                     worst = Some((d, p));
                 }
@@ -134,7 +176,7 @@ mod tests {
 
     #[test]
     fn a_tool_beside_a_jaw_clears_it_by_its_profile_and_one_over_it_runs_in() {
-        let jaw = Held { name: "the vise's front jaw".into(), solid: Aabb { min: DVec3::new(-50.0, -40.0, -60.0), max: DVec3::new(50.0, -25.0, -10.0) } };
+        let jaw = Held::solid("the vise's front jaw", Aabb { min: DVec3::new(-50.0, -40.0, -60.0), max: DVec3::new(50.0, -25.0, -10.0) });
         let ball = Cutter { shape: crate::cutter::Shape::Ball, diameter: 6.0, corner_radius: 3.0, shank_diameter: None, flute_length: 20.0, angle: None, tip_diameter: 0.0 };
         // Along the jaw's face, 3 mm off: the ball's side just touches it, no more.
         let beside = moving(&ball, DVec3::new(-30.0, -22.0, -15.0), DVec3::new(30.0, -22.0, -15.0));
@@ -161,5 +203,23 @@ mod tests {
         // Above it: clear.
         let high = moving(&ball, DVec3::new(0.0, -60.0, -9.99), DVec3::new(0.0, 0.0, -9.99));
         assert!(collisions(&[high], &[jaw], 1e-9).is_empty());
+    }
+
+    /// A stepped block as a mesh fixture: a tool over its low step, inside the block's box but
+    /// clear of the mesh, is clear; one too low over the step, or into the tall part, is not.
+    #[test]
+    fn a_mesh_fixture_is_judged_by_its_mesh_within_its_box() {
+        let mesh = crate::mesh::sample::height_field_solid(DVec2::new(0.0, 0.0), DVec2::new(20.0, 10.0), 200, 100, 0.0, |x, _| if x < 10.0 { 10.0 } else { 2.0 });
+        let held = Held { name: "the step block".into(), solid: Aabb { min: mesh.bounds().min - DVec3::ONE, max: mesh.bounds().max + DVec3::ONE }, mesh: Some(std::sync::Arc::new(mesh)), grown: 1.0 };
+        let flat = Cutter { flute_length: 20.0, ..Cutter::flat(4.0) };
+        let at = |p: DVec3| {
+            let m = ProgramMove { path: 0, tool: 1, cutter: flat.clone(), from: p, mv: Move::Line { to: p + DVec3::new(0.0, 0.5, 0.0), feed: 100.0 }, start: 0.0, seconds: 0.0, air: false, holder: None };
+            collisions(&[m], std::slice::from_ref(&held), 0.0)
+        };
+        assert!(at(DVec3::new(15.0, 5.0, 5.0)).is_empty(), "over the low step, 3 mm clear of it and of the tall part");
+        let low = at(DVec3::new(15.0, 5.0, 2.5));
+        assert!(low.len() == 1 && (low[0].depth - 0.5).abs() < 1e-6, "{low:?}");
+        let into = at(DVec3::new(11.5, 5.0, 5.0));
+        assert!(into.len() == 1 && (into[0].depth - 6.0).abs() < 1e-6, "{into:?}");
     }
 }

@@ -1744,3 +1744,58 @@ test('the stock as a casting or a bar: a blank\'s file read into the job, the st
   assert.deepEqual(errors, []);
   await context.close();
 });
+
+test('clamps as boxes and a fixture as a mesh: the raster lifts over the clamp and says so, both are drawn, and the program runs clear of them', async () => {
+  const { page, context, errors } = await openPage();
+  await onlyRaster(page);
+  await tab(page, 'stock');
+  // A clamp over the stock's front edge, standing 10 mm over the part's top.
+  await page.fill('input[name=fixtureBoxes]', '-10, -40, 0, 10, -28, 10');
+  await page.dispatchEvent('input[name=fixtureBoxes]', 'change');
+  assert.deepEqual(await page.evaluate(() => window.swarf.jobs.part.fixtures.boxes), [{ name: '', min: [-10, -40, 0], max: [10, -28, 10] }]);
+  // And a strap clamp's model at the back.
+  await page.setInputFiles('#fixture-meshes', { name: 'strap.stl', mimeType: 'model/stl', buffer: boxStl([20, 12, 8], [-10, 28, 0]) });
+  await page.waitForFunction(() => /strap\.stl/.test(document.getElementById('fixture-mesh-names').textContent));
+  await page.click('#generate');
+  await generated(page);
+  const s = await page.evaluate(() => window.swarf.summary.s);
+  assert.equal(s.fixtures.length, 2);
+  assert.equal(s.problem, null, s.problem);
+  const said = s.warnings.map((w) => w.message).join('\n');
+  assert.match(said, /stopped short of fixture 1/);
+  assert.match(said, /stopped short of strap\.stl/);
+  // Rapids run over both.
+  assert.ok(s.clearanceZ > 10, `the clearance height ${s.clearanceZ}`);
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
+test('before Generate the view shows the stock, the vise and the work zero where the program will have them, and Generate agrees', async () => {
+  const { page, context, errors } = await openPage();
+  await onlyRaster(page);
+  const staged = async (n) => {
+    await page.waitForFunction((k) => Number(document.body.dataset.setupShown ?? 0) >= k && window.swarfView.staged, n);
+    return page.evaluate(() => ({ ...window.swarfView.staged, shown: Number(document.body.dataset.setupShown) }));
+  };
+  const first = await staged(1);
+  assert.ok(first.stock[3] > first.stock[0] && first.stock[5] > first.stock[2], `a stock box: ${first.stock}`);
+  // The zero on the stock's front left corner, on its top; held in a vise.
+  await tab(page, 'stock');
+  await page.selectOption('select[name=zeroCorner]', 'frontLeft');
+  await page.selectOption('select[name=zeroHeight]', 'stockTop');
+  await page.check('input[name=vise]');
+  await page.waitForFunction((n) => Number(document.body.dataset.setupShown) > n && window.swarfView.staged.fixtures.length === 2, first.shown);
+  const moved = await staged(first.shown + 1);
+  const near = (a, b) => a.length === b.length && a.every((v, i) => Math.abs(v - b[i]) < 1e-6);
+  assert.ok(near(moved.stock.slice(0, 2), [0, 0]) && Math.abs(moved.stock[5]) < 1e-9, `the stock's front left top corner at the zero: ${moved.stock}`);
+  assert.ok(near(moved.stock.slice(3), [first.stock[3] - first.stock[0], first.stock[4] - first.stock[1], 0]), `the same stock: ${moved.stock} against ${first.stock}`);
+  // The view's part moved with it: its box is the placed part's, shifted as the stock was.
+  await page.screenshot({ path: path.join(shots, 'staged.png') });
+  await page.click('#generate');
+  await generated(page);
+  const s = await page.evaluate(() => window.swarf.summary.s);
+  assert.ok(near(s.stock, moved.stock), `Generate's stock ${s.stock} is the one shown ${moved.stock}`);
+  assert.ok(s.fixtures.length === 2 && s.fixtures.every((b, k) => near(b, moved.fixtures[k])), 'the jaws where they were shown');
+  assert.deepEqual(errors, []);
+  await context.close();
+});
