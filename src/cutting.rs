@@ -48,11 +48,18 @@ pub struct Machine {
     pub spindle_max: f64,
     /// The fastest cutting feed (mm/min). Default value: 5000.
     pub max_feed: f64,
+    /// How far the machine travels in X, Y and Z (mm): a program that spans more in any axis
+    /// cannot run on it, and is marked not safe to run, naming where. Default value: none (not
+    /// known: not checked; each built-in machine has its own).
+    pub travel: Option<[f64; 3]>,
 }
 
 impl Default for Machine {
     fn default() -> Self {
-        Machine::builtin()[0].clone()
+        // The hobby router's limits, its travel not known until a machine is chosen.
+        let mut router = Machine::builtin().swap_remove(0);
+        router.travel = None;
+        router
     }
 }
 
@@ -60,9 +67,12 @@ impl Machine {
     /// The built-in machines: a hobby router, a benchtop mill and a small VMC.
     pub fn builtin() -> Vec<Machine> {
         vec![
-            Machine { name: "hobby router".into(), spindle_min: 8000.0, spindle_max: 24000.0, max_feed: 5000.0 },
-            Machine { name: "benchtop mill".into(), spindle_min: 100.0, spindle_max: 10000.0, max_feed: 2500.0 },
-            Machine { name: "small VMC".into(), spindle_min: 100.0, spindle_max: 12000.0, max_feed: 10000.0 },
+            // A 4 × 4 ft class router's gantry (838 × 838 × 95 mm on the largest hobby kits).
+            Machine { name: "hobby router".into(), spindle_min: 8000.0, spindle_max: 24000.0, max_feed: 5000.0, travel: Some([800.0, 800.0, 100.0]) },
+            // A square-column benchtop mill's table and quill (X 300, Y 150, Z 250).
+            Machine { name: "benchtop mill".into(), spindle_min: 100.0, spindle_max: 10000.0, max_feed: 2500.0, travel: Some([300.0, 150.0, 250.0]) },
+            // A small VMC's 16 × 12 × 10 inch envelope.
+            Machine { name: "small VMC".into(), spindle_min: 100.0, spindle_max: 12000.0, max_feed: 10000.0, travel: Some([406.0, 305.0, 254.0]) },
         ]
     }
 
@@ -78,7 +88,32 @@ impl Machine {
         if !(self.max_feed.is_finite() && self.max_feed > 0.0 && self.max_feed <= crate::limits::MAX_FEED) {
             out.push(("maxFeed", format!("must be more than 0 mm/min, at most {} (got {})", crate::limits::MAX_FEED, crate::limits::shown(self.max_feed))));
         }
+        if let Some(t) = self.travel.filter(|t| !t.iter().all(|v| v.is_finite() && *v > 0.0 && *v <= crate::limits::MAX_SIZE)) {
+            out.push(("travel", format!("must be three lengths of more than 0 mm, at most {} (got {t:?})", crate::limits::MAX_SIZE)));
+        }
         out
+    }
+
+    /// Where the tip positions `points` (the program's every move end, in its coordinates)
+    /// span more than this machine travels: for each such axis, its words. Arcs bulge at most
+    /// their radius past their ends, which the caller adds as points.
+    pub fn beyond_travel(&self, low: [f64; 3], high: [f64; 3]) -> Vec<String> {
+        let Some(travel) = self.travel else { return Vec::new() };
+        (0..3)
+            .filter(|&i| high[i] - low[i] > travel[i] + 1e-9)
+            .map(|i| {
+                let mm = |v: f64| crate::limits::shown((v * 1000.0).round() / 1000.0);
+                format!(
+                    "the program spans {} mm in {} (from {} to {}), more than the {}'s {} mm of travel",
+                    mm(high[i] - low[i]),
+                    ["X", "Y", "Z"][i],
+                    mm(low[i]),
+                    mm(high[i]),
+                    self.name,
+                    mm(travel[i])
+                )
+            })
+            .collect()
     }
 }
 

@@ -414,7 +414,15 @@ fn fixture_boxes(held: &[job::fixtures::Held]) -> Vec<[f64; 6]> {
 
 impl SetupView {
     pub fn of(index: usize, name: &str, orientation: &job::setups::Orientation, stock: Aabb) -> SetupView {
-        SetupView { index, name: name.to_owned(), rotation: orientation.rotation.to_cols_array(), centre: orientation.centre.to_array(), shift: orientation.shift.to_array(), stock, fixtures: Vec::new() }
+        SetupView {
+            index,
+            name: name.to_owned(),
+            rotation: orientation.rotation.to_cols_array(),
+            centre: orientation.centre.to_array(),
+            shift: orientation.shift.to_array(),
+            stock,
+            fixtures: Vec::new(),
+        }
     }
 
     /// How the view shows a job before it runs, on a part whose bounds (placed as the job

@@ -100,3 +100,41 @@ fn a_job_in_a_material_runs_at_its_speeds_and_feeds() {
     job.tools[0].flutes = 0;
     assert_eq!(job.problems()[0].path, "tools[0].flutes");
 }
+
+/// Every built-in machine makes the sample job in aluminium inside its limits: each spindle
+/// speed in its range, each feed at most its fastest, the program within its travel. A stock
+/// wider than a machine travels is a program not safe to run, the axis and the machine named;
+/// a machine whose travel is not known is not checked.
+#[test]
+fn every_built_in_machine_keeps_its_programs_inside_its_limits() {
+    use swarf::toolpath::Move;
+    for machine in Machine::builtin() {
+        let mut job = Job::demo();
+        job.stock.material = Some(Material::Aluminium6061);
+        job.machine = machine.clone();
+        let out = job::run(&job, swarf::mesh::sample::demo_part(), &mut Progress::none()).unwrap();
+        assert_eq!(out.problem, None, "{}", machine.name);
+        for p in &out.paths {
+            assert!(p.spindle_rpm >= machine.spindle_min && p.spindle_rpm <= machine.spindle_max, "{}: S{}", machine.name, p.spindle_rpm);
+            for m in &p.moves {
+                if let Move::Line { feed, .. } | Move::Arc { feed, .. } = *m {
+                    assert!(feed <= machine.max_feed + 1e-9, "{}: F{feed}", machine.name);
+                }
+            }
+        }
+    }
+    // Faced from a stock 330 mm wide: more than the benchtop mill's 300 mm of X.
+    let mut job = Job::demo();
+    job.operations = vec![swarf::operations::Operation::Face(swarf::operations::Face { tool: 1, ..Default::default() })];
+    job.stock.margin_xy = 120.0;
+    job.machine = Machine::builtin().into_iter().find(|m| m.name == "benchtop mill").unwrap();
+    let out = job::run(&job, swarf::mesh::sample::demo_part(), &mut Progress::none()).unwrap();
+    let problem = out.problem.clone().unwrap_or_default();
+    assert!(problem.contains("mm in X") && problem.contains("more than the benchtop mill's 300 mm of travel"), "{problem}");
+    assert!(out.gcode_marked().contains("NOT SAFE TO RUN"));
+    job.machine.travel = None;
+    assert_eq!(job::run(&job, swarf::mesh::sample::demo_part(), &mut Progress::none()).unwrap().problem, None);
+    // A travel that does not read is named at its field.
+    job.machine.travel = Some([300.0, 0.0, 250.0]);
+    assert!(job.problems().iter().any(|p| p.path == "machine.travel"), "{:?}", job.problems());
+}

@@ -232,7 +232,12 @@ mod tests {
         let volume: f64 = m.faces.iter().map(|f| m.vertices[f[0] as usize].dot(m.vertices[f[1] as usize].cross(m.vertices[f[2] as usize])) / 6.0).sum();
         let size = out[0].solid.size();
         assert!((volume - size.x * size.y * size.z).abs() < 1e-6, "{volume}");
-        let bad = Fixtures { vise: Some(Vise { grip: 0.0, ..Vise::default() }), boxes: vec![FixtureBox { min: [0.0, 0.0, 1.0], max: [1.0, 1.0, 0.0], ..FixtureBox::default() }], clearance: -1.0, ..Fixtures::default() };
+        let bad = Fixtures {
+            vise: Some(Vise { grip: 0.0, ..Vise::default() }),
+            boxes: vec![FixtureBox { min: [0.0, 0.0, 1.0], max: [1.0, 1.0, 0.0], ..FixtureBox::default() }],
+            clearance: -1.0,
+            ..Fixtures::default()
+        };
         let fields: Vec<String> = bad.problems("fixtures").into_iter().map(|p| p.0).collect();
         assert_eq!(fields, ["fixtures.clearance", "fixtures.vise.grip", "fixtures.boxes[0]"]);
     }

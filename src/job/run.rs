@@ -197,7 +197,8 @@ impl Job {
             sim,
             warnings: Vec::new(),
             rapid_rate: self.post.rapid_rate,
-            air_feed: self.stock.air_feed.unwrap_or(self.post.rapid_rate).min(self.post.rapid_rate),
+            // A G1 no faster than the machine feeds (its rapids may be faster).
+            air_feed: self.stock.air_feed.unwrap_or(self.post.rapid_rate).min(self.post.rapid_rate).min(self.machine.max_feed),
             operation: 0,
             given_passes: Default::default(),
             given_regions: Vec::new(),
@@ -624,13 +625,21 @@ impl Running {
             // Every move against what holds the stock, by its name.
             v.report.fixtures(keep_out.len(), crate::sim::fixtures::collisions(&all_moves, &keep_out, job.tolerances.gouge));
         }
-        let problem = verification.as_ref().and_then(|v| {
+        let found = verification.as_ref().and_then(|v| {
             let found = v.report.problem()?;
             Some(match gouge_causes(sheet.as_ref().map(|s| &s.drawing), &v.report) {
                 causes if causes.is_empty() => found,
                 causes => format!("{}; {found}", causes.join("; ")),
             })
         });
+        // A program the machine cannot reach is not safe to run, verified or not.
+        let (low, high) = move_extent(&all_moves);
+        let beyond = job.machine.beyond_travel(low, high);
+        let problem = match (found, beyond.is_empty()) {
+            (found, true) => found,
+            (None, false) => Some(beyond.join("; ")),
+            (Some(found), false) => Some(format!("{}; {found}", beyond.join("; "))),
+        };
         progress.stage("done", 1.0, 0.0);
         let drawing = sheet.map(|s| s.drawing);
         let (clearance_z, cache) = (heights.clearance, caches.counts);
@@ -655,6 +664,38 @@ impl Running {
             octants,
         })
     }
+}
+
+/// The least and greatest tip position of `moves` in each axis (an arc's by the quarter points
+/// of its circle it sweeps through).
+fn move_extent(moves: &[ProgramMove]) -> ([f64; 3], [f64; 3]) {
+    use crate::toolpath::Move;
+    let (mut low, mut high) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    let mut take = |p: crate::geom::DVec3| {
+        for (i, v) in p.to_array().into_iter().enumerate() {
+            (low[i], high[i]) = (low[i].min(v), high[i].max(v));
+        }
+    };
+    for m in moves {
+        take(m.from);
+        take(m.mv.to());
+        if let Move::Arc { to, center, clockwise, .. } = m.mv {
+            let a = m.from.truncate() - center;
+            let (r, start, sweep) = (a.length(), a.y.atan2(a.x), crate::toolpath::arc_sweep(m.from, to, center, clockwise));
+            for k in 0..4 {
+                let angle = k as f64 * std::f64::consts::FRAC_PI_2;
+                // How far round from the start, the way the arc turns, this quarter point lies.
+                let round = ((angle - start) * sweep.signum()).rem_euclid(std::f64::consts::TAU);
+                if round <= sweep.abs() {
+                    take((center + r * crate::geom::DVec2::new(angle.cos(), angle.sin())).extend(m.from.z));
+                }
+            }
+        }
+    }
+    if moves.is_empty() {
+        return ([0.0; 3], [0.0; 3]);
+    }
+    (low, high)
 }
 
 /// Why a program gouges, where the drawing says it before the simulation's cells do: its loops

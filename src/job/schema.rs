@@ -106,7 +106,7 @@ pub struct Stock {
     /// Feed (mm/min) of the moves a roughing or pocket level knows cut nothing: stretches of
     /// rings over ground an earlier ring of the level took, stay-down links across it, the way
     /// in from beside the stock. They stay in the path (the tool down, as G1), only faster, and
-    /// the verification holds each to cutting nothing. At most the rapid rate; no faster than
+    /// the verification holds each to cutting nothing. At most the rapid rate and the machine's fastest feed; no faster than
     /// the tool's feed keeps them at it. Default value: the post's rapid rate.
     pub air_feed: Option<f64>,
     /// Moves part and stock so that this point is the program's origin (for parts; a sheet's

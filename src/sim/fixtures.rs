@@ -213,7 +213,8 @@ mod tests {
         let held = Held { name: "the step block".into(), solid: Aabb { min: mesh.bounds().min - DVec3::ONE, max: mesh.bounds().max + DVec3::ONE }, mesh: Some(std::sync::Arc::new(mesh)), grown: 1.0 };
         let flat = Cutter { flute_length: 20.0, ..Cutter::flat(4.0) };
         let at = |p: DVec3| {
-            let m = ProgramMove { path: 0, tool: 1, cutter: flat.clone(), from: p, mv: Move::Line { to: p + DVec3::new(0.0, 0.5, 0.0), feed: 100.0 }, start: 0.0, seconds: 0.0, air: false, holder: None };
+            let m =
+                ProgramMove { path: 0, tool: 1, cutter: flat.clone(), from: p, mv: Move::Line { to: p + DVec3::new(0.0, 0.5, 0.0), feed: 100.0 }, start: 0.0, seconds: 0.0, air: false, holder: None };
             collisions(&[m], std::slice::from_ref(&held), 0.0)
         };
         assert!(at(DVec3::new(15.0, 5.0, 5.0)).is_empty(), "over the low step, 3 mm clear of it and of the tall part");

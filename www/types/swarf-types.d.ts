@@ -683,6 +683,19 @@ max: [number, number, number], };
 export type FixtureCollision = { fixture: string, tool: number, finding: Finding, };
 
 /**
+ * A fixture as a mesh.
+ */
+export type FixtureMesh = { 
+/**
+ * Its name, in the messages. Default value: its file's name.
+ */
+name: string, 
+/**
+ * Its file (STL, OBJ, glTF), in the program's coordinates (mm).
+ */
+file: MeshFile, };
+
+/**
  * What holds the stock in a setup.
  */
 export type Fixtures = { 
@@ -695,6 +708,12 @@ vise: Vise | null,
  * zero). Default value: none.
  */
 boxes: Array<FixtureBox>, 
+/**
+ * Fixtures as meshes (a vise's model, a strap clamp, a soft jaw), in the program's
+ * coordinates (mm from the work zero): the operations keep out of the box round each,
+ * the verification out of the mesh itself. Default value: none.
+ */
+meshes: Array<FixtureMesh>, 
 /**
  * How far every tool keeps from each of them (mm). Default value: 1.
  */
@@ -945,7 +964,13 @@ spindleMin: number, spindleMax: number,
 /**
  * The fastest cutting feed (mm/min). Default value: 5000.
  */
-maxFeed: number, };
+maxFeed: number, 
+/**
+ * How far the machine travels in X, Y and Z (mm): a program that spans more in any axis
+ * cannot run on it, and is marked not safe to run, naming where. Default value: none (not
+ * known: not checked; each built-in machine has its own).
+ */
+travel: [number, number, number] | null, };
 
 /**
  * The stock's material.
@@ -1691,7 +1716,12 @@ fixtures: Fixtures | null, };
  * places it is at `rotation · (p − centre) + centre + shift` in the setup (the rotation by
  * quarter turns, column after column); `stock` is the raw stock's box there.
  */
-export type SetupView = { index: number, name: string, rotation: [number, number, number, number, number, number, number, number, number], centre: [number, number, number], shift: [number, number, number], stock: Aabb, };
+export type SetupView = { index: number, name: string, rotation: [number, number, number, number, number, number, number, number, number], centre: [number, number, number], shift: [number, number, number], stock: Aabb, 
+/**
+ * What holds the stock in it (a vise's jaws, clamps, fixtures as meshes by their boxes):
+ * each box's least and greatest corner.
+ */
+fixtures: Array<[number, number, number, number, number, number]>, };
 
 /**
  * The shape of a cutter's end.
@@ -1810,7 +1840,7 @@ retracts: Retracts,
  * Feed (mm/min) of the moves a roughing or pocket level knows cut nothing: stretches of
  * rings over ground an earlier ring of the level took, stay-down links across it, the way
  * in from beside the stock. They stay in the path (the tool down, as G1), only faster, and
- * the verification holds each to cutting nothing. At most the rapid rate; no faster than
+ * the verification holds each to cutting nothing. At most the rapid rate and the machine's fastest feed; no faster than
  * the tool's feed keeps them at it. Default value: the post's rapid rate.
  */
 airFeed: number | null, 
