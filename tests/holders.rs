@@ -24,27 +24,42 @@ fn job(stick_out: f64) -> Job {
     Job { tools: vec![tool], operations: vec![Operation::RoughZlevel(rough)], ..Job::default() }
 }
 
+/// A 20 × 20 pocket 20 deep, an ER20's φ34 nut too wide to go in (issue 58). With 12 mm out
+/// of it the roughing stops short where the nut would meet the plate and says so, the holder
+/// clear of everything; with 30 mm out it reaches the floor. The program made without the
+/// holder, verified against the job that has it (a peer's program that drives the holder in),
+/// has the holder in material, found and refused.
 #[test]
-fn a_holder_in_material_is_found_and_a_longer_stick_out_clears_it() {
+fn a_holder_too_short_stops_the_tool_short_and_a_program_that_drives_it_in_is_refused() {
     let short = job::run(&job(12.0), pocket(), &mut Progress::none()).unwrap();
     let r = &short.verification.as_ref().unwrap().report;
-    assert!(r.holder_collision_count > 0, "{}", r.describe());
-    let deepest = r.holder_collisions.iter().map(|f| f.amount).fold(0.0, f64::max);
-    // The tool goes 19.5 mm down (0.5 left on the floor): the nut's face 12 mm above its tip
-    // stands at most 7.5 mm under the plate's top (the first findings are kept, from the
-    // levels where it first goes in).
-    assert!(deepest > 1.0 && deepest < 7.5 + 0.6, "the nut {deepest} mm into the plate");
-    let problem = short.problem.as_deref().unwrap();
-    assert!(problem.contains("moves drive the tool's holder into material"), "{problem}");
+    assert_eq!(r.holder_collision_count, 0, "{}", r.describe());
+    assert!(short.problem.is_none(), "{:?}", short.problem);
+    let deepest = short.moves.iter().filter(|m| !m.mv.is_rapid()).map(|m| m.mv.to().z).fold(f64::INFINITY, f64::min);
+    // The nut's face 12 mm above the tip, half a millimetre clear of the plate's top.
+    assert!((-11.5 - 1e-6..-10.0).contains(&deepest), "the tool down to {deepest}");
+    let said: Vec<String> = short.warnings.iter().map(|w| w.to_string()).collect();
+    assert!(said.iter().any(|w| w.contains("T1's holder (ER20") && w.contains("material left there for a longer stick-out")), "{said:?}");
     let long = job::run(&job(30.0), pocket(), &mut Progress::none()).unwrap();
     let r = &long.verification.as_ref().unwrap().report;
     assert_eq!(r.holder_collision_count, 0, "{}", r.describe());
     assert!(long.problem.is_none(), "{:?}", long.problem);
-    // Without a holder the short stick-out is not judged by one.
+    let deepest = long.moves.iter().filter(|m| !m.mv.is_rapid()).map(|m| m.mv.to().z).fold(f64::INFINITY, f64::min);
+    assert!(deepest < -19.0, "the long stick-out reaches the floor: {deepest}");
+    assert!(!long.warnings.iter().any(|w| w.to_string().contains("holder")));
+    // The program made as if there were no holder drives the nut into the plate.
     let mut bare = job(12.0);
     bare.tools[0].holder = None;
     let out = job::run(&bare, pocket(), &mut Progress::none()).unwrap();
-    assert_eq!(out.verification.as_ref().unwrap().report.holder_collision_count, 0);
+    assert_eq!(out.verification.as_ref().unwrap().report.holder_collision_count, 0, "without a holder nothing is judged by one");
+    let checked = job::verify_gcode(&job(12.0), pocket(), &out.gcode, None, &mut Progress::none()).unwrap();
+    let r = &checked.report;
+    assert!(r.holder_collision_count > 0, "{}", r.describe());
+    let deepest = r.holder_collisions.iter().map(|f| f.amount).fold(0.0, f64::max);
+    // The tool goes 19.5 mm down (0.5 left on the floor): the nut's face 12 mm above its tip
+    // stands at most 7.5 mm under the plate's top.
+    assert!(deepest > 1.0 && deepest < 7.5 + 0.6, "the nut {deepest} mm into the plate");
+    assert!(r.problem().unwrap_or_default().contains("moves drive the tool's holder into material"), "{:?}", r.problem());
 }
 
 #[test]

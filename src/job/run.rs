@@ -381,6 +381,7 @@ impl Prepared {
             octants: Vec::new(),
             pending: Vec::new(),
             bands_out: 0,
+            holders: std::collections::HashMap::new(),
         }
     }
 }
@@ -413,6 +414,8 @@ pub struct Running {
     pub(super) pending: Vec<ProgramMove>,
     /// How many bands of the stock [`Running::take_bands`] handed out.
     pub(super) bands_out: usize,
+    /// Each tool's holder's bound over the part, made as its paths ask ([`Running::keep_holders_out`]).
+    pub(super) holders: std::collections::HashMap<u32, Option<crate::machining::holders::HolderBound>>,
 }
 
 impl Running {
@@ -450,6 +453,7 @@ impl Running {
         if !round {
             self.keep_clear(k, &mut paths);
         }
+        self.keep_holders_out(k, &mut paths);
         self.loads.push((load, stages));
         self.cuts.extend(cuts);
         self.grooves.extend(grooves);
@@ -487,6 +491,30 @@ impl Running {
             if !places.is_empty() {
                 let what = format!("holes left out: drilling them would run into {fixture} ({} mm clear of it)", crate::limits::shown(self.job.fixtures.clearance));
                 self.ctx.warn_at(&name, &what, &places);
+            }
+        }
+    }
+
+    /// Holds operation `k`'s `paths` on a part to their tools' holders' bounds
+    /// ([`crate::machining::holders`]), and says where the holder kept the tool above the path
+    /// planned: material left there for a longer stick-out.
+    fn keep_holders_out(&mut self, k: usize, paths: &mut [Toolpath]) {
+        if self.ctx.sheet.is_some() {
+            return;
+        }
+        let name = self.job.operations[k].op().name().to_owned();
+        for path in paths.iter_mut() {
+            let Some(tool) = self.job.tools.iter().find(|t| t.number == path.tool) else { continue };
+            let Some(rings) = tool.holder_rings() else { continue };
+            let ctx = &self.ctx;
+            let bound = self.holders.entry(tool.number).or_insert_with(|| crate::machining::holders::HolderBound::new(ctx.solid.as_ref().unwrap_or(&ctx.part), &rings, &ctx.tolerances));
+            let Some(bound) = bound.as_mut() else { continue };
+            let raised = crate::machining::holders::keep_holder_out(path, bound, self.job.tolerances.gouge);
+            if !raised.is_empty() {
+                let holder = tool.holder.as_ref().map_or(String::new(), |h| h.name.clone());
+                let stick_out = crate::limits::shown(tool.stick_out.unwrap_or(tool.cutter.flute_length));
+                let what = format!("places held up so that T{}'s holder ({holder}, {stick_out} mm stick-out) keeps clear of the part: material left there for a longer stick-out", tool.number);
+                self.ctx.warn_at(&name, &what, &raised);
             }
         }
     }

@@ -13,6 +13,7 @@ pub mod air;
 pub mod context;
 pub mod fixtures;
 pub mod form;
+pub mod holders;
 pub mod holes;
 pub mod levels;
 pub mod path2d;

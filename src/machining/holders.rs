@@ -1,0 +1,172 @@
+//! Keeping a tool's holder out of the part (issue 58): the holder's rings
+//! ([`crate::tool::Holder::rings`], each a flat cylinder from its rise above the tip up) are
+//! cutters too, dropped onto the part (with the fixtures), and a ring of radius `r` rising `h`
+//! above the tip keeps the tip at least its drop less `h`: the holder's bound on how deep the
+//! tool may go at each place. A path is held to it after it is planned: each move below it is
+//! raised onto it (never lowered, so no path comes nearer the part than it was planned), and
+//! the places raised are given back, for the operation to say what was left there for a longer
+//! stick-out.
+//!
+//! The bound is made on a grid of cells [`HOLDER_CELL`] wide, each cell's value the rings
+//! dropped at its centre widened by half its diagonal (so it bounds every point of the cell);
+//! a point of a path is held to the highest cell round it (the 3 × 3 block), and a path is
+//! sampled at half a cell, so every straight piece between two samples, lying in the block of
+//! its first end, stands on or above the bound all along. Only places deep enough for the
+//! lowest ring to reach the part's top are looked at: most jobs' tools stand out farther than
+//! their parts are deep, and pay nothing.
+
+use std::collections::HashMap;
+
+use crate::cutter::Profile;
+use crate::geom::{DVec2, DVec3, Tolerances};
+use crate::mesh::Mesh;
+use crate::toolpath::{Move, Toolpath};
+use crate::zmap::drop::PointDrop;
+
+/// The width of the cells the holder's bound is made on (mm).
+pub const HOLDER_CELL: f64 = 1.0;
+
+/// How far the holder keeps from the part (mm), besides the cells' widening.
+pub const HOLDER_CLEARANCE: f64 = 0.5;
+
+/// A tool's holder's bound over a part, made cell by cell as paths ask for it.
+pub struct HolderBound {
+    rings: Vec<(PointDrop, f64)>,
+    /// The part's top, and the lowest ring's rise: a tip higher than the top less that rise is
+    /// never held.
+    top: f64,
+    lowest: f64,
+    cells: HashMap<(i64, i64), f64>,
+}
+
+impl HolderBound {
+    /// The bound of a holder with `rings` (`(radius, rise)`) over `solid` (the part with the
+    /// fixtures); none without rings or without a part.
+    pub fn new(solid: &Mesh, rings: &[(f64, f64)], tolerances: &Tolerances) -> Option<HolderBound> {
+        if rings.is_empty() || solid.faces.is_empty() {
+            return None;
+        }
+        let widen = HOLDER_CELL * std::f64::consts::FRAC_1_SQRT_2 + HOLDER_CLEARANCE;
+        let rings: Vec<(PointDrop, f64)> = rings.iter().map(|&(r, rise)| (PointDrop::new(solid, &Profile::new(r + widen, 0.0), tolerances), rise - HOLDER_CLEARANCE)).collect();
+        let lowest = rings_lowest(&rings);
+        Some(HolderBound { rings, top: solid.bounds().max.z, lowest, cells: HashMap::new() })
+    }
+
+    fn cell(&mut self, i: i64, j: i64) -> f64 {
+        let rings = &self.rings;
+        *self.cells.entry((i, j)).or_insert_with(|| {
+            let c = DVec2::new((i as f64 + 0.5) * HOLDER_CELL, (j as f64 + 0.5) * HOLDER_CELL);
+            rings.iter().map(|(drop, rise)| drop.at(c, f64::NEG_INFINITY) - rise).fold(f64::NEG_INFINITY, f64::max)
+        })
+    }
+
+    /// The bound over the 3 × 3 block of cells round `p`.
+    fn block(&mut self, p: DVec2) -> f64 {
+        let (i, j) = ((p.x / HOLDER_CELL).floor() as i64, (p.y / HOLDER_CELL).floor() as i64);
+        let mut most = f64::NEG_INFINITY;
+        for dj in -1..=1 {
+            for di in -1..=1 {
+                most = most.max(self.cell(i + di, j + dj));
+            }
+        }
+        most
+    }
+
+    /// Whether a tip at `z` is too high for any ring to reach the part.
+    fn above(&self, z: f64) -> bool {
+        z + self.lowest > self.top + HOLDER_CLEARANCE
+    }
+}
+
+fn rings_lowest(rings: &[(PointDrop, f64)]) -> f64 {
+    rings.iter().map(|(_, rise)| *rise).fold(f64::INFINITY, f64::min)
+}
+
+/// Holds `path` to `bound`: each move (a drilling cycle's are left as they are) that dips
+/// below it is raised onto it, as straight pieces half a cell long; the places raised by more
+/// than `tolerance` are given back.
+pub fn keep_holder_out(path: &mut Toolpath, bound: &mut HolderBound, tolerance: f64) -> Vec<DVec3> {
+    let mut raised = Vec::new();
+    if !path.cycles.is_empty() {
+        return raised;
+    }
+    let moves = std::mem::take(&mut path.moves);
+    let mut out = Vec::with_capacity(moves.len());
+    // Where the tool stands as written, and as made.
+    let (mut at, mut pos) = (path.start, path.start);
+    for m in moves {
+        let to = m.to();
+        let low = at.z.min(to.z);
+        if bound.above(low) {
+            out.push(m);
+            (at, pos) = (to, to);
+            continue;
+        }
+        let n = (m.length(at) / (HOLDER_CELL / 2.0)).ceil().max(1.0) as usize;
+        let points: Vec<DVec3> = (0..=n).map(|k| crate::sim::fixtures::along(at, &m, k as f64 / n as f64)).collect();
+        let blocks: Vec<f64> = points.iter().map(|p| bound.block(p.truncate())).collect();
+        let held: Vec<f64> = (0..=n).map(|k| points[k].z.max(blocks[k]).max(if k > 0 { blocks[k - 1] } else { f64::NEG_INFINITY })).collect();
+        if held.iter().zip(&points).all(|(h, p)| *h <= p.z) && pos == at {
+            out.push(m);
+            (at, pos) = (to, to);
+            continue;
+        }
+        let feed = match m {
+            Move::Line { feed, .. } | Move::Arc { feed, .. } => Some(feed),
+            Move::Rapid { .. } => None,
+        };
+        let piece = |to: DVec3| match feed {
+            Some(feed) => Move::Line { to, feed },
+            None => Move::Rapid { to },
+        };
+        // The start raised where the move before left it lower (up, at its feed).
+        if held[0] > pos.z + 1e-12 {
+            pos = pos.truncate().extend(held[0]);
+            out.push(piece(pos));
+        }
+        for k in 1..=n {
+            let p = points[k].truncate().extend(held[k]);
+            if held[k] > points[k].z + tolerance {
+                raised.push(p);
+            }
+            if p.distance(pos) > 1e-9 {
+                out.push(piece(p));
+                pos = p;
+            }
+        }
+        at = to;
+    }
+    path.moves = out;
+    raised
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A flat tool with a φ30 nut 10 mm up, over a 20 × 20 pocket 20 deep in a plate: the
+    /// bound keeps the tip 10 mm (and the clearance) under the plate's top in the pocket, and
+    /// lets it down to the floor far out from the plate; a pass across the pocket at its floor
+    /// is raised there and nowhere lower than it was.
+    #[test]
+    fn a_pass_too_deep_for_the_holder_is_raised_onto_its_bound() {
+        let part = crate::mesh::sample::height_field_solid(DVec2::new(-20.0, -20.0), DVec2::new(20.0, 20.0), 80, 80, -30.0, |x, y| if x.abs() < 10.0 && y.abs() < 10.0 { -20.0 } else { 0.0 });
+        let mut bound = HolderBound::new(&part, &[(15.0, 10.0)], &Tolerances::default()).unwrap();
+        let start = DVec3::new(-15.0, 0.0, 5.0);
+        let moves = vec![
+            Move::Rapid { to: DVec3::new(-5.0, 0.0, 5.0) },
+            Move::Line { to: DVec3::new(-5.0, 0.0, -19.5), feed: 300.0 },
+            Move::Line { to: DVec3::new(5.0, 0.0, -19.5), feed: 1000.0 },
+            Move::Rapid { to: DVec3::new(5.0, 0.0, 5.0) },
+        ];
+        let mut path = Toolpath { name: "rough".into(), tool: 1, spindle_rpm: 10000.0, start, moves: moves.clone(), cycles: Vec::new() };
+        let raised = keep_holder_out(&mut path, &mut bound, 1e-6);
+        assert!(!raised.is_empty());
+        let lowest = path.moves.iter().map(|m| m.to().z).fold(f64::INFINITY, f64::min);
+        // 10 mm up less the clearance, and the cells' widening cannot lift it past the plate.
+        assert!(lowest <= -10.0 + HOLDER_CLEARANCE + 1e-9 && lowest > -10.0 - 1e-9, "{lowest}");
+        assert_eq!(path.moves.last().unwrap().to(), DVec3::new(5.0, 0.0, 5.0));
+        // Never lower than planned: every point raised lies above the pass's.
+        assert!(raised.iter().all(|p| p.z > -19.5));
+    }
+}
