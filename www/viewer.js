@@ -264,14 +264,7 @@ export class Viewer {
     for (const { op, color, parts } of runs.values()) add(feeds, moves, parts, { op, color });
     add(rapids, rapidMoves, [[0, rapids.length / 6]], { op: -1, color: RAPID_COLOR, rapid: true });
     steps.push(() => {
-      if (stock) this.setLine('stock', { buffer: this.buffer(boxLines(stock)), count: 24, color: [0.35, 0.4, 0.45, 0.6], mark: true });
-      if (stock) this.setZero(stock);
-      // What holds the stock (a vise's jaws, clamps), in the red of things not to touch.
-      if (fixtures.length) {
-        const lines = new Float32Array(fixtures.length * 72);
-        fixtures.forEach((b, k) => lines.set(boxLines(b), k * 72));
-        this.setLine('fixtures', { buffer: this.buffer(lines), count: 24 * fixtures.length, color: [0.75, 0.15, 0.1, 0.9], mark: true });
-      }
+      if (stock) this.setStockLines(stock, fixtures);
       this.cutMoves = Infinity;
       this.draw();
     });
@@ -283,16 +276,20 @@ export class Viewer {
   setStage(stage) {
     this.dropLines((key) => key === 'stock' || key === 'fixtures' || key.startsWith('zero'));
     this.staged = stage;
-    if (stage) {
-      this.setLine('stock', { buffer: this.buffer(boxLines(stage.stock)), count: 24, color: [0.35, 0.4, 0.45, 0.6], mark: true });
-      if (stage.fixtures.length) {
-        const lines = new Float32Array(stage.fixtures.length * 72);
-        stage.fixtures.forEach((b, k) => lines.set(boxLines(b), k * 72));
-        this.setLine('fixtures', { buffer: this.buffer(lines), count: 24 * stage.fixtures.length, color: [0.75, 0.15, 0.1, 0.9], mark: true });
-      }
-      this.setZero(stage.stock);
-    }
+    if (stage) this.setStockLines(stage.stock, stage.fixtures);
     this.draw();
+  }
+
+  // The stock's box, what holds it (a vise's jaws, clamps: in the red of things not to touch)
+  // and the work zero.
+  setStockLines(stock, fixtures) {
+    this.setLine('stock', { buffer: this.buffer(boxLines(stock)), count: 24, color: [0.35, 0.4, 0.45, 0.6], mark: true });
+    if (fixtures.length) {
+      const lines = new Float32Array(fixtures.length * 72);
+      fixtures.forEach((b, k) => lines.set(boxLines(b), k * 72));
+      this.setLine('fixtures', { buffer: this.buffer(lines), count: 24 * fixtures.length, color: [0.75, 0.15, 0.1, 0.9], mark: true });
+    }
+    this.setZero(stock);
   }
 
   // The work zero, the program's origin: X red, Y green and Z blue, a sixth of the stock long.
