@@ -62,4 +62,11 @@ if ! .venv/bin/python -c "import ezdxf, sys; sys.exit(ezdxf.__version__ != '$EZD
   fi
   .venv/bin/pip install -q "ezdxf==$EZDXF_VERSION"
 fi
+# OpenCAMLib, whose drop cutter tests/setups.rs holds each setup's program to (the shared
+# tools' gcheck.py), in the same venv; pinned as ezdxf is.
+OCL_VERSION=2023.1.11
+if ! .venv/bin/python -c "import opencamlib" 2>/dev/null; then
+  say "installing opencamlib $OCL_VERSION (the setups' gouge oracle)"
+  .venv/bin/pip install -q "opencamlib==$OCL_VERSION"
+fi
 say "ready"

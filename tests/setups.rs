@@ -50,10 +50,20 @@ fn a_plate_with_features_on_both_sides_is_machined_in_two_setups() {
     // Without the carried stock the second setup would cut the air round the part again.
     let bottom = setups[1].output.verification.as_ref().unwrap().volumes.iter().sum::<f64>();
     assert!(bottom < 0.6 * (block - solid), "{bottom}");
-    // Both programs are ones LinuxCNC's interpreter reads, each in its own work offset.
+    // Both programs are ones LinuxCNC's interpreter reads, each in its own work offset; written
+    // for GRBL, GRBL's own parser reads them; and OpenCAMLib's drop cutter (the shared tools'
+    // gcheck.py) finds no gouge in either against the part as its setup holds it.
     for s in &setups {
         let canon = common::rs274(&s.output.gcode, &job.tools);
         assert!(canon.contains("STRAIGHT_FEED"), "{}", s.name);
+        let grbl = swarf::post::PostSettings { dialect: swarf::post::Dialect::Grbl, ..job.post.clone() };
+        let gcode = swarf::post::write_gcode(&s.name, &s.output.paths, &job.tools, s.output.clearance_z, &grbl).unwrap();
+        if let Some(said) = common::grblcheck(&gcode) {
+            said.unwrap_or_else(|e| panic!("{}: {e}", s.name));
+        }
+        if let Some(said) = common::gcheck(&s.output.gcode, &s.output.part, &job.tools) {
+            assert!(said.contains("gcheck: OK"), "{}: {said}", s.name);
+        }
     }
 }
 

@@ -28,7 +28,7 @@ fn job_with(grid: f64, stepover: f64) -> JsValue {
 #[wasm_bindgen_test]
 fn sample_part_loads_and_is_placed() {
     let setup = js_sys::JSON::parse(r#"{"units":"mm","upAxis":"z","placement":"centerTop"}"#).unwrap();
-    let view = load_part(&sample_part(), "sample.stl", setup).unwrap();
+    let view = load_part(&sample_part(), "sample.stl", setup, JsValue::NULL).unwrap();
     let b = view.bounds();
     assert!(b[5].abs() < 1e-4, "top at z = 0, got {}", b[5]);
     assert!((b[0] + b[3]).abs() < 1e-4 && (b[1] + b[4]).abs() < 1e-4, "centred");

@@ -132,6 +132,41 @@ pub fn grblcheck(gcode: &str) -> Option<Result<(), String>> {
     Some(if out.status.success() && said.contains("grblcheck: OK") { Ok(()) } else { Err(said) })
 }
 
+/// OpenCAMLib's drop cutter on a program (`../shared/tools/gcheck.py`, run by the project's
+/// `.venv`, where scripts/setup.sh installs OpenCAMLib) against `part` in the program's
+/// coordinates, with `tools` (flat, ball and bull-nose ends) as its tool table: what it said,
+/// its last line `gcheck: OK …` or `gcheck: FAIL …`; `None` where the shared tools or
+/// OpenCAMLib are absent.
+pub fn gcheck(gcode: &str, part: &Mesh, tools: &[swarf::job::Tool]) -> Option<String> {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let (script, python) = (root.join("../shared/tools/gcheck.py"), root.join(".venv/bin/python"));
+    let has_ocl = || std::process::Command::new(&python).args(["-c", "import opencamlib"]).output().is_ok_and(|o| o.status.success());
+    if !script.exists() || !has_ocl() {
+        eprintln!("skipping OpenCAMLib's drop cutter: {} or OpenCAMLib in {} is absent (scripts/setup.sh installs it)", script.display(), python.display());
+        return None;
+    }
+    use std::sync::atomic::{AtomicU64, Ordering};
+    static RUN: AtomicU64 = AtomicU64::new(0);
+    let dir = std::env::temp_dir().join(format!("swarf-gcheck-{}-{}", std::process::id(), RUN.fetch_add(1, Ordering::Relaxed)));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("program.ngc"), gcode).unwrap();
+    std::fs::write(dir.join("part.stl"), part.to_binary_stl()).unwrap();
+    let mut command = std::process::Command::new(&python);
+    command.current_dir(&dir).env("HOME", &dir).arg(&script).arg("program.ngc").args(["--mesh", "part.stl"]);
+    for t in tools {
+        use swarf::cutter::Shape;
+        let kind = match t.cutter.shape {
+            Shape::Ball => format!("ball:{}", t.cutter.diameter),
+            Shape::BullNose => format!("bull:{}:{}", t.cutter.diameter, t.cutter.corner_radius),
+            _ => format!("flat:{}", t.cutter.diameter),
+        };
+        command.args(["--tool", &kind, "--tool-number", &t.number.to_string()]);
+    }
+    let out = command.output().expect("python runs gcheck.py");
+    let _ = std::fs::remove_dir_all(&dir);
+    Some(format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr)))
+}
+
 /// Judges tool paths against the brute-force exact drop ([`cl_exact_at`] over every facet, edge
 /// and vertex within the cutter's reach of a move), at dense points along every feed move.
 pub struct Judge<'a> {
