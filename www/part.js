@@ -89,6 +89,8 @@ export async function showPart(bytes = state.bytes, name = state.name, label = s
     } else {
       state.part = part;
       setKind('part');
+      // The last part's stock and zero go with it; this one's are staged next.
+      state.viewer?.setStage(null);
       state.viewer?.setPart(part);
       // A job with setups shows the part as the setup on show holds it.
       hooks.showHeld?.();
@@ -113,6 +115,7 @@ export async function showPart(bytes = state.bytes, name = state.name, label = s
 function showDrawing(d) {
   state.drawing = d;
   setKind('drawing');
+  state.viewer?.setStage(null);
   state.viewer?.setDrawing(d);
   hooks.showPicked?.();
   describeDrawing(d);

@@ -175,7 +175,7 @@ export function restage() {
 
 async function stage(again) {
   if (again) shownAs = undefined;
-  const j = job(), k = ++asked;
+  const j = job(), k = ++asked, part0 = state.part;
   if (state.kind !== 'part' || !state.part || !state.viewer) return;
   let frame = null;
   try {
@@ -185,17 +185,22 @@ async function stage(again) {
   } catch {
     // A job that does not read is marked at its fields; the part stays as placed.
   }
-  if (k !== asked || state.result) return;
+  // A drawing or another part shown meanwhile is not this one's to stage.
+  if (k !== asked || state.result || state.kind !== 'part' || state.part !== part0) return;
   // The part drawn again only where it moved (a die-sized part is tens of megabytes).
   const as = frame ? JSON.stringify([frame.rotation, frame.centre, frame.shift]) : null;
+  const stock = frame ? [...frame.stock.min, ...frame.stock.max] : null;
   if (state.part !== shownPart || as !== shownAs) {
     const moved = frame && (frame.rotation.some((v, i) => v !== [1, 0, 0, 0, 1, 0, 0, 0, 1][i]) || frame.shift.some((v) => v !== 0));
-    // A new part is framed, and one moved (a setup turned, the zero moved); one drawn again
-    // after a result keeps the camera.
-    state.viewer.setPart(moved ? held(state.part, frame) : state.part, state.part !== shownPart || shownAs !== undefined);
+    // A new part is framed with its stock, and one moved (a setup turned, the zero moved); one
+    // drawn again after a result keeps the camera.
+    const reframe = state.part !== shownPart || shownAs !== undefined;
+    const part = moved ? held(state.part, frame) : state.part;
+    state.viewer.setPart(part, reframe);
+    if (reframe && stock) state.viewer.frameStage(part.bounds, stock);
     [shownPart, shownAs] = [state.part, as];
   }
-  state.viewer.setStage(frame ? { stock: [...frame.stock.min, ...frame.stock.max], fixtures: frame.fixtures } : null);
+  state.viewer.setStage(frame ? { stock, fixtures: frame.fixtures } : null);
   document.body.dataset.setupShown = String(Number(document.body.dataset.setupShown ?? 0) + 1);
 }
 

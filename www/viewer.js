@@ -241,7 +241,8 @@ export class Viewer {
   // thread in one task).
   pathSteps({ feeds, rapids, stock, fixtures = [], ops = null, tools = null, moves = null, rapidMoves = null, byTool = new Set() }) {
     this.dropGroups();
-    this.dropLines((key) => key.startsWith('octants') || key === 'stock' || key === 'fixtures');
+    // The work zero is shown before a run (`setStage`); after it the paths' colours speak.
+    this.dropLines((key) => key.startsWith('octants') || key === 'stock' || key === 'fixtures' || key.startsWith('zero'));
     // An operation's segments (a stage's, for octree roughing) follow each other in the
     // program: taken as runs, a colour that comes back after another copied once.
     const runs = new Map();
@@ -264,7 +265,7 @@ export class Viewer {
     for (const { op, color, parts } of runs.values()) add(feeds, moves, parts, { op, color });
     add(rapids, rapidMoves, [[0, rapids.length / 6]], { op: -1, color: RAPID_COLOR, rapid: true });
     steps.push(() => {
-      if (stock) this.setStockLines(stock, fixtures);
+      if (stock) this.setStockLines(stock, fixtures, false);
       this.cutMoves = Infinity;
       this.draw();
     });
@@ -281,22 +282,34 @@ export class Viewer {
   }
 
   // The stock's box, what holds it (a vise's jaws, clamps: in the red of things not to touch)
-  // and the work zero.
-  setStockLines(stock, fixtures) {
+  // and, before a run, the work zero.
+  setStockLines(stock, fixtures, zero = true) {
     this.setLine('stock', { buffer: this.buffer(boxLines(stock)), count: 24, color: [0.35, 0.4, 0.45, 0.6], mark: true });
     if (fixtures.length) {
       const lines = new Float32Array(fixtures.length * 72);
       fixtures.forEach((b, k) => lines.set(boxLines(b), k * 72));
       this.setLine('fixtures', { buffer: this.buffer(lines), count: 24 * fixtures.length, color: [0.75, 0.15, 0.1, 0.9], mark: true });
     }
-    this.setZero(stock);
+    if (zero) this.setZero(stock);
   }
 
-  // The work zero, the program's origin: X red, Y green and Z blue, a sixth of the stock long.
-  setZero(stock) {
+  // The work zero, the program's origin: its X, Y and Z axes a sixth of the stock long, X the
+  // longest and Z the shortest, in dark grey (the view's hues say paths, problems and loops).
+  zeroAxes(stock) {
     const size = Math.max(stock[3] - stock[0], stock[4] - stock[1], stock[5] - stock[2]) / 6;
-    const axes = [['zero_x', [1, 0, 0], [0.85, 0.15, 0.1, 1]], ['zero_y', [0, 1, 0], [0.1, 0.6, 0.15, 1]], ['zero_z', [0, 0, 1], [0.15, 0.3, 0.9, 1]]];
-    for (const [key, [x, y, z], color] of axes) this.setLine(key, { buffer: this.buffer(new Float32Array([0, 0, 0, x * size, y * size, z * size])), count: 2, color, mark: true });
+    return [[1.2 * size, 0, 0], [0, 0.9 * size, 0], [0, 0, 0.7 * size]];
+  }
+
+  // Frames the part as staged (`bounds`) with its stock and the work zero's axes.
+  frameStage(bounds, stock) {
+    const points = [bounds.slice(0, 3), bounds.slice(3), stock.slice(0, 3), stock.slice(3), [0, 0, 0], ...this.zeroAxes(stock)];
+    this.frame([0, 1, 2].map((a) => Math.min(...points.map((p) => p[a]))).concat([0, 1, 2].map((a) => Math.max(...points.map((p) => p[a])))));
+  }
+
+  setZero(stock) {
+    const grey = [0.2, 0.2, 0.22, 1];
+    const axes = this.zeroAxes(stock).map((v, k) => [['zero_x', 'zero_y', 'zero_z'][k], v, grey]);
+    for (const [key, [x, y, z], color] of axes) this.setLine(key, { buffer: this.buffer(new Float32Array([0, 0, 0, x, y, z])), count: 2, color, mark: true });
   }
 
   // One colour's segments (the runs `parts` of `data`), with their moves, and every `every`-th

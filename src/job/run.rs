@@ -381,7 +381,7 @@ impl Prepared {
             octants: Vec::new(),
             pending: Vec::new(),
             bands_out: 0,
-            holders: std::collections::HashMap::new(),
+            holders: Vec::new(),
         }
     }
 }
@@ -415,7 +415,7 @@ pub struct Running {
     /// How many bands of the stock [`Running::take_bands`] handed out.
     pub(super) bands_out: usize,
     /// Each tool's holder's bound over the part, made as its paths ask ([`Running::keep_holders_out`]).
-    pub(super) holders: std::collections::HashMap<u32, Option<crate::machining::holders::HolderBound>>,
+    pub(super) holders: Vec<(u32, Option<crate::machining::holders::HolderBound>)>,
 }
 
 impl Running {
@@ -507,8 +507,10 @@ impl Running {
             let Some(tool) = self.job.tools.iter().find(|t| t.number == path.tool) else { continue };
             let Some(rings) = tool.holder_rings() else { continue };
             let ctx = &self.ctx;
-            let bound = self.holders.entry(tool.number).or_insert_with(|| crate::machining::holders::HolderBound::new(ctx.solid.as_ref().unwrap_or(&ctx.part), &rings, &ctx.tolerances));
-            let Some(bound) = bound.as_mut() else { continue };
+            if !self.holders.iter().any(|(n, _)| *n == tool.number) {
+                self.holders.push((tool.number, crate::machining::holders::HolderBound::new(ctx.solid.as_ref().unwrap_or(&ctx.part), &rings, &ctx.tolerances)));
+            }
+            let Some(Some(bound)) = self.holders.iter_mut().find(|(n, _)| *n == tool.number).map(|(_, b)| b.as_mut()) else { continue };
             let raised = crate::machining::holders::keep_holder_out(path, bound, self.job.tolerances.gouge);
             if !raised.is_empty() {
                 let holder = tool.holder.as_ref().map_or(String::new(), |h| h.name.clone());

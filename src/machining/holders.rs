@@ -15,8 +15,6 @@
 //! lowest ring to reach the part's top are looked at: most jobs' tools stand out farther than
 //! their parts are deep, and pay nothing.
 
-use std::collections::HashMap;
-
 use crate::cutter::Profile;
 use crate::geom::{DVec2, DVec3, Tolerances};
 use crate::mesh::Mesh;
@@ -36,7 +34,11 @@ pub struct HolderBound {
     /// never held.
     top: f64,
     lowest: f64,
-    cells: HashMap<(i64, i64), f64>,
+    /// The cells over the part's box grown by the widest ring's reach (beyond it no ring
+    /// meets the part), row by row from `origin`: NaN until asked for.
+    origin: (i64, i64),
+    size: (usize, usize),
+    cells: Vec<f64>,
 }
 
 impl HolderBound {
@@ -49,15 +51,24 @@ impl HolderBound {
         let widen = HOLDER_CELL * std::f64::consts::FRAC_1_SQRT_2 + HOLDER_CLEARANCE;
         let rings: Vec<(PointDrop, f64)> = rings.iter().map(|&(r, rise)| (PointDrop::new(solid, &Profile::new(r + widen, 0.0), tolerances), rise - HOLDER_CLEARANCE)).collect();
         let lowest = rings_lowest(&rings);
-        Some(HolderBound { rings, top: solid.bounds().max.z, lowest, cells: HashMap::new() })
+        let reach = rings.iter().map(|(d, _)| d.profile().radius).fold(0.0, f64::max) + 2.0 * HOLDER_CELL;
+        let b = solid.bounds();
+        let origin = (((b.min.x - reach) / HOLDER_CELL).floor() as i64, ((b.min.y - reach) / HOLDER_CELL).floor() as i64);
+        let size = ((((b.max.x + reach) / HOLDER_CELL).ceil() as i64 - origin.0).max(1) as usize, (((b.max.y + reach) / HOLDER_CELL).ceil() as i64 - origin.1).max(1) as usize);
+        Some(HolderBound { rings, top: b.max.z, lowest, origin, size, cells: vec![f64::NAN; size.0 * size.1] })
     }
 
     fn cell(&mut self, i: i64, j: i64) -> f64 {
-        let rings = &self.rings;
-        *self.cells.entry((i, j)).or_insert_with(|| {
+        let (u, v) = (i - self.origin.0, j - self.origin.1);
+        if u < 0 || v < 0 || u as usize >= self.size.0 || v as usize >= self.size.1 {
+            return f64::NEG_INFINITY;
+        }
+        let k = v as usize * self.size.0 + u as usize;
+        if self.cells[k].is_nan() {
             let c = DVec2::new((i as f64 + 0.5) * HOLDER_CELL, (j as f64 + 0.5) * HOLDER_CELL);
-            rings.iter().map(|(drop, rise)| drop.at(c, f64::NEG_INFINITY) - rise).fold(f64::NEG_INFINITY, f64::max)
-        })
+            self.cells[k] = self.rings.iter().map(|(drop, rise)| drop.at(c, f64::NEG_INFINITY) - rise).fold(f64::NEG_INFINITY, f64::max);
+        }
+        self.cells[k]
     }
 
     /// The bound over the 3 × 3 block of cells round `p`.

@@ -124,7 +124,7 @@ pub fn collisions(moves: &[ProgramMove], keep_out: &[Held], tolerance: f64) -> V
         return out;
     }
     // Each mesh fixture's drops for each tool that comes into its box, made once.
-    let mut drops: std::collections::HashMap<(usize, u32), MeshDrops> = std::collections::HashMap::new();
+    let mut drops: Vec<((usize, u32), MeshDrops)> = Vec::new();
     for (k, m) in moves.iter().enumerate() {
         let reach = (m.cutter.diameter.max(m.cutter.shank_diameter.unwrap_or(0.0))) / 2.0;
         // Points along the move this far apart, when one comes near a fixture.
@@ -151,7 +151,11 @@ pub fn collisions(moves: &[ProgramMove], keep_out: &[Held], tolerance: f64) -> V
                 let mut d = depth_into(&m.cutter, p, b);
                 // Within a mesh fixture's box: how far into the clearance of the mesh itself.
                 if let (Some(mesh), true) = (&h.mesh, d > tolerance) {
-                    d = drops.entry((f, m.tool)).or_insert_with(|| MeshDrops::new(mesh, &m.cutter, h.grown)).depth(p);
+                    let key = (f, m.tool);
+                    if !drops.iter().any(|(k, _)| *k == key) {
+                        drops.push((key, MeshDrops::new(mesh, &m.cutter, h.grown)));
+                    }
+                    d = drops.iter().find(|(k, _)| *k == key).map_or(d, |(_, drops)| drops.depth(p));
                 }
                 if d > tolerance && worst.is_none_or(|(w, _)| d > w) {
                     worst = Some((d, p));
