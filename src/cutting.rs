@@ -94,9 +94,8 @@ impl Machine {
         out
     }
 
-    /// Where the tip positions `points` (the program's every move end, in its coordinates)
-    /// span more than this machine travels: for each such axis, its words. Arcs bulge at most
-    /// their radius past their ends, which the caller adds as points.
+    /// Where a program whose tip reaches from `low` to `high` in each axis (its coordinates)
+    /// spans more than this machine travels: for each such axis, its words.
     pub fn beyond_travel(&self, low: [f64; 3], high: [f64; 3]) -> Vec<String> {
         let Some(travel) = self.travel else { return Vec::new() };
         (0..3)

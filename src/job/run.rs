@@ -514,7 +514,7 @@ impl Running {
             let raised = crate::machining::holders::keep_holder_out(path, bound, self.job.tolerances.gouge);
             if !raised.is_empty() {
                 let holder = tool.holder.as_ref().map_or(String::new(), |h| h.name.clone());
-                let stick_out = crate::limits::shown(tool.stick_out.unwrap_or(tool.cutter.flute_length));
+                let stick_out = crate::limits::shown(tool.standing_out());
                 let what = format!("places held up so that T{}'s holder ({holder}, {stick_out} mm stick-out) keeps clear of the part: material left there for a longer stick-out", tool.number);
                 self.ctx.warn_at(&name, &what, &raised);
             }
@@ -663,8 +663,11 @@ impl Running {
             })
         });
         // A program the machine cannot reach is not safe to run, verified or not.
-        let (low, high) = move_extent(&all_moves);
-        let beyond = job.machine.beyond_travel(low, high);
+        // (The moves' extent only where the machine's travel is known.)
+        let beyond = job.machine.travel.map_or_else(Vec::new, |_| {
+            let (low, high) = move_extent(&all_moves);
+            job.machine.beyond_travel(low, high)
+        });
         let problem = match (found, beyond.is_empty()) {
             (found, true) => found,
             (None, false) => Some(beyond.join("; ")),
@@ -696,36 +699,13 @@ impl Running {
     }
 }
 
-/// The least and greatest tip position of `moves` in each axis (an arc's by the quarter points
-/// of its circle it sweeps through).
+/// The least and greatest tip position of `moves` in each axis ([`crate::toolpath::Move::bounds`]).
 fn move_extent(moves: &[ProgramMove]) -> ([f64; 3], [f64; 3]) {
-    use crate::toolpath::Move;
-    let (mut low, mut high) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-    let mut take = |p: crate::geom::DVec3| {
-        for (i, v) in p.to_array().into_iter().enumerate() {
-            (low[i], high[i]) = (low[i].min(v), high[i].max(v));
-        }
-    };
-    for m in moves {
-        take(m.from);
-        take(m.mv.to());
-        if let Move::Arc { to, center, clockwise, .. } = m.mv {
-            let a = m.from.truncate() - center;
-            let (r, start, sweep) = (a.length(), a.y.atan2(a.x), crate::toolpath::arc_sweep(m.from, to, center, clockwise));
-            for k in 0..4 {
-                let angle = k as f64 * std::f64::consts::FRAC_PI_2;
-                // How far round from the start, the way the arc turns, this quarter point lies.
-                let round = ((angle - start) * sweep.signum()).rem_euclid(std::f64::consts::TAU);
-                if round <= sweep.abs() {
-                    take((center + r * crate::geom::DVec2::new(angle.cos(), angle.sin())).extend(m.from.z));
-                }
-            }
-        }
-    }
     if moves.is_empty() {
         return ([0.0; 3], [0.0; 3]);
     }
-    (low, high)
+    let (lo, hi) = moves.iter().map(|m| m.mv.bounds(m.from)).fold((crate::geom::DVec3::INFINITY, crate::geom::DVec3::NEG_INFINITY), |(lo, hi), (a, b)| (lo.min(a), hi.max(b)));
+    (lo.to_array(), hi.to_array())
 }
 
 /// Why a program gouges, where the drawing says it before the simulation's cells do: its loops

@@ -43,14 +43,7 @@ fn hit<'a>(c: &Cutter, p: DVec3, keep_out: &'a [Held], near: f64) -> Option<&'a 
 /// Whether move `m` from `from` cannot come near any fixture: its box, grown by the tool's
 /// reach, misses them all.
 fn far(c: &Cutter, from: DVec3, m: &Move, keep_out: &[Held], near: f64) -> bool {
-    let to = m.to();
-    let (lo, hi) = match *m {
-        Move::Arc { center, .. } => {
-            let r = (from.truncate() - center).length();
-            (center.extend(from.z.min(to.z)) - DVec3::new(r, r, 0.0), center.extend(from.z.max(to.z)) + DVec3::new(r, r, 0.0))
-        }
-        _ => (from.min(to), from.max(to)),
-    };
+    let (lo, hi) = m.bounds(from);
     let reach = c.diameter.max(c.shank_diameter.unwrap_or(0.0)) / 2.0 + near;
     keep_out.iter().all(|h| {
         let b = &h.solid;

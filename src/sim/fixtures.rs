@@ -130,15 +130,7 @@ pub fn collisions(moves: &[ProgramMove], keep_out: &[Held], tolerance: f64) -> V
         // Points along the move this far apart, when one comes near a fixture.
         let step = sample_step(&m.cutter);
         let n = (m.mv.length(m.from) / step).ceil().max(1.0) as usize;
-        let to = m.mv.to();
-        // The move's box: an arc's is its circle's.
-        let (lo, hi) = match m.mv {
-            Move::Arc { center, .. } => {
-                let r = (m.from.truncate() - center).length();
-                (center.extend(m.from.z.min(to.z)) - DVec3::new(r, r, 0.0), center.extend(m.from.z.max(to.z)) + DVec3::new(r, r, 0.0))
-            }
-            _ => (m.from.min(to), m.from.max(to)),
-        };
+        let (lo, hi) = m.mv.bounds(m.from);
         for (f, h) in keep_out.iter().enumerate() {
             let b = &h.solid;
             let near = -tolerance.min(0.0);

@@ -101,7 +101,12 @@ impl Default for Tool {
 impl Tool {
     /// Its holder's rings, `(radius, rise above the tip)` ([`Holder::rings`]), if it has one.
     pub fn holder_rings(&self) -> Option<std::sync::Arc<Vec<(f64, f64)>>> {
-        self.holder.as_ref().map(|h| std::sync::Arc::new(h.rings(self.stick_out.unwrap_or(self.cutter.flute_length))))
+        self.holder.as_ref().map(|h| std::sync::Arc::new(h.rings(self.standing_out())))
+    }
+
+    /// How far it stands out of its holder (mm): its `stickOut`, else its flutes' length.
+    pub fn standing_out(&self) -> f64 {
+        self.stick_out.unwrap_or(self.cutter.flute_length)
     }
 
     pub fn describe(&self) -> String {

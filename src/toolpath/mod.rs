@@ -35,6 +35,27 @@ impl Move {
         matches!(self, Move::Rapid { .. })
     }
 
+    /// The least and greatest corner of the box the tip sweeps from `from`: an arc's by its
+    /// ends and the quarter points of its circle it passes.
+    pub fn bounds(&self, from: DVec3) -> (DVec3, DVec3) {
+        let to = self.to();
+        let (mut lo, mut hi) = (from.min(to), from.max(to));
+        if let Move::Arc { center, clockwise, .. } = *self {
+            let a = from.truncate() - center;
+            let (r, start, sweep) = (a.length(), a.y.atan2(a.x), arc_sweep(from, to, center, clockwise));
+            for k in 0..4 {
+                let angle = k as f64 * std::f64::consts::FRAC_PI_2;
+                // How far round from the start, the way the arc turns, this quarter point lies.
+                let round = ((angle - start) * sweep.signum()).rem_euclid(std::f64::consts::TAU);
+                if round <= sweep.abs() {
+                    let p = (center + r * DVec2::new(angle.cos(), angle.sin())).extend(from.z);
+                    (lo, hi) = (lo.min(p), hi.max(p));
+                }
+            }
+        }
+        (lo, hi)
+    }
+
     /// Length of the move from `from`.
     pub fn length(&self, from: DVec3) -> f64 {
         match *self {
@@ -155,5 +176,26 @@ impl Toolpath {
             at = m.to();
         }
         out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An arc's box holds the quarter points it passes and none it does not: a quarter from
+    /// +X to +Y counter-clockwise stays in the first quadrant, the same ends clockwise go round
+    /// the other three, and a full circle's box is its circle's.
+    #[test]
+    fn an_arcs_box_is_its_ends_and_the_quarter_points_it_passes() {
+        let (from, to, center) = (DVec3::new(10.0, 0.0, 0.0), DVec3::new(0.0, 10.0, -1.0), DVec2::ZERO);
+        let ccw = Move::Arc { to, center, clockwise: false, feed: 100.0 };
+        assert_eq!(ccw.bounds(from), (DVec3::new(0.0, 0.0, -1.0), DVec3::new(10.0, 10.0, 0.0)));
+        let cw = Move::Arc { to, center, clockwise: true, feed: 100.0 };
+        assert_eq!(cw.bounds(from), (DVec3::new(-10.0, -10.0, -1.0), DVec3::new(10.0, 10.0, 0.0)));
+        let full = Move::Arc { to: from, center, clockwise: false, feed: 100.0 };
+        let (lo, hi) = full.bounds(from);
+        assert!((lo - DVec3::new(-10.0, -10.0, 0.0)).length() < 1e-12 && (hi - DVec3::new(10.0, 10.0, 0.0)).length() < 1e-12, "{lo} {hi}");
+        assert_eq!(Move::Line { to, feed: 1.0 }.bounds(from), (DVec3::new(0.0, 0.0, -1.0), DVec3::new(10.0, 10.0, 0.0)));
     }
 }
