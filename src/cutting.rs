@@ -52,13 +52,18 @@ pub struct Machine {
     /// cannot run on it, and is marked not safe to run, naming where. Default value: none (not
     /// known: not checked; each built-in machine has its own).
     pub travel: Option<[f64; 3]>,
+    /// Rapid rates in X, Y and Z (mm/min): a rapid takes as long as its slowest axis needs,
+    /// in the cycle time and the setup sheet. Default value: none (not known: rapids are timed
+    /// along the move at the post's `rapidRate`; each built-in machine has its own).
+    pub rapids: Option<[f64; 3]>,
 }
 
 impl Default for Machine {
     fn default() -> Self {
-        // The hobby router's limits, its travel not known until a machine is chosen.
+        // The hobby router's limits, its travel and rapids not known until a machine is chosen.
         let mut router = Machine::builtin().swap_remove(0);
         router.travel = None;
+        router.rapids = None;
         router
     }
 }
@@ -68,11 +73,11 @@ impl Machine {
     pub fn builtin() -> Vec<Machine> {
         vec![
             // A 4 × 4 ft class router's gantry (838 × 838 × 95 mm on the largest hobby kits).
-            Machine { name: "hobby router".into(), spindle_min: 8000.0, spindle_max: 24000.0, max_feed: 5000.0, travel: Some([800.0, 800.0, 100.0]) },
+            Machine { name: "hobby router".into(), spindle_min: 8000.0, spindle_max: 24000.0, max_feed: 5000.0, travel: Some([800.0, 800.0, 100.0]), rapids: Some([10000.0, 10000.0, 5000.0]) },
             // A square-column benchtop mill's table and quill (X 300, Y 150, Z 250).
-            Machine { name: "benchtop mill".into(), spindle_min: 100.0, spindle_max: 10000.0, max_feed: 2500.0, travel: Some([300.0, 150.0, 250.0]) },
+            Machine { name: "benchtop mill".into(), spindle_min: 100.0, spindle_max: 10000.0, max_feed: 2500.0, travel: Some([300.0, 150.0, 250.0]), rapids: Some([3000.0, 3000.0, 2000.0]) },
             // A small VMC's 16 × 12 × 10 inch envelope.
-            Machine { name: "small VMC".into(), spindle_min: 100.0, spindle_max: 12000.0, max_feed: 10000.0, travel: Some([406.0, 305.0, 254.0]) },
+            Machine { name: "small VMC".into(), spindle_min: 100.0, spindle_max: 12000.0, max_feed: 10000.0, travel: Some([406.0, 305.0, 254.0]), rapids: Some([15000.0, 15000.0, 15000.0]) },
         ]
     }
 
@@ -90,6 +95,9 @@ impl Machine {
         }
         if let Some(t) = self.travel.filter(|t| !t.iter().all(|v| v.is_finite() && *v > 0.0 && *v <= crate::limits::MAX_SIZE)) {
             out.push(("travel", format!("must be three lengths of more than 0 mm, at most {} (got {t:?})", crate::limits::MAX_SIZE)));
+        }
+        if let Some(r) = self.rapids.filter(|r| !r.iter().all(|v| v.is_finite() && *v > 0.0 && *v <= crate::limits::MAX_FEED)) {
+            out.push(("rapids", format!("must be three rates of more than 0 mm/min, at most {} (got {r:?})", crate::limits::MAX_FEED)));
         }
         out
     }

@@ -500,8 +500,14 @@ impl ResultView {
             .map(|v| v as f32)
             .collect();
         let (gcode, move_lines) = marked(std::mem::take(&mut out.gcode), std::mem::take(&mut out.move_lines), out.problem.as_deref());
-        let program =
-            Program { title: job.name.clone(), paths: std::mem::take(&mut out.paths), tools: job.tools.clone(), clearance: out.clearance_z, post: job.post.clone(), problem: out.problem.clone() };
+        let program = Program {
+            title: job.name.clone(),
+            paths: std::mem::take(&mut out.paths),
+            tools: job.tools.clone(),
+            clearance: out.clearance_z,
+            post: job.post_for_machine(),
+            problem: out.problem.clone(),
+        };
         ResultView { gcode, move_lines, segments, octants, summary, part: PartData::of(&out.part), drawing: out.drawing.as_ref().map(DrawingView::of), simulation, program }
     }
 

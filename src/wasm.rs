@@ -305,6 +305,8 @@ impl JobResult {
         if self.setup.is_some() {
             settings.work_offset = self.view.program.post.work_offset.clone();
         }
+        // The machine's rapids, which the job's post object does not hold.
+        settings.rapid_axes = self.view.program.post.rapid_axes;
         Ok(settings)
     }
     /// The program as `post` (the job's `post` object) writes it, without the warning at its

@@ -138,3 +138,61 @@ fn every_built_in_machine_keeps_its_programs_inside_its_limits() {
     job.machine.travel = Some([300.0, 0.0, 250.0]);
     assert!(job.problems().iter().any(|p| p.path == "machine.travel"), "{:?}", job.problems());
 }
+
+/// A machine's rapid rates per axis (`machine.rapids`) time its rapids: each takes as long as
+/// its slowest axis needs, in the program's head, its cycle time and the simulation's clock
+/// alike; the paths are the same as with the post's one rate, and the cycle differs from it by
+/// exactly what the rapids' times differ by. A rate that does not read is named at its field.
+#[test]
+fn rapids_take_as_long_as_their_slowest_axis() {
+    use swarf::toolpath::{Move, Rapids};
+    // Closed form: 300, 400 and 50 mm at 10000, 10000 and 5000 mm/min: Y's 0.04 min.
+    let axes = Rapids { rate: 3000.0, axes: Some([10000.0, 10000.0, 5000.0]) };
+    let (a, b) = (swarf::geom::DVec3::ZERO, swarf::geom::DVec3::new(300.0, -400.0, 50.0));
+    assert!((axes.seconds(a, b) - 2.4).abs() < 1e-12);
+    assert!((Rapids::at(3000.0).seconds(a, b) - a.distance(b) / 3000.0 * 60.0).abs() < 1e-12);
+    let mut job = Job::demo();
+    job.machine = Machine::builtin().into_iter().find(|m| m.name == "benchtop mill").unwrap();
+    let timed = job::run(&job, swarf::mesh::sample::demo_part(), &mut Progress::none()).unwrap();
+    let [x, y, z] = job.machine.rapids.unwrap();
+    job.machine.rapids = None;
+    let along = job::run(&job, swarf::mesh::sample::demo_part(), &mut Progress::none()).unwrap();
+    assert_eq!(timed.paths, along.paths);
+    let (mut per_axis, mut one_rate, mut rapids) = (0.0, 0.0, 0);
+    for m in &timed.moves {
+        if let Move::Rapid { to } = m.mv {
+            let d = (to - m.from).abs();
+            let t = 60.0 * (d.x / x).max(d.y / y).max(d.z / z);
+            assert!((m.seconds - t).abs() < 1e-9, "the simulation's clock: {} s against {t} s", m.seconds);
+            per_axis += t;
+            one_rate += m.from.distance(to) / job.post.rapid_rate * 60.0;
+            rapids += 1;
+        }
+    }
+    assert!(rapids > 10 && (per_axis - one_rate).abs() > 1.0, "{rapids} rapids: {per_axis} s against {one_rate} s");
+    assert!(timed.cycle.seconds != along.cycle.seconds);
+    // The post times the moves it writes: a path of known moves, at 3000, 3000 and 2000 mm/min
+    // a rapid 100 × 50 mm across (2 s), 4 mm down (0.12 s), 2 mm down at F300 (0.4 s), 30 mm
+    // across at F600 (3 s) and 6 mm up (0.18 s).
+    let path = swarf::toolpath::Toolpath {
+        name: "known".into(),
+        tool: 1,
+        spindle_rpm: 10000.0,
+        start: swarf::geom::DVec3::new(0.0, 0.0, 5.0),
+        moves: vec![
+            Move::Rapid { to: swarf::geom::DVec3::new(100.0, 50.0, 5.0) },
+            Move::Rapid { to: swarf::geom::DVec3::new(100.0, 50.0, 1.0) },
+            Move::Line { to: swarf::geom::DVec3::new(100.0, 50.0, -1.0), feed: 300.0 },
+            Move::Line { to: swarf::geom::DVec3::new(130.0, 50.0, -1.0), feed: 600.0 },
+            Move::Rapid { to: swarf::geom::DVec3::new(130.0, 50.0, 5.0) },
+        ],
+        cycles: Vec::new(),
+    };
+    let post = swarf::post::PostSettings { rapid_axes: Some([x, y, z]), ..job.post.clone() };
+    let (_, cycle) = swarf::post::write_program("known", std::slice::from_ref(&path), &job.tools, 5.0, &post).unwrap();
+    assert!((cycle.paths[0] - 5.7).abs() < 1e-9, "{:?}", cycle.paths);
+    assert!((path.stats(post.rapids()).seconds - 5.7).abs() < 1e-9);
+    assert!(timed.gcode.contains("rapids at X 3000, Y 3000, Z 2000 mm/min"), "{}", &timed.gcode[..600]);
+    job.machine.rapids = Some([3000.0, -1.0, 2000.0]);
+    assert!(job.problems().iter().any(|p| p.path == "machine.rapids"), "{:?}", job.problems());
+}

@@ -228,7 +228,7 @@ fn arcs_and_helices_go_out_as_g2_g3_with_relative_centres() {
         // The full circle is one G3 with the same start and end.
         assert!(gcode.lines().any(|l| l.starts_with("G3") && l.contains(if units == Units::Mm { "Z-2" } else { "Z-0.0787" })));
     }
-    let stats = path.stats(3000.0);
+    let stats = path.stats(swarf::toolpath::Rapids::at(3000.0));
     let expected_feed = 6.0 + 2.0 * std::f64::consts::FRAC_PI_2 * 10.0 + (std::f64::consts::TAU * 10.0f64).hypot(1.0) + std::f64::consts::FRAC_PI_2 * 4.0;
     assert!((stats.feed_length - expected_feed).abs() < 1e-9, "{} vs {expected_feed}", stats.feed_length);
 }
@@ -643,7 +643,7 @@ fn every_built_in_post_reproduces_the_paths_in_linuxcnc_and_grbl_reads_its_own()
         assert!(gcode[mist..].contains("M9"), "{dialect:?}");
         assert!(gcode.contains("G54") || post.work_offset.is_none());
         // The head states the cycle time: motion plus one tool change.
-        let motion: f64 = out.paths.iter().map(|p| p.stats(settings.rapid_rate).seconds).sum();
+        let motion: f64 = out.paths.iter().map(|p| p.stats(settings.rapids()).seconds).sum();
         assert_eq!(time.tool_changes, 1);
         assert!(time.seconds >= motion + 15.0 && time.seconds < motion + 15.0 + 60.0 + post.spindle_dwell * 2.0, "{dialect:?}: {} s against {motion} s of moves", time.seconds);
         assert!(gcode.contains(&format!("cycle time {}", swarf::post::clock(time.seconds))), "{dialect:?}");

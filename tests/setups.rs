@@ -8,6 +8,22 @@ use swarf::mesh::sample::two_sided_part;
 use swarf::progress::Progress;
 use swarf::sim::StockModel;
 
+/// The two-sided job's operation named `name` (its top setup's): "face", "rough", "drill" or
+/// "finish".
+fn op(name: &str) -> swarf::job::Operation {
+    Job::two_sided().setups[0].operations.iter().find(|o| o.name() == name).cloned().unwrap()
+}
+
+/// The two-sided job with only its roughing and finishing on each side: for parts without its
+/// holes, or whose stock's top is the part's.
+fn milled_only() -> Job {
+    let mut job = Job::two_sided();
+    for s in &mut job.setups {
+        s.operations.retain(|o| matches!(o.name(), "rough" | "finish"));
+    }
+    job
+}
+
 #[test]
 fn a_plate_with_features_on_both_sides_is_machined_in_two_setups() {
     let job = Job::two_sided();
@@ -31,6 +47,25 @@ fn a_plate_with_features_on_both_sides_is_machined_in_two_setups() {
     }
     assert!(setups[0].output.gcode.contains("\nG54\n"));
     assert!(setups[1].output.gcode.contains("\nG55\n"));
+    // Each side's holes drilled from that side: the four φ5.5 through the corners from the top
+    // (the boss's hole opens downwards there: not one to drill), the boss's φ4.2 from below;
+    // at the end of each setup every hole it sees is empty down to its bottom, and at the end
+    // the through holes are empty all through (the top's stock under them faced and roughed
+    // away from below).
+    for (k, (s, (seen, tool, not))) in setups.iter().zip([(4, "T3", "T4"), (5, "T4", "T3")]).enumerate() {
+        let holes = swarf::holes::mesh::find(&s.output.part);
+        assert_eq!(holes.len(), seen, "{}: {holes:?}", s.name);
+        assert!(s.output.gcode.contains(&format!("{tool} M6")) && !s.output.gcode.contains(&format!("{not} M6")), "{}", s.name);
+        let stock = &s.output.verification.as_ref().unwrap().stock;
+        let g = stock.grid();
+        for h in &holes {
+            let c = g.nearest(h.center).unwrap();
+            let (i, j) = (c % g.nx, c / g.nx);
+            let (floor, top) = (stock.floor(i, j), stock.top(i, j));
+            assert!(top <= h.bottom + 1e-6 && (k == 0 || !h.through || top <= floor), "{}: the hole at {:?} holds material from {floor} to {top}", s.name, h.center);
+        }
+    }
+    assert!(setups[1].output.verification.as_ref().unwrap().report.residual_max < 3.5, "the bottom's stock carried a cell off at the holes' rims");
     // The stock carried exactly: what both setups removed and what the second left add up to
     // the raw block, and what is left holds the part.
     let raw = setups[0].output.stock;
@@ -61,7 +96,13 @@ fn a_plate_with_features_on_both_sides_is_machined_in_two_setups() {
         if let Some(said) = common::grblcheck(&gcode) {
             said.unwrap_or_else(|e| panic!("{}: {e}", s.name));
         }
-        if let Some(said) = common::gcheck(&s.output.gcode, &s.output.part, &job.tools) {
+        // The drop cutter judges the milling: a drill the size of its hole reaches past the
+        // facets inscribed in the hole's circle (by their sagitta) all the way down, which a
+        // drop onto the facets takes for a gouge; the simulation judges the drilling (above).
+        let milled: Vec<_> = s.output.paths.iter().filter(|p| job.tools.iter().any(|t| t.number == p.tool && !matches!(t.cutter.shape, swarf::cutter::Shape::Drill))).cloned().collect();
+        assert_eq!(milled.len(), s.output.paths.len() - 1, "{}", s.name);
+        let milling = swarf::post::write_gcode(&s.name, &milled, &job.tools, s.output.clearance_z, &job.post).unwrap();
+        if let Some(said) = common::gcheck(&milling, &s.output.part, &job.tools) {
             assert!(said.contains("gcheck: OK"), "{}: {said}", s.name);
         }
     }
@@ -74,8 +115,7 @@ fn a_plate_with_features_on_both_sides_is_machined_in_two_setups() {
 fn a_turn_and_a_flip_about_y_carry_the_stock_too() {
     use swarf::job::{Flip, Setup};
     let mut job = Job::two_sided();
-    let rough = job.setups[0].operations[0].clone();
-    let finish = job.setups[0].operations[1].clone();
+    let (rough, finish) = (op("rough"), op("finish"));
     job.setups = vec![
         Setup { name: "rough top".into(), operations: vec![rough.clone()], ..Setup::default() },
         Setup { name: "finish top".into(), turn: 90, work_offset: Some("G56".into()), operations: vec![finish], ..Setup::default() },
@@ -183,7 +223,7 @@ fn puck(r: f64, bottom: f64, top: f64, n: usize) -> swarf::mesh::Mesh {
 fn bar_stock_is_round_and_its_air_is_not_cut() {
     use swarf::job::{Bar, BarAxis};
     let job_for = |bar: Option<Bar>| {
-        let mut job = Job::two_sided();
+        let mut job = milled_only();
         let operations = job.setups[0].operations.clone();
         job.setups.clear();
         job.operations = operations;
@@ -251,7 +291,7 @@ fn a_cast_blank_is_the_stock_and_its_air_is_not_cut() {
     let blank = cast_blank();
     let file = MeshFile::embedded("casting.stl", &blank.to_binary_stl());
     let job_for = |mesh: Option<MeshFile>| {
-        let mut job = Job::two_sided();
+        let mut job = milled_only();
         let operations = job.setups[0].operations.clone();
         job.setups.clear();
         job.operations = operations;
@@ -357,7 +397,7 @@ fn the_pool_runs_setups_one_at_a_time_as_the_job_runs_whole() {
 fn a_setup_stands_the_part_on_its_side() {
     use swarf::job::{Setup, Up};
     let mut job = Job::two_sided();
-    let finish = job.setups[0].operations[1].clone();
+    let finish = op("finish");
     job.setups.push(Setup { name: "back".into(), up: Some(Up::PlusY), work_offset: Some("G56".into()), operations: vec![finish], ..Setup::default() });
     let setups = run_setups(&job, two_sided_part(), &mut Progress::none()).unwrap();
     assert_eq!(setups.len(), 3);

@@ -186,7 +186,7 @@ fn verification_finds_gouges_rapids_through_stock_and_a_buried_tool_body() {
     let settings = VerifySettings { cell: 0.25, allowance: 0.0 };
     let tol = Tolerances::default();
     let check = |paths: &[Toolpath], tools: &[Tool]| {
-        let moves = program_moves(paths, tools, 3000.0).unwrap();
+        let moves = program_moves(paths, tools, swarf::toolpath::Rapids::at(3000.0)).unwrap();
         verify(&out.part, &out.stock, &moves, &settings, &tol, &mut Progress::none()).unwrap().report
     };
     // The same program 0.5 mm lower gouges by 0.5 mm.

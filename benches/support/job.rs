@@ -284,7 +284,7 @@ pub fn program_load(part: Mesh, gcode: &str, diameter: f64, cell: f64, ds: f64) 
     let stock = job.place(&mut part);
     job.tools[0].cutter = Cutter { flute_length: 1e3, ..Cutter::flat(diameter) };
     let paths = swarf::post::read::read_gcode(gcode, 1)?;
-    let moves = swarf::sim::program::program_moves(&paths, &job.tools, job.post.rapid_rate)?;
+    let moves = swarf::sim::program::program_moves(&paths, &job.tools, job.rapids())?;
     let rates = swarf::sim::windows::windowed_rates(&moves, &stock, cell, ds)?;
     let mean = rates.iter().sum::<f64>() / rates.len().max(1) as f64;
     Ok((rates.iter().copied().fold(0.0, f64::max), mean, rates.len()))

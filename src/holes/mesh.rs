@@ -99,34 +99,44 @@ fn cylinders(mesh: &Mesh, outward: bool) -> Vec<Hole> {
             holes.push(Hole { center, diameter: 2.0 * radius, top, bottom, through: false, bottom_shape: Bottom::Flat, loop_index: None, layer: None, mark: false });
             continue;
         }
-        // What meets the lower rim: the faces (not walls of this piece) on its edges at the
-        // bottom, inside the circle or out.
+        // What meets each rim: the faces (not walls of this piece) on its edges there, inside
+        // the circle or out, and of those inside how many slope.
         let in_piece: std::collections::HashSet<usize> = piece.iter().copied().collect();
-        let (mut inside, mut outside, mut sloped) = (0, 0, 0);
-        for &k in piece {
-            let f = faces[k];
-            for [a, b] in [[f[0], f[1]], [f[1], f[2]], [f[2], f[0]]] {
-                let (pa, pb) = (mesh.vertices[a], mesh.vertices[b]);
-                if (pa.z - bottom).abs() > within || (pb.z - bottom).abs() > within {
-                    continue;
-                }
-                for &other in edges.get(&(a.min(b), a.max(b))).into_iter().flatten() {
-                    if in_piece.contains(&other) {
+        let meets = |z: f64| {
+            let (mut inside, mut outside, mut sloped) = (0, 0, 0);
+            for &k in piece {
+                let f = faces[k];
+                for [a, b] in [[f[0], f[1]], [f[1], f[2]], [f[2], f[0]]] {
+                    let (pa, pb) = (mesh.vertices[a], mesh.vertices[b]);
+                    if (pa.z - z).abs() > within || (pb.z - z).abs() > within {
                         continue;
                     }
-                    let [x, y, z] = faces[other].map(|v| mesh.vertices[v]);
-                    let mid = ((x + y + z) / 3.0).truncate();
-                    if mid.distance(center) < radius {
-                        inside += 1;
-                        if normals[other].is_some_and(|n| n.z.abs() < 1.0 - 1e-6) {
-                            sloped += 1;
+                    for &other in edges.get(&(a.min(b), a.max(b))).into_iter().flatten() {
+                        if in_piece.contains(&other) {
+                            continue;
                         }
-                    } else {
-                        outside += 1;
+                        let [x, y, z] = faces[other].map(|v| mesh.vertices[v]);
+                        let mid = ((x + y + z) / 3.0).truncate();
+                        if mid.distance(center) < radius {
+                            inside += 1;
+                            if normals[other].is_some_and(|n| n.z.abs() < 1.0 - 1e-6) {
+                                sloped += 1;
+                            }
+                        } else {
+                            outside += 1;
+                        }
                     }
                 }
             }
+            (inside, outside, sloped)
+        };
+        // A wall closed above (a floor or a drill's point over it) opens downwards: a hole to
+        // drill from below, once the part is turned over, not from this side.
+        let (over, open, _) = meets(top);
+        if over > open {
+            continue;
         }
+        let (inside, outside, sloped) = meets(bottom);
         let (through, bottom_shape) = if inside == 0 && outside == 0 || outside > inside {
             (true, Bottom::Open)
         } else if sloped * 2 > inside {

@@ -37,26 +37,36 @@ impl Job {
     }
 
     /// The two-sided example's job ([`crate::mesh::sample::two_sided_part`],
-    /// `examples/two-sided/`): the top (pocket and dome) in G54, then the part turned over
-    /// about X in the vise and its bottom (slot and boss) in G55, each roughed by z-level with a
-    /// φ6 flat end and finished by raster with a φ6 ball, from a block 3 mm larger each side
-    /// and 1 mm over and under, zero on the centre of the part's top in each setup.
+    /// `examples/two-sided/`): the top (pocket, dome and the four holes through the corners) in
+    /// G54, then the part turned over about X in the vise and its bottom (slot, boss and the
+    /// boss's blind hole) in G55. Each side is faced and roughed by z-level with a φ6 flat end,
+    /// its holes peck-drilled (φ5.5 from the top, φ4.2 from below), then finished by raster
+    /// with a φ6 ball, from a block 3 mm larger each side and 1 mm over and under, zero on the
+    /// centre of the part's top in each setup.
     pub fn two_sided() -> Job {
         use super::schema::{Flip, Setup, WorkZero};
-        use crate::operations::RoughZlevel;
+        use crate::machining::holes::HolePick;
+        use crate::operations::{Drill, DrillCycle, Face, RoughZlevel};
         let demo = Job::demo();
-        let operations = vec![
-            Operation::RoughZlevel(RoughZlevel { name: "rough".into(), tool: 1, ..RoughZlevel::default() }),
-            Operation::FinishRaster(FinishRaster { name: "finish".into(), tool: 2, stepover: 0.6, ..FinishRaster::default() }),
-        ];
-        let mut job = Job { name: "two-sided plate".into(), tools: demo.tools, operations: Vec::new(), ..Job::default() };
+        let drill = |number: u32, d: f64| Tool { number, name: format!("{d} mm drill"), cutter: Cutter { flute_length: 30.0, ..Cutter::drill(d, 118.0) }, ..Tool::default() };
+        let ops = |pick: HolePick, tool: u32| {
+            vec![
+                Operation::Face(Face { tool: 1, ..Face::default() }),
+                Operation::RoughZlevel(RoughZlevel { name: "rough".into(), tool: 1, ..RoughZlevel::default() }),
+                Operation::Drill(Drill { tool, cycle: DrillCycle::Peck, pick, ..Drill::default() }),
+                Operation::FinishRaster(FinishRaster { name: "finish".into(), tool: 2, stepover: 0.6, ..FinishRaster::default() }),
+            ]
+        };
+        let mut tools = demo.tools;
+        tools.extend([drill(3, 5.5), drill(4, 4.2)]);
+        let mut job = Job { name: "two-sided plate".into(), tools, operations: Vec::new(), ..Job::default() };
         job.stock.margin_xy = 3.0;
         job.stock.margin_top = 1.0;
         job.stock.margin_bottom = 1.0;
         job.stock.zero = Some(WorkZero::default());
         job.setups = vec![
-            Setup { name: "top".into(), work_offset: Some("G54".into()), operations: operations.clone(), ..Setup::default() },
-            Setup { name: "bottom".into(), flip: Flip::AboutX, work_offset: Some("G55".into()), operations, ..Setup::default() },
+            Setup { name: "top".into(), work_offset: Some("G54".into()), operations: ops(HolePick { min_diameter: Some(5.0), ..HolePick::default() }, 3), ..Setup::default() },
+            Setup { name: "bottom".into(), flip: Flip::AboutX, work_offset: Some("G55".into()), operations: ops(HolePick { max_diameter: Some(5.0), ..HolePick::default() }, 4), ..Setup::default() },
         ];
         job
     }

@@ -172,13 +172,13 @@ impl Job {
         }
         let mut sim = Simulator::new(&stock, cell)?;
         if let Some(bar) = self.stock.bar.filter(|_| sheet.is_none()) {
-            sim.carry(bar.material(&stock));
+            sim.carry([false; 2], bar.material(&stock));
         } else if let Some(blank) = self.blank().filter(|_| sheet.is_none()) {
             // The blank moved to the work zero as the stock's box was.
             let to_zero = stock.min - self.stock_box(&stock).min;
             let mut blank = (*blank).clone();
             blank.transform(|v| v + to_zero);
-            sim.carry(super::blank::material(&blank));
+            sim.carry([false; 2], super::blank::material(&blank));
         }
         // What holds the stock joins the part in what the cutter is dropped onto, and rapids
         // across run above it.
@@ -196,7 +196,7 @@ impl Job {
             caches: Caches::default(),
             sim,
             warnings: Vec::new(),
-            rapid_rate: self.post.rapid_rate,
+            rapids: self.rapids(),
             // A G1 no faster than the machine feeds (its rapids may be faster).
             air_feed: self.stock.air_feed.unwrap_or(self.post.rapid_rate).min(self.post.rapid_rate).min(self.machine.max_feed),
             operation: 0,
@@ -260,7 +260,7 @@ pub fn verify_gcode(job: &Job, mut part: Mesh, gcode: &str, cell: Option<f64>, p
     }
     let first_tool = job.tools.first().map_or(1, |t| t.number);
     let paths = crate::post::read::read_gcode(gcode, first_tool)?;
-    let moves = program_moves(&paths, &job.tools, job.post.rapid_rate)?;
+    let moves = program_moves(&paths, &job.tools, job.rapids())?;
     let settings = job.verify_settings(&stock, cell);
     if cell.is_some() || job.simulation.cell.is_some() {
         job.sees_with(settings.cell, if cell.is_some() { "the cell" } else { "simulation.cell" })?;
@@ -346,8 +346,8 @@ impl Prepared {
     /// Starts from the stock earlier work left instead of the raw box (the setup before this
     /// one's, [`super::setups`]): each cell of the in-process stock holding the material
     /// `(floor, top)` that `material` gives at its centre.
-    pub fn carry(&mut self, material: impl Fn(crate::geom::DVec2) -> (f64, f64)) {
-        self.ctx.sim.carry(material);
+    pub fn carry(&mut self, at_max: [bool; 2], material: impl Fn(crate::geom::DVec2) -> (f64, f64)) {
+        self.ctx.sim.carry(at_max, material);
     }
 
     /// [`run`] from here.
@@ -461,7 +461,7 @@ impl Running {
         let first_path = self.paths.len();
         self.path_operations.extend(std::iter::repeat_n(k, paths.len()));
         self.paths.extend(paths);
-        let moves = timed_moves(&self.paths, first_path, self.all_moves.last(), &self.job.tools, self.job.post.rapid_rate)?;
+        let moves = timed_moves(&self.paths, first_path, self.all_moves.last(), &self.job.tools, self.job.rapids())?;
         self.stopped_short(k, &moves);
         if !moves.is_empty() && (self.job.simulation.verify || self.next < self.enabled.len()) {
             self.pending = moves;
@@ -612,8 +612,8 @@ impl Running {
         let mut ctx = ctx;
         progress.frame(0.0, 1.0, None);
         warnings.append(&mut ctx.warnings);
-        let crate::post::Written { gcode, cycle, move_lines } = write_mapped(&job.name, &paths, &job.tools, ctx.heights.clearance, &job.post)?;
-        let stats = paths.iter().fold(PathStats::default(), |s, p| s + p.stats(job.post.rapid_rate));
+        let crate::post::Written { gcode, cycle, move_lines } = write_mapped(&job.name, &paths, &job.tools, ctx.heights.clearance, &job.post_for_machine())?;
+        let stats = paths.iter().fold(PathStats::default(), |s, p| s + p.stats(job.rapids()));
         if all_moves.iter().all(|m| matches!(m.mv, crate::toolpath::Move::Rapid { .. })) {
             let why = if warnings.is_empty() { String::new() } else { format!(" ({})", warnings.iter().map(Warning::to_string).collect::<Vec<_>>().join("; ")) };
             return Err(Error::Nothing(format!("the program has no cutting moves{why}")));
@@ -778,9 +778,9 @@ fn tool_larger_than_part(job: &Job, part: &Mesh) -> Option<(Warning, bool)> {
 }
 
 /// The moves of `paths[first..]`, timed on from the program's last move so far.
-fn timed_moves(paths: &[Toolpath], first: usize, last: Option<&ProgramMove>, tools: &[Tool], rapid_rate: f64) -> Result<Vec<ProgramMove>> {
+fn timed_moves(paths: &[Toolpath], first: usize, last: Option<&ProgramMove>, tools: &[Tool], rapids: crate::toolpath::Rapids) -> Result<Vec<ProgramMove>> {
     let clock = last.map_or(0.0, |m| m.start + m.seconds);
-    let mut moves = program_moves(&paths[first..], tools, rapid_rate)?;
+    let mut moves = program_moves(&paths[first..], tools, rapids)?;
     for m in &mut moves {
         m.path += first;
         m.start += clock;

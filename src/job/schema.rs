@@ -935,6 +935,17 @@ impl Job {
         self.tools.iter().map(|t| crate::cutting::cutting_data(t, self.stock.material, &self.machine)).collect()
     }
 
+    /// How the job's rapids are timed: at its machine's rates per axis where known, else at
+    /// the post's `rapidRate` along each move.
+    pub fn rapids(&self) -> crate::toolpath::Rapids {
+        crate::toolpath::Rapids { rate: self.post.rapid_rate, axes: self.machine.rapids }
+    }
+
+    /// The job's post settings as its programs are written: timing rapids as [`Job::rapids`].
+    pub fn post_for_machine(&self) -> crate::post::PostSettings {
+        crate::post::PostSettings { rapid_axes: self.machine.rapids, ..self.post.clone() }
+    }
+
     /// The job with its tools' speeds and feeds from the stock's material, where they take
     /// them: what runs, is timed and posted.
     pub fn with_cutting_data(&self) -> std::borrow::Cow<'_, Job> {

@@ -238,7 +238,7 @@ pub fn run_setups(job: &Job, mut part: Mesh, progress: &mut Progress) -> Result<
         if let Some(before) = out.last() {
             let left = before.output.verification.as_ref().map(|v| &v.stock).ok_or_else(|| Error::Internal("a setup before another was not simulated".into()))?;
             let (from, to) = (before.orientation, frame.0);
-            prepared.carry(|p| carried(left, &from, &to, p));
+            prepared.carry(laid_like(left, &from, &to), |p| carried(left, &from, &to, p));
         }
         let output = progress.within(k as f64 / n as f64, 1.0 / n as f64, &names[k], |p| prepared.run(p)).map_err(|e| setup_error(k, &names[k], e))?;
         out.push(SetupOutput { name: names[k].clone(), orientation: frame.0, output });
@@ -301,6 +301,26 @@ pub fn carried(left: &DexelStock, from: &Orientation, to: &Orientation, p: DVec2
     (u.min(v), u.max(v))
 }
 
+/// How a setup's cells are laid ([`crate::sim::DexelStock::laid_from`]) so that their centres
+/// are the images of the cells' centres of the stock `left` the setup before left, in its
+/// orientation `from` (this setup's is `to`): along each axis here that is an axis there, laid
+/// from the side the one there is laid from, or the other where the axis turned round. An
+/// axis that was vertical there (a part stood on its side) is laid from its minimum.
+pub fn laid_like(left: &DexelStock, from: &Orientation, to: &Orientation) -> [bool; 2] {
+    let before = |v: DVec3| from.apply(to.unapply(v));
+    let there = left.laid_from_max();
+    [DVec3::X, DVec3::Y].map(|axis| {
+        let d = before(axis) - before(DVec3::ZERO);
+        if d.x.abs() > 0.5 {
+            there[0] != (d.x < 0.0)
+        } else if d.y.abs() > 0.5 {
+            there[1] != (d.y < 0.0)
+        } else {
+            false
+        }
+    })
+}
+
 /// [`carried`] for a setup that stands the part on a side of the one before: the column here
 /// is a line across the columns there, `a + dir t` (`dir` along X or Y there), at the height
 /// `a.z`. Its material is where that line runs through material there (in the rows within a
@@ -343,6 +363,7 @@ fn carried_across(left: &DexelStock, a: DVec3, dir: DVec3) -> (f64, f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::sim::StockModel;
 
     /// A part stood on its side: the column over a point is a line across the columns the
     /// setup before left, and it carries their span, half a cell out each way.
@@ -366,6 +387,45 @@ mod tests {
         for (up, face) in [(Up::PlusX, DVec3::X), (Up::MinusX, -DVec3::X), (Up::PlusY, DVec3::Y), (Up::MinusY, -DVec3::Y), (Up::MinusZ, -DVec3::Z), (Up::PlusZ, DVec3::Z)] {
             let r = up_rotation(up);
             assert!((r * face - DVec3::Z).length() < 1e-12 && (r.determinant() - 1.0).abs() < 1e-12, "{up:?}");
+        }
+    }
+
+    /// A stock turned over about X, and then a quarter about Z: its cells are laid so that
+    /// their centres are the images of the centres before, and what the setup before left
+    /// carries cell for cell, on a box no whole number of cells wide (a drilled cell stays one
+    /// cell, the material adds up exactly).
+    #[test]
+    fn a_stock_turned_over_carries_cell_for_cell() {
+        let raw = Aabb { min: DVec3::new(-5.3, -3.85, -4.0), max: DVec3::new(5.3, 3.85, 4.0) };
+        let hole = DVec2::new(-4.8, 3.4);
+        let cut = |p: DVec2| if p.distance(hole) < 0.3 { (0.0, 0.0) } else { (-4.0, 4.0) };
+        let left = DexelStock::new(&raw, 0.5, 1).with_material(cut);
+        let first = Orientation { rotation: DMat3::IDENTITY, centre: DVec3::ZERO, shift: DVec3::ZERO };
+        let over = Orientation { rotation: flip_rotation(Flip::AboutX), centre: DVec3::ZERO, shift: DVec3::new(0.7, -0.2, 1.0) };
+        let turned = Orientation { rotation: DMat3::from_rotation_z(std::f64::consts::FRAC_PI_2) * over.rotation, centre: DVec3::ZERO, shift: DVec3::ZERO };
+        let empties = |s: &DexelStock| {
+            let g = s.grid();
+            (0..g.ny).flat_map(|j| (0..g.nx).map(move |i| (i, j))).filter(|&(i, j)| s.top(i, j) <= s.floor(i, j)).count()
+        };
+        assert_eq!(empties(&left), 2, "the drilled cells");
+        let mut before = (left, first);
+        for to in [over, turned] {
+            let lay = laid_like(&before.0, &before.1, &to);
+            let boxed = to.apply_box(&raw);
+            let carried_stock = DexelStock::new(&boxed, 0.5, 1).laid_from(lay).with_material(|p| carried(&before.0, &before.1, &to, p));
+            let g = carried_stock.grid();
+            for j in 0..g.ny {
+                for i in 0..g.nx {
+                    // Each centre here is a centre there.
+                    let there = before.1.apply(to.unapply(g.node(i, j).extend(0.0))).truncate();
+                    let h = before.0.grid();
+                    let f = (there - h.origin) / h.spacing;
+                    assert!((f - f.round()).abs().max_element() < 1e-9, "{lay:?}: ({i}, {j}) is {f} there");
+                }
+            }
+            assert_eq!(empties(&carried_stock), 2, "{lay:?}");
+            assert!((carried_stock.volume() - before.0.volume()).abs() < 1e-9, "{} {}", carried_stock.volume(), before.0.volume());
+            before = (carried_stock, to);
         }
     }
 }

@@ -111,8 +111,8 @@ pub struct Context {
     /// The in-process stock: the raw box cut by every operation planned so far.
     pub sim: Simulator,
     pub warnings: Vec<Warning>,
-    /// The machine's rapid rate (mm/min), for timing what an operation plans.
-    pub rapid_rate: f64,
+    /// How the machine's rapids are timed, for timing what an operation plans.
+    pub rapids: crate::toolpath::Rapids,
     /// The feed of level moves an operation knows cut nothing (the job's `stock.airFeed`, at
     /// most the rapid rate; [`super::air`]).
     pub air_feed: f64,

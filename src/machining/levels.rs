@@ -1019,7 +1019,7 @@ mod tests {
             // The in-process stock already cut down to 5 mm: the air over it.
             sim: crate::sim::verify::Simulator::new(&Aabb { min: stock.min, max: v(30.0, 30.0, 5.0) }, 0.5).unwrap(),
             warnings: Vec::new(),
-            rapid_rate: 5000.0,
+            rapids: crate::toolpath::Rapids::at(5000.0),
             air_feed: 5000.0,
             operation: 0,
             given_passes: Default::default(),

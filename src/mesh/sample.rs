@@ -8,13 +8,41 @@ use crate::geom::{DVec2, DVec3, Tolerances};
 /// A closed solid over `[min, max]` whose top is `top(x, y)`, sampled on `nx × ny` quads, with
 /// its bottom at `bottom`.
 pub fn height_field_solid(min: DVec2, max: DVec2, nx: usize, ny: usize, bottom: f64, top: impl Fn(f64, f64) -> f64) -> Mesh {
-    two_height_solid(min, max, nx, ny, |_, _| bottom, top)
+    two_height_solid(min, max, nx, ny, &|_, _| bottom, &top, &[])
 }
+
+/// A round vertical hole in a generated solid: true cylinder walls (`sides` facets), set in a
+/// square of grid cells round its centre whose faces are fanned between the square's edge and
+/// the hole's rim (so the square must sit where the faces it replaces are flat enough to be
+/// one face, and off the solid's edge).
+#[derive(Clone, Copy, Debug)]
+pub struct Bore {
+    pub center: DVec2,
+    pub diameter: f64,
+    /// Half the side of the square of cells it is set in (mm, more than the radius).
+    pub half: f64,
+    pub sides: usize,
+    pub kind: BoreKind,
+}
+
+/// Where a [`Bore`] opens.
+#[derive(Clone, Copy, Debug)]
+pub enum BoreKind {
+    /// From the top to the bottom.
+    Through,
+    /// From the top, this deep below the top at its centre, ending in a drill's 118° cone.
+    FromTop(f64),
+    /// From the bottom, this high above the bottom at its centre, ending in a drill's cone.
+    FromBottom(f64),
+}
+
+/// Half a drill's 118° point.
+const DRILL_POINT: f64 = 59.0 * std::f64::consts::PI / 180.0;
 
 /// A closed solid over `[min, max]` between `bottom(x, y)` and `top(x, y)` (the top higher
 /// everywhere), both sampled on `nx × ny` quads, with walls between their edges; a flat bottom
 /// is one face of two triangles.
-fn two_height_solid(min: DVec2, max: DVec2, nx: usize, ny: usize, bottom: impl Fn(f64, f64) -> f64, top: impl Fn(f64, f64) -> f64) -> Mesh {
+fn two_height_solid(min: DVec2, max: DVec2, nx: usize, ny: usize, bottom: &dyn Fn(f64, f64) -> f64, top: &dyn Fn(f64, f64) -> f64, bores: &[Bore]) -> Mesh {
     let (nx, ny) = (nx.max(1), ny.max(1));
     let xy = |i: usize, j: usize| DVec2::new(min.x + (max.x - min.x) * i as f64 / nx as f64, min.y + (max.y - min.y) * j as f64 / ny as f64);
     let at = |i: usize, j: usize| {
@@ -26,8 +54,29 @@ fn two_height_solid(min: DVec2, max: DVec2, nx: usize, ny: usize, bottom: impl F
         p.extend(bottom(p.x, p.y))
     };
     let mut tris = Vec::with_capacity(4 * nx * ny + 4 * (nx + ny));
+    // Each bore's square as cell indices [i0, i1) × [j0, j1).
+    let index = |v: f64, lo: f64, hi: f64, n: usize| (((v - lo) / (hi - lo) * n as f64).round().max(0.0) as usize).min(n);
+    let squares: Vec<[usize; 4]> = bores
+        .iter()
+        .map(|b| {
+            [index(b.center.x - b.half, min.x, max.x, nx), index(b.center.x + b.half, min.x, max.x, nx), index(b.center.y - b.half, min.y, max.y, ny), index(b.center.y + b.half, min.y, max.y, ny)]
+        })
+        .collect();
+    let in_bore = |i: usize, j: usize, top_side: bool| {
+        bores.iter().zip(&squares).any(|(b, &[i0, i1, j0, j1])| {
+            let opens = match b.kind {
+                BoreKind::Through => true,
+                BoreKind::FromTop(_) => top_side,
+                BoreKind::FromBottom(_) => !top_side,
+            };
+            opens && (i0..i1).contains(&i) && (j0..j1).contains(&j)
+        })
+    };
     for j in 0..ny {
         for i in 0..nx {
+            if in_bore(i, j, true) {
+                continue;
+            }
             let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
             tris.push([a, b, c]);
             tris.push([a, c, d]);
@@ -49,7 +98,7 @@ fn two_height_solid(min: DVec2, max: DVec2, nx: usize, ny: usize, bottom: impl F
     // A flat bottom is one face (as the sample part has always had); any other is a grid
     // facing down.
     let z0 = bottom(min.x, min.y);
-    let flat = (0..=ny).all(|j| (0..=nx).all(|i| under(i, j).z == z0));
+    let flat = bores.is_empty() && (0..=ny).all(|j| (0..=nx).all(|i| under(i, j).z == z0));
     if flat {
         let corners = [min.extend(z0), DVec3::new(max.x, min.y, z0), max.extend(z0), DVec3::new(min.x, max.y, z0)];
         tris.push([corners[0], corners[2], corners[1]]);
@@ -57,9 +106,87 @@ fn two_height_solid(min: DVec2, max: DVec2, nx: usize, ny: usize, bottom: impl F
     } else {
         for j in 0..ny {
             for i in 0..nx {
+                if in_bore(i, j, false) {
+                    continue;
+                }
                 let (a, b, c, d) = (under(i, j), under(i + 1, j), under(i + 1, j + 1), under(i, j + 1));
                 tris.push([a, c, b]);
                 tris.push([a, d, c]);
+            }
+        }
+    }
+    for (b, &[i0, i1, j0, j1]) in bores.iter().zip(&squares) {
+        // The square's edge from its lower left corner, anticlockwise seen from above.
+        let mut edge: Vec<(usize, usize)> = (i0..i1).map(|i| (i, j0)).collect();
+        edge.extend((j0..j1).map(|j| (i1, j)));
+        edge.extend((i0 + 1..=i1).rev().map(|i| (i, j1)));
+        edge.extend((j0 + 1..=j1).rev().map(|j| (i0, j)));
+        let angle = |p: DVec2| (p - b.center).to_angle();
+        let start = angle(xy(i0, j0));
+        let n = b.sides.max(6);
+        let rim = |k: usize| b.center + DVec2::from_angle(start + std::f64::consts::TAU * k as f64 / n as f64) * (b.diameter / 2.0);
+        // Anticlockwise angle from the start, in [0, 2π].
+        let turned = |p: DVec2, last: bool| {
+            let a = (angle(p) - start).rem_euclid(std::f64::consts::TAU);
+            if last && a < 1e-9 {
+                std::f64::consts::TAU
+            } else {
+                a
+            }
+        };
+        let mut push = |t: [DVec3; 3], hint: DVec3| {
+            let n = (t[1] - t[0]).cross(t[2] - t[0]);
+            tris.push(if n.dot(hint) < 0.0 { [t[0], t[2], t[1]] } else { t });
+        };
+        // The face between the square's edge and the rim, at the height `z` of each point.
+        let annulus = |z: &dyn Fn(DVec2) -> f64, up: f64, push: &mut dyn FnMut([DVec3; 3], DVec3)| {
+            let (mut e, mut k) = (0, 0);
+            let lift = |p: DVec2| p.extend(z(p));
+            while e < edge.len() || k < n {
+                let (p, q) = (xy(edge[e % edge.len()].0, edge[e % edge.len()].1), xy(edge[(e + 1) % edge.len()].0, edge[(e + 1) % edge.len()].1));
+                let next_edge = turned(q, e + 1 == edge.len());
+                let next_rim = std::f64::consts::TAU * (k + 1) as f64 / n as f64;
+                if k == n || (e < edge.len() && next_edge <= next_rim) {
+                    push([lift(p), lift(q), lift(rim(k % n))], DVec3::Z * up);
+                    e += 1;
+                } else {
+                    push([lift(p), lift(rim((k + 1) % n)), lift(rim(k % n))], DVec3::Z * up);
+                    k += 1;
+                }
+            }
+        };
+        let wall = |from: &dyn Fn(DVec2) -> f64, to: &dyn Fn(DVec2) -> f64, push: &mut dyn FnMut([DVec3; 3], DVec3)| {
+            for k in 0..n {
+                let (p, q) = (rim(k), rim((k + 1) % n));
+                let inward = (b.center - (p + q) / 2.0).extend(0.0);
+                push([p.extend(from(p)), q.extend(from(q)), q.extend(to(q))], inward);
+                push([p.extend(from(p)), q.extend(to(q)), p.extend(to(p))], inward);
+            }
+        };
+        let cone = |z: f64, down: f64, push: &mut dyn FnMut([DVec3; 3], DVec3)| {
+            let apex = b.center.extend(z + down * b.diameter / 2.0 / DRILL_POINT.tan());
+            for k in 0..n {
+                push([apex, rim(k).extend(z), rim((k + 1) % n).extend(z)], DVec3::Z * -down);
+            }
+        };
+        let (t, u) = (|p: DVec2| top(p.x, p.y), |p: DVec2| bottom(p.x, p.y));
+        match b.kind {
+            BoreKind::Through => {
+                annulus(&t, 1.0, &mut push);
+                wall(&t, &u, &mut push);
+                annulus(&u, -1.0, &mut push);
+            }
+            BoreKind::FromTop(depth) => {
+                let floor = top(b.center.x, b.center.y) - depth;
+                annulus(&t, 1.0, &mut push);
+                wall(&t, &|_| floor, &mut push);
+                cone(floor, -1.0, &mut push);
+            }
+            BoreKind::FromBottom(height) => {
+                let floor = bottom(b.center.x, b.center.y) + height;
+                annulus(&u, -1.0, &mut push);
+                wall(&|_| floor, &u, &mut push);
+                cone(floor, 1.0, &mut push);
             }
         }
     }
@@ -67,16 +194,19 @@ fn two_height_solid(min: DVec2, max: DVec2, nx: usize, ny: usize, bottom: impl F
 }
 
 /// A part with features on both sides, for setups: an 80 × 50 × 16 mm plate (top at z = 0)
-/// with a 30 × 20 mm pocket 5 deep and a shallow dome on top, and underneath a slot 10 wide and
-/// 4 deep across its width and a round boss φ16 standing 2 mm below the rest of the bottom.
-/// Its walls lean by the half-millimetre grid it is sampled on.
+/// with a 30 × 20 mm pocket 5 deep, a dome 1.5 high and 26 across and four φ5.5 holes through its corners
+/// (M5 clearance, at x ±32, y ±17) on top, and underneath a slot 10 wide and 4 deep across its
+/// width and a round boss φ16 standing 2 mm below the rest of the bottom, with a φ4.2 hole 8
+/// deep in it (M5 tapping size, a drill's point at its end). Its holes are true cylinders; its
+/// other walls lean by the half-millimetre grid it is sampled on.
 pub fn two_sided_part() -> Mesh {
+    let corner = |x: f64, y: f64| Bore { center: DVec2::new(x, y), diameter: 5.5, half: 4.0, sides: 48, kind: BoreKind::Through };
     two_height_solid(
         DVec2::new(-40.0, -25.0),
         DVec2::new(40.0, 25.0),
         160,
         100,
-        |x, y| {
+        &|x, y| {
             if (x - 20.0).abs() < 5.0 {
                 -12.0 // the slot
             } else if (x + 15.0).hypot(y) < 8.0 {
@@ -85,13 +215,23 @@ pub fn two_sided_part() -> Mesh {
                 -16.0
             }
         },
-        |x, y| {
+        &|x, y| {
             if (x + 15.0).abs() < 15.0 && y.abs() < 10.0 {
                 -5.0 // the pocket
             } else {
-                1.5 * (-((x - 22.0).powi(2) + y.powi(2)) / 40.0).exp() - 1.5
+                // The dome: 1.5 high, 13 across its foot, meeting the plate level (the
+                // level of the holes' tops) with no edge.
+                let u = ((x - 22.0).powi(2) + y.powi(2)) / (13.0 * 13.0);
+                1.5 * (1.0 - u).max(0.0).powi(3) - 1.5
             }
         },
+        &[
+            corner(-32.0, -17.0),
+            corner(32.0, -17.0),
+            corner(32.0, 17.0),
+            corner(-32.0, 17.0),
+            Bore { center: DVec2::new(-15.0, 0.0), diameter: 4.2, half: 4.0, sides: 40, kind: BoreKind::FromBottom(8.0) },
+        ],
     )
 }
 
@@ -184,4 +324,35 @@ pub fn warm_up_part() -> Mesh {
         let ledge = if y > 4.5 { -1.0 } else { 0.0 };
         hollow + dome + ledge
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The two-sided plate is one closed solid whose holes are found as drawn: four through
+    /// holes from the top, and the boss's blind hole only from below.
+    #[test]
+    fn the_two_sided_plates_holes_are_found_from_the_side_they_open_on() {
+        let part = two_sided_part();
+        assert!(part.open_edges().is_empty(), "the plate is closed");
+        let holes = crate::holes::mesh::find(&part);
+        let through: Vec<_> = holes.iter().filter(|h| h.through).collect();
+        assert_eq!(through.len(), 4, "{holes:?}");
+        for h in &through {
+            assert!((h.diameter - 5.5).abs() < 1e-6 && (h.center.x.abs() - 32.0).abs() < 1e-6 && (h.center.y.abs() - 17.0).abs() < 1e-6, "{h:?}");
+            assert!((h.bottom + 16.0).abs() < 1e-9 && (h.top + 1.5).abs() < 1e-9, "{h:?}");
+        }
+        assert_eq!(holes.len(), 4, "the boss's hole opens downwards: not one to drill from the top: {holes:?}");
+        let mut turned = part.clone();
+        for v in &mut turned.vertices {
+            (v.y, v.z) = (-v.y, -v.z);
+        }
+        let below = crate::holes::mesh::find(&turned);
+        let blind: Vec<_> = below.iter().filter(|h| !h.through).collect();
+        assert_eq!((below.len(), blind.len()), (5, 1), "{below:?}");
+        let h = blind[0];
+        assert!((h.diameter - 4.2).abs() < 1e-6 && (h.center.x + 15.0).abs() < 1e-6 && h.center.y.abs() < 1e-6, "{h:?}");
+        assert!((h.top - 18.0).abs() < 1e-9 && (h.bottom - 10.0).abs() < 1e-9 && h.bottom_shape == crate::holes::Bottom::Cone, "{h:?}");
+    }
 }

@@ -45,13 +45,39 @@ pub use crate::machining::settings::{Direction, EntryKind, LoadControl, Order, P
 macro_rules! operations {
     ($($(#[$doc:meta])* $variant:ident($options:ty) = $kind:literal,)*) => {
         /// One operation of a job.
-        #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
+        #[derive(Clone, Debug, PartialEq, Serialize, ts_rs::TS)]
         #[serde(tag = "kind", rename_all = "camelCase")]
         pub enum Operation {
             $($(#[$doc])* $variant($options),)*
         }
 
+        /// Read as JSON first, its `kind` then picking the type its settings are read as
+        /// ([`Operation::from_json`]): one reader for each kind whatever the operation is read
+        /// from (a job file, the page's job, a project), where serde's own for a tagged enum
+        /// is built again for every source, every kind's fields inlined in it (112 KB of the
+        /// page's wasm, growing with each kind).
+        impl<'de> Deserialize<'de> for Operation {
+            fn deserialize<D: serde::Deserializer<'de>>(source: D) -> Result<Operation, D::Error> {
+                let value = serde_json::Value::deserialize(source)?;
+                Operation::from_json(&value).map_err(serde::de::Error::custom)
+            }
+        }
+
         impl Operation {
+            /// The operation `value` holds, or what is wrong with it: `kind` missing or not
+            /// one of [`Operation::KINDS`], or `field: what is wrong`.
+            pub fn from_json(value: &serde_json::Value) -> Result<Operation, String> {
+                let kind = match value.get("kind") {
+                    Some(serde_json::Value::String(kind)) => kind.as_str(),
+                    Some(_) => return Err("kind: a string, one of the operations' kinds".into()),
+                    None => return Err(if value.is_object() { "missing field `kind`".into() } else { "an operation is an object of settings with its `kind`".into() }),
+                };
+                match kind {
+                    $($kind => Operation::read::<$options>(value).map(Operation::$variant),)*
+                    other => Err(format!("unknown variant `{other}`, expected one of {}", Operation::KINDS.iter().map(|k| format!("`{k}`")).collect::<Vec<_>>().join(", "))),
+                }
+            }
+
             /// The operation's contract.
             pub fn op(&self) -> &dyn Operate {
                 match self {
@@ -61,18 +87,18 @@ macro_rules! operations {
 
             /// Where an operation's JSON does not fit its kind's type: `field: what is wrong`.
             pub(crate) fn field_error(value: &serde_json::Value) -> Option<String> {
-                fn at<T: serde::de::DeserializeOwned>(value: &serde_json::Value) -> Option<String> {
-                    serde_path_to_error::deserialize::<_, T>(value).err().map(|e| match e.path().to_string() {
-                        // A field of settings flattened into the kind's own (the roughing
-                        // kinds' shared ones) is named by reading them on their own.
-                        path if path == "." => at::<crate::machining::settings::Roughing>(value).unwrap_or_else(|| crate::error::plain(&e.inner().to_string())),
-                        path => format!("{path}: {}", crate::error::plain(&e.inner().to_string())),
-                    })
-                }
-                match value.get("kind")?.as_str()? {
-                    $($kind => at::<$options>(value),)*
-                    _ => None,
-                }
+                let kind = value.get("kind")?.as_str()?;
+                Operation::KINDS.contains(&kind).then(|| Operation::from_json(value).err()).flatten()
+            }
+
+            /// The settings of one kind, read from `value`; what does not fit named by its field.
+            fn read<T: serde::de::DeserializeOwned>(value: &serde_json::Value) -> Result<T, String> {
+                serde_path_to_error::deserialize::<_, T>(value).map_err(|e| match e.path().to_string() {
+                    // A field of settings flattened into the kind's own (the roughing kinds'
+                    // shared ones) is named by reading them on their own.
+                    path if path == "." => Operation::read::<crate::machining::settings::Roughing>(value).err().unwrap_or_else(|| crate::error::plain(&e.inner().to_string())),
+                    path => format!("{path}: {}", crate::error::plain(&e.inner().to_string())),
+                })
             }
 
             /// One operation of every kind, with its default settings (the page's forms start

@@ -121,8 +121,8 @@ impl DexelStock {
         if f == 1 && self.k == 1 {
             return self.clone();
         }
-        let size = DVec2::new(self.widths.iter().sum(), self.heights.iter().sum());
-        let bounds = Aabb { min: self.origin.extend(self.bottom), max: (self.origin + size).extend(self.bottom) };
+        let (_, max) = self.extent();
+        let bounds = Aabb { min: self.origin.extend(self.bottom), max: max.extend(self.bottom) };
         let mut out = DexelStock::new(&bounds, self.cell * f as f64, 1);
         for j in 0..self.ny {
             for i in 0..self.nx {
@@ -158,6 +158,46 @@ impl DexelStock {
             self.block_top[k] = self.block_highest(k % self.bx, k / self.bx);
         }
         self
+    }
+
+    /// Along which axes (x, y) the cells are laid from the box's maximum side, the first
+    /// cell the one clipped to the box ([`DexelStock::laid_from`]); a box a whole number of
+    /// cells wide is laid alike from either side.
+    pub fn laid_from_max(&self) -> [bool; 2] {
+        let first_clipped = |w: &[f64]| w.len() > 1 && w[0] < w[w.len() - 1];
+        [first_clipped(&self.widths), first_clipped(&self.heights)]
+    }
+
+    /// The box this stock covers, seen from above.
+    fn extent(&self) -> (DVec2, DVec2) {
+        let [mx, my] = self.laid_from_max();
+        let n = DVec2::new(self.nx as f64, self.ny as f64) * self.cell;
+        let size = DVec2::new(self.widths.iter().sum(), self.heights.iter().sum());
+        let min = self.origin + DVec2::new(if mx { n.x - size.x } else { 0.0 }, if my { n.y - size.y } else { 0.0 });
+        (min, min + size)
+    }
+
+    /// The same fresh box stock with its cells laid from the box's maximum side along the axes
+    /// `at_max` marks (x, y), its first cell there the one clipped: the stock of a setup turned
+    /// over from one laid the other way, whose cells' centres are then the very images of the
+    /// cells' centres of the setup before, so that what that setup left carries over cell for
+    /// cell ([`crate::job::setups::carried`]), never half a cell off at a hole's rim.
+    pub fn laid_from(self, at_max: [bool; 2]) -> DexelStock {
+        if at_max == self.laid_from_max() {
+            return self;
+        }
+        let (min, max) = self.extent();
+        let box3 = Aabb { min: min.extend(self.bottom), max: max.extend(self.z.first().copied().unwrap_or(self.bottom)) };
+        let mut out = DexelStock::new(&box3, self.cell, self.k);
+        if at_max[0] {
+            out.origin.x = max.x - out.nx as f64 * out.cell;
+            out.widths.reverse();
+        }
+        if at_max[1] {
+            out.origin.y = max.y - out.ny as f64 * out.cell;
+            out.heights.reverse();
+        }
+        out
     }
 
     /// Where the material of cell (i, j) starts: its floor, or the bottom.

@@ -9,7 +9,7 @@ use crate::error::{Error, Result};
 use crate::geom::DVec3;
 use crate::progress::Progress;
 use crate::tool::Tool;
-use crate::toolpath::{Move, Toolpath};
+use crate::toolpath::{Move, Rapids, Toolpath};
 
 /// One move of a program, ready to simulate.
 #[derive(Clone, Debug, PartialEq)]
@@ -30,8 +30,8 @@ pub struct ProgramMove {
     pub holder: Option<std::sync::Arc<Vec<(f64, f64)>>>,
 }
 
-/// The moves of `paths`, each with its tool from `tools`, timed at their feeds and `rapid_rate`.
-pub fn program_moves(paths: &[Toolpath], tools: &[Tool], rapid_rate: f64) -> Result<Vec<ProgramMove>> {
+/// The moves of `paths`, each with its tool from `tools`, timed at their feeds and `rapids`.
+pub fn program_moves(paths: &[Toolpath], tools: &[Tool], rapids: Rapids) -> Result<Vec<ProgramMove>> {
     let mut out = Vec::new();
     let mut clock = 0.0;
     for (k, path) in paths.iter().enumerate() {
@@ -41,12 +41,11 @@ pub fn program_moves(paths: &[Toolpath], tools: &[Tool], rapid_rate: f64) -> Res
         // A drilling cycle's dwell at the bottom counts in the move that reached it.
         let dwells: std::collections::HashMap<usize, f64> = path.cycles.iter().filter(|c| c.kind == crate::toolpath::cycle::CycleKind::Dwell).map(|c| (c.bottom_move(), c.dwell)).collect();
         for (i, mv) in path.moves.iter().enumerate() {
-            let rate = match *mv {
-                Move::Rapid { .. } => rapid_rate,
-                Move::Line { feed, .. } | Move::Arc { feed, .. } => feed,
+            let (seconds, air) = match *mv {
+                Move::Rapid { to } => (rapids.seconds(at, to), false),
+                Move::Line { feed, .. } | Move::Arc { feed, .. } => (mv.length(at) / feed * 60.0, feed > tool.feed_rate * (1.0 + 1e-9)),
             };
-            let seconds = mv.length(at) / rate * 60.0 + dwells.get(&i).copied().unwrap_or(0.0);
-            let air = !mv.is_rapid() && rate > tool.feed_rate * (1.0 + 1e-9);
+            let seconds = seconds + dwells.get(&i).copied().unwrap_or(0.0);
             out.push(ProgramMove { path: k, tool: tool.number, cutter: tool.cutter.clone(), from: at, mv: *mv, start: clock, seconds, air, holder: holder.clone() });
             clock += seconds;
             at = mv.to();

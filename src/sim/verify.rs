@@ -568,10 +568,11 @@ impl Simulator {
     }
 
     /// Starts from the stock earlier work left instead of the raw box: each cell's material
-    /// `(floor, top)` as `material` gives it at its centre ([`DexelStock::with_material`]).
-    /// Before any move.
-    pub fn carry(&mut self, material: impl Fn(DVec2) -> (f64, f64)) {
-        self.stock = self.stock.take().with_material(material);
+    /// `(floor, top)` as `material` gives it at its centre ([`DexelStock::with_material`]), the
+    /// cells laid from the box's maximum side along the axes `at_max` marks
+    /// ([`DexelStock::laid_from`]). Before any move.
+    pub fn carry(&mut self, at_max: [bool; 2], material: impl Fn(DVec2) -> (f64, f64)) {
+        self.stock = self.stock.take().laid_from(at_max).with_material(material);
         self.start = Some(self.stock.clone());
     }
 

@@ -120,9 +120,45 @@ impl std::ops::Add for PathStats {
     }
 }
 
+/// How fast rapids go, for the cycle time: one rate along the move (the post's `rapidRate`), or
+/// each axis at its own (a machine's `rapids`), a rapid then taking as long as its slowest
+/// axis needs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Rapids {
+    /// mm/min along the move.
+    pub rate: f64,
+    /// mm/min in X, Y and Z, instead of `rate`.
+    pub axes: Option<[f64; 3]>,
+}
+
+impl Rapids {
+    /// One rate along every rapid (mm/min).
+    pub fn at(rate: f64) -> Rapids {
+        Rapids { rate, axes: None }
+    }
+
+    /// Seconds a rapid from `from` to `to` takes.
+    pub fn seconds(&self, from: DVec3, to: DVec3) -> f64 {
+        let d = (to - from).abs();
+        60.0 * match self.axes {
+            Some([x, y, z]) => (d.x / x).max(d.y / y).max(d.z / z),
+            None => d.length() / self.rate,
+        }
+    }
+
+    /// In words, for a program's head: "rapids at 3000 mm/min", "rapids at X 10000, Y 10000,
+    /// Z 5000 mm/min".
+    pub fn describe(&self) -> String {
+        match self.axes {
+            Some([x, y, z]) => format!("rapids at X {x}, Y {y}, Z {z} mm/min"),
+            None => format!("rapids at {} mm/min", self.rate),
+        }
+    }
+}
+
 impl Toolpath {
-    /// Lengths, and time at the feeds and `rapid_rate` (mm/min).
-    pub fn stats(&self, rapid_rate: f64) -> PathStats {
+    /// Lengths, and time at the feeds and `rapids`.
+    pub fn stats(&self, rapids: Rapids) -> PathStats {
         let mut stats = PathStats { moves: self.moves.len(), ..PathStats::default() };
         let mut at = self.start;
         for m in &self.moves {
@@ -130,7 +166,7 @@ impl Toolpath {
             match *m {
                 Move::Rapid { .. } => {
                     stats.rapid_length += length;
-                    stats.seconds += length / rapid_rate * 60.0;
+                    stats.seconds += rapids.seconds(at, m.to());
                 }
                 Move::Line { feed, .. } | Move::Arc { feed, .. } => {
                     stats.feed_length += length;

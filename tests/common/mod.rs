@@ -300,7 +300,7 @@ pub fn mesa(w: f64, h: f64, half: f64) -> Mesh {
 }
 
 /// Checks a verified program: a clean report (no gouge, no rapid through stock, no tool body
-/// in material), and no vertical feed into material. A start counts as in the air when the
+/// in material), and no vertical feed into material but a drill's. A start counts as in the air when the
 /// stock there stands no more than the gouge tolerance (0.02 mm) above the cutter: up to that
 /// skin over its footprint.
 pub fn clean(out: &swarf::job::JobOutput) {
@@ -308,7 +308,8 @@ pub fn clean(out: &swarf::job::JobOutput) {
     assert!(v.report.is_clean(), "{}", v.report.describe());
     for (m, &vol) in out.moves.iter().zip(&v.volumes) {
         if let swarf::toolpath::Move::Line { to, .. } = m.mv {
-            if to.truncate().distance(m.from.truncate()) < 1e-9 && to.z < m.from.z - 1e-9 {
+            let drill = matches!(m.cutter.shape, swarf::cutter::Shape::Drill | swarf::cutter::Shape::SpotDrill);
+            if !drill && to.truncate().distance(m.from.truncate()) < 1e-9 && to.z < m.from.z - 1e-9 {
                 let r = m.cutter.diameter / 2.0;
                 assert!(vol < 0.02 * std::f64::consts::PI * r * r + 1e-6, "a straight plunge to {to} removed {vol} mm³");
             }

@@ -1096,6 +1096,11 @@ test('speeds and feeds from the stock\'s material: each tool shows them with how
   await page.click('#generate');
   await generated(page);
   assert.match(await page.evaluate(() => window.swarf.result.gcode), new RegExp(`^S${rpm(12000)} M3$`, 'm'));
+  // Its rapids, per axis, time the program.
+  await tab(page, 'post');
+  assert.equal(await page.inputValue('input[name=rapids]'), '15000, 15000, 15000');
+  assert.match(await page.evaluate(() => window.swarf.result.gcode), /rapids at X 15000, Y 15000, Z 15000 mm\/min/);
+  await tab(page, 'tools');
   // A speed typed is the tool's own from then on.
   await page.fill('input[name=spindleRpm]', '9000');
   await page.dispatchEvent('input[name=spindleRpm]', 'change');

@@ -970,7 +970,13 @@ maxFeed: number,
  * cannot run on it, and is marked not safe to run, naming where. Default value: none (not
  * known: not checked; each built-in machine has its own).
  */
-travel: [number, number, number] | null, };
+travel: [number, number, number] | null, 
+/**
+ * Rapid rates in X, Y and Z (mm/min): a rapid takes as long as its slowest axis needs,
+ * in the cycle time and the setup sheet. Default value: none (not known: rapids are timed
+ * along the move at the post's `rapidRate`; each built-in machine has its own).
+ */
+rapids: [number, number, number] | null, };
 
 /**
  * The stock's material.
