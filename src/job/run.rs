@@ -172,13 +172,13 @@ impl Job {
         }
         let mut sim = Simulator::new(&stock, cell)?;
         if let Some(bar) = self.stock.bar.filter(|_| sheet.is_none()) {
-            sim.carry([false; 2], bar.material(&stock));
+            sim.carry([false; 2], one_span(bar.material(&stock)));
         } else if let Some(blank) = self.blank().filter(|_| sheet.is_none()) {
             // The blank moved to the work zero as the stock's box was.
             let to_zero = stock.min - self.stock_box(&stock).min;
             let mut blank = (*blank).clone();
             blank.transform(|v| v + to_zero);
-            sim.carry([false; 2], super::blank::material(&blank));
+            sim.carry([false; 2], one_span(super::blank::material(&blank)));
         }
         // What holds the stock joins the part in what the cutter is dropped onto, and rapids
         // across run above it.
@@ -344,9 +344,10 @@ pub struct Prepared {
 
 impl Prepared {
     /// Starts from the stock earlier work left instead of the raw box (the setup before this
-    /// one's, [`super::setups`]): each cell of the in-process stock holding the material
-    /// `(floor, top)` that `material` gives at its centre.
-    pub fn carry(&mut self, at_max: [bool; 2], material: impl Fn(crate::geom::DVec2) -> (f64, f64)) {
+    /// one's, [`super::setups`]): each cell of the in-process stock holding the spans of
+    /// material that `material` pushes for its centre, its cells laid as `at_max` says
+    /// ([`crate::sim::DexelStock::laid_from`]).
+    pub fn carry(&mut self, at_max: [bool; 2], material: impl FnMut(crate::geom::DVec2, &mut Vec<(f64, f64)>)) {
         self.ctx.sim.carry(at_max, material);
     }
 
@@ -801,4 +802,15 @@ fn outside_the_stock(part: &Aabb, stock: &Aabb) -> Result<()> {
         return Ok(());
     };
     Err(Error::Input(format!("{why}; check stock.sizeBox, stock.zero and the part's placement")))
+}
+
+/// A column's one span of material (`(floor, top)`, empty where the top is not above the
+/// floor) as the spans [`crate::sim::verify::Simulator::carry`] takes.
+fn one_span(material: impl Fn(crate::geom::DVec2) -> (f64, f64)) -> impl FnMut(crate::geom::DVec2, &mut Vec<(f64, f64)>) {
+    move |p, spans| {
+        let (floor, top) = material(p);
+        if top > floor {
+            spans.push((floor, top));
+        }
+    }
 }

@@ -238,7 +238,7 @@ pub fn run_setups(job: &Job, mut part: Mesh, progress: &mut Progress) -> Result<
         if let Some(before) = out.last() {
             let left = before.output.verification.as_ref().map(|v| &v.stock).ok_or_else(|| Error::Internal("a setup before another was not simulated".into()))?;
             let (from, to) = (before.orientation, frame.0);
-            prepared.carry(laid_like(left, &from, &to), |p| carried(left, &from, &to, p));
+            prepared.carry(laid_like(left, &from, &to), |p, spans| carried(left, &from, &to, p, spans));
         }
         let output = progress.within(k as f64 / n as f64, 1.0 / n as f64, &names[k], |p| prepared.run(p)).map_err(|e| setup_error(k, &names[k], e))?;
         out.push(SetupOutput { name: names[k].clone(), orientation: frame.0, output });
@@ -277,28 +277,31 @@ pub fn one_program(job: &Job, programs: &[(&super::sheet::SheetSetup, &str, Opti
     Ok(super::run::marked(&joined, (!problems.is_empty()).then(|| problems.join("; ")).as_deref()))
 }
 
-/// The material over `p` (in the frame `to`) as `(floor, top)`, of the stock `left` in the
-/// frame `from`: the column over `p` is a column there too (the frames differ by quarter turns
-/// and a shift), its material from the cell's floor to its top there, turned over when the
-/// frames are; an emptied column stays empty.
-pub fn carried(left: &DexelStock, from: &Orientation, to: &Orientation, p: DVec2) -> (f64, f64) {
+/// The material over `p` (in the frame `to`) of the stock `left` in the frame `from`, pushed
+/// onto `spans` as `(floor, top)`, lowest first: the column over `p` is a column there too (the
+/// frames differ by quarter turns and a shift), its spans turned over when the frames are; an
+/// emptied column stays empty. Where this setup stands the part on a side of that one, the
+/// column is a line across the columns there, each run of material through it a span.
+pub fn carried(left: &DexelStock, from: &Orientation, to: &Orientation, p: DVec2, spans: &mut Vec<(f64, f64)>) {
     let to_before = |z: f64| from.apply(to.unapply(p.extend(z)));
     let (a, b) = (to_before(0.0), to_before(1.0));
     if (b.z - a.z).abs() < 0.5 {
-        return carried_across(left, a, b - a);
+        return carried_across(left, a, b - a, spans);
     }
     let q = a.truncate();
     let g = left.grid();
     let cell = |v: f64, o: f64, n: usize| (((v - o) / g.spacing).round().max(0.0) as usize).min(n - 1);
     let (i, j) = (cell(q.x, g.origin.x, g.nx), cell(q.y, g.origin.y, g.ny));
-    let (floor, top) = (left.floor(i, j), left.top(i, j));
-    if top <= floor {
-        return (f64::NEG_INFINITY, f64::NEG_INFINITY);
-    }
     // A height there is `a.z + (b.z - a.z) z` of a height z here (b.z - a.z is 1 or -1).
     let here = |z_before: f64| (z_before - a.z) / (b.z - a.z);
-    let (u, v) = (here(floor), here(top));
-    (u.min(v), u.max(v))
+    let start = spans.len();
+    spans.extend(left.spans(i, j).map(|(floor, top)| {
+        let (u, v) = (here(floor), here(top));
+        (u.min(v), u.max(v))
+    }));
+    if b.z < a.z {
+        spans[start..].reverse();
+    }
 }
 
 /// How a setup's cells are laid ([`crate::sim::DexelStock::laid_from`]) so that their centres
@@ -324,40 +327,47 @@ pub fn laid_like(left: &DexelStock, from: &Orientation, to: &Orientation) -> [bo
 /// [`carried`] for a setup that stands the part on a side of the one before: the column here
 /// is a line across the columns there, `a + dir t` (`dir` along X or Y there), at the height
 /// `a.z`. Its material is where that line runs through material there (in the rows within a
-/// cell of it, within half a cell of its height); a column holds one span, so it carries the
-/// span from the first such cell to the last, half a cell out each way: all the material, and
-/// any cavity between taken as material (the simulation then cuts air there at the feed, never
-/// a rapid through material it did not know).
-fn carried_across(left: &DexelStock, a: DVec3, dir: DVec3) -> (f64, f64) {
+/// cell of it, within half a cell of its height, in any of a column's spans): each run of such
+/// cells one span, half a cell out each way, the cavities between them (a pocket the setup
+/// before cut, now seen from its side) air. A span may only err towards more material.
+fn carried_across(left: &DexelStock, a: DVec3, dir: DVec3, spans: &mut Vec<(f64, f64)>) {
     let g = left.grid();
     let along_x = dir.x.abs() > 0.5;
     let (fixed, o_fixed, n_fixed) = if along_x { (a.y, g.origin.y, g.ny) } else { (a.x, g.origin.x, g.nx) };
     // The rows within a cell of the line, and material within half a cell of its height: the
-    // line's place rounds to no one row, and a span may only err towards more material.
-    let none = (f64::NEG_INFINITY, f64::NEG_INFINITY);
+    // line's place rounds to no one row.
     let at = (fixed - o_fixed) / g.spacing;
     let (k0, k1) = ((at - 1.0).ceil().max(0.0), (at + 1.0).floor().min(n_fixed as f64 - 1.0));
     if k1 < k0 {
-        return none;
+        return;
     }
     let (n, o, start, sign) = if along_x { (g.nx, g.origin.x, a.x, dir.x) } else { (g.ny, g.origin.y, a.y, dir.y) };
     let slack = g.spacing / 2.0;
-    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    for k in k0 as usize..=k1 as usize {
-        for c in 0..n {
+    let solid = |c: usize| {
+        (k0 as usize..=k1 as usize).any(|k| {
             let (i, j) = if along_x { (c, k) } else { (k, c) };
-            let (floor, top) = (left.floor(i, j), left.top(i, j));
-            if top > floor && floor - slack <= a.z && a.z <= top + slack {
-                let t = (o + c as f64 * g.spacing - start) / sign;
-                lo = lo.min(t);
-                hi = hi.max(t);
+            left.spans(i, j).any(|(floor, top)| floor - slack <= a.z && a.z <= top + slack)
+        })
+    };
+    // Runs of solid cells, as t (the height here) ranges, lowest first.
+    let t_of = |c: usize| (o + c as f64 * g.spacing - start) / sign;
+    let first = spans.len();
+    let mut run: Option<(usize, usize)> = None;
+    for c in 0..=n {
+        match (c < n && solid(c), run) {
+            (true, None) => run = Some((c, c)),
+            (true, Some((c0, _))) => run = Some((c0, c)),
+            (false, Some((c0, c1))) => {
+                let (u, v) = (t_of(c0), t_of(c1));
+                spans.push((u.min(v) - g.spacing / 2.0, u.max(v) + g.spacing / 2.0));
+                run = None;
             }
+            (false, None) => {}
         }
     }
-    if lo > hi {
-        return none;
+    if sign < 0.0 {
+        spans[first..].reverse();
     }
-    (lo - g.spacing / 2.0, hi + g.spacing / 2.0)
 }
 
 #[cfg(test)]
@@ -366,23 +376,42 @@ mod tests {
     use crate::sim::StockModel;
 
     /// A part stood on its side: the column over a point is a line across the columns the
-    /// setup before left, and it carries their span, half a cell out each way.
+    /// setup before left, and it carries their runs of material as spans, half a cell out each
+    /// way, a cavity between them air.
     #[test]
-    fn a_stock_stood_on_its_side_carries_the_span_its_columns_cross() {
+    fn a_stock_stood_on_its_side_carries_the_spans_its_columns_cross() {
         let raw = Aabb { min: DVec3::new(0.0, 0.0, 0.0), max: DVec3::new(10.0, 10.0, 10.0) };
-        // Material in the columns whose centres are at x = 1.5 to 5.5, up to z = 5.
-        let left = DexelStock::new(&raw, 1.0, 1).with_material(|p| if (1.0..6.0).contains(&p.x) { (0.0, 5.0) } else { (0.0, 0.0) });
+        // Material in the columns whose centres are at x = 1.5 to 2.5 and 5.5 to 7.5, up to
+        // z = 5, and between them (x = 3.5 and 4.5) up to 2: a pocket's floor.
+        let left = DexelStock::new(&raw, 1.0, 1).with_material(|p| match p.x {
+            x if (1.0..3.0).contains(&x) || (5.0..8.0).contains(&x) => (0.0, 5.0),
+            x if (3.0..5.0).contains(&x) => (0.0, 2.0),
+            _ => (0.0, 0.0),
+        });
         let first = Orientation { rotation: DMat3::IDENTITY, centre: raw.center(), shift: DVec3::ZERO };
         // Its -X face up: the old X runs down the new Z (x = 5 + z here, about the centre).
         let side = Orientation { rotation: up_rotation(Up::MinusX), centre: raw.center(), shift: DVec3::ZERO };
-        // A column at the old height 3: it holds the old x from 1 to 6, those cells' edges.
+        let x_at = |p: DVec2, z: f64| first.apply(side.unapply(p.extend(z))).x;
+        let mut spans = Vec::new();
+        // A column at the old height 3: the old x from 1 to 3 and from 5 to 8, those cells'
+        // edges, the pocket between them air.
         let p = side.apply(DVec3::new(0.0, 4.0, 3.0)).truncate();
-        let (floor, top) = carried(&left, &first, &side, p);
-        let x_at = |z: f64| first.apply(side.unapply(p.extend(z))).x;
-        assert!((x_at(floor) - 6.0).abs() < 1e-9 && (x_at(top) - 1.0).abs() < 1e-9, "{floor} {top}: x from {} to {}", x_at(floor), x_at(top));
+        carried(&left, &first, &side, p, &mut spans);
+        let xs: Vec<(f64, f64)> = spans.iter().map(|&(f, t)| (x_at(p, t), x_at(p, f))).collect();
+        assert_eq!(xs.len(), 2, "{xs:?}");
+        assert!(spans[0].1 < spans[1].0, "lowest first: {spans:?}");
+        let near = |a: (f64, f64), b: (f64, f64)| (a.0 - b.0).abs() < 1e-9 && (a.1 - b.1).abs() < 1e-9;
+        assert!(near(xs[0], (5.0, 8.0)) && near(xs[1], (1.0, 3.0)), "{xs:?}");
+        // At the old height 1.5 the pocket's floor joins them: one span from x = 1 to 8.
+        spans.clear();
+        let p = side.apply(DVec3::new(0.0, 4.0, 1.5)).truncate();
+        carried(&left, &first, &side, p, &mut spans);
+        assert_eq!(spans.len(), 1, "{spans:?}");
         // Above the material there (the old height 7): nothing.
+        spans.clear();
         let q = side.apply(DVec3::new(0.0, 4.0, 7.0)).truncate();
-        assert_eq!(carried(&left, &first, &side, q).1, f64::NEG_INFINITY);
+        carried(&left, &first, &side, q, &mut spans);
+        assert!(spans.is_empty());
         // Each face up is a rotation by quarter turns that holds that face up.
         for (up, face) in [(Up::PlusX, DVec3::X), (Up::MinusX, -DVec3::X), (Up::PlusY, DVec3::Y), (Up::MinusY, -DVec3::Y), (Up::MinusZ, -DVec3::Z), (Up::PlusZ, DVec3::Z)] {
             let r = up_rotation(up);
@@ -412,7 +441,7 @@ mod tests {
         for to in [over, turned] {
             let lay = laid_like(&before.0, &before.1, &to);
             let boxed = to.apply_box(&raw);
-            let carried_stock = DexelStock::new(&boxed, 0.5, 1).laid_from(lay).with_material(|p| carried(&before.0, &before.1, &to, p));
+            let carried_stock = DexelStock::new(&boxed, 0.5, 1).laid_from(lay).with_spans(|p, spans| carried(&before.0, &before.1, &to, p, spans));
             let g = carried_stock.grid();
             for j in 0..g.ny {
                 for i in 0..g.nx {

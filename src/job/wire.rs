@@ -108,7 +108,7 @@ impl PoolWorker {
     /// turned into this setup's frame. Before planning.
     pub fn carry_from(&mut self, left: &DexelStock, from: &Orientation) -> Result<()> {
         let to = self.setup.as_ref().map(|s| s.orientation).ok_or_else(|| Error::Input("only a setup's plan carries a stock in".into()))?;
-        self.prepared()?.carry(laid_like(left, from, &to), |p| carried(left, from, &to, p));
+        self.prepared()?.carry(laid_like(left, from, &to), |p, spans| carried(left, from, &to, p, spans));
         Ok(())
     }
 

@@ -47,6 +47,12 @@ pub struct DexelStock {
     /// turned over, whose columns a setup before cut from what is now below (empty: the bottom
     /// everywhere). A cut down to a cell's floor empties it. Conventional z-maps only.
     floors: Vec<f64>,
+    /// Per cell that has them, the spans of material under its top one (`floor` to `z`), lowest
+    /// first, with air between: a stock stood on its side, where a column crosses a pocket the
+    /// setup before cut from what is now a side. A cut through a cell's top span down into
+    /// the air under it leaves the next span down as the cell's top one. Sorted by cell;
+    /// conventional z-maps only.
+    lower: Vec<(usize, Vec<(f64, f64)>)>,
     /// The highest cell of each block of `BLOCK × BLOCK` cells, row-major.
     block_top: Vec<f64>,
     /// Cells per block side (1: no blocks), and blocks per row.
@@ -76,6 +82,7 @@ impl DexelStock {
             split: if k > 1 { vec![UNSPLIT; nx * ny] } else { Vec::new() },
             subs: Vec::new(),
             floors: Vec::new(),
+            lower: Vec::new(),
             block_top: vec![stock.max.z; nx.div_ceil(block) * ny.div_ceil(block)],
             block,
             bx: nx.div_ceil(block),
@@ -105,6 +112,7 @@ impl DexelStock {
                 split: Vec::new(),
                 subs: Vec::new(),
                 floors: if self.floors.is_empty() { Vec::new() } else { self.floors[j0 * self.nx..j1 * self.nx].to_vec() },
+                lower: self.lower.iter().filter(|(c, _)| (j0 * self.nx..j1 * self.nx).contains(c)).map(|(c, spans)| (c - j0 * self.nx, spans.clone())).collect(),
                 block_top: self.block_top[b0 * self.bx..b1 * self.bx].to_vec(),
                 ..self.clone_shape()
             });
@@ -136,28 +144,70 @@ impl DexelStock {
         out
     }
 
-    /// This stock holding in each cell the material `material` gives at its centre, as
-    /// `(floor, top)` within this stock's box (an empty column: a top at or below its floor):
-    /// the stock as earlier work left it (a setup before this one, turned into this one's
-    /// frame). Before any cut; a conventional z-map's cells only.
-    pub fn with_material(mut self, material: impl Fn(DVec2) -> (f64, f64)) -> DexelStock {
+    /// The stock with each cell's material `(floor, top)` as `material` gives it at its centre
+    /// within this stock's box (an empty column: a top at or below its floor): the stock as
+    /// earlier work left it (a bar, a casting). Before any cut; a conventional z-map's cells
+    /// only.
+    pub fn with_material(self, material: impl Fn(DVec2) -> (f64, f64)) -> DexelStock {
+        self.with_spans(|p, spans| {
+            let (floor, top) = material(p);
+            if top > floor {
+                spans.push((floor, top));
+            }
+        })
+    }
+
+    /// The stock with each cell's material the spans `(floor, top)` that `material` pushes for
+    /// its centre, lowest first, air between them (clipped to this stock's box; spans that
+    /// touch are one): the stock as the setup before left it, turned into this one's frame.
+    /// Before any cut; a conventional z-map's cells only.
+    pub fn with_spans(mut self, mut material: impl FnMut(DVec2, &mut Vec<(f64, f64)>)) -> DexelStock {
         debug_assert!(self.k == 1, "a conventional z-map");
         let g = self.grid();
         let top = self.z.first().copied().unwrap_or(self.bottom);
         let mut floors = vec![self.bottom; self.z.len()];
+        let mut lower = Vec::new();
+        let mut spans = Vec::new();
         for j in 0..self.ny {
             for i in 0..self.nx {
                 let c = j * self.nx + i;
-                let (floor, z) = material(g.origin + DVec2::new(i as f64, j as f64) * g.spacing);
-                let (floor, z) = (floor.max(self.bottom), z.min(top));
-                (self.z[c], floors[c]) = if z > floor { (z, floor) } else { (self.bottom, self.bottom) };
+                spans.clear();
+                material(g.origin + DVec2::new(i as f64, j as f64) * g.spacing, &mut spans);
+                let mut kept: Vec<(f64, f64)> = Vec::with_capacity(spans.len());
+                for &(f, t) in spans.iter() {
+                    let (f, t) = (f.max(self.bottom), t.min(top));
+                    if t <= f {
+                        continue;
+                    }
+                    match kept.last_mut() {
+                        Some(last) if f <= last.1 => last.1 = last.1.max(t),
+                        _ => kept.push((f, t)),
+                    }
+                }
+                (self.z[c], floors[c]) = match kept.pop() {
+                    Some((f, t)) => (t, f),
+                    None => (self.bottom, self.bottom),
+                };
+                if !kept.is_empty() {
+                    lower.push((c, kept));
+                }
             }
         }
         self.floors = if floors.iter().any(|&f| f > self.bottom) { floors } else { Vec::new() };
+        self.lower = lower;
         for k in 0..self.block_top.len() {
             self.block_top[k] = self.block_highest(k % self.bx, k / self.bx);
         }
         self
+    }
+
+    /// The spans of material of cell (i, j), lowest first: those under its top one, then its
+    /// top one (none where the column is empty).
+    pub fn spans(&self, i: usize, j: usize) -> impl Iterator<Item = (f64, f64)> + '_ {
+        let c = j * self.nx + i;
+        let under = self.lower.binary_search_by_key(&c, |e| e.0).map_or(&[][..], |k| &self.lower[k].1[..]);
+        let (floor, top) = (self.floor(i, j), self.z[c]);
+        under.iter().copied().chain((top > floor && top > self.bottom).then_some((floor, top)))
     }
 
     /// Along which axes (x, y) the cells are laid from the box's maximum side, the first
@@ -217,11 +267,13 @@ impl DexelStock {
         let mut bands = bands.into_iter();
         let mut whole = bands.next().expect("a stock has at least one band");
         for band in bands {
+            let offset = whole.z.len();
             whole.ny += band.ny;
             whole.z.extend(band.z);
             whole.heights.extend(band.heights);
             whole.block_top.extend(band.block_top);
             whole.floors.extend(band.floors);
+            whole.lower.extend(band.lower.into_iter().map(|(c, spans)| (c + offset, spans)));
         }
         whole
     }
@@ -230,12 +282,27 @@ impl DexelStock {
     /// flat numbers, for a worker of the page's pool; [`DexelStock::all_from_flat`] reads them.
     pub fn to_flat(&self, out: &mut Vec<f64>) {
         debug_assert_eq!(self.k, 1, "only a conventional z-map is cut in bands");
-        out.extend([self.nx as f64, self.ny as f64, self.origin.x, self.origin.y, self.cell, self.bottom, self.block as f64, self.bx as f64, self.block_top.len() as f64, self.floors.len() as f64]);
+        // The spans under cells' top ones: the cell, how many, then each span's floor and top.
+        let lower: Vec<f64> = self.lower.iter().flat_map(|(c, spans)| [*c as f64, spans.len() as f64].into_iter().chain(spans.iter().flat_map(|&(f, t)| [f, t]))).collect();
+        out.extend([
+            self.nx as f64,
+            self.ny as f64,
+            self.origin.x,
+            self.origin.y,
+            self.cell,
+            self.bottom,
+            self.block as f64,
+            self.bx as f64,
+            self.block_top.len() as f64,
+            self.floors.len() as f64,
+            lower.len() as f64,
+        ]);
         out.extend_from_slice(&self.z);
         out.extend_from_slice(&self.widths);
         out.extend_from_slice(&self.heights);
         out.extend_from_slice(&self.block_top);
         out.extend_from_slice(&self.floors);
+        out.extend_from_slice(&lower);
     }
 
     /// `stocks` written by [`DexelStock::to_flat`] one after another.
@@ -250,15 +317,23 @@ impl DexelStock {
         let mut out = Vec::new();
         let mut rest = flat;
         while !rest.is_empty() {
-            let head = rest.get(..10)?;
-            let (nx, ny, blocks, floors) = (head[0] as usize, head[1] as usize, head[8] as usize, head[9] as usize);
-            let mut at: usize = 10;
+            let head = rest.get(..11)?;
+            let (nx, ny, blocks, floors, lower) = (head[0] as usize, head[1] as usize, head[8] as usize, head[9] as usize, head[10] as usize);
+            let mut at: usize = 11;
             let mut take = |n: usize| -> Option<Vec<f64>> {
                 let v = rest.get(at..at.checked_add(n)?)?.to_vec();
                 at += n;
                 Some(v)
             };
-            let (z, widths, heights, block_top, floors) = (take(nx.checked_mul(ny)?)?, take(nx)?, take(ny)?, take(blocks)?, take(floors)?);
+            let (z, widths, heights, block_top, floors, flat_lower) = (take(nx.checked_mul(ny)?)?, take(nx)?, take(ny)?, take(blocks)?, take(floors)?, take(lower)?);
+            let mut lower = Vec::new();
+            let mut k = 0;
+            while k < flat_lower.len() {
+                let (c, n) = (*flat_lower.get(k)? as usize, *flat_lower.get(k + 1)? as usize);
+                let spans = flat_lower.get(k + 2..k + 2 + 2 * n)?.chunks(2).map(|p| (p[0], p[1])).collect();
+                lower.push((c, spans));
+                k += 2 + 2 * n;
+            }
             out.push(DexelStock {
                 origin: DVec2::new(head[2], head[3]),
                 cell: head[4],
@@ -272,6 +347,7 @@ impl DexelStock {
                 split: Vec::new(),
                 subs: Vec::new(),
                 floors,
+                lower,
                 block_top,
                 block: head[6] as usize,
                 bx: head[7] as usize,
@@ -294,7 +370,7 @@ impl DexelStock {
 
     /// The stock's settings with no cells (for [`DexelStock::split_rows`]).
     fn clone_shape(&self) -> DexelStock {
-        DexelStock { z: Vec::new(), widths: Vec::new(), heights: Vec::new(), split: Vec::new(), subs: Vec::new(), floors: Vec::new(), block_top: Vec::new(), ..*self }
+        DexelStock { z: Vec::new(), widths: Vec::new(), heights: Vec::new(), split: Vec::new(), subs: Vec::new(), floors: Vec::new(), lower: Vec::new(), block_top: Vec::new(), ..*self }
     }
 
     #[inline]
@@ -489,12 +565,37 @@ impl DexelStock {
         if e < top {
             let c = j * self.nx + i;
             let floor = self.floors.get(c).copied().unwrap_or(self.bottom);
-            // Cut down to its floor, a column is empty: nothing stands in it any more.
-            let new = if e > floor { e } else { self.bottom };
-            self.z[c] = new;
-            return (top - new.max(floor)) * self.widths[i] * self.heights[j];
+            if e > floor {
+                self.z[c] = e;
+                return (top - e) * self.widths[i] * self.heights[j];
+            }
+            // Cut down to its floor, the top span is gone: the next one down, if any, is the
+            // top one now; with none, nothing stands in the column any more.
+            self.z[c] = self.bottom;
+            let removed = top - floor + if self.lower.is_empty() { 0.0 } else { self.cut_lower(c, e) };
+            return removed * self.widths[i] * self.heights[j];
         }
         0.0
+    }
+
+    /// Cell `c`'s top span cut away: its spans under it cut down to `e`, the highest left the
+    /// top one ([`DexelStock::lower`]); returns the height of material removed.
+    #[inline(never)]
+    fn cut_lower(&mut self, c: usize, e: f64) -> f64 {
+        let Ok(k) = self.lower.binary_search_by_key(&c, |x| x.0) else { return 0.0 };
+        let mut removed = 0.0;
+        let spans = &mut self.lower[k].1;
+        while let Some((f, t)) = spans.pop() {
+            removed += (t - e.max(f)).max(0.0);
+            if e > f {
+                (self.z[c], self.floors[c]) = (e.min(t), f);
+                break;
+            }
+        }
+        if spans.is_empty() {
+            self.lower.remove(k);
+        }
+        removed
     }
 
     /// [`DexelStock::cut_cell`] on a supersampled stock, for a cell whose material the sweep
@@ -585,7 +686,7 @@ impl StockModel for DexelStock {
             for i in 0..self.nx {
                 let c = j * self.nx + i;
                 let mean_height = match self.is_split(c) {
-                    None => (self.z[c] - self.floor(i, j)).max(0.0),
+                    None => self.spans(i, j).map(|(f, t)| t - f).sum(),
                     Some(s) => self.subs[s * k2..(s + 1) * k2].iter().map(|h| h - self.bottom).sum::<f64>() / k2 as f64,
                 };
                 total += mean_height * self.widths[i] * self.heights[j];
@@ -755,5 +856,41 @@ mod tests {
             }
         }
         assert!(below_top > 30, "{below_top} ways below the stock's top");
+    }
+
+    /// A column with a cavity (a stock stood on its side): cut through its top span into the
+    /// air under it, the span under that is its top one; volumes add up; bands and the flat
+    /// form keep the spans.
+    #[test]
+    fn a_cut_through_a_top_span_finds_the_span_under_it() {
+        use crate::sim::StockModel;
+        let raw = Aabb { min: DVec3::new(0.0, 0.0, 0.0), max: DVec3::new(4.0, 4.0, 10.0) };
+        // Every column 0–2 and 6–9, air between; one column (1, 1) solid 0–9.
+        let stock = DexelStock::new(&raw, 1.0, 1).with_spans(|p, spans| {
+            if (p.x - 1.5).abs() < 0.1 && (p.y - 1.5).abs() < 0.1 {
+                spans.extend([(0.0, 3.0), (3.0, 9.0)]);
+            } else {
+                spans.extend([(0.0, 2.0), (6.0, 9.0)]);
+            }
+        });
+        assert!((stock.volume() - (15.0 * 5.0 + 9.0)).abs() < 1e-9, "{}", stock.volume());
+        assert_eq!(stock.spans(1, 1).collect::<Vec<_>>(), vec![(0.0, 9.0)], "touching spans are one");
+        assert_eq!(stock.spans(0, 0).collect::<Vec<_>>(), vec![(0.0, 2.0), (6.0, 9.0)]);
+        // Bands and the flat form keep them.
+        let again = DexelStock::join(DexelStock::all_from_flat(&DexelStock::all_to_flat(&stock.clone().split_rows(2))).unwrap());
+        assert_eq!(again.lower, stock.lower);
+        assert!((again.volume() - stock.volume()).abs() < 1e-9);
+        let mut stock = again;
+        // A flat end down to z = 4 over column (0, 0): its top span gone, the one under it its
+        // top now (0–2), 3 mm³ removed; down to 1 over column (3, 3): 3 + 1 mm³.
+        let cut = |stock: &mut DexelStock, at: DVec2, z: f64| stock.apply(&Sweep::line(Profile::new(0.25, 0.0), at.extend(z + 5.0), at.extend(z)));
+        assert!((cut(&mut stock, DVec2::new(0.5, 0.5), 4.0) - 3.0).abs() < 1e-9);
+        assert!((cut(&mut stock, DVec2::new(3.5, 3.5), 1.0) - 4.0).abs() < 1e-9);
+        assert_eq!(stock.spans(0, 0).collect::<Vec<_>>(), vec![(0.0, 2.0)]);
+        assert_eq!(stock.spans(3, 3).collect::<Vec<_>>(), vec![(0.0, 1.0)]);
+        assert_eq!((stock.top(0, 0), stock.floor(0, 0)), (2.0, 0.0));
+        // Cut into the cavity only: nothing more.
+        assert_eq!(cut(&mut stock, DVec2::new(0.5, 0.5), 3.0), 0.0);
+        assert!((stock.volume() - (15.0 * 5.0 + 9.0 - 7.0)).abs() < 1e-9, "{}", stock.volume());
     }
 }

@@ -567,12 +567,12 @@ impl Simulator {
         })
     }
 
-    /// Starts from the stock earlier work left instead of the raw box: each cell's material
-    /// `(floor, top)` as `material` gives it at its centre ([`DexelStock::with_material`]), the
+    /// Starts from the stock earlier work left instead of the raw box: each cell's spans of
+    /// material as `material` pushes them for its centre ([`DexelStock::with_spans`]), the
     /// cells laid from the box's maximum side along the axes `at_max` marks
     /// ([`DexelStock::laid_from`]). Before any move.
-    pub fn carry(&mut self, at_max: [bool; 2], material: impl Fn(DVec2) -> (f64, f64)) {
-        self.stock = self.stock.take().laid_from(at_max).with_material(material);
+    pub fn carry(&mut self, at_max: [bool; 2], material: impl FnMut(DVec2, &mut Vec<(f64, f64)>)) {
+        self.stock = self.stock.take().laid_from(at_max).with_spans(material);
         self.start = Some(self.stock.clone());
     }
 
