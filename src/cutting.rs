@@ -56,7 +56,16 @@ pub struct Machine {
     /// in the cycle time and the setup sheet. Default value: none (not known: rapids are timed
     /// along the move at the post's `rapidRate`; each built-in machine has its own).
     pub rapids: Option<[f64; 3]>,
+    /// The spindle's power (kW): where the stock's material has a specific cutting force
+    /// (the metals), the feeds are held down wherever the simulation finds a cut taking more
+    /// ([`MACHINE_COEFFICIENT`] of it reaching the cut). Default value: none (not known: not
+    /// held; each built-in machine has its own).
+    pub power: Option<f64>,
 }
+
+/// The share of the spindle's power that reaches the cut (Mitsubishi Materials' "machine
+/// coefficient" η in its cutting-power formula for milling).
+pub const MACHINE_COEFFICIENT: f64 = 0.8;
 
 impl Default for Machine {
     fn default() -> Self {
@@ -64,6 +73,7 @@ impl Default for Machine {
         let mut router = Machine::builtin().swap_remove(0);
         router.travel = None;
         router.rapids = None;
+        router.power = None;
         router
     }
 }
@@ -72,12 +82,38 @@ impl Machine {
     /// The built-in machines: a hobby router, a benchtop mill and a small VMC.
     pub fn builtin() -> Vec<Machine> {
         vec![
-            // A 4 × 4 ft class router's gantry (838 × 838 × 95 mm on the largest hobby kits).
-            Machine { name: "hobby router".into(), spindle_min: 8000.0, spindle_max: 24000.0, max_feed: 5000.0, travel: Some([800.0, 800.0, 100.0]), rapids: Some([10000.0, 10000.0, 5000.0]) },
-            // A square-column benchtop mill's table and quill (X 300, Y 150, Z 250).
-            Machine { name: "benchtop mill".into(), spindle_min: 100.0, spindle_max: 10000.0, max_feed: 2500.0, travel: Some([300.0, 150.0, 250.0]), rapids: Some([3000.0, 3000.0, 2000.0]) },
-            // A small VMC's 16 × 12 × 10 inch envelope.
-            Machine { name: "small VMC".into(), spindle_min: 100.0, spindle_max: 12000.0, max_feed: 10000.0, travel: Some([406.0, 305.0, 254.0]), rapids: Some([15000.0, 15000.0, 15000.0]) },
+            // A 4 × 4 ft class router's gantry (838 × 838 × 95 mm on the largest hobby kits), a
+            // 1.5 kW spindle.
+            Machine {
+                name: "hobby router".into(),
+                spindle_min: 8000.0,
+                spindle_max: 24000.0,
+                max_feed: 5000.0,
+                travel: Some([800.0, 800.0, 100.0]),
+                rapids: Some([10000.0, 10000.0, 5000.0]),
+                power: Some(1.5),
+            },
+            // A square-column benchtop mill's table and quill (X 300, Y 150, Z 250), a 1 hp
+            // (0.75 kW) motor.
+            Machine {
+                name: "benchtop mill".into(),
+                spindle_min: 100.0,
+                spindle_max: 10000.0,
+                max_feed: 2500.0,
+                travel: Some([300.0, 150.0, 250.0]),
+                rapids: Some([3000.0, 3000.0, 2000.0]),
+                power: Some(0.75),
+            },
+            // A small VMC's 16 × 12 × 10 inch envelope, a 7.5 hp (5.6 kW) spindle.
+            Machine {
+                name: "small VMC".into(),
+                spindle_min: 100.0,
+                spindle_max: 12000.0,
+                max_feed: 10000.0,
+                travel: Some([406.0, 305.0, 254.0]),
+                rapids: Some([15000.0, 15000.0, 15000.0]),
+                power: Some(5.6),
+            },
         ]
     }
 
@@ -98,6 +134,9 @@ impl Machine {
         }
         if let Some(r) = self.rapids.filter(|r| !r.iter().all(|v| v.is_finite() && *v > 0.0 && *v <= crate::limits::MAX_FEED)) {
             out.push(("rapids", format!("must be three rates of more than 0 mm/min, at most {} (got {r:?})", crate::limits::MAX_FEED)));
+        }
+        if let Some(p) = self.power.filter(|p| !(p.is_finite() && *p > 0.0 && *p <= MAX_POWER)) {
+            out.push(("power", format!("must be more than 0 kW, at most {MAX_POWER} (got {})", crate::limits::shown(p))));
         }
         out
     }
@@ -148,7 +187,15 @@ struct Row {
     vc_carbide: Option<f64>,
     chip: [f64; 4],
     source: &'static str,
+    /// Specific cutting force (N/mm², MPa; [`POWER`]); none where the tables give none.
+    kc: Option<f64>,
 }
+
+/// The largest spindle power a machine may be given (kW).
+const MAX_POWER: f64 = 1000.0;
+
+/// Where the specific cutting forces come from.
+pub const POWER: &str = "Mitsubishi Materials, Formulae for cutting power in milling (mitsubishicarbide.com, technical information): the specific cutting force Kc at 0.1 mm a tooth, the table's thinnest chip (thinner chips take more); aluminium at its hardest alloy (Al-Zn-Mg-Cu, 7075), stainless at its austenitic row; none for plastics and wood";
 
 /// The diameters the chip loads are given at (mm): 1/8", 1/4", 3/8", 1/2"; between them the
 /// chip load is interpolated, below the first and above the last it is in proportion to the
@@ -165,15 +212,15 @@ const ROUTER: &str =
 const PLASTICS: &str = "chip load: AST Tooling's router-bit chart (asttooling.com/pages/speeds-and-feeds-charts), the middle of each range; cutting speed: Torbide Tooling's plastics row (200–500 SFM), kept low so the plastic does not melt";
 
 const TABLE: [Row; 9] = [
-    Row { material: Material::Aluminium6061, words: "aluminium 6061", vc_carbide: Some(800.0 * SFM), chip: [0.001 * IN, 0.002 * IN, 0.003 * IN, 0.004 * IN], source: METALS },
-    Row { material: Material::MildSteel, words: "mild steel", vc_carbide: Some(100.0 * SFM), chip: [0.0005 * IN, 0.0015 * IN, 0.002 * IN, 0.003 * IN], source: METALS },
-    Row { material: Material::Stainless304, words: "stainless 304", vc_carbide: Some(100.0 * SFM), chip: [0.0001 * IN, 0.0005 * IN, 0.001 * IN, 0.0015 * IN], source: METALS },
-    Row { material: Material::Brass, words: "brass", vc_carbide: Some(800.0 * SFM), chip: [0.001 * IN, 0.002 * IN, 0.0025 * IN, 0.003 * IN], source: METALS },
-    Row { material: Material::Acrylic, words: "acrylic", vc_carbide: Some(350.0 * SFM), chip: [0.003 * IN, 0.0065 * IN, 0.009 * IN, 0.0115 * IN], source: PLASTICS },
-    Row { material: Material::Hdpe, words: "HDPE", vc_carbide: Some(500.0 * SFM), chip: [0.004 * IN, 0.0075 * IN, 0.010 * IN, 0.0125 * IN], source: PLASTICS },
-    Row { material: Material::Hardwood, words: "hardwood", vc_carbide: None, chip: [0.003 * IN, 0.006 * IN, 0.014 * IN, 0.018 * IN], source: ROUTER },
-    Row { material: Material::Mdf, words: "MDF", vc_carbide: None, chip: [0.0055 * IN, 0.0135 * IN, 0.018 * IN, 0.0225 * IN], source: ROUTER },
-    Row { material: Material::Plywood, words: "plywood", vc_carbide: None, chip: [0.004 * IN, 0.0075 * IN, 0.0165 * IN, 0.0195 * IN], source: ROUTER },
+    Row { material: Material::Aluminium6061, words: "aluminium 6061", vc_carbide: Some(800.0 * SFM), chip: [0.001 * IN, 0.002 * IN, 0.003 * IN, 0.004 * IN], source: METALS, kc: Some(880.0) },
+    Row { material: Material::MildSteel, words: "mild steel", vc_carbide: Some(100.0 * SFM), chip: [0.0005 * IN, 0.0015 * IN, 0.002 * IN, 0.003 * IN], source: METALS, kc: Some(2200.0) },
+    Row { material: Material::Stainless304, words: "stainless 304", vc_carbide: Some(100.0 * SFM), chip: [0.0001 * IN, 0.0005 * IN, 0.001 * IN, 0.0015 * IN], source: METALS, kc: Some(2030.0) },
+    Row { material: Material::Brass, words: "brass", vc_carbide: Some(800.0 * SFM), chip: [0.001 * IN, 0.002 * IN, 0.0025 * IN, 0.003 * IN], source: METALS, kc: Some(1150.0) },
+    Row { material: Material::Acrylic, words: "acrylic", vc_carbide: Some(350.0 * SFM), chip: [0.003 * IN, 0.0065 * IN, 0.009 * IN, 0.0115 * IN], source: PLASTICS, kc: None },
+    Row { material: Material::Hdpe, words: "HDPE", vc_carbide: Some(500.0 * SFM), chip: [0.004 * IN, 0.0075 * IN, 0.010 * IN, 0.0125 * IN], source: PLASTICS, kc: None },
+    Row { material: Material::Hardwood, words: "hardwood", vc_carbide: None, chip: [0.003 * IN, 0.006 * IN, 0.014 * IN, 0.018 * IN], source: ROUTER, kc: None },
+    Row { material: Material::Mdf, words: "MDF", vc_carbide: None, chip: [0.0055 * IN, 0.0135 * IN, 0.018 * IN, 0.0225 * IN], source: ROUTER, kc: None },
+    Row { material: Material::Plywood, words: "plywood", vc_carbide: None, chip: [0.004 * IN, 0.0075 * IN, 0.0165 * IN, 0.0195 * IN], source: ROUTER, kc: None },
 ];
 
 fn row(material: Material) -> &'static Row {
@@ -189,6 +236,12 @@ impl Material {
     /// Where its figures come from.
     pub fn source(self) -> &'static str {
         row(self).source
+    }
+
+    /// Its specific cutting force (N/mm², [`POWER`]): the spindle power a cut takes is its
+    /// material removal rate times this.
+    pub fn specific_cutting_force(self) -> Option<f64> {
+        row(self).kc
     }
 
     /// The cutting speed for a tool of `tool` material (m/min), or none: the spindle's top.
@@ -300,4 +353,16 @@ pub fn cutting_data(tool: &Tool, material: Option<Material>, machine: &Machine) 
     // A drill feeds at its feed; an end mill plunges at half its feed.
     let plunge = if matches!(c.shape, Shape::Drill | Shape::SpotDrill) { feed } else { feed / 2.0 };
     CuttingData { tool: tool.number, spindle_rpm: rpm, feed_rate: feed.round(), plunge_rate: plunge.round().max(1.0), from_material: true, reason: why, source: Some(material.source().to_owned()) }
+}
+
+/// The spindle power (kW) a cut removing `rate` mm³/min of a material of specific cutting
+/// force `kc` (N/mm²) takes: `rate · kc / (60·10⁶ · η)`, η the [`MACHINE_COEFFICIENT`].
+pub fn power(rate: f64, kc: f64) -> f64 {
+    rate * kc / (60e6 * MACHINE_COEFFICIENT)
+}
+
+/// The largest material removal rate (mm³/min) `machine`'s spindle can take in `material`,
+/// where both are known ([`power`] turned round).
+pub fn rate_limit(machine: &Machine, material: Option<Material>) -> Option<f64> {
+    Some(machine.power? * 60e6 * MACHINE_COEFFICIENT / material?.specific_cutting_force()?)
 }

@@ -3,6 +3,8 @@
 //! the machine's spindle range and feed; a tool whose speeds are its own keeps them; the
 //! program a job with a material writes runs at them, and says so on the setup sheet.
 
+mod common;
+
 use std::f64::consts::PI;
 
 use swarf::cutter::{Cutter, Shape};
@@ -195,4 +197,69 @@ fn rapids_take_as_long_as_their_slowest_axis() {
     assert!(timed.gcode.contains("rapids at X 3000, Y 3000, Z 2000 mm/min"), "{}", &timed.gcode[..600]);
     job.machine.rapids = Some([3000.0, -1.0, 2000.0]);
     assert!(job.problems().iter().any(|p| p.path == "machine.rapids"), "{:?}", job.problems());
+}
+
+/// Spindle power (`machine.power`, the material's specific cutting force): Mitsubishi
+/// Materials' worked example comes out (2 mm deep, 80 mm wide at 280 mm/min in Kc 1800 N/mm²
+/// steel: 1.68 kW); a spindle too weak for the cuts has the feeds held down wherever the
+/// simulation measures a cut taking more than it has, to no more than it, measured again here
+/// from the moves as held: the moves keep their places, feeds are only lowered, to whole
+/// mm/min, the program runs longer and each operation says so; in wood, which has no specific
+/// cutting force, nothing changes.
+#[test]
+fn feeds_are_held_to_what_the_spindle_can_take() {
+    use swarf::sim::program::{removal_rates, ProgramMove, RATE_CELLS};
+    use swarf::toolpath::Move;
+    assert!((swarf::cutting::power(2.0 * 80.0 * 280.0, 1800.0) - 1.68).abs() < 1e-9);
+    let mut job = Job::demo();
+    job.stock.material = Some(Material::MildSteel);
+    job.machine = Machine::builtin().into_iter().find(|m| m.name == "benchtop mill").unwrap();
+    job.machine.power = None;
+    let free = job::run(&job, swarf::mesh::sample::demo_part(), &mut Progress::none()).unwrap();
+    job.machine.power = Some(0.02);
+    let limit = swarf::cutting::rate_limit(&job.machine, job.stock.material).unwrap();
+    assert!((limit - 0.02 * 60e6 * 0.8 / 2200.0).abs() < 1e-9);
+    let held = job::run(&job, swarf::mesh::sample::demo_part(), &mut Progress::none()).unwrap();
+    let v = held.verification.as_ref().unwrap();
+    assert!(v.report.is_clean(), "{}", v.report.describe());
+    let rates = |out: &swarf::job::JobOutput| {
+        let v = out.verification.as_ref().unwrap();
+        let timings: Vec<_> = out.moves.iter().map(ProgramMove::timing).collect();
+        removal_rates(&timings, &v.volumes, RATE_CELLS * v.stock.grid().spacing)
+    };
+    let (before, after) = (rates(&free), rates(&held));
+    let peak = |r: &[f64]| r.iter().copied().fold(0.0, f64::max);
+    eprintln!("peak {:.0} mm³/min as planned, {:.0} held, the limit {limit:.0}; cycle {:.0} s, held {:.0} s", peak(&before), peak(&after), free.cycle.seconds, held.cycle.seconds);
+    assert!(peak(&before) > 1.5 * limit, "the spindle is too weak for the cuts as planned");
+    assert!(peak(&after) <= limit * (1.0 + 1e-9), "{} mm³/min held against {limit}", peak(&after));
+    assert!((peak(&after) - v.report.mrr_max).abs() < 1e-6 * limit, "the report's peak is the held one");
+    // The same moves, their feeds only lowered, to whole mm/min.
+    assert_eq!(free.moves.len(), held.moves.len());
+    let mut slowed = 0;
+    for (a, b) in free.moves.iter().zip(&held.moves) {
+        assert_eq!(a.mv.to(), b.mv.to());
+        if let (Move::Line { feed: fa, .. } | Move::Arc { feed: fa, .. }, Move::Line { feed: fb, .. } | Move::Arc { feed: fb, .. }) = (a.mv, b.mv) {
+            assert!(fb <= fa);
+            if fb < fa {
+                assert_eq!(fb, fb.round());
+                slowed += 1;
+            }
+        }
+    }
+    assert!(slowed > 10 && held.cycle.seconds > free.cycle.seconds, "{slowed} moves slowed");
+    // Said per operation, with the power as planned; each operation's peak power at most the spindle's.
+    assert!(held.warnings.iter().any(|w| w.message.contains("feeds held down so that no cut takes more than the benchtop mill's 0.02 kW spindle in mild steel")), "{:?}", held.warnings);
+    for o in &held.operations {
+        assert!(o.power_max.unwrap() <= 0.02 + 1e-9, "{}", o.describe());
+    }
+    assert!(free.operations.iter().any(|o| o.power_max.unwrap() > 0.02));
+    // LinuxCNC reads the held program.
+    assert!(common::rs274(&held.gcode, &job.tools).contains("STRAIGHT_FEED"));
+    // In hardwood the tables give no specific cutting force: nothing is held.
+    job.stock.material = Some(Material::Hardwood);
+    let wood = job::run(&job, swarf::mesh::sample::demo_part(), &mut Progress::none()).unwrap();
+    assert!(wood.operations.iter().all(|o| o.power_max.is_none()) && !wood.warnings.iter().any(|w| w.message.contains("feeds held down")));
+    // A power that does not read is named at its field.
+    job.machine.power = Some(-1.0);
+    assert!(job.problems().iter().any(|p| p.path == "machine.power"), "{:?}", job.problems());
 }

@@ -28,6 +28,9 @@ pub struct OperationReport {
     pub removed: Option<f64>,
     /// Largest material removal rate of its feed moves (mm³/min), when simulated.
     pub mrr_max: Option<f64>,
+    /// The spindle power its heaviest cut takes (kW: [`crate::cutting::power`] of `mrrMax`),
+    /// where the stock's material has a specific cutting force.
+    pub power_max: Option<f64>,
     /// Material left above the part plus the allowance after it, largest and mean over the
     /// part (mm), when the program was verified.
     pub left_max: Option<f64>,
@@ -45,6 +48,9 @@ impl OperationReport {
         let mut s = format!("{}: {:.0} s, {:.0} mm fed, {:.0} mm rapid", self.name, self.seconds, self.feed_length, self.rapid_length);
         if let (Some(v), Some(m)) = (self.removed, self.mrr_max) {
             s += &format!(", removed {v:.0} mm³, peak MRR {m:.0} mm³/min");
+            if let Some(p) = self.power_max {
+                s += &format!(" ({p:.2} kW)");
+            }
         }
         if let (Some(a), Some(b)) = (self.left_max, self.left_mean) {
             s += &format!(", left up to {a:.3} mm (mean {b:.3} mm)");
@@ -121,7 +127,22 @@ pub fn per_operation(
                 }
                 _ => (None, None),
             };
-            OperationReport { index, name: op.name().to_string(), tools, moves: mine.len(), seconds, feed_length, rapid_length, removed, mrr_max, left_max, left_mean, load: None, stages: None }
+            OperationReport {
+                index,
+                name: op.name().to_string(),
+                tools,
+                moves: mine.len(),
+                seconds,
+                feed_length,
+                rapid_length,
+                removed,
+                mrr_max,
+                power_max: None,
+                left_max,
+                left_mean,
+                load: None,
+                stages: None,
+            }
         })
         .collect()
 }

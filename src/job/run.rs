@@ -607,14 +607,12 @@ impl Running {
         if self.next < self.enabled.len() || !self.pending.is_empty() {
             return Err(Error::Input("the job is not planned to its end yet".into()));
         }
-        let Running { job, ctx, mut warnings, enabled, paths, path_operations, move_ranges, all_moves, snapshots, loads, cuts, grooves, octants, .. } = self;
+        let Running { job, ctx, mut warnings, enabled, mut paths, path_operations, move_ranges, mut all_moves, snapshots, loads, cuts, grooves, octants, .. } = self;
         let job = &job;
         let verify = job.simulation.verify;
         let mut ctx = ctx;
         progress.frame(0.0, 1.0, None);
         warnings.append(&mut ctx.warnings);
-        let crate::post::Written { gcode, cycle, move_lines } = write_mapped(&job.name, &paths, &job.tools, ctx.heights.clearance, &job.post_for_machine())?;
-        let stats = paths.iter().fold(PathStats::default(), |s, p| s + p.stats(job.rapids()));
         if all_moves.iter().all(|m| matches!(m.mv, crate::toolpath::Move::Rapid { .. })) {
             let why = if warnings.is_empty() { String::new() } else { format!(" ({})", warnings.iter().map(Warning::to_string).collect::<Vec<_>>().join("; ")) };
             return Err(Error::Nothing(format!("the program has no cutting moves{why}")));
@@ -638,20 +636,39 @@ impl Running {
         } else {
             (None, Some(sim))
         };
-        let (volumes, rates) = match (&verification, &sim) {
-            (Some(v), _) => (&v.volumes[..], v.rates.clone()),
-            (None, Some(sim)) => (sim.volumes(), sim.rates()),
-            (None, None) => (&[][..], Vec::new()),
+        let (volumes, rates, cell) = match (&verification, &sim) {
+            (Some(v), _) => (&v.volumes[..], v.rates.clone(), Some(v.stock.grid().spacing)),
+            (None, Some(sim)) => (sim.volumes(), sim.rates(), Some(sim.stock().grid().spacing)),
+            (None, None) => (&[][..], Vec::new(), None),
         };
+        // Feeds held where a cut would take more than the spindle has.
+        let kc = job.stock.material.and_then(crate::cutting::Material::specific_cutting_force);
+        let (rates, held) = match (crate::cutting::rate_limit(&job.machine, job.stock.material), cell) {
+            (Some(limit), Some(cell)) if rates.iter().any(|&r| r > limit) => {
+                let before = rates.iter().copied().fold(0.0, f64::max);
+                let held = crate::sim::feeds::hold_rate(&mut paths, &mut all_moves, volumes, cell, limit);
+                let said = held_power(job, &path_operations, &all_moves, &held.slowed, before, kc.unwrap_or_default());
+                warnings.extend(said);
+                (held.rates, true)
+            }
+            _ => (rates, false),
+        };
+        let crate::post::Written { gcode, cycle, move_lines } = write_mapped(&job.name, &paths, &job.tools, heights.clearance, &job.post_for_machine())?;
+        let stats = paths.iter().fold(PathStats::default(), |s, p| s + p.stats(job.rapids()));
         let mut operations = report::per_operation(job, &enabled, &all_moves, &move_ranges, volumes, &rates, &snapshots, verification.as_ref());
         for (o, (load, stages)) in operations.iter_mut().zip(loads) {
             o.load = load;
             o.stages = stages;
             // Its time as the program's head states it: its paths' as the post wrote them.
             o.seconds = path_operations.iter().zip(&cycle.paths).filter(|(&k, _)| k == o.index).map(|(_, s)| s).sum();
+            o.power_max = o.mrr_max.zip(kc).map(|(m, kc)| crate::cutting::power(m, kc));
         }
         let time = cycle.items(&CycleTime::groups(&paths));
         if let Some(v) = verification.as_mut() {
+            if held {
+                v.rates = rates;
+                v.report.mrr_max = v.rates.iter().copied().fold(0.0, f64::max);
+            }
             v.word_holes(&all_moves);
             // Every move against what holds the stock, by its name.
             v.report.fixtures(keep_out.len(), crate::sim::fixtures::collisions(&all_moves, &keep_out, job.tolerances.gouge));
@@ -813,4 +830,27 @@ fn one_span(material: impl Fn(crate::geom::DVec2) -> (f64, f64)) -> impl FnMut(c
             spans.push((floor, top));
         }
     }
+}
+
+/// What holding the feeds to the spindle's power did, a warning for each operation whose
+/// moves were slowed: how many, the spindle, and the most the cuts took at the feeds as
+/// planned (`before`, mm³/min; `kc` the material's specific cutting force).
+fn held_power(job: &Job, path_operations: &[usize], moves: &[ProgramMove], slowed: &[usize], before: f64, kc: f64) -> Vec<Warning> {
+    let mut out: Vec<Warning> = Vec::new();
+    let material = job.stock.material.map_or("", crate::cutting::Material::words);
+    let spindle = job.machine.power.map(crate::limits::shown).unwrap_or_default();
+    for &k in slowed {
+        let op = job.operations[path_operations[moves[k].path]].name();
+        let what = format!(
+            "feeds held down so that no cut takes more than the {}'s {spindle} kW spindle in {material} (Kc {kc:.0} N/mm²; the program as planned took up to {:.2} kW)",
+            job.machine.name,
+            crate::cutting::power(before, kc)
+        );
+        let at = [moves[k].mv.to()];
+        match out.iter_mut().find(|w| w.operation.as_deref() == Some(op)) {
+            Some(w) => w.add(&at),
+            None => out.push(Warning::counted(Some(op), &what, &at)),
+        }
+    }
+    out
 }

@@ -11,6 +11,7 @@
 //! cutter reach over this point?
 
 pub mod dexel;
+pub mod feeds;
 pub mod fixtures;
 pub mod octree;
 pub mod paper;

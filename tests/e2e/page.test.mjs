@@ -1099,6 +1099,7 @@ test('speeds and feeds from the stock\'s material: each tool shows them with how
   // Its rapids, per axis, time the program.
   await tab(page, 'post');
   assert.equal(await page.inputValue('input[name=rapids]'), '15000, 15000, 15000');
+  assert.equal(await page.inputValue('input[name=power]'), '5.6');
   assert.match(await page.evaluate(() => window.swarf.result.gcode), /rapids at X 15000, Y 15000, Z 15000 mm\/min/);
   await tab(page, 'tools');
   // A speed typed is the tool's own from then on.

@@ -976,7 +976,14 @@ travel: [number, number, number] | null,
  * in the cycle time and the setup sheet. Default value: none (not known: rapids are timed
  * along the move at the post's `rapidRate`; each built-in machine has its own).
  */
-rapids: [number, number, number] | null, };
+rapids: [number, number, number] | null, 
+/**
+ * The spindle's power (kW): where the stock's material has a specific cutting force
+ * (the metals), the feeds are held down wherever the simulation finds a cut taking more
+ * ([`MACHINE_COEFFICIENT`] of it reaching the cut). Default value: none (not known: not
+ * held; each built-in machine has its own).
+ */
+power: number | null, };
 
 /**
  * The stock's material.
@@ -1057,6 +1064,11 @@ removed: number | null,
  * Largest material removal rate of its feed moves (mm³/min), when simulated.
  */
 mrrMax: number | null, 
+/**
+ * The spindle power its heaviest cut takes (kW: [`crate::cutting::power`] of `mrrMax`),
+ * where the stock's material has a specific cutting force.
+ */
+powerMax: number | null, 
 /**
  * Material left above the part plus the allowance after it, largest and mean over the
  * part (mm), when the program was verified.
