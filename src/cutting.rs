@@ -81,39 +81,25 @@ impl Default for Machine {
 impl Machine {
     /// The built-in machines: a hobby router, a benchtop mill and a small VMC.
     pub fn builtin() -> Vec<Machine> {
+        // Name, spindle range (rpm), fastest feed (mm/min), travel (mm), rapids (mm/min), power (kW).
+        let machine = |name: &str, [spindle_min, spindle_max]: [f64; 2], max_feed, travel, rapids, power| Machine {
+            name: name.into(),
+            spindle_min,
+            spindle_max,
+            max_feed,
+            travel: Some(travel),
+            rapids: Some(rapids),
+            power: Some(power),
+        };
         vec![
             // A 4 × 4 ft class router's gantry (838 × 838 × 95 mm on the largest hobby kits), a
             // 1.5 kW spindle.
-            Machine {
-                name: "hobby router".into(),
-                spindle_min: 8000.0,
-                spindle_max: 24000.0,
-                max_feed: 5000.0,
-                travel: Some([800.0, 800.0, 100.0]),
-                rapids: Some([10000.0, 10000.0, 5000.0]),
-                power: Some(1.5),
-            },
+            machine("hobby router", [8000.0, 24000.0], 5000.0, [800.0, 800.0, 100.0], [10000.0, 10000.0, 5000.0], 1.5),
             // A square-column benchtop mill's table and quill (X 300, Y 150, Z 250), a 1 hp
             // (0.75 kW) motor.
-            Machine {
-                name: "benchtop mill".into(),
-                spindle_min: 100.0,
-                spindle_max: 10000.0,
-                max_feed: 2500.0,
-                travel: Some([300.0, 150.0, 250.0]),
-                rapids: Some([3000.0, 3000.0, 2000.0]),
-                power: Some(0.75),
-            },
+            machine("benchtop mill", [100.0, 10000.0], 2500.0, [300.0, 150.0, 250.0], [3000.0, 3000.0, 2000.0], 0.75),
             // A small VMC's 16 × 12 × 10 inch envelope, a 7.5 hp (5.6 kW) spindle.
-            Machine {
-                name: "small VMC".into(),
-                spindle_min: 100.0,
-                spindle_max: 12000.0,
-                max_feed: 10000.0,
-                travel: Some([406.0, 305.0, 254.0]),
-                rapids: Some([15000.0, 15000.0, 15000.0]),
-                power: Some(5.6),
-            },
+            machine("small VMC", [100.0, 12000.0], 10000.0, [406.0, 305.0, 254.0], [15000.0, 15000.0, 15000.0], 5.6),
         ]
     }
 
