@@ -426,4 +426,14 @@ fn tools_reads_a_library_machinists_keep() {
     let out = swarf(&["tools", lib.to_str().unwrap()]);
     assert!(out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("T4: its bit 6mm_Endmill.fctb was not given"));
+    // Written as a FreeCAD library into a folder, it reads back.
+    let shop = dir.join("Shop");
+    let out = swarf(&["tools", lib.to_str().unwrap(), bit.to_str().unwrap(), "--to", "freecad", "--out", shop.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let written = shop.join("T4_6mm_Endmill.fctb");
+    let out = swarf(&["tools", shop.join("Shop.fctl").to_str().unwrap(), written.to_str().unwrap()]);
+    let tools: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!((tools["tools"][0]["number"].as_u64(), tools["tools"][0]["diameter"].as_f64(), tools["tools"][0]["flutes"].as_u64()), (Some(4), Some(6.0), Some(3)));
+    let out = swarf(&["tools", lib.to_str().unwrap(), bit.to_str().unwrap(), "--to", "freecad"]);
+    assert!(!out.status.success() && String::from_utf8_lossy(&out.stderr).contains("give the folder with --out"));
 }

@@ -4,7 +4,7 @@
 //! named in the notes; a library written and read back is the same library.
 
 use swarf::cutter::Shape;
-use swarf::tool::library::{read_library, write_library, LibraryFormat};
+use swarf::tool::library::{read_library, write_freecad, write_library, LibraryFormat};
 use swarf::tool::Speeds;
 
 const FUSION: &str = r#"{
@@ -112,4 +112,26 @@ fn a_library_written_reads_back_the_same() {
     let shapes = |tools: &[swarf::tool::Tool]| tools.iter().map(|t| (t.number, t.cutter.shape, t.cutter.diameter)).collect::<Vec<_>>();
     assert_eq!(shapes(&back.tools), shapes(&read.tools), "{tbl}");
     assert_eq!(back.tools[3].cutter.angle, Some(135.0));
+    // A FreeCAD library: its .fctl and a .fctb a tool, read back as FreeCAD's own are (a spot
+    // drill is a drill there; speeds and holders are FreeCAD's tool controller's, not a bit's).
+    let files = write_freecad(&read.tools, "Shop");
+    assert_eq!(files.len(), read.tools.len() + 1);
+    assert_eq!(files[0].0, "Shop.fctl");
+    let bits: Vec<(String, Vec<u8>)> = files[1..].iter().map(|(n, t)| (n.clone(), t.as_bytes().to_vec())).collect();
+    let back = read_library(files[0].1.as_bytes(), &files[0].0, false, &bits).unwrap();
+    assert!(back.notes.is_empty(), "{:?}", back.notes);
+    assert_eq!(back.tools.len(), read.tools.len());
+    for (a, b) in read.tools.iter().zip(&back.tools) {
+        let (ca, cb) = (&a.cutter, &b.cutter);
+        let shape = if ca.shape == Shape::SpotDrill { Shape::Drill } else { ca.shape };
+        assert_eq!((a.number, shape, a.flutes, &a.name), (b.number, cb.shape, b.flutes, &b.name));
+        for (x, y) in [(ca.diameter, cb.diameter), (ca.flute_length, cb.flute_length), (ca.shank_diameter.unwrap_or(ca.diameter), cb.shank_diameter.unwrap_or(cb.diameter))] {
+            assert!((x - y).abs() < 1e-4, "T{}: {x} against {y}", a.number);
+        }
+        match shape {
+            Shape::BullNose => assert!((ca.corner_radius - cb.corner_radius).abs() < 1e-4),
+            Shape::Drill | Shape::VBit => assert!((ca.point_angle() - cb.point_angle()).abs() < 1e-4 && (ca.tip_diameter - cb.tip_diameter).abs() < 1e-4, "T{}", a.number),
+            _ => {}
+        }
+    }
 }

@@ -352,6 +352,56 @@ fn freecad_library(value: &Value, name: &str, bits: &[(String, Vec<u8>)]) -> Res
     Ok(out)
 }
 
+/// `tools` as a FreeCAD library named `library`: its `.fctl` (each tool's number and its bit's
+/// file) and one `.fctb` bit a tool, each with its shape's file and its parameters in mm and
+/// degrees, as `(file name, text)`, the library first. A bit holds no speeds or holder (in
+/// FreeCAD those are the tool controller's): they are not written.
+pub fn write_freecad(tools: &[Tool], library: &str) -> Vec<(String, String)> {
+    let mm = |v: f64| format!("{v:.4} mm");
+    let deg = |v: f64| format!("{v:.4} °");
+    let mut bits = Vec::new();
+    let mut entries = Vec::new();
+    for t in tools {
+        let c = &t.cutter;
+        let shape = match c.shape {
+            Shape::Flat => "endmill",
+            Shape::Ball => "ballend",
+            Shape::BullNose => "bullnose",
+            Shape::Drill | Shape::SpotDrill => "drill",
+            Shape::VBit => "v-bit",
+            Shape::ThreadMill => "threadmill",
+        };
+        let mut p = Map::new();
+        p.insert("Diameter".into(), json!(mm(c.diameter)));
+        p.insert("ShankDiameter".into(), json!(mm(c.shank_diameter.unwrap_or(c.diameter))));
+        p.insert("CuttingEdgeHeight".into(), json!(mm(c.flute_length)));
+        p.insert("Length".into(), json!(mm(t.stick_out.unwrap_or(c.flute_length).max(c.flute_length))));
+        p.insert("Flutes".into(), json!(t.flutes.to_string()));
+        match c.shape {
+            Shape::BullNose => {
+                p.insert("TorusRadius".into(), json!(mm(c.corner_radius)));
+            }
+            Shape::Drill | Shape::SpotDrill => {
+                p.insert("TipAngle".into(), json!(deg(c.point_angle())));
+            }
+            Shape::VBit => {
+                p.insert("CuttingEdgeAngle".into(), json!(deg(c.point_angle())));
+                p.insert("TipDiameter".into(), json!(mm(c.tip_diameter)));
+            }
+            _ => {}
+        }
+        let name = if t.name.is_empty() { c.describe() } else { t.name.clone() };
+        let slug: String = name.chars().map(|ch| if ch.is_ascii_alphanumeric() { ch } else { '_' }).collect();
+        let file = format!("T{}_{}.fctb", t.number, slug.trim_matches('_'));
+        let bit = json!({ "version": 2, "name": name, "shape": format!("{shape}.fcstd"), "parameter": p, "attribute": {} });
+        entries.push(json!({ "nr": t.number, "path": file }));
+        bits.push((file, serde_json::to_string_pretty(&bit).expect("JSON")));
+    }
+    let mut out = vec![(format!("{library}.fctl"), serde_json::to_string_pretty(&json!({ "version": 1, "tools": entries })).expect("JSON"))];
+    out.extend(bits);
+    out
+}
+
 /// `tools` as a library of `format`.
 pub fn write_library(tools: &[Tool], format: LibraryFormat) -> String {
     match format {

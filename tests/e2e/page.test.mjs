@@ -1509,28 +1509,30 @@ test('a part from both sides in the page: the two-sided job loaded, its setups a
   assert.ok(await page.isHidden('#setup-editor'));
   await page.setInputFiles('#load-job', jobFile);
   await page.waitForFunction(() => /Loaded the job/.test(document.getElementById('message').textContent));
-  assert.match(await page.textContent('#message'), /2 setups, 4 operation\(s\)/);
+  assert.match(await page.textContent('#message'), /2 setups, 8 operation\(s\)/);
   assert.deepEqual(await page.locator('#setup-tabs button').allTextContents(), ['top', 'bottom']);
-  assert.equal(await page.locator('#op-list li').count(), 2);
+  assert.equal(await page.locator('#op-list li').count(), 4);
   // The second setup: its own operations and fields, and the part shown bottom up (the view's
   // part is the one turned as the core turns it: its bounds are the turned part's).
   const shown = Number(await page.evaluate(() => document.body.dataset.setupShown ?? 0));
   await page.click('#setup-tabs button:nth-child(2)');
   await page.waitForFunction((n) => Number(document.body.dataset.setupShown ?? 0) > n, shown);
   // The list and the form edit the setup on show's operations.
-  await page.click('#op-list li:nth-child(1) .op-name');
+  await page.click('#op-list li:nth-child(2) .op-name');
   await page.fill('input[name=op-name]', 'rough underneath');
-  assert.deepEqual(await page.evaluate(() => window.swarf.jobs.part.setups.map((s) => s.operations[0].name)), ['rough', 'rough underneath']);
+  assert.deepEqual(await page.evaluate(() => window.swarf.jobs.part.setups.map((s) => s.operations[1].name)), ['rough', 'rough underneath']);
   assert.match(await page.textContent('#op-list'), /rough underneath/);
   await page.fill('input[name=op-name]', 'rough');
   assert.equal(await page.inputValue('#setup-editor [data-setup=flip]'), 'aboutX');
   assert.equal(await page.inputValue('#setup-editor [data-setup=workOffset]'), 'G55');
   const frames = await page.evaluate(async () => window.swarf.engine.setupFrames(window.swarf.jobs.part, window.swarf.part.bounds));
   assert.deepEqual(frames.map((f) => f.rotation[8]), [1, -1]);
-  // What a setup's operations pick from is found in the part as it holds it: from below, the
+  // What a setup's operations pick from is found in the part as it holds it: from the top, the
+  // rims of the pocket and the holes at the plate's level under the dome; from below, the
   // boss's end is the highest top edge.
   const edges = await page.evaluate(async () => Promise.all([0, 1].map((k) => window.swarf.engine.edges({ ...window.swarf.jobs.part, tools: window.swarf.tools }, window.swarf.bytes, window.swarf.name, k))));
-  assert.deepEqual(edges.map((e) => e.length), [2, 4]);
+  assert.ok(edges.every((e) => e.length > 0));
+  assert.ok(Math.abs(Math.max(...edges[0].map((e) => e.z)) + 1.5) < 1e-6);
   assert.equal(Math.max(...edges[1].map((e) => e.z)), 0);
   // A setup with nothing to cut is named at its tab, and Generate refuses it.
   await page.evaluate(() => { window.swarf.jobs.part.setups[1].operations.splice(0); });
@@ -1540,7 +1542,7 @@ test('a part from both sides in the page: the two-sided job loaded, its setups a
   assert.match(await page.textContent('#message'), /Operations → bottom → .*the setup has nothing to cut/);
   assert.ok(await page.locator('#setup-tabs button.has-problem').count() === 1);
   await page.click('#undo');
-  await page.waitForFunction(() => window.swarf.jobs.part.setups[1].operations.length === 2);
+  await page.waitForFunction(() => window.swarf.jobs.part.setups[1].operations.length === 4);
   await page.click('#generate');
   await generated(page);
   assert.match(await page.textContent('#message'), /Done: cycle time [\d:]+ m:ss \(top [\d:]+, bottom [\d:]+\)/);

@@ -100,9 +100,14 @@ enum Command {
         /// A LinuxCNC tool table is in inches (it does not say).
         #[arg(long)]
         inches: bool,
-        /// Print it as `fusion` (Fusion's tool library JSON) or `linuxcnc` (a tool table).
+        /// Print it as `fusion` (Fusion's tool library JSON) or `linuxcnc` (a tool table), or
+        /// write it as `freecad` (a `.fctl` library and a `.fctb` bit a tool) into `--out`.
         #[arg(long)]
         to: Option<String>,
+        /// The folder a FreeCAD library is written into (`--to freecad`); its name is the
+        /// folder's.
+        #[arg(long)]
+        out: Option<PathBuf>,
     },
     /// Print the default job as JSON, to edit and pass to `swarf run`.
     Job {
@@ -344,7 +349,7 @@ fn run(cli: Cli) -> Result<(), String> {
             println!("wrote {}", output.display());
             Ok(())
         }
-        Command::Tools { files, inches, to } => {
+        Command::Tools { files, inches, to, out } => {
             let main = files.iter().find(|f| f.extension().is_some_and(|e| e == "fctl")).unwrap_or(&files[0]);
             let name = |f: &PathBuf| f.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
             let mut bits = Vec::new();
@@ -359,7 +364,18 @@ fn run(cli: Cli) -> Result<(), String> {
                 None | Some("swarf") => serde_json::to_string_pretty(&serde_json::json!({ "tools": read.tools })).map_err(|e| e.to_string())?,
                 Some("fusion") => swarf::tool::library::write_library(&read.tools, swarf::tool::library::LibraryFormat::Fusion),
                 Some("linuxcnc") => swarf::tool::library::write_library(&read.tools, swarf::tool::library::LibraryFormat::LinuxCnc),
-                Some(other) => return Err(format!("--to {other}: give fusion, linuxcnc or swarf")),
+                Some("freecad") => {
+                    let dir = out.ok_or("--to freecad writes several files: give the folder with --out")?;
+                    std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+                    let library = dir.file_name().map_or("swarf".into(), |n| n.to_string_lossy().into_owned());
+                    for (file, text) in swarf::tool::library::write_freecad(&read.tools, &library) {
+                        std::fs::write(dir.join(&file), text).map_err(|e| format!("{}: {e}", dir.join(&file).display()))?;
+                    }
+                    eprintln!("note: a FreeCAD bit holds no speeds or holder (its tool controller does): they are not written");
+                    eprintln!("{} tools read from {}, written to {}", read.tools.len(), main.display(), dir.join(format!("{library}.fctl")).display());
+                    return Ok(());
+                }
+                Some(other) => return Err(format!("--to {other}: give fusion, linuxcnc, freecad or swarf")),
             };
             println!("{}", text.trim_end());
             eprintln!("{} tools read from {}", read.tools.len(), main.display());
