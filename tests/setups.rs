@@ -589,3 +589,52 @@ fn the_stage_before_a_run_is_the_runs_stock_and_fixtures() {
     one.place(&mut moved);
     assert!((moved.bounds().min - (placed.bounds().min + shift)).length() < 1e-9);
 }
+
+/// A shared part with features on both sides: the rocker arm (a machined part scanned, scale
+/// 100, Y up) roughed, its shallow faces finished by raster and its steep ones by waterline (the
+/// demo's mould job), from the top, then turned over about X and the same from below, the
+/// second setup from the stock the first left. Both programs are clean and read by LinuxCNC's
+/// interpreter, OpenCAMLib's drop cutter finds no gouge in either against the part as its
+/// setup holds it, what they removed and what is left add up to the block, and what is left
+/// over the part is the finish's scallops and corners, not the roughing's levels.
+#[test]
+fn a_shared_part_is_machined_from_both_sides() {
+    let Some(file) = common::shared_data("meshes/c3d_rocker-arm.obj") else { return };
+    let mut job = Job::two_sided();
+    let demo = Job::demo();
+    for s in &mut job.setups {
+        s.operations = demo.operations.clone();
+    }
+    job.part.scale = 100.0;
+    job.part.up_axis = swarf::mesh::placement::UpAxis::Y;
+    // It stands 4x mm tall: tools that reach its depth from either side.
+    for t in &mut job.tools {
+        t.cutter.flute_length = 60.0;
+    }
+    let bytes = std::fs::read(&file).unwrap();
+    let part = match swarf::job::Workpiece::read(&bytes, Some("c3d_rocker-arm.obj"), &job.tolerances).unwrap() {
+        swarf::job::Workpiece::Mesh(m) => m,
+        _ => unreachable!("a mesh"),
+    };
+    let t = std::time::Instant::now();
+    let setups = run_setups(&job, part, &mut Progress::none()).unwrap();
+    eprintln!("planned and verified in {:.1} s", t.elapsed().as_secs_f64());
+    let raw = setups[0].output.stock;
+    eprintln!("stock {:?}", raw.size());
+    let block = raw.size().x * raw.size().y * raw.size().z;
+    let removed: Vec<f64> = setups.iter().map(|s| s.output.verification.as_ref().unwrap().volumes.iter().sum::<f64>()).collect();
+    let left = setups[1].output.verification.as_ref().unwrap().stock.volume();
+    for s in &setups {
+        let v = s.output.verification.as_ref().unwrap();
+        eprintln!("{}: cycle {:.0} s, removed {:.0} mm³, {}", s.name, s.output.cycle.seconds, v.volumes.iter().sum::<f64>(), v.report.describe());
+        common::clean(&s.output);
+        assert!(v.report.residual_mean < 0.25, "{}: {} mm left on average", s.name, v.report.residual_mean);
+        assert!(common::rs274(&s.output.gcode, &job.tools).contains("STRAIGHT_FEED"), "{}", s.name);
+        if let Some(said) = common::gcheck(&s.output.gcode, &s.output.part, &job.tools) {
+            assert!(said.contains("gcheck: OK"), "{}: {said}", s.name);
+        }
+    }
+    eprintln!("block {block:.0} mm³, removed {removed:?}, left {left:.0}");
+    assert!((removed.iter().sum::<f64>() + left - block).abs() < 1e-6 * block);
+    assert!(removed[1] > 0.1 * removed[0], "the bottom had its own to cut: {removed:?}");
+}
