@@ -172,13 +172,13 @@ impl Job {
         }
         let mut sim = Simulator::new(&stock, cell)?;
         if let Some(bar) = self.stock.bar.filter(|_| sheet.is_none()) {
-            sim.carry([false; 2], one_span(bar.material(&stock)));
+            sim.carry([false; 2], crate::sim::dexel::one_span(bar.material(&stock)));
         } else if let Some(blank) = self.blank().filter(|_| sheet.is_none()) {
             // The blank moved to the work zero as the stock's box was.
             let to_zero = stock.min - self.stock_box(&stock).min;
             let mut blank = (*blank).clone();
             blank.transform(|v| v + to_zero);
-            sim.carry([false; 2], one_span(super::blank::material(&blank)));
+            sim.carry([false; 2], crate::sim::dexel::one_span(super::blank::material(&blank)));
         }
         // What holds the stock joins the part in what the cutter is dropped onto, and rapids
         // across run above it.
@@ -508,10 +508,14 @@ impl Running {
             let Some(tool) = self.job.tools.iter().find(|t| t.number == path.tool) else { continue };
             let Some(rings) = tool.holder_rings() else { continue };
             let ctx = &self.ctx;
-            if !self.holders.iter().any(|(n, _)| *n == tool.number) {
-                self.holders.push((tool.number, crate::machining::holders::HolderBound::new(ctx.solid.as_ref().unwrap_or(&ctx.part), &rings, &ctx.tolerances)));
-            }
-            let Some(Some(bound)) = self.holders.iter_mut().find(|(n, _)| *n == tool.number).map(|(_, b)| b.as_mut()) else { continue };
+            let k = match self.holders.iter().position(|(n, _)| *n == tool.number) {
+                Some(k) => k,
+                None => {
+                    self.holders.push((tool.number, crate::machining::holders::HolderBound::new(ctx.solid.as_ref().unwrap_or(&ctx.part), &rings, &ctx.tolerances)));
+                    self.holders.len() - 1
+                }
+            };
+            let Some(bound) = self.holders[k].1.as_mut() else { continue };
             let raised = crate::machining::holders::keep_holder_out(path, bound, self.job.tolerances.gouge);
             if !raised.is_empty() {
                 let holder = tool.holder.as_ref().map_or(String::new(), |h| h.name.clone());
@@ -821,17 +825,6 @@ fn outside_the_stock(part: &Aabb, stock: &Aabb) -> Result<()> {
     Err(Error::Input(format!("{why}; check stock.sizeBox, stock.zero and the part's placement")))
 }
 
-/// A column's one span of material (`(floor, top)`, empty where the top is not above the
-/// floor) as the spans [`crate::sim::verify::Simulator::carry`] takes.
-fn one_span(material: impl Fn(crate::geom::DVec2) -> (f64, f64)) -> impl FnMut(crate::geom::DVec2, &mut Vec<(f64, f64)>) {
-    move |p, spans| {
-        let (floor, top) = material(p);
-        if top > floor {
-            spans.push((floor, top));
-        }
-    }
-}
-
 /// What holding the feeds to the spindle's power did, a warning for each operation whose
 /// moves were slowed: how many, the spindle, and the most the cuts took at the feeds as
 /// planned (`before`, mm³/min; `kc` the material's specific cutting force).
@@ -839,13 +832,13 @@ fn held_power(job: &Job, path_operations: &[usize], moves: &[ProgramMove], slowe
     let mut out: Vec<Warning> = Vec::new();
     let material = job.stock.material.map_or("", crate::cutting::Material::words);
     let spindle = job.machine.power.map(crate::limits::shown).unwrap_or_default();
+    let what = format!(
+        "feeds held down so that no cut takes more than the {}'s {spindle} kW spindle in {material} (Kc {kc:.0} N/mm²; the program as planned took up to {:.2} kW)",
+        job.machine.name,
+        crate::cutting::power(before, kc)
+    );
     for &k in slowed {
         let op = job.operations[path_operations[moves[k].path]].name();
-        let what = format!(
-            "feeds held down so that no cut takes more than the {}'s {spindle} kW spindle in {material} (Kc {kc:.0} N/mm²; the program as planned took up to {:.2} kW)",
-            job.machine.name,
-            crate::cutting::power(before, kc)
-        );
         let at = [moves[k].mv.to()];
         match out.iter_mut().find(|w| w.operation.as_deref() == Some(op)) {
             Some(w) => w.add(&at),

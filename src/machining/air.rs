@@ -208,7 +208,7 @@ impl AirCuts {
                 while s < mine.len() {
                     let e = (s..mine.len()).find(|&e| mine[e].air != mine[s].air).unwrap_or(mine.len());
                     let to = if e == mine.len() { m.to() } else { point(m, at, mine[e - 1].t1) };
-                    out.push(with_feed(m, to, if mine[s].air { self.feed } else { feed_of(m) }));
+                    out.push(with_feed(m, to, if mine[s].air { self.feed } else { m.feed().unwrap_or(f64::INFINITY) }));
                     s = e;
                 }
             }
@@ -226,13 +226,6 @@ fn point(m: &Move, from: DVec3, t: f64) -> DVec3 {
             (center + DVec2::from_angle(sweep * t).rotate(from.truncate() - center)).extend(from.z + (to.z - from.z) * t)
         }
         _ => from.lerp(m.to(), t),
-    }
-}
-
-fn feed_of(m: &Move) -> f64 {
-    match *m {
-        Move::Line { feed, .. } | Move::Arc { feed, .. } => feed,
-        Move::Rapid { .. } => f64::INFINITY,
     }
 }
 

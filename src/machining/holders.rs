@@ -122,11 +122,7 @@ pub fn keep_holder_out(path: &mut Toolpath, bound: &mut HolderBound, tolerance: 
             (at, pos) = (to, to);
             continue;
         }
-        let feed = match m {
-            Move::Line { feed, .. } | Move::Arc { feed, .. } => Some(feed),
-            Move::Rapid { .. } => None,
-        };
-        let piece = |to: DVec3| match feed {
+        let piece = |to: DVec3| match m.feed() {
             Some(feed) => Move::Line { to, feed },
             None => Move::Rapid { to },
         };

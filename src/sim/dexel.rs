@@ -25,6 +25,17 @@ const UNSPLIT: u32 = u32::MAX;
 /// than this the stock has none.
 const BLOCK_SIDE: f64 = 0.5;
 
+/// A column's one span of material (`(floor, top)`, none where the top is not above the
+/// floor) as the spans [`DexelStock::with_spans`] takes.
+pub fn one_span(material: impl Fn(DVec2) -> (f64, f64)) -> impl FnMut(DVec2, &mut Vec<(f64, f64)>) {
+    move |p, spans| {
+        let (floor, top) = material(p);
+        if top > floor {
+            spans.push((floor, top));
+        }
+    }
+}
+
 /// A z-map stock, optionally supersampled where sweeps' rims cross it.
 #[derive(Clone, Debug)]
 pub struct DexelStock {
@@ -149,12 +160,7 @@ impl DexelStock {
     /// earlier work left it (a bar, a casting). Before any cut; a conventional z-map's cells
     /// only.
     pub fn with_material(self, material: impl Fn(DVec2) -> (f64, f64)) -> DexelStock {
-        self.with_spans(|p, spans| {
-            let (floor, top) = material(p);
-            if top > floor {
-                spans.push((floor, top));
-            }
-        })
+        self.with_spans(one_span(material))
     }
 
     /// The stock with each cell's material the spans `(floor, top)` that `material` pushes for

@@ -34,7 +34,7 @@ pub fn hold_rate(paths: &mut [Toolpath], moves: &mut [ProgramMove], volumes: &[f
     debug_assert_eq!(places.len(), moves.len(), "the moves are the paths' moves");
     let fixed: Vec<bool> = places.iter().map(|&(p, _)| !paths[p].cycles.is_empty()).collect();
     let mut timings: Vec<_> = moves.iter().map(ProgramMove::timing).collect();
-    let mut feeds: Vec<Option<f64>> = moves.iter().map(|m| feed_of(&m.mv)).collect();
+    let mut feeds: Vec<Option<f64>> = moves.iter().map(|m| m.mv.feed()).collect();
     let mut slowed = vec![false; moves.len()];
     let mut rates = removal_rates(&timings, volumes, span);
     for _ in 0..ROUNDS {
@@ -66,13 +66,6 @@ pub fn hold_rate(paths: &mut [Toolpath], moves: &mut [ProgramMove], volumes: &[f
         clock += m.seconds;
     }
     Held { slowed: (0..moves.len()).filter(|&k| slowed[k]).collect(), rates }
-}
-
-fn feed_of(m: &Move) -> Option<f64> {
-    match *m {
-        Move::Line { feed, .. } | Move::Arc { feed, .. } => Some(feed),
-        Move::Rapid { .. } => None,
-    }
 }
 
 fn set_feed(m: &mut Move, to: f64) {

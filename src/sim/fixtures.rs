@@ -144,10 +144,14 @@ pub fn collisions(moves: &[ProgramMove], keep_out: &[Held], tolerance: f64) -> V
                 // Within a mesh fixture's box: how far into the clearance of the mesh itself.
                 if let (Some(mesh), true) = (&h.mesh, d > tolerance) {
                     let key = (f, m.tool);
-                    if !drops.iter().any(|(k, _)| *k == key) {
-                        drops.push((key, MeshDrops::new(mesh, &m.cutter, h.grown)));
-                    }
-                    d = drops.iter().find(|(k, _)| *k == key).map_or(d, |(_, drops)| drops.depth(p));
+                    let at = match drops.iter().position(|(k, _)| *k == key) {
+                        Some(at) => at,
+                        None => {
+                            drops.push((key, MeshDrops::new(mesh, &m.cutter, h.grown)));
+                            drops.len() - 1
+                        }
+                    };
+                    d = drops[at].1.depth(p);
                 }
                 if d > tolerance && worst.is_none_or(|(w, _)| d > w) {
                     worst = Some((d, p));

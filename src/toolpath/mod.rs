@@ -56,6 +56,14 @@ impl Move {
         (lo, hi)
     }
 
+    /// Its feed (mm/min), or none for a rapid.
+    pub fn feed(&self) -> Option<f64> {
+        match *self {
+            Move::Line { feed, .. } | Move::Arc { feed, .. } => Some(feed),
+            Move::Rapid { .. } => None,
+        }
+    }
+
     /// Length of the move from `from`.
     pub fn length(&self, from: DVec3) -> f64 {
         match *self {
