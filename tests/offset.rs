@@ -195,3 +195,21 @@ proptest! {
         prop_assert!(p.is_empty(), "{:?}", p);
     }
 }
+
+/// A z-level roughing's region on a part's 0.5 mm grid (pycam_textbox's pocket at Z−2: its
+/// outline a staircase of half-millimetre steps round the corners), shrunk every 0.2 mm: at
+/// 4.8 mm, a multiple of the steps, three offset entities met within 2e-5 mm at each of its
+/// four corners, the slivers between them broke the stitching, and the offset came out empty:
+/// the roughing cut two rings of the pocket and took the rest for cleared.
+#[test]
+fn a_staircase_offset_by_a_multiple_of_its_step_keeps_its_loop() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fuzz_regressions/staircase-region.json");
+    let shape: Shape = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let mut last = shape.area();
+    for k in 1..=60 {
+        let d = 0.2 * k as f64;
+        let out = assert_valid(&shape, -d);
+        assert!(out.area() > 0.0 && out.area() < last, "offset by −{d}: area {} after {last}", out.area());
+        last = out.area();
+    }
+}
