@@ -193,6 +193,8 @@ pub struct Summary {
     /// The cycle time by operation, tool changes and the rest, in whole seconds summing to the
     /// whole, as the program's head and the CLI give it.
     pub time: Vec<TimeItem>,
+    /// What the feed optimisation did, where the job asked for it.
+    pub feeds: Option<crate::job::report::FeedReport>,
 }
 
 /// A job's paths as line segments for drawing (xyz of both ends per segment), with the
@@ -491,6 +493,7 @@ impl ResultView {
             post: job.post.post().name,
             cycle: out.cycle.clone(),
             time: out.time.clone(),
+            feeds: out.feeds.clone(),
         };
         let octants = out
             .octants

@@ -217,7 +217,7 @@ fn stl(facets: &[[DVec3; 3]], bad: Option<(usize, &str)>) -> Vec<u8> {
 fn generated_parts_out_of_range_or_repeated_are_refused_or_read_once() {
     let part = swarf::mesh::sample::demo_part();
     let facets: Vec<[DVec3; 3]> = part.triangles().map(|t| [t.a, t.b, t.c]).collect();
-    let job = Job { simulation: job::Simulation { verify: false, cell: None }, ..Job::default() };
+    let job = Job { simulation: job::Simulation { verify: false, cell: None, ..Default::default() }, ..Job::default() };
     refused(&job, &stl(&facets, Some((4, "1e308"))), "inf.stl", "out of range for any part");
     refused(&job, &stl(&facets, Some((4, "1e39"))), "e39.stl", "out of range for any part");
     // A part read 1000 times too large (a unit off) is refused with its size before any work.
@@ -236,7 +236,7 @@ fn generated_parts_out_of_range_or_repeated_are_refused_or_read_once() {
 fn generated_absurd_settings_are_refused_naming_the_field() {
     let part = swarf::mesh::sample::demo_part();
     let stl = part.to_binary_stl();
-    let base = Job { simulation: job::Simulation { verify: false, cell: None }, ..Job::default() };
+    let base = Job { simulation: job::Simulation { verify: false, cell: None, ..Default::default() }, ..Job::default() };
     let edit = |f: &dyn Fn(&mut serde_json::Value)| {
         let mut v = serde_json::to_value(&base).unwrap();
         f(&mut v);
@@ -315,7 +315,7 @@ fn the_duck_at_its_glb_size_is_refused_before_the_work_starts() {
 fn options_whose_work_has_no_bound_are_refused_before_it() {
     let stl = swarf::mesh::sample::demo_part().to_binary_stl();
     let part = |f: &dyn Fn(&mut serde_json::Value)| {
-        let mut v = serde_json::to_value(Job { simulation: job::Simulation { verify: false, cell: None }, ..Job::default() }).unwrap();
+        let mut v = serde_json::to_value(Job { simulation: job::Simulation { verify: false, cell: None, ..Default::default() }, ..Job::default() }).unwrap();
         f(&mut v);
         v
     };

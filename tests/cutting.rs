@@ -263,3 +263,82 @@ fn feeds_are_held_to_what_the_spindle_can_take() {
     job.machine.power = Some(-1.0);
     assert!(job.problems().iter().any(|p| p.path == "machine.power"), "{:?}", job.problems());
 }
+
+/// A flat end mill fed along a wall, its edge `ae` into it: the simulation's nearest cut is
+/// the wall, and the optimised feed is the tool makers' radial chip thinning,
+/// `f·D / (2√(ae·D − ae²))` for `ae` under the radius, the feed itself from the radius on,
+/// within what a cell of the simulation can tell.
+#[test]
+fn a_cut_along_a_wall_is_sped_up_by_its_chips_thinning() {
+    use swarf::geom::{Aabb, DVec3};
+    use swarf::sim::feeds::{speed_up, MAX_SPEEDUP};
+    use swarf::sim::program::program_moves;
+    use swarf::sim::verify::Simulator;
+    use swarf::toolpath::{Move, Rapids, Toolpath};
+    let (d, feed, cell) = (10.0, 1000.0, 0.05);
+    let stock = Aabb { min: DVec3::new(0.0, 0.0, 0.0), max: DVec3::new(40.0, 20.0, 10.0) };
+    let tool = Tool { number: 1, cutter: Cutter::flat(d), flutes: 2, spindle_rpm: 10_000.0, feed_rate: feed, ..Tool::default() };
+    for ae in [0.25, 0.5, 1.0, 2.0, 3.5, 5.0, 7.0] {
+        // Along X at y = ae − R: the tool's edge `ae` into the stock's side at y = 0.
+        let y = ae - d / 2.0;
+        let start = DVec3::new(-10.0, y, 5.0);
+        let path = Toolpath { name: "wall".into(), tool: 1, spindle_rpm: 10_000.0, start, moves: vec![Move::Line { to: DVec3::new(50.0, y, 5.0), feed }], cycles: Vec::new() };
+        let mut paths = vec![path];
+        let mut moves = program_moves(&paths, std::slice::from_ref(&tool), Rapids::at(10_000.0), 10_000.0).unwrap();
+        let mut sim = Simulator::new(&stock, cell).unwrap();
+        sim.run(&moves, &swarf::geom::Tolerances::default(), &mut Progress::none(), 1.0).unwrap();
+        let (volumes, nearest) = (sim.volumes().to_vec(), sim.nearest().to_vec());
+        assert!((volumes[0] - 40.0 * ae.min(20.0) * 5.0).abs() < 40.0 * cell * 5.0, "ae {ae}: {} mm³", volumes[0]);
+        speed_up(&mut paths, &mut moves, &volumes, &nearest, cell, 10_000.0);
+        let Move::Line { feed: got, .. } = paths[0].moves[0] else { unreachable!() };
+        assert_eq!(moves[0].mv.feed(), Some(got));
+        let closed = |ae: f64| if ae >= d / 2.0 { feed } else { (feed * d / (2.0 * (ae * d - ae * ae).sqrt())).min(MAX_SPEEDUP * feed) };
+        // Never above the closed form (the chip no thicker than in a slot), and no lower than
+        // the closed form for a cut a cell wider.
+        eprintln!("ae {ae}: {got} mm/min, closed form {:.0}", closed(ae));
+        assert!(got <= closed(ae) + 1e-9 && got >= closed(ae + cell * 1.5).max(feed) - 1.0, "ae {ae}: {got} against {:.1}", closed(ae));
+        assert!(ae >= d / 2.0 || got > feed, "ae {ae}: a light cut runs faster");
+    }
+}
+
+/// The demo job with its feeds optimised: the same moves, cuts faster where their chips thin
+/// and moves in air at the air feed, its thickest chip measured no thicker than each tool's
+/// chip load at its feed; a shorter cycle; the program read back verifies clean (a raised cut
+/// is not taken for a move in air) and LinuxCNC reads it.
+#[test]
+fn optimised_feeds_run_faster_within_each_tools_chip_load() {
+    use swarf::sim::feeds::chips;
+    let mut job = Job::demo();
+    let plain = job::run(&job, swarf::mesh::sample::demo_part(), &mut Progress::none()).unwrap();
+    assert!(plain.feeds.is_none());
+    job.simulation.optimize_feeds = true;
+    let out = job::run(&job, swarf::mesh::sample::demo_part(), &mut Progress::none()).unwrap();
+    common::clean(&out);
+    let report = out.feeds.clone().expect("the optimisation's report");
+    eprintln!("{}; cycle {:.0} s against {:.0} s", report.describe(), out.cycle.seconds, plain.cycle.seconds);
+    assert!(report.faster > 100 && report.aired > 0, "{report:?}");
+    assert!(out.cycle.seconds < 0.95 * plain.cycle.seconds && report.seconds < report.plain, "{:.0} s against {:.0} s", out.cycle.seconds, plain.cycle.seconds);
+    assert!((report.plain - plain.moves.iter().map(|m| m.seconds).sum::<f64>()).abs() < 1e-6 * report.plain);
+    // The same moves, feeds only raised.
+    assert_eq!(plain.moves.len(), out.moves.len());
+    for (a, b) in plain.moves.iter().zip(&out.moves) {
+        assert_eq!((a.from, a.mv.to()), (b.from, b.mv.to()));
+        assert!(b.mv.feed() >= a.mv.feed());
+    }
+    let v = out.verification.as_ref().unwrap();
+    let cell = v.stock.grid().spacing;
+    let measured = chips(&out.moves, &v.volumes, &v.nearest, cell, &job.tools);
+    for (m, chip) in out.moves.iter().zip(&measured) {
+        let tool = job.tools.iter().find(|t| t.number == m.tool).unwrap();
+        let load = tool.feed_rate / (tool.spindle_rpm * tool.flutes as f64);
+        assert!(*chip <= load * (1.0 + 1e-9), "T{} chip {chip} mm/tooth over its {load}", m.tool);
+    }
+    for o in &out.operations {
+        assert!(o.chip_max.is_some_and(|c| c > 0.0), "{}", o.describe());
+    }
+    // Read back from the G-code, the program verifies clean: no raised cut is taken for air.
+    let again = job::verify_gcode(&job, swarf::mesh::sample::demo_part(), &out.gcode, None, &mut Progress::none()).unwrap();
+    assert!(again.report.is_clean(), "{}", again.report.describe());
+    assert!(common::rs274(&out.gcode, &job.tools).contains("STRAIGHT_FEED"));
+}
+

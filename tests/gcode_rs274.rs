@@ -572,7 +572,7 @@ fn every_built_in_post_reproduces_the_paths_in_linuxcnc_and_grbl_reads_its_own()
         Tool { number: 2, cutter: Cutter::ball(6.0), coolant: Coolant::Mist, ..Tool::default() },
     ];
     let ops = vec![Operation::RoughZlevel(RoughZlevel { tool: 1, ..RoughZlevel::default() }), Operation::FinishRaster(FinishRaster { tool: 2, stepover: 2.0, grid: 0.5, ..FinishRaster::default() })];
-    let job = Job { tools: tools.clone(), operations: ops, simulation: swarf::job::Simulation { verify: false, cell: None }, ..Job::default() };
+    let job = Job { tools: tools.clone(), operations: ops, simulation: swarf::job::Simulation { verify: false, cell: None, ..Default::default() }, ..Job::default() };
     let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
     assert!(out.paths.iter().flat_map(|p| &p.moves).any(|m| matches!(m, Move::Arc { to, .. } if to.z < 0.0)), "helices expected");
     let expected = path_spans(&out.paths, out.clearance_z);

@@ -42,7 +42,7 @@ fn octree_job(tools: Vec<Tool>, op: RoughOctree) -> Job {
         stock: swarf::job::Stock { margin_xy: 0.0, margin_top: 1.0, ..Default::default() },
         tools,
         operations: vec![Operation::RoughOctree(RoughOctree { roughing: Roughing { allowance: ALLOWANCE, leave_stock: LEAVE, grid: 0.5, ..Roughing::default() }, ..op })],
-        simulation: Simulation { verify: true, cell: Some(0.25) },
+        simulation: Simulation { verify: true, cell: Some(0.25), ..Default::default() },
         ..Job::default()
     }
 }

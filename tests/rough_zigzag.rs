@@ -32,7 +32,7 @@ fn paper_job(load: LoadControl) -> Job {
     let mut job = Job {
         tools: vec![flat(1, 10.0)],
         operations: vec![Operation::RoughZigzag(op)],
-        simulation: Simulation { verify: true, cell: Some(0.25) },
+        simulation: Simulation { verify: true, cell: Some(0.25), ..Default::default() },
         part: PartSetup { placement: Placement::Keep, ..PartSetup::default() },
         ..Job::default()
     };
@@ -90,7 +90,7 @@ fn the_sample_part_is_roughed_clean_to_the_stair_step_both_ways() {
             steps: Steps { stepdown, ..Steps::default() },
             ..RoughZigzag::default()
         };
-        let job = Job { tools: vec![flat(1, 6.0)], operations: vec![Operation::RoughZigzag(op)], simulation: Simulation { verify: true, cell: Some(0.25) }, ..Job::default() };
+        let job = Job { tools: vec![flat(1, 6.0)], operations: vec![Operation::RoughZigzag(op)], simulation: Simulation { verify: true, cell: Some(0.25), ..Default::default() }, ..Job::default() };
         let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
         clean(&out);
         assert!(out.warnings.iter().all(|w| !w.message.contains("straight down")), "{:?}", out.warnings);

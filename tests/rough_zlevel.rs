@@ -52,7 +52,7 @@ fn rough_box_on_plate() -> job::JobOutput {
         stock: swarf::job::Stock { margin_xy: 0.0, margin_top: 1.0, ..Default::default() },
         tools: vec![flat(1, 6.0)],
         operations: vec![rough(BOX_ALLOWANCE, BOX_LEAVE)],
-        simulation: Simulation { verify: true, cell: Some(0.2) },
+        simulation: Simulation { verify: true, cell: Some(0.2), ..Default::default() },
         ..Job::default()
     };
     let out = job::run(&job, box_on_plate(), &mut Progress::none()).unwrap();
@@ -136,7 +136,7 @@ fn the_sample_part_roughed_then_finished_is_clean_and_leaves_at_most_the_stair_s
             steps: Steps { stepdown, ..Steps::default() },
             ..RoughZlevel::default()
         })],
-        simulation: Simulation { verify: true, cell: Some(0.25) },
+        simulation: Simulation { verify: true, cell: Some(0.25), ..Default::default() },
         ..Job::default()
     };
     let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
@@ -173,7 +173,7 @@ fn entered_from_the_level_above(part: swarf::mesh::Mesh, units: swarf::mesh::pla
             steps: Steps { stepdown: 2.0, ..Steps::default() },
             ..RoughZlevel::default()
         })],
-        simulation: Simulation { verify: true, cell: Some(0.25) },
+        simulation: Simulation { verify: true, cell: Some(0.25), ..Default::default() },
         ..Job::default()
     };
     let out = job::run(&job, part, &mut Progress::none()).unwrap();
@@ -256,7 +256,7 @@ fn regions_first_goes_from_pocket_to_pocket_once() {
                 steps: Steps { stepdown: 2.0, ..Steps::default() },
                 ..RoughZlevel::default()
             })],
-            simulation: Simulation { verify: true, cell: Some(0.25) },
+            simulation: Simulation { verify: true, cell: Some(0.25), ..Default::default() },
             ..Job::default()
         };
         let out = job::run(&job, part.clone(), &mut Progress::none()).unwrap();
@@ -297,7 +297,7 @@ fn rings_in_the_air_are_left_out() {
         stock: swarf::job::Stock { margin_xy: 0.0, margin_top: 0.0, ..Default::default() },
         tools: vec![flat(1, 6.0)],
         operations: vec![rough(0.0, 0.0)],
-        simulation: Simulation { verify: true, cell: Some(0.2) },
+        simulation: Simulation { verify: true, cell: Some(0.2), ..Default::default() },
         ..Job::default()
     };
     let out = job::run(&job, part, &mut Progress::none()).unwrap();
@@ -341,7 +341,7 @@ fn moves_over_cleared_ground_run_at_the_air_feed_and_cut_nothing() {
             stock: swarf::job::Stock { margin_xy: 0.0, margin_top: 1.0, ..Default::default() },
             tools: vec![flat(1, 6.0)],
             operations: vec![rough(0.0, 0.0)],
-            simulation: Simulation { verify: true, cell: Some(0.25) },
+            simulation: Simulation { verify: true, cell: Some(0.25), ..Default::default() },
             ..Job::default()
         };
         let fast = job::run(&job, part.clone(), &mut Progress::none()).unwrap();
@@ -409,7 +409,7 @@ fn rest_roughing_never_works_a_level_beside_material_left_above_it() {
         stock: swarf::job::Stock { margin_xy: 0.0, margin_top: 1.0, ..Default::default() },
         tools: vec![tool(1, 20.0), tool(4, 3.0)],
         operations: vec![stage(1, 5.0), stage(4, 0.75)],
-        simulation: Simulation { verify: true, cell: Some(0.25) },
+        simulation: Simulation { verify: true, cell: Some(0.25), ..Default::default() },
         ..Job::default()
     };
     let out = job::run(&job, part, &mut Progress::none()).unwrap();
@@ -508,7 +508,7 @@ fn a_regions_rings_leave_no_sliver_standing_between_them() {
                 roughing: Roughing { allowance: 0.0, leave_stock: 0.0, ..Roughing::default() },
                 ..RoughZlevel::default()
             })],
-            simulation: Simulation { verify: true, cell: Some(0.1) },
+            simulation: Simulation { verify: true, cell: Some(0.1), ..Default::default() },
             ..Job::default()
         };
         let out = job::run(&job, part, &mut Progress::none()).unwrap();
@@ -544,7 +544,7 @@ fn a_terrains_regions_are_linked_at_depth() {
         parts.push(("ocl_mount_rush", swarf::mesh::import::read_mesh_auto(&bytes, Some("ocl_mount_rush.stl"), &swarf::geom::tolerance::Tolerances::default()).unwrap()));
     }
     for (name, part) in parts {
-        let job = Job { simulation: Simulation { verify: true, cell: Some(0.25) }, ..support::job::peer_rough_job() };
+        let job = Job { simulation: Simulation { verify: true, cell: Some(0.25), ..Default::default() }, ..support::job::peer_rough_job() };
         let out = job::run(&job, part, &mut Progress::none()).unwrap();
         clean(&out);
         // Replayed on a stock of the simulation's cells: where the tool rises to cross over,
@@ -582,5 +582,32 @@ fn a_terrains_regions_are_linked_at_depth() {
         eprintln!("{name}: {rapid:.0} mm of rapids for {feed:.0} mm of feed ({:.3})", rapid / feed);
         assert!(rapid < 0.2 * feed, "{name}: {rapid:.0} mm of rapids for {feed:.0} mm of feed");
         common::rs274(&out.gcode, &job.tools);
+    }
+}
+
+/// The shared parts roughed with issue 12's settings (φ6 flat, step-down 2, step-over 0.4, no
+/// allowance, the part's box for stock) verify clean. pycam_textbox's pocket region at Z−2 once
+/// lost its rings past the second (its offset by 4.8 mm came out empty): the level left the
+/// pocket's middle standing, the flat at −2.05 under it cut it, and six traverses at Z−1 went
+/// through what stood.
+#[test]
+fn the_shared_parts_roughed_by_levels_verify_clean() {
+    let Some(dir) = common::shared_data("meshes") else { return };
+    for name in ["pycam_textbox.stl", "kiri_pocket-test.stl"] {
+        let bytes = std::fs::read(dir.join(name)).unwrap();
+        let part = swarf::mesh::import::read_mesh_auto(&bytes, Some(name), &swarf::geom::tolerance::Tolerances::default()).unwrap();
+        let job = Job {
+            part: PartSetup { placement: Placement::Keep, ..PartSetup::default() },
+            stock: swarf::job::Stock { margin_xy: 0.0, margin_top: 0.0, margin_bottom: 0.0, ..Default::default() },
+            tools: vec![Tool { number: 1, cutter: Cutter { flute_length: 50.0, ..Cutter::flat(6.0) }, ..Tool::default() }],
+            operations: vec![Operation::RoughZlevel(RoughZlevel {
+                roughing: Roughing { allowance: 0.0, leave_stock: 0.0, grid: 0.5, ..Roughing::default() },
+                steps: Steps { stepdown: 2.0, stepover_fraction: 0.4 },
+                ..RoughZlevel::default()
+            })],
+            ..Job::default()
+        };
+        let out = job::run(&job, part, &mut Progress::none()).unwrap();
+        clean(&out);
     }
 }

@@ -25,7 +25,7 @@ fn two_rasters() -> Job {
     Job {
         tools: vec![ball(1, 6.0), ball(2, 3.0)],
         operations: vec![raster("coarse", 1, 1.5, 0.3, 0.5), raster("fine", 2, 0.75, 0.0, 0.5)],
-        simulation: Simulation { verify: true, cell: Some(0.25) },
+        simulation: Simulation { verify: true, cell: Some(0.25), ..Default::default() },
         ..Job::default()
     }
 }
@@ -137,7 +137,7 @@ fn a_second_operation_on_the_same_cutter_and_grid_gets_its_z_map_from_the_cache(
     let job = Job {
         tools: vec![ball(1, 6.0)],
         operations: vec![raster("across", 1, 2.0, 0.0, 0.5), Operation::FinishRaster(FinishRaster { name: "along".into(), angle: 90.0, stepover: 2.0, grid: 0.5, ..FinishRaster::default() })],
-        simulation: Simulation { verify: false, cell: Some(0.5) },
+        simulation: Simulation { verify: false, cell: Some(0.5), ..Default::default() },
         ..Job::default()
     };
     let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
@@ -166,7 +166,7 @@ fn no_flat_or_bull_nose_end_feeds_straight_down_into_material() {
         let job = Job {
             tools: vec![Tool { cutter: cutter.clone(), ..Tool::default() }],
             operations: vec![raster("finish", 1, 2.0, 0.0, 0.5)],
-            simulation: Simulation { verify: true, cell: Some(0.5) },
+            simulation: Simulation { verify: true, cell: Some(0.5), ..Default::default() },
             ..Job::default()
         };
         let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();

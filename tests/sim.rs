@@ -178,7 +178,7 @@ fn residual_on_a_flat_plate_is_the_scallop_height() {
 
 #[test]
 fn verification_finds_gouges_rapids_through_stock_and_a_buried_tool_body() {
-    let job = Job { simulation: swarf::job::Simulation { verify: true, cell: Some(0.25) }, ..Job::default() };
+    let job = Job { simulation: swarf::job::Simulation { verify: true, cell: Some(0.25), ..Default::default() }, ..Job::default() };
     let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
     let clean = out.verification.as_ref().unwrap();
     assert!(clean.report.is_clean(), "{}", clean.report.describe());
@@ -186,7 +186,7 @@ fn verification_finds_gouges_rapids_through_stock_and_a_buried_tool_body() {
     let settings = VerifySettings { cell: 0.25, allowance: 0.0 };
     let tol = Tolerances::default();
     let check = |paths: &[Toolpath], tools: &[Tool]| {
-        let moves = program_moves(paths, tools, swarf::toolpath::Rapids::at(3000.0)).unwrap();
+        let moves = program_moves(paths, tools, swarf::toolpath::Rapids::at(3000.0), 3000.0).unwrap();
         verify(&out.part, &out.stock, &moves, &settings, &tol, &mut Progress::none()).unwrap().report
     };
     // The same program 0.5 mm lower gouges by 0.5 mm.
@@ -229,7 +229,7 @@ fn verification_finds_gouges_rapids_through_stock_and_a_buried_tool_body() {
 #[test]
 fn what_the_page_runs_is_clean_and_the_program_simulates_the_same_from_its_gcode() {
     // The G-code read back gives the same removed volume as the tool paths it was written from.
-    let job = Job { simulation: swarf::job::Simulation { verify: true, cell: Some(0.3) }, ..Job::default() };
+    let job = Job { simulation: swarf::job::Simulation { verify: true, cell: Some(0.3), ..Default::default() }, ..Job::default() };
     let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
     let from_paths = out.verification.unwrap().report;
     let from_gcode = swarf::job::verify_gcode(&job, demo_part(), &out.gcode, Some(0.3), &mut Progress::none()).unwrap().report;
@@ -240,7 +240,7 @@ fn what_the_page_runs_is_clean_and_the_program_simulates_the_same_from_its_gcode
 
 #[test]
 fn simulation_can_be_cancelled() {
-    let job = Job { simulation: swarf::job::Simulation { verify: false, cell: None }, ..Job::default() };
+    let job = Job { simulation: swarf::job::Simulation { verify: false, cell: None, ..Default::default() }, ..Job::default() };
     let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
     let mut stock = DexelStock::new(&out.stock, 0.5, 1);
     let mut calls = 0;

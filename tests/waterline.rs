@@ -20,7 +20,7 @@ fn waterlines_round_a_hemisphere_lie_on_the_closed_form_circles() {
         stock: swarf::job::Stock { margin_xy: 5.0, margin_top: 0.5, ..Default::default() },
         tools: vec![Tool { cutter: Cutter::ball(2.0 * r), ..Tool::default() }],
         operations: vec![Operation::FinishWaterline(FinishWaterline { stepdown: 1.0, slope_min: 25.0, ..FinishWaterline::default() })],
-        simulation: Simulation { verify: true, cell: Some(0.2) },
+        simulation: Simulation { verify: true, cell: Some(0.2), ..Default::default() },
         ..Job::default()
     };
     let out = job::run(&job, part, &mut Progress::none()).unwrap();
@@ -49,7 +49,7 @@ fn waterlines_round_a_hemisphere_lie_on_the_closed_form_circles() {
 
 #[test]
 fn the_mould_job_roughs_and_finishes_the_sample_part_clean() {
-    let job = Job { simulation: Simulation { verify: true, cell: Some(0.25) }, ..Job::demo() };
+    let job = Job { simulation: Simulation { verify: true, cell: Some(0.25), ..Default::default() }, ..Job::demo() };
     let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
     let v = out.verification.as_ref().unwrap();
     assert!(v.report.is_clean(), "{}", v.report.describe());
@@ -84,7 +84,7 @@ fn levels_by_the_scallop_lie_a_scallops_width_apart_along_a_hemisphere() {
         stock: swarf::job::Stock { margin_xy: 5.0, margin_top: 0.5, ..Default::default() },
         tools: vec![Tool { cutter: Cutter::ball(2.0 * r), ..Tool::default() }],
         operations: vec![Operation::FinishWaterline(FinishWaterline { scallop: Some(h), slope_min: 25.0, ..FinishWaterline::default() })],
-        simulation: Simulation { verify: true, cell: Some(0.2) },
+        simulation: Simulation { verify: true, cell: Some(0.2), ..Default::default() },
         ..Job::default()
     };
     let out = job::run(&job, part, &mut Progress::none()).unwrap();
@@ -159,7 +159,7 @@ fn waterline_after_roughing_never_plunges_into_material() {
                 Tool { number: 2, cutter: Cutter { flute_length: 40.0, ..Cutter::ball(6.0) }, feed_rate: 1000.0, plunge_rate: 250.0, ..Tool::default() },
             ],
             operations: vec![Operation::RoughZlevel(swarf::operations::RoughZlevel { tool: 1, ..Default::default() }), Operation::FinishWaterline(FinishWaterline { tool: 2, ..Default::default() })],
-            simulation: Simulation { verify: true, cell: Some(0.25) },
+            simulation: Simulation { verify: true, cell: Some(0.25), ..Default::default() },
             ..Job::default()
         };
         let out = job::run(&job, part, &mut Progress::none()).unwrap();

@@ -119,11 +119,18 @@ function summaryTable(s, computed) {
   const ops = new Map(s.operations.map((o) => [o.name, o]));
   for (const item of s.time) {
     const o = ops.get(item.label.replace(/ with T.*$/, ''));
-    const extra = o && o.removed != null ? `${units.volume(o.removed)} removed, peak ${units.volume(o.mrrMax)}/min${o.leftMax != null ? `, leaves ≤ ${units.sized(o.leftMax)}` : ''}` : '';
+    const extra = o && o.removed != null ? `${units.volume(o.removed)} removed, peak ${units.volume(o.mrrMax)}/min${o.powerMax != null ? ` (${o.powerMax.toFixed(2)} kW)` : ''}${o.leftMax != null ? `, leaves ≤ ${units.sized(o.leftMax)}` : ''}` : '';
     tr([`  ${item.label}`, clock(item.seconds), extra]);
   }
   tr(['  total', clock(s.time.reduce((a, i) => a + i.seconds, 0)), `(${clockFormat(s.cycle.seconds)})`], 'total');
   el.append(head, table);
+  if (s.feeds) {
+    const f = s.feeds;
+    const div = document.createElement('div');
+    div.className = 'feeds';
+    div.textContent = `Feeds optimised: ${f.faster.toLocaleString()} cuts faster where the chip thins, ${f.aired.toLocaleString()} moves in air at the air feed${f.slowed ? `, ${f.slowed.toLocaleString()} held for the spindle` : ''}; ${clock(f.seconds)} in motion against ${clock(f.plain)} as planned`;
+    el.append(div);
+  }
   const stages = s.operations.flatMap((o) => (o.stages ?? []).map((st) => `${o.name}: T${st.tool} φ${units.exact(st.diameter)} (${{ profile: 'around the part', first: 'first tool', rest: 'only where the larger cannot reach' }[st.role] ?? 'blocks left'}): ${st.why}; ${units.area(st.area)} cleared, ${units.volume(st.removed)} removed, ${clock(st.seconds)}`));
   if (stages.length) {
     const div = document.createElement('div');

@@ -47,7 +47,7 @@ impl ProgramFigures {
 }
 
 fn case(name: &'static str, job: Job, part: Mesh, clock: &dyn Fn() -> f64) -> ProgramCase {
-    let job = Job { simulation: Simulation { verify: false, cell: None }, ..job };
+    let job = Job { simulation: Simulation { verify: false, cell: None, ..Default::default() }, ..job };
     let start = clock();
     let out = job::run(&job, part, &mut Progress::none()).expect("the benchmark job runs");
     let job_seconds = clock() - start;
@@ -176,14 +176,14 @@ pub fn two_rasters(tool: Tool, grid: f64, stepover: f64) -> Job {
 pub fn sample_two_tools(verify: bool) -> Job {
     let ball = |number: u32, d: f64| Tool { number, cutter: Cutter::ball(d), ..Tool::default() };
     let raster = |name: &str, tool: u32, stepover: f64, allowance: f64| Operation::FinishRaster(FinishRaster { name: name.into(), tool, stepover, allowance, ..FinishRaster::default() });
-    Job { tools: vec![ball(1, 6.0), ball(2, 3.0)], operations: vec![raster("coarse", 1, 1.5, 0.3), raster("fine", 2, 0.5, 0.0)], simulation: Simulation { verify, cell: None }, ..Job::default() }
+    Job { tools: vec![ball(1, 6.0), ball(2, 3.0)], operations: vec![raster("coarse", 1, 1.5, 0.3), raster("fine", 2, 0.5, 0.0)], simulation: Simulation { verify, cell: None, ..Default::default() }, ..Job::default() }
 }
 
 /// The sequence figures: the die with two rasters sharing a φ10 ball and a 0.8 mm grid, and
 /// the sample part's two-tool job with and without verification.
 pub fn sequence_rows(platform: &str, clock: &dyn Fn() -> f64) -> Vec<String> {
     let die = two_rasters(Tool { cutter: Cutter::ball(10.0), ..Tool::default() }, 0.8, 2.0);
-    let die = Job { simulation: Simulation { verify: false, cell: None }, ..die };
+    let die = Job { simulation: Simulation { verify: false, cell: None, ..Default::default() }, ..die };
     let mut rows = vec![sequence("die, φ10 ball, two rasters (0°, 90°), grid 0.8", &die, sample::fuel_tank_die(580, 430), clock).row(platform)];
     for verify in [true, false] {
         let name = format!("sample part, φ6 then φ3 ball, verify {}", if verify { "on" } else { "off" });
@@ -207,7 +207,7 @@ pub fn peer_rough_job() -> Job {
             steps: Steps { stepdown: 2.0, stepover_fraction: 0.4 },
             ..RoughZlevel::default()
         })],
-        simulation: Simulation { verify: false, cell: None },
+        simulation: Simulation { verify: false, cell: None, ..Default::default() },
         ..Job::default()
     }
 }
@@ -284,7 +284,7 @@ pub fn program_load(part: Mesh, gcode: &str, diameter: f64, cell: f64, ds: f64) 
     let stock = job.place(&mut part);
     job.tools[0].cutter = Cutter { flute_length: 1e3, ..Cutter::flat(diameter) };
     let paths = swarf::post::read::read_gcode(gcode, 1)?;
-    let moves = swarf::sim::program::program_moves(&paths, &job.tools, job.rapids())?;
+    let moves = swarf::sim::program::program_moves(&paths, &job.tools, job.rapids(), job.air_feed())?;
     let rates = swarf::sim::windows::windowed_rates(&moves, &stock, cell, ds)?;
     let mean = rates.iter().sum::<f64>() / rates.len().max(1) as f64;
     Ok((rates.iter().copied().fold(0.0, f64::max), mean, rates.len()))
@@ -343,7 +343,7 @@ pub fn octree_jobs(delta: f64, stepover: f64, grid: f64, cell: f64) -> Vec<(Stri
         stock: job::Stock { margin_xy: 0.0, margin_top: 1.0, margin_bottom: 0.0, ..Default::default() },
         post: swarf::post::PostSettings { rapid_rate: 5000.0, ..Default::default() },
         tools,
-        simulation: Simulation { verify: true, cell: Some(cell) },
+        simulation: Simulation { verify: true, cell: Some(cell), ..Default::default() },
         ..Job::default()
     };
     let mut jobs = vec![(

@@ -31,6 +31,9 @@ pub struct OperationReport {
     /// The spindle power its heaviest cut takes (kW: [`crate::cutting::power`] of `mrrMax`),
     /// where the stock's material has a specific cutting force.
     pub power_max: Option<f64>,
+    /// The thickest chip a tooth cut (mm per tooth, measured: [`crate::sim::feeds::chips`]),
+    /// when simulated.
+    pub chip_max: Option<f64>,
     /// Material left above the part plus the allowance after it, largest and mean over the
     /// part (mm), when the program was verified.
     pub left_max: Option<f64>,
@@ -52,6 +55,9 @@ impl OperationReport {
                 s += &format!(" ({p:.2} kW)");
             }
         }
+        if let Some(c) = self.chip_max.filter(|&c| c > 0.0) {
+            s += &format!(", thickest chip {c:.4} mm/tooth");
+        }
         if let (Some(a), Some(b)) = (self.left_max, self.left_mean) {
             s += &format!(", left up to {a:.3} mm (mean {b:.3} mm)");
         }
@@ -66,6 +72,36 @@ impl OperationReport {
             s += &format!("\n  {}", stage.describe());
         }
         s
+    }
+}
+
+/// What the feed optimisation did (a job's `simulation.optimizeFeeds`, [`crate::sim::feeds`]).
+#[derive(Clone, Debug, PartialEq, Serialize, ts_rs::TS)]
+#[serde(rename_all = "camelCase")]
+pub struct FeedReport {
+    /// The program's time in motion at the feeds as planned, and as optimised (s; tool changes
+    /// apart).
+    pub plain: f64,
+    pub seconds: f64,
+    /// Cuts run faster for their thinner chips, moves that removed nothing run at the air feed,
+    /// and moves slowed after for the spindle's power.
+    pub faster: usize,
+    pub aired: usize,
+    pub slowed: usize,
+}
+
+impl FeedReport {
+    /// One line for a person.
+    pub fn describe(&self) -> String {
+        format!(
+            "feeds optimised: {} cuts faster for their thinner chips, {} moves in air at the air feed{}; {} in motion, {} as planned ({:.0} % saved)",
+            self.faster,
+            self.aired,
+            if self.slowed > 0 { format!(", {} slowed for the spindle", self.slowed) } else { String::new() },
+            crate::post::clock(self.seconds),
+            crate::post::clock(self.plain),
+            if self.plain > 0.0 { 100.0 * (1.0 - self.seconds / self.plain) } else { 0.0 }
+        )
     }
 }
 
@@ -138,6 +174,7 @@ pub fn per_operation(
                 removed,
                 mrr_max,
                 power_max: None,
+                chip_max: None,
                 left_max,
                 left_mean,
                 load: None,

@@ -64,6 +64,8 @@ pub struct JobOutput {
     pub cache: CacheCounts,
     /// The octants of each stage of octree roughing (seed 000), for the view.
     pub octants: Vec<StageOctants>,
+    /// What the feed optimisation did, where the job asked for it (`simulation.optimizeFeeds`).
+    pub feeds: Option<report::FeedReport>,
 }
 
 impl JobOutput {
@@ -197,8 +199,7 @@ impl Job {
             sim,
             warnings: Vec::new(),
             rapids: self.rapids(),
-            // A G1 no faster than the machine feeds (its rapids may be faster).
-            air_feed: self.stock.air_feed.unwrap_or(self.post.rapid_rate).min(self.post.rapid_rate).min(self.machine.max_feed),
+            air_feed: self.air_feed(),
             operation: 0,
             given_passes: Default::default(),
             given_regions: Vec::new(),
@@ -260,7 +261,7 @@ pub fn verify_gcode(job: &Job, mut part: Mesh, gcode: &str, cell: Option<f64>, p
     }
     let first_tool = job.tools.first().map_or(1, |t| t.number);
     let paths = crate::post::read::read_gcode(gcode, first_tool)?;
-    let moves = program_moves(&paths, &job.tools, job.rapids())?;
+    let moves = program_moves(&paths, &job.tools, job.rapids(), job.air_feed())?;
     let settings = job.verify_settings(&stock, cell);
     if cell.is_some() || job.simulation.cell.is_some() {
         job.sees_with(settings.cell, if cell.is_some() { "the cell" } else { "simulation.cell" })?;
@@ -462,7 +463,7 @@ impl Running {
         let first_path = self.paths.len();
         self.path_operations.extend(std::iter::repeat_n(k, paths.len()));
         self.paths.extend(paths);
-        let moves = timed_moves(&self.paths, first_path, self.all_moves.last(), &self.job.tools, self.job.rapids())?;
+        let moves = timed_moves(&self.paths, first_path, self.all_moves.last(), &self.job.tools, (self.job.rapids(), self.job.air_feed()))?;
         self.stopped_short(k, &moves);
         if !moves.is_empty() && (self.job.simulation.verify || self.next < self.enabled.len()) {
             self.pending = moves;
@@ -589,7 +590,7 @@ impl Running {
             return Err(Error::Input(format!("{} of the stock's {} bands came back, with {} cuts", bands.len(), self.bands_out, cuts.len())));
         }
         let moves = std::mem::take(&mut self.pending);
-        if let Some(&(k, ..)) = cuts.iter().flat_map(|c| c.moves.last()).find(|c| c.0 >= moves.len()) {
+        if let Some(k) = cuts.iter().flat_map(|c| c.moves.last()).map(|c| c.index).find(|&k| k >= moves.len()) {
             return Err(Error::Input(format!("a band's cut names move {k} of {}", moves.len())));
         }
         self.ctx.sim.absorb(bands, cuts, &moves);
@@ -640,36 +641,52 @@ impl Running {
         } else {
             (None, Some(sim))
         };
-        let (volumes, rates, cell) = match (&verification, &sim) {
-            (Some(v), _) => (&v.volumes[..], v.rates.clone(), Some(v.stock.grid().spacing)),
-            (None, Some(sim)) => (sim.volumes(), sim.rates(), Some(sim.stock().grid().spacing)),
-            (None, None) => (&[][..], Vec::new(), None),
+        let (volumes, nearest, rates, cell) = match (&verification, &sim) {
+            (Some(v), _) => (&v.volumes[..], &v.nearest[..], v.rates.clone(), Some(v.stock.grid().spacing)),
+            (None, Some(sim)) => (sim.volumes(), sim.nearest(), sim.rates(), Some(sim.stock().grid().spacing)),
+            (None, None) => (&[][..], &[][..], Vec::new(), None),
+        };
+        // Feeds raised for thin chips and air, where the job asks.
+        let in_motion = |moves: &[ProgramMove]| moves.iter().map(|m| m.seconds).sum::<f64>();
+        let plain = in_motion(&all_moves);
+        let (mut rates, sped) = match (job.simulation.optimize_feeds, cell) {
+            (true, Some(cell)) if volumes.len() == all_moves.len() && nearest.len() == all_moves.len() => {
+                let sped = crate::sim::feeds::speed_up(&mut paths, &mut all_moves, volumes, nearest, cell, job.air_feed());
+                let timings: Vec<_> = all_moves.iter().map(ProgramMove::timing).collect();
+                (crate::sim::program::removal_rates(&timings, volumes, crate::sim::program::RATE_CELLS * cell), Some(sped))
+            }
+            _ => (rates, None),
         };
         // Feeds held where a cut would take more than the spindle has.
         let kc = job.stock.material.and_then(crate::cutting::Material::specific_cutting_force);
-        let (rates, held) = match (crate::cutting::rate_limit(&job.machine, job.stock.material), cell) {
-            (Some(limit), Some(cell)) if rates.iter().any(|&r| r > limit) => {
+        let mut slowed = 0;
+        if let (Some(limit), Some(cell)) = (crate::cutting::rate_limit(&job.machine, job.stock.material), cell) {
+            if rates.iter().any(|&r| r > limit) {
                 let before = rates.iter().copied().fold(0.0, f64::max);
                 let held = crate::sim::feeds::hold_rate(&mut paths, &mut all_moves, volumes, cell, limit);
                 let said = held_power(job, &path_operations, &all_moves, &held.slowed, before, kc.unwrap_or_default());
                 warnings.extend(said);
-                (held.rates, true)
+                slowed = held.slowed.len();
+                rates = held.rates;
             }
-            _ => (rates, false),
-        };
+        }
+        let refed = sped.is_some() || slowed > 0;
+        let chips = cell.map(|cell| crate::sim::feeds::chips(&all_moves, volumes, nearest, cell, &job.tools));
         let crate::post::Written { gcode, cycle, move_lines } = write_mapped(&job.name, &paths, &job.tools, heights.clearance, &job.post_for_machine())?;
         let stats = paths.iter().fold(PathStats::default(), |s, p| s + p.stats(job.rapids()));
         let mut operations = report::per_operation(job, &enabled, &all_moves, &move_ranges, volumes, &rates, &snapshots, verification.as_ref());
-        for (o, (load, stages)) in operations.iter_mut().zip(loads) {
+        for ((o, (load, stages)), range) in operations.iter_mut().zip(loads).zip(&move_ranges) {
             o.load = load;
             o.stages = stages;
             // Its time as the program's head states it: its paths' as the post wrote them.
             o.seconds = path_operations.iter().zip(&cycle.paths).filter(|(&k, _)| k == o.index).map(|(_, s)| s).sum();
             o.power_max = o.mrr_max.zip(kc).map(|(m, kc)| crate::cutting::power(m, kc));
+            o.chip_max = chips.as_ref().and_then(|c| c.get(range.clone())).map(|c| c.iter().copied().fold(0.0, f64::max));
         }
+        let feeds = sped.map(|s| report::FeedReport { plain, seconds: in_motion(&all_moves), faster: s.faster, aired: s.aired, slowed });
         let time = cycle.items(&CycleTime::groups(&paths));
         if let Some(v) = verification.as_mut() {
-            if held {
+            if refed {
                 v.rates = rates;
                 v.report.mrr_max = v.rates.iter().copied().fold(0.0, f64::max);
             }
@@ -717,6 +734,7 @@ impl Running {
             problem,
             cache,
             octants,
+            feeds,
         })
     }
 }
@@ -800,9 +818,9 @@ fn tool_larger_than_part(job: &Job, part: &Mesh) -> Option<(Warning, bool)> {
 }
 
 /// The moves of `paths[first..]`, timed on from the program's last move so far.
-fn timed_moves(paths: &[Toolpath], first: usize, last: Option<&ProgramMove>, tools: &[Tool], rapids: crate::toolpath::Rapids) -> Result<Vec<ProgramMove>> {
+fn timed_moves(paths: &[Toolpath], first: usize, last: Option<&ProgramMove>, tools: &[Tool], (rapids, air_feed): (crate::toolpath::Rapids, f64)) -> Result<Vec<ProgramMove>> {
     let clock = last.map_or(0.0, |m| m.start + m.seconds);
-    let mut moves = program_moves(&paths[first..], tools, rapids)?;
+    let mut moves = program_moves(&paths[first..], tools, rapids, air_feed)?;
     for m in &mut moves {
         m.path += first;
         m.start += clock;

@@ -425,11 +425,15 @@ pub struct Simulation {
     /// Cell size of the simulated stock (mm). Default value: the size that gives the stock
     /// about a million cells, and no smaller than 0.05 mm.
     pub cell: Option<f64>,
+    /// Feeds along the path from what the simulation measured: each cut's feed raised for its
+    /// chip's thinning, up to its tool's chip load and under the air feed, and each move that
+    /// removes nothing at the air feed ([`crate::sim::feeds::speed_up`]). Default value: false.
+    pub optimize_feeds: bool,
 }
 
 impl Default for Simulation {
     fn default() -> Self {
-        Simulation { verify: true, cell: None }
+        Simulation { verify: true, cell: None, optimize_feeds: false }
     }
 }
 
@@ -937,6 +941,12 @@ impl Job {
 
     /// How the job's rapids are timed: at its machine's rates per axis where known, else at
     /// the post's `rapidRate` along each move.
+    /// The feed of a G1 its operation knows cuts nothing: the stock's `airFeed` (the rapid
+    /// rate by default), no faster than the machine's rapids or its feeds.
+    pub fn air_feed(&self) -> f64 {
+        self.stock.air_feed.unwrap_or(self.post.rapid_rate).min(self.post.rapid_rate).min(self.machine.max_feed)
+    }
+
     pub fn rapids(&self) -> crate::toolpath::Rapids {
         crate::toolpath::Rapids { rate: self.post.rapid_rate, axes: self.machine.rapids }
     }

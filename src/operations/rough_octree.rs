@@ -557,7 +557,7 @@ struct Cut {
 /// Cuts the in-process stock with `path` and says what it did.
 fn advance(ctx: &mut Context, path: &Toolpath, progress: &mut Progress) -> Result<Cut> {
     let before = ctx.sim.stock().heights();
-    let moves = program_moves(std::slice::from_ref(path), &ctx.tools, ctx.rapids)?;
+    let moves = program_moves(std::slice::from_ref(path), &ctx.tools, ctx.rapids, ctx.air_feed)?;
     let first = ctx.sim.volumes().len();
     ctx.sim.run(&moves, &ctx.tolerances, progress, 1.0)?;
     let removed = ctx.sim.volumes()[first..].iter().sum();

@@ -69,7 +69,17 @@ pub struct DexelStock {
     /// Cells per block side (1: no blocks), and blocks per row.
     block: usize,
     bx: usize,
+    /// The horizontal distance from a sweep's path to the nearest cell centre it has cut
+    /// deeper than [`ENGAGED`] since [`DexelStock::take_nearest`] (∞ for none): how far the
+    /// cut reaches in from the tool's rim, which the chip's thickness follows
+    /// ([`crate::sim::feeds`]).
+    nearest: f64,
 }
+
+/// How deep a cell must be lowered to count as cut by a move's flutes rather than grazed
+/// (mm): a pass rerun at the depth of the one before lowers the cells under its centre by
+/// rounding alone, and that is no chip.
+pub const ENGAGED: f64 = 1e-3;
 
 impl DexelStock {
     /// A box stock on cells of side `cell`, from the box's minimum corner; `k` sub-cells per side
@@ -97,6 +107,7 @@ impl DexelStock {
             block_top: vec![stock.max.z; nx.div_ceil(block) * ny.div_ceil(block)],
             block,
             bx: nx.div_ceil(block),
+            nearest: f64::INFINITY,
         }
     }
 
@@ -357,6 +368,7 @@ impl DexelStock {
                 block_top,
                 block: head[6] as usize,
                 bx: head[7] as usize,
+                nearest: f64::INFINITY,
             });
             rest = &rest[at..];
         }
@@ -573,15 +585,31 @@ impl DexelStock {
             let floor = self.floors.get(c).copied().unwrap_or(self.bottom);
             if e > floor {
                 self.z[c] = e;
+                self.engaged(sweep, centre, top - e);
                 return (top - e) * self.widths[i] * self.heights[j];
             }
             // Cut down to its floor, the top span is gone: the next one down, if any, is the
             // top one now; with none, nothing stands in the column any more.
             self.z[c] = self.bottom;
+            self.engaged(sweep, centre, top - e);
             let removed = top - floor + if self.lower.is_empty() { 0.0 } else { self.cut_lower(c, e) };
             return removed * self.widths[i] * self.heights[j];
         }
         0.0
+    }
+
+    /// Notes a cell at `centre` cut `depth` deep by `sweep` in [`DexelStock::nearest`].
+    #[inline(always)]
+    fn engaged(&mut self, sweep: &Sweep, centre: DVec2, depth: f64) {
+        if depth > ENGAGED {
+            self.nearest = self.nearest.min(sweep.nearest(centre).0);
+        }
+    }
+
+    /// The nearest any sweep since the last call came to a cell it cut (horizontally, from
+    /// its tip's path to the cell's centre; ∞ for none), and starts afresh.
+    pub fn take_nearest(&mut self) -> f64 {
+        std::mem::replace(&mut self.nearest, f64::INFINITY)
     }
 
     /// Cell `c`'s top span cut away: its spans under it cut down to `e`, the highest left the

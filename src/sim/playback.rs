@@ -82,7 +82,7 @@ mod tests {
 
     #[test]
     fn seeking_back_and_forth_gives_the_same_stock_as_simulating_straight() {
-        let job = Job { simulation: Simulation { verify: false, cell: None }, ..Job::default() };
+        let job = Job { simulation: Simulation { verify: false, ..Simulation::default() }, ..Job::default() };
         let out = job::run(&job, crate::mesh::sample::demo_part(), &mut Progress::none()).unwrap();
         let fresh = DexelStock::new(&out.stock, 0.5, 1);
         let mut p = Playback::new(fresh.clone(), out.moves.clone(), 0.002);

@@ -30,8 +30,11 @@ pub struct ProgramMove {
     pub holder: Option<std::sync::Arc<Vec<(f64, f64)>>>,
 }
 
-/// The moves of `paths`, each with its tool from `tools`, timed at their feeds and `rapids`.
-pub fn program_moves(paths: &[Toolpath], tools: &[Tool], rapids: Rapids) -> Result<Vec<ProgramMove>> {
+/// The moves of `paths`, each with its tool from `tools`, timed at their feeds and `rapids`;
+/// a feed move faster than its tool's feed and at `air_feed` or above is one in air
+/// ([`ProgramMove::air`]; a cut the feed optimisation sped up, [`crate::sim::feeds`], stays
+/// under it).
+pub fn program_moves(paths: &[Toolpath], tools: &[Tool], rapids: Rapids, air_feed: f64) -> Result<Vec<ProgramMove>> {
     let mut out = Vec::new();
     let mut clock = 0.0;
     for (k, path) in paths.iter().enumerate() {
@@ -43,7 +46,7 @@ pub fn program_moves(paths: &[Toolpath], tools: &[Tool], rapids: Rapids) -> Resu
         for (i, mv) in path.moves.iter().enumerate() {
             let (seconds, air) = match *mv {
                 Move::Rapid { to } => (rapids.seconds(at, to), false),
-                Move::Line { feed, .. } | Move::Arc { feed, .. } => (mv.length(at) / feed * 60.0, feed > tool.feed_rate * (1.0 + 1e-9)),
+                Move::Line { feed, .. } | Move::Arc { feed, .. } => (mv.length(at) / feed * 60.0, feed > tool.feed_rate * (1.0 + 1e-9) && feed >= air_feed * (1.0 - 1e-9)),
             };
             let seconds = seconds + dwells.get(&i).copied().unwrap_or(0.0);
             out.push(ProgramMove { path: k, tool: tool.number, cutter: tool.cutter.clone(), from: at, mv: *mv, start: clock, seconds, air, holder: holder.clone() });

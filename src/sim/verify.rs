@@ -187,6 +187,9 @@ pub struct Verification {
     pub volumes: Vec<f64>,
     /// Material removal rate of each move (mm³/min, 0 for rapids; [`removal_rates`]).
     pub rates: Vec<f64>,
+    /// How near each move's path came to a cell it cut ([`DexelStock::take_nearest`]; ∞ for
+    /// none): what its chip's thickness follows ([`crate::sim::feeds`]).
+    pub nearest: Vec<f64>,
     pub stock: DexelStock,
     /// The stock the program started from where that was not the raw box (a bar, what the
     /// setup before left: [`Simulator::carry`]); a playback starts from it.
@@ -358,7 +361,20 @@ const CHUNK: usize = 4096;
 /// body's lowest point, and how deep).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct BandCut {
-    pub moves: Vec<(usize, f64, Option<BodyPlace>)>,
+    pub moves: Vec<MoveCut>,
+}
+
+/// What one move did to one band ([`BandCut`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MoveCut {
+    /// The move's index in the program.
+    pub index: usize,
+    /// The volume its sweeps removed from the band (mm³).
+    pub volume: f64,
+    /// The nearest its path came to a cell it cut ([`DexelStock::take_nearest`]; ∞ for none).
+    pub nearest: f64,
+    /// The worst place its tool's body met the band.
+    pub body: Option<BodyPlace>,
 }
 
 /// Where a tool's body met material (at the body's lowest point), how deep (mm), and whether
@@ -366,17 +382,17 @@ pub struct BandCut {
 pub type BodyPlace = (DVec3, f64, bool);
 
 /// Numbers per move in [`BandCut::to_flat`].
-const CUT_FLAT: usize = 7;
+const CUT_FLAT: usize = 8;
 
 impl BandCut {
-    /// As flat numbers (for a worker of the page's pool): per move its index, volume, and the
-    /// body's place and depth (NaN for none).
+    /// As flat numbers (for a worker of the page's pool): per move its index, volume, nearest
+    /// cut, and the body's place and depth (NaN for none).
     pub fn to_flat(&self) -> Vec<f64> {
         let mut out = Vec::with_capacity(1 + self.moves.len() * CUT_FLAT);
         out.push(self.moves.len() as f64);
-        for &(k, volume, body) in &self.moves {
-            let (at, depth, holder) = body.unwrap_or((DVec3::NAN, f64::NAN, false));
-            out.extend([k as f64, volume, at.x, at.y, at.z, depth, if holder { 1.0 } else { 0.0 }]);
+        for m in &self.moves {
+            let (at, depth, holder) = m.body.unwrap_or((DVec3::NAN, f64::NAN, false));
+            out.extend([m.index as f64, m.volume, m.nearest, at.x, at.y, at.z, depth, if holder { 1.0 } else { 0.0 }]);
         }
         out
     }
@@ -389,7 +405,10 @@ impl BandCut {
         while let Some((&count, tail)) = rest.split_first() {
             let len = count as usize * CUT_FLAT;
             let (mine, tail) = (tail.get(..len).ok_or_else(short)?, &tail[len..]);
-            let moves = mine.chunks_exact(CUT_FLAT).map(|v| (v[0] as usize, v[1], (!v[5].is_nan()).then(|| (DVec3::new(v[2], v[3], v[4]), v[5], v[6] == 1.0)))).collect();
+            let moves = mine
+                .chunks_exact(CUT_FLAT)
+                .map(|v| MoveCut { index: v[0] as usize, volume: v[1], nearest: v[2], body: (!v[6].is_nan()).then(|| (DVec3::new(v[3], v[4], v[5]), v[6], v[7] == 1.0)) })
+                .collect();
             out.push(BandCut { moves });
             rest = tail;
         }
@@ -424,12 +443,14 @@ impl Band<'_> {
                 holder.or_else(|| self.stock.above_body(sweep, body_radius(m), m.cutter.flute_length + gouge).map(|(at, depth)| (at.extend(sweep.nearest(at).1 + m.cutter.flute_length), depth, false)))
             };
             let volume = self.stock.apply(sweep);
+            let nearest = self.stock.take_nearest();
             match self.cut.moves.last_mut() {
-                Some((last, v, worst)) if *last == *k => {
-                    *v += volume;
-                    keep_deeper(worst, body);
+                Some(last) if last.index == *k => {
+                    last.volume += volume;
+                    last.nearest = last.nearest.min(nearest);
+                    keep_deeper(&mut last.body, body);
                 }
-                _ => self.cut.moves.push((*k, volume, body)),
+                _ => self.cut.moves.push(MoveCut { index: *k, volume, nearest, body }),
             }
         }
     }
@@ -543,6 +564,8 @@ pub struct Simulator {
     /// The raw stock's top: a cell the program never cut stands here, whatever the part.
     raw_top: f64,
     volumes: Vec<f64>,
+    /// Each move's nearest cut ([`Verification::nearest`]).
+    nearest: Vec<f64>,
     /// Each move's length, time and kind, for its removal rate.
     timings: Vec<Timing>,
     rapid: (usize, Vec<Finding>),
@@ -559,6 +582,7 @@ impl Simulator {
             stock: stock_for(stock, cell)?,
             raw_top: stock.max.z,
             volumes: Vec::new(),
+            nearest: Vec::new(),
             timings: Vec::new(),
             rapid: (0, Vec::new()),
             body: (0, Vec::new()),
@@ -584,6 +608,11 @@ impl Simulator {
     /// Volume removed by each move so far (mm³).
     pub fn volumes(&self) -> &[f64] {
         &self.volumes
+    }
+
+    /// How near each move so far came to a cell it cut ([`Verification::nearest`]).
+    pub fn nearest(&self) -> &[f64] {
+        &self.nearest
     }
 
     /// The material removal rate of each move so far (mm³/min, [`removal_rates`] over
@@ -631,20 +660,29 @@ impl Simulator {
         };
         self.stock = DexelStock::join(bands);
         let mut removed = vec![0.0; moves.len()];
+        let mut nearest = vec![f64::INFINITY; moves.len()];
         let mut body: Vec<Option<BodyPlace>> = vec![None; moves.len()];
         for cut in cuts {
-            for &(k, volume, worst) in &cut.moves {
-                removed[k] += volume;
-                keep_deeper(&mut body[k], worst);
+            for m in &cut.moves {
+                removed[m.index] += m.volume;
+                nearest[m.index] = nearest[m.index].min(m.nearest);
+                keep_deeper(&mut body[m.index], m.body);
             }
         }
-        for ((m, volume), body) in moves.iter().zip(removed).zip(body) {
+        let first = self.nearest.len();
+        self.nearest.extend(nearest);
+        let grain = self.stock.grid().spacing * std::f64::consts::FRAC_1_SQRT_2;
+        for (((m, volume), body), near) in moves.iter().zip(removed).zip(body).zip(&self.nearest[first..]) {
             let index = self.volumes.len();
             if let Some((at, depth, holder)) = body {
                 note(if holder { &mut self.holder } else { &mut self.body }, Finding { move_index: Some(index), at, amount: depth });
             }
             self.timings.push(m.timing());
-            if (m.mv.is_rapid() || m.air) && volume > GRAZE {
+            // A feed move in air meets material when it cuts into it past its rim by more than
+            // the cells can tell (half a cell's diagonal): a rim grazing one cell's centre, or
+            // a floor skimmed by rounding, is no collision at a feed.
+            let through = volume > GRAZE && (m.mv.is_rapid() || (m.air && *near < m.cutter.diameter * 0.5 - grain));
+            if through {
                 note(&mut self.rapid, Finding { move_index: Some(index), at: m.mv.to(), amount: volume });
             }
             self.volumes.push(volume);
@@ -702,7 +740,7 @@ impl Simulator {
     /// [`WALL_RECHECKS`] cells are judged again; beyond, a program gouges anyway.
     pub fn finish_near(self, surface: impl FnOnce(Grid) -> HeightField, lowest_near: impl Fn(DVec2) -> Option<f64>, allowance: f64, tolerances: &Tolerances) -> Verification {
         let rates = self.rates();
-        let Simulator { stock: sim, raw_top, volumes, rapid, body, holder, start, .. } = self;
+        let Simulator { stock: sim, raw_top, volumes, nearest, rapid, body, holder, start, .. } = self;
         let grid = sim.grid();
         let mut surface = surface(grid);
         let mut gouges = Vec::new();
@@ -754,6 +792,6 @@ impl Simulator {
             mrr_max: rates.iter().copied().fold(0.0, f64::max),
             overcuts: Vec::new(),
         };
-        Verification { report, volumes, rates, stock: sim, start, part: surface, holes: Vec::new() }
+        Verification { report, volumes, rates, nearest, stock: sim, start, part: surface, holes: Vec::new() }
     }
 }

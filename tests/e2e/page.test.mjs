@@ -1101,6 +1101,19 @@ test('speeds and feeds from the stock\'s material: each tool shows them with how
   assert.equal(await page.inputValue('input[name=rapids]'), '15000, 15000, 15000');
   assert.equal(await page.inputValue('input[name=power]'), '5.6');
   assert.match(await page.evaluate(() => window.swarf.result.gcode), /rapids at X 15000, Y 15000, Z 15000 mm\/min/);
+  // The summary gives each operation's spindle power; with the feeds optimised, cuts whose
+  // chips thin run faster, and the summary says how many and the time before and after.
+  assert.match(await page.textContent('#stats'), /peak [\d.,]+ \S+\/min \(\d+\.\d\d kW\)/);
+  assert.doesNotMatch(await page.textContent('#stats'), /Feeds optimised/);
+  const plain = await page.evaluate(() => window.swarf.result.gcode);
+  await page.check('input[name=optimizeFeeds]');
+  await page.click('#generate');
+  await generated(page);
+  assert.match(await page.textContent('#stats'), /Feeds optimised: [\d,]+ cuts faster where the chip thins, [\d,]+ moves in air at the air feed; [\d:]+ in motion against [\d:]+ as planned/);
+  const feeds = (g) => new Set([...g.matchAll(/F(\d+)/g)].map((m) => +m[1])).size;
+  const optimised = await page.evaluate(() => window.swarf.result.gcode);
+  assert.ok(feeds(optimised) > feeds(plain) + 10, `${feeds(optimised)} feeds against ${feeds(plain)}`);
+  await page.uncheck('input[name=optimizeFeeds]');
   await tab(page, 'tools');
   // A speed typed is the tool's own from then on.
   await page.fill('input[name=spindleRpm]', '9000');

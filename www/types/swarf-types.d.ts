@@ -519,6 +519,21 @@ loops: Array<number>, };
 export type FacePattern = "zigzag" | "spiral";
 
 /**
+ * What the feed optimisation did (a job's `simulation.optimizeFeeds`, [`crate::sim::feeds`]).
+ */
+export type FeedReport = { 
+/**
+ * The program's time in motion at the feeds as planned, and as optimised (s; tool changes
+ * apart).
+ */
+plain: number, seconds: number, 
+/**
+ * Cuts run faster for their thinner chips, moves that removed nothing run at the air feed,
+ * and moves slowed after for the spindle's power.
+ */
+faster: number, aired: number, slowed: number, };
+
+/**
  * One choice of a [`FieldInput::Choice`] field: its value in the job file and its words.
  */
 export type FieldChoice = { value: string, label: string, };
@@ -1069,6 +1084,11 @@ mrrMax: number | null,
  * where the stock's material has a specific cutting force.
  */
 powerMax: number | null, 
+/**
+ * The thickest chip a tooth cut (mm per tooth, measured: [`crate::sim::feeds::chips`]),
+ * when simulated.
+ */
+chipMax: number | null, 
 /**
  * Material left above the part plus the allowance after it, largest and mean over the
  * part (mm), when the program was verified.
@@ -1763,7 +1783,13 @@ verify: boolean,
  * Cell size of the simulated stock (mm). Default value: the size that gives the stock
  * about a million cells, and no smaller than 0.05 mm.
  */
-cell: number | null, };
+cell: number | null, 
+/**
+ * Feeds along the path from what the simulation measured: each cut's feed raised for its
+ * chip's thinning, up to its tool's chip load and under the air feed, and each move that
+ * removes nothing at the air feed ([`crate::sim::feeds::speed_up`]). Default value: false.
+ */
+optimizeFeeds: boolean, };
 
 /**
  * Where a tool's spindle speed and feeds come from.
@@ -1926,7 +1952,11 @@ cycle: CycleTime,
  * The cycle time by operation, tool changes and the rest, in whole seconds summing to the
  * whole, as the program's head and the CLI give it.
  */
-time: Array<TimeItem>, moves: number, feedLength: number, rapidLength: number, 
+time: Array<TimeItem>, 
+/**
+ * What the feed optimisation did, where the job asked for it.
+ */
+feeds: FeedReport | null, moves: number, feedLength: number, rapidLength: number, 
 /**
  * Estimated cycle time (seconds) at the programmed feeds and the given rapid rate.
  */

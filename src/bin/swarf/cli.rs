@@ -625,10 +625,13 @@ fn run_job(job: &Job, workpiece: impl Into<Workpiece>, output: &Path, options: R
         for w in &out.warnings {
             eprintln!("warning: {w}");
         }
-        if out.operations.len() > 1 || out.operations.iter().any(|o| o.stages.is_some() || o.load.is_some()) {
+        if out.operations.len() > 1 || out.feeds.is_some() || out.operations.iter().any(|o| o.stages.is_some() || o.load.is_some()) {
             for r in &out.operations {
                 eprintln!("  {}", r.describe());
             }
+        }
+        if let Some(f) = &out.feeds {
+            eprintln!("{}", f.describe());
         }
         if let Some(v) = &out.verification {
             let r = &v.report;
