@@ -341,4 +341,3 @@ fn optimised_feeds_run_faster_within_each_tools_chip_load() {
     assert!(again.report.is_clean(), "{}", again.report.describe());
     assert!(common::rs274(&out.gcode, &job.tools).contains("STRAIGHT_FEED"));
 }
-

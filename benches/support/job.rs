@@ -176,7 +176,12 @@ pub fn two_rasters(tool: Tool, grid: f64, stepover: f64) -> Job {
 pub fn sample_two_tools(verify: bool) -> Job {
     let ball = |number: u32, d: f64| Tool { number, cutter: Cutter::ball(d), ..Tool::default() };
     let raster = |name: &str, tool: u32, stepover: f64, allowance: f64| Operation::FinishRaster(FinishRaster { name: name.into(), tool, stepover, allowance, ..FinishRaster::default() });
-    Job { tools: vec![ball(1, 6.0), ball(2, 3.0)], operations: vec![raster("coarse", 1, 1.5, 0.3), raster("fine", 2, 0.5, 0.0)], simulation: Simulation { verify, cell: None, ..Default::default() }, ..Job::default() }
+    Job {
+        tools: vec![ball(1, 6.0), ball(2, 3.0)],
+        operations: vec![raster("coarse", 1, 1.5, 0.3), raster("fine", 2, 0.5, 0.0)],
+        simulation: Simulation { verify, cell: None, ..Default::default() },
+        ..Job::default()
+    }
 }
 
 /// The sequence figures: the die with two rasters sharing a φ10 ball and a 0.8 mm grid, and

@@ -23,8 +23,8 @@
 //! keep their feeds. The spindle's hold runs after, on the raised feeds.
 
 use super::program::{removal_rates, ProgramMove, RATE_CELLS};
-use crate::toolpath::{Move, Toolpath};
 use crate::tool::Tool;
+use crate::toolpath::{Move, Toolpath};
 
 /// Rounds of measuring and lowering before giving up on a stretch (each lowers every move
 /// over the limit to the feed that would bring its own rate to it).
