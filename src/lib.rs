@@ -20,6 +20,7 @@ pub mod cutter;
 pub mod cutting;
 pub mod drawing;
 pub mod error;
+pub mod file_kind;
 pub mod geom;
 pub mod holes;
 pub mod job;

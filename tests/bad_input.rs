@@ -518,3 +518,49 @@ fn a_gouge_says_its_cause() {
     let out = job::run(&job, Workpiece::read(&disc, Some("disc.dxf"), &job.tolerances).unwrap(), &mut Progress::none()).unwrap();
     assert_eq!(out.problem, None);
 }
+
+/// Issue 62: a file of another kind is named by its first bytes, whatever its name says, by
+/// the part reader and the drawing reader alike, with what to do; a drawing given for a part
+/// is named a drawing (`swarf edges plate.dxf` answered with an STL's message).
+#[test]
+fn a_file_of_another_kind_says_what_it_is() {
+    use swarf::drawing::import::read_drawing;
+    use swarf::mesh::import::read_mesh_auto;
+    let tol = swarf::geom::Tolerances::default();
+    let padded = |head: &[u8]| {
+        let mut b = head.to_vec();
+        b.resize(2000, b'x');
+        b
+    };
+    let cases: [(&[u8], &str); 6] = [
+        (b"\x89PNG\r\n\x1a\n\0\0\0\rIHDR", "a PNG image"),
+        (b"\xFF\xD8\xFF\xE0\0\x10JFIF\0", "a JPEG image"),
+        (b"%PDF-1.7\n", "a PDF document"),
+        (b"PK\x03\x04\x14\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\x10\0\0\x003D/3dmodel.model", "a 3MF package"),
+        (b"PK\x03\x04\x14\0\0\0", "a ZIP archive"),
+        (b"ISO-10303-21;\nHEADER;\n", "a STEP model"),
+    ];
+    for (head, what) in cases {
+        let bytes = padded(head);
+        for name in [Some("part.stl"), Some("part.obj"), Some("part.glb"), None] {
+            let e = read_mesh_auto(&bytes, name, &tol).unwrap_err().to_string();
+            assert!(e.starts_with(&format!("the file is {what}")) && e.contains("not a part swarf reads (STL, glTF/GLB or OBJ)"), "{name:?}: {e}");
+        }
+        for name in [Some("plate.dxf"), Some("plate.svg"), None] {
+            let e = read_drawing(&bytes, name, &tol).unwrap_err().to_string();
+            assert!(e.starts_with(&format!("the file is {what}")) && e.contains("not a drawing swarf reads (DXF or SVG)"), "{name:?}: {e}");
+        }
+    }
+    let dxf = swarf::drawing::sample::plate_dxf();
+    let e = read_mesh_auto(dxf.as_bytes(), Some("plate.dxf"), &tol).unwrap_err().to_string();
+    assert!(e.starts_with("the file is a DXF drawing, not a 3D part"), "{e}");
+    // A binary STL whose header happens to start like a PNG is still an STL.
+    let mut stl = b"\x89PNG\r\n\x1a\n".to_vec();
+    stl.resize(80, 0);
+    stl.extend(1u32.to_le_bytes());
+    for v in [[0.0f32, 0.0, 1.0], [0.0, 0.0, 0.0], [10.0, 0.0, 0.0], [0.0, 10.0, 0.0]] {
+        stl.extend(v.iter().flat_map(|c| c.to_le_bytes()));
+    }
+    stl.extend([0u8; 2]);
+    assert_eq!(read_mesh_auto(&stl, Some("odd.stl"), &tol).unwrap().triangles().count(), 1);
+}

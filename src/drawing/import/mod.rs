@@ -37,6 +37,9 @@ pub enum DrawingError {
     CutShort { format: &'static str, line: usize, marker: &'static str },
     #[error("this is a part ({0}), not a drawing: a drawing is a DXF or an SVG; a part is machined with a part's job")]
     NotADrawing(&'static str),
+    /// A file of another kind, known by its first bytes ([`crate::file_kind::Foreign`]).
+    #[error("the file is {}, not a drawing swarf reads (DXF or SVG): {}", .0.describe(), .0.for_a_drawing())]
+    Foreign(crate::file_kind::Foreign),
 }
 
 /// Drawing formats.
@@ -177,6 +180,9 @@ fn part_format(name: Option<&str>, bytes: &[u8]) -> Option<&'static str> {
 pub fn read_drawing(bytes: &[u8], name: Option<&str>, tol: &Tolerances) -> Result<Drawing, DrawingError> {
     if bytes.is_empty() {
         return Err(DrawingError::Empty);
+    }
+    if let Some(kind) = crate::file_kind::Foreign::of(name, bytes) {
+        return Err(DrawingError::Foreign(kind));
     }
     let mut pieces = match DrawingFormat::detect(name, bytes) {
         Some(DrawingFormat::Svg) => svg::read_svg(bytes, tol)?,

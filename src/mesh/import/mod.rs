@@ -20,6 +20,12 @@ pub enum ImportError {
     Empty,
     #[error("the file is not a part swarf can read (expected STL, glTF/GLB or OBJ)")]
     UnknownFormat,
+    /// A file of another kind, known by its first bytes ([`crate::file_kind::Foreign`]).
+    #[error("the file is {}, not a part swarf reads (STL, glTF/GLB or OBJ): {}", .0.describe(), .0.for_a_part())]
+    Foreign(crate::file_kind::Foreign),
+    /// A drawing given where a part is asked for.
+    #[error("the file is {0} drawing, not a 3D part: open it as a drawing (its loops are cut by the 2D operations), or give a part as STL, glTF/GLB or OBJ")]
+    Drawing(&'static str),
     #[error("the binary STL is truncated: it announces {announced} triangles ({expected} bytes) but has {actual} bytes")]
     StlSizeMismatch { announced: u32, expected: u64, actual: u64 },
     #[error("the STL file is broken: {0}")]
@@ -104,6 +110,15 @@ pub fn read_mesh(bytes: &[u8], format: MeshFormat, tolerances: &Tolerances) -> R
 pub fn read_mesh_auto(bytes: &[u8], name: Option<&str>, tolerances: &Tolerances) -> Result<Mesh, ImportError> {
     if bytes.is_empty() {
         return Err(ImportError::Empty);
+    }
+    if let Some(kind) = crate::file_kind::Foreign::of(name, bytes) {
+        return Err(ImportError::Foreign(kind));
+    }
+    let ext = name.and_then(|n| n.rsplit_once('.')).map(|(_, e)| e.to_ascii_lowercase());
+    match ext.as_deref() {
+        Some("dxf") => return Err(ImportError::Drawing("a DXF")),
+        Some("svg") => return Err(ImportError::Drawing("an SVG")),
+        _ => {}
     }
     let format = MeshFormat::detect(name, bytes).ok_or(ImportError::UnknownFormat)?;
     read_mesh(bytes, format, tolerances)
