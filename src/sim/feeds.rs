@@ -147,7 +147,7 @@ pub fn speed_up(paths: &mut [Toolpath], moves: &mut [ProgramMove], volumes: &[f6
     // A raised cut stays under the air feed, which marks a move in air ([`ProgramMove::air`]).
     let top = air_feed.ceil() - 1.0;
     let mut sped = Sped::default();
-    let mut to = Vec::new();
+    let (mut to, mut aired) = (Vec::new(), Vec::new());
     for (k, m) in moves.iter().enumerate() {
         let Some(feed) = m.mv.feed() else { continue };
         if !paths[places[k].0].cycles.is_empty() || m.mv.to().z < m.from.z - 1e-9 {
@@ -156,7 +156,7 @@ pub fn speed_up(paths: &mut [Toolpath], moves: &mut [ProgramMove], volumes: &[f6
         if volumes[k] <= 0.0 {
             if air_feed > feed {
                 to.push((k, air_feed));
-                sped.aired += 1;
+                aired.push(k);
             }
             continue;
         }
@@ -168,6 +168,11 @@ pub fn speed_up(paths: &mut [Toolpath], moves: &mut [ProgramMove], volumes: &[f6
         }
     }
     refeed(paths, moves, &places, to.into_iter());
+    // At the air feed, as a move its operation knew to be in air is ([`ProgramMove::air`]).
+    for &k in &aired {
+        moves[k].air = true;
+    }
+    sped.aired = aired.len();
     sped
 }
 
