@@ -4,6 +4,11 @@
 //! made of its bytes ("the binary STL is truncated: it announces 1225588736 triangles" for a
 //! PNG renamed `.stl`).
 
+/// A file name's extension, lower-cased ("STL" and "stl" alike), if it has one.
+pub fn extension(name: Option<&str>) -> Option<String> {
+    name.and_then(|n| n.rsplit_once('.')).map(|(_, e)| e.to_ascii_lowercase())
+}
+
 /// A kind of file swarf does not read, known by its signature.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Foreign {
@@ -23,7 +28,7 @@ impl Foreign {
     /// The kind `bytes` are by their signature, if one of these; `name`'s extension tells a 3MF
     /// package whose model is not named near its start.
     pub fn of(name: Option<&str>, bytes: &[u8]) -> Option<Foreign> {
-        let ext = name.and_then(|n| n.rsplit_once('.')).map(|(_, e)| e.to_ascii_lowercase());
+        let ext = extension(name);
         let head = &bytes[..bytes.len().min(4096)];
         let kind = if bytes.starts_with(b"\x89PNG\r\n\x1a\n") {
             Foreign::Png

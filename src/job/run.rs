@@ -463,7 +463,7 @@ impl Running {
         let first_path = self.paths.len();
         self.path_operations.extend(std::iter::repeat_n(k, paths.len()));
         self.paths.extend(paths);
-        let moves = timed_moves(&self.paths, first_path, self.all_moves.last(), &self.job.tools, (self.job.rapids(), self.job.air_feed()))?;
+        let moves = timed_moves(&self.paths, first_path, self.all_moves.last(), &self.job.tools, self.job.rapids(), self.job.air_feed())?;
         self.stopped_short(k, &moves);
         if !moves.is_empty() && (self.job.simulation.verify || self.next < self.enabled.len()) {
             self.pending = moves;
@@ -818,7 +818,7 @@ fn tool_larger_than_part(job: &Job, part: &Mesh) -> Option<(Warning, bool)> {
 }
 
 /// The moves of `paths[first..]`, timed on from the program's last move so far.
-fn timed_moves(paths: &[Toolpath], first: usize, last: Option<&ProgramMove>, tools: &[Tool], (rapids, air_feed): (crate::toolpath::Rapids, f64)) -> Result<Vec<ProgramMove>> {
+fn timed_moves(paths: &[Toolpath], first: usize, last: Option<&ProgramMove>, tools: &[Tool], rapids: crate::toolpath::Rapids, air_feed: f64) -> Result<Vec<ProgramMove>> {
     let clock = last.map_or(0.0, |m| m.start + m.seconds);
     let mut moves = program_moves(&paths[first..], tools, rapids, air_feed)?;
     for m in &mut moves {

@@ -939,14 +939,14 @@ impl Job {
         self.tools.iter().map(|t| crate::cutting::cutting_data(t, self.stock.material, &self.machine)).collect()
     }
 
-    /// How the job's rapids are timed: at its machine's rates per axis where known, else at
-    /// the post's `rapidRate` along each move.
     /// The feed of a G1 its operation knows cuts nothing: the stock's `airFeed` (the rapid
     /// rate by default), no faster than the machine's rapids or its feeds.
     pub fn air_feed(&self) -> f64 {
         self.stock.air_feed.unwrap_or(self.post.rapid_rate).min(self.post.rapid_rate).min(self.machine.max_feed)
     }
 
+    /// How the job's rapids are timed: at its machine's rates per axis where known, else at
+    /// the post's `rapidRate` along each move.
     pub fn rapids(&self) -> crate::toolpath::Rapids {
         crate::toolpath::Rapids { rate: self.post.rapid_rate, axes: self.machine.rapids }
     }

@@ -398,17 +398,20 @@ pub fn stitch(slices: Vec<Slice>, eps: f64) -> Vec<Loop> {
     let near = SNAP * 10.0 * eps;
     let mut loops = Vec::new();
     let mut open: Vec<Slice> = Vec::new();
+    let mut length = Vec::new();
     for s in slices {
+        let l: f64 = s.segs.iter().map(Segment::length).sum();
         if s.closed {
             loops.push(Loop::from_segments(&s.segs));
-        } else if s.segs.iter().map(Segment::length).sum::<f64>() > near {
+        } else if l > near {
             open.push(s);
+            length.push(l);
         }
     }
     let mut by_x: Vec<usize> = (0..open.len()).collect();
     by_x.sort_by(|&a, &b| open[a].start().x.total_cmp(&open[b].start().x));
     let xs: Vec<f64> = by_x.iter().map(|&i| open[i].start().x).collect();
-    let sliver: Vec<bool> = open.iter().map(|s| s.segs.iter().map(Segment::length).sum::<f64>() <= 10.0 * near).collect();
+    let sliver: Vec<bool> = length.iter().map(|&l| l <= 10.0 * near).collect();
     let starts: Vec<usize> = (0..open.len()).filter(|&k| !sliver[k]).chain((0..open.len()).filter(|&k| sliver[k])).collect();
     let mut used = vec![false; open.len()];
     for first in starts {

@@ -112,6 +112,16 @@ pub fn reach(nearest: f64, cell: f64) -> f64 {
     (nearest - cell * std::f64::consts::FRAC_1_SQRT_2).max(0.0)
 }
 
+/// [`thinning`] for a move whose nearest cut cell's centre was `nearest` from its path (∞:
+/// it only grazed, 0), on cells of side `cell`, by a cutter of radius `radius`.
+fn measured_thinning(nearest: f64, cell: f64, radius: f64) -> f64 {
+    if nearest.is_finite() {
+        thinning(reach(nearest, cell), radius)
+    } else {
+        0.0
+    }
+}
+
 /// The thickest chip of each move (mm per tooth, 0 for rapids and moves that cut nothing),
 /// measured: its feed per tooth at its tool's speed times [`thinning`] of its [`reach`].
 pub fn chips(moves: &[ProgramMove], volumes: &[f64], nearest: &[f64], cell: f64, tools: &[Tool]) -> Vec<f64> {
@@ -123,8 +133,7 @@ pub fn chips(moves: &[ProgramMove], volumes: &[f64], nearest: &[f64], cell: f64,
             if volume <= 0.0 || tool.spindle_rpm <= 0.0 {
                 return 0.0;
             }
-            let thin = if near.is_finite() { thinning(reach(near, cell), m.cutter.diameter * 0.5) } else { 0.0 };
-            feed / (tool.spindle_rpm * tool.flutes.max(1) as f64) * thin
+            feed / (tool.spindle_rpm * tool.flutes.max(1) as f64) * measured_thinning(near, cell, m.cutter.diameter * 0.5)
         })
         .collect()
 }
@@ -160,7 +169,7 @@ pub fn speed_up(paths: &mut [Toolpath], moves: &mut [ProgramMove], volumes: &[f6
             }
             continue;
         }
-        let thin = if nearest[k].is_finite() { thinning(reach(nearest[k], cell), m.cutter.diameter * 0.5) } else { 0.0 };
+        let thin = measured_thinning(nearest[k], cell, m.cutter.diameter * 0.5);
         let raised = (feed / thin.max(1.0 / MAX_SPEEDUP)).floor().min(top);
         if raised > feed {
             to.push((k, raised));

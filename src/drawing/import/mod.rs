@@ -52,7 +52,7 @@ pub enum DrawingFormat {
 impl DrawingFormat {
     /// From the file name's extension, then from the content.
     pub fn detect(name: Option<&str>, bytes: &[u8]) -> Option<DrawingFormat> {
-        match name.and_then(|n| n.rsplit_once('.')).map(|(_, e)| e.to_ascii_lowercase()).as_deref() {
+        match crate::file_kind::extension(name).as_deref() {
             Some("dxf") => return Some(DrawingFormat::Dxf),
             Some("svg") => return Some(DrawingFormat::Svg),
             _ => {}
@@ -165,7 +165,7 @@ impl Pieces {
 /// The part format a file plainly is (by its name, a GLB's magic or an STL's `solid`), to
 /// say so rather than read its bytes as a DXF's.
 fn part_format(name: Option<&str>, bytes: &[u8]) -> Option<&'static str> {
-    let ext = name.and_then(|n| n.rsplit_once('.')).map(|(_, e)| e.to_ascii_lowercase());
+    let ext = crate::file_kind::extension(name);
     match ext.as_deref() {
         Some("stl") => Some("an STL"),
         Some("obj") => Some("an OBJ"),

@@ -62,7 +62,7 @@ pub enum MeshFormat {
 impl MeshFormat {
     /// Guesses the format from the file name's extension, then from the content.
     pub fn detect(name: Option<&str>, bytes: &[u8]) -> Option<MeshFormat> {
-        let ext = name.and_then(|n| n.rsplit_once('.')).map(|(_, e)| e.to_ascii_lowercase());
+        let ext = crate::file_kind::extension(name);
         match ext.as_deref() {
             Some("stl") => return Some(MeshFormat::Stl),
             Some("gltf") => return Some(MeshFormat::Gltf),
@@ -114,7 +114,7 @@ pub fn read_mesh_auto(bytes: &[u8], name: Option<&str>, tolerances: &Tolerances)
     if let Some(kind) = crate::file_kind::Foreign::of(name, bytes) {
         return Err(ImportError::Foreign(kind));
     }
-    let ext = name.and_then(|n| n.rsplit_once('.')).map(|(_, e)| e.to_ascii_lowercase());
+    let ext = crate::file_kind::extension(name);
     match ext.as_deref() {
         Some("dxf") => return Err(ImportError::Drawing("a DXF")),
         Some("svg") => return Err(ImportError::Drawing("an SVG")),
