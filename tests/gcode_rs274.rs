@@ -745,3 +745,46 @@ fn a_program_in_inches_follows_the_mm_programs_path() {
         compare(&actual, &expected_at(&out.paths, out.clearance_z, 1.0 / units.mm(), Some(2.0 * resolution)), resolution);
     }
 }
+
+/// Issue 62: every comment fits its control's line, broken between words, and holds none of
+/// the post's reserved characters: a job and a tool named at 300 characters with a `%` in
+/// them, a tip diameter of 1e-300, the GRBL tool-change note.
+#[test]
+fn every_comment_fits_its_controls_line_whole_words_and_no_reserved_characters() {
+    use swarf::post::write_program;
+    let long = |what: &str| format!("{what} 50% {}", "walnut sign with rounded letters ".repeat(9)).trim_end().to_owned();
+    let tools = vec![Tool { number: 1, name: long("tool"), cutter: Cutter::ball(6.0), ..Tool::default() }, Tool { number: 2, cutter: Cutter::v_bit(6.0, 60.0, 1e-300), ..Tool::default() }];
+    let ops = vec![
+        Operation::FinishRaster(FinishRaster { name: long("operation"), tool: 1, stepover: 2.0, grid: 0.5, ..FinishRaster::default() }),
+        Operation::FinishRaster(FinishRaster { tool: 2, stepover: 3.0, grid: 0.5, angle: 90.0, ..FinishRaster::default() }),
+    ];
+    let job = Job { name: long("job"), tools: tools.clone(), operations: ops, simulation: swarf::job::Simulation { verify: false, ..Default::default() }, ..Job::default() };
+    let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
+    for dialect in Dialect::ALL {
+        let post = dialect.post();
+        let max = post.max_line_length.unwrap_or_else(|| panic!("{dialect:?} names the longest line its control reads"));
+        let settings = PostSettings { dialect, ..PostSettings::default() };
+        let (gcode, _) = write_program(&job.name, &out.paths, &tools, out.clearance_z, &settings).unwrap();
+        for line in gcode.lines() {
+            assert!(line.chars().count() <= max, "{dialect:?}: a line of {} characters, more than {max}: {line}", line.chars().count());
+            if post.tape_marked() && line != "%" {
+                assert!(!line.contains('%'), "{dialect:?}: a % inside the program ends it on the control: {line}");
+            }
+        }
+        // Every comment's words whole: the comments joined again hold each name and note in full.
+        let said: String = gcode.lines().filter_map(|l| l.split_once(['(', ';']).map(|(_, c)| c.trim_end_matches(')').trim().to_owned())).collect::<Vec<_>>().join(" ");
+        let percent = if post.tape_marked() { " percent" } else { "%" };
+        for name in [&job.name, &tools[0].name] {
+            let words = name.replace('%', percent);
+            assert!(said.contains(&words), "{dialect:?}: {words:?} not whole in the comments:\n{said}");
+        }
+        if dialect == Dialect::Grbl {
+            assert!(said.contains("then set Z zero again with the new tool -touch off- and resume"), "{said}");
+            common::grblcheck(&gcode).map(|r| r.unwrap_or_else(|e| panic!("GRBL 1.1h's own parser refuses the program: {e}")));
+        }
+        // LinuxCNC reads every line of its own dialect's and of the RS-274 posts'.
+        if matches!(dialect, Dialect::LinuxCnc | Dialect::Mach3 | Dialect::Generic | Dialect::Grbl) {
+            common::rs274(&gcode, &tools);
+        }
+    }
+}

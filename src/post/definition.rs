@@ -272,6 +272,27 @@ impl Post {
         Ok(())
     }
 
+    /// The comment lines for `text`, in the post's style: one line where it fits the control's
+    /// line (`maxLineLength`, less a line number), else broken between words into lines that
+    /// do; none for a post without comments.
+    pub fn comment_lines(&self, text: &str) -> Vec<String> {
+        let Some(line) = self.comment(text) else { return Vec::new() };
+        let Some(max) = self.max_line_length else { return vec![line] };
+        let number = self.line_numbers.map_or(0, |n| format!("N{} ", n.max).len());
+        let width = max.saturating_sub(number);
+        if line.chars().count() <= width {
+            return vec![line];
+        }
+        let marks = line.chars().count() - self.comment_text(text).chars().count();
+        wrap(&self.comment_text(text), width.saturating_sub(marks)).iter().filter_map(|l| self.comment(l)).collect()
+    }
+
+    /// Whether the program is marked by `%` at its start or end (Fanuc's tape marks): a `%`
+    /// elsewhere ends it, so its comments may not hold one.
+    pub fn tape_marked(&self) -> bool {
+        self.header.iter().chain(&self.footer).any(|l| l.trim() == "%")
+    }
+
     /// The comment line for `text`, in the post's style (none for a post without comments).
     pub fn comment(&self, text: &str) -> Option<String> {
         let text = self.comment_text(text);
@@ -347,9 +368,13 @@ pub fn ascii(text: &str) -> String {
 
 impl Post {
     /// `text` as its comments may hold it: no parentheses (they would end the comment early),
-    /// and in ASCII where the post says so.
+    /// no `%` in a program marked by it (it would end the program), and in ASCII where the post
+    /// says so.
     pub fn comment_text(&self, text: &str) -> String {
-        let text = comment(text);
+        let mut text = comment(text);
+        if self.tape_marked() {
+            text = text.replace('%', " percent");
+        }
         match self.comment_characters {
             CommentCharacters::Ascii => ascii(&text),
             CommentCharacters::Any => text,

@@ -565,16 +565,26 @@ fn fit(line: &str, max: usize) -> Option<String> {
     if note.is_empty() {
         return Some(code);
     }
+    // Cut between words where a space leaves more than half the room, else within the word.
+    let cut = |text: &str, room: usize| -> String {
+        let head: String = text.chars().take(room).collect();
+        if head.chars().count() == text.chars().count() {
+            return head;
+        }
+        match head.rfind(' ') {
+            Some(k) if k > room / 2 => head[..k].trim_end().to_owned(),
+            _ => head,
+        }
+    };
     let note = if note.starts_with('(') {
         // Keep the parenthesis that closes it.
         if room < 2 {
             String::new()
         } else {
-            let inner: String = note[1..note.len() - 1].chars().take(room - 2).collect();
-            format!("({inner})")
+            format!("({})", cut(&note[1..note.len() - 1], room - 2))
         }
     } else {
-        note.chars().take(room).collect()
+        cut(note, room)
     };
     Some(format!("{code}{note}").trim_end().to_owned())
 }
@@ -614,9 +624,7 @@ impl<'a> Writer<'a> {
     }
 
     fn comment(&mut self, text: &str) {
-        if let Some(c) = self.post.comment(text) {
-            self.lines.push(c);
-        }
+        self.lines.extend(self.post.comment_lines(text));
     }
 
     fn coolant_on(&mut self, tool: Option<&Tool>) {
