@@ -514,3 +514,35 @@ fn a_gltf_fan_over_a_flat_convex_polygon_is_a_strip_and_any_other_fan_is_kept() 
         assert!(widest(&ts) > 0.01, "{what}: the file's own triangles reach across");
     }
 }
+
+/// Issue 62: a part read in the wrong unit is said at load, beside its size, with the unit
+/// that would make it a part: the sample drawn in inches (3.5 mm across as millimetres), in
+/// metres (0.09 mm), and at its own size nothing.
+#[test]
+fn a_part_in_the_wrong_unit_is_said_at_load_with_its_likely_unit() {
+    use swarf::mesh::placement::PartUnits;
+    let part = swarf::mesh::sample::demo_part();
+    let across = |m: &swarf::mesh::Mesh| {
+        let s = m.bounds().size();
+        s.x.max(s.y).max(s.z)
+    };
+    let full = across(&part);
+    let said = |k: f64| {
+        let mut m = part.clone();
+        for v in &mut m.vertices {
+            *v /= k;
+        }
+        swarf::job::part_warnings(&m).iter().map(|w| w.to_string()).collect::<Vec<_>>().join("\n")
+    };
+    let inch = said(25.4);
+    assert!(inch.contains(&format!("Read in inches it would be {} mm across (Units of the file: inch", full.round())), "{inch}");
+    let metre = said(1000.0);
+    assert!(metre.contains(&format!("Read in metres it would be {} mm across (Units of the file: metres", full.round())), "{metre}");
+    assert!(!said(1.0).contains("Units of the file"));
+    // The unit that makes it a part, or none where none does.
+    assert_eq!(PartUnits::likely(1.69).map(|(u, _, mm)| (u, (mm * 10.0).round() / 10.0)), Some(("inches", 42.9)));
+    assert_eq!(PartUnits::likely(0.23).map(|(u, _, mm)| (u, mm.round())), Some(("metres", 230.0)));
+    assert_eq!(PartUnits::likely(50.0), None);
+    assert_eq!(PartUnits::likely(0.0001), None);
+    assert_eq!(PartUnits::likely(100_000.0).map(|(u, c, mm)| (u, c, mm.round())), Some(("millimetres", "mm", 100.0)));
+}

@@ -786,11 +786,35 @@ pub fn part_warnings(mesh: &Mesh) -> Vec<Warning> {
     if mesh.dropped_degenerate > 0 {
         out.push(Warning::job(format!("{} degenerate triangles (zero area) were ignored", mesh.dropped_degenerate)).note());
     }
+    let size = mesh.bounds().size();
+    let across = size.x.max(size.y).max(size.z);
+    if let Some((unit, choice, mm)) = crate::mesh::placement::PartUnits::likely(across) {
+        let [low, high] = crate::mesh::placement::LIKELY_ACROSS;
+        let side = if across < low { format!("under {low} mm") } else { format!("over {high} mm") };
+        out.push(Warning::job(format!(
+            "the part is {} × {} × {} mm, {side} across: is the file in another unit? Read in {unit} it would be {} mm across (Units of the file: {choice}; part.units in a job file)",
+            size_shown(size.x),
+            size_shown(size.y),
+            size_shown(size.z),
+            size_shown(mm)
+        )));
+    }
     let open = mesh.open_edges();
     if !open.is_empty() {
         out.push(Warning::counted(None, "edges of the part's surface border one triangle only: it has holes, and a cutter goes down through them (a file cut short or a bad export?)", &open));
     }
     out
+}
+
+/// A size as a warning says it: three significant figures, at most three decimals.
+fn size_shown(mm: f64) -> String {
+    let decimals = (2 - mm.abs().max(1e-3).log10().floor() as i32).clamp(0, 3) as usize;
+    let text = format!("{mm:.decimals$}");
+    if text.contains('.') {
+        text.trim_end_matches('0').trim_end_matches('.').to_owned()
+    } else {
+        text
+    }
 }
 
 /// A warning when the smallest tool the job uses is wider than the placed part is in X or Y:
@@ -801,7 +825,12 @@ fn tool_larger_than_part(job: &Job, part: &Mesh) -> Option<(Warning, bool)> {
     let smallest = job.tools.iter().filter(|t| used.is_empty() || used.contains(&t.number)).min_by(|a, b| a.cutter.diameter.total_cmp(&b.cutter.diameter))?;
     let size = part.bounds().size();
     let d = smallest.cutter.diameter;
-    let unit = format!("is its unit right? (part.units: {:?}, part.scale: {})", job.part.units, job.part.scale);
+    let across = size.x.max(size.y).max(size.z);
+    let setting = format!("in a job file part.units: {:?}, part.scale: {}", job.part.units, job.part.scale);
+    let unit = match crate::mesh::placement::PartUnits::likely(across) {
+        Some((unit, choice, mm)) => format!("is its unit right? Read in {unit} it would be {} mm across (Units of the file: {choice}; {setting})", size_shown(mm)),
+        None => format!("is its unit right? (Units of the file; {setting})"),
+    };
     if d > size.x.max(size.y) {
         Some((Warning::job(format!("the part is {:.2} × {:.2} × {:.2} mm, smaller than the φ{d} tool T{}: {unit}", size.x, size.y, size.z, smallest.number)), true))
     } else if d > size.x.min(size.y) {

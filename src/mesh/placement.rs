@@ -101,6 +101,27 @@ impl PartUnits {
     }
 }
 
+/// The sizes a part milled on a CNC is likely to have across (mm): smaller or larger, it was
+/// most likely read in the wrong unit.
+pub const LIKELY_ACROSS: [f64; 2] = [5.0, 3000.0];
+
+impl PartUnits {
+    /// For a part `across` mm at its widest, outside [`LIKELY_ACROSS`]: the unit that would
+    /// make it a size parts have (its name, and the words of the page's choice for it) and the
+    /// size it would then have. Inches before metres for a small part (a part drawn in inches
+    /// is the common slip, one in metres the rarer); millimetres for a large one read in
+    /// inches or metres.
+    pub fn likely(across: f64) -> Option<(&'static str, &'static str, f64)> {
+        let [low, high] = LIKELY_ACROSS;
+        let fits = |mm: f64| (2.0 * low..=high).contains(&mm);
+        if !across.is_finite() || across <= 0.0 || (low..=high).contains(&across) {
+            return None;
+        }
+        let candidates: &[(&str, &str, f64)] = if across < low { &[("inches", "inch", 25.4), ("metres", "metres", 1000.0)] } else { &[("millimetres", "mm", 1.0 / 25.4), ("millimetres", "mm", 1e-3)] };
+        candidates.iter().map(|&(unit, choice, k)| (unit, choice, across * k)).find(|&(_, _, mm)| fits(mm))
+    }
+}
+
 /// How to read a part's coordinates.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(default, rename_all = "camelCase")]

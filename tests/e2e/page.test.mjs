@@ -808,9 +808,12 @@ test('a glTF part is read in metres, the user can say mm or scale it, and a part
   await page.selectOption('select[name=partUnits]', 'mm');
   await page.waitForFunction(() => /0\.040 × 0\.030 × 0\.010 mm/.test(document.getElementById('part-size').textContent));
   assert.match(await page.textContent('#part-size .override'), /read in mm/);
+  // Said at load, beside its size, with the unit that would make it a part (issue 62).
+  await page.waitForFunction(() => /Read in metres it would be 40 mm across \(Units of the file: metres/.test(document.getElementById('part-notes').textContent));
   await page.fill('input[name=partScale]', '500');
   await page.press('input[name=partScale]', 'Tab');
   await page.waitForFunction(() => /20\.0 × 15\.0 × 5\.00 mm/.test(document.getElementById('part-size').textContent));
+  await page.waitForFunction(() => !/Units of the file/.test(document.getElementById('part-notes').textContent));
   assert.match(await page.textContent('#part-size .override'), /read in mm, scaled × 500/);
   // At a tenth of its size (4 × 3 × 1 mm) the tool is larger than the part: the page says so,
   // and refuses the run at once (issue 55: a tool wider than the whole part reaches nothing of
