@@ -210,3 +210,39 @@ fn the_shared_drawings_carve_clean() {
         println!("{name}: {} moves, {:.0} s on the machine, {:.2} s to plan and verify", out.moves.len(), out.stats.seconds, started.elapsed().as_secs_f64());
     }
 }
+
+/// Issue 62: with no loops picked, a sign of letters drawn on a background rectangle carves
+/// the letters (the regions the cone reaches across), not the background, and says which it
+/// left and why; the letters' stock is as when they are drawn alone, the background untouched.
+#[test]
+fn with_nothing_picked_a_sign_carves_its_letters_not_its_background() {
+    let sign = LETTERS.replace("<rect x=\"5\"", "<rect x=\"0\" y=\"0\" width=\"100\" height=\"60\"/>\n  <rect x=\"5\"");
+    let drawing = swarf::drawing::import::read_drawing(sign.as_bytes(), Some("sign.svg"), &Tolerances::DEFAULT).unwrap();
+    let (job, _) = carving(VCarve::default());
+    let out = job::run(&job, drawing.clone(), &mut Progress::none()).expect("carved");
+    let v = out.verification.as_ref().unwrap();
+    assert!(v.report.is_clean(), "{}", v.report.describe());
+    let said = out.warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>().join("\n");
+    assert!(said.contains("no loops picked") && said.contains("not that background") && said.contains("(100.0 × 60.0 mm)") && said.contains("Loops"), "{said}");
+    assert!(!said.contains("carved flat"), "{said}");
+    // The letters: the sign's loops but its largest, as placed.
+    let all = placed(&job, &drawing);
+    let largest = all.loops.iter().map(|l| l.area().abs()).fold(0.0, f64::max);
+    let letters = Shape::new(all.loops.iter().filter(|l| l.area().abs() < largest).cloned().collect());
+    let (mut inside, mut outside) = (0, 0);
+    for (p, holds, d, top) in common::cells(&v.stock, &letters) {
+        if holds && d > 0.02 {
+            assert!((top + d).abs() < 0.02, "at {p:?}, {d:.3} mm into a letter: the stock at {top:.4}");
+            inside += 1;
+        } else if !holds && d > 0.02 {
+            assert!(top >= -1e-9, "at {p:?}, {d:.3} mm outside the letters (the background, the ring's island): cut to {top:.4}");
+            outside += 1;
+        }
+    }
+    assert!(inside > 50_000 && outside > 100_000, "{inside} cells inside, {outside} outside");
+    // Picked, the background is carved (flat, as deep as the cone goes), as asked.
+    let (mut picked, _) = carving(VCarve { loops: vec![0], ..VCarve::default() });
+    picked.simulation.verify = false;
+    let out = job::run(&picked, drawing, &mut Progress::none()).expect("carved");
+    assert!(out.warnings.iter().any(|w| w.to_string().contains("carved flat")), "{:?}", out.warnings);
+}

@@ -214,6 +214,25 @@ impl Shape {
         Shape { loops }
     }
 
+    /// Each loop's parent: the innermost loop around it (position in `loops`), none for an
+    /// outermost one.
+    pub fn parents(&self) -> Vec<Option<usize>> {
+        let bounds: Vec<Rect> = self.loops.iter().map(|l| l.bounds()).collect();
+        let index = crate::geom::index::RectIndex::new(&bounds);
+        (0..self.loops.len())
+            .map(|i| {
+                let p = self.loops[i].probe_point();
+                let mut parent: Option<usize> = None;
+                index.query(&bounds[i], |j| {
+                    if j != i && bounds[j].overlaps(&bounds[i]) && encloses(&self.loops[j], &self.loops[i], p) && parent.is_none_or(|k| self.loops[j].area().abs() < self.loops[k].area().abs()) {
+                        parent = Some(j);
+                    }
+                });
+                parent
+            })
+            .collect()
+    }
+
     /// A shape whose loops already run the right way.
     pub fn from_oriented(loops: Vec<Loop>) -> Shape {
         Shape { loops }

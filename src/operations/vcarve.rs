@@ -104,7 +104,6 @@ impl Operate for VCarve {
         let (drawing, thickness) = sheet::sheet(ctx, &self.name)?;
         let (walls, picked) = sheet::selected(drawing, &self.name, &self.layers, &self.loops)?;
         let picked: Vec<Loop> = picked.iter().map(|&k| walls.shape.loops[k].clone()).collect();
-        let region = sheet::pocket_region(&walls.shape, &picked, self.loops.is_empty());
         let tan = (cutter.point_angle().to_radians() / 2.0).tan();
         let tip = cutter.tip_radius();
         // The clearance at which the cone is as deep as it may go: its own height, the sheet,
@@ -112,6 +111,16 @@ impl Operate for VCarve {
         let cone_depth = (cutter.radius() - tip) / tan;
         let deepest = self.max_depth.unwrap_or(f64::INFINITY).min(cone_depth).min(thickness);
         let c_max = tip + deepest * tan;
+        let region = if self.loops.is_empty() && self.max_depth.is_none() {
+            let reach = format!("wider than T{}'s cone reaches at {deepest:.3} mm", tool.number);
+            let (region, note) = carvable(&walls.shape, &walls.index, c_max, &reach, ctx);
+            if let Some(note) = note {
+                ctx.warn(&self.name, format!("no loops picked: {note}; pick loops (Loops) to carve such regions, flat with maxDepth and a flatTool"));
+            }
+            region
+        } else {
+            sheet::pocket_region(&walls.shape, &picked, self.loops.is_empty())
+        };
         let top = ctx.stock.max.z;
         let z_at = |c: f64| top - ((c.min(c_max) - tip).max(0.0) / tan);
         let axis = medial_axis(&region, ctx.tolerances.arc_fit, STEP, c_max).map_err(|e| Error::operation(&self.name, e))?;
@@ -191,6 +200,62 @@ impl Operate for VCarve {
         let cuts = vec![SheetCut { region, inside: true, depth: deepest, leave: 0.0 }];
         Ok(Planned { paths, cuts, ..Planned::default() })
     }
+}
+
+/// With no loops picked, the regions a V-bit carves: of the drawing's regions as its loops
+/// nest (each loop with the loops just inside it as holes), those at even depths (what the
+/// file fills) or, where those hold a region wider than the cone reaches (`c_max`, its
+/// clearance at the deepest it may go) and the odd ones leave less such area, those at odd
+/// depths: on a sign of letters drawn on a background rectangle, the letters. Of the chosen
+/// regions only those the cone reaches across are kept, and the note names the rest by their
+/// drawing index (`index`) and size, and why (`reach`). Where no region is narrow enough, the drawing as it is
+/// (carved flat, with the operation's own warning).
+fn carvable(shape: &Shape, index: &[usize], c_max: f64, reach: &str, ctx: &Context) -> (Shape, Option<String>) {
+    let parents = shape.parents();
+    let mut depth = vec![0usize; parents.len()];
+    for (i, d) in depth.iter_mut().enumerate() {
+        let mut at = parents[i];
+        while let Some(p) = at {
+            *d += 1;
+            at = parents[p];
+        }
+    }
+    let regions: Vec<Shape> = (0..shape.loops.len())
+        .map(|i| {
+            let mut loops = vec![shape.loops[i].counter_clockwise()];
+            loops.extend((0..parents.len()).filter(|&j| parents[j] == Some(i)).map(|j| shape.loops[j].counter_clockwise().reversed()));
+            Shape::from_oriented(loops)
+        })
+        .collect();
+    let reached: Vec<bool> = regions.iter().map(|r| offset(r, -(c_max + 1e-6), &ctx.tolerances).is_empty()).collect();
+    let wide = |parity: usize| -> f64 { (0..regions.len()).filter(|&i| depth[i] % 2 == parity && !reached[i]).map(|i| regions[i].area().abs()).sum() };
+    let (even, odd) = (wide(0), wide(1));
+    if even == 0.0 {
+        return (shape.clone(), None);
+    }
+    let parity = usize::from(odd < even);
+    let kept: Vec<usize> = (0..regions.len()).filter(|&i| depth[i] % 2 == parity && reached[i]).collect();
+    if kept.is_empty() {
+        return (shape.clone(), None);
+    }
+    let named = |want: usize| -> String {
+        let list: Vec<String> = (0..regions.len())
+            .filter(|&i| depth[i] % 2 == want && !reached[i])
+            .map(|i| {
+                let size = shape.loops[i].bounds().size();
+                format!("loop {} ({:.1} × {:.1} mm)", index[i], size.x, size.y)
+            })
+            .collect();
+        list.join(", ")
+    };
+    let note = if parity == 1 {
+        let also = if odd > 0.0 { format!("; left {} too", named(1)) } else { String::new() };
+        format!("carved the {} regions inside {}, not that background (letters on a background): it is {reach}{also}", kept.len(), named(0))
+    } else {
+        format!("carved the {} regions the V-bit reaches across; left {}: {reach}", kept.len(), named(0))
+    };
+    let loops: Vec<Loop> = kept.iter().flat_map(|&i| regions[i].loops.clone()).collect();
+    (Shape::from_oriented(loops), Some(note))
 }
 
 /// The flat floor's moves: the floor (the region shrunk by the clearance at the full depth)
