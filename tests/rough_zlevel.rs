@@ -611,3 +611,23 @@ fn the_shared_parts_roughed_by_levels_verify_clean() {
         clean(&out);
     }
 }
+
+/// Issue 62: a roughing after a larger tool's is named rest roughing in its report, with
+/// what it took of the leftovers; the first is not, nor is a second roughing with the same or
+/// a larger tool.
+#[test]
+fn a_roughing_after_a_larger_tool_is_reported_as_rest_roughing_with_what_it_took() {
+    let op = |name: &str, tool: u32| Operation::RoughZlevel(RoughZlevel { name: name.into(), tool, steps: Steps { stepdown: 3.0, ..Steps::default() }, ..RoughZlevel::default() });
+    let job = Job { tools: vec![flat(1, 10.0), flat(2, 4.0)], operations: vec![op("big", 1), op("small", 2)], ..Job::default() };
+    let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
+    clean(&out);
+    let (big, small) = (&out.operations[0], &out.operations[1]);
+    assert!(big.rest_after.is_empty() && small.rest_after == vec![1], "{:?} {:?}", big.rest_after, small.rest_after);
+    let (a, b) = (big.removed.unwrap(), small.removed.unwrap());
+    assert!(b > 0.0 && b < 0.2 * a, "the rest pass took {b:.0} mm³ after {a:.0}");
+    assert!(small.describe().contains("rest roughing after T1") && !big.describe().contains("rest roughing"), "{}", small.describe());
+    // The other way round: the small tool first, the big one is no rest roughing.
+    let swapped = Job { operations: vec![op("small", 2), op("big", 1)], simulation: Simulation { verify: false, ..Simulation::default() }, ..job };
+    let out = job::run(&swapped, demo_part(), &mut Progress::none()).unwrap();
+    assert!(out.operations.iter().all(|o| o.rest_after.is_empty()));
+}

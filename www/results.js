@@ -119,7 +119,8 @@ function summaryTable(s, computed) {
   const ops = new Map(s.operations.map((o) => [o.name, o]));
   for (const item of s.time) {
     const o = ops.get(item.label.replace(/ with T.*$/, ''));
-    const extra = o && o.removed != null ? `${units.volume(o.removed)} removed, peak ${units.volume(o.mrrMax)}/min${o.powerMax != null ? ` (${o.powerMax.toFixed(2)} kW)` : ''}${o.leftMax != null ? `, leaves ≤ ${units.sized(o.leftMax)}` : ''}` : '';
+    const rest = o?.restAfter?.length ? `rest roughing after ${o.restAfter.map((t) => `T${t}`).join(', ')}: ` : '';
+    const extra = o && o.removed != null ? `${rest}${units.volume(o.removed)} removed, peak ${units.volume(o.mrrMax)}/min${o.powerMax != null ? ` (${o.powerMax.toFixed(2)} kW)` : ''}${o.leftMax != null ? `, leaves ≤ ${units.sized(o.leftMax)}` : ''}` : '';
     tr([`  ${item.label}`, clock(item.seconds), extra]);
   }
   tr(['  total', clock(s.time.reduce((a, i) => a + i.seconds, 0)), `(${clockFormat(s.cycle.seconds)})`], 'total');

@@ -6,6 +6,7 @@ use serde::Serialize;
 
 use super::schema::Job;
 use crate::machining::report::{LoadReport, StageReport};
+use crate::operations::Operation;
 use crate::sim::program::ProgramMove;
 use crate::sim::verify::Verification;
 use crate::zmap::HeightField;
@@ -43,12 +44,20 @@ pub struct OperationReport {
     pub load: Option<LoadReport>,
     /// The stages of an operation that chose its tools (seed 000): each tool, why, and what it did.
     pub stages: Option<Vec<StageReport>>,
+    /// For a roughing after earlier work with larger tools (rest roughing: it cuts only what
+    /// they left, the in-process stock), those tools, largest first; `removed` is what it took
+    /// of their leftovers.
+    pub rest_after: Vec<u32>,
 }
 
 impl OperationReport {
     /// One line for a person.
     pub fn describe(&self) -> String {
         let mut s = format!("{}: {:.0} s, {:.0} mm fed, {:.0} mm rapid", self.name, self.seconds, self.feed_length, self.rapid_length);
+        if !self.rest_after.is_empty() {
+            let after: Vec<String> = self.rest_after.iter().map(|t| format!("T{t}")).collect();
+            s += &format!(", rest roughing after {}", after.join(", "));
+        }
         if let (Some(v), Some(m)) = (self.removed, self.mrr_max) {
             s += &format!(", removed {v:.0} mm³, peak MRR {m:.0} mm³/min");
             if let Some(p) = self.power_max {
@@ -123,7 +132,8 @@ pub fn per_operation(
         .map(|&i| (i, &job.operations[i]))
         .zip(ranges)
         .zip(snapshots)
-        .map(|(((index, op), range), snapshot)| {
+        .enumerate()
+        .map(|(n, (((index, op), range), snapshot))| {
             let mine = &moves[range.clone()];
             let mut tools: Vec<u32> = Vec::new();
             let (mut seconds, mut feed_length, mut rapid_length) = (0.0, 0.0, 0.0);
@@ -163,7 +173,26 @@ pub fn per_operation(
                 }
                 _ => (None, None),
             };
+            // Rest roughing: a roughing after operations that removed material with larger tools.
+            let diameter = |t: u32| job.tools.iter().find(|x| x.number == t).map_or(0.0, |x| x.cutter.diameter);
+            let mut rest_after: Vec<u32> = Vec::new();
+            if op.is_roughing() {
+                let mine = tools.iter().map(|&t| diameter(t)).fold(f64::INFINITY, f64::min);
+                for (k, r) in ranges[..n].iter().enumerate() {
+                    let cut = r.end <= volumes.len() && volumes[r.clone()].iter().sum::<f64>() > 0.0;
+                    if !cut || matches!(job.operations[enabled[k]], Operation::Face(_)) {
+                        continue;
+                    }
+                    for m in &moves[r.clone()] {
+                        if diameter(m.tool) > mine + 1e-9 && !rest_after.contains(&m.tool) {
+                            rest_after.push(m.tool);
+                        }
+                    }
+                }
+                rest_after.sort_by(|a, b| diameter(*b).total_cmp(&diameter(*a)));
+            }
             OperationReport {
+                rest_after,
                 index,
                 name: op.name().to_string(),
                 tools,

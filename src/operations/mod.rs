@@ -169,6 +169,12 @@ impl Operation {
     pub fn allowance(&self) -> f64 {
         self.op().allowance()
     }
+
+    /// Whether it roughs a part (after a larger tool it is rest roughing: each cuts only
+    /// what the in-process stock still holds).
+    pub fn is_roughing(&self) -> bool {
+        matches!(self, Operation::RoughZlevel(_) | Operation::RoughZigzag(_) | Operation::RoughOctree(_))
+    }
 }
 
 #[cfg(test)]

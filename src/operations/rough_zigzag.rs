@@ -279,6 +279,7 @@ impl Operate for RoughZigzag {
             F::length("pixel", "Load map's pixel", 0.001).empty("the step-over / 24"),
         ]);
         OperationForm::new("rough by zigzag passes (even load)", fields)
+            .hint("Rest roughing: after a larger tool it cuts only what that tool left (the in-process stock), never the air it cleared; the results say what it took.")
     }
 
     fn stepdown(&self) -> Option<f64> {

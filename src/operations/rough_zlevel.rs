@@ -64,6 +64,7 @@ impl Operate for RoughZlevel {
             F::length("helixRadius", "Helix radius", 0.01).empty("0.4 × the tool's diameter"),
         ]);
         OperationForm::new("rough in levels", fields)
+            .hint("Rest roughing: after a larger tool it cuts only what that tool left (the in-process stock), never the air it cleared; the results say what it took.")
     }
 
     fn stepdown(&self) -> Option<f64> {

@@ -1102,7 +1102,13 @@ load: LoadReport | null,
 /**
  * The stages of an operation that chose its tools (seed 000): each tool, why, and what it did.
  */
-stages: Array<StageReport> | null, };
+stages: Array<StageReport> | null, 
+/**
+ * For a roughing after earlier work with larger tools (rest roughing: it cuts only what
+ * they left, the in-process stock), those tools, largest first; `removed` is what it took
+ * of their leftovers.
+ */
+restAfter: Array<number>, };
 
 /**
  * The order a level-by-level roughing cuts in (`order` of z-level roughing).
