@@ -158,13 +158,35 @@ export function drawMrr() {
     g.fillStyle = '#2b8a3e';
     g.fillText(`even load ${Math.round(m.load.rate).toLocaleString()}`, x0 + 3 * dpr, Math.max(11 * dpr, y(m.load.rate) - 3 * dpr));
   });
-  // The operations: a line in each one's colour where it starts, and its name.
-  for (const m of sim.marks) {
+  // The operations: a line in each one's colour where it starts, and its name on a light
+  // ground, in the lowest of two rows where it clears the names before it; where neither row
+  // has room before the next operation's line, shortened with an ellipsis (its whole name in
+  // the plot's tooltip). Where the names went is kept on the canvas for the page tests.
+  const rows = [h - 3 * dpr, h - 17 * dpr], ends = [-Infinity, -Infinity], labels = [];
+  sim.marks.forEach((m, k) => {
     const mx = Math.round((m.t / total) * w), c = opColor(m.index).slice(0, 3).map((v) => Math.round(v * 255));
     g.fillStyle = `rgb(${c.join(',')})`;
     g.fillRect(mx, 0, dpr, h);
-    if (sim.marks.length > 1) g.fillText(m.name, mx + 3 * dpr, h - 3 * dpr);
-  }
+    if (sim.marks.length < 2) return;
+    const x0 = mx + 3 * dpr, next = k + 1 < sim.marks.length ? (sim.marks[k + 1].t / total) * w : w;
+    let text = m.name, width = g.measureText(text).width;
+    const free = ends.map((end) => end + 4 * dpr <= x0), rooms = [Math.max(0, next - 2 * dpr - x0), w - x0];
+    const row = free[0] && width <= rooms[0] ? 0 : free[1] && width <= rooms[1] ? 1 : free[0] ? 0 : free[1] ? 1 : -1;
+    if (row < 0) return;
+    while (width > rooms[row] && text.length > 1) {
+      text = `${text.replace(/…$/, '').slice(0, -1)}…`;
+      width = g.measureText(text).width;
+    }
+    if (width > rooms[row]) return;
+    g.fillStyle = 'rgba(255, 255, 255, 0.85)';
+    g.fillRect(x0 - dpr, rows[row] - 11 * dpr, width + 2 * dpr, 13 * dpr);
+    g.fillStyle = `rgb(${c.join(',')})`;
+    g.fillText(text, x0, rows[row]);
+    ends[row] = x0 + width;
+    labels.push({ name: m.name, text, row, x0: x0 / dpr, x1: (x0 + width) / dpr });
+  });
+  c.dataset.labels = JSON.stringify(labels);
+  c.title = sim.marks.map((m) => m.name).join(' · ');
   const x = (sim.time / total) * w;
   g.fillStyle = '#d9480f';
   g.fillRect(x - dpr, 0, 2 * dpr, h);

@@ -109,7 +109,7 @@ impl Operate for Chamfer {
             F::degrees("rampAngle", "Ramp angle along a loop", 0.1, 89.0),
             F::marks(),
         ]);
-        OperationForm::new("chamfer edges (of holes, a drawing's loops, a part's top edges)", fields).picks(Picks::Holes)
+        OperationForm::new("chamfer edges (holes, loops, a part's top)", fields).picks(Picks::Holes)
     }
 
     fn takes(&self, cutter: &crate::cutter::Cutter) -> std::result::Result<(), &'static str> {

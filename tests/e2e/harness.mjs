@@ -321,3 +321,17 @@ export function studStl(side, t, d, height, n = 64) {
   });
   return binaryStl(tris);
 }
+
+// The operations' names on the removal-rate plot, as drawn (`{ name, text, row, x0, x1 }` in
+// CSS pixels): checked never to overlap in a row, each its operation's name or the start of it
+// with an ellipsis.
+export async function mrrLabels(page) {
+  await frame(page);
+  const labels = await page.evaluate(() => JSON.parse(document.getElementById('mrr').dataset.labels ?? '[]'));
+  for (const row of [0, 1]) {
+    const on = labels.filter((l) => l.row === row).sort((a, b) => a.x0 - b.x0);
+    for (let k = 1; k < on.length; k++) assert.ok(on[k - 1].x1 + 1 <= on[k].x0, `"${on[k - 1].text}" and "${on[k].text}" overlap on the removal-rate plot`);
+  }
+  for (const l of labels) assert.ok(l.text === l.name || (l.text.endsWith('…') && l.name.startsWith(l.text.slice(0, -1))), `${l.text} for ${l.name}`);
+  return labels;
+}

@@ -9,7 +9,7 @@ import path from 'node:path';
 import { execFileSync } from 'node:child_process';
 import { pathToFileURL } from 'node:url';
 import { dieStl } from '../../scripts/die-stl.mjs';
-import { root, shots, offsite, PATIENCE, browser, base, waitForGenerated, generated, tab, frame, grblcheck, openPage, onlyRaster, toolTable, addTool, pixelCounts, toolPixels, pathPixels, boxStl, boxGltf, plateStl, studStl, soleOperation } from './harness.mjs';
+import { root, shots, offsite, PATIENCE, browser, base, waitForGenerated, generated, tab, frame, grblcheck, openPage, onlyRaster, toolTable, addTool, pixelCounts, toolPixels, pathPixels, boxStl, boxGltf, plateStl, studStl, soleOperation, mrrLabels } from './harness.mjs';
 
 test('sample part → generate → path on the canvas → G-code that rs274 accepts', async () => {
   const { page, context, errors } = await openPage();
@@ -1036,6 +1036,8 @@ test('the shared plate drawing in the page: its circles spotted, the φ3.2 holes
   await page.click('#generate');
   await generated(page);
   assert.doesNotMatch(await page.textContent('#sim-report'), /gouge[^\n]*[1-9]/);
+  // Four operations, the spotting a sliver of the time: every name on the plot, none over another.
+  assert.equal((await mrrLabels(page)).length, 4);
   const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
   const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-plate-'));
   const program = path.join(dir, download.suggestedFilename());

@@ -8,7 +8,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { execFileSync } from 'node:child_process';
-import { root, shots, PATIENCE, browser, base, waitForGenerated, generated, tab, frame, openPage, onlyRaster, toolTable, pixelCounts, pathPixels, boxStl } from './harness.mjs';
+import { root, shots, PATIENCE, browser, base, waitForGenerated, generated, tab, frame, openPage, onlyRaster, toolTable, pixelCounts, pathPixels, boxStl, mrrLabels } from './harness.mjs';
 
 const size = (page) => page.textContent('#part-size');
 
@@ -183,6 +183,19 @@ async function reachable(page) {
         const ok = r.left >= 0 && r.right <= window.innerWidth && r.width > 0 && hit && (hit === el || el.contains(hit) || hit.contains(el) || hit.closest('label') === el.closest('label'));
         if (!ok) bad.push(`${el.id || el.name || el.textContent.trim().slice(0, 20)} at ${Math.round(r.left)}–${Math.round(r.right)} of ${window.innerWidth} (hit ${hit?.id || hit?.tagName})`);
       }
+      // Every choice of every list shown whole: the list as wide as it is drawn, against the
+      // same list holding only that choice at its own width (the text and the arrow).
+      for (const sel of all.filter((el) => el.tagName === 'SELECT')) {
+        for (const option of sel.options) {
+          const probe = sel.cloneNode(false);
+          probe.style.cssText = 'width:auto;min-width:0;max-width:none;flex:none;position:absolute;visibility:hidden';
+          probe.append(option.cloneNode(true));
+          sel.parentElement.append(probe);
+          const needed = probe.getBoundingClientRect().width;
+          probe.remove();
+          if (needed > sel.getBoundingClientRect().width + 0.5) bad.push(`${sel.name || sel.id}: "${option.text}" cut (${Math.round(needed)} px wanted, ${Math.round(sel.getBoundingClientRect().width)} drawn)`);
+        }
+      }
       return { bad, count: all.length, scroll: document.scrollingElement.scrollWidth - window.innerWidth, panel: document.getElementById('panel').scrollWidth - document.getElementById('panel').clientWidth };
     });
     out.push({ tab: name, ...found });
@@ -208,6 +221,10 @@ test('every control of the side panel is in reach at 1280×720, 1400×900 and 19
     await page.click('#generate');
     assert.equal(await waitForGenerated(page), 'ok');
     await page.screenshot({ path: path.join(shots, `reach-${width}x${height}.png`) });
+    // The operations' names on the removal-rate plot whole and apart.
+    const labels = await mrrLabels(page);
+    assert.deepEqual(labels.map((l) => l.text), labels.map((l) => l.name), `${width}×${height}: names shortened`);
+    assert.equal(labels.length, 3, `${width}×${height}: ${JSON.stringify(labels)}`);
     for (const t of await reachable(page)) assert.deepEqual(t.bad, [], `${width}×${height} after Generate, ${t.tab} tab: out of reach`);
     // The results have a pane of their own: the settings keep their height.
     assert.equal(await settings(), before, `${width}×${height}: the settings lost height after Generate`);
