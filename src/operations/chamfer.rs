@@ -99,7 +99,7 @@ impl Operate for Chamfer {
         let mut fields = F::name_and_tool().to_vec();
         fields.extend(F::which_holes());
         fields.extend([
-            F::choice("edges", "Edges", &[("holes", "the holes' edges"), ("loops", "a drawing's loops: outside outlines, inside holes"), ("partEdges", "a part's sharp top edges")]),
+            F::choice("edges", "Edges", &[("holes", "the holes' edges"), ("loops", "a drawing's loops (holes inside)"), ("partEdges", "a part's sharp top edges")]),
             F::words("layers", "Loops on layers", "edges: loops; with commas").empty("all"),
             F::loops("Loops", "edges: loops, or a part's top edges as swarf edges lists them; numbers with commas, or click them", "all on the layers, every sharp edge"),
             F::length("width", "Chamfer width at the top", 0.01),

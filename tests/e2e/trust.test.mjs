@@ -166,9 +166,33 @@ test('bad values are marked at their fields as they are typed, by the core\'s ow
   await context.close();
 });
 
+// Installs `window.cutLists(elements)` in the page: every choice of every list among them
+// that would not show whole, as the list holding only that choice at its own width (its text
+// and its arrow) against the list as drawn.
+async function installCutLists(page) {
+  await page.evaluate(() => {
+    window.cutLists = (elements) => {
+      const bad = [];
+      for (const sel of elements.filter((el) => el.tagName === 'SELECT' && el.offsetParent !== null)) {
+        for (const option of sel.options) {
+          const probe = sel.cloneNode(false);
+          probe.style.cssText = 'width:auto;min-width:0;max-width:none;flex:none;position:absolute;visibility:hidden';
+          probe.append(option.cloneNode(true));
+          sel.parentElement.append(probe);
+          const needed = probe.getBoundingClientRect().width;
+          probe.remove();
+          if (needed > sel.getBoundingClientRect().width + 0.5) bad.push(`${sel.name || sel.id}: "${option.text}" cut (${Math.round(needed)} px wanted, ${Math.round(sel.getBoundingClientRect().width)} drawn)`);
+        }
+      }
+      return bad;
+    };
+  });
+}
+
 // Every button, field and list of the side panel, in every tab: inside the window's width and
 // the one that gets a click at its middle (after scrolling the panel to it).
 async function reachable(page) {
+  await installCutLists(page);
   const out = [];
   for (const name of ['part', 'stock', 'tools', 'ops', 'post']) {
     await tab(page, name);
@@ -183,19 +207,7 @@ async function reachable(page) {
         const ok = r.left >= 0 && r.right <= window.innerWidth && r.width > 0 && hit && (hit === el || el.contains(hit) || hit.contains(el) || hit.closest('label') === el.closest('label'));
         if (!ok) bad.push(`${el.id || el.name || el.textContent.trim().slice(0, 20)} at ${Math.round(r.left)}–${Math.round(r.right)} of ${window.innerWidth} (hit ${hit?.id || hit?.tagName})`);
       }
-      // Every choice of every list shown whole: the list as wide as it is drawn, against the
-      // same list holding only that choice at its own width (the text and the arrow).
-      for (const sel of all.filter((el) => el.tagName === 'SELECT')) {
-        for (const option of sel.options) {
-          const probe = sel.cloneNode(false);
-          probe.style.cssText = 'width:auto;min-width:0;max-width:none;flex:none;position:absolute;visibility:hidden';
-          probe.append(option.cloneNode(true));
-          sel.parentElement.append(probe);
-          const needed = probe.getBoundingClientRect().width;
-          probe.remove();
-          if (needed > sel.getBoundingClientRect().width + 0.5) bad.push(`${sel.name || sel.id}: "${option.text}" cut (${Math.round(needed)} px wanted, ${Math.round(sel.getBoundingClientRect().width)} drawn)`);
-        }
-      }
+      bad.push(...window.cutLists(all));
       return { bad, count: all.length, scroll: document.scrollingElement.scrollWidth - window.innerWidth, panel: document.getElementById('panel').scrollWidth - document.getElementById('panel').clientWidth };
     });
     out.push({ tab: name, ...found });
@@ -234,6 +246,9 @@ test('every control of the side panel is in reach at 1280×720, 1400×900 and 19
 
 test('the words are a machinist\'s: no paper symbol or section in the forms, the paper named in a tooltip', async () => {
   const { page, context } = await openPage();
+  // At the narrowest screen the reach test uses, every kind's lists show their choices whole.
+  await page.setViewportSize({ width: 1280, height: 720 });
+  await installCutLists(page);
   const words = () => page.evaluate(() => {
     const visible = (el) => [...el.childNodes].map((n) => (n.nodeType === 3 ? n.textContent : n.tagName === 'SELECT' ? [...n.options].map((o) => o.text).join(' ') : n.tagName === 'INPUT' ? '' : n.textContent)).join(' ');
     return [...document.querySelectorAll('#settings label, #settings .hint, #settings option, #op-kind option, #run, #sim, #view-tools')].map(visible);
@@ -246,6 +261,7 @@ test('the words are a machinist\'s: no paper symbol or section in the forms, the
     await page.click('#op-add');
     await page.waitForFunction((k) => document.querySelector('#op-fields').dataset.kind === k, kind);
     texts.push(...(await words()));
+    assert.deepEqual(await page.evaluate(() => window.cutLists([...document.querySelectorAll('#panel select')])), [], `${kind}: lists cut at 1280 px`);
     // The paper behind a setting is one hover away.
     if (kind === 'finishRaster') assert.match(await page.getAttribute('#op-fields label:has([name=op-builder])', 'title'), /seed 001 §3\.3/);
   }
