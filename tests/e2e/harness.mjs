@@ -335,3 +335,16 @@ export async function mrrLabels(page) {
   for (const l of labels) assert.ok(l.text === l.name || (l.text.endsWith('…') && l.name.startsWith(l.text.slice(0, -1))), `${l.text} for ${l.name}`);
   return labels;
 }
+
+// Screenshots of the page as it stands at 1280×720 and 1920×1080 (target/e2e/NAME-WxH.png),
+// the viewport put back after.
+export async function shoot(page, name) {
+  const was = page.viewportSize();
+  for (const [width, height] of [[1280, 720], [1920, 1080]]) {
+    await page.setViewportSize({ width, height });
+    await frame(page);
+    await page.screenshot({ path: path.join(shots, `${name}-${width}x${height}.png`) });
+  }
+  await page.setViewportSize(was);
+  await frame(page);
+}

@@ -9,7 +9,7 @@ import path from 'node:path';
 import { execFileSync } from 'node:child_process';
 import { pathToFileURL } from 'node:url';
 import { dieStl } from '../../scripts/die-stl.mjs';
-import { root, shots, offsite, PATIENCE, browser, base, waitForGenerated, generated, tab, frame, grblcheck, openPage, onlyRaster, toolTable, addTool, pixelCounts, toolPixels, pathPixels, boxStl, boxGltf, plateStl, studStl, soleOperation, mrrLabels } from './harness.mjs';
+import { root, shots, offsite, PATIENCE, browser, base, waitForGenerated, generated, tab, frame, grblcheck, openPage, onlyRaster, toolTable, addTool, pixelCounts, toolPixels, pathPixels, boxStl, boxGltf, plateStl, studStl, soleOperation, mrrLabels, shoot } from './harness.mjs';
 
 test('sample part → generate → path on the canvas → G-code that rs274 accepts', async () => {
   const { page, context, errors } = await openPage();
@@ -581,6 +581,7 @@ test('octree roughing: the tools chosen from the library, each stage\'s path and
   await page.fill('input[name=op-grid]', '0.5');
   await page.click('#generate');
   await generated(page);
+  await shoot(page, 'octree');
   const stats = await page.textContent('#stats');
   assert.match(stats, new RegExp(`T${numbers[0]} φ16 \\(first tool\\): the largest tool`), stats);
   assert.match(stats, /\(around the part\)/, stats);
@@ -964,6 +965,7 @@ test('holes in the page: a plate\'s circles spotted and pecked with a spot drill
   assert.equal(await page.inputValue('input[name=op-holes]'), '');
   await page.click('#generate');
   await generated(page);
+  await shoot(page, 'drilled');
   assert.doesNotMatch(await page.textContent('#sim-report'), /gouge[^\n]*[1-9]/);
   const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
   const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-holes-'));
@@ -1438,6 +1440,7 @@ test('V-carving in the page: letters carved along their middle with a V-bit, fla
   await page.fill('input[name=op-flatTool]', String(flat));
   await page.click('#generate');
   await generated(page);
+  await shoot(page, 'vcarve');
   assert.doesNotMatch(await page.textContent('#sim-report'), /gouge[^\n]*[1-9]/);
   // The carved stock coloured by depth from the start, seen from above: violet at the flat
   // floors (the part's deepest, 3 mm), none once the box is unticked.
