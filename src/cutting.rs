@@ -61,6 +61,15 @@ pub struct Machine {
     /// ([`MACHINE_COEFFICIENT`] of it reaching the cut). Default value: none (not known: not
     /// held; each built-in machine has its own).
     pub power: Option<f64>,
+    /// Whether it changes tools itself (`T… M6` fetches the tool). Without one the operator
+    /// changes each tool by hand where the program stops, told which to put in. Default value:
+    /// none (not known: the program as the post writes it; each built-in machine says).
+    pub tool_changer: Option<bool>,
+    /// Whether it has a tool length sensor (a tool setter): after a change by hand the new
+    /// tool's length is measured on it (the control's or the sender's tool change routine),
+    /// instead of the operator touching off Z again. Default value: none (not known; each
+    /// built-in machine says).
+    pub length_sensor: Option<bool>,
 }
 
 /// The share of the spindle's power that reaches the cut (Mitsubishi Materials' "machine
@@ -74,6 +83,8 @@ impl Default for Machine {
         router.travel = None;
         router.rapids = None;
         router.power = None;
+        router.tool_changer = None;
+        router.length_sensor = None;
         router
     }
 }
@@ -90,6 +101,8 @@ impl Machine {
             travel: Some(travel),
             rapids: Some(rapids),
             power: Some(power),
+            tool_changer: Some(false),
+            length_sensor: Some(false),
         };
         vec![
             // A 4 × 4 ft class router's gantry (838 × 838 × 95 mm on the largest hobby kits), a
@@ -98,8 +111,9 @@ impl Machine {
             // A square-column benchtop mill's table and quill (X 300, Y 150, Z 250), a 1 hp
             // (0.75 kW) motor.
             machine("benchtop mill", [100.0, 10000.0], 2500.0, [300.0, 150.0, 250.0], [3000.0, 3000.0, 2000.0], 0.75),
-            // A small VMC's 16 × 12 × 10 inch envelope, a 7.5 hp (5.6 kW) spindle.
-            machine("small VMC", [100.0, 12000.0], 10000.0, [406.0, 305.0, 254.0], [15000.0, 15000.0, 15000.0], 5.6),
+            // A small VMC's 16 × 12 × 10 inch envelope, a 7.5 hp (5.6 kW) spindle,
+            // with an umbrella changer and a tool setter.
+            Machine { tool_changer: Some(true), length_sensor: Some(true), ..machine("small VMC", [100.0, 12000.0], 10000.0, [406.0, 305.0, 254.0], [15000.0, 15000.0, 15000.0], 5.6) },
         ]
     }
 

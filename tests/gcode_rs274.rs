@@ -790,3 +790,49 @@ fn every_comment_fits_its_controls_line_whole_words_and_no_reserved_characters()
         }
     }
 }
+
+/// Issue 58: the machine's tool changer and length sensor in the program. Without a changer
+/// a post with M6 still calls it (the control stops for the operator) and the comment before
+/// it says which tool to put in by hand and how to measure it; with a sensor the operator
+/// measures it there instead of touching off Z; a changer the post cannot call is warned of.
+#[test]
+fn tool_changes_follow_the_machines_changer_and_length_sensor() {
+    use swarf::cutting::Machine;
+    let tools = vec![Tool { number: 1, cutter: Cutter::ball(6.0), ..Tool::default() }, Tool { number: 2, cutter: Cutter::ball(3.0), ..Tool::default() }];
+    let ops = vec![
+        Operation::FinishRaster(FinishRaster { name: "coarse".into(), tool: 1, stepover: 3.0, allowance: 0.3, grid: 0.5, ..FinishRaster::default() }),
+        Operation::FinishRaster(FinishRaster { name: "fine".into(), tool: 2, stepover: 3.0, grid: 0.5, angle: 90.0, ..FinishRaster::default() }),
+    ];
+    let builtin = |name: &str| Machine::builtin().into_iter().find(|m| m.name == name).unwrap();
+    let run = |dialect: Dialect, machine: Machine| {
+        let job = Job {
+            tools: tools.clone(),
+            operations: ops.clone(),
+            machine,
+            post: PostSettings { dialect, ..PostSettings::default() },
+            simulation: swarf::job::Simulation { verify: false, ..Default::default() },
+            ..Job::default()
+        };
+        job::run(&job, demo_part(), &mut Progress::none()).unwrap()
+    };
+    // The small VMC changes and measures its tools: M6 alone.
+    let vmc = run(Dialect::LinuxCnc, builtin("small VMC"));
+    assert!(!vmc.gcode.contains("by hand") && vmc.gcode.contains("T2 M6"), "{}", &vmc.gcode[..600]);
+    // The router changes by hand and has no sensor: told before each M6, touching off Z.
+    let router = run(Dialect::LinuxCnc, builtin("hobby router"));
+    let said = "(change to tool 2 by hand: 3 mm ball end; set Z zero again with the new tool -touch off-)\nT2 M6";
+    assert!(router.gcode.contains(said), "{}", router.gcode.lines().filter(|l| l.contains("tool")).collect::<Vec<_>>().join("\n"));
+    assert!(router.gcode.contains("(change to tool 1 by hand"));
+    assert_eq!(tool_calls(&router.gcode, &tools).iter().filter(|c| c.starts_with("CHANGE_TOOL")).count(), 2);
+    // With a sensor on GRBL (no M6): the pause asks for the new tool measured on it.
+    let sensed = run(Dialect::Grbl, Machine { length_sensor: Some(true), ..builtin("hobby router") });
+    let pause = sensed.gcode.find("(change to tool 2: 3 mm ball end; then measure it on the tool length sensor").expect("the pause's note");
+    assert!(sensed.gcode[pause..].lines().take(3).any(|l| l == "M0") && !sensed.gcode.contains("touch off"), "{}", &sensed.gcode[pause..pause + 200]);
+    // A machine not said: the program as the post writes it.
+    let unknown = run(Dialect::LinuxCnc, Machine::default());
+    assert!(!unknown.gcode.contains("by hand"));
+    // The VMC's changer on GRBL 1.1, which cannot call it: said.
+    let grbl = run(Dialect::Grbl, builtin("small VMC"));
+    assert!(grbl.warnings.iter().any(|w| w.to_string().contains("has a tool changer, but the post GRBL 1.1 has no tool change word")), "{:?}", grbl.warnings);
+    assert!(!vmc.warnings.iter().any(|w| w.to_string().contains("tool changer")));
+}

@@ -330,6 +330,14 @@ pub fn prepare(job: &Job, workpiece: impl Into<Workpiece>) -> Result<Prepared> {
     if !job.operations.iter().any(|o| o.op().enabled()) {
         return Err(Error::Nothing("every operation of the job is disabled".into()));
     }
+    // A changer the post cannot call: every change stops the program for the operator.
+    let post = job.post.post();
+    if job.machine.tool_changer == Some(true) && post.tool_change.is_empty() {
+        warnings.push(Warning::job(format!(
+            "the {} has a tool changer, but the post {} has no tool change word (M6): the program stops for each tool to be changed by hand; choose a post that calls the changer (grblHAL, LinuxCNC, Mach3/4, Fanuc)",
+            job.machine.name, post.name
+        )));
+    }
     Ok(Prepared { job: job.clone(), ctx, warnings, given: Default::default() })
 }
 

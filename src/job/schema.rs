@@ -953,7 +953,7 @@ impl Job {
 
     /// The job's post settings as its programs are written: timing rapids as [`Job::rapids`].
     pub fn post_for_machine(&self) -> crate::post::PostSettings {
-        crate::post::PostSettings { rapid_axes: self.machine.rapids, ..self.post.clone() }
+        crate::post::PostSettings { rapid_axes: self.machine.rapids, tool_changer: self.machine.tool_changer, length_sensor: self.machine.length_sensor, ..self.post.clone() }
     }
 
     /// The job with its tools' speeds and feeds from the stock's material, where they take

@@ -96,6 +96,15 @@ pub struct PostSettings {
     #[serde(skip)]
     #[ts(skip)]
     pub rapid_axes: Option<[f64; 3]>,
+    /// Whether the machine changes tools itself and measures them (`machine.toolChanger`,
+    /// `machine.lengthSensor`): set from the job's machine as its programs are written; none
+    /// where not known.
+    #[serde(skip)]
+    #[ts(skip)]
+    pub tool_changer: Option<bool>,
+    #[serde(skip)]
+    #[ts(skip)]
+    pub length_sensor: Option<bool>,
     /// Time a tool change takes (seconds), for the cycle-time estimate. Default value: 15.
     pub tool_change_seconds: f64,
     /// Program number (O word) for posts that write one. Default value: 1.
@@ -208,6 +217,8 @@ impl Default for PostSettings {
             decimals: None,
             rapid_rate: 3000.0,
             rapid_axes: None,
+            tool_changer: None,
+            length_sensor: None,
             tool_change_seconds: 15.0,
             program_number: 1,
             work_offset: None,
@@ -362,14 +373,21 @@ pub fn write_mapped(title: &str, paths: &[Toolpath], tools: &[Tool], clearance_z
             }
             w.rapid_z(clearance_z);
             let describe = tool.map(Tool::describe).unwrap_or_default();
+            // By hand, the new tool's length is measured on the sensor, else touched off again.
+            let measure = if settings.length_sensor == Some(true) { "measure it on the tool length sensor" } else { "set Z zero again with the new tool (touch off)" };
             if !post.tool_change.is_empty() {
+                // A machine without a changer stops at M6 for the operator (LinuxCNC's manual
+                // tool change, Mach's M6 macro): the comment says what to put in.
+                if settings.tool_changer == Some(false) {
+                    w.comment(&format!("change to tool {} by hand: {describe}; {measure}", path.tool));
+                }
                 for l in &post.tool_change {
                     w.line(&definition::fill(l, &[("tool", path.tool.to_string())]));
                 }
             } else if started {
                 // Without a changer the operator changes the tool by hand, and its length is
-                // the new tool's: Z must be touched off again before the program goes on.
-                w.comment(&format!("change to tool {}: {describe}; then set Z zero again with the new tool (touch off) and resume", path.tool));
+                // the new tool's: Z must be measured again before the program goes on.
+                w.comment(&format!("change to tool {}: {describe}; then {measure} and resume", path.tool));
                 w.line(&post.pause);
             }
             if started {

@@ -1107,6 +1107,9 @@ test('speeds and feeds from the stock\'s material: each tool shows them with how
   await tab(page, 'post');
   assert.equal(await page.inputValue('input[name=rapids]'), '15000, 15000, 15000');
   assert.equal(await page.inputValue('input[name=power]'), '5.6');
+  // It changes and measures its own tools; the hobby router neither.
+  assert.equal(await page.isChecked('input[name=toolChanger]'), true);
+  assert.equal(await page.isChecked('input[name=lengthSensor]'), true);
   assert.match(await page.evaluate(() => window.swarf.result.gcode), /rapids at X 15000, Y 15000, Z 15000 mm\/min/);
   // The summary gives each operation's spindle power; with the feeds optimised, cuts whose
   // chips thin run faster, and the summary says how many and the time before and after.

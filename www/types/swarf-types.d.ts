@@ -998,7 +998,20 @@ rapids: [number, number, number] | null,
  * ([`MACHINE_COEFFICIENT`] of it reaching the cut). Default value: none (not known: not
  * held; each built-in machine has its own).
  */
-power: number | null, };
+power: number | null, 
+/**
+ * Whether it changes tools itself (`T… M6` fetches the tool). Without one the operator
+ * changes each tool by hand where the program stops, told which to put in. Default value:
+ * none (not known: the program as the post writes it; each built-in machine says).
+ */
+toolChanger: boolean | null, 
+/**
+ * Whether it has a tool length sensor (a tool setter): after a change by hand the new
+ * tool's length is measured on it (the control's or the sender's tool change routine),
+ * instead of the operator touching off Z again. Default value: none (not known; each
+ * built-in machine says).
+ */
+lengthSensor: boolean | null, };
 
 /**
  * The stock's material.
