@@ -539,6 +539,24 @@ fn a_part_in_the_wrong_unit_is_said_at_load_with_its_likely_unit() {
     let metre = said(1000.0);
     assert!(metre.contains(&format!("Read in metres it would be {} mm across (Units of the file: metres", full.round())), "{metre}");
     assert!(!said(1.0).contains("Units of the file"));
+    // A job says it of the part as it places it: read in inches as the file is, nothing; read
+    // as millimetres, the same words.
+    let mut small = part.clone();
+    for v in &mut small.vertices {
+        *v /= 25.4;
+    }
+    let ran = |units: PartUnits| {
+        let mut job = swarf::job::Job::default();
+        job.part.units = units;
+        job.operations.retain(|o| matches!(o, swarf::job::Operation::FinishRaster(_)));
+        job.simulation.verify = false;
+        match swarf::job::run(&job, small.clone(), &mut swarf::progress::Progress::none()) {
+            Ok(out) => out.warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>().join("\n"),
+            Err(e) => e.to_string(),
+        }
+    };
+    assert!(!ran(PartUnits::Inch).contains("Units of the file"), "{}", ran(PartUnits::Inch));
+    assert!(ran(PartUnits::Auto).contains("Read in inches it would be"), "{}", ran(PartUnits::Auto));
     // The unit that makes it a part, or none where none does.
     assert_eq!(PartUnits::likely(1.69).map(|(u, _, mm)| (u, (mm * 10.0).round() / 10.0)), Some(("inches", 42.9)));
     assert_eq!(PartUnits::likely(0.23).map(|(u, _, mm)| (u, mm.round())), Some(("metres", 230.0)));

@@ -303,10 +303,14 @@ pub fn prepare(job: &Job, workpiece: impl Into<Workpiece>) -> Result<Prepared> {
         }
     }
     let mut warnings = match &workpiece {
-        Workpiece::Mesh(m) => part_warnings(m),
+        Workpiece::Mesh(m) => surface_warnings(m),
         Workpiece::Drawing(d) => drawing_warnings(d),
     };
     let ctx = job.context(workpiece)?;
+    // Its size in its unit, as placed.
+    if ctx.sheet.is_none() {
+        warnings.extend(unit_warning(&ctx.part));
+    }
     // Work off by orders of magnitude is refused before any starts, naming the setting.
     for o in job.operations.iter().map(Operation::op).filter(|o| o.enabled()) {
         o.check_scale(&ctx)?;
@@ -784,28 +788,41 @@ pub fn drawing_warnings(d: &Drawing) -> Vec<Warning> {
     vec![Warning::job(format!("the drawing left out: {}", list.join("; ")))]
 }
 
-/// What the user should know of a part as read: triangles dropped, and holes in its surface
-/// (edges bordering one triangle, off the rim of its outline; [`Mesh::open_edges`]).
+/// What the user should know of a part as read and placed: triangles dropped, holes in its
+/// surface ([`surface_warnings`]), and a size that says it was read in the wrong unit
+/// ([`unit_warning`]).
 pub fn part_warnings(mesh: &Mesh) -> Vec<Warning> {
+    let mut out = surface_warnings(mesh);
+    out.extend(unit_warning(mesh));
+    out
+}
+
+/// A part under 5 mm or over 3 m across as placed ([`crate::mesh::placement::LIKELY_ACROSS`]):
+/// the unit that would make it a part, and its size then.
+fn unit_warning(mesh: &Mesh) -> Option<Warning> {
+    let size = mesh.bounds().size();
+    let across = size.x.max(size.y).max(size.z);
+    let (unit, choice, mm) = crate::mesh::placement::PartUnits::likely(across)?;
+    let [low, high] = crate::mesh::placement::LIKELY_ACROSS;
+    let side = if across < low { format!("under {low} mm") } else { format!("over {high} mm") };
+    Some(Warning::job(format!(
+        "the part is {} × {} × {} mm, {side} across: is the file in another unit? Read in {unit} it would be {} mm across (Units of the file: {choice}; part.units in a job file)",
+        size_shown(size.x),
+        size_shown(size.y),
+        size_shown(size.z),
+        size_shown(mm)
+    )))
+}
+
+/// Triangles dropped as a part was read, and holes in its surface (edges bordering one
+/// triangle, off the rim of its outline; [`Mesh::open_edges`]).
+fn surface_warnings(mesh: &Mesh) -> Vec<Warning> {
     let mut out = Vec::new();
     if mesh.dropped_duplicates > 0 {
         out.push(Warning::job(format!("{} triangles were copies of others (the same three corners) and were ignored", mesh.dropped_duplicates)).note());
     }
     if mesh.dropped_degenerate > 0 {
         out.push(Warning::job(format!("{} degenerate triangles (zero area) were ignored", mesh.dropped_degenerate)).note());
-    }
-    let size = mesh.bounds().size();
-    let across = size.x.max(size.y).max(size.z);
-    if let Some((unit, choice, mm)) = crate::mesh::placement::PartUnits::likely(across) {
-        let [low, high] = crate::mesh::placement::LIKELY_ACROSS;
-        let side = if across < low { format!("under {low} mm") } else { format!("over {high} mm") };
-        out.push(Warning::job(format!(
-            "the part is {} × {} × {} mm, {side} across: is the file in another unit? Read in {unit} it would be {} mm across (Units of the file: {choice}; part.units in a job file)",
-            size_shown(size.x),
-            size_shown(size.y),
-            size_shown(size.z),
-            size_shown(mm)
-        )));
     }
     let open = mesh.open_edges();
     if !open.is_empty() {
