@@ -789,8 +789,8 @@ pub fn drawing_warnings(d: &Drawing) -> Vec<Warning> {
 }
 
 /// What the user should know of a part as read and placed: triangles dropped, holes in its
-/// surface ([`surface_warnings`]), and a size that says it was read in the wrong unit
-/// ([`unit_warning`]).
+/// surface, and a size that says it was read in the wrong unit (under 5 mm or over 3 m
+/// across).
 pub fn part_warnings(mesh: &Mesh) -> Vec<Warning> {
     let mut out = surface_warnings(mesh);
     out.extend(unit_warning(mesh));
