@@ -62,10 +62,11 @@ async function onVise(box) {
 async function onStockShape(shape) {
   const j = job();
   state.blankChosen = shape === 'mesh';
-  if (shape === 'bar' && !j.stock.bar) j.stock.bar = (await state.engine.readJob(JSON.stringify({ stock: { bar: {} } }))).stock.bar;
-  if (shape !== 'bar') j.stock.bar = null;
+  // The casting's file let go at once, before the engine is asked for a bar's defaults.
   const hadMesh = !!j.stock.mesh;
   if (shape !== 'mesh') j.stock.mesh = null;
+  if (shape === 'bar' && !j.stock.bar) j.stock.bar = (await state.engine.readJob(JSON.stringify({ stock: { bar: {} } }))).stock.bar;
+  if (shape !== 'bar') j.stock.bar = null;
   store('stock.shape');
   clearResult();
   fillStock();
