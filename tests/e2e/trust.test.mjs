@@ -390,7 +390,9 @@ test('the simulation a machinist expects: the tool shown, the path cut apart fro
     return [...document.querySelectorAll('#gcode .line:not(.current)')].map((row) => Number(row.dataset.line)).filter((k) => moves.has(k))[3];
   });
   assert.ok(Number.isInteger(clicked), 'a line with a move is drawn in the pane');
-  await page.locator(`#gcode .line[data-line="${clicked}"]`).click();
+  // Clicked where it is drawn: a pointer click would first scroll the pane, which draws its
+  // rows anew under the pointer (on a busy machine the click then met another row or none).
+  await page.evaluate((n) => document.querySelector(`#gcode .line[data-line="${n}"]`).click(), clicked);
   await page.waitForFunction((n) => document.querySelector('#gcode .line.current')?.dataset.line === String(n), clicked);
   // (to the end of the first move written on that line or after it)
   const [moved, before] = await page.evaluate(() => { const k = Number(document.body.dataset.simMoves) - 1, l = window.swarf.result.moveLines; return [l[k], k > 0 ? l[k - 1] : -1]; });
