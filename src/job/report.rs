@@ -127,13 +127,12 @@ pub fn per_operation(
     snapshots: &[Option<HeightField>],
     verification: Option<&Verification>,
 ) -> Vec<OperationReport> {
-    enabled
+    let mut reports: Vec<OperationReport> = enabled
         .iter()
         .map(|&i| (i, &job.operations[i]))
         .zip(ranges)
         .zip(snapshots)
-        .enumerate()
-        .map(|(n, (((index, op), range), snapshot))| {
+        .map(|(((index, op), range), snapshot)| {
             let mine = &moves[range.clone()];
             let mut tools: Vec<u32> = Vec::new();
             let (mut seconds, mut feed_length, mut rapid_length) = (0.0, 0.0, 0.0);
@@ -173,26 +172,8 @@ pub fn per_operation(
                 }
                 _ => (None, None),
             };
-            // Rest roughing: a roughing after operations that removed material with larger tools.
-            let diameter = |t: u32| job.tools.iter().find(|x| x.number == t).map_or(0.0, |x| x.cutter.diameter);
-            let mut rest_after: Vec<u32> = Vec::new();
-            if op.is_roughing() {
-                let mine = tools.iter().map(|&t| diameter(t)).fold(f64::INFINITY, f64::min);
-                for (k, r) in ranges[..n].iter().enumerate() {
-                    let cut = r.end <= volumes.len() && volumes[r.clone()].iter().sum::<f64>() > 0.0;
-                    if !cut || matches!(job.operations[enabled[k]], Operation::Face(_)) {
-                        continue;
-                    }
-                    for m in &moves[r.clone()] {
-                        if diameter(m.tool) > mine + 1e-9 && !rest_after.contains(&m.tool) {
-                            rest_after.push(m.tool);
-                        }
-                    }
-                }
-                rest_after.sort_by(|a, b| diameter(*b).total_cmp(&diameter(*a)));
-            }
             OperationReport {
-                rest_after,
+                rest_after: Vec::new(),
                 index,
                 name: op.name().to_string(),
                 tools,
@@ -210,5 +191,24 @@ pub fn per_operation(
                 stages: None,
             }
         })
-        .collect()
+        .collect();
+    // Rest roughing: a roughing after operations that removed material with larger tools.
+    let diameter = |t: u32| job.tools.iter().find(|x| x.number == t).map_or(0.0, |x| x.cutter.diameter);
+    for n in 0..reports.len() {
+        if !job.operations[reports[n].index].is_roughing() {
+            continue;
+        }
+        let mine = reports[n].tools.iter().map(|&t| diameter(t)).fold(f64::INFINITY, f64::min);
+        let mut after: Vec<u32> = Vec::new();
+        for earlier in reports[..n].iter().filter(|r| r.removed.is_some_and(|v| v > 0.0) && !matches!(job.operations[r.index], Operation::Face(_))) {
+            for &t in &earlier.tools {
+                if diameter(t) > mine + 1e-9 && !after.contains(&t) {
+                    after.push(t);
+                }
+            }
+        }
+        after.sort_by(|a, b| diameter(*b).total_cmp(&diameter(*a)));
+        reports[n].rest_after = after;
+    }
+    reports
 }

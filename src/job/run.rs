@@ -802,16 +802,22 @@ pub fn part_warnings(mesh: &Mesh) -> Vec<Warning> {
 fn unit_warning(mesh: &Mesh) -> Option<Warning> {
     let size = mesh.bounds().size();
     let across = size.x.max(size.y).max(size.z);
-    let (unit, choice, mm) = crate::mesh::placement::PartUnits::likely(across)?;
+    let (read_in, choice) = likely_unit(across)?;
     let [low, high] = crate::mesh::placement::LIKELY_ACROSS;
     let side = if across < low { format!("under {low} mm") } else { format!("over {high} mm") };
     Some(Warning::job(format!(
-        "the part is {} × {} × {} mm, {side} across: is the file in another unit? Read in {unit} it would be {} mm across (Units of the file: {choice}; part.units in a job file)",
+        "the part is {} × {} × {} mm, {side} across: is the file in another unit? {read_in} (Units of the file: {choice}; part.units in a job file)",
         size_shown(size.x),
         size_shown(size.y),
-        size_shown(size.z),
-        size_shown(mm)
+        size_shown(size.z)
     )))
+}
+
+/// For a part `across` mm wide, the unit that would make it a part, in the words both its
+/// warnings use ("Read in inches it would be 90 mm across"), and the page's choice for it.
+fn likely_unit(across: f64) -> Option<(String, &'static str)> {
+    let (unit, choice, mm) = crate::mesh::placement::PartUnits::likely(across)?;
+    Some((format!("Read in {unit} it would be {} mm across", size_shown(mm)), choice))
 }
 
 /// Triangles dropped as a part was read, and holes in its surface (edges bordering one
@@ -852,8 +858,8 @@ fn tool_larger_than_part(job: &Job, part: &Mesh) -> Option<(Warning, bool)> {
     let d = smallest.cutter.diameter;
     let across = size.x.max(size.y).max(size.z);
     let setting = format!("in a job file part.units: {:?}, part.scale: {}", job.part.units, job.part.scale);
-    let unit = match crate::mesh::placement::PartUnits::likely(across) {
-        Some((unit, choice, mm)) => format!("is its unit right? Read in {unit} it would be {} mm across (Units of the file: {choice}; {setting})", size_shown(mm)),
+    let unit = match likely_unit(across) {
+        Some((read_in, choice)) => format!("is its unit right? {read_in} (Units of the file: {choice}; {setting})"),
         None => format!("is its unit right? (Units of the file; {setting})"),
     };
     if d > size.x.max(size.y) {

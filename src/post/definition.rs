@@ -276,15 +276,16 @@ impl Post {
     /// line (`maxLineLength`, less a line number), else broken between words into lines that
     /// do; none for a post without comments.
     pub fn comment_lines(&self, text: &str) -> Vec<String> {
-        let Some(line) = self.comment(text) else { return Vec::new() };
+        let text = self.comment_text(text);
+        let Some(line) = self.styled(&text) else { return Vec::new() };
         let Some(max) = self.max_line_length else { return vec![line] };
         let number = self.line_numbers.map_or(0, |n| format!("N{} ", n.max).len());
         let width = max.saturating_sub(number);
         if line.chars().count() <= width {
             return vec![line];
         }
-        let marks = line.chars().count() - self.comment_text(text).chars().count();
-        wrap(&self.comment_text(text), width.saturating_sub(marks)).iter().filter_map(|l| self.comment(l)).collect()
+        let marks = line.chars().count() - text.chars().count();
+        wrap(&text, width.saturating_sub(marks)).iter().filter_map(|l| self.styled(l)).collect()
     }
 
     /// Whether the program is marked by `%` at its start or end (Fanuc's tape marks): a `%`
@@ -295,7 +296,12 @@ impl Post {
 
     /// The comment line for `text`, in the post's style (none for a post without comments).
     pub fn comment(&self, text: &str) -> Option<String> {
-        let text = self.comment_text(text);
+        self.styled(&self.comment_text(text))
+    }
+
+    /// `text`, already as its comments may hold it ([`Post::comment_text`]), in the post's
+    /// comment style.
+    fn styled(&self, text: &str) -> Option<String> {
         match self.comments {
             CommentStyle::Parens => Some(format!("({text})")),
             CommentStyle::Semicolon => Some(format!("; {text}")),
