@@ -8,7 +8,7 @@ use swarf::cutter::Cutter;
 use swarf::geom::DVec2;
 use swarf::job::{self, Job, Operation, Tool};
 use swarf::mesh::sample::height_field_solid;
-use swarf::operations::RoughZlevel;
+use swarf::operations::{FinishRaster, RoughZlevel};
 use swarf::progress::Progress;
 use swarf::tool::{Holder, HolderSection};
 
@@ -22,6 +22,54 @@ fn job(stick_out: f64) -> Job {
     let mut rough = RoughZlevel::default();
     rough.steps.stepdown = 5.0;
     Job { tools: vec![tool], operations: vec![Operation::RoughZlevel(rough)], ..Job::default() }
+}
+
+/// A 60 × 60 pocket 20 deep in an 80 × 80 plate: wide enough for an ER20's φ34 nut to go
+/// down in its middle.
+fn wide_pocket() -> swarf::mesh::Mesh {
+    height_field_solid(DVec2::new(-40.0, -40.0), DVec2::new(40.0, 40.0), 160, 160, -30.0, |x, y| if x.abs() < 30.0 && y.abs() < 30.0 { -20.0 } else { 0.0 })
+}
+
+fn deepest_cut(out: &swarf::job::JobOutput) -> f64 {
+    out.moves.iter().filter(|m| !m.mv.is_rapid()).map(|m| m.mv.to().z).fold(f64::INFINITY, f64::min)
+}
+
+/// The holder meets the stock, not only the part (issue 58). A φ10 roughing (no holder) leaves
+/// 2 mm on the wide pocket's floors and walls, and so on the plate's top under the stock's
+/// margin; a φ6 ball in an ER20, 12 mm out, then finishes. Held to the part only, its nut came
+/// down to half a millimetre over the plate: into the 2 mm the roughing left there, and the
+/// program was refused. Held to the stock the roughing left as well, its holder meets nothing,
+/// it says where it held the tool up, and in the middle of the pocket it still finishes the
+/// floor. The same holder on a roughing tool goes down level by level through what the levels
+/// above it cleared: to the floor in the middle, clean.
+#[test]
+fn a_holder_keeps_clear_of_the_stock_earlier_operations_left_and_goes_down_where_its_own_levels_cleared() {
+    let er20 = Holder::builtin().into_iter().find(|h| h.name.starts_with("ER20")).unwrap();
+    let big = Tool { number: 1, cutter: Cutter { flute_length: 25.0, ..Cutter::flat(10.0) }, stick_out: Some(40.0), ..Tool::default() };
+    let ball = Tool { number: 2, cutter: Cutter { flute_length: 12.0, ..Cutter::ball(6.0) }, stick_out: Some(12.0), holder: Some(er20.clone()), ..Tool::default() };
+    let mut rough = RoughZlevel::default();
+    rough.steps.stepdown = 5.0;
+    rough.roughing.allowance = 2.0;
+    rough.roughing.leave_stock = 2.0;
+    let finish = FinishRaster { tool: 2, stepover: 2.0, ..FinishRaster::default() };
+    let j = Job { tools: vec![big, ball], operations: vec![Operation::RoughZlevel(rough), Operation::FinishRaster(finish)], ..Job::default() };
+    let out = job::run(&j, wide_pocket(), &mut Progress::none()).unwrap();
+    let r = &out.verification.as_ref().unwrap().report;
+    assert_eq!(r.holder_collision_count, 0, "{}", r.describe());
+    assert!(out.problem.is_none(), "{:?}", out.problem);
+    let said: Vec<String> = out.warnings.iter().map(|w| w.to_string()).collect();
+    assert!(said.iter().any(|w| w.starts_with("raster finish") && w.contains("T2's holder (ER20") && w.contains("keeps clear of the part and the stock")), "{said:?}");
+    assert!(deepest_cut(&out) < -19.9, "the ball finishes the floor in the middle: {}", deepest_cut(&out));
+
+    let mut rough = RoughZlevel::default();
+    rough.steps.stepdown = 4.0;
+    let tool = Tool { number: 1, cutter: Cutter { flute_length: 12.0, ..Cutter::flat(6.0) }, stick_out: Some(12.0), holder: Some(er20), ..Tool::default() };
+    let j = Job { tools: vec![tool], operations: vec![Operation::RoughZlevel(rough)], ..Job::default() };
+    let out = job::run(&j, wide_pocket(), &mut Progress::none()).unwrap();
+    let r = &out.verification.as_ref().unwrap().report;
+    assert_eq!(r.holder_collision_count, 0, "{}", r.describe());
+    assert!(out.problem.is_none(), "{:?}", out.problem);
+    assert!(deepest_cut(&out) < -19.0, "the roughing reaches the floor in the middle: {}", deepest_cut(&out));
 }
 
 /// A 20 × 20 pocket 20 deep, an ER20's φ34 nut too wide to go in (issue 58). With 12 mm out
@@ -46,7 +94,12 @@ fn a_holder_too_short_stops_the_tool_short_and_a_program_that_drives_it_in_is_re
     assert!(long.problem.is_none(), "{:?}", long.problem);
     let deepest = long.moves.iter().filter(|m| !m.mv.is_rapid()).map(|m| m.mv.to().z).fold(f64::INFINITY, f64::min);
     assert!(deepest < -19.0, "the long stick-out reaches the floor: {deepest}");
-    assert!(!long.warnings.iter().any(|w| w.to_string().contains("holder")));
+    // Nothing is held up in the pocket: only at the last level round the plate (29.5 mm down,
+    // the margin's bottom), where the nut, 30 mm up, would come to the 0.5 mm left on the
+    // plate's top.
+    for w in long.warnings.iter().filter(|w| w.message.contains("holder")) {
+        assert!(w.places.iter().all(|p| (p[0].abs() > 10.0 || p[1].abs() > 10.0) && p[2] < -28.0), "{w}");
+    }
     // The program made as if there were no holder drives the nut into the plate.
     let mut bare = job(12.0);
     bare.tools[0].holder = None;

@@ -510,30 +510,53 @@ impl Running {
     }
 
     /// Holds operation `k`'s `paths` on a part to their tools' holders' bounds
-    /// ([`crate::machining::holders`]), and says where the holder kept the tool above the path
-    /// planned: material left there for a longer stick-out.
+    /// ([`crate::machining::holders`]) over the part and over the stock the operation leaves,
+    /// and says where the holder kept the tool above the path planned: material left there for
+    /// a longer stick-out.
     fn keep_holders_out(&mut self, k: usize, paths: &mut [Toolpath]) {
         if self.ctx.sheet.is_some() {
             return;
         }
         let name = self.job.operations[k].op().name().to_owned();
-        for path in paths.iter_mut() {
-            let Some(tool) = self.job.tools.iter().find(|t| t.number == path.tool) else { continue };
+        // The stock the operation leaves, made once the first of its paths could bring a
+        // holder down to the stock's top.
+        let mut left: Option<crate::sim::DexelStock> = None;
+        // The tools whose bounds are held to it for this operation already.
+        let mut held: Vec<u32> = Vec::new();
+        for n in 0..paths.len() {
+            let Some(tool) = self.job.tools.iter().find(|t| t.number == paths[n].tool) else { continue };
             let Some(rings) = tool.holder_rings() else { continue };
             let ctx = &self.ctx;
-            let k = match self.holders.iter().position(|(n, _)| *n == tool.number) {
-                Some(k) => k,
+            let h = match self.holders.iter().position(|(n, _)| *n == tool.number) {
+                Some(h) => h,
                 None => {
-                    self.holders.push((tool.number, crate::machining::holders::HolderBound::new(ctx.solid.as_ref().unwrap_or(&ctx.part), &rings, &ctx.tolerances)));
+                    self.holders.push((tool.number, crate::machining::holders::HolderBound::new(ctx.solid.as_ref().unwrap_or(&ctx.part), &ctx.stock, &rings, &ctx.tolerances)));
                     self.holders.len() - 1
                 }
             };
-            let Some(bound) = self.holders[k].1.as_mut() else { continue };
-            let raised = crate::machining::holders::keep_holder_out(path, bound, self.job.tolerances.gouge);
+            let Some(bound) = self.holders[h].1.as_mut() else { continue };
+            if !held.contains(&tool.number) {
+                // Whether any of the tool's paths goes deep enough for its holder to reach
+                // the stock's top.
+                let top = ctx.stock.max.z + crate::machining::holders::HOLDER_CLEARANCE;
+                let reaches = paths.iter().filter(|p| p.tool == tool.number).any(|p| p.moves.iter().any(|m| m.to().z + bound.lowest() <= top));
+                if reaches && left.is_none() {
+                    let tools = &self.job.tools;
+                    left = Some(crate::machining::holders::stock_left(ctx.sim.stock(), paths, |t| tools.iter().find(|x| x.number == t).map(|x| x.cutter.profile()), self.job.tolerances.chordal));
+                }
+                bound.against(if reaches { left.clone() } else { None });
+                held.push(tool.number);
+            }
+            let raised = crate::machining::holders::keep_holder_out(&mut paths[n], bound, self.job.tolerances.gouge);
+            // Only where the tool, planned lower, would have cut the stock there is material
+            // left for a longer stick-out: not where it was raised in the air round the stock.
+            let profile = tool.cutter.profile();
+            let stock = ctx.sim.stock();
+            let raised: Vec<_> = raised.into_iter().filter(|(p, planned)| stock.touch(p.truncate(), &profile, false) > planned + self.job.tolerances.gouge).map(|(p, _)| p).collect();
             if !raised.is_empty() {
                 let holder = tool.holder.as_ref().map_or(String::new(), |h| h.name.clone());
                 let stick_out = crate::limits::shown(tool.standing_out());
-                let what = format!("places held up so that T{}'s holder ({holder}, {stick_out} mm stick-out) keeps clear of the part: material left there for a longer stick-out", tool.number);
+                let what = format!("places held up so that T{}'s holder ({holder}, {stick_out} mm stick-out) keeps clear of the part and the stock: material left there for a longer stick-out", tool.number);
                 self.ctx.warn_at(&name, &what, &raised);
             }
         }
