@@ -32,7 +32,7 @@ function linked(src, modules) {
 const worker = workerSource(www);
 
 // The page's modules, in order of use.
-const modules = ['viewer', 'swarf', 'units', 'state', 'forms', 'gcode', 'simulation', 'tools', 'operations', 'setups', 'part', 'results'];
+const modules = ['viewer', 'swarf', 'units', 'state', 'forms', 'gcode', 'simulation', 'zip', 'tools', 'operations', 'setups', 'part', 'results'];
 let script = '';
 for (const m of modules) {
   const { src, names } = scoped(`${m}.js`);

@@ -519,8 +519,8 @@ pub fn cutting_data(job: JsValue) -> Result<JsValue, JsError> {
     to_js(&job_from_js(job)?.cutting_data())
 }
 
-/// A FreeCAD bit given with its library, as text.
-#[derive(serde::Deserialize)]
+/// A FreeCAD bit given with its library, or a file of a library written, as text.
+#[derive(serde::Deserialize, serde::Serialize)]
 struct BitFile {
     name: String,
     text: String,
@@ -542,6 +542,15 @@ pub fn write_tool_library(tools: JsValue, format: JsValue) -> Result<String, JsE
     let tools: Vec<crate::tool::Tool> = serde_wasm_bindgen::from_value(tools).map_err(|e| js_error(format!("tools: {e}")))?;
     let format: crate::tool::library::LibraryFormat = serde_wasm_bindgen::from_value(format).map_err(|e| js_error(format!("format: {e}")))?;
     Ok(crate::tool::library::write_library(&tools, format))
+}
+
+/// `tools` as a FreeCAD library named `library`: `[{ name, text }]`, its `.fctl` first, then a
+/// `.fctb` bit a tool ([`crate::tool::library::write_freecad`]).
+#[wasm_bindgen(js_name = writeFreecadLibrary)]
+pub fn write_freecad_library(tools: JsValue, library: &str) -> Result<JsValue, JsError> {
+    let tools: Vec<crate::tool::Tool> = serde_wasm_bindgen::from_value(tools).map_err(|e| js_error(format!("tools: {e}")))?;
+    let files: Vec<BitFile> = crate::tool::library::write_freecad(&tools, library).into_iter().map(|(name, text)| BitFile { name, text }).collect();
+    to_js(&files)
 }
 
 /// Every setup of `job` in one program (`post.oneProgram`), an operator stop between them:

@@ -174,6 +174,8 @@ export declare class Engine {
   readToolLibrary(files: { name: string; bytes: Uint8Array }[], options?: { inches?: boolean }): Promise<Imported>;
   /** `tools` as Fusion's tool library JSON or a LinuxCNC tool table. */
   writeToolLibrary(tools: Job['tools'], format: LibraryFormat): Promise<string>;
+  /** `tools` as a FreeCAD library: its `.fctl` first, then a `.fctb` bit a tool (no speeds or holder: FreeCAD's tool controller holds those). */
+  writeFreecadLibrary(tools: Job['tools'], library?: string): Promise<{ name: string; text: string }[]>;
   /** Each tool's speeds and feeds as `job` cuts them (from the stock's material, or as typed), with how they were worked out. */
   cuttingData(job: JobInput): Promise<CuttingData[]>;
   /** The work zero with X0 Y0 on `point` (a hole's centre as `holes` gives it) where `job`, or its setup `setup`, holds the part now; its height kept. */

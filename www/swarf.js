@@ -459,6 +459,13 @@ export class Engine {
   /** `tools` as a library of `format`: `'fusion'` (Fusion's JSON) or `'linuxCnc'` (a tool table): its text. */
   async writeToolLibrary(tools, format) { return (await this.call({ type: 'writeToolLibrary', tools, format })).text; }
 
+  /**
+   * `tools` as a FreeCAD library named `library`: `[{ name, text }]`, the library (`.fctl`,
+   * for FreeCAD's `Tools/Library`) first, then a bit (`.fctb`, for `Tools/Bit`) a tool. A bit
+   * holds no speeds or holder (FreeCAD's tool controller does): they are not written.
+   */
+  async writeFreecadLibrary(tools, library = 'swarf-tools') { return (await this.call({ type: 'writeFreecadLibrary', tools, library })).files; }
+
   /** Each tool's speeds and feeds as `job` cuts them (from the stock's material, or as typed): `[CuttingData]`. */
   async cuttingData(job) { return (await this.call({ type: 'cuttingData', job })).data; }
 

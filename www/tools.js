@@ -3,6 +3,7 @@
 import { $, state, hooks, selectedTool, store, downloadText, buildJob } from './state.js';
 import { fillFields, message, sized, fieldError } from './forms.js';
 import * as units from './units.js';
+import { zipStored } from './zip.js';
 
 const shapeName = (t) => ({ ball: 'ball', flat: 'flat', bullNose: `bull nose r${t.cornerRadius}`, drill: `drill ${t.angle ?? 118}°`, spotDrill: `spot drill ${t.angle ?? 90}°`, vBit: `V-bit ${t.angle ?? 90}°`, threadMill: 'thread mill' }[t.shape] || t.shape);
 export const toolLabel = (t) => `T${t.number} · ${units.exact(t.diameter)} ${units.lengthUnit()} ${shapeName(t)}${t.name ? ` · ${t.name}` : ''}`;
@@ -138,6 +139,14 @@ export async function exportTools() {
   const format = $('tool-export-format').value;
   if (format === 'swarf') { downloadText('swarf-tools.json', JSON.stringify({ tools: state.tools }, null, 2), 'application/json'); return; }
   try {
+    if (format === 'freecad') {
+      // A library and a bit a tool, in the folders of FreeCAD's Tools folder, as one zip.
+      const [library, ...bits] = await state.engine.writeFreecadLibrary(state.tools, 'swarf-tools');
+      const files = [{ name: `Tools/Library/${library.name}`, text: library.text }, ...bits.map((b) => ({ name: `Tools/Bit/${b.name}`, text: b.text }))];
+      downloadText('swarf-tools-freecad.zip', zipStored(files), 'application/zip');
+      message(`Exported ${bits.length} tool(s) as a FreeCAD library: unzip it into FreeCAD's folder that holds Tools. A FreeCAD bit holds no speeds or holder (its tool controller does): they are not in it.`, 'ok');
+      return;
+    }
     const text = await state.engine.writeToolLibrary(state.tools, format);
     downloadText(format === 'fusion' ? 'swarf-tools.fusion.json' : 'swarf-tools.tbl', text, format === 'fusion' ? 'application/json' : 'text/plain');
   } catch (e) {

@@ -1,6 +1,6 @@
 // Runs the wasm pipeline off the page's thread, for swarf.js's engine. Cancel = the engine
 // terminates this worker.
-import init, { defaults, builtinPosts, readPost, readJob, checkJob, writeProject, readProject, samplePart, sampleDrawing, warmUpJob, warmUpPart, loadPart, loadDrawing, stageFrames, isDrawing, prepareJob, setupFrames, setupSheet, oneProgram, zeroOn, cuttingData, readToolLibrary, writeToolLibrary, findHoles, findBosses, findEdges } from './pkg/swarf.js';
+import init, { defaults, builtinPosts, readPost, readJob, checkJob, writeProject, readProject, samplePart, sampleDrawing, warmUpJob, warmUpPart, loadPart, loadDrawing, stageFrames, isDrawing, prepareJob, setupFrames, setupSheet, oneProgram, zeroOn, cuttingData, readToolLibrary, writeToolLibrary, writeFreecadLibrary, findHoles, findBosses, findEdges } from './pkg/swarf.js';
 
 // The wasm is loaded on the first message: from the bytes or URL it names (a single-file page
 // passes the bytes), else from pkg/ beside the glue.
@@ -206,6 +206,8 @@ self.onmessage = async (event) => {
       self.postMessage({ id, ok: true, library: readToolLibrary(bytes, name, inches, bits) });
     } else if (type === 'writeToolLibrary') {
       self.postMessage({ id, ok: true, text: writeToolLibrary(event.data.tools, event.data.format) });
+    } else if (type === 'writeFreecadLibrary') {
+      self.postMessage({ id, ok: true, files: writeFreecadLibrary(event.data.tools, event.data.library) });
     } else if (type === 'cuttingData') {
       self.postMessage({ id, ok: true, data: cuttingData(event.data.job) });
     } else if (type === 'zeroOn') {

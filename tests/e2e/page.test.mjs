@@ -1135,7 +1135,7 @@ test('speeds and feeds from the stock\'s material: each tool shows them with how
   await context.close();
 });
 
-test('tool libraries machinists keep: a Fusion library and a LinuxCNC tool table imported into the library, what was not taken said; the library exported as a tool table', async () => {
+test('tool libraries machinists keep: a Fusion library and a LinuxCNC tool table imported into the library, what was not taken said; the library exported as a tool table and as a FreeCAD library (zip) read back', async () => {
   const { page, context, errors } = await openPage();
   const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-tools-'));
   const fusion = path.join(dir, 'mill.json'), tbl = path.join(dir, 'lathe-room.tbl');
@@ -1164,6 +1164,29 @@ test('tool libraries machinists keep: a Fusion library and a LinuxCNC tool table
   const lines = fs.readFileSync(out, 'utf8').trim().split('\n');
   assert.equal(lines.length, before + 3);
   assert.ok(lines.includes('T21 P21 D8 ;8mm 3F: 8 mm flat end'), lines.join('\n'));
+  // Exported as a FreeCAD library: one zip, its library and a bit a tool in the folders of
+  // FreeCAD's Tools folder, whole as Python's zipfile reads it (every file's CRC checked), and
+  // read back by the page as the same tools.
+  const tools = await page.evaluate(() => window.swarf.tools.map((t) => [t.number, t.shape, t.diameter]));
+  await page.selectOption('#tool-export-format', 'freecad');
+  const [zipped] = await Promise.all([page.waitForEvent('download'), page.click('#tool-export')]);
+  assert.equal(zipped.suggestedFilename(), 'swarf-tools-freecad.zip');
+  const zip = path.join(dir, 'freecad.zip');
+  await zipped.saveAs(zip);
+  const unzip = (code) => execFileSync('python3', ['-c', `import sys, zipfile\nz = zipfile.ZipFile(sys.argv[1])\n${code}`, zip, dir], { encoding: 'utf8' });
+  assert.equal(unzip('print(z.testzip())').trim(), 'None');
+  const names = unzip('print("\\n".join(z.namelist())); z.extractall(sys.argv[2])').trim().split('\n');
+  assert.equal(names[0], 'Tools/Library/swarf-tools.fctl');
+  assert.equal(names.filter((n) => /^Tools\/Bit\/T\d+_.*\.fctb$/.test(n)).length, tools.length, names.join(', '));
+  const fctl = JSON.parse(fs.readFileSync(path.join(dir, names[0]), 'utf8'));
+  assert.deepEqual(fctl.tools.map((t) => t.nr), tools.map((t) => t[0]));
+  assert.match(await page.textContent('#message'), new RegExp(`Exported ${tools.length} tool\\(s\\) as a FreeCAD library`));
+  // Read back: the tools' numbers, shapes and diameters as they were (spot drills are drills to FreeCAD).
+  await page.evaluate(() => { window.swarf.tools.length = 0; });
+  await page.setInputFiles('#tool-import', names.map((n) => path.join(dir, n)));
+  await page.waitForFunction((n) => new RegExp(`Imported ${n} tool\\(s\\) from`).test(document.getElementById('message').textContent), tools.length);
+  const back = await page.evaluate(() => window.swarf.tools.map((t) => [t.number, t.shape, t.diameter]));
+  assert.deepEqual(back, tools.map(([n, shape, d]) => [n, shape === 'spotDrill' ? 'drill' : shape, d]));
   assert.deepEqual(errors, []);
   await context.close();
 });
