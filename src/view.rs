@@ -91,6 +91,8 @@ pub struct DrawingView {
     /// What the reader left out, by kind, with how many.
     pub ignored: Vec<(String, usize)>,
     pub open_chains: Vec<crate::drawing::OpenChain>,
+    /// A size that says the drawing was read in the wrong unit ([`job::drawing_unit_warning`]).
+    pub warnings: Vec<Warning>,
 }
 
 /// A part's top edge as the page lists and draws it (`swarf edges`): numbered as the chamfer's
@@ -160,6 +162,7 @@ impl DrawingView {
             units: d.units.clone(),
             ignored: d.ignored.clone(),
             open_chains: d.open.clone(),
+            warnings: job::drawing_unit_warning(d).into_iter().collect(),
         }
     }
 }

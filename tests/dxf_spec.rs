@@ -230,3 +230,33 @@ fn an_arc_whose_angle_is_no_angle_is_refused() {
     let d = read_drawing(dxf(4, &(arc((0.0, 0.0), 10.0, -90.0, 450.0, "") + &line((0.0, 10.0), (0.0, -10.0), ""))).as_bytes(), Some("arc.dxf"), &Tolerances::default()).unwrap();
     assert!((d.loops[0].path.area().abs() - std::f64::consts::PI * 50.0).abs() < 1e-9);
 }
+
+/// A drawing whose size says it was read in the wrong unit is said as it loads (issue 62): a
+/// 3 × 3 square in a file that names no unit is 3 mm read as millimetres, 76.2 mm read in
+/// inches; a 200-inch square in a file that says inches is 5 m, 200 mm as millimetres. Read in
+/// the unit that makes it a part, nothing is said; a drawing the other unit would make no part
+/// (0.01 mm, 0.25 mm in inches) gets no guess.
+#[test]
+fn a_drawing_in_the_wrong_unit_is_said_at_load_with_the_unit_that_makes_it_a_part() {
+    use swarf::job::{drawing_unit_warning, DrawingSetup, DrawingUnits};
+    let said = |units: u32, side: f64, setup: DrawingUnits| {
+        let mut d = read_drawing(dxf(units, &square(0.0, 0.0, side)).as_bytes(), Some("plate.dxf"), &Tolerances::default()).unwrap();
+        DrawingSetup { units: setup, ..DrawingSetup::default() }.apply(&mut d);
+        drawing_unit_warning(&d).map(|w| w.to_string())
+    };
+    let small = said(0, 3.0, DrawingUnits::File).expect("a 3 mm drawing is said");
+    assert!(
+        small.contains("the drawing is 3 × 3 mm, under 5 mm across") && small.contains("Read in inches it would be 76.2 mm across (Units of the file: inch; drawing.units in a job file)"),
+        "{small}"
+    );
+    assert_eq!(said(0, 3.0, DrawingUnits::Inch), None);
+    let large = said(1, 200.0, DrawingUnits::File).expect("a 5 m drawing is said");
+    assert!(large.contains("over 3000 mm across") && large.contains("Read in millimetres it would be 200 mm across (Units of the file: mm;"), "{large}");
+    assert_eq!(said(1, 200.0, DrawingUnits::Mm), None);
+    assert_eq!(said(0, 0.01, DrawingUnits::File), None);
+    assert_eq!(said(4, 60.0, DrawingUnits::File), None);
+    // A job run on it says it too, beside what the drawing left out.
+    let mut d = read_drawing(dxf(0, &square(0.0, 0.0, 3.0)).as_bytes(), Some("plate.dxf"), &Tolerances::default()).unwrap();
+    DrawingSetup::default().apply(&mut d);
+    assert!(swarf::job::run::drawing_warnings(&d).iter().any(|w| w.to_string().contains("Read in inches")));
+}

@@ -53,9 +53,10 @@ function describePart(part) {
   return size;
 }
 
-// What the user should know of the part as read (holes in its surface), in its own panel.
-function partNotes(warnings) {
-  $('part-notes').replaceChildren(...warnings.map((w) => {
+// What the user should know of the part or drawing as read (holes in its surface, a size that
+// says another unit), in its own panel.
+function partNotes(warnings, panel = 'part-notes') {
+  $(panel).replaceChildren(...warnings.map((w) => {
     const div = document.createElement('div');
     div.className = w.level === 'note' ? 'note' : 'warning';
     div.textContent = units.words(w.message);
@@ -136,6 +137,7 @@ function describeDrawing(d) {
   const b = d.bounds, size = [b[3] - b[0], b[4] - b[1], Number(state.jobs.drawing.drawing.thickness)];
   $('drawing-size').textContent = `${units.size(size[0])} × ${units.size(size[1])} ${units.lengthUnit()}, ${d.loops.length} closed loops: ${outer} outlines (green), ${holes} holes (orange); layers ${d.layers.join(', ')}; units of the file: ${d.units}`
     + (d.ignored.length ? `; left out: ${d.ignored.map(([k, n]) => `${n} ${k}`).join(', ')}` : '');
+  partNotes(d.warnings ?? [], 'drawing-notes');
   showScale(size);
   const at = (p) => p.map((v) => units.size(v)).join(', ');
   const list = d.loops.slice(0, 200).map((l) => `${l.index}: ${l.layer}, ${l.hole ? 'hole' : 'outline'}, ${l.entities} entities, (${at(l.min)})–(${at(l.max)})`);

@@ -27,7 +27,7 @@ pub mod sheet;
 pub mod wire;
 
 pub use self::report::OperationReport;
-pub use self::run::{marked, part_warnings, prepare, run, verify_gcode, warning_lines, JobOutput, Prepared, Running};
+pub use self::run::{drawing_unit_warning, marked, part_warnings, prepare, run, verify_gcode, warning_lines, JobOutput, Prepared, Running};
 pub use self::schema::*;
 pub use self::setups::{run_setups, SetupOutput};
 pub use crate::operations::{Boundary, FinishRaster, Operation};

@@ -556,7 +556,8 @@ impl Running {
             if !raised.is_empty() {
                 let holder = tool.holder.as_ref().map_or(String::new(), |h| h.name.clone());
                 let stick_out = crate::limits::shown(tool.standing_out());
-                let what = format!("places held up so that T{}'s holder ({holder}, {stick_out} mm stick-out) keeps clear of the part and the stock: material left there for a longer stick-out", tool.number);
+                let what =
+                    format!("places held up so that T{}'s holder ({holder}, {stick_out} mm stick-out) keeps clear of the part and the stock: material left there for a longer stick-out", tool.number);
                 self.ctx.warn_at(&name, &what, &raised);
             }
         }
@@ -804,11 +805,38 @@ fn gouge_causes(drawing: Option<&Drawing>, report: &crate::sim::verify::Report) 
 /// elements that draw nothing: a circle of radius 0, a line to a coordinate that is not a
 /// number), by kind, with counts.
 pub fn drawing_warnings(d: &Drawing) -> Vec<Warning> {
-    if d.ignored.is_empty() {
-        return Vec::new();
+    let mut out: Vec<Warning> = drawing_unit_warning(d).into_iter().collect();
+    if !d.ignored.is_empty() {
+        let list: Vec<String> = d.ignored.iter().map(|(k, n)| format!("{n} {k}")).collect();
+        out.push(Warning::job(format!("the drawing left out: {}", list.join("; "))));
     }
-    let list: Vec<String> = d.ignored.iter().map(|(k, n)| format!("{n} {k}")).collect();
-    vec![Warning::job(format!("the drawing left out: {}", list.join("; ")))]
+    out
+}
+
+/// A drawing under 5 mm or over 3 m across as read ([`crate::mesh::placement::LIKELY_ACROSS`]),
+/// where the other unit a drawing can be read in (inch or mm) would make it a part: that unit,
+/// and its size then.
+pub fn drawing_unit_warning(d: &Drawing) -> Option<Warning> {
+    let size = d.bounds().size();
+    let across = size.x.max(size.y);
+    let [low, high] = crate::mesh::placement::LIKELY_ACROSS;
+    let inches = d.scale == 25.4;
+    let (side, unit, choice, mm) = if across < low && !inches {
+        (format!("under {low} mm"), "inches", "inch", across * 25.4)
+    } else if across > high && inches {
+        (format!("over {high} mm"), "millimetres", "mm", across / 25.4)
+    } else {
+        return None;
+    };
+    if !(2.0 * low..=high).contains(&mm) {
+        return None;
+    }
+    Some(Warning::job(format!(
+        "the drawing is {} × {} mm, {side} across: is the file in another unit? Read in {unit} it would be {} mm across (Units of the file: {choice}; drawing.units in a job file)",
+        size_shown(size.x),
+        size_shown(size.y),
+        size_shown(mm)
+    )))
 }
 
 /// What the user should know of a part as read and placed: triangles dropped, holes in its

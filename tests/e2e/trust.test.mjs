@@ -462,6 +462,14 @@ test('malformed drawings are answered at once in the page, the tab alive and the
   assert.match(await page.textContent('#drawing-size'), /left out: 1 circles with a radius ≤ 0 on layer HOLES/);
   assert.match(await page.textContent('#message'), /^The drawing left out: 1 circles with a radius ≤ 0 on layer HOLES/);
   assert.equal(await page.getAttribute('#message', 'class'), 'warning');
+  // A drawing 3 mm across, in a file that names no unit: a note beside its size says what it
+  // would be in inches, until it is read in inches.
+  await page.setInputFiles('#file', { name: 'tiny.dxf', mimeType: 'application/octet-stream', buffer: Buffer.from('0\nSECTION\n2\nENTITIES\n0\nCIRCLE\n8\n0\n10\n5\n20\n5\n40\n1.5\n0\nENDSEC\n0\nEOF\n') });
+  await page.waitForFunction(() => /Read in inches it would be/.test(document.getElementById('drawing-notes').textContent), null, { timeout: PATIENCE });
+  assert.match(await page.textContent('#drawing-notes'), /the drawing is 3 × 3 mm, under 5 mm across: is the file in another unit\? Read in inches it would be 76\.2 mm across/);
+  await tab(page, 'part');
+  await page.selectOption('select[name=drawingUnits]', 'inch');
+  await page.waitForFunction(() => document.getElementById('drawing-notes').textContent === '' && /76\.2 × 76\.2/.test(document.getElementById('drawing-size').textContent), null, { timeout: PATIENCE });
   assert.deepEqual(errors, []);
   await context.close();
 });

@@ -305,7 +305,11 @@ export type DrawingView = { outer: Array<number>, holes: Array<number>, open: Ar
 /**
  * What the reader left out, by kind, with how many.
  */
-ignored: Array<[string, number]>, openChains: Array<OpenChain>, };
+ignored: Array<[string, number]>, openChains: Array<OpenChain>, 
+/**
+ * A size that says the drawing was read in the wrong unit ([`job::drawing_unit_warning`]).
+ */
+warnings: Array<Warning>, };
 
 /**
  * Drilling holes.
