@@ -547,7 +547,7 @@ impl Running {
                 bound.against(if reaches { left.clone() } else { None });
                 held.push(tool.number);
             }
-            let raised = crate::machining::holders::keep_holder_out(&mut paths[n], bound, self.job.tolerances.gouge);
+            let raised = crate::machining::holders::keep_holder_out(&mut paths[n], bound, self.job.tolerances.gouge, tool.feed_rate);
             // Only where the tool, planned lower, would have cut the stock there is material
             // left for a longer stick-out: not where it was raised in the air round the stock.
             let profile = tool.cutter.profile();

@@ -18,7 +18,7 @@
 //! The holder meets the stock as well as the part: the margin round the part, the top an
 //! operation does not face, what a roughing left on the walls. So each operation's paths are
 //! also held to the rings dropped on the stock that operation leaves ([`stock_left`]): the
-//! in-process stock before it, on cells about half a millimetre wide each as high as the
+//! in-process stock before it, on cells about half of [`HOLDER_CELL`], each as high as the
 //! highest it holds, cut by the operation's own moves with its tools narrowed by a cell's
 //! diagonal and lifted to the height their rim reaches there, so that a cell is lowered only
 //! where the whole of it is cut at least that deep. It never stands lower than the stock the
@@ -128,7 +128,8 @@ impl HolderBound {
 }
 
 /// The stock `paths` leave of `stock` as the holder bound takes it: on cells about half of
-/// [`HOLDER_CELL`] (whole multiples of the stock's), each as high as the highest material it
+/// [`HOLDER_CELL`] (whole multiples of the stock's; on whole ones a φ6 tool's own levels,
+/// narrowed by their diagonal, no longer clear the way down for its holder), each as high as the highest material it
 /// holds, lowered by each cutting move of a tool `profile_of` gives (rapids cut nothing here),
 /// narrowed by a cell's diagonal and lifted to the height its rim reaches one half-diagonal in,
 /// so a cell is lowered only as far as every point of it is cut. No cell stands lower than the
@@ -169,8 +170,11 @@ fn rings_lowest(rings: &[(PointDrop, f64)]) -> f64 {
 
 /// Holds `path` to `bound`: each move (a drilling cycle's are left as they are) that dips
 /// below it is raised onto it, as straight pieces half a cell long; the places raised by more
-/// than `tolerance` are given back, each with the height the tip was planned at there.
-pub fn keep_holder_out(path: &mut Toolpath, bound: &mut HolderBound, tolerance: f64) -> Vec<(DVec3, f64)> {
+/// than `tolerance` are given back, each with the height the tip was planned at there. A
+/// rapid or a move faster than the tool's `cut_feed` (a link at the air feed) was planned
+/// through space known to be clear; raised, it may meet what the raised cuts left, so its
+/// raised pieces run at `cut_feed`.
+pub fn keep_holder_out(path: &mut Toolpath, bound: &mut HolderBound, tolerance: f64, cut_feed: f64) -> Vec<(DVec3, f64)> {
     let mut raised = Vec::new();
     if !path.cycles.is_empty() {
         return raised;
@@ -196,22 +200,25 @@ pub fn keep_holder_out(path: &mut Toolpath, bound: &mut HolderBound, tolerance: 
             (at, pos) = (to, to);
             continue;
         }
-        let piece = |to: DVec3| match m.feed() {
+        let air = m.feed().is_none_or(|feed| feed > cut_feed * (1.0 + 1e-9));
+        let piece = |to: DVec3, raised: bool| match m.feed() {
+            _ if air && raised => Move::Line { to, feed: cut_feed },
             Some(feed) => Move::Line { to, feed },
             None => Move::Rapid { to },
         };
         // The start raised where the move before left it lower (up, at its feed).
         if held[0] > pos.z + 1e-12 {
             pos = pos.truncate().extend(held[0]);
-            out.push(piece(pos));
+            out.push(piece(pos, true));
         }
         for k in 1..=n {
             let p = points[k].truncate().extend(held[k]);
+            let lifted = held[k] > points[k].z + 1e-12 || held[k - 1] > points[k - 1].z + 1e-12;
             if held[k] > points[k].z + tolerance {
                 raised.push((p, points[k].z));
             }
             if p.distance(pos) > 1e-9 {
-                out.push(piece(p));
+                out.push(piece(p, lifted));
                 pos = p;
             }
         }
@@ -241,7 +248,7 @@ mod tests {
             Move::Rapid { to: DVec3::new(5.0, 0.0, 5.0) },
         ];
         let mut path = Toolpath { name: "rough".into(), tool: 1, spindle_rpm: 10000.0, start, moves: moves.clone(), cycles: Vec::new() };
-        let raised = keep_holder_out(&mut path, &mut bound, 1e-6);
+        let raised = keep_holder_out(&mut path, &mut bound, 1e-6, 1000.0);
         assert!(!raised.is_empty());
         let lowest = path.moves.iter().map(|m| m.to().z).fold(f64::INFINITY, f64::min);
         // 10 mm up less the clearance, and the cells' widening cannot lift it past the plate.
