@@ -821,10 +821,10 @@ pub fn drawing_unit_warning(d: &Drawing) -> Option<Warning> {
     let across = size.x.max(size.y);
     let [low, high] = crate::mesh::placement::LIKELY_ACROSS;
     let inches = d.scale == 25.4;
-    let (side, unit, choice, mm) = if across < low && !inches {
-        (format!("under {low} mm"), "inches", "inch", across * 25.4)
+    let (unit, choice, mm) = if across < low && !inches {
+        ("inches", "inch", across * 25.4)
     } else if across > high && inches {
-        (format!("over {high} mm"), "millimetres", "mm", across / 25.4)
+        ("millimetres", "mm", across / 25.4)
     } else {
         return None;
     };
@@ -832,10 +832,11 @@ pub fn drawing_unit_warning(d: &Drawing) -> Option<Warning> {
         return None;
     }
     Some(Warning::job(format!(
-        "the drawing is {} × {} mm, {side} across: is the file in another unit? Read in {unit} it would be {} mm across (Units of the file: {choice}; drawing.units in a job file)",
+        "the drawing is {} × {} mm, {}: is the file in another unit? {} (Units of the file: {choice}; drawing.units in a job file)",
         size_shown(size.x),
         size_shown(size.y),
-        size_shown(mm)
+        outside_likely(across),
+        read_in(unit, mm)
     )))
 }
 
@@ -854,21 +855,36 @@ fn unit_warning(mesh: &Mesh) -> Option<Warning> {
     let size = mesh.bounds().size();
     let across = size.x.max(size.y).max(size.z);
     let (read_in, choice) = likely_unit(across)?;
-    let [low, high] = crate::mesh::placement::LIKELY_ACROSS;
-    let side = if across < low { format!("under {low} mm") } else { format!("over {high} mm") };
     Some(Warning::job(format!(
-        "the part is {} × {} × {} mm, {side} across: is the file in another unit? {read_in} (Units of the file: {choice}; part.units in a job file)",
+        "the part is {} × {} × {} mm, {}: is the file in another unit? {read_in} (Units of the file: {choice}; part.units in a job file)",
         size_shown(size.x),
         size_shown(size.y),
-        size_shown(size.z)
+        size_shown(size.z),
+        outside_likely(across)
     )))
 }
 
 /// For a part `across` mm wide, the unit that would make it a part, in the words both its
-/// warnings use ("Read in inches it would be 90 mm across"), and the page's choice for it.
+/// warnings use ([`read_in`]), and the page's choice for it.
 fn likely_unit(across: f64) -> Option<(String, &'static str)> {
     let (unit, choice, mm) = crate::mesh::placement::PartUnits::likely(across)?;
-    Some((format!("Read in {unit} it would be {} mm across", size_shown(mm)), choice))
+    Some((read_in(unit, mm), choice))
+}
+
+/// What a part or drawing read in `unit` would be: "Read in inches it would be 90 mm across".
+fn read_in(unit: &str, mm: f64) -> String {
+    format!("Read in {unit} it would be {} mm across", size_shown(mm))
+}
+
+/// Which side of [`crate::mesh::placement::LIKELY_ACROSS`] a size `across` falls: "under 5 mm
+/// across", "over 3000 mm across".
+fn outside_likely(across: f64) -> String {
+    let [low, high] = crate::mesh::placement::LIKELY_ACROSS;
+    if across < low {
+        format!("under {low} mm across")
+    } else {
+        format!("over {high} mm across")
+    }
 }
 
 /// Triangles dropped as a part was read, and holes in its surface (edges bordering one

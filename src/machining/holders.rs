@@ -129,11 +129,11 @@ impl HolderBound {
 
 /// The stock `paths` leave of `stock` as the holder bound takes it: on cells about half of
 /// [`HOLDER_CELL`] (whole multiples of the stock's; on whole ones a φ6 tool's own levels,
-/// narrowed by their diagonal, no longer clear the way down for its holder), each as high as the highest material it
-/// holds, lowered by each cutting move of a tool `profile_of` gives (rapids cut nothing here),
-/// narrowed by a cell's diagonal and lifted to the height its rim reaches one half-diagonal in,
-/// so a cell is lowered only as far as every point of it is cut. No cell stands lower than the
-/// material the paths leave over it.
+/// narrowed by their diagonal, no longer clear the way down for its holder), each as high as
+/// the highest material it holds, lowered by each cutting move of a tool `profile_of` gives
+/// (rapids cut nothing here), narrowed by a cell's diagonal and lifted to the height its rim
+/// reaches one half-diagonal in, so a cell is lowered only as far as every point of it is cut.
+/// No cell stands lower than the material the paths leave over it.
 pub fn stock_left(stock: &DexelStock, paths: &[Toolpath], profile_of: impl Fn(u32) -> Option<Profile>, chordal: f64) -> DexelStock {
     let factor = (HOLDER_CELL / 2.0 / stock.grid().spacing).floor().max(1.0) as usize;
     let mut left = stock.coarsened(factor);
@@ -148,17 +148,15 @@ pub fn stock_left(stock: &DexelStock, paths: &[Toolpath], profile_of: impl Fn(u3
         let narrow = Profile::new(reach, 0.0);
         let mut at = path.start;
         for m in &path.moves {
-            if !m.is_rapid() {
-                let lifted = match *m {
-                    Move::Rapid { to } => Move::Rapid { to: to + lift },
-                    Move::Line { to, feed } => Move::Line { to: to + lift, feed },
-                    Move::Arc { to, center, clockwise, feed } => Move::Arc { to: to + lift, center, clockwise, feed },
-                };
-                for sweep in Sweep::of_move(narrow, at + lift, &lifted, chordal) {
-                    left.apply(&sweep);
-                }
+            let from = std::mem::replace(&mut at, m.to());
+            let lifted = match *m {
+                Move::Rapid { .. } => continue,
+                Move::Line { to, feed } => Move::Line { to: to + lift, feed },
+                Move::Arc { to, center, clockwise, feed } => Move::Arc { to: to + lift, center, clockwise, feed },
+            };
+            for sweep in Sweep::of_move(narrow, from + lift, &lifted, chordal) {
+                left.apply(&sweep);
             }
-            at = m.to();
         }
     }
     left
