@@ -214,3 +214,17 @@ fn steep_mesa() -> Mesh {
     }
     mesh(tris)
 }
+
+/// A case the random parts found: a flat end standing on a vertex on the part's edge (not a
+/// peak: it has higher neighbours, out of reach there) steps down where its rim leaves the
+/// vertex; beside the step another feature falls steeply, and the plateau's corner stood above
+/// the chord between two quarter probes: the pass ran 0.019 mm under it (X-3.015 Y0.250).
+#[test]
+fn a_flat_ends_rim_grazing_a_vertex_that_is_not_a_peak() {
+    let cutter = Cutter::flat(6.0);
+    let out = finish(&rough_part(135410), &cutter, 0.5, 1.3917151635819573, 34.84215828026969);
+    let d = deepest(&out, &cutter);
+    assert!(d.points > 1000, "only {} points judged", d.points);
+    assert!(d.depth <= CHORDAL, "{:.4} mm below the exact surface at {}", d.depth, d.at);
+}
+

@@ -66,6 +66,10 @@ pub struct PointDrop {
     /// Bucket k's peaks within the cutter radius of it are `peak_entries[peak_start[k]..]`.
     peak_start: Vec<u32>,
     peak_entries: Vec<u32>,
+    /// Every vertex, each in the one bucket it lies in ([`PointDrop::vertices_near`]).
+    vertices: Vec<DVec3>,
+    vertex_start: Vec<u32>,
+    vertex_entries: Vec<u32>,
 }
 
 impl PointDrop {
@@ -111,7 +115,9 @@ impl PointDrop {
         let (start, entries) = bucket_lists(&triangles, nx, ny, span);
         let peaks = peaks(mesh, profile.taper());
         let (peak_start, peak_entries) = bucket_lists(&peaks, nx, ny, |v| (cell(v.x - r, lo.x, nx), cell(v.x + r, lo.x, nx), cell(v.y - r, lo.y, ny), cell(v.y + r, lo.y, ny)));
-        PointDrop { profile: *profile, lift: 0.0, triangles, edges, origin: lo, size, nx, ny, start, entries, peaks, peak_start, peak_entries }
+        let vertices = mesh.vertices.clone();
+        let (vertex_start, vertex_entries) = bucket_lists(&vertices, nx, ny, |v| (cell(v.x, lo.x, nx), cell(v.x, lo.x, nx), cell(v.y, lo.y, ny), cell(v.y, lo.y, ny)));
+        PointDrop { profile: *profile, lift: 0.0, triangles, edges, origin: lo, size, nx, ny, start, entries, peaks, peak_start, peak_entries, vertices, vertex_start, vertex_entries }
     }
 
     /// Drops no lower than those of `profile` grown by a horizontal disk of radius `rho` (its
@@ -164,6 +170,60 @@ impl PointDrop {
                 visit(DVec2::new(u.x, v.y));
             }
         }
+    }
+
+    /// Calls `f` with every vertex of the mesh within `reach` of the segment
+    /// `a`–`b` (some farther ones too, each once): the bucket rows the segment grown by
+    /// `reach` covers, in each the columns its points within `reach` of the row span.
+    pub fn vertices_near(&self, a: DVec2, b: DVec2, reach: f64, mut f: impl FnMut(DVec3)) {
+        let (lo, hi) = (a.min(b) - DVec2::splat(reach), a.max(b) + DVec2::splat(reach));
+        let row = |y: f64| ((y - self.origin.y) / self.size).floor();
+        let (j0, j1) = (row(lo.y).max(0.0), row(hi.y).min(self.ny as f64 - 1.0));
+        if j1 < j0 || hi.x < self.origin.x || lo.x > self.origin.x + self.size * self.nx as f64 {
+            return;
+        }
+        for j in j0 as usize..=j1 as usize {
+            // The segment's x over the rows' y grown by the reach, grown by the reach.
+            let (y0, y1) = (self.origin.y + j as f64 * self.size - reach, self.origin.y + (j + 1) as f64 * self.size + reach);
+            let (mut x0, mut x1) = (f64::INFINITY, f64::NEG_INFINITY);
+            let d = b - a;
+            let mut take = |t: f64| {
+                let x = a.x + d.x * t.clamp(0.0, 1.0);
+                x0 = x0.min(x);
+                x1 = x1.max(x);
+            };
+            if d.y.abs() < 1e-12 {
+                if a.y >= y0 && a.y <= y1 {
+                    take(0.0);
+                    take(1.0);
+                }
+            } else {
+                let (ta, tb) = ((y0 - a.y) / d.y, (y1 - a.y) / d.y);
+                let (t0, t1) = (ta.min(tb).max(0.0), ta.max(tb).min(1.0));
+                if t0 <= t1 {
+                    take(t0);
+                    take(t1);
+                }
+            }
+            if x0 > x1 {
+                continue;
+            }
+            let col = |x: f64| ((x - self.origin.x) / self.size).floor();
+            let (i0, i1) = (col(x0 - reach).max(0.0), col(x1 + reach).min(self.nx as f64 - 1.0));
+            if i1 < i0 {
+                continue;
+            }
+            let (k0, k1) = (j * self.nx + i0 as usize, j * self.nx + i1 as usize);
+            for &p in &self.vertex_entries[self.vertex_start[k0] as usize..self.vertex_start[k1 + 1] as usize] {
+                f(self.vertices[p as usize]);
+            }
+        }
+    }
+
+    /// The drop onto the vertex `v` alone with the cutter's axis `r` from it (no more than the
+    /// radius): a lower bound of [`PointDrop::at`] there.
+    pub fn on_vertex(&self, v: DVec3, r: f64, floor: f64) -> f64 {
+        self.lifted(v.z - self.profile.height(r), floor)
     }
 
     pub fn profile(&self) -> &Profile {
