@@ -9,6 +9,7 @@
 //! gouge (DESIGN.md, idea 1). The operations themselves are in [`crate::operations`], one file
 //! each, importing only from here and the geometry below.
 
+pub mod adaptive;
 pub mod air;
 pub mod context;
 pub mod fixtures;

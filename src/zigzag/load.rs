@@ -158,6 +158,44 @@ impl PixelMap {
         self.px
     }
 
+    /// The centre of pixel (0, 0) and the number of pixels along X and Y.
+    pub fn grid(&self) -> (DVec2, usize, usize) {
+        (self.origin, self.nx, self.ny)
+    }
+
+    /// Whether the pixel nearest `q` holds material (none off the map).
+    pub fn material_near(&self, q: DVec2) -> bool {
+        let u = ((q - self.origin) / self.px).round();
+        if !(u.x >= 0.0 && u.y >= 0.0 && (u.x as usize) < self.nx && (u.y as usize) < self.ny) {
+            return false;
+        }
+        let (i, j) = (u.x as usize, u.y as usize);
+        self.material[j * self.words + i / 64] >> (i % 64) & 1 == 1
+    }
+
+    /// Blocks of `k` × `k` pixels (from pixel (0, 0)), by rows: whether each holds a pixel of
+    /// material with material on its four sides, and the number of blocks along X and Y.
+    pub fn blocks(&self, k: usize) -> (Vec<bool>, usize, usize) {
+        let k = k.max(1);
+        let (bx, by) = (self.nx.div_ceil(k), self.ny.div_ceil(k));
+        let mut out = vec![false; bx * by];
+        let row = |j: usize, w: usize| self.material[j * self.words + w];
+        for j in 1..self.ny.saturating_sub(1) {
+            for w in 0..self.words {
+                // Pixels whose four neighbours hold material too (bits beside a word's ends
+                // counted as empty): a sliver one or two pixels thin is not counted.
+                let m = row(j, w);
+                let mut bits = m & (m << 1) & (m >> 1) & row(j - 1, w) & row(j + 1, w);
+                while bits != 0 {
+                    let i = w * 64 + bits.trailing_zeros() as usize;
+                    bits &= bits - 1;
+                    out[(j / k) * bx + i / k] = true;
+                }
+            }
+        }
+        (out, bx, by)
+    }
+
     /// Whether the tool's centre may stand at `q` off the path: in the region, by the pixels
     /// where the pixel nearest it and its eight neighbours are in it, else by the region's own
     /// boundary where that pixel's centre is in it.

@@ -1,0 +1,323 @@
+//! Adaptive clearing (issue 59): the tool held at a constant engagement angle, step by step,
+//! on a map of the material left at one depth.
+//!
+//! **The engagement.** A tool moving forward cuts only with the front half of its circle (its
+//! back half runs in what it has just cut). The engagement at a point is the angle of that
+//! front half standing in material, measured on the pixel map of the level
+//! ([`crate::zigzag::load::PixelMap`], seed 004 §3.2's map) at [`SAMPLES`] points of the
+//! circle. A straight cut `ae` into a wall engages `arccos(1 − 2·ae/D)`: the target.
+//!
+//! **A pass.** From a point where the tool touches no material, headed with the material on
+//! its right (climb; left for conventional), the tool takes steps of a fixed length. At each,
+//! the heading is searched between a quarter turn right and a quarter turn left of the last
+//! one for the step whose engagement is nearest the target (more to the right, more
+//! material): along a wall it holds the step-over, into a corner it turns away before the
+//! engagement climbs, and where a front would overload it turns back into what is cleared,
+//! which draws the loops of a trochoid. A step must keep the tool's centre in the region. A
+//! pass ends where no heading finds material, or after a tool's width of idle steps.
+//!
+//! **Between passes.** The next pass starts at the nearest point where the tool touches no
+//! material and material lies within a step of its reach (a distance transform of the map in
+//! blocks); reached staying down where the straight way touches no material and stays in the
+//! region, else over the top. Where no such point is left but material is, a helix goes down
+//! in the middle of it (the point of the region farthest from its boundary among those over
+//! material), and the passes spiral out from the hole it cuts.
+//!
+//! What the pixels leave against the region's boundary (a pixel or so) is for a boundary
+//! contour cut after the passes to take off.
+//!
+//! Not yet offered as a clearing pattern: a corner the spiral leaves is cleared by thousands of
+//! short passes (the search turns no further than a quarter turn, so a pass stopped by a wall
+//! cannot loop back), which stays within the budget but is too slow for a page's job.
+
+use crate::drawing::Shape;
+use crate::geom::DVec2;
+use crate::zigzag::load::PixelMap;
+use crate::zmap::distance::{distance_to, distance_within};
+use std::f64::consts::{FRAC_PI_2, PI};
+
+/// Points of the front half of the tool's circle at which the engagement is measured.
+pub const SAMPLES: usize = 120;
+/// Headings tried per step by bisection between the quarter turns.
+const SEARCH: usize = 12;
+/// Most steps in all, as a multiple of the steps the area needs at the target (plus a margin).
+const STEP_BUDGET: f64 = 6.0;
+/// A pass ends after this many tool radii of steps cutting (next to) nothing.
+const IDLE: f64 = 1.0;
+/// Most passes in all.
+const MOST_PASSES: usize = 20_000;
+
+/// How the passes are made.
+#[derive(Clone, Copy, Debug)]
+pub struct Adaptive {
+    /// The tool's radius (mm).
+    pub radius: f64,
+    /// The target engagement angle (radians).
+    pub target: f64,
+    /// Material on the right (climb with a clockwise spindle).
+    pub climb: bool,
+    /// The helix's radius where one is needed (mm).
+    pub helix_r: f64,
+    /// The length of a step (mm).
+    pub step: f64,
+}
+
+impl Adaptive {
+    /// The engagement angle of a straight cut `ae` (mm) deep into a wall by a tool of radius `r`.
+    pub fn angle_of(ae: f64, r: f64) -> f64 {
+        (1.0 - ae / r).clamp(-1.0, 1.0).acos()
+    }
+}
+
+/// How a pass is entered.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Entry {
+    /// Down a helix about `centre` of this `radius`, ending at the pass's first point (the
+    /// point of the circle at +X from the centre).
+    Helix { centre: DVec2, radius: f64 },
+    /// Staying down from where the last pass ended: the way touches no material.
+    Down,
+    /// From above: the first point touches no material at the depth.
+    Above,
+}
+
+/// One pass: its entry and the points of the tool's centre.
+#[derive(Clone, Debug)]
+pub struct Pass {
+    pub entry: Entry,
+    pub points: Vec<DVec2>,
+}
+
+/// The passes and the engagement along them.
+#[derive(Clone, Debug, Default)]
+pub struct Plan {
+    pub passes: Vec<Pass>,
+    /// Each step's length (mm) and engagement (radians), pass after pass.
+    pub engagement: Vec<(f64, f64)>,
+    /// Whether a budget stopped the planning with material left.
+    pub stopped: bool,
+}
+
+/// The passes clearing `map`'s material (the material the tool may cut: within its reach of
+/// `region`) with the tool's centre in `region`, starting from `from`.
+pub fn plan(map: &mut PixelMap, region: &Shape, a: &Adaptive, from: DVec2) -> Plan {
+    let r = a.radius;
+    let px = map.pixel();
+    let step = a.step.max(2.0 * px);
+    let mut out = Plan::default();
+    // Blocks of pixels for the distance transforms: about a sixth of a step, so that some
+    // lie within a step of the material's reach and clear of it.
+    let k = ((step / 6.0 / px).floor() as usize).max(1);
+    let block = k as f64 * px;
+    let half_diag = block * std::f64::consts::FRAC_1_SQRT_2;
+    let (origin, nx, ny) = map.grid();
+    let (bx, by) = (nx.div_ceil(k), ny.div_ceil(k));
+    let centre_of = |i: usize, j: usize| origin + (DVec2::new((i * k) as f64, (j * k) as f64) + DVec2::splat((k - 1) as f64 / 2.0)) * px;
+    // Room for a helix: each block's distance from the region's outside.
+    let outside: Vec<bool> = (0..bx * by).map(|n| !region.contains(centre_of(n % bx, n / bx))).collect();
+    let room = distance_to(&outside, bx, by, block);
+    let ae = r * (1.0 - a.target.cos());
+    let budget = (STEP_BUDGET * map.left() as f64 * px * px / (ae.max(px) * step)) as usize + 10_000;
+    let mut steps = 0usize;
+    let mut at = from;
+    let mut tried = vec![false; bx * by];
+    let side = if a.climb { 1.0 } else { -1.0 };
+    let (mut material, mut near, mut changed) = (Vec::new(), Vec::new(), true);
+    while out.passes.len() < MOST_PASSES {
+        if steps > budget {
+            out.stopped = true;
+            break;
+        }
+        // (The map changes only where a pass cut: else the last transform holds.)
+        if changed {
+            (material, _, _) = map.blocks(k);
+            if !material.iter().any(|&m| m) {
+                break;
+            }
+            near = distance_within(&material, bx, by, block, r + step + block);
+            changed = false;
+        }
+        // The nearest block the tool stands clear of material by, within a step of reach.
+        let mut best: Option<(f64, usize)> = None;
+        for n in 0..bx * by {
+            let d = near[n];
+            if tried[n] || d - half_diag <= r || d + half_diag > r + step {
+                continue;
+            }
+            let c = centre_of(n % bx, n / bx);
+            let dist = c.distance_squared(at);
+            if best.is_none_or(|(b, _)| dist < b) && map.allowed(c) {
+                best = Some((dist, n));
+            }
+        }
+        let (start, entry, heading) = match best {
+            Some((_, n)) => {
+                tried[n] = true;
+                let c = centre_of(n % bx, n / bx);
+                if map.count(c, c) > 0 {
+                    continue;
+                }
+                let Some(g) = material_direction(map, c, r + step) else { continue };
+                let clear = map.count(at, c) == 0 && way_inside(map, at, c, px);
+                (c, if clear { Entry::Down } else { Entry::Above }, rotate(g, side * FRAC_PI_2))
+            }
+            None => {
+                // A helix in the middle of the material the region reaches.
+                let mut middle: Option<(f64, usize)> = None;
+                for n in 0..bx * by {
+                    if material[n] && room[n] - half_diag >= a.helix_r + px && !tried[n] && middle.is_none_or(|(b, _)| room[n] > b) {
+                        middle = Some((room[n], n));
+                    }
+                }
+                let Some((_, n)) = middle else { break };
+                tried[n] = true;
+                let c = centre_of(n % bx, n / bx);
+                let s = c + DVec2::new(a.helix_r, 0.0);
+                if !map.allowed(s) {
+                    continue;
+                }
+                let turns = 72;
+                for t in 0..turns {
+                    let (p, q) = (c + a.helix_r * DVec2::from_angle(t as f64 * 2.0 * PI / turns as f64), c + a.helix_r * DVec2::from_angle((t + 1) as f64 * 2.0 * PI / turns as f64));
+                    map.cut(p, q);
+                }
+                (s, Entry::Helix { centre: c, radius: a.helix_r }, DVec2::new(0.0, side))
+            }
+        };
+        let before = map.left();
+        let (points, engaged) = pass(map, a, start, heading, step, &mut steps, budget);
+        changed = map.left() != before;
+        out.engagement.extend(engaged);
+        at = *points.last().expect("a pass starts at a point");
+        out.passes.push(Pass { entry, points });
+    }
+    out
+}
+
+/// One pass from `start` headed along `heading`: the points and each step's engagement.
+fn pass(map: &mut PixelMap, a: &Adaptive, start: DVec2, heading: DVec2, step: f64, steps: &mut usize, budget: usize) -> (Vec<DVec2>, Vec<(f64, f64)>) {
+    let side = if a.climb { 1.0 } else { -1.0 };
+    let mut points = vec![start];
+    let mut engaged = Vec::new();
+    let (mut p, mut h) = (start, heading);
+    let mut idle = 0.0;
+    // A heading `u` from 0 (a quarter turn towards the material) to 1 (a quarter turn away).
+    let dir = |h: DVec2, u: f64| rotate(h, side * (u - 0.5) * PI);
+    let fits = |map: &PixelMap, p: DVec2, q: DVec2| (1..=4).all(|k| map.allowed(p.lerp(q, k as f64 / 4.0)));
+    while *steps < budget {
+        let e = |map: &PixelMap, u: f64| {
+            let d = dir(h, u);
+            engagement(map, p + d * step, d, a.radius)
+        };
+        // No material in reach of any heading: turning towards where it was, for a while.
+        let hard = e(map, 0.0);
+        if idle + step > IDLE * a.radius {
+            break;
+        }
+        // Bisection for the heading whose engagement is nearest the target.
+        let mut u = if hard <= a.target {
+            0.0
+        } else {
+            let (mut lo, mut hi) = (0.0, 1.0);
+            for _ in 0..SEARCH {
+                let mid = 0.5 * (lo + hi);
+                if e(map, mid) > a.target {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            if (e(map, lo) - a.target).abs() < (e(map, hi) - a.target).abs() {
+                lo
+            } else {
+                hi
+            }
+        };
+        // Away from the material until the step stays in the region.
+        while u <= 1.0 && !fits(map, p, p + dir(h, u) * step) {
+            u += 1.0 / 32.0;
+        }
+        if u > 1.0 {
+            break;
+        }
+        let d = dir(h, u);
+        let q = p + d * step;
+        let angle = engagement(map, q, d, a.radius);
+        let removed = map.cut(p, q) as f64;
+        *steps += 1;
+        engaged.push((step, angle));
+        points.push(q);
+        idle = if removed > 0.0 { 0.0 } else { idle + step };
+        (p, h) = (q, d);
+    }
+    (points, engaged)
+}
+
+/// The engagement angle of a tool of radius `r` at `q` moving along `d`: the front half of its
+/// circle in material, measured at [`SAMPLES`] points.
+pub fn engagement(map: &PixelMap, q: DVec2, d: DVec2, r: f64) -> f64 {
+    let n = (0..SAMPLES).filter(|&k| map.material_near(q + rotate(d, -FRAC_PI_2 + PI * (k as f64 + 0.5) / SAMPLES as f64) * r)).count();
+    PI * n as f64 / SAMPLES as f64
+}
+
+/// The mean direction from `c` of the material on the circle of radius `reach` about it.
+fn material_direction(map: &PixelMap, c: DVec2, reach: f64) -> Option<DVec2> {
+    let mut sum = DVec2::ZERO;
+    for k in 0..64 {
+        let d = DVec2::from_angle(k as f64 * PI / 32.0);
+        if map.material_near(c + d * reach) {
+            sum += d;
+        }
+    }
+    (sum.length() > 1e-9).then(|| sum.normalize())
+}
+
+/// Whether the straight way from `a` to `b` keeps the tool's centre in the map's region
+/// (sampled every pixel).
+fn way_inside(map: &PixelMap, a: DVec2, b: DVec2, px: f64) -> bool {
+    let n = ((a.distance(b) / px).ceil() as usize).max(1);
+    (0..=n).all(|k| map.allowed(a.lerp(b, k as f64 / n as f64)))
+}
+
+fn rotate(v: DVec2, angle: f64) -> DVec2 {
+    DVec2::from_angle(angle).rotate(v)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::drawing::Loop;
+
+    /// A square pocket: a helix in the middle, one pass spiralling out at the target (the
+    /// engagement within 10 % of it over 95 % of the pass), then passes into the corners; next
+    /// to nothing left.
+    #[test]
+    fn a_square_pocket_spirals_out_at_the_target() {
+        let r = 3.0;
+        let region = Shape { loops: vec![Loop::rect(DVec2::new(-12.0, -12.0), DVec2::new(12.0, 12.0))] };
+        let reach = |p: DVec2| (p.abs() - DVec2::splat(12.0)).max(DVec2::ZERO).length() <= r - 3.0 * 0.075;
+        let mut map = PixelMap::new(crate::geom::segment::Rect { min: DVec2::splat(-12.0), max: DVec2::splat(12.0) }, 0.075, r, reach, &region);
+        let before = map.left();
+        let a = Adaptive { radius: r, target: Adaptive::angle_of(0.6, r), climb: true, helix_r: 2.4, step: 0.3 };
+        let plan = plan(&mut map, &region, &a, DVec2::ZERO);
+        assert!(matches!(plan.passes[0].entry, Entry::Helix { .. }));
+        let spiral = &plan.engagement[..plan.passes[0].points.len() - 1];
+        let held = spiral.iter().filter(|e| (e.1 - a.target).abs() <= 0.1 * a.target).count();
+        assert!(held as f64 >= 0.95 * spiral.len() as f64, "{held} of {} steps within 10 %", spiral.len());
+        assert!((map.left() as f64) < 0.001 * before as f64, "{} of {before} pixels left", map.left());
+    }
+
+    /// A straight cut along a wall settles at the step-over's engagement.
+    #[test]
+    fn along_a_wall_the_engagement_settles_at_the_target() {
+        let r = 3.0;
+        let region = Shape { loops: vec![Loop::rect(DVec2::new(-20.0, -20.0), DVec2::new(20.0, 20.0))] };
+        let mut map = PixelMap::new(crate::geom::segment::Rect { min: DVec2::splat(-20.0), max: DVec2::splat(20.0) }, 0.075, r, |p| p.x >= 0.0, &region);
+        let a = Adaptive { radius: r, target: Adaptive::angle_of(0.6, r), climb: true, helix_r: 1.0, step: 0.3 };
+        let mut steps = 0;
+        let (points, engaged) = pass(&mut map, &a, DVec2::new(-r - 0.1, -15.0), DVec2::new(0.0, 1.0), 0.3, &mut steps, 100);
+        assert!(points.iter().skip(50).all(|p| (p.x + r - 0.6).abs() < 0.05), "the pass settles 0.6 into the wall");
+        let late = &engaged[engaged.len() / 2..];
+        assert!(late.iter().all(|e| (e.1 - a.target).abs() < 0.1 * a.target), "{late:?}");
+    }
+}
