@@ -227,4 +227,3 @@ fn a_flat_ends_rim_grazing_a_vertex_that_is_not_a_peak() {
     assert!(d.points > 1000, "only {} points judged", d.points);
     assert!(d.depth <= CHORDAL, "{:.4} mm below the exact surface at {}", d.depth, d.at);
 }
-
