@@ -209,31 +209,38 @@ fn pass(map: &mut PixelMap, a: &Adaptive, start: DVec2, heading: DVec2, step: f6
             let d = dir(h, u);
             engagement(map, p + d * step, d, a.radius)
         };
-        // No material in reach of any heading: turning towards where it was, for a while.
-        let hard = e(map, 0.0);
+        // A tool's radius of steps that cut nothing ends the pass.
         if idle + step > IDLE * a.radius {
             break;
         }
-        // Bisection for the heading whose engagement is nearest the target.
-        let mut u = if hard <= a.target {
-            0.0
+        // Bisection for the heading whose engagement is nearest the target (each heading's
+        // engagement kept with it).
+        let hard = e(map, 0.0);
+        let (mut u, mut angle) = if hard <= a.target {
+            (0.0, hard)
         } else {
-            let (mut lo, mut hi) = (0.0, 1.0);
+            // (A quarter turn away is measured only if the search never leaves it.)
+            let (mut lo, mut hi) = ((0.0, hard), (1.0, f64::NAN));
             for _ in 0..SEARCH {
-                let mid = 0.5 * (lo + hi);
-                if e(map, mid) > a.target {
-                    lo = mid;
+                let mid = 0.5 * (lo.0 + hi.0);
+                let at_mid = (mid, e(map, mid));
+                if at_mid.1 > a.target {
+                    lo = at_mid;
                 } else {
-                    hi = mid;
+                    hi = at_mid;
                 }
             }
-            if (e(map, lo) - a.target).abs() < (e(map, hi) - a.target).abs() {
+            if hi.1.is_nan() {
+                hi.1 = e(map, 1.0);
+            }
+            if (lo.1 - a.target).abs() < (hi.1 - a.target).abs() {
                 lo
             } else {
                 hi
             }
         };
         // Away from the material until the step stays in the region.
+        let searched = u;
         while u <= 1.0 && !fits(map, p, p + dir(h, u) * step) {
             u += 1.0 / 32.0;
         }
@@ -242,7 +249,9 @@ fn pass(map: &mut PixelMap, a: &Adaptive, start: DVec2, heading: DVec2, step: f6
         }
         let d = dir(h, u);
         let q = p + d * step;
-        let angle = engagement(map, q, d, a.radius);
+        if u != searched {
+            angle = engagement(map, q, d, a.radius);
+        }
         let removed = map.cut(p, q) as f64;
         *steps += 1;
         engaged.push((step, angle));

@@ -182,11 +182,11 @@ impl PointDrop {
         if j1 < j0 || hi.x < self.origin.x || lo.x > self.origin.x + self.size * self.nx as f64 {
             return;
         }
+        let d = b - a;
         for j in j0 as usize..=j1 as usize {
             // The segment's x over the rows' y grown by the reach, grown by the reach.
             let (y0, y1) = (self.origin.y + j as f64 * self.size - reach, self.origin.y + (j + 1) as f64 * self.size + reach);
             let (mut x0, mut x1) = (f64::INFINITY, f64::NEG_INFINITY);
-            let d = b - a;
             let mut take = |t: f64| {
                 let x = a.x + d.x * t.clamp(0.0, 1.0);
                 x0 = x0.min(x);
