@@ -4,7 +4,8 @@
 //!
 //! Run: `cargo bench --bench zigzag` (native). The wasm figures: `bash scripts/bench-wasm.sh`.
 //! The load of any programs with a flat end of diameter D on a part (the peers' side by side):
-//! `cargo bench --bench zigzag -- load D PART.stl PROGRAM.ngc...`.
+//! `cargo bench --bench zigzag -- load D PART.stl PROGRAM.ngc...`; their engagement (adaptive
+//! clearing's measure): `cargo bench --bench zigzag -- engagement D AP AE FEED PART.stl PROGRAM.ngc...`.
 
 mod support;
 
@@ -18,6 +19,37 @@ fn main() {
             let gcode = std::fs::read_to_string(program).expect("the program");
             let (peak, mean, n) = support::job::program_load(part.clone(), &gcode, diameter, 0.1, 1.2).expect("the program simulates");
             println!("{program}: removal rate per 1.2 mm of level cutting: peak {peak:.0} mm³/min, mean {mean:.0} mm³/min over {n} windows");
+        }
+        return;
+    }
+    if args.first().map(String::as_str) == Some("engagement") {
+        // `-- engagement D AP AE FEED PART.stl PROGRAM.ngc...`: each program's engagement along
+        // its level cutting (issue 59's measure), by the simulation: the volume each window of
+        // 1.2 mm removed over its length and the depth AP is the radial cut `ae` it stands for,
+        // and `arccos(1 − ae/r)` its angle, against the target of a straight cut AE deep.
+        let num = |k: usize| -> f64 { args[k].parse().expect("a number") };
+        let (diameter, ap, ae, feed) = (num(1), num(2), num(3), num(4));
+        let r = diameter / 2.0;
+        let angle = |ae: f64| (1.0 - ae / r).clamp(-1.0, 1.0).acos();
+        let target = angle(ae);
+        let part = swarf::mesh::import::read_mesh_auto(&std::fs::read(&args[5]).expect("the part"), Some("part.stl"), &Default::default()).expect("the part reads");
+        for program in &args[6..] {
+            let gcode = std::fs::read_to_string(program).expect("the program");
+            let rates = support::job::program_rates(part.clone(), &gcode, diameter, 0.1, 1.2).expect("the program simulates");
+            // Windows that cut (more than a twentieth of the target's rate).
+            let angles: Vec<f64> = rates.iter().map(|&rate| rate / feed / ap).filter(|&e| e > 0.05 * ae).map(angle).collect();
+            let n = angles.len().max(1) as f64;
+            let held = angles.iter().filter(|&&a| (a - target).abs() <= 0.1 * target).count() as f64 / n;
+            let over = angles.iter().filter(|&&a| a > 1.3 * target).count() as f64 / n;
+            let peak = angles.iter().copied().fold(0.0, f64::max);
+            println!(
+                "{program}: engagement over {} windows of 1.2 mm cutting: {:.1} % within ±10 % of {:.1}°, {:.1} % above 1.3×, peak {:.1}°",
+                angles.len(),
+                100.0 * held,
+                target.to_degrees(),
+                100.0 * over,
+                peak.to_degrees()
+            );
         }
         return;
     }

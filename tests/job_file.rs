@@ -131,7 +131,7 @@ fn a_version_1_tab_height_keeps_its_top() {
 fn a_roughing_setting_shared_by_the_roughing_kinds_is_named_by_its_path() {
     // The roughing kinds' shared settings are flattened into each one's JSON: a bad value is
     // still named by its own path.
-    for kind in ["roughZlevel", "roughZigzag", "roughOctree"] {
+    for kind in ["roughZlevel", "roughZigzag", "roughAdaptive", "roughOctree"] {
         let mut job = serde_json::to_value(Job::demo()).unwrap();
         job["operations"][0] = serde_json::json!({ "kind": kind, "allowance": "lots" });
         let e = Job::from_value(&job).unwrap_err().to_string();

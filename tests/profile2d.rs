@@ -103,8 +103,8 @@ fn profile_cuts_the_plate_out_with_tabs_and_never_closer_than_the_radius() {
 }
 
 #[test]
-fn pockets_remove_their_closed_form_volume_for_both_patterns() {
-    for pattern in [PocketPattern::Offset, PocketPattern::Zigzag] {
+fn pockets_remove_their_closed_form_volume_for_every_pattern() {
+    for pattern in [PocketPattern::Offset, PocketPattern::Zigzag, PocketPattern::Adaptive] {
         for entry in [EntryKind::Helix, EntryKind::Ramp] {
             let pocket = Pocket2d { layers: vec!["POCKET".into()], depth: 3.0, stepdown: 1.5, pattern, entry, ..Pocket2d::default() };
             let mut job = job_with(vec![Operation::Pocket2d(pocket)], 6.0);
@@ -266,6 +266,7 @@ fn no_operation_plunges_into_solid_material() {
         Operation::Pocket2d(Pocket2d { layers: vec!["POCKET".into()], entry: EntryKind::Helix, ..Pocket2d::default() }),
         Operation::Pocket2d(Pocket2d { layers: vec!["POCKET".into()], entry: EntryKind::Ramp, ..Pocket2d::default() }),
         Operation::Pocket2d(Pocket2d { layers: vec!["POCKET".into()], pattern: PocketPattern::Zigzag, ..Pocket2d::default() }),
+        Operation::Pocket2d(Pocket2d { layers: vec!["POCKET".into()], pattern: PocketPattern::Adaptive, stepover_fraction: 0.1, ..Pocket2d::default() }),
         Operation::Profile2d(Profile2d { layers: vec!["CUT".into()], tabs: Tabs { count: 3, ..Tabs::default() }, ..Profile2d::default() }),
     ] {
         let mut job = job_with(vec![op.clone()], 6.0);

@@ -284,15 +284,21 @@ pub fn zigzag_rows(platform: &str, clock: &dyn Fn() -> f64) -> Vec<String> {
 /// windows of `ds` mm of level cutting (entries left out), by the project's simulation at
 /// `cell`: the highest window and the mean (mm³/min), and the number of windows.
 pub fn program_load(part: Mesh, gcode: &str, diameter: f64, cell: f64, ds: f64) -> swarf::error::Result<(f64, f64, usize)> {
+    let rates = program_rates(part, gcode, diameter, cell, ds)?;
+    let mean = rates.iter().sum::<f64>() / rates.len().max(1) as f64;
+    Ok((rates.iter().copied().fold(0.0, f64::max), mean, rates.len()))
+}
+
+/// The removal rate (mm³/min) over each window of at least `ds` mm of a program's level cutting
+/// (a flat end of `diameter` on the part's box as stock), simulated at `cell`.
+pub fn program_rates(part: Mesh, gcode: &str, diameter: f64, cell: f64, ds: f64) -> swarf::error::Result<Vec<f64>> {
     let mut job = peer_rough_job();
     let mut part = part;
     let stock = job.place(&mut part);
     job.tools[0].cutter = Cutter { flute_length: 1e3, ..Cutter::flat(diameter) };
     let paths = swarf::post::read::read_gcode(gcode, 1)?;
     let moves = swarf::sim::program::program_moves(&paths, &job.tools, job.rapids(), job.air_feed())?;
-    let rates = swarf::sim::windows::windowed_rates(&moves, &stock, cell, ds)?;
-    let mean = rates.iter().sum::<f64>() / rates.len().max(1) as f64;
-    Ok((rates.iter().copied().fold(0.0, f64::max), mean, rates.len()))
+    swarf::sim::windows::windowed_rates(&moves, &stock, cell, ds)
 }
 
 /// Issue 12's settings (φ6 flat, step-down 2, step-over 0.4, no allowance, the stock the

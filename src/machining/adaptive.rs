@@ -9,28 +9,28 @@
 //!
 //! **A pass.** From a point where the tool touches no material, headed with the material on
 //! its right (climb; left for conventional), the tool takes steps of a fixed length. At each,
-//! the heading is searched between a quarter turn right and a quarter turn left of the last
-//! one for the step whose engagement is nearest the target (more to the right, more
-//! material): along a wall it holds the step-over, into a corner it turns away before the
-//! engagement climbs, and where a front would overload it turns back into what is cleared,
-//! which draws the loops of a trochoid. A step must keep the tool's centre in the region. A
-//! pass ends where no heading finds material, or after a tool's width of idle steps.
+//! the heading is searched by bisection between a quarter turn towards the material and a
+//! quarter turn away for the step whose engagement is nearest the target (more towards the
+//! material, more engagement): along a wall it holds the step-over, into a corner it turns away
+//! before the engagement climbs. Where even the hardest turn cuts too little, it heads for the
+//! material and no further (turning past it would turn the pass round on the spot). A step
+//! must keep the tool's centre in the region. A pass ends where every heading would take more
+//! than [`MOST_OVER`] times the target (a front that would overload: the next pass starts
+//! elsewhere), where no heading finds material, or after a tool's radius of idle steps.
 //!
-//! **Between passes.** The next pass starts at the nearest point where the tool touches no
-//! material and material lies within a step of its reach (a distance transform of the map in
-//! blocks); reached staying down where the straight way touches no material and stays in the
-//! region, else over the top. Where no such point is left but material is, a helix goes down
-//! in the middle of it (the point of the region farthest from its boundary among those over
-//! material), and the passes spiral out from the hole it cuts.
+//! **Between passes.** The next pass starts where the tool touches no material and material
+//! lies within a step of its reach (a distance transform of the map in blocks, kept up to date
+//! in a window about each pass): first where a front of material begins (a step back along the
+//! front the tool would be outside the region or out of reach of material, so the pass runs the
+//! front's whole length), the nearest such point; reached staying down where the straight way
+//! touches no material and stays in the region, else over the top. Where no such point is left
+//! but material is, a helix goes down in the middle of it (the point of the region farthest
+//! from its boundary among those over material; smaller than asked where the room is, down to
+//! [`LEAST_HELIX`] of the tool's radius), and the passes spiral out from the hole it cuts.
 //!
 //! What the pixels leave against the region's boundary (a pixel or so) is for a boundary
-//! contour cut after the passes to take off.
-//!
-//! Not yet offered as a clearing pattern: a corner the spiral leaves is cleared by thousands of
-//! short passes (the search turns no further than a quarter turn, so a pass stopped by a wall
-//! cannot loop back), which stays within the budget but is too slow for a page's job.
+//! contour cut after the passes to take off ([`crate::machining::rings`] does).
 
-use crate::drawing::Shape;
 use crate::geom::DVec2;
 use crate::zigzag::load::PixelMap;
 use crate::zmap::distance::{distance_to, distance_within};
@@ -43,7 +43,13 @@ const SEARCH: usize = 12;
 /// Most steps in all, as a multiple of the steps the area needs at the target (plus a margin).
 const STEP_BUDGET: f64 = 6.0;
 /// A pass ends after this many tool radii of steps cutting (next to) nothing.
-const IDLE: f64 = 1.0;
+const IDLE: f64 = 0.5;
+/// How near the target the last step's turn must keep the engagement to be taken again.
+const KEEP: f64 = 0.04;
+/// The smallest helix, as a fraction of the tool's radius.
+pub const LEAST_HELIX: f64 = 0.2;
+/// The most engagement a step may take, over the target: past it the pass ends.
+pub const MOST_OVER: f64 = 1.25;
 /// Most passes in all.
 const MOST_PASSES: usize = 20_000;
 
@@ -60,6 +66,25 @@ pub struct Adaptive {
     pub helix_r: f64,
     /// The length of a step (mm).
     pub step: f64,
+}
+
+/// The lightest optimal load adaptive clearing holds, as a fraction of the tool's diameter
+/// (lighter, the engagement is a sliver of a degree, and the path runs for kilometres).
+pub const LEAST_LOAD: f64 = 0.02;
+
+/// Refuses an optimal load lighter than [`LEAST_LOAD`], naming the job file's field.
+pub fn check_load(load: f64) -> Result<(), crate::machining::FieldError> {
+    if load >= LEAST_LOAD {
+        Ok(())
+    } else {
+        Err(crate::machining::FieldError {
+            field: "stepoverFraction",
+            message: format!(
+                "must be at least {LEAST_LOAD} of the tool's diameter for adaptive clearing, which holds the engagement of that load (got {}): adaptive loads are usually 0.05 to 0.4",
+                crate::limits::shown(load)
+            ),
+        })
+    }
 }
 
 impl Adaptive {
@@ -98,9 +123,9 @@ pub struct Plan {
     pub stopped: bool,
 }
 
-/// The passes clearing `map`'s material (the material the tool may cut: within its reach of
-/// `region`) with the tool's centre in `region`, starting from `from`.
-pub fn plan(map: &mut PixelMap, region: &Shape, a: &Adaptive, from: DVec2) -> Plan {
+/// The passes clearing `map`'s material (the material the tool may cut: within its reach of the
+/// map's region) with the tool's centre where the map allows it, starting from `from`.
+pub fn plan(map: &mut PixelMap, a: &Adaptive, from: DVec2) -> Plan {
     let r = a.radius;
     let px = map.pixel();
     let step = a.step.max(2.0 * px);
@@ -114,7 +139,7 @@ pub fn plan(map: &mut PixelMap, region: &Shape, a: &Adaptive, from: DVec2) -> Pl
     let (bx, by) = (nx.div_ceil(k), ny.div_ceil(k));
     let centre_of = |i: usize, j: usize| origin + (DVec2::new((i * k) as f64, (j * k) as f64) + DVec2::splat((k - 1) as f64 / 2.0)) * px;
     // Room for a helix: each block's distance from the region's outside.
-    let outside: Vec<bool> = (0..bx * by).map(|n| !region.contains(centre_of(n % bx, n / bx))).collect();
+    let outside: Vec<bool> = (0..bx * by).map(|n| !map.allowed(centre_of(n % bx, n / bx))).collect();
     let room = distance_to(&outside, bx, by, block);
     let ae = r * (1.0 - a.target.cos());
     let budget = (STEP_BUDGET * map.left() as f64 * px * px / (ae.max(px) * step)) as usize + 10_000;
@@ -122,34 +147,71 @@ pub fn plan(map: &mut PixelMap, region: &Shape, a: &Adaptive, from: DVec2) -> Pl
     let mut at = from;
     let mut tried = vec![false; bx * by];
     let side = if a.climb { 1.0 } else { -1.0 };
-    let (mut material, mut near, mut changed) = (Vec::new(), Vec::new(), true);
+    // The material's blocks, each block's distance from them (within reach of a start), and
+    // the blocks a pass may start from (clear of the material, within a step of its reach),
+    // kept up to date in a window about each pass.
+    let cap = r + step + block;
+    let (mut material, _, _) = map.blocks(k);
+    let mut blocks_left = material.iter().filter(|&&m| m).count();
+    let mut near = distance_within(&material, bx, by, block, cap);
+    let block_at = |p: DVec2| {
+        let u = ((p - origin) / block - DVec2::splat((k - 1) as f64 / 2.0 / k as f64)).round();
+        (u.x >= 0.0 && u.y >= 0.0 && (u.x as usize) < bx && (u.y as usize) < by).then(|| u.y as usize * bx + u.x as usize)
+    };
+    // A start: a block clear of the material within a step of its reach, where the tool's
+    // centre may stand, and whether a front begins there (a step back along it the tool would
+    // be outside the region or out of reach of material).
+    let start_at = |map: &PixelMap, near: &[f64], n: usize| {
+        let (i, j, d) = (n % bx, n / bx, near[n]);
+        if !(i > 0 && j > 0 && i + 1 < bx && j + 1 < by && d - half_diag > r && d + half_diag <= r + step) {
+            return None;
+        }
+        let c = centre_of(i, j);
+        if !map.allowed(c) {
+            return None;
+        }
+        let g = -DVec2::new(near[n + 1] - near[n - 1], near[n + bx] - near[n - bx]);
+        let begins = !g.is_finite() || g.length() < 1e-12 || {
+            let h = rotate(g.normalize(), side * FRAC_PI_2);
+            let up = c - h * step;
+            !map.allowed(up) || block_at(up).is_none_or(|m| near[m] - half_diag > r + step)
+        };
+        Some((n, begins))
+    };
+    let mut starts: Vec<(usize, bool)> = (0..bx * by).filter_map(|n| start_at(map, &near, n)).collect();
+    // Blocks `(i0, j0)` to `(i1, j1)` (exclusive) within `by` blocks of the points' box.
+    let window = |pts: &[DVec2], grow: f64| {
+        let b = pts.iter().fold(crate::geom::segment::Rect::EMPTY, |b, &p| b.grow(p));
+        let lo = ((b.min - origin) / block - DVec2::splat(grow / block + 1.0)).floor().max(DVec2::ZERO);
+        let hi = ((b.max - origin) / block + DVec2::splat(grow / block + 2.0)).ceil();
+        ((lo.x as usize, lo.y as usize), ((hi.x as usize).min(bx), (hi.y as usize).min(by)))
+    };
     while out.passes.len() < MOST_PASSES {
         if steps > budget {
             out.stopped = true;
             break;
         }
-        // (The map changes only where a pass cut: else the last transform holds.)
-        if changed {
-            (material, _, _) = map.blocks(k);
-            if !material.iter().any(|&m| m) {
-                break;
-            }
-            near = distance_within(&material, bx, by, block, r + step + block);
-            changed = false;
+        if blocks_left == 0 {
+            break;
         }
-        // The nearest block the tool stands clear of material by, within a step of reach.
-        let mut best: Option<(f64, usize)> = None;
-        for n in 0..bx * by {
-            let d = near[n];
-            if tried[n] || d - half_diag <= r || d + half_diag > r + step {
+        // The nearest block the tool stands clear of material by, within a step of reach;
+        // of those, first the ones where a front begins (its pass runs the front's length).
+        let mut best: Option<(bool, f64, usize)> = None;
+        let mut at_start = 0;
+        while at_start < starts.len() {
+            let (n, begins) = starts[at_start];
+            if tried[n] {
+                // (Tried once, never again: out of the list.)
+                starts.swap_remove(at_start);
                 continue;
             }
-            let c = centre_of(n % bx, n / bx);
-            let dist = c.distance_squared(at);
-            if best.is_none_or(|(b, _)| dist < b) && map.allowed(c) {
-                best = Some((dist, n));
+            at_start += 1;
+            let dist = centre_of(n % bx, n / bx).distance_squared(at);
+            if best.is_none_or(|(bb, b, _)| (begins && !bb) || (begins == bb && dist < b)) {
+                best = Some((begins, dist, n));
             }
         }
+        let best = best.map(|(_, d, n)| (d, n));
         let (start, entry, heading) = match best {
             Some((_, n)) => {
                 tried[n] = true;
@@ -162,31 +224,68 @@ pub fn plan(map: &mut PixelMap, region: &Shape, a: &Adaptive, from: DVec2) -> Pl
                 (c, if clear { Entry::Down } else { Entry::Above }, rotate(g, side * FRAC_PI_2))
             }
             None => {
-                // A helix in the middle of the material the region reaches.
+                // A helix in the middle of the material the region reaches: of the helix's
+                // radius, or as large as fits down to [`LEAST_HELIX`] of the tool's radius (a
+                // channel narrower than the helix).
                 let mut middle: Option<(f64, usize)> = None;
                 for n in 0..bx * by {
-                    if material[n] && room[n] - half_diag >= a.helix_r + px && !tried[n] && middle.is_none_or(|(b, _)| room[n] > b) {
+                    if material[n] && !tried[n] && middle.is_none_or(|(b, _)| room[n] > b) {
                         middle = Some((room[n], n));
                     }
                 }
-                let Some((_, n)) = middle else { break };
+                let Some((room_there, n)) = middle else { break };
+                let helix_r = a.helix_r.min(room_there - half_diag - px);
+                if helix_r < LEAST_HELIX * r {
+                    break;
+                }
                 tried[n] = true;
                 let c = centre_of(n % bx, n / bx);
-                let s = c + DVec2::new(a.helix_r, 0.0);
+                let s = c + DVec2::new(helix_r, 0.0);
                 if !map.allowed(s) {
                     continue;
                 }
                 let turns = 72;
                 for t in 0..turns {
-                    let (p, q) = (c + a.helix_r * DVec2::from_angle(t as f64 * 2.0 * PI / turns as f64), c + a.helix_r * DVec2::from_angle((t + 1) as f64 * 2.0 * PI / turns as f64));
+                    let (p, q) = (c + helix_r * DVec2::from_angle(t as f64 * 2.0 * PI / turns as f64), c + helix_r * DVec2::from_angle((t + 1) as f64 * 2.0 * PI / turns as f64));
                     map.cut(p, q);
                 }
-                (s, Entry::Helix { centre: c, radius: a.helix_r }, DVec2::new(0.0, side))
+                (s, Entry::Helix { centre: c, radius: helix_r }, DVec2::new(0.0, side))
             }
         };
         let before = map.left();
         let (points, engaged) = pass(map, a, start, heading, step, &mut steps, budget);
-        changed = map.left() != before;
+        if map.left() != before {
+            // What the pass (and its helix) cut lies within the tool's radius of its points: the
+            // blocks' distances change only within `cap` of that, and are found from the
+            // material within `cap` of those.
+            let mut cut = points.clone();
+            if let Entry::Helix { centre, radius } = entry {
+                cut.extend([centre - DVec2::splat(radius), centre + DVec2::splat(radius)]);
+            }
+            let (inner_lo, inner_hi) = window(&cut, r + cap);
+            let (lo, hi) = window(&cut, r + 2.0 * cap);
+            let w = hi.0 - lo.0;
+            let part = map.blocks_within(k, lo, hi);
+            let d = distance_within(&part, w, hi.1 - lo.1, block, cap);
+            for j in lo.1..hi.1 {
+                for i in lo.0..hi.0 {
+                    let now = part[(j - lo.1) * w + i - lo.0];
+                    blocks_left = blocks_left + now as usize - material[j * bx + i] as usize;
+                    material[j * bx + i] = now;
+                    if (inner_lo.0..inner_hi.0).contains(&i) && (inner_lo.1..inner_hi.1).contains(&j) {
+                        near[j * bx + i] = d[(j - lo.1) * w + i - lo.0];
+                    }
+                }
+            }
+            // The starts again where the distances changed, and a step beyond (where a front
+            // begins is judged a step back along it).
+            let (lo, hi) = window(&cut, r + cap + step);
+            let inside = |n: usize| (lo.0..hi.0).contains(&(n % bx)) && (lo.1..hi.1).contains(&(n / bx));
+            starts.retain(|&(n, _)| !inside(n));
+            for j in lo.1..hi.1 {
+                starts.extend((lo.0..hi.0).filter_map(|i| start_at(map, &near, j * bx + i)));
+            }
+        }
         out.engagement.extend(engaged);
         at = *points.last().expect("a pass starts at a point");
         out.passes.push(Pass { entry, points });
@@ -199,7 +298,7 @@ fn pass(map: &mut PixelMap, a: &Adaptive, start: DVec2, heading: DVec2, step: f6
     let side = if a.climb { 1.0 } else { -1.0 };
     let mut points = vec![start];
     let mut engaged = Vec::new();
-    let (mut p, mut h) = (start, heading);
+    let (mut p, mut h, mut last) = (start, heading, 0.5);
     let mut idle = 0.0;
     // A heading `u` from 0 (a quarter turn towards the material) to 1 (a quarter turn away).
     let dir = |h: DVec2, u: f64| rotate(h, side * (u - 0.5) * PI);
@@ -213,11 +312,18 @@ fn pass(map: &mut PixelMap, a: &Adaptive, start: DVec2, heading: DVec2, step: f6
         if idle + step > IDLE * a.radius {
             break;
         }
-        // Bisection for the heading whose engagement is nearest the target (each heading's
-        // engagement kept with it).
-        let hard = e(map, 0.0);
-        let (mut u, mut angle) = if hard <= a.target {
-            (0.0, hard)
+        // The last step's turn again where it holds the engagement within [`KEEP`] of the
+        // target (a spiral runs on at one curvature: long arcs), else bisection for the heading
+        // whose engagement is nearest the target (each heading's engagement kept with it).
+        let same = e(map, last);
+        let hard = if (same - a.target).abs() <= KEEP * a.target { f64::NAN } else { e(map, 0.0) };
+        let (mut u, mut angle) = if hard.is_nan() {
+            (last, same)
+        } else if hard <= a.target {
+            // Too light even turning hard: towards the material, no further (turning past it
+            // would turn the pass round on the spot).
+            let u = material_direction(map, p, a.radius + step).map_or(0.5, |g| (0.5 + side * h.angle_to(g) / PI).clamp(0.0, 0.5));
+            (u, if u == 0.0 { hard } else { e(map, u) })
         } else {
             // (A quarter turn away is measured only if the search never leaves it.)
             let (mut lo, mut hi) = ((0.0, hard), (1.0, f64::NAN));
@@ -252,12 +358,16 @@ fn pass(map: &mut PixelMap, a: &Adaptive, start: DVec2, heading: DVec2, step: f6
         if u != searched {
             angle = engagement(map, q, d, a.radius);
         }
+        // A front that would overload whichever way ends the pass (the next starts elsewhere).
+        if angle > MOST_OVER * a.target {
+            break;
+        }
         let removed = map.cut(p, q) as f64;
         *steps += 1;
         engaged.push((step, angle));
         points.push(q);
         idle = if removed > 0.0 { 0.0 } else { idle + step };
-        (p, h) = (q, d);
+        (p, h, last) = (q, d, u);
     }
     (points, engaged)
 }
@@ -265,7 +375,9 @@ fn pass(map: &mut PixelMap, a: &Adaptive, start: DVec2, heading: DVec2, step: f6
 /// The engagement angle of a tool of radius `r` at `q` moving along `d`: the front half of its
 /// circle in material, measured at [`SAMPLES`] points.
 pub fn engagement(map: &PixelMap, q: DVec2, d: DVec2, r: f64) -> f64 {
-    let n = (0..SAMPLES).filter(|&k| map.material_near(q + rotate(d, -FRAC_PI_2 + PI * (k as f64 + 0.5) / SAMPLES as f64) * r)).count();
+    static FRONT: std::sync::OnceLock<Vec<DVec2>> = std::sync::OnceLock::new();
+    let front = FRONT.get_or_init(|| (0..SAMPLES).map(|k| DVec2::from_angle(-FRAC_PI_2 + PI * (k as f64 + 0.5) / SAMPLES as f64)).collect());
+    let n = front.iter().filter(|&&u| map.material_near(q + d.rotate(u) * r)).count();
     PI * n as f64 / SAMPLES as f64
 }
 
@@ -295,7 +407,7 @@ fn rotate(v: DVec2, angle: f64) -> DVec2 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::drawing::Loop;
+    use crate::drawing::{Loop, Shape};
 
     /// A square pocket: a helix in the middle, one pass spiralling out at the target (the
     /// engagement within 10 % of it over 95 % of the pass), then passes into the corners; next
@@ -308,7 +420,7 @@ mod tests {
         let mut map = PixelMap::new(crate::geom::segment::Rect { min: DVec2::splat(-12.0), max: DVec2::splat(12.0) }, 0.075, r, reach, &region);
         let before = map.left();
         let a = Adaptive { radius: r, target: Adaptive::angle_of(0.6, r), climb: true, helix_r: 2.4, step: 0.3 };
-        let plan = plan(&mut map, &region, &a, DVec2::ZERO);
+        let plan = plan(&mut map, &a, DVec2::ZERO);
         assert!(matches!(plan.passes[0].entry, Entry::Helix { .. }));
         let spiral = &plan.engagement[..plan.passes[0].points.len() - 1];
         let held = spiral.iter().filter(|e| (e.1 - a.target).abs() <= 0.1 * a.target).count();

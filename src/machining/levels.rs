@@ -77,13 +77,15 @@ pub struct LevelRoughing {
     pub helix_radius: Option<f64>,
     pub flats: bool,
     pub order: Order,
+    /// How each level's region is cleared: rings, or adaptive clearing.
+    pub pattern: PocketPattern,
 }
 
 impl LevelRoughing {
     /// Level-by-level roughing with `roughing`'s settings (helix radius by default, flats and
     /// each level everywhere before the next: [`Order::Levels`]; set the fields to change them).
     pub fn new(name: &str, tool: u32, steps: Steps, roughing: &Roughing) -> LevelRoughing {
-        LevelRoughing { name: name.to_owned(), tool, steps, roughing: *roughing, helix_radius: None, flats: true, order: Order::Levels }
+        LevelRoughing { name: name.to_owned(), tool, steps, roughing: *roughing, helix_radius: None, flats: true, order: Order::Levels, pattern: PocketPattern::Offset }
     }
 
     /// The levels this stock's height makes at the step-down, within [`super::MAX_LEVELS`], and
@@ -214,7 +216,7 @@ impl LevelRoughing {
         let clearing = Clearing {
             step,
             climb: self.roughing.direction == Direction::Climb,
-            pattern: PocketPattern::Offset,
+            pattern: self.pattern,
             angle: 0.0,
             load: LoadControl::None,
             load_tolerance: 0.0,
@@ -245,7 +247,8 @@ impl LevelRoughing {
         // Piece k's rings are made from region k: every piece is still in the list.
         let regions: Vec<Arc<Shape>> = pieces.list.iter().map(|p| p.as_ref().expect("no piece is cut yet").region.clone()).collect();
         self.check_rings(&tool, &regions, step)?;
-        let make = |k: usize| rings(&regions[k], 0.0, step, r, &tol);
+        // (Adaptive clearing needs only the region's own boundary.)
+        let make = |k: usize| if self.pattern == PocketPattern::Adaptive { vec![(*regions[k]).clone()] } else { rings(&regions[k], 0.0, step, r, &tol) };
         let (cancelled, fed) = crate::parallel::ahead(count, make, |rings_of| {
             crate::parallel::behind(Refeed::run, |send| {
                 for n in 0..count {

@@ -8,6 +8,7 @@
 //! Material is entered by a helix where one fits, else by ramping along the path, never by a
 //! straight plunge.
 
+use super::adaptive::{self, Adaptive, Entry};
 use super::air::Refeed;
 use super::path2d::{arc_lengths, follow, start_nearest, Cursor, Heights};
 use super::settings::{EntryKind, LoadControl, PocketPattern};
@@ -22,6 +23,13 @@ use crate::toolpath::entry::Keepout;
 use crate::toolpath::Move;
 use crate::zigzag::graph::{Graph, Pattern};
 use crate::zigzag::load::{self, Load, LoadProfile, PixelMap};
+
+/// An adaptive map's pixel: at most the step-over over this many, and the tool's radius over
+/// [`ADAPTIVE_R_PIXELS`] (the engagement is read to about a pixel of step-over).
+const ADAPTIVE_AE_PIXELS: f64 = 10.0;
+const ADAPTIVE_R_PIXELS: f64 = 40.0;
+/// An adaptive step, as a fraction of the tool's radius.
+const ADAPTIVE_STEP: f64 = 0.1;
 
 /// What clearing needs besides its settings: the tool's radius, the top of the material,
 /// the feed and the cursor the moves start from.
@@ -205,6 +213,15 @@ pub fn clear_rings_at_feed<'m>(levels: &[Shape], clearing: &Clearing, z_prev: f6
                 match air.and_then(|air| (0..WAYS_OUT).find_map(|k| points().find_map(|p| air(p, k).map(|q| (p, q))))) {
                     Some((start, outside)) => c.cut_outside_in(node, start, outside, &orient),
                     None => c.cut_tree(node, &orient),
+                }
+            }
+        }
+        PocketPattern::Adaptive => {
+            // Each pocket on its own: its passes, then its ring.
+            for part in boundary.regions() {
+                c.adaptive(&part, clearing);
+                for l in &part.loops {
+                    c.cut_loop(&orient(l), false);
                 }
             }
         }
@@ -589,6 +606,55 @@ impl Clearer<'_, '_, '_> {
                 emit(self.out, end, g);
             }
             at = to;
+        }
+    }
+
+    /// Adaptive clearing of `region` ([`adaptive::plan`]) on a map of the material the stock
+    /// holds at this depth within the tool's reach of the region, less a pixel (what the
+    /// pixels leave against the walls is the boundary ring's). Each pass is entered by its
+    /// helix, staying down, or from above where its start stands clear of material; its points
+    /// are fitted with lines and arcs.
+    fn adaptive(&mut self, region: &Shape, clearing: &Clearing) {
+        let r = self.s.tool_radius;
+        let (z, feed) = (self.z, self.s.feed);
+        let ae = clearing.step.min(2.0 * r);
+        let px = load::pixel_for(region.bounds(), r, (ae / ADAPTIVE_AE_PIXELS).min(r / ADAPTIVE_R_PIXELS));
+        // The map's rows, as PixelMap lays them: from its bounds grown by the radius and two
+        // pixels.
+        let b = region.bounds().expand(r + 2.0 * px);
+        let ny = ((b.max.y - b.min.y) / px).ceil() as usize + 1;
+        let ys: Vec<f64> = (0..ny).map(|j| b.min.y + j as f64 * px).collect();
+        let spans = offset(region, r - px, self.s.tol).spans_on_rows(&ys);
+        let stock = &self.s.cursor.stock;
+        let reach = |p: DVec2| {
+            let j = ((p.y - b.min.y) / px).round();
+            j >= 0.0 && spans.get(j as usize).is_some_and(|row| row.iter().any(|&(x0, x1)| p.x >= x0 && p.x <= x1))
+        };
+        // The passes are planned to a pixel, and fitted within half a pixel: planned that far
+        // inside the region, so that the fitted lines and arcs stay in it.
+        let fit = (0.5 * px).max(self.s.tol.chordal);
+        let inner = offset(region, -fit, self.s.tol);
+        if inner.is_empty() {
+            return;
+        }
+        let mut map = PixelMap::new(region.bounds(), px, r, |p| reach(p) && stock.material_at(p, z), &inner);
+        let a = Adaptive { radius: r, target: Adaptive::angle_of(ae, r), climb: clearing.climb, helix_r: clearing.helix_r, step: (ADAPTIVE_STEP * r).max(2.0 * px) };
+        let plan = adaptive::plan(&mut map, &a, self.s.cursor.at.truncate());
+        for pass in plan.passes {
+            let first = pass.points[0];
+            match pass.entry {
+                Entry::Helix { centre, radius } => {
+                    self.s.cursor.reposition((centre + DVec2::new(radius, 0.0)).extend(self.z_prev), self.out);
+                    helix(centre, radius, self.z_prev, z, self.angle, false, feed, self.out);
+                    self.out.push(Move::Line { to: first.extend(z), feed });
+                }
+                Entry::Down if self.at_depth() => self.out.push(Move::Line { to: first.extend(z), feed }),
+                Entry::Down | Entry::Above => self.s.cursor.reposition(first.extend(z), self.out),
+            }
+            let moves: Vec<Move> = pass.points[1..].iter().map(|p| Move::Line { to: p.extend(z), feed }).collect();
+            // (The map's region, inside the region, answers most points at once.)
+            self.out.extend(arcfit::fit(&moves, first.extend(z), fit, &|p| map.allowed(p) || region.contains(p)));
+            self.s.cursor.moved(self.out);
         }
     }
 

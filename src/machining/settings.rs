@@ -39,6 +39,9 @@ pub enum PocketPattern {
     Offset,
     /// Parallel passes, back and forth, then a finishing ring.
     Zigzag,
+    /// The tool held at the step-over's engagement angle all along (adaptive clearing:
+    /// [`crate::machining::adaptive`]), then a finishing ring.
+    Adaptive,
 }
 
 /// How the tool enters material.

@@ -18,6 +18,7 @@ pub mod finish_raster;
 pub mod finish_waterline;
 pub mod pocket2d;
 pub mod profile2d;
+pub mod rough_adaptive;
 pub mod rough_octree;
 pub mod rough_zigzag;
 pub mod rough_zlevel;
@@ -33,6 +34,7 @@ pub use finish_raster::{Boundary, FinishRaster};
 pub use finish_waterline::FinishWaterline;
 pub use pocket2d::Pocket2d;
 pub use profile2d::{Profile2d, Side, Tabs};
+pub use rough_adaptive::RoughAdaptive;
 pub use rough_octree::RoughOctree;
 pub use rough_zigzag::{Passes, RoughZigzag};
 pub use rough_zlevel::RoughZlevel;
@@ -128,6 +130,8 @@ operations! {
     RoughZlevel(RoughZlevel) = "roughZlevel",
     /// Zigzag roughing by the intersection-points graph, with the load held constant (seed 004).
     RoughZigzag(RoughZigzag) = "roughZigzag",
+    /// Adaptive roughing: z-level's levels cleared at a constant engagement (issue 59).
+    RoughAdaptive(RoughAdaptive) = "roughAdaptive",
     /// Octree multi-tool roughing: the tools chosen from the library, biggest first (seed 000).
     RoughOctree(RoughOctree) = "roughOctree",
     /// Raster finishing on a part's CL z-map (seed 001).
@@ -173,7 +177,7 @@ impl Operation {
     /// Whether it roughs a part (after a larger tool it is rest roughing: each cuts only
     /// what the in-process stock still holds).
     pub fn is_roughing(&self) -> bool {
-        matches!(self, Operation::RoughZlevel(_) | Operation::RoughZigzag(_) | Operation::RoughOctree(_))
+        matches!(self, Operation::RoughZlevel(_) | Operation::RoughZigzag(_) | Operation::RoughAdaptive(_) | Operation::RoughOctree(_))
     }
 }
 

@@ -110,7 +110,7 @@ impl Operate for Pocket2d {
         fields.extend([
             F::length("leaveStock", "Leave on walls", 0.0),
             F::direction(),
-            F::choice("pattern", "Pattern", &[("offset", "rings (offset)"), ("zigzag", "zigzag")]),
+            F::choice("pattern", "Pattern", &[("offset", "rings (offset)"), ("zigzag", "zigzag"), ("adaptive", "adaptive (constant engagement)")]),
             F::number("angle", "Zigzag pass angle", U::Degrees),
             F::load(
                 "Zigzag: keep the load even by",
@@ -144,6 +144,9 @@ impl Operate for Pocket2d {
         not_negative("loadTolerance", self.load_tolerance)?;
         if let Some(r) = self.helix_radius {
             positive("helixRadius", r)?;
+        }
+        if self.pattern == PocketPattern::Adaptive {
+            crate::machining::adaptive::check_load(self.stepover_fraction)?;
         }
         Ok(())
     }

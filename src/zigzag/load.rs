@@ -178,22 +178,36 @@ impl PixelMap {
     pub fn blocks(&self, k: usize) -> (Vec<bool>, usize, usize) {
         let k = k.max(1);
         let (bx, by) = (self.nx.div_ceil(k), self.ny.div_ceil(k));
-        let mut out = vec![false; bx * by];
+        (self.blocks_within(k, (0, 0), (bx, by)), bx, by)
+    }
+
+    /// [`PixelMap::blocks`] for the blocks from `from` up to (not including) `to` only, by rows
+    /// of `to.0 - from.0`.
+    pub fn blocks_within(&self, k: usize, from: (usize, usize), to: (usize, usize)) -> Vec<bool> {
+        let k = k.max(1);
+        let w = to.0 - from.0;
+        let mut out = vec![false; w * (to.1 - from.1)];
         let row = |j: usize, w: usize| self.material[j * self.words + w];
-        for j in 1..self.ny.saturating_sub(1) {
-            for w in 0..self.words {
+        let (i0, i1) = (from.0 * k, (to.0 * k).min(self.nx));
+        if i0 >= i1 {
+            return out;
+        }
+        for j in (from.1 * k).max(1)..(to.1 * k).min(self.ny.saturating_sub(1)) {
+            for word in i0 / 64..=(i1 - 1) / 64 {
                 // Pixels whose four neighbours hold material too (bits beside a word's ends
                 // counted as empty): a sliver one or two pixels thin is not counted.
-                let m = row(j, w);
-                let mut bits = m & (m << 1) & (m >> 1) & row(j - 1, w) & row(j + 1, w);
+                let m = row(j, word);
+                let mut bits = m & (m << 1) & (m >> 1) & row(j - 1, word) & row(j + 1, word);
                 while bits != 0 {
-                    let i = w * 64 + bits.trailing_zeros() as usize;
+                    let i = word * 64 + bits.trailing_zeros() as usize;
                     bits &= bits - 1;
-                    out[(j / k) * bx + i / k] = true;
+                    if i >= i0 && i < i1 {
+                        out[(j / k - from.1) * w + i / k - from.0] = true;
+                    }
                 }
             }
         }
-        (out, bx, by)
+        out
     }
 
     /// Whether the tool's centre may stand at `q` off the path: in the region, by the pixels

@@ -1049,7 +1049,7 @@ export type OpenChain = { layer: string, start: [number, number], end: [number, 
 /**
  * One operation of a job.
  */
-export type Operation = { "kind": "roughZlevel" } & RoughZlevel | { "kind": "roughZigzag" } & RoughZigzag | { "kind": "roughOctree" } & RoughOctree | { "kind": "finishRaster" } & FinishRaster | { "kind": "finishWaterline" } & FinishWaterline | { "kind": "profile2d" } & Profile2d | { "kind": "pocket2d" } & Pocket2d | { "kind": "engrave" } & Engrave | { "kind": "drill" } & Drill | { "kind": "bore" } & Bore | { "kind": "chamfer" } & Chamfer | { "kind": "threadMill" } & ThreadMill | { "kind": "face" } & Face | { "kind": "vcarve" } & VCarve;
+export type Operation = { "kind": "roughZlevel" } & RoughZlevel | { "kind": "roughZigzag" } & RoughZigzag | { "kind": "roughAdaptive" } & RoughAdaptive | { "kind": "roughOctree" } & RoughOctree | { "kind": "finishRaster" } & FinishRaster | { "kind": "finishWaterline" } & FinishWaterline | { "kind": "profile2d" } & Profile2d | { "kind": "pocket2d" } & Pocket2d | { "kind": "engrave" } & Engrave | { "kind": "drill" } & Drill | { "kind": "bore" } & Bore | { "kind": "chamfer" } & Chamfer | { "kind": "threadMill" } & ThreadMill | { "kind": "face" } & Face | { "kind": "vcarve" } & VCarve;
 
 /**
  * An operation's form.
@@ -1261,7 +1261,7 @@ loops: Array<number>, };
 /**
  * How the pocket is cleared.
  */
-export type PocketPattern = "offset" | "zigzag";
+export type PocketPattern = "offset" | "zigzag" | "adaptive";
 
 /**
  * A post-processor. A field left out takes the generic post's value.
@@ -1543,6 +1543,65 @@ export type Retracts = "minimum" | "full";
  * Where the tool goes between holes.
  */
 export type ReturnLevel = "initial" | "retract";
+
+/**
+ * Adaptive roughing.
+ */
+export type RoughAdaptive = { 
+/**
+ * Default value: "adaptive rough".
+ */
+name: string, 
+/**
+ * Whether the job runs it (a disabled operation stays in the job). Default value: true.
+ */
+enabled: boolean, 
+/**
+ * The tool that cuts every level. Default value: 1.
+ */
+tool: number, 
+/**
+ * Largest depth between levels (mm): up to the flute length. Default value: 6.
+ */
+stepdown: number, 
+/**
+ * The optimal load: the radial engagement as a fraction of the tool diameter, held all
+ * along the path. Default value: 0.1.
+ */
+stepoverFraction: number, 
+/**
+ * Helix radius (mm). Default value: 0.4 × the tool diameter.
+ */
+helixRadius: number | null, 
+/**
+ * Cut every flat area of the part at its own height too. Default value: true.
+ */
+flats: boolean, 
+/**
+ * Which comes first: each region down to its floor before the next (`regions`), or each
+ * level everywhere before the next (`levels`). Default value: regions.
+ */
+order: Order, 
+/**
+ * Material left on floors (axial, mm). Default value: 0.5.
+ */
+allowance: number, 
+/**
+ * Material left on walls (radial, mm). Default value: 0.5.
+ */
+leaveStock: number, 
+/**
+ * Default value: climb.
+ */
+direction: Direction, 
+/**
+ * Spacing of the CL z-map (mm). Default value: 0.25.
+ */
+grid: number, 
+/**
+ * Steepest descent of helices and ramps (degrees). Default value: 3.
+ */
+rampAngle: number, };
 
 /**
  * Octree multi-tool roughing.
