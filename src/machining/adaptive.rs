@@ -316,33 +316,35 @@ fn pass(map: &mut PixelMap, a: &Adaptive, start: DVec2, heading: DVec2, step: f6
         // target (a spiral runs on at one curvature: long arcs), else bisection for the heading
         // whose engagement is nearest the target (each heading's engagement kept with it).
         let same = e(map, last);
-        let hard = if (same - a.target).abs() <= KEEP * a.target { f64::NAN } else { e(map, 0.0) };
-        let (mut u, mut angle) = if hard.is_nan() {
+        let (mut u, mut angle) = if (same - a.target).abs() <= KEEP * a.target {
             (last, same)
-        } else if hard <= a.target {
-            // Too light even turning hard: towards the material, no further (turning past it
-            // would turn the pass round on the spot).
-            let u = material_direction(map, p, a.radius + step).map_or(0.5, |g| (0.5 + side * h.angle_to(g) / PI).clamp(0.0, 0.5));
-            (u, if u == 0.0 { hard } else { e(map, u) })
         } else {
-            // (A quarter turn away is measured only if the search never leaves it.)
-            let (mut lo, mut hi) = ((0.0, hard), (1.0, f64::NAN));
-            for _ in 0..SEARCH {
-                let mid = 0.5 * (lo.0 + hi.0);
-                let at_mid = (mid, e(map, mid));
-                if at_mid.1 > a.target {
-                    lo = at_mid;
-                } else {
-                    hi = at_mid;
-                }
-            }
-            if hi.1.is_nan() {
-                hi.1 = e(map, 1.0);
-            }
-            if (lo.1 - a.target).abs() < (hi.1 - a.target).abs() {
-                lo
+            let hard = e(map, 0.0);
+            if hard <= a.target {
+                // Too light even turning hard: towards the material, no further (turning past
+                // it would turn the pass round on the spot).
+                let u = material_direction(map, p, a.radius + step).map_or(0.5, |g| (0.5 + side * h.angle_to(g) / PI).clamp(0.0, 0.5));
+                (u, if u == 0.0 { hard } else { e(map, u) })
             } else {
-                hi
+                // (A quarter turn away is measured only if the search never leaves it.)
+                let (mut lo, mut hi) = ((0.0, hard), (1.0, f64::NAN));
+                for _ in 0..SEARCH {
+                    let mid = 0.5 * (lo.0 + hi.0);
+                    let at_mid = (mid, e(map, mid));
+                    if at_mid.1 > a.target {
+                        lo = at_mid;
+                    } else {
+                        hi = at_mid;
+                    }
+                }
+                if hi.1.is_nan() {
+                    hi.1 = e(map, 1.0);
+                }
+                if (lo.1 - a.target).abs() < (hi.1 - a.target).abs() {
+                    lo
+                } else {
+                    hi
+                }
             }
         };
         // Away from the material until the step stays in the region.
