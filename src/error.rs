@@ -152,6 +152,14 @@ impl std::fmt::Display for Warning {
 
 pub type Result<T, E = Error> = std::result::Result<T, E>;
 
+/// `T` read from JSON already parsed, what does not fit named by its path. Every reader of
+/// settings (a job, a post, a tool, what the page hands the engine) goes through this one, so
+/// serde's readers of swarf's types are built once in the page's wasm, for `&Value`, instead of
+/// once more for each source (a JS object, a JSON text, an owned value).
+pub(crate) fn read_value<T: serde::de::DeserializeOwned>(value: &serde_json::Value) -> std::result::Result<T, serde_path_to_error::Error<serde_json::Error>> {
+    serde_path_to_error::deserialize(value)
+}
+
 /// A message of serde's said in a user's words: `invalid type: string "5", expected f64` is
 /// `expected a number, got "5"`.
 pub(crate) fn plain(message: &str) -> String {

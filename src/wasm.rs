@@ -28,6 +28,14 @@ fn to_js<T: serde::Serialize>(value: &T) -> Result<JsValue, JsError> {
     value.serialize(&serde_wasm_bindgen::Serializer::json_compatible()).map_err(js_error)
 }
 
+/// A settings object from the page or a portal (plain JS, as JSON would hold it) read as `T`:
+/// through JSON's value and [`crate::error::read_value`], the one reader of swarf's types, so
+/// none is built again for JS objects; what does not fit is named by its path.
+fn from_js<T: serde::de::DeserializeOwned>(value: JsValue) -> Result<T, String> {
+    let value: serde_json::Value = serde_wasm_bindgen::from_value(value).map_err(|e| e.to_string())?;
+    crate::error::read_value(&value).map_err(|e| e.to_string())
+}
+
 /// A job object from the page or a portal, read by the one strict reader
 /// ([`Job::from_value`]): a misspelt field or a value of the wrong type is named by its path,
 /// as `readJob` and `swarf run` name it.
@@ -49,11 +57,8 @@ pub fn check_job(job: JsValue, part: Option<Vec<f64>>, holes: JsValue) -> Result
         part.filter(|b| b.len() == 6 && b.iter().all(|v| v.is_finite())).map(|b| crate::geom::Aabb { min: crate::geom::DVec3::new(b[0], b[1], b[2]), max: crate::geom::DVec3::new(b[3], b[4], b[5]) });
     let problems = match Job::from_value(&value) {
         Ok(job) => {
-            let holes: Option<Vec<crate::holes::Hole>> = if holes.is_null() || holes.is_undefined() {
-                None
-            } else {
-                Some(serde_wasm_bindgen::from_value(holes).map_err(|e| js_error(format!("the holes are not as findHoles gives them: {e}")))?)
-            };
+            let holes: Option<Vec<crate::holes::Hole>> =
+                if holes.is_null() || holes.is_undefined() { None } else { Some(from_js(holes).map_err(|e| js_error(format!("the holes are not as findHoles gives them: {e}")))?) };
             job.problems_with(job::Known { part: bounds.as_ref(), holes: holes.as_deref() }).into_iter().map(job::Problem::at_field).collect()
         }
         Err(e) => {
@@ -186,7 +191,7 @@ fn read_drawing_js(bytes: &[u8], name: &str, tolerances: &Tolerances) -> Result<
 /// [`view::DrawingView`].
 #[wasm_bindgen(js_name = loadDrawing)]
 pub fn load_drawing(bytes: &[u8], name: &str, setup: JsValue) -> Result<JsValue, JsError> {
-    let setup: crate::job::DrawingSetup = serde_wasm_bindgen::from_value(setup).map_err(js_error)?;
+    let setup: crate::job::DrawingSetup = from_js(setup).map_err(js_error)?;
     let mut d = read_drawing_js(bytes, name, &Tolerances::default())?;
     setup.apply(&mut d);
     to_js(&view::DrawingView::of(&d))
@@ -238,10 +243,10 @@ fn read_part(bytes: &[u8], name: &str, tolerances: &Tolerances) -> Result<Mesh, 
 /// (`stockMesh`, the job's `stock.mesh`) as a job with it places it.
 #[wasm_bindgen(js_name = loadPart)]
 pub fn load_part(bytes: &[u8], name: &str, setup: JsValue, stock_mesh: JsValue) -> Result<PartView, JsError> {
-    let setup: PartSetup = serde_wasm_bindgen::from_value(setup).map_err(js_error)?;
+    let setup: PartSetup = from_js(setup).map_err(js_error)?;
     let mut mesh = read_part(bytes, name, &Tolerances::default())?;
     // Placed as the job places it: with a mesh stock, by the blank's top.
-    let mesh_stock: Option<crate::job::blank::MeshFile> = if stock_mesh.is_null() || stock_mesh.is_undefined() { None } else { Some(serde_wasm_bindgen::from_value(stock_mesh).map_err(js_error)?) };
+    let mesh_stock: Option<crate::job::blank::MeshFile> = if stock_mesh.is_null() || stock_mesh.is_undefined() { None } else { Some(from_js(stock_mesh).map_err(js_error)?) };
     let mut job = Job { part: setup, ..Job::default() };
     job.stock.mesh = mesh_stock;
     job.place_part(&mut mesh);
@@ -301,7 +306,7 @@ impl JobResult {
     /// The job's `post` object as this program is written by it: a setup's program keeps its
     /// setup's work offset (`G55`), whatever the job's post selects.
     fn settings(&self, post: JsValue) -> Result<crate::post::PostSettings, JsError> {
-        let mut settings: crate::post::PostSettings = serde_wasm_bindgen::from_value(post).map_err(|e| js_error(format!("invalid post: {e}")))?;
+        let mut settings: crate::post::PostSettings = from_js(post).map_err(|e| js_error(format!("invalid post: {e}")))?;
         if self.setup.is_some() {
             settings.work_offset = self.view.program.post.work_offset.clone();
         }
@@ -531,7 +536,7 @@ struct BitFile {
 /// ([`crate::tool::library::read_library`]); `inches` reads a tool table in inches.
 #[wasm_bindgen(js_name = readToolLibrary)]
 pub fn read_tool_library(bytes: &[u8], name: &str, inches: bool, bits: JsValue) -> Result<JsValue, JsError> {
-    let bits: Vec<BitFile> = if bits.is_undefined() || bits.is_null() { Vec::new() } else { serde_wasm_bindgen::from_value(bits).map_err(|e| js_error(format!("bits: {e}")))? };
+    let bits: Vec<BitFile> = if bits.is_undefined() || bits.is_null() { Vec::new() } else { from_js(bits).map_err(|e| js_error(format!("bits: {e}")))? };
     let bits: Vec<(String, Vec<u8>)> = bits.into_iter().map(|b| (b.name, b.text.into_bytes())).collect();
     to_js(&crate::tool::library::read_library(bytes, name, inches, &bits).map_err(js_error)?)
 }
@@ -539,8 +544,8 @@ pub fn read_tool_library(bytes: &[u8], name: &str, inches: bool, bits: JsValue) 
 /// `tools` (swarf's, as a job holds them) as a library of `format` (`fusion` or `linuxCnc`).
 #[wasm_bindgen(js_name = writeToolLibrary)]
 pub fn write_tool_library(tools: JsValue, format: JsValue) -> Result<String, JsError> {
-    let tools: Vec<crate::tool::Tool> = serde_wasm_bindgen::from_value(tools).map_err(|e| js_error(format!("tools: {e}")))?;
-    let format: crate::tool::library::LibraryFormat = serde_wasm_bindgen::from_value(format).map_err(|e| js_error(format!("format: {e}")))?;
+    let tools: Vec<crate::tool::Tool> = from_js(tools).map_err(|e| js_error(format!("tools: {e}")))?;
+    let format: crate::tool::library::LibraryFormat = from_js(format).map_err(|e| js_error(format!("format: {e}")))?;
     Ok(crate::tool::library::write_library(&tools, format))
 }
 
@@ -548,7 +553,7 @@ pub fn write_tool_library(tools: JsValue, format: JsValue) -> Result<String, JsE
 /// `.fctb` bit a tool ([`crate::tool::library::write_freecad`]).
 #[wasm_bindgen(js_name = writeFreecadLibrary)]
 pub fn write_freecad_library(tools: JsValue, library: &str) -> Result<JsValue, JsError> {
-    let tools: Vec<crate::tool::Tool> = serde_wasm_bindgen::from_value(tools).map_err(|e| js_error(format!("tools: {e}")))?;
+    let tools: Vec<crate::tool::Tool> = from_js(tools).map_err(|e| js_error(format!("tools: {e}")))?;
     let files: Vec<BitFile> = crate::tool::library::write_freecad(&tools, library).into_iter().map(|(name, text)| BitFile { name, text }).collect();
     to_js(&files)
 }
@@ -559,7 +564,7 @@ pub fn write_freecad_library(tools: JsValue, library: &str) -> Result<JsValue, J
 #[wasm_bindgen(js_name = oneProgram)]
 pub fn one_program(job: JsValue, sheets: JsValue, programs: Vec<String>, problems: Vec<String>) -> Result<String, JsError> {
     let job = job_from_js(job)?;
-    let sheets: Vec<job::sheet::SheetSetup> = serde_wasm_bindgen::from_value(sheets).map_err(|e| js_error(format!("the sheets are not as results give them: {e}")))?;
+    let sheets: Vec<job::sheet::SheetSetup> = from_js(sheets).map_err(|e| js_error(format!("the sheets are not as results give them: {e}")))?;
     if sheets.len() != programs.len() || problems.len() != programs.len() {
         return Err(js_error("one sheet, one program and one problem (empty: none) a setup"));
     }
@@ -572,7 +577,7 @@ pub fn one_program(job: JsValue, sheets: JsValue, programs: Vec<String>, problem
 #[wasm_bindgen(js_name = setupSheet)]
 pub fn setup_sheet(job: JsValue, part: &str, sheets: JsValue) -> Result<String, JsError> {
     let job = job_from_js(job)?;
-    let sheets: Vec<job::sheet::SheetSetup> = serde_wasm_bindgen::from_value(sheets).map_err(|e| js_error(format!("the sheets are not as results give them: {e}")))?;
+    let sheets: Vec<job::sheet::SheetSetup> = from_js(sheets).map_err(|e| js_error(format!("the sheets are not as results give them: {e}")))?;
     Ok(job::sheet::setup_sheet(&job, part, &sheets))
 }
 

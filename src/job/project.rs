@@ -79,7 +79,7 @@ impl Project {
             other => other,
         })?;
         let workpiece: ProjectFile =
-            serde_path_to_error::deserialize(object.get("workpiece").ok_or_else(|| bad("workpiece is missing".into()))?).map_err(|e| bad(format!("workpiece.{}: {}", e.path(), e.inner())))?;
+            crate::error::read_value(object.get("workpiece").ok_or_else(|| bad("workpiece is missing".into()))?).map_err(|e| bad(format!("workpiece.{}: {}", e.path(), e.inner())))?;
         if workpiece.name.trim().is_empty() {
             return Err(bad("workpiece.name must name the part's or drawing's file".into()));
         }

@@ -45,7 +45,7 @@ impl Job {
             return Err(Error::Input(format!("the job has version {version}; this swarf reads versions up to {JOB_VERSION} (a newer swarf wrote it)")));
         }
         let value = &upgrade(value, version as u32);
-        let mut job: Job = serde_path_to_error::deserialize(value).map_err(|e| {
+        let mut job: Job = crate::error::read_value(value).map_err(|e| {
             let path = e.path().to_string();
             // An operation is read whole (its `kind` picks the type), so the path stops at it:
             // read it again as its kind's type to name the field.
@@ -169,8 +169,8 @@ fn tool_field_error(value: &serde_json::Value) -> Option<String> {
     for (key, v) in value.as_object()? {
         let mut one = base.clone();
         one[key] = v.clone();
-        if let Err(e) = serde_json::from_value::<super::Tool>(one) {
-            return Some(format!("{key}: {}", plain(&e.to_string())));
+        if let Err(e) = crate::error::read_value::<super::Tool>(&one) {
+            return Some(format!("{key}: {}", plain(&e.inner().to_string())));
         }
     }
     None

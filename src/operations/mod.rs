@@ -95,7 +95,7 @@ macro_rules! operations {
 
             /// The settings of one kind, read from `value`; what does not fit named by its field.
             fn read<T: serde::de::DeserializeOwned>(value: &serde_json::Value) -> Result<T, String> {
-                serde_path_to_error::deserialize::<_, T>(value).map_err(|e| match e.path().to_string() {
+                crate::error::read_value::<T>(value).map_err(|e| match e.path().to_string() {
                     // A field of settings flattened into the kind's own (the roughing kinds'
                     // shared ones) is named by reading them on their own.
                     path if path == "." => Operation::read::<crate::machining::settings::Roughing>(value).err().unwrap_or_else(|| crate::error::plain(&e.inner().to_string())),

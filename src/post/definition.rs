@@ -182,8 +182,8 @@ pub const MIN_LINE_LENGTH: usize = 48;
 impl Post {
     /// Reads a post from JSON; errors name the field.
     pub fn from_json(text: &str) -> Result<Post, String> {
-        let de = &mut serde_json::Deserializer::from_str(text);
-        let post: Post = serde_path_to_error::deserialize(de).map_err(|e| {
+        let value: serde_json::Value = serde_json::from_str(text).map_err(|e| e.to_string())?;
+        let post: Post = crate::error::read_value(&value).map_err(|e| {
             let path = e.path().to_string();
             if path == "." {
                 e.inner().to_string()
