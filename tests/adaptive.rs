@@ -140,3 +140,39 @@ fn the_sample_part_is_roughed_adaptively() {
     let (a, z) = (removed(&adaptive), removed(&zlevel));
     assert!(a > z * 0.995, "adaptive removed {a:.0} mm³, z-level {z:.0}");
 }
+
+/// PyCAM's text box (shared data; skipped where absent), its box the stock: the stock's corners
+/// outside the block's rounded ones are material along the stock's edge. Planned with the
+/// tool's centre kept within the stock's edge, each corner took a helix down for every few
+/// tenths of it: 7,411 helices, and 26 hours by the CLI. Passes now start in the air beside the
+/// stock: clean (every entry down where the simulation holds nothing, or down a helix), read by
+/// rs274, and the program within 4× z-level roughing's at the same step-down and radial cut
+/// (the letters' narrow strokes make adaptive clearing's path longer: BENCHMARKS.md).
+#[test]
+fn the_stocks_corners_are_entered_from_the_air_beside_it() {
+    let Some(path) = common::shared_data("meshes/pycam_textbox.stl") else { return };
+    let part = swarf::mesh::import::read_mesh_auto(&std::fs::read(path).unwrap(), Some("pycam_textbox.stl"), &Default::default()).unwrap();
+    let roughing = Roughing { grid: 0.5, ..Roughing::default() };
+    let run = |op: Operation| {
+        let job = Job {
+            tools: vec![flat(1, 3.0)],
+            operations: vec![op],
+            part: PartSetup { placement: Placement::Keep, ..PartSetup::default() },
+            stock: swarf::job::Stock { margin_xy: 0.0, margin_top: 0.0, ..Default::default() },
+            simulation: swarf::job::Simulation { verify: true, cell: Some(0.25), ..Default::default() },
+            ..Job::default()
+        };
+        let out = job::run(&job, part.clone(), &mut Progress::none()).unwrap();
+        clean(&out);
+        out
+    };
+    let adaptive = run(Operation::RoughAdaptive(RoughAdaptive { stepdown: 5.0, stepover_fraction: 0.15, roughing, ..RoughAdaptive::default() }));
+    let zlevel = run(Operation::RoughZlevel(RoughZlevel { steps: swarf::operations::Steps { stepdown: 5.0, stepover_fraction: 0.15 }, roughing, ..RoughZlevel::default() }));
+    // A helix: a run of arcs going down.
+    let down_arc = |m: &swarf::sim::program::ProgramMove| matches!(m.mv, Move::Arc { .. }) && m.mv.to().z < m.from.z - 1e-9;
+    let helices = adaptive.moves.iter().enumerate().filter(|&(k, m)| down_arc(m) && (k == 0 || !down_arc(&adaptive.moves[k - 1]))).count();
+    let (a, z) = (adaptive.cycle.seconds, zlevel.cycle.seconds);
+    assert!(a < 4.0 * z, "adaptive clearing runs {:.0} min ({helices} helices), z-level roughing {:.0} min", a / 60.0, z / 60.0);
+    assert!(removed(&adaptive) > 0.99 * removed(&zlevel));
+    rs274(&adaptive.gcode, &[flat(1, 3.0)]);
+}

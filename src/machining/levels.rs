@@ -347,6 +347,18 @@ impl LevelRoughing {
         (r - 0.5 * self.step(r)).max(0.0)
     }
 
+    /// How far from material a centre is kept beside the stock (outside its box): adaptive
+    /// clearing's passes start there in the air, clear of the material
+    /// ([`super::rings::adaptive_reach`]), instead of helixing down into a region along the
+    /// stock's edge; the other patterns', as inside.
+    fn air_reach(&self, r: f64) -> f64 {
+        if self.pattern == PocketPattern::Adaptive {
+            super::rings::adaptive_reach(r)
+        } else {
+            self.reach(r)
+        }
+    }
+
     /// The tool and its CL surface: the cutter grown by the radial allowance (the Minkowski sum
     /// with a disk: a ball's becomes a bull nose of its own corner), over the stock and the
     /// cutter's reach beyond it, down to the stock's bottom. Made once per job for the same
@@ -363,7 +375,8 @@ impl LevelRoughing {
         let r = profile.radius;
         let grown = Profile::new(r + self.roughing.leave_stock, if profile.flat_radius() <= 0.0 { r } else { profile.corner });
         let stock = ctx.stock;
-        let reach = r + self.roughing.leave_stock + 2.0 * self.roughing.grid;
+        // (Adaptive clearing's regions reach farther beside the stock: the grid as far.)
+        let reach = self.air_reach(r).max(r) + self.roughing.leave_stock + 2.0 * self.roughing.grid;
         let grid = Grid::checked(stock.min.truncate() - DVec2::splat(reach), stock.max.truncate() + DVec2::splat(reach), self.roughing.grid).map_err(|e| Error::operation(&self.name, e))?;
         Ok(SurfaceRequest { profile: grown, grid, floor: stock.min.z, builder: ClBuilder::Exact })
     }
@@ -448,7 +461,9 @@ impl LevelRoughing {
         // Each level's mask on whichever core is free (a rest stage's takes distance maps).
         let limits = crate::parallel::map_heavy(heights.len(), |k| within(heights[k].0, grid));
         let tops = (0..grid.nodes()).map(|_| OnceLock::new()).collect();
-        LevelInputs { zl: self, cl, stock: ctx.sim.stock(), grid, r, reach, bands, heights, limits, tops, nearest: OnceLock::new() }
+        let beside = Rect { min: ctx.stock.min.truncate(), max: ctx.stock.max.truncate() };
+        let air_reach = (self.air_reach(r) > reach).then_some((self.air_reach(r), beside));
+        LevelInputs { zl: self, cl, stock: ctx.sim.stock(), grid, r, reach, air_reach, bands, heights, limits, tops, nearest: OnceLock::new() }
     }
 
     /// The regions [`LevelRoughing::levels_to_cut`] would make, as work a pool can share out
@@ -836,6 +851,8 @@ struct LevelInputs<'a> {
     grid: Grid,
     r: f64,
     reach: f64,
+    /// A farther reach outside the stock's box (`(reach, box)`), where it is farther.
+    air_reach: Option<(f64, Rect)>,
     bands: bool,
     /// The levels from the top down, each with whether it is a flat's alone.
     heights: Vec<(f64, bool)>,
@@ -875,10 +892,20 @@ impl LevelInputs<'_> {
                 owner[k] = owner[k - 1];
             }
         }
-        let reached = crate::parallel::map_heavy(count, |k| (owner[k] == k).then(|| within_reach_of(&unpack(&above[k], nodes), self.grid, [self.reach, touching]).map(|m| pack(&m))));
+        let (air, beside) = self.air_reach.unwrap_or((self.reach, Rect::EMPTY));
+        let reached = crate::parallel::map_heavy(count, |k| (owner[k] == k).then(|| within_reach_of(&unpack(&above[k], nodes), self.grid, [self.reach, touching, air]).map(|m| pack(&m))));
         let made = crate::parallel::map_heavy(count, |k| {
-            let [keep, near] = reached[owner[k]].as_ref().expect("every shared level's reach is made");
-            (pack(&self.keep(k, unpack(keep, nodes))), near.clone())
+            let [keep, near, far] = reached[owner[k]].as_ref().expect("every shared level's reach is made");
+            let mut keep = unpack(keep, nodes);
+            if self.air_reach.is_some() {
+                // Beside the stock, out to the farther reach.
+                let far = unpack(far, nodes);
+                for (n, kept) in keep.iter_mut().enumerate() {
+                    let p = self.grid.node(n % self.grid.nx, n / self.grid.nx);
+                    *kept |= far[n] && !(p.cmpge(beside.min).all() && p.cmple(beside.max).all());
+                }
+            }
+            (pack(&self.keep(k, keep)), near.clone())
         });
         // From the bottom up: the nodes of the regions of the levels below.
         let mut below = vec![false; nodes];

@@ -8,7 +8,7 @@
 //! Material is entered by a helix where one fits, else by ramping along the path, never by a
 //! straight plunge.
 
-use super::adaptive::{self, Adaptive, Entry};
+use super::adaptive::{self, Adaptive, Entry, LEAST_HELIX};
 use super::air::Refeed;
 use super::path2d::{arc_lengths, follow, start_nearest, Cursor, Heights};
 use super::settings::{EntryKind, LoadControl, PocketPattern};
@@ -23,6 +23,7 @@ use crate::toolpath::entry::Keepout;
 use crate::toolpath::Move;
 use crate::zigzag::graph::{Graph, Pattern};
 use crate::zigzag::load::{self, Load, LoadProfile, PixelMap};
+use std::f64::consts::{FRAC_PI_4, PI};
 
 /// An adaptive map's pixel: at most the step-over over this many, and the tool's radius over
 /// [`ADAPTIVE_R_PIXELS`] (the engagement is read to about a pixel of step-over).
@@ -30,6 +31,72 @@ const ADAPTIVE_AE_PIXELS: f64 = 10.0;
 const ADAPTIVE_R_PIXELS: f64 = 40.0;
 /// An adaptive step, as a fraction of the tool's radius.
 const ADAPTIVE_STEP: f64 = 0.1;
+
+/// How far from material a level's region keeps the centre of an adaptive tool of radius `r`:
+/// two steps past touching it, so that a pass can start in the air beside the stock or in what
+/// an earlier operation cleared (standing clear of the material, within a step of it) instead
+/// of helixing down into a region that lies along the stock's edge.
+pub(crate) fn adaptive_reach(r: f64) -> f64 {
+    r * (1.0 + 2.0 * ADAPTIVE_STEP)
+}
+
+/// The cells of the in-process stock the passes of one adaptive level have surely cut (a
+/// cell's centre within `sure` of a pass: the tool's radius less what the fitted arcs may
+/// stray), as the simulation cuts them: the pass map's pixels, finer, may hold a cell the tool
+/// only grazed for cut.
+struct Uncut<'m> {
+    stock: &'m crate::sim::DexelStock,
+    sure: f64,
+    reached: std::collections::HashSet<usize>,
+}
+
+impl Uncut<'_> {
+    /// Each cell within `grow` of the way through `points`, with its centre's distance from it.
+    fn near(&self, points: &[DVec2], grow: f64, mut each: impl FnMut(usize, DVec2, f64)) {
+        let g = self.stock.grid();
+        for w in points.windows(2).chain(points.get(..1).filter(|_| points.len() == 1)) {
+            let (a, b) = (w[0], *w.last().expect("a point"));
+            let (lo, hi) = ((a.min(b) - g.origin - DVec2::splat(grow)) / g.spacing, (a.max(b) - g.origin + DVec2::splat(grow)) / g.spacing);
+            if hi.x < 0.0 || hi.y < 0.0 {
+                continue;
+            }
+            let (i0, j0) = (lo.x.ceil().max(0.0) as usize, lo.y.ceil().max(0.0) as usize);
+            let (i1, j1) = ((hi.x.floor() as usize).min(g.nx - 1), (hi.y.floor() as usize).min(g.ny - 1));
+            let ab = b - a;
+            let len2 = ab.length_squared();
+            for j in j0..=j1 {
+                for i in i0..=i1 {
+                    let q = g.node(i, j);
+                    let t = if len2 > 0.0 { ((q - a).dot(ab) / len2).clamp(0.0, 1.0) } else { 0.0 };
+                    each(j * g.nx + i, q, q.distance(a + ab * t));
+                }
+            }
+        }
+    }
+
+    /// The cells a pass along `points` surely cuts.
+    fn reach(&mut self, points: &[DVec2]) {
+        let (sure, mut cut) = (self.sure, Vec::new());
+        self.near(points, sure, |n, _, d| {
+            if d <= sure {
+                cut.push(n);
+            }
+        });
+        self.reached.extend(cut);
+    }
+
+    /// Whether a tool of radius `r` going straight down at `p` to `z` meets no cell standing
+    /// above `z` that no pass has surely cut.
+    fn clear(&self, p: DVec2, r: f64, z: f64) -> bool {
+        let mut clear = true;
+        self.near(&[p], r, |n, q, d| {
+            if d <= r && !self.reached.contains(&n) && load::material_at(self.stock, q, z) {
+                clear = false;
+            }
+        });
+        clear
+    }
+}
 
 /// What clearing needs besides its settings: the tool's radius, the top of the material,
 /// the feed and the cursor the moves start from.
@@ -640,6 +707,7 @@ impl Clearer<'_, '_, '_> {
         let mut map = PixelMap::new(region.bounds(), px, r, |p| reach(p) && stock.material_at(p, z), &inner);
         let a = Adaptive { radius: r, target: Adaptive::angle_of(ae, r), climb: clearing.climb, helix_r: clearing.helix_r, step: (ADAPTIVE_STEP * r).max(2.0 * px) };
         let plan = adaptive::plan(&mut map, &a, self.s.cursor.at.truncate());
+        let mut left = Uncut { stock: self.s.cursor.stock.model(), sure: r - fit - self.s.tol.chordal, reached: std::collections::HashSet::new() };
         for pass in plan.passes {
             let first = pass.points[0];
             match pass.entry {
@@ -649,8 +717,32 @@ impl Clearer<'_, '_, '_> {
                     self.out.push(Move::Line { to: first.extend(z), feed });
                 }
                 Entry::Down if self.at_depth() => self.out.push(Move::Line { to: first.extend(z), feed }),
-                Entry::Down | Entry::Above => self.s.cursor.reposition(first.extend(z), self.out),
+                Entry::Down | Entry::Above => {
+                    // Straight down where the simulation will hold nothing under the tool; else
+                    // (a cell the passes so far only grazed, which the map took for cut) down
+                    // a small helix beside the point, where one fits in the region.
+                    let ok = |p: DVec2| map.allowed(p) || region.contains(p);
+                    let hr = LEAST_HELIX * r;
+                    let beside = (!left.clear(first, r, z))
+                        .then(|| (0..8).map(|k| first - hr * DVec2::from_angle(k as f64 * FRAC_PI_4)).find(|&c| (0..24).all(|t| ok(c + hr * DVec2::from_angle(t as f64 * PI / 12.0)))))
+                        .flatten();
+                    match beside {
+                        Some(c) => {
+                            self.s.cursor.reposition((c + DVec2::new(hr, 0.0)).extend(self.z_prev), self.out);
+                            helix(c, hr, self.z_prev, z, self.angle, false, feed, self.out);
+                            self.out.push(Move::Line { to: first.extend(z), feed });
+                        }
+                        None => self.s.cursor.reposition(first.extend(z), self.out),
+                    }
+                }
             }
+            if let Some(c) = match pass.entry {
+                Entry::Helix { centre, radius } => Some((centre, radius)),
+                _ => None,
+            } {
+                left.reach(&(0..=72).map(|t| c.0 + c.1 * DVec2::from_angle(t as f64 * PI / 36.0)).collect::<Vec<_>>());
+            }
+            left.reach(&pass.points);
             let moves: Vec<Move> = pass.points[1..].iter().map(|p| Move::Line { to: p.extend(z), feed }).collect();
             // (The map's region, inside the region, answers most points at once.)
             self.out.extend(arcfit::fit(&moves, first.extend(z), fit, &|p| map.allowed(p) || region.contains(p)));
