@@ -32,6 +32,10 @@ const ADAPTIVE_R_PIXELS: f64 = 40.0;
 /// An adaptive step, as a fraction of the tool's radius.
 const ADAPTIVE_STEP: f64 = 0.1;
 
+/// How many adaptive steps from a pass's start its entry may go down instead, where material
+/// the passes so far only grazed stands under the tool at the start.
+const ADAPTIVE_ASIDE: usize = 5;
+
 /// How far from material a level's region keeps the centre of an adaptive tool of radius `r`:
 /// two steps past touching it, so that a pass can start in the air beside the stock or in what
 /// an earlier operation cleared (standing clear of the material, within a step of it) instead
@@ -40,62 +44,83 @@ pub(crate) fn adaptive_reach(r: f64) -> f64 {
     r * (1.0 + 2.0 * ADAPTIVE_STEP)
 }
 
-/// The cells of the in-process stock the passes of one adaptive level have surely cut (a
-/// cell's centre within `sure` of a pass: the tool's radius less what the fitted arcs may
-/// stray), as the simulation cuts them: the pass map's pixels, finer, may hold a cell the tool
-/// only grazed for cut.
+/// What the passes of one adaptive level have surely cut, asked lazily at the entries that go
+/// straight down: a cell of the in-process stock counts as cut where its centre lies within
+/// `sure` of a pass (the tool's radius less what the fitted arcs may stray), as the simulation
+/// cuts it. (The pass map's pixels, finer than the simulation's cells, may hold a cell the
+/// tool only grazed for cut.) The passes' segments are kept in square buckets of the tool's
+/// radius, so that an entry looks only at those near it.
 struct Uncut<'m> {
     stock: &'m crate::sim::DexelStock,
     sure: f64,
-    reached: std::collections::HashSet<usize>,
+    bucket: f64,
+    segments: Vec<Segment>,
+    buckets: std::collections::HashMap<(i64, i64), Vec<usize>>,
 }
 
-impl Uncut<'_> {
-    /// Each cell within `grow` of the way through `points`, with its centre's distance from it.
-    fn near(&self, points: &[DVec2], grow: f64, mut each: impl FnMut(usize, DVec2, f64)) {
-        let g = self.stock.grid();
+impl<'m> Uncut<'m> {
+    fn new(stock: &'m crate::sim::DexelStock, sure: f64, r: f64) -> Self {
+        Uncut { stock, sure, bucket: r.max(LEAST_STEP), segments: Vec::new(), buckets: Default::default() }
+    }
+
+    fn key(&self, p: DVec2) -> (i64, i64) {
+        ((p.x / self.bucket).floor() as i64, (p.y / self.bucket).floor() as i64)
+    }
+
+    /// A pass along `points` (one point: a pass that stays in place).
+    fn reach(&mut self, points: &[DVec2]) {
         for w in points.windows(2).chain(points.get(..1).filter(|_| points.len() == 1)) {
             let (a, b) = (w[0], *w.last().expect("a point"));
-            let (lo, hi) = ((a.min(b) - g.origin - DVec2::splat(grow)) / g.spacing, (a.max(b) - g.origin + DVec2::splat(grow)) / g.spacing);
-            if hi.x < 0.0 || hi.y < 0.0 {
-                continue;
-            }
-            let (i0, j0) = (lo.x.ceil().max(0.0) as usize, lo.y.ceil().max(0.0) as usize);
-            let (i1, j1) = ((hi.x.floor() as usize).min(g.nx - 1), (hi.y.floor() as usize).min(g.ny - 1));
-            let ab = b - a;
-            let len2 = ab.length_squared();
-            for j in j0..=j1 {
-                for i in i0..=i1 {
-                    let q = g.node(i, j);
-                    let t = if len2 > 0.0 { ((q - a).dot(ab) / len2).clamp(0.0, 1.0) } else { 0.0 };
-                    each(j * g.nx + i, q, q.distance(a + ab * t));
+            let (lo, hi) = (self.key(a.min(b)), self.key(a.max(b)));
+            let n = self.segments.len();
+            self.segments.push(Segment::line(a, b));
+            for i in lo.0..=hi.0 {
+                for j in lo.1..=hi.1 {
+                    self.buckets.entry((i, j)).or_default().push(n);
                 }
             }
         }
     }
 
-    /// The cells a pass along `points` surely cuts.
-    fn reach(&mut self, points: &[DVec2]) {
-        let (sure, mut cut) = (self.sure, Vec::new());
-        self.near(points, sure, |n, _, d| {
-            if d <= sure {
-                cut.push(n);
-            }
-        });
-        self.reached.extend(cut);
-    }
-
     /// Whether a tool of radius `r` going straight down at `p` to `z` meets no cell standing
     /// above `z` that no pass has surely cut.
     fn clear(&self, p: DVec2, r: f64, z: f64) -> bool {
-        let mut clear = true;
-        self.near(&[p], r, |n, q, d| {
-            if d <= r && !self.reached.contains(&n) && load::material_at(self.stock, q, z) {
-                clear = false;
+        let g = self.stock.grid();
+        let (lo, hi) = ((p - g.origin - DVec2::splat(r)) / g.spacing, (p - g.origin + DVec2::splat(r)) / g.spacing);
+        if hi.x < 0.0 || hi.y < 0.0 {
+            return true;
+        }
+        let (i0, j0) = (lo.x.ceil().max(0.0) as usize, lo.y.ceil().max(0.0) as usize);
+        let (i1, j1) = ((hi.x.floor() as usize).min(g.nx - 1), (hi.y.floor() as usize).min(g.ny - 1));
+        let mut cells: Vec<DVec2> = (j0..=j1).flat_map(|j| (i0..=i1).map(move |i| g.node(i, j))).filter(|&q| q.distance(p) <= r && load::material_at(self.stock, q, z)).collect();
+        if cells.is_empty() {
+            return true;
+        }
+        // The segments that may reach them, nearest first: the nearest cut most of them.
+        let far = r + self.sure;
+        let (lo, hi) = (self.key(p - DVec2::splat(far)), self.key(p + DVec2::splat(far)));
+        let mut near: Vec<(f64, usize)> = (lo.0..=hi.0)
+            .flat_map(|i| (lo.1..=hi.1).map(move |j| (i, j)))
+            .filter_map(|k| self.buckets.get(&k))
+            .flatten()
+            .map(|&n| (segment_distance(p, &self.segments[n]), n))
+            .filter(|&(d, _)| d <= far)
+            .collect();
+        near.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        near.dedup_by_key(|e| e.1);
+        for (_, n) in near {
+            cells.retain(|&q| segment_distance(q, &self.segments[n]) > self.sure);
+            if cells.is_empty() {
+                return true;
             }
-        });
-        clear
+        }
+        false
     }
+}
+
+/// The distance from `q` to the line segment `s`.
+fn segment_distance(q: DVec2, s: &Segment) -> f64 {
+    s.closest_with(None, q).0.distance(q)
 }
 
 /// What clearing needs besides its settings: the tool's radius, the top of the material,
@@ -707,7 +732,7 @@ impl Clearer<'_, '_, '_> {
         let mut map = PixelMap::new(region.bounds(), px, r, |p| reach(p) && stock.material_at(p, z), &inner);
         let a = Adaptive { radius: r, target: Adaptive::angle_of(ae, r), climb: clearing.climb, helix_r: clearing.helix_r, step: (ADAPTIVE_STEP * r).max(2.0 * px) };
         let plan = adaptive::plan(&mut map, &a, self.s.cursor.at.truncate());
-        let mut left = Uncut { stock: self.s.cursor.stock.model(), sure: r - fit - self.s.tol.chordal, reached: std::collections::HashSet::new() };
+        let mut left = Uncut::new(self.s.cursor.stock.model(), r - fit - self.s.tol.chordal, r);
         for pass in plan.passes {
             let first = pass.points[0];
             match pass.entry {
@@ -718,21 +743,40 @@ impl Clearer<'_, '_, '_> {
                 }
                 Entry::Down if self.at_depth() => self.out.push(Move::Line { to: first.extend(z), feed }),
                 Entry::Down | Entry::Above => {
-                    // Straight down where the simulation will hold nothing under the tool; else
+                    // Straight down where the simulation will hold nothing under the tool. Else
                     // (a cell the passes so far only grazed, which the map took for cut) down
-                    // a small helix beside the point, where one fits in the region.
+                    // at the nearest point a few steps away where it holds nothing, in along a
+                    // line in the region; else down a small helix beside the point, where one
+                    // fits in the region.
                     let ok = |p: DVec2| map.allowed(p) || region.contains(p);
                     let hr = LEAST_HELIX * r;
-                    let beside = (!left.clear(first, r, z))
-                        .then(|| (0..8).map(|k| first - hr * DVec2::from_angle(k as f64 * FRAC_PI_4)).find(|&c| (0..24).all(|t| ok(c + hr * DVec2::from_angle(t as f64 * PI / 12.0)))))
-                        .flatten();
-                    match beside {
-                        Some(c) => {
-                            self.s.cursor.reposition((c + DVec2::new(hr, 0.0)).extend(self.z_prev), self.out);
-                            helix(c, hr, self.z_prev, z, self.angle, false, feed, self.out);
-                            self.out.push(Move::Line { to: first.extend(z), feed });
-                        }
-                        None => self.s.cursor.reposition(first.extend(z), self.out),
+                    let step = ADAPTIVE_STEP * r;
+                    let line_ok = |c: DVec2| {
+                        let n = (c.distance(first) / px).ceil() as usize;
+                        (0..=n).all(|k| ok(c.lerp(first, k as f64 / n.max(1) as f64)))
+                    };
+                    let aside = || {
+                        (1..=ADAPTIVE_ASIDE)
+                            .flat_map(|k| (0..16).map(move |t| first + k as f64 * step * DVec2::from_angle(t as f64 * PI / 8.0)))
+                            .find(|&c| left.clear(c, r, z) && line_ok(c))
+                    };
+                    let circle_ok = |c: DVec2| (0..24).all(|t| ok(c + hr * DVec2::from_angle(t as f64 * PI / 12.0)));
+                    match left.clear(first, r, z) {
+                        true => self.s.cursor.reposition(first.extend(z), self.out),
+                        false => match aside() {
+                            Some(c) => {
+                                self.s.cursor.reposition(c.extend(z), self.out);
+                                self.out.push(Move::Line { to: first.extend(z), feed });
+                            }
+                            None => match (0..8).map(|k| first - hr * DVec2::from_angle(k as f64 * FRAC_PI_4)).find(|&c| circle_ok(c)) {
+                                Some(c) => {
+                                    self.s.cursor.reposition((c + DVec2::new(hr, 0.0)).extend(self.z_prev), self.out);
+                                    helix(c, hr, self.z_prev, z, self.angle, false, feed, self.out);
+                                    self.out.push(Move::Line { to: first.extend(z), feed });
+                                }
+                                None => self.s.cursor.reposition(first.extend(z), self.out),
+                            },
+                        },
                     }
                 }
             }
