@@ -32,16 +32,24 @@ fn to_js<T: serde::Serialize>(value: &T) -> Result<JsValue, JsError> {
 /// through JSON's value and [`crate::error::read_value`], the one reader of swarf's types, so
 /// none is built again for JS objects; what does not fit is named by its path.
 fn from_js<T: serde::de::DeserializeOwned>(value: JsValue) -> Result<T, String> {
-    let value: serde_json::Value = serde_wasm_bindgen::from_value(value).map_err(|e| e.to_string())?;
-    crate::error::read_value(&value).map_err(|e| e.to_string())
+    crate::error::read_value(&value_from_js(value)?).map_err(|e| e.to_string())
+}
+
+/// A plain JS object as JSON's value.
+fn value_from_js(value: JsValue) -> Result<serde_json::Value, String> {
+    serde_wasm_bindgen::from_value(value).map_err(|e| e.to_string())
+}
+
+/// A job object as JSON's value, or why it is none.
+fn job_value(job: JsValue) -> Result<serde_json::Value, JsError> {
+    value_from_js(job).map_err(|e| js_error(format!("the job is not a plain object: {e}")))
 }
 
 /// A job object from the page or a portal, read by the one strict reader
 /// ([`Job::from_value`]): a misspelt field or a value of the wrong type is named by its path,
 /// as `readJob` and `swarf run` name it.
 fn job_from_js(job: JsValue) -> Result<Job, JsError> {
-    let value: serde_json::Value = serde_wasm_bindgen::from_value(job).map_err(|e| js_error(format!("the job is not a plain object: {e}")))?;
-    Job::from_value(&value).map_err(js_error)
+    Job::from_value(&job_value(job)?).map_err(js_error)
 }
 
 /// Every setting of a job (an object) that does not fit, as `[{ path, message }]`
@@ -52,7 +60,7 @@ fn job_from_js(job: JsValue) -> Result<Job, JsError> {
 /// path the reader named.
 #[wasm_bindgen(js_name = checkJob)]
 pub fn check_job(job: JsValue, part: Option<Vec<f64>>, holes: JsValue) -> Result<JsValue, JsError> {
-    let value: serde_json::Value = serde_wasm_bindgen::from_value(job).map_err(|e| js_error(format!("the job is not a plain object: {e}")))?;
+    let value = job_value(job)?;
     let bounds =
         part.filter(|b| b.len() == 6 && b.iter().all(|v| v.is_finite())).map(|b| crate::geom::Aabb { min: crate::geom::DVec3::new(b[0], b[1], b[2]), max: crate::geom::DVec3::new(b[3], b[4], b[5]) });
     let problems = match Job::from_value(&value) {

@@ -145,7 +145,7 @@ fn the_sample_part_is_roughed_adaptively() {
 /// outside the block's rounded ones are material along the stock's edge. Planned with the
 /// tool's centre kept within the stock's edge, each corner took a helix down for every few
 /// tenths of it: 7,411 helices, and 26 hours by the CLI. Passes now start in the air beside the
-/// stock: clean (every entry down where the simulation holds nothing, or down a helix), read by
+/// stock: clean (every entry down where the simulation holds nothing, beside it, or down a helix), read by
 /// rs274, and the program within 4× z-level roughing's at the same step-down and radial cut
 /// (the letters' narrow strokes make adaptive clearing's path longer: BENCHMARKS.md).
 #[test]

@@ -711,15 +711,13 @@ impl Clearer<'_, '_, '_> {
         let (z, feed) = (self.z, self.s.feed);
         let ae = clearing.step.min(2.0 * r);
         let px = load::pixel_for(region.bounds(), r, (ae / ADAPTIVE_AE_PIXELS).min(r / ADAPTIVE_R_PIXELS));
-        // The map's rows, as PixelMap lays them: from its bounds grown by the radius and two
-        // pixels.
-        let b = region.bounds().expand(r + 2.0 * px);
-        let ny = ((b.max.y - b.min.y) / px).ceil() as usize + 1;
-        let ys: Vec<f64> = (0..ny).map(|j| b.min.y + j as f64 * px).collect();
+        // The map's rows, as it lays them.
+        let (origin, _, ny) = PixelMap::layout(region.bounds(), px, r);
+        let ys: Vec<f64> = (0..ny).map(|j| origin.y + j as f64 * px).collect();
         let spans = offset(region, r - px, self.s.tol).spans_on_rows(&ys);
         let stock = &self.s.cursor.stock;
         let reach = |p: DVec2| {
-            let j = ((p.y - b.min.y) / px).round();
+            let j = ((p.y - origin.y) / px).round();
             j >= 0.0 && spans.get(j as usize).is_some_and(|row| row.iter().any(|&(x0, x1)| p.x >= x0 && p.x <= x1))
         };
         // The passes are planned to a pixel, and fitted within half a pixel: planned that far

@@ -109,11 +109,15 @@ impl PixelMap {
     /// [`PixelMap::new`] for counting and cutting only: the material, and nowhere the tool's
     /// centre is allowed to step aside to ([`PixelMap::allowed`] holds nowhere).
     pub fn of_material(bounds: Rect, px: f64, radius: f64, material: impl Fn(DVec2) -> bool) -> PixelMap {
-        let b = bounds.expand(radius + 2.0 * px);
-        let nx = ((b.max.x - b.min.x) / px).ceil() as usize + 1;
-        let ny = ((b.max.y - b.min.y) / px).ceil() as usize + 1;
-        let origin = b.min;
+        let (origin, nx, ny) = PixelMap::layout(bounds, px, radius);
         PixelMap::on_grid(origin, px, (nx, ny), radius, |i, j| material(origin + DVec2::new(i as f64, j as f64) * px))
+    }
+
+    /// Where the pixels of a map over `bounds` lie ([`PixelMap::of_material`]): the first's
+    /// centre, and how many across and up (over the bounds grown by the radius and two pixels).
+    pub fn layout(bounds: Rect, px: f64, radius: f64) -> (DVec2, usize, usize) {
+        let b = bounds.expand(radius + 2.0 * px);
+        (b.min, ((b.max.x - b.min.x) / px).ceil() as usize + 1, ((b.max.y - b.min.y) / px).ceil() as usize + 1)
     }
 
     /// The same on pixels centred at `origin + (i, j)·px`, `size` of them: material where
