@@ -753,11 +753,8 @@ impl Clearer<'_, '_, '_> {
                         let n = (c.distance(first) / px).ceil() as usize;
                         (0..=n).all(|k| ok(c.lerp(first, k as f64 / n.max(1) as f64)))
                     };
-                    let aside = || {
-                        (1..=ADAPTIVE_ASIDE)
-                            .flat_map(|k| (0..16).map(move |t| first + k as f64 * step * DVec2::from_angle(t as f64 * PI / 8.0)))
-                            .find(|&c| left.clear(c, r, z) && line_ok(c))
-                    };
+                    let aside =
+                        || (1..=ADAPTIVE_ASIDE).flat_map(|k| (0..16).map(move |t| first + k as f64 * step * DVec2::from_angle(t as f64 * PI / 8.0))).find(|&c| left.clear(c, r, z) && line_ok(c));
                     let circle_ok = |c: DVec2| (0..24).all(|t| ok(c + hr * DVec2::from_angle(t as f64 * PI / 12.0)));
                     match left.clear(first, r, z) {
                         true => self.s.cursor.reposition(first.extend(z), self.out),
