@@ -557,6 +557,40 @@ test('zigzag roughing with the load held: added in the page, the reference line 
   await context.close();
 });
 
+test('adaptive clearing: added in the page with the core\'s defaults, spiralling out in arcs at the full step-down, a clean program that rs274 runs', async () => {
+  const { page, context, errors } = await openPage();
+  await soleOperation(page, 'roughAdaptive');
+  assert.equal(await page.locator('#op-list li').count(), 1);
+  // The form starts from the core's defaults for this kind, in a machinist's words.
+  assert.equal(await page.inputValue('input[name=op-stepoverFraction]'), '0.1');
+  assert.equal(await page.inputValue('input[name=op-stepdown]'), '6');
+  assert.match(await page.textContent('#op-editor'), /Optimal load/);
+  await page.click('#generate');
+  await generated(page);
+  assert.ok(await pathPixels(page) > 2000, 'the path on the canvas');
+  await shoot(page, 'adaptive');
+  const stats = await page.textContent('#stats');
+  assert.match(stats, /adaptive rough with T1/, stats);
+  const report = await page.textContent('#sim-report');
+  assert.match(report, /gouges: 0/);
+  assert.match(report, /rapid moves through stock: 0/);
+  assert.match(report, /tool body \(above the flutes\) in material: 0/);
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-adaptive-'));
+  const program = path.join(dir, download.suggestedFilename());
+  await download.saveAs(program);
+  const gcode = fs.readFileSync(program, 'utf8');
+  // Arcs, helices down into the material (arcs that descend), and levels 6 mm apart at most.
+  assert.ok((gcode.match(/^G[23] /gm) || []).length > 100, 'arcs');
+  const zs = [...new Set([...gcode.matchAll(/^G[123] .*Z(-?[\d.]+)/gm)].map((m) => Number(m[1])))];
+  assert.ok(zs.length > 2, `levels: ${zs.join(', ')}`);
+  const tools = await page.evaluate(() => window.swarf.tools);
+  fs.writeFileSync(path.join(dir, 'tool.tbl'), toolTable(tools));
+  execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), program], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
 test('octree roughing: the tools chosen from the library, each stage\'s path and octants in its tool\'s colour, the reasons in the report, one program that rs274 runs', async () => {
   const { page, context, errors } = await openPage();
   await tab(page, 'ops');
