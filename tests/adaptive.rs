@@ -10,6 +10,7 @@ use swarf::cutter::Cutter;
 use swarf::drawing::{Drawing, DrawnLoop, Loop};
 use swarf::geom::DVec2;
 use swarf::job::{self, Job, JobOutput, Operation, Tool};
+use swarf::machining::adaptive::Adaptive;
 use swarf::mesh::placement::{PartSetup, Placement};
 use swarf::mesh::sample::demo_part;
 use swarf::operations::{Pocket2d, Roughing};
@@ -76,7 +77,84 @@ fn a_pocket_with_an_island_is_cleared_in_arcs() {
     assert!((got - expected).abs() < 0.01 * expected, "removed {got:.0} mm³, expected {expected:.0}");
     let (arcs, n) = level_moves(&out);
     assert!(arcs * 4 > n, "{arcs} arcs of {n} moves along the level");
+    // The engagement the simulation measured, in the report: most of the cut at the target.
+    let e = out.operations[0].engagement.as_ref().expect("an engagement report");
+    assert!((e.target - Adaptive::angle_of(0.6, 3.0).to_degrees()).abs() < 1e-9);
+    assert!(e.within > 0.75 && e.over < 0.02, "{}", e.describe());
+    assert_eq!(e.moves.len(), out.operations[0].moves);
     rs274(&out.gcode, &job.tools);
+}
+
+/// The engagement the report measures from the simulation, against the angle of the tool's
+/// circle in the material sampled at 3,600 points: a φ6 tool along a wall `ae` into it
+/// (`arccos(1 − ae/r)`), and round a hole of radius 8 `ae` out from its edge, climbing
+/// (counter-clockwise, the material outside the arc) and conventional (clockwise).
+#[test]
+fn the_engagement_measured_is_the_angle_of_the_tool_in_the_material() {
+    use swarf::geom::{Aabb, DVec3};
+    use swarf::job::report::EngagementReport;
+    use swarf::machining::report::EngagementTarget;
+    use swarf::sim::program::program_moves;
+    use swarf::sim::verify::Simulator;
+    use swarf::toolpath::{Rapids, Toolpath};
+    let (r, cell, z) = (3.0, 0.05, 5.0);
+    let stock = Aabb { min: DVec3::new(-20.0, -20.0, 0.0), max: DVec3::new(20.0, 20.0, 10.0) };
+    // The angle of the front half of the tool's circle at `c` (going along `dir`) in `material`.
+    let sampled = |c: DVec2, dir: DVec2, material: &dyn Fn(DVec2) -> bool| {
+        let n = 3600;
+        (0..n).map(|k| DVec2::from_angle(PI * (k as f64 + 0.5) / n as f64 - PI / 2.0).rotate(dir)).filter(|&u| material(c + r * u)).count() as f64 * PI / n as f64
+    };
+    let measure = |paths: &[Toolpath], tools: &[Tool], climb: bool| {
+        let moves = program_moves(paths, tools, Rapids::at(10_000.0), 10_000.0).unwrap();
+        let mut sim = Simulator::new(&stock, cell).unwrap();
+        sim.run(&moves, &swarf::geom::Tolerances::default(), &mut Progress::none(), 1.0).unwrap();
+        let last = paths.last().unwrap().moves.len();
+        let k = moves.len() - last;
+        EngagementReport::measure(EngagementTarget { angle: 1.0, climb }, &moves[k..], &sim.volumes()[k..], &sim.nearest()[k..], cell)
+    };
+    let tools = [flat(1, 2.0 * r), flat(2, 16.0)];
+    for ae in [0.3, 0.6, 1.5, 2.4] {
+        // Along +X with the stock's side at y = 10 on its left less `ae`: conventional.
+        let y = 10.0 - r + ae;
+        let wall =
+            Toolpath { name: "wall".into(), tool: 1, spindle_rpm: 10_000.0, start: DVec3::new(-30.0, y, z), moves: vec![Move::Line { to: DVec3::new(30.0, y, z), feed: 1000.0 }], cycles: Vec::new() };
+        let lower = Toolpath {
+            name: "side".into(),
+            tool: 2,
+            spindle_rpm: 10_000.0,
+            start: DVec3::new(-30.0, 2.0, z),
+            moves: (0..=8).map(|k| Move::Line { to: DVec3::new(30.0 * if k % 2 == 0 { 1.0 } else { -1.0 }, 2.0 - k as f64, z), feed: 1000.0 }).collect(),
+            cycles: Vec::new(),
+        };
+        // The stock below y = 10 cleared to z first by the φ16 (its centre at y ≤ 2).
+        let got = measure(&[lower, wall], &tools, false);
+        let exact = sampled(DVec2::new(0.0, y), DVec2::X, &|p| p.y > 10.0);
+        assert!((exact - Adaptive::angle_of(ae, r)).abs() < 0.01);
+        let m = got.moves[0].expect("the cut counts") as f64;
+        eprintln!("along a wall, ae {ae}: {m:.2}° measured, {:.2}° exact", exact.to_degrees());
+        assert!((m - exact.to_degrees()).abs() < 2.0, "along a wall ae {ae}: {m:.1}° measured, {:.1}° exact", exact.to_degrees());
+        for climb in [true, false] {
+            // A hole of radius 8 plunged by the φ16, then round it at 8 − r + ae.
+            let rho = 8.0 - r + ae;
+            let plunge = Toolpath {
+                name: "hole".into(),
+                tool: 2,
+                spindle_rpm: 10_000.0,
+                start: DVec3::new(0.0, 0.0, 12.0),
+                moves: vec![Move::Line { to: DVec3::new(0.0, 0.0, z), feed: 250.0 }],
+                cycles: Vec::new(),
+            };
+            let a = DVec3::new(rho, 0.0, z);
+            let round: Vec<Move> = [DVec3::new(-rho, 0.0, z), a].into_iter().map(|to| Move::Arc { to, center: DVec2::ZERO, clockwise: !climb, feed: 1000.0 }).collect();
+            let circle = Toolpath { name: "round".into(), tool: 1, spindle_rpm: 10_000.0, start: a, moves: round, cycles: Vec::new() };
+            let got = measure(&[plunge, circle], &tools, climb);
+            let dir = if climb { DVec2::Y } else { -DVec2::Y };
+            let exact = sampled(DVec2::new(rho, 0.0), dir, &|p| p.length() > 8.0);
+            let m = got.moves[0].expect("the cut counts") as f64;
+            eprintln!("round a hole, ae {ae}, climb {climb}: {m:.2}° measured, {:.2}° exact", exact.to_degrees());
+            assert!((m - exact.to_degrees()).abs() < 2.0, "round a hole ae {ae}, climb {climb}: {m:.1}° measured, {:.1}° exact", exact.to_degrees());
+        }
+    }
 }
 
 /// A channel 8 mm wide (narrower than twice the φ6 tool) and 40 long, closed at both ends: a

@@ -120,7 +120,8 @@ function summaryTable(s, computed) {
   for (const item of s.time) {
     const o = ops.get(item.label.replace(/ with T.*$/, ''));
     const rest = o?.restAfter?.length ? `rest roughing after ${o.restAfter.map((t) => `T${t}`).join(', ')}: ` : '';
-    const extra = o && o.removed != null ? `${rest}${units.volume(o.removed)} removed, peak ${units.volume(o.mrrMax)}/min${o.powerMax != null ? ` (${o.powerMax.toFixed(2)} kW)` : ''}${o.leftMax != null ? `, leaves ≤ ${units.sized(o.leftMax)}` : ''}` : '';
+    const engaged = o?.engagement ? `, engagement ${Math.round(100 * o.engagement.within)} % within ±10 % of ${o.engagement.target.toFixed(1)}° (peak ${Math.round(o.engagement.peak)}°)` : '';
+    const extra = o && o.removed != null ? `${rest}${units.volume(o.removed)} removed, peak ${units.volume(o.mrrMax)}/min${o.powerMax != null ? ` (${o.powerMax.toFixed(2)} kW)` : ''}${o.leftMax != null ? `, leaves ≤ ${units.sized(o.leftMax)}` : ''}${engaged}` : '';
     tr([`  ${item.label}`, clock(item.seconds), extra]);
   }
   tr(['  total', clock(s.time.reduce((a, i) => a + i.seconds, 0)), `(${clockFormat(s.cycle.seconds)})`], 'total');

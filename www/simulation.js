@@ -109,6 +109,9 @@ export function play() {
   requestAnimationFrame(frame);
 }
 
+// The measured engagement's colour on the removal rate's plot.
+const ENGAGEMENT = 'rgb(174, 62, 201)';
+
 export function drawMrr() {
   const c = $('mrr');
   if (!sim.data) return;
@@ -123,6 +126,19 @@ export function drawMrr() {
     }
     sim.buckets = b;
     sim.peak = b.reduce((m, v) => Math.max(m, v), 0) || 1;
+    // Each operation's measured engagement (degrees), its least and most per column.
+    for (const m of sim.marks) {
+      if (!m.engagement) continue;
+      const lo = new Float32Array(w).fill(Infinity), hi = new Float32Array(w).fill(-Infinity);
+      m.engagement.moves.forEach((a, i) => {
+        const t = times[m.start + i];
+        if (a == null || t == null) return;
+        const x = Math.min(w - 1, Math.floor((t / total) * w));
+        lo[x] = Math.min(lo[x], a);
+        hi[x] = Math.max(hi[x], a);
+      });
+      m.columns = { lo, hi };
+    }
   }
   const g = c.getContext('2d');
   g.clearRect(0, 0, w, h);
@@ -157,6 +173,35 @@ export function drawMrr() {
     g.setLineDash([]);
     g.fillStyle = '#2b8a3e';
     g.fillText(`even load ${Math.round(m.load.rate).toLocaleString()}`, x0 + 3 * dpr, Math.max(11 * dpr, y(m.load.rate) - 3 * dpr));
+  });
+  // Operations that hold an engagement (adaptive clearing): each cutting move's engagement as
+  // the simulation measured it (0–90° over the plot's height; a column spans its least and
+  // most), the target dashed, and how much of the cut keeps within ±10 % of it.
+  sim.marks.forEach((m, k) => {
+    const e = m.engagement;
+    if (!e || !m.columns) return;
+    const end = k + 1 < sim.marks.length ? sim.marks[k + 1].t : total;
+    const [x0, x1] = [(m.t / total) * w, (end / total) * w];
+    const y = (deg) => h - (Math.min(deg, 90) / 90) * (h - 14 * dpr);
+    g.fillStyle = ENGAGEMENT;
+    for (let x = 0; x < w; x++) {
+      if (!(m.columns.hi[x] >= 0)) continue;
+      const top = y(m.columns.hi[x]);
+      g.fillRect(x, top - dpr, 1, Math.max(2 * dpr, y(m.columns.lo[x]) - top + dpr));
+    }
+    g.strokeStyle = ENGAGEMENT;
+    g.lineWidth = dpr;
+    g.setLineDash([4 * dpr, 3 * dpr]);
+    g.beginPath();
+    g.moveTo(x0, y(e.target));
+    g.lineTo(x1, y(e.target));
+    g.stroke();
+    g.setLineDash([]);
+    const text = `engagement (target ${e.target.toFixed(1)}°): ${Math.round(100 * e.within)} % within ±10 %, peak ${Math.round(e.peak)}°`;
+    g.fillStyle = 'rgba(255, 255, 255, 0.85)';
+    g.fillRect(x0 + 2 * dpr, 14 * dpr, g.measureText(text).width + 2 * dpr, 13 * dpr);
+    g.fillStyle = ENGAGEMENT;
+    g.fillText(text, x0 + 3 * dpr, 25 * dpr);
   });
   // The operations: a line in each one's colour where it starts, and its name on a light
   // ground, in the lowest of two rows where it clears the names before it; where neither row
@@ -196,7 +241,9 @@ export function drawMrr() {
 export function showSimulation(data, summary = null) {
   sim.data = data;
   // Where each operation starts in program time, for the marks on the plot.
-  sim.marks = data && summary ? summary.operationStarts.map((m, k) => ({ t: data.times[m], name: summary.operations[k].name, index: summary.operations[k].index, load: summary.operations[k].load })) : [];
+  sim.marks = data && summary
+    ? summary.operationStarts.map((m, k) => ({ t: data.times[m], start: m, name: summary.operations[k].name, index: summary.operations[k].index, load: summary.operations[k].load, engagement: summary.operations[k].engagement }))
+    : [];
   sim.buckets = null;
   sim.playing = false;
   sim.toolNumber = null;

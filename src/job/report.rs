@@ -5,10 +5,11 @@
 use serde::Serialize;
 
 use super::schema::Job;
-use crate::machining::report::{LoadReport, StageReport};
+use crate::machining::report::{EngagementTarget, LoadReport, StageReport};
 use crate::operations::Operation;
 use crate::sim::program::ProgramMove;
 use crate::sim::verify::Verification;
+use crate::toolpath::Move;
 use crate::zmap::HeightField;
 
 /// One operation's figures.
@@ -44,6 +45,9 @@ pub struct OperationReport {
     pub load: Option<LoadReport>,
     /// The stages of an operation that chose its tools (seed 000): each tool, why, and what it did.
     pub stages: Option<Vec<StageReport>>,
+    /// The engagement along its cut as the simulation measured it, where it holds one
+    /// (adaptive clearing).
+    pub engagement: Option<EngagementReport>,
     /// For a roughing after earlier work with larger tools (rest roughing: it cuts only what
     /// they left, the in-process stock), those tools, largest first; `removed` is what it took
     /// of their leftovers.
@@ -77,10 +81,99 @@ impl OperationReport {
                 l.sampling, l.reference, l.slowed
             );
         }
+        if let Some(e) = &self.engagement {
+            s += &format!("; {}", e.describe());
+        }
         for stage in self.stages.iter().flatten() {
             s += &format!("\n  {}", stage.describe());
         }
         s
+    }
+}
+
+/// The engagement angle of an operation's level cutting moves (those at one height that cut
+/// more than a cell deep), as the simulation measured it, weighed by the moves' lengths: the
+/// angle of the tool's circle inside the material, from the material's nearest edge `e` from
+/// the move's path ([`crate::sim::verify::Verification::nearest`]: the nearest cut cell's
+/// centre, less half a cell), the edge taken as parallel to the path on the side the material
+/// lies (climb milling: the right). Along a line, `arccos(e / r)` (a straight cut `ae` into a
+/// wall: `arccos(1 − ae/r)`); along an arc of radius ρ, where the edge is a circle about the
+/// arc's centre, `arccos(e/r + (e² − r²)/(2ρr))` with the material outside it, ρ negative
+/// with the material inside. A move whose nearest cut lies on its path (a slot, or more than
+/// half the tool in the material) reads 90° or more: 90°.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, ts_rs::TS)]
+#[serde(rename_all = "camelCase")]
+pub struct EngagementReport {
+    /// The angle the operation holds (degrees).
+    pub target: f64,
+    /// The share of the cutting length within ±10 % of the target, and above 1.3× it.
+    pub within: f64,
+    pub over: f64,
+    /// The largest, the mean and the spread (standard deviation) by length (degrees).
+    pub peak: f64,
+    pub mean: f64,
+    pub spread: f64,
+    /// Each of the operation's moves' engagement (degrees; `null` where the move does not
+    /// count: rapids, ramps and helices, moves that cut a cell deep or less), for the plot.
+    pub moves: Vec<Option<f32>>,
+}
+
+impl EngagementReport {
+    /// The engagement of `moves` (what the simulation measured of each: the volume it removed
+    /// and the nearest its path came to a cell it cut, on cells of side `cell`) against
+    /// `target`.
+    pub fn measure(target: EngagementTarget, moves: &[ProgramMove], volumes: &[f64], nearest: &[f64], cell: f64) -> EngagementReport {
+        let angles: Vec<Option<(f64, f64)>> = moves
+            .iter()
+            .zip(volumes.iter().zip(nearest))
+            .map(|(m, (&volume, &near))| {
+                let r = 0.5 * m.cutter.diameter;
+                let level = !m.mv.is_rapid() && (m.mv.to().z - m.from.z).abs() < 1e-9;
+                let e = (near - 0.5 * cell).max(0.0);
+                if !(level && volume > 0.0 && near.is_finite() && e < r - cell) {
+                    return None;
+                }
+                let cos = match m.mv {
+                    // The material outside the arc where it lies on the side away from its
+                    // centre: the centre is on the right of a clockwise arc.
+                    Move::Arc { center, clockwise, .. } => {
+                        let rho = m.from.truncate().distance(center);
+                        let rho = if clockwise == target.climb { -rho } else { rho };
+                        e / r + (e * e - r * r) / (2.0 * rho * r)
+                    }
+                    _ => e / r,
+                };
+                Some((cos.clamp(0.0, 1.0).acos(), m.mv.length(m.from)))
+            })
+            .collect();
+        let counted: Vec<(f64, f64)> = angles.iter().flatten().copied().collect();
+        let total = counted.iter().map(|c| c.1).sum::<f64>().max(1e-12);
+        // (+ 0.0: an empty sum is −0.)
+        let share = |keep: &dyn Fn(f64) -> bool| counted.iter().filter(|c| keep(c.0)).map(|c| c.1).sum::<f64>() / total + 0.0;
+        let mean = counted.iter().map(|c| c.0 * c.1).sum::<f64>() / total;
+        let var = counted.iter().map(|c| (c.0 - mean).powi(2) * c.1).sum::<f64>() / total;
+        EngagementReport {
+            target: target.angle.to_degrees(),
+            within: share(&|a| (a - target.angle).abs() <= 0.1 * target.angle),
+            over: share(&|a| a > 1.3 * target.angle),
+            peak: counted.iter().map(|c| c.0).fold(0.0, f64::max).to_degrees(),
+            mean: mean.to_degrees(),
+            spread: var.sqrt().to_degrees(),
+            moves: angles.iter().map(|a| a.map(|(a, _)| a.to_degrees() as f32)).collect(),
+        }
+    }
+
+    /// One phrase for a person.
+    pub fn describe(&self) -> String {
+        format!(
+            "engagement {:.0} % of the cut within ±10 % of {:.1}°, {:.0} % above 1.3×, peak {:.1}°, mean {:.1}° (spread {:.1}°)",
+            100.0 * self.within,
+            self.target,
+            100.0 * self.over,
+            self.peak,
+            self.mean,
+            self.spread
+        )
     }
 }
 
@@ -189,6 +282,7 @@ pub fn per_operation(
                 left_mean,
                 load: None,
                 stages: None,
+                engagement: None,
             }
         })
         .collect();

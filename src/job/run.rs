@@ -417,7 +417,7 @@ pub struct Running {
     pub(super) move_ranges: Vec<std::ops::Range<usize>>,
     pub(super) all_moves: Vec<ProgramMove>,
     pub(super) snapshots: Vec<Option<HeightField>>,
-    pub(super) loads: Vec<(Option<LoadReport>, Option<Vec<StageReport>>)>,
+    pub(super) loads: Vec<(Option<LoadReport>, Option<Vec<StageReport>>, Option<crate::machining::report::EngagementTarget>)>,
     /// Where the operations cut a sheet, and the grooves they engraved: what a drawing's
     /// program is verified against.
     pub(super) cuts: Vec<SheetCut>,
@@ -463,12 +463,12 @@ impl Running {
         // Regions a pool made were for this operation only.
         self.ctx.given_regions.clear();
         let round = o.plans_round_fixtures();
-        let Planned { mut paths, cuts, grooves, load, stages, octants } = planned?;
+        let Planned { mut paths, cuts, grooves, load, stages, octants, engagement } = planned?;
         if !round {
             self.keep_clear(k, &mut paths);
         }
         self.keep_holders_out(k, &mut paths);
-        self.loads.push((load, stages));
+        self.loads.push((load, stages, engagement));
         self.cuts.extend(cuts);
         self.grooves.extend(grooves);
         self.octants.extend(octants);
@@ -711,9 +711,13 @@ impl Running {
         let crate::post::Written { gcode, cycle, move_lines } = write_mapped(&job.name, &paths, &job.tools, heights.clearance, &job.post_for_machine())?;
         let stats = paths.iter().fold(PathStats::default(), |s, p| s + p.stats(job.rapids()));
         let mut operations = report::per_operation(job, &enabled, &all_moves, &move_ranges, volumes, &rates, &snapshots, verification.as_ref());
-        for ((o, (load, stages)), range) in operations.iter_mut().zip(loads).zip(&move_ranges) {
+        for ((o, (load, stages, engagement)), range) in operations.iter_mut().zip(loads).zip(&move_ranges) {
             o.load = load;
             o.stages = stages;
+            o.engagement = engagement.zip(cell).filter(|_| nearest.len() == all_moves.len()).map(|(target, cell)| {
+                let r = range.clone();
+                report::EngagementReport::measure(target, &all_moves[r.clone()], &volumes[r.clone()], &nearest[r], cell)
+            });
             // Its time as the program's head states it: its paths' as the post wrote them.
             o.seconds = path_operations.iter().zip(&cycle.paths).filter(|(&k, _)| k == o.index).map(|(_, s)| s).sum();
             o.power_max = o.mrr_max.zip(kc).map(|(m, kc)| crate::cutting::power(m, kc));

@@ -23,6 +23,19 @@ pub struct Planned {
     pub stages: Option<Vec<StageReport>>,
     /// Its stages' octants, for the view.
     pub octants: Vec<StageOctants>,
+    /// The engagement it holds the tool to, where it holds one (adaptive clearing): the job
+    /// measures the program's against it by the simulation.
+    pub engagement: Option<EngagementTarget>,
+}
+
+/// The engagement an operation holds.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EngagementTarget {
+    /// The angle of the tool's circle in the material (radians).
+    pub angle: f64,
+    /// Climb milling (the material on the right of the way the tool goes, as a spindle turning
+    /// clockwise from above, M3, cuts it), else conventional (on the left).
+    pub climb: bool,
 }
 
 impl From<Vec<Toolpath>> for Planned {

@@ -170,6 +170,11 @@ impl Operate for Pocket2d {
             ctx.note(&self.name, "the pocket has no material left to its depth (earlier operations cut it away)");
             return Ok(Planned { cuts, ..Planned::default() });
         }
-        Ok(Planned { paths: vec![sheet::toolpath(&self.name, &tool, moves, ctx.heights.clearance)], cuts, ..Planned::default() })
+        let r = tool.cutter.radius();
+        let engagement = (self.pattern == PocketPattern::Adaptive).then(|| crate::machining::report::EngagementTarget {
+            angle: crate::machining::adaptive::Adaptive::angle_of((2.0 * r * self.stepover_fraction).min(2.0 * r), r),
+            climb: self.direction == Direction::Climb,
+        });
+        Ok(Planned { paths: vec![sheet::toolpath(&self.name, &tool, moves, ctx.heights.clearance)], cuts, engagement, ..Planned::default() })
     }
 }

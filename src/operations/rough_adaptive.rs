@@ -101,6 +101,9 @@ impl Operate for RoughAdaptive {
     fn plan(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Planned> {
         let levels = self.levels();
         let Some(cut) = levels.levels_to_cut(ctx, progress)? else { return Ok(Planned::default()) };
-        Ok(vec![levels.clear(ctx, cut, progress)?].into())
+        let r = ctx.tool(&self.name, self.tool)?.cutter.radius();
+        let angle = crate::machining::adaptive::Adaptive::angle_of((2.0 * r * self.stepover_fraction).min(2.0 * r), r);
+        let engagement = Some(crate::machining::report::EngagementTarget { angle, climb: self.roughing.direction == crate::machining::settings::Direction::Climb });
+        Ok(Planned { engagement, ..vec![levels.clear(ctx, cut, progress)?].into() })
     }
 }

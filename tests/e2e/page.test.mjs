@@ -557,7 +557,7 @@ test('zigzag roughing with the load held: added in the page, the reference line 
   await context.close();
 });
 
-test('adaptive clearing: added in the page with the core\'s defaults, spiralling out in arcs at the full step-down, a clean program that rs274 runs', async () => {
+test('adaptive clearing: added in the page with the core\'s defaults, spiralling out in arcs at the full step-down, its engagement measured and plotted, a clean program that rs274 runs', async () => {
   const { page, context, errors } = await openPage();
   await soleOperation(page, 'roughAdaptive');
   assert.equal(await page.locator('#op-list li').count(), 1);
@@ -571,6 +571,19 @@ test('adaptive clearing: added in the page with the core\'s defaults, spiralling
   await shoot(page, 'adaptive');
   const stats = await page.textContent('#stats');
   assert.match(stats, /adaptive rough with T1/, stats);
+  // The engagement the simulation measured, against the target of a tenth of the diameter
+  // (arccos 0.8 = 36.9°), in the summary and on the plot (its colour, and the dashed target).
+  const engaged = stats.match(/engagement (\d+) % within ±10 % of 36\.9° \(peak (\d+)°\)/);
+  assert.ok(engaged, stats);
+  assert.ok(Number(engaged[1]) >= 60, stats);
+  const violet = await page.evaluate(() => {
+    const c = document.getElementById('mrr');
+    const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+    let n = 0;
+    for (let i = 0; i < d.length; i += 4) if (Math.abs(d[i] - 174) < 30 && Math.abs(d[i + 1] - 62) < 30 && Math.abs(d[i + 2] - 201) < 30 && d[i + 3] > 200) n++;
+    return n;
+  });
+  assert.ok(violet > 200, `the engagement on the plot: ${violet} pixels`);
   const report = await page.textContent('#sim-report');
   assert.match(report, /gouges: 0/);
   assert.match(report, /rapid moves through stock: 0/);

@@ -409,6 +409,37 @@ length: number,
 points: Array<[number, number]>, };
 
 /**
+ * The engagement angle of an operation's level cutting moves (those at one height that cut
+ * more than a cell deep), as the simulation measured it, weighed by the moves' lengths: the
+ * angle of the tool's circle inside the material, from the material's nearest edge `e` from
+ * the move's path ([`crate::sim::verify::Verification::nearest`]: the nearest cut cell's
+ * centre, less half a cell), the edge taken as parallel to the path on the side the material
+ * lies (climb milling: the right). Along a line, `arccos(e / r)` (a straight cut `ae` into a
+ * wall: `arccos(1 − ae/r)`); along an arc of radius ρ, where the edge is a circle about the
+ * arc's centre, `arccos(e/r + (e² − r²)/(2ρr))` with the material outside it, ρ negative
+ * with the material inside. A move whose nearest cut lies on its path (a slot, or more than
+ * half the tool in the material) reads 90° or more: 90°.
+ */
+export type EngagementReport = { 
+/**
+ * The angle the operation holds (degrees).
+ */
+target: number, 
+/**
+ * The share of the cutting length within ±10 % of the target, and above 1.3× it.
+ */
+within: number, over: number, 
+/**
+ * The largest, the mean and the spread (standard deviation) by length (degrees).
+ */
+peak: number, mean: number, spread: number, 
+/**
+ * Each of the operation's moves' engagement (degrees; `null` where the move does not
+ * count: rapids, ramps and helices, moves that cut a cell deep or less), for the plot.
+ */
+moves: Array<number | null>, };
+
+/**
  * Engraving on a drawing.
  */
 export type Engrave = { 
@@ -1120,6 +1151,11 @@ load: LoadReport | null,
  * The stages of an operation that chose its tools (seed 000): each tool, why, and what it did.
  */
 stages: Array<StageReport> | null, 
+/**
+ * The engagement along its cut as the simulation measured it, where it holds one
+ * (adaptive clearing).
+ */
+engagement: EngagementReport | null, 
 /**
  * For a roughing after earlier work with larger tools (rest roughing: it cuts only what
  * they left, the in-process stock), those tools, largest first; `removed` is what it took

@@ -625,7 +625,7 @@ fn run_job(job: &Job, workpiece: impl Into<Workpiece>, output: &Path, options: R
         for w in &out.warnings {
             eprintln!("warning: {w}");
         }
-        if out.operations.len() > 1 || out.feeds.is_some() || out.operations.iter().any(|o| o.stages.is_some() || o.load.is_some()) {
+        if out.operations.len() > 1 || out.feeds.is_some() || out.operations.iter().any(|o| o.stages.is_some() || o.load.is_some() || o.engagement.is_some()) {
             for r in &out.operations {
                 eprintln!("  {}", r.describe());
             }
