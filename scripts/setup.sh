@@ -69,4 +69,11 @@ if ! .venv/bin/python -c "import opencamlib" 2>/dev/null; then
   say "installing opencamlib $OCL_VERSION (the setups' gouge oracle)"
   .venv/bin/pip install -q "opencamlib==$OCL_VERSION"
 fi
+# numpy-stl, which the shared tools' gsim.py reads a part with (BENCHMARKS.md's gouge and
+# material-left figures); pinned as the others are.
+NUMPY_STL_VERSION=4.1.1
+if ! .venv/bin/python -c "import stl" 2>/dev/null; then
+  say "installing numpy-stl $NUMPY_STL_VERSION (gsim.py's reader)"
+  .venv/bin/pip install -q "numpy-stl==$NUMPY_STL_VERSION"
+fi
 say "ready"
