@@ -18,6 +18,7 @@ pub mod holders;
 pub mod holes;
 pub mod levels;
 pub mod path2d;
+pub mod pencil;
 pub mod raster;
 pub mod report;
 pub mod rings;

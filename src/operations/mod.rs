@@ -14,6 +14,7 @@ pub mod chamfer;
 pub mod drill;
 pub mod engrave;
 pub mod face;
+pub mod finish_pencil;
 pub mod finish_raster;
 pub mod finish_waterline;
 pub mod pocket2d;
@@ -30,6 +31,7 @@ pub use chamfer::{Chamfer, ChamferEdges};
 pub use drill::{Drill, DrillCycle, ReturnLevel};
 pub use engrave::Engrave;
 pub use face::{Face, FacePattern};
+pub use finish_pencil::FinishPencil;
 pub use finish_raster::{Boundary, FinishRaster};
 pub use finish_waterline::FinishWaterline;
 pub use pocket2d::Pocket2d;
@@ -138,6 +140,8 @@ operations! {
     FinishRaster(FinishRaster) = "finishRaster",
     /// Waterline finishing on a part's steep areas.
     FinishWaterline(FinishWaterline) = "finishWaterline",
+    /// Pencil finishing along a part's inside corners, found on its CL z-map (issue 60).
+    FinishPencil(FinishPencil) = "finishPencil",
     /// Profile around a drawing's loops (seed 003).
     Profile2d(Profile2d) = "profile2d",
     /// Pocket inside a drawing's loops (seed 003).

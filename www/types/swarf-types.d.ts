@@ -598,6 +598,55 @@ moveIndex: number | null, at: [number, number, number],
 amount: number, };
 
 /**
+ * Pencil finishing along the part's concave corners.
+ */
+export type FinishPencil = { 
+/**
+ * Shown in the program's comments. Default value: "pencil finish".
+ */
+name: string, 
+/**
+ * Whether the job runs it (a disabled operation stays in the job). Default value: true.
+ */
+enabled: boolean, 
+/**
+ * Number of the tool to use (a ball end mill). Default value: 1.
+ */
+tool: number, 
+/**
+ * The least bend of the tool's path across a corner that makes it a pencil line (degrees):
+ * where the ball touches two faces at once, its path turns by their angle. Default value:
+ * 20.
+ */
+bend: number, 
+/**
+ * Material left on the part (mm). Default value: 0.
+ */
+allowance: number, 
+/**
+ * Spacing of the CL z-map (mm): the corners are found to about half of it. Default value:
+ * 0.1.
+ */
+grid: number, 
+/**
+ * Lowest tip height where the part is not under the tool (mm). Default value: stock bottom.
+ */
+floor: number | null, 
+/**
+ * Longest link that may stay down (mm). Default value: the tool's diameter.
+ */
+stayDownMax: number | null, 
+/**
+ * How the cutter enters material (helix, else ramp along the pass).
+ */
+entry: Entry, 
+/**
+ * Cut only where the stock the earlier operations left stands above what this one
+ * leaves (by more than the job's gouge tolerance). Default value: false.
+ */
+restOnly: boolean, };
+
+/**
  * Raster finishing over the CL z-map (seed 001).
  */
 export type FinishRaster = { 
@@ -1080,7 +1129,7 @@ export type OpenChain = { layer: string, start: [number, number], end: [number, 
 /**
  * One operation of a job.
  */
-export type Operation = { "kind": "roughZlevel" } & RoughZlevel | { "kind": "roughZigzag" } & RoughZigzag | { "kind": "roughAdaptive" } & RoughAdaptive | { "kind": "roughOctree" } & RoughOctree | { "kind": "finishRaster" } & FinishRaster | { "kind": "finishWaterline" } & FinishWaterline | { "kind": "profile2d" } & Profile2d | { "kind": "pocket2d" } & Pocket2d | { "kind": "engrave" } & Engrave | { "kind": "drill" } & Drill | { "kind": "bore" } & Bore | { "kind": "chamfer" } & Chamfer | { "kind": "threadMill" } & ThreadMill | { "kind": "face" } & Face | { "kind": "vcarve" } & VCarve;
+export type Operation = { "kind": "roughZlevel" } & RoughZlevel | { "kind": "roughZigzag" } & RoughZigzag | { "kind": "roughAdaptive" } & RoughAdaptive | { "kind": "roughOctree" } & RoughOctree | { "kind": "finishRaster" } & FinishRaster | { "kind": "finishWaterline" } & FinishWaterline | { "kind": "finishPencil" } & FinishPencil | { "kind": "profile2d" } & Profile2d | { "kind": "pocket2d" } & Pocket2d | { "kind": "engrave" } & Engrave | { "kind": "drill" } & Drill | { "kind": "bore" } & Bore | { "kind": "chamfer" } & Chamfer | { "kind": "threadMill" } & ThreadMill | { "kind": "face" } & Face | { "kind": "vcarve" } & VCarve;
 
 /**
  * An operation's form.
