@@ -1,7 +1,7 @@
 //! Pencil finishing (issue 60): one pass along each concave corner and fillet where the ball
 //! touches the part at two places, found as the creases of the exact CL z-map
 //! ([`crate::machining::pencil`]); the tip follows the exact surface along each pass
-//! ([`ClSurface::along`]), so a pencil pass is as gouge-free as a raster pass. After a larger
+//! ([`crate::zmap::surface::ClSurface::along`]), so a pencil pass is as gouge-free as a raster pass. After a larger
 //! ball it takes what that one left in the corners; with `restOnly`, only where the stock the
 //! earlier operations left stands above what this one leaves.
 
