@@ -263,7 +263,7 @@ impl Shape {
         }
         xs.into_iter()
             .map(|mut row| {
-                row.sort_by(f64::total_cmp);
+                crate::geom::sort::sort_floats(&mut row);
                 row.chunks_exact(2).map(|p| (p[0], p[1])).collect()
             })
             .collect()
@@ -463,7 +463,7 @@ mod tests {
     /// The spans of the line at `y` inside `shape`, from every segment's crossings with it.
     fn spans_at(shape: &Shape, y: f64) -> Vec<(f64, f64)> {
         let mut xs: Vec<f64> = shape.segments().flat_map(|s| s.crossings_at_y(y)).collect();
-        xs.sort_by(f64::total_cmp);
+        crate::geom::sort::sort_floats(&mut xs);
         xs.chunks_exact(2).map(|p| (p[0], p[1])).collect()
     }
 
@@ -476,7 +476,7 @@ mod tests {
         loops.push(Loop::polygon(&[DVec2::new(8.0, 8.0), DVec2::new(9.0, 9.0), DVec2::new(8.0, 10.0), DVec2::new(7.0, 9.0)]));
         let shape = Shape::new(loops);
         let mut ys: Vec<f64> = (0..=70).map(|k| -2.0 + k as f64 * 0.25).chain([3.0, 7.0, 9.0, 9.0, 10.0]).collect();
-        ys.sort_by(f64::total_cmp);
+        crate::geom::sort::sort_floats(&mut ys);
         let many = shape.spans_on_rows(&ys);
         assert_eq!(many.len(), ys.len());
         let mut crossed = 0;

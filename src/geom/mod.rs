@@ -3,6 +3,7 @@
 
 pub mod index;
 pub mod segment;
+pub mod sort;
 pub mod tolerance;
 
 pub use glam::{DVec2, DVec3};

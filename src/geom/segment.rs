@@ -702,7 +702,7 @@ pub fn pieces(segs: &[Segment], s0: f64, s1: f64, cut: impl Iterator<Item = f64>
         }
     }
     cuts.push(s1);
-    cuts.sort_by(f64::total_cmp);
+    crate::geom::sort::sort_floats(&mut cuts);
     cuts.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
     let mut out = Vec::with_capacity(cuts.len());
     let mut from = s0;

@@ -204,7 +204,7 @@ fn fit_circle(points: &[DVec2]) -> Option<(DVec2, f64)> {
 /// Whether the points go all round `center`, no gap wider than [`LARGEST_GAP`].
 fn all_round(points: &[DVec2], center: DVec2) -> bool {
     let mut angles: Vec<f64> = points.iter().map(|p| (*p - center).to_angle()).collect();
-    angles.sort_by(f64::total_cmp);
+    crate::geom::sort::sort_floats(&mut angles);
     let wrap = angles.first().map_or(0.0, |a| a + std::f64::consts::TAU) - angles.last().copied().unwrap_or(0.0);
     angles.windows(2).map(|w| w[1] - w[0]).chain([wrap]).all(|gap| gap <= LARGEST_GAP)
 }

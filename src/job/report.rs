@@ -301,7 +301,7 @@ pub fn per_operation(
                 }
             }
         }
-        after.sort_by(|a, b| diameter(*b).total_cmp(&diameter(*a)));
+        crate::geom::sort::sort_by_float(&mut after, |a| -diameter(*a));
         reports[n].rest_after = after;
     }
     reports

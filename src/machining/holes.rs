@@ -116,7 +116,7 @@ pub fn sizes(holes: &[Hole]) -> Vec<String> {
             None => by.push((d, 1)),
         }
     }
-    by.sort_by(|a, b| a.0.total_cmp(&b.0));
+    crate::geom::sort::sort_by_float(&mut by, |a| a.0);
     // A drill mark's diameter is 0: it has none.
     by.into_iter().map(|(d, n)| if d == 0.0 { format!("{n} drill marks") } else { format!("{n} × φ{}", crate::limits::shown(d)) }).collect()
 }

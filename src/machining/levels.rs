@@ -508,7 +508,7 @@ impl LevelRoughing {
         levels.push((bottom, false));
         if self.flats {
             let mut heights: Vec<f64> = cl.z.iter().copied().filter(|&h| h > floor + FLAT_SAME && h < top).collect();
-            heights.sort_by(f64::total_cmp);
+            crate::geom::sort::sort_floats(&mut heights);
             let cell = cl.spacing * cl.spacing;
             let least = FLAT_AREA * std::f64::consts::PI * radius * radius / cell;
             let mut k = 0;
@@ -526,7 +526,7 @@ impl LevelRoughing {
                 k = e;
             }
         }
-        levels.sort_by(|a, b| b.0.total_cmp(&a.0));
+        crate::geom::sort::sort_by_float(&mut levels, |a| -a.0);
         // Levels closer than LEVEL_SAME are one, at the higher height; a step-down level among
         // them makes it a whole level.
         levels.dedup_by(|a, b| {
@@ -806,7 +806,7 @@ impl Cleared {
             if self.cut.get(k + 1).is_some_and(|n| n.z == e.z) || e.z < lowest {
                 continue;
             }
-            under.sort_by(|p, q| p.0.total_cmp(&q.0));
+            crate::geom::sort::sort_by_float(&mut under, |p| p.0);
             let mut reach = 0.0;
             for &(t0, t1) in &under {
                 if t0 > reach + gap {
@@ -838,7 +838,7 @@ fn spans_inside(region: &Shape, link: &Segment, slack: f64) -> Vec<(f64, f64)> {
     for s in region.segments() {
         ts.extend(s.crossings_with(s.arc_geom().as_ref(), link, g.as_ref(), FLOAT_SLACK).iter().map(|c| c.u.clamp(0.0, 1.0)));
     }
-    ts.sort_by(f64::total_cmp);
+    crate::geom::sort::sort_floats(&mut ts);
     ts.dedup();
     ts.windows(2).filter(|w| holds(region, link.point_at(0.5 * (w[0] + w[1])), slack)).map(|w| (w[0], w[1])).collect()
 }

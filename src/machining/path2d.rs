@@ -46,7 +46,7 @@ impl Heights {
     /// The higher of two height functions, with breakpoints where they cross.
     pub fn max(&self, other: &Heights) -> Heights {
         let mut s: Vec<f64> = self.0.iter().chain(&other.0).map(|p| p.0).collect();
-        s.sort_by(f64::total_cmp);
+        crate::geom::sort::sort_floats(&mut s);
         s.dedup();
         let mut out = Vec::with_capacity(s.len() * 2);
         for (k, &x) in s.iter().enumerate() {

@@ -78,7 +78,7 @@ pub fn top_edges(mesh: &Mesh) -> Vec<TopEdge> {
     }
     let mut out = Vec::new();
     let mut flats: Vec<(f64, Vec<(u32, u32, bool)>)> = boundary.into_iter().map(|(f, b)| (height(f), b)).collect();
-    flats.sort_by(|a, b| b.0.total_cmp(&a.0));
+    crate::geom::sort::sort_by_float(&mut flats, |a| -a.0);
     for (n, (z, directed)) in flats.into_iter().enumerate() {
         let mut next: std::collections::HashMap<u32, Vec<usize>> = std::collections::HashMap::new();
         for (k, &(from, _, _)) in directed.iter().enumerate() {

@@ -293,7 +293,7 @@ fn closed_against((p, q): (DVec3, DVec3), others: impl Iterator<Item = (DVec3, D
         })
         .filter(|(s, t)| t > s)
         .collect();
-    covered.sort_by(|a, b| a.0.total_cmp(&b.0));
+    crate::geom::sort::sort_by_float(&mut covered, |a| a.0);
     let mut reach = 0.0;
     for (s, t) in covered {
         if s > reach + 10.0 * eps {

@@ -409,7 +409,7 @@ pub fn stitch(slices: Vec<Slice>, eps: f64) -> Vec<Loop> {
         }
     }
     let mut by_x: Vec<usize> = (0..open.len()).collect();
-    by_x.sort_by(|&a, &b| open[a].start().x.total_cmp(&open[b].start().x));
+    crate::geom::sort::sort_by_float(&mut by_x, |&a| open[a].start().x);
     let xs: Vec<f64> = by_x.iter().map(|&i| open[i].start().x).collect();
     let sliver: Vec<bool> = length.iter().map(|&l| l <= 10.0 * near).collect();
     let starts: Vec<usize> = (0..open.len()).filter(|&k| !sliver[k]).chain((0..open.len()).filter(|&k| sliver[k])).collect();

@@ -228,7 +228,7 @@ impl FinishWaterline {
             }
         }
         // Shallowest first: at most levels one of the first cells reaches across.
-        cells.sort_by(|a, b| a.2.total_cmp(&b.2));
+        crate::geom::sort::sort_by_float(&mut cells, |a| a.2);
         let mut out = Vec::new();
         let mut z = top - 0.5 * self.stepdown.min(top - floor);
         let nodes = (cl.nx * cl.ny) as f64;

@@ -199,7 +199,7 @@ impl RoughOctree {
         if tools.is_empty() {
             return Err(Error::operation(&self.name, "the tool library has no flat or bull-nose end to rough with"));
         }
-        tools.sort_by(|a, b| b.cutter.diameter.total_cmp(&a.cutter.diameter));
+        crate::geom::sort::sort_by_float(&mut tools, |a| -a.cutter.diameter);
         tools.dedup_by(|a, b| a.cutter.diameter == b.cutter.diameter);
         Ok(tools)
     }

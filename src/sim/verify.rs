@@ -64,7 +64,7 @@ impl Report {
     /// Takes in the moves found running into fixtures (`checked` of them named), the deepest
     /// first.
     pub fn fixtures(&mut self, checked: usize, mut hits: Vec<super::fixtures::FixtureHit>) {
-        hits.sort_by(|a, b| b.depth.total_cmp(&a.depth));
+        crate::geom::sort::sort_by_float(&mut hits, |a| -a.depth);
         self.fixtures_checked = checked;
         self.fixture_collision_count = hits.len();
         self.fixture_collisions =
@@ -768,7 +768,7 @@ impl Simulator {
             }
         }
         // The deepest gouges first.
-        gouges.sort_by(|a, b| b.amount.total_cmp(&a.amount));
+        crate::geom::sort::sort_by_float(&mut gouges, |a| -a.amount);
         let gouge_count = gouges.len();
         gouges.truncate(KEPT);
         let report = Report {

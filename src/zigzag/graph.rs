@@ -112,7 +112,7 @@ impl Graph {
                 }
             }
             // Step 1: the ends; step 2: spans pair the crossings in order along the line.
-            nodes[first..].sort_by(|a, b| a.p.x.total_cmp(&b.p.x));
+            crate::geom::sort::sort_by_float(&mut nodes[first..], |a| a.p.x);
             let n = nodes.len() - first;
             if n % 2 == 1 {
                 // A line grazing a vertex: drop the odd crossing out (the half-open rule makes
@@ -129,7 +129,7 @@ impl Graph {
         // line (end nodes included).
         for on in 0..loops.len() {
             let mut along: Vec<usize> = (0..nodes.len()).filter(|&i| nodes[i].on == on).collect();
-            along.sort_by(|&a, &b| nodes[a].s.total_cmp(&nodes[b].s));
+            crate::geom::sort::sort_by_float(&mut along, |&a| nodes[a].s);
             let n = along.len();
             for k in 0..n {
                 let (a, b) = (along[k], along[(k + 1) % n]);

@@ -91,7 +91,7 @@ fn direction_box(normals: &[DVec3]) -> (DVec2, DVec2) {
         let Some(u) = n.truncate().try_normalize() else { return whole };
         angles.push(u.y.atan2(u.x));
     }
-    angles.sort_by(f64::total_cmp);
+    crate::geom::sort::sort_floats(&mut angles);
     // The arc holding every direction is the circle less its largest gap between neighbours.
     let tau = std::f64::consts::TAU;
     let (mut gap, mut from) = (angles[0] + tau - angles[angles.len() - 1], angles[0]);

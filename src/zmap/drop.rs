@@ -111,7 +111,7 @@ impl PointDrop {
         let cell = |v: f64, o: f64, n: usize| (((v - o) / size).floor().max(0.0) as usize).min(n - 1);
         let span = |t: &Prepared| (cell(t.lo.x, lo.x, nx), cell(t.hi.x, lo.x, nx), cell(t.lo.y, lo.y, ny), cell(t.hi.y, lo.y, ny));
         // Highest first within every bucket: insert in that order.
-        triangles.sort_by(|a, b| b.top.total_cmp(&a.top));
+        crate::geom::sort::sort_by_float(&mut triangles, |a| -a.top);
         let (start, entries) = bucket_lists(&triangles, nx, ny, span);
         let peaks = peaks(mesh, profile.taper());
         let (peak_start, peak_entries) = bucket_lists(&peaks, nx, ny, |v| (cell(v.x - r, lo.x, nx), cell(v.x + r, lo.x, nx), cell(v.y - r, lo.y, ny), cell(v.y + r, lo.y, ny)));

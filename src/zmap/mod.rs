@@ -196,7 +196,7 @@ impl HeightField {
         crossings(ua.x, ub.x);
         crossings(ua.y, ub.y);
         crossings(ua.x - ua.y, ub.x - ub.y);
-        ts.sort_by(f64::total_cmp);
+        crate::geom::sort::sort_floats(&mut ts);
         ts.dedup();
         ts
     }

@@ -159,7 +159,7 @@ impl ClSurface {
                     ts.push(t);
                 }
             });
-            ts.sort_by(f64::total_cmp);
+            crate::geom::sort::sort_floats(&mut ts);
             ts.dedup();
         }
         // Every vertex within reach is then held to the points found: where its own drop (the
@@ -173,7 +173,7 @@ impl ClSurface {
                 break;
             }
             ts.extend(more);
-            ts.sort_by(f64::total_cmp);
+            crate::geom::sort::sort_floats(&mut ts);
             ts.dedup();
             out = self.walk(&ts, &at, len, &ok);
         }
