@@ -138,6 +138,14 @@ impl Context {
         self.tools.iter().find(|t| t.number == number).ok_or_else(|| Error::operation(op, format!("no tool number {number} in the tool library")))
     }
 
+    /// The CL surface the finishing operation `op` cuts on: tool `tool`'s profile on a grid of
+    /// `spacing` over the stock's plan, the floor `floor` (the stock's bottom when none).
+    pub fn stock_surface(&self, op: &str, tool: u32, spacing: f64, floor: Option<f64>, builder: ClBuilder) -> Result<SurfaceRequest> {
+        let profile = self.tool(op, tool)?.cutter.profile();
+        let grid = Grid::checked(self.stock.min.truncate(), self.stock.max.truncate(), spacing).map_err(|e| Error::operation(op, e))?;
+        Ok(SurfaceRequest { profile, grid, floor: floor.unwrap_or(self.stock.min.z), builder })
+    }
+
     pub fn warn(&mut self, op: &str, message: impl Into<String>) {
         self.warnings.push(Warning::of(op, message));
     }

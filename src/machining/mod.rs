@@ -22,6 +22,7 @@ pub mod pencil;
 pub mod raster;
 pub mod report;
 pub mod rings;
+pub mod scallop;
 pub mod settings;
 pub mod sheet;
 pub mod threads;

@@ -13,6 +13,17 @@ use crate::zmap::region::Region;
 use crate::zmap::surface::{point_at, ClSurface};
 use crate::zmap::HeightField;
 
+/// Where the tool's centre may go.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(rename_all = "camelCase")]
+pub enum Boundary {
+    /// The stock's rectangle.
+    Stock,
+    /// The part's outline seen from above, grown by the operation's margin.
+    #[default]
+    Silhouette,
+}
+
 /// How consecutive passes run.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
@@ -194,4 +205,29 @@ pub fn gradient(f: &HeightField, p: DVec2) -> f64 {
     let dx = ((f.at(i1, j) - f.at(i, j)).abs()).max((f.at(i1, j1) - f.at(i, j1)).abs());
     let dy = ((f.at(i, j1) - f.at(i, j)).abs()).max((f.at(i1, j1) - f.at(i1, j)).abs());
     (dx * dx + dy * dy).sqrt() / f.spacing
+}
+
+/// Refuses, before any work, passes `stepover` apart across the stock past
+/// [`crate::machining::MAX_PASSES`], or more points than [`crate::limits::MAX_PATH_POINTS`]
+/// where they follow the surface a `grid` apart.
+pub fn check_points(ctx: &crate::machining::Context, op: &str, stepover: f64, grid: f64) -> crate::error::Result<()> {
+    let size = (ctx.stock.max - ctx.stock.min).truncate();
+    let span = size.length();
+    crate::machining::too_many(op, "passes", span / stepover, crate::machining::MAX_PASSES, "a step-over of", stepover, span)?;
+    let points = size.x * size.y / (stepover * grid);
+    if points > crate::limits::MAX_PATH_POINTS {
+        return Err(crate::error::Error::operation(
+            op,
+            format!(
+                "a step-over of {} mm at a grid of {} mm makes about {:.1} million points over the {:.0} × {:.0} mm stock (at most {:.0} million): choose a coarser grid or step-over, or check the part's unit",
+                stepover,
+                grid,
+                points / 1e6,
+                size.x,
+                size.y,
+                crate::limits::MAX_PATH_POINTS / 1e6
+            ),
+        ));
+    }
+    Ok(())
 }

@@ -19,7 +19,7 @@ use crate::toolpath::link::Floor;
 use crate::toolpath::reduce::reduce;
 use crate::zmap::region::Region;
 use crate::zmap::surface::point_at;
-use crate::zmap::{ClBuilder, Grid};
+use crate::zmap::ClBuilder;
 
 /// Pencil finishing along the part's concave corners.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
@@ -147,9 +147,6 @@ impl Operate for FinishPencil {
 impl FinishPencil {
     /// The CL surface it cuts on.
     pub fn request(&self, ctx: &Context) -> Result<SurfaceRequest> {
-        let tool = ctx.tool(&self.name, self.tool)?;
-        let stock = ctx.stock;
-        let grid = Grid::checked(stock.min.truncate(), stock.max.truncate(), self.grid).map_err(|e| Error::operation(&self.name, e))?;
-        Ok(SurfaceRequest { profile: tool.cutter.profile(), grid, floor: self.floor.unwrap_or(stock.min.z), builder: ClBuilder::Exact })
+        ctx.stock_surface(&self.name, self.tool, self.grid, self.floor, ClBuilder::Exact)
     }
 }

@@ -15,24 +15,14 @@ use serde::{Deserialize, Serialize};
 use crate::error::{Error, Result};
 use crate::geom::DVec2;
 use crate::machining::context::SurfaceRequest;
-use crate::machining::raster::{join_passes, raster_runs, rest_only, shallow_only, Pattern, RasterPasses};
-use crate::machining::{finite, named_operation, not_negative, positive, too_many, Context, FieldError, Operate, Planned, MAX_PASSES};
+pub use crate::machining::raster::Boundary;
+use crate::machining::raster::{check_points, join_passes, raster_runs, rest_only, shallow_only, Pattern, RasterPasses};
+use crate::machining::{finite, named_operation, not_negative, positive, Context, FieldError, Operate, Planned};
 use crate::progress::Progress;
 use crate::toolpath::entry::Entry;
 use crate::toolpath::link::Floor;
 use crate::zmap::region::Region;
-use crate::zmap::{ClBuilder, Grid};
-
-/// Where the tool's centre may go.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
-#[serde(rename_all = "camelCase")]
-pub enum Boundary {
-    /// The stock's rectangle.
-    Stock,
-    /// The part's outline seen from above, grown by the operation's margin.
-    #[default]
-    Silhouette,
-}
+use crate::zmap::ClBuilder;
 
 /// Raster finishing over the CL z-map (seed 001).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
@@ -154,26 +144,7 @@ impl Operate for FinishRaster {
     }
 
     fn check_scale(&self, ctx: &Context) -> Result<()> {
-        let span = (ctx.stock.max - ctx.stock.min).truncate().length();
-        too_many(&self.name, "passes", span / self.stepover, MAX_PASSES, "a step-over of", self.stepover, span)?;
-        // The points the passes follow the surface at, one a grid step apart.
-        let size = (ctx.stock.max - ctx.stock.min).truncate();
-        let points = size.x * size.y / (self.stepover * self.grid);
-        if points > crate::limits::MAX_PATH_POINTS {
-            return Err(Error::operation(
-                &self.name,
-                format!(
-                    "a step-over of {} mm at a grid of {} mm makes about {:.1} million points over the {:.0} × {:.0} mm stock (at most {:.0} million): choose a coarser grid or step-over, or check the part's unit",
-                    self.stepover,
-                    self.grid,
-                    points / 1e6,
-                    size.x,
-                    size.y,
-                    crate::limits::MAX_PATH_POINTS / 1e6
-                ),
-            ));
-        }
-        Ok(())
+        check_points(ctx, &self.name, self.stepover, self.grid)
     }
 
     fn surfaces(&self, ctx: &Context) -> Result<Vec<SurfaceRequest>> {
@@ -216,10 +187,7 @@ impl Operate for FinishRaster {
 impl FinishRaster {
     /// The CL surface it cuts on.
     pub fn request(&self, ctx: &Context) -> Result<SurfaceRequest> {
-        let tool = ctx.tool(&self.name, self.tool)?;
-        let stock = ctx.stock;
-        let grid = Grid::checked(stock.min.truncate(), stock.max.truncate(), self.grid).map_err(|e| Error::operation(&self.name, e))?;
-        Ok(SurfaceRequest { profile: tool.cutter.profile(), grid, floor: self.floor.unwrap_or(stock.min.z), builder: self.builder })
+        ctx.stock_surface(&self.name, self.tool, self.grid, self.floor, self.builder)
     }
 
     /// Where its passes run and how: the region (the stock, or the part's silhouette grown by

@@ -16,6 +16,7 @@ pub mod engrave;
 pub mod face;
 pub mod finish_pencil;
 pub mod finish_raster;
+pub mod finish_scallop;
 pub mod finish_waterline;
 pub mod pocket2d;
 pub mod profile2d;
@@ -33,6 +34,7 @@ pub use engrave::Engrave;
 pub use face::{Face, FacePattern};
 pub use finish_pencil::FinishPencil;
 pub use finish_raster::{Boundary, FinishRaster};
+pub use finish_scallop::FinishScallop;
 pub use finish_waterline::FinishWaterline;
 pub use pocket2d::Pocket2d;
 pub use profile2d::{Profile2d, Side, Tabs};
@@ -142,6 +144,9 @@ operations! {
     FinishWaterline(FinishWaterline) = "finishWaterline",
     /// Pencil finishing along a part's inside corners, found on its CL z-map (issue 60).
     FinishPencil(FinishPencil) = "finishPencil",
+    /// Scallop finishing: passes a constant step apart across the surface for a cusp height
+    /// (issue 60).
+    FinishScallop(FinishScallop) = "finishScallop",
     /// Profile around a drawing's loops (seed 003).
     Profile2d(Profile2d) = "profile2d",
     /// Pocket inside a drawing's loops (seed 003).

@@ -604,6 +604,37 @@ test('adaptive clearing: added in the page with the core\'s defaults, spiralling
   await context.close();
 });
 
+test('finishing by the cusp: a scallop finish added after the sample part\'s roughing with the core\'s defaults, the cusp asked in mm, a clean program that rs274 runs', async () => {
+  const { page, context, errors } = await openPage();
+  await tab(page, 'ops');
+  // Keep the roughing; the scallop finish takes the place of the raster and waterline ones.
+  await page.evaluate(() => { const job = window.swarf.jobs[window.swarf.kind]; job.operations = job.operations.slice(0, 1); });
+  await page.selectOption('#op-kind', 'finishScallop');
+  await page.click('#op-add');
+  await page.selectOption('select[name=op-tool]', '2');
+  assert.equal(await page.locator('#op-list li').count(), 2);
+  assert.equal(await page.inputValue('input[name=op-cusp]'), '0.01');
+  assert.match(await page.textContent('#op-editor'), /Cusp height/);
+  await page.click('#generate');
+  await generated(page);
+  await shoot(page, 'scallop');
+  const stats = await page.textContent('#stats');
+  assert.match(stats, /scallop finish with T2/, stats);
+  const report = await page.textContent('#sim-report');
+  assert.match(report, /gouges: 0/);
+  assert.match(report, /rapid moves through stock: 0/);
+  assert.match(report, /tool body \(above the flutes\) in material: 0/);
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-scallop-'));
+  const program = path.join(dir, download.suggestedFilename());
+  await download.saveAs(program);
+  const tools = await page.evaluate(() => window.swarf.tools);
+  fs.writeFileSync(path.join(dir, 'tool.tbl'), toolTable(tools));
+  execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), program], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
 test('octree roughing: the tools chosen from the library, each stage\'s path and octants in its tool\'s colour, the reasons in the report, one program that rs274 runs', async () => {
   const { page, context, errors } = await openPage();
   await tab(page, 'ops');

@@ -718,6 +718,66 @@ restOnly: boolean,
 slopeMax: number | null, };
 
 /**
+ * Scallop finishing: passes a step apart over the surface for a given cusp height.
+ */
+export type FinishScallop = { 
+/**
+ * Shown in the program's comments. Default value: "scallop finish".
+ */
+name: string, 
+/**
+ * Whether the job runs it (a disabled operation stays in the job). Default value: true.
+ */
+enabled: boolean, 
+/**
+ * Number of the tool to use (a ball or bull-nose end mill). Default value: 1.
+ */
+tool: number, 
+/**
+ * Height of the ridge left between two passes (mm): the step between them follows from
+ * it and the tool's radius, measured across the surface. Default value: 0.01.
+ */
+cusp: number, 
+/**
+ * Default value: silhouette.
+ */
+boundary: Boundary, 
+/**
+ * Growth of the silhouette boundary (mm). Default value: the tool's radius.
+ */
+margin: number | null, 
+/**
+ * Material left on the part (mm). Default value: 0.
+ */
+allowance: number, 
+/**
+ * Spacing of the CL z-map (mm). Default value: 0.2.
+ */
+grid: number, 
+/**
+ * Lowest tip height where the part is not under the tool (mm). Default value: stock bottom.
+ */
+floor: number | null, 
+/**
+ * Longest link that may stay down (mm). Default value: twice the step.
+ */
+stayDownMax: number | null, 
+/**
+ * How the cutter enters material (helix, else ramp along the pass).
+ */
+entry: Entry, 
+/**
+ * Cut only where the stock the earlier operations left stands above what this one
+ * leaves (by more than the job's gouge tolerance). Default value: false.
+ */
+restOnly: boolean, 
+/**
+ * Only where the surface is no steeper than this (degrees from horizontal). Default
+ * value: none (everywhere).
+ */
+slopeMax: number | null, };
+
+/**
  * Waterline finishing.
  */
 export type FinishWaterline = { 
@@ -1129,7 +1189,7 @@ export type OpenChain = { layer: string, start: [number, number], end: [number, 
 /**
  * One operation of a job.
  */
-export type Operation = { "kind": "roughZlevel" } & RoughZlevel | { "kind": "roughZigzag" } & RoughZigzag | { "kind": "roughAdaptive" } & RoughAdaptive | { "kind": "roughOctree" } & RoughOctree | { "kind": "finishRaster" } & FinishRaster | { "kind": "finishWaterline" } & FinishWaterline | { "kind": "finishPencil" } & FinishPencil | { "kind": "profile2d" } & Profile2d | { "kind": "pocket2d" } & Pocket2d | { "kind": "engrave" } & Engrave | { "kind": "drill" } & Drill | { "kind": "bore" } & Bore | { "kind": "chamfer" } & Chamfer | { "kind": "threadMill" } & ThreadMill | { "kind": "face" } & Face | { "kind": "vcarve" } & VCarve;
+export type Operation = { "kind": "roughZlevel" } & RoughZlevel | { "kind": "roughZigzag" } & RoughZigzag | { "kind": "roughAdaptive" } & RoughAdaptive | { "kind": "roughOctree" } & RoughOctree | { "kind": "finishRaster" } & FinishRaster | { "kind": "finishWaterline" } & FinishWaterline | { "kind": "finishPencil" } & FinishPencil | { "kind": "finishScallop" } & FinishScallop | { "kind": "profile2d" } & Profile2d | { "kind": "pocket2d" } & Pocket2d | { "kind": "engrave" } & Engrave | { "kind": "drill" } & Drill | { "kind": "bore" } & Bore | { "kind": "chamfer" } & Chamfer | { "kind": "threadMill" } & ThreadMill | { "kind": "face" } & Face | { "kind": "vcarve" } & VCarve;
 
 /**
  * An operation's form.
