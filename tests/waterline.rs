@@ -168,3 +168,48 @@ fn waterline_after_roughing_never_plunges_into_material() {
         assert!(plunges.is_empty(), "{name}: {plunges:?}");
     }
 }
+
+/// Waterline rest finishing: after a φ6 ball's waterline on the sample part, a φ3 ball's with
+/// `restOnly` cuts only where the φ6 left material (its corners and the foot of its walls): a
+/// fraction of a whole φ3 waterline's feed, as clean, leaving as little; and the same φ6 run again
+/// with `restOnly` finds nothing to cut.
+#[test]
+fn waterline_rest_only_takes_what_a_larger_ball_left() {
+    let tools = vec![
+        Tool { number: 1, name: "6 mm ball".into(), cutter: Cutter { flute_length: 30.0, ..Cutter::ball(6.0) }, feed_rate: 1500.0, plunge_rate: 300.0, ..Tool::default() },
+        Tool { number: 2, name: "3 mm ball".into(), cutter: Cutter { flute_length: 30.0, ..Cutter::ball(3.0) }, feed_rate: 1200.0, plunge_rate: 300.0, ..Tool::default() },
+    ];
+    let wl = |tool: u32, rest_only: bool| Operation::FinishWaterline(FinishWaterline { tool, rest_only, slope_min: 40.0, stepdown: 0.5, ..FinishWaterline::default() });
+    let demo = Job::demo();
+    let run = |ops: Vec<Operation>| {
+        let job = Job { tools: tools.clone(), operations: ops, simulation: Simulation { verify: true, cell: Some(0.25), ..Default::default() }, ..demo.clone() };
+        job::run(&job, demo_part(), &mut Progress::none()).unwrap()
+    };
+    let rough = demo.operations[0].clone();
+    let rough = match rough {
+        Operation::RoughZlevel(mut r) => {
+            r.tool = 1;
+            Operation::RoughZlevel(r)
+        }
+        other => other,
+    };
+    let whole = run(vec![rough.clone(), wl(1, false), wl(2, false)]);
+    let rest = run(vec![rough.clone(), wl(1, false), wl(2, true)]);
+    common::clean(&rest);
+    let (w, r) = (&whole.operations[2], &rest.operations[2]);
+    eprintln!(
+        "φ3 waterline whole: {:.0} mm fed, {:.0} s, removed {:.1} mm³; rest only: {:.0} mm fed, {:.0} s, removed {:.1} mm³",
+        w.feed_length,
+        w.seconds,
+        w.removed.unwrap(),
+        r.feed_length,
+        r.seconds,
+        r.removed.unwrap()
+    );
+    assert!(r.feed_length > 0.0 && r.feed_length < 0.6 * w.feed_length, "rest {:.0} mm against {:.0}", r.feed_length, w.feed_length);
+    assert!(r.removed.unwrap() > 0.9 * w.removed.unwrap(), "rest removed {:?} against {:?}", r.removed, w.removed);
+    let (lw, lr) = (whole.verification.as_ref().unwrap().report.residual_max, rest.verification.as_ref().unwrap().report.residual_max);
+    assert!(lr <= lw + 0.02, "left {lr:.3} after the rest, {lw:.3} after the whole");
+    let again = run(vec![rough, wl(1, false), wl(1, true)]);
+    assert!(again.operations[2].feed_length < 0.05 * again.operations[1].feed_length, "{:?}", again.operations[2]);
+}

@@ -16,14 +16,14 @@ use crate::error::{Error, Result};
 use crate::geom::{DVec2, DVec3};
 use crate::machining::context::SurfaceRequest;
 use crate::machining::levels::{pack, RegionWork};
-use crate::machining::raster::gradient;
+use crate::machining::raster::{gradient, rest_only};
 use crate::machining::settings::Direction;
 use crate::machining::{named_operation, not_negative, positive, too_many, Context, FieldError, Operate, Planned, MAX_LEVELS};
 use crate::progress::Progress;
 use crate::toolpath::entry::Entry;
 use crate::toolpath::link::Floor;
 use crate::zmap::region::Region;
-use crate::zmap::{ClBuilder, Grid, HeightField};
+use crate::zmap::{ClBuilder, HeightField};
 
 /// Waterline finishing.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
@@ -49,6 +49,10 @@ pub struct FinishWaterline {
     /// Spacing of the CL z-map (mm). Default value: 0.25.
     pub grid: f64,
     pub entry: Entry,
+    /// Cut only where the stock the earlier operations left stands above what this one
+    /// leaves (by more than the job's gouge tolerance): after a larger ball, a smaller one
+    /// takes only the corners it left. Default value: false.
+    pub rest_only: bool,
 }
 
 impl Default for FinishWaterline {
@@ -64,6 +68,7 @@ impl Default for FinishWaterline {
             direction: Direction::Climb,
             grid: 0.25,
             entry: Entry::default(),
+            rest_only: false,
         }
     }
 }
@@ -96,6 +101,7 @@ impl Operate for FinishWaterline {
             F::degrees("slopeMin", "Only where steeper than", 0.0, 90.0),
             F::direction(),
             F::grid(),
+            F::check("restOnly", "only what earlier operations left (rest machining)"),
         ]);
         fields.extend(F::entry());
         OperationForm::new("finish steep walls in levels", fields)
@@ -133,10 +139,7 @@ impl Operate for FinishWaterline {
     }
 
     fn surfaces(&self, ctx: &Context) -> Result<Vec<SurfaceRequest>> {
-        let profile = ctx.tool(&self.name, self.tool)?.cutter.profile();
-        let stock = ctx.stock;
-        let grid = Grid::checked(stock.min.truncate(), stock.max.truncate(), self.grid).map_err(|e| Error::operation(&self.name, e))?;
-        Ok(vec![SurfaceRequest { profile, grid, floor: stock.min.z, builder: ClBuilder::Exact }])
+        Ok(vec![ctx.stock_surface(&self.name, self.tool, self.grid, None, ClBuilder::Exact)?])
     }
 
     fn region_work(&self, ctx: &mut Context, progress: &mut Progress) -> Result<Option<RegionWork>> {
@@ -196,6 +199,13 @@ impl Operate for FinishWaterline {
         if runs.is_empty() {
             ctx.note(&self.name, format!("no area of the part is steeper than {}°", self.slope_min));
             return Ok(Planned::default());
+        }
+        if self.rest_only {
+            runs = rest_only(runs, &|p: DVec2| ctx.material_estimate(p, &profile), profile.radius / 4.0, tol.gouge);
+            if runs.is_empty() {
+                ctx.note(&self.name, "the earlier operations left nothing for it to cut (rest only)");
+                return Ok(Planned::default());
+            }
         }
         let region = Region::Rect { min: grid.origin, max: grid.node(grid.nx - 1, grid.ny - 1) };
         let bounds = ctx.node_bounds(request);

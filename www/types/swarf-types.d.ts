@@ -817,7 +817,13 @@ direction: Direction,
 /**
  * Spacing of the CL z-map (mm). Default value: 0.25.
  */
-grid: number, entry: Entry, };
+grid: number, entry: Entry, 
+/**
+ * Cut only where the stock the earlier operations left stands above what this one
+ * leaves (by more than the job's gouge tolerance): after a larger ball, a smaller one
+ * takes only the corners it left. Default value: false.
+ */
+restOnly: boolean, };
 
 /**
  * A box no tool may enter: a clamp, a plate, a stop.
