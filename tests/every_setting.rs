@@ -45,7 +45,7 @@ fn plate() -> Vec<u8> {
 fn job_of(kind: &str) -> Value {
     let mut op = Operation::defaults().iter().map(|o| serde_json::to_value(o).unwrap()).find(|o| o["kind"] == kind).unwrap();
     let tool = match kind {
-        "finishRaster" | "finishWaterline" | "finishPencil" | "finishScallop" => json!({ "shape": "ball", "diameter": 6, "fluteLength": 30 }),
+        "finishRaster" | "finishWaterline" | "finishPencil" | "finishScallop" | "finishSteepShallow" => json!({ "shape": "ball", "diameter": 6, "fluteLength": 30 }),
         "profile2d" | "pocket2d" | "bore" => json!({ "shape": "flat", "diameter": 3, "fluteLength": 20 }),
         "engrave" => json!({ "shape": "vBit", "diameter": 6, "angle": 60, "fluteLength": 10 }),
         "chamfer" => json!({ "shape": "vBit", "diameter": 6, "angle": 90, "fluteLength": 10 }),

@@ -105,3 +105,29 @@ fn a_fillet_wider_than_the_ball_needs_no_pencil_pass_along_it() {
     }
     eprintln!("{cut} feed moves, all near the pocket's corners");
 }
+
+/// Two parallel passes either side, 0.5 apart: on the floor beside the radius-1 fillet the
+/// ball's tip runs 3.5 and 4 in from the walls as well as 3 (the surface is flat there, so the
+/// distance across it is the plan's), all the way along each side; clean, read by rs274.
+#[test]
+fn parallel_passes_run_a_step_over_apart_beside_the_corner() {
+    let mut job = pencil_job(6.0);
+    job.operations = vec![Operation::FinishPencil(FinishPencil { passes: 2, stepover: Some(0.5), ..FinishPencil::default() })];
+    let out = job::run(&job, filleted_pocket(1.0), &mut Progress::none()).unwrap();
+    clean(&out);
+    let (points, _) = along_the_floor(&out);
+    for inset in [3.0, 3.5, 4.0] {
+        // Along the middle of each side, away from the pocket's corners.
+        for k in 0..=160 {
+            let t = 17.0 + 16.0 * (k % 40) as f64 / 40.0;
+            let (a, b) = (10.0 + inset, 40.0 - inset);
+            let q = [DVec2::new(t, a), DVec2::new(b, t), DVec2::new(t, b), DVec2::new(a, t)][k / 40 % 4];
+            let near = points.iter().map(|p| p.distance(q)).fold(f64::INFINITY, f64::min);
+            assert!(near <= 0.08, "no pass within {near:.3} of {q}, {inset} in from the walls");
+        }
+    }
+    // And none on the floor farther in than the last one.
+    let farthest = points.iter().map(|p| (p.x - 10.0).min(40.0 - p.x).min(p.y - 10.0).min(40.0 - p.y)).fold(0.0, f64::max);
+    assert!(farthest <= 4.1, "a pass {farthest:.2} in from the walls");
+    rs274(&out.gcode, &job.tools);
+}

@@ -27,6 +27,7 @@ pub mod settings;
 pub mod sheet;
 pub mod threads;
 pub mod walls;
+pub mod waterline;
 
 pub use context::Context;
 pub use report::Planned;
@@ -184,6 +185,16 @@ pub fn takes_end_mills_and_v_bits(cutter: &crate::cutter::Cutter) -> Result<(), 
     match cutter.shape {
         Shape::Drill | Shape::ThreadMill => Err("flat, ball and bull-nose end mills, V-bits and spot drills"),
         _ => Ok(()),
+    }
+}
+
+/// What the finishing by a cusp height cuts with: ball and bull-nose end mills, whose rounded
+/// corner sets the cusp between passes.
+pub fn takes_rounded_corners(cutter: &crate::cutter::Cutter) -> Result<(), &'static str> {
+    if cutter.profile().corner > 0.0 {
+        Ok(())
+    } else {
+        Err("ball and bull-nose end mills (the cusp follows their rounded corner)")
     }
 }
 

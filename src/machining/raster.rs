@@ -24,6 +24,17 @@ pub enum Boundary {
     Silhouette,
 }
 
+impl Boundary {
+    /// The region it stands for on `request`'s grid: the stock's rectangle, or the part's
+    /// silhouette above the floor grown by `margin`.
+    pub fn region(self, ctx: &mut crate::machining::Context, request: crate::machining::context::SurfaceRequest, margin: f64) -> Region {
+        match self {
+            Boundary::Stock => Region::Rect { min: ctx.stock.min.truncate(), max: ctx.stock.max.truncate() },
+            Boundary::Silhouette => Region::silhouette(&ctx.cc_zmap(request.grid, request.floor), request.floor, margin),
+        }
+    }
+}
+
 /// How consecutive passes run.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
 #[serde(rename_all = "camelCase")]
@@ -147,6 +158,33 @@ fn cut_pass(cl: &ClSurface, region: &Region, a: DVec2, b: DVec2, passes: &Raster
     runs
 }
 
+/// The tip's runs along the plan polyline `line` on the exact surface `cl`, lifted by the
+/// allowance, cut where the tool stands on the floor beside the part (`skip_floor`, as
+/// [`RasterPasses::skip_floor`]), reduced within `tolerance`: a raster pass's, along any line.
+pub fn follow_line(cl: &ClSurface, line: &[DVec2], allowance: f64, skip_floor: Option<f64>, tolerance: f64) -> Vec<Vec<DVec3>> {
+    let mut runs = Vec::new();
+    let mut run: Vec<DVec3> = Vec::new();
+    for w in line.windows(2) {
+        for (k, (t, z)) in cl.along(w[0], w[1]).into_iter().enumerate() {
+            if k == 0 && !run.is_empty() {
+                continue;
+            }
+            if skip_floor == Some(z) {
+                if run.len() > 1 {
+                    runs.push(reduce(&run, tolerance));
+                }
+                run.clear();
+            } else {
+                run.push(point_at(w[0], w[1], t).extend(z + allowance));
+            }
+        }
+    }
+    if run.len() > 1 {
+        runs.push(reduce(&run, tolerance));
+    }
+    runs
+}
+
 /// The parts of `runs` where the cutter would remove material from the in-process stock:
 /// `material` (the highest tip height touching it) stands more than `threshold` above the run
 /// at some point of a segment (sampled every `spacing` at most). Consecutive such segments stay
@@ -176,7 +214,7 @@ pub fn shallow_only(runs: Vec<Vec<DVec3>>, field: &HeightField, steep: f64) -> V
 }
 
 /// The segments of `runs` that `keep` accepts, consecutive ones joined into runs.
-fn keep_segments(runs: Vec<Vec<DVec3>>, keep: impl Fn(DVec3, DVec3) -> bool) -> Vec<Vec<DVec3>> {
+pub fn keep_segments(runs: Vec<Vec<DVec3>>, keep: impl Fn(DVec3, DVec3) -> bool) -> Vec<Vec<DVec3>> {
     let mut out = Vec::new();
     for run in runs {
         let mut current: Vec<DVec3> = Vec::new();

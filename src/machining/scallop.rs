@@ -27,6 +27,17 @@ pub fn stepover_for_cusp(radius: f64, cusp: f64) -> f64 {
     2.0 * (2.0 * radius * h - h * h).max(0.0).sqrt()
 }
 
+/// The step across the surface for the operation `op`'s `cusp` with a corner of `radius`: the
+/// cusp less the `chordal` tolerance the passes are reduced within (a chord may cut the ridge's
+/// top by that much less); refused where nothing is left of it.
+pub fn cusp_step(op: &str, cusp: f64, radius: f64, chordal: f64) -> crate::error::Result<f64> {
+    let h = cusp - chordal;
+    if !(h > 0.0) {
+        return Err(crate::error::Error::operation(op, format!("a cusp of {cusp} mm is within the job's chordal tolerance ({chordal} mm): ask for a larger cusp")));
+    }
+    Ok(stepover_for_cusp(radius, h))
+}
+
 /// The 16 neighbours of a node: the 8 around it and the 8 a knight's move away, so the
 /// distance's direction is off the true one by at most 9.5° on a plane (under 1.4 % longer).
 const NEIGHBOURS: [(isize, isize); 16] = [(1, 0), (-1, 0), (0, 1), (0, -1), (1, 1), (1, -1), (-1, 1), (-1, -1), (2, 1), (2, -1), (-2, 1), (-2, -1), (1, 2), (1, -2), (-1, 2), (-1, -2)];
@@ -193,13 +204,14 @@ fn chain(segments: &[[usize; 2]], point: impl Fn(usize) -> DVec2) -> Vec<Vec<DVe
     lines
 }
 
-/// The nodes inside the area farther than `reach` (over the surface) from every pass: the
-/// passes' points are its sources, at their plan distance from the nodes about them.
-pub fn uncovered(f: &HeightField, inside: &[bool], passes: &[Vec<DVec2>], reach: f64) -> Vec<bool> {
+/// The distance over the surface `f` from the polylines `lines` to every node inside the
+/// area: the lines' points (every half a grid step) are its sources, at their plan distance
+/// from the four nodes about them.
+pub fn distance_from_lines(f: &HeightField, inside: &[bool], lines: &[Vec<DVec2>]) -> Vec<f64> {
     let g = f.grid();
     let mut best: HashMap<usize, f64> = HashMap::new();
-    for pass in passes {
-        for w in pass.windows(2) {
+    for line in lines {
+        for w in line.windows(2) {
             let n = ((w[0].distance(w[1]) / (0.5 * f.spacing)).ceil() as usize).max(1);
             for k in 0..=n {
                 let p = w[0].lerp(w[1], k as f64 / n as f64);
@@ -207,9 +219,8 @@ pub fn uncovered(f: &HeightField, inside: &[bool], passes: &[Vec<DVec2>], reach:
                 let (i, j) = (u.x.floor().max(0.0) as usize, u.y.floor().max(0.0) as usize);
                 for (x, y) in [(i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1)] {
                     if x < f.nx && y < f.ny {
-                        let m = y * f.nx + x;
                         let d = g.node(x, y).distance(p);
-                        let e = best.entry(m).or_insert(f64::INFINITY);
+                        let e = best.entry(y * f.nx + x).or_insert(f64::INFINITY);
                         *e = e.min(d);
                     }
                 }
@@ -217,7 +228,12 @@ pub fn uncovered(f: &HeightField, inside: &[bool], passes: &[Vec<DVec2>], reach:
         }
     }
     let sources: Vec<(usize, f64)> = best.into_iter().collect();
-    let near = geodesic(f, inside, &sources);
+    geodesic(f, inside, &sources)
+}
+
+/// The nodes inside the area farther than `reach` (over the surface) from every pass.
+pub fn uncovered(f: &HeightField, inside: &[bool], passes: &[Vec<DVec2>], reach: f64) -> Vec<bool> {
+    let near = distance_from_lines(f, inside, passes);
     (0..inside.len()).map(|n| inside[n] && near[n] > reach).collect()
 }
 
@@ -229,6 +245,30 @@ pub fn ridge_lines(f: &HeightField, d: &[f64], wanted: &[bool], tolerance: f64) 
     let crease = crate::machining::pencil::crease_nodes(&minus, 20f64.to_radians(), f64::NEG_INFINITY);
     let marked: Vec<bool> = crease.iter().zip(wanted).map(|(&c, &w)| c && w).collect();
     crate::machining::pencil::chains(&minus, &marked, 0.0, tolerance).into_iter().filter(|l| l.len() > 1).collect()
+}
+
+/// A node farther than this share of the step from every pass is left to a ridge's pass.
+pub const REACH: f64 = 0.6;
+
+/// The passes over the area (`inside`, on `f`'s nodes) a `step` apart across the surface, in
+/// the order to cut them: the level lines of the distance from its edge, half a step from it
+/// and a step apart, and a pass along each ridge where two fronts left nodes farther than
+/// [`REACH`] steps from any; lines simplified within a quarter of `grid`. `None` past
+/// [`crate::machining::MAX_PASSES`] levels.
+pub fn passes(f: &HeightField, inside: &[bool], step: f64, grid: f64) -> Option<Vec<Vec<DVec2>>> {
+    let sources: Vec<(usize, f64)> = boundary_nodes(f, inside).into_iter().map(|n| (n, 0.0)).collect();
+    let d = geodesic(f, inside, &sources);
+    let top = d.iter().copied().filter(|x| x.is_finite()).fold(0.0, f64::max);
+    if top / step > crate::machining::MAX_PASSES {
+        return None;
+    }
+    let levels: Vec<f64> = (0..).map(|k| (k as f64 + 0.5) * step).take_while(|&l| l < top).collect();
+    let mut lines: Vec<Vec<DVec2>> = iso_lines(f, &d, &levels).into_iter().flatten().filter(|l| l.len() > 1).collect();
+    let left = uncovered(f, inside, &lines, REACH * step);
+    if left.iter().any(|&u| u) {
+        lines.extend(ridge_lines(f, &d, &left, 0.25 * grid));
+    }
+    Some(order(lines))
 }
 
 /// Passes in the order to cut them: from the end of one to the nearest start of another (a

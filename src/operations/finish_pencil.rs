@@ -12,6 +12,7 @@ use crate::geom::{DVec2, DVec3};
 use crate::machining::context::SurfaceRequest;
 use crate::machining::pencil::{chains, crease_nodes};
 use crate::machining::raster::rest_only;
+use crate::machining::scallop::{distance_from_lines, iso_lines, order};
 use crate::machining::{finite, named_operation, not_negative, positive, Context, FieldError, Operate, Planned};
 use crate::progress::Progress;
 use crate::toolpath::entry::Entry;
@@ -35,6 +36,13 @@ pub struct FinishPencil {
     /// where the ball touches two faces at once, its path turns by their angle. Default value:
     /// 20.
     pub bend: f64,
+    /// Passes either side of each corner's, each a step-over farther from it across the
+    /// surface (closing round its ends): a wider band cleaned where a larger tool left a
+    /// fillet's width. Default value: 0 (the corner's pass alone).
+    pub passes: u32,
+    /// Distance between the parallel passes, measured across the surface (mm). Default value:
+    /// a fifth of the tool's diameter.
+    pub stepover: Option<f64>,
     /// Material left on the part (mm). Default value: 0.
     pub allowance: f64,
     /// Spacing of the CL z-map (mm): the corners are found to about half of it. Default value:
@@ -51,9 +59,25 @@ pub struct FinishPencil {
     pub rest_only: bool,
 }
 
+/// The most parallel passes either side of a corner.
+const MOST_PASSES: u32 = 50;
+
 impl Default for FinishPencil {
     fn default() -> Self {
-        FinishPencil { name: "pencil finish".into(), enabled: true, tool: 1, bend: 20.0, allowance: 0.0, grid: 0.1, floor: None, stay_down_max: None, entry: Entry::default(), rest_only: false }
+        FinishPencil {
+            name: "pencil finish".into(),
+            enabled: true,
+            tool: 1,
+            bend: 20.0,
+            passes: 0,
+            stepover: None,
+            allowance: 0.0,
+            grid: 0.1,
+            floor: None,
+            stay_down_max: None,
+            entry: Entry::default(),
+            rest_only: false,
+        }
     }
 }
 
@@ -65,6 +89,8 @@ impl Operate for FinishPencil {
         let mut fields = F::name_and_tool().to_vec();
         fields.extend([
             F::degrees("bend", "Corners that turn the tool by at least", 1.0, 90.0),
+            F::int("passes", "Parallel passes either side", 0.0, Some(MOST_PASSES as f64)).note("0: the corner's pass alone"),
+            F::length("stepover", "Step-over of the parallel passes", 0.001).empty("a fifth of the tool's diameter"),
             F::length("allowance", "Leave on the part", 0.0),
             F::grid().help("How finely the part's surface is sampled under the tool: the corners are found to about half of it."),
             F::check("restOnly", "only what earlier operations left (rest machining)"),
@@ -85,6 +111,12 @@ impl Operate for FinishPencil {
         crate::machining::angle("bend", self.bend, 1.0, 90.0)?;
         not_negative("allowance", self.allowance)?;
         positive("grid", self.grid)?;
+        if self.passes > MOST_PASSES {
+            return Err(FieldError { field: "passes", message: format!("is at most {MOST_PASSES} either side (got {})", self.passes) });
+        }
+        if let Some(s) = self.stepover {
+            positive("stepover", s)?;
+        }
         self.entry.validate()?;
         if let Some(f) = self.floor {
             finite("floor", f)?;
@@ -115,7 +147,17 @@ impl Operate for FinishPencil {
         let marked = crease_nodes(&cl.field, self.bend.to_radians(), floor);
         // Corners shorter than the tool's radius are a node's noise; the lines kept within a
         // quarter of the grid of the nodes they join.
-        let lines = chains(&cl.field, &marked, profile.radius, 0.25 * self.grid);
+        let mut lines = chains(&cl.field, &marked, profile.radius, 0.25 * self.grid);
+        if self.passes > 0 && !lines.is_empty() {
+            // The parallel passes: level lines of the distance from the corners' lines across
+            // the surface, outermost first, each round its corner (scallop finishing's).
+            let step = self.stepover.unwrap_or(0.4 * profile.radius);
+            let inside = vec![true; cl.field.z.len()];
+            let d = distance_from_lines(&cl.field, &inside, &lines);
+            let levels: Vec<f64> = (1..=self.passes).rev().map(|k| k as f64 * step).collect();
+            let around: Vec<Vec<DVec2>> = iso_lines(&cl.field, &d, &levels).into_iter().flat_map(order).filter(|l| l.len() > 1).collect();
+            lines = around.into_iter().chain(order(lines)).collect();
+        }
         let mut runs: Vec<Vec<DVec3>> = lines
             .iter()
             .map(|line| {

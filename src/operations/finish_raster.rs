@@ -193,13 +193,10 @@ impl FinishRaster {
     /// Where its passes run and how: the region (the stock, or the part's silhouette grown by
     /// the margin) and the passes' settings.
     pub fn layout(&self, ctx: &mut Context) -> Result<(Region, RasterPasses)> {
-        let SurfaceRequest { profile, grid, floor, .. } = self.request(ctx)?;
-        let stock = ctx.stock;
+        let request = self.request(ctx)?;
+        let (profile, floor) = (request.profile, request.floor);
         let margin = self.margin.unwrap_or(profile.radius);
-        let region = match self.boundary {
-            Boundary::Stock => Region::Rect { min: stock.min.truncate(), max: stock.max.truncate() },
-            Boundary::Silhouette => Region::silhouette(&ctx.cc_zmap(grid, floor), floor, margin),
-        };
+        let region = self.boundary.region(ctx, request, margin);
         let skip_floor = (self.boundary == Boundary::Silhouette && margin <= profile.radius).then_some(floor);
         let passes = RasterPasses { angle_deg: self.angle, stepover: self.stepover, pattern: self.pattern, allowance: self.allowance, tolerance: ctx.tolerances.chordal, skip_floor };
         Ok((region, passes))

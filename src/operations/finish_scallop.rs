@@ -19,19 +19,13 @@ use serde::{Deserialize, Serialize};
 use crate::error::{Error, Result};
 use crate::geom::{DVec2, DVec3};
 use crate::machining::context::SurfaceRequest;
-use crate::machining::raster::{rest_only, shallow_only, Boundary};
-use crate::machining::scallop::{boundary_nodes, geodesic, iso_lines, order, ridge_lines, stepover_for_cusp, uncovered};
+use crate::machining::raster::{follow_line, rest_only, shallow_only, Boundary};
+use crate::machining::scallop::{cusp_step, passes};
 use crate::machining::{finite, named_operation, not_negative, positive, Context, FieldError, Operate, Planned};
 use crate::progress::Progress;
 use crate::toolpath::entry::Entry;
 use crate::toolpath::link::Floor;
-use crate::toolpath::reduce::reduce;
-use crate::zmap::region::Region;
-use crate::zmap::surface::point_at;
 use crate::zmap::ClBuilder;
-
-/// A node farther than this share of the step from every pass is left to a ridge's pass.
-const REACH: f64 = 0.6;
 
 /// Scallop finishing: passes a step apart over the surface for a given cusp height.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
@@ -94,11 +88,7 @@ impl Operate for FinishScallop {
     }
 
     fn takes(&self, cutter: &crate::cutter::Cutter) -> std::result::Result<(), &'static str> {
-        if cutter.profile().corner > 0.0 {
-            Ok(())
-        } else {
-            Err("ball and bull-nose end mills (the cusp follows their rounded corner)")
-        }
+        crate::machining::takes_rounded_corners(cutter)
     }
 
     named_operation!(OnPart);
@@ -149,7 +139,7 @@ impl Operate for FinishScallop {
 
     fn check_scale(&self, ctx: &Context) -> Result<()> {
         let profile = ctx.tool(&self.name, self.tool)?.cutter.profile();
-        let step = self.step(profile.corner, ctx.tolerances.chordal)?;
+        let step = cusp_step(&self.name, self.cusp, profile.corner, ctx.tolerances.chordal)?;
         crate::machining::raster::check_points(ctx, &self.name, step, self.grid)
     }
 
@@ -161,7 +151,7 @@ impl Operate for FinishScallop {
         let tool = ctx.tool(&self.name, self.tool)?.clone();
         let profile = tool.cutter.profile();
         let tol = ctx.tolerances;
-        let step = self.step(profile.corner, tol.chordal)?;
+        let step = cusp_step(&self.name, self.cusp, profile.corner, tol.chordal)?;
         if !progress.stage("CL z-map", 0.0, 0.4) {
             return Err(Error::Cancelled);
         }
@@ -173,31 +163,18 @@ impl Operate for FinishScallop {
         let f = &cl.field;
         let g = f.grid();
         let margin = self.margin.unwrap_or(profile.radius);
-        let region = match self.boundary {
-            Boundary::Stock => Region::Rect { min: ctx.stock.min.truncate(), max: ctx.stock.max.truncate() },
-            Boundary::Silhouette => Region::silhouette(&ctx.cc_zmap(request.grid, request.floor), request.floor, margin),
-        };
+        let region = self.boundary.region(ctx, request, margin);
         let inside: Vec<bool> = (0..f.z.len()).map(|n| region.contains(g.node(n % f.nx, n / f.nx))).collect();
-        let sources: Vec<(usize, f64)> = boundary_nodes(f, &inside).into_iter().map(|n| (n, 0.0)).collect();
-        let d = geodesic(f, &inside, &sources);
-        let top = d.iter().copied().filter(|x| x.is_finite()).fold(0.0, f64::max);
-        let levels: Vec<f64> = (0..).map(|k| (k as f64 + 0.5) * step).take_while(|&l| l < top).collect();
-        crate::machining::too_many(&self.name, "passes", levels.len() as f64, crate::machining::MAX_PASSES, "a cusp of", self.cusp, top)?;
-        if !progress.report(0.3) {
-            return Err(Error::Cancelled);
-        }
-        let mut lines: Vec<Vec<DVec2>> = iso_lines(f, &d, &levels).into_iter().flatten().filter(|l| l.len() > 1).collect();
-        let left = uncovered(f, &inside, &lines, REACH * step);
-        if left.iter().any(|&u| u) {
-            lines.extend(ridge_lines(f, &d, &left, 0.25 * self.grid));
-        }
+        let lines = passes(f, &inside, step, self.grid).ok_or_else(|| {
+            Error::operation(&self.name, format!("a cusp of {} mm makes more than {} passes: ask for a larger cusp, or check the part's units", self.cusp, crate::machining::MAX_PASSES))
+        })?;
         if !progress.report(0.6) {
             return Err(Error::Cancelled);
         }
         let skip_floor = (self.boundary == Boundary::Silhouette && margin <= profile.radius).then_some(request.floor);
         let mut runs: Vec<Vec<DVec3>> = Vec::new();
-        for line in order(lines) {
-            runs.extend(follow(&cl, &line, self.allowance, skip_floor, tol.chordal));
+        for line in lines {
+            runs.extend(follow_line(&cl, &line, self.allowance, skip_floor, tol.chordal));
         }
         if let Some(limit) = self.slope_max {
             runs = shallow_only(runs, f, limit.to_radians().tan());
@@ -220,41 +197,4 @@ impl FinishScallop {
     pub fn request(&self, ctx: &Context) -> Result<SurfaceRequest> {
         ctx.stock_surface(&self.name, self.tool, self.grid, self.floor, ClBuilder::Exact)
     }
-
-    /// The step between passes for a corner of `radius`: the cusp's less the chordal tolerance
-    /// the passes are reduced within (a chord may cut the ridge's top by that much less).
-    pub fn step(&self, radius: f64, chordal: f64) -> Result<f64> {
-        let h = self.cusp - chordal;
-        if !(h > 0.0) {
-            return Err(Error::operation(&self.name, format!("a cusp of {} mm is within the job's chordal tolerance ({chordal} mm): ask for a larger cusp", self.cusp)));
-        }
-        Ok(stepover_for_cusp(radius, h))
-    }
-}
-
-/// The tip's runs along the plan polyline `line` on the exact surface, lifted by the allowance,
-/// cut where the tool stands on the floor beside the part (`skip_floor`), reduced within
-/// `tolerance`.
-fn follow(cl: &crate::zmap::surface::ClSurface, line: &[DVec2], allowance: f64, skip_floor: Option<f64>, tolerance: f64) -> Vec<Vec<DVec3>> {
-    let mut runs = Vec::new();
-    let mut run: Vec<DVec3> = Vec::new();
-    for w in line.windows(2) {
-        for (k, (t, z)) in cl.along(w[0], w[1]).into_iter().enumerate() {
-            if k == 0 && !run.is_empty() {
-                continue;
-            }
-            if skip_floor == Some(z) {
-                if run.len() > 1 {
-                    runs.push(reduce(&run, tolerance));
-                }
-                run.clear();
-            } else {
-                run.push(point_at(w[0], w[1], t).extend(z + allowance));
-            }
-        }
-    }
-    if run.len() > 1 {
-        runs.push(reduce(&run, tolerance));
-    }
-    runs
 }

@@ -17,6 +17,7 @@ pub mod face;
 pub mod finish_pencil;
 pub mod finish_raster;
 pub mod finish_scallop;
+pub mod finish_steep_shallow;
 pub mod finish_waterline;
 pub mod pocket2d;
 pub mod profile2d;
@@ -35,6 +36,7 @@ pub use face::{Face, FacePattern};
 pub use finish_pencil::FinishPencil;
 pub use finish_raster::{Boundary, FinishRaster};
 pub use finish_scallop::FinishScallop;
+pub use finish_steep_shallow::FinishSteepShallow;
 pub use finish_waterline::FinishWaterline;
 pub use pocket2d::Pocket2d;
 pub use profile2d::{Profile2d, Side, Tabs};
@@ -147,6 +149,9 @@ operations! {
     /// Scallop finishing: passes a constant step apart across the surface for a cusp height
     /// (issue 60).
     FinishScallop(FinishScallop) = "finishScallop",
+    /// Steep-and-shallow finishing: waterline on the steep, scallop or raster passes on the
+    /// shallow, at one cusp height (issue 60).
+    FinishSteepShallow(FinishSteepShallow) = "finishSteepShallow",
     /// Profile around a drawing's loops (seed 003).
     Profile2d(Profile2d) = "profile2d",
     /// Pocket inside a drawing's loops (seed 003).

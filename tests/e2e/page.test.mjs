@@ -635,6 +635,35 @@ test('finishing by the cusp: a scallop finish added after the sample part\'s rou
   await context.close();
 });
 
+test('steep and shallow in one operation: added after the sample part\'s roughing, waterlines on the walls and scallop passes on the rest at one cusp, a clean program that rs274 runs', async () => {
+  const { page, context, errors } = await openPage();
+  await tab(page, 'ops');
+  await page.evaluate(() => { const job = window.swarf.jobs[window.swarf.kind]; job.operations = job.operations.slice(0, 1); });
+  await page.selectOption('#op-kind', 'finishSteepShallow');
+  await page.click('#op-add');
+  await page.selectOption('select[name=op-tool]', '2');
+  assert.equal(await page.inputValue('input[name=op-slope]'), '40');
+  assert.match(await page.textContent('#op-editor'), /Overlap of steep and shallow/);
+  await page.click('#generate');
+  await generated(page);
+  await shoot(page, 'steep-shallow');
+  const stats = await page.textContent('#stats');
+  assert.match(stats, /steep and shallow finish with T2/, stats);
+  const report = await page.textContent('#sim-report');
+  assert.match(report, /gouges: 0/);
+  assert.match(report, /rapid moves through stock: 0/);
+  assert.match(report, /tool body \(above the flutes\) in material: 0/);
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-steep-shallow-'));
+  const program = path.join(dir, download.suggestedFilename());
+  await download.saveAs(program);
+  const tools = await page.evaluate(() => window.swarf.tools);
+  fs.writeFileSync(path.join(dir, 'tool.tbl'), toolTable(tools));
+  execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), program], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
 test('octree roughing: the tools chosen from the library, each stage\'s path and octants in its tool\'s colour, the reasons in the report, one program that rs274 runs', async () => {
   const { page, context, errors } = await openPage();
   await tab(page, 'ops');

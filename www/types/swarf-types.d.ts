@@ -620,6 +620,17 @@ tool: number,
  */
 bend: number, 
 /**
+ * Passes either side of each corner's, each a step-over farther from it across the
+ * surface (closing round its ends): a wider band cleaned where a larger tool left a
+ * fillet's width. Default value: 0 (the corner's pass alone).
+ */
+passes: number, 
+/**
+ * Distance between the parallel passes, measured across the surface (mm). Default value:
+ * a fifth of the tool's diameter.
+ */
+stepover: number | null, 
+/**
  * Material left on the part (mm). Default value: 0.
  */
 allowance: number, 
@@ -776,6 +787,73 @@ restOnly: boolean,
  * value: none (everywhere).
  */
 slopeMax: number | null, };
+
+/**
+ * Steep-and-shallow finishing: waterline on the steep, scallop or raster on the shallow.
+ */
+export type FinishSteepShallow = { 
+/**
+ * Shown in the program's comments. Default value: "steep and shallow finish".
+ */
+name: string, 
+/**
+ * Whether the job runs it (a disabled operation stays in the job). Default value: true.
+ */
+enabled: boolean, 
+/**
+ * Number of the tool to use (a ball or bull-nose end mill). Default value: 1.
+ */
+tool: number, 
+/**
+ * Height of the ridge left between passes and between levels (mm). Default value: 0.01.
+ */
+cusp: number, 
+/**
+ * Where steep begins (degrees from horizontal): waterline above it, the shallow passes
+ * below. Default value: 40.
+ */
+slope: number, 
+/**
+ * How far each zone reaches into the other (mm), so no seam is left. Default value: 0.5.
+ */
+overlap: number, 
+/**
+ * Default value: scallop.
+ */
+shallow: Shallow, 
+/**
+ * Direction of the raster passes (degrees from +X). Default value: 0.
+ */
+angle: number, 
+/**
+ * The waterlines' direction. Default value: climb.
+ */
+direction: Direction, 
+/**
+ * Default value: silhouette.
+ */
+boundary: Boundary, 
+/**
+ * Growth of the silhouette boundary (mm). Default value: the tool's radius.
+ */
+margin: number | null, 
+/**
+ * Material left on the part (mm). Default value: 0.
+ */
+allowance: number, 
+/**
+ * Spacing of the CL z-map (mm). Default value: 0.2.
+ */
+grid: number, 
+/**
+ * How the cutter enters material (helix, else ramp along the pass).
+ */
+entry: Entry, 
+/**
+ * Cut only where the stock the earlier operations left stands above what this one
+ * leaves (by more than the job's gouge tolerance). Default value: false.
+ */
+restOnly: boolean, };
 
 /**
  * Waterline finishing.
@@ -1195,7 +1273,7 @@ export type OpenChain = { layer: string, start: [number, number], end: [number, 
 /**
  * One operation of a job.
  */
-export type Operation = { "kind": "roughZlevel" } & RoughZlevel | { "kind": "roughZigzag" } & RoughZigzag | { "kind": "roughAdaptive" } & RoughAdaptive | { "kind": "roughOctree" } & RoughOctree | { "kind": "finishRaster" } & FinishRaster | { "kind": "finishWaterline" } & FinishWaterline | { "kind": "finishPencil" } & FinishPencil | { "kind": "finishScallop" } & FinishScallop | { "kind": "profile2d" } & Profile2d | { "kind": "pocket2d" } & Pocket2d | { "kind": "engrave" } & Engrave | { "kind": "drill" } & Drill | { "kind": "bore" } & Bore | { "kind": "chamfer" } & Chamfer | { "kind": "threadMill" } & ThreadMill | { "kind": "face" } & Face | { "kind": "vcarve" } & VCarve;
+export type Operation = { "kind": "roughZlevel" } & RoughZlevel | { "kind": "roughZigzag" } & RoughZigzag | { "kind": "roughAdaptive" } & RoughAdaptive | { "kind": "roughOctree" } & RoughOctree | { "kind": "finishRaster" } & FinishRaster | { "kind": "finishWaterline" } & FinishWaterline | { "kind": "finishPencil" } & FinishPencil | { "kind": "finishScallop" } & FinishScallop | { "kind": "finishSteepShallow" } & FinishSteepShallow | { "kind": "profile2d" } & Profile2d | { "kind": "pocket2d" } & Pocket2d | { "kind": "engrave" } & Engrave | { "kind": "drill" } & Drill | { "kind": "bore" } & Bore | { "kind": "chamfer" } & Chamfer | { "kind": "threadMill" } & ThreadMill | { "kind": "face" } & Face | { "kind": "vcarve" } & VCarve;
 
 /**
  * An operation's form.
@@ -1993,6 +2071,11 @@ export type SetupView = { index: number, name: string, rotation: [number, number
  * each box's least and greatest corner.
  */
 fixtures: Array<[number, number, number, number, number, number]>, };
+
+/**
+ * What finishes the shallow ground.
+ */
+export type Shallow = "scallop" | "raster";
 
 /**
  * The shape of a cutter's end.
