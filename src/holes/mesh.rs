@@ -149,7 +149,10 @@ fn cylinders(mesh: &Mesh, outward: bool) -> Vec<Hole> {
     // By centre to a ten-thousandth of a millimetre (a counterbore's centre and its hole's
     // differ in the last bits), the higher first on one axis.
     let key = |v: f64| (v * 1e4).round() as i64;
-    holes.sort_by(|a, b| key(a.center.x).cmp(&key(b.center.x)).then(key(a.center.y).cmp(&key(b.center.y))).then(b.top.total_cmp(&a.top)));
+    // The last key first: each stable pass keeps the order of the one before among its ties.
+    crate::geom::sort::sort_by_float(&mut holes, |h| -h.top);
+    crate::geom::sort::sort_by_float(&mut holes, |h| key(h.center.y) as f64);
+    crate::geom::sort::sort_by_float(&mut holes, |h| key(h.center.x) as f64);
     holes
 }
 

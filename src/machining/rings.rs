@@ -106,7 +106,9 @@ impl<'m> Uncut<'m> {
             .map(|&n| (segment_distance(p, &self.segments[n]), n))
             .filter(|&(d, _)| d <= far)
             .collect();
-        near.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        // By distance, then by segment: by segment first, then (stably) by distance.
+        crate::geom::sort::sort_by_float(&mut near, |t| t.1 as f64);
+        crate::geom::sort::sort_by_float(&mut near, |t| t.0);
         near.dedup_by_key(|e| e.1);
         for (_, n) in near {
             cells.retain(|&q| segment_distance(q, &self.segments[n]) > self.sure);
@@ -524,8 +526,8 @@ impl Clearer<'_, '_, '_> {
         gather(self, node, 0, &mut loops);
         let mut outer: Vec<(usize, &Loop, bool)> = loops.iter().copied().filter(|(_, l, _)| l.is_ccw()).collect();
         let mut holes: Vec<(usize, &Loop, bool)> = loops.iter().copied().filter(|(_, l, _)| !l.is_ccw()).collect();
-        outer.sort_by_key(|(d, _, _)| *d);
-        holes.sort_by_key(|(d, _, _)| std::cmp::Reverse(*d));
+        crate::geom::sort::sort_by_float(&mut outer, |t| t.0 as f64);
+        crate::geom::sort::sort_by_float(&mut holes, |t| -(t.0 as f64));
         let mut first = true;
         for (_, l, needed) in outer.into_iter().chain(holes) {
             // The first loop is cut whatever it sweeps: the way in from the air goes to it.

@@ -263,7 +263,7 @@ pub fn profile_moves(walls: &Walls, picked: &[usize], op: &Profile2d, mut s: Set
         }
     }
     // Holes first.
-    laps.sort_by_key(|l| l.outside);
+    crate::geom::sort::sort_by_float(&mut laps, |l| f64::from(u8::from(l.outside)));
     let mut out = Vec::new();
     let mut in_air = 0;
     for lap in &laps {
@@ -280,7 +280,7 @@ pub fn profile_moves(walls: &Walls, picked: &[usize], op: &Profile2d, mut s: Set
         }
         s.cursor.moved(&out);
     }
-    too_small.sort_by_key(|t| t.0);
+    crate::geom::sort::sort_by_float(&mut too_small, |t| t.0 as f64);
     match too_small.as_slice() {
         [] => {}
         [(k, b)] => warnings.push(format!("{}; it is not cut", does_not_fit(r, op.leave_stock, &format!("loop {k}"), b))),

@@ -79,7 +79,7 @@ impl PointDrop {
         // edge's too, so when the triangle is ruled out, so is the edge.
         let (_, kinds) = edge_kinds(mesh, tolerances);
         let mut edges = edge_regions(mesh, &kinds, profile);
-        edges.sort_by_key(|e| e.face);
+        crate::geom::sort::sort_by_float(&mut edges, |e| e.face as f64);
         let mut first = vec![0u32; mesh.faces.len() + 1];
         for e in &edges {
             first[e.face as usize + 1] += 1;
