@@ -130,7 +130,7 @@ impl Operate for FinishSteepShallow {
             F::check("restOnly", "only what earlier operations left (rest machining)"),
         ]);
         fields.extend(F::entry());
-        OperationForm::new("steep and shallow: waterline and passes at one cusp", fields)
+        OperationForm::new("steep and shallow at one cusp", fields)
             .hint("Waterlines on the steep walls, scallop or parallel passes on the shallow ground, overlapping: the whole surface finished to one cusp height in one operation.")
     }
 
