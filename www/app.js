@@ -8,7 +8,7 @@ import { createEngine } from './swarf.js';
 import { $, state, hooks, job, selectedOp, selectedTool, store, restore, setKey, undo, canUndo, canRedo, startHistory } from './state.js';
 import { valueOf, fillFields, message, fieldError, check, markProblems } from './forms.js';
 import { GcodePane } from './gcode.js';
-import { sim, setTime, step, play, drawMrr, toLine } from './simulation.js';
+import { sim, setTime, step, play, drawMrr, toLine, showRestArea } from './simulation.js';
 import { fillTools, fillToolChoices, showSpeeds, onHolderField, addTool, deleteTool, exportTools, importTools, renumber } from './tools.js';
 import { fillOps, fillKinds, addOperation, onOpList, showPicked, showHoles, pickInView, findHoles, onHoleList, presetHoles, zeroOnHole } from './operations.js';
 import { fillSetups, addSetup, removeSetup, onSetupTabs, onSetupField, showHeld, restage, playSetup } from './setups.js';
@@ -226,13 +226,14 @@ $('result-tabs').addEventListener('click', (e) => {
 });
 $('view-tools').addEventListener('click', (e) => { const b = e.target.closest('[data-view]'); if (b) state.viewer?.view(b.dataset.view); });
 $('legend').addEventListener('change', onLegend);
+$('legend').addEventListener('click', (e) => { if (e.target.closest('button[data-rest-op]')) onLegend(e); });
 $('generate').addEventListener('click', generate);
 $('play').addEventListener('click', play);
 $('step-back').addEventListener('click', () => step(-1));
 $('step-on').addEventListener('click', () => step(1));
 $('scrub').addEventListener('input', (e) => setTime(Number(e.target.value)));
-for (const [box, key] of [['show-stock', 'stock'], ['show-depth', 'depth'], ['show-paths', 'paths'], ['show-octants', 'octants'], ['show-tool', 'tool']]) {
-  $(box).addEventListener('change', (e) => { if (state.viewer) { state.viewer.show[key] = e.target.checked; state.viewer.draw(); } });
+for (const [box, key] of [['show-stock', 'stock'], ['show-depth', 'depth'], ['show-paths', 'paths'], ['show-octants', 'octants'], ['show-tool', 'tool'], ['show-rest', 'rest']]) {
+  $(box).addEventListener('change', (e) => { if (state.viewer) { state.viewer.show[key] = e.target.checked; state.viewer.draw(); } if (key === 'rest') showRestArea(); });
 }
 new ResizeObserver(() => { sim.buckets = null; drawMrr(); }).observe($('mrr'));
 $('cancel').addEventListener('click', cancel);

@@ -4,7 +4,7 @@
 import { $, state, hooks, job, store, buildJob, is2d, isEither, allOps, hasSetups, setupIndex, clock, clockFormat, downloadText } from './state.js';
 import { fillFields, message, check, answered, problemWords } from './forms.js';
 import { opColor, toolColor, cssColor, RAPID_COLOR, MARK_COLORS } from './viewer.js';
-import { sim, showSimulation } from './simulation.js';
+import { sim, showSimulation, showRestAreas } from './simulation.js';
 import * as units from './units.js';
 
 // Runs `steps` one task each (the view held, then drawn once); a step that returns steps has
@@ -54,8 +54,9 @@ export function clearResult() {
 }
 
 // The legend over the view: each operation's colour (and for octree roughing, each tool's) and
-// tools, with a box to hide it; the rapids' and the problems' colours.
-function legend(summary, byTool = new Set()) {
+// tools, with a box to hide it; the rapids' and the problems' colours. A rest operation's row
+// has a button that shows the rest areas it starts from.
+function legend(summary, byTool = new Set(), operations = []) {
   const el = $('legend');
   el.replaceChildren();
   if (!summary) { el.hidden = true; return; }
@@ -74,13 +75,23 @@ function legend(summary, byTool = new Set()) {
     swatch.style.background = cssColor(color);
     label.append(swatch, ` ${text}`);
     el.append(label);
+    return label;
   };
   for (const o of summary.operations) {
     if (byTool.has(o.index)) {
       row(opColor(o.index), `${o.name}:`, o.index);
       for (const t of o.tools) row(toolColor(t), `  T${t}`);
     } else {
-      row(opColor(o.index), `${o.name} (T${o.tools.join(', T')})`, o.index);
+      const label = row(opColor(o.index), `${o.name} (T${o.tools.join(', T')})`, o.index);
+      if (operations[o.index]?.restOnly) {
+        const b = document.createElement('button');
+        b.type = 'button';
+        b.className = 'rest-areas';
+        b.dataset.restOp = String(o.index);
+        b.textContent = 'rest areas';
+        b.title = 'scrub to where it starts and show in magenta what the earlier operations left for it';
+        label.append(' ', b);
+      }
     }
   }
   row(RAPID_COLOR, 'rapids', 'rapids');
@@ -89,6 +100,8 @@ function legend(summary, byTool = new Set()) {
 }
 
 export function onLegend(e) {
+  const rest = e.target.closest('button[data-rest-op]');
+  if (rest) { e.preventDefault(); showRestAreas(Number(rest.dataset.restOp)); return; }
   const box = e.target.closest('input[data-op]');
   if (!box || !state.viewer) return;
   const key = box.dataset.op === 'rapids' ? 'rapids' : Number(box.dataset.op);
@@ -258,7 +271,7 @@ async function showResult(r, operations, computed) {
     () => sim.pane?.set(r.gcodeBytes, r.lineStarts),
     () => showSimulation(r.sim, s),
   ]);
-  legend(s, byTool);
+  legend(s, byTool, operations);
   state.summary = { s, computed };
   showSummary();
   showWarnings(s);

@@ -32,6 +32,7 @@ async function seek(t, end = null) {
     const r = await state.engine.call({ type: 'seek', count: done, at: k, f, setup: state.shownSetup });
     if (done !== sim.shown) state.viewer?.updateStock(r.tops);
     sim.shown = done;
+    showRestArea();
     if (r.tool.length) {
       state.viewer?.setToolAt(r.tool.slice(0, 3));
       if (r.tool[3] !== sim.toolNumber) {
@@ -50,6 +51,29 @@ async function seek(t, end = null) {
     sim.busy = false;
   }
   if (sim.wanted !== null) { const next = sim.wanted; sim.wanted = null; seek(...next); }
+}
+
+// The rest areas' extent under the scrubber, while they are shown (and on the page's body for
+// its tests, with the move it was measured after).
+export function showRestArea() {
+  const on = Boolean(state.viewer?.show.rest && state.viewer.stock);
+  $('rest-area').hidden = !on;
+  if (!on) return;
+  const area = state.viewer.restArea();
+  $('rest-area').textContent = `${units.area(area)} left`;
+  document.body.dataset.restArea = String(area);
+  document.body.dataset.restAreaAt = String(sim.shown);
+}
+
+// The rest areas the operation `index` starts from: the stock scrubbed to its first move, the
+// places where more than the tolerance is left shown.
+export function showRestAreas(index) {
+  const mark = sim.marks.find((m) => m.index === index);
+  if (!mark || !state.viewer) return;
+  $('show-rest').checked = true;
+  state.viewer.show.rest = true;
+  if (mark.start > 0) setTime(mark.t, mark.start - 1);
+  else setTime(0);
 }
 
 export function setTime(t, end = null) {

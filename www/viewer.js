@@ -25,6 +25,8 @@ void main() { outColor = color; }`;
 // blue where material is left, tan elsewhere; off the part, plain stock colour. Coloured by
 // depth instead (`byDepth`, as a V-carve or a relief is judged): tan where uncut, then yellow
 // through orange to violet at the part's lowest (`depthTop` less `depthSpan`); gouges red still.
+// The rest areas (`restAreas`): magenta wherever more than the tolerance is left on the part,
+// what a rest operation from this point on may take.
 const STOCK_VS = `#version 300 es
 in vec2 xy; in float z; in float partZ;
 uniform mat4 mvp; out vec3 world; out float left; out float onPart;
@@ -37,13 +39,14 @@ void main() {
 const STOCK_FS = `#version 300 es
 precision highp float;
 in vec3 world; in float left; in float onPart;
-uniform vec3 light; uniform float tol; uniform bool byDepth; uniform float depthTop; uniform float depthSpan; out vec4 outColor;
+uniform vec3 light; uniform float tol; uniform bool byDepth; uniform bool restAreas; uniform float depthTop; uniform float depthSpan; out vec4 outColor;
 void main() {
   vec3 n = normalize(cross(dFdx(world), dFdy(world)));
   float d = abs(dot(n, light));
   vec3 base = vec3(0.80, 0.72, 0.58);
   float t = (depthTop - world.z) / depthSpan;
   if (onPart > 0.5 && left < -tol) base = vec3(0.86, 0.10, 0.10);
+  else if (restAreas && onPart > 0.5 && left > tol) base = vec3(0.85, 0.22, 0.72);
   else if (byDepth && t > 0.002) {
     t = clamp(t, 0.0, 1.0);
     base = t < 0.5 ? mix(vec3(0.98, 0.86, 0.40), vec3(0.93, 0.48, 0.16), t * 2.0) : mix(vec3(0.93, 0.48, 0.16), vec3(0.36, 0.12, 0.50), t * 2.0 - 1.0);
@@ -194,7 +197,7 @@ export class Viewer {
     this.lineProgram = compile(gl, LINE_VS, LINE_FS);
     this.stockProgram = compile(gl, STOCK_VS, STOCK_FS);
     this.stock = null;
-    this.show = { part: true, paths: true, stock: true, octants: true, tool: true, grid: true, depth: false };
+    this.show = { part: true, paths: true, stock: true, octants: true, tool: true, grid: true, depth: false, rest: false };
     this.hiddenOps = new Set();
     this.part = null;
     this.lines = {};
@@ -554,12 +557,23 @@ export class Viewer {
     gl.bindBuffer(gl.ARRAY_BUFFER, z);
     gl.bufferData(gl.ARRAY_BUFFER, tops, gl.DYNAMIC_DRAW);
     const g = this.stockGrid;
-    this.stock = { xy: g.xy, z, partZ: this.buffer(partZ), elements: g.elements, count: g.count, tol, depthTop: top, depthSpan: Math.max(depthSpan, 1e-3) };
+    this.stock = { xy: g.xy, z, partZ: this.buffer(partZ), elements: g.elements, count: g.count, tol, depthTop: top, depthSpan: Math.max(depthSpan, 1e-3), part, tops, cell: sp * sp };
     this.draw();
+  }
+
+  // The area (mm²) where the stock shown stands more than the tolerance above the part: the
+  // rest areas.
+  restArea() {
+    const s = this.stock;
+    if (!s) return 0;
+    let n = 0;
+    for (let k = 0; k < s.part.length; k++) if (s.tops[k] - s.part[k] > s.tol) n++;
+    return n * s.cell;
   }
 
   updateStock(tops) {
     if (!this.stock) return;
+    this.stock.tops = tops;
     const gl = this.gl;
     gl.bindBuffer(gl.ARRAY_BUFFER, this.stock.z);
     gl.bufferSubData(gl.ARRAY_BUFFER, 0, tops);
@@ -658,6 +672,7 @@ export class Viewer {
       gl.uniform3f(gl.getUniformLocation(p, 'light'), l[0] / ln, l[1] / ln, l[2] / ln);
       gl.uniform1f(gl.getUniformLocation(p, 'tol'), s.tol);
       gl.uniform1i(gl.getUniformLocation(p, 'byDepth'), this.show.depth ? 1 : 0);
+      gl.uniform1i(gl.getUniformLocation(p, 'restAreas'), this.show.rest ? 1 : 0);
       gl.uniform1f(gl.getUniformLocation(p, 'depthTop'), s.depthTop);
       gl.uniform1f(gl.getUniformLocation(p, 'depthSpan'), s.depthSpan);
       this.attribute(p, 'xy', s.xy, 2);

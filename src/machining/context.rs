@@ -177,7 +177,7 @@ impl Context {
     /// the retract gap above the in-process stock, entries by `entry`. Entries that found no
     /// room for a helix or a ramp are warned of.
     pub fn link(&mut self, op: &str, tool: &Tool, runs: &[Vec<DVec3>], keep: &dyn Keepout, entry: Entry, stay_down_max: f64) -> Toolpath {
-        let (path, plunges) = self.link_quietly(op, tool, runs, (None, None), f64::INFINITY, keep, entry, stay_down_max);
+        let (path, plunges) = self.link_quietly(op, tool, runs, (None, None), f64::INFINITY, keep, entry, stay_down_max, true);
         self.warn_plunges(op, &plunges);
         path
     }
@@ -187,7 +187,8 @@ impl Context {
     /// entries feed straight down into material. Where given, a feed for each move along the
     /// runs and whether each run starts in material (`known`, see [`Linker::link_fed`]), and
     /// the in-process stock taken no higher than `ceiling` (what the operation itself has cut
-    /// down to before these runs).
+    /// down to before these runs). `side_first`: [`Linker::side_first`] (finishing; roughing
+    /// meets whole levels of material beside its starts, and goes in by a helix).
     #[allow(clippy::too_many_arguments)]
     pub fn link_quietly(
         &self,
@@ -199,15 +200,29 @@ impl Context {
         keep: &dyn Keepout,
         entry: Entry,
         stay_down_max: f64,
+        side_first: bool,
     ) -> (Toolpath, Vec<DVec3>) {
         let profile = tool.cutter.profile();
         let stock = self.sim.stock();
         let material = |p: DVec2| stock.touch(p, &profile, true).min(ceiling);
         let estimate = |p: DVec2| stock.touch(p, &profile, false).min(ceiling);
         let along = |a: DVec2, b: DVec2| stock.touch_along(a, b, &profile, true);
+        let core = Profile::new(profile.radius / 2.0, 0.0);
+        let core_along = |a: DVec2, b: DVec2| stock.touch_along(a, b, &core, true);
         let settings = LinkSettings { clearance_z: self.heights.clearance, rapid_gap: self.heights.gap, stay_down_max, full_retract: self.heights.full };
         let rates = Feeds { cut: tool.feed_rate, plunge: tool.plunge_rate };
-        let linker = Linker { settings, keep, material: &material, material_along: &along, estimate: &estimate, threshold: self.tolerances.gouge, entry, radius: profile.radius, feeds: rates };
+        let linker = Linker {
+            settings,
+            keep,
+            material: &material,
+            material_along: &along,
+            estimate: &estimate,
+            threshold: self.tolerances.gouge,
+            entry,
+            radius: profile.radius,
+            feeds: rates,
+            side_first: side_first.then_some(&core_along),
+        };
         let (start, moves, entries) = linker.link_fed(runs, known.0, known.1, &self.tolerances);
         (Toolpath { name: op.to_string(), tool: tool.number, spindle_rpm: tool.spindle_rpm, start, moves, cycles: Vec::new() }, entries.plunges)
     }

@@ -139,7 +139,7 @@ impl Operate for FinishPencil {
         }
         let request = self.request(ctx)?;
         let cl = ctx.cl_surface(request, progress)?;
-        if !progress.stage("corners", 0.5, 0.9) {
+        if !progress.stage("corners", 0.5, 0.5) {
             return Err(Error::Cancelled);
         }
         let tol = ctx.tolerances;

@@ -157,7 +157,7 @@ impl Operate for FinishScallop {
         }
         let request = self.request(ctx)?;
         let cl = ctx.cl_surface(request, progress)?;
-        if !progress.stage("passes", 0.4, 0.9) {
+        if !progress.stage("passes", 0.4, 0.6) {
             return Err(Error::Cancelled);
         }
         let f = &cl.field;

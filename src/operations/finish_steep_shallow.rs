@@ -192,7 +192,7 @@ impl Operate for FinishSteepShallow {
         let in_steep = |p: DVec2| at(p).is_some_and(|n| near_steep[n] <= reach);
         let in_shallow = |p: DVec2| at(p).is_some_and(|n| near_shallow[n] <= reach);
 
-        if !progress.stage("waterlines", 0.3, 0.6) {
+        if !progress.stage("waterlines", 0.3, 0.3) {
             return Err(Error::Cancelled);
         }
         // Levels by the cusp on the steep, never farther apart than the step across it: the
@@ -204,7 +204,7 @@ impl Operate for FinishSteepShallow {
         let in_region_steep = |p: DVec2| in_steep(p) && region.contains(p);
         let mut runs = contours(ctx, request, &cl, &levels, self.allowance, self.direction, &in_region_steep, shortest, progress).ok_or(Error::Cancelled)?;
 
-        if !progress.stage("shallow passes", 0.6, 0.9) {
+        if !progress.stage("shallow passes", 0.6, 0.4) {
             return Err(Error::Cancelled);
         }
         let skip_floor = (self.boundary == Boundary::Silhouette && margin <= profile.radius).then_some(request.floor);
@@ -234,7 +234,7 @@ impl Operate for FinishSteepShallow {
         }
         let bounds = ctx.node_bounds(request);
         let floor_surface = Floor { cl: &cl, allowance: self.allowance, region: &region, bounds: Some(bounds.as_ref()) };
-        Ok(vec![ctx.link(&self.name, &tool, &runs, &floor_surface, self.entry, 2.0 * step)].into())
+        Ok(vec![ctx.link(&self.name, &tool, &runs, &floor_surface, self.entry, 2.0 * profile.radius)].into())
     }
 }
 

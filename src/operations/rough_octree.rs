@@ -179,6 +179,7 @@ impl Operate for RoughOctree {
         // one with the whole operation, as it does for every operation.
         let before = ctx.sim.clone();
         let result = self.stages(ctx, &candidates, progress);
+        progress.leave();
         ctx.sim = before;
         let (paths, stages, octants) = result?;
         Ok(Planned { paths, stages: Some(stages), octants, ..Planned::default() })
@@ -256,7 +257,7 @@ impl RoughOctree {
         let mut reports = Vec::new();
         let mut views = Vec::new();
         let count = candidates.len() as f64 + 1.0;
-        let stage_progress = |progress: &mut Progress, k: f64, name: &str| progress.stage(name, (k / count).min(0.95), 1.0 / count);
+        let stage_progress = |progress: &mut Progress, k: f64, name: &str| progress.enter(name, (k / count).min(0.95), 1.0 / count);
 
         // §3.2: the first tool.
         let mut first = None;
@@ -423,7 +424,7 @@ impl RoughOctree {
     /// The profiling stage (§3.4): `tool` takes what is left at its own levels (every
     /// step-down and every flat).
     fn profile(&self, ctx: &mut Context, tool: &Tool, why: String, count: f64, paths: &mut Vec<Toolpath>, reports: &mut Vec<StageReport>, progress: &mut Progress) -> Result<()> {
-        if !progress.stage(&format!("profile φ{}", tool.cutter.diameter), ((count - 1.0) / count).min(0.95), 1.0 / count) {
+        if !progress.enter(&format!("profile φ{}", tool.cutter.diameter), ((count - 1.0) / count).min(0.95), 1.0 / count) {
             return Err(Error::Cancelled);
         }
         let zl = self.zlevel(tool, true);

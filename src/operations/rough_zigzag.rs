@@ -227,7 +227,7 @@ impl RoughZigzag {
         // Cut as it is (no plain path's map), the plain path's load is the path's own, links
         // included.
         let plain = if plain_map.is_some() { plain.ratios(reference, ds) } else { done.ratios(reference, ds) };
-        let (linked, plunges) = ctx.link_quietly(&self.name, tool, &pts3, (Some(&feeds), Some(&starts)), z_prev, &inside, entry, 0.0);
+        let (linked, plunges) = ctx.link_quietly(&self.name, tool, &pts3, (Some(&feeds), Some(&starts)), z_prev, &inside, entry, 0.0, false);
         let moves = arcfit::fit(&linked.moves, linked.start, tol.chordal, &|p| region.contains(p));
         // Stretches over what the level cleared already at the air feed.
         let moves =

@@ -150,6 +150,15 @@ pub struct Linker<'a> {
     /// The cutter's radius (for the helix's size).
     pub radius: f64,
     pub feeds: Feeds,
+    /// Where given (finishing), the highest material under the cutter's core (a flat of half
+    /// its radius) along a straight way: a run is entered level from the air beside its start
+    /// wherever that way is shorter than the helix or ramp down through the material and its
+    /// core meets no more than the pass's own at its start (a waterline at the foot of a wall
+    /// need not ramp down from the wall's top); from outside the operation's area only where
+    /// the core meets nothing more than [`CORE_DEPTH`] radii above the start (the cutter's
+    /// side meets the material, never a slot through stock the area leaves alone). Else, and
+    /// without it, only where neither a helix nor a ramp fits.
+    pub side_first: Option<&'a dyn Fn(DVec2, DVec2) -> f64>,
 }
 
 /// Entries of each kind a linked path made.
@@ -225,7 +234,22 @@ impl Linker<'_> {
                 let travel = |to: DVec2, stop: f64| if settings.full_retract { clearance } else { ((self.material_along)(at.truncate(), to) + settings.rapid_gap).max(stop).min(clearance) };
                 let inside = inside.and_then(|f| f.get(i).copied()).unwrap_or_else(|| (self.estimate)(p0.truncate()) > p0.z + self.threshold);
                 let (entry, kind) = enter_3d(top, if inside { material } else { f64::NEG_INFINITY }, run, self.radius, &self.entry, self.keep, (self.feeds.plunge, self.feeds.cut), tolerances.height);
-                match if kind == Kind::Plunge { self.beside(p0, tolerances.height) } else { None } {
+                let side = match kind {
+                    Kind::Plunge => self.beside(p0, tolerances.height, |_| true),
+                    Kind::Helix | Kind::Ramp => self.side_first.and_then(|core| {
+                        // Shorter; its core meeting no more than the pass's at its start, and
+                        // from outside the operation's area only beside the material.
+                        let way = path_length(p0.truncate().extend(top), &entry) - settings.rapid_gap;
+                        let (h, shallow) = (tolerances.height, p0.z + CORE_DEPTH * self.radius);
+                        let start = core(p0.truncate(), p0.truncate()).max(shallow);
+                        self.beside(p0, h, |q| {
+                            let meets = core(q, p0.truncate());
+                            q.distance(p0.truncate()) < way && meets <= start && (meets <= shallow || self.keep.clears(q.extend(p0.z), p0, h))
+                        })
+                    }),
+                    _ => None,
+                };
+                match side {
                     Some(q) => {
                         // Down in the air beside the start, then in level.
                         let stop = (p0.z + settings.rapid_gap).min(clearance);
@@ -253,6 +277,23 @@ impl Linker<'_> {
     }
 }
 
+/// How high above a start the material under a lead-in's core may stand, in cutter radii
+/// ([`Linker::side_first`]).
+pub const CORE_DEPTH: f64 = 0.5;
+
+/// The length of `moves` from `from`.
+fn path_length(from: DVec3, moves: &[Move]) -> f64 {
+    let mut at = from;
+    moves
+        .iter()
+        .map(|m| {
+            let d = m.length(at);
+            at = m.to();
+            d
+        })
+        .sum()
+}
+
 /// Rings of places beside a start tried for a lead-in from the air, a half radius apart, and
 /// directions tried on each.
 const SIDE_RINGS: usize = 6;
@@ -263,12 +304,12 @@ impl Linker<'_> {
     /// plunging there: the nearest place (within three radii) where it touches no material
     /// down to `p0`'s height and from which the level way in stays clear of the part. Where the
     /// material ends within reach, as at the stock's edge, a run is entered from the side.
-    fn beside(&self, p0: DVec3, tolerance: f64) -> Option<DVec2> {
+    fn beside(&self, p0: DVec3, tolerance: f64, also: impl Fn(DVec2) -> bool) -> Option<DVec2> {
         (1..=SIDE_RINGS).find_map(|ring| {
             let distance = 0.5 * self.radius * ring as f64;
             (0..SIDE_DIRECTIONS).find_map(|k| {
                 let q = p0.truncate() + DVec2::from_angle(std::f64::consts::TAU * k as f64 / SIDE_DIRECTIONS as f64) * distance;
-                ((self.material)(q) <= p0.z + tolerance && self.keep.clears_part(q.extend(p0.z), p0, tolerance)).then_some(q)
+                ((self.material)(q) <= p0.z + tolerance && also(q) && self.keep.clears_part(q.extend(p0.z), p0, tolerance)).then_some(q)
             })
         })
     }
@@ -325,17 +366,22 @@ mod tests {
     fn linked(half: f64, run: &[DVec3]) -> (Vec<Move>, Entries) {
         let material = square(half);
         let along = |a: DVec2, b: DVec2| (0..=20).map(|k| material(a.lerp(b, k as f64 / 20.0))).fold(f64::NEG_INFINITY, f64::max);
-        let keep = Walled { floor: -5.0 };
+        link_one(&Walled { floor: -5.0 }, &material, &along, None, run)
+    }
+
+    /// `run` linked alone by a linker of a φ6 cutter, clearance 5, over `material`.
+    fn link_one(keep: &dyn Keepout, material: &dyn Fn(DVec2) -> f64, along: &dyn Fn(DVec2, DVec2) -> f64, side_first: Option<&dyn Fn(DVec2, DVec2) -> f64>, run: &[DVec3]) -> (Vec<Move>, Entries) {
         let linker = Linker {
             settings: LinkSettings { clearance_z: 5.0, ..LinkSettings::default() },
-            keep: &keep,
-            material: &material,
-            material_along: &along,
-            estimate: &material,
+            keep,
+            material,
+            material_along: along,
+            estimate: material,
             threshold: 0.01,
             entry: Entry::default(),
             radius: 3.0,
             feeds: Feeds { cut: 1000.0, plunge: 300.0 },
+            side_first,
         };
         let (_, moves, entries) = linker.link(&[run.to_vec()], &Tolerances::default());
         (moves, entries)
@@ -364,6 +410,57 @@ mod tests {
         let k = moves.iter().position(|m| m.to() == run[0]).expect("the run's start");
         assert_eq!(moves[k - 1].to().z, run[0].z);
         assert!(matches!(moves[k], Move::Line { feed, .. } if feed == 1000.0));
+    }
+
+    /// Clear of everything above a floor.
+    struct Open;
+    impl Keepout for Open {
+        fn clears(&self, a: DVec3, b: DVec3, _: f64) -> bool {
+            a.z >= -9.0 && b.z >= -9.0
+        }
+        fn clears_part(&self, a: DVec3, b: DVec3, tolerance: f64) -> bool {
+            self.clears(a, b, tolerance)
+        }
+    }
+
+    /// A pass at the foot of a wall standing to z = 0 beside x < −2 (the cutter of radius 3
+    /// touches it wherever its centre is left of x = 1), over a floor at −8.
+    /// `core`: what the cutter's core meets on the way in (−8 at the start itself).
+    fn at_a_walls_foot(side_first: bool, core: f64) -> (Vec<Move>, Entries) {
+        let material = |p: DVec2| -> f64 {
+            if p.x < 1.0 {
+                0.0
+            } else {
+                -8.0
+            }
+        };
+        let core = move |a: DVec2, b: DVec2| if a == b { -8.0 } else { core };
+        let along = |a: DVec2, b: DVec2| material(a).max(material(b));
+        let run = [DVec3::new(0.0, 0.0, -6.0), DVec3::new(0.0, 10.0, -6.0)];
+        link_one(&Open, &material, &along, side_first.then_some(&core as &dyn Fn(DVec2, DVec2) -> f64), &run)
+    }
+
+    #[test]
+    fn a_finishing_pass_at_a_walls_foot_is_led_in_from_the_air_not_helixed_from_the_top() {
+        let (moves, entries) = at_a_walls_foot(true, -8.0);
+        assert_eq!((entries.side, entries.helix, entries.ramp), (1, 0, 0), "{moves:?}");
+        // Fed 6 mm down in the air (x ≥ 1), then level in: a few mm, against a 3° helix's
+        // 6 / tan 3° = 115 mm.
+        let (mut at, mut fed) = (DVec3::new(0.0, 0.0, 5.0), 0.0);
+        for mv in &moves[..=moves.iter().position(|m| m.to() == DVec3::new(0.0, 0.0, -6.0)).unwrap()] {
+            fed += if mv.feed().is_some() { mv.length(at) } else { 0.0 };
+            if mv.to().z < at.z - 1e-12 {
+                assert!(mv.to().x >= 1.0, "a descent where the wall is: {at} -> {}", mv.to());
+            }
+            at = mv.to();
+        }
+        assert!(fed < 10.0, "{fed}");
+        // Roughing keeps its helix; so does a finish whose lead-in would slot through more
+        // than the pass meets at its start (its core meeting material 3 mm over the start).
+        for (side_first, core) in [(false, -8.0), (true, -3.0)] {
+            let (_, entries) = at_a_walls_foot(side_first, core);
+            assert_eq!((entries.side, entries.helix), (0, 1));
+        }
     }
 
     #[test]

@@ -664,6 +664,37 @@ test('steep and shallow in one operation: added after the sample part\'s roughin
   await context.close();
 });
 
+test('rest areas: a rest finish\'s row in the legend scrubs to where it starts and shows in magenta what the earlier operations left for it, less once it has run', async () => {
+  const { page, context, errors } = await openPage();
+  await tab(page, 'ops');
+  // The roughing, then a raster finish that takes only what is left.
+  await page.evaluate(() => { const job = window.swarf.jobs[window.swarf.kind]; job.operations = job.operations.slice(0, 1); });
+  await page.selectOption('#op-kind', 'finishRaster');
+  await page.click('#op-add');
+  await page.selectOption('select[name=op-tool]', '2');
+  await page.check('input[name=op-restOnly]');
+  await page.click('#generate');
+  await generated(page);
+  assert.equal(await page.isChecked('#show-rest'), false);
+  const start = await page.evaluate(() => window.swarf.summary.s.operationStarts[1]);
+  assert.ok(start > 0, `the finish starts at move ${start}`);
+  await page.click('#legend button[data-rest-op="1"]');
+  await page.waitForFunction((k) => document.body.dataset.restAreaAt === String(k), start);
+  assert.equal(await page.isChecked('#show-rest'), true);
+  const before = Number(await page.evaluate(() => document.body.dataset.restArea));
+  assert.match(await page.textContent('#rest-area'), /mm² left/);
+  await frame(page);
+  await shoot(page, 'rest-areas');
+  // The roughing's allowance lies over most of the part; the finish takes it.
+  await page.evaluate(() => { const s = document.getElementById('scrub'); s.value = s.max; s.dispatchEvent(new Event('input')); });
+  await page.waitForFunction((k) => Number(document.body.dataset.restAreaAt) > k, start);
+  const after = Number(await page.evaluate(() => document.body.dataset.restArea));
+  assert.ok(before > 1000, `${before} mm² left after the roughing`);
+  assert.ok(after < 0.5 * before, `${after} mm² left after the rest finish, ${before} before`);
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
 test('octree roughing: the tools chosen from the library, each stage\'s path and octants in its tool\'s colour, the reasons in the report, one program that rs274 runs', async () => {
   const { page, context, errors } = await openPage();
   await tab(page, 'ops');
