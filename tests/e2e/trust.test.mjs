@@ -426,11 +426,12 @@ test('the simulation a machinist expects: the tool shown, the path cut apart fro
   assert.ok(peak > 1000 && peak <= slot, `peak ${peak} mm³/min against a slot's ${slot}`);
   // The cycle time adds up: the summary's parts sum to its total, which is the program head's.
   const summary = await page.evaluate(() => window.swarf.result.summary);
-  const head = (await page.evaluate(() => window.swarf.gcode)).match(/\(cycle time ([\d:]+) /)[1];
+  const [, head, format] = (await page.evaluate(() => window.swarf.gcode)).match(/\(cycle time ([\d:]+) (m:ss|h:mm:ss)/);
+  assert.equal(format, head.split(':').length === 2 ? 'm:ss' : 'h:mm:ss');
   const clock = (s) => s.split(':').reduce((a, v) => a * 60 + Number(v), 0);
   assert.equal(summary.time.reduce((a, t) => a + t.seconds, 0), clock(head));
-  assert.match(await page.textContent('#stats'), new RegExp(`cycle time\\s*${head} h:mm:ss[\\s\\S]*total\\s*${head}`));
-  assert.match(await page.textContent('#sim-time'), new RegExp(`/ ${head} h:mm:ss`));
+  assert.match(await page.textContent('#stats'), new RegExp(`cycle time\\s*${head} ${format}[\\s\\S]*total\\s*${head}`));
+  assert.match(await page.textContent('#sim-time'), new RegExp(`/ ${head} ${format}`));
   assert.deepEqual(errors, []);
   await context.close();
 });
