@@ -274,8 +274,7 @@ mod tests {
         let mut air = AirCuts::new(Rect { min: DVec2::splat(-17.0), max: DVec2::splat(17.0) }, z, &stock, &profile, fast, cut).unwrap();
         let out = air.refeed(from, moves.clone());
         // The same way: the same ends in order, as long.
-        let length = |ms: &[Move]| ms.iter().scan(from, |at, m| Some((m.length(std::mem::replace(at, m.to())), ()))).map(|(l, _)| l).sum::<f64>();
-        assert!((length(&out) - length(&moves)).abs() < 1e-9);
+        assert!((crate::toolpath::moves_length(from, &out) - crate::toolpath::moves_length(from, &moves)).abs() < 1e-9);
         let mut ends = out.iter().map(|m| m.to());
         assert!(moves.iter().all(|m| ends.any(|q| q.distance(m.to()) < 1e-12)), "{out:?}");
         // Cut in order: what runs at the air feed removes nothing, and most of the way back

@@ -239,7 +239,7 @@ impl Linker<'_> {
                     Kind::Helix | Kind::Ramp => self.side_first.and_then(|core| {
                         // Shorter; its core meeting no more than the pass's at its start, and
                         // from outside the operation's area only beside the material.
-                        let way = path_length(p0.truncate().extend(top), &entry) - settings.rapid_gap;
+                        let way = super::moves_length(p0.truncate().extend(top), &entry) - settings.rapid_gap;
                         let (h, shallow) = (tolerances.height, p0.z + CORE_DEPTH * self.radius);
                         let start = core(p0.truncate(), p0.truncate()).max(shallow);
                         self.beside(p0, h, |q| {
@@ -280,19 +280,6 @@ impl Linker<'_> {
 /// How high above a start the material under a lead-in's core may stand, in cutter radii
 /// ([`Linker::side_first`]).
 pub const CORE_DEPTH: f64 = 0.5;
-
-/// The length of `moves` from `from`.
-fn path_length(from: DVec3, moves: &[Move]) -> f64 {
-    let mut at = from;
-    moves
-        .iter()
-        .map(|m| {
-            let d = m.length(at);
-            at = m.to();
-            d
-        })
-        .sum()
-}
 
 /// Rings of places beside a start tried for a lead-in from the air, a half radius apart, and
 /// directions tried on each.

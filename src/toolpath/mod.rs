@@ -76,6 +76,11 @@ impl Move {
     }
 }
 
+/// The length of `moves` made one after another from `from`.
+pub fn moves_length(from: DVec3, moves: &[Move]) -> f64 {
+    moves.iter().scan(from, |at, m| Some(m.length(std::mem::replace(at, m.to())))).sum()
+}
+
 /// Signed angle swept by an arc from `from` to `to` about `center` (negative when clockwise);
 /// equal start and end points make a full circle, as in G-code.
 pub fn arc_sweep(from: DVec3, to: DVec3, center: DVec2, clockwise: bool) -> f64 {

@@ -123,6 +123,28 @@ export async function soleOperation(page, kind, tool = null) {
   if (tool != null) await page.selectOption('select[name=op-tool]', String(tool));
 }
 
+// The operations tab, the sample job's roughing kept and an operation of `kind` added after it
+// (in place of the finishes), on the tool numbered `tool`.
+export async function afterRoughing(page, kind, tool) {
+  await tab(page, 'ops');
+  await page.evaluate(() => { const job = window.swarf.jobs[window.swarf.kind]; job.operations = job.operations.slice(0, 1); });
+  await page.selectOption('#op-kind', kind);
+  await page.click('#op-add');
+  await page.selectOption('select[name=op-tool]', String(tool));
+}
+
+// Downloads the program into a folder of its own (named after `name`) with the page's tool
+// table, and has LinuxCNC's rs274 run it (throwing where it refuses); returns its path.
+export async function downloadThroughRs274(page, name) {
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), `swarf-e2e-${name}-`));
+  const program = path.join(dir, download.suggestedFilename());
+  await download.saveAs(program);
+  fs.writeFileSync(path.join(dir, 'tool.tbl'), toolTable(await page.evaluate(() => window.swarf.tools)));
+  execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), program], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });
+  return program;
+}
+
 // Adds a tool to the library in the tool form (the tools tab open): its shape, diameter and
 // flute length; returns its number.
 export async function addTool(page, shape, diameter, flutes) {

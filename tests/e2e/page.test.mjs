@@ -9,7 +9,7 @@ import path from 'node:path';
 import { execFileSync } from 'node:child_process';
 import { pathToFileURL } from 'node:url';
 import { dieStl } from '../../scripts/die-stl.mjs';
-import { root, shots, offsite, PATIENCE, browser, base, waitForGenerated, generated, tab, frame, grblcheck, openPage, onlyRaster, toolTable, addTool, pixelCounts, toolPixels, pathPixels, boxStl, boxGltf, plateStl, studStl, soleOperation, mrrLabels, shoot } from './harness.mjs';
+import { root, shots, offsite, PATIENCE, browser, base, waitForGenerated, generated, tab, frame, grblcheck, openPage, onlyRaster, toolTable, addTool, pixelCounts, toolPixels, pathPixels, boxStl, boxGltf, plateStl, studStl, soleOperation, afterRoughing, downloadThroughRs274, mrrLabels, shoot } from './harness.mjs';
 
 test('sample part → generate → path on the canvas → G-code that rs274 accepts', async () => {
   const { page, context, errors } = await openPage();
@@ -606,12 +606,8 @@ test('adaptive clearing: added in the page with the core\'s defaults, spiralling
 
 test('finishing by the cusp: a scallop finish added after the sample part\'s roughing with the core\'s defaults, the cusp asked in mm, a clean program that rs274 runs', async () => {
   const { page, context, errors } = await openPage();
-  await tab(page, 'ops');
   // Keep the roughing; the scallop finish takes the place of the raster and waterline ones.
-  await page.evaluate(() => { const job = window.swarf.jobs[window.swarf.kind]; job.operations = job.operations.slice(0, 1); });
-  await page.selectOption('#op-kind', 'finishScallop');
-  await page.click('#op-add');
-  await page.selectOption('select[name=op-tool]', '2');
+  await afterRoughing(page, 'finishScallop', 2);
   assert.equal(await page.locator('#op-list li').count(), 2);
   assert.equal(await page.inputValue('input[name=op-cusp]'), '0.01');
   assert.match(await page.textContent('#op-editor'), /Cusp height/);
@@ -624,24 +620,14 @@ test('finishing by the cusp: a scallop finish added after the sample part\'s rou
   assert.match(report, /gouges: 0/);
   assert.match(report, /rapid moves through stock: 0/);
   assert.match(report, /tool body \(above the flutes\) in material: 0/);
-  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
-  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-scallop-'));
-  const program = path.join(dir, download.suggestedFilename());
-  await download.saveAs(program);
-  const tools = await page.evaluate(() => window.swarf.tools);
-  fs.writeFileSync(path.join(dir, 'tool.tbl'), toolTable(tools));
-  execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), program], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });
+  await downloadThroughRs274(page, 'scallop');
   assert.deepEqual(errors, []);
   await context.close();
 });
 
 test('steep and shallow in one operation: added after the sample part\'s roughing, waterlines on the walls and scallop passes on the rest at one cusp, a clean program that rs274 runs', async () => {
   const { page, context, errors } = await openPage();
-  await tab(page, 'ops');
-  await page.evaluate(() => { const job = window.swarf.jobs[window.swarf.kind]; job.operations = job.operations.slice(0, 1); });
-  await page.selectOption('#op-kind', 'finishSteepShallow');
-  await page.click('#op-add');
-  await page.selectOption('select[name=op-tool]', '2');
+  await afterRoughing(page, 'finishSteepShallow', 2);
   assert.equal(await page.inputValue('input[name=op-slope]'), '40');
   assert.match(await page.textContent('#op-editor'), /Overlap of steep and shallow/);
   await page.click('#generate');
@@ -653,25 +639,15 @@ test('steep and shallow in one operation: added after the sample part\'s roughin
   assert.match(report, /gouges: 0/);
   assert.match(report, /rapid moves through stock: 0/);
   assert.match(report, /tool body \(above the flutes\) in material: 0/);
-  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
-  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-e2e-steep-shallow-'));
-  const program = path.join(dir, download.suggestedFilename());
-  await download.saveAs(program);
-  const tools = await page.evaluate(() => window.swarf.tools);
-  fs.writeFileSync(path.join(dir, 'tool.tbl'), toolTable(tools));
-  execFileSync('rs274', ['-g', '-t', path.join(dir, 'tool.tbl'), program], { cwd: dir, env: { ...process.env, HOME: dir }, encoding: 'utf8', maxBuffer: 1 << 28 });
+  await downloadThroughRs274(page, 'steep-shallow');
   assert.deepEqual(errors, []);
   await context.close();
 });
 
 test('rest areas: a rest finish\'s row in the legend scrubs to where it starts and shows in magenta what the earlier operations left for it, less once it has run', async () => {
   const { page, context, errors } = await openPage();
-  await tab(page, 'ops');
   // The roughing, then a raster finish that takes only what is left.
-  await page.evaluate(() => { const job = window.swarf.jobs[window.swarf.kind]; job.operations = job.operations.slice(0, 1); });
-  await page.selectOption('#op-kind', 'finishRaster');
-  await page.click('#op-add');
-  await page.selectOption('select[name=op-tool]', '2');
+  await afterRoughing(page, 'finishRaster', 2);
   await page.check('input[name=op-restOnly]');
   await page.click('#generate');
   await generated(page);
