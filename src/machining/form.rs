@@ -203,6 +203,17 @@ impl FormField {
         [FormField::text("name", "Name"), FormField::new("tool", "Tool", FieldInput::Tool, FieldUnit::None)]
     }
 
+    /// Where a finish on a part cuts (`boundary`): within the part's outline grown by the tool's
+    /// radius, or over the whole stock.
+    pub fn area() -> Self {
+        FormField::choice("boundary", "Area", &[("silhouette", "the part's outline + the tool's radius"), ("stock", "the whole stock")])
+    }
+
+    /// How far the outline [`FormField::area`] names is grown (`margin`).
+    pub fn outline_growth() -> Self {
+        FormField::number("margin", "Outline grown by", FieldUnit::Length).note("less than 0: shrunk").empty("the tool's radius")
+    }
+
     /// The first fields of a 2D cut to a depth in steps: its name and tool, the drawing's layers,
     /// the depth and the step-down.
     pub fn sheet_cut() -> Vec<Self> {

@@ -98,8 +98,8 @@ impl Operate for FinishScallop {
         let mut fields = F::name_and_tool().to_vec();
         fields.extend([
             F::length("cusp", "Cusp height (scallop) left", 0.0001).help("The height of the ridge between two passes: the step between them follows from it and the tool's corner radius, measured across the surface, so steep ground gets the same finish as flat."),
-            F::choice("boundary", "Area", &[("silhouette", "the part's outline + the tool's radius"), ("stock", "the whole stock")]),
-            F::number("margin", "Outline grown by", U::Length).note("less than 0: shrunk").empty("the tool's radius"),
+            F::area(),
+            F::outline_growth(),
             F::length("allowance", "Leave on the part", 0.0),
             F::grid().help("How finely the part's surface is sampled under the tool: the passes are laid out on it and follow the exact surface between its points."),
             F::degrees("slopeMax", "Only where no steeper than", 0.0, 90.0).empty("everywhere"),
