@@ -82,6 +82,10 @@ pub struct Warning {
     pub count: usize,
     /// The first of them (x, y, z in mm, as placed), at most [`Warning::KEPT`].
     pub places: Vec<[f64; 3]>,
+    /// Loops of the drawing (by index) the operation offers to pick, where it chose what to
+    /// cut by itself (a V-carve with none picked: the regions it carved), for the user to make
+    /// the choice their own and change it.
+    pub loops: Vec<usize>,
     /// What is counted, for [`Warning::counted`] to add to.
     #[serde(skip)]
     #[ts(skip)]
@@ -105,11 +109,16 @@ impl Warning {
     pub const KEPT: usize = 20;
 
     pub fn job(message: impl Into<String>) -> Warning {
-        Warning { operation: None, message: message.into(), level: Level::Warning, count: 0, places: Vec::new(), what: String::new() }
+        Warning { operation: None, message: message.into(), level: Level::Warning, count: 0, places: Vec::new(), loops: Vec::new(), what: String::new() }
     }
 
     pub fn of(operation: &str, message: impl Into<String>) -> Warning {
         Warning { operation: Some(operation.to_string()), ..Warning::job(message) }
+    }
+
+    /// The same, offering `loops` to pick ([`Warning::loops`]).
+    pub fn offering(self, loops: Vec<usize>) -> Warning {
+        Warning { loops, ..self }
     }
 
     /// A note rather than a warning.

@@ -626,8 +626,31 @@ fn a_roughing_after_a_larger_tool_is_reported_as_rest_roughing_with_what_it_took
     let (a, b) = (big.removed.unwrap(), small.removed.unwrap());
     assert!(b > 0.0 && b < 0.2 * a, "the rest pass took {b:.0} mm³ after {a:.0}");
     assert!(small.describe().contains("rest roughing after T1") && !big.describe().contains("rest roughing"), "{}", small.describe());
+    assert!(!out.warnings.iter().any(|w| w.message.starts_with("rest roughing is off")), "with rest on nothing is said of it");
     // The other way round: the small tool first, the big one is no rest roughing.
-    let swapped = Job { operations: vec![op("small", 2), op("big", 1)], simulation: Simulation { verify: false, ..Simulation::default() }, ..job };
+    let swapped = Job { operations: vec![op("small", 2), op("big", 1)], simulation: Simulation { verify: false, ..Simulation::default() }, ..job.clone() };
     let out = job::run(&swapped, demo_part(), &mut Progress::none()).unwrap();
     assert!(out.operations.iter().all(|o| o.rest_after.is_empty()));
+    // Rest roughing off: the small tool plans against the stock as it came, so it cuts the
+    // air the big one cleared again (a longer path, said), takes what the rest pass took (a
+    // little more: it skips no scrap thinner than the rest pass's reach) and is no rest
+    // roughing in its report.
+    let mut off = job.clone();
+    let Operation::RoughZlevel(o) = &mut off.operations[1] else { unreachable!() };
+    o.roughing.rest = false;
+    let whole = job::run(&off, demo_part(), &mut Progress::none()).unwrap();
+    clean(&whole);
+    let again = &whole.operations[1];
+    assert!(again.rest_after.is_empty() && !again.describe().contains("rest roughing"), "{}", again.describe());
+    assert!(again.feed_length > 1.5 * small.feed_length, "rest off fed {:.0} mm, rest on {:.0} mm", again.feed_length, small.feed_length);
+    let (c, d) = (again.removed.unwrap(), small.removed.unwrap());
+    assert!(c >= 0.99 * d && c < 1.1 * d, "rest off took {c:.0} mm³, rest on {d:.0} mm³");
+    assert!(whole.warnings.iter().any(|w| w.operation.as_deref() == Some("small") && w.message.starts_with("rest roughing is off")), "{:?}", whole.warnings);
+    // The first operation has nothing before it: rest off changes nothing there.
+    let mut first_off = job.clone();
+    let Operation::RoughZlevel(o) = &mut first_off.operations[0] else { unreachable!() };
+    o.roughing.rest = false;
+    let first = job::run(&first_off, demo_part(), &mut Progress::none()).unwrap();
+    assert_eq!(first.operations[0].feed_length, big.feed_length);
+    assert!(!first.warnings.iter().any(|w| w.message.starts_with("rest roughing is off")));
 }

@@ -240,6 +240,19 @@ fn with_nothing_picked_a_sign_carves_its_letters_not_its_background() {
         }
     }
     assert!(inside > 50_000 && outside > 100_000, "{inside} cells inside, {outside} outside");
+    // The warning offers the letters' loops to pick (the page's "pick these" button): picked,
+    // they carve the same, and nothing is said.
+    let offered = out.warnings.iter().find(|w| !w.loops.is_empty()).map(|w| w.loops.clone()).expect("loops offered");
+    assert!(!offered.contains(&0) && offered.len() >= 3, "{offered:?}");
+    let (mut chosen, _) = carving(VCarve { loops: offered.clone(), ..VCarve::default() });
+    chosen.simulation.verify = false;
+    let again = job::run(&chosen, drawing.clone(), &mut Progress::none()).expect("carved");
+    assert_eq!(
+        again.gcode.lines().filter(|l| !l.starts_with('(')).collect::<Vec<_>>(),
+        out.gcode.lines().filter(|l| !l.starts_with('(')).collect::<Vec<_>>(),
+        "loops {offered:?} picked carve otherwise"
+    );
+    assert!(!again.warnings.iter().any(|w| w.to_string().contains("no loops picked")), "{:?}", again.warnings);
     // Picked, the background is carved (flat, as deep as the cone goes), as asked.
     let (mut picked, _) = carving(VCarve { loops: vec![0], ..VCarve::default() });
     picked.simulation.verify = false;

@@ -1,7 +1,7 @@
 // Generate, cancel and download, and what a run gives back: the view of its paths, the
 // summary with the cycle time's breakdown, the warnings (amber, with their places) and errors
 // (red), the program in its pane, its simulation; the job, the project and the post as files.
-import { $, state, hooks, job, store, buildJob, is2d, isEither, allOps, hasSetups, setupIndex, clock, clockFormat, downloadText } from './state.js';
+import { $, state, hooks, job, ops, store, buildJob, is2d, isEither, allOps, hasSetups, setupIndex, clock, clockFormat, downloadText } from './state.js';
 import { fillFields, message, check, answered, problemWords } from './forms.js';
 import { opColor, toolColor, cssColor, RAPID_COLOR, MARK_COLORS } from './viewer.js';
 import { sim, showSimulation, showRestAreas } from './simulation.js';
@@ -160,14 +160,41 @@ function summaryTable(s, computed) {
 function showWarnings(s) {
   const el = $('warnings');
   el.replaceChildren();
-  const line = (text, cls) => { const d = document.createElement('div'); d.className = cls; d.textContent = text; el.append(d); };
+  const line = (text, cls) => { const d = document.createElement('div'); d.className = cls; d.textContent = text; el.append(d); return d; };
   if (s.problem) line(`Not safe to run: ${units.words(s.problem)}`, 'error');
-  for (const w of s.warnings) line(units.words(w.operation ? `${w.operation}: ${w.message}` : w.message), w.level === 'note' ? 'note' : 'warning');
+  for (const w of s.warnings) {
+    const d = line(units.words(w.operation ? `${w.operation}: ${w.message}` : w.message), w.level === 'note' ? 'note' : 'warning');
+    // The loops an operation chose by itself, offered to pick (a V-carve with none picked).
+    if (w.operation && w.loops?.length) {
+      const b = document.createElement('button');
+      b.type = 'button';
+      b.className = 'pick-offered';
+      b.textContent = `pick these ${w.loops.length} loops`;
+      b.title = 'make the loops it carved the operation\'s own: then click a loop in the view to add or drop it';
+      b.addEventListener('click', () => pickOffered(w.operation, w.loops));
+      d.append(' ', b);
+    }
+  }
   const amber = s.warnings.filter((w) => w.level !== 'note').length;
   const count = $('warning-count');
   count.textContent = s.problem ? '!' : amber ? String(amber) : '';
   count.className = s.problem ? 'error' : '';
   return amber;
+}
+
+// Makes `loops` the loops of the operation named `name` (of the list on show), selects it in
+// the operations' tab and shows them picked in the view.
+function pickOffered(name, loops) {
+  const list = ops(), k = list.findIndex((o) => o.name === name);
+  if (k < 0) { message(`There is no operation named ${name} in the list any more.`, 'warning'); return; }
+  list[k].loops = [...loops];
+  state.selected[state.kind] = k;
+  store();
+  hooks.fillAll?.();
+  hooks.changed?.();
+  document.querySelector('#tabs [data-tab="ops"]')?.click();
+  hooks.showPicked?.();
+  message(`${name}: loops ${loops.join(', ')} picked, the regions it carved; click a loop in the view to add or drop it.`, 'note');
 }
 
 export function resultTab(name) {
@@ -266,6 +293,8 @@ async function showResult(r, operations, computed) {
       () => {
         hooks.showPicked?.();
         if (r.octants.length) state.viewer?.setOctants(r.octants);
+        // The blocks' box only where there are blocks to show (octree roughing).
+        $('octants-box').hidden = !r.octants.length;
       },
     ],
     () => sim.pane?.set(r.gcodeBytes, r.lineStarts),

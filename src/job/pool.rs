@@ -211,7 +211,10 @@ impl Running {
     pub fn region_work(&mut self, progress: &mut Progress) -> Result<Option<RegionWork>> {
         let Some(&k) = self.enabled.get(self.next) else { return Ok(None) };
         self.ctx.operation = k;
-        self.job.operations[k].op().region_work(&mut self.ctx, progress)
+        let live = self.as_came_for(k);
+        let work = self.job.operations[k].op().region_work(&mut self.ctx, progress);
+        self.back_to(live);
+        work
     }
 
     /// [`Prepared::level_regions`], by the planner of a pool as it plans.

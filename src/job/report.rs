@@ -286,10 +286,11 @@ pub fn per_operation(
             }
         })
         .collect();
-    // Rest roughing: a roughing after operations that removed material with larger tools.
+    // Rest roughing: a roughing after operations that removed material with larger tools, that
+    // plans against what they left.
     let diameter = |t: u32| job.tools.iter().find(|x| x.number == t).map_or(0.0, |x| x.cutter.diameter);
     for n in 0..reports.len() {
-        if !job.operations[reports[n].index].is_roughing() {
+        if !job.operations[reports[n].index].roughing().is_some_and(|r| r.rest) {
             continue;
         }
         let mine = reports[n].tools.iter().map(|&t| diameter(t)).fold(f64::INFINITY, f64::min);

@@ -378,6 +378,8 @@ impl Prepared {
         self.give_passes();
         let Prepared { job, ctx, warnings, .. } = self;
         let enabled: Vec<usize> = (0..job.operations.len()).filter(|&k| job.operations[k].op().enabled()).collect();
+        // The setup's stock as it came, kept for roughings with rest roughing off after others.
+        let as_came = enabled.iter().skip(1).any(|&k| !job.operations[k].takes_what_is_left()).then(|| ctx.sim.clone());
         Running {
             job,
             ctx,
@@ -396,6 +398,7 @@ impl Prepared {
             pending: Vec::new(),
             bands_out: 0,
             holders: Vec::new(),
+            as_came,
         }
     }
 }
@@ -430,6 +433,9 @@ pub struct Running {
     pub(super) bands_out: usize,
     /// Each tool's holder's bound over the part, made as its paths ask ([`Running::keep_holders_out`]).
     pub(super) holders: Vec<(u32, Option<crate::machining::holders::HolderBound>)>,
+    /// The setup's stock as it came, before any operation cut it, where a roughing with rest
+    /// roughing off plans against it.
+    pub(super) as_came: Option<Simulator>,
 }
 
 impl Running {
@@ -456,10 +462,14 @@ impl Running {
         self.next += 1;
         let (plan_share, _) = self.shares();
         let count = self.enabled.len() as f64;
-        let o = self.job.operations[k].op();
-        progress.frame(n as f64 / count, plan_share / count, Some(o.name()));
+        progress.frame(n as f64 / count, plan_share / count, Some(self.job.operations[k].name()));
         self.ctx.operation = k;
+        let live = self.as_came_for(k);
+        let o = self.job.operations[k].op();
         let planned = o.plan(&mut self.ctx, progress);
+        if let Some(live) = live {
+            self.ctx.sim = live;
+        }
         // Regions a pool made were for this operation only.
         self.ctx.given_regions.clear();
         let round = o.plans_round_fixtures();
@@ -483,6 +493,27 @@ impl Running {
             self.settle(moves);
         }
         Ok(true)
+    }
+
+    /// For operation `k` with rest roughing off after earlier operations: the in-process stock,
+    /// taken out of the context, where the setup's stock as it came stands while it plans
+    /// ([`Running::back_to`] puts it back). It is said once.
+    pub(super) fn as_came_for(&mut self, k: usize) -> Option<Simulator> {
+        let first = self.enabled.first() == Some(&k);
+        let raw = self.as_came.as_ref().filter(|_| !first && !self.job.operations[k].takes_what_is_left())?.clone();
+        let name = self.job.operations[k].name().to_owned();
+        let said = "rest roughing is off: it plans against the setup's stock as it came, so it cuts again through what the earlier operations cleared (air)";
+        if !self.ctx.warnings.iter().any(|w| w.operation.as_deref() == Some(name.as_str()) && w.message == said) {
+            self.ctx.note(&name, said);
+        }
+        Some(std::mem::replace(&mut self.ctx.sim, raw))
+    }
+
+    /// Puts the in-process stock [`Running::as_came_for`] took back into the context.
+    pub(super) fn back_to(&mut self, live: Option<Simulator>) {
+        if let Some(live) = live {
+            self.ctx.sim = live;
+        }
     }
 
     /// Keeps operation `k`'s `paths` clear of the fixtures where it planned without them

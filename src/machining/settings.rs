@@ -114,13 +114,20 @@ pub struct Roughing {
     pub grid: f64,
     /// Steepest descent of helices and ramps (degrees). Default value: 3.
     pub ramp_angle: f64,
+    /// Rest roughing: plan against what the earlier operations left (the in-process stock),
+    /// so that after a larger tool only its leftovers are cut and no air it cleared; off, plan
+    /// against the setup's stock as it came, as if nothing had been cut. Default value: true.
+    pub rest: bool,
 }
 
 impl Default for Roughing {
     fn default() -> Self {
-        Roughing { allowance: 0.5, leave_stock: 0.5, direction: Direction::Climb, grid: 0.25, ramp_angle: 3.0 }
+        Roughing { allowance: 0.5, leave_stock: 0.5, direction: Direction::Climb, grid: 0.25, ramp_angle: 3.0, rest: true }
     }
 }
+
+/// What a roughing's form says of rest roughing, its `rest` box.
+pub const REST_HINT: &str = "Rest roughing (on by default): after a larger tool it cuts only what that tool left (the in-process stock), never the air it cleared; the results say what it took. Off, it plans against the setup's stock as it came.";
 
 /// The first fields of a one-tool roughing's form: its name and tool, its steps, what it
 /// leaves and how it cuts, and whether it cuts the flats.
@@ -134,8 +141,15 @@ pub fn roughing_form() -> Vec<FormField> {
 
 impl Roughing {
     /// Their fields in a roughing's form.
-    pub fn fields() -> [FormField; 5] {
-        [FormField::length("allowance", "Leave on floors", 0.0), FormField::length("leaveStock", "Leave on walls", 0.0), FormField::direction(), FormField::grid(), FormField::ramp_angle()]
+    pub fn fields() -> [FormField; 6] {
+        [
+            FormField::length("allowance", "Leave on floors", 0.0),
+            FormField::length("leaveStock", "Leave on walls", 0.0),
+            FormField::direction(),
+            FormField::grid(),
+            FormField::ramp_angle(),
+            FormField::check("rest", "rest roughing: only what earlier operations left"),
+        ]
     }
 
     /// Checks the settings, each named as the job file names it.

@@ -188,10 +188,22 @@ impl Operation {
         self.op().allowance()
     }
 
-    /// Whether it roughs a part (after a larger tool it is rest roughing: each cuts only
-    /// what the in-process stock still holds).
-    pub fn is_roughing(&self) -> bool {
-        matches!(self, Operation::RoughZlevel(_) | Operation::RoughZigzag(_) | Operation::RoughAdaptive(_) | Operation::RoughOctree(_))
+    /// A roughing kind's settings of what it leaves and how it cuts.
+    pub fn roughing(&self) -> Option<&crate::machining::settings::Roughing> {
+        match self {
+            Operation::RoughZlevel(o) => Some(&o.roughing),
+            Operation::RoughZigzag(o) => Some(&o.roughing),
+            Operation::RoughAdaptive(o) => Some(&o.roughing),
+            Operation::RoughOctree(o) => Some(&o.roughing),
+            _ => None,
+        }
+    }
+
+    /// Whether it plans against the in-process stock, what earlier operations left: every
+    /// kind but a roughing with rest roughing off, which plans against the setup's stock as it
+    /// came.
+    pub fn takes_what_is_left(&self) -> bool {
+        self.roughing().is_none_or(|r| r.rest)
     }
 }
 

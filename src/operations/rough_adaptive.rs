@@ -79,7 +79,7 @@ impl Operate for RoughAdaptive {
             F::length("helixRadius", "Helix radius", 0.01).empty("0.4 × the tool's diameter"),
         ]);
         OperationForm::new("adaptive clearing", fields).hint(
-            "The tool stays at the engagement of the optimal load all along: a light cut at a deep step-down, spiralling out from a helix, looping into corners instead of slotting. After a larger tool it cuts only what that tool left.",
+            "The tool stays at the engagement of the optimal load all along: a light cut at a deep step-down, spiralling out from a helix, looping into corners instead of slotting. With rest roughing on (the default), after a larger tool it cuts only what that tool left.",
         )
     }
 

@@ -119,7 +119,7 @@ impl Operate for RoughOctree {
         ];
         fields.extend(Roughing::fields());
         OperationForm::new("rough with several tools (picks them)", fields)
-            .hint("Picks its tools from the library: the largest that gets into the material goes first, smaller ones clear what it left, and the last takes what remains around the part. After a larger tool of another operation it is rest roughing: it cuts only what that tool left.")
+            .hint("Picks its tools from the library: the largest that gets into the material goes first, smaller ones clear what it left, and the last takes what remains around the part. After a larger tool of another operation, with rest roughing on (the default), it cuts only what that tool left.")
     }
 
     fn name(&self) -> &str {

@@ -278,8 +278,7 @@ impl Operate for RoughZigzag {
             F::length("sampling", "Load sampled along the passes every", 0.001).empty("half the step-over"),
             F::length("pixel", "Load map's pixel", 0.001).empty("the step-over / 24"),
         ]);
-        OperationForm::new("rough by zigzag passes (even load)", fields)
-            .hint("Rest roughing: after a larger tool it cuts only what that tool left (the in-process stock), never the air it cleared; the results say what it took.")
+        OperationForm::new("rough by zigzag passes (even load)", fields).hint(crate::machining::settings::REST_HINT)
     }
 
     fn stepdown(&self) -> Option<f64> {

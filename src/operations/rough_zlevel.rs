@@ -63,8 +63,7 @@ impl Operate for RoughZlevel {
             F::choice("order", "Order", &[("regions", "each pocket down to its floor"), ("levels", "level by level")]),
             F::length("helixRadius", "Helix radius", 0.01).empty("0.4 × the tool's diameter"),
         ]);
-        OperationForm::new("rough in levels", fields)
-            .hint("Rest roughing: after a larger tool it cuts only what that tool left (the in-process stock), never the air it cleared; the results say what it took.")
+        OperationForm::new("rough in levels", fields).hint(crate::machining::settings::REST_HINT)
     }
 
     fn stepdown(&self) -> Option<f64> {

@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::drawing::medial::{medial_axis, Branch};
 use crate::drawing::{Loop, Shape};
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, Warning};
 use crate::machining::path2d::{arc_lengths, follow, nearest_end, start_nearest, Heights};
 use crate::machining::report::SheetCut;
 use crate::machining::rings::{clear_down, Clearing, RingSetup};
@@ -113,9 +113,10 @@ impl Operate for VCarve {
         let c_max = tip + deepest * tan;
         let region = if self.loops.is_empty() && self.max_depth.is_none() {
             let reach = format!("wider than T{}'s cone reaches at {deepest:.3} mm", tool.number);
-            let (region, note) = carvable(&walls.shape, &walls.index, c_max, &reach, ctx);
+            let (region, carved, note) = carvable(&walls.shape, &walls.index, c_max, &reach, ctx);
             if let Some(note) = note {
-                ctx.warn(&self.name, format!("no loops picked: {note}; pick loops (Loops) to carve such regions, flat with maxDepth and a flatTool"));
+                let said = format!("no loops picked: {note}; pick loops (Loops) to carve such regions, flat with maxDepth and a flatTool");
+                ctx.warnings.push(Warning::of(&self.name, said).offering(carved));
             }
             region
         } else {
@@ -208,9 +209,10 @@ impl Operate for VCarve {
 /// clearance at the deepest it may go) and the odd ones leave less such area, those at odd
 /// depths: on a sign of letters drawn on a background rectangle, the letters. Of the chosen
 /// regions only those the cone reaches across are kept, and the note names the rest by their
-/// drawing index (`index`) and size, and why (`reach`). Where no region is narrow enough, the drawing as it is
-/// (carved flat, with the operation's own warning).
-fn carvable(shape: &Shape, index: &[usize], c_max: f64, reach: &str, ctx: &Context) -> (Shape, Option<String>) {
+/// drawing index (`index`) and size, and why (`reach`); the kept regions' outer loops come
+/// with it by drawing index (picked, they carve the same). Where no region is narrow enough,
+/// the drawing as it is (carved flat, with the operation's own warning).
+fn carvable(shape: &Shape, index: &[usize], c_max: f64, reach: &str, ctx: &Context) -> (Shape, Vec<usize>, Option<String>) {
     let parents = shape.parents();
     let mut depth = vec![0usize; parents.len()];
     for (i, d) in depth.iter_mut().enumerate() {
@@ -231,12 +233,12 @@ fn carvable(shape: &Shape, index: &[usize], c_max: f64, reach: &str, ctx: &Conte
     let wide = |parity: usize| -> f64 { (0..regions.len()).filter(|&i| depth[i] % 2 == parity && !reached[i]).map(|i| regions[i].area().abs()).sum() };
     let (even, odd) = (wide(0), wide(1));
     if even == 0.0 {
-        return (shape.clone(), None);
+        return (shape.clone(), Vec::new(), None);
     }
     let parity = usize::from(odd < even);
     let kept: Vec<usize> = (0..regions.len()).filter(|&i| depth[i] % 2 == parity && reached[i]).collect();
     if kept.is_empty() {
-        return (shape.clone(), None);
+        return (shape.clone(), Vec::new(), None);
     }
     let named = |want: usize| -> String {
         let list: Vec<String> = (0..regions.len())
@@ -255,7 +257,7 @@ fn carvable(shape: &Shape, index: &[usize], c_max: f64, reach: &str, ctx: &Conte
         format!("carved the {} regions the V-bit reaches across; left {}: {reach}", kept.len(), named(0))
     };
     let loops: Vec<Loop> = kept.iter().flat_map(|&i| regions[i].loops.clone()).collect();
-    (Shape::from_oriented(loops), Some(note))
+    (Shape::from_oriented(loops), kept.iter().map(|&i| index[i]).collect(), Some(note))
 }
 
 /// The flat floor's moves: the floor (the region shrunk by the clearance at the full depth)

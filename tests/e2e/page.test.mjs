@@ -661,12 +661,53 @@ test('rest areas: a rest finish\'s row in the legend scrubs to where it starts a
   assert.match(await page.textContent('#rest-area'), /mm² left/);
   await frame(page);
   await shoot(page, 'rest-areas');
+  // The simulation's bar keeps to one line at 1280 px with the area shown.
+  await page.setViewportSize({ width: 1280, height: 720 });
+  await frame(page);
+  const centres = await page.evaluate(() => [...document.querySelectorAll('.simbar > *')].filter((e) => e.getClientRects().length).map((e) => { const r = e.getBoundingClientRect(); return r.top + r.height / 2; }));
+  assert.ok(Math.max(...centres) - Math.min(...centres) < 4, `the simulation bar wraps at 1280 px: centres ${centres.map(Math.round)}`);
   // The roughing's allowance lies over most of the part; the finish takes it.
   await page.evaluate(() => { const s = document.getElementById('scrub'); s.value = s.max; s.dispatchEvent(new Event('input')); });
   await page.waitForFunction((k) => Number(document.body.dataset.restAreaAt) > k, start);
   const after = Number(await page.evaluate(() => document.body.dataset.restArea));
   assert.ok(before > 1000, `${before} mm² left after the roughing`);
   assert.ok(after < 0.5 * before, `${after} mm² left after the rest finish, ${before} before`);
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
+test('rest roughing in the page: a smaller tool\'s roughing after the sample\'s is rest roughing by default, named so with what it took; turned off, it plans against the stock as it came, cuts longer and says so', async () => {
+  const { page, context, errors } = await openPage();
+  await tab(page, 'tools');
+  const small = await addTool(page, 'flat', 3, 20);
+  await afterRoughing(page, 'roughZlevel', small);
+  assert.equal(await page.isChecked('input[name=op-rest]'), true, 'rest roughing is on by default');
+  assert.match(await page.textContent('#op-editor'), /Rest roughing \(on by default\)/);
+  await page.fill('input[name=op-grid]', '0.5');
+  await page.fill('input[name=op-stepdown]', '3');
+  await page.click('#generate');
+  await generated(page);
+  await shoot(page, 'rest-roughing');
+  const stats = await page.textContent('#stats');
+  assert.match(stats, /rest roughing after T1: \S+ \S+ removed/, stats);
+  const rest = await page.evaluate(() => window.swarf.summary.s.operations[1]);
+  assert.ok(rest.removed > 0 && rest.restAfter.length === 1, JSON.stringify(rest.restAfter));
+  assert.doesNotMatch(await page.textContent('#warnings'), /rest roughing is off/);
+  // Off: the same tool plans against the stock as it came, cutting the air the φ6 cleared.
+  await tab(page, 'ops');
+  await page.uncheck('input[name=op-rest]');
+  await page.click('#generate');
+  await generated(page);
+  const whole = await page.evaluate(() => window.swarf.summary.s.operations[1]);
+  assert.equal(whole.restAfter.length, 0);
+  assert.ok(whole.feedLength > 1.5 * rest.feedLength, `rest off fed ${whole.feedLength} mm, rest on ${rest.feedLength} mm`);
+  assert.doesNotMatch(await page.textContent('#stats'), /rest roughing after/);
+  assert.match(await page.textContent('#warnings'), /rest roughing is off: it plans against the setup's stock as it came/);
+  const report = await page.textContent('#sim-report');
+  assert.match(report, /gouges: 0/);
+  assert.match(report, /rapid moves through stock: 0/);
+  // The setting is the job's: saved with it.
+  assert.equal(await page.evaluate(() => window.swarf.jobs[window.swarf.kind].operations[1].rest), false);
   assert.deepEqual(errors, []);
   await context.close();
 });
@@ -1619,6 +1660,42 @@ test('V-carving in the page: letters carved along their middle with a V-bit, fla
   await context.close();
 });
 
+
+test('a V-carve with nothing picked on a sign: the letters carved, the background left and said, and the letters offered to pick; picked by the button, the same carve, nothing said, the loops shown picked', async () => {
+  const { page, context, errors } = await openPage();
+  const svg = `<svg xmlns="http://www.w3.org/2000/svg" width="100mm" height="60mm" viewBox="0 0 100 60">
+    <rect x="0" y="0" width="100" height="60"/><rect x="5" y="5" width="40" height="8"/><path d="M 55 5 H 90 V 13 H 63 V 40 H 55 Z"/><circle cx="25" cy="38" r="10"/><circle cx="25" cy="38" r="5"/>
+  </svg>`;
+  await page.setInputFiles('#file', { name: 'sign.svg', mimeType: 'image/svg+xml', buffer: Buffer.from(svg) });
+  await page.waitForFunction(() => document.body.dataset.kind === 'drawing');
+  await tab(page, 'tools');
+  const vbit = await addTool(page, 'vBit', 12, 15);
+  await page.fill('input[name=pointAngle]', '90');
+  await soleOperation(page, 'vcarve', vbit);
+  await page.click('#generate');
+  await generated(page);
+  const warned = await page.textContent('#warnings');
+  assert.match(warned, /no loops picked: carved the \d+ regions inside loop \d+ \(100\.0 × 60\.0 mm\), not that background/, warned);
+  const button = page.locator('#warnings button.pick-offered');
+  assert.equal(await button.count(), 1);
+  assert.match(await button.textContent(), /pick these \d+ loops/);
+  const offered = await page.evaluate(() => window.swarf.summary.s.warnings.find((w) => w.loops.length).loops);
+  const moves = await page.evaluate(() => window.swarf.summary.s.moves);
+  await page.evaluate(() => { document.querySelector('#result-tabs [data-result="warnings"]').click(); });
+  await button.click();
+  await page.waitForFunction(() => /picked, the regions it carved/.test(document.getElementById('message').textContent));
+  assert.deepEqual(await page.evaluate(() => window.swarf.jobs[window.swarf.kind].operations[0].loops), offered);
+  assert.equal(await page.isVisible('#op-editor'), true, 'the operations tab is open on it');
+  await shoot(page, 'vcarve-picked');
+  await page.click('#generate');
+  await generated(page);
+  assert.doesNotMatch(await page.textContent('#warnings'), /no loops picked/);
+  assert.equal(await page.evaluate(() => window.swarf.summary.s.moves), moves, 'the picked letters carve as before');
+  assert.match(await page.textContent('#sim-report'), /gouges: 0/);
+  await downloadThroughRs274(page, 'vcarve-picked');
+  assert.deepEqual(errors, []);
+  await context.close();
+});
 
 test('3D carving with a V-bit: the sample part roughed, then raster-finished with a 60° V-bit from the library, clean, in a program rs274 runs', async () => {
   const { page, context, errors } = await openPage();

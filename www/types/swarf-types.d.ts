@@ -1830,7 +1830,13 @@ grid: number,
 /**
  * Steepest descent of helices and ramps (degrees). Default value: 3.
  */
-rampAngle: number, };
+rampAngle: number, 
+/**
+ * Rest roughing: plan against what the earlier operations left (the in-process stock),
+ * so that after a larger tool only its leftovers are cut and no air it cleared; off, plan
+ * against the setup's stock as it came, as if nothing had been cut. Default value: true.
+ */
+rest: boolean, };
 
 /**
  * Octree multi-tool roughing.
@@ -1882,7 +1888,13 @@ grid: number,
 /**
  * Steepest descent of helices and ramps (degrees). Default value: 3.
  */
-rampAngle: number, };
+rampAngle: number, 
+/**
+ * Rest roughing: plan against what the earlier operations left (the in-process stock),
+ * so that after a larger tool only its leftovers are cut and no air it cleared; off, plan
+ * against the setup's stock as it came, as if nothing had been cut. Default value: true.
+ */
+rest: boolean, };
 
 /**
  * Zigzag roughing (seed 004).
@@ -1956,7 +1968,13 @@ grid: number,
 /**
  * Steepest descent of helices and ramps (degrees). Default value: 3.
  */
-rampAngle: number, };
+rampAngle: number, 
+/**
+ * Rest roughing: plan against what the earlier operations left (the in-process stock),
+ * so that after a larger tool only its leftovers are cut and no air it cleared; off, plan
+ * against the setup's stock as it came, as if nothing had been cut. Default value: true.
+ */
+rest: boolean, };
 
 /**
  * Z-level roughing.
@@ -2015,7 +2033,13 @@ grid: number,
 /**
  * Steepest descent of helices and ramps (degrees). Default value: 3.
  */
-rampAngle: number, };
+rampAngle: number, 
+/**
+ * Rest roughing: plan against what the earlier operations left (the in-process stock),
+ * so that after a larger tool only its leftovers are cut and no air it cleared; off, plan
+ * against the setup's stock as it came, as if nothing had been cut. Default value: true.
+ */
+rest: boolean, };
 
 /**
  * One setup of a part machined from more than one side.
