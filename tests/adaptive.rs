@@ -110,7 +110,7 @@ fn the_engagement_measured_is_the_angle_of_the_tool_in_the_material() {
         sim.run(&moves, &swarf::geom::Tolerances::default(), &mut Progress::none(), 1.0).unwrap();
         let last = paths.last().unwrap().moves.len();
         let k = moves.len() - last;
-        EngagementReport::measure(EngagementTarget { angle: 1.0, climb }, &moves[k..], &sim.volumes()[k..], &sim.nearest()[k..], cell)
+        EngagementReport::measure(EngagementTarget { angle: 1.0, climb, levels: Vec::new() }, &moves[k..], &sim.volumes()[k..], &sim.nearest()[k..], cell)
     };
     let tools = [flat(1, 2.0 * r), flat(2, 16.0)];
     for ae in [0.3, 0.6, 1.5, 2.4] {

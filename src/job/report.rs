@@ -123,7 +123,7 @@ impl EngagementReport {
     /// and the nearest its path came to a cell it cut, on cells of side `cell`) against
     /// `target`.
     pub fn measure(target: EngagementTarget, moves: &[ProgramMove], volumes: &[f64], nearest: &[f64], cell: f64) -> EngagementReport {
-        let angles: Vec<Option<(f64, f64)>> = moves
+        let angles: Vec<Option<(f64, f64, f64)>> = moves
             .iter()
             .zip(volumes.iter().zip(nearest))
             .map(|(m, (&volume, &near))| {
@@ -143,23 +143,23 @@ impl EngagementReport {
                     }
                     _ => e / r,
                 };
-                Some((cos.clamp(0.0, 1.0).acos(), m.mv.length(m.from)))
+                Some((cos.clamp(0.0, 1.0).acos(), m.mv.length(m.from), target.at(m.mv.to().z)))
             })
             .collect();
-        let counted: Vec<(f64, f64)> = angles.iter().flatten().copied().collect();
+        let counted: Vec<(f64, f64, f64)> = angles.iter().flatten().copied().collect();
         let total = counted.iter().map(|c| c.1).sum::<f64>().max(1e-12);
         // (+ 0.0: an empty sum is −0.)
-        let share = |keep: &dyn Fn(f64) -> bool| counted.iter().filter(|c| keep(c.0)).map(|c| c.1).sum::<f64>() / total + 0.0;
+        let share = |keep: &dyn Fn(f64, f64) -> bool| counted.iter().filter(|c| keep(c.0, c.2)).map(|c| c.1).sum::<f64>() / total + 0.0;
         let mean = counted.iter().map(|c| c.0 * c.1).sum::<f64>() / total;
         let var = counted.iter().map(|c| (c.0 - mean).powi(2) * c.1).sum::<f64>() / total;
         EngagementReport {
             target: target.angle.to_degrees(),
-            within: share(&|a| (a - target.angle).abs() <= 0.1 * target.angle),
-            over: share(&|a| a > 1.3 * target.angle),
+            within: share(&|a, t| (a - t).abs() <= 0.1 * t),
+            over: share(&|a, t| a > 1.3 * t),
             peak: counted.iter().map(|c| c.0).fold(0.0, f64::max).to_degrees(),
             mean: mean.to_degrees(),
             spread: var.sqrt().to_degrees(),
-            moves: angles.iter().map(|a| a.map(|(a, _)| a.to_degrees() as f32)).collect(),
+            moves: angles.iter().map(|a| a.map(|(a, _, _)| a.to_degrees() as f32)).collect(),
         }
     }
 

@@ -29,13 +29,23 @@ pub struct Planned {
 }
 
 /// The engagement an operation holds.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct EngagementTarget {
     /// The angle of the tool's circle in the material (radians).
     pub angle: f64,
     /// Climb milling (the material on the right of the way the tool goes, as a spindle turning
     /// clockwise from above, M3, cuts it), else conventional (on the left).
     pub climb: bool,
+    /// Levels (height, angle) held at another angle: shallower than the load is set for, they
+    /// cut wider ([`crate::machining::adaptive::Adaptive::shallow_step`]).
+    pub levels: Vec<(f64, f64)>,
+}
+
+impl EngagementTarget {
+    /// The angle held at height `z`.
+    pub fn at(&self, z: f64) -> f64 {
+        self.levels.iter().find(|l| (l.0 - z).abs() < 1e-6).map_or(self.angle, |l| l.1)
+    }
 }
 
 impl From<Vec<Toolpath>> for Planned {

@@ -212,9 +212,21 @@ pub struct Clearing {
     /// Steepest descent of helices and ramps (radians).
     pub ramp_angle: f64,
     pub helix_r: f64,
+    /// The depth adaptive clearing's load is set for (its step-down): a shallower level cuts
+    /// wider, the same cross-section ([`crate::machining::adaptive::Adaptive::shallow_step`]);
+    /// none, every level at `step`.
+    pub depth: Option<f64>,
 }
 
 impl Clearing {
+    /// The step of a level from `z_prev` down to `z` with a tool of radius `r`.
+    pub fn step_between(&self, z_prev: f64, z: f64, r: f64) -> f64 {
+        match self.depth {
+            Some(full) if self.pattern == PocketPattern::Adaptive => crate::machining::adaptive::Adaptive::shallow_step(self.step, full, z_prev - z, r),
+            _ => self.step,
+        }
+    }
+
     /// Refuses a helical entry that would turn more than [`crate::limits::MAX_TURNS`] times to
     /// descend `descent` (mm; a level's step-down), naming the operation `op` and the radius.
     pub fn check_helix(&self, op: &str, descent: f64) -> crate::error::Result<()> {
@@ -228,7 +240,7 @@ impl Clearing {
     /// As a pocket clears by default, with a tool of radius `r`: climb, entered on a helix
     /// (0.8 r) or a 3° ramp, zigzag passes along X with the load held by the path.
     pub fn plain(step: f64, r: f64, pattern: PocketPattern) -> Clearing {
-        Clearing { step, climb: true, pattern, angle: 0.0, load: LoadControl::Path, load_tolerance: 0.1, entry: EntryKind::Helix, ramp_angle: 3f64.to_radians(), helix_r: 0.8 * r }
+        Clearing { step, climb: true, pattern, angle: 0.0, load: LoadControl::Path, load_tolerance: 0.1, entry: EntryKind::Helix, ramp_angle: 3f64.to_radians(), helix_r: 0.8 * r, depth: None }
     }
 }
 
@@ -290,6 +302,8 @@ pub fn clear_rings_at_feed<'m>(levels: &[Shape], clearing: &Clearing, z_prev: f6
     let mut job = Refeed { bounds: Rect::EMPTY, z, stock: stock.model(), profile: *stock.profile(), feed: s.cursor.air_feed, cutting: s.feed, from: s.cursor.at, moves: Vec::new() };
     let Some(boundary) = levels.first() else { return job };
     job.bounds = boundary.bounds().expand(s.tool_radius);
+    // A level shallower than adaptive clearing's load is set for cuts wider.
+    let clearing = &Clearing { step: clearing.step_between(z_prev, z, s.tool_radius), ..*clearing };
     // Cut only where the in-process stock has material, from where it starts.
     let Some(z_prev) = s.cursor.material_top(levels.iter().flat_map(|l| l.segments()), z_prev, z, s.tol.gouge) else { return job };
     s.cursor.safe = s.cursor.safe.min(z_prev + s.cursor.gap);

@@ -98,6 +98,7 @@ fn clearing(op: &Pocket2d, r: f64) -> Clearing {
         entry: op.entry,
         ramp_angle: op.ramp_angle.clamp(0.1, 90.0).to_radians(),
         helix_r: op.helix_radius.unwrap_or(0.8 * r),
+        depth: None,
     }
 }
 
@@ -174,6 +175,7 @@ impl Operate for Pocket2d {
         let engagement = (self.pattern == PocketPattern::Adaptive).then(|| crate::machining::report::EngagementTarget {
             angle: crate::machining::adaptive::Adaptive::angle_of((2.0 * r * self.stepover_fraction).min(2.0 * r), r),
             climb: self.direction == Direction::Climb,
+            levels: Vec::new(),
         });
         Ok(Planned { paths: vec![sheet::toolpath(&self.name, &tool, moves, ctx.heights.clearance)], cuts, engagement, ..Planned::default() })
     }

@@ -6,6 +6,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::Result;
+use crate::machining::adaptive::Adaptive;
 use crate::machining::levels::{level_work, LevelRoughing};
 use crate::machining::settings::{Order, PocketPattern, Roughing, Steps};
 use crate::machining::{named_operation, Context, FieldError, Operate, Planned};
@@ -79,7 +80,7 @@ impl Operate for RoughAdaptive {
             F::length("helixRadius", "Helix radius", 0.01).empty("0.4 × the tool's diameter"),
         ]);
         OperationForm::new("adaptive clearing", fields).hint(
-            "The tool stays at the engagement of the optimal load all along: a light cut at a deep step-down, spiralling out from a helix, looping into corners instead of slotting. With rest roughing on (the default), after a larger tool it cuts only what that tool left.",
+            "The tool stays at the engagement of the optimal load all along: a light cut at a deep step-down, spiralling out from a helix, looping into corners instead of slotting; a level shallower than the step-down (a flat, the last) cuts wider by as much. With rest roughing on (the default), after a larger tool it cuts only what that tool left.",
         )
     }
 
@@ -102,8 +103,11 @@ impl Operate for RoughAdaptive {
         let levels = self.levels();
         let Some(cut) = levels.levels_to_cut(ctx, progress)? else { return Ok(Planned::default()) };
         let r = ctx.tool(&self.name, self.tool)?.cutter.radius();
-        let angle = crate::machining::adaptive::Adaptive::angle_of((2.0 * r * self.stepover_fraction).min(2.0 * r), r);
-        let engagement = Some(crate::machining::report::EngagementTarget { angle, climb: self.roughing.direction == crate::machining::settings::Direction::Climb });
+        let ae = (2.0 * r * self.stepover_fraction).min(2.0 * r);
+        let angle = Adaptive::angle_of(ae, r);
+        // The levels shallower than the step-down, held wider.
+        let shallow = cut.levels.iter().map(|l| (l.z, Adaptive::shallow_step(ae, self.stepdown, l.z_prev - l.z, r))).filter(|l| l.1 > ae).map(|(z, wide)| (z, Adaptive::angle_of(wide, r))).collect();
+        let engagement = Some(crate::machining::report::EngagementTarget { angle, climb: self.roughing.direction == crate::machining::settings::Direction::Climb, levels: shallow });
         Ok(Planned { engagement, ..vec![levels.clear(ctx, cut, progress)?].into() })
     }
 }
