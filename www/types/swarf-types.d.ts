@@ -2657,7 +2657,13 @@ count: number,
 /**
  * The first of them (x, y, z in mm, as placed), at most [`Warning::KEPT`].
  */
-places: Array<[number, number, number]>, };
+places: Array<[number, number, number]>, 
+/**
+ * Loops of the drawing (by index) the operation offers to pick, where it chose what to
+ * cut by itself (a V-carve with none picked: the regions it carved), for the user to make
+ * the choice their own and change it.
+ */
+loops: Array<number>, };
 
 /**
  * The work offsets a control has beyond `G54` to `G59`.
