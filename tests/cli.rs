@@ -440,3 +440,25 @@ fn tools_reads_a_library_machinists_keep() {
     let out = swarf(&["tools", lib.to_str().unwrap(), bit.to_str().unwrap(), "--to", "freecad"]);
     assert!(!out.status.success() && String::from_utf8_lossy(&out.stderr).contains("give the folder with --out"));
 }
+
+/// A note for the record (a roughing with rest roughing off, after another) is said as a note,
+/// a warning as a warning.
+#[test]
+fn a_note_is_said_as_a_note() {
+    let dir = demo("note");
+    let mut job: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.join("demo.json")).unwrap()).unwrap();
+    let mut again = job["operations"][0].clone();
+    assert_eq!(again["kind"], "roughZlevel");
+    again["name"] = "again".into();
+    again["rest"] = false.into();
+    again["grid"] = 0.5.into();
+    job["operations"] = serde_json::json!([job["operations"][0].clone(), again]);
+    job["simulation"]["verify"] = false.into();
+    let file = dir.join("again.json");
+    std::fs::write(&file, job.to_string()).unwrap();
+    let out = swarf(&["run", "-q", file.to_str().unwrap(), dir.join("demo.stl").to_str().unwrap(), "-o", dir.join("again.ngc").to_str().unwrap()]);
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{said}");
+    assert!(said.lines().any(|l| l.starts_with("note: again: rest roughing is off")), "{said}");
+    assert!(!said.contains("warning: again: rest roughing is off"), "{said}");
+}

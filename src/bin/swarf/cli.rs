@@ -623,7 +623,9 @@ fn run_job(job: &Job, workpiece: impl Into<Workpiece>, output: &Path, options: R
             eprintln!("{}:", path.display());
         }
         for w in &out.warnings {
-            eprintln!("warning: {w}");
+            // A note for the record is said as one, not as a warning.
+            let what = if w.level == swarf::error::Level::Note { "note" } else { "warning" };
+            eprintln!("{what}: {w}");
         }
         if out.operations.len() > 1 || out.feeds.is_some() || out.operations.iter().any(|o| o.stages.is_some() || o.load.is_some() || o.engagement.is_some()) {
             for r in &out.operations {
