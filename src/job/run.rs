@@ -465,14 +465,16 @@ impl Running {
         progress.frame(n as f64 / count, plan_share / count, Some(self.job.operations[k].name()));
         self.ctx.operation = k;
         let live = self.as_came_for(k);
+        if live.is_some() {
+            let name = self.job.operations[k].name().to_owned();
+            self.ctx.note(&name, "rest roughing is off: it plans against the setup's stock as it came, so it cuts again through what the earlier operations cleared (air)");
+        }
         let o = self.job.operations[k].op();
         let planned = o.plan(&mut self.ctx, progress);
-        if let Some(live) = live {
-            self.ctx.sim = live;
-        }
+        let round = o.plans_round_fixtures();
+        self.back_to(live);
         // Regions a pool made were for this operation only.
         self.ctx.given_regions.clear();
-        let round = o.plans_round_fixtures();
         let Planned { mut paths, cuts, grooves, load, stages, octants, engagement } = planned?;
         if !round {
             self.keep_clear(k, &mut paths);
@@ -496,16 +498,11 @@ impl Running {
     }
 
     /// For operation `k` with rest roughing off after earlier operations: the in-process stock,
-    /// taken out of the context, where the setup's stock as it came stands while it plans
-    /// ([`Running::back_to`] puts it back). It is said once.
+    /// taken out of the context, where the setup's stock as it came stands while it plans (or
+    /// makes its regions for a pool); [`Running::back_to`] puts it back.
     pub(super) fn as_came_for(&mut self, k: usize) -> Option<Simulator> {
         let first = self.enabled.first() == Some(&k);
         let raw = self.as_came.as_ref().filter(|_| !first && !self.job.operations[k].takes_what_is_left())?.clone();
-        let name = self.job.operations[k].name().to_owned();
-        let said = "rest roughing is off: it plans against the setup's stock as it came, so it cuts again through what the earlier operations cleared (air)";
-        if !self.ctx.warnings.iter().any(|w| w.operation.as_deref() == Some(name.as_str()) && w.message == said) {
-            self.ctx.note(&name, said);
-        }
         Some(std::mem::replace(&mut self.ctx.sim, raw))
     }
 

@@ -223,7 +223,7 @@ impl LevelRoughing {
             entry: EntryKind::Helix,
             ramp_angle: self.roughing.ramp_angle.clamp(0.1, 89.0).to_radians(),
             helix_r: self.helix_radius.unwrap_or(0.4 * 2.0 * r).min(0.95 * r),
-            depth: Some(self.steps.stepdown),
+            depth: (self.pattern == PocketPattern::Adaptive).then_some(self.steps.stepdown),
         };
         clearing.check_helix(&self.name, self.steps.stepdown)?;
         let clearance = ctx.heights.clearance;

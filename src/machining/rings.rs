@@ -214,17 +214,14 @@ pub struct Clearing {
     pub helix_r: f64,
     /// The depth adaptive clearing's load is set for (its step-down): a shallower level cuts
     /// wider, the same cross-section ([`crate::machining::adaptive::Adaptive::shallow_step`]);
-    /// none, every level at `step`.
+    /// none (every other pattern), every level at `step`.
     pub depth: Option<f64>,
 }
 
 impl Clearing {
     /// The step of a level from `z_prev` down to `z` with a tool of radius `r`.
     pub fn step_between(&self, z_prev: f64, z: f64, r: f64) -> f64 {
-        match self.depth {
-            Some(full) if self.pattern == PocketPattern::Adaptive => crate::machining::adaptive::Adaptive::shallow_step(self.step, full, z_prev - z, r),
-            _ => self.step,
-        }
+        self.depth.map_or(self.step, |full| crate::machining::adaptive::Adaptive::shallow_step(self.step, full, z_prev - z, r))
     }
 
     /// Refuses a helical entry that would turn more than [`crate::limits::MAX_TURNS`] times to
