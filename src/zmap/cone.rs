@@ -263,14 +263,17 @@ pub(super) fn vertex_reaches(mesh: &Mesh, kinds: &[(EdgeFaces, EdgeKind)], up: &
 }
 
 /// An edge that may be the highest contact somewhere: its ends, the box of tip positions over
-/// which it can decide (its normal cone's offsets, grown by [`REGION_MARGIN`]), and the first
-/// face it belongs to.
+/// which it can decide (its normal cone's offsets, grown by [`REGION_MARGIN`]), those offsets
+/// themselves (the tip stands at a point of the edge plus one of them), and the first face it
+/// belongs to.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct EdgeRegion {
     pub p: DVec3,
     pub q: DVec3,
     pub lo: DVec2,
     pub hi: DVec2,
+    pub offset_lo: DVec2,
+    pub offset_hi: DVec2,
     pub face: u32,
 }
 
@@ -292,9 +295,10 @@ pub(super) fn edge_regions(mesh: &Mesh, kinds: &[(EdgeFaces, EdgeKind)], profile
                 EdgeKind::Other => (DVec2::splat(-profile.radius), DVec2::splat(profile.radius)),
             };
             let (p, q) = (v[e.edge[0] as usize], v[e.edge[1] as usize]);
-            let lo = p.truncate().min(q.truncate()) + offset_lo - margin;
-            let hi = p.truncate().max(q.truncate()) + offset_hi + margin;
-            Some(EdgeRegion { p, q, lo, hi, face: e.faces[0] })
+            let (offset_lo, offset_hi) = (offset_lo - margin, offset_hi + margin);
+            let lo = p.truncate().min(q.truncate()) + offset_lo;
+            let hi = p.truncate().max(q.truncate()) + offset_hi;
+            Some(EdgeRegion { p, q, lo, hi, offset_lo, offset_hi, face: e.faces[0] })
         })
         .collect()
 }

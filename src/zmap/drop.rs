@@ -351,13 +351,18 @@ impl PointDrop {
                 if let Some(z) = t.facet.as_ref().and_then(|f| p.drop_facet(c, f)) {
                     best = best.max(z);
                 }
+                // A vertex's drop, and an edge's, stands no higher than its top: one no higher
+                // than the height found is passed over (most, once a neighbour's are taken).
                 for v in t.corners {
+                    if v.z <= best {
+                        continue;
+                    }
                     if let Some(z) = p.drop_vertex(c, v) {
                         best = best.max(z);
                     }
                 }
                 for e in &self.edges[t.edges.0 as usize..t.edges.1 as usize] {
-                    if c.cmpge(e.lo).all() && c.cmple(e.hi).all() {
+                    if e.p.z.max(e.q.z) > best && c.cmpge(e.lo).all() && c.cmple(e.hi).all() {
                         if let Some(z) = p.drop_edge_above(c, e.p, e.q, best) {
                             best = best.max(z);
                         }
