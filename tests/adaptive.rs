@@ -158,7 +158,10 @@ fn the_engagement_measured_is_the_angle_of_the_tool_in_the_material() {
 }
 
 /// A channel 8 mm wide (narrower than twice the φ6 tool) and 40 long, closed at both ends: a
-/// small helix where the helix does not fit, then the channel cleared, clean.
+/// small helix where the helix does not fit, then the channel cleared, clean, in trochoidal
+/// loops rather than a slot: the tool's centre, with 2 mm of room across, loops from side to
+/// side as it advances (turning back on itself across the channel again and again), and the
+/// engagement stays at the load's (a slot would read 90° all along).
 #[test]
 fn a_channel_narrower_than_twice_the_tool_is_cleared() {
     let d = drawing_of(vec![Loop::rect(DVec2::ZERO, DVec2::new(40.0, 8.0))]);
@@ -168,6 +171,19 @@ fn a_channel_narrower_than_twice_the_tool_is_cleared() {
     let expected = (40.0 * 8.0 - 4.0 * 9.0 * (1.0 - PI / 4.0)) * 4.0;
     let got = removed(&out);
     assert!((got - expected).abs() < 0.01 * expected, "removed {got:.0} mm³, expected {expected:.0}");
+    let e = out.operations[0].engagement.as_ref().expect("an engagement report");
+    assert!(e.within >= 0.7 && e.over <= 0.05 && e.mean < 1.2 * e.target, "{}", e.describe());
+    // Loops: the level's cutting moves cross the channel's middle line many times, both ways.
+    let (mut up, mut down) = (0, 0);
+    for m in out.moves.iter().filter(|m| !m.mv.is_rapid() && m.from.z < -3.9 && m.mv.to().z < -3.9) {
+        let (a, b) = (m.from.y - 4.0, m.mv.to().y - 4.0);
+        if a < 0.0 && b >= 0.0 {
+            up += 1;
+        } else if a >= 0.0 && b < 0.0 {
+            down += 1;
+        }
+    }
+    assert!(up >= 100 && down >= 100, "the middle line crossed {up} times up and {down} down");
     rs274(&out.gcode, &job.tools);
 }
 
