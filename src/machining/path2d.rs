@@ -239,6 +239,19 @@ impl Cursor<'_> {
     /// (or the gap above the in-process stock there, when lower), then feed down to `to`: the
     /// linker's retract ([`retract`]).
     pub fn reposition(&mut self, to: DVec3, out: &mut Vec<Move>) {
+        let feed = self.plunge;
+        self.reposition_at(to, feed, out);
+    }
+
+    /// [`Cursor::reposition`] down into a hole the operation has just cleared about `to` (the
+    /// tool's whole circle, from the material's top down to `to`): the descent runs in air, at
+    /// the air feed (no slower than the plunge) instead of the plunge.
+    pub fn reposition_into_cleared(&mut self, to: DVec3, out: &mut Vec<Move>) {
+        let feed = self.air_feed.max(self.plunge);
+        self.reposition_at(to, feed, out);
+    }
+
+    fn reposition_at(&mut self, to: DVec3, feed: f64, out: &mut Vec<Move>) {
         let low = self.traverse.as_ref().and_then(|f| f(self.at.truncate(), to.truncate()));
         let travel = low.map_or(self.clearance, |h| h.max(self.safe.min(self.clearance)).min(self.clearance));
         let travel = if self.full_retract { travel } else { travel.min((self.stock.along(self.at.truncate(), to.truncate()) + self.gap).max(to.z)) };
@@ -246,7 +259,7 @@ impl Cursor<'_> {
         let stop = safe.min(travel).min(self.stock.reach(to.truncate()).max(to.z) + self.gap);
         retract(self.at, to.truncate(), travel, stop.max(to.z), out);
         if stop > to.z {
-            out.push(Move::Line { to, feed: self.plunge });
+            out.push(Move::Line { to, feed });
         }
         self.at = to;
     }

@@ -754,11 +754,11 @@ impl Clearer<'_, '_, '_> {
                 }
                 Entry::Down if self.at_depth() => self.out.push(Move::Line { to: first.extend(z), feed }),
                 Entry::Down | Entry::Above => {
-                    // Straight down where the simulation will hold nothing under the tool. Else
-                    // (a cell the passes so far only grazed, which the map took for cut) down
-                    // at the nearest point a few steps away where it holds nothing, in along a
-                    // line in the region; else down a small helix beside the point, where one
-                    // fits in the region.
+                    // Straight down where the simulation will hold nothing under the tool (at
+                    // the air feed: the passes cleared the way down). Else (a cell the passes
+                    // so far only grazed, which the map took for cut) down at the nearest point
+                    // a few steps away where it holds nothing, in along a line in the region;
+                    // else down a small helix beside the point, where one fits in the region.
                     let ok = |p: DVec2| map.allowed(p) || region.contains(p);
                     let hr = LEAST_HELIX * r;
                     let step = ADAPTIVE_STEP * r;
@@ -770,10 +770,10 @@ impl Clearer<'_, '_, '_> {
                         || (1..=ADAPTIVE_ASIDE).flat_map(|k| (0..16).map(move |t| first + k as f64 * step * DVec2::from_angle(t as f64 * PI / 8.0))).find(|&c| left.clear(c, r, z) && line_ok(c));
                     let circle_ok = |c: DVec2| (0..24).all(|t| ok(c + hr * DVec2::from_angle(t as f64 * PI / 12.0)));
                     match left.clear(first, r, z) {
-                        true => self.s.cursor.reposition(first.extend(z), self.out),
+                        true => self.s.cursor.reposition_into_cleared(first.extend(z), self.out),
                         false => match aside() {
                             Some(c) => {
-                                self.s.cursor.reposition(c.extend(z), self.out);
+                                self.s.cursor.reposition_into_cleared(c.extend(z), self.out);
                                 self.out.push(Move::Line { to: first.extend(z), feed });
                             }
                             None => match (0..8).map(|k| first - hr * DVec2::from_angle(k as f64 * FRAC_PI_4)).find(|&c| circle_ok(c)) {
