@@ -274,37 +274,35 @@ pub fn plan(map: &mut PixelMap, a: &Adaptive, from: DVec2) -> Plan {
             // A pass that cut nothing is not made (its start stays tried).
             continue;
         }
-        {
-            // What the pass (and its helix) cut lies within the tool's radius of its points: the
-            // blocks' distances change only within `cap` of that, and are found from the
-            // material within `cap` of those.
-            let mut cut = points.clone();
-            if let Entry::Helix { centre, radius } = entry {
-                cut.extend([centre - DVec2::splat(radius), centre + DVec2::splat(radius)]);
-            }
-            let (inner_lo, inner_hi) = window(&cut, r + cap);
-            let (lo, hi) = window(&cut, r + 2.0 * cap);
-            let w = hi.0 - lo.0;
-            let part = map.blocks_within(k, lo, hi);
-            let d = distance_within(&part, w, hi.1 - lo.1, block, cap);
-            for j in lo.1..hi.1 {
-                for i in lo.0..hi.0 {
-                    let now = part[(j - lo.1) * w + i - lo.0];
-                    blocks_left = blocks_left + now as usize - material[j * bx + i] as usize;
-                    material[j * bx + i] = now;
-                    if (inner_lo.0..inner_hi.0).contains(&i) && (inner_lo.1..inner_hi.1).contains(&j) {
-                        near[j * bx + i] = d[(j - lo.1) * w + i - lo.0];
-                    }
+        // What the pass (and its helix) cut lies within the tool's radius of its points: the
+        // blocks' distances change only within `cap` of that, and are found from the
+        // material within `cap` of those.
+        let mut cut = points.clone();
+        if let Entry::Helix { centre, radius } = entry {
+            cut.extend([centre - DVec2::splat(radius), centre + DVec2::splat(radius)]);
+        }
+        let (inner_lo, inner_hi) = window(&cut, r + cap);
+        let (lo, hi) = window(&cut, r + 2.0 * cap);
+        let w = hi.0 - lo.0;
+        let part = map.blocks_within(k, lo, hi);
+        let d = distance_within(&part, w, hi.1 - lo.1, block, cap);
+        for j in lo.1..hi.1 {
+            for i in lo.0..hi.0 {
+                let now = part[(j - lo.1) * w + i - lo.0];
+                blocks_left = blocks_left + now as usize - material[j * bx + i] as usize;
+                material[j * bx + i] = now;
+                if (inner_lo.0..inner_hi.0).contains(&i) && (inner_lo.1..inner_hi.1).contains(&j) {
+                    near[j * bx + i] = d[(j - lo.1) * w + i - lo.0];
                 }
             }
-            // The starts again where the distances changed, and a step beyond (where a front
-            // begins is judged a step back along it).
-            let (lo, hi) = window(&cut, r + cap + step);
-            let inside = |n: usize| (lo.0..hi.0).contains(&(n % bx)) && (lo.1..hi.1).contains(&(n / bx));
-            starts.retain(|&(n, _)| !inside(n));
-            for j in lo.1..hi.1 {
-                starts.extend((lo.0..hi.0).filter_map(|i| start_at(map, &near, j * bx + i)));
-            }
+        }
+        // The starts again where the distances changed, and a step beyond (where a front
+        // begins is judged a step back along it).
+        let (lo, hi) = window(&cut, r + cap + step);
+        let inside = |n: usize| (lo.0..hi.0).contains(&(n % bx)) && (lo.1..hi.1).contains(&(n / bx));
+        starts.retain(|&(n, _)| !inside(n));
+        for j in lo.1..hi.1 {
+            starts.extend((lo.0..hi.0).filter_map(|i| start_at(map, &near, j * bx + i)));
         }
         out.engagement.extend(engaged);
         at = *points.last().expect("a pass starts at a point");
