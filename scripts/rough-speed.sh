@@ -2,8 +2,8 @@
 # Issue 38's speed comparison: planning time of swarf's z-level, zigzag and octree roughing
 # (verification off, the machine's cores) beside Kiri:Moto's compute time for its z-level rough
 # (one thread, `../shared/peers/rough/rough_peer.sh`, the time inside the engine), on the shared
-# parts with issue 12's settings: a φ6 flat end, step-down 2, step-over 0.4, no allowance, the
-# stock the part's box; octree with the φ20/12/6/3 library. Prints per part each program's
+# parts and issue 61's generated pocket plate with issue 12's settings: a φ6 flat end, step-down
+# 2, step-over 0.4, no allowance, the stock the part's box; octree with the φ20/12/6/3 library. Prints per part each program's
 # compute time, its ratio to Kiri:Moto's, cycle time and rapids over feed. See BENCHMARKS.md.
 # Needs ../shared beside the project; installs the peers with their setup.sh.
 set -euo pipefail
@@ -29,9 +29,18 @@ j['operations'] = [op]
 json.dump(j, sys.stdout)"
 }
 for kind in roughZlevel roughZigzag roughOctree; do job $kind > "$OUT/$kind.json"; done
+# Issue 61's generated pocket plate (scripts/pocket-plate.py: an exact solid by manifold3d's
+# booleans, in a venv of its own, pinned).
+PLATE_VENV=target/plate-venv
+if ! "$PLATE_VENV/bin/python" -c "import manifold3d, numpy" 2>/dev/null; then
+  python3 -m venv "$PLATE_VENV"
+  "$PLATE_VENV/bin/pip" install -q "manifold3d==3.5.4" "numpy==2.4.6"
+fi
+"$PLATE_VENV/bin/python" scripts/pocket-plate.py "$OUT/pocket_plate.stl"
 printf '%-18s %-8s %9s %9s %9s %8s\n' part program compute kiri/it cycle rapid/feed
-for part in ocl_mount_rush kiri_pocket-test pycam_textbox ocl_wheel_in_box; do
+for part in ocl_mount_rush kiri_pocket-test pycam_textbox ocl_wheel_in_box pocket_plate; do
   stl=../shared/data/meshes/$part.stl
+  [ "$part" = pocket_plate ] && stl=$OUT/pocket_plate.stl
   [ -f "$stl" ] || continue
   (cd "$OUT" && "$(realpath "../../$PEERS")/rough_peer.sh" "$(realpath "../../$stl")" "$part-kiri.ngc" 6 2 0.4 > "$part-kiri.run" 2>&1)
   kiri=$(python3 -c "import json; print(json.load(open('$OUT/$part-kiri.ngc.json'))['compute_s'])")
