@@ -35,7 +35,7 @@
 
 use crate::geom::DVec2;
 use crate::zigzag::load::PixelMap;
-use crate::zmap::distance::{distance_to, distance_within};
+use crate::zmap::distance::{distance_to, distance_within, distance_within_rows};
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// Points of the front half of the tool's circle at which the engagement is measured.
@@ -192,9 +192,9 @@ pub fn plan(map: &mut PixelMap, a: &Adaptive, from: DVec2) -> Plan {
             let up = c - h * step;
             !map.allowed(up) || block_at(up).is_none_or(|m| near[m] - half_diag > r + step)
         };
-        Some((n, begins))
+        Some((n, begins, c))
     };
-    let mut starts: Vec<(usize, bool)> = (0..bx * by).filter_map(|n| start_at(map, &near, n)).collect();
+    let mut starts: Vec<(usize, bool, DVec2)> = (0..bx * by).filter_map(|n| start_at(map, &near, n)).collect();
     // Blocks `(i0, j0)` to `(i1, j1)` (exclusive) within `by` blocks of the points' box.
     let window = |pts: &[DVec2], grow: f64| {
         let b = pts.iter().fold(crate::geom::segment::Rect::EMPTY, |b, &p| b.grow(p));
@@ -215,14 +215,14 @@ pub fn plan(map: &mut PixelMap, a: &Adaptive, from: DVec2) -> Plan {
         let mut best: Option<(bool, f64, usize)> = None;
         let mut at_start = 0;
         while at_start < starts.len() {
-            let (n, begins) = starts[at_start];
+            let (n, begins, c) = starts[at_start];
             if tried[n] {
                 // (Tried once, never again: out of the list.)
                 starts.swap_remove(at_start);
                 continue;
             }
             at_start += 1;
-            let dist = centre_of(n % bx, n / bx).distance_squared(at);
+            let dist = c.distance_squared(at);
             if best.is_none_or(|(bb, b, _)| (begins && !bb) || (begins == bb && dist < b)) {
                 best = Some((begins, dist, n));
             }
@@ -285,22 +285,24 @@ pub fn plan(map: &mut PixelMap, a: &Adaptive, from: DVec2) -> Plan {
         let (lo, hi) = window(&cut, r + 2.0 * cap);
         let w = hi.0 - lo.0;
         let part = map.blocks_within(k, lo, hi);
-        let d = distance_within(&part, w, hi.1 - lo.1, block, cap);
+        // (Worked along the inner window's rows only: the rest is there for their distances.)
+        let d = distance_within_rows(&part, w, hi.1 - lo.1, block, cap, inner_lo.1 - lo.1..inner_hi.1 - lo.1);
         for j in lo.1..hi.1 {
-            for i in lo.0..hi.0 {
-                let now = part[(j - lo.1) * w + i - lo.0];
-                blocks_left = blocks_left + now as usize - material[j * bx + i] as usize;
-                material[j * bx + i] = now;
-                if (inner_lo.0..inner_hi.0).contains(&i) && (inner_lo.1..inner_hi.1).contains(&j) {
-                    near[j * bx + i] = d[(j - lo.1) * w + i - lo.0];
-                }
+            let now = &part[(j - lo.1) * w..(j - lo.1 + 1) * w];
+            for (was, &now) in material[j * bx + lo.0..j * bx + hi.0].iter_mut().zip(now) {
+                blocks_left = blocks_left + now as usize - *was as usize;
+                *was = now;
+            }
+            if (inner_lo.1..inner_hi.1).contains(&j) {
+                let at = (j - inner_lo.1) * w + inner_lo.0 - lo.0;
+                near[j * bx + inner_lo.0..j * bx + inner_hi.0].copy_from_slice(&d[at..at + inner_hi.0 - inner_lo.0]);
             }
         }
         // The starts again where the distances changed, and a step beyond (where a front
         // begins is judged a step back along it).
         let (lo, hi) = window(&cut, r + cap + step);
         let inside = |n: usize| (lo.0..hi.0).contains(&(n % bx)) && (lo.1..hi.1).contains(&(n / bx));
-        starts.retain(|&(n, _)| !inside(n));
+        starts.retain(|&(n, _, _)| !inside(n));
         for j in lo.1..hi.1 {
             starts.extend((lo.0..hi.0).filter_map(|i| start_at(map, &near, j * bx + i)));
         }

@@ -17,7 +17,14 @@ pub fn distance_to(inside: &[bool], nx: usize, ny: usize, spacing: f64) -> Vec<f
 /// A node's nearest node inside is no farther down its column than from the node itself, so
 /// dropping the column distances beyond `cap` keeps it wherever the distance is within `cap`.
 pub fn distance_within(inside: &[bool], nx: usize, ny: usize, spacing: f64, cap: f64) -> Vec<f64> {
-    let far = 1e20;
+    distance_within_rows(inside, nx, ny, spacing, cap, 0..ny)
+}
+
+/// [`distance_within`] at the rows `rows` only (`nx` a row, from the first of them): the
+/// others' nodes still count as inside where they are, and only the rows asked for are worked
+/// along (a window of the grid grown by the cap to hold what its distances need).
+pub fn distance_within_rows(inside: &[bool], nx: usize, ny: usize, spacing: f64, cap: f64, rows: std::ops::Range<usize>) -> Vec<f64> {
+    let far = FAR;
     // Column distances (in nodes) past this one are dropped: a node past it lies farther than `cap`.
     let reach = (cap / spacing).floor() + 1.0;
     // Along the columns the values are 0 and far, so the envelope's minimum is the squared
@@ -47,8 +54,10 @@ pub fn distance_within(inside: &[bool], nx: usize, ny: usize, spacing: f64, cap:
     // tool alone reaches.
     d2.iter_mut().for_each(|v| *v = if v.is_finite() && *v <= reach { *v * *v } else { far });
     let mut work = Envelope::default();
-    for j in 0..ny {
-        let row = &mut d2[j * nx..(j + 1) * nx];
+    let rows = rows.start.min(ny)..rows.end.min(ny);
+    let mut d2 = d2.split_off(rows.start * nx);
+    d2.truncate(rows.len() * nx);
+    for row in d2.chunks_exact_mut(nx.max(1)) {
         if row.iter().all(|&v| v >= far) {
             continue;
         }
@@ -57,6 +66,9 @@ pub fn distance_within(inside: &[bool], nx: usize, ny: usize, spacing: f64, cap:
     }
     d2.into_iter().map(|v| if v >= far { f64::INFINITY } else { v.sqrt() * spacing }).map(|d| if d <= cap { d } else { f64::INFINITY }).collect()
 }
+
+/// A squared distance standing for none: beyond every distance a grid can hold.
+const FAR: f64 = 1e20;
 
 /// The squared distance transform along one line, `out[q] = min_p (q − p)² + f[p]`, with its
 /// working space kept from line to line.
@@ -73,16 +85,22 @@ impl Envelope {
         let n = f.len();
         let (out, v, z) = (&mut self.out, &mut self.v, &mut self.z);
         out.clear();
-        out.resize(n, 0.0);
+        out.resize(n, FAR);
         v.clear();
         v.resize(n, 0);
         z.clear();
         z.resize(n + 1, 0.0);
+        // Only the parabolas of the values under [`FAR`]: one of those is the lowest wherever
+        // there is one (a far one lies above every other at any node of a line), and a far one
+        // meets them at ±10¹⁹ or so, off the line: the envelope of the others is the same.
+        let s = |q: usize, p: usize| ((f[q] + (q * q) as f64) - (f[p] + (p * p) as f64)) / (2.0 * (q as f64 - p as f64));
+        let mut near = (0..n).filter(|&q| f[q] < FAR);
+        let Some(first) = near.next() else { return };
         let mut k = 0;
+        v[0] = first;
         z[0] = f64::NEG_INFINITY;
         z[1] = f64::INFINITY;
-        let s = |q: usize, p: usize| ((f[q] + (q * q) as f64) - (f[p] + (p * p) as f64)) / (2.0 * (q as f64 - p as f64));
-        for q in 1..n {
+        for q in near {
             let mut x = s(q, v[k]);
             // z[0] is −∞, so the loop stops at k = 0 at the latest.
             while x <= z[k] {
@@ -165,6 +183,23 @@ mod tests {
             for c in 0..nx * ny {
                 let want = if all[c] <= cap { all[c] } else { f64::INFINITY };
                 assert_eq!(capped[c].to_bits(), want.to_bits(), "case {case} ({nx} × {ny}, cap {cap}), node {c}");
+            }
+        }
+    }
+
+    #[test]
+    fn the_envelope_passes_over_far_values_and_keeps_the_lowest_bit_for_bit() {
+        let mut rng = crate::offset::check::Rng::new(61);
+        for case in 0..300 {
+            let n = 1 + rng.below(120);
+            // Whole squared distances, some far: sparse to dense, as the column sweeps leave them.
+            let dense = rng.range(0.0, 1.0);
+            let f: Vec<f64> = (0..n).map(|_| if rng.range(0.0, 1.0) < dense { rng.below(400) as f64 } else { FAR }).collect();
+            let mut work = Envelope::default();
+            work.run(&f);
+            for q in 0..n {
+                let lowest = (0..n).filter(|&p| f[p] < FAR).map(|p| (q as f64 - p as f64).powi(2) + f[p]).reduce(f64::min).unwrap_or(FAR);
+                assert_eq!(work.out[q].to_bits(), lowest.to_bits(), "case {case}, node {q} of {n}");
             }
         }
     }
