@@ -2,7 +2,7 @@
 """Issue 61's generated pocket plate: a 229 x 165 x 16 mm plate (top at z = 0) with an
 octagonal pocket stepping down in four terraces (floors at -4, -7, -10 and -13), bosses standing
 on the terraces to other heights (round, square, octagonal, one with a pocket of its own) and two
-slots: fourteen flat levels between the top and the deepest floor, with true vertical walls (an
+slots: 13 flat heights, the bottom among them, with true vertical walls (an
 exact solid built by manifold3d's booleans, circles as 64-gons). Like the plate Kiri:Moto took
 2-3 s on. Writes a binary STL.
 

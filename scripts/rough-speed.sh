@@ -3,8 +3,9 @@
 # (verification off, the machine's cores) beside Kiri:Moto's compute time for its z-level rough
 # (one thread, `../shared/peers/rough/rough_peer.sh`, the time inside the engine), on the shared
 # parts and issue 61's generated pocket plate with issue 12's settings: a φ6 flat end, step-down
-# 2, step-over 0.4, no allowance, the stock the part's box; octree with the φ20/12/6/3 library. Prints per part each program's
-# compute time, its ratio to Kiri:Moto's, cycle time and rapids over feed. See BENCHMARKS.md.
+# 2, step-over 0.4, no allowance, the stock the part's box; octree with the φ20/12/6/3 library.
+# Prints per part each program's compute time, its ratio to Kiri:Moto's, cycle time and rapids
+# over feed. See BENCHMARKS.md.
 # Needs ../shared beside the project; installs the peers with their setup.sh.
 set -euo pipefail
 cd "$(dirname "$0")/.."

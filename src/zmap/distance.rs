@@ -24,9 +24,9 @@ pub fn distance_within(inside: &[bool], nx: usize, ny: usize, spacing: f64, cap:
 /// others' nodes still count as inside where they are, and only the rows asked for are worked
 /// along (a window of the grid grown by the cap to hold what its distances need).
 pub fn distance_within_rows(inside: &[bool], nx: usize, ny: usize, spacing: f64, cap: f64, rows: std::ops::Range<usize>) -> Vec<f64> {
-    let far = FAR;
     // Column distances (in nodes) past this one are dropped: a node past it lies farther than `cap`.
     let reach = (cap / spacing).floor() + 1.0;
+    let rows = rows.start.min(ny)..rows.end.min(ny);
     // Along the columns the values are 0 and far, so the envelope's minimum is the squared
     // distance to the nearest node inside in the column: two sweeps down and up find it for all
     // columns at once, row by row (the same values: whole numbers, exact in f64).
@@ -43,28 +43,29 @@ pub fn distance_within_rows(inside: &[bool], nx: usize, ny: usize, spacing: f64,
             };
         }
     }
-    for j in (0..ny.saturating_sub(1)).rev() {
+    // (Up as far as the first row asked for: the rows above it are not.)
+    for j in (rows.start..ny.saturating_sub(1)).rev() {
         for i in 0..nx {
             let c = j * nx + i;
             d2[c] = d2[c].min(d2[c + nx] + 1.0);
         }
     }
+    // Only the rows asked for go on from here.
+    let mut d2 = d2.split_off(rows.start * nx);
+    d2.truncate(rows.len() * nx);
     // A column with no node inside, or none within `cap`, stays far, and a row all far is left
     // out below: most of them where what is looked for is sparse, such as the material a rest
     // tool alone reaches.
-    d2.iter_mut().for_each(|v| *v = if v.is_finite() && *v <= reach { *v * *v } else { far });
+    d2.iter_mut().for_each(|v| *v = if v.is_finite() && *v <= reach { *v * *v } else { FAR });
     let mut work = Envelope::default();
-    let rows = rows.start.min(ny)..rows.end.min(ny);
-    let mut d2 = d2.split_off(rows.start * nx);
-    d2.truncate(rows.len() * nx);
     for row in d2.chunks_exact_mut(nx.max(1)) {
-        if row.iter().all(|&v| v >= far) {
+        if row.iter().all(|&v| v >= FAR) {
             continue;
         }
         work.run(row);
         row.copy_from_slice(&work.out);
     }
-    d2.into_iter().map(|v| if v >= far { f64::INFINITY } else { v.sqrt() * spacing }).map(|d| if d <= cap { d } else { f64::INFINITY }).collect()
+    d2.into_iter().map(|v| if v >= FAR { f64::INFINITY } else { v.sqrt() * spacing }).map(|d| if d <= cap { d } else { f64::INFINITY }).collect()
 }
 
 /// A squared distance standing for none: beyond every distance a grid can hold.
@@ -129,7 +130,7 @@ mod tests {
 
     /// The two passes of the envelope, as [`distance_to`] made them before its column sweeps.
     fn by_envelopes(inside: &[bool], nx: usize, ny: usize, spacing: f64) -> Vec<f64> {
-        let far = 1e20;
+        let far = FAR;
         let mut d2: Vec<f64> = inside.iter().map(|&b| if b { 0.0 } else { far }).collect();
         let mut work = Envelope::default();
         for i in 0..nx {
@@ -200,6 +201,26 @@ mod tests {
             for q in 0..n {
                 let lowest = (0..n).filter(|&p| f[p] < FAR).map(|p| (q as f64 - p as f64).powi(2) + f[p]).reduce(f64::min).unwrap_or(FAR);
                 assert_eq!(work.out[q].to_bits(), lowest.to_bits(), "case {case}, node {q} of {n}");
+            }
+        }
+    }
+
+    #[test]
+    fn rows_asked_for_are_the_whole_grids_rows_bit_for_bit() {
+        let mut rng = crate::offset::check::Rng::new(62);
+        for case in 0..200 {
+            let (nx, ny) = (1 + rng.below(60), 1 + rng.below(60));
+            let dense = rng.range(0.0, 0.3);
+            let inside: Vec<bool> = (0..nx * ny).map(|_| rng.range(0.0, 1.0) < dense).collect();
+            let cap = rng.range(0.0, 12.0);
+            let all = distance_within(&inside, nx, ny, 1.0, cap);
+            let from = rng.below(ny + 1);
+            let to = from + rng.below(ny + 2 - from);
+            let some = distance_within_rows(&inside, nx, ny, 1.0, cap, from..to);
+            let want = &all[from * nx..to.min(ny) * nx];
+            assert_eq!(some.len(), want.len(), "case {case}");
+            for (c, (a, b)) in some.iter().zip(want).enumerate() {
+                assert_eq!(a.to_bits(), b.to_bits(), "case {case} ({nx} × {ny}, rows {from}..{to}), node {c}");
             }
         }
     }
