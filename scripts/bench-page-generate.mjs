@@ -6,11 +6,33 @@
 // and the drawing (the result handed over to the view drawn). The page's worst frame meanwhile
 // from Chromium's long-animation-frame entries.
 //
-//   bash scripts/build-wasm.sh && node scripts/bench-page-generate.mjs [RUNS]
+// With `--mould`, the issue's other job instead: ten operations (face, two z-level roughings,
+// raster and waterline finishing, spot, two drills, bore, chamfer;
+// examples/mould-core/mould-core.json) on a generated 100 mm mould core (scripts/mould-core.py,
+// built here with manifold3d in target/plate-venv as scripts/rough-speed.sh builds its plate).
+//
+//   bash scripts/build-wasm.sh && node scripts/bench-page-generate.mjs [RUNS] [--mould]
+import { execFileSync } from 'node:child_process';
+import path from 'node:path';
 import { chromium } from 'playwright-core';
 import { serveWww } from './serve-www.mjs';
 
-const runs = Number(process.argv[2] ?? 3);
+const args = process.argv.slice(2);
+const mould = args.includes('--mould');
+const runs = Number(args.find((a) => a !== '--mould') ?? 3);
+const root = path.resolve(path.dirname(new URL(import.meta.url).pathname), '..');
+let part = null;
+if (mould) {
+  const venv = path.join(root, 'target/plate-venv'), python = path.join(venv, 'bin/python');
+  try {
+    execFileSync(python, ['-c', 'import manifold3d, numpy'], { stdio: 'ignore' });
+  } catch {
+    execFileSync('python3', ['-m', 'venv', venv], { stdio: 'inherit' });
+    execFileSync(path.join(venv, 'bin/pip'), ['install', '-q', 'manifold3d==3.5.4', 'numpy==2.4.6'], { stdio: 'inherit' });
+  }
+  part = path.join(root, 'target/mould-core.stl');
+  execFileSync(python, [path.join(root, 'scripts/mould-core.py'), part], { stdio: 'inherit' });
+}
 const { server, base } = await serveWww();
 const browser = await chromium.launch({ executablePath: process.env.CHROMIUM || '/usr/bin/chromium', headless: true, args: ['--no-sandbox', '--disable-dev-shm-usage'] });
 try {
@@ -19,6 +41,13 @@ try {
     const page = await context.newPage();
     await page.goto(base);
     await page.waitForSelector('body[data-ready="true"]');
+    if (part) {
+      const parts = Number(await page.evaluate(() => document.body.dataset.parts));
+      await page.setInputFiles('#file', part);
+      await page.waitForFunction((n) => Number(document.body.dataset.parts) > n, parts);
+      await page.setInputFiles('#load-job', path.join(root, 'examples/mould-core/mould-core.json'));
+      await page.waitForFunction(() => /Loaded the job/.test(document.getElementById('message').textContent));
+    }
     await page.evaluate(() => {
       window.bench = { stages: [], frames: [] };
       const stage = document.getElementById('stage');

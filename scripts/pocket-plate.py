@@ -9,11 +9,11 @@ exact solid built by manifold3d's booleans, circles as 64-gons). Like the plate 
     python3 scripts/pocket-plate.py OUT.stl      (needs manifold3d and numpy)
 """
 import math
-import struct
 import sys
 
 import manifold3d as m
 import numpy as np
+from solid_stl import write_stl
 
 W, H, T = 229.0, 165.0, 16.0
 
@@ -69,24 +69,10 @@ def plate():
     return solid
 
 
-def write_stl(solid, path):
-    mesh = solid.to_mesh()
-    v = np.asarray(mesh.vert_properties)[:, :3]
-    tris = v[np.asarray(mesh.tri_verts)]
-    n = np.cross(tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0])
-    n /= np.maximum(np.linalg.norm(n, axis=1), 1e-30)[:, None]
-    rec = np.zeros(len(tris), dtype=[("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")])
-    rec["n"], rec["v"] = n, tris
-    with open(path, "wb") as f:
-        f.write(b"swarf pocket plate".ljust(80, b" "))
-        f.write(struct.pack("<I", len(tris)))
-        f.write(rec.tobytes())
-    return len(tris)
-
 
 if __name__ == "__main__":
     part = plate()
     levels = sorted({round(float(z), 6) for z in np.asarray(part.to_mesh().vert_properties)[:, 2]})
-    n = write_stl(part, sys.argv[1])
+    n = write_stl(part, sys.argv[1], b'swarf pocket plate')
     print(f"{sys.argv[1]}: {n} facets, volume {part.volume():.0f} mm^3, {len(levels)} heights {levels}", file=sys.stderr)
     assert math.isfinite(part.volume()) and part.genus() >= 0

@@ -241,3 +241,30 @@ fn a_tool_wider_than_the_whole_part_is_refused_at_once_unless_it_faces() {
     let out = swarf::job::run(&job, demo_part(), &mut Progress::none()).expect("a wide face mill faces the part");
     assert!(out.warnings.iter().any(|w| w.to_string().contains("smaller than the φ150 tool")), "{:?}", out.warnings);
 }
+
+/// The example jobs beside the project (`examples/*/*.json`: the two-sided plate, issue 61's
+/// mould core) read and pass the core's checks as they are, and the mould core's are the ten
+/// operations the page benchmark names.
+#[test]
+fn the_example_jobs_read_and_pass_the_checks() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let mut read = Vec::new();
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let folder = entry.unwrap().path();
+        if !folder.is_dir() {
+            continue;
+        }
+        for file in std::fs::read_dir(&folder).unwrap() {
+            let file = file.unwrap().path();
+            if file.extension().is_some_and(|e| e == "json") {
+                let job = Job::from_json(&std::fs::read_to_string(&file).unwrap()).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+                job.validate().unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+                read.push((file.file_stem().unwrap().to_string_lossy().into_owned(), job));
+            }
+        }
+    }
+    let mould = &read.iter().find(|(name, _)| name == "mould-core").expect("examples/mould-core/mould-core.json").1;
+    let kinds: Vec<String> = mould.operations.iter().map(|o| serde_json::to_value(o).unwrap()["kind"].as_str().unwrap().to_owned()).collect();
+    assert_eq!(kinds, ["face", "roughZlevel", "roughZlevel", "finishRaster", "finishWaterline", "drill", "drill", "drill", "bore", "chamfer"]);
+    assert!(read.iter().any(|(name, _)| name == "two-sided"));
+}

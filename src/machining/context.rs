@@ -205,6 +205,7 @@ impl Context {
         let profile = tool.cutter.profile();
         let stock = self.sim.stock();
         let material = |p: DVec2| stock.touch(p, &profile, true).min(ceiling);
+        let material_above = |p: DVec2, h: f64| ceiling > h && stock.touches_above(p, p, &profile, true, h);
         let estimate = |p: DVec2| stock.touch(p, &profile, false).min(ceiling);
         let along = |a: DVec2, b: DVec2| stock.touch_along(a, b, &profile, true);
         let core = Profile::new(profile.radius / 2.0, 0.0);
@@ -215,6 +216,7 @@ impl Context {
             settings,
             keep,
             material: &material,
+            material_above: &material_above,
             material_along: &along,
             estimate: &estimate,
             threshold: self.tolerances.gouge,

@@ -507,12 +507,26 @@ impl DexelStock {
     /// at which the cutter can travel level from above `a` to above `b` without touching the
     /// material (a column's distance from the way is its square's, or its centre's).
     pub fn touch_along(&self, a: DVec2, b: DVec2, profile: &crate::cutter::Profile, whole_cells: bool) -> f64 {
+        self.touch_from(a, b, profile, whole_cells, f64::NEG_INFINITY, false)
+    }
+
+    /// Whether [`DexelStock::touch_along`] stands above `h`, looked up only in the cells
+    /// higher than `h` and as far as the first that decides: where the material mostly stands
+    /// lower (a place to go down in the air beside a pass), most blocks are passed over.
+    pub fn touches_above(&self, a: DVec2, b: DVec2, profile: &crate::cutter::Profile, whole_cells: bool, h: f64) -> bool {
+        self.touch_from(a, b, profile, whole_cells, h, true) > h
+    }
+
+    /// The highest of `from` and [`DexelStock::touch_along`]'s heights, or with `first` the
+    /// first of those found above `from` (the cutter's lower surface stands no lower than its
+    /// tip, so no cell lower than that height can rise above it).
+    fn touch_from(&self, a: DVec2, b: DVec2, profile: &crate::cutter::Profile, whole_cells: bool, from: f64, first: bool) -> f64 {
         let r = profile.radius;
         let reach = DVec2::splat(r + self.cell);
         let half_diagonal = self.cell * std::f64::consts::FRAC_1_SQRT_2;
         let way = Segment::line(a, b);
-        let Some(((i0, i1), (j0, j1))) = self.cell_range(a.min(b) - reach, a.max(b) + reach) else { return f64::NEG_INFINITY };
-        let mut best = f64::NEG_INFINITY;
+        let Some(((i0, i1), (j0, j1))) = self.cell_range(a.min(b) - reach, a.max(b) + reach) else { return from };
+        let mut best = from;
         let size = self.block;
         for bj in j0 / size..=j1 / size {
             for bi in i0 / size..=i1 / size {
@@ -537,6 +551,9 @@ impl DexelStock {
                         };
                         if d <= r {
                             best = best.max(top - profile.height(d));
+                            if first && best > from {
+                                return best;
+                            }
                         }
                     }
                 }
@@ -753,13 +770,8 @@ mod tests {
 
     #[test]
     fn a_coarsened_stock_stands_nowhere_lower() {
-        let bounds = Aabb { min: DVec3::new(-10.0, -7.0, 0.0), max: DVec3::new(10.3, 8.1, 10.0) };
-        let mut fine = DexelStock::new(&bounds, 0.1, 1);
-        let mut next = uniform(7);
-        for _ in 0..40 {
-            let mut at = || DVec3::new(-10.0 + 20.3 * next(), -7.0 + 15.1 * next(), 10.0 * next());
-            fine.apply(&Sweep::line(Profile::new(1.5, 0.5), at(), at()));
-        }
+        let fine = randomly_cut(uniform(7), 40, Profile::new(1.5, 0.5));
+        let mut next = uniform(8);
         let coarse = fine.coarsened(4);
         assert_eq!((coarse.nx, coarse.ny), (fine.nx.div_ceil(4), fine.ny.div_ceil(4)));
         let g = coarse.grid();
@@ -781,11 +793,48 @@ mod tests {
     }
 
     /// Numbers in [0, 1) from `seed`, the same every run.
+    /// A 20.3 × 15.1 × 10 mm stock of 0.1 mm cells cut by `sweeps` straight sweeps of
+    /// `profile` between points `next` places.
+    fn randomly_cut(mut next: impl FnMut() -> f64, sweeps: usize, profile: Profile) -> DexelStock {
+        let bounds = Aabb { min: DVec3::new(-10.0, -7.0, 0.0), max: DVec3::new(10.3, 8.1, 10.0) };
+        let mut stock = DexelStock::new(&bounds, 0.1, 1);
+        for _ in 0..sweeps {
+            let mut at = || DVec3::new(-10.0 + 20.3 * next(), -7.0 + 15.1 * next(), 10.0 * next());
+            stock.apply(&Sweep::line(profile, at(), at()));
+        }
+        stock
+    }
+
     fn uniform(mut seed: u64) -> impl FnMut() -> f64 {
         move || {
             seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
             (seed >> 11) as f64 / (1u64 << 53) as f64
         }
+    }
+
+    /// Whether the material stands above a height, looked up from that height and stopping at
+    /// the first cell above it, says what the highest touch says: on a stock cut by random
+    /// sweeps, at points and along ways, for every cutter shape, at heights around the touch.
+    #[test]
+    fn touches_above_is_the_highest_touch_above_the_height() {
+        let stock = randomly_cut(uniform(11), 60, Profile::new(2.0, 1.0));
+        let mut next = uniform(12);
+        let mut checked = [0, 0];
+        for profile in [Profile::new(3.0, 0.0), Profile::new(3.0, 3.0), Profile::new(1.5, 0.5)] {
+            for _ in 0..400 {
+                let a = DVec2::new(-12.0 + 24.0 * next(), -9.0 + 19.0 * next());
+                let b = if next() < 0.5 { a } else { a + DVec2::new(6.0 * next() - 3.0, 6.0 * next() - 3.0) };
+                for whole in [true, false] {
+                    let touch = stock.touch_along(a, b, &profile, whole);
+                    for h in [touch - 0.5, touch - 1e-9, touch, touch + 1e-9, 12.0 * next() - 1.0, f64::NEG_INFINITY] {
+                        let above = stock.touches_above(a, b, &profile, whole, h);
+                        assert_eq!(above, touch > h, "{a} to {b}, {profile:?}, whole cells {whole}, height {h} against {touch}");
+                        checked[usize::from(above)] += 1;
+                    }
+                }
+            }
+        }
+        assert!(checked[0] > 1000 && checked[1] > 1000, "{checked:?}");
     }
 
     /// The body test skips a block only where nothing in it stands above the body's lowest

@@ -138,6 +138,8 @@ pub struct Linker<'a> {
     /// The highest tip height at which the cutter touches material at a point (the in-process
     /// stock; `-inf` where there is none).
     pub material: &'a dyn Fn(DVec2) -> f64,
+    /// Whether `material` at a point stands above a height (the same answer, found sooner).
+    pub material_above: &'a dyn Fn(DVec2, f64) -> bool,
     /// The highest tip height at which the cutter touches the material anywhere along the
     /// straight way between two points (the in-process stock as the operation found it, which
     /// holds all the material there is): a retract travels just above it.
@@ -235,16 +237,16 @@ impl Linker<'_> {
                 let inside = inside.and_then(|f| f.get(i).copied()).unwrap_or_else(|| (self.estimate)(p0.truncate()) > p0.z + self.threshold);
                 let (entry, kind) = enter_3d(top, if inside { material } else { f64::NEG_INFINITY }, run, self.radius, &self.entry, self.keep, (self.feeds.plunge, self.feeds.cut), tolerances.height);
                 let side = match kind {
-                    Kind::Plunge => self.beside(p0, tolerances.height, |_| true),
+                    Kind::Plunge => self.beside(p0, tolerances.height, f64::INFINITY, |_| true),
                     Kind::Helix | Kind::Ramp => self.side_first.and_then(|core| {
                         // Shorter; its core meeting no more than the pass's at its start, and
                         // from outside the operation's area only beside the material.
                         let way = super::moves_length(p0.truncate().extend(top), &entry) - settings.rapid_gap;
                         let (h, shallow) = (tolerances.height, p0.z + CORE_DEPTH * self.radius);
                         let start = core(p0.truncate(), p0.truncate()).max(shallow);
-                        self.beside(p0, h, |q| {
+                        self.beside(p0, h, way, |q| {
                             let meets = core(q, p0.truncate());
-                            q.distance(p0.truncate()) < way && meets <= start && (meets <= shallow || self.keep.clears(q.extend(p0.z), p0, h))
+                            meets <= start && (meets <= shallow || self.keep.clears(q.extend(p0.z), p0, h))
                         })
                     }),
                     _ => None,
@@ -291,12 +293,14 @@ impl Linker<'_> {
     /// plunging there: the nearest place (within three radii) where it touches no material
     /// down to `p0`'s height and from which the level way in stays clear of the part. Where the
     /// material ends within reach, as at the stock's edge, a run is entered from the side.
-    fn beside(&self, p0: DVec3, tolerance: f64, also: impl Fn(DVec2) -> bool) -> Option<DVec2> {
+    /// Only places nearer `p0` than `within` are tried (and asked of first: the material and
+    /// the part are looked up over the cutter's whole disc).
+    fn beside(&self, p0: DVec3, tolerance: f64, within: f64, also: impl Fn(DVec2) -> bool) -> Option<DVec2> {
         (1..=SIDE_RINGS).find_map(|ring| {
             let distance = 0.5 * self.radius * ring as f64;
             (0..SIDE_DIRECTIONS).find_map(|k| {
                 let q = p0.truncate() + DVec2::from_angle(std::f64::consts::TAU * k as f64 / SIDE_DIRECTIONS as f64) * distance;
-                ((self.material)(q) <= p0.z + tolerance && also(q) && self.keep.clears_part(q.extend(p0.z), p0, tolerance)).then_some(q)
+                (q.distance(p0.truncate()) < within && !(self.material_above)(q, p0.z + tolerance) && also(q) && self.keep.clears_part(q.extend(p0.z), p0, tolerance)).then_some(q)
             })
         })
     }
@@ -362,6 +366,7 @@ mod tests {
             settings: LinkSettings { clearance_z: 5.0, ..LinkSettings::default() },
             keep,
             material,
+            material_above: &|p, h| material(p) > h,
             material_along: along,
             estimate: material,
             threshold: 0.01,
