@@ -2,8 +2,9 @@
 """Issue 61's generated mould core, for the page's ten-operation job
 (scripts/bench-page-generate.mjs --mould): a 100 x 100 x 30 mm block (top at z = 0) whose
 parting face stands at z = -15, with a core rising from it to z = 0: a 60 x 44 mm rounded
-rectangle drafted 5 degrees a side up to z = -4, domed on top (a sphere's cap, 4 mm high), the
-dome's shallow top for raster finishing and the drafted walls for waterline. In the parting
+rectangle (at the parting face) drafted 5 degrees a side, domed on top by a sphere through its
+corners' diagonal 4 mm below the top: the dome's shallow top for raster finishing, the drafted
+walls for waterline. In the parting
 face: four 8 mm holes through at the corners (x, y = +-40), two 5 mm holes through beside the
 core (x = +-40, y = 0) and a 12 mm counterbore 8 deep at (0, +-36). An exact solid by
 manifold3d's booleans, circles as 64-gons. Writes a binary STL.
@@ -18,7 +19,7 @@ from solid_stl import write_stl
 
 SIDE, T, PARTING = 100.0, 30.0, -15.0
 CORE_W, CORE_H, CORE_R = 60.0, 44.0, 8.0
-WALL_TOP, DOME = -4.0, 4.0
+DOME = 4.0
 DRAFT = math.radians(5.0)
 
 
@@ -39,7 +40,7 @@ def core():
     shrink = (z1 - z0) * math.tan(DRAFT)
     scale = ((CORE_W - 2 * shrink) / CORE_W, (CORE_H - 2 * shrink) / CORE_H)
     walls = rounded(CORE_W, CORE_H, CORE_R).extrude(z1 - z0, scale_top=scale).translate((0, 0, z0))
-    # The dome: a sphere through the core's top corners' height, its cap DOME above WALL_TOP.
+    # The dome: a sphere standing DOME above the ends of the core's diagonal, its top at z = 0.
     half = math.hypot(CORE_W, CORE_H) / 2
     radius = (half * half + DOME * DOME) / (2 * DOME)
     sphere = m.Manifold.sphere(radius, 256).translate((0, 0, -radius))
@@ -56,7 +57,6 @@ def part():
     for y in (-36, 36):
         solid -= circle(0, y, 6).extrude(9).translate((0, 0, PARTING - 8))
     return solid
-
 
 
 if __name__ == "__main__":

@@ -792,7 +792,6 @@ mod tests {
         }
     }
 
-    /// Numbers in [0, 1) from `seed`, the same every run.
     /// A 20.3 × 15.1 × 10 mm stock of 0.1 mm cells cut by `sweeps` straight sweeps of
     /// `profile` between points `next` places.
     fn randomly_cut(mut next: impl FnMut() -> f64, sweeps: usize, profile: Profile) -> DexelStock {
@@ -805,6 +804,7 @@ mod tests {
         stock
     }
 
+    /// Numbers in [0, 1) from `seed`, the same every run.
     fn uniform(mut seed: u64) -> impl FnMut() -> f64 {
         move || {
             seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
