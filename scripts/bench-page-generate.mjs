@@ -9,7 +9,7 @@
 // With `--mould`, the issue's other job instead: ten operations (face, two z-level roughings,
 // raster and waterline finishing, spot, two drills, bore, chamfer;
 // examples/mould-core/mould-core.json) on a generated 100 mm mould core (scripts/mould-core.py,
-// built here with manifold3d in target/plate-venv as scripts/rough-speed.sh builds its plate).
+// built here by the Python scripts/solid-venv.sh makes, as scripts/rough-speed.sh builds its plate).
 //
 //   bash scripts/build-wasm.sh && node scripts/bench-page-generate.mjs [RUNS] [--mould]
 import { execFileSync } from 'node:child_process';
@@ -23,13 +23,7 @@ const runs = Number(args.find((a) => a !== '--mould') ?? 3);
 const root = path.resolve(path.dirname(new URL(import.meta.url).pathname), '..');
 let part = null;
 if (mould) {
-  const venv = path.join(root, 'target/plate-venv'), python = path.join(venv, 'bin/python');
-  try {
-    execFileSync(python, ['-c', 'import manifold3d, numpy'], { stdio: 'ignore' });
-  } catch {
-    execFileSync('python3', ['-m', 'venv', venv], { stdio: 'inherit' });
-    execFileSync(path.join(venv, 'bin/pip'), ['install', '-q', 'manifold3d==3.5.4', 'numpy==2.4.6'], { stdio: 'inherit' });
-  }
+  const python = execFileSync('bash', [path.join(root, 'scripts/solid-venv.sh')], { stdio: ['ignore', 'pipe', 'inherit'] }).toString().trim();
   part = path.join(root, 'target/mould-core.stl');
   execFileSync(python, [path.join(root, 'scripts/mould-core.py'), part], { stdio: 'inherit' });
 }

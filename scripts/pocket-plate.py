@@ -69,7 +69,6 @@ def plate():
     return solid
 
 
-
 if __name__ == "__main__":
     part = plate()
     levels = sorted({round(float(z), 6) for z in np.asarray(part.to_mesh().vert_properties)[:, 2]})

@@ -31,13 +31,8 @@ json.dump(j, sys.stdout)"
 }
 for kind in roughZlevel roughZigzag roughOctree; do job $kind > "$OUT/$kind.json"; done
 # Issue 61's generated pocket plate (scripts/pocket-plate.py: an exact solid by manifold3d's
-# booleans, in a venv of its own, pinned).
-PLATE_VENV=target/plate-venv
-if ! "$PLATE_VENV/bin/python" -c "import manifold3d, numpy" 2>/dev/null; then
-  python3 -m venv "$PLATE_VENV"
-  "$PLATE_VENV/bin/pip" install -q "manifold3d==3.5.4" "numpy==2.4.6"
-fi
-"$PLATE_VENV/bin/python" scripts/pocket-plate.py "$OUT/pocket_plate.stl"
+# booleans, in the venv scripts/solid-venv.sh makes).
+"$(bash scripts/solid-venv.sh)" scripts/pocket-plate.py "$OUT/pocket_plate.stl"
 printf '%-18s %-8s %9s %9s %9s %8s\n' part program compute kiri/it cycle rapid/feed
 for part in ocl_mount_rush kiri_pocket-test pycam_textbox ocl_wheel_in_box pocket_plate; do
   stl=../shared/data/meshes/$part.stl
