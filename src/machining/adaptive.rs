@@ -21,13 +21,13 @@
 //! is a pass that cuts nothing (the wheel in a box's narrow levels tried 1,600 of them).
 //!
 //! **Between passes.** The next pass starts where the tool touches no material and material
-//! lies within a step of its reach (a distance transform of the map in blocks, kept up to date
-//! in a window about each pass): first where a front of material begins (a step back along the
+//! lies within a step of its reach (a distance transform of the map in blocks, kept up to date in a
+//! window about what each pass cut): first where a front of material begins (a step back along the
 //! front the tool would be outside the region or out of reach of material, so the pass runs the
 //! front's whole length), the nearest such point; reached staying down where the straight way
-//! touches no material and stays in the region, else over the top. Where no such point is left
-//! but material is, a helix goes down in the middle of it (the point of the region farthest
-//! from its boundary among those over material; smaller than asked where the room is, down to
+//! touches no material and stays in the region, else over the top. Where no such point is left but
+//! material is, a helix goes down in the middle of it (the point of the region farthest from its
+//! boundary among those over material; smaller than asked where the room is, down to
 //! [`LEAST_HELIX`] of the tool's radius), and the passes spiral out from the hole it cuts.
 //!
 //! What the pixels leave against the region's boundary (a pixel or so) is for a boundary
@@ -165,9 +165,10 @@ pub fn plan(map: &mut PixelMap, a: &Adaptive, from: DVec2) -> Plan {
     let side = if a.climb { 1.0 } else { -1.0 };
     // The material's blocks, each block's distance from them (within reach of a start), and
     // the blocks a pass may start from (clear of the material, within a step of its reach),
-    // kept up to date in a window about each pass.
+    // kept up to date in a window about what each pass cut.
     let cap = r + step + block;
     let (mut material, _, _) = map.blocks(k);
+    map.take_cut();
     let mut blocks_left = material.iter().filter(|&&m| m).count();
     let mut near = distance_within(&material, bx, by, block, cap);
     let block_at = |p: DVec2| {
@@ -177,8 +178,9 @@ pub fn plan(map: &mut PixelMap, a: &Adaptive, from: DVec2) -> Plan {
     // A start: a block clear of the material within a step of its reach, where the tool's
     // centre may stand, and whether a front begins there (a step back along it the tool would
     // be outside the region or out of reach of material).
-    let start_at = |map: &PixelMap, near: &[f64], n: usize| {
-        let (i, j, d) = (n % bx, n / bx, near[n]);
+    let start_at = |map: &PixelMap, near: &[f64], i: usize, j: usize| {
+        let n = j * bx + i;
+        let d = near[n];
         if !(i > 0 && j > 0 && i + 1 < bx && j + 1 < by && d - half_diag > r && d + half_diag <= r + step) {
             return None;
         }
@@ -194,7 +196,7 @@ pub fn plan(map: &mut PixelMap, a: &Adaptive, from: DVec2) -> Plan {
         };
         Some((n, begins, c))
     };
-    let mut starts: Vec<(usize, bool, DVec2)> = (0..bx * by).filter_map(|n| start_at(map, &near, n)).collect();
+    let mut starts: Vec<(usize, bool, DVec2)> = (0..bx * by).filter_map(|n| start_at(map, &near, n % bx, n / bx)).collect();
     // Blocks `(i0, j0)` to `(i1, j1)` (exclusive) within `by` blocks of the points' box.
     let window = |pts: &[DVec2], grow: f64| {
         let b = pts.iter().fold(crate::geom::segment::Rect::EMPTY, |b, &p| b.grow(p));
@@ -268,43 +270,43 @@ pub fn plan(map: &mut PixelMap, a: &Adaptive, from: DVec2) -> Plan {
                 (s, Entry::Helix { centre: c, radius: helix_r }, DVec2::new(0.0, side))
             }
         };
-        let before = map.left();
-        let (points, engaged) = pass(map, a, start, heading, step, &mut steps, budget);
-        if map.left() == before && !matches!(entry, Entry::Helix { .. }) {
+        let (points, engaged, removed) = pass(map, a, start, heading, step, &mut steps, budget);
+        if removed == 0 && !matches!(entry, Entry::Helix { .. }) {
             // A pass that cut nothing is not made (its start stays tried).
             continue;
         }
-        // What the pass (and its helix) cut lies within the tool's radius of its points: the
-        // blocks' distances change only within `cap` of that, and are found from the
-        // material within `cap` of those.
-        let mut cut = points.clone();
-        if let Entry::Helix { centre, radius } = entry {
-            cut.extend([centre - DVec2::splat(radius), centre + DVec2::splat(radius)]);
-        }
-        let (inner_lo, inner_hi) = window(&cut, r + cap);
-        let (lo, hi) = window(&cut, r + 2.0 * cap);
-        let w = hi.0 - lo.0;
-        let part = map.blocks_within(k, lo, hi);
-        // (Worked along the inner window's rows only: the rest is there for their distances.)
-        let d = distance_within_rows(&part, w, hi.1 - lo.1, block, cap, inner_lo.1 - lo.1..inner_hi.1 - lo.1);
-        for j in lo.1..hi.1 {
-            let now = &part[(j - lo.1) * w..(j - lo.1 + 1) * w];
-            for (was, &now) in material[j * bx + lo.0..j * bx + hi.0].iter_mut().zip(now) {
-                blocks_left = blocks_left + now as usize - *was as usize;
-                *was = now;
+        // What the pass (and its helix) cut lies within the box of the pixels they cut: the
+        // blocks' distances change only within `cap` of that (and a pixel, for the blocks
+        // whose pixels' neighbours were cut), and are found from the material within `cap`
+        // of those.
+        if let Some(cut) = map.take_cut() {
+            let changed = cap + 2.0 * px;
+            let (inner_lo, inner_hi) = window(&cut, changed);
+            let (lo, hi) = window(&cut, changed + cap);
+            let w = hi.0 - lo.0;
+            let part = map.blocks_within(k, lo, hi);
+            // (Worked along the inner window's rows only: the rest is there for their distances.)
+            let d = distance_within_rows(&part, w, hi.1 - lo.1, block, cap, inner_lo.1 - lo.1..inner_hi.1 - lo.1);
+            for j in lo.1..hi.1 {
+                let now = &part[(j - lo.1) * w..(j - lo.1 + 1) * w];
+                for (was, &now) in material[j * bx + lo.0..j * bx + hi.0].iter_mut().zip(now) {
+                    blocks_left = blocks_left + now as usize - *was as usize;
+                    *was = now;
+                }
+                if (inner_lo.1..inner_hi.1).contains(&j) {
+                    let at = (j - inner_lo.1) * w + inner_lo.0 - lo.0;
+                    near[j * bx + inner_lo.0..j * bx + inner_hi.0].copy_from_slice(&d[at..at + inner_hi.0 - inner_lo.0]);
+                }
             }
-            if (inner_lo.1..inner_hi.1).contains(&j) {
-                let at = (j - inner_lo.1) * w + inner_lo.0 - lo.0;
-                near[j * bx + inner_lo.0..j * bx + inner_hi.0].copy_from_slice(&d[at..at + inner_hi.0 - inner_lo.0]);
+            // The starts again where the distances changed, and a step and a block beyond
+            // (where a front begins is judged a step back along it, by the distances' slope).
+            let (lo, hi) = window(&cut, changed + step + block);
+            // (The window's rows first: most starts lie outside them.)
+            let inside = |n: usize| (lo.1 * bx..hi.1 * bx).contains(&n) && (lo.0..hi.0).contains(&(n % bx));
+            starts.retain(|&(n, _, _)| !inside(n));
+            for j in lo.1..hi.1 {
+                starts.extend((lo.0..hi.0).filter_map(|i| start_at(map, &near, i, j)));
             }
-        }
-        // The starts again where the distances changed, and a step beyond (where a front
-        // begins is judged a step back along it).
-        let (lo, hi) = window(&cut, r + cap + step);
-        let inside = |n: usize| (lo.0..hi.0).contains(&(n % bx)) && (lo.1..hi.1).contains(&(n / bx));
-        starts.retain(|&(n, _, _)| !inside(n));
-        for j in lo.1..hi.1 {
-            starts.extend((lo.0..hi.0).filter_map(|i| start_at(map, &near, j * bx + i)));
         }
         out.engagement.extend(engaged);
         at = *points.last().expect("a pass starts at a point");
@@ -313,13 +315,14 @@ pub fn plan(map: &mut PixelMap, a: &Adaptive, from: DVec2) -> Plan {
     out
 }
 
-/// One pass from `start` headed along `heading`: the points and each step's engagement.
-fn pass(map: &mut PixelMap, a: &Adaptive, start: DVec2, heading: DVec2, step: f64, steps: &mut usize, budget: usize) -> (Vec<DVec2>, Vec<(f64, f64)>) {
+/// One pass from `start` headed along `heading`: the points, each step's engagement, and the
+/// pixels it cut.
+fn pass(map: &mut PixelMap, a: &Adaptive, start: DVec2, heading: DVec2, step: f64, steps: &mut usize, budget: usize) -> (Vec<DVec2>, Vec<(f64, f64)>, usize) {
     let side = if a.climb { 1.0 } else { -1.0 };
     let mut points = vec![start];
     let mut engaged = Vec::new();
     let (mut p, mut h, mut last) = (start, heading, 0.5);
-    let mut idle = 0.0;
+    let (mut idle, mut removed_all) = (0.0, 0);
     // The points up to the last step that cut.
     let mut cutting = 1;
     // A heading `u` from 0 (a quarter turn towards the material) to 1 (a quarter turn away).
@@ -387,6 +390,7 @@ fn pass(map: &mut PixelMap, a: &Adaptive, start: DVec2, heading: DVec2, step: f6
             break;
         }
         let removed = map.cut(p, q);
+        removed_all += removed;
         *steps += 1;
         engaged.push((step, angle));
         points.push(q);
@@ -400,7 +404,7 @@ fn pass(map: &mut PixelMap, a: &Adaptive, start: DVec2, heading: DVec2, step: f6
     // The steps after the last that cut are not made.
     points.truncate(cutting);
     engaged.truncate(cutting - 1);
-    (points, engaged)
+    (points, engaged, removed_all)
 }
 
 /// The engagement angle of a tool of radius `r` at `q` moving along `d`: the front half of its
@@ -511,7 +515,7 @@ mod tests {
         let mut map = PixelMap::new(crate::geom::segment::Rect { min: DVec2::splat(-20.0), max: DVec2::splat(20.0) }, 0.075, r, |p| p.x >= 0.0, &region);
         let a = Adaptive { radius: r, target: Adaptive::angle_of(0.6, r), climb: true, helix_r: 1.0, step: 0.3 };
         let mut steps = 0;
-        let (points, engaged) = pass(&mut map, &a, DVec2::new(-r - 0.1, -15.0), DVec2::new(0.0, 1.0), 0.3, &mut steps, 100);
+        let (points, engaged, _) = pass(&mut map, &a, DVec2::new(-r - 0.1, -15.0), DVec2::new(0.0, 1.0), 0.3, &mut steps, 100);
         assert!(points.iter().skip(50).all(|p| (p.x + r - 0.6).abs() < 0.05), "the pass settles 0.6 into the wall");
         let late = &engaged[engaged.len() / 2..];
         assert!(late.iter().all(|e| (e.1 - a.target).abs() < 0.1 * a.target), "{late:?}");

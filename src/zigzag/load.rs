@@ -57,6 +57,9 @@ pub struct PixelMap {
     /// restore the material as it was where the detour left the path.
     undo: Vec<(usize, u64)>,
     logging: bool,
+    /// The pixels cut since [`PixelMap::take_cut`] last asked: the lowest and highest column
+    /// and row (empty while the lowest is past the highest).
+    cut_since: [usize; 4],
 }
 
 impl PixelMap {
@@ -133,7 +136,22 @@ impl PixelMap {
                 }
             }
         }
-        PixelMap { origin, px, nx, ny, words, material: m, centre_in: Vec::new(), inner: Vec::new(), radius, boundary: Vec::new(), rows: Vec::new(), undo: Vec::new(), logging: false }
+        PixelMap {
+            origin,
+            px,
+            nx,
+            ny,
+            words,
+            material: m,
+            centre_in: Vec::new(),
+            inner: Vec::new(),
+            radius,
+            boundary: Vec::new(),
+            rows: Vec::new(),
+            undo: Vec::new(),
+            logging: false,
+            cut_since: NONE_CUT,
+        }
     }
 
     /// A pixel on the centre of each of `stock`'s cells over `bounds` (and empty ones beyond
@@ -282,6 +300,9 @@ impl PixelMap {
                 let bits = self.material[row + w] & mask;
                 count += bits.count_ones() as usize;
                 if cut && bits != 0 {
+                    let at = w * 64;
+                    let c = &mut self.cut_since;
+                    (c[0], c[1], c[2], c[3]) = (c[0].min(at + bits.trailing_zeros() as usize), c[1].max(at + 63 - bits.leading_zeros() as usize), c[2].min(j), c[3].max(j));
                     if self.logging {
                         self.undo.push((row + w, self.material[row + w]));
                     }
@@ -361,11 +382,21 @@ impl PixelMap {
         }
     }
 
+    /// The centres of the lowest and the highest pixel cut since the last call (`None` where
+    /// nothing was): what changed lies within their box.
+    pub fn take_cut(&mut self) -> Option<[DVec2; 2]> {
+        let [i0, i1, j0, j1] = std::mem::replace(&mut self.cut_since, NONE_CUT);
+        (i0 <= i1).then(|| [self.origin + DVec2::new(i0 as f64, j0 as f64) * self.px, self.origin + DVec2::new(i1 as f64, j1 as f64) * self.px])
+    }
+
     /// Material pixels left.
     pub fn left(&self) -> usize {
         self.material.iter().map(|w| w.count_ones() as usize).sum()
     }
 }
+
+/// [`PixelMap::cut_since`] where nothing was cut.
+const NONE_CUT: [usize; 4] = [usize::MAX, 0, usize::MAX, 0];
 
 /// The disc of radius `r` swept from `a` to `b` (a convex shape, so each row meets it in one
 /// interval), with what every row's meeting needs worked out once.
@@ -824,6 +855,30 @@ mod tests {
         // Far out and not a number, as the casts of floor and ceil give them.
         for v in [f64::INFINITY, f64::NEG_INFINITY, f64::NAN, 1e300, -1e300] {
             assert_eq!((floor_index(v), ceil_index(v)), (v.floor() as isize, v.ceil() as isize), "{v:e}");
+        }
+    }
+
+    /// The box of what was cut is that of the pixels the cuts cleared, no larger; empty once
+    /// asked for, and after a cut that cleared nothing.
+    #[test]
+    fn the_cut_box_is_that_of_the_pixels_cleared() {
+        let (mut map, _) = square_map(0.1, 3.0);
+        assert_eq!(map.take_cut(), None);
+        for (a, b) in [(DVec2::new(20.0, 20.0), DVec2::new(26.3, 23.1)), (DVec2::new(2.0, 37.0), DVec2::new(2.5, 30.0)), (DVec2::new(22.0, 21.0), DVec2::new(25.0, 22.0))] {
+            let before = map.clone();
+            let cut = map.cut(a, b);
+            let cleared: Vec<(usize, usize)> = (0..map.ny)
+                .flat_map(|j| (0..map.nx).map(move |i| (i, j)))
+                .filter(|&(i, j)| (before.material[j * map.words + i / 64] ^ map.material[j * map.words + i / 64]) >> (i % 64) & 1 == 1)
+                .collect();
+            assert_eq!(cleared.len(), cut);
+            let want = (!cleared.is_empty()).then(|| {
+                let (i0, i1) = (cleared.iter().map(|c| c.0).min().unwrap(), cleared.iter().map(|c| c.0).max().unwrap());
+                let (j0, j1) = (cleared.iter().map(|c| c.1).min().unwrap(), cleared.iter().map(|c| c.1).max().unwrap());
+                [map.origin + DVec2::new(i0 as f64, j0 as f64) * map.px, map.origin + DVec2::new(i1 as f64, j1 as f64) * map.px]
+            });
+            assert_eq!(map.take_cut(), want, "{a} to {b}");
+            assert_eq!(map.take_cut(), None);
         }
     }
 
