@@ -168,6 +168,7 @@ pub fn plan(map: &mut PixelMap, a: &Adaptive, from: DVec2) -> Plan {
     // kept up to date in a window about what each pass cut.
     let cap = r + step + block;
     let (mut material, _, _) = map.blocks(k);
+    // (What was cut before this plan is in the blocks already: only the passes' cuts count.)
     map.take_cut();
     let mut blocks_left = material.iter().filter(|&&m| m).count();
     let mut near = distance_within(&material, bx, by, block, cap);
