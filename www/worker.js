@@ -48,6 +48,8 @@ let sentPart = null;
 
 // The pieces of an operation's moves received so far ('keepMoves').
 let movePieces = [];
+// The pieces of the next message's part file received so far ('bytes').
+let bytePieces = [];
 
 function partMessage(view, reuse = false) {
   const key = view.hash();
@@ -170,6 +172,16 @@ function explained(error) {
 
 self.onmessage = async (event) => {
   const { id, type } = event.data;
+  // A large part's file comes in pieces before its message (`bytes: { pieces }`), joined here.
+  if (type === 'bytes') {
+    bytePieces.push(event.data.piece);
+    return;
+  }
+  if (event.data.bytes?.pieces) {
+    const pieces = bytePieces.splice(0), all = new Uint8Array(pieces.reduce((n, p) => n + p.length, 0));
+    pieces.reduce((at, p) => (all.set(p, at), at + p.length), 0);
+    event.data.bytes = all;
+  }
   try {
     ready ??= init(event.data.wasm ? { module_or_path: event.data.wasm } : undefined);
     await ready;

@@ -353,8 +353,9 @@ test('a die-sized part in the page: generated, drawn from a coarse view of the s
   const moves = (await page.textContent('#stats')).match(/^([\d,]+) moves/)[1];
   console.log(`die-sized Generate: ${moves} moves, ${((ended - started) / 1000).toFixed(1)} s; ${tasks.length} long tasks on the page's thread: ${tasks.map((t) => `${t.duration.toFixed(0)} ms`).join(', ')}; ${frames.length} long frames, their scripts: ${frames.map((f) => `${f.scripts.toFixed(0)} ms (${f.by})`).join('; ') || 'none'}`);
   // About 60-85 ms at worst on an idle machine or beside the rest of the suite; the page before
-  // its steps and its coarse stock held it 250 ms, and before the program came as bytes its
-  // text alone took 213 ms to arrive on a busy machine (BENCHMARKS.md, "The page").
+  // its steps and its coarse stock held it 250 ms, before the program came as bytes its text
+  // alone took 213 ms to arrive on a busy machine (BENCHMARKS.md, "The page"), and before the
+  // part's file went to the workers in pieces, copying it for each held it 212-254 ms there.
   const worst = frames.reduce((w, f) => (f.scripts > w.scripts ? f : w), { scripts: 0 });
   assert.ok(worst.scripts < 200, `a frame's scripts held the page's thread ${worst.scripts.toFixed(0)} ms: ${worst.by}`);
   assert.ok((await pathPixels(page)) > 1000, 'the path is drawn');
