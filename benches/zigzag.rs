@@ -35,20 +35,37 @@ fn main() {
         let part = swarf::mesh::import::read_mesh_auto(&std::fs::read(&args[5]).expect("the part"), Some("part.stl"), &Default::default()).expect("the part reads");
         for program in &args[6..] {
             let gcode = std::fs::read_to_string(program).expect("the program");
-            let rates = support::job::program_rates(part.clone(), &gcode, diameter, 0.1, 1.2).expect("the program simulates");
-            // Windows that cut (more than a twentieth of the target's rate).
-            let angles: Vec<f64> = rates.iter().map(|&rate| rate / feed / ap).filter(|&e| e > 0.05 * ae).map(angle).collect();
-            let n = angles.len().max(1) as f64;
-            let held = angles.iter().filter(|&&a| (a - target).abs() <= 0.1 * target).count() as f64 / n;
-            let over = angles.iter().filter(|&&a| a > 1.3 * target).count() as f64 / n;
-            let peak = angles.iter().copied().fold(0.0, f64::max);
+            let runs = support::job::program_runs(part.clone(), &gcode, diameter, 0.1, 1.2).expect("the program simulates");
+            // Windows that cut (more than a twentieth of the target's rate), and whether both
+            // windows beside them in their run cut too (the tool inside a front, not entering
+            // or leaving one).
+            let cuts = |rate: f64| rate / feed / ap > 0.05 * ae;
+            let mut windows: Vec<(f64, bool)> = Vec::new();
+            for run in &runs {
+                for (k, &rate) in run.iter().enumerate().filter(|&(_, &rate)| cuts(rate)) {
+                    let inside = k > 0 && k + 1 < run.len() && cuts(run[k - 1]) && cuts(run[k + 1]);
+                    windows.push((angle(rate / feed / ap), inside));
+                }
+            }
+            let share = |of: &dyn Fn(f64, bool) -> bool, among: &dyn Fn(bool) -> bool| {
+                let n = windows.iter().filter(|w| among(w.1)).count();
+                (windows.iter().filter(|w| among(w.1) && of(w.0, w.1)).count() as f64 / n.max(1) as f64, n)
+            };
+            let held = |a: f64, _: bool| (a - target).abs() <= 0.1 * target;
+            let (within, n) = share(&held, &|_| true);
+            let (over, _) = share(&|a, _| a > 1.3 * target, &|_| true);
+            let (inside, fronts) = share(&held, &|inside| inside);
+            let (edges, _) = share(&held, &|inside| !inside);
+            let peak = windows.iter().map(|w| w.0).fold(0.0, f64::max);
             println!(
-                "{program}: engagement over {} windows of 1.2 mm cutting: {:.1} % within ±10 % of {:.1}°, {:.1} % above 1.3×, peak {:.1}°",
-                angles.len(),
-                100.0 * held,
+                "{program}: engagement over {n} windows of 1.2 mm cutting: {:.1} % within ±10 % of {:.1}°, {:.1} % above 1.3×, peak {:.1}°; inside fronts ({:.1} % of the windows) {:.1} % within, entering or leaving one {:.1} %",
+                100.0 * within,
                 target.to_degrees(),
                 100.0 * over,
-                peak.to_degrees()
+                peak.to_degrees(),
+                100.0 * fronts as f64 / n.max(1) as f64,
+                100.0 * inside,
+                100.0 * edges
             );
         }
         return;

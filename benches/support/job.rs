@@ -292,13 +292,18 @@ pub fn program_load(part: Mesh, gcode: &str, diameter: f64, cell: f64, ds: f64) 
 /// The removal rate (mm³/min) over each window of at least `ds` mm of a program's level cutting
 /// (a flat end of `diameter` on the part's box as stock), simulated at `cell`.
 pub fn program_rates(part: Mesh, gcode: &str, diameter: f64, cell: f64, ds: f64) -> swarf::error::Result<Vec<f64>> {
+    Ok(program_runs(part, gcode, diameter, cell, ds)?.concat())
+}
+
+/// [`program_rates`] by runs of level cutting (`swarf::sim::windows::windowed_runs`).
+pub fn program_runs(part: Mesh, gcode: &str, diameter: f64, cell: f64, ds: f64) -> swarf::error::Result<Vec<Vec<f64>>> {
     let mut job = peer_rough_job();
     let mut part = part;
     let stock = job.place(&mut part);
     job.tools[0].cutter = Cutter { flute_length: 1e3, ..Cutter::flat(diameter) };
     let paths = swarf::post::read::read_gcode(gcode, 1)?;
     let moves = swarf::sim::program::program_moves(&paths, &job.tools, job.rapids(), job.air_feed())?;
-    swarf::sim::windows::windowed_rates(&moves, &stock, cell, ds)
+    swarf::sim::windows::windowed_runs(&moves, &stock, cell, ds)
 }
 
 /// Issue 12's settings (φ6 flat, step-down 2, step-over 0.4, no allowance, the stock the
