@@ -67,6 +67,20 @@ fn main() {
                 100.0 * inside,
                 100.0 * edges
             );
+            // The angle itself, sampled every 0.1 mm: the share of the cutting length (where
+            // the tool stands in more than a twentieth of the target's cut) in the band.
+            let sampled = support::job::program_engagement(part.clone(), &gcode, diameter, 0.05, 0.1).expect("the program simulates");
+            let cutting: Vec<(f64, f64)> = sampled.concat().into_iter().filter(|&(_, a)| a > angle(0.05 * ae)).collect();
+            let total = cutting.iter().map(|c| c.0).sum::<f64>().max(1e-12);
+            let by = |keep: &dyn Fn(f64) -> bool| 100.0 * cutting.iter().filter(|c| keep(c.1)).map(|c| c.0).sum::<f64>() / total + 0.0;
+            println!(
+                "{program}: engagement sampled every 0.1 mm over {:.0} mm of cutting: {:.1} % within ±10 %, {:.1} % below, {:.1} % above 1.3×, peak {:.1}°",
+                total,
+                by(&|a| (a - target).abs() <= 0.1 * target),
+                by(&|a| a < 0.9 * target),
+                by(&|a| a > 1.3 * target),
+                cutting.iter().map(|c| c.1).fold(0.0, f64::max).to_degrees()
+            );
         }
         return;
     }

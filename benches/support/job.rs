@@ -295,14 +295,28 @@ pub fn program_rates(part: Mesh, gcode: &str, diameter: f64, cell: f64, ds: f64)
     Ok(program_runs(part, gcode, diameter, cell, ds)?.concat())
 }
 
-/// [`program_rates`] by runs of level cutting (`swarf::sim::windows::windowed_runs`).
-pub fn program_runs(part: Mesh, gcode: &str, diameter: f64, cell: f64, ds: f64) -> swarf::error::Result<Vec<Vec<f64>>> {
+/// The engagement along a program's level cutting as issue 59 defines it
+/// (`swarf::sim::windows::engagement_runs`), on the stock of [`program_rates`] at `cell`,
+/// sampled every `most` mm: each piece's length and angle (radians), by runs.
+pub fn program_engagement(part: Mesh, gcode: &str, diameter: f64, cell: f64, most: f64) -> swarf::error::Result<Vec<Vec<(f64, f64)>>> {
+    let (moves, stock) = program_on_box(part, gcode, diameter)?;
+    swarf::sim::windows::engagement_runs(&moves, &stock, cell, most, &Tolerances::default())
+}
+
+/// A program's moves with a flat end of `diameter` (flutes long enough for anything) and the
+/// stock [`peer_rough_job`] places the part in (its box).
+fn program_on_box(part: Mesh, gcode: &str, diameter: f64) -> swarf::error::Result<(Vec<swarf::sim::program::ProgramMove>, swarf::geom::Aabb)> {
     let mut job = peer_rough_job();
     let mut part = part;
     let stock = job.place(&mut part);
     job.tools[0].cutter = Cutter { flute_length: 1e3, ..Cutter::flat(diameter) };
     let paths = swarf::post::read::read_gcode(gcode, 1)?;
-    let moves = swarf::sim::program::program_moves(&paths, &job.tools, job.rapids(), job.air_feed())?;
+    Ok((swarf::sim::program::program_moves(&paths, &job.tools, job.rapids(), job.air_feed())?, stock))
+}
+
+/// [`program_rates`] by runs of level cutting (`swarf::sim::windows::windowed_runs`).
+pub fn program_runs(part: Mesh, gcode: &str, diameter: f64, cell: f64, ds: f64) -> swarf::error::Result<Vec<Vec<f64>>> {
+    let (moves, stock) = program_on_box(part, gcode, diameter)?;
     swarf::sim::windows::windowed_runs(&moves, &stock, cell, ds)
 }
 

@@ -198,7 +198,7 @@ pub fn plan(map: &mut PixelMap, a: &Adaptive, from: DVec2) -> Plan {
         Some((n, begins, c))
     };
     let mut starts: Vec<(usize, bool, DVec2)> = (0..bx * by).filter_map(|n| start_at(map, &near, n % bx, n / bx)).collect();
-    // Blocks `(i0, j0)` to `(i1, j1)` (exclusive) within `by` blocks of the points' box.
+    // Blocks `(i0, j0)` to `(i1, j1)` (exclusive) within `grow` mm (and a block or two) of the points' box.
     let window = |pts: &[DVec2], grow: f64| {
         let b = pts.iter().fold(crate::geom::segment::Rect::EMPTY, |b, &p| b.grow(p));
         let lo = ((b.min - origin) / block - DVec2::splat(grow / block + 1.0)).floor().max(DVec2::ZERO);
@@ -334,7 +334,7 @@ fn pass(map: &mut PixelMap, a: &Adaptive, start: DVec2, heading: DVec2, step: f6
             let d = dir(h, u);
             engagement(map, p + d * step, d, a.radius)
         };
-        // A tool's radius of steps that cut nothing ends the pass.
+        // [`IDLE`] tool radii of steps that cut nothing end the pass.
         if idle + step > IDLE * a.radius {
             break;
         }
