@@ -51,6 +51,13 @@ let movePieces = [];
 // The pieces of the next message's part file received so far ('bytes').
 let bytePieces = [];
 
+// `pieces` (typed arrays) one after the other in one array of `Type`.
+function joined(pieces, Type) {
+  const all = new Type(pieces.reduce((n, p) => n + p.length, 0));
+  pieces.reduce((at, p) => (all.set(p, at), at + p.length), 0);
+  return all;
+}
+
 function partMessage(view, reuse = false) {
   const key = view.hash();
   const meta = { bounds: Array.from(view.bounds()), triangles: view.triangles(), dropped: view.dropped(), warnings: view.warnings(), hash: key };
@@ -178,9 +185,7 @@ self.onmessage = async (event) => {
     return;
   }
   if (event.data.bytes?.pieces) {
-    const pieces = bytePieces.splice(0), all = new Uint8Array(pieces.reduce((n, p) => n + p.length, 0));
-    pieces.reduce((at, p) => (all.set(p, at), at + p.length), 0);
-    event.data.bytes = all;
+    event.data.bytes = joined(bytePieces.splice(0), Uint8Array);
   }
   try {
     ready ??= init(event.data.wasm ? { module_or_path: event.data.wasm } : undefined);
@@ -294,8 +299,7 @@ self.onmessage = async (event) => {
       if (part === 0) movePieces = [];
       movePieces.push(moves);
       if (part + 1 === parts) {
-        const all = new Float64Array(movePieces.reduce((n, p) => n + p.length, 0));
-        movePieces.reduce((at, p) => (all.set(p, at), at + p.length), 0);
+        const all = joined(movePieces, Float64Array);
         movePieces = [];
         planned().keepMoves(all);
       }

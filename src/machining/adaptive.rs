@@ -411,10 +411,15 @@ fn pass(map: &mut PixelMap, a: &Adaptive, start: DVec2, heading: DVec2, step: f6
 /// The engagement angle of a tool of radius `r` at `q` moving along `d`: the front half of its
 /// circle in material, measured at [`SAMPLES`] points.
 pub fn engagement(map: &PixelMap, q: DVec2, d: DVec2, r: f64) -> f64 {
-    static FRONT: std::sync::OnceLock<Vec<DVec2>> = std::sync::OnceLock::new();
-    let front = FRONT.get_or_init(|| (0..SAMPLES).map(|k| DVec2::from_angle(-FRAC_PI_2 + PI * (k as f64 + 0.5) / SAMPLES as f64)).collect());
-    let n = front.iter().filter(|&&u| map.material_near(q + d.rotate(u) * r)).count();
+    let n = front_half().iter().filter(|&&u| map.material_near(q + d.rotate(u) * r)).count();
     PI * n as f64 / SAMPLES as f64
+}
+
+/// The [`SAMPLES`] directions of the front half of the tool's circle at which the engagement
+/// is measured, about a heading along +x (rotate them by the heading).
+pub fn front_half() -> &'static [DVec2] {
+    static FRONT: std::sync::OnceLock<Vec<DVec2>> = std::sync::OnceLock::new();
+    FRONT.get_or_init(|| (0..SAMPLES).map(|k| DVec2::from_angle(-FRAC_PI_2 + PI * (k as f64 + 0.5) / SAMPLES as f64)).collect())
 }
 
 /// The mean direction from `c` of the material on the circle of radius `reach` about it.

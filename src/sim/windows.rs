@@ -78,7 +78,7 @@ fn pieces(moves: &[ProgramMove], most: f64) -> Vec<(ProgramMove, bool)> {
         let level = level(m);
         let back = level && descent.is_some_and(|a| m.mv.to().truncate().distance(a) < 1e-9);
         let counted = level && !back && !floor[k];
-        if !m.mv.is_rapid() && m.mv.to().z < m.from.z - 1e-9 {
+        if descends(m) {
             began = began.or(Some(m.from.truncate()));
             descent = began;
         } else {
@@ -117,15 +117,13 @@ fn pieces(moves: &[ProgramMove], most: f64) -> Vec<(ProgramMove, bool)> {
 /// `cell` mm over `stock`: at the end of each piece of at most `most` mm, before the piece
 /// cuts, the angle of the front half of the tool's circle standing in the material the stock
 /// still holds above the move's height, the pass's own cut so far subtracted, sampled at
-/// [`crate::machining::adaptive::SAMPLES`] points. The last two tool diameters of level
+/// the points [`crate::machining::adaptive::front_half`] gives. The last two tool diameters of level
 /// pieces are kept off the stock and subtracted exactly (a point within the radius of one at
 /// its height or below is cut): the cells the piece just before cut would otherwise take a
 /// few degrees off the side of every sample. By runs as [`windowed_runs`] makes them: each
 /// piece's length and angle (radians).
 pub fn engagement_runs(moves: &[ProgramMove], stock: &Aabb, cell: f64, most: f64, tolerances: &Tolerances) -> Result<Vec<Vec<(f64, f64)>>> {
-    use std::f64::consts::{FRAC_PI_2, PI};
-    let n = crate::machining::adaptive::SAMPLES;
-    let front: Vec<DVec2> = (0..n).map(|k| DVec2::from_angle(-FRAC_PI_2 + PI * (k as f64 + 0.5) / n as f64)).collect();
+    let front = crate::machining::adaptive::front_half();
     let mut stock = super::verify::stock_for(stock, cell)?;
     let chordal = tolerances.simulated_chordal();
     let mut runs = vec![Vec::new()];
@@ -156,7 +154,7 @@ pub fn engagement_runs(moves: &[ProgramMove], stock: &Aabb, cell: f64, most: f64
                     })
                 };
                 let inside = front.iter().map(|&u| b + d.rotate(u) * r).filter(|&q| stock.top_near(q).is_some_and(|top| top > z + slack) && !cut_by_recent(q)).count();
-                runs.last_mut().expect("a run").push((m.mv.length(m.from), PI * inside as f64 / n as f64));
+                runs.last_mut().expect("a run").push((m.mv.length(m.from), std::f64::consts::PI * inside as f64 / front.len() as f64));
             }
             held += m.mv.length(m.from);
             recent.push_back(m);
