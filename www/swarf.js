@@ -36,8 +36,36 @@ export class UnsafeProgramError extends Error {
 let violation = null;
 globalThis.document?.addEventListener?.('securitypolicyviolation', (e) => { violation = e; });
 
-/** Bytes of a part's file sent to a worker in one message at most (4 MB; see `Channel.call`). */
-const BYTES_CHUNK = 1 << 22;
+/** Bytes of a typed array sent to a worker in one message at most (1 MB; see `Channel.call`). */
+const PIECE_BYTES = 1 << 20;
+
+/**
+ * The fields of `message` that `Channel.call` sends in pieces: its typed arrays (or buffers) over
+ * PIECE_BYTES whose buffers are not transferred (those are moved, not copied).
+ */
+function piecewise(message, transfer) {
+  return Object.keys(message).filter((k) => {
+    const v = message[k];
+    return (ArrayBuffer.isView(v) || v instanceof ArrayBuffer) && v.byteLength > PIECE_BYTES && !transfer.includes(v.buffer ?? v);
+  });
+}
+
+/** The typed array `v` is (a Node Buffer a Uint8Array), by name; an ArrayBuffer's bytes a Uint8Array. */
+function arrayType(v) {
+  return ['Float64Array', 'Float32Array', 'Int32Array', 'Uint32Array', 'Int16Array', 'Uint16Array', 'Int8Array', 'Uint8ClampedArray', 'BigInt64Array', 'BigUint64Array'].find((t) => v instanceof globalThis[t]) ?? 'Uint8Array';
+}
+
+/**
+ * Resolves in a task of its own, without the 4 ms a chain of timers waits between its tasks:
+ * the pieces of a large message go out one a task, as fast as the page's thread takes them.
+ */
+function nextTask() {
+  return new Promise((resolve) => {
+    const { port1, port2 } = new MessageChannel();
+    port1.onmessage = () => { port1.close(); resolve(); };
+    port2.postMessage(null);
+  });
+}
 
 /** One worker and the calls waiting on its answers. */
 class Channel {
@@ -73,18 +101,28 @@ class Channel {
 
   /** The sending of a large message's pieces, while under way: later messages wait for it. */
   #sending = null;
+  /** Whether the worker was ended. */
+  #ended = false;
 
+  /**
+   * Sends `message` (its buffers in `transfer` moved) and resolves with the worker's answer.
+   * Its large typed arrays that are not transferred (a part's file, a CL surface, an operation's
+   * moves, each for every worker of a pool) go in pieces of at most PIECE_BYTES, each copied and
+   * sent in a task of its own, the worker joining them: copying them in the task that made the
+   * call (often the task a worker's answer arrived in) held the page's thread 10-30 ms on an
+   * idle machine and over 200 ms on a busy one. Calls on a channel arrive in the order made.
+   */
   call(message, transfer = [], onProgress) {
     const id = this.#nextId++;
     return new Promise((resolve, reject) => {
       this.#pending.set(id, { resolve, reject, onProgress });
-      const large = message.bytes?.byteLength > BYTES_CHUNK;
-      if (!large && !this.#sending) {
+      const fields = piecewise(message, transfer);
+      if (!fields.length && !this.#sending) {
         this.#worker.postMessage({ id, ...message }, transfer);
         return;
       }
       // In the order called: after the pieces of a message before it.
-      const sent = (this.#sending ?? Promise.resolve()).then(() => (large ? this.#inPieces(id, message, transfer) : this.#worker.postMessage({ id, ...message }, transfer)));
+      const sent = (this.#sending ?? Promise.resolve()).then(() => this.#inPieces(id, message, transfer, fields));
       this.#sending = sent;
       sent.then(() => { if (this.#sending === sent) this.#sending = null; }, (error) => {
         if (this.#sending === sent) this.#sending = null;
@@ -95,24 +133,30 @@ class Channel {
   }
 
   /**
-   * `message` with its `bytes` (a part's file) sent in pieces of at most BYTES_CHUNK, each
-   * copied and sent in a task of its own, the worker joining them: a die-sized STL is 25 MB,
-   * and copying it for each worker of the pool in the task that started a run held the page's
-   * thread 30-40 ms on an idle machine and over 200 ms on a busy one.
+   * `message` with its `fields` sent in pieces first (`{ type: 'bytes', field, piece }`, bytes
+   * of at most PIECE_BYTES, each copied in a task of its own), then the message itself, each
+   * of those fields replaced by `{ pieces, type }` (how many, and the typed array they make).
    */
-  async #inPieces(id, message, transfer) {
-    const b = message.bytes, all = new Uint8Array(b.buffer ?? b, b.byteOffset ?? 0, b.byteLength);
-    const parts = Math.ceil(all.length / BYTES_CHUNK);
-    for (let k = 0; k < parts; k++) {
-      await new Promise((resolve) => setTimeout(resolve, 0));
-      const piece = all.slice(k * BYTES_CHUNK, (k + 1) * BYTES_CHUNK);
-      this.#worker.postMessage({ id, type: 'bytes', piece }, [piece.buffer]);
+  async #inPieces(id, message, transfer, fields) {
+    const last = { id, ...message };
+    for (const field of fields) {
+      const v = message[field], all = new Uint8Array(v.buffer ?? v, v.byteOffset ?? 0, v.byteLength);
+      const pieces = Math.ceil(all.length / PIECE_BYTES);
+      for (let k = 0; k < pieces; k++) {
+        await nextTask();
+        // A worker ended meanwhile (a cancel) takes no more.
+        if (this.#ended) return;
+        const piece = all.slice(k * PIECE_BYTES, (k + 1) * PIECE_BYTES);
+        this.#worker.postMessage({ id, type: 'bytes', field, piece }, [piece.buffer]);
+      }
+      last[field] = { pieces, type: arrayType(v) };
     }
-    this.#worker.postMessage({ id, ...message, bytes: { pieces: parts } }, transfer);
+    this.#worker.postMessage(last, transfer);
   }
 
   /** Ends the worker; every call waiting on it rejects with `error`. */
   end(error) {
+    this.#ended = true;
     this.#worker.terminate();
     this.#fail(error);
   }
@@ -452,7 +496,8 @@ export class Engine {
         const step = await planner.call({ type: 'planNext', groups: GROUPS_PER_WORKER * n }, [], planning);
         if (step.done) break;
         if (!step.groups) continue;
-        await sendMoves(helpers, step.moves);
+        // The moves to every helper (in pieces: a die's are tens of megabytes).
+        await Promise.all(helpers.map((h) => h.call({ type: 'keepMoves', moves: step.moves })));
         const cut = { bands: [], cuts: [] };
         const groups = step.groups.map((group, g) => ({ type: 'cutBands', group, g, transfer: [group.buffer] }));
         await share(all, groups, (t, r) => { cut.bands[t.g] = r.bands; cut.cuts[t.g] = r.cuts; }, () => onProgress?.(at, `in-process stock (${n} workers)`));
@@ -551,28 +596,6 @@ export class Engine {
     this.#main = null;
     this.#helpers = [];
   }
-}
-
-/** Floats of an operation's moves sent to a helper in one message (8 MB). */
-const MOVES_CHUNK = 1 << 20;
-
-/**
- * An operation's moves (as the planner encoded them) sent to every helper in pieces of at
- * most MOVES_CHUNK floats, each copied and transferred in a task of its own: a million moves
- * are some 70 MB, and one message copying them held the page's thread 55 ms (over 200 on a
- * busy machine). The last helper gets the original's pieces too; each helper joins its pieces.
- */
-async function sendMoves(helpers, moves) {
-  const parts = Math.max(1, Math.ceil(moves.length / MOVES_CHUNK));
-  const calls = [];
-  for (let k = 0; k < parts; k++) {
-    for (const h of helpers) {
-      const piece = moves.slice(k * MOVES_CHUNK, Math.min(moves.length, (k + 1) * MOVES_CHUNK));
-      calls.push(h.call({ type: 'keepMoves', moves: piece, part: k, parts }, [piece.buffer]));
-    }
-    if (k + 1 < parts) await new Promise((resolve) => setTimeout(resolve, 0));
-  }
-  await Promise.all(calls);
 }
 
 /**

@@ -46,16 +46,16 @@ function coarse(values, block) {
 // very same triangles are the same part: a flip or a turn is a new one.
 let sentPart = null;
 
-// The pieces of an operation's moves received so far ('keepMoves').
-let movePieces = [];
-// The pieces of the next message's part file received so far ('bytes').
-let bytePieces = [];
+// The pieces of the next message's large fields received so far ('bytes'), by field.
+const fieldPieces = new Map();
+// The typed arrays a field sent in pieces may make.
+const pieceTypes = { Uint8Array, Uint8ClampedArray, Int8Array, Uint16Array, Int16Array, Uint32Array, Int32Array, Float32Array, Float64Array, BigInt64Array, BigUint64Array };
 
-// `pieces` (typed arrays) one after the other in one array of `Type`.
-function joined(pieces, Type) {
-  const all = new Type(pieces.reduce((n, p) => n + p.length, 0));
+// `pieces` (bytes) one after the other, as an array of `type`.
+function joined(pieces, type) {
+  const all = new Uint8Array(pieces.reduce((n, p) => n + p.length, 0));
   pieces.reduce((at, p) => (all.set(p, at), at + p.length), 0);
-  return all;
+  return new pieceTypes[type](all.buffer);
 }
 
 function partMessage(view, reuse = false) {
@@ -179,14 +179,16 @@ function explained(error) {
 
 self.onmessage = async (event) => {
   const { id, type } = event.data;
-  // A large part's file comes in pieces before its message (`bytes: { pieces }`), joined here.
+  // A large typed array comes in pieces before its message (the field `{ pieces, type }`), joined
+  // here (the engine's Channel.call).
   if (type === 'bytes') {
-    bytePieces.push(event.data.piece);
+    const { field, piece } = event.data;
+    if (!fieldPieces.has(field)) fieldPieces.set(field, []);
+    fieldPieces.get(field).push(piece);
     return;
   }
-  if (event.data.bytes?.pieces) {
-    event.data.bytes = joined(bytePieces.splice(0), Uint8Array);
-  }
+  for (const [field, pieces] of fieldPieces) event.data[field] = joined(pieces, event.data[field].type);
+  fieldPieces.clear();
   try {
     ready ??= init(event.data.wasm ? { module_or_path: event.data.wasm } : undefined);
     await ready;
@@ -294,15 +296,7 @@ self.onmessage = async (event) => {
         self.postMessage({ id, ok: true, done: false, moves, groups }, [moves.buffer, ...groups.map((g) => g.buffer)]);
       }
     } else if (type === 'keepMoves') {
-      // The moves come in pieces (`part` of `parts`), joined here before the planner takes them.
-      const { moves, part = 0, parts = 1 } = event.data;
-      if (part === 0) movePieces = [];
-      movePieces.push(moves);
-      if (part + 1 === parts) {
-        const all = joined(movePieces, Float64Array);
-        movePieces = [];
-        planned().keepMoves(all);
-      }
+      planned().keepMoves(event.data.moves);
       self.postMessage({ id, ok: true });
     } else if (type === 'cutBands') {
       const [bands, cuts] = planned().cutBands(event.data.group);

@@ -355,7 +355,8 @@ test('a die-sized part in the page: generated, drawn from a coarse view of the s
   // About 60-85 ms at worst on an idle machine or beside the rest of the suite; the page before
   // its steps and its coarse stock held it 250 ms, before the program came as bytes its text
   // alone took 213 ms to arrive on a busy machine (BENCHMARKS.md, "The page"), and before the
-  // part's file went to the workers in pieces, copying it for each held it 212-254 ms there.
+  // part's file, the CL surface (13 MB here) and the moves went to the workers in 1 MB pieces,
+  // copying them whole for each held it 212-288 ms there.
   const worst = frames.reduce((w, f) => (f.scripts > w.scripts ? f : w), { scripts: 0 });
   assert.ok(worst.scripts < 200, `a frame's scripts held the page's thread ${worst.scripts.toFixed(0)} ms: ${worst.by}`);
   assert.ok((await pathPixels(page)) > 1000, 'the path is drawn');

@@ -77,22 +77,49 @@ test('a pool of workers writes the same program as one worker, on the sample job
   assert.ok(r.stages.includes('CL z-maps (3 workers)') && r.stages.includes('passes and level maps (3 workers)') && r.stages.includes('regions of levels (3 workers)') && r.stages.includes('in-process stock (3 workers)'), r.stages.join(', '));
 });
 
-// A part's file over 4 MB goes to each worker in pieces, each a task of its own on the page's
-// thread (a die-sized STL copied whole for each worker held it over 200 ms on a busy machine).
-// The die here (6 MB) is such a part: handed over as a view into a larger buffer at an odd
-// offset, the pool's program is the command line's, which reads the file itself.
-test('a part larger than a message\'s piece reaches every worker whole: the pool\'s program is the command line\'s', async () => {
+// A large typed array the page sends a worker without transferring it (a part's file, a CL
+// surface, an operation's moves, each for every worker) goes in pieces of at most 1 MB, each
+// copied in a task of its own on the page's thread (a die-sized STL copied whole for each worker
+// held it over 200 ms on a busy machine, a die's surface and moves up to 290 ms). The die here
+// (6 MB, a 3.8 MB surface) is such a part: handed over as a view into a larger buffer at an odd
+// offset to a pool whose workers' messages are watched, the pool's program is the command
+// line's, which reads the file itself.
+test('a part, a surface and moves larger than a message\'s piece reach every worker whole: the pool\'s program is the command line\'s', async () => {
   const cli = path.resolve(root, '../target/debug/swarf');
   assert.ok(fs.existsSync(cli), `the swarf command line is not built at ${cli}`);
   assert.ok(die.length > 4 << 20, `the die is ${die.length} bytes`);
   const r = await page.evaluate(async () => {
-    const { pool, die, dieJob } = window.t;
+    const { createEngine } = await import('./swarf.js');
+    const { die } = window.t;
+    // Simulated, as the page's jobs are: the moves go to every worker, which cut the stock.
+    const dieJob = structuredClone(window.t.dieJob);
+    dieJob.simulation.verify = true;
+    // Every message to a worker: the largest typed array copied (not transferred) in one, and
+    // the fields that came in pieces.
+    const seen = { largest: 0, fields: new Set() };
+    const worker = () => {
+      const w = new Worker('./worker.js', { type: 'module' });
+      return {
+        set onmessage(f) { w.onmessage = f; },
+        set onerror(f) { w.onerror = f; },
+        terminate: () => w.terminate(),
+        postMessage(m, transfer = []) {
+          for (const v of Object.values(m)) if (ArrayBuffer.isView(v) && !transfer.includes(v.buffer)) seen.largest = Math.max(seen.largest, v.byteLength);
+          if (m.type === 'bytes') seen.fields.add(m.field);
+          w.postMessage(m, transfer);
+        },
+      };
+    };
+    const pool = await createEngine({ worker, workers: 3, warmUp: false });
     const wide = new Uint8Array(die.length + 11);
     wide.set(die, 7);
     const result = await pool.run(dieJob, wide.subarray(7, 7 + die.length), 'die.stl');
-    return { gcode: result.gcode, job: JSON.stringify(dieJob), triangles: result.part.triangles };
+    pool.close();
+    return { gcode: result.gcode, job: JSON.stringify(dieJob), triangles: result.part.triangles, largest: seen.largest, fields: [...seen.fields].sort() };
   });
   assert.equal(r.triangles, (die.length - 84) / 50);
+  assert.deepEqual(r.fields, ['bytes', 'moves', 'z']);
+  assert.ok(r.largest <= 1 << 20, `a message copied ${r.largest} bytes of one array`);
   const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'swarf-pool-'));
   fs.writeFileSync(path.join(dir, 'job.json'), r.job);
   fs.writeFileSync(path.join(dir, 'die.stl'), die);
