@@ -618,7 +618,8 @@ impl DexelStock {
     /// Notes a cell at `centre` cut `depth` deep by `sweep` in [`DexelStock::nearest`].
     #[inline(always)]
     fn engaged(&mut self, sweep: &Sweep, centre: DVec2, depth: f64) {
-        if depth > ENGAGED {
+        // (A cell no nearer than the nearest so far, by a cheaper bound, changes nothing.)
+        if depth > ENGAGED && sweep.nearest_at_least(centre) < self.nearest {
             self.nearest = self.nearest.min(sweep.nearest(centre).0);
         }
     }

@@ -13,6 +13,7 @@
 //! from the law of cosines); other cutters' helical arcs are split into chords.
 
 use crate::cutter::Profile;
+use crate::geom::tolerance::FLOAT_SLACK;
 use crate::geom::{DVec2, DVec3};
 use crate::toolpath::{arc_sweep, Move};
 
@@ -39,6 +40,16 @@ pub struct Sweep {
     pub lowest_tip: f64,
     /// A line's constants, worked out once for the many points asked about.
     line: LineConstants,
+    /// An arc's ends, worked out once for the many points asked about.
+    ends: ArcEnds,
+}
+
+/// An arc's ends in XY and their unit directions from its centre (each a sine and a cosine a
+/// point asked about needed twice).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct ArcEnds {
+    points: [DVec2; 2],
+    dirs: [DVec2; 2],
 }
 
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -72,7 +83,7 @@ impl Sweep {
             length,
             inv_along: if along > 1e-12 { 1.0 / along } else { 0.0 },
         };
-        Sweep { profile, path: Path::Line { a, b }, min: a.truncate().min(b.truncate()) - r, max: a.truncate().max(b.truncate()) + r, lowest_tip: a.z.min(b.z), line }
+        Sweep { profile, path: Path::Line { a, b }, min: a.truncate().min(b.truncate()) - r, max: a.truncate().max(b.truncate()) + r, lowest_tip: a.z.min(b.z), line, ends: ArcEnds::default() }
     }
 
     /// A planar arc from `from` (its z is the arc's) about `center`, sweeping `sweep` radians.
@@ -94,7 +105,9 @@ impl Sweep {
             }
         }
         let r = DVec2::splat(profile.radius);
-        Sweep { profile, path: Path::Arc { center, radius, start, sweep, z: from.z, rise: 0.0 }, min: min - r, max: max + r, lowest_tip: from.z, line: LineConstants::default() }
+        let dirs = [DVec2::from_angle(start), DVec2::from_angle(start + sweep)];
+        let ends = ArcEnds { points: [center + dirs[0] * radius, end], dirs };
+        Sweep { profile, path: Path::Arc { center, radius, start, sweep, z: from.z, rise: 0.0 }, min: min - r, max: max + r, lowest_tip: from.z, line: LineConstants::default(), ends }
     }
 
     /// A flat end's helical arc from `from` about `center`, sweeping `sweep` radians while its
@@ -226,7 +239,13 @@ impl Sweep {
             }
             Path::Arc { center, radius, start, sweep, z, rise } if rise != 0.0 => helix_lowest(q, center, radius, start, sweep, z, rise, p.radius),
             Path::Arc { center, radius, start, sweep, z, .. } => {
-                let dist = arc_distance(q, center, radius, start, sweep).0;
+                // Farther from the whole circle than the cutter's radius (beyond a rounding's
+                // margin), farther from the arc: passed over without its angle.
+                let off = ((q - center).length() - radius).abs();
+                if off > p.radius * (1.0 + FLOAT_SLACK) + FLOAT_SLACK {
+                    return f64::INFINITY;
+                }
+                let dist = arc_distance(q, center, radius, start, sweep, &self.ends, false).0;
                 if dist <= p.radius {
                     z + p.height(dist)
                 } else {
@@ -289,7 +308,7 @@ impl Sweep {
                 ((q - p.truncate()).length(), z)
             }
             Path::Arc { center, radius, start, sweep, z, rise } => {
-                let (dist, t) = arc_distance(q, center, radius, start, sweep);
+                let (dist, t) = arc_distance(q, center, radius, start, sweep, &self.ends, rise != 0.0);
                 (dist, z + rise * t)
             }
         }
@@ -311,6 +330,19 @@ impl Sweep {
         let far = dist + half_diagonal;
         let upper = if far <= p.radius { z + p.height(far) } else { f64::INFINITY };
         (lower, upper)
+    }
+
+    /// A bound under [`Sweep::nearest`]'s distance at `q`, cheaper to find: an arc's distance
+    /// from its circle, less a rounding's margin; 0 for a line.
+    #[inline]
+    pub fn nearest_at_least(&self, q: DVec2) -> f64 {
+        match self.path {
+            Path::Line { .. } => 0.0,
+            Path::Arc { center, radius, .. } => {
+                let off = ((q - center).length() - radius).abs();
+                off - FLOAT_SLACK * (1.0 + off)
+            }
+        }
     }
 
     /// Whether the rim of the footprint (where the envelope ends) may pass within `reach` of `q`.
@@ -341,21 +373,60 @@ fn turned(start: f64, sweep: f64, angle: f64) -> f64 {
     }
 }
 
-/// Horizontal distance from `q` to an arc, and the fraction of the arc (0 at its start, 1 at
-/// its end) at the nearest point.
-fn arc_distance(q: DVec2, center: DVec2, radius: f64, start: f64, sweep: f64) -> (f64, f64) {
+/// Whether the direction `v` (from an arc's centre, `len` long) lies on the arc, from the sides
+/// of its ends' directions it lies on, where it lies clear of them and of their opposites (past
+/// [`FLOAT_SLACK`] of a turn): the answer [`angle_within`] gives, without an arc tangent. `None`
+/// nearer than that, where the angle decides.
+fn side_within(v: DVec2, len: f64, sweep: f64, ends: &ArcEnds) -> Option<bool> {
+    use std::f64::consts::{PI, TAU};
+    if sweep.abs() >= TAU {
+        return Some(true);
+    }
+    // As a counter-clockwise arc from `a` to `b`.
+    let [a, b] = if sweep >= 0.0 { ends.dirs } else { [ends.dirs[1], ends.dirs[0]] };
+    let m = FLOAT_SLACK * len;
+    // Positive where `v` lies counter-clockwise of `a`, and `b` of `v`.
+    let (after, before) = (a.perp_dot(v), v.perp_dot(b));
+    if sweep.abs() < PI {
+        // Less than half a turn: on the arc where both hold.
+        if after > m && before > m {
+            Some(true)
+        } else if after < -m || before < -m {
+            Some(false)
+        } else {
+            None
+        }
+    } else if after < -m && before < -m {
+        // Half a turn or more: off it only where `v` lies within the rest (half a turn or less)
+        // from `b` round to `a`.
+        Some(false)
+    } else if after > m || before > m {
+        Some(true)
+    } else {
+        None
+    }
+}
+
+/// Horizontal distance from `q` to an arc (its ends `ends`), and the fraction of the arc (0 at
+/// its start, 1 at its end) at the nearest point, where `fraction` asks for it (0 otherwise).
+#[allow(clippy::too_many_arguments)]
+fn arc_distance(q: DVec2, center: DVec2, radius: f64, start: f64, sweep: f64, ends: &ArcEnds, fraction: bool) -> (f64, f64) {
     let v = q - center;
     let len = v.length();
     if len == 0.0 {
         return (radius, 0.0);
     }
-    let angle = v.y.atan2(v.x);
-    if angle_within(start, sweep, angle) {
-        return ((len - radius).abs(), if sweep == 0.0 { 0.0 } else { (turned(start, sweep, angle) / sweep.abs()).min(1.0) });
+    let side = side_within(v, len, sweep, ends);
+    if side == Some(true) && !fraction {
+        return ((len - radius).abs(), 0.0);
     }
-    let a = center + DVec2::from_angle(start) * radius;
-    let b = center + DVec2::from_angle(start + sweep) * radius;
-    let (da, db) = (q.distance(a), q.distance(b));
+    if side != Some(false) {
+        let angle = v.y.atan2(v.x);
+        if angle_within(start, sweep, angle) {
+            return ((len - radius).abs(), if sweep == 0.0 { 0.0 } else { (turned(start, sweep, angle) / sweep.abs()).min(1.0) });
+        }
+    }
+    let (da, db) = (q.distance(ends.points[0]), q.distance(ends.points[1]));
     if da <= db {
         (da, 0.0)
     } else {
@@ -464,6 +535,62 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// An arc's distance as the angle alone decides it (an arc tangent for every point).
+    fn by_angle(q: DVec2, center: DVec2, radius: f64, start: f64, sweep: f64) -> (f64, f64) {
+        let v = q - center;
+        let len = v.length();
+        if len == 0.0 {
+            return (radius, 0.0);
+        }
+        let angle = v.y.atan2(v.x);
+        if angle_within(start, sweep, angle) {
+            return ((len - radius).abs(), if sweep == 0.0 { 0.0 } else { (turned(start, sweep, angle) / sweep.abs()).min(1.0) });
+        }
+        let (a, b) = (center + DVec2::from_angle(start) * radius, center + DVec2::from_angle(start + sweep) * radius);
+        let (da, db) = (q.distance(a), q.distance(b));
+        if da <= db {
+            (da, 0.0)
+        } else {
+            (db, 1.0)
+        }
+    }
+
+    #[test]
+    fn an_arcs_distance_by_the_sides_of_its_ends_is_the_angles_to_the_bit() {
+        use std::f64::consts::{PI, TAU};
+        let profile = Profile::new(3.0, 0.0);
+        let center = DVec2::new(123.4, -56.7);
+        let mut checked = 0;
+        for start in [0.0, 0.3, -2.9, PI, 3.0 * PI / 2.0] {
+            for sweep in [0.0, 1e-12, 0.4, -0.4, PI - 1e-12, PI, -PI, PI + 1e-12, 4.0, -4.0, TAU - 1e-12, TAU, -TAU] {
+                for r in [1e-6, 0.5, 40.0] {
+                    let from = (center + DVec2::from_angle(start) * r).extend(-2.0);
+                    let s = Sweep::arc(profile, from, center, sweep);
+                    let Path::Arc { start: a0, radius, .. } = s.path else { unreachable!() };
+                    // Directions on every side, at the ends, their opposites and just off them.
+                    let mut angles: Vec<f64> = (0..72).map(|k| k as f64 * TAU / 72.0 + 0.01).collect();
+                    for edge in [a0, a0 + sweep, a0 + PI, a0 + sweep + PI] {
+                        angles.extend([edge, edge + 1e-15, edge - 1e-15, edge + 1e-10, edge - 1e-10]);
+                    }
+                    for angle in angles {
+                        for d in [0.0, radius * 0.5, radius, radius + 1.0, 3.0 * radius + 2.5] {
+                            let q = center + DVec2::from_angle(angle) * d;
+                            let want = by_angle(q, center, radius, a0, sweep);
+                            let got = arc_distance(q, center, radius, a0, sweep, &s.ends, true);
+                            assert!(want.0.to_bits() == got.0.to_bits() && want.1.to_bits() == got.1.to_bits(), "start {a0} sweep {sweep} r {radius} at {angle} {d}: {want:?} vs {got:?}");
+                            let alone = arc_distance(q, center, radius, a0, sweep, &s.ends, false);
+                            assert_eq!(want.0.to_bits(), alone.0.to_bits(), "start {a0} sweep {sweep} r {radius} at {angle} {d}");
+                            // The bound under the distance holds.
+                            assert!(s.nearest_at_least(q) <= want.0);
+                            checked += 1;
+                        }
+                    }
+                }
+            }
+        }
+        assert!(checked > 80_000, "{checked}");
     }
 
     #[test]
