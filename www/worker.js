@@ -48,14 +48,12 @@ let sentPart = null;
 
 // The pieces of the next message's large fields received so far ('bytes'), by field.
 const fieldPieces = new Map();
-// The typed arrays a field sent in pieces may make.
-const pieceTypes = { Uint8Array, Uint8ClampedArray, Int8Array, Uint16Array, Int16Array, Uint32Array, Int32Array, Float32Array, Float64Array, BigInt64Array, BigUint64Array };
 
-// `pieces` (bytes) one after the other, as an array of `type`.
+// `pieces` (bytes) one after the other, as the view named `type` (Float64Array, …) over them.
 function joined(pieces, type) {
   const all = new Uint8Array(pieces.reduce((n, p) => n + p.length, 0));
   pieces.reduce((at, p) => (all.set(p, at), at + p.length), 0);
-  return new pieceTypes[type](all.buffer);
+  return new globalThis[type](all.buffer);
 }
 
 function partMessage(view, reuse = false) {

@@ -92,7 +92,8 @@ impl Sweep {
         let radius = v.length();
         let start = v.y.atan2(v.x);
         let (mut min, mut max) = (from.truncate(), from.truncate());
-        let end = center + DVec2::from_angle(start + sweep) * radius;
+        let dirs = [DVec2::from_angle(start), DVec2::from_angle(start + sweep)];
+        let end = center + dirs[1] * radius;
         min = min.min(end);
         max = max.max(end);
         // The circle's extreme points in X and Y that the arc passes.
@@ -105,7 +106,6 @@ impl Sweep {
             }
         }
         let r = DVec2::splat(profile.radius);
-        let dirs = [DVec2::from_angle(start), DVec2::from_angle(start + sweep)];
         let ends = ArcEnds { points: [center + dirs[0] * radius, end], dirs };
         Sweep { profile, path: Path::Arc { center, radius, start, sweep, z: from.z, rise: 0.0 }, min: min - r, max: max + r, lowest_tip: from.z, line: LineConstants::default(), ends }
     }
@@ -241,11 +241,8 @@ impl Sweep {
             Path::Arc { center, radius, start, sweep, z, .. } => {
                 // Farther from the whole circle than the cutter's radius (beyond a rounding's
                 // margin), farther from the arc: passed over without its angle.
-                let off = ((q - center).length() - radius).abs();
-                if off > p.radius * (1.0 + FLOAT_SLACK) + FLOAT_SLACK {
-                    return f64::INFINITY;
-                }
-                let dist = arc_distance(q, center, radius, start, sweep, &self.ends, false).0;
+                let beyond = p.radius * (1.0 + FLOAT_SLACK) + FLOAT_SLACK;
+                let dist = arc_distance(q, center, radius, start, sweep, &self.ends, false, beyond).0;
                 if dist <= p.radius {
                     z + p.height(dist)
                 } else {
@@ -308,7 +305,7 @@ impl Sweep {
                 ((q - p.truncate()).length(), z)
             }
             Path::Arc { center, radius, start, sweep, z, rise } => {
-                let (dist, t) = arc_distance(q, center, radius, start, sweep, &self.ends, rise != 0.0);
+                let (dist, t) = arc_distance(q, center, radius, start, sweep, &self.ends, rise != 0.0, f64::INFINITY);
                 (dist, z + rise * t)
             }
         }
@@ -409,21 +406,27 @@ fn side_within(v: DVec2, len: f64, sweep: f64, ends: &ArcEnds) -> Option<bool> {
 
 /// Horizontal distance from `q` to an arc (its ends `ends`), and the fraction of the arc (0 at
 /// its start, 1 at its end) at the nearest point, where `fraction` asks for it (0 otherwise).
+/// A point farther than `beyond` from the arc's circle gets its distance from the circle (less
+/// than the arc's, enough to say it lies beyond), found without the arc's angle.
 #[allow(clippy::too_many_arguments)]
-fn arc_distance(q: DVec2, center: DVec2, radius: f64, start: f64, sweep: f64, ends: &ArcEnds, fraction: bool) -> (f64, f64) {
+fn arc_distance(q: DVec2, center: DVec2, radius: f64, start: f64, sweep: f64, ends: &ArcEnds, fraction: bool, beyond: f64) -> (f64, f64) {
     let v = q - center;
     let len = v.length();
     if len == 0.0 {
         return (radius, 0.0);
     }
+    let off = (len - radius).abs();
+    if off > beyond {
+        return (off, 0.0);
+    }
     let side = side_within(v, len, sweep, ends);
     if side == Some(true) && !fraction {
-        return ((len - radius).abs(), 0.0);
+        return (off, 0.0);
     }
     if side != Some(false) {
         let angle = v.y.atan2(v.x);
         if angle_within(start, sweep, angle) {
-            return ((len - radius).abs(), if sweep == 0.0 { 0.0 } else { (turned(start, sweep, angle) / sweep.abs()).min(1.0) });
+            return (off, if sweep == 0.0 { 0.0 } else { (turned(start, sweep, angle) / sweep.abs()).min(1.0) });
         }
     }
     let (da, db) = (q.distance(ends.points[0]), q.distance(ends.points[1]));
@@ -578,10 +581,13 @@ mod tests {
                         for d in [0.0, radius * 0.5, radius, radius + 1.0, 3.0 * radius + 2.5] {
                             let q = center + DVec2::from_angle(angle) * d;
                             let want = by_angle(q, center, radius, a0, sweep);
-                            let got = arc_distance(q, center, radius, a0, sweep, &s.ends, true);
+                            let got = arc_distance(q, center, radius, a0, sweep, &s.ends, true, f64::INFINITY);
                             assert!(want.0.to_bits() == got.0.to_bits() && want.1.to_bits() == got.1.to_bits(), "start {a0} sweep {sweep} r {radius} at {angle} {d}: {want:?} vs {got:?}");
-                            let alone = arc_distance(q, center, radius, a0, sweep, &s.ends, false);
+                            let alone = arc_distance(q, center, radius, a0, sweep, &s.ends, false, f64::INFINITY);
                             assert_eq!(want.0.to_bits(), alone.0.to_bits(), "start {a0} sweep {sweep} r {radius} at {angle} {d}");
+                            // Within the cutter's radius, the same distance; beyond it, beyond it still.
+                            let cut = arc_distance(q, center, radius, a0, sweep, &s.ends, false, 3.0 * (1.0 + FLOAT_SLACK) + FLOAT_SLACK).0;
+                            assert!(if want.0 <= 3.0 { cut.to_bits() == want.0.to_bits() } else { cut > 3.0 }, "start {a0} sweep {sweep} r {radius} at {angle} {d}: {cut} vs {want:?}");
                             // The bound under the distance holds.
                             assert!(s.nearest_at_least(q) <= want.0);
                             checked += 1;
