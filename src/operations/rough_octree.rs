@@ -55,7 +55,7 @@ use crate::progress::Progress;
 use crate::sim::program::program_moves;
 use crate::tool::Tool;
 use crate::toolpath::Toolpath;
-use crate::zmap::distance::distance_within;
+use crate::zmap::distance::{distance_within, near_any};
 use crate::zmap::surface::ClSurface;
 use crate::zmap::HeightField;
 
@@ -476,7 +476,7 @@ impl RoughOctree {
         let cell = reach.stock.spacing * reach.stock.spacing;
         // More than a few cells: grid rounding aside, material the smaller tool would remove.
         let limit = 4.0 * cell;
-        Ok(levels.into_iter().all(|z| reach.missed(z).into_iter().filter(|&m| m).count() as f64 * cell <= limit))
+        Ok(levels.into_iter().all(|z| reach.missed(z).len() as f64 * cell <= limit))
     }
 
     /// The rest after `candidates[p]` profiled: the largest smaller tool that reaches what the
@@ -500,10 +500,15 @@ impl RoughOctree {
         let sg = reach.stock.grid();
         let radius = small.cutter.radius();
         // Centres within the small tool's radius (and a cell, for the grids' rounding) of
-        // material only it reaches.
+        // material only it reaches: a few cells of the stock's, whose discs are marked (none
+        // at most levels).
         let within = |z: f64, grid: crate::zmap::Grid| {
-            let near = distance_within(&reach.missed(z), sg.nx, sg.ny, sg.spacing, radius + sg.spacing);
-            Some((0..grid.nodes()).map(|n| at(sg, &near, grid.node(n % grid.nx, n / grid.nx)) <= radius + sg.spacing).collect())
+            let missed = reach.missed(z);
+            if missed.is_empty() {
+                return Some(vec![false; grid.nodes()]);
+            }
+            let near = near_any(&missed, sg.nx, sg.ny, sg.spacing, radius + sg.spacing);
+            Some((0..grid.nodes()).map(|n| sg.nearest(grid.node(n % grid.nx, n / grid.nx)).is_some_and(|c| near[c])).collect())
         };
         let zl = self.zlevel(small, true);
         if let Some(levels) = zl.levels_within(ctx, progress, radius, false, &within)? {
@@ -590,9 +595,9 @@ impl Reach {
         Ok(Reach { cl_big, cl_small, r_big, r_small: small.cutter.radius(), stock, part, allowance: op.roughing.allowance, tolerance: ctx.tolerances.gouge })
     }
 
-    /// Per stock cell, whether it holds material at level `z` that the small tool reaches and
-    /// the big one does not.
-    fn missed(&self, z: f64) -> Vec<bool> {
+    /// The stock's cells that hold material at level `z` the small tool reaches and the big one
+    /// does not, in order.
+    fn missed(&self, z: f64) -> Vec<usize> {
         let (a, tol) = (self.allowance, self.tolerance);
         // Per node of a CL z-map, the distance to the nearest centre the tool may take at `z`.
         // (Only whether it is within the tool's radius is asked: no farther is worked out.)
@@ -602,15 +607,16 @@ impl Reach {
             distance_within(&safe, f.nx, f.ny, f.spacing, radius)
         };
         let sg = self.stock.grid();
-        let material = |c: usize| self.stock.z[c] - z.max(self.part.z[c] + a) > tol;
-        if !(0..sg.nodes()).any(material) {
-            return vec![false; sg.nodes()];
+        let material: Vec<usize> = (0..sg.nodes()).filter(|&c| self.stock.z[c] - z.max(self.part.z[c] + a) > tol).collect();
+        if material.is_empty() {
+            return material;
         }
         let (big, little) = (reach(&self.cl_big, self.r_big), reach(&self.cl_small, self.r_small));
-        (0..sg.nodes())
-            .map(|c| {
+        material
+            .into_iter()
+            .filter(|&c| {
                 let p = sg.node(c % sg.nx, c / sg.nx);
-                material(c) && at(self.cl_small.field.grid(), &little, p) <= self.r_small && at(self.cl_big.field.grid(), &big, p) > self.r_big
+                at(self.cl_small.field.grid(), &little, p) <= self.r_small && at(self.cl_big.field.grid(), &big, p) > self.r_big
             })
             .collect()
     }

@@ -68,6 +68,31 @@ pub fn distance_within_rows(inside: &[bool], nx: usize, ny: usize, spacing: f64,
     d2.into_iter().map(|v| if v >= FAR { f64::INFINITY } else { v.sqrt() * spacing }).map(|d| if d <= cap { d } else { f64::INFINITY }).collect()
 }
 
+/// Whether each node of an `nx × ny` grid of `spacing` lies within `cap` of one of the nodes
+/// `marked` (indices): `distance_within(inside, …, cap)[n] <= cap` for the mask of those nodes,
+/// the same comparison of the same whole-number squared distances, made by marking a disc of
+/// nodes round each. Where the nodes are few (the material only a rest tool reaches, a few
+/// dozen cells of a million) it passes over the rest of the grid.
+pub fn near_any(marked: &[usize], nx: usize, ny: usize, spacing: f64, cap: f64) -> Vec<bool> {
+    let mut near = vec![false; nx * ny];
+    if marked.is_empty() || nx == 0 {
+        return near;
+    }
+    // The disc's offsets: past `reach` nodes along a column, the distance is past the cap.
+    let reach = (cap / spacing).floor().min(nx.max(ny) as f64) as i64 + 1;
+    let disc: Vec<(i64, i64)> = (-reach..=reach).flat_map(|dj| (-reach..=reach).map(move |di| (di, dj))).filter(|&(di, dj)| ((di * di + dj * dj) as f64).sqrt() * spacing <= cap).collect();
+    for &m in marked {
+        let (mi, mj) = ((m % nx) as i64, (m / nx) as i64);
+        for &(di, dj) in &disc {
+            let (i, j) = (mi + di, mj + dj);
+            if i >= 0 && j >= 0 && (i as usize) < nx && (j as usize) < ny {
+                near[j as usize * nx + i as usize] = true;
+            }
+        }
+    }
+    near
+}
+
 /// A squared distance standing for none: beyond every distance a grid can hold.
 const FAR: f64 = 1e20;
 
@@ -221,6 +246,30 @@ mod tests {
             assert_eq!(some.len(), want.len(), "case {case}");
             for (c, (a, b)) in some.iter().zip(want).enumerate() {
                 assert_eq!(a.to_bits(), b.to_bits(), "case {case} ({nx} × {ny}, rows {from}..{to}), node {c}");
+            }
+        }
+    }
+
+    #[test]
+    fn nodes_near_a_few_are_those_within_the_cap_of_the_distances() {
+        let mut rng = crate::offset::check::Rng::new(71);
+        for case in 0..300 {
+            let (nx, ny) = (1 + rng.below(70), 1 + rng.below(70));
+            let density = [0.0, 0.001, 0.01, 0.1, 0.5][case % 5];
+            let mut inside: Vec<bool> = (0..nx * ny).map(|_| rng.next_f64() < density).collect();
+            // Nodes on the grid's edges and corners too.
+            if case % 3 == 0 {
+                for c in [0, nx - 1, nx * ny - 1, (ny - 1) * nx] {
+                    inside[c] = true;
+                }
+            }
+            let spacing: f64 = [0.37, 0.19438364128701777, 1.0][case % 3];
+            // Caps on node distances (a whole number of nodes, √2, √5, the diagonal), between them, none and beyond the grid.
+            let cap = [0.0, spacing, 2.0 * spacing, spacing * 2f64.sqrt(), spacing * 5f64.sqrt(), 1.5 + spacing, rng.range(0.0, 12.0), 1e9][case % 8];
+            let marked: Vec<usize> = (0..nx * ny).filter(|&c| inside[c]).collect();
+            let (near, d) = (near_any(&marked, nx, ny, spacing, cap), distance_within(&inside, nx, ny, spacing, cap));
+            for c in 0..nx * ny {
+                assert_eq!(near[c], d[c] <= cap, "case {case} ({nx} × {ny}, cap {cap}), node {c}: {}", d[c]);
             }
         }
     }
