@@ -189,7 +189,10 @@ impl Mesh {
                 count.entry((a.min(c), a.max(c))).or_insert(((a, c), 0)).1 += 1;
             }
         }
-        let open: Vec<(DVec3, DVec3)> = count.into_values().filter(|&(_, n)| n == 1).map(|((a, c), _)| (position[a as usize], position[c as usize])).collect();
+        // (In the order of their welded ends, so that the same part says the same every run.)
+        let mut open: Vec<(u32, u32)> = count.into_values().filter(|&(_, n)| n == 1).map(|(e, _)| e).collect();
+        open.sort_unstable();
+        let open: Vec<(DVec3, DVec3)> = open.into_iter().map(|(a, c)| (position[a as usize], position[c as usize])).collect();
         // Open edges by the cells of a 64³ grid over the part they pass through.
         let cell = size / 64.0;
         let mut cells: HashMap<[i64; 3], Vec<usize>> = HashMap::new();

@@ -52,7 +52,7 @@ use crate::machining::settings::{Order, Roughing, Steps};
 use crate::machining::{positive, too_many, Context, FieldError, Operate, Planned, Works, MAX_LEVELS};
 use crate::octree::{Octree, Squares, Volume, GAMMA_FIRST, GAMMA_RANGE};
 use crate::progress::Progress;
-use crate::sim::program::program_moves;
+use crate::sim::program::{program_moves, ProgramMove};
 use crate::tool::Tool;
 use crate::toolpath::Toolpath;
 use crate::zmap::distance::{distance_within, near_any};
@@ -404,19 +404,26 @@ impl RoughOctree {
         let seconds = |stages: &[StageReport]| stages.iter().map(|s| s.seconds).sum::<f64>();
         let (with_rest, with_rest_paths, with_rest_sim) = (reports.split_off(from), paths.split_off(from), std::mem::replace(&mut ctx.sim, before));
         let small = &candidates[r];
-        let why = format!("it takes everything left around the part in {:.2} mm levels", self.depth(small));
-        self.profile(ctx, small, why, count, &mut paths, &mut reports, progress)?;
-        let (a, b) = (seconds(&with_rest), seconds(&reports[from..]));
+        // Its path's time first: the stock is cut with it only where it is the quicker.
+        let round = self.profile_path(ctx, small, count, progress)?;
+        let moves = round.as_ref().map(|path| program_moves(std::slice::from_ref(path), &ctx.tools, ctx.rapids, ctx.air_feed)).transpose()?;
+        let (a, b) = (seconds(&with_rest), moves.as_ref().map_or(f64::INFINITY, |moves| moves.iter().map(|m| m.seconds).sum()));
         let (p_d, r_d) = (candidates[p].cutter.diameter, small.cutter.diameter);
-        if a < b {
-            reports.truncate(from);
-            paths.truncate(from);
+        if let (Some(path), Some(moves), true) = (round, moves, a >= b) {
+            let cut = cut_with(ctx, &moves, progress)?;
+            paths.push(path);
+            let why = format!(
+                "it takes everything left around the part in {:.2} mm levels (quicker than the φ{p_d} round everything and then the φ{r_d} only where it cannot reach: {b:.0} s against {a:.0} s)",
+                self.depth(small)
+            );
+            reports.push(self.report(small, StageRole::Profile, None, why, cut));
+        } else {
             reports.extend(with_rest);
             paths.extend(with_rest_paths);
             ctx.sim = with_rest_sim;
-            reports[from].why += &format!(" (it and then the φ{r_d} only where it cannot reach: {a:.0} s, against {b:.0} s for the φ{r_d} round everything)");
-        } else {
-            reports[from].why += &format!(" (quicker than the φ{p_d} round everything and then the φ{r_d} only where it cannot reach: {b:.0} s against {a:.0} s)");
+            if b.is_finite() {
+                reports[from].why += &format!(" (it and then the φ{r_d} only where it cannot reach: {a:.0} s, against {b:.0} s for the φ{r_d} round everything)");
+            }
         }
         Ok((paths, reports, views))
     }
@@ -424,6 +431,17 @@ impl RoughOctree {
     /// The profiling stage (§3.4): `tool` takes what is left at its own levels (every
     /// step-down and every flat).
     fn profile(&self, ctx: &mut Context, tool: &Tool, why: String, count: f64, paths: &mut Vec<Toolpath>, reports: &mut Vec<StageReport>, progress: &mut Progress) -> Result<()> {
+        if let Some(path) = self.profile_path(ctx, tool, count, progress)? {
+            let cut = advance(ctx, &path, progress)?;
+            paths.push(path);
+            reports.push(self.report(tool, StageRole::Profile, None, why, cut));
+        }
+        Ok(())
+    }
+
+    /// The profiling stage's path, before it cuts the stock (none where no level holds
+    /// anything to cut).
+    fn profile_path(&self, ctx: &mut Context, tool: &Tool, count: f64, progress: &mut Progress) -> Result<Option<Toolpath>> {
         if !progress.enter(&format!("profile φ{}", tool.cutter.diameter), ((count - 1.0) / count).min(0.95), 1.0 / count) {
             return Err(Error::Cancelled);
         }
@@ -431,12 +449,10 @@ impl RoughOctree {
         // Every centre whose cutter touches what is left: rest material reachable only by the
         // cutter's side (a round tool's corner left by a bigger one) is cut from its top down
         // like the rest, never met by the side of a deeper pass.
-        if let Some(levels) = zl.levels_within(ctx, progress, tool.cutter.radius(), false, &|_, _| None)? {
-            let path = zl.clear(ctx, levels, progress)?;
-            let cut = advance(ctx, &path, progress)?;
-            paths.push(path);
-            reports.push(self.report(tool, StageRole::Profile, None, why, cut));
-        }
+        let path = match zl.levels_within(ctx, progress, tool.cutter.radius(), false, &|_, _| None)? {
+            Some(levels) => Some(zl.clear(ctx, levels, progress)?),
+            None => None,
+        };
         let depth = self.depth(tool);
         if depth > TERRACES {
             ctx.warn(
@@ -444,7 +460,7 @@ impl RoughOctree {
                 format!("its last tool, φ{}, cuts levels {depth:.2} mm apart: on slopes it leaves steps up to that high for the next operation to meet (a smaller δ, or a z-level roughing at a smaller step-down before finishing, takes them)", tool.cutter.diameter),
             );
         }
-        Ok(())
+        Ok(path)
     }
 
     fn report(&self, tool: &Tool, role: StageRole, octants: Option<(f64, f64)>, why: String, cut: Cut) -> StageReport {
@@ -562,10 +578,15 @@ struct Cut {
 
 /// Cuts the in-process stock with `path` and says what it did.
 fn advance(ctx: &mut Context, path: &Toolpath, progress: &mut Progress) -> Result<Cut> {
-    let before = ctx.sim.stock().heights();
     let moves = program_moves(std::slice::from_ref(path), &ctx.tools, ctx.rapids, ctx.air_feed)?;
+    cut_with(ctx, &moves, progress)
+}
+
+/// Cuts the in-process stock with a path's `moves` and says what they did.
+fn cut_with(ctx: &mut Context, moves: &[ProgramMove], progress: &mut Progress) -> Result<Cut> {
+    let before = ctx.sim.stock().heights();
     let first = ctx.sim.volumes().len();
-    ctx.sim.run(&moves, &ctx.tolerances, progress, 1.0)?;
+    ctx.sim.run(moves, &ctx.tolerances, progress, 1.0)?;
     let removed = ctx.sim.volumes()[first..].iter().sum();
     let after = ctx.sim.stock().heights();
     let lowered = before.z.iter().zip(&after.z).filter(|(b, a)| *b - *a > ctx.tolerances.gouge).count();
