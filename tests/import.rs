@@ -344,6 +344,10 @@ fn a_part_with_holes_in_its_surface_is_warned_of() {
     assert_eq!(w[0].count, 7, "{w:?}"); // 4 edges around the two neighbours, 3 around the lone one
     assert!(w[0].message.starts_with("7 edges of the part's surface border one triangle only") && w[0].message.contains("at X"), "{}", w[0].message);
     assert_eq!(w[0].places.len(), 7);
+    // The same part says the same, places and order, every time it is read.
+    for _ in 0..4 {
+        assert_eq!(part_warnings(&holed)[0].places, w[0].places);
+    }
     // A box with one triangle of its top missing: every corner of the hole lies on the
     // outline's rim, and it is a hole all the same.
     let v = |i: usize| DVec3::new((i & 1) as f64 * 30.0, ((i >> 1) & 1) as f64 * 20.0, ((i >> 2) & 1) as f64 * 10.0);
@@ -366,6 +370,10 @@ fn a_part_with_holes_in_its_surface_is_warned_of() {
         assert_eq!(mesh.dropped_duplicates, 407);
         let w = part_warnings(&mesh);
         assert!(w.len() == 2 && w[0].message.starts_with("407 triangles were copies") && w[1].count > 500, "{w:?}");
+        // Hundreds of holes: the places named are the same every time.
+        for _ in 0..4 {
+            assert_eq!(part_warnings(&mesh)[1].message, w[1].message);
+        }
     }
 }
 
