@@ -149,8 +149,9 @@ const FOV_Y = 0.7;
 // so that a program of millions of moves stays orbitable without a GPU.
 const MOVING_SEGMENTS = 300000;
 // Segments a group of the path holds at most: each is uploaded in a task of its own (a die-sized
-// program of a million segments in four), its draw a call of its own.
-const GROUP_SEGMENTS = 1 << 18;
+// program of a million segments in eight, 30-35 ms each in headless Chromium beside the workers;
+// a quarter of a million held a frame 50-77 ms), its draw a call of its own.
+const GROUP_SEGMENTS = 1 << 17;
 // How long after the last move of the mouse or wheel the view counts as still moving (ms).
 const SETTLE_MS = 180;
 
