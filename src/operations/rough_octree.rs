@@ -421,8 +421,9 @@ impl RoughOctree {
             reports.extend(with_rest);
             paths.extend(with_rest_paths);
             ctx.sim = with_rest_sim;
-            if b.is_finite() {
-                reports[from].why += &format!(" (it and then the φ{r_d} only where it cannot reach: {a:.0} s, against {b:.0} s for the φ{r_d} round everything)");
+            // (Said of the rest's first stage, where it made one.)
+            if let Some(first) = reports.get_mut(from).filter(|_| b.is_finite()) {
+                first.why += &format!(" (it and then the φ{r_d} only where it cannot reach: {a:.0} s, against {b:.0} s for the φ{r_d} round everything)");
             }
         }
         Ok((paths, reports, views))
