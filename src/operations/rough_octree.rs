@@ -406,7 +406,7 @@ impl RoughOctree {
         let small = &candidates[r];
         // Its path's time first: the stock is cut with it only where it is the quicker.
         let round = self.profile_path(ctx, small, count, progress)?;
-        let moves = round.as_ref().map(|path| program_moves(std::slice::from_ref(path), &ctx.tools, ctx.rapids, ctx.air_feed)).transpose()?;
+        let moves = round.as_ref().map(|path| moves_of(ctx, path)).transpose()?;
         let (a, b) = (seconds(&with_rest), moves.as_ref().map_or(f64::INFINITY, |moves| moves.iter().map(|m| m.seconds).sum()));
         let (p_d, r_d) = (candidates[p].cutter.diameter, small.cutter.diameter);
         if let (Some(path), Some(moves), true) = (round, moves, a >= b) {
@@ -579,8 +579,13 @@ struct Cut {
 
 /// Cuts the in-process stock with `path` and says what it did.
 fn advance(ctx: &mut Context, path: &Toolpath, progress: &mut Progress) -> Result<Cut> {
-    let moves = program_moves(std::slice::from_ref(path), &ctx.tools, ctx.rapids, ctx.air_feed)?;
+    let moves = moves_of(ctx, path)?;
     cut_with(ctx, &moves, progress)
+}
+
+/// One stage's `path` as the program's moves, timed.
+fn moves_of(ctx: &Context, path: &Toolpath) -> Result<Vec<ProgramMove>> {
+    program_moves(std::slice::from_ref(path), &ctx.tools, ctx.rapids, ctx.air_feed)
 }
 
 /// Cuts the in-process stock with a path's `moves` and says what they did.
