@@ -7,9 +7,11 @@
 // it is optimised; the warm-up (a small job in a worker of its own) does that before the user's
 // first run. WARMUP=0: engines without it.
 //
-//   bash scripts/build-wasm.sh && node scripts/bench-page-first-run.mjs [PART.stl]
+//   bash scripts/build-wasm.sh && [JOB=job.json] node scripts/bench-page-first-run.mjs [PART.stl]
 //
-// The part defaults to ../shared/data/meshes/kiri_pocket-test.stl.
+// The part defaults to ../shared/data/meshes/kiri_pocket-test.stl; JOB, a job file run in place
+// of the zigzag roughing (issue 59's adaptive clearing: a job of scripts/bench-adaptive-peers.sh
+// with its verification off).
 import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -18,7 +20,7 @@ import { serveWww } from './serve-www.mjs';
 
 const repo = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 const partFile = process.argv[2] ?? path.join(repo, '../shared/data/meshes/kiri_pocket-test.stl');
-const job = {
+const job = process.env.JOB ? JSON.parse(fs.readFileSync(process.env.JOB, 'utf8')) : {
   part: { placement: 'keep' },
   stock: { marginXy: 0, marginTop: 0, marginBottom: 0 },
   post: { rapidRate: 5000 },
