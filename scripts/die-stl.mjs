@@ -1,8 +1,8 @@
 // Seed 001's die as the page's user would bring it: a binary STL of the synthetic die
 // (mesh::sample::fuel_tank_die, the same surface), `nx` × `ny` cells of its 1190 × 890 mm.
 export function dieStl(nx, ny) {
-  const [w, h, bottom] = [1190, 890, -250];
-  const top = (x, y) => {
+  const [w, h] = [1190, 890];
+  return heightFieldStl(w, h, nx, ny, -250, (x, y) => {
     const [u, v] = [x / w - 0.5, y / h - 0.5];
     const r = Math.hypot(u / 0.38, v / 0.33);
     const cavity = -120 / (1 + Math.exp(-(r - 1) * -14));
@@ -10,7 +10,13 @@ export function dieStl(nx, ny) {
     const inside = 1 / (1 + Math.exp((r - 1) * 14));
     const channel = -25 * Math.exp(-((u + 0.2 * v + 0.15) ** 2) / 0.002) * inside;
     return cavity + boss + channel + 6 * Math.sin(9 * u) * Math.cos(7 * v);
-  };
+  });
+}
+
+// A closed solid over [0, w] × [0, h] whose top is `top(x, y)` on `nx` × `ny` cells (two
+// facets each), with walls down to `bottom` and a bottom of two facets, as a binary STL (as
+// mesh::sample::height_field_solid makes one in the core).
+export function heightFieldStl(w, h, nx, ny, bottom, top) {
   const at = (i, j) => { const [x, y] = [(w * i) / nx, (h * j) / ny]; return [x, y, top(x, y)]; };
   const tris = [];
   for (let j = 0; j < ny; j++) for (let i = 0; i < nx; i++) {

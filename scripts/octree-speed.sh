@@ -2,33 +2,19 @@
 # Issue 61's octree target: octree roughing's planning time (the φ20/12/6/3 library, verification
 # off) against z-level roughing with its finest tool, the φ3, at the job's step-down (2 mm) and
 # at the φ3's own octree levels (0.75 mm, seed 000's δ·D), best of three, on the shared parts, the
-# generated pocket plate and the generated terrain at three sizes (scripts/terrain.py). Issue
-# 12's settings otherwise, as scripts/rough-speed.sh makes them. See BENCHMARKS.md.
+# generated pocket plate and the generated terrain at three sizes (scripts/terrain.mjs). Issue
+# 12's settings otherwise (scripts/rough-job.sh). See BENCHMARKS.md.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 OUT=${OUT:-target/octree-speed}
 mkdir -p "$OUT"
 cargo build --release -q
-job() { # kind stepdown diameters... -> job json
-  target/release/swarf job | python3 -c "
-import json, sys
-kind, stepdown, ds = sys.argv[1], float(sys.argv[2]), [float(d) for d in sys.argv[3:]]
-j = json.load(sys.stdin)
-j['part'] = {'placement': 'keep'}
-j['stock'].update({'marginXy': 0, 'marginTop': 0, 'marginBottom': 0})
-j['post']['rapidRate'] = 5000
-j['simulation']['verify'] = False
-j['tools'] = [{'number': n + 1, 'name': 'f%g' % d, 'shape': 'flat', 'diameter': d, 'fluteLength': 50, 'feedRate': 1000, 'plungeRate': 250} for n, d in enumerate(ds)]
-op = {'kind': kind, 'stepoverFraction': 0.4, 'allowance': 0, 'leaveStock': 0, 'grid': 0.5}
-op.update({'tool': 1, 'stepdown': stepdown} if kind != 'roughOctree' else {'tools': list(range(1, len(ds) + 1))})
-j['operations'] = [op]
-json.dump(j, sys.stdout)" "$@"
-}
+source scripts/rough-job.sh
 job roughZlevel 2 3 > "$OUT/zlevel-2.json"
 job roughZlevel 0.75 3 > "$OUT/zlevel-0.75.json"
 job roughOctree 0 20 12 6 3 > "$OUT/octree.json"
 [ -f "$OUT/pocket_plate.stl" ] || "$(bash scripts/solid-venv.sh)" scripts/pocket-plate.py "$OUT/pocket_plate.stl"
-for n in 68 137 273; do [ -f "$OUT/terrain-$n.stl" ] || python3 scripts/terrain.py "$OUT/terrain-$n.stl" "$n" > /dev/null; done
+for n in 68 137 273; do [ -f "$OUT/terrain-$n.stl" ] || node scripts/terrain.mjs "$OUT/terrain-$n.stl" "$n" > /dev/null; done
 best() { # job part -> the best of three planning times, or the refusal
   local t s=
   for _ in 1 2 3; do
@@ -37,10 +23,10 @@ best() { # job part -> the best of three planning times, or the refusal
   done
   echo "$s"
 }
+ratio() { [ "$2" = refused ] && echo - || echo "$1 / $2" | bc -l | xargs printf '%.1fx'; }
 printf '%-18s %9s %9s %7s %9s %7s\n' part octree 'zl φ3 2' ratio 'zl φ3 .75' ratio
 for part in ../shared/data/meshes/{ocl_mount_rush,kiri_pocket-test,pycam_textbox,ocl_wheel_in_box}.stl "$OUT"/pocket_plate.stl "$OUT"/terrain-{68,137,273}.stl; do
   [ -f "$part" ] || continue
   o=$(best "$OUT/octree.json" "$part"); z=$(best "$OUT/zlevel-2.json" "$part"); z7=$(best "$OUT/zlevel-0.75.json" "$part")
-  ratio() { [ "$2" = refused ] && echo - || echo "$1 / $2" | bc -l | xargs printf '%.1fx'; }
   printf '%-18s %9s %9s %7s %9s %7s\n' "$(basename "$part" .stl)" "$o" "$z" "$(ratio "$o" "$z")" "$z7" "$(ratio "$o" "$z7")"
 done

@@ -14,22 +14,10 @@ OUT=${OUT:-target/rough-speed}
 mkdir -p "$OUT"
 bash "$PEERS/setup.sh" >/dev/null
 cargo build --release -q
-job() { # kind -> job json
-  target/release/swarf job | python3 -c "
-import json, sys
-j = json.load(sys.stdin)
-j['part'] = {'placement': 'keep'}
-j['stock'].update({'marginXy': 0, 'marginTop': 0, 'marginBottom': 0})
-j['post']['rapidRate'] = 5000
-j['simulation']['verify'] = False
-flat = lambda n, d: {'number': n, 'name': 'f%g' % d, 'shape': 'flat', 'diameter': d, 'fluteLength': 50, 'feedRate': 1000, 'plungeRate': 250}
-j['tools'] = [flat(1, 6)] if '$1' != 'roughOctree' else [flat(1, 20), flat(2, 12), flat(3, 6), flat(4, 3)]
-op = {'kind': '$1', 'stepoverFraction': 0.4, 'allowance': 0, 'leaveStock': 0, 'grid': 0.5}
-op.update({'tool': 1, 'stepdown': 2} if '$1' != 'roughOctree' else {'tools': [1, 2, 3, 4]})
-j['operations'] = [op]
-json.dump(j, sys.stdout)"
-}
-for kind in roughZlevel roughZigzag roughOctree; do job $kind > "$OUT/$kind.json"; done
+source scripts/rough-job.sh
+job roughZlevel 2 6 > "$OUT/roughZlevel.json"
+job roughZigzag 2 6 > "$OUT/roughZigzag.json"
+job roughOctree 0 20 12 6 3 > "$OUT/roughOctree.json"
 # Issue 61's generated pocket plate (scripts/pocket-plate.py: an exact solid by manifold3d's
 # booleans, in the venv scripts/solid-venv.sh makes).
 "$(bash scripts/solid-venv.sh)" scripts/pocket-plate.py "$OUT/pocket_plate.stl"
