@@ -243,6 +243,13 @@ fn the_sample_part_is_roughed_adaptively() {
     let zlevel = run(Operation::RoughZlevel(RoughZlevel { steps: swarf::operations::Steps { stepdown: 4.0, stepover_fraction: 0.4 }, roughing, ..RoughZlevel::default() }));
     let (a, z) = (removed(&adaptive), removed(&zlevel));
     assert!(a > z * 0.995, "adaptive removed {a:.0} mm³, z-level {z:.0}");
+    // The step range set (the longest at half the tool's radius): a different path, as clean,
+    // read by rs274, removing as much, with no warning that it stopped short.
+    let ranged = run(Operation::RoughAdaptive(RoughAdaptive { stepdown: 4.0, stepover_fraction: 0.15, roughing, min_step: Some(0.3), max_step: Some(1.5), ..RoughAdaptive::default() }));
+    assert_ne!(ranged.gcode, adaptive.gcode);
+    let r = removed(&ranged);
+    assert!(r > a * 0.995, "with the step range, {r:.0} mm³ against {a:.0}");
+    assert!(ranged.warnings.iter().all(|w| !w.message.contains("stopped")), "{:?}", ranged.warnings);
 }
 
 /// PyCAM's text box (shared data; skipped where absent), its box the stock: the stock's corners

@@ -8,11 +8,13 @@
 //! circle. A straight cut `ae` into a wall engages `arccos(1 − 2·ae/D)`: the target.
 //!
 //! **A pass.** From a point where the tool touches no material, headed with the material on
-//! its right (climb; left for conventional), the tool takes steps of a fixed length. At each,
-//! the heading is searched by bisection between a quarter turn towards the material and a
-//! quarter turn away for the step whose engagement is nearest the target (more towards the
+//! its right (climb; left for conventional), the tool takes steps. At each, the heading is
+//! searched by bisection between a quarter turn towards the material and a quarter turn away
+//! for the step of the shortest length whose engagement is nearest the target (more towards the
 //! material, more engagement): along a wall it holds the step-over, into a corner it turns away
-//! before the engagement climbs. Where even the hardest turn cuts too little, it heads for the
+//! before the engagement climbs. Where the last step's curvature holds the engagement, the next
+//! step runs on along it and twice as long, up to the longest step ([`StepRange`]); where it no
+//! longer holds, the step is the shortest again, searched. Where even the hardest turn cuts too little, it heads for the
 //! material and no further (turning past it would turn the pass round on the spot). A step
 //! must keep the tool's centre in the region. A pass ends where every heading would take more
 //! than [`MOST_OVER`] times the target (a front that would overload: the next pass starts
@@ -66,8 +68,52 @@ pub struct Adaptive {
     pub climb: bool,
     /// The helix's radius where one is needed (mm).
     pub helix_r: f64,
-    /// The length of a step (mm).
+    /// The length of a step, where its heading is searched (mm).
     pub step: f64,
+    /// The longest step, along a run the last step's curvature holds at the target (mm; at
+    /// least `step`).
+    pub longest: f64,
+}
+
+/// An adaptive step's length where none is set, as a fraction of the tool's radius.
+pub const STEP: f64 = 0.1;
+/// The longest adaptive step, as a fraction of the tool's radius (longer, a step runs past the
+/// corners it should turn at).
+pub const MOST_STEP: f64 = 0.5;
+
+/// The range of an adaptive path's step length (mm), as the job sets it: the shortest, where the
+/// path turns (each heading searched), and the longest, along a run that holds the engagement.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StepRange {
+    pub min: Option<f64>,
+    pub max: Option<f64>,
+}
+
+impl StepRange {
+    /// The shortest and the longest step as fractions of a tool radius `r`, each at most
+    /// [`MOST_STEP`]: unset, [`STEP`]; one set alone, the other at least (at most) as long.
+    pub fn fractions(&self, r: f64) -> (f64, f64) {
+        let (min, max) = (self.min.map(|m| m / r), self.max.map(|m| m / r));
+        let min = min.unwrap_or(max.map_or(STEP, |max| max.min(STEP))).min(MOST_STEP);
+        let max = max.unwrap_or(STEP).max(min).min(MOST_STEP);
+        (min, max)
+    }
+
+    /// Refuses a length that is not positive, or a longest step shorter than the shortest.
+    pub fn validate(&self) -> Result<(), crate::machining::FieldError> {
+        for (field, v) in [("minStep", self.min), ("maxStep", self.max)] {
+            if let Some(v) = v {
+                crate::machining::positive(field, v)?;
+            }
+        }
+        match (self.min, self.max) {
+            (Some(min), Some(max)) if max < min => Err(crate::machining::FieldError {
+                field: "maxStep",
+                message: format!("must be at least the shortest step, minStep ({} mm; got {} mm)", crate::limits::shown(min), crate::limits::shown(max)),
+            }),
+            _ => Ok(()),
+        }
+    }
 }
 
 /// The lightest optimal load adaptive clearing holds, as a fraction of the tool's diameter
@@ -108,6 +154,13 @@ impl Adaptive {
             ae
         }
     }
+}
+
+/// The warning where a budget stopped adaptive clearing with material left ([`Plan::stopped`])
+/// at the heights `z` (none: the operation's only depths).
+pub fn unfinished(z: &[f64]) -> String {
+    let at = if z.is_empty() { String::new() } else { format!(" at Z {}", z.iter().map(|z| crate::limits::shown((z * 1e3).round() / 1e3)).collect::<Vec<_>>().join(", ")) };
+    format!("adaptive clearing stopped at its limit of steps or passes with material left{at}: a shortest step nearer {STEP} × the tool's radius, a heavier load or a larger tool needs fewer")
 }
 
 /// How a pass is entered.
@@ -205,8 +258,12 @@ pub fn plan(map: &mut PixelMap, a: &Adaptive, from: DVec2) -> Plan {
         let hi = ((b.max - origin) / block + DVec2::splat(grow / block + 2.0)).ceil();
         ((lo.x as usize, lo.y as usize), ((hi.x as usize).min(bx), (hi.y as usize).min(by)))
     };
-    while out.passes.len() < MOST_PASSES {
-        if steps > budget {
+    loop {
+        if out.passes.len() >= MOST_PASSES {
+            out.stopped = true;
+            break;
+        }
+        if steps >= budget {
             out.stopped = true;
             break;
         }
@@ -317,34 +374,52 @@ pub fn plan(map: &mut PixelMap, a: &Adaptive, from: DVec2) -> Plan {
 }
 
 /// One pass from `start` headed along `heading`: the points, each step's engagement, and the
-/// pixels it cut.
+/// pixels it cut. Its steps are `step` long where the heading is searched, and up to
+/// `a.longest` along a run the last step's curvature holds.
 fn pass(map: &mut PixelMap, a: &Adaptive, start: DVec2, heading: DVec2, step: f64, steps: &mut usize, budget: usize) -> (Vec<DVec2>, Vec<(f64, f64)>, usize) {
     let side = if a.climb { 1.0 } else { -1.0 };
+    let longest = a.longest.max(step);
     let mut points = vec![start];
     let mut engaged = Vec::new();
-    let (mut p, mut h, mut last) = (start, heading, 0.5);
+    // The last step's turn and length, the length of the step before it, and the next step's.
+    let (mut p, mut h, mut last, mut last_len, mut before_len, mut len) = (start, heading, 0.5, step, step, step);
     let (mut idle, mut removed_all) = (0.0, 0);
     // The points up to the last step that cut.
     let mut cutting = 1;
     // A heading `u` from 0 (a quarter turn towards the material) to 1 (a quarter turn away).
     let dir = |h: DVec2, u: f64| rotate(h, side * (u - 0.5) * PI);
-    let fits = |map: &PixelMap, p: DVec2, q: DVec2| (1..=4).all(|k| map.allowed(p.lerp(q, k as f64 / 4.0)));
+    // (Sampled four times per shortest step.)
+    let fits = |map: &PixelMap, p: DVec2, q: DVec2| {
+        let n = 4 * (p.distance(q) / step - 1e-9).ceil().max(1.0) as usize;
+        (1..=n).all(|k| map.allowed(p.lerp(q, k as f64 / n as f64)))
+    };
     while *steps < budget {
-        let e = |map: &PixelMap, u: f64| {
+        let e = |map: &PixelMap, u: f64, len: f64| {
             let d = dir(h, u);
-            engagement(map, p + d * step, d, a.radius)
+            engagement(map, p + d * len, d, a.radius)
         };
         // [`IDLE`] tool radii of steps that cut nothing end the pass.
         if idle + step > IDLE * a.radius {
             break;
         }
-        // The last step's turn again where it holds the engagement within [`KEEP`] of the
-        // target (a spiral runs on at one curvature: long arcs), else bisection for the heading
+        // The last step's curvature again where it holds the engagement within [`KEEP`] of the
+        // target (a spiral runs on at one curvature: long arcs), the step twice as long as the
+        // last up to the longest; where it does not hold, a longer step than the shortest is
+        // tried again at the shortest, and the shortest searched by bisection for the heading
         // whose engagement is nearest the target (each heading's engagement kept with it).
-        let same = e(map, last);
-        let (mut u, mut angle) = if (same - a.target).abs() <= KEEP * a.target {
-            (last, same)
+        // (Between chords of one circle, the turn is as their lengths' sum: the last turn, from
+        // the step before it to the last, scaled to the last step and this one.)
+        let along = if len == last_len && last_len == before_len { last } else { (0.5 + (last - 0.5) * (last_len + len) / (before_len + last_len)).clamp(0.0, 1.0) };
+        let same = e(map, along, len);
+        let held = (same - a.target).abs() <= KEEP * a.target;
+        if !held && len > step {
+            len = step;
+            continue;
+        }
+        let (mut u, mut angle) = if held {
+            (along, same)
         } else {
+            let e = |map: &PixelMap, u: f64| e(map, u, step);
             let hard = e(map, 0.0);
             if hard <= a.target {
                 // Too light even turning hard: towards the material, no further (turning past
@@ -373,16 +448,21 @@ fn pass(map: &mut PixelMap, a: &Adaptive, start: DVec2, heading: DVec2, step: f6
                 }
             }
         };
-        // Away from the material until the step stays in the region.
+        // Away from the material until the step stays in the region (a longer step than the
+        // shortest is taken at the shortest instead).
+        if len > step && !fits(map, p, p + dir(h, u) * len) {
+            len = step;
+            continue;
+        }
         let searched = u;
-        while u <= 1.0 && !fits(map, p, p + dir(h, u) * step) {
+        while u <= 1.0 && !fits(map, p, p + dir(h, u) * len) {
             u += 1.0 / 32.0;
         }
         if u > 1.0 {
             break;
         }
         let d = dir(h, u);
-        let q = p + d * step;
+        let q = p + d * len;
         if u != searched {
             angle = engagement(map, q, d, a.radius);
         }
@@ -393,14 +473,16 @@ fn pass(map: &mut PixelMap, a: &Adaptive, start: DVec2, heading: DVec2, step: f6
         let removed = map.cut(p, q);
         removed_all += removed;
         *steps += 1;
-        engaged.push((step, angle));
+        engaged.push((len, angle));
         points.push(q);
         if removed > 0 {
             (idle, cutting) = (0.0, points.len());
         } else {
-            idle += step;
+            idle += len;
         }
-        (p, h, last) = (q, d, u);
+        (p, h, last, before_len, last_len) = (q, d, u, last_len, len);
+        // Along a run that holds, the next step twice as long, up to the longest.
+        len = if held { (2.0 * len).min(longest) } else { step };
     }
     // The steps after the last that cut are not made.
     points.truncate(cutting);
@@ -473,7 +555,7 @@ mod tests {
         let reach = |p: DVec2| (p.abs() - DVec2::splat(12.0)).max(DVec2::ZERO).length() <= r - 3.0 * 0.075;
         let mut map = PixelMap::new(crate::geom::segment::Rect { min: DVec2::splat(-12.0), max: DVec2::splat(12.0) }, 0.075, r, reach, &region);
         let before = map.left();
-        let a = Adaptive { radius: r, target: Adaptive::angle_of(0.6, r), climb: true, helix_r: 2.4, step: 0.3 };
+        let a = Adaptive { radius: r, target: Adaptive::angle_of(0.6, r), climb: true, helix_r: 2.4, step: 0.3, longest: 0.3 };
         let plan = plan(&mut map, &a, DVec2::ZERO);
         assert!(matches!(plan.passes[0].entry, Entry::Helix { .. }));
         let spiral = &plan.engagement[..plan.passes[0].points.len() - 1];
@@ -495,7 +577,7 @@ mod tests {
         let reach = |p: DVec2| region.contains(p) || region.distance_to(p) <= r - 3.0 * 0.075;
         let mut map = PixelMap::new(bounds, 0.075, r, reach, &region);
         let fresh = map.clone();
-        let a = Adaptive { radius: r, target: Adaptive::angle_of(0.6, r), climb: true, helix_r: 2.4, step: 0.3 };
+        let a = Adaptive { radius: r, target: Adaptive::angle_of(0.6, r), climb: true, helix_r: 2.4, step: 0.3, longest: 0.3 };
         let plan = plan(&mut map, &a, DVec2::ZERO);
         assert!(plan.passes.len() > 3, "{} passes", plan.passes.len());
         let mut replay = fresh;
@@ -519,11 +601,60 @@ mod tests {
         let r = 3.0;
         let region = Shape { loops: vec![Loop::rect(DVec2::new(-20.0, -20.0), DVec2::new(20.0, 20.0))] };
         let mut map = PixelMap::new(crate::geom::segment::Rect { min: DVec2::splat(-20.0), max: DVec2::splat(20.0) }, 0.075, r, |p| p.x >= 0.0, &region);
-        let a = Adaptive { radius: r, target: Adaptive::angle_of(0.6, r), climb: true, helix_r: 1.0, step: 0.3 };
+        let a = Adaptive { radius: r, target: Adaptive::angle_of(0.6, r), climb: true, helix_r: 1.0, step: 0.3, longest: 0.3 };
         let mut steps = 0;
         let (points, engaged, _) = pass(&mut map, &a, DVec2::new(-r - 0.1, -15.0), DVec2::new(0.0, 1.0), 0.3, &mut steps, 100);
         assert!(points.iter().skip(50).all(|p| (p.x + r - 0.6).abs() < 0.05), "the pass settles 0.6 into the wall");
         let late = &engaged[engaged.len() / 2..];
         assert!(late.iter().all(|e| (e.1 - a.target).abs() < 0.1 * a.target), "{late:?}");
+    }
+
+    /// Along a wall, where the curvature holds the engagement, the steps grow to the longest
+    /// (a fixed step's pass takes more points for the same run) and the engagement still
+    /// settles at the target; where it stops holding, a step is the shortest again.
+    #[test]
+    fn along_a_wall_the_steps_grow_to_the_longest() {
+        let r = 3.0;
+        let region = Shape { loops: vec![Loop::rect(DVec2::new(-20.0, -20.0), DVec2::new(20.0, 20.0))] };
+        let fresh = PixelMap::new(crate::geom::segment::Rect { min: DVec2::splat(-20.0), max: DVec2::splat(20.0) }, 0.075, r, |p| p.x >= 0.0, &region);
+        let run = |longest: f64| {
+            let a = Adaptive { radius: r, target: Adaptive::angle_of(0.6, r), climb: true, helix_r: 1.0, step: 0.3, longest };
+            let mut steps = 0;
+            let (points, engaged, _) = pass(&mut fresh.clone(), &a, DVec2::new(-r - 0.1, -15.0), DVec2::new(0.0, 1.0), 0.3, &mut steps, 1000);
+            (a, points, engaged)
+        };
+        let (_, fixed, _) = run(0.3);
+        let (a, points, engaged) = run(1.2);
+        let late = &engaged[engaged.len() / 2..];
+        assert!(late.iter().all(|e| (e.1 - a.target).abs() < 0.1 * a.target), "{late:?}");
+        assert!(engaged.iter().all(|e| e.0 >= 0.3 - 1e-12 && e.0 <= 1.2 + 1e-12));
+        // (The engagement is read in whole samples of the circle, a fortieth of the target
+        // here: a step whose heading drifts by one is taken at the shortest again.)
+        let long = engaged.iter().filter(|e| e.0 > 0.3).map(|e| e.0).sum::<f64>();
+        let all = engaged.iter().map(|e| e.0).sum::<f64>();
+        assert!(long > 0.5 * all, "{long} of {all} mm in longer steps than the shortest");
+        assert!(engaged.iter().any(|e| e.0 == 1.2), "steps at the longest");
+        assert!(engaged.iter().any(|e| e.0 == 0.3), "the pass starts at the shortest step");
+        // The same run along the wall (to the box's far side) in fewer points.
+        let (last, last_fixed) = (points.last().unwrap().y, fixed.last().unwrap().y);
+        assert!(last > 15.0 && last_fixed > 15.0, "{last} {last_fixed}");
+        assert!(points.len() * 3 < fixed.len() * 2, "{} points against {}", points.len(), fixed.len());
+    }
+
+    /// The step range: unset, a tenth of the radius; one end set alone carries the other with
+    /// it; at most half the radius; a longest shorter than the shortest refused by its name.
+    #[test]
+    fn the_step_range_defaults_and_bounds() {
+        let r = 2.0;
+        let range = |min: Option<f64>, max: Option<f64>| StepRange { min, max };
+        assert_eq!(range(None, None).fractions(r), (STEP, STEP));
+        assert_eq!(range(None, Some(0.6)).fractions(r), (STEP, 0.3));
+        assert_eq!(range(None, Some(0.1)).fractions(r), (0.05, 0.05));
+        assert_eq!(range(Some(0.4), None).fractions(r), (0.2, 0.2));
+        assert_eq!(range(Some(0.1), None).fractions(r), (0.05, STEP));
+        assert_eq!(range(Some(0.4), Some(30.0)).fractions(r), (0.2, MOST_STEP));
+        assert_eq!(range(Some(0.6), Some(0.9)).validate(), Ok(()));
+        assert_eq!(range(Some(0.9), Some(0.6)).validate().unwrap_err().field, "maxStep");
+        assert_eq!(range(Some(0.0), None).validate().unwrap_err().field, "minStep");
     }
 }

@@ -79,13 +79,25 @@ pub struct LevelRoughing {
     pub order: Order,
     /// How each level's region is cleared: rings, or adaptive clearing.
     pub pattern: PocketPattern,
+    /// The range of adaptive clearing's step length.
+    pub adaptive_steps: super::adaptive::StepRange,
 }
 
 impl LevelRoughing {
     /// Level-by-level roughing with `roughing`'s settings (helix radius by default, flats and
     /// each level everywhere before the next: [`Order::Levels`]; set the fields to change them).
     pub fn new(name: &str, tool: u32, steps: Steps, roughing: &Roughing) -> LevelRoughing {
-        LevelRoughing { name: name.to_owned(), tool, steps, roughing: *roughing, helix_radius: None, flats: true, order: Order::Levels, pattern: PocketPattern::Offset }
+        LevelRoughing {
+            name: name.to_owned(),
+            tool,
+            steps,
+            roughing: *roughing,
+            helix_radius: None,
+            flats: true,
+            order: Order::Levels,
+            pattern: PocketPattern::Offset,
+            adaptive_steps: Default::default(),
+        }
     }
 
     /// The levels this stock's height makes at the step-down, within [`super::MAX_LEVELS`], and
@@ -153,7 +165,7 @@ impl LevelRoughing {
         if let Some(r) = self.helix_radius {
             positive("helixRadius", r)?;
         }
-        Ok(())
+        self.adaptive_steps.validate()
     }
 }
 
@@ -224,54 +236,64 @@ impl LevelRoughing {
             ramp_angle: self.roughing.ramp_angle.clamp(0.1, 89.0).to_radians(),
             helix_r: self.helix_radius.unwrap_or(0.4 * 2.0 * r).min(0.95 * r),
             depth: (self.pattern == PocketPattern::Adaptive).then_some(self.steps.stepdown),
+            adaptive_steps: self.adaptive_steps,
         };
         clearing.check_helix(&self.name, self.steps.stepdown)?;
         let clearance = ctx.heights.clearance;
-        let ctx = &*ctx;
-        let mut run = Run {
-            clearing,
-            cursor: sheet::cursor(ctx, &tool),
-            // The in-process stock as this roughing's pieces so far left it, brought up to date
-            // where a traverse asks: it crosses just over what still stands on its way.
-            standing: Rc::new(RefCell::new(Standing::new(ctx.sim.stock(), tool.cutter.profile()))),
-            // What was cut so far: each piece's height and region. Beyond the stock's sides by
-            // more than the cutter's radius, no height holds material. (A ring's start lies on
-            // its region's boundary: a point a chordal tolerance from a region counts as in it.)
-            cleared: Cleared { slack: tol.chordal, air: Rect { min: ctx.stock.min.truncate(), max: ctx.stock.max.truncate() }.expand(r + tol.chordal), cut: Vec::new() },
-        };
-        let mut pieces = Pieces::new(levels, self.order, tol.chordal, r);
-        let count = pieces.list.len();
-        // The region is the set of centres: its rings start on it. Each piece's rings are made
-        // ahead of the clearing on a second thread, and each piece's stretches of air judged
-        // behind it (the rings depend only on the region, the air only on the stock the
-        // operation starts from): the same program, sooner.
-        // Piece k's rings are made from region k: every piece is still in the list.
-        let regions: Vec<Arc<Shape>> = pieces.list.iter().map(|p| p.as_ref().expect("no piece is cut yet").region.clone()).collect();
-        self.check_rings(&tool, &regions, step)?;
-        // (Adaptive clearing needs only the region's own boundary.)
-        let make = |k: usize| if self.pattern == PocketPattern::Adaptive { vec![(*regions[k]).clone()] } else { rings(&regions[k], 0.0, step, r, &tol) };
-        let (cancelled, fed) = crate::parallel::ahead(count, make, |rings_of| {
-            crate::parallel::behind(Refeed::run, |send| {
-                for n in 0..count {
-                    if !progress.report(n as f64 / count as f64) {
-                        return true;
+        // (Where adaptive clearing stopped at a budget with material left: warned once the
+        // pieces are cut.)
+        let mut unfinished = Vec::new();
+        let (cancelled, fed) = {
+            let ctx = &*ctx;
+            let mut run = Run {
+                unfinished: &mut unfinished,
+                clearing,
+                cursor: sheet::cursor(ctx, &tool),
+                // The in-process stock as this roughing's pieces so far left it, brought up to date
+                // where a traverse asks: it crosses just over what still stands on its way.
+                standing: Rc::new(RefCell::new(Standing::new(ctx.sim.stock(), tool.cutter.profile()))),
+                // What was cut so far: each piece's height and region. Beyond the stock's sides by
+                // more than the cutter's radius, no height holds material. (A ring's start lies on
+                // its region's boundary: a point a chordal tolerance from a region counts as in it.)
+                cleared: Cleared { slack: tol.chordal, air: Rect { min: ctx.stock.min.truncate(), max: ctx.stock.max.truncate() }.expand(r + tol.chordal), cut: Vec::new() },
+            };
+            let mut pieces = Pieces::new(levels, self.order, tol.chordal, r);
+            let count = pieces.list.len();
+            // The region is the set of centres: its rings start on it. Each piece's rings are made
+            // ahead of the clearing on a second thread, and each piece's stretches of air judged
+            // behind it (the rings depend only on the region, the air only on the stock the
+            // operation starts from): the same program, sooner.
+            // Piece k's rings are made from region k: every piece is still in the list.
+            let regions: Vec<Arc<Shape>> = pieces.list.iter().map(|p| p.as_ref().expect("no piece is cut yet").region.clone()).collect();
+            self.check_rings(&tool, &regions, step)?;
+            // (Adaptive clearing needs only the region's own boundary.)
+            let make = |k: usize| if self.pattern == PocketPattern::Adaptive { vec![(*regions[k]).clone()] } else { rings(&regions[k], 0.0, step, r, &tol) };
+            crate::parallel::ahead(count, make, |rings_of| {
+                crate::parallel::behind(Refeed::run, |send| {
+                    for n in 0..count {
+                        if !progress.report(n as f64 / count as f64) {
+                            return true;
+                        }
+                        let Some((k, Piece { z, z_prev, region })) = pieces.next(run.cursor.at.truncate()) else { break };
+                        send(self.clear_piece(ctx, &tool, &cl, &mut run, (z, z_prev), &rings_of(k)));
+                        run.cleared.add(z, region);
                     }
-                    let Some((k, Piece { z, z_prev, region })) = pieces.next(run.cursor.at.truncate()) else { break };
-                    send(self.clear_piece(ctx, &tool, &cl, &mut run, (z, z_prev), &rings_of(k)));
-                    run.cleared.add(z, region);
-                }
-                false
+                    false
+                })
             })
-        });
+        };
         if cancelled {
             return Err(Error::Cancelled);
+        }
+        if !unfinished.is_empty() {
+            ctx.warn(&self.name, super::adaptive::unfinished(&unfinished));
         }
         Ok(sheet::toolpath(&self.name, &tool, fed.into_iter().flatten().collect(), clearance))
     }
 
     /// One piece of [`LevelRoughing::clear`], cleared by `rings` from `z_prev` down to `z`
     /// with the cursor, the stock and the regions cleared as the pieces before left them.
-    fn clear_piece<'m>(&self, ctx: &'m Context, tool: &Tool, cl: &Arc<ClSurface>, run: &mut Run<'m>, (z, z_prev): (f64, f64), rings: &[Shape]) -> Refeed<'m> {
+    fn clear_piece<'m>(&self, ctx: &'m Context, tool: &Tool, cl: &Arc<ClSurface>, run: &mut Run<'m, '_>, (z, z_prev): (f64, f64), rings: &[Shape]) -> Refeed<'m> {
         let (r, tol) = (tool.cutter.radius(), ctx.tolerances);
         // Material above this level was cleared by the level before within this region
         // (which lies inside what that level cut): rapids stop the gap above it.
@@ -319,9 +341,12 @@ impl LevelRoughing {
             by_regions.into_iter().chain(by_stock).reduce(f64::min).map(|level| level + gap)
         }));
         let from = run.cursor.at;
-        let mut setup = RingSetup { tool_radius: r, top: z_prev, feed: tool.feed_rate, cursor: &mut run.cursor, tol: &tol };
+        let mut setup = RingSetup { tool_radius: r, top: z_prev, feed: tool.feed_rate, cursor: &mut run.cursor, tol: &tol, unfinished: false };
         let air = self.air(ctx, cl, r, z);
         let cut = clear_rings_at_feed(rings, &run.clearing, z_prev, z, &mut setup, Some(&air));
+        if setup.unfinished {
+            run.unfinished.push(z);
+        }
         // (The stock as it stands: the same whatever the feeds.)
         run.standing.borrow_mut().cut(from, &cut.moves, tol.chordal);
         cut
@@ -354,7 +379,7 @@ impl LevelRoughing {
     /// stock's edge; the other patterns', as inside.
     fn air_reach(&self, r: f64) -> f64 {
         if self.pattern == PocketPattern::Adaptive {
-            super::rings::adaptive_reach(r)
+            super::rings::adaptive_reach(r, self.adaptive_steps.fractions(r).0)
         } else {
             self.reach(r)
         }
@@ -551,7 +576,9 @@ struct Piece {
 /// How clearing cuts each piece, and what it carries from one piece to the next: where the
 /// tool is and how it moves, the stock as the pieces so far left it, and the regions they
 /// cleared.
-struct Run<'m> {
+struct Run<'m, 'u> {
+    /// The heights where adaptive clearing stopped at a budget with material left.
+    unfinished: &'u mut Vec<f64>,
     clearing: Clearing,
     cursor: Cursor<'m>,
     standing: Rc<RefCell<Standing>>,

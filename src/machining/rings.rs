@@ -29,19 +29,17 @@ use std::f64::consts::{FRAC_PI_4, PI};
 /// [`ADAPTIVE_R_PIXELS`] (the engagement is read to about a pixel of step-over).
 const ADAPTIVE_AE_PIXELS: f64 = 10.0;
 const ADAPTIVE_R_PIXELS: f64 = 40.0;
-/// An adaptive step, as a fraction of the tool's radius.
-const ADAPTIVE_STEP: f64 = 0.1;
-
 /// How many adaptive steps from a pass's start its entry may go down instead, where material
 /// the passes so far only grazed stands under the tool at the start.
 const ADAPTIVE_ASIDE: usize = 5;
 
-/// How far from material a level's region keeps the centre of an adaptive tool of radius `r`:
-/// two steps past touching it, so that a pass can start in the air beside the stock or in what
+/// How far from material a level's region keeps the centre of an adaptive tool of radius `r`
+/// whose shortest step is `step` of its radius ([`adaptive::StepRange::fractions`]): two steps
+/// past touching it, so that a pass can start in the air beside the stock or in what
 /// an earlier operation cleared (standing clear of the material, within a step of it) instead
 /// of helixing down into a region that lies along the stock's edge.
-pub(crate) fn adaptive_reach(r: f64) -> f64 {
-    r * (1.0 + 2.0 * ADAPTIVE_STEP)
+pub(crate) fn adaptive_reach(r: f64, step: f64) -> f64 {
+    r * (1.0 + 2.0 * step)
 }
 
 /// What the passes of one adaptive level have surely cut, asked lazily at the entries that go
@@ -133,6 +131,9 @@ pub struct RingSetup<'a, 'm> {
     pub feed: f64,
     pub cursor: &'a mut Cursor<'m>,
     pub tol: &'a Tolerances,
+    /// Set where adaptive clearing stopped at a budget with material left
+    /// ([`adaptive::Plan::stopped`]).
+    pub unfinished: bool,
 }
 
 /// A region of one ring level and the regions one step further in that lie inside it.
@@ -216,6 +217,8 @@ pub struct Clearing {
     /// wider, the same cross-section ([`crate::machining::adaptive::Adaptive::shallow_step`]);
     /// none (every other pattern), every level at `step`.
     pub depth: Option<f64>,
+    /// The range of adaptive clearing's step length.
+    pub adaptive_steps: adaptive::StepRange,
 }
 
 impl Clearing {
@@ -237,7 +240,19 @@ impl Clearing {
     /// As a pocket clears by default, with a tool of radius `r`: climb, entered on a helix
     /// (0.8 r) or a 3° ramp, zigzag passes along X with the load held by the path.
     pub fn plain(step: f64, r: f64, pattern: PocketPattern) -> Clearing {
-        Clearing { step, climb: true, pattern, angle: 0.0, load: LoadControl::Path, load_tolerance: 0.1, entry: EntryKind::Helix, ramp_angle: 3f64.to_radians(), helix_r: 0.8 * r, depth: None }
+        Clearing {
+            step,
+            climb: true,
+            pattern,
+            angle: 0.0,
+            load: LoadControl::Path,
+            load_tolerance: 0.1,
+            entry: EntryKind::Helix,
+            ramp_angle: 3f64.to_radians(),
+            helix_r: 0.8 * r,
+            depth: None,
+            adaptive_steps: adaptive::StepRange::default(),
+        }
     }
 }
 
@@ -245,7 +260,7 @@ impl Clearing {
 /// tool-centre rings from `first` in from its boundary (a negative `first`: out past it) every
 /// `clearing.step`, each pass by [`clear_rings`]. A 2.5D pocket, or facing a drawn region. None
 /// when no ring fits.
-pub fn clear_down(region: &Shape, first: f64, clearing: &Clearing, depth: f64, stepdown: f64, mut s: RingSetup) -> Option<Vec<Move>> {
+pub fn clear_down(region: &Shape, first: f64, clearing: &Clearing, depth: f64, stepdown: f64, s: &mut RingSetup) -> Option<Vec<Move>> {
     let levels = rings(region, first, clearing.step, s.tool_radius, s.tol);
     if levels.is_empty() {
         return None;
@@ -255,7 +270,7 @@ pub fn clear_down(region: &Shape, first: f64, clearing: &Clearing, depth: f64, s
     for k in 1..=passes {
         let z_prev = s.top - depth * (k - 1) as f64 / passes as f64;
         let z = s.top - depth * k as f64 / passes as f64;
-        out.extend(clear_rings(&levels, clearing, z_prev, z, &mut s, None));
+        out.extend(clear_rings(&levels, clearing, z_prev, z, s, None));
     }
     Some(out)
 }
@@ -741,8 +756,11 @@ impl Clearer<'_, '_, '_> {
             return;
         }
         let mut map = PixelMap::new(region.bounds(), px, r, |p| reach(p) && stock.material_at(p, z), &inner);
-        let a = Adaptive { radius: r, target: Adaptive::angle_of(ae, r), climb: clearing.climb, helix_r: clearing.helix_r, step: (ADAPTIVE_STEP * r).max(2.0 * px) };
+        let (shortest, longest) = clearing.adaptive_steps.fractions(r);
+        let step = (shortest * r).max(2.0 * px);
+        let a = Adaptive { radius: r, target: Adaptive::angle_of(ae, r), climb: clearing.climb, helix_r: clearing.helix_r, step, longest: (longest * r).max(step) };
         let plan = adaptive::plan(&mut map, &a, self.s.cursor.at.truncate());
+        self.s.unfinished |= plan.stopped;
         let mut left = Uncut::new(self.s.cursor.stock.model(), r - fit - self.s.tol.chordal, r);
         for pass in plan.passes {
             let first = pass.points[0];
@@ -761,7 +779,7 @@ impl Clearer<'_, '_, '_> {
                     // else down a small helix beside the point, where one fits in the region.
                     let ok = |p: DVec2| map.allowed(p) || region.contains(p);
                     let hr = LEAST_HELIX * r;
-                    let step = ADAPTIVE_STEP * r;
+                    let step = a.step;
                     let line_ok = |c: DVec2| {
                         let n = (c.distance(first) / px).ceil() as usize;
                         (0..=n).all(|k| ok(c.lerp(first, k as f64 / n.max(1) as f64)))
@@ -795,7 +813,18 @@ impl Clearer<'_, '_, '_> {
                 left.reach(&(0..=72).map(|t| c.0 + c.1 * DVec2::from_angle(t as f64 * PI / 36.0)).collect::<Vec<_>>());
             }
             left.reach(&pass.points);
-            let moves: Vec<Move> = pass.points[1..].iter().map(|p| Move::Line { to: p.extend(z), feed }).collect();
+            // (A step longer than the shortest is fitted through points a shortest step apart
+            // along it: an arc through the steps' ends alone strays from the chords the map cut by
+            // their sagitta, a tenth of a millimetre at half a radius.)
+            let moves: Vec<Move> = pass
+                .points
+                .windows(2)
+                .flat_map(|w| {
+                    let n = (w[0].distance(w[1]) / a.step - 1e-9).ceil().max(1.0) as usize;
+                    (1..=n).map(move |k| if k == n { w[1] } else { w[0].lerp(w[1], k as f64 / n as f64) })
+                })
+                .map(|p| Move::Line { to: p.extend(z), feed })
+                .collect();
             // (The map's region, inside the region, answers most points at once.)
             self.out.extend(arcfit::fit(&moves, first.extend(z), fit, &|p| map.allowed(p) || region.contains(p)));
             self.s.cursor.moved(self.out);
@@ -861,7 +890,7 @@ mod tests {
                 stock: super::super::path2d::InStock::new(&before, profile, tol.gouge),
                 air_feed: 1000.0,
             };
-            let mut setup = RingSetup { tool_radius: r, top: 1.0, feed: 1000.0, cursor: &mut cursor, tol: &tol };
+            let mut setup = RingSetup { tool_radius: r, top: 1.0, feed: 1000.0, cursor: &mut cursor, tol: &tol, unfinished: false };
             let from = setup.cursor.at;
             let beside = |p: DVec2, _: usize| Some(p - DVec2::new(r + 1.0, 0.0));
             let moves = clear_rings(&levels, &clearing, 1.0, 0.0, &mut setup, Some(&beside));

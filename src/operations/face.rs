@@ -193,8 +193,8 @@ impl Face {
         };
         let clearing = Clearing::plain(step, r, pattern);
         let mut cursor = sheet::cursor(ctx, tool);
-        let setup = RingSetup { tool_radius: r, top: ctx.stock.max.z, feed: tool.feed_rate, cursor: &mut cursor, tol: &ctx.tolerances };
-        let moves = clear_down(&region, r - past, &clearing, depth, self.stepdown, setup).ok_or_else(|| Error::operation(&self.name, "the loops are too small for the tool"))?;
+        let mut setup = RingSetup { tool_radius: r, top: ctx.stock.max.z, feed: tool.feed_rate, cursor: &mut cursor, tol: &ctx.tolerances, unfinished: false };
+        let moves = clear_down(&region, r - past, &clearing, depth, self.stepdown, &mut setup).ok_or_else(|| Error::operation(&self.name, "the loops are too small for the tool"))?;
         let cuts = vec![SheetCut { region, inside: true, depth, leave: -past }];
         if moves.is_empty() {
             ctx.note(&self.name, "nothing left to face in the loops (earlier operations cut it away)");

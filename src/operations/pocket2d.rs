@@ -80,7 +80,7 @@ impl Default for Pocket2d {
 }
 
 /// The moves of a pocket over `region` (outer loops counter-clockwise, islands clockwise).
-pub fn pocket_moves(region: &Shape, op: &Pocket2d, s: RingSetup) -> Result<Vec<Move>, String> {
+pub fn pocket_moves(region: &Shape, op: &Pocket2d, s: &mut RingSetup) -> Result<Vec<Move>, String> {
     let r = s.tool_radius;
     let clearing = clearing(op, r);
     clear_down(region, r + op.leave_stock, &clearing, op.depth, op.stepdown, s).ok_or_else(|| does_not_fit(r, op.leave_stock, "the pocket", &region.bounds()))
@@ -99,6 +99,7 @@ fn clearing(op: &Pocket2d, r: f64) -> Clearing {
         ramp_angle: op.ramp_angle.clamp(0.1, 90.0).to_radians(),
         helix_r: op.helix_radius.unwrap_or(0.8 * r),
         depth: None,
+        adaptive_steps: Default::default(),
     }
 }
 
@@ -160,9 +161,12 @@ impl Operate for Pocket2d {
         let picked: Vec<Loop> = picked.iter().map(|&k| walls.shape.loops[k].clone()).collect();
         let region = sheet::pocket_region(&walls.shape, &picked, self.loops.is_empty());
         let mut cursor = sheet::cursor(ctx, &tool);
-        let setup = RingSetup { tool_radius: tool.cutter.radius(), top: ctx.stock.max.z, feed: tool.feed_rate, cursor: &mut cursor, tol: &ctx.tolerances };
+        let mut setup = RingSetup { tool_radius: tool.cutter.radius(), top: ctx.stock.max.z, feed: tool.feed_rate, cursor: &mut cursor, tol: &ctx.tolerances, unfinished: false };
         clearing(self, tool.cutter.radius()).check_helix(&self.name, self.stepdown.min(self.depth))?;
-        let moves = pocket_moves(&region, self, setup).map_err(|e| crate::error::Error::operation(&self.name, e))?;
+        let moves = pocket_moves(&region, self, &mut setup).map_err(|e| crate::error::Error::operation(&self.name, e))?;
+        if setup.unfinished {
+            ctx.warn(&self.name, crate::machining::adaptive::unfinished(&[]));
+        }
         let cuts = vec![SheetCut { region, inside: true, depth: self.depth, leave: self.leave_stock }];
         if let Some(note) = open {
             ctx.warn(&self.name, note);

@@ -6,7 +6,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::Result;
-use crate::machining::adaptive::Adaptive;
+use crate::machining::adaptive::{Adaptive, StepRange};
 use crate::machining::levels::{level_work, LevelRoughing};
 use crate::machining::settings::{Order, PocketPattern, Roughing, Steps};
 use crate::machining::{named_operation, Context, FieldError, Operate, Planned};
@@ -32,6 +32,15 @@ pub struct RoughAdaptive {
     pub roughing: Roughing,
     /// Helix radius (mm). Default value: 0.4 × the tool diameter.
     pub helix_radius: Option<f64>,
+    /// The shortest step of the path (mm), where it turns: each step's heading is searched
+    /// there for the target engagement. Default value: 0.1 × the tool's radius (at most half
+    /// the radius; no finer than two pixels of the map the engagement is read on).
+    pub min_step: Option<f64>,
+    /// The longest step of the path (mm), along a run that holds the engagement at one
+    /// curvature (a spiral, a wall): a step there is twice the last, up to this, and the
+    /// shortest again where the engagement no longer holds. Default value: 0.1 × the tool's
+    /// radius, or the shortest step where that is longer (at most half the radius).
+    pub max_step: Option<f64>,
     /// Cut every flat area of the part at its own height too. Default value: true.
     pub flats: bool,
     /// Which comes first: each region down to its floor before the next (`regions`), or each
@@ -49,6 +58,8 @@ impl Default for RoughAdaptive {
             stepover_fraction: 0.1,
             roughing: Roughing::default(),
             helix_radius: None,
+            min_step: None,
+            max_step: None,
             flats: true,
             order: Order::Regions,
         }
@@ -59,7 +70,15 @@ impl RoughAdaptive {
     /// Its levels' settings.
     pub fn levels(&self) -> LevelRoughing {
         let steps = Steps { stepdown: self.stepdown, stepover_fraction: self.stepover_fraction };
-        LevelRoughing { helix_radius: self.helix_radius, flats: self.flats, order: self.order, pattern: PocketPattern::Adaptive, ..LevelRoughing::new(&self.name, self.tool, steps, &self.roughing) }
+        let adaptive_steps = StepRange { min: self.min_step, max: self.max_step };
+        LevelRoughing {
+            helix_radius: self.helix_radius,
+            flats: self.flats,
+            order: self.order,
+            pattern: PocketPattern::Adaptive,
+            adaptive_steps,
+            ..LevelRoughing::new(&self.name, self.tool, steps, &self.roughing)
+        }
     }
 }
 
@@ -78,6 +97,12 @@ impl Operate for RoughAdaptive {
             F::check("flats", "also cut every flat at its own height"),
             F::choice("order", "Order", &[("regions", "each pocket down to its floor"), ("levels", "level by level")]),
             F::length("helixRadius", "Helix radius", 0.01).empty("0.4 × the tool's diameter"),
+            F::length("minStep", "Shortest step", 0.001)
+                .empty("0.1 × the tool's radius")
+                .help("where the path turns: each step's heading is searched for the engagement (shorter, it holds the engagement closer in corners and takes longer to plan)"),
+            F::length("maxStep", "Longest step", 0.001)
+                .empty("0.1 × the tool's radius")
+                .help("along a run that holds the engagement (a spiral, a wall), steps grow to this; up to half the tool's radius"),
         ]);
         OperationForm::new("adaptive clearing", fields).hint(
             "The tool stays at the engagement of the optimal load all along: a light cut at a deep step-down, spiralling out from a helix, looping into corners instead of slotting; a level shallower than the step-down (a flat, the last) cuts wider by as much. With rest roughing on (the default), after a larger tool it cuts only what that tool left.",

@@ -153,7 +153,7 @@ impl Operate for VCarve {
                     }
                     let r = flat_tool.cutter.radius();
                     let mut cursor = sheet::cursor(ctx, &flat_tool);
-                    let setup = RingSetup { tool_radius: r, top, feed: flat_tool.feed_rate, cursor: &mut cursor, tol: &ctx.tolerances };
+                    let setup = RingSetup { tool_radius: r, top, feed: flat_tool.feed_rate, cursor: &mut cursor, tol: &ctx.tolerances, unfinished: false };
                     let moves = flat_floor(&floor, r, self, deepest, setup);
                     if moves.is_empty() {
                         ctx.warn(&self.name, format!("the flat tool T{n} fits nowhere on the floor: the floor is left"));
@@ -263,8 +263,8 @@ fn carvable(shape: &Shape, index: &[usize], c_max: f64, reach: &str, ctx: &Conte
 /// The flat floor's moves: the floor (the region shrunk by the clearance at the full depth)
 /// pocketed by the flat tool of radius `r`, in levels of the step-down down to `depth`, as a
 /// pocket clears by default: rings from the wall in, entered on a helix.
-fn flat_floor(floor: &Shape, r: f64, op: &VCarve, depth: f64, s: RingSetup) -> Vec<Move> {
+fn flat_floor(floor: &Shape, r: f64, op: &VCarve, depth: f64, mut s: RingSetup) -> Vec<Move> {
     let step = op.stepover_fraction * 2.0 * r;
     let clearing = Clearing::plain(step, r, PocketPattern::Offset);
-    clear_down(floor, r, &clearing, depth, op.stepdown, s).unwrap_or_default()
+    clear_down(floor, r, &clearing, depth, op.stepdown, &mut s).unwrap_or_default()
 }

@@ -567,6 +567,10 @@ test('adaptive clearing: added in the page with the core\'s defaults, spiralling
   assert.equal(await page.inputValue('input[name=op-stepoverFraction]'), '0.1');
   assert.equal(await page.inputValue('input[name=op-stepdown]'), '6');
   assert.match(await page.textContent('#op-editor'), /Optimal load/);
+  // The step range, empty: a tenth of the tool's radius.
+  assert.match(await page.textContent('#op-editor'), /Shortest step[\s\S]*empty: 0\.1 × the tool's radius[\s\S]*Longest step/);
+  assert.equal(await page.inputValue('input[name=op-minStep]'), '');
+  assert.equal(await page.inputValue('input[name=op-maxStep]'), '');
   await page.click('#generate');
   await generated(page);
   assert.ok(await pathPixels(page) > 2000, 'the path on the canvas');

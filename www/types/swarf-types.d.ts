@@ -1803,6 +1803,19 @@ stepoverFraction: number,
  */
 helixRadius: number | null, 
 /**
+ * The shortest step of the path (mm), where it turns: each step's heading is searched
+ * there for the target engagement. Default value: 0.1 × the tool's radius (at most half
+ * the radius; no finer than two pixels of the map the engagement is read on).
+ */
+minStep: number | null, 
+/**
+ * The longest step of the path (mm), along a run that holds the engagement at one
+ * curvature (a spiral, a wall): a step there is twice the last, up to this, and the
+ * shortest again where the engagement no longer holds. Default value: 0.1 × the tool's
+ * radius, or the shortest step where that is longer (at most half the radius).
+ */
+maxStep: number | null, 
+/**
  * Cut every flat area of the part at its own height too. Default value: true.
  */
 flats: boolean, 
