@@ -33,8 +33,9 @@ pub struct RoughAdaptive {
     /// Helix radius (mm). Default value: 0.4 × the tool diameter.
     pub helix_radius: Option<f64>,
     /// The shortest step of the path (mm), where it turns: each step's heading is searched
-    /// there for the target engagement. Default value: 0.1 × the tool's radius (at most half
-    /// the radius; no finer than two pixels of the map the engagement is read on).
+    /// there for the target engagement (shorter or longer than the default, passes end sooner:
+    /// BENCHMARKS.md). Default value: 0.1 × the tool's radius (at most half the radius; no
+    /// finer than two pixels of the map the engagement is read on).
     pub min_step: Option<f64>,
     /// The longest step of the path (mm), along a run that holds the engagement at one
     /// curvature (a spiral, a wall): a step there is twice the last, up to this, and the
@@ -99,7 +100,7 @@ impl Operate for RoughAdaptive {
             F::length("helixRadius", "Helix radius", 0.01).empty("0.4 × the tool's diameter"),
             F::length("minStep", "Shortest step", 0.001)
                 .empty("0.1 × the tool's radius")
-                .help("where the path turns: each step's heading is searched for the engagement (shorter, it holds the engagement closer in corners and takes longer to plan)"),
+                .help("where the path turns: each step's heading is searched for the engagement. A tenth of the radius suits most tools: a shorter step cannot turn far enough from a front in one step, so more passes end early (and a far shorter one can stop the planner with material left, which it warns of); a longer one leaves more behind"),
             F::length("maxStep", "Longest step", 0.001)
                 .empty("0.1 × the tool's radius")
                 .help("along a run that holds the engagement (a spiral, a wall), steps grow to this; up to half the tool's radius"),

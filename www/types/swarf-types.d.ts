@@ -1804,8 +1804,9 @@ stepoverFraction: number,
 helixRadius: number | null, 
 /**
  * The shortest step of the path (mm), where it turns: each step's heading is searched
- * there for the target engagement. Default value: 0.1 × the tool's radius (at most half
- * the radius; no finer than two pixels of the map the engagement is read on).
+ * there for the target engagement (shorter or longer than the default, passes end sooner:
+ * BENCHMARKS.md). Default value: 0.1 × the tool's radius (at most half the radius; no
+ * finer than two pixels of the map the engagement is read on).
  */
 minStep: number | null, 
 /**
