@@ -14,8 +14,8 @@
 //! material, more engagement): along a wall it holds the step-over, into a corner it turns away
 //! before the engagement climbs. Where the last step's curvature holds the engagement, the next
 //! step runs on along it and twice as long, up to the longest step ([`StepRange`]); where it no
-//! longer holds, the step is the shortest again, searched. Where even the hardest turn cuts too little, it heads for the
-//! material and no further (turning past it would turn the pass round on the spot). A step
+//! longer holds, the step is the shortest again, searched. Where even the hardest turn cuts too
+//! little, it heads for the material and no further (turning past it would turn the pass round on the spot). A step
 //! must keep the tool's centre in the region. A pass ends where every heading would take more
 //! than [`MOST_OVER`] times the target (a front that would overload: the next pass starts
 //! elsewhere), where no heading finds material, or after half a tool's radius of idle steps;
@@ -259,11 +259,7 @@ pub fn plan(map: &mut PixelMap, a: &Adaptive, from: DVec2) -> Plan {
         ((lo.x as usize, lo.y as usize), ((hi.x as usize).min(bx), (hi.y as usize).min(by)))
     };
     loop {
-        if out.passes.len() >= MOST_PASSES {
-            out.stopped = true;
-            break;
-        }
-        if steps >= budget {
+        if out.passes.len() >= MOST_PASSES || steps >= budget {
             out.stopped = true;
             break;
         }
@@ -390,7 +386,7 @@ fn pass(map: &mut PixelMap, a: &Adaptive, start: DVec2, heading: DVec2, step: f6
     let dir = |h: DVec2, u: f64| rotate(h, side * (u - 0.5) * PI);
     // (Sampled four times per shortest step.)
     let fits = |map: &PixelMap, p: DVec2, q: DVec2| {
-        let n = 4 * (p.distance(q) / step - 1e-9).ceil().max(1.0) as usize;
+        let n = 4 * shortest_steps(p.distance(q), step);
         (1..=n).all(|k| map.allowed(p.lerp(q, k as f64 / n as f64)))
     };
     while *steps < budget {
@@ -521,6 +517,12 @@ fn material_direction(map: &PixelMap, c: DVec2, reach: f64) -> Option<DVec2> {
 fn way_inside(map: &PixelMap, a: DVec2, b: DVec2, px: f64) -> bool {
     let n = ((a.distance(b) / px).ceil() as usize).max(1);
     (0..=n).all(|k| map.allowed(a.lerp(b, k as f64 / n as f64)))
+}
+
+/// How many shortest steps of `step` (mm) a step `length` long spans (at least one; a step of
+/// the shortest length, one).
+pub(crate) fn shortest_steps(length: f64, step: f64) -> usize {
+    (length / step - 1e-9).ceil().max(1.0) as usize
 }
 
 fn rotate(v: DVec2, angle: f64) -> DVec2 {

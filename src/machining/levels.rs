@@ -241,12 +241,11 @@ impl LevelRoughing {
         clearing.check_helix(&self.name, self.steps.stepdown)?;
         let clearance = ctx.heights.clearance;
         // (Where adaptive clearing stopped at a budget with material left: warned once the
-        // pieces are cut.)
-        let mut unfinished = Vec::new();
-        let (cancelled, fed) = {
+        // pieces are cut, with the context no longer shared.)
+        let ((cancelled, fed), unfinished) = {
             let ctx = &*ctx;
             let mut run = Run {
-                unfinished: &mut unfinished,
+                unfinished: Vec::new(),
                 clearing,
                 cursor: sheet::cursor(ctx, &tool),
                 // The in-process stock as this roughing's pieces so far left it, brought up to date
@@ -268,7 +267,7 @@ impl LevelRoughing {
             self.check_rings(&tool, &regions, step)?;
             // (Adaptive clearing needs only the region's own boundary.)
             let make = |k: usize| if self.pattern == PocketPattern::Adaptive { vec![(*regions[k]).clone()] } else { rings(&regions[k], 0.0, step, r, &tol) };
-            crate::parallel::ahead(count, make, |rings_of| {
+            let cut = crate::parallel::ahead(count, make, |rings_of| {
                 crate::parallel::behind(Refeed::run, |send| {
                     for n in 0..count {
                         if !progress.report(n as f64 / count as f64) {
@@ -280,7 +279,8 @@ impl LevelRoughing {
                     }
                     false
                 })
-            })
+            });
+            (cut, run.unfinished)
         };
         if cancelled {
             return Err(Error::Cancelled);
@@ -293,7 +293,7 @@ impl LevelRoughing {
 
     /// One piece of [`LevelRoughing::clear`], cleared by `rings` from `z_prev` down to `z`
     /// with the cursor, the stock and the regions cleared as the pieces before left them.
-    fn clear_piece<'m>(&self, ctx: &'m Context, tool: &Tool, cl: &Arc<ClSurface>, run: &mut Run<'m, '_>, (z, z_prev): (f64, f64), rings: &[Shape]) -> Refeed<'m> {
+    fn clear_piece<'m>(&self, ctx: &'m Context, tool: &Tool, cl: &Arc<ClSurface>, run: &mut Run<'m>, (z, z_prev): (f64, f64), rings: &[Shape]) -> Refeed<'m> {
         let (r, tol) = (tool.cutter.radius(), ctx.tolerances);
         // Material above this level was cleared by the level before within this region
         // (which lies inside what that level cut): rapids stop the gap above it.
@@ -576,9 +576,9 @@ struct Piece {
 /// How clearing cuts each piece, and what it carries from one piece to the next: where the
 /// tool is and how it moves, the stock as the pieces so far left it, and the regions they
 /// cleared.
-struct Run<'m, 'u> {
+struct Run<'m> {
     /// The heights where adaptive clearing stopped at a budget with material left.
-    unfinished: &'u mut Vec<f64>,
+    unfinished: Vec<f64>,
     clearing: Clearing,
     cursor: Cursor<'m>,
     standing: Rc<RefCell<Standing>>,

@@ -820,7 +820,7 @@ impl Clearer<'_, '_, '_> {
                 .points
                 .windows(2)
                 .flat_map(|w| {
-                    let n = (w[0].distance(w[1]) / a.step - 1e-9).ceil().max(1.0) as usize;
+                    let n = adaptive::shortest_steps(w[0].distance(w[1]), a.step);
                     (1..=n).map(move |k| if k == n { w[1] } else { w[0].lerp(w[1], k as f64 / n as f64) })
                 })
                 .map(|p| Move::Line { to: p.extend(z), feed })
