@@ -17,21 +17,27 @@ step() { end_stage; stage_name="$*"; stage_start=$SECONDS; printf '\n\033[1m== %
 step "setup"
 bash scripts/setup.sh
 
+# A stage that fails is named and the run goes on, so that one failing test binary or stage
+# hides none of the rest; the run fails at the end, listing every failure.
+failed_stages=()
+run() { last_ok=1; if ! "$@" 2>&1 | tee -a "$log"; then last_ok=0; failed_stages+=("$stage_name: $*"); fi; }
+
 step "the habits: formatting, lints, docs (cargo fmt, clippy, doc)"
-cargo fmt --check
-cargo clippy --all-targets -- -D warnings
-RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --quiet
+run cargo fmt --check
+run cargo clippy --all-targets -- -D warnings
+RUSTDOCFLAGS="-D warnings" run cargo doc --no-deps --quiet
 
 step "native tests (cargo test)"
-cargo test --lib --bins --tests 2>&1 | tee -a "$log"
+# --no-fail-fast: every test binary runs though an earlier one failed.
+run cargo test --no-fail-fast --lib --bins --tests
 
 step "the pipeline in headless Chromium (wasm-bindgen-test)"
 # The runner gives a test 20 s by default; a loaded machine can need more.
-WASM_BINDGEN_TEST_TIMEOUT=${WASM_BINDGEN_TEST_TIMEOUT:-600} cargo test --target wasm32-unknown-unknown --test web 2>&1 | tee -a "$log"
+WASM_BINDGEN_TEST_TIMEOUT=${WASM_BINDGEN_TEST_TIMEOUT:-600} run cargo test --target wasm32-unknown-unknown --test web
 
 step "the page end to end (Playwright + Chromium + rs274)"
-bash scripts/build-wasm.sh
-node --test tests/e2e/ 2>&1 | tee -a "$log"
+run bash scripts/build-wasm.sh
+if [ "$last_ok" = 1 ]; then run node --test tests/e2e/; fi
 end_stage
 
 echo
@@ -46,6 +52,14 @@ read -r passed failed < <(awk '
   /test result: / { for (i = 1; i <= NF; i++) { if ($(i+1) ~ /^passed/) p += $i; if ($(i+1) ~ /^failed/) f += $i } }
   /^# pass / { p += $3 } /^# fail / { f += $3 }
   END { print p + 0, f + 0 }' "$log")
+if [ ${#failed_stages[@]} -gt 0 ] || [ "$failed" -gt 0 ]; then
+  echo
+  echo "what failed:"
+  printf '  stage  %s\n' "${failed_stages[@]}"
+  grep -E '^test .* \.\.\. FAILED$|^ *not ok [0-9]+ - ' "$log" | sed 's/^ */  test   /' || true
+fi
+# A stage that failed without a test counted as failing (a build, a lint) still fails the run.
+[ ${#failed_stages[@]} -eq 0 ] || [ "$failed" -gt 0 ] || failed=${#failed_stages[@]}
 echo
 echo "all tests: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -130,3 +130,51 @@ fn a_holders_sections_are_rings_up_the_tool() {
     j.tools[0].holder = Some(bad);
     assert_eq!(j.problems()[0].path, "tools[0].holder.sections[0].diameter");
 }
+
+/// Issue 92: a finishing keeps its tool's flutes doing all the cutting. The wide pocket, 20 mm
+/// deep, roughed with a long φ6 end mill and then finished by a raster with a φ6 ball whose
+/// flutes are 12 mm (no holder): the ball's shank above its flutes would rub the pocket's
+/// walls at its floor ("moves bury the tool deeper than its flute length", and no program).
+/// Now it is held up where the shank would meet the walls, says so, and the program is clean;
+/// away from the walls it still finishes the floor.
+#[test]
+fn a_finishing_keeps_its_shank_above_the_flutes_out_of_the_material() {
+    let rougher = Tool { number: 1, cutter: Cutter { flute_length: 30.0, ..Cutter::flat(6.0) }, ..Tool::default() };
+    let ball = Tool { number: 2, cutter: Cutter { flute_length: 12.0, ..Cutter::ball(6.0) }, ..Tool::default() };
+    let mut rough = RoughZlevel::default();
+    rough.steps.stepdown = 5.0;
+    let raster = FinishRaster { tool: 2, stepover: 1.0, ..FinishRaster::default() };
+    let job = Job { tools: vec![rougher, ball], operations: vec![Operation::RoughZlevel(rough), Operation::FinishRaster(raster)], ..Job::default() };
+    let out = job::run(&job, wide_pocket(), &mut Progress::none()).unwrap();
+    let v = out.verification.as_ref().unwrap();
+    assert!(v.report.is_clean(), "{}", v.report.describe());
+    assert!(out.problem.is_none(), "{:?}", out.problem);
+    let said: Vec<String> = out.warnings.iter().map(|w| w.to_string()).collect();
+    assert!(said.iter().any(|w| w.contains("T2's flutes (12 mm) take all it cuts")), "{said:?}");
+    // The pocket's floor (its top at Z0 placed: the floor 20 below) is finished in its middle.
+    let top = out.part.bounds().max.z;
+    let floor_cut = out.moves.iter().filter(|m| m.path == 1 && !m.mv.is_rapid()).any(|m| {
+        let to = m.mv.to();
+        to.truncate().length() < 5.0 && to.z < top - 19.0
+    });
+    assert!(floor_cut, "the floor's middle is not finished");
+}
+
+/// Issue 92: zigzag and adaptive roughing with a holder that holds places up. The ER20's nut,
+/// 12 mm up the tool, cannot follow the tool into the 20 × 20 pocket: its levels below 11.5 mm
+/// are held up there, leaving material under them that later links must keep out of (the
+/// issue found rapids through it on its own parts; this pocket is clean, and held so).
+#[test]
+fn links_over_a_holders_hold_up_keep_out_of_what_it_left() {
+    use swarf::operations::{RoughAdaptive, RoughZigzag};
+    let mut zigzag = RoughZigzag::default();
+    zigzag.steps.stepdown = 4.0;
+    let adaptive = RoughAdaptive { stepdown: 4.0, ..RoughAdaptive::default() };
+    for op in [Operation::RoughZigzag(zigzag), Operation::RoughAdaptive(adaptive)] {
+        let mut j = job(12.0);
+        j.operations = vec![op];
+        let out = job::run(&j, pocket(), &mut Progress::none()).unwrap();
+        let r = &out.verification.as_ref().unwrap().report;
+        assert!(r.is_clean() && out.problem.is_none(), "{}: {}", out.operations[0].name, r.describe());
+    }
+}

@@ -1328,9 +1328,7 @@ fn a_perforated_panels_holes_are_ordered_in_proportion_to_their_number() {
     };
     let time = |n: usize| {
         let points = grid(n);
-        let started = std::time::Instant::now();
-        let tour = swarf::holes::order(&points, DVec2::ZERO);
-        let took = started.elapsed().as_secs_f64();
+        let (tour, took) = common::cpu_timed(|| swarf::holes::order(&points, DVec2::ZERO));
         let mut seen = tour.clone();
         seen.sort_unstable();
         assert_eq!(seen, (0..n).collect::<Vec<_>>(), "every hole once");
@@ -1382,5 +1380,32 @@ fn the_zero_goes_on_a_holes_centre() {
     let setups = job::run_setups(&job, part, &mut Progress::none()).unwrap();
     let sheets: Vec<_> = setups.iter().map(|s| job::sheet::SheetSetup::of(&s.name, &s.output)).collect();
     let html = job::sheet::setup_sheet(&job, "block.stl", &sheets);
-    assert_eq!(html.matches("from the centre of the stock seen from above (a hole's centre, say), Z0 on").count(), 2, "{html:.3000}");
+    assert_eq!(html.matches("from the centre of the stock seen from above: the stock's left side at X").count(), 2, "{html:.3000}");
+    assert_eq!(html.matches("(the point picked: a hole's centre, say)").count(), 2, "{html:.3000}");
+}
+
+/// Issue 92: 3D finishing leaves holes to the hole operations. A φ6 ball's waterline over a
+/// block with φ6.35 holes (one blind, one through) once ringed every level inside them, each
+/// ring entered straight down ("entries found no room for a helix or a ramp and feed straight
+/// down into material"); the rings in holes narrower than 1.5 tool diameters are left out, and
+/// the note names the holes.
+#[test]
+fn a_waterline_leaves_narrow_holes_to_the_hole_operations() {
+    let specs = [Spec { tile: (0, 0), kind: Kind::Blind { d: 6.35, depth: 8.0, cone: false }, phase: 0.1, sides: 48 }, Spec { tile: (1, 1), kind: Kind::Through { d: 6.35 }, phase: 0.0, sides: 48 }];
+    let part = block(2, 2, 20.0, 12.0, &specs);
+    let ball = Tool { number: 1, cutter: Cutter { flute_length: 30.0, ..Cutter::ball(6.0) }, ..Tool::default() };
+    let waterline = swarf::operations::FinishWaterline { tool: 1, ..Default::default() };
+    let mut job = Job { tools: vec![ball], operations: vec![Operation::FinishWaterline(waterline)], ..Job::default() };
+    job.stock.margin_top = 0.0;
+    let out = job::run(&job, part, &mut Progress::none()).unwrap();
+    let said: Vec<String> = out.warnings.iter().map(|w| w.to_string()).collect();
+    assert!(!said.iter().any(|w| w.contains("no room for a helix")), "{said:?}");
+    assert!(said.iter().any(|w| w.contains("left to the hole operations") && w.contains("φ6.350")), "{said:?}");
+    // No cutting move inside either hole below its top.
+    let placed = swarf::holes::mesh::find(&out.part);
+    assert_eq!(placed.len(), 2);
+    for h in &placed {
+        let inside = out.moves.iter().filter(|m| !m.mv.is_rapid()).any(|m| m.mv.to().truncate().distance(h.center) < h.diameter / 2.0 - 0.01 && m.mv.to().z < h.top - 0.5);
+        assert!(!inside, "a cut inside the hole at {:?}", h.center);
+    }
 }

@@ -445,11 +445,7 @@ fn absurd_settings_and_a_part_outside_the_stock_are_refused_at_once() {
     use swarf::job::{self, Job, Operation};
     use swarf::mesh::sample::demo_part;
     use swarf::progress::Progress;
-    let refused = |job: &Job| {
-        let started = std::time::Instant::now();
-        let e = job::run(job, demo_part(), &mut Progress::none()).unwrap_err().to_string();
-        (e, started.elapsed().as_secs_f64())
-    };
+    let refused = |job: &Job| common::cpu_timed(|| job::run(job, demo_part(), &mut Progress::none()).unwrap_err().to_string());
     // A step-down of 0.001 mm: tens of thousands of levels.
     let mut job = Job::demo();
     if let Operation::RoughZlevel(o) = &mut job.operations[0] {
@@ -653,4 +649,55 @@ fn a_roughing_after_a_larger_tool_is_reported_as_rest_roughing_with_what_it_took
     let first = job::run(&first_off, demo_part(), &mut Progress::none()).unwrap();
     assert_eq!(first.operations[0].feed_length, big.feed_length);
     assert!(!first.warnings.iter().any(|w| w.message.starts_with("rest roughing is off")));
+}
+
+/// Issue 92: a roughing stops at its bottom height. On the demo part (its top at Z0), each
+/// level roughing kind given a bottom 12 mm below the part's top (`bottomFrom: partTop`) cuts
+/// nothing below it, over the part or beside it: the stock keeps its material under that height
+/// all round (as a first side stops at its parting line, the rest still joined to what the vise
+/// grips); the same height from the zero cuts the same; a bottom above the stock's top is
+/// refused naming the field.
+#[test]
+fn a_roughing_stops_at_its_bottom_height() {
+    use swarf::operations::{HeightFrom, RoughAdaptive, RoughZigzag};
+    let part_box = {
+        let mut p = demo_part();
+        Job::demo().place(&mut p);
+        p.bounds()
+    };
+    assert!(part_box.max.z.abs() < 1e-9 && part_box.min.z < -20.0, "{part_box:?}");
+    let with = |bottom: f64, from: HeightFrom| Roughing { bottom: Some(bottom), bottom_from: from, ..Roughing::default() };
+    let kinds = |r: Roughing| {
+        [
+            Operation::RoughZlevel(RoughZlevel { roughing: r, ..RoughZlevel::default() }),
+            Operation::RoughZigzag(RoughZigzag { roughing: r, ..RoughZigzag::default() }),
+            Operation::RoughAdaptive(RoughAdaptive { roughing: r, ..RoughAdaptive::default() }),
+        ]
+    };
+    let mut programs = Vec::new();
+    for r in [with(-12.0, HeightFrom::PartTop), with(-12.0, HeightFrom::Zero)] {
+        for op in kinds(r) {
+            let mut job = Job::demo();
+            job.tools = vec![flat(1, 6.0)];
+            job.operations = vec![op];
+            let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
+            clean(&out);
+            let lowest = out.moves.iter().filter(|m| !m.mv.is_rapid()).map(|m| m.mv.to().z).fold(f64::INFINITY, f64::min);
+            assert!(lowest >= -12.0 - 1e-6, "{}: cut down to Z{lowest}", out.operations[0].name);
+            assert!(lowest < -11.0, "{}: stopped at Z{lowest}, above its bottom", out.operations[0].name);
+            // Every column of the stock still holds material up to Z-12 at least.
+            let stock = &out.verification.as_ref().unwrap().stock;
+            let g = stock.grid();
+            let least = (0..g.ny).flat_map(|j| (0..g.nx).map(move |i| (i, j))).map(|(i, j)| stock.top(i, j)).fold(f64::INFINITY, f64::min);
+            assert!(least >= -12.0 - 1e-6, "{}: a column cut down to Z{least}", out.operations[0].name);
+            programs.push(out.gcode.lines().filter(|l| !l.starts_with('(') && !l.starts_with(';')).collect::<Vec<_>>().join("\n"));
+        }
+    }
+    // The part's top is Z0: the same height from either is the same program.
+    assert_eq!(programs[..3], programs[3..]);
+    let mut job = Job::demo();
+    job.tools = vec![flat(1, 6.0)];
+    job.operations = vec![kinds(with(2.0, HeightFrom::StockTop))[0].clone()];
+    let e = job::run(&job, demo_part(), &mut Progress::none()).unwrap_err().to_string();
+    assert!(e.contains("bottom height") && e.contains("nothing to cut"), "{e}");
 }

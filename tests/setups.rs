@@ -638,3 +638,246 @@ fn a_shared_part_is_machined_from_both_sides() {
     assert!((removed.iter().sum::<f64>() + left - block).abs() < 1e-6 * block);
     assert!(removed[1] > 0.1 * removed[0], "the bottom had its own to cut: {removed:?}");
 }
+
+/// A prism whose end is the convex pentagon (0, 0), (40, 0), (40, 8), (25, 14), (0, 14) in X
+/// and Z, 30 mm deep in Y: a part that is not symmetric, its top sloping down at one end.
+fn sloped_block() -> swarf::mesh::Mesh {
+    use swarf::geom::DVec3;
+    let outline = [(0.0, 0.0), (40.0, 0.0), (40.0, 8.0), (25.0, 14.0), (0.0, 14.0)];
+    let at = |k: usize, y: f64| DVec3::new(outline[k % 5].0, y, outline[k % 5].1);
+    let mut tris = Vec::new();
+    for k in 1..4 {
+        // The front (y = 0, facing -Y) and the back (y = 30, facing +Y).
+        tris.push([at(0, 0.0), at(k, 0.0), at(k + 1, 0.0)]);
+        tris.push([at(0, 30.0), at(k + 1, 30.0), at(k, 30.0)]);
+    }
+    for k in 0..5 {
+        tris.push([at(k, 0.0), at(k, 30.0), at(k + 1, 30.0)]);
+        tris.push([at(k, 0.0), at(k + 1, 30.0), at(k + 1, 0.0)]);
+    }
+    common::mesh(tris)
+}
+
+/// Issue 92: the setup sheet's zero is the program's. Each setup's sheet says what Z0 is on and
+/// where the stock's top and sides lie from the zero; held to where the program puts them: the
+/// stock the setup starts from (carried from the one before, independently of the run) has its
+/// highest material at the stated top, its sides at the stated X and Y, and the part as the
+/// program holds it has its top at Z0 where the sheet says Z0 is on it. For the two-sided
+/// example, and for a part that is not symmetric turned over about X and about Y with more
+/// stock below it than above and no zero given (the bottom's Z0 was once 2 mm above the part's
+/// face while the sheet said its top: an operator touching off the face cut 2 mm too deep).
+#[test]
+fn every_setups_sheet_states_the_zero_its_program_uses() {
+    use swarf::geom::DVec2;
+    use swarf::job::setups::{carried, laid_like};
+    use swarf::sim::dexel::DexelStock;
+    let mut cases = vec![("two-sided", Job::two_sided(), two_sided_part())];
+    for flip in [swarf::job::Flip::AboutX, swarf::job::Flip::AboutY] {
+        let mut job = Job::two_sided();
+        job.stock.zero = None;
+        job.stock.margin_bottom = 3.0;
+        job.stock.margin_top = 1.0;
+        for s in &mut job.setups {
+            s.operations.retain(|o| matches!(o.name(), "face" | "rough"));
+        }
+        job.setups[1].flip = flip;
+        cases.push(if flip == swarf::job::Flip::AboutX { ("sloped, over X", job, sloped_block()) } else { ("sloped, over Y", job, sloped_block()) });
+    }
+    // The number after `words` in `text`, up to the next space, comma, semicolon or bracket.
+    let number_after = |text: &str, words: &str| -> f64 {
+        let rest = text.split(words).nth(1).unwrap_or_else(|| panic!("no '{words}' in: {text}"));
+        rest.split([' ', ',', ';', ')']).next().unwrap().parse::<f64>().unwrap_or_else(|e| panic!("'{words}' then {rest}: {e}"))
+    };
+    for (name, job, part) in cases {
+        let setups = run_setups(&job, part, &mut Progress::none()).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let sheets: Vec<_> = setups.iter().map(|s| swarf::job::sheet::SheetSetup::of(&s.name, &s.output)).collect();
+        let html = swarf::job::sheet::setup_sheet(&job, "part.stl", &sheets);
+        let sections: Vec<&str> = html.split("<section>").skip(1).collect();
+        assert_eq!(sections.len(), setups.len(), "{name}");
+        let mut before: Option<(DexelStock, swarf::job::setups::Orientation)> = None;
+        for (k, (s, section)) in setups.iter().zip(&sections).enumerate() {
+            let out = &s.output;
+            let v = out.verification.as_ref().unwrap();
+            common::clean(out);
+            let said = section.split("<th>Zero (X0 Y0 Z0)</th><td>").nth(1).unwrap().split("</td>").next().unwrap();
+            assert!(said == sheets[k].zero, "{name} {}: the sheet shows its figures: {said}", s.name);
+            // The stock as this setup starts: the raw box, or what the setup before left.
+            let cell = v.stock.grid().spacing;
+            let start = match &before {
+                None => DexelStock::new(&out.stock, cell, 1).with_spans(|_, spans| spans.push((out.stock.min.z, out.stock.max.z))),
+                Some((left, from)) => DexelStock::new(&out.stock, cell, 1).laid_from(laid_like(left, from, &s.orientation)).with_spans(|p, spans| carried(left, from, &s.orientation, p, spans)),
+            };
+            let g = start.grid();
+            let mut highest = f64::NEG_INFINITY;
+            let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+            for j in 0..g.ny {
+                for i in 0..g.nx {
+                    if start.top(i, j) > start.floor(i, j) {
+                        highest = highest.max(start.top(i, j));
+                        (lo, hi) = (lo.min(g.node(i, j)), hi.max(g.node(i, j)));
+                    }
+                }
+            }
+            let top = if said.contains("touch off the stock's top as Z0") { 0.0 } else { number_after(said, "touch off the stock's top and set it as Z") };
+            assert!((highest - top).abs() < 1e-6, "{name} {}: the sheet puts the stock's top at Z{top}, the program at Z{highest}: {said}", s.name);
+            // The stated sides hold the stock's cells, within a cell.
+            for (words, at) in [("left side at X", lo.x), ("its right at X", hi.x), ("its front at Y", lo.y), ("its back at Y", hi.y)] {
+                let stated = number_after(said, words);
+                assert!((stated - at).abs() <= cell, "{name} {}: {words}{stated}, the stock's cells reach {at}", s.name);
+            }
+            let bottom = number_after(said, "the stock's bottom is Z");
+            assert!((bottom - out.stock.min.z).abs() < 1e-3, "{name} {}: {said}", s.name);
+            let held = out.part.bounds();
+            if said.starts_with("Z0 on the part's top as held") {
+                assert!(held.max.z.abs() < 1e-6, "{name} {}: the part's top at Z{}: {said}", s.name, held.max.z);
+                let below = if said.contains("which is the stock's top") { 0.0 } else { number_after(said, "as held, ") };
+                assert!((below - top).abs() < 1e-3, "{name} {}: {said}", s.name);
+            }
+            if said.contains("X0 Y0 at the centre of the part seen from above") {
+                assert!(held.center().truncate().length() < 1e-6, "{name} {}: {said}", s.name);
+            }
+            eprintln!("{name} {}: {said}", s.name);
+            before = Some((v.stock.clone(), s.orientation));
+        }
+        // The turned setups' zero is the part's top as held, without a zero given.
+        if job.stock.zero.is_none() {
+            assert!(sheets[1].zero.starts_with("Z0 on the part's top as held, 3.000 mm below the stock's top"), "{name}: {}", sheets[1].zero);
+            assert!(setups[1].output.part.bounds().max.z.abs() < 1e-6);
+        }
+    }
+}
+
+/// The pieces of material of `stock` (spans of neighbouring columns overlapping by more than
+/// 0.01 mm), found by a flood over the columns: whether every span holding `part_top` (the part
+/// there: a column's part top height, or none) is in a piece with a span `gripped(i, j, floor,
+/// top)` accepts. The test's own check, written apart from `swarf::sim::hold`.
+fn part_is_gripped(stock: &swarf::sim::dexel::DexelStock, part_top: impl Fn(usize, usize) -> Option<f64>, gripped: impl Fn(usize, usize, f64, f64) -> bool) -> bool {
+    let g = stock.grid();
+    let spans: Vec<Vec<(f64, f64)>> = (0..g.ny).flat_map(|j| (0..g.nx).map(move |i| (i, j))).map(|(i, j)| stock.spans(i, j).filter(|(f, t)| t > f).collect()).collect();
+    let mut seen: Vec<Vec<bool>> = spans.iter().map(|s| vec![false; s.len()]).collect();
+    let mut queue = std::collections::VecDeque::new();
+    for j in 0..g.ny {
+        for i in 0..g.nx {
+            for (k, &(f, t)) in spans[j * g.nx + i].iter().enumerate() {
+                if gripped(i, j, f, t) {
+                    seen[j * g.nx + i][k] = true;
+                    queue.push_back((i, j, k));
+                }
+            }
+        }
+    }
+    while let Some((i, j, k)) = queue.pop_front() {
+        let (f, t) = spans[j * g.nx + i][k];
+        let near = [(i.wrapping_sub(1), j), (i + 1, j), (i, j.wrapping_sub(1)), (i, j + 1)];
+        for (a, b) in near {
+            if a >= g.nx || b >= g.ny {
+                continue;
+            }
+            for (m, &(f2, t2)) in spans[b * g.nx + a].iter().enumerate() {
+                if !seen[b * g.nx + a][m] && t.min(t2) - f.max(f2) > 0.01 {
+                    seen[b * g.nx + a][m] = true;
+                    queue.push_back((a, b, m));
+                }
+            }
+        }
+    }
+    (0..g.ny).flat_map(|j| (0..g.nx).map(move |i| (i, j))).all(|(i, j)| {
+        let Some(h) = part_top(i, j) else { return true };
+        spans[j * g.nx + i].iter().enumerate().filter(|(_, &(f, t))| f < h - 0.01 && t > h - 0.01).all(|(k, _)| seen[j * g.nx + i][k])
+    })
+}
+
+/// Issue 92, done when: the shared rocker arm, from a box in a vise closing on X, machined on
+/// both sides with a parting line, comes off whole. Each side faces and roughs down to the
+/// parting line (the part's middle: `bottom` from the part's bottom), so the material beyond
+/// it still joins the part to the jaws; the second setup's jaws close on what the first left.
+/// The test's own check finds the part joined to the material the jaws grip at the start and
+/// end of every setup; no gouge; every program read by rs274 and GRBL's parser; each sheet's
+/// zero where its program puts it. Cut down to the stock's bottom without a parting line and
+/// without fixtures, the first setup leaves a web the second faces away: said, naming it.
+#[test]
+fn the_rocker_arm_comes_off_whole_from_a_box_in_a_vise() {
+    use swarf::job::fixtures::{Vise, ViseAxis};
+    use swarf::operations::HeightFrom;
+    let Some(file) = common::shared_data("meshes/c3d_rocker-arm.obj") else { return };
+    let bytes = std::fs::read(&file).unwrap();
+    let read = |job: &Job| match swarf::job::Workpiece::read(&bytes, Some("c3d_rocker-arm.obj"), &job.tolerances).unwrap() {
+        swarf::job::Workpiece::Mesh(m) => m,
+        _ => unreachable!("a mesh"),
+    };
+    let mut job = Job::two_sided();
+    job.part.scale = 100.0;
+    job.part.up_axis = swarf::mesh::placement::UpAxis::Y;
+    job.stock.zero = None;
+    job.stock.margin_bottom = 3.0;
+    job.fixtures.vise = Some(Vise { grip: 6.0, closes: ViseAxis::X, ..Vise::default() });
+    for t in &mut job.tools {
+        t.cutter.flute_length = 35.0;
+    }
+    let height = {
+        let mut p = read(&job);
+        job.place_part(&mut p);
+        p.bounds().size().z
+    };
+    let parted = |job: &mut Job| {
+        for s in &mut job.setups {
+            s.operations.retain(|o| matches!(o.name(), "face" | "rough"));
+            for o in &mut s.operations {
+                if let swarf::job::Operation::RoughZlevel(r) = o {
+                    r.roughing.bottom = Some(height / 2.0);
+                    r.roughing.bottom_from = HeightFrom::PartBottom;
+                }
+            }
+        }
+    };
+    parted(&mut job);
+    let setups = run_setups(&job, read(&job), &mut Progress::none()).unwrap();
+    let sheets: Vec<_> = setups.iter().map(|s| swarf::job::sheet::SheetSetup::of(&s.name, &s.output)).collect();
+    for (k, s) in setups.iter().enumerate() {
+        let out = &s.output;
+        let v = out.verification.as_ref().unwrap();
+        common::clean(out);
+        assert!(out.problem.is_none(), "{}: {:?}", s.name, out.problem);
+        assert!(!out.warnings.iter().any(|w| w.to_string().contains("free")), "{}: {:?}", s.name, out.warnings);
+        // The jaws close on the material 3 mm high or more within their 6 mm from the stock's
+        // bottom, found here from the stock as the setup starts.
+        let (lo, hi) = (out.stock.min.z, out.stock.min.z + 6.0);
+        let start = v.start.clone().unwrap_or_else(|| swarf::sim::dexel::DexelStock::new(&out.stock, v.stock.grid().spacing, 1).with_spans(|_, sp| sp.push((out.stock.min.z, out.stock.max.z))));
+        let g = start.grid();
+        let band: Vec<usize> = (0..g.ny).flat_map(|j| (0..g.nx).map(move |i| (i, j))).filter(|&(i, j)| start.spans(i, j).any(|(f, t)| t.min(hi) - f.max(lo) >= 3.0)).map(|(i, _)| i).collect();
+        let (i_lo, i_hi) = (*band.iter().min().unwrap(), *band.iter().max().unwrap());
+        let part = &v.part;
+        for (when, stock) in [("starts", &start), ("ends", &v.stock)] {
+            let held = part_is_gripped(stock, |i, j| Some(part.z[j * part.nx + i]).filter(|z| z.is_finite()), |i, _, f, t| (i == i_lo || i == i_hi) && t.min(hi) - f.max(lo) > 0.01);
+            assert!(held, "{} {when}: the part is not joined to what the jaws grip", s.name);
+        }
+        assert!(common::rs274(&out.gcode, &job.tools).contains("STRAIGHT_FEED"), "{}", s.name);
+        let grbl = swarf::post::PostSettings { dialect: swarf::post::Dialect::Grbl, ..job.post.clone() };
+        let gcode = swarf::post::write_gcode(&s.name, &out.paths, &job.tools, out.clearance_z, &grbl).unwrap();
+        if let Some(said) = common::grblcheck(&gcode) {
+            said.unwrap_or_else(|e| panic!("{}: {e}", s.name));
+        }
+        // The sheet's zero: Z0 on the part's top as held, the stock's top above it by the
+        // margin over that face (1 mm over the top, 3 under the bottom).
+        assert!(out.part.bounds().max.z.abs() < 1e-6, "{}", s.name);
+        let margin = if k == 0 { 1.0 } else { 3.0 };
+        assert!(sheets[k].zero.contains(&format!("touch off the stock's top and set it as Z+{margin:.3}")), "{}: {}", s.name, sheets[k].zero);
+        eprintln!("{}: {} moves, cycle {:.0} s; {}", s.name, out.moves.len(), out.cycle.seconds, sheets[k].zero);
+    }
+    // Without the parting line and without fixtures: the first side roughs down to the
+    // stock's bottom, and the second's facing cuts away the web it left; nothing joins the part
+    // to the stock's sides after it, which the second setup says, naming the facing.
+    let mut free = job.clone();
+    free.fixtures.vise = None;
+    for s in &mut free.setups {
+        for o in &mut s.operations {
+            if let swarf::job::Operation::RoughZlevel(r) = o {
+                r.roughing.bottom = None;
+            }
+        }
+    }
+    let out = run_setups(&free, read(&free), &mut Progress::none()).unwrap();
+    assert!(!out[0].output.warnings.iter().any(|w| w.to_string().contains("free")), "{:?}", out[0].output.warnings);
+    let said: Vec<String> = out[1].output.warnings.iter().map(|w| w.to_string()).collect();
+    assert!(said.iter().any(|w| w.starts_with("face") && w.contains("cuts the part free")), "{said:?}");
+}

@@ -70,7 +70,14 @@ export function addSetup() {
   if (flat) face.tool = flat.number;
   const k = j.setups.length;
   j.setups.push({ name: k === 1 ? 'Bottom' : `Setup ${k + 1}`, flip: 'aboutX', turn: 0, workOffset: WORK_OFFSETS[k] ?? null, zero: null, operations: [face] });
-  message(`Added the setup '${j.setups[k].name}': the part turned over about X (its bottom up), held in ${j.setups[k].workOffset ?? 'the controller\'s work offset'}; it starts from the stock the setup before leaves.`, 'note');
+  // The bottom's facing needs stock under the part to face: a block cut to the part's height
+  // has none, and its facing would find nothing to cut.
+  let more = '';
+  if (k === 1 && j.stock && !j.stock.bar && !j.stock.mesh && !(j.stock.marginBottom > 0)) {
+    j.stock.marginBottom = j.stock.marginTop > 0 ? j.stock.marginTop : 1;
+    more = ` 'Stock below the part' is now ${j.stock.marginBottom} mm (Stock tab), for the bottom's facing to cut.`;
+  }
+  message(`Added the setup '${j.setups[k].name}': the part turned over about X (its bottom up), held in ${j.setups[k].workOffset ?? 'the controller\'s work offset'}; it starts from the stock the setup before leaves.${more}`, 'note');
   select(k);
 }
 

@@ -33,7 +33,11 @@ pub fn place(job: &Job, drawing: &mut Drawing) -> Result<(Aabb, f64)> {
 pub fn surface(cuts: &[SheetCut], grooves: &[Groove], grid: Grid, gouge: f64, tol: &crate::geom::Tolerances) -> HeightField {
     let mut field = grid.filled(0.0);
     lower_in_grooves(&mut field, grooves, grid, gouge, 0.0);
-    for SheetCut { region, inside, depth, leave } in cuts {
+    // Cells a cut that leaves scrap beyond its kerf (a profile) reaches, and cells another
+    // cut clears (a pocket, a facing): the first are no part unless the second.
+    let mut scrap = vec![false; field.z.len()];
+    let mut cleared = vec![false; field.z.len()];
+    for SheetCut { region, inside, depth, leave, scrap: parts_off } in cuts {
         let widen = gouge - leave;
         let region = offset(region, if *inside { widen } else { -widen }, tol);
         let ys: Vec<f64> = (0..grid.ny).map(|j| grid.node(0, j).y).collect();
@@ -52,8 +56,19 @@ pub fn surface(cuts: &[SheetCut], grooves: &[Groove], grid: Grid, gouge: f64, to
                 if cut {
                     let c = j * grid.nx + i;
                     field.z[c] = field.z[c].min(-depth);
+                    if *parts_off {
+                        scrap[c] = true;
+                    } else {
+                        cleared[c] = true;
+                    }
                 }
             }
+        }
+    }
+    // Scrap is not the part: no height to judge (as where a mesh has no part).
+    for c in 0..field.z.len() {
+        if scrap[c] && !cleared[c] {
+            field.z[c] = f64::NEG_INFINITY;
         }
     }
     field

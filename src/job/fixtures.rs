@@ -25,11 +25,15 @@ pub struct Fixtures {
     pub meshes: Vec<FixtureMesh>,
     /// How far every tool keeps from each of them (mm). Default value: 1.
     pub clearance: f64,
+    /// The part is held by something the fixtures do not show (screws, tape, a vacuum table,
+    /// soft jaws on its finished faces): an operation that cuts it free of what the fixtures
+    /// grip is then said, not refused. Default value: false.
+    pub held_otherwise: bool,
 }
 
 impl Default for Fixtures {
     fn default() -> Self {
-        Fixtures { vise: None, boxes: Vec::new(), meshes: Vec::new(), clearance: 1.0 }
+        Fixtures { vise: None, boxes: Vec::new(), meshes: Vec::new(), clearance: 1.0, held_otherwise: false }
     }
 }
 
@@ -46,11 +50,28 @@ pub struct Vise {
     /// Which way the jaws close: `y` grips the front and back of the stock, `x` its left and
     /// right. Default value: y.
     pub closes: ViseAxis,
+    /// The least height of material each jaw must grip when its setup starts (mm): a jaw on
+    /// air or on a thin web is an error naming the setup and the jaw. Default value: half the
+    /// grip.
+    pub least_grip: Option<f64>,
+    /// Where the jaws' faces stand along the axis they close on, where they close on less than
+    /// the stock's box (a later setup's stock, cut round the part by the setup before): set as
+    /// the setup starts, from the material within the grip ([`crate::sim::hold::band_extent`]).
+    #[serde(skip)]
+    #[ts(skip)]
+    pub faces: Option<(f64, f64)>,
 }
 
 impl Default for Vise {
     fn default() -> Self {
-        Vise { grip: 6.0, jaw_width: 150.0, jaw_thickness: 20.0, closes: ViseAxis::Y }
+        Vise { grip: 6.0, jaw_width: 150.0, jaw_thickness: 20.0, closes: ViseAxis::Y, least_grip: None, faces: None }
+    }
+}
+
+impl Vise {
+    /// The least height of material a jaw must grip (mm): `leastGrip`, or half the grip.
+    pub fn least(&self) -> f64 {
+        self.least_grip.unwrap_or(self.grip / 2.0)
     }
 }
 
@@ -129,7 +150,13 @@ impl Fixtures {
     pub fn held(&self, stock: &Aabb) -> Vec<Held> {
         let mut out = Vec::new();
         if let Some(v) = &self.vise {
-            let (lo, hi, c) = (stock.min, stock.max, stock.center());
+            let (mut lo, mut hi, c) = (stock.min, stock.max, stock.center());
+            if let Some((a, b)) = v.faces {
+                match v.closes {
+                    ViseAxis::Y => (lo.y, hi.y) = (a, b),
+                    ViseAxis::X => (lo.x, hi.x) = (a, b),
+                }
+            }
             let (z0, z1) = (lo.z - JAW_DEPTH, lo.z + v.grip);
             let half = v.jaw_width / 2.0;
             let jaw = |min: DVec3, max: DVec3| Aabb { min, max };
@@ -179,6 +206,11 @@ impl Fixtures {
                 if !(value > 0.0 && value.is_finite()) {
                     say(format!("{at}.vise.{field}"), format!("{at}.vise.{field}: {what} must be more than 0 mm (got {value})"));
                 }
+            }
+        }
+        if let Some(least) = self.vise.and_then(|v| v.least_grip.map(|l| (l, v.grip))) {
+            if !(least.0 > 0.0 && least.0 <= least.1) {
+                say(format!("{at}.vise.leastGrip"), format!("{at}.vise.leastGrip: the least material a jaw grips must be more than 0 mm and at most the grip ({} mm; got {})", least.1, least.0));
             }
         }
         for (k, b) in self.boxes.iter().enumerate() {

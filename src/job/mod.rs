@@ -16,6 +16,7 @@ pub mod blank;
 pub mod demo;
 pub mod drawing;
 pub mod fixtures;
+pub mod hold;
 pub mod pool;
 pub mod project;
 pub mod read;

@@ -342,7 +342,7 @@ pub fn prepare(job: &Job, workpiece: impl Into<Workpiece>) -> Result<Prepared> {
             job.machine.name, post.name
         )));
     }
-    Ok(Prepared { job: job.clone(), ctx, warnings, given: Default::default() })
+    Ok(Prepared { job: job.clone(), ctx, warnings, given: Default::default(), last_setup: true })
 }
 
 /// A job with its part placed and its context made, ready to plan ([`Prepared::run`]); a pool
@@ -353,6 +353,9 @@ pub struct Prepared {
     pub(super) warnings: Vec<Warning>,
     /// Raster passes a pool made, by operation.
     pub(super) given: GivenPasses,
+    /// Whether no setup follows this one: its last operation may cut the part free (it comes
+    /// off), which earlier ones may not where fixtures hold it ([`super::hold`]).
+    pub(super) last_setup: bool,
 }
 
 impl Prepared {
@@ -362,6 +365,8 @@ impl Prepared {
     /// ([`crate::sim::DexelStock::laid_from`]).
     pub fn carry(&mut self, at_max: [bool; 2], material: impl FnMut(crate::geom::DVec2, &mut Vec<(f64, f64)>)) {
         self.ctx.sim.carry(at_max, material);
+        // A vise closes on what the setup before left.
+        super::hold::follow_jaws(&mut self.job, &mut self.ctx);
     }
 
     /// [`run`] from here.
@@ -376,7 +381,9 @@ impl Prepared {
     /// Starts planning, operation by operation ([`Running`]).
     pub fn start(mut self) -> Running {
         self.give_passes();
-        let Prepared { job, ctx, warnings, .. } = self;
+        let Prepared { job, mut ctx, warnings, last_setup, .. } = self;
+        let mut hold = super::hold::HoldWatch::default();
+        hold.after(&job, &mut ctx, None);
         let enabled: Vec<usize> = (0..job.operations.len()).filter(|&k| job.operations[k].op().enabled()).collect();
         // The setup's stock as it came, kept for roughings with rest roughing off after others.
         let as_came = enabled.iter().skip(1).any(|&k| !job.operations[k].takes_what_is_left()).then(|| ctx.sim.clone());
@@ -399,6 +406,8 @@ impl Prepared {
             bands_out: 0,
             holders: Vec::new(),
             as_came,
+            hold,
+            last_setup,
         }
     }
 }
@@ -432,10 +441,14 @@ pub struct Running {
     /// How many bands of the stock [`Running::take_bands`] handed out.
     pub(super) bands_out: usize,
     /// Each tool's holder's bound over the part, made as its paths ask ([`Running::keep_holders_out`]).
-    pub(super) holders: Vec<(u32, Option<crate::machining::holders::HolderBound>)>,
+    pub(super) holders: Vec<(u32, bool, Option<crate::machining::holders::HolderBound>)>,
     /// The setup's stock as it came, before any operation cut it, where a roughing with rest
     /// roughing off plans against it.
     pub(super) as_came: Option<Simulator>,
+    /// Whether the operations so far cut the part free of what holds it.
+    pub(super) hold: super::hold::HoldWatch,
+    /// Whether no setup follows ([`Prepared::last_setup`]).
+    pub(super) last_setup: bool,
 }
 
 impl Running {
@@ -459,6 +472,10 @@ impl Running {
             return Ok(false);
         };
         let n = self.next;
+        if n == 0 {
+            // The vise grips material before anything is cut.
+            super::hold::jaws_grip(&self.job, &self.ctx)?;
+        }
         self.next += 1;
         let (plan_share, _) = self.shares();
         let count = self.enabled.len() as f64;
@@ -546,6 +563,10 @@ impl Running {
             return;
         }
         let name = self.job.operations[k].op().name().to_owned();
+        // A finishing keeps its tool's unfluted body (the shank above the flutes) out of the
+        // part and the stock as it keeps the holder out: the roughings step down within the
+        // flutes, but a finishing follows the part down walls deeper than them.
+        let body = self.job.operations[k].is_finishing();
         // The stock the operation leaves, made once the first of its paths could bring a
         // holder down to the stock's top.
         let mut left: Option<crate::sim::DexelStock> = None;
@@ -553,16 +574,22 @@ impl Running {
         let mut held: Vec<u32> = Vec::new();
         for n in 0..paths.len() {
             let Some(tool) = self.job.tools.iter().find(|t| t.number == paths[n].tool) else { continue };
-            let Some(rings) = tool.holder_rings() else { continue };
+            let mut rings: Vec<(f64, f64)> = tool.holder_rings().map(|r| r.to_vec()).unwrap_or_default();
+            if body {
+                rings.push((tool.cutter.shank_diameter.unwrap_or(tool.cutter.diameter) / 2.0, tool.cutter.flute_length));
+            }
+            if rings.is_empty() {
+                continue;
+            }
             let ctx = &self.ctx;
-            let h = match self.holders.iter().position(|(n, _)| *n == tool.number) {
+            let h = match self.holders.iter().position(|(n, b, _)| *n == tool.number && *b == body) {
                 Some(h) => h,
                 None => {
-                    self.holders.push((tool.number, crate::machining::holders::HolderBound::new(ctx.solid.as_ref().unwrap_or(&ctx.part), &ctx.stock, &rings, &ctx.tolerances)));
+                    self.holders.push((tool.number, body, crate::machining::holders::HolderBound::new(ctx.solid.as_ref().unwrap_or(&ctx.part), &ctx.stock, &rings, &ctx.tolerances)));
                     self.holders.len() - 1
                 }
             };
-            let Some(bound) = self.holders[h].1.as_mut() else { continue };
+            let Some(bound) = self.holders[h].2.as_mut() else { continue };
             if !held.contains(&tool.number) {
                 // Whether any of the tool's paths goes deep enough for its holder to reach
                 // the stock's top.
@@ -582,10 +609,19 @@ impl Running {
             let stock = ctx.sim.stock();
             let raised: Vec<_> = raised.into_iter().filter(|(p, planned)| stock.touch(p.truncate(), &profile, false) > planned + self.job.tolerances.gouge).map(|(p, _)| p).collect();
             if !raised.is_empty() {
-                let holder = tool.holder.as_ref().map_or(String::new(), |h| h.name.clone());
                 let stick_out = crate::limits::shown(tool.standing_out());
-                let what =
-                    format!("places held up so that T{}'s holder ({holder}, {stick_out} mm stick-out) keeps clear of the part and the stock: material left there for a longer stick-out", tool.number);
+                let flutes = crate::limits::shown(tool.cutter.flute_length);
+                let what = match (&tool.holder, body) {
+                    (Some(holder), true) => format!(
+                        "places held up so that T{}'s holder ({}, {stick_out} mm stick-out) keeps clear of the part and the stock, and its flutes ({flutes} mm) take all it cuts: material left there for a tool with longer flutes and stick-out",
+                        tool.number, holder.name
+                    ),
+                    (Some(holder), false) => format!("places held up so that T{}'s holder ({}, {stick_out} mm stick-out) keeps clear of the part and the stock: material left there for a longer stick-out", tool.number, holder.name),
+                    (None, _) => format!(
+                        "places held up so that T{}'s flutes ({flutes} mm) take all it cuts, its shank above them clear of the part and the stock: material left there for a tool with longer flutes",
+                        tool.number
+                    ),
+                };
                 self.ctx.warn_at(&name, &what, &raised);
             }
         }
@@ -666,6 +702,8 @@ impl Running {
     fn settle(&mut self, moves: Vec<ProgramMove>) {
         // What the operation left is judged against the part only when the program is verified.
         self.snapshots.push(self.job.simulation.verify.then(|| self.ctx.sim.stock().heights()));
+        let op = self.enabled.get(self.next.wrapping_sub(1)).copied();
+        self.hold.after(&self.job, &mut self.ctx, op);
         self.move_ranges.push(self.all_moves.len()..self.all_moves.len() + moves.len());
         self.all_moves.extend(moves);
     }
@@ -676,7 +714,10 @@ impl Running {
         if self.next < self.enabled.len() || !self.pending.is_empty() {
             return Err(Error::Input("the job is not planned to its end yet".into()));
         }
-        let Running { job, ctx, mut warnings, enabled, mut paths, path_operations, move_ranges, mut all_moves, snapshots, loads, cuts, grooves, octants, .. } = self;
+        let Running { job, ctx, mut warnings, enabled, mut paths, path_operations, move_ranges, mut all_moves, snapshots, loads, cuts, grooves, octants, hold, last_setup, .. } = self;
+        let mut hold = hold;
+        let (freed_warning, freed) = hold.said(&job, enabled.last().copied(), last_setup);
+        warnings.extend(freed_warning);
         let job = &job;
         let verify = job.simulation.verify;
         let mut ctx = ctx;
@@ -692,7 +733,7 @@ impl Running {
             let settings = job.verify_settings(&stock, None);
             let tol = job.tolerances;
             let v = match &sheet {
-                None => sim.finish_mesh_cut(&part, |field, grid| drawing::lower_in_grooves(field, &grooves, grid, tol.gouge, stock.max.z), settings.allowance, &tol),
+                None => sim.finish_mesh_cut(&part, hold.take_part(), |field, grid| drawing::lower_in_grooves(field, &grooves, grid, tol.gouge, stock.max.z), settings.allowance, &tol),
                 Some(sheet) => {
                     let mut v = sim.finish(|grid| drawing::surface(&cuts, &grooves, grid, tol.gouge, &tol), settings.allowance, &tol);
                     // The drawing's circles are its holes: a gouge on one's wall is said as a
@@ -779,6 +820,11 @@ impl Running {
             (found, true) => found,
             (None, false) => Some(beyond.join("; ")),
             (Some(found), false) => Some(format!("{}; {found}", beyond.join("; "))),
+        };
+        let problem = match (problem, freed) {
+            (p, None) => p,
+            (None, f) => f,
+            (Some(p), Some(f)) => Some(format!("{f}; {p}")),
         };
         progress.stage("done", 1.0, 0.0);
         let drawing = sheet.map(|s| s.drawing);

@@ -143,7 +143,8 @@ pub fn setup_frames(job: &Job, part: &Aabb) -> Vec<(Orientation, Aabb)> {
     let mut rotation = DMat3::IDENTITY;
     job.setups
         .iter()
-        .map(|setup| {
+        .enumerate()
+        .map(|(k, setup)| {
             rotation = match setup.up {
                 Some(up) => turn_rotation(setup.turn) * up_rotation(up),
                 None => turn_rotation(setup.turn) * flip_rotation(setup.flip) * rotation,
@@ -151,8 +152,15 @@ pub fn setup_frames(job: &Job, part: &Aabb) -> Vec<(Orientation, Aabb)> {
             let turned = Orientation { rotation, centre: raw.center(), shift: DVec3::ZERO };
             let stock = turned.apply_box(&raw);
             // A quarter-turned box of the part is the turned part's box.
+            let held = turned.apply_box(part);
             let shift = match setup.zero.or(job.stock.zero) {
-                Some(zero) => -zero.point(&stock, turned.apply_box(part).max.z),
+                Some(zero) => -zero.point(&stock, held.max.z),
+                // Without a zero, the first setup's is where the part's placement puts it
+                // (the centre of its top); a later setup's is the same point of the part as
+                // that setup holds it (the face turned up), not wherever the turn about the
+                // stock's centre took the first one's: the sheet says the part's top, and an
+                // operator touching it off would cut the difference too deep.
+                None if k > 0 => job.part.shift(&held),
                 None => DVec3::ZERO,
             };
             let orientation = Orientation { shift, ..turned };
@@ -235,6 +243,7 @@ pub fn run_setups(job: &Job, mut part: Mesh, progress: &mut Progress) -> Result<
     for (k, frame) in frames.iter().enumerate() {
         let (sub, held) = setup_stage(job, k, &part, frame);
         let mut prepared = prepare(&sub, Workpiece::Mesh(held)).map_err(|e| setup_error(k, &names[k], e))?;
+        prepared.last_setup = k + 1 == n;
         if let Some(before) = out.last() {
             let left = before.output.verification.as_ref().map(|v| &v.stock).ok_or_else(|| Error::Internal("a setup before another was not simulated".into()))?;
             let (from, to) = (before.orientation, frame.0);

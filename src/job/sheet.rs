@@ -9,7 +9,7 @@ use std::fmt::Write;
 use serde::{Deserialize, Serialize};
 
 use super::run::JobOutput;
-use super::schema::{Flip, Job, Up, WorkZero, ZeroCorner, ZeroHeight};
+use super::schema::{Flip, Job, Up};
 use crate::geom::Aabb;
 use crate::post::{clock, TimeItem};
 
@@ -26,6 +26,11 @@ pub struct SheetSetup {
     /// The work offset its program selects (`G55`), if any.
     pub work_offset: Option<String>,
     pub stock: Aabb,
+    /// Where X0 Y0 Z0 lies, in words a machinist touches off by ([`zero_words`]): worked out
+    /// from the program's own stock and part, so the sheet cannot say another zero than the
+    /// program's.
+    #[serde(default)]
+    pub zero: String,
     pub moves: usize,
     pub cycle: f64,
     /// The tools in the order the program takes them.
@@ -60,6 +65,7 @@ impl SheetSetup {
             name: name.to_owned(),
             work_offset: out.gcode.lines().map(crate::post::without_number).find(|l| crate::post::definition::is_work_offset(l)).map(str::to_owned),
             stock: out.stock,
+            zero: zero_words(&out.stock, part_box(out).as_ref()),
             moves: out.moves.len(),
             cycle: out.cycle.seconds,
             tools,
@@ -101,7 +107,8 @@ svg{{border:1px solid #ccc;background:#fafafa}}.n{{text-align:right}}</style></h
             format!("From {from}: {}.", hold.join(", then "))
         };
         let offset = s.work_offset.as_deref().unwrap_or("none (the machine's current)");
-        let zero = setup.and_then(|s| s.zero).or(job.stock.zero);
+        let at_hole = setup.and_then(|s| s.zero).or(job.stock.zero).is_some_and(|z| z.at.is_some());
+        let zero = if at_hole { format!("{} (the point picked: a hole's centre, say)", s.zero) } else { s.zero.clone() };
         let size = s.stock.size();
         let _ = write!(
             h,
@@ -109,7 +116,7 @@ svg{{border:1px solid #ccc;background:#fafafa}}.n{{text-align:right}}</style></h
 <tr><th>Stock</th><td>{:.1} × {:.1} × {:.1} mm (X × Y × Z), from X{:.3} Y{:.3} Z{:.3} to X{:.3} Y{:.3} Z{:.3}</td></tr>\
 <tr><th>Program</th><td>{} moves, cycle time {}</td></tr></table>\n",
             escape(offset),
-            zero_words(zero),
+            escape(&zero),
             size.x,
             size.y,
             size.z,
@@ -192,25 +199,54 @@ pub fn hold_words(job: &Job, k: usize) -> Vec<String> {
     hold
 }
 
-/// Where the zero is, in a machinist's words.
-fn zero_words(zero: Option<WorkZero>) -> String {
-    let Some(zero) = zero else { return "where the part's placement puts it (the centre of the part's top)".into() };
-    let height = match zero.height {
-        ZeroHeight::PartTop => "Z0 on the part's top",
-        ZeroHeight::StockTop => "Z0 on the stock's top",
-        ZeroHeight::StockBottom => "Z0 on the stock's bottom",
+/// The part's box in a program's frame; none for a drawing (its sheet is the stock) or an empty
+/// part.
+fn part_box(out: &JobOutput) -> Option<Aabb> {
+    (out.drawing.is_none() && !out.part.faces.is_empty()).then(|| out.part.bounds())
+}
+
+/// Where X0 Y0 Z0 lies in a program whose stock box is `stock` and part box `part` (both in
+/// the program's frame, as the setup holds them), in a machinist's words: what Z0 is on (the
+/// part's top as held, the stock's top or bottom, or how far below the stock's top), what to
+/// touch off and set, and where the stock's sides are from X0 Y0, so that the zero is found
+/// on the stock in front of them whichever face is up.
+pub fn zero_words(stock: &Aabb, part: Option<&Aabb>) -> String {
+    const AT: f64 = 1e-6;
+    let f = |v: f64| if v.abs() < 5e-4 { "0.000".to_owned() } else { format!("{v:+.3}") };
+    let (top, bottom) = (stock.max.z, stock.min.z);
+    let on = match part {
+        Some(p) if p.max.z.abs() < AT && top.abs() < AT => "Z0 on the part's top as held, which is the stock's top".to_owned(),
+        Some(p) if p.max.z.abs() < AT => format!("Z0 on the part's top as held, {:.3} mm below the stock's top", top),
+        _ if top.abs() < AT => "Z0 on the stock's top".to_owned(),
+        _ if bottom.abs() < AT => "Z0 on the stock's bottom".to_owned(),
+        _ if top > 0.0 => format!("Z0 {top:.3} mm below the stock's top"),
+        _ => format!("Z0 {:.3} mm above the stock's top", -top),
     };
-    if let Some([dx, dy]) = zero.at {
-        return format!("X0 Y0 at X{dx:+.3} Y{dy:+.3} from the centre of the stock seen from above (a hole's centre, say), {height}");
-    }
-    let corner = match zero.corner {
-        ZeroCorner::Center => "the centre",
-        ZeroCorner::FrontLeft => "the front left corner",
-        ZeroCorner::FrontRight => "the front right corner",
-        ZeroCorner::BackLeft => "the back left corner",
-        ZeroCorner::BackRight => "the back right corner",
+    let touch = if top.abs() < AT { "touch off the stock's top as Z0".to_owned() } else { format!("touch off the stock's top and set it as Z{}", f(top)) };
+    let c = stock.center();
+    let corner = [
+        ((c.x, c.y), "the centre of the stock seen from above"),
+        ((stock.min.x, stock.min.y), "the stock's front left corner"),
+        ((stock.max.x, stock.min.y), "the stock's front right corner"),
+        ((stock.min.x, stock.max.y), "the stock's back left corner"),
+        ((stock.max.x, stock.max.y), "the stock's back right corner"),
+    ]
+    .into_iter()
+    .find(|((x, y), _)| x.abs() < AT && y.abs() < AT)
+    .map(|(_, w)| w.to_owned());
+    let xy = match (corner, part) {
+        (Some(w), _) => w,
+        (None, Some(p)) if p.center().x.abs() < AT && p.center().y.abs() < AT => "the centre of the part seen from above".to_owned(),
+        _ => format!("X{} Y{} from the centre of the stock seen from above", f(-c.x), f(-c.y)),
     };
-    format!("X0 Y0 at {corner} of the stock seen from above, {height}")
+    format!(
+        "{on} ({touch}; the stock's bottom is Z{}); X0 Y0 at {xy}: the stock's left side at X{}, its right at X{}, its front at Y{}, its back at Y{}",
+        f(bottom),
+        f(stock.min.x),
+        f(stock.max.x),
+        f(stock.min.y),
+        f(stock.max.y)
+    )
 }
 
 /// The part and stock of one setup seen from above, as an SVG: the stock's outline, the part

@@ -96,6 +96,9 @@ impl PoolWorker {
         let name = names[k].clone();
         let mut worker = PoolWorker::prepare(sub, Workpiece::Mesh(held)).map_err(|e| setup_error(k, &name, e))?;
         worker.setup = Some(SetupPlace { index: k, name, orientation, more: k + 1 < names.len() });
+        if let Some(p) = worker.prepared.as_mut() {
+            p.last_setup = k + 1 == names.len();
+        }
         Ok(worker)
     }
 

@@ -419,7 +419,8 @@ impl LevelRoughing {
         // counts a surface as clear when the exact profile stands below it by the interpolation
         // margin (`zmap/contour.rs`).
         let clear = 2.0 * ctx.tolerances.interpolation + ctx.tolerances.height;
-        self.levels(&cl.field, ctx.stock.max.z, ctx.stock.min.z, r, clear)
+        let lowest = self.roughing.bottom_z(&ctx.stock, &ctx.part.bounds());
+        self.levels(&cl.field, ctx.stock.max.z, ctx.stock.min.z, lowest, r, clear)
     }
 
     /// [`LevelRoughing::levels_to_cut`] with centres kept within `reach` of material above each
@@ -430,6 +431,12 @@ impl LevelRoughing {
     /// With `bands`, a flat's level is cut only where the level below cannot go (see
     /// [`LevelRoughing`]); without (seed 000's layers, each its own octants), over its whole region.
     pub fn levels_within(&self, ctx: &mut Context, progress: &mut Progress, reach: f64, bands: bool, within: &Within) -> Result<Option<Levels>> {
+        if let Some(z) = self.roughing.bottom_z(&ctx.stock, &ctx.part.bounds()).filter(|&z| z >= ctx.stock.max.z - LEVEL_SAME) {
+            return Err(Error::operation(
+                &self.name,
+                format!("its bottom height (Z{z:.3}) is at or above the stock's top (Z{:.3}): nothing to cut; give a lower 'Bottom height', or none", ctx.stock.max.z),
+            ));
+        }
         if !progress.stage("CL z-map", 0.0, 0.3) {
             return Err(Error::Cancelled);
         }
@@ -521,11 +528,16 @@ impl LevelRoughing {
         }
     }
     /// The levels, from the top down: every step-down from `top` to `floor` plus the
-    /// allowance, and the flats of the surface (plus the allowance) between, each with whether
-    /// it is a flat's alone (cut only where the level below cannot go).
-    fn levels(&self, cl: &HeightField, top: f64, floor: f64, radius: f64, clear: f64) -> Vec<(f64, bool)> {
-        let bottom = floor + self.roughing.allowance + clear;
+    /// allowance (or to the operation's bottom height `lowest`, where that is higher), and the
+    /// flats of the surface (plus the allowance) between, each with whether it is a flat's
+    /// alone (cut only where the level below cannot go). None where the bottom height is at
+    /// or above the top.
+    fn levels(&self, cl: &HeightField, top: f64, floor: f64, lowest: Option<f64>, radius: f64, clear: f64) -> Vec<(f64, bool)> {
+        let bottom = (floor + self.roughing.allowance + clear).max(lowest.unwrap_or(f64::NEG_INFINITY));
         let mut levels = Vec::new();
+        if bottom >= top - LEVEL_SAME {
+            return levels;
+        }
         let mut z = top - self.steps.stepdown;
         while z > bottom + LEVEL_SAME {
             levels.push((z, false));

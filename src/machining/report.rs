@@ -63,6 +63,10 @@ pub struct SheetCut {
     pub inside: bool,
     pub depth: f64,
     pub leave: f64,
+    /// What the cut parts off beyond its kerf is scrap, not the part (a profile's: the sheet
+    /// round the outline, a hole's slug): the verification judges neither what is left there
+    /// nor a cut there, where no other cut asks for it.
+    pub scrap: bool,
 }
 
 /// Where an engraving cuts: within `radius` of its line, to `depth`.

@@ -99,6 +99,40 @@ impl Steps {
     }
 }
 
+/// What a height given on an operation is measured from (its `bottomFrom`), as Fusion's
+/// Heights tab has them: the setup's work zero, the stock's top or bottom, or the part's top or
+/// bottom as the setup holds it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(rename_all = "camelCase")]
+pub enum HeightFrom {
+    /// Z0 of the setup's program.
+    #[default]
+    Zero,
+    StockTop,
+    StockBottom,
+    PartTop,
+    PartBottom,
+}
+
+impl HeightFrom {
+    /// Its height in a program whose stock box is `stock` and part box `part` (the stock's
+    /// for a drawing, whose part is its sheet).
+    pub fn z(self, stock: &crate::geom::Aabb, part: &crate::geom::Aabb) -> f64 {
+        let part = if part.is_empty() { stock } else { part };
+        match self {
+            HeightFrom::Zero => 0.0,
+            HeightFrom::StockTop => stock.max.z,
+            HeightFrom::StockBottom => stock.min.z,
+            HeightFrom::PartTop => part.max.z,
+            HeightFrom::PartBottom => part.min.z,
+        }
+    }
+
+    /// The choices of a form's "from" field.
+    pub const CHOICES: [(&'static str, &'static str); 5] =
+        [("zero", "the work zero (Z0)"), ("stockTop", "the stock's top"), ("stockBottom", "the stock's bottom"), ("partTop", "the part's top"), ("partBottom", "the part's bottom")];
+}
+
 /// What every roughing kind leaves and how it cuts, in each one's JSON as its own fields
 /// (`operations[1].allowance`).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
@@ -118,11 +152,18 @@ pub struct Roughing {
     /// so that after a larger tool only its leftovers are cut and no air it cleared; off, plan
     /// against the setup's stock as it came, as if nothing had been cut. Default value: true.
     pub rest: bool,
+    /// The lowest the tool's tip goes (mm from `bottomFrom`): the roughing stops there, over
+    /// the part and beside it, as one side of a part machined from both stops at its parting
+    /// line and leaves the rest joined to the stock the vise grips. Default value: none (the
+    /// stock's bottom).
+    pub bottom: Option<f64>,
+    /// What `bottom` is measured from. Default value: zero.
+    pub bottom_from: HeightFrom,
 }
 
 impl Default for Roughing {
     fn default() -> Self {
-        Roughing { allowance: 0.5, leave_stock: 0.5, direction: Direction::Climb, grid: 0.25, ramp_angle: 3.0, rest: true }
+        Roughing { allowance: 0.5, leave_stock: 0.5, direction: Direction::Climb, grid: 0.25, ramp_angle: 3.0, rest: true, bottom: None, bottom_from: HeightFrom::Zero }
     }
 }
 
@@ -141,7 +182,7 @@ pub fn roughing_form() -> Vec<FormField> {
 
 impl Roughing {
     /// Their fields in a roughing's form.
-    pub fn fields() -> [FormField; 6] {
+    pub fn fields() -> [FormField; 8] {
         [
             FormField::length("allowance", "Leave on floors", 0.0),
             FormField::length("leaveStock", "Leave on walls", 0.0),
@@ -149,13 +190,26 @@ impl Roughing {
             FormField::grid(),
             FormField::ramp_angle(),
             FormField::check("rest", "rest roughing: only what earlier operations left"),
+            FormField::number("bottom", "Bottom height", super::form::FieldUnit::Length)
+                .empty("the stock's bottom")
+                .help("The lowest the tool's tip goes, from what 'Bottom from' names (negative: below it): the roughing stops there. One side of a part machined from both stops at the parting line, so the other side's material still joins the part to what the vise holds."),
+            FormField::choice("bottomFrom", "Bottom from", &HeightFrom::CHOICES),
         ]
+    }
+
+    /// The lowest tip height it may cut to in a program whose stock box is `stock` and part
+    /// box `part`: `bottom` from `bottomFrom`; none without a bottom.
+    pub fn bottom_z(&self, stock: &crate::geom::Aabb, part: &crate::geom::Aabb) -> Option<f64> {
+        self.bottom.map(|b| self.bottom_from.z(stock, part) + b)
     }
 
     /// Checks the settings, each named as the job file names it.
     pub fn validate(&self) -> Result<(), FieldError> {
         not_negative("allowance", self.allowance)?;
         not_negative("leaveStock", self.leave_stock)?;
+        if let Some(b) = self.bottom {
+            crate::machining::finite("bottom", b)?;
+        }
         positive("grid", self.grid)?;
         crate::machining::angle("rampAngle", self.ramp_angle, 0.1, 90.0)
     }

@@ -119,7 +119,7 @@ impl Operate for Face {
             None => ctx.part.bounds().max.z,
         };
         if target >= top - 1e-9 {
-            return Err(Error::operation(&self.name, format!("nothing to face: the part's top ({target:.3}) is the stock's top; give a depth, or raise stock.marginTop")));
+            return Err(Error::operation(&self.name, format!("nothing to face: the part's top ({target:.3}) is the stock's top; give a depth, or more stock over the face that is up (Stock: 'Stock above the part's top', or for a setup that turns the part over, 'Stock below the part')")));
         }
         let r = cutter.radius();
         let flat = 2.0 * (r - cutter.corner());
@@ -164,7 +164,7 @@ impl Operate for Face {
         // On a sheet the faced top is the part's to lose: the stock's outline, as far past it as
         // the tool reaches.
         let cuts = match ctx.sheet {
-            Some(_) => vec![SheetCut { region: Shape::new(vec![Loop::rect(ctx.stock.min.truncate(), ctx.stock.max.truncate())]), inside: true, depth: top - target, leave: -(out + r) }],
+            Some(_) => vec![SheetCut { region: Shape::new(vec![Loop::rect(ctx.stock.min.truncate(), ctx.stock.max.truncate())]), inside: true, depth: top - target, leave: -(out + r), scrap: false }],
             None => Vec::new(),
         };
         Ok(Planned { paths: vec![path], cuts, ..Planned::default() })
@@ -195,7 +195,7 @@ impl Face {
         let mut cursor = sheet::cursor(ctx, tool);
         let mut setup = RingSetup { tool_radius: r, top: ctx.stock.max.z, feed: tool.feed_rate, cursor: &mut cursor, tol: &ctx.tolerances, unfinished: false };
         let moves = clear_down(&region, r - past, &clearing, depth, self.stepdown, &mut setup).ok_or_else(|| Error::operation(&self.name, "the loops are too small for the tool"))?;
-        let cuts = vec![SheetCut { region, inside: true, depth, leave: -past }];
+        let cuts = vec![SheetCut { region, inside: true, depth, leave: -past, scrap: false }];
         if moves.is_empty() {
             ctx.note(&self.name, "nothing left to face in the loops (earlier operations cut it away)");
             return Ok(Planned { cuts, ..Planned::default() });

@@ -21,6 +21,10 @@ use crate::machining::settings::Direction;
 use crate::machining::waterline::{contours, heights, Spacing, LEAST_SCALLOP, SHORTEST};
 use crate::machining::{named_operation, not_negative, positive, Context, FieldError, Operate, Planned};
 use crate::progress::Progress;
+
+/// Holes narrower than this many tool diameters are left to the hole operations: a helix of
+/// the least radius an entry takes does not fit in them.
+const NARROW_HOLE: f64 = 1.5;
 use crate::toolpath::entry::Entry;
 use crate::toolpath::link::Floor;
 use crate::zmap::region::Region;
@@ -166,6 +170,26 @@ impl Operate for FinishWaterline {
         if runs.is_empty() {
             ctx.note(&self.name, format!("no area of the part is steeper than {}°", self.slope_min));
             return Ok(Planned::default());
+        }
+        // Holes too narrow to helix into are the hole operations' (drill, bore): a level's
+        // ring inside one has no room to enter but straight down.
+        let holes: Vec<crate::holes::Hole> = crate::holes::mesh::find(&ctx.part).into_iter().filter(|h| h.diameter < NARROW_HOLE * tool.cutter.diameter).collect();
+        let before = runs.len();
+        runs.retain(|run| !holes.iter().any(|h| run.iter().all(|p| p.truncate().distance(h.center) < h.diameter / 2.0 && p.z < h.top)));
+        if runs.len() < before {
+            let places: Vec<String> = holes.iter().take(5).map(|h| format!("φ{:.3} at X{:.3} Y{:.3}", h.diameter, h.center.x, h.center.y)).collect();
+            ctx.note(
+                &self.name,
+                format!(
+                    "{} of its level rings lie in holes narrower than {NARROW_HOLE} × the tool's diameter ({}{}): left to the hole operations (drill, bore), which enter them as a hole is entered",
+                    before - runs.len(),
+                    places.join(", "),
+                    if holes.len() > 5 { ", …" } else { "" }
+                ),
+            );
+            if runs.is_empty() {
+                return Ok(Planned::default());
+            }
         }
         if self.rest_only {
             runs = rest_only(runs, &|p: DVec2| ctx.material_estimate(p, &profile), profile.radius / 4.0, tol.gouge);

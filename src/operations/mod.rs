@@ -48,7 +48,7 @@ pub use thread_mill::{Hand, ThreadMill};
 pub use vcarve::VCarve;
 
 pub use crate::machining::report::{LoadReport, StageReport, StageRole};
-pub use crate::machining::settings::{Direction, EntryKind, LoadControl, Order, PocketPattern, Roughing, Steps};
+pub use crate::machining::settings::{Direction, EntryKind, HeightFrom, LoadControl, Order, PocketPattern, Roughing, Steps};
 
 macro_rules! operations {
     ($($(#[$doc:meta])* $variant:ident($options:ty) = $kind:literal,)*) => {
@@ -204,6 +204,13 @@ impl Operation {
     /// came.
     pub fn takes_what_is_left(&self) -> bool {
         self.roughing().is_none_or(|r| r.rest)
+    }
+
+    /// Whether it is a 3D finishing, which follows the part's surface down as deep as it goes
+    /// (and so must keep its tool's shank above the flutes out of the material: the holder's
+    /// bound, [`crate::machining::holders`]).
+    pub fn is_finishing(&self) -> bool {
+        matches!(self, Operation::FinishRaster(_) | Operation::FinishWaterline(_) | Operation::FinishPencil(_) | Operation::FinishScallop(_) | Operation::FinishSteepShallow(_))
     }
 }
 

@@ -167,7 +167,7 @@ impl Operate for Pocket2d {
         if setup.unfinished {
             ctx.warn(&self.name, crate::machining::adaptive::unfinished(&[]));
         }
-        let cuts = vec![SheetCut { region, inside: true, depth: self.depth, leave: self.leave_stock }];
+        let cuts = vec![SheetCut { region, inside: true, depth: self.depth, leave: self.leave_stock, scrap: false }];
         if let Some(note) = open {
             ctx.warn(&self.name, note);
         }

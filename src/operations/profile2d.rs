@@ -491,12 +491,12 @@ impl Operate for Profile2d {
 /// Where a profile cuts: outside the material of every loop on its layers (the walls), and
 /// for a loop cut on the side its nesting does not give, outside or inside that loop alone.
 pub fn profile_cuts(walls: &Walls, picked: &[usize], side: Side, depth: f64, leave: f64) -> Vec<SheetCut> {
-    let mut cuts = vec![SheetCut { region: walls.shape.clone(), inside: false, depth, leave }];
+    let mut cuts = vec![SheetCut { region: walls.shape.clone(), inside: false, depth, leave, scrap: true }];
     for &k in picked {
         let l = &walls.shape.loops[k];
         let outside = side.cuts_outside(l.is_ccw());
         if outside != l.is_ccw() {
-            cuts.push(SheetCut { region: Shape::from_oriented(vec![l.counter_clockwise()]), inside: !outside, depth, leave });
+            cuts.push(SheetCut { region: Shape::from_oriented(vec![l.counter_clockwise()]), inside: !outside, depth, leave, scrap: true });
         }
     }
     cuts

@@ -198,7 +198,7 @@ impl Operate for VCarve {
             cursor.moved(&out);
         }
         paths.push(sheet::toolpath(&self.name, &tool, out, ctx.heights.clearance));
-        let cuts = vec![SheetCut { region, inside: true, depth: deepest, leave: 0.0 }];
+        let cuts = vec![SheetCut { region, inside: true, depth: deepest, leave: 0.0, scrap: false }];
         Ok(Planned { paths, cuts, ..Planned::default() })
     }
 }

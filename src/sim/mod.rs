@@ -13,6 +13,7 @@
 pub mod dexel;
 pub mod feeds;
 pub mod fixtures;
+pub mod hold;
 pub mod octree;
 pub mod paper;
 pub mod playback;

@@ -692,7 +692,7 @@ impl Simulator {
     /// [`Simulator::finish_near`] against a mesh: its heights at the cells' centres, and beside
     /// them within the gouge tolerance.
     pub fn finish_mesh(self, part: &Mesh, allowance: f64, tolerances: &Tolerances) -> Verification {
-        self.finish_mesh_cut(part, |_, _| {}, allowance, tolerances)
+        self.finish_mesh_cut(part, None, |_, _| {}, allowance, tolerances)
     }
 
     /// [`Simulator::finish_mesh`], the part's heights first lowered by `cut` where operations
@@ -702,11 +702,15 @@ impl Simulator {
     /// finder's, [`crate::holes::mesh::find`]), not as the polygons inscribed in them: a bore to
     /// a tessellated hole's size or a clearance drill a hair over it cuts past the facets by
     /// their sagitta (0.029 mm for a φ12 hole of 32 sides) without cutting the part as drawn.
-    pub fn finish_mesh_cut(self, part: &Mesh, cut: impl FnOnce(&mut HeightField, Grid), allowance: f64, tolerances: &Tolerances) -> Verification {
+    ///
+    /// `heights`, where given, are the part's heights on the simulation's grid as
+    /// [`cc_zmap`] makes them (a check made them already: [`crate::job::hold`]).
+    pub fn finish_mesh_cut(self, part: &Mesh, heights: Option<HeightField>, cut: impl FnOnce(&mut HeightField, Grid), allowance: f64, tolerances: &Tolerances) -> Verification {
         let point = crate::zmap::drop::PointDrop::new(part, &crate::cutter::Profile::new(1e-9, 0.0), tolerances);
         let holes = crate::holes::mesh::find(part);
-        let surface = |grid| {
-            let mut field = cc_zmap(part, grid, f64::NEG_INFINITY, tolerances);
+        let surface = |grid: Grid| {
+            let mut field =
+                heights.filter(|h| h.nx == grid.nx && h.ny == grid.ny && h.origin == grid.origin && h.spacing == grid.spacing).unwrap_or_else(|| cc_zmap(part, grid, f64::NEG_INFINITY, tolerances));
             cut(&mut field, grid);
             lower_in_holes(&mut field, grid, &holes);
             field

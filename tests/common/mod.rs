@@ -125,7 +125,11 @@ pub fn grblcheck(gcode: &str) -> Option<Result<(), String>> {
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join("program.nc");
     std::fs::write(&file, gcode).unwrap();
-    let out = std::process::Command::new("bash").arg(&tool).arg(&file).output().expect("bash runs grblcheck");
+    // One at a time over every process (`flock`): the first call builds the validator into a
+    // folder it empties first, and two first calls at once (two tests of one binary on a fresh
+    // machine) emptied each other's build.
+    let lock = std::env::temp_dir().join("swarf-grblcheck.lock");
+    let out = std::process::Command::new("flock").arg(&lock).arg("bash").arg(&tool).arg(&file).output().expect("flock runs grblcheck");
     let _ = std::fs::remove_dir_all(&dir);
     let said = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
     assert!(!said.contains("could not build"), "{said}");
@@ -324,5 +328,28 @@ pub fn cells<'a>(stock: &'a swarf::sim::dexel::DexelStock, shape: &'a swarf::dra
     (0..grid.ny).flat_map(move |j| (0..grid.nx).map(move |i| (i, j))).map(move |(i, j)| {
         let p = grid.node(i, j);
         (p, shape.contains(p), shape.distance_to(p), stock.top(i, j))
+    })
+}
+
+/// The CPU time this thread has used, in seconds (`CLOCK_THREAD_CPUTIME_ID`): what a test bounds
+/// a job's work by, where a wall clock would time the machine's other load as well.
+#[cfg(unix)]
+pub fn thread_cpu_seconds() -> f64 {
+    let mut t = libc::timespec { tv_sec: 0, tv_nsec: 0 };
+    // SAFETY: clock_gettime writes the one timespec it is given.
+    let rc = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut t) };
+    assert_eq!(rc, 0, "this thread's CPU clock");
+    t.tv_sec as f64 + t.tv_nsec as f64 * 1e-9
+}
+
+/// `f`'s answer and the CPU seconds its work took, all of it on this thread
+/// ([`swarf::parallel::alone`], as the page's engine runs it), so the figure is the whole work
+/// and nothing of the tests or programs running beside it: it does not grow on a busy machine.
+#[cfg(unix)]
+pub fn cpu_timed<R>(f: impl FnOnce() -> R) -> (R, f64) {
+    swarf::parallel::alone(|| {
+        let start = thread_cpu_seconds();
+        let out = f();
+        (out, thread_cpu_seconds() - start)
     })
 }

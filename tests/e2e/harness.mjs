@@ -83,7 +83,9 @@ export const grblcheckTool = path.resolve(root, '../../shared/tools/grbl/grblche
 export function grblcheck(file) {
   if (!fs.existsSync(grblcheckTool)) { console.log(`skipping GRBL's own parser: ${grblcheckTool} is absent`); return null; }
   try {
-    return { ok: true, said: execFileSync('bash', [grblcheckTool, file], { encoding: 'utf8' }) };
+    // One at a time over every process (flock, as tests/common does): a first call builds the
+    // validator into a folder it empties first, and two at once emptied each other's build.
+    return { ok: true, said: execFileSync('flock', [path.join(os.tmpdir(), 'swarf-grblcheck.lock'), 'bash', grblcheckTool, file], { encoding: 'utf8' }) };
   } catch (e) {
     return { ok: false, said: `${e.stdout}${e.stderr}` };
   }

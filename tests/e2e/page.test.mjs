@@ -1931,6 +1931,31 @@ test('turning the part over in the page: a second setup added (bottom up, faced 
   await context.close();
 });
 
+test('the sample part turned over at the defaults: its bottom gets stock to face, both setups plan, and the sheet says where the turned side\'s zero is', async () => {
+  const { page, context, errors } = await openPage();
+  await tab(page, 'ops');
+  await page.click('#setup-add');
+  await page.waitForFunction(() => (window.swarf.jobs.part.setups ?? []).length === 2);
+  // The sample's block is cut to the part's height: the bottom's facing needs stock below it.
+  const below = await page.evaluate(() => window.swarf.jobs.part.stock.marginBottom);
+  assert.ok(below > 0, `'Stock below the part' is ${below}`);
+  assert.match(await page.textContent('#message'), /'Stock below the part' is now/);
+  await tab(page, 'stock');
+  assert.equal(Number(await page.inputValue('input[name=marginBottom]')), below);
+  await page.click('#generate');
+  await generated(page);
+  assert.equal(await page.evaluate(() => window.swarf.results.length), 2);
+  assert.doesNotMatch(await page.textContent('#message'), /nothing to face/);
+  // The turned side's Z0 is on the part's face that is up, the stock's top above it by the
+  // stock that was below the part.
+  const html = await page.evaluate(() => window.swarf.engine.setupSheet(window.swarf.jobs.part, 'part.stl'));
+  const said = [...html.matchAll(/<th>Zero \(X0 Y0 Z0\)<\/th><td>([^<]*)<\/td>/g)].map((m) => m[1]);
+  assert.equal(said.length, 2, html.slice(0, 2000));
+  assert.match(said[1], new RegExp(`^Z0 on the part's top as held, ${below.toFixed(3)} mm below the stock's top`), said[1]);
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
 test('held in a vise: the jaws follow the stock, drawn in the view, every operation stops short of them and says so, and the simulation checks every move clear of them', async () => {
   const { page, context, errors } = await openPage();
   await tab(page, 'stock');

@@ -960,7 +960,13 @@ meshes: Array<FixtureMesh>,
 /**
  * How far every tool keeps from each of them (mm). Default value: 1.
  */
-clearance: number, };
+clearance: number, 
+/**
+ * The part is held by something the fixtures do not show (screws, tape, a vacuum table,
+ * soft jaws on its finished faces): an operation that cuts it free of what the fixtures
+ * grip is then said, not refused. Default value: false.
+ */
+heldOtherwise: boolean, };
 
 /**
  * How a setup turns the part over from the setup before it (the first: from the part as
@@ -1009,6 +1015,13 @@ applies: Applies, };
  * Which way the thread turns.
  */
 export type Hand = "right" | "left";
+
+/**
+ * What a height given on an operation is measured from (its `bottomFrom`), as Fusion's
+ * Heights tab has them: the setup's work zero, the stock's top or bottom, or the part's top or
+ * bottom as the setup holds it.
+ */
+export type HeightFrom = "zero" | "stockTop" | "stockBottom" | "partTop" | "partBottom";
 
 /**
  * A holder: its sections from the face the tool stands out of (the collet nut's) upward.
@@ -1850,7 +1863,18 @@ rampAngle: number,
  * so that after a larger tool only its leftovers are cut and no air it cleared; off, plan
  * against the setup's stock as it came, as if nothing had been cut. Default value: true.
  */
-rest: boolean, };
+rest: boolean, 
+/**
+ * The lowest the tool's tip goes (mm from `bottomFrom`): the roughing stops there, over
+ * the part and beside it, as one side of a part machined from both stops at its parting
+ * line and leaves the rest joined to the stock the vise grips. Default value: none (the
+ * stock's bottom).
+ */
+bottom: number | null, 
+/**
+ * What `bottom` is measured from. Default value: zero.
+ */
+bottomFrom: HeightFrom, };
 
 /**
  * Octree multi-tool roughing.
@@ -1908,7 +1932,18 @@ rampAngle: number,
  * so that after a larger tool only its leftovers are cut and no air it cleared; off, plan
  * against the setup's stock as it came, as if nothing had been cut. Default value: true.
  */
-rest: boolean, };
+rest: boolean, 
+/**
+ * The lowest the tool's tip goes (mm from `bottomFrom`): the roughing stops there, over
+ * the part and beside it, as one side of a part machined from both stops at its parting
+ * line and leaves the rest joined to the stock the vise grips. Default value: none (the
+ * stock's bottom).
+ */
+bottom: number | null, 
+/**
+ * What `bottom` is measured from. Default value: zero.
+ */
+bottomFrom: HeightFrom, };
 
 /**
  * Zigzag roughing (seed 004).
@@ -1988,7 +2023,18 @@ rampAngle: number,
  * so that after a larger tool only its leftovers are cut and no air it cleared; off, plan
  * against the setup's stock as it came, as if nothing had been cut. Default value: true.
  */
-rest: boolean, };
+rest: boolean, 
+/**
+ * The lowest the tool's tip goes (mm from `bottomFrom`): the roughing stops there, over
+ * the part and beside it, as one side of a part machined from both stops at its parting
+ * line and leaves the rest joined to the stock the vise grips. Default value: none (the
+ * stock's bottom).
+ */
+bottom: number | null, 
+/**
+ * What `bottom` is measured from. Default value: zero.
+ */
+bottomFrom: HeightFrom, };
 
 /**
  * Z-level roughing.
@@ -2053,7 +2099,18 @@ rampAngle: number,
  * so that after a larger tool only its leftovers are cut and no air it cleared; off, plan
  * against the setup's stock as it came, as if nothing had been cut. Default value: true.
  */
-rest: boolean, };
+rest: boolean, 
+/**
+ * The lowest the tool's tip goes (mm from `bottomFrom`): the roughing stops there, over
+ * the part and beside it, as one side of a part machined from both stops at its parting
+ * line and leaves the rest joined to the stock the vise grips. Default value: none (the
+ * stock's bottom).
+ */
+bottom: number | null, 
+/**
+ * What `bottom` is measured from. Default value: zero.
+ */
+bottomFrom: HeightFrom, };
 
 /**
  * One setup of a part machined from more than one side.
@@ -2650,7 +2707,13 @@ jawThickness: number,
  * Which way the jaws close: `y` grips the front and back of the stock, `x` its left and
  * right. Default value: y.
  */
-closes: ViseAxis, };
+closes: ViseAxis, 
+/**
+ * The least height of material each jaw must grip when its setup starts (mm): a jaw on
+ * air or on a thin web is an error naming the setup and the jaw. Default value: half the
+ * grip.
+ */
+leastGrip: number | null, };
 
 /**
  * Which way a vise's jaws close.

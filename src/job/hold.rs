@@ -1,0 +1,147 @@
+//! What holds the part while a job runs ([`crate::sim::hold`]): a vise's jaws close on the
+//! material the setup starts from, each must grip at least its least grip of it, and after
+//! every operation the in-process stock must still join the part to what the fixtures grip (or,
+//! without fixtures, to the stock's sides). An operation that cuts the part free is an error
+//! where fixtures are given (unless the part is marked held otherwise, or it is the last
+//! operation of the last setup: the part coming off), and a warning where none are.
+
+use super::fixtures::ViseAxis;
+use super::schema::Job;
+use crate::error::{Error, Result, Warning};
+use crate::geom::DVec2;
+use crate::machining::context::Context;
+use crate::sim::hold::{band_extent, jaw_contact, joined, Grips, Hold};
+use crate::zmap::HeightField;
+
+/// Whether, and where, the operations so far cut the part free.
+#[derive(Clone, Debug, Default)]
+pub struct HoldWatch {
+    /// The part's heights on the in-process stock's grid, made at the first check.
+    part: Option<HeightField>,
+    /// The first operation (its index in the job) after which a piece of the part was joined to
+    /// nothing gripped, and a point of that piece.
+    pub freed: Option<(usize, DVec2)>,
+    /// Whether the part was held before any operation (no check is said where it was not).
+    held_at_start: Option<bool>,
+}
+
+/// Whether the job's part can be judged: a mesh part, verified, cut from a box (a bar or a
+/// blank's air is not a side to hold it by).
+fn judged(job: &Job, ctx: &Context) -> bool {
+    job.simulation.verify && ctx.sheet.is_none() && job.stock.bar.is_none() && job.stock.mesh.is_none() && !ctx.part.faces.is_empty()
+}
+
+/// What grips the stock in `ctx`: its fixtures' boxes as they stand, or its sides.
+fn grips(ctx: &Context) -> Grips {
+    if ctx.keep_out.is_empty() {
+        Grips::Sides
+    } else {
+        // The fixtures themselves, not grown by their clearance.
+        Grips::Boxes(ctx.keep_out.iter().map(|h| crate::geom::Aabb { min: h.solid.min + h.grown, max: h.solid.max - h.grown }).collect())
+    }
+}
+
+/// A vise's jaws close on the material within their grip as the setup starts: where a setup
+/// before cut round the part, on what it left (the part's own faces), not on the stock's box;
+/// the fixtures the planning keeps out of are made again.
+pub fn follow_jaws(job: &mut Job, ctx: &mut Context) {
+    let Some(mut vise) = job.fixtures.vise else { return };
+    if ctx.sheet.is_some() {
+        return;
+    }
+    let stock = ctx.stock;
+    let along_x = vise.closes == ViseAxis::X;
+    let centre = if along_x { stock.center().y } else { stock.center().x };
+    let width = (centre - vise.jaw_width / 2.0, centre + vise.jaw_width / 2.0);
+    let Some((lo, hi)) = band_extent(ctx.sim.stock(), along_x, width, stock.min.z, stock.min.z + vise.grip, vise.least()) else { return };
+    let (box_lo, box_hi) = if along_x { (stock.min.x, stock.max.x) } else { (stock.min.y, stock.max.y) };
+    let (lo, hi) = (lo.max(box_lo), hi.min(box_hi));
+    if lo <= box_lo + 1e-9 && hi >= box_hi - 1e-9 {
+        return;
+    }
+    vise.faces = Some((lo, hi));
+    job.fixtures.vise = Some(vise);
+    ctx.keep_out = job.fixtures.keep_out(&stock);
+    ctx.solid = (!ctx.keep_out.is_empty()).then(|| super::fixtures::solid(&ctx.part, &ctx.keep_out));
+}
+
+/// Each of a vise's jaws grips at least its least grip of material as the setup starts: an
+/// error naming the jaw otherwise.
+pub fn jaws_grip(job: &Job, ctx: &Context) -> Result<()> {
+    let Some(vise) = job.fixtures.vise else { return Ok(()) };
+    if ctx.sheet.is_some() {
+        return Ok(());
+    }
+    let stock = ctx.stock;
+    let along_x = vise.closes == ViseAxis::X;
+    let centre = if along_x { stock.center().y } else { stock.center().x };
+    let width = (centre - vise.jaw_width / 2.0, centre + vise.jaw_width / 2.0);
+    let (from, to) = (stock.min.z, stock.min.z + vise.grip);
+    for held in job.fixtures.held(&stock).iter().take(2) {
+        let face = match (along_x, held.solid.max.x <= stock.center().x, held.solid.max.y <= stock.center().y) {
+            (true, true, _) => held.solid.max.x,
+            (true, false, _) => held.solid.min.x,
+            (false, _, true) => held.solid.max.y,
+            (false, _, false) => held.solid.min.y,
+        };
+        // The cells just inside the face.
+        let inside = if face < if along_x { stock.center().x } else { stock.center().y } { face + 1e-6 } else { face - 1e-6 };
+        let contact = jaw_contact(ctx.sim.stock(), along_x, inside, width, from, to);
+        if contact < vise.least() - 1e-9 {
+            return Err(Error::Input(format!(
+                "{} grips {contact:.3} mm of material (it reaches {:.3} mm up the stock's side), less than its least grip of {:.3} mm: the stock as this setup starts has {} there; hold the part by what is left (a lower grip, soft jaws, a fixture), or leave more in the setup before (a 'Bottom height' above the parting line)",
+                held.name,
+                vise.grip,
+                vise.least(),
+                if contact <= 0.0 { "no material".to_owned() } else { format!("only {contact:.3} mm") }
+            )));
+        }
+    }
+    Ok(())
+}
+
+impl HoldWatch {
+    /// Judges the in-process stock of `ctx` after operation `op` of `job` has cut it.
+    pub fn after(&mut self, job: &Job, ctx: &mut Context, op: Option<usize>) {
+        if self.freed.is_some() || !judged(job, ctx) {
+            return;
+        }
+        let stock = ctx.sim.stock();
+        let grid = stock.grid();
+        let part = self.part.get_or_insert_with(|| crate::zmap::cc::cc_zmap(&ctx.part, grid, f64::NEG_INFINITY, &job.tolerances));
+        let hold = joined(stock, part, &grips(ctx));
+        match (op, hold) {
+            (None, h) => self.held_at_start = Some(h != Hold::NoPart && !matches!(h, Hold::Free(_))),
+            (Some(k), Hold::Free(at)) if self.held_at_start == Some(true) => self.freed = Some((k, at)),
+            _ => {}
+        }
+    }
+
+    /// The part's heights on the stock's grid, as the checks made them (for the verification).
+    pub fn take_part(&mut self) -> Option<HeightField> {
+        self.part.take()
+    }
+
+    /// What the job says of a part cut free: a warning, or the problem that makes the program
+    /// not safe to run (fixtures given, the part not marked held otherwise, and not the last
+    /// operation of the last setup).
+    pub fn said(&self, job: &Job, last_op: Option<usize>, last_setup: bool) -> (Option<Warning>, Option<String>) {
+        let Some((k, at)) = self.freed else { return (None, None) };
+        let name = job.operations[k].name();
+        let place = format!("X{:.3} Y{:.3}", at.x, at.y);
+        if job.fixtures.is_empty() {
+            let w = format!("it cuts the part free at {place}: after it nothing joins the part to the stock's sides; hold the part by its bottom (a plate, screws or tape), stop the cut above the parting line (a 'Bottom height'), or leave tabs");
+            return (Some(Warning::of(name, w)), None);
+        }
+        if last_setup && last_op == Some(k) {
+            let w = format!("it cuts the part free at {place} as the job ends: the part comes off loose; catch it, or leave a skin to break off");
+            return (Some(Warning::of(name, w)), None);
+        }
+        let said = format!("{name} cuts the part free at {place}: after it nothing joins the part to what the fixtures grip; stop the cut above the parting line (a 'Bottom height'), leave tabs, or mark the part as held otherwise (fixtures.heldOtherwise)");
+        if job.fixtures.held_otherwise {
+            (Some(Warning::of(name, format!("it cuts the part free at {place} of what the fixtures grip; the part is held otherwise"))), None)
+        } else {
+            (None, Some(said))
+        }
+    }
+}
