@@ -789,8 +789,9 @@ fn part_is_gripped(stock: &swarf::sim::dexel::DexelStock, part_top: impl Fn(usiz
 
 /// Issue 92, done when: the shared rocker arm, from a box in a vise closing on X, machined on
 /// both sides with a parting line, comes off whole. Each side faces and roughs down to the
-/// parting line (the part's middle: `bottom` from the part's bottom), so the material beyond
-/// it still joins the part to the jaws; the second setup's jaws close on what the first left.
+/// parting line (its widest section: `bottomFrom: partingLine`), the second a 1 mm skin short
+/// of it, so the material beyond still joins the part to the jaws; the second setup's jaws
+/// close on what the first left.
 /// The test's own check finds the part joined to the material the jaws grip at the start and
 /// end of every setup; no gouge; every program read by rs274 and GRBL's parser; each sheet's
 /// zero where its program puts it. Cut down to the stock's bottom without a parting line and
@@ -814,23 +815,25 @@ fn the_rocker_arm_comes_off_whole_from_a_box_in_a_vise() {
     for t in &mut job.tools {
         t.cutter.flute_length = 35.0;
     }
-    let height = {
-        let mut p = read(&job);
-        job.place_part(&mut p);
-        p.bounds().size().z
-    };
-    let parted = |job: &mut Job| {
-        for s in &mut job.setups {
-            s.operations.retain(|o| matches!(o.name(), "face" | "rough"));
-            for o in &mut s.operations {
-                if let swarf::job::Operation::RoughZlevel(r) = o {
-                    r.roughing.bottom = Some(height / 2.0);
-                    r.roughing.bottom_from = HeightFrom::PartBottom;
-                }
+    // Each side roughed to the parting line (the part's widest section), the second a 1 mm
+    // skin short of it.
+    for (k, s) in job.setups.iter_mut().enumerate() {
+        s.operations.retain(|o| matches!(o.name(), "face" | "rough"));
+        for o in &mut s.operations {
+            if let swarf::job::Operation::RoughZlevel(r) = o {
+                r.roughing.bottom = (k == 1).then_some(1.0);
+                r.roughing.bottom_from = HeightFrom::PartingLine;
             }
         }
+    }
+    let widest = {
+        let mut p = read(&job);
+        job.place_part(&mut p);
+        let b = p.bounds();
+        let z = p.widest_section().unwrap();
+        assert!(z > b.min.z + 1.0 && z < b.max.z - 1.0, "the rocker's widest section at {z} in {b:?}");
+        z - b.max.z
     };
-    parted(&mut job);
     let setups = run_setups(&job, read(&job), &mut Progress::none()).unwrap();
     let sheets: Vec<_> = setups.iter().map(|s| swarf::job::sheet::SheetSetup::of(&s.name, &s.output)).collect();
     for (k, s) in setups.iter().enumerate() {
@@ -862,6 +865,11 @@ fn the_rocker_arm_comes_off_whole_from_a_box_in_a_vise() {
         assert!(out.part.bounds().max.z.abs() < 1e-6, "{}", s.name);
         let margin = if k == 0 { 1.0 } else { 3.0 };
         assert!(sheets[k].zero.contains(&format!("touch off the stock's top and set it as Z+{margin:.3}")), "{}: {}", s.name, sheets[k].zero);
+        // The first side roughs down to the parting line and no further.
+        if k == 0 {
+            let lowest = out.moves.iter().filter(|m| !m.mv.is_rapid()).map(|m| m.mv.to().z).fold(f64::INFINITY, f64::min);
+            assert!((lowest - widest).abs() < 1e-6, "{}: down to Z{lowest}, the parting line at Z{widest}", s.name);
+        }
         eprintln!("{}: {} moves, cycle {:.0} s; {}", s.name, out.moves.len(), out.cycle.seconds, sheets[k].zero);
     }
     // Without the parting line and without fixtures: the first side roughs down to the
@@ -872,7 +880,7 @@ fn the_rocker_arm_comes_off_whole_from_a_box_in_a_vise() {
     for s in &mut free.setups {
         for o in &mut s.operations {
             if let swarf::job::Operation::RoughZlevel(r) = o {
-                r.roughing.bottom = None;
+                (r.roughing.bottom, r.roughing.bottom_from) = (None, HeightFrom::Zero);
             }
         }
     }

@@ -57,6 +57,9 @@ function offsetChoices(j, current) {
   select.replaceChildren(new Option('the controller\'s', ''), ...words.map((w) => new Option(w, w)));
 }
 
+// The skin a part turned over keeps round its parting line until it is broken off (mm).
+const SKIN = 1;
+
 // Another setup: the part turned over about X (its bottom up), facing its new top first; the
 // operations so far become the first setup's.
 export function addSetup() {
@@ -69,7 +72,17 @@ export function addSetup() {
   const flat = state.tools.find((t) => t.shape === 'flat') ?? state.tools[0];
   if (flat) face.tool = flat.number;
   const k = j.setups.length;
-  j.setups.push({ name: k === 1 ? 'Bottom' : `Setup ${k + 1}`, flip: 'aboutX', turn: 0, workOffset: WORK_OFFSETS[k] ?? null, zero: null, operations: [face] });
+  // Each side roughed down to the parting line (the part's widest section) from its own face:
+  // the first setup's roughings stop there, and the new side roughs with copies of them that
+  // stop a skin short of it, so the part stays joined to the stock until the skin is broken.
+  let parted = '';
+  const roughs = k === 1 ? j.setups[0].operations.filter((o) => o.kind.startsWith('rough') && o.bottom == null && (o.bottomFrom ?? 'zero') === 'zero') : [];
+  const copies = roughs.map((o) => {
+    o.bottomFrom = 'partingLine';
+    return { ...structuredClone(o), name: `${o.name} (bottom)`, bottom: SKIN };
+  });
+  if (copies.length) parted = ` The roughing of each side stops at the parting line (the part's widest section), the bottom's ${SKIN} mm short of it: a skin that holds the part to the stock, to break off.`;
+  j.setups.push({ name: k === 1 ? 'Bottom' : `Setup ${k + 1}`, flip: 'aboutX', turn: 0, workOffset: WORK_OFFSETS[k] ?? null, zero: null, operations: [face, ...copies] });
   // The bottom's facing needs stock under the part to face: a block cut to the part's height
   // has none, and its facing would find nothing to cut.
   let more = '';
@@ -77,7 +90,7 @@ export function addSetup() {
     j.stock.marginBottom = j.stock.marginTop > 0 ? j.stock.marginTop : 1;
     more = ` 'Stock below the part' is now ${j.stock.marginBottom} mm (Stock tab), for the bottom's facing to cut.`;
   }
-  message(`Added the setup '${j.setups[k].name}': the part turned over about X (its bottom up), held in ${j.setups[k].workOffset ?? 'the controller\'s work offset'}; it starts from the stock the setup before leaves.${more}`, 'note');
+  message(`Added the setup '${j.setups[k].name}': the part turned over about X (its bottom up), held in ${j.setups[k].workOffset ?? 'the controller\'s work offset'}; it starts from the stock the setup before leaves.${more}${parted}`, 'note');
   select(k);
 }
 
@@ -90,6 +103,8 @@ export function removeSetup() {
   if (j.setups.length === 1) {
     j.operations = j.setups[0].operations;
     j.setups = [];
+    // One side again: its roughings go down to the stock's bottom, as before it was parted.
+    for (const o of j.operations) if (o.bottomFrom === 'partingLine' && o.bottom == null) o.bottomFrom = 'zero';
   }
   message(`Removed the setup '${setupName(gone, k)}': Undo (Ctrl+Z) brings it back.`, 'note');
   select(Math.max(0, k - 1));

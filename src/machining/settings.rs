@@ -112,25 +112,36 @@ pub enum HeightFrom {
     StockBottom,
     PartTop,
     PartBottom,
+    /// The part's widest horizontal section as the setup holds it
+    /// ([`crate::mesh::Mesh::widest_section`]): where a part machined from both sides is
+    /// parted, each side cut down to it from its own face.
+    PartingLine,
 }
 
 impl HeightFrom {
-    /// Its height in a program whose stock box is `stock` and part box `part` (the stock's
-    /// for a drawing, whose part is its sheet).
-    pub fn z(self, stock: &crate::geom::Aabb, part: &crate::geom::Aabb) -> f64 {
-        let part = if part.is_empty() { stock } else { part };
+    /// Its height in a program whose stock box is `stock` and part `part` (none for a
+    /// drawing, whose part is its sheet: the stock's box then).
+    pub fn z(self, stock: &crate::geom::Aabb, part: &crate::mesh::Mesh) -> f64 {
+        let boxed = if part.faces.is_empty() { *stock } else { part.bounds() };
         match self {
             HeightFrom::Zero => 0.0,
             HeightFrom::StockTop => stock.max.z,
             HeightFrom::StockBottom => stock.min.z,
-            HeightFrom::PartTop => part.max.z,
-            HeightFrom::PartBottom => part.min.z,
+            HeightFrom::PartTop => boxed.max.z,
+            HeightFrom::PartBottom => boxed.min.z,
+            HeightFrom::PartingLine => part.widest_section().unwrap_or(boxed.min.z),
         }
     }
 
     /// The choices of a form's "from" field.
-    pub const CHOICES: [(&'static str, &'static str); 5] =
-        [("zero", "the work zero (Z0)"), ("stockTop", "the stock's top"), ("stockBottom", "the stock's bottom"), ("partTop", "the part's top"), ("partBottom", "the part's bottom")];
+    pub const CHOICES: [(&'static str, &'static str); 6] = [
+        ("zero", "the work zero (Z0)"),
+        ("stockTop", "the stock's top"),
+        ("stockBottom", "the stock's bottom"),
+        ("partTop", "the part's top"),
+        ("partBottom", "the part's bottom"),
+        ("partingLine", "the parting line (the part's widest section)"),
+    ];
 }
 
 /// What every roughing kind leaves and how it cuts, in each one's JSON as its own fields
@@ -155,7 +166,7 @@ pub struct Roughing {
     /// The lowest the tool's tip goes (mm from `bottomFrom`): the roughing stops there, over
     /// the part and beside it, as one side of a part machined from both stops at its parting
     /// line and leaves the rest joined to the stock the vise grips. Default value: none (the
-    /// stock's bottom).
+    /// stock's bottom; the parting line itself where `bottomFrom` is `partingLine`).
     pub bottom: Option<f64>,
     /// What `bottom` is measured from. Default value: zero.
     pub bottom_from: HeightFrom,
@@ -191,16 +202,20 @@ impl Roughing {
             FormField::ramp_angle(),
             FormField::check("rest", "rest roughing: only what earlier operations left"),
             FormField::number("bottom", "Bottom height", super::form::FieldUnit::Length)
-                .empty("the stock's bottom")
-                .help("The lowest the tool's tip goes, from what 'Bottom from' names (negative: below it): the roughing stops there. One side of a part machined from both stops at the parting line, so the other side's material still joins the part to what the vise holds."),
+                .empty("the stock's bottom (or the parting line, where 'Bottom from' is it)")
+                .help("The lowest the tool's tip goes, from what 'Bottom from' names (negative: below it): the roughing stops there. One side of a part machined from both stops at the parting line (the part's widest section), so the other side's material still joins the part to what the vise holds."),
             FormField::choice("bottomFrom", "Bottom from", &HeightFrom::CHOICES),
         ]
     }
 
     /// The lowest tip height it may cut to in a program whose stock box is `stock` and part
-    /// box `part`: `bottom` from `bottomFrom`; none without a bottom.
-    pub fn bottom_z(&self, stock: &crate::geom::Aabb, part: &crate::geom::Aabb) -> Option<f64> {
-        self.bottom.map(|b| self.bottom_from.z(stock, part) + b)
+    /// `part`: `bottom` from `bottomFrom` (0 from the parting line where only that is given);
+    /// none without either.
+    pub fn bottom_z(&self, stock: &crate::geom::Aabb, part: &crate::mesh::Mesh) -> Option<f64> {
+        match (self.bottom, self.bottom_from) {
+            (None, HeightFrom::PartingLine) => Some(self.bottom_from.z(stock, part)),
+            (b, from) => b.map(|b| from.z(stock, part) + b),
+        }
     }
 
     /// Checks the settings, each named as the job file names it.

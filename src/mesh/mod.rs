@@ -8,6 +8,7 @@ pub mod edges;
 pub mod import;
 pub mod placement;
 pub mod sample;
+pub mod section;
 
 use std::collections::HashMap;
 

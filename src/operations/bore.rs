@@ -168,7 +168,10 @@ impl Operate for Bore {
             crate::machining::too_many(&self.name, "turns", (start - bottom) / self.pitch, crate::limits::MAX_TURNS, "a pitch of", self.pitch, start - bottom)?;
             crate::machining::too_many(&self.name, "rings", outer / step, crate::limits::MAX_PASSES, "a step-over of", step, outer)?;
             if start > clearance {
-                return Err(Error::operation(&self.name, format!("the helix would start ({start:.3}) above the clearance height ({clearance:.3}): raise stock.clearance")));
+                return Err(Error::operation(
+                    &self.name,
+                    format!("the helix would start ({start:.3}) above the clearance height ({clearance:.3}): raise 'Safe height above the stock' (Stock tab; stock.clearance)"),
+                ));
             }
             // Rings from the axis out: the first within the tool's radius of the axis, so no
             // core stands; the last the wall's, or short of it by the finishing step.

@@ -260,7 +260,10 @@ impl Operate for Drill {
             // yet cut).
             let r = entry_height(ctx, h, &profile, self.retract);
             if r > initial {
-                return Err(Error::operation(&self.name, format!("the R plane ({r:.3}) lies above the clearance height ({initial:.3}): raise stock.clearance")));
+                return Err(Error::operation(
+                    &self.name,
+                    format!("the R plane ({r:.3}) lies above the clearance height ({initial:.3}): raise 'Safe height above the stock' (Stock tab; stock.clearance)"),
+                ));
             }
             let from_initial = cycles.is_empty() || self.return_to == ReturnLevel::Initial;
             // Under G99 the tool stands at the last hole's R plane: the next hole starts there

@@ -1886,7 +1886,12 @@ test('turning the part over in the page: a second setup added (bottom up, faced 
   const job = await page.evaluate(() => window.swarf.jobs.part);
   assert.deepEqual(job.operations, []);
   assert.deepEqual(job.setups[0].operations.map((o) => o.name), before);
-  assert.deepEqual([job.setups[1].flip, job.setups[1].workOffset, job.setups[1].operations.map((o) => o.kind)], ['aboutX', 'G55', ['face']]);
+  // Faced first, then roughed with copies of the top's roughings: each side to the parting
+  // line, the bottom's a 1 mm skin short of it.
+  const roughs = job.setups[0].operations.filter((o) => o.kind.startsWith('rough'));
+  assert.ok(roughs.length > 0 && roughs.every((o) => o.bottomFrom === 'partingLine' && o.bottom == null), JSON.stringify(roughs));
+  assert.deepEqual([job.setups[1].flip, job.setups[1].workOffset, job.setups[1].operations.map((o) => o.kind)], ['aboutX', 'G55', ['face', ...roughs.map((o) => o.kind)]]);
+  assert.ok(job.setups[1].operations.slice(1).every((o) => o.bottomFrom === 'partingLine' && o.bottom === 1));
   // The view holds the part bottom up: its top is where the part's bottom was, turned about
   // the stock's centre.
   const frames = await page.evaluate(async () => window.swarf.engine.setupFrames(window.swarf.jobs.part, window.swarf.part.bounds));
@@ -1926,6 +1931,7 @@ test('turning the part over in the page: a second setup added (bottom up, faced 
   await page.waitForFunction(() => document.querySelectorAll('#setup-tabs button').length === 1);
   const after = await page.evaluate(() => window.swarf.jobs.part);
   assert.deepEqual([after.setups, after.operations.map((o) => o.name)], [[], before]);
+  assert.ok(after.operations.every((o) => o.bottomFrom !== 'partingLine'), 'one side again cuts to the stock\'s bottom');
   assert.ok(await page.isHidden('#setup-editor'));
   assert.deepEqual(errors, []);
   await context.close();

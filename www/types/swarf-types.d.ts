@@ -1021,7 +1021,7 @@ export type Hand = "right" | "left";
  * Heights tab has them: the setup's work zero, the stock's top or bottom, or the part's top or
  * bottom as the setup holds it.
  */
-export type HeightFrom = "zero" | "stockTop" | "stockBottom" | "partTop" | "partBottom";
+export type HeightFrom = "zero" | "stockTop" | "stockBottom" | "partTop" | "partBottom" | "partingLine";
 
 /**
  * A holder: its sections from the face the tool stands out of (the collet nut's) upward.
@@ -1868,7 +1868,7 @@ rest: boolean,
  * The lowest the tool's tip goes (mm from `bottomFrom`): the roughing stops there, over
  * the part and beside it, as one side of a part machined from both stops at its parting
  * line and leaves the rest joined to the stock the vise grips. Default value: none (the
- * stock's bottom).
+ * stock's bottom; the parting line itself where `bottomFrom` is `partingLine`).
  */
 bottom: number | null, 
 /**
@@ -1937,7 +1937,7 @@ rest: boolean,
  * The lowest the tool's tip goes (mm from `bottomFrom`): the roughing stops there, over
  * the part and beside it, as one side of a part machined from both stops at its parting
  * line and leaves the rest joined to the stock the vise grips. Default value: none (the
- * stock's bottom).
+ * stock's bottom; the parting line itself where `bottomFrom` is `partingLine`).
  */
 bottom: number | null, 
 /**
@@ -2028,7 +2028,7 @@ rest: boolean,
  * The lowest the tool's tip goes (mm from `bottomFrom`): the roughing stops there, over
  * the part and beside it, as one side of a part machined from both stops at its parting
  * line and leaves the rest joined to the stock the vise grips. Default value: none (the
- * stock's bottom).
+ * stock's bottom; the parting line itself where `bottomFrom` is `partingLine`).
  */
 bottom: number | null, 
 /**
@@ -2104,7 +2104,7 @@ rest: boolean,
  * The lowest the tool's tip goes (mm from `bottomFrom`): the roughing stops there, over
  * the part and beside it, as one side of a part machined from both stops at its parting
  * line and leaves the rest joined to the stock the vise grips. Default value: none (the
- * stock's bottom).
+ * stock's bottom; the parting line itself where `bottomFrom` is `partingLine`).
  */
 bottom: number | null, 
 /**
