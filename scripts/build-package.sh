@@ -10,4 +10,12 @@ node scripts/package.mjs
 cd target/package
 rm -f swarf-*.tgz
 npm pack ./swarf --pack-destination . --silent
+# The tarball gzipped again by zopfli where scripts/setup.sh installed it: the same tar, 2 %
+# smaller than npm's gzip, read by npm as any .tgz.
+if command -v zopfli >/dev/null; then
+  for t in swarf-*.tgz; do
+    gunzip -c "$t" > "${t%.tgz}.tar" && zopfli --i5 -c "${t%.tgz}.tar" > "$t.new" && mv "$t.new" "$t"
+    rm -f "${t%.tgz}.tar"
+  done
+fi
 ls -l swarf-*.tgz

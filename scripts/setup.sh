@@ -32,6 +32,8 @@ fi
 apt_missing=()
 command -v chromium >/dev/null || apt_missing+=(chromium)
 command -v chromedriver >/dev/null || apt_missing+=(chromium-driver)
+# zopfli: the npm package's wasm gzipped smallest (scripts/package.mjs, build-package.sh).
+command -v zopfli >/dev/null || apt_missing+=(zopfli)
 if [ "${SWARF_SKIP_LINUXCNC:-0}" != 1 ] && ! command -v rs274 >/dev/null; then apt_missing+=(linuxcnc-uspace); fi
 if [ ${#apt_missing[@]} -gt 0 ]; then
   say "installing Debian packages: ${apt_missing[*]}"

@@ -213,3 +213,19 @@ fn waterline_rest_only_takes_what_a_larger_ball_left() {
     let again = run(vec![rough, wl(1, false), wl(1, true)]);
     assert!(again.operations[2].feed_length < 0.05 * again.operations[1].feed_length, "{:?}", again.operations[2]);
 }
+
+/// Issue 92: waterline finishing stops at its bottom height. On the sample part (its top at
+/// Z0), a waterline whose bottom is 10 mm under the part's top makes no level below it, and
+/// still finishes the walls above it.
+#[test]
+fn a_waterline_stops_at_its_bottom_height() {
+    use swarf::operations::HeightFrom;
+    let mut job = Job::demo();
+    let ball = job.tools.iter().find(|t| matches!(t.cutter.shape, swarf::cutter::Shape::Ball)).map(|t| t.number).unwrap();
+    job.operations = vec![Operation::FinishWaterline(FinishWaterline { tool: ball, bottom: Some(-10.0), bottom_from: HeightFrom::PartTop, ..FinishWaterline::default() })];
+    let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
+    let cuts: Vec<f64> = out.moves.iter().filter(|m| !m.mv.is_rapid()).map(|m| m.mv.to().z).collect();
+    let lowest = cuts.iter().copied().fold(f64::INFINITY, f64::min);
+    assert!(lowest >= -10.0 - 1e-6, "down to Z{lowest}");
+    assert!(cuts.iter().filter(|&&z| z < -5.0).count() > 10, "no levels between Z-5 and its bottom");
+}

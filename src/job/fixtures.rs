@@ -27,7 +27,8 @@ pub struct Fixtures {
     pub clearance: f64,
     /// The part is held by something the fixtures do not show (screws, tape, a vacuum table,
     /// soft jaws on its finished faces): an operation that cuts it free of what the fixtures
-    /// grip is then said, not refused. Default value: false.
+    /// grip (or, without fixtures, of the stock round it) is then noted, not refused or warned
+    /// of. Default value: false.
     pub held_otherwise: bool,
 }
 

@@ -129,6 +129,10 @@ impl HoldWatch {
         let Some((k, at)) = self.freed else { return (None, None) };
         let name = job.operations[k].name();
         let place = format!("X{:.3} Y{:.3}", at.x, at.y);
+        if job.fixtures.held_otherwise {
+            let w = format!("it cuts the part free at {place} of the stock {}; the part is held otherwise, as the job says", if job.fixtures.is_empty() { "round it" } else { "the fixtures grip" });
+            return (Some(Warning::of(name, w).note()), None);
+        }
         if job.fixtures.is_empty() {
             let w = format!("it cuts the part free at {place}: after it nothing joins the part to the stock's sides; hold the part by its bottom (a plate, screws or tape), stop the cut above the parting line (a 'Bottom height'), or leave tabs");
             return (Some(Warning::of(name, w)), None);
@@ -137,11 +141,6 @@ impl HoldWatch {
             let w = format!("it cuts the part free at {place} as the job ends: the part comes off loose; catch it, or leave a skin to break off");
             return (Some(Warning::of(name, w)), None);
         }
-        let said = format!("{name} cuts the part free at {place}: after it nothing joins the part to what the fixtures grip; stop the cut above the parting line (a 'Bottom height'), leave tabs, or mark the part as held otherwise (fixtures.heldOtherwise)");
-        if job.fixtures.held_otherwise {
-            (Some(Warning::of(name, format!("it cuts the part free at {place} of what the fixtures grip; the part is held otherwise"))), None)
-        } else {
-            (None, Some(said))
-        }
+        (None, Some(format!("{name} cuts the part free at {place}: after it nothing joins the part to what the fixtures grip; stop the cut above the parting line (a 'Bottom height'), leave tabs, or mark the part as held otherwise (fixtures.heldOtherwise)")))
     }
 }

@@ -339,6 +339,11 @@ impl Stock {
                 out.push(("mesh", "(the stock's mesh) and bar: the stock is a bar or a mesh, not both".to_owned()));
             }
         }
+        if let Some([dx, dy]) = self.zero.and_then(|z| z.at) {
+            if !(crate::limits::in_size(dx) && crate::limits::in_size(dy)) {
+                out.push(("zero.at", format!("(X0 Y0 from the stock's centre) must be on the stock: each at most {size} mm (got [{}, {}])", crate::limits::shown(dx), crate::limits::shown(dy))));
+            }
+        }
         if let Some(f) = self.air_feed {
             if !(0.0..=crate::limits::MAX_FEED).contains(&f) {
                 out.push(("airFeed", format!("must be zero or more mm/min, at most {} (got {})", crate::limits::MAX_FEED, crate::limits::shown(f))));

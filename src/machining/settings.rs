@@ -133,6 +133,26 @@ impl HeightFrom {
         }
     }
 
+    /// The lowest tip height an operation whose bottom height is `bottom` from this may cut to,
+    /// in a program whose stock box is `stock` and part `part`: 0 from the parting line where
+    /// only that is given; none without either.
+    pub fn bottom_z(self, bottom: Option<f64>, stock: &crate::geom::Aabb, part: &crate::mesh::Mesh) -> Option<f64> {
+        match (bottom, self) {
+            (None, HeightFrom::PartingLine) => Some(self.z(stock, part)),
+            (b, from) => b.map(|b| from.z(stock, part) + b),
+        }
+    }
+
+    /// A form's "Bottom height" and "Bottom from" fields (`bottom`, `bottomFrom`).
+    pub fn bottom_fields() -> [FormField; 2] {
+        [
+            FormField::number("bottom", "Bottom height", super::form::FieldUnit::Length)
+                .empty("the stock's bottom (or the parting line, where 'Bottom from' is it)")
+                .help("The lowest the tool's tip goes, from what 'Bottom from' names (negative: below it): the operation stops there. One side of a part machined from both stops at the parting line (the part's widest section), so the other side's material still joins the part to what the vise holds."),
+            FormField::choice("bottomFrom", "Bottom from", &HeightFrom::CHOICES),
+        ]
+    }
+
     /// The choices of a form's "from" field.
     pub const CHOICES: [(&'static str, &'static str); 6] = [
         ("zero", "the work zero (Z0)"),
@@ -140,7 +160,7 @@ impl HeightFrom {
         ("stockBottom", "the stock's bottom"),
         ("partTop", "the part's top"),
         ("partBottom", "the part's bottom"),
-        ("partingLine", "the parting line (the part's widest section)"),
+        ("partingLine", "the parting line"),
     ];
 }
 
@@ -201,21 +221,15 @@ impl Roughing {
             FormField::grid(),
             FormField::ramp_angle(),
             FormField::check("rest", "rest roughing: only what earlier operations left"),
-            FormField::number("bottom", "Bottom height", super::form::FieldUnit::Length)
-                .empty("the stock's bottom (or the parting line, where 'Bottom from' is it)")
-                .help("The lowest the tool's tip goes, from what 'Bottom from' names (negative: below it): the roughing stops there. One side of a part machined from both stops at the parting line (the part's widest section), so the other side's material still joins the part to what the vise holds."),
-            FormField::choice("bottomFrom", "Bottom from", &HeightFrom::CHOICES),
+            HeightFrom::bottom_fields()[0].clone(),
+            HeightFrom::bottom_fields()[1].clone(),
         ]
     }
 
     /// The lowest tip height it may cut to in a program whose stock box is `stock` and part
-    /// `part`: `bottom` from `bottomFrom` (0 from the parting line where only that is given);
-    /// none without either.
+    /// `part` ([`HeightFrom::bottom_z`]).
     pub fn bottom_z(&self, stock: &crate::geom::Aabb, part: &crate::mesh::Mesh) -> Option<f64> {
-        match (self.bottom, self.bottom_from) {
-            (None, HeightFrom::PartingLine) => Some(self.bottom_from.z(stock, part)),
-            (b, from) => b.map(|b| from.z(stock, part) + b),
-        }
+        self.bottom_from.bottom_z(self.bottom, stock, part)
     }
 
     /// Checks the settings, each named as the job file names it.

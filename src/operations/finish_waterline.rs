@@ -17,7 +17,7 @@ use crate::geom::DVec2;
 use crate::machining::context::SurfaceRequest;
 use crate::machining::levels::{pack, RegionWork};
 use crate::machining::raster::{gradient, rest_only};
-use crate::machining::settings::Direction;
+use crate::machining::settings::{Direction, HeightFrom};
 use crate::machining::waterline::{contours, heights, Spacing, LEAST_SCALLOP, SHORTEST};
 use crate::machining::{named_operation, not_negative, positive, Context, FieldError, Operate, Planned};
 use crate::progress::Progress;
@@ -58,6 +58,11 @@ pub struct FinishWaterline {
     /// leaves (by more than the job's gouge tolerance): after a larger ball, a smaller one
     /// takes only the corners it left. Default value: false.
     pub rest_only: bool,
+    /// The lowest level's height (mm from `bottomFrom`): no level below it. Default value:
+    /// none (down to the stock's bottom; the parting line where `bottomFrom` is it).
+    pub bottom: Option<f64>,
+    /// What `bottom` is measured from. Default value: zero.
+    pub bottom_from: HeightFrom,
 }
 
 impl Default for FinishWaterline {
@@ -74,6 +79,8 @@ impl Default for FinishWaterline {
             grid: 0.25,
             entry: Entry::default(),
             rest_only: false,
+            bottom: None,
+            bottom_from: HeightFrom::Zero,
         }
     }
 }
@@ -100,6 +107,7 @@ impl Operate for FinishWaterline {
             F::grid(),
             F::check("restOnly", "only what earlier operations left (rest machining)"),
         ]);
+        fields.extend(HeightFrom::bottom_fields());
         fields.extend(F::entry());
         OperationForm::new("finish steep walls in levels", fields)
     }
@@ -110,6 +118,9 @@ impl Operate for FinishWaterline {
 
     fn validate(&self) -> Result<(), FieldError> {
         positive("stepdown", self.stepdown)?;
+        if let Some(b) = self.bottom {
+            crate::machining::finite("bottom", b)?;
+        }
         if let Some(h) = self.scallop {
             positive("scallop", h)?;
             if h < LEAST_SCALLOP {
@@ -164,7 +175,14 @@ impl Operate for FinishWaterline {
         let steep = self.slope_min.to_radians().tan();
         let field = &cl.field;
         let slope = |p: DVec2| gradient(field, p) >= steep;
-        let heights = heights(&self.name, field, floor, profile.radius, self.spacing())?;
+        let mut heights = heights(&self.name, field, floor, profile.radius, self.spacing())?;
+        if let Some(lowest) = self.bottom_from.bottom_z(self.bottom, &ctx.stock, &ctx.part) {
+            heights.retain(|&z| z >= lowest - 1e-9);
+            if heights.is_empty() {
+                ctx.note(&self.name, format!("no level at or above its bottom height (Z{lowest:.3})"));
+                return Ok(Planned::default());
+            }
+        }
         let shortest = SHORTEST.max(crate::toolpath::entry::shortest_ramp(profile.radius));
         let mut runs = contours(ctx, request, &cl, &heights, self.allowance, self.direction, &slope, shortest, progress).ok_or(Error::Cancelled)?;
         if runs.is_empty() {

@@ -176,6 +176,11 @@ pub fn read_gcode(text: &str, default_tool: u32) -> Result<Vec<Toolpath>, ReadEr
                     if (r0 - r1).abs() > ARC_RADIUS_SLACK {
                         return Err(err(format!("the arc's start and end radii differ ({r0:.4} and {r1:.4} mm)")));
                     }
+                    // A control refuses an arc about its own start (LinuxCNC: "zero radius
+                    // arc"): no circle to follow.
+                    if r0.max(r1) <= ARC_RADIUS_SLACK {
+                        return Err(err(format!("an arc of zero radius (its centre at its start, X{:.4} Y{:.4}): no circle to follow", center.x, center.y)));
+                    }
                     Move::Arc { to, center, clockwise, feed: feed()? }
                 }
             };
@@ -361,6 +366,8 @@ mod tests {
             ("G0 X0 Y0 Z0\nG1 X5\n", "feed rate"),
             ("G0 X0 Y0 Z0\nG2 X5 Y0 F100\n", "I and J"),
             ("G0 X0 Y0 Z0\nG2 X10 Y0 I3 J0 F100\n", "radii differ"),
+            ("G0 X0 Y0 Z0\nG2 X0 Y0 I0 J0 F100\n", "zero radius"),
+            ("G0 X0 Y0 Z0\nG2 X0 Y0 Z-1 I0 J0 F100\n", "zero radius"),
             ("X1\n", "motion mode"),
             ("G1 X#1\n", "no number"),
             ("G0 X0 Y0 Z0\nG1 X1 Y1 F100 $\n", "unexpected character"),

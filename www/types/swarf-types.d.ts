@@ -901,7 +901,16 @@ grid: number, entry: Entry,
  * leaves (by more than the job's gouge tolerance): after a larger ball, a smaller one
  * takes only the corners it left. Default value: false.
  */
-restOnly: boolean, };
+restOnly: boolean, 
+/**
+ * The lowest level's height (mm from `bottomFrom`): no level below it. Default value:
+ * none (down to the stock's bottom; the parting line where `bottomFrom` is it).
+ */
+bottom: number | null, 
+/**
+ * What `bottom` is measured from. Default value: zero.
+ */
+bottomFrom: HeightFrom, };
 
 /**
  * A box no tool may enter: a clamp, a plate, a stop.
@@ -964,7 +973,8 @@ clearance: number,
 /**
  * The part is held by something the fixtures do not show (screws, tape, a vacuum table,
  * soft jaws on its finished faces): an operation that cuts it free of what the fixtures
- * grip is then said, not refused. Default value: false.
+ * grip (or, without fixtures, of the stock round it) is then noted, not refused or warned
+ * of. Default value: false.
  */
 heldOtherwise: boolean, };
 
