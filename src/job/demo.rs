@@ -66,16 +66,7 @@ impl Job {
         job.stock.zero = Some(WorkZero::default());
         job.setups = vec![
             Setup { name: "top".into(), work_offset: Some("G54".into()), operations: ops(HolePick { min_diameter: Some(5.0), ..HolePick::default() }, 3), ..Setup::default() },
-            // The bottom is held by the top's finished sides (in soft jaws, which the job does
-            // not model): its facing takes the last of the stock round the part.
-            Setup {
-                name: "bottom".into(),
-                flip: Flip::AboutX,
-                work_offset: Some("G55".into()),
-                operations: ops(HolePick { max_diameter: Some(5.0), ..HolePick::default() }, 4),
-                fixtures: Some(super::fixtures::Fixtures { held_otherwise: true, ..Default::default() }),
-                ..Setup::default()
-            },
+            Setup { name: "bottom".into(), flip: Flip::AboutX, work_offset: Some("G55".into()), operations: ops(HolePick { max_diameter: Some(5.0), ..HolePick::default() }, 4), ..Setup::default() },
         ];
         job
     }
