@@ -74,6 +74,23 @@ impl Vise {
     pub fn least(&self) -> f64 {
         self.least_grip.unwrap_or(self.grip / 2.0)
     }
+
+    /// Where its jaws' faces stand along the axis they close on, round `stock`: `faces` where
+    /// set, else the stock's sides.
+    pub fn faces_on(&self, stock: &Aabb) -> (f64, f64) {
+        self.faces.unwrap_or(match self.closes {
+            ViseAxis::Y => (stock.min.y, stock.max.y),
+            ViseAxis::X => (stock.min.x, stock.max.x),
+        })
+    }
+
+    /// How far its jaws reach along the stock's side (across the axis they close on), centred
+    /// on `stock`.
+    pub fn span_on(&self, stock: &Aabb) -> (f64, f64) {
+        let c = stock.center();
+        let centre = if self.closes == ViseAxis::X { c.y } else { c.x };
+        (centre - self.jaw_width / 2.0, centre + self.jaw_width / 2.0)
+    }
 }
 
 /// Which way a vise's jaws close.
@@ -152,11 +169,9 @@ impl Fixtures {
         let mut out = Vec::new();
         if let Some(v) = &self.vise {
             let (mut lo, mut hi, c) = (stock.min, stock.max, stock.center());
-            if let Some((a, b)) = v.faces {
-                match v.closes {
-                    ViseAxis::Y => (lo.y, hi.y) = (a, b),
-                    ViseAxis::X => (lo.x, hi.x) = (a, b),
-                }
+            match (v.closes, v.faces_on(stock)) {
+                (ViseAxis::Y, faces) => (lo.y, hi.y) = faces,
+                (ViseAxis::X, faces) => (lo.x, hi.x) = faces,
             }
             let (z0, z1) = (lo.z - JAW_DEPTH, lo.z + v.grip);
             let half = v.jaw_width / 2.0;
@@ -208,10 +223,8 @@ impl Fixtures {
                     say(format!("{at}.vise.{field}"), format!("{at}.vise.{field}: {what} must be more than 0 mm (got {value})"));
                 }
             }
-        }
-        if let Some(least) = self.vise.and_then(|v| v.least_grip.map(|l| (l, v.grip))) {
-            if !(least.0 > 0.0 && least.0 <= least.1) {
-                say(format!("{at}.vise.leastGrip"), format!("{at}.vise.leastGrip: the least material a jaw grips must be more than 0 mm and at most the grip ({} mm; got {})", least.1, least.0));
+            if let Some(least) = v.least_grip.filter(|&l| !(l > 0.0 && l <= v.grip)) {
+                say(format!("{at}.vise.leastGrip"), format!("{at}.vise.leastGrip: the least material a jaw grips must be more than 0 mm and at most the grip ({} mm; got {least})", v.grip));
             }
         }
         for (k, b) in self.boxes.iter().enumerate() {

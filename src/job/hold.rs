@@ -51,10 +51,8 @@ pub fn follow_jaws(job: &mut Job, ctx: &mut Context) {
     }
     let stock = ctx.stock;
     let along_x = vise.closes == ViseAxis::X;
-    let centre = if along_x { stock.center().y } else { stock.center().x };
-    let width = (centre - vise.jaw_width / 2.0, centre + vise.jaw_width / 2.0);
-    let Some((lo, hi)) = band_extent(ctx.sim.stock(), along_x, width, stock.min.z, stock.min.z + vise.grip, vise.least()) else { return };
-    let (box_lo, box_hi) = if along_x { (stock.min.x, stock.max.x) } else { (stock.min.y, stock.max.y) };
+    let Some((lo, hi)) = band_extent(ctx.sim.stock(), along_x, vise.span_on(&stock), stock.min.z, stock.min.z + vise.grip, vise.least()) else { return };
+    let (box_lo, box_hi) = super::fixtures::Vise { faces: None, ..vise }.faces_on(&stock);
     let (lo, hi) = (lo.max(box_lo), hi.min(box_hi));
     if lo <= box_lo + 1e-9 && hi >= box_hi - 1e-9 {
         return;
@@ -74,19 +72,12 @@ pub fn jaws_grip(job: &Job, ctx: &Context) -> Result<()> {
     }
     let stock = ctx.stock;
     let along_x = vise.closes == ViseAxis::X;
-    let centre = if along_x { stock.center().y } else { stock.center().x };
-    let width = (centre - vise.jaw_width / 2.0, centre + vise.jaw_width / 2.0);
     let (from, to) = (stock.min.z, stock.min.z + vise.grip);
-    for held in job.fixtures.held(&stock).iter().take(2) {
-        let face = match (along_x, held.solid.max.x <= stock.center().x, held.solid.max.y <= stock.center().y) {
-            (true, true, _) => held.solid.max.x,
-            (true, false, _) => held.solid.min.x,
-            (false, _, true) => held.solid.max.y,
-            (false, _, false) => held.solid.min.y,
-        };
-        // The cells just inside the face.
-        let inside = if face < if along_x { stock.center().x } else { stock.center().y } { face + 1e-6 } else { face - 1e-6 };
-        let contact = jaw_contact(ctx.sim.stock(), along_x, inside, width, from, to);
+    // The jaws (the first two fixtures held: the low face's, then the high face's), each judged
+    // at the cells just inside its face.
+    let (lo, hi) = vise.faces_on(&stock);
+    for (held, inside) in job.fixtures.held(&stock).iter().zip([lo + 1e-6, hi - 1e-6]) {
+        let contact = jaw_contact(ctx.sim.stock(), along_x, inside, vise.span_on(&stock), from, to);
         if contact < vise.least() - 1e-9 {
             return Err(Error::Input(format!(
                 "{} grips {contact:.3} mm of material (it reaches {:.3} mm up the stock's side), less than its least grip of {:.3} mm: the stock as this setup starts has {} there; hold the part by what is left (a lower grip, soft jaws, a fixture), or leave more in the setup before (a 'Bottom height' above the parting line)",

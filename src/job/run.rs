@@ -724,8 +724,7 @@ impl Running {
         if self.next < self.enabled.len() || !self.pending.is_empty() {
             return Err(Error::Input("the job is not planned to its end yet".into()));
         }
-        let Running { job, ctx, mut warnings, enabled, mut paths, path_operations, move_ranges, mut all_moves, snapshots, loads, cuts, grooves, octants, hold, last_setup, .. } = self;
-        let mut hold = hold;
+        let Running { job, ctx, mut warnings, enabled, mut paths, path_operations, move_ranges, mut all_moves, snapshots, loads, cuts, grooves, octants, mut hold, last_setup, .. } = self;
         let (freed_warning, freed) = hold.said(&job, enabled.last().copied(), last_setup);
         warnings.extend(freed_warning);
         let job = &job;

@@ -214,6 +214,7 @@ pub fn roughing_form() -> Vec<FormField> {
 impl Roughing {
     /// Their fields in a roughing's form.
     pub fn fields() -> [FormField; 8] {
+        let [bottom, bottom_from] = HeightFrom::bottom_fields();
         [
             FormField::length("allowance", "Leave on floors", 0.0),
             FormField::length("leaveStock", "Leave on walls", 0.0),
@@ -221,8 +222,8 @@ impl Roughing {
             FormField::grid(),
             FormField::ramp_angle(),
             FormField::check("rest", "rest roughing: only what earlier operations left"),
-            HeightFrom::bottom_fields()[0].clone(),
-            HeightFrom::bottom_fields()[1].clone(),
+            bottom,
+            bottom_from,
         ]
     }
 
