@@ -659,14 +659,14 @@ fn a_roughing_after_a_larger_tool_is_reported_as_rest_roughing_with_what_it_took
 /// refused naming the field.
 #[test]
 fn a_roughing_stops_at_its_bottom_height() {
-    use swarf::operations::{HeightFrom, RoughAdaptive, RoughZigzag};
+    use swarf::operations::{HeightFrom, Heights, RoughAdaptive, RoughZigzag};
     let part_box = {
         let mut p = demo_part();
         Job::demo().place(&mut p);
         p.bounds()
     };
     assert!(part_box.max.z.abs() < 1e-9 && part_box.min.z < -20.0, "{part_box:?}");
-    let with = |bottom: f64, from: HeightFrom| Roughing { bottom: Some(bottom), bottom_from: from, ..Roughing::default() };
+    let with = |bottom: f64, from: HeightFrom| Roughing { heights: Heights { bottom: Some(bottom), bottom_from: from, ..Heights::default() }, ..Roughing::default() };
     let kinds = |r: Roughing| {
         [
             Operation::RoughZlevel(RoughZlevel { roughing: r, ..RoughZlevel::default() }),

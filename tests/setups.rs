@@ -821,8 +821,8 @@ fn the_rocker_arm_comes_off_whole_from_a_box_in_a_vise() {
         s.operations.retain(|o| matches!(o.name(), "face" | "rough"));
         for o in &mut s.operations {
             if let swarf::job::Operation::RoughZlevel(r) = o {
-                r.roughing.bottom = (k == 1).then_some(1.0);
-                r.roughing.bottom_from = HeightFrom::PartingLine;
+                r.roughing.heights.bottom = (k == 1).then_some(1.0);
+                r.roughing.heights.bottom_from = HeightFrom::PartingLine;
             }
         }
     }
@@ -880,7 +880,7 @@ fn the_rocker_arm_comes_off_whole_from_a_box_in_a_vise() {
     for s in &mut free.setups {
         for o in &mut s.operations {
             if let swarf::job::Operation::RoughZlevel(r) = o {
-                (r.roughing.bottom, r.roughing.bottom_from) = (None, HeightFrom::Zero);
+                (r.roughing.heights.bottom, r.roughing.heights.bottom_from) = (None, HeightFrom::Zero);
             }
         }
     }

@@ -219,10 +219,14 @@ fn waterline_rest_only_takes_what_a_larger_ball_left() {
 /// still finishes the walls above it.
 #[test]
 fn a_waterline_stops_at_its_bottom_height() {
-    use swarf::operations::HeightFrom;
+    use swarf::operations::{HeightFrom, Heights};
     let mut job = Job::demo();
     let ball = job.tools.iter().find(|t| matches!(t.cutter.shape, swarf::cutter::Shape::Ball)).map(|t| t.number).unwrap();
-    job.operations = vec![Operation::FinishWaterline(FinishWaterline { tool: ball, bottom: Some(-10.0), bottom_from: HeightFrom::PartTop, ..FinishWaterline::default() })];
+    job.operations = vec![Operation::FinishWaterline(FinishWaterline {
+        tool: ball,
+        heights: Heights { bottom: Some(-10.0), bottom_from: HeightFrom::PartTop, ..Heights::default() },
+        ..FinishWaterline::default()
+    })];
     let out = job::run(&job, demo_part(), &mut Progress::none()).unwrap();
     let cuts: Vec<f64> = out.moves.iter().filter(|m| !m.mv.is_rapid()).map(|m| m.mv.to().z).collect();
     let lowest = cuts.iter().copied().fold(f64::INFINITY, f64::min);

@@ -91,6 +91,7 @@ export function answered() {
 export function fieldError(el, text) {
   el.classList.toggle('invalid', !!text);
   el.setAttribute('aria-invalid', text ? 'true' : 'false');
+  if (text) el.closest('details')?.setAttribute('open', '');
   const label = el.closest('label');
   let note = label?.nextElementSibling?.classList.contains('field-error') ? label.nextElementSibling : null;
   if (!text) { note?.remove(); return; }

@@ -30,6 +30,9 @@ export function fillOps() {
   if (!op) return;
   buildForm(op.kind);
   fillFields($('op-fields'), op);
+  // The heights are open where the operation has any of its own.
+  const heights = $('op-fields').querySelector('details.heights');
+  if (heights) heights.open = HEIGHT_KEYS.some((k) => op[k] != null && !k.endsWith('From')) || op.bottomFrom === 'partingLine';
   // A cut through the sheet goes past its bottom by the breakthrough (0.2 mm).
   const through = $('through-depth');
   if (through) through.textContent = `${units.place(Number(state.jobs.drawing.drawing.thickness) + 0.2)} ${units.lengthUnit()}`;
@@ -42,6 +45,8 @@ export function fillOps() {
 // field's key, words, unit, range and what empty means), never written here per kind: a new
 // kind of operation is one Rust file. A field is named `op-` and its key (`op-stepdown`,
 // `op-tabs-count`).
+// The heights' fields ([`Heights`] in the core).
+const HEIGHT_KEYS = ['top', 'topFrom', 'bottom', 'bottomFrom', 'clearance', 'clearanceFrom', 'retract'];
 const UNIT_WORDS = { length: 'mm', feed: 'mm/min', degrees: '°', seconds: 's', none: '' };
 
 // The kinds to add, grouped by what they work on.
@@ -105,7 +110,19 @@ function buildForm(kind) {
   if (!form || box.dataset.kind === kind) return;
   const holes = $('fs-hole-list');
   $('op-editor').append(holes);
-  box.replaceChildren(...form.fields.map(fieldElement));
+  // A kind with the heights (every roughing and 3D finishing) has them under one heading, as
+  // Fusion's Heights tab, closed until wanted.
+  const grouped = form.fields.some((f) => f.key === 'topFrom');
+  const own = form.fields.filter((f) => !grouped || !HEIGHT_KEYS.includes(f.key)).map(fieldElement);
+  if (grouped) {
+    const details = document.createElement('details');
+    details.className = 'heights';
+    const summary = document.createElement('summary');
+    summary.textContent = 'Heights: top, bottom (the parting line), clearance, retract';
+    details.append(summary, ...form.fields.filter((f) => HEIGHT_KEYS.includes(f.key)).map(fieldElement));
+    own.push(details);
+  }
+  box.replaceChildren(...own);
   box.dataset.kind = kind;
   $('op-hint').textContent = form.hint ?? '';
   $('op-hint').hidden = !form.hint;

@@ -418,6 +418,7 @@ impl Prepared {
             as_came,
             hold,
             last_setup,
+            highest_clearance: f64::NEG_INFINITY,
         }
     }
 }
@@ -459,6 +460,9 @@ pub struct Running {
     pub(super) hold: super::hold::HoldWatch,
     /// Whether no setup follows ([`Prepared::last_setup`]).
     pub(super) last_setup: bool,
+    /// The highest clearance an operation of its own moved at, where above the job's: the
+    /// program starts and ends there.
+    pub(super) highest_clearance: f64,
 }
 
 impl Running {
@@ -496,8 +500,16 @@ impl Running {
             let name = self.job.operations[k].name().to_owned();
             self.ctx.note(&name, "rest roughing is off: it plans against the setup's stock as it came, so it cuts again through what the earlier operations cleared (air)");
         }
+        // The operation's own clearance and retract, where it has them, for its planning alone.
+        let job_heights = self.ctx.heights;
+        if let Some(own) = self.job.operations[k].heights() {
+            let lowest = self.ctx.keep_out.iter().map(|h| h.solid.max.z).fold(self.ctx.stock.max.z, f64::max);
+            self.ctx.heights = own.safe(self.job.operations[k].name(), job_heights, lowest, &self.ctx.stock, &self.ctx.part)?;
+            self.highest_clearance = self.highest_clearance.max(self.ctx.heights.clearance);
+        }
         let o = self.job.operations[k].op();
         let planned = o.plan(&mut self.ctx, progress);
+        self.ctx.heights = job_heights;
         let round = o.plans_round_fixtures();
         self.back_to(live);
         // Regions a pool made were for this operation only.
@@ -724,7 +736,9 @@ impl Running {
         if self.next < self.enabled.len() || !self.pending.is_empty() {
             return Err(Error::Input("the job is not planned to its end yet".into()));
         }
-        let Running { job, ctx, mut warnings, enabled, mut paths, path_operations, move_ranges, mut all_moves, snapshots, loads, cuts, grooves, octants, mut hold, last_setup, .. } = self;
+        let Running {
+            job, ctx, mut warnings, enabled, mut paths, path_operations, move_ranges, mut all_moves, snapshots, loads, cuts, grooves, octants, mut hold, last_setup, highest_clearance, ..
+        } = self;
         let (freed_warning, freed) = hold.said(&job, enabled.last().copied(), last_setup);
         warnings.extend(freed_warning);
         let job = &job;
@@ -736,7 +750,9 @@ impl Running {
             let why = if warnings.is_empty() { String::new() } else { format!(" ({})", warnings.iter().map(Warning::to_string).collect::<Vec<_>>().join("; ")) };
             return Err(Error::Nothing(format!("the program has no cutting moves{why}")));
         }
-        let Context { part, sheet, stock, heights, caches, sim, keep_out, .. } = ctx;
+        let Context { part, sheet, stock, mut heights, caches, sim, keep_out, .. } = ctx;
+        // The program starts and ends above every operation's clearance.
+        heights.clearance = heights.clearance.max(highest_clearance);
         // The simulation that carried the in-process stock judges the whole program.
         let (mut verification, sim) = if verify {
             let settings = job.verify_settings(&stock, None);

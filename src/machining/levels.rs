@@ -419,8 +419,9 @@ impl LevelRoughing {
         // counts a surface as clear when the exact profile stands below it by the interpolation
         // margin (`zmap/contour.rs`).
         let clear = 2.0 * ctx.tolerances.interpolation + ctx.tolerances.height;
-        let lowest = self.roughing.bottom_z(&ctx.stock, &ctx.part);
-        self.levels(&cl.field, ctx.stock.max.z, ctx.stock.min.z, lowest, r, clear)
+        let heights = &self.roughing.heights;
+        let (lowest, top) = (heights.bottom_z(&ctx.stock, &ctx.part), heights.top_z(&ctx.stock, &ctx.part));
+        self.levels(&cl.field, top.map_or(ctx.stock.max.z, |t| t.min(ctx.stock.max.z)), ctx.stock.min.z, lowest, r, clear)
     }
 
     /// [`LevelRoughing::levels_to_cut`] with centres kept within `reach` of material above each
@@ -431,12 +432,7 @@ impl LevelRoughing {
     /// With `bands`, a flat's level is cut only where the level below cannot go (see
     /// [`LevelRoughing`]); without (seed 000's layers, each its own octants), over its whole region.
     pub fn levels_within(&self, ctx: &mut Context, progress: &mut Progress, reach: f64, bands: bool, within: &Within) -> Result<Option<Levels>> {
-        if let Some(z) = self.roughing.bottom_z(&ctx.stock, &ctx.part).filter(|&z| z >= ctx.stock.max.z - LEVEL_SAME) {
-            return Err(Error::operation(
-                &self.name,
-                format!("its bottom height (Z{z:.3}) is at or above the stock's top (Z{:.3}): nothing to cut; give a lower 'Bottom height', or none", ctx.stock.max.z),
-            ));
-        }
+        self.roughing.heights.window(&self.name, &ctx.stock, &ctx.part)?;
         if !progress.stage("CL z-map", 0.0, 0.3) {
             return Err(Error::Cancelled);
         }

@@ -133,26 +133,6 @@ impl HeightFrom {
         }
     }
 
-    /// The lowest tip height an operation whose bottom height is `bottom` from this may cut to,
-    /// in a program whose stock box is `stock` and part `part`: 0 from the parting line where
-    /// only that is given; none without either.
-    pub fn bottom_z(self, bottom: Option<f64>, stock: &crate::geom::Aabb, part: &crate::mesh::Mesh) -> Option<f64> {
-        match (bottom, self) {
-            (None, HeightFrom::PartingLine) => Some(self.z(stock, part)),
-            (b, from) => b.map(|b| from.z(stock, part) + b),
-        }
-    }
-
-    /// A form's "Bottom height" and "Bottom from" fields (`bottom`, `bottomFrom`).
-    pub fn bottom_fields() -> [FormField; 2] {
-        [
-            FormField::number("bottom", "Bottom height", super::form::FieldUnit::Length)
-                .empty("the stock's bottom (or the parting line, where 'Bottom from' is it)")
-                .help("The lowest the tool's tip goes, from what 'Bottom from' names (negative: below it): the operation stops there. One side of a part machined from both stops at the parting line (the part's widest section), so the other side's material still joins the part to what the vise holds."),
-            FormField::choice("bottomFrom", "Bottom from", &HeightFrom::CHOICES),
-        ]
-    }
-
     /// The choices of a form's "from" field.
     pub const CHOICES: [(&'static str, &'static str); 6] = [
         ("zero", "the work zero (Z0)"),
@@ -162,6 +142,199 @@ impl HeightFrom {
         ("partBottom", "the part's bottom"),
         ("partingLine", "the parting line"),
     ];
+}
+
+/// Where an operation cuts and how high it moves between cuts, as Fusion's Heights tab has
+/// them, flattened into each 3D operation's JSON (`operations[1].bottom`): a top and a bottom
+/// height the operation cuts between, and its own clearance and retract in place of the job's
+/// (`stock.clearance`, `stock.retract`). Each height is an offset from what its `…From`
+/// names, so that it follows the stock or the part as a setup holds it.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(default, rename_all = "camelCase")]
+pub struct Heights {
+    /// The highest the tool's tip cuts (mm from `topFrom`): a roughing's first level is a
+    /// step-down below it, a finishing leaves what lies above it. Default value: none (the
+    /// stock's top).
+    pub top: Option<f64>,
+    /// What `top` is measured from. Default value: stockTop.
+    pub top_from: HeightFrom,
+    /// The lowest the tool's tip goes (mm from `bottomFrom`): the operation stops there, over
+    /// the part and beside it, as one side of a part machined from both stops at its parting
+    /// line and leaves the rest joined to the stock the vise grips. Default value: none (the
+    /// stock's bottom; the parting line itself where `bottomFrom` is `partingLine`).
+    pub bottom: Option<f64>,
+    /// What `bottom` is measured from. Default value: zero.
+    pub bottom_from: HeightFrom,
+    /// The height the operation's rapids cross at (mm from `clearanceFrom`), above the stock
+    /// and the fixtures. Default value: none (the job's, `stock.clearance` above the stock's
+    /// top).
+    pub clearance: Option<f64>,
+    /// What `clearance` is measured from. Default value: stockTop.
+    pub clearance_from: HeightFrom,
+    /// The gap above the material where the operation's rapid descents stop and the feed
+    /// begins, and over which its short retracts travel (mm). Default value: none (the job's,
+    /// `stock.retract`).
+    pub retract: Option<f64>,
+}
+
+impl Default for Heights {
+    fn default() -> Self {
+        Heights { top: None, top_from: HeightFrom::StockTop, bottom: None, bottom_from: HeightFrom::Zero, clearance: None, clearance_from: HeightFrom::StockTop, retract: None }
+    }
+}
+
+impl Heights {
+    /// The lowest tip height the operation may cut to in a program whose stock box is `stock`
+    /// and part `part`: 0 from the parting line where only that is given; none without either.
+    pub fn bottom_z(&self, stock: &crate::geom::Aabb, part: &crate::mesh::Mesh) -> Option<f64> {
+        match (self.bottom, self.bottom_from) {
+            (None, HeightFrom::PartingLine) => Some(HeightFrom::PartingLine.z(stock, part)),
+            (b, from) => b.map(|b| from.z(stock, part) + b),
+        }
+    }
+
+    /// The highest tip height the operation cuts at: none without a top height (the stock's
+    /// top).
+    pub fn top_z(&self, stock: &crate::geom::Aabb, part: &crate::mesh::Mesh) -> Option<f64> {
+        self.top.map(|t| self.top_from.z(stock, part) + t)
+    }
+
+    /// The tip heights the operation cuts between, `(bottom, top)`, either open; an error
+    /// naming `op` where the bottom is at or above the top or the top at or below the bottom
+    /// of the stock (nothing to cut).
+    pub fn window(&self, op: &str, stock: &crate::geom::Aabb, part: &crate::mesh::Mesh) -> crate::error::Result<(Option<f64>, Option<f64>)> {
+        let (low, high) = (self.bottom_z(stock, part), self.top_z(stock, part));
+        let nothing = |why: String, fix: &str| Err(crate::error::Error::operation(op, format!("{why}: nothing to cut; {fix}")));
+        if let Some(z) = low.filter(|&z| z >= stock.max.z - 1e-6) {
+            return nothing(format!("its bottom height (Z{z:.3}) is at or above the stock's top (Z{:.3})", stock.max.z), "give a lower 'Bottom height', or none");
+        }
+        if let Some(z) = high.filter(|&z| z <= stock.min.z + 1e-6) {
+            return nothing(format!("its top height (Z{z:.3}) is at or below the stock's bottom (Z{:.3})", stock.min.z), "give a higher 'Top height', or none");
+        }
+        if let (Some(l), Some(h)) = (low, high) {
+            if l >= h - 1e-6 {
+                return nothing(format!("its bottom height (Z{l:.3}) is at or above its top height (Z{h:.3})"), "give a lower 'Bottom height' or a higher 'Top height'");
+            }
+        }
+        Ok((low, high))
+    }
+
+    /// The safe heights the operation moves at: the job's `job`, with this operation's own
+    /// clearance and retract where it has them; an error naming `op` and the field where its
+    /// clearance is not above the stock and the fixtures (`lowest`, the job's own lowest
+    /// clearance).
+    pub fn safe(
+        &self,
+        op: &str,
+        job: crate::machining::context::SafeHeights,
+        lowest: f64,
+        stock: &crate::geom::Aabb,
+        part: &crate::mesh::Mesh,
+    ) -> crate::error::Result<crate::machining::context::SafeHeights> {
+        let mut safe = job;
+        if let Some(c) = self.clearance {
+            let z = self.clearance_from.z(stock, part) + c;
+            if z <= lowest + 1e-6 {
+                return Err(crate::error::Error::operation(
+                    op,
+                    format!("clearance: its clearance height (Z{z:.3}) is not above the stock's top and the fixtures (Z{lowest:.3} at the least): its rapids would cut; give a higher 'Clearance height', or none"),
+                ));
+            }
+            safe.clearance = z;
+        }
+        if let Some(r) = self.retract {
+            safe.gap = r;
+        }
+        Ok(safe)
+    }
+
+    /// Keeps the stretches of `runs` whose tip lies between `low` and `high` (either open),
+    /// each run cut where it crosses either height (a stretch of a straight move is the same
+    /// line, so what was clear of the part stays so).
+    pub fn trim(runs: Vec<Vec<glam::DVec3>>, low: Option<f64>, high: Option<f64>) -> Vec<Vec<glam::DVec3>> {
+        let (lo, hi) = (low.unwrap_or(f64::NEG_INFINITY), high.unwrap_or(f64::INFINITY));
+        if lo == f64::NEG_INFINITY && hi == f64::INFINITY {
+            return runs;
+        }
+        let inside = |p: glam::DVec3| p.z >= lo - 1e-9 && p.z <= hi + 1e-9;
+        let mut out = Vec::new();
+        for run in runs {
+            let mut current: Vec<glam::DVec3> = Vec::new();
+            if let Some(&first) = run.first().filter(|&&p| inside(p)) {
+                current.push(first);
+            }
+            for w in run.windows(2) {
+                let (a, b) = (w[0], w[1]);
+                // Where the move crosses either height, in order along it.
+                let mut cuts: Vec<f64> = [lo, hi].iter().filter(|h| h.is_finite() && (a.z - **h) * (b.z - **h) < 0.0).map(|h| (h - a.z) / (b.z - a.z)).collect();
+                cuts.sort_by(f64::total_cmp);
+                cuts.push(1.0);
+                let mut from = 0.0;
+                for t in cuts {
+                    let (p, q) = (a.lerp(b, from), a.lerp(b, t));
+                    if inside(a.lerp(b, 0.5 * (from + t))) {
+                        if current.is_empty() {
+                            current.push(p);
+                        }
+                        current.push(q);
+                    } else if current.len() > 1 {
+                        out.push(std::mem::take(&mut current));
+                    } else {
+                        current.clear();
+                    }
+                    from = t;
+                }
+            }
+            if current.len() > 1 {
+                out.push(current);
+            }
+        }
+        out
+    }
+
+    /// The stretches of a finishing's `runs` between its heights ([`Heights::trim`]); none,
+    /// noted on `op`, where it had runs and none lies between them.
+    pub fn keep(&self, op: &str, ctx: &mut crate::machining::context::Context, runs: Vec<Vec<glam::DVec3>>) -> crate::error::Result<Option<Vec<Vec<glam::DVec3>>>> {
+        let (low, high) = self.window(op, &ctx.stock, &ctx.part)?;
+        let had = !runs.is_empty();
+        let kept = Heights::trim(runs, low, high);
+        if had && kept.is_empty() {
+            let (l, h) = (low.unwrap_or(ctx.stock.min.z), high.unwrap_or(ctx.stock.max.z));
+            ctx.note(op, format!("nothing of its passes lies between its bottom and top heights (Z{l:.3} to Z{h:.3})"));
+            return Ok(None);
+        }
+        Ok(Some(kept))
+    }
+
+    /// Checks the settings, each named as the job file names it.
+    pub fn validate(&self) -> Result<(), FieldError> {
+        for (field, value) in [("top", self.top), ("bottom", self.bottom), ("clearance", self.clearance)] {
+            if let Some(v) = value {
+                crate::machining::finite(field, v)?;
+            }
+        }
+        if let Some(r) = self.retract {
+            positive("retract", r)?;
+        }
+        Ok(())
+    }
+
+    /// Their fields in an operation's form: the heights it cuts between, then its clearance
+    /// and retract.
+    pub fn fields() -> [FormField; 7] {
+        use super::form::FieldUnit;
+        [
+            FormField::number("top", "Top height", FieldUnit::Length).empty("the stock's top").help("The highest the tool's tip cuts, from what 'Top from' names (negative: below it): a roughing's first level is a step-down below it, a finishing leaves what lies above."),
+            FormField::choice("topFrom", "Top from", &HeightFrom::CHOICES),
+            FormField::number("bottom", "Bottom height", FieldUnit::Length)
+                .empty("the stock's bottom (or the parting line, where 'Bottom from' is it)")
+                .help("The lowest the tool's tip goes, from what 'Bottom from' names (negative: below it): the operation stops there. One side of a part machined from both stops at the parting line (the part's widest section), so the other side's material still joins the part to what the vise holds."),
+            FormField::choice("bottomFrom", "Bottom from", &HeightFrom::CHOICES),
+            FormField::number("clearance", "Clearance height", FieldUnit::Length).empty("the job's (Stock: clearance)").help("The height this operation's rapids cross at, from what 'Clearance from' names: above the stock and any clamp."),
+            FormField::choice("clearanceFrom", "Clearance from", &HeightFrom::CHOICES),
+            FormField::length("retract", "Retract gap", 0.0).empty("the job's (Stock: retract)").help("How far above the material a rapid descent stops and the feed begins, and how high a short retract clears what it crosses."),
+        ]
+    }
 }
 
 /// What every roughing kind leaves and how it cuts, in each one's JSON as its own fields
@@ -183,18 +356,15 @@ pub struct Roughing {
     /// so that after a larger tool only its leftovers are cut and no air it cleared; off, plan
     /// against the setup's stock as it came, as if nothing had been cut. Default value: true.
     pub rest: bool,
-    /// The lowest the tool's tip goes (mm from `bottomFrom`): the roughing stops there, over
-    /// the part and beside it, as one side of a part machined from both stops at its parting
-    /// line and leaves the rest joined to the stock the vise grips. Default value: none (the
-    /// stock's bottom; the parting line itself where `bottomFrom` is `partingLine`).
-    pub bottom: Option<f64>,
-    /// What `bottom` is measured from. Default value: zero.
-    pub bottom_from: HeightFrom,
+    /// The heights it cuts between, its clearance and retract.
+    #[serde(flatten)]
+    #[ts(flatten)]
+    pub heights: Heights,
 }
 
 impl Default for Roughing {
     fn default() -> Self {
-        Roughing { allowance: 0.5, leave_stock: 0.5, direction: Direction::Climb, grid: 0.25, ramp_angle: 3.0, rest: true, bottom: None, bottom_from: HeightFrom::Zero }
+        Roughing { allowance: 0.5, leave_stock: 0.5, direction: Direction::Climb, grid: 0.25, ramp_angle: 3.0, rest: true, heights: Heights::default() }
     }
 }
 
@@ -213,33 +383,24 @@ pub fn roughing_form() -> Vec<FormField> {
 
 impl Roughing {
     /// Their fields in a roughing's form.
-    pub fn fields() -> [FormField; 8] {
-        let [bottom, bottom_from] = HeightFrom::bottom_fields();
-        [
+    pub fn fields() -> Vec<FormField> {
+        let mut fields = vec![
             FormField::length("allowance", "Leave on floors", 0.0),
             FormField::length("leaveStock", "Leave on walls", 0.0),
             FormField::direction(),
             FormField::grid(),
             FormField::ramp_angle(),
             FormField::check("rest", "rest roughing: only what earlier operations left"),
-            bottom,
-            bottom_from,
-        ]
-    }
-
-    /// The lowest tip height it may cut to in a program whose stock box is `stock` and part
-    /// `part` ([`HeightFrom::bottom_z`]).
-    pub fn bottom_z(&self, stock: &crate::geom::Aabb, part: &crate::mesh::Mesh) -> Option<f64> {
-        self.bottom_from.bottom_z(self.bottom, stock, part)
+        ];
+        fields.extend(Heights::fields());
+        fields
     }
 
     /// Checks the settings, each named as the job file names it.
     pub fn validate(&self) -> Result<(), FieldError> {
         not_negative("allowance", self.allowance)?;
         not_negative("leaveStock", self.leave_stock)?;
-        if let Some(b) = self.bottom {
-            crate::machining::finite("bottom", b)?;
-        }
+        self.heights.validate()?;
         positive("grid", self.grid)?;
         crate::machining::angle("rampAngle", self.ramp_angle, 0.1, 90.0)
     }

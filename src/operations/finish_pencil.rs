@@ -57,6 +57,11 @@ pub struct FinishPencil {
     /// Cut only where the stock the earlier operations left stands above what this one
     /// leaves (by more than the job's gouge tolerance). Default value: false.
     pub rest_only: bool,
+    /// The heights it cuts between (what lies above its top or below its bottom is left),
+    /// its clearance and retract.
+    #[serde(flatten)]
+    #[ts(flatten)]
+    pub heights: crate::machining::settings::Heights,
 }
 
 /// The most parallel passes either side of a corner.
@@ -77,6 +82,7 @@ impl Default for FinishPencil {
             stay_down_max: None,
             entry: Entry::default(),
             rest_only: false,
+            heights: Default::default(),
         }
     }
 }
@@ -98,6 +104,7 @@ impl Operate for FinishPencil {
             F::length("stayDownMax", "Longest link that stays down", 0.0).empty("the tool's diameter"),
         ]);
         fields.extend(F::entry());
+        fields.extend(crate::machining::settings::Heights::fields());
         OperationForm::new("pencil: along the inside corners", fields).hint(
             "One pass along every inside corner and fillet tighter than the ball, where it touches two faces at once: what a raster or waterline finish leaves there. After a larger ball, with a smaller one.",
         )
@@ -108,6 +115,7 @@ impl Operate for FinishPencil {
     }
 
     fn validate(&self) -> Result<(), FieldError> {
+        self.heights.validate()?;
         crate::machining::angle("bend", self.bend, 1.0, 90.0)?;
         not_negative("allowance", self.allowance)?;
         positive("grid", self.grid)?;
@@ -180,6 +188,9 @@ impl Operate for FinishPencil {
         }
         let stock = ctx.stock;
         let region = Region::Rect { min: stock.min.truncate(), max: stock.max.truncate() };
+        let Some(runs) = self.heights.keep(&self.name, ctx, runs)? else {
+            return Ok(Planned::default());
+        };
         let bounds = ctx.node_bounds(request);
         let floor_surface = Floor { cl: &cl, allowance: self.allowance, region: &region, bounds: Some(bounds.as_ref()) };
         Ok(vec![ctx.link(&self.name, &tool, &runs, &floor_surface, self.entry, self.stay_down_max.unwrap_or(2.0 * profile.radius))].into())

@@ -59,6 +59,11 @@ pub struct FinishRaster {
     /// Cut only where the stock the earlier operations left stands above what this one
     /// leaves (by more than the job's gouge tolerance). Default value: false.
     pub rest_only: bool,
+    /// The heights it cuts between (what lies above its top or below its bottom is left),
+    /// its clearance and retract.
+    #[serde(flatten)]
+    #[ts(flatten)]
+    pub heights: crate::machining::settings::Heights,
     /// Only where the surface is no steeper than this (degrees from horizontal; waterline
     /// finishing takes the steeper areas). Default value: none (everywhere).
     pub slope_max: Option<f64>,
@@ -82,6 +87,7 @@ impl Default for FinishRaster {
             stay_down_max: None,
             entry: Entry::default(),
             rest_only: false,
+            heights: Default::default(),
             slope_max: None,
         }
     }
@@ -115,6 +121,7 @@ impl Operate for FinishRaster {
             F::length("stayDownMax", "Longest link that stays down", 0.0).empty("twice the step-over"),
         ]);
         fields.extend(F::entry());
+        fields.extend(crate::machining::settings::Heights::fields());
         OperationForm::new("finish by parallel passes", fields)
     }
 
@@ -123,6 +130,7 @@ impl Operate for FinishRaster {
     }
 
     fn validate(&self) -> Result<(), FieldError> {
+        self.heights.validate()?;
         positive("stepover", self.stepover)?;
         positive("grid", self.grid)?;
         not_negative("allowance", self.allowance)?;
@@ -178,6 +186,9 @@ impl Operate for FinishRaster {
                 return Ok(Planned::default());
             }
         }
+        let Some(runs) = self.heights.keep(&self.name, ctx, runs)? else {
+            return Ok(Planned::default());
+        };
         let bounds = ctx.node_bounds(request);
         let floor_surface = Floor { cl: &cl, allowance: self.allowance, region: &region, bounds: Some(bounds.as_ref()) };
         Ok(vec![ctx.link(&self.name, &tool, &runs, &floor_surface, self.entry, self.stay_down_max.unwrap_or(2.0 * self.stepover))].into())

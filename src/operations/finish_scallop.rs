@@ -57,6 +57,11 @@ pub struct FinishScallop {
     /// Cut only where the stock the earlier operations left stands above what this one
     /// leaves (by more than the job's gouge tolerance). Default value: false.
     pub rest_only: bool,
+    /// The heights it cuts between (what lies above its top or below its bottom is left),
+    /// its clearance and retract.
+    #[serde(flatten)]
+    #[ts(flatten)]
+    pub heights: crate::machining::settings::Heights,
     /// Only where the surface is no steeper than this (degrees from horizontal). Default
     /// value: none (everywhere).
     pub slope_max: Option<f64>,
@@ -77,6 +82,7 @@ impl Default for FinishScallop {
             stay_down_max: None,
             entry: Entry::default(),
             rest_only: false,
+            heights: Default::default(),
             slope_max: None,
         }
     }
@@ -108,6 +114,7 @@ impl Operate for FinishScallop {
             F::length("stayDownMax", "Longest link that stays down", 0.0).empty("twice the step"),
         ]);
         fields.extend(F::entry());
+        fields.extend(crate::machining::settings::Heights::fields());
         OperationForm::new("scallop: a constant cusp over the surface", fields).hint(
             "Passes offset from the area's edge across the surface, a step apart for the cusp height you ask: the same finish on steep and flat ground, in fewer passes than a raster finish fine enough for the steep.",
         )
@@ -118,6 +125,7 @@ impl Operate for FinishScallop {
     }
 
     fn validate(&self) -> Result<(), FieldError> {
+        self.heights.validate()?;
         positive("cusp", self.cusp)?;
         positive("grid", self.grid)?;
         not_negative("allowance", self.allowance)?;
@@ -186,6 +194,9 @@ impl Operate for FinishScallop {
                 return Ok(Planned::default());
             }
         }
+        let Some(runs) = self.heights.keep(&self.name, ctx, runs)? else {
+            return Ok(Planned::default());
+        };
         let bounds = ctx.node_bounds(request);
         let floor_surface = Floor { cl: &cl, allowance: self.allowance, region: &region, bounds: Some(bounds.as_ref()) };
         Ok(vec![ctx.link(&self.name, &tool, &runs, &floor_surface, self.entry, self.stay_down_max.unwrap_or(2.0 * step))].into())

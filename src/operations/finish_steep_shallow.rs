@@ -78,6 +78,11 @@ pub struct FinishSteepShallow {
     /// Cut only where the stock the earlier operations left stands above what this one
     /// leaves (by more than the job's gouge tolerance). Default value: false.
     pub rest_only: bool,
+    /// The heights it cuts between (what lies above its top or below its bottom is left),
+    /// its clearance and retract.
+    #[serde(flatten)]
+    #[ts(flatten)]
+    pub heights: crate::machining::settings::Heights,
 }
 
 impl Default for FinishSteepShallow {
@@ -98,6 +103,7 @@ impl Default for FinishSteepShallow {
             grid: 0.2,
             entry: Entry::default(),
             rest_only: false,
+            heights: Default::default(),
         }
     }
 }
@@ -130,6 +136,7 @@ impl Operate for FinishSteepShallow {
             F::check("restOnly", "only what earlier operations left (rest machining)"),
         ]);
         fields.extend(F::entry());
+        fields.extend(crate::machining::settings::Heights::fields());
         OperationForm::new("steep and shallow at one cusp", fields)
             .hint("Waterlines on the steep walls, scallop or parallel passes on the shallow ground, overlapping: the whole surface finished to one cusp height in one operation.")
     }
@@ -139,6 +146,7 @@ impl Operate for FinishSteepShallow {
     }
 
     fn validate(&self) -> Result<(), FieldError> {
+        self.heights.validate()?;
         positive("cusp", self.cusp)?;
         crate::machining::angle("slope", self.slope, 1.0, 89.0)?;
         not_negative("overlap", self.overlap)?;
@@ -232,6 +240,9 @@ impl Operate for FinishSteepShallow {
             ctx.note(&self.name, if self.rest_only { "the earlier operations left nothing for it to cut (rest only)" } else { "nothing to cut in its area" });
             return Ok(Planned::default());
         }
+        let Some(runs) = self.heights.keep(&self.name, ctx, runs)? else {
+            return Ok(Planned::default());
+        };
         let bounds = ctx.node_bounds(request);
         let floor_surface = Floor { cl: &cl, allowance: self.allowance, region: &region, bounds: Some(bounds.as_ref()) };
         Ok(vec![ctx.link(&self.name, &tool, &runs, &floor_surface, self.entry, 2.0 * profile.radius)].into())

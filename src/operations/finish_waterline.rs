@@ -17,7 +17,7 @@ use crate::geom::DVec2;
 use crate::machining::context::SurfaceRequest;
 use crate::machining::levels::{pack, RegionWork};
 use crate::machining::raster::{gradient, rest_only};
-use crate::machining::settings::{Direction, HeightFrom};
+use crate::machining::settings::{Direction, Heights};
 use crate::machining::waterline::{contours, heights, Spacing, LEAST_SCALLOP, SHORTEST};
 use crate::machining::{named_operation, not_negative, positive, Context, FieldError, Operate, Planned};
 use crate::progress::Progress;
@@ -58,11 +58,11 @@ pub struct FinishWaterline {
     /// leaves (by more than the job's gouge tolerance): after a larger ball, a smaller one
     /// takes only the corners it left. Default value: false.
     pub rest_only: bool,
-    /// The lowest level's height (mm from `bottomFrom`): no level below it. Default value:
-    /// none (down to the stock's bottom; the parting line where `bottomFrom` is it).
-    pub bottom: Option<f64>,
-    /// What `bottom` is measured from. Default value: zero.
-    pub bottom_from: HeightFrom,
+    /// The heights it cuts between (no level above its top or below its bottom), its
+    /// clearance and retract.
+    #[serde(flatten)]
+    #[ts(flatten)]
+    pub heights: Heights,
 }
 
 impl Default for FinishWaterline {
@@ -79,8 +79,7 @@ impl Default for FinishWaterline {
             grid: 0.25,
             entry: Entry::default(),
             rest_only: false,
-            bottom: None,
-            bottom_from: HeightFrom::Zero,
+            heights: Heights::default(),
         }
     }
 }
@@ -107,8 +106,8 @@ impl Operate for FinishWaterline {
             F::grid(),
             F::check("restOnly", "only what earlier operations left (rest machining)"),
         ]);
-        fields.extend(HeightFrom::bottom_fields());
         fields.extend(F::entry());
+        fields.extend(Heights::fields());
         OperationForm::new("finish steep walls in levels", fields)
     }
 
@@ -118,9 +117,7 @@ impl Operate for FinishWaterline {
 
     fn validate(&self) -> Result<(), FieldError> {
         positive("stepdown", self.stepdown)?;
-        if let Some(b) = self.bottom {
-            crate::machining::finite("bottom", b)?;
-        }
+        self.heights.validate()?;
         if let Some(h) = self.scallop {
             positive("scallop", h)?;
             if h < LEAST_SCALLOP {
@@ -176,10 +173,11 @@ impl Operate for FinishWaterline {
         let field = &cl.field;
         let slope = |p: DVec2| gradient(field, p) >= steep;
         let mut heights = heights(&self.name, field, floor, profile.radius, self.spacing())?;
-        if let Some(lowest) = self.bottom_from.bottom_z(self.bottom, &ctx.stock, &ctx.part) {
-            heights.retain(|&z| z >= lowest - 1e-9);
+        let (lowest, highest) = self.heights.window(&self.name, &ctx.stock, &ctx.part)?;
+        if lowest.is_some() || highest.is_some() {
+            heights.retain(|&z| z >= lowest.unwrap_or(f64::NEG_INFINITY) - 1e-9 && z <= highest.unwrap_or(f64::INFINITY) + 1e-9);
             if heights.is_empty() {
-                ctx.note(&self.name, format!("no level at or above its bottom height (Z{lowest:.3})"));
+                ctx.note(&self.name, format!("no level between its bottom and top heights (Z{:.3} to Z{:.3})", lowest.unwrap_or(ctx.stock.min.z), highest.unwrap_or(ctx.stock.max.z)));
                 return Ok(Planned::default());
             }
         }

@@ -48,7 +48,7 @@ pub use thread_mill::{Hand, ThreadMill};
 pub use vcarve::VCarve;
 
 pub use crate::machining::report::{LoadReport, StageReport, StageRole};
-pub use crate::machining::settings::{Direction, EntryKind, HeightFrom, LoadControl, Order, PocketPattern, Roughing, Steps};
+pub use crate::machining::settings::{Direction, EntryKind, HeightFrom, Heights, LoadControl, Order, PocketPattern, Roughing, Steps};
 
 macro_rules! operations {
     ($($(#[$doc:meta])* $variant:ident($options:ty) = $kind:literal,)*) => {
@@ -101,11 +101,24 @@ macro_rules! operations {
 
             /// The settings of one kind, read from `value`; what does not fit named by its field.
             fn read<T: serde::de::DeserializeOwned>(value: &serde_json::Value) -> Result<T, String> {
+                Operation::read_once::<T>(value).map_err(|e| {
+                    e.unwrap_or_else(|whole| {
+                        // A field of settings flattened into the kind's own (the heights, the
+                        // roughing kinds' shared ones) is named by reading them on their own.
+                        let named = |r: Result<(), Result<String, String>>| r.err().and_then(Result::ok);
+                        named(Operation::read_once::<crate::machining::settings::Heights>(value).map(drop))
+                            .or_else(|| named(Operation::read_once::<crate::machining::settings::Roughing>(value).map(drop)))
+                            .unwrap_or(whole)
+                    })
+                })
+            }
+
+            /// `read` without looking further: an error `Ok` where it names its field, `Err`
+            /// (the message alone) where a flattened field's path is lost.
+            fn read_once<T: serde::de::DeserializeOwned>(value: &serde_json::Value) -> Result<T, Result<String, String>> {
                 crate::error::read_value::<T>(value).map_err(|e| match e.path().to_string() {
-                    // A field of settings flattened into the kind's own (the roughing kinds'
-                    // shared ones) is named by reading them on their own.
-                    path if path == "." => Operation::read::<crate::machining::settings::Roughing>(value).err().unwrap_or_else(|| crate::error::plain(&e.inner().to_string())),
-                    path => format!("{path}: {}", crate::error::plain(&e.inner().to_string())),
+                    path if path == "." => Err(crate::error::plain(&e.inner().to_string())),
+                    path => Ok(format!("{path}: {}", crate::error::plain(&e.inner().to_string()))),
                 })
             }
 
@@ -196,6 +209,19 @@ impl Operation {
             Operation::RoughAdaptive(o) => Some(&o.roughing),
             Operation::RoughOctree(o) => Some(&o.roughing),
             _ => None,
+        }
+    }
+
+    /// The heights it cuts between and moves at, where its kind has them (the roughings and
+    /// the 3D finishings).
+    pub fn heights(&self) -> Option<&crate::machining::settings::Heights> {
+        match self {
+            Operation::FinishRaster(o) => Some(&o.heights),
+            Operation::FinishWaterline(o) => Some(&o.heights),
+            Operation::FinishPencil(o) => Some(&o.heights),
+            Operation::FinishScallop(o) => Some(&o.heights),
+            Operation::FinishSteepShallow(o) => Some(&o.heights),
+            _ => self.roughing().map(|r| &r.heights),
         }
     }
 

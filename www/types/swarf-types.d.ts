@@ -655,7 +655,44 @@ entry: Entry,
  * Cut only where the stock the earlier operations left stands above what this one
  * leaves (by more than the job's gouge tolerance). Default value: false.
  */
-restOnly: boolean, };
+restOnly: boolean, 
+/**
+ * The highest the tool's tip cuts (mm from `topFrom`): a roughing's first level is a
+ * step-down below it, a finishing leaves what lies above it. Default value: none (the
+ * stock's top).
+ */
+top: number | null, 
+/**
+ * What `top` is measured from. Default value: stockTop.
+ */
+topFrom: HeightFrom, 
+/**
+ * The lowest the tool's tip goes (mm from `bottomFrom`): the operation stops there, over
+ * the part and beside it, as one side of a part machined from both stops at its parting
+ * line and leaves the rest joined to the stock the vise grips. Default value: none (the
+ * stock's bottom; the parting line itself where `bottomFrom` is `partingLine`).
+ */
+bottom: number | null, 
+/**
+ * What `bottom` is measured from. Default value: zero.
+ */
+bottomFrom: HeightFrom, 
+/**
+ * The height the operation's rapids cross at (mm from `clearanceFrom`), above the stock
+ * and the fixtures. Default value: none (the job's, `stock.clearance` above the stock's
+ * top).
+ */
+clearance: number | null, 
+/**
+ * What `clearance` is measured from. Default value: stockTop.
+ */
+clearanceFrom: HeightFrom, 
+/**
+ * The gap above the material where the operation's rapid descents stop and the feed
+ * begins, and over which its short retracts travel (mm). Default value: none (the job's,
+ * `stock.retract`).
+ */
+retract: number | null, };
 
 /**
  * Raster finishing over the CL z-map (seed 001).
@@ -726,7 +763,44 @@ restOnly: boolean,
  * Only where the surface is no steeper than this (degrees from horizontal; waterline
  * finishing takes the steeper areas). Default value: none (everywhere).
  */
-slopeMax: number | null, };
+slopeMax: number | null, 
+/**
+ * The highest the tool's tip cuts (mm from `topFrom`): a roughing's first level is a
+ * step-down below it, a finishing leaves what lies above it. Default value: none (the
+ * stock's top).
+ */
+top: number | null, 
+/**
+ * What `top` is measured from. Default value: stockTop.
+ */
+topFrom: HeightFrom, 
+/**
+ * The lowest the tool's tip goes (mm from `bottomFrom`): the operation stops there, over
+ * the part and beside it, as one side of a part machined from both stops at its parting
+ * line and leaves the rest joined to the stock the vise grips. Default value: none (the
+ * stock's bottom; the parting line itself where `bottomFrom` is `partingLine`).
+ */
+bottom: number | null, 
+/**
+ * What `bottom` is measured from. Default value: zero.
+ */
+bottomFrom: HeightFrom, 
+/**
+ * The height the operation's rapids cross at (mm from `clearanceFrom`), above the stock
+ * and the fixtures. Default value: none (the job's, `stock.clearance` above the stock's
+ * top).
+ */
+clearance: number | null, 
+/**
+ * What `clearance` is measured from. Default value: stockTop.
+ */
+clearanceFrom: HeightFrom, 
+/**
+ * The gap above the material where the operation's rapid descents stop and the feed
+ * begins, and over which its short retracts travel (mm). Default value: none (the job's,
+ * `stock.retract`).
+ */
+retract: number | null, };
 
 /**
  * Scallop finishing: passes a step apart over the surface for a given cusp height.
@@ -786,7 +860,44 @@ restOnly: boolean,
  * Only where the surface is no steeper than this (degrees from horizontal). Default
  * value: none (everywhere).
  */
-slopeMax: number | null, };
+slopeMax: number | null, 
+/**
+ * The highest the tool's tip cuts (mm from `topFrom`): a roughing's first level is a
+ * step-down below it, a finishing leaves what lies above it. Default value: none (the
+ * stock's top).
+ */
+top: number | null, 
+/**
+ * What `top` is measured from. Default value: stockTop.
+ */
+topFrom: HeightFrom, 
+/**
+ * The lowest the tool's tip goes (mm from `bottomFrom`): the operation stops there, over
+ * the part and beside it, as one side of a part machined from both stops at its parting
+ * line and leaves the rest joined to the stock the vise grips. Default value: none (the
+ * stock's bottom; the parting line itself where `bottomFrom` is `partingLine`).
+ */
+bottom: number | null, 
+/**
+ * What `bottom` is measured from. Default value: zero.
+ */
+bottomFrom: HeightFrom, 
+/**
+ * The height the operation's rapids cross at (mm from `clearanceFrom`), above the stock
+ * and the fixtures. Default value: none (the job's, `stock.clearance` above the stock's
+ * top).
+ */
+clearance: number | null, 
+/**
+ * What `clearance` is measured from. Default value: stockTop.
+ */
+clearanceFrom: HeightFrom, 
+/**
+ * The gap above the material where the operation's rapid descents stop and the feed
+ * begins, and over which its short retracts travel (mm). Default value: none (the job's,
+ * `stock.retract`).
+ */
+retract: number | null, };
 
 /**
  * Steep-and-shallow finishing: waterline on the steep, scallop or raster on the shallow.
@@ -853,7 +964,44 @@ entry: Entry,
  * Cut only where the stock the earlier operations left stands above what this one
  * leaves (by more than the job's gouge tolerance). Default value: false.
  */
-restOnly: boolean, };
+restOnly: boolean, 
+/**
+ * The highest the tool's tip cuts (mm from `topFrom`): a roughing's first level is a
+ * step-down below it, a finishing leaves what lies above it. Default value: none (the
+ * stock's top).
+ */
+top: number | null, 
+/**
+ * What `top` is measured from. Default value: stockTop.
+ */
+topFrom: HeightFrom, 
+/**
+ * The lowest the tool's tip goes (mm from `bottomFrom`): the operation stops there, over
+ * the part and beside it, as one side of a part machined from both stops at its parting
+ * line and leaves the rest joined to the stock the vise grips. Default value: none (the
+ * stock's bottom; the parting line itself where `bottomFrom` is `partingLine`).
+ */
+bottom: number | null, 
+/**
+ * What `bottom` is measured from. Default value: zero.
+ */
+bottomFrom: HeightFrom, 
+/**
+ * The height the operation's rapids cross at (mm from `clearanceFrom`), above the stock
+ * and the fixtures. Default value: none (the job's, `stock.clearance` above the stock's
+ * top).
+ */
+clearance: number | null, 
+/**
+ * What `clearance` is measured from. Default value: stockTop.
+ */
+clearanceFrom: HeightFrom, 
+/**
+ * The gap above the material where the operation's rapid descents stop and the feed
+ * begins, and over which its short retracts travel (mm). Default value: none (the job's,
+ * `stock.retract`).
+ */
+retract: number | null, };
 
 /**
  * Waterline finishing.
@@ -903,14 +1051,42 @@ grid: number, entry: Entry,
  */
 restOnly: boolean, 
 /**
- * The lowest level's height (mm from `bottomFrom`): no level below it. Default value:
- * none (down to the stock's bottom; the parting line where `bottomFrom` is it).
+ * The highest the tool's tip cuts (mm from `topFrom`): a roughing's first level is a
+ * step-down below it, a finishing leaves what lies above it. Default value: none (the
+ * stock's top).
+ */
+top: number | null, 
+/**
+ * What `top` is measured from. Default value: stockTop.
+ */
+topFrom: HeightFrom, 
+/**
+ * The lowest the tool's tip goes (mm from `bottomFrom`): the operation stops there, over
+ * the part and beside it, as one side of a part machined from both stops at its parting
+ * line and leaves the rest joined to the stock the vise grips. Default value: none (the
+ * stock's bottom; the parting line itself where `bottomFrom` is `partingLine`).
  */
 bottom: number | null, 
 /**
  * What `bottom` is measured from. Default value: zero.
  */
-bottomFrom: HeightFrom, };
+bottomFrom: HeightFrom, 
+/**
+ * The height the operation's rapids cross at (mm from `clearanceFrom`), above the stock
+ * and the fixtures. Default value: none (the job's, `stock.clearance` above the stock's
+ * top).
+ */
+clearance: number | null, 
+/**
+ * What `clearance` is measured from. Default value: stockTop.
+ */
+clearanceFrom: HeightFrom, 
+/**
+ * The gap above the material where the operation's rapid descents stop and the feed
+ * begins, and over which its short retracts travel (mm). Default value: none (the job's,
+ * `stock.retract`).
+ */
+retract: number | null, };
 
 /**
  * A box no tool may enter: a clamp, a plate, a stop.
@@ -1875,7 +2051,17 @@ rampAngle: number,
  */
 rest: boolean, 
 /**
- * The lowest the tool's tip goes (mm from `bottomFrom`): the roughing stops there, over
+ * The highest the tool's tip cuts (mm from `topFrom`): a roughing's first level is a
+ * step-down below it, a finishing leaves what lies above it. Default value: none (the
+ * stock's top).
+ */
+top: number | null, 
+/**
+ * What `top` is measured from. Default value: stockTop.
+ */
+topFrom: HeightFrom, 
+/**
+ * The lowest the tool's tip goes (mm from `bottomFrom`): the operation stops there, over
  * the part and beside it, as one side of a part machined from both stops at its parting
  * line and leaves the rest joined to the stock the vise grips. Default value: none (the
  * stock's bottom; the parting line itself where `bottomFrom` is `partingLine`).
@@ -1884,7 +2070,23 @@ bottom: number | null,
 /**
  * What `bottom` is measured from. Default value: zero.
  */
-bottomFrom: HeightFrom, };
+bottomFrom: HeightFrom, 
+/**
+ * The height the operation's rapids cross at (mm from `clearanceFrom`), above the stock
+ * and the fixtures. Default value: none (the job's, `stock.clearance` above the stock's
+ * top).
+ */
+clearance: number | null, 
+/**
+ * What `clearance` is measured from. Default value: stockTop.
+ */
+clearanceFrom: HeightFrom, 
+/**
+ * The gap above the material where the operation's rapid descents stop and the feed
+ * begins, and over which its short retracts travel (mm). Default value: none (the job's,
+ * `stock.retract`).
+ */
+retract: number | null, };
 
 /**
  * Octree multi-tool roughing.
@@ -1944,7 +2146,17 @@ rampAngle: number,
  */
 rest: boolean, 
 /**
- * The lowest the tool's tip goes (mm from `bottomFrom`): the roughing stops there, over
+ * The highest the tool's tip cuts (mm from `topFrom`): a roughing's first level is a
+ * step-down below it, a finishing leaves what lies above it. Default value: none (the
+ * stock's top).
+ */
+top: number | null, 
+/**
+ * What `top` is measured from. Default value: stockTop.
+ */
+topFrom: HeightFrom, 
+/**
+ * The lowest the tool's tip goes (mm from `bottomFrom`): the operation stops there, over
  * the part and beside it, as one side of a part machined from both stops at its parting
  * line and leaves the rest joined to the stock the vise grips. Default value: none (the
  * stock's bottom; the parting line itself where `bottomFrom` is `partingLine`).
@@ -1953,7 +2165,23 @@ bottom: number | null,
 /**
  * What `bottom` is measured from. Default value: zero.
  */
-bottomFrom: HeightFrom, };
+bottomFrom: HeightFrom, 
+/**
+ * The height the operation's rapids cross at (mm from `clearanceFrom`), above the stock
+ * and the fixtures. Default value: none (the job's, `stock.clearance` above the stock's
+ * top).
+ */
+clearance: number | null, 
+/**
+ * What `clearance` is measured from. Default value: stockTop.
+ */
+clearanceFrom: HeightFrom, 
+/**
+ * The gap above the material where the operation's rapid descents stop and the feed
+ * begins, and over which its short retracts travel (mm). Default value: none (the job's,
+ * `stock.retract`).
+ */
+retract: number | null, };
 
 /**
  * Zigzag roughing (seed 004).
@@ -2035,7 +2263,17 @@ rampAngle: number,
  */
 rest: boolean, 
 /**
- * The lowest the tool's tip goes (mm from `bottomFrom`): the roughing stops there, over
+ * The highest the tool's tip cuts (mm from `topFrom`): a roughing's first level is a
+ * step-down below it, a finishing leaves what lies above it. Default value: none (the
+ * stock's top).
+ */
+top: number | null, 
+/**
+ * What `top` is measured from. Default value: stockTop.
+ */
+topFrom: HeightFrom, 
+/**
+ * The lowest the tool's tip goes (mm from `bottomFrom`): the operation stops there, over
  * the part and beside it, as one side of a part machined from both stops at its parting
  * line and leaves the rest joined to the stock the vise grips. Default value: none (the
  * stock's bottom; the parting line itself where `bottomFrom` is `partingLine`).
@@ -2044,7 +2282,23 @@ bottom: number | null,
 /**
  * What `bottom` is measured from. Default value: zero.
  */
-bottomFrom: HeightFrom, };
+bottomFrom: HeightFrom, 
+/**
+ * The height the operation's rapids cross at (mm from `clearanceFrom`), above the stock
+ * and the fixtures. Default value: none (the job's, `stock.clearance` above the stock's
+ * top).
+ */
+clearance: number | null, 
+/**
+ * What `clearance` is measured from. Default value: stockTop.
+ */
+clearanceFrom: HeightFrom, 
+/**
+ * The gap above the material where the operation's rapid descents stop and the feed
+ * begins, and over which its short retracts travel (mm). Default value: none (the job's,
+ * `stock.retract`).
+ */
+retract: number | null, };
 
 /**
  * Z-level roughing.
@@ -2111,7 +2365,17 @@ rampAngle: number,
  */
 rest: boolean, 
 /**
- * The lowest the tool's tip goes (mm from `bottomFrom`): the roughing stops there, over
+ * The highest the tool's tip cuts (mm from `topFrom`): a roughing's first level is a
+ * step-down below it, a finishing leaves what lies above it. Default value: none (the
+ * stock's top).
+ */
+top: number | null, 
+/**
+ * What `top` is measured from. Default value: stockTop.
+ */
+topFrom: HeightFrom, 
+/**
+ * The lowest the tool's tip goes (mm from `bottomFrom`): the operation stops there, over
  * the part and beside it, as one side of a part machined from both stops at its parting
  * line and leaves the rest joined to the stock the vise grips. Default value: none (the
  * stock's bottom; the parting line itself where `bottomFrom` is `partingLine`).
@@ -2120,7 +2384,23 @@ bottom: number | null,
 /**
  * What `bottom` is measured from. Default value: zero.
  */
-bottomFrom: HeightFrom, };
+bottomFrom: HeightFrom, 
+/**
+ * The height the operation's rapids cross at (mm from `clearanceFrom`), above the stock
+ * and the fixtures. Default value: none (the job's, `stock.clearance` above the stock's
+ * top).
+ */
+clearance: number | null, 
+/**
+ * What `clearance` is measured from. Default value: stockTop.
+ */
+clearanceFrom: HeightFrom, 
+/**
+ * The gap above the material where the operation's rapid descents stop and the feed
+ * begins, and over which its short retracts travel (mm). Default value: none (the job's,
+ * `stock.retract`).
+ */
+retract: number | null, };
 
 /**
  * One setup of a part machined from more than one side.
