@@ -166,3 +166,20 @@ fn heights_that_leave_nothing_are_refused() {
     let e = Operation::from_json(&bad).unwrap_err();
     assert!(e.starts_with("top"), "{e}");
 }
+
+/// A height from a point picked on the part is measured from the point's Z: a roughing's
+/// bottom 9 mm under a point at Z-3 is the same program as one at Z-12 from the zero; a height
+/// from a point with none picked is refused naming its field.
+#[test]
+fn a_height_from_a_picked_point_is_from_its_z() {
+    let program = |heights: Heights| {
+        let mut job = Job::demo();
+        job.operations = vec![Operation::RoughZlevel(RoughZlevel { roughing: Roughing { heights, ..Roughing::default() }, ..RoughZlevel::default() })];
+        job::run(&job, demo_part(), &mut Progress::none()).map(|out| out.gcode.lines().filter(|l| !l.starts_with('(')).collect::<Vec<_>>().join("\n"))
+    };
+    let picked = program(Heights { bottom: Some(-9.0), bottom_from: HeightFrom::Point, point: Some([10.0, -4.0, -3.0]), ..Heights::default() }).unwrap();
+    let zero = program(Heights { bottom: Some(-12.0), bottom_from: HeightFrom::Zero, ..Heights::default() }).unwrap();
+    assert!(picked == zero, "the programs differ");
+    let e = program(Heights { bottom: Some(-9.0), bottom_from: HeightFrom::Point, ..Heights::default() }).unwrap_err().to_string();
+    assert!(e.contains("bottomFrom") && e.contains("none is picked"), "{e}");
+}

@@ -10,7 +10,7 @@ import { valueOf, fillFields, message, fieldError, check, markProblems } from '.
 import { GcodePane } from './gcode.js';
 import { sim, setTime, step, play, drawMrr, toLine, showRestArea } from './simulation.js';
 import { fillTools, fillToolChoices, showSpeeds, onHolderField, addTool, deleteTool, exportTools, importTools, renumber } from './tools.js';
-import { fillOps, fillKinds, addOperation, onOpList, showPicked, showHoles, pickInView, findHoles, onHoleList, presetHoles, zeroOnHole } from './operations.js';
+import { fillOps, fillKinds, addOperation, onOpList, showPicked, showHoles, pickInView, findHoles, onHoleList, presetHoles, zeroOnHole, armPointPick } from './operations.js';
 import { fillSetups, addSetup, removeSetup, onSetupTabs, onSetupField, showHeld, restage, playSetup } from './setups.js';
 import { setKind, showPart, takeFile, fillPart, freshSetup, showSizes } from './part.js';
 import { pageUnits, setPageUnits } from './units.js';
@@ -294,6 +294,7 @@ $('setup-add').addEventListener('click', addSetup);
 $('setup-remove').addEventListener('click', removeSetup);
 $('setup-editor').addEventListener('change', (e) => onSetupField(e.target));
 $('op-add').addEventListener('click', () => addOperation($('op-kind').value));
+$('op-fields').addEventListener('click', (e) => { if (e.target.id === 'op-pick-point') armPointPick(); });
 $('find-holes').addEventListener('click', findHoles);
 $('hole-list').addEventListener('click', onHoleList);
 $('hole-preset').addEventListener('click', presetHoles);

@@ -32,7 +32,12 @@ export function fillOps() {
   fillFields($('op-fields'), op);
   // The heights are open where the operation has any of its own.
   const heights = $('op-fields').querySelector('details.heights');
-  if (heights) heights.open = HEIGHT_KEYS.some((k) => op[k] != null && !k.endsWith('From')) || op.bottomFrom === 'partingLine';
+  if (heights) {
+    const froms = [op.topFrom, op.bottomFrom, op.clearanceFrom];
+    heights.open = HEIGHT_KEYS.some((k) => op[k] != null && !k.endsWith('From')) || froms.includes('partingLine') || froms.includes('point') || op.point != null || state.pickingPoint;
+    const [px, py, pz] = (op.point ?? []).map((v) => units.place(v));
+    $('op-point').textContent = state.pickingPoint ? 'click the part in the view' : op.point ? `picked: X${px} Y${py} Z${pz}` : 'none picked';
+  }
   // A cut through the sheet goes past its bottom by the breakthrough (0.2 mm).
   const through = $('through-depth');
   if (through) through.textContent = `${units.place(Number(state.jobs.drawing.drawing.thickness) + 0.2)} ${units.lengthUnit()}`;
@@ -119,7 +124,11 @@ function buildForm(kind) {
     details.className = 'heights';
     const summary = document.createElement('summary');
     summary.textContent = 'Heights: top, bottom (the parting line), clearance, retract';
-    details.append(summary, ...form.fields.filter((f) => HEIGHT_KEYS.includes(f.key)).map(fieldElement));
+    // A height from a point picked on the part: the button arms the next click in the view.
+    const pick = document.createElement('div');
+    pick.className = 'pick-point';
+    pick.innerHTML = '<button type="button" id="op-pick-point" title="then click the part in the view: a height \'from a point picked on the part\' is measured from its Z">Pick a point on the part</button> <span id="op-point"></span>';
+    details.append(summary, ...form.fields.filter((f) => HEIGHT_KEYS.includes(f.key)).map(fieldElement), pick);
     own.push(details);
   }
   box.replaceChildren(...own);
@@ -130,6 +139,13 @@ function buildForm(kind) {
   if (form.picks === 'holes') box.insertBefore(holes, [...box.children].find((l) => !['name', 'tool'].includes(l.querySelector('[data-key]')?.dataset.key)) ?? null);
   units.relabel(box);
   hooks.fillToolChoices?.();
+}
+
+// The heights' "Pick a point on the part": the next click on the part in the view picks it.
+export function armPointPick() {
+  state.pickingPoint = true;
+  fillOps();
+  message('Click the part in the view to pick the point.', 'note');
 }
 
 export function addOperation(kind) {
@@ -357,6 +373,16 @@ function edgeAt(x, y, reach = 8) {
 // loops.
 export function pickInView(x, y) {
   const op = selectedOp(), mode = modeOf(op);
+  if (state.pickingPoint && op && !state.running) {
+    const hit = state.viewer.pickSurface(x, y);
+    if (!hit) { message('No part under the pointer: click on the part to pick the point its heights are measured from.', 'note'); return; }
+    state.pickingPoint = false;
+    op.point = hit.map((v) => Math.round(v * 1000) / 1000);
+    store();
+    fillOps();
+    message(`${op.name}: the point picked at X${units.place(op.point[0])} Y${units.place(op.point[1])} Z${units.place(op.point[2])}; a height 'from a point picked on the part' is measured from its Z`, 'note');
+    return;
+  }
   if (mode && !state.running) {
     const k = mode === 'edges' ? edgeAt(x, y) : holeAt(x, y);
     if (k !== null) { toggleHole(op, k); return; }

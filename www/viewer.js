@@ -230,7 +230,7 @@ export class Viewer {
     }
     this.dropPart();
     this.partSource = source;
-    this.part = { position: this.buffer(part.positions), normal: this.buffer(part.normals), count: part.positions.length / 3, drawn: drawnShape(part.positions) };
+    this.part = { position: this.buffer(part.positions), normal: this.buffer(part.normals), count: part.positions.length / 3, drawn: drawnShape(part.positions), positions: part.positions };
     this.setGrid(part.bounds);
     if (frame) this.frame(part.bounds);
     this.draw();
@@ -485,6 +485,37 @@ export class Viewer {
     const w = m[3] * p[0] + m[7] * p[1] + m[11] * p[2] + m[15];
     if (!(w > 0)) return null;
     return [((x / w + 1) / 2) * this.canvas.clientWidth, ((1 - y / w) / 2) * this.canvas.clientHeight];
+  }
+
+  // The point of the part under the canvas point (x, y) in CSS pixels, nearest the eye, in
+  // the part's coordinates as drawn (mm), or null off the part: each facet projected, the
+  // point found in it by its screen barycentres corrected for perspective.
+  pickSurface(x, y) {
+    const p = this.part?.positions;
+    if (!p) return null;
+    const m = this.matrix(), W = this.canvas.clientWidth, H = this.canvas.clientHeight;
+    const clip = (k) => {
+      const [px, py, pz] = [p[k], p[k + 1], p[k + 2]];
+      const w = m[3] * px + m[7] * py + m[11] * pz + m[15];
+      return [((m[0] * px + m[4] * py + m[8] * pz + m[12]) / w + 1) / 2 * W, (1 - (m[1] * px + m[5] * py + m[9] * pz + m[13]) / w) / 2 * H, w];
+    };
+    let best = null, nearest = Infinity;
+    for (let k = 0; k + 9 <= p.length; k += 9) {
+      const a = clip(k), b = clip(k + 3), c = clip(k + 6);
+      if (!(a[2] > 0 && b[2] > 0 && c[2] > 0)) continue;
+      const d = (b[1] - c[1]) * (a[0] - c[0]) + (c[0] - b[0]) * (a[1] - c[1]);
+      if (Math.abs(d) < 1e-12) continue;
+      const l0 = ((b[1] - c[1]) * (x - c[0]) + (c[0] - b[0]) * (y - c[1])) / d;
+      const l1 = ((c[1] - a[1]) * (x - c[0]) + (a[0] - c[0]) * (y - c[1])) / d;
+      const l2 = 1 - l0 - l1;
+      if (l0 < 0 || l1 < 0 || l2 < 0) continue;
+      // Perspective-correct weights, and the depth (the eye's w) they give.
+      const q = [l0 / a[2], l1 / b[2], l2 / c[2]], sum = q[0] + q[1] + q[2], depth = 1 / sum;
+      if (depth >= nearest) continue;
+      nearest = depth;
+      best = [0, 1, 2].map((i) => (q[0] * p[k + i] + q[1] * p[k + 3 + i] + q[2] * p[k + 6 + i]) / sum);
+    }
+    return best;
   }
 
   clearPaths() {

@@ -120,8 +120,11 @@ pub struct OperationForm {
 impl OperationForm {
     /// A form titled `title` with `fields` (its kind and what it applies to filled in from the
     /// operation's list).
+    /// A kind with the heights ([`super::settings::Heights::fields`]) leaves out their picked
+    /// point: the page picks it on the part under its heights.
     pub fn new(title: &'static str, fields: Vec<FormField>) -> Self {
-        OperationForm { kind: "", title, hint: None, applies: Applies::Either, picks: None, fields, kept_out: Vec::new() }
+        let kept_out = if fields.iter().any(|f| f.key == "topFrom") { vec!["point"] } else { Vec::new() };
+        OperationForm { kind: "", title, hint: None, applies: Applies::Either, picks: None, fields, kept_out }
     }
 
     pub fn hint(mut self, hint: &'static str) -> Self {
@@ -136,7 +139,7 @@ impl OperationForm {
 
     /// Settings left to the job file.
     pub fn kept_out(mut self, keys: &[&'static str]) -> Self {
-        self.kept_out = keys.to_vec();
+        self.kept_out.extend_from_slice(keys);
         self
     }
 }

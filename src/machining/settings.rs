@@ -116,6 +116,9 @@ pub enum HeightFrom {
     /// ([`crate::mesh::Mesh::widest_section`]): where a part machined from both sides is
     /// parted, each side cut down to it from its own face.
     PartingLine,
+    /// A point picked on the part (the operation's `point`, in the setup's program
+    /// coordinates as the page shows the part): its height.
+    Point,
 }
 
 impl HeightFrom {
@@ -130,17 +133,20 @@ impl HeightFrom {
             HeightFrom::PartTop => boxed.max.z,
             HeightFrom::PartBottom => boxed.min.z,
             HeightFrom::PartingLine => part.widest_section().unwrap_or(boxed.min.z),
+            // A point's height is its own (`Heights::from_z`); without one, the zero's.
+            HeightFrom::Point => 0.0,
         }
     }
 
     /// The choices of a form's "from" field.
-    pub const CHOICES: [(&'static str, &'static str); 6] = [
+    pub const CHOICES: [(&'static str, &'static str); 7] = [
         ("zero", "the work zero (Z0)"),
         ("stockTop", "the stock's top"),
         ("stockBottom", "the stock's bottom"),
         ("partTop", "the part's top"),
         ("partBottom", "the part's bottom"),
         ("partingLine", "the parting line"),
+        ("point", "a point picked on the part"),
     ];
 }
 
@@ -175,28 +181,40 @@ pub struct Heights {
     /// begins, and over which its short retracts travel (mm). Default value: none (the job's,
     /// `stock.retract`).
     pub retract: Option<f64>,
+    /// The point a height `…From: point` is measured from: `[x, y, z]` (mm) in the setup's
+    /// program coordinates, as the page picks it on the part it shows. Default value: none.
+    pub point: Option<[f64; 3]>,
 }
 
 impl Default for Heights {
     fn default() -> Self {
-        Heights { top: None, top_from: HeightFrom::StockTop, bottom: None, bottom_from: HeightFrom::Zero, clearance: None, clearance_from: HeightFrom::StockTop, retract: None }
+        Heights { top: None, top_from: HeightFrom::StockTop, bottom: None, bottom_from: HeightFrom::Zero, clearance: None, clearance_from: HeightFrom::StockTop, retract: None, point: None }
     }
 }
 
 impl Heights {
+    /// The height `from` names in a program whose stock box is `stock` and part `part`: the
+    /// picked point's own for [`HeightFrom::Point`].
+    pub fn from_z(&self, from: HeightFrom, stock: &crate::geom::Aabb, part: &crate::mesh::Mesh) -> f64 {
+        match (from, self.point) {
+            (HeightFrom::Point, Some(p)) => p[2],
+            (from, _) => from.z(stock, part),
+        }
+    }
+
     /// The lowest tip height the operation may cut to in a program whose stock box is `stock`
     /// and part `part`: 0 from the parting line where only that is given; none without either.
     pub fn bottom_z(&self, stock: &crate::geom::Aabb, part: &crate::mesh::Mesh) -> Option<f64> {
         match (self.bottom, self.bottom_from) {
             (None, HeightFrom::PartingLine) => Some(HeightFrom::PartingLine.z(stock, part)),
-            (b, from) => b.map(|b| from.z(stock, part) + b),
+            (b, from) => b.map(|b| self.from_z(from, stock, part) + b),
         }
     }
 
     /// The highest tip height the operation cuts at: none without a top height (the stock's
     /// top).
     pub fn top_z(&self, stock: &crate::geom::Aabb, part: &crate::mesh::Mesh) -> Option<f64> {
-        self.top.map(|t| self.top_from.z(stock, part) + t)
+        self.top.map(|t| self.from_z(self.top_from, stock, part) + t)
     }
 
     /// The tip heights the operation cuts between, `(bottom, top)`, either open; an error
@@ -233,7 +251,7 @@ impl Heights {
     ) -> crate::error::Result<crate::machining::context::SafeHeights> {
         let mut safe = job;
         if let Some(c) = self.clearance {
-            let z = self.clearance_from.z(stock, part) + c;
+            let z = self.from_z(self.clearance_from, stock, part) + c;
             if z <= lowest + 1e-6 {
                 return Err(crate::error::Error::operation(
                     op,
@@ -315,6 +333,20 @@ impl Heights {
         }
         if let Some(r) = self.retract {
             positive("retract", r)?;
+        }
+        match self.point {
+            Some(p) if !p.iter().all(|v| v.is_finite()) => return Err(FieldError { field: "point", message: "is three finite numbers, [x, y, z] in mm".into() }),
+            None if [self.top_from, self.bottom_from, self.clearance_from].contains(&HeightFrom::Point) => {
+                let field = if self.top_from == HeightFrom::Point {
+                    "topFrom"
+                } else if self.bottom_from == HeightFrom::Point {
+                    "bottomFrom"
+                } else {
+                    "clearanceFrom"
+                };
+                return Err(FieldError { field, message: "is a picked point, but none is picked: pick one on the part (the operation's point, [x, y, z])".into() });
+            }
+            _ => {}
         }
         Ok(())
     }

@@ -2098,3 +2098,30 @@ test('before Generate the view shows the stock, the vise and the work zero where
   assert.deepEqual(errors, []);
   await context.close();
 });
+
+test('a height from a point picked on the part: the heights\' button arms the next click on the part in the view, which sets the operation\'s point where the part is under it', async () => {
+  const { page, context, errors } = await openPage();
+  await tab(page, 'ops');
+  await page.click('#op-list li:nth-child(1) .op-name');
+  await page.click('#op-fields details.heights > summary');
+  await page.click('#op-pick-point');
+  assert.match(await page.textContent('#op-point'), /click the part/);
+  // The middle of the view, where the framed part is.
+  const box = await page.locator('#view').boundingBox();
+  const [cx, cy] = [box.width / 2, box.height / 2];
+  await page.mouse.click(box.x + cx, box.y + cy);
+  await page.waitForFunction(() => Array.isArray(window.swarf.jobs.part.operations[0].point));
+  const [point, bounds, seen] = await page.evaluate(() => {
+    const p = window.swarf.jobs.part.operations[0].point;
+    return [p, window.swarf.part.bounds, window.swarfView.project(p)];
+  });
+  // On the part, and where the click was.
+  for (let i = 0; i < 3; i++) assert.ok(point[i] >= bounds[i] - 1e-3 && point[i] <= bounds[i + 3] + 1e-3, `the point ${point} outside the part's box ${bounds}`);
+  assert.ok(Math.hypot(seen[0] - cx, seen[1] - cy) < 1.5, `the point shows at ${seen}, the click at ${[cx, cy]}`);
+  assert.match(await page.textContent('#op-point'), /^picked: X-?[\d.]+ Y-?[\d.]+ Z-?[\d.]+$/);
+  // Measured from it: "Bottom from" a picked point.
+  await page.selectOption('select[name=op-bottomFrom]', 'point');
+  await page.waitForFunction(() => window.swarf.jobs.part.operations[0].bottomFrom === 'point');
+  assert.deepEqual(errors, []);
+  await context.close();
+});

@@ -692,7 +692,12 @@ clearanceFrom: HeightFrom,
  * begins, and over which its short retracts travel (mm). Default value: none (the job's,
  * `stock.retract`).
  */
-retract: number | null, };
+retract: number | null, 
+/**
+ * The point a height `…From: point` is measured from: `[x, y, z]` (mm) in the setup's
+ * program coordinates, as the page picks it on the part it shows. Default value: none.
+ */
+point: [number, number, number] | null, };
 
 /**
  * Raster finishing over the CL z-map (seed 001).
@@ -800,7 +805,12 @@ clearanceFrom: HeightFrom,
  * begins, and over which its short retracts travel (mm). Default value: none (the job's,
  * `stock.retract`).
  */
-retract: number | null, };
+retract: number | null, 
+/**
+ * The point a height `…From: point` is measured from: `[x, y, z]` (mm) in the setup's
+ * program coordinates, as the page picks it on the part it shows. Default value: none.
+ */
+point: [number, number, number] | null, };
 
 /**
  * Scallop finishing: passes a step apart over the surface for a given cusp height.
@@ -897,7 +907,12 @@ clearanceFrom: HeightFrom,
  * begins, and over which its short retracts travel (mm). Default value: none (the job's,
  * `stock.retract`).
  */
-retract: number | null, };
+retract: number | null, 
+/**
+ * The point a height `…From: point` is measured from: `[x, y, z]` (mm) in the setup's
+ * program coordinates, as the page picks it on the part it shows. Default value: none.
+ */
+point: [number, number, number] | null, };
 
 /**
  * Steep-and-shallow finishing: waterline on the steep, scallop or raster on the shallow.
@@ -1001,7 +1016,12 @@ clearanceFrom: HeightFrom,
  * begins, and over which its short retracts travel (mm). Default value: none (the job's,
  * `stock.retract`).
  */
-retract: number | null, };
+retract: number | null, 
+/**
+ * The point a height `…From: point` is measured from: `[x, y, z]` (mm) in the setup's
+ * program coordinates, as the page picks it on the part it shows. Default value: none.
+ */
+point: [number, number, number] | null, };
 
 /**
  * Waterline finishing.
@@ -1086,7 +1106,12 @@ clearanceFrom: HeightFrom,
  * begins, and over which its short retracts travel (mm). Default value: none (the job's,
  * `stock.retract`).
  */
-retract: number | null, };
+retract: number | null, 
+/**
+ * The point a height `…From: point` is measured from: `[x, y, z]` (mm) in the setup's
+ * program coordinates, as the page picks it on the part it shows. Default value: none.
+ */
+point: [number, number, number] | null, };
 
 /**
  * A box no tool may enter: a clamp, a plate, a stop.
@@ -1207,7 +1232,7 @@ export type Hand = "right" | "left";
  * Heights tab has them: the setup's work zero, the stock's top or bottom, or the part's top or
  * bottom as the setup holds it.
  */
-export type HeightFrom = "zero" | "stockTop" | "stockBottom" | "partTop" | "partBottom" | "partingLine";
+export type HeightFrom = "zero" | "stockTop" | "stockBottom" | "partTop" | "partBottom" | "partingLine" | "point";
 
 /**
  * A holder: its sections from the face the tool stands out of (the collet nut's) upward.
@@ -2086,7 +2111,12 @@ clearanceFrom: HeightFrom,
  * begins, and over which its short retracts travel (mm). Default value: none (the job's,
  * `stock.retract`).
  */
-retract: number | null, };
+retract: number | null, 
+/**
+ * The point a height `…From: point` is measured from: `[x, y, z]` (mm) in the setup's
+ * program coordinates, as the page picks it on the part it shows. Default value: none.
+ */
+point: [number, number, number] | null, };
 
 /**
  * Octree multi-tool roughing.
@@ -2181,7 +2211,12 @@ clearanceFrom: HeightFrom,
  * begins, and over which its short retracts travel (mm). Default value: none (the job's,
  * `stock.retract`).
  */
-retract: number | null, };
+retract: number | null, 
+/**
+ * The point a height `…From: point` is measured from: `[x, y, z]` (mm) in the setup's
+ * program coordinates, as the page picks it on the part it shows. Default value: none.
+ */
+point: [number, number, number] | null, };
 
 /**
  * Zigzag roughing (seed 004).
@@ -2298,7 +2333,12 @@ clearanceFrom: HeightFrom,
  * begins, and over which its short retracts travel (mm). Default value: none (the job's,
  * `stock.retract`).
  */
-retract: number | null, };
+retract: number | null, 
+/**
+ * The point a height `…From: point` is measured from: `[x, y, z]` (mm) in the setup's
+ * program coordinates, as the page picks it on the part it shows. Default value: none.
+ */
+point: [number, number, number] | null, };
 
 /**
  * Z-level roughing.
@@ -2400,7 +2440,12 @@ clearanceFrom: HeightFrom,
  * begins, and over which its short retracts travel (mm). Default value: none (the job's,
  * `stock.retract`).
  */
-retract: number | null, };
+retract: number | null, 
+/**
+ * The point a height `…From: point` is measured from: `[x, y, z]` (mm) in the setup's
+ * program coordinates, as the page picks it on the part it shows. Default value: none.
+ */
+point: [number, number, number] | null, };
 
 /**
  * One setup of a part machined from more than one side.
