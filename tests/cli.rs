@@ -425,7 +425,7 @@ fn tools_reads_a_library_machinists_keep() {
     let said = String::from_utf8_lossy(&out.stderr);
     assert!(said.contains("note: 6mm Endmill: not taken, as swarf does not model them: Coating") && said.contains("1 tools read"), "{said}");
     let out = swarf(&["tools", lib.to_str().unwrap(), bit.to_str().unwrap(), "--to", "linuxcnc"]);
-    assert_eq!(String::from_utf8_lossy(&out.stdout).trim(), "T4 P4 D6 ;6mm Endmill: 6 mm flat end");
+    assert_eq!(String::from_utf8_lossy(&out.stdout).trim(), "T4 P4 D6 ;6 mm flat end (6mm Endmill)");
     let out = swarf(&["tools", lib.to_str().unwrap()]);
     assert!(out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("T4: its bit 6mm_Endmill.fctb was not given"));

@@ -75,7 +75,12 @@ fn a_linuxcnc_tool_table_is_read_in_its_units() {
     assert_eq!(t, vec![(1, Shape::Flat, 6.0), (2, Shape::Ball, 3.175), (5, Shape::Drill, 5.0), (9, Shape::Flat, 0.25)]);
     assert_eq!(read.tools[2].cutter.angle, Some(118.0));
     let notes = read.notes.join("\n");
-    assert!(notes.contains("offsets and orientations") && notes.contains("T9: the comment names no shape") && notes.contains("line 6: a tool needs its T number and a diameter"), "{notes}");
+    assert!(
+        notes.contains("offsets and orientations")
+            && notes.contains("T9: the table gives no shape and its comment names none: taken as a flat end mill")
+            && notes.contains("line 6: a tool needs its T number and a diameter"),
+        "{notes}"
+    );
     let inches = read_library(tbl.as_bytes(), "tool.tbl", true, &[]).unwrap();
     assert_eq!(inches.tools[0].cutter.diameter, 6.0 * 25.4);
 }
@@ -136,4 +141,172 @@ fn a_library_written_reads_back_the_same() {
             _ => {}
         }
     }
+}
+
+/// One Fusion tool `entry` (its fields after `type`) in a library.
+fn fusion_one(fields: &str) -> String {
+    format!(r#"{{ "data": [ {{ "type": "ball end mill", "description": "1/8 ball", "post-process": {{ "number": 4 }}, {fields} }} ] }}"#)
+}
+
+/// Issue 93, Fusion: a unit Fusion does not write is refused naming it (a 1/8" ball read as
+/// 0.125 mm is a crash); "inches" reads it as 3.175 mm; none is read in millimeters, and said;
+/// `BMC: hss` makes an HSS tool and GRADE is named as not taken; the older `start-values` by
+/// material give their speeds; a number written as text is read, a negative or a word refused;
+/// two tools of one number refused.
+#[test]
+fn a_fusion_library_means_what_fusion_means() {
+    let geometry = r#""geometry": { "DC": 0.125, "LCF": 0.5, "NOF": 2 }"#;
+    for unit in [r#""inch""#, r#""feet""#, r#""meters""#, r#""""#, "null", "5"] {
+        let e = read_library(fusion_one(&format!(r#""unit": {unit}, {geometry}"#)).as_bytes(), "lib.json", false, &[]).unwrap_err().to_string();
+        assert!(e.contains(&format!("its unit {unit} is not one Fusion writes")) && e.contains("T4 (1/8 ball)"), "{unit}: {e}");
+    }
+    let inches = read_library(fusion_one(&format!(r#""unit": "inches", {geometry}"#)).as_bytes(), "lib.json", false, &[]).unwrap();
+    assert_eq!((inches.tools[0].cutter.diameter, inches.tools[0].cutter.flute_length), (0.125 * 25.4, 0.5 * 25.4));
+    let none = read_library(fusion_one(r#""geometry": { "DC": 6 }"#).as_bytes(), "lib.json", false, &[]).unwrap();
+    assert_eq!(none.tools[0].cutter.diameter, 6.0);
+    assert!(none.notes.iter().any(|n| n == "T4 (1/8 ball): no unit given: read in millimeters"), "{:?}", none.notes);
+    // The tool's material, and the grade named.
+    let hss = read_library(fusion_one(r#""unit": "millimeters", "BMC": "hss", "GRADE": "Mill Generic", "geometry": { "DC": 6 }"#).as_bytes(), "lib.json", false, &[]).unwrap();
+    assert_eq!(hss.tools[0].tool_material, swarf::tool::ToolMaterial::Hss);
+    assert!(hss.notes.iter().any(|n| n.starts_with("not taken") && n.contains("GRADE")), "{:?}", hss.notes);
+    let odd = read_library(fusion_one(r#""unit": "millimeters", "BMC": "ceramics", "geometry": { "DC": 6 }"#).as_bytes(), "lib.json", false, &[]).unwrap();
+    assert!(odd.notes.iter().any(|n| n.contains("\"ceramics\" is neither carbide nor HSS")), "{:?}", odd.notes);
+    // The older start values: a set by material ("*": any).
+    let old = read_library(fusion_one(r#""unit": "millimeters", "geometry": { "DC": 6 }, "start-values": { "*": { "n": 9000, "v_f": 700, "v_f_plunge": 200 } }"#).as_bytes(), "lib.json", false, &[])
+        .unwrap();
+    assert_eq!((old.tools[0].spindle_rpm, old.tools[0].feed_rate, old.tools[0].plunge_rate, old.tools[0].speeds), (9000.0, 700.0, 200.0, Speeds::AsTyped));
+    // Numbers as text read; a negative or a word refused, naming the field.
+    let text = read_library(
+        fusion_one(r#""unit": "millimeters", "geometry": { "DC": "6" }, "holder": { "description": "ER16", "unit": "millimeters", "segments": [ { "height": "44", "lower-diameter": "22", "upper-diameter": 22 } ] }"#).as_bytes(),
+        "lib.json",
+        false,
+        &[],
+    )
+    .unwrap();
+    assert_eq!(text.tools[0].cutter.diameter, 6.0);
+    let holder = text.tools[0].holder.as_ref().expect("the holder taken");
+    assert_eq!((holder.sections[0].length, holder.sections[0].diameter), (44.0, 22.0));
+    let e = read_library(fusion_one(r#""unit": "millimeters", "geometry": { "DC": -6 }"#).as_bytes(), "lib.json", false, &[]).unwrap_err().to_string();
+    assert!(e.contains("geometry.DC is -6: a size is not negative"), "{e}");
+    let e = read_library(
+        fusion_one(r#""unit": "millimeters", "geometry": { "DC": 6 }, "holder": { "unit": "millimeters", "segments": [ { "height": "tall", "lower-diameter": 22 } ] }"#).as_bytes(),
+        "lib.json",
+        false,
+        &[],
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("holder.segments[0].height is \"tall\", not a number"), "{e}");
+    let twice = r#"{ "data": [ { "type": "flat end mill", "unit": "millimeters", "description": "a", "post-process": { "number": 1 }, "geometry": { "DC": 6 } }, { "type": "flat end mill", "unit": "millimeters", "description": "b", "post-process": { "number": 1 }, "geometry": { "DC": 10 } } ] }"#;
+    let e = read_library(twice.as_bytes(), "lib.json", false, &[]).unwrap_err().to_string();
+    assert!(e.contains("T1 (b): T1 is also a: two tools of one number"), "{e}");
+}
+
+/// A ZIP of one file `name` holding `data`, stored (`deflate` false) or deflated.
+fn zip_of(name: &str, data: &[u8], deflate: bool) -> Vec<u8> {
+    let packed = if deflate { miniz_oxide::deflate::compress_to_vec(data, 6) } else { data.to_vec() };
+    let method: u16 = if deflate { 8 } else { 0 };
+    let mut z = Vec::new();
+    let le16 = |z: &mut Vec<u8>, v: u16| z.extend_from_slice(&v.to_le_bytes());
+    let le32 = |z: &mut Vec<u8>, v: u32| z.extend_from_slice(&v.to_le_bytes());
+    // The local header (no CRC checked by the reader), the data, the directory, its end.
+    le32(&mut z, 0x0403_4b50);
+    for v in [20u16, 0, method, 0, 0] {
+        le16(&mut z, v);
+    }
+    for v in [0u32, packed.len() as u32, data.len() as u32] {
+        le32(&mut z, v);
+    }
+    le16(&mut z, name.len() as u16);
+    le16(&mut z, 0);
+    z.extend_from_slice(name.as_bytes());
+    z.extend_from_slice(&packed);
+    let directory = z.len() as u32;
+    le32(&mut z, 0x0201_4b50);
+    for v in [20u16, 20, 0, method, 0, 0] {
+        le16(&mut z, v);
+    }
+    for v in [0u32, packed.len() as u32, data.len() as u32] {
+        le32(&mut z, v);
+    }
+    for v in [name.len() as u16, 0, 0, 0, 0] {
+        le16(&mut z, v);
+    }
+    le32(&mut z, 0);
+    le32(&mut z, 0);
+    z.extend_from_slice(name.as_bytes());
+    let size = z.len() as u32 - directory;
+    le32(&mut z, 0x0605_4b50);
+    for v in [0u16, 0, 1, 1] {
+        le16(&mut z, v);
+    }
+    le32(&mut z, size);
+    le32(&mut z, directory);
+    le16(&mut z, 0);
+    z
+}
+
+/// Issue 93: Fusion's `.tools` (a ZIP holding `tools.json`) is read as the JSON it holds,
+/// stored or deflated; a ZIP cut short or without a library is refused saying so.
+#[test]
+fn a_fusion_tools_zip_is_read_as_the_library_it_holds() {
+    let json = read_library(FUSION.as_bytes(), "library.json", false, &[]).unwrap();
+    for deflate in [false, true] {
+        let zip = zip_of("tools.json", FUSION.as_bytes(), deflate);
+        let read = read_library(&zip, "Shop.tools", false, &[]).unwrap();
+        assert_eq!(read, json, "deflated {deflate}");
+    }
+    let zip = zip_of("tools.json", FUSION.as_bytes(), true);
+    let e = read_library(&zip[..zip.len() / 2], "Shop.tools", false, &[]).unwrap_err().to_string();
+    assert!(e.starts_with("Shop.tools: a ZIP (as Fusion's .tools is), but") && e.contains("cut short"), "{e}");
+    let e = read_library(&zip_of("readme.txt", b"hello", false), "Shop.tools", false, &[]).unwrap_err().to_string();
+    assert!(e.contains("it holds no .json library"), "{e}");
+}
+
+/// Issue 93, LinuxCNC: the shape from the comment's first shape words ("slot drill" a flat end
+/// mill, "drill mill" a chamfer mill), said per tool as a guess; swarf's own table of every
+/// shape reads back the same cutters (corner radius and tip too, the angle written once); a
+/// number twice, a negative or unreadable diameter, or one under the least, refused at its
+/// line; a tiny diameter with an inch comment noted.
+#[test]
+fn a_linuxcnc_table_means_what_it_says() {
+    let tbl = "T1 P1 D6 ;1/4 Slot Drill (flat end mill)\nT2 P2 D6 ;Drill Mill (chamfer mill) 90 deg\n";
+    let read = read_library(tbl.as_bytes(), "t.tbl", false, &[]).unwrap();
+    assert_eq!(read.tools.iter().map(|t| t.cutter.shape).collect::<Vec<_>>(), vec![Shape::Flat, Shape::VBit]);
+    assert!(read.notes.iter().any(|n| n == "T2: the table gives no shape: taken from its comment as a V-bit or chamfer mill"), "{:?}", read.notes);
+    // Every shape, named misleadingly, reads back as written.
+    use swarf::cutter::Cutter;
+    use swarf::tool::Tool;
+    let tools: Vec<Tool> = [
+        Cutter::flat(6.0),
+        Cutter::ball(3.0),
+        Cutter { corner_radius: 0.5, ..Cutter { shape: Shape::BullNose, ..Cutter::flat(3.0) } },
+        Cutter { angle: Some(118.0), ..Cutter { shape: Shape::Drill, ..Cutter::flat(5.0) } },
+        Cutter { angle: Some(90.0), ..Cutter { shape: Shape::SpotDrill, ..Cutter::flat(6.0) } },
+        Cutter { angle: Some(60.0), tip_diameter: 0.2, ..Cutter { shape: Shape::VBit, ..Cutter::flat(6.0) } },
+        Cutter { shape: Shape::ThreadMill, ..Cutter::flat(8.0) },
+    ]
+    .into_iter()
+    .enumerate()
+    .map(|(k, cutter)| Tool { number: k as u32 + 1, name: format!("shop drill {k}"), cutter, ..Tool::default() })
+    .collect();
+    let written = write_library(&tools, LibraryFormat::LinuxCnc);
+    assert!(!written.contains("deg 60") && !written.contains("° "), "{written}");
+    let back = read_library(written.as_bytes(), "t.tbl", false, &[]).unwrap();
+    for (a, b) in tools.iter().zip(&back.tools) {
+        let (ca, cb) = (&a.cutter, &b.cutter);
+        assert_eq!((a.number, ca.shape, ca.diameter, ca.corner_radius, ca.tip_diameter), (b.number, cb.shape, cb.diameter, cb.corner_radius, cb.tip_diameter), "{written}");
+        assert_eq!(ca.point_angle(), cb.point_angle(), "{written}");
+    }
+    for (table, said) in [
+        ("T1 P1 D6 ;a\nT1 P1 D8 ;b\n", "line 2: T1 is given twice"),
+        ("T1 P1 D-6 ;a\n", "line 1: \"D-6\" is no diameter"),
+        ("T1 P1 Dsix ;a\n", "line 1: \"Dsix\" is no diameter"),
+        ("T1 P1 D.005 ;a\n", "line 1: T1's diameter 0.005 mm is under the least swarf cuts with"),
+    ] {
+        let e = read_library(table.as_bytes(), "t.tbl", false, &[]).unwrap_err().to_string();
+        assert!(e.contains(said), "{table}: {e}");
+    }
+    let inch = read_library(b"T3 P3 D0.125 ;1/8 end mill\n", "t.tbl", false, &[]).unwrap();
+    assert!(inch.notes.iter().any(|n| n.contains("a diameter of 0.125 mm with a comment in inches")), "{:?}", inch.notes);
 }

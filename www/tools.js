@@ -1,6 +1,6 @@
 // The tool library: a list to pick from, a form for the picked tool, tools added, copied,
 // deleted, exported and imported as JSON (read by the core, as a job's tools are).
-import { $, state, hooks, selectedTool, store, downloadText, buildJob } from './state.js';
+import { $, state, hooks, selectedTool, store, downloadText, buildJob, toolsOf } from './state.js';
 import { fillFields, message, sized, fieldError } from './forms.js';
 import * as units from './units.js';
 import { zipStored } from './zip.js';
@@ -158,6 +158,44 @@ export async function exportTools() {
 // by the core as a job's tools are (a misspelt field is named); the libraries machinists keep
 // (Fusion's, a LinuxCNC tool table, FreeCAD's bits and libraries) are read by the core too,
 // and what they hold that swarf does not take is said.
+// The operations of every job and setup that use tool `number`, by name.
+function usedBy(number) {
+  const all = Object.values(state.jobs).filter(Boolean).flatMap((j) => [...(j.operations ?? []), ...(j.setups ?? []).flatMap((s) => s.operations ?? [])]);
+  return all.filter((op) => toolsOf(op).includes(number)).map((op) => op.name);
+}
+
+// Imported tools into the library: each replacing the one of its number, or added.
+function takeTools(tools, said, level) {
+  for (const t of tools) {
+    const k = state.tools.findIndex((u) => u.number === t.number);
+    if (k >= 0) state.tools[k] = t; else state.tools.push(t);
+  }
+  $('tool-import-review').hidden = true;
+  store();
+  fillTools();
+  hooks.changed?.();
+  message(said, level);
+}
+
+// An import that would replace tools the library has: shown side by side, with the operations
+// that use each, and taken only when the user says which.
+function reviewImport(tools, replaced, name, said) {
+  const added = tools.filter((t) => !state.tools.some((u) => u.number === t.number));
+  const kept = tools.length - replaced.length - added.length;
+  $('tool-import-said').textContent = `${name}: ${tools.length} tool(s), ${added.length} new${kept ? `, ${kept} as the library has them` : ''}; ${replaced.length} would replace the library's of the same number:`;
+  $('tool-import-changes').replaceChildren(...replaced.map((t) => {
+    const li = document.createElement('li');
+    const old = state.tools.find((u) => u.number === t.number), users = usedBy(t.number);
+    li.textContent = `${toolLabel(old)} → ${toolLabel(t)}${users.length ? ` (used by ${users.join(', ')})` : ''}`;
+    return li;
+  }));
+  $('tool-import-review').hidden = false;
+  message(`${name}: replaces ${replaced.length} tool(s) of the library: Replace them, Add only the new, or Cancel.`, 'warning');
+  $('tool-import-replace').onclick = () => takeTools(tools, `Imported ${tools.length} tool(s) from ${name}, replacing ${replaced.map((t) => `T${t.number}`).join(', ')}.${said}`, 'warning');
+  $('tool-import-new').onclick = () => takeTools(added, `Imported the ${added.length} new tool(s) from ${name}; the library's ${replaced.map((t) => `T${t.number}`).join(', ')} kept.${said}`, 'ok');
+  $('tool-import-cancel').onclick = () => { $('tool-import-review').hidden = true; message(`${name}: nothing imported.`, 'note'); };
+}
+
 export async function importTools(files) {
   const name = files.map((f) => f.name).join(', ');
   try {
@@ -170,14 +208,14 @@ export async function importTools(files) {
       const read = await state.engine.readToolLibrary(await Promise.all(files.map(async (f) => ({ name: f.name, bytes: new Uint8Array(await f.arrayBuffer()) }))), { inches: $('tool-import-inches').checked });
       ({ tools, notes } = read);
     }
-    for (const t of tools) {
-      const k = state.tools.findIndex((u) => u.number === t.number);
-      if (k >= 0) state.tools[k] = t; else state.tools.push(t);
+    const same = (a, b) => JSON.stringify(a) === JSON.stringify(b);
+    const replaced = tools.filter((t) => state.tools.some((u) => u.number === t.number && !same(u, t)));
+    const said = notes.length ? ` Notes: ${notes.join('; ')}.` : '';
+    if (replaced.length) {
+      reviewImport(tools, replaced, name, said);
+      return;
     }
-    store();
-    fillTools();
-    hooks.changed?.();
-    message(`Imported ${tools.length} tool(s) from ${name}.${notes.length ? ` Not taken: ${notes.join('; ')}.` : ''}`, notes.length ? 'warning' : 'ok');
+    takeTools(tools, `Imported ${tools.length} tool(s) from ${name}.${said}`, notes.length ? 'warning' : 'ok');
   } catch (e) {
     message(`${name}: ${e.message}`, 'error');
   }

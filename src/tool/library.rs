@@ -35,10 +35,15 @@ const INCH: f64 = 25.4;
 /// format). A LinuxCNC tool table says no unit: `inches` reads it in inches. A FreeCAD library
 /// (`.fctl`) names its bits' files: `bits` holds them by file name.
 pub fn read_library(bytes: &[u8], name: &str, inches: bool, bits: &[(String, Vec<u8>)]) -> Result<Imported> {
+    if bytes.starts_with(b"PK\x03\x04") {
+        // Fusion's `.tools`: a ZIP holding the library's JSON.
+        let json = zip_json(bytes).map_err(|why| Error::Input(format!("{name}: a ZIP (as Fusion's .tools is), but {why}")))?;
+        return read_library(&json, &format!("{name} (its tools.json)"), inches, bits);
+    }
     let text = std::str::from_utf8(bytes).map_err(|_| Error::Input(format!("{name}: not text (a tool library is JSON or a LinuxCNC tool table)")))?;
     let lower = name.to_lowercase();
     if lower.ends_with(".tbl") {
-        return Ok(linuxcnc(text, if inches { INCH } else { 1.0 }));
+        return linuxcnc(text, if inches { INCH } else { 1.0 });
     }
     let value: Value = serde_json::from_str(text).map_err(|e| Error::Input(format!("{name}: not a tool library: {}", crate::error::plain(&e.to_string()))))?;
     if lower.ends_with(".fctl") || value.get("tools").and_then(Value::as_array).is_some_and(|t| t.iter().any(|x| x.get("path").is_some())) {
@@ -52,9 +57,40 @@ pub fn read_library(bytes: &[u8], name: &str, inches: bool, bits: &[(String, Vec
         return Ok(out);
     }
     if value.get("data").is_some_and(Value::is_array) {
-        return Ok(fusion(&value));
+        return fusion(&value);
     }
     Err(Error::Input(format!("{name}: not a tool library swarf reads (Fusion's JSON with `data`, a LinuxCNC .tbl, a FreeCAD .fctb or .fctl)")))
+}
+
+/// The first `.json` file a ZIP holds (Fusion's `.tools` holds `tools.json`), from its central
+/// directory: stored or deflated; what is wrong with the ZIP otherwise.
+fn zip_json(zip: &[u8]) -> std::result::Result<Vec<u8>, String> {
+    const MOST: usize = 64 << 20;
+    let u16_at = |at: usize| zip.get(at..at + 2).map(|b| u16::from_le_bytes([b[0], b[1]]) as usize);
+    let u32_at = |at: usize| zip.get(at..at + 4).map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as usize);
+    let end = (0..zip.len().saturating_sub(21)).rev().take(65_557).find(|&at| u32_at(at) == Some(0x0605_4b50)).ok_or("its end (the central directory's record) is missing: the file is cut short")?;
+    let (count, mut at) = (u16_at(end + 10).ok_or("its end is cut short")?, u32_at(end + 16).ok_or("its end is cut short")?);
+    for _ in 0..count {
+        if u32_at(at) != Some(0x0201_4b50) {
+            return Err("its directory is damaged".into());
+        }
+        let field = |off: usize| u16_at(at + off).ok_or("its directory is cut short");
+        let (method, packed, size) = (field(10)?, u32_at(at + 20).ok_or("its directory is cut short")?, u32_at(at + 24).ok_or("its directory is cut short")?);
+        let (name_len, extra, comment, local) = (field(28)?, field(30)?, field(32)?, u32_at(at + 42).ok_or("its directory is cut short")?);
+        let name = zip.get(at + 46..at + 46 + name_len).ok_or("its directory is cut short")?;
+        at += 46 + name_len + extra + comment;
+        if !String::from_utf8_lossy(name).to_lowercase().ends_with(".json") {
+            continue;
+        }
+        let start = local + 30 + u16_at(local + 26).ok_or("a file's header is cut short")? + u16_at(local + 28).ok_or("a file's header is cut short")?;
+        let data = zip.get(start..start + packed).ok_or("its JSON is cut short")?;
+        return match method {
+            0 => Ok(data.to_vec()),
+            8 => miniz_oxide::inflate::decompress_to_vec_with_limit(data, size.min(MOST)).map_err(|_| "its JSON does not inflate (damaged)".into()),
+            m => Err(format!("its JSON is packed by method {m}, which swarf does not unpack (stored or deflated)")),
+        };
+    }
+    Err("it holds no .json library (Fusion's .tools holds tools.json)".into())
 }
 
 /// Notes said once each, in the order first met.
@@ -69,17 +105,23 @@ impl Notes {
     }
 }
 
-/// A cutter's shape from words in a name or a type ("ball end mill", "6 mm V-bit 60°").
+/// A cutter's shape from words in a name or a type ("ball end mill", "6 mm V-bit 60°"): the
+/// word that comes first names it (the longer where two start together), so that "slot drill"
+/// (a two-flute end mill) is a flat end mill, "drill mill" a chamfer mill, and a name the
+/// shape's words lead ("6 mm flat end (roughing drill)") its shape.
 fn shape_in(words: &str) -> Option<Shape> {
     let w = words.to_lowercase();
-    [
+    const WORDS: &[(&str, Shape)] = &[
         ("bull", Shape::BullNose),
         ("torus", Shape::BullNose),
+        ("corner radius", Shape::BullNose),
         ("radius", Shape::BullNose),
         ("ball", Shape::Ball),
         ("spot", Shape::SpotDrill),
         ("center drill", Shape::SpotDrill),
         ("centre drill", Shape::SpotDrill),
+        ("slot drill", Shape::Flat),
+        ("drill mill", Shape::VBit),
         ("drill", Shape::Drill),
         ("thread", Shape::ThreadMill),
         ("v-bit", Shape::VBit),
@@ -94,18 +136,75 @@ fn shape_in(words: &str) -> Option<Shape> {
         ("endmill", Shape::Flat),
         ("face mill", Shape::Flat),
         ("slot", Shape::Flat),
-    ]
-    .iter()
-    .find(|(k, _)| w.contains(k))
-    .map(|&(_, s)| s)
+    ];
+    WORDS.iter().filter_map(|&(k, shape)| w.find(k).map(|at| (at, std::cmp::Reverse(k.len()), shape))).min_by_key(|&(at, len, _)| (at, len)).map(|(_, _, shape)| shape)
+}
+
+/// A shape's name, as a note says it.
+fn shape_name(shape: Shape) -> &'static str {
+    match shape {
+        Shape::Flat => "flat end mill",
+        Shape::Ball => "ball end mill",
+        Shape::BullNose => "bull nose end mill",
+        Shape::Drill => "drill",
+        Shape::SpotDrill => "spot drill",
+        Shape::VBit => "V-bit or chamfer mill",
+        Shape::ThreadMill => "thread mill",
+    }
+}
+
+/// A number of a library's field: JSON's own, or one written as text ("44", read as Fusion
+/// reads it); `None` where absent or null; an error naming `field` of `what` where it is
+/// neither, not finite, or (for a size, `size`) negative.
+fn number_of(v: Option<&Value>, what: &str, field: &str, size: bool) -> Result<Option<f64>> {
+    let n = match v {
+        None | Some(Value::Null) => return Ok(None),
+        Some(Value::Number(n)) => n.as_f64(),
+        Some(Value::String(t)) => t.trim().parse::<f64>().ok(),
+        Some(_) => None,
+    };
+    match n {
+        Some(n) if n.is_finite() && !(size && n < 0.0) => Ok(Some(n)),
+        Some(n) if n.is_finite() => Err(Error::Input(format!("{what}: {field} is {}: a size is not negative; the library is not read", crate::limits::shown(n)))),
+        _ => Err(Error::Input(format!("{what}: {field} is {}, not a number; the library is not read", v.map(Value::to_string).unwrap_or_default()))),
+    }
+}
+
+/// The scale to mm of a Fusion entry's `unit` ("millimeters" or "inches", as Fusion writes
+/// them); none is read in millimeters, and said; any other is refused naming it (a size read
+/// in the wrong unit is a crash).
+fn fusion_unit(entry: &Value, what: &str, notes: &mut Notes) -> Result<f64> {
+    match entry.get("unit") {
+        Some(Value::String(u)) if u == "millimeters" => Ok(1.0),
+        Some(Value::String(u)) if u == "inches" => Ok(INCH),
+        None => {
+            notes.say(format!("{what}: no unit given: read in millimeters"));
+            Ok(1.0)
+        }
+        Some(other) => Err(Error::Input(format!("{what}: its unit {other} is not one Fusion writes (\"millimeters\" or \"inches\"): the library is not read, as its sizes would be wrong"))),
+    }
+}
+
+/// A Fusion tool's material (`BMC`) as swarf's charts have it: carbide, or HSS (cobalt HSS
+/// too); another is taken as carbide, and said.
+fn fusion_material(entry: &Value, what: &str, notes: &mut Notes) -> super::ToolMaterial {
+    match entry.get("BMC").and_then(Value::as_str).map(str::to_lowercase).as_deref() {
+        None | Some("carbide") => super::ToolMaterial::Carbide,
+        Some("hss") | Some("cobalt") => super::ToolMaterial::Hss,
+        Some(other) => {
+            notes.say(format!("{what}: its material (BMC) {other:?} is neither carbide nor HSS, the two swarf's charts have: taken as carbide"));
+            super::ToolMaterial::Carbide
+        }
+    }
 }
 
 /// Fusion's tool library.
-fn fusion(value: &Value) -> Imported {
+fn fusion(value: &Value) -> Result<Imported> {
     let mut notes = Notes::default();
     let mut tools = Vec::new();
     let mut unknown: Vec<String> = Vec::new();
-    const TAKEN: &[&str] = &["type", "unit", "description", "product-id", "vendor", "geometry", "post-process", "start-values", "guid", "holder", "BMC", "GRADE"];
+    const TAKEN: &[&str] = &["type", "unit", "description", "product-id", "vendor", "geometry", "post-process", "start-values", "guid", "holder", "BMC"];
+    let mut numbers: Vec<(u32, String)> = Vec::new();
     const GEOMETRY: &[&str] = &["DC", "SFDM", "NOF", "LCF", "RE", "SIG", "TA", "tip-diameter", "LB"];
     for (k, entry) in value["data"].as_array().into_iter().flatten().enumerate() {
         let kind = entry.get("type").and_then(Value::as_str).unwrap_or("");
@@ -119,10 +218,25 @@ fn fusion(value: &Value) -> Imported {
             notes.say(format!("T{number} ({}): a {kind:?} has no shape in swarf: not taken", if description.is_empty() { kind } else { &description }));
             continue;
         };
-        let scale = if entry.get("unit").and_then(Value::as_str) == Some("inches") { INCH } else { 1.0 };
+        let what = format!("T{number} ({})", if description.is_empty() { kind } else { &description });
+        if let Some((_, other)) = numbers.iter().find(|(n, _)| *n == number) {
+            return Err(Error::Input(format!("{what}: T{number} is also {other}: two tools of one number; the library is not read")));
+        }
+        numbers.push((number, description.clone()));
+        let scale = fusion_unit(entry, &what, &mut notes)?;
         let g = entry.get("geometry").cloned().unwrap_or(json!({}));
-        let num = |key: &str| g.get(key).and_then(Value::as_f64);
-        let d = num("DC").unwrap_or(0.0) * scale;
+        let mut sizes = std::collections::BTreeMap::new();
+        for key in GEOMETRY {
+            // Angles and the flute count are no sizes in the unit, but none is negative either.
+            if let Some(v) = number_of(g.get(*key), &what, &format!("geometry.{key}"), true)? {
+                sizes.insert(*key, v);
+            }
+        }
+        let num = |key: &str| sizes.get(key).copied();
+        let Some(d) = num("DC").filter(|&d| d > 0.0).map(|d| d * scale) else {
+            notes.say(format!("{what}: no diameter (geometry.DC): not taken"));
+            continue;
+        };
         let mut cutter = Cutter { shape, diameter: d, ..Cutter::default() };
         cutter.shank_diameter = num("SFDM").map(|v| v * scale).filter(|&s| (s - d).abs() > 1e-9);
         if let Some(l) = num("LCF") {
@@ -138,16 +252,34 @@ fn fusion(value: &Value) -> Imported {
         if shape == Shape::VBit {
             cutter.tip_diameter = num("tip-diameter").unwrap_or(0.0) * scale;
         }
-        let mut tool = Tool { number, name: description.clone(), cutter, ..Tool::default() };
+        let mut tool = Tool { number, name: description.clone(), cutter, tool_material: fusion_material(entry, &what, &mut notes), ..Tool::default() };
         if let Some(z) = num("NOF") {
             tool.flutes = z.round().max(1.0) as u32;
         }
         if let Some(lb) = num("LB") {
             tool.stick_out = Some((lb * scale).max(tool.cutter.flute_length));
         }
-        let presets = entry.pointer("/start-values/presets").and_then(Value::as_array).cloned().unwrap_or_default();
+        let presets = match entry.get("start-values") {
+            Some(v) if v.get("presets").is_some() => v["presets"].as_array().cloned().unwrap_or_default(),
+            // Older libraries: a map from a material (or "*", any) to one set of values.
+            Some(Value::Object(by)) => {
+                let sets: Vec<Value> = by
+                    .iter()
+                    .filter(|(_, v)| v.get("n").is_some() || v.get("v_f").is_some())
+                    .map(|(k, v)| {
+                        let mut v = v.clone();
+                        if v.get("name").is_none() {
+                            v["name"] = json!(k);
+                        }
+                        v
+                    })
+                    .collect();
+                sets
+            }
+            _ => Vec::new(),
+        };
         if let Some(p) = presets.first() {
-            let rate = |key: &str| p.get(key).and_then(Value::as_f64).filter(|v| *v > 0.0);
+            let rate = |key: &str| number_of(p.get(key), &what, &format!("start-values.{key}"), true).ok().flatten().filter(|v| *v > 0.0);
             if let (Some(n), Some(f)) = (rate("n"), rate("v_f")) {
                 tool.spindle_rpm = n;
                 tool.feed_rate = f * scale;
@@ -161,21 +293,21 @@ fn fusion(value: &Value) -> Imported {
         }
         if let Some(h) = entry.get("holder").filter(|h| !h.is_null()) {
             let what = h.get("description").and_then(Value::as_str).unwrap_or("a holder");
-            let hs = if h.get("unit").and_then(Value::as_str) == Some("inches") { INCH } else { 1.0 };
+            let hs = fusion_unit(h, &format!("{what}'s holder ({what_holder})", what_holder = what_h(h)), &mut notes)?;
             // Its segments from the tool up: each as high as it is, from its lower to its upper
             // diameter.
-            let sections: Vec<HolderSection> = h
-                .get("segments")
-                .and_then(Value::as_array)
-                .into_iter()
-                .flatten()
-                .filter_map(|seg| {
-                    let v = |k: &str| seg.get(k).and_then(Value::as_f64).map(|x| x * hs);
-                    let (d, l) = (v("lower-diameter")?, v("height")?);
-                    let top = v("upper-diameter").filter(|u| (u - d).abs() > 1e-9);
-                    Some(HolderSection { diameter: d, length: l, top_diameter: top })
-                })
-                .collect();
+            let mut sections: Vec<HolderSection> = Vec::new();
+            for (i, seg) in h.get("segments").and_then(Value::as_array).into_iter().flatten().enumerate() {
+                let field = |k: &str| format!("holder.segments[{i}].{k}");
+                let v = |k: &str| number_of(seg.get(k), what, &field(k), true).map(|x| x.map(|x| x * hs));
+                let (Some(d), Some(l)) = (v("lower-diameter")?, v("height")?) else {
+                    notes.say(format!("{what}: its holder's segment {i} gives no height or lower diameter: the holder not taken"));
+                    sections.clear();
+                    break;
+                };
+                let top = v("upper-diameter")?.filter(|u| (u - d).abs() > 1e-9);
+                sections.push(HolderSection { diameter: d, length: l, top_diameter: top });
+            }
             if sections.is_empty() {
                 notes.say(format!("T{number}: its holder ({what}) gives no segments (height, lower and upper diameter): not taken"));
             } else {
@@ -200,14 +332,23 @@ fn fusion(value: &Value) -> Imported {
     if !unknown.is_empty() {
         notes.say(format!("not taken, as swarf does not model them: {}", unknown.join(", ")));
     }
-    Imported { tools, notes: notes.0 }
+    Ok(Imported { tools, notes: notes.0 })
+}
+
+/// A holder's description, for what is said of it.
+fn what_h(h: &Value) -> String {
+    h.get("description").and_then(Value::as_str).unwrap_or("no description").to_owned()
 }
 
 /// LinuxCNC's tool table: `T<n> P<pocket> D<diameter> Z<length> ;comment`, lengths in
-/// `scale` mm; the shape from the comment's words (a flat end mill where they say none).
-fn linuxcnc(text: &str, scale: f64) -> Imported {
+/// `scale` mm. The table has no shape: it is taken from the comment's words (a flat end mill
+/// where they say none), a guess said for each tool, with a bull nose's corner (`r0.5`) and a
+/// V-bit's tip (`tip 0.2`) from them too. A repeated number, a negative or unreadable diameter,
+/// or one under the least swarf cuts with, is refused at its line.
+fn linuxcnc(text: &str, scale: f64) -> Result<Imported> {
     let mut notes = Notes::default();
-    let mut tools = Vec::new();
+    let mut tools: Vec<Tool> = Vec::new();
+    let refuse = |line: usize, why: String| Err(Error::Input(format!("line {line}: {why}; the table is not read")));
     for (i, line) in text.lines().enumerate() {
         let (words, comment) = line.split_once(';').unwrap_or((line, ""));
         if words.trim().is_empty() {
@@ -216,13 +357,15 @@ fn linuxcnc(text: &str, scale: f64) -> Imported {
         let mut number = None;
         let mut diameter = None;
         for w in words.split_whitespace() {
-            let (letter, rest) = w.split_at(1);
-            let v = rest.parse::<f64>();
+            let (letter, rest) = w.split_at(w.chars().next().map_or(0, char::len_utf8));
+            let v = rest.parse::<f64>().ok().filter(|v| v.is_finite());
             match (letter.to_ascii_uppercase().as_str(), v) {
-                ("T", Ok(v)) => number = Some(v as u32),
-                ("D", Ok(v)) => diameter = Some(v.abs() * scale),
-                ("P", Ok(_)) => {}
-                (l, Ok(_)) if "XYZABCUVWIJQ".contains(l) => notes.say("the tool offsets and orientations (X Y Z A B C U V W I J Q) are the machine's: not taken".to_owned()),
+                ("T", Some(v)) if v >= 0.0 && v.fract() == 0.0 => number = Some(v as u32),
+                ("T", _) => return refuse(i + 1, format!("{w:?} is no tool number")),
+                ("D", Some(v)) if v >= 0.0 => diameter = Some(v * scale),
+                ("D", _) => return refuse(i + 1, format!("{w:?} is no diameter (a positive number)")),
+                ("P", Some(_)) => {}
+                (l, Some(_)) if "XYZABCUVWIJQ".contains(l) => notes.say("the tool offsets and orientations (X Y Z A B C U V W I J Q) are the machine's: not taken".to_owned()),
                 _ => notes.say(format!("line {}: {w:?} is no tool table word: not taken", i + 1)),
             }
         }
@@ -230,16 +373,51 @@ fn linuxcnc(text: &str, scale: f64) -> Imported {
             notes.say(format!("line {}: a tool needs its T number and a diameter D: not taken", i + 1));
             continue;
         };
+        if d < crate::limits::MIN_TOOL_DIAMETER {
+            return refuse(
+                i + 1,
+                format!(
+                    "T{number}'s diameter {} mm is under the least swarf cuts with ({} mm){}",
+                    crate::limits::shown(d),
+                    crate::limits::MIN_TOOL_DIAMETER,
+                    if scale == 1.0 { ": a table in inches is read with inches" } else { "" }
+                ),
+            );
+        }
+        if tools.iter().any(|t| t.number == number) {
+            return refuse(i + 1, format!("T{number} is given twice"));
+        }
         let comment = comment.trim();
         let shape = shape_in(comment).unwrap_or(Shape::Flat);
-        if shape_in(comment).is_none() {
-            notes.say(format!("T{number}: the comment names no shape: taken as a flat end mill"));
+        notes.say(match shape_in(comment) {
+            None => format!("T{number}: the table gives no shape and its comment names none: taken as a flat end mill"),
+            Some(s) => format!("T{number}: the table gives no shape: taken from its comment as a {}", shape_name(s)),
+        });
+        if scale == 1.0 && d < 0.5 && (comment.contains('"') || comment.contains("/") || comment.to_lowercase().contains("inch")) {
+            notes.say(format!("T{number}: a diameter of {} mm with a comment in inches ({comment:?}): if the table is in inches, read it with inches", crate::limits::shown(d)));
         }
-        let angle = comment.split_whitespace().find_map(|w| w.trim_end_matches(['°', ',']).strip_suffix("deg").or(w.strip_suffix('°')).and_then(|a| a.parse::<f64>().ok()));
-        let cutter = Cutter { shape, diameter: d, angle: angle.filter(|_| matches!(shape, Shape::Drill | Shape::SpotDrill | Shape::VBit)), ..Cutter::default() };
+        let lower = comment.to_lowercase();
+        let words: Vec<&str> = lower.split_whitespace().collect();
+        // An angle: "118°", "90deg", or "90 deg" (as swarf's own table writes it, in ASCII).
+        let angle = words.iter().enumerate().find_map(|(k, w)| {
+            let w = w.trim_end_matches(',');
+            let unit_next = words.get(k + 1).is_some_and(|n| n.trim_end_matches(',').starts_with("deg"));
+            w.strip_suffix("deg").or(w.strip_suffix('°')).or(unit_next.then_some(w)).and_then(|a| a.parse::<f64>().ok())
+        });
+        let after = |key: &str| words.iter().position(|w| *w == key).and_then(|k| words.get(k + 1)).and_then(|w| w.trim_end_matches(',').parse::<f64>().ok());
+        let corner = words.iter().find_map(|w| w.strip_prefix('r').and_then(|r| r.trim_end_matches(',').parse::<f64>().ok()));
+        let mut cutter = Cutter { shape, diameter: d, angle: angle.filter(|_| matches!(shape, Shape::Drill | Shape::SpotDrill | Shape::VBit)), ..Cutter::default() };
+        if shape == Shape::BullNose {
+            if let Some(r) = corner {
+                cutter.corner_radius = r * scale;
+            }
+        }
+        if shape == Shape::VBit {
+            cutter.tip_diameter = after("tip").map_or(0.0, |t| t * scale);
+        }
         tools.push(Tool { number, name: comment.to_owned(), cutter, ..Tool::default() });
     }
-    Imported { tools, notes: notes.0 }
+    Ok(Imported { tools, notes: notes.0 })
 }
 
 /// A FreeCAD quantity ("5.00 mm", "118.00 °", "0.25 in", or a bare number) in mm or degrees.
@@ -408,8 +586,10 @@ pub fn write_library(tools: &[Tool], format: LibraryFormat) -> String {
         LibraryFormat::LinuxCnc => {
             let mut out = String::new();
             for t in tools {
-                let angle = t.cutter.angle.map(|a| format!(" {}°", crate::limits::shown(a))).unwrap_or_default();
-                out += &format!("T{0} P{0} D{1} ;{2}{angle}\n", t.number, crate::post::number(t.cutter.diameter, 4), super::super::post::ascii(&t.describe()));
+                // The cutter's words first (its shape, corner, angle and tip, as the reader
+                // takes them), then the tool's name.
+                let name = if t.name.is_empty() { String::new() } else { format!(" ({})", t.name) };
+                out += &format!("T{0} P{0} D{1} ;{2}{name}\n", t.number, crate::post::number(t.cutter.diameter, 4), super::super::post::ascii(&t.cutter.describe()));
             }
             out
         }
@@ -448,6 +628,7 @@ pub fn write_library(tools: &[Tool], format: LibraryFormat) -> String {
                     json!({
                         "holder": holder,
                         "type": kind,
+                        "BMC": match t.tool_material { super::ToolMaterial::Carbide => "carbide", super::ToolMaterial::Hss => "hss" },
                         "unit": "millimeters",
                         "description": if t.name.is_empty() { c.describe() } else { t.name.clone() },
                         "geometry": g,

@@ -1309,7 +1309,7 @@ test('tool libraries machinists keep: a Fusion library and a LinuxCNC tool table
   const before = await page.locator('#tool-list option').count();
   await page.setInputFiles('#tool-import', fusion);
   await page.waitForFunction(() => /Imported 1 tool\(s\) from mill\.json/.test(document.getElementById('message').textContent));
-  assert.match(await page.textContent('#message'), /Not taken: .*M8 tap.*no shape in swarf.*geometry\.OAL/);
+  assert.match(await page.textContent('#message'), /Notes: .*M8 tap.*no shape in swarf.*geometry\.OAL/);
   const t21 = await page.evaluate(() => window.swarf.tools.find((t) => t.number === 21));
   assert.deepEqual([t21.shape, t21.diameter, t21.flutes, t21.spindleRpm, t21.feedRate, t21.speeds], ['flat', 8, 3, 14000, 1500, 'asTyped']);
   await page.setInputFiles('#tool-import', tbl);
@@ -1324,7 +1324,7 @@ test('tool libraries machinists keep: a Fusion library and a LinuxCNC tool table
   await saved.saveAs(out);
   const lines = fs.readFileSync(out, 'utf8').trim().split('\n');
   assert.equal(lines.length, before + 3);
-  assert.ok(lines.includes('T21 P21 D8 ;8mm 3F: 8 mm flat end'), lines.join('\n'));
+  assert.ok(lines.includes('T21 P21 D8 ;8 mm flat end (8mm 3F)'), lines.join('\n'));
   // Exported as a FreeCAD library: one zip, its library and a bit a tool in the folders of
   // FreeCAD's Tools folder, whole as Python's zipfile reads it (every file's CRC checked), and
   // read back by the page as the same tools.
@@ -1348,6 +1348,24 @@ test('tool libraries machinists keep: a Fusion library and a LinuxCNC tool table
   await page.waitForFunction((n) => new RegExp(`Imported ${n} tool\\(s\\) from`).test(document.getElementById('message').textContent), tools.length);
   const back = await page.evaluate(() => window.swarf.tools.map((t) => [t.number, t.shape, t.diameter]));
   assert.deepEqual(back, tools.map(([n, shape, d]) => [n, shape === 'spotDrill' ? 'drill' : shape, d]));
+  // A table whose T1 is not the library's: shown side by side with the operations using it,
+  // and taken only as the user says (issue 93: it once replaced the roughing's T1 silently).
+  const swap = path.join(dir, 'swap.tbl');
+  fs.writeFileSync(swap, 'T1 P1 D10 ;10 mm flat end mill\nT40 P40 D4 ;4 mm ball\n');
+  const t1 = await page.evaluate(() => window.swarf.tools.find((t) => t.number === 1));
+  await page.setInputFiles('#tool-import', swap);
+  await page.waitForFunction(() => !document.getElementById('tool-import-review').hidden);
+  const change = await page.textContent('#tool-import-changes li');
+  assert.match(change, new RegExp(`^T1 · ${t1.diameter} mm .* → T1 · 10 mm flat .*\\(used by .*rough`), change);
+  assert.deepEqual(await page.evaluate(() => window.swarf.tools.find((t) => t.number === 1).diameter), t1.diameter, 'nothing replaced before the user says');
+  await page.click('#tool-import-new');
+  await page.waitForFunction(() => document.getElementById('tool-import-review').hidden);
+  assert.deepEqual(await page.evaluate(() => [window.swarf.tools.find((t) => t.number === 1).diameter, window.swarf.tools.find((t) => t.number === 40)?.diameter]), [t1.diameter, 4]);
+  await page.setInputFiles('#tool-import', swap);
+  await page.waitForFunction(() => !document.getElementById('tool-import-review').hidden);
+  await page.click('#tool-import-replace');
+  await page.waitForFunction(() => window.swarf.tools.find((t) => t.number === 1).diameter === 10);
+  assert.match(await page.textContent('#message'), /replacing T1/);
   assert.deepEqual(errors, []);
   await context.close();
 });
