@@ -34,6 +34,9 @@ command -v chromium >/dev/null || apt_missing+=(chromium)
 command -v chromedriver >/dev/null || apt_missing+=(chromium-driver)
 # zopfli: the npm package's wasm gzipped smallest (scripts/package.mjs, build-package.sh).
 command -v zopfli >/dev/null || apt_missing+=(zopfli)
+# FreeCAD's own Python (its Quantity parser): the oracle the FreeCAD tool-bit reader is held to
+# (tests/tool_library.rs).
+[ -d /usr/lib/freecad-python3/lib ] || apt_missing+=(freecad-python3)
 if [ "${SWARF_SKIP_LINUXCNC:-0}" != 1 ] && ! command -v rs274 >/dev/null; then apt_missing+=(linuxcnc-uspace); fi
 if [ ${#apt_missing[@]} -gt 0 ]; then
   say "installing Debian packages: ${apt_missing[*]}"

@@ -310,3 +310,72 @@ fn a_linuxcnc_table_means_what_it_says() {
     let inch = read_library(b"T3 P3 D0.125 ;1/8 end mill\n", "t.tbl", false, &[]).unwrap();
     assert!(inch.notes.iter().any(|n| n.contains("a diameter of 0.125 mm with a comment in inches")), "{:?}", inch.notes);
 }
+
+/// The quantities of FreeCAD bits the tests hold, each with the mm (or degrees) FreeCAD's
+/// own parser reads.
+const QUANTITIES: &[(&str, f64)] = &[
+    ("5.00 mm", 5.0),
+    ("1/4 in", 6.35),
+    ("0.25 in", 6.35),
+    ("0.5 \"", 12.7),
+    ("200 thou", 5.08),
+    ("3 ft", 914.4),
+    ("5 µm", 0.005),
+    ("1.5 cm", 15.0),
+    ("0.01 m", 10.0),
+    ("5,5 mm", 5.5),
+    ("118.00 °", 118.0),
+    ("2", 2.0),
+];
+
+/// Issue 93, FreeCAD: every unit FreeCAD's quantities take is read as FreeCAD reads it (a
+/// 1/4" bit once came in as 1 mm, "200 thou" as 200 mm, "3 ft" as 3 mm, "5 µm" as 5 mm); a
+/// comma decimal as a comma-decimal locale writes it; a unit FreeCAD has not, or a negative
+/// size, refused naming the parameter; a slitting saw is not taken as an end mill; a chamfer
+/// mill's FlatRadius is its tip; flutes and material are read from the attributes FreeCAD
+/// keeps them in, and written there. Where FreeCAD is installed its own parser reads every
+/// quantity here to the same figure.
+#[test]
+fn freecad_quantities_are_read_as_freecad_reads_them() {
+    let bit = |d: &str| {
+        format!(
+            r#"{{ "version": 2, "name": "b", "shape": "endmill.fcstd", "parameter": {{ "Diameter": "{}", "CuttingEdgeHeight": "10 mm" }}, "attribute": {{ "Flutes": 3, "Material": "HSS" }} }}"#,
+            d.replace('"', "\\\"")
+        )
+    };
+    for &(q, mm) in QUANTITIES.iter().filter(|(q, _)| !q.contains('°')) {
+        let read = read_library(bit(q).as_bytes(), "b.fctb", false, &[]).unwrap();
+        assert!((read.tools[0].cutter.diameter - mm).abs() < 1e-9, "{q}: {}", read.tools[0].cutter.diameter);
+        assert_eq!((read.tools[0].flutes, read.tools[0].tool_material), (3, swarf::tool::ToolMaterial::Hss));
+    }
+    let comma = read_library(bit("5,5 mm").as_bytes(), "b.fctb", false, &[]).unwrap();
+    assert_eq!(comma.tools[0].cutter.diameter, 5.5);
+    for (q, said) in [("5 furlong", "\"furlong\" is no unit FreeCAD has"), ("-6 mm", "Diameter is -6: a size is not negative"), ("wide", "Diameter \"wide\" is no number")] {
+        let e = read_library(bit(q).as_bytes(), "b.fctb", false, &[]).unwrap_err().to_string();
+        assert!(e.contains(said), "{q}: {e}");
+    }
+    let saw = r#"{ "version": 2, "name": "3in saw", "shape": "slittingsaw.fcstd", "parameter": { "Diameter": "76.2 mm", "BladeThickness": "1 mm" } }"#;
+    let read = read_library(saw.as_bytes(), "saw.fctb", false, &[]).unwrap();
+    assert!(read.tools.is_empty() && read.notes[0].contains("has none in swarf"), "{:?}", read.notes);
+    let chamfer = r#"{ "version": 2, "name": "chamfer", "shape": "chamfer.fcstd", "parameter": { "Diameter": "12 mm", "CuttingEdgeAngle": "90 °", "FlatRadius": "0.5 mm" } }"#;
+    let read = read_library(chamfer.as_bytes(), "c.fctb", false, &[]).unwrap();
+    assert_eq!((read.tools[0].cutter.shape, read.tools[0].cutter.tip_diameter), (Shape::VBit, 1.0));
+    // Written: the flutes and material among the attributes, none among the parameters.
+    let files = write_freecad(&read.tools, "L");
+    let written: serde_json::Value = serde_json::from_str(&files[1].1).unwrap();
+    assert!(written["parameter"].get("Flutes").is_none() && written["attribute"]["Flutes"].is_number(), "{written}");
+    // FreeCAD's own parser, where it is installed.
+    let script = format!(
+        "import sys\nsys.path.append('/usr/lib/freecad-python3/lib')\nimport FreeCAD\nfor q in {:?}:\n    u = FreeCAD.Units.Quantity(q)\n    print(u.getValueAs('deg' if '°' in q else 'mm') if q.strip()[-1:].isalpha() or '°' in q or '\"' in q else float(q))\n",
+        QUANTITIES.iter().map(|(q, _)| q.to_string()).collect::<Vec<_>>()
+    );
+    match std::process::Command::new("python3").arg("-c").arg(&script).output() {
+        Ok(out) if out.status.success() => {
+            let figures: Vec<f64> = String::from_utf8_lossy(&out.stdout).lines().map(|l| l.trim().trim_end_matches(" mm").trim_end_matches(" deg").parse().unwrap()).collect();
+            for ((q, ours), theirs) in QUANTITIES.iter().zip(figures) {
+                assert!((ours - theirs).abs() < 1e-9, "{q}: FreeCAD reads {theirs}, swarf {ours}");
+            }
+        }
+        _ => eprintln!("FreeCAD is not installed here: its parser not run (scripts/setup.sh installs freecad-python3)"),
+    }
+}

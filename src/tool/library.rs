@@ -51,7 +51,7 @@ pub fn read_library(bytes: &[u8], name: &str, inches: bool, bits: &[(String, Vec
     }
     if lower.ends_with(".fctb") || value.get("shape").is_some() {
         let mut out = Imported::default();
-        if let Some(t) = freecad_bit(&value, 1, name, &mut out.notes) {
+        if let Some(t) = freecad_bit(&value, 1, name, &mut out.notes)? {
             out.tools.push(t);
         }
         return Ok(out);
@@ -420,28 +420,59 @@ fn linuxcnc(text: &str, scale: f64) -> Result<Imported> {
     Ok(Imported { tools, notes: notes.0 })
 }
 
-/// A FreeCAD quantity ("5.00 mm", "118.00 °", "0.25 in", or a bare number) in mm or degrees.
-fn quantity(v: &Value) -> Option<f64> {
-    match v {
-        Value::Number(n) => n.as_f64(),
-        Value::String(s) => {
-            let s = s.trim();
-            let split = s.find(|c: char| !(c.is_ascii_digit() || c == '.' || c == '-' || c == '+' || c == 'e' || c == 'E')).unwrap_or(s.len());
-            let (n, unit) = s.split_at(split);
-            let n: f64 = n.trim().parse().ok()?;
-            Some(match unit.trim() {
-                "in" | "\"" => n * INCH,
-                "cm" => n * 10.0,
-                "m" => n * 1000.0,
-                _ => n,
-            })
-        }
-        _ => None,
+/// A FreeCAD quantity in mm (a length) or degrees (an angle), read as FreeCAD's own parser
+/// reads it: a number ("5.00", "5,00" as a comma-decimal locale writes it, a fraction
+/// "1/4"), then its unit: mm, µm (um), nm, cm, dm, m, km, in ("), ft ('), thou (mil), yd,
+/// °, deg, rad; none is the base unit (mm, °). What it is not is said (`Err`): a unit FreeCAD
+/// does not have, or no number.
+fn quantity(v: &Value) -> std::result::Result<f64, String> {
+    let s = match v {
+        Value::Number(n) => return n.as_f64().ok_or_else(|| format!("{n} is no number")),
+        Value::String(s) => s.trim(),
+        other => return Err(format!("{other} is no quantity")),
+    };
+    let split = s.find(|c: char| !(c.is_ascii_digit() || ".,-+eE/ ".contains(c))).unwrap_or(s.len());
+    // An exponent's `e` is the number's only where a digit or sign follows it.
+    let (mut n, mut unit) = s.split_at(split);
+    if let Some(e) = n.rfind(['e', 'E']).filter(|&e| !n[e + 1..].trim_start_matches(['-', '+']).starts_with(|c: char| c.is_ascii_digit())) {
+        (n, unit) = s.split_at(e);
     }
+    let n = n.trim();
+    let number = |t: &str| -> Option<f64> {
+        let t = t.trim();
+        if t.contains(',') && !t.contains('.') {
+            t.replace(',', ".").parse().ok()
+        } else {
+            t.parse().ok()
+        }
+    };
+    let value = match n.split_once('/') {
+        Some((a, b)) => number(a).zip(number(b)).filter(|(_, b)| *b != 0.0).map(|(a, b)| a / b),
+        None => number(n),
+    }
+    .filter(|v: &f64| v.is_finite())
+    .ok_or_else(|| format!("{s:?} is no number"))?;
+    let scale = match unit.trim() {
+        "" | "mm" | "°" | "deg" => 1.0,
+        "µm" | "um" => 1e-3,
+        "nm" => 1e-6,
+        "cm" => 10.0,
+        "dm" => 100.0,
+        "m" => 1000.0,
+        "km" => 1e6,
+        "in" | "\"" => INCH,
+        "ft" | "'" => 12.0 * INCH,
+        "thou" | "mil" => INCH / 1000.0,
+        "yd" => 36.0 * INCH,
+        "rad" => 180.0 / std::f64::consts::PI,
+        other => return Err(format!("{s:?}: {other:?} is no unit FreeCAD has")),
+    };
+    Ok(value * scale)
 }
 
-/// A FreeCAD tool bit numbered `number`.
-fn freecad_bit(value: &Value, number: u32, name: &str, notes: &mut Vec<String>) -> Option<Tool> {
+/// A FreeCAD tool bit numbered `number`: `None` (said) where swarf has no shape for it or it
+/// gives no diameter; an error naming the parameter where a size does not read.
+fn freecad_bit(value: &Value, number: u32, name: &str, notes: &mut Vec<String>) -> Result<Option<Tool>> {
     let shape_file = value.get("shape").and_then(Value::as_str).unwrap_or("");
     let bit = value.get("name").and_then(Value::as_str).unwrap_or(name).to_owned();
     let say = |notes: &mut Vec<String>, n: String| {
@@ -450,44 +481,21 @@ fn freecad_bit(value: &Value, number: u32, name: &str, notes: &mut Vec<String>) 
         }
     };
     let shape = match shape_file.trim_end_matches(".fcstd").to_lowercase().as_str() {
-        "endmill" | "slittingsaw" => Shape::Flat,
+        "endmill" => Shape::Flat,
         "ballend" => Shape::Ball,
         "bullnose" | "torus" => Shape::BullNose,
         "drill" => Shape::Drill,
         "v-bit" | "vbit" | "chamfer" => Shape::VBit,
         "threadmill" => Shape::ThreadMill,
-        other => match shape_in(other) {
+        // A saw cuts with its rim, not its end: no shape swarf plans for.
+        other => match shape_in(other).filter(|_| !other.contains("saw")) {
             Some(s) => s,
             None => {
                 say(notes, format!("{bit}: its shape {shape_file:?} has none in swarf: not taken"));
-                return None;
+                return Ok(None);
             }
         },
     };
-    let p = value.get("parameter").cloned().unwrap_or(json!({}));
-    let q = |key: &str| p.get(key).and_then(quantity);
-    let Some(d) = q("Diameter").filter(|&d| d > 0.0) else {
-        say(notes, format!("{bit}: no Diameter: not taken"));
-        return None;
-    };
-    let mut cutter = Cutter { shape, diameter: d, ..Cutter::default() };
-    cutter.shank_diameter = q("ShankDiameter").filter(|&s| (s - d).abs() > 1e-9);
-    if let Some(l) = q("CuttingEdgeHeight").or(q("Length")) {
-        cutter.flute_length = l;
-    }
-    match shape {
-        Shape::BullNose => cutter.corner_radius = q("TorusRadius").or(q("CornerRadius")).or(q("FlatRadius").map(|f| d / 2.0 - f)).unwrap_or(0.0),
-        Shape::Drill => cutter.angle = q("TipAngle"),
-        Shape::VBit => {
-            cutter.angle = q("CuttingEdgeAngle").or(q("TipAngle"));
-            cutter.tip_diameter = q("TipDiameter").unwrap_or(0.0);
-        }
-        _ => {}
-    }
-    let mut tool = Tool { number, name: bit.clone(), cutter, ..Tool::default() };
-    if let Some(z) = q("Flutes") {
-        tool.flutes = z.round().max(1.0) as u32;
-    }
     const TAKEN: &[&str] = &[
         "Diameter",
         "ShankDiameter",
@@ -504,11 +512,61 @@ fn freecad_bit(value: &Value, number: u32, name: &str, notes: &mut Vec<String>) 
         "Material",
         "SpindleDirection",
     ];
+    let mut p = value.get("parameter").cloned().unwrap_or(json!({}));
+    // FreeCAD keeps the flutes, chip load, material and spindle direction among a bit's
+    // attributes (older bits among its parameters): read from either.
+    if let (Some(attributes), Some(params)) = (value.get("attribute").and_then(Value::as_object), p.as_object_mut()) {
+        for key in ["Flutes", "Chipload", "Material", "SpindleDirection"] {
+            if let Some(v) = attributes.get(key).filter(|_| !params.contains_key(key)) {
+                params.insert(key.to_owned(), v.clone());
+            }
+        }
+    }
+    // Every quantity read as FreeCAD reads it, one that does not refused naming it.
+    let mut read = std::collections::BTreeMap::new();
+    for key in TAKEN.iter().filter(|k| !matches!(**k, "Material" | "SpindleDirection")) {
+        if let Some(v) = p.get(*key).filter(|v| !v.is_null()) {
+            let q = quantity(v).map_err(|why| Error::Input(format!("{bit}: {key} {why}; the bit is not read")))?;
+            if q < 0.0 {
+                return Err(Error::Input(format!("{bit}: {key} is {}: a size is not negative; the bit is not read", crate::limits::shown(q))));
+            }
+            read.insert(*key, q);
+        }
+    }
+    let q = |key: &str| read.get(key).copied();
+    let Some(d) = q("Diameter").filter(|&d| d > 0.0) else {
+        say(notes, format!("{bit}: no Diameter: not taken"));
+        return Ok(None);
+    };
+    let mut cutter = Cutter { shape, diameter: d, ..Cutter::default() };
+    cutter.shank_diameter = q("ShankDiameter").filter(|&s| (s - d).abs() > 1e-9);
+    if let Some(l) = q("CuttingEdgeHeight").or(q("Length")) {
+        cutter.flute_length = l;
+    }
+    match shape {
+        Shape::BullNose => cutter.corner_radius = q("TorusRadius").or(q("CornerRadius")).or(q("FlatRadius").map(|f| d / 2.0 - f)).unwrap_or(0.0),
+        Shape::Drill => cutter.angle = q("TipAngle"),
+        Shape::VBit => {
+            cutter.angle = q("CuttingEdgeAngle").or(q("TipAngle"));
+            // A chamfer mill's flat is given by its radius.
+            cutter.tip_diameter = q("TipDiameter").or(q("FlatRadius").map(|r| 2.0 * r)).unwrap_or(0.0);
+        }
+        _ => {}
+    }
+    let mut tool = Tool { number, name: bit.clone(), cutter, ..Tool::default() };
+    if let Some(z) = q("Flutes") {
+        tool.flutes = z.round().max(1.0) as u32;
+    }
+    match p.get("Material").and_then(Value::as_str).map(str::to_lowercase).as_deref() {
+        None | Some("carbide") => {}
+        Some("hss") => tool.tool_material = super::ToolMaterial::Hss,
+        Some(other) => say(notes, format!("{bit}: its Material {other:?} is neither carbide nor HSS, the two swarf's charts have: taken as carbide")),
+    }
     let unknown: Vec<&String> = p.as_object().map(Map::keys).into_iter().flatten().filter(|k| !TAKEN.contains(&k.as_str())).collect();
     if !unknown.is_empty() {
         say(notes, format!("{bit}: not taken, as swarf does not model them: {}", unknown.iter().map(|s| s.as_str()).collect::<Vec<_>>().join(", ")));
     }
-    Some(tool)
+    Ok(Some(tool))
 }
 
 /// A FreeCAD library: its tools' numbers and the bits' files they name, read from `bits`.
@@ -523,7 +581,7 @@ fn freecad_library(value: &Value, name: &str, bits: &[(String, Vec<u8>)]) -> Res
             continue;
         };
         let bit: Value = serde_json::from_slice(bytes).map_err(|e| Error::Input(format!("{file}: not a FreeCAD tool bit: {}", crate::error::plain(&e.to_string()))))?;
-        if let Some(t) = freecad_bit(&bit, number, file, &mut out.notes) {
+        if let Some(t) = freecad_bit(&bit, number, file, &mut out.notes)? {
             out.tools.push(t);
         }
     }
@@ -554,7 +612,7 @@ pub fn write_freecad(tools: &[Tool], library: &str) -> Vec<(String, String)> {
         p.insert("ShankDiameter".into(), json!(mm(c.shank_diameter.unwrap_or(c.diameter))));
         p.insert("CuttingEdgeHeight".into(), json!(mm(c.flute_length)));
         p.insert("Length".into(), json!(mm(t.stick_out.unwrap_or(c.flute_length).max(c.flute_length))));
-        p.insert("Flutes".into(), json!(t.flutes.to_string()));
+
         match c.shape {
             Shape::BullNose => {
                 p.insert("TorusRadius".into(), json!(mm(c.corner_radius)));
@@ -571,7 +629,11 @@ pub fn write_freecad(tools: &[Tool], library: &str) -> Vec<(String, String)> {
         let name = if t.name.is_empty() { c.describe() } else { t.name.clone() };
         let slug: String = name.chars().map(|ch| if ch.is_ascii_alphanumeric() { ch } else { '_' }).collect();
         let file = format!("T{}_{}.fctb", t.number, slug.trim_matches('_'));
-        let bit = json!({ "version": 2, "name": name, "shape": format!("{shape}.fcstd"), "parameter": p, "attribute": {} });
+        let material = match t.tool_material {
+            super::ToolMaterial::Carbide => "Carbide",
+            super::ToolMaterial::Hss => "HSS",
+        };
+        let bit = json!({ "version": 2, "name": name, "shape": format!("{shape}.fcstd"), "parameter": p, "attribute": { "Flutes": t.flutes, "Material": material } });
         entries.push(json!({ "nr": t.number, "path": file }));
         bits.push((file, serde_json::to_string_pretty(&bit).expect("JSON")));
     }
