@@ -126,8 +126,8 @@ impl Machine {
         if !(self.spindle_max.is_finite() && self.spindle_max > 0.0 && self.spindle_max >= self.spindle_min && self.spindle_max <= crate::limits::MAX_RPM) {
             out.push(("spindleMax", format!("must be more than 0 rpm, at least spindleMin and at most {} (got {})", crate::limits::MAX_RPM, crate::limits::shown(self.spindle_max))));
         }
-        if !(self.max_feed.is_finite() && self.max_feed > 0.0 && self.max_feed <= crate::limits::MAX_FEED) {
-            out.push(("maxFeed", format!("must be more than 0 mm/min, at most {} (got {})", crate::limits::MAX_FEED, crate::limits::shown(self.max_feed))));
+        if !(self.max_feed.is_finite() && self.max_feed >= 1.0 && self.max_feed <= crate::limits::MAX_FEED) {
+            out.push(("maxFeed", format!("must be at least 1 mm/min, at most {} (got {})", crate::limits::MAX_FEED, crate::limits::shown(self.max_feed))));
         }
         if let Some(t) = self.travel.filter(|t| !t.iter().all(|v| v.is_finite() && *v > 0.0 && *v <= crate::limits::MAX_SIZE)) {
             out.push(("travel", format!("must be three lengths of more than 0 mm, at most {} (got {t:?})", crate::limits::MAX_SIZE)));
@@ -287,14 +287,18 @@ pub struct CuttingData {
 /// `tool`'s speeds and feeds cutting `material` on `machine` (as typed where the tool says so
 /// or the job names no material).
 pub fn cutting_data(tool: &Tool, material: Option<Material>, machine: &Machine) -> CuttingData {
-    let typed = |why: &str| CuttingData {
-        tool: tool.number,
-        spindle_rpm: tool.spindle_rpm,
-        feed_rate: tool.feed_rate,
-        plunge_rate: tool.plunge_rate,
-        from_material: false,
-        reason: why.to_owned(),
-        source: None,
+    // Feeds as typed, no faster than the machine goes.
+    let typed = |why: &str| {
+        let held = tool.feed_rate > machine.max_feed || tool.plunge_rate > machine.max_feed;
+        CuttingData {
+            tool: tool.number,
+            spindle_rpm: tool.spindle_rpm,
+            feed_rate: tool.feed_rate.min(machine.max_feed),
+            plunge_rate: tool.plunge_rate.min(machine.max_feed),
+            from_material: false,
+            reason: if held { format!("{why}, held at the machine's fastest feed ({} mm/min)", crate::limits::shown(machine.max_feed)) } else { why.to_owned() },
+            source: None,
+        }
     };
     let Some(material) = material else { return typed("as typed: the stock's material is not set") };
     if tool.speeds == Speeds::AsTyped {
@@ -340,7 +344,11 @@ pub fn cutting_data(tool: &Tool, material: Option<Material>, machine: &Machine) 
     if rpm < wanted.round() {
         why += &format!(" (held at the machine's {} rpm)", shown(rpm));
     } else if rpm > wanted.round() {
-        why += &format!(" (the machine's slowest, {} rpm)", shown(rpm));
+        why += &format!(" (the machine's slowest, {} rpm", shown(rpm));
+        if let Some(over) = surface_too_fast(tool, material, machine) {
+            why += &format!(": {over}");
+        }
+        why += ")";
     }
     // Thread mills take a light chip: half the table's.
     let fz = material.chip_load(d) * if c.shape == Shape::ThreadMill { 0.5 } else { 1.0 };
@@ -353,6 +361,28 @@ pub fn cutting_data(tool: &Tool, material: Option<Material>, machine: &Machine) 
     // A drill feeds at its feed; an end mill plunges at half its feed.
     let plunge = if matches!(c.shape, Shape::Drill | Shape::SpotDrill) { feed } else { feed / 2.0 };
     CuttingData { tool: tool.number, spindle_rpm: rpm, feed_rate: feed.round(), plunge_rate: plunge.round().max(1.0), from_material: true, reason: why, source: Some(material.source().to_owned()) }
+}
+
+/// Where `machine`'s slowest spindle speed runs `tool` in `material` at more than half as fast
+/// again as the chart's surface speed: what it comes to, in words (a φ12 in mild steel on a
+/// router's 8000 rpm floor runs at several times the chart's speed, and burns).
+pub fn surface_too_fast(tool: &Tool, material: Material, machine: &Machine) -> Option<String> {
+    let vc = material.cutting_speed(tool.tool_material)?;
+    let d = tool.cutter.diameter;
+    let at = std::f64::consts::PI * d * machine.spindle_min / 1000.0;
+    (at > 1.5 * vc).then(|| {
+        format!(
+            "{} m/min at the surface, {:.1} × the chart's {} m/min for {} in {}: too fast for it; a machine that turns slower suits it",
+            crate::limits::shown(at.round()),
+            at / vc,
+            crate::limits::shown((vc * 10.0).round() / 10.0),
+            match tool.tool_material {
+                ToolMaterial::Carbide => "carbide",
+                ToolMaterial::Hss => "HSS",
+            },
+            material.words()
+        )
+    })
 }
 
 /// The spindle power (kW) a cut removing `rate` mm³/min of a material of specific cutting

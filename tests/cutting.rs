@@ -345,3 +345,43 @@ fn optimised_feeds_run_faster_within_each_tools_chip_load() {
     assert!(again.report.is_clean(), "{}", again.report.describe());
     assert!(common::rs274(&out.gcode, &job.tools).contains("STRAIGHT_FEED"));
 }
+
+/// Issue 93, the machine: feeds as typed faster than the machine goes are held at its fastest
+/// and said (F8000 on a 5000 mm/min router once ran as typed); a fastest feed under 1 mm/min is
+/// refused (1e-12 made every feed F1); a machine named as a built-in one takes its limits (a
+/// "small VMC" by name once kept the router's); a name of none with no limits is refused; a
+/// spindle whose slowest speed runs a tool far past its material's surface speed is warned of
+/// with the figures (a φ12 in mild steel on a router's 8000 rpm floor).
+#[test]
+fn the_machine_means_what_it_says() {
+    // Typed feeds held at the router's 5000 mm/min, with a warning naming the tool.
+    let mut job = Job::demo();
+    job.tools[0].feed_rate = 8000.0;
+    let out = job::run(&job, swarf::mesh::sample::demo_part(), &mut Progress::none()).unwrap();
+    assert!(out.warnings.iter().any(|w| w.to_string().contains("T1") && w.to_string().contains("F8000") && w.to_string().contains("held at it")), "{:?}", out.warnings);
+    let fastest = out.moves.iter().filter(|m| !m.mv.is_rapid() && !m.air).filter_map(|m| m.mv.feed()).fold(0.0, f64::max);
+    assert!(fastest <= 5000.0 + 1e-9, "a feed of {fastest} mm/min");
+    // A fastest feed under 1 mm/min.
+    let e = Job::from_json(r#"{ "machine": { "name": "slow", "spindleMin": 1000, "spindleMax": 10000, "maxFeed": 1e-12 } }"#).and_then(|j| j.validate().map(|_| j)).unwrap_err().to_string();
+    assert!(e.contains("maxFeed") && e.contains("at least 1 mm/min"), "{e}");
+    // By name.
+    let vmc = Job::from_json(r#"{ "machine": { "name": "small VMC" } }"#).unwrap();
+    assert_eq!(vmc.machine, Machine::builtin()[2]);
+    let own = Job::from_json(r#"{ "machine": { "name": "small VMC", "maxFeed": 8000 } }"#).unwrap();
+    assert_eq!((own.machine.max_feed, own.machine.spindle_max), (8000.0, 12000.0));
+    let e = Job::from_json(r#"{ "machine": { "name": "Shapeoko" } }"#).unwrap_err().to_string();
+    assert!(e.contains("machine.name: \"Shapeoko\" is none of the built-in machines") && e.contains("spindleMin"), "{e}");
+    // A φ12 carbide in mild steel on the router's 8000 rpm floor: π·12·8000/1000 = 301.6 m/min.
+    let mut job = Job::demo();
+    job.stock.material = Some(Material::MildSteel);
+    job.tools[0].cutter = Cutter::flat(12.0);
+    let said = job.feeds_held();
+    let vc = Material::MildSteel.cutting_speed(ToolMaterial::Carbide).unwrap();
+    let at = (PI * 12.0 * 8000.0 / 1000.0).round();
+    assert!(said.iter().any(|w| w.to_string().contains(&format!("{at} m/min at the surface")) && w.to_string().contains(&format!("{:.1} ×", PI * 12.0 * 8.0 / vc))), "{said:?}");
+    let data = cutting_data(&job.tools[0], job.stock.material, &job.machine);
+    assert!(data.reason.contains("too fast for it"), "{}", data.reason);
+    // On the benchtop mill (100 rpm at its slowest) nothing is said.
+    job.machine = Machine::builtin()[1].clone();
+    assert!(job.feeds_held().is_empty());
+}

@@ -13,6 +13,33 @@ use crate::operations::Operation;
 /// name, new name)`. A file of an older version is read with its old names.
 const RENAMED: &[(u32, &[&str], &str, &str)] = &[(2, &["roughZlevel", "roughZigzag", "roughOctree", "pocket2d"], "stepover", "stepoverFraction")];
 
+/// A job's machine given by the name of a built-in one takes that one's limits where the file
+/// gives none of its own (`"machine": {"name": "small VMC"}` once kept the hobby router's); a
+/// name of no built-in machine with none of the limits is refused, naming them.
+fn machine_by_name(value: &serde_json::Value) -> Result<serde_json::Value> {
+    let mut value = value.clone();
+    let Some(machine) = value.get_mut("machine").and_then(serde_json::Value::as_object_mut) else { return Ok(value) };
+    let Some(name) = machine.get("name").and_then(serde_json::Value::as_str).map(str::to_owned) else { return Ok(value) };
+    let builtin = crate::cutting::Machine::builtin();
+    match builtin.iter().find(|m| m.name.eq_ignore_ascii_case(name.trim())) {
+        Some(m) => {
+            let whole = serde_json::to_value(m).map_err(|e| Error::Internal(e.to_string()))?;
+            for (k, v) in whole.as_object().into_iter().flatten() {
+                machine.entry(k.clone()).or_insert_with(|| v.clone());
+            }
+        }
+        None if !["spindleMin", "spindleMax", "maxFeed"].iter().any(|k| machine.contains_key(*k)) => {
+            let names: Vec<String> = builtin.iter().map(|m| format!("{:?}", m.name)).collect();
+            return Err(Error::Input(format!(
+                "machine.name: {name:?} is none of the built-in machines ({}), and the machine gives none of its limits: give its spindleMin, spindleMax and maxFeed, or name a built-in one",
+                names.join(", ")
+            )));
+        }
+        None => {}
+    }
+    Ok(value)
+}
+
 impl Job {
     /// Reads a job file (JSON text), see [`Job::from_value`].
     pub fn from_json(text: &str) -> Result<Job> {
@@ -44,7 +71,7 @@ impl Job {
         if version > JOB_VERSION as u64 {
             return Err(Error::Input(format!("the job has version {version}; this swarf reads versions up to {JOB_VERSION} (a newer swarf wrote it)")));
         }
-        let value = &upgrade(value, version as u32);
+        let value = &machine_by_name(&upgrade(value, version as u32))?;
         let mut job: Job = crate::error::read_value(value).map_err(|e| {
             let path = e.path().to_string();
             // An operation is read whole (its `kind` picks the type), so the path stops at it:

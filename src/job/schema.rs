@@ -964,7 +964,8 @@ impl Job {
     /// The job with its tools' speeds and feeds from the stock's material, where they take
     /// them: what runs, is timed and posted.
     pub fn with_cutting_data(&self) -> std::borrow::Cow<'_, Job> {
-        if self.stock.material.is_none() {
+        let max = self.machine.max_feed;
+        if self.stock.material.is_none() && self.tools.iter().all(|t| t.feed_rate <= max && t.plunge_rate <= max) {
             return std::borrow::Cow::Borrowed(self);
         }
         let mut job = self.clone();
@@ -974,5 +975,38 @@ impl Job {
             t.plunge_rate = c.plunge_rate;
         }
         std::borrow::Cow::Owned(job)
+    }
+
+    /// What is said of the tools the machine does not suit: feeds as typed faster than it goes
+    /// (each held at its fastest, [`crate::cutting::cutting_data`]), or a spindle whose slowest
+    /// speed runs a tool far faster at its edge than the material's chart gives.
+    pub fn feeds_held(&self) -> Vec<crate::error::Warning> {
+        let max = self.machine.max_feed;
+        self.tools
+            .iter()
+            .filter(|t| (t.speeds == crate::tool::Speeds::AsTyped || self.stock.material.is_none()) && (t.feed_rate > max || t.plunge_rate > max))
+            .map(|t| {
+                crate::error::Warning::of(
+                    &format!("T{}", t.number),
+                    format!(
+                        "its feed as typed (F{}, plunge F{}) is faster than the {}'s fastest, {} mm/min: held at it",
+                        crate::limits::shown(t.feed_rate),
+                        crate::limits::shown(t.plunge_rate),
+                        self.machine.name,
+                        crate::limits::shown(max)
+                    ),
+                )
+            })
+            .chain(self.stock.material.into_iter().flat_map(|m| {
+                self.tools.iter().filter(|t| t.speeds != crate::tool::Speeds::AsTyped).filter_map(move |t| {
+                    crate::cutting::surface_too_fast(t, m, &self.machine).map(|why| {
+                        crate::error::Warning::of(
+                            &format!("T{}", t.number),
+                            format!("the {}'s slowest spindle speed, {} rpm, runs it at {why}", self.machine.name, crate::limits::shown(self.machine.spindle_min)),
+                        )
+                    })
+                })
+            }))
+            .collect()
     }
 }
