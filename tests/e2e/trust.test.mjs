@@ -189,8 +189,9 @@ async function installCutLists(page) {
   });
 }
 
-// Every button, field and list of the side panel, in every tab: inside the window's width and
-// the one that gets a click at its middle (after scrolling the panel to it).
+// Every button, field, list and section heading of the side panel, in every tab (its folded
+// sections opened): inside the window's width and the one that gets a click at its middle
+// (after scrolling the panel to it).
 async function reachable(page) {
   await installCutLists(page);
   const out = [];
@@ -198,7 +199,10 @@ async function reachable(page) {
     await tab(page, name);
     const found = await page.evaluate(() => {
       const bad = [];
-      const all = [...document.querySelectorAll('#panel button, #panel input, #panel select, #panel label.button')].filter((el) => el.offsetParent !== null && !(el.type === 'file'));
+      // Every section folded away (an operation's heights) opened: its controls must be in
+      // reach too, and its heading is one of the controls.
+      for (const d of document.querySelectorAll('#panel details')) d.open = true;
+      const all = [...document.querySelectorAll('#panel button, #panel input, #panel select, #panel label.button, #panel summary')].filter((el) => el.offsetParent !== null && !(el.type === 'file'));
       for (const el of all) {
         el.scrollIntoView({ block: 'nearest', inline: 'nearest' });
         const r = el.getBoundingClientRect();
