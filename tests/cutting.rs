@@ -375,7 +375,7 @@ fn the_machine_means_what_it_says() {
     let mut job = Job::demo();
     job.stock.material = Some(Material::MildSteel);
     job.tools[0].cutter = Cutter::flat(12.0);
-    let said = job.feeds_held();
+    let said = job.machine_warnings();
     let vc = Material::MildSteel.cutting_speed(ToolMaterial::Carbide).unwrap();
     let at = (PI * 12.0 * 8000.0 / 1000.0).round();
     assert!(said.iter().any(|w| w.to_string().contains(&format!("{at} m/min at the surface")) && w.to_string().contains(&format!("{:.1} ×", PI * 12.0 * 8.0 / vc))), "{said:?}");
@@ -383,5 +383,5 @@ fn the_machine_means_what_it_says() {
     assert!(data.reason.contains("too fast for it"), "{}", data.reason);
     // On the benchtop mill (100 rpm at its slowest) nothing is said.
     job.machine = Machine::builtin()[1].clone();
-    assert!(job.feeds_held().is_empty());
+    assert!(job.machine_warnings().is_empty());
 }

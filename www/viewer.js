@@ -479,12 +479,8 @@ export class Viewer {
   // Where the point `p` (mm) appears on the canvas, in CSS pixels from its top left corner
   // (null behind the eye).
   project(p) {
-    const m = this.matrix();
-    const x = m[0] * p[0] + m[4] * p[1] + m[8] * p[2] + m[12];
-    const y = m[1] * p[0] + m[5] * p[1] + m[9] * p[2] + m[13];
-    const w = m[3] * p[0] + m[7] * p[1] + m[11] * p[2] + m[15];
-    if (!(w > 0)) return null;
-    return [((x / w + 1) / 2) * this.canvas.clientWidth, ((1 - y / w) / 2) * this.canvas.clientHeight];
+    const [x, y, w] = toCanvas(this.matrix(), p[0], p[1], p[2], this.canvas.clientWidth, this.canvas.clientHeight);
+    return w > 0 ? [x, y] : null;
   }
 
   // The point of the part under the canvas point (x, y) in CSS pixels, nearest the eye, in
@@ -494,11 +490,7 @@ export class Viewer {
     const p = this.part?.positions;
     if (!p) return null;
     const m = this.matrix(), W = this.canvas.clientWidth, H = this.canvas.clientHeight;
-    const clip = (k) => {
-      const [px, py, pz] = [p[k], p[k + 1], p[k + 2]];
-      const w = m[3] * px + m[7] * py + m[11] * pz + m[15];
-      return [((m[0] * px + m[4] * py + m[8] * pz + m[12]) / w + 1) / 2 * W, (1 - (m[1] * px + m[5] * py + m[9] * pz + m[13]) / w) / 2 * H, w];
-    };
+    const clip = (k) => toCanvas(m, p[k], p[k + 1], p[k + 2], W, H);
     let best = null, nearest = Infinity;
     for (let k = 0; k + 9 <= p.length; k += 9) {
       const a = clip(k), b = clip(k + 3), c = clip(k + 6);
@@ -817,6 +809,13 @@ export class Viewer {
       this.moved();
     }, { passive: false });
   }
+}
+
+// Where the point (x, y, z) (mm) falls on a canvas W × H CSS pixels under the view matrix `m`:
+// [x, y] from its top left corner, and the eye's w (not above 0: behind the eye).
+function toCanvas(m, x, y, z, W, H) {
+  const w = m[3] * x + m[7] * y + m[11] * z + m[15];
+  return [((m[0] * x + m[4] * y + m[8] * z + m[12]) / w + 1) / 2 * W, (1 - (m[1] * x + m[5] * y + m[9] * z + m[13]) / w) / 2 * H, w];
 }
 
 // The first index of the sorted `values` not below `x`.

@@ -294,7 +294,8 @@ pub fn run(job: &Job, workpiece: impl Into<Workpiece>, progress: &mut Progress) 
 /// plans in.
 pub fn prepare(job: &Job, workpiece: impl Into<Workpiece>) -> Result<Prepared> {
     job.validate()?;
-    let given = job;
+    // What the machine does not suit, said of the tools as given (their feeds as typed).
+    let unsuited = job.machine_warnings();
     // The tools' speeds and feeds from the stock's material, where they take them.
     let cut = job.with_cutting_data();
     let job: &Job = &cut;
@@ -317,7 +318,7 @@ pub fn prepare(job: &Job, workpiece: impl Into<Workpiece>) -> Result<Prepared> {
         Workpiece::Mesh(m) => surface_warnings(m),
         Workpiece::Drawing(d) => drawing_warnings(d),
     };
-    warnings.extend(given.feeds_held());
+    warnings.extend(unsuited);
     let ctx = job.context(workpiece)?;
     // Its size in its unit, as placed.
     if ctx.sheet.is_none() {

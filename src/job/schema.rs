@@ -978,35 +978,23 @@ impl Job {
     }
 
     /// What is said of the tools the machine does not suit: feeds as typed faster than it goes
-    /// (each held at its fastest, [`crate::cutting::cutting_data`]), or a spindle whose slowest
-    /// speed runs a tool far faster at its edge than the material's chart gives.
-    pub fn feeds_held(&self) -> Vec<crate::error::Warning> {
-        let max = self.machine.max_feed;
+    /// (each held at its fastest by [`crate::cutting::cutting_data`]), or a spindle whose
+    /// slowest speed runs a tool far faster at its edge than the material's chart gives.
+    pub fn machine_warnings(&self) -> Vec<crate::error::Warning> {
+        let m = &self.machine;
+        let shown = crate::limits::shown;
         self.tools
             .iter()
-            .filter(|t| (t.speeds == crate::tool::Speeds::AsTyped || self.stock.material.is_none()) && (t.feed_rate > max || t.plunge_rate > max))
-            .map(|t| {
-                crate::error::Warning::of(
-                    &format!("T{}", t.number),
-                    format!(
-                        "its feed as typed (F{}, plunge F{}) is faster than the {}'s fastest, {} mm/min: held at it",
-                        crate::limits::shown(t.feed_rate),
-                        crate::limits::shown(t.plunge_rate),
-                        self.machine.name,
-                        crate::limits::shown(max)
-                    ),
-                )
+            .zip(self.cutting_data())
+            .filter_map(|(t, c)| {
+                let why = if !c.from_material && (c.feed_rate < t.feed_rate || c.plunge_rate < t.plunge_rate) {
+                    format!("its feed as typed (F{}, plunge F{}) is faster than the {}'s fastest, {} mm/min: held at it", shown(t.feed_rate), shown(t.plunge_rate), m.name, shown(m.max_feed))
+                } else {
+                    let over = crate::cutting::surface_too_fast(t, self.stock.material.filter(|_| c.from_material)?, m)?;
+                    format!("the {}'s slowest spindle speed, {} rpm, runs it at {over}", m.name, shown(m.spindle_min))
+                };
+                Some(crate::error::Warning::of(&format!("T{}", t.number), why))
             })
-            .chain(self.stock.material.into_iter().flat_map(|m| {
-                self.tools.iter().filter(|t| t.speeds != crate::tool::Speeds::AsTyped).filter_map(move |t| {
-                    crate::cutting::surface_too_fast(t, m, &self.machine).map(|why| {
-                        crate::error::Warning::of(
-                            &format!("T{}", t.number),
-                            format!("the {}'s slowest spindle speed, {} rpm, runs it at {why}", self.machine.name, crate::limits::shown(self.machine.spindle_min)),
-                        )
-                    })
-                })
-            }))
             .collect()
     }
 }

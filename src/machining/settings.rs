@@ -278,9 +278,6 @@ impl Heights {
         let mut out = Vec::new();
         for run in runs {
             let mut current: Vec<glam::DVec3> = Vec::new();
-            if let Some(&first) = run.first().filter(|&&p| inside(p)) {
-                current.push(first);
-            }
             for w in run.windows(2) {
                 let (a, b) = (w[0], w[1]);
                 // Where the move crosses either height, in order along it.
