@@ -183,3 +183,56 @@ fn a_height_from_a_picked_point_is_from_its_z() {
     let e = program(Heights { bottom: Some(-9.0), bottom_from: HeightFrom::Point, ..Heights::default() }).unwrap_err().to_string();
     assert!(e.contains("bottomFrom") && e.contains("none is picked"), "{e}");
 }
+
+/// A 2D cut and a hole operation have their own clearance too (their depths are their top and
+/// bottom): a drawing's profile with a clearance 20 mm over the stock's top and a 2.5 mm
+/// retract crosses at it and comes down to the gap; the two-sided example's drilling with one
+/// 30 mm over its stock returns to it (its initial height); a clearance inside the stock is
+/// refused naming the field, as a 3D operation's is.
+#[test]
+fn a_2d_and_a_hole_operations_clearance_is_their_own() {
+    use swarf::operations::{Moves, Profile2d};
+    let drawing = swarf::drawing::import::read_drawing(swarf::drawing::sample::plate_dxf().as_bytes(), Some("plate.dxf"), &Default::default()).unwrap();
+    let moves = Moves { clearance: Some(20.0), retract: Some(2.5), ..Moves::default() };
+    let mut job = Job::default_for_drawing();
+    let Operation::Profile2d(p) = &job.operations[0] else { unreachable!() };
+    job.operations = vec![Operation::Profile2d(Profile2d { moves, ..p.clone() })];
+    let out = job::run(&job, drawing.clone(), &mut Progress::none()).unwrap();
+    common::clean(&out);
+    let top = out.stock.max.z;
+    let rapids: Vec<f64> = out.moves.iter().filter(|m| m.mv.is_rapid()).map(|m| m.mv.to().z).collect();
+    let highest = rapids.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    assert!((highest - (top + 20.0)).abs() < 1e-9, "rapids up to Z{highest}, the stock's top Z{top}");
+    assert!(!rapids.iter().any(|z| (z - (top + job.stock.clearance)).abs() < 1e-9), "a rapid at the job's clearance");
+    let lowest = rapids.iter().copied().fold(f64::INFINITY, f64::min) - top;
+    assert!((lowest - 2.5).abs() < 1e-6, "rapids down to {lowest} over the stock");
+    // The hole operation: the two-sided example's first setup, its drilling's own clearance.
+    let mut two = Job::two_sided();
+    let mut ops = two.setups[0].operations.clone();
+    for op in &mut ops {
+        if let Operation::Drill(d) = op {
+            d.moves = swarf::operations::Clearance { clearance: Some(30.0), ..Default::default() };
+        }
+    }
+    two.operations = ops;
+    two.setups.clear();
+    let out = job::run(&two, swarf::mesh::sample::two_sided_part(), &mut Progress::none()).unwrap();
+    let initial = out.stock.max.z + 30.0;
+    let drilled = out.gcode.lines().skip_while(|l| !l.starts_with("G98 G8")).take(1).count();
+    assert_eq!(drilled, 1, "no canned cycle");
+    assert!(out.gcode.contains(&format!("Z{initial:.3}")) || out.gcode.contains(&format!("Z{}", initial)), "no move to the drilling's clearance Z{initial}");
+    // Refused inside the stock, naming the field.
+    job.operations = vec![Operation::Profile2d(Profile2d { moves: Moves { clearance: Some(-1.0), ..Moves::default() }, ..p_default(&job) })];
+    let e = job::run(&job, drawing, &mut Progress::none()).unwrap_err().to_string();
+    assert!(e.contains("clearance") && e.contains("not above the stock's top"), "{e}");
+    // A clearance from a point with none picked is named.
+    let mut job = Job::demo();
+    job.operations = vec![Operation::from_json(&serde_json::json!({"kind": "drill", "clearance": 5, "clearanceFrom": "point"})).unwrap()];
+    let e = job.problems().into_iter().map(|p| format!("{}: {}", p.path, p.message)).collect::<Vec<_>>().join("; ");
+    assert!(e.contains("clearanceFrom") && e.contains("none is picked"), "{e}");
+}
+
+fn p_default(job: &Job) -> swarf::operations::Profile2d {
+    let Operation::Profile2d(p) = &job.operations[0] else { unreachable!() };
+    swarf::operations::Profile2d { moves: Default::default(), ..p.clone() }
+}

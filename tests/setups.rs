@@ -3,7 +3,7 @@
 
 mod common;
 
-use swarf::job::{run_setups, Job};
+use swarf::job::{run_setups, Job, Operation};
 use swarf::mesh::sample::two_sided_part;
 use swarf::progress::Progress;
 use swarf::sim::StockModel;
@@ -265,6 +265,50 @@ fn bar_stock_is_round_and_its_air_is_not_cut() {
     eprintln!("lying bar: removed {removed:.0} + left {left:.0} of {material:.0} mm³");
     assert!((size.y - 30.0).abs() < 1e-9 && (size.z - 30.0).abs() < 1e-9, "{size}");
     assert!((removed + left - material).abs() < 0.01 * material, "{removed} + {left} against the bar's {material}");
+}
+
+/// A part in a bar is held by the bar: a φ40 puck cut from the end of a φ46 bar stood on end
+/// (the bar's round side is what holds it, as a vise's or a chuck's jaws do) is still joined to
+/// the bar as the job ends, and the job says to part it off below the puck's bottom; roughed
+/// down past its bottom with nothing left on the floor (the bar's air beside it as it came is
+/// no side to hold it by) the job says it cuts the part free instead; a block in a bar lying
+/// along X is held by the bar's sides as well.
+#[test]
+fn a_part_in_a_bar_is_held_by_the_bar_and_parted_off() {
+    use swarf::job::{Bar, BarAxis};
+    use swarf::operations::{HeightFrom, Heights};
+    let job_for = |bar: Bar, bottom: Option<f64>, allowance: f64| {
+        let mut job = milled_only();
+        let mut operations = job.setups[0].operations.clone();
+        job.setups.clear();
+        for op in &mut operations {
+            if let Operation::RoughZlevel(r) = op {
+                r.roughing.heights = Heights { bottom, bottom_from: HeightFrom::StockBottom, ..Heights::default() };
+                r.roughing.allowance = allowance;
+            }
+        }
+        job.operations = operations;
+        job.stock.bar = Some(bar);
+        job.stock.margin_bottom = 6.0;
+        job
+    };
+    let part = puck(20.0, -10.0, 0.0, 96);
+    let bar = Bar { diameter: 46.0, axis: BarAxis::Z };
+    let said = |out: &swarf::job::JobOutput| out.warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>().join("\n");
+    let held = swarf::job::run(&job_for(bar, Some(3.0), 0.5), part.clone(), &mut Progress::none()).unwrap();
+    let words = said(&held);
+    eprintln!("{words}");
+    assert!(words.contains("still joined to the φ46 bar") && words.contains("below its bottom (Z-10.000"), "{words}");
+    assert!(!words.contains("cuts the part free"), "{words}");
+    let freed = swarf::job::run(&job_for(bar, Some(-1.0), 0.0), part.clone(), &mut Progress::none()).unwrap();
+    let words = said(&freed);
+    let lowest = freed.moves.iter().filter(|m| !m.mv.is_rapid()).map(|m| m.mv.to().z).fold(f64::INFINITY, f64::min);
+    eprintln!("{words}\nlowest feed Z{lowest:.3}, stock {:?}", freed.stock);
+    assert!(words.contains("cuts the part free") && !words.contains("still joined"), "{words}");
+    let block = swarf::mesh::sample::height_field_solid(swarf::geom::DVec2::new(-30.0, -8.0), swarf::geom::DVec2::new(30.0, 8.0), 4, 4, -16.0, |_, _| 0.0);
+    let lying = swarf::job::run(&job_for(Bar { diameter: 34.0, axis: BarAxis::X }, Some(3.0), 0.5), block, &mut Progress::none()).unwrap();
+    let words = said(&lying);
+    assert!(words.contains("still joined to the φ34 bar") && words.contains("below its bottom (Z-16.000"), "{words}");
 }
 
 /// A cast blank round the two-sided plate: its top 1 mm over the plate's, its sides drafted

@@ -34,7 +34,9 @@ export function fillOps() {
   const heights = $('op-fields').querySelector('details.heights');
   if (heights) {
     const froms = [op.topFrom, op.bottomFrom, op.clearanceFrom];
-    heights.open = HEIGHT_KEYS.some((k) => op[k] != null && !k.endsWith('From')) || froms.includes('partingLine') || froms.includes('point') || op.point != null || state.pickingPoint;
+    // (A hole kind's R plane, `retract`, always set, is not one of its own heights.)
+    const optional = new Set((formOf(op.kind)?.fields ?? []).filter((f) => f.empty).map((f) => f.key));
+    heights.open = HEIGHT_KEYS.some((k) => op[k] != null && optional.has(k)) || froms.includes('partingLine') || froms.includes('point') || op.point != null || state.pickingPoint;
     const [px, py, pz] = (op.point ?? []).map((v) => units.place(v));
     $('op-point').textContent = state.pickingPoint ? 'click the part in the view' : op.point ? `picked: X${px} Y${py} Z${pz}` : 'none picked';
   }
@@ -115,15 +117,16 @@ function buildForm(kind) {
   if (!form || box.dataset.kind === kind) return;
   const holes = $('fs-hole-list');
   $('op-editor').append(holes);
-  // A kind with the heights (every roughing and 3D finishing) has them under one heading, as
-  // Fusion's Heights tab, closed until wanted.
-  const grouped = form.fields.some((f) => f.key === 'topFrom');
+  // A kind with the heights (every roughing and 3D finishing; a 2D or hole kind's clearance,
+  // retract or R plane) has them under one heading, as Fusion's Heights tab, closed until wanted.
+  const grouped = form.fields.some((f) => f.key === 'clearanceFrom');
+  const topAndBottom = form.fields.some((f) => f.key === 'topFrom');
   const own = form.fields.filter((f) => !grouped || !HEIGHT_KEYS.includes(f.key)).map(fieldElement);
   if (grouped) {
     const details = document.createElement('details');
     details.className = 'heights';
     const summary = document.createElement('summary');
-    summary.textContent = 'Heights: top, bottom (the parting line), clearance, retract';
+    summary.textContent = topAndBottom ? 'Heights: top, bottom (the parting line), clearance, retract' : 'Heights: clearance, retract';
     // A height from a point picked on the part: the button arms the next click in the view.
     const pick = document.createElement('div');
     pick.className = 'pick-point';

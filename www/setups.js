@@ -72,16 +72,17 @@ export function addSetup() {
   const flat = state.tools.find((t) => t.shape === 'flat') ?? state.tools[0];
   if (flat) face.tool = flat.number;
   const k = j.setups.length;
-  // Each side roughed down to the parting line (the part's widest section) from its own face:
-  // the first setup's roughings stop there, and the new side roughs with copies of them that
-  // stop a skin short of it, so the part stays joined to the stock until the skin is broken.
+  // Each side roughed and finished down to the parting line (the part's widest section) from
+  // its own face: the first setup's roughings and 3D finishings stop there, and the new side
+  // cuts with copies of them that stop a skin short of it, so the part stays joined to the
+  // stock until the skin is broken.
   let parted = '';
-  const roughs = k === 1 ? j.setups[0].operations.filter((o) => o.kind.startsWith('rough') && o.bottom == null && (o.bottomFrom ?? 'zero') === 'zero') : [];
-  const copies = roughs.map((o) => {
+  const sided = k === 1 ? j.setups[0].operations.filter((o) => 'bottomFrom' in o && 'topFrom' in o && o.bottom == null && (o.bottomFrom ?? 'zero') === 'zero') : [];
+  const copies = sided.map((o) => {
     o.bottomFrom = 'partingLine';
     return { ...structuredClone(o), name: `${o.name} (bottom)`, bottom: SKIN };
   });
-  if (copies.length) parted = ` The roughing of each side stops at the parting line (the part's widest section), the bottom's ${SKIN} mm short of it: a skin that holds the part to the stock, to break off.`;
+  if (copies.length) parted = ` The roughing and finishing of each side stop at the parting line (the part's widest section), the bottom's ${SKIN} mm short of it: a skin that holds the part to the stock, to break off.`;
   j.setups.push({ name: k === 1 ? 'Bottom' : `Setup ${k + 1}`, flip: 'aboutX', turn: 0, workOffset: WORK_OFFSETS[k] ?? null, zero: null, operations: [face, ...copies] });
   // The bottom's facing needs stock under the part to face: a block cut to the part's height
   // has none, and its facing would find nothing to cut.

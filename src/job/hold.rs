@@ -23,18 +23,24 @@ pub struct HoldWatch {
     pub freed: Option<(usize, DVec2)>,
     /// Whether the part was held before any operation (no check is said where it was not).
     held_at_start: Option<bool>,
+    /// The stock's rim as the setup came, where it is no box (a bar, a casting): what holds
+    /// it without fixtures.
+    rim: Option<Vec<bool>>,
+    /// Whether the part was joined to gripped material after the last check.
+    pub held_now: bool,
 }
 
-/// Whether the job's part can be judged: a mesh part, verified, cut from a box (a bar or a
-/// blank's air is not a side to hold it by).
+/// Whether the job's part can be judged: a mesh part, verified, cut from a box, a bar or a
+/// casting (a drawing's sheet has its own tabs).
 fn judged(job: &Job, ctx: &Context) -> bool {
-    job.simulation.verify && ctx.sheet.is_none() && job.stock.bar.is_none() && job.stock.mesh.is_none() && !ctx.part.faces.is_empty()
+    job.simulation.verify && ctx.sheet.is_none() && !ctx.part.faces.is_empty()
 }
 
-/// What grips the stock in `ctx`: its fixtures' boxes as they stand, or its sides.
-fn grips(ctx: &Context) -> Grips {
+/// What grips the stock in `ctx`: its fixtures' boxes as they stand, or its sides (a bar's or
+/// a casting's rim as it came, `rim`).
+fn grips(ctx: &Context, rim: Option<&Vec<bool>>) -> Grips {
     if ctx.keep_out.is_empty() {
-        Grips::Sides
+        rim.map_or(Grips::Sides, |r| Grips::Rim(r.clone()))
     } else {
         // The fixtures themselves, not grown by their clearance.
         Grips::Boxes(ctx.keep_out.iter().map(|h| crate::geom::Aabb { min: h.solid.min + h.grown, max: h.solid.max - h.grown }).collect())
@@ -100,12 +106,33 @@ impl HoldWatch {
         let stock = ctx.sim.stock();
         let grid = stock.grid();
         let part = self.part.get_or_insert_with(|| crate::zmap::cc::cc_zmap(&ctx.part, grid, f64::NEG_INFINITY, &job.tolerances));
-        let hold = joined(stock, part, &grips(ctx));
+        if self.rim.is_none() && (job.stock.bar.is_some() || job.stock.mesh.is_some()) {
+            self.rim = Some(crate::sim::hold::rim(stock));
+        }
+        let hold = joined(stock, part, &grips(ctx, self.rim.as_ref()));
+        self.held_now = hold == Hold::Held;
         match (op, hold) {
             (None, h) => self.held_at_start = Some(h != Hold::NoPart && !matches!(h, Hold::Free(_))),
             (Some(k), Hold::Free(at)) if self.held_at_start == Some(true) => self.freed = Some((k, at)),
             _ => {}
         }
+    }
+
+    /// What the job says of a part still joined to its bar as the last setup ends: that it is
+    /// to be parted off below the part's bottom (`bottom`, the part's lowest Z in the setup's
+    /// program), as a lathe's cut-off or a saw does, the cut faced after.
+    pub fn parting_off(&self, job: &Job, last_setup: bool, bottom: f64) -> Option<Warning> {
+        let bar = job.stock.bar?;
+        (last_setup && self.held_now && self.held_at_start == Some(true)).then(|| {
+            Warning::of(
+                "stock",
+                format!(
+                    "the part is still joined to the φ{} bar as the job ends: part it off below its bottom (Z{bottom:.3} in this setup's program) with a saw or a cut-off tool, and face the cut (a setup turned over with a face, or by hand)",
+                    crate::limits::shown(bar.diameter)
+                ),
+            )
+            .note()
+        })
     }
 
     /// The part's heights on the stock's grid, as the checks made them (for the verification).

@@ -744,6 +744,7 @@ impl Running {
         } = self;
         let (freed_warning, freed) = hold.said(&job, enabled.last().copied(), last_setup);
         warnings.extend(freed_warning);
+        warnings.extend(hold.parting_off(&job, last_setup, ctx.part.bounds().min.z));
         let job = &job;
         let verify = job.simulation.verify;
         let mut ctx = ctx;

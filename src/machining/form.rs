@@ -120,10 +120,10 @@ pub struct OperationForm {
 impl OperationForm {
     /// A form titled `title` with `fields` (its kind and what it applies to filled in from the
     /// operation's list).
-    /// A kind with the heights ([`super::settings::Heights::fields`]) leaves out their picked
-    /// point: the page picks it on the part under its heights.
+    /// A kind with the heights ([`super::settings::Heights::fields`], or a 2D or hole
+    /// kind's clearance) leaves out their picked point: the page picks it under its heights.
     pub fn new(title: &'static str, fields: Vec<FormField>) -> Self {
-        let kept_out = if fields.iter().any(|f| f.key == "topFrom") { vec!["point"] } else { Vec::new() };
+        let kept_out = if fields.iter().any(|f| f.key == "clearanceFrom") { vec!["point"] } else { Vec::new() };
         OperationForm { kind: "", title, hint: None, applies: Applies::Either, picks: None, fields, kept_out }
     }
 

@@ -366,6 +366,89 @@ impl Heights {
     }
 }
 
+/// How a 2D or hole operation moves between cuts, flattened into its JSON as the heights are
+/// into a 3D operation's: its own clearance (and, for a 2D cut, retract) in place of the job's.
+/// Its top and bottom are its own depths (a 2D cut's from the stock's top, a hole's from the
+/// hole); a hole operation has [`Clearance`] alone, its `retract` being its R plane.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(default, rename_all = "camelCase")]
+pub struct Moves {
+    /// The height the operation's rapids cross at (mm from `clearanceFrom`), above the stock
+    /// and the fixtures. Default value: none (the job's, `stock.clearance` above the stock's
+    /// top).
+    pub clearance: Option<f64>,
+    /// What `clearance` is measured from. Default value: stockTop.
+    pub clearance_from: HeightFrom,
+    /// The gap above the material where rapid descents stop and the feed begins (mm).
+    /// Default value: none (the job's, `stock.retract`).
+    pub retract: Option<f64>,
+    /// The point a clearance `from: point` is measured from: `[x, y, z]` (mm) in the setup's
+    /// program coordinates. Default value: none.
+    pub point: Option<[f64; 3]>,
+}
+
+impl Default for Moves {
+    fn default() -> Self {
+        Moves { clearance: None, clearance_from: HeightFrom::StockTop, retract: None, point: None }
+    }
+}
+
+impl Moves {
+    /// As the heights with neither top nor bottom (what the run applies and checks).
+    pub fn heights(&self) -> Heights {
+        Heights { clearance: self.clearance, clearance_from: self.clearance_from, retract: self.retract, point: self.point, ..Heights::default() }
+    }
+
+    /// Checks the settings, each named as the job file names it.
+    pub fn validate(&self) -> Result<(), FieldError> {
+        self.heights().validate()
+    }
+
+    /// Their fields in a form: the clearance and the retract.
+    pub fn fields() -> Vec<FormField> {
+        Heights::fields()[4..7].to_vec()
+    }
+}
+
+/// A hole operation's own clearance, flattened into its JSON ([`Moves`] without the retract:
+/// a hole operation's `retract` is its R plane, its own field).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]
+#[serde(default, rename_all = "camelCase")]
+pub struct Clearance {
+    /// The height the operation's rapids cross at and its cycles start from (mm from
+    /// `clearanceFrom`), above the stock and the fixtures. Default value: none (the job's,
+    /// `stock.clearance` above the stock's top).
+    pub clearance: Option<f64>,
+    /// What `clearance` is measured from. Default value: stockTop.
+    pub clearance_from: HeightFrom,
+    /// The point a clearance `from: point` is measured from: `[x, y, z]` (mm) in the setup's
+    /// program coordinates. Default value: none.
+    pub point: Option<[f64; 3]>,
+}
+
+impl Default for Clearance {
+    fn default() -> Self {
+        Clearance { clearance: None, clearance_from: HeightFrom::StockTop, point: None }
+    }
+}
+
+impl Clearance {
+    /// As the heights with its clearance alone.
+    pub fn heights(&self) -> Heights {
+        Moves { clearance: self.clearance, clearance_from: self.clearance_from, retract: None, point: self.point }.heights()
+    }
+
+    /// Checks the settings, each named as the job file names it.
+    pub fn validate(&self) -> Result<(), FieldError> {
+        self.heights().validate()
+    }
+
+    /// Their fields in a form: the clearance.
+    pub fn fields() -> Vec<FormField> {
+        Heights::fields()[4..6].to_vec()
+    }
+}
+
 /// What every roughing kind leaves and how it cuts, in each one's JSON as its own fields
 /// (`operations[1].allowance`).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, ts_rs::TS)]

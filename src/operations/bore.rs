@@ -50,6 +50,10 @@ pub struct Bore {
     pub retract: f64,
     /// Default value: climb.
     pub direction: Direction,
+    /// Its own clearance in place of the job's.
+    #[serde(flatten)]
+    #[ts(flatten)]
+    pub moves: crate::machining::settings::Clearance,
 }
 
 impl Default for Bore {
@@ -57,6 +61,7 @@ impl Default for Bore {
         Bore {
             name: "bore".into(),
             enabled: true,
+            moves: Default::default(),
             tool: 1,
             pick: HolePick::default(),
             pitch: 1.0,
@@ -126,10 +131,12 @@ impl Operate for Bore {
             F::direction(),
             F::marks(),
         ]);
+        fields.extend(crate::machining::settings::Clearance::fields());
         OperationForm::new("bore holes on a helix", fields).picks(Picks::Holes)
     }
 
     fn validate(&self) -> std::result::Result<(), FieldError> {
+        self.moves.validate()?;
         self.pick.validate()?;
         positive("pitch", self.pitch)?;
         crate::machining::fraction("stepoverFraction", self.stepover_fraction)?;
@@ -170,7 +177,7 @@ impl Operate for Bore {
             if start > clearance {
                 return Err(Error::operation(
                     &self.name,
-                    format!("the helix would start ({start:.3}) above the clearance height ({clearance:.3}): raise 'Safe height above the stock' (Stock tab; stock.clearance)"),
+                    format!("the helix would start ({start:.3}) above the clearance height ({clearance:.3}): raise its 'Clearance height' (Heights), or 'Safe height above the stock' (Stock tab; stock.clearance)"),
                 ));
             }
             // Rings from the axis out: the first within the tool's radius of the axis, so no

@@ -55,6 +55,10 @@ pub struct Chamfer {
     pub loops: Vec<usize>,
     /// The angle a loop's chamfer is entered at, along the loop (degrees). Default value: 10.
     pub ramp_angle: f64,
+    /// Its own clearance in place of the job's.
+    #[serde(flatten)]
+    #[ts(flatten)]
+    pub moves: crate::machining::settings::Clearance,
 }
 
 /// The edges a chamfer breaks.
@@ -77,6 +81,7 @@ impl Default for Chamfer {
         Chamfer {
             name: "chamfer".into(),
             enabled: true,
+            moves: Default::default(),
             tool: 1,
             pick: HolePick::default(),
             width: 0.5,
@@ -109,6 +114,7 @@ impl Operate for Chamfer {
             F::degrees("rampAngle", "Ramp angle along a loop", 0.1, 89.0),
             F::marks(),
         ]);
+        fields.extend(crate::machining::settings::Clearance::fields());
         OperationForm::new("chamfer edges (holes, loops, a part's top)", fields).picks(Picks::Holes)
     }
 
@@ -117,6 +123,7 @@ impl Operate for Chamfer {
     }
 
     fn validate(&self) -> std::result::Result<(), FieldError> {
+        self.moves.validate()?;
         self.pick.validate()?;
         positive("width", self.width)?;
         not_negative("extraDepth", self.extra_depth)?;

@@ -80,6 +80,10 @@ pub struct Drill {
     pub retract: f64,
     /// Default value: initial.
     pub return_to: ReturnLevel,
+    /// Its own clearance in place of the job's.
+    #[serde(flatten)]
+    #[ts(flatten)]
+    pub moves: crate::machining::settings::Clearance,
 }
 
 impl Default for Drill {
@@ -87,6 +91,7 @@ impl Default for Drill {
         Drill {
             name: "drill".into(),
             enabled: true,
+            moves: Default::default(),
             tool: 1,
             cycle: DrillCycle::Drill,
             pick: HolePick::default(),
@@ -188,6 +193,7 @@ impl Operate for Drill {
             F::choice("returnTo", "Between holes", &[("initial", "back to the clearance height (G98)"), ("retract", "to the R plane (G99)")]),
             F::marks(),
         ]);
+        fields.extend(crate::machining::settings::Clearance::fields());
         OperationForm::new("drill holes (spot, drill, peck)", fields).picks(Picks::Holes)
     }
 
@@ -196,6 +202,7 @@ impl Operate for Drill {
     }
 
     fn validate(&self) -> std::result::Result<(), FieldError> {
+        self.moves.validate()?;
         if let Some(d) = self.depth {
             positive("depth", d)?;
         }
@@ -262,7 +269,9 @@ impl Operate for Drill {
             if r > initial {
                 return Err(Error::operation(
                     &self.name,
-                    format!("the R plane ({r:.3}) lies above the clearance height ({initial:.3}): raise 'Safe height above the stock' (Stock tab; stock.clearance)"),
+                    format!(
+                        "the R plane ({r:.3}) lies above the clearance height ({initial:.3}): raise its 'Clearance height' (Heights), or 'Safe height above the stock' (Stock tab; stock.clearance)"
+                    ),
                 ));
             }
             let from_initial = cycles.is_empty() || self.return_to == ReturnLevel::Initial;

@@ -39,11 +39,27 @@ pub struct Engrave {
     pub loops: Vec<usize>,
     /// Engrave every closed loop on those layers too. Default value: false.
     pub all_loops: bool,
+    /// Its own clearance (and retract) in place of the job's.
+    #[serde(flatten)]
+    #[ts(flatten)]
+    pub moves: crate::machining::settings::Moves,
 }
 
 impl Default for Engrave {
     fn default() -> Self {
-        Engrave { name: "engrave".into(), enabled: true, tool: 1, depth: 0.5, stepdown: 0.5, ramp_angle: 10.0, layers: Vec::new(), chains: true, loops: Vec::new(), all_loops: false }
+        Engrave {
+            name: "engrave".into(),
+            enabled: true,
+            moves: Default::default(),
+            tool: 1,
+            depth: 0.5,
+            stepdown: 0.5,
+            ramp_angle: 10.0,
+            layers: Vec::new(),
+            chains: true,
+            loops: Vec::new(),
+            all_loops: false,
+        }
     }
 }
 
@@ -65,6 +81,7 @@ impl Operate for Engrave {
             F::loops("Loops", "numbers with commas, or click them in the view", "none"),
             F::ramp_angle(),
         ]);
+        fields.extend(crate::machining::settings::Moves::fields());
         OperationForm::new("engrave lines and text (2D)", fields)
     }
 
@@ -81,6 +98,7 @@ impl Operate for Engrave {
     }
 
     fn validate(&self) -> std::result::Result<(), FieldError> {
+        self.moves.validate()?;
         positive("depth", self.depth)?;
         positive("stepdown", self.stepdown)?;
         crate::machining::angle("rampAngle", self.ramp_angle, 0.1, 90.0)

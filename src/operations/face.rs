@@ -55,11 +55,26 @@ pub struct Face {
     /// A drawing's loops whose insides to face, as `swarf drawing` numbers them (the holes
     /// inside them faced over); empty: the whole stock. Default value: empty.
     pub loops: Vec<usize>,
+    /// Its own clearance (and retract) in place of the job's.
+    #[serde(flatten)]
+    #[ts(flatten)]
+    pub moves: crate::machining::settings::Moves,
 }
 
 impl Default for Face {
     fn default() -> Self {
-        Face { name: "face".into(), enabled: true, tool: 1, depth: None, stepdown: 1.0, stepover_fraction: 0.7, overlap: 0.5, pattern: FacePattern::Zigzag, loops: Vec::new() }
+        Face {
+            name: "face".into(),
+            enabled: true,
+            moves: Default::default(),
+            tool: 1,
+            depth: None,
+            stepdown: 1.0,
+            stepover_fraction: 0.7,
+            overlap: 0.5,
+            pattern: FacePattern::Zigzag,
+            loops: Vec::new(),
+        }
     }
 }
 
@@ -77,6 +92,7 @@ impl Operate for Face {
             F::choice("pattern", "Pattern", &[("zigzag", "zigzag"), ("spiral", "spiral inwards")]),
             F::loops("Region", "a drawing's loops to face inside: numbers with commas, or click them in the view", "the whole sheet").applies(Applies::Drawing),
         ]);
+        fields.extend(crate::machining::settings::Moves::fields());
         OperationForm::new("face the stock's top", fields)
     }
 
@@ -85,6 +101,7 @@ impl Operate for Face {
     }
 
     fn validate(&self) -> std::result::Result<(), FieldError> {
+        self.moves.validate()?;
         if let Some(d) = self.depth {
             positive("depth", d)?;
         }

@@ -48,7 +48,7 @@ pub use thread_mill::{Hand, ThreadMill};
 pub use vcarve::VCarve;
 
 pub use crate::machining::report::{LoadReport, StageReport, StageRole};
-pub use crate::machining::settings::{Direction, EntryKind, HeightFrom, Heights, LoadControl, Order, PocketPattern, Roughing, Steps};
+pub use crate::machining::settings::{Clearance, Direction, EntryKind, HeightFrom, Heights, LoadControl, Moves, Order, PocketPattern, Roughing, Steps};
 
 macro_rules! operations {
     ($($(#[$doc:meta])* $variant:ident($options:ty) = $kind:literal,)*) => {
@@ -108,6 +108,8 @@ macro_rules! operations {
                         let named = |r: Result<(), Result<String, String>>| r.err().and_then(Result::ok);
                         named(Operation::read_once::<crate::machining::settings::Heights>(value).map(drop))
                             .or_else(|| named(Operation::read_once::<crate::machining::settings::Roughing>(value).map(drop)))
+                            .or_else(|| named(Operation::read_once::<crate::machining::settings::Moves>(value).map(drop)))
+                            .or_else(|| named(Operation::read_once::<crate::machining::settings::Clearance>(value).map(drop)))
                             .unwrap_or(whole)
                     })
                 })
@@ -212,16 +214,25 @@ impl Operation {
         }
     }
 
-    /// The heights it cuts between and moves at, where its kind has them (the roughings and
-    /// the 3D finishings).
-    pub fn heights(&self) -> Option<&crate::machining::settings::Heights> {
+    /// The heights it cuts between and moves at: a roughing's and a 3D finishing's own, a 2D
+    /// or hole operation's clearance and retract (its top and bottom are its depths).
+    pub fn heights(&self) -> Option<crate::machining::settings::Heights> {
         match self {
-            Operation::FinishRaster(o) => Some(&o.heights),
-            Operation::FinishWaterline(o) => Some(&o.heights),
-            Operation::FinishPencil(o) => Some(&o.heights),
-            Operation::FinishScallop(o) => Some(&o.heights),
-            Operation::FinishSteepShallow(o) => Some(&o.heights),
-            _ => self.roughing().map(|r| &r.heights),
+            Operation::FinishRaster(o) => Some(o.heights),
+            Operation::FinishWaterline(o) => Some(o.heights),
+            Operation::FinishPencil(o) => Some(o.heights),
+            Operation::FinishScallop(o) => Some(o.heights),
+            Operation::FinishSteepShallow(o) => Some(o.heights),
+            Operation::Face(o) => Some(o.moves.heights()),
+            Operation::Drill(o) => Some(o.moves.heights()),
+            Operation::Bore(o) => Some(o.moves.heights()),
+            Operation::Chamfer(o) => Some(o.moves.heights()),
+            Operation::ThreadMill(o) => Some(o.moves.heights()),
+            Operation::Engrave(o) => Some(o.moves.heights()),
+            Operation::VCarve(o) => Some(o.moves.heights()),
+            Operation::Pocket2d(o) => Some(o.moves.heights()),
+            Operation::Profile2d(o) => Some(o.moves.heights()),
+            _ => self.roughing().map(|r| r.heights),
         }
     }
 

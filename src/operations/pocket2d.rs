@@ -53,6 +53,10 @@ pub struct Pocket2d {
     /// Indices of the drawing's loops bounding the pocket, with the holes inside them as
     /// islands (empty: all). Default value: empty.
     pub loops: Vec<usize>,
+    /// Its own clearance (and retract) in place of the job's.
+    #[serde(flatten)]
+    #[ts(flatten)]
+    pub moves: crate::machining::settings::Moves,
 }
 
 impl Default for Pocket2d {
@@ -60,6 +64,7 @@ impl Default for Pocket2d {
         Pocket2d {
             name: "pocket".into(),
             enabled: true,
+            moves: Default::default(),
             tool: 1,
             depth: 3.0,
             stepdown: 1.0,
@@ -125,6 +130,7 @@ impl Operate for Pocket2d {
             F::loops("Loops", "numbers with commas, or click them in the view", "every loop on the layers"),
             F::ramp_angle(),
         ]);
+        fields.extend(crate::machining::settings::Moves::fields());
         OperationForm::new("pocket (2D)", fields)
     }
 
@@ -137,6 +143,7 @@ impl Operate for Pocket2d {
     }
 
     fn validate(&self) -> Result<(), FieldError> {
+        self.moves.validate()?;
         positive("depth", self.depth)?;
         positive("stepdown", self.stepdown)?;
         crate::machining::fraction("stepoverFraction", self.stepover_fraction)?;

@@ -118,6 +118,10 @@ pub struct Profile2d {
     pub layers: Vec<String>,
     /// Indices of the drawing's loops to cut (empty: all on the layers). Default value: empty.
     pub loops: Vec<usize>,
+    /// Its own clearance (and retract) in place of the job's.
+    #[serde(flatten)]
+    #[ts(flatten)]
+    pub moves: crate::machining::settings::Moves,
 }
 
 impl Default for Profile2d {
@@ -125,6 +129,7 @@ impl Default for Profile2d {
         Profile2d {
             name: "profile".into(),
             enabled: true,
+            moves: Default::default(),
             tool: 1,
             side: Side::Auto,
             direction: Direction::Climb,
@@ -430,6 +435,7 @@ impl Operate for Profile2d {
             F::loops("Loops", "numbers with commas, or click them in the view", "every loop on the layers"),
             F::ramp_angle(),
         ]);
+        fields.extend(crate::machining::settings::Moves::fields());
         OperationForm::new("cut out along lines (2D)", fields)
     }
 
@@ -442,6 +448,7 @@ impl Operate for Profile2d {
     }
 
     fn validate(&self) -> Result<(), FieldError> {
+        self.moves.validate()?;
         positive("stepdown", self.stepdown)?;
         crate::machining::angle("rampAngle", self.ramp_angle, 0.1, 90.0)?;
         not_negative("leaveStock", self.leave_stock)?;

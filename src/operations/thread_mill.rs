@@ -57,6 +57,10 @@ pub struct ThreadMill {
     /// down beside it and goes round it clockwise (climb: down for a right-hand thread, up for a
     /// left-hand one). Default value: false (internal, in holes).
     pub external: bool,
+    /// Its own clearance in place of the job's.
+    #[serde(flatten)]
+    #[ts(flatten)]
+    pub moves: crate::machining::settings::Clearance,
 }
 
 impl Default for ThreadMill {
@@ -64,6 +68,7 @@ impl Default for ThreadMill {
         ThreadMill {
             name: "thread".into(),
             enabled: true,
+            moves: Default::default(),
             tool: 1,
             pick: HolePick::default(),
             thread: "M6".into(),
@@ -106,6 +111,7 @@ impl Operate for ThreadMill {
             F::start_above(),
             F::marks(),
         ]);
+        fields.extend(crate::machining::settings::Clearance::fields());
         OperationForm::new("mill threads (in holes, or round studs)", fields).picks(Picks::Holes)
     }
 
@@ -118,6 +124,7 @@ impl Operate for ThreadMill {
     }
 
     fn validate(&self) -> std::result::Result<(), FieldError> {
+        self.moves.validate()?;
         self.pick.validate()?;
         for (field, v) in [("majorDiameter", self.major_diameter), ("pitch", self.pitch), ("length", self.length)] {
             if let Some(v) = v {

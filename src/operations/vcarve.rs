@@ -46,11 +46,26 @@ pub struct VCarve {
     pub stepover_fraction: f64,
     /// The flat tool's step-down (mm). Default value: 2.
     pub stepdown: f64,
+    /// Its own clearance (and retract) in place of the job's.
+    #[serde(flatten)]
+    #[ts(flatten)]
+    pub moves: crate::machining::settings::Moves,
 }
 
 impl Default for VCarve {
     fn default() -> Self {
-        VCarve { name: "V-carve".into(), enabled: true, tool: 1, layers: Vec::new(), loops: Vec::new(), max_depth: None, flat_tool: None, stepover_fraction: 0.4, stepdown: 2.0 }
+        VCarve {
+            name: "V-carve".into(),
+            enabled: true,
+            moves: Default::default(),
+            tool: 1,
+            layers: Vec::new(),
+            loops: Vec::new(),
+            max_depth: None,
+            flat_tool: None,
+            stepover_fraction: 0.4,
+            stepdown: 2.0,
+        }
     }
 }
 
@@ -71,6 +86,7 @@ impl Operate for VCarve {
             F::length("stepdown", "Flat tool's step-down", 0.01),
             F::fraction("stepoverFraction", "Flat tool's step-over", "fraction of its diameter", 1.0),
         ]);
+        fields.extend(crate::machining::settings::Moves::fields());
         OperationForm::new("V-carve letters and shapes (2D)", fields)
     }
 
@@ -88,6 +104,7 @@ impl Operate for VCarve {
     }
 
     fn validate(&self) -> std::result::Result<(), FieldError> {
+        self.moves.validate()?;
         if let Some(d) = self.max_depth {
             positive("maxDepth", d)?;
         }

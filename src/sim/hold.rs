@@ -26,6 +26,25 @@ pub enum Grips {
     Boxes(Vec<Aabb>),
     /// No fixture: the stock's sides (the columns of the grid's edge).
     Sides,
+    /// No fixture, a stock that is not a box (a bar, a casting): the columns marked, its rim
+    /// as it came ([`rim`]), row by row.
+    Rim(Vec<bool>),
+}
+
+/// The columns of `stock` on its rim: holding material (more than [`JOIN`] of it) and beside
+/// the grid's edge or a column without: a bar's round side seen from above, a casting's
+/// outline, a box's four sides.
+pub fn rim(stock: &DexelStock) -> Vec<bool> {
+    let g = stock.grid();
+    let solid: Vec<bool> = (0..g.ny).flat_map(|j| (0..g.nx).map(move |i| (i, j))).map(|(i, j)| stock.spans(i, j).any(|(f, t)| t - f > JOIN)).collect();
+    let at = |i: isize, j: isize| i >= 0 && j >= 0 && (i as usize) < g.nx && (j as usize) < g.ny && solid[j as usize * g.nx + i as usize];
+    (0..g.ny)
+        .flat_map(|j| (0..g.nx).map(move |i| (i, j)))
+        .map(|(i, j)| {
+            let (i, j) = (i as isize, j as isize);
+            at(i, j) && [(1, 0), (-1, 0), (0, 1), (0, -1)].iter().any(|(di, dj)| !at(i + di, j + dj))
+        })
+        .collect()
 }
 
 /// Whether the part is held.
@@ -85,6 +104,7 @@ pub fn joined(stock: &DexelStock, part: &HeightField, grips: &Grips) -> Hold {
                 let (floor, top) = spans[s];
                 let grip = match grips {
                     Grips::Sides => i == 0 || j == 0 || i + 1 == g.nx || j + 1 == g.ny,
+                    Grips::Rim(rim) => rim[j * g.nx + i],
                     Grips::Boxes(boxes) => boxes
                         .iter()
                         .any(|b| p.x >= b.min.x - cell && p.x <= b.max.x + cell && p.y >= b.min.y - cell && p.y <= b.max.y + cell && top.min(b.max.z + cell) - floor.max(b.min.z - cell) > JOIN),

@@ -1907,25 +1907,26 @@ test('turning the part over in the page: a second setup added (bottom up, faced 
   const job = await page.evaluate(() => window.swarf.jobs.part);
   assert.deepEqual(job.operations, []);
   assert.deepEqual(job.setups[0].operations.map((o) => o.name), before);
-  // Faced first, then roughed with copies of the top's roughings: each side to the parting
-  // line, the bottom's a 1 mm skin short of it.
-  const roughs = job.setups[0].operations.filter((o) => o.kind.startsWith('rough'));
-  assert.ok(roughs.length > 0 && roughs.every((o) => o.bottomFrom === 'partingLine' && o.bottom == null), JSON.stringify(roughs));
-  assert.deepEqual([job.setups[1].flip, job.setups[1].workOffset, job.setups[1].operations.map((o) => o.kind)], ['aboutX', 'G55', ['face', ...roughs.map((o) => o.kind)]]);
+  // Faced first, then roughed and finished with copies of the top's roughings and 3D
+  // finishings: each side to the parting line, the bottom's a 1 mm skin short of it.
+  const sided = job.setups[0].operations.filter((o) => o.kind.startsWith('rough') || o.kind.startsWith('finish'));
+  assert.ok(sided.some((o) => o.kind.startsWith('rough')) && sided.some((o) => o.kind.startsWith('finish')), JSON.stringify(sided));
+  assert.ok(sided.every((o) => o.bottomFrom === 'partingLine' && o.bottom == null), JSON.stringify(sided));
+  assert.deepEqual([job.setups[1].flip, job.setups[1].workOffset, job.setups[1].operations.map((o) => o.kind)], ['aboutX', 'G55', ['face', ...sided.map((o) => o.kind)]]);
   assert.ok(job.setups[1].operations.slice(1).every((o) => o.bottomFrom === 'partingLine' && o.bottom === 1));
   // The bottom's roughing shows its heights open, from the parting line; a top height typed
-  // there is the operation's. A finishing of the top without heights of its own has them closed.
+  // there is the operation's. The bottom's facing, without a clearance of its own, has its
+  // heights closed.
   await page.click('#op-list li:nth-child(2) .op-name');
   await page.waitForFunction(() => document.querySelector('#op-fields details.heights')?.open === true);
   assert.equal(await page.inputValue('select[name=op-bottomFrom]'), 'partingLine');
   await page.fill('input[name=op-top]', '-2');
   await page.press('input[name=op-top]', 'Tab');
   await page.waitForFunction(() => window.swarf.jobs.part.setups[1].operations[1].top === -2);
-  await page.click('#setup-tabs button:nth-child(1)');
-  await page.click('#op-list li:last-child .op-name');
-  await page.waitForFunction(() => /finish/.test(document.querySelector('#op-list li.selected')?.textContent ?? ''));
-  assert.equal(await page.evaluate(() => document.querySelector('#op-fields details.heights')?.open), false, 'a finishing\'s heights closed');
-  await page.click('#setup-tabs button:nth-child(2)');
+  await page.click('#op-list li:first-child .op-name');
+  await page.waitForFunction(() => /face/.test(document.querySelector('#op-list li.selected')?.textContent ?? ''));
+  assert.equal(await page.evaluate(() => document.querySelector('#op-fields details.heights summary')?.textContent), 'Heights: clearance, retract');
+  assert.equal(await page.evaluate(() => document.querySelector('#op-fields details.heights')?.open), false, 'the facing\'s heights closed');
   // The view holds the part bottom up: its top is where the part's bottom was, turned about
   // the stock's centre.
   const frames = await page.evaluate(async () => window.swarf.engine.setupFrames(window.swarf.jobs.part, window.swarf.part.bounds));
