@@ -178,13 +178,16 @@ impl Material {
     }
 }
 
-/// One material's row: its cutting speed for carbide (m/min; none: as fast as the spindle
-/// goes, as router bits in wood run) and its chip load a tooth (mm) at the tool diameters
-/// `DIAMETERS`, with where the figures come from.
+/// One material's row: its cutting speeds (SFM) for carbide (the chart's range; none: as fast
+/// as the spindle goes, as router bits in wood run) and for HSS, and its chip load a tooth (mm)
+/// at the tool diameters `DIAMETERS`, with where the figures come from.
 struct Row {
     material: Material,
     words: &'static str,
-    vc_carbide: Option<f64>,
+    /// The carbide chart's range of surface speeds (SFM): a tool runs at its middle.
+    sfm_carbide: Option<(f64, f64)>,
+    /// HSS's surface speed (SFM), from [`HSS`].
+    sfm_hss: Option<f64>,
     chip: [f64; 4],
     source: &'static str,
     /// Specific cutting force (N/mm², MPa; [`POWER`]); none where the tables give none.
@@ -206,21 +209,66 @@ const IN: f64 = 25.4;
 /// Surface feet a minute in metres a minute.
 const SFM: f64 = 0.3048;
 
-const METALS: &str = "Torbide Tooling, Feeds & Speeds chart for carbide end mills (torbidetooling.com/feeds-speeds): the low end of the SFM range, inch a tooth by diameter";
+const METALS: &str = "Torbide Tooling, Feeds & Speeds chart for carbide end mills (torbidetooling.com/feeds-speeds): the middle of the SFM range, inch a tooth by diameter";
 const ROUTER: &str =
     "AST Tooling, Recommended Feeds & Speeds for Solid Carbide Router Bits (asttooling.com/pages/speeds-and-feeds-charts): the middle of each chip-load range, the spindle at its top speed";
 const PLASTICS: &str = "chip load: AST Tooling's router-bit chart (asttooling.com/pages/speeds-and-feeds-charts), the middle of each range; cutting speed: Torbide Tooling's plastics row (200–500 SFM), kept low so the plastic does not melt";
+/// Where HSS's and coated carbide's surface speeds come from.
+pub const HSS: &str = "HSS: Newson Tool's end-mill chart (newsontool.com, Table A, roughing SFPM: aluminium 600, low-carbon steel 75, stainless 304 55), brass as aluminium (the chart has none; free-cutting brass runs 600+ SFM with HSS, MMTO's machining notes), plastics at half carbide's; coated carbide (TiN, TiAlN, AlTiN) a quarter faster than carbide in the metals (Newson Tool: \"Titanium Nitride Coated +25 percent\"), as carbide in plastics and wood";
+
+/// How much faster a coated carbide tool runs than an uncoated one in the metals ([`HSS`]).
+pub const COATED: f64 = 1.25;
 
 const TABLE: [Row; 9] = [
-    Row { material: Material::Aluminium6061, words: "aluminium 6061", vc_carbide: Some(800.0 * SFM), chip: [0.001 * IN, 0.002 * IN, 0.003 * IN, 0.004 * IN], source: METALS, kc: Some(880.0) },
-    Row { material: Material::MildSteel, words: "mild steel", vc_carbide: Some(100.0 * SFM), chip: [0.0005 * IN, 0.0015 * IN, 0.002 * IN, 0.003 * IN], source: METALS, kc: Some(2200.0) },
-    Row { material: Material::Stainless304, words: "stainless 304", vc_carbide: Some(100.0 * SFM), chip: [0.0001 * IN, 0.0005 * IN, 0.001 * IN, 0.0015 * IN], source: METALS, kc: Some(2030.0) },
-    Row { material: Material::Brass, words: "brass", vc_carbide: Some(800.0 * SFM), chip: [0.001 * IN, 0.002 * IN, 0.0025 * IN, 0.003 * IN], source: METALS, kc: Some(1150.0) },
-    Row { material: Material::Acrylic, words: "acrylic", vc_carbide: Some(350.0 * SFM), chip: [0.003 * IN, 0.0065 * IN, 0.009 * IN, 0.0115 * IN], source: PLASTICS, kc: None },
-    Row { material: Material::Hdpe, words: "HDPE", vc_carbide: Some(500.0 * SFM), chip: [0.004 * IN, 0.0075 * IN, 0.010 * IN, 0.0125 * IN], source: PLASTICS, kc: None },
-    Row { material: Material::Hardwood, words: "hardwood", vc_carbide: None, chip: [0.003 * IN, 0.006 * IN, 0.014 * IN, 0.018 * IN], source: ROUTER, kc: None },
-    Row { material: Material::Mdf, words: "MDF", vc_carbide: None, chip: [0.0055 * IN, 0.0135 * IN, 0.018 * IN, 0.0225 * IN], source: ROUTER, kc: None },
-    Row { material: Material::Plywood, words: "plywood", vc_carbide: None, chip: [0.004 * IN, 0.0075 * IN, 0.0165 * IN, 0.0195 * IN], source: ROUTER, kc: None },
+    Row {
+        material: Material::Aluminium6061,
+        words: "aluminium 6061",
+        sfm_carbide: Some((800.0, 1500.0)),
+        sfm_hss: Some(600.0),
+        chip: [0.001 * IN, 0.002 * IN, 0.003 * IN, 0.004 * IN],
+        source: METALS,
+        kc: Some(880.0),
+    },
+    Row {
+        material: Material::MildSteel,
+        words: "mild steel",
+        sfm_carbide: Some((100.0, 300.0)),
+        sfm_hss: Some(75.0),
+        chip: [0.0005 * IN, 0.0015 * IN, 0.002 * IN, 0.003 * IN],
+        source: METALS,
+        kc: Some(2200.0),
+    },
+    Row {
+        material: Material::Stainless304,
+        words: "stainless 304",
+        sfm_carbide: Some((100.0, 250.0)),
+        sfm_hss: Some(55.0),
+        chip: [0.0001 * IN, 0.0005 * IN, 0.001 * IN, 0.0015 * IN],
+        source: METALS,
+        kc: Some(2030.0),
+    },
+    Row {
+        material: Material::Brass,
+        words: "brass",
+        sfm_carbide: Some((800.0, 1500.0)),
+        sfm_hss: Some(600.0),
+        chip: [0.001 * IN, 0.002 * IN, 0.0025 * IN, 0.003 * IN],
+        source: METALS,
+        kc: Some(1150.0),
+    },
+    Row {
+        material: Material::Acrylic,
+        words: "acrylic",
+        sfm_carbide: Some((350.0, 350.0)),
+        sfm_hss: Some(175.0),
+        chip: [0.003 * IN, 0.0065 * IN, 0.009 * IN, 0.0115 * IN],
+        source: PLASTICS,
+        kc: None,
+    },
+    Row { material: Material::Hdpe, words: "HDPE", sfm_carbide: Some((500.0, 500.0)), sfm_hss: Some(250.0), chip: [0.004 * IN, 0.0075 * IN, 0.010 * IN, 0.0125 * IN], source: PLASTICS, kc: None },
+    Row { material: Material::Hardwood, words: "hardwood", sfm_carbide: None, sfm_hss: None, chip: [0.003 * IN, 0.006 * IN, 0.014 * IN, 0.018 * IN], source: ROUTER, kc: None },
+    Row { material: Material::Mdf, words: "MDF", sfm_carbide: None, sfm_hss: None, chip: [0.0055 * IN, 0.0135 * IN, 0.018 * IN, 0.0225 * IN], source: ROUTER, kc: None },
+    Row { material: Material::Plywood, words: "plywood", sfm_carbide: None, sfm_hss: None, chip: [0.004 * IN, 0.0075 * IN, 0.0165 * IN, 0.0195 * IN], source: ROUTER, kc: None },
 ];
 
 fn row(material: Material) -> &'static Row {
@@ -246,10 +294,18 @@ impl Material {
 
     /// The cutting speed for a tool of `tool` material (m/min), or none: the spindle's top.
     pub fn cutting_speed(self, tool: ToolMaterial) -> Option<f64> {
-        row(self).vc_carbide.map(|v| match tool {
-            ToolMaterial::Carbide => v,
-            ToolMaterial::Hss => v / 2.0,
-        })
+        let r = row(self);
+        let carbide = r.sfm_carbide.map(|(lo, hi)| 0.5 * (lo + hi) * SFM);
+        match tool {
+            ToolMaterial::Carbide => carbide,
+            ToolMaterial::Coated => carbide.map(|v| if r.kc.is_some() { v * COATED } else { v }),
+            ToolMaterial::Hss => r.sfm_hss.map(|v| v * SFM),
+        }
+    }
+
+    /// The carbide chart's range of surface speeds (m/min), where it gives one.
+    pub fn carbide_range(self) -> Option<(f64, f64)> {
+        row(self).sfm_carbide.map(|(lo, hi)| (lo * SFM, hi * SFM))
     }
 
     /// The chip load a tooth of a tool `diameter` wide takes (mm).
@@ -285,8 +341,34 @@ pub struct CuttingData {
 }
 
 /// `tool`'s speeds and feeds cutting `material` on `machine` (as typed where the tool says so
-/// or the job names no material).
+/// or the job names no material), at a cut as deep as its diameter.
 pub fn cutting_data(tool: &Tool, material: Option<Material>, machine: &Machine) -> CuttingData {
+    cutting_data_at(tool, material, machine, None)
+}
+
+/// The diameter a tool cuts at when its cut is `depth` deep (mm): a ball's or a bull nose's
+/// corner cuts at a smaller circle than its diameter near its tip, `2·√(d·(2r − d))` across the
+/// corner of radius `r` (the flat between added), so its spindle runs faster for the same
+/// surface speed; the whole diameter at or beyond the corner, and for every other shape.
+pub fn effective_diameter(cutter: &crate::cutter::Cutter, depth: f64) -> f64 {
+    let d = cutter.diameter;
+    let r = match cutter.shape {
+        Shape::Ball => d / 2.0,
+        Shape::BullNose => cutter.corner_radius,
+        _ => return d,
+    };
+    if !(depth > 0.0) || depth >= r || r <= 0.0 {
+        return d;
+    }
+    d - 2.0 * r + 2.0 * (depth * (2.0 * r - depth)).sqrt()
+}
+
+/// [`cutting_data`] where the deepest cut the tool takes is `depth` (mm; none: as deep as its
+/// diameter): a ball or bull nose takes its speed from its [`effective_diameter`] there, its
+/// chip load from its whole diameter. Where the machine's slowest spindle speed is faster than
+/// the surface speed wants, the feed stays what the chart's speed gives (a thinner chip a
+/// tooth), said in the reason.
+pub fn cutting_data_at(tool: &Tool, material: Option<Material>, machine: &Machine, depth: Option<f64>) -> CuttingData {
     // Feeds as typed, no faster than the machine goes.
     let typed = |why: &str| {
         let held = tool.feed_rate > machine.max_feed || tool.plunge_rate > machine.max_feed;
@@ -306,6 +388,7 @@ pub fn cutting_data(tool: &Tool, material: Option<Material>, machine: &Machine) 
     }
     let c = &tool.cutter;
     let d = c.diameter;
+    let cut_at = depth.map_or(d, |depth| effective_diameter(c, depth));
     // A drill's two lips, a thread mill's single form, an end mill's flutes.
     let teeth = match c.shape {
         Shape::Drill | Shape::SpotDrill => 2,
@@ -315,10 +398,7 @@ pub fn cutting_data(tool: &Tool, material: Option<Material>, machine: &Machine) 
     let mut why = format!(
         "φ{} {}, {} {}, in {}: ",
         shown(d),
-        match tool.tool_material {
-            ToolMaterial::Carbide => "carbide",
-            ToolMaterial::Hss => "HSS",
-        },
+        tool.tool_material.words(),
         teeth,
         if matches!(c.shape, Shape::Drill | Shape::SpotDrill) {
             "lips"
@@ -331,8 +411,12 @@ pub fn cutting_data(tool: &Tool, material: Option<Material>, machine: &Machine) 
     );
     let wanted = match material.cutting_speed(tool.tool_material) {
         Some(vc) => {
-            let n = 1000.0 * vc / (std::f64::consts::PI * d);
-            why += &format!("{} m/min → {} rpm", shown((vc * 10.0).round() / 10.0), shown(n.round()));
+            let n = 1000.0 * vc / (std::f64::consts::PI * cut_at);
+            why += &format!("{} m/min", shown((vc * 10.0).round() / 10.0));
+            if cut_at < d - 1e-9 {
+                why += &format!(" at φ{} (where its corner cuts {} mm deep)", shown((cut_at * 100.0).round() / 100.0), shown(depth.unwrap_or(0.0)));
+            }
+            why += &format!(" → {} rpm", shown(n.round()));
             n
         }
         None => {
@@ -341,6 +425,8 @@ pub fn cutting_data(tool: &Tool, material: Option<Material>, machine: &Machine) 
         }
     };
     let rpm = wanted.clamp(machine.spindle_min, machine.spindle_max).round();
+    // Thread mills take a light chip: half the table's.
+    let mut fz = material.chip_load(d) * if c.shape == Shape::ThreadMill { 0.5 } else { 1.0 };
     if rpm < wanted.round() {
         why += &format!(" (held at the machine's {} rpm)", shown(rpm));
     } else if rpm > wanted.round() {
@@ -348,19 +434,28 @@ pub fn cutting_data(tool: &Tool, material: Option<Material>, machine: &Machine) 
         if let Some(over) = surface_too_fast(tool, material, machine) {
             why += &format!(": {over}");
         }
-        why += ")";
+        // The feed the chart's speed gives, spread over the faster turns.
+        let thinner = fz * wanted / rpm;
+        why += &format!("; the chip a tooth thinned from {} to {} mm to keep the chart's feed)", shown((fz * 10000.0).round() / 10000.0), shown((thinner * 10000.0).round() / 10000.0));
+        fz = thinner;
     }
-    // Thread mills take a light chip: half the table's.
-    let fz = material.chip_load(d) * if c.shape == Shape::ThreadMill { 0.5 } else { 1.0 };
     let wanted_feed = fz * teeth * rpm;
     let feed = wanted_feed.min(machine.max_feed).max(1.0);
-    why += &format!("; {} mm a tooth × {} × {} rpm = {} mm/min", shown((fz * 1000.0).round() / 1000.0), teeth, shown(rpm), shown(wanted_feed.round()));
+    why += &format!("; {} mm a tooth × {} × {} rpm = {} mm/min", shown((fz * 10000.0).round() / 10000.0), teeth, shown(rpm), shown(wanted_feed.round()));
     if feed < wanted_feed {
         why += &format!(" (held at the machine's {} mm/min)", shown(machine.max_feed));
     }
     // A drill feeds at its feed; an end mill plunges at half its feed.
     let plunge = if matches!(c.shape, Shape::Drill | Shape::SpotDrill) { feed } else { feed / 2.0 };
-    CuttingData { tool: tool.number, spindle_rpm: rpm, feed_rate: feed.round(), plunge_rate: plunge.round().max(1.0), from_material: true, reason: why, source: Some(material.source().to_owned()) }
+    CuttingData {
+        tool: tool.number,
+        spindle_rpm: rpm,
+        feed_rate: feed.round(),
+        plunge_rate: plunge.round().max(1.0),
+        from_material: true,
+        reason: why,
+        source: Some(format!("{}; {}", material.source(), HSS)),
+    }
 }
 
 /// Where `machine`'s slowest spindle speed runs `tool` in `material` at more than half as fast
@@ -376,10 +471,7 @@ pub fn surface_too_fast(tool: &Tool, material: Material, machine: &Machine) -> O
             crate::limits::shown(at.round()),
             at / vc,
             crate::limits::shown((vc * 10.0).round() / 10.0),
-            match tool.tool_material {
-                ToolMaterial::Carbide => "carbide",
-                ToolMaterial::Hss => "HSS",
-            },
+            tool.tool_material.words(),
             material.words()
         )
     })

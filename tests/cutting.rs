@@ -22,10 +22,13 @@ fn mill(d: f64, flutes: u32) -> Tool {
     Tool { number: 1, cutter: Cutter::flat(d), flutes, ..Tool::default() }
 }
 
-/// The closed form, held to `machine`: (rpm, feed).
+/// The closed form, held to `machine`: (rpm, feed). Where the spindle's slowest is faster than
+/// the speed wanted, the feed is the one the wanted speed gives (a thinner chip a tooth).
 fn closed(vc: Option<f64>, fz: f64, teeth: f64, d: f64, machine: &Machine) -> (f64, f64) {
-    let n = vc.map_or(machine.spindle_max, |vc| 1000.0 * vc / (PI * d)).clamp(machine.spindle_min, machine.spindle_max).round();
-    (n, (fz * teeth * n).min(machine.max_feed).round())
+    let wanted = vc.map_or(machine.spindle_max, |vc| 1000.0 * vc / (PI * d));
+    let n = wanted.clamp(machine.spindle_min, machine.spindle_max).round();
+    let turns = if n > wanted.round() { wanted } else { n };
+    (n, (fz * teeth * turns).min(machine.max_feed).round())
 }
 
 #[test]
@@ -34,20 +37,25 @@ fn speeds_and_feeds_follow_the_table_in_closed_form() {
     let vmc = Machine::builtin().into_iter().find(|m| m.name == "small VMC").unwrap();
     // (material, tool, machine, cutting speed m/min, chip load mm at that diameter, teeth)
     let cases: Vec<(Material, Tool, &Machine, Option<f64>, f64, f64)> = vec![
-        // φ1/4" carbide, 2 flutes, in 6061: 800 SFM, 0.002" a tooth.
-        (Material::Aluminium6061, mill(6.35, 2), &router, Some(800.0 * SFM), 0.002 * IN, 2.0),
+        // φ1/4" carbide, 2 flutes, in 6061: 1150 SFM (the middle of 800–1500), 0.002" a tooth.
+        (Material::Aluminium6061, mill(6.35, 2), &router, Some(1150.0 * SFM), 0.002 * IN, 2.0),
         // Held at the router's top speed: φ3 carbide in aluminium wants 25,900 rpm.
-        (Material::Aluminium6061, mill(3.0, 3), &router, Some(800.0 * SFM), 0.001 * IN * 3.0 / 3.175, 3.0),
-        // HSS at half the speed; between the table's diameters the chip load is interpolated.
-        (Material::MildSteel, Tool { tool_material: ToolMaterial::Hss, ..mill(8.0, 4) }, &vmc, Some(100.0 * SFM / 2.0), (0.0015 + (8.0 - 6.35) / 3.175 * 0.0005) * IN, 4.0),
-        (Material::Stainless304, mill(12.7, 4), &vmc, Some(100.0 * SFM), 0.0015 * IN, 4.0),
-        (Material::Brass, mill(20.0, 3), &vmc, Some(800.0 * SFM), 0.003 * IN, 3.0),
+        (Material::Aluminium6061, mill(3.0, 3), &router, Some(1150.0 * SFM), 0.001 * IN * 3.0 / 3.175, 3.0),
+        // HSS at its own chart's 75 SFM; between the table's diameters the chip load is interpolated.
+        (Material::MildSteel, Tool { tool_material: ToolMaterial::Hss, ..mill(8.0, 4) }, &vmc, Some(75.0 * SFM), (0.0015 + (8.0 - 6.35) / 3.175 * 0.0005) * IN, 4.0),
+        (Material::Stainless304, mill(12.7, 4), &vmc, Some(175.0 * SFM), 0.0015 * IN, 4.0),
+        (Material::Brass, mill(20.0, 3), &vmc, Some(1150.0 * SFM), 0.003 * IN, 3.0),
         // Wood at the spindle's top speed; the feed held at the router's 5000 mm/min.
         (Material::Mdf, mill(6.35, 2), &router, None, 0.0135 * IN, 2.0),
         (Material::Plywood, mill(3.175, 1), &router, None, 0.004 * IN, 1.0),
+        // The router's 8000 rpm floor is faster than acrylic's 350 SFM wants (5348 rpm): the
+        // feed the chart's speed gives, a thinner chip a tooth.
         (Material::Acrylic, mill(6.35, 1), &router, Some(350.0 * SFM), 0.0065 * IN, 1.0),
+        // Coated carbide a quarter faster in the metals, as carbide in plastics.
+        (Material::MildSteel, Tool { tool_material: ToolMaterial::Coated, ..mill(10.0, 3) }, &vmc, Some(200.0 * SFM * 1.25), (0.002 + (10.0 - 9.525) / 3.175 * 0.001) * IN, 3.0),
+        (Material::Hdpe, Tool { tool_material: ToolMaterial::Coated, ..mill(6.35, 2) }, &router, Some(500.0 * SFM), 0.0075 * IN, 2.0),
         // A drill's two lips, whatever its flutes say.
-        (Material::Aluminium6061, Tool { cutter: Cutter::drill(6.35, 118.0), flutes: 4, ..mill(6.35, 4) }, &vmc, Some(800.0 * SFM), 0.002 * IN, 2.0),
+        (Material::Aluminium6061, Tool { cutter: Cutter::drill(6.35, 118.0), flutes: 4, ..mill(6.35, 4) }, &vmc, Some(1150.0 * SFM), 0.002 * IN, 2.0),
     ];
     for (material, tool, machine, vc, fz, teeth) in cases {
         let c = cutting_data(&tool, Some(material), machine);
@@ -384,4 +392,126 @@ fn the_machine_means_what_it_says() {
     // On the benchtop mill (100 rpm at its slowest) nothing is said.
     job.machine = Machine::builtin()[1].clone();
     assert!(job.machine_warnings().is_empty());
+}
+
+/// Issue 93: speeds a machinist would run. Mild steel with carbide runs inside the carbide
+/// chart's 100–300 SFM (not at HSS's end); a ball end takes its speed from the circle its
+/// corner cuts at its depth of cut (`2·√(d·(D − d))`), a bull nose's likewise, a flat its
+/// diameter; a job's finishing ball cuts at the allowance its roughing left, its roughing ball
+/// at its step-down; a spindle floor faster than the chart keeps the chart's feed with a
+/// thinner chip and says so.
+#[test]
+fn speeds_are_the_charts_for_the_tool_and_its_depth_of_cut() {
+    use swarf::cutting::{cutting_data_at, effective_diameter};
+    let vmc = Machine::builtin().into_iter().find(|m| m.name == "small VMC").unwrap();
+    let (lo, hi) = Material::MildSteel.carbide_range().unwrap();
+    let vc = Material::MildSteel.cutting_speed(ToolMaterial::Carbide).unwrap();
+    assert!(vc > lo && vc < hi && (lo - 100.0 * SFM).abs() < 1e-9 && (hi - 300.0 * SFM).abs() < 1e-9, "{vc} m/min");
+    assert!(vc > 2.0 * Material::MildSteel.cutting_speed(ToolMaterial::Hss).unwrap());
+    // Effective diameters in closed form.
+    assert!((effective_diameter(&Cutter::ball(6.0), 0.5) - 2.0 * (0.5f64 * 5.5).sqrt()).abs() < 1e-12);
+    assert_eq!(effective_diameter(&Cutter::ball(6.0), 3.0), 6.0);
+    assert_eq!(effective_diameter(&Cutter::flat(6.0), 0.5), 6.0);
+    assert!((effective_diameter(&Cutter::bull_nose(10.0, 1.0), 0.25) - (8.0 + 2.0 * (0.25f64 * 1.75).sqrt())).abs() < 1e-12);
+    let ball = Tool { cutter: Cutter::ball(6.0), flutes: 2, ..mill(6.0, 2) };
+    let c = cutting_data_at(&ball, Some(Material::MildSteel), &vmc, Some(0.5));
+    let d_eff = 2.0 * (0.5f64 * 5.5).sqrt();
+    assert_eq!(c.spindle_rpm, (1000.0 * vc / (PI * d_eff)).round(), "{}", c.reason);
+    assert!(c.reason.contains("at φ3.32 (where its corner cuts 0.5 mm deep)"), "{}", c.reason);
+    // In a job: the demo's ball finishes what the roughing left (0.5 mm) and runs faster than
+    // its flat, of the same diameter.
+    let mut job = Job::demo();
+    job.stock.material = Some(Material::MildSteel);
+    job.machine = vmc.clone();
+    assert_eq!(job.deepest_cuts(), vec![Some(2.0), Some(0.5)]);
+    let data = job.cutting_data();
+    assert!(data[1].spindle_rpm > 1.7 * data[0].spindle_rpm, "{} against {}", data[1].reason, data[0].reason);
+    // The router's 8000 rpm floor runs a φ12 HSS in mild steel far over its chart: the feed
+    // stays the chart's speed's.
+    let router = Machine::default();
+    let big = Tool { tool_material: ToolMaterial::Hss, ..mill(12.0, 4) };
+    let c = cutting_data(&big, Some(Material::MildSteel), &router);
+    let wanted = 1000.0 * 75.0 * SFM / (PI * 12.0);
+    let fz = Material::MildSteel.chip_load(12.0);
+    assert_eq!(c.spindle_rpm, 8000.0);
+    assert!((c.feed_rate - (fz * 4.0 * wanted).round()).abs() <= 1.0, "{}", c.reason);
+    assert!(c.reason.contains("the chip a tooth thinned"), "{}", c.reason);
+}
+
+/// A level cut at full width deeper than the tool is wide is beyond the chart's condition and
+/// said with the figures (a φ3 in mild steel at a 9 mm step-down); within a diameter, or
+/// cleared adaptively, nothing is said.
+#[test]
+fn a_cut_deeper_than_the_chart_takes_is_said() {
+    use swarf::operations::{Operation, RoughAdaptive, RoughZlevel, Steps};
+    let mut job = Job::demo();
+    job.stock.material = Some(Material::MildSteel);
+    job.machine = Machine::builtin().into_iter().find(|m| m.name == "small VMC").unwrap();
+    job.tools[0].cutter = Cutter { flute_length: 12.0, ..Cutter::flat(3.0) };
+    let steps = Steps { stepdown: 9.0, ..Steps::default() };
+    job.operations = vec![Operation::RoughZlevel(RoughZlevel { tool: 1, steps, ..RoughZlevel::default() })];
+    let said: Vec<String> = job.machine_warnings().iter().map(|w| w.to_string()).collect();
+    assert!(said.iter().any(|w| w.contains("step-down of 9 mm is 3.0 × its φ3 tool's diameter") && w.contains("mild steel")), "{said:?}");
+    // Said when the job runs.
+    let out = job::run(&job, swarf::mesh::sample::demo_part(), &mut Progress::none()).unwrap();
+    assert!(out.warnings.iter().any(|w| w.to_string().contains("3.0 × its φ3")), "{:?}", out.warnings);
+    job.operations = vec![Operation::RoughZlevel(RoughZlevel { tool: 1, steps: Steps { stepdown: 3.0, ..steps }, ..RoughZlevel::default() })];
+    assert!(job.machine_warnings().is_empty());
+    job.operations = vec![Operation::RoughAdaptive(RoughAdaptive { tool: 1, stepdown: 9.0, ..RoughAdaptive::default() })];
+    assert!(job.machine_warnings().is_empty());
+    // Without a material nothing is known to be too deep.
+    job.stock.material = None;
+    job.operations = vec![Operation::RoughZlevel(RoughZlevel { tool: 1, steps, ..RoughZlevel::default() })];
+    assert!(job.machine_warnings().is_empty());
+}
+
+/// BENCHMARKS.md's speeds-and-feeds table: swarf's figures beside the published charts, 4
+/// metals × 5 tools (φ1/8", 1/4", 3/8", 1/2" flats, 2 flutes for aluminium and brass, 4 for
+/// the steels, and a φ1/4" ball at a 0.5 mm depth of cut) × carbide and HSS, on a machine
+/// that limits neither speed nor feed: each surface speed inside the carbide chart's SFM range
+/// (Torbide Tooling) or at the HSS chart's figure (Newson Tool), each chip load the chart's
+/// at that diameter. `cargo test --release --test cutting the_chart -- --nocapture` prints it.
+#[test]
+fn the_chart_beside_published_figures() {
+    use swarf::cutting::cutting_data_at;
+    let open = Machine { name: "unlimited".into(), spindle_min: 0.0, spindle_max: 100_000.0, max_feed: 100_000.0, ..Machine::default() };
+    // (material, carbide SFM range, HSS SFM, chip load in inches a tooth at 1/8", 1/4", 3/8", 1/2")
+    let charts = [
+        (Material::Aluminium6061, (800.0, 1500.0), 600.0, [0.001, 0.002, 0.003, 0.004]),
+        (Material::MildSteel, (100.0, 300.0), 75.0, [0.0005, 0.0015, 0.002, 0.003]),
+        (Material::Stainless304, (100.0, 250.0), 55.0, [0.0001, 0.0005, 0.001, 0.0015]),
+        (Material::Brass, (800.0, 1500.0), 600.0, [0.001, 0.002, 0.0025, 0.003]),
+    ];
+    eprintln!("| material | tool | made of | swarf: SFM (m/min) | rpm | in a tooth | mm/min | chart: SFM | chart: in a tooth | |");
+    eprintln!("|---|---|---|---|---|---|---|---|---|---|");
+    for (material, (lo, hi), hss, chips) in charts {
+        let flutes = if matches!(material, Material::MildSteel | Material::Stainless304) { 4 } else { 2 };
+        for (k, (d, ball)) in [(3.175, false), (6.35, false), (9.525, false), (12.7, false), (6.35, true)].into_iter().enumerate() {
+            for made in [ToolMaterial::Carbide, ToolMaterial::Hss] {
+                let cutter = if ball { Cutter::ball(d) } else { Cutter::flat(d) };
+                let tool = Tool { cutter, tool_material: made, ..mill(d, flutes) };
+                let depth = ball.then_some(0.5);
+                let c = cutting_data_at(&tool, Some(material), &open, depth);
+                let at = depth.map_or(d, |a| 2.0 * (a * (d - a)).sqrt());
+                let sfm = PI * at * c.spindle_rpm / 1000.0 / SFM;
+                let ipt = c.feed_rate / (c.spindle_rpm * flutes as f64) / IN;
+                let chip = chips[if ball { 1 } else { k }];
+                let (chart_sfm, within) = match made {
+                    ToolMaterial::Hss => (format!("{hss}"), (sfm - hss).abs() / hss < 0.01),
+                    _ => (format!("{lo}–{hi}"), sfm >= lo * 0.99 && sfm <= hi * 1.01),
+                };
+                let chip_ok = (ipt - chip).abs() / chip < 0.02;
+                assert!(within && chip_ok, "{material:?} φ{d} {made:?}: {sfm:.0} SFM, {ipt:.4} in a tooth: {}", c.reason);
+                let tool_words = if ball { format!("φ{d} ball, 0.5 mm deep (φ{at:.2} cutting)") } else { format!("φ{d} flat") };
+                eprintln!(
+                    "| {} | {tool_words}, {flutes} fl | {} | {sfm:.0} ({:.0}) | {:.0} | {ipt:.4} | {:.0} | {chart_sfm} | {chip} | within |",
+                    material.words(),
+                    made.words(),
+                    sfm * SFM,
+                    c.spindle_rpm,
+                    c.feed_rate
+                );
+            }
+        }
+    }
 }

@@ -941,7 +941,28 @@ impl DrawingSetup {
 impl Job {
     /// Each tool's speeds and feeds as this job cuts them ([`crate::cutting::cutting_data`]).
     pub fn cutting_data(&self) -> Vec<crate::cutting::CuttingData> {
-        self.tools.iter().map(|t| crate::cutting::cutting_data(t, self.stock.material, &self.machine)).collect()
+        let deepest = self.deepest_cuts();
+        self.tools.iter().zip(deepest).map(|(t, depth)| crate::cutting::cutting_data_at(t, self.stock.material, &self.machine, depth)).collect()
+    }
+
+    /// How deep each tool cuts at most, as its operations say (in the order of `tools`): a
+    /// step-down where the operation steps down, else (a finishing) the most any operation
+    /// of the job leaves on the part for it; none where an operation using it says neither,
+    /// or none uses it (a cut as deep as it is wide).
+    pub fn deepest_cuts(&self) -> Vec<Option<f64>> {
+        let all: Vec<&Operation> = self.operations.iter().chain(self.setups.iter().flat_map(|s| s.operations.iter())).filter(|o| o.op().enabled()).collect();
+        let left = all.iter().map(|o| o.op().allowance()).fold(0.0, f64::max);
+        self.tools
+            .iter()
+            .map(|t| {
+                let mut deepest: Option<f64> = None;
+                for o in all.iter().filter(|o| o.op().tools().contains(&t.number)) {
+                    let depth = o.op().stepdown().or_else(|| (o.is_finishing() && left > 0.0).then_some(left))?;
+                    deepest = Some(deepest.map_or(depth, |d| d.max(depth)));
+                }
+                deepest
+            })
+            .collect()
     }
 
     /// The feed of a G1 its operation knows cuts nothing: the stock's `airFeed` (the rapid
@@ -994,6 +1015,41 @@ impl Job {
                     format!("the {}'s slowest spindle speed, {} rpm, runs it at {over}", m.name, shown(m.spindle_min))
                 };
                 Some(crate::error::Warning::of(&format!("T{}", t.number), why))
+            })
+            .chain(self.too_deep())
+            .collect()
+    }
+
+    /// Operations in a material whose levels cut deeper than the speeds' chart allows at its
+    /// feeds: the charts' chip loads are for a cut at most as deep as the tool is wide at full
+    /// width (a slot), so a level cleared at full width deeper than the tool's diameter is said
+    /// with the figures. Adaptive clearing holds the tool to a light width, and cuts as deep as
+    /// its flutes reach (what `Job::problems` holds it to).
+    fn too_deep(&self) -> Vec<crate::error::Warning> {
+        let Some(material) = self.stock.material else { return Vec::new() };
+        let shown = crate::limits::shown;
+        let all = self.operations.iter().chain(self.setups.iter().flat_map(|s| s.operations.iter()));
+        all.filter(|o| o.op().enabled())
+            .filter(|o| !matches!(o, Operation::RoughAdaptive(_)) && !matches!(o, Operation::Pocket2d(p) if p.pattern == crate::machining::settings::PocketPattern::Adaptive))
+            .filter_map(|o| {
+                let depth = o.op().stepdown()?;
+                let tool = self.tools.iter().find(|t| t.number == o.op().tool() && t.speeds != crate::tool::Speeds::AsTyped)?;
+                let d = tool.cutter.diameter;
+                (depth > d + 1e-9 && !tool.cutter.is_cone()).then(|| {
+                    crate::error::Warning::of(
+                        o.name(),
+                        format!(
+                            "its step-down of {} mm is {:.1} × its φ{} tool's diameter: the {} chart's feeds are for a cut at most one diameter deep at full width; at {} mm deep in {} lower the step-down to {} mm or less, or clear it adaptively (a light width, as deep as the flutes)",
+                            shown(depth),
+                            depth / d,
+                            shown(d),
+                            material.words(),
+                            shown(depth),
+                            material.words(),
+                            shown(d)
+                        ),
+                    )
+                })
             })
             .collect()
     }

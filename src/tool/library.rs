@@ -191,8 +191,9 @@ fn fusion_material(entry: &Value, what: &str, notes: &mut Notes) -> super::ToolM
     match entry.get("BMC").and_then(Value::as_str).map(str::to_lowercase).as_deref() {
         None | Some("carbide") => super::ToolMaterial::Carbide,
         Some("hss") | Some("cobalt") => super::ToolMaterial::Hss,
+        Some("ti coated") => super::ToolMaterial::Coated,
         Some(other) => {
-            notes.say(format!("{what}: its material (BMC) {other:?} is neither carbide nor HSS, the two swarf's charts have: taken as carbide"));
+            notes.say(format!("{what}: its material (BMC) {other:?} is none of carbide, ti coated and HSS, the three swarf's charts have: taken as carbide"));
             super::ToolMaterial::Carbide
         }
     }
@@ -560,7 +561,8 @@ fn freecad_bit(value: &Value, number: u32, name: &str, notes: &mut Vec<String>) 
     match p.get("Material").and_then(Value::as_str).map(str::to_lowercase).as_deref() {
         None | Some("carbide") => {}
         Some("hss") => tool.tool_material = super::ToolMaterial::Hss,
-        Some(other) => say(notes, format!("{bit}: its Material {other:?} is neither carbide nor HSS, the two swarf's charts have: taken as carbide")),
+        Some("coated carbide") => tool.tool_material = super::ToolMaterial::Coated,
+        Some(other) => say(notes, format!("{bit}: its Material {other:?} is none of Carbide, Coated carbide and HSS, the three swarf's charts have: taken as carbide")),
     }
     let unknown: Vec<&String> = p.as_object().map(Map::keys).into_iter().flatten().filter(|k| !TAKEN.contains(&k.as_str())).collect();
     if !unknown.is_empty() {
@@ -632,6 +634,7 @@ pub fn write_freecad(tools: &[Tool], library: &str) -> Vec<(String, String)> {
         let material = match t.tool_material {
             super::ToolMaterial::Carbide => "Carbide",
             super::ToolMaterial::Hss => "HSS",
+            super::ToolMaterial::Coated => "Coated carbide",
         };
         let bit = json!({ "version": 2, "name": name, "shape": format!("{shape}.fcstd"), "parameter": p, "attribute": { "Flutes": t.flutes, "Material": material } });
         entries.push(json!({ "nr": t.number, "path": file }));
@@ -690,7 +693,7 @@ pub fn write_library(tools: &[Tool], format: LibraryFormat) -> String {
                     json!({
                         "holder": holder,
                         "type": kind,
-                        "BMC": match t.tool_material { super::ToolMaterial::Carbide => "carbide", super::ToolMaterial::Hss => "hss" },
+                        "BMC": match t.tool_material { super::ToolMaterial::Carbide => "carbide", super::ToolMaterial::Hss => "hss", super::ToolMaterial::Coated => "ti coated" },
                         "unit": "millimeters",
                         "description": if t.name.is_empty() { c.describe() } else { t.name.clone() },
                         "geometry": g,

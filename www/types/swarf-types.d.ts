@@ -105,7 +105,22 @@ maxDiameter: number | null,
  * are as often its dimensions' anchors as places to drill (a mark picked by number is
  * taken anyway). Default value: false.
  */
-marks: boolean, };
+marks: boolean, 
+/**
+ * The height the operation's rapids cross at and its cycles start from (mm from
+ * `clearanceFrom`), above the stock and the fixtures. Default value: none (the job's,
+ * `stock.clearance` above the stock's top).
+ */
+clearance: number | null, 
+/**
+ * What `clearance` is measured from. Default value: stockTop.
+ */
+clearanceFrom: HeightFrom, 
+/**
+ * The point a clearance `from: point` is measured from: `[x, y, z]` (mm) in the setup's
+ * program coordinates. Default value: none.
+ */
+point: [number, number, number] | null, };
 
 /**
  * A blind hole's bottom.
@@ -186,7 +201,22 @@ maxDiameter: number | null,
  * are as often its dimensions' anchors as places to drill (a mark picked by number is
  * taken anyway). Default value: false.
  */
-marks: boolean, };
+marks: boolean, 
+/**
+ * The height the operation's rapids cross at and its cycles start from (mm from
+ * `clearanceFrom`), above the stock and the fixtures. Default value: none (the job's,
+ * `stock.clearance` above the stock's top).
+ */
+clearance: number | null, 
+/**
+ * What `clearance` is measured from. Default value: stockTop.
+ */
+clearanceFrom: HeightFrom, 
+/**
+ * The point a clearance `from: point` is measured from: `[x, y, z]` (mm) in the setup's
+ * program coordinates. Default value: none.
+ */
+point: [number, number, number] | null, };
 
 /**
  * The edges a chamfer breaks.
@@ -379,7 +409,22 @@ maxDiameter: number | null,
  * are as often its dimensions' anchors as places to drill (a mark picked by number is
  * taken anyway). Default value: false.
  */
-marks: boolean, };
+marks: boolean, 
+/**
+ * The height the operation's rapids cross at and its cycles start from (mm from
+ * `clearanceFrom`), above the stock and the fixtures. Default value: none (the job's,
+ * `stock.clearance` above the stock's top).
+ */
+clearance: number | null, 
+/**
+ * What `clearance` is measured from. Default value: stockTop.
+ */
+clearanceFrom: HeightFrom, 
+/**
+ * The point a clearance `from: point` is measured from: `[x, y, z]` (mm) in the setup's
+ * program coordinates. Default value: none.
+ */
+point: [number, number, number] | null, };
 
 /**
  * Which drilling cycle.
@@ -482,7 +527,27 @@ loops: Array<number>,
 /**
  * Engrave every closed loop on those layers too. Default value: false.
  */
-allLoops: boolean, };
+allLoops: boolean, 
+/**
+ * The height the operation's rapids cross at (mm from `clearanceFrom`), above the stock
+ * and the fixtures. Default value: none (the job's, `stock.clearance` above the stock's
+ * top).
+ */
+clearance: number | null, 
+/**
+ * What `clearance` is measured from. Default value: stockTop.
+ */
+clearanceFrom: HeightFrom, 
+/**
+ * The gap above the material where rapid descents stop and the feed begins (mm).
+ * Default value: none (the job's, `stock.retract`).
+ */
+retract: number | null, 
+/**
+ * The point a clearance `from: point` is measured from: `[x, y, z]` (mm) in the setup's
+ * program coordinates. Default value: none.
+ */
+point: [number, number, number] | null, };
 
 /**
  * How a cutter enters material.
@@ -546,7 +611,27 @@ pattern: FacePattern,
  * A drawing's loops whose insides to face, as `swarf drawing` numbers them (the holes
  * inside them faced over); empty: the whole stock. Default value: empty.
  */
-loops: Array<number>, };
+loops: Array<number>, 
+/**
+ * The height the operation's rapids cross at (mm from `clearanceFrom`), above the stock
+ * and the fixtures. Default value: none (the job's, `stock.clearance` above the stock's
+ * top).
+ */
+clearance: number | null, 
+/**
+ * What `clearance` is measured from. Default value: stockTop.
+ */
+clearanceFrom: HeightFrom, 
+/**
+ * The gap above the material where rapid descents stop and the feed begins (mm).
+ * Default value: none (the job's, `stock.retract`).
+ */
+retract: number | null, 
+/**
+ * The point a clearance `from: point` is measured from: `[x, y, z]` (mm) in the setup's
+ * program coordinates. Default value: none.
+ */
+point: [number, number, number] | null, };
 
 /**
  * How a level is cleared.
@@ -1709,7 +1794,27 @@ layers: Array<string>,
  * Indices of the drawing's loops bounding the pocket, with the holes inside them as
  * islands (empty: all). Default value: empty.
  */
-loops: Array<number>, };
+loops: Array<number>, 
+/**
+ * The height the operation's rapids cross at (mm from `clearanceFrom`), above the stock
+ * and the fixtures. Default value: none (the job's, `stock.clearance` above the stock's
+ * top).
+ */
+clearance: number | null, 
+/**
+ * What `clearance` is measured from. Default value: stockTop.
+ */
+clearanceFrom: HeightFrom, 
+/**
+ * The gap above the material where rapid descents stop and the feed begins (mm).
+ * Default value: none (the job's, `stock.retract`).
+ */
+retract: number | null, 
+/**
+ * The point a clearance `from: point` is measured from: `[x, y, z]` (mm) in the setup's
+ * program coordinates. Default value: none.
+ */
+point: [number, number, number] | null, };
 
 /**
  * How the pocket is cleared.
@@ -1925,7 +2030,27 @@ layers: Array<string>,
 /**
  * Indices of the drawing's loops to cut (empty: all on the layers). Default value: empty.
  */
-loops: Array<number>, };
+loops: Array<number>, 
+/**
+ * The height the operation's rapids cross at (mm from `clearanceFrom`), above the stock
+ * and the fixtures. Default value: none (the job's, `stock.clearance` above the stock's
+ * top).
+ */
+clearance: number | null, 
+/**
+ * What `clearance` is measured from. Default value: stockTop.
+ */
+clearanceFrom: HeightFrom, 
+/**
+ * The gap above the material where rapid descents stop and the feed begins (mm).
+ * Default value: none (the job's, `stock.retract`).
+ */
+retract: number | null, 
+/**
+ * The point a clearance `from: point` is measured from: `[x, y, z]` (mm) in the setup's
+ * program coordinates. Default value: none.
+ */
+point: [number, number, number] | null, };
 
 /**
  * A project: a job and its part or drawing.
@@ -2799,7 +2924,22 @@ maxDiameter: number | null,
  * are as often its dimensions' anchors as places to drill (a mark picked by number is
  * taken anyway). Default value: false.
  */
-marks: boolean, };
+marks: boolean, 
+/**
+ * The height the operation's rapids cross at and its cycles start from (mm from
+ * `clearanceFrom`), above the stock and the fixtures. Default value: none (the job's,
+ * `stock.clearance` above the stock's top).
+ */
+clearance: number | null, 
+/**
+ * What `clearance` is measured from. Default value: stockTop.
+ */
+clearanceFrom: HeightFrom, 
+/**
+ * The point a clearance `from: point` is measured from: `[x, y, z]` (mm) in the setup's
+ * program coordinates. Default value: none.
+ */
+point: [number, number, number] | null, };
 
 /**
  * One part of a program's cycle time, for people: what it is and how long it takes.
@@ -2960,7 +3100,7 @@ tipDiameter: number, };
 /**
  * What a tool's cutting edges are made of.
  */
-export type ToolMaterial = "carbide" | "hss";
+export type ToolMaterial = "carbide" | "hss" | "coated";
 
 /**
  * Length unit of a file or of G-code.
@@ -3020,7 +3160,27 @@ stepoverFraction: number,
 /**
  * The flat tool's step-down (mm). Default value: 2.
  */
-stepdown: number, };
+stepdown: number, 
+/**
+ * The height the operation's rapids cross at (mm from `clearanceFrom`), above the stock
+ * and the fixtures. Default value: none (the job's, `stock.clearance` above the stock's
+ * top).
+ */
+clearance: number | null, 
+/**
+ * What `clearance` is measured from. Default value: stockTop.
+ */
+clearanceFrom: HeightFrom, 
+/**
+ * The gap above the material where rapid descents stop and the feed begins (mm).
+ * Default value: none (the job's, `stock.retract`).
+ */
+retract: number | null, 
+/**
+ * The point a clearance `from: point` is measured from: `[x, y, z]` (mm) in the setup's
+ * program coordinates. Default value: none.
+ */
+point: [number, number, number] | null, };
 
 /**
  * A machine vise: two jaws gripping the stock's sides from its bottom up.
