@@ -138,6 +138,9 @@ const pkg = {
   },
   files: ['index.js', 'index.d.ts', 'inline.js', 'engine.js', 'engine.d.ts', 'worker.js', 'node-worker.js', 'pkg/swarf.js', 'pkg/swarf_bg.wasm', 'types/swarf-types.d.ts', 'README.md', 'THIRD-PARTY.md', 'LICENSE-MIT', 'LICENSE-APACHE'],
   sideEffects: false,
+  // Node 18 is the oldest the package is tried on (tests/e2e/package.test.mjs runs it on the
+  // machine's Node; the issue's trial ran 18 and 20).
+  engines: { node: '>=18' },
   keywords: ['cam', 'cnc', 'g-code', 'gcode', 'toolpath', 'milling', 'wasm', 'stl', 'dxf'],
 };
 fs.writeFileSync(path.join(out, 'package.json'), `${JSON.stringify(pkg, null, 2)}\n`);

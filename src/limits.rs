@@ -10,6 +10,10 @@
 /// is in the wrong unit), and is refused with its size and the element that makes it.
 pub const MAX_SIZE: f64 = 10_000.0;
 
+/// The largest file swarf reads (bytes): 512 MiB, a binary STL of over ten million facets.
+/// A bigger one (or a device that never ends, `/dev/zero`) is refused saying so.
+pub const MAX_FILE_BYTES: u64 = 512 << 20;
+
 /// The farthest a part's coordinate may lie from its file's origin, in the file's own unit:
 /// 10 km in millimetres, so a part drawn in microns, or far from its origin, still reads; a
 /// coordinate beyond it is a damaged number (1e39, 1e308), refused with its triangle.

@@ -462,3 +462,28 @@ fn a_note_is_said_as_a_note() {
     assert!(said.lines().any(|l| l.starts_with("note: again: rest roughing is off")), "{said}");
     assert!(!said.contains("warning: again: rest roughing is off"), "{said}");
 }
+
+/// Issue 94: every file is read within a bound. A device without end (`/dev/zero`) as a tool
+/// library, a part or a job's mesh stock is refused saying the limit, after reading no more
+/// than it (512 MiB), not after gigabytes.
+#[test]
+fn a_file_without_end_is_refused_at_the_limit() {
+    if !std::path::Path::new("/dev/zero").exists() {
+        return;
+    }
+    let dir = demo("endless");
+    let s = |p: std::path::PathBuf| p.to_str().unwrap().to_owned();
+    let mut job: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.join("demo.json")).unwrap()).unwrap();
+    job["stock"]["mesh"] = serde_json::json!({ "name": "/dev/zero" });
+    std::fs::write(dir.join("endless.json"), job.to_string()).unwrap();
+    for args in [
+        vec!["tools".to_owned(), "/dev/zero".to_owned()],
+        vec!["run".to_owned(), s(dir.join("demo.json")), "/dev/zero".to_owned(), "-q".to_owned()],
+        vec!["run".to_owned(), s(dir.join("endless.json")), s(dir.join("demo.stl")), "-q".to_owned()],
+    ] {
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let out = swarf(&args);
+        let said = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success() && said.contains("larger than 512 MiB, the most swarf reads"), "{args:?}: {said}");
+    }
+}

@@ -236,3 +236,28 @@ fn p_default(job: &Job) -> swarf::operations::Profile2d {
     let Operation::Profile2d(p) = &job.operations[0] else { unreachable!() };
     swarf::operations::Profile2d { moves: Default::default(), ..p.clone() }
 }
+
+/// Issue 94: an allowance far over the stock lifts every pass of a 3D finishing into the air
+/// (1000 mm made a 1:28:37 program up to Z1000): each kind says it has nothing to cut, as a
+/// waterline does, and the job makes no program of air.
+#[test]
+fn a_finishing_lifted_over_the_stock_has_nothing_to_cut() {
+    use swarf::operations::FinishPencil;
+    let kinds = [
+        Operation::FinishRaster(FinishRaster { tool: 2, allowance: 1000.0, ..FinishRaster::default() }),
+        Operation::FinishScallop(FinishScallop { tool: 2, allowance: 1000.0, ..FinishScallop::default() }),
+        Operation::FinishSteepShallow(FinishSteepShallow { tool: 2, allowance: 1000.0, ..FinishSteepShallow::default() }),
+        Operation::FinishPencil(FinishPencil { tool: 2, allowance: 1000.0, ..FinishPencil::default() }),
+    ];
+    for op in kinds {
+        let mut job = Job::demo();
+        let name = op.name().to_owned();
+        if matches!(op, Operation::FinishPencil(_)) {
+            // The sample's inside corners are tighter than a φ1 ball, not a φ6.
+            job.tools[1].cutter = swarf::cutter::Cutter { flute_length: 10.0, ..swarf::cutter::Cutter::ball(1.0) };
+        }
+        job.operations = vec![op];
+        let e = job::run(&job, demo_part(), &mut Progress::none()).unwrap_err().to_string();
+        assert!(e.contains("nothing to cut") && e.contains("lies over the stock's top"), "{name}: {e}");
+    }
+}

@@ -933,3 +933,23 @@ fn the_rocker_arm_comes_off_whole_from_a_box_in_a_vise() {
     let said: Vec<String> = out[1].output.warnings.iter().map(|w| w.to_string()).collect();
     assert!(said.iter().any(|w| w.starts_with("face") && w.contains("cuts the part free")), "{said:?}");
 }
+
+/// Issue 94: a work zero `at` a point off the stock is refused naming the field (a setup's `[1e6, 0]`
+/// wrote `G0 X-999987.768`); one on the stock runs, with X0 Y0 there.
+#[test]
+fn a_zero_off_the_stock_is_refused() {
+    use swarf::job::WorkZero;
+    let mut job = Job::demo();
+    job.stock.zero = Some(WorkZero { at: Some([900.0, 0.0]), ..WorkZero::default() });
+    let e = swarf::job::run(&job, swarf::mesh::sample::demo_part(), &mut Progress::none()).unwrap_err().to_string();
+    assert!(e.contains("stock.zero.at: X0 Y0 at X+900.000") && e.contains("lies off the"), "{e}");
+    job.stock.zero = Some(WorkZero { at: Some([5.0, -5.0]), ..WorkZero::default() });
+    let out = swarf::job::run(&job, swarf::mesh::sample::demo_part(), &mut Progress::none()).unwrap();
+    let c = out.stock.center();
+    assert!((c.x + 5.0).abs() < 1e-9 && (c.y - 5.0).abs() < 1e-9, "the stock's centre at {c}");
+    // A setup's own.
+    let mut two = Job::two_sided();
+    two.setups[1].zero = Some(WorkZero { at: Some([0.0, -500.0]), ..WorkZero::default() });
+    let e = run_setups(&two, two_sided_part(), &mut Progress::none()).unwrap_err().to_string();
+    assert!(e.contains("zero.at") && e.contains("lies off the"), "{e}");
+}

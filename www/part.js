@@ -155,7 +155,14 @@ export async function takeFile(file) {
   }
 }
 
+// The largest file the page reads, as the core's `limits::MAX_FILE_BYTES` (512 MiB).
+export const MAX_FILE_BYTES = 512 * 1024 * 1024;
+
 async function readFile(file) {
+  if (file.size > MAX_FILE_BYTES) {
+    message(`${file.name}: it is ${(file.size / 1048576).toFixed(0)} MiB, larger than the ${MAX_FILE_BYTES / 1048576} MiB swarf reads; the part on show is kept.`, 'error');
+    return;
+  }
   const bytes = new Uint8Array(await file.arrayBuffer());
   const before = { part: structuredClone(state.jobs.part.part), drawing: structuredClone(state.jobs.drawing.drawing) };
   freshSetup();

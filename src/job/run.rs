@@ -169,14 +169,8 @@ impl Job {
         };
         larger_than_any_machine("stock", stock.size(), "the stock's margins, size and the part's unit")?;
         // X0 Y0 on a point given from the stock's centre must be on the stock (a hole's centre).
-        if let Some([dx, dy]) = self.stock.zero.and_then(|z| z.at) {
-            if stock.min.x > 1e-9 || stock.max.x < -1e-9 || stock.min.y > 1e-9 || stock.max.y < -1e-9 {
-                let size = stock.size();
-                return Err(Error::Input(format!(
-                    "stock.zero.at: X0 Y0 at X{dx:+.3} Y{dy:+.3} from the stock's centre lies off the {:.3} × {:.3} mm stock; put it on the stock (the page's \"X0 Y0 on the picked hole\" puts it on a hole's centre)",
-                    size.x, size.y
-                )));
-            }
+        if self.stock.zero.and_then(|z| z.at).is_some() {
+            super::setups::zero_on_stock(&stock, "stock.zero.at")?;
         }
         let cell = self.simulation.cell_for(&stock);
         if self.simulation.cell.is_some() {

@@ -318,6 +318,13 @@ impl Heights {
             ctx.note(op, format!("nothing of its passes lies between its bottom and top heights (Z{l:.3} to Z{h:.3})"));
             return Ok(None);
         }
+        // Passes wholly over the stock (an allowance of 1000 mm rose them to Z1000) cut air
+        // alone: nothing to cut, as a waterline's or an adaptive's says.
+        let top = ctx.stock.max.z;
+        if let Some(lowest) = kept.iter().flatten().map(|p| p.z).reduce(f64::min).filter(|&z| z > top + 1e-6) {
+            ctx.note(op, format!("nothing to cut: its lowest pass (Z{lowest:.3}) lies over the stock's top (Z{top:.3}); a smaller 'Leave on the part' (allowance) or a lower 'Top height' cuts"));
+            return Ok(None);
+        }
         Ok(Some(kept))
     }
 

@@ -53,6 +53,12 @@ test('the tarball holds the engine, its worker, wasm, types, README and licences
   assert.equal(pkg.sideEffects, false);
   assert.equal(pkg.exports['.'].types, './index.d.ts');
   assert.match(fs.readFileSync(path.join(installed, 'THIRD-PARTY.md'), 'utf8'), /\| glam \| [\d.]+ \| MIT OR Apache-2\.0 \|/);
+  assert.deepEqual(pkg.engines, { node: '>=18' });
+  // Every licence the crates inside carry is named in the README's licence paragraph.
+  const third = fs.readFileSync(path.join(installed, 'THIRD-PARTY.md'), 'utf8');
+  const readme = fs.readFileSync(path.join(installed, 'README.md'), 'utf8');
+  const licences = new Set([...third.matchAll(/^\| [^|]+ \| [^|]+ \| ([^|]+) \|$/gm)].slice(1).flatMap((m) => m[1].split(/ OR | AND |\/|[()]/).map((l) => l.trim()).filter(Boolean)));
+  for (const l of licences) assert.ok(readme.includes(l), `the README's licences leave out ${l}`);
 });
 
 test('a strict TypeScript portal compiles against the installed package\'s types, and a wrong field does not', () => {

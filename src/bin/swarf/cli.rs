@@ -252,7 +252,20 @@ fn read_part(file: &Path, job: &Job) -> Result<swarf::mesh::Mesh, String> {
 }
 
 fn read(path: &Path) -> Result<Vec<u8>, String> {
-    std::fs::read(path).map_err(|e| format!("cannot read {}: {e}", path.display()))
+    bounded(path).map_err(|e| format!("cannot read {}: {e}", path.display()))
+}
+
+/// A file's bytes, at most [`swarf::limits::MAX_FILE_BYTES`] of them: a bigger file (or a
+/// device without end) is refused saying the limit, before more than that is read.
+fn bounded(path: &Path) -> std::io::Result<Vec<u8>> {
+    use std::io::Read;
+    let limit = swarf::limits::MAX_FILE_BYTES;
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)?.take(limit + 1).read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > limit {
+        return Err(std::io::Error::other(format!("it is larger than {} MiB, the most swarf reads", limit >> 20)));
+    }
+    Ok(bytes)
 }
 
 /// Refuses an output that is one of the command's inputs (`-o part.stl` would put G-code in
@@ -278,7 +291,7 @@ fn read_job(path: &Path) -> Result<Job, String> {
 fn embed_beside(mut job: Job, file: &Path) -> Result<Job, String> {
     if let Some(mesh) = job.stock.mesh.as_mut().filter(|m| m.data.is_none() && m.given.is_none()) {
         let path = file.parent().map(Path::to_path_buf).unwrap_or_default().join(&mesh.name);
-        let bytes = std::fs::read(&path).map_err(|e| format!("{}: stock.mesh names {}, which cannot be read: {e}", file.display(), path.display()))?;
+        let bytes = bounded(&path).map_err(|e| format!("{}: stock.mesh names {}, which cannot be read: {e}", file.display(), path.display()))?;
         *mesh = swarf::job::blank::MeshFile::embedded(&mesh.name, &bytes);
     }
     Ok(job)
@@ -301,7 +314,7 @@ fn run(cli: Cli) -> Result<(), String> {
                     None => {
                         let dir = file.parent().map(Path::to_path_buf).unwrap_or_default();
                         named = Some(dir.join(&project.workpiece.name));
-                        (Some(project.workpiece.name.clone()), project.workpiece_bytes(|n| std::fs::read(dir.join(n))).map_err(|e| format!("{}: {e}", file.display()))?)
+                        (Some(project.workpiece.name.clone()), project.workpiece_bytes(|n| bounded(&dir.join(n))).map_err(|e| format!("{}: {e}", file.display()))?)
                     }
                 };
                 let stem = file.to_string_lossy().trim_end_matches(".json").trim_end_matches(".swarf").to_owned();
