@@ -1380,8 +1380,8 @@ fn the_zero_goes_on_a_holes_centre() {
     let setups = job::run_setups(&job, part, &mut Progress::none()).unwrap();
     let sheets: Vec<_> = setups.iter().map(|s| job::sheet::SheetSetup::of(&s.name, &s.output)).collect();
     let html = job::sheet::setup_sheet(&job, "block.stl", &sheets);
-    assert_eq!(html.matches("from the centre of the stock seen from above: the stock's left side at X").count(), 2, "{html:.3000}");
-    assert_eq!(html.matches("(the point picked: a hole's centre, say)").count(), 2, "{html:.3000}");
+    assert_eq!(html.matches("X0 Y0 at the centre of the φ").count(), 2, "{html:.3000}");
+    assert_eq!(html.matches("from the centre of the stock seen from above): the stock's left side at X").count(), 2, "{html:.3000}");
 }
 
 /// Issue 92: 3D finishing leaves holes to the hole operations. A φ6 ball's waterline over a

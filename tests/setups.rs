@@ -953,3 +953,27 @@ fn a_zero_off_the_stock_is_refused() {
     let e = run_setups(&two, two_sided_part(), &mut Progress::none()).unwrap_err().to_string();
     assert!(e.contains("zero.at") && e.contains("lies off the"), "{e}");
 }
+
+/// Issue 92: a sheet whose zero is on a hole says so. The two-sided example's top, its zero
+/// put on a corner hole's centre (as the page's "X0 Y0 on the picked hole" does): the sheet
+/// says X0 Y0 is the centre of that hole, with its diameter and its distance from the stock's
+/// centre; the program's X0 Y0 is the hole's axis.
+#[test]
+fn a_zero_on_a_hole_is_said_on_the_sheet() {
+    let mut job = Job::two_sided();
+    job.operations = job.setups[0].operations.clone();
+    job.setups.clear();
+    let part = two_sided_part();
+    let holes = job.holes(part.clone()).unwrap();
+    let hole = holes.iter().find(|h| h.through).expect("a hole through the plate").clone();
+    let mut placed = part.clone();
+    job.place_part(&mut placed);
+    job.stock.zero = Some(job.zero_on(&placed.bounds(), None, hole.center).unwrap());
+    let out = swarf::job::run(&job, part, &mut Progress::none()).unwrap();
+    let sheet = swarf::job::sheet::SheetSetup::of("Top", &out);
+    let d = swarf::limits::shown((hole.diameter * 1000.0).round() / 1000.0);
+    assert!(sheet.zero.contains(&format!("X0 Y0 at the centre of the φ{d} hole")), "{}", sheet.zero);
+    // The hole, as the program holds the part, is on X0 Y0.
+    let at = swarf::holes::mesh::find(&out.part).into_iter().map(|h| h.center.length()).fold(f64::INFINITY, f64::min);
+    assert!(at < 1e-3, "the nearest hole's axis is {at} mm from X0 Y0");
+}

@@ -65,7 +65,7 @@ impl SheetSetup {
             name: name.to_owned(),
             work_offset: out.gcode.lines().map(crate::post::without_number).find(|l| crate::post::definition::is_work_offset(l)).map(str::to_owned),
             stock: out.stock,
-            zero: zero_words(&out.stock, part_box(out).as_ref()),
+            zero: zero_words(&out.stock, part_box(out).as_ref(), zero_hole(out).as_ref()),
             moves: out.moves.len(),
             cycle: out.cycle.seconds,
             tools,
@@ -108,7 +108,8 @@ svg{{border:1px solid #ccc;background:#fafafa}}.n{{text-align:right}}</style></h
         };
         let offset = s.work_offset.as_deref().unwrap_or("none (the machine's current)");
         let at_hole = setup.and_then(|s| s.zero).or(job.stock.zero).is_some_and(|z| z.at.is_some());
-        let zero = if at_hole { format!("{} (the point picked: a hole's centre, say)", s.zero) } else { s.zero.clone() };
+        // A point picked that is no hole's centre is said as picked.
+        let zero = if at_hole && !s.zero.contains(" hole (its top at") { format!("{} (the point picked)", s.zero) } else { s.zero.clone() };
         let size = s.stock.size();
         let _ = write!(
             h,
@@ -210,7 +211,21 @@ fn part_box(out: &JobOutput) -> Option<Aabb> {
 /// part's top as held, the stock's top or bottom, or how far below the stock's top), what to
 /// touch off and set, and where the stock's sides are from X0 Y0, so that the zero is found
 /// on the stock in front of them whichever face is up.
-pub fn zero_words(stock: &Aabb, part: Option<&Aabb>) -> String {
+/// The hole of the program `out`'s part whose centre is X0 Y0 (as the page's "X0 Y0 on the
+/// picked hole" puts it), where X0 Y0 is neither a corner nor the centre of the stock or the
+/// part.
+fn zero_hole(out: &JobOutput) -> Option<crate::holes::Hole> {
+    const AT: f64 = 1e-3;
+    let (s, c) = (out.stock, out.stock.center());
+    let plain = [(c.x, c.y), (s.min.x, s.min.y), (s.max.x, s.min.y), (s.min.x, s.max.y), (s.max.x, s.max.y)].iter().any(|(x, y)| x.abs() < AT && y.abs() < AT);
+    let part_centre = part_box(out).is_some_and(|p| p.center().x.abs() < AT && p.center().y.abs() < AT);
+    if plain || part_centre || out.drawing.is_some() || out.part.faces.is_empty() {
+        return None;
+    }
+    crate::holes::mesh::find(&out.part).into_iter().find(|h| h.center.length() < AT)
+}
+
+pub fn zero_words(stock: &Aabb, part: Option<&Aabb>, hole: Option<&crate::holes::Hole>) -> String {
     const AT: f64 = 1e-6;
     let f = |v: f64| if v.abs() < 5e-4 { "0.000".to_owned() } else { format!("{v:+.3}") };
     let (top, bottom) = (stock.max.z, stock.min.z);
@@ -237,6 +252,15 @@ pub fn zero_words(stock: &Aabb, part: Option<&Aabb>) -> String {
     let xy = match (corner, part) {
         (Some(w), _) => w,
         (None, Some(p)) if p.center().x.abs() < AT && p.center().y.abs() < AT => "the centre of the part seen from above".to_owned(),
+        (None, _) if hole.is_some() => {
+            let h = hole.expect("a hole");
+            format!(
+                "the centre of the φ{} hole (its top at Z{}; {} from the centre of the stock seen from above)",
+                crate::limits::shown((h.diameter * 1000.0).round() / 1000.0),
+                f(h.top),
+                format_args!("X{} Y{}", f(-c.x), f(-c.y))
+            )
+        }
         _ => format!("X{} Y{} from the centre of the stock seen from above", f(-c.x), f(-c.y)),
     };
     format!(
