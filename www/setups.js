@@ -51,10 +51,14 @@ function offsetChoices(j, current) {
   const words = [...WORK_OFFSETS, ...(more.g59Dot ? ['G59.1', 'G59.2', 'G59.3'] : []), ...Array.from({ length: more.extended ?? 0 }, (_, k) => `G54.1 P${k + 1}`)];
   if (current && !words.includes(current)) words.push(current);
   const select = $('setup-editor').querySelector('[data-setup="workOffset"]');
-  const key = words.join(',');
+  // None of its own: the job's (the Controller tab's), else its post's (G54 in the built-in
+  // posts), said as the program writes it; the controller's current only where neither has one.
+  const inherited = j.post.workOffset ?? post?.workOffset;
+  const own = inherited ? `the job's (${inherited})` : 'the controller\'s current';
+  const key = [own, ...words].join(',');
   if (select.dataset.choices === key) return;
   select.dataset.choices = key;
-  select.replaceChildren(new Option('the controller\'s', ''), ...words.map((w) => new Option(w, w)));
+  select.replaceChildren(new Option(own, ''), ...words.map((w) => new Option(w, w)));
 }
 
 // The skin a part turned over keeps round its parting line until it is broken off (mm).
@@ -91,7 +95,7 @@ export function addSetup() {
     j.stock.marginBottom = j.stock.marginTop > 0 ? j.stock.marginTop : 1;
     more = ` 'Stock below the part' is now ${j.stock.marginBottom} mm (Stock tab), for the bottom's facing to cut.`;
   }
-  message(`Added the setup '${j.setups[k].name}': the part turned over about X (its bottom up), held in ${j.setups[k].workOffset ?? 'the controller\'s work offset'}; it starts from the stock the setup before leaves.${more}${parted}`, 'note');
+  message(`Added the setup '${j.setups[k].name}': the part turned over about X (its bottom up), held in ${j.setups[k].workOffset ?? j.post.workOffset ?? 'the controller\'s work offset'}; it starts from the stock the setup before leaves.${more}${parted}`, 'note');
   select(k);
 }
 

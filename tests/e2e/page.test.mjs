@@ -1914,6 +1914,13 @@ test('turning the part over in the page: a second setup added (bottom up, faced 
   assert.ok(sided.every((o) => o.bottomFrom === 'partingLine' && o.bottom == null), JSON.stringify(sided));
   assert.deepEqual([job.setups[1].flip, job.setups[1].workOffset, job.setups[1].operations.map((o) => o.kind)], ['aboutX', 'G55', ['face', ...sided.map((o) => o.kind)]]);
   assert.ok(job.setups[1].operations.slice(1).every((o) => o.bottomFrom === 'partingLine' && o.bottom === 1));
+  // The top, with no work offset of its own, says the one its program writes (the post's G54),
+  // not "the controller's".
+  await page.click('#setup-tabs button:nth-child(1)');
+  await page.waitForFunction(() => document.querySelector('#setup-editor [data-setup=name]')?.value === 'Top');
+  assert.equal(await page.evaluate(() => { const s = document.querySelector('#setup-editor [data-setup=workOffset]'); return s.options[s.selectedIndex].text; }), "the job's (G54)");
+  await page.click('#setup-tabs button:nth-child(2)');
+  await page.waitForFunction(() => document.querySelector('#setup-editor [data-setup=name]')?.value === 'Bottom');
   // The bottom's roughing shows its heights open, from the parting line; a top height typed
   // there is the operation's. The bottom's facing, without a clearance of its own, has its
   // heights closed.
