@@ -170,7 +170,7 @@ impl Job {
         larger_than_any_machine("stock", stock.size(), "the stock's margins, size and the part's unit")?;
         // X0 Y0 on a point given from the stock's centre must be on the stock (a hole's centre).
         if self.stock.zero.and_then(|z| z.at).is_some() {
-            super::setups::zero_on_stock(&stock, "stock.zero.at")?;
+            super::schema::zero_on_stock(&stock, "stock.zero.at")?;
         }
         let cell = self.simulation.cell_for(&stock);
         if self.simulation.cell.is_some() {

@@ -1054,3 +1054,18 @@ impl Job {
             .collect()
     }
 }
+
+/// A work zero (`field`) is on the stock, whose box in the program's frame is `stock`: X0 Y0
+/// within its outline seen from above (a setup's zero `at` far off it, `[1e6, 0]`, wrote
+/// `G0 X-999987.768`).
+pub fn zero_on_stock(stock: &Aabb, field: &str) -> crate::error::Result<()> {
+    const SLACK: f64 = 1e-9;
+    if stock.min.x <= SLACK && stock.max.x >= -SLACK && stock.min.y <= SLACK && stock.max.y >= -SLACK {
+        return Ok(());
+    }
+    let (c, size) = (stock.center(), stock.size());
+    Err(crate::error::Error::Input(format!(
+        "{field}: X0 Y0 at X{:+.3} Y{:+.3} from the stock's centre lies off the {:.3} × {:.3} mm stock; put it on the stock (the page's \"X0 Y0 on the picked hole\" puts it on a hole's centre)",
+        -c.x, -c.y, size.x, size.y
+    )))
+}

@@ -242,7 +242,7 @@ pub fn run_setups(job: &Job, mut part: Mesh, progress: &mut Progress) -> Result<
     let mut out: Vec<SetupOutput> = Vec::with_capacity(n);
     for (k, frame) in frames.iter().enumerate() {
         if job.setups[k].zero.or(job.stock.zero).is_some() {
-            zero_on_stock(&frame.1, if job.setups[k].zero.is_some() { "zero.at" } else { "stock.zero.at" }).map_err(|e| setup_error(k, &names[k], e))?;
+            super::schema::zero_on_stock(&frame.1, if job.setups[k].zero.is_some() { "zero.at" } else { "stock.zero.at" }).map_err(|e| setup_error(k, &names[k], e))?;
         }
         let (sub, held) = setup_stage(job, k, &part, frame);
         let mut prepared = prepare(&sub, Workpiece::Mesh(held)).map_err(|e| setup_error(k, &names[k], e))?;
@@ -380,21 +380,6 @@ fn carried_across(left: &DexelStock, a: DVec3, dir: DVec3, spans: &mut Vec<(f64,
     if sign < 0.0 {
         spans[first..].reverse();
     }
-}
-
-/// A work zero (`field`) is on the stock, whose box in the program's frame is `stock`: X0 Y0
-/// within its outline seen from above (a setup's zero `at` far off it, `[1e6, 0]`, wrote
-/// `G0 X-999987.768`).
-pub fn zero_on_stock(stock: &Aabb, field: &str) -> Result<()> {
-    const SLACK: f64 = 1e-9;
-    if stock.min.x <= SLACK && stock.max.x >= -SLACK && stock.min.y <= SLACK && stock.max.y >= -SLACK {
-        return Ok(());
-    }
-    let (c, size) = (stock.center(), stock.size());
-    Err(Error::Input(format!(
-        "{field}: X0 Y0 at X{:+.3} Y{:+.3} from the stock's centre lies off the {:.3} × {:.3} mm stock; put it on the stock (the page's \"X0 Y0 on the picked hole\" puts it on a hole's centre)",
-        -c.x, -c.y, size.x, size.y
-    )))
 }
 
 #[cfg(test)]
