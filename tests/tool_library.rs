@@ -170,7 +170,9 @@ fn a_fusion_library_means_what_fusion_means() {
     assert_eq!(hss.tools[0].tool_material, swarf::tool::ToolMaterial::Hss);
     assert!(hss.notes.iter().any(|n| n.starts_with("not taken") && n.contains("GRADE")), "{:?}", hss.notes);
     let odd = read_library(fusion_one(r#""unit": "millimeters", "BMC": "ceramics", "geometry": { "DC": 6 }"#).as_bytes(), "lib.json", false, &[]).unwrap();
-    assert!(odd.notes.iter().any(|n| n.contains("\"ceramics\" is neither carbide nor HSS")), "{:?}", odd.notes);
+    assert!(odd.notes.iter().any(|n| n.contains("\"ceramics\" is none of carbide, ti coated and HSS")), "{:?}", odd.notes);
+    let coated = read_library(fusion_one(r#""unit": "millimeters", "BMC": "ti coated", "geometry": { "DC": 6 }"#).as_bytes(), "lib.json", false, &[]).unwrap();
+    assert_eq!(coated.tools[0].tool_material, swarf::tool::ToolMaterial::Coated);
     // The older start values: a set by material ("*": any).
     let old = read_library(fusion_one(r#""unit": "millimeters", "geometry": { "DC": 6 }, "start-values": { "*": { "n": 9000, "v_f": 700, "v_f_plunge": 200 } }"#).as_bytes(), "lib.json", false, &[])
         .unwrap();
