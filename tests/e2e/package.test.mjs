@@ -56,7 +56,6 @@ test('the tarball holds the engine, its worker, wasm, types, README and licences
   assert.deepEqual(pkg.engines, { node: '>=18' });
   // Every licence the crates inside carry is named in the README's licence paragraph.
   const third = fs.readFileSync(path.join(installed, 'THIRD-PARTY.md'), 'utf8');
-  const readme = fs.readFileSync(path.join(installed, 'README.md'), 'utf8');
   const licences = new Set([...third.matchAll(/^\| [^|]+ \| [^|]+ \| ([^|]+) \|$/gm)].slice(1).flatMap((m) => m[1].split(/ OR | AND |\/|[()]/).map((l) => l.trim()).filter(Boolean)));
   for (const l of licences) assert.ok(readme.includes(l), `the README's licences leave out ${l}`);
 });
