@@ -1249,8 +1249,9 @@ test('speeds and feeds from the stock\'s material: each tool shows them with how
   await tab(page, 'tools');
   await page.waitForFunction(() => /in aluminium 6061: /.test(document.getElementById('tool-speeds').textContent));
   const d = await page.evaluate(() => window.swarf.tools[window.swarf.selected.tool].diameter);
-  // The closed form: 800 SFM (243.84 m/min) on a φd, held to the hobby router's 8000–24000 rpm.
-  const rpm = (top) => Math.round(Math.min(top, Math.max(8000, (1000 * 800 * 0.3048) / (Math.PI * d))));
+  // The closed form: 1150 SFM (350.52 m/min, the middle of the chart's 800–1500) on the flat φd,
+  // held to the hobby router's 8000–24000 rpm.
+  const rpm = (top) => Math.round(Math.min(top, Math.max(8000, (1000 * 1150 * 0.3048) / (Math.PI * d))));
   assert.equal(await page.inputValue('input[name=spindleRpm]'), String(rpm(24000)));
   assert.match(await page.textContent('#tool-speeds'), /Source: Torbide Tooling/);
   // The small VMC's spindle stops at 12,000 rpm: the speed is held there, and says so.
