@@ -481,21 +481,9 @@ fn freecad_bit(value: &Value, number: u32, name: &str, notes: &mut Vec<String>) 
             notes.push(n)
         }
     };
-    let shape = match shape_file.trim_end_matches(".fcstd").to_lowercase().as_str() {
-        "endmill" => Shape::Flat,
-        "ballend" => Shape::Ball,
-        "bullnose" | "torus" => Shape::BullNose,
-        "drill" => Shape::Drill,
-        "v-bit" | "vbit" | "chamfer" => Shape::VBit,
-        "threadmill" => Shape::ThreadMill,
-        // A saw cuts with its rim, not its end: no shape swarf plans for.
-        other => match shape_in(other).filter(|_| !other.contains("saw")) {
-            Some(s) => s,
-            None => {
-                say(notes, format!("{bit}: its shape {shape_file:?} has none in swarf: not taken"));
-                return Ok(None);
-            }
-        },
+    let Some(shape) = shape_of_file(shape_file) else {
+        say(notes, format!("{bit}: its shape {shape_file:?} has none in swarf: not taken"));
+        return Ok(None);
     };
     const TAKEN: &[&str] = &[
         "Diameter",
@@ -564,11 +552,35 @@ fn freecad_bit(value: &Value, number: u32, name: &str, notes: &mut Vec<String>) 
         Some("coated carbide") => tool.tool_material = super::ToolMaterial::Coated,
         Some(other) => say(notes, format!("{bit}: its Material {other:?} is none of Carbide, Coated carbide and HSS, the three swarf's charts have: taken as carbide")),
     }
-    let unknown: Vec<&String> = p.as_object().map(Map::keys).into_iter().flatten().filter(|k| !TAKEN.contains(&k.as_str())).collect();
+    // `Units` is how FreeCAD shows the bit (every quantity carries its own unit).
+    let unknown: Vec<&String> = p.as_object().map(Map::keys).into_iter().flatten().filter(|k| !TAKEN.contains(&k.as_str()) && *k != "Units").collect();
     if !unknown.is_empty() {
-        say(notes, format!("{bit}: not taken, as swarf does not model them: {}", unknown.iter().map(|s| s.as_str()).collect::<Vec<_>>().join(", ")));
+        say(notes, format!("{bit}: not taken, as swarf does not model them: {} (kept, to be written back to FreeCAD)", unknown.iter().map(|s| s.as_str()).collect::<Vec<_>>().join(", ")));
     }
+    tool.library_fields = freecad_fields(value);
     Ok(Some(tool))
+}
+
+/// Every field of a FreeCAD bit as it is written, by place (`freecad:shape`,
+/// `freecad:parameter.Length`, `freecad:attribute.Flutes`), its value as JSON text: what
+/// [`write_freecad`] writes back.
+fn freecad_fields(bit: &Value) -> std::collections::BTreeMap<String, String> {
+    let mut out = std::collections::BTreeMap::new();
+    for (key, v) in bit.as_object().into_iter().flatten() {
+        match (key.as_str(), v.as_object()) {
+            ("version" | "name", _) => {}
+            ("parameter" | "attribute", Some(fields)) => {
+                out.insert(format!("freecad:{key}"), "{}".to_owned());
+                for (k, v) in fields {
+                    out.insert(format!("freecad:{key}.{k}"), v.to_string());
+                }
+            }
+            _ => {
+                out.insert(format!("freecad:{key}"), v.to_string());
+            }
+        }
+    }
+    out
 }
 
 /// A FreeCAD library: its tools' numbers and the bits' files they name, read from `bits`.
@@ -593,56 +605,140 @@ fn freecad_library(value: &Value, name: &str, bits: &[(String, Vec<u8>)]) -> Res
 /// `tools` as a FreeCAD library named `library`: its `.fctl` (each tool's number and its bit's
 /// file) and one `.fctb` bit a tool, each with its shape's file and its parameters in mm and
 /// degrees, as `(file name, text)`, the library first. A bit holds no speeds or holder (in
-/// FreeCAD those are the tool controller's): they are not written.
+/// FreeCAD those are the tool controller's): they are not written. A tool read from a FreeCAD
+/// bit is written as that bit was, field for field and in its own words, but for what has
+/// changed since: a round trip gives the bit back.
 pub fn write_freecad(tools: &[Tool], library: &str) -> Vec<(String, String)> {
-    let mm = |v: f64| format!("{v:.4} mm");
-    let deg = |v: f64| format!("{v:.4} °");
     let mut bits = Vec::new();
     let mut entries = Vec::new();
     for t in tools {
-        let c = &t.cutter;
-        let shape = match c.shape {
-            Shape::Flat => "endmill",
-            Shape::Ball => "ballend",
-            Shape::BullNose => "bullnose",
-            Shape::Drill | Shape::SpotDrill => "drill",
-            Shape::VBit => "v-bit",
-            Shape::ThreadMill => "threadmill",
-        };
-        let mut p = Map::new();
-        p.insert("Diameter".into(), json!(mm(c.diameter)));
-        p.insert("ShankDiameter".into(), json!(mm(c.shank_diameter.unwrap_or(c.diameter))));
-        p.insert("CuttingEdgeHeight".into(), json!(mm(c.flute_length)));
-        p.insert("Length".into(), json!(mm(t.stick_out.unwrap_or(c.flute_length).max(c.flute_length))));
-
-        match c.shape {
-            Shape::BullNose => {
-                p.insert("TorusRadius".into(), json!(mm(c.corner_radius)));
-            }
-            Shape::Drill | Shape::SpotDrill => {
-                p.insert("TipAngle".into(), json!(deg(c.point_angle())));
-            }
-            Shape::VBit => {
-                p.insert("CuttingEdgeAngle".into(), json!(deg(c.point_angle())));
-                p.insert("TipDiameter".into(), json!(mm(c.tip_diameter)));
-            }
-            _ => {}
-        }
-        let name = if t.name.is_empty() { c.describe() } else { t.name.clone() };
+        let name = if t.name.is_empty() { t.cutter.describe() } else { t.name.clone() };
         let slug: String = name.chars().map(|ch| if ch.is_ascii_alphanumeric() { ch } else { '_' }).collect();
         let file = format!("T{}_{}.fctb", t.number, slug.trim_matches('_'));
-        let material = match t.tool_material {
-            super::ToolMaterial::Carbide => "Carbide",
-            super::ToolMaterial::Hss => "HSS",
-            super::ToolMaterial::Coated => "Coated carbide",
-        };
-        let bit = json!({ "version": 2, "name": name, "shape": format!("{shape}.fcstd"), "parameter": p, "attribute": { "Flutes": t.flutes, "Material": material } });
         entries.push(json!({ "nr": t.number, "path": file }));
-        bits.push((file, serde_json::to_string_pretty(&bit).expect("JSON")));
+        bits.push((file, serde_json::to_string_pretty(&freecad_bit_of(t, &name)).expect("JSON")));
     }
     let mut out = vec![(format!("{library}.fctl"), serde_json::to_string_pretty(&json!({ "version": 1, "tools": entries })).expect("JSON"))];
     out.extend(bits);
     out
+}
+
+/// The FreeCAD shape file of a cutter's shape.
+fn freecad_shape(shape: Shape) -> &'static str {
+    match shape {
+        Shape::Flat => "endmill.fcstd",
+        Shape::Ball => "ballend.fcstd",
+        Shape::BullNose => "bullnose.fcstd",
+        Shape::Drill | Shape::SpotDrill => "drill.fcstd",
+        Shape::VBit => "v-bit.fcstd",
+        Shape::ThreadMill => "threadmill.fcstd",
+    }
+}
+
+/// A tool's FreeCAD bit named `name`. What swarf models, `(place, key, value)`, goes over the
+/// fields the tool was read with (`Tool::library_fields`), keeping a field's own text where it
+/// still reads the same; a modelled field the bit did not have is added only where the bit
+/// would not read back as the tool without it.
+fn freecad_bit_of(t: &Tool, name: &str) -> Value {
+    let mm = |v: f64| json!(format!("{v:.4} mm"));
+    let deg = |v: f64| json!(format!("{v:.4} °"));
+    let c = &t.cutter;
+    let kept: Vec<(&str, Value)> = t.library_fields.iter().filter_map(|(k, v)| Some((k.strip_prefix("freecad:")?, serde_json::from_str(v).ok()?))).collect();
+    let mut modelled: Vec<(&str, &str, Value)> =
+        vec![("parameter", "Diameter", mm(c.diameter)), ("parameter", "ShankDiameter", mm(c.shank_diameter.unwrap_or(c.diameter))), ("parameter", "CuttingEdgeHeight", mm(c.flute_length))];
+    let length = t.stick_out.unwrap_or(c.flute_length).max(c.flute_length);
+    if kept.is_empty() || t.stick_out.is_some() {
+        modelled.push(("parameter", "Length", mm(length)));
+    }
+    match c.shape {
+        Shape::BullNose => modelled.push(("parameter", "TorusRadius|CornerRadius", mm(c.corner_radius))),
+        Shape::Drill | Shape::SpotDrill => modelled.push(("parameter", "TipAngle", deg(c.point_angle()))),
+        Shape::VBit => {
+            modelled.push(("parameter", "CuttingEdgeAngle|TipAngle", deg(c.point_angle())));
+            modelled.push(("parameter", "TipDiameter", mm(c.tip_diameter)));
+        }
+        _ => {}
+    }
+    let material = match t.tool_material {
+        super::ToolMaterial::Carbide => "Carbide",
+        super::ToolMaterial::Hss => "HSS",
+        super::ToolMaterial::Coated => "Coated carbide",
+    };
+    modelled.push(("attribute", "Flutes", json!(t.flutes)));
+    modelled.push(("attribute", "Material", json!(material)));
+    // A key names its aliases after a `|`: the first is what swarf writes.
+    let first = |key: &str| key.split('|').next().unwrap_or(key).to_owned();
+    let fresh = || {
+        let mut bit = json!({ "version": 2, "name": name, "shape": freecad_shape(c.shape), "parameter": {}, "attribute": {} });
+        for (place, key, v) in &modelled {
+            bit[*place][first(key)] = v.clone();
+        }
+        bit
+    };
+    if kept.is_empty() {
+        return fresh();
+    }
+    // The bit as it was read, its fields in their places.
+    let mut bit = json!({ "version": 2, "name": name });
+    for (key, v) in &kept {
+        match key.split_once('.') {
+            Some((place, k)) => {
+                if !bit[place].is_object() {
+                    bit[place] = json!({});
+                }
+                bit[place][k] = v.clone();
+            }
+            None => bit[*key] = v.clone(),
+        }
+    }
+    // Its shape file where it still names the tool's shape ("chamfer.fcstd" for a V-bit).
+    let same_shape = |bit: &Value| {
+        let mut notes = Vec::new();
+        matches!(freecad_bit(bit, t.number, name, &mut notes), Ok(Some(b)) if b.cutter == t.cutter && b.flutes == t.flutes && b.tool_material == t.tool_material)
+    };
+    if bit.get("shape").and_then(Value::as_str).is_none_or(|s| shape_of_file(s) != Some(c.shape)) {
+        bit["shape"] = json!(freecad_shape(c.shape));
+    }
+    // Where the bit has a field (by any of its names, in either place), and where.
+    let find = |bit: &Value, key: &str| -> Option<(&'static str, String)> {
+        key.split('|').find_map(|k| ["parameter", "attribute"].into_iter().find(|place| bit[*place].get(k).is_some()).map(|place| (place, k.to_owned())))
+    };
+    // A field the bit has takes the tool's value where it no longer reads the same.
+    for (_, key, v) in &modelled {
+        let reads = |a: &Value, b: &Value| a == b || matches!((quantity(a), quantity(b)), (Ok(x), Ok(y)) if (x - y).abs() < 1e-9);
+        if let Some((place, k)) = find(&bit, key) {
+            let o = &bit[place][&k];
+            if !(reads(o, v) || (*key == "Material" && o.as_str().is_some_and(|o| o.eq_ignore_ascii_case(material)))) {
+                bit[place][k] = v.clone();
+            }
+        }
+    }
+    // A field it lacks is added where the bit does not read back as the tool without it.
+    if !same_shape(&bit) {
+        for (place, key, v) in &modelled {
+            if find(&bit, key).is_none() {
+                bit[*place][first(key)] = v.clone();
+            }
+        }
+    }
+    if !same_shape(&bit) {
+        return fresh();
+    }
+    bit
+}
+
+/// The shape a FreeCAD shape file names, as [`freecad_bit`] takes it.
+fn shape_of_file(file: &str) -> Option<Shape> {
+    match file.trim_end_matches(".fcstd").to_lowercase().as_str() {
+        "endmill" => Some(Shape::Flat),
+        "ballend" => Some(Shape::Ball),
+        "bullnose" | "torus" => Some(Shape::BullNose),
+        "drill" => Some(Shape::Drill),
+        "v-bit" | "vbit" | "chamfer" => Some(Shape::VBit),
+        "threadmill" => Some(Shape::ThreadMill),
+        // A saw cuts with its rim, not its end: no shape swarf plans for.
+        other => shape_in(other).filter(|_| !other.contains("saw")),
+    }
 }
 
 /// `tools` as a library of `format`.

@@ -46,6 +46,13 @@ pub struct Tool {
     /// length where that is not set): the verification finds it in material. Default value:
     /// none.
     pub holder: Option<Holder>,
+    /// What the library it came from gave that swarf does not model, as that library wrote it:
+    /// each field by format and place (`freecad:parameter.Length`), its value as JSON text
+    /// (`"\"50.0000 mm\""`). Written back when the tool goes out to the same kind of library,
+    /// so a round trip keeps what swarf does not use. Default value: none.
+    #[serde(skip_serializing_if = "std::collections::BTreeMap::is_empty")]
+    #[ts(as = "Option<std::collections::BTreeMap<String, String>>", optional)]
+    pub library_fields: std::collections::BTreeMap<String, String>,
 }
 
 /// What a tool's cutting edges are made of.
@@ -108,6 +115,7 @@ impl Default for Tool {
             tool_material: ToolMaterial::Carbide,
             speeds: Speeds::FromMaterial,
             holder: None,
+            library_fields: Default::default(),
         }
     }
 }

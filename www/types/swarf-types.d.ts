@@ -3065,6 +3065,13 @@ speeds: Speeds,
  */
 holder: Holder | null, 
 /**
+ * What the library it came from gave that swarf does not model, as that library wrote it:
+ * each field by format and place (`freecad:parameter.Length`), its value as JSON text
+ * (`"\"50.0000 mm\""`). Written back when the tool goes out to the same kind of library,
+ * so a round trip keeps what swarf does not use. Default value: none.
+ */
+libraryFields?: { [key in string]: string }, 
+/**
  * End shape. Default value: ball.
  */
 shape: Shape, 
