@@ -160,6 +160,10 @@ Object.assign(hooks, {
 // the object keeps its value).
 function onField(el) {
   if (!el.dataset.key) return;
+  // A refusal of the last Generate is stale once the user changes a setting: kept to read, no
+  // longer said in red as the job's state.
+  const m = $('message');
+  if (m.dataset.from === 'run' && m.className === 'error') message(`Changed since Generate refused the job; Generate again to check. It said: ${m.textContent}`, 'note');
   let value;
   try {
     value = valueOf(el);

@@ -78,7 +78,20 @@ export function fillFields(container, obj) {
 export function message(text, level = 'note') {
   const m = $('message');
   m.className = text ? level : '';
-  m.textContent = words(text);
+  m.dataset.from = '';
+  m.textContent = words(text ? pathWords(text) : text);
+}
+
+// The job's field paths in a message (`stock.bar.diameter: …`, "raise stock.marginTop") said as
+// the page's place of the field ("Stock → Bar diameter"), where the page has that field; a path
+// it has none for (or a file's name, "part.stl") stays as it is. An operation's or a tool's
+// path names the job it came with (a loaded file's), not the one on show: it stays too.
+const PATH = /\b(?:stock|part|drawing|post|machine)\.[A-Za-z][A-Za-z.]*[A-Za-z]/g;
+export function pathWords(text) {
+  return String(text).replace(PATH, (p) => {
+    const said = placeWords(p);
+    return said.endsWith(`→ ${p.slice(p.indexOf('.') + 1)}`) ? p : said;
+  });
 }
 
 // A file or job taken in has had its answer (read, or refused with the message): counted on

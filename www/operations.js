@@ -12,7 +12,7 @@ export function fillOps() {
   state.selected[state.kind] = Math.max(0, Math.min(state.selected[state.kind], operations.length - 1));
   const items = sized(list, operations.length, () => {
     const li = document.createElement('li');
-    li.innerHTML = '<input type="checkbox" class="op-enabled" title="run this operation" aria-label="run this operation"><span class="swatch"></span><span class="op-name"></span><span class="op-buttons"><button type="button" class="op-up" title="earlier" aria-label="earlier">▲</button><button type="button" class="op-down" title="later" aria-label="later">▼</button><button type="button" class="op-copy" title="duplicate" aria-label="duplicate">⧉</button><button type="button" class="op-remove" title="remove (Ctrl+Z brings it back)" aria-label="remove">✕</button></span>';
+    li.innerHTML = '<input type="checkbox" class="op-enabled" title="run this operation" aria-label="run this operation"><span class="swatch"></span><span class="op-name"></span><span class="op-buttons"><button type="button" class="op-up" title="earlier" aria-label="earlier">▲</button><button type="button" class="op-down" title="later" aria-label="later">▼</button><button type="button" class="op-copy" title="duplicate" aria-label="duplicate">+1</button><button type="button" class="op-remove" title="remove (Ctrl+Z brings it back)" aria-label="remove">✕</button></span>';
     return li;
   });
   operations.forEach((op, i) => {
@@ -151,18 +151,58 @@ export function armPointPick() {
   message('Click the part in the view to pick the point.', 'note');
 }
 
+// The shapes a kind of operation cuts with, the first the one a tool is added as where the
+// library has none, and whether it takes the largest (roughing, facing) or the smallest.
+const FITS = [
+  [/^rough|^face$|^pocket2d$|^profile2d$|^bore$/, { shapes: ['flat', 'bullNose'], words: 'flat end mill', largest: true }],
+  [/^finish/, { shapes: ['ball', 'bullNose'], words: 'ball end mill', largest: true }],
+  [/^chamfer$|^engrave$|^vcarve$/, { shapes: ['vBit'], words: 'V-bit', largest: false }],
+  [/^drill$/, { shapes: ['drill', 'spotDrill'], words: 'drill', largest: false }],
+  [/^threadMill$/, { shapes: ['threadMill'], words: 'thread mill', largest: false }],
+];
+
+// The tool a new operation of `kind` takes: the selected tool where its shape suits the kind,
+// else the library's that suits it (the largest flat end mill to rough, a ball to finish in
+// 3D, a V-bit to chamfer or carve, a drill of the smallest hole found), else one added to the
+// library, said: `{ tool, added }`.
+function toolFor(kind) {
+  const fit = FITS.find(([re]) => re.test(kind))?.[1];
+  const chosen = selectedTool();
+  if (!fit) return { tool: chosen ?? state.tools[0] };
+  const holes = kind === 'drill' ? (found() ?? []).filter((h) => !h.mark && h.diameter > 0) : [];
+  const hole = holes.length ? Math.min(...holes.map((h) => h.diameter)) : null;
+  const suits = (t) => fit.shapes.includes(t.shape) && (hole === null || t.shape !== 'drill' || Math.abs(t.diameter - hole) <= DRILL_OVER + DRILL_UNDER);
+  if (chosen && suits(chosen) && hole === null) return { tool: chosen };
+  const all = state.tools.filter(suits).sort((a, b) => fit.shapes.indexOf(a.shape) - fit.shapes.indexOf(b.shape) || (fit.largest ? b.diameter - a.diameter : a.diameter - b.diameter));
+  if (all.length) return { tool: all[0] };
+  const t = structuredClone(state.defaults.tool);
+  const flat = state.tools.filter((u) => u.shape === 'flat').sort((a, b) => b.diameter - a.diameter)[0];
+  const diameter = kind === 'drill' ? hole ?? 5 : fit.shapes[0] === 'ball' && flat ? flat.diameter : 6;
+  Object.assign(t, { number: Math.max(0, ...state.tools.map((u) => u.number)) + 1, shape: fit.shapes[0], diameter, name: `${Number(diameter.toFixed(3))} mm ${fit.words}`, cornerRadius: 0, tipDiameter: 0 });
+  t.angle = fit.shapes[0] === 'drill' ? 118 : fit.shapes[0] === 'vBit' ? 90 : null;
+  state.tools.push(t);
+  return { tool: t, added: t };
+}
+
 export function addOperation(kind) {
   const op = structuredClone(state.defaults.operations.find((o) => o.kind === kind));
   const operations = ops();
   // Octree roughing chooses its own tools (from the whole library unless told otherwise).
-  if (kind !== 'roughOctree') op.tool = selectedTool()?.number ?? state.tools[0]?.number ?? 1;
+  let added = null;
+  if (kind !== 'roughOctree') {
+    const fit = toolFor(kind);
+    op.tool = fit.tool?.number ?? 1;
+    added = fit.added;
+  }
   const same = operations.filter((o) => o.kind === kind).length;
   if (same) op.name = `${op.name} ${same + 1}`;
   operations.push(op);
   state.selected[state.kind] = operations.length - 1;
   store();
+  if (added) hooks.fillTools?.();
   fillOps();
   hooks.changed?.();
+  if (added) message(`Added T${added.number}, a φ${mm(added.diameter)} ${unit()} ${FITS.find(([re]) => re.test(kind))[1].words}, to the tool library for ${op.name}: no tool there suits it. Its sizes are in the Tools tab.`, 'note');
 }
 
 export function onOpList(e) {
@@ -409,6 +449,7 @@ function toggleHole(op, k) {
 // it (a new drill of that size where none does), bored on a helix with an end mill where the
 // library has one narrow enough and no drill fits, recesses shallower than a spot left to the
 // milling operations; the drilled holes spotted first, and all chamfered.
+const JOBBER_MOST = 13; // the largest hole a drill is added for, rather than bored (mm)
 const DRILL_UNDER = 0.1; // a drill this much under a hole's size still fits it (mm)
 const DRILL_OVER = 0.02; // … and this much over (0.01 on the radius, inside the gouge tolerance)
 export function presetHoles() {
@@ -440,10 +481,11 @@ export function presetHoles() {
   for (const [, list] of [...groups].sort((a, b) => a[0] - b[0])) {
     const size = Math.round(list[0].diameter * 1000) / 1000;
     const fit = drills.filter((t) => t.diameter <= size + DRILL_OVER && t.diameter >= size - DRILL_UNDER).sort((a, b) => Math.abs(a.diameter - size) - Math.abs(b.diameter - size))[0];
-    // A bore's tool: the widest end mill that leaves room for a helix (at most 80 % of the hole).
+    // A bore's tool: the widest end mill that leaves room for a helix (at most 80 % of the
+    // hole). A hole a jobber drill makes (up to φ13) gets a drill of its size added instead.
     const mill = mills.filter((t) => t.diameter <= 0.8 * size).sort((a, b) => b.diameter - a.diameter)[0];
     if (fit) { plan.push({ kind: 'drill', tool: fit, size, list }); drilled.push(...list); }
-    else if (mill) { plan.push({ kind: 'bore', tool: mill, size, list }); bored.push(...list); }
+    else if (mill && size > JOBBER_MOST) { plan.push({ kind: 'bore', tool: mill, size, list }); bored.push(...list); }
     else {
       const t = structuredClone(state.defaults.tool);
       Object.assign(t, { number: Math.max(0, ...state.tools.map((u) => u.number)) + 1, name: `drill φ${mm(size)}`, shape: 'drill', diameter: size, angle: 118, fluteLength: Math.max(t.fluteLength ?? 0, Math.ceil(Math.max(...list.map((h) => h.top - h.bottom)) + 3)) });

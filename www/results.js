@@ -207,7 +207,7 @@ export function resultTab(name) {
 export async function generate() {
   if (state.running) return;
   document.body.dataset.generated = 'running';
-  const refuse = (text) => { message(text, 'error'); document.body.dataset.generated = 'failed'; };
+  const refuse = (text) => { message(text, 'error'); $('message').dataset.from = 'run'; document.body.dataset.generated = 'failed'; };
   const j = buildJob();
   const every = allOps(j);
   const wrong = every.filter((op) => !isEither(op) && (state.kind === 'drawing') !== is2d(op));
@@ -268,7 +268,10 @@ export async function generate() {
   } catch (e) {
     clearResult();
     const cancelled = e.message === 'cancelled by the user';
-    if (!cancelled) message(e.message, 'error');
+    if (!cancelled) {
+      message(e.message, 'error');
+      $('message').dataset.from = 'run';
+    }
     $('stage').textContent = '';
     document.body.dataset.generated = cancelled ? 'cancelled' : 'failed';
   } finally {

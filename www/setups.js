@@ -227,7 +227,9 @@ async function stage(again) {
     if (reframe && stock) state.viewer.frameStage(part.bounds, stock);
     [shownPart, shownAs] = [state.part, as];
   }
-  state.viewer.setStage(frame ? { stock, fixtures: frame.fixtures } : null);
+  // Bar stock drawn as the bar it is, where the bar is as it came (the first setup's).
+  const bar = j?.stock?.bar && (!hasSetups(j) || setupIndex(j) === 0) ? j.stock.bar : null;
+  state.viewer.setStage(frame ? { stock, fixtures: frame.fixtures, bar } : null);
   document.body.dataset.setupShown = String(Number(document.body.dataset.setupShown ?? 0) + 1);
 }
 

@@ -281,14 +281,16 @@ export class Viewer {
   setStage(stage) {
     this.dropLines((key) => key === 'stock' || key === 'fixtures' || key.startsWith('zero'));
     this.staged = stage;
-    if (stage) this.setStockLines(stage.stock, stage.fixtures);
+    if (stage) this.setStockLines(stage.stock, stage.fixtures, true, stage.bar);
     this.draw();
   }
 
   // The stock's box, what holds it (a vise's jaws, clamps: in the red of things not to touch)
   // and, before a run, the work zero.
-  setStockLines(stock, fixtures, zero = true) {
-    this.setLine('stock', { buffer: this.buffer(boxLines(stock)), count: 24, color: [0.35, 0.4, 0.45, 0.6], mark: true });
+  // A bar (`{ diameter, axis }`) is drawn as its cylinder in the stock's box.
+  setStockLines(stock, fixtures, zero = true, bar = null) {
+    const lines = bar ? barLines(stock, bar) : boxLines(stock);
+    this.setLine('stock', { buffer: this.buffer(lines), count: lines.length / 3, color: [0.35, 0.4, 0.45, 0.6], mark: true });
     if (fixtures.length) {
       const lines = new Float32Array(fixtures.length * 72);
       fixtures.forEach((b, k) => lines.set(boxLines(b), k * 72));
@@ -833,6 +835,20 @@ function boxLines(b) {
     const [a, c] = [p[i], p[(i + 1) % 4]];
     out.push(a[0], a[1], z0, c[0], c[1], z0, a[0], a[1], z1, c[0], c[1], z1, a[0], a[1], z0, a[0], a[1], z1);
   }
+  return new Float32Array(out);
+}
+
+// A round bar in the box `b` along its `axis` ('x', 'y' or 'z'): its two end circles (48 sides)
+// and four lines along it, as line segments.
+function barLines(b, { diameter, axis = 'z' }) {
+  const k = { x: 0, y: 1, z: 2 }[axis] ?? 2, [u, v] = [0, 1, 2].filter((i) => i !== k);
+  const c = [(b[0] + b[3]) / 2, (b[1] + b[4]) / 2, (b[2] + b[5]) / 2], r = diameter / 2, n = 48;
+  const at = (end, a) => { const p = [...c]; p[k] = end; p[u] += r * Math.cos(a); p[v] += r * Math.sin(a); return p; };
+  const out = [];
+  for (const end of [b[k], b[k + 3]]) {
+    for (let i = 0; i < n; i++) out.push(...at(end, (2 * Math.PI * i) / n), ...at(end, (2 * Math.PI * (i + 1)) / n));
+  }
+  for (let i = 0; i < 4; i++) out.push(...at(b[k], (Math.PI * i) / 2), ...at(b[k + 3], (Math.PI * i) / 2));
   return new Float32Array(out);
 }
 

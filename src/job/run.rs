@@ -153,7 +153,7 @@ impl Job {
                     let reach = part.vertices.iter().map(|&v| bar.distance(&stock, v)).fold(0.0, f64::max);
                     if reach > bar.diameter / 2.0 + 1e-9 {
                         return Err(Error::Input(format!(
-                            "stock.bar: the part reaches {:.3} mm from the bar's axis, outside a φ{} bar; choose a bar of at least φ{:.3}",
+                            "stock.bar.diameter: the part reaches {:.3} mm from the bar's axis, outside a φ{} bar; choose a bar of at least φ{:.3}",
                             reach,
                             crate::limits::shown(bar.diameter),
                             2.0 * reach

@@ -149,7 +149,7 @@ pub struct StageReport {
 impl StageReport {
     pub fn describe(&self) -> String {
         format!(
-            "T{} φ{:.1} ({}): {}; {:.0} mm² cleared, {:.0} mm³ removed, {:.0} s",
+            "T{} φ{:.1} ({}): {}; cut over {:.0} mm² seen from above, {:.0} mm³ removed, {:.0} s",
             self.tool,
             self.diameter,
             match self.role {

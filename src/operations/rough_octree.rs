@@ -303,7 +303,7 @@ impl RoughOctree {
         views.push(StageOctants { stage: 0, tool: tool.number, boxes: tree.boxes(VIEW_BOXES) });
         // (§3.1: octants of side γ D, the octree's root that side times 2^depth.)
         let why = format!(
-            "the largest tool that gets into the material to remove: it clears {:.0} mm² of it in blocks of {:.2} mm on {} levels, going in from the air or by a helix",
+            "the largest tool that gets into the material to remove: it clears blocks of {1:.2} mm, {0:.0} mm² of them summed over its {2} levels, going in from the air or by a helix",
             tree.cut_area(),
             squares.side,
             tree.layers.iter().filter(|l| l.cut.iter().any(|&c| c)).count(),
@@ -374,7 +374,12 @@ impl RoughOctree {
                     continue;
                 }
                 // (§3.2: the newly Full octants of the subdivision, γ = side / D within 0.5 to 0.95.)
-                let why = format!("sized for the {:.2} mm blocks the larger tools left ({:.0} % of its diameter): it clears {:.0} mm² of them", squares.side, gamma * 100.0, tree.cut_area());
+                let why = format!(
+                    "sized for the {:.2} mm blocks the larger tools left ({:.0} % of its diameter): it clears {:.0} mm² of them summed over its levels",
+                    squares.side,
+                    gamma * 100.0,
+                    tree.cut_area()
+                );
                 views.push(StageOctants { stage: reports.len(), tool: t.number, boxes: tree.boxes(VIEW_BOXES) });
                 if let Some((path, cut)) = self.cut(ctx, t, &tree, progress)? {
                     paths.push(path);

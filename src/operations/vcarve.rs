@@ -152,7 +152,7 @@ impl Operate for VCarve {
             ctx.warn(
                 &self.name,
                 format!(
-                    "the regions are up to {:.3} mm wide, deeper than {why} lets the V-bit go: they are carved flat at {deepest:.3} mm; set maxDepth and a flatTool to clear the floor",
+                    "the regions are up to {:.3} mm wide, deeper than {why} lets the V-bit go: they are carved flat at {deepest:.3} mm; give it a deepest cut and a flat tool to clear the floor (maxDepth, flatTool)",
                     2.0 * widest
                 ),
             );

@@ -2152,3 +2152,27 @@ test('a height from a point picked on the part: the heights\' button arms the ne
   assert.deepEqual(errors, []);
   await context.close();
 });
+
+test('bar stock is drawn as the bar before Generate, and a refusal goes stale once a setting changes', async () => {
+  const { page, context, errors } = await openPage();
+  await tab(page, 'stock');
+  await page.selectOption('select[name=stockShape]', 'bar');
+  await page.fill('input[name=barDiameter]', '30');
+  await page.dispatchEvent('input[name=barDiameter]', 'change');
+  // Two 48-sided end circles and four lines along it: 200 points, not a box's 24.
+  await page.waitForFunction(() => window.swarf.viewer.lines.stock?.count === 200);
+  // A φ30 bar round the 90 × 60 sample: refused, in red, naming the bar's field.
+  await page.click('#generate');
+  assert.equal(await waitForGenerated(page), 'failed');
+  assert.equal(await page.getAttribute('#message', 'class'), 'error');
+  assert.match(await page.textContent('#message'), /^Stock → Bar diameter: the part reaches [\d.]+ mm from the bar's axis, outside a φ30 bar; choose a bar of at least φ[\d.]+/);
+  // The diameter mended: the refusal is no longer said as the job's state.
+  await page.fill('input[name=barDiameter]', '120');
+  await page.dispatchEvent('input[name=barDiameter]', 'change');
+  await page.waitForFunction(() => document.getElementById('message').className !== 'error');
+  assert.match(await page.textContent('#message'), /^Changed since Generate refused the job; Generate again to check\./);
+  await page.click('#generate');
+  assert.equal(await waitForGenerated(page), 'ok', await page.textContent('#message'));
+  assert.deepEqual(errors, []);
+  await context.close();
+});

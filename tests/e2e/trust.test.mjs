@@ -568,3 +568,28 @@ test('every case of the shared bad files and jobs is answered in the page: the m
   assert.deepEqual(errors, []);
   await context.close();
 });
+
+test('at 1280×720 the settings have most of the side panel, and a long message is shown whole over the view', async () => {
+  const context = await browser.newContext({ viewport: { width: 1280, height: 720 } });
+  context.setDefaultTimeout(PATIENCE);
+  const page = await context.newPage();
+  await page.goto(base);
+  await page.waitForSelector('body[data-ready="true"]');
+  await page.waitForFunction(() => !document.getElementById('generate').disabled);
+  await tab(page, 'ops');
+  // Once 264 px of 720 (the header, the drop zone, two rows of buttons and the message box
+  // took the rest): now at least 60 % of the window.
+  const settings = await page.evaluate(() => document.getElementById('settings').getBoundingClientRect().height);
+  assert.ok(settings >= 0.6 * 720, `the settings pane is ${settings} px of 720`);
+  // The run bar's buttons on one row, inside the panel.
+  const row = await page.evaluate(() => ({ panel: document.getElementById('panel').getBoundingClientRect().right, buttons: ['generate', 'cancel', 'download', 'undo', 'redo'].map((id) => document.getElementById(id).getBoundingClientRect()).map((r) => [r.top, r.right]) }));
+  assert.ok(row.buttons.every(([top, right]) => Math.abs(top - row.buttons[0][0]) < 2 && right <= row.panel - 8), JSON.stringify(row));
+  // A long message (a refused file's) over the view, whole, clear of the panel.
+  const before = settings;
+  await page.setInputFiles('#file', { name: 'broken.stl', mimeType: 'model/stl', buffer: Buffer.from(`solid x\n${'facet normal 0 0 1\n outer loop\n vertex 0 0 0\n'.repeat(3)}`) });
+  await page.waitForFunction(() => document.getElementById('message').textContent.length > 0);
+  const m = await page.evaluate(() => { const e = document.getElementById('message'); const r = e.getBoundingClientRect(); return { text: e.textContent, left: r.left, bottom: r.bottom, whole: e.scrollHeight <= e.clientHeight + 1, panel: document.getElementById('panel').getBoundingClientRect().right }; });
+  assert.ok(m.whole && m.left >= m.panel && m.bottom <= 720, JSON.stringify(m));
+  assert.equal(await page.evaluate(() => document.getElementById('settings').getBoundingClientRect().height), before, 'a message takes nothing from the settings');
+  await context.close();
+});

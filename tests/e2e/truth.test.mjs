@@ -216,10 +216,10 @@ test('under a strict Content-Security-Policy the engine starts, and a policy tha
 
 test('"Spot, drill and chamfer them" plans as a machinist: holes grouped by size, the library\'s drill that fits each, a new drill where none does, a bore where a drill would not do', async () => {
   const { page, context, errors } = await openPage();
-  // φ3.175, φ6.35 and φ12.7 through holes in a 10 mm plate, and a φ8 recess 0.635 mm deep
+  // φ3.175, φ6.35 and φ16 through holes in a 10 mm plate, and a φ8 recess 0.635 mm deep
   // (shallower than a spot's cone); the library: the φ6 flat and ball, a φ6.35 drill and a
-  // spot drill.
-  await page.setInputFiles('#file', { name: 'plate.stl', mimeType: 'model/stl', buffer: plateStl(80, 20, 10, 20, [[10, 10, 3.175], [30, 10, 6.35], [50, 10, 12.7], [70, 10, 8, 0.635]]) });
+  // spot drill. A hole a jobber drill makes (φ3.175) gets a drill added; a φ16 is bored.
+  await page.setInputFiles('#file', { name: 'plate.stl', mimeType: 'model/stl', buffer: plateStl(80, 20, 10, 20, [[10, 10, 3.175], [30, 10, 6.35], [50, 10, 16], [70, 10, 8, 0.635]]) });
   await page.waitForFunction(() => /plate\.stl/.test(document.body.textContent) && !document.getElementById('generate').disabled);
   await tab(page, 'tools');
   const drill = await addTool(page, 'drill', 6.35, 30);
@@ -242,7 +242,7 @@ test('"Spot, drill and chamfer them" plans as a machinist: holes grouped by size
     `drill:spot:T${spot}:${[...idx(3.175), ...idx(6.35)].sort((a, b) => a - b).join(',')}`,
     `drill:peck:T${added.number}:${idx(3.175).join(',')}`,
     `drill:peck:T${drill}:${idx(6.35).join(',')}`,
-    `bore::T1:${idx(12.7).join(',')}`,
+    `bore::T1:${idx(16).join(',')}`,
     `chamfer::T${spot}:${holes.map((h) => h.k).sort((a, b) => a - b).join(',')}`,
   ]);
   assert.match(await page.textContent('#message'), /added T\d+ \(φ3\.175 drill\) to the library/);
@@ -431,6 +431,37 @@ test('the page in inches: the fields, the read-outs and the view\'s grid say inc
   assert.equal(await page.inputValue('input[name=op-stepover]'), '1.524');
   assert.match(await page.textContent('#part-size'), /^90\.0 × /);
   assert.equal(await page.evaluate(() => window.swarf.jobs.part.post.units), 'mm');
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
+test('a new operation takes the tool that suits its kind: the largest flat to rough, a ball to finish, a drill or a V-bit added to the library where it has none', async () => {
+  const { page, context, errors } = await openPage();
+  // The sample's library: T1 a φ6 flat, T2 a φ6 ball, T3 a φ3 flat. The ball selected in the
+  // Tools tab.
+  await tab(page, 'tools');
+  const before = await page.evaluate(() => window.swarf.tools.map((t) => `${t.number}:${t.shape}:${t.diameter}`));
+  assert.deepEqual(before, ['1:flat:6', '2:ball:6', '3:flat:3']);
+  await page.selectOption('#tool-list', { index: 1 });
+  const added = async (kind) => {
+    await tab(page, 'ops');
+    await page.selectOption('#op-kind', kind);
+    await page.click('#op-add');
+    return page.evaluate(() => { const o = window.swarf.jobs.part.operations.at(-1); return { tool: o.tool, tools: window.swarf.tools.map((t) => ({ n: t.number, shape: t.shape, d: t.diameter, angle: t.angle })) }; });
+  };
+  assert.equal((await added('roughAdaptive')).tool, 1, 'adaptive: the largest flat, not the ball selected');
+  assert.equal((await added('finishScallop')).tool, 2, 'scallop: the ball');
+  const drill = await added('drill');
+  const d = drill.tools.find((t) => t.n === drill.tool);
+  assert.deepEqual([d.shape, d.d, d.angle], ['drill', 5, 118], JSON.stringify(drill));
+  assert.match(await page.textContent('#message'), new RegExp(`Added T${d.n}, a φ5 mm drill, to the tool library`));
+  const vee = await added('chamfer');
+  const v = vee.tools.find((t) => t.n === vee.tool);
+  assert.deepEqual([v.shape, v.angle], ['vBit', 90]);
+  // A second drilling takes the drill now in the library: nothing more added.
+  const again = await added('drill');
+  assert.equal(again.tool, d.n);
+  assert.equal(again.tools.length, 5);
   assert.deepEqual(errors, []);
   await context.close();
 });
