@@ -152,7 +152,7 @@ function showHistory() {
 }
 
 Object.assign(hooks, {
-  fillAll, changed, showPicked, clearResult, setKind, showPart, loadJob, fillTools, fillToolChoices, fillSetups, showHeld, restage, showSetupResult, playSetup, history: showHistory,
+  fillAll, fillKinds, changed, showPicked, clearResult, setKind, showPart, loadJob, fillTools, fillToolChoices, fillSetups, showHeld, restage, showSetupResult, playSetup, history: showHistory,
   error: (text) => message(text, 'error'),
 });
 

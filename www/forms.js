@@ -52,7 +52,7 @@ export function valueOf(el) {
 }
 
 export function show(el, value) {
-  const page = (v) => (unitOf(el) && typeof v === 'number' ? fieldText(v) : v);
+  const page = (v) => (unitOf(el) && typeof v === 'number' ? fieldText(v, unitOf(el)) : v);
   if (el.type === 'checkbox') el.checked = !!value;
   else if (el.dataset.type === 'list' || el.dataset.type === 'numbers' || el.dataset.type === 'ints') el.value = (value || []).map(page).join(', ');
   else if (el.dataset.type === 'boxes') el.value = (value || []).map((b) => [...b.min, ...b.max].map(page).join(', ')).join('; ');

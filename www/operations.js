@@ -56,9 +56,15 @@ export function fillOps() {
 const HEIGHT_KEYS = ['top', 'topFrom', 'bottom', 'bottomFrom', 'clearance', 'clearanceFrom', 'retract'];
 const UNIT_WORDS = { length: 'mm', feed: 'mm/min', degrees: '°', seconds: 's', none: '' };
 
-// The kinds to add, grouped by what they work on.
+// The kinds to add, grouped by what they work on, those for what is on show (a part or a
+// drawing) first, the first of them chosen.
+let kindsFor = null;
 export function fillKinds() {
-  const select = $('op-kind'), groups = { part: 'for parts', drawing: 'for drawings (2D)', either: 'for parts and drawings' };
+  if (!state.defaults || kindsFor === state.kind) return;
+  kindsFor = state.kind;
+  const select = $('op-kind'), words = { part: 'for parts', drawing: 'for drawings (2D)', either: 'for parts and drawings' };
+  const order = state.kind === 'drawing' ? ['drawing', 'either', 'part'] : ['part', 'either', 'drawing'];
+  const groups = Object.fromEntries(order.map((k) => [k, words[k]]));
   select.replaceChildren();
   for (const [applies, words] of Object.entries(groups)) {
     const group = document.createElement('optgroup');
@@ -66,6 +72,7 @@ export function fillKinds() {
     for (const f of state.defaults.forms.filter((g) => g.applies === applies)) group.append(new Option(f.title, f.kind));
     select.append(group);
   }
+  select.selectedIndex = 0;
 }
 
 function fieldElement(f) {

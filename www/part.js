@@ -14,6 +14,7 @@ export function setKind(kind) {
   $('fs-drawing').hidden = kind !== 'drawing';
   $('fs-part').hidden = kind === 'drawing';
   document.body.dataset.kind = kind;
+  hooks.fillKinds?.();
   hooks.fillAll?.();
 }
 
@@ -165,6 +166,7 @@ async function readFile(file) {
   }
   const bytes = new Uint8Array(await file.arrayBuffer());
   const before = { part: structuredClone(state.jobs.part.part), drawing: structuredClone(state.jobs.drawing.drawing) };
+  const drawingBefore = state.kind === 'drawing' ? state.name : state.drawingName;
   freshSetup();
   if (!(await showPart(bytes, file.name, file.name))) {
     // The file did not read: the part on show keeps its settings.
@@ -172,7 +174,38 @@ async function readFile(file) {
     state.jobs.drawing.drawing = before.drawing;
     store();
     hooks.fillAll?.();
+  } else if (state.kind === 'drawing') {
+    if (drawingBefore && drawingBefore !== file.name) newDrawing(state.drawing, drawingBefore);
+    state.drawingName = file.name;
   }
+}
+
+// The drawing job's operations on a new drawing: kept, but what they picked (loops and holes, by
+// their place in the last drawing) means nothing in this one: cleared, so each takes all of its
+// kind; the hole operations turned off where this drawing has no hole to make. Said.
+function newDrawing(d, was) {
+  const cleared = [], off = [];
+  const holes = d.loops.some((l) => l.hole);
+  for (const op of state.jobs.drawing.operations ?? []) {
+    if ((op.loops?.length ?? 0) + (op.holes?.length ?? 0) > 0) {
+      if (op.loops) op.loops = [];
+      if (op.holes) op.holes = [];
+      cleared.push(op.name);
+    }
+    if (!holes && ['drill', 'bore', 'threadMill'].includes(op.kind) && op.enabled !== false) {
+      op.enabled = false;
+      off.push(op.name);
+    }
+  }
+  if (!cleared.length && !off.length) return;
+  store();
+  hooks.fillAll?.();
+  const said = [
+    cleared.length ? `${cleared.join(', ')}: the loops and holes picked in ${was} are cleared (each takes all of its kind here; pick again in Operations)` : '',
+    off.length ? `${off.join(', ')} turned off: this drawing has no holes` : '',
+  ].filter(Boolean).join('; ');
+  const m = $('message');
+  message(`${m.textContent ? `${m.textContent}\n` : ''}A new drawing, the operations kept: ${said}.`, m.className === 'warning' ? 'warning' : 'note');
 }
 
 // The part's reading settings in its panel (after a change, the part is read again).

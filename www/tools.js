@@ -45,7 +45,7 @@ export async function showSpeeds() {
   if (data.fromMaterial) {
     for (const [name, v] of [['spindleRpm', data.spindleRpm], ['feedRate', data.feedRate], ['plungeRate', data.plungeRate]]) {
       const el = document.querySelector(`#tool-editor [name=${name}]`);
-      if (document.activeElement !== el) el.value = name === 'spindleRpm' ? String(v) : units.fieldText(v);
+      if (document.activeElement !== el) el.value = name === 'spindleRpm' ? String(v) : units.fieldText(v, 'feed');
     }
   }
 }

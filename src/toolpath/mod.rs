@@ -159,12 +159,14 @@ impl Rapids {
         }
     }
 
-    /// In words, for a program's head: "rapids at 3000 mm/min", "rapids at X 10000, Y 10000,
-    /// Z 5000 mm/min".
-    pub fn describe(&self) -> String {
+    /// In words, for a program's head, in its unit (`mm` millimetres to the unit, named
+    /// `unit`): "rapids at 3000 mm/min", "rapids at X 10000, Y 10000, Z 5000 mm/min",
+    /// "rapids at 118.1 in/min".
+    pub fn describe(&self, mm: f64, unit: &str) -> String {
+        let rate = |v: f64| crate::limits::shown((v / mm * 10.0).round() / 10.0);
         match self.axes {
-            Some([x, y, z]) => format!("rapids at X {x}, Y {y}, Z {z} mm/min"),
-            None => format!("rapids at {} mm/min", self.rate),
+            Some([x, y, z]) => format!("rapids at X {}, Y {}, Z {} {unit}/min", rate(x), rate(y), rate(z)),
+            None => format!("rapids at {} {unit}/min", rate(self.rate)),
         }
     }
 }

@@ -2176,3 +2176,36 @@ test('bar stock is drawn as the bar before Generate, and a refusal goes stale on
   assert.deepEqual(errors, []);
   await context.close();
 });
+
+test('a new drawing keeps the operations but not what they picked in the last one, and turns off drilling where it has no holes', async () => {
+  const { page, context, errors } = await openPage();
+  // The kinds to add start on the part's, and on a drawing's once a drawing is on show.
+  const group = () => page.evaluate(() => document.getElementById('op-kind').selectedOptions[0].parentElement.label);
+  assert.equal(await group(), 'for parts');
+  await page.click('#use-sample-drawing');
+  await page.waitForFunction(() => document.body.dataset.kind === 'drawing');
+  assert.equal(await group(), 'for drawings (2D)');
+  // Picks in the sample drawing: its profile on loop 0, a drilling of its hole 1.
+  await page.evaluate(() => {
+    const j = window.swarf.jobs.drawing;
+    j.operations[0].loops = [0];
+    j.operations.push({ ...structuredClone(window.swarf.defaults.operations.find((o) => o.kind === 'drill')), tool: j.operations[0].tool, holes: [1] });
+  });
+  const kinds = await page.evaluate(() => window.swarf.jobs.drawing.operations.map((o) => o.kind));
+  // A plain 60 × 40 plate: one outline, no holes.
+  const line = ([x0, y0], [x1, y1]) => `0\nLINE\n8\nCUT\n10\n${x0}\n20\n${y0}\n11\n${x1}\n21\n${y1}\n`;
+  let dxf = '0\nSECTION\n2\nENTITIES\n';
+  for (const [a, b] of [[[0, 0], [60, 0]], [[60, 0], [60, 40]], [[60, 40], [0, 40]], [[0, 40], [0, 0]]]) dxf += line(a, b);
+  dxf += '0\nENDSEC\n0\nEOF\n';
+  await page.setInputFiles('#file', { name: 'plate.dxf', mimeType: 'application/dxf', buffer: Buffer.from(dxf) });
+  await page.waitForFunction(() => /plate\.dxf/.test(document.getElementById('part-name').textContent));
+  const after = await page.evaluate(() => window.swarf.jobs.drawing.operations.map((o) => ({ kind: o.kind, loops: o.loops ?? null, holes: o.holes ?? null, enabled: o.enabled })));
+  assert.deepEqual(after.map((o) => o.kind), kinds, 'the operations kept');
+  assert.ok(after.every((o) => !o.loops?.length && !o.holes?.length), JSON.stringify(after));
+  assert.equal(after.find((o) => o.kind === 'drill').enabled, false);
+  assert.match(await page.textContent('#message'), /A new drawing, the operations kept: .*the loops and holes picked in .* are cleared.*turned off: this drawing has no holes/s);
+  await page.click('#generate');
+  assert.equal(await waitForGenerated(page), 'ok', await page.textContent('#message'));
+  assert.deepEqual(errors, []);
+  await context.close();
+});

@@ -385,7 +385,8 @@ test('the page in inches: the fields, the read-outs and the view\'s grid say inc
   await page.selectOption('#page-units', 'inch');
   // A length field: its label and its value in inches; typed in inches, kept in mm.
   assert.match(await page.evaluate(() => document.querySelector('input[name=op-stepover]').closest('label').textContent), /^Step-over \(in\)/);
-  assert.equal(await page.inputValue('input[name=op-stepover]'), String(Number((mmStep / 25.4).toFixed(5))));
+  // To a tenth of a thousandth, as an inch machinist types it (0.19685 was shown once).
+  assert.equal(await page.inputValue('input[name=op-stepover]'), String(Number((mmStep / 25.4).toFixed(4))));
   await page.fill('input[name=op-stepover]', '0.06');
   await page.fill('input[name=op-grid]', '0.02');
   assert.ok(Math.abs(await stepover() - 1.524) < 1e-9, `stepover kept as ${await stepover()} mm`);
@@ -393,7 +394,8 @@ test('the page in inches: the fields, the read-outs and the view\'s grid say inc
   await tab(page, 'tools');
   assert.match(await page.evaluate(() => document.querySelector('#tool-editor input[name=feedRate]').closest('label').textContent), /\(in\/min/);
   const feed = await page.evaluate(() => window.swarf.tools[0].feedRate);
-  assert.equal(Number(await page.inputValue('#tool-editor input[name=feedRate]')), Number((feed / 25.4).toFixed(5)));
+  // To a tenth of an inch a minute (47.24409 was shown once).
+  assert.equal(await page.inputValue('#tool-editor input[name=feedRate]'), String(Number((feed / 25.4).toFixed(1))));
   // The read-outs: the part's size (the 90 mm sample is 3.543 in), the grid, the library.
   assert.match(await page.textContent('#part-size'), /^3\.543 × \S+ × \S+ in /);
   assert.match(await page.textContent('#scale'), /^grid (0\.1|1|10) in · part 3\.543 × /);
@@ -407,6 +409,9 @@ test('the page in inches: the fields, the read-outs and the view\'s grid say inc
   assert.match(await page.textContent('#stats'), /[\d,]+ in cutting · [\d,]+ in rapid/);
   const gcode = await page.evaluate(() => new TextDecoder().decode(window.swarf.result.gcodeBytes));
   assert.match(gcode, /^G20$/m);
+  // Its head says the rapids in the program's unit too.
+  assert.match(gcode, /rapids at [\d.]+ in\/min/);
+  assert.doesNotMatch(gcode, /mm\/min/);
   // The saved job keeps mm.
   const [saved] = await Promise.all([page.waitForEvent('download'), page.click('#save-job')]);
   const job = JSON.parse(fs.readFileSync(await saved.path(), 'utf8'));
