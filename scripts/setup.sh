@@ -47,7 +47,7 @@ fi
 
 # binaryen from npm (Debian's wasm-opt breaks the module), playwright-core (no browser download)
 # TypeScript (to check the module's types) and the bundlers a portal of the npm package uses (esbuild, Vite, webpack).
-if [ ! -x node_modules/.bin/wasm-opt ] || [ ! -d node_modules/playwright-core ] || [ ! -x node_modules/.bin/tsc ] || [ ! -x node_modules/.bin/esbuild ] || [ ! -x node_modules/.bin/vite ] || [ ! -x node_modules/.bin/webpack ]; then
+if [ ! -x node_modules/.bin/wasm-opt ] || [ ! -d node_modules/playwright-core ] || [ ! -x node_modules/.bin/tsc ] || [ ! -d node_modules/typescript-5.0 ] || [ ! -x node_modules/.bin/esbuild ] || [ ! -x node_modules/.bin/vite ] || [ ! -x node_modules/.bin/webpack ]; then
   say "installing npm packages"
   if [ -f package-lock.json ]; then npm ci --no-audit --no-fund; else npm install --no-audit --no-fund; fi
 fi

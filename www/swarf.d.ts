@@ -3,7 +3,9 @@
 // engine's own calls, and the input forms of those types, are declared here.
 import type { Job, Post, PostSettings, CycleTime, Project, Summary, DrawingView, ReportView, Reposted, Problem, Warning, OperationReport, TimeItem, Hole, EdgeView, SetupView, OperationForm, WorkZero, MaterialChoice, Machine, CuttingData, Imported, LibraryFormat, Holder } from './types/swarf-types.js';
 
-export type { Job, Post, PostSettings, CycleTime, Project, Summary, DrawingView, ReportView, Reposted, Problem, Warning, OperationReport, TimeItem, Hole, EdgeView, SetupView };
+// Every type of a job and of what the engine gives, by name (`Tool`, `Operation`, `Setup`,
+// `Holder`, `RoughAdaptive`, …).
+export type * from './types/swarf-types.js';
 
 /**
  * What the engine takes of a type: every field the core fills with its default may be left out
@@ -11,6 +13,10 @@ export type { Job, Post, PostSettings, CycleTime, Project, Summary, DrawingView,
  * corners) are given whole. The engine reads what it is given as `swarf run` reads a job file:
  * a misspelt field or a value of the wrong type is an error naming its path.
  */
+/** Bytes on an ArrayBuffer of their own (what a `Blob` takes): `Uint8Array<ArrayBuffer>` where
+ * TypeScript (5.7 on) makes typed arrays generic, the plain `Uint8Array` before. */
+export type Bytes = ReturnType<typeof Uint8Array.from>;
+
 export type Input<T> = T extends readonly [unknown, ...unknown[]]
   ? T
   : T extends (infer U)[]
@@ -85,7 +91,7 @@ export interface RunResult {
   /** The program (made from `gcodeBytes` when first read). */
   readonly gcode: string;
   /** The program as UTF-8 bytes: what a page shows or downloads without making one string of it. */
-  gcodeBytes: Uint8Array<ArrayBuffer>;
+  gcodeBytes: Bytes;
   /** Where each line of the program starts in `gcodeBytes` (line 0 at 0). */
   lineStarts: Uint32Array;
   /** The line (0 first) of `gcode` each move of the program ended on. */
@@ -189,7 +195,7 @@ export declare class Engine {
   bosses(job: JobInput, bytes: Uint8Array, name: string, setup?: number): Promise<Hole[]>;
   /** A part's top edges for a chamfer (`edges: 'partEdges'`): numbered as its `loops` take them. */
   edges(job: JobInput, bytes: Uint8Array, name: string, setup?: number): Promise<EdgeView[]>;
-  repost(post: PostSettingsInput, setup?: number): Promise<Reposted & { moveLines: Uint32Array; gcodeBytes: Uint8Array<ArrayBuffer>; lineStarts: Uint32Array }>;
+  repost(post: PostSettingsInput, setup?: number): Promise<Reposted & { moveLines: Uint32Array; gcodeBytes: Bytes; lineStarts: Uint32Array }>;
   seek(count: number, setup?: number): Promise<Float32Array>;
   cancel(): Promise<void>;
   close(): void;

@@ -61,7 +61,7 @@ test('the tarball holds the engine, its worker, wasm, types, README and licences
 });
 
 test('a strict TypeScript portal compiles against the installed package\'s types, and a wrong field does not', () => {
-  const ts = `import { createEngine, CancelledError, UnsafeProgramError, type JobInput, type RunResult, type Engine } from 'swarf';
+  const ts = `import { createEngine, CancelledError, UnsafeProgramError, type JobInput, type RunResult, type Engine, type Tool, type Operation, type Setup, type Holder, type RoughAdaptive } from 'swarf';
 import { createEngine as fromFiles } from 'swarf/files';
 export async function portal(bytes: Uint8Array, signal: AbortSignal): Promise<string> {
   const engine: Engine = await createEngine({ workers: 2, warmUp: false });
@@ -86,18 +86,29 @@ export async function portal(bytes: Uint8Array, signal: AbortSignal): Promise<st
   void CancelledError;
   void blob;
   void anyway;
+  // Every job type by name, as the README names them.
+  const named: [Tool | null, Operation | null, Setup | null, Holder | null, RoughAdaptive | null] = [null, null, null, null, null];
+  void named;
   return \`\${r.gcode.length} \${seconds}\`;
 }
 `;
   fs.writeFileSync(path.join(scratch, 'portal.ts'), ts);
   // As a bundler resolves modules, and as Node does (nodenext, with skipLibCheck: an import
   // of the generated types without its .js once made every type silently \`any\` there).
-  for (const resolution of [['--module', 'esnext', '--moduleResolution', 'bundler'], ['--module', 'nodenext', '--moduleResolution', 'nodenext', '--skipLibCheck']]) {
-    const tsc = (file) => execFileSync(process.execPath, [path.join(repo, 'node_modules/typescript/bin/tsc'), '--strict', '--noEmit', '--target', 'es2022', ...resolution, '--lib', 'es2022,dom', file], { cwd: scratch, encoding: 'utf8', stdio: 'pipe' });
-    tsc('portal.ts');
-    // The types say what a job may hold: a misspelt field fails the compile.
-    fs.writeFileSync(path.join(scratch, 'wrong.ts'), ts.replace('stepdown: 2', 'stepDown: 2'));
-    assert.throws(() => tsc('wrong.ts'), (e) => /stepDown/.test(String(e.stdout)), resolution.join(' '));
+  // By the newest TypeScript and by 5.0, the oldest the types are for (typed arrays became
+  // generic in 5.7: the program's bytes are typed for both).
+  for (const typescript of ['typescript', 'typescript-5.0']) {
+    for (const resolution of [['--module', 'esnext', '--moduleResolution', 'bundler'], ['--module', 'nodenext', '--moduleResolution', 'nodenext', '--skipLibCheck']]) {
+      const tsc = (file) => execFileSync(process.execPath, [path.join(repo, 'node_modules', typescript, 'bin/tsc'), '--strict', '--noEmit', '--target', 'es2022', ...resolution, '--lib', 'es2022,dom', file], { cwd: scratch, encoding: 'utf8', stdio: 'pipe' });
+      try {
+        tsc('portal.ts');
+      } catch (e) {
+        assert.fail(`${typescript} ${resolution.join(' ')}: ${e.stdout}`);
+      }
+      // The types say what a job may hold: a misspelt field fails the compile.
+      fs.writeFileSync(path.join(scratch, 'wrong.ts'), ts.replace('stepdown: 2', 'stepDown: 2'));
+      assert.throws(() => tsc('wrong.ts'), (e) => /stepDown/.test(String(e.stdout)), `${typescript} ${resolution.join(' ')}`);
+    }
   }
 });
 
