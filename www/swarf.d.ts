@@ -124,7 +124,10 @@ export interface SetupsResult {
 
 export interface RunOptions {
   onProgress?: (fraction: number, stage: string) => void;
-  /** Aborting it ends the work; the promise rejects with a CancelledError. */
+  /**
+   * Aborting it ends the work; the promise rejects with the reason given to `abort(reason)`
+   * (as `fetch` does), or a CancelledError where none was given.
+   */
   signal?: AbortSignal;
   /**
    * Resolve with a program its simulation refuses (a gouge, a rapid through stock, the tool's
@@ -136,6 +139,21 @@ export interface RunOptions {
 
 export declare class CancelledError extends Error {
   name: 'AbortError';
+}
+
+/**
+ * A job that does not read or fit: `path` is the field's path as `checkJob` gives it
+ * (`operations[0].stepdown`, `stock.bar.diameter`, `setups`; `''` for the whole job).
+ */
+export declare class JobError extends Error {
+  name: 'JobError';
+  path: string;
+}
+
+/** A part's or drawing's file that does not read: `file` is its name; the message says where. */
+export declare class FileError extends Error {
+  name: 'FileError';
+  file: string;
 }
 
 /** A run whose program is not safe to run: `problem` says why; `result` is the run's result. */

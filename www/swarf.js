@@ -32,6 +32,46 @@ export class UnsafeProgramError extends Error {
   }
 }
 
+/**
+ * Thrown (as the promise's rejection) when a job does not read or does not fit: `path` is the
+ * field's path as `checkJob` gives it (`operations[0].stepdown`, `stock.bar.diameter`; `''`
+ * where the whole job is meant), `message` what is wrong.
+ */
+export class JobError extends Error {
+  constructor(message, path = '') {
+    super(message);
+    this.name = 'JobError';
+    this.path = path;
+  }
+}
+
+/**
+ * Thrown (as the promise's rejection) when a part's or drawing's file does not read: `file` is
+ * its name, `message` says what and where in it (a line, a byte, an entity).
+ */
+export class FileError extends Error {
+  constructor(message, file) {
+    super(message);
+    this.name = 'FileError';
+    this.file = file;
+  }
+}
+
+/**
+ * A job's field path at the start of an engine's message, after a few words where they lead
+ * ("operations[0].stepdown must be …", "unknown field: tools[0].diamter …", "setups: …").
+ */
+const JOB_PATH = /^(?:[a-z ]+: )?((?:tools|operations|setups|stock|part|drawing|post|machine|fixtures|simulation)(?:(?:\[\d+\]|\.[A-Za-z]+)+(?=[\s:(]|$)|(?=:\s)))/;
+
+/** The engine's error `e` on a run of the file `name`, typed: a JobError or a FileError where it is one. */
+function typed(e, name) {
+  if (!(e instanceof Error) || e instanceof CancelledError || e instanceof UnsafeProgramError || e instanceof JobError || e instanceof FileError) return e;
+  const path = e.message.match(JOB_PATH)?.[1];
+  if (path) return new JobError(e.message, path);
+  if (name && e.message.startsWith(`${name}:`)) return new FileError(e.message, name);
+  return e;
+}
+
 /** The last Content-Security-Policy violation the page's document reported, if any. */
 let violation = null;
 globalThis.document?.addEventListener?.('securitypolicyviolation', (e) => { violation = e; });
@@ -72,6 +112,9 @@ class Channel {
 
   constructor(worker) {
     this.#worker = worker;
+    // Under Node, a worker with nothing asked of it keeps no script alive (one that forgets
+    // `close()` still exits).
+    worker.unref?.();
     worker.onmessage = (event) => {
       const m = event.data, entry = this.#pending.get(m.id);
       if (!entry) return;
@@ -79,6 +122,7 @@ class Channel {
       // A large answer comes in pieces, each a task of its own: kept until the last.
       if (m.type === 'piece') { entry.pieces = Object.assign(entry.pieces ?? {}, m.piece); return; }
       this.#pending.delete(m.id);
+      if (!this.#pending.size) worker.unref?.();
       if (!m.ok) { entry.reject(new Error(m.error)); return; }
       if (entry.pieces) Object.assign(m, entry.pieces);
       // A part this worker sent before comes back as `same`: its triangles are those kept here.
@@ -109,6 +153,7 @@ class Channel {
    */
   call(message, transfer = [], onProgress) {
     const id = this.#nextId++;
+    this.#worker.ref?.();
     return new Promise((resolve, reject) => {
       this.#pending.set(id, { resolve, reject, onProgress });
       const fields = piecewise(message, transfer);
@@ -375,7 +420,7 @@ export class Engine {
   }
 
   async #run(job, bytes, name, { onProgress, signal, allowUnsafe = false } = {}) {
-    if (job.setups?.length) throw new Error('the job has setups: run it with runSetups, which gives a program a setup');
+    if (job.setups?.length) throw new JobError('setups: the job has setups: run it with runSetups, which gives a program a setup', 'setups');
     const result = await this.#plan(job, bytes, name, onProgress, signal);
     // A program its own simulation refuses never leaves the engine quietly.
     if (result.summary.problem && !allowUnsafe) throw new UnsafeProgramError(result.summary.problem, result);
@@ -395,7 +440,7 @@ export class Engine {
   }
 
   async #runSetups(job, bytes, name, { onProgress, signal, allowUnsafe = false } = {}) {
-    if (!job.setups?.length) throw new Error('the job has no setups: run it with run');
+    if (!job.setups?.length) throw new JobError('setups: the job has no setups: run it with run', 'setups');
     const n = job.setups.length, setups = [];
     for (let k = 0; k < n; k++) {
       const within = (f, stage) => onProgress?.((k + f) / n, `${job.setups[k].name || `Setup ${k + 1}`}: ${stage}`);
@@ -409,7 +454,7 @@ export class Engine {
   }
 
   async #plan(job, bytes, name, onProgress, signal, setup) {
-    if (signal?.aborted) throw new CancelledError();
+    if (signal?.aborted) throw aborted(signal);
     // A warm-up still under way would only take cores from the run: it ends here.
     this.#side?.end(new Error('a run began'));
     const onAbort = () => this.cancel();
@@ -419,6 +464,10 @@ export class Engine {
       const sharing = workersFor(this.workers, bytes?.byteLength ?? bytes?.length ?? 0, memory);
       if (sharing === 1) return withText(await this.call({ type: 'run', job, bytes, name, setup }, [], onProgress));
       return withText(await this.#runShared([this.#main, ...this.#helpers.slice(0, sharing - 1)], job, bytes, name, onProgress, setup));
+    } catch (e) {
+      // Aborted: the signal's own reason where one was given (as fetch rejects).
+      if (signal?.aborted) throw aborted(signal);
+      throw typed(e, name);
     } finally {
       signal?.removeEventListener('abort', onAbort);
     }
@@ -626,6 +675,15 @@ export async function createEngine(options = {}) {
   return new Engine(options).start();
 }
 
+/**
+ * What a run aborted through `signal` rejects with: the reason given to `abort(reason)`, else
+ * (abort() gives a DOMException named AbortError) a CancelledError.
+ */
+function aborted(signal) {
+  const r = signal.reason;
+  return r === undefined || (r?.name === 'AbortError' && !(r instanceof CancelledError)) ? new CancelledError() : r;
+}
+
 /** Whether this runs under Node (no Web Worker; worker_threads instead). */
 function inNode() {
   return typeof Worker === 'undefined' && typeof process !== 'undefined' && !!process.versions?.node;
@@ -645,7 +703,7 @@ async function nodeOptions(options) {
   const script = new URL(/* webpackIgnore: true */ workerFile, import.meta.url);
   const worker = () => {
     const w = new NodeWorker(script);
-    const port = { onmessage: null, onerror: null, postMessage: (m, transfer) => w.postMessage(m, transfer), terminate: () => w.terminate() };
+    const port = { onmessage: null, onerror: null, postMessage: (m, transfer) => w.postMessage(m, transfer), terminate: () => w.terminate(), ref: () => w.ref(), unref: () => w.unref() };
     w.on('message', (data) => port.onmessage?.({ data }));
     w.on('error', (e) => port.onerror?.({ message: e.message, preventDefault() {} }));
     return port;

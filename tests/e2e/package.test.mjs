@@ -277,3 +277,32 @@ test('Vite and webpack production builds of both entries run a job under a stric
   }
   await context.close();
 });
+
+test('a portal gets typed errors (a bad job names its field, a bad file its name), abort(reason) rejects with the reason, and a Node script that never closes the engine still ends', () => {
+  const script = `import { createEngine, JobError, FileError, CancelledError } from 'swarf';
+const engine = await createEngine({ workers: 1, warmUp: false });
+const out = {};
+const catching = async (key, work) => { try { await work(); out[key] = 'resolved'; } catch (e) { out[key] = { cls: e.constructor.name, job: e instanceof JobError, file: e instanceof FileError, cancelled: e instanceof CancelledError, path: e.path ?? null, name: e.file ?? null, message: e.message }; } };
+await catching('field', () => { const j = engine.defaultJob(); j.operations[0].stepdown = -1; return engine.run(j, engine.sample, 'sample.stl'); });
+await catching('typo', () => { const j = engine.defaultJob(); j.tools[0].diamter = 3; return engine.run(j, engine.sample, 'sample.stl'); });
+await catching('setups', () => { const j = engine.defaultJob(); j.setups = [{ name: 'a', operations: [] }]; return engine.run(j, engine.sample, 'sample.stl'); });
+await catching('file', () => engine.run(engine.defaultJob(), new Uint8Array([1, 2, 3]), 'broken.stl'));
+const why = new Error('the customer left the page');
+const c = new AbortController();
+await catching('reason', () => engine.run(engine.defaultJob(), engine.sample, 'sample.stl', { signal: c.signal, onProgress: () => c.abort(why) }));
+out.reasonIsIt = out.reason?.message === why.message;
+const bare = new AbortController();
+await catching('abort', () => engine.run(engine.defaultJob(), engine.sample, 'sample.stl', { signal: bare.signal, onProgress: () => bare.abort() }));
+console.log(JSON.stringify(out));
+// No close(): the idle workers keep nothing alive.
+`;
+  const file = path.join(scratch, 'node-errors.mjs');
+  fs.writeFileSync(file, script);
+  const out = JSON.parse(execFileSync(process.execPath, [file], { cwd: scratch, encoding: 'utf8', timeout: PATIENCE }).trim().split('\n').at(-1));
+  assert.deepEqual([out.field.cls, out.field.job, out.field.path], ['JobError', true, 'operations[0].stepdown'], JSON.stringify(out.field));
+  assert.deepEqual([out.typo.cls, out.typo.path], ['JobError', 'tools[0].diamter'], JSON.stringify(out.typo));
+  assert.deepEqual([out.setups.cls, out.setups.path], ['JobError', 'setups'], JSON.stringify(out.setups));
+  assert.deepEqual([out.file.cls, out.file.file, out.file.name], ['FileError', true, 'broken.stl'], JSON.stringify(out.file));
+  assert.ok(out.reasonIsIt && !out.reason.cancelled, JSON.stringify(out.reason));
+  assert.deepEqual([out.abort.cls, out.abort.cancelled], ['CancelledError', true], JSON.stringify(out.abort));
+});
