@@ -29,7 +29,33 @@ if (!version || !license) throw new Error('Cargo.toml: no version or license');
 
 const copy = (from, to = from) => fs.copyFileSync(path.join(www, from), path.join(out, to));
 // The files entry: the page's own module, worker and wasm, as the page serves them.
-copy('swarf.js', 'engine.js');
+// The engine itself (core.js) names no worker: a bundler that meets
+// `new URL('./worker.js', import.meta.url)` ships the worker and its 3 MB wasm with the bundle,
+// which the default entry (its own inside) never loads. The files entry (engine.js) adds it.
+const engineSource = fs.readFileSync(path.join(www, 'swarf.js'), 'utf8');
+const ownWorker = "return new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });";
+if (!engineSource.includes(ownWorker)) throw new Error('www/swarf.js no longer makes its worker as package.mjs expects');
+fs.writeFileSync(
+  path.join(out, 'core.js'),
+  `// Generated from swarf's www/swarf.js: the engine, its worker given by the entry importing it.\n${engineSource.replace(ownWorker, "throw new Error('no worker: give createEngine a worker or a workerUrl');")}`,
+);
+fs.writeFileSync(
+  path.join(out, 'engine.js'),
+  `// swarf's files entry (\`swarf/files\`): the engine (core.js) with its worker and wasm found beside
+// this module, as a page serves the package's files or a bundler follows them.
+import { createEngine as createFrom } from './core.js';
+
+export * from './core.js';
+
+/** Starts an engine (see engine.d.ts): its workers run worker.js beside this module. */
+export async function createEngine(options = {}) {
+  if (options.worker || options.workerUrl || typeof Worker === 'undefined') return createFrom(options);
+  // Written as bundlers look for it (Vite, webpack, Parcel, Rollup's plugins): the worker and
+  // the wasm it loads beside it are followed and emitted with the bundle.
+  return createFrom({ ...options, worker: () => new Worker(new URL('./worker.js', import.meta.url), { type: 'module' }) });
+}
+`,
+);
 copy('worker.js');
 copy('node-worker.js');
 copy('pkg/swarf.js');
@@ -61,10 +87,10 @@ fs.writeFileSync(
   `// swarf's engine, its worker and wasm inside this module: \`import { createEngine } from 'swarf'\`.
 // Options as engine.js takes them (see index.d.ts); a \`worker\` or \`workerUrl\` given is used
 // instead of the one inside (then \`wasm\` defaults to pkg/swarf_bg.wasm beside that worker).
-import { createEngine as createFrom } from './engine.js';
+import { createEngine as createFrom } from './core.js';
 import { WORKER_SOURCE, WASM_GZIP_BASE64 } from './inline.js';
 
-export * from './engine.js';
+export * from './core.js';
 
 let workerUrl = null;
 let wasm = null;
@@ -136,7 +162,7 @@ const pkg = {
     './pkg/swarf_bg.wasm': './pkg/swarf_bg.wasm',
     './package.json': './package.json',
   },
-  files: ['index.js', 'index.d.ts', 'inline.js', 'engine.js', 'engine.d.ts', 'worker.js', 'node-worker.js', 'pkg/swarf.js', 'pkg/swarf_bg.wasm', 'types/swarf-types.d.ts', 'README.md', 'THIRD-PARTY.md', 'LICENSE-MIT', 'LICENSE-APACHE'],
+  files: ['index.js', 'index.d.ts', 'inline.js', 'core.js', 'engine.js', 'engine.d.ts', 'worker.js', 'node-worker.js', 'pkg/swarf.js', 'pkg/swarf_bg.wasm', 'types/swarf-types.d.ts', 'README.md', 'THIRD-PARTY.md', 'LICENSE-MIT', 'LICENSE-APACHE'],
   sideEffects: false,
   // Node 18 is the oldest the package is tried on (tests/e2e/package.test.mjs runs it on the
   // machine's Node; the issue's trial ran 18 and 20).
