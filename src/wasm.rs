@@ -761,8 +761,11 @@ fn progress_sink(progress: &js_sys::Function) -> impl FnMut(f64, &str) -> bool +
 }
 
 /// What the worker hands the page of a job's output (of `worker`'s setup, if any).
-fn job_result(worker: &job::wire::PoolWorker, out: job::JobOutput) -> Result<JobResult, JsError> {
+fn job_result(worker: &job::wire::PoolWorker, mut out: job::JobOutput) -> Result<JobResult, JsError> {
     let setup = worker.setup().cloned();
+    if let Some(s) = &setup {
+        out.zero_at = s.zero_at;
+    }
     let end = setup.as_ref().filter(|s| s.more).and_then(|_| out.verification.as_ref().map(|v| v.stock.clone()));
     let sheet = job::sheet::SheetSetup::of(setup.as_ref().map_or(&worker.job().name, |s| &s.name), &out);
     Ok(JobResult { view: view::ResultView::of(worker.job(), out), setup, end, sheet })

@@ -1382,6 +1382,15 @@ fn the_zero_goes_on_a_holes_centre() {
     let html = job::sheet::setup_sheet(&job, "block.stl", &sheets);
     assert_eq!(html.matches("X0 Y0 at the centre of the φ").count(), 2, "{html:.3000}");
     assert_eq!(html.matches("from the centre of the stock seen from above): the stock's left side at X").count(), 2, "{html:.3000}");
+    assert!(setups.iter().all(|s| s.output.zero_at));
+    // The holes are looked for only where a zero was put at a point: the same job with no
+    // zero's `at` (X0 Y0 where the part is placed) says no hole, and finds none to say.
+    let mut bare = job.clone();
+    for s in &mut bare.setups {
+        s.zero = None;
+    }
+    bare.stock.zero = None;
+    assert!(!bare.zero_at(Some(0)) && !bare.zero_at(None));
 }
 
 /// Issue 92: 3D finishing leaves holes to the hole operations. A φ6 ball's waterline over a

@@ -66,6 +66,10 @@ pub struct JobOutput {
     pub octants: Vec<StageOctants>,
     /// What the feed optimisation did, where the job asked for it (`simulation.optimizeFeeds`).
     pub feeds: Option<report::FeedReport>,
+    /// Whether its work zero's X0 Y0 was put at a point (`zero.at`: the page's "X0 Y0 on the
+    /// picked hole"), the one way it lands on a hole's centre: the setup sheet looks for that
+    /// hole only then ([`Job::zero_at`]).
+    pub zero_at: bool,
 }
 
 impl JobOutput {
@@ -872,6 +876,7 @@ impl Running {
             cache,
             octants,
             feeds,
+            zero_at: job.zero_at(None),
         })
     }
 }

@@ -939,6 +939,12 @@ impl DrawingSetup {
 }
 
 impl Job {
+    /// Whether setup `setup`'s work zero (the job's where it has none; the job's own with no
+    /// setup named) puts X0 Y0 at a point (`zero.at`).
+    pub fn zero_at(&self, setup: Option<usize>) -> bool {
+        setup.and_then(|k| self.setups.get(k)).and_then(|s| s.zero).or(self.stock.zero).and_then(|z| z.at).is_some()
+    }
+
     /// Each tool's speeds and feeds as this job cuts them ([`crate::cutting::cutting_data`]).
     pub fn cutting_data(&self) -> Vec<crate::cutting::CuttingData> {
         let deepest = self.deepest_cuts();

@@ -252,7 +252,8 @@ pub fn run_setups(job: &Job, mut part: Mesh, progress: &mut Progress) -> Result<
             let (from, to) = (before.orientation, frame.0);
             prepared.carry(laid_like(left, &from, &to), |p, spans| carried(left, &from, &to, p, spans));
         }
-        let output = progress.within(k as f64 / n as f64, 1.0 / n as f64, &names[k], |p| prepared.run(p)).map_err(|e| setup_error(k, &names[k], e))?;
+        let mut output = progress.within(k as f64 / n as f64, 1.0 / n as f64, &names[k], |p| prepared.run(p)).map_err(|e| setup_error(k, &names[k], e))?;
+        output.zero_at = job.zero_at(Some(k));
         out.push(SetupOutput { name: names[k].clone(), orientation: frame.0, output });
     }
     Ok(out)

@@ -212,10 +212,13 @@ fn part_box(out: &JobOutput) -> Option<Aabb> {
 /// touch off and set, and where the stock's sides are from X0 Y0, so that the zero is found
 /// on the stock in front of them whichever face is up.
 /// The hole of the program `out`'s part whose centre is X0 Y0 (as the page's "X0 Y0 on the
-/// picked hole" puts it), where X0 Y0 is neither a corner nor the centre of the stock or the
-/// part.
+/// picked hole" puts it), where its zero was put at a point and X0 Y0 is neither a corner nor
+/// the centre of the stock or the part: the part's holes are not looked for on every run.
 fn zero_hole(out: &JobOutput) -> Option<crate::holes::Hole> {
     const AT: f64 = 1e-3;
+    if !out.zero_at {
+        return None;
+    }
     let (s, c) = (out.stock, out.stock.center());
     let plain = [(c.x, c.y), (s.min.x, s.min.y), (s.max.x, s.min.y), (s.min.x, s.max.y), (s.max.x, s.max.y)].iter().any(|(x, y)| x.abs() < AT && y.abs() < AT);
     let part_centre = part_box(out).is_some_and(|p| p.center().x.abs() < AT && p.center().y.abs() < AT);

@@ -74,6 +74,8 @@ pub struct SetupPlace {
     pub orientation: Orientation,
     /// Whether a setup follows it (its stock is carried on).
     pub more: bool,
+    /// Whether its work zero puts X0 Y0 at a point ([`Job::zero_at`]).
+    pub zero_at: bool,
 }
 
 impl PoolWorker {
@@ -95,7 +97,7 @@ impl PoolWorker {
         let names = job.setup_names();
         let name = names[k].clone();
         let mut worker = PoolWorker::prepare(sub, Workpiece::Mesh(held)).map_err(|e| setup_error(k, &name, e))?;
-        worker.setup = Some(SetupPlace { index: k, name, orientation, more: k + 1 < names.len() });
+        worker.setup = Some(SetupPlace { index: k, name, orientation, more: k + 1 < names.len(), zero_at: job.zero_at(Some(k)) });
         if let Some(p) = worker.prepared.as_mut() {
             p.last_setup = k + 1 == names.len();
         }
