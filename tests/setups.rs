@@ -977,3 +977,17 @@ fn a_zero_on_a_hole_is_said_on_the_sheet() {
     let at = swarf::holes::mesh::find(&out.part).into_iter().map(|h| h.center.length()).fold(f64::INFINITY, f64::min);
     assert!(at < 1e-3, "the nearest hole's axis is {at} mm from X0 Y0");
 }
+
+/// Issue 94: with setups, an error names what the user set, not a field the setups made. A bar
+/// too small for the part, in a job turned over, says the bar's diameter (its setup's stock is
+/// a box round the bar: it once gave a box's advice, "stock.sizeBox").
+#[test]
+fn a_setups_error_names_what_the_user_set() {
+    use swarf::job::{Bar, BarAxis};
+    let mut job = milled_only();
+    job.stock.bar = Some(Bar { diameter: 20.0, axis: BarAxis::Z });
+    let part = puck(20.0, -10.0, 0.0, 96);
+    let e = swarf::job::run_setups(&job, part, &mut Progress::none()).unwrap_err().to_string();
+    assert!(e.contains("outside a φ20 bar; choose a bar of at least φ40"), "{e}");
+    assert!(!e.contains("sizeBox"), "{e}");
+}

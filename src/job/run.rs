@@ -150,7 +150,11 @@ impl Job {
                 let stock = self.place(&mut part);
                 larger_than_any_machine("part", part.bounds().size(), "its unit (part.units) and part.scale")?;
                 outside_the_stock(&part.bounds(), &stock)?;
-                if let Some(message) = (self.stock.size_box.is_some() || self.stock.mesh.is_some()).then(|| super::schema::part_outside_error(&stock, &part.bounds())).flatten() {
+                // A bar's own check below says it in the bar's words (a setup's box round it
+                // would say a box's).
+                if let Some(message) =
+                    (self.stock.bar.is_none() && (self.stock.size_box.is_some() || self.stock.mesh.is_some())).then(|| super::schema::part_outside_error(&stock, &part.bounds())).flatten()
+                {
                     return Err(Error::Input(message));
                 }
                 if let Some(bar) = self.stock.bar {

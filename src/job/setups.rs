@@ -220,7 +220,10 @@ impl Job {
 /// An error of setup `k`, named `name`, said with the setup's place and name.
 pub fn setup_error(k: usize, name: &str, e: Error) -> Error {
     match e {
-        Error::Input(m) => Error::Input(format!("setups[{k}] ({name}): {m}")),
+        // A setup's stock is a box made from the job's (its margins, bar or blank, turned as
+        // the setup holds it): a message on that box names it so, not a field the user may
+        // never have set.
+        Error::Input(m) => Error::Input(format!("setups[{k}] ({name}): {}", m.replacen("stock.sizeBox", "the stock as this setup holds it (the job's stock, turned over)", 1))),
         Error::Operation { operation, why } => Error::Operation { operation: format!("{operation} ({name})"), why },
         e => e,
     }
