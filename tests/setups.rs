@@ -991,3 +991,34 @@ fn a_setups_error_names_what_the_user_set() {
     assert!(e.contains("outside a φ20 bar; choose a bar of at least φ40"), "{e}");
     assert!(!e.contains("sizeBox"), "{e}");
 }
+
+/// Issue 94: a blank the part is not inside, or one that is open, is refused naming it, before
+/// any work: the cast blank raised 2.5 mm (its bottom 2 mm over the boss's; once "gouges the
+/// part in 640 cells"), and the cast blank with its bottom faces left out (once "nothing to
+/// cut").
+#[test]
+fn a_blank_short_of_the_part_or_open_is_refused_naming_it() {
+    use swarf::job::blank::MeshFile;
+    let job_for = |blank: &swarf::mesh::Mesh| {
+        let mut job = milled_only();
+        let operations = job.setups[0].operations.clone();
+        job.setups.clear();
+        job.operations = operations;
+        job.stock.zero = None;
+        job.stock.mesh = Some(MeshFile::embedded("casting.stl", &blank.to_binary_stl()));
+        job
+    };
+    // The blank as it is runs (the setups' own test holds it clean).
+    let blank = cast_blank();
+    let mut short = blank.clone();
+    short.transform(|v| if v.z < -18.0 { swarf::geom::DVec3::new(v.x, v.y, v.z + 2.5) } else { v });
+    let e = swarf::job::run(&job_for(&short), two_sided_part(), &mut Progress::none()).unwrap_err().to_string();
+    assert!(e.contains("stock.mesh: the part is not inside the blank") && e.contains("below the blank's bottom"), "{e}");
+    // The blank's bottom left out: its faces whose vertices are all on the bottom.
+    let mut open = blank.clone();
+    let low = open.bounds().min.z + 1e-9;
+    let vertices = open.vertices.clone();
+    open.faces.retain(|f| !f.iter().all(|&v| vertices[v as usize].z <= low));
+    let e = swarf::job::run(&job_for(&open), two_sided_part(), &mut Progress::none()).unwrap_err().to_string();
+    assert!(e.contains("stock.mesh: the blank is open") && e.contains("its bottom or its top is missing"), "{e}");
+}

@@ -80,6 +80,49 @@ impl MeshFile {
 /// The material of a blank over each point: `(floor, top)`, its lowest and highest crossing
 /// of the vertical line there (empty where the line misses it).
 pub fn material(blank: &Mesh) -> impl Fn(DVec2) -> (f64, f64) + '_ {
+    let crossing = crossings(blank);
+    move |p| {
+        let (n, lo, hi) = crossing(p);
+        if n >= 2 && hi > lo {
+            (lo, hi)
+        } else {
+            (f64::NEG_INFINITY, f64::NEG_INFINITY)
+        }
+    }
+}
+
+/// What is wrong with a blank as stock, in words, if anything: open (a vertical line through
+/// it crosses its surface once over part of it: a bottom or top missing), so that it holds no
+/// material there.
+pub fn fault(blank: &Mesh) -> Option<String> {
+    const N: usize = 48;
+    let b = blank.bounds();
+    let crossing = crossings(blank);
+    let (mut hit, mut once) = (0usize, 0usize);
+    for i in 0..N {
+        for j in 0..N {
+            let p = DVec2::new(b.min.x + (i as f64 + 0.5) / N as f64 * (b.max.x - b.min.x), b.min.y + (j as f64 + 0.5) / N as f64 * (b.max.y - b.min.y));
+            match crossing(p).0 {
+                0 => {}
+                1 => {
+                    hit += 1;
+                    once += 1;
+                }
+                _ => hit += 1,
+            }
+        }
+    }
+    (hit > 0 && once * 20 > hit).then(|| {
+        format!(
+            "the blank is open: over {:.0} % of it a vertical line crosses its surface once (its bottom or its top is missing), so it holds no material there; export it as a closed solid",
+            100.0 * once as f64 / hit as f64
+        )
+    })
+}
+
+/// Over each point: how many times the vertical line there crosses the blank's surface, and
+/// its lowest and highest crossing.
+fn crossings(blank: &Mesh) -> impl Fn(DVec2) -> (usize, f64, f64) + '_ {
     let rects: Vec<Rect> = blank
         .faces
         .iter()
@@ -90,7 +133,7 @@ pub fn material(blank: &Mesh) -> impl Fn(DVec2) -> (f64, f64) + '_ {
         .collect();
     let index = RectIndex::new(&rects);
     move |p: DVec2| {
-        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        let (mut n, mut lo, mut hi) = (0, f64::INFINITY, f64::NEG_INFINITY);
         index.query(&Rect { min: p, max: p }, |k| {
             let [a, b, c] = blank.faces[k].map(|v| blank.vertices[v as usize]);
             // Barycentric coordinates of p in the triangle seen from above.
@@ -103,15 +146,12 @@ pub fn material(blank: &Mesh) -> impl Fn(DVec2) -> (f64, f64) + '_ {
             const EDGE: f64 = 1e-9;
             if u >= -EDGE && v >= -EDGE && u + v <= 1.0 + EDGE {
                 let z = a.z + u * (b.z - a.z) + v * (c.z - a.z);
+                n += 1;
                 lo = lo.min(z);
                 hi = hi.max(z);
             }
         });
-        if hi > lo {
-            (lo, hi)
-        } else {
-            (f64::NEG_INFINITY, f64::NEG_INFINITY)
-        }
+        (n, lo, hi)
     }
 }
 
