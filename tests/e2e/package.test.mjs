@@ -61,7 +61,27 @@ test('the tarball holds the engine, its worker, wasm, types, README and licences
 });
 
 test('a strict TypeScript portal compiles against the installed package\'s types, and a wrong field does not', () => {
-  const ts = `import { createEngine, CancelledError, UnsafeProgramError, type JobInput, type RunResult, type Engine, type Tool, type Operation, type Setup, type Holder, type RoughAdaptive } from 'swarf';
+  const ts = `import { createEngine, CancelledError, UnsafeProgramError, JobError, FileError, type JobInput, type RunResult, type Engine, type Tool, type Operation, type Setup, type Holder, type RoughAdaptive } from 'swarf';
+// The package README's progress and cancel, as it stands there.
+declare const cancelButton: HTMLButtonElement, bar: HTMLProgressElement, label: HTMLElement;
+declare function markField(path: string, message: string): void;
+declare function showError(message: string): void;
+export async function cancellable(engine: Engine, job: JobInput, bytes: Uint8Array): Promise<void> {
+  const controller = new AbortController();
+  cancelButton.onclick = () => controller.abort();
+  try {
+    const r = await engine.run(job, bytes, 'part.stl', {
+      signal: controller.signal,
+      onProgress: (fraction, stage) => { bar.value = fraction; label.textContent = stage; },
+    });
+    void r;
+  } catch (e) {
+    if (e instanceof CancelledError) { /* cancelled */ }
+    else if (e instanceof JobError) markField(e.path, e.message);
+    else if (e instanceof FileError) showError(e.message);
+    else throw e;
+  }
+}
 import { createEngine as fromFiles } from 'swarf/files';
 export async function portal(bytes: Uint8Array, signal: AbortSignal): Promise<string> {
   const engine: Engine = await createEngine({ workers: 2, warmUp: false });
