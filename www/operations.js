@@ -178,7 +178,7 @@ function toolFor(kind) {
   if (!fit) return { tool: chosen ?? state.tools[0] };
   const holes = kind === 'drill' ? (found() ?? []).filter((h) => !h.mark && h.diameter > 0) : [];
   const hole = holes.length ? Math.min(...holes.map((h) => h.diameter)) : null;
-  const suits = (t) => fit.shapes.includes(t.shape) && (hole === null || t.shape !== 'drill' || Math.abs(t.diameter - hole) <= DRILL_OVER + DRILL_UNDER);
+  const suits = (t) => fit.shapes.includes(t.shape) && (hole === null || t.shape !== 'drill' || drillFits(t, hole));
   if (chosen && suits(chosen) && hole === null) return { tool: chosen };
   const all = state.tools.filter(suits).sort((a, b) => fit.shapes.indexOf(a.shape) - fit.shapes.indexOf(b.shape) || (fit.largest ? b.diameter - a.diameter : a.diameter - b.diameter));
   if (all.length) return { tool: all[0] };
@@ -459,6 +459,8 @@ function toggleHole(op, k) {
 const JOBBER_MOST = 13; // the largest hole a drill is added for, rather than bored (mm)
 const DRILL_UNDER = 0.1; // a drill this much under a hole's size still fits it (mm)
 const DRILL_OVER = 0.02; // … and this much over (0.01 on the radius, inside the gouge tolerance)
+// Whether drill `t` makes a hole of diameter `size`.
+const drillFits = (t, size) => t.diameter <= size + DRILL_OVER && t.diameter >= size - DRILL_UNDER;
 export function presetHoles() {
   const op = selectedOp();
   const holes = found(op);
@@ -487,7 +489,7 @@ export function presetHoles() {
   const added = [], drilled = [], bored = [], plan = [];
   for (const [, list] of [...groups].sort((a, b) => a[0] - b[0])) {
     const size = Math.round(list[0].diameter * 1000) / 1000;
-    const fit = drills.filter((t) => t.diameter <= size + DRILL_OVER && t.diameter >= size - DRILL_UNDER).sort((a, b) => Math.abs(a.diameter - size) - Math.abs(b.diameter - size))[0];
+    const fit = drills.filter((t) => drillFits(t, size)).sort((a, b) => Math.abs(a.diameter - size) - Math.abs(b.diameter - size))[0];
     // A bore's tool: the widest end mill that leaves room for a helix (at most 80 % of the
     // hole). A hole a jobber drill makes (up to φ13) gets a drill of its size added instead.
     const mill = mills.filter((t) => t.diameter <= 0.8 * size).sort((a, b) => b.diameter - a.diameter)[0];

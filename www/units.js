@@ -29,12 +29,12 @@ export const feedUnit = () => (inInches() ? 'in/min' : 'mm/min');
 export const toPage = (mm) => (inInches() ? mm / INCH : mm);
 export const fromPage = (v) => (inInches() ? v * INCH : v);
 
-// A field's value in the page's units, as a machinist types it: a length to a tenth of a
-// thousandth in inches (4 decimals) or to a tenth of a micron in mm, a feed (`kind` 'feed') to
-// a tenth of its unit a minute; no trailing zeros.
+// A field's value in the page's units, as a machinist types it: a length to 4 decimals (a
+// tenth of a thousandth in inches, a tenth of a micron in mm), a feed (`kind` 'feed') to a
+// tenth of its unit a minute; no trailing zeros.
 export function fieldText(mm, kind = 'length') {
   const v = toPage(mm);
-  return String(Number(v.toFixed(kind === 'feed' ? 1 : inInches() ? 4 : 4)));
+  return String(Number(v.toFixed(kind === 'feed' ? 1 : 4)));
 }
 
 // A size as a machinist reads it: 120.0, 5.00, 0.040 mm; 4.724, 0.250, 0.0394 in.

@@ -77,65 +77,71 @@ impl MeshFile {
     }
 }
 
-/// The material of a blank over each point: `(floor, top)`, its lowest and highest crossing
-/// of the vertical line there (empty where the line misses it).
-pub fn material(blank: &Mesh) -> impl Fn(DVec2) -> (f64, f64) + '_ {
-    let crossing = crossings(blank);
-    move |p| {
-        let (n, lo, hi) = crossing(p);
+/// A blank's columns: the vertical lines through it, each crossing its surface, found through
+/// an index of its faces seen from above (made once, asked at every cell of the stock).
+pub struct Columns<'a> {
+    blank: &'a Mesh,
+    index: RectIndex,
+}
+
+impl<'a> Columns<'a> {
+    pub fn new(blank: &'a Mesh) -> Columns<'a> {
+        let rects: Vec<Rect> = blank
+            .faces
+            .iter()
+            .map(|f| {
+                let [a, b, c] = f.map(|v| blank.vertices[v as usize].truncate());
+                Rect { min: a.min(b).min(c), max: a.max(b).max(c) }
+            })
+            .collect();
+        Columns { blank, index: RectIndex::new(&rects) }
+    }
+
+    /// The material over `p`: `(floor, top)`, the lowest and highest crossing of the vertical
+    /// line there (empty where the line misses the blank, or crosses it once).
+    pub fn material(&self, p: DVec2) -> (f64, f64) {
+        let (n, lo, hi) = self.crossings(p);
         if n >= 2 && hi > lo {
             (lo, hi)
         } else {
             (f64::NEG_INFINITY, f64::NEG_INFINITY)
         }
     }
-}
 
-/// What is wrong with a blank as stock, in words, if anything: open (a vertical line through
-/// it crosses its surface once over part of it: a bottom or top missing), so that it holds no
-/// material there.
-pub fn fault(blank: &Mesh) -> Option<String> {
-    const N: usize = 48;
-    let b = blank.bounds();
-    let crossing = crossings(blank);
-    let (mut hit, mut once) = (0usize, 0usize);
-    for i in 0..N {
-        for j in 0..N {
-            let p = DVec2::new(b.min.x + (i as f64 + 0.5) / N as f64 * (b.max.x - b.min.x), b.min.y + (j as f64 + 0.5) / N as f64 * (b.max.y - b.min.y));
-            match crossing(p).0 {
-                0 => {}
-                1 => {
-                    hit += 1;
-                    once += 1;
+    /// What is wrong with the blank as stock, in words, if anything: open (a vertical line
+    /// through it crosses its surface once over part of it: a bottom or top missing), so that
+    /// it holds no material there.
+    pub fn fault(&self) -> Option<String> {
+        const N: usize = 48;
+        let b = self.blank.bounds();
+        let (mut hit, mut once) = (0usize, 0usize);
+        for i in 0..N {
+            for j in 0..N {
+                let p = DVec2::new(b.min.x + (i as f64 + 0.5) / N as f64 * (b.max.x - b.min.x), b.min.y + (j as f64 + 0.5) / N as f64 * (b.max.y - b.min.y));
+                match self.crossings(p).0 {
+                    0 => {}
+                    1 => {
+                        hit += 1;
+                        once += 1;
+                    }
+                    _ => hit += 1,
                 }
-                _ => hit += 1,
             }
         }
-    }
-    (hit > 0 && once * 20 > hit).then(|| {
-        format!(
-            "the blank is open: over {:.0} % of it a vertical line crosses its surface once (its bottom or its top is missing), so it holds no material there; export it as a closed solid",
-            100.0 * once as f64 / hit as f64
-        )
-    })
-}
-
-/// Over each point: how many times the vertical line there crosses the blank's surface, and
-/// its lowest and highest crossing.
-fn crossings(blank: &Mesh) -> impl Fn(DVec2) -> (usize, f64, f64) + '_ {
-    let rects: Vec<Rect> = blank
-        .faces
-        .iter()
-        .map(|f| {
-            let [a, b, c] = f.map(|v| blank.vertices[v as usize].truncate());
-            Rect { min: a.min(b).min(c), max: a.max(b).max(c) }
+        (hit > 0 && once * 20 > hit).then(|| {
+            format!(
+                "the blank is open: over {:.0} % of it a vertical line crosses its surface once (its bottom or its top is missing), so it holds no material there; export it as a closed solid",
+                100.0 * once as f64 / hit as f64
+            )
         })
-        .collect();
-    let index = RectIndex::new(&rects);
-    move |p: DVec2| {
+    }
+
+    /// How many times the vertical line over `p` crosses the blank's surface, and its lowest
+    /// and highest crossing.
+    fn crossings(&self, p: DVec2) -> (usize, f64, f64) {
         let (mut n, mut lo, mut hi) = (0, f64::INFINITY, f64::NEG_INFINITY);
-        index.query(&Rect { min: p, max: p }, |k| {
-            let [a, b, c] = blank.faces[k].map(|v| blank.vertices[v as usize]);
+        self.index.query(&Rect { min: p, max: p }, |k| {
+            let [a, b, c] = self.blank.faces[k].map(|v| self.blank.vertices[v as usize]);
             // Barycentric coordinates of p in the triangle seen from above.
             let (e1, e2, d) = ((b - a).truncate(), (c - a).truncate(), p - a.truncate());
             let det = e1.perp_dot(e2);
@@ -170,10 +176,10 @@ mod tests {
             [DVec3::new(1.0, 0.0, 0.0), DVec3::new(0.0, 1.0, 0.0), DVec3::new(0.0, 0.0, 1.0)],
         ];
         let mesh = Mesh::from_triangles(tris, &Tolerances::DEFAULT).unwrap();
-        let m = material(&mesh);
-        let (lo, hi) = m(DVec2::new(0.2, 0.3));
+        let m = Columns::new(&mesh);
+        let (lo, hi) = m.material(DVec2::new(0.2, 0.3));
         assert!(lo.abs() < 1e-12 && (hi - 0.5).abs() < 1e-12, "{lo} {hi}");
-        assert_eq!(m(DVec2::new(0.8, 0.8)).1, f64::NEG_INFINITY);
+        assert_eq!(m.material(DVec2::new(0.8, 0.8)).1, f64::NEG_INFINITY);
         let file = MeshFile { name: "x.stl".into(), data: Some("***".into()), ..MeshFile::default() };
         assert!(file.mesh().unwrap_err().contains("not base64"));
         assert!(MeshFile { name: "x.stl".into(), ..MeshFile::default() }.mesh().unwrap_err().contains("named but"));

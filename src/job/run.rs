@@ -192,11 +192,12 @@ impl Job {
             let to_zero = stock.min - self.stock_box(&stock).min;
             let mut blank = (*blank).clone();
             blank.transform(|v| v + to_zero);
-            if let Some(why) = super::blank::fault(&blank) {
+            let columns = super::blank::Columns::new(&blank);
+            if let Some(why) = columns.fault() {
                 return Err(Error::Input(format!("stock.mesh: {why}")));
             }
-            outside_the_blank(&part, &blank)?;
-            sim.carry([false; 2], crate::sim::dexel::one_span(super::blank::material(&blank)));
+            outside_the_blank(&part, &columns)?;
+            sim.carry([false; 2], crate::sim::dexel::one_span(|p| columns.material(p)));
         }
         // What holds the stock joins the part in what the cutter is dropped onto, and rapids
         // across run above it.
@@ -893,13 +894,12 @@ impl Running {
 /// above the blank's top or below its bottom over it by more than a hundredth of a millimetre,
 /// the stock holds no material for that part of it (a blank 2 mm short under the part was
 /// refused later as a gouge of 640 cells). A part beside the blank is the stock box's check.
-fn outside_the_blank(part: &Mesh, blank: &Mesh) -> Result<()> {
+fn outside_the_blank(part: &Mesh, blank: &super::blank::Columns) -> Result<()> {
     const SLACK: f64 = 0.01;
-    let material = super::blank::material(blank);
     let step = (part.vertices.len() / 20_000).max(1);
     let mut worst: Option<(f64, DVec3, f64, bool)> = None;
     for &v in part.vertices.iter().step_by(step) {
-        let (lo, hi) = material(v.truncate());
+        let (lo, hi) = blank.material(v.truncate());
         let (by, edge, below) = if hi <= lo {
             continue;
         } else if v.z < lo - SLACK {

@@ -24,6 +24,14 @@ impl Units {
             Units::Inch => 25.4,
         }
     }
+
+    /// Its short name in figures: "mm", "in".
+    pub fn short(self) -> &'static str {
+        match self {
+            Units::Mm => "mm",
+            Units::Inch => "in",
+        }
+    }
 }
 
 /// Which axis of the file points up: the part is turned so that it points along +Z (a turn,

@@ -691,11 +691,12 @@ fn freecad_bit_of(t: &Tool, name: &str) -> Value {
             None => bit[*key] = v.clone(),
         }
     }
-    // Its shape file where it still names the tool's shape ("chamfer.fcstd" for a V-bit).
-    let same_shape = |bit: &Value| {
+    // Whether `bit` reads back as the tool (its cutter, flutes and material).
+    let reads_back = |bit: &Value| {
         let mut notes = Vec::new();
         matches!(freecad_bit(bit, t.number, name, &mut notes), Ok(Some(b)) if b.cutter == t.cutter && b.flutes == t.flutes && b.tool_material == t.tool_material)
     };
+    // Its shape file where it still names the tool's shape ("chamfer.fcstd" for a V-bit).
     if bit.get("shape").and_then(Value::as_str).is_none_or(|s| shape_of_file(s) != Some(c.shape)) {
         bit["shape"] = json!(freecad_shape(c.shape));
     }
@@ -704,8 +705,8 @@ fn freecad_bit_of(t: &Tool, name: &str) -> Value {
         key.split('|').find_map(|k| ["parameter", "attribute"].into_iter().find(|place| bit[*place].get(k).is_some()).map(|place| (place, k.to_owned())))
     };
     // A field the bit has takes the tool's value where it no longer reads the same.
+    let reads = |a: &Value, b: &Value| a == b || matches!((quantity(a), quantity(b)), (Ok(x), Ok(y)) if (x - y).abs() < 1e-9);
     for (_, key, v) in &modelled {
-        let reads = |a: &Value, b: &Value| a == b || matches!((quantity(a), quantity(b)), (Ok(x), Ok(y)) if (x - y).abs() < 1e-9);
         if let Some((place, k)) = find(&bit, key) {
             let o = &bit[place][&k];
             if !(reads(o, v) || (*key == "Material" && o.as_str().is_some_and(|o| o.eq_ignore_ascii_case(material)))) {
@@ -714,14 +715,14 @@ fn freecad_bit_of(t: &Tool, name: &str) -> Value {
         }
     }
     // A field it lacks is added where the bit does not read back as the tool without it.
-    if !same_shape(&bit) {
+    if !reads_back(&bit) {
         for (place, key, v) in &modelled {
             if find(&bit, key).is_none() {
                 bit[*place][first(key)] = v.clone();
             }
         }
     }
-    if !same_shape(&bit) {
+    if !reads_back(&bit) {
         return fresh();
     }
     bit

@@ -1049,13 +1049,14 @@ test('embed.html, a second consumer of swarf.js: a run with progress, a run canc
   await context.close();
 });
 
+// A DXF of LINEs: `lines` as [layer, [x0, y0], [x1, y1]].
+const dxfOfLines = (lines) => `0\nSECTION\n2\nENTITIES\n${lines.map(([layer, [x0, y0], [x1, y1]]) => `0\nLINE\n8\n${layer}\n10\n${x0}\n20\n${y0}\n11\n${x1}\n21\n${y1}\n`).join('')}0\nENDSEC\n0\nEOF\n`;
+// A 60 × 40 plate's outline on layer CUT, as four LINEs.
+const PLATE_60X40 = [[[0, 0], [60, 0]], [[60, 0], [60, 40]], [[60, 40], [0, 40]], [[0, 40], [0, 0]]].map(([a, b]) => ['CUT', a, b]);
+
 test('engraving: open chains on a layer of their own cut along their lines beside a profile, in one clean program that rs274 runs', async () => {
   const { page, context, errors } = await openPage();
-  const line = (layer, [x0, y0], [x1, y1]) => `0\nLINE\n8\n${layer}\n10\n${x0}\n20\n${y0}\n11\n${x1}\n21\n${y1}\n`;
-  let dxf = '0\nSECTION\n2\nENTITIES\n';
-  for (const [a, b] of [[[0, 0], [60, 0]], [[60, 0], [60, 40]], [[60, 40], [0, 40]], [[0, 40], [0, 0]]]) dxf += line('CUT', a, b);
-  for (const [a, b] of [[[10, 30], [25, 30]], [[25, 30], [10, 10]], [[10, 10], [25, 10]]]) dxf += line('TEXT', a, b);
-  dxf += '0\nENDSEC\n0\nEOF\n';
+  const dxf = dxfOfLines([...PLATE_60X40, ...[[[10, 30], [25, 30]], [[25, 30], [10, 10]], [[10, 10], [25, 10]]].map(([a, b]) => ['TEXT', a, b])]);
   await page.setInputFiles('#file', { name: 'sign.dxf', mimeType: 'application/dxf', buffer: Buffer.from(dxf) });
   await page.waitForFunction(() => document.body.dataset.kind === 'drawing');
   await tab(page, 'ops');
@@ -2193,10 +2194,7 @@ test('a new drawing keeps the operations but not what they picked in the last on
   });
   const kinds = await page.evaluate(() => window.swarf.jobs.drawing.operations.map((o) => o.kind));
   // A plain 60 × 40 plate: one outline, no holes.
-  const line = ([x0, y0], [x1, y1]) => `0\nLINE\n8\nCUT\n10\n${x0}\n20\n${y0}\n11\n${x1}\n21\n${y1}\n`;
-  let dxf = '0\nSECTION\n2\nENTITIES\n';
-  for (const [a, b] of [[[0, 0], [60, 0]], [[60, 0], [60, 40]], [[60, 40], [0, 40]], [[0, 40], [0, 0]]]) dxf += line(a, b);
-  dxf += '0\nENDSEC\n0\nEOF\n';
+  const dxf = dxfOfLines(PLATE_60X40);
   await page.setInputFiles('#file', { name: 'plate.dxf', mimeType: 'application/dxf', buffer: Buffer.from(dxf) });
   await page.waitForFunction(() => /plate\.dxf/.test(document.getElementById('part-name').textContent));
   const after = await page.evaluate(() => window.swarf.jobs.drawing.operations.map((o) => ({ kind: o.kind, loops: o.loops ?? null, holes: o.holes ?? null, enabled: o.enabled })));
